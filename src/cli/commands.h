@@ -1,0 +1,25 @@
+// The subcommands of the motiongraph CLI. Each registers its options on the CLI11 app and
+// returns the process exit code when run; errors are printed as one line "FILE:LINE: what".
+#pragma once
+
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+#include "motiongraph/core/error.h"
+
+namespace mg::cli {
+
+// A subcommand: its CLI11 app (set when it was chosen) and what runs it after parsing.
+struct Command {
+  CLI::App* app = nullptr;
+  std::function<int()> run;
+};
+
+Command add_info_command(CLI::App& app);
+Command add_convert_command(CLI::App& app);
+
+// Prints "motiongraph: <error>" to stderr and returns the exit code for failed input (1).
+int fail(const Error& error);
+
+}  // namespace mg::cli

@@ -1,0 +1,72 @@
+// motiongraph convert IN -o OUT: AMC or BVH in, BVH or positions JSON out (metres).
+#include <filesystem>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "cli/commands.h"
+#include "cli/load_options.h"
+#include "motiongraph/export/bvh_writer.h"
+#include "motiongraph/export/positions_json.h"
+#include "motiongraph/io/file.h"
+#include "motiongraph/motion/clip_loader.h"
+#include "motiongraph/motion/resample.h"
+
+namespace mg::cli {
+
+namespace {
+
+struct ConvertOptions {
+  std::string input;
+  std::string output;
+  LoadOptions load;
+  double fps = 0.0;
+  double output_units_per_metre = 1.0;
+};
+
+int run_convert(const ConvertOptions& options) {
+  const std::string ext = std::filesystem::path(options.output).extension().string();
+  if (ext != ".bvh" && ext != ".json") {
+    return fail(Error{options.output, 0, "output must end in .bvh or .json"});
+  }
+  BvhWriteSettings write;
+  write.units_per_metre = options.output_units_per_metre;
+  if (auto s = write.validate(); !s) return fail(s.error());
+  ClipLoader loader(options.load.settings());
+  auto loaded = loader.load(options.input);
+  if (!loaded) return fail(loaded.error());
+  Clip& clip = loaded->clip;
+  if (clip.dropped_leading_frames > 0) {
+    spdlog::info("{}: dropped {} leading rest/T-pose frame(s) (--keep-rest-frames keeps them)", options.input,
+                 clip.dropped_leading_frames);
+  }
+  if (options.fps > 0.0) {
+    auto resampled = resample(clip.motion, options.fps);
+    if (!resampled) return fail(resampled.error());
+    clip.motion = std::move(*resampled);
+  }
+  const std::string content = ext == ".bvh" ? write_bvh(clip.skeleton, clip.motion, write)
+                                            : write_positions_json(clip.skeleton, clip.motion);
+  if (auto s = write_file_atomic(options.output, content); !s) return fail(s.error());
+  return 0;
+}
+
+}  // namespace
+
+Command add_convert_command(CLI::App& app) {
+  auto options = std::make_shared<ConvertOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "convert", "Convert an AMC or BVH clip to BVH (metres) or to JSON world positions "
+                 "({\"fps\", \"joints\": [{\"name\", \"parent\"}], \"positions\": [frame][joint][x,y,z]}).");
+  sub->add_option("IN", options->input, "Input clip (.amc or .bvh)")->required()->check(CLI::ExistingFile);
+  sub->add_option("-o,--output", options->output, "Output file, .bvh or .json")->required();
+  sub->add_option("--fps", options->fps, "Resample to this frame rate (slerp rotations, lerp translations)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--output-scale", options->output_units_per_metre,
+                  "BVH length units per metre in the output (100 for centimetres)")
+      ->capture_default_str();
+  options->load.add_to(*sub);
+  return {sub, [options] { return run_convert(*options); }};
+}
+
+}  // namespace mg::cli

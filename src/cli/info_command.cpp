@@ -1,0 +1,102 @@
+// motiongraph info FILE...: skeleton and clip summary per file (text, or --json).
+#include <cstdio>
+#include <filesystem>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.h"
+#include "cli/load_options.h"
+#include "motiongraph/motion/clip_loader.h"
+#include "motiongraph/motion/clip_summary.h"
+
+namespace mg::cli {
+
+namespace {
+
+struct InfoOptions {
+  std::vector<std::string> files;
+  LoadOptions load;
+  bool json = false;
+};
+
+nlohmann::json skeleton_json(const Skeleton& skeleton) {
+  nlohmann::json joints = nlohmann::json::array();
+  for (const JointDef& joint : skeleton.joints()) {
+    joints.push_back({{"name", joint.name}, {"parent", joint.parent}, {"end_site", joint.end_site}});
+  }
+  return joints;
+}
+
+int run_info(const InfoOptions& options) {
+  ClipLoadSettings settings = options.load.settings();
+  // An .asf among the files is the skeleton of the .amc files given with it.
+  for (const std::string& file : options.files) {
+    if (std::filesystem::path(file).extension() == ".asf" && !settings.asf_path) settings.asf_path = file;
+  }
+  ClipLoader loader(settings);
+  nlohmann::json all = nlohmann::json::array();
+  for (const std::string& file : options.files) {
+    if (std::filesystem::path(file).extension() == ".asf") {
+      auto rig = loader.load_asf(file);
+      if (!rig) return fail(rig.error());
+      const Skeleton& skeleton = (*rig)->skeleton;
+      int end_sites = 0;
+      for (const JointDef& joint : skeleton.joints()) end_sites += joint.end_site ? 1 : 0;
+      const int dofs = (*rig)->amc_layout.values_per_frame();
+      if (options.json) {
+        all.push_back({{"file", file}, {"format", "asf"}, {"joints", skeleton.joint_count() - end_sites},
+                       {"end_sites", end_sites}, {"dofs", dofs}, {"metres_per_unit", (*rig)->metres_per_unit},
+                       {"skeleton", skeleton_json(skeleton)}});
+      } else {
+        fmt::print("{}: ASF skeleton, {} joints + {} end sites, {} dofs, 1 unit = {:.6f} m, leg length {:.3f} m\n",
+                   file, skeleton.joint_count() - end_sites, end_sites, dofs, (*rig)->metres_per_unit,
+                   skeleton.leg_length_m());
+      }
+      continue;
+    }
+    auto loaded = loader.load(file);
+    if (!loaded) return fail(loaded.error());
+    const Clip& clip = loaded->clip;
+    const ClipSummary s = summarize(clip.skeleton, clip.motion);
+    if (options.json) {
+      nlohmann::json entry = {
+          {"file", file}, {"format", loaded->format}, {"joints", s.joints}, {"end_sites", s.end_sites},
+          {"dofs", loaded->source_channels}, {"frames", s.frames}, {"fps", s.fps}, {"duration_s", s.duration_s},
+          {"dropped_leading_frames", clip.dropped_leading_frames},
+          {"floor_extent_m", {{"x", {s.floor_min_x_m, s.floor_max_x_m}}, {"z", {s.floor_min_z_m, s.floor_max_z_m}}}},
+          {"height_m", {s.min_height_m, s.max_height_m}}, {"root_path_m", s.root_path_m},
+          {"skeleton", skeleton_json(clip.skeleton)}};
+      if (!loaded->skeleton_path.empty()) entry["asf"] = loaded->skeleton_path;
+      all.push_back(std::move(entry));
+    } else {
+      fmt::print("{}: {}{}\n", file, loaded->format == "amc" ? "AMC on " : "BVH",
+                 loaded->format == "amc" ? loaded->skeleton_path : "");
+      fmt::print("  skeleton: {} joints + {} end sites, {} dofs\n", s.joints, s.end_sites, loaded->source_channels);
+      fmt::print("  motion:   {} frames at {:g} fps, {:.2f} s{}\n", s.frames, s.fps, s.duration_s,
+                 clip.dropped_leading_frames > 0 ? " (leading rest/T-pose frames dropped)" : "");
+      fmt::print("  floor:    x {:.2f} .. {:.2f} m, z {:.2f} .. {:.2f} m; height {:.2f} .. {:.2f} m; root travels {:.2f} m\n",
+                 s.floor_min_x_m, s.floor_max_x_m, s.floor_min_z_m, s.floor_max_z_m, s.min_height_m,
+                 s.max_height_m, s.root_path_m);
+    }
+  }
+  if (options.json) fmt::print("{}\n", all.dump(2));
+  return 0;
+}
+
+}  // namespace
+
+Command add_info_command(CLI::App& app) {
+  auto options = std::make_shared<InfoOptions>();
+  CLI::App* sub = app.add_subcommand("info", "Summarise skeletons and clips: joints, dofs, frames, fps, "
+                                             "duration and floor extent (metres).");
+  sub->add_option("FILE", options->files, "ASF, AMC or BVH files (an AMC uses the .asf given with it, --asf, "
+                                          "or the only .asf in its folder)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sub->add_flag("--json", options->json, "Print the summary as JSON");
+  options->load.add_to(*sub);
+  return {sub, [options] { return run_info(*options); }};
+}
+
+}  // namespace mg::cli

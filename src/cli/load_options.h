@@ -1,0 +1,39 @@
+// Command-line options shared by the commands that read clips.
+#pragma once
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "motiongraph/motion/clip_loader.h"
+
+namespace mg::cli {
+
+struct LoadOptions {
+  std::string asf;
+  double scale = 1.0;
+  double input_fps = 0.0;
+  bool keep_rest_frames = false;
+
+  void add_to(CLI::App& app) {
+    app.add_option("--asf", asf, "ASF skeleton of the AMC files")->check(CLI::ExistingFile);
+    app.add_option("--scale", scale,
+                   "Metres per BVH length unit (BVH carries no unit; CMU conversions: 0.056444, cm: 0.01)")
+        ->capture_default_str();
+    app.add_option("--input-fps", input_fps,
+                   "Capture rate of the input, overriding the file's (AMC default 120, CMU's rate)");
+    app.add_flag("--keep-rest-frames", keep_rest_frames,
+                 "Keep leading rest or T-pose frames that a BVH converter added (dropped by default)");
+  }
+
+  ClipLoadSettings settings() const {
+    ClipLoadSettings s;
+    if (!asf.empty()) s.asf_path = asf;
+    s.bvh_metres_per_unit = scale;
+    s.input_fps = input_fps;
+    s.keep_rest_frames = keep_rest_frames;
+    return s;
+  }
+};
+
+}  // namespace mg::cli

@@ -1,0 +1,51 @@
+// motiongraph: motion graphs from motion capture (Kovar, Gleicher & Pighin 2002).
+// Entry point: parses the command line with CLI11 and runs one subcommand. Exceptions never
+// escape: they become one line on stderr and a non-zero exit.
+#include <cstdio>
+#include <exception>
+#include <new>
+
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include "cli/commands.h"
+
+namespace mg::cli {
+
+int fail(const Error& error) {
+  std::fprintf(stderr, "%s\n", error.to_string().c_str());
+  return 1;
+}
+
+}  // namespace mg::cli
+
+int main(int argc, char** argv) {
+  auto logger = spdlog::stderr_color_mt("motiongraph");
+  logger->set_pattern("motiongraph: %^%l%$: %v");
+  spdlog::set_default_logger(logger);
+
+  CLI::App app{"motiongraph: build motion graphs from motion capture and synthesize new motion.\n"
+               "Reads CMU ASF/AMC and BVH; lengths in metres."};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "motiongraph 0.1.0");
+  const std::vector<mg::cli::Command> commands = {
+      mg::cli::add_info_command(app),
+      mg::cli::add_convert_command(app),
+  };
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    for (const auto& command : commands) {
+      if (command.app->parsed()) return command.run();
+    }
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "motiongraph: out of memory\n");
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "motiongraph: %s\n", e.what());
+  }
+  return 1;
+}

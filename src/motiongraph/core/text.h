@@ -1,0 +1,58 @@
+// Reading text formats line by line: CRLF or LF endings, tabs and spaces as separators,
+// numbers parsed strictly (whole token, finite). Used by the ASF, AMC and BVH parsers, which
+// all take the file's text in memory plus its name for messages.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "motiongraph/core/error.h"
+
+namespace mg {
+
+// Splits a line into whitespace-separated tokens (spaces, tabs, \r, \v, \f).
+std::vector<std::string_view> split_tokens(std::string_view line);
+
+// A token parsed as a finite double; nullopt for anything else ("1.5x", "nan", "inf", "").
+// Accepts a leading '+' and forms like ".5" and "1e-3".
+std::optional<double> parse_finite(std::string_view token);
+
+// A token parsed as an int (decimal, optional sign); nullopt when not exactly that or when
+// it does not fit.
+std::optional<long long> parse_integer(std::string_view token);
+
+// Walks text line by line. Line numbers are 1-based; a trailing '\r' is removed.
+class LineReader {
+ public:
+  LineReader(std::string_view text, std::string file_name);
+
+  // The next line, or nullopt at the end of the text.
+  std::optional<std::string_view> next();
+  // The next line that has a token, as tokens (skips blank lines); empty at the end.
+  std::vector<std::string_view> next_tokens();
+  // Looks at the next non-blank line's tokens without consuming it.
+  std::vector<std::string_view> peek_tokens();
+
+  int line_number() const { return line_number_; }  // number of the line last returned
+  bool at_end() const { return pos_ >= text_.size(); }
+  // Remaining text, unread.
+  std::string_view rest() const { return text_.substr(pos_); }
+  const std::string& file_name() const { return file_; }
+
+  // An error at the line last returned.
+  Error error(std::string message) const { return Error{file_, line_number_, std::move(message)}; }
+  Error error_at(int line, std::string message) const { return Error{file_, line, std::move(message)}; }
+
+ private:
+  std::string_view text_;
+  std::string file_;
+  size_t pos_ = 0;
+  int line_number_ = 0;
+};
+
+// Quotes a token for an error message, shortened when long.
+std::string quoted(std::string_view token);
+
+}  // namespace mg

@@ -1,0 +1,36 @@
+#include "motiongraph/export/positions_json.h"
+
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include "motiongraph/motion/forward_kinematics.h"
+
+namespace mg {
+
+std::string write_positions_json(const Skeleton& skeleton, const Motion& motion) {
+  using nlohmann::json;
+  json doc;
+  doc["fps"] = motion.fps;
+  json joints = json::array();
+  for (const JointDef& joint : skeleton.joints()) {
+    joints.push_back({{"name", joint.name}, {"parent", joint.parent}});
+  }
+  doc["joints"] = std::move(joints);
+  const std::vector<Vec3> world = world_positions(skeleton, motion);
+  auto round_um = [](double v) { return std::round(v * 1e6) / 1e6 + 0.0; };
+  json frames = json::array();
+  const size_t count = static_cast<size_t>(skeleton.joint_count());
+  for (int f = 0; f < motion.frame_count; ++f) {
+    json frame = json::array();
+    for (size_t j = 0; j < count; ++j) {
+      const Vec3& p = world[f * count + j];
+      frame.push_back(json::array({round_um(p.x()), round_um(p.y()), round_um(p.z())}));
+    }
+    frames.push_back(std::move(frame));
+  }
+  doc["positions"] = std::move(frames);
+  return doc.dump() + "\n";
+}
+
+}  // namespace mg

@@ -1,0 +1,94 @@
+#include "motiongraph/motion/bvh_import.h"
+
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "motiongraph/motion/rest_frame.h"
+
+namespace mg {
+
+Status BvhImportSettings::validate() const {
+  if (!(metres_per_unit > 0.0) || !std::isfinite(metres_per_unit)) {
+    return Error{"", 0, "the BVH scale must be a positive number"};
+  }
+  if (!(fps_override >= 0.0) || !std::isfinite(fps_override)) {
+    return Error{"", 0, "the BVH frame rate override must be positive (or 0 for the file's)"};
+  }
+  return Ok{};
+}
+
+Result<Clip> clip_from_bvh(const BvhDocument& bvh, const BvhImportSettings& settings) {
+  if (auto s = settings.validate(); !s) return s.error();
+  const int file_joints = static_cast<int>(bvh.joints.size());
+  // New order: joints with channels or children first (file order), End Sites after.
+  std::vector<int> new_index(file_joints, -1);
+  std::vector<int> order;
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int j = 0; j < file_joints; ++j) {
+      if (bvh.joints[j].end_site == (pass == 1)) {
+        new_index[j] = static_cast<int>(order.size());
+        order.push_back(j);
+      }
+    }
+  }
+  const double scale = settings.metres_per_unit;
+  std::vector<JointDef> joints;
+  for (int j : order) {
+    const BvhJoint& in = bvh.joints[j];
+    JointDef out;
+    out.name = in.name;
+    out.parent = in.parent < 0 ? -1 : new_index[in.parent];
+    out.rest_offset_m = in.offset * scale;
+    out.end_site = in.end_site;
+    std::vector<Axis> rotation_axes;
+    for (BvhChannel c : in.channels) {
+      if (is_rotation(c)) {
+        rotation_axes.push_back(channel_axis(c));
+      } else {
+        out.animated_translation = true;
+      }
+    }
+    if (rotation_axes.size() == 3) out.euler_order = {rotation_axes[0], rotation_axes[1], rotation_axes[2]};
+    joints.push_back(out);
+  }
+  Clip clip;
+  clip.skeleton = Skeleton(std::move(joints));
+  const double fps = settings.fps_override > 0.0 ? settings.fps_override : 1.0 / bvh.frame_time_s;
+  Motion& motion = clip.motion;
+  motion = Motion(clip.skeleton, bvh.frame_count, fps);
+  constexpr double kRadiansPerDegree = std::numbers::pi / 180.0;
+  for (int f = 0; f < bvh.frame_count; ++f) {
+    const double* values = bvh.values.data() + static_cast<size_t>(f) * bvh.channel_count;
+    auto rotations = motion.rotations(f);
+    auto translations = motion.translations(f);
+    for (int j = 0; j < file_joints; ++j) {
+      const BvhJoint& in = bvh.joints[j];
+      const int target = new_index[j];
+      Quat rotation = Quat::Identity();
+      Vec3 translation = in.offset;
+      for (size_t c = 0; c < in.channels.size(); ++c) {
+        const double v = values[in.first_channel + c];
+        const BvhChannel channel = in.channels[c];
+        if (is_rotation(channel)) {
+          rotation = rotation * axis_rotation(channel_axis(channel), v * kRadiansPerDegree);
+        } else {
+          translation[static_cast<int>(channel_axis(channel))] = v;
+        }
+      }
+      rotations[target] = rotation.normalized();
+      const int slot = clip.skeleton.translation_slot(target);
+      if (slot >= 0) translations[slot] = translation * scale;
+    }
+  }
+  if (settings.drop_rest_frames) {
+    if (const int added = leading_added_frames(motion); added > 0) {
+      motion = motion.slice(added, motion.frame_count - added);
+      clip.dropped_leading_frames = added;
+    }
+  }
+  return clip;
+}
+
+}  // namespace mg

@@ -1,0 +1,111 @@
+#include "motiongraph/motion/clip_loader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "motiongraph/io/amc_parser.h"
+#include "motiongraph/io/bvh_parser.h"
+#include "motiongraph/io/file.h"
+#include "motiongraph/motion/bvh_import.h"
+
+namespace mg {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string extension_of(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+}  // namespace
+
+Status ClipLoadSettings::validate() const {
+  if (!(bvh_metres_per_unit > 0.0) || !std::isfinite(bvh_metres_per_unit)) {
+    return Error{"", 0, "--scale must be a positive number"};
+  }
+  if (!(input_fps >= 0.0) || !std::isfinite(input_fps)) return Error{"", 0, "--input-fps must be positive"};
+  return Ok{};
+}
+
+Result<std::string> ClipLoader::find_asf_for(const std::string& amc_path) const {
+  if (settings_.asf_path) return *settings_.asf_path;
+  fs::path folder = fs::path(amc_path).parent_path();
+  if (folder.empty()) folder = ".";
+  std::vector<std::string> found;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(folder, ec)) {
+    if (entry.is_regular_file() && extension_of(entry.path().string()) == ".asf") {
+      found.push_back(entry.path().string());
+    }
+  }
+  if (found.size() == 1) return found.front();
+  return Error{amc_path, 0,
+               found.empty() ? "no skeleton: give --asf (no .asf file beside the AMC)"
+                             : "several .asf files beside the AMC: choose one with --asf"};
+}
+
+Result<std::shared_ptr<const AcclaimRig>> ClipLoader::load_asf(const std::string& path) {
+  if (auto it = rigs_.find(path); it != rigs_.end()) return it->second;
+  auto text = read_text_file(path);
+  if (!text) return text.error();
+  auto asf = parse_asf(*text, path);
+  if (!asf) return asf.error();
+  auto rig = build_acclaim_rig(*asf);
+  if (!rig) return rig.error();
+  auto shared = std::make_shared<const AcclaimRig>(std::move(*rig));
+  rigs_.emplace(path, shared);
+  return shared;
+}
+
+Result<LoadedClip> ClipLoader::load(const std::string& path) {
+  if (auto s = settings_.validate(); !s) return s.error();
+  const std::string ext = extension_of(path);
+  LoadedClip loaded;
+  loaded.clip.name = fs::path(path).stem().string();
+  if (ext == ".amc") {
+    auto asf_path = find_asf_for(path);
+    if (!asf_path) return asf_path.error();
+    auto rig = load_asf(*asf_path);
+    if (!rig) return rig.error();
+    auto text = read_text_file(path);
+    if (!text) return text.error();
+    auto amc = parse_amc(*text, path, (*rig)->amc_layout, (*rig)->angles_in_degrees);
+    if (!amc) return amc.error();
+    const double fps = settings_.input_fps > 0.0 ? settings_.input_fps : kCmuCaptureFps;
+    loaded.clip.skeleton = (*rig)->skeleton;
+    loaded.clip.motion = motion_from_amc(**rig, *amc, fps);
+    loaded.format = "amc";
+    loaded.skeleton_path = *asf_path;
+    loaded.source_channels = amc->values_per_frame;
+    return loaded;
+  }
+  if (ext == ".bvh") {
+    auto text = read_text_file(path);
+    if (!text) return text.error();
+    auto bvh = parse_bvh(*text, path);
+    if (!bvh) return bvh.error();
+    BvhImportSettings import;
+    import.metres_per_unit = settings_.bvh_metres_per_unit;
+    import.fps_override = settings_.input_fps;
+    import.drop_rest_frames = !settings_.keep_rest_frames;
+    auto clip = clip_from_bvh(*bvh, import);
+    if (!clip) return Error{path, 0, clip.error().message};
+    std::string name = std::move(loaded.clip.name);
+    loaded.clip = std::move(*clip);
+    loaded.clip.name = std::move(name);
+    loaded.format = "bvh";
+    loaded.source_channels = bvh->channel_count;
+    return loaded;
+  }
+  if (ext == ".asf") return Error{path, 0, "an ASF file holds a skeleton only; give its AMC files"};
+  return Error{path, 0, "unknown file type (expected .amc or .bvh)"};
+}
+
+}  // namespace mg

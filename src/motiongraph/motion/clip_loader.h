@@ -1,0 +1,52 @@
+// Loading a clip from files: picks the reader by extension (.amc with its .asf, .bvh), reads
+// the text through io/file.h and builds Skeleton + Motion. Parsed ASF skeletons are cached, so
+// loading many AMC files of one subject reads its ASF once.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "motiongraph/core/error.h"
+#include "motiongraph/motion/acclaim_import.h"
+#include "motiongraph/motion/motion.h"
+
+namespace mg {
+
+struct ClipLoadSettings {
+  std::optional<std::string> asf_path;  // skeleton for AMC files; otherwise the only .asf
+                                        // in the AMC's folder
+  double bvh_metres_per_unit = 1.0;     // BVH carries no unit
+  double input_fps = 0.0;               // > 0: the capture rate, overriding the file's
+                                        // (AMC files store none: 120 by default, CMU's rate)
+  bool keep_rest_frames = false;        // keep leading rest/T-pose frames of a BVH
+
+  Status validate() const;
+};
+
+struct LoadedClip {
+  Clip clip;
+  std::string format;         // "amc" or "bvh"
+  std::string skeleton_path;  // the ASF used, for AMC
+  int source_channels = 0;    // values per frame in the file (its degrees of freedom)
+};
+
+class ClipLoader {
+ public:
+  explicit ClipLoader(ClipLoadSettings settings) : settings_(std::move(settings)) {}
+
+  Result<LoadedClip> load(const std::string& path);
+  // An ASF file alone: its skeleton, with no frames.
+  Result<std::shared_ptr<const AcclaimRig>> load_asf(const std::string& path);
+
+ private:
+  Result<std::string> find_asf_for(const std::string& amc_path) const;
+
+  ClipLoadSettings settings_;
+  std::map<std::string, std::shared_ptr<const AcclaimRig>> rigs_;
+};
+
+constexpr double kCmuCaptureFps = 120.0;
+
+}  // namespace mg

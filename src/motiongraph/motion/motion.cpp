@@ -1,0 +1,27 @@
+#include "motiongraph/motion/motion.h"
+
+#include <cassert>
+
+namespace mg {
+
+Motion::Motion(const Skeleton& skeleton, int frames, double frames_per_second)
+    : fps(frames_per_second),
+      frame_count(frames),
+      joint_count(skeleton.joint_count()),
+      translated_count(static_cast<int>(skeleton.translated_joints().size())),
+      local_rotations(static_cast<size_t>(frames) * skeleton.joint_count(), Quat::Identity()),
+      local_translations_m(static_cast<size_t>(frames) * skeleton.translated_joints().size(), Vec3::Zero()) {}
+
+Motion Motion::slice(int first, int count) const {
+  assert(first >= 0 && count >= 0 && first + count <= frame_count);
+  Motion out = *this;
+  out.frame_count = count;
+  out.local_rotations.assign(local_rotations.begin() + static_cast<ptrdiff_t>(first) * joint_count,
+                             local_rotations.begin() + static_cast<ptrdiff_t>(first + count) * joint_count);
+  out.local_translations_m.assign(
+      local_translations_m.begin() + static_cast<ptrdiff_t>(first) * translated_count,
+      local_translations_m.begin() + static_cast<ptrdiff_t>(first + count) * translated_count);
+  return out;
+}
+
+}  // namespace mg

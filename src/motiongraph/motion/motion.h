@@ -1,0 +1,52 @@
+// A clip's animation on one skeleton: per frame, the local rotation of every joint (unit
+// quaternions, frames x joints, frame-major) and the local translation in metres of every
+// joint with animated translation (frames x skeleton.translated_joints()). Sampled at fps.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "motiongraph/skeleton/skeleton.h"
+
+namespace mg {
+
+struct Motion {
+  double fps = 30.0;
+  int frame_count = 0;
+  int joint_count = 0;
+  int translated_count = 0;
+  std::vector<Quat> local_rotations;    // frame_count x joint_count
+  std::vector<Vec3> local_translations_m;  // frame_count x translated_count
+
+  Motion() = default;
+  Motion(const Skeleton& skeleton, int frames, double frames_per_second);
+
+  std::span<Quat> rotations(int frame) {
+    return {local_rotations.data() + static_cast<size_t>(frame) * joint_count, static_cast<size_t>(joint_count)};
+  }
+  std::span<const Quat> rotations(int frame) const {
+    return {local_rotations.data() + static_cast<size_t>(frame) * joint_count, static_cast<size_t>(joint_count)};
+  }
+  std::span<Vec3> translations(int frame) {
+    return {local_translations_m.data() + static_cast<size_t>(frame) * translated_count,
+            static_cast<size_t>(translated_count)};
+  }
+  std::span<const Vec3> translations(int frame) const {
+    return {local_translations_m.data() + static_cast<size_t>(frame) * translated_count,
+            static_cast<size_t>(translated_count)};
+  }
+  double duration_s() const { return frame_count > 0 ? (frame_count - 1) / fps : 0.0; }
+
+  // Frames [first, first + count) as a new motion.
+  Motion slice(int first, int count) const;
+};
+
+// A skeleton with one motion on it: what a file gives.
+struct Clip {
+  std::string name;
+  Skeleton skeleton;
+  Motion motion;
+  int dropped_leading_frames = 0;  // frames removed at load (an added rest or T-pose)
+};
+
+}  // namespace mg
