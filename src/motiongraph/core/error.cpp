@@ -1,16 +1,13 @@
 #include "motiongraph/core/error.h"
 
+#include <fmt/format.h>
+
 namespace mg {
 
 std::string Error::to_string() const {
-  std::string out;
-  if (!file.empty()) {
-    out += file;
-    if (line > 0) out += ":" + std::to_string(line);
-    out += ": ";
-  }
-  out += message;
-  return out;
+  if (file.empty()) return message;
+  if (line > 0) return fmt::format("{}:{}: {}", file, line, message);
+  return fmt::format("{}: {}", file, message);
 }
 
 }  // namespace mg

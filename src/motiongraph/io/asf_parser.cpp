@@ -309,36 +309,40 @@ class AsfParser {
   }
 
   // "limits (-160.0 20.0)" followed by lines "(-70.0 70.0)"; parentheses may touch the numbers
-  // or stand alone; "inf" and "-inf" mean unlimited.
-  Status limits(std::vector<std::string_view> tokens, AsfBone& bone) {
-    std::string flat;
-    for (size_t i = 1; i < tokens.size(); ++i) (flat += tokens[i]) += ' ';
+  // or stand alone; "inf" and "-inf" mean unlimited. Errors name the line of the bad pair.
+  Status limits(const std::vector<std::string_view>& first_line, AsfBone& bone) {
+    std::vector<std::pair<std::string, int>> numbers;  // token, line
+    auto collect = [&](const std::vector<std::string_view>& tokens, size_t from) {
+      std::string flat;
+      for (size_t i = from; i < tokens.size(); ++i) (flat += tokens[i]) += ' ';
+      for (char& c : flat) {
+        if (c == '(' || c == ')') c = ' ';
+      }
+      for (auto t : split_tokens(flat)) numbers.emplace_back(lower(t), in_.line_number());
+    };
+    collect(first_line, 1);
     while (true) {
       auto ahead = peek();
       if (ahead.empty() || ahead[0].front() != '(') break;
-      for (auto t : next()) (flat += t) += ' ';
+      collect(next(), 0);
     }
-    // Each limit is "( min max )".
-    for (char& c : flat) {
-      if (c == '(' || c == ')') c = ' ';
-    }
-    auto numbers = split_tokens(flat);
     if (numbers.size() % 2 != 0) return in_.error("limits need pairs (min max)");
     for (size_t i = 0; i < numbers.size(); i += 2) {
       double pair[2];
+      const int line = numbers[i + 1].second;
       for (int k = 0; k < 2; ++k) {
-        const std::string t = lower(numbers[i + k]);
+        const std::string& t = numbers[i + k].first;
         if (t == "inf" || t == "+inf") {
           pair[k] = std::numeric_limits<double>::infinity();
         } else if (t == "-inf") {
           pair[k] = -std::numeric_limits<double>::infinity();
-        } else {
-          auto value = number(numbers[i + k], "limit");
-          if (!value) return value.error();
+        } else if (auto value = parse_finite(t)) {
           pair[k] = *value;
+        } else {
+          return in_.error_at(line, fmt::format("limit: {} is not a number", quoted(t)));
         }
       }
-      if (pair[0] > pair[1]) return in_.error("a limit has min > max");
+      if (pair[0] > pair[1]) return in_.error_at(line, "a limit has min > max");
       bone.limits.emplace_back(pair[0], pair[1]);
     }
     return Ok{};

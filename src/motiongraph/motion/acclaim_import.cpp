@@ -64,10 +64,10 @@ Result<AcclaimRig> build_acclaim_rig(const AsfDocument& asf) {
       auto it = by_name.find(child_name);
       if (it == by_name.end()) return Error{file, line.line, fmt::format("unknown bone '{}' in the hierarchy", child_name)};
       const int c = it->second;
+      if (c == p) return Error{file, line.line, fmt::format("bone '{}' is its own parent", child_name)};
       if (parent[c] != -2) {
         return Error{file, line.line, fmt::format("bone '{}' has a second parent (first given on line {})", child_name, parent_line[c])};
       }
-      if (c == p) return Error{file, line.line, fmt::format("bone '{}' is its own parent", child_name)};
       parent[c] = p;
       parent_line[c] = line.line;
       children[p < 0 ? bone_count : p].push_back(c);

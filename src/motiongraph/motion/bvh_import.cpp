@@ -19,6 +19,14 @@ Status BvhImportSettings::validate() const {
   return Ok{};
 }
 
+double fps_from_frame_time(double frame_time_s) {
+  // Frame times are written rounded (".0083333"); a rate within 1e-4 of a whole number is
+  // that number (120.0005 -> 120), while 29.97 stays 29.97.
+  const double fps = 1.0 / frame_time_s;
+  const double whole = std::round(fps);
+  return whole > 0.0 && std::abs(fps - whole) <= 1e-4 * fps ? whole : fps;
+}
+
 Result<Clip> clip_from_bvh(const BvhDocument& bvh, const BvhImportSettings& settings) {
   if (auto s = settings.validate(); !s) return s.error();
   const int file_joints = static_cast<int>(bvh.joints.size());
@@ -55,7 +63,7 @@ Result<Clip> clip_from_bvh(const BvhDocument& bvh, const BvhImportSettings& sett
   }
   Clip clip;
   clip.skeleton = Skeleton(std::move(joints));
-  const double fps = settings.fps_override > 0.0 ? settings.fps_override : 1.0 / bvh.frame_time_s;
+  const double fps = settings.fps_override > 0.0 ? settings.fps_override : fps_from_frame_time(bvh.frame_time_s);
   Motion& motion = clip.motion;
   motion = Motion(clip.skeleton, bvh.frame_count, fps);
   constexpr double kRadiansPerDegree = std::numbers::pi / 180.0;

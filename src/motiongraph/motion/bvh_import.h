@@ -23,6 +23,9 @@ struct BvhImportSettings {
   Status validate() const;
 };
 
+// 1 / frame time, snapped to a whole number of frames per second when within 1e-4 of one.
+double fps_from_frame_time(double frame_time_s);
+
 Result<Clip> clip_from_bvh(const BvhDocument& bvh, const BvhImportSettings& settings);
 
 }  // namespace mg

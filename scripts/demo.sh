@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# The main job on the bundled data: installs what is missing, builds, then reads every bundled
+# clip, prints its summary, and converts it to BVH in metres and to JSON world positions
+# (30 fps) in out/. Usage: scripts/demo.sh   (from anywhere)
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+
+scripts/install-deps.sh
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build -j "$(nproc)"
+bin=build/motiongraph
+mkdir -p out/bvh out/json
+
+echo "== the bundled clips"
+"$bin" info data/cmu/16/16.asf data/cmu/16/*.amc data/bvh/*.bvh | tee out/summary.txt
+
+echo "== converting to out/bvh (metres) and out/json (world positions), 30 fps"
+for amc in data/cmu/16/*.amc; do
+  name=$(basename "$amc" .amc)
+  "$bin" convert "$amc" --fps 30 -o "out/bvh/$name.bvh"
+  "$bin" convert "$amc" --fps 30 -o "out/json/$name.json"
+done
+# BVH has no unit: the CMU conversions are in the ASF's unit, the Daz-style ones (07_*) in cm.
+# 16_01.bvh says 30 fps but holds the 120 fps capture (see data/README.md).
+convert_bvh() {
+  local file=$1
+  shift
+  local name
+  name=$(basename "$file" .bvh)
+  "$bin" convert "$file" --fps 30 "$@" -o "out/bvh/${name}_bvh.bvh"
+  "$bin" convert "$file" --fps 30 "$@" -o "out/json/${name}_bvh.json"
+}
+convert_bvh data/bvh/16_01.bvh --scale 0.056444 --input-fps 120
+convert_bvh data/bvh/131_01.bvh --scale 0.056444
+convert_bvh data/bvh/111_36.bvh --scale 0.056444
+convert_bvh data/bvh/07_01.bvh --scale 0.01
+convert_bvh data/bvh/07_12.bvh --scale 0.01
+
+echo "== done: $(ls out/bvh | wc -l) BVH files in out/bvh (open them in Blender: File > Import > BVH),"
+echo "   JSON world positions in out/json, summary in out/summary.txt"

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds, and runs the whole test suite:
+#   1. the normal build (warnings as errors) and every CTest test;
+#   2. the same tests built with AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/);
+#   3. each libFuzzer target briefly (build-fuzz/; FUZZ_SECONDS per target, default 20).
+# Usage: scripts/test.sh        (from anywhere; exits non-zero on the first failure)
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+
+jobs=$(nproc)
+scripts/install-deps.sh
+
+echo "== build (warnings as errors)"
+cmake -S . -B build -G Ninja -DMOTIONGRAPH_WERROR=ON >/dev/null
+cmake --build build -j "$jobs"
+echo "== tests"
+ctest --test-dir build --output-on-failure -j "$jobs"
+
+echo "== tests under AddressSanitizer + UndefinedBehaviorSanitizer"
+CC=clang CXX=clang++ cmake -S . -B build-asan -G Ninja -DMOTIONGRAPH_WERROR=ON \
+  -DMOTIONGRAPH_SANITIZE=address,undefined -DMOTIONGRAPH_BENCHMARKS=OFF -DCMAKE_BUILD_TYPE=Debug >/dev/null
+cmake --build build-asan -j "$jobs"
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  ctest --test-dir build-asan --output-on-failure -j "$jobs"
+
+echo "== fuzzing each parser for ${FUZZ_SECONDS:-20} s"
+scripts/fuzz.sh "${FUZZ_SECONDS:-20}"
+
+echo "== all tests passed"

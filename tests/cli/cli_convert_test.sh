@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# The CLI as a user runs it on the bundled data: info and convert work, --help on every
+# subcommand, outputs are complete files. Usage: MOTIONGRAPH=binary cli_convert_test.sh DATA_DIR
+set -euo pipefail
+data=$1
+bin=${MOTIONGRAPH:?set MOTIONGRAPH to the motiongraph binary}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+for sub in "" info convert; do
+  "$bin" $sub --help | grep -q "Usage" || { echo "FAIL: no usage for '$sub --help'"; exit 1; }
+done
+
+# info on every bundled file at once (the .asf given with the AMCs).
+"$bin" info "$data"/cmu/16/16.asf "$data"/cmu/16/*.amc "$data"/bvh/*.bvh >"$work/info.txt"
+[[ $(grep -c "frames at" "$work/info.txt") -eq 20 ]] || { echo "FAIL: info did not report 20 clips"; cat "$work/info.txt"; exit 1; }
+"$bin" info --json "$data"/cmu/16/16_35.amc >"$work/info.json"
+python3 - "$work/info.json" <<'PY'
+import json, sys
+info = json.load(open(sys.argv[1]))[0]
+assert info["frames"] == 162 and info["fps"] == 120 and info["joints"] == 31 and info["dofs"] == 62, info
+x0, x1 = info["floor_extent_m"]["x"]; z0, z1 = info["floor_extent_m"]["z"]
+assert 0.5 < max(x1 - x0, z1 - z0) < 20, info["floor_extent_m"]   # a 1.3 s jog, in metres
+PY
+
+# convert: AMC -> BVH and JSON, resampled; BVH -> BVH with a scale.
+"$bin" convert "$data/cmu/16/16_35.amc" -o "$work/jog.bvh" --fps 30
+"$bin" convert "$data/cmu/16/16_35.amc" -o "$work/jog.json" --fps 30
+"$bin" convert "$data/bvh/111_36.bvh" -o "$work/carry.bvh" --scale 0.056444
+grep -q "^Frames: 41$" "$work/jog.bvh" || { echo "FAIL: 162 frames at 120 fps should give 41 at 30 fps"; exit 1; }
+grep -q "^Frame Time: 0.0333333333$" "$work/jog.bvh" || { echo "FAIL: frame time"; exit 1; }
+grep -q "^Frames: 1465$" "$work/carry.bvh" || { echo "FAIL: the T-pose frame should be dropped"; exit 1; }
+python3 - "$work/jog.json" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["fps"] == 30 and len(d["positions"]) == 41
+assert len(d["joints"]) == 38 and d["joints"][0] == {"name": "root", "parent": -1}
+assert all(len(frame) == 38 and all(len(p) == 3 for p in frame) for frame in d["positions"])
+names = [j["name"] for j in d["joints"]]
+head, toes = names.index("head"), names.index("ltoes")
+assert 1.3 < d["positions"][0][head][1] - d["positions"][0][toes][1] < 1.9   # metres
+PY
+# The converted BVH reads back.
+"$bin" info "$work/jog.bvh" | grep -q "41 frames at 30 fps" || { echo "FAIL: written BVH does not read back"; exit 1; }
+ls -A "$work" | grep -q "tmp-" && { echo "FAIL: temporary files left"; exit 1; }
+echo "cli convert ok"

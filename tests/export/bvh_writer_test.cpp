@@ -1,0 +1,104 @@
+#include "motiongraph/export/bvh_writer.h"
+
+#include <gtest/gtest.h>
+
+#include "motiongraph/io/bvh_parser.h"
+#include "motiongraph/motion/bvh_import.h"
+#include "motiongraph/motion/forward_kinematics.h"
+#include "test_data.h"
+
+namespace mg {
+namespace {
+
+Clip read_back(const std::string& text) {
+  auto doc = parse_bvh(text, "written.bvh");
+  EXPECT_TRUE(doc) << doc.error().to_string();
+  BvhImportSettings settings;
+  settings.drop_rest_frames = false;
+  auto clip = clip_from_bvh(*doc, settings);
+  EXPECT_TRUE(clip) << clip.error().to_string();
+  return *clip;
+}
+
+// World positions by joint name (the written file puts End Sites in its own order).
+double max_error_by_name(const Clip& a, const Clip& b) {
+  const auto pa = world_positions(a.skeleton, a.motion);
+  const auto pb = world_positions(b.skeleton, b.motion);
+  EXPECT_EQ(a.motion.frame_count, b.motion.frame_count);
+  double worst = 0.0;
+  int matched = 0;
+  for (int ja = 0; ja < a.skeleton.joint_count(); ++ja) {
+    auto jb = b.skeleton.find(a.skeleton.joint(ja).name);
+    if (!jb) {
+      ADD_FAILURE() << "joint " << a.skeleton.joint(ja).name << " lost";
+      continue;
+    }
+    ++matched;
+    for (int f = 0; f < a.motion.frame_count; ++f) {
+      worst = std::max(worst, (pa[f * a.skeleton.joint_count() + ja] - pb[f * b.skeleton.joint_count() + *jb]).norm());
+    }
+  }
+  EXPECT_EQ(matched, a.skeleton.joint_count());
+  return worst;
+}
+
+TEST(BvhWriter, AmcToBvhAndBackKeepsWorldPositions) {
+  for (const char* file : {"cmu/16/16_01.amc", "cmu/16/16_11.amc", "cmu/16/16_35.amc", "cmu/16/16_57.amc"}) {
+    Clip clip = test::load_data_clip(file);
+    Clip back = read_back(write_bvh(clip.skeleton, clip.motion, {}));
+    EXPECT_EQ(back.motion.fps, clip.motion.fps);
+    EXPECT_LT(max_error_by_name(clip, back), 1e-5) << file;  // 0.01 mm
+  }
+}
+
+TEST(BvhWriter, EveryBundledBvhSurvivesARoundTrip) {
+  for (const char* file : {"bvh/07_01.bvh", "bvh/07_12.bvh", "bvh/111_36.bvh", "bvh/131_01.bvh", "bvh/16_01.bvh"}) {
+    Clip clip = test::load_data_clip(file, 0.056444);
+    Clip back = read_back(write_bvh(clip.skeleton, clip.motion, {}));
+    EXPECT_LT(max_error_by_name(clip, back), 1e-5) << file;
+    // Each joint keeps the rotation order it was read with.
+    for (int j = 0; j < clip.skeleton.joint_count(); ++j) {
+      if (clip.skeleton.joint(j).end_site) continue;
+      EXPECT_EQ(back.skeleton.joint(*back.skeleton.find(clip.skeleton.joint(j).name)).euler_order,
+                clip.skeleton.joint(j).euler_order);
+    }
+  }
+}
+
+TEST(BvhWriter, WritingWhatWasWrittenIsExact) {
+  Clip clip = test::load_data_clip("cmu/16/16_15.amc");
+  const std::string first = write_bvh(clip.skeleton, clip.motion, {});
+  Clip back = read_back(first);
+  EXPECT_EQ(write_bvh(back.skeleton, back.motion, {}), first);
+}
+
+TEST(BvhWriter, RootOnlyPositionChannelsAndUnits) {
+  Clip clip = test::load_data_clip("cmu/16/16_15.amc");
+  BvhWriteSettings centimetres;
+  centimetres.units_per_metre = 100.0;
+  const std::string text = write_bvh(clip.skeleton, clip.motion, centimetres);
+  size_t position_channel_lines = 0;
+  for (size_t at = text.find("Xposition"); at != std::string::npos; at = text.find("Xposition", at + 1)) {
+    ++position_channel_lines;
+  }
+  EXPECT_EQ(position_channel_lines, 1u);
+  auto doc = parse_bvh(text, "cm.bvh");
+  ASSERT_TRUE(doc);
+  BvhImportSettings settings;
+  settings.metres_per_unit = 0.01;
+  auto back = clip_from_bvh(*doc, settings);
+  ASSERT_TRUE(back);
+  EXPECT_LT(max_error_by_name(clip, *back), 1e-5);
+}
+
+TEST(BvhWriter, ValidatesSettings) {
+  BvhWriteSettings settings;
+  settings.units_per_metre = 0.0;
+  EXPECT_FALSE(settings.validate());
+  settings.units_per_metre = 1.0;
+  settings.decimals = 0;
+  EXPECT_FALSE(settings.validate());
+}
+
+}  // namespace
+}  // namespace mg

@@ -1,0 +1,94 @@
+#include "motiongraph/io/amc_parser.h"
+
+#include <gtest/gtest.h>
+
+#include "test_data.h"
+
+namespace mg {
+namespace {
+
+const AmcLayout kLayout{{"root", "a", "b", "c"}, {6, 2, 0, 1}};
+
+constexpr const char* kMiniAmc = R"(#!OML:ASF mini.asf
+:FULLY-SPECIFIED
+:DEGREES
+1
+root 1 2 3 10 20 30
+a 5 6
+c 7
+2
+c 8
+root 1.5 2 3 10 20 30
+a 5 -6
+)";
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+TEST(AmcParser, ReadsFramesInLayoutOrder) {
+  auto doc = parse_amc(kMiniAmc, "mini.amc", kLayout, false);
+  ASSERT_TRUE(doc) << doc.error().to_string();
+  EXPECT_TRUE(doc->angles_in_degrees);  // the header wins over the default
+  EXPECT_EQ(doc->frame_count, 2);
+  EXPECT_EQ(doc->values_per_frame, 9);
+  const std::vector<double> expected = {1, 2, 3, 10, 20, 30, 5, 6, 7, 1.5, 2, 3, 10, 20, 30, 5, -6, 8};
+  EXPECT_EQ(doc->values, expected);
+}
+
+TEST(AmcParser, RadiansHeaderAndDefault) {
+  auto radians = parse_amc(replace(kMiniAmc, ":DEGREES", ":RADIANS"), "r.amc", kLayout, true);
+  ASSERT_TRUE(radians);
+  EXPECT_FALSE(radians->angles_in_degrees);
+  auto unspecified = parse_amc(replace(kMiniAmc, ":DEGREES\n", ""), "u.amc", kLayout, false);
+  ASSERT_TRUE(unspecified);
+  EXPECT_FALSE(unspecified->angles_in_degrees);
+}
+
+TEST(AmcParser, CrlfAndTabs) {
+  std::string text;
+  for (char c : std::string(kMiniAmc)) {
+    if (c == '\n') text += '\r';
+    text += c == ' ' ? '\t' : c;
+  }
+  auto doc = parse_amc(text, "crlf.amc", kLayout, true);
+  ASSERT_TRUE(doc) << doc.error().to_string();
+  EXPECT_EQ(doc->frame_count, 2);
+}
+
+struct BadAmc {
+  const char* rule;
+  std::string text;
+  int line;
+  const char* message_part;
+};
+
+TEST(AmcParser, OneCleanErrorPerRule) {
+  const std::string base = kMiniAmc;
+  const std::vector<BadAmc> cases = {
+      {"unknown header", replace(base, ":DEGREES", ":GRADIANS"), 3, "unknown header"},
+      {"bone before any frame", replace(base, "1\nroot", "root"), 4, "expected a frame number"},
+      {"frame numbers not consecutive", replace(base, "\n2\n", "\n3\n"), 8, "must be consecutive"},
+      {"missing bone", replace(base, "c 7\n", ""), 4, "no line for bone 'c'"},
+      {"missing bone in last frame", replace(base, "a 5 -6\n", ""), 8, "no line for bone 'a'"},
+      {"bone twice", replace(base, "c 7\n", "c 7\nc 7\n"), 8, "appears twice"},
+      {"unknown bone", replace(base, "c 7\n", "c 7\nz 1\n"), 8, "unknown bone 'z'"},
+      {"too few values", replace(base, "a 5 6", "a 5"), 6, "has 1 value, its skeleton gives it 2"},
+      {"too many values", replace(base, "c 8", "c 8 9"), 9, "has 2 values"},
+      {"non-finite", replace(base, "a 5 6", "a 5 inf"), 6, "not a finite number"},
+      {"not a number", replace(base, "a 5 6", "a 5 six"), 6, "not a finite number"},
+      {"no frames", ":FULLY-SPECIFIED\n:DEGREES\n", 0, "no frames"},
+  };
+  for (const auto& c : cases) {
+    auto doc = parse_amc(c.text, "bad.amc", kLayout, true);
+    ASSERT_FALSE(doc) << c.rule;
+    EXPECT_EQ(doc.error().line, c.line) << c.rule << ": " << doc.error().to_string();
+    EXPECT_NE(doc.error().message.find(c.message_part), std::string::npos) << c.rule << ": " << doc.error().to_string();
+  }
+}
+
+}  // namespace
+}  // namespace mg

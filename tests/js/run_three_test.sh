@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Usage: bash run_three_test.sh MOTIONGRAPH_BINARY DATA_DIR
+#
+# Checks that three.js's BVHLoader (npm package "three", in Node) reads the BVH
+# files `motiongraph convert` writes and finds the same world joint positions as
+# our own forward kinematics (`motiongraph convert ... -o X.json`), to 1e-5 m.
+# Needs tests/js/node_modules, installed by `npm ci` in tests/js
+# (scripts/install-deps.sh does that).
+set -euo pipefail
+
+if [[ $# -ne 2 ]]; then
+  echo "usage: bash run_three_test.sh MOTIONGRAPH_BINARY DATA_DIR" >&2
+  exit 2
+fi
+motiongraph=$1
+data=$2
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+tolerance=1e-5  # metres (0.01 mm)
+
+node=${NODE:-node}
+if ! command -v "$node" >/dev/null; then
+  echo "run_three_test: FAIL: Node.js ('$node') not found; install Node.js 18 or newer" >&2
+  exit 1
+fi
+if [[ ! -f $here/node_modules/three/package.json ]]; then
+  echo "run_three_test: FAIL: three.js is not installed in $here/node_modules;" \
+       "run 'npm ci' in $here (scripts/install-deps.sh does)" >&2
+  exit 1
+fi
+if [[ ! -x $motiongraph ]]; then
+  echo "run_three_test: FAIL: motiongraph binary '$motiongraph' not found or not executable" >&2
+  exit 1
+fi
+
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+three_version=$("$node" -p "require('$here/node_modules/three/package.json').version")
+echo "three.js $three_version, $("$node" --version)"
+
+# check NAME INPUT [convert options...]
+check() {
+  local name=$1 input=$2
+  shift 2
+  echo "== $name: $input $*"
+  "$motiongraph" convert "$input" "$@" -o "$tmp/$name.bvh"
+  "$motiongraph" convert "$input" "$@" -o "$tmp/$name.json"
+  "$node" "$here/bvh_world_positions.mjs" "$tmp/$name.bvh" "$tmp/$name.three.json"
+  "$node" "$here/compare_positions.mjs" "$tmp/$name.json" "$tmp/$name.three.json" "$tolerance"
+}
+
+failed=0
+check 16_15 "$data/cmu/16/16_15.amc" || failed=1
+check 16_01 "$data/cmu/16/16_01.amc" || failed=1
+check 131_01 "$data/bvh/131_01.bvh" --scale 0.056444 || failed=1
+
+if [[ $failed -ne 0 ]]; then
+  echo "run_three_test: FAIL" >&2
+  exit 1
+fi
+echo "run_three_test: all clips match"

@@ -1,0 +1,21 @@
+// Access to the bundled data (data/) for tests, and small builders shared by them.
+#pragma once
+
+#include <string>
+
+#include "motiongraph/motion/motion.h"
+
+namespace mg::test {
+
+// Full path of a file under data/, e.g. data_path("cmu/16/16.asf").
+std::string data_path(const std::string& relative);
+// Its text; fails the test (throws) if it cannot be read.
+std::string read_data(const std::string& relative);
+
+// Loads a bundled clip through the real loader (AMC finds 16.asf beside it).
+Clip load_data_clip(const std::string& relative, double bvh_metres_per_unit = 1.0, double input_fps = 0.0);
+
+// Largest distance (metres) between two frames x joints position arrays of the same shape.
+double max_position_error(const std::vector<Vec3>& a, const std::vector<Vec3>& b);
+
+}  // namespace mg::test
