@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include <gtest/gtest.h>
+
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/clip_loader.h"
 
@@ -23,6 +25,18 @@ Clip load_data_clip(const std::string& relative, double bvh_metres_per_unit, dou
   auto loaded = loader.load(data_path(relative));
   if (!loaded) throw std::runtime_error(loaded.error().to_string());
   return std::move(loaded->clip);
+}
+
+std::string replace_once(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+void expect_error_matches(const Error& error, const ErrorCase& expected) {
+  EXPECT_EQ(error.line, expected.line) << expected.rule << ": " << error.to_string();
+  EXPECT_NE(error.message.find(expected.message_part), std::string::npos) << expected.rule << ": " << error.to_string();
 }
 
 double max_position_error(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "motiongraph/core/error.h"
 #include "motiongraph/motion/motion.h"
 
 namespace mg::test {
@@ -14,6 +15,20 @@ std::string read_data(const std::string& relative);
 
 // Loads a bundled clip through the real loader (AMC finds 16.asf beside it).
 Clip load_data_clip(const std::string& relative, double bvh_metres_per_unit = 1.0, double input_fps = 0.0);
+
+// `text` with the first occurrence of `from` replaced by `to`; fails the test if absent.
+std::string replace_once(std::string text, const std::string& from, const std::string& to);
+
+// One failing-input case: a rule, the text that breaks it, and the error expected.
+struct ErrorCase {
+  const char* rule;
+  std::string text;
+  int line;                  // expected error line
+  const char* message_part;  // expected part of the message
+};
+
+// Checks an error against a case (non-fatal gtest expectations naming the rule).
+void expect_error_matches(const Error& error, const ErrorCase& expected);
 
 // Largest distance (metres) between two frames x joints position arrays of the same shape.
 double max_position_error(const std::vector<Vec3>& a, const std::vector<Vec3>& b);

@@ -61,7 +61,7 @@ Command add_convert_command(CLI::App& app) {
   sub->add_option("IN", options->input, "Input clip (.amc or .bvh)")->required()->check(CLI::ExistingFile);
   sub->add_option("-o,--output", options->output, "Output file, .bvh or .json")->required();
   sub->add_option("--fps", options->fps, "Resample to this frame rate (slerp rotations, lerp translations)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(0.01, 10000.0));
   sub->add_option("--output-scale", options->output_units_per_metre,
                   "BVH length units per metre in the output (100 for centimetres)")
       ->capture_default_str();

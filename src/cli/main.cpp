@@ -27,6 +27,10 @@ int main(int argc, char** argv) {
   CLI::App app{"motiongraph: build motion graphs from motion capture and synthesize new motion.\n"
                "Reads CMU ASF/AMC and BVH; lengths in metres."};
   app.require_subcommand(1);
+  // Usage errors, like input errors, are one line.
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return "motiongraph: " + std::string(e.what()) + " (see --help)\n";
+  });
   app.set_version_flag("--version", "motiongraph 0.1.0");
   const std::vector<mg::cli::Command> commands = {
       mg::cli::add_info_command(app),

@@ -41,7 +41,8 @@
 // frame as three.js stores it (float32 of frame * frameTime, so the interpolation
 // weight is exactly 0 and no neighbouring frame leaks in). After each setTime we
 // check that every bone holds its track's key value for that frame: a track
-// whose name PropertyBinding could not bind would otherwise be ignored silently.
+// whose name PropertyBinding could not bind (a BVH joint name containing one of
+// . : / [ ], or two joints with the same name) would otherwise just be skipped.
 
 import { readFileSync, writeFileSync } from 'node:fs';
 import { AnimationMixer, LoopOnce, Vector3 } from 'three';

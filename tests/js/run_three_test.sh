@@ -43,10 +43,11 @@ check() {
   local name=$1 input=$2
   shift 2
   echo "== $name: $input $*"
-  "$motiongraph" convert "$input" "$@" -o "$tmp/$name.bvh"
-  "$motiongraph" convert "$input" "$@" -o "$tmp/$name.json"
-  "$node" "$here/bvh_world_positions.mjs" "$tmp/$name.bvh" "$tmp/$name.three.json"
-  "$node" "$here/compare_positions.mjs" "$tmp/$name.json" "$tmp/$name.three.json" "$tolerance"
+  # (set -e is off inside a function called with ||, hence the explicit returns)
+  "$motiongraph" convert "$input" "$@" -o "$tmp/$name.bvh" || return 1
+  "$motiongraph" convert "$input" "$@" -o "$tmp/$name.json" || return 1
+  "$node" "$here/bvh_world_positions.mjs" "$tmp/$name.bvh" "$tmp/$name.three.json" || return 1
+  "$node" "$here/compare_positions.mjs" "$tmp/$name.json" "$tmp/$name.three.json" "$tolerance" || return 1
 }
 
 failed=0
