@@ -91,6 +91,20 @@ TEST(BvhWriter, RootOnlyPositionChannelsAndUnits) {
   EXPECT_LT(max_error_by_name(clip, *back), 1e-5);
 }
 
+TEST(BvhWriter, MovingNonRootJointsKeepPositionChannelsWithAZeroOffset) {
+  // A child whose translation really moves keeps its position channels; its OFFSET is zero so
+  // that readers that add channels to OFFSET (three.js) and readers that replace it agree.
+  const std::string text =
+      "HIERARCHY\nROOT r\n{\n OFFSET 0 0 0\n CHANNELS 6 Xposition Yposition Zposition Zrotation Yrotation Xrotation\n"
+      " JOINT c\n {\n  OFFSET 0 2 0\n  CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n"
+      "  End Site\n  {\n   OFFSET 1 0 0\n  }\n }\n}\nMOTION\nFrames: 2\nFrame Time: 0.04\n"
+      "0 0 0 0 0 0 0 2 0 0 0 0\n0 0 0 0 0 0 0.5 2 0 0 0 30\n";
+  Clip clip = read_back(text);
+  const std::string written = write_bvh(clip.skeleton, clip.motion, {});
+  EXPECT_NE(written.find("JOINT c\n  {\n    OFFSET 0 0 0\n    CHANNELS 6 Xposition"), std::string::npos) << written;
+  EXPECT_LT(max_error_by_name(clip, read_back(written)), 1e-6);
+}
+
 TEST(BvhWriter, ValidatesSettings) {
   BvhWriteSettings settings;
   settings.units_per_metre = 0.0;

@@ -67,7 +67,10 @@ std::string write_bvh(const Skeleton& skeleton, const Motion& motion, const BvhW
       if (constant) {
         l.offset_m = first;
       } else {
+        // Readers disagree on position channels: Blender and our reader take them in place of
+        // OFFSET, three.js adds them to it. With a zero OFFSET both read the same.
         l.write_positions = true;
+        l.offset_m = Vec3::Zero();
       }
     }
   }
