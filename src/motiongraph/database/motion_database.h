@@ -1,0 +1,51 @@
+// The motion database: every frame of every clip at one frame rate, as one sequence of global
+// frame indices (clip after clip), with the clip ranges, the skeletons (one per subject; clips
+// of different subjects must share a joint topology) and motion tags per frame range.
+// Everything downstream (point clouds, distances, the graph) indexes frames globally.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "motiongraph/motion/motion.h"
+
+namespace mg {
+
+struct DatabaseClip {
+  std::string name;          // e.g. "16_15"
+  std::string source;        // the file it was read from, as given
+  int skeleton = 0;          // index into MotionDatabase::skeletons
+  int first_frame = 0;       // global index of its first frame
+  int frame_count = 0;
+  Motion motion;             // at the database's fps
+};
+
+// A tag on a range of global frames [first_frame, first_frame + frame_count).
+struct TagRange {
+  int tag = 0;               // index into MotionDatabase::tag_names
+  int first_frame = 0;
+  int frame_count = 0;
+};
+
+// Tag sets as bit masks: bit t set = tag_names[t]. At most 64 tags.
+using TagMask = std::uint64_t;
+
+struct MotionDatabase {
+  double fps = 30.0;
+  std::vector<Skeleton> skeletons;
+  std::vector<std::string> skeleton_names;  // e.g. the ASF file each came from
+  std::vector<DatabaseClip> clips;
+  std::vector<std::string> tag_names;
+  std::vector<TagRange> tag_ranges;
+
+  int frame_count() const { return clips.empty() ? 0 : clips.back().first_frame + clips.back().frame_count; }
+  // Clip holding a global frame (binary search).
+  int clip_of(int frame) const;
+  // Tags of every frame (frame_count entries).
+  std::vector<TagMask> frame_tags() const;
+  // Index of a tag name, adding it when new; -1 when the 64 tags are used up.
+  int tag_index(const std::string& name);
+};
+
+}  // namespace mg
