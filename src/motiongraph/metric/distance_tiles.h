@@ -1,0 +1,54 @@
+// The frame distance D(a, b) for all pairs, fast: three float32 BLAS products per tile plus
+// sums along the tile's diagonals (DESIGN.md sections 3.2-3.4).
+//
+// The pair matrix (row a = frame we leave, column b = frame we arrive at) is cut into square
+// tiles of settings.tile_frames. For each tile the products xz*xz^T, xz*zx^T and y*y^T of the
+// per-frame centred clouds are taken over the tile's rows and columns plus halos (k - 1 frames
+// for the window sums, 1 for neighbour tests); the per-frame offsets are added back in double
+// (DESIGN.md 3.3), summed along diagonals (running sums for a uniform taper, O(1) per pair;
+// O(k) with a taper), and put through the closed form. Undefined pairs (a window leaving its
+// clip) are NaN. Tiles are independent and run on settings.threads threads; nothing but one
+// tile per thread is ever held.
+#pragma once
+
+#include <functional>
+#include <span>
+
+#include "motiongraph/metric/frame_features.h"
+
+namespace mg {
+
+// A computed tile: the inner region [leave_begin, leave_begin + leave_count) x
+// [arrive_begin, arrive_begin + arrive_count) and one frame of halo around it (clipped at the
+// matrix edges), row-major in `distance`.
+struct DistanceTile {
+  int leave_begin = 0, leave_count = 0;    // inner rows
+  int arrive_begin = 0, arrive_count = 0;  // inner columns
+  int row0 = 0, rows = 0;                  // stored rows: row0 .. row0 + rows - 1 (with halo)
+  int col0 = 0, cols = 0;                  // stored columns
+  std::span<const float> distance;         // rows x cols
+
+  float at(int a, int b) const { return distance[static_cast<size_t>(a - row0) * cols + (b - col0)]; }
+};
+
+// Called once per tile, from worker threads (the callback must be thread-safe). The tile's
+// memory is reused after the callback returns.
+using TileVisitor = std::function<void(const DistanceTile&)>;
+
+struct TileRunStatistics {
+  double seconds = 0.0;
+  long long tiles = 0;
+  long long pairs = 0;
+};
+
+// Progress is reported as tiles done through on_tile_done (may be empty).
+TileRunStatistics for_each_distance_tile(const FrameFeatures& features, const DistanceSettings& settings,
+                                         const TileVisitor& visitor,
+                                         const std::function<void(long long done, long long total)>& on_tile_done = {});
+
+// Times the three plain BLAS products the distance stage needs, over a whole N x N matrix in
+// tiles of the same size and on the same threads, without the diagonal sums: the ceiling
+// that `motiongraph bench distance` measures the stage against.
+double time_plain_products(const FrameFeatures& features, const DistanceSettings& settings);
+
+}  // namespace mg
