@@ -6,6 +6,7 @@
 
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/clip_loader.h"
+#include "motiongraph/motion/resample.h"
 
 namespace mg::test {
 
@@ -37,6 +38,35 @@ std::string replace_once(std::string text, const std::string& from, const std::s
 void expect_error_matches(const Error& error, const ErrorCase& expected) {
   EXPECT_EQ(error.line, expected.line) << expected.rule << ": " << error.to_string();
   EXPECT_NE(error.message.find(expected.message_part), std::string::npos) << expected.rule << ": " << error.to_string();
+}
+
+MotionDatabase small_database(const std::vector<std::string>& files, bool add_moved_copy, double yaw, Vec3 shift,
+                              double fps) {
+  MotionDatabase db;
+  db.fps = fps;
+  for (const std::string& file : files) {
+    Clip clip = load_data_clip(file);
+    if (db.skeletons.empty()) db.skeletons.push_back(clip.skeleton);
+    DatabaseClip entry;
+    entry.name = clip.name;
+    entry.source = file;
+    entry.first_frame = db.frame_count();
+    entry.motion = *resample(clip.motion, db.fps);
+    entry.frame_count = entry.motion.frame_count;
+    db.clips.push_back(std::move(entry));
+  }
+  if (add_moved_copy) {
+    DatabaseClip copy = db.clips.front();
+    copy.name += "_moved";
+    copy.first_frame = db.frame_count();
+    const Quat turn = axis_rotation(Axis::kY, yaw);
+    for (int f = 0; f < copy.motion.frame_count; ++f) {
+      copy.motion.rotations(f)[0] = turn * copy.motion.rotations(f)[0];
+      copy.motion.translations(f)[0] = turn * copy.motion.translations(f)[0] + shift;
+    }
+    db.clips.push_back(std::move(copy));
+  }
+  return db;
 }
 
 double max_position_error(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {

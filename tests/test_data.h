@@ -4,6 +4,7 @@
 #include <string>
 
 #include "motiongraph/core/error.h"
+#include "motiongraph/database/motion_database.h"
 #include "motiongraph/motion/motion.h"
 
 namespace mg::test {
@@ -29,6 +30,11 @@ struct ErrorCase {
 
 // Checks an error against a case (non-fatal gtest expectations naming the rule).
 void expect_error_matches(const Error& error, const ErrorCase& expected);
+
+// Clips of the bundled data at `fps`, back to back on the first clip's skeleton; optionally
+// with a copy of the first clip turned by `yaw` about the vertical and moved by `shift`.
+MotionDatabase small_database(const std::vector<std::string>& files, bool add_moved_copy = false, double yaw = 0.0,
+                              Vec3 shift = Vec3::Zero(), double fps = 30.0);
 
 // Largest distance (metres) between two frames x joints position arrays of the same shape.
 double max_position_error(const std::vector<Vec3>& a, const std::vector<Vec3>& b);

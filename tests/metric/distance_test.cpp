@@ -10,42 +10,10 @@
 #include <gtest/gtest.h>
 
 #include "motiongraph/metric/reference_distance.h"
-#include "motiongraph/motion/resample.h"
 #include "test_data.h"
 
 namespace mg {
 namespace {
-
-// Clips of the bundled data at 30 fps, back to back; optionally a copy of the first clip
-// turned by `yaw` about the vertical axis and moved by `shift` on the floor.
-MotionDatabase small_database(const std::vector<std::string>& files, bool add_moved_copy = false,
-                              double yaw = 0.0, Vec3 shift = Vec3::Zero()) {
-  MotionDatabase db;
-  db.fps = 30.0;
-  for (const std::string& file : files) {
-    Clip clip = test::load_data_clip(file);
-    if (db.skeletons.empty()) db.skeletons.push_back(clip.skeleton);
-    DatabaseClip entry;
-    entry.name = clip.name;
-    entry.source = file;
-    entry.first_frame = db.frame_count();
-    entry.motion = *resample(clip.motion, db.fps);
-    entry.frame_count = entry.motion.frame_count;
-    db.clips.push_back(std::move(entry));
-  }
-  if (add_moved_copy) {
-    DatabaseClip copy = db.clips.front();
-    copy.name += "_moved";
-    copy.first_frame = db.frame_count();
-    const Quat turn = axis_rotation(Axis::kY, yaw);
-    for (int f = 0; f < copy.motion.frame_count; ++f) {
-      copy.motion.rotations(f)[0] = turn * copy.motion.rotations(f)[0];
-      copy.motion.translations(f)[0] = turn * copy.motion.translations(f)[0] + shift;
-    }
-    db.clips.push_back(std::move(copy));
-  }
-  return db;
-}
 
 struct Computed {
   FrameFeatures features;
@@ -141,7 +109,7 @@ void expect_matches_reference(const Computed& c, int random_pairs) {
 }
 
 TEST(Distance, TiledMatchesTheReference) {
-  const auto db = small_database({"cmu/16/16_15.amc", "cmu/16/16_35.amc", "cmu/16/16_01.amc"});
+  const auto db = test::small_database({"cmu/16/16_15.amc", "cmu/16/16_35.amc", "cmu/16/16_01.amc"});
   DistanceSettings settings;
   settings.tile_frames = 64;  // many tiles, many borders
   settings.threads = 2;
@@ -149,7 +117,7 @@ TEST(Distance, TiledMatchesTheReference) {
 }
 
 TEST(Distance, TaperAndJointCloudsMatchTheReference) {
-  const auto db = small_database({"cmu/16/16_11.amc", "cmu/16/16_41.amc"});
+  const auto db = test::small_database({"cmu/16/16_11.amc", "cmu/16/16_41.amc"});
   DistanceSettings settings;
   settings.tile_frames = 100;
   settings.taper = DistanceSettings::Taper::kHann;
@@ -160,7 +128,7 @@ TEST(Distance, TaperAndJointCloudsMatchTheReference) {
 }
 
 TEST(Distance, UndefinedExactlyWhereAWindowLeavesItsClip) {
-  const auto db = small_database({"cmu/16/16_35.amc", "cmu/16/16_39.amc"});
+  const auto db = test::small_database({"cmu/16/16_35.amc", "cmu/16/16_39.amc"});
   DistanceSettings settings;
   settings.tile_frames = 50;
   const Computed c = compute(db, settings);
@@ -181,7 +149,7 @@ TEST(Distance, UndefinedExactlyWhereAWindowLeavesItsClip) {
 TEST(Distance, ClipTurnedAndMovedIsTheSameClip) {
   // The first clip again, turned 2 rad about the vertical and moved 40 m: its frames are at
   // distance ~0 from the original's, and its rows and columns are the original's.
-  const auto db = small_database({"cmu/16/16_15.amc", "cmu/16/16_57.amc"}, true, 2.0, Vec3(30.0, 0.0, -26.0));
+  const auto db = test::small_database({"cmu/16/16_15.amc", "cmu/16/16_57.amc"}, true, 2.0, Vec3(30.0, 0.0, -26.0));
   DistanceSettings settings;
   settings.tile_frames = 128;
   const Computed c = compute(db, settings);
@@ -211,7 +179,7 @@ TEST(Distance, ClipTurnedAndMovedIsTheSameClip) {
 
 TEST(Distance, ReferenceAlignmentIsOptimal) {
   // Perturbing the closed-form alignment in any direction never lowers the sum.
-  const auto db = small_database({"cmu/16/16_17.amc", "cmu/16/16_43.amc"});
+  const auto db = test::small_database({"cmu/16/16_17.amc", "cmu/16/16_43.amc"});
   const Computed c = compute(db, DistanceSettings{});
   const int k = c.features.window;
   const int a = 20, b = db.clips[1].first_frame + 40;

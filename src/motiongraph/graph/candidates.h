@@ -1,0 +1,48 @@
+// Transition candidates (Kovar et al. 2002, section 3.2): the local minima of the distance
+// matrix, found while its tiles stream by (DESIGN.md 3.4). A pair (a, b) is a candidate when
+// D(a, b) is finite and no defined neighbour among its 8 is smaller (ties go to the first in
+// row-major order), across tile borders (tiles carry a one-frame halo). Pairs of a clip simply
+// continuing (same clip, |b - (a + k - 1)| <= continuation radius) are not candidates: their
+// D is ~0 trivially.
+//
+// The same pass fills the histogram of all finite D (for quantile thresholds), the distance
+// picture (block minima, for the PNG) and, when asked and small enough, the full matrix.
+// Everything a threshold needs is here, so re-thresholding never redoes this stage.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "motiongraph/core/error.h"
+#include "motiongraph/graph/transition.h"
+#include "motiongraph/metric/distance_histogram.h"
+#include "motiongraph/metric/distance_tiles.h"
+
+namespace mg {
+
+struct CandidateSettings {
+  int continuation_radius = -1;  // frames; -1 = the window length k
+  bool keep_matrix = false;      // hold the N x N matrix (for --export-matrix)
+  int max_matrix_frames = 16384; // refuse to hold it beyond this (N^2 floats)
+  int picture_side = 1024;       // the block-minimum picture is at most this many pixels wide
+
+  Status validate() const;
+};
+
+struct CandidateSearch {
+  int window = 0;
+  int continuation_radius = 0;
+  std::vector<Transition> minima;  // sorted by (from_frame, to_frame); no alignment yet
+  DistanceHistogram histogram;
+  std::vector<float> matrix;       // N x N when kept (NaN undefined), else empty
+  std::vector<float> picture;      // picture_side_used^2 block minima (NaN where undefined)
+  int picture_side = 0;            // pixels per side
+  int picture_block = 1;           // frames per pixel
+  TileRunStatistics tiles;
+};
+
+Result<CandidateSearch> find_candidates(const FrameFeatures& features, const DistanceSettings& distance,
+                                        const CandidateSettings& settings,
+                                        const std::function<void(long long, long long)>& on_tile_done = {});
+
+}  // namespace mg
