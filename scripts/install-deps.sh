@@ -9,7 +9,8 @@ packages=(
   clang libclang-rt-14-dev llvm
   libeigen3-dev libopenblas-dev
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev libtomlplusplus-dev
-  libstb-dev libgtest-dev libgmock-dev libbenchmark-dev
+  libstb-dev libgtest-dev libgmock-dev libbenchmark-dev zlib1g-dev
+  python3-numpy
 )
 # Node.js may come from elsewhere than Debian (its own packages conflict with Debian's npm).
 if ! command -v node >/dev/null || ! command -v npm >/dev/null; then packages+=(nodejs npm); fi

@@ -1,0 +1,58 @@
+// A progress bar on stderr for long stages (distances, graph pruning, search):
+//   "distances [#########...........]  45% 4500/10000 12.3s eta 15s"
+// It draws only when stderr is a terminal and the bar is not quiet, at most ten times a
+// second, on one line rewritten with '\r'; finish() ends that line with the elapsed seconds.
+// Elsewhere (a pipe, a log file, CI) it prints nothing at all. advance() may be called from
+// any number of threads: the count is an atomic, and one thread at a time redraws.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <mutex>
+#include <string>
+#include <string_view>
+
+namespace mg {
+
+// One line of the bar, at most `width` characters (no '\r', no '\n'): the label, a bar when
+// there is room, the percentage, done/total, the elapsed seconds and, while running, an
+// estimate of the time left (not on a `final_line`). total 0 means unknown: no bar, no
+// percentage. done > total reads as complete.
+std::string format_progress_line(std::string_view label, std::uint64_t done, std::uint64_t total,
+                                 double elapsed_s, int width, bool final_line = false);
+
+class ProgressBar {
+ public:
+  ProgressBar(std::string label, std::uint64_t total, bool quiet = false);
+  ~ProgressBar();  // finish()es the line if still drawing
+  ProgressBar(const ProgressBar&) = delete;
+  ProgressBar& operator=(const ProgressBar&) = delete;
+
+  // Counts n more units done; redraws when drawing and the last redraw is 100 ms old.
+  void advance(std::uint64_t n = 1);
+  // Draws the final line with the elapsed seconds and a newline (once; later calls do nothing).
+  void finish();
+
+  std::uint64_t done() const { return done_.load(std::memory_order_relaxed); }
+  std::uint64_t total() const { return total_; }
+  // Whether anything is written: stderr is a terminal and the bar is not quiet.
+  bool drawing() const { return drawing_; }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+
+  double elapsed_s() const;
+  void draw(bool final_line);
+
+  std::string label_;
+  std::uint64_t total_ = 0;
+  bool drawing_ = false;
+  Clock::time_point start_;
+  std::atomic<std::uint64_t> done_{0};
+  std::atomic<std::int64_t> next_draw_ns_{0};  // since start_
+  std::atomic<bool> finished_{false};
+  std::mutex draw_mutex_;
+};
+
+}  // namespace mg

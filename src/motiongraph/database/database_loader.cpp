@@ -1,0 +1,378 @@
+#include "motiongraph/database/database_loader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <tuple>
+
+#include <fmt/format.h>
+
+#include "motiongraph/database/cmu_tags.h"
+#include "motiongraph/database/manifest.h"
+#include "motiongraph/io/file.h"
+#include "motiongraph/motion/clip_loader.h"
+#include "motiongraph/motion/resample.h"
+
+namespace mg {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string lower_extension(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+// One clip to read, with everything the inputs said about it.
+struct ClipSpec {
+  std::string path;
+  std::string name;
+  std::string cmu_name;            // the file's stem, the key into CMU's index
+  ClipLoadSettings load;
+  std::optional<int> first_frame;  // file numbering, from 1
+  std::optional<int> last_frame;
+  bool gives_tags = false;         // the manifest decides the tags (no CMU lookup)
+  std::vector<std::string> tags;
+  std::vector<ManifestRange> ranges;
+  std::string manifest;            // empty when the clip was not named by a manifest
+  int line = 0;                    // of its [[clip]]
+  int frames_line = 0;
+
+  // Where to point an error about this clip: its manifest line, or the file itself.
+  Error error(std::string message) const {
+    if (manifest.empty()) return Error{path, 0, std::move(message)};
+    return Error{manifest, line, fmt::format("clip {}: {}", path, message)};
+  }
+};
+
+ClipLoadSettings default_load_settings(const DatabaseSettings& settings) {
+  ClipLoadSettings load;
+  load.asf_path = settings.asf_path;
+  load.bvh_metres_per_unit = settings.bvh_metres_per_unit;
+  load.input_fps = settings.input_fps;
+  load.keep_rest_frames = settings.keep_rest_frames;
+  return load;
+}
+
+ClipSpec spec_for_file(const fs::path& path, const ClipLoadSettings& load) {
+  ClipSpec spec;
+  spec.path = path.string();
+  spec.name = path.stem().string();
+  spec.cmu_name = spec.name;
+  spec.load = load;
+  return spec;
+}
+
+Status expand_folder(const std::string& input, const DatabaseSettings& settings, std::vector<ClipSpec>& specs) {
+  std::vector<fs::path> clips;
+  std::vector<fs::path> asfs;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(input, ec)) {
+    if (!entry.is_regular_file(ec)) continue;
+    const std::string ext = lower_extension(entry.path());
+    if (ext == ".amc" || ext == ".bvh") clips.push_back(entry.path());
+    if (ext == ".asf") asfs.push_back(entry.path());
+  }
+  if (ec) return Error{input, 0, fmt::format("cannot list the folder: {}", ec.message())};
+  // By name, so a database is the same on every machine and file system.
+  const auto by_name = [](const fs::path& a, const fs::path& b) {
+    return a.filename().string() < b.filename().string();
+  };
+  std::sort(clips.begin(), clips.end(), by_name);
+  std::sort(asfs.begin(), asfs.end(), by_name);
+  if (clips.empty()) return Error{input, 0, "the folder holds no .amc or .bvh files"};
+  const bool has_amc =
+      std::any_of(clips.begin(), clips.end(), [](const fs::path& p) { return lower_extension(p) == ".amc"; });
+  ClipLoadSettings load = default_load_settings(settings);
+  if (has_amc) {
+    if (asfs.empty()) return Error{input, 0, "the folder holds AMC files but no .asf skeleton"};
+    if (asfs.size() > 1) {
+      return Error{input, 0, fmt::format("the folder holds {} .asf files; name the clips and their skeletons "
+                                         "in a manifest (docs/manifest.md)", asfs.size())};
+    }
+    load.asf_path = asfs.front().string();
+  }
+  for (const fs::path& clip : clips) specs.push_back(spec_for_file(clip, load));
+  return Ok{};
+}
+
+Status expand_manifest(const std::string& input, const DatabaseSettings& settings, std::vector<ClipSpec>& specs,
+                       std::optional<double>& manifest_fps, std::string& manifest_fps_source) {
+  auto text = read_text_file(input);
+  if (!text) return text.error();
+  auto manifest = parse_manifest(*text, input);
+  if (!manifest) return manifest.error();
+  if (manifest->fps && settings.prefer_manifest_fps) {
+    if (manifest_fps && *manifest_fps != *manifest->fps) {
+      return Error{input, manifest->fps_line,
+                   fmt::format("fps {} differs from the fps {} of {}; one database has one frame rate",
+                               *manifest->fps, *manifest_fps, manifest_fps_source)};
+    }
+    manifest_fps = manifest->fps;
+    manifest_fps_source = input;
+  }
+  const fs::path folder = fs::path(input).parent_path();
+  const auto resolve = [&](const std::string& path) { return (folder / path).lexically_normal().string(); };
+  for (const ManifestClip& clip : manifest->clips) {
+    ClipSpec spec;
+    spec.path = resolve(clip.file);
+    spec.cmu_name = fs::path(clip.file).stem().string();
+    spec.name = clip.name ? *clip.name : spec.cmu_name;
+    spec.load = default_load_settings(settings);
+    if (clip.skeleton || manifest->skeleton) {
+      spec.load.asf_path = resolve(clip.skeleton ? *clip.skeleton : *manifest->skeleton);
+    }
+    // The clip's own value, else the manifest's default, else the settings'.
+    if (auto scale = clip.bvh_scale ? clip.bvh_scale : manifest->bvh_scale) spec.load.bvh_metres_per_unit = *scale;
+    if (auto fps = clip.input_fps ? clip.input_fps : manifest->input_fps) spec.load.input_fps = *fps;
+    spec.first_frame = clip.first_frame;
+    spec.last_frame = clip.last_frame;
+    spec.gives_tags = clip.gives_tags();
+    if (clip.tags) spec.tags = *clip.tags;
+    spec.ranges = clip.ranges;
+    spec.manifest = input;
+    spec.line = clip.line;
+    spec.frames_line = clip.frames_line;
+    std::error_code ec;
+    if (!fs::is_regular_file(spec.path, ec)) {
+      return Error{input, clip.file_line,
+                   fmt::format("clip file {} not found (paths are relative to the manifest's folder)", spec.path)};
+    }
+    const bool is_amc = lower_extension(spec.path) == ".amc";
+    if (is_amc && (clip.skeleton || manifest->skeleton) && !fs::is_regular_file(*spec.load.asf_path, ec)) {
+      return Error{input, clip.skeleton ? clip.skeleton_line : manifest->skeleton_line,
+                   fmt::format("skeleton file {} not found (paths are relative to the manifest's folder)",
+                               *spec.load.asf_path)};
+    }
+    specs.push_back(std::move(spec));
+  }
+  return Ok{};
+}
+
+// The first difference between two skeletons' joint lists, or nullopt when they match.
+std::optional<std::string> topology_difference(const Skeleton& expected, const Skeleton& found) {
+  const int common = std::min(expected.joint_count(), found.joint_count());
+  const auto parent_name = [](const Skeleton& s, int j) {
+    return s.parent(j) < 0 ? std::string("none") : fmt::format("'{}'", s.joint(s.parent(j)).name);
+  };
+  for (int j = 0; j < common; ++j) {
+    if (expected.joint(j).name != found.joint(j).name) {
+      return fmt::format("joint {} is '{}' there, '{}' here", j, expected.joint(j).name, found.joint(j).name);
+    }
+    if (expected.parent(j) != found.parent(j)) {
+      return fmt::format("joint {} '{}' has parent {} there, {} here", j, found.joint(j).name,
+                         parent_name(expected, j), parent_name(found, j));
+    }
+  }
+  if (expected.joint_count() != found.joint_count()) {
+    return fmt::format("{} joints there, {} here", expected.joint_count(), found.joint_count());
+  }
+  return std::nullopt;
+}
+
+// Output frames [first, last] whose times fall inside [start_s, end_s] (seconds from the clip's
+// first frame); the nearest frame when none does (a range shorter than one output frame).
+std::pair<int, int> output_frames(double start_s, double end_s, double fps, int frame_count) {
+  int first = static_cast<int>(std::ceil(start_s * fps - 1e-9));
+  int last = static_cast<int>(std::floor(end_s * fps + 1e-9));
+  first = std::clamp(first, 0, frame_count - 1);
+  last = std::clamp(last, 0, frame_count - 1);
+  if (first > last) {
+    first = last = std::clamp(static_cast<int>(std::lround(0.5 * (start_s + end_s) * fps)), 0, frame_count - 1);
+  }
+  return {first, last};
+}
+
+using LoaderKey = std::tuple<std::string, double, double, bool>;
+
+class Loaders {
+ public:
+  ClipLoader& for_settings(const ClipLoadSettings& load) {
+    LoaderKey key{load.asf_path.value_or(""), load.bvh_metres_per_unit, load.input_fps, load.keep_rest_frames};
+    auto it = loaders_.find(key);
+    if (it == loaders_.end()) it = loaders_.emplace(key, std::make_unique<ClipLoader>(load)).first;
+    return *it->second;
+  }
+
+ private:
+  std::map<LoaderKey, std::unique_ptr<ClipLoader>> loaders_;
+};
+
+Status add_tag_range(MotionDatabase& db, const std::string& tag, int first_frame, int frame_count,
+                     const ClipSpec& spec) {
+  const int index = db.tag_index(tag);
+  if (index < 0) return spec.error(fmt::format("tag '{}' would be the 65th; a database holds at most 64 tags", tag));
+  db.tag_ranges.push_back(TagRange{index, first_frame, frame_count});
+  return Ok{};
+}
+
+}  // namespace
+
+Status DatabaseSettings::validate() const {
+  if (!(fps > 0.0) || !std::isfinite(fps)) return Error{"", 0, fmt::format("fps must be positive, not {}", fps)};
+  if (!(bvh_metres_per_unit > 0.0) || !std::isfinite(bvh_metres_per_unit)) {
+    return Error{"", 0, fmt::format("bvh_metres_per_unit (--scale) must be positive, not {}", bvh_metres_per_unit)};
+  }
+  if (!(input_fps >= 0.0) || !std::isfinite(input_fps)) {
+    return Error{"", 0, fmt::format("input_fps must be positive (or 0: the files' own), not {}", input_fps)};
+  }
+  return Ok{};
+}
+
+Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, const DatabaseSettings& settings) {
+  if (auto s = settings.validate(); !s) return s.error();
+  if (inputs.empty()) return Error{"", 0, "no inputs: give clip folders, clip files or a .toml manifest"};
+
+  // 1. What to read, in order.
+  std::vector<ClipSpec> specs;
+  std::optional<double> manifest_fps;
+  std::string manifest_fps_source;
+  for (const std::string& input : inputs) {
+    std::error_code ec;
+    const fs::file_status status = fs::status(input, ec);
+    if (!fs::exists(status)) return Error{input, 0, "no such file or folder"};
+    if (fs::is_directory(status)) {
+      if (auto s = expand_folder(input, settings, specs); !s) return s.error();
+      continue;
+    }
+    const std::string ext = lower_extension(input);
+    if (ext == ".toml") {
+      if (auto s = expand_manifest(input, settings, specs, manifest_fps, manifest_fps_source); !s) return s.error();
+    } else if (ext == ".amc" || ext == ".bvh") {
+      specs.push_back(spec_for_file(input, default_load_settings(settings)));
+    } else if (ext == ".asf") {
+      return Error{input, 0, "an ASF file holds a skeleton only: give its folder, or its AMC files with --asf"};
+    } else {
+      return Error{input, 0, "unknown input: expected a folder, a .amc or .bvh clip, or a .toml manifest"};
+    }
+  }
+
+  MotionDatabase db;
+  db.fps = manifest_fps.value_or(settings.fps);
+
+  // 2. The CMU index, read once when some clip will look its tags up.
+  std::optional<CmuIndex> cmu;
+  const bool wants_cmu = settings.cmu_tags && (!settings.cmu_index_text.empty() || !settings.cmu_index_path.empty()) &&
+                         std::any_of(specs.begin(), specs.end(), [](const ClipSpec& s) { return !s.gives_tags; });
+  if (wants_cmu) {
+    std::string text = settings.cmu_index_text;
+    std::string name = "CMU index";
+    if (text.empty()) {
+      auto read = read_text_file(settings.cmu_index_path);
+      if (!read) return read.error();
+      text = std::move(*read);
+      name = settings.cmu_index_path;
+    }
+    auto index = parse_cmu_index(text, name);
+    if (!index) return index.error();
+    cmu = std::move(*index);
+  }
+
+  // 3. Clips, back to back.
+  Loaders loaders;
+  std::map<std::string, int> skeleton_of_file;  // canonical skeleton path -> index
+  int next_frame = 0;
+  for (const ClipSpec& spec : specs) {
+    auto loaded = loaders.for_settings(spec.load).load(spec.path);
+    if (!loaded) return loaded.error();
+    const Motion& motion = loaded->clip.motion;
+    const int dropped = loaded->clip.dropped_leading_frames;
+    const int file_frames = dropped + motion.frame_count;
+
+    // Frame range, in the file's numbering; frames the reader dropped are not part of it.
+    const int first = std::max(spec.first_frame.value_or(1), dropped + 1);
+    const int last = spec.last_frame.value_or(file_frames);
+    if (last > file_frames) {
+      return Error{spec.manifest, spec.frames_line,
+                   fmt::format("last_frame {} is past the end of {} ({} frames)", last, spec.path, file_frames)};
+    }
+    if (last < first) {
+      return Error{spec.manifest, spec.frames_line,
+                   fmt::format("frames {}..{} of {} hold only frames the reader drops (a rest pose before the "
+                               "capture); the clip starts at frame {}", spec.first_frame.value_or(1), last,
+                               spec.path, dropped + 1)};
+    }
+    const bool whole = first == dropped + 1 && last == file_frames;
+    Motion cut = whole ? motion : motion.slice(first - 1 - dropped, last - first + 1);
+    const double input_fps = cut.fps;
+    auto resampled = resample(cut, db.fps);
+    if (!resampled) return spec.error(resampled.error().message);
+    if (resampled->frame_count < 2) {
+      return spec.error(fmt::format("{} frame{} at {} fps ({} frames at {} fps in the file{}): a clip needs at least 2",
+                                    resampled->frame_count, resampled->frame_count == 1 ? "" : "s", db.fps,
+                                    cut.frame_count, input_fps, whole ? "" : ", in its frame range"));
+    }
+
+    // Skeleton: one entry per skeleton file, all with the same joints.
+    const std::string skeleton_file = loaded->format == "amc" ? loaded->skeleton_path : spec.path;
+    std::error_code ec;
+    std::string key = fs::weakly_canonical(skeleton_file, ec).string();
+    if (ec) key = fs::absolute(skeleton_file).lexically_normal().string();
+    int skeleton = 0;
+    if (auto it = skeleton_of_file.find(key); it != skeleton_of_file.end()) {
+      skeleton = it->second;
+    } else {
+      if (!db.skeletons.empty()) {
+        if (auto difference = topology_difference(db.skeletons.front(), loaded->clip.skeleton)) {
+          return spec.error(fmt::format(
+              "skeleton {} does not match {}, the database's first skeleton: {}; clips of one database need the "
+              "same joints (names and parents, in the same order)",
+              skeleton_file, db.skeleton_names.front(), *difference));
+        }
+      }
+      skeleton = static_cast<int>(db.skeletons.size());
+      db.skeletons.push_back(loaded->clip.skeleton);
+      db.skeleton_names.push_back(skeleton_file);
+      skeleton_of_file.emplace(key, skeleton);
+    }
+
+    DatabaseClip clip;
+    clip.name = spec.name;
+    clip.source = spec.path;
+    clip.skeleton = skeleton;
+    clip.first_frame = next_frame;
+    clip.frame_count = resampled->frame_count;
+    clip.motion = std::move(*resampled);
+    next_frame += clip.frame_count;
+
+    // Tags.
+    if (spec.gives_tags) {
+      for (const std::string& tag : spec.tags) {
+        if (auto s = add_tag_range(db, tag, clip.first_frame, clip.frame_count, spec); !s) return s.error();
+      }
+      for (const ManifestRange& range : spec.ranges) {
+        if (range.last_frame > last) {
+          return Error{spec.manifest, range.line,
+                       fmt::format("range last_frame {} is past the end of {} (frame {})", range.last_frame,
+                                   spec.path, last)};
+        }
+        if (range.last_frame < first) {
+          return Error{spec.manifest, range.line,
+                       fmt::format("range {}..{} holds only frames the reader drops from {} (a rest pose); the "
+                                   "clip starts at frame {}", range.first_frame, range.last_frame, spec.path, first)};
+        }
+        const double start_s = (std::max(range.first_frame, first) - first) / input_fps;
+        const double end_s = (range.last_frame - first) / input_fps;
+        const auto [lo, hi] = output_frames(start_s, end_s, db.fps, clip.frame_count);
+        for (const std::string& tag : range.tags) {
+          if (auto s = add_tag_range(db, tag, clip.first_frame + lo, hi - lo + 1, spec); !s) return s.error();
+        }
+      }
+    } else if (cmu) {
+      if (const CmuMotion* motion_entry = cmu->find(spec.cmu_name)) {
+        for (const std::string& tag : cmu_description_tags(motion_entry->description)) {
+          if (auto s = add_tag_range(db, tag, clip.first_frame, clip.frame_count, spec); !s) return s.error();
+        }
+      }
+    }
+    db.clips.push_back(std::move(clip));
+  }
+  return db;
+}
+
+}  // namespace mg

@@ -1,0 +1,60 @@
+// Loading a MotionDatabase from files: folders, single clip files and TOML manifests
+// (manifest.h, docs/manifest.md). Every clip is read through ClipLoader, cut to its frame
+// range when a manifest gives one, and resampled to the database frame rate; clips follow
+// one another in global frame order, in input order.
+//
+// Inputs, each one of:
+//   - a folder: its .amc files (with the folder's one .asf) and .bvh files, sorted by name;
+//     not recursive; other files are ignored;
+//   - a .amc file (its skeleton: DatabaseSettings::asf_path, or the only .asf beside it) or a
+//     .bvh file;
+//   - a .toml manifest.
+//
+// Skeletons: each distinct skeleton file (an ASF, or a BVH, which holds its own) is one entry
+// of db.skeletons. Clips of different skeletons may share a database only when their joints
+// have the same names and the same parents, in the same order (point clouds compare joints
+// by index); otherwise loading fails, naming both files and the first joint that differs.
+//
+// Tags: a manifest clip that mentions tags (tags = [...] or ranges) gets exactly those; any
+// other clip, when settings.cmu_tags is on, gets the tags of its CMU description
+// (cmu_tags.h), looked up by its file's stem ("16_15"; also when a manifest renames the
+// clip), for all its frames.
+//
+// Errors: a missing input or clip file, a clip with fewer than 2 frames after resampling (it
+// holds no motion), a frame range past the end of its file, skeletons that do not match,
+// more than 64 tags; each names the file (and the manifest line when a manifest gave it).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "motiongraph/core/error.h"
+#include "motiongraph/database/motion_database.h"
+
+namespace mg {
+
+struct DatabaseSettings {
+  double fps = 30.0;                    // database frame rate; every clip is resampled to it
+  bool prefer_manifest_fps = true;      // a manifest's `fps` replaces `fps` (the CLI clears
+                                        // this when the user gives --fps)
+  // Reading options for clips not given by a manifest (a manifest's own values win for its
+  // clips; these are its defaults otherwise).
+  std::optional<std::string> asf_path;  // skeleton for AMC files given one by one
+  double bvh_metres_per_unit = 1.0;     // BVH carries no unit (CMU conversions: 0.056444)
+  double input_fps = 0.0;               // > 0: the capture rate, overriding the files'
+  bool keep_rest_frames = false;        // keep leading rest/T-pose frames of BVH files
+
+  // Tags from CMU's descriptions for clips a manifest gives no tags. The index is
+  // cmu_index_text when not empty, else the file at cmu_index_path when not empty (the CLI
+  // passes data/cmu/cmu-mocap-index.tsv); with neither, no CMU tags.
+  bool cmu_tags = true;
+  std::string cmu_index_text;
+  std::string cmu_index_path;
+
+  Status validate() const;
+};
+
+Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, const DatabaseSettings& settings);
+
+}  // namespace mg

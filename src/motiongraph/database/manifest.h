@@ -1,0 +1,81 @@
+// A database manifest: a TOML file naming the clips of a motion database, with per-clip
+// reading options (skeleton, BVH scale, capture rate), an optional frame range, and motion
+// tags for the whole clip or for frame ranges of it. Format for users: docs/manifest.md.
+//
+// Frame numbers are the file's own, counted from 1: frame 1 is the first frame stored in the
+// file (for CMU AMC files, the number written before it), counted before any rest frame a
+// BVH reader drops. Ranges are inclusive at both ends. Paths are kept as written; the loader
+// resolves them against the manifest's folder (database_loader.h).
+//
+// parse_manifest reads text only (it never touches the disk). Every error names the manifest
+// and the line: TOML syntax, unknown keys (typos), wrong value types, and the rules below.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "motiongraph/core/error.h"
+
+namespace mg {
+
+// Tags on frames [first_frame, last_frame] of a clip (file numbering, inclusive).
+struct ManifestRange {
+  int first_frame = 1;
+  int last_frame = 1;
+  std::vector<std::string> tags;
+  int line = 0;  // of the range's table, for later messages
+};
+
+struct ManifestClip {
+  std::string file;                        // as written: relative to the manifest's folder
+  std::optional<std::string> name;         // clip name; the file's stem when absent (CMU
+                                           // tags are looked up by the stem either way)
+  std::optional<std::string> skeleton;     // ASF for an AMC clip (overrides the default)
+  std::optional<double> bvh_scale;         // metres per BVH unit (overrides the default)
+  std::optional<double> input_fps;         // capture rate, overriding the file's
+  std::optional<int> first_frame;          // file numbering, from 1; absent: the first
+  std::optional<int> last_frame;           // inclusive; absent: the last
+  std::optional<std::vector<std::string>> tags;  // absent: no whole-clip tags given
+  std::vector<ManifestRange> ranges;
+
+  // Lines in the manifest, for messages about this clip found later (missing file, a frame
+  // range past the end of the file).
+  int line = 0;
+  int file_line = 0;
+  int skeleton_line = 0;
+  int frames_line = 0;  // of last_frame, or of first_frame when only it is given
+
+  // True when the manifest says anything about tags for this clip (even `tags = []`):
+  // then the manifest alone decides its tags and no CMU index lookup is made.
+  bool gives_tags() const { return tags.has_value() || !ranges.empty(); }
+};
+
+struct Manifest {
+  std::string file_name;
+  std::optional<double> fps;               // database frame rate
+  std::optional<std::string> skeleton;     // default ASF for AMC clips
+  std::optional<double> bvh_scale;         // default metres per BVH unit
+  std::optional<double> input_fps;         // default capture rate
+  std::vector<ManifestClip> clips;
+
+  int fps_line = 0;
+  int skeleton_line = 0;
+};
+
+// Parses a manifest from its text. `file_name` is used in messages only.
+//
+// Rules (each an error at its line): valid TOML; only known keys; values of the right type
+// (numbers may be written as integers or floats, frames are integers, tags strings); fps,
+// bvh_scale and input_fps positive; at least one [[clip]]; each clip has a non-empty `file`
+// ending in .amc or .bvh; `skeleton` only on AMC clips and `bvh_scale` only on BVH clips;
+// first_frame >= 1, last_frame >= first_frame; each range has first_frame and last_frame,
+// first >= 1, last >= first, inside the clip's own frame range when the manifest gives it,
+// and at least one tag; tag names non-empty, of letters, digits, '_' and '-'.
+Result<Manifest> parse_manifest(std::string_view toml_text, std::string file_name);
+
+// A tag name as the manifest and the database accept it: non-empty, [A-Za-z0-9_-] only.
+bool is_valid_tag_name(std::string_view name);
+
+}  // namespace mg

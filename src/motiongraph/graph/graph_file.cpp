@@ -1,0 +1,332 @@
+#include "motiongraph/graph/graph_file.h"
+
+#include <zlib.h>
+
+#include <fmt/format.h>
+
+#include "motiongraph/core/binary.h"
+
+namespace mg {
+
+namespace {
+
+constexpr std::string_view kGraphMagic("MGRAPH\r\n\x1a", 9);
+constexpr std::string_view kCacheMagic("MGCACHE\r\n\x1a", 10);
+constexpr std::uint32_t kCacheVersion = 1;
+
+std::uint32_t crc32_of(std::string_view bytes) {
+  uLong crc = crc32(0L, Z_NULL, 0);
+  // zlib takes 32-bit lengths: feed large payloads in pieces.
+  while (!bytes.empty()) {
+    const size_t piece = std::min<size_t>(bytes.size(), 1u << 30);
+    crc = crc32(crc, reinterpret_cast<const Bytef*>(bytes.data()), static_cast<uInt>(piece));
+    bytes.remove_prefix(piece);
+  }
+  return static_cast<std::uint32_t>(crc);
+}
+
+std::string frame(std::string_view magic, std::uint32_t version, const std::string& payload) {
+  BinaryWriter out;
+  std::string bytes(magic);
+  out.put(version);
+  out.put<std::uint64_t>(payload.size());
+  out.put(crc32_of(payload));
+  bytes += out.data();
+  bytes += payload;
+  return bytes;
+}
+
+Result<std::string_view> unframe(std::string_view bytes, const std::string& file_name, std::string_view magic,
+                                 std::uint32_t version, const char* what) {
+  if (bytes.size() < magic.size() || bytes.substr(0, magic.size()) != magic) {
+    return Error{file_name, 0, fmt::format("not a motiongraph {} file", what)};
+  }
+  BinaryReader in(bytes.substr(magic.size()), file_name);
+  std::uint32_t file_version = 0;
+  std::uint64_t size = 0;
+  std::uint32_t crc = 0;
+  if (!in.get(file_version) || !in.get(size) || !in.get(crc)) return Error{file_name, 0, "truncated header"};
+  if (file_version != version) {
+    return Error{file_name, 0, fmt::format("{} file format version {}, this motiongraph reads version {}: build it again",
+                                           what, file_version, version)};
+  }
+  const std::string_view payload = bytes.substr(magic.size() + in.position());
+  if (payload.size() != size) {
+    return Error{file_name, 0, fmt::format("truncated: {} bytes of payload, the header says {}", payload.size(), size)};
+  }
+  if (crc32_of(payload) != crc) return Error{file_name, 0, "checksum mismatch: the file is damaged"};
+  return payload;
+}
+
+// --- pieces ---------------------------------------------------------------------------------
+
+void put_skeleton(BinaryWriter& out, const Skeleton& skeleton) {
+  out.put<std::int32_t>(skeleton.joint_count());
+  for (const JointDef& joint : skeleton.joints()) {
+    out.put_string(joint.name);
+    out.put<std::int32_t>(joint.parent);
+    for (int i = 0; i < 3; ++i) out.put(joint.rest_offset_m[i]);
+    out.put<std::uint8_t>(joint.end_site);
+    out.put<std::uint8_t>(joint.animated_translation);
+    for (Axis axis : joint.euler_order) out.put<std::uint8_t>(static_cast<std::uint8_t>(axis));
+  }
+}
+
+bool get_skeleton(BinaryReader& in, Skeleton& skeleton) {
+  std::int32_t count = 0;
+  if (!in.get(count) || count < 1 || count > 100000) return false;
+  std::vector<JointDef> joints(count);
+  for (int j = 0; j < count; ++j) {
+    JointDef& joint = joints[j];
+    std::uint8_t end = 0, translated = 0, axes[3] = {0, 0, 0};
+    if (!in.get_string(joint.name) || !in.get(joint.parent)) return false;
+    for (int i = 0; i < 3; ++i) {
+      if (!in.get(joint.rest_offset_m[i])) return false;
+    }
+    if (!in.get(end) || !in.get(translated) || !in.get(axes[0]) || !in.get(axes[1]) || !in.get(axes[2])) return false;
+    if ((j == 0) != (joint.parent < 0) || joint.parent >= j) return false;
+    for (int i = 0; i < 3; ++i) {
+      if (axes[i] > 2) return false;
+      joint.euler_order[i] = static_cast<Axis>(axes[i]);
+    }
+    joint.end_site = end != 0;
+    joint.animated_translation = translated != 0;
+  }
+  skeleton = Skeleton(std::move(joints));
+  return true;
+}
+
+void put_motion(BinaryWriter& out, const Motion& motion) {
+  out.put(motion.fps);
+  out.put<std::int32_t>(motion.frame_count);
+  std::vector<float> rotations(motion.local_rotations.size() * 4);
+  for (size_t i = 0; i < motion.local_rotations.size(); ++i) {
+    const Quat& q = motion.local_rotations[i];
+    rotations[4 * i] = static_cast<float>(q.w());
+    rotations[4 * i + 1] = static_cast<float>(q.x());
+    rotations[4 * i + 2] = static_cast<float>(q.y());
+    rotations[4 * i + 3] = static_cast<float>(q.z());
+  }
+  out.put_vector(rotations);
+  std::vector<double> translations(motion.local_translations_m.size() * 3);
+  for (size_t i = 0; i < motion.local_translations_m.size(); ++i) {
+    for (int c = 0; c < 3; ++c) translations[3 * i + c] = motion.local_translations_m[i][c];
+  }
+  out.put_vector(translations);
+}
+
+bool get_motion(BinaryReader& in, const Skeleton& skeleton, Motion& motion) {
+  double fps = 0.0;
+  std::int32_t frames = 0;
+  std::vector<float> rotations;
+  std::vector<double> translations;
+  if (!in.get(fps) || !in.get(frames) || !(fps > 0.0) || frames < 0) return false;
+  if (!in.get_vector(rotations) || !in.get_vector(translations)) return false;
+  motion = Motion(skeleton, frames, fps);
+  if (rotations.size() != motion.local_rotations.size() * 4 ||
+      translations.size() != motion.local_translations_m.size() * 3) {
+    return false;
+  }
+  for (size_t i = 0; i < motion.local_rotations.size(); ++i) {
+    // Kept as stored (unit to float precision), so that writing what was read is exact.
+    motion.local_rotations[i] = Quat(rotations[4 * i], rotations[4 * i + 1], rotations[4 * i + 2], rotations[4 * i + 3]);
+  }
+  for (size_t i = 0; i < motion.local_translations_m.size(); ++i) {
+    motion.local_translations_m[i] = Vec3(translations[3 * i], translations[3 * i + 1], translations[3 * i + 2]);
+  }
+  return true;
+}
+
+void put_database(BinaryWriter& out, const MotionDatabase& db) {
+  out.put(db.fps);
+  out.put<std::int32_t>(static_cast<std::int32_t>(db.skeletons.size()));
+  for (size_t s = 0; s < db.skeletons.size(); ++s) {
+    out.put_string(s < db.skeleton_names.size() ? db.skeleton_names[s] : "");
+    put_skeleton(out, db.skeletons[s]);
+  }
+  out.put<std::int32_t>(static_cast<std::int32_t>(db.clips.size()));
+  for (const DatabaseClip& clip : db.clips) {
+    out.put_string(clip.name);
+    out.put_string(clip.source);
+    out.put<std::int32_t>(clip.skeleton);
+    out.put<std::int32_t>(clip.first_frame);
+    out.put<std::int32_t>(clip.frame_count);
+    put_motion(out, clip.motion);
+  }
+  out.put<std::int32_t>(static_cast<std::int32_t>(db.tag_names.size()));
+  for (const std::string& name : db.tag_names) out.put_string(name);
+  out.put<std::int32_t>(static_cast<std::int32_t>(db.tag_ranges.size()));
+  for (const TagRange& range : db.tag_ranges) {
+    out.put<std::int32_t>(range.tag);
+    out.put<std::int32_t>(range.first_frame);
+    out.put<std::int32_t>(range.frame_count);
+  }
+}
+
+bool get_database(BinaryReader& in, MotionDatabase& db) {
+  std::int32_t skeletons = 0, clips = 0, tags = 0, ranges = 0;
+  if (!in.get(db.fps) || !(db.fps > 0.0) || !in.get(skeletons) || skeletons < 0 || skeletons > 100000) return false;
+  db.skeletons.resize(skeletons);
+  db.skeleton_names.resize(skeletons);
+  for (int s = 0; s < skeletons; ++s) {
+    if (!in.get_string(db.skeleton_names[s]) || !get_skeleton(in, db.skeletons[s])) return false;
+  }
+  if (!in.get(clips) || clips < 0 || clips > 10000000) return false;
+  int next_frame = 0;
+  for (int c = 0; c < clips; ++c) {
+    DatabaseClip clip;
+    if (!in.get_string(clip.name) || !in.get_string(clip.source) || !in.get(clip.skeleton) ||
+        !in.get(clip.first_frame) || !in.get(clip.frame_count)) {
+      return false;
+    }
+    if (clip.skeleton < 0 || clip.skeleton >= skeletons || clip.first_frame != next_frame || clip.frame_count < 1) {
+      return false;
+    }
+    if (!get_motion(in, db.skeletons[clip.skeleton], clip.motion) || clip.motion.frame_count != clip.frame_count) {
+      return false;
+    }
+    next_frame += clip.frame_count;
+    db.clips.push_back(std::move(clip));
+  }
+  if (!in.get(tags) || tags < 0 || tags > 64) return false;
+  db.tag_names.resize(tags);
+  for (auto& name : db.tag_names) {
+    if (!in.get_string(name)) return false;
+  }
+  if (!in.get(ranges) || ranges < 0) return false;
+  for (int r = 0; r < ranges; ++r) {
+    TagRange range;
+    if (!in.get(range.tag) || !in.get(range.first_frame) || !in.get(range.frame_count)) return false;
+    if (range.tag < 0 || range.tag >= tags || range.first_frame < 0 || range.frame_count < 0 ||
+        range.first_frame + static_cast<long long>(range.frame_count) > next_frame) {
+      return false;
+    }
+    db.tag_ranges.push_back(range);
+  }
+  return true;
+}
+
+void put_candidates(BinaryWriter& out, const CandidateSearch& c) {
+  out.put<std::int32_t>(c.window);
+  out.put<std::int32_t>(c.continuation_radius);
+  out.put_vector(c.minima);
+  out.put_vector(c.histogram.counts());
+  out.put_vector(c.picture);
+  out.put<std::int32_t>(c.picture_side);
+  out.put<std::int32_t>(c.picture_block);
+  out.put(c.tiles.seconds);
+  out.put(c.tiles.tiles);
+  out.put(c.tiles.pairs);
+}
+
+bool get_candidates(BinaryReader& in, CandidateSearch& c) {
+  std::vector<std::uint64_t> counts;
+  if (!in.get(c.window) || !in.get(c.continuation_radius) || !in.get_vector(c.minima) || !in.get_vector(counts) ||
+      !in.get_vector(c.picture) || !in.get(c.picture_side) || !in.get(c.picture_block) || !in.get(c.tiles.seconds) ||
+      !in.get(c.tiles.tiles) || !in.get(c.tiles.pairs)) {
+    return false;
+  }
+  if (counts.size() != static_cast<size_t>(DistanceHistogram::kBins) || c.window < 1 || c.picture_side < 0 ||
+      c.picture.size() != static_cast<size_t>(c.picture_side) * c.picture_side) {
+    return false;
+  }
+  c.histogram.set_counts(std::move(counts));
+  return true;
+}
+
+void put_graph(BinaryWriter& out, const MotionGraph& g) {
+  out.put<std::int32_t>(g.window);
+  out.put_vector(g.nodes);
+  out.put_vector(g.edges);
+  out.put_vector(g.edge_offsets);
+  out.put_vector(g.transitions);
+}
+
+bool get_graph(BinaryReader& in, const MotionDatabase& db, MotionGraph& g) {
+  if (!in.get(g.window) || !in.get_vector(g.nodes) || !in.get_vector(g.edges) || !in.get_vector(g.edge_offsets) ||
+      !in.get_vector(g.transitions)) {
+    return false;
+  }
+  const int nodes = g.node_count();
+  if (g.edge_offsets.size() != static_cast<size_t>(nodes) + 1 || g.edge_offsets.front() != 0 ||
+      g.edge_offsets.back() != g.edge_count()) {
+    return false;
+  }
+  for (int n = 0; n < nodes; ++n) {
+    if (g.edge_offsets[n] > g.edge_offsets[n + 1]) return false;
+    if (g.nodes[n].frame < 0 || g.nodes[n].frame >= db.frame_count() || g.nodes[n].clip < 0 ||
+        g.nodes[n].clip >= static_cast<int>(db.clips.size())) {
+      return false;
+    }
+  }
+  for (const GraphEdge& e : g.edges) {
+    if (e.from_node < 0 || e.from_node >= nodes || e.to_node < 0 || e.to_node >= nodes || e.frame_count < 0) return false;
+    if (e.transition && (e.transition_index < 0 || e.transition_index >= static_cast<int>(g.transitions.size()))) {
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+std::uint64_t content_key(std::string_view bytes) {
+  uLong adler = adler32(0L, Z_NULL, 0);
+  std::string_view rest = bytes;
+  while (!rest.empty()) {
+    const size_t piece = std::min<size_t>(rest.size(), 1u << 30);
+    adler = adler32(adler, reinterpret_cast<const Bytef*>(rest.data()), static_cast<uInt>(piece));
+    rest.remove_prefix(piece);
+  }
+  return (static_cast<std::uint64_t>(crc32_of(bytes)) << 32) | static_cast<std::uint32_t>(adler);
+}
+
+std::string serialize_graph_file(const GraphFile& file) {
+  BinaryWriter out;
+  out.put_string(file.settings_json);
+  out.put(file.input_key);
+  put_database(out, file.database);
+  put_candidates(out, file.candidates);
+  out.put(file.threshold);
+  out.put(file.threshold_quantile);
+  out.put<std::int32_t>(file.locality_radius);
+  put_graph(out, file.graph);
+  out.put_string(file.report_json);
+  return frame(kGraphMagic, kGraphFileVersion, out.data());
+}
+
+Result<GraphFile> parse_graph_file(std::string_view bytes, const std::string& file_name) {
+  auto payload = unframe(bytes, file_name, kGraphMagic, kGraphFileVersion, "graph (.mgraph)");
+  if (!payload) return payload.error();
+  BinaryReader in(*payload, file_name);
+  GraphFile file;
+  if (!in.get_string(file.settings_json) || !in.get(file.input_key) || !get_database(in, file.database) ||
+      !get_candidates(in, file.candidates) || !in.get(file.threshold) || !in.get(file.threshold_quantile) ||
+      !in.get(file.locality_radius) || !get_graph(in, file.database, file.graph) || !in.get_string(file.report_json) ||
+      !in.at_end()) {
+    return Error{file_name, 0, "inconsistent graph file (written by a different build?)"};
+  }
+  return file;
+}
+
+std::string serialize_distance_cache(std::uint64_t key, const CandidateSearch& candidates) {
+  BinaryWriter out;
+  out.put(key);
+  put_candidates(out, candidates);
+  return frame(kCacheMagic, kCacheVersion, out.data());
+}
+
+Result<CandidateSearch> parse_distance_cache(std::string_view bytes, const std::string& file_name,
+                                             std::uint64_t expected_key) {
+  auto payload = unframe(bytes, file_name, kCacheMagic, kCacheVersion, "distance cache (.mgcache)");
+  if (!payload) return payload.error();
+  BinaryReader in(*payload, file_name);
+  std::uint64_t key = 0;
+  CandidateSearch candidates;
+  if (!in.get(key)) return Error{file_name, 0, "truncated cache"};
+  if (key != expected_key) return Error{file_name, 0, "cache for other inputs or settings"};
+  if (!get_candidates(in, candidates) || !in.at_end()) return Error{file_name, 0, "inconsistent cache file"};
+  return candidates;
+}
+
+}  // namespace mg

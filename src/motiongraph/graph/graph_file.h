@@ -1,0 +1,54 @@
+// The .mgraph file: everything a later command needs to walk the graph and play motion, in
+// one versioned, checksummed binary (DESIGN.md section 6):
+//   magic "MGRAPH\r\n\x1a", format version (u32), payload size (u64), CRC-32 of the payload
+//   (u32), then the payload: the settings used (JSON text), the key of the inputs and
+//   distance settings, the motion database (skeletons, clips with their motion at the
+//   database rate, tags), the transition candidates and distance histogram (so another
+//   threshold needs no distance stage), the selected transitions, the pruned graph, and the
+//   build report (JSON text).
+// The distance cache file (.mgcache) has the same framing with its own magic and holds just
+// the key and the candidate search.
+// Reading rejects a wrong magic, another version, a size or checksum mismatch, and any
+// inconsistency, each with a clear message; writing produces bytes (io/file.h writes them
+// atomically).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "motiongraph/core/error.h"
+#include "motiongraph/database/motion_database.h"
+#include "motiongraph/graph/candidates.h"
+#include "motiongraph/graph/motion_graph.h"
+#include "motiongraph/graph/transition_selection.h"
+
+namespace mg {
+
+constexpr std::uint32_t kGraphFileVersion = 1;
+
+struct GraphFile {
+  std::string settings_json;
+  std::uint64_t input_key = 0;
+  MotionDatabase database;
+  CandidateSearch candidates;  // minima, histogram, window, continuation radius (no matrix)
+  double threshold = 0.0;
+  double threshold_quantile = 0.0;
+  int locality_radius = 0;
+  MotionGraph graph;
+  std::string report_json;
+};
+
+std::string serialize_graph_file(const GraphFile& file);
+Result<GraphFile> parse_graph_file(std::string_view bytes, const std::string& file_name);
+
+std::string serialize_distance_cache(std::uint64_t key, const CandidateSearch& candidates);
+// The cached candidates, or an error (a file for other inputs or settings is an error too).
+Result<CandidateSearch> parse_distance_cache(std::string_view bytes, const std::string& file_name,
+                                             std::uint64_t expected_key);
+
+// A 64-bit key from bytes (two independent 32-bit checksums, CRC-32 and Adler-32, of the
+// same bytes), for cache keys over inputs and settings.
+std::uint64_t content_key(std::string_view bytes);
+
+}  // namespace mg

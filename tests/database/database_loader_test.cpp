@@ -1,0 +1,349 @@
+#include "motiongraph/database/database_loader.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <set>
+
+#include <unistd.h>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "motiongraph/io/file.h"
+#include "test_data.h"
+
+namespace mg {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::vector<std::string> kSubject16 = {"16_01", "16_05", "16_11", "16_13", "16_15", "16_16", "16_17", "16_19",
+                                             "16_33", "16_35", "16_37", "16_39", "16_41", "16_43", "16_57"};
+
+DatabaseSettings cmu_settings() {
+  DatabaseSettings settings;
+  settings.cmu_index_path = test::data_path("cmu/cmu-mocap-index.tsv");
+  return settings;
+}
+
+// A fresh folder under the system's temporary folder, removed at the end of the test.
+class TempFolder {
+ public:
+  explicit TempFolder(const std::string& name)
+      : path_(fs::temp_directory_path() / fmt::format("motiongraph-db-{}-{}", name, ::getpid())) {
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempFolder() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  const fs::path& path() const { return path_; }
+  std::string write(const std::string& name, const std::string& text) const {
+    const std::string file = (path_ / name).string();
+    auto s = write_file_atomic(file, text);
+    if (!s) throw std::runtime_error(s.error().to_string());
+    return file;
+  }
+  // A path to a bundled file, relative to this folder (manifests resolve against their folder).
+  std::string relative_data(const std::string& relative) const {
+    return fs::relative(test::data_path(relative), path_).generic_string();
+  }
+
+ private:
+  fs::path path_;
+};
+
+std::set<std::string> tags_of(const MotionDatabase& db, int clip) {
+  std::set<std::string> tags;
+  const DatabaseClip& c = db.clips[static_cast<size_t>(clip)];
+  for (const TagRange& range : db.tag_ranges) {
+    if (range.first_frame == c.first_frame && range.frame_count == c.frame_count) {
+      tags.insert(db.tag_names[static_cast<size_t>(range.tag)]);
+    }
+  }
+  return tags;
+}
+
+TEST(DatabaseLoader, LoadsTheBundledFolderAt30Fps) {
+  auto db = load_database({test::data_path("cmu/16")}, cmu_settings());
+  ASSERT_TRUE(db) << db.error().to_string();
+  EXPECT_EQ(db->fps, 30.0);
+  ASSERT_EQ(db->skeletons.size(), 1u);
+  EXPECT_EQ(fs::path(db->skeleton_names[0]).filename(), "16.asf");
+  ASSERT_EQ(db->clips.size(), kSubject16.size());
+  int next = 0;
+  for (size_t i = 0; i < kSubject16.size(); ++i) {
+    const DatabaseClip& clip = db->clips[i];
+    EXPECT_EQ(clip.name, kSubject16[i]);  // sorted by name
+    EXPECT_EQ(fs::path(clip.source).filename(), kSubject16[i] + ".amc");
+    EXPECT_EQ(clip.skeleton, 0);
+    const int source_frames = test::load_data_clip("cmu/16/" + kSubject16[i] + ".amc").motion.frame_count;
+    EXPECT_EQ(clip.frame_count, (source_frames - 1) / 4 + 1) << clip.name;
+    EXPECT_EQ(clip.motion.frame_count, clip.frame_count);
+    EXPECT_EQ(clip.motion.fps, 30.0);
+    EXPECT_EQ(clip.first_frame, next) << clip.name;  // back to back
+    next += clip.frame_count;
+  }
+  EXPECT_EQ(db->frame_count(), next);
+  EXPECT_EQ(db->clip_of(db->clips[3].first_frame), 3);
+
+  const auto tags_named = [&](const std::string& name) {
+    auto it = std::find(kSubject16.begin(), kSubject16.end(), name);
+    return tags_of(*db, static_cast<int>(it - kSubject16.begin()));
+  };
+  using Set = std::set<std::string>;
+  EXPECT_EQ(tags_named("16_01"), Set{"jump"});
+  EXPECT_EQ(tags_named("16_05"), Set{"jump"});
+  EXPECT_EQ(tags_named("16_15"), Set{"walk"});
+  EXPECT_EQ(tags_named("16_17"), (Set{"walk", "turn"}));
+  EXPECT_EQ(tags_named("16_33"), (Set{"walk", "stop"}));
+  EXPECT_EQ(tags_named("16_35"), Set{"run"});
+  EXPECT_EQ(tags_named("16_37"), Set{"run"});  // veer is no turn
+  EXPECT_EQ(tags_named("16_57"), (Set{"run", "stop"}));
+  // Every frame has a tag, and the walk/run/jump frames are those of the right clips.
+  const std::vector<TagMask> frame_tags = db->frame_tags();
+  const auto bit = [&](const char* tag) {
+    auto it = std::find(db->tag_names.begin(), db->tag_names.end(), tag);
+    EXPECT_NE(it, db->tag_names.end()) << tag;
+    return TagMask{1} << (it - db->tag_names.begin());
+  };
+  const TagMask locomotion = bit("walk") | bit("run") | bit("jump");
+  for (size_t f = 0; f < frame_tags.size(); ++f) ASSERT_NE(frame_tags[f] & locomotion, 0u) << f;
+  EXPECT_EQ(db->tag_names.size(), 5u);  // walk, run, jump, turn, stop
+}
+
+TEST(DatabaseLoader, CmuTagsOffOrFromText) {
+  DatabaseSettings off = cmu_settings();
+  off.cmu_tags = false;
+  auto untagged = load_database({test::data_path("cmu/16/16_15.amc")}, off);
+  ASSERT_TRUE(untagged) << untagged.error().to_string();
+  EXPECT_TRUE(untagged->tag_ranges.empty());
+
+  DatabaseSettings text;
+  text.cmu_index_text = "16_15\tslow walk, stop\n";
+  auto tagged = load_database({test::data_path("cmu/16/16_15.amc")}, text);
+  ASSERT_TRUE(tagged) << tagged.error().to_string();
+  EXPECT_EQ(tags_of(*tagged, 0), (std::set<std::string>{"walk", "stop"}));
+
+  DatabaseSettings none;  // no index given: no CMU tags, no error
+  auto plain = load_database({test::data_path("cmu/16/16_15.amc")}, none);
+  ASSERT_TRUE(plain) << plain.error().to_string();
+  EXPECT_TRUE(plain->tag_ranges.empty());
+}
+
+TEST(DatabaseLoader, OtherFrameRates) {
+  DatabaseSettings settings = cmu_settings();
+  settings.fps = 120;
+  auto db = load_database({test::data_path("cmu/16/16_15.amc")}, settings);
+  ASSERT_TRUE(db) << db.error().to_string();
+  EXPECT_EQ(db->clips[0].frame_count, test::load_data_clip("cmu/16/16_15.amc").motion.frame_count);
+}
+
+TEST(DatabaseLoader, ManifestWithFrameRangeAndRangeTags) {
+  TempFolder folder("manifest");
+  const std::string manifest = folder.write("db.toml", fmt::format(R"(fps = 30
+skeleton = "{0}/16.asf"
+
+[[clip]]
+file = "{0}/16_15.amc"
+name = "walk_middle"
+first_frame = 41
+last_frame = 240
+tags = ["walk"]
+ranges = [
+  {{ first_frame = 41, last_frame = 120, tags = ["start"] }},
+  {{ first_frame = 121, last_frame = 240, tags = ["steady"] }},
+]
+
+[[clip]]
+file = "{0}/16_35.amc"
+name = "jog"
+
+[[clip]]
+file = "{0}/16_57.amc"
+tags = []
+)", folder.relative_data("cmu/16")));
+  auto db = load_database({manifest}, cmu_settings());
+  ASSERT_TRUE(db) << db.error().to_string();
+  ASSERT_EQ(db->clips.size(), 3u);
+
+  // Frames 41..240 of the file (200 frames at 120 fps) -> 50 frames at 30 fps.
+  const DatabaseClip& walk = db->clips[0];
+  EXPECT_EQ(walk.name, "walk_middle");
+  EXPECT_EQ(walk.first_frame, 0);
+  EXPECT_EQ(walk.frame_count, 50);
+  // Frame numbers are 1-based: the clip's first frame is file frame 41, motion index 40.
+  const Clip source = test::load_data_clip("cmu/16/16_15.amc");
+  for (int j = 0; j < source.motion.joint_count; ++j) {
+    EXPECT_LT(walk.motion.rotations(0)[j].angularDistance(source.motion.rotations(40)[j]), 1e-9) << j;
+    EXPECT_LT(walk.motion.rotations(49)[j].angularDistance(source.motion.rotations(236)[j]), 1e-9) << j;
+  }
+  EXPECT_LT((walk.motion.translations(0)[0] - source.motion.translations(40)[0]).norm(), 1e-12);
+
+  // The range tags split the clip where file frame 121 falls: [0, 19] and [20, 49].
+  const auto range_of = [&](const char* tag) {
+    auto it = std::find(db->tag_names.begin(), db->tag_names.end(), tag);
+    EXPECT_NE(it, db->tag_names.end()) << tag;
+    std::vector<std::pair<int, int>> ranges;
+    for (const TagRange& r : db->tag_ranges) {
+      if (r.tag == it - db->tag_names.begin()) ranges.emplace_back(r.first_frame, r.frame_count);
+    }
+    return ranges;
+  };
+  EXPECT_EQ(range_of("walk"), (std::vector<std::pair<int, int>>{{0, 50}}));
+  EXPECT_EQ(range_of("start"), (std::vector<std::pair<int, int>>{{0, 20}}));
+  EXPECT_EQ(range_of("steady"), (std::vector<std::pair<int, int>>{{20, 30}}));
+
+  // A clip the manifest gives no tags takes them from the CMU index (by its file's name, also
+  // when renamed); `tags = []` means none.
+  EXPECT_EQ(db->clips[1].name, "jog");
+  EXPECT_EQ(db->clips[1].first_frame, 50);
+  EXPECT_EQ(tags_of(*db, 1), std::set<std::string>{"run"});
+  EXPECT_TRUE(tags_of(*db, 2).empty());
+  EXPECT_EQ(db->clips[2].first_frame, db->clips[1].first_frame + db->clips[1].frame_count);
+  EXPECT_EQ(db->skeletons.size(), 1u);
+}
+
+TEST(DatabaseLoader, ManifestFpsWinsUnlessTheCallerSaysOtherwise) {
+  TempFolder folder("fps");
+  const std::string manifest = folder.write(
+      "db.toml", fmt::format("fps = 60\n[[clip]]\nfile = \"{}\"\n", folder.relative_data("cmu/16/16_15.amc")));
+  auto db = load_database({manifest}, cmu_settings());
+  ASSERT_TRUE(db) << db.error().to_string();
+  EXPECT_EQ(db->fps, 60.0);
+  EXPECT_EQ(db->clips[0].motion.fps, 60.0);
+
+  DatabaseSettings given = cmu_settings();
+  given.prefer_manifest_fps = false;
+  given.fps = 40;
+  auto forced = load_database({manifest}, given);
+  ASSERT_TRUE(forced) << forced.error().to_string();
+  EXPECT_EQ(forced->fps, 40.0);
+
+  const std::string other = folder.write(
+      "other.toml", fmt::format("\nfps = 30\n[[clip]]\nfile = \"{}\"\n", folder.relative_data("cmu/16/16_35.amc")));
+  auto clash = load_database({manifest, other}, cmu_settings());
+  ASSERT_FALSE(clash);
+  EXPECT_EQ(clash.error().file, other);
+  EXPECT_EQ(clash.error().line, 2);
+  EXPECT_NE(clash.error().message.find("differs"), std::string::npos) << clash.error().to_string();
+}
+
+TEST(DatabaseLoader, SkeletonFilesWithTheSameJointsShareADatabase) {
+  TempFolder folder("copy");
+  folder.write("16.asf", test::read_data("cmu/16/16.asf"));
+  folder.write("16_15.amc", test::read_data("cmu/16/16_15.amc"));
+  auto db = load_database({test::data_path("cmu/16"), folder.path().string()}, cmu_settings());
+  ASSERT_TRUE(db) << db.error().to_string();
+  ASSERT_EQ(db->skeletons.size(), 2u);
+  ASSERT_EQ(db->clips.size(), 16u);
+  EXPECT_EQ(db->clips[14].skeleton, 0);
+  EXPECT_EQ(db->clips[15].skeleton, 1);
+  EXPECT_EQ(db->skeleton_names[1], (folder.path() / "16.asf").string());
+}
+
+TEST(DatabaseLoader, RejectsASkeletonOfOtherJoints) {
+  const std::string bvh = test::data_path("bvh/07_01.bvh");
+  auto db = load_database({test::data_path("cmu/16"), bvh}, cmu_settings());
+  ASSERT_FALSE(db);
+  EXPECT_EQ(db.error().file, bvh);
+  const std::string& message = db.error().message;
+  EXPECT_NE(message.find("does not match"), std::string::npos) << message;
+  EXPECT_NE(message.find("16.asf"), std::string::npos) << message;
+  EXPECT_NE(message.find("names and parents"), std::string::npos) << message;
+  EXPECT_NE(message.find("joint 0 is 'root' there, 'hip' here"), std::string::npos) << message;  // the first difference
+}
+
+TEST(DatabaseLoader, ErrorsNameTheFileAndManifestLine) {
+  TempFolder folder("errors");
+  const std::string amc = folder.relative_data("cmu/16/16_15.amc");
+  struct Case {
+    const char* rule;
+    std::string manifest_text;
+    int line;
+    const char* message_part;
+  };
+  const std::vector<Case> cases = {
+      {"clip file missing", "[[clip]]\n\nfile = \"nowhere/16_99.amc\"\n", 3, "not found"},
+      {"skeleton file missing", fmt::format("skeleton = \"none.asf\"\n[[clip]]\nfile = \"{}\"\n", amc), 1, "none.asf not found"},
+      {"range past the end", fmt::format("[[clip]]\nfile = \"{}\"\nfirst_frame = 100\nlast_frame = 9000\n", amc), 4,
+       "past the end"},
+      {"range tags past the end",
+       fmt::format("[[clip]]\nfile = \"{}\"\nranges = [\n {{ first_frame = 1, last_frame = 9000, tags = [\"a\"] }},\n]\n", amc), 4,
+       "past the end"},
+      {"too short after resampling", fmt::format("[[clip]]\nfile = \"{}\"\nfirst_frame = 10\nlast_frame = 12\n", amc), 1,
+       "needs at least 2"},
+      {"only dropped rest frames",
+       fmt::format("[[clip]]\nfile = \"{}\"\nlast_frame = 1\n", folder.relative_data("bvh/07_01.bvh")), 3, "drops"},
+      {"manifest syntax", "[[clip]\n", 1, "TOML"},
+  };
+  for (const Case& c : cases) {
+    const std::string manifest = folder.write("bad.toml", c.manifest_text);
+    auto db = load_database({manifest}, cmu_settings());
+    ASSERT_FALSE(db) << c.rule;
+    EXPECT_EQ(db.error().file, manifest) << c.rule;
+    EXPECT_EQ(db.error().line, c.line) << c.rule << ": " << db.error().to_string();
+    EXPECT_NE(db.error().message.find(c.message_part), std::string::npos) << c.rule << ": " << db.error().to_string();
+  }
+}
+
+TEST(DatabaseLoader, ShortClipIsAnErrorNamingTheFile) {
+  // The first 3 frames of a clip: 2/120 s, 1 frame at 30 fps.
+  TempFolder folder("short");
+  const std::string text = test::read_data("cmu/16/16_15.amc");
+  const size_t cut = text.find("\n4\n");
+  ASSERT_NE(cut, std::string::npos);
+  const std::string amc = folder.write("16_15.amc", text.substr(0, cut + 1));
+  folder.write("16.asf", test::read_data("cmu/16/16.asf"));
+  auto db = load_database({amc}, cmu_settings());
+  ASSERT_FALSE(db);
+  EXPECT_EQ(db.error().file, amc);
+  EXPECT_NE(db.error().message.find("1 frame at 30 fps (3 frames at 120 fps"), std::string::npos)
+      << db.error().to_string();
+}
+
+TEST(DatabaseLoader, BadInputsAndSettings) {
+  DatabaseSettings settings = cmu_settings();
+  EXPECT_FALSE(load_database({}, settings));
+  auto missing = load_database({test::data_path("cmu/nothing_here")}, settings);
+  ASSERT_FALSE(missing);
+  EXPECT_NE(missing.error().message.find("no such file or folder"), std::string::npos);
+  auto asf = load_database({test::data_path("cmu/16/16.asf")}, settings);
+  ASSERT_FALSE(asf);
+  EXPECT_NE(asf.error().message.find("skeleton only"), std::string::npos);
+  auto empty = load_database({test::data_path("cmu")}, settings);
+  ASSERT_FALSE(empty);
+  EXPECT_NE(empty.error().message.find("no .amc or .bvh"), std::string::npos);
+  auto tsv = load_database({test::data_path("cmu/cmu-mocap-index.tsv")}, settings);
+  ASSERT_FALSE(tsv);
+  EXPECT_NE(tsv.error().message.find("unknown input"), std::string::npos);
+
+  DatabaseSettings bad_index = settings;
+  bad_index.cmu_index_path = test::data_path("cmu/no-index.tsv");
+  EXPECT_FALSE(load_database({test::data_path("cmu/16/16_15.amc")}, bad_index));
+
+  const std::vector<std::pair<const char*, DatabaseSettings>> invalid = [&] {
+    std::vector<std::pair<const char*, DatabaseSettings>> v;
+    DatabaseSettings s = settings;
+    s.fps = 0;
+    v.emplace_back("fps", s);
+    s = settings;
+    s.bvh_metres_per_unit = -1;
+    v.emplace_back("bvh_metres_per_unit", s);
+    s = settings;
+    s.input_fps = -5;
+    v.emplace_back("input_fps", s);
+    return v;
+  }();
+  for (const auto& [rule, s] : invalid) {
+    auto status = s.validate();
+    ASSERT_FALSE(status) << rule;
+    EXPECT_NE(status.error().message.find(rule), std::string::npos) << status.error().message;
+    EXPECT_FALSE(load_database({test::data_path("cmu/16/16_15.amc")}, s)) << rule;
+  }
+  EXPECT_TRUE(settings.validate());
+}
+
+}  // namespace
+}  // namespace mg

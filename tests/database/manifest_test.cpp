@@ -1,0 +1,173 @@
+#include "motiongraph/database/manifest.h"
+
+#include <gtest/gtest.h>
+
+#include "test_data.h"
+
+namespace mg {
+namespace {
+
+// Line numbers matter: the failing cases below expect errors on these lines.
+constexpr const char* kManifest = R"(# test manifest
+fps = 30
+skeleton = "16.asf"
+bvh_scale = 0.056444
+input_fps = 120
+
+[[clip]]
+file = "16_15.amc"
+name = "walk_a"
+first_frame = 41
+last_frame = 240
+tags = ["walk"]
+ranges = [
+  { first_frame = 41, last_frame = 120, tags = ["start"] },
+  { first_frame = 121, last_frame = 240, tags = ["steady", "walk"] },
+]
+
+[[clip]]
+file = "../bvh/131_01.bvh"
+bvh_scale = 0.01
+input_fps = 120
+
+[[clip.ranges]]
+first_frame = 1
+last_frame = 50
+tags = ["start"]
+
+[[clip]]
+file = "16_35.AMC"
+skeleton = "other/16.asf"
+)";
+
+TEST(Manifest, ReadsTheExample) {
+  auto manifest = parse_manifest(kManifest, "db.toml");
+  ASSERT_TRUE(manifest) << manifest.error().to_string();
+  EXPECT_EQ(manifest->file_name, "db.toml");
+  EXPECT_EQ(manifest->fps, 30.0);
+  EXPECT_EQ(manifest->fps_line, 2);
+  EXPECT_EQ(manifest->skeleton, "16.asf");
+  EXPECT_EQ(manifest->skeleton_line, 3);
+  EXPECT_EQ(manifest->bvh_scale, 0.056444);
+  EXPECT_EQ(manifest->input_fps, 120.0);
+  ASSERT_EQ(manifest->clips.size(), 3u);
+
+  const ManifestClip& walk = manifest->clips[0];
+  EXPECT_EQ(walk.file, "16_15.amc");
+  EXPECT_EQ(walk.line, 7);
+  EXPECT_EQ(walk.file_line, 8);
+  EXPECT_EQ(walk.name, "walk_a");
+  EXPECT_FALSE(walk.skeleton);
+  EXPECT_EQ(walk.first_frame, 41);
+  EXPECT_EQ(walk.last_frame, 240);
+  EXPECT_EQ(walk.frames_line, 11);
+  EXPECT_EQ(walk.tags, std::vector<std::string>{"walk"});
+  ASSERT_EQ(walk.ranges.size(), 2u);
+  EXPECT_EQ(walk.ranges[0].first_frame, 41);
+  EXPECT_EQ(walk.ranges[0].last_frame, 120);
+  EXPECT_EQ(walk.ranges[0].tags, std::vector<std::string>{"start"});
+  EXPECT_EQ(walk.ranges[0].line, 14);
+  EXPECT_EQ(walk.ranges[1].tags, (std::vector<std::string>{"steady", "walk"}));
+  EXPECT_TRUE(walk.gives_tags());
+
+  const ManifestClip& bvh = manifest->clips[1];
+  EXPECT_EQ(bvh.file, "../bvh/131_01.bvh");
+  EXPECT_EQ(bvh.bvh_scale, 0.01);
+  EXPECT_EQ(bvh.input_fps, 120.0);
+  EXPECT_FALSE(bvh.first_frame);
+  EXPECT_FALSE(bvh.tags);
+  ASSERT_EQ(bvh.ranges.size(), 1u);
+  EXPECT_EQ(bvh.ranges[0].line, 23);
+  EXPECT_TRUE(bvh.gives_tags());
+
+  const ManifestClip& run = manifest->clips[2];
+  EXPECT_EQ(run.skeleton, "other/16.asf");
+  EXPECT_EQ(run.skeleton_line, 30);
+  EXPECT_FALSE(run.gives_tags());  // left to the CMU index
+}
+
+TEST(Manifest, MinimalAndEmptyTags) {
+  auto manifest = parse_manifest("[[clip]]\nfile = \"a.bvh\"\ntags = []\n", "m.toml");
+  ASSERT_TRUE(manifest) << manifest.error().to_string();
+  EXPECT_FALSE(manifest->fps);
+  ASSERT_EQ(manifest->clips.size(), 1u);
+  EXPECT_TRUE(manifest->clips[0].tags);
+  EXPECT_TRUE(manifest->clips[0].tags->empty());
+  EXPECT_TRUE(manifest->clips[0].gives_tags());  // "no tags", not "ask the CMU index"
+}
+
+TEST(Manifest, DuplicateTagsInAListCountOnce) {
+  auto manifest = parse_manifest("[[clip]]\nfile = \"a.bvh\"\ntags = [\"walk\", \"walk\"]\n", "m.toml");
+  ASSERT_TRUE(manifest) << manifest.error().to_string();
+  EXPECT_EQ(manifest->clips[0].tags, std::vector<std::string>{"walk"});
+}
+
+TEST(Manifest, TagNames) {
+  EXPECT_TRUE(is_valid_tag_name("walk"));
+  EXPECT_TRUE(is_valid_tag_name("run-fast_2"));
+  EXPECT_FALSE(is_valid_tag_name(""));
+  EXPECT_FALSE(is_valid_tag_name("fast walk"));
+  EXPECT_FALSE(is_valid_tag_name("walk,run"));
+}
+
+TEST(Manifest, OneCleanErrorPerRule) {
+  const std::string base = kManifest;
+  const auto r = [&](const std::string& from, const std::string& to) { return test::replace_once(base, from, to); };
+  const std::vector<test::ErrorCase> cases = {
+      {"TOML syntax", r("fps = 30", "fps = = 30"), 2, "TOML"},
+      {"unknown top-level key", r("fps = 30", "fsp = 30"), 2, "unknown key 'fsp' at the top level"},
+      {"unknown clip key", r("first_frame = 41\n", "frist_frame = 41\n"), 10, "unknown key 'frist_frame' in a [[clip]]"},
+      {"unknown range key", r("tags = [\"start\"] }", "tag = [\"start\"] }"), 14, "unknown key 'tag' in a range"},
+      {"fps not a number", r("fps = 30", "fps = \"30\""), 2, "'fps' must be a number"},
+      {"fps not positive", r("fps = 30", "fps = 0"), 2, "positive"},
+      {"fps not finite", r("fps = 30", "fps = inf"), 2, "positive"},
+      {"default bvh_scale not positive", r("bvh_scale = 0.056444", "bvh_scale = -1"), 4, "positive"},
+      {"clip input_fps not positive", r("input_fps = 120\n\n[[clip.ranges]]", "input_fps = 0\n\n[[clip.ranges]]"), 21,
+       "'input_fps' must be a positive number"},
+      {"skeleton not a string", r("skeleton = \"16.asf\"", "skeleton = 16"), 3, "'skeleton' must be a string"},
+      {"no clips", "fps = 30\n", 0, "names no clips"},
+      {"clip not an array of tables", "fps = 30\n[clip]\nfile = \"a.amc\"\n", 2, "write each clip as [[clip]]"},
+      {"clip without file", r("file = \"16_15.amc\"", "# no file"), 7, "needs a file"},
+      {"file empty", r("file = \"16_15.amc\"", "file = \"\""), 8, "must not be empty"},
+      {"file not a string", r("file = \"16_15.amc\"", "file = 1615"), 8, "'file' must be a string"},
+      {"file neither AMC nor BVH", r("file = \"16_15.amc\"", "file = \"16_15.txt\""), 8, "neither .amc nor .bvh"},
+      {"name empty", r("name = \"walk_a\"", "name = \"\""), 9, "must not be empty"},
+      {"skeleton on a BVH clip", r("input_fps = 120\n\n[[clip.ranges]]", "skeleton = \"x.asf\"\n\n[[clip.ranges]]"),
+       21, "AMC clips only"},
+      {"bvh_scale on an AMC clip", r("name = \"walk_a\"", "bvh_scale = 1"), 9, "BVH clips only"},
+      {"first_frame below 1", r("first_frame = 41\n", "first_frame = 0\n"), 10, "numbered from 1"},
+      {"first_frame not an integer", r("first_frame = 41\n", "first_frame = 40.5\n"), 10, "integer frame number"},
+      {"last_frame before first_frame", r("last_frame = 240\n", "last_frame = 40\n"), 11, "comes before first_frame"},
+      {"range without last_frame", r("first_frame = 41, last_frame = 120,", "first_frame = 41,"), 14, "needs both"},
+      {"range last before first", r("last_frame = 120,", "last_frame = 30,"), 14, "comes before its first_frame"},
+      {"range before the clip", r("{ first_frame = 41,", "{ first_frame = 40,"), 14, "before the clip's first_frame"},
+      {"range after the clip", r("last_frame = 240, tags", "last_frame = 241, tags"), 15, "after the clip's last_frame"},
+      {"range without tags", r("tags = [\"start\"]\n", "# no tags\n"), 23, "a range needs tags"},
+      {"range with no tag", r("tags = [\"start\"]\n", "tags = []\n"), 26, "at least one tag"},
+      {"tags not an array", r("tags = [\"walk\"]", "tags = \"walk\""), 12, "array of strings"},
+      {"tag not a string", r("tags = [\"walk\"]", "tags = [1]"), 12, "a tag must be a string"},
+      {"tag name invalid", r("tags = [\"walk\"]", "tags = [\"fast walk\"]"), 12, "not a valid name"},
+      {"ranges not tables", r("skeleton = \"other/16.asf\"", "ranges = [1, 2]"), 30, "array of tables"},
+  };
+  for (const auto& c : cases) {
+    auto manifest = parse_manifest(c.text, "bad.toml");
+    ASSERT_FALSE(manifest) << c.rule;
+    EXPECT_EQ(manifest.error().file, "bad.toml") << c.rule;
+    test::expect_error_matches(manifest.error(), c);
+  }
+}
+
+TEST(Manifest, EveryPrefixFailsCleanlyOrParses) {
+  const std::string text = kManifest;
+  const int line_count = static_cast<int>(std::count(text.begin(), text.end(), '\n')) + 1;
+  for (size_t n = 0; n <= text.size(); ++n) {
+    auto manifest = parse_manifest(text.substr(0, n), "cut.toml");
+    if (manifest) continue;
+    EXPECT_GE(manifest.error().line, 0) << n;
+    EXPECT_LE(manifest.error().line, line_count) << n;
+    EXPECT_FALSE(manifest.error().message.empty()) << n;
+  }
+}
+
+}  // namespace
+}  // namespace mg

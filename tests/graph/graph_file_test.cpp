@@ -1,0 +1,101 @@
+#include "motiongraph/graph/graph_file.h"
+
+#include <gtest/gtest.h>
+
+#include "test_data.h"
+
+namespace mg {
+namespace {
+
+GraphFile sample() {
+  GraphFile file;
+  file.settings_json = R"({"fps": 30})";
+  file.input_key = 0x0123456789abcdefULL;
+  file.database = test::small_database({"cmu/16/16_35.amc", "cmu/16/16_39.amc"});
+  file.database.skeleton_names = {"16.asf"};
+  const int run = file.database.tag_index("run");
+  file.database.tag_ranges.push_back({run, 0, file.database.frame_count()});
+  file.candidates.window = 10;
+  file.candidates.continuation_radius = 10;
+  file.candidates.minima = {{3, 50, 0.5f, 0.1f, 1.0f, -2.0f}, {7, 60, 0.25f, -0.3f, 0.0f, 4.0f}};
+  file.candidates.histogram.add(0.5f);
+  file.candidates.histogram.add(2.0f);
+  file.candidates.picture = {1.0f, 2.0f, 3.0f, 4.0f};
+  file.candidates.picture_side = 2;
+  file.candidates.picture_block = 40;
+  file.threshold = 0.75;
+  file.threshold_quantile = 0.5;
+  file.locality_radius = 5;
+  file.graph.window = 10;
+  file.graph.nodes = {{3, 0}, {50, 1}};
+  file.graph.edges = {{0, 1, true, 0, 9}, {1, 0, true, 1, 9}};
+  file.graph.edge_offsets = {0, 1, 2};
+  file.graph.transitions = file.candidates.minima;
+  file.report_json = R"({"frames": 2})";
+  return file;
+}
+
+TEST(GraphFile, RoundTripIsExact) {
+  const GraphFile original = sample();
+  const std::string bytes = serialize_graph_file(original);
+  auto read = parse_graph_file(bytes, "g.mgraph");
+  ASSERT_TRUE(read) << read.error().to_string();
+  EXPECT_EQ(read->settings_json, original.settings_json);
+  EXPECT_EQ(read->input_key, original.input_key);
+  EXPECT_EQ(read->database.clips.size(), 2u);
+  EXPECT_EQ(read->database.frame_count(), original.database.frame_count());
+  EXPECT_EQ(read->database.tag_names, original.database.tag_names);
+  EXPECT_EQ(read->database.skeletons[0].joint_count(), original.database.skeletons[0].joint_count());
+  const Motion& a = original.database.clips[1].motion;
+  const Motion& b = read->database.clips[1].motion;
+  ASSERT_EQ(a.frame_count, b.frame_count);
+  for (size_t i = 0; i < a.local_rotations.size(); ++i) ASSERT_LT(a.local_rotations[i].angularDistance(b.local_rotations[i]), 1e-6);
+  EXPECT_EQ(a.local_translations_m, b.local_translations_m);
+  EXPECT_EQ(read->candidates.minima.size(), 2u);
+  EXPECT_EQ(read->candidates.minima[1].z_m, 4.0f);
+  EXPECT_EQ(read->candidates.histogram.total(), 2u);
+  EXPECT_EQ(read->candidates.picture, original.candidates.picture);
+  EXPECT_EQ(read->threshold, 0.75);
+  EXPECT_EQ(read->graph.edges.size(), 2u);
+  EXPECT_EQ(read->graph.edges[1].transition_index, 1);
+  EXPECT_EQ(read->report_json, original.report_json);
+  // Writing what was read gives the same bytes.
+  EXPECT_EQ(serialize_graph_file(*read), bytes);
+}
+
+TEST(GraphFile, RejectsAnythingElse) {
+  const std::string bytes = serialize_graph_file(sample());
+  auto expect_error = [](const std::string& data, const char* part) {
+    auto read = parse_graph_file(data, "bad.mgraph");
+    ASSERT_FALSE(read);
+    EXPECT_EQ(read.error().file, "bad.mgraph");
+    EXPECT_NE(read.error().message.find(part), std::string::npos) << read.error().to_string();
+  };
+  expect_error("", "not a motiongraph graph");
+  expect_error("HIERARCHY\nROOT x", "not a motiongraph graph");
+  expect_error(bytes.substr(0, bytes.size() - 1), "truncated");
+  expect_error(bytes.substr(0, 12), "truncated header");
+  std::string flipped = bytes;
+  flipped[bytes.size() / 2] ^= 0x40;
+  expect_error(flipped, "checksum mismatch");
+  std::string other_version = bytes;
+  other_version[9] = 7;  // the version follows the 9-byte magic
+  expect_error(other_version, "version 7");
+  // A valid cache file is not a graph file.
+  expect_error(serialize_distance_cache(1, sample().candidates), "not a motiongraph graph");
+}
+
+TEST(DistanceCache, RoundTripAndKey) {
+  const CandidateSearch candidates = sample().candidates;
+  const std::string bytes = serialize_distance_cache(42, candidates);
+  auto read = parse_distance_cache(bytes, "c.mgcache", 42);
+  ASSERT_TRUE(read) << read.error().to_string();
+  EXPECT_EQ(read->minima.size(), candidates.minima.size());
+  EXPECT_EQ(read->histogram.counts(), candidates.histogram.counts());
+  EXPECT_FALSE(parse_distance_cache(bytes, "c.mgcache", 43));
+  EXPECT_NE(content_key("walk"), content_key("walk "));
+  EXPECT_EQ(content_key("walk"), content_key(std::string("walk")));
+}
+
+}  // namespace
+}  // namespace mg
