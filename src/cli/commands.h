@@ -18,6 +18,9 @@ struct Command {
 
 Command add_info_command(CLI::App& app);
 Command add_convert_command(CLI::App& app);
+Command add_build_command(CLI::App& app);
+Command add_inspect_command(CLI::App& app);
+Command add_bench_command(CLI::App& app);
 
 // Prints "motiongraph: <error>" to stderr and returns the exit code for failed input (1).
 int fail(const Error& error);

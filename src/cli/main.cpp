@@ -35,6 +35,9 @@ int main(int argc, char** argv) {
   const std::vector<mg::cli::Command> commands = {
       mg::cli::add_info_command(app),
       mg::cli::add_convert_command(app),
+      mg::cli::add_build_command(app),
+      mg::cli::add_inspect_command(app),
+      mg::cli::add_bench_command(app),
   };
   try {
     app.parse(argc, argv);

@@ -298,7 +298,9 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
                                spec.path, dropped + 1)};
     }
     const bool whole = first == dropped + 1 && last == file_frames;
-    Motion cut = whole ? motion : motion.slice(first - 1 - dropped, last - first + 1);
+    Motion sliced;
+    if (!whole) sliced = motion.slice(first - 1 - dropped, last - first + 1);
+    const Motion& cut = whole ? motion : sliced;
     const double input_fps = cut.fps;
     auto resampled = resample(cut, db.fps);
     if (!resampled) return spec.error(resampled.error().message);

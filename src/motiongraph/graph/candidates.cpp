@@ -46,42 +46,40 @@ Result<CandidateSearch> find_candidates(const FrameFeatures& f, const DistanceSe
     const int block = search.picture_block;
     const int side = search.picture_side;
     std::vector<std::pair<size_t, float>> picture_updates;
+    const float kNan = std::numeric_limits<float>::quiet_NaN();
     for (int a = tile.leave_begin; a < tile.leave_begin + tile.leave_count; ++a) {
       float* matrix_row = search.matrix.empty() ? nullptr : search.matrix.data() + static_cast<size_t>(a) * n;
+      // The stored rows above, at and below a; a missing neighbour row reads as NaN, which
+      // never beats a value.
+      const float* row = &tile.distance[static_cast<size_t>(a - tile.row0) * tile.cols] - tile.col0;
+      const float* up = a > tile.row0 ? row - tile.cols : nullptr;
+      const float* down = a + 1 < tile.row0 + tile.rows ? row + tile.cols : nullptr;
+      const int first_col = tile.col0, last_col = tile.col0 + tile.cols - 1;
+      auto at = [&](const float* r, int b) { return r && b >= first_col && b <= last_col ? r[b] : kNan; };
+      const int clip_a = f.clip_of_frame[a];
       float block_min = std::numeric_limits<float>::infinity();
-      int block_column = -1;
+      int block_column = tile.arrive_begin / block;
       for (int b = tile.arrive_begin; b < tile.arrive_begin + tile.arrive_count; ++b) {
-        const float d = tile.at(a, b);
+        const float d = row[b];
         if (matrix_row) matrix_row[b] = d;
         if (b / block != block_column) {
-          if (block_column >= 0 && std::isfinite(block_min)) {
+          if (std::isfinite(block_min)) {
             picture_updates.emplace_back(static_cast<size_t>(a / block) * side + block_column, block_min);
           }
           block_column = b / block;
           block_min = std::numeric_limits<float>::infinity();
         }
-        if (!std::isfinite(d)) continue;
+        if (!(d >= 0.0f)) continue;  // NaN: undefined
         block_min = std::min(block_min, d);
         histogram.add(d);
-        if (f.clip_of_frame[a] == f.clip_of_frame[b] && std::abs(b - (a + k - 1)) <= radius) continue;
-        bool minimum = true;
-        for (int da = -1; da <= 1 && minimum; ++da) {
-          for (int db = -1; db <= 1; ++db) {
-            if (da == 0 && db == 0) continue;
-            const int na = a + da, nb = b + db;
-            if (na < tile.row0 || na >= tile.row0 + tile.rows || nb < tile.col0 || nb >= tile.col0 + tile.cols) continue;
-            const float neighbour = tile.at(na, nb);
-            if (!std::isfinite(neighbour)) continue;
-            const bool earlier = da < 0 || (da == 0 && db < 0);
-            if (neighbour < d || (neighbour == d && earlier)) {
-              minimum = false;
-              break;
-            }
-          }
-        }
-        if (minimum) minima.push_back(Transition{a, b, d, 0.0f, 0.0f, 0.0f});
+        // A local minimum: no neighbour smaller; ties go to the first in row-major order.
+        if (at(row, b - 1) <= d || at(row, b + 1) < d) continue;
+        if (at(up, b - 1) <= d || at(up, b) <= d || at(up, b + 1) <= d) continue;
+        if (at(down, b - 1) < d || at(down, b) < d || at(down, b + 1) < d) continue;
+        if (f.clip_of_frame[b] == clip_a && std::abs(b - (a + k - 1)) <= radius) continue;
+        minima.push_back(Transition{a, b, d, 0.0f, 0.0f, 0.0f});
       }
-      if (block_column >= 0 && std::isfinite(block_min)) {
+      if (std::isfinite(block_min)) {
         picture_updates.emplace_back(static_cast<size_t>(a / block) * side + block_column, block_min);
       }
     }

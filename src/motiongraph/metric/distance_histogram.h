@@ -1,6 +1,7 @@
-// A histogram of distance values on a logarithmic scale (64 bins per octave, 2^-40 to 2^40),
-// filled while the tiles stream by, so a threshold can be given as a quantile of all finite
-// D values without holding them. Quantiles are exact to the bin: within 1.1 %.
+// A histogram of distance values, 64 bins per octave from 2^-40 to 2^40 (linear within each
+// octave, read off the float's bits), filled while the tiles stream by, so a threshold can be
+// given as a quantile of all finite D values without holding them. Quantiles are exact to the
+// bin: within 1.6 %.
 #pragma once
 
 #include <cstdint>

@@ -45,7 +45,7 @@ struct Products {
 
 class TileWorker {
  public:
-  explicit TileWorker(const FrameFeatures& f) : f_(f) {}
+  explicit TileWorker(const FrameFeatures& f) : f_(f), uniform_(uniform_taper(f)) {}
 
   DistanceTile run(int a0, int a_count, int b0, int b_count) {
     const int n = f_.frames;
@@ -65,106 +65,119 @@ class TileWorker {
     const int c0 = std::max(0, tile.col0 - k + 1);
     const int cols = tile.col0 + tile.cols - c0;
     products_.compute(f_, r0, rows, c0, cols);
-    accumulate(r0, rows, c0, cols);
     distance_.assign(static_cast<size_t>(tile.rows) * tile.cols, std::numeric_limits<float>::quiet_NaN());
-    const bool uniform = uniform_taper();
-    const double w = f_.window_weight;
-    for (int a = tile.row0; a < tile.row0 + tile.rows; ++a) {
-      if (!f_.can_leave[a]) continue;
-      float* out = distance_.data() + static_cast<size_t>(a - tile.row0) * tile.cols;
-      for (int b = tile.col0; b < tile.col0 + tile.cols; ++b) {
-        if (!f_.can_arrive[b]) continue;
-        const int i0 = a - r0;
-        const int j0 = b - k + 1 - c0;
-        double c1, c2, c3;
-        if (uniform) {
-          // Running sums along the diagonal: sum over t of E(i0 + t, j0 + t).
-          const size_t end = static_cast<size_t>(i0 + k - 1) * cols + (j0 + k - 1);
-          c1 = e1_[end];
-          c2 = e2_[end];
-          c3 = e3_[end];
-          if (i0 > 0 && j0 > 0) {
-            const size_t before = static_cast<size_t>(i0 - 1) * cols + (j0 - 1);
-            c1 -= e1_[before];
-            c2 -= e2_[before];
-            c3 -= e3_[before];
-          }
-          const double u = f_.taper[0];
-          c1 *= u;
-          c2 *= u;
-          c3 *= u;
-        } else {
-          c1 = c2 = c3 = 0.0;
-          for (int t = 0; t < k; ++t) {
-            const size_t at = static_cast<size_t>(i0 + t) * cols + (j0 + t);
-            c1 += f_.taper[t] * e1_[at];
-            c2 += f_.taper[t] * e2_[at];
-            c3 += f_.taper[t] * e3_[at];
-          }
-        }
-        const int b_first = b - k + 1;
-        const double x = f_.window_x[a], z = f_.window_z[a];
-        const double x2 = f_.window_x[b_first], z2 = f_.window_z[b_first];
-        const double big_a = c1 - (x * x2 + z * z2) / w;
-        const double big_b = c2 - (x * z2 - z * x2) / w;
-        const double d = f_.window_square[a] + f_.window_square[b_first] - (x * x + z * z + x2 * x2 + z2 * z2) / w -
-                         2.0 * c3 - 2.0 * std::sqrt(big_a * big_a + big_b * big_b);
-        out[b - tile.col0] = static_cast<float>(std::max(0.0, d));
-      }
+    // Rows of E (or of its running diagonal sums) live in a ring of k + 1 rows: the pairs of
+    // row a need block rows a - r0 .. a - r0 + k - 1 only.
+    const int ring = k + 1;
+    for (auto* buffer : {&e1_, &e2_, &e3_}) buffer->assign(static_cast<size_t>(ring) * cols, 0.0);
+    for (int i = 0; i < rows; ++i) {
+      accumulate_row(i, r0, c0, cols, ring);
+      const int a = r0 + i - (k - 1);  // the leaving frame whose window ends on this row
+      if (a >= tile.row0 && a < tile.row0 + tile.rows && f_.can_leave[a]) distances_for_row(tile, a, r0, c0, cols, ring);
     }
     tile.distance = distance_;
     return tile;
   }
 
  private:
-  bool uniform_taper() const {
-    for (double u : f_.taper) {
-      if (u != f_.taper[0]) return false;
+  static bool uniform_taper(const FrameFeatures& f) {
+    for (double u : f.taper) {
+      if (u != f.taper[0]) return false;
     }
     return true;
   }
 
+  double* ring_row(std::vector<double>& buffer, int i, int ring, int cols) {
+    return buffer.data() + static_cast<size_t>(i % ring) * cols;
+  }
+
   // E = uncentred cross sums per frame pair, in double: the float products of the centred
   // clouds plus the reference offsets, added back exactly (DESIGN.md 3.3). For a uniform
-  // taper they are then summed along diagonals in place.
-  void accumulate(int r0, int rows, int c0, int cols) {
-    const size_t size = static_cast<size_t>(rows) * cols;
-    e1_.resize(size);
-    e2_.resize(size);
-    e3_.resize(size);
+  // taper they are summed along diagonals as they go (cum(i, j) = E(i, j) + cum(i-1, j-1)).
+  void accumulate_row(int i, int r0, int c0, int cols, int ring) {
     const double v = f_.point_weight_sum;
-    const bool running = uniform_taper();
-    for (int i = 0; i < rows; ++i) {
-      const int fr = r0 + i;
-      const double rx = f_.root_x[fr], rz = f_.root_z[fr], mx = f_.moment_x[fr], mz = f_.moment_z[fr];
-      const float* g1 = products_.g1.data() + static_cast<size_t>(i) * cols;
-      const float* g2 = products_.g2.data() + static_cast<size_t>(i) * cols;
-      const float* g3 = products_.g3.data() + static_cast<size_t>(i) * cols;
-      double* e1 = e1_.data() + static_cast<size_t>(i) * cols;
-      double* e2 = e2_.data() + static_cast<size_t>(i) * cols;
-      double* e3 = e3_.data() + static_cast<size_t>(i) * cols;
-      const double* p1 = i > 0 ? e1 - cols - 1 : nullptr;
-      const double* p2 = i > 0 ? e2 - cols - 1 : nullptr;
-      const double* p3 = i > 0 ? e3 - cols - 1 : nullptr;
-      for (int j = 0; j < cols; ++j) {
-        const int fc = c0 + j;
-        const double sx = f_.root_x[fc], sz = f_.root_z[fc], nx = f_.moment_x[fc], nz = f_.moment_z[fc];
-        double v1 = g1[j] + (rx * nx + rz * nz) + (mx * sx + mz * sz) + v * (rx * sx + rz * sz);
-        double v2 = g2[j] + (rx * nz - rz * nx) + (mx * sz - mz * sx) + v * (rx * sz - rz * sx);
-        double v3 = g3[j];
-        if (running && i > 0 && j > 0) {
-          v1 += p1[j];
-          v2 += p2[j];
-          v3 += p3[j];
-        }
-        e1[j] = v1;
-        e2[j] = v2;
-        e3[j] = v3;
+    const int fr = r0 + i;
+    const double rx = f_.root_x[fr], rz = f_.root_z[fr], mx = f_.moment_x[fr], mz = f_.moment_z[fr];
+    const float* g1 = products_.g1.data() + static_cast<size_t>(i) * cols;
+    const float* g2 = products_.g2.data() + static_cast<size_t>(i) * cols;
+    const float* g3 = products_.g3.data() + static_cast<size_t>(i) * cols;
+    double* e1 = ring_row(e1_, i, ring, cols);
+    double* e2 = ring_row(e2_, i, ring, cols);
+    double* e3 = ring_row(e3_, i, ring, cols);
+    const double* sx = f_.root_x.data() + c0;
+    const double* sz = f_.root_z.data() + c0;
+    const double* nx = f_.moment_x.data() + c0;
+    const double* nz = f_.moment_z.data() + c0;
+    for (int j = 0; j < cols; ++j) {
+      e1[j] = g1[j] + (rx * nx[j] + rz * nz[j]) + (mx * sx[j] + mz * sz[j]) + v * (rx * sx[j] + rz * sz[j]);
+      e2[j] = g2[j] + (rx * nz[j] - rz * nx[j]) + (mx * sz[j] - mz * sx[j]) + v * (rx * sz[j] - rz * sx[j]);
+      e3[j] = g3[j];
+    }
+    if (uniform_ && i > 0) {
+      const double* p1 = ring_row(e1_, i - 1, ring, cols);
+      const double* p2 = ring_row(e2_, i - 1, ring, cols);
+      const double* p3 = ring_row(e3_, i - 1, ring, cols);
+      for (int j = 1; j < cols; ++j) {
+        e1[j] += p1[j - 1];
+        e2[j] += p2[j - 1];
+        e3[j] += p3[j - 1];
       }
     }
   }
 
+  // D(a, b) for every column b of the tile, once block row a - r0 + k - 1 is accumulated.
+  void distances_for_row(const DistanceTile& tile, int a, int r0, int c0, int cols, int ring) {
+    const int k = f_.window;
+    const int i0 = a - r0;
+    const int i1 = i0 + k - 1;
+    const double w = f_.window_weight;
+    const double x = f_.window_x[a], z = f_.window_z[a], s = f_.window_square[a];
+    const double u = f_.taper[0];
+    const double* end1 = ring_row(e1_, i1, ring, cols);
+    const double* end2 = ring_row(e2_, i1, ring, cols);
+    const double* end3 = ring_row(e3_, i1, ring, cols);
+    const double* start1 = i0 > 0 ? ring_row(e1_, i0 - 1, ring, cols) : nullptr;
+    const double* start2 = i0 > 0 ? ring_row(e2_, i0 - 1, ring, cols) : nullptr;
+    const double* start3 = i0 > 0 ? ring_row(e3_, i0 - 1, ring, cols) : nullptr;
+    float* out = distance_.data() + static_cast<size_t>(a - tile.row0) * tile.cols;
+    for (int b = std::max(tile.col0, k - 1); b < tile.col0 + tile.cols; ++b) {
+      if (!f_.can_arrive[b]) continue;
+      const int j0 = b - k + 1 - c0;  // block column of the arrival window's first frame
+      const int j1 = j0 + k - 1;
+      double c1, c2, c3;
+      if (uniform_) {
+        c1 = end1[j1];
+        c2 = end2[j1];
+        c3 = end3[j1];
+        if (i0 > 0 && j0 > 0) {
+          c1 -= start1[j0 - 1];
+          c2 -= start2[j0 - 1];
+          c3 -= start3[j0 - 1];
+        }
+        c1 *= u;
+        c2 *= u;
+        c3 *= u;
+      } else {
+        c1 = c2 = c3 = 0.0;
+        for (int t = 0; t < k; ++t) {
+          const size_t at = static_cast<size_t>((i0 + t) % ring) * cols + (j0 + t);
+          c1 += f_.taper[t] * e1_[at];
+          c2 += f_.taper[t] * e2_[at];
+          c3 += f_.taper[t] * e3_[at];
+        }
+      }
+      const int b_first = b - k + 1;
+      const double x2 = f_.window_x[b_first], z2 = f_.window_z[b_first];
+      const double big_a = c1 - (x * x2 + z * z2) / w;
+      const double big_b = c2 - (x * z2 - z * x2) / w;
+      const double d = s + f_.window_square[b_first] - (x * x + z * z + x2 * x2 + z2 * z2) / w - 2.0 * c3 -
+                       2.0 * std::sqrt(big_a * big_a + big_b * big_b);
+      out[b - tile.col0] = static_cast<float>(std::max(0.0, d));
+    }
+  }
+
   const FrameFeatures& f_;
+  const bool uniform_;
   Products products_;
   std::vector<double> e1_, e2_, e3_;
   std::vector<float> distance_;

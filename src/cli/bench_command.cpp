@@ -1,0 +1,117 @@
+// motiongraph bench distance [INPUT...]: the distance stage measured in one run against
+//  - the three plain BLAS products it needs (same N, P, tiles and threads): the ceiling;
+//  - the pair-by-pair reference (timed on a random sample of pairs, scaled to all N^2 pairs).
+// Prints the times and their ratios. Speed is measured here, never asserted in tests.
+#include <chrono>
+#include <random>
+
+#include <fmt/format.h>
+
+#include "cli/commands.h"
+#include "motiongraph/database/database_loader.h"
+#include "motiongraph/graph/candidates.h"
+#include "motiongraph/metric/frame_features.h"
+#include "motiongraph/metric/reference_distance.h"
+
+namespace mg::cli {
+
+namespace {
+
+struct BenchOptions {
+  std::string what;
+  std::vector<std::string> inputs;
+  double fps = 120.0;
+  int max_frames = 0;
+  int reference_pairs = 20000;
+  DistanceSettings distance;
+};
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+int run_bench(const BenchOptions& o) {
+  if (o.what != "distance") return fail(Error{"", 0, fmt::format("unknown benchmark '{}' (try: distance)", o.what)});
+  DatabaseSettings settings;
+  settings.fps = o.fps;
+  settings.prefer_manifest_fps = false;
+  settings.cmu_tags = false;
+  auto db = load_database(o.inputs, settings);
+  if (!db) return fail(db.error());
+  if (o.max_frames > 0) {
+    // Keep whole clips up to the frame budget.
+    size_t keep = 0;
+    while (keep < db->clips.size() && db->clips[keep].first_frame + db->clips[keep].frame_count <= o.max_frames) ++keep;
+    db->clips.resize(std::max<size_t>(keep, 1));
+  }
+  auto layout = make_cloud_layout(db->skeletons.front(), {});
+  if (!layout) return fail(layout.error());
+  auto features = make_frame_features(*db, *layout, o.distance);
+  if (!features) return fail(features.error());
+  const int n = features->frames;
+  fmt::print("distance stage benchmark: {} frames ({} clips at {:g} fps), {} points, window {}, tiles {}, threads {}\n",
+             n, db->clips.size(), db->fps, features->points, features->window, o.distance.tile_frames,
+             o.distance.threads == 0 ? std::string("all cores") : std::to_string(o.distance.threads));
+
+  const double products_s = time_plain_products(*features, o.distance);
+  auto start = std::chrono::steady_clock::now();
+  auto search = find_candidates(*features, o.distance, {});
+  const double stage_s = seconds_since(start);
+  if (!search) return fail(search.error());
+
+  // The reference on random defined pairs, from double clouds of every frame.
+  std::vector<Vec3> clouds(static_cast<size_t>(n) * features->points);
+  for (const DatabaseClip& clip : db->clips) {
+    CloudEvaluator evaluator(db->skeletons[clip.skeleton], *layout);
+    for (int f = 0; f < clip.frame_count; ++f) {
+      evaluator.points(clip.motion, f,
+                       std::span(clouds.data() + static_cast<size_t>(clip.first_frame + f) * features->points,
+                                 static_cast<size_t>(features->points)));
+    }
+  }
+  std::mt19937 rng(1);
+  std::uniform_int_distribution<int> frame(0, n - 1);
+  std::vector<std::pair<int, int>> pairs;
+  while (static_cast<int>(pairs.size()) < o.reference_pairs) {
+    const int a = frame(rng), b = frame(rng);
+    if (features->can_leave[a] && features->can_arrive[b]) pairs.emplace_back(a, b);
+  }
+  start = std::chrono::steady_clock::now();
+  double sink = 0.0;
+  for (const auto& [a, b] : pairs) {
+    sink += reference_distance(clouds, features->points, features->point_weights, features->taper, a, b).distance;
+  }
+  const double reference_per_pair = seconds_since(start) / static_cast<double>(pairs.size());
+  const double reference_s = reference_per_pair * static_cast<double>(n) * n;
+  const double pairs_total = static_cast<double>(n) * n;
+  fmt::print("plain BLAS products (3 sgemm per tile): {:8.3f} s\n", products_s);
+  fmt::print("distance stage (products, diagonal sums, closed form, minima, histogram): {:8.3f} s  "
+             "= {:.2f}x the plain products; {:.1f} M pairs/s\n",
+             stage_s, stage_s / products_s, pairs_total / stage_s / 1e6);
+  fmt::print("pair-by-pair reference, one thread ({} random pairs, {:.2f} us/pair): {:.1f} s for all {} pairs "
+             "= {:.0f}x the distance stage\n",
+             pairs.size(), reference_per_pair * 1e6, reference_s, static_cast<long long>(pairs_total), reference_s / stage_s);
+  fmt::print("local minima: {} (checksum {:.3g})\n", search->minima.size(), sink);
+  return 0;
+}
+
+}  // namespace
+
+Command add_bench_command(CLI::App& app) {
+  auto o = std::make_shared<BenchOptions>();
+  CLI::App* sub = app.add_subcommand("bench", "Measure a stage against its baselines in one run and print ratios "
+                                              "(benchmarks: distance).");
+  sub->add_option("WHAT", o->what, "The benchmark: distance")->required();
+  sub->add_option("INPUT", o->inputs, "Database inputs (folders, clips, manifests); default: data/cmu/16")
+      ->default_val(std::vector<std::string>{"data/cmu/16"});
+  sub->add_option("--fps", o->fps, "Database frame rate")->capture_default_str();
+  sub->add_option("--max-frames", o->max_frames, "Use whole clips up to this many frames (0: all)");
+  sub->add_option("--reference-pairs", o->reference_pairs, "Random pairs to time the reference on")
+      ->capture_default_str()
+      ->check(CLI::Range(100, 10000000));
+  sub->add_option("--tile", o->distance.tile_frames, "Tile side in frames")->capture_default_str();
+  sub->add_option("--threads", o->distance.threads, "Worker threads (0: one per core)")->capture_default_str();
+  return {sub, [o] { return run_bench(*o); }};
+}
+
+}  // namespace mg::cli

@@ -1,0 +1,413 @@
+// motiongraph build INPUT... -o GRAPH.mgraph: the motion graph of a database (Kovar et al.
+// 2002, section 3): load and resample the clips, point clouds, the tiled distance stage
+// (cached on disk by a key of the inputs and distance settings), transitions at local minima
+// below a threshold, the graph pruned to its largest strongly connected component per tag;
+// then the graph file and what the user asked for (report, matrix, clouds, picture).
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include "cli/commands.h"
+#include "motiongraph/core/progress.h"
+#include "motiongraph/database/database_loader.h"
+#include "motiongraph/export/matrix_png.h"
+#include "motiongraph/export/npy.h"
+#include "motiongraph/graph/candidates.h"
+#include "motiongraph/graph/graph_file.h"
+#include "motiongraph/graph/motion_graph.h"
+#include "motiongraph/graph/transition_selection.h"
+#include "motiongraph/io/file.h"
+#include "motiongraph/metric/frame_features.h"
+
+namespace mg::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct BuildOptions {
+  std::vector<std::string> inputs;
+  std::string output;
+  double fps = 30.0;
+  bool fps_given = false;
+  std::string asf;
+  double scale = 1.0;
+  double input_fps = 0.0;
+  std::string cmu_index;
+  bool no_cmu_tags = false;
+  std::string cloud = "rings";
+  PointCloudSettings cloud_settings;
+  std::vector<std::string> joint_weights;  // NAME=WEIGHT
+  DistanceSettings distance;
+  std::string taper = "uniform";
+  TransitionSettings transitions;
+  double threshold = -1.0;
+  double quantile = 0.02;
+  int continuation_radius = -1;
+  std::string cache_dir;
+  bool no_cache = false;
+  std::string report, export_matrix, export_clouds, matrix_png;
+  bool quiet = false;
+  bool ignore_tags = false;
+};
+
+class Stopwatch {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return seconds;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+// data/cmu/cmu-mocap-index.tsv beside or above the first input folder, when there is one.
+std::string find_cmu_index(const std::vector<std::string>& inputs) {
+  for (const std::string& input : inputs) {
+    fs::path folder = fs::is_directory(input) ? fs::path(input) : fs::path(input).parent_path();
+    for (int up = 0; up < 3 && !folder.empty(); ++up) {
+      const fs::path candidate = folder / "cmu-mocap-index.tsv";
+      std::error_code ec;
+      if (fs::is_regular_file(candidate, ec)) return candidate.string();
+      folder = folder.parent_path();
+    }
+  }
+  return "";
+}
+
+std::string default_cache_dir() {
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return (fs::path(xdg) / "motiongraph").string();
+  if (const char* home = std::getenv("HOME"); home && *home) return (fs::path(home) / ".cache" / "motiongraph").string();
+  return ".motiongraph-cache";
+}
+
+// Everything that decides the distance stage's result, in a stable text form.
+json distance_settings_json(const BuildOptions& o, const FrameFeatures& f) {
+  json weights = json::object();
+  for (const auto& [name, weight] : o.cloud_settings.joint_weights) weights[name] = weight;
+  return {{"cloud", o.cloud},
+          {"ring_spacing_m", o.cloud_settings.ring_spacing_m},
+          {"ring_radius_m", o.cloud_settings.ring_radius_m},
+          {"points_per_ring", o.cloud_settings.points_per_ring},
+          {"joint_weights", weights},
+          {"window", f.window},
+          {"taper", o.taper},
+          {"continuation_radius", o.continuation_radius}};
+}
+
+std::uint64_t database_key(const MotionDatabase& db, const json& settings) {
+  // The key covers the resampled motion itself, so any change of input files, ranges, rate
+  // or reading options changes it.
+  std::string bytes = settings.dump();
+  bytes += fmt::format("fps={};", db.fps);
+  for (const DatabaseClip& clip : db.clips) {
+    bytes += fmt::format("{}:{}:{};", clip.skeleton, clip.first_frame, clip.frame_count);
+    bytes.append(reinterpret_cast<const char*>(clip.motion.local_rotations.data()),
+                 clip.motion.local_rotations.size() * sizeof(Quat));
+    bytes.append(reinterpret_cast<const char*>(clip.motion.local_translations_m.data()),
+                 clip.motion.local_translations_m.size() * sizeof(Vec3));
+  }
+  for (const Skeleton& skeleton : db.skeletons) {
+    for (const JointDef& joint : skeleton.joints()) {
+      bytes += fmt::format("{}/{}/{}/{}/{};", joint.name, joint.parent, joint.rest_offset_m.x(), joint.rest_offset_m.y(),
+                           joint.rest_offset_m.z());
+    }
+  }
+  return content_key(bytes);
+}
+
+json clips_json(const MotionDatabase& db) {
+  json clips = json::array();
+  for (const DatabaseClip& clip : db.clips) {
+    json tags = json::array();
+    for (size_t t = 0; t < db.tag_names.size(); ++t) {
+      for (const TagRange& range : db.tag_ranges) {
+        if (range.tag == static_cast<int>(t) && range.first_frame < clip.first_frame + clip.frame_count &&
+            range.first_frame + range.frame_count > clip.first_frame) {
+          tags.push_back(db.tag_names[t]);
+          break;
+        }
+      }
+    }
+    clips.push_back({{"name", clip.name},
+                     {"source", clip.source},
+                     {"first_frame", clip.first_frame},
+                     {"frames", clip.frame_count},
+                     {"tags", tags},
+                     {"skeleton", clip.skeleton < static_cast<int>(db.skeleton_names.size())
+                                      ? db.skeleton_names[clip.skeleton]
+                                      : std::to_string(clip.skeleton)}});
+  }
+  return clips;
+}
+
+Status write_clouds(const MotionDatabase& db, const CloudLayout& layout, const std::string& path) {
+  const size_t shape[3] = {static_cast<size_t>(db.frame_count()), static_cast<size_t>(layout.point_count()), 3};
+  std::string bytes = npy_header(NpyDtype::kFloat32, shape);
+  for (const DatabaseClip& clip : db.clips) {
+    npy_append_f32(bytes, compute_clouds(db.skeletons[clip.skeleton], clip.motion, layout));
+  }
+  return write_file_atomic(path, bytes);
+}
+
+int run_build(BuildOptions o) {
+  Stopwatch watch;
+  json timings = json::object();
+  auto log = [&](const std::string& line) {
+    if (!o.quiet) spdlog::info("{}", line);
+  };
+
+  // Settings, checked before any work.
+  if (o.cloud == "joints") {
+    o.cloud_settings.kind = PointCloudSettings::Kind::kJoints;
+  } else if (o.cloud != "rings") {
+    return fail(Error{"", 0, fmt::format("--cloud must be 'rings' or 'joints', not '{}'", o.cloud)});
+  }
+  for (const std::string& item : o.joint_weights) {
+    const size_t eq = item.find('=');
+    char* end = nullptr;
+    const double weight = eq == std::string::npos ? -1.0 : std::strtod(item.c_str() + eq + 1, &end);
+    if (eq == std::string::npos || end == item.c_str() + eq + 1 || *end != '\0') {
+      return fail(Error{"", 0, fmt::format("--joint-weight '{}' is not NAME=WEIGHT", item)});
+    }
+    o.cloud_settings.joint_weights.emplace_back(item.substr(0, eq), weight);
+  }
+  if (o.taper == "hann") {
+    o.distance.taper = DistanceSettings::Taper::kHann;
+  } else if (o.taper != "uniform") {
+    return fail(Error{"", 0, fmt::format("--taper must be 'uniform' or 'hann', not '{}'", o.taper)});
+  }
+  o.transitions.threshold = o.threshold;
+  o.transitions.threshold_quantile = o.quantile;
+  CandidateSettings candidate_settings;
+  candidate_settings.continuation_radius = o.continuation_radius;
+  candidate_settings.keep_matrix = !o.export_matrix.empty();
+  for (const Status& s : {o.cloud_settings.validate(), o.distance.validate(), o.transitions.validate(),
+                          candidate_settings.validate()}) {
+    if (!s) return fail(s.error());
+  }
+  if (fs::path(o.output).extension() != ".mgraph") return fail(Error{o.output, 0, "the graph file must end in .mgraph"});
+
+  // 1. The database.
+  DatabaseSettings db_settings;
+  db_settings.fps = o.fps;
+  db_settings.prefer_manifest_fps = !o.fps_given;
+  if (!o.asf.empty()) db_settings.asf_path = o.asf;
+  db_settings.bvh_metres_per_unit = o.scale;
+  db_settings.input_fps = o.input_fps;
+  db_settings.cmu_tags = !o.no_cmu_tags;
+  db_settings.cmu_index_path = o.cmu_index.empty() ? find_cmu_index(o.inputs) : o.cmu_index;
+  auto db = load_database(o.inputs, db_settings);
+  if (!db) return fail(db.error());
+  timings["load"] = watch.lap();
+  log(fmt::format("{} clips, {} frames at {:g} fps ({:.1f} s), {} tags", db->clips.size(), db->frame_count(), db->fps,
+                  db->frame_count() / db->fps, db->tag_names.size()));
+
+  // 2. Point clouds and per-frame features.
+  auto layout = make_cloud_layout(db->skeletons.front(), o.cloud_settings);
+  if (!layout) return fail(layout.error());
+  auto features = make_frame_features(*db, *layout, o.distance);
+  if (!features) return fail(features.error());
+  if (features->window < 2) return fail(Error{"", 0, "the window must be at least 2 frames (raise --fps or --window)"});
+  timings["clouds"] = watch.lap();
+
+  // 3. The distance stage, from the cache when the same inputs and settings were seen.
+  o.continuation_radius = candidate_settings.continuation_radius;
+  const json distance_json = distance_settings_json(o, *features);
+  const std::uint64_t key = database_key(*db, distance_json);
+  const std::string cache_dir = o.cache_dir.empty() ? default_cache_dir() : o.cache_dir;
+  const std::string cache_path = (fs::path(cache_dir) / fmt::format("{:016x}.mgcache", key)).string();
+  // The cache holds no matrix: with --export-matrix the stage runs (and refreshes the cache).
+  const bool use_cache = !o.no_cache;
+  std::optional<CandidateSearch> candidates;
+  bool cache_hit = false;
+  if (use_cache && o.export_matrix.empty() && fs::exists(cache_path)) {
+    auto bytes = read_text_file(cache_path);
+    if (bytes) {
+      auto cached = parse_distance_cache(*bytes, cache_path, key);
+      if (cached) {
+        candidates = std::move(*cached);
+        cache_hit = true;
+        log(fmt::format("distance stage: from the cache {}", cache_path));
+      } else {
+        spdlog::warn("{} (computing again)", cached.error().to_string());
+      }
+    }
+  }
+  if (!candidates) {
+    ProgressBar progress("distance", 0, o.quiet);
+    auto search = find_candidates(*features, o.distance, candidate_settings, [&](long long done, long long total) {
+      (void)total;
+      progress.advance(1);
+      (void)done;
+    });
+    progress.finish();
+    if (!search) return fail(search.error());
+    candidates = std::move(*search);
+    log(fmt::format("distance stage: {} x {} pairs in {:.2f} s, {} local minima", features->frames, features->frames,
+                    candidates->tiles.seconds, candidates->minima.size()));
+    if (use_cache) {
+      std::error_code ec;
+      fs::create_directories(cache_dir, ec);
+      if (auto s = write_file_atomic(cache_path, serialize_distance_cache(key, *candidates)); !s) {
+        spdlog::warn("cannot cache the distance stage: {}", s.error().to_string());
+      }
+    }
+  }
+  timings["distance"] = watch.lap();
+
+  // 4. Transitions.
+  auto selection = select_transitions(*features, *candidates, o.transitions);
+  if (!selection) return fail(selection.error());
+  timings["transitions"] = watch.lap();
+  log(fmt::format("threshold {:.4g} ({:.2f} % of pairs below): {} transitions", selection->threshold,
+                  100.0 * selection->threshold_quantile, selection->transitions.size()));
+
+  // 5. The graph, pruned.
+  auto graph = build_motion_graph(*db, selection->transitions, features->window);
+  if (!graph) return fail(graph.error());
+  const std::vector<TagMask> frame_tags = db->frame_tags();
+  PruneSettings prune;
+  if (o.ignore_tags) prune.connected_tags = 0;
+  auto pruned = prune_motion_graph(*graph, frame_tags, prune);
+  if (!pruned) return fail(pruned.error());
+  timings["graph"] = watch.lap();
+  log(fmt::format("graph: {} nodes, {} edges ({} transitions) after pruning; {} nodes, {} transitions before",
+                  pruned->after.nodes, pruned->after.edges, pruned->after.transitions, pruned->before.nodes,
+                  pruned->before.transitions));
+
+  // 6. Outputs.
+  std::vector<double> point_weights(layout->weight.begin(), layout->weight.end());
+  json report = {
+      {"frames", db->frame_count()},
+      {"fps", db->fps},
+      {"window", features->window},
+      {"points", layout->point_count()},
+      {"point_weights", point_weights},
+      {"window_weights", features->taper},
+      {"clips", clips_json(*db)},
+      {"tags", db->tag_names},
+      {"distance_settings", distance_json},
+      {"threshold", selection->threshold},
+      {"threshold_quantile", selection->threshold_quantile},
+      {"locality_radius", selection->locality_radius},
+      {"counts",
+       {{"pairs", static_cast<long long>(features->frames) * features->frames},
+        {"finite_pairs", candidates->histogram.total()},
+        {"local_minima", candidates->minima.size()},
+        {"below_threshold", selection->candidates_below_threshold},
+        {"transitions", selection->transitions.size()},
+        {"transitions_kept", pruned->after.transitions}}},
+      {"graph_before", json::parse(to_json(pruned->before, db->tag_names))},
+      {"graph_after", json::parse(to_json(pruned->after, db->tag_names))},
+      {"distance_cache", cache_hit ? "hit" : (use_cache ? "stored" : "off")},
+  };
+  GraphFile file;
+  file.settings_json = json({{"distance", distance_json},
+                             {"threshold", o.threshold},
+                             {"threshold_quantile", o.quantile},
+                             {"locality_radius", selection->locality_radius},
+                             {"fps", db->fps}})
+                           .dump();
+  file.input_key = key;
+  file.threshold = selection->threshold;
+  file.threshold_quantile = selection->threshold_quantile;
+  file.locality_radius = selection->locality_radius;
+  file.graph = std::move(*graph);
+  std::vector<int> clip_starts;
+  for (const DatabaseClip& clip : db->clips) clip_starts.push_back(clip.first_frame);
+  if (!o.matrix_png.empty()) {
+    MatrixPngSettings png;
+    auto bytes = candidates->matrix.empty()
+                     ? matrix_png(MinMatrixView{candidates->picture, candidates->picture_side, candidates->picture_block},
+                                  clip_starts, selection->transitions, png)
+                     : matrix_png(candidates->matrix, features->frames, clip_starts, selection->transitions, png);
+    if (!bytes) return fail(Error{o.matrix_png, 0, bytes.error().message});
+    if (auto s = write_file_atomic(o.matrix_png, *bytes); !s) return fail(s.error());
+  }
+  if (!o.export_matrix.empty()) {
+    const size_t shape[2] = {static_cast<size_t>(features->frames), static_cast<size_t>(features->frames)};
+    if (auto s = write_file_atomic(o.export_matrix, npy_bytes_f32(shape, candidates->matrix)); !s) return fail(s.error());
+  }
+  if (!o.export_clouds.empty()) {
+    if (auto s = write_clouds(*db, *layout, o.export_clouds); !s) return fail(s.error());
+  }
+  candidates->matrix.clear();
+  timings["exports"] = watch.lap();
+  file.candidates = std::move(*candidates);
+  file.database = std::move(*db);
+  report["timings"] = timings;
+  file.report_json = report.dump();
+  if (auto s = write_file_atomic(o.output, serialize_graph_file(file)); !s) return fail(s.error());
+  if (!o.report.empty()) {
+    report["timings"]["write"] = watch.lap();
+    if (auto s = write_file_atomic(o.report, report.dump(2) + "\n"); !s) return fail(s.error());
+  }
+  log(fmt::format("wrote {}", o.output));
+  return 0;
+}
+
+}  // namespace
+
+Command add_build_command(CLI::App& app) {
+  auto o = std::make_shared<BuildOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "build", "Build a motion graph (Kovar et al. 2002): transitions at local minima of the windowed, floor-aligned "
+               "point-cloud distance below a threshold; pruned to the largest strongly connected component per tag.");
+  sub->add_option("INPUT", o->inputs, "Folders (an .asf and its .amc files, or .bvh files), clip files, or .toml "
+                                      "manifests (see docs/manifest.md)")
+      ->required();
+  sub->add_option("-o,--output", o->output, "The graph file to write (.mgraph)")->required();
+  sub->add_option("--fps", o->fps, "Database frame rate: every clip is resampled to it")
+      ->check(CLI::Range(1.0, 1000.0))
+      ->capture_default_str()
+      ->each([o](const std::string&) { o->fps_given = true; });
+  sub->add_option("--asf", o->asf, "ASF skeleton of AMC files given one by one")->check(CLI::ExistingFile);
+  sub->add_option("--scale", o->scale, "Metres per BVH length unit (CMU conversions: 0.056444)")->capture_default_str();
+  sub->add_option("--input-fps", o->input_fps, "Capture rate of the inputs, overriding the files' (AMC: 120)");
+  sub->add_option("--cmu-index", o->cmu_index,
+                  "CMU's motion index (cmu-mocap-index.tsv) for tags from descriptions; default: found beside the inputs");
+  sub->add_flag("--no-cmu-tags", o->no_cmu_tags, "Do not tag clips from CMU's descriptions");
+  sub->add_flag("--ignore-tags", o->ignore_tags, "Prune to the largest strongly connected component only, ignoring tags");
+  sub->add_option("--cloud", o->cloud, "Point cloud: 'rings' (points around each bone) or 'joints'")->capture_default_str();
+  sub->add_option("--ring-spacing", o->cloud_settings.ring_spacing_m, "Metres between rings along a bone")
+      ->capture_default_str();
+  sub->add_option("--ring-radius", o->cloud_settings.ring_radius_m, "Metres from a bone to its ring's points")
+      ->capture_default_str();
+  sub->add_option("--ring-points", o->cloud_settings.points_per_ring, "Points per ring")->capture_default_str();
+  sub->add_option("--joint-weight", o->joint_weights, "Weight of the points on the bone ending at a joint, NAME=WEIGHT "
+                                                      "(repeatable; others weigh 1)");
+  sub->add_option("--window", o->distance.window_frames, "Window and blend length k in frames (0: a third of a second)")
+      ->capture_default_str();
+  sub->add_option("--taper", o->taper, "Weights over the window: 'uniform' or 'hann'")->capture_default_str();
+  sub->add_option("--threshold", o->threshold, "Absolute distance threshold (overrides --threshold-quantile)");
+  sub->add_option("--threshold-quantile", o->quantile, "Threshold as the fraction of all defined pairs below it")
+      ->capture_default_str();
+  sub->add_option("--locality", o->transitions.locality_radius,
+                  "Keep the best transition within this many frames (-1: half the window)")
+      ->capture_default_str();
+  sub->add_option("--continuation-radius", o->continuation_radius,
+                  "Ignore pairs of a clip simply continuing within this many frames of b = a + k - 1 (-1: the window)")
+      ->capture_default_str();
+  sub->add_option("--tile", o->distance.tile_frames, "Tile side in frames for the distance stage")->capture_default_str();
+  sub->add_option("--threads", o->distance.threads, "Worker threads (0: one per core)")->capture_default_str();
+  sub->add_option("--cache-dir", o->cache_dir, "Where the distance stage is cached (default: $XDG_CACHE_HOME/motiongraph)");
+  sub->add_flag("--no-cache", o->no_cache, "Neither read nor write the distance cache");
+  sub->add_option("--report", o->report, "Write a JSON report (clips, settings, counts, graph statistics, timings)");
+  sub->add_option("--export-matrix", o->export_matrix, "Write the N x N distance matrix (.npy float32, NaN undefined; "
+                                                       "row = frame we leave, column = frame we arrive at)");
+  sub->add_option("--export-clouds", o->export_clouds, "Write the point clouds (.npy float32, N x P x 3, metres)");
+  sub->add_option("--matrix-png", o->matrix_png, "Write the distance picture with clip boundaries and transitions (PNG)");
+  sub->add_flag("-q,--quiet", o->quiet, "No progress or summary on stderr");
+  return {sub, [o] { return run_build(*o); }};
+}
+
+}  // namespace mg::cli

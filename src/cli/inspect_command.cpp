@@ -1,0 +1,75 @@
+// motiongraph inspect GRAPH.mgraph: what a graph file holds, from its stored report.
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.h"
+#include "motiongraph/graph/graph_file.h"
+#include "motiongraph/io/file.h"
+
+namespace mg::cli {
+
+namespace {
+
+struct InspectOptions {
+  std::string graph;
+  bool json = false;
+};
+
+void print_statistics(const char* title, const nlohmann::json& s) {
+  fmt::print("{}: {} nodes, {} edges ({} clip pieces, {} transitions), {} clip frames, largest SCC {} nodes\n", title,
+             s.value("nodes", 0), s.value("edges", 0), s.value("clip_edges", 0), s.value("transitions", 0),
+             s.value("clip_frames", 0), s.value("largest_component_nodes", 0));
+  if (s.contains("tags")) {
+    for (const auto& tag : s["tags"]) {
+      fmt::print("  {:<10} {:>6} frames of {:>6}, {:>5} nodes, {:>5} edges, largest SCC {} nodes\n",
+                 tag.value("name", std::to_string(tag.value("tag", 0))), tag.value("frames", 0),
+                 tag.value("database_frames", 0), tag.value("nodes", 0), tag.value("edges", 0),
+                 tag.value("largest_component_nodes", 0));
+    }
+  }
+}
+
+int run_inspect(const InspectOptions& o) {
+  auto bytes = read_text_file(o.graph);
+  if (!bytes) return fail(bytes.error());
+  auto file = parse_graph_file(*bytes, o.graph);
+  if (!file) return fail(file.error());
+  const auto report = nlohmann::json::parse(file->report_json, nullptr, false);
+  if (o.json) {
+    fmt::print("{}\n", report.dump(2));
+    return 0;
+  }
+  const MotionDatabase& db = file->database;
+  fmt::print("{}: motion graph, format version {}\n", o.graph, kGraphFileVersion);
+  fmt::print("database: {} clips, {} frames at {:g} fps ({:.1f} s), {} skeleton(s), tags: {}\n", db.clips.size(),
+             db.frame_count(), db.fps, db.frame_count() / db.fps, db.skeletons.size(), fmt::join(db.tag_names, ", "));
+  fmt::print("window {} frames; threshold {:.4g} ({:.2f} % of pairs below); locality {} frames\n", file->graph.window,
+             file->threshold, 100.0 * file->threshold_quantile, file->locality_radius);
+  fmt::print("candidates: {} local minima; {} transitions selected\n", file->candidates.minima.size(),
+             report.is_object() ? report["counts"].value("transitions", 0) : 0);
+  if (report.is_object()) {
+    print_statistics("before pruning", report["graph_before"]);
+    print_statistics("after pruning ", report["graph_after"]);
+    if (report.contains("timings")) {
+      std::string timings;
+      for (const auto& [stage, seconds] : report["timings"].items()) {
+        timings += fmt::format(" {} {:.2f} s", stage, seconds.get<double>());
+      }
+      fmt::print("timings:{}\n", timings);
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+Command add_inspect_command(CLI::App& app) {
+  auto o = std::make_shared<InspectOptions>();
+  CLI::App* sub = app.add_subcommand("inspect", "Print the statistics of a graph file: database, threshold, graph "
+                                                "before and after pruning, per tag, and timings.");
+  sub->add_option("GRAPH", o->graph, "A .mgraph file written by 'motiongraph build'")->required();
+  sub->add_flag("--json", o->json, "Print the stored build report as JSON");
+  return {sub, [o] { return run_inspect(*o); }};
+}
+
+}  // namespace mg::cli

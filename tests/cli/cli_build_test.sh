@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# motiongraph build / inspect as a user runs them on the bundled data: the graph file, the
+# report, the exports (opened with numpy when it is installed), the distance cache on a
+# re-build with another threshold, and clean errors for bad graph files.
+# Usage: MOTIONGRAPH=binary cli_build_test.sh DATA_DIR
+set -euo pipefail
+data=$1
+bin=${MOTIONGRAPH:?set MOTIONGRAPH to the motiongraph binary}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cache="$work/cache"
+
+"$bin" build "$data/cmu/16" -o "$work/g.mgraph" --cache-dir "$cache" --report "$work/r.json" \
+  --export-matrix "$work/m.npy" --export-clouds "$work/c.npy" --matrix-png "$work/m.png" -q
+"$bin" inspect "$work/g.mgraph" >"$work/inspect.txt"
+grep -q "after pruning" "$work/inspect.txt" || { echo "FAIL: inspect output"; cat "$work/inspect.txt"; exit 1; }
+"$bin" inspect --json "$work/g.mgraph" >"$work/inspect.json"
+grep -q '"graph_after"' "$work/inspect.json" || { echo "FAIL: inspect --json"; exit 1; }
+
+python3 - "$work" <<'PY'
+import json, struct, sys
+work = sys.argv[1]
+r = json.load(open(f"{work}/r.json"))
+assert r["fps"] == 30 and r["window"] == 10 and r["frames"] == 1235, r["frames"]
+assert len(r["window_weights"]) == r["window"] and len(r["point_weights"]) == r["points"]
+assert len(r["clips"]) == 15 and r["clips"][0]["first_frame"] == 0
+assert sum(c["frames"] for c in r["clips"]) == r["frames"]
+assert {"walk", "run", "jump"} <= set(r["tags"]), r["tags"]
+assert "distance" in r["timings"] and r["counts"]["transitions"] > 0
+assert r["graph_after"]["nodes"] > 0 and r["graph_after"]["nodes"] <= r["graph_before"]["nodes"]
+with open(f"{work}/m.png", "rb") as f:
+    head = f.read(24)
+assert head[:8] == b"\x89PNG\r\n\x1a\n"
+w, h = struct.unpack(">II", head[16:24])
+assert w == h == (1235 + 1) // 2, (w, h)   # 1235 frames, at most 1024 pixels: 2 frames a pixel
+for name, shape in (("m.npy", "(1235, 1235)"), ("c.npy", "(1235, %d, 3)" % r["points"])):
+    with open(f"{work}/{name}", "rb") as f:
+        assert f.read(6) == b"\x93NUMPY" and shape in f.read(120).decode("latin1"), name
+PY
+# numpy, where it exists: the matrix opens, NaN where undefined, zero on the identity diagonal.
+for py in python3 /usr/bin/python3; do
+  if "$py" -c "import numpy" 2>/dev/null; then
+    "$py" - "$work" <<'PY'
+import json, sys, numpy as np
+work = sys.argv[1]
+m = np.load(f"{work}/m.npy"); c = np.load(f"{work}/c.npy"); r = json.load(open(f"{work}/r.json"))
+k = r["window"]
+assert m.dtype == np.float32 and np.isnan(m).any() and np.isfinite(m).any()
+assert abs(float(m[0, k - 1])) < 1e-3 * float(np.nanmedian(m))          # a clip continuing
+assert c.shape == (1235, r["points"], 3) and 0.5 < float(np.ptp(c[0][:, 1])) < 2.5   # a person, metres
+PY
+    break
+  fi
+done
+
+# Another threshold: the distance stage comes from the cache.
+"$bin" build "$data/cmu/16" -o "$work/g2.mgraph" --cache-dir "$cache" --threshold-quantile 0.05 --report "$work/r2.json" -q
+python3 -c "import json,sys; r=json.load(open(sys.argv[1])); assert r['distance_cache']=='hit', r['distance_cache']" "$work/r2.json"
+
+# Bad graph files: one line, non-zero exit.
+expect_fail() {
+  local pattern=$1
+  shift
+  if "$@" 2>"$work/err"; then echo "FAIL: '$*' succeeded"; exit 1; fi
+  [[ $(wc -l <"$work/err") -eq 1 ]] && grep -Eq "$pattern" "$work/err" || { echo "FAIL: $(cat "$work/err")"; exit 1; }
+}
+expect_fail "not a motiongraph graph" "$bin" inspect "$data/bvh/16_01.bvh"
+head -c 5000 "$work/g.mgraph" >"$work/cut.mgraph"
+expect_fail "cut.mgraph: truncated" "$bin" inspect "$work/cut.mgraph"
+cp "$work/g.mgraph" "$work/flip.mgraph"
+printf '\x55' | dd of="$work/flip.mgraph" bs=1 seek=4000 conv=notrunc status=none
+expect_fail "checksum mismatch" "$bin" inspect "$work/flip.mgraph"
+expect_fail "must end in .mgraph" "$bin" build "$data/cmu/16" -o "$work/g.bin" --cache-dir "$cache"
+expect_fail "threshold quantile" "$bin" build "$data/cmu/16" -o "$work/x.mgraph" --threshold-quantile 2
+ls "$work"/x.mgraph "$work"/g.bin 2>/dev/null && { echo "FAIL: output left behind"; exit 1; }
+echo "cli build ok"
