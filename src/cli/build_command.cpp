@@ -16,12 +16,14 @@
 #include "motiongraph/database/database_loader.h"
 #include "motiongraph/export/matrix_png.h"
 #include "motiongraph/export/npy.h"
+#include "motiongraph/graph/bridges.h"
 #include "motiongraph/graph/candidates.h"
 #include "motiongraph/graph/graph_file.h"
 #include "motiongraph/graph/motion_graph.h"
 #include "motiongraph/graph/transition_selection.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/metric/frame_features.h"
+#include "motiongraph/metric/pair_alignment.h"
 
 namespace mg::cli {
 
@@ -54,7 +56,18 @@ struct BuildOptions {
   std::string report, export_matrix, export_clouds, matrix_png;
   bool quiet = false;
   bool ignore_tags = false;
+  BridgeSettings bridges;
+  std::vector<std::string> connect_tags;
 };
+
+// Tags that describe how a motion goes rather than what it is: they neither need a connected
+// region of their own nor bridges (a turning run is part of running).
+bool is_modifier_tag(const std::string& name) {
+  for (const char* modifier : {"turn", "stop", "start", "backward", "veer"}) {
+    if (name == modifier) return true;
+  }
+  return false;
+}
 
 class Stopwatch {
  public:
@@ -191,7 +204,7 @@ int run_build(BuildOptions o) {
   candidate_settings.continuation_radius = o.continuation_radius;
   candidate_settings.keep_matrix = !o.export_matrix.empty();
   for (const Status& s : {o.cloud_settings.validate(), o.distance.validate(), o.transitions.validate(),
-                          candidate_settings.validate()}) {
+                          candidate_settings.validate(), o.bridges.validate()}) {
     if (!s) return fail(s.error());
   }
   if (fs::path(o.output).extension() != ".mgraph") return fail(Error{o.output, 0, "the graph file must end in .mgraph"});
@@ -267,16 +280,54 @@ int run_build(BuildOptions o) {
   // 4. Transitions.
   auto selection = select_transitions(*features, *candidates, o.transitions);
   if (!selection) return fail(selection.error());
+  // Bridges between motion types that no transition below the threshold joins.
+  const std::vector<TagMask> frame_tags = db->frame_tags();
+  TagMask connected = 0;
+  if (o.connect_tags.empty()) {
+    for (size_t t = 0; t < db->tag_names.size(); ++t) {
+      if (!is_modifier_tag(db->tag_names[t])) connected |= TagMask{1} << t;
+    }
+  } else {
+    for (const std::string& name : o.connect_tags) {
+      auto it = std::find(db->tag_names.begin(), db->tag_names.end(), name);
+      if (it == db->tag_names.end()) return fail(Error{"", 0, fmt::format("--connect-tags: no clip has the tag '{}'", name)});
+      connected |= TagMask{1} << (it - db->tag_names.begin());
+    }
+  }
+  BridgeSettings bridge_settings = o.bridges;
+  bridge_settings.locality_radius = selection->locality_radius;
+  bridge_settings.tags = connected;
+  std::vector<Transition> bridges;
+  if (!o.ignore_tags && bridge_settings.per_tag_pair > 0) {
+    std::vector<std::vector<char>> cores(db->tag_names.size());
+    for (size_t t = 0; t < cores.size(); ++t) {
+      if (connected >> t & 1) cores[t] = tag_core_frames(*db, selection->transitions, frame_tags, features->window, static_cast<int>(t));
+    }
+    bridges = select_bridges(candidates->minima, selection->transitions, frame_tags, cores, features->window, bridge_settings);
+  }
+  json bridges_json = json::array();
+  for (Transition& t : bridges) {
+    const FloorAlignment align = align_pair(*features, t.from_frame, t.to_frame);
+    t.yaw_rad = static_cast<float>(align.yaw_rad);
+    t.x_m = static_cast<float>(align.x_m);
+    t.z_m = static_cast<float>(align.z_m);
+    bridges_json.push_back({{"from_frame", t.from_frame}, {"to_frame", t.to_frame}, {"distance", t.distance}});
+  }
+  std::vector<Transition> all_transitions = selection->transitions;
+  all_transitions.insert(all_transitions.end(), bridges.begin(), bridges.end());
+  std::sort(all_transitions.begin(), all_transitions.end(), [](const Transition& x, const Transition& y) {
+    return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
+  });
+  if (!bridges.empty()) log(fmt::format("{} bridges between motion types", bridges.size()));
   timings["transitions"] = watch.lap();
   log(fmt::format("threshold {:.4g} ({:.2f} % of pairs below): {} transitions", selection->threshold,
                   100.0 * selection->threshold_quantile, selection->transitions.size()));
 
   // 5. The graph, pruned.
-  auto graph = build_motion_graph(*db, selection->transitions, features->window);
+  auto graph = build_motion_graph(*db, all_transitions, features->window);
   if (!graph) return fail(graph.error());
-  const std::vector<TagMask> frame_tags = db->frame_tags();
   PruneSettings prune;
-  if (o.ignore_tags) prune.connected_tags = 0;
+  prune.connected_tags = o.ignore_tags ? 0 : connected;
   auto pruned = prune_motion_graph(*graph, frame_tags, prune);
   if (!pruned) return fail(pruned.error());
   timings["graph"] = watch.lap();
@@ -305,9 +356,11 @@ int run_build(BuildOptions o) {
         {"local_minima", candidates->minima.size()},
         {"below_threshold", selection->candidates_below_threshold},
         {"transitions", selection->transitions.size()},
+        {"bridges", bridges.size()},
         {"transitions_kept", pruned->after.transitions}}},
       {"graph_before", json::parse(to_json(pruned->before, db->tag_names))},
       {"graph_after", json::parse(to_json(pruned->after, db->tag_names))},
+      {"bridges", bridges_json},
       {"distance_cache", cache_hit ? "hit" : (use_cache ? "stored" : "off")},
   };
   GraphFile file;
@@ -328,8 +381,8 @@ int run_build(BuildOptions o) {
     MatrixPngSettings png;
     auto bytes = candidates->matrix.empty()
                      ? matrix_png(MinMatrixView{candidates->picture, candidates->picture_side, candidates->picture_block},
-                                  clip_starts, selection->transitions, png)
-                     : matrix_png(candidates->matrix, features->frames, clip_starts, selection->transitions, png);
+                                  clip_starts, all_transitions, png)
+                     : matrix_png(candidates->matrix, features->frames, clip_starts, all_transitions, png);
     if (!bytes) return fail(Error{o.matrix_png, 0, bytes.error().message});
     if (auto s = write_file_atomic(o.matrix_png, *bytes); !s) return fail(s.error());
   }
@@ -377,6 +430,14 @@ Command add_build_command(CLI::App& app) {
                   "CMU's motion index (cmu-mocap-index.tsv) for tags from descriptions; default: found beside the inputs");
   sub->add_flag("--no-cmu-tags", o->no_cmu_tags, "Do not tag clips from CMU's descriptions");
   sub->add_flag("--ignore-tags", o->ignore_tags, "Prune to the largest strongly connected component only, ignoring tags");
+  sub->add_option("--bridges", o->bridges.per_tag_pair,
+                  "Bridges per ordered pair of tags that no transition below the threshold joins: their best candidates "
+                  "(0: none)")
+      ->capture_default_str();
+  sub->add_option("--connect-tags", o->connect_tags,
+                  "Motion types whose frames must form a strongly connected region each, and between which bridges "
+                  "are added (default: every tag but turn, stop, start, backward)")
+      ->delimiter(',');
   sub->add_option("--cloud", o->cloud, "Point cloud: 'rings' (points around each bone) or 'joints'")->capture_default_str();
   sub->add_option("--ring-spacing", o->cloud_settings.ring_spacing_m, "Metres between rings along a bone")
       ->capture_default_str();

@@ -28,6 +28,9 @@ assert sum(c["frames"] for c in r["clips"]) == r["frames"]
 assert {"walk", "run", "jump"} <= set(r["tags"]), r["tags"]
 assert "distance" in r["timings"] and r["counts"]["transitions"] > 0
 assert r["graph_after"]["nodes"] > 0 and r["graph_after"]["nodes"] <= r["graph_before"]["nodes"]
+# Default settings connect walking, running and jumping: each keeps frames in the pruned graph.
+kept = {t["name"]: t["frames"] for t in r["graph_after"]["tags"]}
+assert all(kept.get(tag, 0) > 0 for tag in ("walk", "run", "jump")), kept
 with open(f"{work}/m.png", "rb") as f:
     head = f.read(24)
 assert head[:8] == b"\x89PNG\r\n\x1a\n"

@@ -1,6 +1,8 @@
 #include "motiongraph/metric/distance_tiles.h"
 
 #include <atomic>
+#include <cassert>
+#include <memory>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -16,6 +18,16 @@ namespace {
 struct TileGrid {
   int n = 0, tile = 0, per_side = 0;
   long long count() const { return static_cast<long long>(per_side) * per_side; }
+  // Work items: the pairs of tile rows I <= J (tile (J, I) comes with tile (I, J)).
+  long long pair_count() const { return static_cast<long long>(per_side) * (per_side + 1) / 2; }
+  std::pair<int, int> pair(long long item) const {
+    int i = 0;
+    while (item >= per_side - i) {
+      item -= per_side - i;
+      ++i;
+    }
+    return {i, i + static_cast<int>(item)};
+  }
 };
 
 int worker_count(const DistanceSettings& settings) {
@@ -26,7 +38,13 @@ int worker_count(const DistanceSettings& settings) {
 // The BLAS products for rows [r0, r0 + rows) against columns [c0, c0 + cols), row-major.
 struct Products {
   std::vector<float> g1, g2, g3;
-  void compute(const FrameFeatures& f, int r0, int rows, int c0, int cols) {
+  int row0 = 0, rows = 0, col0 = 0, cols = 0;  // frames covered: [row0, row0 + rows) x [col0, col0 + cols)
+
+  void compute(const FrameFeatures& f, int r0, int row_count, int c0, int col_count) {
+    row0 = r0;
+    rows = row_count;
+    col0 = c0;
+    cols = col_count;
     const int p = f.points;
     g1.resize(static_cast<size_t>(rows) * cols);
     g2.resize(g1.size());
@@ -41,13 +59,41 @@ struct Products {
     cblas_sgemm(CblasRowMajor, CblasNoTrans, CblasTrans, rows, cols, p, 1.0f, f.y.data() + static_cast<size_t>(r0) * p,
                 p, f.y.data() + static_cast<size_t>(c0) * p, p, 0.0f, g3.data(), cols);
   }
+
+  // The products of the columns' frames against the rows' frames, from these: G1 and G3 are
+  // symmetric, G2 antisymmetric (DESIGN.md 3.2), so no new BLAS call is needed.
+  void transpose_from(const Products& other) {
+    row0 = other.col0;
+    rows = other.cols;
+    col0 = other.row0;
+    cols = other.rows;
+    const size_t size = static_cast<size_t>(rows) * cols;
+    g1.resize(size);
+    g2.resize(size);
+    g3.resize(size);
+    constexpr int kBlock = 32;  // cache-friendly transposition
+    for (int i0 = 0; i0 < other.rows; i0 += kBlock) {
+      for (int j0 = 0; j0 < other.cols; j0 += kBlock) {
+        for (int i = i0; i < std::min(other.rows, i0 + kBlock); ++i) {
+          for (int j = j0; j < std::min(other.cols, j0 + kBlock); ++j) {
+            const size_t from = static_cast<size_t>(i) * other.cols + j;
+            const size_t to = static_cast<size_t>(j) * cols + i;
+            g1[to] = other.g1[from];
+            g2[to] = -other.g2[from];
+            g3[to] = other.g3[from];
+          }
+        }
+      }
+    }
+  }
 };
 
 class TileWorker {
  public:
   explicit TileWorker(const FrameFeatures& f) : f_(f), uniform_(uniform_taper(f)) {}
 
-  DistanceTile run(int a0, int a_count, int b0, int b_count) {
+  // The distances of the tile from products that cover every frame its windows touch.
+  DistanceTile run(int a0, int a_count, int b0, int b_count, const Products& products) {
     const int n = f_.frames;
     const int k = f_.window;
     DistanceTile tile;
@@ -64,7 +110,9 @@ class TileWorker {
     const int rows = std::min(n, tile.row0 + tile.rows + k - 1) - r0;
     const int c0 = std::max(0, tile.col0 - k + 1);
     const int cols = tile.col0 + tile.cols - c0;
-    products_.compute(f_, r0, rows, c0, cols);
+    assert(products.row0 <= r0 && r0 + rows <= products.row0 + products.rows);
+    assert(products.col0 <= c0 && c0 + cols <= products.col0 + products.cols);
+    products_ = &products;
     distance_.assign(static_cast<size_t>(tile.rows) * tile.cols, std::numeric_limits<float>::quiet_NaN());
     // Rows of E (or of its running diagonal sums) live in a ring of k + 1 rows: the pairs of
     // row a need block rows a - r0 .. a - r0 + k - 1 only.
@@ -98,9 +146,10 @@ class TileWorker {
     const double v = f_.point_weight_sum;
     const int fr = r0 + i;
     const double rx = f_.root_x[fr], rz = f_.root_z[fr], mx = f_.moment_x[fr], mz = f_.moment_z[fr];
-    const float* g1 = products_.g1.data() + static_cast<size_t>(i) * cols;
-    const float* g2 = products_.g2.data() + static_cast<size_t>(i) * cols;
-    const float* g3 = products_.g3.data() + static_cast<size_t>(i) * cols;
+    const size_t at = static_cast<size_t>(r0 + i - products_->row0) * products_->cols + (c0 - products_->col0);
+    const float* g1 = products_->g1.data() + at;
+    const float* g2 = products_->g2.data() + at;
+    const float* g3 = products_->g3.data() + at;
     double* e1 = ring_row(e1_, i, ring, cols);
     double* e2 = ring_row(e2_, i, ring, cols);
     double* e3 = ring_row(e3_, i, ring, cols);
@@ -178,19 +227,18 @@ class TileWorker {
 
   const FrameFeatures& f_;
   const bool uniform_;
-  Products products_;
+  const Products* products_ = nullptr;
   std::vector<double> e1_, e2_, e3_;
   std::vector<float> distance_;
 };
 
 template <class Work>
-void run_tiles(const TileGrid& grid, int workers, const Work& work) {
+void run_items(long long items, int workers, const Work& work) {
   std::atomic<long long> next{0};
   auto loop = [&](int worker) {
-    for (long long t = next++; t < grid.count(); t = next++) work(worker, static_cast<int>(t / grid.per_side),
-                                                                      static_cast<int>(t % grid.per_side));
+    for (long long t = next++; t < items; t = next++) work(worker, t);
   };
-  // Tiles are spread over our threads; BLAS itself then runs single-threaded.
+  // Work is spread over our threads; BLAS itself then runs single-threaded.
   if (workers > 1) openblas_set_num_threads(1);
   std::vector<std::thread> threads;
   for (int w = 1; w < workers; ++w) threads.emplace_back(loop, w);
@@ -214,17 +262,34 @@ TileRunStatistics for_each_distance_tile(const FrameFeatures& features, const Di
                                          const std::function<void(long long, long long)>& on_tile_done) {
   const auto start = std::chrono::steady_clock::now();
   const TileGrid grid = grid_for(features, settings);
-  const int workers = static_cast<int>(std::min<long long>(worker_count(settings), std::max(1LL, grid.count())));
-  std::vector<TileWorker> tile_workers;
-  for (int w = 0; w < workers; ++w) tile_workers.emplace_back(features);
+  const int n = grid.n;
+  const int k = features.window;
+  const int workers = static_cast<int>(std::min<long long>(worker_count(settings), std::max(1LL, grid.pair_count())));
+  struct Scratch {
+    explicit Scratch(const FrameFeatures& f) : worker(f) {}
+    TileWorker worker;
+    Products forward, backward;
+  };
+  std::vector<std::unique_ptr<Scratch>> scratch;
+  for (int w = 0; w < workers; ++w) scratch.push_back(std::make_unique<Scratch>(features));
   std::atomic<long long> done{0};
-  run_tiles(grid, workers, [&](int worker, int row_tile, int col_tile) {
-    const int a0 = row_tile * grid.tile;
-    const int b0 = col_tile * grid.tile;
-    const DistanceTile tile = tile_workers[worker].run(a0, std::min(grid.tile, grid.n - a0), b0,
-                                                       std::min(grid.tile, grid.n - b0));
-    visitor(tile);
-    const long long finished = ++done;
+  run_items(grid.pair_count(), workers, [&](int w, long long item) {
+    const auto [ti, tj] = grid.pair(item);
+    Scratch& s = *scratch[w];
+    const int a0 = ti * grid.tile, a_count = std::min(grid.tile, n - a0);
+    const int b0 = tj * grid.tile, b_count = std::min(grid.tile, n - b0);
+    // Frames touched by both tiles (I, J) and (J, I): each range with a window and a halo
+    // on both sides.
+    const int r0 = std::max(0, a0 - k), r1 = std::min(n, a0 + a_count + k);
+    const int c0 = std::max(0, b0 - k), c1 = std::min(n, b0 + b_count + k);
+    s.forward.compute(features, r0, r1 - r0, c0, c1 - c0);
+    visitor(s.worker.run(a0, a_count, b0, b_count, s.forward));
+    long long finished = ++done;
+    if (ti != tj) {
+      s.backward.transpose_from(s.forward);
+      visitor(s.worker.run(b0, b_count, a0, a_count, s.backward));
+      finished = ++done;
+    }
     if (on_tile_done) on_tile_done(finished, grid.count());
   });
   TileRunStatistics stats;
@@ -239,9 +304,9 @@ double time_plain_products(const FrameFeatures& features, const DistanceSettings
   const TileGrid grid = grid_for(features, settings);
   const int workers = static_cast<int>(std::min<long long>(worker_count(settings), std::max(1LL, grid.count())));
   std::vector<Products> products(workers);
-  run_tiles(grid, workers, [&](int worker, int row_tile, int col_tile) {
-    const int a0 = row_tile * grid.tile;
-    const int b0 = col_tile * grid.tile;
+  run_items(grid.count(), workers, [&](int worker, long long item) {
+    const int a0 = static_cast<int>(item / grid.per_side) * grid.tile;
+    const int b0 = static_cast<int>(item % grid.per_side) * grid.tile;
     products[worker].compute(features, a0, std::min(grid.tile, grid.n - a0), b0, std::min(grid.tile, grid.n - b0));
   });
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -1,0 +1,114 @@
+#include "motiongraph/graph/bridges.h"
+
+#include <algorithm>
+#include <cstdlib>
+
+namespace mg {
+
+Status BridgeSettings::validate() const {
+  if (per_tag_pair < 0 || per_tag_pair > 1000) return Error{"", 0, "bridges per tag pair must be 0 to 1000"};
+  if (locality_radius < 0) return Error{"", 0, "bridge locality radius must be >= 0"};
+  return Ok{};
+}
+
+namespace {
+
+// The tags every frame of [first, first + count) carries.
+TagMask window_tags(std::span<const TagMask> frame_tags, int first, int count) {
+  TagMask tags = ~TagMask{0};
+  for (int f = first; f < first + count; ++f) {
+    tags &= f >= 0 && f < static_cast<int>(frame_tags.size()) ? frame_tags[f] : TagMask{0};
+  }
+  return tags;
+}
+
+}  // namespace
+
+std::vector<char> tag_core_frames(const MotionDatabase& db, std::span<const Transition> selected,
+                                  std::span<const TagMask> frame_tags, int window, int tag) {
+  const TagMask bit = TagMask{1} << tag;
+  std::vector<Transition> within;
+  for (const Transition& t : selected) {
+    if ((window_tags(frame_tags, t.from_frame, window) & bit) && (window_tags(frame_tags, t.to_frame - window + 1, window) & bit)) {
+      within.push_back(t);
+    }
+  }
+  std::vector<char> core;
+  auto graph = build_motion_graph(db, within, window);
+  if (!graph) return core;
+  std::vector<TagMask> only(frame_tags.size());
+  for (size_t f = 0; f < frame_tags.size(); ++f) only[f] = frame_tags[f] & bit;
+  PruneSettings prune;
+  prune.connected_tags = bit;
+  if (!prune_motion_graph(*graph, only, prune)) return core;
+  core.assign(frame_tags.size(), 0);
+  for (const GraphEdge& edge : graph->edges) {
+    if (edge.transition) continue;
+    const int first = graph->nodes[edge.from_node].frame;
+    for (int f = first; f < first + edge.frame_count && f < static_cast<int>(core.size()); ++f) core[f] = 1;
+  }
+  return core;
+}
+
+std::vector<Transition> select_bridges(std::span<const Transition> candidates, std::span<const Transition> selected,
+                                       std::span<const TagMask> frame_tags, std::span<const std::vector<char>> cores,
+                                       int window, const BridgeSettings& settings) {
+  std::vector<Transition> bridges;
+  if (settings.per_tag_pair == 0 || frame_tags.empty()) return bridges;
+  auto leaving = [&](const Transition& t) { return window_tags(frame_tags, t.from_frame, window) & settings.tags; };
+  auto arriving = [&](const Transition& t) { return window_tags(frame_tags, t.to_frame - window + 1, window) & settings.tags; };
+  auto in_cores = [&](int s, int u, const Transition& t) {
+    return s < static_cast<int>(cores.size()) && u < static_cast<int>(cores.size()) && !cores[s].empty() &&
+           !cores[u].empty() && cores[s][t.from_frame] && cores[u][t.to_frame];
+  };
+  // Which ordered pairs of tags (s, u), s != u, the selected transitions already join, core to core.
+  constexpr int kTags = 64;
+  std::vector<char> joined(kTags * kTags, 0);
+  for (const Transition& t : selected) {
+    const TagMask from = leaving(t), to = arriving(t);
+    for (int s = 0; s < kTags; ++s) {
+      if (!(from >> s & 1)) continue;
+      for (int u = 0; u < kTags; ++u) {
+        if (u != s && (to >> u & 1) && !(from >> u & 1) && in_cores(s, u, t)) joined[s * kTags + u] = 1;
+      }
+    }
+  }
+  std::vector<const Transition*> by_distance;
+  for (const Transition& c : candidates) by_distance.push_back(&c);
+  std::stable_sort(by_distance.begin(), by_distance.end(),
+                   [](const Transition* x, const Transition* y) { return x->distance < y->distance; });
+  std::vector<std::vector<const Transition*>> chosen(kTags * kTags);
+  for (const Transition* c : by_distance) {
+    const TagMask from = leaving(*c), to = arriving(*c);
+    if (!from || !to) continue;
+    for (int s = 0; s < kTags; ++s) {
+      if (!(from >> s & 1)) continue;
+      for (int u = 0; u < kTags; ++u) {
+        // A bridge leaves frames of s that are not u and lands on frames of u that are not s.
+        if (u == s || !(to >> u & 1) || (from >> u & 1) || (to >> s & 1) || joined[s * kTags + u]) continue;
+        if (!in_cores(s, u, *c)) continue;
+        auto& list = chosen[s * kTags + u];
+        if (static_cast<int>(list.size()) >= settings.per_tag_pair) continue;
+        const bool near = std::any_of(list.begin(), list.end(), [&](const Transition* other) {
+          return std::abs(other->from_frame - c->from_frame) <= settings.locality_radius ||
+                 std::abs(other->to_frame - c->to_frame) <= settings.locality_radius;
+        });
+        if (!near) list.push_back(c);
+      }
+    }
+  }
+  for (const auto& list : chosen) {
+    for (const Transition* c : list) {
+      const bool duplicate = std::any_of(bridges.begin(), bridges.end(), [&](const Transition& b) {
+        return b.from_frame == c->from_frame && b.to_frame == c->to_frame;
+      });
+      if (!duplicate) bridges.push_back(*c);
+    }
+  }
+  std::sort(bridges.begin(), bridges.end(), [](const Transition& x, const Transition& y) {
+    return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
+  });
+  return bridges;
+}
+
+}  // namespace mg
