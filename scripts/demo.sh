@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The main job on the bundled data: installs what is missing, builds, then reads every bundled
-# clip, prints its summary, and converts it to BVH in metres and to JSON world positions
-# (30 fps) in out/. Usage: scripts/demo.sh   (from anywhere)
+# clip, prints its summary, converts it to BVH in metres and to JSON world positions (30 fps),
+# and builds the motion graph of subject 16 with its report and distance picture, all in out/.
+# Usage: scripts/demo.sh   (from anywhere)
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
@@ -36,5 +37,11 @@ convert_bvh data/bvh/111_36.bvh --scale 0.056444
 convert_bvh data/bvh/07_01.bvh --scale 0.01
 convert_bvh data/bvh/07_12.bvh --scale 0.01
 
+echo "== the motion graph of subject 16 (distance stage cached in out/cache)"
+"$bin" build data/cmu/16 -o out/subject16.mgraph --cache-dir out/cache \
+  --report out/subject16-report.json --matrix-png out/subject16-distance.png
+"$bin" inspect out/subject16.mgraph | tee out/subject16-graph.txt
+
 echo "== done: $(ls out/bvh | wc -l) BVH files in out/bvh (open them in Blender: File > Import > BVH),"
-echo "   JSON world positions in out/json, summary in out/summary.txt"
+echo "   JSON world positions in out/json, summary in out/summary.txt,"
+echo "   the graph in out/subject16.mgraph with its report and distance picture (out/subject16-*)"

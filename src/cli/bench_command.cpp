@@ -60,15 +60,7 @@ int run_bench(const BenchOptions& o) {
   if (!search) return fail(search.error());
 
   // The reference on random defined pairs, from double clouds of every frame.
-  std::vector<Vec3> clouds(static_cast<size_t>(n) * features->points);
-  for (const DatabaseClip& clip : db->clips) {
-    CloudEvaluator evaluator(db->skeletons[clip.skeleton], *layout);
-    for (int f = 0; f < clip.frame_count; ++f) {
-      evaluator.points(clip.motion, f,
-                       std::span(clouds.data() + static_cast<size_t>(clip.first_frame + f) * features->points,
-                                 static_cast<size_t>(features->points)));
-    }
-  }
+  const std::vector<Vec3> clouds = database_clouds(*db, *layout);
   std::mt19937 rng(1);
   std::uniform_int_distribution<int> frame(0, n - 1);
   std::vector<std::pair<int, int>> pairs;

@@ -128,14 +128,7 @@ TEST(TransitionSelection, ThresholdLocalityAndAlignment) {
   EXPECT_NEAR(selection->threshold_quantile, 0.05, 0.01);
   // Alignments are the reference's.
   const int p = x.features.points;
-  std::vector<Vec3> clouds(static_cast<size_t>(x.features.frames) * p);
-  auto layout = make_cloud_layout(x.db.skeletons[0], {});
-  for (const DatabaseClip& clip : x.db.clips) {
-    CloudEvaluator evaluator(x.db.skeletons[0], *layout);
-    for (int f = 0; f < clip.frame_count; ++f) {
-      evaluator.points(clip.motion, f, std::span(clouds.data() + static_cast<size_t>(clip.first_frame + f) * p, p));
-    }
-  }
+  const std::vector<Vec3> clouds = database_clouds(x.db, *make_cloud_layout(x.db.skeletons[0], {}));
   for (const Transition& t : kept) {
     const auto ref = reference_distance(clouds, p, x.features.point_weights, x.features.taper, t.from_frame, t.to_frame);
     EXPECT_NEAR(t.yaw_rad, ref.alignment.yaw_rad, 1e-4);

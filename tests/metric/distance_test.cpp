@@ -49,14 +49,7 @@ Computed compute(const MotionDatabase& db, DistanceSettings settings, PointCloud
       }
     }
   });
-  const int p = c.features.points;
-  c.clouds.resize(static_cast<size_t>(n) * p);
-  for (const DatabaseClip& clip : db.clips) {
-    CloudEvaluator evaluator(db.skeletons[clip.skeleton], *layout);
-    for (int f = 0; f < clip.frame_count; ++f) {
-      evaluator.points(clip.motion, f, std::span(c.clouds.data() + static_cast<size_t>(clip.first_frame + f) * p, p));
-    }
-  }
+  c.clouds = database_clouds(db, *layout);
   return c;
 }
 

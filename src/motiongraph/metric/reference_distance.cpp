@@ -11,6 +11,18 @@ Vec3 FloorAlignment::apply(const Vec3& q) const {
   return Vec3(c * q.x() + s * q.z() + x_m, q.y(), -s * q.x() + c * q.z() + z_m);
 }
 
+std::vector<Vec3> database_clouds(const MotionDatabase& db, const CloudLayout& layout) {
+  const size_t points = static_cast<size_t>(layout.point_count());
+  std::vector<Vec3> clouds(static_cast<size_t>(db.frame_count()) * points);
+  for (const DatabaseClip& clip : db.clips) {
+    CloudEvaluator evaluator(db.skeletons[clip.skeleton], layout);
+    for (int f = 0; f < clip.frame_count; ++f) {
+      evaluator.points(clip.motion, f, std::span(clouds.data() + static_cast<size_t>(clip.first_frame + f) * points, points));
+    }
+  }
+  return clouds;
+}
+
 ReferenceDistance reference_distance(std::span<const Vec3> clouds, int points, std::span<const double> point_weights,
                                      std::span<const double> taper, int a, int b) {
   const int k = static_cast<int>(taper.size());

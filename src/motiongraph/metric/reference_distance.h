@@ -8,6 +8,8 @@
 #include <span>
 #include <vector>
 
+#include "motiongraph/database/motion_database.h"
+#include "motiongraph/metric/point_cloud.h"
 #include "motiongraph/skeleton/rotation.h"
 
 namespace mg {
@@ -23,6 +25,10 @@ struct ReferenceDistance {
   double distance = 0.0;
   FloorAlignment alignment;
 };
+
+// The clouds of every frame of the database, in double: frames x points world positions
+// (metres), what the reference takes. Memory: 24 bytes per point and frame.
+std::vector<Vec3> database_clouds(const MotionDatabase& db, const CloudLayout& layout);
 
 // clouds: frames x points world positions (metres). Pairs frame a+t with frame b-k+1+t,
 // weight taper[t] * point_weights[i]. The caller makes sure both windows exist.
