@@ -256,12 +256,10 @@ int run_build(BuildOptions o) {
     }
   }
   if (!candidates) {
-    ProgressBar progress("distance", 0, o.quiet);
-    auto search = find_candidates(*features, o.distance, candidate_settings, [&](long long done, long long total) {
-      (void)total;
-      progress.advance(1);
-      (void)done;
-    });
+    const long long tiles_per_side = (features->frames + o.distance.tile_frames - 1) / o.distance.tile_frames;
+    ProgressBar progress("distance", static_cast<std::uint64_t>(tiles_per_side * tiles_per_side), o.quiet);
+    auto search = find_candidates(*features, o.distance, candidate_settings,
+                                  [&](long long, long long) { progress.advance(1); });
     progress.finish();
     if (!search) return fail(search.error());
     candidates = std::move(*search);

@@ -284,13 +284,12 @@ TileRunStatistics for_each_distance_tile(const FrameFeatures& features, const Di
     const int c0 = std::max(0, b0 - k), c1 = std::min(n, b0 + b_count + k);
     s.forward.compute(features, r0, r1 - r0, c0, c1 - c0);
     visitor(s.worker.run(a0, a_count, b0, b_count, s.forward));
-    long long finished = ++done;
+    if (on_tile_done) on_tile_done(++done, grid.count());
     if (ti != tj) {
       s.backward.transpose_from(s.forward);
       visitor(s.worker.run(b0, b_count, a0, a_count, s.backward));
-      finished = ++done;
+      if (on_tile_done) on_tile_done(++done, grid.count());
     }
-    if (on_tile_done) on_tile_done(finished, grid.count());
   });
   TileRunStatistics stats;
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
