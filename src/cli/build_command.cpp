@@ -233,7 +233,6 @@ int run_build(BuildOptions o) {
   timings["clouds"] = watch.lap();
 
   // 3. The distance stage, from the cache when the same inputs and settings were seen.
-  o.continuation_radius = candidate_settings.continuation_radius;
   const json distance_json = distance_settings_json(o, *features);
   const std::uint64_t key = database_key(*db, distance_json);
   const std::string cache_dir = o.cache_dir.empty() ? default_cache_dir() : o.cache_dir;
