@@ -58,6 +58,15 @@ class Reader {
   }
 
   // A positive finite number written as an integer or a float.
+  // An optional positive number: `out` is set when the key is present, left unset otherwise.
+  Status optional_positive(const toml::node* node, std::string_view key, std::optional<double>& out) const {
+    if (!node) return Ok{};
+    auto value = positive_number(*node, key);
+    if (!value) return value.error();
+    out = *value;
+    return Ok{};
+  }
+
   Result<double> positive_number(const toml::node& node, std::string_view key) const {
     double value = 0.0;
     if (auto i = node.as_integer()) {
@@ -185,17 +194,11 @@ Result<ManifestClip> read_clip(const Reader& in, const toml::table& table) {
     clip.skeleton = std::move(*skeleton);
     clip.skeleton_line = line_of(*node);
   }
-  if (const toml::node* node = table.get("bvh_scale")) {
-    if (ext != ".bvh") return in.error(line_of(*node), "'bvh_scale' applies to BVH clips only (ASF gives its units)");
-    auto scale = in.positive_number(*node, "bvh_scale");
-    if (!scale) return scale.error();
-    clip.bvh_scale = *scale;
+  if (const toml::node* node = table.get("bvh_scale"); node && ext != ".bvh") {
+    return in.error(line_of(*node), "'bvh_scale' applies to BVH clips only (ASF gives its units)");
   }
-  if (const toml::node* node = table.get("input_fps")) {
-    auto fps = in.positive_number(*node, "input_fps");
-    if (!fps) return fps.error();
-    clip.input_fps = *fps;
-  }
+  if (auto s = in.optional_positive(table.get("bvh_scale"), "bvh_scale", clip.bvh_scale); !s) return s.error();
+  if (auto s = in.optional_positive(table.get("input_fps"), "input_fps", clip.input_fps); !s) return s.error();
   if (const toml::node* node = table.get("first_frame")) {
     auto first = in.frame(*node, "first_frame");
     if (!first) return first.error();
@@ -238,28 +241,16 @@ Result<Manifest> read_manifest(const Reader& in, const toml::table& root, std::s
   if (auto s = in.check_keys(root, {"fps", "skeleton", "bvh_scale", "input_fps", "clip"}, "at the top level"); !s) {
     return s.error();
   }
-  if (const toml::node* node = root.get("fps")) {
-    auto fps = in.positive_number(*node, "fps");
-    if (!fps) return fps.error();
-    manifest.fps = *fps;
-    manifest.fps_line = line_of(*node);
-  }
+  if (auto s = in.optional_positive(root.get("fps"), "fps", manifest.fps); !s) return s.error();
+  if (const toml::node* node = root.get("fps")) manifest.fps_line = line_of(*node);
   if (const toml::node* node = root.get("skeleton")) {
     auto skeleton = in.string(*node, "skeleton");
     if (!skeleton) return skeleton.error();
     manifest.skeleton = std::move(*skeleton);
     manifest.skeleton_line = line_of(*node);
   }
-  if (const toml::node* node = root.get("bvh_scale")) {
-    auto scale = in.positive_number(*node, "bvh_scale");
-    if (!scale) return scale.error();
-    manifest.bvh_scale = *scale;
-  }
-  if (const toml::node* node = root.get("input_fps")) {
-    auto fps = in.positive_number(*node, "input_fps");
-    if (!fps) return fps.error();
-    manifest.input_fps = *fps;
-  }
+  if (auto s = in.optional_positive(root.get("bvh_scale"), "bvh_scale", manifest.bvh_scale); !s) return s.error();
+  if (auto s = in.optional_positive(root.get("input_fps"), "input_fps", manifest.input_fps); !s) return s.error();
   const toml::node* clips = root.get("clip");
   if (!clips) return in.error(0, "the manifest names no clips: add a [[clip]] table with file = \"...\"");
   auto array = clips->as_array();
