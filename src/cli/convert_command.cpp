@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include "cli/commands.h"
+#include "cli/motion_output.h"
 #include "cli/load_options.h"
 #include "motiongraph/export/bvh_writer.h"
 #include "motiongraph/export/positions_json.h"
@@ -25,10 +26,7 @@ struct ConvertOptions {
 };
 
 int run_convert(const ConvertOptions& options) {
-  const std::string ext = std::filesystem::path(options.output).extension().string();
-  if (ext != ".bvh" && ext != ".json") {
-    return fail(Error{options.output, 0, "output must end in .bvh or .json"});
-  }
+  if (auto s = check_motion_output(options.output); !s) return fail(s.error());
   BvhWriteSettings write;
   write.units_per_metre = options.output_units_per_metre;
   if (auto s = write.validate(); !s) return fail(s.error());
@@ -45,9 +43,9 @@ int run_convert(const ConvertOptions& options) {
     if (!resampled) return fail(resampled.error());
     clip.motion = std::move(*resampled);
   }
-  const std::string content = ext == ".bvh" ? write_bvh(clip.skeleton, clip.motion, write)
-                                            : write_positions_json(clip.skeleton, clip.motion);
-  if (auto s = write_file_atomic(options.output, content); !s) return fail(s.error());
+  if (auto s = write_motion(options.output, clip.skeleton, clip.motion, options.output_units_per_metre); !s) {
+    return fail(s.error());
+  }
   return 0;
 }
 

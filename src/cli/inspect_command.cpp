@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "cli/motion_output.h"
 #include "motiongraph/graph/graph_file.h"
 #include "motiongraph/io/file.h"
 
@@ -30,9 +31,7 @@ void print_statistics(const char* title, const nlohmann::json& s) {
 }
 
 int run_inspect(const InspectOptions& o) {
-  auto bytes = read_text_file(o.graph);
-  if (!bytes) return fail(bytes.error());
-  auto file = parse_graph_file(*bytes, o.graph);
+  auto file = load_graph_file(o.graph);
   if (!file) return fail(file.error());
   const auto report = nlohmann::json::parse(file->report_json, nullptr, false);
   if (o.json) {

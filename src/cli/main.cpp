@@ -38,6 +38,9 @@ int main(int argc, char** argv) {
       mg::cli::add_build_command(app),
       mg::cli::add_inspect_command(app),
       mg::cli::add_bench_command(app),
+      mg::cli::add_walk_command(app),
+      mg::cli::add_path_command(app),
+      mg::cli::add_steer_command(app),
   };
   try {
     app.parse(argc, argv);

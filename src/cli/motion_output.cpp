@@ -1,0 +1,32 @@
+#include "cli/motion_output.h"
+
+#include <filesystem>
+
+#include "motiongraph/export/bvh_writer.h"
+#include "motiongraph/export/positions_json.h"
+#include "motiongraph/io/file.h"
+
+namespace mg::cli {
+
+Status check_motion_output(const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext != ".bvh" && ext != ".json") return Error{path, 0, "output must end in .bvh or .json"};
+  return Ok{};
+}
+
+Status write_motion(const std::string& path, const Skeleton& skeleton, const Motion& motion, double units_per_metre) {
+  if (auto s = check_motion_output(path); !s) return s;
+  BvhWriteSettings write;
+  write.units_per_metre = units_per_metre;
+  if (auto s = write.validate(); !s) return s;
+  const bool bvh = std::filesystem::path(path).extension() == ".bvh";
+  return write_file_atomic(path, bvh ? write_bvh(skeleton, motion, write) : write_positions_json(skeleton, motion));
+}
+
+Result<GraphFile> load_graph_file(const std::string& path) {
+  auto bytes = read_text_file(path);
+  if (!bytes) return bytes.error();
+  return parse_graph_file(*bytes, path);
+}
+
+}  // namespace mg::cli

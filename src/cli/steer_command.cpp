@@ -1,0 +1,126 @@
+// motiongraph steer GRAPH --script CONTROLS.json -o OUT: replays a timed control script
+// through the interactive controller (synthesis/controller.h).
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "cli/commands.h"
+#include "cli/synthesis_options.h"
+#include "motiongraph/io/file.h"
+#include "motiongraph/synthesis/control_script.h"
+#include "motiongraph/synthesis/controller.h"
+
+namespace mg::cli {
+
+namespace {
+
+struct SteerOptions {
+  SynthesisOptions common;
+  std::string script;
+  ControllerSettings settings;
+  double tolerance_deg = 20.0;
+};
+
+double percentile(std::vector<double> values, double q) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const size_t i = std::min(values.size() - 1, static_cast<size_t>(std::ceil(q * values.size())) - 1);
+  return values[i];
+}
+
+int run_steer(const SteerOptions& o) {
+  if (auto s = o.settings.validate(); !s) return fail(s.error());
+  auto text = read_text_file(o.script);
+  if (!text) return fail(text.error());
+  auto script = parse_control_script(*text, o.script);
+  if (!script) return fail(script.error());
+  auto loaded = load_for_synthesis(o.common);
+  if (!loaded) return fail(loaded.error());
+  const SynthesisContext& context = (*loaded)->context;
+  auto input_at = [&](double t) -> Result<ControlInput> {
+    const ScriptedControl& c = script->at(t);
+    ControlInput input;
+    input.direction = bearing_direction(c.bearing_deg);
+    if (!c.tag.empty()) {
+      auto mask = context.tag_mask(c.tag);
+      if (!mask) return Error{o.script, 0, mask.error().message};
+      input.tag = *mask;
+    }
+    return input;
+  };
+  for (const ScriptedControl& c : script->controls) {
+    if (auto input = input_at(c.at_s); !input) return fail(input.error());
+  }
+  auto controller = Controller::create(context, o.settings, *input_at(0.0));
+  if (!controller) return fail(controller.error());
+  Motion motion = context.assembler.empty_motion();
+  const double fps = context.db->fps;
+  const int total = static_cast<int>(std::lround(script->duration_s * fps));
+  std::vector<double> latencies;
+  int exhausted = 0;
+  while (motion.frame_count < total) {
+    controller->set_input(*input_at(motion.frame_count / fps));
+    const ControllerDecision d = controller->step(motion);
+    latencies.push_back(d.search_seconds);
+    exhausted += d.budget_exhausted ? 1 : 0;
+  }
+  motion = motion.slice(0, total);
+  // Response: the first frame after a control whose facing is within the tolerance of it.
+  nlohmann::json controls = nlohmann::json::array();
+  for (const ScriptedControl& c : script->controls) {
+    const Vec2 want = bearing_direction(c.bearing_deg);
+    nlohmann::json response = nullptr;
+    for (int f = static_cast<int>(std::ceil(c.at_s * fps)); f < motion.frame_count; ++f) {
+      const Vec2 facing = facing_on_floor(motion.rotations(f)[0], context.tracks.forward_axis);
+      if (facing.dot(want) >= std::cos(o.tolerance_deg * std::numbers::pi / 180.0)) {
+        response = f / fps - c.at_s;
+        break;
+      }
+    }
+    controls.push_back({{"at_s", c.at_s}, {"heading_deg", c.bearing_deg}, {"tag", c.tag}, {"response_s", response}});
+  }
+  const nlohmann::json report = {{"frames", motion.frame_count},
+                                 {"fps", fps},
+                                 {"decisions", latencies.size()},
+                                 {"decision_ms_p50", 1e3 * percentile(latencies, 0.5)},
+                                 {"decision_ms_p99", 1e3 * percentile(latencies, 0.99)},
+                                 {"decision_ms_max", 1e3 * percentile(latencies, 1.0)},
+                                 {"budget_exhausted_decisions", exhausted},
+                                 {"tolerance_deg", o.tolerance_deg},
+                                 {"controls", controls}};
+  if (auto s = write_synthesis_outputs(o.common, **loaded, motion, report); !s) return fail(s.error());
+  fmt::print("steer: {} frames ({:.1f} s), {} decisions, decision p99 {:.3f} ms\n", motion.frame_count,
+             motion.frame_count / fps, latencies.size(), 1e3 * percentile(latencies, 0.99));
+  for (const auto& c : controls) {
+    fmt::print("  at {:5.1f} s heading {:5.1f} deg {:<6} -> {}\n", c["at_s"].get<double>(), c["heading_deg"].get<double>(),
+               c["tag"].get<std::string>().empty() ? "any" : c["tag"].get<std::string>(),
+               c["response_s"].is_null() ? std::string("not reached")
+                                         : fmt::format("facing it after {:.2f} s", c["response_s"].get<double>()));
+  }
+  return 0;
+}
+
+}  // namespace
+
+Command add_steer_command(CLI::App& app) {
+  auto o = std::make_shared<SteerOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "steer", "Replay a timed control script through the interactive controller and write the motion.\n"
+               "CONTROLS.json: {\"duration_s\": 12, \"controls\": [{\"at_s\": 0, \"heading\": \"north\", \"tag\":\n"
+               "\"walk\"}, {\"at_s\": 4, \"heading_deg\": 90}, {\"at_s\": 8, \"tag\": \"run\"}]}; headings north (-z),\n"
+               "east (+x), south, west or a bearing in degrees clockwise from north.");
+  o->common.add_to(*sub);
+  sub->add_option("--script", o->script, "CONTROLS.json")->required()->check(CLI::ExistingFile);
+  sub->add_option("--horizon", o->settings.horizon_s, "Seconds each decision looks ahead")->capture_default_str();
+  sub->add_option("--commit", o->settings.commit_s, "Seconds of motion each decision commits")->capture_default_str();
+  sub->add_option("--max-expansions", o->settings.max_expansions, "Search budget per decision")->capture_default_str();
+  sub->add_option("--time-budget", o->settings.time_budget_s, "Seconds per decision (0: expansions only)")
+      ->capture_default_str();
+  sub->add_option("--tolerance", o->tolerance_deg, "Report: degrees within which a heading counts as reached")
+      ->capture_default_str();
+  return {sub, [o] { return run_steer(*o); }};
+}
+
+}  // namespace mg::cli

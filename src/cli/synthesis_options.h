@@ -1,0 +1,44 @@
+// Options and steps shared by the synthesis commands (walk, path, steer): the graph to read,
+// the output, the target skeleton and the optional JSON report.
+#pragma once
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "cli/motion_output.h"
+#include "motiongraph/synthesis/synthesis_context.h"
+
+namespace mg::cli {
+
+struct SynthesisOptions {
+  std::string graph;
+  std::string output;
+  std::string report;
+  int skeleton = -1;
+
+  void add_to(CLI::App& app) {
+    app.add_option("GRAPH", graph, "A .mgraph file written by 'motiongraph build'")->required();
+    app.add_option("-o,--output", output, "Output motion: .bvh (metres) or .json (world positions)")->required();
+    app.add_option("--report", report, "Also write a JSON report of the result");
+    app.add_option("--skeleton", skeleton,
+                   "Index of the database skeleton to play everything on (default: the first clip's)");
+  }
+};
+
+// The graph file and its synthesis context, loaded together so the context's pointers stay
+// valid (the struct is not copied after loading).
+struct LoadedGraph {
+  GraphFile file;
+  SynthesisContext context;
+};
+
+// Loads GRAPH and builds the context; checks the output's extension first.
+Result<std::unique_ptr<LoadedGraph>> load_for_synthesis(const SynthesisOptions& options);
+
+// Writes the motion and, when asked, the report (both atomically).
+Status write_synthesis_outputs(const SynthesisOptions& options, const LoadedGraph& loaded, const Motion& motion,
+                               const nlohmann::json& report);
+
+}  // namespace mg::cli

@@ -1,0 +1,79 @@
+// Assembling motion from a walk (Kovar et al. 2002, section 3.1 and 4; DESIGN.md 5).
+//
+// Placement. Every edge is played under a floor transform W (database -> world). A clip edge
+// keeps W; a transition edge for transition t blends the k frames t.from_frame.. (under W)
+// with t.to_frame-k+1.. (under W * T, T = t's floor alignment) and leaves W * T for the next
+// edge. Blended frame p takes the root position as alpha(p) d + (1 - alpha(p)) a and every
+// rotation (the root's in the world) as slerp(d, a, 1 - alpha(p)), with Kovar's weight
+//   alpha(p) = 2((p+1)/k)^3 - 3((p+1)/k)^2 + 1   for the frame we leave;
+// alpha(k-1) = 0, so the blend ends exactly on the arrival frame the next edge plays.
+//
+// Target skeleton. The result is on one skeleton of the database (by default the one of the
+// walk's first clip). Frames of other subjects keep their joint rotations; their translations
+// (root and any translated joint) are scaled by leg_length(target) / leg_length(theirs), and a
+// transition between subjects A and B has its floor translation taken into that scaled space:
+//   t' = s_A t + (s_A - s_B) R c_B   (c_B: the root's floor position at the arrival frame),
+// which is the exact alignment when s_A = s_B and its first-order version otherwise.
+#pragma once
+
+#include <vector>
+
+#include "motiongraph/core/error.h"
+#include "motiongraph/database/motion_database.h"
+#include "motiongraph/graph/motion_graph.h"
+#include "motiongraph/synthesis/floor_transform.h"
+#include "motiongraph/synthesis/walk.h"
+
+namespace mg {
+
+// Kovar's blend weight on the frame we leave, p = 0..k-1.
+double blend_weight(int p, int k);
+
+// What playing edges needs, for one target skeleton.
+class MotionAssembler {
+ public:
+  // Fails when target_skeleton is not a skeleton of db, when the skeletons differ in joints
+  // or translated joints, or when the root has no per-frame translation.
+  static Result<MotionAssembler> create(const MotionDatabase& db, const MotionGraph& graph, int target_skeleton);
+
+  const Skeleton& skeleton() const { return db_->skeletons[target_]; }
+  int target_skeleton() const { return target_; }
+  double scale_of(int skeleton) const { return scale_[skeleton]; }
+
+  // An empty motion on the target skeleton at the database rate, to append frames to.
+  Motion empty_motion() const;
+
+  // The transform a transition composes onto the placement, in the target's scaled space.
+  FloorTransform transition_transform(const Transition& transition) const;
+
+  // Appends the frames edge `edge` plays, placed by `placement`, which becomes the placement
+  // the next edge is played with.
+  void append_edge(int edge, FloorTransform& placement, Motion& out) const;
+  // Appends database frame `frame` placed by `placement`.
+  void append_frame(int frame, const FloorTransform& placement, Motion& out) const;
+
+  // The root's world position and rotation of database frame `frame` under `placement`
+  // (scaled to the target), without building the pose.
+  Vec3 root_position(int frame, const FloorTransform& placement) const;
+  Quat root_rotation(int frame, const FloorTransform& placement) const;
+
+ private:
+  void append_blend(int departure, const FloorTransform& w_departure, int arrival, const FloorTransform& w_arrival,
+                    double alpha, Motion& out) const;
+  const DatabaseClip& clip_of(int frame, int* local) const;
+
+  const MotionDatabase* db_ = nullptr;
+  const MotionGraph* graph_ = nullptr;
+  int target_ = 0;
+  std::vector<double> scale_;  // per skeleton
+  std::vector<int> clip_of_frame_;
+};
+
+// The walk played from `start` (applied to the database pose of its first frame): the walk's
+// frames followed by the frame of its end node, so that a walk of one clip edge from f1 to
+// f2 gives frames f1..f2. The target skeleton is target_skeleton, or when it is -1 the
+// skeleton of the start node's clip.
+Result<Motion> assemble_walk(const MotionDatabase& db, const MotionGraph& graph, const Walk& walk,
+                             const FloorTransform& start = {}, int target_skeleton = -1);
+
+}  // namespace mg

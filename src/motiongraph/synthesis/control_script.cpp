@@ -1,0 +1,71 @@
+#include "motiongraph/synthesis/control_script.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "motiongraph/core/json_text.h"
+
+namespace mg {
+
+const ScriptedControl& ControlScript::at(double t) const {
+  size_t i = 0;
+  while (i + 1 < controls.size() && controls[i + 1].at_s <= t) ++i;
+  return controls[i];
+}
+
+Result<ControlScript> parse_control_script(std::string_view text, const std::string& file_name) {
+  auto parsed = parse_json_text(text, file_name);
+  if (!parsed) return parsed.error();
+  const nlohmann::json& doc = *parsed;
+  auto fail = [&](const std::string& what) { return Error{file_name, 0, what}; };
+  if (!doc.is_object() || !doc.contains("controls") || !doc["controls"].is_array() || doc["controls"].empty()) {
+    return fail("expected an object with a non-empty \"controls\" array");
+  }
+  ControlScript script;
+  ScriptedControl current;
+  for (size_t i = 0; i < doc["controls"].size(); ++i) {
+    const auto& c = doc["controls"][i];
+    if (!c.is_object() || !c.contains("at_s") || !c["at_s"].is_number()) {
+      return fail(fmt::format("controls[{}] needs \"at_s\" (seconds)", i));
+    }
+    const double at = c["at_s"].get<double>();
+    if (!std::isfinite(at) || at < 0.0 || (i == 0 && at != 0.0) || (i > 0 && at <= current.at_s)) {
+      return fail(fmt::format("controls[{}]: at_s must start at 0 and increase", i));
+    }
+    current.at_s = at;
+    if (c.contains("heading")) {
+      const std::string h = c["heading"].is_string() ? c["heading"].get<std::string>() : "";
+      if (h == "north") current.bearing_deg = 0.0;
+      else if (h == "east") current.bearing_deg = 90.0;
+      else if (h == "south") current.bearing_deg = 180.0;
+      else if (h == "west") current.bearing_deg = 270.0;
+      else return fail(fmt::format("controls[{}]: heading must be north, east, south or west", i));
+    }
+    if (c.contains("heading_deg")) {
+      if (!c["heading_deg"].is_number() || !std::isfinite(c["heading_deg"].get<double>())) {
+        return fail(fmt::format("controls[{}]: heading_deg must be a number", i));
+      }
+      current.bearing_deg = c["heading_deg"].get<double>();
+    }
+    if (c.contains("tag")) {
+      if (!c["tag"].is_string()) return fail(fmt::format("controls[{}]: tag must be a string", i));
+      current.tag = c["tag"].get<std::string>();
+      if (current.tag == "any") current.tag.clear();
+    }
+    script.controls.push_back(current);
+  }
+  script.duration_s = script.controls.back().at_s + 4.0;
+  if (doc.contains("duration_s")) {
+    if (!doc["duration_s"].is_number() || !(doc["duration_s"].get<double>() > 0.0) ||
+        !std::isfinite(doc["duration_s"].get<double>())) {
+      return fail("\"duration_s\" must be a positive number of seconds");
+    }
+    script.duration_s = doc["duration_s"].get<double>();
+  }
+  return script;
+}
+
+}  // namespace mg

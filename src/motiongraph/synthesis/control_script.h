@@ -1,0 +1,36 @@
+// A timed control script for the controller, so steering can be replayed without a display:
+//   {"duration_s": 12,
+//    "controls": [{"at_s": 0, "heading": "north", "tag": "walk"},
+//                 {"at_s": 4, "heading_deg": 90},
+//                 {"at_s": 8, "tag": "run"}]}
+// heading: north, east, south, west (north = -z, east = +x) or heading_deg, a bearing in
+// degrees clockwise from north. A control keeps what it does not say from the one before
+// (the first starts from north and any tag); tag "" or "any" clears the tag. Controls must be
+// in increasing time from 0.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "motiongraph/core/error.h"
+
+namespace mg {
+
+struct ScriptedControl {
+  double at_s = 0.0;
+  double bearing_deg = 0.0;
+  std::string tag;  // "" = any
+};
+
+struct ControlScript {
+  double duration_s = 0.0;
+  std::vector<ScriptedControl> controls;  // each complete (earlier values carried over)
+
+  // The control in force at time t.
+  const ScriptedControl& at(double t) const;
+};
+
+Result<ControlScript> parse_control_script(std::string_view text, const std::string& file_name);
+
+}  // namespace mg

@@ -1,0 +1,101 @@
+#include "motiongraph/synthesis/controller.h"
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+namespace mg {
+
+Status ControllerSettings::validate() const {
+  if (!(horizon_s > 0.0) || !(commit_s > 0.0) || commit_s > horizon_s) {
+    return Error{"", 0, "controller: need 0 < commit_s <= horizon_s"};
+  }
+  if (!(tag_penalty >= 0.0) || !(time_budget_s >= 0.0) || max_expansions < 1) {
+    return Error{"", 0, "controller: penalties and budgets must be >= 0 (expansions >= 1)"};
+  }
+  return Ok{};
+}
+
+Vec2 bearing_direction(double bearing_deg) {
+  const double b = bearing_deg * std::numbers::pi / 180.0;
+  return {std::sin(b), -std::cos(b)};
+}
+
+double direction_bearing(const Vec2& d) {
+  double b = std::atan2(d.x(), -d.y()) * 180.0 / std::numbers::pi;
+  return b < 0.0 ? b + 360.0 : b;
+}
+
+namespace {
+
+class SteerCost final : public FrameCost {
+ public:
+  SteerCost(const ControlInput& input, double penalty) : input_(input), penalty_(penalty) {}
+  double cost(int, const Vec2&, const Vec2& facing, double, TagMask tags, bool*) const override {
+    double c = 1.0 - facing.dot(input_.direction);
+    if (input_.tag != 0 && (tags & input_.tag) == 0) c += penalty_;
+    return c;
+  }
+
+ private:
+  const ControlInput& input_;
+  double penalty_;
+};
+
+}  // namespace
+
+Result<Controller> Controller::create(const SynthesisContext& context, const ControllerSettings& settings,
+                                      const ControlInput& first_input, const Vec2& at) {
+  if (auto status = settings.validate(); !status) return status.error();
+  const MotionGraph& graph = *context.graph;
+  int start = settings.start_node;
+  if (start >= graph.node_count()) return Error{"", 0, "controller: the start node does not exist"};
+  if (start < 0) {
+    start = 0;
+    for (int n = 0; n < graph.node_count() && first_input.tag != 0; ++n) {
+      const int e = graph.edge_offsets[n];
+      if ((context.tracks.tags_of(e).front() & first_input.tag) != 0) {
+        start = n;
+        break;
+      }
+    }
+  }
+  Controller controller(context, settings);
+  controller.input_ = first_input;
+  controller.state_.node = start;
+  controller.state_.placement = context.placement_facing(start, at, first_input.direction);
+  return controller;
+}
+
+ControllerDecision Controller::step(Motion& out) {
+  using Clock = std::chrono::steady_clock;
+  const auto begin = Clock::now();
+  const MotionGraph& graph = *context_->graph;
+  const double fps = context_->db->fps;
+  HorizonSettings search;
+  search.horizon_frames = std::max(1, static_cast<int>(std::lround(settings_.horizon_s * fps)));
+  search.max_expansions = settings_.max_expansions;
+  search.time_budget_s = settings_.time_budget_s;
+  const SteerCost cost(input_, settings_.tag_penalty);
+  const HorizonResult best = horizon_search(graph, context_->tracks, state_, cost, search);
+  ControllerDecision decision;
+  decision.expansions = best.expansions;
+  decision.budget_exhausted = best.budget_exhausted;
+  const int commit_frames = std::max(1, static_cast<int>(std::lround(settings_.commit_s * fps)));
+  std::vector<int> edges = best.edges;
+  if (edges.empty()) edges.push_back(graph.edge_offsets[state_.node]);  // the clip piece onwards
+  for (int e : edges) {
+    decision.edges.push_back(e);
+    decision.frames += graph.edges[e].frame_count;
+    if (decision.frames >= commit_frames) break;
+  }
+  decision.search_seconds = std::chrono::duration<double>(Clock::now() - begin).count();
+  for (int e : decision.edges) {
+    FloorTransform placement = state_.placement;
+    context_->assembler.append_edge(e, placement, out);
+    state_ = advance(graph, context_->tracks, state_, e);
+  }
+  return decision;
+}
+
+}  // namespace mg

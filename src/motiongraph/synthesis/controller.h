@@ -1,0 +1,67 @@
+// Interactive control (Kovar et al. 2002, section 6 "future work"; the seed's steering with
+// motion tags): the walk is extended from live input, a desired facing direction on the floor
+// and optionally a motion tag. Each decision runs a bounded branch and bound (horizon_search.h)
+// over about horizon_s seconds minimising, per frame, (1 - cos) of the angle between the
+// character's facing and the desired direction, plus tag_penalty for a frame without the
+// tag; it then commits whole edges for at least commit_s seconds and returns their frames.
+// The expansion and time budgets bound every decision, and the first (greedy) walk is always
+// there, so a decision always answers in time.
+#pragma once
+
+#include <vector>
+
+#include "motiongraph/synthesis/horizon_search.h"
+#include "motiongraph/synthesis/synthesis_context.h"
+
+namespace mg {
+
+struct ControlInput {
+  Vec2 direction = Vec2(0.0, -1.0);  // unit, on the floor (default north, -z)
+  TagMask tag = 0;                   // 0: any motion
+};
+
+struct ControllerSettings {
+  double horizon_s = 1.0;
+  double commit_s = 0.2;
+  double tag_penalty = 2.0;          // per frame; a full turn away costs 2 per frame
+  long long max_expansions = 3000;
+  double time_budget_s = 0.0008;     // per decision; 0: only the expansion budget
+  int start_node = -1;               // -1: a node carrying the first input's tag (or node 0)
+
+  Status validate() const;
+};
+
+struct ControllerDecision {
+  std::vector<int> edges;            // committed
+  int frames = 0;                    // appended to the motion
+  double search_seconds = 0.0;       // wall time of the decision
+  long long expansions = 0;
+  bool budget_exhausted = false;
+};
+
+class Controller {
+ public:
+  // The character starts at `at` facing `direction` (unit).
+  static Result<Controller> create(const SynthesisContext& context, const ControllerSettings& settings,
+                                   const ControlInput& first_input, const Vec2& at = Vec2::Zero());
+
+  void set_input(const ControlInput& input) { input_ = input; }
+  const ControlInput& input() const { return input_; }
+  const SearchState& state() const { return state_; }
+  // Decides and appends the next frames to `out` (a motion on the context's target skeleton,
+  // e.g. from MotionAssembler::empty_motion()).
+  ControllerDecision step(Motion& out);
+
+ private:
+  Controller(const SynthesisContext& context, const ControllerSettings& settings) : context_(&context), settings_(settings) {}
+  const SynthesisContext* context_;
+  ControllerSettings settings_;
+  ControlInput input_;
+  SearchState state_;
+};
+
+// Bearing in degrees (0 north = -z, 90 east = +x) as a unit floor direction, and back.
+Vec2 bearing_direction(double bearing_deg);
+double direction_bearing(const Vec2& direction);
+
+}  // namespace mg

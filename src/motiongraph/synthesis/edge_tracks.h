@@ -1,0 +1,40 @@
+// What searches need of every edge, computed once: the root's floor position and facing for
+// each frame the edge plays, as the assembler plays it under the identity placement, the
+// placement change the edge makes, the root's largest step from one frame to the next, (identity for clip pieces, the transition's transform for
+// transitions) and the tags of each frame (a blended frame has the tags of the side with the
+// larger weight). Under a placement W a frame's world floor position is W applied to it.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "motiongraph/synthesis/assembler.h"
+#include "motiongraph/synthesis/facing.h"
+
+namespace mg {
+
+struct EdgeTrack {
+  int first = 0;  // into EdgeTracks::roots / facings / tags
+  int count = 0;  // the edge's frame_count
+  FloorTransform change;
+};
+
+struct EdgeTracks {
+  std::vector<EdgeTrack> edges;  // one per graph edge
+  std::vector<Vec2> roots;       // metres, identity placement
+  std::vector<Vec2> facings;     // unit (or zero when the forward axis is vertical)
+  std::vector<TagMask> tags;
+  Vec3 forward_axis = Vec3::UnitZ();  // of the target skeleton, in the root's frame
+  double max_root_step_m = 0.0;       // the longest floor step of the root between two frames
+                                      // any walk plays one after the other
+
+  std::span<const Vec2> roots_of(int edge) const { return std::span(roots).subspan(edges[edge].first, edges[edge].count); }
+  std::span<const Vec2> facings_of(int edge) const { return std::span(facings).subspan(edges[edge].first, edges[edge].count); }
+  std::span<const TagMask> tags_of(int edge) const { return std::span(tags).subspan(edges[edge].first, edges[edge].count); }
+};
+
+// frame_tags: one mask per database frame, or empty (no tags).
+EdgeTracks compute_edge_tracks(const MotionAssembler& assembler, const MotionGraph& graph,
+                               std::span<const TagMask> frame_tags, const Vec3& forward_axis);
+
+}  // namespace mg

@@ -1,0 +1,155 @@
+#include "motiongraph/synthesis/floor_path.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "motiongraph/core/json_text.h"
+
+namespace mg {
+
+Result<FloorPath> FloorPath::create(std::vector<Vec2> points, std::vector<PathSegment> segments) {
+  FloorPath path;
+  for (const Vec2& p : points) {
+    if (!std::isfinite(p.x()) || !std::isfinite(p.y())) return Error{"", 0, "a path point is not a finite number"};
+    if (!path.points_.empty() && (p - path.points_.back()).norm() < 1e-9) continue;
+    path.arc_.push_back(path.points_.empty() ? 0.0 : path.arc_.back() + (p - path.points_.back()).norm());
+    path.points_.push_back(p);
+  }
+  if (path.points_.size() < 2) return Error{"", 0, "a path needs at least two distinct points"};
+  for (const PathSegment& s : segments) {
+    if (!std::isfinite(s.from_m) || !std::isfinite(s.to_m) || s.from_m < 0.0 || s.to_m <= s.from_m) {
+      return Error{"", 0, fmt::format("segment '{}' must have 0 <= from_m < to_m", s.tag)};
+    }
+    if (s.tag.empty()) return Error{"", 0, "a segment needs a tag"};
+  }
+  path.segments_ = std::move(segments);
+  return path;
+}
+
+int FloorPath::segment_index(double s) const {
+  const auto it = std::upper_bound(arc_.begin(), arc_.end(), s);
+  const int i = static_cast<int>(it - arc_.begin()) - 1;
+  return std::clamp(i, 0, static_cast<int>(points_.size()) - 2);
+}
+
+Vec2 FloorPath::point_at(double s) const {
+  s = std::clamp(s, 0.0, length_m());
+  const int i = segment_index(s);
+  const double len = arc_[i + 1] - arc_[i];
+  const double u = std::clamp((s - arc_[i]) / len, 0.0, 1.0);
+  return points_[i] + u * (points_[i + 1] - points_[i]);
+}
+
+Vec2 FloorPath::direction_at(double s) const {
+  const int i = segment_index(std::clamp(s, 0.0, length_m()));
+  return (points_[i + 1] - points_[i]).normalized();
+}
+
+double FloorPath::distance_to(const Vec2& p) const {
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i + 1 < points_.size(); ++i) {
+    const Vec2 d = points_[i + 1] - points_[i];
+    const double u = std::clamp((p - points_[i]).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    best = std::min(best, (points_[i] + u * d - p).norm());
+  }
+  return best;
+}
+
+const std::string& FloorPath::tag_at(double s) const {
+  static const std::string none;
+  for (auto it = segments_.rbegin(); it != segments_.rend(); ++it) {
+    if (s >= it->from_m && s < it->to_m) return it->tag;
+  }
+  return none;
+}
+
+Result<FloorPath> parse_path_json(std::string_view text, const std::string& file_name) {
+  auto parsed = parse_json_text(text, file_name);
+  if (!parsed) return parsed.error();
+  const nlohmann::json& doc = *parsed;
+  auto fail = [&](const std::string& what) { return Error{file_name, 0, what}; };
+  if (!doc.is_object() || !doc.contains("points") || !doc["points"].is_array()) {
+    return fail("expected an object with \"points\": [[x, z], ...]");
+  }
+  std::vector<Vec2> points;
+  for (size_t i = 0; i < doc["points"].size(); ++i) {
+    const auto& p = doc["points"][i];
+    if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number()) {
+      return fail(fmt::format("points[{}] is not a pair of numbers [x, z]", i));
+    }
+    points.emplace_back(p[0].get<double>(), p[1].get<double>());
+  }
+  std::vector<PathSegment> segments;
+  if (doc.contains("segments")) {
+    if (!doc["segments"].is_array()) return fail("\"segments\" must be an array");
+    for (size_t i = 0; i < doc["segments"].size(); ++i) {
+      const auto& s = doc["segments"][i];
+      if (!s.is_object() || !s.contains("from_m") || !s["from_m"].is_number() || !s.contains("to_m") ||
+          !s["to_m"].is_number() || !s.contains("tag") || !s["tag"].is_string()) {
+        return fail(fmt::format("segments[{}] needs \"from_m\", \"to_m\" (numbers) and \"tag\" (a string)", i));
+      }
+      segments.push_back({s["from_m"].get<double>(), s["to_m"].get<double>(), s["tag"].get<std::string>()});
+    }
+  }
+  auto path = FloorPath::create(std::move(points), std::move(segments));
+  if (!path) return fail(path.error().message);
+  return path;
+}
+
+Result<FloorPath> make_shape(std::string_view spec) {
+  const size_t colon = spec.find(':');
+  const std::string_view name = spec.substr(0, colon);
+  double size = 0.0;
+  if (colon == std::string_view::npos) {
+    return Error{"", 0, fmt::format("shape '{}' needs a size: line:20, circle:5, figure8:4 or s-curve:100", spec)};
+  }
+  const std::string_view number = spec.substr(colon + 1);
+  const auto [end, ec] = std::from_chars(number.data(), number.data() + number.size(), size);
+  if (ec != std::errc() || end != number.data() + number.size() || !(size > 0.0) || !std::isfinite(size)) {
+    return Error{"", 0, fmt::format("shape '{}': the size must be a positive number of metres", spec)};
+  }
+  constexpr double kPi = std::numbers::pi;
+  std::vector<Vec2> points;
+  auto arc = [&](const Vec2& centre, double radius, double start_angle, double sweep) {
+    const int n = std::max(8, static_cast<int>(std::ceil(std::abs(sweep) * radius / 0.1)));
+    for (int i = 0; i <= n; ++i) {
+      const double a = start_angle + sweep * i / n;
+      points.emplace_back(centre.x() + radius * std::cos(a), centre.y() + radius * std::sin(a));
+    }
+  };
+  if (name == "line") {
+    const int n = std::max(1, static_cast<int>(std::ceil(size / 0.1)));
+    for (int i = 0; i <= n; ++i) points.emplace_back(0.0, -size * i / n);
+  } else if (name == "circle") {
+    // Heading north (-z) at the origin and turning right (towards +x): centre at (R, 0).
+    arc(Vec2(size, 0.0), size, kPi, 2 * kPi);
+  } else if (name == "figure8") {
+    arc(Vec2(size, 0.0), size, kPi, 2 * kPi);   // right-hand loop
+    arc(Vec2(-size, 0.0), size, 0.0, -2 * kPi);  // then the left-hand loop
+  } else if (name == "s-curve") {
+    const double wavelength = size / 2.0, amplitude = size / 20.0;
+    // Parametrised by distance along -z; arc length a little more than size: sample densely
+    // and cut at `size` metres of arc.
+    const int n = static_cast<int>(std::ceil(size / 0.05));
+    double covered = 0.0;
+    Vec2 last(0.0, 0.0);
+    points.push_back(last);
+    for (int i = 1; i <= 2 * n && covered < size; ++i) {
+      const double t = size * i / n;
+      const Vec2 p(amplitude * std::sin(2 * kPi * t / wavelength), -t);
+      covered += (p - last).norm();
+      points.push_back(p);
+      last = p;
+    }
+  } else {
+    return Error{"", 0, fmt::format("unknown shape '{}': line, circle, figure8 or s-curve", name)};
+  }
+  return FloorPath::create(std::move(points));
+}
+
+}  // namespace mg

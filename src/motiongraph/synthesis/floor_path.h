@@ -1,0 +1,60 @@
+// A path on the floor for the character to follow (Kovar et al. 2002, section 5): a polyline
+// of (x, z) points in metres, parametrised by arc length, with optional motion types along
+// arc-length ranges. Coordinates are the world's: x east, z south, so "north" is -z.
+//
+// PATH.json:  {"points": [[x, z], ...],
+//              "segments": [{"from_m": 0, "to_m": 20, "tag": "walk"}, ...]}   (segments optional)
+// Built-in shapes, all starting at the origin heading north (-z):
+//   line:L      a straight line L metres long
+//   circle:R    one turn of a circle of radius R, turning right (clockwise seen from above)
+//   figure8:R   two circles of radius R, right then left, meeting at the origin
+//   s-curve:L   L metres of a sine wave with wavelength L/2 and amplitude L/20
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "motiongraph/core/error.h"
+#include "motiongraph/synthesis/facing.h"
+
+namespace mg {
+
+struct PathSegment {
+  double from_m = 0.0;
+  double to_m = 0.0;
+  std::string tag;
+};
+
+class FloorPath {
+ public:
+  FloorPath() = default;
+  // Fails with fewer than two distinct points or a non-finite coordinate.
+  static Result<FloorPath> create(std::vector<Vec2> points, std::vector<PathSegment> segments = {});
+
+  double length_m() const { return arc_.empty() ? 0.0 : arc_.back(); }
+  const std::vector<Vec2>& points() const { return points_; }
+  const std::vector<PathSegment>& segments() const { return segments_; }
+  // The point at arc length s (clamped to the ends).
+  Vec2 point_at(double s) const;
+  // The unit direction at arc length s.
+  Vec2 direction_at(double s) const;
+  // Distance from p to the nearest point of the path.
+  double distance_to(const Vec2& p) const;
+  // The tag asked for at arc length s: the last segment containing s, or "" when none.
+  const std::string& tag_at(double s) const;
+
+ private:
+  int segment_index(double s) const;
+  std::vector<Vec2> points_;   // consecutive duplicates removed
+  std::vector<double> arc_;    // arc length at each point
+  std::vector<PathSegment> segments_;
+};
+
+// PATH.json as above; errors name the file (and the line for JSON syntax errors).
+Result<FloorPath> parse_path_json(std::string_view text, const std::string& file_name);
+
+// A built-in shape "name:metres" (see above), sampled every 0.1 m or finer.
+Result<FloorPath> make_shape(std::string_view spec);
+
+}  // namespace mg

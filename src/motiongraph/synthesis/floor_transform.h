@@ -1,0 +1,42 @@
+// A rigid motion of the floor: rotation about the vertical (+y) axis by yaw_rad, then a
+// translation (x_m, z_m) on the floor. Walks are placed in the world by composing these:
+// each clip piece keeps the placement it starts with, each transition composes its floor
+// alignment (metric/reference_distance.h FloorAlignment: arrival window onto departure
+// window) onto it (Kovar et al. 2002, section 3.1 and 4).
+#pragma once
+
+#include <cmath>
+
+#include "motiongraph/skeleton/rotation.h"
+
+namespace mg {
+
+struct FloorTransform {
+  double yaw_rad = 0.0;
+  double x_m = 0.0;
+  double z_m = 0.0;
+
+  // Rotation about +y: x' = c x + s z, z' = -s x + c z (as FloorAlignment::apply).
+  Vec3 apply(const Vec3& p) const {
+    const double c = std::cos(yaw_rad), s = std::sin(yaw_rad);
+    return {c * p.x() + s * p.z() + x_m, p.y(), -s * p.x() + c * p.z() + z_m};
+  }
+  Vec3 rotate(const Vec3& v) const {
+    const double c = std::cos(yaw_rad), s = std::sin(yaw_rad);
+    return {c * v.x() + s * v.z(), v.y(), -s * v.x() + c * v.z()};
+  }
+  Quat rotation() const { return Quat(Eigen::AngleAxisd(yaw_rad, Vec3::UnitY())); }
+
+  // (this * other)(p) = this(other(p)).
+  FloorTransform operator*(const FloorTransform& other) const {
+    const Vec3 t = rotate(Vec3(other.x_m, 0.0, other.z_m));
+    return {yaw_rad + other.yaw_rad, t.x() + x_m, t.z() + z_m};
+  }
+  FloorTransform inverse() const {
+    const FloorTransform r{-yaw_rad, 0.0, 0.0};
+    const Vec3 t = r.rotate(Vec3(-x_m, 0.0, -z_m));
+    return {-yaw_rad, t.x(), t.z()};
+  }
+};
+
+}  // namespace mg

@@ -1,0 +1,153 @@
+#include "motiongraph/synthesis/horizon_search.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace mg {
+
+Status HorizonSettings::validate() const {
+  if (horizon_frames < 1) return Error{"", 0, "the search horizon must be at least one frame"};
+  if (max_expansions < 1) return Error{"", 0, "the search needs an expansion budget of at least 1"};
+  if (!(time_budget_s >= 0.0)) return Error{"", 0, "the search time budget must be >= 0"};
+  return Ok{};
+}
+
+namespace {
+
+struct Child {
+  int edge = 0;
+  double cost = 0.0;
+  double priority = 0.0;  // cost + the lower bound of what is left: what must beat the best
+  bool complete = false;
+  bool goal = false;
+  SearchState state;
+};
+
+// Plays edge e from `state` (whose frames are counted from the search start as `played`),
+// adding frame costs to `cost`. Stops early and returns false when cost reaches `bound`.
+bool play_edge(const MotionGraph& graph, const EdgeTracks& tracks, const FrameCost& frame_cost, int horizon,
+               long long played, double bound, int e, const SearchState& from, Child& out) {
+  out.edge = e;
+  out.state = from;
+  out.complete = false;
+  out.goal = false;
+  SearchState& s = out.state;
+  const auto roots = tracks.roots_of(e);
+  const auto facings = tracks.facings_of(e);
+  const auto tags = tracks.tags_of(e);
+  // The placement holds for the whole edge: its rotation once (FloorTransform::rotate).
+  const double c = std::cos(s.placement.yaw_rad), sn = std::sin(s.placement.yaw_rad);
+  auto turned = [&](const Vec2& v) { return Vec2(c * v.x() + sn * v.y(), -sn * v.x() + c * v.y()); };
+  const Vec2 shift(s.placement.x_m, s.placement.z_m);
+  for (size_t p = 0; p < roots.size(); ++p) {
+    const Vec2 root = turned(roots[p]) + shift;
+    if (s.has_last) s.arc_m += (root - s.last_root).norm();
+    s.last_root = root;
+    s.has_last = true;
+    const long long index = played + static_cast<long long>(p);
+    if (index < horizon && !out.complete) {
+      bool goal = false;
+      out.cost += frame_cost.cost(static_cast<int>(index), root, turned(facings[p]), s.arc_m, tags[p], &goal);
+      if (out.cost >= bound) return false;
+      if (goal) out.complete = out.goal = true;
+    }
+  }
+  s.frames += static_cast<long long>(roots.size());
+  s.placement = s.placement * tracks.edges[e].change;
+  s.node = graph.edges[e].to_node;
+  const long long after = played + static_cast<long long>(roots.size());
+  if (after >= horizon) out.complete = true;
+  out.priority = out.cost;
+  if (!out.complete) {
+    out.priority += frame_cost.remaining_bound(static_cast<int>(horizon - after), s.last_root, s.arc_m);
+    if (out.priority >= bound) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+SearchState advance(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& state, int edge) {
+  struct Free final : FrameCost {
+    double cost(int, const Vec2&, const Vec2&, double, TagMask, bool*) const override { return 0.0; }
+  } free_cost;
+  Child child;
+  play_edge(graph, tracks, free_cost, 0, 0, std::numeric_limits<double>::infinity(), edge, state, child);
+  return child.state;
+}
+
+HorizonResult horizon_search(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& start,
+                             const FrameCost& frame_cost, const HorizonSettings& settings,
+                             std::span<const int> hint) {
+  using Clock = std::chrono::steady_clock;
+  const auto deadline =
+      Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(settings.time_budget_s));
+  HorizonResult result;
+  struct Level {
+    std::vector<Child> children;
+    size_t next = 0;
+    long long played = 0;
+  };
+  std::vector<Level> stack;
+  std::vector<int> path;
+  std::vector<int> greedy;  // the deepest-first partial walk, in case nothing completes
+
+  auto expand = [&](const SearchState& state, double cost, long long played) {
+    Level level;
+    level.played = played;
+    for (const GraphEdge& edge : graph.out_edges(state.node)) {
+      const int e = static_cast<int>(&edge - graph.edges.data());
+      Child child;
+      child.cost = cost;
+      ++result.expansions;
+      if (play_edge(graph, tracks, frame_cost, settings.horizon_frames, played, result.cost, e, state, child)) {
+        level.children.push_back(std::move(child));
+      }
+    }
+    std::sort(level.children.begin(), level.children.end(),
+              [](const Child& a, const Child& b) { return a.priority < b.priority; });
+    // Along the hint, its edge goes first.
+    const size_t depth = path.size();
+    if (depth < hint.size() && std::equal(path.begin(), path.end(), hint.begin())) {
+      const auto it = std::find_if(level.children.begin(), level.children.end(),
+                                   [&](const Child& c) { return c.edge == hint[depth]; });
+      if (it != level.children.end()) std::rotate(level.children.begin(), it, it + 1);
+    }
+    stack.push_back(std::move(level));
+  };
+
+  expand(start, 0.0, 0);
+  while (!stack.empty()) {
+    if (result.expansions >= settings.max_expansions ||
+        (settings.time_budget_s > 0.0 && (result.expansions & 63) == 0 && Clock::now() >= deadline)) {
+      result.budget_exhausted = true;
+      break;
+    }
+    Level& level = stack.back();
+    if (level.next >= level.children.size()) {
+      stack.pop_back();
+      if (!path.empty()) path.pop_back();
+      continue;
+    }
+    const Child& child = level.children[level.next++];
+    if (child.priority >= result.cost) continue;
+    if (child.complete) {
+      result.cost = child.cost;
+      result.goal_reached = child.goal;
+      result.edges = path;
+      result.edges.push_back(child.edge);
+      continue;
+    }
+    path.push_back(child.edge);
+    if (path.size() > greedy.size() && result.edges.empty()) greedy = path;
+    const long long played = level.played + graph.edges[child.edge].frame_count;
+    const SearchState state = child.state;
+    const double cost = child.cost;
+    expand(state, cost, played);
+  }
+  if (result.edges.empty()) result.edges = greedy;
+  return result;
+}
+
+}  // namespace mg

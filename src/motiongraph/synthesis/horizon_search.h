@@ -1,0 +1,80 @@
+// Branch and bound over walks of a fixed horizon (Kovar et al. 2002, section 4): among the
+// walks from a state that play `horizon_frames` frames (or reach the goal sooner), find the
+// one whose summed frame costs are least. Frame costs are non-negative, so the cost of a
+// partial walk, plus the cost model's lower bound for the frames still to come, bounds every
+// walk that extends it: depth first, children in increasing cost,
+// and a branch is cut as soon as its cost reaches the best complete walk's. The first walk
+// found is the greedy one (or follows a hint), so there is always an answer; an expansion budget and an optional
+// time budget bound the work (the answer is then the best walk found so far).
+#pragma once
+
+#include <limits>
+#include <vector>
+
+#include "motiongraph/core/error.h"
+#include "motiongraph/synthesis/edge_tracks.h"
+
+namespace mg {
+
+// Where a walk is: the node, the placement of what it plays next, the arc length its root
+// has covered on the floor and the root's last world floor position.
+struct SearchState {
+  int node = 0;
+  FloorTransform placement;
+  double arc_m = 0.0;
+  Vec2 last_root = Vec2::Zero();
+  bool has_last = false;  // false before the first frame: arc length starts there
+  long long frames = 0;   // frames played so far
+};
+
+class FrameCost {
+ public:
+  virtual ~FrameCost() = default;
+  // The cost (>= 0) of a frame the walk plays: its index from the search's start, the
+  // root's world floor position and facing, the arc length covered (including this frame)
+  // and the frame's tags. Setting *goal ends the walk here: it is complete.
+  virtual double cost(int frame, const Vec2& root, const Vec2& facing, double arc_m, TagMask tags,
+                      bool* goal) const = 0;
+  // A lower bound of the cost of the next `frames_left` frames of any walk from a state whose
+  // last frame had this root and arc length (0 is always right; tighter bounds cut more).
+  virtual double remaining_bound(int frames_left, const Vec2& root, double arc_m) const {
+    (void)frames_left, (void)root, (void)arc_m;
+    return 0.0;
+  }
+};
+
+struct HorizonSettings {
+  int horizon_frames = 90;
+  long long max_expansions = 200000;  // edges evaluated
+  double time_budget_s = 0.0;         // 0: none
+
+  Status validate() const;
+};
+
+struct HorizonResult {
+  std::vector<int> edges;  // the best walk found
+  double cost = std::numeric_limits<double>::infinity();
+  bool goal_reached = false;
+  long long expansions = 0;
+  bool budget_exhausted = false;  // expansion or time budget ran out before the search did
+};
+
+// `hint` (optional): a walk from start to try first, e.g. what is left of the previous
+// search's best walk; it only changes the order of the search, not its result.
+HorizonResult horizon_search(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& start,
+                             const FrameCost& cost, const HorizonSettings& settings, std::span<const int> hint = {});
+
+// The state after playing edge `edge` from `state`.
+SearchState advance(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& state, int edge);
+
+// World floor position of a track point under a placement.
+inline Vec2 place(const FloorTransform& w, const Vec2& p) {
+  const Vec3 q = w.apply(Vec3(p.x(), 0.0, p.y()));
+  return {q.x(), q.z()};
+}
+inline Vec2 turn(const FloorTransform& w, const Vec2& d) {
+  const Vec3 q = w.rotate(Vec3(d.x(), 0.0, d.y()));
+  return {q.x(), q.z()};
+}
+
+}  // namespace mg

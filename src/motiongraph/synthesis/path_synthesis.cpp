@@ -1,0 +1,192 @@
+#include "motiongraph/synthesis/path_synthesis.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace mg {
+
+Status PathSynthesisSettings::validate() const {
+  if (!(horizon_s > 0.0) || !(commit_s > 0.0) || commit_s > horizon_s) {
+    return Error{"", 0, "path search: need 0 < commit_s <= horizon_s"};
+  }
+  if (!(tag_penalty_m2 >= 0.0)) return Error{"", 0, "path search: the tag penalty must be >= 0"};
+  if (max_expansions < 1 || start_candidates < 1) return Error{"", 0, "path search: budgets must be positive"};
+  return Ok{};
+}
+
+namespace {
+
+class PathCost final : public FrameCost {
+ public:
+  PathCost(const FloorPath& path, const std::vector<TagMask>& segment_masks, double penalty, double max_step)
+      : path_(path), masks_(segment_masks), penalty_(penalty), max_step_(max_step) {}
+  // In m more frames the root moves at most m * max_step and so does the path's point at its
+  // arc length, so the root is at least d - 2 m max_step from it (d: the distance now); and
+  // the path's end cannot be reached sooner than (length - arc) / max_step frames.
+  double remaining_bound(int frames_left, const Vec2& root, double arc_m) const override {
+    if (!(max_step_ > 0.0)) return 0.0;
+    const double d = (root - path_.point_at(arc_m)).norm();
+    const double before_end = (path_.length_m() - arc_m) / max_step_;
+    double bound = 0.0;
+    for (int m = 1; m <= frames_left && m < before_end; ++m) {
+      const double gap = d - 2.0 * m * max_step_;
+      if (gap <= 0.0) break;
+      bound += gap * gap;
+    }
+    return bound;
+  }
+  double cost(int, const Vec2& root, const Vec2&, double arc_m, TagMask tags, bool* goal) const override {
+    double c = (root - path_.point_at(arc_m)).squaredNorm();
+    const TagMask wanted = wanted_at(arc_m);
+    if (wanted != 0 && (tags & wanted) == 0) c += penalty_;
+    if (arc_m >= path_.length_m()) *goal = true;
+    return c;
+  }
+  TagMask wanted_at(double s) const {
+    const auto& segments = path_.segments();
+    for (size_t i = segments.size(); i-- > 0;) {
+      if (s >= segments[i].from_m && s < segments[i].to_m) return masks_[i];
+    }
+    return 0;
+  }
+
+ private:
+  const FloorPath& path_;
+  const std::vector<TagMask>& masks_;
+  double penalty_;
+  double max_step_;
+};
+
+}  // namespace
+
+Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, const FloorPath& path,
+                                            const PathSynthesisSettings& settings) {
+  if (auto status = settings.validate(); !status) return status.error();
+  const MotionGraph& graph = *context.graph;
+  const double fps = context.db->fps;
+  std::vector<TagMask> masks;
+  for (const PathSegment& segment : path.segments()) {
+    auto mask = context.tag_mask(segment.tag);
+    if (!mask) return mask.error();
+    masks.push_back(*mask);
+  }
+  if (settings.start_node >= graph.node_count()) {
+    return Error{"", 0, fmt::format("start node {} does not exist (the graph has {})", settings.start_node,
+                                    graph.node_count())};
+  }
+  const PathCost cost(path, masks, settings.tag_penalty_m2, context.tracks.max_root_step_m);
+  HorizonSettings search;
+  search.horizon_frames = std::max(1, static_cast<int>(std::lround(settings.horizon_s * fps)));
+  search.max_expansions = settings.max_expansions;
+  const int commit_frames = std::max(1, static_cast<int>(std::lround(settings.commit_s * fps)));
+
+  PathSynthesisResult result;
+  result.path_length_m = path.length_m();
+  auto start_state = [&](int node) {
+    SearchState s;
+    s.node = node;
+    s.placement = context.placement_facing(node, path.points().front(), path.direction_at(0.0));
+    return s;
+  };
+
+  // The start node: the cheapest first search among candidates.
+  std::vector<int> candidates;
+  if (settings.start_node >= 0) {
+    candidates.push_back(settings.start_node);
+  } else {
+    const TagMask wanted = cost.wanted_at(0.0);
+    std::vector<int> eligible;
+    for (int n = 0; n < graph.node_count(); ++n) {
+      const auto out = graph.out_edges(n);
+      const int e = static_cast<int>(&out.front() - graph.edges.data());
+      if (wanted == 0 || (context.tracks.tags_of(e).front() & wanted) != 0) eligible.push_back(n);
+    }
+    if (eligible.empty()) {
+      for (int n = 0; n < graph.node_count(); ++n) eligible.push_back(n);
+    }
+    const int count = std::min<int>(settings.start_candidates, static_cast<int>(eligible.size()));
+    for (int i = 0; i < count; ++i) candidates.push_back(eligible[static_cast<size_t>(i) * eligible.size() / count]);
+  }
+  HorizonResult first;
+  for (int node : candidates) {
+    HorizonResult r = horizon_search(graph, context.tracks, start_state(node), cost, search);
+    result.expansions += r.expansions;
+    ++result.searches;
+    result.budget_exhausted += r.budget_exhausted ? 1 : 0;
+    if (r.cost < first.cost || first.edges.empty()) {
+      first = std::move(r);
+      result.walk.start_node = node;
+    }
+  }
+  SearchState state = start_state(result.walk.start_node);
+  result.start = state.placement;
+
+  // Incremental search until the path's end is reached or the walk takes far too long.
+  const long long max_frames = static_cast<long long>((path.length_m() / 0.2 + 10.0) * fps);
+  HorizonResult current = std::move(first);
+  while (true) {
+    long long committed = 0;
+    size_t used = 0;
+    for (int e : current.edges) {
+      state = advance(graph, context.tracks, state, e);
+      result.walk.edges.push_back(e);
+      ++used;
+      committed += graph.edges[e].frame_count;
+      if (state.arc_m >= path.length_m() || committed >= commit_frames) break;
+    }
+    const std::vector<int> hint(current.edges.begin() + static_cast<std::ptrdiff_t>(used), current.edges.end());
+    if (state.arc_m >= path.length_m()) {
+      result.reached_end = true;
+      break;
+    }
+    if (state.frames >= max_frames || current.edges.empty()) break;
+    current = horizon_search(graph, context.tracks, state, cost, search, hint);
+    result.expansions += current.expansions;
+    ++result.searches;
+    result.budget_exhausted += current.budget_exhausted ? 1 : 0;
+  }
+
+  // The motion, cut at the frame whose root completes the path.
+  auto motion = assemble_walk(*context.db, graph, result.walk, result.start, context.assembler.target_skeleton());
+  if (!motion) return motion.error();
+  double arc = 0.0;
+  int end = motion->frame_count;
+  for (int f = 0; f < motion->frame_count; ++f) {
+    const Vec3& p = motion->translations(f)[0];
+    const Vec2 root(p.x(), p.z());
+    if (f > 0) arc += (root - result.roots.back()).norm();
+    result.roots.push_back(root);
+    if (arc >= path.length_m()) {
+      end = f + 1;
+      break;
+    }
+  }
+  result.motion = motion->slice(0, end);
+  result.arc_covered_m = arc;
+  // Tags of the output frames, from the tracks of the edges played.
+  for (int e : result.walk.edges) {
+    for (TagMask t : context.tracks.tags_of(e)) result.frame_tags.push_back(t);
+  }
+  result.frame_tags.push_back(context.frame_tags.empty() ? 0 : context.frame_tags[graph.nodes[result.walk.end_node(graph)].frame]);
+  result.frame_tags.resize(static_cast<size_t>(end));
+  double sum = 0.0, in_segments = 0.0, matched = 0.0;
+  arc = 0.0;
+  for (int f = 0; f < end; ++f) {
+    const double d = path.distance_to(result.roots[f]);
+    sum += d;
+    result.max_deviation_m = std::max(result.max_deviation_m, d);
+    if (f > 0) arc += (result.roots[f] - result.roots[f - 1]).norm();
+    const TagMask wanted = cost.wanted_at(arc);
+    if (wanted != 0) {
+      in_segments += 1.0;
+      matched += (result.frame_tags[f] & wanted) != 0 ? 1.0 : 0.0;
+    }
+  }
+  result.mean_deviation_m = sum / end;
+  result.tag_match = in_segments > 0.0 ? matched / in_segments : 1.0;
+  return result;
+}
+
+}  // namespace mg

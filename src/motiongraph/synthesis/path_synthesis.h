@@ -1,0 +1,51 @@
+// Path synthesis (Kovar et al. 2002, section 5): a walk whose root follows a path on the
+// floor. The cost of a frame is the squared floor distance between the root and the path's
+// point at the same arc length (arc length the root has covered), plus a penalty for each
+// frame not carrying the motion tag the path asks for there; the walk is complete when its
+// root has covered the path's length. The search is incremental: the best walk of about
+// horizon_s seconds by branch and bound (horizon_search.h), keep its first commit_s seconds
+// (whole edges), search again from there.
+//
+// The motion starts at the path's first point facing along it, from the start node whose
+// first search costs least among `start_candidates` nodes spread over the graph (nodes
+// carrying the tag asked for at the start when there is one).
+#pragma once
+
+#include "motiongraph/synthesis/floor_path.h"
+#include "motiongraph/synthesis/horizon_search.h"
+#include "motiongraph/synthesis/synthesis_context.h"
+
+namespace mg {
+
+struct PathSynthesisSettings {
+  double horizon_s = 3.0;
+  double commit_s = 1.0;
+  double tag_penalty_m2 = 1.0;         // per frame without the tag asked for
+  long long max_expansions = 20000;    // per search
+  int start_candidates = 24;
+  int start_node = -1;                 // >= 0: start there instead
+
+  Status validate() const;
+};
+
+struct PathSynthesisResult {
+  Walk walk;
+  FloorTransform start;
+  Motion motion;                      // trimmed at the frame that completes the path
+  std::vector<Vec2> roots;            // the motion's root floor positions
+  std::vector<TagMask> frame_tags;    // tags of each frame of motion
+  double path_length_m = 0.0;
+  double arc_covered_m = 0.0;
+  double mean_deviation_m = 0.0;      // root's distance to the nearest point of the path
+  double max_deviation_m = 0.0;
+  double tag_match = 1.0;             // fraction of frames inside a segment that carry its tag
+  bool reached_end = false;
+  int searches = 0;
+  long long expansions = 0;
+  int budget_exhausted = 0;           // searches that ran out of budget
+};
+
+Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, const FloorPath& path,
+                                            const PathSynthesisSettings& settings = {});
+
+}  // namespace mg

@@ -1,0 +1,44 @@
+#include "motiongraph/synthesis/synthesis_context.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+namespace mg {
+
+Result<SynthesisContext> make_synthesis_context(const MotionDatabase& db, const MotionGraph& graph,
+                                                int target_skeleton) {
+  if (graph.node_count() == 0 || db.clips.empty()) return Error{"", 0, "the graph is empty"};
+  if (target_skeleton < 0) target_skeleton = db.clips.front().skeleton;
+  auto assembler = MotionAssembler::create(db, graph, target_skeleton);
+  if (!assembler) return assembler.error();
+  SynthesisContext context{&db, &graph, std::move(*assembler), db.frame_tags(), {}};
+  const std::vector<Vec3> axes = learn_forward_axes(db);
+  context.tracks = compute_edge_tracks(context.assembler, graph, context.frame_tags, axes[target_skeleton]);
+  return context;
+}
+
+FloorTransform SynthesisContext::placement_facing(int node, const Vec2& at, const Vec2& direction) const {
+  const int frame = graph->nodes[node].frame;
+  const Vec3 root = assembler.root_position(frame, {});
+  Vec2 facing = facing_on_floor(assembler.root_rotation(frame, {}), tracks.forward_axis);
+  if (facing.isZero()) facing = Vec2(0.0, -1.0);
+  // FloorTransform turns the angle atan2(z, x) of a vector by -yaw.
+  const double yaw = std::atan2(facing.y(), facing.x()) - std::atan2(direction.y(), direction.x());
+  FloorTransform w{yaw, 0.0, 0.0};
+  const Vec3 turned = w.apply(Vec3(root.x(), 0.0, root.z()));
+  w.x_m = at.x() - turned.x();
+  w.z_m = at.y() - turned.z();
+  return w;
+}
+
+Result<TagMask> SynthesisContext::tag_mask(const std::string& name) const {
+  for (size_t t = 0; t < db->tag_names.size(); ++t) {
+    if (db->tag_names[t] == name) return TagMask{1} << t;
+  }
+  return Error{"", 0, fmt::format("'{}' is not a motion tag of this graph (its tags: {})", name,
+                                  db->tag_names.empty() ? "none" : fmt::format("{}", fmt::join(db->tag_names, ", ")))};
+}
+
+}  // namespace mg

@@ -1,0 +1,31 @@
+// A walk through a motion graph: a start node and the edges taken from it, each leaving the
+// node the previous one entered (motion_graph.h says what every edge plays).
+#pragma once
+
+#include <vector>
+
+#include "motiongraph/core/error.h"
+#include "motiongraph/graph/motion_graph.h"
+
+namespace mg {
+
+struct Walk {
+  int start_node = 0;
+  std::vector<int> edges;  // indices into MotionGraph::edges
+
+  // The node the walk ends at (start_node when it has no edges).
+  int end_node(const MotionGraph& graph) const {
+    return edges.empty() ? start_node : graph.edges[edges.back()].to_node;
+  }
+  // Frames played: the sum of the edges' frame_count.
+  long long frame_count(const MotionGraph& graph) const {
+    long long n = 0;
+    for (int e : edges) n += graph.edges[e].frame_count;
+    return n;
+  }
+};
+
+// Fails unless start_node is a node and every edge exists and leaves the node the walk is at.
+Status check_walk(const MotionGraph& graph, const Walk& walk);
+
+}  // namespace mg
