@@ -275,9 +275,7 @@ int run_build(BuildOptions o) {
   timings["distance"] = watch.lap();
 
   // 4. Transitions.
-  auto selection = select_transitions(*features, *candidates, o.transitions);
-  if (!selection) return fail(selection.error());
-  // Bridges between motion types that no transition below the threshold joins.
+  // Motion types: the tags whose regions must stay connected, with their own thresholds.
   const std::vector<TagMask> frame_tags = db->frame_tags();
   TagMask connected = 0;
   if (o.connect_tags.empty()) {
@@ -291,6 +289,9 @@ int run_build(BuildOptions o) {
       connected |= TagMask{1} << (it - db->tag_names.begin());
     }
   }
+  auto selection = select_transitions(*features, *candidates, o.transitions, frame_tags, o.ignore_tags ? 0 : connected);
+  if (!selection) return fail(selection.error());
+  // Bridges between motion types that no transition below the threshold joins.
   BridgeSettings bridge_settings = o.bridges;
   bridge_settings.locality_radius = selection->locality_radius;
   bridge_settings.tags = connected;
@@ -301,6 +302,10 @@ int run_build(BuildOptions o) {
       if (connected >> t & 1) cores[t] = tag_core_frames(*db, selection->transitions, frame_tags, features->window, static_cast<int>(t));
     }
     bridges = select_bridges(candidates->minima, selection->transitions, frame_tags, cores, features->window, bridge_settings);
+  }
+  json tag_thresholds_json = json::array();
+  for (const TagThreshold& t : selection->tag_thresholds) {
+    tag_thresholds_json.push_back({{"tag", db->tag_names[t.tag]}, {"candidates", t.candidates}, {"threshold", t.threshold}});
   }
   json bridges_json = json::array();
   for (Transition& t : bridges) {
@@ -347,6 +352,7 @@ int run_build(BuildOptions o) {
       {"threshold", selection->threshold},
       {"threshold_quantile", selection->threshold_quantile},
       {"locality_radius", selection->locality_radius},
+      {"tag_thresholds", tag_thresholds_json},
       {"counts",
        {{"pairs", static_cast<long long>(features->frames) * features->frames},
         {"finite_pairs", candidates->histogram.total()},
@@ -365,6 +371,7 @@ int run_build(BuildOptions o) {
                              {"threshold", o.threshold},
                              {"threshold_quantile", o.quantile},
                              {"locality_radius", selection->locality_radius},
+                             {"per_tag_thresholds", o.transitions.per_tag_thresholds},
                              {"fps", db->fps}})
                            .dump();
   file.input_key = key;
@@ -449,6 +456,9 @@ Command add_build_command(CLI::App& app) {
   sub->add_option("--threshold", o->threshold, "Absolute distance threshold (overrides --threshold-quantile)");
   sub->add_option("--threshold-quantile", o->quantile, "Threshold as the fraction of all defined pairs below it")
       ->capture_default_str();
+  sub->add_flag("!--no-tag-thresholds", o->transitions.per_tag_thresholds,
+                "One threshold for everything: no motion type gets its own (by default each keeps the same share of "
+                "its own candidates as the database keeps of all)");
   sub->add_option("--locality", o->transitions.locality_radius,
                   "Keep the best transition within this many frames (-1: half the window)")
       ->capture_default_str();

@@ -17,8 +17,45 @@ Status TransitionSettings::validate() const {
   return Ok{};
 }
 
+namespace {
+
+// Per tag: which candidates belong to it (all 2k frames of both windows carry it) and its own
+// threshold, the D at the rank where the tag keeps the share `share` of its candidates.
+std::vector<TagThreshold> tag_thresholds(const CandidateSearch& candidates, std::span<const TagMask> frame_tags,
+                                         TagMask tags, int window, double global, double share,
+                                         std::vector<TagMask>& membership) {
+  std::vector<TagThreshold> result;
+  membership.assign(candidates.minima.size(), 0);
+  const int frames = static_cast<int>(frame_tags.size());
+  std::vector<int> count(static_cast<size_t>(frames) + 1);
+  for (int t = 0; t < 64; ++t) {
+    if ((tags >> t & 1) == 0) continue;
+    for (int f = 0; f < frames; ++f) count[f + 1] = count[f] + static_cast<int>(frame_tags[f] >> t & 1);
+    auto all_carry = [&](int first, int last) {
+      return first >= 0 && last < frames && count[last + 1] - count[first] == last - first + 1;
+    };
+    std::vector<float> d;
+    for (size_t i = 0; i < candidates.minima.size(); ++i) {
+      const Transition& c = candidates.minima[i];
+      if (all_carry(c.from_frame, c.from_frame + window - 1) && all_carry(c.to_frame - window + 1, c.to_frame)) {
+        membership[i] |= TagMask{1} << t;
+        d.push_back(c.distance);
+      }
+    }
+    if (d.empty()) continue;
+    std::sort(d.begin(), d.end());
+    const size_t keep = static_cast<size_t>(std::ceil(share * static_cast<double>(d.size())));
+    const double own = keep == 0 ? 0.0 : d[std::min(keep, d.size()) - 1];
+    result.push_back({t, static_cast<int>(d.size()), std::max(own, global)});
+  }
+  return result;
+}
+
+}  // namespace
+
 Result<TransitionSelection> select_transitions(const FrameFeatures& features, const CandidateSearch& candidates,
-                                               const TransitionSettings& settings) {
+                                               const TransitionSettings& settings, std::span<const TagMask> frame_tags,
+                                               TagMask tags) {
   if (auto s = settings.validate(); !s) return s.error();
   TransitionSelection selection;
   if (settings.threshold >= 0.0) {
@@ -29,9 +66,22 @@ Result<TransitionSelection> select_transitions(const FrameFeatures& features, co
   selection.threshold_quantile = candidates.histogram.fraction_below(selection.threshold);
   selection.locality_radius = settings.locality_radius < 0 ? features.window / 2 : settings.locality_radius;
 
+  std::vector<TagMask> membership;
+  if (settings.per_tag_thresholds && !frame_tags.empty() && tags != 0 && !candidates.minima.empty()) {
+    const auto global_count = std::count_if(candidates.minima.begin(), candidates.minima.end(),
+                                            [&](const Transition& t) { return t.distance <= selection.threshold; });
+    const double share = static_cast<double>(global_count) / static_cast<double>(candidates.minima.size());
+    selection.tag_thresholds =
+        tag_thresholds(candidates, frame_tags, tags, features.window, selection.threshold, share, membership);
+  }
   std::vector<Transition> below;
-  for (const Transition& t : candidates.minima) {
-    if (t.distance <= selection.threshold) below.push_back(t);
+  for (size_t i = 0; i < candidates.minima.size(); ++i) {
+    const Transition& t = candidates.minima[i];
+    bool keep = t.distance <= selection.threshold;
+    for (const TagThreshold& own : selection.tag_thresholds) {
+      if (!membership.empty() && (membership[i] >> own.tag & 1) && t.distance <= own.threshold) keep = true;
+    }
+    if (keep) below.push_back(t);
   }
   selection.candidates_below_threshold = static_cast<int>(below.size());
   // Best first; a candidate is kept unless a kept one lies within the radius in a and in b.

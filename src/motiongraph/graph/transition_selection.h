@@ -2,11 +2,21 @@
 // below a threshold, given in absolute units of D or as a quantile of all finite D; within a
 // locality radius keep only the best (lowest D) candidate; compute each kept transition's
 // floor alignment. Cheap: runs on the cached candidates, not on the distance matrix.
+//
+// Thresholds per motion type. Faster motion has larger distances: on subject 16 the 2 % quantile
+// of D among run-run pairs is four times the quantile among all pairs, so one threshold keeps
+// walking richly connected and running barely at all. With per-tag thresholds, each tag t of
+// `tags` keeps the same share of its own candidates (local minima whose 2k frames all carry t)
+// as the database keeps of all candidates under the global threshold: t's threshold is the D at
+// that rank among its candidates, and a candidate of t is kept below it (or below the global
+// threshold, whichever is larger).
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "motiongraph/core/error.h"
+#include "motiongraph/database/motion_database.h"
 #include "motiongraph/graph/candidates.h"
 #include "motiongraph/metric/frame_features.h"
 
@@ -16,8 +26,15 @@ struct TransitionSettings {
   double threshold = -1.0;         // absolute D; < 0: use the quantile
   double threshold_quantile = 0.02;  // fraction of all finite D below the threshold
   int locality_radius = -1;        // frames (both a and b); -1 = half the window
+  bool per_tag_thresholds = true;  // see above; needs frame tags
 
   Status validate() const;
+};
+
+struct TagThreshold {
+  int tag = 0;
+  int candidates = 0;     // local minima belonging to the tag
+  double threshold = 0.0; // the tag's own threshold (never below the global one)
 };
 
 struct TransitionSelection {
@@ -25,10 +42,14 @@ struct TransitionSelection {
   double threshold_quantile = 0.0; // the fraction of finite D below it
   int locality_radius = 0;
   int candidates_below_threshold = 0;
+  std::vector<TagThreshold> tag_thresholds;  // for the tags that have candidates
   std::vector<Transition> transitions;  // with alignment, sorted by (from_frame, to_frame)
 };
 
+// frame_tags: one mask per frame (or empty: no per-tag thresholds); tags: the tags that get
+// their own threshold.
 Result<TransitionSelection> select_transitions(const FrameFeatures& features, const CandidateSearch& candidates,
-                                               const TransitionSettings& settings);
+                                               const TransitionSettings& settings,
+                                               std::span<const TagMask> frame_tags = {}, TagMask tags = 0);
 
 }  // namespace mg

@@ -28,13 +28,23 @@ Result<FloorPath> FloorPath::create(std::vector<Vec2> points, std::vector<PathSe
     if (s.tag.empty()) return Error{"", 0, "a segment needs a tag"};
   }
   path.segments_ = std::move(segments);
+  const int buckets = static_cast<int>(path.length_m() / kBucket) + 1;
+  int segment = 0;
+  for (int b = 0; b < buckets; ++b) {
+    while (segment + 2 < static_cast<int>(path.points_.size()) && path.arc_[segment + 1] <= b * kBucket) ++segment;
+    path.bucket_segment_.push_back(segment);
+  }
   return path;
 }
 
 int FloorPath::segment_index(double s) const {
-  const auto it = std::upper_bound(arc_.begin(), arc_.end(), s);
-  const int i = static_cast<int>(it - arc_.begin()) - 1;
-  return std::clamp(i, 0, static_cast<int>(points_.size()) - 2);
+  // s is clamped to [0, length]: the segment i with arc_[i] <= s < arc_[i + 1] (the last one at
+  // the end), starting from its bucket's first segment.
+  const int last = static_cast<int>(points_.size()) - 2;
+  const size_t b = std::min(bucket_segment_.size() - 1, static_cast<size_t>(s / kBucket));
+  int i = bucket_segment_[b];
+  while (i < last && arc_[i + 1] <= s) ++i;
+  return i;
 }
 
 Vec2 FloorPath::point_at(double s) const {

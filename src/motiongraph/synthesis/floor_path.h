@@ -48,6 +48,10 @@ class FloorPath {
   int segment_index(double s) const;
   std::vector<Vec2> points_;   // consecutive duplicates removed
   std::vector<double> arc_;    // arc length at each point
+  // For arc lengths in [b * kBucket, (b + 1) * kBucket): the first segment to look at, so that
+  // point_at is O(1) (searches evaluate it for every frame they try).
+  static constexpr double kBucket = 0.05;
+  std::vector<int> bucket_segment_;
   std::vector<PathSegment> segments_;
 };
 
