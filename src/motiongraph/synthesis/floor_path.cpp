@@ -151,7 +151,7 @@ Result<FloorPath> make_shape(std::string_view spec) {
     points.push_back(last);
     for (int i = 1; i <= 2 * n && covered < size; ++i) {
       const double t = size * i / n;
-      const Vec2 p(amplitude * std::sin(2 * kPi * t / wavelength), -t);
+      const Vec2 p(amplitude * (1.0 - std::cos(2 * kPi * t / wavelength)), -t);
       covered += (p - last).norm();
       points.push_back(p);
       last = p;

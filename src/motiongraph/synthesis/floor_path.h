@@ -8,7 +8,8 @@
 //   line:L      a straight line L metres long
 //   circle:R    one turn of a circle of radius R, turning right (clockwise seen from above)
 //   figure8:R   two circles of radius R, right then left, meeting at the origin
-//   s-curve:L   L metres of a sine wave with wavelength L/2 and amplitude L/20
+//   s-curve:L   L metres of a wave x = A (1 - cos(2 pi d / (L/2))) along d north, A = L/20:
+//               S bends right and left, starting straight north
 #pragma once
 
 #include <string>

@@ -118,9 +118,10 @@ HorizonResult horizon_search(const MotionGraph& graph, const EdgeTracks& tracks,
   };
 
   expand(start, 0.0, 0);
+  long long steps = 0;
   while (!stack.empty()) {
     if (result.expansions >= settings.max_expansions ||
-        (settings.time_budget_s > 0.0 && (result.expansions & 63) == 0 && Clock::now() >= deadline)) {
+        (settings.time_budget_s > 0.0 && (++steps & 15) == 0 && Clock::now() >= deadline)) {
       result.budget_exhausted = true;
       break;
     }

@@ -1,0 +1,127 @@
+#include "motiongraph/synthesis/assembler.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include "motiongraph/motion/forward_kinematics.h"
+#include "synthesis/subject16_graph.h"
+
+namespace mg {
+namespace {
+
+TEST(BlendWeight, LeavesSmoothlyAndEndsOnTheArrival) {
+  for (int k : {2, 5, 10, 40}) {
+    EXPECT_DOUBLE_EQ(blend_weight(k - 1, k), 0.0);
+    double previous = 1.0;
+    for (int p = 0; p < k; ++p) {
+      const double a = blend_weight(p, k);
+      EXPECT_GE(a, 0.0);
+      EXPECT_LE(a, previous);  // monotone: we only ever move towards the arrival
+      previous = a;
+    }
+  }
+}
+
+// The largest world-space step of any joint between consecutive frames of a motion.
+double largest_joint_step(const Skeleton& skeleton, const Motion& motion) {
+  const std::vector<Vec3> p = world_positions(skeleton, motion);
+  const int joints = skeleton.joint_count();
+  double largest = 0.0;
+  for (int f = 1; f < motion.frame_count; ++f) {
+    for (int j = 0; j < joints; ++j) {
+      largest = std::max(largest, (p[static_cast<size_t>(f) * joints + j] - p[static_cast<size_t>(f - 1) * joints + j]).norm());
+    }
+  }
+  return largest;
+}
+
+TEST(Assembler, AClipPieceIsTheDatabaseItself) {
+  const auto& s = test::subject16();
+  const MotionGraph& graph = s.file.graph;
+  const MotionDatabase& db = s.file.database;
+  int checked = 0;
+  for (int e = 0; e < graph.edge_count() && checked < 20; ++e) {
+    const GraphEdge& edge = graph.edges[e];
+    if (edge.transition) continue;
+    ++checked;
+    auto motion = assemble_walk(db, graph, Walk{edge.from_node, {e}});
+    ASSERT_TRUE(motion.ok()) << motion.error().to_string();
+    ASSERT_EQ(motion->frame_count, edge.frame_count + 1);
+    const int first = graph.nodes[edge.from_node].frame;
+    const DatabaseClip& clip = db.clips[db.clip_of(first)];
+    for (int p = 0; p <= edge.frame_count; ++p) {
+      const int local = first + p - clip.first_frame;
+      for (int j = 0; j < motion->joint_count; ++j) {
+        EXPECT_LT(motion->rotations(p)[j].angularDistance(clip.motion.rotations(local)[j]), 1e-12);
+      }
+      EXPECT_LT((motion->translations(p)[0] - clip.motion.translations(local)[0]).norm(), 1e-12);
+    }
+  }
+  EXPECT_EQ(checked, 20);
+}
+
+TEST(Assembler, RandomWalksHaveNoPopsAtTransitions) {
+  const auto& s = test::subject16();
+  const MotionGraph& graph = s.file.graph;
+  const MotionDatabase& db = s.file.database;
+  const Skeleton& skeleton = s.context.assembler.skeleton();
+  double data_step = 0.0;
+  for (const DatabaseClip& clip : db.clips) data_step = std::max(data_step, largest_joint_step(skeleton, clip.motion));
+  std::mt19937 rng(3);
+  int transitions = 0;
+  for (int w = 0; w < 30; ++w) {
+    Walk walk{static_cast<int>(rng() % graph.node_count()), {}};
+    int node = walk.start_node;
+    for (int step = 0; step < 60; ++step) {
+      const auto out = graph.out_edges(node);
+      const GraphEdge& edge = out[rng() % out.size()];
+      walk.edges.push_back(static_cast<int>(&edge - graph.edges.data()));
+      transitions += edge.transition ? 1 : 0;
+      node = edge.to_node;
+    }
+    const FloorTransform start{0.3 * w, 2.0 * w, -1.0 * w};
+    auto motion = assemble_walk(db, graph, walk, start);
+    ASSERT_TRUE(motion.ok()) << motion.error().to_string();
+    EXPECT_EQ(motion->frame_count, walk.frame_count(graph) + 1);
+    // No joint moves further between two frames than the capture itself ever does (with a
+    // little room for the blend of two differently paced windows).
+    EXPECT_LE(largest_joint_step(skeleton, *motion), 1.25 * data_step) << "walk " << w;
+  }
+  EXPECT_GT(transitions, 100);
+}
+
+TEST(Assembler, TheStartPlacementMovesTheWholeWalkRigidly) {
+  const auto& s = test::subject16();
+  const MotionGraph& graph = s.file.graph;
+  Walk walk{0, {}};
+  for (int node = 0; walk.edges.size() < 40;) {
+    const auto out = graph.out_edges(node);
+    const GraphEdge& edge = out.back();  // prefer transitions
+    walk.edges.push_back(static_cast<int>(&edge - graph.edges.data()));
+    node = edge.to_node;
+  }
+  const FloorTransform start{1.1, -30.0, 12.0};
+  auto a = assemble_walk(s.file.database, graph, walk);
+  auto b = assemble_walk(s.file.database, graph, walk, start);
+  ASSERT_TRUE(a.ok() && b.ok());
+  const Skeleton& skeleton = s.context.assembler.skeleton();
+  const std::vector<Vec3> pa = world_positions(skeleton, *a), pb = world_positions(skeleton, *b);
+  ASSERT_EQ(pa.size(), pb.size());
+  for (size_t i = 0; i < pa.size(); ++i) EXPECT_LT((start.apply(pa[i]) - pb[i]).norm(), 1e-6);  // a micrometre
+}
+
+TEST(Assembler, RejectsAWalkThatDoesNotFollowTheGraph) {
+  const auto& s = test::subject16();
+  const MotionGraph& graph = s.file.graph;
+  int wrong = 0;
+  while (graph.edges[wrong].from_node == 0) ++wrong;
+  auto motion = assemble_walk(s.file.database, graph, Walk{0, {wrong}});
+  ASSERT_FALSE(motion.ok());
+  EXPECT_NE(motion.error().message.find("leaves node"), std::string::npos);
+  EXPECT_FALSE(assemble_walk(s.file.database, graph, Walk{graph.node_count(), {}}).ok());
+}
+
+}  // namespace
+}  // namespace mg

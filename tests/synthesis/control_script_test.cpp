@@ -1,0 +1,52 @@
+#include "motiongraph/synthesis/control_script.h"
+
+#include <gtest/gtest.h>
+
+#include "motiongraph/synthesis/controller.h"
+#include "test_data.h"
+
+namespace mg {
+namespace {
+
+TEST(ControlScript, LaterControlsKeepWhatTheyDoNotSay) {
+  auto script = parse_control_script(R"({"duration_s": 12, "controls": [
+      {"at_s": 0, "heading": "north", "tag": "walk"},
+      {"at_s": 4, "heading_deg": 90},
+      {"at_s": 8, "tag": "run"},
+      {"at_s": 10, "heading": "west", "tag": "any"}]})", "c.json");
+  ASSERT_TRUE(script.ok()) << script.error().to_string();
+  EXPECT_DOUBLE_EQ(script->duration_s, 12.0);
+  EXPECT_EQ(script->at(3.9).tag, "walk");
+  EXPECT_DOUBLE_EQ(script->at(3.9).bearing_deg, 0.0);
+  EXPECT_DOUBLE_EQ(script->at(4.0).bearing_deg, 90.0);
+  EXPECT_EQ(script->at(4.0).tag, "walk");
+  EXPECT_EQ(script->at(9.0).tag, "run");
+  EXPECT_DOUBLE_EQ(script->at(9.0).bearing_deg, 90.0);
+  EXPECT_EQ(script->at(11.0).tag, "");
+  EXPECT_DOUBLE_EQ(script->at(11.0).bearing_deg, 270.0);
+}
+
+TEST(ControlScript, BearingsAreCompassBearings) {
+  EXPECT_LT((bearing_direction(0.0) - Vec2(0.0, -1.0)).norm(), 1e-12);   // north: -z
+  EXPECT_LT((bearing_direction(90.0) - Vec2(1.0, 0.0)).norm(), 1e-12);   // east: +x
+  for (double b : {0.0, 45.0, 135.0, 200.0, 359.0}) EXPECT_NEAR(direction_bearing(bearing_direction(b)), b, 1e-9);
+}
+
+TEST(ControlScript, BadInputIsOneClearError) {
+  const std::vector<test::ErrorCase> cases = {
+      {"JSON syntax", "{\"controls\": [\n{\"at_s\": 0,}\n]}", 2, "not valid JSON"},
+      {"no controls", "{\"controls\": []}", 0, "non-empty \"controls\""},
+      {"first not at 0", "{\"controls\": [{\"at_s\": 1}]}", 0, "start at 0"},
+      {"time going back", "{\"controls\": [{\"at_s\": 0}, {\"at_s\": 3}, {\"at_s\": 2}]}", 0, "controls[2]"},
+      {"bad heading", "{\"controls\": [{\"at_s\": 0, \"heading\": \"up\"}]}", 0, "north, east, south or west"},
+      {"bad duration", "{\"duration_s\": -1, \"controls\": [{\"at_s\": 0}]}", 0, "duration_s"},
+  };
+  for (const auto& c : cases) {
+    auto script = parse_control_script(c.text, "c.json");
+    ASSERT_FALSE(script.ok()) << c.rule;
+    test::expect_error_matches(script.error(), c);
+  }
+}
+
+}  // namespace
+}  // namespace mg

@@ -1,0 +1,90 @@
+#include "motiongraph/synthesis/floor_path.h"
+
+#include <gtest/gtest.h>
+
+#include <numbers>
+#include <random>
+
+#include "test_data.h"
+
+namespace mg {
+namespace {
+
+// Point at arc length s by walking the polyline from its start.
+Vec2 brute_point_at(const std::vector<Vec2>& points, double s) {
+  for (size_t i = 0; i + 1 < points.size(); ++i) {
+    const double len = (points[i + 1] - points[i]).norm();
+    if (s <= len || i + 2 == points.size()) return points[i] + std::clamp(s / len, 0.0, 1.0) * (points[i + 1] - points[i]);
+    s -= len;
+  }
+  return points.back();
+}
+
+TEST(FloorPath, PointAtMatchesWalkingThePolyline) {
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> step(-1.5, 1.5);
+  for (int trial = 0; trial < 20; ++trial) {
+    std::vector<Vec2> points{{0.0, 0.0}};
+    for (int i = 0; i < 30; ++i) points.push_back(points.back() + Vec2(step(rng), step(rng)));
+    auto path = FloorPath::create(points);
+    ASSERT_TRUE(path.ok());
+    std::uniform_real_distribution<double> s(-1.0, path->length_m() + 1.0);
+    for (int i = 0; i < 500; ++i) {
+      const double at = s(rng);
+      EXPECT_LT((path->point_at(at) - brute_point_at(path->points(), std::clamp(at, 0.0, path->length_m()))).norm(), 1e-9);
+    }
+  }
+}
+
+TEST(FloorPath, ShapesHaveTheirLengthsAndStartNorth) {
+  const double pi = std::numbers::pi;
+  const std::vector<std::pair<std::string, double>> shapes = {
+      {"line:20", 20.0}, {"circle:5", 2 * pi * 5}, {"figure8:4", 4 * pi * 4}, {"s-curve:100", 100.0}};
+  for (const auto& [spec, length] : shapes) {
+    auto path = make_shape(spec);
+    ASSERT_TRUE(path.ok()) << spec;
+    EXPECT_NEAR(path->length_m(), length, 0.01 * length) << spec;
+    EXPECT_LT(path->points().front().norm(), 1e-12) << spec;
+    EXPECT_LT((path->direction_at(0.0) - Vec2(0.0, -1.0)).norm(), 0.1) << spec;
+  }
+  // A circle turns right (east) and comes back; a figure 8 passes the origin halfway.
+  auto circle = make_shape("circle:5");
+  EXPECT_GT(circle->point_at(circle->length_m() / 4).x(), 4.0);
+  EXPECT_LT(circle->points().back().norm(), 1e-9);
+  auto eight = make_shape("figure8:4");
+  EXPECT_LT(eight->point_at(eight->length_m() / 2).norm(), 1e-9);
+  EXPECT_LT(eight->point_at(3 * eight->length_m() / 4).x(), -7.0);
+}
+
+TEST(FloorPath, DistanceAndSegments) {
+  auto path = FloorPath::create({{0.0, 0.0}, {10.0, 0.0}}, {{0.0, 5.0, "walk"}, {4.0, 10.0, "run"}});
+  ASSERT_TRUE(path.ok());
+  EXPECT_NEAR(path->distance_to(Vec2(3.0, 2.0)), 2.0, 1e-12);
+  EXPECT_NEAR(path->distance_to(Vec2(-3.0, 4.0)), 5.0, 1e-12);
+  EXPECT_EQ(path->tag_at(1.0), "walk");
+  EXPECT_EQ(path->tag_at(4.5), "run");  // the later segment wins where they overlap
+  EXPECT_EQ(path->tag_at(10.5), "");
+}
+
+TEST(FloorPath, BadInputIsOneClearError) {
+  const std::vector<test::ErrorCase> cases = {
+      {"JSON syntax", "{\"points\": [[0, 0],\n [1, 2]\n", 3, "not valid JSON"},
+      {"points missing", "{\"pts\": []}", 0, "\"points\""},
+      {"point not a pair", "{\"points\": [[0, 0], [1]]}", 0, "points[1]"},
+      {"one point", "{\"points\": [[0, 0], [0, 0]]}", 0, "two distinct points"},
+      {"segment backwards", "{\"points\": [[0, 0], [1, 0]], \"segments\": [{\"from_m\": 2, \"to_m\": 1, \"tag\": \"run\"}]}",
+       0, "from_m < to_m"},
+      {"segment without tag", "{\"points\": [[0, 0], [1, 0]], \"segments\": [{\"from_m\": 0, \"to_m\": 1}]}", 0,
+       "segments[0]"},
+  };
+  for (const auto& c : cases) {
+    auto path = parse_path_json(c.text, "p.json");
+    ASSERT_FALSE(path.ok()) << c.rule;
+    EXPECT_EQ(path.error().file, "p.json") << c.rule;
+    test::expect_error_matches(path.error(), c);
+  }
+  for (const char* spec : {"line", "line:-3", "circle:abc", "spiral:4", "line:5x"}) EXPECT_FALSE(make_shape(spec).ok()) << spec;
+}
+
+}  // namespace
+}  // namespace mg

@@ -1,0 +1,77 @@
+#include "motiongraph/synthesis/path_synthesis.h"
+
+#include <gtest/gtest.h>
+
+#include "motiongraph/motion/forward_kinematics.h"
+#include "synthesis/subject16_graph.h"
+
+namespace mg {
+namespace {
+
+TEST(PathSynthesis, FollowsTheBuiltInShapes) {
+  const auto& s = test::subject16();
+  for (const char* spec : {"line:20", "circle:5", "figure8:4", "s-curve:100"}) {
+    auto path = make_shape(spec);
+    ASSERT_TRUE(path.ok());
+    auto result = synthesize_path(s.context, *path);
+    ASSERT_TRUE(result.ok()) << result.error().to_string();
+    EXPECT_TRUE(result->reached_end) << spec;
+    EXPECT_LT(result->mean_deviation_m, 0.15) << spec;
+    EXPECT_GE(result->arc_covered_m, path->length_m()) << spec;
+    // The deviation is measured again here, from the motion's own root, against the path.
+    double sum = 0.0;
+    for (int f = 0; f < result->motion.frame_count; ++f) {
+      const Vec3& root = result->motion.translations(f)[0];
+      sum += path->distance_to(Vec2(root.x(), root.z()));
+    }
+    EXPECT_NEAR(sum / result->motion.frame_count, result->mean_deviation_m, 1e-9) << spec;
+  }
+}
+
+TEST(PathSynthesis, StartsAtThePathsStartFacingAlongIt) {
+  const auto& s = test::subject16();
+  auto path = FloorPath::create({{3.0, 4.0}, {13.0, 4.0}});  // heading east (+x)
+  ASSERT_TRUE(path.ok());
+  auto result = synthesize_path(s.context, *path);
+  ASSERT_TRUE(result.ok());
+  const Vec3& root = result->motion.translations(0)[0];
+  EXPECT_LT((Vec2(root.x(), root.z()) - Vec2(3.0, 4.0)).norm(), 1e-9);
+  const Vec2 facing = facing_on_floor(result->motion.rotations(0)[0], s.context.tracks.forward_axis);
+  EXPECT_GT(facing.dot(Vec2(1.0, 0.0)), 0.999);
+}
+
+TEST(PathSynthesis, WalksThenRunsWhereTheSegmentsAsk) {
+  const auto& s = test::subject16();
+  auto shape = make_shape("figure8:4");
+  ASSERT_TRUE(shape.ok());
+  const double half = shape->length_m() / 2;
+  auto path = FloorPath::create(shape->points(), {{0.0, half, "walk"}, {half, shape->length_m() + 1.0, "run"}});
+  ASSERT_TRUE(path.ok());
+  auto result = synthesize_path(s.context, *path);
+  ASSERT_TRUE(result.ok()) << result.error().to_string();
+  EXPECT_TRUE(result->reached_end);
+  EXPECT_GT(result->tag_match, 0.85);
+  // Running covers the second half faster than walking covered the first.
+  int half_frame = 0;
+  double arc = 0.0;
+  for (size_t f = 1; f < result->roots.size() && arc < half; ++f) {
+    arc += (result->roots[f] - result->roots[f - 1]).norm();
+    half_frame = static_cast<int>(f);
+  }
+  EXPECT_LT(result->motion.frame_count - half_frame, half_frame);
+}
+
+TEST(PathSynthesis, UnknownTagsAndBadSettingsAreErrors) {
+  const auto& s = test::subject16();
+  auto path = FloorPath::create({{0.0, 0.0}, {5.0, 0.0}}, {{0.0, 5.0, "swim"}});
+  ASSERT_TRUE(path.ok());
+  auto result = synthesize_path(s.context, *path);
+  ASSERT_FALSE(result.ok());
+  EXPECT_NE(result.error().message.find("'swim' is not a motion tag"), std::string::npos);
+  PathSynthesisSettings bad;
+  bad.commit_s = 5.0;  // longer than the horizon
+  EXPECT_FALSE(bad.validate().ok());
+}
+
+}  // namespace
+}  // namespace mg
