@@ -42,6 +42,17 @@ echo "== the motion graph of subject 16 (distance stage cached in out/cache)"
   --report out/subject16-report.json --matrix-png out/subject16-distance.png
 "$bin" inspect out/subject16.mgraph | tee out/subject16-graph.txt
 
+echo "== new motion: walking then running a figure 8 (4 m loops), a walk, a steered run"
+"$bin" path out/subject16.mgraph --shape figure8:4 --segment walk:0-25 --segment run:25-51 \
+  -o out/figure8-walk-run.bvh --report out/figure8-walk-run.json
+cat >out/steer-demo.json <<'JSON'
+{"duration_s": 16, "controls": [{"at_s": 0, "heading": "north", "tag": "walk"},
+  {"at_s": 4, "heading": "east"}, {"at_s": 8, "heading": "south"}, {"at_s": 11, "tag": "run"}]}
+JSON
+"$bin" steer out/subject16.mgraph --script out/steer-demo.json -o out/steer-demo.bvh --report out/steer-demo-report.json
+"$bin" walk out/subject16.mgraph --from 0 --to 40 --cost quality --min-frames 300 -o out/walk-demo.bvh
+
 echo "== done: $(ls out/bvh | wc -l) BVH files in out/bvh (open them in Blender: File > Import > BVH),"
 echo "   JSON world positions in out/json, summary in out/summary.txt,"
-echo "   the graph in out/subject16.mgraph with its report and distance picture (out/subject16-*)"
+echo "   the graph in out/subject16.mgraph with its report and distance picture (out/subject16-*),"
+echo "   synthesized motion: out/figure8-walk-run.bvh, out/steer-demo.bvh, out/walk-demo.bvh"

@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# motiongraph walk / path / steer as a user runs them on the bundled subject-16 graph: the
+# one-command walk-then-run figure 8, reports that agree with the motion written, and bad
+# input as one line naming the file, a non-zero exit and no output file.
+# Usage: MOTIONGRAPH=binary cli_synthesis_test.sh DATA_DIR
+set -euo pipefail
+data=$1
+bin=${MOTIONGRAPH:?set MOTIONGRAPH to the motiongraph binary}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+"$bin" build "$data/cmu/16" -o "$work/g.mgraph" --no-cache -q
+"$bin" path "$work/g.mgraph" --shape figure8:4 --segment walk:0-25 --segment run:25-51 \
+  -o "$work/f8.json" --report "$work/f8-report.json" >"$work/path.txt"
+grep -q "deviation mean" "$work/path.txt" || { echo "FAIL: path summary"; cat "$work/path.txt"; exit 1; }
+"$bin" path "$work/g.mgraph" --shape figure8:4 -o "$work/f8.bvh" >/dev/null
+head -1 "$work/f8.bvh" | grep -q HIERARCHY || { echo "FAIL: BVH output"; exit 1; }
+"$bin" walk "$work/g.mgraph" --from 0 --to 10 --cost hybrid --seed 3 --min-frames 200 \
+  -o "$work/walk.json" --report "$work/walk-report.json" >/dev/null
+cat >"$work/controls.json" <<'JSON'
+{"duration_s": 9, "controls": [{"at_s": 0, "heading": "north", "tag": "walk"},
+                               {"at_s": 3, "heading": "east"}, {"at_s": 6, "tag": "run"}]}
+JSON
+"$bin" steer "$work/g.mgraph" --script "$work/controls.json" -o "$work/steer.json" \
+  --report "$work/steer-report.json" >/dev/null
+
+python3 - "$work" <<'PY'
+import json, math, sys
+work = sys.argv[1]
+def roots(name):
+    m = json.load(open(f"{work}/{name}"))
+    return m, [(p[0][0], p[0][2]) for p in m["positions"]]
+r = json.load(open(f"{work}/f8-report.json"))
+m, rs = roots("f8.json")
+assert r["reached_end"] and r["frames"] == len(m["positions"]), (r["frames"], len(m["positions"]))
+assert r["tag_match"] > 0.85 and r["mean_deviation_m"] < 0.5, r
+assert abs(rs[0][0]) < 1e-6 and abs(rs[0][1]) < 1e-6          # starts at the path's first point
+arc = sum(math.dist(a, b) for a, b in zip(rs, rs[1:]))
+assert abs(arc - r["arc_covered_m"]) < 1e-3 * arc, (arc, r["arc_covered_m"])
+w = json.load(open(f"{work}/walk-report.json"))
+m, _ = roots("walk.json")
+assert w["frames"] == len(m["positions"]) >= 201 and w["cost_function"] == "hybrid", w
+s = json.load(open(f"{work}/steer-report.json"))
+m, _ = roots("steer.json")
+assert s["frames"] == len(m["positions"]) == 270, (s["frames"], len(m["positions"]))
+assert s["controls"][1]["response_s"] is not None and s["controls"][1]["response_s"] <= 2.5, s["controls"]
+PY
+
+# Bad input: one line naming the file (and line), exit 1, nothing written.
+expect_error() {  # expected-part output command...
+  local part=$1 out=$2
+  shift 2
+  if "$@" 2>"$work/err.txt" >/dev/null; then echo "FAIL: succeeded: $*"; exit 1; fi
+  [ "$(wc -l <"$work/err.txt")" -eq 1 ] || { echo "FAIL: not one line: $*"; cat "$work/err.txt"; exit 1; }
+  grep -qF -- "$part" "$work/err.txt" || { echo "FAIL: expected '$part' from $*"; cat "$work/err.txt"; exit 1; }
+  [ ! -e "$out" ] || { echo "FAIL: output written despite the error: $*"; exit 1; }
+}
+printf '{"points": [[0, 0],\n [1, 2]\n' >"$work/bad-path.json"
+expect_error "bad-path.json:3: not valid JSON" "$work/o.bvh" "$bin" path "$work/g.mgraph" --path "$work/bad-path.json" -o "$work/o.bvh"
+expect_error "unknown shape 'spiral'" "$work/o.bvh" "$bin" path "$work/g.mgraph" --shape spiral:3 -o "$work/o.bvh"
+expect_error "'swim' is not a motion tag" "$work/o.bvh" "$bin" path "$work/g.mgraph" --shape line:5 --segment swim:0-5 -o "$work/o.bvh"
+expect_error "must end in .bvh or .json" "$work/o.txt" "$bin" path "$work/g.mgraph" --shape line:5 -o "$work/o.txt"
+expect_error "node 99999 does not exist" "$work/o.bvh" "$bin" walk "$work/g.mgraph" --from 0 --to 99999 -o "$work/o.bvh"
+expect_error "unknown cost 'cheap'" "$work/o.bvh" "$bin" walk "$work/g.mgraph" --from 0 --to 1 --cost cheap -o "$work/o.bvh"
+echo '{"controls": [{"at_s": 1}]}' >"$work/bad-controls.json"
+expect_error "bad-controls.json: controls[0]: at_s must start at 0" "$work/o.bvh" "$bin" steer "$work/g.mgraph" --script "$work/bad-controls.json" -o "$work/o.bvh"
+head -c 100 "$work/g.mgraph" >"$work/cut.mgraph"
+expect_error "cut.mgraph" "$work/o.bvh" "$bin" path "$work/cut.mgraph" --shape line:5 -o "$work/o.bvh"
+echo "cli synthesis: ok"
