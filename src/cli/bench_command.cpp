@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "cli/bench_synthesis.h"
 #include "cli/commands.h"
 #include "motiongraph/database/database_loader.h"
 #include "motiongraph/graph/candidates.h"
@@ -31,7 +32,15 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }
 
 int run_bench(const BenchOptions& o) {
-  if (o.what != "distance") return fail(Error{"", 0, fmt::format("unknown benchmark '{}' (try: distance)", o.what)});
+  if (o.what == "synthesis") {
+    if (o.inputs.size() != 1 || !o.inputs[0].ends_with(".mgraph")) {
+      return fail(Error{"", 0, "bench synthesis needs one GRAPH.mgraph"});
+    }
+    return run_synthesis_bench(o.inputs[0]);
+  }
+  if (o.what != "distance") {
+    return fail(Error{"", 0, fmt::format("unknown benchmark '{}' (try: distance, synthesis)", o.what)});
+  }
   DatabaseSettings settings;
   settings.fps = o.fps;
   settings.prefer_manifest_fps = false;
@@ -92,8 +101,8 @@ int run_bench(const BenchOptions& o) {
 Command add_bench_command(CLI::App& app) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* sub = app.add_subcommand("bench", "Measure a stage against its baselines in one run and print ratios "
-                                              "(benchmarks: distance).");
-  sub->add_option("WHAT", o->what, "The benchmark: distance")->required();
+                                              "(benchmarks: distance; synthesis GRAPH.mgraph: path synthesis and the controller).");
+  sub->add_option("WHAT", o->what, "The benchmark: distance or synthesis")->required();
   sub->add_option("INPUT", o->inputs, "Database inputs (folders, clips, manifests); default: data/cmu/16")
       ->default_val(std::vector<std::string>{"data/cmu/16"});
   sub->add_option("--fps", o->fps, "Database frame rate")->capture_default_str();

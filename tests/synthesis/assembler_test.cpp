@@ -7,6 +7,7 @@
 
 #include "motiongraph/motion/forward_kinematics.h"
 #include "synthesis/subject16_graph.h"
+#include "test_data.h"
 
 namespace mg {
 namespace {
@@ -121,6 +122,57 @@ TEST(Assembler, RejectsAWalkThatDoesNotFollowTheGraph) {
   ASSERT_FALSE(motion.ok());
   EXPECT_NE(motion.error().message.find("leaves node"), std::string::npos);
   EXPECT_FALSE(assemble_walk(s.file.database, graph, Walk{graph.node_count(), {}}).ok());
+}
+
+}  // namespace
+}  // namespace mg
+
+namespace mg {
+namespace {
+
+// A second subject that is the first one 1.2 times larger (the same clip read with a larger
+// unit): played on the first subject's skeleton, a walk that crosses to it by a transition
+// between the same frames must be the original clip itself.
+TEST(Assembler, OtherSubjectsAreScaledToTheTarget) {
+  const Clip small = test::load_data_clip("bvh/131_01.bvh", 0.056444);
+  const Clip large = test::load_data_clip("bvh/131_01.bvh", 0.056444 * 1.2);
+  MotionDatabase db;
+  db.fps = small.motion.fps;
+  db.skeletons = {small.skeleton, large.skeleton};
+  db.skeleton_names = {"small", "large"};
+  const int n = small.motion.frame_count;
+  db.clips.push_back({"small", "", 0, 0, n, small.motion});
+  db.clips.push_back({"large", "", 1, n, n, large.motion});
+  const int k = 10, a = 40;
+  // Leave the small copy at a, arrive in the large copy at the same frames: b = a + k - 1.
+  Transition t;
+  t.from_frame = a;
+  t.to_frame = n + a + k - 1;
+  // The floor alignment of the large window onto the small one: the shift of the centroids.
+  const Vec3 c_large = large.motion.translations(a + k - 1)[0];
+  t.x_m = static_cast<float>(c_large.x() / 1.2 - c_large.x());
+  t.z_m = static_cast<float>(c_large.z() / 1.2 - c_large.z());
+  auto graph = build_motion_graph(db, std::vector<Transition>{t}, k);
+  ASSERT_TRUE(graph.ok()) << graph.error().to_string();
+  // From the small clip's first frame to the transition, across it, to the large clip's end.
+  Walk walk{graph->node_at_frame(0), {}};
+  for (int node = walk.start_node; graph->nodes[node].frame != 2 * n - 1;) {
+    const auto out = graph->out_edges(node);
+    const GraphEdge& edge = out.back();
+    walk.edges.push_back(static_cast<int>(&edge - graph->edges.data()));
+    node = edge.to_node;
+  }
+  auto motion = assemble_walk(db, *graph, walk, {}, 0);
+  ASSERT_TRUE(motion.ok()) << motion.error().to_string();
+  ASSERT_EQ(motion->frame_count, n);
+  const std::vector<Vec3> got = world_positions(small.skeleton, *motion);
+  const std::vector<Vec3> want = world_positions(small.skeleton, small.motion);
+  EXPECT_LT(test::max_position_error(got, want), 1e-4);  // float storage of the alignment
+  // On the large skeleton, the same walk is the large clip.
+  auto on_large = assemble_walk(db, *graph, walk, {}, 1);
+  ASSERT_TRUE(on_large.ok());
+  EXPECT_LT(test::max_position_error(world_positions(large.skeleton, *on_large),
+                                     world_positions(large.skeleton, large.motion)), 1.2e-4);
 }
 
 }  // namespace

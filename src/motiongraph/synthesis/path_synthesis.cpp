@@ -76,7 +76,7 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
     return Error{"", 0, fmt::format("start node {} does not exist (the graph has {})", settings.start_node,
                                     graph.node_count())};
   }
-  const PathCost cost(path, masks, settings.tag_penalty_m2, context.tracks.max_root_step_m);
+  const PathCost cost(path, masks, settings.tag_penalty_m2, settings.lower_bound ? context.tracks.max_root_step_m : 0.0);
   HorizonSettings search;
   search.horizon_frames = std::max(1, static_cast<int>(std::lround(settings.horizon_s * fps)));
   search.max_expansions = settings.max_expansions;
@@ -109,9 +109,13 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
     const int count = std::min<int>(settings.start_candidates, static_cast<int>(eligible.size()));
     for (int i = 0; i < count; ++i) candidates.push_back(eligible[static_cast<size_t>(i) * eligible.size() / count]);
   }
+  // Candidates are compared on a quarter of the budget each: they only pick the start.
+  HorizonSettings sample = search;
+  sample.max_expansions = std::max<long long>(1, search.max_expansions / 4);
   HorizonResult first;
   for (int node : candidates) {
-    HorizonResult r = horizon_search(graph, context.tracks, start_state(node), cost, search);
+    HorizonResult r = horizon_search(graph, context.tracks, start_state(node), cost,
+                                     candidates.size() > 1 ? sample : search);
     result.expansions += r.expansions;
     ++result.searches;
     result.budget_exhausted += r.budget_exhausted ? 1 : 0;
@@ -136,7 +140,8 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
       committed += graph.edges[e].frame_count;
       if (state.arc_m >= path.length_m() || committed >= commit_frames) break;
     }
-    const std::vector<int> hint(current.edges.begin() + static_cast<std::ptrdiff_t>(used), current.edges.end());
+    std::vector<int> hint(current.edges.begin() + static_cast<std::ptrdiff_t>(used), current.edges.end());
+    if (!settings.warm_start) hint.clear();
     if (state.arc_m >= path.length_m()) {
       result.reached_end = true;
       break;

@@ -22,8 +22,12 @@ struct PathSynthesisSettings {
   double commit_s = 1.0;
   double tag_penalty_m2 = 1.0;         // per frame without the tag asked for
   long long max_expansions = 20000;    // per search
-  int start_candidates = 24;
+  int start_candidates = 16;
   int start_node = -1;                 // >= 0: start there instead
+  // The two things that make the search fast; off, it is the plain depth-first branch and
+  // bound (benchmarks compare the two).
+  bool lower_bound = true;             // bound the frames still to come (PathCost)
+  bool warm_start = true;              // try the rest of the previous search's walk first
 
   Status validate() const;
 };

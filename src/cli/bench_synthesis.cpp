@@ -1,0 +1,100 @@
+// motiongraph bench synthesis GRAPH.mgraph, measured in one run and printed with ratios:
+//  - loading the graph and setting up synthesis (what every command pays once);
+//  - path synthesis on the built-in shapes: seconds of motion per second of computing
+//    (loading included, so the figure a user of `path` gets), and the same search without its
+//    lower bound and warm start (the plain depth-first branch and bound) for the ratio;
+//  - the controller on a 60 s scripted run (heading every 2 s, walk/run every 10 s): decision
+//    latency percentiles.
+// Speed is measured here, never asserted in tests.
+#include "cli/bench_synthesis.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "cli/commands.h"
+#include "cli/motion_output.h"
+#include "motiongraph/synthesis/controller.h"
+#include "motiongraph/synthesis/path_synthesis.h"
+
+namespace mg::cli {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double percentile(std::vector<double> values, double q) {
+  std::sort(values.begin(), values.end());
+  const size_t i = std::min(values.size() - 1, static_cast<size_t>(std::ceil(q * values.size())) - 1);
+  return values[i];
+}
+
+}  // namespace
+
+int run_synthesis_bench(const std::string& graph_path) {
+  auto start = std::chrono::steady_clock::now();
+  auto file = load_graph_file(graph_path);
+  if (!file) return fail(file.error());
+  const double load_s = seconds_since(start);
+  start = std::chrono::steady_clock::now();
+  auto context = make_synthesis_context(file->database, file->graph);
+  if (!context) return fail(Error{graph_path, 0, context.error().message});
+  const double setup_s = seconds_since(start);
+  const MotionGraph& graph = file->graph;
+  fmt::print("synthesis benchmark: {} ({} nodes, {} edges, {} frames at {:g} fps)\n", graph_path, graph.node_count(),
+             graph.edge_count(), file->database.frame_count(), file->database.fps);
+  fmt::print("load graph {:.3f} s, set up synthesis {:.3f} s\n", load_s, setup_s);
+
+  fmt::print("{:<12} {:>8} {:>9} {:>10} {:>9} {:>12} | {:>10} {:>9} {:>8}\n", "path", "motion s", "search s",
+             "x realtime", "mean dev", "expansions", "plain s", "plain dev", "speedup");
+  for (const char* spec : {"line:20", "circle:5", "figure8:4", "s-curve:100"}) {
+    auto path = make_shape(spec);
+    if (!path) return fail(path.error());
+    PathSynthesisSettings settings;
+    start = std::chrono::steady_clock::now();
+    auto fast = synthesize_path(*context, *path, settings);
+    const double fast_s = seconds_since(start);
+    if (!fast) return fail(fast.error());
+    settings.lower_bound = false;
+    settings.warm_start = false;
+    start = std::chrono::steady_clock::now();
+    auto plain = synthesize_path(*context, *path, settings);
+    const double plain_s = seconds_since(start);
+    if (!plain) return fail(plain.error());
+    const double motion_s = fast->motion.frame_count / fast->motion.fps;
+    fmt::print("{:<12} {:8.1f} {:9.3f} {:10.0f} {:8.3f}m {:12} | {:10.3f} {:8.3f}m {:7.1f}x\n", spec, motion_s, fast_s,
+               motion_s / (load_s + setup_s + fast_s), fast->mean_deviation_m, fast->expansions, plain_s,
+               plain->mean_deviation_m, plain_s / fast_s);
+  }
+  fmt::print("(x realtime: seconds of motion per second of loading, set-up and search)\n");
+
+  auto walk = context->tag_mask("walk");
+  auto run = context->tag_mask("run");
+  const TagMask walk_tag = walk ? *walk : 0, run_tag = run ? *run : 0;
+  auto controller = Controller::create(*context, {}, {bearing_direction(0.0), walk_tag});
+  if (!controller) return fail(controller.error());
+  Motion motion = context->assembler.empty_motion();
+  std::vector<double> latencies;
+  int exhausted = 0;
+  const double fps = file->database.fps;
+  while (motion.frame_count < 60.0 * fps) {
+    const double t = motion.frame_count / fps;
+    const int heading = static_cast<int>(t / 2.0) % 4;
+    const bool running = static_cast<int>(t / 10.0) % 2 == 1;
+    controller->set_input({bearing_direction(90.0 * heading), running ? run_tag : walk_tag});
+    const ControllerDecision d = controller->step(motion);
+    latencies.push_back(d.search_seconds);
+    exhausted += d.budget_exhausted ? 1 : 0;
+  }
+  fmt::print("controller, 60 s scripted: {} decisions, latency p50 {:.3f} ms, p99 {:.3f} ms, max {:.3f} ms; "
+             "{} ran out of budget\n",
+             latencies.size(), 1e3 * percentile(latencies, 0.5), 1e3 * percentile(latencies, 0.99),
+             1e3 * percentile(latencies, 1.0), exhausted);
+  return 0;
+}
+
+}  // namespace mg::cli
