@@ -2,7 +2,7 @@
 # Usage: bash run_three_test.sh MOTIONGRAPH_BINARY DATA_DIR
 #
 # Checks that three.js's BVHLoader (npm package "three", in Node) reads the BVH
-# files `motiongraph convert` writes and finds the same world joint positions as
+# files `motiongraph convert` and `motiongraph path` write and finds the same world joint positions as
 # our own forward kinematics (`motiongraph convert ... -o X.json`), to 1e-5 m.
 # Needs tests/js/node_modules, installed by `npm ci` in tests/js
 # (scripts/install-deps.sh does that).
@@ -50,7 +50,22 @@ check() {
   "$node" "$here/compare_positions.mjs" "$tmp/$name.json" "$tmp/$name.three.json" "$tolerance" || return 1
 }
 
+# Synthesized motion: a walk-then-run figure 8 on the subject-16 graph, written once as BVH
+# and once as JSON (path synthesis is deterministic), read back by three.js.
+check_synthesized() {
+  echo "== synthesized: figure8:4, walk then run"
+  "$motiongraph" build "$data/cmu/16" -o "$tmp/s16.mgraph" --no-cache -q || return 1
+  local out
+  for out in bvh json; do
+    "$motiongraph" path "$tmp/s16.mgraph" --shape figure8:4 --segment walk:0-25 --segment run:25-51 \
+      -o "$tmp/figure8.$out" >/dev/null || return 1
+  done
+  "$node" "$here/bvh_world_positions.mjs" "$tmp/figure8.bvh" "$tmp/figure8.three.json" || return 1
+  "$node" "$here/compare_positions.mjs" "$tmp/figure8.json" "$tmp/figure8.three.json" "$tolerance" || return 1
+}
+
 failed=0
+check_synthesized || failed=1
 check 16_15 "$data/cmu/16/16_15.amc" || failed=1
 check 16_01 "$data/cmu/16/16_01.amc" || failed=1
 check 131_01 "$data/bvh/131_01.bvh" --scale 0.056444 || failed=1
