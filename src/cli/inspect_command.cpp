@@ -1,5 +1,6 @@
 // motiongraph inspect GRAPH.mgraph: what a graph file holds, from its stored report.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
@@ -14,7 +15,28 @@ namespace {
 struct InspectOptions {
   std::string graph;
   bool json = false;
+  bool nodes = false;
 };
+
+// One line per node: its index (what `walk --from/--to` take), frame, clip, tags, edges out.
+void print_nodes(const GraphFile& file) {
+  const MotionDatabase& db = file.database;
+  const MotionGraph& graph = file.graph;
+  const std::vector<TagMask> tags = db.frame_tags();
+  fmt::print("{:>6} {:>7} {:<10} {:>6} {:>4} {:>11}  {}\n", "node", "frame", "clip", "at", "out", "transitions", "tags");
+  for (int n = 0; n < graph.node_count(); ++n) {
+    const GraphNode& node = graph.nodes[n];
+    const DatabaseClip& clip = db.clips[node.clip];
+    int transitions = 0;
+    for (const GraphEdge& e : graph.out_edges(n)) transitions += e.transition ? 1 : 0;
+    std::vector<std::string> names;
+    for (size_t t = 0; t < db.tag_names.size(); ++t) {
+      if (!tags.empty() && (tags[node.frame] >> t & 1)) names.push_back(db.tag_names[t]);
+    }
+    fmt::print("{:>6} {:>7} {:<10} {:>5.2f}s {:>4} {:>11}  {}\n", n, node.frame, clip.name,
+               (node.frame - clip.first_frame) / db.fps, graph.out_edges(n).size(), transitions, fmt::join(names, ","));
+  }
+}
 
 void print_statistics(const char* title, const nlohmann::json& s) {
   fmt::print("{}: {} nodes, {} edges ({} clip pieces, {} transitions), {} clip frames, largest SCC {} nodes\n", title,
@@ -34,6 +56,10 @@ int run_inspect(const InspectOptions& o) {
   auto file = load_graph_file(o.graph);
   if (!file) return fail(file.error());
   const auto report = nlohmann::json::parse(file->report_json, nullptr, false);
+  if (o.nodes) {
+    print_nodes(*file);
+    return 0;
+  }
   if (o.json) {
     fmt::print("{}\n", report.dump(2));
     return 0;
@@ -68,6 +94,9 @@ Command add_inspect_command(CLI::App& app) {
                                                 "before and after pruning, per tag, and timings.");
   sub->add_option("GRAPH", o->graph, "A .mgraph file written by 'motiongraph build'")->required();
   sub->add_flag("--json", o->json, "Print the stored build report as JSON");
+  sub->add_flag("--nodes", o->nodes,
+                "List the pruned graph's nodes (the numbers 'walk --from/--to' take): frame, clip, time in "
+                "the clip, edges out, transitions out, tags");
   return {sub, [o] { return run_inspect(*o); }};
 }
 

@@ -68,7 +68,7 @@ Command add_walk_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "walk", "Find the cheapest walk between two graph nodes by branch and bound and write its motion.\n"
               "Costs: constant (1 per edge), quality (a transition's distance), random (uniform per edge),\n"
-              "hybrid (random x distance). Nodes are numbered as 'inspect' and the report list them.");
+              "hybrid (random x distance). Nodes are numbered as 'inspect --nodes' lists them.");
   o->common.add_to(*sub);
   sub->add_option("--from", o->from, "Start node")->required();
   sub->add_option("--to", o->to, "End node")->required();

@@ -15,6 +15,15 @@ trap 'rm -rf "$work"' EXIT
 grep -q "deviation mean" "$work/path.txt" || { echo "FAIL: path summary"; cat "$work/path.txt"; exit 1; }
 "$bin" path "$work/g.mgraph" --shape figure8:4 -o "$work/f8.bvh" >/dev/null
 head -1 "$work/f8.bvh" | grep -q HIERARCHY || { echo "FAIL: BVH output"; exit 1; }
+"$bin" inspect "$work/g.mgraph" --nodes >"$work/nodes.txt"
+python3 - "$work/nodes.txt" <<'PY'
+import sys
+rows = [l.split() for l in open(sys.argv[1]).read().splitlines()[1:]]
+assert rows and [int(r[0]) for r in rows] == list(range(len(rows)))   # every node, in order
+frames = [int(r[1]) for r in rows]
+assert frames == sorted(frames) and len(set(frames)) == len(frames)
+assert all(int(r[4]) >= 1 for r in rows)                              # pruned: no dead ends
+PY
 "$bin" walk "$work/g.mgraph" --from 0 --to 10 --cost hybrid --seed 3 --min-frames 200 \
   -o "$work/walk.json" --report "$work/walk-report.json" >/dev/null
 cat >"$work/controls.json" <<'JSON'
