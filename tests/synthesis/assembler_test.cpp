@@ -113,6 +113,25 @@ TEST(Assembler, TheStartPlacementMovesTheWholeWalkRigidly) {
   for (size_t i = 0; i < pa.size(); ++i) EXPECT_LT((start.apply(pa[i]) - pb[i]).norm(), 1e-6);  // a micrometre
 }
 
+TEST(Assembler, RootTracksAreTheRootsOfTheWholePoses) {
+  const auto& s = test::subject16();
+  const MotionAssembler& assembler = s.context.assembler;
+  for (int e = 0; e < s.file.graph.edge_count(); e += 7) {
+    FloorTransform a{0.2, 1.0, -2.0}, b = a;
+    Motion motion = assembler.empty_motion();
+    std::vector<RootPose> roots;
+    assembler.append_edge(e, a, motion);
+    assembler.append_edge_roots(e, b, roots);
+    ASSERT_EQ(static_cast<int>(roots.size()), motion.frame_count);
+    EXPECT_EQ(a.yaw_rad, b.yaw_rad);
+    EXPECT_EQ(a.x_m, b.x_m);
+    for (int p = 0; p < motion.frame_count; ++p) {
+      EXPECT_EQ(roots[p].position, motion.translations(p)[0]);
+      EXPECT_EQ(roots[p].rotation.coeffs(), motion.rotations(p)[0].coeffs());
+    }
+  }
+}
+
 TEST(Assembler, RejectsAWalkThatDoesNotFollowTheGraph) {
   const auto& s = test::subject16();
   const MotionGraph& graph = s.file.graph;

@@ -49,16 +49,17 @@ const DatabaseClip& MotionAssembler::clip_of(int frame, int* local) const {
   return clip;
 }
 
-Vec3 MotionAssembler::root_position(int frame, const FloorTransform& placement) const {
+RootPose MotionAssembler::root_pose(int frame, const FloorTransform& placement) const {
   int local = 0;
   const DatabaseClip& clip = clip_of(frame, &local);
-  return placement.apply(scale_[clip.skeleton] * clip.motion.translations(local)[0]);
+  return {placement.apply(scale_[clip.skeleton] * clip.motion.translations(local)[0]),
+          placement.rotation() * clip.motion.rotations(local)[0]};
 }
 
-Quat MotionAssembler::root_rotation(int frame, const FloorTransform& placement) const {
-  int local = 0;
-  const DatabaseClip& clip = clip_of(frame, &local);
-  return placement.rotation() * clip.motion.rotations(local)[0];
+RootPose MotionAssembler::blend_root(int departure, const FloorTransform& w_departure, int arrival,
+                                     const FloorTransform& w_arrival, double alpha) const {
+  const RootPose d = root_pose(departure, w_departure), a = root_pose(arrival, w_arrival);
+  return {alpha * d.position + (1.0 - alpha) * a.position, d.rotation.slerp(1.0 - alpha, a.rotation).normalized()};
 }
 
 FloorTransform MotionAssembler::transition_transform(const Transition& t) const {
@@ -99,28 +100,45 @@ void MotionAssembler::append_blend(int departure, const FloorTransform& w_depart
   const auto rot_d = clip_d.motion.rotations(local_d), rot_a = clip_a.motion.rotations(local_a);
   const auto tr_d = clip_d.motion.translations(local_d), tr_a = clip_a.motion.translations(local_a);
   const double beta = 1.0 - alpha;
-  out.local_rotations.push_back(
-      (w_departure.rotation() * rot_d[0]).slerp(beta, w_arrival.rotation() * rot_a[0]).normalized());
+  const RootPose root = blend_root(departure, w_departure, arrival, w_arrival, alpha);
+  out.local_rotations.push_back(root.rotation);
   for (size_t j = 1; j < rot_d.size(); ++j) out.local_rotations.push_back(rot_d[j].slerp(beta, rot_a[j]).normalized());
-  out.local_translations_m.push_back(alpha * w_departure.apply(s_d * tr_d[0]) + beta * w_arrival.apply(s_a * tr_a[0]));
+  out.local_translations_m.push_back(root.position);
   for (size_t i = 1; i < tr_d.size(); ++i) out.local_translations_m.push_back(alpha * s_d * tr_d[i] + beta * s_a * tr_a[i]);
   ++out.frame_count;
 }
 
-void MotionAssembler::append_edge(int edge_index, FloorTransform& placement, Motion& out) const {
+template <class OnFrame, class OnBlend>
+void MotionAssembler::visit_edge(int edge_index, FloorTransform& placement, OnFrame on_frame, OnBlend on_blend) const {
   const GraphEdge& edge = graph_->edges[edge_index];
   const int from_frame = graph_->nodes[edge.from_node].frame;
   if (!edge.transition) {
-    for (int p = 0; p < edge.frame_count; ++p) append_frame(from_frame + p, placement, out);
+    for (int p = 0; p < edge.frame_count; ++p) on_frame(from_frame + p, placement);
     return;
   }
   const Transition& t = graph_->transitions[edge.transition_index];
   const int k = graph_->window;
   const FloorTransform arrival = placement * transition_transform(t);
   for (int p = 0; p < edge.frame_count; ++p) {
-    append_blend(t.from_frame + p, placement, t.to_frame - k + 1 + p, arrival, blend_weight(p, k), out);
+    on_blend(t.from_frame + p, placement, t.to_frame - k + 1 + p, arrival, blend_weight(p, k));
   }
   placement = arrival;
+}
+
+void MotionAssembler::append_edge(int edge, FloorTransform& placement, Motion& out) const {
+  visit_edge(
+      edge, placement, [&](int frame, const FloorTransform& w) { append_frame(frame, w, out); },
+      [&](int d, const FloorTransform& wd, int a, const FloorTransform& wa, double alpha) {
+        append_blend(d, wd, a, wa, alpha, out);
+      });
+}
+
+void MotionAssembler::append_edge_roots(int edge, FloorTransform& placement, std::vector<RootPose>& out) const {
+  visit_edge(
+      edge, placement, [&](int frame, const FloorTransform& w) { out.push_back(root_pose(frame, w)); },
+      [&](int d, const FloorTransform& wd, int a, const FloorTransform& wa, double alpha) {
+        out.push_back(blend_root(d, wd, a, wa, alpha));
+      });
 }
 
 Result<Motion> assemble_walk(const MotionDatabase& db, const MotionGraph& graph, const Walk& walk,

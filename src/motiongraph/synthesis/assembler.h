@@ -29,6 +29,12 @@ namespace mg {
 // Kovar's blend weight on the frame we leave, p = 0..k-1.
 double blend_weight(int p, int k);
 
+// The root of one played frame: world position (metres) and world rotation.
+struct RootPose {
+  Vec3 position = Vec3::Zero();
+  Quat rotation = Quat::Identity();
+};
+
 // What playing edges needs, for one target skeleton.
 class MotionAssembler {
  public:
@@ -52,12 +58,22 @@ class MotionAssembler {
   // Appends database frame `frame` placed by `placement`.
   void append_frame(int frame, const FloorTransform& placement, Motion& out) const;
 
-  // The root's world position and rotation of database frame `frame` under `placement`
-  // (scaled to the target), without building the pose.
-  Vec3 root_position(int frame, const FloorTransform& placement) const;
-  Quat root_rotation(int frame, const FloorTransform& placement) const;
+  // The root of database frame `frame` under `placement` (scaled to the target), without
+  // building the pose.
+  RootPose root_pose(int frame, const FloorTransform& placement) const;
+  Vec3 root_position(int frame, const FloorTransform& placement) const { return root_pose(frame, placement).position; }
+  Quat root_rotation(int frame, const FloorTransform& placement) const { return root_pose(frame, placement).rotation; }
+  // What append_edge plays, root only (what searches need; much cheaper than whole poses).
+  void append_edge_roots(int edge, FloorTransform& placement, std::vector<RootPose>& out) const;
 
  private:
+  // Calls on_frame(frame, placement) for each clip frame the edge plays, or
+  // on_blend(departure, w_departure, arrival, w_arrival, alpha) for each blended frame, and
+  // moves the placement on.
+  template <class OnFrame, class OnBlend>
+  void visit_edge(int edge, FloorTransform& placement, OnFrame on_frame, OnBlend on_blend) const;
+  RootPose blend_root(int departure, const FloorTransform& w_departure, int arrival, const FloorTransform& w_arrival,
+                      double alpha) const;
   void append_blend(int departure, const FloorTransform& w_departure, int arrival, const FloorTransform& w_arrival,
                     double alpha, Motion& out) const;
   const DatabaseClip& clip_of(int frame, int* local) const;

@@ -15,19 +15,19 @@ EdgeTracks compute_edge_tracks(const MotionAssembler& assembler, const MotionGra
     EdgeTrack track;
     track.first = static_cast<int>(tracks.roots.size());
     track.count = edge.frame_count;
-    Motion motion = assembler.empty_motion();
+    std::vector<RootPose> roots;
     FloorTransform placement;
-    assembler.append_edge(e, placement, motion);
+    assembler.append_edge_roots(e, placement, roots);
     track.change = placement;
-    for (int p = 0; p < motion.frame_count; ++p) {
-      const Vec3& root = motion.translations(p)[0];
-      tracks.roots.emplace_back(root.x(), root.z());
-      tracks.facings.push_back(facing_on_floor(motion.rotations(p)[0], forward_axis));
+    for (size_t p = 0; p < roots.size(); ++p) {
+      tracks.roots.emplace_back(roots[p].position.x(), roots[p].position.z());
+      tracks.facings.push_back(facing_on_floor(roots[p].rotation, forward_axis));
       if (!edge.transition) {
-        tracks.tags.push_back(tag_of(graph.nodes[edge.from_node].frame + p));
+        tracks.tags.push_back(tag_of(graph.nodes[edge.from_node].frame + static_cast<int>(p)));
       } else {
         const Transition& t = graph.transitions[edge.transition_index];
-        tracks.tags.push_back(blend_weight(p, k) >= 0.5 ? tag_of(t.from_frame + p) : tag_of(t.to_frame - k + 1 + p));
+        const int q = static_cast<int>(p);
+        tracks.tags.push_back(blend_weight(q, k) >= 0.5 ? tag_of(t.from_frame + q) : tag_of(t.to_frame - k + 1 + q));
       }
     }
     // Steps inside the edge and on to the first frame of whatever edge follows.
