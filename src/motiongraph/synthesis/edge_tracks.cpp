@@ -34,7 +34,7 @@ EdgeTracks compute_edge_tracks(const MotionAssembler& assembler, const MotionGra
     const Vec3 next = assembler.root_position(graph.nodes[edge.to_node].frame, placement);
     Vec2 last(next.x(), next.z());
     for (int p = track.count; p-- > 0;) {
-      const Vec2& root = tracks.roots[static_cast<size_t>(track.first + p)];
+      const Vec2& root = tracks.roots[static_cast<size_t>(track.first) + static_cast<size_t>(p)];
       tracks.max_root_step_m = std::max(tracks.max_root_step_m, (last - root).norm());
       last = root;
     }

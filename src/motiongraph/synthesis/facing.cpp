@@ -30,6 +30,7 @@ std::vector<Vec3> learn_forward_axes(const MotionDatabase& db) {
     }
   }
   std::vector<Vec3> axes;
+  axes.reserve(sums.size());
   for (const Vec3& s : sums) axes.push_back(s.norm() > 0.0 ? Vec3(s.normalized()) : Vec3(Vec3::UnitZ()));
   return axes;
 }

@@ -12,7 +12,7 @@
 
 namespace mg {
 
-Result<FloorPath> FloorPath::create(std::vector<Vec2> points, std::vector<PathSegment> segments) {
+Result<FloorPath> FloorPath::create(const std::vector<Vec2>& points, std::vector<PathSegment> segments) {
   FloorPath path;
   for (const Vec2& p : points) {
     if (!std::isfinite(p.x()) || !std::isfinite(p.y())) return Error{"", 0, "a path point is not a finite number"};

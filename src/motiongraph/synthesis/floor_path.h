@@ -31,7 +31,7 @@ class FloorPath {
  public:
   FloorPath() = default;
   // Fails with fewer than two distinct points or a non-finite coordinate.
-  static Result<FloorPath> create(std::vector<Vec2> points, std::vector<PathSegment> segments = {});
+  static Result<FloorPath> create(const std::vector<Vec2>& points, std::vector<PathSegment> segments = {});
 
   double length_m() const { return arc_.empty() ? 0.0 : arc_.back(); }
   const std::vector<Vec2>& points() const { return points_; }
