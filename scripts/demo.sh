@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The main job on the bundled data: installs what is missing, builds, then reads every bundled
 # clip, prints its summary, converts it to BVH in metres and to JSON world positions (30 fps),
-# and builds the motion graph of subject 16 with its report and distance picture, all in out/.
+# builds the motion graph of subject 16 with its report and distance picture, and evaluates it
+# (CSV files and PNG plots in out/eval), all in out/.
 # Usage: scripts/demo.sh   (from anywhere)
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -52,7 +53,11 @@ JSON
 "$bin" steer out/subject16.mgraph --script out/steer-demo.json -o out/steer-demo.bvh --report out/steer-demo-report.json
 "$bin" walk out/subject16.mgraph --from 0 --to 40 --cost quality --min-frames 300 -o out/walk-demo.bvh
 
+echo "== evaluating the graph of subject 16 (CSV and PNG plots in out/eval)"
+"$bin" eval out/subject16.mgraph --out-dir out/eval
+
 echo "== done: $(ls out/bvh | wc -l) BVH files in out/bvh (open them in Blender: File > Import > BVH),"
 echo "   JSON world positions in out/json, summary in out/summary.txt,"
 echo "   the graph in out/subject16.mgraph with its report and distance picture (out/subject16-*),"
-echo "   synthesized motion: out/figure8-walk-run.bvh, out/steer-demo.bvh, out/walk-demo.bvh"
+echo "   synthesized motion: out/figure8-walk-run.bvh, out/steer-demo.bvh, out/walk-demo.bvh,"
+echo "   the graph's evaluation in out/eval (threshold, consistency, walks, paths: .csv and .png)"

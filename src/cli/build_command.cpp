@@ -16,14 +16,11 @@
 #include "motiongraph/database/database_loader.h"
 #include "motiongraph/export/matrix_png.h"
 #include "motiongraph/export/npy.h"
-#include "motiongraph/graph/bridges.h"
 #include "motiongraph/graph/candidates.h"
 #include "motiongraph/graph/graph_file.h"
-#include "motiongraph/graph/motion_graph.h"
-#include "motiongraph/graph/transition_selection.h"
+#include "motiongraph/graph/graph_from_candidates.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/metric/frame_features.h"
-#include "motiongraph/metric/pair_alignment.h"
 
 namespace mg::cli {
 
@@ -59,15 +56,6 @@ struct BuildOptions {
   BridgeSettings bridges;
   std::vector<std::string> connect_tags;
 };
-
-// Tags that describe how a motion goes rather than what it is: they neither need a connected
-// region of their own nor bridges (a turning run is part of running).
-bool is_modifier_tag(const std::string& name) {
-  for (const char* modifier : {"turn", "stop", "start", "backward", "veer"}) {
-    if (name == modifier) return true;
-  }
-  return false;
-}
 
 class Stopwatch {
  public:
@@ -276,66 +264,42 @@ int run_build(BuildOptions o) {
 
   // 4. Transitions.
   // Motion types: the tags whose regions must stay connected, with their own thresholds.
-  const std::vector<TagMask> frame_tags = db->frame_tags();
-  TagMask connected = 0;
-  if (o.connect_tags.empty()) {
-    for (size_t t = 0; t < db->tag_names.size(); ++t) {
-      if (!is_modifier_tag(db->tag_names[t])) connected |= TagMask{1} << t;
-    }
-  } else {
-    for (const std::string& name : o.connect_tags) {
-      auto it = std::find(db->tag_names.begin(), db->tag_names.end(), name);
-      if (it == db->tag_names.end()) return fail(Error{"", 0, fmt::format("--connect-tags: no clip has the tag '{}'", name)});
-      connected |= TagMask{1} << (it - db->tag_names.begin());
-    }
+  TagMask connected = motion_type_tags(*db);
+  if (!o.connect_tags.empty()) {
+    auto mask = tag_mask_of(*db, o.connect_tags);
+    if (!mask) return fail(Error{"", 0, "--connect-tags: " + mask.error().message});
+    connected = *mask;
   }
-  auto selection = select_transitions(*features, *candidates, o.transitions, frame_tags, o.ignore_tags ? 0 : connected);
-  if (!selection) return fail(selection.error());
-  // Bridges between motion types that no transition below the threshold joins.
-  BridgeSettings bridge_settings = o.bridges;
-  bridge_settings.locality_radius = selection->locality_radius;
-  bridge_settings.tags = connected;
-  std::vector<Transition> bridges;
-  if (!o.ignore_tags && bridge_settings.per_tag_pair > 0) {
-    std::vector<std::vector<char>> cores(db->tag_names.size());
-    for (size_t t = 0; t < cores.size(); ++t) {
-      if (connected >> t & 1) cores[t] = tag_core_frames(*db, selection->transitions, frame_tags, features->window, static_cast<int>(t));
-    }
-    bridges = select_bridges(candidates->minima, selection->transitions, frame_tags, cores, features->window, bridge_settings);
-  }
+  GraphFromCandidatesSettings graph_settings;
+  graph_settings.transitions = o.transitions;
+  graph_settings.bridges = o.bridges;
+  graph_settings.connected_tags = o.ignore_tags ? 0 : connected;
+  auto selected = select_transitions_with_bridges(*db, *features, *candidates, graph_settings);
+  if (!selected) return fail(selected.error());
+  const TransitionSelection& selection = selected->selection;
+  const std::vector<Transition>& bridges = selected->bridges;
+  const std::vector<Transition>& all_transitions = selected->all_transitions;
   json tag_thresholds_json = json::array();
-  for (const TagThreshold& t : selection->tag_thresholds) {
+  for (const TagThreshold& t : selection.tag_thresholds) {
     tag_thresholds_json.push_back({{"tag", db->tag_names[t.tag]}, {"candidates", t.candidates}, {"threshold", t.threshold}});
   }
   json bridges_json = json::array();
-  for (Transition& t : bridges) {
-    const FloorAlignment align = align_pair(*features, t.from_frame, t.to_frame);
-    t.yaw_rad = static_cast<float>(align.yaw_rad);
-    t.x_m = static_cast<float>(align.x_m);
-    t.z_m = static_cast<float>(align.z_m);
+  for (const Transition& t : bridges) {
     bridges_json.push_back({{"from_frame", t.from_frame}, {"to_frame", t.to_frame}, {"distance", t.distance}});
   }
-  std::vector<Transition> all_transitions = selection->transitions;
-  all_transitions.insert(all_transitions.end(), bridges.begin(), bridges.end());
-  std::sort(all_transitions.begin(), all_transitions.end(), [](const Transition& x, const Transition& y) {
-    return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
-  });
   if (!bridges.empty()) log(fmt::format("{} bridges between motion types", bridges.size()));
   timings["transitions"] = watch.lap();
-  log(fmt::format("threshold {:.4g} ({:.2f} % of pairs below): {} transitions", selection->threshold,
-                  100.0 * selection->threshold_quantile, selection->transitions.size()));
+  log(fmt::format("threshold {:.4g} ({:.2f} % of pairs below): {} transitions", selection.threshold,
+                  100.0 * selection.threshold_quantile, selection.transitions.size()));
 
   // 5. The graph, pruned.
-  auto graph = build_motion_graph(*db, all_transitions, features->window);
-  if (!graph) return fail(graph.error());
-  PruneSettings prune;
-  prune.connected_tags = o.ignore_tags ? 0 : connected;
-  auto pruned = prune_motion_graph(*graph, frame_tags, prune);
-  if (!pruned) return fail(pruned.error());
+  auto built = build_pruned_graph(*db, all_transitions, features->window, graph_settings.connected_tags);
+  if (!built) return fail(built.error());
+  const PruneReport& pruned = built->prune;
   timings["graph"] = watch.lap();
   log(fmt::format("graph: {} nodes, {} edges ({} transitions) after pruning; {} nodes, {} transitions before",
-                  pruned->after.nodes, pruned->after.edges, pruned->after.transitions, pruned->before.nodes,
-                  pruned->before.transitions));
+                  pruned.after.nodes, pruned.after.edges, pruned.after.transitions, pruned.before.nodes,
+                  pruned.before.transitions));
 
   // 6. Outputs.
   std::vector<double> point_weights(layout->weight.begin(), layout->weight.end());
@@ -349,36 +313,43 @@ int run_build(BuildOptions o) {
       {"clips", clips_json(*db)},
       {"tags", db->tag_names},
       {"distance_settings", distance_json},
-      {"threshold", selection->threshold},
-      {"threshold_quantile", selection->threshold_quantile},
-      {"locality_radius", selection->locality_radius},
+      {"threshold", selection.threshold},
+      {"threshold_quantile", selection.threshold_quantile},
+      {"locality_radius", selection.locality_radius},
       {"tag_thresholds", tag_thresholds_json},
       {"counts",
        {{"pairs", static_cast<long long>(features->frames) * features->frames},
         {"finite_pairs", candidates->histogram.total()},
         {"local_minima", candidates->minima.size()},
-        {"below_threshold", selection->candidates_below_threshold},
-        {"transitions", selection->transitions.size()},
+        {"below_threshold", selection.candidates_below_threshold},
+        {"transitions", selection.transitions.size()},
         {"bridges", bridges.size()},
-        {"transitions_kept", pruned->after.transitions}}},
-      {"graph_before", json::parse(to_json(pruned->before, db->tag_names))},
-      {"graph_after", json::parse(to_json(pruned->after, db->tag_names))},
+        {"transitions_kept", pruned.after.transitions}}},
+      {"graph_before", json::parse(to_json(pruned.before, db->tag_names))},
+      {"graph_after", json::parse(to_json(pruned.after, db->tag_names))},
       {"bridges", bridges_json},
       {"distance_cache", cache_hit ? "hit" : (use_cache ? "stored" : "off")},
   };
+  // What eval needs to select transitions again as this build did.
+  std::vector<std::string> connected_names;
+  for (size_t t = 0; t < db->tag_names.size(); ++t) {
+    if (graph_settings.connected_tags >> t & 1) connected_names.push_back(db->tag_names[t]);
+  }
   GraphFile file;
   file.settings_json = json({{"distance", distance_json},
                              {"threshold", o.threshold},
                              {"threshold_quantile", o.quantile},
-                             {"locality_radius", selection->locality_radius},
+                             {"locality_radius", selection.locality_radius},
                              {"per_tag_thresholds", o.transitions.per_tag_thresholds},
+                             {"connected_tags", connected_names},
+                             {"bridges_per_tag_pair", o.bridges.per_tag_pair},
                              {"fps", db->fps}})
                            .dump();
   file.input_key = key;
-  file.threshold = selection->threshold;
-  file.threshold_quantile = selection->threshold_quantile;
-  file.locality_radius = selection->locality_radius;
-  file.graph = std::move(*graph);
+  file.threshold = selection.threshold;
+  file.threshold_quantile = selection.threshold_quantile;
+  file.locality_radius = selection.locality_radius;
+  file.graph = std::move(built->graph);
   std::vector<int> clip_starts;
   for (const DatabaseClip& clip : db->clips) clip_starts.push_back(clip.first_frame);
   if (!o.matrix_png.empty()) {

@@ -2,11 +2,6 @@
 
 namespace mg {
 
-namespace {
-constexpr int kLookahead = 10;
-constexpr double kMinSpeed = 0.3;
-}  // namespace
-
 Vec2 travel_direction(const std::vector<Vec2>& roots, int i, int lookahead, double fps, double min_speed_mps) {
   if (i + lookahead >= static_cast<int>(roots.size())) return Vec2::Zero();
   const Vec2 d = roots[i + lookahead] - roots[i];
@@ -24,7 +19,7 @@ std::vector<Vec3> learn_forward_axes(const MotionDatabase& db) {
       roots[f] = Vec2(p.x(), p.z());
     }
     for (int f = 0; f < clip.frame_count; ++f) {
-      const Vec2 d = travel_direction(roots, f, kLookahead, db.fps, kMinSpeed);
+      const Vec2 d = travel_direction(roots, f, kTravelLookaheadFrames, db.fps, kMovingSpeedMps);
       if (d.isZero()) continue;
       sums[clip.skeleton] += clip.motion.rotations(f)[0].conjugate() * Vec3(d.x(), 0.0, d.y());
     }

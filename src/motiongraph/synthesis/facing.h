@@ -17,6 +17,11 @@ namespace mg {
 
 using Vec2 = Eigen::Vector2d;  // (x, z) on the floor, metres
 
+// The seed's self-consistency measure looks this many frames ahead for the direction of
+// travel, and a root slower than this has none.
+constexpr int kTravelLookaheadFrames = 10;
+constexpr double kMovingSpeedMps = 0.3;
+
 // One axis per skeleton of db, unit length, in the root joint's frame.
 std::vector<Vec3> learn_forward_axes(const MotionDatabase& db);
 

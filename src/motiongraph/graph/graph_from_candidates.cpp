@@ -1,0 +1,102 @@
+// From cached candidates to the pruned motion graph: selection, bridges, graph, pruning.
+#include "motiongraph/graph/graph_from_candidates.h"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "motiongraph/metric/pair_alignment.h"
+
+namespace mg {
+
+bool is_modifier_tag(const std::string& name) {
+  for (const char* modifier : {"turn", "stop", "start", "backward", "veer"}) {
+    if (name == modifier) return true;
+  }
+  return false;
+}
+
+TagMask motion_type_tags(const MotionDatabase& db) {
+  TagMask mask = 0;
+  for (size_t t = 0; t < db.tag_names.size(); ++t) {
+    if (!is_modifier_tag(db.tag_names[t])) mask |= TagMask{1} << t;
+  }
+  return mask;
+}
+
+Result<TagMask> tag_mask_of(const MotionDatabase& db, std::span<const std::string> names) {
+  TagMask mask = 0;
+  for (const std::string& name : names) {
+    auto it = std::find(db.tag_names.begin(), db.tag_names.end(), name);
+    if (it == db.tag_names.end()) return Error{"", 0, fmt::format("no clip has the tag '{}'", name)};
+    mask |= TagMask{1} << (it - db.tag_names.begin());
+  }
+  return mask;
+}
+
+Status GraphFromCandidatesSettings::validate() const {
+  if (auto s = transitions.validate(); !s) return s;
+  return bridges.validate();
+}
+
+Result<TransitionsWithBridges> select_transitions_with_bridges(const MotionDatabase& db, const FrameFeatures& features,
+                                                               const CandidateSearch& candidates,
+                                                               const GraphFromCandidatesSettings& settings) {
+  if (auto s = settings.validate(); !s) return s.error();
+  TransitionsWithBridges out;
+  const std::vector<TagMask> frame_tags = db.frame_tags();
+  const TagMask connected = settings.connected_tags;
+  auto selection = select_transitions(features, candidates, settings.transitions, frame_tags, connected);
+  if (!selection) return selection.error();
+  out.selection = std::move(*selection);
+
+  // Bridges between motion types that no transition below the threshold joins.
+  BridgeSettings bridge_settings = settings.bridges;
+  bridge_settings.locality_radius = out.selection.locality_radius;
+  bridge_settings.tags = connected;
+  if (connected != 0 && bridge_settings.per_tag_pair > 0) {
+    std::vector<std::vector<char>> cores(db.tag_names.size());
+    for (size_t t = 0; t < cores.size(); ++t) {
+      if (connected >> t & 1) {
+        cores[t] = tag_core_frames(db, out.selection.transitions, frame_tags, features.window, static_cast<int>(t));
+      }
+    }
+    out.bridges = select_bridges(candidates.minima, out.selection.transitions, frame_tags, cores, features.window,
+                                 bridge_settings);
+  }
+  for (Transition& t : out.bridges) {
+    const FloorAlignment align = align_pair(features, t.from_frame, t.to_frame);
+    t.yaw_rad = static_cast<float>(align.yaw_rad);
+    t.x_m = static_cast<float>(align.x_m);
+    t.z_m = static_cast<float>(align.z_m);
+  }
+  out.all_transitions = out.selection.transitions;
+  out.all_transitions.insert(out.all_transitions.end(), out.bridges.begin(), out.bridges.end());
+  std::sort(out.all_transitions.begin(), out.all_transitions.end(), [](const Transition& x, const Transition& y) {
+    return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
+  });
+  return out;
+}
+
+Result<PrunedGraph> build_pruned_graph(const MotionDatabase& db, std::span<const Transition> transitions, int window,
+                                       TagMask connected_tags) {
+  auto graph = build_motion_graph(db, transitions, window);
+  if (!graph) return graph.error();
+  PruneSettings prune;
+  prune.connected_tags = connected_tags;
+  auto report = prune_motion_graph(*graph, db.frame_tags(), prune);
+  if (!report) return report.error();
+  return PrunedGraph{std::move(*graph), std::move(*report)};
+}
+
+Result<GraphFromCandidates> graph_from_candidates(const MotionDatabase& db, const FrameFeatures& features,
+                                                  const CandidateSearch& candidates,
+                                                  const GraphFromCandidatesSettings& settings) {
+  auto transitions = select_transitions_with_bridges(db, features, candidates, settings);
+  if (!transitions) return transitions.error();
+  auto pruned = build_pruned_graph(db, transitions->all_transitions, features.window, settings.connected_tags);
+  if (!pruned) return pruned.error();
+  return GraphFromCandidates{std::move(*transitions), std::move(*pruned)};
+}
+
+}  // namespace mg

@@ -1,0 +1,73 @@
+// From cached candidates to the pruned motion graph (Kovar et al. 2002, sections 3.2-3.3;
+// DESIGN.md 4): select the transitions below the threshold (transition_selection.h), add
+// bridges between motion types that no selected transition joins (bridges.h, aligned like any
+// transition), build the graph and prune it per tag. This is what `build` does after the
+// distance stage, and what the threshold evaluation repeats at many thresholds on the
+// candidates stored in a graph file. Cheap: no distance matrix is involved.
+#pragma once
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "motiongraph/core/error.h"
+#include "motiongraph/database/motion_database.h"
+#include "motiongraph/graph/bridges.h"
+#include "motiongraph/graph/candidates.h"
+#include "motiongraph/graph/motion_graph.h"
+#include "motiongraph/graph/transition_selection.h"
+#include "motiongraph/metric/frame_features.h"
+
+namespace mg {
+
+// Tags that describe how a motion goes rather than what it is (turn, stop, start, backward,
+// veer): they need neither a connected region of their own nor bridges.
+bool is_modifier_tag(const std::string& name);
+
+// The motion types of a database: every tag that is not a modifier.
+TagMask motion_type_tags(const MotionDatabase& db);
+
+// The mask of the named tags, or an error naming the first tag no clip carries.
+Result<TagMask> tag_mask_of(const MotionDatabase& db, std::span<const std::string> names);
+
+struct GraphFromCandidatesSettings {
+  TransitionSettings transitions;
+  BridgeSettings bridges;         // tags and locality_radius are set from the selection
+  TagMask connected_tags = 0;     // motion types kept connected, with bridges; 0: ignore tags
+
+  Status validate() const;
+};
+
+struct TransitionsWithBridges {
+  TransitionSelection selection;
+  std::vector<Transition> bridges;          // aligned, in the order select_bridges gave
+  std::vector<Transition> all_transitions;  // selected and bridges, by (from_frame, to_frame)
+};
+
+// The first two steps: selection and bridges.
+Result<TransitionsWithBridges> select_transitions_with_bridges(const MotionDatabase& db, const FrameFeatures& features,
+                                                               const CandidateSearch& candidates,
+                                                               const GraphFromCandidatesSettings& settings);
+
+struct PrunedGraph {
+  MotionGraph graph;  // pruned
+  PruneReport prune;
+};
+
+// The last two: the graph of `transitions` (window k), pruned keeping connected_tags
+// connected. Fails as build_motion_graph and prune_motion_graph do (in particular when the
+// transitions form no cycle).
+Result<PrunedGraph> build_pruned_graph(const MotionDatabase& db, std::span<const Transition> transitions, int window,
+                                       TagMask connected_tags);
+
+struct GraphFromCandidates {
+  TransitionsWithBridges transitions;
+  PrunedGraph pruned;
+};
+
+// All four steps.
+Result<GraphFromCandidates> graph_from_candidates(const MotionDatabase& db, const FrameFeatures& features,
+                                                  const CandidateSearch& candidates,
+                                                  const GraphFromCandidatesSettings& settings);
+
+}  // namespace mg

@@ -1,0 +1,101 @@
+#!/usr/bin/env bash
+# motiongraph eval as a user runs it on the bundled subject 16: every CSV has its header and
+# rows that keep the invariants of what they measure, every PNG is a PNG, the threshold sweep
+# at the build's own threshold finds the graph the build wrote, and bad requests (an unknown
+# evaluation, no gnuplot) are one line and no output.
+# Usage: MOTIONGRAPH=binary cli_eval_test.sh DATA_DIR
+set -euo pipefail
+data=$1
+bin=${MOTIONGRAPH:?set MOTIONGRAPH to the motiongraph binary}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+"$bin" build "$data/cmu/16" -o "$work/g.mgraph" --cache-dir "$work/cache" -q
+"$bin" inspect --json "$work/g.mgraph" >"$work/inspect.json"
+"$bin" eval "$work/g.mgraph" --out-dir "$work/eval" -q >"$work/written.txt"
+for name in threshold consistency walks paths; do
+  grep -qx "$work/eval/$name.csv" "$work/written.txt" || { echo "FAIL: $name.csv not listed"; exit 1; }
+  grep -qx "$work/eval/$name.png" "$work/written.txt" || { echo "FAIL: $name.png not listed"; exit 1; }
+done
+# At the build's threshold (2 %), the sweep rebuilds the graph the file holds.
+"$bin" eval "$work/g.mgraph" --out-dir "$work/at-build" --what threshold --lowest 0.02 --highest 0.04 \
+  --thresholds 2 --no-plots -q >/dev/null
+[ ! -e "$work/at-build/threshold.png" ] || { echo "FAIL: --no-plots drew a plot"; exit 1; }
+
+python3 - "$work" <<'PY'
+import csv, json, math, struct, sys
+work = sys.argv[1]
+def rows(name, header):
+    with open(f"{work}/{name}") as f:
+        r = list(csv.reader(f))
+    assert r[0] == header, (name, r[0])
+    return [dict(zip(header, row)) for row in r[1:]]
+
+t = rows("eval/threshold.csv", ["quantile", "threshold", "transitions", "bridges", "nodes",
+     "largest_component_nodes", "kept_nodes", "kept_transitions", "kept_clip_frames"])
+assert len(t) == 12
+for a, b in zip(t, t[1:]):
+    assert float(a["quantile"]) < float(b["quantile"]) and float(a["threshold"]) <= float(b["threshold"])
+for r in t:
+    n, scc, kept = int(r["nodes"]), int(r["largest_component_nodes"]), int(r["kept_nodes"])
+    assert 0 <= kept <= scc <= n, r
+    assert int(r["kept_transitions"]) <= int(r["transitions"]) + int(r["bridges"]), r
+assert any(int(r["kept_nodes"]) > 0 for r in t)
+
+g = json.load(open(f"{work}/inspect.json"))["graph_after"]
+at = rows("at-build/threshold.csv", list(t[0].keys()))[0]
+assert int(at["kept_nodes"]) == g["nodes"] and int(at["kept_transitions"]) == g["transitions"], (at, g)
+
+c = rows("eval/consistency.csv", ["quantile", "threshold", "transitions", "frames", "rms_deg",
+     "database_frames", "database_rms_deg"])
+assert len(c) == 12
+for r in c:
+    assert 0 <= float(r["database_rms_deg"]) <= 180 and int(r["database_frames"]) > 0, r
+    if int(r["frames"]) > 0:
+        assert 0 <= float(r["rms_deg"]) <= 180, r
+    else:
+        assert r["rms_deg"] == "", r
+assert any(int(r["frames"]) > 0 for r in c)
+
+w = rows("eval/walks.csv", ["cost", "walk", "from", "to", "found", "frames", "edges", "transitions",
+     "cost_value", "expansions"])
+assert len(w) == 400 and {r["cost"] for r in w} == {"constant", "quality", "random", "hybrid"}
+for r in w:
+    assert r["from"] != r["to"]
+    # The pruned graph is strongly connected: every walk is found.
+    assert r["found"] == "1", r
+    assert int(r["frames"]) > 0 and int(r["edges"]) >= 1 and 0 <= int(r["transitions"]) <= int(r["edges"]), r
+    assert float(r["cost_value"]) >= 0, r
+    if r["cost"] == "constant":
+        assert float(r["cost_value"]) == int(r["edges"]), r
+by_walk = {}
+for r in w:
+    by_walk.setdefault(r["walk"], set()).add((r["from"], r["to"]))
+assert all(len(pairs) == 1 for pairs in by_walk.values())   # the same nodes for every cost
+
+p = rows("eval/paths.csv", ["shape", "path_length_m", "arc_covered_m", "mean_deviation_m",
+     "max_deviation_m", "reached_end", "frames", "searches", "budget_exhausted"])
+assert [r["shape"] for r in p] == ["line:20", "circle:5", "figure8:4", "s-curve:100"]
+for r in p:
+    mean, most = float(r["mean_deviation_m"]), float(r["max_deviation_m"])
+    assert math.isfinite(mean) and math.isfinite(most) and 0 <= mean <= most, r
+    assert float(r["path_length_m"]) > 0 and int(r["frames"]) > 0, r
+
+for name in ("threshold", "consistency", "walks", "paths"):
+    with open(f"{work}/eval/{name}.png", "rb") as f:
+        head = f.read(24)
+    assert head[:8] == b"\x89PNG\r\n\x1a\n" and head[12:16] == b"IHDR", name
+    assert struct.unpack(">II", head[16:24]) == (900, 560), name
+PY
+
+# Bad requests: one line, exit 1, nothing written.
+if "$bin" eval "$work/g.mgraph" --out-dir "$work/bad" --what threshold,fly 2>"$work/err.txt"; then
+  echo "FAIL: an unknown evaluation was accepted"; exit 1
+fi
+grep -q "unknown evaluation 'fly'" "$work/err.txt" && [ "$(wc -l <"$work/err.txt")" -eq 1 ] || { cat "$work/err.txt"; exit 1; }
+if env PATH=/nonexistent "$bin" eval "$work/g.mgraph" --out-dir "$work/bad" 2>"$work/err.txt"; then
+  echo "FAIL: plotted without gnuplot"; exit 1
+fi
+grep -q "gnuplot" "$work/err.txt" && [ "$(wc -l <"$work/err.txt")" -eq 1 ] || { cat "$work/err.txt"; exit 1; }
+[ ! -e "$work/bad" ] || { echo "FAIL: a failed eval left output"; exit 1; }
+echo "cli_eval: ok"
