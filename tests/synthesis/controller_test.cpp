@@ -75,5 +75,51 @@ TEST(Controller, SwitchesToTheTagAskedFor) {
   EXPECT_GT(walking_before, 0.8 * static_cast<double>(switch_frame));
 }
 
+// Default settings have no wall-clock budget: the same script gives the same motion, frame for
+// frame, whatever the machine's load (a time budget made a loaded CI machine turn late).
+TEST(Controller, SameInputsGiveTheSameMotion) {
+  const auto& s = test::subject16();
+  auto walk = s.context.tag_mask("walk"), run = s.context.tag_mask("run");
+  ASSERT_TRUE(walk.ok() && run.ok());
+  EXPECT_EQ(ControllerSettings{}.time_budget_s, 0.0);
+  auto play = [&] {
+    auto controller = Controller::create(s.context, {}, {bearing_direction(0.0), *walk});
+    EXPECT_TRUE(controller.ok());
+    Motion motion = s.context.assembler.empty_motion();
+    std::vector<int> edges;
+    for (int turn = 0; turn < 6; ++turn) {
+      controller->set_input({bearing_direction(60.0 * turn), turn >= 3 ? *run : *walk});
+      while (motion.frame_count < (turn + 1) * 2 * motion.fps) {
+        const ControllerDecision d = controller->step(motion);
+        edges.insert(edges.end(), d.edges.begin(), d.edges.end());
+      }
+    }
+    return std::make_pair(edges, motion);
+  };
+  const auto [edges_a, motion_a] = play();
+  const auto [edges_b, motion_b] = play();
+  EXPECT_EQ(edges_a, edges_b);
+  ASSERT_EQ(motion_a.frame_count, motion_b.frame_count);
+  for (int f = 0; f < motion_a.frame_count; ++f) {
+    ASSERT_EQ(motion_a.translations(f)[0], motion_b.translations(f)[0]) << f;
+  }
+}
+
+// A wall-clock budget far too small for any search still gets frames from every decision.
+TEST(Controller, AStarvedTimeBudgetStillAnswers) {
+  const auto& s = test::subject16();
+  ControllerSettings settings;
+  settings.time_budget_s = 1e-9;
+  auto controller = Controller::create(s.context, settings, {bearing_direction(90.0), 0});
+  ASSERT_TRUE(controller.ok());
+  Motion motion = s.context.assembler.empty_motion();
+  for (int i = 0; i < 50; ++i) {
+    const ControllerDecision d = controller->step(motion);
+    EXPECT_GT(d.frames, 0);
+    EXPECT_FALSE(d.edges.empty());
+  }
+  EXPECT_GE(motion.frame_count, 50 * static_cast<int>(settings.commit_s * motion.fps));
+}
+
 }  // namespace
 }  // namespace mg
