@@ -12,6 +12,7 @@
 #include <spdlog/spdlog.h>
 
 #include "cli/commands.h"
+#include "motiongraph/core/json_text.h"
 #include "motiongraph/core/progress.h"
 #include "motiongraph/database/database_loader.h"
 #include "motiongraph/export/matrix_png.h"
@@ -107,7 +108,7 @@ json distance_settings_json(const BuildOptions& o, const FrameFeatures& f) {
 std::uint64_t database_key(const MotionDatabase& db, const json& settings) {
   // The key covers the resampled motion itself, so any change of input files, ranges, rate
   // or reading options changes it.
-  std::string bytes = settings.dump();
+  std::string bytes = json_text(settings);
   bytes += fmt::format("fps={};", db.fps);
   for (const DatabaseClip& clip : db.clips) {
     bytes += fmt::format("{}:{}:{};", clip.skeleton, clip.first_frame, clip.frame_count);
@@ -336,15 +337,14 @@ int run_build(BuildOptions o) {
     if (graph_settings.connected_tags >> t & 1) connected_names.push_back(db->tag_names[t]);
   }
   GraphFile file;
-  file.settings_json = json({{"distance", distance_json},
-                             {"threshold", o.threshold},
-                             {"threshold_quantile", o.quantile},
-                             {"locality_radius", selection.locality_radius},
-                             {"per_tag_thresholds", o.transitions.per_tag_thresholds},
-                             {"connected_tags", connected_names},
-                             {"bridges_per_tag_pair", o.bridges.per_tag_pair},
-                             {"fps", db->fps}})
-                           .dump();
+  file.settings_json = json_text(json({{"distance", distance_json},
+                                       {"threshold", o.threshold},
+                                       {"threshold_quantile", o.quantile},
+                                       {"locality_radius", selection.locality_radius},
+                                       {"per_tag_thresholds", o.transitions.per_tag_thresholds},
+                                       {"connected_tags", connected_names},
+                                       {"bridges_per_tag_pair", o.bridges.per_tag_pair},
+                                       {"fps", db->fps}}));
   file.input_key = key;
   file.threshold = selection.threshold;
   file.threshold_quantile = selection.threshold_quantile;
@@ -373,11 +373,11 @@ int run_build(BuildOptions o) {
   file.candidates = std::move(*candidates);
   file.database = std::move(*db);
   report["timings"] = timings;
-  file.report_json = report.dump();
+  file.report_json = json_text(report);
   if (auto s = write_file_atomic(o.output, serialize_graph_file(file)); !s) return fail(s.error());
   if (!o.report.empty()) {
     report["timings"]["write"] = watch.lap();
-    if (auto s = write_file_atomic(o.report, report.dump(2) + "\n"); !s) return fail(s.error());
+    if (auto s = write_file_atomic(o.report, json_text(report, 2) + "\n"); !s) return fail(s.error());
   }
   log(fmt::format("wrote {}", o.output));
   return 0;

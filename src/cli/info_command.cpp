@@ -7,6 +7,7 @@
 
 #include "cli/commands.h"
 #include "cli/load_options.h"
+#include "motiongraph/core/json_text.h"
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/clip_summary.h"
 
@@ -80,7 +81,7 @@ int run_info(const InfoOptions& options) {
                  s.max_height_m, s.root_path_m);
     }
   }
-  if (options.json) fmt::print("{}\n", all.dump(2));
+  if (options.json) fmt::print("{}\n", json_text(all, 2));
   return 0;
 }
 

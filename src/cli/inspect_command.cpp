@@ -5,6 +5,7 @@
 
 #include "cli/commands.h"
 #include "cli/motion_output.h"
+#include "motiongraph/core/json_text.h"
 #include "motiongraph/graph/graph_file.h"
 #include "motiongraph/io/file.h"
 
@@ -61,7 +62,7 @@ int run_inspect(const InspectOptions& o) {
     return 0;
   }
   if (o.json) {
-    fmt::print("{}\n", report.dump(2));
+    fmt::print("{}\n", json_text(report, 2));
     return 0;
   }
   const MotionDatabase& db = file->database;

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "motiongraph/core/json_text.h"
 #include "motiongraph/io/file.h"
 
 namespace mg::cli {
@@ -26,7 +27,7 @@ Status write_synthesis_outputs(const SynthesisOptions& options, const LoadedGrap
                                const nlohmann::json& report) {
   if (auto s = write_motion(options.output, loaded.context.assembler.skeleton(), motion); !s) return s;
   if (!options.report.empty()) {
-    if (auto s = write_file_atomic(options.report, report.dump(2) + "\n"); !s) return s;
+    if (auto s = write_file_atomic(options.report, json_text(report, 2) + "\n"); !s) return s;
   }
   return Ok{};
 }

@@ -15,4 +15,8 @@ Result<nlohmann::json> parse_json_text(std::string_view text, const std::string&
   }
 }
 
+std::string json_text(const nlohmann::json& doc, int indent) {
+  return doc.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
 }  // namespace mg

@@ -1,5 +1,7 @@
-// Parsing a JSON document given as text (path files, control scripts, API bodies): the
-// document, or an error naming the file and the line where the syntax went wrong.
+// JSON documents as text. Parsing (path files, control scripts, API bodies) gives the document
+// or an error naming the file and the line where the syntax went wrong. Writing never throws:
+// names from the input files (joints, clips) may hold bytes that are not UTF-8, such as a
+// Latin-1 joint name in a BVH file; they are written as U+FFFD.
 #pragma once
 
 #include <string>
@@ -12,5 +14,8 @@
 namespace mg {
 
 Result<nlohmann::json> parse_json_text(std::string_view text, const std::string& file_name);
+
+// The document's text; indent < 0: on one line.
+std::string json_text(const nlohmann::json& doc, int indent = -1);
 
 }  // namespace mg

@@ -1,3 +1,4 @@
+#include "motiongraph/core/json_text.h"
 #include "motiongraph/export/positions_json.h"
 
 #include <cmath>
@@ -30,7 +31,7 @@ std::string write_positions_json(const Skeleton& skeleton, const Motion& motion)
     frames.push_back(std::move(frame));
   }
   doc["positions"] = std::move(frames);
-  return doc.dump() + "\n";
+  return json_text(doc) + "\n";
 }
 
 }  // namespace mg

@@ -1,3 +1,4 @@
+#include "motiongraph/core/json_text.h"
 #include "motiongraph/graph/motion_graph.h"
 
 #include <algorithm>
@@ -342,7 +343,7 @@ std::string to_json(const GraphStatistics& statistics, std::span<const std::stri
               {"components", statistics.components},
               {"largest_component_nodes", statistics.largest_component_nodes},
               {"tags", std::move(tags)}};
-  return out.dump(2);
+  return json_text(out, 2);
 }
 
 }  // namespace mg
