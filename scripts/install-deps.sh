@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs what motiongraph needs on Debian 12 (bookworm): compilers, CMake/Ninja and the
-# -dev packages found by find_package, gnuplot (eval's plots), then the npm packages of the
-# test tools.
+# -dev packages found by find_package, gnuplot (eval's plots), Blender (a test imports our BVH
+# into it), then the npm packages of the test tools.
 # Run as root, or as a user with sudo. Safe to run again: it skips what is present.
 set -euo pipefail
 
@@ -13,6 +13,7 @@ packages=(
   libstb-dev libgtest-dev libgmock-dev libbenchmark-dev zlib1g-dev
   python3-numpy
   gnuplot-nox
+  blender
 )
 # Node.js may come from elsewhere than Debian (its own packages conflict with Debian's npm).
 if ! command -v node >/dev/null || ! command -v npm >/dev/null; then packages+=(nodejs npm); fi
