@@ -130,6 +130,14 @@ Command add_path_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--max-expansions", o->settings.max_expansions, "Search budget per search (edges evaluated)")
       ->capture_default_str();
+  sub->add_option("--beam", o->settings.beam_width,
+                  "Beam width of the search's first pass (0: depth-first branch and bound alone)")
+      ->capture_default_str();
+  sub->add_option("--min-speed", o->settings.min_speed_mps,
+                  "Slowest speed (m/s) before falling behind costs --behind-penalty per metre per frame")
+      ->capture_default_str();
+  sub->add_option("--behind-penalty", o->settings.behind_penalty_m, "Cost (m^2 per metre behind) of dawdling")
+      ->capture_default_str();
   sub->add_option("--start-node", o->settings.start_node, "Start at this node (default: the best of a sample)");
   return {sub, [o] { return run_path(*o); }};
 }

@@ -26,41 +26,64 @@ class TargetCost final : public FrameCost {
   double goal_arc_;
 };
 
-// Every walk from the start, played frame by frame: the least cost over walks that reach the
-// horizon or the goal.
+// A partial walk played frame by frame, as the search defines it.
+struct Played {
+  int node = 0;
+  FloorTransform w;
+  double arc = 0.0;
+  Vec2 last = Vec2::Zero();
+  bool has_last = false;
+  int frames = 0;
+  double cost = 0.0;
+  bool done = false;  // reached the goal or the horizon
+};
+
+Played play(const MotionGraph& graph, const EdgeTracks& tracks, const FrameCost& cost, int horizon, Played s, int e) {
+  for (int p = 0; p < tracks.edges[e].count; ++p) {
+    const Vec3 r3 = s.w.apply(Vec3(tracks.roots_of(e)[p].x(), 0.0, tracks.roots_of(e)[p].y()));
+    const Vec3 f3 = s.w.rotate(Vec3(tracks.facings_of(e)[p].x(), 0.0, tracks.facings_of(e)[p].y()));
+    const Vec2 root(r3.x(), r3.z());
+    if (s.has_last) s.arc += (root - s.last).norm();
+    s.last = root;
+    s.has_last = true;
+    if (s.frames + p < horizon && !s.done) {
+      bool goal = false;
+      s.cost += cost.cost(s.frames + p, root, Vec2(f3.x(), f3.z()), s.arc, tracks.tags_of(e)[p], &goal);
+      s.done = goal;
+    }
+  }
+  s.frames += tracks.edges[e].count;
+  s.done = s.done || s.frames >= horizon;
+  s.w = s.w * tracks.edges[e].change;
+  s.node = graph.edges[e].to_node;
+  return s;
+}
+
+Played played_from(const SearchState& start) {
+  Played s;
+  s.node = start.node;
+  s.w = start.placement;
+  s.arc = start.arc_m;
+  s.last = start.last_root;
+  s.has_last = start.has_last;
+  return s;
+}
+
+// Every walk from the start: the least cost over walks that reach the horizon or the goal.
 double brute_force(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& start, const FrameCost& cost,
                    int horizon) {
   double best = std::numeric_limits<double>::infinity();
-  std::function<void(int, FloorTransform, double, Vec2, bool, int, double)> go =
-      [&](int node, FloorTransform w, double arc, Vec2 last, bool has_last, int played, double sum) {
-        for (int e = graph.edge_offsets[node]; e < graph.edge_offsets[node + 1]; ++e) {
-          double total = sum;
-          double a = arc;
-          Vec2 l = last;
-          bool h = has_last;
-          bool done = false;
-          for (int p = 0; p < tracks.edges[e].count; ++p) {
-            const Vec3 r3 = w.apply(Vec3(tracks.roots_of(e)[p].x(), 0.0, tracks.roots_of(e)[p].y()));
-            const Vec3 f3 = w.rotate(Vec3(tracks.facings_of(e)[p].x(), 0.0, tracks.facings_of(e)[p].y()));
-            const Vec2 root(r3.x(), r3.z());
-            if (h) a += (root - l).norm();
-            l = root;
-            h = true;
-            if (played + p < horizon && !done) {
-              bool goal = false;
-              total += cost.cost(played + p, root, Vec2(f3.x(), f3.z()), a, tracks.tags_of(e)[p], &goal);
-              done = goal;
-            }
-          }
-          const int after = played + tracks.edges[e].count;
-          if (done || after >= horizon) {
-            best = std::min(best, total);
-          } else {
-            go(graph.edges[e].to_node, w * tracks.edges[e].change, a, l, h, after, total);
-          }
-        }
-      };
-  go(start.node, start.placement, start.arc_m, start.last_root, start.has_last, 0, 0.0);
+  std::function<void(const Played&)> go = [&](const Played& s) {
+    for (int e = graph.edge_offsets[s.node]; e < graph.edge_offsets[s.node + 1]; ++e) {
+      const Played next = play(graph, tracks, cost, horizon, s, e);
+      if (next.done) {
+        best = std::min(best, next.cost);
+      } else {
+        go(next);
+      }
+    }
+  };
+  go(played_from(start));
   return best;
 }
 
@@ -76,13 +99,45 @@ TEST(HorizonSearch, MatchesBruteForceWithAGenerousBudget) {
     HorizonSettings settings;
     settings.horizon_frames = 14;
     settings.max_expansions = 10'000'000;
-    const HorizonResult result = horizon_search(graph, tracks, start, cost, settings);
-    ASSERT_FALSE(result.budget_exhausted);
-    EXPECT_NEAR(result.cost, brute_force(graph, tracks, start, cost, settings.horizon_frames), 1e-9) << trial;
-    // The walk it returns costs what it says.
-    Walk walk{start.node, result.edges};
-    EXPECT_TRUE(check_walk(graph, walk).ok());
+    const double best = brute_force(graph, tracks, start, cost, settings.horizon_frames);
+    // A beam first only gives the branch and bound its first bound: the answer stays exact.
+    for (int beam : {0, 1, 3}) {
+      settings.beam_width = beam;
+      const HorizonResult result = horizon_search(graph, tracks, start, cost, settings);
+      ASSERT_FALSE(result.budget_exhausted);
+      EXPECT_NEAR(result.cost, best, 1e-9) << trial << " beam " << beam;
+      // The walk it returns is a walk of the graph and costs what it says.
+      EXPECT_TRUE(check_walk(graph, Walk{start.node, result.edges}).ok());
+      Played s = played_from(start);
+      for (int e : result.edges) s = play(graph, tracks, cost, settings.horizon_frames, s, e);
+      EXPECT_TRUE(s.done);
+      EXPECT_NEAR(s.cost, result.cost, 1e-9) << trial << " beam " << beam;
+    }
   }
+}
+
+// With no budget left for the depth-first search, the answer is the beam's: a complete walk
+// (the budgeted depth-first search alone may have none) that costs what it says.
+TEST(HorizonSearch, TheBeamAloneAnswersWithACompleteWalk) {
+  std::mt19937 rng(33);
+  for (int trial = 0; trial < 20; ++trial) {
+    const MotionGraph graph = test::random_search_graph(rng, 12, 40, 4);
+    const EdgeTracks tracks = test::random_tracks(rng, graph);
+    const TargetCost cost(Vec2(0.8, -0.5), 1e9);
+    HorizonSettings settings;
+    settings.horizon_frames = 30;
+    settings.max_expansions = 1;
+    settings.beam_width = 8;
+    const HorizonResult beam = horizon_search(graph, tracks, {}, cost, settings);
+    ASSERT_TRUE(check_walk(graph, Walk{0, beam.edges}).ok());
+    Played s = played_from({});
+    for (int e : beam.edges) s = play(graph, tracks, cost, settings.horizon_frames, s, e);
+    EXPECT_TRUE(s.done) << trial;
+    EXPECT_NEAR(s.cost, beam.cost, 1e-9) << trial;
+  }
+  HorizonSettings bad;
+  bad.beam_width = -1;
+  EXPECT_FALSE(bad.validate().ok());
 }
 
 TEST(HorizonSearch, AHintChangesTheOrderNotTheAnswer) {

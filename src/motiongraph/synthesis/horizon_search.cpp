@@ -10,6 +10,7 @@ Status HorizonSettings::validate() const {
   if (horizon_frames < 1) return Error{"", 0, "the search horizon must be at least one frame"};
   if (max_expansions < 1) return Error{"", 0, "the search needs an expansion budget of at least 1"};
   if (!(time_budget_s >= 0.0)) return Error{"", 0, "the search time budget must be >= 0"};
+  if (beam_width < 0) return Error{"", 0, "the beam width must be >= 0"};
   return Ok{};
 }
 
@@ -66,6 +67,70 @@ bool play_edge(const MotionGraph& graph, const EdgeTracks& tracks, const FrameCo
   return true;
 }
 
+// The beam search of HorizonSettings::beam_width: partial walks bucketed by frames played.
+struct BeamResult {
+  std::vector<int> edges;
+  double cost = std::numeric_limits<double>::infinity();
+  bool goal = false;
+  long long expansions = 0;
+};
+
+BeamResult beam_search(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& start,
+                       const FrameCost& frame_cost, int horizon, int width) {
+  struct Entry {
+    int parent = -1;  // index into `walks`
+    int edge = -1;
+    Child child;
+  };
+  std::vector<Entry> walks;
+  std::vector<std::vector<int>> buckets(static_cast<size_t>(horizon));
+  BeamResult result;
+  int best = -1;
+  Entry root;
+  root.child.state = start;
+  walks.push_back(root);
+  buckets[0].push_back(0);
+  std::vector<int> seen_stamp(static_cast<size_t>(graph.node_count()), -1);
+  for (int t = 0; t < horizon; ++t) {
+    std::vector<int>& bucket = buckets[static_cast<size_t>(t)];
+    if (bucket.empty()) continue;
+    std::sort(bucket.begin(), bucket.end(),
+              [&](int a, int b) { return walks[a].child.priority < walks[b].child.priority; });
+    int kept = 0;
+    for (int w : bucket) {
+      if (kept >= width) break;
+      const int node = walks[w].child.state.node;
+      if (seen_stamp[node] == t || walks[w].child.priority >= result.cost) continue;  // one walk per node
+      seen_stamp[node] = t;
+      ++kept;
+      for (const GraphEdge& edge : graph.out_edges(node)) {
+        const int e = static_cast<int>(&edge - graph.edges.data());
+        Entry next;
+        next.parent = w;
+        next.edge = e;
+        next.child.cost = walks[w].child.cost;
+        ++result.expansions;
+        if (!play_edge(graph, tracks, frame_cost, horizon, t, result.cost, e, walks[w].child.state, next.child)) {
+          continue;
+        }
+        const int index = static_cast<int>(walks.size());
+        if (next.child.complete) {
+          result.cost = next.child.cost;
+          result.goal = next.child.goal;
+          best = index;
+        } else {
+          buckets[static_cast<size_t>(t + std::max(1, graph.edges[e].frame_count))].push_back(index);
+        }
+        walks.push_back(std::move(next));
+      }
+    }
+    std::vector<int>().swap(bucket);
+  }
+  for (int w = best; w > 0; w = walks[w].parent) result.edges.push_back(walks[w].edge);
+  std::reverse(result.edges.begin(), result.edges.end());
+  return result;
+}
+
 }  // namespace
 
 SearchState advance(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& state, int edge) {
@@ -117,6 +182,15 @@ HorizonResult horizon_search(const MotionGraph& graph, const EdgeTracks& tracks,
     stack.push_back(std::move(level));
   };
 
+  if (settings.beam_width > 0) {
+    BeamResult beam = beam_search(graph, tracks, start, frame_cost, settings.horizon_frames, settings.beam_width);
+    result.expansions += beam.expansions;
+    if (!beam.edges.empty()) {
+      result.edges = std::move(beam.edges);
+      result.cost = beam.cost;
+      result.goal_reached = beam.goal;
+    }
+  }
   expand(start, 0.0, 0);
   long long steps = 0;
   while (!stack.empty()) {

@@ -47,6 +47,13 @@ struct HorizonSettings {
   int horizon_frames = 90;
   long long max_expansions = 200000;  // edges evaluated
   double time_budget_s = 0.0;         // 0: none
+  // > 0: before the depth-first search, a beam search over frames played keeps, at each
+  // frame count, the beam_width partial walks of least cost plus bound (one per node) and
+  // extends them; its best complete walk is the branch and bound's first bound and answer.
+  // On a dense graph of short pieces (a large database) the depth-first search alone spends
+  // its budget near the end of the greedy walk; the beam looks wide early on. Its work is
+  // bounded by beam_width x out-degree x horizon edges, counted in the expansions.
+  int beam_width = 0;
 
   Status validate() const;
 };

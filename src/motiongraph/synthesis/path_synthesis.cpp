@@ -12,6 +12,9 @@ Status PathSynthesisSettings::validate() const {
     return Error{"", 0, "path search: need 0 < commit_s <= horizon_s"};
   }
   if (!(tag_penalty_m2 >= 0.0)) return Error{"", 0, "path search: the tag penalty must be >= 0"};
+  if (!(min_speed_mps >= 0.0) || !(behind_penalty_m >= 0.0)) {
+    return Error{"", 0, "path search: the slowest speed and its penalty must be >= 0"};
+  }
   if (max_expansions < 1 || start_candidates < 1) return Error{"", 0, "path search: budgets must be positive"};
   return Ok{};
 }
@@ -20,8 +23,16 @@ namespace {
 
 class PathCost final : public FrameCost {
  public:
-  PathCost(const FloorPath& path, const std::vector<TagMask>& segment_masks, double penalty, double max_step)
-      : path_(path), masks_(segment_masks), penalty_(penalty), max_step_(max_step) {}
+  PathCost(const FloorPath& path, const std::vector<TagMask>& segment_masks, double penalty, double max_step,
+           double min_step, double behind_penalty)
+      : path_(path),
+        masks_(segment_masks),
+        penalty_(penalty),
+        max_step_(max_step),
+        min_step_(min_step),
+        behind_penalty_(behind_penalty) {}
+  // Each search starts where the root has covered arc_m.
+  void start_search(double arc_m) { search_arc_m_ = arc_m; }
   // In m more frames the root moves at most m * max_step and so does the path's point at its
   // arc length, so the root is at least d - 2 m max_step from it (d: the distance now); and
   // the path's end cannot be reached sooner than (length - arc) / max_step frames.
@@ -37,8 +48,11 @@ class PathCost final : public FrameCost {
     }
     return bound;
   }
-  double cost(int, const Vec2& root, const Vec2&, double arc_m, TagMask tags, bool* goal) const override {
+  double cost(int frame, const Vec2& root, const Vec2&, double arc_m, TagMask tags, bool* goal) const override {
     double c = (root - path_.point_at(arc_m)).squaredNorm();
+    // Behind the slowest schedule allowed: metres not covered since the search began.
+    const double behind = search_arc_m_ + min_step_ * (frame + 1) - arc_m;
+    if (behind > 0.0) c += behind_penalty_ * behind;
     const TagMask wanted = wanted_at(arc_m);
     if (wanted != 0 && (tags & wanted) == 0) c += penalty_;
     if (arc_m >= path_.length_m()) *goal = true;
@@ -57,6 +71,9 @@ class PathCost final : public FrameCost {
   const std::vector<TagMask>& masks_;
   double penalty_;
   double max_step_;
+  double min_step_;
+  double behind_penalty_;
+  double search_arc_m_ = 0.0;
 };
 
 }  // namespace
@@ -76,10 +93,12 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
     return Error{"", 0, fmt::format("start node {} does not exist (the graph has {})", settings.start_node,
                                     graph.node_count())};
   }
-  const PathCost cost(path, masks, settings.tag_penalty_m2, settings.lower_bound ? context.tracks.max_root_step_m : 0.0);
+  PathCost cost(path, masks, settings.tag_penalty_m2, settings.lower_bound ? context.tracks.max_root_step_m : 0.0,
+                settings.min_speed_mps / fps, settings.behind_penalty_m);
   HorizonSettings search;
   search.horizon_frames = std::max(1, static_cast<int>(std::lround(settings.horizon_s * fps)));
   search.max_expansions = settings.max_expansions;
+  search.beam_width = settings.beam_width;
   const int commit_frames = std::max(1, static_cast<int>(std::lround(settings.commit_s * fps)));
 
   PathSynthesisResult result;
@@ -113,6 +132,7 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
   HorizonSettings sample = search;
   sample.max_expansions = std::max<long long>(1, search.max_expansions / 4);
   HorizonResult first;
+  cost.start_search(0.0);
   for (int node : candidates) {
     HorizonResult r = horizon_search(graph, context.tracks, start_state(node), cost,
                                      candidates.size() > 1 ? sample : search);
@@ -125,6 +145,9 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
     }
   }
   SearchState state = start_state(result.walk.start_node);
+  if (!first.edges.empty()) {
+    state.placement = context.placement_facing_edge(first.edges.front(), path.points().front(), path.direction_at(0.0));
+  }
   result.start = state.placement;
 
   // Incremental search until the path's end is reached or the walk takes far too long.
@@ -147,6 +170,7 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
       break;
     }
     if (state.frames >= max_frames || current.edges.empty()) break;
+    cost.start_search(state.arc_m);
     current = horizon_search(graph, context.tracks, state, cost, search, hint);
     result.expansions += current.expansions;
     ++result.searches;

@@ -1,7 +1,8 @@
 // Path synthesis (Kovar et al. 2002, section 5): a walk whose root follows a path on the
 // floor. The cost of a frame is the squared floor distance between the root and the path's
 // point at the same arc length (arc length the root has covered), plus a penalty for each
-// frame not carrying the motion tag the path asks for there; the walk is complete when its
+// frame not carrying the motion tag the path asks for there, plus a penalty for falling
+// behind a slowest speed (see min_speed_mps); the walk is complete when its
 // root has covered the path's length. The search is incremental: the best walk of about
 // horizon_s seconds by branch and bound (horizon_search.h), keep its first commit_s seconds
 // (whole edges), search again from there.
@@ -21,7 +22,14 @@ struct PathSynthesisSettings {
   double horizon_s = 3.0;
   double commit_s = 1.0;
   double tag_penalty_m2 = 1.0;         // per frame without the tag asked for
+  // Kovar's cost compares the root with the path at equal arc length, which a root that
+  // stays put (standing, sitting, dancing on the spot) matches perfectly: with many such clips
+  // the walk dawdles. Each frame also costs behind_penalty_m times the metres the root is
+  // behind covering the path at min_speed_mps since the search began (0: Kovar's cost alone).
+  double min_speed_mps = 0.5;
+  double behind_penalty_m = 1.0;
   long long max_expansions = 20000;    // per search
+  int beam_width = 64;                 // HorizonSettings::beam_width (0: none)
   int start_candidates = 16;
   int start_node = -1;                 // >= 0: start there instead
   // The two things that make the search fast; off, it is the plain depth-first branch and

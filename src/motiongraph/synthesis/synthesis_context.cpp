@@ -19,18 +19,31 @@ Result<SynthesisContext> make_synthesis_context(const MotionDatabase& db, const 
   return context;
 }
 
-FloorTransform SynthesisContext::placement_facing(int node, const Vec2& at, const Vec2& direction) const {
-  const int frame = graph->nodes[node].frame;
-  const Vec3 root = assembler.root_position(frame, {});
-  Vec2 facing = facing_on_floor(assembler.root_rotation(frame, {}), tracks.forward_axis);
+namespace {
+
+// The placement moving a root at `root` facing `facing` (floor) to `at` facing `direction`.
+FloorTransform place_root(const Vec2& root, Vec2 facing, const Vec2& at, const Vec2& direction) {
   if (facing.isZero()) facing = Vec2(0.0, -1.0);
   // FloorTransform turns the angle atan2(z, x) of a vector by -yaw.
   const double yaw = std::atan2(facing.y(), facing.x()) - std::atan2(direction.y(), direction.x());
   FloorTransform w{yaw, 0.0, 0.0};
-  const Vec3 turned = w.apply(Vec3(root.x(), 0.0, root.z()));
+  const Vec3 turned = w.apply(Vec3(root.x(), 0.0, root.y()));
   w.x_m = at.x() - turned.x();
   w.z_m = at.y() - turned.z();
   return w;
+}
+
+}  // namespace
+
+FloorTransform SynthesisContext::placement_facing(int node, const Vec2& at, const Vec2& direction) const {
+  const int frame = graph->nodes[node].frame;
+  const Vec3 root = assembler.root_position(frame, {});
+  return place_root(Vec2(root.x(), root.z()), facing_on_floor(assembler.root_rotation(frame, {}), tracks.forward_axis),
+                    at, direction);
+}
+
+FloorTransform SynthesisContext::placement_facing_edge(int edge, const Vec2& at, const Vec2& direction) const {
+  return place_root(tracks.roots_of(edge).front(), tracks.facings_of(edge).front(), at, direction);
 }
 
 Result<TagMask> SynthesisContext::tag_mask(const std::string& name) const {

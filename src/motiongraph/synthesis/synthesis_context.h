@@ -19,6 +19,9 @@ struct SynthesisContext {
   // The placement that puts node `node`'s frame with its root at `at` facing `direction`
   // (unit, on the floor).
   FloorTransform placement_facing(int node, const Vec2& at, const Vec2& direction) const;
+  // The same for the first frame edge `edge` plays (a transition's first frame is already
+  // blended, a few millimetres from its node's frame).
+  FloorTransform placement_facing_edge(int edge, const Vec2& at, const Vec2& direction) const;
   // The tag bit of a name, or an error listing the graph's tags.
   Result<TagMask> tag_mask(const std::string& name) const;
 };
