@@ -116,6 +116,9 @@ Command add_steer_command(CLI::App& app) {
   sub->add_option("--horizon", o->settings.horizon_s, "Seconds each decision looks ahead")->capture_default_str();
   sub->add_option("--commit", o->settings.commit_s, "Seconds of motion each decision commits")->capture_default_str();
   sub->add_option("--max-expansions", o->settings.max_expansions, "Search budget per decision")->capture_default_str();
+  sub->add_option("--beam", o->settings.beam_width,
+                  "Beam width of each decision's first pass (0: depth-first branch and bound alone)")
+      ->capture_default_str();
   sub->add_option("--time-budget", o->settings.time_budget_s, "Wall-clock seconds per decision (0: expansions only, the same motion on any machine)")
       ->capture_default_str();
   sub->add_option("--tolerance", o->tolerance_deg, "Report: degrees within which a heading counts as reached")

@@ -76,6 +76,7 @@ ControllerDecision Controller::step(Motion& out) {
   search.horizon_frames = std::max(1, static_cast<int>(std::lround(settings_.horizon_s * fps)));
   search.max_expansions = settings_.max_expansions;
   search.time_budget_s = settings_.time_budget_s;
+  search.beam_width = settings_.beam_width;
   const SteerCost cost(input_, settings_.tag_penalty);
   const HorizonResult best = horizon_search(graph, context_->tracks, state_, cost, search);
   ControllerDecision decision;

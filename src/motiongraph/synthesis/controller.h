@@ -25,6 +25,7 @@ struct ControllerSettings {
   double commit_s = 0.2;
   double tag_penalty = 2.0;          // per frame; a full turn away costs 2 per frame
   long long max_expansions = 3000;
+  int beam_width = 8;                // HorizonSettings::beam_width (0: none)
   // Per decision; 0 (the default): only the expansion budget, so that the same inputs give the
   // same motion on any machine and under any load (3000 expansions take about 0.1 ms here).
   // A wall-clock budget cuts the search short when the machine is busy, and a search cut short
