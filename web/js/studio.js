@@ -272,7 +272,6 @@ $('synthesize').addEventListener('click', async () => {
   $('path-info').textContent = 'synthesizing...';
   try {
     const result = await post('/api/path', { points: state.path.points, segments: pathSegments() });
-    const n = state.joints.length;
     result.roots = result.positions.map((f) => [f[0], f[2]]);
     state.pathResult = result;
     drawPath();
@@ -283,7 +282,7 @@ $('synthesize').addEventListener('click', async () => {
     $('path-info').textContent = `${result.path_length_m.toFixed(1)} m, ${result.frames} frames `
       + `(${(result.frames / result.fps).toFixed(1)} s): deviation mean ${result.mean_deviation_m.toFixed(2)} m, `
       + `max ${result.max_deviation_m.toFixed(2)} m${result.reached_end ? '' : ' (end not reached)'}`
-      + `, tags matched ${(100 * result.tag_match).toFixed(0)} %` + (n ? '' : '');
+      + `, tags matched ${(100 * result.tag_match).toFixed(0)} %`;
   } catch (err) {
     $('path-info').textContent = `error: ${err.message}`;
   }
