@@ -2,7 +2,11 @@
 // and 4xx with a message for every kind of bad request.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <mutex>
+#include <thread>
+#include <vector>
 
 #include "studio/studio_test_service.h"
 
@@ -159,6 +163,35 @@ TEST(StudioApi, BadSteeringIs4xx) {
   const std::string step = "/api/steer/sessions/" + std::to_string(session.json["session"].get<int>()) + "/step";
   expect_error(call_api("POST", step, R"({"min_frames": 0})"), 400, "min_frames");
   expect_error(call_api("POST", step, R"({"heading_deg": "north"})"), 400, "heading_deg");
+}
+
+TEST(StudioApi, OneSessionSteppedFromSeveralThreadsHandsOutEachFrameOnce) {
+  const ApiCall session = call_api("POST", "/api/steer/sessions", R"({"tag": "walk"})");
+  ASSERT_EQ(session.response.status, 200);
+  const std::string step = "/api/steer/sessions/" + std::to_string(session.json["session"].get<int>()) + "/step";
+  std::mutex mutex;
+  std::vector<std::pair<long long, long long>> ranges;  // [first, first + frames)
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t) {
+    threads.emplace_back([&, t] {
+      for (int i = 0; i < 5; ++i) {
+        const ApiCall call = call_api("POST", step, R"({"heading_deg": )" + std::to_string(90 * t) + "}");
+        if (call.response.status != 200) continue;
+        std::lock_guard lock(mutex);
+        ranges.emplace_back(call.json["first_frame"].get<long long>(),
+                            call.json["first_frame"].get<long long>() + call.json["frames"].get<long long>());
+      }
+    });
+  }
+  for (auto& t : threads) t.join();
+  ASSERT_EQ(ranges.size(), 20u);
+  std::sort(ranges.begin(), ranges.end());
+  long long next = 0;
+  for (const auto& [first, end] : ranges) {
+    EXPECT_EQ(first, next);
+    EXPECT_GT(end, first);
+    next = end;
+  }
 }
 
 }  // namespace
