@@ -42,9 +42,9 @@ struct SteerStepResult {
 
 class SynthesisService {
  public:
-  static constexpr int kMaxResults = 64;
-  static constexpr int kMaxSessions = 32;
-  static constexpr int kMaxRecordedFrames = 30 * 60 * 10;
+  static constexpr int kMaxResults = 32;
+  static constexpr int kMaxSessions = 16;
+  static constexpr int kMaxRecordedFrames = 30 * 60 * 2;  // 2 minutes at 30 fps
 
   // Loads a .mgraph file and sets up synthesis on it.
   static Result<std::unique_ptr<SynthesisService>> load(const std::string& graph_path);

@@ -165,6 +165,23 @@ TEST(StudioApi, BadSteeringIs4xx) {
   expect_error(call_api("POST", step, R"({"heading_deg": "north"})"), 400, "heading_deg");
 }
 
+TEST(StudioApi, SessionsAndResultsAreBounded) {
+  const ApiCall first = call_api("POST", "/api/steer/sessions", "{}");
+  ASSERT_EQ(first.response.status, 200);
+  const std::string step = "/api/steer/sessions/" + std::to_string(first.json["session"].get<int>()) + "/step";
+  ASSERT_EQ(call_api("POST", step, "{}").response.status, 200);
+  for (int i = 0; i < studio::SynthesisService::kMaxSessions; ++i) {
+    ASSERT_EQ(call_api("POST", "/api/steer/sessions", "{}").response.status, 200);
+  }
+  // The least recently used session went; so did the oldest results.
+  expect_error(call_api("POST", step, "{}"), 404, "no steering session");
+  for (int i = 0; i < studio::SynthesisService::kMaxResults; ++i) {
+    ASSERT_EQ(call_api("POST", "/api/walk", R"({"from": 0, "to": 1, "min_frames": 0})").response.status, 200);
+  }
+  expect_error(call_api("GET", "/api/results/" + std::to_string(first.json["result"].get<int>()) + ".bvh"), 404,
+               "no result");
+}
+
 TEST(StudioApi, OneSessionSteppedFromSeveralThreadsHandsOutEachFrameOnce) {
   const ApiCall session = call_api("POST", "/api/steer/sessions", R"({"tag": "walk"})");
   ASSERT_EQ(session.response.status, 200);
