@@ -162,7 +162,7 @@ try {
   console.log(`steering: ${played1[0] - played0[0]} motion frames played, ${played1[1] - played0[1]} rendered in 3 s`);
   await page.keyboard.up('KeyD');
   const heading = await page.evaluate(() => window.studio.state.steer.heading);
-  check(heading === 90, `D steers east (heading ${heading})`);
+  check(heading === 90, `D steers east, the camera looking north (heading ${heading})`);
   const [dx, dz] = [end[0] - start[0], end[2] - start[2]];
   check(dx > 1.0 && dx > 2 * Math.abs(dz), `the character went east: x ${start[0].toFixed(2)} -> ${end[0].toFixed(2)}, `
     + `z ${start[2].toFixed(2)} -> ${end[2].toFixed(2)}`);

@@ -114,7 +114,7 @@ async function loadClip(index) {
   ensureFigure(joints);
   setDrawing(false);
   play({ fps: state.summary.fps, frames, loop: true, label: `clip ${clip.name}` }, 'clip');
-  chaseCamera(frames[0], [2.5, 1.3, 5]);
+  chaseCamera([2.5, 1.3, 5]);
   state.clipIndex = index;
 }
 
@@ -178,7 +178,7 @@ async function selectTransition(index) {
   figure.offset.set(-0.6, 0, 0);
   second.offset.set(0.6, 0, 0);
   setDrawing(false);
-  chaseCamera([0, 0, 0], [0, 0.6, 4]);
+  chaseCamera([0, 0.6, 4]);
   second.group.visible = true;
   const t = state.transitions[index];
   $('transition-info').textContent = `transition ${index}: ${t.from_clip} frame ${t.from_frame} (orange) -> `
@@ -212,15 +212,27 @@ function pathSegments() {
   }
   return segments;
 }
-function line(points, colour, y = 0.01) {
-  const geometry = new THREE.BufferGeometry().setFromPoints(points.map(([x, z]) => new THREE.Vector3(x, y, z)));
-  return new THREE.Line(geometry, new THREE.LineBasicMaterial({ color: colour }));
+// A flat ribbon along floor points [[x, z], ...] (WebGL lines are one pixel wide).
+const ribbonGeometry = new THREE.BoxGeometry(1, 1, 1);
+const ribbonMaterials = new Map();
+function ribbonPiece([ax, az], [bx, bz], colour, y, width) {
+  if (!ribbonMaterials.has(colour)) ribbonMaterials.set(colour, new THREE.MeshBasicMaterial({ color: colour }));
+  const piece = new THREE.Mesh(ribbonGeometry, ribbonMaterials.get(colour));
+  piece.position.set((ax + bx) / 2, y, (az + bz) / 2);
+  piece.rotation.y = -Math.atan2(bz - az, bx - ax);
+  piece.scale.set(Math.hypot(bx - ax, bz - az) + width, 0.004, width);
+  return piece;
+}
+function line(points, colour, y = 0.01, width = 0.06) {
+  const group = new THREE.Group();
+  for (let i = 1; i < points.length; ++i) group.add(ribbonPiece(points[i - 1], points[i], colour, y, width));
+  return group;
 }
 function drawPath() {
   overlays.clear();
   const { points, tags } = state.path;
   for (let i = 1; i < points.length; ++i) overlays.add(line([points[i - 1], points[i]], tagColour(tags[i]), 0.012));
-  if (state.pathResult) overlays.add(line(state.pathResult.roots, 0x111111, 0.02));
+  if (state.pathResult) overlays.add(line(state.pathResult.roots, 0x111111, 0.02, 0.03));
 }
 let stroking = false;
 canvas.addEventListener('pointerdown', (e) => {
@@ -277,7 +289,7 @@ $('synthesize').addEventListener('click', async () => {
     drawPath();
     ensureFigure(state.joints);
     play({ fps: result.fps, frames: result.positions, loop: false, label: 'path' }, 'result');
-    chaseCamera(result.positions[0], [0, 6, 7]);  // high, so the path shows beside the figure
+    chaseCamera([0, 6, 7]);  // high, so the path shows beside the figure
     setResultLink(result.result);
     $('path-info').textContent = `${result.path_length_m.toFixed(1)} m, ${result.frames} frames `
       + `(${(result.frames / result.fps).toFixed(1)} s): deviation mean ${result.mean_deviation_m.toFixed(2)} m, `
@@ -318,7 +330,13 @@ function steerInput() {
     run ||= (pad.buttons[7]?.value ?? 0) > 0.5;
     s.gamepad = pad.id;
   }
-  if (dx !== 0 || dz !== 0) s.heading = (Math.atan2(dx, -dz) * 180) / Math.PI;
+  if (dx !== 0 || dz !== 0) {  // relative to where the camera looks: W is away from it
+    const look = new THREE.Vector3();
+    camera.getWorldDirection(look);
+    const view = Math.atan2(look.x, -look.z);
+    const bearing = ((view + Math.atan2(dx, -dz)) * 180) / Math.PI;
+    s.heading = Math.round((((bearing % 360) + 540) % 360) - 180);
+  }
   let tag = s.chosenTag;
   if (run && has('run')) tag = 'run';
   if (jump && has('jump')) tag = 'jump';
@@ -337,10 +355,10 @@ async function startSteering() {
   second.group.visible = false;
   overlays.clear();
   state.steer = { session: session.session, buffer: [], inFlight: false, heading: 0, tag, chosenTag: tag,
-    received: 0, played: 0, clock: 0, fps: session.fps, lastStepMs: 0, trail: [] };
+    received: 0, played: 0, clock: 0, fps: session.fps, lastStepMs: 0, trailEnd: null };
   setResultLink(session.result);
   setDrawing(false);
-  chaseCamera(state.root, [0, 1.6, 5]);  // from the south: W (north) goes away from the camera
+  chaseCamera([0, 1.6, 5]);  // from the south, looking north
   $('steer').textContent = 'Stop steering';
   canvas.focus();
   requestSteps();
@@ -382,7 +400,7 @@ $('random-walk').addEventListener('click', async () => {
   ensureFigure(walk.joints);
   setDrawing(false);
   play({ fps: walk.fps, frames: walk.positions, loop: false, label: 'graph walk' }, 'result');
-  chaseCamera(walk.positions[0], [2, 1.6, 5]);
+  chaseCamera([2, 1.6, 5]);
   setResultLink(walk.result);
 });
 
@@ -399,16 +417,19 @@ function resize() {
     camera.updateProjectionMatrix();
   }
 }
-// Puts the camera at `offset` from the root, looking at it (the follow keeps that offset).
-function chaseCamera(root, offset) {
-  controls.target.set(root[0], 0.9, root[2]);
-  camera.position.set(root[0] + offset[0], 0.9 + offset[1], root[2] + offset[2]);
-  controls.update();
-  lastRoot = null;
-}
+// On the next frame shown, puts the camera at `offset` from the root, looking at it (the
+// follow keeps that offset).
+let chaseOffset = null;
+function chaseCamera(offset) { chaseOffset = offset; }
 function follow(root) {
   if (state.drawing) return;
   const at = new THREE.Vector3(root[0], 0.9, root[2]);
+  if (chaseOffset) {
+    controls.target.copy(at);
+    camera.position.set(at.x + chaseOffset[0], at.y + chaseOffset[1], at.z + chaseOffset[2]);
+    chaseOffset = null;
+    lastRoot = null;
+  }
   if (lastRoot && state.mode !== 'poses') {
     const delta = at.clone().sub(lastRoot);
     if (delta.length() < 3) { camera.position.add(delta); controls.target.add(delta); }
@@ -435,11 +456,13 @@ function tick() {
     if (s.buffer.length <= 1) s.clock = Math.min(s.clock, 1);
     if (s.buffer.length) {
       showFrame(s.buffer[0]);
-      if (s.played % 5 === 0) {
-        s.trail.push([state.root[0], state.root[2]]);
-        if (s.trail.length > 400) s.trail.shift();
-        overlays.clear();
-        if (s.trail.length > 1) overlays.add(line(s.trail, 0x111111, 0.015));
+      const here = [state.root[0], state.root[2]];
+      const last = s.trailEnd;
+      if (!last) s.trailEnd = here;
+      else if (Math.hypot(here[0] - last[0], here[1] - last[1]) > 0.15) {  // the root's track
+        overlays.add(ribbonPiece(last, here, 0x111111, 0.015, 0.03));
+        s.trailEnd = here;
+        if (overlays.children.length > 400) overlays.remove(overlays.children[0]);
       }
     }
     requestSteps();
