@@ -82,7 +82,12 @@ Result<PathSynthesisResult> SynthesisService::path(const FloorPath& path, const 
 }
 
 Result<int> SynthesisService::create_session(const ControlInput& input) {
-  auto controller = Controller::create(context_, ControllerSettings{}, input);
+  // A request carries several decisions and the network's latency anyway: each decision may
+  // take a few milliseconds (the CLI's default is under one), which keeps its search whole
+  // on slower builds too.
+  ControllerSettings settings;
+  settings.time_budget_s = 0.005;
+  auto controller = Controller::create(context_, settings, input);
   if (!controller) return controller.error();
   auto session = std::make_shared<Session>();
   session->controller = std::make_unique<Controller>(std::move(*controller));
