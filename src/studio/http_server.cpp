@@ -66,6 +66,10 @@ Result<int> HttpServer::bind(const std::string& host, int port) {
   if (!web_root_.empty() && !std::filesystem::is_regular_file(std::filesystem::path(web_root_) / "index.html")) {
     return Error{web_root_, 0, "no index.html here: --web-root must be the studio's web/ folder"};
   }
+  if (!web_root_.empty() &&
+      !std::filesystem::is_regular_file(std::filesystem::path(web_root_) / "node_modules/three/build/three.module.js")) {
+    return Error{web_root_, 0, "three.js is not installed here: run 'npm ci' in this folder (scripts/install-deps.sh does)"};
+  }
   if (port < 0 || port > 65535) return Error{"", 0, fmt::format("port {} is not in 0..65535", port)};
   const int bound =
       port == 0 ? server_->bind_to_any_port(host.c_str()) : (server_->bind_to_port(host.c_str(), port) ? port : -1);

@@ -26,7 +26,8 @@ class HttpServer {
   HttpServer(const HttpServer&) = delete;
   HttpServer& operator=(const HttpServer&) = delete;
 
-  // Binds host:port (port 0: a free one) and returns the port bound.
+  // Binds host:port (port 0: a free one) and returns the port bound. Fails when the web root
+  // has no index.html or no three.js (web/node_modules, from npm ci).
   Result<int> bind(const std::string& host, int port);
   // Serves until stop(); call after bind().
   Status run();

@@ -45,6 +45,10 @@ status=0
 "$mg" serve "$graph" --web-root "$tmp" --port 0 >/dev/null 2>"$tmp/err" || status=$?
 [[ $status -eq 1 && $(wc -l <"$tmp/err") -eq 1 ]] || fail "a web root without index.html: exit $status, $(cat "$tmp/err")"
 grep -q "index.html" "$tmp/err" || fail "the error does not say what is missing: $(cat "$tmp/err")"
+echo '<script type="importmap"></script>' >"$tmp/index.html"
+status=0
+"$mg" serve "$graph" --web-root "$tmp" --port 0 >/dev/null 2>"$tmp/err" || status=$?
+[[ $status -eq 1 ]] && grep -q "npm ci" "$tmp/err" || fail "a web root without three.js: exit $status, $(cat "$tmp/err")"
 echo "not json" >"$tmp/bad.mgraph"
 status=0
 "$mg" serve "$tmp/bad.mgraph" --port 0 >/dev/null 2>"$tmp/err" || status=$?
