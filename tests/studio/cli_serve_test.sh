@@ -27,9 +27,9 @@ serve_and_stop() {
     sleep 0.1
   done
   [[ -n $url ]] || fail "no 'studio: http://127.0.0.1:PORT/' line on stdout"
-  curl -sf "${url}api/summary" | grep -q '"frames"' || fail "GET /api/summary"
-  curl -sf "$url" | grep -q 'importmap' || fail "GET / is not the studio page"
-  [[ $(curl -s -o /dev/null -w '%{http_code}' "${url}api/clips/999/frames") == 404 ]] || fail "a bad clip is not 404"
+  curl -sf -m 30 "${url}api/summary" | grep -q '"frames"' || fail "GET /api/summary"
+  curl -sf -m 30 "$url" | grep -q 'importmap' || fail "GET / is not the studio page"
+  [[ $(curl -s -m 30 -o /dev/null -w '%{http_code}' "${url}api/clips/999/frames") == 404 ]] || fail "a bad clip is not 404"
   kill "-$signal" "$pid"
   local status=0
   wait "$pid" || status=$?
@@ -40,17 +40,17 @@ serve_and_stop() {
 serve_and_stop INT
 serve_and_stop TERM
 
-# Bad input: one line, exit 1.
+# Bad input: one line, exit 1 (under a timeout: a server that starts anyway fails, not hangs).
 status=0
-"$mg" serve "$graph" --web-root "$tmp" --port 0 >/dev/null 2>"$tmp/err" || status=$?
+timeout 60 "$mg" serve "$graph" --web-root "$tmp" --port 0 >/dev/null 2>"$tmp/err" || status=$?
 [[ $status -eq 1 && $(wc -l <"$tmp/err") -eq 1 ]] || fail "a web root without index.html: exit $status, $(cat "$tmp/err")"
 grep -q "index.html" "$tmp/err" || fail "the error does not say what is missing: $(cat "$tmp/err")"
 echo '<script type="importmap"></script>' >"$tmp/index.html"
 status=0
-"$mg" serve "$graph" --web-root "$tmp" --port 0 >/dev/null 2>"$tmp/err" || status=$?
+timeout 60 "$mg" serve "$graph" --web-root "$tmp" --port 0 >/dev/null 2>"$tmp/err" || status=$?
 [[ $status -eq 1 ]] && grep -q "npm ci" "$tmp/err" || fail "a web root without three.js: exit $status, $(cat "$tmp/err")"
 echo "not json" >"$tmp/bad.mgraph"
 status=0
-"$mg" serve "$tmp/bad.mgraph" --port 0 >/dev/null 2>"$tmp/err" || status=$?
+timeout 60 "$mg" serve "$tmp/bad.mgraph" --port 0 >/dev/null 2>"$tmp/err" || status=$?
 [[ $status -eq 1 && $(wc -l <"$tmp/err") -eq 1 ]] || fail "a bad graph file: exit $status, $(cat "$tmp/err")"
 echo "cli_serve: ok"
