@@ -2,7 +2,8 @@
 # The main job on the bundled data: installs what is missing, builds, then reads every bundled
 # clip, prints its summary, converts it to BVH in metres and to JSON world positions (30 fps),
 # builds the motion graph of subject 16 with its report and distance picture, and evaluates it
-# (CSV files and PNG plots in out/eval), all in out/.
+# (CSV files and PNG plots in out/eval), all in out/, then starts the web studio on the graph
+# and prints its address.
 # Usage: scripts/demo.sh   (from anywhere)
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -61,3 +62,6 @@ echo "   JSON world positions in out/json, summary in out/summary.txt,"
 echo "   the graph in out/subject16.mgraph with its report and distance picture (out/subject16-*),"
 echo "   synthesized motion: out/figure8-walk-run.bvh, out/steer-demo.bvh, out/walk-demo.bvh,"
 echo "   the graph's evaluation in out/eval (threshold, consistency, walks, paths: .csv and .png)"
+
+echo "== the studio: open the address below in a browser (Ctrl-C stops it; PORT=... to change the port)"
+exec "$bin" serve out/subject16.mgraph --port "${PORT:-8080}"

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what motiongraph needs on Debian 12 (bookworm): compilers, CMake/Ninja and the
 # -dev packages found by find_package, gnuplot (eval's plots), Blender (a test imports our BVH
-# into it), then the npm packages of the test tools.
+# into it), chromium (the studio's browser test), then the npm packages of the test tools and
+# of the studio's front-end.
 # Run as root, or as a user with sudo. Safe to run again: it skips what is present.
 set -euo pipefail
 
@@ -14,6 +15,7 @@ packages=(
   python3-numpy
   gnuplot-nox
   blender
+  libcpp-httplib-dev chromium curl
 )
 # Node.js may come from elsewhere than Debian (its own packages conflict with Debian's npm).
 if ! command -v node >/dev/null || ! command -v npm >/dev/null; then packages+=(nodejs npm); fi
@@ -31,8 +33,11 @@ if ((${#missing[@]})); then
   "${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-# Node packages used by the tests (three.js's BVHLoader), pinned by the lockfile.
+# Node packages pinned by their lockfiles: the tests' (three.js's BVHLoader, playwright-core)
+# and the studio's front-end (three.js, served by `motiongraph serve`).
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-if [ -f "$here/tests/js/package-lock.json" ]; then
-  (cd "$here/tests/js" && npm ci --no-audit --no-fund --loglevel=error)
-fi
+for dir in tests/js web; do
+  if [ -f "$here/$dir/package-lock.json" ]; then
+    (cd "$here/$dir" && npm ci --no-audit --no-fund --loglevel=error)
+  fi
+done

@@ -25,6 +25,7 @@ Command add_walk_command(CLI::App& app);
 Command add_path_command(CLI::App& app);
 Command add_steer_command(CLI::App& app);
 Command add_eval_command(CLI::App& app);
+Command add_serve_command(CLI::App& app);
 
 // Prints "motiongraph: <error>" to stderr and returns the exit code for failed input (1).
 int fail(const Error& error);

@@ -42,6 +42,7 @@ int main(int argc, char** argv) {
       mg::cli::add_path_command(app),
       mg::cli::add_steer_command(app),
       mg::cli::add_eval_command(app),
+      mg::cli::add_serve_command(app),
   };
   try {
     app.parse(argc, argv);

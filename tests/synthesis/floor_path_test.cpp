@@ -72,6 +72,7 @@ TEST(FloorPath, BadInputIsOneClearError) {
       {"points missing", "{\"pts\": []}", 0, "\"points\""},
       {"point not a pair", "{\"points\": [[0, 0], [1]]}", 0, "points[1]"},
       {"one point", "{\"points\": [[0, 0], [0, 0]]}", 0, "two distinct points"},
+      {"too long", "{\"points\": [[0, 0], [0, 1e300]]}", 0, "at most 100 km"},
       {"segment backwards", "{\"points\": [[0, 0], [1, 0]], \"segments\": [{\"from_m\": 2, \"to_m\": 1, \"tag\": \"run\"}]}",
        0, "from_m < to_m"},
       {"segment without tag", "{\"points\": [[0, 0], [1, 0]], \"segments\": [{\"from_m\": 0, \"to_m\": 1}]}", 0,

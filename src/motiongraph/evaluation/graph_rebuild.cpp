@@ -58,6 +58,7 @@ Result<GraphRebuild> prepare_graph_rebuild(const GraphFile& file, const std::str
                                            features->window, file.candidates.window)};
   }
   out.features = std::move(*features);
+  out.distance = distance;
   return out;
 }
 

@@ -13,6 +13,7 @@ namespace mg {
 
 struct GraphRebuild {
   FrameFeatures features;
+  DistanceSettings distance;             // as the file was built (to recompute the distances)
   GraphFromCandidatesSettings settings;  // as the file was built (its threshold included)
 };
 

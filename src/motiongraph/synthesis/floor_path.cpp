@@ -21,6 +21,9 @@ Result<FloorPath> FloorPath::create(const std::vector<Vec2>& points, std::vector
     path.points_.push_back(p);
   }
   if (path.points_.size() < 2) return Error{"", 0, "a path needs at least two distinct points"};
+  if (!(path.length_m() <= kMaxLengthM)) {
+    return Error{"", 0, fmt::format("a path may be at most {:.0f} km long", kMaxLengthM / 1000.0)};
+  }
   for (const PathSegment& s : segments) {
     if (!std::isfinite(s.from_m) || !std::isfinite(s.to_m) || s.from_m < 0.0 || s.to_m <= s.from_m) {
       return Error{"", 0, fmt::format("segment '{}' must have 0 <= from_m < to_m", s.tag)};

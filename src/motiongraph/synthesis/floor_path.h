@@ -29,8 +29,11 @@ struct PathSegment {
 
 class FloorPath {
  public:
+  static constexpr double kMaxLengthM = 100000.0;
+
   FloorPath() = default;
-  // Fails with fewer than two distinct points or a non-finite coordinate.
+  // Fails with fewer than two distinct points, a non-finite coordinate or a length over
+  // kMaxLengthM.
   static Result<FloorPath> create(const std::vector<Vec2>& points, std::vector<PathSegment> segments = {});
 
   double length_m() const { return arc_.empty() ? 0.0 : arc_.back(); }

@@ -1,0 +1,85 @@
+// motiongraph serve GRAPH [--host H] [--port P] [--web-root DIR]: the web studio (src/studio/)
+// on one graph. Prints "studio: http://HOST:PORT/" once it listens; SIGINT and SIGTERM stop
+// it cleanly (exit 0).
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <thread>
+
+#include <fmt/format.h>
+
+#include "cli/commands.h"
+#include "studio/http_server.h"
+
+namespace mg::cli {
+
+namespace {
+
+struct ServeOptions {
+  std::string graph;
+  std::string host = "127.0.0.1";
+  int port = 8080;
+  std::string web_root = MOTIONGRAPH_WEB_ROOT;
+};
+
+// Set by SIGINT / SIGTERM, whichever thread takes them (libraries start threads of their own
+// before main, so blocking the signals everywhere is not possible); a watcher polls it.
+std::atomic<int> stop_signal = 0;
+
+extern "C" void on_stop_signal(int signal) { stop_signal = signal; }
+
+int run_serve(const ServeOptions& o) {
+  struct sigaction action = {};
+  action.sa_handler = on_stop_signal;
+  action.sa_flags = SA_RESTART;  // the server's system calls go on; the watcher stops it
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+
+  auto service = studio::SynthesisService::load(o.graph);
+  if (!service) return fail(service.error());
+  const studio::StudioApi api(**service);
+  studio::HttpServer server(api, o.web_root);
+  auto port = server.bind(o.host, o.port);
+  if (!port) return fail(port.error());
+
+  std::atomic<bool> done = false;
+  std::thread signal_thread([&] {
+    while (!done) {
+      if (stop_signal != 0) {
+        std::fprintf(stderr, "motiongraph: stopping the studio\n");
+        server.stop();
+        return;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+  });
+  const std::string shown_host = o.host.find(':') != std::string::npos ? "[" + o.host + "]" : o.host;
+  fmt::print("studio: http://{}:{}/\n", shown_host, *port);
+  std::fflush(stdout);
+  const Status served = server.run();
+  done = true;
+  signal_thread.join();
+  if (!served) return fail(served.error());
+  return 0;
+}
+
+}  // namespace
+
+Command add_serve_command(CLI::App& app) {
+  auto o = std::make_shared<ServeOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "serve", "Serve the web studio on a graph: watch clips, inspect transitions, synthesize paths and steer\n"
+               "the character in a browser. Prints the address once listening; Ctrl-C stops it.");
+  sub->add_option("GRAPH", o->graph, "A .mgraph file written by 'motiongraph build'")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sub->add_option("--host", o->host, "Address to listen on (loopback by default)")->capture_default_str();
+  sub->add_option("--port", o->port, "Port (0: pick a free one)")->capture_default_str()->check(CLI::Range(0, 65535));
+  sub->add_option("--web-root", o->web_root, "The studio's front-end folder (web/ of the source tree)")
+      ->capture_default_str();
+  return {sub, [o] { return run_serve(*o); }};
+}
+
+}  // namespace mg::cli

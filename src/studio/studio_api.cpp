@@ -1,0 +1,405 @@
+#include "studio/studio_api.h"
+
+#include <charconv>
+#include <cmath>
+#include <exception>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "motiongraph/core/json_text.h"
+#include "motiongraph/export/matrix_png.h"
+#include "motiongraph/motion/forward_kinematics.h"
+
+namespace mg::studio {
+
+namespace {
+
+using nlohmann::json;
+
+// A request that cannot be answered: its status and one line saying why. Thrown inside the
+// router only, and always caught by StudioApi::handle.
+struct ApiError {
+  int status = 400;
+  std::string message;
+};
+
+ApiResponse json_response(const json& body, int status = 200) {
+  ApiResponse r;
+  r.status = status;
+  r.body = json_text(body);
+  return r;
+}
+
+ApiResponse error_response(const ApiError& e) { return json_response({{"error", e.message}}, e.status); }
+
+// A whole decimal integer in [lo, hi].
+std::optional<long long> parse_integer(const std::string& text, long long lo, long long hi) {
+  long long value = 0;
+  const char* end = text.data() + text.size();
+  auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  if (ec != std::errc() || ptr != end || value < lo || value > hi) return std::nullopt;
+  return value;
+}
+
+// Query parameter `name` as an integer in [lo, hi], or `fallback` when absent.
+long long query_integer(const ApiRequest& request, const std::string& name, long long fallback, long long lo,
+                        long long hi) {
+  auto it = request.query.find(name);
+  if (it == request.query.end()) return fallback;
+  auto value = parse_integer(it->second, lo, hi);
+  if (!value) throw ApiError{400, fmt::format("'{}' must be an integer in [{}, {}]", name, lo, hi)};
+  return *value;
+}
+
+json body_object(const ApiRequest& request) {
+  if (request.body.empty()) return json::object();
+  auto parsed = parse_json_text(request.body, "request body");
+  if (!parsed) throw ApiError{400, parsed.error().to_string()};
+  if (!parsed->is_object()) throw ApiError{400, "the request body must be a JSON object"};
+  return std::move(*parsed);
+}
+
+double number_field(const json& body, const std::string& name, double fallback, double lo, double hi) {
+  if (!body.contains(name)) return fallback;
+  const json& v = body[name];
+  if (!v.is_number()) throw ApiError{400, fmt::format("'{}' must be a number", name)};
+  const double x = v.get<double>();
+  if (!std::isfinite(x) || x < lo || x > hi) throw ApiError{400, fmt::format("'{}' must be in [{}, {}]", name, lo, hi)};
+  return x;
+}
+
+long long integer_field(const json& body, const std::string& name, long long fallback, long long lo, long long hi) {
+  if (!body.contains(name)) return fallback;
+  const json& v = body[name];
+  if (!v.is_number_integer() || v.get<long long>() < lo || v.get<long long>() > hi) {
+    throw ApiError{400, fmt::format("'{}' must be an integer in [{}, {}]", name, lo, hi)};
+  }
+  return v.get<long long>();
+}
+
+std::string string_field(const json& body, const std::string& name, const std::string& fallback) {
+  if (!body.contains(name)) return fallback;
+  if (!body[name].is_string()) throw ApiError{400, fmt::format("'{}' must be a string", name)};
+  return body[name].get<std::string>();
+}
+
+double round_mm(double v) { return std::round(v * 1e4) / 1e4 + 0.0; }
+
+json joints_json(const Skeleton& skeleton) {
+  json joints = json::array();
+  for (const JointDef& joint : skeleton.joints()) joints.push_back({{"name", joint.name}, {"parent", joint.parent}});
+  return joints;
+}
+
+// World joint positions per frame, flat [x0, y0, z0, x1, ...], metres; `centre` is
+// subtracted from x and z.
+json positions_json(const Skeleton& skeleton, const Motion& motion, const Vec2& centre = Vec2::Zero()) {
+  const std::vector<Vec3> world = world_positions(skeleton, motion);
+  const size_t joints = static_cast<size_t>(skeleton.joint_count());
+  json frames = json::array();
+  for (int f = 0; f < motion.frame_count; ++f) {
+    json frame = json::array();
+    for (size_t j = 0; j < joints; ++j) {
+      const Vec3& p = world[f * joints + j];
+      frame.push_back(round_mm(p.x() - centre.x()));
+      frame.push_back(round_mm(p.y()));
+      frame.push_back(round_mm(p.z() - centre.y()));
+    }
+    frames.push_back(std::move(frame));
+  }
+  return frames;
+}
+
+json motion_json(const Skeleton& skeleton, const Motion& motion) {
+  return {{"fps", motion.fps},
+          {"frames", motion.frame_count},
+          {"joints", joints_json(skeleton)},
+          {"positions", positions_json(skeleton, motion)}};
+}
+
+json tag_names_of(const MotionDatabase& db, TagMask mask) {
+  json names = json::array();
+  for (size_t t = 0; t < db.tag_names.size(); ++t) {
+    if (mask >> t & 1) names.push_back(db.tag_names[t]);
+  }
+  return names;
+}
+
+class Router {
+ public:
+  Router(SynthesisService& service, const ApiRequest& request) : service_(service), request_(request) {
+    size_t begin = 1;
+    const std::string& path = request.path;
+    while (begin <= path.size()) {
+      size_t end = path.find('/', begin);
+      if (end == std::string::npos) end = path.size();
+      parts_.push_back(path.substr(begin, end - begin));
+      begin = end + 1;
+    }
+  }
+
+  ApiResponse route() {
+    const auto& p = parts_;
+    if (p.empty() || p[0] != "api") throw ApiError{404, fmt::format("no such endpoint: {}", request_.path)};
+    const size_t n = p.size();
+    if (n == 2 && p[1] == "summary") return get(&Router::summary);
+    if (n == 2 && p[1] == "clips") return get(&Router::clips);
+    if (n == 4 && p[1] == "clips" && p[3] == "frames") return get(&Router::clip_frames);
+    if (n == 2 && p[1] == "matrix.png") return get(&Router::matrix);
+    if (n == 2 && p[1] == "transitions") return get(&Router::transitions);
+    if (n == 4 && p[1] == "transitions" && p[3] == "poses") return get(&Router::transition_poses);
+    if (n == 2 && p[1] == "walk") return post(&Router::walk);
+    if (n == 2 && p[1] == "path") return post(&Router::path);
+    if (n == 3 && p[1] == "steer" && p[2] == "sessions") return post(&Router::create_session);
+    if (n == 5 && p[1] == "steer" && p[2] == "sessions" && p[4] == "step") return post(&Router::step_session);
+    if (n == 3 && p[1] == "results") return get(&Router::result_bvh);
+    throw ApiError{404, fmt::format("no such endpoint: {}", request_.path)};
+  }
+
+ private:
+  ApiResponse get(ApiResponse (Router::*handler)()) { return method("GET", handler); }
+  ApiResponse post(ApiResponse (Router::*handler)()) { return method("POST", handler); }
+  ApiResponse method(const char* expected, ApiResponse (Router::*handler)()) {
+    if (request_.method != expected) {
+      throw ApiError{405, fmt::format("{} takes {}, not {}", request_.path, expected, request_.method)};
+    }
+    return (this->*handler)();
+  }
+
+  const MotionDatabase& db() const { return service_.file().database; }
+  const MotionGraph& graph() const { return service_.file().graph; }
+  const Skeleton& skeleton() const { return service_.context().assembler.skeleton(); }
+
+  int index_part(size_t i, int count, const char* what) const {
+    auto value = parse_integer(parts_[i], 0, count - 1);
+    if (!value) throw ApiError{404, fmt::format("no {} '{}' (there are {})", what, parts_[i], count)};
+    return static_cast<int>(*value);
+  }
+
+  TagMask tag_of(const json& body) const {
+    const std::string name = string_field(body, "tag", "");
+    if (name.empty() || name == "any") return 0;
+    auto mask = service_.context().tag_mask(name);
+    if (!mask) throw ApiError{400, mask.error().message};
+    return *mask;
+  }
+
+  ControlInput control_of(const json& body) const {
+    ControlInput input;
+    input.direction = bearing_direction(number_field(body, "heading_deg", 0.0, -720.0, 720.0));
+    input.tag = tag_of(body);
+    return input;
+  }
+
+  ApiResponse summary() {
+    const GraphFile& file = service_.file();
+    const GraphStatistics stats = compute_graph_statistics(graph(), service_.context().frame_tags);
+    const int frames = db().frame_count();
+    const int block = min_matrix_block(frames, SynthesisService::kPictureSide);
+    return json_response({{"graph", service_.graph_path()},
+                          {"fps", db().fps},
+                          {"frames", frames},
+                          {"clips", db().clips.size()},
+                          {"skeleton_joints", skeleton().joint_count()},
+                          {"window", graph().window},
+                          {"threshold", file.threshold},
+                          {"threshold_quantile", file.threshold_quantile},
+                          {"tags", db().tag_names},
+                          {"matrix", {{"block", block}, {"side", (frames + block - 1) / block}}},
+                          {"statistics", json::parse(to_json(stats, db().tag_names))}});
+  }
+
+  ApiResponse clips() {
+    json out = json::array();
+    const std::vector<TagMask>& tags = service_.context().frame_tags;
+    for (size_t i = 0; i < db().clips.size(); ++i) {
+      const DatabaseClip& c = db().clips[i];
+      TagMask mask = 0;
+      for (int f = c.first_frame; f < c.first_frame + c.frame_count; ++f) mask |= tags[f];
+      out.push_back({{"index", i},
+                     {"name", c.name},
+                     {"first_frame", c.first_frame},
+                     {"frames", c.frame_count},
+                     {"duration_s", c.frame_count / db().fps},
+                     {"tags", tag_names_of(db(), mask)}});
+    }
+    return json_response(out);
+  }
+
+  ApiResponse clip_frames() {
+    const int index = index_part(2, static_cast<int>(db().clips.size()), "clip");
+    const DatabaseClip& c = db().clips[index];
+    const int from = static_cast<int>(query_integer(request_, "from", 0, 0, c.frame_count - 1));
+    const int count = static_cast<int>(
+        query_integer(request_, "count", std::min(StudioApi::kMaxFramesPerRequest, c.frame_count - from), 1,
+                      StudioApi::kMaxFramesPerRequest));
+    const Motion slice = c.motion.slice(from, std::min(count, c.frame_count - from));
+    json out = motion_json(db().skeletons[c.skeleton], slice);
+    out["clip"] = index;
+    out["from"] = from;
+    return json_response(out);
+  }
+
+  ApiResponse matrix() {
+    auto png = service_.distance_png();
+    if (!png) throw ApiError{500, png.error().to_string()};
+    ApiResponse r;
+    r.content_type = "image/png";
+    r.body = std::move(*png);
+    return r;
+  }
+
+  ApiResponse transitions() {
+    json out = json::array();
+    for (size_t i = 0; i < graph().transitions.size(); ++i) {
+      const Transition& t = graph().transitions[i];
+      out.push_back({{"index", i},
+                     {"from_frame", t.from_frame},
+                     {"to_frame", t.to_frame},
+                     {"distance", t.distance},
+                     {"from_clip", db().clips[db().clip_of(t.from_frame)].name},
+                     {"to_clip", db().clips[db().clip_of(t.to_frame)].name}});
+    }
+    return json_response(out);
+  }
+
+  // The k frames from global frame `first`, centred on the floor position of the root of
+  // their first frame.
+  json window_json(int first, int count) const {
+    const DatabaseClip& c = db().clips[db().clip_of(first)];
+    const Motion slice = c.motion.slice(first - c.first_frame, count);
+    const Skeleton& s = db().skeletons[c.skeleton];
+    std::vector<Vec3> world(s.joint_count());
+    std::vector<Quat> rotations(s.joint_count());
+    forward_kinematics(s, slice, 0, world, rotations);
+    return {{"clip", c.name}, {"first_frame", first}, {"positions", positions_json(s, slice, Vec2(world[0].x(), world[0].z()))}};
+  }
+
+  ApiResponse transition_poses() {
+    const int index = index_part(2, static_cast<int>(graph().transitions.size()), "transition");
+    const Transition& t = graph().transitions[index];
+    const int k = graph().window;
+    return json_response({{"index", index},
+                          {"distance", t.distance},
+                          {"fps", db().fps},
+                          {"joints", joints_json(skeleton())},
+                          {"from", window_json(t.from_frame, k)},
+                          {"to", window_json(t.to_frame - k + 1, k)}});
+  }
+
+  ApiResponse walk() {
+    const json body = body_object(request_);
+    const int nodes = graph().node_count();
+    WalkRequest w;
+    w.from = static_cast<int>(integer_field(body, "from", 0, 0, nodes - 1));
+    w.to = static_cast<int>(integer_field(body, "to", w.from, 0, nodes - 1));
+    w.min_frames = static_cast<int>(integer_field(body, "min_frames", 150, 0, 1800));
+    w.seed = static_cast<std::uint64_t>(integer_field(body, "seed", 1, 0, 1LL << 40));
+    auto cost = parse_walk_cost(string_field(body, "cost", "random"));
+    if (!cost) throw ApiError{400, cost.error().message};
+    w.cost = *cost;
+    auto result = service_.walk(w);
+    if (!result) throw ApiError{422, result.error().to_string()};
+    json out = motion_json(skeleton(), result->motion);
+    out["result"] = result->result;
+    return json_response(out);
+  }
+
+  ApiResponse path() {
+    const json body = body_object(request_);
+    if (body.contains("points") && body["points"].is_array() &&
+        body["points"].size() > static_cast<size_t>(StudioApi::kMaxPathPoints)) {
+      throw ApiError{400, fmt::format("at most {} points", StudioApi::kMaxPathPoints)};
+    }
+    auto floor_path = parse_path_json(request_.body, "request body");
+    if (!floor_path) throw ApiError{400, floor_path.error().to_string()};
+    if (floor_path->length_m() > StudioApi::kMaxPathLengthM) {
+      throw ApiError{400, fmt::format("the path is {:.0f} m long; at most {:.0f} m", floor_path->length_m(),
+                                      StudioApi::kMaxPathLengthM)};
+    }
+    for (const PathSegment& s : floor_path->segments()) {
+      if (auto mask = service_.context().tag_mask(s.tag); !mask) throw ApiError{400, mask.error().message};
+    }
+    auto result = service_.path(*floor_path);
+    if (!result) throw ApiError{422, result.error().to_string()};
+    json out = motion_json(skeleton(), result->motion);
+    out["result"] = service_.store_result(result->motion);
+    out["path_length_m"] = result->path_length_m;
+    out["arc_covered_m"] = result->arc_covered_m;
+    out["reached_end"] = result->reached_end;
+    out["mean_deviation_m"] = result->mean_deviation_m;
+    out["max_deviation_m"] = result->max_deviation_m;
+    out["tag_match"] = result->tag_match;
+    json frame_tags = json::array();
+    for (TagMask m : result->frame_tags) frame_tags.push_back(tag_names_of(db(), m));
+    out["frame_tags"] = std::move(frame_tags);
+    return json_response(out);
+  }
+
+  ApiResponse create_session() {
+    const json body = body_object(request_);
+    auto id = service_.create_session(control_of(body));
+    if (!id) throw ApiError{422, id.error().to_string()};
+    return json_response({{"session", *id},
+                          {"result", *id},
+                          {"fps", db().fps},
+                          {"joints", joints_json(skeleton())},
+                          {"tags", db().tag_names}});
+  }
+
+  ApiResponse step_session() {
+    auto id = parse_integer(parts_[3], 0, 1LL << 30);
+    if (!id) throw ApiError{404, fmt::format("no steering session '{}'", parts_[3])};
+    const json body = body_object(request_);
+    const ControlInput input = control_of(body);
+    const int min_frames = static_cast<int>(integer_field(body, "min_frames", 1, 1, 90));
+    auto step = service_.step_session(static_cast<int>(*id), input, min_frames);
+    if (!step) throw ApiError{404, step.error().to_string()};
+    return json_response({{"session", *id},
+                          {"first_frame", step->first_frame},
+                          {"frames", step->motion.frame_count},
+                          {"search_ms", 1e3 * step->search_seconds},
+                          {"positions", positions_json(skeleton(), step->motion)}});
+  }
+
+  ApiResponse result_bvh() {
+    const std::string& name = parts_[2];
+    const std::string suffix = ".bvh";
+    std::optional<long long> id;
+    if (name.size() > suffix.size() && name.ends_with(suffix)) {
+      id = parse_integer(name.substr(0, name.size() - suffix.size()), 0, 1LL << 30);
+    }
+    if (!id) throw ApiError{404, fmt::format("no result '{}': expected /api/results/ID.bvh", name)};
+    auto bvh = service_.result_bvh(static_cast<int>(*id));
+    if (!bvh) throw ApiError{404, fmt::format("no result {} (results are kept for the latest {})", *id,
+                                              SynthesisService::kMaxResults)};
+    ApiResponse r;
+    r.content_type = "application/octet-stream";
+    r.body = std::move(*bvh);
+    r.file_name = fmt::format("motiongraph-{}.bvh", *id);
+    return r;
+  }
+
+  SynthesisService& service_;
+  const ApiRequest& request_;
+  std::vector<std::string> parts_;
+};
+
+}  // namespace
+
+ApiResponse StudioApi::handle(const ApiRequest& request) const {
+  try {
+    return route(request);
+  } catch (const ApiError& e) {
+    return error_response(e);
+  } catch (const std::bad_alloc&) {
+    return error_response({503, "out of memory"});
+  } catch (const std::exception& e) {
+    return error_response({500, e.what()});
+  }
+}
+
+ApiResponse StudioApi::route(const ApiRequest& request) const { return Router(*service_, request).route(); }
+
+}  // namespace mg::studio

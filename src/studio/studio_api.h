@@ -1,0 +1,56 @@
+// The studio's JSON API as a function from a request (method, path, query, body) to a
+// response (status, content type, body), so it is tested without sockets; http_server.h
+// puts it on the network. Errors are 4xx with {"error": "one line"}; every number is
+// checked (type, finite, range) and every answer is bounded in size.
+//
+//   GET  /api/summary                       the graph, database and per-tag statistics
+//   GET  /api/clips                         the clips
+//   GET  /api/clips/{i}/frames?from=&count= world joint positions of clip frames (count <= 600)
+//   GET  /api/matrix.png                    the distance picture (block minima)
+//   GET  /api/transitions                   the graph's transitions
+//   GET  /api/transitions/{i}/poses         the two windows a transition joins, root-centred
+//   POST /api/walk                          {"from", "to", "min_frames", "cost", "seed"}
+//   POST /api/path                          {"points": [[x, z], ...], "segments": [...]}
+//   POST /api/steer/sessions                {"heading_deg", "tag"}
+//   POST /api/steer/sessions/{id}/step      {"heading_deg", "tag", "min_frames"}
+//   GET  /api/results/{id}.bvh              a synthesized motion as BVH (metres)
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "studio/synthesis_service.h"
+
+namespace mg::studio {
+
+struct ApiRequest {
+  std::string method;  // "GET", "POST", ...
+  std::string path;    // "/api/..." without the query
+  std::map<std::string, std::string> query;
+  std::string body;
+};
+
+struct ApiResponse {
+  int status = 200;
+  std::string content_type = "application/json";
+  std::string body;
+  std::string file_name;  // when set, the body is a download of that name
+};
+
+class StudioApi {
+ public:
+  static constexpr int kMaxFramesPerRequest = 600;
+  static constexpr double kMaxPathLengthM = 200.0;
+  static constexpr int kMaxPathPoints = 5000;
+
+  explicit StudioApi(SynthesisService& service) : service_(&service) {}
+
+  // Never throws; anything unexpected is a 500 with a message.
+  ApiResponse handle(const ApiRequest& request) const;
+
+ private:
+  ApiResponse route(const ApiRequest& request) const;
+  SynthesisService* service_;
+};
+
+}  // namespace mg::studio

@@ -1,0 +1,160 @@
+#include "studio/synthesis_service.h"
+
+#include <fmt/format.h>
+
+#include "motiongraph/evaluation/graph_rebuild.h"
+#include "motiongraph/export/bvh_writer.h"
+#include "motiongraph/export/matrix_png.h"
+#include "motiongraph/graph/candidates.h"
+#include "motiongraph/io/file.h"
+
+namespace mg::studio {
+
+Result<std::unique_ptr<SynthesisService>> SynthesisService::load(const std::string& graph_path) {
+  auto bytes = read_text_file(graph_path);
+  if (!bytes) return bytes.error();
+  auto file = parse_graph_file(*bytes, graph_path);
+  if (!file) return file.error();
+  std::unique_ptr<SynthesisService> service(new SynthesisService());
+  service->path_ = graph_path;
+  service->file_ = std::move(*file);
+  auto context = make_synthesis_context(service->file_.database, service->file_.graph);
+  if (!context) return Error{graph_path, 0, context.error().message};
+  service->context_ = std::move(*context);
+  return service;
+}
+
+int SynthesisService::store_recorded(std::shared_ptr<Recorded> recorded) {
+  std::lock_guard lock(mutex_);
+  const int id = next_id_++;
+  results_[id] = std::move(recorded);
+  while (static_cast<int>(results_.size()) > kMaxResults) results_.erase(results_.begin());
+  return id;
+}
+
+int SynthesisService::store_result(Motion motion) {
+  auto recorded = std::make_shared<Recorded>();
+  recorded->motion = std::move(motion);
+  return store_recorded(std::move(recorded));
+}
+
+std::optional<std::string> SynthesisService::result_bvh(int result) const {
+  std::shared_ptr<Recorded> recorded;
+  {
+    std::lock_guard lock(mutex_);
+    auto it = results_.find(result);
+    if (it == results_.end()) return std::nullopt;
+    recorded = it->second;
+  }
+  Motion motion;
+  {
+    std::lock_guard lock(recorded->mutex);
+    motion = recorded->motion;
+  }
+  return write_bvh(context_.assembler.skeleton(), motion, BvhWriteSettings{});
+}
+
+Result<SynthesizedMotion> SynthesisService::walk(const WalkRequest& request) {
+  const MotionGraph& graph = file_.graph;
+  if (request.from < 0 || request.from >= graph.node_count() || request.to < 0 || request.to >= graph.node_count()) {
+    return Error{"", 0, fmt::format("nodes are 0..{}", graph.node_count() - 1)};
+  }
+  WalkSearchSettings settings;
+  settings.cost = request.cost;
+  settings.seed = request.seed;
+  settings.min_frames = request.min_frames;
+  settings.max_expansions = 500000;
+  if (auto s = settings.validate(); !s) return s.error();
+  auto found = find_walk(graph, request.from, request.to, settings);
+  if (!found) return found.error();
+  const FloorTransform start = context_.placement_facing(request.from, Vec2::Zero(), Vec2(0.0, -1.0));
+  auto motion = assemble_walk(file_.database, graph, found->walk, start, context_.assembler.target_skeleton());
+  if (!motion) return motion.error();
+  SynthesizedMotion out;
+  out.motion = std::move(*motion);
+  out.result = store_result(out.motion);
+  return out;
+}
+
+Result<PathSynthesisResult> SynthesisService::path(const FloorPath& path, const PathSynthesisSettings& settings) const {
+  if (auto s = settings.validate(); !s) return s.error();
+  return synthesize_path(context_, path, settings);
+}
+
+Result<int> SynthesisService::create_session(const ControlInput& input) {
+  // The controller's defaults: an expansion budget (well under a millisecond a decision) and
+  // no wall-clock budget, so that a loaded machine or a slow build steers the same way.
+  auto controller = Controller::create(context_, ControllerSettings{}, input);
+  if (!controller) return controller.error();
+  auto session = std::make_shared<Session>();
+  session->controller = std::make_unique<Controller>(std::move(*controller));
+  session->recorded = std::make_shared<Recorded>();
+  session->recorded->motion = context_.assembler.empty_motion();
+  const int id = store_recorded(session->recorded);
+  std::lock_guard lock(mutex_);
+  session->last_used = ++clock_;
+  sessions_[id] = std::move(session);
+  while (static_cast<int>(sessions_.size()) > kMaxSessions) {
+    auto oldest = sessions_.begin();
+    for (auto it = sessions_.begin(); it != sessions_.end(); ++it) {
+      if (it->second->last_used < oldest->second->last_used) oldest = it;
+    }
+    sessions_.erase(oldest);
+  }
+  return id;
+}
+
+Result<SteerStepResult> SynthesisService::step_session(int id, const ControlInput& input, int min_frames) {
+  std::shared_ptr<Session> session;
+  {
+    std::lock_guard lock(mutex_);
+    auto it = sessions_.find(id);
+    if (it == sessions_.end()) return Error{"", 0, fmt::format("no steering session {} (it may have expired)", id)};
+    session = it->second;
+    session->last_used = ++clock_;
+  }
+  std::lock_guard lock(session->mutex);
+  session->controller->set_input(input);
+  SteerStepResult out;
+  out.motion = context_.assembler.empty_motion();
+  out.first_frame = session->frames;
+  do {
+    const ControllerDecision decision = session->controller->step(out.motion);
+    out.search_seconds += decision.search_seconds;
+    if (decision.frames == 0) break;
+  } while (out.motion.frame_count < min_frames);
+  session->frames += out.motion.frame_count;
+  std::lock_guard record(session->recorded->mutex);
+  Motion& recorded = session->recorded->motion;
+  if (recorded.frame_count + out.motion.frame_count <= kMaxRecordedFrames) {
+    recorded.local_rotations.insert(recorded.local_rotations.end(), out.motion.local_rotations.begin(),
+                                    out.motion.local_rotations.end());
+    recorded.local_translations_m.insert(recorded.local_translations_m.end(),
+                                         out.motion.local_translations_m.begin(),
+                                         out.motion.local_translations_m.end());
+    recorded.frame_count += out.motion.frame_count;
+  }
+  return out;
+}
+
+Result<std::string> SynthesisService::distance_png() const {
+  std::call_once(picture_once_, [this] {
+    picture_ = [this]() -> Result<std::string> {
+      auto rebuild = prepare_graph_rebuild(file_, path_);
+      if (!rebuild) return rebuild.error();
+      CandidateSettings settings;
+      settings.picture_side = kPictureSide;
+      auto search = find_candidates(rebuild->features, rebuild->distance, settings);
+      if (!search) return search.error();
+      std::vector<int> clip_starts;
+      for (const DatabaseClip& clip : file_.database.clips) clip_starts.push_back(clip.first_frame);
+      MatrixPngSettings png;
+      png.max_side_px = kPictureSide;
+      return matrix_png(MinMatrixView{search->picture, search->picture_side, search->picture_block}, clip_starts, {},
+                        png);
+    }();
+  });
+  return *picture_;
+}
+
+}  // namespace mg::studio

@@ -1,0 +1,105 @@
+// The studio's synthesis on one loaded graph (walk, path and interactive steering), shared by
+// every request the server answers at once. The graph and its synthesis context are read-only
+// after loading; results kept for download and the steering sessions (each with its own
+// Controller) are guarded, so every member function may be called from any thread.
+//
+// Bounds: at most kMaxResults results are kept (the oldest go first), at most kMaxSessions
+// steering sessions live at once (the least recently used goes), and a session records at
+// most kMaxRecordedFrames frames for download (it keeps steering after that).
+#pragma once
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+
+#include "motiongraph/graph/graph_file.h"
+#include "motiongraph/synthesis/controller.h"
+#include "motiongraph/synthesis/path_synthesis.h"
+#include "motiongraph/synthesis/walk_search.h"
+
+namespace mg::studio {
+
+struct WalkRequest {
+  int from = 0;
+  int to = 0;
+  int min_frames = 0;
+  WalkCost cost = WalkCost::kQuality;
+  std::uint64_t seed = 1;
+};
+
+struct SynthesizedMotion {
+  int result = 0;   // id for result_bvh()
+  Motion motion;
+};
+
+struct SteerStepResult {
+  Motion motion;    // the frames this step appended
+  long long first_frame = 0;  // index of its first frame in the session's motion
+  double search_seconds = 0.0;
+};
+
+class SynthesisService {
+ public:
+  static constexpr int kMaxResults = 32;
+  static constexpr int kMaxSessions = 16;
+  static constexpr int kMaxRecordedFrames = 30 * 60 * 2;  // 2 minutes at 30 fps
+
+  // Loads a .mgraph file and sets up synthesis on it.
+  static Result<std::unique_ptr<SynthesisService>> load(const std::string& graph_path);
+
+  const std::string& graph_path() const { return path_; }
+  const GraphFile& file() const { return file_; }
+  const SynthesisContext& context() const { return context_; }
+
+  Result<SynthesizedMotion> walk(const WalkRequest& request);
+  // Path synthesis; the caller stores the motion (store_result) when it keeps it.
+  Result<PathSynthesisResult> path(const FloorPath& path, const PathSynthesisSettings& settings = {}) const;
+
+  // A steering session starting at the origin facing input.direction; returns its id, which
+  // is also the id of the result recording its motion.
+  Result<int> create_session(const ControlInput& input);
+  // Sets the input and appends at least min_frames frames (one decision or more).
+  Result<SteerStepResult> step_session(int session, const ControlInput& input, int min_frames);
+
+  // The BVH text of a result, or nothing when there is no such result (any more).
+  std::optional<std::string> result_bvh(int result) const;
+  // Stores a motion for download and returns its id.
+  int store_result(Motion motion);
+
+  // The distance picture (PNG bytes, at most kPictureSide pixels a side, min_matrix_block
+  // frames per pixel), computed on first use from the database and the distance settings the
+  // graph was built with, then kept.
+  static constexpr int kPictureSide = 512;
+  Result<std::string> distance_png() const;
+
+ private:
+  struct Recorded {
+    mutable std::mutex mutex;
+    Motion motion;
+  };
+  struct Session {
+    std::mutex mutex;
+    std::unique_ptr<Controller> controller;
+    std::shared_ptr<Recorded> recorded;
+    long long frames = 0;
+    long long last_used = 0;
+  };
+  SynthesisService() = default;
+  int store_recorded(std::shared_ptr<Recorded> recorded);
+
+  std::string path_;
+  GraphFile file_;
+  SynthesisContext context_;
+
+  mutable std::mutex mutex_;  // guards the members below
+  int next_id_ = 1;
+  long long clock_ = 0;
+  std::map<int, std::shared_ptr<Recorded>> results_;
+  std::map<int, std::shared_ptr<Session>> sessions_;
+  mutable std::once_flag picture_once_;
+  mutable std::optional<Result<std::string>> picture_;
+};
+
+}  // namespace mg::studio

@@ -1,0 +1,192 @@
+// End-to-end test of the studio in a real browser: Debian's chromium, headless with software
+// WebGL (SwiftShader), driven by playwright-core. Starts `motiongraph serve` on a free port
+// and checks what a user sees: the figure on the canvas (pixels), a clip playing, a clicked
+// transition's two poses, a drawn path synthesized with its deviation, keyboard steering.
+// Usage: node studio_browser.mjs MOTIONGRAPH_BINARY GRAPH SCREENSHOT_DIR
+// Needs chromium (CHROMIUM=... or /usr/bin/chromium; scripts/install-deps.sh installs it).
+import { spawn } from 'node:child_process';
+import { existsSync, mkdirSync } from 'node:fs';
+import { join } from 'node:path';
+
+const [motiongraph, graph, shots] = process.argv.slice(2);
+if (!shots) {
+  console.error('usage: node studio_browser.mjs MOTIONGRAPH_BINARY GRAPH SCREENSHOT_DIR');
+  process.exit(2);
+}
+const browserPath = process.env.CHROMIUM || '/usr/bin/chromium';
+if (!existsSync(browserPath)) {
+  console.error(`studio_browser: FAIL: no browser at ${browserPath}: install Debian's chromium `
+    + '(scripts/install-deps.sh does) or set CHROMIUM');
+  process.exit(1);
+}
+let chromium;
+try {
+  ({ chromium } = await import('playwright-core'));
+} catch {
+  console.error('studio_browser: FAIL: playwright-core is not installed: run \'npm ci\' in tests/js '
+    + '(scripts/install-deps.sh does)');
+  process.exit(1);
+}
+mkdirSync(shots, { recursive: true });
+
+let failures = 0;
+function check(ok, what) {
+  console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`);
+  if (!ok) failures += 1;
+}
+
+// The studio on a free port; its address is the line it prints once listening.
+const server = spawn(motiongraph, ['serve', graph, '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
+const url = await new Promise((resolve, reject) => {
+  let out = '';
+  server.stdout.on('data', (d) => {
+    out += d;
+    const m = out.match(/studio: (http:\/\/\S+)/);
+    if (m) resolve(m[1]);
+  });
+  server.on('exit', (code) => reject(new Error(`motiongraph serve exited with ${code} before listening`)));
+  setTimeout(() => reject(new Error('motiongraph serve printed no address within 20 s')), 20000);
+});
+console.log(`studio at ${url}`);
+
+const browser = await chromium.launch({
+  executablePath: browserPath,
+  headless: true,
+  // Software WebGL: no GPU on CI machines.
+  args: ['--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
+    '--no-sandbox'],
+});
+const stopAll = async () => {
+  await browser.close().catch(() => {});
+  server.kill('SIGINT');
+};
+try {
+  const page = await browser.newPage({ viewport: { width: 1100, height: 700 } });
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  await page.goto(url);
+  await page.waitForFunction(() => window.studio && (window.studio.state.ready || window.studio.state.error),
+    null, { timeout: 30000 });
+  check(!(await page.evaluate(() => window.studio.state.error)), 'the studio loads its data');
+  const webgl = await page.evaluate(() => Boolean(document.createElement('canvas').getContext('webgl2')));
+  check(webgl, 'WebGL works in this browser');
+
+  // 1. The figure is on the canvas: pixels in its box differ from the same view without it.
+  await page.click('[data-testid=play]');  // pause on a frame
+  await page.waitForTimeout(300);
+  const box = await page.evaluate(() => window.studio.figureScreenBox());
+  const clip = { x: Math.max(0, box.left - 4), y: Math.max(0, box.top - 4),
+    width: Math.max(8, box.right - box.left + 8), height: Math.max(8, box.bottom - box.top + 8) };
+  const withFigure = await page.screenshot({ clip, path: join(shots, '1-figure.png') });
+  await page.evaluate(() => window.studio.setFigureVisible(false));
+  await page.waitForTimeout(200);
+  const without = await page.screenshot({ clip });
+  await page.evaluate(() => window.studio.setFigureVisible(true));
+  const changed = await page.evaluate(async ([a, b]) => {
+    const load = async (b64) => {
+      const img = new Image();
+      img.src = `data:image/png;base64,${b64}`;
+      await img.decode();
+      const c = document.createElement('canvas');
+      c.width = img.width; c.height = img.height;
+      const g = c.getContext('2d');
+      g.drawImage(img, 0, 0);
+      return g.getImageData(0, 0, c.width, c.height).data;
+    };
+    const [pa, pb] = [await load(a), await load(b)];
+    let n = 0;
+    for (let i = 0; i < pa.length; i += 4) {
+      if (Math.abs(pa[i] - pb[i]) + Math.abs(pa[i + 1] - pb[i + 1]) + Math.abs(pa[i + 2] - pb[i + 2]) > 40) n += 1;
+    }
+    return { n, total: pa.length / 4 };
+  }, [withFigure.toString('base64'), without.toString('base64')]);
+  check(box.bottom - box.top > 40, `the figure is ${Math.round(box.bottom - box.top)} px tall on screen`);
+  check(changed.n > 0.05 * changed.total && changed.n > 300,
+    `the figure covers ${changed.n} of ${changed.total} pixels of its box`);
+
+  // 2. A clip plays: frames advance and the root moves.
+  await page.selectOption('[data-testid=clip-select]', '1');
+  await page.waitForFunction(() => window.studio.state.clipIndex === 1 && window.studio.state.playing);
+  const f0 = await page.evaluate(() => window.studio.state.frameIndex);
+  await page.waitForTimeout(1000);
+  const f1 = await page.evaluate(() => window.studio.state.frameIndex);
+  check(f1 !== f0, `the clip plays (frame ${f0} -> ${f1})`);
+  await page.screenshot({ path: join(shots, '2-clip.png') });
+
+  // 3. Click a transition on the matrix: both poses are shown.
+  const point = await page.evaluate(() => window.studio.transitionClientPoint(0));
+  await page.mouse.click(point.x, point.y);
+  await page.waitForFunction(() => window.studio.state.mode === 'poses', null, { timeout: 10000 });
+  const info = await page.textContent('[data-testid=transition-info]');
+  check(/transition \d+:/.test(info), `the transition is described: ${info}`);
+  await page.waitForFunction(() => document.querySelector('[data-testid=matrix-img]').complete);
+  await page.screenshot({ path: join(shots, '3-transition.png') });
+
+  // 4. Draw a path on the ground (top view) and synthesize it.
+  await page.click('[data-testid=draw]');
+  await page.waitForTimeout(100);
+  const view = await page.locator('[data-testid=canvas]').boundingBox();
+  const cx = view.x + view.width / 2;
+  const cy = view.y + view.height / 2;
+  await page.mouse.move(cx, cy + 40);
+  await page.mouse.down();
+  for (let i = 1; i <= 12; ++i) await page.mouse.move(cx + i * 6, cy + 40 - i * 20);
+  await page.mouse.up();
+  const pathPoints = await page.evaluate(() => window.studio.state.path.points.length);
+  check(pathPoints >= 5, `the path drawn has ${pathPoints} points`);
+  await page.click('[data-testid=synthesize]');
+  await page.waitForFunction(() => window.studio.state.pathResult || /error/.test(
+    document.querySelector('[data-testid=path-info]').textContent), null, { timeout: 30000 });
+  const pathInfo = await page.textContent('[data-testid=path-info]');
+  check(/deviation mean [\d.]+ m/.test(pathInfo), `the path is synthesized: ${pathInfo}`);
+  check(await page.evaluate(() => window.studio.state.mode === 'result' && window.studio.state.playing),
+    'the path result plays');
+  const href = await page.getAttribute('[data-testid=download]', 'href');
+  const bvh = await page.evaluate(async (h) => (await fetch(h)).text(), href);
+  check(bvh.startsWith('HIERARCHY'), `the result downloads as BVH (${href})`);
+  await page.waitForTimeout(800);
+  await page.screenshot({ path: join(shots, '4-path.png') });
+
+  // 5. Steer with the keyboard: east (D) for a few seconds moves the root east (+x).
+  await page.click('[data-testid=steer]');
+  await page.waitForFunction(() => window.studio.state.steer && window.studio.state.steer.received > 0);
+  await page.locator('[data-testid=canvas]').focus();
+  // Hold D (east, the camera looking north) until the character has been heading east for
+  // 2 s: its root moved at least 0.8 m, mostly along +x. Turning takes a step or two, more
+  // on slow (sanitizer) builds, hence the polling.
+  await page.keyboard.down('KeyD');
+  const pressed = Date.now();
+  const roots = [];
+  let east = null;
+  while (Date.now() - pressed < 15000) {
+    await page.waitForTimeout(250);
+    roots.push(await page.evaluate(() => window.studio.state.root));
+    if (roots.length > 8) {
+      const [a, b] = [roots[roots.length - 9], roots[roots.length - 1]];
+      const [dx, dz] = [b[0] - a[0], b[2] - a[2]];
+      if (dx > 0.8 && dx > 2 * Math.abs(dz)) { east = { a, b, seconds: (Date.now() - pressed) / 1000 }; break; }
+    }
+  }
+  await page.keyboard.up('KeyD');
+  const heading = await page.evaluate(() => window.studio.state.steer.heading);
+  check(heading === 90, `D steers east, the camera looking north (heading ${heading})`);
+  const last = roots[roots.length - 1];
+  check(east !== null, east ? `the character went east: x ${east.a[0].toFixed(2)} -> ${east.b[0].toFixed(2)}, `
+    + `z ${east.a[2].toFixed(2)} -> ${east.b[2].toFixed(2)} in the 2 s before ${east.seconds.toFixed(1)} s`
+    : `the character did not head east within 15 s (root at x ${last[0].toFixed(2)}, z ${last[2].toFixed(2)})`);
+  await page.screenshot({ path: join(shots, '5-steer.png') });
+  check(errors.length === 0, `no errors in the page${errors.length ? `: ${errors.join('; ')}` : ''}`);
+} catch (err) {
+  console.log(`FAIL ${err.message}`);
+  failures += 1;
+} finally {
+  await stopAll();
+}
+const code = await new Promise((resolve) => {
+  if (server.exitCode !== null) resolve(server.exitCode);
+  else server.on('exit', (c) => resolve(c));
+});
+check(code === 0, `motiongraph serve stopped cleanly on SIGINT (exit ${code})`);
+console.log(failures ? `studio_browser: ${failures} check(s) failed` : 'studio_browser: all checks passed');
+process.exit(failures ? 1 : 0);

@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Usage: MOTIONGRAPH=... MOTIONGRAPH_TEST_GRAPH=... bash cli_serve_test.sh
+# `motiongraph serve` as a user runs it: prints its address once listening, serves the
+# front-end and the API, stops with exit 0 on SIGINT and on SIGTERM; bad input is one line.
+set -euo pipefail
+mg=${MOTIONGRAPH:?set MOTIONGRAPH to the motiongraph binary}
+graph=${MOTIONGRAPH_TEST_GRAPH:?set MOTIONGRAPH_TEST_GRAPH (the CTest fixture subject16_graph)}
+tmp=$(mktemp -d)
+pid=
+cleanup() {
+  if [[ -n $pid ]] && kill -0 "$pid" 2>/dev/null; then kill -KILL "$pid"; fi
+  rm -rf "$tmp"
+}
+trap cleanup EXIT
+fail() { echo "cli_serve: FAIL: $*" >&2; exit 1; }
+
+# serve_and_stop SIGNAL: starts the studio, checks it answers, stops it with SIGNAL.
+serve_and_stop() {
+  local signal=$1
+  "$mg" serve "$graph" --port 0 >"$tmp/out" 2>"$tmp/err" &
+  pid=$!
+  local url=
+  for _ in $(seq 100); do
+    url=$(sed -n 's|^studio: \(http://127.0.0.1:[0-9]*/\)$|\1|p' "$tmp/out")
+    [[ -n $url ]] && break
+    kill -0 "$pid" 2>/dev/null || fail "serve exited early: $(cat "$tmp/err")"
+    sleep 0.1
+  done
+  [[ -n $url ]] || fail "no 'studio: http://127.0.0.1:PORT/' line on stdout"
+  curl -sf -m 30 "${url}api/summary" | grep -q '"frames"' || fail "GET /api/summary"
+  curl -sf -m 30 "$url" | grep -q 'importmap' || fail "GET / is not the studio page"
+  [[ $(curl -s -m 30 -o /dev/null -w '%{http_code}' "${url}api/clips/999/frames") == 404 ]] || fail "a bad clip is not 404"
+  kill "-$signal" "$pid"
+  local status=0
+  wait "$pid" || status=$?
+  pid=
+  [[ $status -eq 0 ]] || fail "serve exited with $status on SIG$signal: $(cat "$tmp/err")"
+  echo "serve: answered at $url, exit 0 on SIG$signal"
+}
+serve_and_stop INT
+serve_and_stop TERM
+
+# Bad input: one line, exit 1 (under a timeout: a server that starts anyway fails, not hangs).
+status=0
+timeout 60 "$mg" serve "$graph" --web-root "$tmp" --port 0 >/dev/null 2>"$tmp/err" || status=$?
+[[ $status -eq 1 && $(wc -l <"$tmp/err") -eq 1 ]] || fail "a web root without index.html: exit $status, $(cat "$tmp/err")"
+grep -q "index.html" "$tmp/err" || fail "the error does not say what is missing: $(cat "$tmp/err")"
+echo '<script type="importmap"></script>' >"$tmp/index.html"
+status=0
+timeout 60 "$mg" serve "$graph" --web-root "$tmp" --port 0 >/dev/null 2>"$tmp/err" || status=$?
+[[ $status -eq 1 ]] && grep -q "npm ci" "$tmp/err" || fail "a web root without three.js: exit $status, $(cat "$tmp/err")"
+echo "not json" >"$tmp/bad.mgraph"
+status=0
+timeout 60 "$mg" serve "$tmp/bad.mgraph" --port 0 >/dev/null 2>"$tmp/err" || status=$?
+[[ $status -eq 1 && $(wc -l <"$tmp/err") -eq 1 ]] || fail "a bad graph file: exit $status, $(cat "$tmp/err")"
+echo "cli_serve: ok"

@@ -1,0 +1,215 @@
+// The studio's JSON API on the subject-16 graph, without sockets: what each endpoint answers,
+// and 4xx with a message for every kind of bad request.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "studio/studio_test_service.h"
+
+namespace mg::test {
+namespace {
+
+using nlohmann::json;
+
+void expect_error(const ApiCall& call, int status, const std::string& words) {
+  EXPECT_EQ(call.response.status, status) << call.response.body;
+  ASSERT_TRUE(call.json.contains("error")) << call.response.body;
+  EXPECT_NE(call.json["error"].get<std::string>().find(words), std::string::npos) << call.json["error"];
+}
+
+TEST(StudioApi, SummaryDescribesTheGraphAndItsTags) {
+  const ApiCall call = call_api("GET", "/api/summary");
+  ASSERT_EQ(call.response.status, 200) << call.response.body;
+  const auto& db = studio_service().file().database;
+  EXPECT_EQ(call.json["frames"], db.frame_count());
+  EXPECT_EQ(call.json["clips"], db.clips.size());
+  EXPECT_EQ(call.json["statistics"]["nodes"], studio_service().file().graph.node_count());
+  bool walk = false;
+  for (const json& t : call.json["statistics"]["tags"]) walk |= t["name"] == "walk" && t["edges"].get<int>() > 0;
+  EXPECT_TRUE(walk) << call.json["statistics"];
+  EXPECT_GE(call.json["matrix"]["block"].get<int>(), 1);
+}
+
+TEST(StudioApi, ClipFramesAreWorldPositionsOfEveryJoint) {
+  const ApiCall clips = call_api("GET", "/api/clips");
+  ASSERT_EQ(clips.response.status, 200);
+  ASSERT_FALSE(clips.json.empty());
+  const ApiCall frames = call_api("GET", "/api/clips/0/frames", "", {{"from", "5"}, {"count", "10"}});
+  ASSERT_EQ(frames.response.status, 200) << frames.response.body;
+  const size_t joints = frames.json["joints"].size();
+  ASSERT_GT(joints, 10u);
+  ASSERT_EQ(frames.json["positions"].size(), 10u);
+  EXPECT_EQ(frames.json["positions"][0].size(), 3 * joints);
+  // The root of a standing person is about a metre up.
+  const double root_y = frames.json["positions"][0][1].get<double>();
+  EXPECT_GT(root_y, 0.6);
+  EXPECT_LT(root_y, 1.3);
+}
+
+TEST(StudioApi, BadIndicesAndQueriesAre4xx) {
+  expect_error(call_api("GET", "/api/clips/999/frames"), 404, "no clip");
+  expect_error(call_api("GET", "/api/clips/-1/frames"), 404, "no clip");
+  expect_error(call_api("GET", "/api/clips/0/frames", "", {{"count", "100000"}}), 400, "count");
+  expect_error(call_api("GET", "/api/clips/0/frames", "", {{"from", "1e3"}}), 400, "from");
+  expect_error(call_api("GET", "/api/clips/0/frames", "", {{"from", "nan"}}), 400, "from");
+  expect_error(call_api("GET", "/api/transitions/99999/poses"), 404, "no transition");
+  expect_error(call_api("GET", "/api/nothing"), 404, "no such endpoint");
+  expect_error(call_api("GET", "/"), 404, "no such endpoint");
+  expect_error(call_api("POST", "/api/summary"), 405, "GET");
+  expect_error(call_api("GET", "/api/walk"), 405, "POST");
+  expect_error(call_api("GET", "/api/results/abc.bvh"), 404, "no result");
+  expect_error(call_api("GET", "/api/results/123456.bvh"), 404, "no result");
+}
+
+TEST(StudioApi, TransitionsAndTheirPoses) {
+  const ApiCall list = call_api("GET", "/api/transitions");
+  ASSERT_EQ(list.response.status, 200);
+  ASSERT_EQ(list.json.size(), studio_service().file().graph.transitions.size());
+  const ApiCall poses = call_api("GET", "/api/transitions/0/poses");
+  ASSERT_EQ(poses.response.status, 200) << poses.response.body;
+  const int k = studio_service().file().graph.window;
+  ASSERT_EQ(poses.json["from"]["positions"].size(), static_cast<size_t>(k));
+  ASSERT_EQ(poses.json["to"]["positions"].size(), static_cast<size_t>(k));
+  EXPECT_EQ(poses.json["from"]["first_frame"], list.json[0]["from_frame"]);
+  EXPECT_EQ(poses.json["to"]["first_frame"].get<int>(), list.json[0]["to_frame"].get<int>() - k + 1);
+  // Root-centred on the floor.
+  EXPECT_EQ(poses.json["from"]["positions"][0][0], 0.0);
+  EXPECT_EQ(poses.json["to"]["positions"][0][2], 0.0);
+}
+
+TEST(StudioApi, MatrixPictureIsAPng) {
+  const ApiCall call = call_api("GET", "/api/matrix.png");
+  ASSERT_EQ(call.response.status, 200) << call.response.body;
+  EXPECT_EQ(call.response.content_type, "image/png");
+  ASSERT_GT(call.response.body.size(), 8u);
+  EXPECT_EQ(call.response.body.substr(1, 3), "PNG");
+}
+
+TEST(StudioApi, WalkReturnsMotionAndABvhDownload) {
+  const ApiCall walk = call_api("POST", "/api/walk", R"({"from": 0, "to": 3, "min_frames": 60, "cost": "quality"})");
+  ASSERT_EQ(walk.response.status, 200) << walk.response.body;
+  EXPECT_GE(walk.json["frames"].get<int>(), 60);
+  const ApiCall bvh = call_api("GET", "/api/results/" + std::to_string(walk.json["result"].get<int>()) + ".bvh");
+  ASSERT_EQ(bvh.response.status, 200);
+  EXPECT_EQ(bvh.response.body.rfind("HIERARCHY", 0), 0u);
+  EXPECT_FALSE(bvh.response.file_name.empty());
+}
+
+TEST(StudioApi, BadWalksAre4xx) {
+  expect_error(call_api("POST", "/api/walk", "{"), 400, "request body");
+  expect_error(call_api("POST", "/api/walk", "[1, 2]"), 400, "object");
+  expect_error(call_api("POST", "/api/walk", R"({"from": -1})"), 400, "from");
+  expect_error(call_api("POST", "/api/walk", R"({"from": 1.5})"), 400, "from");
+  expect_error(call_api("POST", "/api/walk", R"({"from": "0"})"), 400, "from");
+  expect_error(call_api("POST", "/api/walk", R"({"min_frames": 1e9})"), 400, "min_frames");
+  expect_error(call_api("POST", "/api/walk", R"({"cost": "cheap"})"), 400, "cheap");
+}
+
+TEST(StudioApi, PathFollowsTheLineDrawnWithItsDeviation) {
+  const ApiCall call = call_api(
+      "POST", "/api/path",
+      R"({"points": [[0, 0], [0, -4], [3, -7]], "segments": [{"from_m": 0, "to_m": 8.3, "tag": "walk"}]})");
+  ASSERT_EQ(call.response.status, 200) << call.response.body;
+  EXPECT_TRUE(call.json["reached_end"].get<bool>());
+  EXPECT_LT(call.json["mean_deviation_m"].get<double>(), 0.5);
+  EXPECT_GE(call.json["max_deviation_m"].get<double>(), call.json["mean_deviation_m"].get<double>());
+  const json& last = call.json["positions"].back();
+  EXPECT_NEAR(last[0].get<double>(), 3.0, 1.0);   // root x
+  EXPECT_NEAR(last[2].get<double>(), -7.0, 1.0);  // root z
+  EXPECT_EQ(call.json["frame_tags"].size(), call.json["positions"].size());
+}
+
+TEST(StudioApi, BadPathsAre4xx) {
+  expect_error(call_api("POST", "/api/path", R"({"points": [[0, 0]]})"), 400, "two");
+  expect_error(call_api("POST", "/api/path", R"({"points": [[0, 0], [0, "a"]]})"), 400, "points[1]");
+  expect_error(call_api("POST", "/api/path", R"({"points": [[0, 0], [0, 1e300]]})"), 400, "at most");
+  expect_error(call_api("POST", "/api/path", R"({"points": [[0, 0], [0, 500]]})"), 400, "at most");
+  expect_error(call_api("POST", "/api/path", R"({"points": [[0, 0], [0, 5]], "segments": [{"from_m": 0, "to_m": 5, "tag": "fly"}]})"),
+               400, "fly");
+  expect_error(call_api("POST", "/api/path", std::string(2000, '[')), 400, "request body");
+}
+
+TEST(StudioApi, SteeringTurnsTheCharacterTheWayAsked) {
+  const ApiCall session = call_api("POST", "/api/steer/sessions", R"({"heading_deg": 90, "tag": "walk"})");
+  ASSERT_EQ(session.response.status, 200) << session.response.body;
+  const std::string step = "/api/steer/sessions/" + std::to_string(session.json["session"].get<int>()) + "/step";
+  json first, last;
+  long long expected_first = 0;
+  for (int i = 0; i < 12; ++i) {
+    const ApiCall call = call_api("POST", step, R"({"heading_deg": 90, "tag": "walk", "min_frames": 15})");
+    ASSERT_EQ(call.response.status, 200) << call.response.body;
+    EXPECT_EQ(call.json["first_frame"].get<long long>(), expected_first);
+    expected_first += call.json["frames"].get<long long>();
+    if (i == 0) first = call.json["positions"].front();
+    last = call.json["positions"].back();
+  }
+  // East is +x: after about six seconds the root has gone well east.
+  EXPECT_GT(last[0].get<double>() - first[0].get<double>(), 2.0);
+  const ApiCall bvh = call_api("GET", "/api/results/" + std::to_string(session.json["result"].get<int>()) + ".bvh");
+  ASSERT_EQ(bvh.response.status, 200);
+}
+
+TEST(StudioApi, BadSteeringIs4xx) {
+  expect_error(call_api("POST", "/api/steer/sessions", R"({"tag": "fly"})"), 400, "fly");
+  expect_error(call_api("POST", "/api/steer/sessions", R"({"heading_deg": 1e9})"), 400, "heading_deg");
+  expect_error(call_api("POST", "/api/steer/sessions/77777/step", "{}"), 404, "no steering session");
+  expect_error(call_api("POST", "/api/steer/sessions/x/step", "{}"), 404, "no steering session");
+  const ApiCall session = call_api("POST", "/api/steer/sessions", "{}");
+  ASSERT_EQ(session.response.status, 200);
+  const std::string step = "/api/steer/sessions/" + std::to_string(session.json["session"].get<int>()) + "/step";
+  expect_error(call_api("POST", step, R"({"min_frames": 0})"), 400, "min_frames");
+  expect_error(call_api("POST", step, R"({"heading_deg": "north"})"), 400, "heading_deg");
+}
+
+TEST(StudioApi, SessionsAndResultsAreBounded) {
+  const ApiCall first = call_api("POST", "/api/steer/sessions", "{}");
+  ASSERT_EQ(first.response.status, 200);
+  const std::string step = "/api/steer/sessions/" + std::to_string(first.json["session"].get<int>()) + "/step";
+  ASSERT_EQ(call_api("POST", step, "{}").response.status, 200);
+  for (int i = 0; i < studio::SynthesisService::kMaxSessions; ++i) {
+    ASSERT_EQ(call_api("POST", "/api/steer/sessions", "{}").response.status, 200);
+  }
+  // The least recently used session went; so did the oldest results.
+  expect_error(call_api("POST", step, "{}"), 404, "no steering session");
+  for (int i = 0; i < studio::SynthesisService::kMaxResults; ++i) {
+    ASSERT_EQ(call_api("POST", "/api/walk", R"({"from": 0, "to": 1, "min_frames": 0})").response.status, 200);
+  }
+  expect_error(call_api("GET", "/api/results/" + std::to_string(first.json["result"].get<int>()) + ".bvh"), 404,
+               "no result");
+}
+
+TEST(StudioApi, OneSessionSteppedFromSeveralThreadsHandsOutEachFrameOnce) {
+  const ApiCall session = call_api("POST", "/api/steer/sessions", R"({"tag": "walk"})");
+  ASSERT_EQ(session.response.status, 200);
+  const std::string step = "/api/steer/sessions/" + std::to_string(session.json["session"].get<int>()) + "/step";
+  std::mutex mutex;
+  std::vector<std::pair<long long, long long>> ranges;  // [first, first + frames)
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t) {
+    threads.emplace_back([&, t] {
+      for (int i = 0; i < 5; ++i) {
+        const ApiCall call = call_api("POST", step, R"({"heading_deg": )" + std::to_string(90 * t) + "}");
+        if (call.response.status != 200) continue;
+        std::lock_guard lock(mutex);
+        ranges.emplace_back(call.json["first_frame"].get<long long>(),
+                            call.json["first_frame"].get<long long>() + call.json["frames"].get<long long>());
+      }
+    });
+  }
+  for (auto& t : threads) t.join();
+  ASSERT_EQ(ranges.size(), 20u);
+  std::sort(ranges.begin(), ranges.end());
+  long long next = 0;
+  for (const auto& [first, end] : ranges) {
+    EXPECT_EQ(first, next);
+    EXPECT_GT(end, first);
+    next = end;
+  }
+}
+
+}  // namespace
+}  // namespace mg::test

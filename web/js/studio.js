@@ -1,0 +1,541 @@
+// The motiongraph studio: a three.js view of the character and panels for clips, the distance
+// matrix and its transitions, per-tag statistics, path drawing and interactive steering, all
+// talking to `motiongraph serve`'s JSON API (src/studio/studio_api.h). window.studio exposes
+// the state for the browser test (tests/js/studio_browser.mjs).
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { Figure } from './figure.js';
+
+const $ = (id) => document.getElementById(id);
+
+async function request(method, path, body) {
+  const response = await fetch(path, {
+    method,
+    headers: body ? { 'Content-Type': 'application/json' } : {},
+    body: body ? JSON.stringify(body) : undefined,
+  });
+  const data = await response.json();
+  if (!response.ok) throw new Error(data.error || `${method} ${path}: HTTP ${response.status}`);
+  return data;
+}
+const get = (path) => request('GET', path);
+const post = (path, body) => request('POST', path, body);
+
+// --- the scene ---------------------------------------------------------------------------
+const canvas = $('canvas');
+const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+renderer.shadowMap.enabled = true;
+renderer.shadowMap.type = THREE.PCFSoftShadowMap;
+const scene = new THREE.Scene();
+const BACKGROUND = 0xdfe6ee;
+scene.background = new THREE.Color(BACKGROUND);
+const camera = new THREE.PerspectiveCamera(45, 1, 0.05, 400);
+camera.position.set(2.5, 2.2, 5.5);
+const controls = new OrbitControls(camera, canvas);
+controls.target.set(0, 0.9, 0);
+controls.update();
+scene.add(new THREE.HemisphereLight(0xffffff, 0x8090a0, 1.4));
+const sun = new THREE.DirectionalLight(0xffffff, 2.2);
+sun.position.set(3, 8, 4);
+sun.castShadow = true;
+sun.shadow.mapSize.set(1024, 1024);
+Object.assign(sun.shadow.camera, { left: -4, right: 4, top: 4, bottom: -4, near: 0.5, far: 30 });
+scene.add(sun, sun.target);
+const ground = new THREE.Mesh(new THREE.PlaneGeometry(400, 400),
+  new THREE.MeshStandardMaterial({ color: 0xc9ced3, roughness: 0.95 }));
+ground.rotation.x = -Math.PI / 2;
+ground.receiveShadow = true;
+scene.add(ground);
+const grid = new THREE.GridHelper(400, 400, 0x6d7680, 0x8d969f);
+grid.position.y = 0.002;
+scene.add(grid);
+const overlays = new THREE.Group();  // path and trails
+scene.add(overlays);
+
+const TAG_COLOURS = [0x2b7bd8, 0xd83b2b, 0x2ba84a, 0x9b4fd0, 0xd8a52b, 0x2bb8c8, 0x777777];
+const tagColour = (tag) => (tag && state.tags.includes(tag)
+  ? TAG_COLOURS[state.tags.indexOf(tag) % TAG_COLOURS.length] : 0x333333);
+
+// --- state -------------------------------------------------------------------------------
+const state = {
+  ready: false, error: null, summary: null, tags: [], joints: [], clips: [], transitions: [],
+  mode: 'idle',                  // clip, result, steer, poses
+  track: null,                   // {fps, frames: [flat positions], loop}
+  time: 0, playing: false, speed: 1,
+  frameIndex: 0, framesShown: 0, root: [0, 0, 0],
+  selectedTransition: -1, poses: null,
+  path: { points: [], tags: [] }, pathResult: null, drawing: false,
+  steer: null,                   // {session, buffer, inFlight, heading, tag, received, lastStepMs}
+  result: null,
+};
+let figure = null;
+let second = null;               // the arrival pose beside a transition's departure
+
+function ensureFigure(joints) {
+  if (figure && figure.joints.length === joints.length) return;
+  if (figure) scene.remove(figure.group);
+  if (second) scene.remove(second.group);
+  figure = new Figure(joints);
+  second = new Figure(joints, 0x3c8fd8);
+  second.group.visible = false;
+  scene.add(figure.group, second.group);
+}
+
+function setResultLink(id) {
+  state.result = id;
+  const a = $('download');
+  a.href = `/api/results/${id}.bvh`;
+  a.download = `motiongraph-${id}.bvh`;
+  a.hidden = false;
+}
+
+function play(track, mode) {
+  stopSteering();
+  state.track = track;
+  state.mode = mode;
+  state.time = 0;
+  state.playing = true;
+  second.group.visible = false;
+  figure.offset.set(0, 0, 0);
+  $('scrub').max = String(track.frames.length - 1);
+  $('play').textContent = 'Pause';
+}
+
+// --- clips -------------------------------------------------------------------------------
+async function loadClip(index) {
+  const clip = state.clips[index];
+  const frames = [];
+  let joints = null;
+  for (let from = 0; from < clip.frames; from += 600) {
+    const part = await get(`/api/clips/${index}/frames?from=${from}&count=${Math.min(600, clip.frames - from)}`);
+    joints = part.joints;
+    frames.push(...part.positions);
+  }
+  ensureFigure(joints);
+  setDrawing(false);
+  play({ fps: state.summary.fps, frames, loop: true, label: `clip ${clip.name}` }, 'clip');
+  chaseCamera([2.5, 1.3, 5]);
+  state.clipIndex = index;
+}
+
+$('clip-select').addEventListener('change', (e) => loadClip(Number(e.target.value)));
+$('play').addEventListener('click', () => {
+  state.playing = !state.playing;
+  $('play').textContent = state.playing ? 'Pause' : 'Play';
+});
+$('speed').addEventListener('change', (e) => { state.speed = Number(e.target.value); });
+$('scrub').addEventListener('input', (e) => {
+  state.time = Number(e.target.value);
+  state.playing = false;
+  $('play').textContent = 'Play';
+});
+
+// --- the distance matrix and transitions ---------------------------------------------------
+const overlay = $('matrix-overlay');
+const MATRIX_PX = 300;
+function transitionPoint(t) {
+  const span = state.summary.matrix.side * state.summary.matrix.block;
+  return [(t.to_frame + 0.5) / span * MATRIX_PX, (t.from_frame + 0.5) / span * MATRIX_PX];
+}
+function drawTransitions() {
+  overlay.width = MATRIX_PX;
+  overlay.height = MATRIX_PX;
+  const g = overlay.getContext('2d');
+  g.clearRect(0, 0, MATRIX_PX, MATRIX_PX);
+  state.transitions.forEach((t, i) => {
+    const [x, y] = transitionPoint(t);
+    g.beginPath();
+    g.arc(x, y, i === state.selectedTransition ? 5 : 2.5, 0, 2 * Math.PI);
+    g.fillStyle = i === state.selectedTransition ? '#ffffff' : '#ff2a2a';
+    g.fill();
+    if (i === state.selectedTransition) { g.strokeStyle = '#000'; g.stroke(); }
+  });
+}
+overlay.addEventListener('click', (e) => {
+  const r = overlay.getBoundingClientRect();
+  const x = (e.clientX - r.left) * MATRIX_PX / r.width;
+  const y = (e.clientY - r.top) * MATRIX_PX / r.height;
+  let best = -1;
+  let bestD = 64;
+  state.transitions.forEach((t, i) => {
+    const [tx, ty] = transitionPoint(t);
+    const d = (tx - x) ** 2 + (ty - y) ** 2;
+    if (d < bestD) { bestD = d; best = i; }
+  });
+  if (best >= 0) selectTransition(best);
+});
+
+async function selectTransition(index) {
+  const poses = await get(`/api/transitions/${index}/poses`);
+  stopSteering();
+  ensureFigure(poses.joints);
+  state.selectedTransition = index;
+  state.poses = poses;
+  state.mode = 'poses';
+  state.track = { fps: poses.fps, frames: poses.from.positions, loop: true, label: `transition ${index}` };
+  state.time = 0;
+  state.playing = true;
+  figure.offset.set(-0.6, 0, 0);
+  second.offset.set(0.6, 0, 0);
+  setDrawing(false);
+  chaseCamera([0, 0.6, 4]);
+  second.group.visible = true;
+  const t = state.transitions[index];
+  $('transition-info').textContent = `transition ${index}: ${t.from_clip} frame ${t.from_frame} (orange) -> `
+    + `${t.to_clip} frame ${t.to_frame} (blue), D = ${t.distance.toFixed(3)}`;
+  drawTransitions();
+}
+
+// --- path drawing and synthesis ------------------------------------------------------------
+const raycaster = new THREE.Raycaster();
+const floorPlane = new THREE.Plane(new THREE.Vector3(0, 1, 0), 0);
+function groundPoint(e) {
+  const r = canvas.getBoundingClientRect();
+  const ndc = new THREE.Vector2(((e.clientX - r.left) / r.width) * 2 - 1, -((e.clientY - r.top) / r.height) * 2 + 1);
+  raycaster.setFromCamera(ndc, camera);
+  const hit = new THREE.Vector3();
+  return raycaster.ray.intersectPlane(floorPlane, hit) ? hit : null;
+}
+function pathSegments() {
+  const { points, tags } = state.path;
+  const arc = [0];
+  for (let i = 1; i < points.length; ++i) {
+    arc.push(arc[i - 1] + Math.hypot(points[i][0] - points[i - 1][0], points[i][1] - points[i - 1][1]));
+  }
+  const segments = [];
+  for (let i = 1; i < points.length; ++i) {
+    const tag = tags[i];
+    if (!tag) continue;
+    const last = segments[segments.length - 1];
+    if (last && last.tag === tag && last.to_m === arc[i - 1]) last.to_m = arc[i];
+    else segments.push({ from_m: arc[i - 1], to_m: arc[i], tag });
+  }
+  return segments;
+}
+// A flat ribbon along floor points [[x, z], ...] (WebGL lines are one pixel wide).
+const ribbonGeometry = new THREE.BoxGeometry(1, 1, 1);
+const ribbonMaterials = new Map();
+function ribbonPiece([ax, az], [bx, bz], colour, y, width) {
+  if (!ribbonMaterials.has(colour)) ribbonMaterials.set(colour, new THREE.MeshBasicMaterial({ color: colour }));
+  const piece = new THREE.Mesh(ribbonGeometry, ribbonMaterials.get(colour));
+  piece.position.set((ax + bx) / 2, y, (az + bz) / 2);
+  piece.rotation.y = -Math.atan2(bz - az, bx - ax);
+  piece.scale.set(Math.hypot(bx - ax, bz - az) + width, 0.004, width);
+  return piece;
+}
+function line(points, colour, y = 0.01, width = 0.06) {
+  const group = new THREE.Group();
+  for (let i = 1; i < points.length; ++i) group.add(ribbonPiece(points[i - 1], points[i], colour, y, width));
+  return group;
+}
+function drawPath() {
+  overlays.clear();
+  const { points, tags } = state.path;
+  for (let i = 1; i < points.length; ++i) overlays.add(line([points[i - 1], points[i]], tagColour(tags[i]), 0.012));
+  if (state.pathResult) overlays.add(line(state.pathResult.roots, 0x111111, 0.02, 0.03));
+}
+let stroking = false;
+canvas.addEventListener('pointerdown', (e) => {
+  if (!state.drawing) return;
+  const p = groundPoint(e);
+  if (!p) return;
+  stroking = true;
+  canvas.setPointerCapture(e.pointerId);
+  const tag = $('path-tag').value;
+  if (state.path.points.length === 0) { state.path.points.push([p.x, p.z]); state.path.tags.push(tag); }
+  else addPathPoint(p, tag, 0.05);
+});
+function addPathPoint(p, tag, spacing) {
+  const last = state.path.points[state.path.points.length - 1];
+  if (Math.hypot(p.x - last[0], p.z - last[1]) < spacing) return;
+  state.path.points.push([p.x, p.z]);
+  state.path.tags.push(tag);
+  drawPath();
+}
+canvas.addEventListener('pointermove', (e) => {
+  if (!state.drawing || !stroking) return;
+  const p = groundPoint(e);
+  if (p) addPathPoint(p, $('path-tag').value, 0.25);
+});
+canvas.addEventListener('pointerup', () => { stroking = false; });
+function setDrawing(on) {
+  state.drawing = on;
+  controls.enabled = !on;
+  $('draw').classList.toggle('active', on);
+  $('draw').textContent = on ? 'Drawing (click to stop)' : 'Draw a path';
+  if (on) {  // look straight down on the origin so the whole view is ground
+    stopSteering();
+    state.playing = false;
+    camera.position.set(0, 24, 0.01);
+    controls.target.set(0, 0, 0);
+    controls.update();
+  }
+}
+$('draw').addEventListener('click', () => setDrawing(!state.drawing));
+$('clear-path').addEventListener('click', () => {
+  state.path = { points: [], tags: [] };
+  state.pathResult = null;
+  drawPath();
+  $('path-info').textContent = '';
+});
+$('synthesize').addEventListener('click', async () => {
+  if (state.path.points.length < 2) { $('path-info').textContent = 'draw a path first'; return; }
+  setDrawing(false);
+  $('path-info').textContent = 'synthesizing...';
+  try {
+    const result = await post('/api/path', { points: state.path.points, segments: pathSegments() });
+    result.roots = result.positions.map((f) => [f[0], f[2]]);
+    state.pathResult = result;
+    drawPath();
+    ensureFigure(state.joints);
+    play({ fps: result.fps, frames: result.positions, loop: false, label: 'path' }, 'result');
+    chaseCamera([0, 6, 7]);  // high, so the path shows beside the figure
+    setResultLink(result.result);
+    $('path-info').textContent = `${result.path_length_m.toFixed(1)} m, ${result.frames} frames `
+      + `(${(result.frames / result.fps).toFixed(1)} s): deviation mean ${result.mean_deviation_m.toFixed(2)} m, `
+      + `max ${result.max_deviation_m.toFixed(2)} m${result.reached_end ? '' : ' (end not reached)'}`
+      + `, tags matched ${(100 * result.tag_match).toFixed(0)} %`;
+  } catch (err) {
+    $('path-info').textContent = `error: ${err.message}`;
+  }
+});
+
+// --- steering ------------------------------------------------------------------------------
+const keys = new Set();
+const STEER_KEYS = ['KeyW', 'KeyA', 'KeyS', 'KeyD', 'ArrowUp', 'ArrowDown', 'ArrowLeft', 'ArrowRight', 'KeyJ'];
+window.addEventListener('keydown', (e) => {
+  if (e.target instanceof HTMLSelectElement || e.target instanceof HTMLInputElement) return;
+  keys.add(e.code);
+  if (state.steer && /^Digit[0-9]$/.test(e.code)) {
+    const d = Number(e.code.slice(5));
+    state.steer.chosenTag = d === 0 ? '' : (state.tags[d - 1] || state.steer.chosenTag);
+  }
+  if (state.steer && STEER_KEYS.includes(e.code)) e.preventDefault();
+});
+window.addEventListener('keyup', (e) => keys.delete(e.code));
+window.addEventListener('blur', () => keys.clear());
+
+const has = (tag) => state.tags.includes(tag);
+function steerInput() {
+  const s = state.steer;
+  let dx = (keys.has('KeyD') || keys.has('ArrowRight') ? 1 : 0) - (keys.has('KeyA') || keys.has('ArrowLeft') ? 1 : 0);
+  let dz = (keys.has('KeyS') || keys.has('ArrowDown') ? 1 : 0) - (keys.has('KeyW') || keys.has('ArrowUp') ? 1 : 0);
+  let run = keys.has('ShiftLeft') || keys.has('ShiftRight');
+  let jump = keys.has('KeyJ');
+  const pads = navigator.getGamepads ? [...navigator.getGamepads()].filter(Boolean) : [];
+  if (pads.length) {
+    const pad = pads[0];
+    if (pad.axes.length >= 2 && Math.hypot(pad.axes[0], pad.axes[1]) > 0.3) { dx = pad.axes[0]; dz = pad.axes[1]; }
+    jump ||= Boolean(pad.buttons[0]?.pressed);
+    run ||= (pad.buttons[7]?.value ?? 0) > 0.5;
+    s.gamepad = pad.id;
+  }
+  if (dx !== 0 || dz !== 0) {  // relative to where the camera looks: W is away from it
+    const look = new THREE.Vector3();
+    camera.getWorldDirection(look);
+    const view = Math.atan2(look.x, -look.z);
+    const bearing = ((view + Math.atan2(dx, -dz)) * 180) / Math.PI;
+    s.heading = Math.round((((bearing % 360) + 540) % 360) - 180);
+  }
+  let tag = s.chosenTag;
+  if (run && has('run')) tag = 'run';
+  if (jump && has('jump')) tag = 'jump';
+  s.tag = tag;
+  return { heading_deg: s.heading, tag };
+}
+
+async function startSteering() {
+  const tag = has('walk') ? 'walk' : '';
+  const session = await post('/api/steer/sessions', { heading_deg: 0, tag });
+  ensureFigure(session.joints);
+  state.track = null;
+  state.mode = 'steer';
+  state.playing = true;
+  figure.offset.set(0, 0, 0);
+  second.group.visible = false;
+  overlays.clear();
+  state.steer = { session: session.session, buffer: [], inFlight: false, heading: 0, tag, chosenTag: tag,
+    received: 0, played: 0, clock: 0, fps: session.fps, lastStepMs: 0, trailEnd: null };
+  setResultLink(session.result);
+  setDrawing(false);
+  chaseCamera([0, 1.6, 5]);  // from the south, looking north
+  $('steer').textContent = 'Stop steering';
+  canvas.focus();
+  requestSteps();
+}
+function stopSteering() {
+  if (!state.steer) return;
+  state.steer = null;
+  $('steer').textContent = 'Start steering';
+}
+$('steer').addEventListener('click', () => (state.steer ? stopSteering() : startSteering()));
+
+// Keeps about 0.4 s of motion ahead of playback, so input shows within a fraction of a second.
+async function requestSteps() {
+  const s = state.steer;
+  if (!s || s.inFlight || s.buffer.length > 0.4 * s.fps) return;
+  s.inFlight = true;
+  const input = steerInput();
+  const started = performance.now();
+  try {
+    const step = await post(`/api/steer/sessions/${s.session}/step`, { ...input, min_frames: 8 });
+    s.lastStepMs = performance.now() - started;
+    s.buffer.push(...step.positions);
+    s.received += step.frames;
+  } catch (err) {
+    $('steer-info').textContent = `error: ${err.message}`;
+    stopSteering();
+    return;
+  } finally {
+    s.inFlight = false;
+  }
+}
+
+// --- random walk ---------------------------------------------------------------------------
+$('random-walk').addEventListener('click', async () => {
+  const nodes = state.summary.statistics.nodes;
+  const seed = Math.floor(Math.random() * 1e6);
+  const walk = await post('/api/walk', {
+    from: seed % nodes, to: (seed * 7919) % nodes, min_frames: 300, cost: 'random', seed });
+  ensureFigure(walk.joints);
+  setDrawing(false);
+  play({ fps: walk.fps, frames: walk.positions, loop: false, label: 'graph walk' }, 'result');
+  chaseCamera([2, 1.6, 5]);
+  setResultLink(walk.result);
+});
+
+// --- the loop ------------------------------------------------------------------------------
+const clock = new THREE.Clock();
+let lastRoot = null;
+function resize() {
+  const w = canvas.clientWidth;
+  const h = canvas.clientHeight;
+  if (canvas.width !== Math.floor(w * devicePixelRatio) || canvas.height !== Math.floor(h * devicePixelRatio)) {
+    renderer.setPixelRatio(devicePixelRatio);
+    renderer.setSize(w, h, false);
+    camera.aspect = w / h;
+    camera.updateProjectionMatrix();
+  }
+}
+// On the next frame shown, puts the camera at `offset` from the root, looking at it (the
+// follow keeps that offset).
+let chaseOffset = null;
+function chaseCamera(offset) { chaseOffset = offset; }
+function follow(root) {
+  if (state.drawing) return;
+  const at = new THREE.Vector3(root[0], 0.9, root[2]);
+  if (chaseOffset) {
+    controls.target.copy(at);
+    camera.position.set(at.x + chaseOffset[0], at.y + chaseOffset[1], at.z + chaseOffset[2]);
+    chaseOffset = null;
+    lastRoot = null;
+  }
+  if (lastRoot && state.mode !== 'poses') {
+    const delta = at.clone().sub(lastRoot);
+    if (delta.length() < 3) { camera.position.add(delta); controls.target.add(delta); }
+    else { camera.position.add(at.clone().sub(controls.target)); controls.target.copy(at); }
+  }
+  lastRoot = at;
+  sun.position.set(root[0] + 3, 8, root[2] + 4);
+  sun.target.position.set(root[0], 0, root[2]);
+}
+function showFrame(flat) {
+  figure.setPose(flat);
+  state.root = [flat[0], flat[1], flat[2]];
+  state.framesShown += 1;
+  follow(state.root);
+}
+function tick() {
+  const dt = Math.min(clock.getDelta(), 0.25);  // real time down to 4 frames a second
+  resize();
+  if (state.mode === 'steer' && state.steer) {
+    const s = state.steer;
+    steerInput();
+    s.clock += dt * s.fps;
+    while (s.clock >= 1 && s.buffer.length > 1) { s.buffer.shift(); s.clock -= 1; s.played += 1; }
+    if (s.buffer.length <= 1) s.clock = Math.min(s.clock, 1);
+    if (s.buffer.length) {
+      showFrame(s.buffer[0]);
+      const here = [state.root[0], state.root[2]];
+      const last = s.trailEnd;
+      if (!last) s.trailEnd = here;
+      else if (Math.hypot(here[0] - last[0], here[1] - last[1]) > 0.15) {  // the root's track
+        overlays.add(ribbonPiece(last, here, 0x111111, 0.015, 0.03));
+        s.trailEnd = here;
+        if (overlays.children.length > 400) overlays.remove(overlays.children[0]);
+      }
+    }
+    requestSteps();
+    $('steer-info').textContent = `heading ${s.heading.toFixed(0)} deg, ${s.tag || 'any'}; `
+      + `${s.received} frames received, step ${s.lastStepMs.toFixed(0)} ms${s.gamepad ? `; gamepad ${s.gamepad}` : ''}`;
+  } else if (state.track && figure) {
+    const n = state.track.frames.length;
+    if (state.playing) state.time += dt * state.track.fps * state.speed;
+    if (state.track.loop) state.time %= n;
+    else if (state.time > n - 1) { state.time = n - 1; state.playing = false; $('play').textContent = 'Play'; }
+    const f = Math.max(0, Math.min(n - 1, Math.floor(state.time)));
+    state.frameIndex = f;
+    showFrame(state.track.frames[f]);
+    if (state.mode === 'poses' && state.poses) second.setPose(state.poses.to.positions[f]);
+    $('scrub').value = String(f);
+    $('frame-label').textContent = `${state.track.label}: frame ${f + 1} / ${n}`;
+  }
+  $('hud').textContent = `${state.mode}  root (${state.root.map((v) => v.toFixed(2)).join(', ')})`;
+  controls.update();
+  renderer.render(scene, camera);
+  requestAnimationFrame(tick);
+}
+
+// --- start ---------------------------------------------------------------------------------
+async function start() {
+  const [summary, clips, transitions] = await Promise.all([get('/api/summary'), get('/api/clips'), get('/api/transitions')]);
+  Object.assign(state, { summary, clips, transitions, tags: summary.tags });
+  $('summary').textContent = `${summary.graph}: ${summary.clips} clips, ${summary.frames} frames at ${summary.fps} fps; `
+    + `${summary.statistics.nodes} nodes, ${summary.statistics.edges} edges, `
+    + `${summary.statistics.transitions} transitions`;
+  $('clip-select').innerHTML = clips.map((c) => `<option value="${c.index}">${c.name} (${c.frames} frames; `
+    + `${c.tags.join(', ') || 'no tag'})</option>`).join('');
+  $('path-tag').innerHTML = ['<option value="">any</option>',
+    ...summary.tags.map((t) => `<option value="${t}"${t === 'walk' ? ' selected' : ''}>${t}</option>`)].join('');
+  const rows = summary.statistics.tags.map((t) => `<tr><th>${t.name}</th><td>${t.database_frames}</td>`
+    + `<td>${t.frames}</td><td>${t.nodes}</td><td>${t.edges}</td><td>${t.largest_component_nodes}</td></tr>`);
+  $('tag-stats').innerHTML = '<tr><th>tag</th><th>db frames</th><th>graph frames</th><th>nodes</th>'
+    + `<th>edges</th><th>largest SCC</th></tr>${rows.join('')}`;
+  $('matrix-img').src = '/api/matrix.png';
+  drawTransitions();
+  const first = await get('/api/clips/0/frames?count=1');
+  state.joints = first.joints;
+  ensureFigure(first.joints);
+  await loadClip(0);
+  state.ready = true;
+}
+
+// Hooks for the browser test.
+window.studio = {
+  state,
+  // The figure's bounding box on the page (CSS pixels), from its joints.
+  figureScreenBox() {
+    const r = canvas.getBoundingClientRect();
+    const box = { left: Infinity, top: Infinity, right: -Infinity, bottom: -Infinity };
+    for (const p of figure.points) {
+      const v = p.clone().project(camera);
+      const x = r.left + ((v.x + 1) / 2) * r.width;
+      const y = r.top + ((1 - v.y) / 2) * r.height;
+      box.left = Math.min(box.left, x); box.right = Math.max(box.right, x);
+      box.top = Math.min(box.top, y); box.bottom = Math.max(box.bottom, y);
+    }
+    return box;
+  },
+  setFigureVisible(visible) { figure.group.visible = visible; },
+  transitionClientPoint(index) {
+    const r = overlay.getBoundingClientRect();
+    const [x, y] = transitionPoint(state.transitions[index]);
+    return { x: r.left + (x * r.width) / MATRIX_PX, y: r.top + (y * r.height) / MATRIX_PX };
+  },
+};
+
+requestAnimationFrame(tick);
+start().catch((err) => {
+  state.error = err.message;
+  $('summary').textContent = `error: ${err.message}`;
+});
