@@ -39,48 +39,57 @@ Result<CandidateSearch> find_candidates(const FrameFeatures& f, const DistanceSe
 
   const int k = f.window;
   const int radius = search.continuation_radius;
+  const int block = search.picture_block;
+  const int side = search.picture_side;
   std::mutex mutex;
   search.tiles = for_each_distance_tile(f, distance, [&](const DistanceTile& tile) {
     DistanceHistogram histogram;
     std::vector<Transition> minima;
-    const int block = search.picture_block;
-    const int side = search.picture_side;
     std::vector<std::pair<size_t, float>> picture_updates;
-    const float kNan = std::numeric_limits<float>::quiet_NaN();
+    // A missing neighbour row (at the matrix's edge) reads as NaN, which never beats a value.
+    const std::vector<float> nan_row(static_cast<size_t>(tile.cols), std::numeric_limits<float>::quiet_NaN());
+    std::vector<unsigned char> is_minimum(static_cast<size_t>(tile.arrive_count));
+    const int b_begin = tile.arrive_begin, b_end = tile.arrive_begin + tile.arrive_count;
     for (int a = tile.leave_begin; a < tile.leave_begin + tile.leave_count; ++a) {
-      float* matrix_row = search.matrix.empty() ? nullptr : search.matrix.data() + static_cast<size_t>(a) * n;
-      // The stored rows above, at and below a; a missing neighbour row reads as NaN, which
-      // never beats a value.
+      // The stored rows above, at and below a, indexed by frame b.
       const float* row = &tile.distance[static_cast<size_t>(a - tile.row0) * tile.cols] - tile.col0;
-      const float* up = a > tile.row0 ? row - tile.cols : nullptr;
-      const float* down = a + 1 < tile.row0 + tile.rows ? row + tile.cols : nullptr;
-      const int first_col = tile.col0, last_col = tile.col0 + tile.cols - 1;
-      auto at = [&](const float* r, int b) { return r && b >= first_col && b <= last_col ? r[b] : kNan; };
-      const int clip_a = f.clip_of_frame[a];
-      float block_min = std::numeric_limits<float>::infinity();
-      int block_column = tile.arrive_begin / block;
-      for (int b = tile.arrive_begin; b < tile.arrive_begin + tile.arrive_count; ++b) {
-        const float d = row[b];
-        if (matrix_row) matrix_row[b] = d;
-        if (b / block != block_column) {
-          if (std::isfinite(block_min)) {
-            picture_updates.emplace_back(static_cast<size_t>(a / block) * side + block_column, block_min);
-          }
-          block_column = b / block;
-          block_min = std::numeric_limits<float>::infinity();
+      const float* up = (a > tile.row0 ? row - tile.cols : nan_row.data() - tile.col0);
+      const float* down = (a + 1 < tile.row0 + tile.rows ? row + tile.cols : nan_row.data() - tile.col0);
+      if (!search.matrix.empty()) std::copy(row + b_begin, row + b_end, search.matrix.data() + static_cast<size_t>(a) * n + b_begin);
+      histogram.add_all(std::span<const float>(row + b_begin, static_cast<size_t>(tile.arrive_count)));
+      // Picture: the smallest finite value of each block of columns.
+      for (int b0 = b_begin; b0 < b_end;) {
+        const int b1 = std::min(b_end, (b0 / block + 1) * block);
+        float block_min = std::numeric_limits<float>::infinity();
+        for (int b = b0; b < b1; ++b) block_min = row[b] < block_min ? row[b] : block_min;  // NaN never wins
+        if (block_min < std::numeric_limits<float>::infinity()) {
+          picture_updates.emplace_back(static_cast<size_t>(a / block) * side + b0 / block, block_min);
         }
-        if (!(d >= 0.0f)) continue;  // NaN: undefined
-        block_min = std::min(block_min, d);
-        histogram.add(d);
-        // A local minimum: no neighbour smaller; ties go to the first in row-major order.
-        if (at(row, b - 1) <= d || at(row, b + 1) < d) continue;
-        if (at(up, b - 1) <= d || at(up, b) <= d || at(up, b + 1) <= d) continue;
-        if (at(down, b - 1) < d || at(down, b) < d || at(down, b + 1) < d) continue;
-        if (f.clip_of_frame[b] == clip_a && std::abs(b - (a + k - 1)) <= radius) continue;
-        minima.push_back(Transition{a, b, d, 0.0f, 0.0f, 0.0f});
+        b0 = b1;
       }
-      if (std::isfinite(block_min)) {
-        picture_updates.emplace_back(static_cast<size_t>(a / block) * side + block_column, block_min);
+      // Local minima: no neighbour smaller; ties go to the first in row-major order. The
+      // tests are combined without branches (a vector loop); columns at the matrix's left and
+      // right edges, which lack a neighbour, are treated apart.
+      const int inner_begin = std::max(b_begin, 1), inner_end = std::min(b_end, n - 1);
+      for (int b = inner_begin; b < inner_end; ++b) {
+        const float d = row[b];
+        is_minimum[b - b_begin] = (d >= 0.0f) & !(row[b - 1] <= d) & !(row[b + 1] < d) & !(up[b - 1] <= d) &
+                                  !(up[b] <= d) & !(up[b + 1] <= d) & !(down[b - 1] < d) & !(down[b] < d) &
+                                  !(down[b + 1] < d);
+      }
+      for (int b : {b_begin, b_end - 1}) {
+        if (b >= inner_begin && b < inner_end) continue;
+        const float d = row[b];
+        auto at = [&](const float* r, int c) { return c >= 0 && c < n ? r[c] : std::numeric_limits<float>::quiet_NaN(); };
+        is_minimum[b - b_begin] = (d >= 0.0f) && !(at(row, b - 1) <= d) && !(at(row, b + 1) < d) &&
+                                  !(at(up, b - 1) <= d) && !(up[b] <= d) && !(at(up, b + 1) <= d) &&
+                                  !(at(down, b - 1) < d) && !(down[b] < d) && !(at(down, b + 1) < d);
+      }
+      const int clip_a = f.clip_of_frame[a];
+      for (int b = b_begin; b < b_end; ++b) {
+        if (!is_minimum[b - b_begin]) continue;
+        if (f.clip_of_frame[b] == clip_a && std::abs(b - (a + k - 1)) <= radius) continue;
+        minima.push_back(Transition{a, b, row[b], 0.0f, 0.0f, 0.0f});
       }
     }
     std::lock_guard lock(mutex);

@@ -8,15 +8,19 @@
 
 namespace mg {
 
+int DistanceHistogram::bin_of_bits(std::uint32_t bits) {
+  // The exponent picks the octave, the top 6 mantissa bits the bin in it (64 linear steps
+  // per octave: monotonic, at most 1.6 % wide). No log2 per value. Exponent and mantissa bits
+  // together, (bits >> 17) & 0x3fff, count bins from exponent 0 on; below kMinExponent
+  // (zero, subnormals) is bin 0, from kMaxExponent on the overflow bin. Written as selects.
+  const int biased_bin = static_cast<int>((bits >> 17) & 0x3fff) - (127 + kMinExponent) * kBinsPerOctave + 1;
+  const int bin = std::clamp(biased_bin, 0, kBins - 1);
+  return (bits >> 31) != 0 ? 0 : bin;  // negative
+}
+
 int DistanceHistogram::bin_of(double value) {
   if (!(value > 0.0)) return 0;
-  // From the float's bits: the exponent picks the octave, the top 6 mantissa bits the bin in
-  // it (64 linear steps per octave: monotonic, at most 1.6 % wide). No log2 per value.
-  const auto bits = std::bit_cast<std::uint32_t>(static_cast<float>(value));
-  const int exponent = static_cast<int>((bits >> 23) & 0xff) - 127;
-  if (exponent < kMinExponent) return 0;
-  if (exponent >= kMaxExponent) return kBins - 1;
-  return 1 + (exponent - kMinExponent) * kBinsPerOctave + static_cast<int>((bits >> 17) & 63);
+  return bin_of_bits(std::bit_cast<std::uint32_t>(static_cast<float>(value)));
 }
 
 double DistanceHistogram::bin_upper_edge(int bin) {
@@ -31,6 +35,19 @@ void DistanceHistogram::add(float value) {
   if (!std::isfinite(value)) return;
   ++counts_[bin_of(value)];
   ++total_;
+}
+
+void DistanceHistogram::add_all(std::span<const float> values) {
+  // Non-finite values go to bin 0 like the others and are taken back out at the end.
+  std::uint64_t rejected = 0;
+  for (float value : values) {
+    const auto bits = std::bit_cast<std::uint32_t>(value);
+    const bool finite = (bits & 0x7f800000u) != 0x7f800000u;
+    ++counts_[finite ? bin_of_bits(bits) : 0];
+    rejected += finite ? 0 : 1;
+  }
+  counts_[0] -= rejected;
+  total_ += values.size() - rejected;
 }
 
 void DistanceHistogram::merge(const DistanceHistogram& other) {

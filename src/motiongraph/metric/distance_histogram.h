@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace mg {
@@ -19,6 +20,8 @@ class DistanceHistogram {
   DistanceHistogram() : counts_(kBins, 0) {}
 
   void add(float value);
+  // add() for each value (a row of a distance tile), without a branch per value.
+  void add_all(std::span<const float> values);
   void merge(const DistanceHistogram& other);
   std::uint64_t total() const { return total_; }
   // The value below which a fraction q (0..1) of the values lie (upper edge of its bin).
@@ -32,6 +35,10 @@ class DistanceHistogram {
   void set_counts(std::vector<std::uint64_t> counts);
 
  private:
+  // The bin of a float given by its bits: 0 for non-positive values (and NaN), else by the
+  // exponent and the top 6 mantissa bits.
+  static int bin_of_bits(std::uint32_t bits);
+
   std::vector<std::uint64_t> counts_;
   std::uint64_t total_ = 0;
 };
