@@ -7,7 +7,26 @@
 
 #include <fmt/format.h>
 
+#include "motiongraph/core/vector_clones.h"
+
 namespace mg {
+
+namespace {
+
+// flags[m] = 1 where row[m] is a value (not NaN) and a local minimum of its 8 neighbours
+// (row[m +- 1], up[m - 1 .. m + 1], down[m - 1 .. m + 1], all readable): none smaller, ties
+// to the first in row-major order, NaN never smaller. The tests are combined with & (no
+// branch), so the loop vectorises.
+MG_VECTOR_CLONES void local_minimum_flags(int count, const float* __restrict row, const float* __restrict up,
+                                          const float* __restrict down, unsigned char* __restrict flags) {
+  for (int m = 0; m < count; ++m) {
+    const float d = row[m];
+    flags[m] = (d >= 0.0f) & !(row[m - 1] <= d) & !(row[m + 1] < d) & !(up[m - 1] <= d) & !(up[m] <= d) &
+               !(up[m + 1] <= d) & !(down[m - 1] < d) & !(down[m] < d) & !(down[m + 1] < d);
+  }
+}
+
+}  // namespace
 
 Status CandidateSettings::validate() const {
   if (continuation_radius < -1) return Error{"", 0, "continuation radius must be >= 0 (or -1 for the window)"};
@@ -55,7 +74,9 @@ Result<CandidateSearch> find_candidates(const FrameFeatures& f, const DistanceSe
       const float* row = &tile.distance[static_cast<size_t>(a - tile.row0) * tile.cols] - tile.col0;
       const float* up = (a > tile.row0 ? row - tile.cols : nan_row.data() - tile.col0);
       const float* down = (a + 1 < tile.row0 + tile.rows ? row + tile.cols : nan_row.data() - tile.col0);
-      if (!search.matrix.empty()) std::copy(row + b_begin, row + b_end, search.matrix.data() + static_cast<size_t>(a) * n + b_begin);
+      if (!search.matrix.empty()) {
+        std::copy(row + b_begin, row + b_end, search.matrix.data() + static_cast<size_t>(a) * n + b_begin);
+      }
       histogram.add_all(std::span<const float>(row + b_begin, static_cast<size_t>(tile.arrive_count)));
       // Picture: the smallest finite value of each block of columns.
       for (int b0 = b_begin; b0 < b_end;) {
@@ -71,16 +92,16 @@ Result<CandidateSearch> find_candidates(const FrameFeatures& f, const DistanceSe
       // tests are combined without branches (a vector loop); columns at the matrix's left and
       // right edges, which lack a neighbour, are treated apart.
       const int inner_begin = std::max(b_begin, 1), inner_end = std::min(b_end, n - 1);
-      for (int b = inner_begin; b < inner_end; ++b) {
-        const float d = row[b];
-        is_minimum[b - b_begin] = (d >= 0.0f) & !(row[b - 1] <= d) & !(row[b + 1] < d) & !(up[b - 1] <= d) &
-                                  !(up[b] <= d) & !(up[b + 1] <= d) & !(down[b - 1] < d) & !(down[b] < d) &
-                                  !(down[b + 1] < d);
+      if (inner_begin < inner_end) {
+        local_minimum_flags(inner_end - inner_begin, row + inner_begin, up + inner_begin, down + inner_begin,
+                            is_minimum.data() + (inner_begin - b_begin));
       }
       for (int b : {b_begin, b_end - 1}) {
         if (b >= inner_begin && b < inner_end) continue;
         const float d = row[b];
-        auto at = [&](const float* r, int c) { return c >= 0 && c < n ? r[c] : std::numeric_limits<float>::quiet_NaN(); };
+        auto at = [&](const float* r, int c) {
+          return c >= 0 && c < n ? r[c] : std::numeric_limits<float>::quiet_NaN();
+        };
         is_minimum[b - b_begin] = (d >= 0.0f) && !(at(row, b - 1) <= d) && !(at(row, b + 1) < d) &&
                                   !(at(up, b - 1) <= d) && !(up[b] <= d) && !(at(up, b + 1) <= d) &&
                                   !(at(down, b - 1) < d) && !(down[b] < d) && !(at(down, b + 1) < d);

@@ -12,6 +12,8 @@
 
 #include <cblas.h>
 
+#include "motiongraph/core/vector_clones.h"
+
 namespace mg {
 
 namespace {
@@ -106,14 +108,15 @@ inline float closed_form(double c1, double c2, double c3, const RowTerms& row, d
   return static_cast<float>(0.5 * (d + std::fabs(d)));
 }
 
+// The per-pair loops below are free functions (restrict arguments let them vectorise) and
+// carry MG_VECTOR_CLONES (an AVX2 version beside the baseline one).
 // A departure frame's reference r and centred first moment m.
 struct Offsets {
   double rx = 0.0, rz = 0.0, mx = 0.0, mz = 0.0;
 };
 
-// One row of E (DESIGN.md 3.3) plus p (the previous row's diagonal sums, or zeros). The
-// loops are free functions so that the restrict-qualified arguments let them vectorise.
-void accumulate_kernel(int cols, Offsets o, const float* __restrict g1, const float* __restrict g2,
+// One row of E (DESIGN.md 3.3) plus p (the previous row's diagonal sums, or zeros).
+MG_VECTOR_CLONES void accumulate_kernel(int cols, Offsets o, const float* __restrict g1, const float* __restrict g2,
                        const float* __restrict g3, const double* __restrict sx, const double* __restrict sz,
                        const double* __restrict nvx, const double* __restrict nvz, const double* __restrict p1,
                        const double* __restrict p2, const double* __restrict p3, double* __restrict e1,
@@ -128,7 +131,7 @@ void accumulate_kernel(int cols, Offsets o, const float* __restrict g1, const fl
 
 // D for `count` consecutive arrival frames from the diagonal sums at the windows' ends and
 // before their starts (uniform taper u). NaN where the arrival window is undefined (mask).
-void window_distance_kernel(int count, double u, const RowTerms row, const double* __restrict end1,
+MG_VECTOR_CLONES void window_distance_kernel(int count, double u, const RowTerms row, const double* __restrict end1,
                             const double* __restrict end2, const double* __restrict end3,
                             const double* __restrict start1, const double* __restrict start2,
                             const double* __restrict start3, const double* __restrict x2,
