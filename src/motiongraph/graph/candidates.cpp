@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <mutex>
 
@@ -64,11 +65,18 @@ Result<CandidateSearch> find_candidates(const FrameFeatures& f, const DistanceSe
   search.tiles = for_each_distance_tile(f, distance, [&](const DistanceTile& tile) {
     DistanceHistogram histogram;
     std::vector<Transition> minima;
-    std::vector<std::pair<size_t, float>> picture_updates;
+    // The picture's pixels this tile touches, [pixel_row0, ..) x [pixel_col0, ..): block
+    // minima of its inner region (infinity where none is finite), merged at the end.
+    const int pixel_row0 = tile.leave_begin / block, pixel_col0 = tile.arrive_begin / block;
+    const int pixel_rows = (tile.leave_begin + tile.leave_count - 1) / block - pixel_row0 + 1;
+    const int pixel_cols = (tile.arrive_begin + tile.arrive_count - 1) / block - pixel_col0 + 1;
+    std::vector<float> pixels(static_cast<size_t>(pixel_rows) * pixel_cols, std::numeric_limits<float>::infinity());
     // A missing neighbour row (at the matrix's edge) reads as NaN, which never beats a value.
     const std::vector<float> nan_row(static_cast<size_t>(tile.cols), std::numeric_limits<float>::quiet_NaN());
     std::vector<unsigned char> is_minimum(static_cast<size_t>(tile.arrive_count));
     const int b_begin = tile.arrive_begin, b_end = tile.arrive_begin + tile.arrive_count;
+    histogram.add_block(&tile.distance[static_cast<size_t>(tile.leave_begin - tile.row0) * tile.cols + (b_begin - tile.col0)],
+                        tile.leave_count, tile.arrive_count, tile.cols);
     for (int a = tile.leave_begin; a < tile.leave_begin + tile.leave_count; ++a) {
       // The stored rows above, at and below a, indexed by frame b.
       const float* row = &tile.distance[static_cast<size_t>(a - tile.row0) * tile.cols] - tile.col0;
@@ -77,15 +85,13 @@ Result<CandidateSearch> find_candidates(const FrameFeatures& f, const DistanceSe
       if (!search.matrix.empty()) {
         std::copy(row + b_begin, row + b_end, search.matrix.data() + static_cast<size_t>(a) * n + b_begin);
       }
-      histogram.add_all(std::span<const float>(row + b_begin, static_cast<size_t>(tile.arrive_count)));
       // Picture: the smallest finite value of each block of columns.
-      for (int b0 = b_begin; b0 < b_end;) {
+      float* pixel = pixels.data() + static_cast<size_t>(a / block - pixel_row0) * pixel_cols;
+      for (int b0 = b_begin; b0 < b_end; ++pixel) {
         const int b1 = std::min(b_end, (b0 / block + 1) * block);
-        float block_min = std::numeric_limits<float>::infinity();
+        float block_min = *pixel;
         for (int b = b0; b < b1; ++b) block_min = row[b] < block_min ? row[b] : block_min;  // NaN never wins
-        if (block_min < std::numeric_limits<float>::infinity()) {
-          picture_updates.emplace_back(static_cast<size_t>(a / block) * side + b0 / block, block_min);
-        }
+        *pixel = block_min;
         b0 = b1;
       }
       // Local minima: no neighbour smaller; ties go to the first in row-major order. The
@@ -107,8 +113,12 @@ Result<CandidateSearch> find_candidates(const FrameFeatures& f, const DistanceSe
                                   !(at(down, b - 1) < d) && !(down[b] < d) && !(at(down, b + 1) < d);
       }
       const int clip_a = f.clip_of_frame[a];
-      for (int b = b_begin; b < b_end; ++b) {
-        if (!is_minimum[b - b_begin]) continue;
+      // Flags are rare: memchr jumps from one to the next.
+      const unsigned char* flags_end = is_minimum.data() + tile.arrive_count;
+      for (auto* flag = static_cast<const unsigned char*>(std::memchr(is_minimum.data(), 1, is_minimum.size()));
+           flag != nullptr;
+           flag = static_cast<const unsigned char*>(std::memchr(flag + 1, 1, static_cast<size_t>(flags_end - flag - 1)))) {
+        const int b = b_begin + static_cast<int>(flag - is_minimum.data());
         if (f.clip_of_frame[b] == clip_a && std::abs(b - (a + k - 1)) <= radius) continue;
         minima.push_back(Transition{a, b, row[b], 0.0f, 0.0f, 0.0f});
       }
@@ -116,9 +126,12 @@ Result<CandidateSearch> find_candidates(const FrameFeatures& f, const DistanceSe
     std::lock_guard lock(mutex);
     search.histogram.merge(histogram);
     search.minima.insert(search.minima.end(), minima.begin(), minima.end());
-    for (const auto& [at, value] : picture_updates) {
-      float& pixel = search.picture[at];
-      if (!(pixel <= value)) pixel = value;  // NaN or larger
+    for (int r = 0; r < pixel_rows; ++r) {
+      for (int c = 0; c < pixel_cols; ++c) {
+        const float value = pixels[static_cast<size_t>(r) * pixel_cols + c];
+        float& pixel = search.picture[static_cast<size_t>(pixel_row0 + r) * side + pixel_col0 + c];
+        if (value < std::numeric_limits<float>::infinity() && !(pixel <= value)) pixel = value;  // NaN or larger
+      }
     }
   }, on_tile_done);
   std::sort(search.minima.begin(), search.minima.end(), [](const Transition& x, const Transition& y) {
