@@ -1,7 +1,9 @@
 #include "motiongraph/graph/candidates.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <mutex>
@@ -25,6 +27,15 @@ MG_VECTOR_CLONES void local_minimum_flags(int count, const float* __restrict row
     flags[m] = (d >= 0.0f) & !(row[m - 1] <= d) & !(row[m + 1] < d) & !(up[m - 1] <= d) & !(up[m] <= d) &
                !(up[m + 1] <= d) & !(down[m - 1] < d) & !(down[m] < d) & !(down[m + 1] < d);
   }
+}
+
+// Distances are >= 0 or NaN. The bits of such floats order as unsigned integers do, with NaN
+// (either sign) above infinity and every value: an integer minimum, which vectorises, is the
+// smallest value and never a NaN. column_min[m] = min(column_min[m], bits of row[m]).
+constexpr std::uint32_t kInfinityBits = 0x7f800000u;
+
+MG_VECTOR_CLONES void column_min_bits(int count, const float* __restrict row, std::uint32_t* __restrict column_min) {
+  for (int m = 0; m < count; ++m) column_min[m] = std::min(column_min[m], std::bit_cast<std::uint32_t>(row[m]));
 }
 
 }  // namespace
@@ -74,9 +85,10 @@ Result<CandidateSearch> find_candidates(const FrameFeatures& f, const DistanceSe
     // A missing neighbour row (at the matrix's edge) reads as NaN, which never beats a value.
     const std::vector<float> nan_row(static_cast<size_t>(tile.cols), std::numeric_limits<float>::quiet_NaN());
     std::vector<unsigned char> is_minimum(static_cast<size_t>(tile.arrive_count));
+    std::vector<std::uint32_t> column_min(static_cast<size_t>(tile.arrive_count), kInfinityBits);
     const int b_begin = tile.arrive_begin, b_end = tile.arrive_begin + tile.arrive_count;
-    histogram.add_block(&tile.distance[static_cast<size_t>(tile.leave_begin - tile.row0) * tile.cols + (b_begin - tile.col0)],
-                        tile.leave_count, tile.arrive_count, tile.cols);
+    const size_t inner_at = static_cast<size_t>(tile.leave_begin - tile.row0) * tile.cols + (b_begin - tile.col0);
+    histogram.add_block(&tile.distance[inner_at], tile.leave_count, tile.arrive_count, tile.cols);
     for (int a = tile.leave_begin; a < tile.leave_begin + tile.leave_count; ++a) {
       // The stored rows above, at and below a, indexed by frame b.
       const float* row = &tile.distance[static_cast<size_t>(a - tile.row0) * tile.cols] - tile.col0;
@@ -85,14 +97,19 @@ Result<CandidateSearch> find_candidates(const FrameFeatures& f, const DistanceSe
       if (!search.matrix.empty()) {
         std::copy(row + b_begin, row + b_end, search.matrix.data() + static_cast<size_t>(a) * n + b_begin);
       }
-      // Picture: the smallest finite value of each block of columns.
-      float* pixel = pixels.data() + static_cast<size_t>(a / block - pixel_row0) * pixel_cols;
-      for (int b0 = b_begin; b0 < b_end; ++pixel) {
-        const int b1 = std::min(b_end, (b0 / block + 1) * block);
-        float block_min = *pixel;
-        for (int b = b0; b < b1; ++b) block_min = row[b] < block_min ? row[b] : block_min;  // NaN never wins
-        *pixel = block_min;
-        b0 = b1;
+      // Picture: the smallest value of each block, first down each column over the rows of
+      // one pixel row, then across the block's columns once that pixel row is complete.
+      column_min_bits(tile.arrive_count, row + b_begin, column_min.data());
+      if ((a + 1) % block == 0 || a + 1 == tile.leave_begin + tile.leave_count) {
+        float* pixel = pixels.data() + static_cast<size_t>(a / block - pixel_row0) * pixel_cols;
+        for (int b0 = b_begin; b0 < b_end; ++pixel) {
+          const int b1 = std::min(b_end, (b0 / block + 1) * block);
+          const std::uint32_t smallest =
+              *std::min_element(column_min.begin() + (b0 - b_begin), column_min.begin() + (b1 - b_begin));
+          *pixel = std::bit_cast<float>(smallest);  // infinity where none is finite
+          b0 = b1;
+        }
+        std::fill(column_min.begin(), column_min.end(), kInfinityBits);
       }
       // Local minima: no neighbour smaller; ties go to the first in row-major order. The
       // tests are combined without branches (a vector loop); columns at the matrix's left and
@@ -115,9 +132,10 @@ Result<CandidateSearch> find_candidates(const FrameFeatures& f, const DistanceSe
       const int clip_a = f.clip_of_frame[a];
       // Flags are rare: memchr jumps from one to the next.
       const unsigned char* flags_end = is_minimum.data() + tile.arrive_count;
-      for (auto* flag = static_cast<const unsigned char*>(std::memchr(is_minimum.data(), 1, is_minimum.size()));
-           flag != nullptr;
-           flag = static_cast<const unsigned char*>(std::memchr(flag + 1, 1, static_cast<size_t>(flags_end - flag - 1)))) {
+      auto next_flag = [&](const unsigned char* from) {
+        return static_cast<const unsigned char*>(std::memchr(from, 1, static_cast<size_t>(flags_end - from)));
+      };
+      for (const unsigned char* flag = next_flag(is_minimum.data()); flag != nullptr; flag = next_flag(flag + 1)) {
         const int b = b_begin + static_cast<int>(flag - is_minimum.data());
         if (f.clip_of_frame[b] == clip_a && std::abs(b - (a + k - 1)) <= radius) continue;
         minima.push_back(Transition{a, b, row[b], 0.0f, 0.0f, 0.0f});
