@@ -4,8 +4,6 @@
 // storage). Compare the bytes/s of each parser with the baseline's in the same run.
 #include <benchmark/benchmark.h>
 
-#include <cstdio>
-#include <map>
 #include <stdexcept>
 #include <string>
 
@@ -17,6 +15,7 @@
 #include "motiongraph/motion/acclaim_import.h"
 #include "motiongraph/motion/bvh_import.h"
 #include "motiongraph/motion/forward_kinematics.h"
+#include "ratio_reporter.h"
 
 namespace {
 
@@ -94,36 +93,11 @@ BENCHMARK(BM_BaselineBvhText);
 BENCHMARK(BM_ParseBvh);
 BENCHMARK(BM_ForwardKinematics);
 
-// Prints the usual table, then each parser's time as a multiple of its baseline's.
-class RatioReporter : public benchmark::ConsoleReporter {
- public:
-  void ReportRuns(const std::vector<Run>& runs) override {
-    for (const Run& run : runs) seconds_[run.benchmark_name()] = run.GetAdjustedRealTime();
-    ConsoleReporter::ReportRuns(runs);
-  }
-  void Finalize() override {
-    ConsoleReporter::Finalize();
-    const std::pair<const char*, const char*> pairs[] = {{"BM_ParseAmc", "BM_BaselineAmcText"},
-                                                         {"BM_ParseAndImportAmc", "BM_BaselineAmcText"},
-                                                         {"BM_ParseBvh", "BM_BaselineBvhText"}};
-    for (const auto& [name, baseline] : pairs) {
-      if (seconds_.count(name) && seconds_.count(baseline)) {
-        std::printf("%-22s %.2fx the time of %s\n", name, seconds_[name] / seconds_[baseline], baseline);
-      }
-    }
-  }
-
- private:
-  std::map<std::string, double> seconds_;
-};
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  RatioReporter reporter;
-  benchmark::RunSpecifiedBenchmarks(&reporter);
-  benchmark::Shutdown();
-  return 0;
+  return mg::bench::run_with_ratios(argc, argv,
+                                    {{"BM_ParseAmc", "BM_BaselineAmcText"},
+                                     {"BM_ParseAndImportAmc", "BM_BaselineAmcText"},
+                                     {"BM_ParseBvh", "BM_BaselineBvhText"}});
 }

@@ -3,8 +3,9 @@
 # corpora from the bundled data and runs each target for a while, one after the other.
 #
 # usage: scripts/fuzz.sh [SECONDS_PER_TARGET]     (default 30; works from any directory)
+# (MOTIONGRAPH_FUZZ_BUILD=DIR builds and keeps corpora in DIR instead of build-fuzz/)
 #
-#   build-fuzz/corpus-{asf,amc,bvh}/  seeds + what the fuzzer found; kept between runs
+#   build-fuzz/corpus-<target>/       seeds + what the fuzzer found; kept between runs
 #   build-fuzz/artifacts/             crash-*, leak-*, timeout-*, oom-* inputs, named
 #                                     <target>-<kind>-<sha1>
 #   build-fuzz/logs/fuzz_*.log        the full output of each run
@@ -22,14 +23,15 @@ fi
 
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 root="$PWD"
-build="$root/build-fuzz"
+build="${MOTIONGRAPH_FUZZ_BUILD:-$root/build-fuzz}"  # the build folder, overridable
 max_len=65536
 
 # --- build ---------------------------------------------------------------------------------
 CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja \
   -DMOTIONGRAPH_FUZZ=ON -DMOTIONGRAPH_SANITIZE=address,undefined \
   -DMOTIONGRAPH_TESTS=OFF -DMOTIONGRAPH_BENCHMARKS=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
-cmake --build "$build" --target fuzz_asf fuzz_amc fuzz_bvh
+targets=(asf amc bvh manifest floor_path control_script)
+cmake --build "$build" --target "${targets[@]/#/fuzz_}"
 
 # --- seed corpora --------------------------------------------------------------------------
 # Each bundled file as it is (libFuzzer reads only its first max_len bytes), plus for large
@@ -47,7 +49,8 @@ add_seed() {  # add_seed CORPUS FILE
 
 corpus_asf="$build/corpus-asf" corpus_amc="$build/corpus-amc" corpus_bvh="$build/corpus-bvh"
 artifacts="$build/artifacts" logs="$build/logs"
-mkdir -p "$corpus_asf" "$corpus_amc" "$corpus_bvh" "$artifacts" "$logs"
+for target in "${targets[@]}"; do mkdir -p "$build/corpus-$target"; done
+mkdir -p "$artifacts" "$logs"
 
 for f in data/cmu/*/*.asf; do add_seed "$corpus_asf" "$f"; done
 for f in data/cmu/16/*.amc; do
@@ -66,6 +69,16 @@ for f in data/bvh/*.bvh; do
        { print }' "$f" >"$corpus_bvh/$(basename "$f").3frames"
 done
 
+# Manifests, floor paths and control scripts: small files of each kind, written here.
+awk '/^```toml/ { n++; on = 1; next } /^```/ { on = 0 } on { print > (dir "/example-" n ".toml") }' \
+  dir="$build/corpus-manifest" docs/manifest.md
+printf '{"points": [[0, 0], [0, -20]]}\n' >"$build/corpus-floor_path/line.json"
+printf '{"points": [[0, 0], [3, -4], [3, -4], [6, 0]],\n "segments": [{"from_m": 0, "to_m": 5, "tag": "walk"},\n  {"from_m": 4, "to_m": 10, "tag": "run"}]}\n' \
+  >"$build/corpus-floor_path/segments.json"
+printf '{"duration_s": 12,\n "controls": [{"at_s": 0, "heading": "north", "tag": "walk"},\n  {"at_s": 4, "heading_deg": 90}, {"at_s": 8, "tag": "run"}, {"at_s": 9, "tag": "any"}]}\n' \
+  >"$build/corpus-control_script/script.json"
+printf '{"controls": [{"at_s": 0, "heading": "west"}]}\n' >"$build/corpus-control_script/short.json"
+
 # --- run -----------------------------------------------------------------------------------
 export MOTIONGRAPH_FUZZ_ASF="$root/data/cmu/16/16.asf"  # fuzz_amc's skeleton
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}"
@@ -73,7 +86,7 @@ export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 
 failed=()
 summary=()
-for target in asf amc bvh; do
+for target in "${targets[@]}"; do
   log="$logs/fuzz_$target.log"
   corpus="$build/corpus-$target"
   echo "=== fuzz_$target: ${seconds}s, corpus $(find "$corpus" -type f | wc -l) files, log $log"

@@ -2,10 +2,12 @@
 //  - the three plain BLAS products it needs (same N, P, tiles and threads): the ceiling;
 //  - the pair-by-pair reference (timed on a random sample of pairs, scaled to all N^2 pairs).
 // Prints the times and their ratios. Speed is measured here, never asserted in tests.
+#include <algorithm>
 #include <chrono>
 #include <random>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "cli/bench_synthesis.h"
 #include "cli/commands.h"
@@ -24,11 +26,18 @@ struct BenchOptions {
   double fps = 120.0;
   int max_frames = 0;
   int reference_pairs = 20000;
+  int repeat = 1;
   DistanceSettings distance;
 };
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const size_t m = values.size() / 2;
+  return values.size() % 2 == 1 ? values[m] : 0.5 * (values[m - 1] + values[m]);
 }
 
 int run_bench(const BenchOptions& o) {
@@ -62,11 +71,19 @@ int run_bench(const BenchOptions& o) {
              n, db->clips.size(), db->fps, features->points, features->window, o.distance.tile_frames,
              o.distance.threads == 0 ? std::string("all cores") : std::to_string(o.distance.threads));
 
-  const double products_s = time_plain_products(*features, o.distance);
-  auto start = std::chrono::steady_clock::now();
-  auto search = find_candidates(*features, o.distance, {});
-  const double stage_s = seconds_since(start);
-  if (!search) return fail(search.error());
+  // Products and stage alternate, so that both see the same load; medians over the runs.
+  std::vector<double> products_runs, stage_runs, ratios;
+  Result<CandidateSearch> search = Error{"", 0, "not run"};
+  for (int run = 0; run < o.repeat; ++run) {
+    products_runs.push_back(time_plain_products(*features, o.distance));
+    const auto start = std::chrono::steady_clock::now();
+    search = find_candidates(*features, o.distance, {});
+    stage_runs.push_back(seconds_since(start));
+    if (!search) return fail(search.error());
+    ratios.push_back(stage_runs.back() / products_runs.back());
+  }
+  const double products_s = median(products_runs);
+  const double stage_s = median(stage_runs);
 
   // The reference on random defined pairs, from double clouds of every frame.
   const std::vector<Vec3> clouds = database_clouds(*db, *layout);
@@ -77,7 +94,7 @@ int run_bench(const BenchOptions& o) {
     const int a = frame(rng), b = frame(rng);
     if (features->can_leave[a] && features->can_arrive[b]) pairs.emplace_back(a, b);
   }
-  start = std::chrono::steady_clock::now();
+  auto start = std::chrono::steady_clock::now();
   double sink = 0.0;
   for (const auto& [a, b] : pairs) {
     sink += reference_distance(clouds, features->points, features->point_weights, features->taper, a, b).distance;
@@ -85,10 +102,14 @@ int run_bench(const BenchOptions& o) {
   const double reference_per_pair = seconds_since(start) / static_cast<double>(pairs.size());
   const double reference_s = reference_per_pair * static_cast<double>(n) * n;
   const double pairs_total = static_cast<double>(n) * n;
-  fmt::print("plain BLAS products (3 sgemm per tile): {:8.3f} s\n", products_s);
+  const std::string runs = o.repeat > 1 ? fmt::format(" (median of {} runs)", o.repeat) : std::string();
+  fmt::print("plain BLAS products (3 sgemm per tile): {:8.3f} s{}\n", products_s, runs);
   fmt::print("distance stage (products, diagonal sums, closed form, minima, histogram): {:8.3f} s  "
              "= {:.2f}x the plain products; {:.1f} M pairs/s\n",
-             stage_s, stage_s / products_s, pairs_total / stage_s / 1e6);
+             stage_s, median(ratios), pairs_total / stage_s / 1e6);
+  if (o.repeat > 1) {
+    fmt::print("ratio per run: {:.2f}\n", fmt::join(ratios, " "));
+  }
   fmt::print("pair-by-pair reference, one thread ({} random pairs, {:.2f} us/pair): {:.1f} s for all {} pairs "
              "= {:.0f}x the distance stage\n",
              pairs.size(), reference_per_pair * 1e6, reference_s, static_cast<long long>(pairs_total), reference_s / stage_s);
@@ -110,6 +131,9 @@ Command add_bench_command(CLI::App& app) {
   sub->add_option("--reference-pairs", o->reference_pairs, "Random pairs to time the reference on")
       ->capture_default_str()
       ->check(CLI::Range(100, 10000000));
+  sub->add_option("--repeat", o->repeat, "Measure products and stage this many times each, alternating; print medians")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
   sub->add_option("--tile", o->distance.tile_frames, "Tile side in frames")->capture_default_str();
   sub->add_option("--threads", o->distance.threads, "Worker threads (0: one per core)")->capture_default_str();
   return {sub, [o] { return run_bench(*o); }};

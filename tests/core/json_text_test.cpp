@@ -1,15 +1,35 @@
+// JSON text to a document, or a clean error: never an exception, whatever the text (found by
+// fuzzing the floor-path and control-script readers: a number too large for a double); and
+// documents to text, whatever bytes their strings hold.
 #include "motiongraph/core/json_text.h"
 
 #include <gtest/gtest.h>
 
+#include "motiongraph/synthesis/control_script.h"
+#include "motiongraph/synthesis/floor_path.h"
+
 namespace mg {
 namespace {
 
-TEST(JsonText, SyntaxErrorsNameTheFileAndLine) {
-  auto doc = parse_json_text("{\n  \"a\": 1,\n  \"b\": ]\n}\n", "path.json");
-  ASSERT_FALSE(doc.ok());
-  EXPECT_EQ(doc.error().file, "path.json");
-  EXPECT_EQ(doc.error().line, 3);
+TEST(JsonText, SyntaxErrorNamesTheLine) {
+  auto parsed = parse_json_text("{\"a\": 1,\n \"b\": ]}", "x.json");
+  ASSERT_FALSE(parsed);
+  EXPECT_EQ(parsed.error().file, "x.json");
+  EXPECT_EQ(parsed.error().line, 2);
+}
+
+TEST(JsonText, NumberTooLargeIsAnErrorNotAnException) {
+  auto parsed = parse_json_text("{\"a\": 1,\n \"b\": 3E33333331}", "x.json");
+  ASSERT_FALSE(parsed);
+  EXPECT_EQ(parsed.error().line, 2);
+  EXPECT_NE(parsed.error().message.find("out of range"), std::string::npos) << parsed.error().message;
+  EXPECT_TRUE(parse_json_text("[1e308, -1e308, 5e-324]", "x.json"));
+}
+
+TEST(JsonText, PathAndControlScriptRejectHugeNumbers) {
+  EXPECT_FALSE(parse_path_json("{\"points\": [[0, 0], [0, 3E33333331]]}", "path.json"));
+  EXPECT_FALSE(parse_path_json("                   3E33333331   ", "path.json"));
+  EXPECT_FALSE(parse_control_script("{\"controls\": [{\"at_s\": 777777777777000000137e8347070}]}", "script.json"));
 }
 
 // A Latin-1 name (0xE9, "é" in Latin-1, is not UTF-8 on its own) is written as U+FFFD instead

@@ -20,7 +20,7 @@ struct Fixture {
   CandidateSearch search;
 };
 
-Fixture run(int tile_frames) {
+Fixture run(int tile_frames, int picture_side = CandidateSettings{}.picture_side) {
   Fixture x;
   x.db = test::small_database({"cmu/16/16_15.amc", "cmu/16/16_35.amc", "cmu/16/16_17.amc"});
   DistanceSettings distance;
@@ -30,6 +30,7 @@ Fixture run(int tile_frames) {
   x.features = *make_frame_features(x.db, *layout, distance);
   CandidateSettings settings;
   settings.keep_matrix = true;
+  settings.picture_side = picture_side;
   auto search = find_candidates(x.features, distance, settings);
   EXPECT_TRUE(search) << search.error().to_string();
   x.search = std::move(*search);
@@ -75,23 +76,30 @@ TEST(Candidates, TileBordersDoNotChangeTheMinima) {
 }
 
 TEST(Candidates, PictureHoldsBlockMinima) {
-  const Fixture x = run(100);
-  const int n = x.features.frames;
-  const int block = x.search.picture_block;
-  for (int row = 0; row < x.search.picture_side; row += 5) {
-    for (int col = 0; col < x.search.picture_side; col += 3) {
-      float expected = NAN;
-      for (int a = row * block; a < std::min(n, (row + 1) * block); ++a) {
-        for (int b = col * block; b < std::min(n, (col + 1) * block); ++b) {
-          const float v = x.search.matrix[static_cast<size_t>(a) * n + b];
-          if (std::isfinite(v) && !(expected <= v)) expected = v;
+  // One frame a pixel, and blocks of several frames that tile borders cut.
+  for (const auto& [tile_frames, picture_side] : {std::pair{100, 1024}, std::pair{37, 16}}) {
+    const Fixture x = run(tile_frames, picture_side);
+    const int n = x.features.frames;
+    const int block = x.search.picture_block;
+    if (picture_side == 16) {
+      EXPECT_GT(block, 1);
+      EXPECT_NE(tile_frames % block, 0);
+    }
+    for (int row = 0; row < x.search.picture_side; row += picture_side == 16 ? 1 : 5) {
+      for (int col = 0; col < x.search.picture_side; col += picture_side == 16 ? 1 : 3) {
+        float expected = NAN;
+        for (int a = row * block; a < std::min(n, (row + 1) * block); ++a) {
+          for (int b = col * block; b < std::min(n, (col + 1) * block); ++b) {
+            const float v = x.search.matrix[static_cast<size_t>(a) * n + b];
+            if (std::isfinite(v) && !(expected <= v)) expected = v;
+          }
         }
-      }
-      const float pixel = x.search.picture[static_cast<size_t>(row) * x.search.picture_side + col];
-      if (std::isnan(expected)) {
-        EXPECT_TRUE(std::isnan(pixel));
-      } else {
-        EXPECT_EQ(pixel, expected);
+        const float pixel = x.search.picture[static_cast<size_t>(row) * x.search.picture_side + col];
+        if (std::isnan(expected)) {
+          EXPECT_TRUE(std::isnan(pixel)) << row << "," << col;
+        } else {
+          EXPECT_EQ(pixel, expected) << row << "," << col;
+        }
       }
     }
   }

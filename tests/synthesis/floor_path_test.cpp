@@ -66,6 +66,23 @@ TEST(FloorPath, DistanceAndSegments) {
   EXPECT_EQ(path->tag_at(10.5), "");
 }
 
+TEST(FloorPath, LongPathsStayUsableAndHugeOnesAreErrors) {
+  // Found by fuzzing: a point 7.8e21 m away made the bucket count overflow an int. Paths are
+  // now at most 100 km long (the studio's bound) and the buckets grow with the length.
+  auto huge = parse_path_json("{\"points\": [[0, 0], [3, -4], [7777777777777777777776, 0]]}", "p.json");
+  ASSERT_FALSE(huge.ok());
+  EXPECT_NE(huge.error().message.find("at most 100 km"), std::string::npos) << huge.error().message;
+  EXPECT_FALSE(parse_path_json("{\"points\": [[0, 0], [1e308, 0], [-1e308, 0]]}", "p.json").ok());
+  auto path = parse_path_json("{\"points\": [[0, 0], [3, -4], [99000, 0], [99000, 900]]}", "p.json");
+  ASSERT_TRUE(path.ok()) << path.error().to_string();
+  const std::vector<Vec2> points = {{0.0, 0.0}, {3.0, -4.0}, {99000.0, 0.0}, {99000.0, 900.0}};
+  for (double s : {0.0, 2.5, 5.0, 1e3, 5e4, 0.5 * path->length_m(), path->length_m() - 450.0, path->length_m()}) {
+    const Vec2 expected = brute_point_at(points, s);
+    EXPECT_LE((path->point_at(s) - expected).norm(), 1e-9 * std::max(1.0, expected.norm())) << s;
+  }
+  EXPECT_NEAR(path->point_at(2.5).x(), 1.5, 1e-12);
+}
+
 TEST(FloorPath, BadInputIsOneClearError) {
   const std::vector<test::ErrorCase> cases = {
       {"JSON syntax", "{\"points\": [[0, 0],\n [1, 2]\n", 3, "not valid JSON"},

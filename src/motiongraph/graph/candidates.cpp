@@ -1,13 +1,44 @@
 #include "motiongraph/graph/candidates.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <mutex>
 
 #include <fmt/format.h>
 
+#include "motiongraph/core/vector_clones.h"
+
 namespace mg {
+
+namespace {
+
+// flags[m] = 1 where row[m] is a value (not NaN) and a local minimum of its 8 neighbours
+// (row[m +- 1], up[m - 1 .. m + 1], down[m - 1 .. m + 1], all readable): none smaller, ties
+// to the first in row-major order, NaN never smaller. The tests are combined with & (no
+// branch), so the loop vectorises.
+MG_VECTOR_CLONES void local_minimum_flags(int count, const float* __restrict row, const float* __restrict up,
+                                          const float* __restrict down, unsigned char* __restrict flags) {
+  for (int m = 0; m < count; ++m) {
+    const float d = row[m];
+    flags[m] = (d >= 0.0f) & !(row[m - 1] <= d) & !(row[m + 1] < d) & !(up[m - 1] <= d) & !(up[m] <= d) &
+               !(up[m + 1] <= d) & !(down[m - 1] < d) & !(down[m] < d) & !(down[m + 1] < d);
+  }
+}
+
+// Distances are >= 0 or NaN. The bits of such floats order as unsigned integers do, with NaN
+// (either sign) above infinity and every value: an integer minimum, which vectorises, is the
+// smallest value and never a NaN. column_min[m] = min(column_min[m], bits of row[m]).
+constexpr std::uint32_t kInfinityBits = 0x7f800000u;
+
+MG_VECTOR_CLONES void column_min_bits(int count, const float* __restrict row, std::uint32_t* __restrict column_min) {
+  for (int m = 0; m < count; ++m) column_min[m] = std::min(column_min[m], std::bit_cast<std::uint32_t>(row[m]));
+}
+
+}  // namespace
 
 Status CandidateSettings::validate() const {
   if (continuation_radius < -1) return Error{"", 0, "continuation radius must be >= 0 (or -1 for the window)"};
@@ -39,56 +70,86 @@ Result<CandidateSearch> find_candidates(const FrameFeatures& f, const DistanceSe
 
   const int k = f.window;
   const int radius = search.continuation_radius;
+  const int block = search.picture_block;
+  const int side = search.picture_side;
   std::mutex mutex;
   search.tiles = for_each_distance_tile(f, distance, [&](const DistanceTile& tile) {
     DistanceHistogram histogram;
     std::vector<Transition> minima;
-    const int block = search.picture_block;
-    const int side = search.picture_side;
-    std::vector<std::pair<size_t, float>> picture_updates;
-    const float kNan = std::numeric_limits<float>::quiet_NaN();
+    // The picture's pixels this tile touches, [pixel_row0, ..) x [pixel_col0, ..): block
+    // minima of its inner region (infinity where none is finite), merged at the end.
+    const int pixel_row0 = tile.leave_begin / block, pixel_col0 = tile.arrive_begin / block;
+    const int pixel_rows = (tile.leave_begin + tile.leave_count - 1) / block - pixel_row0 + 1;
+    const int pixel_cols = (tile.arrive_begin + tile.arrive_count - 1) / block - pixel_col0 + 1;
+    std::vector<float> pixels(static_cast<size_t>(pixel_rows) * pixel_cols, std::numeric_limits<float>::infinity());
+    // A missing neighbour row (at the matrix's edge) reads as NaN, which never beats a value.
+    const std::vector<float> nan_row(static_cast<size_t>(tile.cols), std::numeric_limits<float>::quiet_NaN());
+    std::vector<unsigned char> is_minimum(static_cast<size_t>(tile.arrive_count));
+    std::vector<std::uint32_t> column_min(static_cast<size_t>(tile.arrive_count), kInfinityBits);
+    const int b_begin = tile.arrive_begin, b_end = tile.arrive_begin + tile.arrive_count;
+    const size_t inner_at = static_cast<size_t>(tile.leave_begin - tile.row0) * tile.cols + (b_begin - tile.col0);
+    histogram.add_block(&tile.distance[inner_at], tile.leave_count, tile.arrive_count, tile.cols);
     for (int a = tile.leave_begin; a < tile.leave_begin + tile.leave_count; ++a) {
-      float* matrix_row = search.matrix.empty() ? nullptr : search.matrix.data() + static_cast<size_t>(a) * n;
-      // The stored rows above, at and below a; a missing neighbour row reads as NaN, which
-      // never beats a value.
+      // The stored rows above, at and below a, indexed by frame b.
       const float* row = &tile.distance[static_cast<size_t>(a - tile.row0) * tile.cols] - tile.col0;
-      const float* up = a > tile.row0 ? row - tile.cols : nullptr;
-      const float* down = a + 1 < tile.row0 + tile.rows ? row + tile.cols : nullptr;
-      const int first_col = tile.col0, last_col = tile.col0 + tile.cols - 1;
-      auto at = [&](const float* r, int b) { return r && b >= first_col && b <= last_col ? r[b] : kNan; };
-      const int clip_a = f.clip_of_frame[a];
-      float block_min = std::numeric_limits<float>::infinity();
-      int block_column = tile.arrive_begin / block;
-      for (int b = tile.arrive_begin; b < tile.arrive_begin + tile.arrive_count; ++b) {
-        const float d = row[b];
-        if (matrix_row) matrix_row[b] = d;
-        if (b / block != block_column) {
-          if (std::isfinite(block_min)) {
-            picture_updates.emplace_back(static_cast<size_t>(a / block) * side + block_column, block_min);
-          }
-          block_column = b / block;
-          block_min = std::numeric_limits<float>::infinity();
-        }
-        if (!(d >= 0.0f)) continue;  // NaN: undefined
-        block_min = std::min(block_min, d);
-        histogram.add(d);
-        // A local minimum: no neighbour smaller; ties go to the first in row-major order.
-        if (at(row, b - 1) <= d || at(row, b + 1) < d) continue;
-        if (at(up, b - 1) <= d || at(up, b) <= d || at(up, b + 1) <= d) continue;
-        if (at(down, b - 1) < d || at(down, b) < d || at(down, b + 1) < d) continue;
-        if (f.clip_of_frame[b] == clip_a && std::abs(b - (a + k - 1)) <= radius) continue;
-        minima.push_back(Transition{a, b, d, 0.0f, 0.0f, 0.0f});
+      const float* up = (a > tile.row0 ? row - tile.cols : nan_row.data() - tile.col0);
+      const float* down = (a + 1 < tile.row0 + tile.rows ? row + tile.cols : nan_row.data() - tile.col0);
+      if (!search.matrix.empty()) {
+        std::copy(row + b_begin, row + b_end, search.matrix.data() + static_cast<size_t>(a) * n + b_begin);
       }
-      if (std::isfinite(block_min)) {
-        picture_updates.emplace_back(static_cast<size_t>(a / block) * side + block_column, block_min);
+      // Picture: the smallest value of each block, first down each column over the rows of
+      // one pixel row, then across the block's columns once that pixel row is complete.
+      column_min_bits(tile.arrive_count, row + b_begin, column_min.data());
+      if ((a + 1) % block == 0 || a + 1 == tile.leave_begin + tile.leave_count) {
+        float* pixel = pixels.data() + static_cast<size_t>(a / block - pixel_row0) * pixel_cols;
+        for (int b0 = b_begin; b0 < b_end; ++pixel) {
+          const int b1 = std::min(b_end, (b0 / block + 1) * block);
+          const std::uint32_t smallest =
+              *std::min_element(column_min.begin() + (b0 - b_begin), column_min.begin() + (b1 - b_begin));
+          *pixel = std::bit_cast<float>(smallest);  // infinity where none is finite
+          b0 = b1;
+        }
+        std::fill(column_min.begin(), column_min.end(), kInfinityBits);
+      }
+      // Local minima: no neighbour smaller; ties go to the first in row-major order. The
+      // tests are combined without branches (a vector loop); columns at the matrix's left and
+      // right edges, which lack a neighbour, are treated apart.
+      const int inner_begin = std::max(b_begin, 1), inner_end = std::min(b_end, n - 1);
+      if (inner_begin < inner_end) {
+        local_minimum_flags(inner_end - inner_begin, row + inner_begin, up + inner_begin, down + inner_begin,
+                            is_minimum.data() + (inner_begin - b_begin));
+      }
+      for (int b : {b_begin, b_end - 1}) {
+        if (b >= inner_begin && b < inner_end) continue;
+        const float d = row[b];
+        auto at = [&](const float* r, int c) {
+          return c >= 0 && c < n ? r[c] : std::numeric_limits<float>::quiet_NaN();
+        };
+        is_minimum[b - b_begin] = (d >= 0.0f) && !(at(row, b - 1) <= d) && !(at(row, b + 1) < d) &&
+                                  !(at(up, b - 1) <= d) && !(up[b] <= d) && !(at(up, b + 1) <= d) &&
+                                  !(at(down, b - 1) < d) && !(down[b] < d) && !(at(down, b + 1) < d);
+      }
+      const int clip_a = f.clip_of_frame[a];
+      // Flags are rare: memchr jumps from one to the next.
+      const unsigned char* flags_end = is_minimum.data() + tile.arrive_count;
+      auto next_flag = [&](const unsigned char* from) {
+        return static_cast<const unsigned char*>(std::memchr(from, 1, static_cast<size_t>(flags_end - from)));
+      };
+      for (const unsigned char* flag = next_flag(is_minimum.data()); flag != nullptr; flag = next_flag(flag + 1)) {
+        const int b = b_begin + static_cast<int>(flag - is_minimum.data());
+        if (f.clip_of_frame[b] == clip_a && std::abs(b - (a + k - 1)) <= radius) continue;
+        minima.push_back(Transition{a, b, row[b], 0.0f, 0.0f, 0.0f});
       }
     }
     std::lock_guard lock(mutex);
     search.histogram.merge(histogram);
     search.minima.insert(search.minima.end(), minima.begin(), minima.end());
-    for (const auto& [at, value] : picture_updates) {
-      float& pixel = search.picture[at];
-      if (!(pixel <= value)) pixel = value;  // NaN or larger
+    for (int r = 0; r < pixel_rows; ++r) {
+      for (int c = 0; c < pixel_cols; ++c) {
+        const float value = pixels[static_cast<size_t>(r) * pixel_cols + c];
+        float& pixel = search.picture[static_cast<size_t>(pixel_row0 + r) * side + pixel_col0 + c];
+        if (value < std::numeric_limits<float>::infinity() && !(pixel <= value)) pixel = value;  // NaN or larger
+      }
     }
   }, on_tile_done);
   std::sort(search.minima.begin(), search.minima.end(), [](const Transition& x, const Transition& y) {

@@ -6,17 +6,13 @@
 #include <cmath>
 #include <numeric>
 
+#include "motiongraph/core/vector_clones.h"
+
 namespace mg {
 
 int DistanceHistogram::bin_of(double value) {
   if (!(value > 0.0)) return 0;
-  // From the float's bits: the exponent picks the octave, the top 6 mantissa bits the bin in
-  // it (64 linear steps per octave: monotonic, at most 1.6 % wide). No log2 per value.
-  const auto bits = std::bit_cast<std::uint32_t>(static_cast<float>(value));
-  const int exponent = static_cast<int>((bits >> 23) & 0xff) - 127;
-  if (exponent < kMinExponent) return 0;
-  if (exponent >= kMaxExponent) return kBins - 1;
-  return 1 + (exponent - kMinExponent) * kBinsPerOctave + static_cast<int>((bits >> 17) & 63);
+  return bin_of_bits(std::bit_cast<std::uint32_t>(static_cast<float>(value)));
 }
 
 double DistanceHistogram::bin_upper_edge(int bin) {
@@ -31,6 +27,43 @@ void DistanceHistogram::add(float value) {
   if (!std::isfinite(value)) return;
   ++counts_[bin_of(value)];
   ++total_;
+}
+
+namespace {
+
+// bins[m] = the bin of values[m], or DistanceHistogram::kBins for NaN and infinities.
+MG_VECTOR_CLONES void bins_of_row(int count, const float* __restrict values, std::uint16_t* __restrict bins) {
+  for (int m = 0; m < count; ++m) {
+    const auto bits = std::bit_cast<std::uint32_t>(values[m]);
+    const bool finite = (bits & 0x7f800000u) != 0x7f800000u;
+    bins[m] = static_cast<std::uint16_t>(finite ? DistanceHistogram::bin_of_bits(bits) : DistanceHistogram::kBins);
+  }
+}
+
+}  // namespace
+
+void DistanceHistogram::add_block(const float* first, int rows, int cols, std::ptrdiff_t stride) {
+  if (rows <= 0 || cols <= 0) return;
+  // Four partial histograms (plus a slot for the non-finite), value m going to partial m % 4,
+  // so that a run of equal bins is four independent chains of increments, not one.
+  constexpr int kPartials = 4;
+  constexpr int kSlots = kBins + 1;
+  std::vector<std::uint64_t> partial(static_cast<size_t>(kPartials) * kSlots, 0);
+  std::vector<std::uint16_t> bins(static_cast<size_t>(cols));
+  for (int r = 0; r < rows; ++r) {
+    bins_of_row(cols, first + r * stride, bins.data());
+    int m = 0;
+    for (; m + kPartials <= cols; m += kPartials) {
+      for (int p = 0; p < kPartials; ++p) ++partial[static_cast<size_t>(p) * kSlots + bins[m + p]];
+    }
+    for (; m < cols; ++m) ++partial[bins[m]];
+  }
+  for (int b = 0; b < kBins; ++b) {
+    std::uint64_t sum = 0;
+    for (int p = 0; p < kPartials; ++p) sum += partial[static_cast<size_t>(p) * kSlots + b];
+    counts_[b] += sum;
+    total_ += sum;
+  }
 }
 
 void DistanceHistogram::merge(const DistanceHistogram& other) {

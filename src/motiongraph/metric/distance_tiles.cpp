@@ -1,5 +1,6 @@
 #include "motiongraph/metric/distance_tiles.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cassert>
 #include <memory>
@@ -10,6 +11,8 @@
 #include <vector>
 
 #include <cblas.h>
+
+#include "motiongraph/core/vector_clones.h"
 
 namespace mg {
 
@@ -88,9 +91,78 @@ struct Products {
   }
 };
 
+// The departure window's terms of the closed form.
+struct RowTerms {
+  double x = 0.0, z = 0.0;  // X, Z
+  double square = 0.0;      // S - (X^2 + Z^2) / W
+  double inv_w = 0.0;       // 1 / W
+};
+
+// DESIGN.md 3.2, with the one-window terms S - (X^2 + Z^2) / W precomputed (square2 for the
+// arrival window). Branch-free, so that the loops calling it vectorise: max(0, d) is written
+// (d + |d|) / 2, exact in floating point (a select would need -fno-trapping-math).
+inline float closed_form(double c1, double c2, double c3, const RowTerms& row, double x2, double z2, double square2) {
+  const double big_a = c1 - (row.x * x2 + row.z * z2) * row.inv_w;
+  const double big_b = c2 - (row.x * z2 - row.z * x2) * row.inv_w;
+  const double d = row.square + square2 - 2.0 * c3 - 2.0 * std::sqrt(big_a * big_a + big_b * big_b);
+  return static_cast<float>(0.5 * (d + std::fabs(d)));
+}
+
+// The per-pair loops below are free functions (restrict arguments let them vectorise) and
+// carry MG_VECTOR_CLONES (an AVX2 version beside the baseline one).
+// A departure frame's reference r and centred first moment m.
+struct Offsets {
+  double rx = 0.0, rz = 0.0, mx = 0.0, mz = 0.0;
+};
+
+// One row of E (DESIGN.md 3.3) plus p (the previous row's diagonal sums, or zeros).
+MG_VECTOR_CLONES void accumulate_kernel(int cols, Offsets o, const float* __restrict g1, const float* __restrict g2,
+                       const float* __restrict g3, const double* __restrict sx, const double* __restrict sz,
+                       const double* __restrict nvx, const double* __restrict nvz, const double* __restrict p1,
+                       const double* __restrict p2, const double* __restrict p3, double* __restrict e1,
+                       double* __restrict e2, double* __restrict e3) {
+  for (int j = 0; j < cols; ++j) {
+    // r.n' + m.s' + V r.s' = r.(n' + V s') + m.s', and likewise for the cross term.
+    e1[j] = (g1[j] + (o.rx * nvx[j] + o.rz * nvz[j]) + (o.mx * sx[j] + o.mz * sz[j])) + p1[j];
+    e2[j] = (g2[j] + (o.rx * nvz[j] - o.rz * nvx[j]) + (o.mx * sz[j] - o.mz * sx[j])) + p2[j];
+    e3[j] = g3[j] + p3[j];
+  }
+}
+
+// D for `count` consecutive arrival frames from the diagonal sums at the windows' ends and
+// before their starts (uniform taper u). NaN where the arrival window is undefined (mask).
+MG_VECTOR_CLONES void window_distance_kernel(int count, double u, const RowTerms row, const double* __restrict end1,
+                            const double* __restrict end2, const double* __restrict end3,
+                            const double* __restrict start1, const double* __restrict start2,
+                            const double* __restrict start3, const double* __restrict x2,
+                            const double* __restrict z2, const double* __restrict square2,
+                            const float* __restrict mask, float* __restrict out) {
+  for (int m = 0; m < count; ++m) {
+    out[m] = closed_form(u * (end1[m] - start1[m]), u * (end2[m] - start2[m]), u * (end3[m] - start3[m]), row, x2[m],
+                         z2[m], square2[m]) +
+             mask[m];
+  }
+}
+
 class TileWorker {
  public:
-  explicit TileWorker(const FrameFeatures& f) : f_(f), uniform_(uniform_taper(f)) {}
+  explicit TileWorker(const FrameFeatures& f) : f_(f), uniform_(uniform_taper(f)) {
+    // Per-frame terms of the closed form that depend on one window only, computed once.
+    const int n = f.frames;
+    const double v = f.point_weight_sum;
+    const double inv_w = 1.0 / f.window_weight;
+    moment_vx_.resize(n);
+    moment_vz_.resize(n);
+    centred_square_.resize(n);
+    arrive_mask_.resize(n);
+    for (int i = 0; i < n; ++i) {
+      moment_vx_[i] = f.moment_x[i] + v * f.root_x[i];
+      moment_vz_[i] = f.moment_z[i] + v * f.root_z[i];
+      const double x = f.window_x[i], z = f.window_z[i];
+      centred_square_[i] = f.window_square[i] - (x * x + z * z) * inv_w;
+      arrive_mask_[i] = f.can_arrive[i] ? 0.0f : std::numeric_limits<float>::quiet_NaN();
+    }
+  }
 
   // The distances of the tile from products that cover every frame its windows touch.
   DistanceTile run(int a0, int a_count, int b0, int b_count, const Products& products) {
@@ -113,15 +185,23 @@ class TileWorker {
     assert(products.row0 <= r0 && r0 + rows <= products.row0 + products.rows);
     assert(products.col0 <= c0 && c0 + cols <= products.col0 + products.cols);
     products_ = &products;
-    distance_.assign(static_cast<size_t>(tile.rows) * tile.cols, std::numeric_limits<float>::quiet_NaN());
+    distance_.resize(static_cast<size_t>(tile.rows) * tile.cols);
     // Rows of E (or of its running diagonal sums) live in a ring of k + 1 rows: the pairs of
-    // row a need block rows a - r0 .. a - r0 + k - 1 only.
+    // row a need block rows a - r0 .. a - r0 + k - 1 only. Each ring row starts with a zero
+    // (block column -1), and row -1 is all zeros, so diagonal sums need no edge tests.
     const int ring = k + 1;
-    for (auto* buffer : {&e1_, &e2_, &e3_}) buffer->assign(static_cast<size_t>(ring) * cols, 0.0);
+    stride_ = cols + 1;
+    for (auto* buffer : {&e1_, &e2_, &e3_}) buffer->resize(static_cast<size_t>(ring) * stride_);
+    zeros_.assign(stride_, 0.0);
     for (int i = 0; i < rows; ++i) {
       accumulate_row(i, r0, c0, cols, ring);
       const int a = r0 + i - (k - 1);  // the leaving frame whose window ends on this row
-      if (a >= tile.row0 && a < tile.row0 + tile.rows && f_.can_leave[a]) distances_for_row(tile, a, r0, c0, cols, ring);
+      if (a >= tile.row0 && a < tile.row0 + tile.rows) distances_for_row(tile, a, r0, c0, ring);
+    }
+    // Rows whose window would leave the matrix (a > n - k) never get there: undefined.
+    for (int a = std::max(tile.row0, r0 + rows - (k - 1)); a < tile.row0 + tile.rows; ++a) {
+      std::fill_n(distance_.data() + static_cast<size_t>(a - tile.row0) * tile.cols, tile.cols,
+                  std::numeric_limits<float>::quiet_NaN());
     }
     tile.distance = distance_;
     return tile;
@@ -135,100 +215,95 @@ class TileWorker {
     return true;
   }
 
-  double* ring_row(std::vector<double>& buffer, int i, int ring, int cols) {
-    return buffer.data() + static_cast<size_t>(i % ring) * cols;
+  double* ring_row(std::vector<double>& buffer, int i, int ring) {
+    return buffer.data() + static_cast<size_t>(i % ring) * stride_;
+  }
+  const double* ring_row_or_zeros(std::vector<double>& buffer, int i, int ring) {
+    return i < 0 ? zeros_.data() : ring_row(buffer, i, ring);
   }
 
   // E = uncentred cross sums per frame pair, in double: the float products of the centred
   // clouds plus the reference offsets, added back exactly (DESIGN.md 3.3). For a uniform
-  // taper they are summed along diagonals as they go (cum(i, j) = E(i, j) + cum(i-1, j-1)).
+  // taper they are summed along diagonals as they go (cum(i, j) = E(i, j) + cum(i-1, j-1)),
+  // in the same pass. Block column j is stored at j + 1.
   void accumulate_row(int i, int r0, int c0, int cols, int ring) {
-    const double v = f_.point_weight_sum;
     const int fr = r0 + i;
     const double rx = f_.root_x[fr], rz = f_.root_z[fr], mx = f_.moment_x[fr], mz = f_.moment_z[fr];
     const size_t at = static_cast<size_t>(r0 + i - products_->row0) * products_->cols + (c0 - products_->col0);
     const float* g1 = products_->g1.data() + at;
     const float* g2 = products_->g2.data() + at;
     const float* g3 = products_->g3.data() + at;
-    double* e1 = ring_row(e1_, i, ring, cols);
-    double* e2 = ring_row(e2_, i, ring, cols);
-    double* e3 = ring_row(e3_, i, ring, cols);
-    const double* sx = f_.root_x.data() + c0;
-    const double* sz = f_.root_z.data() + c0;
-    const double* nx = f_.moment_x.data() + c0;
-    const double* nz = f_.moment_z.data() + c0;
-    for (int j = 0; j < cols; ++j) {
-      e1[j] = g1[j] + (rx * nx[j] + rz * nz[j]) + (mx * sx[j] + mz * sz[j]) + v * (rx * sx[j] + rz * sz[j]);
-      e2[j] = g2[j] + (rx * nz[j] - rz * nx[j]) + (mx * sz[j] - mz * sx[j]) + v * (rx * sz[j] - rz * sx[j]);
-      e3[j] = g3[j];
-    }
-    if (uniform_ && i > 0) {
-      const double* p1 = ring_row(e1_, i - 1, ring, cols);
-      const double* p2 = ring_row(e2_, i - 1, ring, cols);
-      const double* p3 = ring_row(e3_, i - 1, ring, cols);
-      for (int j = 1; j < cols; ++j) {
-        e1[j] += p1[j - 1];
-        e2[j] += p2[j - 1];
-        e3[j] += p3[j - 1];
-      }
-    }
+    double* e1 = ring_row(e1_, i, ring) + 1;
+    double* e2 = ring_row(e2_, i, ring) + 1;
+    double* e3 = ring_row(e3_, i, ring) + 1;
+    e1[-1] = e2[-1] = e3[-1] = 0.0;
+    // With the previous row's sums shifted by one column: p[j] = cum(i - 1, j - 1).
+    const bool running = uniform_;
+    accumulate_kernel(cols, Offsets{rx, rz, mx, mz}, g1, g2, g3, f_.root_x.data() + c0, f_.root_z.data() + c0,
+                      moment_vx_.data() + c0, moment_vz_.data() + c0,
+                      running ? ring_row_or_zeros(e1_, i - 1, ring) : zeros_.data(),
+                      running ? ring_row_or_zeros(e2_, i - 1, ring) : zeros_.data(),
+                      running ? ring_row_or_zeros(e3_, i - 1, ring) : zeros_.data(), e1, e2, e3);
   }
 
   // D(a, b) for every column b of the tile, once block row a - r0 + k - 1 is accumulated.
-  void distances_for_row(const DistanceTile& tile, int a, int r0, int c0, int cols, int ring) {
+  void distances_for_row(const DistanceTile& tile, int a, int r0, int c0, int ring) {
     const int k = f_.window;
     const int i0 = a - r0;
     const int i1 = i0 + k - 1;
-    const double w = f_.window_weight;
-    const double x = f_.window_x[a], z = f_.window_z[a], s = f_.window_square[a];
-    const double u = f_.taper[0];
-    const double* end1 = ring_row(e1_, i1, ring, cols);
-    const double* end2 = ring_row(e2_, i1, ring, cols);
-    const double* end3 = ring_row(e3_, i1, ring, cols);
-    const double* start1 = i0 > 0 ? ring_row(e1_, i0 - 1, ring, cols) : nullptr;
-    const double* start2 = i0 > 0 ? ring_row(e2_, i0 - 1, ring, cols) : nullptr;
-    const double* start3 = i0 > 0 ? ring_row(e3_, i0 - 1, ring, cols) : nullptr;
     float* out = distance_.data() + static_cast<size_t>(a - tile.row0) * tile.cols;
-    for (int b = std::max(tile.col0, k - 1); b < tile.col0 + tile.cols; ++b) {
-      if (!f_.can_arrive[b]) continue;
-      const int j0 = b - k + 1 - c0;  // block column of the arrival window's first frame
-      const int j1 = j0 + k - 1;
-      double c1, c2, c3;
-      if (uniform_) {
-        c1 = end1[j1];
-        c2 = end2[j1];
-        c3 = end3[j1];
-        if (i0 > 0 && j0 > 0) {
-          c1 -= start1[j0 - 1];
-          c2 -= start2[j0 - 1];
-          c3 -= start3[j0 - 1];
-        }
-        c1 *= u;
-        c2 *= u;
-        c3 *= u;
-      } else {
-        c1 = c2 = c3 = 0.0;
+    // Arrival windows must start inside the matrix: b >= k - 1.
+    const int b_begin = std::max(tile.col0, k - 1);
+    const int count = tile.col0 + tile.cols - b_begin;
+    std::fill(out, out + (b_begin - tile.col0), std::numeric_limits<float>::quiet_NaN());
+    out += b_begin - tile.col0;
+    if (!f_.can_leave[a]) {
+      std::fill(out, out + count, std::numeric_limits<float>::quiet_NaN());
+      return;
+    }
+    const double inv_w = 1.0 / f_.window_weight;
+    const double x = f_.window_x[a], z = f_.window_z[a];
+    const double row_square = centred_square_[a];
+    const int first = b_begin - k + 1;  // the first arrival window's first frame
+    const double* x2 = f_.window_x.data() + first;
+    const double* z2 = f_.window_z.data() + first;
+    const double* square2 = centred_square_.data() + first;
+    const float* mask = arrive_mask_.data() + b_begin;
+    const RowTerms row{x, z, row_square, inv_w};
+    if (uniform_) {
+      // Window sum = cum(i1, j1) - cum(i0 - 1, j0 - 1), block columns j1 = b - c0 and
+      // j0 - 1 = b - k - c0, stored one further on.
+      const int end_at = b_begin - c0 + 1, start_at = first - c0;
+      const double* end1 = ring_row(e1_, i1, ring);
+      const double* end2 = ring_row(e2_, i1, ring);
+      const double* end3 = ring_row(e3_, i1, ring);
+      const double* start1 = ring_row_or_zeros(e1_, i0 - 1, ring);
+      const double* start2 = ring_row_or_zeros(e2_, i0 - 1, ring);
+      const double* start3 = ring_row_or_zeros(e3_, i0 - 1, ring);
+      window_distance_kernel(count, f_.taper[0], row, end1 + end_at, end2 + end_at, end3 + end_at, start1 + start_at,
+                             start2 + start_at, start3 + start_at, x2, z2, square2, mask, out);
+    } else {
+      for (int m = 0; m < count; ++m) {
+        const int j0 = first + m - c0;  // block column of the arrival window's first frame
+        double c1 = 0.0, c2 = 0.0, c3 = 0.0;
         for (int t = 0; t < k; ++t) {
-          const size_t at = static_cast<size_t>((i0 + t) % ring) * cols + (j0 + t);
+          const size_t at = static_cast<size_t>((i0 + t) % ring) * stride_ + (j0 + t + 1);
           c1 += f_.taper[t] * e1_[at];
           c2 += f_.taper[t] * e2_[at];
           c3 += f_.taper[t] * e3_[at];
         }
+        out[m] = closed_form(c1, c2, c3, row, x2[m], z2[m], square2[m]) + mask[m];
       }
-      const int b_first = b - k + 1;
-      const double x2 = f_.window_x[b_first], z2 = f_.window_z[b_first];
-      const double big_a = c1 - (x * x2 + z * z2) / w;
-      const double big_b = c2 - (x * z2 - z * x2) / w;
-      const double d = s + f_.window_square[b_first] - (x * x + z * z + x2 * x2 + z2 * z2) / w - 2.0 * c3 -
-                       2.0 * std::sqrt(big_a * big_a + big_b * big_b);
-      out[b - tile.col0] = static_cast<float>(std::max(0.0, d));
     }
   }
 
   const FrameFeatures& f_;
   const bool uniform_;
+  std::vector<double> moment_vx_, moment_vz_, centred_square_;
+  std::vector<float> arrive_mask_;  // 0 where a window can arrive, NaN elsewhere
   const Products* products_ = nullptr;
-  std::vector<double> e1_, e2_, e3_;
+  int stride_ = 0;
+  std::vector<double> e1_, e2_, e3_, zeros_;
   std::vector<float> distance_;
 };
 

@@ -31,10 +31,13 @@ Result<FloorPath> FloorPath::create(const std::vector<Vec2>& points, std::vector
     if (s.tag.empty()) return Error{"", 0, "a segment needs a tag"};
   }
   path.segments_ = std::move(segments);
-  const int buckets = static_cast<int>(path.length_m() / kBucket) + 1;
+  path.bucket_m_ = std::max(kBucket, path.length_m() / (kMaxBuckets - 1));
+  const int buckets = static_cast<int>(std::min<double>(kMaxBuckets - 1, path.length_m() / path.bucket_m_)) + 1;
   int segment = 0;
   for (int b = 0; b < buckets; ++b) {
-    while (segment + 2 < static_cast<int>(path.points_.size()) && path.arc_[segment + 1] <= b * kBucket) ++segment;
+    while (segment + 2 < static_cast<int>(path.points_.size()) && path.arc_[segment + 1] <= b * path.bucket_m_) {
+      ++segment;
+    }
     path.bucket_segment_.push_back(segment);
   }
   return path;
@@ -44,7 +47,7 @@ int FloorPath::segment_index(double s) const {
   // s is clamped to [0, length]: the segment i with arc_[i] <= s < arc_[i + 1] (the last one at
   // the end), starting from its bucket's first segment.
   const int last = static_cast<int>(points_.size()) - 2;
-  const size_t b = std::min(bucket_segment_.size() - 1, static_cast<size_t>(s / kBucket));
+  const size_t b = std::min(bucket_segment_.size() - 1, static_cast<size_t>(s / bucket_m_));
   int i = bucket_segment_[b];
   while (i < last && arc_[i + 1] <= s) ++i;
   return i;

@@ -52,9 +52,12 @@ class FloorPath {
   int segment_index(double s) const;
   std::vector<Vec2> points_;   // consecutive duplicates removed
   std::vector<double> arc_;    // arc length at each point
-  // For arc lengths in [b * kBucket, (b + 1) * kBucket): the first segment to look at, so that
-  // point_at is O(1) (searches evaluate it for every frame they try).
+  // For arc lengths in [b * bucket_m_, (b + 1) * bucket_m_): the first segment to look at, so
+  // that point_at is O(1) (searches evaluate it for every frame they try). Buckets are
+  // kBucket long, or longer on paths so long that more than kMaxBuckets would be needed.
   static constexpr double kBucket = 0.05;
+  static constexpr int kMaxBuckets = 1 << 20;
+  double bucket_m_ = kBucket;
   std::vector<int> bucket_segment_;
   std::vector<PathSegment> segments_;
 };
