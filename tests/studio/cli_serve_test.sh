@@ -17,6 +17,10 @@ fail() { echo "cli_serve: FAIL: $*" >&2; exit 1; }
 # serve_and_stop SIGNAL: starts the studio, checks it answers, stops it with SIGNAL.
 serve_and_stop() {
   local signal=$1
+  # The files exist before the server starts: the background job opens them only once it runs,
+  # and reading a file not yet there would end this script (set -e).
+  : >"$tmp/out"
+  : >"$tmp/err"
   "$mg" serve "$graph" --port 0 >"$tmp/out" 2>"$tmp/err" &
   pid=$!
   local url=
