@@ -2,7 +2,7 @@
 //  - loading the graph and setting up synthesis (what every command pays once);
 //  - path synthesis on the built-in shapes: seconds of motion per second of computing
 //    (loading included, so the figure a user of `path` gets), and the same search without its
-//    lower bound and warm start (the plain depth-first branch and bound) for the ratio;
+//    lower bound, warm start and beam (the plain depth-first branch and bound) for the ratio;
 //  - the controller on a 60 s scripted run (heading every 2 s, walk/run every 10 s): decision
 //    latency percentiles.
 // Speed is measured here, never asserted in tests.
@@ -61,6 +61,7 @@ int run_synthesis_bench(const std::string& graph_path) {
     if (!fast) return fail(fast.error());
     settings.lower_bound = false;
     settings.warm_start = false;
+    settings.beam_width = 0;
     start = std::chrono::steady_clock::now();
     auto plain = synthesize_path(*context, *path, settings);
     const double plain_s = seconds_since(start);
