@@ -119,6 +119,14 @@ TEST(Controller, AStarvedTimeBudgetStillAnswers) {
     EXPECT_FALSE(d.edges.empty());
   }
   EXPECT_GE(motion.frame_count, 50 * static_cast<int>(settings.commit_s * motion.fps));
+  for (auto spoil : {+[](ControllerSettings& c) { c.time_budget_s = -1.0; },
+                     +[](ControllerSettings& c) { c.beam_width = -1; },
+                     +[](ControllerSettings& c) { c.max_expansions = 0; }}) {
+    ControllerSettings bad;
+    spoil(bad);
+    EXPECT_FALSE(bad.validate().ok());
+    EXPECT_FALSE(Controller::create(s.context, bad, {bearing_direction(0.0), 0}).ok());
+  }
 }
 
 }  // namespace

@@ -71,6 +71,40 @@ TEST(PathSynthesis, UnknownTagsAndBadSettingsAreErrors) {
   PathSynthesisSettings bad;
   bad.commit_s = 5.0;  // longer than the horizon
   EXPECT_FALSE(bad.validate().ok());
+  bad = {};
+  bad.min_speed_mps = -1.0;
+  EXPECT_FALSE(bad.validate().ok());
+  bad = {};
+  bad.behind_penalty_m = -0.5;
+  EXPECT_FALSE(bad.validate().ok());
+  bad = {};
+  bad.beam_width = -1;
+  EXPECT_FALSE(bad.validate().ok());
+}
+
+// The cost of falling behind a slowest speed acts: asking for more than walking pace (2 m/s)
+// on a straight line makes the character run most of the way, and arrive much sooner, where
+// the default (0.5 m/s, which every clip of subject 16 exceeds) lets it walk.
+TEST(PathSynthesis, ASlowestSpeedAboveWalkingPaceMakesItRun) {
+  const auto& s = test::subject16();
+  auto path = make_shape("line:20");
+  auto run = s.context.tag_mask("run");
+  ASSERT_TRUE(path.ok() && run.ok());
+  auto share_running = [&](const PathSynthesisResult& r) {
+    int running = 0;
+    for (TagMask t : r.frame_tags) running += (t & *run) != 0 ? 1 : 0;
+    return static_cast<double>(running) / static_cast<double>(r.frame_tags.size());
+  };
+  auto walked = synthesize_path(s.context, *path);
+  PathSynthesisSettings hurry;
+  hurry.min_speed_mps = 2.0;
+  auto hurried = synthesize_path(s.context, *path, hurry);
+  ASSERT_TRUE(walked.ok() && hurried.ok());
+  EXPECT_TRUE(walked->reached_end && hurried->reached_end);
+  EXPECT_LT(share_running(*walked), 0.2);
+  EXPECT_GT(share_running(*hurried), 0.5);
+  EXPECT_LT(hurried->motion.frame_count, 0.6 * walked->motion.frame_count);
+  EXPECT_LT(hurried->mean_deviation_m, 0.15);
 }
 
 }  // namespace

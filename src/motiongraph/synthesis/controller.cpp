@@ -10,8 +10,8 @@ Status ControllerSettings::validate() const {
   if (!(horizon_s > 0.0) || !(commit_s > 0.0) || commit_s > horizon_s) {
     return Error{"", 0, "controller: need 0 < commit_s <= horizon_s"};
   }
-  if (!(tag_penalty >= 0.0) || !(time_budget_s >= 0.0) || max_expansions < 1) {
-    return Error{"", 0, "controller: penalties and budgets must be >= 0 (expansions >= 1)"};
+  if (!(tag_penalty >= 0.0) || !(time_budget_s >= 0.0) || max_expansions < 1 || beam_width < 0) {
+    return Error{"", 0, "controller: penalties, budgets and the beam width must be >= 0 (expansions >= 1)"};
   }
   return Ok{};
 }

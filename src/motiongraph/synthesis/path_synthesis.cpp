@@ -16,6 +16,7 @@ Status PathSynthesisSettings::validate() const {
     return Error{"", 0, "path search: the slowest speed and its penalty must be >= 0"};
   }
   if (max_expansions < 1 || start_candidates < 1) return Error{"", 0, "path search: budgets must be positive"};
+  if (beam_width < 0) return Error{"", 0, "path search: the beam width must be >= 0"};
   return Ok{};
 }
 
