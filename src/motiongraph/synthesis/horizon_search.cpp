@@ -119,7 +119,10 @@ BeamResult beam_search(const MotionGraph& graph, const EdgeTracks& tracks, const
           result.goal = next.child.goal;
           best = index;
         } else {
-          buckets[static_cast<size_t>(t + std::max(1, graph.edges[e].frame_count))].push_back(index);
+          // Not complete: it ends before the horizon (an edge plays at least one frame).
+          const int arrival = t + std::max(1, graph.edges[e].frame_count);
+          if (arrival >= horizon) continue;
+          buckets[static_cast<size_t>(arrival)].push_back(index);
         }
         walks.push_back(std::move(next));
       }
