@@ -15,7 +15,7 @@
 #include <fmt/format.h>
 
 #include "cli/commands.h"
-#include "cli/motion_output.h"
+#include "motiongraph/graph/graph_file.h"
 #include "motiongraph/synthesis/controller.h"
 #include "motiongraph/synthesis/path_synthesis.h"
 

@@ -18,12 +18,12 @@
 
 #include "cli/commands.h"
 #include "cli/gnuplot.h"
-#include "cli/motion_output.h"
 #include "motiongraph/evaluation/consistency_sweep.h"
 #include "motiongraph/evaluation/graph_rebuild.h"
 #include "motiongraph/evaluation/path_errors.h"
 #include "motiongraph/evaluation/threshold_sweep.h"
 #include "motiongraph/evaluation/walk_lengths.h"
+#include "motiongraph/graph/graph_file.h"
 #include "motiongraph/io/file.h"
 
 namespace mg::cli {

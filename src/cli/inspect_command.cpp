@@ -4,7 +4,6 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
-#include "cli/motion_output.h"
 #include "motiongraph/core/json_text.h"
 #include "motiongraph/graph/graph_file.h"
 #include "motiongraph/io/file.h"

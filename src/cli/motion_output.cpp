@@ -23,10 +23,4 @@ Status write_motion(const std::string& path, const Skeleton& skeleton, const Mot
   return write_file_atomic(path, bvh ? write_bvh(skeleton, motion, write) : write_positions_json(skeleton, motion));
 }
 
-Result<GraphFile> load_graph_file(const std::string& path) {
-  auto bytes = read_text_file(path);
-  if (!bytes) return bytes.error();
-  return parse_graph_file(*bytes, path);
-}
-
 }  // namespace mg::cli

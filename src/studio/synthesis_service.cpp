@@ -6,14 +6,11 @@
 #include "motiongraph/export/bvh_writer.h"
 #include "motiongraph/export/matrix_png.h"
 #include "motiongraph/graph/candidates.h"
-#include "motiongraph/io/file.h"
 
 namespace mg::studio {
 
 Result<std::unique_ptr<SynthesisService>> SynthesisService::load(const std::string& graph_path) {
-  auto bytes = read_text_file(graph_path);
-  if (!bytes) return bytes.error();
-  auto file = parse_graph_file(*bytes, graph_path);
+  auto file = load_graph_file(graph_path);
   if (!file) return file.error();
   std::unique_ptr<SynthesisService> service(new SynthesisService());
   service->path_ = graph_path;

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
+#include "motiongraph/io/file.h"
 #include "test_data.h"
 
 namespace mg {
@@ -61,6 +64,20 @@ TEST(GraphFile, RoundTripIsExact) {
   EXPECT_EQ(read->report_json, original.report_json);
   // Writing what was read gives the same bytes.
   EXPECT_EQ(serialize_graph_file(*read), bytes);
+}
+
+// Loading from a path is reading the file and parsing it; a missing file names its path.
+TEST(GraphFile, LoadsFromAPath) {
+  const std::string bytes = serialize_graph_file(sample());
+  const std::string path = testing::TempDir() + "load_graph_file_test.mgraph";
+  ASSERT_TRUE(write_file_atomic(path, bytes).ok());
+  auto loaded = load_graph_file(path);
+  ASSERT_TRUE(loaded) << loaded.error().to_string();
+  EXPECT_EQ(serialize_graph_file(*loaded), bytes);
+  std::remove(path.c_str());
+  auto missing = load_graph_file(path);
+  ASSERT_FALSE(missing);
+  EXPECT_NE(missing.error().to_string().find(path), std::string::npos) << missing.error().to_string();
 }
 
 TEST(GraphFile, RejectsAnythingElse) {

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "motiongraph/core/binary.h"
+#include "motiongraph/io/file.h"
 
 namespace mg {
 
@@ -327,6 +328,12 @@ Result<CandidateSearch> parse_distance_cache(std::string_view bytes, const std::
   if (key != expected_key) return Error{file_name, 0, "cache for other inputs or settings"};
   if (!get_candidates(in, candidates) || !in.at_end()) return Error{file_name, 0, "inconsistent cache file"};
   return candidates;
+}
+
+Result<GraphFile> load_graph_file(const std::string& path) {
+  auto bytes = read_text_file(path);
+  if (!bytes) return bytes.error();
+  return parse_graph_file(*bytes, path);
 }
 
 }  // namespace mg

@@ -41,6 +41,8 @@ struct GraphFile {
 
 std::string serialize_graph_file(const GraphFile& file);
 Result<GraphFile> parse_graph_file(std::string_view bytes, const std::string& file_name);
+// Reads the file at `path` and parses it (what every command and the studio do).
+Result<GraphFile> load_graph_file(const std::string& path);
 
 std::string serialize_distance_cache(std::uint64_t key, const CandidateSearch& candidates);
 // The cached candidates, or an error (a file for other inputs or settings is an error too).
