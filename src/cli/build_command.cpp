@@ -332,10 +332,7 @@ int run_build(BuildOptions o) {
       {"distance_cache", cache_hit ? "hit" : (use_cache ? "stored" : "off")},
   };
   // What eval needs to select transitions again as this build did.
-  std::vector<std::string> connected_names;
-  for (size_t t = 0; t < db->tag_names.size(); ++t) {
-    if (graph_settings.connected_tags >> t & 1) connected_names.push_back(db->tag_names[t]);
-  }
+  const std::vector<std::string> connected_names = db->tag_names_of(graph_settings.connected_tags);
   GraphFile file;
   file.settings_json = json_text(json({{"distance", distance_json},
                                        {"threshold", o.threshold},

@@ -29,10 +29,7 @@ void print_nodes(const GraphFile& file) {
     const DatabaseClip& clip = db.clips[node.clip];
     int transitions = 0;
     for (const GraphEdge& e : graph.out_edges(n)) transitions += e.transition ? 1 : 0;
-    std::vector<std::string> names;
-    for (size_t t = 0; t < db.tag_names.size(); ++t) {
-      if (!tags.empty() && (tags[node.frame] >> t & 1)) names.push_back(db.tag_names[t]);
-    }
+    const std::vector<std::string> names = db.tag_names_of(tags.empty() ? 0 : tags[node.frame]);
     fmt::print("{:>6} {:>7} {:<10} {:>5.2f}s {:>4} {:>11}  {}\n", n, node.frame, clip.name,
                (node.frame - clip.first_frame) / db.fps, graph.out_edges(n).size(), transitions, fmt::join(names, ","));
   }

@@ -118,14 +118,6 @@ json motion_json(const Skeleton& skeleton, const Motion& motion) {
           {"positions", positions_json(skeleton, motion)}};
 }
 
-json tag_names_of(const MotionDatabase& db, TagMask mask) {
-  json names = json::array();
-  for (size_t t = 0; t < db.tag_names.size(); ++t) {
-    if (mask >> t & 1) names.push_back(db.tag_names[t]);
-  }
-  return names;
-}
-
 class Router {
  public:
   Router(SynthesisService& service, const ApiRequest& request) : service_(service), request_(request) {
@@ -222,7 +214,7 @@ class Router {
                      {"first_frame", c.first_frame},
                      {"frames", c.frame_count},
                      {"duration_s", c.frame_count / db().fps},
-                     {"tags", tag_names_of(db(), mask)}});
+                     {"tags", db().tag_names_of(mask)}});
     }
     return json_response(out);
   }
@@ -332,7 +324,7 @@ class Router {
     out["max_deviation_m"] = result->max_deviation_m;
     out["tag_match"] = result->tag_match;
     json frame_tags = json::array();
-    for (TagMask m : result->frame_tags) frame_tags.push_back(tag_names_of(db(), m));
+    for (TagMask m : result->frame_tags) frame_tags.push_back(db().tag_names_of(m));
     out["frame_tags"] = std::move(frame_tags);
     return json_response(out);
   }

@@ -28,4 +28,12 @@ int MotionDatabase::tag_index(const std::string& name) {
   return static_cast<int>(tag_names.size()) - 1;
 }
 
+std::vector<std::string> MotionDatabase::tag_names_of(TagMask mask) const {
+  std::vector<std::string> names;
+  for (size_t t = 0; t < tag_names.size(); ++t) {
+    if (mask >> t & 1) names.push_back(tag_names[t]);
+  }
+  return names;
+}
+
 }  // namespace mg

@@ -46,6 +46,8 @@ struct MotionDatabase {
   std::vector<TagMask> frame_tags() const;
   // Index of a tag name, adding it when new; -1 when the 64 tags are used up.
   int tag_index(const std::string& name);
+  // Names of the tags in a mask, in tag order.
+  std::vector<std::string> tag_names_of(TagMask mask) const;
 };
 
 }  // namespace mg
