@@ -4,13 +4,15 @@
 # builds the motion graph of subject 16 with its report and distance picture, and evaluates it
 # (CSV files and PNG plots in out/eval), all in out/, then starts the web studio on the graph
 # and prints its address.
-# Usage: scripts/demo.sh   (from anywhere)
+# Usage: scripts/demo.sh   (from anywhere; PORT=... and HOST=... for the studio's address,
+#        loopback 127.0.0.1:8080 by default)
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
-scripts/install-deps.sh
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build -j "$(nproc)"
+# Only what the demo needs: no test or benchmark programs (scripts/test.sh builds those).
+scripts/install-deps.sh --demo
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DMOTIONGRAPH_TESTS=OFF -DMOTIONGRAPH_BENCHMARKS=OFF >/dev/null
+cmake --build build -j "$(nproc)" --target motiongraph
 bin=build/motiongraph
 mkdir -p out/bvh out/json
 
@@ -20,8 +22,7 @@ echo "== the bundled clips"
 echo "== converting to out/bvh (metres) and out/json (world positions), 30 fps"
 for amc in data/cmu/16/*.amc; do
   name=$(basename "$amc" .amc)
-  "$bin" convert "$amc" --fps 30 -o "out/bvh/$name.bvh"
-  "$bin" convert "$amc" --fps 30 -o "out/json/$name.json"
+  "$bin" convert "$amc" --fps 30 -o "out/bvh/$name.bvh" -o "out/json/$name.json"
 done
 # BVH has no unit: the CMU conversions are in the ASF's unit, the Daz-style ones (07_*) in cm.
 # 16_01.bvh says 30 fps but holds the 120 fps capture (see data/README.md).
@@ -30,8 +31,7 @@ convert_bvh() {
   shift
   local name
   name=$(basename "$file" .bvh)
-  "$bin" convert "$file" --fps 30 "$@" -o "out/bvh/${name}_bvh.bvh"
-  "$bin" convert "$file" --fps 30 "$@" -o "out/json/${name}_bvh.json"
+  "$bin" convert "$file" --fps 30 "$@" -o "out/bvh/${name}_bvh.bvh" -o "out/json/${name}_bvh.json"
 }
 convert_bvh data/bvh/16_01.bvh --scale 0.056444 --input-fps 120
 convert_bvh data/bvh/131_01.bvh --scale 0.056444
@@ -63,5 +63,5 @@ echo "   the graph in out/subject16.mgraph with its report and distance picture 
 echo "   synthesized motion: out/figure8-walk-run.bvh, out/steer-demo.bvh, out/walk-demo.bvh,"
 echo "   the graph's evaluation in out/eval (threshold, consistency, walks, paths: .csv and .png)"
 
-echo "== the studio: open the address below in a browser (Ctrl-C stops it; PORT=... to change the port)"
-exec "$bin" serve out/subject16.mgraph --port "${PORT:-8080}"
+echo "== the studio: open the address below in a browser (Ctrl-C stops it; PORT=... and HOST=... to change it)"
+exec "$bin" serve out/subject16.mgraph --host "${HOST:-127.0.0.1}" --port "${PORT:-8080}"

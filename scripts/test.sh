@@ -11,7 +11,7 @@ jobs=$(nproc)
 scripts/install-deps.sh
 
 echo "== build (warnings as errors)"
-cmake -S . -B build -G Ninja -DMOTIONGRAPH_WERROR=ON >/dev/null
+cmake -S . -B build -G Ninja -DMOTIONGRAPH_WERROR=ON -DMOTIONGRAPH_TESTS=ON -DMOTIONGRAPH_BENCHMARKS=ON >/dev/null
 cmake --build build -j "$jobs"
 echo "== tests"
 ctest --test-dir build --output-on-failure -j "$jobs"

@@ -1,5 +1,8 @@
-// motiongraph convert IN -o OUT: AMC or BVH in, BVH or positions JSON out (metres).
+// motiongraph convert IN -o OUT [-o OUT...]: AMC or BVH in, BVH or positions JSON out (metres);
+// the clip is read once for all outputs.
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -19,14 +22,16 @@ namespace {
 
 struct ConvertOptions {
   std::string input;
-  std::string output;
+  std::vector<std::string> outputs;
   LoadOptions load;
   double fps = 0.0;
   double output_units_per_metre = 1.0;
 };
 
 int run_convert(const ConvertOptions& options) {
-  if (auto s = check_motion_output(options.output); !s) return fail(s.error());
+  for (const std::string& output : options.outputs) {
+    if (auto s = check_motion_output(output); !s) return fail(s.error());
+  }
   BvhWriteSettings write;
   write.units_per_metre = options.output_units_per_metre;
   if (auto s = write.validate(); !s) return fail(s.error());
@@ -43,8 +48,10 @@ int run_convert(const ConvertOptions& options) {
     if (!resampled) return fail(resampled.error());
     clip.motion = std::move(*resampled);
   }
-  if (auto s = write_motion(options.output, clip.skeleton, clip.motion, options.output_units_per_metre); !s) {
-    return fail(s.error());
+  for (const std::string& output : options.outputs) {
+    if (auto s = write_motion(output, clip.skeleton, clip.motion, options.output_units_per_metre); !s) {
+      return fail(s.error());
+    }
   }
   return 0;
 }
@@ -57,7 +64,8 @@ Command add_convert_command(CLI::App& app) {
       "convert", "Convert an AMC or BVH clip to BVH (metres) or to JSON world positions "
                  "({\"fps\", \"joints\": [{\"name\", \"parent\"}], \"positions\": [frame][joint][x,y,z]}).");
   sub->add_option("IN", options->input, "Input clip (.amc or .bvh)")->required()->check(CLI::ExistingFile);
-  sub->add_option("-o,--output", options->output, "Output file, .bvh or .json")->required();
+  sub->add_option("-o,--output", options->outputs, "Output file, .bvh or .json; repeat for several (read once)")
+      ->required();
   sub->add_option("--fps", options->fps, "Resample to this frame rate (slerp rotations, lerp translations)")
       ->check(CLI::Range(0.01, 10000.0));
   sub->add_option("--output-scale", options->output_units_per_metre,

@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <thread>
 
+#include <unistd.h>
+
 #include <fmt/format.h>
 
 #include "cli/commands.h"
@@ -57,6 +59,14 @@ int run_serve(const ServeOptions& o) {
   });
   const std::string shown_host = o.host.find(':') != std::string::npos ? "[" + o.host + "]" : o.host;
   fmt::print("studio: http://{}:{}/\n", shown_host, *port);
+  if (o.host == "0.0.0.0" || o.host == "::") {
+    // Every interface: the printed address is not one a browser opens; say what to open.
+    char name[256] = {};
+    const bool named = gethostname(name, sizeof name - 1) == 0 && name[0] != '\0';
+    fmt::print("  listening on every network interface: open http://{}:{}/ from another machine "
+               "(anyone who can reach it can use the studio)\n",
+               named ? std::string(name) : std::string("THIS-MACHINE"), *port);
+  }
   std::fflush(stdout);
   const Status served = server.run();
   done = true;

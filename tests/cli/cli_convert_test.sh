@@ -27,6 +27,12 @@ PY
 "$bin" convert "$data/cmu/16/16_35.amc" -o "$work/jog.bvh" --fps 30
 "$bin" convert "$data/cmu/16/16_35.amc" -o "$work/jog.json" --fps 30
 "$bin" convert "$data/bvh/111_36.bvh" -o "$work/carry.bvh" --scale 0.056444
+# Several outputs from one read: the same files as one output each, and each message once.
+"$bin" convert "$data/bvh/111_36.bvh" --scale 0.056444 -o "$work/carry2.bvh" -o "$work/carry2.json" 2>"$work/two.err"
+"$bin" convert "$data/bvh/111_36.bvh" --scale 0.056444 -o "$work/carry1.json" 2>/dev/null
+cmp -s "$work/carry.bvh" "$work/carry2.bvh" || { echo "FAIL: the BVH of a two-output convert differs"; exit 1; }
+cmp -s "$work/carry1.json" "$work/carry2.json" || { echo "FAIL: the JSON of a two-output convert differs"; exit 1; }
+[[ $(grep -c "dropped 1 leading" "$work/two.err") -eq 1 ]] || { echo "FAIL: the dropped-frame message is not said once"; cat "$work/two.err"; exit 1; }
 grep -q "^Frames: 41$" "$work/jog.bvh" || { echo "FAIL: 162 frames at 120 fps should give 41 at 30 fps"; exit 1; }
 grep -q "^Frame Time: 0.0333333333$" "$work/jog.bvh" || { echo "FAIL: frame time"; exit 1; }
 grep -q "^Frames: 1465$" "$work/carry.bvh" || { echo "FAIL: the T-pose frame should be dropped"; exit 1; }

@@ -49,6 +49,13 @@ expect_error unclosed "open\.bvh:2: joint has no closing" "$work/in/open.bvh"
 expect_error empty "empty\.bvh:0: empty file|empty\.bvh: empty file" "$work/in/empty.bvh"
 head -c 3000 /dev/urandom >"$work/in/noise.bvh"
 expect_error noise "noise\.bvh:[0-9]+: " "$work/in/noise.bvh"
+# A binary file (bytes 128..255, then 1..8: no separator among them): the message shows its first
+# token escaped and cut short, never raw bytes.
+python3 -c "import sys; sys.stdout.buffer.write(bytes(range(128, 256)) + bytes(range(1, 9)))" >"$work/in/binary.bvh"
+expect_error binary "binary\.bvh:1: expected 'HIERARCHY', found '(\\\\x[89a-f][0-9a-f]){40}\.\.\.'\$" "$work/in/binary.bvh"
+if LC_ALL=C grep -q '[[:cntrl:]]' <(tr -d '\n' <"$work/stderr"); then
+  echo "FAIL binary: raw control bytes in the message"; failures=$((failures + 1))
+fi
 
 # AMC against the bundled skeleton.
 asf="$data/cmu/16/16.asf"

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+#include <string>
+
 namespace mg {
 namespace {
 
@@ -50,6 +53,49 @@ TEST(LineReader, NumbersLinesAndStripsCarriageReturns) {
   EXPECT_EQ(in.next(), "last");
   EXPECT_FALSE(in.next().has_value());
   EXPECT_EQ(in.error("bad").to_string(), "f.txt:4: bad");
+}
+
+TEST(Quoted, ShortPrintableTokensAreShownAsThey) {
+  EXPECT_EQ(quoted("HIERARCHY"), "'HIERARCHY'");
+  EXPECT_EQ(quoted(""), "''");
+  EXPECT_EQ(quoted("Gelenk_Hüfte"), "'Gelenk_Hüfte'");  // well-formed UTF-8 stays readable
+}
+
+TEST(Quoted, ControlAndNonUtf8BytesAreEscaped) {
+  EXPECT_EQ(quoted(std::string_view("a\0b", 3)), "'a\\x00b'");
+  EXPECT_EQ(quoted("\x7f\x1b[2J"), "'\\x7f\\x1b[2J'");
+  EXPECT_EQ(quoted("x\ty\r\n"), "'x\\ty\\r\\n'");
+  EXPECT_EQ(quoted("\xff\xfe"), "'\\xff\\xfe'");
+  EXPECT_EQ(quoted("\xc3"), "'\\xc3'");              // a sequence cut short
+  EXPECT_EQ(quoted("\xc0\xaf"), "'\\xc0\\xaf'");      // overlong form of '/'
+  EXPECT_EQ(quoted("\xed\xa0\x80"), "'\\xed\\xa0\\x80'");  // a UTF-16 surrogate
+}
+
+TEST(Quoted, LongTokensAreCutAfterFortyCharacters) {
+  const std::string long_token(100, 'x');
+  EXPECT_EQ(mg::quoted(long_token), "'" + std::string(40, 'x') + "...'");
+  EXPECT_EQ(mg::quoted(std::string(40, 'x')), "'" + std::string(40, 'x') + "'");
+}
+
+// Property: whatever the bytes (a binary file's first token), the message has no control byte
+// and no byte outside well-formed UTF-8, and stays short.
+TEST(Quoted, AnyBytesGiveAShortPrintableMessage) {
+  std::mt19937 random(12345);
+  for (int trial = 0; trial < 2000; ++trial) {
+    std::string bytes(random() % 300, '\0');
+    for (char& c : bytes) c = static_cast<char>(random() & 0xff);
+    const std::string shown = mg::quoted(bytes);  // (unqualified, a std::string finds std::quoted too)
+    EXPECT_LE(shown.size(), 2 + 40 * 4 + 3u);
+    for (size_t i = 0; i < shown.size(); ++i) {
+      const auto c = static_cast<unsigned char>(shown[i]);
+      ASSERT_FALSE(c < 0x20 || c == 0x7f) << "raw control byte in " << shown;
+    }
+    // Re-quoting the message leaves its bytes alone but for the quotes: nothing left to escape.
+    const std::string inner = shown.substr(1, shown.size() - 2);
+    if (inner.size() <= 40) {
+      EXPECT_EQ(mg::quoted(inner), "'" + inner + "'") << "unescaped bytes in " << shown;
+    }
+  }
 }
 
 }  // namespace

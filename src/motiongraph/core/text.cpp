@@ -69,15 +69,70 @@ std::vector<std::string_view> LineReader::peek_tokens() {
   return copy.next_tokens();
 }
 
-std::string quoted(std::string_view token) {
-  constexpr size_t kMax = 40;
-  std::string out = "'";
-  if (token.size() > kMax) {
-    out += token.substr(0, kMax);
-    out += "...";
+namespace {
+
+// Length of the well-formed UTF-8 sequence starting at text[i] (1..4), or 0 if none starts there.
+size_t utf8_sequence_length(std::string_view text, size_t i) {
+  const auto byte = [&](size_t k) { return static_cast<unsigned char>(text[k]); };
+  const unsigned char lead = byte(i);
+  size_t length = 0;
+  unsigned char low = 0x80, high = 0xbf;  // the allowed range of the second byte
+  if (lead >= 0xc2 && lead <= 0xdf) {
+    length = 2;
+  } else if (lead >= 0xe0 && lead <= 0xef) {
+    length = 3;
+    if (lead == 0xe0) low = 0xa0;   // no overlong forms
+    if (lead == 0xed) high = 0x9f;  // no surrogates
+  } else if (lead >= 0xf0 && lead <= 0xf4) {
+    length = 4;
+    if (lead == 0xf0) low = 0x90;
+    if (lead == 0xf4) high = 0x8f;  // nothing above U+10FFFF
   } else {
-    out += token;
+    return 0;
   }
+  if (i + length > text.size()) return 0;
+  if (byte(i + 1) < low || byte(i + 1) > high) return 0;
+  for (size_t k = 2; k < length; ++k) {
+    if (byte(i + k) < 0x80 || byte(i + k) > 0xbf) return 0;
+  }
+  return length;
+}
+
+}  // namespace
+
+std::string quoted(std::string_view token) {
+  // At most this many characters of the token are shown; a binary file's first "token" can be
+  // anything, so control bytes and bytes that are not UTF-8 are shown escaped, never raw.
+  constexpr size_t kMaxCharacters = 40;
+  std::string out = "'";
+  size_t shown = 0;
+  size_t i = 0;
+  for (; i < token.size() && shown < kMaxCharacters; ++shown) {
+    const auto c = static_cast<unsigned char>(token[i]);
+    if (c >= 0x20 && c < 0x7f) {
+      out += static_cast<char>(c);
+      ++i;
+    } else if (c == '\t') {
+      out += "\\t";
+      ++i;
+    } else if (c == '\n') {
+      out += "\\n";
+      ++i;
+    } else if (c == '\r') {
+      out += "\\r";
+      ++i;
+    } else if (const size_t length = c >= 0x80 ? utf8_sequence_length(token, i) : 0; length > 0) {
+      out += token.substr(i, length);
+      i += length;
+    } else {
+      constexpr char kHex[] = "0123456789abcdef";
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 0xf];
+      ++i;
+    }
+  }
+  if (i < token.size()) out += "...";
   out += "'";
   return out;
 }

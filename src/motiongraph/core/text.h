@@ -52,7 +52,9 @@ class LineReader {
   int line_number_ = 0;
 };
 
-// Quotes a token for an error message, shortened when long.
+// Quotes a token for an error message: at most 40 characters (then "..."), control bytes and
+// bytes that are not well-formed UTF-8 escaped (\t, \n, \r, \xNN), so a binary file's bytes never
+// reach the terminal raw.
 std::string quoted(std::string_view token);
 
 }  // namespace mg
