@@ -6,20 +6,24 @@
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
 #include "cli/commands.h"
 #include "motiongraph/core/json_text.h"
 #include "motiongraph/core/progress.h"
+#include "motiongraph/core/text.h"
 #include "motiongraph/database/database_loader.h"
 #include "motiongraph/export/matrix_png.h"
 #include "motiongraph/export/npy.h"
 #include "motiongraph/graph/candidates.h"
 #include "motiongraph/graph/graph_file.h"
 #include "motiongraph/graph/graph_from_candidates.h"
+#include "motiongraph/graph/threshold_choice.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/metric/frame_features.h"
 
@@ -46,8 +50,10 @@ struct BuildOptions {
   DistanceSettings distance;
   std::string taper = "uniform";
   TransitionSettings transitions;
-  double threshold = -1.0;
-  double quantile = 0.02;
+  std::string threshold = "auto";  // auto, D, or an RMS distance with "cm"
+  double quantile = -1.0;          // given: the threshold is this quantile of all pairs
+  ThresholdChoiceSettings choice;
+  TransitionSpacing spacing;
   int continuation_radius = -1;
   std::string cache_dir;
   bool no_cache = false;
@@ -160,6 +166,51 @@ Status write_clouds(const MotionDatabase& db, const CloudLayout& layout, const s
   return write_file_atomic(path, bytes);
 }
 
+json coverage_point_json(const CoveragePoint& p, const MotionDatabase& db, const std::vector<int>& tags) {
+  json per_tag = json::object();
+  for (size_t i = 0; i < tags.size() && i < p.tag_coverage.size(); ++i) per_tag[db.tag_names[tags[i]]] = p.tag_coverage[i];
+  return {{"threshold", p.threshold},     {"rms_cm", p.rms_cm},         {"quantile", p.quantile},
+          {"graph", p.graph},             {"coverage", p.coverage},     {"tag_coverage", per_tag},
+          {"kept_frames", p.kept_frames}, {"transitions", p.transitions}};
+}
+
+// The report's record of the automatic threshold: the target, the ceiling, and the curve of
+// coverage against threshold it was chosen on.
+json threshold_choice_json(const ThresholdChoice& choice, const MotionDatabase& db,
+                           const ThresholdChoiceSettings& settings) {
+  json curve = json::array();
+  for (const CoveragePoint& p : choice.curve) curve.push_back(coverage_point_json(p, db, choice.tags));
+  std::vector<std::string> names;
+  json targets = json::object();
+  for (size_t i = 0; i < choice.tags.size(); ++i) {
+    names.push_back(db.tag_names[choice.tags[i]]);
+    targets[names.back()] = choice.targets[i];
+  }
+  if (choice.tags.empty() && !choice.targets.empty()) targets["all"] = choice.targets[0];
+  return {{"coverage_target", settings.coverage},
+          {"reachable_share", settings.reachable_share},
+          {"targets", targets},
+          {"max_rms_cm", settings.max_rms_cm},
+          {"reached", choice.reached},
+          {"threshold", choice.threshold},
+          {"rms_cm", choice.rms_cm},
+          {"motion_types", names},
+          {"curve", curve}};
+}
+
+// ": walk 64 % of 70 %, run 12 % of 36 %" for the motion types short of their targets.
+std::string short_tags_text(const ThresholdChoice& choice, const MotionDatabase& db) {
+  const CoveragePoint& p = choice.chosen();
+  std::vector<std::string> parts;
+  for (size_t i = 0; i < choice.tags.size() && i < p.tag_coverage.size(); ++i) {
+    if (p.tag_coverage[i] < choice.targets[i]) {
+      parts.push_back(fmt::format("{} {:.0f} % of {:.0f} %", db.tag_names[choice.tags[i]], 100.0 * p.tag_coverage[i],
+                                  100.0 * choice.targets[i]));
+    }
+  }
+  return parts.empty() ? std::string() : ": " + fmt::format("{}", fmt::join(parts, ", "));
+}
+
 int run_build(BuildOptions o) {
   Stopwatch watch;
   json timings = json::object();
@@ -187,13 +238,34 @@ int run_build(BuildOptions o) {
   } else if (o.taper != "uniform") {
     return fail(Error{"", 0, fmt::format("--taper must be 'uniform' or 'hann', not '{}'", o.taper)});
   }
-  o.transitions.threshold = o.threshold;
-  o.transitions.threshold_quantile = o.quantile;
+  // The threshold: chosen from the data (auto), a quantile of all pairs, D, or an RMS in cm.
+  enum class ThresholdMode { kAuto, kQuantile, kDistance, kRmsCm } mode = ThresholdMode::kAuto;
+  double threshold_value = 0.0;
+  if (o.quantile >= 0.0) {
+    if (o.threshold != "auto") return fail(Error{"", 0, "give --threshold or --threshold-quantile, not both"});
+    mode = ThresholdMode::kQuantile;
+    o.transitions.threshold = -1.0;
+    o.transitions.threshold_quantile = o.quantile;
+  } else if (o.threshold != "auto") {
+    std::string text = o.threshold;
+    mode = ThresholdMode::kDistance;
+    if (text.size() > 2 && text.compare(text.size() - 2, 2, "cm") == 0) {
+      mode = ThresholdMode::kRmsCm;
+      text.resize(text.size() - 2);
+    }
+    const std::optional<double> value = parse_finite(text);
+    if (!value || *value < 0.0) {
+      return fail(Error{"", 0, fmt::format("--threshold must be 'auto', a distance D >= 0 or an RMS distance such as "
+                                           "'4cm', not {}", mg::quoted(o.threshold))});
+    }
+    threshold_value = *value;
+  }
   CandidateSettings candidate_settings;
   candidate_settings.continuation_radius = o.continuation_radius;
   candidate_settings.keep_matrix = !o.export_matrix.empty();
   for (const Status& s : {o.cloud_settings.validate(), o.distance.validate(), o.transitions.validate(),
-                          candidate_settings.validate(), o.bridges.validate()}) {
+                          candidate_settings.validate(), o.bridges.validate(), o.choice.validate(),
+                          o.spacing.validate()}) {
     if (!s) return fail(s.error());
   }
   if (fs::path(o.output).extension() != ".mgraph") return fail(Error{o.output, 0, "the graph file must end in .mgraph"});
@@ -273,8 +345,37 @@ int run_build(BuildOptions o) {
   }
   GraphFromCandidatesSettings graph_settings;
   graph_settings.transitions = o.transitions;
+  graph_settings.spacing = o.spacing;
   graph_settings.bridges = o.bridges;
   graph_settings.connected_tags = o.ignore_tags ? 0 : connected;
+  json choice_json = nullptr;
+  const char* mode_name = "quantile";
+  if (mode == ThresholdMode::kAuto) {
+    mode_name = "auto";
+    auto choice = choose_threshold(*db, *features, *candidates, graph_settings, o.choice);
+    if (!choice) return fail(choice.error());
+    graph_settings.transitions.threshold = choice->threshold;
+    graph_settings.transitions.max_threshold = distance_of_rms_cm(o.choice.max_rms_cm, *features);
+    choice_json = threshold_choice_json(*choice, *db, o.choice);
+    const CoveragePoint& chosen = choice->chosen();
+    std::vector<std::string> kept;
+    for (size_t i = 0; i < choice->tags.size(); ++i) {
+      kept.push_back(fmt::format("{} {:.0f} %", db->tag_names[choice->tags[i]], 100.0 * chosen.tag_coverage[i]));
+    }
+    if (choice->tags.empty()) kept.push_back(fmt::format("{:.0f} % of the frames", 100.0 * chosen.coverage));
+    log(fmt::format("threshold auto: RMS {:.2f} cm keeps {} ({} thresholds tried)", choice->rms_cm,
+                    fmt::join(kept, ", "), choice->curve.size()));
+    if (!choice->reached) {
+      spdlog::warn("no threshold up to --max-threshold {:g} cm reaches the coverage wanted{}", o.choice.max_rms_cm,
+                   short_tags_text(*choice, *db));
+    }
+  } else if (mode == ThresholdMode::kDistance) {
+    mode_name = "distance";
+    graph_settings.transitions.threshold = threshold_value;
+  } else if (mode == ThresholdMode::kRmsCm) {
+    mode_name = "rms_cm";
+    graph_settings.transitions.threshold = distance_of_rms_cm(threshold_value, *features);
+  }
   auto selected = select_transitions_with_bridges(*db, *features, *candidates, graph_settings);
   if (!selected) return fail(selected.error());
   const TransitionSelection& selection = selected->selection;
@@ -282,27 +383,39 @@ int run_build(BuildOptions o) {
   const std::vector<Transition>& all_transitions = selected->all_transitions;
   json tag_thresholds_json = json::array();
   for (const TagThreshold& t : selection.tag_thresholds) {
-    tag_thresholds_json.push_back({{"tag", db->tag_names[t.tag]}, {"candidates", t.candidates}, {"threshold", t.threshold}});
+    tag_thresholds_json.push_back({{"tag", db->tag_names[t.tag]},
+                                   {"candidates", t.candidates},
+                                   {"threshold", t.threshold},
+                                   {"rms_cm", rms_cm_of_distance(t.threshold, *features)}});
   }
   json bridges_json = json::array();
   for (const Transition& t : bridges) {
-    bridges_json.push_back({{"from_frame", t.from_frame}, {"to_frame", t.to_frame}, {"distance", t.distance}});
+    bridges_json.push_back({{"from_frame", t.from_frame},
+                            {"to_frame", t.to_frame},
+                            {"distance", t.distance},
+                            {"rms_cm", rms_cm_of_distance(t.distance, *features)}});
   }
   if (!bridges.empty()) log(fmt::format("{} bridges between motion types", bridges.size()));
   timings["transitions"] = watch.lap();
-  log(fmt::format("threshold {:.4g} ({:.2f} % of pairs below): {} transitions", selection.threshold,
-                  100.0 * selection.threshold_quantile, selection.transitions.size()));
+  const double threshold_rms_cm = rms_cm_of_distance(selection.threshold, *features);
+  log(fmt::format("threshold {:.4g} (RMS {:.2f} cm; {:.3f} % of pairs below): {} transitions",
+                  selection.threshold, threshold_rms_cm, 100.0 * selection.threshold_quantile,
+                  selection.transitions.size()));
 
   // 5. The graph, pruned.
-  auto built = build_pruned_graph(*db, all_transitions, features->window, graph_settings.connected_tags);
-  if (!built) return fail(built.error());
-  const PruneReport& pruned = built->prune;
+  auto built = build_spaced_graph(*db, *selected, *features, graph_settings);
+  if (!built && built.error().kind != ErrorKind::kEmptyGraph) return fail(built.error());
   timings["graph"] = watch.lap();
-  log(fmt::format("graph: {} nodes, {} edges ({} transitions) after pruning; {} nodes, {} transitions before",
-                  pruned.after.nodes, pruned.after.edges, pruned.after.transitions, pruned.before.nodes,
-                  pruned.before.transitions));
+  if (built) {
+    const PruneReport& pruned = built->prune;
+    log(fmt::format("graph: {} nodes, {} edges ({} transitions) after pruning and spacing; {} transitions survived "
+                    "a first pruning, spaced to {}",
+                    pruned.after.nodes, pruned.after.edges, pruned.after.transitions, built->survived_first_pruning,
+                    pruned.before.transitions));
+  }
 
-  // 6. Outputs.
+  // 6. Outputs: the exports and the report are written even when no graph can be made, so that
+  // the user can see why.
   std::vector<double> point_weights(layout->weight.begin(), layout->weight.end());
   json report = {
       {"frames", db->frame_count()},
@@ -311,12 +424,20 @@ int run_build(BuildOptions o) {
       {"points", layout->point_count()},
       {"point_weights", point_weights},
       {"window_weights", features->taper},
+      {"window_weight", features->window_weight},
       {"clips", clips_json(*db)},
       {"tags", db->tag_names},
       {"distance_settings", distance_json},
+      {"threshold_mode", mode_name},
       {"threshold", selection.threshold},
+      {"threshold_rms_cm", threshold_rms_cm},
       {"threshold_quantile", selection.threshold_quantile},
+      {"threshold_choice", choice_json},
       {"locality_radius", selection.locality_radius},
+      {"spacing",
+       {{"out_window_frames", o.spacing.out_window_for(features->window)},
+        {"min_piece_frames", o.spacing.min_piece_frames},
+        {"max_out", o.spacing.max_out}}},
       {"tag_thresholds", tag_thresholds_json},
       {"counts",
        {{"pairs", static_cast<long long>(features->frames) * features->frames},
@@ -324,29 +445,15 @@ int run_build(BuildOptions o) {
         {"local_minima", candidates->minima.size()},
         {"below_threshold", selection.candidates_below_threshold},
         {"transitions", selection.transitions.size()},
+        {"survived_first_pruning", built ? built->survived_first_pruning : 0},
+        {"spaced", built ? built->prune.before.transitions : 0},
         {"bridges", bridges.size()},
-        {"transitions_kept", pruned.after.transitions}}},
-      {"graph_before", json::parse(to_json(pruned.before, db->tag_names))},
-      {"graph_after", json::parse(to_json(pruned.after, db->tag_names))},
+        {"transitions_kept", built ? built->prune.after.transitions : 0}}},
+      {"graph_before", built ? json::parse(to_json(built->prune.before, db->tag_names)) : json(nullptr)},
+      {"graph_after", built ? json::parse(to_json(built->prune.after, db->tag_names)) : json(nullptr)},
       {"bridges", bridges_json},
       {"distance_cache", cache_hit ? "hit" : (use_cache ? "stored" : "off")},
   };
-  // What eval needs to select transitions again as this build did.
-  const std::vector<std::string> connected_names = db->tag_names_of(graph_settings.connected_tags);
-  GraphFile file;
-  file.settings_json = json_text(json({{"distance", distance_json},
-                                       {"threshold", o.threshold},
-                                       {"threshold_quantile", o.quantile},
-                                       {"locality_radius", selection.locality_radius},
-                                       {"per_tag_thresholds", o.transitions.per_tag_thresholds},
-                                       {"connected_tags", connected_names},
-                                       {"bridges_per_tag_pair", o.bridges.per_tag_pair},
-                                       {"fps", db->fps}}));
-  file.input_key = key;
-  file.threshold = selection.threshold;
-  file.threshold_quantile = selection.threshold_quantile;
-  file.locality_radius = selection.locality_radius;
-  file.graph = std::move(built->graph);
   std::vector<int> clip_starts;
   for (const DatabaseClip& clip : db->clips) clip_starts.push_back(clip.first_frame);
   if (!o.matrix_png.empty()) {
@@ -367,6 +474,50 @@ int run_build(BuildOptions o) {
   }
   candidates->matrix.clear();
   timings["exports"] = watch.lap();
+
+  if (!built) {
+    // No graph: say which threshold would make one, and what it would keep.
+    auto lowest = lowest_graph_threshold(*db, *features, *candidates, graph_settings, selection.threshold);
+    if (!lowest) return fail(lowest.error());
+    std::string advice = "no threshold makes a graph: the clips hold no loop of transitions at all";
+    if (*lowest) {
+      const CoveragePoint& p = **lowest;
+      advice = fmt::format("the lowest threshold that makes one is RMS {:.2f} cm (--threshold {:.2f}cm, D {:.4g}, "
+                           "{:.3f} % of pairs); it keeps {:.0f} % of {}",
+                           p.rms_cm, std::ceil(p.rms_cm * 100.0) / 100.0, p.threshold, 100.0 * p.quantile,
+                           100.0 * p.coverage, graph_settings.connected_tags ? "each motion type's frames" : "the frames");
+      report["lowest_graph_threshold"] = coverage_point_json(p, *db, coverage_tags(graph_settings));
+    }
+    report["error"] = "pruning left nothing";
+    report["timings"] = timings;
+    if (!o.report.empty()) {
+      if (auto s = write_file_atomic(o.report, json_text(report, 2) + "\n"); !s) return fail(s.error());
+    }
+    return fail(Error{"", 0, fmt::format("no graph at threshold RMS {:.2f} cm: pruning left nothing (the transitions "
+                                         "form no loop); {}", threshold_rms_cm, advice)});
+  }
+
+  // What eval needs to select transitions again as this build did.
+  const std::vector<std::string> connected_names = db->tag_names_of(graph_settings.connected_tags);
+  GraphFile file;
+  file.settings_json = json_text(json({{"distance", distance_json},
+                                       {"threshold", selection.threshold},
+                                       {"threshold_quantile", selection.threshold_quantile},
+                                       {"threshold_mode", mode_name},
+                                       {"max_threshold", graph_settings.transitions.max_threshold},
+                                       {"locality_radius", selection.locality_radius},
+                                       {"per_tag_thresholds", o.transitions.per_tag_thresholds},
+                                       {"min_piece_frames", o.spacing.min_piece_frames},
+                                       {"out_window_frames", o.spacing.out_window_frames},
+                                       {"max_out", o.spacing.max_out},
+                                       {"connected_tags", connected_names},
+                                       {"bridges_per_tag_pair", o.bridges.per_tag_pair},
+                                       {"fps", db->fps}}));
+  file.input_key = key;
+  file.threshold = selection.threshold;
+  file.threshold_quantile = selection.threshold_quantile;
+  file.locality_radius = selection.locality_radius;
+  file.graph = std::move(built->graph);
   file.candidates = std::move(*candidates);
   file.database = std::move(*db);
   report["timings"] = timings;
@@ -421,8 +572,28 @@ Command add_build_command(CLI::App& app) {
   sub->add_option("--window", o->distance.window_frames, "Window and blend length k in frames (0: a third of a second)")
       ->capture_default_str();
   sub->add_option("--taper", o->taper, "Weights over the window: 'uniform' or 'hann'")->capture_default_str();
-  sub->add_option("--threshold", o->threshold, "Absolute distance threshold (overrides --threshold-quantile)");
-  sub->add_option("--threshold-quantile", o->quantile, "Threshold as the fraction of all defined pairs below it")
+  sub->add_option("--threshold", o->threshold,
+                  "'auto': the lowest threshold at which the pruned graph keeps --coverage of each motion type's "
+                  "frames, at most --max-threshold; or an RMS point distance over the window such as '4cm'; or an "
+                  "absolute distance D")
+      ->capture_default_str();
+  sub->add_option("--threshold-quantile", o->quantile,
+                  "Instead of --threshold: the fraction of all defined pairs below the threshold (e.g. 0.02)");
+  sub->add_option("--coverage", o->choice.coverage,
+                  "--threshold auto: the share of each motion type's frames (of all frames without tags) the pruned "
+                  "graph keeps")
+      ->capture_default_str();
+  sub->add_option("--max-threshold", o->choice.max_rms_cm,
+                  "--threshold auto: the highest threshold it may choose, as RMS point distance in cm (quality ceiling)")
+      ->capture_default_str();
+  sub->add_option("--max-out", o->spacing.max_out,
+                  "Transitions leaving any --out-window consecutive frames of a clip, the best kept (0: no limit)")
+      ->capture_default_str();
+  sub->add_option("--out-window", o->spacing.out_window_frames,
+                  "The stretch of frames --max-out counts over (-1: the window)")
+      ->capture_default_str();
+  sub->add_option("--min-piece", o->spacing.min_piece_frames,
+                  "Frames of captured motion between arriving by a transition and leaving by the next (0: off)")
       ->capture_default_str();
   sub->add_flag("!--no-tag-thresholds", o->transitions.per_tag_thresholds,
                 "One threshold for everything: no motion type gets its own (by default each keeps the same share of "

@@ -6,6 +6,7 @@
 #include "cli/commands.h"
 #include "motiongraph/core/json_text.h"
 #include "motiongraph/graph/graph_file.h"
+#include "motiongraph/graph/graph_from_candidates.h"
 #include "motiongraph/io/file.h"
 
 namespace mg::cli {
@@ -40,11 +41,18 @@ void print_statistics(const char* title, const nlohmann::json& s) {
              s.value("nodes", 0), s.value("edges", 0), s.value("clip_edges", 0), s.value("transitions", 0),
              s.value("clip_frames", 0), s.value("largest_component_nodes", 0));
   if (s.contains("tags")) {
+    bool any_modifier = false;
     for (const auto& tag : s["tags"]) {
-      fmt::print("  {:<10} {:>6} frames of {:>6}, {:>5} nodes, {:>5} edges, largest SCC {} nodes\n",
-                 tag.value("name", std::to_string(tag.value("tag", 0))), tag.value("frames", 0),
-                 tag.value("database_frames", 0), tag.value("nodes", 0), tag.value("edges", 0),
-                 tag.value("largest_component_nodes", 0));
+      const std::string name = tag.value("name", std::to_string(tag.value("tag", 0)));
+      const bool modifier = tag.value("modifier", is_modifier_tag(name));
+      any_modifier = any_modifier || modifier;
+      fmt::print("  {:<10} {:>6} frames of {:>6}, {:>5} nodes, {:>5} edges, largest SCC {} nodes{}\n", name,
+                 tag.value("frames", 0), tag.value("database_frames", 0), tag.value("nodes", 0),
+                 tag.value("edges", 0), tag.value("largest_component_nodes", 0), modifier ? " (modifier*)" : "");
+    }
+    if (any_modifier) {
+      fmt::print("  * a modifier tag (turn, stop, start, backward, veer) says how a motion goes, not what it is:\n"
+                 "    its frames live in the motion types' regions and need no connected region of their own\n");
     }
   }
 }
@@ -65,8 +73,13 @@ int run_inspect(const InspectOptions& o) {
   fmt::print("{}: motion graph, format version {}\n", o.graph, kGraphFileVersion);
   fmt::print("database: {} clips, {} frames at {:g} fps ({:.1f} s), {} skeleton(s), tags: {}\n", db.clips.size(),
              db.frame_count(), db.fps, db.frame_count() / db.fps, db.skeletons.size(), fmt::join(db.tag_names, ", "));
-  fmt::print("window {} frames; threshold {:.4g} ({:.2f} % of pairs below); locality {} frames\n", file->graph.window,
-             file->threshold, 100.0 * file->threshold_quantile, file->locality_radius);
+  const std::string rms = report.is_object() && report.contains("threshold_rms_cm")
+                              ? fmt::format("RMS {:.2f} cm, ", report["threshold_rms_cm"].get<double>())
+                              : std::string();
+  const std::string mode = report.is_object() ? report.value("threshold_mode", std::string("quantile")) : "quantile";
+  fmt::print("window {} frames; threshold {:.4g} ({}{:.3f} % of pairs below; {}); locality {} frames\n",
+             file->graph.window, file->threshold, rms, 100.0 * file->threshold_quantile,
+             mode == "auto" ? "chosen from the data" : "given", file->locality_radius);
   fmt::print("candidates: {} local minima; {} transitions selected\n", file->candidates.minima.size(),
              report.is_object() ? report["counts"].value("transitions", 0) : 0);
   if (report.is_object()) {

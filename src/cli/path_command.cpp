@@ -8,6 +8,7 @@
 #include "cli/synthesis_options.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/synthesis/path_synthesis.h"
+#include "motiongraph/synthesis/walk.h"
 
 namespace mg::cli {
 
@@ -77,6 +78,7 @@ int run_path(const PathOptions& o) {
   for (const Vec2& p : path->points()) points.push_back({p.x(), p.y()});
   nlohmann::json roots = nlohmann::json::array();
   for (const Vec2& p : result->roots) roots.push_back({std::round(p.x() * 1e4) / 1e4, std::round(p.y() * 1e4) / 1e4});
+  const int transitions = result->walk.transition_count(*context.graph);
   const nlohmann::json report = {{"path_length_m", result->path_length_m},
                                  {"arc_covered_m", result->arc_covered_m},
                                  {"reached_end", result->reached_end},
@@ -93,6 +95,8 @@ int run_path(const PathOptions& o) {
                                  {"budget_exhausted_searches", result->budget_exhausted},
                                  {"start_node", result->walk.start_node},
                                  {"edges", result->walk.edges},
+                                 {"transitions", transitions},
+                                 {"transitions_per_second", transitions_per_second(transitions, motion.frame_count, motion.fps)},
                                  {"segments", segments},
                                  {"path", points},
                                  {"roots", roots}};
@@ -135,6 +139,9 @@ Command add_path_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--min-speed", o->settings.min_speed_mps,
                   "Slowest speed (m/s) before falling behind costs --behind-penalty per metre per frame")
+      ->capture_default_str();
+  sub->add_option("--transition-penalty", o->settings.transition_penalty_m2,
+                  "Cost (m^2) of each transition taken: keeps captured motion between blends (0: Kovar's cost alone)")
       ->capture_default_str();
   sub->add_option("--behind-penalty", o->settings.behind_penalty_m, "Cost (m^2 per metre behind) of dawdling")
       ->capture_default_str();

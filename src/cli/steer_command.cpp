@@ -11,6 +11,7 @@
 #include "motiongraph/io/file.h"
 #include "motiongraph/synthesis/control_script.h"
 #include "motiongraph/synthesis/controller.h"
+#include "motiongraph/synthesis/walk.h"
 
 namespace mg::cli {
 
@@ -60,11 +61,18 @@ int run_steer(const SteerOptions& o) {
   const int total = static_cast<int>(std::lround(script->duration_s * fps));
   std::vector<double> latencies;
   int exhausted = 0;
+  int transitions = 0;  // transition edges that start within the script's duration
   while (motion.frame_count < total) {
     controller->set_input(*input_at(motion.frame_count / fps));
+    long long edge_start = motion.frame_count;
     const ControllerDecision d = controller->step(motion);
     latencies.push_back(d.search_seconds);
     exhausted += d.budget_exhausted ? 1 : 0;
+    for (int e : d.edges) {
+      const GraphEdge& edge = context.graph->edges[e];
+      if (edge.transition && edge_start < total) ++transitions;
+      edge_start += edge.frame_count;
+    }
   }
   motion = motion.slice(0, total);
   // Response: the first frame after a control whose facing is within the tolerance of it.
@@ -83,6 +91,8 @@ int run_steer(const SteerOptions& o) {
   }
   const nlohmann::json report = {{"frames", motion.frame_count},
                                  {"fps", fps},
+                                 {"transitions", transitions},
+                                 {"transitions_per_second", transitions_per_second(transitions, motion.frame_count, fps)},
                                  {"decisions", latencies.size()},
                                  {"decision_ms_p50", 1e3 * percentile(latencies, 0.5)},
                                  {"decision_ms_p99", 1e3 * percentile(latencies, 0.99)},
@@ -116,6 +126,9 @@ Command add_steer_command(CLI::App& app) {
   sub->add_option("--horizon", o->settings.horizon_s, "Seconds each decision looks ahead")->capture_default_str();
   sub->add_option("--commit", o->settings.commit_s, "Seconds of motion each decision commits")->capture_default_str();
   sub->add_option("--max-expansions", o->settings.max_expansions, "Search budget per decision")->capture_default_str();
+  sub->add_option("--transition-penalty", o->settings.transition_penalty,
+                  "Cost of each transition taken, in frames facing 90 degrees off (0: none)")
+      ->capture_default_str();
   sub->add_option("--beam", o->settings.beam_width,
                   "Beam width of each decision's first pass (0: depth-first branch and bound alone)")
       ->capture_default_str();

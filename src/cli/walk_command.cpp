@@ -41,8 +41,7 @@ int run_walk(const WalkOptions& o) {
   const FloorTransform start = context.placement_facing(o.from, Vec2::Zero(), Vec2(0.0, -1.0));
   auto motion = assemble_walk(*context.db, graph, found->walk, start, context.assembler.target_skeleton());
   if (!motion) return fail(motion.error());
-  int transitions = 0;
-  for (int e : found->walk.edges) transitions += graph.edges[e].transition ? 1 : 0;
+  const int transitions = found->walk.transition_count(graph);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   nlohmann::json report = {{"from", o.from},
                            {"to", o.to},
@@ -51,7 +50,9 @@ int run_walk(const WalkOptions& o) {
                            {"cost", found->cost},
                            {"edges", found->walk.edges},
                            {"transitions", transitions},
+                           {"transitions_per_second", transitions_per_second(transitions, motion->frame_count, motion->fps)},
                            {"frames", motion->frame_count},
+                           {"fps", motion->fps},
                            {"expansions", found->expansions},
                            {"seconds", seconds}};
   if (auto s = write_synthesis_outputs(o.common, **loaded, *motion, report); !s) return fail(s.error());

@@ -295,6 +295,9 @@ class Router {
     if (!result) throw ApiError{422, result.error().to_string()};
     json out = motion_json(skeleton(), result->motion);
     out["result"] = result->result;
+    out["transitions"] = result->transitions;
+    out["transitions_per_second"] =
+        transitions_per_second(result->transitions, result->motion.frame_count, result->motion.fps);
     return json_response(out);
   }
 
@@ -323,6 +326,9 @@ class Router {
     out["mean_deviation_m"] = result->mean_deviation_m;
     out["max_deviation_m"] = result->max_deviation_m;
     out["tag_match"] = result->tag_match;
+    const int transitions = result->walk.transition_count(graph());
+    out["transitions"] = transitions;
+    out["transitions_per_second"] = transitions_per_second(transitions, result->motion.frame_count, result->motion.fps);
     json frame_tags = json::array();
     for (TagMask m : result->frame_tags) frame_tags.push_back(db().tag_names_of(m));
     out["frame_tags"] = std::move(frame_tags);
@@ -352,6 +358,11 @@ class Router {
                           {"first_frame", step->first_frame},
                           {"frames", step->motion.frame_count},
                           {"search_ms", 1e3 * step->search_seconds},
+                          {"transitions", step->transitions},
+                          {"session_transitions", step->session_transitions},
+                          {"session_transitions_per_second",
+                           transitions_per_second(step->session_transitions, step->first_frame + step->motion.frame_count,
+                                                  db().fps)},
                           {"positions", positions_json(skeleton(), step->motion)}});
   }
 

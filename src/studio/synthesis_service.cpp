@@ -69,6 +69,7 @@ Result<SynthesizedMotion> SynthesisService::walk(const WalkRequest& request) {
   if (!motion) return motion.error();
   SynthesizedMotion out;
   out.motion = std::move(*motion);
+  out.transitions = found->walk.transition_count(graph);
   out.result = store_result(out.motion);
   return out;
 }
@@ -118,9 +119,12 @@ Result<SteerStepResult> SynthesisService::step_session(int id, const ControlInpu
   do {
     const ControllerDecision decision = session->controller->step(out.motion);
     out.search_seconds += decision.search_seconds;
+    out.transitions += count_transitions(file_.graph, decision.edges);
     if (decision.frames == 0) break;
   } while (out.motion.frame_count < min_frames);
   session->frames += out.motion.frame_count;
+  session->transitions += out.transitions;
+  out.session_transitions = session->transitions;
   std::lock_guard record(session->recorded->mutex);
   Motion& recorded = session->recorded->motion;
   if (recorded.frame_count + out.motion.frame_count <= kMaxRecordedFrames) {

@@ -17,6 +17,7 @@
 #include "motiongraph/graph/graph_file.h"
 #include "motiongraph/synthesis/controller.h"
 #include "motiongraph/synthesis/path_synthesis.h"
+#include "motiongraph/synthesis/walk.h"
 #include "motiongraph/synthesis/walk_search.h"
 
 namespace mg::studio {
@@ -32,12 +33,15 @@ struct WalkRequest {
 struct SynthesizedMotion {
   int result = 0;   // id for result_bvh()
   Motion motion;
+  int transitions = 0;  // transition edges the walk took
 };
 
 struct SteerStepResult {
   Motion motion;    // the frames this step appended
   long long first_frame = 0;  // index of its first frame in the session's motion
   double search_seconds = 0.0;
+  int transitions = 0;           // transition edges this step committed
+  int session_transitions = 0;   // and the session so far
 };
 
 class SynthesisService {
@@ -84,6 +88,7 @@ class SynthesisService {
     std::unique_ptr<Controller> controller;
     std::shared_ptr<Recorded> recorded;
     long long frames = 0;
+    int transitions = 0;
     long long last_used = 0;
   };
   SynthesisService() = default;

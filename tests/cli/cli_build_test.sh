@@ -31,6 +31,27 @@ assert r["graph_after"]["nodes"] > 0 and r["graph_after"]["nodes"] <= r["graph_b
 # Default settings connect walking, running and jumping: each keeps frames in the pruned graph.
 kept = {t["name"]: t["frames"] for t in r["graph_after"]["tags"]}
 assert all(kept.get(tag, 0) > 0 for tag in ("walk", "run", "jump")), kept
+# The threshold is chosen from the data: the report carries the curve it was chosen on, the
+# chosen point keeps the target share of every motion type, no lower point tried does, and the
+# threshold is given in RMS cm consistent with D and the window's weight.
+c = r["threshold_choice"]
+assert r["threshold_mode"] == "auto" and c["reached"], c
+assert abs(r["threshold"] - c["threshold"]) <= 1e-9 * c["threshold"]
+assert abs(r["threshold_rms_cm"] - 100 * (r["threshold"] / r["window_weight"]) ** 0.5) < 1e-6
+assert r["threshold_rms_cm"] <= c["max_rms_cm"]
+points = sorted(c["curve"], key=lambda p: p["threshold"])
+chosen = [p for p in points if p["threshold"] == c["threshold"]][0]
+reaches = lambda p: p["graph"] and all(p["tag_coverage"][t] >= c["targets"][t] for t in c["motion_types"])
+assert reaches(chosen) and all(c["targets"][t] <= c["coverage_target"] for t in c["motion_types"])
+assert all(not reaches(p) for p in points if p["threshold"] < c["threshold"])
+after = {t["name"]: t for t in r["graph_after"]["tags"]}
+for t in c["motion_types"]:
+    assert abs(after[t]["frames"] / after[t]["database_frames"] - chosen["tag_coverage"][t]) < 1e-9, t
+# Spacing: the counts add up, and the report says what was applied.
+n = r["counts"]
+assert n["transitions_kept"] <= n["spaced"] <= n["survived_first_pruning"] <= n["transitions"] + n["bridges"]
+assert n["transitions"] <= n["below_threshold"]
+assert r["spacing"]["out_window_frames"] == r["window"] and r["spacing"]["max_out"] == 0  # off by default
 with open(f"{work}/m.png", "rb") as f:
     head = f.read(24)
 assert head[:8] == b"\x89PNG\r\n\x1a\n"
@@ -60,6 +81,35 @@ done
 "$bin" build "$data/cmu/16" -o "$work/g2.mgraph" --cache-dir "$cache" --threshold-quantile 0.05 --report "$work/r2.json" -q
 python3 -c "import json,sys; r=json.load(open(sys.argv[1])); assert r['distance_cache']=='hit', r['distance_cache']" "$work/r2.json"
 
+# A threshold in cm; the same graph from the same threshold given as D.
+"$bin" build "$data/cmu/16" -o "$work/g3.mgraph" --cache-dir "$cache" --threshold 6cm --report "$work/r3.json" -q
+d=$(python3 -c "import json,sys; r=json.load(open(sys.argv[1])); assert r['threshold_mode']=='rms_cm' and abs(r['threshold_rms_cm']-6)<1e-9, r['threshold_rms_cm']; print(repr(r['threshold']))" "$work/r3.json")
+"$bin" build "$data/cmu/16" -o "$work/g4.mgraph" --cache-dir "$cache" --threshold "$d" --report "$work/r4.json" -q
+python3 - "$work/r3.json" "$work/r4.json" <<'PY'
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:])
+assert a["counts"] == b["counts"] and a["graph_after"] == b["graph_after"], (a["counts"], b["counts"])
+PY
+
+# Spacing on: one transition leaving any window keeps fewer of those that survive pruning.
+"$bin" build "$data/cmu/16" -o "$work/g5.mgraph" --cache-dir "$cache" --max-out 1 --report "$work/r5.json" -q
+python3 -c "import json,sys; n=json.load(open(sys.argv[1]))['counts']; assert n['spaced'] < n['survived_first_pruning'], n" "$work/r5.json"
+
+# No graph can be made (a threshold of 0.01 cm keeps no transition): one line saying the lowest
+# threshold that makes one; the report and the picture are still written, the graph is not.
+set +e
+"$bin" build "$data/cmu/16" -o "$work/none.mgraph" --cache-dir "$cache" --threshold 0.01cm \
+  --report "$work/none.json" --matrix-png "$work/none.png" -q 2>"$work/none.err"
+code=$?
+set -e
+[[ $code -ne 0 && $(wc -l <"$work/none.err") -eq 1 ]] || { echo "FAIL: no-graph exit $code"; cat "$work/none.err"; exit 1; }
+grep -q "the lowest threshold that makes one is RMS [0-9.]* cm (--threshold [0-9.]*cm" "$work/none.err" \
+  || { echo "FAIL: no-graph message: $(cat "$work/none.err")"; exit 1; }
+[[ -s "$work/none.png" && ! -e "$work/none.mgraph" ]] || { echo "FAIL: no-graph outputs"; exit 1; }
+lowest=$(python3 -c "import json,sys; r=json.load(open(sys.argv[1])); p=r['lowest_graph_threshold']; assert r['graph_after'] is None and p['graph'] and p['rms_cm'] > 0.01; print(repr(p['threshold']))" "$work/none.json")
+"$bin" build "$data/cmu/16" -o "$work/lowest.mgraph" --cache-dir "$cache" --threshold "$lowest" -q \
+  || { echo "FAIL: the threshold the error named ($lowest) makes no graph"; exit 1; }
+
 # Bad graph files: one line, non-zero exit.
 expect_fail() {
   local pattern=$1
@@ -75,5 +125,7 @@ printf '\x55' | dd of="$work/flip.mgraph" bs=1 seek=4000 conv=notrunc status=non
 expect_fail "checksum mismatch" "$bin" inspect "$work/flip.mgraph"
 expect_fail "must end in .mgraph" "$bin" build "$data/cmu/16" -o "$work/g.bin" --cache-dir "$cache"
 expect_fail "threshold quantile" "$bin" build "$data/cmu/16" -o "$work/x.mgraph" --threshold-quantile 2
+expect_fail "threshold must be 'auto'" "$bin" build "$data/cmu/16" -o "$work/x.mgraph" --threshold 5inch
+expect_fail "coverage" "$bin" build "$data/cmu/16" -o "$work/x.mgraph" --coverage 0
 ls "$work"/x.mgraph "$work"/g.bin 2>/dev/null && { echo "FAIL: output left behind"; exit 1; }
 echo "cli build ok"

@@ -53,6 +53,13 @@ s = json.load(open(f"{work}/steer-report.json"))
 m, _ = roots("steer.json")
 assert s["frames"] == len(m["positions"]) == 270, (s["frames"], len(m["positions"]))
 assert s["controls"][1]["response_s"] is not None and s["controls"][1]["response_s"] <= 2.5, s["controls"]
+# Every report counts its transitions (blends) and their rate; the figure 8 plays captured motion
+# between blends: at most 1.5 transitions a second on the bundled data.
+for rep, edges in ((r, r["edges"]), (w, w["edges"]), (s, None)):
+    assert 0 <= rep["transitions"] <= (len(edges) if edges is not None else rep["frames"]), rep["transitions"]
+    fps = rep["fps"]
+    assert abs(rep["transitions_per_second"] - rep["transitions"] / (rep["frames"] / fps)) < 1e-9, rep
+assert r["transitions"] > 0 and r["transitions_per_second"] <= 1.5, (r["transitions"], r["transitions_per_second"])
 PY
 
 # Bad input: one line naming the file (and line), exit 1, nothing written.

@@ -82,6 +82,7 @@ TEST(GraphFromCandidates, PrunedGraphUsesTheSelectionAndAlignedBridges) {
 
   // Tags ignored: no bridges, no per-tag thresholds; the same steps one by one agree.
   settings.connected_tags = 0;
+  settings.spacing.max_out = 1;  // one transition leaving any window: some go
   auto plain = graph_from_candidates(x.db, x.features, x.search, settings);
   ASSERT_TRUE(plain) << plain.error().to_string();
   EXPECT_TRUE(plain->transitions.bridges.empty());
@@ -89,7 +90,14 @@ TEST(GraphFromCandidates, PrunedGraphUsesTheSelectionAndAlignedBridges) {
   auto selection = select_transitions(x.features, x.search, settings.transitions);
   ASSERT_TRUE(selection);
   ASSERT_EQ(selection->transitions.size(), plain->transitions.all_transitions.size());
-  auto pruned = build_pruned_graph(x.db, selection->transitions, x.features.window, 0);
+  // Pruned, the survivors spaced, pruned again.
+  auto first = build_pruned_graph(x.db, selection->transitions, x.features.window, 0);
+  ASSERT_TRUE(first);
+  EXPECT_EQ(plain->pruned.survived_first_pruning, static_cast<int>(first->graph.transitions.size()));
+  const std::vector<Transition> spaced =
+      space_transitions(first->graph.transitions, x.features.clip_of_frame, x.features.window, settings.spacing);
+  EXPECT_LT(spaced.size(), first->graph.transitions.size());
+  auto pruned = build_pruned_graph(x.db, spaced, x.features.window, 0);
   ASSERT_TRUE(pruned);
   EXPECT_EQ(pruned->graph.node_count(), plain->pruned.graph.node_count());
   EXPECT_EQ(pruned->graph.edge_count(), plain->pruned.graph.edge_count());

@@ -121,6 +121,11 @@ try {
   const info = await page.textContent('[data-testid=transition-info]');
   check(/transition \d+:/.test(info), `the transition is described: ${info}`);
   await page.waitForFunction(() => document.querySelector('[data-testid=matrix-img]').complete);
+  // The per-tag table marks the modifier tags (subject 16 has turn and stop) and says what they are.
+  const modifierRows = await page.$$eval('[data-testid=tag-stats] tr.modifier th', (ths) => ths.map((t) => t.textContent));
+  const note = await page.textContent('[data-testid=tag-stats-note]');
+  check(modifierRows.includes('stop*') && !modifierRows.some((n) => n.startsWith('walk')) && /modifier/.test(note),
+    `modifier tags are marked and explained: ${modifierRows.join(', ')}`);
   await page.screenshot({ path: join(shots, '3-transition.png') });
 
   // 4. Draw a path on the ground (top view) and synthesize it.
@@ -140,6 +145,7 @@ try {
     document.querySelector('[data-testid=path-info]').textContent), null, { timeout: 30000 });
   const pathInfo = await page.textContent('[data-testid=path-info]');
   check(/deviation mean [\d.]+ m/.test(pathInfo), `the path is synthesized: ${pathInfo}`);
+  check(/\d+ transitions \([\d.]+\/s\)/.test(pathInfo), `the path's transitions per second are shown: ${pathInfo}`);
   check(await page.evaluate(() => window.studio.state.mode === 'result' && window.studio.state.playing),
     'the path result plays');
   const href = await page.getAttribute('[data-testid=download]', 'href');

@@ -294,7 +294,8 @@ $('synthesize').addEventListener('click', async () => {
     $('path-info').textContent = `${result.path_length_m.toFixed(1)} m, ${result.frames} frames `
       + `(${(result.frames / result.fps).toFixed(1)} s): deviation mean ${result.mean_deviation_m.toFixed(2)} m, `
       + `max ${result.max_deviation_m.toFixed(2)} m${result.reached_end ? '' : ' (end not reached)'}`
-      + `, tags matched ${(100 * result.tag_match).toFixed(0)} %`;
+      + `, tags matched ${(100 * result.tag_match).toFixed(0)} %; ${result.transitions} transitions `
+      + `(${result.transitions_per_second.toFixed(2)}/s)`;
   } catch (err) {
     $('path-info').textContent = `error: ${err.message}`;
   }
@@ -382,6 +383,7 @@ async function requestSteps() {
     s.lastStepMs = performance.now() - started;
     s.buffer.push(...step.positions);
     s.received += step.frames;
+    s.transitionsPerSecond = step.session_transitions_per_second;
   } catch (err) {
     $('steer-info').textContent = `error: ${err.message}`;
     stopSteering();
@@ -467,7 +469,8 @@ function tick() {
     }
     requestSteps();
     $('steer-info').textContent = `heading ${s.heading.toFixed(0)} deg, ${s.tag || 'any'}; `
-      + `${s.received} frames received, step ${s.lastStepMs.toFixed(0)} ms${s.gamepad ? `; gamepad ${s.gamepad}` : ''}`;
+      + `${s.received} frames received, step ${s.lastStepMs.toFixed(0)} ms, `
+      + `${(s.transitionsPerSecond || 0).toFixed(2)} transitions/s${s.gamepad ? `; gamepad ${s.gamepad}` : ''}`;
   } else if (state.track && figure) {
     const n = state.track.frames.length;
     if (state.playing) state.time += dt * state.track.fps * state.speed;
@@ -497,10 +500,14 @@ async function start() {
     + `${c.tags.join(', ') || 'no tag'})</option>`).join('');
   $('path-tag').innerHTML = ['<option value="">any</option>',
     ...summary.tags.map((t) => `<option value="${t}"${t === 'walk' ? ' selected' : ''}>${t}</option>`)].join('');
-  const rows = summary.statistics.tags.map((t) => `<tr><th>${t.name}</th><td>${t.database_frames}</td>`
+  const modifierNote = 'a modifier: says how a motion goes (turn, stop, ...), not what it is; its frames live in '
+    + 'the motion types\' regions and need no connected region (SCC) of their own';
+  const rows = summary.statistics.tags.map((t) => `<tr${t.modifier ? ` class="modifier" title="${modifierNote}"` : ''}>`
+    + `<th>${t.name}${t.modifier ? '*' : ''}</th><td>${t.database_frames}</td>`
     + `<td>${t.frames}</td><td>${t.nodes}</td><td>${t.edges}</td><td>${t.largest_component_nodes}</td></tr>`);
   $('tag-stats').innerHTML = '<tr><th>tag</th><th>db frames</th><th>graph frames</th><th>nodes</th>'
     + `<th>edges</th><th>largest SCC</th></tr>${rows.join('')}`;
+  $('tag-stats-note').textContent = summary.statistics.tags.some((t) => t.modifier) ? `* ${modifierNote}.` : '';
   $('matrix-img').src = '/api/matrix.png';
   drawTransitions();
   const first = await get('/api/clips/0/frames?count=1');

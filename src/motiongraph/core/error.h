@@ -10,10 +10,17 @@
 
 namespace mg {
 
+// What kind of failure, for callers that branch on it (never on message text).
+enum class ErrorKind {
+  kGeneral,
+  kEmptyGraph,  // pruning left nothing: the transitions form no cycle
+};
+
 struct Error {
   std::string file;
   int line = 0;
   std::string message;
+  ErrorKind kind = ErrorKind::kGeneral;
 
   // "file:line: message", "file: message" without a line, "message" without a file.
   std::string to_string() const;

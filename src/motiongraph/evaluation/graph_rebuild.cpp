@@ -36,6 +36,12 @@ Result<GraphRebuild> prepare_graph_rebuild(const GraphFile& file, const std::str
     t.threshold_quantile = settings.at("threshold_quantile").get<double>();
     t.locality_radius = settings.at("locality_radius").get<int>();
     t.per_tag_thresholds = settings.value("per_tag_thresholds", true);
+    t.max_threshold = settings.value("max_threshold", -1.0);
+    // Files written before transitions were spaced had none.
+    TransitionSpacing& spacing = out.settings.spacing;
+    spacing.min_piece_frames = settings.value("min_piece_frames", 0);
+    spacing.max_out = settings.value("max_out", 0);
+    spacing.out_window_frames = settings.value("out_window_frames", -1);
     out.settings.bridges.per_tag_pair = settings.value("bridges_per_tag_pair", BridgeSettings{}.per_tag_pair);
     if (settings.contains("connected_tags")) {
       const auto names = settings.at("connected_tags").get<std::vector<std::string>>();

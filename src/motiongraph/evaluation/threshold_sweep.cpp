@@ -24,7 +24,7 @@ Status for_each_threshold(
     auto selected = select_transitions_with_bridges(db, features, candidates, at);
     if (!selected) return selected.error();
     const Result<PrunedGraph> pruned =
-        build_pruned_graph(db, selected->all_transitions, features.window, at.connected_tags);
+        build_spaced_graph(db, *selected, features, at);
     if (auto s = visit(quantile, *selected, pruned); !s) return s;
   }
   return Ok{};

@@ -36,6 +36,7 @@ Result<TagMask> tag_mask_of(const MotionDatabase& db, std::span<const std::strin
 
 Status GraphFromCandidatesSettings::validate() const {
   if (auto s = transitions.validate(); !s) return s;
+  if (auto s = spacing.validate(); !s) return s;
   return bridges.validate();
 }
 
@@ -89,12 +90,36 @@ Result<PrunedGraph> build_pruned_graph(const MotionDatabase& db, std::span<const
   return PrunedGraph{std::move(*graph), std::move(*report)};
 }
 
+Result<PrunedGraph> build_spaced_graph(const MotionDatabase& db, const TransitionsWithBridges& transitions,
+                                       const FrameFeatures& features, const GraphFromCandidatesSettings& settings) {
+  auto first = build_pruned_graph(db, transitions.all_transitions, features.window, settings.connected_tags);
+  if (!first) return first.error();
+  auto same = [](const Transition& x, const Transition& y) {
+    return x.from_frame == y.from_frame && x.to_frame == y.to_frame;
+  };
+  std::vector<Transition> survivors, bridges;
+  for (const Transition& t : first->graph.transitions) {
+    const bool bridge = std::any_of(transitions.bridges.begin(), transitions.bridges.end(),
+                                    [&](const Transition& b) { return same(b, t); });
+    (bridge ? bridges : survivors).push_back(t);
+  }
+  std::vector<Transition> spaced = space_transitions(survivors, features.clip_of_frame, features.window, settings.spacing);
+  spaced.insert(spaced.end(), bridges.begin(), bridges.end());
+  std::sort(spaced.begin(), spaced.end(), [](const Transition& x, const Transition& y) {
+    return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
+  });
+  auto second = build_pruned_graph(db, spaced, features.window, settings.connected_tags);
+  if (!second) return second.error();
+  second->survived_first_pruning = static_cast<int>(first->graph.transitions.size());
+  return second;
+}
+
 Result<GraphFromCandidates> graph_from_candidates(const MotionDatabase& db, const FrameFeatures& features,
                                                   const CandidateSearch& candidates,
                                                   const GraphFromCandidatesSettings& settings) {
   auto transitions = select_transitions_with_bridges(db, features, candidates, settings);
   if (!transitions) return transitions.error();
-  auto pruned = build_pruned_graph(db, transitions->all_transitions, features.window, settings.connected_tags);
+  auto pruned = build_spaced_graph(db, *transitions, features, settings);
   if (!pruned) return pruned.error();
   return GraphFromCandidates{std::move(*transitions), std::move(*pruned)};
 }

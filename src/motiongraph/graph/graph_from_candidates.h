@@ -16,6 +16,7 @@
 #include "motiongraph/graph/candidates.h"
 #include "motiongraph/graph/motion_graph.h"
 #include "motiongraph/graph/transition_selection.h"
+#include "motiongraph/graph/transition_spacing.h"
 #include "motiongraph/metric/frame_features.h"
 
 namespace mg {
@@ -32,6 +33,7 @@ Result<TagMask> tag_mask_of(const MotionDatabase& db, std::span<const std::strin
 
 struct GraphFromCandidatesSettings {
   TransitionSettings transitions;
+  TransitionSpacing spacing;      // applied to the transitions that survive a first pruning
   BridgeSettings bridges;         // tags and locality_radius are set from the selection
   TagMask connected_tags = 0;     // motion types kept connected, with bridges; 0: ignore tags
 
@@ -52,6 +54,7 @@ Result<TransitionsWithBridges> select_transitions_with_bridges(const MotionDatab
 struct PrunedGraph {
   MotionGraph graph;  // pruned
   PruneReport prune;
+  int survived_first_pruning = 0;  // transitions (bridges too) before spacing; build_spaced_graph
 };
 
 // The last two: the graph of `transitions` (window k), pruned keeping connected_tags
@@ -64,6 +67,12 @@ struct GraphFromCandidates {
   TransitionsWithBridges transitions;
   PrunedGraph pruned;
 };
+
+// The graph of the selection and bridges, spaced: pruned once, the surviving transitions but
+// the bridges spaced (transition_spacing.h: the useful ones compete, not those pruning would
+// drop anyway; bridges join motion types and are few), then built and pruned again.
+Result<PrunedGraph> build_spaced_graph(const MotionDatabase& db, const TransitionsWithBridges& transitions,
+                                       const FrameFeatures& features, const GraphFromCandidatesSettings& settings);
 
 // All four steps.
 Result<GraphFromCandidates> graph_from_candidates(const MotionDatabase& db, const FrameFeatures& features,

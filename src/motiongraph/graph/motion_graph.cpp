@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "motiongraph/graph/graph_from_candidates.h"
 #include "motiongraph/graph/scc.h"
 
 namespace mg {
@@ -278,9 +279,10 @@ Result<PruneReport> prune_motion_graph(MotionGraph& graph, std::span<const TagMa
   }
 
   if (std::find(node_alive.begin(), node_alive.end(), 1) == node_alive.end()) {
-    return graph_error(
-        "pruning left nothing: the transitions form no cycle (with the tags' rule applied); a higher transition "
-        "threshold gives more transitions");
+    return Error{"", 0,
+                 "pruning left nothing: the transitions form no cycle (with the tags' rule applied); a higher "
+                 "transition threshold gives more transitions",
+                 ErrorKind::kEmptyGraph};
   }
 
   // Compact: kept items in their previous order, indices remapped.
@@ -332,7 +334,11 @@ std::string to_json(const GraphStatistics& statistics, std::span<const std::stri
                   {"nodes", t.nodes},
                   {"edges", t.edges},
                   {"largest_component_nodes", t.largest_component_nodes}};
-    if (t.tag >= 0 && static_cast<size_t>(t.tag) < tag_names.size()) entry["name"] = tag_names[t.tag];
+    if (t.tag >= 0 && static_cast<size_t>(t.tag) < tag_names.size()) {
+      entry["name"] = tag_names[t.tag];
+      // A modifier (turn, stop, ...) rides on the motion types' regions: no SCC of its own.
+      entry["modifier"] = is_modifier_tag(tag_names[t.tag]);
+    }
     tags.push_back(std::move(entry));
   }
   json out = {{"nodes", statistics.nodes},

@@ -14,6 +14,7 @@ Status TransitionSettings::validate() const {
   }
   if (!std::isfinite(threshold)) return Error{"", 0, "threshold must be a finite number"};
   if (locality_radius < -1) return Error{"", 0, "locality radius must be >= 0 (or -1 for half the window)"};
+  if (!std::isfinite(max_threshold)) return Error{"", 0, "the maximum threshold must be a finite number"};
   return Ok{};
 }
 
@@ -73,6 +74,9 @@ Result<TransitionSelection> select_transitions(const FrameFeatures& features, co
     const double share = static_cast<double>(global_count) / static_cast<double>(candidates.minima.size());
     selection.tag_thresholds =
         tag_thresholds(candidates, frame_tags, tags, features.window, selection.threshold, share, membership);
+    if (settings.max_threshold >= 0.0) {
+      for (TagThreshold& own : selection.tag_thresholds) own.threshold = std::min(own.threshold, settings.max_threshold);
+    }
   }
   std::vector<Transition> below;
   for (size_t i = 0; i < candidates.minima.size(); ++i) {

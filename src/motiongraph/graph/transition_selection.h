@@ -27,6 +27,7 @@ struct TransitionSettings {
   double threshold_quantile = 0.02;  // fraction of all finite D below the threshold
   int locality_radius = -1;        // frames (both a and b); -1 = half the window
   bool per_tag_thresholds = true;  // see above; needs frame tags
+  double max_threshold = -1.0;     // absolute D no tag threshold passes; < 0: no ceiling
 
   Status validate() const;
 };

@@ -10,6 +10,7 @@ Status ControllerSettings::validate() const {
   if (!(horizon_s > 0.0) || !(commit_s > 0.0) || commit_s > horizon_s) {
     return Error{"", 0, "controller: need 0 < commit_s <= horizon_s"};
   }
+  if (!(transition_penalty >= 0.0)) return Error{"", 0, "controller: the transition penalty must be >= 0"};
   if (!(tag_penalty >= 0.0) || !(time_budget_s >= 0.0) || max_expansions < 1 || beam_width < 0) {
     return Error{"", 0, "controller: penalties, budgets and the beam width must be >= 0 (expansions >= 1)"};
   }
@@ -30,7 +31,9 @@ namespace {
 
 class SteerCost final : public FrameCost {
  public:
-  SteerCost(const ControlInput& input, double penalty) : input_(input), penalty_(penalty) {}
+  SteerCost(const ControlInput& input, double penalty, double transition_penalty)
+      : input_(input), penalty_(penalty), transition_penalty_(transition_penalty) {}
+  double transition_cost() const override { return transition_penalty_; }
   double cost(int, const Vec2&, const Vec2& facing, double, TagMask tags, bool*) const override {
     double c = 1.0 - facing.dot(input_.direction);
     if (input_.tag != 0 && (tags & input_.tag) == 0) c += penalty_;
@@ -40,6 +43,7 @@ class SteerCost final : public FrameCost {
  private:
   const ControlInput& input_;
   double penalty_;
+  double transition_penalty_;
 };
 
 }  // namespace
@@ -77,7 +81,7 @@ ControllerDecision Controller::step(Motion& out) {
   search.max_expansions = settings_.max_expansions;
   search.time_budget_s = settings_.time_budget_s;
   search.beam_width = settings_.beam_width;
-  const SteerCost cost(input_, settings_.tag_penalty);
+  const SteerCost cost(input_, settings_.tag_penalty, settings_.transition_penalty);
   const HorizonResult best = horizon_search(graph, context_->tracks, state_, cost, search);
   ControllerDecision decision;
   decision.expansions = best.expansions;

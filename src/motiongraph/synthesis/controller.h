@@ -24,6 +24,9 @@ struct ControllerSettings {
   double horizon_s = 1.0;
   double commit_s = 0.2;
   double tag_penalty = 2.0;          // per frame; a full turn away costs 2 per frame
+  // Per transition taken (as many frames facing 90 degrees off): keeps captured motion between
+  // blends while the direction holds (0: none).
+  double transition_penalty = 1.0;
   long long max_expansions = 3000;
   int beam_width = 8;                // HorizonSettings::beam_width (0: none)
   // Per decision; 0 (the default): only the expansion budget, so that the same inputs give the

@@ -37,6 +37,10 @@ bool play_edge(const MotionGraph& graph, const EdgeTracks& tracks, const FrameCo
   const auto roots = tracks.roots_of(e);
   const auto facings = tracks.facings_of(e);
   const auto tags = tracks.tags_of(e);
+  if (graph.edges[e].transition && played < horizon) {
+    out.cost += frame_cost.transition_cost();
+    if (out.cost >= bound) return false;
+  }
   // The placement holds for the whole edge: its rotation once (FloorTransform::rotate).
   const double c = std::cos(s.placement.yaw_rad), sn = std::sin(s.placement.yaw_rad);
   auto turned = [&](const Vec2& v) { return Vec2(c * v.x() + sn * v.y(), -sn * v.x() + c * v.y()); };

@@ -41,6 +41,9 @@ class FrameCost {
     (void)frames_left, (void)root, (void)arc_m;
     return 0.0;
   }
+  // The cost (>= 0) of taking a transition edge that starts within the horizon: each one is a
+  // blend, so a cost here keeps captured motion between blends where the path allows it.
+  virtual double transition_cost() const { return 0.0; }
 };
 
 struct HorizonSettings {

@@ -12,6 +12,7 @@ Status PathSynthesisSettings::validate() const {
     return Error{"", 0, "path search: need 0 < commit_s <= horizon_s"};
   }
   if (!(tag_penalty_m2 >= 0.0)) return Error{"", 0, "path search: the tag penalty must be >= 0"};
+  if (!(transition_penalty_m2 >= 0.0)) return Error{"", 0, "path search: the transition penalty must be >= 0"};
   if (!(min_speed_mps >= 0.0) || !(behind_penalty_m >= 0.0)) {
     return Error{"", 0, "path search: the slowest speed and its penalty must be >= 0"};
   }
@@ -25,13 +26,15 @@ namespace {
 class PathCost final : public FrameCost {
  public:
   PathCost(const FloorPath& path, const std::vector<TagMask>& segment_masks, double penalty, double max_step,
-           double min_step, double behind_penalty)
+           double min_step, double behind_penalty, double transition_penalty)
       : path_(path),
         masks_(segment_masks),
         penalty_(penalty),
         max_step_(max_step),
         min_step_(min_step),
-        behind_penalty_(behind_penalty) {}
+        behind_penalty_(behind_penalty),
+        transition_penalty_(transition_penalty) {}
+  double transition_cost() const override { return transition_penalty_; }
   // Each search starts where the root has covered arc_m.
   void start_search(double arc_m) { search_arc_m_ = arc_m; }
   // In m more frames the root moves at most m * max_step and so does the path's point at its
@@ -74,6 +77,7 @@ class PathCost final : public FrameCost {
   double max_step_;
   double min_step_;
   double behind_penalty_;
+  double transition_penalty_;
   double search_arc_m_ = 0.0;
 };
 
@@ -95,7 +99,7 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
                                     graph.node_count())};
   }
   PathCost cost(path, masks, settings.tag_penalty_m2, settings.lower_bound ? context.tracks.max_root_step_m : 0.0,
-                settings.min_speed_mps / fps, settings.behind_penalty_m);
+                settings.min_speed_mps / fps, settings.behind_penalty_m, settings.transition_penalty_m2);
   HorizonSettings search;
   search.horizon_frames = std::max(1, static_cast<int>(std::lround(settings.horizon_s * fps)));
   search.max_expansions = settings.max_expansions;

@@ -28,6 +28,10 @@ struct PathSynthesisSettings {
   // behind covering the path at min_speed_mps since the search began (0: Kovar's cost alone).
   double min_speed_mps = 0.5;
   double behind_penalty_m = 1.0;
+  // Each transition taken costs this (m^2: as many frames' squared deviation). Kovar's cost
+  // alone takes a transition wherever it follows the path a little better, and output then
+  // blends almost all the time (0: Kovar's cost alone).
+  double transition_penalty_m2 = 0.2;
   long long max_expansions = 20000;    // per search
   int beam_width = 64;                 // HorizonSettings::beam_width (0: none)
   int start_candidates = 16;

@@ -2,12 +2,25 @@
 // node the previous one entered (motion_graph.h says what every edge plays).
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "motiongraph/core/error.h"
 #include "motiongraph/graph/motion_graph.h"
 
 namespace mg {
+
+// How many of `edges` (indices into graph.edges) are transitions.
+inline int count_transitions(const MotionGraph& graph, std::span<const int> edges) {
+  int n = 0;
+  for (int e : edges) n += graph.edges[e].transition ? 1 : 0;
+  return n;
+}
+
+// Transitions per second of motion: the rate at which blends come.
+inline double transitions_per_second(int transitions, long long frames, double fps) {
+  return frames > 0 && fps > 0.0 ? transitions / (static_cast<double>(frames) / fps) : 0.0;
+}
 
 struct Walk {
   int start_node = 0;
@@ -23,6 +36,8 @@ struct Walk {
     for (int e : edges) n += graph.edges[e].frame_count;
     return n;
   }
+  // Transition edges taken (each one a blend): how often the motion leaves its clip.
+  int transition_count(const MotionGraph& graph) const { return count_transitions(graph, edges); }
 };
 
 // Fails unless start_node is a node and every edge exists and leaves the node the walk is at.

@@ -1,0 +1,100 @@
+// The transition threshold chosen from the data. A fixed quantile of all pairs suits one
+// library and not the next: the number of pairs grows with N^2, so a big library keeps several
+// transitions per frame, and a small one of short clips keeps none that pruning lets live.
+// What a user wants instead is a graph that can play most of each motion type, with the least
+// visible transitions. So: the lowest threshold at which the pruned graph keeps a target share
+// (`coverage`) of each motion type's frames (of all frames when there are no motion types),
+// never above a quality ceiling.
+//
+// Thresholds are spoken of in a unit a person can judge: the RMS distance between the aligned
+// point clouds of the two windows, in cm, sqrt(D / W) with W the window's total weight
+// (frame_features.h): D = W * (rms_cm / 100)^2.
+//
+// Short clips cut mid-stride at both ends (subject 16's runs are 1.2-2 s) keep only part of
+// their frames at any threshold: pruning drops the pieces that lead out of a clip's end. So a
+// motion type's target is the smaller of `coverage` and `reachable_share` of what the ceiling
+// gives it: a type that can have 40 % at most wants 36 %, not an unreachable 70 % that would
+// drive the threshold to the ceiling for a few frames more.
+//
+// The search: the ceiling first (what each type can reach), then `grid` thresholds log-spaced
+// in RMS from `lowest_rms_cm` up to the ceiling, each run through selection, spacing, bridges,
+// graph and pruning (graph_from_candidates.h) on the cached candidates, stopping at the first
+// that reaches every target; then `refine` bisection steps (in log D) between the last
+// threshold short of the targets and the first that reaches them. Coverage is close to
+// monotone in the threshold but not exactly (pruning is not), so the answer is the lowest
+// threshold found that reaches them, not a proof that no lower one does. When none does (no
+// graph at all under the ceiling), the answer is the lowest threshold whose worst coverage is
+// the best the search saw (`reached` false). Every threshold tried is kept, as the curve the
+// report carries.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "motiongraph/core/error.h"
+#include "motiongraph/graph/graph_from_candidates.h"
+
+namespace mg {
+
+// RMS point distance in cm of a distance D under the features' weights, and back.
+double rms_cm_of_distance(double distance, const FrameFeatures& features);
+double distance_of_rms_cm(double rms_cm, const FrameFeatures& features);
+
+struct ThresholdChoiceSettings {
+  double coverage = 0.7;        // share of each motion type's frames the pruned graph keeps
+  double max_rms_cm = 10.0;     // quality ceiling (RMS point distance over the window)
+  double reachable_share = 0.9; // a type's target is at most this share of its coverage at the ceiling
+  double lowest_rms_cm = 0.5;   // where the grid starts
+  int grid = 16;                // log-spaced thresholds of the first pass (>= 2)
+  int refine = 6;               // bisection steps after it
+
+  Status validate() const;
+};
+
+struct CoveragePoint {
+  double threshold = 0.0;           // D
+  double rms_cm = 0.0;
+  double quantile = 0.0;            // fraction of all finite D below the threshold
+  bool graph = false;               // false: pruning left nothing
+  double coverage = 0.0;            // the worst motion type's (or all frames')
+  std::vector<double> tag_coverage; // per entry of ThresholdChoice::tags
+  long long kept_frames = 0;        // database frames the pruned graph plays
+  int transitions = 0;              // kept by pruning
+};
+
+struct ThresholdChoice {
+  double threshold = 0.0;            // D chosen
+  double rms_cm = 0.0;
+  bool reached = false;              // the target coverage was reached under the ceiling
+  std::vector<int> tags;             // motion types measured (bit indices); empty: all frames
+  std::vector<double> targets;       // the coverage each wanted (one per tag; one value without)
+  std::vector<CoveragePoint> curve;  // every threshold tried, by threshold
+  const CoveragePoint& chosen() const;
+};
+
+// The motion types coverage is measured on (bit indices of settings.connected_tags); empty:
+// the database's frames as a whole.
+std::vector<int> coverage_tags(const GraphFromCandidatesSettings& settings);
+
+// The coverage of one threshold: `settings` with its threshold replaced by `threshold` (D).
+Result<CoveragePoint> coverage_at(const MotionDatabase& db, const FrameFeatures& features,
+                                  const CandidateSearch& candidates, const GraphFromCandidatesSettings& settings,
+                                  double threshold);
+
+// The threshold for `settings` (its own threshold is ignored). Fails only when a stage fails
+// for another reason than pruning leaving nothing; a library where nothing under the ceiling
+// makes a graph gives a choice whose chosen point has graph == false.
+Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFeatures& features,
+                                         const CandidateSearch& candidates,
+                                         const GraphFromCandidatesSettings& settings,
+                                         const ThresholdChoiceSettings& choice);
+
+// The lowest threshold at or above `from` (D) that makes a graph at all, searched upward to
+// the largest candidate distance and then refined; nullopt when even every candidate makes
+// none. For the error a user gets when no graph can be made.
+Result<std::optional<CoveragePoint>> lowest_graph_threshold(const MotionDatabase& db, const FrameFeatures& features,
+                                                            const CandidateSearch& candidates,
+                                                            const GraphFromCandidatesSettings& settings, double from);
+
+}  // namespace mg

@@ -1,0 +1,148 @@
+// The threshold chosen from the data: RMS centimetres mean what they say (a copy of a clip
+// raised 5 cm is 5 cm away), the chosen threshold is the lowest tried that reaches each motion
+// type's target, never above the ceiling; a ceiling under which no graph exists is said so;
+// the lowest threshold that makes a graph makes one.
+#include "motiongraph/graph/threshold_choice.h"
+
+#include <gtest/gtest.h>
+
+#include "motiongraph/metric/reference_distance.h"
+#include "test_data.h"
+
+namespace mg {
+namespace {
+
+TEST(ThresholdChoice, RmsCentimetresAreTheAlignedPointDistance) {
+  // A walk and the same walk 5 cm higher: no floor alignment removes a vertical offset, so
+  // every pair (a, a) of the two is exactly 5 cm apart in RMS.
+  const MotionDatabase db = test::small_database({"cmu/16/16_15.amc"}, true, 0.0, Vec3(0.0, 0.05, 0.0));
+  DistanceSettings distance;
+  auto layout = make_cloud_layout(db.skeletons[0], {});
+  ASSERT_TRUE(layout);
+  auto features = make_frame_features(db, *layout, distance);
+  ASSERT_TRUE(features);
+  const std::vector<Vec3> clouds = database_clouds(db, *layout);
+  const std::vector<double> weights(layout->weight.begin(), layout->weight.end());
+  const int k = features->window;
+  const int copy = db.clips[1].first_frame;
+  for (int a : {0, 40, 90}) {
+    const ReferenceDistance d = reference_distance(clouds, layout->point_count(), weights, features->taper, a,
+                                                   copy + a + k - 1);
+    EXPECT_NEAR(rms_cm_of_distance(d.distance, *features), 5.0, 1e-6) << "frame " << a;
+  }
+  EXPECT_DOUBLE_EQ(distance_of_rms_cm(rms_cm_of_distance(123.0, *features), *features), 123.0);
+  EXPECT_EQ(rms_cm_of_distance(0.0, *features), 0.0);
+}
+
+TEST(ThresholdChoice, SettingsAreValidated) {
+  ThresholdChoiceSettings s;
+  EXPECT_TRUE(s.validate());
+  for (auto broken : {+[](ThresholdChoiceSettings& x) { x.coverage = 0.0; },
+                      +[](ThresholdChoiceSettings& x) { x.coverage = 1.5; },
+                      +[](ThresholdChoiceSettings& x) { x.max_rms_cm = 0.0; },
+                      +[](ThresholdChoiceSettings& x) { x.lowest_rms_cm = x.max_rms_cm; },
+                      +[](ThresholdChoiceSettings& x) { x.grid = 1; },
+                      +[](ThresholdChoiceSettings& x) { x.reachable_share = 0.0; },
+                      +[](ThresholdChoiceSettings& x) { x.refine = -1; }}) {
+    ThresholdChoiceSettings x;
+    broken(x);
+    EXPECT_FALSE(x.validate());
+  }
+}
+
+struct Fixture {
+  MotionDatabase db;
+  FrameFeatures features;
+  CandidateSearch search;
+  GraphFromCandidatesSettings settings;
+};
+
+const Fixture& fixture() {
+  static const Fixture x = [] {
+    Fixture f;
+    f.db = test::small_database({"cmu/16/16_15.amc", "cmu/16/16_16.amc", "cmu/16/16_35.amc", "cmu/16/16_37.amc"});
+    f.db.tag_names = {"walk", "run"};
+    f.db.tag_ranges = {TagRange{0, 0, f.db.clips[2].first_frame},
+                       TagRange{1, f.db.clips[2].first_frame, f.db.frame_count() - f.db.clips[2].first_frame}};
+    DistanceSettings distance;
+    distance.threads = 2;
+    auto layout = make_cloud_layout(f.db.skeletons[0], {});
+    f.features = *make_frame_features(f.db, *layout, distance);
+    f.search = *find_candidates(f.features, distance, {});
+    f.settings.connected_tags = 0b11;
+    return f;
+  }();
+  return x;
+}
+
+TEST(ThresholdChoice, ChoosesTheLowestThresholdTriedThatReachesTheTarget) {
+  const Fixture& x = fixture();
+  ThresholdChoiceSettings choice;
+  choice.coverage = 0.5;
+  choice.max_rms_cm = 30.0;
+  auto chosen = choose_threshold(x.db, x.features, x.search, x.settings, choice);
+  ASSERT_TRUE(chosen) << chosen.error().to_string();
+  ASSERT_TRUE(chosen->reached);
+  EXPECT_EQ(chosen->tags, (std::vector<int>{0, 1}));
+  const CoveragePoint& point = chosen->chosen();
+  EXPECT_EQ(point.threshold, chosen->threshold);
+  EXPECT_TRUE(point.graph);
+  EXPECT_LE(chosen->rms_cm, 30.0 + 1e-9);
+  EXPECT_GE(chosen->curve.size(), 2u);
+  // Each type's target: the coverage asked, or 90 % of what the ceiling gives it when less.
+  const CoveragePoint& top = chosen->curve.back();
+  EXPECT_DOUBLE_EQ(top.rms_cm, 30.0);
+  ASSERT_EQ(chosen->targets.size(), 2u);
+  auto reaches = [&](const CoveragePoint& p) {
+    return p.graph && p.tag_coverage[0] >= chosen->targets[0] && p.tag_coverage[1] >= chosen->targets[1];
+  };
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_DOUBLE_EQ(chosen->targets[i], std::min(0.5, 0.9 * top.tag_coverage[i]));
+    EXPECT_GE(point.tag_coverage[i], chosen->targets[i]);
+  }
+  for (const CoveragePoint& p : chosen->curve) {
+    if (p.threshold < chosen->threshold) {
+      EXPECT_FALSE(reaches(p)) << "a lower one reached it";
+    }
+  }
+  // The coverage it reports is the coverage a graph built at that threshold has.
+  GraphFromCandidatesSettings capped = x.settings;  // the choice caps the tag thresholds at the ceiling
+  capped.transitions.max_threshold = distance_of_rms_cm(choice.max_rms_cm, x.features);
+  auto again = coverage_at(x.db, x.features, x.search, capped, chosen->threshold);
+  ASSERT_TRUE(again);
+  EXPECT_DOUBLE_EQ(again->coverage, point.coverage);
+  ASSERT_EQ(point.tag_coverage.size(), 2u);
+  EXPECT_DOUBLE_EQ(point.coverage, std::min(point.tag_coverage[0], point.tag_coverage[1]));
+}
+
+TEST(ThresholdChoice, NoGraphUnderTheCeilingIsSaidSo) {
+  const Fixture& x = fixture();
+  ThresholdChoiceSettings choice;
+  choice.lowest_rms_cm = 0.01;
+  choice.max_rms_cm = 0.02;  // 0.2 mm: no transition at all
+  auto chosen = choose_threshold(x.db, x.features, x.search, x.settings, choice);
+  ASSERT_TRUE(chosen);
+  EXPECT_FALSE(chosen->reached);
+  EXPECT_FALSE(chosen->chosen().graph);
+  EXPECT_EQ(chosen->curve.size(), static_cast<size_t>(choice.grid));  // no bracket, no refinement
+  for (const CoveragePoint& p : chosen->curve) EXPECT_LE(p.rms_cm, 0.02 + 1e-9);
+}
+
+TEST(ThresholdChoice, LowestGraphThresholdMakesAGraph) {
+  const Fixture& x = fixture();
+  const double tiny = distance_of_rms_cm(0.01, x.features);
+  auto none = coverage_at(x.db, x.features, x.search, x.settings, tiny);
+  ASSERT_TRUE(none);
+  EXPECT_FALSE(none->graph);  // 0.1 mm: no transition at all
+  auto lowest = lowest_graph_threshold(x.db, x.features, x.search, x.settings, tiny);
+  ASSERT_TRUE(lowest);
+  ASSERT_TRUE(lowest->has_value());
+  EXPECT_TRUE((*lowest)->graph);
+  EXPECT_GT((*lowest)->threshold, tiny);
+  auto check = coverage_at(x.db, x.features, x.search, x.settings, (*lowest)->threshold);
+  ASSERT_TRUE(check);
+  EXPECT_TRUE(check->graph);
+}
+
+}  // namespace
+}  // namespace mg
