@@ -399,7 +399,8 @@ Command add_build_command(CLI::App& app) {
   sub->add_option("--scale", o->scale, "Metres per BVH length unit (CMU conversions: 0.056444)")->capture_default_str();
   sub->add_option("--input-fps", o->input_fps, "Capture rate of the inputs, overriding the files' (AMC: 120)");
   sub->add_option("--cmu-index", o->cmu_index,
-                  "CMU's motion index (cmu-mocap-index.tsv) for tags from descriptions; default: found beside the inputs");
+                  "CMU's motion index (cmu-mocap-index.tsv) for tags from descriptions; default: one beside or above the "
+                  "inputs, else the index the project ships (built in)");
   sub->add_flag("--no-cmu-tags", o->no_cmu_tags, "Do not tag clips from CMU's descriptions");
   sub->add_flag("--ignore-tags", o->ignore_tags, "Prune to the largest strongly connected component only, ignoring tags");
   sub->add_option("--bridges", o->bridges.per_tag_pair,

@@ -12,6 +12,7 @@
 
 #include "motiongraph/database/cmu_tags.h"
 #include "motiongraph/database/manifest.h"
+#include "motiongraph/database/shipped_cmu_index.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/resample.h"
@@ -257,16 +258,19 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
 
   // 2. The CMU index, read once when some clip will look its tags up.
   std::optional<CmuIndex> cmu;
-  const bool wants_cmu = settings.cmu_tags && (!settings.cmu_index_text.empty() || !settings.cmu_index_path.empty()) &&
+  const bool wants_cmu = settings.cmu_tags &&
                          std::any_of(specs.begin(), specs.end(), [](const ClipSpec& s) { return !s.gives_tags; });
   if (wants_cmu) {
     std::string text = settings.cmu_index_text;
     std::string name = "CMU index";
-    if (text.empty()) {
+    if (text.empty() && !settings.cmu_index_path.empty()) {
       auto read = read_text_file(settings.cmu_index_path);
       if (!read) return read.error();
       text = std::move(*read);
       name = settings.cmu_index_path;
+    } else if (text.empty()) {
+      text = shipped_cmu_index();
+      name = kShippedCmuIndexName;
     }
     auto index = parse_cmu_index(text, name);
     if (!index) return index.error();

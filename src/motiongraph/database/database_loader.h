@@ -47,7 +47,8 @@ struct DatabaseSettings {
 
   // Tags from CMU's descriptions for clips a manifest gives no tags. The index is
   // cmu_index_text when not empty, else the file at cmu_index_path when not empty (the CLI
-  // passes data/cmu/cmu-mocap-index.tsv); with neither, no CMU tags.
+  // passes an index found beside the inputs, or --cmu-index); with neither, the index the
+  // project ships, built in (shipped_cmu_index.h).
   bool cmu_tags = true;
   std::string cmu_index_text;
   std::string cmu_index_path;
