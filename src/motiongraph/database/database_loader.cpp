@@ -194,7 +194,7 @@ using LoaderKey = std::tuple<std::string, double, double, bool>;
 class Loaders {
  public:
   ClipLoader& for_settings(const ClipLoadSettings& load) {
-    LoaderKey key{load.asf_path.value_or(""), load.bvh_metres_per_unit, load.input_fps, load.keep_rest_frames};
+    LoaderKey key{load.asf_path.value_or(""), load.bvh_metres_per_unit.value_or(0.0), load.input_fps, load.keep_rest_frames};
     auto it = loaders_.find(key);
     if (it == loaders_.end()) it = loaders_.emplace(key, std::make_unique<ClipLoader>(load)).first;
     return *it->second;
@@ -216,8 +216,8 @@ Status add_tag_range(MotionDatabase& db, const std::string& tag, int first_frame
 
 Status DatabaseSettings::validate() const {
   if (!(fps > 0.0) || !std::isfinite(fps)) return Error{"", 0, fmt::format("fps must be positive, not {}", fps)};
-  if (!(bvh_metres_per_unit > 0.0) || !std::isfinite(bvh_metres_per_unit)) {
-    return Error{"", 0, fmt::format("bvh_metres_per_unit (--scale) must be positive, not {}", bvh_metres_per_unit)};
+  if (bvh_metres_per_unit && (!(*bvh_metres_per_unit > 0.0) || !std::isfinite(*bvh_metres_per_unit))) {
+    return Error{"", 0, fmt::format("bvh_metres_per_unit (--scale) must be positive, not {}", *bvh_metres_per_unit)};
   }
   if (!(input_fps >= 0.0) || !std::isfinite(input_fps)) {
     return Error{"", 0, fmt::format("input_fps must be positive (or 0: the files' own), not {}", input_fps)};
@@ -225,7 +225,8 @@ Status DatabaseSettings::validate() const {
   return Ok{};
 }
 
-Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, const DatabaseSettings& settings) {
+Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, const DatabaseSettings& settings,
+                                     DatabaseLoadNotes* notes) {
   if (auto s = settings.validate(); !s) return s.error();
   if (inputs.empty()) return Error{"", 0, "no inputs: give clip folders, clip files or a .toml manifest"};
 
@@ -284,6 +285,7 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
   for (const ClipSpec& spec : specs) {
     auto loaded = loaders.for_settings(spec.load).load(spec.path);
     if (!loaded) return loaded.error();
+    if (notes && loaded->clip.detected_unit) notes->detected_units.push_back({spec.path, *loaded->clip.detected_unit});
     const Motion& motion = loaded->clip.motion;
     const int dropped = loaded->clip.dropped_leading_frames;
     const int file_frames = dropped + motion.frame_count;

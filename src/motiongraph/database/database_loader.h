@@ -31,6 +31,7 @@
 
 #include "motiongraph/core/error.h"
 #include "motiongraph/database/motion_database.h"
+#include "motiongraph/motion/length_unit_choice.h"
 
 namespace mg {
 
@@ -41,7 +42,8 @@ struct DatabaseSettings {
   // Reading options for clips not given by a manifest (a manifest's own values win for its
   // clips; these are its defaults otherwise).
   std::optional<std::string> asf_path;  // skeleton for AMC files given one by one
-  double bvh_metres_per_unit = 1.0;     // BVH carries no unit (CMU conversions: 0.056444)
+  std::optional<double> bvh_metres_per_unit;  // BVH carries no unit; nullopt: chosen per file
+                                              // from its figure's size (length_unit.h)
   double input_fps = 0.0;               // > 0: the capture rate, overriding the files'
   bool keep_rest_frames = false;        // keep leading rest/T-pose frames of BVH files
 
@@ -56,6 +58,17 @@ struct DatabaseSettings {
   Status validate() const;
 };
 
-Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, const DatabaseSettings& settings);
+// What loading chose by itself, for the caller to report: the unit of each BVH file read
+// without one (length_unit.h), in clip order.
+struct DatabaseLoadNotes {
+  struct DetectedUnit {
+    std::string file;
+    LengthUnitChoice choice;
+  };
+  std::vector<DetectedUnit> detected_units;
+};
+
+Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, const DatabaseSettings& settings,
+                                     DatabaseLoadNotes* notes = nullptr);
 
 }  // namespace mg
