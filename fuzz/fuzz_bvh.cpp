@@ -1,7 +1,7 @@
 // libFuzzer target for the BVH (Biovision hierarchy) reader: the input bytes are taken as the
 // text of a .bvh file and given to mg::parse_bvh; when that succeeds, the document is turned
-// into a skeleton and motion with mg::clip_from_bvh (default settings, which includes the
-// detection of leading rest frames).
+// into a skeleton and motion with mg::clip_from_bvh (default settings, which include the
+// detection of leading rest frames, of a static root above the hips and of the length unit).
 // Errors are expected results; the fuzzer looks for crashes, hangs, leaks and sanitizer
 // reports. Run it with scripts/fuzz.sh.
 #include <cstddef>

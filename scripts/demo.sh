@@ -24,8 +24,8 @@ for amc in data/cmu/16/*.amc; do
   name=$(basename "$amc" .amc)
   "$bin" convert "$amc" --fps 30 -o "out/bvh/$name.bvh" -o "out/json/$name.json"
 done
-# BVH has no unit: the CMU conversions are in the ASF's unit, the Daz-style ones (07_*) in cm.
-# 16_01.bvh says 30 fps but holds the 120 fps capture (see data/README.md).
+# BVH has no unit: each file's is found from its figure's size (the CMU conversions are in the
+# ASF's unit, the Daz-style ones (07_*) in cm). 16_01.bvh says 30 fps but holds the 120 fps capture (see data/README.md).
 convert_bvh() {
   local file=$1
   shift
@@ -33,11 +33,11 @@ convert_bvh() {
   name=$(basename "$file" .bvh)
   "$bin" convert "$file" --fps 30 "$@" -o "out/bvh/${name}_bvh.bvh" -o "out/json/${name}_bvh.json"
 }
-convert_bvh data/bvh/16_01.bvh --scale 0.056444 --input-fps 120
-convert_bvh data/bvh/131_01.bvh --scale 0.056444
-convert_bvh data/bvh/111_36.bvh --scale 0.056444
-convert_bvh data/bvh/07_01.bvh --scale 0.01
-convert_bvh data/bvh/07_12.bvh --scale 0.01
+convert_bvh data/bvh/16_01.bvh --input-fps 120
+convert_bvh data/bvh/131_01.bvh
+convert_bvh data/bvh/111_36.bvh
+convert_bvh data/bvh/07_01.bvh
+convert_bvh data/bvh/07_12.bvh
 
 echo "== the motion graph of subject 16 (distance stage cached in out/cache)"
 "$bin" build data/cmu/16 -o out/subject16.mgraph --cache-dir out/cache \

@@ -1,11 +1,13 @@
 #include "test_data.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include <gtest/gtest.h>
 
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/clip_loader.h"
+#include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/motion/resample.h"
 
 namespace mg::test {
@@ -18,7 +20,7 @@ std::string read_data(const std::string& relative) {
   return std::move(*text);
 }
 
-Clip load_data_clip(const std::string& relative, double bvh_metres_per_unit, double input_fps) {
+Clip load_data_clip(const std::string& relative, std::optional<double> bvh_metres_per_unit, double input_fps) {
   ClipLoadSettings settings;
   settings.bvh_metres_per_unit = bvh_metres_per_unit;
   settings.input_fps = input_fps;
@@ -73,6 +75,27 @@ double max_position_error(const std::vector<Vec3>& a, const std::vector<Vec3>& b
   if (a.size() != b.size()) throw std::runtime_error("position arrays differ in size");
   double worst = 0.0;
   for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, (a[i] - b[i]).norm());
+  return worst;
+}
+
+double max_position_error_by_name(const Clip& a, const Clip& b) {
+  const auto pa = world_positions(a.skeleton, a.motion);
+  const auto pb = world_positions(b.skeleton, b.motion);
+  EXPECT_EQ(a.motion.frame_count, b.motion.frame_count);
+  const int frames = std::min(a.motion.frame_count, b.motion.frame_count);
+  const size_t ja_count = static_cast<size_t>(a.skeleton.joint_count());
+  const size_t jb_count = static_cast<size_t>(b.skeleton.joint_count());
+  double worst = 0.0;
+  for (int ja = 0; ja < a.skeleton.joint_count(); ++ja) {
+    auto jb = b.skeleton.find(a.skeleton.joint(ja).name);
+    if (!jb) {
+      ADD_FAILURE() << "joint " << a.skeleton.joint(ja).name << " lost";
+      continue;
+    }
+    for (int f = 0; f < frames; ++f) {
+      worst = std::max(worst, (pa[f * ja_count + static_cast<size_t>(ja)] - pb[f * jb_count + static_cast<size_t>(*jb)]).norm());
+    }
+  }
   return worst;
 }
 

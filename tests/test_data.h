@@ -1,6 +1,7 @@
 // Access to the bundled data (data/) for tests, and small builders shared by them.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "motiongraph/core/error.h"
@@ -15,7 +16,9 @@ std::string data_path(const std::string& relative);
 std::string read_data(const std::string& relative);
 
 // Loads a bundled clip through the real loader (AMC finds 16.asf beside it).
-Clip load_data_clip(const std::string& relative, double bvh_metres_per_unit = 1.0, double input_fps = 0.0);
+// A BVH without bvh_metres_per_unit is read in the unit its figure's size gives.
+Clip load_data_clip(const std::string& relative, std::optional<double> bvh_metres_per_unit = std::nullopt,
+                    double input_fps = 0.0);
 
 // `text` with the first occurrence of `from` replaced by `to`; fails the test if absent.
 std::string replace_once(std::string text, const std::string& from, const std::string& to);
@@ -38,5 +41,10 @@ MotionDatabase small_database(const std::vector<std::string>& files, bool add_mo
 
 // Largest distance (metres) between two frames x joints position arrays of the same shape.
 double max_position_error(const std::vector<Vec3>& a, const std::vector<Vec3>& b);
+
+// Largest distance (metres) between the world positions of the joints of `a` and the joints of
+// `b` with the same names, over all frames; fails the test when a joint of `a` has no match or
+// the frame counts differ.
+double max_position_error_by_name(const Clip& a, const Clip& b);
 
 }  // namespace mg::test

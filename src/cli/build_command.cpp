@@ -14,6 +14,7 @@
 #include <spdlog/spdlog.h>
 
 #include "cli/commands.h"
+#include "cli/unit_report.h"
 #include "motiongraph/core/json_text.h"
 #include "motiongraph/core/progress.h"
 #include "motiongraph/core/text.h"
@@ -40,7 +41,7 @@ struct BuildOptions {
   double fps = 30.0;
   bool fps_given = false;
   std::string asf;
-  double scale = 1.0;
+  std::optional<double> scale;
   double input_fps = 0.0;
   std::string cmu_index;
   bool no_cmu_tags = false;
@@ -189,6 +190,8 @@ json threshold_choice_json(const ThresholdChoice& choice, const MotionDatabase& 
   if (choice.tags.empty() && !choice.targets.empty()) targets["all"] = choice.targets[0];
   return {{"coverage_target", settings.coverage},
           {"reachable_share", settings.reachable_share},
+          {"min_transition_rate", settings.min_transition_rate},
+          {"target_rate", choice.target_rate},
           {"targets", targets},
           {"max_rms_cm", settings.max_rms_cm},
           {"reached", choice.reached},
@@ -279,8 +282,10 @@ int run_build(BuildOptions o) {
   db_settings.input_fps = o.input_fps;
   db_settings.cmu_tags = !o.no_cmu_tags;
   db_settings.cmu_index_path = o.cmu_index.empty() ? find_cmu_index(o.inputs) : o.cmu_index;
-  auto db = load_database(o.inputs, db_settings);
+  DatabaseLoadNotes load_notes;
+  auto db = load_database(o.inputs, db_settings, &load_notes);
   if (!db) return fail(db.error());
+  report_units(load_notes, o.quiet);
   timings["load"] = watch.lap();
   log(fmt::format("{} clips, {} frames at {:g} fps ({:.1f} s), {} tags", db->clips.size(), db->frame_count(), db->fps,
                   db->frame_count() / db->fps, db->tag_names.size()));
@@ -547,10 +552,13 @@ Command add_build_command(CLI::App& app) {
       ->capture_default_str()
       ->each([o](const std::string&) { o->fps_given = true; });
   sub->add_option("--asf", o->asf, "ASF skeleton of AMC files given one by one")->check(CLI::ExistingFile);
-  sub->add_option("--scale", o->scale, "Metres per BVH length unit (CMU conversions: 0.056444)")->capture_default_str();
+  sub->add_option("--scale", o->scale,
+                  "Metres per BVH length unit (default: m, cm, mm, inch or CMU's 1/0.45 inch per file, whichever makes "
+                  "the figure human-sized)");
   sub->add_option("--input-fps", o->input_fps, "Capture rate of the inputs, overriding the files' (AMC: 120)");
   sub->add_option("--cmu-index", o->cmu_index,
-                  "CMU's motion index (cmu-mocap-index.tsv) for tags from descriptions; default: found beside the inputs");
+                  "CMU's motion index (cmu-mocap-index.tsv) for tags from descriptions; default: one beside or above the "
+                  "inputs, else the index the project ships (built in)");
   sub->add_flag("--no-cmu-tags", o->no_cmu_tags, "Do not tag clips from CMU's descriptions");
   sub->add_flag("--ignore-tags", o->ignore_tags, "Prune to the largest strongly connected component only, ignoring tags");
   sub->add_option("--bridges", o->bridges.per_tag_pair,
@@ -582,6 +590,9 @@ Command add_build_command(CLI::App& app) {
   sub->add_option("--coverage", o->choice.coverage,
                   "--threshold auto: the share of each motion type's frames (of all frames without tags) the pruned "
                   "graph keeps")
+      ->capture_default_str();
+  sub->add_option("--min-transition-rate", o->choice.min_transition_rate,
+                  "--threshold auto: transitions per second of kept motion the graph must offer (to be steerable)")
       ->capture_default_str();
   sub->add_option("--max-threshold", o->choice.max_rms_cm,
                   "--threshold auto: the highest threshold it may choose, as RMS point distance in cm (quality ceiling)")

@@ -10,6 +10,7 @@
 #include "cli/commands.h"
 #include "cli/motion_output.h"
 #include "cli/load_options.h"
+#include "cli/unit_report.h"
 #include "motiongraph/export/bvh_writer.h"
 #include "motiongraph/export/positions_json.h"
 #include "motiongraph/io/file.h"
@@ -39,6 +40,7 @@ int run_convert(const ConvertOptions& options) {
   auto loaded = loader.load(options.input);
   if (!loaded) return fail(loaded.error());
   Clip& clip = loaded->clip;
+  if (clip.detected_unit) report_unit(options.input, *clip.detected_unit);
   if (clip.dropped_leading_frames > 0) {
     spdlog::info("{}: dropped {} leading rest/T-pose frame(s) (--keep-rest-frames keeps them)", options.input,
                  clip.dropped_leading_frames);

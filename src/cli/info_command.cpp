@@ -7,6 +7,7 @@
 
 #include "cli/commands.h"
 #include "cli/load_options.h"
+#include "cli/unit_report.h"
 #include "motiongraph/core/json_text.h"
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/clip_summary.h"
@@ -20,6 +21,12 @@ struct InfoOptions {
   LoadOptions load;
   bool json = false;
 };
+
+nlohmann::json static_ancestor_names(const Skeleton& skeleton) {
+  nlohmann::json names = nlohmann::json::array();
+  for (const StaticAncestor& a : skeleton.static_ancestors()) names.push_back(a.name);
+  return names;
+}
 
 nlohmann::json skeleton_json(const Skeleton& skeleton) {
   nlohmann::json joints = nlohmann::json::array();
@@ -60,6 +67,14 @@ int run_info(const InfoOptions& options) {
     if (!loaded) return fail(loaded.error());
     const Clip& clip = loaded->clip;
     const ClipSummary s = summarize(clip.skeleton, clip.motion);
+    if (clip.detected_unit && !clip.detected_unit->plausible) report_unit(file, *clip.detected_unit);
+    std::string unit = fmt::format("{:g} m per unit (--scale)", options.load.scale.value_or(1.0));
+    if (loaded->format == "amc") unit = "the ASF's units";
+    if (clip.detected_unit) unit = unit_description(*clip.detected_unit) + " (chosen by its size; --scale overrides)";
+    std::string static_joints;
+    for (const StaticAncestor& a : clip.skeleton.static_ancestors()) {
+      static_joints += (static_joints.empty() ? "" : ", ") + a.name;
+    }
     if (options.json) {
       nlohmann::json entry = {
           {"file", file}, {"format", loaded->format}, {"joints", s.joints}, {"end_sites", s.end_sites},
@@ -67,8 +82,15 @@ int run_info(const InfoOptions& options) {
           {"dropped_leading_frames", clip.dropped_leading_frames},
           {"floor_extent_m", {{"x", {s.floor_min_x_m, s.floor_max_x_m}}, {"z", {s.floor_min_z_m, s.floor_max_z_m}}}},
           {"height_m", {s.min_height_m, s.max_height_m}}, {"root_path_m", s.root_path_m},
+          {"root", clip.skeleton.joint(0).name}, {"static_joints_above_root", static_ancestor_names(clip.skeleton)},
           {"skeleton", skeleton_json(clip.skeleton)}};
       if (!loaded->skeleton_path.empty()) entry["asf"] = loaded->skeleton_path;
+      if (clip.detected_unit) {
+        entry["unit"] = {{"name", clip.detected_unit->unit.name},
+                         {"metres_per_unit", clip.detected_unit->unit.metres_per_unit},
+                         {"figure_size_m", clip.detected_unit->figure_size_m},
+                         {"plausible", clip.detected_unit->plausible}};
+      }
       all.push_back(std::move(entry));
     } else {
       fmt::print("{}: {}{}\n", file, loaded->format == "amc" ? "AMC on " : "BVH",
@@ -76,6 +98,11 @@ int run_info(const InfoOptions& options) {
       fmt::print("  skeleton: {} joints + {} end sites, {} dofs\n", s.joints, s.end_sites, loaded->source_channels);
       fmt::print("  motion:   {} frames at {:g} fps, {:.2f} s{}\n", s.frames, s.fps, s.duration_s,
                  clip.dropped_leading_frames > 0 ? " (leading rest/T-pose frames dropped)" : "");
+      fmt::print("  lengths:  {}\n", unit);
+      if (!static_joints.empty()) {
+        fmt::print("  root:     {} carries the floor position (above it, static: {})\n", clip.skeleton.joint(0).name,
+                   static_joints);
+      }
       fmt::print("  floor:    x {:.2f} .. {:.2f} m, z {:.2f} .. {:.2f} m; height {:.2f} .. {:.2f} m; root travels {:.2f} m\n",
                  s.floor_min_x_m, s.floor_max_x_m, s.floor_min_z_m, s.floor_max_z_m, s.min_height_m,
                  s.max_height_m, s.root_path_m);

@@ -1,6 +1,7 @@
 // Command-line options shared by the commands that read clips.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -11,15 +12,15 @@ namespace mg::cli {
 
 struct LoadOptions {
   std::string asf;
-  double scale = 1.0;
+  std::optional<double> scale;
   double input_fps = 0.0;
   bool keep_rest_frames = false;
 
   void add_to(CLI::App& app) {
     app.add_option("--asf", asf, "ASF skeleton of the AMC files")->check(CLI::ExistingFile);
     app.add_option("--scale", scale,
-                   "Metres per BVH length unit (BVH carries no unit; CMU conversions: 0.056444, cm: 0.01)")
-        ->capture_default_str();
+                   "Metres per BVH length unit (BVH carries no unit; default: m, cm, mm, inch or CMU's "
+                   "1/0.45 inch, whichever makes the figure human-sized)");
     app.add_option("--input-fps", input_fps,
                    "Capture rate of the input, overriding the file's (AMC default 120, CMU's rate)");
     app.add_flag("--keep-rest-frames", keep_rest_frames,

@@ -41,8 +41,10 @@ assert abs(r["threshold_rms_cm"] - 100 * (r["threshold"] / r["window_weight"]) *
 assert r["threshold_rms_cm"] <= c["max_rms_cm"]
 points = sorted(c["curve"], key=lambda p: p["threshold"])
 chosen = [p for p in points if p["threshold"] == c["threshold"]][0]
-reaches = lambda p: p["graph"] and all(p["tag_coverage"][t] >= c["targets"][t] for t in c["motion_types"])
+rate = lambda p: p["transitions"] / (p["kept_frames"] / r["fps"]) if p["kept_frames"] else 0
+reaches = lambda p: p["graph"] and rate(p) >= c["target_rate"] and all(p["tag_coverage"][t] >= c["targets"][t] for t in c["motion_types"])
 assert reaches(chosen) and all(c["targets"][t] <= c["coverage_target"] for t in c["motion_types"])
+assert c["target_rate"] <= c["min_transition_rate"] and rate(chosen) >= 1.0
 assert all(not reaches(p) for p in points if p["threshold"] < c["threshold"])
 after = {t["name"]: t for t in r["graph_after"]["tags"]}
 for t in c["motion_types"]:

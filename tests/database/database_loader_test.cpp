@@ -125,11 +125,29 @@ TEST(DatabaseLoader, CmuTagsOffOrFromText) {
   auto tagged = load_database({test::data_path("cmu/16/16_15.amc")}, text);
   ASSERT_TRUE(tagged) << tagged.error().to_string();
   EXPECT_EQ(tags_of(*tagged, 0), (std::set<std::string>{"walk", "stop"}));
+}
 
-  DatabaseSettings none;  // no index given: no CMU tags, no error
-  auto plain = load_database({test::data_path("cmu/16/16_15.amc")}, none);
-  ASSERT_TRUE(plain) << plain.error().to_string();
-  EXPECT_TRUE(plain->tag_ranges.empty());
+TEST(DatabaseLoader, ClipsNamedLikeCmusGetTagsFromTheShippedIndexWhenNoneIsGiven) {
+  // Copies in a folder with no index beside or above it; 16_15 is "walk" in CMU's index,
+  // 16_57 "run/jog, sudden stop"; a clip under another name gets no tags.
+  TempFolder folder("shipped-index");
+  folder.write("16.asf", test::read_data("cmu/16/16.asf"));
+  folder.write("16_15.amc", test::read_data("cmu/16/16_15.amc"));
+  folder.write("16_57.amc", test::read_data("cmu/16/16_57.amc"));
+  folder.write("my_walk.amc", test::read_data("cmu/16/16_15.amc"));
+  DatabaseSettings none;
+  ASSERT_TRUE(none.cmu_index_path.empty() && none.cmu_index_text.empty());
+  auto db = load_database({folder.path().string()}, none);
+  ASSERT_TRUE(db) << db.error().to_string();
+  ASSERT_EQ(db->clips.size(), 3u);
+  EXPECT_EQ(tags_of(*db, 0), std::set<std::string>{"walk"});
+  EXPECT_EQ(tags_of(*db, 1), (std::set<std::string>{"run", "stop"}));
+  EXPECT_TRUE(tags_of(*db, 2).empty());
+  // --no-cmu-tags still turns them off.
+  none.cmu_tags = false;
+  auto off = load_database({folder.path().string()}, none);
+  ASSERT_TRUE(off) << off.error().to_string();
+  EXPECT_TRUE(off->tag_ranges.empty());
 }
 
 TEST(DatabaseLoader, OtherFrameRates) {

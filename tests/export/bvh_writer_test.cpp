@@ -14,32 +14,11 @@ Clip read_back(const std::string& text) {
   auto doc = parse_bvh(text, "written.bvh");
   EXPECT_TRUE(doc) << doc.error().to_string();
   BvhImportSettings settings;
+  settings.metres_per_unit = 1.0;
   settings.drop_rest_frames = false;
   auto clip = clip_from_bvh(*doc, settings);
   EXPECT_TRUE(clip) << clip.error().to_string();
   return *clip;
-}
-
-// World positions by joint name (the written file puts End Sites in its own order).
-double max_error_by_name(const Clip& a, const Clip& b) {
-  const auto pa = world_positions(a.skeleton, a.motion);
-  const auto pb = world_positions(b.skeleton, b.motion);
-  EXPECT_EQ(a.motion.frame_count, b.motion.frame_count);
-  double worst = 0.0;
-  int matched = 0;
-  for (int ja = 0; ja < a.skeleton.joint_count(); ++ja) {
-    auto jb = b.skeleton.find(a.skeleton.joint(ja).name);
-    if (!jb) {
-      ADD_FAILURE() << "joint " << a.skeleton.joint(ja).name << " lost";
-      continue;
-    }
-    ++matched;
-    for (int f = 0; f < a.motion.frame_count; ++f) {
-      worst = std::max(worst, (pa[f * a.skeleton.joint_count() + ja] - pb[f * b.skeleton.joint_count() + *jb]).norm());
-    }
-  }
-  EXPECT_EQ(matched, a.skeleton.joint_count());
-  return worst;
 }
 
 TEST(BvhWriter, AmcToBvhAndBackKeepsWorldPositions) {
@@ -47,7 +26,7 @@ TEST(BvhWriter, AmcToBvhAndBackKeepsWorldPositions) {
     Clip clip = test::load_data_clip(file);
     Clip back = read_back(write_bvh(clip.skeleton, clip.motion, {}));
     EXPECT_EQ(back.motion.fps, clip.motion.fps);
-    EXPECT_LT(max_error_by_name(clip, back), 1e-5) << file;  // 0.01 mm
+    EXPECT_LT(test::max_position_error_by_name(clip, back), 1e-5) << file;  // 0.01 mm
   }
 }
 
@@ -55,7 +34,7 @@ TEST(BvhWriter, EveryBundledBvhSurvivesARoundTrip) {
   for (const char* file : {"bvh/07_01.bvh", "bvh/07_12.bvh", "bvh/111_36.bvh", "bvh/131_01.bvh", "bvh/16_01.bvh"}) {
     Clip clip = test::load_data_clip(file, 0.056444);
     Clip back = read_back(write_bvh(clip.skeleton, clip.motion, {}));
-    EXPECT_LT(max_error_by_name(clip, back), 1e-5) << file;
+    EXPECT_LT(test::max_position_error_by_name(clip, back), 1e-5) << file;
     // Each joint keeps the rotation order it was read with.
     for (int j = 0; j < clip.skeleton.joint_count(); ++j) {
       if (clip.skeleton.joint(j).end_site) continue;
@@ -88,7 +67,7 @@ TEST(BvhWriter, RootOnlyPositionChannelsAndUnits) {
   settings.metres_per_unit = 0.01;
   auto back = clip_from_bvh(*doc, settings);
   ASSERT_TRUE(back);
-  EXPECT_LT(max_error_by_name(clip, *back), 1e-5);
+  EXPECT_LT(test::max_position_error_by_name(clip, *back), 1e-5);
 }
 
 TEST(BvhWriter, MovingNonRootJointsKeepPositionChannelsWithAZeroOffset) {
@@ -102,7 +81,7 @@ TEST(BvhWriter, MovingNonRootJointsKeepPositionChannelsWithAZeroOffset) {
   Clip clip = read_back(text);
   const std::string written = write_bvh(clip.skeleton, clip.motion, {});
   EXPECT_NE(written.find("JOINT c\n  {\n    OFFSET 0 0 0\n    CHANNELS 6 Xposition"), std::string::npos) << written;
-  EXPECT_LT(max_error_by_name(clip, read_back(written)), 1e-6);
+  EXPECT_LT(test::max_position_error_by_name(clip, read_back(written)), 1e-6);
 }
 
 TEST(BvhWriter, ValidatesSettings) {

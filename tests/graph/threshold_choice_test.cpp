@@ -43,6 +43,7 @@ TEST(ThresholdChoice, SettingsAreValidated) {
                       +[](ThresholdChoiceSettings& x) { x.lowest_rms_cm = x.max_rms_cm; },
                       +[](ThresholdChoiceSettings& x) { x.grid = 1; },
                       +[](ThresholdChoiceSettings& x) { x.reachable_share = 0.0; },
+                      +[](ThresholdChoiceSettings& x) { x.min_transition_rate = -1.0; },
                       +[](ThresholdChoiceSettings& x) { x.refine = -1; }}) {
     ThresholdChoiceSettings x;
     broken(x);
@@ -93,9 +94,13 @@ TEST(ThresholdChoice, ChoosesTheLowestThresholdTriedThatReachesTheTarget) {
   const CoveragePoint& top = chosen->curve.back();
   EXPECT_DOUBLE_EQ(top.rms_cm, 30.0);
   ASSERT_EQ(chosen->targets.size(), 2u);
+  auto rate = [&](const CoveragePoint& p) { return p.transitions / (static_cast<double>(p.kept_frames) / x.db.fps); };
   auto reaches = [&](const CoveragePoint& p) {
-    return p.graph && p.tag_coverage[0] >= chosen->targets[0] && p.tag_coverage[1] >= chosen->targets[1];
+    return p.graph && rate(p) >= chosen->target_rate && p.tag_coverage[0] >= chosen->targets[0] &&
+           p.tag_coverage[1] >= chosen->targets[1];
   };
+  EXPECT_DOUBLE_EQ(chosen->target_rate, std::min(5.0, rate(top)));
+  EXPECT_TRUE(reaches(point));
   for (size_t i = 0; i < 2; ++i) {
     EXPECT_DOUBLE_EQ(chosen->targets[i], std::min(0.5, 0.9 * top.tag_coverage[i]));
     EXPECT_GE(point.tag_coverage[i], chosen->targets[i]);

@@ -17,6 +17,7 @@ Eigen::Matrix3d rot(int axis, double degrees) {
 }
 
 Clip import(const std::string& text, BvhImportSettings settings = {}) {
+  if (!settings.metres_per_unit) settings.metres_per_unit = 1.0;
   auto doc = parse_bvh(text, "t.bvh");
   EXPECT_TRUE(doc) << doc.error().to_string();
   auto clip = clip_from_bvh(*doc, settings);

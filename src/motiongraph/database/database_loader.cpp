@@ -12,6 +12,7 @@
 
 #include "motiongraph/database/cmu_tags.h"
 #include "motiongraph/database/manifest.h"
+#include "motiongraph/database/shipped_cmu_index.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/resample.h"
@@ -193,7 +194,7 @@ using LoaderKey = std::tuple<std::string, double, double, bool>;
 class Loaders {
  public:
   ClipLoader& for_settings(const ClipLoadSettings& load) {
-    LoaderKey key{load.asf_path.value_or(""), load.bvh_metres_per_unit, load.input_fps, load.keep_rest_frames};
+    LoaderKey key{load.asf_path.value_or(""), load.bvh_metres_per_unit.value_or(0.0), load.input_fps, load.keep_rest_frames};
     auto it = loaders_.find(key);
     if (it == loaders_.end()) it = loaders_.emplace(key, std::make_unique<ClipLoader>(load)).first;
     return *it->second;
@@ -215,8 +216,8 @@ Status add_tag_range(MotionDatabase& db, const std::string& tag, int first_frame
 
 Status DatabaseSettings::validate() const {
   if (!(fps > 0.0) || !std::isfinite(fps)) return Error{"", 0, fmt::format("fps must be positive, not {}", fps)};
-  if (!(bvh_metres_per_unit > 0.0) || !std::isfinite(bvh_metres_per_unit)) {
-    return Error{"", 0, fmt::format("bvh_metres_per_unit (--scale) must be positive, not {}", bvh_metres_per_unit)};
+  if (bvh_metres_per_unit && (!(*bvh_metres_per_unit > 0.0) || !std::isfinite(*bvh_metres_per_unit))) {
+    return Error{"", 0, fmt::format("bvh_metres_per_unit (--scale) must be positive, not {}", *bvh_metres_per_unit)};
   }
   if (!(input_fps >= 0.0) || !std::isfinite(input_fps)) {
     return Error{"", 0, fmt::format("input_fps must be positive (or 0: the files' own), not {}", input_fps)};
@@ -224,7 +225,8 @@ Status DatabaseSettings::validate() const {
   return Ok{};
 }
 
-Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, const DatabaseSettings& settings) {
+Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, const DatabaseSettings& settings,
+                                     DatabaseLoadNotes* notes) {
   if (auto s = settings.validate(); !s) return s.error();
   if (inputs.empty()) return Error{"", 0, "no inputs: give clip folders, clip files or a .toml manifest"};
 
@@ -257,16 +259,19 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
 
   // 2. The CMU index, read once when some clip will look its tags up.
   std::optional<CmuIndex> cmu;
-  const bool wants_cmu = settings.cmu_tags && (!settings.cmu_index_text.empty() || !settings.cmu_index_path.empty()) &&
+  const bool wants_cmu = settings.cmu_tags &&
                          std::any_of(specs.begin(), specs.end(), [](const ClipSpec& s) { return !s.gives_tags; });
   if (wants_cmu) {
     std::string text = settings.cmu_index_text;
     std::string name = "CMU index";
-    if (text.empty()) {
+    if (text.empty() && !settings.cmu_index_path.empty()) {
       auto read = read_text_file(settings.cmu_index_path);
       if (!read) return read.error();
       text = std::move(*read);
       name = settings.cmu_index_path;
+    } else if (text.empty()) {
+      text = shipped_cmu_index();
+      name = kShippedCmuIndexName;
     }
     auto index = parse_cmu_index(text, name);
     if (!index) return index.error();
@@ -280,6 +285,7 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
   for (const ClipSpec& spec : specs) {
     auto loaded = loaders.for_settings(spec.load).load(spec.path);
     if (!loaded) return loaded.error();
+    if (notes && loaded->clip.detected_unit) notes->detected_units.push_back({spec.path, *loaded->clip.detected_unit});
     const Motion& motion = loaded->clip.motion;
     const int dropped = loaded->clip.dropped_leading_frames;
     const int file_frames = dropped + motion.frame_count;

@@ -31,6 +31,7 @@
 
 #include "motiongraph/core/error.h"
 #include "motiongraph/database/motion_database.h"
+#include "motiongraph/motion/length_unit_choice.h"
 
 namespace mg {
 
@@ -41,13 +42,15 @@ struct DatabaseSettings {
   // Reading options for clips not given by a manifest (a manifest's own values win for its
   // clips; these are its defaults otherwise).
   std::optional<std::string> asf_path;  // skeleton for AMC files given one by one
-  double bvh_metres_per_unit = 1.0;     // BVH carries no unit (CMU conversions: 0.056444)
+  std::optional<double> bvh_metres_per_unit;  // BVH carries no unit; nullopt: chosen per file
+                                              // from its figure's size (length_unit.h)
   double input_fps = 0.0;               // > 0: the capture rate, overriding the files'
   bool keep_rest_frames = false;        // keep leading rest/T-pose frames of BVH files
 
   // Tags from CMU's descriptions for clips a manifest gives no tags. The index is
   // cmu_index_text when not empty, else the file at cmu_index_path when not empty (the CLI
-  // passes data/cmu/cmu-mocap-index.tsv); with neither, no CMU tags.
+  // passes an index found beside the inputs, or --cmu-index); with neither, the index the
+  // project ships, built in (shipped_cmu_index.h).
   bool cmu_tags = true;
   std::string cmu_index_text;
   std::string cmu_index_path;
@@ -55,6 +58,17 @@ struct DatabaseSettings {
   Status validate() const;
 };
 
-Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, const DatabaseSettings& settings);
+// What loading chose by itself, for the caller to report: the unit of each BVH file read
+// without one (length_unit.h), in clip order.
+struct DatabaseLoadNotes {
+  struct DetectedUnit {
+    std::string file;
+    LengthUnitChoice choice;
+  };
+  std::vector<DetectedUnit> detected_units;
+};
+
+Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, const DatabaseSettings& settings,
+                                     DatabaseLoadNotes* notes = nullptr);
 
 }  // namespace mg

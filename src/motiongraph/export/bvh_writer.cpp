@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "motiongraph/motion/trajectory_joint.h"
+
 namespace mg {
 
 Status BvhWriteSettings::validate() const {
@@ -39,7 +41,18 @@ struct JointLayout {
 
 }  // namespace
 
-std::string write_bvh(const Skeleton& skeleton, const Motion& motion, const BvhWriteSettings& settings) {
+std::string write_bvh(const Skeleton& folded_skeleton, const Motion& folded_motion, const BvhWriteSettings& settings) {
+  // The file's static joints above joint 0 (a static root above the hips) are written back.
+  Clip unfolded;
+  const bool unfold = !folded_skeleton.static_ancestors().empty();
+  if (unfold) {
+    Clip folded;
+    folded.skeleton = folded_skeleton;
+    folded.motion = folded_motion;
+    unfolded = unfold_static_root(folded);
+  }
+  const Skeleton& skeleton = unfold ? unfolded.skeleton : folded_skeleton;
+  const Motion& motion = unfold ? unfolded.motion : folded_motion;
   const int joints = skeleton.joint_count();
   const double scale = settings.units_per_metre;
   const int decimals = settings.decimals;

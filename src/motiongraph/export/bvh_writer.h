@@ -6,6 +6,10 @@
 // elsewhere). A non-root joint whose translation is animated but constant is written as an
 // OFFSET; one that really moves keeps its position channels (Blender's reading). End joints
 // become End Sites; a leaf joint that is not an end joint gets a zero End Site.
+//
+// A skeleton whose joint 0 was a trajectory joint below static joints (motion/trajectory_joint.h)
+// is written with those joints back above it, as the file had them: the root with constant
+// position and rotation channels, joint 0 below with position and rotation channels.
 #pragma once
 
 #include <string>

@@ -71,6 +71,42 @@ void put_skeleton(BinaryWriter& out, const Skeleton& skeleton) {
     out.put<std::uint8_t>(joint.animated_translation);
     for (Axis axis : joint.euler_order) out.put<std::uint8_t>(static_cast<std::uint8_t>(axis));
   }
+  out.put<std::int32_t>(static_cast<std::int32_t>(skeleton.static_ancestors().size()));
+  for (const StaticAncestor& a : skeleton.static_ancestors()) {
+    out.put_string(a.name);
+    for (int i = 0; i < 3; ++i) out.put(a.translation_m[i]);
+    for (double c : {a.rotation.w(), a.rotation.x(), a.rotation.y(), a.rotation.z()}) out.put(c);
+    out.put<std::uint8_t>(a.position_channels);
+    for (Axis axis : a.euler_order) out.put<std::uint8_t>(static_cast<std::uint8_t>(axis));
+  }
+}
+
+bool get_euler_order(BinaryReader& in, ComposeOrder& order) {
+  for (Axis& axis : order) {
+    std::uint8_t value = 0;
+    if (!in.get(value) || value > 2) return false;
+    axis = static_cast<Axis>(value);
+  }
+  return true;
+}
+
+bool get_static_ancestors(BinaryReader& in, std::vector<StaticAncestor>& ancestors) {
+  std::int32_t count = 0;
+  if (!in.get(count) || count < 0 || count > 1000) return false;
+  ancestors.resize(static_cast<size_t>(count));
+  for (StaticAncestor& a : ancestors) {
+    double w = 0, x = 0, y = 0, z = 0;
+    std::uint8_t positions = 0;
+    if (!in.get_string(a.name)) return false;
+    for (int i = 0; i < 3; ++i) {
+      if (!in.get(a.translation_m[i])) return false;
+    }
+    if (!in.get(w) || !in.get(x) || !in.get(y) || !in.get(z) || !in.get(positions)) return false;
+    a.rotation = Quat(w, x, y, z);
+    a.position_channels = positions != 0;
+    if (!get_euler_order(in, a.euler_order)) return false;
+  }
+  return true;
 }
 
 bool get_skeleton(BinaryReader& in, Skeleton& skeleton) {
@@ -79,21 +115,19 @@ bool get_skeleton(BinaryReader& in, Skeleton& skeleton) {
   std::vector<JointDef> joints(count);
   for (int j = 0; j < count; ++j) {
     JointDef& joint = joints[j];
-    std::uint8_t end = 0, translated = 0, axes[3] = {0, 0, 0};
+    std::uint8_t end = 0, translated = 0;
     if (!in.get_string(joint.name) || !in.get(joint.parent)) return false;
     for (int i = 0; i < 3; ++i) {
       if (!in.get(joint.rest_offset_m[i])) return false;
     }
-    if (!in.get(end) || !in.get(translated) || !in.get(axes[0]) || !in.get(axes[1]) || !in.get(axes[2])) return false;
+    if (!in.get(end) || !in.get(translated) || !get_euler_order(in, joint.euler_order)) return false;
     if ((j == 0) != (joint.parent < 0) || joint.parent >= j) return false;
-    for (int i = 0; i < 3; ++i) {
-      if (axes[i] > 2) return false;
-      joint.euler_order[i] = static_cast<Axis>(axes[i]);
-    }
     joint.end_site = end != 0;
     joint.animated_translation = translated != 0;
   }
-  skeleton = Skeleton(std::move(joints));
+  std::vector<StaticAncestor> ancestors;
+  if (!get_static_ancestors(in, ancestors)) return false;
+  skeleton = Skeleton(std::move(joints), std::move(ancestors));
   return true;
 }
 

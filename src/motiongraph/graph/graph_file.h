@@ -25,7 +25,8 @@
 
 namespace mg {
 
-constexpr std::uint32_t kGraphFileVersion = 1;
+// 2: skeletons keep the static joints above a trajectory joint (motion/trajectory_joint.h).
+constexpr std::uint32_t kGraphFileVersion = 2;
 
 struct GraphFile {
   std::string settings_json;

@@ -25,6 +25,7 @@ Status ThresholdChoiceSettings::validate() const {
     return Error{"", 0, "the lowest threshold tried must be > 0 cm and below the maximum"};
   }
   if (!(reachable_share > 0.0 && reachable_share <= 1.0)) return Error{"", 0, "the reachable share must be in (0, 1]"};
+  if (!(min_transition_rate >= 0.0)) return Error{"", 0, "the transition rate wanted must be >= 0"};
   if (grid < 2) return Error{"", 0, "the threshold grid needs at least 2 steps"};
   if (refine < 0) return Error{"", 0, "the refinement steps must be >= 0"};
   return Ok{};
@@ -116,8 +117,13 @@ Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFe
       }
     }
   }
+  const double fps = db.fps > 0.0 ? db.fps : 30.0;
+  auto rate = [&](const CoveragePoint& p) {
+    return p.kept_frames > 0 ? p.transitions / (static_cast<double>(p.kept_frames) / fps) : 0.0;
+  };
+  out.target_rate = top->graph ? std::min(choice.min_transition_rate, rate(*top)) : choice.min_transition_rate;
   auto reaches = [&](const CoveragePoint& p) {
-    if (!p.graph) return false;
+    if (!p.graph || rate(p) < out.target_rate) return false;
     if (out.tags.empty()) return p.coverage >= out.targets[0];
     for (size_t i = 0; i < out.tags.size(); ++i) {
       if (p.tag_coverage[i] < out.targets[i]) return false;

@@ -14,7 +14,9 @@
 // their frames at any threshold: pruning drops the pieces that lead out of a clip's end. So a
 // motion type's target is the smaller of `coverage` and `reachable_share` of what the ceiling
 // gives it: a type that can have 40 % at most wants 36 %, not an unreachable 70 % that would
-// drive the threshold to the ceiling for a few frames more.
+// drive the threshold to the ceiling for a few frames more. And the pruned graph must offer
+// `min_transition_rate` transitions per second of the motion it keeps (or what the ceiling
+// offers, when less): otherwise it cannot be steered.
 //
 // The search: the ceiling first (what each type can reach), then `grid` thresholds log-spaced
 // in RMS from `lowest_rms_cm` up to the ceiling, each run through selection, spacing, bridges,
@@ -45,6 +47,10 @@ struct ThresholdChoiceSettings {
   double coverage = 0.7;        // share of each motion type's frames the pruned graph keeps
   double max_rms_cm = 10.0;     // quality ceiling (RMS point distance over the window)
   double reachable_share = 0.9; // a type's target is at most this share of its coverage at the ceiling
+  // Coverage alone is met by a few long loops that cannot turn or stop (CMU subject 03 at
+  // 3.3 cm: 79 % of its frames, 0.14 transitions per second, a path followed 1.7 m off). The
+  // graph must also offer this many transitions per second of the motion it keeps.
+  double min_transition_rate = 5.0;
   double lowest_rms_cm = 0.5;   // where the grid starts
   int grid = 16;                // log-spaced thresholds of the first pass (>= 2)
   int refine = 6;               // bisection steps after it
@@ -69,6 +75,7 @@ struct ThresholdChoice {
   bool reached = false;              // the target coverage was reached under the ceiling
   std::vector<int> tags;             // motion types measured (bit indices); empty: all frames
   std::vector<double> targets;       // the coverage each wanted (one per tag; one value without)
+  double target_rate = 0.0;          // transitions per second of kept motion wanted
   std::vector<CoveragePoint> curve;  // every threshold tried, by threshold
   const CoveragePoint& chosen() const;
 };

@@ -5,12 +5,14 @@
 
 #include <fmt/format.h>
 
+#include "motiongraph/motion/length_unit.h"
 #include "motiongraph/motion/rest_frame.h"
+#include "motiongraph/motion/trajectory_joint.h"
 
 namespace mg {
 
 Status BvhImportSettings::validate() const {
-  if (!(metres_per_unit > 0.0) || !std::isfinite(metres_per_unit)) {
+  if (metres_per_unit && (!(*metres_per_unit > 0.0) || !std::isfinite(*metres_per_unit))) {
     return Error{"", 0, "the BVH scale must be a positive number"};
   }
   if (!(fps_override >= 0.0) || !std::isfinite(fps_override)) {
@@ -41,14 +43,13 @@ Result<Clip> clip_from_bvh(const BvhDocument& bvh, const BvhImportSettings& sett
       }
     }
   }
-  const double scale = settings.metres_per_unit;
   std::vector<JointDef> joints;
   for (int j : order) {
     const BvhJoint& in = bvh.joints[j];
     JointDef out;
     out.name = in.name;
     out.parent = in.parent < 0 ? -1 : new_index[in.parent];
-    out.rest_offset_m = in.offset * scale;
+    out.rest_offset_m = in.offset;  // file units until the unit is known
     out.end_site = in.end_site;
     std::vector<Axis> rotation_axes;
     for (BvhChannel c : in.channels) {
@@ -87,15 +88,32 @@ Result<Clip> clip_from_bvh(const BvhDocument& bvh, const BvhImportSettings& sett
       }
       rotations[target] = rotation.normalized();
       const int slot = clip.skeleton.translation_slot(target);
-      if (slot >= 0) translations[slot] = translation * scale;
+      if (slot >= 0) translations[slot] = translation;
     }
   }
+  // Static root, unit, metres: in file units, tolerances relative to the figure's size.
+  double size = figure_size(clip.skeleton, clip.motion);
+  if (settings.fold_static_root) {
+    if (auto joint = find_trajectory_joint(clip.skeleton, clip.motion, kStaticRootFraction * size)) {
+      clip = fold_static_root(clip, *joint);
+      size = figure_size(clip.skeleton, clip.motion);
+    }
+  }
+  // After the fold: a static root's rotation is zero in every frame, which hides the test.
   if (settings.drop_rest_frames) {
     if (const int added = leading_added_frames(motion); added > 0) {
       motion = motion.slice(added, motion.frame_count - added);
       clip.dropped_leading_frames = added;
     }
   }
+  double metres_per_unit = 1.0;
+  if (settings.metres_per_unit) {
+    metres_per_unit = *settings.metres_per_unit;
+  } else {
+    clip.detected_unit = choose_length_unit(size);
+    metres_per_unit = clip.detected_unit->unit.metres_per_unit;
+  }
+  scale_lengths(clip, metres_per_unit);
   return clip;
 }
 

@@ -5,8 +5,15 @@
 //
 // Joints: the file's joints in file order, then its End Sites ("<parent>_end").
 // Lengths are multiplied by `metres_per_unit` (BVH carries no unit; CMU conversions use the
-// ASF unit, 0.056444 m, others centimetres, 0.01).
+// ASF unit, 0.056444 m, others centimetres, 0.01). Without it, the unit is chosen from the
+// figure's size (length_unit.h) and reported in Clip::detected_unit.
+//
+// A static root above a travelling joint (the hips) is folded away so that the hips are joint
+// 0 and carry the floor position and heading (trajectory_joint.h); the skeleton keeps the
+// folded joints as its static_ancestors. Tolerance: kStaticRootFraction of the figure's size.
 #pragma once
+
+#include <optional>
 
 #include "motiongraph/core/error.h"
 #include "motiongraph/io/bvh_parser.h"
@@ -15,10 +22,11 @@
 namespace mg {
 
 struct BvhImportSettings {
-  double metres_per_unit = 1.0;
+  std::optional<double> metres_per_unit;  // nullopt: chosen from the figure's size
   double fps_override = 0.0;     // > 0: use instead of 1 / Frame Time (files with a wrong one)
   bool drop_rest_frames = true;  // drop leading rest or T-pose frames a converter added
                                  // (see rest_frame.h)
+  bool fold_static_root = true;  // the hips as joint 0 below a static root (see above)
 
   Status validate() const;
 };

@@ -27,7 +27,7 @@ std::string extension_of(const std::string& path) {
 }  // namespace
 
 Status ClipLoadSettings::validate() const {
-  if (!(bvh_metres_per_unit > 0.0) || !std::isfinite(bvh_metres_per_unit)) {
+  if (bvh_metres_per_unit && (!(*bvh_metres_per_unit > 0.0) || !std::isfinite(*bvh_metres_per_unit))) {
     return Error{"", 0, "--scale must be a positive number"};
   }
   if (!(input_fps >= 0.0) || !std::isfinite(input_fps)) return Error{"", 0, "--input-fps must be positive"};

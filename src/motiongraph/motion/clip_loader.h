@@ -17,7 +17,8 @@ namespace mg {
 struct ClipLoadSettings {
   std::optional<std::string> asf_path;  // skeleton for AMC files; otherwise the only .asf
                                         // in the AMC's folder
-  double bvh_metres_per_unit = 1.0;     // BVH carries no unit
+  std::optional<double> bvh_metres_per_unit;  // BVH carries no unit; nullopt: chosen from the
+                                              // figure's size (length_unit.h)
   double input_fps = 0.0;               // > 0: the capture rate, overriding the file's
                                         // (AMC files store none: 120 by default, CMU's rate)
   bool keep_rest_frames = false;        // keep leading rest/T-pose frames of a BVH

@@ -3,9 +3,11 @@
 // joint with animated translation (frames x skeleton.translated_joints()). Sampled at fps.
 #pragma once
 
+#include <optional>
 #include <span>
 #include <vector>
 
+#include "motiongraph/motion/length_unit_choice.h"
 #include "motiongraph/skeleton/skeleton.h"
 
 namespace mg {
@@ -47,6 +49,7 @@ struct Clip {
   Skeleton skeleton;
   Motion motion;
   int dropped_leading_frames = 0;  // frames removed at load (an added rest or T-pose)
+  std::optional<LengthUnitChoice> detected_unit;  // the unit chosen for a BVH read without one
 };
 
 }  // namespace mg

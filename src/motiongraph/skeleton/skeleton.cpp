@@ -6,7 +6,8 @@
 
 namespace mg {
 
-Skeleton::Skeleton(std::vector<JointDef> joints) : joints_(std::move(joints)) {
+Skeleton::Skeleton(std::vector<JointDef> joints, std::vector<StaticAncestor> static_ancestors)
+    : joints_(std::move(joints)), static_ancestors_(std::move(static_ancestors)) {
   slot_.assign(joints_.size(), -1);
   for (int j = 0; j < joint_count(); ++j) {
     assert((j == 0) == (joints_[j].parent < 0));
@@ -23,6 +24,22 @@ std::optional<int> Skeleton::find(std::string_view name) const {
     if (joints_[j].name == name) return j;
   }
   return std::nullopt;
+}
+
+Vec3 Skeleton::static_ancestor_translation_m() const {
+  Vec3 position = Vec3::Zero();
+  Quat rotation = Quat::Identity();
+  for (const StaticAncestor& a : static_ancestors_) {
+    position += rotation * a.translation_m;
+    rotation = rotation * a.rotation;
+  }
+  return position;
+}
+
+Quat Skeleton::static_ancestor_rotation() const {
+  Quat rotation = Quat::Identity();
+  for (const StaticAncestor& a : static_ancestors_) rotation = rotation * a.rotation;
+  return rotation;
 }
 
 double Skeleton::leg_length_m() const {

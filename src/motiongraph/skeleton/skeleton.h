@@ -30,12 +30,23 @@ struct JointDef {
   ComposeOrder euler_order{Axis::kZ, Axis::kY, Axis::kX};  // preferred order for writing
 };
 
+// A joint of the file's hierarchy above joint 0 that was folded away because it does not
+// move (motion/trajectory_joint.h): a static root with the travelling hips below it. Kept
+// only to write the file's hierarchy back; forward kinematics never sees it.
+struct StaticAncestor {
+  std::string name;
+  Vec3 translation_m = Vec3::Zero();      // constant local translation, parent frame
+  Quat rotation = Quat::Identity();       // constant local rotation
+  bool position_channels = false;         // the file gave it position channels
+  ComposeOrder euler_order{Axis::kZ, Axis::kY, Axis::kX};
+};
+
 class Skeleton {
  public:
   Skeleton() = default;
   // Checks the invariants (one root at index 0, parents before children, unique non-empty
   // names, finite offsets); nullopt-free by construction through SkeletonBuilder.
-  explicit Skeleton(std::vector<JointDef> joints);
+  explicit Skeleton(std::vector<JointDef> joints, std::vector<StaticAncestor> static_ancestors = {});
 
   int joint_count() const { return static_cast<int>(joints_.size()); }
   const JointDef& joint(int index) const { return joints_[index]; }
@@ -48,6 +59,14 @@ class Skeleton {
   std::span<const int> translated_joints() const { return translated_; }
   int translation_slot(int joint) const { return slot_[joint]; }
 
+  // The static joints the file had above joint 0, root first (empty unless joint 0 is a
+  // trajectory joint, motion/trajectory_joint.h). Joint 0's local transform in the file is
+  // static_ancestor_transform()^-1 times its transform here.
+  std::span<const StaticAncestor> static_ancestors() const { return static_ancestors_; }
+  // The ancestors' composed transform (identity when there are none).
+  Vec3 static_ancestor_translation_m() const;
+  Quat static_ancestor_rotation() const;
+
   // Sum of the bone lengths from the root down to the lowest joint, a size measure (metres).
   double leg_length_m() const;
 
@@ -55,6 +74,7 @@ class Skeleton {
   std::vector<JointDef> joints_;
   std::vector<int> translated_;
   std::vector<int> slot_;
+  std::vector<StaticAncestor> static_ancestors_;
 };
 
 }  // namespace mg

@@ -1,0 +1,59 @@
+#include "cli/unit_report.h"
+
+#include <algorithm>
+#include <map>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "motiongraph/motion/length_unit.h"
+
+namespace mg::cli {
+
+namespace {
+
+void warn_implausible(const std::string& file, const LengthUnitChoice& choice) {
+  spdlog::warn("{}: no length unit makes the figure human-sized ({:g}-{:g} m): it is {:.4g} units tall; read as "
+               "{} (give --scale, metres per unit)",
+               file, kPlausibleHeightMinM, kPlausibleHeightMaxM, choice.figure_size_units, choice.unit.name);
+}
+
+}  // namespace
+
+std::string unit_description(const LengthUnitChoice& choice) {
+  return fmt::format("{} ({:.6g} m), figure {:.2f} m", choice.unit.name, choice.unit.metres_per_unit,
+                     choice.figure_size_m);
+}
+
+void report_unit(const std::string& file, const LengthUnitChoice& choice) {
+  if (!choice.plausible) {
+    warn_implausible(file, choice);
+    return;
+  }
+  spdlog::info("{}: BVH lengths read in {} (--scale overrides)", file, unit_description(choice));
+}
+
+void report_units(const DatabaseLoadNotes& notes, bool quiet) {
+  struct Group {
+    int files = 0;
+    double lowest_m = 1e300, highest_m = 0.0;
+  };
+  std::map<std::string_view, Group> groups;
+  for (const auto& [file, choice] : notes.detected_units) {
+    if (!choice.plausible) {
+      warn_implausible(file, choice);
+      continue;
+    }
+    Group& g = groups[choice.unit.name];
+    ++g.files;
+    g.lowest_m = std::min(g.lowest_m, choice.figure_size_m);
+    g.highest_m = std::max(g.highest_m, choice.figure_size_m);
+  }
+  for (const auto& [name, g] : groups) {
+    if (quiet) break;
+    spdlog::info("BVH lengths read in {}: {} file{}, figures {:.2f}-{:.2f} m (--scale overrides)", name, g.files,
+                 g.files == 1 ? "" : "s", g.lowest_m, g.highest_m);
+  }
+}
+
+}  // namespace mg::cli

@@ -1,0 +1,79 @@
+#include "motiongraph/motion/length_unit.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "motiongraph/motion/forward_kinematics.h"
+
+namespace mg {
+
+namespace {
+
+constexpr double kMetresPerInch = 0.0254;
+constexpr std::array<LengthUnit, 5> kCandidates{{{"m", 1.0},
+                                                  {"cm", 0.01},
+                                                  {"mm", 0.001},
+                                                  {"inch", kMetresPerInch},
+                                                  {"CMU unit (1/0.45 inch)", kMetresPerInch / 0.45}}};
+
+}  // namespace
+
+std::span<const LengthUnit> length_unit_candidates() { return kCandidates; }
+
+double figure_size(const Skeleton& skeleton, const Motion& motion) {
+  if (motion.frame_count == 0 || skeleton.joint_count() == 0) return 0.0;
+  const size_t joints = static_cast<size_t>(skeleton.joint_count());
+  std::vector<Vec3> positions(joints);
+  std::vector<Quat> rotations(joints);
+  std::vector<double> sizes(static_cast<size_t>(motion.frame_count));
+  for (int f = 0; f < motion.frame_count; ++f) {
+    forward_kinematics(skeleton, motion, f, positions, rotations);
+    Vec3 low = positions.front();
+    Vec3 high = low;
+    for (const Vec3& p : positions) {
+      low = low.cwiseMin(p);
+      high = high.cwiseMax(p);
+    }
+    // Huge values in a file can overflow to inf - inf; NaN would break the ordering below.
+    const double size = (high - low).maxCoeff();
+    sizes[static_cast<size_t>(f)] = std::isfinite(size) ? size : std::numeric_limits<double>::infinity();
+  }
+  auto middle = sizes.begin() + static_cast<std::ptrdiff_t>(sizes.size() / 2);
+  std::nth_element(sizes.begin(), middle, sizes.end());
+  return *middle;
+}
+
+LengthUnitChoice choose_length_unit(double figure_size_units) {
+  LengthUnitChoice choice;
+  choice.unit = kCandidates.front();
+  choice.figure_size_units = figure_size_units;
+  double best = std::numeric_limits<double>::infinity();
+  if (figure_size_units > 0.0 && std::isfinite(figure_size_units)) {
+    for (const LengthUnit& unit : kCandidates) {
+      const double size_m = figure_size_units * unit.metres_per_unit;
+      if (size_m < kPlausibleHeightMinM || size_m > kPlausibleHeightMaxM) continue;
+      const double miss = std::abs(std::log(size_m / kTypicalHeightM));
+      if (miss < best) {
+        best = miss;
+        choice.unit = unit;
+        choice.plausible = true;
+      }
+    }
+  }
+  choice.figure_size_m = figure_size_units * choice.unit.metres_per_unit;
+  return choice;
+}
+
+void scale_lengths(Clip& clip, double factor) {
+  std::vector<JointDef> joints(clip.skeleton.joints().begin(), clip.skeleton.joints().end());
+  for (JointDef& joint : joints) joint.rest_offset_m *= factor;
+  std::vector<StaticAncestor> ancestors(clip.skeleton.static_ancestors().begin(),
+                                        clip.skeleton.static_ancestors().end());
+  for (StaticAncestor& ancestor : ancestors) ancestor.translation_m *= factor;
+  clip.skeleton = Skeleton(std::move(joints), std::move(ancestors));
+  for (Vec3& t : clip.motion.local_translations_m) t *= factor;
+}
+
+}  // namespace mg

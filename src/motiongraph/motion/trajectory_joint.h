@@ -1,0 +1,41 @@
+// The trajectory joint: the joint that carries a character's floor position and heading.
+// Usually the root. Some rigs put a static root above the moving hips (a root joint at the
+// origin with the whole capture below it, e.g. Bandai Namco Research's motion datasets); then
+// the root never travels, and centring, floor alignment and path following, which all follow
+// joint 0, would follow a point that does not move.
+//
+// fold_static_root makes the hips joint 0 in that case: the joints above it (the root, and any
+// single-child joints between) are removed from the skeleton and kept on it as its
+// static_ancestors; joint 0's local transform becomes its world transform (ancestors composed
+// in, frame by frame), so every world position is unchanged and the rest of the pipeline needs
+// no change. The BVH writer writes the ancestors back, so a file keeps its hierarchy.
+//
+// When: the joints from the root down to the trajectory joint form a chain (one child each),
+// the trajectory joint is the first joint below the root with animated translation, and over
+// the clip the chain's local translations stay within `tolerance` (and its rotations within
+// 0.5 degrees) while the trajectory joint's world position moves further than `tolerance`.
+// Lengths in the clip's units (file units at import: the tolerance is relative to the figure).
+#pragma once
+
+#include <optional>
+
+#include "motiongraph/motion/motion.h"
+
+namespace mg {
+
+// The joint that would become joint 0 (nullopt when the root itself is the trajectory joint).
+std::optional<int> find_trajectory_joint(const Skeleton& skeleton, const Motion& motion, double tolerance);
+
+// The clip with `trajectory_joint` (from find_trajectory_joint) as joint 0, as above.
+Clip fold_static_root(const Clip& clip, int trajectory_joint);
+
+// The inverse: the skeleton's static ancestors as joints again (the root first, each with its
+// constant transform; the root with animated translation), joint 0 below them with its local
+// transform in the file's hierarchy. Returns the clip unchanged when there are none.
+Clip unfold_static_root(const Clip& clip);
+
+// The fraction of the figure's size (length_unit.h) under which a root counts as static:
+// 0.002, about 3 mm on a 1.7 m figure.
+constexpr double kStaticRootFraction = 0.002;
+
+}  // namespace mg

@@ -1,0 +1,91 @@
+#!/usr/bin/env bash
+# A BVH library from another studio's rig, read with no flags: subject 16's clips written as a
+# static root above the hips, 6 channels on every joint, in centimetres (as Bandai Namco
+# Research's datasets are), under CMU's names in a folder with no CMU index beside it.
+# The unit is found (cm), the hips carry the floor position, the graph keeps frames and paths
+# are followed; written BVH keeps the file's hierarchy; a figure of no human size warns.
+# Usage: MOTIONGRAPH=binary MAKE_STATIC_ROOT_BVH=binary cli_static_root_test.sh DATA_DIR
+set -euo pipefail
+data=$1
+bin=${MOTIONGRAPH:?set MOTIONGRAPH to the motiongraph binary}
+make=${MAKE_STATIC_ROOT_BVH:?set MAKE_STATIC_ROOT_BVH to the make_static_root_bvh binary}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+mkdir "$work/lib" "$work/amc"
+clips=("$data"/cmu/16/16_{11,13,15,16,35,37}.amc)
+"$make" "$work/lib" "${clips[@]}"
+cp "$data/cmu/16/16.asf" "${clips[@]}" "$work/amc/"   # the same clips as CMU gives them
+head -3 "$work/lib/16_15.bvh" | grep -q "ROOT joint_Root" || { echo "FAIL: test rig"; exit 1; }
+
+"$bin" info "$work/lib/16_15.bvh" >"$work/info.txt"
+grep -q "lengths:  cm (0.01 m)" "$work/info.txt" || { echo "FAIL: unit"; cat "$work/info.txt"; exit 1; }
+grep -q "root:     root carries the floor position (above it, static: joint_Root)" "$work/info.txt" \
+  || { echo "FAIL: trajectory joint"; cat "$work/info.txt"; exit 1; }
+"$bin" info --json "$work/lib/16_15.bvh" "$data/cmu/16/16.asf" "$data/cmu/16/16_15.amc" >"$work/info.json"
+python3 - "$work/info.json" <<'PY'
+import json, sys
+bvh, asf, amc = json.load(open(sys.argv[1]))
+assert bvh["unit"]["name"] == "cm" and bvh["unit"]["plausible"], bvh["unit"]
+assert bvh["static_joints_above_root"] == ["joint_Root"] and bvh["root"] == "root"
+# The same capture as the AMC: same height and root travel, in metres.
+assert abs(bvh["root_path_m"] - amc["root_path_m"]) < 1e-3, (bvh["root_path_m"], amc["root_path_m"])
+assert amc["root_path_m"] > 2.0
+for i in range(2):
+    assert abs(bvh["height_m"][i] - amc["height_m"][i]) < 1e-3, (bvh["height_m"], amc["height_m"])
+PY
+
+# Build with no flags: tags from the index the project ships, and the graph of the same clips
+# read from CMU's AMC files (same frame distances, so the same transitions).
+"$bin" build "$work/lib" -o "$work/g.mgraph" --report "$work/r.json" --no-cache 2>"$work/build.txt"
+grep -q "BVH lengths read in cm: 6 files" "$work/build.txt" || { echo "FAIL: build unit line"; cat "$work/build.txt"; exit 1; }
+"$bin" build "$work/amc" -o "$work/amc.mgraph" --report "$work/amc.json" --no-cache -q
+python3 - "$work/r.json" "$work/amc.json" <<'PY'
+import json, sys
+r, amc = (json.load(open(f)) for f in sys.argv[1:3])
+assert {"walk", "run"} <= set(r["tags"]), r["tags"]
+kept = {t["name"]: t["frames"] for t in r["graph_after"]["tags"]}
+kept_amc = {t["name"]: t["frames"] for t in amc["graph_after"]["tags"]}
+assert kept.get("walk", 0) > 100 and kept.get("run", 0) > 0, kept
+for tag, frames in kept_amc.items():
+    assert abs(kept.get(tag, 0) - frames) <= 0.05 * frames, (kept, kept_amc)
+assert abs(r["graph_after"]["nodes"] - amc["graph_after"]["nodes"]) <= 0.05 * amc["graph_after"]["nodes"]
+PY
+
+# Paths are followed, and the result keeps the rig: the static root, the hips below it.
+"$bin" path "$work/g.mgraph" --shape s-curve:20 -o "$work/s.bvh" --report "$work/s.json" >/dev/null
+python3 - "$work/s.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["mean_deviation_m"] < 0.5, r["mean_deviation_m"]
+print(f"s-curve:20 on the static-root library: mean deviation {r['mean_deviation_m']:.3f} m, "
+      f"max {r['max_deviation_m']:.3f} m")
+PY
+head -6 "$work/s.bvh" | tr -s ' ' | grep -q "JOINT root" || { echo "FAIL: path output hierarchy"; head "$work/s.bvh"; exit 1; }
+head -1 "$work/s.bvh" | grep -q HIERARCHY && sed -n 2p "$work/s.bvh" | grep -q "ROOT joint_Root" \
+  || { echo "FAIL: path output root"; head "$work/s.bvh"; exit 1; }
+
+# convert keeps the hierarchy and reads back to the same figure.
+"$bin" convert "$work/lib/16_15.bvh" -o "$work/c.bvh" 2>"$work/convert.txt"
+grep -q "BVH lengths read in cm" "$work/convert.txt" || { echo "FAIL: convert unit line"; cat "$work/convert.txt"; exit 1; }
+"$bin" info --json "$work/c.bvh" "$work/lib/16_15.bvh" >"$work/back.json"
+python3 - "$work/back.json" "$work/c.bvh" "$work/lib/16_15.bvh" <<'PY'
+import json, re, sys
+back, original = json.load(open(sys.argv[1]))
+assert back["unit"]["name"] == "m", back["unit"]
+for key in ("root_path_m",):
+    assert abs(back[key] - original[key]) < 1e-4, key
+assert [(j["name"], j["parent"]) for j in back["skeleton"]] == [(j["name"], j["parent"]) for j in original["skeleton"]]
+def joints(path):
+    return re.findall(r"(?:ROOT|JOINT) (\S+)", open(path).read())
+assert joints(sys.argv[2]) == joints(sys.argv[3]), "hierarchy changed"
+PY
+
+# A figure no unit makes human-sized: a warning, read as metres.
+printf 'HIERARCHY\nROOT a\n{\n OFFSET 0 0 0\n CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n JOINT b\n {\n  OFFSET 0 0.05 0\n  CHANNELS 3 Zrotation Xrotation Yrotation\n  End Site\n  {\n   OFFSET 0 0.05 0\n  }\n }\n}\nMOTION\nFrames: 2\nFrame Time: 0.04\n0 0 0 0 0 0 0 0 0\n0 0 0 0 0 0 0 0 0\n' >"$work/tiny.bvh"
+"$bin" info "$work/tiny.bvh" >"$work/tiny.txt" 2>"$work/tiny.err"
+grep -q "tiny.bvh: no length unit makes the figure human-sized" "$work/tiny.err" || { echo "FAIL: warning"; cat "$work/tiny.err"; exit 1; }
+# --scale still decides when given: no line, no warning.
+"$bin" info "$work/tiny.bvh" --scale 20 >"$work/tiny.txt" 2>"$work/tiny.err"
+[ ! -s "$work/tiny.err" ] || { echo "FAIL: --scale"; cat "$work/tiny.err"; exit 1; }
+grep -q "height 0.00 .. 2.00 m" "$work/tiny.txt" || { echo "FAIL: --scale height"; cat "$work/tiny.txt"; exit 1; }
+echo "cli_static_root: ok"
