@@ -6,7 +6,6 @@
 #include "cli/commands.h"
 #include "motiongraph/core/json_text.h"
 #include "motiongraph/graph/graph_file.h"
-#include "motiongraph/graph/graph_from_candidates.h"
 #include "motiongraph/io/file.h"
 
 namespace mg::cli {
@@ -44,7 +43,7 @@ void print_statistics(const char* title, const nlohmann::json& s) {
     bool any_modifier = false;
     for (const auto& tag : s["tags"]) {
       const std::string name = tag.value("name", std::to_string(tag.value("tag", 0)));
-      const bool modifier = tag.value("modifier", is_modifier_tag(name));
+      const bool modifier = tag.value("modifier", false);  // every graph file this version reads has it
       any_modifier = any_modifier || modifier;
       fmt::print("  {:<10} {:>6} frames of {:>6}, {:>5} nodes, {:>5} edges, largest SCC {} nodes{}\n", name,
                  tag.value("frames", 0), tag.value("database_frames", 0), tag.value("nodes", 0),
