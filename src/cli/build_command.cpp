@@ -25,6 +25,7 @@
 #include "motiongraph/graph/graph_file.h"
 #include "motiongraph/graph/graph_from_candidates.h"
 #include "motiongraph/graph/threshold_choice.h"
+#include "motiongraph/synthesis/path_check.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/metric/frame_features.h"
 
@@ -54,6 +55,8 @@ struct BuildOptions {
   std::string threshold = "auto";  // auto, D, or an RMS distance with "cm"
   double quantile = -1.0;          // given: the threshold is this quantile of all pairs
   ThresholdChoiceSettings choice;
+  PathCheckSettings path_check;
+  bool no_path_check = false;
   TransitionSpacing spacing;
   int continuation_radius = -1;
   std::string cache_dir;
@@ -201,6 +204,28 @@ json threshold_choice_json(const ThresholdChoice& choice, const MotionDatabase& 
           {"curve", curve}};
 }
 
+json path_check_to_json(const PathCheck& check, const PathCheckSettings& settings) {
+  json points = json::array();
+  for (const PathCheckPoint& p : check.points) {
+    points.push_back({{"threshold", p.threshold},
+                      {"rms_cm", p.rms_cm},
+                      {"graph", p.graph},
+                      {"mean_deviation_m", p.mean_deviation_m},
+                      {"max_deviation_m", p.max_deviation_m},
+                      {"reached_end", p.reached_end},
+                      {"transitions", p.transitions},
+                      {"seconds", p.seconds}});
+  }
+  return {{"tolerance_m", settings.tolerance_m},
+          {"probe_length_m", path_check_probe().length_m()},
+          {"skipped", check.skipped},
+          {"travel_share", check.travel_share},
+          {"passed", check.passed},
+          {"threshold", check.threshold},
+          {"rms_cm", check.rms_cm},
+          {"points", points}};
+}
+
 // ": walk 64 % of 70 %, run 12 % of 36 %" for the motion types short of their targets.
 std::string short_tags_text(const ThresholdChoice& choice, const MotionDatabase& db) {
   const CoveragePoint& p = choice.chosen();
@@ -267,7 +292,7 @@ int run_build(BuildOptions o) {
   candidate_settings.continuation_radius = o.continuation_radius;
   candidate_settings.keep_matrix = !o.export_matrix.empty();
   for (const Status& s : {o.cloud_settings.validate(), o.distance.validate(), o.transitions.validate(),
-                          candidate_settings.validate(), o.bridges.validate(), o.choice.validate(),
+                          candidate_settings.validate(), o.bridges.validate(), o.choice.validate(), o.path_check.validate(),
                           o.spacing.validate()}) {
     if (!s) return fail(s.error());
   }
@@ -354,6 +379,7 @@ int run_build(BuildOptions o) {
   graph_settings.bridges = o.bridges;
   graph_settings.connected_tags = o.ignore_tags ? 0 : connected;
   json choice_json = nullptr;
+  json path_check_json = nullptr;
   const char* mode_name = "quantile";
   if (mode == ThresholdMode::kAuto) {
     mode_name = "auto";
@@ -373,6 +399,31 @@ int run_build(BuildOptions o) {
     if (!choice->reached) {
       spdlog::warn("no threshold up to --max-threshold {:g} cm reaches the coverage wanted{}", o.choice.max_rms_cm,
                    short_tags_text(*choice, *db));
+    }
+    if (!o.no_path_check) {
+      auto check = check_path_following(*db, *features, *candidates, graph_settings, choice->threshold,
+                                        graph_settings.transitions.max_threshold, o.path_check);
+      if (!check) return fail(check.error());
+      path_check_json = path_check_to_json(*check, o.path_check);
+      const PathCheckPoint& first = check->points.front();
+      const PathCheckPoint* picked = check->chosen();
+      if (check->skipped) {
+        log(fmt::format("path check: skipped, the library hardly travels ({:.0f} % of its frames at {:g} m/s or more)",
+                        100.0 * check->travel_share, o.path_check.travel_speed_mps));
+      } else if (check->passed && check->points.size() == 1) {
+        log(fmt::format("path check: a {:.0f} m test path is followed at {:.3f} m mean deviation", path_check_probe().length_m(),
+                        first.mean_deviation_m));
+      } else if (check->passed) {
+        log(fmt::format("path check: the test path is followed {:.3f} m off at RMS {:.2f} cm; raised to RMS {:.2f} cm, "
+                        "where it is followed at {:.3f} m",
+                        first.mean_deviation_m, first.rms_cm, check->rms_cm, picked->mean_deviation_m));
+      } else {
+        spdlog::warn("path check: no threshold up to --max-threshold {:g} cm follows the test path within {:g} m; the "
+                     "best, RMS {:.2f} cm, follows it {:.3f} m off{} (the clips may hold few turns)",
+                     o.choice.max_rms_cm, o.path_check.tolerance_m, check->rms_cm, picked->mean_deviation_m,
+                     picked->reached_end ? "" : " and does not reach its end");
+      }
+      graph_settings.transitions.threshold = check->threshold;
     }
   } else if (mode == ThresholdMode::kDistance) {
     mode_name = "distance";
@@ -438,6 +489,7 @@ int run_build(BuildOptions o) {
       {"threshold_rms_cm", threshold_rms_cm},
       {"threshold_quantile", selection.threshold_quantile},
       {"threshold_choice", choice_json},
+      {"path_check", path_check_json},
       {"locality_radius", selection.locality_radius},
       {"spacing",
        {{"out_window_frames", o.spacing.out_window_for(features->window)},
@@ -597,6 +649,11 @@ Command add_build_command(CLI::App& app) {
   sub->add_option("--max-threshold", o->choice.max_rms_cm,
                   "--threshold auto: the highest threshold it may choose, as RMS point distance in cm (quality ceiling)")
       ->capture_default_str();
+  sub->add_option("--path-check", o->path_check.tolerance_m,
+                  "--threshold auto: raise the threshold (up to --max-threshold) until a test path of half circles of "
+                  "4 m is followed within this mean deviation in metres")
+      ->capture_default_str();
+  sub->add_flag("--no-path-check", o->no_path_check, "--threshold auto: keep the coverage threshold, untested");
   sub->add_option("--max-out", o->spacing.max_out,
                   "Transitions leaving any --out-window consecutive frames of a clip, the best kept (0: no limit)")
       ->capture_default_str();

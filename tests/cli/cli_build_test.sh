@@ -36,6 +36,12 @@ assert all(kept.get(tag, 0) > 0 for tag in ("walk", "run", "jump")), kept
 # threshold is given in RMS cm consistent with D and the window's weight.
 c = r["threshold_choice"]
 assert r["threshold_mode"] == "auto" and c["reached"], c
+# The path check starts at the coverage choice; on subject 16 the test path is followed there.
+pc = r["path_check"]
+assert pc["points"][0]["threshold"] == c["threshold"] and not pc["skipped"] and pc["travel_share"] > 0.5, pc
+assert pc["passed"] and len(pc["points"]) == 1 and pc["threshold"] == c["threshold"], pc
+assert 0 < pc["points"][0]["mean_deviation_m"] <= pc["tolerance_m"] and pc["points"][0]["reached_end"], pc
+assert abs(pc["probe_length_m"] - (4 + 8 * 3.141592653589793)) < 0.01, pc["probe_length_m"]
 assert abs(r["threshold"] - c["threshold"]) <= 1e-9 * c["threshold"]
 assert abs(r["threshold_rms_cm"] - 100 * (r["threshold"] / r["window_weight"]) ** 0.5) < 1e-6
 assert r["threshold_rms_cm"] <= c["max_rms_cm"]
@@ -78,6 +84,26 @@ PY
     break
   fi
 done
+
+# A path check no threshold passes: every step up to the ceiling is tried, the one whose test
+# path went best is kept, and the user is told. Without the check, the coverage choice stays.
+"$bin" build "$data/cmu/16" -o "$work/pc.mgraph" --cache-dir "$cache" --path-check 0.0001 --report "$work/pc.json" \
+  2>"$work/pc.err" >/dev/null
+grep -q "path check: no threshold up to --max-threshold 10 cm follows the test path within 0.0001 m" "$work/pc.err" \
+  || { echo "FAIL: path check warning"; cat "$work/pc.err"; exit 1; }
+"$bin" build "$data/cmu/16" -o "$work/npc.mgraph" --cache-dir "$cache" --no-path-check --report "$work/npc.json" -q
+python3 - "$work" <<'PY'
+import json, sys
+work = sys.argv[1]
+r = json.load(open(f"{work}/pc.json")); pc = r["path_check"]; c = r["threshold_choice"]
+ts = [p["threshold"] for p in pc["points"]]
+assert not pc["passed"] and len(ts) == 7 and ts == sorted(ts) and ts[0] == c["threshold"], ts
+assert abs(pc["points"][-1]["rms_cm"] - c["max_rms_cm"]) < 1e-6, pc["points"][-1]
+best = min((p for p in pc["points"] if p["reached_end"]), key=lambda p: p["mean_deviation_m"])
+assert r["threshold"] == pc["threshold"] == best["threshold"], (r["threshold"], best)
+n = json.load(open(f"{work}/npc.json"))
+assert n["path_check"] is None and n["threshold"] == n["threshold_choice"]["threshold"] == c["threshold"]
+PY
 
 # Another threshold: the distance stage comes from the cache.
 "$bin" build "$data/cmu/16" -o "$work/g2.mgraph" --cache-dir "$cache" --threshold-quantile 0.05 --report "$work/r2.json" -q

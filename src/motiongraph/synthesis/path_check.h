@@ -1,0 +1,71 @@
+// Can the graph follow a path? Coverage (graph/threshold_choice.h) says how much of each motion
+// type a graph keeps, not whether it can turn: CMU subject 03 (walks on uneven ground) keeps
+// 94 % of its frames at 5.9 cm, yet follows a gentle S-curve 0.44 m off there and 0.04 m off
+// at 6.5 cm, where a few more transitions join its turning steps to its straight ones. So the
+// automatic threshold is checked by doing what a user will do: synthesize a test path (the
+// probe: 2 m straight, a half circle of 4 m radius to the right, one to the left, 2 m straight,
+// about 29 m, with `path`'s default search) on the graph of the threshold, and raise the
+// threshold in log-spaced steps towards the ceiling until the probe is followed within
+// `tolerance_m` mean deviation. When no step is, the threshold whose probe went best (reached
+// the end, then least deviation) is kept and `passed` is false.
+//
+// A library that hardly travels (dance on the spot, sitting, gestures) has no path to follow:
+// when less than `min_travel_share` of the graph's clip frames are played in pieces moving at
+// `travel_speed_mps` or faster, the check is skipped and the threshold stays.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "motiongraph/graph/graph_from_candidates.h"
+#include "motiongraph/synthesis/floor_path.h"
+#include "motiongraph/synthesis/path_synthesis.h"
+
+namespace mg {
+
+struct PathCheckSettings {
+  double tolerance_m = 0.1;         // mean deviation the probe must be followed within
+  int steps = 6;                    // thresholds tried above the first, log-spaced in RMS to the ceiling
+  double min_travel_share = 0.1;    // of clip frames; below it the check is skipped
+  double travel_speed_mps = 0.5;    // a clip piece travels when its root moves this fast on average
+  PathSynthesisSettings synthesis;  // the search `path` uses by default
+
+  Status validate() const;
+};
+
+struct PathCheckPoint {
+  double threshold = 0.0;  // D
+  double rms_cm = 0.0;
+  bool graph = false;      // false: pruning left nothing at this threshold
+  double mean_deviation_m = 0.0;
+  double max_deviation_m = 0.0;
+  bool reached_end = false;
+  int transitions = 0;     // of the probe's walk
+  double seconds = 0.0;    // the probe's search time
+};
+
+struct PathCheck {
+  bool skipped = false;              // the library hardly travels (see travel_share)
+  double travel_share = 0.0;         // of the first graph's clip frames, in travelling pieces
+  double threshold = 0.0;            // D chosen (the first one when skipped)
+  double rms_cm = 0.0;
+  bool passed = false;               // the chosen threshold's probe is within the tolerance
+  std::vector<PathCheckPoint> points;  // every threshold tried, in order (increasing)
+  const PathCheckPoint* chosen() const;
+};
+
+// The probe path (see above), starting at the origin heading north.
+FloorPath path_check_probe();
+
+// The share of the graph's clip frames played by clip edges whose root travels at
+// `speed_mps` or faster on average.
+double travelling_share(const SynthesisContext& context, double speed_mps);
+
+// The check, from `from_threshold` (D, the coverage choice) up to `ceiling` (D) under
+// `settings` (its own threshold ignored). Fails when a stage fails for another reason than
+// pruning leaving nothing, or when the settings are invalid.
+Result<PathCheck> check_path_following(const MotionDatabase& db, const FrameFeatures& features,
+                                       const CandidateSearch& candidates, const GraphFromCandidatesSettings& settings,
+                                       double from_threshold, double ceiling, const PathCheckSettings& check);
+
+}  // namespace mg

@@ -1,0 +1,172 @@
+// The path check: the probe is the shape it says; the threshold chosen is the first tried whose
+// probe is followed within the tolerance (else the best tried), tried upward to the ceiling;
+// the deviations it reports are what path synthesis gives on the graph of that threshold; a
+// library whose root stays put is not checked.
+#include "motiongraph/synthesis/path_check.h"
+
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "motiongraph/graph/threshold_choice.h"
+#include "test_data.h"
+
+namespace mg {
+namespace {
+
+TEST(PathCheck, ProbeIsStraightThenRightAndLeftHalfCircles) {
+  const FloorPath probe = path_check_probe();
+  constexpr double kPi = std::numbers::pi;
+  EXPECT_NEAR(probe.length_m(), 4.0 + 8.0 * kPi, 0.01);
+  EXPECT_NEAR((probe.point_at(0.0) - Vec2(0.0, 0.0)).norm(), 0.0, 1e-9);
+  EXPECT_NEAR((probe.direction_at(1.0) - Vec2(0.0, -1.0)).norm(), 0.0, 1e-6);  // north
+  // After the right half circle (radius 4): 8 m east, heading south.
+  const double right_end = 2.0 + 4.0 * kPi;
+  EXPECT_NEAR((probe.point_at(right_end) - Vec2(8.0, -2.0)).norm(), 0.0, 0.02);
+  EXPECT_NEAR((probe.direction_at(right_end - 0.05) - Vec2(0.0, 1.0)).norm(), 0.0, 0.03);
+  // Its middle is east-north-east of the start: 4 m east, 6 m north.
+  EXPECT_NEAR((probe.point_at(2.0 + 2.0 * kPi) - Vec2(4.0, -6.0)).norm(), 0.0, 0.02);
+  // The left half circle brings it 8 m further east heading north again; then 2 m north.
+  EXPECT_NEAR((probe.point_at(probe.length_m()) - Vec2(16.0, -4.0)).norm(), 0.0, 0.03);
+  EXPECT_NEAR((probe.point_at(right_end + 2.0 * kPi) - Vec2(12.0, 2.0)).norm(), 0.0, 0.02);
+}
+
+TEST(PathCheck, SettingsAreValidated) {
+  EXPECT_TRUE(PathCheckSettings{}.validate());
+  for (auto broken : {+[](PathCheckSettings& x) { x.tolerance_m = 0.0; },
+                      +[](PathCheckSettings& x) { x.steps = -1; },
+                      +[](PathCheckSettings& x) { x.min_travel_share = 1.5; },
+                      +[](PathCheckSettings& x) { x.travel_speed_mps = 0.0; },
+                      +[](PathCheckSettings& x) { x.synthesis.commit_s = 10.0; }}) {
+    PathCheckSettings x;
+    broken(x);
+    EXPECT_FALSE(x.validate());
+  }
+}
+
+struct Fixture {
+  MotionDatabase db;
+  FrameFeatures features;
+  CandidateSearch search;
+  GraphFromCandidatesSettings settings;
+  double from = 0.0, ceiling = 0.0;
+};
+
+Fixture make_fixture(bool stay_put) {
+  Fixture f;
+  f.db = test::small_database({"cmu/16/16_15.amc", "cmu/16/16_16.amc", "cmu/16/16_35.amc", "cmu/16/16_37.amc"});
+  if (stay_put) {
+    // The same clips with the root held over its first floor position: walking on the spot.
+    for (DatabaseClip& clip : f.db.clips) {
+      const Vec3 first = clip.motion.translations(0)[0];
+      for (int i = 0; i < clip.motion.frame_count; ++i) {
+        Vec3& root = clip.motion.translations(i)[0];
+        root.x() = first.x();
+        root.z() = first.z();
+      }
+    }
+  }
+  DistanceSettings distance;
+  distance.threads = 2;
+  auto layout = make_cloud_layout(f.db.skeletons[0], {});
+  f.features = *make_frame_features(f.db, *layout, distance);
+  f.search = *find_candidates(f.features, distance, {});
+  f.from = distance_of_rms_cm(3.0, f.features);
+  f.ceiling = distance_of_rms_cm(8.0, f.features);
+  f.settings.transitions.max_threshold = f.ceiling;
+  return f;
+}
+
+const Fixture& walking() {
+  static const Fixture x = make_fixture(false);
+  return x;
+}
+
+bool passes(const PathCheckPoint& p, double tolerance) {
+  return p.graph && p.reached_end && p.mean_deviation_m <= tolerance;
+}
+
+TEST(PathCheck, UnreachableToleranceTriesEveryStepToTheCeilingAndKeepsTheBest) {
+  const Fixture& x = walking();
+  PathCheckSettings s;
+  s.steps = 3;
+  s.tolerance_m = 1e-6;
+  auto check = check_path_following(x.db, x.features, x.search, x.settings, x.from, x.ceiling, s);
+  ASSERT_TRUE(check) << check.error().to_string();
+  EXPECT_FALSE(check->skipped);
+  EXPECT_GT(check->travel_share, 0.5);  // walks and runs
+  EXPECT_FALSE(check->passed);
+  ASSERT_EQ(check->points.size(), 4u);
+  EXPECT_EQ(check->points.front().threshold, x.from);
+  EXPECT_EQ(check->points.back().threshold, x.ceiling);
+  for (size_t i = 1; i < check->points.size(); ++i) {
+    EXPECT_GT(check->points[i].threshold, check->points[i - 1].threshold);
+  }
+  const PathCheckPoint* chosen = check->chosen();
+  ASSERT_NE(chosen, nullptr);
+  for (const PathCheckPoint& p : check->points) {
+    // None beats the chosen one: reaching the end first, then deviation; ties go to the lowest.
+    if (p.threshold < chosen->threshold) {
+      EXPECT_TRUE(!p.graph || (chosen->reached_end && !p.reached_end) ||
+                  (p.reached_end == chosen->reached_end && p.mean_deviation_m >= chosen->mean_deviation_m));
+    } else if (p.graph && p.reached_end == chosen->reached_end) {
+      EXPECT_GE(p.mean_deviation_m, chosen->mean_deviation_m);
+    }
+  }
+}
+
+TEST(PathCheck, ChoosesTheFirstThresholdWithinTheToleranceAndMeasuresAsPathSynthesisDoes) {
+  const Fixture& x = walking();
+  PathCheckSettings s;
+  s.steps = 3;
+  s.tolerance_m = 1e-6;
+  auto all = check_path_following(x.db, x.features, x.search, x.settings, x.from, x.ceiling, s);
+  ASSERT_TRUE(all);
+  // A tolerance that the last point meets: the answer is the first point meeting it.
+  const PathCheckPoint& last = all->points.back();
+  ASSERT_TRUE(last.graph && last.reached_end);
+  s.tolerance_m = last.mean_deviation_m;
+  auto check = check_path_following(x.db, x.features, x.search, x.settings, x.from, x.ceiling, s);
+  ASSERT_TRUE(check);
+  EXPECT_TRUE(check->passed);
+  size_t first = 0;
+  while (!passes(all->points[first], s.tolerance_m)) ++first;
+  EXPECT_EQ(check->threshold, all->points[first].threshold);
+  EXPECT_EQ(check->points.size(), first + 1);  // it stops there
+  // The deviation reported is path synthesis's on that threshold's graph, built again here.
+  GraphFromCandidatesSettings at = x.settings;
+  at.transitions.threshold = check->threshold;
+  auto graph = graph_from_candidates(x.db, x.features, x.search, at);
+  ASSERT_TRUE(graph);
+  auto context = make_synthesis_context(x.db, graph->pruned.graph);
+  ASSERT_TRUE(context);
+  auto path = synthesize_path(*context, path_check_probe(), s.synthesis);
+  ASSERT_TRUE(path);
+  EXPECT_DOUBLE_EQ(path->mean_deviation_m, check->chosen()->mean_deviation_m);
+  EXPECT_EQ(path->reached_end, check->chosen()->reached_end);
+  EXPECT_EQ(path->walk.transition_count(graph->pruned.graph), check->chosen()->transitions);
+}
+
+TEST(PathCheck, ALibraryWhoseRootStaysPutIsNotChecked) {
+  const Fixture x = make_fixture(true);
+  PathCheckSettings s;
+  auto check = check_path_following(x.db, x.features, x.search, x.settings, x.from, x.ceiling, s);
+  ASSERT_TRUE(check) << check.error().to_string();
+  EXPECT_TRUE(check->skipped);
+  EXPECT_LT(check->travel_share, s.min_travel_share);
+  EXPECT_EQ(check->threshold, x.from);
+  EXPECT_EQ(check->points.size(), 1u);
+  // The walking library travels: the same measure is high there.
+  const Fixture& w = walking();
+  GraphFromCandidatesSettings at = w.settings;
+  at.transitions.threshold = w.from;
+  auto graph = graph_from_candidates(w.db, w.features, w.search, at);
+  ASSERT_TRUE(graph);
+  auto context = make_synthesis_context(w.db, graph->pruned.graph);
+  ASSERT_TRUE(context);
+  EXPECT_GT(travelling_share(*context, s.travel_speed_mps), 0.5);
+  EXPECT_EQ(travelling_share(*context, 100.0), 0.0);
+}
+
+}  // namespace
+}  // namespace mg
