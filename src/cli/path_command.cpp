@@ -68,7 +68,10 @@ int run_path(const PathOptions& o) {
   auto loaded = load_for_synthesis(o.common);
   if (!loaded) return fail(loaded.error());
   const SynthesisContext& context = (*loaded)->context;
+  const auto search_begin = std::chrono::steady_clock::now();
   auto result = synthesize_path(context, *path, o.settings);
+  const double search_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - search_begin).count();
   if (!result) return fail(Error{o.common.graph, 0, result.error().message});
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   const Motion& motion = result->motion;
@@ -90,6 +93,9 @@ int run_path(const PathOptions& o) {
                                  {"duration_s", motion.frame_count / motion.fps},
                                  {"seconds", seconds},
                                  {"realtime_factor", seconds > 0.0 ? motion.frame_count / motion.fps / seconds : 0.0},
+                                 {"search_seconds", search_seconds},
+                                 {"search_realtime_factor",
+                                  search_seconds > 0.0 ? motion.frame_count / motion.fps / search_seconds : 0.0},
                                  {"searches", result->searches},
                                  {"expansions", result->expansions},
                                  {"budget_exhausted_searches", result->budget_exhausted},
@@ -102,10 +108,10 @@ int run_path(const PathOptions& o) {
                                  {"roots", roots}};
   if (auto s = write_synthesis_outputs(o.common, **loaded, motion, report); !s) return fail(s.error());
   fmt::print("path {:.1f} m: {} frames ({:.1f} s), covered {:.1f} m{}, deviation mean {:.3f} m max {:.3f} m, "
-             "{:.1f} s taken\n",
+             "{:.1f} s taken ({:.1f} s searching)\n",
              result->path_length_m, motion.frame_count, motion.frame_count / motion.fps, result->arc_covered_m,
              result->reached_end ? "" : " (end not reached)", result->mean_deviation_m, result->max_deviation_m,
-             seconds);
+             seconds, search_seconds);
   return 0;
 }
 

@@ -46,6 +46,9 @@ assert r["tag_match"] > 0.85 and r["mean_deviation_m"] < 0.5, r
 assert abs(rs[0][0]) < 1e-6 and abs(rs[0][1]) < 1e-6          # starts at the path's first point
 arc = sum(math.dist(a, b) for a, b in zip(rs, rs[1:]))
 assert abs(arc - r["arc_covered_m"]) < 1e-3 * arc, (arc, r["arc_covered_m"])
+# The search's own time is part of the command's (which loads the graph too).
+assert 0 < r["search_seconds"] <= r["seconds"] and r["search_realtime_factor"] >= r["realtime_factor"] > 0, r
+assert abs(r["search_realtime_factor"] * r["search_seconds"] - r["duration_s"]) < 1e-6 * r["duration_s"], r
 w = json.load(open(f"{work}/walk-report.json"))
 m, _ = roots("walk.json")
 assert w["frames"] == len(m["positions"]) >= 201 and w["cost_function"] == "hybrid", w

@@ -120,6 +120,32 @@ TEST(ThresholdChoice, ChoosesTheLowestThresholdTriedThatReachesTheTarget) {
   EXPECT_DOUBLE_EQ(point.coverage, std::min(point.tag_coverage[0], point.tag_coverage[1]));
 }
 
+TEST(ThresholdChoice, CoverageIsThatOfTheGraphBuildWrites) {
+  // coverage_at prunes once when there is no spacing; the graph `build` writes is pruned,
+  // rebuilt from the survivors and pruned again. Their counts must agree, spaced or not.
+  const Fixture& x = fixture();
+  for (const int max_out : {0, 2}) {
+    GraphFromCandidatesSettings settings = x.settings;
+    settings.spacing.max_out = max_out;
+    for (const double rms : {2.0, 3.0, 4.5, 7.0}) {
+      const double threshold = distance_of_rms_cm(rms, x.features);
+      auto point = coverage_at(x.db, x.features, x.search, settings, threshold);
+      ASSERT_TRUE(point);
+      GraphFromCandidatesSettings at = settings;
+      at.transitions.threshold = threshold;
+      auto graph = graph_from_candidates(x.db, x.features, x.search, at);
+      ASSERT_EQ(point->graph, static_cast<bool>(graph)) << rms << " cm";
+      if (!graph) continue;
+      const GraphStatistics& after = graph->pruned.prune.after;
+      EXPECT_EQ(point->kept_frames, after.clip_frames) << rms << " cm, max_out " << max_out;
+      EXPECT_EQ(point->transitions, after.transitions) << rms << " cm, max_out " << max_out;
+      for (const TagStatistics& t : after.tags) {
+        EXPECT_DOUBLE_EQ(point->tag_coverage[t.tag], static_cast<double>(t.frames) / t.database_frames);
+      }
+    }
+  }
+}
+
 TEST(ThresholdChoice, NoGraphUnderTheCeilingIsSaidSo) {
   const Fixture& x = fixture();
   ThresholdChoiceSettings choice;

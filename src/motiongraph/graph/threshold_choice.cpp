@@ -59,7 +59,11 @@ Result<CoveragePoint> coverage_at(const MotionDatabase& db, const FrameFeatures&
   point.tag_coverage.assign(tags.size(), 0.0);
   auto selected = select_transitions_with_bridges(db, features, candidates, at);
   if (!selected) return selected.error();
-  auto pruned = build_spaced_graph(db, *selected, features, at);
+  // Without spacing the second pruning of build_spaced_graph keeps what the first kept (the
+  // graph is rebuilt only to drop the nodes of pruned transitions), so one is enough here.
+  const bool spaced = at.spacing.max_out > 0 || at.spacing.min_piece_frames > 0;
+  auto pruned = spaced ? build_spaced_graph(db, *selected, features, at)
+                       : build_pruned_graph(db, selected->all_transitions, features.window, at.connected_tags);
   if (!pruned) {
     if (pruned.error().kind == ErrorKind::kEmptyGraph) return point;
     return pruned.error();
