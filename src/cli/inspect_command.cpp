@@ -1,4 +1,6 @@
 // motiongraph inspect GRAPH.mgraph: what a graph file holds, from its stored report.
+#include <algorithm>
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
@@ -81,6 +83,24 @@ int run_inspect(const InspectOptions& o) {
              mode == "auto" ? "chosen from the data" : "given", file->locality_radius);
   fmt::print("candidates: {} local minima; {} transitions selected\n", file->candidates.minima.size(),
              report.is_object() ? report["counts"].value("transitions", 0) : 0);
+  // The path check build ran on the automatic threshold (synthesis/path_check.h).
+  if (report.is_object() && report.contains("path_check") && report["path_check"].is_object()) {
+    const auto& check = report["path_check"];
+    const auto& points = check["points"];
+    const auto chosen = std::find_if(points.begin(), points.end(), [&](const nlohmann::json& p) {
+      return p["threshold"] == check["threshold"];
+    });
+    if (check.value("skipped", false)) {
+      fmt::print("path check: skipped (the clips hardly travel)\n");
+    } else if (chosen != points.end()) {
+      fmt::print("path check: the {:.0f} m test path followed {:.3f} m off{} ({}; {} threshold(s) tried)\n",
+                 check.value("probe_length_m", 0.0), (*chosen).value("mean_deviation_m", 0.0),
+                 (*chosen).value("reached_end", false) ? "" : ", end not reached",
+                 check.value("passed", false) ? fmt::format("within {:g} m", check.value("tolerance_m", 0.0))
+                                              : std::string("NOT within the tolerance: the clips may hold few turns"),
+                 points.size());
+    }
+  }
   if (report.is_object()) {
     print_statistics("before pruning", report["graph_before"]);
     print_statistics("after pruning ", report["graph_after"]);

@@ -14,6 +14,8 @@ cache="$work/cache"
   --export-matrix "$work/m.npy" --export-clouds "$work/c.npy" --matrix-png "$work/m.png" -q
 "$bin" inspect "$work/g.mgraph" >"$work/inspect.txt"
 grep -q "after pruning" "$work/inspect.txt" || { echo "FAIL: inspect output"; cat "$work/inspect.txt"; exit 1; }
+grep -q "path check: the 29 m test path followed 0\.[0-9]* m off (within 0.1 m; 1 threshold(s) tried)" "$work/inspect.txt" \
+  || { echo "FAIL: inspect's path check line"; cat "$work/inspect.txt"; exit 1; }
 "$bin" inspect --json "$work/g.mgraph" >"$work/inspect.json"
 grep -q '"graph_after"' "$work/inspect.json" || { echo "FAIL: inspect --json"; exit 1; }
 
@@ -91,6 +93,8 @@ done
   2>"$work/pc.err" >/dev/null
 grep -q "path check: no threshold up to --max-threshold 10 cm follows the test path within 0.0001 m" "$work/pc.err" \
   || { echo "FAIL: path check warning"; cat "$work/pc.err"; exit 1; }
+"$bin" inspect "$work/pc.mgraph" | grep -q "path check: .* (NOT within the tolerance: the clips may hold few turns; 7 threshold(s) tried)" \
+  || { echo "FAIL: inspect's failed path check line"; "$bin" inspect "$work/pc.mgraph"; exit 1; }
 "$bin" build "$data/cmu/16" -o "$work/npc.mgraph" --cache-dir "$cache" --no-path-check --report "$work/npc.json" -q
 python3 - "$work" <<'PY'
 import json, sys
