@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <random>
+
 namespace mg {
 namespace {
 
@@ -53,6 +56,118 @@ TEST(Bridges, NoneWhereSelectedTransitionsAlreadyJoinTheCores) {
   BridgeSettings off;
   off.per_tag_pair = 0;
   EXPECT_TRUE(select_bridges(candidates, {}, WalkRun().tags, WalkRun().cores, 4, off).empty());
+}
+
+// The rule written pair by pair, over every candidate in order of distance (ties in input
+// order): for each ordered pair of tags (s, u) not already joined, the best candidates leaving
+// frames of s (not u) in s's core and landing on frames of u (not s) in u's core, at most
+// per_tag_pair of them, none within the locality radius of a better one.
+std::vector<Transition> reference_bridges(const std::vector<Transition>& candidates, const std::vector<TagMask>& tags,
+                                          const std::vector<std::vector<char>>& cores, int window, int per_pair,
+                                          int radius, const std::vector<std::pair<int, int>>& joined) {
+  auto window_tags = [&](int first) {
+    TagMask m = ~TagMask{0};
+    for (int f = first; f < first + window; ++f) m &= f >= 0 && f < static_cast<int>(tags.size()) ? tags[f] : 0;
+    return m;
+  };
+  std::vector<Transition> sorted = candidates;
+  std::stable_sort(sorted.begin(), sorted.end(), [](const Transition& x, const Transition& y) { return x.distance < y.distance; });
+  std::vector<Transition> out;
+  const int n = static_cast<int>(cores.size());
+  for (int s = 0; s < n; ++s) {
+    for (int u = 0; u < n; ++u) {
+      if (s == u || std::count(joined.begin(), joined.end(), std::make_pair(s, u)) > 0) continue;
+      std::vector<Transition> pair;
+      for (const Transition& c : sorted) {
+        const TagMask from = window_tags(c.from_frame), to = window_tags(c.to_frame - window + 1);
+        if (!(from >> s & 1) || (from >> u & 1) || !(to >> u & 1) || (to >> s & 1)) continue;
+        if (!cores[s][c.from_frame] || !cores[u][c.to_frame]) continue;
+        if (static_cast<int>(pair.size()) >= per_pair) break;
+        if (std::none_of(pair.begin(), pair.end(), [&](const Transition& o) {
+              return std::abs(o.from_frame - c.from_frame) <= radius || std::abs(o.to_frame - c.to_frame) <= radius;
+            })) {
+          pair.push_back(c);
+        }
+      }
+      for (const Transition& c : pair) {
+        if (std::none_of(out.begin(), out.end(), [&](const Transition& b) {
+              return b.from_frame == c.from_frame && b.to_frame == c.to_frame;
+            })) {
+          out.push_back(c);
+        }
+      }
+    }
+  }
+  std::sort(out.begin(), out.end(), [](const Transition& x, const Transition& y) {
+    return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
+  });
+  return out;
+}
+
+TEST(Bridges, SameAsTheRuleWrittenPairByPairOnRandomLibraries) {
+  std::mt19937 rng(7);
+  size_t total = 0, with_joined = 0;
+  for (int round = 0; round < 40; ++round) {
+    // 300 frames in runs of one or two of three tags (walk, run, jump and mixes such as
+    // walk+turn: bit 3), cores on random stretches, many candidates with tied distances.
+    const int frames = 300, window = 4;
+    std::vector<TagMask> tags(frames, 0);
+    for (int f = 0; f < frames;) {
+      const int length = 5 + static_cast<int>(rng() % 40);
+      TagMask m = TagMask{1} << (rng() % 3);
+      if (rng() % 3 == 0) m |= TagMask{1} << 3;
+      if (rng() % 5 == 0) m |= TagMask{1} << (rng() % 3);
+      for (int i = f; i < std::min(frames, f + length); ++i) tags[i] = m;
+      f += length;
+    }
+    std::vector<std::vector<char>> cores(4, std::vector<char>(frames, 0));
+    for (auto& core : cores) {
+      for (int f = 0; f < frames; ++f) core[f] = rng() % 4 != 0;
+    }
+    std::vector<Transition> candidates, selected;
+    for (int i = 0; i < 400; ++i) {
+      const int from = static_cast<int>(rng() % (frames - window)), to = window - 1 + static_cast<int>(rng() % (frames - window));
+      candidates.push_back(t(from, to, static_cast<float>(rng() % 20)));
+    }
+    for (int i = 0; i < 3; ++i) selected.push_back(candidates[rng() % candidates.size()]);
+    BridgeSettings settings;
+    settings.per_tag_pair = 1 + static_cast<int>(rng() % 3);
+    settings.locality_radius = static_cast<int>(rng() % 6);
+    settings.tags = 0b0111;  // bit 3 is a modifier: never bridged
+    // The pairs the selected transitions already join, core to core: leaving frames of s,
+    // landing on frames of u that the leaving ones lack.
+    std::vector<std::pair<int, int>> joined;
+    auto window_tags = [&](int first) {
+      TagMask m = ~TagMask{0};
+      for (int f = first; f < first + window; ++f) m &= tags[f];
+      return m;
+    };
+    for (const Transition& c : selected) {
+      const TagMask from = window_tags(c.from_frame), to = window_tags(c.to_frame - window + 1);
+      for (int s = 0; s < 3; ++s) {
+        for (int u = 0; u < 3; ++u) {
+          if (s != u && (from >> s & 1) && (to >> u & 1) && !(from >> u & 1) && cores[s][c.from_frame] &&
+              cores[u][c.to_frame]) {
+            joined.emplace_back(s, u);
+          }
+        }
+      }
+    }
+    const auto expected =
+        reference_bridges(candidates, tags, {cores[0], cores[1], cores[2]}, window, settings.per_tag_pair,
+                          settings.locality_radius, joined);
+    const auto got = select_bridges(candidates, selected, tags, cores, window, settings);
+    ASSERT_EQ(got.size(), expected.size()) << "round " << round;
+    total += got.size();
+    with_joined += joined.empty() ? 0 : 1;
+    for (size_t i = 0; i < got.size(); ++i) {
+      EXPECT_EQ(got[i].from_frame, expected[i].from_frame) << "round " << round;
+      EXPECT_EQ(got[i].to_frame, expected[i].to_frame) << "round " << round;
+    }
+  }
+  // The rounds exercise the rule: many bridges, and pairs already joined in some rounds.
+  EXPECT_GT(total, 100u);
+  EXPECT_GT(with_joined, 5u);
 }
 
 }  // namespace
