@@ -43,24 +43,6 @@ Result<FloorPath> FloorPath::create(const std::vector<Vec2>& points, std::vector
   return path;
 }
 
-int FloorPath::segment_index(double s) const {
-  // s is clamped to [0, length]: the segment i with arc_[i] <= s < arc_[i + 1] (the last one at
-  // the end), starting from its bucket's first segment.
-  const int last = static_cast<int>(points_.size()) - 2;
-  const size_t b = std::min(bucket_segment_.size() - 1, static_cast<size_t>(s / bucket_m_));
-  int i = bucket_segment_[b];
-  while (i < last && arc_[i + 1] <= s) ++i;
-  return i;
-}
-
-Vec2 FloorPath::point_at(double s) const {
-  s = std::clamp(s, 0.0, length_m());
-  const int i = segment_index(s);
-  const double len = arc_[i + 1] - arc_[i];
-  const double u = std::clamp((s - arc_[i]) / len, 0.0, 1.0);
-  return points_[i] + u * (points_[i + 1] - points_[i]);
-}
-
 Vec2 FloorPath::direction_at(double s) const {
   const int i = segment_index(std::clamp(s, 0.0, length_m()));
   return (points_[i + 1] - points_[i]).normalized();

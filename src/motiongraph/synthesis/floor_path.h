@@ -12,6 +12,7 @@
 //               S bends right and left, starting straight north
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -39,8 +40,15 @@ class FloorPath {
   double length_m() const { return arc_.empty() ? 0.0 : arc_.back(); }
   const std::vector<Vec2>& points() const { return points_; }
   const std::vector<PathSegment>& segments() const { return segments_; }
-  // The point at arc length s (clamped to the ends).
-  Vec2 point_at(double s) const;
+  // The point at arc length s (clamped to the ends). Inline: searches call it for every frame
+  // they try.
+  Vec2 point_at(double s) const {
+    s = std::clamp(s, 0.0, length_m());
+    const int i = segment_index(s);
+    const double len = arc_[i + 1] - arc_[i];
+    const double u = std::clamp((s - arc_[i]) / len, 0.0, 1.0);
+    return points_[i] + u * (points_[i + 1] - points_[i]);
+  }
   // The unit direction at arc length s.
   Vec2 direction_at(double s) const;
   // Distance from p to the nearest point of the path.
@@ -49,7 +57,15 @@ class FloorPath {
   const std::string& tag_at(double s) const;
 
  private:
-  int segment_index(double s) const;
+  // s is clamped to [0, length]: the segment i with arc_[i] <= s < arc_[i + 1] (the last one at
+  // the end), starting from its bucket's first segment.
+  int segment_index(double s) const {
+    const int last = static_cast<int>(points_.size()) - 2;
+    const size_t b = std::min(bucket_segment_.size() - 1, static_cast<size_t>(s / bucket_m_));
+    int i = bucket_segment_[b];
+    while (i < last && arc_[i + 1] <= s) ++i;
+    return i;
+  }
   std::vector<Vec2> points_;   // consecutive duplicates removed
   std::vector<double> arc_;    // arc length at each point
   // For arc lengths in [b * bucket_m_, (b + 1) * bucket_m_): the first segment to look at, so

@@ -27,8 +27,15 @@ struct Child {
 
 // Plays edge e from `state` (whose frames are counted from the search start as `played`),
 // adding frame costs to `cost`. Stops early and returns false when cost reaches `bound`.
+// Every edge leaving a state shares its placement: the rotation's cosine and sine are computed
+// once per state (Rotation) rather than once per edge played.
+struct Rotation {
+  double c = 1.0, s = 0.0;
+  explicit Rotation(double yaw_rad) : c(std::cos(yaw_rad)), s(std::sin(yaw_rad)) {}
+};
+
 bool play_edge(const MotionGraph& graph, const EdgeTracks& tracks, const FrameCost& frame_cost, int horizon,
-               long long played, double bound, int e, const SearchState& from, Child& out) {
+               long long played, double bound, int e, const SearchState& from, const Rotation& rotation, Child& out) {
   out.edge = e;
   out.state = from;
   out.complete = false;
@@ -42,7 +49,7 @@ bool play_edge(const MotionGraph& graph, const EdgeTracks& tracks, const FrameCo
     if (out.cost >= bound) return false;
   }
   // The placement holds for the whole edge: its rotation once (FloorTransform::rotate).
-  const double c = std::cos(s.placement.yaw_rad), sn = std::sin(s.placement.yaw_rad);
+  const double c = rotation.c, sn = rotation.s;
   auto turned = [&](const Vec2& v) { return Vec2(c * v.x() + sn * v.y(), -sn * v.x() + c * v.y()); };
   const Vec2 shift(s.placement.x_m, s.placement.z_m);
   for (size_t p = 0; p < roots.size(); ++p) {
@@ -59,7 +66,10 @@ bool play_edge(const MotionGraph& graph, const EdgeTracks& tracks, const FrameCo
     }
   }
   s.frames += static_cast<long long>(roots.size());
-  s.placement = s.placement * tracks.edges[e].change;
+  // s.placement * change, with the rotation already at hand (FloorTransform::operator*).
+  const FloorTransform& change = tracks.edges[e].change;
+  s.placement = FloorTransform{s.placement.yaw_rad + change.yaw_rad, c * change.x_m + sn * change.z_m + shift.x(),
+                               -sn * change.x_m + c * change.z_m + shift.y()};
   s.node = graph.edges[e].to_node;
   const long long after = played + static_cast<long long>(roots.size());
   if (after >= horizon) out.complete = true;
@@ -107,6 +117,7 @@ BeamResult beam_search(const MotionGraph& graph, const EdgeTracks& tracks, const
       if (seen_stamp[node] == t || walks[w].child.priority >= result.cost) continue;  // one walk per node
       seen_stamp[node] = t;
       ++kept;
+      const Rotation rotation(walks[w].child.state.placement.yaw_rad);
       for (const GraphEdge& edge : graph.out_edges(node)) {
         const int e = static_cast<int>(&edge - graph.edges.data());
         Entry next;
@@ -114,7 +125,8 @@ BeamResult beam_search(const MotionGraph& graph, const EdgeTracks& tracks, const
         next.edge = e;
         next.child.cost = walks[w].child.cost;
         ++result.expansions;
-        if (!play_edge(graph, tracks, frame_cost, horizon, t, result.cost, e, walks[w].child.state, next.child)) {
+        if (!play_edge(graph, tracks, frame_cost, horizon, t, result.cost, e, walks[w].child.state, rotation,
+                       next.child)) {
           continue;
         }
         const int index = static_cast<int>(walks.size());
@@ -145,7 +157,8 @@ SearchState advance(const MotionGraph& graph, const EdgeTracks& tracks, const Se
     double cost(int, const Vec2&, const Vec2&, double, TagMask, bool*) const override { return 0.0; }
   } free_cost;
   Child child;
-  play_edge(graph, tracks, free_cost, 0, 0, std::numeric_limits<double>::infinity(), edge, state, child);
+  play_edge(graph, tracks, free_cost, 0, 0, std::numeric_limits<double>::infinity(), edge, state,
+            Rotation(state.placement.yaw_rad), child);
   return child.state;
 }
 
@@ -168,12 +181,14 @@ HorizonResult horizon_search(const MotionGraph& graph, const EdgeTracks& tracks,
   auto expand = [&](const SearchState& state, double cost, long long played) {
     Level level;
     level.played = played;
+    const Rotation rotation(state.placement.yaw_rad);
     for (const GraphEdge& edge : graph.out_edges(state.node)) {
       const int e = static_cast<int>(&edge - graph.edges.data());
       Child child;
       child.cost = cost;
       ++result.expansions;
-      if (play_edge(graph, tracks, frame_cost, settings.horizon_frames, played, result.cost, e, state, child)) {
+      if (play_edge(graph, tracks, frame_cost, settings.horizon_frames, played, result.cost, e, state, rotation,
+                    child)) {
         level.children.push_back(std::move(child));
       }
     }
