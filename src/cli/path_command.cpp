@@ -106,7 +106,7 @@ int run_path(const PathOptions& o) {
                                  {"segments", segments},
                                  {"path", points},
                                  {"roots", roots}};
-  if (auto s = write_synthesis_outputs(o.common, **loaded, motion, report); !s) return fail(s.error());
+  if (auto s = write_synthesis_outputs(o.common, **loaded, motion, result->walk, report); !s) return fail(s.error());
   fmt::print("path {:.1f} m: {} frames ({:.1f} s), covered {:.1f} m{}, deviation mean {:.3f} m max {:.3f} m, "
              "{:.1f} s taken ({:.1f} s searching)\n",
              result->path_length_m, motion.frame_count, motion.frame_count / motion.fps, result->arc_covered_m,

@@ -62,12 +62,14 @@ int run_steer(const SteerOptions& o) {
   std::vector<double> latencies;
   int exhausted = 0;
   int transitions = 0;  // transition edges that start within the script's duration
+  Walk played{-1, {}};  // every edge the controller chose (for the clips the motion is cut from)
   while (motion.frame_count < total) {
     controller->set_input(*input_at(motion.frame_count / fps));
     long long edge_start = motion.frame_count;
     const ControllerDecision d = controller->step(motion);
     latencies.push_back(d.search_seconds);
     exhausted += d.budget_exhausted ? 1 : 0;
+    played.edges.insert(played.edges.end(), d.edges.begin(), d.edges.end());
     for (int e : d.edges) {
       const GraphEdge& edge = context.graph->edges[e];
       if (edge.transition && edge_start < total) ++transitions;
@@ -100,7 +102,7 @@ int run_steer(const SteerOptions& o) {
                                  {"budget_exhausted_decisions", exhausted},
                                  {"tolerance_deg", o.tolerance_deg},
                                  {"controls", controls}};
-  if (auto s = write_synthesis_outputs(o.common, **loaded, motion, report); !s) return fail(s.error());
+  if (auto s = write_synthesis_outputs(o.common, **loaded, motion, played, report); !s) return fail(s.error());
   fmt::print("steer: {} frames ({:.1f} s), {} decisions, decision p99 {:.3f} ms\n", motion.frame_count,
              motion.frame_count / fps, latencies.size(), 1e3 * percentile(latencies, 0.99));
   for (const auto& c : controls) {

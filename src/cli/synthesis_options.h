@@ -9,6 +9,7 @@
 
 #include "cli/motion_output.h"
 #include "motiongraph/synthesis/synthesis_context.h"
+#include "motiongraph/synthesis/walk.h"
 
 namespace mg::cli {
 
@@ -37,8 +38,12 @@ struct LoadedGraph {
 // Loads GRAPH and builds the context; checks the output's extension first.
 Result<std::unique_ptr<LoadedGraph>> load_for_synthesis(const SynthesisOptions& options);
 
-// Writes the motion and, when asked, the report (both atomically).
+// Writes the motion and, when asked, the report (both atomically). The report gets
+// "foot_slide" (evaluation/source_foot_slide.h): the motion's mean_mps, p95_mps,
+// max_joint_step_m and contact_steps, the same for the clips the walk read ("source", their
+// names under "clips") and output / source ("ratio", null where the source's is 0); or
+// {"error": "..."} when a skeleton's feet cannot be found by name.
 Status write_synthesis_outputs(const SynthesisOptions& options, const LoadedGraph& loaded, const Motion& motion,
-                               const nlohmann::json& report);
+                               const Walk& walk, nlohmann::json report);
 
 }  // namespace mg::cli

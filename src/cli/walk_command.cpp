@@ -55,7 +55,7 @@ int run_walk(const WalkOptions& o) {
                            {"fps", motion->fps},
                            {"expansions", found->expansions},
                            {"seconds", seconds}};
-  if (auto s = write_synthesis_outputs(o.common, **loaded, *motion, report); !s) return fail(s.error());
+  if (auto s = write_synthesis_outputs(o.common, **loaded, *motion, found->walk, report); !s) return fail(s.error());
   fmt::print("walk {} -> {} ({} cost): {} edges, {} transitions, {} frames ({:.1f} s), cost {:.6g}, {} expansions\n",
              o.from, o.to, walk_cost_name(settings.cost), found->walk.edges.size(), transitions, motion->frame_count,
              motion->frame_count / context.db->fps, found->cost, found->expansions);

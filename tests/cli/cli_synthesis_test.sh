@@ -63,6 +63,35 @@ for rep, edges in ((r, r["edges"]), (w, w["edges"]), (s, None)):
     fps = rep["fps"]
     assert abs(rep["transitions_per_second"] - rep["transitions"] / (rep["frames"] / fps)) < 1e-9, rep
 assert r["transitions"] > 0 and r["transitions_per_second"] <= 1.5, (r["transitions"], r["transitions_per_second"])
+# Every report measures the foot slide of its motion beside that of the clips it was cut from.
+for rep in (r, w, s):
+    fs = rep["foot_slide"]
+    assert "error" not in fs, fs
+    src = fs["source"]
+    assert fs["contact_steps"] > 0 and src["contact_steps"] > 0, fs
+    assert src["clips"] and all(c.startswith("16_") for c in src["clips"]), src["clips"]
+    for key in ("mean_mps", "p95_mps", "max_joint_step_m"):
+        assert fs[key] >= 0 and src[key] > 0, (key, fs)
+        assert abs(fs["ratio"][key] - fs[key] / src[key]) < 1e-9 * fs["ratio"][key] + 1e-12, (key, fs)
+# The walk-then-run figure 8 is cut from walks and runs.
+walks = {"16_11", "16_13", "16_15", "16_16", "16_17", "16_19", "16_33"}
+runs = {"16_35", "16_37", "16_39", "16_41", "16_43", "16_57"}
+clips = set(r["foot_slide"]["source"]["clips"])
+assert clips & walks and clips & runs, clips
+# The figure 8's measure from its JSON positions, by the definition: toes within 2 cm of the
+# 2nd percentile of both toes' heights, horizontal speed over steps with both frames planted.
+m = json.load(open(f"{work}/f8.json"))
+names = [j["name"] for j in m["joints"]]
+toes = [names.index("ltoes"), names.index("rtoes")]
+P = m["positions"]
+heights = sorted(P[f][t][1] for t in toes for f in range(len(P)))
+rank = 0.02 * (len(heights) - 1)
+floor = heights[int(rank)] + (heights[int(rank) + 1] - heights[int(rank)]) * (rank - int(rank))
+speeds = [math.hypot(P[f][t][0] - P[f - 1][t][0], P[f][t][2] - P[f - 1][t][2]) * m["fps"]
+          for t in toes for f in range(1, len(P)) if P[f][t][1] - floor <= 0.02 and P[f - 1][t][1] - floor <= 0.02]
+fs = r["foot_slide"]
+assert abs(len(speeds) - fs["contact_steps"]) <= 2, (len(speeds), fs["contact_steps"])  # JSON rounds to 1 um
+assert abs(sum(speeds) / len(speeds) - fs["mean_mps"]) < 1e-3, (sum(speeds) / len(speeds), fs["mean_mps"])
 PY
 
 # Bad input: one line naming the file (and line), exit 1, nothing written.

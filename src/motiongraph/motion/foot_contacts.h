@@ -1,0 +1,92 @@
+// Foot contacts: per frame, whether each foot joint (ankle and toe, skeleton/foot_joints.h) is
+// planted on the floor (DESIGN.md section 5b; Ikemoto, Arikan & Forsyth, "Knowing when to put
+// your foot down", I3D 2006, learn the same labels; Kovar, Schreiner & Gleicher, "Footskate
+// Cleanup for Motion Capture Editing", SCA 2002, need them).
+//
+// From world positions in metres, y up. The floor is the clip's own: for ankles, a low
+// quantile (floor_quantile) of both ankles' heights over the clip, for toes the same of both
+// toes' (each joint sits at its own height above the ground when planted; pooling both feet
+// keeps a clip on one leg right). A joint's speed at a frame is the distance it moves over
+// speed_span_s around it (central difference over +-half the span in frames, at least one),
+// in m/s: the same time span at any frame rate, and a capture's one-frame jitter at 120 fps
+// (heel strikes on CMU subject 16 show 1-2 m/s spikes for single frames) does not count.
+//  1. A joint is planted from the frame where it is within enter_height_m of its floor and
+//     slower than enter_speed_mps until it rises above leave_height_m or moves faster than
+//     leave_speed_mps (hysteresis: the leave thresholds are the looser ones).
+//  2. Gaps of at most max_gap_s between two contacts are filled (what jitter still splits).
+//  3. Contacts shorter than min_duration_s are dropped.
+// Labels depend on heights and speeds only, so a clip turned about the vertical or moved on
+// the floor gets the same labels.
+//
+// Defaults chosen on CMU subject 16 at 120 and 30 fps: walks plant each foot (ankle or toe)
+// 57-68 % of a gait cycle, left and right in turn, runs 21-36 %; the labels at 30 fps agree
+// with those at 120 fps on over 92 % of the time of every joint.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "motiongraph/core/error.h"
+#include "motiongraph/motion/motion.h"
+#include "motiongraph/skeleton/foot_joints.h"
+
+namespace mg {
+
+struct FootContactSettings {
+  double floor_quantile = 0.02;   // the floor: this quantile of the part's heights (both feet)
+  double enter_height_m = 0.03;   // planted from within this height above the floor ...
+  double leave_height_m = 0.05;   // ... until above this
+  double enter_speed_mps = 0.5;   // and from slower than this (infinity: height alone) ...
+  double leave_speed_mps = 0.8;   // ... until faster than this
+  double speed_span_s = 1.0 / 15.0;  // speeds over this time around a frame
+  double max_gap_s = 0.1;         // gaps between contacts up to this long are filled (0: none)
+  double min_duration_s = 0.1;    // shorter planted stretches are dropped
+
+  Status validate() const;
+  // The shortest contact in frames at `fps` (at least 1).
+  int min_frames(double fps) const;
+  // The longest gap filled, in frames at `fps` (0: none).
+  int max_gap_frames(double fps) const;
+  // Half the speed span in frames at `fps` (at least 1).
+  int speed_half_span_frames(double fps) const;
+};
+
+enum class FootSide { kLeft, kRight };
+enum class FootPart { kAnkle, kToe };
+
+struct FootContactTrack {
+  int joint = -1;
+  FootSide side = FootSide::kLeft;
+  FootPart part = FootPart::kAnkle;
+  double floor_height_m = 0.0;   // the floor found for this joint's part
+  std::vector<uint8_t> planted;  // per frame: 1 while planted
+};
+
+struct FootContacts {
+  int frame_count = 0;
+  // Left ankle, left toe, right ankle, right toe; a toe only when its foot has one.
+  std::vector<FootContactTrack> tracks;
+
+  // Whether the foot on `side` has its ankle or its toe planted at `frame`.
+  bool foot_planted(FootSide side, int frame) const;
+};
+
+// A run of planted frames.
+struct ContactInterval {
+  int first_frame = 0;
+  int frame_count = 0;
+};
+
+// The planted runs of one track, in order.
+std::vector<ContactInterval> contact_intervals(std::span<const uint8_t> planted);
+
+// Contacts from world positions, frames x joint_count, frame-major (world_positions()).
+Result<FootContacts> detect_foot_contacts(std::span<const Vec3> world_positions_m, int joint_count, double fps,
+                                          const FootJoints& feet, const FootContactSettings& settings);
+
+// The same from a skeleton and its motion (forward kinematics first).
+Result<FootContacts> detect_foot_contacts(const Skeleton& skeleton, const Motion& motion, const FootJoints& feet,
+                                          const FootContactSettings& settings);
+
+}  // namespace mg
