@@ -217,7 +217,7 @@ json path_check_to_json(const PathCheck& check, const PathCheckSettings& setting
                       {"seconds", p.seconds}});
   }
   return {{"tolerance_m", settings.tolerance_m},
-          {"probe_length_m", path_check_probe().length_m()},
+          {"probe_length_m", check.probe_length_m},
           {"skipped", check.skipped},
           {"travel_share", check.travel_share},
           {"passed", check.passed},
@@ -411,7 +411,7 @@ int run_build(BuildOptions o) {
         log(fmt::format("path check: skipped, the library hardly travels ({:.0f} % of its frames at {:g} m/s or more)",
                         100.0 * check->travel_share, o.path_check.travel_speed_mps));
       } else if (check->passed && check->points.size() == 1) {
-        log(fmt::format("path check: a {:.0f} m test path is followed at {:.3f} m mean deviation", path_check_probe().length_m(),
+        log(fmt::format("path check: a {:.0f} m test path is followed at {:.3f} m mean deviation", check->probe_length_m,
                         first.mean_deviation_m));
       } else if (check->passed) {
         log(fmt::format("path check: the test path is followed {:.3f} m off at RMS {:.2f} cm; raised to RMS {:.2f} cm, "

@@ -119,6 +119,7 @@ Result<PathCheck> check_path_following(const MotionDatabase& db, const FrameFeat
   if (auto s = check.validate(); !s) return s.error();
   const FloorPath probe = path_check_probe();
   PathCheck out;
+  out.probe_length_m = probe.length_m();
   out.threshold = from_threshold;
   out.rms_cm = rms_cm_of_distance(from_threshold, features);
   auto first = probe_at(db, features, candidates, settings, from_threshold, check, probe, &out.travel_share);

@@ -45,6 +45,7 @@ struct PathCheckPoint {
 };
 
 struct PathCheck {
+  double probe_length_m = 0.0;       // of path_check_probe()
   bool skipped = false;              // the library hardly travels (see travel_share)
   double travel_share = 0.0;         // of the first graph's clip frames, in travelling pieces
   double threshold = 0.0;            // D chosen (the first one when skipped)
