@@ -73,8 +73,12 @@ int run_path(const PathOptions& o) {
   const double search_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - search_begin).count();
   if (!result) return fail(Error{o.common.graph, 0, result.error().message});
+  Motion& motion = result->motion;
+  auto cleanup = cleanup_for(o.common, context);
+  if (cleanup) {
+    if (auto s = context.clean_up_walk(result->walk, *cleanup, motion); !s) return fail(s.error());
+  }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
-  const Motion& motion = result->motion;
   nlohmann::json segments = nlohmann::json::array();
   for (const PathSegment& s : path->segments()) segments.push_back({{"from_m", s.from_m}, {"to_m", s.to_m}, {"tag", s.tag}});
   nlohmann::json points = nlohmann::json::array();
@@ -105,7 +109,8 @@ int run_path(const PathOptions& o) {
                                  {"transitions_per_second", transitions_per_second(transitions, motion.frame_count, motion.fps)},
                                  {"segments", segments},
                                  {"path", points},
-                                 {"roots", roots}};
+                                 {"roots", roots},
+                                 {"cleanup", cleanup_report(o.common, context, cleanup)}};
   if (auto s = write_synthesis_outputs(o.common, **loaded, motion, result->walk, report); !s) return fail(s.error());
   fmt::print("path {:.1f} m: {} frames ({:.1f} s), covered {:.1f} m{}, deviation mean {:.3f} m max {:.3f} m, "
              "{:.1f} s taken ({:.1f} s searching)\n",

@@ -1,6 +1,7 @@
 // motiongraph steer GRAPH --script CONTROLS.json -o OUT: replays a timed control script
 // through the interactive controller (synthesis/controller.h).
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <numbers>
 
@@ -63,10 +64,23 @@ int run_steer(const SteerOptions& o) {
   int exhausted = 0;
   int transitions = 0;  // transition edges that start within the script's duration
   Walk played{-1, {}};  // every edge the controller chose (for the clips the motion is cut from)
+  auto cleanup = cleanup_for(o.common, context);
+  std::vector<ContactMask> contacts;
+  std::vector<double> cleanup_seconds;
   while (motion.frame_count < total) {
     controller->set_input(*input_at(motion.frame_count / fps));
     long long edge_start = motion.frame_count;
+    const int first_new = motion.frame_count;
     const ControllerDecision d = controller->step(motion);
+    if (cleanup) {
+      // The decision's frames, cleaned as a game would before showing them.
+      const auto cleanup_begin = std::chrono::steady_clock::now();
+      contacts.clear();
+      for (int e : d.edges) context.append_edge_contacts(e, contacts);
+      if (auto s = cleanup->clean(motion, first_new, contacts); !s) return fail(s.error());
+      cleanup_seconds.push_back(
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - cleanup_begin).count());
+    }
     latencies.push_back(d.search_seconds);
     exhausted += d.budget_exhausted ? 1 : 0;
     played.edges.insert(played.edges.end(), d.edges.begin(), d.edges.end());
@@ -101,6 +115,9 @@ int run_steer(const SteerOptions& o) {
                                  {"decision_ms_max", 1e3 * percentile(latencies, 1.0)},
                                  {"budget_exhausted_decisions", exhausted},
                                  {"tolerance_deg", o.tolerance_deg},
+                                 {"cleanup", cleanup_report(o.common, context, cleanup)},
+                                 {"cleanup_ms_p99", cleanup ? nlohmann::json(1e3 * percentile(cleanup_seconds, 0.99))
+                                                            : nlohmann::json(nullptr)},
                                  {"controls", controls}};
   if (auto s = write_synthesis_outputs(o.common, **loaded, motion, played, report); !s) return fail(s.error());
   fmt::print("steer: {} frames ({:.1f} s), {} decisions, decision p99 {:.3f} ms\n", motion.frame_count,

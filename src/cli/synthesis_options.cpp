@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "motiongraph/core/json_text.h"
-#include "motiongraph/evaluation/source_foot_slide.h"
+#include "motiongraph/evaluation/foot_slide_report.h"
 #include "motiongraph/io/file.h"
 
 namespace mg::cli {
@@ -26,45 +26,37 @@ Result<std::unique_ptr<LoadedGraph>> load_for_synthesis(const SynthesisOptions& 
   return loaded;
 }
 
-namespace {
-
-nlohmann::json foot_slide_json(const FootSlide& slide) {
-  return {{"mean_mps", slide.mean_mps},
-          {"p95_mps", slide.p95_mps},
-          {"max_joint_step_m", slide.max_joint_step_m},
-          {"contact_steps", slide.contact_steps}};
+std::optional<FootCleanup> cleanup_for(const SynthesisOptions& options, const SynthesisContext& context) {
+  if (options.no_cleanup) return std::nullopt;
+  auto cleanup = context.foot_cleanup(FootCleanupSettings{});
+  if (!cleanup) {
+    fmt::print(stderr, "warning: {}: {}\n", options.graph, cleanup.error().message);
+    return std::nullopt;
+  }
+  return std::move(*cleanup);
 }
 
-nlohmann::json ratio_json(double output, double source) {
-  const double ratio = times_the_source(output, source);
-  return std::isnan(ratio) ? nlohmann::json(nullptr) : nlohmann::json(ratio);
+nlohmann::json cleanup_report(const SynthesisOptions& options, const SynthesisContext& context,
+                              const std::optional<FootCleanup>& cleanup) {
+  if (!cleanup) {
+    return {{"enabled", false},
+            {"reason", options.no_cleanup ? std::string("--no-cleanup") : "no feet: " + context.feet_error}};
+  }
+  const FootCleanupStats& s = cleanup->stats();
+  return {{"enabled", true},
+          {"frames", s.frames},
+          {"planted_leg_frames", s.planted_leg_frames},
+          {"root_lowered_frames", s.root_lowered_frames},
+          {"max_root_drop_m", s.max_root_drop_m},
+          {"max_correction_m", s.max_correction_m},
+          {"max_ankle_miss_m", s.max_ankle_miss_m}};
 }
-
-nlohmann::json foot_slide_report(const LoadedGraph& loaded, const Walk& walk, const Motion& motion) {
-  const SynthesisContext& context = loaded.context;
-  const std::vector<int> clips = walk_source_clips(*context.graph, walk.start_node, walk.edges);
-  auto comparison = compare_foot_slide(context.assembler.skeleton(), motion, *context.db, clips);
-  if (!comparison) return {{"error", comparison.error().message}};
-  const FootSlide& output = comparison->output;
-  const FootSlide& source = comparison->source;
-  nlohmann::json report = foot_slide_json(output);
-  report["source"] = foot_slide_json(source);
-  nlohmann::json names = nlohmann::json::array();
-  for (int c : clips) names.push_back(context.db->clips[c].name);
-  report["source"]["clips"] = names;
-  report["ratio"] = {{"mean_mps", ratio_json(output.mean_mps, source.mean_mps)},
-                     {"p95_mps", ratio_json(output.p95_mps, source.p95_mps)},
-                     {"max_joint_step_m", ratio_json(output.max_joint_step_m, source.max_joint_step_m)}};
-  return report;
-}
-
-}  // namespace
 
 Status write_synthesis_outputs(const SynthesisOptions& options, const LoadedGraph& loaded, const Motion& motion,
                                const Walk& walk, nlohmann::json report) {
   if (auto s = write_motion(options.output, loaded.context.assembler.skeleton(), motion); !s) return s;
   if (!options.report.empty()) {
-    report["foot_slide"] = foot_slide_report(loaded, walk, motion);
+    report["foot_slide"] = foot_slide_report(loaded.context, walk, motion);
     if (auto s = write_file_atomic(options.report, json_text(report, 2) + "\n"); !s) return s;
   }
   return Ok{};

@@ -2,6 +2,7 @@
 // the output, the target skeleton and the optional JSON report.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -18,6 +19,7 @@ struct SynthesisOptions {
   std::string output;
   std::string report;
   int skeleton = -1;
+  bool no_cleanup = false;
 
   void add_to(CLI::App& app) {
     app.add_option("GRAPH", graph, "A .mgraph file written by 'motiongraph build'")->required();
@@ -25,6 +27,9 @@ struct SynthesisOptions {
     app.add_option("--report", report, "Also write a JSON report of the result");
     app.add_option("--skeleton", skeleton,
                    "Index of the database skeleton to play everything on (default: the first clip's)");
+    app.add_flag("--no-cleanup", no_cleanup,
+                 "Write the motion as played, without the foot clean-up (planted feet held on their plants by "
+                 "two-bone leg IK, the root lowered where a leg cannot reach)");
   }
 };
 
@@ -38,11 +43,16 @@ struct LoadedGraph {
 // Loads GRAPH and builds the context; checks the output's extension first.
 Result<std::unique_ptr<LoadedGraph>> load_for_synthesis(const SynthesisOptions& options);
 
+// The foot clean-up the options ask for: none with --no-cleanup, nor when the graph's feet
+// cannot be found (a warning says why).
+std::optional<FootCleanup> cleanup_for(const SynthesisOptions& options, const SynthesisContext& context);
+
+// The report's "cleanup": {"enabled": false, "reason": ...} or the clean-up's figures.
+nlohmann::json cleanup_report(const SynthesisOptions& options, const SynthesisContext& context,
+                              const std::optional<FootCleanup>& cleanup);
+
 // Writes the motion and, when asked, the report (both atomically). The report gets
-// "foot_slide" (evaluation/source_foot_slide.h): the motion's mean_mps, p95_mps,
-// max_joint_step_m and contact_steps, the same for the clips the walk read ("source", their
-// names under "clips") and output / source ("ratio", null where the source's is 0); or
-// {"error": "..."} when a skeleton's feet cannot be found by name.
+// "foot_slide" (evaluation/foot_slide_report.h).
 Status write_synthesis_outputs(const SynthesisOptions& options, const LoadedGraph& loaded, const Motion& motion,
                                const Walk& walk, nlohmann::json report);
 

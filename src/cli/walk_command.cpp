@@ -41,6 +41,10 @@ int run_walk(const WalkOptions& o) {
   const FloorTransform start = context.placement_facing(o.from, Vec2::Zero(), Vec2(0.0, -1.0));
   auto motion = assemble_walk(*context.db, graph, found->walk, start, context.assembler.target_skeleton());
   if (!motion) return fail(motion.error());
+  auto cleanup = cleanup_for(o.common, context);
+  if (cleanup) {
+    if (auto s = context.clean_up_walk(found->walk, *cleanup, *motion); !s) return fail(s.error());
+  }
   const int transitions = found->walk.transition_count(graph);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   nlohmann::json report = {{"from", o.from},
@@ -54,7 +58,8 @@ int run_walk(const WalkOptions& o) {
                            {"frames", motion->frame_count},
                            {"fps", motion->fps},
                            {"expansions", found->expansions},
-                           {"seconds", seconds}};
+                           {"seconds", seconds},
+                           {"cleanup", cleanup_report(o.common, context, cleanup)}};
   if (auto s = write_synthesis_outputs(o.common, **loaded, *motion, found->walk, report); !s) return fail(s.error());
   fmt::print("walk {} -> {} ({} cost): {} edges, {} transitions, {} frames ({:.1f} s), cost {:.6g}, {} expansions\n",
              o.from, o.to, walk_cost_name(settings.cost), found->walk.edges.size(), transitions, motion->frame_count,

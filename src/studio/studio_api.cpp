@@ -1,5 +1,7 @@
 #include "studio/studio_api.h"
 
+#include "motiongraph/evaluation/foot_slide_report.h"
+
 #include <charconv>
 #include <cmath>
 #include <exception>
@@ -82,6 +84,12 @@ std::string string_field(const json& body, const std::string& name, const std::s
   if (!body.contains(name)) return fallback;
   if (!body[name].is_string()) throw ApiError{400, fmt::format("'{}' must be a string", name)};
   return body[name].get<std::string>();
+}
+
+bool boolean_field(const json& body, const std::string& name, bool fallback) {
+  if (!body.contains(name)) return fallback;
+  if (!body[name].is_boolean()) throw ApiError{400, fmt::format("'{}' must be true or false", name)};
+  return body[name].get<bool>();
 }
 
 double round_mm(double v) { return std::round(v * 1e4) / 1e4 + 0.0; }
@@ -291,10 +299,13 @@ class Router {
     auto cost = parse_walk_cost(string_field(body, "cost", "random"));
     if (!cost) throw ApiError{400, cost.error().message};
     w.cost = *cost;
+    w.cleanup = boolean_field(body, "cleanup", true);
     auto result = service_.walk(w);
     if (!result) throw ApiError{422, result.error().to_string()};
     json out = motion_json(skeleton(), result->motion);
     out["result"] = result->result;
+    out["cleanup"] = result->cleaned;
+    out["foot_slide"] = foot_slide_report(service_.context(), result->walk, result->motion);
     out["transitions"] = result->transitions;
     out["transitions_per_second"] =
         transitions_per_second(result->transitions, result->motion.frame_count, result->motion.fps);
@@ -316,10 +327,13 @@ class Router {
     for (const PathSegment& s : floor_path->segments()) {
       if (auto mask = service_.context().tag_mask(s.tag); !mask) throw ApiError{400, mask.error().message};
     }
-    auto result = service_.path(*floor_path);
+    bool cleaned = false;
+    auto result = service_.path(*floor_path, {}, boolean_field(body, "cleanup", true), &cleaned);
     if (!result) throw ApiError{422, result.error().to_string()};
     json out = motion_json(skeleton(), result->motion);
     out["result"] = service_.store_result(result->motion);
+    out["cleanup"] = cleaned;
+    out["foot_slide"] = foot_slide_report(service_.context(), result->walk, result->motion);
     out["path_length_m"] = result->path_length_m;
     out["arc_covered_m"] = result->arc_covered_m;
     out["reached_end"] = result->reached_end;
@@ -337,10 +351,12 @@ class Router {
 
   ApiResponse create_session() {
     const json body = body_object(request_);
-    auto id = service_.create_session(control_of(body));
+    const bool cleanup = boolean_field(body, "cleanup", true);
+    auto id = service_.create_session(control_of(body), cleanup);
     if (!id) throw ApiError{422, id.error().to_string()};
     return json_response({{"session", *id},
                           {"result", *id},
+                          {"cleanup", cleanup && !service_.context().frame_contacts.empty()},
                           {"fps", db().fps},
                           {"joints", joints_json(skeleton())},
                           {"tags", db().tag_names}});

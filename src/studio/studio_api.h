@@ -9,9 +9,12 @@
 //   GET  /api/matrix.png                    the distance picture (block minima)
 //   GET  /api/transitions                   the graph's transitions
 //   GET  /api/transitions/{i}/poses         the two windows a transition joins, root-centred
-//   POST /api/walk                          {"from", "to", "min_frames", "cost", "seed"}
-//   POST /api/path                          {"points": [[x, z], ...], "segments": [...]}
-//   POST /api/steer/sessions                {"heading_deg", "tag"}
+//   POST /api/walk                          {"from", "to", "min_frames", "cost", "seed", "cleanup"}
+//   POST /api/path                          {"points": [[x, z], ...], "segments": [...], "cleanup"}
+//   POST /api/steer/sessions                {"heading_deg", "tag", "cleanup"}
+// "cleanup" (default true): the foot clean-up (synthesis/foot_cleanup.h); walk and path
+// answers say whether it ran ("cleanup") and measure the result against its source clips
+// ("foot_slide", evaluation/foot_slide_report.h).
 //   POST /api/steer/sessions/{id}/step      {"heading_deg", "tag", "min_frames"}
 //   GET  /api/results/{id}.bvh              a synthesized motion as BVH (metres)
 #pragma once

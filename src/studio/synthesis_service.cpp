@@ -68,24 +68,40 @@ Result<SynthesizedMotion> SynthesisService::walk(const WalkRequest& request) {
   auto motion = assemble_walk(file_.database, graph, found->walk, start, context_.assembler.target_skeleton());
   if (!motion) return motion.error();
   SynthesizedMotion out;
+  if (auto cleanup = request.cleanup ? context_.foot_cleanup({}) : Result<FootCleanup>(Error{"", 0, "off"}); cleanup) {
+    if (auto s = context_.clean_up_walk(found->walk, *cleanup, *motion); !s) return s.error();
+    out.cleaned = true;
+  }
+  out.walk = found->walk;
   out.motion = std::move(*motion);
   out.transitions = found->walk.transition_count(graph);
   out.result = store_result(out.motion);
   return out;
 }
 
-Result<PathSynthesisResult> SynthesisService::path(const FloorPath& path, const PathSynthesisSettings& settings) const {
+Result<PathSynthesisResult> SynthesisService::path(const FloorPath& path, const PathSynthesisSettings& settings,
+                                                   bool cleanup, bool* cleaned) const {
   if (auto s = settings.validate(); !s) return s.error();
-  return synthesize_path(context_, path, settings);
+  auto result = synthesize_path(context_, path, settings);
+  if (cleaned) *cleaned = false;
+  if (!result || !cleanup) return result;
+  if (auto foot_cleanup = context_.foot_cleanup({}); foot_cleanup) {
+    if (auto s = context_.clean_up_walk(result->walk, *foot_cleanup, result->motion); !s) return s.error();
+    if (cleaned) *cleaned = true;
+  }
+  return result;
 }
 
-Result<int> SynthesisService::create_session(const ControlInput& input) {
+Result<int> SynthesisService::create_session(const ControlInput& input, bool cleanup) {
   // The controller's defaults: an expansion budget (well under a millisecond a decision) and
   // no wall-clock budget, so that a loaded machine or a slow build steers the same way.
   auto controller = Controller::create(context_, ControllerSettings{}, input);
   if (!controller) return controller.error();
   auto session = std::make_shared<Session>();
   session->controller = std::make_unique<Controller>(std::move(*controller));
+  if (cleanup) {
+    if (auto foot_cleanup = context_.foot_cleanup({}); foot_cleanup) session->cleanup = std::move(*foot_cleanup);
+  }
   session->recorded = std::make_shared<Recorded>();
   session->recorded->motion = context_.assembler.empty_motion();
   const int id = store_recorded(session->recorded);
@@ -116,8 +132,15 @@ Result<SteerStepResult> SynthesisService::step_session(int id, const ControlInpu
   SteerStepResult out;
   out.motion = context_.assembler.empty_motion();
   out.first_frame = session->frames;
+  std::vector<ContactMask> contacts;
   do {
+    const int first_new = out.motion.frame_count;
     const ControllerDecision decision = session->controller->step(out.motion);
+    if (session->cleanup) {
+      contacts.clear();
+      for (int e : decision.edges) context_.append_edge_contacts(e, contacts);
+      if (auto s = session->cleanup->clean(out.motion, first_new, contacts); !s) return s.error();
+    }
     out.search_seconds += decision.search_seconds;
     out.transitions += count_transitions(file_.graph, decision.edges);
     if (decision.frames == 0) break;

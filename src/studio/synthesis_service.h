@@ -28,12 +28,15 @@ struct WalkRequest {
   int min_frames = 0;
   WalkCost cost = WalkCost::kQuality;
   std::uint64_t seed = 1;
+  bool cleanup = true;  // the foot clean-up (synthesis/foot_cleanup.h)
 };
 
 struct SynthesizedMotion {
   int result = 0;   // id for result_bvh()
   Motion motion;
+  Walk walk;
   int transitions = 0;  // transition edges the walk took
+  bool cleaned = false;  // the foot clean-up ran (asked, and the graph's feet were found)
 };
 
 struct SteerStepResult {
@@ -58,12 +61,15 @@ class SynthesisService {
   const SynthesisContext& context() const { return context_; }
 
   Result<SynthesizedMotion> walk(const WalkRequest& request);
-  // Path synthesis; the caller stores the motion (store_result) when it keeps it.
-  Result<PathSynthesisResult> path(const FloorPath& path, const PathSynthesisSettings& settings = {}) const;
+  // Path synthesis, its motion cleaned (foot clean-up) when `cleanup` and the graph has feet
+  // (*cleaned says whether it was); the caller stores the motion (store_result) when it keeps it.
+  Result<PathSynthesisResult> path(const FloorPath& path, const PathSynthesisSettings& settings = {},
+                                   bool cleanup = true, bool* cleaned = nullptr) const;
 
-  // A steering session starting at the origin facing input.direction; returns its id, which
-  // is also the id of the result recording its motion.
-  Result<int> create_session(const ControlInput& input);
+  // A steering session starting at the origin facing input.direction, its frames cleaned as
+  // they are committed when `cleanup` and the graph has feet; returns its id, which is also
+  // the id of the result recording its motion.
+  Result<int> create_session(const ControlInput& input, bool cleanup = true);
   // Sets the input and appends at least min_frames frames (one decision or more).
   Result<SteerStepResult> step_session(int session, const ControlInput& input, int min_frames);
 
@@ -86,6 +92,7 @@ class SynthesisService {
   struct Session {
     std::mutex mutex;
     std::unique_ptr<Controller> controller;
+    std::optional<FootCleanup> cleanup;
     std::shared_ptr<Recorded> recorded;
     long long frames = 0;
     int transitions = 0;

@@ -94,6 +94,32 @@ assert abs(len(speeds) - fs["contact_steps"]) <= 2, (len(speeds), fs["contact_st
 assert abs(sum(speeds) / len(speeds) - fs["mean_mps"]) < 1e-3, (sum(speeds) / len(speeds), fs["mean_mps"])
 PY
 
+# The foot clean-up, on by default: the same walk and root path as without it (--no-cleanup),
+# the same bone lengths, feet that slide less than in the clips the motion was cut from, and no
+# new pops (at most 1.5 times the source's 99.9th percentile step).
+"$bin" path "$work/g.mgraph" --shape figure8:4 --segment walk:0-25 --segment run:25-51 --no-cleanup \
+  -o "$work/f8-raw.json" --report "$work/f8-raw-report.json" >/dev/null
+python3 - "$work" <<'PY'
+import json, math, sys
+work = sys.argv[1]
+clean, raw = (json.load(open(f"{work}/{n}-report.json")) for n in ("f8", "f8-raw"))
+assert clean["cleanup"]["enabled"] and clean["cleanup"]["frames"] == clean["frames"], clean["cleanup"]
+assert clean["cleanup"]["planted_leg_frames"] > clean["frames"] // 2, clean["cleanup"]
+assert raw["cleanup"] == {"enabled": False, "reason": "--no-cleanup"}, raw["cleanup"]
+assert clean["edges"] == raw["edges"] and clean["frames"] == raw["frames"]
+a, b = (json.load(open(f"{work}/{n}.json")) for n in ("f8", "f8-raw"))
+parents = [j["parent"] for j in a["joints"]]
+for pa, pb in zip(a["positions"], b["positions"]):
+    assert abs(pa[0][0] - pb[0][0]) < 2e-6 and abs(pa[0][2] - pb[0][2]) < 2e-6   # the root's path
+    assert pb[0][1] - 0.1 - 2e-6 <= pa[0][1] <= pb[0][1] + 2e-6                  # at most lowered
+    for j, p in enumerate(parents):
+        if p >= 0:
+            assert abs(math.dist(pa[j], pa[p]) - math.dist(pb[j], pb[p])) < 1e-5, j   # bone lengths
+fc, fr = clean["foot_slide"], raw["foot_slide"]
+assert fc["ratio"]["mean_mps"] <= 1.0 and fc["mean_mps"] < 0.5 * fr["mean_mps"], (fc, fr)
+assert fc["ratio"]["max_joint_step_over_source_p999"] <= 1.5, fc
+PY
+
 # Bad input: one line naming the file (and line), exit 1, nothing written.
 expect_error() {  # expected-part output command...
   local part=$1 out=$2

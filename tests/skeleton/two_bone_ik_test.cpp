@@ -75,12 +75,12 @@ TEST(TwoBoneIk, TheKneeKeepsItsSideAndATargetAtTheAnkleChangesNothing) {
     const Vec3 bend = (leg.knee - leg.hip).cross(leg.ankle - leg.knee).normalized();
     // A plant a few centimetres away, as the clean-up asks.
     const Vec3 target = leg.ankle + 0.05 * Vec3::Random();
-    const TwoBoneSolution s = solve_two_bone(leg.hip, leg.knee, leg.ankle, target, Vec3::UnitX());
+    const TwoBoneSolution s = solve_two_bone(leg.hip, leg.knee, leg.ankle, target, bend);
     const Vec3 after = (s.knee - leg.hip).cross(s.ankle - s.knee);
     if (after.norm() > 1e-6) {
       EXPECT_GT(after.normalized().dot(bend), 0.5) << i;  // no flip
     }
-    const TwoBoneSolution same = solve_two_bone(leg.hip, leg.knee, leg.ankle, leg.ankle, Vec3::UnitX());
+    const TwoBoneSolution same = solve_two_bone(leg.hip, leg.knee, leg.ankle, leg.ankle, bend);
     EXPECT_LT(same.upper.angularDistance(Quat::Identity()), 1e-7);
     EXPECT_LT(same.lower.angularDistance(Quat::Identity()), 1e-7);
   }
@@ -90,6 +90,25 @@ TEST(TwoBoneIk, TheKneeKeepsItsSideAndATargetAtTheAnkleChangesNothing) {
   EXPECT_TRUE(s.reached);
   EXPECT_GT(std::abs(s.knee.z()), 0.1);
   EXPECT_NEAR(s.knee.x(), 0.0, 1e-9);  // bent in the plane normal to the hint
+}
+
+TEST(TwoBoneIk, AKneeBentAgainstItsHingeIsBentTheUsualWay) {
+  // Hyperextended by a few degrees (the shank behind the thigh's line the wrong way): the
+  // solution bends the knee about the hinge, forwards, and still reaches the target.
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> back(0.01, 0.08);
+  for (int i = 0; i < 200; ++i) {
+    const Vec3 hinge = Vec3::UnitX();
+    const Vec3 hip(0, 1, 0), knee(0, 0.55, 0);
+    const Vec3 ankle = knee + 0.45 * Vec3(0, -1, back(rng)).normalized();  // bent the wrong way about +x
+    ASSERT_LT((knee - hip).cross(ankle - knee).dot(hinge), 0.0);
+    const Vec3 target = ankle + Vec3(0, 0.02 + 0.05 * back(rng), 0.01);
+    const TwoBoneSolution s = solve_two_bone(hip, knee, ankle, target, hinge);
+    EXPECT_TRUE(s.reached) << i;
+    EXPECT_GT((s.knee - hip).cross(s.ankle - s.knee).dot(hinge), 0.0) << i;  // bent forwards now
+    EXPECT_NEAR((s.knee - hip).norm(), 0.45, 1e-9);
+    EXPECT_NEAR((s.ankle - s.knee).norm(), 0.45, 1e-9);
+  }
 }
 
 TEST(TwoBoneIk, AppliedToACmuPoseMovesOnlyTheLegAndPutsTheAnkleOnTheTarget) {

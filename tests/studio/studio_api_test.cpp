@@ -99,6 +99,31 @@ TEST(StudioApi, WalkReturnsMotionAndABvhDownload) {
   EXPECT_FALSE(bvh.response.file_name.empty());
 }
 
+TEST(StudioApi, ResultsAreCleanedUnlessAskedNotToAndMeasuredAgainstTheirSource) {
+  const std::string path = R"({"points": [[0, 0], [0, -6], [4, -9]])";
+  const ApiCall cleaned = call_api("POST", "/api/path", path + "}");
+  const ApiCall raw = call_api("POST", "/api/path", path + R"(, "cleanup": false})");
+  ASSERT_EQ(cleaned.response.status, 200) << cleaned.response.body;
+  ASSERT_EQ(raw.response.status, 200) << raw.response.body;
+  EXPECT_TRUE(cleaned.json["cleanup"].get<bool>());
+  EXPECT_FALSE(raw.json["cleanup"].get<bool>());
+  const json& fc = cleaned.json["foot_slide"];
+  const json& fr = raw.json["foot_slide"];
+  ASSERT_FALSE(fc.contains("error")) << fc;
+  EXPECT_EQ(fc["source"]["clips"], fr["source"]["clips"]);  // the same walk, played as it is or cleaned
+  EXPECT_LT(fc["mean_mps"].get<double>(), 0.5 * fr["mean_mps"].get<double>()) << fc << fr;
+  EXPECT_LE(fc["ratio"]["mean_mps"].get<double>(), 1.0) << fc;
+  const ApiCall walk = call_api("POST", "/api/walk", R"({"from": 0, "to": 3, "min_frames": 90, "cleanup": false})");
+  ASSERT_EQ(walk.response.status, 200) << walk.response.body;
+  EXPECT_FALSE(walk.json["cleanup"].get<bool>());
+  EXPECT_GT(walk.json["foot_slide"]["contact_steps"].get<int>(), 0);
+  const ApiCall session = call_api("POST", "/api/steer/sessions", R"({"heading_deg": 90, "cleanup": true})");
+  ASSERT_EQ(session.response.status, 200) << session.response.body;
+  EXPECT_TRUE(session.json["cleanup"].get<bool>());
+  expect_error(call_api("POST", "/api/walk", R"({"cleanup": "yes"})"), 400, "cleanup");
+  expect_error(call_api("POST", "/api/path", R"({"points": [[0, 0], [0, 5]], "cleanup": 1})"), 400, "cleanup");
+}
+
 TEST(StudioApi, BadWalksAre4xx) {
   expect_error(call_api("POST", "/api/walk", "{"), 400, "request body");
   expect_error(call_api("POST", "/api/walk", "[1, 2]"), 400, "object");

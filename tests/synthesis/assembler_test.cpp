@@ -132,6 +132,35 @@ TEST(Assembler, RootTracksAreTheRootsOfTheWholePoses) {
   }
 }
 
+TEST(Assembler, PlayedFramesCarryTheContactsOfTheFramesThatWeighMost) {
+  const auto& s = test::subject16();
+  const MotionGraph& graph = s.file.graph;
+  // Every database frame its own mask, so that the source of each played mask shows.
+  std::vector<ContactMask> masks(static_cast<size_t>(s.file.database.frame_count()));
+  for (size_t f = 0; f < masks.size(); ++f) masks[f] = static_cast<ContactMask>(f % 251);
+  int transitions = 0;
+  for (int e = 0; e < graph.edge_count(); ++e) {
+    const GraphEdge& edge = graph.edges[e];
+    std::vector<ContactMask> played;
+    s.context.assembler.append_edge_contacts(e, masks, played);
+    ASSERT_EQ(static_cast<int>(played.size()), edge.frame_count);
+    for (int p = 0; p < edge.frame_count; ++p) {
+      int frame = graph.nodes[edge.from_node].frame + p;
+      if (edge.transition) {
+        const Transition& t = graph.transitions[edge.transition_index];
+        frame = blend_weight(p, graph.window) >= 0.5 ? t.from_frame + p : t.to_frame - graph.window + 1 + p;
+      }
+      ASSERT_EQ(played[p], masks[frame]) << "edge " << e << " frame " << p;
+    }
+    transitions += edge.transition ? 1 : 0;
+  }
+  EXPECT_GT(transitions, 10);
+  // The context's masks: a walk's frames and its end node's frame, as assemble_walk plays them.
+  ASSERT_EQ(s.context.frame_contacts.size(), masks.size());
+  const Walk walk{0, {graph.edge_offsets[0]}};
+  EXPECT_EQ(static_cast<long long>(s.context.walk_contacts(walk).size()), walk.frame_count(graph) + 1);
+}
+
 TEST(Assembler, RejectsAWalkThatDoesNotFollowTheGraph) {
   const auto& s = test::subject16();
   const MotionGraph& graph = s.file.graph;

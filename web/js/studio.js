@@ -283,7 +283,8 @@ $('synthesize').addEventListener('click', async () => {
   setDrawing(false);
   $('path-info').textContent = 'synthesizing...';
   try {
-    const result = await post('/api/path', { points: state.path.points, segments: pathSegments() });
+    const result = await post('/api/path',
+      { points: state.path.points, segments: pathSegments(), cleanup: $('cleanup').checked });
     result.roots = result.positions.map((f) => [f[0], f[2]]);
     state.pathResult = result;
     drawPath();
@@ -295,11 +296,19 @@ $('synthesize').addEventListener('click', async () => {
       + `(${(result.frames / result.fps).toFixed(1)} s): deviation mean ${result.mean_deviation_m.toFixed(2)} m, `
       + `max ${result.max_deviation_m.toFixed(2)} m${result.reached_end ? '' : ' (end not reached)'}`
       + `, tags matched ${(100 * result.tag_match).toFixed(0)} %; ${result.transitions} transitions `
-      + `(${result.transitions_per_second.toFixed(2)}/s)`;
+      + `(${result.transitions_per_second.toFixed(2)}/s); ${footSlideText(result)}`;
   } catch (err) {
     $('path-info').textContent = `error: ${err.message}`;
   }
 });
+
+// How much a result's planted feet slide, beside the clips it was cut from.
+function footSlideText(result) {
+  const fs = result.foot_slide;
+  if (!fs || fs.error) return `foot slide not measured${fs ? `: ${fs.error}` : ''}`;
+  const times = fs.ratio.mean_mps === null ? '' : ` (${fs.ratio.mean_mps.toFixed(2)}x the capture)`;
+  return `feet slide ${fs.mean_mps.toFixed(3)} m/s${times}, ${result.cleanup ? 'cleaned up' : 'as played'}`;
+}
 
 // --- steering ------------------------------------------------------------------------------
 const keys = new Set();
@@ -347,7 +356,7 @@ function steerInput() {
 
 async function startSteering() {
   const tag = has('walk') ? 'walk' : '';
-  const session = await post('/api/steer/sessions', { heading_deg: 0, tag });
+  const session = await post('/api/steer/sessions', { heading_deg: 0, tag, cleanup: $('cleanup').checked });
   ensureFigure(session.joints);
   state.track = null;
   state.mode = 'steer';
@@ -398,7 +407,9 @@ $('random-walk').addEventListener('click', async () => {
   const nodes = state.summary.statistics.nodes;
   const seed = Math.floor(Math.random() * 1e6);
   const walk = await post('/api/walk', {
-    from: seed % nodes, to: (seed * 7919) % nodes, min_frames: 300, cost: 'random', seed });
+    from: seed % nodes, to: (seed * 7919) % nodes, min_frames: 300, cost: 'random', seed,
+    cleanup: $('cleanup').checked });
+  $('walk-info').textContent = `${walk.frames} frames, ${walk.transitions} transitions; ${footSlideText(walk)}`;
   ensureFigure(walk.joints);
   setDrawing(false);
   play({ fps: walk.fps, frames: walk.positions, loop: false, label: 'graph walk' }, 'result');

@@ -42,7 +42,7 @@ Status FootSlideSettings::validate() const {
 void FootSlideSamples::add(const FootSlideSamples& other) {
   contact_speeds_mps.insert(contact_speeds_mps.end(), other.contact_speeds_mps.begin(),
                             other.contact_speeds_mps.end());
-  max_joint_step_m = std::max(max_joint_step_m, other.max_joint_step_m);
+  frame_steps_m.insert(frame_steps_m.end(), other.frame_steps_m.begin(), other.frame_steps_m.end());
 }
 
 FootSlide FootSlideSamples::summary() const {
@@ -53,7 +53,10 @@ FootSlide FootSlideSamples::summary() const {
                      static_cast<double>(slide.contact_steps);
     slide.p95_mps = quantile(contact_speeds_mps, 0.95);
   }
-  slide.max_joint_step_m = max_joint_step_m;
+  if (!frame_steps_m.empty()) {
+    slide.max_joint_step_m = *std::max_element(frame_steps_m.begin(), frame_steps_m.end());
+    slide.p999_joint_step_m = quantile(frame_steps_m, 0.999);
+  }
   return slide;
 }
 
@@ -72,10 +75,12 @@ FootSlideSamples foot_slide_samples(std::span<const Vec3> world_positions_m, int
   }
   for (int f = 1; f < frames; ++f) {
     const Vec3 root_step = world_positions_m[f * joints] - world_positions_m[(f - 1) * joints];
+    double most = 0.0;
     for (size_t j = 1; j < joints; ++j) {
       const Vec3 step = world_positions_m[f * joints + j] - world_positions_m[(f - 1) * joints + j] - root_step;
-      samples.max_joint_step_m = std::max(samples.max_joint_step_m, step.norm());
+      most = std::max(most, step.norm());
     }
+    samples.frame_steps_m.push_back(most);
   }
   return samples;
 }

@@ -9,7 +9,9 @@
 //    does not slide gives 0. Reported as the mean and the 95th percentile over all such steps.
 //  - largest joint step: over all frames f >= 1 and joints, the distance a joint moves from
 //    frame f-1 to f relative to the root (its position minus joint 0's), in metres; a pop in a
-//    blend shows here, steady travel does not. Per frame, so compare at one frame rate.
+//    blend shows here, steady travel does not. Per frame, so compare at one frame rate. Also
+//    the 99.9th percentile over frames of each frame's largest step: what a capture's rare
+//    glitch (CMU 16_15's finger end jumps 0.92 m at its frame 1) does not set.
 //
 // The contacts the measure finds itself are by height alone (FootSlideSettings::contacts):
 // planted while within 2 cm of the floor (the 2nd percentile of the toes' heights), whatever
@@ -44,12 +46,13 @@ struct FootSlide {
   double p95_mps = 0.0;          // its 95th percentile
   long long contact_steps = 0;   // planted steps measured
   double max_joint_step_m = 0.0; // largest per-frame joint step relative to the root
+  double p999_joint_step_m = 0.0; // the 99.9th percentile of each frame's largest step
 };
 
 // The raw measurements, so that several motions (a walk's source clips) pool into one measure.
 struct FootSlideSamples {
   std::vector<double> contact_speeds_mps;
-  double max_joint_step_m = 0.0;
+  std::vector<double> frame_steps_m;  // per frame after the first, its largest joint step
 
   void add(const FootSlideSamples& other);
   FootSlide summary() const;

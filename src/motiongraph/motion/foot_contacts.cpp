@@ -87,6 +87,14 @@ bool FootContacts::foot_planted(FootSide side, int frame) const {
   return false;
 }
 
+ContactMask contact_mask(const FootContacts& contacts, int frame) {
+  ContactMask mask = 0;
+  for (const FootContactTrack& track : contacts.tracks) {
+    if (track.planted[frame]) mask |= contact_bit(track.side, track.part);
+  }
+  return mask;
+}
+
 std::vector<ContactInterval> contact_intervals(std::span<const uint8_t> planted) {
   std::vector<ContactInterval> intervals;
   const int frames = static_cast<int>(planted.size());

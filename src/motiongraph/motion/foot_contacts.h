@@ -72,6 +72,15 @@ struct FootContacts {
   bool foot_planted(FootSide side, int frame) const;
 };
 
+// A frame's contacts as bits, one per joint kind (left ankle, left toe, right ankle, right
+// toe): what synthesis carries from the database frames into the frames it plays.
+using ContactMask = uint8_t;
+constexpr ContactMask contact_bit(FootSide side, FootPart part) {
+  return static_cast<ContactMask>(1u << (2 * static_cast<int>(side) + static_cast<int>(part)));
+}
+// The bits of the tracks planted at `frame`.
+ContactMask contact_mask(const FootContacts& contacts, int frame);
+
 // A run of planted frames.
 struct ContactInterval {
   int first_frame = 0;

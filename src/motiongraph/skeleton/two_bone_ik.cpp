@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace mg {
 
@@ -32,18 +33,26 @@ TwoBoneSolution solve_two_bone(const Vec3& hip, const Vec3& knee, const Vec3& an
   const double longest = max_extension * (l1 + l2), shortest = std::abs(l1 - l2) * 1.001 + 1e-9;
   const double span = std::clamp(wanted, shortest, std::max(shortest, longest));
 
-  // 2. The knee about its bend axis until the ankle is `span` from the hip.
+  // 2. The knee about its bend axis until the ankle is `span` from the hip. A knee bent against
+  // the hint (hyperextended) or straight is first straightened, then bent about the hint.
   Vec3 axis = thigh.cross(shank);
-  axis = axis.norm() > 1e-9 * l1 * l2 ? axis.normalized() : perpendicular_axis(thigh, bend_hint);
-  const double cos_now = std::clamp((-thigh).dot(shank) / (l1 * l2), -1.0, 1.0);   // interior angle at the knee
   const double cos_want = std::clamp((l1 * l1 + l2 * l2 - span * span) / (2.0 * l1 * l2), -1.0, 1.0);
-  const double change = std::acos(cos_want) - std::acos(cos_now);
-  // Opening the knee turns the shank one way about the axis; try both and keep the one that
-  // gives the span (they differ unless change is 0).
-  const Quat open(Eigen::AngleAxisd(change, axis)), close(Eigen::AngleAxisd(-change, axis));
-  const double open_error = std::abs((thigh + open * shank).norm() - span);
-  const double close_error = std::abs((thigh + close * shank).norm() - span);
-  out.lower = open_error <= close_error ? open : close;
+  const bool has_hint = bend_hint.norm() > 1e-12;
+  if (axis.norm() <= 1e-6 * l1 * l2 || (has_hint && axis.dot(bend_hint) < 0.0)) {
+    const Vec3 hinge = perpendicular_axis(thigh, has_hint ? bend_hint : axis);
+    const double bend = std::numbers::pi - std::acos(cos_want);  // 0 for a straight leg
+    out.lower = Quat(Eigen::AngleAxisd(bend, hinge)) * Quat::FromTwoVectors(shank, thigh);
+  } else {
+    axis.normalize();
+    const double cos_now = std::clamp((-thigh).dot(shank) / (l1 * l2), -1.0, 1.0);  // interior angle at the knee
+    const double change = std::acos(cos_want) - std::acos(cos_now);
+    // Opening the knee turns the shank one way about the axis; try both and keep the one that
+    // gives the span (they differ unless change is 0).
+    const Quat open(Eigen::AngleAxisd(change, axis)), close(Eigen::AngleAxisd(-change, axis));
+    const double open_error = std::abs((thigh + open * shank).norm() - span);
+    const double close_error = std::abs((thigh + close * shank).norm() - span);
+    out.lower = open_error <= close_error ? open : close;
+  }
   const Vec3 leg = thigh + out.lower * shank;  // hip to ankle after the knee moved
 
   // 3. The whole leg towards the target by the shortest arc.

@@ -7,8 +7,10 @@
 //     max_extension of the full length l1 + l2 (a straight knee snaps and looks locked), at
 //     least a little over |l1 - l2|;
 //  2. the knee opens or closes about its bend axis n = (b - a) x (c - b) until the ankle is that
-//     far from the hip (law of cosines); a straight leg has no such axis and bends about
-//     `bend_hint` (the knee's usual axis, e.g. the previous frame's);
+//     far from the hip (law of cosines). `bend_hint` is the knee's hinge axis (the direction
+//     n has when the knee bends the usual way, e.g. learnt from the motion; zero: none): a
+//     knee bent against it (hyperextended) or straight is straightened and bent about it
+//     instead, so the knee never bends backwards;
 //  3. the whole leg turns about the hip by the shortest arc that points it at the target.
 // So a reachable target is met exactly, a far one is met in direction with the leg at
 // max_extension, and the knee never flips to the other side of its plane (step 3 turns the

@@ -141,6 +141,16 @@ void MotionAssembler::append_edge_roots(int edge, FloorTransform& placement, std
       });
 }
 
+void MotionAssembler::append_edge_contacts(int edge, std::span<const ContactMask> frame_contacts,
+                                           std::vector<ContactMask>& out) const {
+  FloorTransform placement;
+  visit_edge(
+      edge, placement, [&](int frame, const FloorTransform&) { out.push_back(frame_contacts[frame]); },
+      [&](int d, const FloorTransform&, int a, const FloorTransform&, double alpha) {
+        out.push_back(frame_contacts[alpha >= 0.5 ? d : a]);
+      });
+}
+
 Result<Motion> assemble_walk(const MotionDatabase& db, const MotionGraph& graph, const Walk& walk,
                              const FloorTransform& start, int target_skeleton) {
   if (auto status = check_walk(graph, walk); !status) return status.error();

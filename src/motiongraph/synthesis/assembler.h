@@ -16,11 +16,13 @@
 // which is the exact alignment when s_A = s_B and its first-order version otherwise.
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "motiongraph/core/error.h"
 #include "motiongraph/database/motion_database.h"
 #include "motiongraph/graph/motion_graph.h"
+#include "motiongraph/motion/foot_contacts.h"
 #include "motiongraph/synthesis/floor_transform.h"
 #include "motiongraph/synthesis/walk.h"
 
@@ -63,6 +65,11 @@ class MotionAssembler {
   RootPose root_pose(int frame, const FloorTransform& placement) const;
   Vec3 root_position(int frame, const FloorTransform& placement) const { return root_pose(frame, placement).position; }
   Quat root_rotation(int frame, const FloorTransform& placement) const { return root_pose(frame, placement).rotation; }
+  // The foot contacts (motion/foot_contacts.h) of the frames append_edge plays, from those of
+  // the database frames (`frame_contacts`, per global frame): a clip frame has its own; a
+  // blended frame those of the frame that weighs more in it (the departure while alpha >= 0.5).
+  void append_edge_contacts(int edge, std::span<const ContactMask> frame_contacts,
+                            std::vector<ContactMask>& out) const;
   // What append_edge plays, root only (what searches need; much cheaper than whole poses).
   void append_edge_roots(int edge, FloorTransform& placement, std::vector<RootPose>& out) const;
 

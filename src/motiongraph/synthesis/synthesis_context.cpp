@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "motiongraph/database/database_contacts.h"
+
 namespace mg {
 
 Result<SynthesisContext> make_synthesis_context(const MotionDatabase& db, const MotionGraph& graph,
@@ -13,9 +15,17 @@ Result<SynthesisContext> make_synthesis_context(const MotionDatabase& db, const 
   if (target_skeleton < 0) target_skeleton = db.clips.front().skeleton;
   auto assembler = MotionAssembler::create(db, graph, target_skeleton);
   if (!assembler) return assembler.error();
-  SynthesisContext context{&db, &graph, std::move(*assembler), db.frame_tags(), {}};
+  SynthesisContext context{&db, &graph, std::move(*assembler), db.frame_tags(), {}, {}, {}, {}};
   const std::vector<Vec3> axes = learn_forward_axes(db);
   context.tracks = compute_edge_tracks(context.assembler, graph, context.frame_tags, axes[target_skeleton]);
+  auto feet = find_foot_joints(db.skeletons[target_skeleton]);
+  auto contacts = feet ? database_contacts(db) : Result<std::vector<ContactMask>>(feet.error());
+  if (feet && contacts) {
+    context.feet = *feet;
+    context.frame_contacts = std::move(*contacts);
+  } else {
+    context.feet_error = contacts.error().message;
+  }
   return context;
 }
 
@@ -44,6 +54,32 @@ FloorTransform SynthesisContext::placement_facing(int node, const Vec2& at, cons
 
 FloorTransform SynthesisContext::placement_facing_edge(int edge, const Vec2& at, const Vec2& direction) const {
   return place_root(tracks.roots_of(edge).front(), tracks.facings_of(edge).front(), at, direction);
+}
+
+void SynthesisContext::append_edge_contacts(int edge, std::vector<ContactMask>& out) const {
+  if (!frame_contacts.empty()) assembler.append_edge_contacts(edge, frame_contacts, out);
+}
+
+std::vector<ContactMask> SynthesisContext::walk_contacts(const Walk& walk) const {
+  std::vector<ContactMask> out;
+  if (frame_contacts.empty()) return out;
+  for (int e : walk.edges) append_edge_contacts(e, out);
+  out.push_back(frame_contacts[graph->nodes[walk.end_node(*graph)].frame]);
+  return out;
+}
+
+Result<FootCleanup> SynthesisContext::foot_cleanup(const FootCleanupSettings& settings) const {
+  if (frame_contacts.empty()) return Error{"", 0, "no foot clean-up: " + feet_error};
+  return FootCleanup::create(assembler.skeleton(), feet, db->fps, settings);
+}
+
+Status SynthesisContext::clean_up_walk(const Walk& walk, FootCleanup& cleanup, Motion& motion) const {
+  std::vector<ContactMask> contacts = walk_contacts(walk);
+  if (static_cast<int>(contacts.size()) < motion.frame_count) {
+    return Error{"", 0, fmt::format("the walk plays {} frames, the motion has {}", contacts.size(), motion.frame_count)};
+  }
+  contacts.resize(static_cast<size_t>(motion.frame_count));
+  return cleanup.clean(motion, 0, contacts);
 }
 
 Result<TagMask> SynthesisContext::tag_mask(const std::string& name) const {

@@ -1,11 +1,14 @@
 // What every synthesis command needs of a graph, set up once: the assembler on the target
-// skeleton, the learnt forward axis, per-frame tags and the edge tracks.
+// skeleton, the learnt forward axis, per-frame tags, the edge tracks, and the feet with the
+// foot contacts of every database frame (for the foot clean-up, synthesis/foot_cleanup.h).
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "motiongraph/synthesis/edge_tracks.h"
+#include "motiongraph/synthesis/foot_cleanup.h"
+#include "motiongraph/synthesis/walk.h"
 
 namespace mg {
 
@@ -15,6 +18,11 @@ struct SynthesisContext {
   MotionAssembler assembler;
   std::vector<TagMask> frame_tags;
   EdgeTracks tracks;
+  // The target skeleton's feet and every database frame's contacts; when the feet cannot be
+  // found, frame_contacts is empty and feet_error says why (no clean-up then).
+  FootJoints feet;
+  std::vector<ContactMask> frame_contacts;
+  std::string feet_error;
 
   // The placement that puts node `node`'s frame with its root at `at` facing `direction`
   // (unit, on the floor).
@@ -22,6 +30,16 @@ struct SynthesisContext {
   // The same for the first frame edge `edge` plays (a transition's first frame is already
   // blended, a few millimetres from its node's frame).
   FloorTransform placement_facing_edge(int edge, const Vec2& at, const Vec2& direction) const;
+  // The contact masks of the frames edge `edge` plays, appended to `out` (none without feet).
+  void append_edge_contacts(int edge, std::vector<ContactMask>& out) const;
+  // The contact masks of the frames assemble_walk() plays for `walk` (its edges' frames and
+  // the end node's frame).
+  std::vector<ContactMask> walk_contacts(const Walk& walk) const;
+  // A clean-up for motion on the target skeleton; fails with feet_error without feet.
+  Result<FootCleanup> foot_cleanup(const FootCleanupSettings& settings) const;
+  // Cleans the motion assemble_walk() played for `walk` (or its first motion.frame_count frames,
+  // a path's motion cut where the path ends) from its first frame.
+  Status clean_up_walk(const Walk& walk, FootCleanup& cleanup, Motion& motion) const;
   // The tag bit of a name, or an error listing the graph's tags.
   Result<TagMask> tag_mask(const std::string& name) const;
 };

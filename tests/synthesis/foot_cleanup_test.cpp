@@ -1,0 +1,238 @@
+#include "motiongraph/synthesis/foot_cleanup.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "motiongraph/motion/forward_kinematics.h"
+#include "motiongraph/motion/resample.h"
+#include "test_data.h"
+
+namespace mg {
+namespace {
+
+// A CMU walk at 30 fps, its feet, and its contacts as masks.
+struct Walked {
+  Clip clip;
+  FootJoints feet;
+  std::vector<ContactMask> contacts;
+};
+
+Walked walked(const char* file = "cmu/16/16_15.amc") {
+  Walked w{test::load_data_clip(file), {}, {}};
+  w.clip.motion = *resample(w.clip.motion, 30.0);
+  w.feet = *find_foot_joints(w.clip.skeleton);
+  const FootContacts contacts = *detect_foot_contacts(w.clip.skeleton, w.clip.motion, w.feet, {});
+  for (int f = 0; f < w.clip.motion.frame_count; ++f) w.contacts.push_back(contact_mask(contacts, f));
+  return w;
+}
+
+// The motion with its root sliding sideways at `speed` m/s and swaying by `sway` m: planted
+// feet slide with it, as they do where synthesis aligns and blends pieces.
+Motion sliding(const Motion& motion, double speed, double sway = 0.0) {
+  Motion out = motion;
+  for (int f = 0; f < out.frame_count; ++f) {
+    const double t = f / out.fps;
+    out.translations(f)[0].x() += speed * t + sway * std::sin(2.0 * t);
+    out.translations(f)[0].z() += 0.5 * sway * std::sin(3.0 * t);
+  }
+  return out;
+}
+
+Motion cleaned(const Walked& w, const Motion& motion, const FootCleanupSettings& settings = {},
+               FootCleanupStats* stats = nullptr) {
+  auto cleanup = FootCleanup::create(w.clip.skeleton, w.feet, motion.fps, settings);
+  EXPECT_TRUE(cleanup) << cleanup.error().to_string();
+  Motion out = motion;
+  const Status s = cleanup->clean(out, 0, w.contacts);
+  EXPECT_TRUE(s) << s.error().to_string();
+  if (stats) *stats = cleanup->stats();
+  return out;
+}
+
+double horizontal(const Vec3& a, const Vec3& b) { return std::hypot(a.x() - b.x(), a.z() - b.z()); }
+
+// The largest per-frame step of any joint relative to the root.
+double max_joint_step(const std::vector<Vec3>& p, int joints) {
+  double most = 0.0;
+  const int frames = static_cast<int>(p.size()) / joints;
+  for (int f = 1; f < frames; ++f) {
+    for (int j = 1; j < joints; ++j) {
+      const Vec3 now = p[f * joints + j] - p[f * joints], before = p[(f - 1) * joints + j] - p[(f - 1) * joints];
+      most = std::max(most, (now - before).norm());
+    }
+  }
+  return most;
+}
+
+TEST(FootCleanup, PlantedFeetStayOnTheirPlantsOnTheFloor) {
+  // Sliding about as fast as synthesized motion does before the clean-up (subject 16's
+  // figure 8: 0.1 m/s on average, twice that at the 95th percentile).
+  const Walked w = walked();
+  const Motion input = sliding(w.clip.motion, 0.15, 0.03);
+  FootCleanupStats stats;
+  const Motion output = cleaned(w, input, {}, &stats);
+  const int joints = w.clip.skeleton.joint_count();
+  const std::vector<Vec3> before = world_positions(w.clip.skeleton, input);
+  const std::vector<Vec3> after = world_positions(w.clip.skeleton, output);
+  EXPECT_LT(stats.max_ankle_miss_m, 0.003);
+  int checked = 0;
+  double slide_before = 0.0;
+  for (const auto& [foot, side] : {std::pair{w.feet.left, FootSide::kLeft}, std::pair{w.feet.right, FootSide::kRight}}) {
+    for (const auto& [joint, part] : {std::pair{foot.ankle, FootPart::kAnkle}, std::pair{foot.toe, FootPart::kToe}}) {
+      // An ankle holds its plant while its toe is not planted (the toe governs: a rising heel
+      // pivots about it).
+      std::vector<uint8_t> planted;
+      for (ContactMask m : w.contacts) {
+        const bool toe = (m & contact_bit(side, FootPart::kToe)) != 0;
+        planted.push_back((m & contact_bit(side, part)) != 0 && (part == FootPart::kToe || !toe));
+      }
+      for (const ContactInterval& c : contact_intervals(planted)) {
+        const Vec3 plant = after[c.first_frame * joints + joint];
+        for (int f = c.first_frame; f < c.first_frame + c.frame_count; ++f) {
+          // The toe is turned onto its plant in direction, so it may miss by what the ankle does.
+          EXPECT_LT(horizontal(after[f * joints + joint], plant), part == FootPart::kAnkle ? 0.003 : 0.006)
+              << "joint " << joint << " frame " << f;
+          slide_before = std::max(slide_before, horizontal(before[f * joints + joint], before[c.first_frame * joints + joint]));
+          ++checked;
+        }
+      }
+    }
+  }
+  EXPECT_GT(checked, 100);
+  EXPECT_GT(slide_before, 0.1);  // the input did slide
+}
+
+TEST(FootCleanup, BoneLengthsAndEverythingButTheLegsAndTheRootsHeightAreKept) {
+  const Walked w = walked();
+  const Motion input = sliding(w.clip.motion, 0.3, 0.05);
+  const Motion output = cleaned(w, input);
+  const Skeleton& sk = w.clip.skeleton;
+  const int joints = sk.joint_count();
+  const std::vector<Vec3> before = world_positions(sk, input), after = world_positions(sk, output);
+  const std::vector<int> legs{sk.parent(sk.parent(w.feet.left.ankle)),  sk.parent(w.feet.left.ankle),  w.feet.left.ankle,
+                              sk.parent(sk.parent(w.feet.right.ankle)), sk.parent(w.feet.right.ankle), w.feet.right.ankle};
+  int changed = 0;
+  for (int f = 0; f < input.frame_count; ++f) {
+    for (int j = 1; j < joints; ++j) {
+      const double length_before = (before[f * joints + j] - before[f * joints + sk.parent(j)]).norm();
+      const double length_after = (after[f * joints + j] - after[f * joints + sk.parent(j)]).norm();
+      ASSERT_NEAR(length_after, length_before, 1e-9) << "frame " << f << " joint " << j;
+      if (std::find(legs.begin(), legs.end(), j) == legs.end()) {
+        ASSERT_EQ(output.rotations(f)[j].coeffs(), input.rotations(f)[j].coeffs()) << "frame " << f << " joint " << j;
+      } else if (!output.rotations(f)[j].isApprox(input.rotations(f)[j], 1e-12)) {
+        ++changed;
+      }
+    }
+    EXPECT_EQ(output.translations(f)[0].x(), input.translations(f)[0].x());
+    EXPECT_EQ(output.translations(f)[0].z(), input.translations(f)[0].z());
+    EXPECT_LE(output.translations(f)[0].y(), input.translations(f)[0].y());  // only ever lowered
+    EXPECT_GE(output.translations(f)[0].y(), input.translations(f)[0].y() - FootCleanupSettings{}.max_root_drop_m - 1e-12);
+  }
+  EXPECT_GT(changed, input.frame_count);
+}
+
+TEST(FootCleanup, AddsNoStepAndTheKneeBendsTheUsualWay) {
+  for (const char* file : {"cmu/16/16_15.amc", "cmu/16/16_35.amc", "cmu/16/16_57.amc"}) {
+    const Walked w = walked(file);
+    const Motion input = sliding(w.clip.motion, 0.15, 0.03);
+    const Motion output = cleaned(w, input);
+    const Skeleton& sk = w.clip.skeleton;
+    const int joints = sk.joint_count();
+    const std::vector<Vec3> before = world_positions(sk, input), after = world_positions(sk, output);
+    EXPECT_LE(max_joint_step(after, joints), 1.5 * max_joint_step(before, joints)) << file;
+    // The knee's bend axis, in the hip joint's frame, where it bends by 10 degrees or more:
+    // on the side the capture bends it.
+    std::vector<Vec3> p(joints);
+    std::vector<Quat> r_in(joints), r_out(joints);
+    for (const Foot& foot : {w.feet.left, w.feet.right}) {
+      const int knee = sk.parent(foot.ankle), hip = sk.parent(knee);
+      Vec3 usual = Vec3::Zero();
+      for (int f = 0; f < input.frame_count; ++f) {
+        forward_kinematics(sk, input, f, p, r_in);
+        const Vec3 bend = (p[knee] - p[hip]).cross(p[foot.ankle] - p[knee]);
+        if (bend.norm() > 0.05) usual += r_in[hip].conjugate() * bend.normalized();
+      }
+      ASSERT_GT(usual.norm(), 1.0) << file;
+      for (int f = 0; f < output.frame_count; ++f) {
+        forward_kinematics(sk, output, f, p, r_out);
+        const Vec3 thigh = p[knee] - p[hip], shank = p[foot.ankle] - p[knee];
+        const Vec3 bend = thigh.cross(shank);
+        if (bend.norm() > std::sin(10.0 * std::numbers::pi / 180.0) * thigh.norm() * shank.norm()) {
+          EXPECT_GT((r_out[hip].conjugate() * bend).dot(usual), 0.0) << file << " frame " << f;
+        }
+      }
+    }
+  }
+}
+
+TEST(FootCleanup, FramesCleanedInPiecesAreTheFramesCleanedAtOnce) {
+  // Without the root's drop (the only step that looks ahead), cleaning the frames as the
+  // steering controller commits them gives exactly what cleaning them at once does.
+  const Walked w = walked();
+  const Motion input = sliding(w.clip.motion, 0.3, 0.05);
+  FootCleanupSettings settings;
+  settings.max_root_drop_m = 0.0;
+  const Motion whole = cleaned(w, input, settings);
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> piece(1, 15);
+  auto cleanup = FootCleanup::create(w.clip.skeleton, w.feet, input.fps, settings);
+  ASSERT_TRUE(cleanup);
+  Motion pieces = input.slice(0, 0);
+  for (int first = 0; first < input.frame_count;) {
+    const int count = std::min(piece(rng), input.frame_count - first);
+    const Motion more = input.slice(first, count);
+    pieces.local_rotations.insert(pieces.local_rotations.end(), more.local_rotations.begin(), more.local_rotations.end());
+    pieces.local_translations_m.insert(pieces.local_translations_m.end(), more.local_translations_m.begin(),
+                                       more.local_translations_m.end());
+    pieces.frame_count += count;
+    ASSERT_TRUE(cleanup->clean(pieces, first, std::span(w.contacts).subspan(first, count)));
+    first += count;
+  }
+  ASSERT_EQ(pieces.frame_count, whole.frame_count);
+  for (size_t i = 0; i < whole.local_rotations.size(); ++i) {
+    ASSERT_EQ(pieces.local_rotations[i].coeffs(), whole.local_rotations[i].coeffs()) << i;
+  }
+  EXPECT_EQ(pieces.local_translations_m, whole.local_translations_m);
+  EXPECT_EQ(cleanup->frames_cleaned(), input.frame_count);
+}
+
+TEST(FootCleanup, MotionWithoutContactsIsLeftAsItIs) {
+  Walked w = walked();
+  std::fill(w.contacts.begin(), w.contacts.end(), ContactMask{0});
+  const Motion input = sliding(w.clip.motion, 0.3);
+  const Motion output = cleaned(w, input);
+  EXPECT_EQ(output.local_rotations, input.local_rotations);
+  EXPECT_EQ(output.local_translations_m, input.local_translations_m);
+}
+
+TEST(FootCleanup, BadSettingsLegsAndCallsAreErrors) {
+  const Walked w = walked();
+  for (auto change : {+[](FootCleanupSettings& s) { s.ease_s = -1.0; },
+                      +[](FootCleanupSettings& s) { s.max_extension = 1.0; },
+                      +[](FootCleanupSettings& s) { s.max_root_drop_m = std::nan(""); },
+                      +[](FootCleanupSettings& s) { s.root_speed_mps = 0.0; }}) {
+    FootCleanupSettings settings;
+    change(settings);
+    EXPECT_FALSE(settings.validate());
+    EXPECT_FALSE(FootCleanup::create(w.clip.skeleton, w.feet, 30.0, settings));
+  }
+  // An "ankle" right below the root has no knee and hip above it.
+  FootJoints no_knee = w.feet;
+  no_knee.left.ankle = 1;
+  auto bad = FootCleanup::create(w.clip.skeleton, no_knee, 30.0);
+  ASSERT_FALSE(bad);
+  EXPECT_NE(bad.error().message.find("knee"), std::string::npos) << bad.error().message;
+
+  auto cleanup = FootCleanup::create(w.clip.skeleton, w.feet, 30.0);
+  ASSERT_TRUE(cleanup);
+  Motion motion = w.clip.motion;
+  EXPECT_FALSE(cleanup->clean(motion, -1, w.contacts));                       // no such frame
+  EXPECT_FALSE(cleanup->clean(motion, 0, std::span(w.contacts).subspan(1)));  // one mask short
+  EXPECT_TRUE(cleanup->clean(motion, 0, w.contacts));
+}
+
+}  // namespace
+}  // namespace mg
