@@ -53,15 +53,18 @@ class PathCost final : public FrameCost {
     return bound;
   }
   double cost(int frame, const Vec2& root, const Vec2&, double arc_m, TagMask tags, bool* goal) const override {
-    double c = (root - path_.point_at(arc_m)).squaredNorm();
-    // Behind the slowest schedule allowed: metres not covered since the search began.
-    const double behind = search_arc_m_ + min_step_ * (frame + 1) - arc_m;
-    if (behind > 0.0) c += behind_penalty_ * behind;
-    const TagMask wanted = wanted_at(arc_m);
-    if (wanted != 0 && (tags & wanted) == 0) c += penalty_;
-    if (arc_m >= path_.length_m()) *goal = true;
-    return c;
+    int segment = -1;
+    return frame_cost(frame, root, arc_m, tags, goal, segment);
   }
+  // The same costs as cost(), with the path's point found from the last frame's segment.
+  bool add_costs(const PlayedFrames& frames, double bound, double* total, bool* goal) const override {
+    int segment = -1;
+    return add_frame_costs(frames.roots.size(), bound, total, goal, [&](size_t p, bool* reached) {
+      return frame_cost(frames.first_frame + static_cast<int>(p), frames.roots[p], frames.arcs_m[p], frames.tags[p],
+                        reached, segment);
+    });
+  }
+  bool uses_facing() const override { return false; }
   TagMask wanted_at(double s) const {
     const auto& segments = path_.segments();
     for (size_t i = segments.size(); i-- > 0;) {
@@ -71,6 +74,17 @@ class PathCost final : public FrameCost {
   }
 
  private:
+  double frame_cost(int frame, const Vec2& root, double arc_m, TagMask tags, bool* goal, int& segment) const {
+    double c = (root - path_.point_at(arc_m, segment)).squaredNorm();
+    // Behind the slowest schedule allowed: metres not covered since the search began.
+    const double behind = search_arc_m_ + min_step_ * (frame + 1) - arc_m;
+    if (behind > 0.0) c += behind_penalty_ * behind;
+    const TagMask wanted = wanted_at(arc_m);
+    if (wanted != 0 && (tags & wanted) == 0) c += penalty_;
+    if (arc_m >= path_.length_m()) *goal = true;
+    return c;
+  }
+
   const FloorPath& path_;
   const std::vector<TagMask>& masks_;
   double penalty_;
