@@ -147,21 +147,31 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
     const int count = std::min<int>(settings.start_candidates, static_cast<int>(eligible.size()));
     for (int i = 0; i < count; ++i) candidates.push_back(eligible[static_cast<size_t>(i) * eligible.size() / count]);
   }
-  // Candidates are compared on a quarter of the budget each: they only pick the start.
+  // Candidates are compared on a quarter of the budget each, and a quarter of the beam (which
+  // spends its width x out-degree x horizon edges whatever the budget): they only pick the
+  // start. The chosen one's first walk is then searched with the whole budget and beam.
   HorizonSettings sample = search;
   sample.max_expansions = std::max<long long>(1, search.max_expansions / 4);
+  if (search.beam_width > 0) sample.beam_width = std::max(1, search.beam_width / 4);
+  auto tally = [&](const HorizonResult& r) {
+    result.expansions += r.expansions;
+    ++result.searches;
+    result.budget_exhausted += r.budget_exhausted ? 1 : 0;
+  };
   HorizonResult first;
   cost.start_search(0.0);
   for (int node : candidates) {
     HorizonResult r = horizon_search(graph, context.tracks, start_state(node), cost,
                                      candidates.size() > 1 ? sample : search);
-    result.expansions += r.expansions;
-    ++result.searches;
-    result.budget_exhausted += r.budget_exhausted ? 1 : 0;
+    tally(r);
     if (r.cost < first.cost || first.edges.empty()) {
       first = std::move(r);
       result.walk.start_node = node;
     }
+  }
+  if (candidates.size() > 1) {
+    first = horizon_search(graph, context.tracks, start_state(result.walk.start_node), cost, search);
+    tally(first);
   }
   SearchState state = start_state(result.walk.start_node);
   if (!first.edges.empty()) {
@@ -191,9 +201,7 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
     if (state.frames >= max_frames || current.edges.empty()) break;
     cost.start_search(state.arc_m);
     current = horizon_search(graph, context.tracks, state, cost, search, hint);
-    result.expansions += current.expansions;
-    ++result.searches;
-    result.budget_exhausted += current.budget_exhausted ? 1 : 0;
+    tally(current);
   }
 
   // The motion, cut at the frame whose root completes the path.
