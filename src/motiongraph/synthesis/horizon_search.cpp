@@ -127,25 +127,27 @@ BeamResult beam_search(const MotionGraph& graph, const EdgeTracks& tracks, const
     int edge = -1;
     Child child;
   };
+  // Each walk once, its parent by index; buckets hold (priority, index) so that sorting them
+  // reads no walk.
   std::vector<Entry> walks;
-  std::vector<std::vector<int>> buckets(static_cast<size_t>(horizon));
+  walks.reserve(2 * static_cast<size_t>(width) * static_cast<size_t>(horizon));
+  std::vector<std::vector<std::pair<double, int>>> buckets(static_cast<size_t>(horizon));
   BeamResult result;
   int best = -1;
   Entry root;
   root.child.state = start;
   walks.push_back(root);
-  buckets[0].push_back(0);
+  buckets[0].emplace_back(0.0, 0);
   std::vector<int> seen_stamp(static_cast<size_t>(graph.node_count()), -1);
   for (int t = 0; t < horizon; ++t) {
-    std::vector<int>& bucket = buckets[static_cast<size_t>(t)];
+    std::vector<std::pair<double, int>>& bucket = buckets[static_cast<size_t>(t)];
     if (bucket.empty()) continue;
-    std::sort(bucket.begin(), bucket.end(),
-              [&](int a, int b) { return walks[a].child.priority < walks[b].child.priority; });
+    std::sort(bucket.begin(), bucket.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     int kept = 0;
-    for (int w : bucket) {
+    for (const auto& [priority, w] : bucket) {
       if (kept >= width) break;
       const int node = walks[w].child.state.node;
-      if (seen_stamp[node] == t || walks[w].child.priority >= result.cost) continue;  // one walk per node
+      if (seen_stamp[node] == t || priority >= result.cost) continue;  // one walk per node
       seen_stamp[node] = t;
       ++kept;
       const Rotation rotation(walks[w].child.state.placement.yaw_rad);
@@ -169,12 +171,12 @@ BeamResult beam_search(const MotionGraph& graph, const EdgeTracks& tracks, const
           // Not complete: it ends before the horizon (an edge plays at least one frame).
           const int arrival = t + std::max(1, graph.edges[e].frame_count);
           if (arrival >= horizon) continue;
-          buckets[static_cast<size_t>(arrival)].push_back(index);
+          buckets[static_cast<size_t>(arrival)].emplace_back(next.child.priority, index);
         }
         walks.push_back(std::move(next));
       }
     }
-    std::vector<int>().swap(bucket);
+    std::vector<std::pair<double, int>>().swap(bucket);
   }
   for (int w = best; w > 0; w = walks[w].parent) result.edges.push_back(walks[w].edge);
   std::reverse(result.edges.begin(), result.edges.end());
