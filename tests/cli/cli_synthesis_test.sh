@@ -49,6 +49,7 @@ assert abs(arc - r["arc_covered_m"]) < 1e-3 * arc, (arc, r["arc_covered_m"])
 # The search's own time is part of the command's (which loads the graph too).
 assert 0 < r["search_seconds"] <= r["seconds"] and r["search_realtime_factor"] >= r["realtime_factor"] > 0, r
 assert abs(r["search_realtime_factor"] * r["search_seconds"] - r["duration_s"]) < 1e-6 * r["duration_s"], r
+assert 0 < r["search_cpu_seconds"] and abs(r["search_cpu_realtime_factor"] * r["search_cpu_seconds"] - r["duration_s"]) < 1e-6 * r["duration_s"], r
 w = json.load(open(f"{work}/walk-report.json"))
 m, _ = roots("walk.json")
 assert w["frames"] == len(m["positions"]) >= 201 and w["cost_function"] == "hybrid", w

@@ -36,6 +36,64 @@ TEST(FloorPath, PointAtMatchesWalkingThePolyline) {
   }
 }
 
+// The point at arc length s by a linear scan for its segment, with point_at's arithmetic: the
+// same bits are expected from the bucketed lookup and from the incremental one.
+Vec2 scanned_point_at(const std::vector<Vec2>& points, double s) {
+  std::vector<double> arc{0.0};
+  for (size_t i = 1; i < points.size(); ++i) arc.push_back(arc.back() + (points[i] - points[i - 1]).norm());
+  s = std::clamp(s, 0.0, arc.back());
+  size_t i = 0;
+  while (i + 2 < points.size() && arc[i + 1] <= s) ++i;
+  const double u = std::clamp((s - arc[i]) / (arc[i + 1] - arc[i]), 0.0, 1.0);
+  return points[i] + u * (points[i + 1] - points[i]);
+}
+
+TEST(FloorPath, IncrementalPointLookupGivesTheSameBits) {
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> step(-1.5, 1.5), unit(0.0, 1.0);
+  for (int trial = 0; trial < 30; ++trial) {
+    std::vector<Vec2> points{{0.0, 0.0}};
+    const double scale = trial % 3 == 0 ? 0.03 : 1.0;  // segments shorter than the lookup's buckets too
+    for (int i = 0; i < 40; ++i) points.push_back(points.back() + scale * Vec2(step(rng), step(rng)));
+    auto path = FloorPath::create(points);
+    ASSERT_TRUE(path.ok());
+    std::vector<double> arcs{0.0};  // the vertices' arc lengths and the buckets' edges: where rounding bites
+    for (size_t i = 1; i < path->points().size(); ++i) {
+      arcs.push_back(arcs.back() + (path->points()[i] - path->points()[i - 1]).norm());
+    }
+    for (double b = 0.0; b < path->length_m(); b += 0.05) arcs.push_back(b);
+    // Walks along the path: runs of non-decreasing arc lengths (steps of 0 to 0.2 m, some
+    // landing exactly on a vertex or a bucket's edge), now and then a jump back, as a search
+    // plays the frames of one edge after another's.
+    int segment = -1;
+    double s = -0.5;
+    for (int i = 0; i < 3000; ++i) {
+      const double r = unit(rng);
+      if (r < 0.05) {
+        s = unit(rng) * path->length_m();
+        segment = -1;
+      } else if (r < 0.1) {
+        s = std::max(0.0, s - unit(rng));  // back without forgetting the segment: it is looked up again
+      } else if (r < 0.2) {
+        s = arcs[static_cast<size_t>(rng() % arcs.size())];
+        segment = -1;
+      } else if (r < 0.25) {
+        // unchanged: a frame that did not move
+      } else {
+        s += 0.2 * unit(rng);
+      }
+      if (s > path->length_m() + 1.0) s = -0.5;
+      const Vec2 expected = scanned_point_at(path->points(), s);
+      const Vec2 bucketed = path->point_at(s);
+      const Vec2 incremental = path->point_at(s, segment);
+      ASSERT_EQ(bucketed.x(), expected.x()) << trial << " " << s;
+      ASSERT_EQ(bucketed.y(), expected.y()) << trial << " " << s;
+      ASSERT_EQ(incremental.x(), expected.x()) << trial << " " << s;
+      ASSERT_EQ(incremental.y(), expected.y()) << trial << " " << s;
+    }
+  }
+}
+
 TEST(FloorPath, ShapesHaveTheirLengthsAndStartNorth) {
   const double pi = std::numbers::pi;
   const std::vector<std::pair<std::string, double>> shapes = {

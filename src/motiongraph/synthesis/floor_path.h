@@ -44,10 +44,23 @@ class FloorPath {
   // they try.
   Vec2 point_at(double s) const {
     s = std::clamp(s, 0.0, length_m());
-    const int i = segment_index(s);
-    const double len = arc_[i + 1] - arc_[i];
-    const double u = std::clamp((s - arc_[i]) / len, 0.0, 1.0);
-    return points_[i] + u * (points_[i + 1] - points_[i]);
+    return point_on(segment_index(s), s);
+  }
+  // The same point, found from `segment`: the segment of an arc length at or before s (such as
+  // the last call's, for the frames of a walk one after the other), or -1 for none. `segment`
+  // is left at s's segment; runs of non-decreasing s then cost a step or two each, not a
+  // lookup.
+  Vec2 point_at(double s, int& segment) const {
+    s = std::clamp(s, 0.0, length_m());
+    int i = segment;
+    if (i < 0 || arc_[i] > s) {
+      i = segment_index(s);
+    } else {
+      const int last = static_cast<int>(points_.size()) - 2;
+      while (i < last && arc_[i + 1] <= s) ++i;
+    }
+    segment = i;
+    return point_on(i, s);
   }
   // The unit direction at arc length s.
   Vec2 direction_at(double s) const;
@@ -63,8 +76,15 @@ class FloorPath {
     const int last = static_cast<int>(points_.size()) - 2;
     const size_t b = std::min(bucket_segment_.size() - 1, static_cast<size_t>(s / bucket_m_));
     int i = bucket_segment_[b];
+    while (i > 0 && arc_[i] > s) --i;  // s / bucket_m_ rounded up into the next bucket
     while (i < last && arc_[i + 1] <= s) ++i;
     return i;
+  }
+  // The point at s (clamped to [0, length]) on segment i (arc_[i] <= s <= arc_[i + 1]).
+  Vec2 point_on(int i, double s) const {
+    const double len = arc_[i + 1] - arc_[i];
+    const double u = std::clamp((s - arc_[i]) / len, 0.0, 1.0);
+    return points_[i] + u * (points_[i + 1] - points_[i]);
   }
   std::vector<Vec2> points_;   // consecutive duplicates removed
   std::vector<double> arc_;    // arc length at each point

@@ -14,6 +14,13 @@ Status HorizonSettings::validate() const {
   return Ok{};
 }
 
+bool FrameCost::add_costs(const PlayedFrames& frames, double bound, double* total, bool* goal) const {
+  return add_frame_costs(frames.roots.size(), bound, total, goal, [&](size_t p, bool* reached) {
+    return cost(frames.first_frame + static_cast<int>(p), frames.roots[p],
+                frames.facings.empty() ? Vec2::Zero() : frames.facings[p], frames.arcs_m[p], frames.tags[p], reached);
+  });
+}
+
 namespace {
 
 struct Child {
@@ -34,8 +41,17 @@ struct Rotation {
   explicit Rotation(double yaw_rad) : c(std::cos(yaw_rad)), s(std::sin(yaw_rad)) {}
 };
 
+// The world frames of the edge being played, handed to FrameCost::add_costs; grown to the
+// longest edge once, then reused.
+struct FrameBuffers {
+  bool facings_used = true;
+  std::vector<Vec2> roots, facings;
+  std::vector<double> arcs_m;
+};
+
 bool play_edge(const MotionGraph& graph, const EdgeTracks& tracks, const FrameCost& frame_cost, int horizon,
-               long long played, double bound, int e, const SearchState& from, const Rotation& rotation, Child& out) {
+               long long played, double bound, int e, const SearchState& from, const Rotation& rotation,
+               FrameBuffers& buffers, Child& out) {
   out.edge = e;
   out.state = from;
   out.complete = false;
@@ -52,26 +68,41 @@ bool play_edge(const MotionGraph& graph, const EdgeTracks& tracks, const FrameCo
   const double c = rotation.c, sn = rotation.s;
   auto turned = [&](const Vec2& v) { return Vec2(c * v.x() + sn * v.y(), -sn * v.x() + c * v.y()); };
   const Vec2 shift(s.placement.x_m, s.placement.z_m);
-  for (size_t p = 0; p < roots.size(); ++p) {
+  const size_t count = roots.size();
+  if (buffers.roots.size() < count) {
+    buffers.roots.resize(count);
+    buffers.arcs_m.resize(count);
+    if (buffers.facings_used) buffers.facings.resize(count);
+  }
+  for (size_t p = 0; p < count; ++p) {
     const Vec2 root = turned(roots[p]) + shift;
     if (s.has_last) s.arc_m += (root - s.last_root).norm();
     s.last_root = root;
     s.has_last = true;
-    const long long index = played + static_cast<long long>(p);
-    if (index < horizon && !out.complete) {
-      bool goal = false;
-      out.cost += frame_cost.cost(static_cast<int>(index), root, turned(facings[p]), s.arc_m, tags[p], &goal);
-      if (out.cost >= bound) return false;
-      if (goal) out.complete = out.goal = true;
-    }
+    buffers.roots[p] = root;
+    buffers.arcs_m[p] = s.arc_m;
   }
-  s.frames += static_cast<long long>(roots.size());
+  // The frames within the horizon are costed.
+  const size_t costed = played >= horizon ? 0 : std::min<size_t>(count, static_cast<size_t>(horizon - played));
+  if (costed > 0) {
+    if (buffers.facings_used) {
+      for (size_t p = 0; p < costed; ++p) buffers.facings[p] = turned(facings[p]);
+    }
+    const PlayedFrames frames{static_cast<int>(played), std::span(buffers.roots).first(costed),
+                              buffers.facings_used ? std::span<const Vec2>(buffers.facings).first(costed)
+                                                   : std::span<const Vec2>(),
+                              std::span(buffers.arcs_m).first(costed), tags.first(costed)};
+    bool goal = false;
+    if (!frame_cost.add_costs(frames, bound, &out.cost, &goal)) return false;
+    if (goal) out.complete = out.goal = true;
+  }
+  s.frames += static_cast<long long>(count);
   // s.placement * change, with the rotation already at hand (FloorTransform::operator*).
   const FloorTransform& change = tracks.edges[e].change;
   s.placement = FloorTransform{s.placement.yaw_rad + change.yaw_rad, c * change.x_m + sn * change.z_m + shift.x(),
                                -sn * change.x_m + c * change.z_m + shift.y()};
   s.node = graph.edges[e].to_node;
-  const long long after = played + static_cast<long long>(roots.size());
+  const long long after = played + static_cast<long long>(count);
   if (after >= horizon) out.complete = true;
   out.priority = out.cost;
   if (!out.complete) {
@@ -90,31 +121,33 @@ struct BeamResult {
 };
 
 BeamResult beam_search(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& start,
-                       const FrameCost& frame_cost, int horizon, int width) {
+                       const FrameCost& frame_cost, int horizon, int width, FrameBuffers& buffers) {
   struct Entry {
     int parent = -1;  // index into `walks`
     int edge = -1;
     Child child;
   };
+  // Each walk once, its parent by index; buckets hold (priority, index) so that sorting them
+  // reads no walk.
   std::vector<Entry> walks;
-  std::vector<std::vector<int>> buckets(static_cast<size_t>(horizon));
+  walks.reserve(2 * static_cast<size_t>(width) * static_cast<size_t>(horizon));
+  std::vector<std::vector<std::pair<double, int>>> buckets(static_cast<size_t>(horizon));
   BeamResult result;
   int best = -1;
   Entry root;
   root.child.state = start;
   walks.push_back(root);
-  buckets[0].push_back(0);
+  buckets[0].emplace_back(0.0, 0);
   std::vector<int> seen_stamp(static_cast<size_t>(graph.node_count()), -1);
   for (int t = 0; t < horizon; ++t) {
-    std::vector<int>& bucket = buckets[static_cast<size_t>(t)];
+    std::vector<std::pair<double, int>>& bucket = buckets[static_cast<size_t>(t)];
     if (bucket.empty()) continue;
-    std::sort(bucket.begin(), bucket.end(),
-              [&](int a, int b) { return walks[a].child.priority < walks[b].child.priority; });
+    std::sort(bucket.begin(), bucket.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     int kept = 0;
-    for (int w : bucket) {
+    for (const auto& [priority, w] : bucket) {
       if (kept >= width) break;
       const int node = walks[w].child.state.node;
-      if (seen_stamp[node] == t || walks[w].child.priority >= result.cost) continue;  // one walk per node
+      if (seen_stamp[node] == t || priority >= result.cost) continue;  // one walk per node
       seen_stamp[node] = t;
       ++kept;
       const Rotation rotation(walks[w].child.state.placement.yaw_rad);
@@ -125,7 +158,7 @@ BeamResult beam_search(const MotionGraph& graph, const EdgeTracks& tracks, const
         next.edge = e;
         next.child.cost = walks[w].child.cost;
         ++result.expansions;
-        if (!play_edge(graph, tracks, frame_cost, horizon, t, result.cost, e, walks[w].child.state, rotation,
+        if (!play_edge(graph, tracks, frame_cost, horizon, t, result.cost, e, walks[w].child.state, rotation, buffers,
                        next.child)) {
           continue;
         }
@@ -138,12 +171,12 @@ BeamResult beam_search(const MotionGraph& graph, const EdgeTracks& tracks, const
           // Not complete: it ends before the horizon (an edge plays at least one frame).
           const int arrival = t + std::max(1, graph.edges[e].frame_count);
           if (arrival >= horizon) continue;
-          buckets[static_cast<size_t>(arrival)].push_back(index);
+          buckets[static_cast<size_t>(arrival)].emplace_back(next.child.priority, index);
         }
         walks.push_back(std::move(next));
       }
     }
-    std::vector<int>().swap(bucket);
+    std::vector<std::pair<double, int>>().swap(bucket);
   }
   for (int w = best; w > 0; w = walks[w].parent) result.edges.push_back(walks[w].edge);
   std::reverse(result.edges.begin(), result.edges.end());
@@ -157,8 +190,10 @@ SearchState advance(const MotionGraph& graph, const EdgeTracks& tracks, const Se
     double cost(int, const Vec2&, const Vec2&, double, TagMask, bool*) const override { return 0.0; }
   } free_cost;
   Child child;
+  FrameBuffers buffers;
+  buffers.facings_used = false;
   play_edge(graph, tracks, free_cost, 0, 0, std::numeric_limits<double>::infinity(), edge, state,
-            Rotation(state.placement.yaw_rad), child);
+            Rotation(state.placement.yaw_rad), buffers, child);
   return child.state;
 }
 
@@ -177,6 +212,8 @@ HorizonResult horizon_search(const MotionGraph& graph, const EdgeTracks& tracks,
   std::vector<Level> stack;
   std::vector<int> path;
   std::vector<int> greedy;  // the deepest-first partial walk, in case nothing completes
+  FrameBuffers buffers;
+  buffers.facings_used = frame_cost.uses_facing();
 
   auto expand = [&](const SearchState& state, double cost, long long played) {
     Level level;
@@ -187,7 +224,7 @@ HorizonResult horizon_search(const MotionGraph& graph, const EdgeTracks& tracks,
       Child child;
       child.cost = cost;
       ++result.expansions;
-      if (play_edge(graph, tracks, frame_cost, settings.horizon_frames, played, result.cost, e, state, rotation,
+      if (play_edge(graph, tracks, frame_cost, settings.horizon_frames, played, result.cost, e, state, rotation, buffers,
                     child)) {
         level.children.push_back(std::move(child));
       }
@@ -205,7 +242,7 @@ HorizonResult horizon_search(const MotionGraph& graph, const EdgeTracks& tracks,
   };
 
   if (settings.beam_width > 0) {
-    BeamResult beam = beam_search(graph, tracks, start, frame_cost, settings.horizon_frames, settings.beam_width);
+    BeamResult beam = beam_search(graph, tracks, start, frame_cost, settings.horizon_frames, settings.beam_width, buffers);
     result.expansions += beam.expansions;
     if (!beam.edges.empty()) {
       result.edges = std::move(beam.edges);

@@ -27,6 +27,16 @@ struct SearchState {
   long long frames = 0;   // frames played so far
 };
 
+// The frames of one edge as a walk plays them, in order: the root's world floor position and
+// facing, the arc length covered (including the frame) and the frame's tags.
+struct PlayedFrames {
+  int first_frame = 0;             // index from the search's start of the first frame
+  std::span<const Vec2> roots;
+  std::span<const Vec2> facings;   // empty when the cost does not read them (FrameCost::uses_facing)
+  std::span<const double> arcs_m;
+  std::span<const TagMask> tags;
+};
+
 class FrameCost {
  public:
   virtual ~FrameCost() = default;
@@ -35,6 +45,13 @@ class FrameCost {
   // and the frame's tags. Setting *goal ends the walk here: it is complete.
   virtual double cost(int frame, const Vec2& root, const Vec2& facing, double arc_m, TagMask tags,
                       bool* goal) const = 0;
+  // Adds the costs of the frames to *total one after the other, as cost() gives them, and stops
+  // after the frame that sets the goal (*goal = true) or as soon as *total >= bound (returns
+  // false). Searches call this once per edge played; a cost may override it with a loop of
+  // its own that adds the very same values (PathCost does, to look up the path incrementally).
+  virtual bool add_costs(const PlayedFrames& frames, double bound, double* total, bool* goal) const;
+  // Whether cost() reads the facing: false spares the search turning each frame's facing.
+  virtual bool uses_facing() const { return true; }
   // A lower bound of the cost of the next `frames_left` frames of any walk from a state whose
   // last frame had this root and arc length (0 is always right; tighter bounds cut more).
   virtual double remaining_bound(int frames_left, const Vec2& root, double arc_m) const {
@@ -45,6 +62,22 @@ class FrameCost {
   // blend, so a cost here keeps captured motion between blends where the path allows it.
   virtual double transition_cost() const { return 0.0; }
 };
+
+// The loop of FrameCost::add_costs, for `count` frames whose costs frame_cost(p, &reached)
+// gives (inline: an override's per-frame cost is then inlined into it).
+template <class PerFrame>
+bool add_frame_costs(size_t count, double bound, double* total, bool* goal, PerFrame&& frame_cost) {
+  for (size_t p = 0; p < count; ++p) {
+    bool reached = false;
+    *total += frame_cost(p, &reached);
+    if (*total >= bound) return false;
+    if (reached) {
+      *goal = true;
+      break;
+    }
+  }
+  return true;
+}
 
 struct HorizonSettings {
   int horizon_frames = 90;

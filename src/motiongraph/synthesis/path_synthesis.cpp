@@ -53,15 +53,18 @@ class PathCost final : public FrameCost {
     return bound;
   }
   double cost(int frame, const Vec2& root, const Vec2&, double arc_m, TagMask tags, bool* goal) const override {
-    double c = (root - path_.point_at(arc_m)).squaredNorm();
-    // Behind the slowest schedule allowed: metres not covered since the search began.
-    const double behind = search_arc_m_ + min_step_ * (frame + 1) - arc_m;
-    if (behind > 0.0) c += behind_penalty_ * behind;
-    const TagMask wanted = wanted_at(arc_m);
-    if (wanted != 0 && (tags & wanted) == 0) c += penalty_;
-    if (arc_m >= path_.length_m()) *goal = true;
-    return c;
+    int segment = -1;
+    return frame_cost(frame, root, arc_m, tags, goal, segment);
   }
+  // The same costs as cost(), with the path's point found from the last frame's segment.
+  bool add_costs(const PlayedFrames& frames, double bound, double* total, bool* goal) const override {
+    int segment = -1;
+    return add_frame_costs(frames.roots.size(), bound, total, goal, [&](size_t p, bool* reached) {
+      return frame_cost(frames.first_frame + static_cast<int>(p), frames.roots[p], frames.arcs_m[p], frames.tags[p],
+                        reached, segment);
+    });
+  }
+  bool uses_facing() const override { return false; }
   TagMask wanted_at(double s) const {
     const auto& segments = path_.segments();
     for (size_t i = segments.size(); i-- > 0;) {
@@ -71,6 +74,17 @@ class PathCost final : public FrameCost {
   }
 
  private:
+  double frame_cost(int frame, const Vec2& root, double arc_m, TagMask tags, bool* goal, int& segment) const {
+    double c = (root - path_.point_at(arc_m, segment)).squaredNorm();
+    // Behind the slowest schedule allowed: metres not covered since the search began.
+    const double behind = search_arc_m_ + min_step_ * (frame + 1) - arc_m;
+    if (behind > 0.0) c += behind_penalty_ * behind;
+    const TagMask wanted = wanted_at(arc_m);
+    if (wanted != 0 && (tags & wanted) == 0) c += penalty_;
+    if (arc_m >= path_.length_m()) *goal = true;
+    return c;
+  }
+
   const FloorPath& path_;
   const std::vector<TagMask>& masks_;
   double penalty_;
@@ -133,21 +147,31 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
     const int count = std::min<int>(settings.start_candidates, static_cast<int>(eligible.size()));
     for (int i = 0; i < count; ++i) candidates.push_back(eligible[static_cast<size_t>(i) * eligible.size() / count]);
   }
-  // Candidates are compared on a quarter of the budget each: they only pick the start.
+  // Candidates are compared on a quarter of the budget each, and a quarter of the beam (which
+  // spends its width x out-degree x horizon edges whatever the budget): they only pick the
+  // start. The chosen one's first walk is then searched with the whole budget and beam.
   HorizonSettings sample = search;
   sample.max_expansions = std::max<long long>(1, search.max_expansions / 4);
+  if (search.beam_width > 0) sample.beam_width = std::max(1, search.beam_width / 4);
+  auto tally = [&](const HorizonResult& r) {
+    result.expansions += r.expansions;
+    ++result.searches;
+    result.budget_exhausted += r.budget_exhausted ? 1 : 0;
+  };
   HorizonResult first;
   cost.start_search(0.0);
   for (int node : candidates) {
     HorizonResult r = horizon_search(graph, context.tracks, start_state(node), cost,
                                      candidates.size() > 1 ? sample : search);
-    result.expansions += r.expansions;
-    ++result.searches;
-    result.budget_exhausted += r.budget_exhausted ? 1 : 0;
+    tally(r);
     if (r.cost < first.cost || first.edges.empty()) {
       first = std::move(r);
       result.walk.start_node = node;
     }
+  }
+  if (candidates.size() > 1) {
+    first = horizon_search(graph, context.tracks, start_state(result.walk.start_node), cost, search);
+    tally(first);
   }
   SearchState state = start_state(result.walk.start_node);
   if (!first.edges.empty()) {
@@ -177,9 +201,7 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
     if (state.frames >= max_frames || current.edges.empty()) break;
     cost.start_search(state.arc_m);
     current = horizon_search(graph, context.tracks, state, cost, search, hint);
-    result.expansions += current.expansions;
-    ++result.searches;
-    result.budget_exhausted += current.budget_exhausted ? 1 : 0;
+    tally(current);
   }
 
   // The motion, cut at the frame whose root completes the path.
