@@ -3,8 +3,9 @@
 //  - path synthesis on the built-in shapes: seconds of motion per second of computing
 //    (loading included, so the figure a user of `path` gets), and the same search without its
 //    lower bound, warm start and beam (the plain depth-first branch and bound) for the ratio;
+//  - the foot clean-up of each path's motion (its seconds beside the search's);
 //  - the controller on a 60 s scripted run (heading every 2 s, walk/run every 10 s): decision
-//    latency percentiles.
+//    latency percentiles, the clean-up of each decision's frames, and both together.
 // Speed is measured here, never asserted in tests.
 #include "cli/bench_synthesis.h"
 
@@ -49,8 +50,8 @@ int run_synthesis_bench(const std::string& graph_path) {
              graph.edge_count(), file->database.frame_count(), file->database.fps);
   fmt::print("load graph {:.3f} s, set up synthesis {:.3f} s\n", load_s, setup_s);
 
-  fmt::print("{:<12} {:>8} {:>9} {:>10} {:>9} {:>12} | {:>10} {:>9} {:>8}\n", "path", "motion s", "search s",
-             "x realtime", "mean dev", "expansions", "plain s", "plain dev", "speedup");
+  fmt::print("{:<12} {:>8} {:>9} {:>10} {:>9} {:>12} {:>10} | {:>10} {:>9} {:>8}\n", "path", "motion s", "search s",
+             "x realtime", "mean dev", "expansions", "clean-up s", "plain s", "plain dev", "speedup");
   for (const char* spec : {"line:20", "circle:5", "figure8:4", "s-curve:100"}) {
     auto path = make_shape(spec);
     if (!path) return fail(path.error());
@@ -59,6 +60,13 @@ int run_synthesis_bench(const std::string& graph_path) {
     auto fast = synthesize_path(*context, *path, settings);
     const double fast_s = seconds_since(start);
     if (!fast) return fail(fast.error());
+    // The foot clean-up of the motion found (what `path` adds unless --no-cleanup).
+    double cleanup_s = 0.0;
+    if (auto cleanup = context->foot_cleanup({}); cleanup) {
+      start = std::chrono::steady_clock::now();
+      if (auto s = context->clean_up_walk(fast->walk, *cleanup, fast->motion); !s) return fail(s.error());
+      cleanup_s = seconds_since(start);
+    }
     settings.lower_bound = false;
     settings.warm_start = false;
     settings.beam_width = 0;
@@ -67,9 +75,9 @@ int run_synthesis_bench(const std::string& graph_path) {
     const double plain_s = seconds_since(start);
     if (!plain) return fail(plain.error());
     const double motion_s = fast->motion.frame_count / fast->motion.fps;
-    fmt::print("{:<12} {:8.1f} {:9.3f} {:10.0f} {:8.3f}m {:12} | {:10.3f} {:8.3f}m {:7.1f}x\n", spec, motion_s, fast_s,
-               motion_s / (load_s + setup_s + fast_s), fast->mean_deviation_m, fast->expansions, plain_s,
-               plain->mean_deviation_m, plain_s / fast_s);
+    fmt::print("{:<12} {:8.1f} {:9.3f} {:10.0f} {:8.3f}m {:12} {:10.4f} | {:10.3f} {:8.3f}m {:7.1f}x\n", spec, motion_s,
+               fast_s, motion_s / (load_s + setup_s + fast_s), fast->mean_deviation_m, fast->expansions, cleanup_s,
+               plain_s, plain->mean_deviation_m, plain_s / fast_s);
   }
   fmt::print("(x realtime: seconds of motion per second of loading, set-up and search)\n");
 
@@ -79,7 +87,9 @@ int run_synthesis_bench(const std::string& graph_path) {
   auto controller = Controller::create(*context, {}, {bearing_direction(0.0), walk_tag});
   if (!controller) return fail(controller.error());
   Motion motion = context->assembler.empty_motion();
-  std::vector<double> latencies;
+  auto cleanup = context->foot_cleanup({});
+  std::vector<ContactMask> contacts;
+  std::vector<double> latencies, cleanup_latencies;
   int exhausted = 0;
   const double fps = file->database.fps;
   while (motion.frame_count < 60.0 * fps) {
@@ -87,14 +97,31 @@ int run_synthesis_bench(const std::string& graph_path) {
     const int heading = static_cast<int>(t / 2.0) % 4;
     const bool running = static_cast<int>(t / 10.0) % 2 == 1;
     controller->set_input({bearing_direction(90.0 * heading), running ? run_tag : walk_tag});
+    const int first_new = motion.frame_count;
     const ControllerDecision d = controller->step(motion);
     latencies.push_back(d.search_seconds);
+    if (cleanup) {
+      start = std::chrono::steady_clock::now();
+      contacts.clear();
+      for (int e : d.edges) context->append_edge_contacts(e, contacts);
+      if (auto s = cleanup->clean(motion, first_new, contacts); !s) return fail(s.error());
+      cleanup_latencies.push_back(seconds_since(start));
+    }
     exhausted += d.budget_exhausted ? 1 : 0;
   }
   fmt::print("controller, 60 s scripted: {} decisions, latency p50 {:.3f} ms, p99 {:.3f} ms, max {:.3f} ms; "
              "{} ran out of budget\n",
              latencies.size(), 1e3 * percentile(latencies, 0.5), 1e3 * percentile(latencies, 0.99),
              1e3 * percentile(latencies, 1.0), exhausted);
+  if (cleanup) {
+    std::vector<double> both(latencies.size());
+    for (size_t i = 0; i < both.size(); ++i) both[i] = latencies[i] + cleanup_latencies[i];
+    fmt::print("foot clean-up of each decision's frames: p50 {:.3f} ms, p99 {:.3f} ms; search and clean-up p99 {:.3f} ms\n",
+               1e3 * percentile(cleanup_latencies, 0.5), 1e3 * percentile(cleanup_latencies, 0.99),
+               1e3 * percentile(both, 0.99));
+  } else {
+    fmt::print("no foot clean-up: {}\n", context->feet_error);
+  }
   return 0;
 }
 

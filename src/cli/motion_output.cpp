@@ -14,13 +14,14 @@ Status check_motion_output(const std::string& path) {
   return Ok{};
 }
 
-Status write_motion(const std::string& path, const Skeleton& skeleton, const Motion& motion, double units_per_metre) {
+Status write_motion(const std::string& path, const Skeleton& skeleton, const Motion& motion, double units_per_metre,
+                    const PositionsJsonContacts* contacts) {
   if (auto s = check_motion_output(path); !s) return s;
   BvhWriteSettings write;
   write.units_per_metre = units_per_metre;
   if (auto s = write.validate(); !s) return s;
   const bool bvh = std::filesystem::path(path).extension() == ".bvh";
-  return write_file_atomic(path, bvh ? write_bvh(skeleton, motion, write) : write_positions_json(skeleton, motion));
+  return write_file_atomic(path, bvh ? write_bvh(skeleton, motion, write) : write_positions_json(skeleton, motion, contacts));
 }
 
 }  // namespace mg::cli

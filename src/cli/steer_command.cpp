@@ -65,18 +65,19 @@ int run_steer(const SteerOptions& o) {
   int transitions = 0;  // transition edges that start within the script's duration
   Walk played{-1, {}};  // every edge the controller chose (for the clips the motion is cut from)
   auto cleanup = cleanup_for(o.common, context);
-  std::vector<ContactMask> contacts;
+  std::vector<ContactMask> contacts, all_contacts;
   std::vector<double> cleanup_seconds;
   while (motion.frame_count < total) {
     controller->set_input(*input_at(motion.frame_count / fps));
     long long edge_start = motion.frame_count;
     const int first_new = motion.frame_count;
     const ControllerDecision d = controller->step(motion);
+    contacts.clear();
+    for (int e : d.edges) context.append_edge_contacts(e, contacts);
+    all_contacts.insert(all_contacts.end(), contacts.begin(), contacts.end());
     if (cleanup) {
       // The decision's frames, cleaned as a game would before showing them.
       const auto cleanup_begin = std::chrono::steady_clock::now();
-      contacts.clear();
-      for (int e : d.edges) context.append_edge_contacts(e, contacts);
       if (auto s = cleanup->clean(motion, first_new, contacts); !s) return fail(s.error());
       cleanup_seconds.push_back(
           std::chrono::duration<double>(std::chrono::steady_clock::now() - cleanup_begin).count());
@@ -119,7 +120,7 @@ int run_steer(const SteerOptions& o) {
                                  {"cleanup_ms_p99", cleanup ? nlohmann::json(1e3 * percentile(cleanup_seconds, 0.99))
                                                             : nlohmann::json(nullptr)},
                                  {"controls", controls}};
-  if (auto s = write_synthesis_outputs(o.common, **loaded, motion, played, report); !s) return fail(s.error());
+  if (auto s = write_synthesis_outputs(o.common, **loaded, motion, played, report, all_contacts); !s) return fail(s.error());
   fmt::print("steer: {} frames ({:.1f} s), {} decisions, decision p99 {:.3f} ms\n", motion.frame_count,
              motion.frame_count / fps, latencies.size(), 1e3 * percentile(latencies, 0.99));
   for (const auto& c : controls) {

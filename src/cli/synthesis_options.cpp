@@ -53,8 +53,17 @@ nlohmann::json cleanup_report(const SynthesisOptions& options, const SynthesisCo
 }
 
 Status write_synthesis_outputs(const SynthesisOptions& options, const LoadedGraph& loaded, const Motion& motion,
-                               const Walk& walk, nlohmann::json report) {
-  if (auto s = write_motion(options.output, loaded.context.assembler.skeleton(), motion); !s) return s;
+                               const Walk& walk, nlohmann::json report, std::vector<ContactMask> contacts) {
+  const SynthesisContext& context = loaded.context;
+  if (contacts.empty() && walk.start_node >= 0) contacts = context.walk_contacts(walk);
+  const bool with_contacts = !context.frame_contacts.empty() && static_cast<int>(contacts.size()) >= motion.frame_count;
+  contacts.resize(static_cast<size_t>(motion.frame_count));
+  const PositionsJsonContacts json_contacts{context.feet, contacts};
+  if (auto s = write_motion(options.output, context.assembler.skeleton(), motion, 1.0,
+                            with_contacts ? &json_contacts : nullptr);
+      !s) {
+    return s;
+  }
   if (!options.report.empty()) {
     report["foot_slide"] = foot_slide_report(loaded.context, walk, motion);
     if (auto s = write_file_atomic(options.report, json_text(report, 2) + "\n"); !s) return s;

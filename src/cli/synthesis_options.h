@@ -52,8 +52,9 @@ nlohmann::json cleanup_report(const SynthesisOptions& options, const SynthesisCo
                               const std::optional<FootCleanup>& cleanup);
 
 // Writes the motion and, when asked, the report (both atomically). The report gets
-// "foot_slide" (evaluation/foot_slide_report.h).
+// "foot_slide" (evaluation/foot_slide_report.h). JSON motion gets the feet's contacts per frame:
+// `contacts`, or when empty those of the frames the walk plays.
 Status write_synthesis_outputs(const SynthesisOptions& options, const LoadedGraph& loaded, const Motion& motion,
-                               const Walk& walk, nlohmann::json report);
+                               const Walk& walk, nlohmann::json report, std::vector<ContactMask> contacts = {});
 
 }  // namespace mg::cli

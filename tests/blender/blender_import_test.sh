@@ -5,7 +5,8 @@
 # run, written as BVH. check_bvh.py (run inside Blender) checks that Blender finds our frames,
 # fps and joints, the same world joint positions as our own forward kinematics, and no pop: no
 # joint moves further in one frame than joints move in the source clips the graph was built
-# from, read by Blender the same way. Needs Blender (Debian package blender; the test fails
+# from, read by Blender the same way; and each planted toe (the foot clean-up) within 1 cm of its
+# plant on the floor over its contact. Needs Blender (Debian package blender; the test fails
 # with a message when it is missing, it never passes silently).
 set -euo pipefail
 

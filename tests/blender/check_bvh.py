@@ -87,6 +87,39 @@ if matched < frames * len(arm.pose.bones):
 if worst > 1e-4:
     fail(f"joints differ from ours by up to {worst} m")
 
+# Planted feet stay planted (the foot clean-up, on by default): each contact of a toe that the
+# motion carries from its source clips ("contacts" in our JSON) keeps the toe, as Blender places
+# it, within 1 cm on the floor of where it was on the contact's first frame. (Its height is the
+# capture's: a running toe rises up to 3 cm within its contact as it pushes off.)
+contacts = ours.get("contacts")
+if contacts is None:
+    fail("our JSON has no foot contacts")
+toes = [(i, name) for i, name in enumerate(contacts["joints"]) if i % 2 == 1 or len(contacts["joints"]) == 2]
+planted = contacts["planted"]
+if len(planted) != frames:
+    fail(f"{len(planted)} frames of contacts for {frames} frames")
+worst_toe, intervals = 0.0, 0
+for column, name in toes:
+    f = 0
+    while f < frames:
+        if not planted[f][column]:
+            f += 1
+            continue
+        start = f
+        while f < frames and planted[f][column]:
+            f += 1
+        intervals += 1
+        plant = joint_heads(arm, first + start)[name]
+        for g in range(start + 1, f):
+            here = joint_heads(arm, first + g)[name]
+            worst_toe = max(worst_toe, ((here[0] - plant[0]) ** 2 + (here[2] - plant[2]) ** 2) ** 0.5)
+print(f"check_bvh: planted toes ({', '.join(n for _, n in toes)}) move at most {worst_toe * 100:.2f} cm on the floor "
+      f"over {intervals} contacts")
+if intervals < 20:
+    fail(f"only {intervals} toe contacts in a 50 m figure 8")
+if worst_toe > 0.01:
+    fail(f"a planted toe moves {worst_toe:.4f} m within its contact")
+
 # No pops: per frame, no joint moves further than the source clips' joints move (their 99.9th
 # percentile, as the CMU captures hold a few single-frame glitches of their own).
 synth_steps = steps(arm, first, last)

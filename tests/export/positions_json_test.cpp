@@ -6,6 +6,7 @@
 #include "motiongraph/io/bvh_parser.h"
 #include "motiongraph/motion/bvh_import.h"
 #include "motiongraph/motion/forward_kinematics.h"
+#include "test_data.h"
 
 namespace mg {
 namespace {
@@ -41,6 +42,33 @@ TEST(PositionsJson, WritesWorldPositionsAndSurvivesNamesThatAreNotUtf8) {
       for (int c = 0; c < 3; ++c) EXPECT_NEAR(frames[f][j][c].get<double>(), world[f * count + j][c], 1e-6);
     }
   }
+}
+
+TEST(PositionsJson, WritesTheFeetsContactsPerFrameWhenGiven) {
+  const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
+  const FootJoints feet = *find_foot_joints(clip.skeleton);
+  const FootContacts contacts = *detect_foot_contacts(clip.skeleton, clip.motion, feet, {});
+  std::vector<ContactMask> masks;
+  for (int f = 0; f < clip.motion.frame_count; ++f) masks.push_back(contact_mask(contacts, f));
+  const PositionsJsonContacts given{feet, masks};
+  auto back = parse_json_text(write_positions_json(clip.skeleton, clip.motion, &given), "positions.json");
+  ASSERT_TRUE(back.ok());
+  const auto& written = (*back)["contacts"];
+  ASSERT_EQ(written["joints"], nlohmann::json({"lfoot", "ltoes", "rfoot", "rtoes"}));
+  ASSERT_EQ(written["planted"].size(), static_cast<size_t>(clip.motion.frame_count));
+  int planted = 0;
+  for (const FootContactTrack& track : contacts.tracks) {
+    const size_t column = 2 * (track.side == FootSide::kRight ? 1 : 0) + (track.part == FootPart::kToe ? 1 : 0);
+    for (int f = 0; f < clip.motion.frame_count; ++f) {
+      ASSERT_EQ(written["planted"][f][column].get<int>(), track.planted[f] ? 1 : 0) << f;
+      planted += track.planted[f];
+    }
+  }
+  EXPECT_GT(planted, clip.motion.frame_count);  // two feet, each down more than half the time
+  // Without contacts there is no such member.
+  auto plain = parse_json_text(write_positions_json(clip.skeleton, clip.motion), "positions.json");
+  ASSERT_TRUE(plain.ok());
+  EXPECT_FALSE(plain->contains("contacts"));
 }
 
 }  // namespace

@@ -9,7 +9,7 @@
 
 namespace mg {
 
-std::string write_positions_json(const Skeleton& skeleton, const Motion& motion) {
+std::string write_positions_json(const Skeleton& skeleton, const Motion& motion, const PositionsJsonContacts* contacts) {
   using nlohmann::json;
   json doc;
   doc["fps"] = motion.fps;
@@ -31,6 +31,26 @@ std::string write_positions_json(const Skeleton& skeleton, const Motion& motion)
     frames.push_back(std::move(frame));
   }
   doc["positions"] = std::move(frames);
+  if (contacts) {
+    json names = json::array();
+    std::vector<ContactMask> bits;
+    for (const auto& [foot, side] : {std::pair{contacts->feet.left, FootSide::kLeft},
+                                     std::pair{contacts->feet.right, FootSide::kRight}}) {
+      names.push_back(skeleton.joint(foot.ankle).name);
+      bits.push_back(contact_bit(side, FootPart::kAnkle));
+      if (foot.toe >= 0) {
+        names.push_back(skeleton.joint(foot.toe).name);
+        bits.push_back(contact_bit(side, FootPart::kToe));
+      }
+    }
+    json planted = json::array();
+    for (int f = 0; f < motion.frame_count && f < static_cast<int>(contacts->masks.size()); ++f) {
+      json row = json::array();
+      for (ContactMask bit : bits) row.push_back((contacts->masks[f] & bit) != 0 ? 1 : 0);
+      planted.push_back(std::move(row));
+    }
+    doc["contacts"] = {{"joints", std::move(names)}, {"planted", std::move(planted)}};
+  }
   return json_text(doc) + "\n";
 }
 

@@ -128,7 +128,10 @@ Status FootCleanup::clean(Motion& motion, int first, std::span<const ContactMask
       }
       Vec3 mode_offset =
           mode == kAnklePlanted ? Vec3(leg.ankle_plant - ankle) : mode == kToePlanted ? Vec3(leg.toe_plant - toe) : Vec3::Zero();
-      mode_offset.y() = 0.0;  // on the floor only: a heel rising while still in contact rises
+      // Held on the floor only: a foot's height is the motion's (a heel rising within its
+      // contact rises as the foot rolls; a running toe's rise at toe-off is kept, which
+      // holding it down would carry, eased out, into the swing, low and fast).
+      mode_offset.y() = 0.0;
       const double w = ease_weight(leg.since_switch);
       leg.offset = w * leg.switch_offset + (1.0 - w) * mode_offset;
       if (leg.since_switch < kLongAgo) ++leg.since_switch;

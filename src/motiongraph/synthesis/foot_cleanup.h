@@ -5,8 +5,8 @@
 //
 // Per leg, frame by frame, in world space:
 //  1. The ankle's target. While the toe is planted, the ankle moves with the toe's plant: it
-//     is the ankle plus the toe's drift from its plant on the floor (a heel rising pivots
-//     about the toe). While only the ankle is planted (a heel strike) it is the ankle's plant:
+//     is the ankle plus the toe's drift on the floor from its plant, where the toe was on the
+//     contact's first frame (a heel rising pivots about the toe). Heights are the motion's. While only the ankle is planted (a heel strike) it is the ankle's plant:
 //     where on the floor the (corrected) ankle was on the contact's first frame, at the
 //     height the motion gives it. Otherwise it is the ankle where the motion puts it. A change
 //     between these is eased over ease_s (smoothstep on the offset), except the start of a
@@ -19,10 +19,10 @@
 //     its plane: it bends about the knee's hinge, learnt from the frames cleaned so far where
 //     the knee bends by 15 degrees or more (the bend axis in the hip joint's frame), so it
 //     neither flips nor bends backwards where the capture had it straight or hyperextended.
-//  4. A planted toe: the foot turns about the ankle so that the toe is on its plant on the
-//     floor (where it was on its contact's first frame), at the height the foot's length
-//     gives, turning it by at most 30 degrees (a plant further round is not reached: the foot
-//     is not spun); after the contact the turn is eased out over ease_s.
+//  4. A planted toe: the foot turns about the ankle so that the toe is on its plant (over it
+//     on the floor, at the height the foot's length gives), by at most 30 degrees (a plant
+//     further round is not reached: the foot is not spun); after the contact the turn is
+//     eased out over ease_s.
 // The foot keeps the orientation the motion gives it in the world, but for that turn.
 // Only rotations of the hip and knee and ankle joints and the root's height change: bone
 // lengths are kept exactly. Frames are cleaned in order and each is final once cleaned, so the
