@@ -185,7 +185,7 @@ void FootCleanup::solve_leg(Leg& leg, const FrameTargets& targets, int side, std
     const Vec3 exact = leg.toe_turn_plant - targets.toe_plant[side];
     target += targets.toe_share[side] * Vec3(exact.x(), 0.0, exact.z());
   }
-  Quat leg_turn = Quat::Identity();  // world rotation the IK gave the shank (and the foot)
+  Quat leg_turn = Quat::Identity();  // world rotation the IK gave the shank
   Vec3 new_ankle = ankle;
   if ((target - ankle).norm() > 1e-9) {
     const double length = (knee - hip).norm() + (ankle - knee).norm();
