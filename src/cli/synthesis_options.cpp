@@ -39,8 +39,12 @@ std::optional<FootCleanup> cleanup_for(const SynthesisOptions& options, const Sy
 nlohmann::json cleanup_report(const SynthesisOptions& options, const SynthesisContext& context,
                               const std::optional<FootCleanup>& cleanup) {
   if (!cleanup) {
-    return {{"enabled", false},
-            {"reason", options.no_cleanup ? std::string("--no-cleanup") : "no feet: " + context.feet_error}};
+    std::string reason = "--no-cleanup";
+    if (!options.no_cleanup) {
+      auto made = context.foot_cleanup(FootCleanupSettings{});  // what cleanup_for warned of
+      reason = made ? std::string("not made") : made.error().message;
+    }
+    return {{"enabled", false}, {"reason", reason}};
   }
   const FootCleanupStats& s = cleanup->stats();
   return {{"enabled", true},

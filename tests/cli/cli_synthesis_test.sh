@@ -121,6 +121,25 @@ assert fc["ratio"]["mean_mps"] <= 1.0 and fc["mean_mps"] < 0.5 * fr["mean_mps"],
 assert fc["ratio"]["max_joint_step_over_source_p999"] <= 1.5, fc
 PY
 
+# A rig whose feet are not found by name: synthesis still works, with a warning; the report says
+# why there was no clean-up and no foot slide, and the JSON has no contacts.
+mkdir "$work/paws"
+sed 's/JOINT lfoot/JOINT lpaw/; s/JOINT rfoot/JOINT rpaw/; s/JOINT ltoes/JOINT lclaw/; s/JOINT rtoes/JOINT rclaw/' \
+  "$data/bvh/16_01.bvh" >"$work/paws/paws.bvh"
+"$bin" build "$work/paws" -o "$work/paws.mgraph" --no-cache -q
+"$bin" path "$work/paws.mgraph" --shape line:2 -o "$work/paws.json" --report "$work/paws-report.json" \
+  >/dev/null 2>"$work/paws-err.txt"
+grep -q "warning: .*no foot clean-up: no left ankle joint found" "$work/paws-err.txt" \
+  || { echo "FAIL: no warning without feet"; cat "$work/paws-err.txt"; exit 1; }
+python3 - "$work" <<'PY'
+import json, sys
+work = sys.argv[1]
+r = json.load(open(f"{work}/paws-report.json"))
+assert r["cleanup"]["enabled"] is False and "no left ankle joint" in r["cleanup"]["reason"], r["cleanup"]
+assert "no left ankle joint" in r["foot_slide"]["error"], r["foot_slide"]
+assert "contacts" not in json.load(open(f"{work}/paws.json"))
+PY
+
 # Bad input: one line naming the file (and line), exit 1, nothing written.
 expect_error() {  # expected-part output command...
   local part=$1 out=$2
