@@ -88,7 +88,6 @@ int run_synthesis_bench(const std::string& graph_path) {
   if (!controller) return fail(controller.error());
   Motion motion = context->assembler.empty_motion();
   auto cleanup = context->foot_cleanup({});
-  std::vector<ContactMask> contacts;
   std::vector<double> latencies, cleanup_latencies;
   int exhausted = 0;
   const double fps = file->database.fps;
@@ -102,9 +101,7 @@ int run_synthesis_bench(const std::string& graph_path) {
     latencies.push_back(d.search_seconds);
     if (cleanup) {
       start = std::chrono::steady_clock::now();
-      contacts.clear();
-      for (int e : d.edges) context->append_edge_contacts(e, contacts);
-      if (auto s = cleanup->clean(motion, first_new, contacts); !s) return fail(s.error());
+      if (auto s = cleanup->clean(motion, first_new, context->edges_contacts(d.edges)); !s) return fail(s.error());
       cleanup_latencies.push_back(seconds_since(start));
     }
     exhausted += d.budget_exhausted ? 1 : 0;

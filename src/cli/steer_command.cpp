@@ -65,15 +65,14 @@ int run_steer(const SteerOptions& o) {
   int transitions = 0;  // transition edges that start within the script's duration
   Walk played{-1, {}};  // every edge the controller chose (for the clips the motion is cut from)
   auto cleanup = cleanup_for(o.common, context);
-  std::vector<ContactMask> contacts, all_contacts;
+  std::vector<ContactMask> all_contacts;
   std::vector<double> cleanup_seconds;
   while (motion.frame_count < total) {
     controller->set_input(*input_at(motion.frame_count / fps));
     long long edge_start = motion.frame_count;
     const int first_new = motion.frame_count;
     const ControllerDecision d = controller->step(motion);
-    contacts.clear();
-    for (int e : d.edges) context.append_edge_contacts(e, contacts);
+    const std::vector<ContactMask> contacts = context.edges_contacts(d.edges);
     all_contacts.insert(all_contacts.end(), contacts.begin(), contacts.end());
     if (cleanup) {
       // The decision's frames, cleaned as a game would before showing them.

@@ -68,10 +68,9 @@ Result<SynthesizedMotion> SynthesisService::walk(const WalkRequest& request) {
   auto motion = assemble_walk(file_.database, graph, found->walk, start, context_.assembler.target_skeleton());
   if (!motion) return motion.error();
   SynthesizedMotion out;
-  if (auto cleanup = request.cleanup ? context_.foot_cleanup({}) : Result<FootCleanup>(Error{"", 0, "off"}); cleanup) {
-    if (auto s = context_.clean_up_walk(found->walk, *cleanup, *motion); !s) return s.error();
-    out.cleaned = true;
-  }
+  auto cleaned = clean_up(request.cleanup, found->walk, *motion);
+  if (!cleaned) return cleaned.error();
+  out.cleaned = *cleaned;
   out.walk = found->walk;
   out.motion = std::move(*motion);
   out.transitions = found->walk.transition_count(graph);
@@ -83,13 +82,19 @@ Result<PathSynthesisResult> SynthesisService::path(const FloorPath& path, const 
                                                    bool cleanup, bool* cleaned) const {
   if (auto s = settings.validate(); !s) return s.error();
   auto result = synthesize_path(context_, path, settings);
-  if (cleaned) *cleaned = false;
-  if (!result || !cleanup) return result;
-  if (auto foot_cleanup = context_.foot_cleanup({}); foot_cleanup) {
-    if (auto s = context_.clean_up_walk(result->walk, *foot_cleanup, result->motion); !s) return s.error();
-    if (cleaned) *cleaned = true;
-  }
+  if (!result) return result;
+  auto done = clean_up(cleanup, result->walk, result->motion);
+  if (!done) return done.error();
+  if (cleaned) *cleaned = *done;
   return result;
+}
+
+Result<bool> SynthesisService::clean_up(bool asked, const Walk& walk, Motion& motion) const {
+  if (!asked) return false;
+  auto cleanup = context_.foot_cleanup({});
+  if (!cleanup) return false;  // the graph's feet were not found
+  if (auto s = context_.clean_up_walk(walk, *cleanup, motion); !s) return s.error();
+  return true;
 }
 
 Result<int> SynthesisService::create_session(const ControlInput& input, bool cleanup) {
@@ -132,14 +137,13 @@ Result<SteerStepResult> SynthesisService::step_session(int id, const ControlInpu
   SteerStepResult out;
   out.motion = context_.assembler.empty_motion();
   out.first_frame = session->frames;
-  std::vector<ContactMask> contacts;
   do {
     const int first_new = out.motion.frame_count;
     const ControllerDecision decision = session->controller->step(out.motion);
     if (session->cleanup) {
-      contacts.clear();
-      for (int e : decision.edges) context_.append_edge_contacts(e, contacts);
-      if (auto s = session->cleanup->clean(out.motion, first_new, contacts); !s) return s.error();
+      if (auto s = session->cleanup->clean(out.motion, first_new, context_.edges_contacts(decision.edges)); !s) {
+        return s.error();
+      }
     }
     out.search_seconds += decision.search_seconds;
     out.transitions += count_transitions(file_.graph, decision.edges);

@@ -99,6 +99,8 @@ class SynthesisService {
     long long last_used = 0;
   };
   SynthesisService() = default;
+  // Cleans a walk's motion when asked and the graph's feet were found; says whether it did.
+  Result<bool> clean_up(bool asked, const Walk& walk, Motion& motion) const;
   int store_recorded(std::shared_ptr<Recorded> recorded);
 
   std::string path_;

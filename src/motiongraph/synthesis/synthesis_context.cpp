@@ -56,14 +56,16 @@ FloorTransform SynthesisContext::placement_facing_edge(int edge, const Vec2& at,
   return place_root(tracks.roots_of(edge).front(), tracks.facings_of(edge).front(), at, direction);
 }
 
-void SynthesisContext::append_edge_contacts(int edge, std::vector<ContactMask>& out) const {
-  if (!frame_contacts.empty()) assembler.append_edge_contacts(edge, frame_contacts, out);
+std::vector<ContactMask> SynthesisContext::edges_contacts(std::span<const int> edges) const {
+  std::vector<ContactMask> out;
+  if (frame_contacts.empty()) return out;
+  for (int e : edges) assembler.append_edge_contacts(e, frame_contacts, out);
+  return out;
 }
 
 std::vector<ContactMask> SynthesisContext::walk_contacts(const Walk& walk) const {
-  std::vector<ContactMask> out;
+  std::vector<ContactMask> out = edges_contacts(walk.edges);
   if (frame_contacts.empty()) return out;
-  for (int e : walk.edges) append_edge_contacts(e, out);
   out.push_back(frame_contacts[graph->nodes[walk.end_node(*graph)].frame]);
   return out;
 }

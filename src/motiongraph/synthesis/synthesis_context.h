@@ -3,6 +3,7 @@
 // foot contacts of every database frame (for the foot clean-up, synthesis/foot_cleanup.h).
 #pragma once
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -30,8 +31,9 @@ struct SynthesisContext {
   // The same for the first frame edge `edge` plays (a transition's first frame is already
   // blended, a few millimetres from its node's frame).
   FloorTransform placement_facing_edge(int edge, const Vec2& at, const Vec2& direction) const;
-  // The contact masks of the frames edge `edge` plays, appended to `out` (none without feet).
-  void append_edge_contacts(int edge, std::vector<ContactMask>& out) const;
+  // The contact masks of the frames `edges` play, in order (none without feet): what a
+  // steering decision's frames carry.
+  std::vector<ContactMask> edges_contacts(std::span<const int> edges) const;
   // The contact masks of the frames assemble_walk() plays for `walk` (its edges' frames and
   // the end node's frame).
   std::vector<ContactMask> walk_contacts(const Walk& walk) const;
