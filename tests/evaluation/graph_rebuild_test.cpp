@@ -9,7 +9,7 @@
 namespace mg {
 namespace {
 
-// The settings JSON as build writes it (cli/build_command.cpp), window 10 at 30 fps.
+// The settings JSON as build writes it (pipeline/saved_settings.h), window 10 at 30 fps.
 const char* kSettings = R"({"distance": {"cloud": "rings", "ring_spacing_m": 0.25, "ring_radius_m": 0.06,
   "points_per_ring": 4, "joint_weights": {"head": 2.0}, "window": 10, "taper": "uniform",
   "continuation_radius": -1}, "threshold": -1.0, "threshold_quantile": 0.02, "locality_radius": 5,

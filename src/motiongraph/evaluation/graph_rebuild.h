@@ -1,7 +1,7 @@
 // What it takes to select transitions again on the candidates a graph file stores: the frame
 // features (needed for the floor alignment of each transition) recomputed from the file's
 // database and distance settings, and the transition, bridge and tag settings the graph was
-// built with. Settings a file does not record take build's defaults.
+// built with (pipeline/saved_settings.h). Settings a file does not record take build's defaults.
 #pragma once
 
 #include "motiongraph/core/error.h"

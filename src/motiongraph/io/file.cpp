@@ -55,4 +55,11 @@ Status write_file_atomic(const std::string& path, std::string_view content) {
   return Ok{};
 }
 
+Status create_folders(const std::string& path) {
+  std::error_code ec;
+  std::filesystem::create_directories(path, ec);
+  if (ec) return Error{path, 0, fmt::format("cannot create the folder: {}", ec.message())};
+  return Ok{};
+}
+
 }  // namespace mg

@@ -14,4 +14,7 @@ Result<std::string> read_text_file(const std::string& path);
 
 Status write_file_atomic(const std::string& path, std::string_view content);
 
+// Creates the folder and its missing parents (nothing to do when it exists).
+Status create_folders(const std::string& path);
+
 }  // namespace mg

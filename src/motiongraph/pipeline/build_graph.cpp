@@ -1,0 +1,357 @@
+// build_graph(): the build pipeline, stage by stage, with its timings.
+#include "motiongraph/pipeline/build_graph.h"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <optional>
+
+#include "motiongraph/core/json_text.h"
+#include "motiongraph/core/progress.h"
+#include "motiongraph/database/database_loader.h"
+#include "motiongraph/export/matrix_png.h"
+#include "motiongraph/export/npy.h"
+#include "motiongraph/graph/graph_from_candidates.h"
+#include "motiongraph/metric/frame_features.h"
+#include "motiongraph/pipeline/build_report.h"
+#include "motiongraph/pipeline/saved_settings.h"
+
+namespace mg {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+class Stopwatch {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return seconds;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+// cmu-mocap-index.tsv beside or up to two folders above the first input folder that has one.
+std::string find_cmu_index(std::span<const std::string> inputs) {
+  for (const std::string& input : inputs) {
+    fs::path folder = fs::is_directory(input) ? fs::path(input) : fs::path(input).parent_path();
+    for (int up = 0; up < 3 && !folder.empty(); ++up) {
+      const fs::path candidate = folder / "cmu-mocap-index.tsv";
+      std::error_code ec;
+      if (fs::is_regular_file(candidate, ec)) return candidate.string();
+      folder = folder.parent_path();
+    }
+  }
+  return "";
+}
+
+// ": walk 64 % of 70 %, run 12 % of 36 %" for the motion types short of their targets.
+std::string short_tags_text(const ThresholdChoice& choice, const MotionDatabase& db) {
+  const CoveragePoint& p = choice.chosen();
+  std::vector<std::string> parts;
+  for (size_t i = 0; i < choice.tags.size() && i < p.tag_coverage.size(); ++i) {
+    if (p.tag_coverage[i] < choice.targets[i]) {
+      parts.push_back(fmt::format("{} {:.0f} % of {:.0f} %", db.tag_names[choice.tags[i]], 100.0 * p.tag_coverage[i],
+                                  100.0 * choice.targets[i]));
+    }
+  }
+  return parts.empty() ? std::string() : ": " + fmt::format("{}", fmt::join(parts, ", "));
+}
+
+// The log's two voices, silent where the caller gave none.
+struct Say {
+  const BuildLog& log;
+  void info(const std::string& line) const {
+    if (log.info) log.info(line);
+  }
+  void warning(const std::string& line) const {
+    if (log.warning) log.warning(line);
+  }
+};
+
+// The distance stage's candidates, from the cache when it holds `key`.
+struct Candidates {
+  CandidateSearch search;
+  const char* cache = "off";  // "hit", "stored" or "off"
+};
+
+Result<Candidates> distance_stage(const FrameFeatures& features, const BuildSettings& settings, DistanceCache* cache,
+                                  std::uint64_t key, const Say& say, bool progress_bar) {
+  // The cache holds no matrix: with the matrix export the stage runs (and refreshes the cache).
+  const bool keep_matrix = settings.exports.matrix_npy;
+  if (cache != nullptr && !keep_matrix) {
+    auto cached = cache->find(key);
+    if (!cached) {
+      say.warning(fmt::format("{} (computing again)", cached.error().to_string()));
+    } else if (*cached) {
+      say.info(fmt::format("distance stage: from the cache {}", cache->location(key)));
+      return Candidates{std::move(**cached), "hit"};
+    }
+  }
+  CandidateSettings candidate_settings;
+  candidate_settings.continuation_radius = settings.distance_stage.continuation_radius;
+  candidate_settings.keep_matrix = keep_matrix;
+  const DistanceSettings& distance = settings.distance_stage.distance;
+  const long long tiles_per_side = (features.frames + distance.tile_frames - 1) / distance.tile_frames;
+  ProgressBar progress("distance", static_cast<std::uint64_t>(tiles_per_side * tiles_per_side), !progress_bar);
+  auto search =
+      find_candidates(features, distance, candidate_settings, [&](long long, long long) { progress.advance(1); });
+  progress.finish();
+  if (!search) return search.error();
+  say.info(fmt::format("distance stage: {} x {} pairs in {:.2f} s, {} local minima", features.frames, features.frames,
+                       search->tiles.seconds, search->minima.size()));
+  if (cache == nullptr) return Candidates{std::move(*search), "off"};
+  if (auto s = cache->store(key, *search); !s) {
+    say.warning(fmt::format("cannot cache the distance stage: {}", s.error().to_string()));
+  }
+  return Candidates{std::move(*search), "stored"};
+}
+
+// The transition settings with the threshold the settings ask for; for kAuto, chosen from the
+// data and path-checked (their report parts in choice_json and check_json).
+Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db, const FrameFeatures& features,
+                                                       const CandidateSearch& candidates, const BuildSettings& settings,
+                                                       const Say& say, json& choice_json, json& check_json) {
+  TagMask connected = motion_type_tags(db);
+  if (!settings.connect_tags.empty()) {
+    auto mask = tag_mask_of(db, settings.connect_tags);
+    if (!mask) return Error{"", 0, "--connect-tags: " + mask.error().message};
+    connected = *mask;
+  }
+  GraphFromCandidatesSettings graph_settings;
+  graph_settings.transitions = settings.transitions;
+  graph_settings.spacing = settings.spacing;
+  graph_settings.bridges = settings.bridges;
+  graph_settings.connected_tags = settings.ignore_tags ? 0 : connected;
+  switch (settings.threshold_mode) {
+    case ThresholdMode::kQuantile:
+      graph_settings.transitions.threshold = -1.0;
+      graph_settings.transitions.threshold_quantile = settings.threshold_value;
+      return graph_settings;
+    case ThresholdMode::kDistance:
+      graph_settings.transitions.threshold = settings.threshold_value;
+      return graph_settings;
+    case ThresholdMode::kRmsCm:
+      graph_settings.transitions.threshold = distance_of_rms_cm(settings.threshold_value, features);
+      return graph_settings;
+    case ThresholdMode::kAuto:
+      break;
+  }
+  const ThresholdChoiceSettings& choice_settings = settings.choice;
+  auto choice = choose_threshold(db, features, candidates, graph_settings, choice_settings);
+  if (!choice) return choice.error();
+  graph_settings.transitions.threshold = choice->threshold;
+  graph_settings.transitions.max_threshold = distance_of_rms_cm(choice_settings.max_rms_cm, features);
+  choice_json = threshold_choice_json(*choice, db, choice_settings);
+  const CoveragePoint& chosen = choice->chosen();
+  std::vector<std::string> kept;
+  for (size_t i = 0; i < choice->tags.size(); ++i) {
+    kept.push_back(fmt::format("{} {:.0f} %", db.tag_names[choice->tags[i]], 100.0 * chosen.tag_coverage[i]));
+  }
+  if (choice->tags.empty()) kept.push_back(fmt::format("{:.0f} % of the frames", 100.0 * chosen.coverage));
+  say.info(fmt::format("threshold auto: RMS {:.2f} cm keeps {} ({} thresholds tried)", choice->rms_cm,
+                       fmt::join(kept, ", "), choice->curve.size()));
+  if (!choice->reached) {
+    say.warning(fmt::format("no threshold up to --max-threshold {:g} cm reaches the coverage wanted{}",
+                            choice_settings.max_rms_cm, short_tags_text(*choice, db)));
+  }
+  if (!settings.path_check) return graph_settings;
+  const PathCheckSettings& check_settings = settings.path_check_settings;
+  auto check = check_path_following(db, features, candidates, graph_settings, choice->threshold,
+                                    graph_settings.transitions.max_threshold, check_settings);
+  if (!check) return check.error();
+  check_json = path_check_json(*check, check_settings);
+  const PathCheckPoint& first = check->points.front();
+  const PathCheckPoint* picked = check->chosen();
+  if (check->skipped) {
+    say.info(fmt::format("path check: skipped, the library hardly travels ({:.0f} % of its frames at {:g} m/s or more)",
+                         100.0 * check->travel_share, check_settings.travel_speed_mps));
+  } else if (check->passed && check->points.size() == 1) {
+    say.info(fmt::format("path check: a {:.0f} m test path is followed at {:.3f} m mean deviation",
+                         check->probe_length_m, first.mean_deviation_m));
+  } else if (check->passed) {
+    say.info(
+        fmt::format("path check: the test path is followed {:.3f} m off at RMS {:.2f} cm; raised to RMS {:.2f} "
+                    "cm, where it is followed at {:.3f} m",
+                    first.mean_deviation_m, first.rms_cm, check->rms_cm, picked->mean_deviation_m));
+  } else {
+    say.warning(
+        fmt::format("path check: no threshold up to --max-threshold {:g} cm follows the test path within {:g} "
+                    "m; the best, RMS {:.2f} cm, follows it {:.3f} m off{} (the clips may hold few turns)",
+                    choice_settings.max_rms_cm, check_settings.tolerance_m, check->rms_cm, picked->mean_deviation_m,
+                    picked->reached_end ? "" : " and does not reach its end"));
+  }
+  graph_settings.transitions.threshold = check->threshold;
+  return graph_settings;
+}
+
+// The exports asked for, as bytes.
+Status make_exports(const BuildSettings& settings, const MotionDatabase& db, const CloudLayout& layout,
+                    const FrameFeatures& features, const CandidateSearch& candidates,
+                    std::span<const Transition> all_transitions, GraphBuild& out) {
+  if (settings.exports.matrix_png) {
+    std::vector<int> clip_starts;
+    for (const DatabaseClip& clip : db.clips) clip_starts.push_back(clip.first_frame);
+    MatrixPngSettings png;
+    auto bytes = candidates.matrix.empty()
+                     ? matrix_png(MinMatrixView{candidates.picture, candidates.picture_side, candidates.picture_block},
+                                  clip_starts, all_transitions, png)
+                     : matrix_png(candidates.matrix, features.frames, clip_starts, all_transitions, png);
+    if (!bytes) return bytes.error();
+    out.matrix_png = std::move(*bytes);
+  }
+  if (settings.exports.matrix_npy) {
+    const size_t shape[2] = {static_cast<size_t>(features.frames), static_cast<size_t>(features.frames)};
+    out.matrix_npy = npy_bytes_f32(shape, candidates.matrix);
+  }
+  if (settings.exports.clouds_npy) {
+    const size_t shape[3] = {static_cast<size_t>(db.frame_count()), static_cast<size_t>(layout.point_count()), 3};
+    out.clouds_npy = npy_header(NpyDtype::kFloat32, shape);
+    for (const DatabaseClip& clip : db.clips) {
+      npy_append_f32(out.clouds_npy, compute_clouds(db.skeletons[clip.skeleton], clip.motion, layout));
+    }
+  }
+  return Ok{};
+}
+
+}  // namespace
+
+Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildSettings& settings, DistanceCache* cache,
+                               const BuildLog& log) {
+  if (auto s = settings.validate(); !s) return s.error();
+  const Say say{log};
+  Stopwatch watch;
+  json timings = json::object();
+
+  // 1. The database.
+  DatabaseSettings db_settings = settings.database;
+  if (settings.find_cmu_index && db_settings.cmu_index_path.empty() && db_settings.cmu_index_text.empty()) {
+    db_settings.cmu_index_path = find_cmu_index(inputs);
+  }
+  DatabaseLoadNotes load_notes;
+  const std::vector<std::string> input_list(inputs.begin(), inputs.end());
+  auto db = load_database(input_list, db_settings, &load_notes);
+  if (!db) return db.error();
+  if (log.loaded) log.loaded(load_notes);
+  timings["load"] = watch.lap();
+  say.info(fmt::format("{} clips, {} frames at {:g} fps ({:.1f} s), {} tags", db->clips.size(), db->frame_count(),
+                       db->fps, db->frame_count() / db->fps, db->tag_names.size()));
+
+  // 2. Point clouds and per-frame features.
+  auto layout = make_cloud_layout(db->skeletons.front(), settings.distance_stage.cloud);
+  if (!layout) return layout.error();
+  auto features = make_frame_features(*db, *layout, settings.distance_stage.distance);
+  if (!features) return features.error();
+  if (features->window < 2) return Error{"", 0, "the window must be at least 2 frames (raise --fps or --window)"};
+  timings["clouds"] = watch.lap();
+
+  // 3. The distance stage, from the cache when the same inputs and settings were seen.
+  const json distance_json = settings.distance_stage.to_json(features->window);
+  const std::uint64_t key = distance_cache_key(*db, json_text(distance_json));
+  auto candidates = distance_stage(*features, settings, cache, key, say, log.progress_bar);
+  if (!candidates) return candidates.error();
+  timings["distance"] = watch.lap();
+
+  // 4. Transitions, at the threshold asked for or chosen.
+  json choice_json = nullptr;
+  json check_json = nullptr;
+  auto graph_settings = threshold_settings(*db, *features, candidates->search, settings, say, choice_json, check_json);
+  if (!graph_settings) return graph_settings.error();
+  auto selected = select_transitions_with_bridges(*db, *features, candidates->search, *graph_settings);
+  if (!selected) return selected.error();
+  const TransitionSelection& selection = selected->selection;
+  if (!selected->bridges.empty()) say.info(fmt::format("{} bridges between motion types", selected->bridges.size()));
+  timings["transitions"] = watch.lap();
+  const double threshold_rms_cm = rms_cm_of_distance(selection.threshold, *features);
+  say.info(fmt::format("threshold {:.4g} (RMS {:.2f} cm; {:.3f} % of pairs below): {} transitions", selection.threshold,
+                       threshold_rms_cm, 100.0 * selection.threshold_quantile, selection.transitions.size()));
+
+  // 5. The graph, pruned.
+  auto built = build_spaced_graph(*db, *selected, *features, *graph_settings);
+  if (!built && built.error().kind != ErrorKind::kEmptyGraph) return built.error();
+  timings["graph"] = watch.lap();
+  if (built) {
+    const PruneReport& pruned = built->prune;
+    say.info(
+        fmt::format("graph: {} nodes, {} edges ({} transitions) after pruning and spacing; {} transitions "
+                    "survived a first pruning, spaced to {}",
+                    pruned.after.nodes, pruned.after.edges, pruned.after.transitions, built->survived_first_pruning,
+                    pruned.before.transitions));
+  }
+
+  // 6. The report and the exports, made even when no graph can be, so that the user can see why.
+  GraphBuild out;
+  const char* mode_name = threshold_mode_name(settings.threshold_mode);
+  out.report = build_report(BuildReportParts{*db, *features, *layout, candidates->search, *selected,
+                                             built ? &*built : nullptr, distance_json, mode_name, choice_json,
+                                             check_json, settings.spacing, candidates->cache});
+  if (auto s = make_exports(settings, *db, *layout, *features, candidates->search, selected->all_transitions, out);
+      !s) {
+    return s.error();
+  }
+  candidates->search.matrix.clear();
+  timings["exports"] = watch.lap();
+
+  if (!built) {
+    // No graph: say which threshold would make one, and what it would keep.
+    auto lowest = lowest_graph_threshold(*db, *features, candidates->search, *graph_settings, selection.threshold);
+    if (!lowest) return lowest.error();
+    std::string advice = "no threshold makes a graph: the clips hold no loop of transitions at all";
+    if (*lowest) {
+      const CoveragePoint& p = **lowest;
+      advice = fmt::format(
+          "the lowest threshold that makes one is RMS {:.2f} cm (--threshold {:.2f}cm, D {:.4g}, "
+          "{:.3f} % of pairs); it keeps {:.0f} % of {}",
+          p.rms_cm, std::ceil(p.rms_cm * 100.0) / 100.0, p.threshold, 100.0 * p.quantile, 100.0 * p.coverage,
+          graph_settings->connected_tags ? "each motion type's frames" : "the frames");
+      out.report["lowest_graph_threshold"] = coverage_point_json(p, *db, coverage_tags(*graph_settings));
+    }
+    out.report["error"] = "pruning left nothing";
+    out.report["timings"] = timings;
+    out.graph_status = Error{"", 0,
+                             fmt::format("no graph at threshold RMS {:.2f} cm: pruning left nothing (the transitions "
+                                         "form no loop); {}",
+                                         threshold_rms_cm, advice),
+                             ErrorKind::kEmptyGraph};
+    out.file.database = std::move(*db);
+    out.file.candidates = std::move(candidates->search);
+    return out;
+  }
+
+  // What eval needs to select transitions again as this build did.
+  SavedSettings saved;
+  saved.distance_stage = settings.distance_stage;
+  saved.distance_stage.distance.window_frames = features->window;
+  saved.fps = db->fps;
+  saved.threshold_mode = mode_name;
+  saved.transitions = settings.transitions;
+  saved.transitions.threshold = selection.threshold;
+  saved.transitions.threshold_quantile = selection.threshold_quantile;
+  saved.transitions.locality_radius = selection.locality_radius;
+  saved.transitions.max_threshold = graph_settings->transitions.max_threshold;
+  saved.spacing = settings.spacing;
+  saved.bridges_per_tag_pair = settings.bridges.per_tag_pair;
+  saved.connected_tags = db->tag_names_of(graph_settings->connected_tags);
+  GraphFile& file = out.file;
+  file.settings_json = json_text(saved.to_json());
+  file.input_key = key;
+  file.threshold = selection.threshold;
+  file.threshold_quantile = selection.threshold_quantile;
+  file.locality_radius = selection.locality_radius;
+  file.graph = std::move(built->graph);
+  file.candidates = std::move(candidates->search);
+  file.database = std::move(*db);
+  out.report["timings"] = timings;
+  file.report_json = json_text(out.report);
+  return out;
+}
+
+}  // namespace mg

@@ -1,0 +1,151 @@
+// The build report's JSON.
+#include "motiongraph/pipeline/build_report.h"
+
+#include <string>
+
+namespace mg {
+
+using nlohmann::json;
+
+json clips_json(const MotionDatabase& db) {
+  json clips = json::array();
+  for (const DatabaseClip& clip : db.clips) {
+    json tags = json::array();
+    for (size_t t = 0; t < db.tag_names.size(); ++t) {
+      for (const TagRange& range : db.tag_ranges) {
+        if (range.tag == static_cast<int>(t) && range.first_frame < clip.first_frame + clip.frame_count &&
+            range.first_frame + range.frame_count > clip.first_frame) {
+          tags.push_back(db.tag_names[t]);
+          break;
+        }
+      }
+    }
+    clips.push_back(
+        {{"name", clip.name},
+         {"source", clip.source},
+         {"first_frame", clip.first_frame},
+         {"frames", clip.frame_count},
+         {"tags", tags},
+         {"skeleton", clip.skeleton < static_cast<int>(db.skeleton_names.size()) ? db.skeleton_names[clip.skeleton]
+                                                                                 : std::to_string(clip.skeleton)}});
+  }
+  return clips;
+}
+
+json coverage_point_json(const CoveragePoint& p, const MotionDatabase& db, const std::vector<int>& tags) {
+  json per_tag = json::object();
+  for (size_t i = 0; i < tags.size() && i < p.tag_coverage.size(); ++i)
+    per_tag[db.tag_names[tags[i]]] = p.tag_coverage[i];
+  return {{"threshold", p.threshold},     {"rms_cm", p.rms_cm},
+          {"quantile", p.quantile},       {"graph", p.graph},
+          {"coverage", p.coverage},       {"tag_coverage", per_tag},
+          {"kept_frames", p.kept_frames}, {"transitions", p.transitions}};
+}
+
+json threshold_choice_json(const ThresholdChoice& choice, const MotionDatabase& db,
+                           const ThresholdChoiceSettings& settings) {
+  json curve = json::array();
+  for (const CoveragePoint& p : choice.curve) curve.push_back(coverage_point_json(p, db, choice.tags));
+  std::vector<std::string> names;
+  json targets = json::object();
+  for (size_t i = 0; i < choice.tags.size(); ++i) {
+    names.push_back(db.tag_names[choice.tags[i]]);
+    targets[names.back()] = choice.targets[i];
+  }
+  if (choice.tags.empty() && !choice.targets.empty()) targets["all"] = choice.targets[0];
+  return {{"coverage_target", settings.coverage},
+          {"reachable_share", settings.reachable_share},
+          {"min_transition_rate", settings.min_transition_rate},
+          {"target_rate", choice.target_rate},
+          {"targets", targets},
+          {"max_rms_cm", settings.max_rms_cm},
+          {"reached", choice.reached},
+          {"threshold", choice.threshold},
+          {"rms_cm", choice.rms_cm},
+          {"motion_types", names},
+          {"curve", curve}};
+}
+
+json path_check_json(const PathCheck& check, const PathCheckSettings& settings) {
+  json points = json::array();
+  for (const PathCheckPoint& p : check.points) {
+    points.push_back({{"threshold", p.threshold},
+                      {"rms_cm", p.rms_cm},
+                      {"graph", p.graph},
+                      {"mean_deviation_m", p.mean_deviation_m},
+                      {"max_deviation_m", p.max_deviation_m},
+                      {"reached_end", p.reached_end},
+                      {"transitions", p.transitions},
+                      {"seconds", p.seconds}});
+  }
+  return {{"tolerance_m", settings.tolerance_m},
+          {"probe_length_m", check.probe_length_m},
+          {"skipped", check.skipped},
+          {"travel_share", check.travel_share},
+          {"passed", check.passed},
+          {"threshold", check.threshold},
+          {"rms_cm", check.rms_cm},
+          {"points", points}};
+}
+
+json build_report(const BuildReportParts& parts) {
+  const MotionDatabase& db = parts.db;
+  const FrameFeatures& features = parts.features;
+  const TransitionSelection& selection = parts.selected.selection;
+  const PrunedGraph* pruned = parts.pruned;
+  json tag_thresholds = json::array();
+  for (const TagThreshold& t : selection.tag_thresholds) {
+    tag_thresholds.push_back({{"tag", db.tag_names[t.tag]},
+                              {"candidates", t.candidates},
+                              {"threshold", t.threshold},
+                              {"rms_cm", rms_cm_of_distance(t.threshold, features)}});
+  }
+  json bridges = json::array();
+  for (const Transition& t : parts.selected.bridges) {
+    bridges.push_back({{"from_frame", t.from_frame},
+                       {"to_frame", t.to_frame},
+                       {"distance", t.distance},
+                       {"rms_cm", rms_cm_of_distance(t.distance, features)}});
+  }
+  std::vector<double> point_weights(parts.layout.weight.begin(), parts.layout.weight.end());
+  return {
+      {"frames", db.frame_count()},
+      {"fps", db.fps},
+      {"window", features.window},
+      {"points", parts.layout.point_count()},
+      {"point_weights", point_weights},
+      {"window_weights", features.taper},
+      {"window_weight", features.window_weight},
+      {"clips", clips_json(db)},
+      {"tags", db.tag_names},
+      {"distance_settings", parts.distance_settings},
+      {"threshold_mode", parts.threshold_mode},
+      {"threshold", selection.threshold},
+      {"threshold_rms_cm", rms_cm_of_distance(selection.threshold, features)},
+      {"threshold_quantile", selection.threshold_quantile},
+      {"threshold_choice", parts.threshold_choice},
+      {"path_check", parts.path_check},
+      {"locality_radius", selection.locality_radius},
+      {"spacing",
+       {{"out_window_frames", parts.spacing.out_window_for(features.window)},
+        {"min_piece_frames", parts.spacing.min_piece_frames},
+        {"max_out", parts.spacing.max_out}}},
+      {"tag_thresholds", tag_thresholds},
+      {"counts",
+       {{"pairs", static_cast<long long>(features.frames) * features.frames},
+        {"finite_pairs", parts.candidates.histogram.total()},
+        {"local_minima", parts.candidates.minima.size()},
+        {"below_threshold", selection.candidates_below_threshold},
+        {"transitions", selection.transitions.size()},
+        {"survived_first_pruning", pruned ? pruned->survived_first_pruning : 0},
+        {"spaced", pruned ? pruned->prune.before.transitions : 0},
+        {"bridges", parts.selected.bridges.size()},
+        {"transitions_kept", pruned ? pruned->prune.after.transitions : 0}}},
+      {"graph_before", pruned ? json::parse(to_json(pruned->prune.before, db.tag_names)) : json(nullptr)},
+      {"graph_after", pruned ? json::parse(to_json(pruned->prune.after, db.tag_names)) : json(nullptr)},
+      {"bridges", bridges},
+      {"distance_cache", parts.distance_cache},
+  };
+}
+
+}  // namespace mg

@@ -1,0 +1,52 @@
+// The build report (`motiongraph build --report`, and GraphFile::report_json): the frames,
+// rate, window, point and window weights, the clips with their tags, the distance settings
+// (DistanceStageSettings::to_json), the threshold and how it was found (the automatic choice's
+// coverage curve, the path check), counts, the graph's statistics before and after pruning,
+// the bridges and whether the distance cache was used. Thresholds are given both as D and as
+// the RMS point distance in cm (graph/threshold_choice.h).
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "motiongraph/database/motion_database.h"
+#include "motiongraph/graph/graph_from_candidates.h"
+#include "motiongraph/graph/threshold_choice.h"
+#include "motiongraph/metric/point_cloud.h"
+#include "motiongraph/synthesis/path_check.h"
+
+namespace mg {
+
+// [{"name", "source", "first_frame", "frames", "tags", "skeleton"}, ...]
+nlohmann::json clips_json(const MotionDatabase& db);
+
+// One point of a coverage curve, per-tag coverage by tag name (`tags`: the tags measured).
+nlohmann::json coverage_point_json(const CoveragePoint& point, const MotionDatabase& db, const std::vector<int>& tags);
+
+// The automatic threshold: the target, the ceiling, and the curve it was chosen on.
+nlohmann::json threshold_choice_json(const ThresholdChoice& choice, const MotionDatabase& db,
+                                     const ThresholdChoiceSettings& settings);
+
+// The path check: the tolerance, the probe and each threshold tried.
+nlohmann::json path_check_json(const PathCheck& check, const PathCheckSettings& settings);
+
+// What the whole report is made of; pruned is null when pruning left nothing.
+struct BuildReportParts {
+  const MotionDatabase& db;
+  const FrameFeatures& features;
+  const CloudLayout& layout;
+  const CandidateSearch& candidates;
+  const TransitionsWithBridges& selected;
+  const PrunedGraph* pruned = nullptr;
+  nlohmann::json distance_settings;
+  const char* threshold_mode = "auto";
+  nlohmann::json threshold_choice;  // null unless automatic
+  nlohmann::json path_check;        // null unless checked
+  TransitionSpacing spacing;
+  const char* distance_cache = "off";  // "hit", "stored" or "off"
+};
+
+// The report without "timings" (and, for a failed build, without "error").
+nlohmann::json build_report(const BuildReportParts& parts);
+
+}  // namespace mg

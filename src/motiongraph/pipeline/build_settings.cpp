@@ -1,0 +1,45 @@
+// The build's settings, checked before any work.
+#include "motiongraph/pipeline/build_settings.h"
+
+#include <cmath>
+
+#include "motiongraph/graph/candidates.h"
+
+namespace mg {
+
+const char* threshold_mode_name(ThresholdMode mode) {
+  switch (mode) {
+    case ThresholdMode::kAuto:
+      return "auto";
+    case ThresholdMode::kQuantile:
+      return "quantile";
+    case ThresholdMode::kDistance:
+      return "distance";
+    case ThresholdMode::kRmsCm:
+      return "rms_cm";
+  }
+  return "auto";
+}
+
+Status BuildSettings::validate() const {
+  TransitionSettings selection = transitions;
+  if (threshold_mode == ThresholdMode::kQuantile) {
+    selection.threshold = -1.0;
+    selection.threshold_quantile = threshold_value;
+  }
+  CandidateSettings candidates;
+  candidates.continuation_radius = distance_stage.continuation_radius;
+  candidates.keep_matrix = exports.matrix_npy;
+  for (const Status& s : {distance_stage.cloud.validate(), distance_stage.distance.validate(), selection.validate(),
+                          candidates.validate(), bridges.validate(), choice.validate(), path_check_settings.validate(),
+                          spacing.validate()}) {
+    if (!s) return s;
+  }
+  if ((threshold_mode == ThresholdMode::kDistance || threshold_mode == ThresholdMode::kRmsCm) &&
+      !(std::isfinite(threshold_value) && threshold_value >= 0.0)) {
+    return Error{"", 0, "the threshold must be a finite distance >= 0"};
+  }
+  return Ok{};
+}
+
+}  // namespace mg

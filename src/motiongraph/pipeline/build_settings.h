@@ -1,0 +1,64 @@
+// Everything build_graph() takes besides its inputs (Kovar et al. 2002, sections 3-3.3): how
+// the clips are read and resampled, the distance stage, how the threshold is found (chosen
+// from the data, a quantile of all pairs, an absolute D or an RMS point distance in cm), the
+// transition, spacing, bridge and motion-type settings, and which exports to make. Defaults
+// are the paper's and the CLI's; validate() names the first rule broken.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "motiongraph/core/error.h"
+#include "motiongraph/database/database_loader.h"
+#include "motiongraph/graph/bridges.h"
+#include "motiongraph/graph/threshold_choice.h"
+#include "motiongraph/graph/transition_selection.h"
+#include "motiongraph/graph/transition_spacing.h"
+#include "motiongraph/pipeline/distance_stage_settings.h"
+#include "motiongraph/synthesis/path_check.h"
+
+namespace mg {
+
+enum class ThresholdMode {
+  kAuto,      // the lowest threshold keeping ThresholdChoiceSettings::coverage, path-checked
+  kQuantile,  // threshold_value: the fraction of all defined pairs below the threshold
+  kDistance,  // threshold_value: an absolute distance D
+  kRmsCm,     // threshold_value: the RMS point distance over the window, in cm
+};
+
+// "auto", "quantile", "distance", "rms_cm": the name the report and the graph file record.
+const char* threshold_mode_name(ThresholdMode mode);
+
+// What the build makes besides the graph file (bytes in GraphBuild).
+struct BuildExports {
+  bool matrix_npy = false;  // the N x N float32 matrix (the distance stage then runs, cache or not)
+  bool matrix_png = false;  // the distance picture with clip boundaries and transitions
+  bool clouds_npy = false;  // the N x P x 3 float32 point clouds, metres
+};
+
+struct BuildSettings {
+  DatabaseSettings database;
+  // With database.cmu_index_path empty: use a cmu-mocap-index.tsv beside or up to two folders
+  // above the inputs when there is one (else the built-in index).
+  bool find_cmu_index = true;
+  DistanceStageSettings distance_stage;
+  ThresholdMode threshold_mode = ThresholdMode::kAuto;
+  double threshold_value = 0.0;  // see ThresholdMode
+  // threshold and threshold_quantile are set by threshold_mode; locality, per-tag thresholds
+  // and the rest are taken as they are.
+  TransitionSettings transitions;
+  ThresholdChoiceSettings choice;  // kAuto
+  bool path_check = true;          // kAuto: raise the threshold until a test path is followed
+  PathCheckSettings path_check_settings;
+  TransitionSpacing spacing;
+  BridgeSettings bridges;
+  // The motion types whose frames must stay connected (bridged between); empty: every tag but
+  // the modifiers (graph_from_candidates.h). ignore_tags: none, one component only.
+  std::vector<std::string> connect_tags;
+  bool ignore_tags = false;
+  BuildExports exports;
+
+  Status validate() const;
+};
+
+}  // namespace mg

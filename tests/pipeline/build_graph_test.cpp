@@ -1,0 +1,171 @@
+// build_graph() on the bundled subject 16, in process: the graph it makes is the one its saved
+// settings select again (what eval and the studio rely on), the cache is used and changes
+// nothing, pruning to nothing is an ErrorKind::kEmptyGraph with the report kept, and the
+// exports have their promised sizes.
+#include "motiongraph/pipeline/build_graph.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <map>
+
+#include "motiongraph/core/json_text.h"
+#include "motiongraph/evaluation/graph_rebuild.h"
+#include "motiongraph/graph/graph_from_candidates.h"
+#include "test_data.h"
+
+namespace mg {
+namespace {
+
+// A cache in memory that counts what it is asked.
+class MemoryCache final : public DistanceCache {
+ public:
+  Result<std::optional<CandidateSearch>> find(std::uint64_t key) override {
+    ++finds;
+    const auto it = entries.find(key);
+    if (it == entries.end()) return std::optional<CandidateSearch>();
+    return std::optional<CandidateSearch>(it->second);
+  }
+  Status store(std::uint64_t key, const CandidateSearch& candidates) override {
+    ++stores;
+    entries[key] = candidates;
+    entries[key].matrix.clear();
+    return Ok{};
+  }
+  std::string location(std::uint64_t key) const override { return std::to_string(key); }
+
+  std::map<std::uint64_t, CandidateSearch> entries;
+  int finds = 0;
+  int stores = 0;
+};
+
+const std::vector<std::string> kInputs = {test::data_path("cmu/16")};
+
+TEST(BuildGraph, Subject16IsWhatItsSavedSettingsSelectAgain) {
+  auto built = build_graph(kInputs, BuildSettings{});
+  ASSERT_TRUE(built) << built.error().to_string();
+  ASSERT_TRUE(built->graph_status) << built->graph_status.error().to_string();
+  const GraphFile& file = built->file;
+  ASSERT_FALSE(file.graph.transitions.empty());
+  EXPECT_EQ(built->report.at("frames"), file.database.frame_count());
+  EXPECT_EQ(built->report.at("threshold_mode"), "auto");
+  EXPECT_EQ(built->report.at("distance_cache"), "off");
+  EXPECT_EQ(built->report.at("counts").at("transitions_kept"), file.graph.transitions.size());
+  EXPECT_EQ(file.report_json, json_text(built->report));
+  EXPECT_TRUE(built->matrix_npy.empty() && built->matrix_png.empty() && built->clouds_npy.empty());
+
+  // The reference: eval's rebuild from the saved settings selects the very same graph.
+  auto rebuild = prepare_graph_rebuild(file, "s16.mgraph");
+  ASSERT_TRUE(rebuild) << rebuild.error().to_string();
+  auto again = graph_from_candidates(file.database, rebuild->features, file.candidates, rebuild->settings);
+  ASSERT_TRUE(again) << again.error().to_string();
+  ASSERT_EQ(again->pruned.graph.transitions.size(), file.graph.transitions.size());
+  for (size_t i = 0; i < file.graph.transitions.size(); ++i) {
+    EXPECT_EQ(again->pruned.graph.transitions[i].from_frame, file.graph.transitions[i].from_frame);
+    EXPECT_EQ(again->pruned.graph.transitions[i].to_frame, file.graph.transitions[i].to_frame);
+  }
+  EXPECT_EQ(again->pruned.graph.nodes.size(), file.graph.nodes.size());
+}
+
+TEST(BuildGraph, TheCacheIsUsedAndChangesNothing) {
+  BuildSettings settings;
+  settings.threshold_mode = ThresholdMode::kRmsCm;
+  settings.threshold_value = 5.0;
+  MemoryCache cache;
+  auto first = build_graph(kInputs, settings, &cache);
+  ASSERT_TRUE(first) << first.error().to_string();
+  EXPECT_EQ(first->report.at("distance_cache"), "stored");
+  EXPECT_EQ(cache.stores, 1);
+  auto second = build_graph(kInputs, settings, &cache);
+  ASSERT_TRUE(second) << second.error().to_string();
+  EXPECT_EQ(second->report.at("distance_cache"), "hit");
+  EXPECT_EQ(cache.stores, 1);
+  ASSERT_TRUE(first->graph_status && second->graph_status);
+  // The same graph from the same candidates.
+  const GraphFile& a = first->file;
+  const GraphFile& b = second->file;
+  EXPECT_EQ(a.settings_json, b.settings_json);
+  EXPECT_EQ(a.input_key, b.input_key);
+  EXPECT_EQ(a.candidates.minima.size(), b.candidates.minima.size());
+  EXPECT_EQ(a.candidates.histogram.counts(), b.candidates.histogram.counts());
+  // The picture holds NaN where no pair is defined: compared bit for bit.
+  ASSERT_EQ(a.candidates.picture.size(), b.candidates.picture.size());
+  EXPECT_EQ(std::memcmp(a.candidates.picture.data(), b.candidates.picture.data(), a.candidates.picture.size() * 4), 0);
+  ASSERT_EQ(a.graph.edges.size(), b.graph.edges.size());
+  ASSERT_EQ(a.graph.transitions.size(), b.graph.transitions.size());
+  for (size_t i = 0; i < a.graph.transitions.size(); ++i) {
+    EXPECT_EQ(a.graph.transitions[i].from_frame, b.graph.transitions[i].from_frame);
+    EXPECT_EQ(a.graph.transitions[i].to_frame, b.graph.transitions[i].to_frame);
+    EXPECT_EQ(a.graph.transitions[i].yaw_rad, b.graph.transitions[i].yaw_rad);
+  }
+
+  // Another threshold on the same inputs: the same key, still a hit.
+  settings.threshold_value = 4.0;
+  auto third = build_graph(kInputs, settings, &cache);
+  ASSERT_TRUE(third);
+  EXPECT_EQ(third->report.at("distance_cache"), "hit");
+  EXPECT_EQ(third->file.input_key, a.input_key);
+  // Another window is another key.
+  settings.distance_stage.distance.window_frames = 12;
+  auto fourth = build_graph(kInputs, settings, &cache);
+  ASSERT_TRUE(fourth);
+  EXPECT_EQ(fourth->report.at("distance_cache"), "stored");
+  EXPECT_NE(fourth->file.input_key, a.input_key);
+  EXPECT_EQ(cache.entries.size(), 2u);
+}
+
+TEST(BuildGraph, NothingLeftAfterPruningIsAnEmptyGraphWithItsReport) {
+  BuildSettings settings;
+  settings.threshold_mode = ThresholdMode::kRmsCm;
+  settings.threshold_value = 0.5;
+  auto built = build_graph(kInputs, settings);
+  ASSERT_TRUE(built) << built.error().to_string();
+  ASSERT_FALSE(built->graph_status);
+  EXPECT_EQ(built->graph_status.error().kind, ErrorKind::kEmptyGraph);
+  EXPECT_NE(built->graph_status.error().message.find("the lowest threshold that makes one"), std::string::npos);
+  EXPECT_EQ(built->report.at("error"), "pruning left nothing");
+  EXPECT_TRUE(built->report.contains("lowest_graph_threshold"));
+  EXPECT_TRUE(built->report.contains("timings"));
+}
+
+TEST(BuildGraph, ExportsHaveTheirSizes) {
+  BuildSettings settings;
+  settings.threshold_mode = ThresholdMode::kQuantile;
+  settings.threshold_value = 0.05;
+  settings.exports = {true, true, true};
+  MemoryCache cache;
+  auto built = build_graph(kInputs, settings, &cache);
+  ASSERT_TRUE(built) << built.error().to_string();
+  const size_t n = static_cast<size_t>(built->file.database.frame_count());
+  const size_t points = static_cast<size_t>(built->report.at("points").get<int>());
+  // .npy: a header padded to a multiple of 64 bytes, then float32 data.
+  ASSERT_GT(built->matrix_npy.size(), n * n * 4);
+  EXPECT_EQ((built->matrix_npy.size() - n * n * 4) % 64, 0u);
+  EXPECT_EQ((built->clouds_npy.size() - n * points * 3 * 4) % 64, 0u);
+  EXPECT_EQ(built->matrix_png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  // The matrix is not kept in the graph file, and with the matrix asked for the stage runs.
+  EXPECT_TRUE(built->file.candidates.matrix.empty());
+  EXPECT_EQ(built->report.at("distance_cache"), "stored");
+  EXPECT_EQ(cache.finds, 0);
+}
+
+TEST(BuildGraph, FailsOnBadSettingsAndInputs) {
+  BuildSettings settings;
+  settings.threshold_mode = ThresholdMode::kDistance;
+  settings.threshold_value = -1.0;
+  EXPECT_FALSE(build_graph(kInputs, settings));
+  settings = {};
+  settings.threshold_mode = ThresholdMode::kQuantile;
+  settings.threshold_value = 1.5;
+  EXPECT_FALSE(build_graph(kInputs, settings));
+  settings = {};
+  settings.connect_tags = {"swim"};
+  auto unknown_tag = build_graph(kInputs, settings);
+  ASSERT_FALSE(unknown_tag);
+  EXPECT_NE(unknown_tag.error().message.find("swim"), std::string::npos);
+  const std::vector<std::string> missing = {test::data_path("no-such-folder")};
+  EXPECT_FALSE(build_graph(missing, BuildSettings{}));
+}
+
+}  // namespace
+}  // namespace mg
