@@ -67,6 +67,22 @@ TEST(ThresholdSweep, RowsAgreeWithGraphsBuiltDirectly) {
   EXPECT_EQ((*rows)[2].nodes, direct->pruned.prune.before.nodes);
 }
 
+TEST(ThresholdSweep, AGraphThatCannotBeBuiltIsAnErrorNotAnEmptyRow) {
+  const Fixture& x = fixture();
+  MotionDatabase broken = x.db;
+  broken.clips[1].first_frame += 1;  // clips no longer back to back: no graph can be built
+  int visits = 0;
+  const std::vector<double> quantiles = {0.2};
+  const Status s = for_each_threshold(broken, x.features, x.candidates, GraphFromCandidatesSettings{}, quantiles,
+                                      [&](double, const TransitionsWithBridges&, const Result<PrunedGraph>&) -> Status {
+                                        ++visits;
+                                        return Ok{};
+                                      });
+  ASSERT_FALSE(s);
+  EXPECT_NE(s.error().kind, ErrorKind::kEmptyGraph);
+  EXPECT_EQ(visits, 0);
+}
+
 TEST(ConsistencySweep, AnglesInRangeWhereTransitionsRemain) {
   const Fixture& x = fixture();
   const std::vector<double> quantiles = {1e-6, 0.05};

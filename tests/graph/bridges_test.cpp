@@ -58,6 +58,45 @@ TEST(Bridges, NoneWhereSelectedTransitionsAlreadyJoinTheCores) {
   EXPECT_TRUE(select_bridges(candidates, {}, WalkRun().tags, WalkRun().cores, 4, off).empty());
 }
 
+// Two clips of 100 frames (no motion needed to build a graph): walk, then run; window 4.
+MotionDatabase two_clips() {
+  MotionDatabase db;
+  db.fps = 30.0;
+  for (int c = 0; c < 2; ++c) {
+    DatabaseClip clip;
+    clip.name = c == 0 ? "walk" : "run";
+    clip.first_frame = 100 * c;
+    clip.frame_count = 100;
+    db.clips.push_back(clip);
+  }
+  return db;
+}
+
+TEST(TagCoreFrames, TheCycleOfATagsOwnTransitionsOrNothing) {
+  const WalkRun s;
+  const MotionDatabase db = two_clips();
+  // Walk's transitions loop 70 -> 30 within the walk clip: its core is frames 30..70.
+  const std::vector<Transition> selected = {t(70, 30, 1.0f), t(150, 190, 1.0f)};
+  auto walk = tag_core_frames(db, selected, s.tags, 4, 0);
+  ASSERT_TRUE(walk) << walk.error().to_string();
+  ASSERT_EQ(walk->size(), 200u);
+  EXPECT_TRUE((*walk)[30] && (*walk)[60]);
+  EXPECT_FALSE((*walk)[10] || (*walk)[90] || (*walk)[150]);
+  // Run's only transition goes forward: no cycle, no core, and no error.
+  auto run = tag_core_frames(db, selected, s.tags, 4, 1);
+  ASSERT_TRUE(run) << run.error().to_string();
+  EXPECT_TRUE(run->empty());
+}
+
+TEST(TagCoreFrames, AGraphThatCannotBeBuiltIsAnError) {
+  const WalkRun s;
+  MotionDatabase db = two_clips();
+  db.clips.pop_back();  // frame tags for 200 frames, a database of 100
+  auto core = tag_core_frames(db, std::vector<Transition>{t(170, 130, 1.0f)}, s.tags, 4, 1);
+  ASSERT_FALSE(core);
+  EXPECT_NE(core.error().kind, ErrorKind::kEmptyGraph);
+}
+
 // The rule written pair by pair, over every candidate in order of distance (ties in input
 // order): for each ordered pair of tags (s, u) not already joined, the best candidates leaving
 // frames of s (not u) in s's core and landing on frames of u (not s) in u's core, at most

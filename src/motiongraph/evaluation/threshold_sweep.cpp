@@ -23,8 +23,10 @@ Status for_each_threshold(
     at.transitions.threshold_quantile = quantile;
     auto selected = select_transitions_with_bridges(db, features, candidates, at);
     if (!selected) return selected.error();
-    const Result<PrunedGraph> pruned =
-        build_spaced_graph(db, *selected, features, at);
+    const Result<PrunedGraph> pruned = build_spaced_graph(db, *selected, features, at);
+    // Nothing left after pruning is a measurement (the visitor's row keeps nothing); any other
+    // failure is an error.
+    if (!pruned && pruned.error().kind != ErrorKind::kEmptyGraph) return pruned.error();
     if (auto s = visit(quantile, *selected, pruned); !s) return s;
   }
   return Ok{};

@@ -32,8 +32,9 @@ struct ThresholdSweepRow {
 std::vector<double> log_spaced(double lowest, double highest, int count);
 
 // For each quantile in turn: the transitions selected at it (with bridges) and the pruned
-// graph, or the error pruning gave (nothing would remain). `settings` as the graph was built;
-// its threshold is replaced. Stops at the first error selection or `visit` returns.
+// graph, or the ErrorKind::kEmptyGraph error pruning gave (nothing would remain). `settings`
+// as the graph was built; its threshold is replaced. Stops at the first error selection,
+// building or pruning (other than nothing remaining) or `visit` returns.
 Status for_each_threshold(
     const MotionDatabase& db, const FrameFeatures& features, const CandidateSearch& candidates,
     const GraphFromCandidatesSettings& settings, std::span<const double> quantiles,

@@ -24,8 +24,8 @@ TagMask window_tags(std::span<const TagMask> frame_tags, int first, int count) {
 
 }  // namespace
 
-std::vector<char> tag_core_frames(const MotionDatabase& db, std::span<const Transition> selected,
-                                  std::span<const TagMask> frame_tags, int window, int tag) {
+Result<std::vector<char>> tag_core_frames(const MotionDatabase& db, std::span<const Transition> selected,
+                                          std::span<const TagMask> frame_tags, int window, int tag) {
   const TagMask bit = TagMask{1} << tag;
   std::vector<Transition> within;
   for (const Transition& t : selected) {
@@ -35,12 +35,15 @@ std::vector<char> tag_core_frames(const MotionDatabase& db, std::span<const Tran
   }
   std::vector<char> core;
   auto graph = build_motion_graph(db, within, window);
-  if (!graph) return core;
+  if (!graph) return graph.error();
   std::vector<TagMask> only(frame_tags.size());
   for (size_t f = 0; f < frame_tags.size(); ++f) only[f] = frame_tags[f] & bit;
   PruneSettings prune;
   prune.connected_tags = bit;
-  if (!prune_motion_graph(*graph, only, prune)) return core;
+  if (auto pruned = prune_motion_graph(*graph, only, prune); !pruned) {
+    if (pruned.error().kind == ErrorKind::kEmptyGraph) return core;  // no cycle: no core
+    return pruned.error();
+  }
   core.assign(frame_tags.size(), 0);
   for (const GraphEdge& edge : graph->edges) {
     if (edge.transition) continue;

@@ -27,9 +27,10 @@ struct BridgeSettings {
 
 // The frames of a tag's core: the clip frames of the largest strongly connected region that
 // the tag's own transitions (both windows carrying the tag) make (prune_motion_graph on them).
-// Empty when the tag has no cycle.
-std::vector<char> tag_core_frames(const MotionDatabase& db, std::span<const Transition> selected,
-                                  std::span<const TagMask> frame_tags, int window, int tag);
+// Empty when the tag has no cycle (pruning leaves nothing); fails on any other error of
+// building or pruning that graph (transitions outside the database, tags that do not cover it).
+Result<std::vector<char>> tag_core_frames(const MotionDatabase& db, std::span<const Transition> selected,
+                                          std::span<const TagMask> frame_tags, int window, int tag);
 
 // The bridges to add to `selected` (sorted by (from_frame, to_frame)); window k. A bridge
 // from s to u leaves from a frame of s's core and lands on a frame of u's core (cores[t] from

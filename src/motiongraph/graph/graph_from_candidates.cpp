@@ -59,7 +59,9 @@ Result<TransitionsWithBridges> select_transitions_with_bridges(const MotionDatab
     std::vector<std::vector<char>> cores(db.tag_names.size());
     for (size_t t = 0; t < cores.size(); ++t) {
       if (connected >> t & 1) {
-        cores[t] = tag_core_frames(db, out.selection.transitions, frame_tags, features.window, static_cast<int>(t));
+        auto core = tag_core_frames(db, out.selection.transitions, frame_tags, features.window, static_cast<int>(t));
+        if (!core) return core.error();
+        cores[t] = std::move(*core);
       }
     }
     out.bridges = select_bridges(candidates.minima, out.selection.transitions, frame_tags, cores, features.window,
