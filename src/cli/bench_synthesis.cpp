@@ -9,15 +9,16 @@
 // Speed is measured here, never asserted in tests.
 #include "cli/bench_synthesis.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
-#include <fmt/format.h>
-
 #include "cli/commands.h"
 #include "motiongraph/graph/graph_file.h"
 #include "motiongraph/synthesis/controller.h"
+#include "motiongraph/synthesis/loaded_graph.h"
 #include "motiongraph/synthesis/path_synthesis.h"
 
 namespace mg::cli {
@@ -42,12 +43,14 @@ int run_synthesis_bench(const std::string& graph_path) {
   if (!file) return fail(file.error());
   const double load_s = seconds_since(start);
   start = std::chrono::steady_clock::now();
-  auto context = make_synthesis_context(file->database, file->graph);
-  if (!context) return fail(Error{graph_path, 0, context.error().message});
+  auto loaded = LoadedGraph::create(std::move(*file), graph_path);
+  if (!loaded) return fail(loaded.error());
   const double setup_s = seconds_since(start);
-  const MotionGraph& graph = file->graph;
+  const SynthesisContext* context = &(*loaded)->context();
+  const MotionGraph& graph = (*loaded)->file().graph;
+  const MotionDatabase& db = (*loaded)->file().database;
   fmt::print("synthesis benchmark: {} ({} nodes, {} edges, {} frames at {:g} fps)\n", graph_path, graph.node_count(),
-             graph.edge_count(), file->database.frame_count(), file->database.fps);
+             graph.edge_count(), db.frame_count(), db.fps);
   fmt::print("load graph {:.3f} s, set up synthesis {:.3f} s\n", load_s, setup_s);
 
   fmt::print("{:<12} {:>8} {:>9} {:>10} {:>9} {:>12} {:>10} | {:>10} {:>9} {:>8}\n", "path", "motion s", "search s",
@@ -90,7 +93,7 @@ int run_synthesis_bench(const std::string& graph_path) {
   auto cleanup = context->foot_cleanup({});
   std::vector<double> latencies, cleanup_latencies;
   int exhausted = 0;
-  const double fps = file->database.fps;
+  const double fps = db.fps;
   while (motion.frame_count < 60.0 * fps) {
     const double t = motion.frame_count / fps;
     const int heading = static_cast<int>(t / 2.0) % 4;

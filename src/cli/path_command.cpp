@@ -75,7 +75,7 @@ int run_path(const PathOptions& o) {
   if (!path) return fail(path.error());
   auto loaded = load_for_synthesis(o.common);
   if (!loaded) return fail(loaded.error());
-  const SynthesisContext& context = (*loaded)->context;
+  const SynthesisContext& context = (*loaded)->context();
   const auto search_begin = std::chrono::steady_clock::now();
   const double search_cpu_begin = thread_cpu_seconds();
   auto result = synthesize_path(context, *path, o.settings);

@@ -40,7 +40,7 @@ int run_steer(const SteerOptions& o) {
   if (!script) return fail(script.error());
   auto loaded = load_for_synthesis(o.common);
   if (!loaded) return fail(loaded.error());
-  const SynthesisContext& context = (*loaded)->context;
+  const SynthesisContext& context = (*loaded)->context();
   auto input_at = [&](double t) -> Result<ControlInput> {
     const ScriptedControl& c = script->at(t);
     ControlInput input;

@@ -12,18 +12,7 @@ namespace mg::cli {
 
 Result<std::unique_ptr<LoadedGraph>> load_for_synthesis(const SynthesisOptions& options) {
   if (auto s = check_motion_output(options.output); !s) return s.error();
-  auto file = load_graph_file(options.graph);
-  if (!file) return file.error();
-  auto loaded = std::make_unique<LoadedGraph>();
-  loaded->file = std::move(*file);
-  if (options.skeleton >= static_cast<int>(loaded->file.database.skeletons.size())) {
-    return Error{options.graph, 0, fmt::format("--skeleton {}: the graph has {} skeleton(s)", options.skeleton,
-                                               loaded->file.database.skeletons.size())};
-  }
-  auto context = make_synthesis_context(loaded->file.database, loaded->file.graph, options.skeleton);
-  if (!context) return Error{options.graph, 0, context.error().message};
-  loaded->context = std::move(*context);
-  return loaded;
+  return LoadedGraph::load(options.graph, options.skeleton);
 }
 
 std::optional<FootCleanup> cleanup_for(const SynthesisOptions& options, const SynthesisContext& context) {
@@ -58,7 +47,7 @@ nlohmann::json cleanup_report(const SynthesisOptions& options, const SynthesisCo
 
 Status write_synthesis_outputs(const SynthesisOptions& options, const LoadedGraph& loaded, const Motion& motion,
                                const Walk& walk, nlohmann::json report, std::vector<ContactMask> contacts) {
-  const SynthesisContext& context = loaded.context;
+  const SynthesisContext& context = loaded.context();
   if (contacts.empty() && walk.start_node >= 0) contacts = context.walk_contacts(walk);
   const bool with_contacts = !context.frame_contacts.empty() && static_cast<int>(contacts.size()) >= motion.frame_count;
   contacts.resize(static_cast<size_t>(motion.frame_count));
@@ -69,7 +58,7 @@ Status write_synthesis_outputs(const SynthesisOptions& options, const LoadedGrap
     return s;
   }
   if (!options.report.empty()) {
-    report["foot_slide"] = foot_slide_report(loaded.context, walk, motion);
+    report["foot_slide"] = foot_slide_report(loaded.context(), walk, motion);
     if (auto s = write_file_atomic(options.report, json_text(report, 2) + "\n"); !s) return s;
   }
   return Ok{};

@@ -2,13 +2,13 @@
 // the output, the target skeleton and the optional JSON report.
 #pragma once
 
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
-#include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
-
 #include "cli/motion_output.h"
+#include "motiongraph/synthesis/loaded_graph.h"
 #include "motiongraph/synthesis/synthesis_context.h"
 #include "motiongraph/synthesis/walk.h"
 
@@ -33,14 +33,8 @@ struct SynthesisOptions {
   }
 };
 
-// The graph file and its synthesis context, loaded together so the context's pointers stay
-// valid (the struct is not copied after loading).
-struct LoadedGraph {
-  GraphFile file;
-  SynthesisContext context;
-};
-
-// Loads GRAPH and builds the context; checks the output's extension first.
+// Loads GRAPH and sets up synthesis on --skeleton (synthesis/loaded_graph.h); checks the
+// output's extension first.
 Result<std::unique_ptr<LoadedGraph>> load_for_synthesis(const SynthesisOptions& options);
 
 // The foot clean-up the options ask for: none with --no-cleanup, nor when the graph's feet

@@ -34,7 +34,7 @@ int run_walk(const WalkOptions& o) {
   if (auto s = settings.validate(); !s) return fail(s.error());
   auto loaded = load_for_synthesis(o.common);
   if (!loaded) return fail(loaded.error());
-  const SynthesisContext& context = (*loaded)->context;
+  const SynthesisContext& context = (*loaded)->context();
   const MotionGraph& graph = *context.graph;
   auto found = find_walk(graph, o.from, o.to, settings);
   if (!found) return fail(Error{o.common.graph, 0, found.error().message});

@@ -10,14 +10,15 @@
 namespace mg::studio {
 
 Result<std::unique_ptr<SynthesisService>> SynthesisService::load(const std::string& graph_path) {
-  auto file = load_graph_file(graph_path);
-  if (!file) return file.error();
+  auto graph = LoadedGraph::load(graph_path);
+  if (!graph) return graph.error();
+  return create(std::move(*graph), graph_path);
+}
+
+std::unique_ptr<SynthesisService> SynthesisService::create(std::unique_ptr<LoadedGraph> graph, std::string graph_path) {
   std::unique_ptr<SynthesisService> service(new SynthesisService());
-  service->path_ = graph_path;
-  service->file_ = std::move(*file);
-  auto context = make_synthesis_context(service->file_.database, service->file_.graph);
-  if (!context) return Error{graph_path, 0, context.error().message};
-  service->context_ = std::move(*context);
+  service->path_ = std::move(graph_path);
+  service->graph_ = std::move(graph);
   return service;
 }
 
@@ -48,11 +49,11 @@ std::optional<std::string> SynthesisService::result_bvh(int result) const {
     std::lock_guard lock(recorded->mutex);
     motion = recorded->motion;
   }
-  return write_bvh(context_.assembler.skeleton(), motion, BvhWriteSettings{});
+  return write_bvh(context().assembler.skeleton(), motion, BvhWriteSettings{});
 }
 
 Result<SynthesizedMotion> SynthesisService::walk(const WalkRequest& request) {
-  const MotionGraph& graph = file_.graph;
+  const MotionGraph& graph = file().graph;
   if (request.from < 0 || request.from >= graph.node_count() || request.to < 0 || request.to >= graph.node_count()) {
     return Error{"", 0, fmt::format("nodes are 0..{}", graph.node_count() - 1)};
   }
@@ -64,8 +65,8 @@ Result<SynthesizedMotion> SynthesisService::walk(const WalkRequest& request) {
   if (auto s = settings.validate(); !s) return s.error();
   auto found = find_walk(graph, request.from, request.to, settings);
   if (!found) return found.error();
-  const FloorTransform start = context_.placement_facing(request.from, Vec2::Zero(), Vec2(0.0, -1.0));
-  auto motion = assemble_walk(file_.database, graph, found->walk, start, context_.assembler.target_skeleton());
+  const FloorTransform start = context().placement_facing(request.from, Vec2::Zero(), Vec2(0.0, -1.0));
+  auto motion = assemble_walk(file().database, graph, found->walk, start, context().assembler.target_skeleton());
   if (!motion) return motion.error();
   SynthesizedMotion out;
   auto cleaned = clean_up(request.cleanup, found->walk, *motion);
@@ -81,7 +82,7 @@ Result<SynthesizedMotion> SynthesisService::walk(const WalkRequest& request) {
 Result<PathSynthesisResult> SynthesisService::path(const FloorPath& path, const PathSynthesisSettings& settings,
                                                    bool cleanup, bool* cleaned) const {
   if (auto s = settings.validate(); !s) return s.error();
-  auto result = synthesize_path(context_, path, settings);
+  auto result = synthesize_path(context(), path, settings);
   if (!result) return result;
   auto done = clean_up(cleanup, result->walk, result->motion);
   if (!done) return done.error();
@@ -91,24 +92,24 @@ Result<PathSynthesisResult> SynthesisService::path(const FloorPath& path, const 
 
 Result<bool> SynthesisService::clean_up(bool asked, const Walk& walk, Motion& motion) const {
   if (!asked) return false;
-  auto cleanup = context_.foot_cleanup({});
+  auto cleanup = context().foot_cleanup({});
   if (!cleanup) return false;  // the graph's feet were not found
-  if (auto s = context_.clean_up_walk(walk, *cleanup, motion); !s) return s.error();
+  if (auto s = context().clean_up_walk(walk, *cleanup, motion); !s) return s.error();
   return true;
 }
 
 Result<int> SynthesisService::create_session(const ControlInput& input, bool cleanup) {
   // The controller's defaults: an expansion budget (well under a millisecond a decision) and
   // no wall-clock budget, so that a loaded machine or a slow build steers the same way.
-  auto controller = Controller::create(context_, ControllerSettings{}, input);
+  auto controller = Controller::create(context(), ControllerSettings{}, input);
   if (!controller) return controller.error();
   auto session = std::make_shared<Session>();
   session->controller = std::make_unique<Controller>(std::move(*controller));
   if (cleanup) {
-    if (auto foot_cleanup = context_.foot_cleanup({}); foot_cleanup) session->cleanup = std::move(*foot_cleanup);
+    if (auto foot_cleanup = context().foot_cleanup({}); foot_cleanup) session->cleanup = std::move(*foot_cleanup);
   }
   session->recorded = std::make_shared<Recorded>();
-  session->recorded->motion = context_.assembler.empty_motion();
+  session->recorded->motion = context().assembler.empty_motion();
   const int id = store_recorded(session->recorded);
   std::lock_guard lock(mutex_);
   session->last_used = ++clock_;
@@ -135,18 +136,18 @@ Result<SteerStepResult> SynthesisService::step_session(int id, const ControlInpu
   std::lock_guard lock(session->mutex);
   session->controller->set_input(input);
   SteerStepResult out;
-  out.motion = context_.assembler.empty_motion();
+  out.motion = context().assembler.empty_motion();
   out.first_frame = session->frames;
   do {
     const int first_new = out.motion.frame_count;
     const ControllerDecision decision = session->controller->step(out.motion);
     if (session->cleanup) {
-      if (auto s = session->cleanup->clean(out.motion, first_new, context_.edges_contacts(decision.edges)); !s) {
+      if (auto s = session->cleanup->clean(out.motion, first_new, context().edges_contacts(decision.edges)); !s) {
         return s.error();
       }
     }
     out.search_seconds += decision.search_seconds;
-    out.transitions += count_transitions(file_.graph, decision.edges);
+    out.transitions += count_transitions(file().graph, decision.edges);
     if (decision.frames == 0) break;
   } while (out.motion.frame_count < min_frames);
   session->frames += out.motion.frame_count;
@@ -168,14 +169,14 @@ Result<SteerStepResult> SynthesisService::step_session(int id, const ControlInpu
 Result<std::string> SynthesisService::distance_png() const {
   std::call_once(picture_once_, [this] {
     picture_ = [this]() -> Result<std::string> {
-      auto rebuild = prepare_graph_rebuild(file_, path_);
+      auto rebuild = prepare_graph_rebuild(file(), path_);
       if (!rebuild) return rebuild.error();
       CandidateSettings settings;
       settings.picture_side = kPictureSide;
       auto search = find_candidates(rebuild->features, rebuild->distance, settings);
       if (!search) return search.error();
       std::vector<int> clip_starts;
-      for (const DatabaseClip& clip : file_.database.clips) clip_starts.push_back(clip.first_frame);
+      for (const DatabaseClip& clip : file().database.clips) clip_starts.push_back(clip.first_frame);
       MatrixPngSettings png;
       png.max_side_px = kPictureSide;
       return matrix_png(MinMatrixView{search->picture, search->picture_side, search->picture_block}, clip_starts, {},

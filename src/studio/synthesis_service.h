@@ -16,6 +16,7 @@
 
 #include "motiongraph/graph/graph_file.h"
 #include "motiongraph/synthesis/controller.h"
+#include "motiongraph/synthesis/loaded_graph.h"
 #include "motiongraph/synthesis/path_synthesis.h"
 #include "motiongraph/synthesis/walk.h"
 #include "motiongraph/synthesis/walk_search.h"
@@ -55,10 +56,12 @@ class SynthesisService {
 
   // Loads a .mgraph file and sets up synthesis on it.
   static Result<std::unique_ptr<SynthesisService>> load(const std::string& graph_path);
+  // Serves a graph already loaded (or built in process); `graph_path` names it in errors.
+  static std::unique_ptr<SynthesisService> create(std::unique_ptr<LoadedGraph> graph, std::string graph_path);
 
   const std::string& graph_path() const { return path_; }
-  const GraphFile& file() const { return file_; }
-  const SynthesisContext& context() const { return context_; }
+  const GraphFile& file() const { return graph_->file(); }
+  const SynthesisContext& context() const { return graph_->context(); }
 
   Result<SynthesizedMotion> walk(const WalkRequest& request);
   // Path synthesis, its motion cleaned (foot clean-up) when `cleanup` and the graph has feet
@@ -104,8 +107,7 @@ class SynthesisService {
   int store_recorded(std::shared_ptr<Recorded> recorded);
 
   std::string path_;
-  GraphFile file_;
-  SynthesisContext context_;
+  std::unique_ptr<LoadedGraph> graph_;
 
   mutable std::mutex mutex_;  // guards the members below
   int next_id_ = 1;

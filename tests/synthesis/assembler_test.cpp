@@ -40,8 +40,8 @@ double largest_joint_step(const Skeleton& skeleton, const Motion& motion) {
 
 TEST(Assembler, AClipPieceIsTheDatabaseItself) {
   const auto& s = test::subject16();
-  const MotionGraph& graph = s.file.graph;
-  const MotionDatabase& db = s.file.database;
+  const MotionGraph& graph = s.file().graph;
+  const MotionDatabase& db = s.file().database;
   int checked = 0;
   for (int e = 0; e < graph.edge_count() && checked < 20; ++e) {
     const GraphEdge& edge = graph.edges[e];
@@ -65,9 +65,9 @@ TEST(Assembler, AClipPieceIsTheDatabaseItself) {
 
 TEST(Assembler, RandomWalksHaveNoPopsAtTransitions) {
   const auto& s = test::subject16();
-  const MotionGraph& graph = s.file.graph;
-  const MotionDatabase& db = s.file.database;
-  const Skeleton& skeleton = s.context.assembler.skeleton();
+  const MotionGraph& graph = s.file().graph;
+  const MotionDatabase& db = s.file().database;
+  const Skeleton& skeleton = s.context().assembler.skeleton();
   double data_step = 0.0;
   for (const DatabaseClip& clip : db.clips) data_step = std::max(data_step, largest_joint_step(skeleton, clip.motion));
   std::mt19937 rng(3);
@@ -95,7 +95,7 @@ TEST(Assembler, RandomWalksHaveNoPopsAtTransitions) {
 
 TEST(Assembler, TheStartPlacementMovesTheWholeWalkRigidly) {
   const auto& s = test::subject16();
-  const MotionGraph& graph = s.file.graph;
+  const MotionGraph& graph = s.file().graph;
   Walk walk{0, {}};
   for (int node = 0; walk.edges.size() < 40;) {
     const auto out = graph.out_edges(node);
@@ -104,10 +104,10 @@ TEST(Assembler, TheStartPlacementMovesTheWholeWalkRigidly) {
     node = edge.to_node;
   }
   const FloorTransform start{1.1, -30.0, 12.0};
-  auto a = assemble_walk(s.file.database, graph, walk);
-  auto b = assemble_walk(s.file.database, graph, walk, start);
+  auto a = assemble_walk(s.file().database, graph, walk);
+  auto b = assemble_walk(s.file().database, graph, walk, start);
   ASSERT_TRUE(a.ok() && b.ok());
-  const Skeleton& skeleton = s.context.assembler.skeleton();
+  const Skeleton& skeleton = s.context().assembler.skeleton();
   const std::vector<Vec3> pa = world_positions(skeleton, *a), pb = world_positions(skeleton, *b);
   ASSERT_EQ(pa.size(), pb.size());
   for (size_t i = 0; i < pa.size(); ++i) EXPECT_LT((start.apply(pa[i]) - pb[i]).norm(), 1e-6);  // a micrometre
@@ -115,8 +115,8 @@ TEST(Assembler, TheStartPlacementMovesTheWholeWalkRigidly) {
 
 TEST(Assembler, RootTracksAreTheRootsOfTheWholePoses) {
   const auto& s = test::subject16();
-  const MotionAssembler& assembler = s.context.assembler;
-  for (int e = 0; e < s.file.graph.edge_count(); e += 7) {
+  const MotionAssembler& assembler = s.context().assembler;
+  for (int e = 0; e < s.file().graph.edge_count(); e += 7) {
     FloorTransform a{0.2, 1.0, -2.0}, b = a;
     Motion motion = assembler.empty_motion();
     std::vector<RootPose> roots;
@@ -134,15 +134,15 @@ TEST(Assembler, RootTracksAreTheRootsOfTheWholePoses) {
 
 TEST(Assembler, PlayedFramesCarryTheContactsOfTheFramesThatWeighMost) {
   const auto& s = test::subject16();
-  const MotionGraph& graph = s.file.graph;
+  const MotionGraph& graph = s.file().graph;
   // Every database frame its own mask, so that the source of each played mask shows.
-  std::vector<ContactMask> masks(static_cast<size_t>(s.file.database.frame_count()));
+  std::vector<ContactMask> masks(static_cast<size_t>(s.file().database.frame_count()));
   for (size_t f = 0; f < masks.size(); ++f) masks[f] = static_cast<ContactMask>(f % 251);
   int transitions = 0;
   for (int e = 0; e < graph.edge_count(); ++e) {
     const GraphEdge& edge = graph.edges[e];
     std::vector<ContactMask> played;
-    s.context.assembler.append_edge_contacts(e, masks, played);
+    s.context().assembler.append_edge_contacts(e, masks, played);
     ASSERT_EQ(static_cast<int>(played.size()), edge.frame_count);
     for (int p = 0; p < edge.frame_count; ++p) {
       int frame = graph.nodes[edge.from_node].frame + p;
@@ -156,20 +156,20 @@ TEST(Assembler, PlayedFramesCarryTheContactsOfTheFramesThatWeighMost) {
   }
   EXPECT_GT(transitions, 10);
   // The context's masks: a walk's frames and its end node's frame, as assemble_walk plays them.
-  ASSERT_EQ(s.context.frame_contacts.size(), masks.size());
+  ASSERT_EQ(s.context().frame_contacts.size(), masks.size());
   const Walk walk{0, {graph.edge_offsets[0]}};
-  EXPECT_EQ(static_cast<long long>(s.context.walk_contacts(walk).size()), walk.frame_count(graph) + 1);
+  EXPECT_EQ(static_cast<long long>(s.context().walk_contacts(walk).size()), walk.frame_count(graph) + 1);
 }
 
 TEST(Assembler, RejectsAWalkThatDoesNotFollowTheGraph) {
   const auto& s = test::subject16();
-  const MotionGraph& graph = s.file.graph;
+  const MotionGraph& graph = s.file().graph;
   int wrong = 0;
   while (graph.edges[wrong].from_node == 0) ++wrong;
-  auto motion = assemble_walk(s.file.database, graph, Walk{0, {wrong}});
+  auto motion = assemble_walk(s.file().database, graph, Walk{0, {wrong}});
   ASSERT_FALSE(motion.ok());
   EXPECT_NE(motion.error().message.find("leaves node"), std::string::npos);
-  EXPECT_FALSE(assemble_walk(s.file.database, graph, Walk{graph.node_count(), {}}).ok());
+  EXPECT_FALSE(assemble_walk(s.file().database, graph, Walk{graph.node_count(), {}}).ok());
 }
 
 }  // namespace

@@ -19,12 +19,12 @@ double response_time(const Motion& motion, const Vec3& axis, double from_s, cons
 
 TEST(Controller, FollowsAScriptedTurnWithinAboutTwoSeconds) {
   const auto& s = test::subject16();
-  auto walk = s.context.tag_mask("walk");
+  auto walk = s.context().tag_mask("walk");
   ASSERT_TRUE(walk.ok());
   ControlInput input{bearing_direction(0.0), *walk};
-  auto controller = Controller::create(s.context, {}, input);
+  auto controller = Controller::create(s.context(), {}, input);
   ASSERT_TRUE(controller.ok()) << controller.error().to_string();
-  Motion motion = s.context.assembler.empty_motion();
+  Motion motion = s.context().assembler.empty_motion();
   const double fps = motion.fps;
   while (motion.frame_count < 4 * fps) controller->step(motion);
   const double turn_at = motion.frame_count / fps;
@@ -33,30 +33,31 @@ TEST(Controller, FollowsAScriptedTurnWithinAboutTwoSeconds) {
     const ControllerDecision d = controller->step(motion);
     EXPECT_GT(d.frames, 0);
   }
-  const double response = response_time(motion, s.context.tracks.forward_axis, turn_at, bearing_direction(90.0), 20.0);
+  const double response =
+      response_time(motion, s.context().tracks.forward_axis, turn_at, bearing_direction(90.0), 20.0);
   EXPECT_GE(response, 0.0);
   EXPECT_LE(response, 2.5);  // "within a second or two"; 2.1-2.2 s measured on subject 16
   // Still walking the new way a few seconds later: mean facing over the last second.
   Vec2 mean = Vec2::Zero();
   for (int f = motion.frame_count - static_cast<int>(fps); f < motion.frame_count; ++f) {
-    mean += facing_on_floor(motion.rotations(f)[0], s.context.tracks.forward_axis);
+    mean += facing_on_floor(motion.rotations(f)[0], s.context().tracks.forward_axis);
   }
   EXPECT_GT(mean.normalized().dot(bearing_direction(90.0)), std::cos(30.0 * std::numbers::pi / 180.0));
 }
 
 TEST(Controller, SwitchesToTheTagAskedFor) {
   const auto& s = test::subject16();
-  auto walk = s.context.tag_mask("walk"), run = s.context.tag_mask("run");
+  auto walk = s.context().tag_mask("walk"), run = s.context().tag_mask("run");
   ASSERT_TRUE(walk.ok() && run.ok());
-  auto controller = Controller::create(s.context, {}, {bearing_direction(0.0), *walk});
+  auto controller = Controller::create(s.context(), {}, {bearing_direction(0.0), *walk});
   ASSERT_TRUE(controller.ok());
-  Motion motion = s.context.assembler.empty_motion();
+  Motion motion = s.context().assembler.empty_motion();
   std::vector<TagMask> tags;
   auto play = [&](double until_s) {
     while (motion.frame_count < until_s * motion.fps) {
       const ControllerDecision d = controller->step(motion);
       for (int e : d.edges) {
-        for (TagMask t : s.context.tracks.tags_of(e)) tags.push_back(t);
+        for (TagMask t : s.context().tracks.tags_of(e)) tags.push_back(t);
       }
     }
   };
@@ -79,13 +80,13 @@ TEST(Controller, SwitchesToTheTagAskedFor) {
 // frame, whatever the machine's load (a time budget made a loaded CI machine turn late).
 TEST(Controller, SameInputsGiveTheSameMotion) {
   const auto& s = test::subject16();
-  auto walk = s.context.tag_mask("walk"), run = s.context.tag_mask("run");
+  auto walk = s.context().tag_mask("walk"), run = s.context().tag_mask("run");
   ASSERT_TRUE(walk.ok() && run.ok());
   EXPECT_EQ(ControllerSettings{}.time_budget_s, 0.0);
   auto play = [&] {
-    auto controller = Controller::create(s.context, {}, {bearing_direction(0.0), *walk});
+    auto controller = Controller::create(s.context(), {}, {bearing_direction(0.0), *walk});
     EXPECT_TRUE(controller.ok());
-    Motion motion = s.context.assembler.empty_motion();
+    Motion motion = s.context().assembler.empty_motion();
     std::vector<int> edges;
     for (int turn = 0; turn < 6; ++turn) {
       controller->set_input({bearing_direction(60.0 * turn), turn >= 3 ? *run : *walk});
@@ -110,9 +111,9 @@ TEST(Controller, AStarvedTimeBudgetStillAnswers) {
   const auto& s = test::subject16();
   ControllerSettings settings;
   settings.time_budget_s = 1e-9;
-  auto controller = Controller::create(s.context, settings, {bearing_direction(90.0), 0});
+  auto controller = Controller::create(s.context(), settings, {bearing_direction(90.0), 0});
   ASSERT_TRUE(controller.ok());
-  Motion motion = s.context.assembler.empty_motion();
+  Motion motion = s.context().assembler.empty_motion();
   for (int i = 0; i < 50; ++i) {
     const ControllerDecision d = controller->step(motion);
     EXPECT_GT(d.frames, 0);
@@ -125,7 +126,7 @@ TEST(Controller, AStarvedTimeBudgetStillAnswers) {
     ControllerSettings bad;
     spoil(bad);
     EXPECT_FALSE(bad.validate().ok());
-    EXPECT_FALSE(Controller::create(s.context, bad, {bearing_direction(0.0), 0}).ok());
+    EXPECT_FALSE(Controller::create(s.context(), bad, {bearing_direction(0.0), 0}).ok());
   }
 }
 

@@ -13,7 +13,7 @@ TEST(PathSynthesis, FollowsTheBuiltInShapes) {
   for (const char* spec : {"line:20", "circle:5", "figure8:4", "s-curve:100"}) {
     auto path = make_shape(spec);
     ASSERT_TRUE(path.ok());
-    auto result = synthesize_path(s.context, *path);
+    auto result = synthesize_path(s.context(), *path);
     ASSERT_TRUE(result.ok()) << result.error().to_string();
     EXPECT_TRUE(result->reached_end) << spec;
     EXPECT_LT(result->mean_deviation_m, 0.15) << spec;
@@ -32,11 +32,11 @@ TEST(PathSynthesis, StartsAtThePathsStartFacingAlongIt) {
   const auto& s = test::subject16();
   auto path = FloorPath::create({{3.0, 4.0}, {13.0, 4.0}});  // heading east (+x)
   ASSERT_TRUE(path.ok());
-  auto result = synthesize_path(s.context, *path);
+  auto result = synthesize_path(s.context(), *path);
   ASSERT_TRUE(result.ok());
   const Vec3& root = result->motion.translations(0)[0];
   EXPECT_LT((Vec2(root.x(), root.z()) - Vec2(3.0, 4.0)).norm(), 1e-9);
-  const Vec2 facing = facing_on_floor(result->motion.rotations(0)[0], s.context.tracks.forward_axis);
+  const Vec2 facing = facing_on_floor(result->motion.rotations(0)[0], s.context().tracks.forward_axis);
   EXPECT_GT(facing.dot(Vec2(1.0, 0.0)), 0.999);
 }
 
@@ -47,7 +47,7 @@ TEST(PathSynthesis, WalksThenRunsWhereTheSegmentsAsk) {
   const double half = shape->length_m() / 2;
   auto path = FloorPath::create(shape->points(), {{0.0, half, "walk"}, {half, shape->length_m() + 1.0, "run"}});
   ASSERT_TRUE(path.ok());
-  auto result = synthesize_path(s.context, *path);
+  auto result = synthesize_path(s.context(), *path);
   ASSERT_TRUE(result.ok()) << result.error().to_string();
   EXPECT_TRUE(result->reached_end);
   EXPECT_GT(result->tag_match, 0.85);
@@ -65,7 +65,7 @@ TEST(PathSynthesis, UnknownTagsAndBadSettingsAreErrors) {
   const auto& s = test::subject16();
   auto path = FloorPath::create({{0.0, 0.0}, {5.0, 0.0}}, {{0.0, 5.0, "swim"}});
   ASSERT_TRUE(path.ok());
-  auto result = synthesize_path(s.context, *path);
+  auto result = synthesize_path(s.context(), *path);
   ASSERT_FALSE(result.ok());
   EXPECT_NE(result.error().message.find("'swim' is not a motion tag"), std::string::npos);
   PathSynthesisSettings bad;
@@ -88,17 +88,17 @@ TEST(PathSynthesis, UnknownTagsAndBadSettingsAreErrors) {
 TEST(PathSynthesis, ASlowestSpeedAboveWalkingPaceMakesItRun) {
   const auto& s = test::subject16();
   auto path = make_shape("line:20");
-  auto run = s.context.tag_mask("run");
+  auto run = s.context().tag_mask("run");
   ASSERT_TRUE(path.ok() && run.ok());
   auto share_running = [&](const PathSynthesisResult& r) {
     int running = 0;
     for (TagMask t : r.frame_tags) running += (t & *run) != 0 ? 1 : 0;
     return static_cast<double>(running) / static_cast<double>(r.frame_tags.size());
   };
-  auto walked = synthesize_path(s.context, *path);
+  auto walked = synthesize_path(s.context(), *path);
   PathSynthesisSettings hurry;
   hurry.min_speed_mps = 2.0;
-  auto hurried = synthesize_path(s.context, *path, hurry);
+  auto hurried = synthesize_path(s.context(), *path, hurry);
   ASSERT_TRUE(walked.ok() && hurried.ok());
   EXPECT_TRUE(walked->reached_end && hurried->reached_end);
   EXPECT_LT(share_running(*walked), 0.2);

@@ -86,7 +86,7 @@ TEST(WalkSearch, CostsFollowTheirDefinitions) {
 }
 
 TEST(WalkSearch, BudgetAndBadNodesAreClearErrors) {
-  const auto& graph = test::subject16().file.graph;
+  const auto& graph = test::subject16().file().graph;
   WalkSearchSettings settings;
   settings.min_frames = 3000;
   settings.max_expansions = 50;
@@ -99,7 +99,7 @@ TEST(WalkSearch, BudgetAndBadNodesAreClearErrors) {
 }
 
 TEST(WalkSearch, LongWalksOnTheBundledGraph) {
-  const auto& graph = test::subject16().file.graph;
+  const auto& graph = test::subject16().file().graph;
   WalkSearchSettings settings;
   settings.min_frames = 600;
   for (WalkCost cost : {WalkCost::kConstant, WalkCost::kQuality, WalkCost::kRandom, WalkCost::kHybrid}) {
