@@ -1,18 +1,18 @@
 #include "studio/studio_test_service.h"
 
-#include <cstdlib>
 #include <memory>
 #include <stdexcept>
+
+#include "pipeline/subject16_build.h"
+#include "test_data.h"
 
 namespace mg::test {
 
 studio::SynthesisService& studio_service() {
   static const std::unique_ptr<studio::SynthesisService> service = [] {
-    const char* path = std::getenv("MOTIONGRAPH_TEST_GRAPH");
-    if (path == nullptr) throw std::runtime_error("MOTIONGRAPH_TEST_GRAPH is not set: run the tests through ctest");
-    auto loaded = studio::SynthesisService::load(path);
-    if (!loaded) throw std::runtime_error(loaded.error().to_string());
-    return std::move(*loaded);
+    auto graph = LoadedGraph::create(build_subject16_graph(data_path("cmu/16")), "subject16.mgraph");
+    if (!graph) throw std::runtime_error(graph.error().to_string());
+    return studio::SynthesisService::create(std::move(*graph), "subject16.mgraph");
   }();
   return *service;
 }

@@ -1,5 +1,5 @@
-// The studio's service on the subject-16 graph the CTest fixture builds (MOTIONGRAPH_TEST_GRAPH),
-// loaded once per test process.
+// The studio's service on the subject-16 graph, built in process once per test process
+// (pipeline/subject16_build.h).
 #pragma once
 
 #include <map>

@@ -1,13 +1,13 @@
-// The bundled subject-16 graph as a user builds it (`motiongraph build data/cmu/16`), made
-// once by the CTest fixture "subject16_graph" and found through MOTIONGRAPH_TEST_GRAPH, loaded
-// with its synthesis context (synthesis/loaded_graph.h).
+// The bundled subject-16 graph as a user builds it (`motiongraph build data/cmu/16`), built in
+// process once per test process (pipeline/subject16_build.h) and loaded with its synthesis
+// context (synthesis/loaded_graph.h).
 #pragma once
 
 #include "motiongraph/synthesis/loaded_graph.h"
 
 namespace mg::test {
 
-// Loaded on first use and kept for the process; fails the test (throws) when missing.
+// Built on first use and kept for the process; fails the test (throws) when it cannot be.
 const LoadedGraph& subject16();
 
 }  // namespace mg::test
