@@ -9,11 +9,11 @@
 // Speed is measured here, never asserted in tests.
 #include "cli/bench_synthesis.h"
 
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+
+#include <fmt/format.h>
 
 #include "cli/commands.h"
 #include "motiongraph/graph/graph_file.h"

@@ -2,10 +2,11 @@
 // the output, the target skeleton and the optional JSON report.
 #pragma once
 
-#include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "cli/motion_output.h"
 #include "motiongraph/synthesis/loaded_graph.h"

@@ -1,7 +1,5 @@
 #include "studio/studio_api.h"
 
-#include "motiongraph/evaluation/foot_slide_report.h"
-
 #include <charconv>
 #include <cmath>
 #include <exception>
@@ -10,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "motiongraph/core/json_text.h"
-#include "motiongraph/export/matrix_png.h"
+#include "motiongraph/evaluation/foot_slide_report.h"
 #include "motiongraph/motion/forward_kinematics.h"
 
 namespace mg::studio {
@@ -196,7 +194,7 @@ class Router {
     const GraphFile& file = service_.file();
     const GraphStatistics stats = compute_graph_statistics(graph(), service_.context().frame_tags);
     const int frames = db().frame_count();
-    const int block = min_matrix_block(frames, SynthesisService::kPictureSide);
+    const int block = service_.picture_block();
     return json_response({{"graph", service_.graph_path()},
                           {"fps", db().fps},
                           {"frames", frames},

@@ -1,8 +1,9 @@
 #include "studio/synthesis_service.h"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
-#include "motiongraph/evaluation/graph_rebuild.h"
 #include "motiongraph/export/bvh_writer.h"
 #include "motiongraph/export/matrix_png.h"
 #include "motiongraph/graph/candidates.h"
@@ -169,21 +170,28 @@ Result<SteerStepResult> SynthesisService::step_session(int id, const ControlInpu
 Result<std::string> SynthesisService::distance_png() const {
   std::call_once(picture_once_, [this] {
     picture_ = [this]() -> Result<std::string> {
-      auto rebuild = prepare_graph_rebuild(file(), path_);
-      if (!rebuild) return rebuild.error();
-      CandidateSettings settings;
-      settings.picture_side = kPictureSide;
-      auto search = find_candidates(rebuild->features, rebuild->distance, settings);
-      if (!search) return search.error();
+      const CandidateSearch& stored = file().candidates;
+      const int frames = file().database.frame_count();
+      if (stored.picture_side < 1 ||
+          stored.picture.size() != static_cast<size_t>(stored.picture_side) * stored.picture_side) {
+        return Error{path_, 0, "the graph file holds no distance picture"};
+      }
+      const MinMatrix picture = coarsen_min_matrix(
+          MinMatrixView{stored.picture, stored.picture_side, stored.picture_block}, frames, kPictureSide);
       std::vector<int> clip_starts;
       for (const DatabaseClip& clip : file().database.clips) clip_starts.push_back(clip.first_frame);
       MatrixPngSettings png;
       png.max_side_px = kPictureSide;
-      return matrix_png(MinMatrixView{search->picture, search->picture_side, search->picture_block}, clip_starts, {},
-                        png);
+      return matrix_png(picture.view(), clip_starts, {}, png);
     }();
   });
   return *picture_;
+}
+
+int SynthesisService::picture_block() const {
+  const CandidateSearch& stored = file().candidates;
+  const int side = std::max(stored.picture_side, 1);
+  return std::max(stored.picture_block, 1) * min_matrix_block(side, kPictureSide);
 }
 
 }  // namespace mg::studio

@@ -81,11 +81,14 @@ class SynthesisService {
   // Stores a motion for download and returns its id.
   int store_result(Motion motion);
 
-  // The distance picture (PNG bytes, at most kPictureSide pixels a side, min_matrix_block
-  // frames per pixel), computed on first use from the database and the distance settings the
-  // graph was built with, then kept.
+  // The distance picture (PNG bytes, at most kPictureSide pixels a side, picture_block()
+  // frames per pixel): the block minima the graph file stores, made smaller to the block a
+  // multiple of theirs (export/matrix_png.h: coarsen_min_matrix), drawn on first use and kept.
+  // Fails when the file holds no picture.
   static constexpr int kPictureSide = 512;
   Result<std::string> distance_png() const;
+  // Frames per pixel of the picture along each axis (it is ceil(frames / block) pixels a side).
+  int picture_block() const;
 
  private:
   struct Recorded {

@@ -224,6 +224,47 @@ TEST(MatrixPng, BlockMinimaFoldedPieceByPieceGiveTheSameBytesAsTheFullMatrix) {
   EXPECT_EQ(png_size(*folded), std::make_pair(58, 58));  // ceil(230 / ceil(230 / 64) = 4)
 }
 
+TEST(MatrixPng, CoarsenedBlockMinimaAreTheBlockMinimaOfTheFullMatrix) {
+  const int n = 230;
+  std::vector<float> m = valley_matrix(n);
+  for (int r = 0; r < n; ++r) {
+    for (int c = 0; c < n; ++c) {
+      if ((r * 13 + c * 7) % 89 == 0) set(m, n, r, c, 0.5f * static_cast<float>((r * c) % 7));
+      if (r > n - 4 || (c < 9 && r < 9)) set(m, n, r, c, kNaN);  // undefined rows and a whole block
+    }
+  }
+  BlockMinMatrix fine(n, 100);  // block 3, 77 pixels a side
+  for (int r = 0; r < n; ++r) fine.add_row(r, 0, std::span(m).subspan(static_cast<size_t>(r) * n, n));
+  ASSERT_EQ(fine.block(), 3);
+  for (const int max_side : {100, 40, 20, 7, 1}) {
+    const MinMatrix coarse = coarsen_min_matrix(fine.view(), n, max_side);
+    // The smallest multiple of 3 frames per pixel that fits.
+    int block = 3;
+    while ((n + block - 1) / block > max_side) block += 3;
+    ASSERT_EQ(coarse.block, block) << max_side;
+    ASSERT_EQ(coarse.side, (n + block - 1) / block) << max_side;
+    ASSERT_LE(coarse.side, max_side);
+    // Reference: each pixel the minimum of its block of the full matrix, entry by entry.
+    for (int i = 0; i < coarse.side; ++i) {
+      for (int j = 0; j < coarse.side; ++j) {
+        float expected = kNaN;
+        for (int r = i * block; r < std::min(n, (i + 1) * block); ++r) {
+          for (int c = j * block; c < std::min(n, (j + 1) * block); ++c) {
+            const float v = m[static_cast<size_t>(r) * n + c];
+            if (v < expected || std::isnan(expected)) expected = v;
+          }
+        }
+        const float got = coarse.values[static_cast<size_t>(i) * coarse.side + j];
+        if (std::isnan(expected)) {
+          EXPECT_TRUE(std::isnan(got)) << i << "," << j;
+        } else {
+          EXPECT_EQ(got, expected) << i << "," << j;
+        }
+      }
+    }
+  }
+}
+
 TEST(MatrixPng, EncodedPixelsDecodeExactly) {
   RgbImage image;
   image.width = 5;

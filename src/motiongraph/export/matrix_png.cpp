@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -87,6 +88,23 @@ int min_matrix_block(int frame_count, int max_side_px) {
   assert(max_side_px >= 1);
   if (frame_count <= max_side_px) return 1;
   return (frame_count + max_side_px - 1) / max_side_px;
+}
+
+MinMatrix coarsen_min_matrix(const MinMatrixView& matrix, int frame_count, int max_side_px) {
+  assert(max_side_px >= 1 && matrix.block >= 1);
+  const int factor = std::max(1, min_matrix_block((frame_count + matrix.block - 1) / matrix.block, max_side_px));
+  MinMatrix out;
+  out.block = matrix.block * factor;
+  out.side = (matrix.side + factor - 1) / factor;
+  out.values.assign(static_cast<size_t>(out.side) * out.side, std::numeric_limits<float>::quiet_NaN());
+  for (int row = 0; row < matrix.side; ++row) {
+    for (int col = 0; col < matrix.side; ++col) {
+      const float value = matrix.values[static_cast<size_t>(row) * matrix.side + col];
+      float& cell = out.values[static_cast<size_t>(row / factor) * out.side + col / factor];
+      if (value < cell || std::isnan(cell)) cell = value;
+    }
+  }
+  return out;
 }
 
 BlockMinMatrix::BlockMinMatrix(int frame_count, int max_side_px)

@@ -57,6 +57,21 @@ struct MinMatrixView {
   int block = 1;  // the scale factor: frames per pixel along each axis
 };
 
+// Block minima held by value (what coarsen_min_matrix returns).
+struct MinMatrix {
+  std::vector<float> values;
+  int side = 0;
+  int block = 1;
+
+  MinMatrixView view() const { return {values, side, block}; }
+};
+
+// The block minima of the same full frame_count x frame_count matrix at a block that is the
+// smallest multiple of matrix.block giving at most max_side_px pixels a side: exact, since each
+// new block is a union of old ones (the picture a graph file stores, made smaller to serve).
+// The matrix as it is when it is small enough already.
+MinMatrix coarsen_min_matrix(const MinMatrixView& matrix, int frame_count, int max_side_px);
+
 // Folds full-matrix entries into their block minima. Start state: all undefined (NaN).
 // Not thread-safe: give each thread its own (then merge()), or split the work by block rows
 // (rows [i*block, (i+1)*block) all to one thread), so no two threads touch the same pixel.

@@ -13,9 +13,10 @@
 #pragma once
 
 #include <functional>
-#include <nlohmann/json.hpp>
 #include <span>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "motiongraph/core/error.h"
 #include "motiongraph/graph/graph_file.h"

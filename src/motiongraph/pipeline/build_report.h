@@ -6,8 +6,9 @@
 // the RMS point distance in cm (graph/threshold_choice.h).
 #pragma once
 
-#include <nlohmann/json.hpp>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "motiongraph/database/motion_database.h"
 #include "motiongraph/graph/graph_from_candidates.h"

@@ -6,10 +6,11 @@
 // connected tags were recorded: what a file does not record takes build's defaults.
 #pragma once
 
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "motiongraph/core/error.h"
 #include "motiongraph/graph/transition_selection.h"

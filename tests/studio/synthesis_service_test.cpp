@@ -1,0 +1,44 @@
+// The studio's distance picture comes from the block minima the graph file stores: the same
+// PNG as the distance stage computed again from the file's database and settings at the
+// picture's block (the brute-force reference the studio used to run on every start).
+#include "studio/synthesis_service.h"
+
+#include <gtest/gtest.h>
+
+#include "motiongraph/evaluation/graph_rebuild.h"
+#include "motiongraph/export/matrix_png.h"
+#include "motiongraph/graph/candidates.h"
+#include "studio/studio_test_service.h"
+
+namespace mg {
+namespace {
+
+TEST(SynthesisService, DistancePictureIsTheStoredOneAsTheDistanceStageWouldDrawIt) {
+  const studio::SynthesisService& service = test::studio_service();
+  const GraphFile& file = service.file();
+  const int frames = file.database.frame_count();
+  const int block = service.picture_block();
+  ASSERT_LE((frames + block - 1) / block, studio::SynthesisService::kPictureSide);
+  ASSERT_EQ(block % file.candidates.picture_block, 0);
+  auto png = service.distance_png();
+  ASSERT_TRUE(png) << png.error().to_string();
+
+  auto rebuild = prepare_graph_rebuild(file, service.graph_path());
+  ASSERT_TRUE(rebuild) << rebuild.error().to_string();
+  CandidateSettings settings;
+  settings.picture_side = (frames + block - 1) / block;  // so that its block is `block`
+  auto search = find_candidates(rebuild->features, rebuild->distance, settings);
+  ASSERT_TRUE(search) << search.error().to_string();
+  ASSERT_EQ(search->picture_block, block);
+  std::vector<int> clip_starts;
+  for (const DatabaseClip& clip : file.database.clips) clip_starts.push_back(clip.first_frame);
+  MatrixPngSettings png_settings;
+  png_settings.max_side_px = studio::SynthesisService::kPictureSide;
+  auto reference = matrix_png(MinMatrixView{search->picture, search->picture_side, search->picture_block}, clip_starts,
+                              {}, png_settings);
+  ASSERT_TRUE(reference) << reference.error().to_string();
+  EXPECT_EQ(*png, *reference);
+}
+
+}  // namespace
+}  // namespace mg
