@@ -1,5 +1,8 @@
 #include "motiongraph/graph/graph_file.h"
 
+#include <cstring>
+#include <vector>
+
 #include <zlib.h>
 
 #include <fmt/format.h>
@@ -272,7 +275,18 @@ bool get_candidates(BinaryReader& in, CandidateSearch& c) {
 void put_graph(BinaryWriter& out, const MotionGraph& g) {
   out.put<std::int32_t>(g.window);
   out.put_vector(g.nodes);
-  out.put_vector(g.edges);
+  // GraphEdge has padding after `transition`: written as zeros, so that one graph always gives
+  // the same bytes (its fields are set one by one on zeroed memory).
+  std::vector<GraphEdge> edges(g.edges.size());
+  std::memset(static_cast<void*>(edges.data()), 0, edges.size() * sizeof(GraphEdge));
+  for (size_t i = 0; i < edges.size(); ++i) {
+    edges[i].from_node = g.edges[i].from_node;
+    edges[i].to_node = g.edges[i].to_node;
+    edges[i].transition = g.edges[i].transition;
+    edges[i].transition_index = g.edges[i].transition_index;
+    edges[i].frame_count = g.edges[i].frame_count;
+  }
+  out.put_vector(edges);
   out.put_vector(g.edge_offsets);
   out.put_vector(g.transitions);
 }
