@@ -125,7 +125,9 @@ int run_build(const BuildOptions& o) {
     return fail(Error{o.output, 0, "the graph file must end in .mgraph"});
   }
   std::unique_ptr<DistanceCache> cache;
-  if (!o.no_cache) cache = std::make_unique<FileDistanceCache>(o.cache_dir.empty() ? default_distance_cache_folder() : o.cache_dir);
+  if (!o.no_cache) {
+    cache = std::make_unique<FileDistanceCache>(o.cache_dir.empty() ? default_distance_cache_folder() : o.cache_dir);
+  }
   BuildLog log;
   if (!o.quiet) log.info = [](const std::string& line) { spdlog::info("{}", line); };
   log.warning = [](const std::string& line) { spdlog::warn("{}", line); };
@@ -136,8 +138,9 @@ int run_build(const BuildOptions& o) {
 
   // The exports and the report are written even when no graph can be made, so that the user
   // can see why.
-  for (const auto& [path, bytes] : {std::pair{&o.matrix_png, &built->matrix_png}, std::pair{&o.export_matrix, &built->matrix_npy},
-                                    std::pair{&o.export_clouds, &built->clouds_npy}}) {
+  for (const auto& [path, bytes] :
+       {std::pair{&o.matrix_png, &built->matrix_png}, std::pair{&o.export_matrix, &built->matrix_npy},
+        std::pair{&o.export_clouds, &built->clouds_npy}}) {
     if (path->empty()) continue;
     if (auto s = write_file_atomic(*path, *bytes); !s) return fail(s.error());
   }

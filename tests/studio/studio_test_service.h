@@ -1,5 +1,5 @@
-// The studio's service on the subject-16 graph, built in process once per test process
-// (pipeline/subject16_build.h).
+// The studio's service on the subject-16 graph made by the library (pipeline/subject16_build.h:
+// the fixture's file, or built in process), once per test process.
 #pragma once
 
 #include <map>

@@ -1,6 +1,6 @@
-// The bundled subject-16 graph as a user builds it (`motiongraph build data/cmu/16`), built in
-// process once per test process (pipeline/subject16_build.h) and loaded with its synthesis
-// context (synthesis/loaded_graph.h).
+// The bundled subject-16 graph as a user builds it (`motiongraph build data/cmu/16`), made by
+// the library (pipeline/subject16_build.h: the fixture's file, or built in process) once per
+// test process, with its synthesis context (synthesis/loaded_graph.h).
 #pragma once
 
 #include "motiongraph/synthesis/loaded_graph.h"
