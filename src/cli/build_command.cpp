@@ -54,6 +54,7 @@ struct BuildOptions {
   bool quiet = false;
   bool ignore_tags = false;
   BridgeSettings bridges;
+  double max_bridge_cm = 0.0;  // RMS point distance above which no bridge is made; 0: no cap
   std::vector<std::string> connect_tags;
 };
 
@@ -103,6 +104,7 @@ Result<BuildSettings> build_settings(const BuildOptions& o) {
   s.path_check_settings = o.path_check;
   s.spacing = o.spacing;
   s.bridges = o.bridges;
+  s.max_bridge_rms_cm = o.max_bridge_cm;
   s.connect_tags = o.connect_tags;
   s.ignore_tags = o.ignore_tags;
   s.exports = {!o.export_matrix.empty(), !o.matrix_png.empty(), !o.export_clouds.empty()};
@@ -189,6 +191,16 @@ Command add_build_command(CLI::App& app) {
   sub->add_option("--bridges", o->bridges.per_tag_pair,
                   "Bridges per ordered pair of tags that no transition below the threshold joins: their best candidates "
                   "(0: none)")
+      ->capture_default_str();
+  sub->add_option("--max-bridge", o->max_bridge_cm,
+                  "No bridge above this RMS point distance in cm (0: no cap); the report names the motion types left "
+                  "unjoined and the distance that would join them")
+      ->check(CLI::Range(0.0, 1000.0))
+      ->capture_default_str();
+  sub->add_option("--bridge-blend", o->bridges.max_blend_factor,
+                  "A bridge blends over k sqrt(D / threshold) frames, k the window, at most this many windows (1: as "
+                  "long as a transition)")
+      ->check(CLI::Range(1.0, 20.0))
       ->capture_default_str();
   sub->add_option("--connect-tags", o->connect_tags,
                   "Motion types whose frames must form a strongly connected region each, and between which bridges "

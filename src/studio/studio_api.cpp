@@ -249,6 +249,11 @@ class Router {
   }
 
   ApiResponse transitions() {
+    // Each transition's blend length, from its edge (bridges blend longer than the window).
+    std::vector<int> blend(graph().transitions.size(), graph().window);
+    for (const GraphEdge& e : graph().edges) {
+      if (e.transition) blend[e.transition_index] = blend_frames(e);
+    }
     json out = json::array();
     for (size_t i = 0; i < graph().transitions.size(); ++i) {
       const Transition& t = graph().transitions[i];
@@ -256,6 +261,7 @@ class Router {
                      {"from_frame", t.from_frame},
                      {"to_frame", t.to_frame},
                      {"distance", t.distance},
+                     {"blend_frames", blend[i]},
                      {"from_clip", db().clips[db().clip_of(t.from_frame)].name},
                      {"to_clip", db().clips[db().clip_of(t.to_frame)].name}});
     }

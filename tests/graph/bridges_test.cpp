@@ -36,7 +36,7 @@ TEST(Bridges, BestCandidatesBetweenCoresInEachDirection) {
       t(98, 104, 0.5f),                      // windows mixing walk and run frames: no bridge
       t(30, 60, 0.1f),                       // walk -> walk: no bridge
   };
-  auto bridges = select_bridges(candidates, {}, s.tags, s.cores, 4, settings);
+  auto bridges = select_bridges(candidates, {}, s.tags, s.cores, 4, settings).bridges;
   ASSERT_EQ(bridges.size(), 3u);
   EXPECT_EQ(bridges[0].from_frame, 31);
   EXPECT_EQ(bridges[1].from_frame, 50);
@@ -48,14 +48,41 @@ TEST(Bridges, NoneWhereSelectedTransitionsAlreadyJoinTheCores) {
   const std::vector<Transition> candidates = {t(31, 151, 5.0f), t(140, 40, 8.0f)};
   const std::vector<Transition> selected = {t(45, 165, 2.0f)};  // walk core -> run core
   auto bridges = select_bridges(candidates, selected, s.tags, s.cores, 4, {});
-  ASSERT_EQ(bridges.size(), 1u);
-  EXPECT_EQ(bridges[0].from_frame, 140);
-  // A tag without a core gets none; nor do bridges when switched off.
+  ASSERT_EQ(bridges.bridges.size(), 1u);
+  EXPECT_EQ(bridges.bridges[0].from_frame, 140);
+  EXPECT_TRUE(bridges.unjoined.empty());
+  // A tag without a core gets none, and both directions are reported unjoined for that reason;
+  // nor do bridges come when switched off.
   s.cores[1].clear();
-  EXPECT_TRUE(select_bridges(candidates, {}, s.tags, s.cores, 4, {}).empty());
+  auto coreless = select_bridges(candidates, {}, s.tags, s.cores, 4, {});
+  EXPECT_TRUE(coreless.bridges.empty());
+  ASSERT_EQ(coreless.unjoined.size(), 2u);
+  EXPECT_EQ(coreless.unjoined[0].reason, UnjoinedReason::kNoCore);
+  EXPECT_EQ(coreless.unjoined[1].from_tag, 1);
+  EXPECT_LT(coreless.unjoined[1].best_distance, 0.0f);
   BridgeSettings off;
   off.per_tag_pair = 0;
-  EXPECT_TRUE(select_bridges(candidates, {}, WalkRun().tags, WalkRun().cores, 4, off).empty());
+  EXPECT_TRUE(select_bridges(candidates, {}, WalkRun().tags, WalkRun().cores, 4, off).bridges.empty());
+}
+
+TEST(Bridges, NoneAboveTheCapAndThePairReportedWithItsBestDistance) {
+  WalkRun s;
+  const std::vector<Transition> candidates = {t(31, 151, 5.0f), t(50, 170, 7.0f), t(140, 40, 8.0f)};
+  BridgeSettings settings;
+  settings.max_distance = 6.0;
+  auto got = select_bridges(candidates, {}, s.tags, s.cores, 4, settings);
+  ASSERT_EQ(got.bridges.size(), 1u);  // walk -> run at 5; run -> walk's only candidate is 8
+  EXPECT_EQ(got.bridges[0].from_frame, 31);
+  ASSERT_EQ(got.unjoined.size(), 1u);
+  EXPECT_EQ(got.unjoined[0].from_tag, 1);
+  EXPECT_EQ(got.unjoined[0].to_tag, 0);
+  EXPECT_EQ(got.unjoined[0].reason, UnjoinedReason::kAboveCap);
+  EXPECT_FLOAT_EQ(got.unjoined[0].best_distance, 8.0f);
+  // Without any candidate from run to walk the reason says so.
+  got = select_bridges(std::vector<Transition>{t(31, 151, 5.0f)}, {}, s.tags, s.cores, 4, settings);
+  ASSERT_EQ(got.unjoined.size(), 1u);
+  EXPECT_EQ(got.unjoined[0].reason, UnjoinedReason::kNoCandidate);
+  EXPECT_LT(got.unjoined[0].best_distance, 0.0f);
 }
 
 // Two clips of 100 frames (no motion needed to build a graph): walk, then run; window 4.
@@ -70,6 +97,22 @@ MotionDatabase two_clips() {
     db.clips.push_back(clip);
   }
   return db;
+}
+
+TEST(Bridges, BlendLengthGrowsWithTheSquareRootOfDistanceWithinItsBoundsAndClips) {
+  const MotionDatabase db = two_clips();
+  const int k = 10;
+  // Interior: k sqrt(D / threshold), between k and 3k.
+  EXPECT_EQ(bridge_blend_frames(db, t(20, 150, 4.0f), k, 1.0, 3.0), 20);
+  EXPECT_EQ(bridge_blend_frames(db, t(20, 150, 2.25f), k, 1.0, 3.0), 15);
+  EXPECT_EQ(bridge_blend_frames(db, t(20, 150, 100.0f), k, 1.0, 3.0), 30);
+  EXPECT_EQ(bridge_blend_frames(db, t(20, 150, 0.5f), k, 1.0, 3.0), k);
+  EXPECT_EQ(bridge_blend_frames(db, t(20, 150, 100.0f), k, 1.0, 1.0), k);
+  // Near the end of the clip it leaves (frames 80..99 remain) or the start of the one it lands
+  // in (frames 100..124): no longer than the clips allow, never below the window.
+  EXPECT_EQ(bridge_blend_frames(db, t(80, 150, 100.0f), k, 1.0, 3.0), 20);
+  EXPECT_EQ(bridge_blend_frames(db, t(20, 124, 100.0f), k, 1.0, 3.0), 25);
+  EXPECT_EQ(bridge_blend_frames(db, t(90, 150, 100.0f), k, 1.0, 3.0), k);
 }
 
 TEST(TagCoreFrames, TheCycleOfATagsOwnTransitionsOrNothing) {
@@ -101,9 +144,12 @@ TEST(TagCoreFrames, AGraphThatCannotBeBuiltIsAnError) {
 // order): for each ordered pair of tags (s, u) not already joined, the best candidates leaving
 // frames of s (not u) in s's core and landing on frames of u (not s) in u's core, at most
 // per_tag_pair of them, none within the locality radius of a better one.
+// Candidates above `cap` (when >= 0) bridge nothing; a pair not joined and left without a
+// bridge is listed in `unjoined` with the best D of the candidates that would bridge it.
 std::vector<Transition> reference_bridges(const std::vector<Transition>& candidates, const std::vector<TagMask>& tags,
                                           const std::vector<std::vector<char>>& cores, int window, int per_pair,
-                                          int radius, const std::vector<std::pair<int, int>>& joined) {
+                                          int radius, const std::vector<std::pair<int, int>>& joined, double cap,
+                                          std::vector<UnjoinedPair>& unjoined) {
   auto window_tags = [&](int first) {
     TagMask m = ~TagMask{0};
     for (int f = first; f < first + window; ++f) m &= f >= 0 && f < static_cast<int>(tags.size()) ? tags[f] : 0;
@@ -117,16 +163,22 @@ std::vector<Transition> reference_bridges(const std::vector<Transition>& candida
     for (int u = 0; u < n; ++u) {
       if (s == u || std::count(joined.begin(), joined.end(), std::make_pair(s, u)) > 0) continue;
       std::vector<Transition> pair;
+      float best = -1.0f;
       for (const Transition& c : sorted) {
         const TagMask from = window_tags(c.from_frame), to = window_tags(c.to_frame - window + 1);
         if (!(from >> s & 1) || (from >> u & 1) || !(to >> u & 1) || (to >> s & 1)) continue;
         if (!cores[s][c.from_frame] || !cores[u][c.to_frame]) continue;
-        if (static_cast<int>(pair.size()) >= per_pair) break;
+        if (best < 0.0f || c.distance < best) best = c.distance;
+        if (cap >= 0.0 && c.distance > cap) continue;
+        if (static_cast<int>(pair.size()) >= per_pair) continue;
         if (std::none_of(pair.begin(), pair.end(), [&](const Transition& o) {
               return std::abs(o.from_frame - c.from_frame) <= radius || std::abs(o.to_frame - c.to_frame) <= radius;
             })) {
           pair.push_back(c);
         }
+      }
+      if (pair.empty()) {
+        unjoined.push_back({s, u, best < 0.0f ? UnjoinedReason::kNoCandidate : UnjoinedReason::kAboveCap, best});
       }
       for (const Transition& c : pair) {
         if (std::none_of(out.begin(), out.end(), [&](const Transition& b) {
@@ -145,7 +197,8 @@ std::vector<Transition> reference_bridges(const std::vector<Transition>& candida
 
 TEST(Bridges, SameAsTheRuleWrittenPairByPairOnRandomLibraries) {
   std::mt19937 rng(7);
-  size_t total = 0, with_joined = 0;
+  size_t total = 0, with_joined = 0, unjoined = 0;
+  long above_cap = 0;
   for (int round = 0; round < 40; ++round) {
     // 300 frames in runs of one or two of three tags (walk, run, jump and mixes such as
     // walk+turn: bit 3), cores on random stretches, many candidates with tied distances.
@@ -173,6 +226,7 @@ TEST(Bridges, SameAsTheRuleWrittenPairByPairOnRandomLibraries) {
     settings.per_tag_pair = 1 + static_cast<int>(rng() % 3);
     settings.locality_radius = static_cast<int>(rng() % 6);
     settings.tags = 0b0111;  // bit 3 is a modifier: never bridged
+    settings.max_distance = round % 3 == 0 ? -1.0 : static_cast<double>(rng() % 20);
     // The pairs the selected transitions already join, core to core: leaving frames of s,
     // landing on frames of u that the leaving ones lack.
     std::vector<std::pair<int, int>> joined;
@@ -192,10 +246,12 @@ TEST(Bridges, SameAsTheRuleWrittenPairByPairOnRandomLibraries) {
         }
       }
     }
+    std::vector<UnjoinedPair> expected_unjoined;
     const auto expected =
         reference_bridges(candidates, tags, {cores[0], cores[1], cores[2]}, window, settings.per_tag_pair,
-                          settings.locality_radius, joined);
-    const auto got = select_bridges(candidates, selected, tags, cores, window, settings);
+                          settings.locality_radius, joined, settings.max_distance, expected_unjoined);
+    const auto selection = select_bridges(candidates, selected, tags, cores, window, settings);
+    const auto& got = selection.bridges;
     ASSERT_EQ(got.size(), expected.size()) << "round " << round;
     total += got.size();
     with_joined += joined.empty() ? 0 : 1;
@@ -203,10 +259,23 @@ TEST(Bridges, SameAsTheRuleWrittenPairByPairOnRandomLibraries) {
       EXPECT_EQ(got[i].from_frame, expected[i].from_frame) << "round " << round;
       EXPECT_EQ(got[i].to_frame, expected[i].to_frame) << "round " << round;
     }
+    ASSERT_EQ(selection.unjoined.size(), expected_unjoined.size()) << "round " << round;
+    for (size_t i = 0; i < expected_unjoined.size(); ++i) {
+      EXPECT_EQ(selection.unjoined[i].from_tag, expected_unjoined[i].from_tag) << "round " << round;
+      EXPECT_EQ(selection.unjoined[i].to_tag, expected_unjoined[i].to_tag) << "round " << round;
+      EXPECT_EQ(selection.unjoined[i].reason, expected_unjoined[i].reason) << "round " << round;
+      EXPECT_EQ(selection.unjoined[i].best_distance, expected_unjoined[i].best_distance) << "round " << round;
+    }
+    unjoined += expected_unjoined.size();
+    above_cap += std::count_if(expected_unjoined.begin(), expected_unjoined.end(),
+                               [](const UnjoinedPair& p) { return p.reason == UnjoinedReason::kAboveCap; });
   }
-  // The rounds exercise the rule: many bridges, and pairs already joined in some rounds.
+  // The rounds exercise the rule: many bridges, pairs already joined in some rounds, and pairs
+  // left unjoined because of the cap.
   EXPECT_GT(total, 100u);
   EXPECT_GT(with_joined, 5u);
+  EXPECT_GT(above_cap, 3);
+  EXPECT_GT(unjoined, static_cast<size_t>(above_cap));
 }
 
 }  // namespace

@@ -146,7 +146,11 @@ void expect_well_formed(const MotionGraph& g, const MotionDatabase& db) {
       ASSERT_LT(e.transition_index, static_cast<int>(g.transitions.size()));
       EXPECT_EQ(g.transitions[e.transition_index].from_frame, a.frame);
       EXPECT_EQ(g.transitions[e.transition_index].to_frame, b.frame);
-      EXPECT_EQ(e.frame_count, g.window - 1);
+      // A transition plays its blend length L - 1 frames (L >= k), its windows inside their clips.
+      EXPECT_GE(e.frame_count, g.window - 1);
+      EXPECT_EQ(blend_frames(e), e.frame_count + 1);
+      EXPECT_EQ(db.clip_of(a.frame + e.frame_count), a.clip);
+      EXPECT_EQ(db.clip_of(b.frame - e.frame_count), b.clip);
     } else {
       EXPECT_EQ(e.transition_index, -1);
       EXPECT_EQ(a.clip, b.clip);
@@ -234,6 +238,46 @@ TEST(MotionGraphBuild, TransitionWindowsMayTouchClipEnds) {
   auto built = build_motion_graph(db, std::vector<Transition>{transition(90, 109)}, 10);
   ASSERT_TRUE(built) << built.error().to_string();
   expect_well_formed(*built, db);
+}
+
+TEST(MotionGraphBuild, ATransitionBlendsOverItsOwnLengthWhenGiven) {
+  const MotionDatabase db = two_clips();
+  const std::vector<Transition> transitions = {transition(60, 130), transition(150, 20)};
+  auto built = build_motion_graph(db, transitions, 10, std::vector<int>{25, 10});
+  ASSERT_TRUE(built) << built.error().to_string();
+  expect_well_formed(*built, db);
+  for (const GraphEdge& e : built->edges) {
+    if (e.transition) {
+      EXPECT_EQ(e.frame_count, e.transition_index == 0 ? 24 : 9);
+    }
+  }
+  // Tags are read over the whole blend: frames 60..84 and 106..130. Tag x covers the window of
+  // k frames on both sides (60..69, 121..130) but not 106..107.
+  MotionDatabase tagged = two_clips();
+  add_tag(tagged, "walk", 0, 180);
+  add_tag(tagged, "x", 50, 50);
+  add_tag(tagged, "x", 108, 72);
+  const std::vector<TagMask> tags = tagged.frame_tags();
+  const TagMask walk = 1, x = 2;
+  for (const int length : {10, 25}) {
+    auto graph = build_motion_graph(tagged, std::vector<Transition>{transition(60, 130)}, 10, std::vector<int>{length});
+    ASSERT_TRUE(graph);
+    for (const GraphEdge& e : graph->edges) {
+      if (e.transition) {
+        EXPECT_EQ(edge_tags(*graph, e, tags), length == 10 ? (walk | x) : walk) << length;
+      }
+    }
+  }
+  // A blend that does not fit its clips, one shorter than the window, or lengths for other
+  // transitions: errors.
+  auto too_long = build_motion_graph(db, std::vector<Transition>{transition(60, 130)}, 10, std::vector<int>{41});
+  ASSERT_FALSE(too_long);
+  EXPECT_NE(too_long.error().message.find("runs past the end of clip 'A'"), std::string::npos);
+  auto before_start = build_motion_graph(db, std::vector<Transition>{transition(20, 120)}, 10, std::vector<int>{22});
+  ASSERT_FALSE(before_start);
+  EXPECT_NE(before_start.error().message.find("starts before clip 'B'"), std::string::npos);
+  EXPECT_FALSE(build_motion_graph(db, std::vector<Transition>{transition(60, 130)}, 10, std::vector<int>{9}));
+  EXPECT_FALSE(build_motion_graph(db, transitions, 10, std::vector<int>{12}));
 }
 
 TEST(MotionGraphBuild, RejectsBadInput) {

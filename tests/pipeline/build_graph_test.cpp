@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <algorithm>
 #include <map>
 
 #include "motiongraph/core/json_text.h"
@@ -65,6 +66,51 @@ TEST(BuildGraph, Subject16IsWhatItsSavedSettingsSelectAgain) {
     EXPECT_EQ(again->pruned.graph.transitions[i].to_frame, file.graph.transitions[i].to_frame);
   }
   EXPECT_EQ(again->pruned.graph.nodes.size(), file.graph.nodes.size());
+  // With the same blend lengths: bridges blend longer than the window, as saved.
+  ASSERT_EQ(again->pruned.graph.edges.size(), file.graph.edges.size());
+  int longer = 0;
+  for (size_t e = 0; e < file.graph.edges.size(); ++e) {
+    EXPECT_EQ(again->pruned.graph.edges[e].frame_count, file.graph.edges[e].frame_count) << e;
+    if (file.graph.edges[e].transition && blend_frames(file.graph.edges[e]) > file.graph.window) ++longer;
+  }
+  EXPECT_GT(longer, 0);
+}
+
+TEST(BuildGraph, ABridgeCapLeavesPairsUnjoinedAndSaysWhatWouldJoinThem) {
+  BuildSettings settings;
+  settings.threshold_mode = ThresholdMode::kRmsCm;
+  settings.threshold_value = 3.5;
+  auto open = build_graph(kInputs, settings);
+  ASSERT_TRUE(open && open->graph_status);
+  const nlohmann::json& bridges = open->report.at("bridges");
+  ASSERT_FALSE(bridges.empty());
+  double smallest = 1e9;
+  for (const auto& b : bridges) {
+    smallest = std::min(smallest, b.at("rms_cm").get<double>());
+    // Longer than the window for D above the threshold, never more than 3 windows.
+    const int blend = b.at("blend_frames").get<int>();
+    EXPECT_GE(blend, open->report.at("window").get<int>());
+    EXPECT_LE(blend, 3 * open->report.at("window").get<int>());
+  }
+  // A cap below the smallest bridge: no bridges, and each ordered pair they joined reported
+  // with the best distance that would have joined it.
+  settings.max_bridge_rms_cm = smallest - 0.01;
+  auto capped = build_graph(kInputs, settings);
+  ASSERT_TRUE(capped) << capped.error().to_string();
+  const nlohmann::json& kept = capped->report.at("bridges");
+  EXPECT_TRUE(kept.empty());
+  int above_cap = 0;
+  for (const auto& u : capped->report.at("unjoined")) {
+    if (u.at("best_rms_cm").is_null()) continue;
+    ++above_cap;
+    EXPECT_GT(u.at("best_rms_cm").get<double>(), settings.max_bridge_rms_cm);
+    EXPECT_NE(u.at("why").get<std::string>().find("above the bridge cap"), std::string::npos);
+  }
+  EXPECT_GT(above_cap, 0);
+  EXPECT_TRUE(open->report.at("unjoined").empty());
+
+  settings.max_bridge_rms_cm = -1.0;
+  EXPECT_FALSE(settings.validate());
 }
 
 TEST(BuildGraph, TheCacheIsUsedAndChangesNothing) {

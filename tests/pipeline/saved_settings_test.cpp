@@ -20,7 +20,9 @@ TEST(SavedSettings, RoundTrip) {
   s.transitions.per_tag_thresholds = false;
   s.transitions.max_threshold = 2.5;
   s.spacing = {12, 2, 8};
-  s.bridges_per_tag_pair = 5;
+  s.bridges.per_tag_pair = 5;
+  s.bridges.max_distance = 1.25;
+  s.bridges.max_blend_factor = 2.5;
   s.connected_tags = std::vector<std::string>{"walk", "run"};
   const nlohmann::json json = s.to_json();
   auto back = SavedSettings::from_json(json);
@@ -31,7 +33,9 @@ TEST(SavedSettings, RoundTrip) {
   EXPECT_EQ(back->spacing.out_window_frames, 12);
   EXPECT_EQ(back->spacing.max_out, 2);
   EXPECT_EQ(back->spacing.min_piece_frames, 8);
-  EXPECT_EQ(back->bridges_per_tag_pair, 5);
+  EXPECT_EQ(back->bridges.per_tag_pair, 5);
+  EXPECT_EQ(back->bridges.max_distance, 1.25);
+  EXPECT_EQ(back->bridges.max_blend_factor, 2.5);
   EXPECT_EQ(back->connected_tags, s.connected_tags);
   EXPECT_EQ(back->distance_stage.distance.window_frames, 10);
 }
@@ -47,7 +51,9 @@ TEST(SavedSettings, OlderFilesTakeBuildsDefaults) {
   EXPECT_EQ(s->spacing.max_out, 0);
   EXPECT_EQ(s->spacing.min_piece_frames, 0);
   EXPECT_EQ(s->spacing.out_window_frames, -1);
-  EXPECT_EQ(s->bridges_per_tag_pair, BridgeSettings{}.per_tag_pair);
+  EXPECT_EQ(s->bridges.per_tag_pair, BridgeSettings{}.per_tag_pair);
+  EXPECT_EQ(s->bridges.max_distance, -1.0);       // no cap
+  EXPECT_EQ(s->bridges.max_blend_factor, 1.0);    // blended as long as a transition
   EXPECT_EQ(s->transitions.max_threshold, -1.0);
   EXPECT_TRUE(s->transitions.per_tag_thresholds);
   EXPECT_EQ(s->distance_stage.continuation_radius, -1);

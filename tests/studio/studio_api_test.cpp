@@ -72,6 +72,14 @@ TEST(StudioApi, TransitionsAndTheirPoses) {
   const ApiCall poses = call_api("GET", "/api/transitions/0/poses");
   ASSERT_EQ(poses.response.status, 200) << poses.response.body;
   const int k = studio_service().file().graph.window;
+  // Each transition's blend length is its edge's: the window, or longer for a bridge.
+  const MotionGraph& graph = studio_service().file().graph;
+  for (const GraphEdge& e : graph.edges) {
+    if (e.transition) {
+      EXPECT_EQ(list.json[e.transition_index]["blend_frames"].get<int>(), e.frame_count + 1);
+      EXPECT_GE(e.frame_count + 1, k);
+    }
+  }
   ASSERT_EQ(poses.json["from"]["positions"].size(), static_cast<size_t>(k));
   ASSERT_EQ(poses.json["to"]["positions"].size(), static_cast<size_t>(k));
   EXPECT_EQ(poses.json["from"]["first_frame"], list.json[0]["from_frame"]);

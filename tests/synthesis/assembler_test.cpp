@@ -148,7 +148,8 @@ TEST(Assembler, PlayedFramesCarryTheContactsOfTheFramesThatWeighMost) {
       int frame = graph.nodes[edge.from_node].frame + p;
       if (edge.transition) {
         const Transition& t = graph.transitions[edge.transition_index];
-        frame = blend_weight(p, graph.window) >= 0.5 ? t.from_frame + p : t.to_frame - graph.window + 1 + p;
+        const int length = blend_frames(edge);
+        frame = blend_weight(p, length) >= 0.5 ? t.from_frame + p : t.to_frame - length + 1 + p;
       }
       ASSERT_EQ(played[p], masks[frame]) << "edge " << e << " frame " << p;
     }
@@ -221,6 +222,40 @@ TEST(Assembler, OtherSubjectsAreScaledToTheTarget) {
   ASSERT_TRUE(on_large.ok());
   EXPECT_LT(test::max_position_error(world_positions(large.skeleton, *on_large),
                                      world_positions(large.skeleton, large.motion)), 1.2e-4);
+}
+
+TEST(Assembler, ALongerBlendReadsItsOwnLengthOnBothSides) {
+  // Two copies of one clip; a transition of blend length L from frame a of the first to the
+  // same frames of the second (b = a + L - 1) blends each frame with itself, so the walk
+  // across it is the clip, frame for frame, only when both windows are read over L frames.
+  const Clip clip = test::load_data_clip("bvh/131_01.bvh", 0.056444);
+  MotionDatabase db;
+  db.fps = clip.motion.fps;
+  db.skeletons = {clip.skeleton};
+  db.skeleton_names = {"s"};
+  const int n = clip.motion.frame_count;
+  db.clips.push_back({"one", "", 0, 0, n, clip.motion});
+  db.clips.push_back({"two", "", 0, n, n, clip.motion});
+  const int k = 10, a = 40;
+  for (const int length : {10, 17, 30}) {
+    SCOPED_TRACE(length);
+    Transition t;
+    t.from_frame = a;
+    t.to_frame = n + a + length - 1;
+    auto graph = build_motion_graph(db, std::vector<Transition>{t}, k, std::vector<int>{length});
+    ASSERT_TRUE(graph.ok()) << graph.error().to_string();
+    Walk walk{graph->node_at_frame(0), {}};
+    for (int node = walk.start_node; graph->nodes[node].frame != 2 * n - 1;) {
+      const GraphEdge& edge = graph->out_edges(node).back();
+      walk.edges.push_back(static_cast<int>(&edge - graph->edges.data()));
+      node = edge.to_node;
+    }
+    auto motion = assemble_walk(db, *graph, walk, {}, 0);
+    ASSERT_TRUE(motion.ok()) << motion.error().to_string();
+    ASSERT_EQ(motion->frame_count, n);
+    EXPECT_LT(test::max_position_error(world_positions(clip.skeleton, *motion),
+                                       world_positions(clip.skeleton, clip.motion)), 1e-9);
+  }
 }
 
 }  // namespace

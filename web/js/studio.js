@@ -182,7 +182,7 @@ async function selectTransition(index) {
   second.group.visible = true;
   const t = state.transitions[index];
   $('transition-info').textContent = `transition ${index}: ${t.from_clip} frame ${t.from_frame} (orange) -> `
-    + `${t.to_clip} frame ${t.to_frame} (blue), D = ${t.distance.toFixed(3)}`;
+    + `${t.to_clip} frame ${t.to_frame} (blue), D = ${t.distance.toFixed(3)}, blended over ${t.blend_frames} frames`;
   drawTransitions();
 }
 

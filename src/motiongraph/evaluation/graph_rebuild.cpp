@@ -18,7 +18,7 @@ Result<GraphRebuild> prepare_graph_rebuild(const GraphFile& file, const std::str
   GraphRebuild out;
   out.settings.transitions = saved->transitions;
   out.settings.spacing = saved->spacing;
-  out.settings.bridges.per_tag_pair = saved->bridges_per_tag_pair;
+  out.settings.bridges = saved->bridges;
   if (saved->connected_tags) {
     auto mask = tag_mask_of(file.database, *saved->connected_tags);
     if (!mask) return Error{file_name, 0, "connected_tags: " + mask.error().message};

@@ -1,6 +1,7 @@
 #include "motiongraph/graph/bridges.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 
 namespace mg {
@@ -8,6 +9,9 @@ namespace mg {
 Status BridgeSettings::validate() const {
   if (per_tag_pair < 0 || per_tag_pair > 1000) return Error{"", 0, "bridges per tag pair must be 0 to 1000"};
   if (locality_radius < 0) return Error{"", 0, "bridge locality radius must be >= 0"};
+  if (!(max_blend_factor >= 1.0 && max_blend_factor <= 20.0)) {
+    return Error{"", 0, "a bridge's longest blend must be 1 to 20 windows"};
+  }
   return Ok{};
 }
 
@@ -53,11 +57,23 @@ Result<std::vector<char>> tag_core_frames(const MotionDatabase& db, std::span<co
   return core;
 }
 
-std::vector<Transition> select_bridges(std::span<const Transition> candidates, std::span<const Transition> selected,
-                                       std::span<const TagMask> frame_tags, std::span<const std::vector<char>> cores,
-                                       int window, const BridgeSettings& settings) {
-  std::vector<Transition> bridges;
-  if (settings.per_tag_pair == 0 || frame_tags.empty()) return bridges;
+int bridge_blend_frames(const MotionDatabase& db, const Transition& bridge, int window, double threshold,
+                        double max_blend_factor) {
+  const double ratio = threshold > 0.0 ? std::sqrt(std::max(0.0, static_cast<double>(bridge.distance)) / threshold) : 1.0;
+  int frames = static_cast<int>(std::lround(window * std::clamp(ratio, 1.0, max_blend_factor)));
+  const DatabaseClip& leave = db.clips[db.clip_of(bridge.from_frame)];
+  const DatabaseClip& arrive = db.clips[db.clip_of(bridge.to_frame)];
+  frames = std::min({frames, leave.first_frame + leave.frame_count - bridge.from_frame,
+                     bridge.to_frame - arrive.first_frame + 1});
+  return std::max(frames, window);
+}
+
+BridgeSelection select_bridges(std::span<const Transition> candidates, std::span<const Transition> selected,
+                               std::span<const TagMask> frame_tags, std::span<const std::vector<char>> cores,
+                               int window, const BridgeSettings& settings) {
+  BridgeSelection out;
+  std::vector<Transition>& bridges = out.bridges;
+  if (settings.per_tag_pair == 0 || frame_tags.empty()) return out;
   auto leaving = [&](const Transition& t) { return window_tags(frame_tags, t.from_frame, window) & settings.tags; };
   auto arriving = [&](const Transition& t) { return window_tags(frame_tags, t.to_frame - window + 1, window) & settings.tags; };
   auto in_cores = [&](int s, int u, const Transition& t) {
@@ -88,6 +104,8 @@ std::vector<Transition> select_bridges(std::span<const Transition> candidates, s
   std::stable_sort(by_distance.begin(), by_distance.end(),
                    [](const Transition* x, const Transition* y) { return x->distance < y->distance; });
   std::vector<std::vector<const Transition*>> chosen(kTags * kTags);
+  std::vector<float> best(kTags * kTags, -1.0f);  // the lowest D of any candidate, cap or not
+  const bool capped = settings.max_distance >= 0.0;
   for (const Transition* c : by_distance) {
     const TagMask from = leaving(*c), to = arriving(*c);
     for (int s = 0; s < kTags; ++s) {
@@ -96,6 +114,8 @@ std::vector<Transition> select_bridges(std::span<const Transition> candidates, s
         // A bridge leaves frames of s that are not u and lands on frames of u that are not s.
         if (u == s || !(to >> u & 1) || (from >> u & 1) || (to >> s & 1) || joined[s * kTags + u]) continue;
         if (!in_cores(s, u, *c)) continue;
+        if (best[s * kTags + u] < 0.0f) best[s * kTags + u] = c->distance;  // candidates come by D
+        if (capped && c->distance > settings.max_distance) continue;
         auto& list = chosen[s * kTags + u];
         if (static_cast<int>(list.size()) >= settings.per_tag_pair) continue;
         const bool near = std::any_of(list.begin(), list.end(), [&](const Transition* other) {
@@ -117,7 +137,23 @@ std::vector<Transition> select_bridges(std::span<const Transition> candidates, s
   std::sort(bridges.begin(), bridges.end(), [](const Transition& x, const Transition& y) {
     return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
   });
-  return bridges;
+  const int tag_count = std::min(kTags, static_cast<int>(cores.size()));
+  for (int s = 0; s < tag_count; ++s) {
+    for (int u = 0; u < tag_count; ++u) {
+      const int pair = s * kTags + u;
+      if (u == s || !(settings.tags >> s & 1) || !(settings.tags >> u & 1) || joined[pair] || !chosen[pair].empty()) {
+        continue;
+      }
+      UnjoinedPair p{s, u, UnjoinedReason::kNoCandidate, best[pair]};
+      if (cores[s].empty() || cores[u].empty()) {
+        p.reason = UnjoinedReason::kNoCore;
+      } else if (best[pair] >= 0.0f) {
+        p.reason = UnjoinedReason::kAboveCap;
+      }
+      out.unjoined.push_back(p);
+    }
+  }
+  return out;
 }
 
 }  // namespace mg

@@ -4,7 +4,10 @@
 // best candidate (lowest D, a local minimum like any other) from frames that all carry tag s
 // to frames that all carry tag t, added for each ordered pair of tags (s, t) that no selected
 // transition joins. Bridges are reported apart, with their D, so the user sees what quality
-// the connection costs; pruning treats them like any transition.
+// the connection costs; pruning treats them like any transition. A bridge's D can reach 100x
+// the threshold, so it blends longer than a transition (bridge_blend_frames), and a cap keeps
+// out those no blend makes acceptable; the pairs left unjoined are reported with the best D
+// that would join them.
 #pragma once
 
 #include <span>
@@ -21,9 +24,38 @@ struct BridgeSettings {
   int per_tag_pair = 3;          // bridges per ordered pair of tags (0: none)
   TagMask tags = ~TagMask{0};    // the tags to bridge between
   int locality_radius = 5;       // bridges of one pair lie at least this far apart (frames)
+  double max_distance = -1.0;    // absolute D above which no bridge is made; < 0: no cap
+  double max_blend_factor = 3.0; // a bridge blends over at most this many windows (1: as a transition)
 
   Status validate() const;
 };
+
+// Why an ordered pair of tags has neither a transition nor a bridge.
+enum class UnjoinedReason {
+  kNoCore,       // one of the two tags forms no cycle of its own (so it has no core frames)
+  kNoCandidate,  // no local minimum leads from the one's core to the other's
+  kAboveCap,     // every such candidate lies above max_distance
+};
+
+struct UnjoinedPair {
+  int from_tag = 0;
+  int to_tag = 0;
+  UnjoinedReason reason = UnjoinedReason::kNoCandidate;
+  float best_distance = -1.0f;  // the lowest D of a candidate that would bridge them; < 0: none
+};
+
+struct BridgeSelection {
+  std::vector<Transition> bridges;      // sorted by (from_frame, to_frame)
+  std::vector<UnjoinedPair> unjoined;   // by (from_tag, to_tag)
+};
+
+// The frames a bridge of distance D blends over, for window k and the threshold of the
+// transitions: k sqrt(D / threshold) rounded (the distance an RMS point error of D spreads
+// over as many frames as a threshold one over k), at least k and at most
+// k * max_blend_factor, then shortened to the frames its two clips hold (from_frame on, up
+// to to_frame), never below k.
+int bridge_blend_frames(const MotionDatabase& db, const Transition& bridge, int window, double threshold,
+                        double max_blend_factor);
 
 // The frames of a tag's core: the clip frames of the largest strongly connected region that
 // the tag's own transitions (both windows carrying the tag) make (prune_motion_graph on them).
@@ -32,10 +64,12 @@ struct BridgeSettings {
 Result<std::vector<char>> tag_core_frames(const MotionDatabase& db, std::span<const Transition> selected,
                                           std::span<const TagMask> frame_tags, int window, int tag);
 
-// The bridges to add to `selected` (sorted by (from_frame, to_frame)); window k. A bridge
-// from s to u leaves from a frame of s's core and lands on a frame of u's core (cores[t] from
-// tag_core_frames; a tag without a core gets no bridges).
-std::vector<Transition> select_bridges(std::span<const Transition> candidates, std::span<const Transition> selected,
+// The bridges to add to `selected`; window k. A bridge from s to u leaves from a frame of s's
+// core and lands on a frame of u's core (cores[t] from tag_core_frames; a tag without a core
+// gets no bridges), and its D is at most max_distance. Every ordered pair of distinct tags of
+// settings.tags with a core or candidates, joined by neither a selected transition nor a
+// bridge, is listed in `unjoined`.
+BridgeSelection select_bridges(std::span<const Transition> candidates, std::span<const Transition> selected,
                                        std::span<const TagMask> frame_tags, std::span<const std::vector<char>> cores,
                                        int window, const BridgeSettings& settings);
 

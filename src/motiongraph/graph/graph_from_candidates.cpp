@@ -64,14 +64,18 @@ Result<TransitionsWithBridges> select_transitions_with_bridges(const MotionDatab
         cores[t] = std::move(*core);
       }
     }
-    out.bridges = select_bridges(candidates.minima, out.selection.transitions, frame_tags, cores, features.window,
-                                 bridge_settings);
+    BridgeSelection bridges = select_bridges(candidates.minima, out.selection.transitions, frame_tags, cores,
+                                             features.window, bridge_settings);
+    out.bridges = std::move(bridges.bridges);
+    out.unjoined = std::move(bridges.unjoined);
   }
   for (Transition& t : out.bridges) {
     const FloorAlignment align = align_pair(features, t.from_frame, t.to_frame);
     t.yaw_rad = static_cast<float>(align.yaw_rad);
     t.x_m = static_cast<float>(align.x_m);
     t.z_m = static_cast<float>(align.z_m);
+    out.bridge_blends.push_back(
+        bridge_blend_frames(db, t, features.window, out.selection.threshold, bridge_settings.max_blend_factor));
   }
   out.all_transitions = out.selection.transitions;
   out.all_transitions.insert(out.all_transitions.end(), out.bridges.begin(), out.bridges.end());
@@ -81,9 +85,21 @@ Result<TransitionsWithBridges> select_transitions_with_bridges(const MotionDatab
   return out;
 }
 
+std::vector<int> TransitionsWithBridges::blend_lengths(std::span<const Transition> transitions, int window) const {
+  std::vector<int> lengths(transitions.size(), window);
+  auto before = [](const Transition& x, const Transition& y) {
+    return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
+  };
+  for (size_t i = 0; i < transitions.size() && !bridges.empty(); ++i) {
+    auto it = std::lower_bound(bridges.begin(), bridges.end(), transitions[i], before);  // bridges are sorted
+    if (it != bridges.end() && !before(transitions[i], *it)) lengths[i] = bridge_blends[it - bridges.begin()];
+  }
+  return lengths;
+}
+
 Result<PrunedGraph> build_pruned_graph(const MotionDatabase& db, std::span<const Transition> transitions, int window,
-                                       TagMask connected_tags) {
-  auto graph = build_motion_graph(db, transitions, window);
+                                       TagMask connected_tags, std::span<const int> blend_lengths) {
+  auto graph = build_motion_graph(db, transitions, window, blend_lengths);
   if (!graph) return graph.error();
   PruneSettings prune;
   prune.connected_tags = connected_tags;
@@ -94,7 +110,8 @@ Result<PrunedGraph> build_pruned_graph(const MotionDatabase& db, std::span<const
 
 Result<PrunedGraph> build_spaced_graph(const MotionDatabase& db, const TransitionsWithBridges& transitions,
                                        const FrameFeatures& features, const GraphFromCandidatesSettings& settings) {
-  auto first = build_pruned_graph(db, transitions.all_transitions, features.window, settings.connected_tags);
+  auto first = build_pruned_graph(db, transitions.all_transitions, features.window, settings.connected_tags,
+                                  transitions.blend_lengths(transitions.all_transitions, features.window));
   if (!first) return first.error();
   auto same = [](const Transition& x, const Transition& y) {
     return x.from_frame == y.from_frame && x.to_frame == y.to_frame;
@@ -110,7 +127,8 @@ Result<PrunedGraph> build_spaced_graph(const MotionDatabase& db, const Transitio
   std::sort(spaced.begin(), spaced.end(), [](const Transition& x, const Transition& y) {
     return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
   });
-  auto second = build_pruned_graph(db, spaced, features.window, settings.connected_tags);
+  auto second = build_pruned_graph(db, spaced, features.window, settings.connected_tags,
+                                   transitions.blend_lengths(spaced, features.window));
   if (!second) return second.error();
   second->survived_first_pruning = static_cast<int>(first->graph.transitions.size());
   return second;

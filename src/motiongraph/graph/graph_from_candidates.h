@@ -42,8 +42,13 @@ struct GraphFromCandidatesSettings {
 
 struct TransitionsWithBridges {
   TransitionSelection selection;
-  std::vector<Transition> bridges;          // aligned, in the order select_bridges gave
+  std::vector<Transition> bridges;          // aligned, sorted by (from_frame, to_frame)
+  std::vector<int> bridge_blends;           // each bridge's blend length in frames (bridge_blend_frames)
+  std::vector<UnjoinedPair> unjoined;       // pairs of motion types neither joins
   std::vector<Transition> all_transitions;  // selected and bridges, by (from_frame, to_frame)
+
+  // The blend length of each of `transitions`: a bridge's own, the window for the others.
+  std::vector<int> blend_lengths(std::span<const Transition> transitions, int window) const;
 };
 
 // The first two steps: selection and bridges.
@@ -57,11 +62,11 @@ struct PrunedGraph {
   int survived_first_pruning = 0;  // transitions (bridges too) before spacing; build_spaced_graph
 };
 
-// The last two: the graph of `transitions` (window k), pruned keeping connected_tags
-// connected. Fails as build_motion_graph and prune_motion_graph do (in particular when the
-// transitions form no cycle).
+// The last two: the graph of `transitions` (window k; blend_lengths as build_motion_graph
+// takes them), pruned keeping connected_tags connected. Fails as build_motion_graph and
+// prune_motion_graph do (in particular when the transitions form no cycle).
 Result<PrunedGraph> build_pruned_graph(const MotionDatabase& db, std::span<const Transition> transitions, int window,
-                                       TagMask connected_tags);
+                                       TagMask connected_tags, std::span<const int> blend_lengths = {});
 
 struct GraphFromCandidates {
   TransitionsWithBridges transitions;

@@ -27,7 +27,7 @@ std::vector<int> edge_targets(const MotionGraph& graph) {
 int edge_frame_end(const MotionGraph& graph, const GraphEdge& edge) {
   if (!edge.transition) return graph.nodes[edge.to_node].frame;
   const Transition& t = graph.transitions[edge.transition_index];
-  return std::max(t.from_frame + graph.window, t.to_frame + 1);
+  return std::max(t.from_frame + blend_frames(edge), t.to_frame + 1);
 }
 
 TagMask tag_at(std::span<const TagMask> frame_tags, int frame) {
@@ -42,7 +42,8 @@ int MotionGraph::node_at_frame(int frame) const {
   return it != nodes.end() && it->frame == frame ? static_cast<int>(it - nodes.begin()) : -1;
 }
 
-Result<MotionGraph> build_motion_graph(const MotionDatabase& db, std::span<const Transition> transitions, int window) {
+Result<MotionGraph> build_motion_graph(const MotionDatabase& db, std::span<const Transition> transitions, int window,
+                                       std::span<const int> blend_lengths) {
   if (window < 2) {
     return graph_error(fmt::format("the window must be at least 2 frames (got {}): a transition plays its k-1 first "
                                    "blended frames, the last one being the frame it lands on",
@@ -58,9 +59,16 @@ Result<MotionGraph> build_motion_graph(const MotionDatabase& db, std::span<const
     frame_count += clip.frame_count;
   }
 
-  const int k = window;
+  if (!blend_lengths.empty() && blend_lengths.size() != transitions.size()) {
+    return graph_error(fmt::format("{} blend lengths for {} transitions", blend_lengths.size(), transitions.size()));
+  }
+  auto blend_of = [&](size_t i) { return blend_lengths.empty() ? window : blend_lengths[i]; };
   for (size_t i = 0; i < transitions.size(); ++i) {
     const Transition& t = transitions[i];
+    const int k = blend_of(i);
+    if (k < window) {
+      return graph_error(fmt::format("transition {} blends over {} frames, fewer than the window's {}", i, k, window));
+    }
     if (t.from_frame < 0 || t.from_frame >= frame_count || t.to_frame < 0 || t.to_frame >= frame_count) {
       return graph_error(fmt::format("transition {} ({} -> {}) is outside the database's {} frames", i, t.from_frame,
                                      t.to_frame, frame_count));
@@ -81,7 +89,7 @@ Result<MotionGraph> build_motion_graph(const MotionDatabase& db, std::span<const
   }
 
   MotionGraph graph;
-  graph.window = k;
+  graph.window = window;
   graph.transitions.assign(transitions.begin(), transitions.end());
 
   std::vector<int> frames;
@@ -123,7 +131,8 @@ Result<MotionGraph> build_motion_graph(const MotionDatabase& db, std::span<const
     graph.edges[next[v]++] = {v, v + 1, false, -1, graph.nodes[v + 1].frame - graph.nodes[v].frame};
   }
   for (size_t i = 0; i < transitions.size(); ++i) {
-    graph.edges[next[transition_from[i]]++] = {transition_from[i], transition_to[i], true, static_cast<int>(i), k - 1};
+    graph.edges[next[transition_from[i]]++] = {transition_from[i], transition_to[i], true, static_cast<int>(i),
+                                                  blend_of(i) - 1};
   }
   return graph;
 }
@@ -138,7 +147,7 @@ TagMask edge_tags(const MotionGraph& graph, const GraphEdge& edge, std::span<con
     return mask;
   }
   const Transition& t = graph.transitions[edge.transition_index];
-  const int k = graph.window;
+  const int k = blend_frames(edge);
   for (int p = 0; p < k && mask != 0; ++p) {
     mask &= tag_at(frame_tags, t.from_frame + p) & tag_at(frame_tags, t.to_frame - k + 1 + p);
   }

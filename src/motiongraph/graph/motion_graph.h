@@ -17,7 +17,10 @@
 //    p = 0..k-1 mixes the two windows' frames p with weight alpha(p) (DESIGN.md 5) on the one
 //    we leave. alpha(k-1) = 0, so blended frame k-1 IS frame t.to_frame (aligned), which the
 //    next edge plays. The transition edge therefore plays blended frames p = 0..k-2:
-//    frame_count = k - 1. Hence k >= 2.
+//    frame_count = k - 1. Hence k >= 2. A transition may blend over more frames than the
+//    window, L >= k (bridges far above the threshold do: graph_from_candidates.h); it then
+//    reads L frames on each side and plays L - 1, so L = frame_count + 1 always
+//    (blend_frames below).
 //
 // Tags: an edge belongs to tag t when every frame it reads carries t (a clip edge: f1..f2-1;
 // a transition: all 2k frames of both windows). Frames beyond the frame_tags span carry no
@@ -65,10 +68,15 @@ struct MotionGraph {
   int node_at_frame(int frame) const;
 };
 
+// The frames a transition edge blends over (L, the window k or more; see the header comment).
+inline int blend_frames(const GraphEdge& edge) { return edge.frame_count + 1; }
+
 // The unpruned graph. Fails when window < 2, when the clips are not one after the other from
 // global frame 0 (each at least one frame), or when a transition's windows do not lie inside
-// one clip each (from_frame .. from_frame+k-1, to_frame-k+1 .. to_frame).
-Result<MotionGraph> build_motion_graph(const MotionDatabase& db, std::span<const Transition> transitions, int window);
+// one clip each (from_frame .. from_frame+L-1, to_frame-L+1 .. to_frame). blend_lengths gives
+// each transition's L (at least the window); empty: every transition blends over the window.
+Result<MotionGraph> build_motion_graph(const MotionDatabase& db, std::span<const Transition> transitions, int window,
+                                       std::span<const int> blend_lengths = {});
 
 // The tags of one edge: the AND of frame_tags over every frame the edge reads (see above).
 TagMask edge_tags(const MotionGraph& graph, const GraphEdge& edge, std::span<const TagMask> frame_tags);

@@ -130,6 +130,8 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
   graph_settings.transitions = settings.transitions;
   graph_settings.spacing = settings.spacing;
   graph_settings.bridges = settings.bridges;
+  graph_settings.bridges.max_distance =
+      settings.max_bridge_rms_cm > 0.0 ? distance_of_rms_cm(settings.max_bridge_rms_cm, features) : -1.0;
   graph_settings.connected_tags = settings.ignore_tags ? 0 : connected;
   switch (settings.threshold_mode) {
     case ThresholdMode::kQuantile:
@@ -285,6 +287,15 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
                     "survived a first pruning, spaced to {}",
                     pruned.after.nodes, pruned.after.edges, pruned.after.transitions, built->survived_first_pruning,
                     pruned.before.transitions));
+    // Motion types that both loop but that nothing joins (the report lists them all).
+    std::vector<UnjoinedPair> unjoined;
+    for (const UnjoinedPair& u : selected->unjoined) {
+      if (u.reason != UnjoinedReason::kNoCore) unjoined.push_back(u);
+    }
+    for (const json& u : unjoined_json(unjoined, *db, *features)) {
+      say.warning(fmt::format("no transition or bridge leads from '{}' to '{}': {}", u["from"].get<std::string>(),
+                              u["to"].get<std::string>(), u["why"].get<std::string>()));
+    }
   }
 
   // 6. The report and the exports, made even when no graph can be, so that the user can see why.
@@ -338,7 +349,7 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
   saved.transitions.locality_radius = selection.locality_radius;
   saved.transitions.max_threshold = graph_settings->transitions.max_threshold;
   saved.spacing = settings.spacing;
-  saved.bridges_per_tag_pair = settings.bridges.per_tag_pair;
+  saved.bridges = graph_settings->bridges;
   saved.connected_tags = db->tag_names_of(graph_settings->connected_tags);
   GraphFile& file = out.file;
   file.settings_json = json_text(saved.to_json());

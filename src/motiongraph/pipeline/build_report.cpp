@@ -3,6 +3,8 @@
 
 #include <string>
 
+#include <fmt/format.h>
+
 namespace mg {
 
 using nlohmann::json;
@@ -88,6 +90,32 @@ json path_check_json(const PathCheck& check, const PathCheckSettings& settings) 
           {"points", points}};
 }
 
+json unjoined_json(const std::vector<UnjoinedPair>& pairs, const MotionDatabase& db, const FrameFeatures& features) {
+  json out = json::array();
+  for (const UnjoinedPair& p : pairs) {
+    const bool has_best = p.best_distance >= 0.0f;
+    const double rms = has_best ? rms_cm_of_distance(p.best_distance, features) : 0.0;
+    std::string why;
+    switch (p.reason) {
+      case UnjoinedReason::kNoCore:
+        why = "one of them forms no loop of its own transitions";
+        break;
+      case UnjoinedReason::kNoCandidate:
+        why = "no candidate transition leads from the one to the other";
+        break;
+      case UnjoinedReason::kAboveCap:
+        why = fmt::format("the best candidate, RMS {:.2f} cm, is above the bridge cap", rms);
+        break;
+    }
+    out.push_back({{"from", db.tag_names[p.from_tag]},
+                   {"to", db.tag_names[p.to_tag]},
+                   {"why", why},
+                   {"best_distance", has_best ? json(p.best_distance) : json(nullptr)},
+                   {"best_rms_cm", has_best ? json(rms) : json(nullptr)}});
+  }
+  return out;
+}
+
 json build_report(const BuildReportParts& parts) {
   const MotionDatabase& db = parts.db;
   const FrameFeatures& features = parts.features;
@@ -101,11 +129,13 @@ json build_report(const BuildReportParts& parts) {
                               {"rms_cm", rms_cm_of_distance(t.threshold, features)}});
   }
   json bridges = json::array();
-  for (const Transition& t : parts.selected.bridges) {
+  for (size_t b = 0; b < parts.selected.bridges.size(); ++b) {
+    const Transition& t = parts.selected.bridges[b];
     bridges.push_back({{"from_frame", t.from_frame},
                        {"to_frame", t.to_frame},
                        {"distance", t.distance},
-                       {"rms_cm", rms_cm_of_distance(t.distance, features)}});
+                       {"rms_cm", rms_cm_of_distance(t.distance, features)},
+                       {"blend_frames", parts.selected.bridge_blends[b]}});
   }
   std::vector<double> point_weights(parts.layout.weight.begin(), parts.layout.weight.end());
   return {
@@ -144,6 +174,7 @@ json build_report(const BuildReportParts& parts) {
       {"graph_before", pruned ? json::parse(to_json(pruned->prune.before, db.tag_names)) : json(nullptr)},
       {"graph_after", pruned ? json::parse(to_json(pruned->prune.after, db.tag_names)) : json(nullptr)},
       {"bridges", bridges},
+      {"unjoined", unjoined_json(parts.selected.unjoined, db, features)},
       {"distance_cache", parts.distance_cache},
   };
 }

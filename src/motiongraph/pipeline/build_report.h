@@ -2,7 +2,7 @@
 // rate, window, point and window weights, the clips with their tags, the distance settings
 // (DistanceStageSettings::to_json), the threshold and how it was found (the automatic choice's
 // coverage curve, the path check), counts, the graph's statistics before and after pruning,
-// the bridges and whether the distance cache was used. Thresholds are given both as D and as
+// the bridges (with their blend lengths), the motion types no bridge joins and whether the distance cache was used. Thresholds are given both as D and as
 // the RMS point distance in cm (graph/threshold_choice.h).
 #pragma once
 
@@ -30,6 +30,11 @@ nlohmann::json threshold_choice_json(const ThresholdChoice& choice, const Motion
 
 // The path check: the tolerance, the probe and each threshold tried.
 nlohmann::json path_check_json(const PathCheck& check, const PathCheckSettings& settings);
+
+// The ordered pairs of motion types that no transition or bridge joins: [{"from", "to", "why",
+// "best_distance", "best_rms_cm"}], the best distance null when no candidate would join them.
+nlohmann::json unjoined_json(const std::vector<UnjoinedPair>& pairs, const MotionDatabase& db,
+                             const FrameFeatures& features);
 
 // What the whole report is made of; pruned is null when pruning left nothing.
 struct BuildReportParts {

@@ -39,6 +39,9 @@ Status BuildSettings::validate() const {
       !(std::isfinite(threshold_value) && threshold_value >= 0.0)) {
     return Error{"", 0, "the threshold must be a finite distance >= 0"};
   }
+  if (!(std::isfinite(max_bridge_rms_cm) && max_bridge_rms_cm >= 0.0)) {
+    return Error{"", 0, "the bridge cap must be a finite RMS distance >= 0 cm (0: no cap)"};
+  }
   return Ok{};
 }
 

@@ -51,7 +51,10 @@ struct BuildSettings {
   bool path_check = true;          // kAuto: raise the threshold until a test path is followed
   PathCheckSettings path_check_settings;
   TransitionSpacing spacing;
+  // bridges.max_distance is set from max_bridge_rms_cm.
   BridgeSettings bridges;
+  // No bridge above this RMS point distance in cm; 0: no cap.
+  double max_bridge_rms_cm = 0.0;
   // The motion types whose frames must stay connected (bridged between); empty: every tag but
   // the modifiers (graph_from_candidates.h). ignore_tags: none, one component only.
   std::vector<std::string> connect_tags;

@@ -18,7 +18,9 @@ nlohmann::json SavedSettings::to_json() const {
                          {"min_piece_frames", spacing.min_piece_frames},
                          {"out_window_frames", spacing.out_window_frames},
                          {"max_out", spacing.max_out},
-                         {"bridges_per_tag_pair", bridges_per_tag_pair},
+                         {"bridges_per_tag_pair", bridges.per_tag_pair},
+                         {"max_bridge_distance", bridges.max_distance},
+                         {"bridge_blend_factor", bridges.max_blend_factor},
                          {"fps", fps}};
   if (connected_tags) json["connected_tags"] = *connected_tags;
   return json;
@@ -42,7 +44,10 @@ Result<SavedSettings> SavedSettings::from_json(const nlohmann::json& json) {
     out.spacing.min_piece_frames = json.value("min_piece_frames", 0);
     out.spacing.max_out = json.value("max_out", 0);
     out.spacing.out_window_frames = json.value("out_window_frames", -1);
-    out.bridges_per_tag_pair = json.value("bridges_per_tag_pair", BridgeSettings{}.per_tag_pair);
+    out.bridges.per_tag_pair = json.value("bridges_per_tag_pair", BridgeSettings{}.per_tag_pair);
+    out.bridges.max_distance = json.value("max_bridge_distance", -1.0);
+    // Files written before bridges blended longer blended them as transitions.
+    out.bridges.max_blend_factor = json.value("bridge_blend_factor", 1.0);
     if (json.contains("connected_tags")) out.connected_tags = json.at("connected_tags").get<std::vector<std::string>>();
   } catch (const nlohmann::json::exception& e) {
     return Error{"", 0, fmt::format("the graph's settings are not what build writes: {}", e.what())};

@@ -3,7 +3,7 @@
 // settings as build resolved them (the threshold it chose, the locality radius, the connected
 // motion types by name). What eval and the studio need to select transitions again as build
 // did (evaluation/graph_rebuild.h). Reading accepts files written before spacing, bridges or
-// connected tags were recorded: what a file does not record takes build's defaults.
+// connected tags were recorded, or before bridges were capped and blended longer (then as long as a transition): what a file does not record takes build's defaults.
 #pragma once
 
 #include <optional>
@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "motiongraph/core/error.h"
+#include "motiongraph/graph/bridges.h"
 #include "motiongraph/graph/transition_selection.h"
 #include "motiongraph/graph/transition_spacing.h"
 #include "motiongraph/pipeline/distance_stage_settings.h"
@@ -25,7 +26,7 @@ struct SavedSettings {
   std::string threshold_mode;            // "auto", "quantile", "distance" or "rms_cm"
   TransitionSettings transitions;        // threshold, quantile and locality radius as selected
   TransitionSpacing spacing;
-  int bridges_per_tag_pair = 0;
+  BridgeSettings bridges;  // max_distance as D (-1: no cap)
   // The motion types kept connected; nullopt in files that do not record them.
   std::optional<std::vector<std::string>> connected_tags;
 

@@ -117,7 +117,7 @@ void MotionAssembler::visit_edge(int edge_index, FloorTransform& placement, OnFr
     return;
   }
   const Transition& t = graph_->transitions[edge.transition_index];
-  const int k = graph_->window;
+  const int k = blend_frames(edge);
   const FloorTransform arrival = placement * transition_transform(t);
   for (int p = 0; p < edge.frame_count; ++p) {
     on_blend(t.from_frame + p, placement, t.to_frame - k + 1 + p, arrival, blend_weight(p, k));

@@ -3,7 +3,8 @@
 // Placement. Every edge is played under a floor transform W (database -> world). A clip edge
 // keeps W; a transition edge for transition t blends the k frames t.from_frame.. (under W)
 // with t.to_frame-k+1.. (under W * T, T = t's floor alignment) and leaves W * T for the next
-// edge. Blended frame p takes the root position as alpha(p) d + (1 - alpha(p)) a and every
+// edge; k is the edge's blend length (the window, or more for a bridge: motion_graph.h).
+// Blended frame p takes the root position as alpha(p) d + (1 - alpha(p)) a and every
 // rotation (the root's in the world) as slerp(d, a, 1 - alpha(p)), with Kovar's weight
 //   alpha(p) = 2((p+1)/k)^3 - 3((p+1)/k)^2 + 1   for the frame we leave;
 // alpha(k-1) = 0, so the blend ends exactly on the arrival frame the next edge plays.

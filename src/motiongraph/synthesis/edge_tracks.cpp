@@ -8,7 +8,6 @@ EdgeTracks compute_edge_tracks(const MotionAssembler& assembler, const MotionGra
                                std::span<const TagMask> frame_tags, const Vec3& forward_axis) {
   EdgeTracks tracks;
   tracks.forward_axis = forward_axis;
-  const int k = graph.window;
   auto tag_of = [&](int frame) { return frame_tags.empty() ? TagMask{0} : frame_tags[frame]; };
   for (int e = 0; e < graph.edge_count(); ++e) {
     const GraphEdge& edge = graph.edges[e];
@@ -26,6 +25,7 @@ EdgeTracks compute_edge_tracks(const MotionAssembler& assembler, const MotionGra
         tracks.tags.push_back(tag_of(graph.nodes[edge.from_node].frame + static_cast<int>(p)));
       } else {
         const Transition& t = graph.transitions[edge.transition_index];
+        const int k = blend_frames(edge);
         const int q = static_cast<int>(p);
         tracks.tags.push_back(blend_weight(q, k) >= 0.5 ? tag_of(t.from_frame + q) : tag_of(t.to_frame - k + 1 + q));
       }
