@@ -35,6 +35,7 @@ struct BuildOptions {
   double input_fps = 0.0;
   std::string cmu_index;
   bool no_cmu_tags = false;
+  std::string feet;  // LEFT_ANKLE,LEFT_TOE,RIGHT_ANKLE,RIGHT_TOE
   std::string cloud = "rings";
   PointCloudSettings cloud_settings;
   std::vector<std::string> joint_weights;  // NAME=WEIGHT
@@ -115,6 +116,11 @@ Result<BuildSettings> build_settings(const BuildOptions& o) {
   db.bvh_metres_per_unit = o.scale;
   db.input_fps = o.input_fps;
   db.cmu_tags = !o.no_cmu_tags;
+  if (!o.feet.empty()) {
+    auto feet = parse_foot_joint_names(o.feet);
+    if (!feet) return Error{"", 0, "--feet: " + feet.error().message};
+    db.foot_names = *feet;
+  }
   db.cmu_index_path = o.cmu_index;
   if (auto valid = s.validate(); !valid) return valid.error();
   return s;
@@ -187,6 +193,9 @@ Command add_build_command(CLI::App& app) {
                   "CMU's motion index (cmu-mocap-index.tsv) for tags from descriptions; default: one beside or above the "
                   "inputs, else the index the project ships (built in)");
   sub->add_flag("--no-cmu-tags", o->no_cmu_tags, "Do not tag clips from CMU's descriptions");
+  sub->add_option("--feet", o->feet,
+                  "Foot joints as LEFT_ANKLE,LEFT_TOE,RIGHT_ANKLE,RIGHT_TOE, any left empty to find it by name "
+                  "(default: found by name; a manifest's [feet] otherwise)");
   sub->add_flag("--ignore-tags", o->ignore_tags, "Prune to the largest strongly connected component only, ignoring tags");
   sub->add_option("--bridges", o->bridges.per_tag_pair,
                   "Bridges per ordered pair of tags that no transition below the threshold joins: their best candidates "

@@ -6,6 +6,8 @@
 //                threshold, with the captured data's value (figure 3.2)
 //   walks        lengths of walks between random node pairs per cost function (figure 3.3)
 //   paths        path-following error on the built-in shapes
+//   footslide    foot slide in contact, as played and cleaned, times the source clips', on the
+//                built-in shapes against the threshold; with the largest joint step
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -19,11 +21,13 @@
 #include "cli/commands.h"
 #include "cli/gnuplot.h"
 #include "motiongraph/evaluation/consistency_sweep.h"
+#include "motiongraph/evaluation/foot_slide_sweep.h"
 #include "motiongraph/evaluation/graph_rebuild.h"
 #include "motiongraph/evaluation/path_errors.h"
 #include "motiongraph/evaluation/threshold_sweep.h"
 #include "motiongraph/evaluation/walk_lengths.h"
 #include "motiongraph/graph/graph_file.h"
+#include "motiongraph/graph/threshold_choice.h"
 #include "motiongraph/io/file.h"
 
 namespace mg::cli {
@@ -32,7 +36,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::vector<std::string> kEvaluations = {"threshold", "consistency", "walks", "paths"};
+const std::vector<std::string> kEvaluations = {"threshold", "consistency", "walks", "paths", "footslide"};
 
 struct EvalOptions {
   std::string graph;
@@ -173,11 +177,45 @@ Status evaluate_paths(const GraphFile& file, const EvalOptions& o, Outputs& out)
                               kCsvSettings, out.csv("paths.csv")));
 }
 
+Status evaluate_foot_slide(const GraphFile& file, const GraphRebuild& rebuild, std::span<const double> quantiles,
+                           const EvalOptions& o, Outputs& out) {
+  auto rows = sweep_foot_slide(file.database, rebuild.features, file.candidates, rebuild.settings, quantiles, o.shapes);
+  if (!rows) return rows.error();
+  std::string csv =
+      "quantile,threshold,rms_cm,shape,graph,frames,transitions,mean_deviation_m,played_mps,cleaned_mps,source_mps,"
+      "played_ratio,cleaned_ratio,step_over_source_p999\n";
+  for (const FootSlideSweepRow& r : *rows) {
+    const bool g = r.graph;
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", num(r.quantile), num(r.threshold),
+                       num(rms_cm_of_distance(r.threshold, rebuild.features)), r.shape, g ? 1 : 0, r.frames,
+                       r.transitions, g ? num(r.mean_deviation_m) : "", g ? num(r.played_mps) : "",
+                       g ? num(r.cleaned_mps) : "", g ? num(r.source_mps) : "", g ? num(r.played_ratio) : "",
+                       g ? num(r.cleaned_ratio) : "", g ? num(r.step_over_source_p999) : "");
+  }
+  if (auto s = out.write_csv("footslide.csv", csv); !s) return s;
+  std::string plots;
+  for (size_t i = 0; i < o.shapes.size(); ++i) {
+    const std::string& shape = o.shapes[i];
+    const std::string pick = fmt::format("(strcol(4) eq '{}' ? ${{}} : NaN)", shape);
+    plots += fmt::format("{}{} skip 1 using 3:{} with linespoints lc {} pt 7 title '{} cleaned', "
+                         "'' skip 1 using 3:{} with linespoints lc {} dt 2 pt 6 title '{} as played'",
+                         i ? ", " : "", out.csv("footslide.csv"), fmt::format(fmt::runtime(pick), 13), i + 1, shape,
+                         fmt::format(fmt::runtime(pick), 12), i + 1, shape);
+  }
+  return out.plot("footslide.png",
+                  fmt::format("{}set logscale x\nset xlabel 'transition threshold, RMS point distance (cm, log scale)'\n"
+                              "set ylabel 'foot slide in contact, x the source clips'\nset yrange [0:*]\n"
+                              "set key top left\nset title 'Foot slide of path synthesis against the threshold'\n"
+                              "set arrow from graph 0, first 1 to graph 1, first 1 nohead dt 3\nplot {}",
+                              kCsvSettings, plots));
+}
+
 int run_eval(const EvalOptions& o) {
   const auto begin = std::chrono::steady_clock::now();
   for (const std::string& what : o.what) {
     if (std::find(kEvaluations.begin(), kEvaluations.end(), what) == kEvaluations.end()) {
-      return fail(Error{"", 0, fmt::format("--what: unknown evaluation '{}' (threshold, consistency, walks, paths)", what)});
+      return fail(Error{"", 0, fmt::format("--what: unknown evaluation '{}' (threshold, consistency, walks, paths, "
+                                           "footslide)", what)});
     }
   }
   if (!(o.lowest_quantile > 0.0 && o.lowest_quantile < o.highest_quantile && o.highest_quantile <= 1.0)) {
@@ -199,7 +237,7 @@ int run_eval(const EvalOptions& o) {
 
   const std::vector<double> quantiles = log_spaced(o.lowest_quantile, o.highest_quantile, o.thresholds);
   std::optional<GraphRebuild> rebuild;
-  if (wants("threshold") || wants("consistency")) {
+  if (wants("threshold") || wants("consistency") || wants("footslide")) {
     auto prepared = prepare_graph_rebuild(*file, o.graph);
     if (!prepared) return fail(prepared.error());
     rebuild = std::move(*prepared);
@@ -213,6 +251,7 @@ int run_eval(const EvalOptions& o) {
       {"consistency", [&] { return evaluate_consistency(*file, *rebuild, quantiles, out); }},
       {"walks", [&] { return evaluate_walks(*file, o, out); }},
       {"paths", [&] { return evaluate_paths(*file, o, out); }},
+      {"footslide", [&] { return evaluate_foot_slide(*file, *rebuild, quantiles, o, out); }},
   };
   for (const Step& step : steps) {
     if (!wants(step.name)) continue;
@@ -239,7 +278,9 @@ Command add_eval_command(CLI::App& app) {
               "  consistency  RMS angle between facing and the direction of travel over the next 10 frames\n"
               "               around transitions, against the threshold, with the captured data's value\n"
               "  walks        lengths of walks between random node pairs for each cost function\n"
-              "  paths        path-following error on built-in shapes");
+              "  paths        path-following error on built-in shapes\n"
+              "  footslide    foot slide in contact of path synthesis on the shapes, as played and cleaned,\n"
+              "               times the source clips', against the threshold");
   sub->add_option("GRAPH", o->graph, "A .mgraph file written by 'motiongraph build'")->required();
   sub->add_option("--out-dir", o->out_dir, "Folder for the CSV and PNG files (created)")->required();
   sub->add_option("--what", o->what, "Evaluations to run, comma separated")->delimiter(',')->capture_default_str();

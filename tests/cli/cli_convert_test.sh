@@ -46,6 +46,30 @@ names = [j["name"] for j in d["joints"]]
 head, toes = names.index("head"), names.index("ltoes")
 assert 1.3 < d["positions"][0][head][1] - d["positions"][0][toes][1] < 1.9   # metres
 PY
+# The JSON carries the feet's contacts: planted toes move slowly, free ones fast.
+python3 - "$work/jog.json" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+c = d["contacts"]
+assert c["joints"] == ["lfoot", "ltoes", "rfoot", "rtoes"], c["joints"]
+assert len(c["planted"]) == len(d["positions"]) and all(len(f) == 4 and set(f) <= {0, 1} for f in c["planted"])
+names = [j["name"] for j in d["joints"]]
+for k, toe in ((1, names.index("ltoes")), (3, names.index("rtoes"))):
+    speed = lambda f: ((d["positions"][f + 1][toe][0] - d["positions"][f][toe][0]) ** 2 +
+                       (d["positions"][f + 1][toe][2] - d["positions"][f][toe][2]) ** 2) ** 0.5 * d["fps"]
+    planted = [speed(f) for f in range(len(d["positions"]) - 1) if c["planted"][f][k]]
+    free = [speed(f) for f in range(len(d["positions"]) - 1) if not c["planted"][f][k]]
+    assert planted and free, (k, len(planted), len(free))
+    assert sum(planted) / len(planted) < 0.25 * sum(free) / len(free), (k, planted, free)
+PY
+# --feet names them; a joint the rig lacks is one clear line and no output.
+"$bin" convert "$data/cmu/16/16_35.amc" -o "$work/shins.json" --feet ltibia,,rtibia,
+python3 -c "import json,sys; j=json.load(open(sys.argv[1]))['contacts']['joints']; assert j == ['ltibia', 'ltoes', 'rtibia', 'rtoes'], j" "$work/shins.json"
+if "$bin" convert "$data/cmu/16/16_35.amc" -o "$work/nofoot.json" --feet LeftAnkle,,, 2>"$work/nofoot.err"; then
+  echo "FAIL: a missing foot joint was accepted"; exit 1
+fi
+[[ $(wc -l <"$work/nofoot.err") -eq 1 && ! -e "$work/nofoot.json" ]] && grep -q "LeftAnkle" "$work/nofoot.err" \
+  || { echo "FAIL: missing foot joint: $(cat "$work/nofoot.err")"; exit 1; }
 # The converted BVH reads back.
 "$bin" info "$work/jog.bvh" | grep -q "41 frames at 30 fps" || { echo "FAIL: written BVH does not read back"; exit 1; }
 ls -A "$work" | grep -q "tmp-" && { echo "FAIL: temporary files left"; exit 1; }

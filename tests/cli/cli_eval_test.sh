@@ -13,7 +13,7 @@ trap 'rm -rf "$work"' EXIT
 "$bin" build "$data/cmu/16" -o "$work/g.mgraph" --cache-dir "$work/cache" --threshold-quantile 0.02 -q
 "$bin" inspect --json "$work/g.mgraph" >"$work/inspect.json"
 "$bin" eval "$work/g.mgraph" --out-dir "$work/eval" -q >"$work/written.txt"
-for name in threshold consistency walks paths; do
+for name in threshold consistency walks paths footslide; do
   grep -qx "$work/eval/$name.csv" "$work/written.txt" || { echo "FAIL: $name.csv not listed"; exit 1; }
   grep -qx "$work/eval/$name.png" "$work/written.txt" || { echo "FAIL: $name.png not listed"; exit 1; }
 done
@@ -81,7 +81,26 @@ for r in p:
     assert math.isfinite(mean) and math.isfinite(most) and 0 <= mean <= most, r
     assert float(r["path_length_m"]) > 0 and int(r["frames"]) > 0, r
 
-for name in ("threshold", "consistency", "walks", "paths"):
+fs = rows("eval/footslide.csv", ["quantile", "threshold", "rms_cm", "shape", "graph", "frames", "transitions",
+     "mean_deviation_m", "played_mps", "cleaned_mps", "source_mps", "played_ratio", "cleaned_ratio",
+     "step_over_source_p999"])
+assert len(fs) == 12 * 4, len(fs)
+assert all([r["shape"] for r in fs[4 * i:4 * i + 4]] == ["line:20", "circle:5", "figure8:4", "s-curve:100"] for i in range(12))
+assert [r["threshold"] for r in fs[::4]] == [r["threshold"] for r in t]   # the threshold sweep's thresholds
+made = [r for r in fs if r["graph"] == "1"]
+assert len(made) >= 8 and all(r["played_mps"] == "" for r in fs if r["graph"] == "0")
+for r in made:
+    played, cleaned, source = float(r["played_mps"]), float(r["cleaned_mps"]), float(r["source_mps"])
+    assert source > 0 and played >= 0 and cleaned >= 0 and int(r["frames"]) > 0, r
+    assert math.isclose(float(r["played_ratio"]), played / source, rel_tol=1e-9), r
+    assert math.isclose(float(r["cleaned_ratio"]), cleaned / source, rel_tol=1e-9), r
+    assert 0 < float(r["step_over_source_p999"]) < 10, r
+# The clean-up takes most of the slide away: below the capture's own on most paths.
+cleaned = sorted(float(r["cleaned_ratio"]) for r in made)
+played = sorted(float(r["played_ratio"]) for r in made)
+assert cleaned[len(cleaned) // 2] < played[len(played) // 2] and cleaned[len(cleaned) // 2] <= 1.0, (cleaned, played)
+
+for name in ("threshold", "consistency", "walks", "paths", "footslide"):
     with open(f"{work}/eval/{name}.png", "rb") as f:
         head = f.read(24)
     assert head[:8] == b"\x89PNG\r\n\x1a\n" and head[12:16] == b"IHDR", name

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "motiongraph/database/database_contacts.h"
 #include "motiongraph/io/file.h"
 #include "test_data.h"
 
@@ -361,6 +362,78 @@ TEST(DatabaseLoader, BadInputsAndSettings) {
     EXPECT_FALSE(load_database({test::data_path("cmu/16/16_15.amc")}, s)) << rule;
   }
   EXPECT_TRUE(settings.validate());
+}
+
+// The feet: found by name, named by a manifest's [feet] or by the settings (which win); the
+// contacts of every frame found with them; a rig without feet loads with the reason instead.
+TEST(DatabaseLoader, TheFeetComeFromTheSettingsOrAManifestAndTheContactsWithThem) {
+  auto found = load_database({test::data_path("cmu/16/16_15.amc")}, cmu_settings());
+  ASSERT_TRUE(found) << found.error().to_string();
+  EXPECT_TRUE(found->foot_names.empty());
+  EXPECT_TRUE(found->contacts_error.empty());
+  ASSERT_EQ(static_cast<int>(found->frame_contacts.size()), found->frame_count());
+  EXPECT_EQ(found->frame_contacts, *database_contacts(*found));
+  // A walk plants its feet, and not all the time.
+  const long long planted = std::count_if(found->frame_contacts.begin(), found->frame_contacts.end(),
+                                          [](ContactMask m) { return m != 0; });
+  EXPECT_GT(planted, found->frame_count() / 2);
+
+  // The shins named as ankles, by a manifest: other contacts, the ones those names give.
+  TempFolder folder("feet");
+  const std::string clip = folder.relative_data("cmu/16/16_15.amc");
+  const std::string manifest = folder.write(
+      "db.toml", fmt::format("[feet]\nleft_ankle = \"ltibia\"\nright_ankle = \"rtibia\"\n[[clip]]\nfile = \"{}\"\n", clip));
+  auto named = load_database({manifest}, cmu_settings());
+  ASSERT_TRUE(named) << named.error().to_string();
+  const FootJointNames shins{"ltibia", "", "rtibia", ""};
+  EXPECT_EQ(named->foot_names, shins);
+  EXPECT_EQ(named->frame_contacts, *database_contacts(*named, {}, shins));
+  EXPECT_NE(named->frame_contacts, found->frame_contacts);
+
+  // The settings' names win over the manifest's.
+  DatabaseSettings given = cmu_settings();
+  given.foot_names = FootJointNames{"lfoot", "ltoes", "rfoot", "rtoes"};
+  auto overridden = load_database({manifest}, given);
+  ASSERT_TRUE(overridden) << overridden.error().to_string();
+  EXPECT_EQ(overridden->foot_names, given.foot_names);
+  EXPECT_EQ(overridden->frame_contacts, found->frame_contacts);
+
+  // A joint named that the rig lacks: an error at the manifest's [feet] line, or for the settings.
+  const std::string wrong = folder.write(
+      "wrong.toml", fmt::format("fps = 30\n[feet]\nleft_ankle = \"LeftAnkle\"\n[[clip]]\nfile = \"{}\"\n", clip));
+  auto missing = load_database({wrong}, cmu_settings());
+  ASSERT_FALSE(missing);
+  EXPECT_EQ(missing.error().file, wrong);
+  EXPECT_EQ(missing.error().line, 2);
+  EXPECT_NE(missing.error().message.find("LeftAnkle"), std::string::npos) << missing.error().to_string();
+  given.foot_names = FootJointNames{"LeftAnkle", "", "", ""};
+  auto missing_given = load_database({test::data_path("cmu/16/16_15.amc")}, given);
+  ASSERT_FALSE(missing_given);
+  EXPECT_NE(missing_given.error().message.find("LeftAnkle"), std::string::npos);
+
+  // Two manifests naming other feet.
+  auto clash = load_database({manifest, wrong}, cmu_settings());
+  ASSERT_FALSE(clash);
+  EXPECT_EQ(clash.error().file, wrong);
+  EXPECT_NE(clash.error().message.find("one set of feet"), std::string::npos) << clash.error().to_string();
+}
+
+TEST(DatabaseLoader, ARigWithoutFeetLoadsWithTheReasonForNoContacts) {
+  TempFolder folder("nofeet");
+  std::string motion;
+  for (int f = 0; f < 40; ++f) motion += fmt::format("{} 90 0 0 0 0 {} 0 0\n", 0.02 * f, f % 7);
+  const std::string bvh = folder.write(
+      "arm.bvh", "HIERARCHY\nROOT Base\n{\n  OFFSET 0 0 0\n  CHANNELS 6 Xposition Yposition Zposition Zrotation "
+                 "Xrotation Yrotation\n  JOINT Arm\n  {\n    OFFSET 0 -50 0\n    CHANNELS 3 Zrotation Xrotation "
+                 "Yrotation\n    End Site\n    {\n      OFFSET 0 -40 0\n    }\n  }\n}\nMOTION\nFrames: 40\nFrame "
+                 "Time: 0.0333333\n" + motion);
+  DatabaseSettings settings;
+  settings.bvh_metres_per_unit = 0.01;
+  auto db = load_database({bvh}, settings);
+  ASSERT_TRUE(db) << db.error().to_string();
+  EXPECT_TRUE(db->frame_contacts.empty());
+  EXPECT_NE(db->contacts_error.find("ankle"), std::string::npos) << db->contacts_error;
+  EXPECT_FALSE(contacts_of(*db));
 }
 
 }  // namespace

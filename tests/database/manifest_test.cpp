@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "test_data.h"
 
 namespace mg {
@@ -113,6 +115,8 @@ TEST(Manifest, TagNames) {
 TEST(Manifest, OneCleanErrorPerRule) {
   const std::string base = kManifest;
   const auto r = [&](const std::string& from, const std::string& to) { return test::replace_once(base, from, to); };
+  // The line after the manifest's last ([feet] appended there).
+  const int end = static_cast<int>(std::count(base.begin(), base.end(), '\n')) + 1;
   const std::vector<test::ErrorCase> cases = {
       {"TOML syntax", r("fps = 30", "fps = = 30"), 2, "TOML"},
       {"unknown top-level key", r("fps = 30", "fsp = 30"), 2, "unknown key 'fsp' at the top level"},
@@ -148,6 +152,11 @@ TEST(Manifest, OneCleanErrorPerRule) {
       {"tag not a string", r("tags = [\"walk\"]", "tags = [1]"), 12, "a tag must be a string"},
       {"tag name invalid", r("tags = [\"walk\"]", "tags = [\"fast walk\"]"), 12, "not a valid name"},
       {"ranges not tables", r("skeleton = \"other/16.asf\"", "ranges = [1, 2]"), 30, "array of tables"},
+      {"feet not a table", r("fps = 30", "fps = 30\nfeet = \"lfoot\""), 3, "'feet' must be a table"},
+      {"unknown key in [feet]", base + "[feet]\nleft_heel = \"lfoot\"\n", end + 1, "unknown key 'left_heel' in [feet]"},
+      {"foot name not a string", base + "[feet]\nleft_ankle = 3\n", end + 1, "'left_ankle' must be a string"},
+      {"one joint for both ankles", base + "[feet]\nleft_ankle = \"Foot\"\nright_ankle = \"foot\"\n", end,
+       "both named"},
   };
   for (const auto& c : cases) {
     auto manifest = parse_manifest(c.text, "bad.toml");
@@ -155,6 +164,20 @@ TEST(Manifest, OneCleanErrorPerRule) {
     EXPECT_EQ(manifest.error().file, "bad.toml") << c.rule;
     test::expect_error_matches(manifest.error(), c);
   }
+}
+
+TEST(Manifest, FeetNameTheFootJointsAnyLeftOutFound) {
+  auto manifest = parse_manifest(
+      "[feet]\nleft_ankle = \"LeftAnkle\"\nright_ankle = \"RightAnkle\"\nright_toe = \"RightToe\"\n"
+      "[[clip]]\nfile = \"a.bvh\"\n",
+      "feet.toml");
+  ASSERT_TRUE(manifest) << manifest.error().to_string();
+  ASSERT_TRUE(manifest->feet);
+  EXPECT_EQ(*manifest->feet, (FootJointNames{"LeftAnkle", "", "RightAnkle", "RightToe"}));
+  EXPECT_EQ(manifest->feet_line, 1);
+  auto none = parse_manifest("[[clip]]\nfile = \"a.bvh\"\n", "none.toml");
+  ASSERT_TRUE(none);
+  EXPECT_FALSE(none->feet);
 }
 
 TEST(Manifest, EveryPrefixFailsCleanlyOrParses) {

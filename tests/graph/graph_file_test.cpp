@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "motiongraph/database/database_contacts.h"
 #include "motiongraph/io/file.h"
 #include "test_data.h"
 
@@ -19,6 +20,8 @@ GraphFile sample() {
   file.database.skeleton_names = {"16.asf"};
   const int run = file.database.tag_index("run");
   file.database.tag_ranges.push_back({run, 0, file.database.frame_count()});
+  file.database.foot_names = {"lfoot", "", "rfoot", ""};
+  file.database.frame_contacts = *database_contacts(file.database, {}, file.database.foot_names);
   file.candidates.window = 10;
   file.candidates.continuation_radius = 10;
   file.candidates.minima = {{3, 50, 0.5f, 0.1f, 1.0f, -2.0f}, {7, 60, 0.25f, -0.3f, 0.0f, 4.0f}};
@@ -63,6 +66,9 @@ TEST(GraphFile, RoundTripIsExact) {
   EXPECT_EQ(read->graph.edges.size(), 2u);
   EXPECT_EQ(read->graph.edges[1].transition_index, 1);
   EXPECT_EQ(read->report_json, original.report_json);
+  EXPECT_EQ(read->database.foot_names, original.database.foot_names);
+  EXPECT_EQ(read->database.frame_contacts, original.database.frame_contacts);
+  EXPECT_TRUE(read->database.contacts_error.empty());
   // Writing what was read gives the same bytes.
   EXPECT_EQ(serialize_graph_file(*read), bytes);
 }
@@ -118,6 +124,24 @@ TEST(GraphFile, RejectsAnythingElse) {
   std::string other_version = bytes;
   other_version[9] = 7;  // the version follows the 9-byte magic
   expect_error(other_version, "version 7");
+  // Contacts for some frames only, contacts beside a reason for none, or bits of no foot.
+  const auto with_database = [](auto change) {
+    GraphFile file = sample();
+    change(file.database);
+    return serialize_graph_file(file);
+  };
+  expect_error(with_database([](MotionDatabase& db) { db.frame_contacts.pop_back(); }), "inconsistent");
+  expect_error(with_database([](MotionDatabase& db) { db.contacts_error = "no feet"; }), "inconsistent");
+  expect_error(with_database([](MotionDatabase& db) { db.frame_contacts[3] = 0x10; }), "inconsistent");
+  // No contacts with the reason: read as written.
+  auto without = parse_graph_file(with_database([](MotionDatabase& db) {
+                                    db.frame_contacts.clear();
+                                    db.contacts_error = "skeleton '16.asf': no left ankle";
+                                  }),
+                                  "nofeet.mgraph");
+  ASSERT_TRUE(without) << without.error().to_string();
+  EXPECT_TRUE(without->database.frame_contacts.empty());
+  EXPECT_EQ(without->database.contacts_error, "skeleton '16.asf': no left ankle");
   // A valid cache file is not a graph file.
   expect_error(serialize_distance_cache(1, sample().candidates), "not a motiongraph graph");
 }

@@ -221,5 +221,25 @@ TEST(FootJoints, EachRuleForNamesGivesItsError) {
   }
 }
 
+TEST(FootJointNames, ParsedFromFourCommaSeparatedNamesAnyEmpty) {
+  auto all = parse_foot_joint_names("LeftAnkle,LeftToe,RightAnkle,RightToe");
+  ASSERT_TRUE(all) << all.error().to_string();
+  EXPECT_EQ(*all, (FootJointNames{"LeftAnkle", "LeftToe", "RightAnkle", "RightToe"}));
+  auto some = parse_foot_joint_names(" lFoot ,, rFoot,");
+  ASSERT_TRUE(some) << some.error().to_string();
+  EXPECT_EQ(*some, (FootJointNames{"lFoot", "", "rFoot", ""}));
+  auto none = parse_foot_joint_names(",,,");
+  ASSERT_TRUE(none);
+  EXPECT_TRUE(none->empty());
+  for (const char* bad : {"", "LeftAnkle", "a,b,c", "a,b,c,d,e"}) {
+    auto parsed = parse_foot_joint_names(bad);
+    ASSERT_FALSE(parsed) << bad;
+    EXPECT_NE(parsed.error().message.find("four comma-separated"), std::string::npos) << parsed.error().message;
+  }
+  auto same = parse_foot_joint_names("Foot,,foot,");
+  ASSERT_FALSE(same);
+  EXPECT_NE(same.error().message.find("both named"), std::string::npos) << same.error().message;
+}
+
 }  // namespace
 }  // namespace mg

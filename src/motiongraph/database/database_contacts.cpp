@@ -27,4 +27,23 @@ Result<std::vector<ContactMask>> database_contacts(const MotionDatabase& db, con
   return masks;
 }
 
+Status find_database_contacts(MotionDatabase& db, const FootContactSettings& settings) {
+  db.frame_contacts.clear();
+  db.contacts_error.clear();
+  auto contacts = database_contacts(db, settings, db.foot_names);
+  if (contacts) {
+    db.frame_contacts = std::move(*contacts);
+    return Ok{};
+  }
+  if (!db.foot_names.empty()) return contacts.error();
+  db.contacts_error = contacts.error().message;
+  return Ok{};
+}
+
+Result<std::vector<ContactMask>> contacts_of(const MotionDatabase& db) {
+  if (static_cast<int>(db.frame_contacts.size()) == db.frame_count() && db.frame_count() > 0) return db.frame_contacts;
+  if (!db.contacts_error.empty()) return Error{"", 0, db.contacts_error};
+  return database_contacts(db, {}, db.foot_names);
+}
+
 }  // namespace mg

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "motiongraph/database/cmu_tags.h"
+#include "motiongraph/database/database_contacts.h"
 #include "motiongraph/database/manifest.h"
 #include "motiongraph/database/shipped_cmu_index.h"
 #include "motiongraph/io/file.h"
@@ -102,20 +103,39 @@ Status expand_folder(const std::string& input, const DatabaseSettings& settings,
   return Ok{};
 }
 
+// What the manifests say of the whole database, and which manifest said it first.
+struct ManifestWide {
+  std::optional<double> fps;
+  std::string fps_source;
+  std::optional<FootJointNames> feet;
+  std::string feet_source;
+  int feet_line = 0;
+};
+
 Status expand_manifest(const std::string& input, const DatabaseSettings& settings, std::vector<ClipSpec>& specs,
-                       std::optional<double>& manifest_fps, std::string& manifest_fps_source) {
+                       ManifestWide& wide) {
   auto text = read_text_file(input);
   if (!text) return text.error();
   auto manifest = parse_manifest(*text, input);
   if (!manifest) return manifest.error();
   if (manifest->fps && settings.prefer_manifest_fps) {
-    if (manifest_fps && *manifest_fps != *manifest->fps) {
+    if (wide.fps && *wide.fps != *manifest->fps) {
       return Error{input, manifest->fps_line,
                    fmt::format("fps {} differs from the fps {} of {}; one database has one frame rate",
-                               *manifest->fps, *manifest_fps, manifest_fps_source)};
+                               *manifest->fps, *wide.fps, wide.fps_source)};
     }
-    manifest_fps = manifest->fps;
-    manifest_fps_source = input;
+    wide.fps = manifest->fps;
+    wide.fps_source = input;
+  }
+  if (manifest->feet && settings.foot_names.empty()) {
+    if (wide.feet && !(*wide.feet == *manifest->feet)) {
+      return Error{input, manifest->feet_line,
+                   fmt::format("[feet] names other joints than the [feet] of {}; one database has one set of feet",
+                               wide.feet_source)};
+    }
+    wide.feet = manifest->feet;
+    wide.feet_source = input;
+    wide.feet_line = manifest->feet_line;
   }
   const fs::path folder = fs::path(input).parent_path();
   const auto resolve = [&](const std::string& path) { return (folder / path).lexically_normal().string(); };
@@ -219,6 +239,7 @@ Status DatabaseSettings::validate() const {
   if (bvh_metres_per_unit && (!(*bvh_metres_per_unit > 0.0) || !std::isfinite(*bvh_metres_per_unit))) {
     return Error{"", 0, fmt::format("bvh_metres_per_unit (--scale) must be positive, not {}", *bvh_metres_per_unit)};
   }
+  if (auto s = foot_names.validate(); !s) return s.error();
   if (!(input_fps >= 0.0) || !std::isfinite(input_fps)) {
     return Error{"", 0, fmt::format("input_fps must be positive (or 0: the files' own), not {}", input_fps)};
   }
@@ -232,8 +253,7 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
 
   // 1. What to read, in order.
   std::vector<ClipSpec> specs;
-  std::optional<double> manifest_fps;
-  std::string manifest_fps_source;
+  ManifestWide wide;
   for (const std::string& input : inputs) {
     std::error_code ec;
     const fs::file_status status = fs::status(input, ec);
@@ -244,7 +264,7 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
     }
     const std::string ext = lower_extension(input);
     if (ext == ".toml") {
-      if (auto s = expand_manifest(input, settings, specs, manifest_fps, manifest_fps_source); !s) return s.error();
+      if (auto s = expand_manifest(input, settings, specs, wide); !s) return s.error();
     } else if (ext == ".amc" || ext == ".bvh") {
       specs.push_back(spec_for_file(input, default_load_settings(settings)));
     } else if (ext == ".asf") {
@@ -255,7 +275,8 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
   }
 
   MotionDatabase db;
-  db.fps = manifest_fps.value_or(settings.fps);
+  db.fps = wide.fps.value_or(settings.fps);
+  db.foot_names = settings.foot_names.empty() ? wide.feet.value_or(FootJointNames{}) : settings.foot_names;
 
   // 2. The CMU index, read once when some clip will look its tags up.
   std::optional<CmuIndex> cmu;
@@ -379,6 +400,12 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
       }
     }
     db.clips.push_back(std::move(clip));
+  }
+
+  // 4. The feet's contacts (a rig whose feet are not found keeps the reason instead).
+  if (auto s = find_database_contacts(db); !s) {
+    if (!settings.foot_names.empty()) return Error{"", 0, "the foot joints named: " + s.error().message};
+    return Error{wide.feet_source, wide.feet_line, s.error().message};
   }
   return db;
 }

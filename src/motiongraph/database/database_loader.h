@@ -46,6 +46,10 @@ struct DatabaseSettings {
                                               // from its figure's size (length_unit.h)
   double input_fps = 0.0;               // > 0: the capture rate, overriding the files'
   bool keep_rest_frames = false;        // keep leading rest/T-pose frames of BVH files
+  // The foot joints' names; given, they win over a manifest's [feet]. The loaded database's
+  // contacts are found with them (database_contacts.h); a named joint that is missing fails
+  // the load.
+  FootJointNames foot_names;
 
   // Tags from CMU's descriptions for clips a manifest gives no tags. The index is
   // cmu_index_text when not empty, else the file at cmu_index_path when not empty (the CLI

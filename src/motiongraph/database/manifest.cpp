@@ -235,11 +235,43 @@ Result<ManifestClip> read_clip(const Reader& in, const toml::table& table) {
   return clip;
 }
 
+Result<FootJointNames> read_feet(const Reader& in, const toml::node& node) {
+  auto table = node.as_table();
+  if (!table) {
+    return in.error(line_of(node), fmt::format("'feet' must be a table ([feet] with left_ankle = \"...\" ...), not {}",
+                                               type_name(node)));
+  }
+  if (auto s = in.check_keys(*table, {"left_ankle", "left_toe", "right_ankle", "right_toe"}, "in [feet]"); !s) {
+    return s.error();
+  }
+  FootJointNames names;
+  const std::pair<const char*, std::string*> keys[] = {{"left_ankle", &names.left_ankle},
+                                                       {"left_toe", &names.left_toe},
+                                                       {"right_ankle", &names.right_ankle},
+                                                       {"right_toe", &names.right_toe}};
+  for (const auto& [key, name] : keys) {
+    if (const toml::node* value = table->get(key)) {
+      auto text = in.string(*value, key);
+      if (!text) return text.error();
+      *name = std::move(*text);
+    }
+  }
+  if (auto s = names.validate(); !s) return in.error(line_of(node), s.error().message);
+  return names;
+}
+
 Result<Manifest> read_manifest(const Reader& in, const toml::table& root, std::string file_name) {
   Manifest manifest;
   manifest.file_name = std::move(file_name);
-  if (auto s = in.check_keys(root, {"fps", "skeleton", "bvh_scale", "input_fps", "clip"}, "at the top level"); !s) {
+  if (auto s = in.check_keys(root, {"fps", "skeleton", "bvh_scale", "input_fps", "feet", "clip"}, "at the top level");
+      !s) {
     return s.error();
+  }
+  if (const toml::node* node = root.get("feet")) {
+    auto feet = read_feet(in, *node);
+    if (!feet) return feet.error();
+    manifest.feet = std::move(*feet);
+    manifest.feet_line = line_of(*node);
   }
   if (auto s = in.optional_positive(root.get("fps"), "fps", manifest.fps); !s) return s.error();
   if (const toml::node* node = root.get("fps")) manifest.fps_line = line_of(*node);

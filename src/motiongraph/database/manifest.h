@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "motiongraph/core/error.h"
+#include "motiongraph/skeleton/foot_joints.h"
 
 namespace mg {
 
@@ -59,8 +60,12 @@ struct Manifest {
   std::optional<double> bvh_scale;         // default metres per BVH unit
   std::optional<double> input_fps;         // default capture rate
   std::vector<ManifestClip> clips;
+  // [feet]: the foot joints' names (left_ankle, left_toe, right_ankle, right_toe; any may be
+  // left out to find that joint by name).
+  std::optional<FootJointNames> feet;
 
   int fps_line = 0;
+  int feet_line = 0;
   int skeleton_line = 0;
 };
 
@@ -72,7 +77,8 @@ struct Manifest {
 // ending in .amc or .bvh; `skeleton` only on AMC clips and `bvh_scale` only on BVH clips;
 // first_frame >= 1, last_frame >= first_frame; each range has first_frame and last_frame,
 // first >= 1, last >= first, inside the clip's own frame range when the manifest gives it,
-// and at least one tag; tag names non-empty, of letters, digits, '_' and '-'.
+// and at least one tag; tag names non-empty, of letters, digits, '_' and '-'; [feet] names
+// non-empty strings, not the same joint twice.
 Result<Manifest> parse_manifest(std::string_view toml_text, std::string file_name);
 
 // A tag name as the manifest and the database accept it: non-empty, [A-Za-z0-9_-] only.

@@ -1,13 +1,16 @@
 // The motion database: every frame of every clip at one frame rate, as one sequence of global
 // frame indices (clip after clip), with the clip ranges, the skeletons (one per subject; clips
 // of different subjects must share a joint topology) and motion tags per frame range.
-// Everything downstream (point clouds, distances, the graph) indexes frames globally.
+// Everything downstream (point clouds, distances, the graph) indexes frames globally. The
+// feet's contacts of every frame are found once, when the database is loaded
+// (database_contacts.h), and travel with it in the graph file.
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "motiongraph/motion/foot_contacts.h"
 #include "motiongraph/motion/motion.h"
 
 namespace mg {
@@ -38,6 +41,13 @@ struct MotionDatabase {
   std::vector<DatabaseClip> clips;
   std::vector<std::string> tag_names;
   std::vector<TagRange> tag_ranges;
+  // The foot joints' names as the user gave them (manifest [feet], build --feet); empty: found
+  // by name (skeleton/foot_joints.h).
+  FootJointNames foot_names;
+  // Per global frame, the contacts of its clip's feet (motion/foot_contacts.h). Empty when not
+  // found yet, or when some skeleton's feet cannot be found: contacts_error then says why.
+  std::vector<ContactMask> frame_contacts;
+  std::string contacts_error;
 
   int frame_count() const { return clips.empty() ? 0 : clips.back().first_frame + clips.back().frame_count; }
   // Clip holding a global frame (binary search).

@@ -199,6 +199,12 @@ void put_database(BinaryWriter& out, const MotionDatabase& db) {
     out.put<std::int32_t>(range.first_frame);
     out.put<std::int32_t>(range.frame_count);
   }
+  for (const std::string* name : {&db.foot_names.left_ankle, &db.foot_names.left_toe, &db.foot_names.right_ankle,
+                                  &db.foot_names.right_toe}) {
+    out.put_string(*name);
+  }
+  out.put_vector(db.frame_contacts);
+  out.put_string(db.contacts_error);
 }
 
 bool get_database(BinaryReader& in, MotionDatabase& db) {
@@ -240,6 +246,19 @@ bool get_database(BinaryReader& in, MotionDatabase& db) {
       return false;
     }
     db.tag_ranges.push_back(range);
+  }
+  for (std::string* name : {&db.foot_names.left_ankle, &db.foot_names.left_toe, &db.foot_names.right_ankle,
+                            &db.foot_names.right_toe}) {
+    if (!in.get_string(*name)) return false;
+  }
+  if (!in.get_vector(db.frame_contacts) || !in.get_string(db.contacts_error)) return false;
+  // Contacts for every frame, or none with the reason.
+  if (!db.frame_contacts.empty() && static_cast<int>(db.frame_contacts.size()) != next_frame) return false;
+  if (!db.frame_contacts.empty() && !db.contacts_error.empty()) return false;
+  const ContactMask all = contact_bit(FootSide::kLeft, FootPart::kAnkle) | contact_bit(FootSide::kLeft, FootPart::kToe) |
+                          contact_bit(FootSide::kRight, FootPart::kAnkle) | contact_bit(FootSide::kRight, FootPart::kToe);
+  for (const ContactMask m : db.frame_contacts) {
+    if ((m & ~all) != 0) return false;
   }
   return true;
 }

@@ -3,9 +3,9 @@
 //   magic "MGRAPH\r\n\x1a", format version (u32), payload size (u64), CRC-32 of the payload
 //   (u32), then the payload: the settings used (JSON text), the key of the inputs and
 //   distance settings, the motion database (skeletons, clips with their motion at the
-//   database rate, tags), the transition candidates and distance histogram (so another
-//   threshold needs no distance stage), the selected transitions, the pruned graph, and the
-//   build report (JSON text).
+//   database rate, tags, foot joint names and every frame's foot contacts), the transition
+//   candidates and distance histogram (so another threshold needs no distance stage), the
+//   selected transitions, the pruned graph, and the build report (JSON text).
 // The distance cache file (.mgcache) has the same framing with its own magic and holds just
 // the key and the candidate search.
 // Reading rejects a wrong magic, another version, a size or checksum mismatch, and any
@@ -26,7 +26,8 @@
 namespace mg {
 
 // 2: skeletons keep the static joints above a trajectory joint (motion/trajectory_joint.h).
-constexpr std::uint32_t kGraphFileVersion = 2;
+// 3: the database's foot joint names and every frame's foot contacts (or why there are none).
+constexpr std::uint32_t kGraphFileVersion = 3;
 
 struct GraphFile {
   std::string settings_json;

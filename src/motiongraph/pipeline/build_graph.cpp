@@ -246,6 +246,11 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
   timings["load"] = watch.lap();
   say.info(fmt::format("{} clips, {} frames at {:g} fps ({:.1f} s), {} tags", db->clips.size(), db->frame_count(),
                        db->fps, db->frame_count() / db->fps, db->tag_names.size()));
+  if (!db->contacts_error.empty()) {
+    say.warning(fmt::format("no foot contacts, so no foot clean-up in synthesis: {} (name the feet with --feet or a "
+                            "manifest's [feet])",
+                            db->contacts_error));
+  }
 
   // 2. Point clouds and per-frame features.
   auto layout = make_cloud_layout(db->skeletons.front(), settings.distance_stage.cloud);

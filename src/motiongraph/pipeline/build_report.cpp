@@ -116,6 +116,32 @@ json unjoined_json(const std::vector<UnjoinedPair>& pairs, const MotionDatabase&
   return out;
 }
 
+json foot_contacts_json(const MotionDatabase& db) {
+  if (db.frame_contacts.empty()) return {{"error", db.contacts_error.empty() ? "not found" : db.contacts_error}};
+  json skeletons = json::array();
+  for (size_t s = 0; s < db.skeletons.size(); ++s) {
+    auto feet = find_foot_joints(db.skeletons[s], db.foot_names);
+    if (!feet) continue;
+    const auto name = [&](int joint) { return joint < 0 ? json(nullptr) : json(db.skeletons[s].joint(joint).name); };
+    skeletons.push_back({{"skeleton", s < db.skeleton_names.size() ? db.skeleton_names[s] : std::to_string(s)},
+                         {"left_ankle", name(feet->left.ankle)},
+                         {"left_toe", name(feet->left.toe)},
+                         {"right_ankle", name(feet->right.ankle)},
+                         {"right_toe", name(feet->right.toe)}});
+  }
+  json planted = json::object();
+  const std::pair<const char*, ContactMask> bits[] = {{"left_ankle", contact_bit(FootSide::kLeft, FootPart::kAnkle)},
+                                                      {"left_toe", contact_bit(FootSide::kLeft, FootPart::kToe)},
+                                                      {"right_ankle", contact_bit(FootSide::kRight, FootPart::kAnkle)},
+                                                      {"right_toe", contact_bit(FootSide::kRight, FootPart::kToe)}};
+  for (const auto& [key, bit] : bits) {
+    long long count = 0;
+    for (const ContactMask m : db.frame_contacts) count += (m & bit) != 0 ? 1 : 0;
+    planted[key] = static_cast<double>(count) / static_cast<double>(db.frame_contacts.size());
+  }
+  return {{"feet", skeletons}, {"planted_share", planted}};
+}
+
 json build_report(const BuildReportParts& parts) {
   const MotionDatabase& db = parts.db;
   const FrameFeatures& features = parts.features;
@@ -147,6 +173,7 @@ json build_report(const BuildReportParts& parts) {
       {"window_weights", features.taper},
       {"window_weight", features.window_weight},
       {"clips", clips_json(db)},
+      {"foot_contacts", foot_contacts_json(db)},
       {"tags", db.tag_names},
       {"distance_settings", parts.distance_settings},
       {"threshold_mode", parts.threshold_mode},

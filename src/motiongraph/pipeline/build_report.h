@@ -1,5 +1,6 @@
 // The build report (`motiongraph build --report`, and GraphFile::report_json): the frames,
-// rate, window, point and window weights, the clips with their tags, the distance settings
+// rate, window, point and window weights, the clips with their tags, the feet and how often
+// they are planted, the distance settings
 // (DistanceStageSettings::to_json), the threshold and how it was found (the automatic choice's
 // coverage curve, the path check), counts, the graph's statistics before and after pruning,
 // the bridges (with their blend lengths), the motion types no bridge joins and whether the distance cache was used. Thresholds are given both as D and as
@@ -20,6 +21,11 @@ namespace mg {
 
 // [{"name", "source", "first_frame", "frames", "tags", "skeleton"}, ...]
 nlohmann::json clips_json(const MotionDatabase& db);
+
+// The feet found on each skeleton ({"feet": [{"skeleton", "left_ankle", "left_toe",
+// "right_ankle", "right_toe"}]}) and the share of frames each joint is planted
+// ("planted_share"); {"error": why} when the database has no contacts.
+nlohmann::json foot_contacts_json(const MotionDatabase& db);
 
 // One point of a coverage curve, per-tag coverage by tag name (`tags`: the tags measured).
 nlohmann::json coverage_point_json(const CoveragePoint& point, const MotionDatabase& db, const std::vector<int>& tags);

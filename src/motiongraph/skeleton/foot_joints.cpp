@@ -147,6 +147,30 @@ std::string folded_joint_name(std::string_view name) {
   return folded;
 }
 
+Result<FootJointNames> parse_foot_joint_names(std::string_view text) {
+  std::vector<std::string> parts(1);
+  for (const char c : text) {
+    if (c == ',') {
+      parts.emplace_back();
+    } else {
+      parts.back() += c;
+    }
+  }
+  if (parts.size() != 4) {
+    return Error{"", 0, fmt::format("'{}' is not four comma-separated joint names: left ankle, left toe, right ankle, "
+                                    "right toe (leave one empty to find it, e.g. 'LeftFoot,,RightFoot,')",
+                                    text)};
+  }
+  for (std::string& part : parts) {
+    const size_t first = part.find_first_not_of(' ');
+    const size_t last = part.find_last_not_of(' ');
+    part = first == std::string::npos ? std::string() : part.substr(first, last - first + 1);
+  }
+  FootJointNames names{parts[0], parts[1], parts[2], parts[3]};
+  if (auto s = names.validate(); !s) return s.error();
+  return names;
+}
+
 Status FootJointNames::validate() const {
   if (!left_ankle.empty() && lower(left_ankle) == lower(right_ankle)) {
     return Error{"", 0, fmt::format("the left and right ankles are both named '{}'", left_ankle)};

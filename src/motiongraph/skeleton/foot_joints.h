@@ -25,6 +25,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include "motiongraph/core/error.h"
 #include "motiongraph/skeleton/skeleton.h"
@@ -50,7 +51,14 @@ struct FootJointNames {
   std::string right_toe;
 
   Status validate() const;
+  // No name given: every joint found.
+  bool empty() const { return left_ankle.empty() && left_toe.empty() && right_ankle.empty() && right_toe.empty(); }
+  bool operator==(const FootJointNames&) const = default;
 };
+
+// "LEFT_ANKLE,LEFT_TOE,RIGHT_ANKLE,RIGHT_TOE" (the CLI's --feet): four names, any of them empty
+// to find that joint ("LeftFoot,,RightFoot,"). Fails on another count or a rule validate() names.
+Result<FootJointNames> parse_foot_joint_names(std::string_view text);
 
 // The feet of `skeleton` (see above). Fails when a foot has no ankle, when a named joint is
 // missing, or when a named toe is not below its ankle.

@@ -18,8 +18,8 @@ Result<SynthesisContext> make_synthesis_context(const MotionDatabase& db, const 
   SynthesisContext context{&db, &graph, std::move(*assembler), db.frame_tags(), {}, {}, {}, {}};
   const std::vector<Vec3> axes = learn_forward_axes(db);
   context.tracks = compute_edge_tracks(context.assembler, graph, context.frame_tags, axes[target_skeleton]);
-  auto feet = find_foot_joints(db.skeletons[target_skeleton]);
-  auto contacts = feet ? database_contacts(db) : Result<std::vector<ContactMask>>(feet.error());
+  auto feet = find_foot_joints(db.skeletons[target_skeleton], db.foot_names);
+  auto contacts = feet ? contacts_of(db) : Result<std::vector<ContactMask>>(feet.error());
   if (feet && contacts) {
     context.feet = *feet;
     context.frame_contacts = std::move(*contacts);
