@@ -42,7 +42,8 @@ nlohmann::json cleanup_report(const SynthesisOptions& options, const SynthesisCo
           {"root_lowered_frames", s.root_lowered_frames},
           {"max_root_drop_m", s.max_root_drop_m},
           {"max_correction_m", s.max_correction_m},
-          {"max_ankle_miss_m", s.max_ankle_miss_m}};
+          {"max_ankle_miss_m", s.max_ankle_miss_m},
+          {"replants", s.replants}};
 }
 
 Status write_synthesis_outputs(const SynthesisOptions& options, const LoadedGraph& loaded, const Motion& motion,

@@ -211,12 +211,42 @@ TEST(FootCleanup, MotionWithoutContactsIsLeftAsItIs) {
   EXPECT_EQ(output.local_translations_m, input.local_translations_m);
 }
 
+TEST(FootCleanup, APlantTheMotionLeavesFarBehindIsMadeAgainWhereTheFootIs) {
+  // The left foot "planted" over the whole walk while the motion carries it 2 m away: a contact
+  // the pieces' placement does not keep (a dance library's minute-long contacts drift so).
+  Walked w = walked();
+  const ContactMask left = contact_bit(FootSide::kLeft, FootPart::kAnkle) | contact_bit(FootSide::kLeft, FootPart::kToe);
+  for (ContactMask& m : w.contacts) m = static_cast<ContactMask>((m & ~left) | left);
+  const Motion input = sliding(w.clip.motion, 0.3);
+  FootCleanupSettings held;
+  held.max_hold_m = 100.0;  // never let go
+  FootCleanupStats held_stats, stats;
+  cleaned(w, input, held, &held_stats);
+  const Motion output = cleaned(w, input, {}, &stats);
+  // Held: the leg is stretched after a plant metres away and misses it by far.
+  EXPECT_GT(held_stats.max_correction_m, 1.0);
+  EXPECT_GT(held_stats.max_ankle_miss_m, 0.3);
+  EXPECT_EQ(held_stats.replants, 0);
+  // Let go beyond 25 cm: planted again, the leg never pulled much further, and missing its
+  // target by far less (a walk's stride stretched by 25 cm is still out of reach now and then).
+  const FootCleanupSettings defaults;
+  EXPECT_GT(stats.replants, 3);
+  EXPECT_LT(stats.max_correction_m, defaults.max_hold_m + 0.1);
+  EXPECT_LT(stats.max_ankle_miss_m, 0.5 * held_stats.max_ankle_miss_m) << held_stats.max_ankle_miss_m;
+  // The steps to the new plants are eased: no joint steps further than the input's do, by more
+  // than the ease's share of a plant's 25 cm.
+  const int joints = w.clip.skeleton.joint_count();
+  const double input_step = max_joint_step(world_positions(w.clip.skeleton, input), joints);
+  EXPECT_LT(max_joint_step(world_positions(w.clip.skeleton, output), joints), input_step + 0.06);
+}
+
 TEST(FootCleanup, BadSettingsLegsAndCallsAreErrors) {
   const Walked w = walked();
   for (auto change : {+[](FootCleanupSettings& s) { s.ease_s = -1.0; },
                       +[](FootCleanupSettings& s) { s.max_extension = 1.0; },
                       +[](FootCleanupSettings& s) { s.max_root_drop_m = std::nan(""); },
-                      +[](FootCleanupSettings& s) { s.root_speed_mps = 0.0; }}) {
+                      +[](FootCleanupSettings& s) { s.root_speed_mps = 0.0; },
+                      +[](FootCleanupSettings& s) { s.max_hold_m = 0.0; }}) {
     FootCleanupSettings settings;
     change(settings);
     EXPECT_FALSE(settings.validate());

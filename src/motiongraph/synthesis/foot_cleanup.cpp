@@ -43,6 +43,9 @@ Status FootCleanupSettings::validate() const {
   if (!(root_speed_mps > 0.0) || !std::isfinite(root_speed_mps)) {
     return Error{"", 0, "the clean-up's root speed must be finite and > 0 m/s"};
   }
+  if (!(max_hold_m > 0.0) || !std::isfinite(max_hold_m)) {
+    return Error{"", 0, "the clean-up's longest hold must be finite and > 0 m"};
+  }
   return Ok{};
 }
 
@@ -132,6 +135,18 @@ Status FootCleanup::clean(Motion& motion, int first, std::span<const ContactMask
       // contact rises as the foot rolls; a running toe's rise at toe-off is kept, which
       // holding it down would carry, eased out, into the swing, low and fast).
       mode_offset.y() = 0.0;
+      // A plant the motion has left further than max_hold_m (a long contact over which the
+      // placement drifted) is let go: a new one where the motion has the foot, reached by
+      // easing as at any switch (a quick step instead of a leg stretched out of reach).
+      frame.replanted[side] = mode != kFree && mode_offset.norm() > settings_.max_hold_m;
+      if (frame.replanted[side]) {
+        if (mode == kAnklePlanted) leg.ankle_plant = ankle;
+        leg.toe_plant = toe;
+        leg.switch_offset = leg.offset;
+        leg.since_switch = 0;
+        mode_offset = Vec3::Zero();
+        ++stats_.replants;
+      }
       const double w = ease_weight(leg.since_switch);
       leg.offset = w * leg.switch_offset + (1.0 - w) * mode_offset;
       if (leg.since_switch < kLongAgo) ++leg.since_switch;
@@ -203,6 +218,11 @@ void FootCleanup::solve_leg(Leg& leg, const FrameTargets& targets, int side, std
     if (axis.norm() > 1e-9) leg.bend_axis = axis.normalized();
   }
   Quat toe_turn = Quat::Identity();
+  if (targets.replanted[side] && leg.toe_turning) {
+    // The toe's plant moves with the leg's: turned towards from where the foot is turned now.
+    leg.toe_turning = false;
+    leg.since_toe_release = 0;
+  }
   if (leg.toe >= 0) {
     const Vec3 foot = positions[leg.toe] - ankle;  // ankle to toe: the foot keeps its orientation
     if (targets.toe_planted[side]) {

@@ -10,7 +10,10 @@
 //     where on the floor the (corrected) ankle was on the contact's first frame, at the
 //     height the motion gives it. Otherwise it is the ankle where the motion puts it. A change
 //     between these is eased over ease_s (smoothstep on the offset), except the start of a
-//     plant, which continues the offset it starts from: the clean-up adds no step.
+//     plant, which continues the offset it starts from: the clean-up adds no step. A plant
+//     the motion's foot has left by more than max_hold_m on the floor (a long contact over
+//     which the pieces' placement drifted: a dancer standing for minutes) is made again
+//     where the motion has the foot, the offset eased to it like any switch.
 //  2. The root is lowered (only vertically, at most max_root_drop_m) just enough that both
 //     legs reach their targets with the knee bent to at most max_extension of the leg's
 //     length (or as straight as the motion had it); the drop is spread over the frames around
@@ -46,6 +49,9 @@ struct FootCleanupSettings {
   double max_extension = 0.995;    // a leg is stretched to at most this share of its length
   double max_root_drop_m = 0.03;   // the root is lowered at most this far
   double root_speed_mps = 0.1;     // and moved up or down at most this fast
+  // A plant that would pull the foot further than this on the floor from where the motion has
+  // it is let go of, and a new one made where the foot is (see step 1).
+  double max_hold_m = 0.25;
 
   Status validate() const;
 };
@@ -58,6 +64,7 @@ struct FootCleanupStats {
   double max_root_drop_m = 0.0;
   double max_ankle_miss_m = 0.0;     // the furthest an ankle stayed from its target
   double max_correction_m = 0.0;     // the furthest an ankle target was from the ankle
+  long long replants = 0;            // plants let go of and made again (max_hold_m)
 };
 
 class FootCleanup {
@@ -99,6 +106,7 @@ class FootCleanup {
     std::array<Vec3, 2> ankle;
     std::array<bool, 2> corrected;   // the target differs from the ankle or the toe turns
     std::array<bool, 2> toe_planted;
+    std::array<bool, 2> replanted;   // the plant was made again this frame (max_hold_m)
     std::array<double, 2> toe_share;  // how much of the ankle's offset follows the toe's plant ...
     std::array<Vec3, 2> toe_plant;    // ... as step 1 guessed it
     double drop_needed = 0.0;
