@@ -8,10 +8,10 @@
 #include <spdlog/spdlog.h>
 
 #include "cli/commands.h"
-#include "cli/motion_output.h"
 #include "cli/load_options.h"
 #include "cli/unit_report.h"
 #include "motiongraph/export/bvh_writer.h"
+#include "motiongraph/export/motion_file.h"
 #include "motiongraph/export/positions_json.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/clip_loader.h"

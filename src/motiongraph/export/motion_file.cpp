@@ -1,12 +1,11 @@
-#include "cli/motion_output.h"
+#include "motiongraph/export/motion_file.h"
 
 #include <filesystem>
 
 #include "motiongraph/export/bvh_writer.h"
-#include "motiongraph/export/positions_json.h"
 #include "motiongraph/io/file.h"
 
-namespace mg::cli {
+namespace mg {
 
 Status check_motion_output(const std::string& path) {
   const std::string ext = std::filesystem::path(path).extension().string();
@@ -24,4 +23,4 @@ Status write_motion(const std::string& path, const Skeleton& skeleton, const Mot
   return write_file_atomic(path, bvh ? write_bvh(skeleton, motion, write) : write_positions_json(skeleton, motion, contacts));
 }
 
-}  // namespace mg::cli
+}  // namespace mg
