@@ -4,7 +4,9 @@
 #            built with, gnuplot (eval's plots), Node.js/npm and the studio's npm packages (web/).
 #   (none)   all of that, plus what scripts/test.sh needs: GoogleTest, Google Benchmark, clang
 #            with its sanitizer/fuzzer runtime, numpy, Blender (a test imports our BVH into it),
-#            chromium and curl (the studio's browser and socket tests), the tests' npm packages.
+#            chromium and curl (the studio's browser and socket tests), the tests' npm packages,
+#            pybind11, numpy and pytest (the Python package and its tests; a build without
+#            pybind11 simply leaves the package out).
 # Node.js is Debian 12's own (18.x); the npm lockfiles pin versions that run on it, and npm is
 # told to refuse any package whose "engines" excludes the Node.js at hand (--engine-strict).
 # Run as root, or as a user with sudo. Safe to run again: it skips what is present.
@@ -29,6 +31,7 @@ if [ "$mode" = test ]; then
     clang libclang-rt-14-dev llvm
     libgtest-dev libgmock-dev libbenchmark-dev
     python3-numpy blender chromium curl
+    python3-dev python3-pybind11 python3-pytest
   )
 fi
 # Node.js may come from elsewhere than Debian (its own packages conflict with Debian's npm).

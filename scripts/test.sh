@@ -11,13 +11,17 @@ jobs=$(nproc)
 scripts/install-deps.sh
 
 echo "== build (warnings as errors)"
-cmake -S . -B build -G Ninja -DMOTIONGRAPH_WERROR=ON -DMOTIONGRAPH_TESTS=ON -DMOTIONGRAPH_BENCHMARKS=ON >/dev/null
+# The Python package and its tests on Debian's python3 (the one install-deps.sh gave pybind11,
+# numpy and pytest; another python3 earlier on PATH would have none of them).
+cmake -S . -B build -G Ninja -DMOTIONGRAPH_WERROR=ON -DMOTIONGRAPH_TESTS=ON -DMOTIONGRAPH_BENCHMARKS=ON \
+  -DMOTIONGRAPH_PYTHON=ON -DPython_EXECUTABLE=/usr/bin/python3 >/dev/null
 cmake --build build -j "$jobs"
 echo "== tests"
 ctest --test-dir build --output-on-failure -j "$jobs"
 
 echo "== tests under AddressSanitizer + UndefinedBehaviorSanitizer"
-CC=clang CXX=clang++ cmake -S . -B build-asan -G Ninja -DMOTIONGRAPH_WERROR=ON \
+# No Python package there: a plain python cannot load an extension built with the sanitizers.
+CC=clang CXX=clang++ cmake -S . -B build-asan -G Ninja -DMOTIONGRAPH_WERROR=ON -DMOTIONGRAPH_PYTHON=OFF \
   -DMOTIONGRAPH_SANITIZE=address,undefined -DMOTIONGRAPH_BENCHMARKS=OFF -DCMAKE_BUILD_TYPE=Debug >/dev/null
 cmake --build build-asan -j "$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \

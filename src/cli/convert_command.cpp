@@ -11,10 +11,10 @@
 #include <spdlog/spdlog.h>
 
 #include "cli/commands.h"
-#include "cli/motion_output.h"
 #include "cli/load_options.h"
 #include "cli/unit_report.h"
 #include "motiongraph/export/bvh_writer.h"
+#include "motiongraph/export/motion_file.h"
 #include "motiongraph/export/positions_json.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/clip_loader.h"
@@ -33,31 +33,6 @@ struct ConvertOptions {
   double output_units_per_metre = 1.0;
   std::string feet;  // LEFT_ANKLE,LEFT_TOE,RIGHT_ANKLE,RIGHT_TOE
 };
-
-// The clip's foot contacts for its JSON outputs; none, with a warning, when its feet are not
-// found by name. Joints the user named must exist.
-Result<std::optional<std::vector<ContactMask>>> clip_contacts(const ConvertOptions& options, const Clip& clip,
-                                                              FootJoints& feet) {
-  FootJointNames names;
-  if (!options.feet.empty()) {
-    auto parsed = parse_foot_joint_names(options.feet);
-    if (!parsed) return Error{"", 0, "--feet: " + parsed.error().message};
-    names = *parsed;
-  }
-  auto found = find_foot_joints(clip.skeleton, names);
-  if (!found) {
-    if (!names.empty()) return Error{options.input, 0, found.error().message};
-    spdlog::warn("{}: no foot contacts in the JSON: {} (name the feet with --feet)", options.input,
-                 found.error().message);
-    return std::optional<std::vector<ContactMask>>();
-  }
-  feet = *found;
-  auto contacts = detect_foot_contacts(clip.skeleton, clip.motion, feet, FootContactSettings{});
-  if (!contacts) return Error{options.input, 0, contacts.error().message};
-  std::vector<ContactMask> masks(static_cast<size_t>(clip.motion.frame_count));
-  for (int f = 0; f < clip.motion.frame_count; ++f) masks[f] = contact_mask(*contacts, f);
-  return std::optional<std::vector<ContactMask>>(std::move(masks));
-}
 
 int run_convert(const ConvertOptions& options) {
   for (const std::string& output : options.outputs) {
@@ -80,20 +55,30 @@ int run_convert(const ConvertOptions& options) {
     if (!resampled) return fail(resampled.error());
     clip.motion = std::move(*resampled);
   }
-  FootJoints feet;
-  std::optional<std::vector<ContactMask>> masks;
+  // The clip's foot contacts for its JSON (none, with a warning, when its feet are not found).
+  std::optional<ClipContacts> contacts;
   const bool any_json = std::any_of(options.outputs.begin(), options.outputs.end(), [](const std::string& path) {
     return std::filesystem::path(path).extension() == ".json";
   });
   if (any_json || !options.feet.empty()) {
-    auto contacts = clip_contacts(options, clip, feet);
-    if (!contacts) return fail(contacts.error());
-    masks = std::move(*contacts);
+    FootJointNames names;
+    if (!options.feet.empty()) {
+      auto parsed = parse_foot_joint_names(options.feet);
+      if (!parsed) return fail(Error{"", 0, "--feet: " + parsed.error().message});
+      names = *parsed;
+    }
+    std::string why;
+    auto found = clip_contacts(clip.skeleton, clip.motion, names, why);
+    if (!found) return fail(Error{options.input, 0, found.error().message});
+    contacts = std::move(*found);
+    if (!contacts) spdlog::warn("{}: no foot contacts in the JSON: {} (name the feet with --feet)", options.input, why);
   }
-  const PositionsJsonContacts json_contacts{feet, masks ? std::span<const ContactMask>(*masks) : std::span<const ContactMask>()};
+  const PositionsJsonContacts json_contacts{contacts ? contacts->feet : FootJoints{},
+                                            contacts ? std::span<const ContactMask>(contacts->masks)
+                                                     : std::span<const ContactMask>()};
   for (const std::string& output : options.outputs) {
     if (auto s = write_motion(output, clip.skeleton, clip.motion, options.output_units_per_metre,
-                              masks ? &json_contacts : nullptr);
+                              contacts ? &json_contacts : nullptr);
         !s) {
       return fail(s.error());
     }

@@ -64,7 +64,10 @@ int run_steer(const SteerOptions& o) {
   int exhausted = 0;
   int transitions = 0;  // transition edges that start within the script's duration
   Walk played{-1, {}};  // every edge the controller chose (for the clips the motion is cut from)
-  auto cleanup = cleanup_for(o.common, context);
+  const SynthesisRunSettings run = run_settings(o.common, std::chrono::steady_clock::now());
+  std::string cleanup_warning;
+  auto cleanup = make_cleanup(context, run, cleanup_warning);
+  print_cleanup_warning(o.common, cleanup_warning);
   std::vector<ContactMask> all_contacts;
   std::vector<double> cleanup_seconds;
   while (motion.frame_count < total) {
@@ -115,7 +118,7 @@ int run_steer(const SteerOptions& o) {
                                  {"decision_ms_max", 1e3 * percentile(latencies, 1.0)},
                                  {"budget_exhausted_decisions", exhausted},
                                  {"tolerance_deg", o.tolerance_deg},
-                                 {"cleanup", cleanup_report(o.common, context, cleanup)},
+                                 {"cleanup", cleanup_report(context, run, cleanup)},
                                  {"cleanup_ms_p99", cleanup ? nlohmann::json(1e3 * percentile(cleanup_seconds, 0.99))
                                                             : nlohmann::json(nullptr)},
                                  {"controls", controls}};

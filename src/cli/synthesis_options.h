@@ -2,13 +2,15 @@
 // the output, the target skeleton and the optional JSON report.
 #pragma once
 
+#include <chrono>
 #include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "cli/motion_output.h"
+#include "motiongraph/evaluation/synthesis_run.h"
+#include "motiongraph/export/motion_file.h"
 #include "motiongraph/synthesis/loaded_graph.h"
 #include "motiongraph/synthesis/synthesis_context.h"
 #include "motiongraph/synthesis/walk.h"
@@ -38,16 +40,17 @@ struct SynthesisOptions {
 // output's extension first.
 Result<std::unique_ptr<LoadedGraph>> load_for_synthesis(const SynthesisOptions& options);
 
-// The foot clean-up the options ask for: none with --no-cleanup, nor when the graph's feet
-// cannot be found (a warning says why).
-std::optional<FootCleanup> cleanup_for(const SynthesisOptions& options, const SynthesisContext& context);
+// The run settings the options give (evaluation/synthesis_run.h), the report's seconds counted
+// from `begin`.
+SynthesisRunSettings run_settings(const SynthesisOptions& options, std::chrono::steady_clock::time_point begin);
 
-// The report's "cleanup": {"enabled": false, "reason": ...} or the clean-up's figures.
-nlohmann::json cleanup_report(const SynthesisOptions& options, const SynthesisContext& context,
-                              const std::optional<FootCleanup>& cleanup);
+// Prints why no foot clean-up was made, when it was asked for but the graph's feet cannot be
+// found.
+void print_cleanup_warning(const SynthesisOptions& options, const std::string& warning);
 
 // Writes the motion and, when asked, the report (both atomically). The report gets
-// "foot_slide" (evaluation/foot_slide_report.h). JSON motion gets the feet's contacts per frame:
+// "foot_slide" (evaluation/foot_slide_report.h) when it has none. JSON motion gets the feet's
+// contacts per frame:
 // `contacts`, or when empty those of the frames the walk plays.
 Status write_synthesis_outputs(const SynthesisOptions& options, const LoadedGraph& loaded, const Motion& motion,
                                const Walk& walk, nlohmann::json report, std::vector<ContactMask> contacts = {});

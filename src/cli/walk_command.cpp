@@ -35,35 +35,15 @@ int run_walk(const WalkOptions& o) {
   auto loaded = load_for_synthesis(o.common);
   if (!loaded) return fail(loaded.error());
   const SynthesisContext& context = (*loaded)->context();
-  const MotionGraph& graph = *context.graph;
-  auto found = find_walk(graph, o.from, o.to, settings);
-  if (!found) return fail(Error{o.common.graph, 0, found.error().message});
-  const FloorTransform start = context.placement_facing(o.from, Vec2::Zero(), Vec2(0.0, -1.0));
-  auto motion = assemble_walk(*context.db, graph, found->walk, start, context.assembler.target_skeleton());
-  if (!motion) return fail(motion.error());
-  auto cleanup = cleanup_for(o.common, context);
-  if (cleanup) {
-    if (auto s = context.clean_up_walk(found->walk, *cleanup, *motion); !s) return fail(s.error());
-  }
-  const int transitions = found->walk.transition_count(graph);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
-  nlohmann::json report = {{"from", o.from},
-                           {"to", o.to},
-                           {"cost_function", walk_cost_name(settings.cost)},
-                           {"seed", o.seed},
-                           {"cost", found->cost},
-                           {"edges", found->walk.edges},
-                           {"transitions", transitions},
-                           {"transitions_per_second", transitions_per_second(transitions, motion->frame_count, motion->fps)},
-                           {"frames", motion->frame_count},
-                           {"fps", motion->fps},
-                           {"expansions", found->expansions},
-                           {"seconds", seconds},
-                           {"cleanup", cleanup_report(o.common, context, cleanup)}};
-  if (auto s = write_synthesis_outputs(o.common, **loaded, *motion, found->walk, report); !s) return fail(s.error());
+  auto result = run_walk_synthesis(context, o.from, o.to, settings, run_settings(o.common, begin));
+  if (!result) return fail(result.error());
+  print_cleanup_warning(o.common, result->warning);
+  const nlohmann::json& r = result->report;
+  if (auto s = write_synthesis_outputs(o.common, **loaded, result->motion, result->walk, r); !s) return fail(s.error());
   fmt::print("walk {} -> {} ({} cost): {} edges, {} transitions, {} frames ({:.1f} s), cost {:.6g}, {} expansions\n",
-             o.from, o.to, walk_cost_name(settings.cost), found->walk.edges.size(), transitions, motion->frame_count,
-             motion->frame_count / context.db->fps, found->cost, found->expansions);
+             o.from, o.to, walk_cost_name(settings.cost), result->walk.edges.size(), r["transitions"].get<int>(),
+             result->motion.frame_count, result->motion.frame_count / context.db->fps, r["cost"].get<double>(),
+             r["expansions"].get<long long>());
   return 0;
 }
 

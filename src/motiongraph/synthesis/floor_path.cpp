@@ -4,11 +4,13 @@
 #include <charconv>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "motiongraph/core/json_text.h"
+#include "motiongraph/io/file.h"
 
 namespace mg {
 
@@ -148,6 +150,45 @@ Result<FloorPath> make_shape(std::string_view spec) {
     return Error{"", 0, fmt::format("unknown shape '{}': line, circle, figure8 or s-curve", name)};
   }
   return FloorPath::create(std::move(points));
+}
+
+Result<PathSegment> parse_path_segment(const std::string& text) {
+  const size_t colon = text.rfind(':');
+  const size_t dash = text.find('-', colon == std::string::npos ? 0 : colon);
+  PathSegment s;
+  try {
+    if (colon == std::string::npos || dash == std::string::npos) throw std::invalid_argument(text);
+    s.tag = text.substr(0, colon);
+    size_t used = 0;
+    s.from_m = std::stod(text.substr(colon + 1, dash - colon - 1), &used);
+    s.to_m = std::stod(text.substr(dash + 1), &used);
+    if (used != text.size() - dash - 1) throw std::invalid_argument(text);
+  } catch (const std::exception&) {
+    return Error{"", 0, fmt::format("--segment '{}': expected TAG:FROM-TO in metres, e.g. run:20-40", text)};
+  }
+  return s;
+}
+
+Result<FloorPath> make_floor_path(const FloorPathSource& source) {
+  const int given = !source.file.empty() + !source.shape.empty() + !source.points.empty();
+  if (given != 1) return Error{"", 0, "give exactly one of --path and --shape"};
+  std::vector<PathSegment> segments;
+  for (const std::string& text : source.segments) {
+    auto s = parse_path_segment(text);
+    if (!s) return s.error();
+    segments.push_back(*s);
+  }
+  if (!source.points.empty()) return FloorPath::create(source.points, segments);
+  if (!source.shape.empty()) {
+    auto shape = make_shape(source.shape);
+    if (!shape) return shape.error();
+    return FloorPath::create(shape->points(), segments);
+  }
+  auto text = read_text_file(source.file);
+  if (!text) return text.error();
+  auto path = parse_path_json(*text, source.file);
+  if (!path || segments.empty()) return path;
+  return FloorPath::create(path->points(), segments);
 }
 
 }  // namespace mg

@@ -104,4 +104,18 @@ Result<FloorPath> parse_path_json(std::string_view text, const std::string& file
 // A built-in shape "name:metres" (see above), sampled every 0.1 m or finer.
 Result<FloorPath> make_shape(std::string_view spec);
 
+// "TAG:FROM-TO", a motion type along an arc-length range in metres (e.g. run:20-40).
+Result<PathSegment> parse_path_segment(const std::string& text);
+
+// Where a path comes from (the path command's --path, --shape and --segment, the Python
+// package's points, shape and segments): exactly one of a PATH.json file, a built-in shape
+// or points; segments ("TAG:FROM-TO"), when given, replace the file's.
+struct FloorPathSource {
+  std::string file;
+  std::string shape;
+  std::vector<Vec2> points;
+  std::vector<std::string> segments;
+};
+Result<FloorPath> make_floor_path(const FloorPathSource& source);
+
 }  // namespace mg

@@ -1,12 +1,11 @@
-#include "cli/motion_output.h"
+#include "motiongraph/export/motion_file.h"
 
 #include <filesystem>
 
 #include "motiongraph/export/bvh_writer.h"
-#include "motiongraph/export/positions_json.h"
 #include "motiongraph/io/file.h"
 
-namespace mg::cli {
+namespace mg {
 
 Status check_motion_output(const std::string& path) {
   const std::string ext = std::filesystem::path(path).extension().string();
@@ -24,4 +23,19 @@ Status write_motion(const std::string& path, const Skeleton& skeleton, const Mot
   return write_file_atomic(path, bvh ? write_bvh(skeleton, motion, write) : write_positions_json(skeleton, motion, contacts));
 }
 
-}  // namespace mg::cli
+Result<std::optional<ClipContacts>> clip_contacts(const Skeleton& skeleton, const Motion& motion,
+                                                  const FootJointNames& names, std::string& why) {
+  auto found = find_foot_joints(skeleton, names);
+  if (!found) {
+    if (!names.empty()) return found.error();
+    why = found.error().message;
+    return std::optional<ClipContacts>();
+  }
+  auto contacts = detect_foot_contacts(skeleton, motion, *found, FootContactSettings{});
+  if (!contacts) return contacts.error();
+  ClipContacts out{*found, std::vector<ContactMask>(static_cast<size_t>(motion.frame_count))};
+  for (int f = 0; f < motion.frame_count; ++f) out.masks[f] = contact_mask(*contacts, f);
+  return std::optional<ClipContacts>(std::move(out));
+}
+
+}  // namespace mg

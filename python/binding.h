@@ -1,0 +1,83 @@
+// What the pybind11 module's parts share: errors as Python exceptions (motiongraph.Error with
+// the CLI's message, EmptyGraphError when pruning leaves nothing), JSON as Python objects,
+// keyword options, and the motion object that clips and synthesis results are.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include "motiongraph/core/error.h"
+#include "motiongraph/motion/motion.h"
+#include "motiongraph/synthesis/loaded_graph.h"
+#include "motiongraph/synthesis/walk.h"
+
+namespace mg::python {
+
+namespace py = pybind11;
+
+// Made once by the module (module.cpp): the exception types.
+void define_exceptions(py::module_& m);
+// Raises motiongraph.Error (EmptyGraphError for ErrorKind::kEmptyGraph) with error.to_string(),
+// the text the CLI prints after "motiongraph: ". `report`, when not null, becomes the
+// exception's .report.
+[[noreturn]] void raise_error(const Error& error, const nlohmann::json& report = nullptr);
+
+template <class T>
+T take(Result<T>&& result) {
+  if (!result) raise_error(result.error());
+  return std::move(*result);
+}
+inline void check(const Status& status) {
+  if (!status) raise_error(status.error());
+}
+
+// A JSON value as the Python object json.loads makes of the same text.
+py::object to_python(const nlohmann::json& value);
+
+// Keyword options: each name sets something from its value; an unknown name raises TypeError
+// as Python does for a function's unexpected keyword.
+using OptionTable = std::map<std::string, std::function<void(py::handle)>>;
+void apply_options(const py::dict& options, const OptionTable& table, const char* function);
+// The table's usual entry: the value cast to the field's type (TypeError when it cannot be).
+template <class T>
+std::function<void(py::handle)> set(T& field) {
+  return [&field](py::handle value) { field = value.cast<T>(); };
+}
+
+// A motion on a skeleton with its world positions: a loaded clip, a synthesis result, or the
+// frames a controller step made. Synthesis results keep their graph, so that saving them
+// writes the feet's contacts as the CLI does.
+struct PyMotion {
+  std::string name;
+  Skeleton skeleton;
+  Motion motion;
+  std::vector<Vec3> positions;  // frames x joints, metres
+  nlohmann::json report;        // null for clips
+  std::shared_ptr<const LoadedGraph> graph;
+  Walk walk{-1, {}};
+  std::vector<ContactMask> contacts;
+
+  PyMotion(std::string motion_name, Skeleton motion_skeleton, Motion played);
+};
+
+// A graph built or read, ready for synthesis, with what its build made.
+struct PyGraph {
+  std::shared_ptr<const LoadedGraph> loaded;
+  std::string name;             // the file it was read from or written to, else "graph"
+  nlohmann::json report;        // the CLI's build --report
+  std::string matrix_npy;       // when the build was asked for it
+  std::string clouds_npy;
+};
+
+void bind_motion(py::module_& m);
+void bind_graph(py::module_& m, py::class_<PyGraph>& graph_class);
+void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph_class);
+
+}  // namespace mg::python

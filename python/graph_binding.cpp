@@ -1,0 +1,233 @@
+// motiongraph.build() and load_graph(): the library's build_graph() with the CLI's options as
+// keywords (pipeline/build_options.h), and motiongraph.Graph: its counts, nodes, report, save().
+#include <optional>
+
+#include <pybind11/functional.h>
+#include <pybind11/stl.h>
+
+#include "binding.h"
+#include "motiongraph/io/file.h"
+#include "motiongraph/pipeline/build_graph.h"
+#include "motiongraph/pipeline/build_options.h"
+
+namespace mg::python {
+
+namespace {
+
+// A list of texts, or one text of comma-separated items (as --connect-tags takes).
+std::vector<std::string> text_list(py::handle value) {
+  if (py::isinstance<py::str>(value)) {
+    std::vector<std::string> items;
+    const std::string text = value.cast<std::string>();
+    size_t begin = 0;
+    for (size_t comma; (comma = text.find(',', begin)) != std::string::npos; begin = comma + 1) {
+      items.push_back(text.substr(begin, comma - begin));
+    }
+    items.push_back(text.substr(begin));
+    return items;
+  }
+  return value.cast<std::vector<std::string>>();
+}
+
+// A number as the shortest text that reads back as the same double (Python's repr).
+std::string exact_text(py::handle number) {
+  return py::repr(py::float_(py::reinterpret_borrow<py::object>(number))).cast<std::string>();
+}
+
+struct BuildCall {
+  BuildOptions options;
+  std::string cache_dir;
+  bool no_cache = false;
+};
+
+// The CLI's build options as keywords, snake_case ('--no-tag-thresholds' is no_tag_thresholds),
+// plus distance_matrix and clouds (keep those exports for Graph.distance_matrix(), .clouds()).
+OptionTable build_option_table(BuildCall& call) {
+  BuildOptions& b = call.options;
+  return {
+      {"fps", [&b](py::handle v) { b.fps = v.cast<double>(); b.fps_given = true; }},
+      {"asf", set(b.asf)},
+      {"scale", [&b](py::handle v) { b.scale = v.cast<std::optional<double>>(); }},
+      {"input_fps", set(b.input_fps)},
+      {"cmu_index", set(b.cmu_index)},
+      {"no_cmu_tags", set(b.no_cmu_tags)},
+      {"feet", set(b.feet)},
+      {"ignore_tags", set(b.ignore_tags)},
+      {"bridges", set(b.bridges.per_tag_pair)},
+      {"max_bridge", set(b.max_bridge_cm)},
+      {"bridge_blend", set(b.bridges.max_blend_factor)},
+      {"connect_tags", [&b](py::handle v) { b.connect_tags = text_list(v); }},
+      {"cloud", set(b.cloud)},
+      {"ring_spacing", set(b.cloud_settings.ring_spacing_m)},
+      {"ring_radius", set(b.cloud_settings.ring_radius_m)},
+      {"ring_points", set(b.cloud_settings.points_per_ring)},
+      {"joint_weight",
+       [&b](py::handle v) {
+         b.joint_weights.clear();
+         if (py::isinstance<py::dict>(v)) {
+           // {name: weight}: as NAME=WEIGHT with the weight's exact decimal form.
+           for (const auto& [name, weight] : v.cast<py::dict>()) {
+             b.joint_weights.push_back(name.cast<std::string>() + "=" + exact_text(weight));
+           }
+         } else {
+           b.joint_weights = text_list(v);
+         }
+       }},
+      {"window", set(b.distance.window_frames)},
+      {"taper", set(b.taper)},
+      {"threshold",
+       [&b](py::handle v) {
+         b.threshold = py::isinstance<py::str>(v) ? v.cast<std::string>() : exact_text(v);
+       }},
+      {"threshold_quantile", set(b.quantile)},
+      {"coverage", set(b.choice.coverage)},
+      {"min_transition_rate", set(b.choice.min_transition_rate)},
+      {"max_threshold", set(b.choice.max_rms_cm)},
+      {"path_check", set(b.path_check.tolerance_m)},
+      {"no_path_check", set(b.no_path_check)},
+      {"max_out", set(b.spacing.max_out)},
+      {"out_window", set(b.spacing.out_window_frames)},
+      {"min_piece", set(b.spacing.min_piece_frames)},
+      {"no_tag_thresholds", [&b](py::handle v) { b.transitions.per_tag_thresholds = !v.cast<bool>(); }},
+      {"locality", set(b.transitions.locality_radius)},
+      {"continuation_radius", set(b.continuation_radius)},
+      {"tile", set(b.distance.tile_frames)},
+      {"threads", set(b.distance.threads)},
+      {"cache_dir", set(call.cache_dir)},
+      {"no_cache", set(call.no_cache)},
+      {"distance_matrix", set(b.exports.matrix_npy)},
+      {"clouds", set(b.exports.clouds_npy)},
+  };
+}
+
+// The loaded graph of a file made or read under `name`.
+std::shared_ptr<const LoadedGraph> load_file(GraphFile file, const std::string& name) {
+  Result<std::unique_ptr<LoadedGraph>> loaded = Error{};
+  {
+    py::gil_scoped_release release;
+    loaded = LoadedGraph::create(std::move(file), name);
+  }
+  return take(std::move(loaded));
+}
+
+PyGraph build(const std::vector<std::string>& inputs, const py::dict& options, const py::object& progress) {
+  BuildCall call;
+  apply_options(options, build_option_table(call), "build");
+  BuildSettings settings = take(build_settings_from(call.options));
+  std::unique_ptr<DistanceCache> cache;
+  if (!call.no_cache) {
+    cache = std::make_unique<FileDistanceCache>(call.cache_dir.empty() ? default_distance_cache_folder()
+                                                                       : call.cache_dir);
+  }
+  // The progress callback runs with the GIL; its first exception stops further calls and is
+  // raised when the build returns.
+  std::optional<py::error_already_set> callback_error;
+  std::vector<std::string> warnings;
+  BuildLog log;
+  if (!progress.is_none()) {
+    log.info = [&](const std::string& line) {
+      py::gil_scoped_acquire acquire;
+      if (callback_error) return;
+      try {
+        progress(line);
+      } catch (py::error_already_set& e) {
+        callback_error = std::move(e);
+      }
+    };
+  }
+  log.warning = [&warnings](const std::string& line) { warnings.push_back(line); };
+  Result<GraphBuild> built = Error{};
+  {
+    py::gil_scoped_release release;
+    built = build_graph(inputs, settings, cache.get(), log);
+  }
+  if (callback_error) throw std::move(*callback_error);
+  for (const std::string& line : warnings) PyErr_WarnEx(PyExc_UserWarning, line.c_str(), 1);
+  GraphBuild b = take(std::move(built));
+  if (!b.graph_status) raise_error(b.graph_status.error(), b.report);
+  PyGraph graph;
+  graph.name = "graph";
+  graph.report = std::move(b.report);
+  graph.matrix_npy = std::move(b.matrix_npy);
+  graph.clouds_npy = std::move(b.clouds_npy);
+  graph.loaded = load_file(std::move(b.file), graph.name);
+  return graph;
+}
+
+PyGraph load_graph(const std::string& path, int skeleton) {
+  PyGraph graph;
+  graph.name = path;
+  Result<std::unique_ptr<LoadedGraph>> loaded = Error{};
+  {
+    py::gil_scoped_release release;
+    loaded = LoadedGraph::load(path, skeleton);
+  }
+  graph.loaded = take(std::move(loaded));
+  const std::string& report = graph.loaded->file().report_json;
+  if (!report.empty()) graph.report = nlohmann::json::parse(report, nullptr, false);
+  if (graph.report.is_discarded()) graph.report = nullptr;  // not JSON: no report
+  return graph;
+}
+
+}  // namespace
+
+void bind_graph(py::module_& m, py::class_<PyGraph>& graph) {
+  graph.def_property_readonly("name", [](const PyGraph& g) { return g.name; })
+      .def_property_readonly("node_count", [](const PyGraph& g) { return g.loaded->file().graph.node_count(); })
+      .def_property_readonly("edge_count", [](const PyGraph& g) { return g.loaded->file().graph.edge_count(); })
+      .def_property_readonly("transition_count",
+                             [](const PyGraph& g) {
+                               int transitions = 0;
+                               for (const GraphEdge& e : g.loaded->file().graph.edges) transitions += e.transition;
+                               return transitions;
+                             })
+      .def_property_readonly("frame_count", [](const PyGraph& g) { return g.loaded->file().database.frame_count(); })
+      .def_property_readonly("fps", [](const PyGraph& g) { return g.loaded->file().database.fps; })
+      .def_property_readonly("threshold", [](const PyGraph& g) { return g.loaded->file().threshold; })
+      .def_property_readonly("tags", [](const PyGraph& g) { return g.loaded->file().database.tag_names; })
+      .def_property_readonly(
+          "nodes",
+          [](const PyGraph& g) {
+            const GraphFile& file = g.loaded->file();
+            const std::vector<TagMask> tags = file.database.frame_tags();
+            py::list nodes;
+            for (const GraphNode& node : file.graph.nodes) {
+              const DatabaseClip& clip = file.database.clips[node.clip];
+              py::dict row;
+              row["frame"] = node.frame;
+              row["clip"] = clip.name;
+              row["clip_frame"] = node.frame - clip.first_frame;
+              row["tags"] = file.database.tag_names_of(tags.empty() ? 0 : tags[node.frame]);
+              nodes.append(row);
+            }
+            return nodes;
+          },
+          "One dict per node, numbered as walk() and the CLI's 'inspect --nodes' number them: its database "
+          "frame, clip, frame within the clip and tags.")
+      .def_property_readonly("report", [](const PyGraph& g) { return to_python(g.report); },
+                             "The build's report (the CLI's build --report), as a dict.")
+      .def("_matrix_npy", [](const PyGraph& g) { return py::bytes(g.matrix_npy); })
+      .def("_clouds_npy", [](const PyGraph& g) { return py::bytes(g.clouds_npy); })
+      .def(
+          "save",
+          [](PyGraph& g, const std::string& path) {
+            check(check_graph_output(path));
+            Status saved = Ok{};
+            {
+              py::gil_scoped_release release;
+              saved = write_file_atomic(path, serialize_graph_file(g.loaded->file()));
+            }
+            check(saved);
+          },
+          py::arg("path"), "Writes the graph file (.mgraph), as the CLI's build -o does.")
+      .def("__repr__", [](const PyGraph& g) {
+        return "<motiongraph.Graph '" + g.name + "': " + std::to_string(g.loaded->file().graph.node_count()) +
+               " nodes, " + std::to_string(g.loaded->file().graph.edge_count()) + " edges>";
+      });
+  m.def("_build", &build, py::arg("inputs"), py::arg("options"), py::arg("progress"));
+  m.def("load_graph", &load_graph, py::arg("path"), py::arg("skeleton") = -1,
+        "Reads a .mgraph file and sets up synthesis on the skeleton of index `skeleton` (-1: the first "
+        "clip's).");
+}
+
+}  // namespace mg::python

@@ -1,0 +1,188 @@
+// Graph.walk(), Graph.path() and Graph.controller(): the CLI's walk, path and steer on a graph
+// in memory, through the same library calls (evaluation/synthesis_run.h, synthesis/controller.h)
+// and with the same options as keywords.
+#include <array>
+#include <optional>
+
+#include <pybind11/stl.h>
+
+#include "binding.h"
+#include "motiongraph/evaluation/synthesis_run.h"
+#include "motiongraph/synthesis/controller.h"
+
+namespace mg::python {
+
+namespace {
+
+SynthesisRunSettings run_settings(const PyGraph& graph) {
+  SynthesisRunSettings run;
+  run.graph_name = graph.name;
+  run.cleanup_off_reason = "cleanup=False";
+  return run;
+}
+
+// The synthesized motion as a Python Motion that keeps its graph.
+PyMotion result_motion(const PyGraph& graph, const char* name, SynthesizedMotion&& made) {
+  if (!made.warning.empty()) {
+    PyErr_WarnEx(PyExc_UserWarning, (graph.name + ": " + made.warning).c_str(), 1);
+  }
+  PyMotion motion(name, graph.loaded->context().assembler.skeleton(), std::move(made.motion));
+  motion.report = std::move(made.report);
+  motion.graph = graph.loaded;
+  motion.walk = std::move(made.walk);
+  motion.contacts = std::move(made.contacts);
+  return motion;
+}
+
+PyMotion walk(const PyGraph& graph, int from, int to, const py::kwargs& options) {
+  WalkSearchSettings settings;
+  SynthesisRunSettings run = run_settings(graph);
+  std::string cost = "quality";
+  apply_options(options,
+                {{"cost", set(cost)},
+                 {"seed", set(settings.seed)},
+                 {"min_frames", set(settings.min_frames)},
+                 {"max_expansions", set(settings.max_expansions)},
+                 {"cleanup", set(run.cleanup)}},
+                "walk");
+  settings.cost = take(parse_walk_cost(cost));
+  Result<SynthesizedMotion> made = Error{};
+  {
+    py::gil_scoped_release release;
+    made = run_walk_synthesis(graph.loaded->context(), from, to, settings, run);
+  }
+  return result_motion(graph, "walk", take(std::move(made)));
+}
+
+PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<double, 2>>>& points,
+              const std::optional<std::string>& shape, const std::vector<std::string>& segments,
+              const std::optional<std::string>& file, const py::kwargs& options) {
+  PathSynthesisSettings settings;
+  SynthesisRunSettings run = run_settings(graph);
+  apply_options(options,
+                {{"horizon", set(settings.horizon_s)},
+                 {"commit", set(settings.commit_s)},
+                 {"tag_penalty", set(settings.tag_penalty_m2)},
+                 {"max_expansions", set(settings.max_expansions)},
+                 {"beam", set(settings.beam_width)},
+                 {"min_speed", set(settings.min_speed_mps)},
+                 {"transition_penalty", set(settings.transition_penalty_m2)},
+                 {"behind_penalty", set(settings.behind_penalty_m)},
+                 {"start_node", set(settings.start_node)},
+                 {"cleanup", set(run.cleanup)}},
+                "path");
+  check(settings.validate());
+  FloorPathSource source{file.value_or(""), shape.value_or(""), {}, segments};
+  for (const auto& [x, z] : points.value_or(std::vector<std::array<double, 2>>{})) source.points.emplace_back(x, z);
+  Result<SynthesizedMotion> made = Error{};
+  {
+    py::gil_scoped_release release;
+    auto floor_path = make_floor_path(source);
+    if (!floor_path) {
+      made = floor_path.error();
+    } else {
+      made = run_path_synthesis(graph.loaded->context(), *floor_path, settings, run);
+    }
+  }
+  return result_motion(graph, "path", take(std::move(made)));
+}
+
+// The interactive controller: each step() takes a heading and a motion type and returns the
+// frames it decided on, cleaned as the CLI's steer cleans them.
+class PyController {
+ public:
+  PyController(const PyGraph& graph, double heading_deg, const std::optional<std::string>& tag,
+               std::array<double, 2> at, const py::kwargs& options)
+      : loaded_(graph.loaded), motion_(graph.loaded->context().assembler.empty_motion()) {
+    ControllerSettings settings;
+    SynthesisRunSettings run = run_settings(graph);
+    apply_options(options,
+                  {{"horizon", set(settings.horizon_s)},
+                   {"commit", set(settings.commit_s)},
+                   {"tag_penalty", set(settings.tag_penalty)},
+                   {"transition_penalty", set(settings.transition_penalty)},
+                   {"max_expansions", set(settings.max_expansions)},
+                   {"beam", set(settings.beam_width)},
+                   {"time_budget", set(settings.time_budget_s)},
+                   {"start_node", set(settings.start_node)},
+                   {"cleanup", set(run.cleanup)}},
+                  "controller");
+    check(settings.validate());
+    std::string warning;
+    cleanup_ = make_cleanup(context(), run, warning);
+    if (!warning.empty()) PyErr_WarnEx(PyExc_UserWarning, (graph.name + ": " + warning).c_str(), 1);
+    controller_ = take(Controller::create(context(), settings, input(heading_deg, tag), Vec2(at[0], at[1])));
+  }
+
+  PyMotion step(double heading_deg, const std::optional<std::string>& tag) {
+    controller_->set_input(input(heading_deg, tag));
+    const int first = motion_.frame_count;
+    std::vector<ContactMask> contacts;
+    Status cleaned = Ok{};
+    {
+      py::gil_scoped_release release;
+      const ControllerDecision decision = controller_->step(motion_);
+      contacts = context().edges_contacts(decision.edges);
+      if (cleanup_) cleaned = cleanup_->clean(motion_, first, contacts);
+      played_.edges.insert(played_.edges.end(), decision.edges.begin(), decision.edges.end());
+    }
+    check(cleaned);
+    contacts_.insert(contacts_.end(), contacts.begin(), contacts.end());
+    return frames(motion_.slice(first, motion_.frame_count - first), std::move(contacts));
+  }
+
+  PyMotion motion() const { return frames(motion_, contacts_); }
+
+ private:
+  const SynthesisContext& context() const { return loaded_->context(); }
+
+  ControlInput input(double heading_deg, const std::optional<std::string>& tag) const {
+    ControlInput in;
+    in.direction = bearing_direction(heading_deg);
+    if (tag && !tag->empty()) in.tag = take(context().tag_mask(*tag));
+    return in;
+  }
+
+  PyMotion frames(Motion motion, std::vector<ContactMask> contacts) const {
+    PyMotion out("steer", context().assembler.skeleton(), std::move(motion));
+    out.graph = loaded_;
+    out.contacts = std::move(contacts);
+    return out;
+  }
+
+  std::shared_ptr<const LoadedGraph> loaded_;
+  Motion motion_;
+  std::optional<FootCleanup> cleanup_;
+  std::optional<Controller> controller_;
+  Walk played_{-1, {}};
+  std::vector<ContactMask> contacts_;
+};
+
+}  // namespace
+
+void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
+  graph.def("walk", &walk, py::arg("from_node"), py::arg("to_node"),
+            "The cheapest walk between two nodes (the CLI's walk): keywords cost ('constant', 'quality', "
+            "'random', 'hybrid'), seed, min_frames, max_expansions, cleanup.")
+      .def("path", &path, py::arg("points") = py::none(), py::arg("shape") = py::none(),
+           py::arg("segments") = std::vector<std::string>{}, py::arg("file") = py::none(),
+           "Motion following a path on the floor (the CLI's path): exactly one of points ([(x, z), ...] metres), "
+           "shape ('line:20', 'circle:5', 'figure8:4', 's-curve:100') or file (PATH.json); segments "
+           "['TAG:FROM-TO', ...]; keywords horizon, commit, tag_penalty, max_expansions, beam, min_speed, "
+           "transition_penalty, behind_penalty, start_node, cleanup.")
+      .def(
+          "controller",
+          [](const PyGraph& g, double heading_deg, const std::optional<std::string>& tag, std::array<double, 2> at,
+             const py::kwargs& options) { return PyController(g, heading_deg, tag, at, options); },
+          py::arg("heading_deg") = 0.0, py::arg("tag") = py::none(), py::arg("at") = std::array<double, 2>{0.0, 0.0},
+          "A steering controller (the CLI's steer) starting at `at` (x, z) facing heading_deg (degrees clockwise "
+          "from north, -z): keywords horizon, commit, tag_penalty, transition_penalty, max_expansions, beam, "
+          "time_budget, start_node, cleanup.");
+  py::class_<PyController>(m, "Controller", "Steers motion on a graph from a heading and a motion type.")
+      .def("step", &PyController::step, py::arg("heading_deg"), py::arg("tag") = py::none(),
+           "Decides the next frames towards heading_deg (degrees clockwise from north) with motion type `tag` "
+           "(None: any) and returns them as a Motion.")
+      .def_property_readonly("motion", &PyController::motion, "All frames so far, as a Motion.");
+}
+
+}  // namespace mg::python

@@ -1,0 +1,161 @@
+#include "motiongraph/evaluation/synthesis_run.h"
+
+#include <cmath>
+#include <ctime>
+
+#include "motiongraph/evaluation/foot_slide_report.h"
+#include "motiongraph/export/motion_file.h"
+#include "motiongraph/synthesis/assembler.h"
+
+namespace mg {
+
+namespace {
+
+// CPU seconds this thread has run (the search runs on one thread).
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+double seconds_since(std::chrono::steady_clock::time_point begin) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+}
+
+// Cleans `motion` as played for `walk`; the report's "cleanup".
+Result<nlohmann::json> clean_up(const SynthesisContext& context, const SynthesisRunSettings& settings,
+                                const Walk& walk, Motion& motion, std::string& warning) {
+  auto cleanup = make_cleanup(context, settings, warning);
+  if (cleanup) {
+    if (auto s = context.clean_up_walk(walk, *cleanup, motion); !s) return s.error();
+  }
+  return cleanup_report(context, settings, cleanup);
+}
+
+}  // namespace
+
+std::optional<FootCleanup> make_cleanup(const SynthesisContext& context, const SynthesisRunSettings& settings,
+                                        std::string& warning) {
+  if (!settings.cleanup) return std::nullopt;
+  auto cleanup = context.foot_cleanup(FootCleanupSettings{});
+  if (!cleanup) {
+    warning = cleanup.error().message;
+    return std::nullopt;
+  }
+  return std::move(*cleanup);
+}
+
+nlohmann::json cleanup_report(const SynthesisContext& context, const SynthesisRunSettings& settings,
+                              const std::optional<FootCleanup>& cleanup) {
+  if (!cleanup) {
+    std::string reason = settings.cleanup_off_reason;
+    if (settings.cleanup) {
+      auto made = context.foot_cleanup(FootCleanupSettings{});  // what make_cleanup warned of
+      reason = made ? std::string("not made") : made.error().message;
+    }
+    return {{"enabled", false}, {"reason", reason}};
+  }
+  const FootCleanupStats& s = cleanup->stats();
+  return {{"enabled", true},
+          {"frames", s.frames},
+          {"planted_leg_frames", s.planted_leg_frames},
+          {"root_lowered_frames", s.root_lowered_frames},
+          {"max_root_drop_m", s.max_root_drop_m},
+          {"max_correction_m", s.max_correction_m},
+          {"max_ankle_miss_m", s.max_ankle_miss_m},
+          {"replants", s.replants}};
+}
+
+Result<SynthesizedMotion> run_walk_synthesis(const SynthesisContext& context, int from, int to,
+                                             const WalkSearchSettings& walk, const SynthesisRunSettings& settings) {
+  if (auto s = walk.validate(); !s) return s.error();
+  const MotionGraph& graph = *context.graph;
+  auto found = find_walk(graph, from, to, walk);
+  if (!found) return Error{settings.graph_name, 0, found.error().message};
+  const FloorTransform start = context.placement_facing(from, Vec2::Zero(), Vec2(0.0, -1.0));
+  auto motion = assemble_walk(*context.db, graph, found->walk, start, context.assembler.target_skeleton());
+  if (!motion) return motion.error();
+  SynthesizedMotion out{std::move(*motion), found->walk, {}, {}, {}};
+  auto cleanup = clean_up(context, settings, out.walk, out.motion, out.warning);
+  if (!cleanup) return cleanup.error();
+  const int transitions = out.walk.transition_count(graph);
+  out.report = {{"from", from},
+                {"to", to},
+                {"cost_function", walk_cost_name(walk.cost)},
+                {"seed", walk.seed},
+                {"cost", found->cost},
+                {"edges", out.walk.edges},
+                {"transitions", transitions},
+                {"transitions_per_second", transitions_per_second(transitions, out.motion.frame_count, out.motion.fps)},
+                {"frames", out.motion.frame_count},
+                {"fps", out.motion.fps},
+                {"expansions", found->expansions},
+                {"seconds", seconds_since(settings.begin)},
+                {"cleanup", *cleanup}};
+  out.report["foot_slide"] = foot_slide_report(context, out.walk, out.motion);
+  return out;
+}
+
+Result<SynthesizedMotion> run_path_synthesis(const SynthesisContext& context, const FloorPath& path,
+                                             const PathSynthesisSettings& search, const SynthesisRunSettings& settings) {
+  if (auto s = search.validate(); !s) return s.error();
+  const auto search_begin = std::chrono::steady_clock::now();
+  const double search_cpu_begin = thread_cpu_seconds();
+  auto result = synthesize_path(context, path, search);
+  const double search_cpu_seconds = thread_cpu_seconds() - search_cpu_begin;
+  const double search_seconds = seconds_since(search_begin);
+  if (!result) return Error{settings.graph_name, 0, result.error().message};
+  SynthesizedMotion out{std::move(result->motion), result->walk, {}, {}, {}};
+  const Motion& motion = out.motion;
+  auto cleanup = clean_up(context, settings, out.walk, out.motion, out.warning);
+  if (!cleanup) return cleanup.error();
+  const double seconds = seconds_since(settings.begin);
+  nlohmann::json segments = nlohmann::json::array();
+  for (const PathSegment& s : path.segments()) segments.push_back({{"from_m", s.from_m}, {"to_m", s.to_m}, {"tag", s.tag}});
+  nlohmann::json points = nlohmann::json::array();
+  for (const Vec2& p : path.points()) points.push_back({p.x(), p.y()});
+  nlohmann::json roots = nlohmann::json::array();
+  for (const Vec2& p : result->roots) roots.push_back({std::round(p.x() * 1e4) / 1e4, std::round(p.y() * 1e4) / 1e4});
+  const int transitions = out.walk.transition_count(*context.graph);
+  out.report = {{"path_length_m", result->path_length_m},
+                {"arc_covered_m", result->arc_covered_m},
+                {"reached_end", result->reached_end},
+                {"mean_deviation_m", result->mean_deviation_m},
+                {"max_deviation_m", result->max_deviation_m},
+                {"tag_match", result->tag_match},
+                {"frames", motion.frame_count},
+                {"fps", motion.fps},
+                {"duration_s", motion.frame_count / motion.fps},
+                {"seconds", seconds},
+                {"realtime_factor", seconds > 0.0 ? motion.frame_count / motion.fps / seconds : 0.0},
+                {"search_seconds", search_seconds},
+                {"search_realtime_factor", search_seconds > 0.0 ? motion.frame_count / motion.fps / search_seconds : 0.0},
+                // CPU time of the search: on a shared machine it varies less than the wall time.
+                {"search_cpu_seconds", search_cpu_seconds},
+                {"search_cpu_realtime_factor",
+                 search_cpu_seconds > 0.0 ? motion.frame_count / motion.fps / search_cpu_seconds : 0.0},
+                {"searches", result->searches},
+                {"expansions", result->expansions},
+                {"budget_exhausted_searches", result->budget_exhausted},
+                {"start_node", out.walk.start_node},
+                {"edges", out.walk.edges},
+                {"transitions", transitions},
+                {"transitions_per_second", transitions_per_second(transitions, motion.frame_count, motion.fps)},
+                {"segments", segments},
+                {"path", points},
+                {"roots", roots},
+                {"cleanup", *cleanup}};
+  out.report["foot_slide"] = foot_slide_report(context, out.walk, out.motion);
+  return out;
+}
+
+Status write_synthesized_motion(const std::string& path, const SynthesisContext& context, const Motion& motion,
+                                const Walk& walk, std::vector<ContactMask> contacts) {
+  if (contacts.empty() && walk.start_node >= 0) contacts = context.walk_contacts(walk);
+  const bool with_contacts = !context.frame_contacts.empty() && static_cast<int>(contacts.size()) >= motion.frame_count;
+  contacts.resize(static_cast<size_t>(motion.frame_count));
+  const PositionsJsonContacts json_contacts{context.feet, contacts};
+  return write_motion(path, context.assembler.skeleton(), motion, 1.0, with_contacts ? &json_contacts : nullptr);
+}
+
+}  // namespace mg

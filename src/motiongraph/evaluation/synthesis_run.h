@@ -1,0 +1,60 @@
+// A synthesis job from start to report, as the CLI's `walk` and `path` and the Python
+// package run it: search, play the walk as motion, the foot clean-up (synthesis/foot_cleanup.h)
+// unless turned off, and the JSON report (the CLI's --report: figures of the result, the
+// clean-up's, timings, "foot_slide"). The motion is written with write_synthesized_motion().
+#pragma once
+
+#include <chrono>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "motiongraph/core/error.h"
+#include "motiongraph/synthesis/floor_path.h"
+#include "motiongraph/synthesis/path_synthesis.h"
+#include "motiongraph/synthesis/synthesis_context.h"
+#include "motiongraph/synthesis/walk_search.h"
+
+namespace mg {
+
+struct SynthesisRunSettings {
+  bool cleanup = true;
+  std::string cleanup_off_reason = "--no-cleanup";  // the report's reason when cleanup is false
+  // Errors of the search name this (the graph file).
+  std::string graph_name;
+  // The report's "seconds" count from here (the CLI: before it reads the graph).
+  std::chrono::steady_clock::time_point begin = std::chrono::steady_clock::now();
+};
+
+struct SynthesizedMotion {
+  Motion motion;                      // on the context's target skeleton
+  Walk walk;                          // the edges the motion plays
+  std::vector<ContactMask> contacts;  // per frame, when the walk's own are not the motion's
+  nlohmann::json report;
+  std::string warning;                // why no clean-up was made when one was asked for, else empty
+};
+
+// The clean-up asked for: none when `settings.cleanup` is false, nor when the feet cannot be
+// found (then `warning` says why).
+std::optional<FootCleanup> make_cleanup(const SynthesisContext& context, const SynthesisRunSettings& settings,
+                                        std::string& warning);
+// The report's "cleanup": {"enabled": false, "reason": ...} or the clean-up's figures.
+nlohmann::json cleanup_report(const SynthesisContext& context, const SynthesisRunSettings& settings,
+                              const std::optional<FootCleanup>& cleanup);
+
+// The cheapest walk from node `from` to node `to` (walk_search.h), starting at the origin
+// facing north.
+Result<SynthesizedMotion> run_walk_synthesis(const SynthesisContext& context, int from, int to,
+                                             const WalkSearchSettings& walk, const SynthesisRunSettings& settings);
+// Motion following `path` (path_synthesis.h).
+Result<SynthesizedMotion> run_path_synthesis(const SynthesisContext& context, const FloorPath& path,
+                                             const PathSynthesisSettings& search, const SynthesisRunSettings& settings);
+
+// Writes the motion (.bvh or .json, export/motion_file.h); JSON gets the feet's contacts per
+// frame: `contacts`, or when empty those of the frames `walk` plays.
+Status write_synthesized_motion(const std::string& path, const SynthesisContext& context, const Motion& motion,
+                                const Walk& walk, std::vector<ContactMask> contacts = {});
+
+}  // namespace mg

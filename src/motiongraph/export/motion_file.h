@@ -1,0 +1,32 @@
+// Motion written to a file, the format by extension: .bvh in metres (times units_per_metre)
+// or .json world positions (positions_json.h), checked before any work.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "motiongraph/core/error.h"
+#include "motiongraph/export/positions_json.h"
+#include "motiongraph/motion/motion.h"
+
+namespace mg {
+
+// Fails unless the path ends in .bvh or .json.
+Status check_motion_output(const std::string& path);
+// Writes the motion atomically as BVH (metres * units_per_metre) or JSON positions.
+// JSON gets the feet's contacts too when `contacts` is given (positions_json.h).
+Status write_motion(const std::string& path, const Skeleton& skeleton, const Motion& motion,
+                    double units_per_metre = 1.0, const PositionsJsonContacts* contacts = nullptr);
+
+// A captured clip's foot contacts, for its JSON: the feet found by name unless `names` gives
+// them (skeleton/foot_joints.h). nullopt, with `why` set, when they are not found and none was
+// named; an error when a joint named is missing.
+struct ClipContacts {
+  FootJoints feet;
+  std::vector<ContactMask> masks;  // one per frame
+};
+Result<std::optional<ClipContacts>> clip_contacts(const Skeleton& skeleton, const Motion& motion,
+                                                  const FootJointNames& names, std::string& why);
+
+}  // namespace mg

@@ -1,0 +1,83 @@
+#include "motiongraph/pipeline/build_options.h"
+
+#include <cstdlib>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "motiongraph/core/text.h"
+
+namespace mg {
+
+Result<BuildSettings> build_settings_from(const BuildOptions& o) {
+  BuildSettings s;
+  s.distance_stage.cloud = o.cloud_settings;
+  s.distance_stage.distance = o.distance;
+  s.distance_stage.continuation_radius = o.continuation_radius;
+  auto cloud = parse_cloud_kind(o.cloud);
+  if (!cloud) return Error{"", 0, fmt::format("--cloud must be 'rings' or 'joints', not '{}'", o.cloud)};
+  s.distance_stage.cloud.kind = *cloud;
+  for (const std::string& item : o.joint_weights) {
+    const size_t eq = item.find('=');
+    char* end = nullptr;
+    const double weight = eq == std::string::npos ? -1.0 : std::strtod(item.c_str() + eq + 1, &end);
+    if (eq == std::string::npos || end == item.c_str() + eq + 1 || *end != '\0') {
+      return Error{"", 0, fmt::format("--joint-weight '{}' is not NAME=WEIGHT", item)};
+    }
+    s.distance_stage.cloud.joint_weights.emplace_back(item.substr(0, eq), weight);
+  }
+  auto taper = parse_taper(o.taper);
+  if (!taper) return Error{"", 0, fmt::format("--taper must be 'uniform' or 'hann', not '{}'", o.taper)};
+  s.distance_stage.distance.taper = *taper;
+  // The threshold: chosen from the data (auto), a quantile of all pairs, D, or an RMS in cm.
+  s.transitions = o.transitions;
+  if (o.quantile >= 0.0) {
+    if (o.threshold != "auto") return Error{"", 0, "give --threshold or --threshold-quantile, not both"};
+    s.threshold_mode = ThresholdMode::kQuantile;
+    s.threshold_value = o.quantile;
+  } else if (o.threshold != "auto") {
+    std::string text = o.threshold;
+    s.threshold_mode = ThresholdMode::kDistance;
+    if (text.size() > 2 && text.compare(text.size() - 2, 2, "cm") == 0) {
+      s.threshold_mode = ThresholdMode::kRmsCm;
+      text.resize(text.size() - 2);
+    }
+    const std::optional<double> value = parse_finite(text);
+    if (!value || *value < 0.0) {
+      return Error{"", 0, fmt::format("--threshold must be 'auto', a distance D >= 0 or an RMS distance such as "
+                                      "'4cm', not {}", mg::quoted(o.threshold))};
+    }
+    s.threshold_value = *value;
+  }
+  s.choice = o.choice;
+  s.path_check = !o.no_path_check;
+  s.path_check_settings = o.path_check;
+  s.spacing = o.spacing;
+  s.bridges = o.bridges;
+  s.max_bridge_rms_cm = o.max_bridge_cm;
+  s.connect_tags = o.connect_tags;
+  s.ignore_tags = o.ignore_tags;
+  s.exports = o.exports;
+  DatabaseSettings& db = s.database;
+  db.fps = o.fps;
+  db.prefer_manifest_fps = !o.fps_given;
+  if (!o.asf.empty()) db.asf_path = o.asf;
+  db.bvh_metres_per_unit = o.scale;
+  db.input_fps = o.input_fps;
+  db.cmu_tags = !o.no_cmu_tags;
+  db.cmu_index_path = o.cmu_index;
+  if (!o.feet.empty()) {
+    auto feet = parse_foot_joint_names(o.feet);
+    if (!feet) return Error{"", 0, "--feet: " + feet.error().message};
+    db.foot_names = *feet;
+  }
+  if (auto valid = s.validate(); !valid) return valid.error();
+  return s;
+}
+
+Status check_graph_output(const std::string& path) {
+  if (std::filesystem::path(path).extension() != ".mgraph") return Error{path, 0, "the graph file must end in .mgraph"};
+  return Ok{};
+}
+
+}  // namespace mg

@@ -1,0 +1,52 @@
+// The build's options as a user gives them, text where the user writes text (the CLI's
+// `motiongraph build` options and the Python package's build() keywords), and the
+// BuildSettings they make: the one place that reads a cloud or taper name, NAME=WEIGHT joint
+// weights and a threshold given as 'auto', D or '4cm', so that both front ends accept the same
+// values and fail with the same messages (which name the CLI's options).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "motiongraph/core/error.h"
+#include "motiongraph/pipeline/build_settings.h"
+
+namespace mg {
+
+struct BuildOptions {
+  double fps = 30.0;
+  bool fps_given = false;  // else a manifest's fps wins
+  std::string asf;
+  std::optional<double> scale;
+  double input_fps = 0.0;
+  std::string cmu_index;
+  bool no_cmu_tags = false;
+  std::string feet;  // LEFT_ANKLE,LEFT_TOE,RIGHT_ANKLE,RIGHT_TOE (skeleton/foot_joints.h)
+  std::string cloud = "rings";
+  PointCloudSettings cloud_settings;
+  std::vector<std::string> joint_weights;  // NAME=WEIGHT
+  DistanceSettings distance;
+  std::string taper = "uniform";
+  TransitionSettings transitions;
+  std::string threshold = "auto";  // auto, D, or an RMS distance with "cm"
+  double quantile = -1.0;          // given: the threshold is this quantile of all pairs
+  ThresholdChoiceSettings choice;
+  PathCheckSettings path_check;
+  bool no_path_check = false;
+  TransitionSpacing spacing;
+  int continuation_radius = -1;
+  bool ignore_tags = false;
+  BridgeSettings bridges;
+  double max_bridge_cm = 0.0;  // RMS point distance above which no bridge is made; 0: no cap
+  std::vector<std::string> connect_tags;
+  BuildExports exports;
+};
+
+// The settings the options give (validated), or the first option that is not understood.
+Result<BuildSettings> build_settings_from(const BuildOptions& options);
+
+// Fails unless `path` names a graph file (ends in .mgraph).
+Status check_graph_output(const std::string& path);
+
+}  // namespace mg

@@ -1,0 +1,64 @@
+"""load_clip() and Motion: the same clip as the CLI's convert, arrays without copies."""
+import numpy as np
+import pytest
+
+import motiongraph as mg
+from conftest import assert_positions_equal, cli_error, read_json
+
+
+@pytest.mark.parametrize("fps", [None, 30.0])
+def test_positions_equal_the_cli(cli, data, tmp_path, fps):
+    amc = data / "cmu/16/16_15.amc"
+    args = ["--fps", fps] if fps else []
+    cli("convert", amc, "-o", tmp_path / "cli.json", *args)
+    clip = mg.load_clip(str(amc), fps=fps)
+    assert_positions_equal(clip, read_json(tmp_path / "cli.json"))
+    # What save() writes is the CLI's file, byte for byte, in both formats.
+    cli("convert", amc, "-o", tmp_path / "cli.bvh", *args)
+    clip.save(str(tmp_path / "py.json"))
+    clip.save(str(tmp_path / "py.bvh"))
+    assert (tmp_path / "py.json").read_bytes() == (tmp_path / "cli.json").read_bytes()
+    assert (tmp_path / "py.bvh").read_bytes() == (tmp_path / "cli.bvh").read_bytes()
+
+
+def test_bvh_with_scale_equals_the_cli(cli, data, tmp_path):
+    cli("convert", data / "cmu/16/16_15.amc", "-o", tmp_path / "m.bvh")
+    cli("convert", tmp_path / "m.bvh", "--scale", 0.5, "-o", tmp_path / "cli.json")
+    clip = mg.load_clip(str(tmp_path / "m.bvh"), scale=0.5)
+    assert_positions_equal(clip, read_json(tmp_path / "cli.json"))
+
+
+def test_arrays_are_views_of_the_clip(data):
+    clip = mg.load_clip(str(data / "cmu/16/16_15.amc"), asf=str(data / "cmu/16/16.asf"))
+    positions, rotations = clip.positions, clip.rotations
+    frames, joints = len(clip), len(clip.joint_names)
+    assert positions.shape == (frames, joints, 3) and positions.dtype == np.float64
+    assert rotations.shape == (frames, joints, 4)
+    # No copies: every access is a view of the same memory, which the clip owns.
+    assert not positions.flags.owndata and np.shares_memory(positions, clip.positions)
+    assert not rotations.flags.owndata and np.shares_memory(rotations, clip.rotations)
+    assert not positions.flags.writeable
+    np.testing.assert_allclose(np.linalg.norm(rotations, axis=2), 1.0, atol=1e-9)
+    assert clip.parents[0] == -1 and all(p < j for j, p in enumerate(clip.parents))
+    assert clip.fps == 120.0
+    del clip  # the arrays keep it alive
+    assert np.isfinite(positions).all()
+
+
+def test_bad_clip_raises_the_cli_message(cli, data, tmp_path):
+    bad = tmp_path / "bad.bvh"
+    bad.write_text("HIERARCHY\nROOT Hips\n{\n  OFFSET 0 0\n")
+    want = cli_error(cli("convert", bad, "-o", tmp_path / "x.json", check=False))
+    with pytest.raises(mg.Error) as raised:
+        mg.load_clip(str(bad))
+    assert str(raised.value) == want
+    clip = mg.load_clip(str(data / "cmu/16/16_15.amc"))
+    want = cli_error(cli("convert", data / "cmu/16/16_15.amc", "-o", tmp_path / "x.txt", check=False))
+    with pytest.raises(mg.Error) as raised:
+        clip.save(str(tmp_path / "x.txt"))
+    assert str(raised.value) == want
+
+
+def test_missing_clip_raises(tmp_path):
+    with pytest.raises(mg.Error, match="missing.amc"):
+        mg.load_clip(str(tmp_path / "missing.amc"))

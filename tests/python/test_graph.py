@@ -1,0 +1,158 @@
+"""build(), load_graph() and Graph: the same graph, report and exports as the CLI's build."""
+import re
+
+import numpy as np
+import pytest
+
+import motiongraph as mg
+from conftest import assert_releases_the_gil, cli_error, read_json, without_timings
+
+
+def inspect_nodes(cli, path):
+    """The CLI's 'inspect --nodes' table as (frame, clip, tags) per node, in node order."""
+    rows = []
+    for line in cli("inspect", path, "--nodes").stdout.splitlines():
+        m = re.match(r"\s*(\d+)\s+(\d+)\s+(\S+)\s+[\d.]+s\s+\d+\s+\d+\s*(\S*)$", line)
+        if m:
+            assert int(m.group(1)) == len(rows)
+            rows.append((int(m.group(2)), m.group(3), m.group(4).split(",") if m.group(4) else []))
+    assert rows
+    return rows
+
+
+def python_nodes(graph):
+    return [(n["frame"], n["clip"], n["tags"]) for n in graph.nodes]
+
+
+@pytest.fixture(scope="module")
+def cli_build(cli, data, tmp_path_factory):
+    out = tmp_path_factory.mktemp("cli_build")
+    cli("build", data / "cmu/16", "-o", out / "g.mgraph", "--report", out / "report.json", "--no-cache",
+        "--export-matrix", out / "matrix.npy", "--export-clouds", out / "clouds.npy", "-q")
+    return out
+
+
+@pytest.fixture(scope="module")
+def built(data):
+    return mg.build(str(data / "cmu/16"), no_cache=True, distance_matrix=True, clouds=True)
+
+
+def test_build_equals_the_cli(cli, cli_build, built):
+    assert without_timings(built.report) == without_timings(read_json(cli_build / "report.json"))
+    from_cli = mg.load_graph(str(cli_build / "g.mgraph"))
+    assert (built.node_count, built.edge_count, built.transition_count, built.frame_count) == (
+        from_cli.node_count, from_cli.edge_count, from_cli.transition_count, from_cli.frame_count)
+    assert built.threshold == from_cli.threshold
+    assert python_nodes(built) == inspect_nodes(cli, cli_build / "g.mgraph")
+    after = built.report["graph_after"]
+    assert (after["nodes"], after["edges"], after["transitions"]) == (
+        built.node_count, built.edge_count, built.transition_count)
+
+
+def test_exports_equal_the_cli(cli_build, built):
+    matrix = built.distance_matrix()
+    assert matrix.shape == (built.frame_count, built.frame_count) and matrix.dtype == np.float32
+    assert np.array_equal(matrix, np.load(cli_build / "matrix.npy"), equal_nan=True)
+    clouds = built.clouds()
+    assert clouds.shape[0] == built.frame_count and clouds.shape[2] == 3
+    assert np.array_equal(clouds, np.load(cli_build / "clouds.npy"))
+
+
+def test_saved_graph_reads_back(cli, built, tmp_path):
+    built.save(str(tmp_path / "g.mgraph"))
+    again = mg.load_graph(str(tmp_path / "g.mgraph"))
+    assert python_nodes(again) == python_nodes(built)
+    assert inspect_nodes(cli, tmp_path / "g.mgraph") == python_nodes(built)
+    assert without_timings(again.report) == without_timings(built.report)
+    with pytest.raises(mg.Error, match="no distance_matrix"):
+        again.distance_matrix()
+
+
+def test_fixture_graph_equals_a_python_build(cli, data, graph_file, graph):
+    """The library-made test graph (the CLI's defaults) is what build() makes with no options."""
+    assert python_nodes(graph) == inspect_nodes(cli, graph_file)
+    assert python_nodes(mg.build([data / "cmu/16"], no_cache=True)) == python_nodes(graph)
+
+
+def test_options_as_the_cli(cli, data, tmp_path):
+    cli("build", data / "cmu/16", "-o", tmp_path / "g.mgraph", "--report", tmp_path / "r.json", "--no-cache", "-q",
+        "--threshold", "4cm", "--cloud", "joints", "--joint-weight", "head=2", "--connect-tags", "walk,run",
+        "--no-tag-thresholds", "--fps", 24)
+    graph = mg.build([str(data / "cmu/16")], no_cache=True, threshold="4cm", cloud="joints",
+                     joint_weight={"head": 2}, connect_tags=["walk", "run"], no_tag_thresholds=True, fps=24)
+    assert without_timings(graph.report) == without_timings(read_json(tmp_path / "r.json"))
+    assert python_nodes(graph) == inspect_nodes(cli, tmp_path / "g.mgraph")
+
+
+def test_cache_dir_gives_the_same_graph(data, built, tmp_path):
+    first = mg.build(str(data / "cmu/16"), cache_dir=str(tmp_path))
+    assert any(tmp_path.iterdir())
+    second = mg.build(str(data / "cmu/16"), cache_dir=str(tmp_path))
+    assert python_nodes(first) == python_nodes(second) == python_nodes(built)
+
+
+@pytest.mark.parametrize("cli_args, options", [
+    (["--cloud", "bad"], {"cloud": "bad"}),
+    (["--taper", "x"], {"taper": "x"}),
+    (["--threshold", "abc"], {"threshold": "abc"}),
+    (["--threshold", "4cm", "--threshold-quantile", "0.1"], {"threshold": "4cm", "threshold_quantile": 0.1}),
+    (["--joint-weight", "head"], {"joint_weight": ["head"]}),
+    (["--coverage", "2"], {"coverage": 2.0}),
+])
+def test_bad_options_raise_the_cli_message(cli, data, tmp_path, cli_args, options):
+    want = cli_error(cli("build", data / "cmu/16", "-o", tmp_path / "g.mgraph", "--no-cache", *cli_args, check=False))
+    with pytest.raises(mg.Error) as raised:
+        mg.build(str(data / "cmu/16"), no_cache=True, **options)
+    assert str(raised.value) == want
+
+
+def test_input_and_output_errors_raise_the_cli_message(cli, data, tmp_path, built):
+    missing = tmp_path / "missing"
+    want = cli_error(cli("build", missing, "-o", tmp_path / "g.mgraph", "--no-cache", check=False))
+    with pytest.raises(mg.Error) as raised:
+        mg.build(str(missing), no_cache=True)
+    assert str(raised.value) == want
+    want = cli_error(cli("build", data / "cmu/16", "-o", tmp_path / "g.txt", check=False))
+    with pytest.raises(mg.Error) as raised:
+        built.save(str(tmp_path / "g.txt"))
+    assert str(raised.value) == want
+    want = cli_error(cli("path", missing / "g.mgraph", "--shape", "line:5", "-o", tmp_path / "o.json", check=False))
+    with pytest.raises(mg.Error) as raised:
+        mg.load_graph(str(missing / "g.mgraph"))
+    assert str(raised.value) == want
+    with pytest.raises(TypeError, match="unexpected keyword argument 'windw'"):
+        mg.build(str(data / "cmu/16"), windw=10)
+
+
+def test_empty_graph_raises_with_the_report(cli, data, tmp_path):
+    args = ["--threshold", "0.01cm", "--no-cache"]
+    done = cli("build", data / "cmu/16", "-o", tmp_path / "g.mgraph", "--report", tmp_path / "r.json", *args,
+               check=False)
+    with pytest.raises(mg.EmptyGraphError) as raised:
+        mg.build(str(data / "cmu/16"), threshold="0.01cm", no_cache=True)
+    assert str(raised.value) == cli_error(done)
+    assert isinstance(raised.value, mg.Error)
+    assert without_timings(raised.value.report) == without_timings(read_json(tmp_path / "r.json"))
+
+
+def test_progress_callback(data):
+    lines = []
+    mg.build(str(data / "cmu/16"), no_cache=True, progress=lines.append)
+    assert lines and all(isinstance(line, str) and line for line in lines)
+
+    def stop(line):
+        raise KeyboardInterrupt(line)
+
+    with pytest.raises(KeyboardInterrupt):
+        mg.build(str(data / "cmu/16"), no_cache=True, progress=stop)
+
+
+def test_build_releases_the_gil(data):
+    assert_releases_the_gil(lambda: mg.build(str(data / "cmu/16"), no_cache=True))
+
+
+def test_wrong_keyword_types_raise_type_error(data, graph):
+    with pytest.raises(TypeError, match="'window' cannot be a str"):
+        mg.build(str(data / "cmu/16"), window="ten")
+    with pytest.raises(TypeError, match="'seed' cannot be a str"):
+        graph.walk(0, 1, seed="x")

@@ -1,0 +1,132 @@
+"""Graph.walk(), Graph.path() and the controller: the same motion and reports as the CLI's
+walk, path and steer on the subject-16 graph."""
+import json
+
+import numpy as np
+import pytest
+
+import motiongraph as mg
+from conftest import assert_positions_equal, assert_releases_the_gil, cli_error, read_json, without_timings
+
+FIGURE8 = ["--shape", "figure8:4", "--segment", "walk:0-25", "--segment", "run:25-51"]
+
+
+def test_path_equals_the_cli(cli, graph_file, graph, tmp_path):
+    cli("path", graph_file, *FIGURE8, "-o", tmp_path / "cli.json", "--report", tmp_path / "cli-report.json")
+    motion = graph.path(shape="figure8:4", segments=["walk:0-25", "run:25-51"])
+    cli_json = read_json(tmp_path / "cli.json")
+    assert_positions_equal(motion, cli_json)
+    report = read_json(tmp_path / "cli-report.json")
+    assert without_timings(motion.report) == without_timings(report)
+    assert motion.report["reached_end"] and motion.report["seconds"] > 0
+    # save() writes the CLI's file, the feet's contacts included.
+    motion.save(str(tmp_path / "py.json"))
+    assert (tmp_path / "py.json").read_bytes() == (tmp_path / "cli.json").read_bytes()
+    assert "contacts" in cli_json
+
+
+def test_path_from_points_and_options(cli, graph_file, graph, tmp_path):
+    points = [[0.0, 0.0], [0.0, -6.0], [4.0, -10.0], [8.0, -10.0]]
+    (tmp_path / "path.json").write_text(json.dumps({"points": points}))
+    options = ["--horizon", 2, "--transition-penalty", 0.5, "--beam", 16, "--no-cleanup"]
+    cli("path", graph_file, "--path", tmp_path / "path.json", *options, "-o", tmp_path / "cli.json",
+        "--report", tmp_path / "r.json")
+    want = read_json(tmp_path / "cli.json")
+    kwargs = dict(horizon=2, transition_penalty=0.5, beam=16, cleanup=False)
+    for motion in (graph.path(points=points, **kwargs), graph.path(points=np.array(points), **kwargs),
+                   graph.path(file=str(tmp_path / "path.json"), **kwargs)):
+        assert_positions_equal(motion, want)
+        report = without_timings(motion.report)
+        cli_report = without_timings(read_json(tmp_path / "r.json"))
+        # The one difference: how the clean-up was turned off.
+        assert report.pop("cleanup") == {"enabled": False, "reason": "cleanup=False"}
+        assert cli_report.pop("cleanup") == {"enabled": False, "reason": "--no-cleanup"}
+        assert report == cli_report
+
+
+def test_walk_equals_the_cli(cli, graph_file, graph, tmp_path):
+    cli("walk", graph_file, "--from", 0, "--to", 7, "--cost", "hybrid", "--seed", 3, "--min-frames", 60,
+        "-o", tmp_path / "cli.json", "--report", tmp_path / "r.json")
+    motion = graph.walk(0, 7, cost="hybrid", seed=3, min_frames=60)
+    assert_positions_equal(motion, read_json(tmp_path / "cli.json"))
+    assert without_timings(motion.report) == without_timings(read_json(tmp_path / "r.json"))
+    assert len(motion) >= 60
+    motion.save(str(tmp_path / "py.bvh"))
+    cli("walk", graph_file, "--from", 0, "--to", 7, "--cost", "hybrid", "--seed", 3, "--min-frames", 60,
+        "-o", tmp_path / "cli.bvh")
+    assert (tmp_path / "py.bvh").read_bytes() == (tmp_path / "cli.bvh").read_bytes()
+
+
+def test_steering_equals_the_cli(cli, graph_file, graph, tmp_path):
+    controls = [{"at_s": 0, "heading_deg": 0, "tag": "walk"}, {"at_s": 2, "heading_deg": 90, "tag": "walk"},
+                {"at_s": 4, "heading_deg": 200, "tag": "run"}]
+    (tmp_path / "controls.json").write_text(json.dumps({"duration_s": 6, "controls": controls}))
+    cli("steer", graph_file, "--script", tmp_path / "controls.json", "-o", tmp_path / "cli.json")
+    fps = graph.fps
+    total = round(6 * fps)
+
+    def control(frame):
+        return [c for c in controls if c["at_s"] <= frame / fps][-1]
+
+    controller = graph.controller(heading_deg=0, tag="walk")
+    frames = 0
+    while frames < total:
+        c = control(frames)
+        step = controller.step(c["heading_deg"], c["tag"])
+        assert len(step) > 0
+        np.testing.assert_array_equal(step.positions, controller.motion.positions[frames:])
+        frames += len(step)
+    motion = controller.motion
+    assert len(motion) == frames
+    want = read_json(tmp_path / "cli.json")
+    assert np.max(np.abs(motion.positions[:total] - np.asarray(want["positions"]))) <= 1e-6
+
+
+def test_steering_goes_where_it_is_told(graph):
+    controller = graph.controller(heading_deg=90, tag="walk")
+    while len(controller.motion) < 5 * graph.fps:
+        controller.step(90, "walk")
+    root = controller.motion.positions[:, 0, :]
+    last_second = root[-int(graph.fps):]
+    # East is +x: over the last second the root moves east more than it moves north or south.
+    dx, dz = last_second[-1, 0] - last_second[0, 0], last_second[-1, 2] - last_second[0, 2]
+    assert dx > 0.5 and abs(dz) < dx
+
+
+@pytest.mark.parametrize("cli_args, call", [
+    (["--shape", "line:5", "--segment", "swim:0-5"], lambda g: g.path(shape="line:5", segments=["swim:0-5"])),
+    (["--shape", "line:5", "--segment", "walk0-5"], lambda g: g.path(shape="line:5", segments=["walk0-5"])),
+    (["--shape", "wiggle:5"], lambda g: g.path(shape="wiggle:5")),
+    (["--shape", "line:5", "--horizon", "-1"], lambda g: g.path(shape="line:5", horizon=-1)),
+    ([], lambda g: g.path()),
+])
+def test_path_errors_raise_the_cli_message(cli, graph_file, graph, tmp_path, cli_args, call):
+    want = cli_error(cli("path", graph_file, *cli_args, "-o", tmp_path / "o.json", check=False))
+    with pytest.raises(mg.Error) as raised:
+        call(graph)
+    assert str(raised.value) == want
+
+
+def test_errors_name_the_graph_file_as_the_cli_does(cli, graph_file, graph, tmp_path):
+    nodes = graph.node_count
+    want = cli_error(cli("walk", graph_file, "--from", 0, "--to", nodes, "-o", tmp_path / "o.json", check=False))
+    with pytest.raises(mg.Error) as raised:
+        graph.walk(0, nodes)
+    assert str(raised.value) == want
+    want = cli_error(cli("walk", graph_file, "--from", 0, "--to", 1, "--cost", "cheap", "-o", tmp_path / "o.json",
+                         check=False))
+    with pytest.raises(mg.Error) as raised:
+        graph.walk(0, 1, cost="cheap")
+    assert str(raised.value) == want
+    want = cli_error(cli("path", graph_file, "--shape", "line:5", "-o", tmp_path / "o.txt", check=False))
+    with pytest.raises(mg.Error) as raised:
+        graph.path(shape="line:5").save(str(tmp_path / "o.txt"))
+    assert str(raised.value) == want
+    with pytest.raises(mg.Error, match="'swim' is not a motion tag"):
+        graph.controller(tag="swim")
+    with pytest.raises(TypeError, match="unexpected keyword argument 'horizn'"):
+        graph.path(shape="line:5", horizn=2)
+
+
+def test_path_releases_the_gil(graph):
+    assert_releases_the_gil(lambda: graph.path(shape="figure8:4", segments=["walk:0-25", "run:25-51"]))
