@@ -3,13 +3,16 @@
 #include <charconv>
 #include <cmath>
 #include <exception>
+#include <span>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "motiongraph/core/json_text.h"
 #include "motiongraph/evaluation/foot_slide_report.h"
+#include "motiongraph/export/positions_json.h"
 #include "motiongraph/motion/forward_kinematics.h"
+#include "motiongraph/skeleton/foot_joints.h"
 
 namespace mg::studio {
 
@@ -169,6 +172,29 @@ class Router {
   const MotionGraph& graph() const { return service_.file().graph; }
   const Skeleton& skeleton() const { return service_.context().assembler.skeleton(); }
 
+  // The contacts of database frames [first, first + count) (one clip's) in the CLI's shape
+  // (export/positions_json.h: joint names and indices, planted per frame), or null when the
+  // graph's feet were not found.
+  json database_contacts_json(int first, int count) const {
+    const SynthesisContext& context = service_.context();
+    if (context.frame_contacts.empty()) return nullptr;
+    const DatabaseClip& c = db().clips[db().clip_of(first)];
+    // Each clip's contacts are found on its own skeleton's feet (database/database_contacts.h).
+    auto feet = c.skeleton == context.assembler.target_skeleton() ? Result<FootJoints>(context.feet)
+                                                                    : find_foot_joints(db().skeletons[c.skeleton]);
+    if (!feet) return nullptr;
+    const std::span<const ContactMask> masks(context.frame_contacts.data() + first, static_cast<size_t>(count));
+    return contacts_json(db().skeletons[c.skeleton], PositionsJsonContacts{*feet, masks}, count);
+  }
+
+  // The same for a synthesized motion's frames (on the target skeleton), from the contacts the
+  // service passed to the clean-up.
+  json played_contacts_json(std::span<const ContactMask> masks, int frames) const {
+    const SynthesisContext& context = service_.context();
+    if (context.frame_contacts.empty() || static_cast<int>(masks.size()) < frames) return nullptr;
+    return contacts_json(skeleton(), PositionsJsonContacts{context.feet, masks}, frames);
+  }
+
   int index_part(size_t i, int count, const char* what) const {
     auto value = parse_integer(parts_[i], 0, count - 1);
     if (!value) throw ApiError{404, fmt::format("no {} '{}' (there are {})", what, parts_[i], count)};
@@ -236,6 +262,7 @@ class Router {
     json out = motion_json(db().skeletons[c.skeleton], slice);
     out["clip"] = index;
     out["from"] = from;
+    out["contacts"] = database_contacts_json(c.first_frame + from, slice.frame_count);
     return json_response(out);
   }
 
@@ -277,7 +304,10 @@ class Router {
     std::vector<Vec3> world(s.joint_count());
     std::vector<Quat> rotations(s.joint_count());
     forward_kinematics(s, slice, 0, world, rotations);
-    return {{"clip", c.name}, {"first_frame", first}, {"positions", positions_json(s, slice, Vec2(world[0].x(), world[0].z()))}};
+    return {{"clip", c.name},
+            {"first_frame", first},
+            {"positions", positions_json(s, slice, Vec2(world[0].x(), world[0].z()))},
+            {"contacts", database_contacts_json(first, count)}};
   }
 
   ApiResponse transition_poses() {
@@ -309,6 +339,7 @@ class Router {
     json out = motion_json(skeleton(), result->motion);
     out["result"] = result->result;
     out["cleanup"] = result->cleaned;
+    out["contacts"] = played_contacts_json(result->contacts, result->motion.frame_count);
     out["foot_slide"] = foot_slide_report(service_.context(), result->walk, result->motion);
     out["transitions"] = result->transitions;
     out["transitions_per_second"] =
@@ -331,12 +362,13 @@ class Router {
     for (const PathSegment& s : floor_path->segments()) {
       if (auto mask = service_.context().tag_mask(s.tag); !mask) throw ApiError{400, mask.error().message};
     }
-    bool cleaned = false;
-    auto result = service_.path(*floor_path, {}, boolean_field(body, "cleanup", true), &cleaned);
-    if (!result) throw ApiError{422, result.error().to_string()};
+    auto synthesized = service_.path(*floor_path, {}, boolean_field(body, "cleanup", true));
+    if (!synthesized) throw ApiError{422, synthesized.error().to_string()};
+    const PathSynthesisResult* result = &synthesized->synthesis;
     json out = motion_json(skeleton(), result->motion);
     out["result"] = service_.store_result(result->motion);
-    out["cleanup"] = cleaned;
+    out["cleanup"] = synthesized->cleaned;
+    out["contacts"] = played_contacts_json(synthesized->contacts, result->motion.frame_count);
     out["foot_slide"] = foot_slide_report(service_.context(), result->walk, result->motion);
     out["path_length_m"] = result->path_length_m;
     out["arc_covered_m"] = result->arc_covered_m;
@@ -383,7 +415,8 @@ class Router {
                           {"session_transitions_per_second",
                            transitions_per_second(step->session_transitions, step->first_frame + step->motion.frame_count,
                                                   db().fps)},
-                          {"positions", positions_json(skeleton(), step->motion)}});
+                          {"positions", positions_json(skeleton(), step->motion)},
+                          {"contacts", played_contacts_json(step->contacts, step->motion.frame_count)}});
   }
 
   ApiResponse result_bvh() {

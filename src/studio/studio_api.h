@@ -17,6 +17,11 @@
 // ("foot_slide", evaluation/foot_slide_report.h).
 //   POST /api/steer/sessions/{id}/step      {"heading_deg", "tag", "min_frames"}
 //   GET  /api/results/{id}.bvh              a synthesized motion as BVH (metres)
+// Every answer with frames to play (clip frames, both windows of a transition, walk, path,
+// steering step) carries their foot contacts as the CLI writes them (export/positions_json.h):
+// "contacts": {"joints": [foot joint names], "joint_indices": [...], "planted": [frame][joint]
+// 0 or 1}, the contacts each frame carries from its database frame (the ones the clean-up
+// holds); null when the graph's feet were not found.
 #pragma once
 
 #include <map>

@@ -70,9 +70,12 @@ Result<SynthesizedMotion> SynthesisService::walk(const WalkRequest& request) {
   auto motion = assemble_walk(file().database, graph, found->walk, start, context().assembler.target_skeleton());
   if (!motion) return motion.error();
   SynthesizedMotion out;
-  auto cleaned = clean_up(request.cleanup, found->walk, *motion);
+  auto contacts = played_contacts(found->walk, motion->frame_count);
+  if (!contacts) return contacts.error();
+  auto cleaned = clean_up(request.cleanup, *contacts, *motion);
   if (!cleaned) return cleaned.error();
   out.cleaned = *cleaned;
+  out.contacts = std::move(*contacts);
   out.walk = found->walk;
   out.motion = std::move(*motion);
   out.transitions = found->walk.transition_count(graph);
@@ -80,22 +83,37 @@ Result<SynthesizedMotion> SynthesisService::walk(const WalkRequest& request) {
   return out;
 }
 
-Result<PathSynthesisResult> SynthesisService::path(const FloorPath& path, const PathSynthesisSettings& settings,
-                                                   bool cleanup, bool* cleaned) const {
+Result<SynthesizedPath> SynthesisService::path(const FloorPath& path, const PathSynthesisSettings& settings,
+                                               bool cleanup) const {
   if (auto s = settings.validate(); !s) return s.error();
   auto result = synthesize_path(context(), path, settings);
-  if (!result) return result;
-  auto done = clean_up(cleanup, result->walk, result->motion);
-  if (!done) return done.error();
-  if (cleaned) *cleaned = *done;
-  return result;
+  if (!result) return result.error();
+  SynthesizedPath out;
+  out.synthesis = std::move(*result);
+  auto contacts = played_contacts(out.synthesis.walk, out.synthesis.motion.frame_count);
+  if (!contacts) return contacts.error();
+  auto cleaned = clean_up(cleanup, *contacts, out.synthesis.motion);
+  if (!cleaned) return cleaned.error();
+  out.cleaned = *cleaned;
+  out.contacts = std::move(*contacts);
+  return out;
 }
 
-Result<bool> SynthesisService::clean_up(bool asked, const Walk& walk, Motion& motion) const {
+Result<std::vector<ContactMask>> SynthesisService::played_contacts(const Walk& walk, int frames) const {
+  std::vector<ContactMask> contacts = context().walk_contacts(walk);
+  if (contacts.empty()) return contacts;  // the graph's feet were not found
+  if (static_cast<int>(contacts.size()) < frames) {
+    return Error{"", 0, fmt::format("the walk plays {} frames, the motion has {}", contacts.size(), frames)};
+  }
+  contacts.resize(static_cast<size_t>(frames));
+  return contacts;
+}
+
+Result<bool> SynthesisService::clean_up(bool asked, std::span<const ContactMask> contacts, Motion& motion) const {
   if (!asked) return false;
   auto cleanup = context().foot_cleanup({});
   if (!cleanup) return false;  // the graph's feet were not found
-  if (auto s = context().clean_up_walk(walk, *cleanup, motion); !s) return s.error();
+  if (auto s = cleanup->clean(motion, 0, contacts); !s) return s.error();
   return true;
 }
 
@@ -142,11 +160,11 @@ Result<SteerStepResult> SynthesisService::step_session(int id, const ControlInpu
   do {
     const int first_new = out.motion.frame_count;
     const ControllerDecision decision = session->controller->step(out.motion);
+    const std::vector<ContactMask> contacts = context().edges_contacts(decision.edges);
     if (session->cleanup) {
-      if (auto s = session->cleanup->clean(out.motion, first_new, context().edges_contacts(decision.edges)); !s) {
-        return s.error();
-      }
+      if (auto s = session->cleanup->clean(out.motion, first_new, contacts); !s) return s.error();
     }
+    out.contacts.insert(out.contacts.end(), contacts.begin(), contacts.end());
     out.search_seconds += decision.search_seconds;
     out.transitions += count_transitions(file().graph, decision.edges);
     if (decision.frames == 0) break;

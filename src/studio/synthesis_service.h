@@ -12,7 +12,9 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "motiongraph/graph/graph_file.h"
 #include "motiongraph/synthesis/controller.h"
@@ -38,6 +40,15 @@ struct SynthesizedMotion {
   Walk walk;
   int transitions = 0;  // transition edges the walk took
   bool cleaned = false;  // the foot clean-up ran (asked, and the graph's feet were found)
+  // Per frame of motion, the contacts it carries from its database frame (the ones the
+  // clean-up holds); empty when the graph's feet were not found.
+  std::vector<ContactMask> contacts;
+};
+
+struct SynthesizedPath {
+  PathSynthesisResult synthesis;
+  bool cleaned = false;  // as above
+  std::vector<ContactMask> contacts;  // as above
 };
 
 struct SteerStepResult {
@@ -46,6 +57,7 @@ struct SteerStepResult {
   double search_seconds = 0.0;
   int transitions = 0;           // transition edges this step committed
   int session_transitions = 0;   // and the session so far
+  std::vector<ContactMask> contacts;  // per frame of motion, as above
 };
 
 class SynthesisService {
@@ -64,10 +76,10 @@ class SynthesisService {
   const SynthesisContext& context() const { return graph_->context(); }
 
   Result<SynthesizedMotion> walk(const WalkRequest& request);
-  // Path synthesis, its motion cleaned (foot clean-up) when `cleanup` and the graph has feet
-  // (*cleaned says whether it was); the caller stores the motion (store_result) when it keeps it.
-  Result<PathSynthesisResult> path(const FloorPath& path, const PathSynthesisSettings& settings = {},
-                                   bool cleanup = true, bool* cleaned = nullptr) const;
+  // Path synthesis, its motion cleaned (foot clean-up) when `cleanup` and the graph has feet;
+  // the caller stores the motion (store_result) when it keeps it.
+  Result<SynthesizedPath> path(const FloorPath& path, const PathSynthesisSettings& settings = {},
+                               bool cleanup = true) const;
 
   // A steering session starting at the origin facing input.direction, its frames cleaned as
   // they are committed when `cleanup` and the graph has feet; returns its id, which is also
@@ -105,8 +117,12 @@ class SynthesisService {
     long long last_used = 0;
   };
   SynthesisService() = default;
-  // Cleans a walk's motion when asked and the graph's feet were found; says whether it did.
-  Result<bool> clean_up(bool asked, const Walk& walk, Motion& motion) const;
+  // The contacts of the first `frames` frames assemble_walk() plays for `walk` (none without
+  // feet).
+  Result<std::vector<ContactMask>> played_contacts(const Walk& walk, int frames) const;
+  // Cleans a motion with its contacts when asked and the graph's feet were found; says
+  // whether it did.
+  Result<bool> clean_up(bool asked, std::span<const ContactMask> contacts, Motion& motion) const;
   int store_recorded(std::shared_ptr<Recorded> recorded);
 
   std::string path_;

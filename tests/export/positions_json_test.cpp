@@ -55,6 +55,8 @@ TEST(PositionsJson, WritesTheFeetsContactsPerFrameWhenGiven) {
   ASSERT_TRUE(back.ok());
   const auto& written = (*back)["contacts"];
   ASSERT_EQ(written["joints"], nlohmann::json({"lfoot", "ltoes", "rfoot", "rtoes"}));
+  ASSERT_EQ(written["joint_indices"],
+            nlohmann::json({feet.left.ankle, feet.left.toe, feet.right.ankle, feet.right.toe}));
   ASSERT_EQ(written["planted"].size(), static_cast<size_t>(clip.motion.frame_count));
   int planted = 0;
   for (const FootContactTrack& track : contacts.tracks) {

@@ -1,7 +1,8 @@
 // End-to-end test of the studio in a real browser: Debian's chromium, headless with software
 // WebGL (SwiftShader), driven by playwright-core. Starts `motiongraph serve` on a free port
-// and checks what a user sees: the figure on the canvas (pixels), a clip playing, a clicked
-// transition's two poses, a drawn path synthesized with its deviation, keyboard steering.
+// and checks what a user sees: the figure on the canvas (pixels), a clip playing with its
+// planted feet marked, a clicked transition's two poses, a drawn path synthesized with its
+// deviation, keyboard steering.
 // Usage: node studio_browser.mjs MOTIONGRAPH_BINARY GRAPH SCREENSHOT_DIR
 // Needs chromium (CHROMIUM=... or /usr/bin/chromium; scripts/install-deps.sh installs it).
 import { spawn } from 'node:child_process';
@@ -33,6 +34,39 @@ let failures = 0;
 function check(ok, what) {
   console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`);
   if (!ok) failures += 1;
+}
+
+// Compares the planted marks sampled on the figure (window.studio.plantedMarks()) with the
+// contacts an API answer gives for the frames shown: a foot joint planted there has the planted
+// colour and its floor disc, one lifted has neither. rowOf(sample) is the API's
+// {joint_indices, row} for the sample's frame. Counts the marks of each kind seen.
+async function compareMarks(samples, rowOf) {
+  const out = { planted: 0, lifted: 0, wrong: [] };
+  for (const sample of samples) {
+    const api = await rowOf(sample);
+    if (!api || JSON.stringify(api.joint_indices) !== JSON.stringify(sample.indices)
+        || api.row.length !== sample.marks.length) {
+      out.wrong.push(`frame ${sample.frame}: joints ${JSON.stringify(sample.indices)}, API ${JSON.stringify(api)}`);
+      continue;
+    }
+    sample.marks.forEach((mark, k) => {
+      const coloured = mark.sphereColour === sample.plantedColour;
+      if (api.row[k] === 1) out.planted += 1; else out.lifted += 1;
+      if (coloured !== (api.row[k] === 1) || mark.disc !== (api.row[k] === 1)) {
+        out.wrong.push(`frame ${sample.frame} joint ${mark.joint}: API ${api.row[k]}, sphere `
+          + `#${mark.sphereColour.toString(16)}, disc ${mark.disc}`);
+      }
+    });
+  }
+  return out;
+}
+async function sampleMarks(page, count, everyMs) {
+  const samples = [];
+  for (let i = 0; i < count; ++i) {
+    samples.push(await page.evaluate(() => window.studio.plantedMarks()));
+    await page.waitForTimeout(everyMs);
+  }
+  return samples;
 }
 
 // The studio on a free port; its address is the line it prints once listening.
@@ -117,6 +151,62 @@ try {
   check(f1 !== f0, `the clip plays (frame ${f0} -> ${f1})`);
   await page.screenshot({ path: join(shots, '2-clip.png') });
 
+  // 2b. While it plays, each foot joint is marked planted exactly on the frames the API's
+  // contacts for that frame say so (asked again here, frame by frame).
+  const clipSamples = (await sampleMarks(page, 16, 110)).filter((m) => m.mode === 'clip' && m.clip === 1);
+  const clipMarks = await compareMarks(clipSamples, (sample) => page.evaluate(async (f) => {
+    const part = await (await fetch(`/api/clips/1/frames?from=${f}&count=1`)).json();
+    return part.contacts && { joint_indices: part.contacts.joint_indices, row: part.contacts.planted[0] };
+  }, sample.frame));
+  const shownFrames = new Set(clipSamples.map((m) => m.frame)).size;
+  check(clipSamples.length === 16 && shownFrames >= 4 && clipMarks.wrong.length === 0
+      && clipMarks.planted + clipMarks.lifted > 0,
+    `planted feet are marked as the API's contacts say over ${shownFrames} frames of the clip playing `
+    + `(${clipMarks.planted} planted, ${clipMarks.lifted} lifted marks)${clipMarks.wrong.length
+      ? `: ${clipMarks.wrong.slice(0, 4).join('; ')}` : ''}`);
+  // Scrubbed to a frame where the API says a foot joint is lifted and to one where one is
+  // planted: both kinds of mark are checked whatever frames playback happened to show.
+  const clipContacts = await page.evaluate(async () => (await (await fetch('/api/clips/1/frames')).json()).contacts);
+  const scrubFrames = clipContacts ? [clipContacts.planted.findIndex((row) => row.includes(0)),
+    clipContacts.planted.findIndex((row) => row.includes(1))] : [-1, -1];
+  const scrubSamples = [];
+  for (const f of scrubFrames.filter((v) => v >= 0)) {
+    await page.evaluate((v) => {
+      const scrub = document.querySelector('[data-testid=scrub]');
+      scrub.value = String(v);
+      scrub.dispatchEvent(new Event('input'));
+    }, f);
+    await page.waitForFunction((v) => window.studio.state.frameIndex === v, f);
+    await page.waitForTimeout(100);
+    scrubSamples.push(await page.evaluate(() => window.studio.plantedMarks()));
+  }
+  const scrubMarks = await compareMarks(scrubSamples,
+    async (sample) => ({ joint_indices: clipContacts.joint_indices, row: clipContacts.planted[sample.frame] }));
+  check(scrubFrames.every((v) => v >= 0) && scrubMarks.wrong.length === 0 && scrubMarks.planted > 0
+      && scrubMarks.lifted > 0,
+    `scrubbed to frames ${scrubFrames.join(' and ')}: ${scrubMarks.lifted} lifted, ${scrubMarks.planted} planted `
+    + `joints marked as the API says${scrubMarks.wrong.length ? `: ${scrubMarks.wrong.slice(0, 4).join('; ')}` : ''}`);
+  await page.screenshot({ path: join(shots, '2-clip-feet.png') });
+  // "Mark planted feet" off: no marks, and none while it stays off; on again: marks (paused on
+  // the planted frame). Waited for: a loaded machine renders a few frames a second.
+  const anyMarked = () => {
+    const m = window.studio.plantedMarks();
+    return m.marks.some((k) => k.disc || k.sphereColour === m.plantedColour);
+  };
+  const noneMarked = () => {
+    const m = window.studio.plantedMarks();
+    return m.marks.length > 0 && !m.marks.some((k) => k.disc || k.sphereColour === m.plantedColour);
+  };
+  await page.uncheck('[data-testid=mark-feet]');
+  const cleared = await page.waitForFunction(noneMarked, null, { timeout: 10000 }).then(() => true, () => false);
+  const unmarked = await sampleMarks(page, 4, 150);
+  check(cleared && unmarked.every((m) => m.marks.length > 0
+      && m.marks.every((k) => !k.disc && k.sphereColour !== m.plantedColour)),
+    'with "Mark planted feet" off no foot joint is marked');
+  await page.check('[data-testid=mark-feet]');
+  const remarked = await page.waitForFunction(anyMarked, null, { timeout: 10000 }).then(() => true, () => false);
+  check(remarked, 'with it on again planted feet are marked');
+
   // 3. Click a transition on the matrix: both poses are shown.
   const point = await page.evaluate(() => window.studio.transitionClientPoint(0));
   await page.mouse.click(point.x, point.y);
@@ -153,6 +243,14 @@ try {
     `the path's foot slide beside its source is shown, cleaned up by default: ${pathInfo}`);
   check(await page.evaluate(() => window.studio.state.mode === 'result' && window.studio.state.playing),
     'the path result plays');
+  const pathSamples = (await sampleMarks(page, 10, 120)).filter((m) => m.mode === 'result');
+  const pathContacts = await page.evaluate(() => window.studio.state.pathResult.contacts);
+  const pathMarks = await compareMarks(pathSamples, async (sample) => pathContacts
+    && { joint_indices: pathContacts.joint_indices, row: pathContacts.planted[sample.frame] });
+  check(pathSamples.length > 0 && pathMarks.wrong.length === 0 && pathMarks.planted > 0,
+    `the path result's planted feet are marked as its contacts say (${pathMarks.planted} planted, `
+    + `${pathMarks.lifted} lifted marks)${pathMarks.wrong.length
+      ? `: ${pathMarks.wrong.slice(0, 4).join('; ')}` : ''}`);
   const href = await page.getAttribute('[data-testid=download]', 'href');
   const bvh = await page.evaluate(async (h) => (await fetch(h)).text(), href);
   check(bvh.startsWith('HIERARCHY'), `the result downloads as BVH (${href})`);
@@ -169,10 +267,12 @@ try {
   await page.keyboard.down('KeyD');
   const pressed = Date.now();
   const roots = [];
+  const steerMarks = [];
   let east = null;
   while (Date.now() - pressed < 15000) {
     await page.waitForTimeout(250);
     roots.push(await page.evaluate(() => window.studio.state.root));
+    steerMarks.push(await page.evaluate(() => window.studio.plantedMarks()));
     if (roots.length > 8) {
       const [a, b] = [roots[roots.length - 9], roots[roots.length - 1]];
       const [dx, dz] = [b[0] - a[0], b[2] - a[2]];
@@ -187,6 +287,11 @@ try {
     + `z ${east.a[2].toFixed(2)} -> ${east.b[2].toFixed(2)} in the 2 s before ${east.seconds.toFixed(1)} s`
     : `the character did not head east within 15 s (root at x ${last[0].toFixed(2)}, z ${last[2].toFixed(2)})`);
   await page.screenshot({ path: join(shots, '5-steer.png') });
+  // Steering marks planted feet too (each mark whole: colour and disc together).
+  const steerPlanted = steerMarks.filter((m) => m.mode === 'steer' && m.marks.some((k) => k.disc)).length;
+  const steerWhole = steerMarks.every((m) => m.marks.every((k) => k.disc === (k.sphereColour === m.plantedColour)));
+  check(steerPlanted > 0 && steerWhole,
+    `steering marks planted feet (${steerPlanted} of ${steerMarks.length} samples)`);
   check(errors.length === 0, `no errors in the page${errors.length ? `: ${errors.join('; ')}` : ''}`);
 } catch (err) {
   console.log(`FAIL ${err.message}`);

@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <mutex>
+#include <span>
 #include <thread>
 #include <vector>
 
+#include "motiongraph/skeleton/foot_joints.h"
 #include "studio/studio_test_service.h"
 
 namespace mg::test {
@@ -48,6 +50,141 @@ TEST(StudioApi, ClipFramesAreWorldPositionsOfEveryJoint) {
   const double root_y = frames.json["positions"][0][1].get<double>();
   EXPECT_GT(root_y, 0.6);
   EXPECT_LT(root_y, 1.3);
+}
+
+// The feet's joints in the order the contacts list them (left ankle, left toe, right ankle,
+// right toe; those the skeleton has) with their contact bits.
+std::vector<std::pair<int, ContactMask>> foot_columns(const FootJoints& feet) {
+  std::vector<std::pair<int, ContactMask>> columns;
+  for (const auto& [foot, side] : {std::pair{feet.left, FootSide::kLeft}, std::pair{feet.right, FootSide::kRight}}) {
+    columns.emplace_back(foot.ankle, contact_bit(side, FootPart::kAnkle));
+    if (foot.toe >= 0) columns.emplace_back(foot.toe, contact_bit(side, FootPart::kToe));
+  }
+  return columns;
+}
+
+// An answer's "contacts" for `frames` frames of a motion on `skeleton` with `feet`, read back
+// as contact masks (only the feet's bits), after checking its joints are those feet.
+std::vector<ContactMask> planted_masks(const json& contacts, const Skeleton& skeleton, const FootJoints& feet,
+                                       size_t frames) {
+  std::vector<ContactMask> masks;
+  const auto columns = foot_columns(feet);
+  if (!contacts.is_object() || contacts["planted"].size() != frames) {
+    ADD_FAILURE() << "expected contacts for " << frames << " frames: " << contacts.dump().substr(0, 200);
+    return masks;
+  }
+  EXPECT_EQ(contacts["joints"].size(), columns.size());
+  EXPECT_EQ(contacts["joint_indices"].size(), columns.size());
+  for (size_t k = 0; k < columns.size() && k < contacts["joints"].size(); ++k) {
+    EXPECT_EQ(contacts["joint_indices"][k].get<int>(), columns[k].first);
+    EXPECT_EQ(contacts["joints"][k].get<std::string>(), skeleton.joint(columns[k].first).name);
+  }
+  for (const json& row : contacts["planted"]) {
+    EXPECT_EQ(row.size(), columns.size());
+    ContactMask mask = 0;
+    for (size_t k = 0; k < columns.size() && k < row.size(); ++k) {
+      EXPECT_TRUE(row[k] == 0 || row[k] == 1) << row;
+      if (row[k] == 1) mask |= columns[k].second;
+    }
+    masks.push_back(mask);
+  }
+  return masks;
+}
+
+// The masks with only the feet's bits.
+std::vector<ContactMask> feet_bits(std::span<const ContactMask> masks, const FootJoints& feet) {
+  ContactMask all = 0;
+  for (const auto& column : foot_columns(feet)) all |= column.second;
+  std::vector<ContactMask> out;
+  for (ContactMask m : masks) out.push_back(m & all);
+  return out;
+}
+
+TEST(StudioApi, ClipFramesCarryTheContactsOfTheirDatabaseFrames) {
+  const SynthesisContext& context = studio_service().context();
+  const MotionDatabase& db = studio_service().file().database;
+  ASSERT_FALSE(context.frame_contacts.empty()) << context.feet_error;
+  for (int index : {0, 1}) {
+    const DatabaseClip& clip = db.clips[index];
+    const int from = 5;
+    const int count = std::min(200, clip.frame_count - from);
+    const ApiCall call = call_api("GET", "/api/clips/" + std::to_string(index) + "/frames", "",
+                                  {{"from", std::to_string(from)}, {"count", std::to_string(count)}});
+    ASSERT_EQ(call.response.status, 200) << call.response.body;
+    ASSERT_EQ(call.json["positions"].size(), static_cast<size_t>(count));
+    const FootJoints feet = *find_foot_joints(db.skeletons[clip.skeleton]);
+    const std::vector<ContactMask> got =
+        planted_masks(call.json["contacts"], db.skeletons[clip.skeleton], feet, static_cast<size_t>(count));
+    const auto first = context.frame_contacts.begin() + clip.first_frame + from;
+    const std::vector<ContactMask> expected = feet_bits({first, first + count}, feet);
+    EXPECT_EQ(got, expected) << clip.name;
+    // Some joint is planted on some frame and lifted on another: the marks change as it plays.
+    EXPECT_NE(std::count(got.begin(), got.end(), ContactMask{0}), count) << clip.name;
+    EXPECT_TRUE(std::any_of(got.begin(), got.end(), [&](ContactMask m) { return m != got.front(); })) << clip.name;
+  }
+  // A transition's two windows carry theirs too.
+  const ApiCall poses = call_api("GET", "/api/transitions/0/poses");
+  ASSERT_EQ(poses.response.status, 200) << poses.response.body;
+  for (const char* side : {"from", "to"}) {
+    const json& window = poses.json[side];
+    const int first_frame = window["first_frame"].get<int>();
+    const DatabaseClip& clip = db.clips[db.clip_of(first_frame)];
+    const FootJoints feet = *find_foot_joints(db.skeletons[clip.skeleton]);
+    const size_t k = window["positions"].size();
+    const auto first = context.frame_contacts.begin() + first_frame;
+    EXPECT_EQ(planted_masks(window["contacts"], db.skeletons[clip.skeleton], feet, k),
+              feet_bits({first, first + static_cast<long>(k)}, feet))
+        << side;
+  }
+}
+
+TEST(StudioApi, ResultsCarryTheContactsTheirFramesPlay) {
+  const SynthesisContext& context = studio_service().context();
+  const Skeleton& skeleton = context.assembler.skeleton();
+  // The service's walk carries walk_contacts; the API answers the same walk with them.
+  studio::WalkRequest request;
+  request.from = 2;
+  request.to = 7;
+  request.min_frames = 120;
+  request.cost = WalkCost::kRandom;
+  request.seed = 11;
+  auto walk = studio_service().walk(request);
+  ASSERT_TRUE(walk) << walk.error().to_string();
+  EXPECT_EQ(walk->contacts, context.walk_contacts(walk->walk));
+  ASSERT_EQ(walk->contacts.size(), static_cast<size_t>(walk->motion.frame_count));
+  const ApiCall call =
+      call_api("POST", "/api/walk", R"({"from": 2, "to": 7, "min_frames": 120, "cost": "random", "seed": 11})");
+  ASSERT_EQ(call.response.status, 200) << call.response.body;
+  ASSERT_EQ(call.json["frames"].get<int>(), walk->motion.frame_count);
+  EXPECT_EQ(planted_masks(call.json["contacts"], skeleton, context.feet, call.json["positions"].size()),
+            feet_bits(walk->contacts, context.feet));
+
+  // A path's contacts are those of the frames its walk plays, cut where the path ends: the
+  // same whether the motion is cleaned or not.
+  const std::string path = R"({"points": [[0, 0], [0, -5], [3, -8]])";
+  const ApiCall cleaned = call_api("POST", "/api/path", path + "}");
+  const ApiCall raw = call_api("POST", "/api/path", path + R"(, "cleanup": false})");
+  ASSERT_EQ(cleaned.response.status, 200) << cleaned.response.body;
+  ASSERT_EQ(raw.response.status, 200) << raw.response.body;
+  const auto path_masks =
+      planted_masks(cleaned.json["contacts"], skeleton, context.feet, cleaned.json["positions"].size());
+  EXPECT_EQ(path_masks, planted_masks(raw.json["contacts"], skeleton, context.feet, raw.json["positions"].size()));
+  EXPECT_NE(std::count(path_masks.begin(), path_masks.end(), ContactMask{0}), static_cast<long>(path_masks.size()));
+
+  // Each steering step carries one row per frame it appends.
+  const ApiCall session = call_api("POST", "/api/steer/sessions", R"({"heading_deg": 45, "tag": "walk"})");
+  ASSERT_EQ(session.response.status, 200) << session.response.body;
+  const std::string step = "/api/steer/sessions/" + std::to_string(session.json["session"].get<int>()) + "/step";
+  std::vector<ContactMask> steered;
+  for (int i = 0; i < 4; ++i) {
+    const ApiCall call_step = call_api("POST", step, R"({"heading_deg": 45, "tag": "walk", "min_frames": 30})");
+    ASSERT_EQ(call_step.response.status, 200) << call_step.response.body;
+    const auto masks = planted_masks(call_step.json["contacts"], skeleton, context.feet,
+                                     call_step.json["frames"].get<size_t>());
+    EXPECT_EQ(call_step.json["positions"].size(), masks.size());
+    steered.insert(steered.end(), masks.begin(), masks.end());
+  }
+  EXPECT_NE(std::count(steered.begin(), steered.end(), ContactMask{0}), static_cast<long>(steered.size()));
 }
 
 TEST(StudioApi, BadIndicesAndQueriesAre4xx) {

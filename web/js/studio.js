@@ -4,7 +4,7 @@
 // the state for the browser test (tests/js/studio_browser.mjs).
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-import { Figure } from './figure.js';
+import { Figure, PLANTED_COLOUR } from './figure.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -60,7 +60,8 @@ const tagColour = (tag) => (tag && state.tags.includes(tag)
 const state = {
   ready: false, error: null, summary: null, tags: [], joints: [], clips: [], transitions: [],
   mode: 'idle',                  // clip, result, steer, poses
-  track: null,                   // {fps, frames: [flat positions], loop}
+  track: null,                   // {fps, frames: [flat positions], loop, contacts}
+  markFeet: true,                // draw planted foot joints (the API's "contacts")
   time: 0, playing: false, speed: 1,
   frameIndex: 0, framesShown: 0, root: [0, 0, 0],
   selectedTransition: -1, poses: null,
@@ -106,14 +107,19 @@ async function loadClip(index) {
   const clip = state.clips[index];
   const frames = [];
   let joints = null;
+  let contacts = null;
   for (let from = 0; from < clip.frames; from += 600) {
     const part = await get(`/api/clips/${index}/frames?from=${from}&count=${Math.min(600, clip.frames - from)}`);
     joints = part.joints;
     frames.push(...part.positions);
+    if (part.contacts) {
+      if (!contacts) contacts = { ...part.contacts, planted: [] };
+      contacts.planted.push(...part.contacts.planted);
+    }
   }
   ensureFigure(joints);
   setDrawing(false);
-  play({ fps: state.summary.fps, frames, loop: true, label: `clip ${clip.name}` }, 'clip');
+  play({ fps: state.summary.fps, frames, loop: true, label: `clip ${clip.name}`, contacts }, 'clip');
   chaseCamera([2.5, 1.3, 5]);
   state.clipIndex = index;
 }
@@ -172,7 +178,8 @@ async function selectTransition(index) {
   state.selectedTransition = index;
   state.poses = poses;
   state.mode = 'poses';
-  state.track = { fps: poses.fps, frames: poses.from.positions, loop: true, label: `transition ${index}` };
+  state.track = { fps: poses.fps, frames: poses.from.positions, loop: true, label: `transition ${index}`,
+    contacts: poses.from.contacts };
   state.time = 0;
   state.playing = true;
   figure.offset.set(-0.6, 0, 0);
@@ -289,7 +296,8 @@ $('synthesize').addEventListener('click', async () => {
     state.pathResult = result;
     drawPath();
     ensureFigure(state.joints);
-    play({ fps: result.fps, frames: result.positions, loop: false, label: 'path' }, 'result');
+    play({ fps: result.fps, frames: result.positions, loop: false, label: 'path', contacts: result.contacts },
+      'result');
     chaseCamera([0, 6, 7]);  // high, so the path shows beside the figure
     setResultLink(result.result);
     $('path-info').textContent = `${result.path_length_m.toFixed(1)} m, ${result.frames} frames `
@@ -364,7 +372,9 @@ async function startSteering() {
   figure.offset.set(0, 0, 0);
   second.group.visible = false;
   overlays.clear();
-  state.steer = { session: session.session, buffer: [], inFlight: false, heading: 0, tag, chosenTag: tag,
+  // buffer: the frames received and not yet shown; planted: their rows of the contacts.
+  state.steer = { session: session.session, buffer: [], planted: [], contacts: null, inFlight: false, heading: 0,
+    tag, chosenTag: tag,
     received: 0, played: 0, clock: 0, fps: session.fps, lastStepMs: 0, trailEnd: null };
   setResultLink(session.result);
   setDrawing(false);
@@ -391,6 +401,8 @@ async function requestSteps() {
     const step = await post(`/api/steer/sessions/${s.session}/step`, { ...input, min_frames: 8 });
     s.lastStepMs = performance.now() - started;
     s.buffer.push(...step.positions);
+    s.contacts = step.contacts;  // its joints; the rows go with the frames
+    s.planted.push(...(step.contacts ? step.contacts.planted : step.positions.map(() => null)));
     s.received += step.frames;
     s.transitionsPerSecond = step.session_transitions_per_second;
   } catch (err) {
@@ -412,7 +424,8 @@ $('random-walk').addEventListener('click', async () => {
   $('walk-info').textContent = `${walk.frames} frames, ${walk.transitions} transitions; ${footSlideText(walk)}`;
   ensureFigure(walk.joints);
   setDrawing(false);
-  play({ fps: walk.fps, frames: walk.positions, loop: false, label: 'graph walk' }, 'result');
+  play({ fps: walk.fps, frames: walk.positions, loop: false, label: 'graph walk', contacts: walk.contacts },
+    'result');
   chaseCamera([2, 1.6, 5]);
   setResultLink(walk.result);
 });
@@ -458,6 +471,13 @@ function showFrame(flat) {
   state.framesShown += 1;
   follow(state.root);
 }
+// Draws the foot joints planted in `row` (a row of contacts.planted) when marking is on.
+function markFeet(fig, contacts, row) {
+  if (state.markFeet && contacts && row) fig.setPlanted(contacts.joint_indices, row);
+  else fig.setPlanted(null, null);
+}
+$('mark-feet').addEventListener('change', (e) => { state.markFeet = e.target.checked; });
+
 function tick() {
   const dt = Math.min(clock.getDelta(), 0.25);  // real time down to 4 frames a second
   resize();
@@ -465,10 +485,11 @@ function tick() {
     const s = state.steer;
     steerInput();
     s.clock += dt * s.fps;
-    while (s.clock >= 1 && s.buffer.length > 1) { s.buffer.shift(); s.clock -= 1; s.played += 1; }
+    while (s.clock >= 1 && s.buffer.length > 1) { s.buffer.shift(); s.planted.shift(); s.clock -= 1; s.played += 1; }
     if (s.buffer.length <= 1) s.clock = Math.min(s.clock, 1);
     if (s.buffer.length) {
       showFrame(s.buffer[0]);
+      markFeet(figure, s.contacts, s.planted[0]);
       const here = [state.root[0], state.root[2]];
       const last = s.trailEnd;
       if (!last) s.trailEnd = here;
@@ -490,7 +511,11 @@ function tick() {
     const f = Math.max(0, Math.min(n - 1, Math.floor(state.time)));
     state.frameIndex = f;
     showFrame(state.track.frames[f]);
-    if (state.mode === 'poses' && state.poses) second.setPose(state.poses.to.positions[f]);
+    markFeet(figure, state.track.contacts, state.track.contacts?.planted[f]);
+    if (state.mode === 'poses' && state.poses) {
+      second.setPose(state.poses.to.positions[f]);
+      markFeet(second, state.poses.to.contacts, state.poses.to.contacts?.planted[f]);
+    }
     $('scrub').value = String(f);
     $('frame-label').textContent = `${state.track.label}: frame ${f + 1} / ${n}`;
   }
@@ -545,6 +570,14 @@ window.studio = {
     return box;
   },
   setFigureVisible(visible) { figure.group.visible = visible; },
+  // The planted marks on the figure now: the frame shown, the foot joints of the contacts
+  // played and, per joint, its sphere's colour and whether its floor disc is shown.
+  plantedMarks() {
+    const contacts = state.mode === 'steer' ? state.steer?.contacts : state.track?.contacts;
+    const indices = contacts ? contacts.joint_indices : [];
+    return { mode: state.mode, frame: state.frameIndex, clip: state.clipIndex, plantedColour: PLANTED_COLOUR,
+      indices, marks: figure.plantedMarks(indices) };
+  },
   transitionClientPoint(index) {
     const r = overlay.getBoundingClientRect();
     const [x, y] = transitionPoint(state.transitions[index]);

@@ -9,6 +9,29 @@
 
 namespace mg {
 
+nlohmann::json contacts_json(const Skeleton& skeleton, const PositionsJsonContacts& contacts, int frame_count) {
+  using nlohmann::json;
+  json names = json::array();
+  json indices = json::array();
+  std::vector<ContactMask> bits;
+  for (const auto& [foot, side] : {std::pair{contacts.feet.left, FootSide::kLeft},
+                                   std::pair{contacts.feet.right, FootSide::kRight}}) {
+    for (const auto& [joint, part] : {std::pair{foot.ankle, FootPart::kAnkle}, std::pair{foot.toe, FootPart::kToe}}) {
+      if (joint < 0) continue;
+      names.push_back(skeleton.joint(joint).name);
+      indices.push_back(joint);
+      bits.push_back(contact_bit(side, part));
+    }
+  }
+  json planted = json::array();
+  for (int f = 0; f < frame_count && f < static_cast<int>(contacts.masks.size()); ++f) {
+    json row = json::array();
+    for (ContactMask bit : bits) row.push_back((contacts.masks[f] & bit) != 0 ? 1 : 0);
+    planted.push_back(std::move(row));
+  }
+  return {{"joints", std::move(names)}, {"joint_indices", std::move(indices)}, {"planted", std::move(planted)}};
+}
+
 std::string write_positions_json(const Skeleton& skeleton, const Motion& motion, const PositionsJsonContacts* contacts) {
   using nlohmann::json;
   json doc;
@@ -31,26 +54,7 @@ std::string write_positions_json(const Skeleton& skeleton, const Motion& motion,
     frames.push_back(std::move(frame));
   }
   doc["positions"] = std::move(frames);
-  if (contacts) {
-    json names = json::array();
-    std::vector<ContactMask> bits;
-    for (const auto& [foot, side] : {std::pair{contacts->feet.left, FootSide::kLeft},
-                                     std::pair{contacts->feet.right, FootSide::kRight}}) {
-      names.push_back(skeleton.joint(foot.ankle).name);
-      bits.push_back(contact_bit(side, FootPart::kAnkle));
-      if (foot.toe >= 0) {
-        names.push_back(skeleton.joint(foot.toe).name);
-        bits.push_back(contact_bit(side, FootPart::kToe));
-      }
-    }
-    json planted = json::array();
-    for (int f = 0; f < motion.frame_count && f < static_cast<int>(contacts->masks.size()); ++f) {
-      json row = json::array();
-      for (ContactMask bit : bits) row.push_back((contacts->masks[f] & bit) != 0 ? 1 : 0);
-      planted.push_back(std::move(row));
-    }
-    doc["contacts"] = {{"joints", std::move(names)}, {"planted", std::move(planted)}};
-  }
+  if (contacts) doc["contacts"] = contacts_json(skeleton, *contacts, motion.frame_count);
   return json_text(doc) + "\n";
 }
 

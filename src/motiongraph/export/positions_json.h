@@ -3,11 +3,14 @@
 //    "positions": [frame][joint][x, y, z]}   (metres, rounded to the micrometre)
 // and, when given, the feet's contacts (motion/foot_contacts.h) per frame:
 //    "contacts": {"joints": [left ankle, left toe, right ankle, right toe: the names of those
-//                 the skeleton has], "planted": [frame][each of those joints] 0 or 1}
+//                 the skeleton has], "joint_indices": [their indices in "joints"],
+//                 "planted": [frame][each of those joints] 0 or 1}
 #pragma once
 
 #include <span>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "motiongraph/motion/foot_contacts.h"
 #include "motiongraph/motion/motion.h"
@@ -18,6 +21,9 @@ struct PositionsJsonContacts {
   FootJoints feet;
   std::span<const ContactMask> masks;  // one per frame
 };
+
+// The "contacts" member above for the first frame_count frames (at most masks.size()).
+nlohmann::json contacts_json(const Skeleton& skeleton, const PositionsJsonContacts& contacts, int frame_count);
 
 std::string write_positions_json(const Skeleton& skeleton, const Motion& motion,
                                  const PositionsJsonContacts* contacts = nullptr);
