@@ -66,7 +66,8 @@ class BinaryReader {
     std::uint64_t size = 0;
     if (!get(size) || size > (data_.size() - pos_) / sizeof(T)) return fail();
     values.resize(size);
-    std::memcpy(values.data(), data_.data() + pos_, size * sizeof(T));
+    // An empty vector's data() may be null, which memcpy must not be given even for 0 bytes.
+    if (size > 0) std::memcpy(values.data(), data_.data() + pos_, size * sizeof(T));
     pos_ += size * sizeof(T);
     return true;
   }
