@@ -141,6 +141,8 @@ Status FootCleanup::clean(Motion& motion, int first, std::span<const ContactMask
       frame.replanted[side] = mode != kFree && mode_offset.norm() > settings_.max_hold_m;
       if (frame.replanted[side]) {
         if (mode == kAnklePlanted) leg.ankle_plant = ankle;
+        leg.replant_move = mode == kToePlanted ? Vec3(leg.toe_plant - toe) : Vec3::Zero();
+        leg.replant_move.y() = 0.0;
         leg.toe_plant = toe;
         leg.switch_offset = leg.offset;
         leg.since_switch = 0;
@@ -152,8 +154,10 @@ Status FootCleanup::clean(Motion& motion, int first, std::span<const ContactMask
       if (leg.since_switch < kLongAgo) ++leg.since_switch;
       frame.ankle[side] = ankle + leg.offset;
       frame.toe_planted[side] = toe_on;
-      frame.toe_share[side] = mode == kToePlanted ? 1.0 - w : 0.0;
       frame.toe_plant[side] = leg.toe_plant;
+      // A toe's plant starts only where its contact starts (the offset continued: w = 0); a
+      // replant eases it on as the ankle's offset eases (w from 1 to 0).
+      frame.toe_plant_lag[side] = mode == kToePlanted ? Vec3(w * leg.replant_move) : Vec3::Zero();
       stats_.planted_leg_frames += mode != kFree ? 1 : 0;
       stats_.max_correction_m = std::max(stats_.max_correction_m, leg.offset.norm());
       const Vec3& hip = positions[leg.hip];
@@ -195,10 +199,14 @@ void FootCleanup::solve_leg(Leg& leg, const FrameTargets& targets, int side, std
                             std::span<Quat> world, std::span<Quat> local) {
   const Vec3 hip = positions[leg.hip], knee = positions[leg.knee], ankle = positions[leg.ankle];
   Vec3 target = targets.ankle[side];
-  if (targets.toe_share[side] > 0.0 && leg.toe_turning) {
+  if (targets.replanted[side] && leg.toe_turning) {
+    // The exact plant moves with the guessed one (the toe is turned towards it as it eases).
+    leg.toe_turn_plant -= targets.toe_plant_lag[side];
+  }
+  if (targets.toe_planted[side] && leg.toe_turning) {
     // Step 1 followed the toe's plant as it guessed it; the toe's plant is where the toe was.
     const Vec3 exact = leg.toe_turn_plant - targets.toe_plant[side];
-    target += targets.toe_share[side] * Vec3(exact.x(), 0.0, exact.z());
+    target += Vec3(exact.x(), 0.0, exact.z());
   }
   Quat leg_turn = Quat::Identity();  // world rotation the IK gave the shank
   Vec3 new_ankle = ankle;
@@ -218,22 +226,19 @@ void FootCleanup::solve_leg(Leg& leg, const FrameTargets& targets, int side, std
     if (axis.norm() > 1e-9) leg.bend_axis = axis.normalized();
   }
   Quat toe_turn = Quat::Identity();
-  if (targets.replanted[side] && leg.toe_turning) {
-    // The toe's plant moves with the leg's: turned towards from where the foot is turned now.
-    leg.toe_turning = false;
-    leg.since_toe_release = 0;
-  }
   if (leg.toe >= 0) {
     const Vec3 foot = positions[leg.toe] - ankle;  // ankle to toe: the foot keeps its orientation
     if (targets.toe_planted[side]) {
       if (!leg.toe_turning) {
         const Quat easing = Quat::Identity().slerp(ease_weight(leg.since_toe_release), leg.last_toe_turn);
-        leg.toe_turn_plant = new_ankle + easing * foot;
+        // Where the toe is turned to now; the plant itself where a replant eases it to.
+        leg.toe_turn_plant = new_ankle + easing * foot - targets.toe_plant_lag[side];
         leg.toe_turning = true;
       }
       // Onto the plant's vertical: the height at which the foot's length reaches it, on the side
       // of the ankle the toe is (as high as the motion has it when the plant is out of reach).
-      const Vec3 across(leg.toe_turn_plant.x() - new_ankle.x(), 0.0, leg.toe_turn_plant.z() - new_ankle.z());
+      const Vec3 plant = leg.toe_turn_plant + targets.toe_plant_lag[side];
+      const Vec3 across(plant.x() - new_ankle.x(), 0.0, plant.z() - new_ankle.z());
       const double rise_squared = foot.squaredNorm() - across.squaredNorm();
       const double rise = rise_squared > 0.0 ? std::copysign(std::sqrt(rise_squared), foot.y()) : foot.y();
       // At most kMaxToeTurn: a plant the foot would have to spin round to reach is let go of

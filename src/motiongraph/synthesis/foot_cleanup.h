@@ -13,7 +13,8 @@
 //     plant, which continues the offset it starts from: the clean-up adds no step. A plant
 //     the motion's foot has left by more than max_hold_m on the floor (a long contact over
 //     which the pieces' placement drifted: a dancer standing for minutes) is made again
-//     where the motion has the foot, the offset eased to it like any switch.
+//     where the motion has the foot, the offset eased to it like any switch (and the toe's
+//     plant of step 4 with it).
 //  2. The root is lowered (only vertically, at most max_root_drop_m) just enough that both
 //     legs reach their targets with the knee bent to at most max_extension of the leg's
 //     length (or as straight as the motion had it); the drop is spread over the frames around
@@ -94,6 +95,7 @@ class FootCleanup {
     Vec3 offset = Vec3::Zero();       // the last frame's ankle target minus ankle
     Vec3 switch_offset = Vec3::Zero();
     int since_switch = 1 << 30;
+    Vec3 replant_move = Vec3::Zero(); // the last replant's old toe plant minus its new one
     // Solving (steps 3 and 4).
     Vec3 hinge_sum = Vec3::Zero();    // the knee's bend axis in the hip joint's frame, summed
     Vec3 bend_axis = Vec3::Zero();    // the last frame's, in the world
@@ -107,8 +109,11 @@ class FootCleanup {
     std::array<bool, 2> corrected;   // the target differs from the ankle or the toe turns
     std::array<bool, 2> toe_planted;
     std::array<bool, 2> replanted;   // the plant was made again this frame (max_hold_m)
-    std::array<double, 2> toe_share;  // how much of the ankle's offset follows the toe's plant ...
-    std::array<Vec3, 2> toe_plant;    // ... as step 1 guessed it
+    std::array<Vec3, 2> toe_plant;    // the toe's plant as step 1 guessed it
+    // While a replanted toe's plant is eased to its new place: how far (on the floor) the toe
+    // is still to be turned short of it, the old plant's side; zero otherwise. On the replant's
+    // frame it is the whole move, by which the exact plant (step 4) moves too.
+    std::array<Vec3, 2> toe_plant_lag;
     double drop_needed = 0.0;
   };
 
