@@ -5,6 +5,7 @@
 #include "motiongraph/graph/threshold_choice.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "motiongraph/metric/reference_distance.h"
 #include "test_data.h"
@@ -173,6 +174,25 @@ TEST(ThresholdChoice, LowestGraphThresholdMakesAGraph) {
   auto check = coverage_at(x.db, x.features, x.search, x.settings, (*lowest)->threshold);
   ASSERT_TRUE(check);
   EXPECT_TRUE(check->graph);
+}
+
+TEST(ThresholdChoice, SettingsJsonRoundTripAndMissingKeysKeepDefaults) {
+  ThresholdChoiceSettings s;
+  s.coverage = 0.55;
+  s.max_rms_cm = 7.5;
+  s.reachable_share = 0.8;
+  s.min_transition_rate = 3.0;
+  s.lowest_rms_cm = 0.25;
+  s.grid = 9;
+  s.refine = 2;
+  const nlohmann::json json = s;
+  const auto back = json.get<ThresholdChoiceSettings>();
+  EXPECT_EQ(nlohmann::json(back), json);
+  EXPECT_EQ(back.coverage, 0.55);
+  EXPECT_EQ(back.grid, 9);
+  EXPECT_EQ(json.at("coverage_target"), 0.55);  // the report's name for it
+  const auto defaults = nlohmann::json::object().get<ThresholdChoiceSettings>();
+  EXPECT_EQ(nlohmann::json(defaults), nlohmann::json(ThresholdChoiceSettings{}));
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <random>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 namespace mg {
 namespace {
@@ -152,6 +153,19 @@ TEST(TransitionSpacing, RandomSetsObeyTheRulesAndAreMaximal) {
                           << " fits but was dropped";
     }
   }
+}
+
+TEST(TransitionSpacing, JsonRoundTripResolvedWindowAndOlderFiles) {
+  const TransitionSpacing s{-1, 2, 8};
+  EXPECT_EQ(s.resolved(10).out_window_frames, 10);
+  EXPECT_EQ(TransitionSpacing({4, 2, 8}).resolved(10).out_window_frames, 4);
+  const nlohmann::json json = s.resolved(10);
+  const auto back = json.get<TransitionSpacing>();
+  EXPECT_EQ(back.out_window_frames, 10);
+  EXPECT_EQ(back.max_out, 2);
+  EXPECT_EQ(back.min_piece_frames, 8);
+  const auto none = nlohmann::json::object().get<TransitionSpacing>();  // unspaced files
+  EXPECT_EQ(nlohmann::json(none), nlohmann::json(TransitionSpacing{}));
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include "motiongraph/synthesis/path_check.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <numbers>
 
@@ -166,6 +167,22 @@ TEST(PathCheck, ALibraryWhoseRootStaysPutIsNotChecked) {
   ASSERT_TRUE(context);
   EXPECT_GT(travelling_share(*context, s.travel_speed_mps), 0.5);
   EXPECT_EQ(travelling_share(*context, 100.0), 0.0);
+}
+
+TEST(PathCheck, SettingsJsonRoundTripAndMissingKeysKeepDefaults) {
+  PathCheckSettings s;
+  s.tolerance_m = 0.2;
+  s.steps = 3;
+  s.min_travel_share = 0.3;
+  s.travel_speed_mps = 0.7;
+  const nlohmann::json json = s;
+  const auto back = json.get<PathCheckSettings>();
+  EXPECT_EQ(nlohmann::json(back), json);
+  EXPECT_EQ(back.steps, 3);
+  EXPECT_EQ(back.travel_speed_mps, 0.7);
+  const auto defaults = nlohmann::json{{"tolerance_m", 0.3}}.get<PathCheckSettings>();
+  EXPECT_EQ(defaults.tolerance_m, 0.3);
+  EXPECT_EQ(defaults.steps, PathCheckSettings{}.steps);
 }
 
 }  // namespace

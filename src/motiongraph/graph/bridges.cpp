@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include <nlohmann/json.hpp>
+
 namespace mg {
 
 Status BridgeSettings::validate() const {
@@ -154,6 +156,18 @@ BridgeSelection select_bridges(std::span<const Transition> candidates, std::span
     }
   }
   return out;
+}
+
+void to_json(nlohmann::json& json, const BridgeSettings& bridges) {
+  json = {{"bridges_per_tag_pair", bridges.per_tag_pair},
+          {"max_bridge_distance", bridges.max_distance},
+          {"bridge_blend_factor", bridges.max_blend_factor}};
+}
+
+void from_json(const nlohmann::json& json, BridgeSettings& bridges) {
+  bridges.per_tag_pair = json.value("bridges_per_tag_pair", BridgeSettings{}.per_tag_pair);
+  bridges.max_distance = json.value("max_bridge_distance", -1.0);
+  bridges.max_blend_factor = json.value("bridge_blend_factor", 1.0);
 }
 
 }  // namespace mg

@@ -13,6 +13,8 @@
 #include <span>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "motiongraph/core/error.h"
 #include "motiongraph/database/motion_database.h"
 #include "motiongraph/graph/motion_graph.h"
@@ -29,6 +31,13 @@ struct BridgeSettings {
 
   Status validate() const;
 };
+
+// Its JSON form, the one the graph file and the build report write: {"bridges_per_tag_pair",
+// "max_bridge_distance", "bridge_blend_factor"} (tags and locality are build's own, not
+// recorded). Reading keeps what graph files written before bridges were capped or blended
+// longer meant: no cap, blended as a transition (factor 1).
+void to_json(nlohmann::json& json, const BridgeSettings& bridges);
+void from_json(const nlohmann::json& json, BridgeSettings& bridges);
 
 // Why an ordered pair of tags has neither a transition nor a bridge.
 enum class UnjoinedReason {

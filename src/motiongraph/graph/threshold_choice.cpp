@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 namespace mg {
 
@@ -220,6 +221,24 @@ Result<std::optional<CoveragePoint>> lowest_graph_threshold(const MotionDatabase
     }
   }
   return found;
+}
+
+void to_json(nlohmann::json& json, const ThresholdChoiceSettings& settings) {
+  json = {{"coverage_target", settings.coverage},         {"max_rms_cm", settings.max_rms_cm},
+          {"reachable_share", settings.reachable_share}, {"min_transition_rate", settings.min_transition_rate},
+          {"lowest_rms_cm", settings.lowest_rms_cm},     {"grid", settings.grid},
+          {"refine", settings.refine}};
+}
+
+void from_json(const nlohmann::json& json, ThresholdChoiceSettings& settings) {
+  const ThresholdChoiceSettings defaults;
+  settings.coverage = json.value("coverage_target", defaults.coverage);
+  settings.max_rms_cm = json.value("max_rms_cm", defaults.max_rms_cm);
+  settings.reachable_share = json.value("reachable_share", defaults.reachable_share);
+  settings.min_transition_rate = json.value("min_transition_rate", defaults.min_transition_rate);
+  settings.lowest_rms_cm = json.value("lowest_rms_cm", defaults.lowest_rms_cm);
+  settings.grid = json.value("grid", defaults.grid);
+  settings.refine = json.value("refine", defaults.refine);
 }
 
 }  // namespace mg

@@ -34,6 +34,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "motiongraph/core/error.h"
 #include "motiongraph/graph/graph_from_candidates.h"
 
@@ -57,6 +59,12 @@ struct ThresholdChoiceSettings {
 
   Status validate() const;
 };
+
+// Its JSON form, the settings part of the build report's "threshold_choice":
+// {"coverage_target", "max_rms_cm", "reachable_share", "min_transition_rate", "lowest_rms_cm",
+// "grid", "refine"}; a key missing on reading keeps its default.
+void to_json(nlohmann::json& json, const ThresholdChoiceSettings& settings);
+void from_json(const nlohmann::json& json, ThresholdChoiceSettings& settings);
 
 struct CoveragePoint {
   double threshold = 0.0;           // D

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <unordered_map>
 
+#include <nlohmann/json.hpp>
+
 #include "motiongraph/metric/pair_alignment.h"
 
 namespace mg {
@@ -124,6 +126,23 @@ Result<TransitionSelection> select_transitions(const FrameFeatures& features, co
     return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
   });
   return selection;
+}
+
+void to_json(nlohmann::json& json, const TransitionSettings& settings) {
+  json = {{"threshold", settings.threshold},
+          {"threshold_quantile", settings.threshold_quantile},
+          {"max_threshold", settings.max_threshold},
+          {"locality_radius", settings.locality_radius},
+          {"per_tag_thresholds", settings.per_tag_thresholds}};
+}
+
+void from_json(const nlohmann::json& json, TransitionSettings& settings) {
+  const TransitionSettings defaults;
+  settings.threshold = json.at("threshold").get<double>();
+  settings.threshold_quantile = json.at("threshold_quantile").get<double>();
+  settings.locality_radius = json.at("locality_radius").get<int>();
+  settings.per_tag_thresholds = json.value("per_tag_thresholds", defaults.per_tag_thresholds);
+  settings.max_threshold = json.value("max_threshold", defaults.max_threshold);
 }
 
 }  // namespace mg

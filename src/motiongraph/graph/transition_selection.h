@@ -15,6 +15,8 @@
 #include <span>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "motiongraph/core/error.h"
 #include "motiongraph/database/motion_database.h"
 #include "motiongraph/graph/candidates.h"
@@ -31,6 +33,12 @@ struct TransitionSettings {
 
   Status validate() const;
 };
+
+// Its JSON form, the one the graph file writes: {"threshold", "threshold_quantile",
+// "max_threshold", "locality_radius", "per_tag_thresholds"}. Reading needs the first, second and
+// fourth (nlohmann::json::exception otherwise); the others keep their defaults.
+void to_json(nlohmann::json& json, const TransitionSettings& settings);
+void from_json(const nlohmann::json& json, TransitionSettings& settings);
 
 struct TagThreshold {
   int tag = 0;

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <numeric>
 
+#include <nlohmann/json.hpp>
+
 namespace mg {
 
 Status TransitionSpacing::validate() const {
@@ -75,6 +77,19 @@ std::vector<Transition> space_transitions(std::span<const Transition> transition
     return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
   });
   return kept;
+}
+
+void to_json(nlohmann::json& json, const TransitionSpacing& spacing) {
+  json = {{"out_window_frames", spacing.out_window_frames},
+          {"min_piece_frames", spacing.min_piece_frames},
+          {"max_out", spacing.max_out}};
+}
+
+void from_json(const nlohmann::json& json, TransitionSpacing& spacing) {
+  const TransitionSpacing defaults;
+  spacing.out_window_frames = json.value("out_window_frames", defaults.out_window_frames);
+  spacing.min_piece_frames = json.value("min_piece_frames", defaults.min_piece_frames);
+  spacing.max_out = json.value("max_out", defaults.max_out);
 }
 
 }  // namespace mg

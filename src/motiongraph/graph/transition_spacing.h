@@ -21,6 +21,8 @@
 #include <span>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "motiongraph/core/error.h"
 #include "motiongraph/graph/transition.h"
 
@@ -33,7 +35,19 @@ struct TransitionSpacing {
 
   Status validate() const;
   int out_window_for(int window) const { return out_window_frames < 0 ? window : out_window_frames; }
+  // The same spacing with out_window_frames resolved for the window (as recorded).
+  TransitionSpacing resolved(int window) const {
+    TransitionSpacing out = *this;
+    out.out_window_frames = out_window_for(window);
+    return out;
+  }
 };
+
+// Its JSON form, the one the graph file (pipeline/saved_settings.h) and the build report write:
+// {"out_window_frames", "min_piece_frames", "max_out"}; a key missing on reading keeps its
+// default (graph files written before transitions were spaced record none).
+void to_json(nlohmann::json& json, const TransitionSpacing& spacing);
+void from_json(const nlohmann::json& json, TransitionSpacing& spacing);
 
 // The kept transitions, sorted by (from_frame, to_frame). clip_of_frame maps every global
 // frame to its clip (frames of different clips never constrain each other); window is k.

@@ -308,7 +308,8 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
   const char* mode_name = threshold_mode_name(settings.threshold_mode);
   out.report = build_report(BuildReportParts{*db, *features, *layout, candidates->search, *selected,
                                              built ? &*built : nullptr, distance_json, mode_name, choice_json,
-                                             check_json, settings.spacing, candidates->cache});
+                                             check_json, settings.spacing, graph_settings->bridges,
+                                             candidates->cache});
   if (auto s = make_exports(settings, *db, *layout, *features, candidates->search, selected->all_transitions, out);
       !s) {
     return s.error();

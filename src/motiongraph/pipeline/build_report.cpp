@@ -55,17 +55,15 @@ json threshold_choice_json(const ThresholdChoice& choice, const MotionDatabase& 
     targets[names.back()] = choice.targets[i];
   }
   if (choice.tags.empty() && !choice.targets.empty()) targets["all"] = choice.targets[0];
-  return {{"coverage_target", settings.coverage},
-          {"reachable_share", settings.reachable_share},
-          {"min_transition_rate", settings.min_transition_rate},
-          {"target_rate", choice.target_rate},
-          {"targets", targets},
-          {"max_rms_cm", settings.max_rms_cm},
-          {"reached", choice.reached},
-          {"threshold", choice.threshold},
-          {"rms_cm", choice.rms_cm},
-          {"motion_types", names},
-          {"curve", curve}};
+  json out = settings;
+  out.update({{"target_rate", choice.target_rate},
+              {"targets", targets},
+              {"reached", choice.reached},
+              {"threshold", choice.threshold},
+              {"rms_cm", choice.rms_cm},
+              {"motion_types", names},
+              {"curve", curve}});
+  return out;
 }
 
 json path_check_json(const PathCheck& check, const PathCheckSettings& settings) {
@@ -80,14 +78,15 @@ json path_check_json(const PathCheck& check, const PathCheckSettings& settings) 
                       {"transitions", p.transitions},
                       {"seconds", p.seconds}});
   }
-  return {{"tolerance_m", settings.tolerance_m},
-          {"probe_length_m", check.probe_length_m},
-          {"skipped", check.skipped},
-          {"travel_share", check.travel_share},
-          {"passed", check.passed},
-          {"threshold", check.threshold},
-          {"rms_cm", check.rms_cm},
-          {"points", points}};
+  json out = settings;
+  out.update({{"probe_length_m", check.probe_length_m},
+              {"skipped", check.skipped},
+              {"travel_share", check.travel_share},
+              {"passed", check.passed},
+              {"threshold", check.threshold},
+              {"rms_cm", check.rms_cm},
+              {"points", points}});
+  return out;
 }
 
 json unjoined_json(const std::vector<UnjoinedPair>& pairs, const MotionDatabase& db, const FrameFeatures& features) {
@@ -183,10 +182,8 @@ json build_report(const BuildReportParts& parts) {
       {"threshold_choice", parts.threshold_choice},
       {"path_check", parts.path_check},
       {"locality_radius", selection.locality_radius},
-      {"spacing",
-       {{"out_window_frames", parts.spacing.out_window_for(features.window)},
-        {"min_piece_frames", parts.spacing.min_piece_frames},
-        {"max_out", parts.spacing.max_out}}},
+      {"spacing", parts.spacing.resolved(features.window)},
+      {"bridge_settings", parts.bridge_settings},
       {"tag_thresholds", tag_thresholds},
       {"counts",
        {{"pairs", static_cast<long long>(features.frames) * features.frames},

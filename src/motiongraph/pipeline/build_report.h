@@ -55,6 +55,7 @@ struct BuildReportParts {
   nlohmann::json threshold_choice;  // null unless automatic
   nlohmann::json path_check;        // null unless checked
   TransitionSpacing spacing;
+  BridgeSettings bridge_settings;  // max_distance as D
   const char* distance_cache = "off";  // "hit", "stored" or "off"
 };
 

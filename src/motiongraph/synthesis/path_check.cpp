@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <nlohmann/json.hpp>
+
 #include "motiongraph/graph/threshold_choice.h"
 
 namespace mg {
@@ -158,6 +160,21 @@ Result<PathCheck> check_path_following(const MotionDatabase& db, const FrameFeat
   out.threshold = best->threshold;
   out.rms_cm = best->rms_cm;
   return out;
+}
+
+void to_json(nlohmann::json& json, const PathCheckSettings& settings) {
+  json = {{"tolerance_m", settings.tolerance_m},
+          {"steps", settings.steps},
+          {"min_travel_share", settings.min_travel_share},
+          {"travel_speed_mps", settings.travel_speed_mps}};
+}
+
+void from_json(const nlohmann::json& json, PathCheckSettings& settings) {
+  const PathCheckSettings defaults;
+  settings.tolerance_m = json.value("tolerance_m", defaults.tolerance_m);
+  settings.steps = json.value("steps", defaults.steps);
+  settings.min_travel_share = json.value("min_travel_share", defaults.min_travel_share);
+  settings.travel_speed_mps = json.value("travel_speed_mps", defaults.travel_speed_mps);
 }
 
 }  // namespace mg

@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "motiongraph/graph/graph_from_candidates.h"
 #include "motiongraph/synthesis/floor_path.h"
 #include "motiongraph/synthesis/path_synthesis.h"
@@ -32,6 +34,12 @@ struct PathCheckSettings {
 
   Status validate() const;
 };
+
+// Its JSON form, the settings part of the build report's "path_check": {"tolerance_m",
+// "steps", "min_travel_share", "travel_speed_mps"} (the search is `path`'s default, not
+// recorded); a key missing on reading keeps its default.
+void to_json(nlohmann::json& json, const PathCheckSettings& settings);
+void from_json(const nlohmann::json& json, PathCheckSettings& settings);
 
 struct PathCheckPoint {
   double threshold = 0.0;  // D
