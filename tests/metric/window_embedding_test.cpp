@@ -9,52 +9,19 @@
 
 #include <gtest/gtest.h>
 
-#include "motiongraph/metric/distance_tiles.h"
+#include "metric/tile_matrix.h"
 #include "test_data.h"
 
 namespace mg {
 namespace {
 
-struct Matrix {
-  FrameFeatures features;
-  std::vector<float> d;  // N x N, NaN undefined
-  float at(int a, int b) const { return d[static_cast<size_t>(a) * features.frames + b]; }
-};
-
-Matrix matrix_of(const MotionDatabase& db, DistanceSettings settings = {}) {
-  Matrix m;
-  auto layout = make_cloud_layout(db.skeletons[0], {});
-  EXPECT_TRUE(layout);
-  auto features = make_frame_features(db, *layout, settings);
-  EXPECT_TRUE(features) << features.error().to_string();
-  m.features = std::move(*features);
-  const int n = m.features.frames;
-  m.d.assign(static_cast<size_t>(n) * n, 0.0f);
-  settings.threads = 1;
-  for_each_distance_tile(m.features, settings, [&](const DistanceTile& tile) {
-    for (int a = tile.leave_begin; a < tile.leave_begin + tile.leave_count; ++a) {
-      for (int b = tile.arrive_begin; b < tile.arrive_begin + tile.arrive_count; ++b) m.d[size_t(a) * n + b] = tile.at(a, b);
-    }
-  });
-  return m;
-}
-
-// The q-quantile of the defined D.
-double quantile_of(const Matrix& m, double q) {
-  std::vector<float> finite;
-  for (float v : m.d) {
-    if (std::isfinite(v)) finite.push_back(v);
-  }
-  const size_t i = static_cast<size_t>(q * static_cast<double>(finite.size()));
-  std::nth_element(finite.begin(), finite.begin() + i, finite.end());
-  return finite[i];
-}
+using test::quantile_of;
 
 TEST(WindowEmbedding, BoundsTheDistanceFromBelowAndTheProjectionBoundsTheBound) {
   for (const DistanceSettings::Taper taper : {DistanceSettings::Taper::kUniform, DistanceSettings::Taper::kHann}) {
     DistanceSettings settings;
     settings.taper = taper;
-    const Matrix m = matrix_of(test::small_database({"cmu/16/16_15.amc", "cmu/16/16_35.amc", "cmu/16/16_01.amc"}),
+    const test::TileMatrix m = test::tile_matrix(test::small_database({"cmu/16/16_15.amc", "cmu/16/16_35.amc", "cmu/16/16_01.amc"}),
                                settings);
     auto embedding = make_window_embedding(m.features);
     ASSERT_TRUE(embedding) << embedding.error().to_string();
@@ -82,7 +49,7 @@ TEST(WindowEmbedding, BoundsTheDistanceFromBelowAndTheProjectionBoundsTheBound) 
 }
 
 TEST(WindowEmbedding, RangeSearchFindsEveryPairBelowTheCeilingAndEqualsAScan) {
-  const Matrix m = matrix_of(test::small_database({"cmu/16/16_15.amc", "cmu/16/16_35.amc", "cmu/16/16_57.amc"}));
+  const test::TileMatrix m = test::tile_matrix(test::small_database({"cmu/16/16_15.amc", "cmu/16/16_35.amc", "cmu/16/16_57.amc"}));
   auto embedding = make_window_embedding(m.features);
   ASSERT_TRUE(embedding);
   const int n = m.features.frames, k = m.features.window;

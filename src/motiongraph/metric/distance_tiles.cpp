@@ -13,6 +13,7 @@
 #include <cblas.h>
 
 #include "motiongraph/core/vector_clones.h"
+#include "motiongraph/metric/closed_form.h"
 
 namespace mg {
 
@@ -91,30 +92,8 @@ struct Products {
   }
 };
 
-// The departure window's terms of the closed form.
-struct RowTerms {
-  double x = 0.0, z = 0.0;  // X, Z
-  double square = 0.0;      // S - (X^2 + Z^2) / W
-  double inv_w = 0.0;       // 1 / W
-};
-
-// DESIGN.md 3.2, with the one-window terms S - (X^2 + Z^2) / W precomputed (square2 for the
-// arrival window). Branch-free, so that the loops calling it vectorise: max(0, d) is written
-// (d + |d|) / 2, exact in floating point (a select would need -fno-trapping-math).
-inline float closed_form(double c1, double c2, double c3, const RowTerms& row, double x2, double z2, double square2) {
-  const double big_a = c1 - (row.x * x2 + row.z * z2) * row.inv_w;
-  const double big_b = c2 - (row.x * z2 - row.z * x2) * row.inv_w;
-  const double d = row.square + square2 - 2.0 * c3 - 2.0 * std::sqrt(big_a * big_a + big_b * big_b);
-  return static_cast<float>(0.5 * (d + std::fabs(d)));
-}
-
 // The per-pair loops below are free functions (restrict arguments let them vectorise) and
 // carry MG_VECTOR_CLONES (an AVX2 version beside the baseline one).
-// A departure frame's reference r and centred first moment m.
-struct Offsets {
-  double rx = 0.0, rz = 0.0, mx = 0.0, mz = 0.0;
-};
-
 // One row of E (DESIGN.md 3.3) plus p (the previous row's diagonal sums, or zeros).
 MG_VECTOR_CLONES void accumulate_kernel(int cols, Offsets o, const float* __restrict g1, const float* __restrict g2,
                        const float* __restrict g3, const double* __restrict sx, const double* __restrict sz,
@@ -122,9 +101,8 @@ MG_VECTOR_CLONES void accumulate_kernel(int cols, Offsets o, const float* __rest
                        const double* __restrict p2, const double* __restrict p3, double* __restrict e1,
                        double* __restrict e2, double* __restrict e3) {
   for (int j = 0; j < cols; ++j) {
-    // r.n' + m.s' + V r.s' = r.(n' + V s') + m.s', and likewise for the cross term.
-    e1[j] = (g1[j] + (o.rx * nvx[j] + o.rz * nvz[j]) + (o.mx * sx[j] + o.mz * sz[j])) + p1[j];
-    e2[j] = (g2[j] + (o.rx * nvz[j] - o.rz * nvx[j]) + (o.mx * sz[j] - o.mz * sx[j])) + p2[j];
+    e1[j] = uncentred_e1(o, g1[j], sx[j], sz[j], nvx[j], nvz[j]) + p1[j];
+    e2[j] = uncentred_e2(o, g2[j], sx[j], sz[j], nvx[j], nvz[j]) + p2[j];
     e3[j] = g3[j] + p3[j];
   }
 }
