@@ -57,7 +57,9 @@ TEST(WindowEmbedding, RangeSearchFindsEveryPairBelowTheCeilingAndEqualsAScan) {
     const double ceiling = quantile_of(m, q);
     std::vector<std::pair<int, int>> visited;
     const BoundedPairStatistics stats =
-        for_each_bounded_pair(m.features, *embedding, ceiling, [&](int a, int b) { visited.emplace_back(a, b); });
+        for_each_bounded_pair(m.features, *embedding, ceiling, [&](int a, std::span<const int> bs) {
+          for (int b : bs) visited.emplace_back(a, b);
+        });
     EXPECT_EQ(stats.pairs, static_cast<long long>(visited.size()));
     EXPECT_TRUE(std::is_sorted(visited.begin(), visited.end()));
     // The scan: every defined pair whose embedded bound is at most the ceiling.
@@ -72,6 +74,16 @@ TEST(WindowEmbedding, RangeSearchFindsEveryPairBelowTheCeilingAndEqualsAScan) {
       }
     }
     EXPECT_EQ(visited, scanned) << q;
+    // The same on one thread as on three (the batches split differently).
+    for (const int threads : {1, 3}) {
+      std::vector<std::pair<int, int>> again;
+      const BoundedPairStatistics same = for_each_bounded_pair(
+          m.features, *embedding, ceiling, [&](int a, std::span<const int> bs) {
+            for (int b : bs) again.emplace_back(a, b);
+          }, threads);
+      EXPECT_EQ(again, visited) << threads;
+      EXPECT_EQ(same.scanned, stats.scanned) << threads;
+    }
     // Exact: no pair whose D is below the ceiling is left out (D >= the bound).
     const std::set<std::pair<int, int>> found(visited.begin(), visited.end());
     for (int a = 0; a < n; ++a) {
@@ -84,6 +96,8 @@ TEST(WindowEmbedding, RangeSearchFindsEveryPairBelowTheCeilingAndEqualsAScan) {
     // And it prunes: far fewer candidates than pairs.
     EXPECT_LT(static_cast<double>(visited.size()), 0.5 * static_cast<double>(defined)) << q;
     EXPECT_GE(static_cast<long long>(visited.size()), below);
+    EXPECT_GE(stats.scanned, stats.pairs);
+    EXPECT_LE(stats.scanned, defined);
     RecordProperty("candidates_q" + std::to_string(q), std::to_string(double(visited.size()) / double(defined)));
   }
 }

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "motiongraph/core/error.h"
@@ -50,16 +51,18 @@ double window_feature_bound(const FrameFeatures& features, int a, int b);
 
 // Every pair (a, b) whose embedded bound is at most `ceiling` (D units), a able to leave and
 // b able to arrive (FrameFeatures::can_leave, can_arrive): the pairs that can have D <= ceiling.
-// Visited in increasing a, and for each a in increasing b. Found by balls of consecutive
-// windows (a fifth of the window, at least 2, and 8 such: the motion is smooth, so they are
-// small), pairs of balls too far apart
-// for any pair within sqrt(ceiling) skipped by the triangle inequality, the pairs of the rest
-// summed with an early exit.
+// Found by balls of consecutive windows (a fifth of the window, at least 4, and 8 such: the
+// motion is smooth, so they are small), pairs of balls too far apart for any pair within
+// sqrt(ceiling) skipped by the triangle inequality, the pairs of the rest summed with an
+// early exit.
 struct BoundedPairStatistics {
   long long pairs = 0;    // visited
   long long scanned = 0;  // windows whose bound was (partly) summed
 };
+// The search runs on `threads` threads (0: one per core); visit is called on the caller's,
+// once per leaving frame a with any, with its arrival frames b in increasing order.
+using BoundedPairVisitor = std::function<void(int a, std::span<const int> arrivals)>;
 BoundedPairStatistics for_each_bounded_pair(const FrameFeatures& features, const WindowEmbedding& embedding,
-                                            double ceiling, const std::function<void(int a, int b)>& visit);
+                                            double ceiling, const BoundedPairVisitor& visit, int threads = 0);
 
 }  // namespace mg
