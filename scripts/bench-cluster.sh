@@ -21,10 +21,10 @@ source scripts/large-data.sh "$archive"
 common=("${subjects[@]}" --fps "$fps" --no-cache --cmu-index data/cmu/cmu-mocap-index.tsv -q)
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 echo "== ${#subjects[@]} subjects at $fps fps: one process"
-/usr/bin/time -f "wall %e s, peak memory %M KB" "$bin" build "${common[@]}" \
+/usr/bin/time -f "wall %e s, cpu %U s user + %S s system, peak memory %M KB" "$bin" build "${common[@]}" \
   -o "$work/one-$fps.mgraph" --report "$work/one-$fps.json"
 echo "== $processes processes of $threads thread(s)"
-/usr/bin/time -f "wall %e s (mpirun)" mpirun -q --oversubscribe -np "$processes" "$bin" build \
+/usr/bin/time -f "wall %e s, cpu %U s user + %S s system (all processes)" mpirun -q --oversubscribe -np "$processes" "$bin" build \
   "${common[@]}" --threads "$threads" -o "$work/mpi-$fps.mgraph" --report "$work/mpi-$fps.json"
 "$bin" inspect --nodes "$work/one-$fps.mgraph" >"$work/one-$fps.nodes"
 "$bin" inspect --nodes "$work/mpi-$fps.mgraph" >"$work/mpi-$fps.nodes"
@@ -35,9 +35,10 @@ reports = [json.load(open(p)) for p in sys.argv[1:3]]
 for r in reports:
     t = r["timings"]["distance"]
     print(f"{r['processes']} process(es): distance {t:.1f} s, {r['counts']['pairs'] / t / 1e6:.1f} M pairs/s, "
+          f"each process's tiles (s): {[round(s, 1) for s in r['share_seconds']]}, "
           f"peak memory by process (MB, end of the distance stage): {[round(m) for m in r['peak_memory_mb']]}, "
           f"counts {r['counts']}")
-    for key in ("timings", "processes", "peak_memory_mb", "restored_tiles"):
+    for key in ("timings", "processes", "peak_memory_mb", "share_seconds", "restored_tiles"):
         r.pop(key)
     for point in (r["path_check"] or {}).get("points", []):
         point.pop("seconds")

@@ -25,7 +25,7 @@ same_graph() {
 import json, sys
 def how_built(path):
     r = json.load(open(path))
-    for key in ("timings", "processes", "peak_memory_mb", "restored_tiles"):
+    for key in ("timings", "processes", "peak_memory_mb", "share_seconds", "restored_tiles"):
         r.pop(key)
     for point in (r["path_check"] or {}).get("points", []):
         point.pop("seconds")
@@ -51,6 +51,7 @@ import json, sys
 one, three = (json.load(open(p)) for p in sys.argv[1:3])
 assert one["processes"] == 1 and three["processes"] == 3, (one["processes"], three["processes"])
 assert len(three["peak_memory_mb"]) == 3 and all(m > 1 for m in three["peak_memory_mb"]), three["peak_memory_mb"]
+assert len(three["share_seconds"]) == 3 and all(s > 0 for s in three["share_seconds"]), three["share_seconds"]
 PY
 
 # 2. A process killed midway: one line, a failed exit, no graph, no report. At 120 fps in tiles of

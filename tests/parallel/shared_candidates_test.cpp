@@ -89,6 +89,8 @@ TEST(SharedCandidates, OneProcessIsThePlainSearch) {
   EXPECT_EQ(shared->restored_tiles, 0);
   ASSERT_EQ(shared->peak_memory_mb.size(), 1u);
   EXPECT_GT(shared->peak_memory_mb[0], 1.0);
+  ASSERT_EQ(shared->share_seconds.size(), 1u);
+  EXPECT_EQ(shared->share_seconds[0], shared->search.tiles.seconds);
   EXPECT_EQ(bytes_of(shared->search), bytes_of(*plain));
 }
 

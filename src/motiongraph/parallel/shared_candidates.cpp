@@ -31,6 +31,7 @@ Result<CandidatePart> run_share(const FrameFeatures& features, const DistanceSet
   if (!empty) return empty.error();
   CandidatePart mine;
   mine.search = std::move(*empty);
+  const auto start = std::chrono::steady_clock::now();
   long long my_tiles = 0;
   for (long long item : share) my_tiles += items.tile_count(item);
   ProgressBar progress("distance", static_cast<std::uint64_t>(my_tiles), !shared.progress_bar);
@@ -52,7 +53,33 @@ Result<CandidatePart> run_share(const FrameFeatures& features, const DistanceSet
   }
   progress.finish();
   mine.peak_memory_mb = peak_memory_mb();
+  mine.search.tiles.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return mine;
+}
+
+// Rank 0: the parts the processes sent ("P" and a part, or "E" and an error), with the
+// checkpoint's, merged into the search of all tiles; the first error otherwise.
+Status merge_parts(const FrameFeatures& features, const CandidateSettings& settings,
+                   std::span<const CandidatePart> restored, std::span<const std::string> messages, SharedSearch& out) {
+  auto all = empty_candidate_search(features, settings);
+  if (!all) return all.error();
+  out.search = std::move(*all);
+  for (const CandidatePart& part : restored) {
+    if (auto s = merge_candidates(out.search, part.search); !s) return s;
+  }
+  for (size_t r = 0; r < messages.size(); ++r) {
+    const std::string& message = messages[r];
+    const std::string who = r == 0 ? "" : fmt::format("process {}: ", r);
+    if (message.empty() || message[0] != 'P') {
+      return Error{"", 0, who + (message.empty() ? std::string("no answer") : message.substr(1))};
+    }
+    auto part = parse_candidate_part(std::string_view(message).substr(1), fmt::format("process {}", r));
+    if (!part) return part.error();
+    if (auto s = merge_candidates(out.search, part->search); !s) return s;
+    out.peak_memory_mb.push_back(part->peak_memory_mb);
+    out.share_seconds.push_back(part->search.tiles.seconds);
+  }
+  return Ok{};
 }
 
 }  // namespace
@@ -103,6 +130,7 @@ Result<SharedSearch> find_candidates_shared(const FrameFeatures& features, const
     if (!search) return search.error();
     out.search = std::move(*search);
     out.peak_memory_mb.push_back(peak_memory_mb());
+    out.share_seconds.push_back(out.search.tiles.seconds);
     return out;
   }
   std::vector<char> done(static_cast<size_t>(items.count()), 0);
@@ -118,30 +146,9 @@ Result<SharedSearch> find_candidates_shared(const FrameFeatures& features, const
   const std::vector<std::string> messages = team.gather(
       part_message(run_share(features, distance, settings, items, share, checkpoint ? &*checkpoint : nullptr, shared)));
 
-  // Rank 0: the parts, with the checkpoint's, merged into the search of all tiles.
   Status merged = Ok{};
   if (team.rank() == 0) {
-    auto all = empty_candidate_search(features, settings);
-    if (!all) return all.error();
-    out.search = std::move(*all);
-    for (const CandidatePart& part : restored) {
-      if (auto s = merge_candidates(out.search, part.search); !s && merged) merged = s;
-    }
-    for (size_t r = 0; r < messages.size() && merged; ++r) {
-      const std::string& message = messages[r];
-      const std::string who = r == 0 ? "" : fmt::format("process {}: ", r);
-      if (message.empty() || message[0] != 'P') {
-        merged = Error{"", 0, who + (message.empty() ? std::string("no answer") : message.substr(1))};
-        break;
-      }
-      auto part = parse_candidate_part(std::string_view(message).substr(1), fmt::format("process {}", r));
-      if (!part) {
-        merged = part.error();
-        break;
-      }
-      if (auto s = merge_candidates(out.search, part->search); !s) merged = s;
-      out.peak_memory_mb.push_back(part->peak_memory_mb);
-    }
+    merged = merge_parts(features, settings, restored, messages, out);
     out.search.tiles.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   if (auto s = team.agree(merged); !s) return s.error();

@@ -33,6 +33,7 @@ struct SharedSearch {
   int processes = 1;
   long long restored_tiles = 0;          // from the checkpoint
   std::vector<double> peak_memory_mb;    // rank 0: each process's peak resident memory, by rank
+  std::vector<double> share_seconds;     // rank 0: the seconds each process took for its tiles, by rank
 };
 
 // `key` is the build's distance cache key (it ties the checkpoint to the inputs and settings).

@@ -82,7 +82,7 @@ struct Candidates {
   CandidateSearch search;
   const char* cache = "off";  // "hit", "stored" or "off"
   int processes = 1;
-  std::vector<double> peak_memory_mb;
+  std::vector<double> peak_memory_mb, share_seconds;
   long long restored_tiles = 0;
 };
 
@@ -116,7 +116,7 @@ Result<Candidates> distance_stage(const FrameFeatures& features, const BuildSett
       find_candidates_shared(features, settings.distance_stage.distance, candidate_settings, key, team, shared);
   if (!found) return found.error();
   Candidates out{std::move(found->search), "off", found->processes, std::move(found->peak_memory_mb),
-                 found->restored_tiles};
+                 std::move(found->share_seconds), found->restored_tiles};
   if (team.rank() != 0) return out;
   const std::string restored =
       out.restored_tiles > 0 ? fmt::format(" ({} tiles from the checkpoint)", out.restored_tiles) : "";
@@ -351,7 +351,8 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
   out.report = build_report(BuildReportParts{*db, *features, *layout, candidates->search, *selected,
                                              built ? &*built : nullptr, distance_json, mode_name, choice_json,
                                              check_json, settings.spacing, candidates->cache, candidates->processes,
-                                             candidates->peak_memory_mb, candidates->restored_tiles});
+                                             candidates->peak_memory_mb, candidates->share_seconds,
+                                             candidates->restored_tiles});
   if (auto s = make_exports(settings, *db, *layout, *features, candidates->search, selected->all_transitions, out);
       !s) {
     return s.error();

@@ -205,6 +205,7 @@ json build_report(const BuildReportParts& parts) {
       {"distance_cache", parts.distance_cache},
       {"processes", parts.processes},
       {"peak_memory_mb", parts.peak_memory_mb},
+      {"share_seconds", parts.share_seconds},
       {"restored_tiles", parts.restored_tiles},
   };
 }
