@@ -14,17 +14,10 @@ if [[ ! -f $archive ]]; then
   echo "skipping the large benchmark: $archive not found (see docs/performance.md)"
   exit 0
 fi
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build --target motiongraph
-work=build/cmu-large
-if [[ ! -d $work/cmu-large ]]; then
-  mkdir -p "$work"
-  tar xJf "$archive" -C "$work"
-fi
-subjects=("$work"/cmu-large/*/)
+source scripts/large-data.sh "$archive"
 for fps in "${rates[@]}"; do
   echo "== ${#subjects[@]} subjects at $fps fps"
-  /usr/bin/time -f "wall %e s, peak memory %M KB" build/motiongraph build "${subjects[@]}" --fps "$fps" \
+  /usr/bin/time -f "wall %e s, peak memory %M KB" "$bin" build "${subjects[@]}" --fps "$fps" \
     -o "$work/large-$fps.mgraph" --no-cache --cmu-index data/cmu/cmu-mocap-index.tsv --report "$work/large-$fps.json"
   python3 -c "import json,sys; r=json.load(open(sys.argv[1])); print('timings (s):', {k: round(v, 1) for k, v in r['timings'].items()}); print('counts:', r['counts'])" "$work/large-$fps.json"
 done

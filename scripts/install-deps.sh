@@ -6,7 +6,8 @@
 #            with its sanitizer/fuzzer runtime, numpy, Blender (a test imports our BVH into it),
 #            chromium and curl (the studio's browser and socket tests), the tests' npm packages,
 #            pybind11, numpy and pytest (the Python package and its tests; a build without
-#            pybind11 simply leaves the package out).
+#            pybind11 simply leaves the package out), and Open MPI (`mpirun -np N motiongraph
+#            build`, docs/cluster.md, and its test; a build without it runs on one process).
 # Node.js is Debian 12's own (18.x); the npm lockfiles pin versions that run on it, and npm is
 # told to refuse any package whose "engines" excludes the Node.js at hand (--engine-strict).
 # Run as root, or as a user with sudo. Safe to run again: it skips what is present.
@@ -32,6 +33,7 @@ if [ "$mode" = test ]; then
     libgtest-dev libgmock-dev libbenchmark-dev
     python3-numpy blender chromium curl
     python3-dev python3-pybind11 python3-pytest
+    libopenmpi-dev openmpi-bin
   )
 fi
 # Node.js may come from elsewhere than Debian (its own packages conflict with Debian's npm).

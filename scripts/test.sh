@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs the whole test suite:
-#   1. the normal build (warnings as errors) and every CTest test;
-#   2. the same tests built with AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/);
+#   1. the normal build (warnings as errors) and every CTest test (with MPI found, cli_mpi runs
+#      the build on `mpirun -np 3 --oversubscribe`);
+#   2. the same tests built with AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/;
+#      without MPI there: Open MPI's own allocations read as leaks);
 #   3. each libFuzzer target briefly (build-fuzz/; FUZZ_SECONDS per target, default 20).
 # Usage: scripts/test.sh        (from anywhere; exits non-zero on the first failure)
 set -euo pipefail

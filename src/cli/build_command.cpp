@@ -19,6 +19,9 @@
 #include "motiongraph/io/file.h"
 #include "motiongraph/pipeline/build_graph.h"
 #include "motiongraph/pipeline/build_options.h"
+#ifdef MOTIONGRAPH_MPI
+#include "mpi/mpi_team.h"
+#endif
 
 namespace mg::cli {
 
@@ -38,6 +41,22 @@ struct BuildCommandOptions {
   bool quiet = false;
 };
 
+// The processes this build runs on: an MPI job's when started by an MPI launcher in a build
+// with MPI, else this one alone. Several processes of a build without MPI would each build the
+// whole graph: refused.
+Result<std::unique_ptr<ProcessTeam>> make_team() {
+#ifdef MOTIONGRAPH_MPI
+  if (launched_by_mpi()) return std::unique_ptr<ProcessTeam>(std::make_unique<MpiTeam>());
+#else
+  if (launcher_processes() > 1) {
+    return Error{"", 0,
+                 "started on several MPI processes, but this motiongraph is built without MPI (install "
+                 "libopenmpi-dev and build again; docs/cluster.md)"};
+  }
+#endif
+  return std::unique_ptr<ProcessTeam>(std::make_unique<OneProcess>());
+}
+
 int run_build(BuildCommandOptions& o) {
   o.build.exports = {!o.export_matrix.empty(), !o.matrix_png.empty(), !o.export_clouds.empty()};
   auto settings = build_settings_from(o.build);
@@ -52,8 +71,14 @@ int run_build(BuildCommandOptions& o) {
   log.warning = [](const std::string& line) { spdlog::warn("{}", line); };
   log.loaded = [&](const DatabaseLoadNotes& notes) { report_units(notes, o.quiet); };
   log.progress_bar = !o.quiet;
-  auto built = build_graph(o.inputs, *settings, cache.get(), log);
-  if (!built) return fail(built.error());
+  auto team = make_team();
+  if (!team) return fail(team.error());
+  auto built = build_graph(o.inputs, *settings, cache.get(), log, team->get());
+  // Only rank 0 tells, and fails the job: the other processes' errors reach it
+  // (pipeline/build_graph.h). The others end quietly, so that the launcher does not stop rank 0
+  // while it tells.
+  if (!built) return built.error().kind == ErrorKind::kOtherProcess ? 0 : fail(built.error());
+  if (built->worker) return 0;
 
   // The exports and the report are written even when no graph can be made, so that the user
   // can see why.
@@ -87,7 +112,8 @@ Command add_build_command(CLI::App& app) {
   BuildOptions& b = o->build;
   CLI::App* sub = app.add_subcommand(
       "build", "Build a motion graph (Kovar et al. 2002): transitions at local minima of the windowed, floor-aligned "
-               "point-cloud distance below a threshold; pruned to the largest strongly connected component per tag.");
+               "point-cloud distance below a threshold; pruned to the largest strongly connected component per tag. "
+               "Under mpirun (a build with MPI) the processes share the distance stage: docs/cluster.md.");
   sub->add_option("INPUT", o->inputs, "Folders (an .asf and its .amc files, or .bvh files), clip files, or .toml "
                                       "manifests (see docs/manifest.md)")
       ->required();
@@ -180,6 +206,13 @@ Command add_build_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--tile", b.distance.tile_frames, "Tile side in frames for the distance stage")->capture_default_str();
   sub->add_option("--threads", b.distance.threads, "Worker threads (0: one per core)")->capture_default_str();
+  sub->add_option("--checkpoint", b.shared.checkpoint_folder,
+                  "Keep the distance stage's finished tiles in this folder, so that the same build started again "
+                  "skips them (a folder of another build's is refused); see docs/cluster.md");
+  sub->add_option("--checkpoint-pairs", b.shared.checkpoint_pairs,
+                  "--checkpoint: frame pairs per saved chunk of tiles (each process saves its own)")
+      ->check(CLI::Range(1LL, 1LL << 50))
+      ->capture_default_str();
   sub->add_option("--cache-dir", o->cache_dir, "Where the distance stage is cached (default: $XDG_CACHE_HOME/motiongraph)");
   sub->add_flag("--no-cache", o->no_cache, "Neither read nor write the distance cache");
   sub->add_option("--report", o->report, "Write a JSON report (clips, settings, counts, graph statistics, timings)");

@@ -14,6 +14,7 @@ namespace mg {
 enum class ErrorKind {
   kGeneral,
   kEmptyGraph,  // pruning left nothing: the transitions form no cycle
+  kOtherProcess,  // another process of a parallel job failed; rank 0 reports why
 };
 
 struct Error {

@@ -38,6 +38,10 @@ MG_VECTOR_CLONES void column_min_bits(int count, const float* __restrict row, st
   for (int m = 0; m < count; ++m) column_min[m] = std::min(column_min[m], std::bit_cast<std::uint32_t>(row[m]));
 }
 
+bool minimum_order(const Transition& x, const Transition& y) {
+  return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
+}
+
 }  // namespace
 
 Status CandidateSettings::validate() const {
@@ -47,11 +51,8 @@ Status CandidateSettings::validate() const {
   return Ok{};
 }
 
-Result<CandidateSearch> find_candidates(const FrameFeatures& f, const DistanceSettings& distance,
-                                        const CandidateSettings& settings,
-                                        const std::function<void(long long, long long)>& on_tile_done) {
+Result<CandidateSearch> empty_candidate_search(const FrameFeatures& f, const CandidateSettings& settings) {
   if (auto s = settings.validate(); !s) return s.error();
-  if (auto s = distance.validate(); !s) return s.error();
   const int n = f.frames;
   CandidateSearch search;
   search.window = f.window;
@@ -67,7 +68,38 @@ Result<CandidateSearch> find_candidates(const FrameFeatures& f, const DistanceSe
   search.picture_side = (n + search.picture_block - 1) / search.picture_block;
   search.picture.assign(static_cast<size_t>(search.picture_side) * search.picture_side,
                         std::numeric_limits<float>::quiet_NaN());
+  return search;
+}
 
+Status merge_candidates(CandidateSearch& into, const CandidateSearch& part) {
+  if (part.window != into.window || part.continuation_radius != into.continuation_radius ||
+      part.picture_side != into.picture_side || part.picture_block != into.picture_block ||
+      part.picture.size() != into.picture.size() || !part.matrix.empty()) {
+    return Error{"", 0, "a part of the distance stage does not fit the others (another window, radius or picture)"};
+  }
+  const auto middle = static_cast<std::ptrdiff_t>(into.minima.size());
+  into.minima.insert(into.minima.end(), part.minima.begin(), part.minima.end());
+  std::inplace_merge(into.minima.begin(), into.minima.begin() + middle, into.minima.end(), minimum_order);
+  into.histogram.merge(part.histogram);
+  for (size_t i = 0; i < into.picture.size(); ++i) {
+    const float value = part.picture[i];
+    if (value == value && !(into.picture[i] <= value)) into.picture[i] = value;  // NaN or larger
+  }
+  into.tiles.tiles += part.tiles.tiles;
+  into.tiles.pairs += part.tiles.pairs;
+  into.tiles.seconds = std::max(into.tiles.seconds, part.tiles.seconds);
+  return Ok{};
+}
+
+Result<CandidateSearch> find_candidates(const FrameFeatures& f, const DistanceSettings& distance,
+                                        const CandidateSettings& settings,
+                                        const std::function<void(long long, long long)>& on_tile_done,
+                                        std::span<const long long> items) {
+  if (auto s = distance.validate(); !s) return s.error();
+  auto empty = empty_candidate_search(f, settings);
+  if (!empty) return empty.error();
+  CandidateSearch search = std::move(*empty);
+  const int n = f.frames;
   const int k = f.window;
   const int radius = search.continuation_radius;
   const int block = search.picture_block;
@@ -151,10 +183,8 @@ Result<CandidateSearch> find_candidates(const FrameFeatures& f, const DistanceSe
         if (value < std::numeric_limits<float>::infinity() && !(pixel <= value)) pixel = value;  // NaN or larger
       }
     }
-  }, on_tile_done);
-  std::sort(search.minima.begin(), search.minima.end(), [](const Transition& x, const Transition& y) {
-    return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
-  });
+  }, on_tile_done, items);
+  std::sort(search.minima.begin(), search.minima.end(), minimum_order);
   return search;
 }
 

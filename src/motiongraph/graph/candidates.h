@@ -8,9 +8,14 @@
 // The same pass fills the histogram of all finite D (for quantile thresholds), the distance
 // picture (block minima, for the PNG) and, when asked and small enough, the full matrix.
 // Everything a threshold needs is here, so re-thresholding never redoes this stage.
+//
+// A search may cover some of the tiles only (TileItems numbers, metric/distance_tiles.h): such
+// parts, from other processes or a checkpoint, merge into the search of all tiles, the same
+// whichever way the tiles were shared.
 #pragma once
 
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "motiongraph/core/error.h"
@@ -41,8 +46,19 @@ struct CandidateSearch {
   TileRunStatistics tiles;
 };
 
+// `items`: the work items to search (empty: all); the others' pixels stay NaN.
 Result<CandidateSearch> find_candidates(const FrameFeatures& features, const DistanceSettings& distance,
                                         const CandidateSettings& settings,
-                                        const std::function<void(long long, long long)>& on_tile_done = {});
+                                        const std::function<void(long long, long long)>& on_tile_done = {},
+                                        std::span<const long long> items = {});
+
+// A search of no tiles yet: nothing found, the picture all NaN (what merge_candidates starts
+// from). Fails as find_candidates does on invalid settings or a matrix too large.
+Result<CandidateSearch> empty_candidate_search(const FrameFeatures& features, const CandidateSettings& settings);
+
+// Adds a part (the search of other tiles, with the same window, radius and picture) to `into`:
+// minima merged in order, histograms added, pictures by pixel minimum, tile and pair counts
+// added (seconds: the larger). Fails, changing nothing, when the part does not fit.
+Status merge_candidates(CandidateSearch& into, const CandidateSearch& part);
 
 }  // namespace mg

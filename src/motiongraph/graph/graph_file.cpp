@@ -1,6 +1,8 @@
 #include "motiongraph/graph/graph_file.h"
 
+#include <algorithm>
 #include <cstring>
+#include <limits>
 #include <vector>
 
 #include <zlib.h>
@@ -17,6 +19,8 @@ namespace {
 constexpr std::string_view kGraphMagic("MGRAPH\r\n\x1a", 9);
 constexpr std::string_view kCacheMagic("MGCACHE\r\n\x1a", 10);
 constexpr std::uint32_t kCacheVersion = 1;
+constexpr std::string_view kPartMagic("MGTILES\r\n\x1a", 10);
+constexpr std::uint32_t kPartVersion = 1;
 
 std::uint32_t crc32_of(std::string_view bytes) {
   uLong crc = crc32(0L, Z_NULL, 0);
@@ -395,6 +399,62 @@ Result<CandidateSearch> parse_distance_cache(std::string_view bytes, const std::
   if (key != expected_key) return Error{file_name, 0, "cache for other inputs or settings"};
   if (!get_candidates(in, candidates) || !in.at_end()) return Error{file_name, 0, "inconsistent cache file"};
   return candidates;
+}
+
+std::string serialize_candidate_part(const CandidatePart& part) {
+  BinaryWriter out;
+  out.put(part.key);
+  out.put(part.frames);
+  out.put(part.tile_frames);
+  out.put_vector(part.items);
+  out.put(part.peak_memory_mb);
+  const CandidateSearch& c = part.search;
+  out.put<std::int32_t>(c.window);
+  out.put<std::int32_t>(c.continuation_radius);
+  out.put_vector(c.minima);
+  out.put_vector(c.histogram.counts());
+  out.put<std::int32_t>(c.picture_side);
+  out.put<std::int32_t>(c.picture_block);
+  std::vector<std::uint32_t> pixel_at;
+  std::vector<float> pixel_value;
+  for (size_t i = 0; i < c.picture.size(); ++i) {
+    if (c.picture[i] == c.picture[i]) {
+      pixel_at.push_back(static_cast<std::uint32_t>(i));
+      pixel_value.push_back(c.picture[i]);
+    }
+  }
+  out.put_vector(pixel_at);
+  out.put_vector(pixel_value);
+  out.put(c.tiles.seconds);
+  out.put(c.tiles.tiles);
+  out.put(c.tiles.pairs);
+  return frame(kPartMagic, kPartVersion, out.data());
+}
+
+Result<CandidatePart> parse_candidate_part(std::string_view bytes, const std::string& file_name) {
+  auto payload = unframe(bytes, file_name, kPartMagic, kPartVersion, "distance stage part (.mgtiles)");
+  if (!payload) return payload.error();
+  BinaryReader in(*payload, file_name);
+  CandidatePart part;
+  CandidateSearch& c = part.search;
+  std::vector<std::uint64_t> counts;
+  std::vector<std::uint32_t> pixel_at;
+  std::vector<float> pixel_value;
+  const bool read = in.get(part.key) && in.get(part.frames) && in.get(part.tile_frames) && in.get_vector(part.items) &&
+                    in.get(part.peak_memory_mb) && in.get(c.window) && in.get(c.continuation_radius) &&
+                    in.get_vector(c.minima) && in.get_vector(counts) && in.get(c.picture_side) &&
+                    in.get(c.picture_block) && in.get_vector(pixel_at) && in.get_vector(pixel_value) &&
+                    in.get(c.tiles.seconds) && in.get(c.tiles.tiles) && in.get(c.tiles.pairs) && in.at_end();
+  const size_t pixels = static_cast<size_t>(std::max(0, c.picture_side)) * std::max(0, c.picture_side);
+  if (!read || counts.size() != static_cast<size_t>(DistanceHistogram::kBins) || c.window < 1 || c.picture_side < 0 ||
+      pixel_at.size() != pixel_value.size() ||
+      std::any_of(pixel_at.begin(), pixel_at.end(), [&](std::uint32_t i) { return i >= pixels; })) {
+    return Error{file_name, 0, "inconsistent distance stage part"};
+  }
+  c.histogram.set_counts(std::move(counts));
+  c.picture.assign(pixels, std::numeric_limits<float>::quiet_NaN());
+  for (size_t i = 0; i < pixel_at.size(); ++i) c.picture[pixel_at[i]] = pixel_value[i];
+  return part;
 }
 
 Result<GraphFile> load_graph_file(const std::string& path) {

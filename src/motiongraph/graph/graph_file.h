@@ -51,6 +51,22 @@ std::string serialize_distance_cache(std::uint64_t key, const CandidateSearch& c
 Result<CandidateSearch> parse_distance_cache(std::string_view bytes, const std::string& file_name,
                                              std::uint64_t expected_key);
 
+// Part of a distance stage: the candidates of some work items (metric/distance_tiles.h
+// TileItems, numbered for `frames` frames in tiles of `tile_frames`), as a checkpoint keeps
+// them (parallel/tile_checkpoint.h) and as the processes of a job hand them to rank 0. Framed
+// and checksummed like the cache (.mgtiles); the picture is stored sparse (its defined pixels).
+struct CandidatePart {
+  std::uint64_t key = 0;  // the build's distance cache key (pipeline/distance_cache.h)
+  std::int32_t frames = 0, tile_frames = 0;
+  std::vector<long long> items;
+  CandidateSearch search;       // no matrix
+  double peak_memory_mb = 0.0;  // of the process that made it, when it was made
+};
+
+std::string serialize_candidate_part(const CandidatePart& part);
+// Fails on anything but a whole, consistent part file (whatever its key: the caller compares).
+Result<CandidatePart> parse_candidate_part(std::string_view bytes, const std::string& file_name);
+
 // A 64-bit key from bytes (two independent 32-bit checksums, CRC-32 and Adler-32, of the
 // same bytes), for cache keys over inputs and settings.
 std::uint64_t content_key(std::string_view bytes);

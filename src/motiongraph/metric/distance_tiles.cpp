@@ -19,21 +19,6 @@ namespace mg {
 
 namespace {
 
-struct TileGrid {
-  int n = 0, tile = 0, per_side = 0;
-  long long count() const { return static_cast<long long>(per_side) * per_side; }
-  // Work items: the pairs of tile rows I <= J (tile (J, I) comes with tile (I, J)).
-  long long pair_count() const { return static_cast<long long>(per_side) * (per_side + 1) / 2; }
-  std::pair<int, int> pair(long long item) const {
-    int i = 0;
-    while (item >= per_side - i) {
-      item -= per_side - i;
-      ++i;
-    }
-    return {i, i + static_cast<int>(item)};
-  }
-};
-
 int worker_count(const DistanceSettings& settings) {
   if (settings.threads > 0) return settings.threads;
   return std::max(1u, std::thread::hardware_concurrency());
@@ -291,33 +276,71 @@ void run_items(long long items, int workers, const Work& work) {
   auto loop = [&](int worker) {
     for (long long t = next++; t < items; t = next++) work(worker, t);
   };
-  // Work is spread over our threads; BLAS itself then runs single-threaded.
-  if (workers > 1) openblas_set_num_threads(1);
+  // Work is spread over our threads; BLAS itself runs single-threaded, always: OpenBLAS rounds
+  // differently on more threads, and D must not depend on how many threads or processes (or
+  // tiles per thread) there are, so that every run makes the same graph.
+  const int blas_threads = openblas_get_num_threads();
+  openblas_set_num_threads(1);
   std::vector<std::thread> threads;
   for (int w = 1; w < workers; ++w) threads.emplace_back(loop, w);
   loop(0);
   for (auto& thread : threads) thread.join();
-  if (workers > 1) openblas_set_num_threads(workers);
+  openblas_set_num_threads(blas_threads);
 }
 
-TileGrid grid_for(const FrameFeatures& f, const DistanceSettings& settings) {
-  TileGrid grid;
-  grid.n = f.frames;
+}  // namespace
+
+std::pair<int, int> TileItems::tiles_of(long long item) const {
+  // Row I starts at item I * per_side - I * (I - 1) / 2: the last row starting at or before it.
+  const long long side = per_side;
+  auto row_start = [side](long long i) { return i * side - i * (i - 1) / 2; };
+  long long low = 0, high = side - 1;
+  while (low < high) {
+    const long long mid = (low + high + 1) / 2;
+    if (row_start(mid) <= item) {
+      low = mid;
+    } else {
+      high = mid - 1;
+    }
+  }
+  return {static_cast<int>(low), static_cast<int>(low + item - row_start(low))};
+}
+
+long long TileItems::tile_count(long long item) const {
+  const auto [i, j] = tiles_of(item);
+  return i == j ? 1 : 2;
+}
+
+long long TileItems::pairs(long long item) const {
+  const auto [i, j] = tiles_of(item);
+  const long long rows = std::min(tile, frames - i * tile), cols = std::min(tile, frames - j * tile);
+  return rows * cols * tile_count(item);
+}
+
+TileItems tile_items(const FrameFeatures& f, const DistanceSettings& settings) {
+  TileItems grid;
+  grid.frames = f.frames;
   grid.tile = settings.tile_frames;
   grid.per_side = (f.frames + grid.tile - 1) / grid.tile;
   return grid;
 }
 
-}  // namespace
-
 TileRunStatistics for_each_distance_tile(const FrameFeatures& features, const DistanceSettings& settings,
                                          const TileVisitor& visitor,
-                                         const std::function<void(long long, long long)>& on_tile_done) {
+                                         const std::function<void(long long, long long)>& on_tile_done,
+                                         std::span<const long long> items) {
   const auto start = std::chrono::steady_clock::now();
-  const TileGrid grid = grid_for(features, settings);
-  const int n = grid.n;
+  const TileItems grid = tile_items(features, settings);
+  const int n = grid.frames;
   const int k = features.window;
-  const int workers = static_cast<int>(std::min<long long>(worker_count(settings), std::max(1LL, grid.pair_count())));
+  const long long item_count = items.empty() ? grid.count() : static_cast<long long>(items.size());
+  auto item_at = [&](long long i) { return items.empty() ? i : items[static_cast<size_t>(i)]; };
+  TileRunStatistics stats;
+  for (long long i = 0; i < item_count; ++i) {
+    stats.tiles += grid.tile_count(item_at(i));
+    stats.pairs += grid.pairs(item_at(i));
+  }
+  const int workers = static_cast<int>(std::min<long long>(worker_count(settings), std::max(1LL, item_count)));
   struct Scratch {
     explicit Scratch(const FrameFeatures& f) : worker(f) {}
     TileWorker worker;
@@ -326,8 +349,8 @@ TileRunStatistics for_each_distance_tile(const FrameFeatures& features, const Di
   std::vector<std::unique_ptr<Scratch>> scratch;
   for (int w = 0; w < workers; ++w) scratch.push_back(std::make_unique<Scratch>(features));
   std::atomic<long long> done{0};
-  run_items(grid.pair_count(), workers, [&](int w, long long item) {
-    const auto [ti, tj] = grid.pair(item);
+  run_items(item_count, workers, [&](int w, long long i) {
+    const auto [ti, tj] = grid.tiles_of(item_at(i));
     Scratch& s = *scratch[w];
     const int a0 = ti * grid.tile, a_count = std::min(grid.tile, n - a0);
     const int b0 = tj * grid.tile, b_count = std::min(grid.tile, n - b0);
@@ -337,29 +360,28 @@ TileRunStatistics for_each_distance_tile(const FrameFeatures& features, const Di
     const int c0 = std::max(0, b0 - k), c1 = std::min(n, b0 + b_count + k);
     s.forward.compute(features, r0, r1 - r0, c0, c1 - c0);
     visitor(s.worker.run(a0, a_count, b0, b_count, s.forward));
-    if (on_tile_done) on_tile_done(++done, grid.count());
+    if (on_tile_done) on_tile_done(++done, stats.tiles);
     if (ti != tj) {
       s.backward.transpose_from(s.forward);
       visitor(s.worker.run(b0, b_count, a0, a_count, s.backward));
-      if (on_tile_done) on_tile_done(++done, grid.count());
+      if (on_tile_done) on_tile_done(++done, stats.tiles);
     }
   });
-  TileRunStatistics stats;
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  stats.tiles = grid.count();
-  stats.pairs = static_cast<long long>(grid.n) * grid.n;
   return stats;
 }
 
 double time_plain_products(const FrameFeatures& features, const DistanceSettings& settings) {
   const auto start = std::chrono::steady_clock::now();
-  const TileGrid grid = grid_for(features, settings);
-  const int workers = static_cast<int>(std::min<long long>(worker_count(settings), std::max(1LL, grid.count())));
+  const TileItems grid = tile_items(features, settings);
+  const long long tiles = static_cast<long long>(grid.per_side) * grid.per_side;
+  const int workers = static_cast<int>(std::min<long long>(worker_count(settings), std::max(1LL, tiles)));
   std::vector<Products> products(workers);
-  run_items(grid.count(), workers, [&](int worker, long long item) {
+  run_items(tiles, workers, [&](int worker, long long item) {
     const int a0 = static_cast<int>(item / grid.per_side) * grid.tile;
     const int b0 = static_cast<int>(item % grid.per_side) * grid.tile;
-    products[worker].compute(features, a0, std::min(grid.tile, grid.n - a0), b0, std::min(grid.tile, grid.n - b0));
+    products[worker].compute(features, a0, std::min(grid.tile, grid.frames - a0), b0,
+                             std::min(grid.tile, grid.frames - b0));
   });
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

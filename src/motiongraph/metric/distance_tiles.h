@@ -8,11 +8,13 @@
 // (DESIGN.md 3.3), summed along diagonals (running sums for a uniform taper, O(1) per pair;
 // O(k) with a taper), and put through the closed form. Undefined pairs (a window leaving its
 // clip) are NaN. Tiles are independent and run on settings.threads threads; nothing but one
-// tile per thread is ever held.
+// tile per thread is ever held. The work comes in items (TileItems): a run may take any subset
+// of them (another process, or an earlier run kept in a checkpoint, does the rest).
 #pragma once
 
 #include <functional>
 #include <span>
+#include <utility>
 
 #include "motiongraph/metric/frame_features.h"
 
@@ -31,6 +33,20 @@ struct DistanceTile {
   float at(int a, int b) const { return distance[static_cast<size_t>(a - row0) * cols + (b - col0)]; }
 };
 
+// The distance stage's work items: the pairs of tile rows I <= J, numbered row by row (I = 0:
+// J = 0 .. per_side - 1, then I = 1, ...). Item (I, J) gives tile (I, J) and, when I != J, tile
+// (J, I) from the same products (G1 and G3 are symmetric, G2 antisymmetric).
+struct TileItems {
+  int frames = 0, tile = 0, per_side = 0;
+
+  long long count() const { return static_cast<long long>(per_side) * (per_side + 1) / 2; }
+  std::pair<int, int> tiles_of(long long item) const;  // (I, J)
+  long long tile_count(long long item) const;          // 1 or 2
+  long long pairs(long long item) const;               // frame pairs of its tiles
+};
+
+TileItems tile_items(const FrameFeatures& features, const DistanceSettings& settings);
+
 // Called once per tile, from worker threads (the callback must be thread-safe). The tile's
 // memory is reused after the callback returns.
 using TileVisitor = std::function<void(const DistanceTile&)>;
@@ -41,10 +57,13 @@ struct TileRunStatistics {
   long long pairs = 0;
 };
 
-// Progress is reported as tiles done through on_tile_done (may be empty).
+// Progress is reported as tiles done through on_tile_done (may be empty). `items` are the work
+// items to run (TileItems numbers, each at most once); empty: all of them. The statistics count
+// the tiles and pairs run.
 TileRunStatistics for_each_distance_tile(const FrameFeatures& features, const DistanceSettings& settings,
                                          const TileVisitor& visitor,
-                                         const std::function<void(long long done, long long total)>& on_tile_done = {});
+                                         const std::function<void(long long done, long long total)>& on_tile_done = {},
+                                         std::span<const long long> items = {});
 
 // Times the three plain BLAS products the distance stage needs, over a whole N x N matrix in
 // tiles of the same size and on the same threads, without the diagonal sums: the ceiling

@@ -10,7 +10,6 @@
 #include <optional>
 
 #include "motiongraph/core/json_text.h"
-#include "motiongraph/core/progress.h"
 #include "motiongraph/database/database_loader.h"
 #include "motiongraph/export/matrix_png.h"
 #include "motiongraph/export/npy.h"
@@ -77,42 +76,59 @@ struct Say {
   }
 };
 
-// The distance stage's candidates, from the cache when it holds `key`.
+// The distance stage's candidates, from the cache when it holds `key` (rank 0's cache: the
+// team follows its answer), else found by the team.
 struct Candidates {
   CandidateSearch search;
   const char* cache = "off";  // "hit", "stored" or "off"
+  int processes = 1;
+  std::vector<double> peak_memory_mb, share_seconds;
+  long long restored_tiles = 0;
 };
 
 Result<Candidates> distance_stage(const FrameFeatures& features, const BuildSettings& settings, DistanceCache* cache,
-                                  std::uint64_t key, const Say& say, bool progress_bar) {
+                                  std::uint64_t key, const Say& say, bool progress_bar, ProcessTeam& team) {
   // The cache holds no matrix: with the matrix export the stage runs (and refreshes the cache).
   const bool keep_matrix = settings.exports.matrix_npy;
-  if (cache != nullptr && !keep_matrix) {
+  std::optional<CandidateSearch> hit;
+  if (team.rank() == 0 && cache != nullptr && !keep_matrix) {
     auto cached = cache->find(key);
     if (!cached) {
       say.warning(fmt::format("{} (computing again)", cached.error().to_string()));
     } else if (*cached) {
       say.info(fmt::format("distance stage: from the cache {}", cache->location(key)));
-      return Candidates{std::move(**cached), "hit"};
+      hit = std::move(**cached);
     }
+  }
+  if (team.broadcast(hit.has_value())) {
+    Candidates out;
+    if (hit) out.search = std::move(*hit);
+    out.cache = "hit";
+    out.processes = team.size();
+    return out;
   }
   CandidateSettings candidate_settings;
   candidate_settings.continuation_radius = settings.distance_stage.continuation_radius;
   candidate_settings.keep_matrix = keep_matrix;
-  const DistanceSettings& distance = settings.distance_stage.distance;
-  const long long tiles_per_side = (features.frames + distance.tile_frames - 1) / distance.tile_frames;
-  ProgressBar progress("distance", static_cast<std::uint64_t>(tiles_per_side * tiles_per_side), !progress_bar);
-  auto search =
-      find_candidates(features, distance, candidate_settings, [&](long long, long long) { progress.advance(1); });
-  progress.finish();
-  if (!search) return search.error();
-  say.info(fmt::format("distance stage: {} x {} pairs in {:.2f} s, {} local minima", features.frames, features.frames,
-                       search->tiles.seconds, search->minima.size()));
-  if (cache == nullptr) return Candidates{std::move(*search), "off"};
-  if (auto s = cache->store(key, *search); !s) {
+  SharedSearchSettings shared = settings.shared;
+  shared.progress_bar = progress_bar;
+  auto found =
+      find_candidates_shared(features, settings.distance_stage.distance, candidate_settings, key, team, shared);
+  if (!found) return found.error();
+  Candidates out{std::move(found->search), "off", found->processes, std::move(found->peak_memory_mb),
+                 std::move(found->share_seconds), found->restored_tiles};
+  if (team.rank() != 0) return out;
+  const std::string restored =
+      out.restored_tiles > 0 ? fmt::format(" ({} tiles from the checkpoint)", out.restored_tiles) : "";
+  const std::string processes = team.size() > 1 ? fmt::format(" on {} processes", team.size()) : "";
+  say.info(fmt::format("distance stage: {} x {} pairs in {:.2f} s{}{}, {} local minima", features.frames,
+                       features.frames, out.search.tiles.seconds, processes, restored, out.search.minima.size()));
+  if (cache == nullptr) return out;
+  if (auto s = cache->store(key, out.search); !s) {
     say.warning(fmt::format("cannot cache the distance stage: {}", s.error().to_string()));
   }
-  return Candidates{std::move(*search), "stored"};
+  out.cache = "stored";
+  return out;
 }
 
 // The transition settings with the threshold the settings ask for; for kAuto, chosen from the
@@ -224,15 +240,16 @@ Status make_exports(const BuildSettings& settings, const MotionDatabase& db, con
   return Ok{};
 }
 
-}  // namespace
+// Stages 1 and 2: the database, its point clouds and per-frame features.
+struct Prepared {
+  MotionDatabase db;
+  CloudLayout layout;
+  FrameFeatures features;
+};
 
-Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildSettings& settings, DistanceCache* cache,
-                               const BuildLog& log) {
+Result<Prepared> prepare(std::span<const std::string> inputs, const BuildSettings& settings, const BuildLog& log,
+                         const Say& say, Stopwatch& watch, json& timings) {
   if (auto s = settings.validate(); !s) return s.error();
-  const Say say{log};
-  Stopwatch watch;
-  json timings = json::object();
-
   // 1. The database.
   DatabaseSettings db_settings = settings.database;
   if (settings.find_cmu_index && db_settings.cmu_index_path.empty() && db_settings.cmu_index_text.empty()) {
@@ -259,13 +276,38 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
   if (!features) return features.error();
   if (features->window < 2) return Error{"", 0, "the window must be at least 2 frames (raise --fps or --window)"};
   timings["clouds"] = watch.lap();
+  return Prepared{std::move(*db), std::move(*layout), std::move(*features)};
+}
+
+}  // namespace
+
+Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildSettings& settings, DistanceCache* cache,
+                               const BuildLog& log, ProcessTeam* team) {
+  OneProcess alone;
+  ProcessTeam& processes = team != nullptr ? *team : alone;
+  // Only rank 0 speaks: the others load the same clips and would say the same.
+  const BuildLog silent{};
+  const Say say{processes.rank() == 0 ? log : silent};
+  Stopwatch watch;
+  json timings = json::object();
+  auto prepared = prepare(inputs, settings, processes.rank() == 0 ? log : silent, say, watch, timings);
+  if (auto s = processes.agree(prepared ? Status(Ok{}) : Status(prepared.error())); !s) return s.error();
+  MotionDatabase* db = &prepared->db;
+  const CloudLayout* layout = &prepared->layout;
+  const FrameFeatures* features = &prepared->features;
 
   // 3. The distance stage, from the cache when the same inputs and settings were seen.
   const json distance_json = settings.distance_stage.to_json(features->window);
   const std::uint64_t key = distance_cache_key(*db, json_text(distance_json));
-  auto candidates = distance_stage(*features, settings, cache, key, say, log.progress_bar);
+  auto candidates =
+      distance_stage(*features, settings, cache, key, say, processes.rank() == 0 && log.progress_bar, processes);
   if (!candidates) return candidates.error();
   timings["distance"] = watch.lap();
+  if (processes.rank() != 0) {
+    GraphBuild worker;
+    worker.worker = true;
+    return worker;
+  }
 
   // 4. Transitions, at the threshold asked for or chosen.
   json choice_json = nullptr;
@@ -309,7 +351,8 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
   out.report = build_report(BuildReportParts{*db, *features, *layout, candidates->search, *selected,
                                              built ? &*built : nullptr, distance_json, mode_name, choice_json,
                                              check_json, settings.spacing, graph_settings->bridges,
-                                             candidates->cache});
+                                             candidates->cache, candidates->processes, candidates->peak_memory_mb,
+                                             candidates->share_seconds, candidates->restored_tiles});
   if (auto s = make_exports(settings, *db, *layout, *features, candidates->search, selected->all_transitions, out);
       !s) {
     return s.error();

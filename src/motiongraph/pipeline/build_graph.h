@@ -7,6 +7,12 @@
 // the caller writes them (io/file.h). Nothing is printed but through `log` (and the distance
 // stage's progress bar, on a terminal, when asked).
 //
+// With a team of processes (parallel/process_team.h; nullptr: this process alone) every process
+// calls build_graph() with the same inputs and settings: all load the clips and share the
+// distance stage (parallel/shared_candidates.h), rank 0 alone makes the rest and gets the
+// outputs; the others get `worker` set and nothing to write. An error on any process fails the
+// build on all of them, rank 0 with the message (the others with ErrorKind::kOtherProcess).
+//
 // Fails on invalid settings, unreadable inputs, and any stage's error. When pruning leaves
 // nothing the build still succeeds with graph_status an ErrorKind::kEmptyGraph error that says
 // which threshold would make a graph, and the report and exports for the user to see why.
@@ -20,6 +26,7 @@
 
 #include "motiongraph/core/error.h"
 #include "motiongraph/graph/graph_file.h"
+#include "motiongraph/parallel/process_team.h"
 #include "motiongraph/pipeline/build_settings.h"
 #include "motiongraph/pipeline/distance_cache.h"
 
@@ -39,9 +46,11 @@ struct GraphBuild {
   std::string matrix_npy;      // the exports asked for (BuildSettings::exports), else empty
   std::string matrix_png;
   std::string clouds_npy;
+  bool worker = false;  // not rank 0 of a team: the rest is empty, nothing to write
 };
 
 Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildSettings& settings,
-                               DistanceCache* cache = nullptr, const BuildLog& log = {});
+                               DistanceCache* cache = nullptr, const BuildLog& log = {},
+                               ProcessTeam* team = nullptr);
 
 }  // namespace mg

@@ -58,6 +58,7 @@ Result<BuildSettings> build_settings_from(const BuildOptions& o) {
   s.connect_tags = o.connect_tags;
   s.ignore_tags = o.ignore_tags;
   s.exports = o.exports;
+  s.shared = o.shared;
   DatabaseSettings& db = s.database;
   db.fps = o.fps;
   db.prefer_manifest_fps = !o.fps_given;

@@ -41,6 +41,7 @@ struct BuildOptions {
   double max_bridge_cm = 0.0;  // RMS point distance above which no bridge is made; 0: no cap
   std::vector<std::string> connect_tags;
   BuildExports exports;
+  SharedSearchSettings shared;  // --checkpoint, --checkpoint-pairs
 };
 
 // The settings the options give (validated), or the first option that is not understood.

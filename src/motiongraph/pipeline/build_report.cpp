@@ -200,6 +200,10 @@ json build_report(const BuildReportParts& parts) {
       {"bridges", bridges},
       {"unjoined", unjoined_json(parts.selected.unjoined, db, features)},
       {"distance_cache", parts.distance_cache},
+      {"processes", parts.processes},
+      {"peak_memory_mb", parts.peak_memory_mb},
+      {"share_seconds", parts.share_seconds},
+      {"restored_tiles", parts.restored_tiles},
   };
 }
 

@@ -3,7 +3,9 @@
 // they are planted, the distance settings
 // (DistanceStageSettings::to_json), the threshold and how it was found (the automatic choice's
 // coverage curve, the path check), counts, the graph's statistics before and after pruning,
-// the bridges (with their blend lengths), the motion types no bridge joins and whether the distance cache was used. Thresholds are given both as D and as
+// the bridges (with their blend lengths), the motion types no bridge joins, whether the distance
+// cache was used, and how the distance stage ran (processes, their peak memory and time for
+// their tiles, tiles restored from a checkpoint). Thresholds are given both as D and as
 // the RMS point distance in cm (graph/threshold_choice.h).
 #pragma once
 
@@ -57,6 +59,10 @@ struct BuildReportParts {
   TransitionSpacing spacing;
   BridgeSettings bridge_settings;  // max_distance as D
   const char* distance_cache = "off";  // "hit", "stored" or "off"
+  int processes = 1;                   // that shared the distance stage
+  std::vector<double> peak_memory_mb;  // each process's peak at the end of the distance stage (empty: cache hit)
+  std::vector<double> share_seconds;   // the seconds each process took for its share of the tiles
+  long long restored_tiles = 0;        // tiles taken from a checkpoint
 };
 
 // The report without "timings" (and, for a failed build, without "error").

@@ -32,7 +32,7 @@ Status BuildSettings::validate() const {
   candidates.keep_matrix = exports.matrix_npy;
   for (const Status& s : {distance_stage.cloud.validate(), distance_stage.distance.validate(), selection.validate(),
                           candidates.validate(), bridges.validate(), choice.validate(), path_check_settings.validate(),
-                          spacing.validate()}) {
+                          spacing.validate(), shared.validate()}) {
     if (!s) return s;
   }
   if ((threshold_mode == ThresholdMode::kDistance || threshold_mode == ThresholdMode::kRmsCm) &&
@@ -41,6 +41,9 @@ Status BuildSettings::validate() const {
   }
   if (!(std::isfinite(max_bridge_rms_cm) && max_bridge_rms_cm >= 0.0)) {
     return Error{"", 0, "the bridge cap must be a finite RMS distance >= 0 cm (0: no cap)"};
+  }
+  if (exports.matrix_npy && !shared.checkpoint_folder.empty()) {
+    return Error{"", 0, "the matrix export (--export-matrix) is made without --checkpoint only"};
   }
   return Ok{};
 }

@@ -14,6 +14,7 @@
 #include "motiongraph/graph/threshold_choice.h"
 #include "motiongraph/graph/transition_selection.h"
 #include "motiongraph/graph/transition_spacing.h"
+#include "motiongraph/parallel/shared_candidates.h"
 #include "motiongraph/pipeline/distance_stage_settings.h"
 #include "motiongraph/synthesis/path_check.h"
 
@@ -60,6 +61,9 @@ struct BuildSettings {
   std::vector<std::string> connect_tags;
   bool ignore_tags = false;
   BuildExports exports;
+  // The distance stage's checkpoint (none by default) and chunk size; progress_bar is
+  // BuildLog's. The matrix export needs one process and no checkpoint.
+  SharedSearchSettings shared;
 
   Status validate() const;
 };
