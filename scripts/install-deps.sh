@@ -5,7 +5,7 @@
 #   (none)   all of that, plus what scripts/test.sh needs: GoogleTest, Google Benchmark, clang
 #            with its sanitizer/fuzzer runtime, numpy, Blender (a test imports our BVH into it),
 #            chromium and curl (the studio's browser and socket tests), the tests' npm packages,
-#            pybind11, numpy and pytest (the Python package and its tests; a build without
+#            pybind11, numpy, pytest and venv (the Python package and its tests; a build without
 #            pybind11 simply leaves the package out), and Open MPI (`mpirun -np N motiongraph
 #            build`, docs/cluster.md, and its test; a build without it runs on one process).
 # Node.js is Debian 12's own (18.x); the npm lockfiles pin versions that run on it, and npm is
@@ -32,7 +32,7 @@ if [ "$mode" = test ]; then
     clang libclang-rt-14-dev llvm
     libgtest-dev libgmock-dev libbenchmark-dev
     python3-numpy blender chromium curl
-    python3-dev python3-pybind11 python3-pytest
+    python3-dev python3-pybind11 python3-pytest python3-venv
     libopenmpi-dev openmpi-bin
   )
 fi
