@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <span>
 
 namespace mg {
 
@@ -13,6 +14,20 @@ struct RowTerms {
   double square = 0.0;      // S - (X^2 + Z^2) / W
   double inv_w = 0.0;       // 1 / W
 };
+
+// A window's one-window term S - (X^2 + Z^2) / W, from its uncentred sums.
+inline double centred_window_square(double square, double x, double z, double inv_w) {
+  return square - (x * x + z * z) * inv_w;
+}
+
+// Whether every weight of the taper is the same (then window sums can slide: one frame pair
+// in, one out).
+inline bool uniform_taper(std::span<const double> taper) {
+  for (double u : taper) {
+    if (u != taper[0]) return false;
+  }
+  return true;
+}
 
 // DESIGN.md 3.2, with the one-window terms S - (X^2 + Z^2) / W precomputed (square2 for the
 // arrival window). Branch-free, so that the loops calling it vectorise: max(0, d) is written

@@ -52,8 +52,7 @@ void diagonal_run_distances(const FrameFeatures& f, int a, int b, std::span<floa
     e3[t] = g3;
   }
   const double inv_w = 1.0 / f.window_weight;
-  bool uniform = true;
-  for (double u : f.taper) uniform = uniform && u == f.taper[0];
+  const bool uniform = uniform_taper(f.taper);
   double s1 = 0.0, s2 = 0.0, s3 = 0.0;  // uniform: the running sums of the current window
   if (uniform) {
     for (int t = 0; t < k - 1; ++t) {
@@ -84,8 +83,8 @@ void diagonal_run_distances(const FrameFeatures& f, int a, int b, std::span<floa
     } else {
       const double x = f.window_x[leave], z = f.window_z[leave];
       const double x2 = f.window_x[first], z2 = f.window_z[first];
-      const RowTerms row{x, z, f.window_square[leave] - (x * x + z * z) * inv_w, inv_w};
-      out[m] = closed_form(c1, c2, c3, row, x2, z2, f.window_square[first] - (x2 * x2 + z2 * z2) * inv_w);
+      const RowTerms row{x, z, centred_window_square(f.window_square[leave], x, z, inv_w), inv_w};
+      out[m] = closed_form(c1, c2, c3, row, x2, z2, centred_window_square(f.window_square[first], x2, z2, inv_w));
     }
     if (uniform) {
       s1 -= e1[m];

@@ -109,7 +109,7 @@ MG_VECTOR_CLONES void window_distance_kernel(int count, double u, const RowTerms
 
 class TileWorker {
  public:
-  explicit TileWorker(const FrameFeatures& f) : f_(f), uniform_(uniform_taper(f)) {
+  explicit TileWorker(const FrameFeatures& f) : f_(f), uniform_(uniform_taper(f.taper)) {
     // Per-frame terms of the closed form that depend on one window only, computed once.
     const int n = f.frames;
     const double v = f.point_weight_sum;
@@ -122,7 +122,7 @@ class TileWorker {
       moment_vx_[i] = f.moment_x[i] + v * f.root_x[i];
       moment_vz_[i] = f.moment_z[i] + v * f.root_z[i];
       const double x = f.window_x[i], z = f.window_z[i];
-      centred_square_[i] = f.window_square[i] - (x * x + z * z) * inv_w;
+      centred_square_[i] = centred_window_square(f.window_square[i], x, z, inv_w);
       arrive_mask_[i] = f.can_arrive[i] ? 0.0f : std::numeric_limits<float>::quiet_NaN();
     }
   }
@@ -171,13 +171,6 @@ class TileWorker {
   }
 
  private:
-  static bool uniform_taper(const FrameFeatures& f) {
-    for (double u : f.taper) {
-      if (u != f.taper[0]) return false;
-    }
-    return true;
-  }
-
   double* ring_row(std::vector<double>& buffer, int i, int ring) {
     return buffer.data() + static_cast<size_t>(i % ring) * stride_;
   }
