@@ -43,7 +43,12 @@ struct CandidateSearch {
   std::vector<float> picture;      // picture_side_used^2 block minima (NaN where undefined)
   int picture_side = 0;            // pixels per side
   int picture_block = 1;           // frames per pixel
-  TileRunStatistics tiles;
+  TileRunStatistics tiles;         // the pruned stage: seconds, tiles 0, pairs whose D it computed
+  // < 0: everything above is complete (the exhaustive tiles). >= 0: the pruned stage's
+  // (pruned_candidates.h): minima, histogram and picture are exact up to this D only. The
+  // histogram counts the pairs above it in its overflow bin; the picture's pixels whose pairs
+  // all lie above it are +infinity.
+  double ceiling = -1.0;
 };
 
 // `items`: the work items to search (empty: all); the others' pixels stay NaN.

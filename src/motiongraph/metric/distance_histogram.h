@@ -28,6 +28,13 @@ class DistanceHistogram {
   // interleaved partial histograms (neighbouring distances often share a bin).
   void add_block(const float* first, int rows, int cols, std::ptrdiff_t stride);
   void merge(const DistanceHistogram& other);
+  // `count` values known only to lie above every binned one (the pruned distance stage's pairs
+  // above its ceiling): counted in the overflow bin, so fractions below any binned value stay
+  // exact.
+  void add_above(std::uint64_t count) {
+    counts_.back() += count;
+    total_ += count;
+  }
   std::uint64_t total() const { return total_; }
   // The value below which a fraction q (0..1) of the values lie (upper edge of its bin).
   double quantile(double q) const;
