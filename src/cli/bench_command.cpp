@@ -1,9 +1,12 @@
 // motiongraph bench distance [INPUT...]: the distance stage measured in one run against
 //  - the three plain BLAS products it needs (same N, P, tiles and threads): the ceiling;
+//  - the pruned stage (graph/pruned_candidates.h) at the --max-threshold ceiling: its time,
+//    the share of pairs it evaluated, and whether its minima equal the exhaustive stage's;
 //  - the pair-by-pair reference (timed on a random sample of pairs, scaled to all N^2 pairs).
 // Prints the times and their ratios. Speed is measured here, never asserted in tests.
 #include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <random>
 
 #include <fmt/format.h>
@@ -13,6 +16,8 @@
 #include "cli/commands.h"
 #include "motiongraph/database/database_loader.h"
 #include "motiongraph/graph/candidates.h"
+#include "motiongraph/graph/pruned_candidates.h"
+#include "motiongraph/graph/threshold_choice.h"
 #include "motiongraph/metric/frame_features.h"
 #include "motiongraph/metric/reference_distance.h"
 
@@ -27,6 +32,7 @@ struct BenchOptions {
   int max_frames = 0;
   int reference_pairs = 20000;
   int repeat = 1;
+  double max_rms_cm = ThresholdChoiceSettings{}.max_rms_cm;
   DistanceSettings distance;
 };
 
@@ -71,19 +77,39 @@ int run_bench(const BenchOptions& o) {
              n, db->clips.size(), db->fps, features->points, features->window, o.distance.tile_frames,
              o.distance.threads == 0 ? std::string("all cores") : std::to_string(o.distance.threads));
 
-  // Products and stage alternate, so that both see the same load; medians over the runs.
-  std::vector<double> products_runs, stage_runs, ratios;
+  // Products, stage and pruned stage alternate, so that all see the same load; medians over
+  // the runs.
+  const double ceiling = distance_of_rms_cm(o.max_rms_cm, *features);
+  PrunedSearchSettings pruned_settings;
+  pruned_settings.threads = o.distance.threads;
+  std::vector<double> products_runs, stage_runs, ratios, pruned_runs, speedups;
   Result<CandidateSearch> search = Error{"", 0, "not run"};
+  Result<CandidateSearch> pruned = Error{"", 0, "not run"};
+  PrunedSearchStatistics pruned_stats;
   for (int run = 0; run < o.repeat; ++run) {
     products_runs.push_back(time_plain_products(*features, o.distance));
-    const auto start = std::chrono::steady_clock::now();
+    auto start = std::chrono::steady_clock::now();
     search = find_candidates(*features, o.distance, {});
     stage_runs.push_back(seconds_since(start));
     if (!search) return fail(search.error());
     ratios.push_back(stage_runs.back() / products_runs.back());
+    start = std::chrono::steady_clock::now();
+    pruned = find_candidates_pruned(*features, ceiling, {}, pruned_settings, &pruned_stats);
+    pruned_runs.push_back(seconds_since(start));
+    if (!pruned) return fail(pruned.error());
+    speedups.push_back(stage_runs.back() / pruned_runs.back());
   }
   const double products_s = median(products_runs);
   const double stage_s = median(stage_runs);
+  const double pruned_s = median(pruned_runs);
+  // The minima at or below the ceiling, compared pair by pair.
+  std::vector<std::pair<int, int>> exhaustive_minima, pruned_minima, only_one;
+  for (const Transition& t : search->minima) {
+    if (t.distance <= ceiling) exhaustive_minima.emplace_back(t.from_frame, t.to_frame);
+  }
+  for (const Transition& t : pruned->minima) pruned_minima.emplace_back(t.from_frame, t.to_frame);
+  std::set_symmetric_difference(exhaustive_minima.begin(), exhaustive_minima.end(), pruned_minima.begin(),
+                                pruned_minima.end(), std::back_inserter(only_one));
 
   // The reference on random defined pairs, from double clouds of every frame.
   const std::vector<Vec3> clouds = database_clouds(*db, *layout);
@@ -114,6 +140,17 @@ int run_bench(const BenchOptions& o) {
              "= {:.0f}x the distance stage\n",
              pairs.size(), reference_per_pair * 1e6, reference_s, static_cast<long long>(pairs_total), reference_s / stage_s);
   fmt::print("local minima: {} (checksum {:.3g})\n", search->minima.size(), sink);
+  fmt::print("pruned stage at the {:g} cm ceiling (D {:.4g}): {:8.3f} s = {:.2f}x faster than the distance stage "
+             "(embedding {:.3f} s, bound search {:.3f} s, exact D and minima {:.3f} s)\n",
+             o.max_rms_cm, ceiling, pruned_s, median(speedups), pruned_stats.embedding_seconds,
+             pruned_stats.search_seconds, pruned_stats.exact_seconds);
+  if (o.repeat > 1) fmt::print("speed-up per run: {:.2f}\n", fmt::join(speedups, " "));
+  fmt::print("pruned stage: D of {:.2f} % of the {} defined pairs, in {} diagonal runs ({:.1f} pairs each); "
+             "{} minima at or below the ceiling, exhaustive {}, in one only {}\n",
+             100.0 * static_cast<double>(pruned_stats.candidate_pairs) / static_cast<double>(pruned_stats.defined_pairs),
+             pruned_stats.defined_pairs, pruned_stats.runs,
+             static_cast<double>(pruned_stats.candidate_pairs) / static_cast<double>(std::max(1LL, pruned_stats.runs)),
+             pruned_minima.size(), exhaustive_minima.size(), only_one.size());
   return 0;
 }
 
@@ -134,6 +171,10 @@ Command add_bench_command(CLI::App& app) {
   sub->add_option("--repeat", o->repeat, "Measure products and stage this many times each, alternating; print medians")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
+  sub->add_option("--max-threshold", o->max_rms_cm,
+                  "The pruned stage's ceiling, an RMS point distance over the window in cm (build's --max-threshold)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   sub->add_option("--tile", o->distance.tile_frames, "Tile side in frames")->capture_default_str();
   sub->add_option("--threads", o->distance.threads, "Worker threads (0: one per core)")->capture_default_str();
   return {sub, [o] { return run_bench(*o); }};

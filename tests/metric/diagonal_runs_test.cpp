@@ -22,12 +22,13 @@ void expect_runs_match(const test::TileMatrix& m, int runs) {
   const double median = test::quantile_of(m, 0.5);
   std::mt19937 rng(11);
   std::uniform_int_distribution<int> start(0, n - 1), size(1, 80);
+  const DiagonalRuns diagonal(m.features);
   int compared = 0;
   for (int r = 0; r < runs; ++r) {
     const int a = start(rng), b = start(rng);
     const int length = std::min({size(rng), n - a, n - b});
     std::vector<float> out(static_cast<size_t>(length));
-    diagonal_run_distances(m.features, a, b, out);
+    diagonal.distances(a, b, out);
     for (int i = 0; i < length; ++i) {
       const float tiles = m.at(a + i, b + i);
       if (std::isnan(tiles)) {
@@ -61,7 +62,7 @@ TEST(DiagonalRuns, AWholeDiagonalFromTheMatrixCorner) {
   const int n = m.features.frames;
   const double median = test::quantile_of(m, 0.5);
   std::vector<float> out(static_cast<size_t>(n));
-  diagonal_run_distances(m.features, 0, 0, out);  // D(a, a): the windows a.. and a-k+1..
+  DiagonalRuns(m.features).distances(0, 0, out);  // D(a, a): the windows a.. and a-k+1..
   for (int i = 0; i < n; ++i) {
     if (std::isnan(m.at(i, i))) {
       EXPECT_TRUE(std::isnan(out[i])) << i;

@@ -53,7 +53,7 @@ class PrunedSearch {
  public:
   PrunedSearch(const FrameFeatures& f, double ceiling, int threads, CandidateSearch& out,
                PrunedSearchStatistics& stats)
-      : f_(f), ceiling_(ceiling), threads_(threads), out_(out), stats_(stats) {}
+      : f_(f), runs_(f), ceiling_(ceiling), threads_(threads), out_(out), stats_(stats) {}
 
   // Tests the rows with leaving frames in [first_untested_, end) (rows up to `end` must be
   // complete: the test reads the next row), then keeps only what the next band needs.
@@ -110,7 +110,7 @@ class PrunedSearch {
           size_t length = 0;
           for (long long j = static_cast<long long>(j0); j >= 0; j = next_[static_cast<size_t>(j)]) ++length;
           run.resize(length);
-          diagonal_run_distances(f_, band_.frame[static_cast<size_t>(row_of_[j0])], band_.cols[j0], run);
+          runs_.distances(band_.frame[static_cast<size_t>(row_of_[j0])], band_.cols[j0], run);
           size_t m = 0;
           for (long long j = static_cast<long long>(j0); j >= 0; j = next_[static_cast<size_t>(j)]) {
             d_[static_cast<size_t>(j)] = run[m++];
@@ -179,6 +179,7 @@ class PrunedSearch {
   }
 
   const FrameFeatures& f_;
+  const DiagonalRuns runs_;
   double ceiling_;
   int threads_;
   CandidateSearch& out_;

@@ -3,7 +3,11 @@
 // evaluation of the candidates its bounds leave (DESIGN.md section 5c).
 //
 // Each frame pair on the diagonal is visited once: its three cross sums are float32 dot
-// products of the centred clouds (as the tiles' BLAS products are), the references' offsets
+// products of the centred clouds, each a chain of fused multiply-adds in the order of the
+// coordinates as BLAS's kernels sum an output (so D rounds close to the tiles'; the kernels
+// at a tile's edges sum otherwise), sixteen frame pairs at a time from point-major copies of
+// the clouds (AVX2 where the machine has it, the same chains in scalar code elsewhere); the
+// references' offsets
 // are added back in double (metric/closed_form.h), and the window sums slide along the
 // diagonal (a uniform taper adds one frame pair and drops one per step; a Hann taper sums its
 // k). A run of length L so costs L + k - 1 frame-pair products, not k L. The values agree with
@@ -11,13 +15,26 @@
 #pragma once
 
 #include <span>
+#include <vector>
 
 #include "motiongraph/metric/frame_features.h"
 
 namespace mg {
 
-// out[m] = D(a + m, b + m), NaN where the pair is undefined (a window leaving its clip or the
-// matrix). Needs 0 <= a, 0 <= b, a + out.size() <= frames and b + out.size() <= frames.
-void diagonal_run_distances(const FrameFeatures& features, int a, int b, std::span<float> out);
+class DiagonalRuns {
+ public:
+  // Keeps a reference to `features` and point-major copies of its float operands (row m holds
+  // coordinate m of every frame: as much memory again as xz, zx and y).
+  explicit DiagonalRuns(const FrameFeatures& features);
+
+  // out[m] = D(a + m, b + m), NaN where the pair is undefined (a window leaving its clip or the
+  // matrix). Needs 0 <= a, 0 <= b, a + out.size() <= frames and b + out.size() <= frames.
+  // Thread-safe.
+  void distances(int a, int b, std::span<float> out) const;
+
+ private:
+  const FrameFeatures& f_;
+  std::vector<float> xz_, zx_, y_;
+};
 
 }  // namespace mg

@@ -27,7 +27,7 @@ struct WindowEmbeddingSettings {
   int dims = 16;           // principal components of the window's kept
   // The covariances are estimated on at most this many frames and windows (evenly strided):
   // any orthonormal basis keeps the bound; more samples only fit it better.
-  int max_samples = 50000;
+  int max_samples = 20000;
 
   Status validate() const;
 };
