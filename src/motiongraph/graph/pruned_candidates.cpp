@@ -23,29 +23,61 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// A diagonal run of the band: pairs (a + m, b + m), m < length.
+struct Run {
+  int a = 0, b = 0, length = 0;
+};
+
 // The pairs of consecutive leaving frames the search returned and not yet tested: row i is
 // leaving frame frame[i], its arrivals cols[begin[i] .. begin[i + 1]) in increasing order.
+// Pairs are gathered into diagonal runs as rows come: pair j is pair offset[j] of run run[j]
+// (it continues the run of (a - 1, b - 1) when the previous row holds that).
 struct Band {
   std::vector<int> frame;
   std::vector<size_t> begin{0};
   std::vector<int> cols;
+  std::vector<int> run, offset;
+  std::vector<Run> runs;
 
   size_t rows() const { return frame.size(); }
   void add_row(int a, std::span<const int> arrivals) {
+    const bool follows = !frame.empty() && frame.back() == a - 1;
+    size_t p = follows ? begin[frame.size() - 1] : 0;
+    const size_t p_end = follows ? begin[frame.size()] : 0;
+    for (const int b : arrivals) {
+      while (p < p_end && cols[p] < b - 1) ++p;
+      if (p < p_end && cols[p] == b - 1) {
+        run.push_back(run[p]);
+        offset.push_back(offset[p] + 1);
+        ++runs[static_cast<size_t>(run[p])].length;
+      } else {
+        run.push_back(static_cast<int>(runs.size()));
+        offset.push_back(0);
+        runs.push_back(Run{a, b, 1});
+      }
+    }
     frame.push_back(a);
     cols.insert(cols.end(), arrivals.begin(), arrivals.end());
     begin.push_back(cols.size());
   }
-  // Drops the rows before `first_kept` (a frame).
+  // Drops the rows before `first_kept` (a frame); the rows kept start runs afresh. The
+  // vectors keep their capacity for the next band.
   void drop_before(int first_kept) {
     size_t i = 0;
     while (i < frame.size() && frame[i] < first_kept) ++i;
-    if (i == 0) return;
-    const size_t shift = begin[i];
-    frame.erase(frame.begin(), frame.begin() + static_cast<std::ptrdiff_t>(i));
-    cols.erase(cols.begin(), cols.begin() + static_cast<std::ptrdiff_t>(shift));
-    begin.erase(begin.begin(), begin.begin() + static_cast<std::ptrdiff_t>(i));
-    for (size_t& b : begin) b -= shift;
+    const std::vector<int> kept_frames(frame.begin() + static_cast<std::ptrdiff_t>(i), frame.end());
+    const std::vector<int> kept_cols(cols.begin() + static_cast<std::ptrdiff_t>(begin[i]), cols.end());
+    std::vector<size_t> kept_begin(begin.begin() + static_cast<std::ptrdiff_t>(i), begin.end());
+    frame.clear();
+    begin.assign(1, 0);
+    cols.clear();
+    run.clear();
+    offset.clear();
+    runs.clear();
+    for (size_t r = 0; r < kept_frames.size(); ++r) {
+      add_row(kept_frames[r], std::span<const int>(kept_cols)
+                                  .subspan(kept_begin[r] - kept_begin[0], kept_begin[r + 1] - kept_begin[r]));
+    }
   }
 };
 
@@ -71,50 +103,21 @@ class PrunedSearch {
   long long binned() const { return binned_; }
 
  private:
-  // d_[j] = D of band pair j, run by run: a pair continues the run of (a - 1, b - 1) when the
-  // previous row holds it.
+  // d_[j] = D of band pair j: computed run by run into a run-major array, then gathered.
   void compute_distances() {
-    const size_t pairs = band_.cols.size();
-    d_.assign(pairs, std::numeric_limits<float>::quiet_NaN());
-    next_.assign(pairs, -1);
-    std::vector<char> continued(pairs, 0);
-    for (size_t i = 1; i < band_.rows(); ++i) {
-      if (band_.frame[i - 1] != band_.frame[i] - 1) continue;
-      size_t p = band_.begin[i - 1];
-      const size_t p_end = band_.begin[i];
-      for (size_t j = band_.begin[i]; j < band_.begin[i + 1]; ++j) {
-        const int wanted = band_.cols[j] - 1;
-        while (p < p_end && band_.cols[p] < wanted) ++p;
-        if (p < p_end && band_.cols[p] == wanted) {
-          next_[p] = static_cast<long long>(j);
-          continued[j] = 1;
-        }
-      }
-    }
-    starts_.clear();
-    row_of_.resize(pairs);
-    for (size_t i = 0; i < band_.rows(); ++i) {
-      for (size_t j = band_.begin[i]; j < band_.begin[i + 1]; ++j) {
-        row_of_[j] = static_cast<int>(i);
-        if (!continued[j]) starts_.push_back(j);
-      }
-    }
-    stats_.runs += static_cast<long long>(starts_.size());
-    std::atomic<size_t> next_start{0};
+    const std::vector<Run>& runs = band_.runs;
+    stats_.runs += static_cast<long long>(runs.size());
+    run_begin_.resize(runs.size() + 1);
+    run_begin_[0] = 0;
+    for (size_t r = 0; r < runs.size(); ++r) run_begin_[r + 1] = run_begin_[r] + static_cast<size_t>(runs[r].length);
+    by_run_.resize(run_begin_.back());
+    std::atomic<size_t> next_run{0};
     auto work = [&] {
-      std::vector<float> run;
-      constexpr size_t kChunk = 64;
-      for (size_t first = next_start.fetch_add(kChunk); first < starts_.size(); first = next_start.fetch_add(kChunk)) {
-        for (size_t s = first; s < std::min(starts_.size(), first + kChunk); ++s) {
-          const size_t j0 = starts_[s];
-          size_t length = 0;
-          for (long long j = static_cast<long long>(j0); j >= 0; j = next_[static_cast<size_t>(j)]) ++length;
-          run.resize(length);
-          runs_.distances(band_.frame[static_cast<size_t>(row_of_[j0])], band_.cols[j0], run);
-          size_t m = 0;
-          for (long long j = static_cast<long long>(j0); j >= 0; j = next_[static_cast<size_t>(j)]) {
-            d_[static_cast<size_t>(j)] = run[m++];
-          }
+      constexpr size_t kChunk = 256;
+      for (size_t first = next_run.fetch_add(kChunk); first < runs.size(); first = next_run.fetch_add(kChunk)) {
+        for (size_t r = first; r < std::min(runs.size(), first + kChunk); ++r) {
+          runs_.distances(runs[r].a, runs[r].b,
+                          std::span<float>(by_run_).subspan(run_begin_[r], static_cast<size_t>(runs[r].length)));
         }
       }
     };
@@ -122,6 +125,10 @@ class PrunedSearch {
     for (int w = 1; w < threads_; ++w) pool.emplace_back(work);
     work();
     for (std::thread& t : pool) t.join();
+    d_.resize(band_.cols.size());
+    for (size_t j = 0; j < d_.size(); ++j) {
+      d_[j] = by_run_[run_begin_[static_cast<size_t>(band_.run[j])] + static_cast<size_t>(band_.offset[j])];
+    }
   }
 
   // The values of (row r's frame, b - 1 .. b + 1): +infinity where row r lacks the pair (the
@@ -187,10 +194,9 @@ class PrunedSearch {
   Band band_;
   int first_untested_ = 0;
   long long binned_ = 0;
-  std::vector<float> d_;
-  std::vector<long long> next_;  // the run's next pair, -1 at its end
-  std::vector<size_t> starts_;
-  std::vector<int> row_of_;
+  std::vector<float> d_;        // per band pair, row-major
+  std::vector<float> by_run_;   // per band pair, run-major
+  std::vector<size_t> run_begin_;
   float three_[3] = {};
 };
 

@@ -15,32 +15,61 @@
 
 namespace mg {
 
-namespace {
+// A float operand (xz, zx or y) in frame blocks: block B holds frames 64 B .. 64 B + 79 (zeros
+// past the last), point-major within it (coordinate m of its 80 frames side by side). Sixteen
+// consecutive frames from any frame on are so side by side in every coordinate row, and the
+// rows a group reads lie close together (where a whole-matrix row would be a page apart).
+constexpr int kBlockFrames = 64;
+constexpr int kRowFrames = kBlockFrames + 16;
 
-// The three float products of the frame pairs (i + t, j + t), t = 0 .. count - 1, from the
-// point-major operands (row m holds coordinate m of every frame, `stride` apart), each a chain
-// of fused multiply-adds over the coordinates in order: how BLAS's sgemm kernels accumulate an
-// output (OpenBLAS's on x86-64, for most of a tile), so that D rounds close to the tiles'.
-struct Operands {
-  const float* xz;
-  const float* zx;
-  const float* y;
-  size_t stride;
-  int xz_rows, y_rows;  // 2P, P
+struct BlockedOperand {
+  std::vector<float> data;
+  int width = 0;  // coordinates per frame
+
+  BlockedOperand(const std::vector<float>& rows, int frames, int w) : width(w) {
+    const int blocks = (frames + kBlockFrames - 1) / kBlockFrames;
+    data.assign(static_cast<size_t>(blocks) * width * kRowFrames, 0.0f);
+    for (int block = 0; block < blocks; ++block) {
+      float* out = &data[static_cast<size_t>(block) * width * kRowFrames];
+      for (int c = 0; c < kRowFrames && block * kBlockFrames + c < frames; ++c) {
+        const float* in = &rows[static_cast<size_t>(block * kBlockFrames + c) * width];
+        for (int m = 0; m < width; ++m) out[static_cast<size_t>(m) * kRowFrames + c] = in[m];
+      }
+    }
+  }
+  // Coordinate 0 of `frame`; coordinate m is m * kRowFrames further, frame + 1 one further.
+  const float* at(int frame) const {
+    return &data[static_cast<size_t>(frame / kBlockFrames) * width * kRowFrames + frame % kBlockFrames];
+  }
 };
 
+namespace {
+
+struct Operands {
+  const BlockedOperand& xz;
+  const BlockedOperand& zx;
+  const BlockedOperand& y;
+};
+
+// The three float products of the frame pairs (i + t, j + t), t = 0 .. count - 1, each a chain
+// of fused multiply-adds over the coordinates in order: how BLAS's sgemm kernels accumulate an
+// output (OpenBLAS's on x86-64, for most of a tile), so that D rounds close to the tiles'.
 void products_scalar(const Operands& o, int i, int j, int count, float* g1, float* g2, float* g3) {
   for (int t = 0; t < count; ++t) {
+    const float* xi = o.xz.at(i + t);
+    const float* xj = o.xz.at(j + t);
+    const float* zj = o.zx.at(j + t);
     float s1 = 0.0f, s2 = 0.0f, s3 = 0.0f;
-    for (int m = 0; m < o.xz_rows; ++m) {
-      const size_t row = static_cast<size_t>(m) * o.stride;
-      const float x = o.xz[row + static_cast<size_t>(i + t)];
-      s1 = std::fma(x, o.xz[row + static_cast<size_t>(j + t)], s1);
-      s2 = std::fma(x, o.zx[row + static_cast<size_t>(j + t)], s2);
+    for (int m = 0; m < o.xz.width; ++m) {
+      const size_t c = static_cast<size_t>(m) * kRowFrames;
+      s1 = std::fma(xi[c], xj[c], s1);
+      s2 = std::fma(xi[c], zj[c], s2);
     }
-    for (int m = 0; m < o.y_rows; ++m) {
-      const size_t row = static_cast<size_t>(m) * o.stride;
-      s3 = std::fma(o.y[row + static_cast<size_t>(i + t)], o.y[row + static_cast<size_t>(j + t)], s3);
+    const float* yi = o.y.at(i + t);
+    const float* yj = o.y.at(j + t);
+    for (int m = 0; m < o.y.width; ++m) {
+      const size_t c = static_cast<size_t>(m) * kRowFrames;
+      s3 = std::fma(yi[c], yj[c], s3);
     }
     g1[t] = s1;
     g2[t] = s2;
@@ -49,40 +78,56 @@ void products_scalar(const Operands& o, int i, int j, int count, float* g1, floa
 }
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-// Sixteen frame pairs at a time, one per lane of two AVX registers: the same chains, in order.
-// The rows are padded (kPadding zeros past the last frame), so the last group may read past
-// `count` pairs: it stores only those.
-__attribute__((target("avx2,fma"))) void products_avx2(const Operands& o, int i, int j, int count, float* g1,
-                                                       float* g2, float* g3) {
-  for (int t = 0; t < count; t += 16) {
-    __m256 a1 = _mm256_setzero_ps(), b1 = a1, a2 = a1, b2 = a1, a3 = a1, b3 = a1;
-    const float* xz = o.xz;
-    const float* zx = o.zx;
-    for (int m = 0; m < o.xz_rows; ++m, xz += o.stride, zx += o.stride) {
-      const __m256 xi0 = _mm256_loadu_ps(xz + i + t), xi1 = _mm256_loadu_ps(xz + i + t + 8);
-      a1 = _mm256_fmadd_ps(xi0, _mm256_loadu_ps(xz + j + t), a1);
-      b1 = _mm256_fmadd_ps(xi1, _mm256_loadu_ps(xz + j + t + 8), b1);
-      a2 = _mm256_fmadd_ps(xi0, _mm256_loadu_ps(zx + j + t), a2);
-      b2 = _mm256_fmadd_ps(xi1, _mm256_loadu_ps(zx + j + t + 8), b2);
-    }
-    const float* y = o.y;
-    for (int m = 0; m < o.y_rows; ++m, y += o.stride) {
-      a3 = _mm256_fmadd_ps(_mm256_loadu_ps(y + i + t), _mm256_loadu_ps(y + j + t), a3);
-      b3 = _mm256_fmadd_ps(_mm256_loadu_ps(y + i + t + 8), _mm256_loadu_ps(y + j + t + 8), b3);
-    }
-    alignas(32) float lanes[6][8];
-    _mm256_store_ps(lanes[0], a1);
-    _mm256_store_ps(lanes[1], b1);
-    _mm256_store_ps(lanes[2], a2);
-    _mm256_store_ps(lanes[3], b2);
-    _mm256_store_ps(lanes[4], a3);
-    _mm256_store_ps(lanes[5], b3);
-    for (int l = 0; l < 16 && t + l < count; ++l) {
-      g1[t + l] = lanes[l / 8][l % 8];
-      g2[t + l] = lanes[2 + l / 8][l % 8];
-      g3[t + l] = lanes[4 + l / 8][l % 8];
+// Frame pairs t .. t + 8 L - 1, one per lane of L AVX registers per product: the same chains, in
+// order. A group may read past `count` pairs (into the block's next frames or its zeros): it
+// stores only those.
+template <int L>
+__attribute__((target("avx2,fma"))) inline void products_group(const Operands& o, int i, int j, int t, int count,
+                                                               float* g1, float* g2, float* g3) {
+  __m256 s1[L], s2[L], s3[L];
+  for (int l = 0; l < L; ++l) s1[l] = s2[l] = s3[l] = _mm256_setzero_ps();
+  const float* xi = o.xz.at(i + t);
+  const float* xj = o.xz.at(j + t);
+  const float* zj = o.zx.at(j + t);
+  for (int m = 0; m < o.xz.width; ++m, xi += kRowFrames, xj += kRowFrames, zj += kRowFrames) {
+    for (int l = 0; l < L; ++l) {
+      const __m256 x = _mm256_loadu_ps(xi + 8 * l);
+      s1[l] = _mm256_fmadd_ps(x, _mm256_loadu_ps(xj + 8 * l), s1[l]);
+      s2[l] = _mm256_fmadd_ps(x, _mm256_loadu_ps(zj + 8 * l), s2[l]);
     }
   }
+  const float* yi = o.y.at(i + t);
+  const float* yj = o.y.at(j + t);
+  for (int m = 0; m < o.y.width; ++m, yi += kRowFrames, yj += kRowFrames) {
+    for (int l = 0; l < L; ++l) s3[l] = _mm256_fmadd_ps(_mm256_loadu_ps(yi + 8 * l), _mm256_loadu_ps(yj + 8 * l), s3[l]);
+  }
+  alignas(32) float lanes[3][8 * L];
+  for (int l = 0; l < L; ++l) {
+    _mm256_store_ps(&lanes[0][8 * l], s1[l]);
+    _mm256_store_ps(&lanes[1][8 * l], s2[l]);
+    _mm256_store_ps(&lanes[2][8 * l], s3[l]);
+  }
+  for (int l = 0; l < 8 * L && t + l < count; ++l) {
+    g1[t + l] = lanes[0][l];
+    g2[t + l] = lanes[1][l];
+    g3[t + l] = lanes[2][l];
+  }
+}
+
+// 32 pairs a group where more than 16 are left (eight independent chains keep the FMA units
+// busy), else 16 (a block's 16 spare frames bound a group's reach).
+__attribute__((target("avx2,fma"))) void products_avx2(const Operands& o, int i, int j, int count, float* g1,
+                                                       float* g2, float* g3) {
+  int t = 0;
+  for (; count - t > 16; t += 32) {
+    if ((i + t) % kBlockFrames <= kBlockFrames - 16 && (j + t) % kBlockFrames <= kBlockFrames - 16) {
+      products_group<4>(o, i, j, t, count, g1, g2, g3);
+    } else {
+      products_group<2>(o, i, j, t, count, g1, g2, g3);
+      products_group<2>(o, i, j, t + 16, count, g1, g2, g3);
+    }
+  }
+  if (t < count) products_group<2>(o, i, j, t, count, g1, g2, g3);
 }
 
 const bool kHasAvx2Fma = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
@@ -95,28 +140,15 @@ void pair_products(const Operands& o, int i, int j, int count, float* g1, float*
   products_scalar(o, i, j, count, g1, g2, g3);
 }
 
-constexpr int kPadding = 16;  // zeros after each point-major row
-
-std::vector<float> point_major(const std::vector<float>& rows, int frames, int width) {
-  const size_t stride = static_cast<size_t>(frames) + kPadding;
-  std::vector<float> out(stride * static_cast<size_t>(width), 0.0f);
-  constexpr int kBlock = 64;  // frames per block: both sides stay in cache
-  for (int f0 = 0; f0 < frames; f0 += kBlock) {
-    const int f1 = std::min(frames, f0 + kBlock);
-    for (int m = 0; m < width; ++m) {
-      for (int f = f0; f < f1; ++f) out[m * stride + static_cast<size_t>(f)] = rows[static_cast<size_t>(f) * width + m];
-    }
-  }
-  return out;
-}
-
 }  // namespace
 
 DiagonalRuns::DiagonalRuns(const FrameFeatures& features)
     : f_(features),
-      xz_(point_major(features.xz, features.frames, 2 * features.points)),
-      zx_(point_major(features.zx, features.frames, 2 * features.points)),
-      y_(point_major(features.y, features.frames, features.points)) {}
+      xz_(std::make_unique<BlockedOperand>(features.xz, features.frames, 2 * features.points)),
+      zx_(std::make_unique<BlockedOperand>(features.zx, features.frames, 2 * features.points)),
+      y_(std::make_unique<BlockedOperand>(features.y, features.frames, features.points)) {}
+
+DiagonalRuns::~DiagonalRuns() = default;
 
 void DiagonalRuns::distances(int a, int b, std::span<float> out) const {
   const FrameFeatures& f = f_;
@@ -134,7 +166,7 @@ void DiagonalRuns::distances(int a, int b, std::span<float> out) const {
   float* g1 = g.data();
   float* g2 = g1 + (last - inside);
   float* g3 = g2 + (last - inside);
-  const Operands operands{xz_.data(), zx_.data(), y_.data(), static_cast<size_t>(n) + kPadding, 2 * f.points, f.points};
+  const Operands operands{*xz_, *zx_, *y_};
   if (last > inside) pair_products(operands, a + inside, b - k + 1 + inside, last - inside, g1, g2, g3);
   const double v = f.point_weight_sum;
   for (int t = 0; t < pairs; ++t) {

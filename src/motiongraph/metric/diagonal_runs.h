@@ -5,8 +5,9 @@
 // Each frame pair on the diagonal is visited once: its three cross sums are float32 dot
 // products of the centred clouds, each a chain of fused multiply-adds in the order of the
 // coordinates as BLAS's kernels sum an output (so D rounds close to the tiles'; the kernels
-// at a tile's edges sum otherwise), sixteen frame pairs at a time from point-major copies of
-// the clouds (AVX2 where the machine has it, the same chains in scalar code elsewhere); the
+// at a tile's edges sum otherwise), sixteen frame pairs at a time from copies of the clouds in
+// blocks of frames, point-major within a block (AVX2 where the machine has it, the same chains
+// in scalar code elsewhere); the
 // references' offsets
 // are added back in double (metric/closed_form.h), and the window sums slide along the
 // diagonal (a uniform taper adds one frame pair and drops one per step; a Hann taper sums its
@@ -14,18 +15,21 @@
 // the tiles' to float rounding (the products' summation order differs from BLAS's).
 #pragma once
 
+#include <memory>
 #include <span>
-#include <vector>
 
 #include "motiongraph/metric/frame_features.h"
 
 namespace mg {
 
+struct BlockedOperand;  // diagonal_runs.cpp
+
 class DiagonalRuns {
  public:
-  // Keeps a reference to `features` and point-major copies of its float operands (row m holds
-  // coordinate m of every frame: as much memory again as xz, zx and y).
+  // Keeps a reference to `features` and copies of its float operands in blocks of frames
+  // (1.25 times the memory of xz, zx and y).
   explicit DiagonalRuns(const FrameFeatures& features);
+  ~DiagonalRuns();
 
   // out[m] = D(a + m, b + m), NaN where the pair is undefined (a window leaving its clip or the
   // matrix). Needs 0 <= a, 0 <= b, a + out.size() <= frames and b + out.size() <= frames.
@@ -34,7 +38,7 @@ class DiagonalRuns {
 
  private:
   const FrameFeatures& f_;
-  std::vector<float> xz_, zx_, y_;
+  std::unique_ptr<BlockedOperand> xz_, zx_, y_;
 };
 
 }  // namespace mg
