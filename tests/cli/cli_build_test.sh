@@ -160,4 +160,20 @@ expect_fail "threshold quantile" "$bin" build "$data/cmu/16" -o "$work/x.mgraph"
 expect_fail "threshold must be 'auto'" "$bin" build "$data/cmu/16" -o "$work/x.mgraph" --threshold 5inch
 expect_fail "coverage" "$bin" build "$data/cmu/16" -o "$work/x.mgraph" --coverage 0
 ls "$work"/x.mgraph "$work"/g.bin 2>/dev/null && { echo "FAIL: output left behind"; exit 1; }
+
+# bench distance: the stages side by side, the pruned one evaluating part of the pairs and
+# finding the exhaustive one's minima up to its ceiling (ties in the last float bits aside).
+"$bin" bench distance "$data/cmu/16" --fps 30 --max-threshold 4 --reference-pairs 200 >"$work/bench.txt"
+python3 - "$work/bench.txt" <<'PY'
+import re, sys
+text = open(sys.argv[1]).read()
+m = re.search(r"pruned stage: D of ([0-9.]+) % of the (\d+) defined pairs.*?(\d+) minima at or below the ceiling, "
+              r"exhaustive (\d+), in one only (\d+)", text)
+assert m, text
+share, defined, pruned, exhaustive, differ = float(m[1]), int(m[2]), int(m[3]), int(m[4]), int(m[5])
+assert 0 < share < 50 and defined > 0, text
+assert exhaustive > 100 and differ <= max(2, exhaustive // 100), text
+assert re.search(r"pruned stage at the 4 cm ceiling .* faster than the distance stage", text), text
+PY
+expect_fail "max-threshold" "$bin" bench distance "$data/cmu/16" --max-threshold 0
 echo "cli build ok"
