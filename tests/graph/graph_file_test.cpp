@@ -106,6 +106,58 @@ TEST(GraphFile, LoadsFromAPath) {
   EXPECT_NE(missing.error().to_string().find(path), std::string::npos) << missing.error().to_string();
 }
 
+// Synthesis reads a graph without its candidate minima: everything else is read alike, and a
+// file cut inside the minima it skips is still refused.
+TEST(GraphFile, ReadsWithoutTheCandidateMinima) {
+  const GraphFile original = sample();
+  const std::string bytes = serialize_graph_file(original);
+  const GraphReadOptions lean{.candidate_minima = false};
+  auto read = parse_graph_file(bytes, "g.mgraph", lean);
+  ASSERT_TRUE(read) << read.error().to_string();
+  EXPECT_TRUE(read->candidates.minima.empty());
+  EXPECT_EQ(read->candidates.histogram.total(), 2u);
+  EXPECT_EQ(read->candidates.picture, original.candidates.picture);
+  read->candidates.minima = original.candidates.minima;
+  EXPECT_EQ(serialize_graph_file(*read), bytes);
+  const std::string path = testing::TempDir() + "lean_graph_file_test.mgraph";
+  ASSERT_TRUE(write_file_atomic(path, bytes).ok());
+  auto loaded = load_graph_file(path, lean);
+  ASSERT_TRUE(loaded) << loaded.error().to_string();
+  EXPECT_TRUE(loaded->candidates.minima.empty());
+  EXPECT_EQ(loaded->graph.edges.size(), original.graph.edges.size());
+  std::remove(path.c_str());
+  // The minimum count says more than the payload holds: refused without reading past it.
+  const std::string cut = bytes.substr(0, bytes.size() - 8);
+  EXPECT_FALSE(parse_graph_file(cut, "cut.mgraph", lean));
+}
+
+// FileBytes maps the file where it can: the same bytes as reading it, an empty file and a
+// folder and a missing file as read_text_file has them.
+TEST(FileBytes, TheSameBytesAsReadingTheFile) {
+  const std::string path = testing::TempDir() + "file_bytes_test.bin";
+  std::string content(100000, '\0');
+  for (size_t i = 0; i < content.size(); ++i) content[i] = static_cast<char>((i * 2654435761u) >> 13);
+  ASSERT_TRUE(write_file_atomic(path, content).ok());
+  {
+    auto bytes = FileBytes::open(path);
+    ASSERT_TRUE(bytes) << bytes.error().to_string();
+    EXPECT_EQ(bytes->bytes(), content);
+    FileBytes moved = std::move(*bytes);  // the bytes move with it
+    EXPECT_EQ(moved.bytes(), content);
+  }
+  ASSERT_TRUE(write_file_atomic(path, "").ok());
+  auto empty = FileBytes::open(path);
+  ASSERT_TRUE(empty);
+  EXPECT_TRUE(empty->bytes().empty());
+  std::remove(path.c_str());
+  auto missing = FileBytes::open(path);
+  ASSERT_FALSE(missing);
+  EXPECT_NE(missing.error().to_string().find("cannot open"), std::string::npos);
+  auto folder = FileBytes::open(testing::TempDir());
+  ASSERT_FALSE(folder);
+  EXPECT_NE(folder.error().to_string().find("folder"), std::string::npos);
+}
+
 TEST(GraphFile, RejectsAnythingElse) {
   const std::string bytes = serialize_graph_file(sample());
   auto expect_error = [](const std::string& data, const char* part) {

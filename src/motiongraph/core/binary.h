@@ -71,6 +71,23 @@ class BinaryReader {
     pos_ += size * sizeof(T);
     return true;
   }
+  // A vector put_vector wrote, in place: its size and its bytes (not aligned for T: read its
+  // values with std::memcpy).
+  template <class T>
+  bool view_vector(std::uint64_t& size, const char*& bytes) {
+    if (!get(size) || size > (data_.size() - pos_) / sizeof(T)) return fail();
+    bytes = data_.data() + pos_;
+    pos_ += size * sizeof(T);
+    return true;
+  }
+  // Steps over a vector put_vector wrote, checking only that it is whole.
+  template <class T>
+  bool skip_vector() {
+    std::uint64_t size = 0;
+    if (!get(size) || size > (data_.size() - pos_) / sizeof(T)) return fail();
+    pos_ += size * sizeof(T);
+    return true;
+  }
   bool ok() const { return ok_; }
   bool at_end() const { return pos_ == data_.size(); }
   size_t position() const { return pos_; }

@@ -160,21 +160,31 @@ void put_motion(BinaryWriter& out, const Motion& motion) {
 bool get_motion(BinaryReader& in, const Skeleton& skeleton, Motion& motion) {
   double fps = 0.0;
   std::int32_t frames = 0;
-  std::vector<float> rotations;
-  std::vector<double> translations;
+  std::uint64_t rotation_values = 0, translation_values = 0;
+  const char* rotations = nullptr;
+  const char* translations = nullptr;
   if (!in.get(fps) || !in.get(frames) || !(fps > 0.0) || frames < 0) return false;
-  if (!in.get_vector(rotations) || !in.get_vector(translations)) return false;
-  motion = Motion(skeleton, frames, fps);
-  if (rotations.size() != motion.local_rotations.size() * 4 ||
-      translations.size() != motion.local_translations_m.size() * 3) {
+  if (!in.view_vector<float>(rotation_values, rotations) || !in.view_vector<double>(translation_values, translations)) {
     return false;
   }
-  for (size_t i = 0; i < motion.local_rotations.size(); ++i) {
+  // Read in place (a large library's motion is most of a file that synthesis reads).
+  motion = Motion(skeleton, 0, fps);
+  motion.frame_count = frames;
+  const size_t rotation_count = static_cast<size_t>(frames) * static_cast<size_t>(skeleton.joint_count());
+  const size_t translation_count = static_cast<size_t>(frames) * skeleton.translated_joints().size();
+  if (rotation_values != rotation_count * 4 || translation_values != translation_count * 3) return false;
+  motion.local_rotations.resize(rotation_count);
+  motion.local_translations_m.resize(translation_count);
+  for (size_t i = 0; i < rotation_count; ++i) {
+    float q[4];
+    std::memcpy(q, rotations + 4 * i * sizeof(float), sizeof(q));
     // Kept as stored (unit to float precision), so that writing what was read is exact.
-    motion.local_rotations[i] = Quat(rotations[4 * i], rotations[4 * i + 1], rotations[4 * i + 2], rotations[4 * i + 3]);
+    motion.local_rotations[i] = Quat(q[0], q[1], q[2], q[3]);
   }
-  for (size_t i = 0; i < motion.local_translations_m.size(); ++i) {
-    motion.local_translations_m[i] = Vec3(translations[3 * i], translations[3 * i + 1], translations[3 * i + 2]);
+  for (size_t i = 0; i < translation_count; ++i) {
+    double v[3];
+    std::memcpy(v, translations + 3 * i * sizeof(double), sizeof(v));
+    motion.local_translations_m[i] = Vec3(v[0], v[1], v[2]);
   }
   return true;
 }
@@ -280,9 +290,10 @@ void put_candidates(BinaryWriter& out, const CandidateSearch& c) {
   out.put(c.tiles.pairs);
 }
 
-bool get_candidates(BinaryReader& in, CandidateSearch& c) {
+bool get_candidates(BinaryReader& in, CandidateSearch& c, bool minima = true) {
   std::vector<std::uint64_t> counts;
-  if (!in.get(c.window) || !in.get(c.continuation_radius) || !in.get_vector(c.minima) || !in.get_vector(counts) ||
+  if (!in.get(c.window) || !in.get(c.continuation_radius) ||
+      !(minima ? in.get_vector(c.minima) : in.skip_vector<Transition>()) || !in.get_vector(counts) ||
       !in.get_vector(c.picture) || !in.get(c.picture_side) || !in.get(c.picture_block) || !in.get(c.tiles.seconds) ||
       !in.get(c.tiles.tiles) || !in.get(c.tiles.pairs)) {
     return false;
@@ -367,13 +378,14 @@ std::string serialize_graph_file(const GraphFile& file) {
   return frame(kGraphMagic, kGraphFileVersion, out.data());
 }
 
-Result<GraphFile> parse_graph_file(std::string_view bytes, const std::string& file_name) {
+Result<GraphFile> parse_graph_file(std::string_view bytes, const std::string& file_name,
+                                   const GraphReadOptions& options) {
   auto payload = unframe(bytes, file_name, kGraphMagic, kGraphFileVersion, "graph (.mgraph)");
   if (!payload) return payload.error();
   BinaryReader in(*payload, file_name);
   GraphFile file;
   if (!in.get_string(file.settings_json) || !in.get(file.input_key) || !get_database(in, file.database) ||
-      !get_candidates(in, file.candidates) || !in.get(file.threshold) || !in.get(file.threshold_quantile) ||
+      !get_candidates(in, file.candidates, options.candidate_minima) || !in.get(file.threshold) || !in.get(file.threshold_quantile) ||
       !in.get(file.locality_radius) || !get_graph(in, file.database, file.graph) || !in.get_string(file.report_json) ||
       !in.at_end()) {
     return Error{file_name, 0, "inconsistent graph file (written by a different build?)"};
@@ -457,10 +469,10 @@ Result<CandidatePart> parse_candidate_part(std::string_view bytes, const std::st
   return part;
 }
 
-Result<GraphFile> load_graph_file(const std::string& path) {
-  auto bytes = read_text_file(path);
+Result<GraphFile> load_graph_file(const std::string& path, const GraphReadOptions& options) {
+  auto bytes = FileBytes::open(path);
   if (!bytes) return bytes.error();
-  return parse_graph_file(*bytes, path);
+  return parse_graph_file(bytes->bytes(), path, options);
 }
 
 }  // namespace mg

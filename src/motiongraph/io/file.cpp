@@ -9,6 +9,14 @@
 
 #include <fmt/format.h>
 
+#if defined(__unix__) || defined(__APPLE__)
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#define MG_HAVE_MMAP 1
+#endif
+
 namespace mg {
 
 Result<std::string> read_text_file(const std::string& path) {
@@ -26,6 +34,61 @@ Result<std::string> read_text_file(const std::string& path) {
   }
   if (!in) return Error{path, 0, "cannot read"};
   return text;
+}
+
+Result<FileBytes> FileBytes::open(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return Error{path, 0, "is a folder, not a file"};
+  FileBytes out;
+#ifdef MG_HAVE_MMAP
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return Error{path, 0, fmt::format("cannot open: {}", std::strerror(errno))};
+  struct stat status {};
+  if (::fstat(fd, &status) == 0 && S_ISREG(status.st_mode) && status.st_size > 0) {
+    const auto size = static_cast<size_t>(status.st_size);
+    int flags = MAP_PRIVATE;
+#ifdef MAP_POPULATE
+    flags |= MAP_POPULATE;
+#endif
+    void* map = ::mmap(nullptr, size, PROT_READ, flags, fd, 0);
+    if (map != MAP_FAILED) {
+      ::close(fd);
+      out.map_ = map;
+      out.map_size_ = size;
+      out.bytes_ = std::string_view(static_cast<const char*>(map), size);
+      return out;
+    }
+  }
+  ::close(fd);
+#endif
+  auto text = read_text_file(path);
+  if (!text) return text.error();
+  out.read_ = std::move(*text);
+  out.bytes_ = out.read_;
+  return out;
+}
+
+FileBytes::FileBytes(FileBytes&& other) noexcept { *this = std::move(other); }
+
+FileBytes& FileBytes::operator=(FileBytes&& other) noexcept {
+  if (this == &other) return *this;
+#ifdef MG_HAVE_MMAP
+  if (map_ != nullptr) ::munmap(map_, map_size_);
+#endif
+  map_ = other.map_;
+  map_size_ = other.map_size_;
+  read_ = std::move(other.read_);
+  bytes_ = map_ != nullptr ? other.bytes_ : std::string_view(read_);
+  other.map_ = nullptr;
+  other.map_size_ = 0;
+  other.bytes_ = {};
+  return *this;
+}
+
+FileBytes::~FileBytes() {
+#ifdef MG_HAVE_MMAP
+  if (map_ != nullptr) ::munmap(map_, map_size_);
+#endif
 }
 
 Status write_file_atomic(const std::string& path, std::string_view content) {

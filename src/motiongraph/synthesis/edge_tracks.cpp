@@ -1,6 +1,10 @@
 #include "motiongraph/synthesis/edge_tracks.h"
 
 #include <algorithm>
+#include <cassert>
+#include <functional>
+#include <thread>
+#include <vector>
 
 namespace mg {
 
@@ -9,37 +13,62 @@ EdgeTracks compute_edge_tracks(const MotionAssembler& assembler, const MotionGra
   EdgeTracks tracks;
   tracks.forward_axis = forward_axis;
   auto tag_of = [&](int frame) { return frame_tags.empty() ? TagMask{0} : frame_tags[frame]; };
-  for (int e = 0; e < graph.edge_count(); ++e) {
-    const GraphEdge& edge = graph.edges[e];
-    EdgeTrack track;
-    track.first = static_cast<int>(tracks.roots.size());
-    track.count = edge.frame_count;
+  // Each edge's place in the flat arrays is known from the frame counts: the edges are then
+  // filled on all cores (a whole library's graph has 10^5 and more).
+  const int edge_count = graph.edge_count();
+  tracks.edges.resize(static_cast<size_t>(edge_count));
+  size_t total = 0;
+  for (int e = 0; e < edge_count; ++e) {
+    tracks.edges[static_cast<size_t>(e)].first = static_cast<int>(total);
+    tracks.edges[static_cast<size_t>(e)].count = graph.edges[e].frame_count;
+    total += static_cast<size_t>(graph.edges[e].frame_count);
+  }
+  tracks.roots.resize(total);
+  tracks.facings.resize(total);
+  tracks.tags.resize(total);
+  auto fill = [&](int begin, int end, double& max_step) {
     std::vector<RootPose> roots;
-    FloorTransform placement;
-    assembler.append_edge_roots(e, placement, roots);
-    track.change = placement;
-    for (size_t p = 0; p < roots.size(); ++p) {
-      tracks.roots.emplace_back(roots[p].position.x(), roots[p].position.z());
-      tracks.facings.push_back(facing_on_floor(roots[p].rotation, forward_axis));
-      if (!edge.transition) {
-        tracks.tags.push_back(tag_of(graph.nodes[edge.from_node].frame + static_cast<int>(p)));
-      } else {
-        const Transition& t = graph.transitions[edge.transition_index];
-        const int k = blend_frames(edge);
-        const int q = static_cast<int>(p);
-        tracks.tags.push_back(blend_weight(q, k) >= 0.5 ? tag_of(t.from_frame + q) : tag_of(t.to_frame - k + 1 + q));
+    for (int e = begin; e < end; ++e) {
+      const GraphEdge& edge = graph.edges[e];
+      EdgeTrack& track = tracks.edges[static_cast<size_t>(e)];
+      roots.clear();
+      FloorTransform placement;
+      assembler.append_edge_roots(e, placement, roots);
+      assert(static_cast<int>(roots.size()) == track.count);
+      track.change = placement;
+      const auto first = static_cast<size_t>(track.first);
+      for (size_t p = 0; p < roots.size(); ++p) {
+        tracks.roots[first + p] = Vec2(roots[p].position.x(), roots[p].position.z());
+        tracks.facings[first + p] = facing_on_floor(roots[p].rotation, forward_axis);
+        if (!edge.transition) {
+          tracks.tags[first + p] = tag_of(graph.nodes[edge.from_node].frame + static_cast<int>(p));
+        } else {
+          const Transition& t = graph.transitions[edge.transition_index];
+          const int k = blend_frames(edge);
+          const int q = static_cast<int>(p);
+          tracks.tags[first + p] = blend_weight(q, k) >= 0.5 ? tag_of(t.from_frame + q) : tag_of(t.to_frame - k + 1 + q);
+        }
+      }
+      // Steps inside the edge and on to the first frame of whatever edge follows.
+      const Vec3 next = assembler.root_position(graph.nodes[edge.to_node].frame, placement);
+      Vec2 last(next.x(), next.z());
+      for (int p = track.count; p-- > 0;) {
+        const Vec2& root = tracks.roots[first + static_cast<size_t>(p)];
+        max_step = std::max(max_step, (last - root).norm());
+        last = root;
       }
     }
-    // Steps inside the edge and on to the first frame of whatever edge follows.
-    const Vec3 next = assembler.root_position(graph.nodes[edge.to_node].frame, placement);
-    Vec2 last(next.x(), next.z());
-    for (int p = track.count; p-- > 0;) {
-      const Vec2& root = tracks.roots[static_cast<size_t>(track.first) + static_cast<size_t>(p)];
-      tracks.max_root_step_m = std::max(tracks.max_root_step_m, (last - root).norm());
-      last = root;
-    }
-    tracks.edges.push_back(track);
+  };
+  const int workers = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, std::max(1, edge_count / 256));
+  std::vector<double> max_steps(static_cast<size_t>(workers), 0.0);
+  std::vector<std::thread> pool;
+  for (int w = 1; w < workers; ++w) {
+    pool.emplace_back(fill, static_cast<int>(static_cast<long long>(edge_count) * w / workers),
+                      static_cast<int>(static_cast<long long>(edge_count) * (w + 1) / workers), std::ref(max_steps[w]));
   }
+  fill(0, static_cast<int>(static_cast<long long>(edge_count) / workers), max_steps[0]);
+  for (std::thread& t : pool) t.join();
+  for (double step : max_steps) tracks.max_root_step_m = std::max(tracks.max_root_step_m, step);
   return tracks;
 }
 

@@ -18,8 +18,9 @@ Result<std::unique_ptr<LoadedGraph>> LoadedGraph::create(GraphFile file, const s
   return loaded;
 }
 
-Result<std::unique_ptr<LoadedGraph>> LoadedGraph::load(const std::string& path, int target_skeleton) {
-  auto file = load_graph_file(path);
+Result<std::unique_ptr<LoadedGraph>> LoadedGraph::load(const std::string& path, int target_skeleton,
+                                                       const GraphReadOptions& options) {
+  auto file = load_graph_file(path, options);
   if (!file) return file.error();
   return create(std::move(*file), path, target_skeleton);
 }

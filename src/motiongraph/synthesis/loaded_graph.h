@@ -20,7 +20,8 @@ class LoadedGraph {
   static Result<std::unique_ptr<LoadedGraph>> create(GraphFile file, const std::string& file_name,
                                                      int target_skeleton = -1);
   // Reads and parses the .mgraph file at `path` (graph_file.h), then create().
-  static Result<std::unique_ptr<LoadedGraph>> load(const std::string& path, int target_skeleton = -1);
+  static Result<std::unique_ptr<LoadedGraph>> load(const std::string& path, int target_skeleton = -1,
+                                                   const GraphReadOptions& options = {});
 
   LoadedGraph(const LoadedGraph&) = delete;
   LoadedGraph& operator=(const LoadedGraph&) = delete;
