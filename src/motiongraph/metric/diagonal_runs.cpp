@@ -162,10 +162,11 @@ void DiagonalRuns::distances(int a, int b, std::span<float> out) const {
   std::vector<double> e1(static_cast<size_t>(pairs)), e2(e1.size()), e3(e1.size());
   // The frame pairs inside the matrix: t = inside .. last - 1.
   const int inside = std::max(0, k - 1 - b), last = std::min(pairs, n - a);
-  std::vector<float> g(3 * static_cast<size_t>(std::max(0, last - inside)));
+  const size_t count = static_cast<size_t>(std::max(0, last - inside));
+  std::vector<float> g(3 * count);
   float* g1 = g.data();
-  float* g2 = g1 + (last - inside);
-  float* g3 = g2 + (last - inside);
+  float* g2 = count > 0 ? g1 + count : g1;
+  float* g3 = count > 0 ? g2 + count : g1;
   const Operands operands{*xz_, *zx_, *y_};
   if (last > inside) pair_products(operands, a + inside, b - k + 1 + inside, last - inside, g1, g2, g3);
   const double v = f.point_weight_sum;
