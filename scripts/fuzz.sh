@@ -30,7 +30,7 @@ max_len=65536
 CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja \
   -DMOTIONGRAPH_FUZZ=ON -DMOTIONGRAPH_SANITIZE=address,undefined \
   -DMOTIONGRAPH_TESTS=OFF -DMOTIONGRAPH_BENCHMARKS=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
-targets=(asf amc bvh manifest floor_path control_script)
+targets=(asf amc bvh manifest floor_path control_script graph_file)
 cmake --build "$build" --target "${targets[@]/#/fuzz_}"
 
 # --- seed corpora --------------------------------------------------------------------------
@@ -78,6 +78,11 @@ printf '{"points": [[0, 0], [3, -4], [3, -4], [6, 0]],\n "segments": [{"from_m":
 printf '{"duration_s": 12,\n "controls": [{"at_s": 0, "heading": "north", "tag": "walk"},\n  {"at_s": 4, "heading_deg": 90}, {"at_s": 8, "tag": "run"}, {"at_s": 9, "tag": "any"}]}\n' \
   >"$build/corpus-control_script/script.json"
 printf '{"controls": [{"at_s": 0, "heading": "west"}]}\n' >"$build/corpus-control_script/short.json"
+
+# A small graph file (two clips), written by the target itself; and its first 16 KB.
+MOTIONGRAPH_FUZZ_GRAPH_SEED="$build/corpus-graph_file/two-clips.mgraph" \
+  MOTIONGRAPH_FUZZ_CLIPS="$root/data/cmu/16/16_35.amc,$root/data/cmu/16/16_39.amc" "$build/fuzz/fuzz_graph_file"
+head -c 16384 "$build/corpus-graph_file/two-clips.mgraph" >"$build/corpus-graph_file/two-clips.16k"
 
 # --- run -----------------------------------------------------------------------------------
 export MOTIONGRAPH_FUZZ_ASF="$root/data/cmu/16/16.asf"  # fuzz_amc's skeleton
