@@ -11,11 +11,3 @@
 #define MG_VECTOR_CLONES
 #endif
 
-// MG_FMA_CLONES on a function whose std::fma calls should be instructions: compiled for FMA
-// and for the baseline ISA, where std::fma is the library's (the same bits, exactly rounded,
-// only slower).
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define MG_FMA_CLONES __attribute__((target_clones("fma", "default")))
-#else
-#define MG_FMA_CLONES
-#endif

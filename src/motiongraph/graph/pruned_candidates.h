@@ -9,9 +9,13 @@
 // beats a pair at or below it: the local-minimum test of a pair at or below the ceiling reads
 // its computed neighbours and treats the others as larger, which is the exhaustive test's
 // answer. The minima at or below the ceiling are so the exhaustive stage's, up to float
-// rounding (the products are summed in another order than BLAS's: D agrees to about 1e-5 of
-// itself, so pairs whose D ties a neighbour's that closely may be decided the other way; the
-// exhaustive stage's own D moves by as much with its tile size).
+// rounding: D agrees with the tiles' in all but the last bits (diagonal_runs.h), so a pair
+// whose D ties a neighbour's or the ceiling that closely may be decided the other way. The
+// exhaustive stage's own minima move as much with its tile size (docs/performance.md: 4 of
+// 1 220 on subject 16 at 120 fps, either way).
+//
+// Not used by `build` yet: slower than the tiles at the automatic threshold's ceiling on this
+// project's machines (docs/performance.md, "The pruned stage measured against the tiles").
 //
 // The histogram holds the exact D of the pairs at or below the ceiling and counts the others in
 // its overflow bin (so fraction_below is exact up to the ceiling); the picture's block minima
