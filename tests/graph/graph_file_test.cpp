@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include <zlib.h>
+
 #include "motiongraph/database/database_contacts.h"
 #include "motiongraph/io/file.h"
 #include "test_data.h"
@@ -208,6 +210,23 @@ TEST(DistanceCache, RoundTripAndKey) {
   EXPECT_FALSE(parse_distance_cache(bytes, "c.mgcache", 43));
   EXPECT_NE(content_key("walk"), content_key("walk "));
   EXPECT_EQ(content_key("walk"), content_key(std::string("walk")));
+}
+
+// Large payloads are checksummed in one piece per core and the pieces' CRCs combined: the
+// same CRC-32 as zlib's over the whole (content_key's upper half), at sizes that split
+// unevenly.
+TEST(GraphFile, TheChecksumOfALargePayloadIsZlibsOverTheWhole) {
+  for (const size_t size : {size_t{70} << 20, (size_t{100} << 20) + 12345}) {
+    std::string bytes(size, '\0');
+    std::uint32_t state = 12345;
+    for (char& c : bytes) {
+      state = state * 1664525u + 1013904223u;
+      c = static_cast<char>(state >> 24);
+    }
+    uLong whole = crc32(0L, Z_NULL, 0);
+    whole = crc32(whole, reinterpret_cast<const Bytef*>(bytes.data()), static_cast<uInt>(bytes.size()));
+    EXPECT_EQ(content_key(bytes) >> 32, static_cast<std::uint64_t>(whole)) << size;
+  }
 }
 
 }  // namespace
