@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
-#include <thread>
 #include <vector>
 
 #include <zlib.h>
@@ -11,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "motiongraph/core/binary.h"
+#include "motiongraph/core/parallel_for.h"
 #include "motiongraph/io/file.h"
 
 namespace mg {
@@ -38,20 +38,19 @@ std::uint32_t crc32_serial(std::string_view bytes) {
 // piece per core, joined with zlib's crc32_combine, which gives the same value.
 std::uint32_t crc32_of(std::string_view bytes) {
   constexpr size_t kPieceFloor = 32u << 20;
-  const size_t pieces = std::min<size_t>(std::max(1u, std::thread::hardware_concurrency()),
+  const size_t pieces = std::min<size_t>(static_cast<size_t>(worker_threads(0)),
                                          std::max<size_t>(1, bytes.size() / kPieceFloor));
   if (pieces == 1) return crc32_serial(bytes);
+  auto begin_of = [&](size_t piece) { return bytes.size() * piece / pieces; };
   std::vector<std::uint32_t> crcs(pieces);
-  std::vector<size_t> sizes(pieces);
-  std::vector<std::thread> threads;
-  for (size_t p = 0; p < pieces; ++p) {
-    const size_t begin = bytes.size() * p / pieces, end = bytes.size() * (p + 1) / pieces;
-    sizes[p] = end - begin;
-    threads.emplace_back([&crcs, &bytes, p, begin, end] { crcs[p] = crc32_serial(bytes.substr(begin, end - begin)); });
-  }
-  for (std::thread& t : threads) t.join();
+  parallel_for(static_cast<long long>(pieces), static_cast<int>(pieces), 1, [&](int, long long p) {
+    const auto piece = static_cast<size_t>(p);
+    crcs[piece] = crc32_serial(bytes.substr(begin_of(piece), begin_of(piece + 1) - begin_of(piece)));
+  });
   uLong crc = crcs[0];
-  for (size_t p = 1; p < pieces; ++p) crc = crc32_combine(crc, crcs[p], static_cast<z_off_t>(sizes[p]));
+  for (size_t p = 1; p < pieces; ++p) {
+    crc = crc32_combine(crc, crcs[p], static_cast<z_off_t>(begin_of(p + 1) - begin_of(p)));
+  }
   return static_cast<std::uint32_t>(crc);
 }
 

@@ -3,14 +3,13 @@
 #include "motiongraph/graph/pruned_candidates.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
-#include <thread>
 #include <vector>
 
+#include "motiongraph/core/parallel_for.h"
 #include "motiongraph/metric/diagonal_runs.h"
 
 namespace mg {
@@ -111,20 +110,11 @@ class PrunedSearch {
     run_begin_[0] = 0;
     for (size_t r = 0; r < runs.size(); ++r) run_begin_[r + 1] = run_begin_[r] + static_cast<size_t>(runs[r].length);
     by_run_.resize(run_begin_.back());
-    std::atomic<size_t> next_run{0};
-    auto work = [&] {
-      constexpr size_t kChunk = 256;
-      for (size_t first = next_run.fetch_add(kChunk); first < runs.size(); first = next_run.fetch_add(kChunk)) {
-        for (size_t r = first; r < std::min(runs.size(), first + kChunk); ++r) {
-          runs_.distances(runs[r].a, runs[r].b,
-                          std::span<float>(by_run_).subspan(run_begin_[r], static_cast<size_t>(runs[r].length)));
-        }
-      }
-    };
-    std::vector<std::thread> pool;
-    for (int w = 1; w < threads_; ++w) pool.emplace_back(work);
-    work();
-    for (std::thread& t : pool) t.join();
+    parallel_for(static_cast<long long>(runs.size()), threads_, 256, [&](int, long long i) {
+      const auto r = static_cast<size_t>(i);
+      runs_.distances(runs[r].a, runs[r].b,
+                      std::span<float>(by_run_).subspan(run_begin_[r], static_cast<size_t>(runs[r].length)));
+    });
     d_.resize(band_.cols.size());
     for (size_t j = 0; j < d_.size(); ++j) {
       d_[j] = by_run_[run_begin_[static_cast<size_t>(band_.run[j])] + static_cast<size_t>(band_.offset[j])];
@@ -225,8 +215,7 @@ Result<CandidateSearch> find_candidates_pruned(const FrameFeatures& f, double ce
   PrunedSearchStatistics& stats = statistics != nullptr ? *statistics : local;
   stats = {};
   const auto start = std::chrono::steady_clock::now();
-  const int threads =
-      pruned.threads > 0 ? pruned.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int threads = worker_threads(pruned.threads);
   const long long leaving = std::count(f.can_leave.begin(), f.can_leave.end(), 1);
   const long long arriving = std::count(f.can_arrive.begin(), f.can_arrive.end(), 1);
   stats.defined_pairs = leaving * arriving;

@@ -37,8 +37,6 @@ Result<std::string> read_text_file(const std::string& path) {
 }
 
 Result<FileBytes> FileBytes::open(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) return Error{path, 0, "is a folder, not a file"};
   FileBytes out;
 #ifdef MG_HAVE_MMAP
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
@@ -61,6 +59,7 @@ Result<FileBytes> FileBytes::open(const std::string& path) {
   }
   ::close(fd);
 #endif
+  // Not a regular file or not mappable (a folder opens too): read_text_file says why.
   auto text = read_text_file(path);
   if (!text) return text.error();
   out.read_ = std::move(*text);

@@ -7,11 +7,11 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <thread>
 #include <vector>
 
 #include <cblas.h>
 
+#include "motiongraph/core/parallel_for.h"
 #include "motiongraph/core/vector_clones.h"
 #include "motiongraph/metric/closed_form.h"
 
@@ -19,10 +19,7 @@ namespace mg {
 
 namespace {
 
-int worker_count(const DistanceSettings& settings) {
-  if (settings.threads > 0) return settings.threads;
-  return std::max(1u, std::thread::hardware_concurrency());
-}
+int worker_count(const DistanceSettings& settings) { return worker_threads(settings.threads); }
 
 // The BLAS products for rows [r0, r0 + rows) against columns [c0, c0 + cols), row-major.
 struct Products {
@@ -265,19 +262,12 @@ class TileWorker {
 
 template <class Work>
 void run_items(long long items, int workers, const Work& work) {
-  std::atomic<long long> next{0};
-  auto loop = [&](int worker) {
-    for (long long t = next++; t < items; t = next++) work(worker, t);
-  };
   // Work is spread over our threads; BLAS itself runs single-threaded, always: OpenBLAS rounds
   // differently on more threads, and D must not depend on how many threads or processes (or
   // tiles per thread) there are, so that every run makes the same graph.
   const int blas_threads = openblas_get_num_threads();
   openblas_set_num_threads(1);
-  std::vector<std::thread> threads;
-  for (int w = 1; w < workers; ++w) threads.emplace_back(loop, w);
-  loop(0);
-  for (auto& thread : threads) thread.join();
+  parallel_for(items, workers, 1, work);
   openblas_set_num_threads(blas_threads);
 }
 

@@ -3,13 +3,13 @@
 #include "motiongraph/metric/window_embedding.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cassert>
 #include <cmath>
 #include <numeric>
-#include <thread>
 
 #include <Eigen/Dense>
+
+#include "motiongraph/core/parallel_for.h"
 
 namespace mg {
 
@@ -242,20 +242,14 @@ BoundedPairStatistics for_each_bounded_pair(const FrameFeatures& features, const
     }
   };
   // Large balls are searched on the threads a batch at a time, then visited in order.
-  const int workers = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int workers = worker_threads(threads);
   const size_t batch = static_cast<size_t>(4 * workers);
   BoundedPairStatistics stats;
   std::vector<GroupResult> results(batch);
   for (size_t first = 0; first < large.size(); first += batch) {
     const size_t end = std::min(large.size(), first + batch);
-    std::atomic<size_t> next{first};
-    auto loop = [&] {
-      for (size_t g = next++; g < end; g = next++) search_group(g, results[g - first]);
-    };
-    std::vector<std::thread> pool;
-    for (int w = 1; w < workers; ++w) pool.emplace_back(loop);
-    loop();
-    for (std::thread& t : pool) t.join();
+    parallel_for(static_cast<long long>(end - first), workers, 1,
+                 [&](int, long long i) { search_group(first + static_cast<size_t>(i), results[static_cast<size_t>(i)]); });
     for (size_t g = first; g < end; ++g) {
       GroupResult& r = results[g - first];
       stats.scanned += r.scanned;

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cassert>
-#include <functional>
-#include <thread>
 #include <vector>
+
+#include "motiongraph/core/parallel_for.h"
 
 namespace mg {
 
@@ -26,48 +26,44 @@ EdgeTracks compute_edge_tracks(const MotionAssembler& assembler, const MotionGra
   tracks.roots.resize(total);
   tracks.facings.resize(total);
   tracks.tags.resize(total);
-  auto fill = [&](int begin, int end, double& max_step) {
-    std::vector<RootPose> roots;
-    for (int e = begin; e < end; ++e) {
-      const GraphEdge& edge = graph.edges[e];
-      EdgeTrack& track = tracks.edges[static_cast<size_t>(e)];
-      roots.clear();
-      FloorTransform placement;
-      assembler.append_edge_roots(e, placement, roots);
-      assert(static_cast<int>(roots.size()) == track.count);
-      track.change = placement;
-      const auto first = static_cast<size_t>(track.first);
-      for (size_t p = 0; p < roots.size(); ++p) {
-        tracks.roots[first + p] = Vec2(roots[p].position.x(), roots[p].position.z());
-        tracks.facings[first + p] = facing_on_floor(roots[p].rotation, forward_axis);
-        if (!edge.transition) {
-          tracks.tags[first + p] = tag_of(graph.nodes[edge.from_node].frame + static_cast<int>(p));
-        } else {
-          const Transition& t = graph.transitions[edge.transition_index];
-          const int k = blend_frames(edge);
-          const int q = static_cast<int>(p);
-          tracks.tags[first + p] = blend_weight(q, k) >= 0.5 ? tag_of(t.from_frame + q) : tag_of(t.to_frame - k + 1 + q);
-        }
-      }
-      // Steps inside the edge and on to the first frame of whatever edge follows.
-      const Vec3 next = assembler.root_position(graph.nodes[edge.to_node].frame, placement);
-      Vec2 last(next.x(), next.z());
-      for (int p = track.count; p-- > 0;) {
-        const Vec2& root = tracks.roots[first + static_cast<size_t>(p)];
-        max_step = std::max(max_step, (last - root).norm());
-        last = root;
+  // Per worker: a buffer for an edge's roots and the longest step it saw (combined below; a
+  // maximum does not depend on the order).
+  const int workers = worker_threads(0);
+  std::vector<std::vector<RootPose>> buffers(static_cast<size_t>(workers));
+  std::vector<double> max_steps(static_cast<size_t>(workers), 0.0);
+  parallel_for(edge_count, workers, 256, [&](int worker, long long index) {
+    const int e = static_cast<int>(index);
+    std::vector<RootPose>& roots = buffers[static_cast<size_t>(worker)];
+    double& max_step = max_steps[static_cast<size_t>(worker)];
+    const GraphEdge& edge = graph.edges[e];
+    EdgeTrack& track = tracks.edges[static_cast<size_t>(e)];
+    roots.clear();
+    FloorTransform placement;
+    assembler.append_edge_roots(e, placement, roots);
+    assert(static_cast<int>(roots.size()) == track.count);
+    track.change = placement;
+    const auto first = static_cast<size_t>(track.first);
+    for (size_t p = 0; p < roots.size(); ++p) {
+      tracks.roots[first + p] = Vec2(roots[p].position.x(), roots[p].position.z());
+      tracks.facings[first + p] = facing_on_floor(roots[p].rotation, forward_axis);
+      if (!edge.transition) {
+        tracks.tags[first + p] = tag_of(graph.nodes[edge.from_node].frame + static_cast<int>(p));
+      } else {
+        const Transition& t = graph.transitions[edge.transition_index];
+        const int k = blend_frames(edge);
+        const int q = static_cast<int>(p);
+        tracks.tags[first + p] = blend_weight(q, k) >= 0.5 ? tag_of(t.from_frame + q) : tag_of(t.to_frame - k + 1 + q);
       }
     }
-  };
-  const int workers = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, std::max(1, edge_count / 256));
-  std::vector<double> max_steps(static_cast<size_t>(workers), 0.0);
-  std::vector<std::thread> pool;
-  for (int w = 1; w < workers; ++w) {
-    pool.emplace_back(fill, static_cast<int>(static_cast<long long>(edge_count) * w / workers),
-                      static_cast<int>(static_cast<long long>(edge_count) * (w + 1) / workers), std::ref(max_steps[w]));
-  }
-  fill(0, static_cast<int>(static_cast<long long>(edge_count) / workers), max_steps[0]);
-  for (std::thread& t : pool) t.join();
+    // Steps inside the edge and on to the first frame of whatever edge follows.
+    const Vec3 next = assembler.root_position(graph.nodes[edge.to_node].frame, placement);
+    Vec2 last(next.x(), next.z());
+    for (int p = track.count; p-- > 0;) {
+      const Vec2& root = tracks.roots[first + static_cast<size_t>(p)];
+      max_step = std::max(max_step, (last - root).norm());
+      last = root;
+    }
+  });
   for (double step : max_steps) tracks.max_root_step_m = std::max(tracks.max_root_step_m, step);
   return tracks;
 }
