@@ -178,36 +178,46 @@ void put_motion(BinaryWriter& out, const Motion& motion) {
   out.put_vector(translations);
 }
 
-bool get_motion(BinaryReader& in, const Skeleton& skeleton, Motion& motion) {
+// A clip's motion as stored: checked against its skeleton, decoded later (decode_motion).
+struct StoredMotion {
   double fps = 0.0;
   std::int32_t frames = 0;
+  const char* rotations = nullptr;     // frames x joints x 4 floats (w, x, y, z)
+  const char* translations = nullptr;  // frames x translated joints x 3 doubles
+};
+
+bool get_stored_motion(BinaryReader& in, const Skeleton& skeleton, StoredMotion& stored) {
   std::uint64_t rotation_values = 0, translation_values = 0;
-  const char* rotations = nullptr;
-  const char* translations = nullptr;
-  if (!in.get(fps) || !in.get(frames) || !(fps > 0.0) || frames < 0) return false;
-  if (!in.view_vector<float>(rotation_values, rotations) || !in.view_vector<double>(translation_values, translations)) {
+  if (!in.get(stored.fps) || !in.get(stored.frames) || !(stored.fps > 0.0) || stored.frames < 0) return false;
+  if (!in.view_vector<float>(rotation_values, stored.rotations) ||
+      !in.view_vector<double>(translation_values, stored.translations)) {
     return false;
   }
-  // Read in place (a large library's motion is most of a file that synthesis reads).
-  motion = Motion(skeleton, 0, fps);
-  motion.frame_count = frames;
-  const size_t rotation_count = static_cast<size_t>(frames) * static_cast<size_t>(skeleton.joint_count());
-  const size_t translation_count = static_cast<size_t>(frames) * skeleton.translated_joints().size();
-  if (rotation_values != rotation_count * 4 || translation_values != translation_count * 3) return false;
+  const auto frames = static_cast<std::uint64_t>(stored.frames);
+  return rotation_values == frames * static_cast<std::uint64_t>(skeleton.joint_count()) * 4 &&
+         translation_values == frames * skeleton.translated_joints().size() * 3;
+}
+
+// Decoded in place from the file's bytes (a large library's motion is most of what synthesis
+// reads from a graph file).
+void decode_motion(const StoredMotion& stored, const Skeleton& skeleton, Motion& motion) {
+  motion = Motion(skeleton, 0, stored.fps);
+  motion.frame_count = stored.frames;
+  const size_t rotation_count = static_cast<size_t>(stored.frames) * static_cast<size_t>(skeleton.joint_count());
+  const size_t translation_count = static_cast<size_t>(stored.frames) * skeleton.translated_joints().size();
   motion.local_rotations.resize(rotation_count);
   motion.local_translations_m.resize(translation_count);
   for (size_t i = 0; i < rotation_count; ++i) {
     float q[4];
-    std::memcpy(q, rotations + 4 * i * sizeof(float), sizeof(q));
+    std::memcpy(q, stored.rotations + 4 * i * sizeof(float), sizeof(q));
     // Kept as stored (unit to float precision), so that writing what was read is exact.
     motion.local_rotations[i] = Quat(q[0], q[1], q[2], q[3]);
   }
   for (size_t i = 0; i < translation_count; ++i) {
     double v[3];
-    std::memcpy(v, translations + 3 * i * sizeof(double), sizeof(v));
+    std::memcpy(v, stored.translations + 3 * i * sizeof(double), sizeof(v));
     motion.local_translations_m[i] = Vec3(v[0], v[1], v[2]);
   }
-  return true;
 }
 
 void put_database(BinaryWriter& out, const MotionDatabase& db) {
@@ -252,6 +262,7 @@ bool get_database(BinaryReader& in, MotionDatabase& db) {
   }
   if (!in.get(clips) || clips < 0 || clips > 10000000) return false;
   int next_frame = 0;
+  std::vector<StoredMotion> stored;
   for (int c = 0; c < clips; ++c) {
     DatabaseClip clip;
     if (!in.get_string(clip.name) || !in.get_string(clip.source) || !in.get(clip.skeleton) ||
@@ -261,12 +272,17 @@ bool get_database(BinaryReader& in, MotionDatabase& db) {
     if (clip.skeleton < 0 || clip.skeleton >= skeletons || clip.first_frame != next_frame || clip.frame_count < 1) {
       return false;
     }
-    if (!get_motion(in, db.skeletons[clip.skeleton], clip.motion) || clip.motion.frame_count != clip.frame_count) {
-      return false;
-    }
+    StoredMotion motion;
+    if (!get_stored_motion(in, db.skeletons[clip.skeleton], motion) || motion.frames != clip.frame_count) return false;
     next_frame += clip.frame_count;
     db.clips.push_back(std::move(clip));
+    stored.push_back(motion);
   }
+  // The clips' motion decoded on all cores (each clip into its own memory).
+  parallel_for(clips, worker_threads(0), 1, [&](int, long long c) {
+    DatabaseClip& clip = db.clips[static_cast<size_t>(c)];
+    decode_motion(stored[static_cast<size_t>(c)], db.skeletons[clip.skeleton], clip.motion);
+  });
   if (!in.get(tags) || tags < 0 || tags > 64) return false;
   db.tag_names.resize(tags);
   for (auto& name : db.tag_names) {

@@ -49,15 +49,15 @@ const DatabaseClip& MotionAssembler::clip_of(int frame, int* local) const {
   return clip;
 }
 
-RootPose MotionAssembler::root_pose(int frame, const FloorTransform& placement) const {
+RootPose MotionAssembler::root_pose(int frame, const PreparedFloorTransform& placement) const {
   int local = 0;
   const DatabaseClip& clip = clip_of(frame, &local);
   return {placement.apply(scale_[clip.skeleton] * clip.motion.translations(local)[0]),
-          placement.rotation() * clip.motion.rotations(local)[0]};
+          placement.rotation * clip.motion.rotations(local)[0]};
 }
 
-RootPose MotionAssembler::blend_root(int departure, const FloorTransform& w_departure, int arrival,
-                                     const FloorTransform& w_arrival, double alpha) const {
+RootPose MotionAssembler::blend_root(int departure, const PreparedFloorTransform& w_departure, int arrival,
+                                     const PreparedFloorTransform& w_arrival, double alpha) const {
   const RootPose d = root_pose(departure, w_departure), a = root_pose(arrival, w_arrival);
   return {alpha * d.position + (1.0 - alpha) * a.position, d.rotation.slerp(1.0 - alpha, a.rotation).normalized()};
 }
@@ -78,21 +78,21 @@ FloorTransform MotionAssembler::transition_transform(const Transition& t) const 
   return transform;
 }
 
-void MotionAssembler::append_frame(int frame, const FloorTransform& placement, Motion& out) const {
+void MotionAssembler::append_frame(int frame, const PreparedFloorTransform& placement, Motion& out) const {
   int local = 0;
   const DatabaseClip& clip = clip_of(frame, &local);
   const double s = scale_[clip.skeleton];
   const auto rotations = clip.motion.rotations(local);
   const auto translations = clip.motion.translations(local);
-  out.local_rotations.push_back(placement.rotation() * rotations[0]);
+  out.local_rotations.push_back(placement.rotation * rotations[0]);
   out.local_rotations.insert(out.local_rotations.end(), rotations.begin() + 1, rotations.end());
   out.local_translations_m.push_back(placement.apply(s * translations[0]));
   for (size_t i = 1; i < translations.size(); ++i) out.local_translations_m.push_back(s * translations[i]);
   ++out.frame_count;
 }
 
-void MotionAssembler::append_blend(int departure, const FloorTransform& w_departure, int arrival,
-                                   const FloorTransform& w_arrival, double alpha, Motion& out) const {
+void MotionAssembler::append_blend(int departure, const PreparedFloorTransform& w_departure, int arrival,
+                                   const PreparedFloorTransform& w_arrival, double alpha, Motion& out) const {
   int local_d = 0, local_a = 0;
   const DatabaseClip& clip_d = clip_of(departure, &local_d);
   const DatabaseClip& clip_a = clip_of(arrival, &local_a);
@@ -112,31 +112,33 @@ template <class OnFrame, class OnBlend>
 void MotionAssembler::visit_edge(int edge_index, FloorTransform& placement, OnFrame on_frame, OnBlend on_blend) const {
   const GraphEdge& edge = graph_->edges[edge_index];
   const int from_frame = graph_->nodes[edge.from_node].frame;
+  const PreparedFloorTransform departure(placement);
   if (!edge.transition) {
-    for (int p = 0; p < edge.frame_count; ++p) on_frame(from_frame + p, placement);
+    for (int p = 0; p < edge.frame_count; ++p) on_frame(from_frame + p, departure);
     return;
   }
   const Transition& t = graph_->transitions[edge.transition_index];
   const int k = blend_frames(edge);
   const FloorTransform arrival = placement * transition_transform(t);
+  const PreparedFloorTransform prepared_arrival(arrival);
   for (int p = 0; p < edge.frame_count; ++p) {
-    on_blend(t.from_frame + p, placement, t.to_frame - k + 1 + p, arrival, blend_weight(p, k));
+    on_blend(t.from_frame + p, departure, t.to_frame - k + 1 + p, prepared_arrival, blend_weight(p, k));
   }
   placement = arrival;
 }
 
 void MotionAssembler::append_edge(int edge, FloorTransform& placement, Motion& out) const {
   visit_edge(
-      edge, placement, [&](int frame, const FloorTransform& w) { append_frame(frame, w, out); },
-      [&](int d, const FloorTransform& wd, int a, const FloorTransform& wa, double alpha) {
+      edge, placement, [&](int frame, const PreparedFloorTransform& w) { append_frame(frame, w, out); },
+      [&](int d, const PreparedFloorTransform& wd, int a, const PreparedFloorTransform& wa, double alpha) {
         append_blend(d, wd, a, wa, alpha, out);
       });
 }
 
 void MotionAssembler::append_edge_roots(int edge, FloorTransform& placement, std::vector<RootPose>& out) const {
   visit_edge(
-      edge, placement, [&](int frame, const FloorTransform& w) { out.push_back(root_pose(frame, w)); },
-      [&](int d, const FloorTransform& wd, int a, const FloorTransform& wa, double alpha) {
+      edge, placement, [&](int frame, const PreparedFloorTransform& w) { out.push_back(root_pose(frame, w)); },
+      [&](int d, const PreparedFloorTransform& wd, int a, const PreparedFloorTransform& wa, double alpha) {
         out.push_back(blend_root(d, wd, a, wa, alpha));
       });
 }
@@ -145,8 +147,8 @@ void MotionAssembler::append_edge_contacts(int edge, std::span<const ContactMask
                                            std::vector<ContactMask>& out) const {
   FloorTransform placement;
   visit_edge(
-      edge, placement, [&](int frame, const FloorTransform&) { out.push_back(frame_contacts[frame]); },
-      [&](int d, const FloorTransform&, int a, const FloorTransform&, double alpha) {
+      edge, placement, [&](int frame, const PreparedFloorTransform&) { out.push_back(frame_contacts[frame]); },
+      [&](int d, const PreparedFloorTransform&, int a, const PreparedFloorTransform&, double alpha) {
         out.push_back(frame_contacts[alpha >= 0.5 ? d : a]);
       });
 }

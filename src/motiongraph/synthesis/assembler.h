@@ -59,11 +59,17 @@ class MotionAssembler {
   // the next edge is played with.
   void append_edge(int edge, FloorTransform& placement, Motion& out) const;
   // Appends database frame `frame` placed by `placement`.
-  void append_frame(int frame, const FloorTransform& placement, Motion& out) const;
+  void append_frame(int frame, const FloorTransform& placement, Motion& out) const {
+    append_frame(frame, PreparedFloorTransform(placement), out);
+  }
+  void append_frame(int frame, const PreparedFloorTransform& placement, Motion& out) const;
 
   // The root of database frame `frame` under `placement` (scaled to the target), without
   // building the pose.
-  RootPose root_pose(int frame, const FloorTransform& placement) const;
+  RootPose root_pose(int frame, const FloorTransform& placement) const {
+    return root_pose(frame, PreparedFloorTransform(placement));
+  }
+  RootPose root_pose(int frame, const PreparedFloorTransform& placement) const;
   Vec3 root_position(int frame, const FloorTransform& placement) const { return root_pose(frame, placement).position; }
   Quat root_rotation(int frame, const FloorTransform& placement) const { return root_pose(frame, placement).rotation; }
   // The foot contacts (motion/foot_contacts.h) of the frames append_edge plays, from those of
@@ -76,14 +82,14 @@ class MotionAssembler {
 
  private:
   // Calls on_frame(frame, placement) for each clip frame the edge plays, or
-  // on_blend(departure, w_departure, arrival, w_arrival, alpha) for each blended frame, and
-  // moves the placement on.
+  // on_blend(departure, w_departure, arrival, w_arrival, alpha) for each blended frame (the
+  // placements prepared once per edge), and moves the placement on.
   template <class OnFrame, class OnBlend>
   void visit_edge(int edge, FloorTransform& placement, OnFrame on_frame, OnBlend on_blend) const;
-  RootPose blend_root(int departure, const FloorTransform& w_departure, int arrival, const FloorTransform& w_arrival,
-                      double alpha) const;
-  void append_blend(int departure, const FloorTransform& w_departure, int arrival, const FloorTransform& w_arrival,
-                    double alpha, Motion& out) const;
+  RootPose blend_root(int departure, const PreparedFloorTransform& w_departure, int arrival,
+                      const PreparedFloorTransform& w_arrival, double alpha) const;
+  void append_blend(int departure, const PreparedFloorTransform& w_departure, int arrival,
+                    const PreparedFloorTransform& w_arrival, double alpha, Motion& out) const;
   const DatabaseClip& clip_of(int frame, int* local) const;
 
   const MotionDatabase* db_ = nullptr;

@@ -39,4 +39,16 @@ struct FloorTransform {
   }
 };
 
+// A floor transform with its cosine, sine and rotation worked out once, for placing many
+// frames under it: apply() and rotation give FloorTransform's values bit for bit.
+struct PreparedFloorTransform {
+  explicit PreparedFloorTransform(const FloorTransform& w)
+      : c(std::cos(w.yaw_rad)), s(std::sin(w.yaw_rad)), x_m(w.x_m), z_m(w.z_m), rotation(w.rotation()) {}
+
+  Vec3 apply(const Vec3& p) const { return {c * p.x() + s * p.z() + x_m, p.y(), -s * p.x() + c * p.z() + z_m}; }
+
+  double c, s, x_m, z_m;
+  Quat rotation;
+};
+
 }  // namespace mg
