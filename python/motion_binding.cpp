@@ -92,7 +92,7 @@ void bind_motion(py::module_& m) {
           "rotations",
           [](py::object self) {
             const auto& motion = self.cast<const PyMotion&>();
-            const std::vector<Quat>& q = motion.motion.local_rotations;
+            const auto& q = motion.motion.local_rotations;
             return frames_view(q.empty() ? nullptr : q.front().coeffs().data(), motion, 4, self);
           },
           "Local rotation of every joint relative to its parent, unit quaternions (x, y, z, w): float64 "

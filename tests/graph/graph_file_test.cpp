@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <cstring>
+#include <optional>
 
 #include <zlib.h>
 
@@ -108,8 +109,42 @@ TEST(GraphFile, LoadsFromAPath) {
   EXPECT_NE(missing.error().to_string().find(path), std::string::npos) << missing.error().to_string();
 }
 
-// Synthesis reads a graph without its candidate minima: everything else is read alike, and a
-// file cut inside the minima it skips is still refused.
+// A graph file's motion lives in one block that the database holds: it stays valid when the
+// database is moved out of the file and the file is gone, and a copy of the database has its
+// own (read under the sanitizers, a use after free would show here).
+TEST(GraphFile, TheMotionReadOutlivesTheFileAndItsCopiesTheirOriginal) {
+  const GraphFile original = sample();
+  MotionDatabase moved;
+  {
+    auto read = parse_graph_file(serialize_graph_file(original), "g.mgraph");
+    ASSERT_TRUE(read) << read.error().to_string();
+    ASSERT_NE(read->database.motion_memory, nullptr);
+    moved = std::move(read->database);
+  }
+  std::optional<MotionDatabase> copy;
+  {
+    const MotionDatabase source = moved;
+    copy = source;
+  }
+  for (const MotionDatabase* db : {&moved, &*copy}) {
+    ASSERT_EQ(db->clips.size(), original.database.clips.size());
+    for (size_t c = 0; c < db->clips.size(); ++c) {
+      const Motion& a = original.database.clips[c].motion;
+      const Motion& b = db->clips[c].motion;
+      ASSERT_EQ(a.local_rotations.size(), b.local_rotations.size());
+      for (size_t i = 0; i < a.local_rotations.size(); ++i) {
+        // Stored as float: the same to float precision.
+        EXPECT_NEAR(a.local_rotations[i].w(), b.local_rotations[i].w(), 1e-7);
+        EXPECT_NEAR(a.local_rotations[i].x(), b.local_rotations[i].x(), 1e-7);
+      }
+      EXPECT_EQ(a.local_translations_m, b.local_translations_m);
+    }
+  }
+}
+
+// Synthesis reads a graph without its candidate minima: everything else is read alike, a file
+// cut inside the minima it skips is still refused, and damage to the minima' section (last in
+// the file, checksummed on its own) is seen only by a reader that reads them.
 TEST(GraphFile, ReadsWithoutTheCandidateMinima) {
   const GraphFile original = sample();
   const std::string bytes = serialize_graph_file(original);
@@ -131,6 +166,19 @@ TEST(GraphFile, ReadsWithoutTheCandidateMinima) {
   // The minimum count says more than the payload holds: refused without reading past it.
   const std::string cut = bytes.substr(0, bytes.size() - 8);
   EXPECT_FALSE(parse_graph_file(cut, "cut.mgraph", lean));
+  // The minima section: a count (u64) and 24 bytes per minimum, at the end of the file.
+  const size_t minima_bytes = 8 + 24 * original.candidates.minima.size();
+  std::string damaged_minima = bytes;
+  damaged_minima[bytes.size() - minima_bytes / 2] ^= 0x40;
+  EXPECT_TRUE(parse_graph_file(damaged_minima, "g.mgraph", lean));
+  auto whole = parse_graph_file(damaged_minima, "g.mgraph");
+  ASSERT_FALSE(whole);
+  EXPECT_NE(whole.error().message.find("checksum mismatch"), std::string::npos) << whole.error().to_string();
+  std::string damaged_graph = bytes;
+  damaged_graph[bytes.size() - minima_bytes - 20] ^= 0x40;  // in the report, just before the minima
+  auto lean_damaged = parse_graph_file(damaged_graph, "g.mgraph", lean);
+  ASSERT_FALSE(lean_damaged);
+  EXPECT_NE(lean_damaged.error().message.find("checksum mismatch"), std::string::npos);
 }
 
 // FileBytes maps the file where it can: the same bytes as reading it, an empty file and a

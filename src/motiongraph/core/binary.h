@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "motiongraph/core/error.h"
+#include "motiongraph/core/huge_pages.h"
 
 namespace mg {
 
@@ -65,6 +66,8 @@ class BinaryReader {
   bool get_vector(std::vector<T>& values) {
     std::uint64_t size = 0;
     if (!get(size) || size > (data_.size() - pos_) / sizeof(T)) return fail();
+    // Large vectors (a whole library's candidate minima: 160 MB) into huge pages.
+    if (values.empty() && size * sizeof(T) >= 4 * kHugePageBytes) reserve_huge(values, size);
     values.resize(size);
     // An empty vector's data() may be null, which memcpy must not be given even for 0 bytes.
     if (size > 0) std::memcpy(values.data(), data_.data() + pos_, size * sizeof(T));
@@ -77,14 +80,6 @@ class BinaryReader {
   bool view_vector(std::uint64_t& size, const char*& bytes) {
     if (!get(size) || size > (data_.size() - pos_) / sizeof(T)) return fail();
     bytes = data_.data() + pos_;
-    pos_ += size * sizeof(T);
-    return true;
-  }
-  // Steps over a vector put_vector wrote, checking only that it is whole.
-  template <class T>
-  bool skip_vector() {
-    std::uint64_t size = 0;
-    if (!get(size) || size > (data_.size() - pos_) / sizeof(T)) return fail();
     pos_ += size * sizeof(T);
     return true;
   }

@@ -7,9 +7,11 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "motiongraph/core/huge_pages.h"
 #include "motiongraph/motion/foot_contacts.h"
 #include "motiongraph/motion/motion.h"
 
@@ -35,6 +37,10 @@ struct TagRange {
 using TagMask = std::uint64_t;
 
 struct MotionDatabase {
+  // The block the clips' motion lives in when a graph file was read (one block for hundreds of
+  // clips: core/huge_pages.h), or null. Declared first, so that it outlives the clips; a copy
+  // of the database copies its motion into ordinary memory.
+  std::shared_ptr<HugePageArena> motion_memory;
   double fps = 30.0;
   std::vector<Skeleton> skeletons;
   std::vector<std::string> skeleton_names;  // e.g. the ASF file each came from

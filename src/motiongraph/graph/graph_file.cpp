@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <initializer_list>
 #include <limits>
 #include <vector>
 
@@ -54,37 +55,65 @@ std::uint32_t crc32_of(std::string_view bytes) {
   return static_cast<std::uint32_t>(crc);
 }
 
-std::string frame(std::string_view magic, std::uint32_t version, const std::string& payload) {
+// Files are framed as: the magic, the format version (u32), then for each of the file type's
+// sections its size (u64) and CRC-32 (u32), then the sections' bytes in order. A file of one
+// section (cache, part) is thus magic, version, size, CRC, payload.
+std::string frame(std::string_view magic, std::uint32_t version, std::initializer_list<std::string_view> sections) {
   BinaryWriter out;
-  std::string bytes(magic);
   out.put(version);
-  out.put<std::uint64_t>(payload.size());
-  out.put(crc32_of(payload));
+  for (std::string_view section : sections) {
+    out.put<std::uint64_t>(section.size());
+    out.put(crc32_of(section));
+  }
+  std::string bytes(magic);
   bytes += out.data();
-  bytes += payload;
+  for (std::string_view section : sections) bytes += section;
   return bytes;
 }
 
-Result<std::string_view> unframe(std::string_view bytes, const std::string& file_name, std::string_view magic,
-                                 std::uint32_t version, const char* what) {
+// The file's `count` sections, each checked against its CRC-32 when its bit is set in `check`
+// (a reader that will not read a section does not pay for its checksum).
+Result<std::vector<std::string_view>> unframe(std::string_view bytes, const std::string& file_name,
+                                              std::string_view magic, std::uint32_t version, const char* what,
+                                              size_t count, unsigned check) {
   if (bytes.size() < magic.size() || bytes.substr(0, magic.size()) != magic) {
     return Error{file_name, 0, fmt::format("not a motiongraph {} file", what)};
   }
   BinaryReader in(bytes.substr(magic.size()), file_name);
   std::uint32_t file_version = 0;
-  std::uint64_t size = 0;
-  std::uint32_t crc = 0;
-  if (!in.get(file_version) || !in.get(size) || !in.get(crc)) return Error{file_name, 0, "truncated header"};
+  if (!in.get(file_version)) return Error{file_name, 0, "truncated header"};
   if (file_version != version) {
     return Error{file_name, 0, fmt::format("{} file format version {}, this motiongraph reads version {}: build it again",
                                            what, file_version, version)};
   }
-  const std::string_view payload = bytes.substr(magic.size() + in.position());
-  if (payload.size() != size) {
-    return Error{file_name, 0, fmt::format("truncated: {} bytes of payload, the header says {}", payload.size(), size)};
+  std::vector<std::uint64_t> sizes(count);
+  std::vector<std::uint32_t> crcs(count);
+  for (size_t i = 0; i < count; ++i) {
+    if (!in.get(sizes[i]) || !in.get(crcs[i])) return Error{file_name, 0, "truncated header"};
   }
-  if (crc32_of(payload) != crc) return Error{file_name, 0, "checksum mismatch: the file is damaged"};
-  return payload;
+  std::string_view rest = bytes.substr(magic.size() + in.position());
+  std::uint64_t total = 0;
+  for (std::uint64_t size : sizes) total = size > UINT64_MAX - total ? UINT64_MAX : total + size;
+  if (rest.size() != total) {
+    return Error{file_name, 0, fmt::format("truncated: {} bytes of payload, the header says {}", rest.size(), total)};
+  }
+  std::vector<std::string_view> sections;
+  for (size_t i = 0; i < count; ++i) {
+    sections.push_back(rest.substr(0, sizes[i]));
+    rest.remove_prefix(sizes[i]);
+    if ((check >> i & 1u) != 0 && crc32_of(sections.back()) != crcs[i]) {
+      return Error{file_name, 0, "checksum mismatch: the file is damaged"};
+    }
+  }
+  return sections;
+}
+
+// One section, checked.
+Result<std::string_view> unframe(std::string_view bytes, const std::string& file_name, std::string_view magic,
+                                 std::uint32_t version, const char* what) {
+  auto sections = unframe(bytes, file_name, magic, version, what, 1, 1u);
+  if (!sections) return sections.error();
+  return sections->front();
 }
 
 // --- pieces ---------------------------------------------------------------------------------
@@ -198,22 +227,16 @@ bool get_stored_motion(BinaryReader& in, const Skeleton& skeleton, StoredMotion&
          translation_values == frames * skeleton.translated_joints().size() * 3;
 }
 
-// Decoded in place from the file's bytes (a large library's motion is most of what synthesis
-// reads from a graph file).
-void decode_motion(const StoredMotion& stored, const Skeleton& skeleton, Motion& motion) {
-  motion = Motion(skeleton, 0, stored.fps);
-  motion.frame_count = stored.frames;
-  const size_t rotation_count = static_cast<size_t>(stored.frames) * static_cast<size_t>(skeleton.joint_count());
-  const size_t translation_count = static_cast<size_t>(stored.frames) * skeleton.translated_joints().size();
-  motion.local_rotations.resize(rotation_count);
-  motion.local_translations_m.resize(translation_count);
-  for (size_t i = 0; i < rotation_count; ++i) {
+// The values of a motion made with room for them (Motion's memory constructor), decoded in
+// place from the file's bytes (a large library's motion is most of what synthesis reads).
+void decode_motion(const StoredMotion& stored, Motion& motion) {
+  for (size_t i = 0; i < motion.local_rotations.size(); ++i) {
     float q[4];
     std::memcpy(q, stored.rotations + 4 * i * sizeof(float), sizeof(q));
     // Kept as stored (unit to float precision), so that writing what was read is exact.
     motion.local_rotations[i] = Quat(q[0], q[1], q[2], q[3]);
   }
-  for (size_t i = 0; i < translation_count; ++i) {
+  for (size_t i = 0; i < motion.local_translations_m.size(); ++i) {
     double v[3];
     std::memcpy(v, stored.translations + 3 * i * sizeof(double), sizeof(v));
     motion.local_translations_m[i] = Vec3(v[0], v[1], v[2]);
@@ -262,7 +285,9 @@ bool get_database(BinaryReader& in, MotionDatabase& db) {
   }
   if (!in.get(clips) || clips < 0 || clips > 10000000) return false;
   int next_frame = 0;
+  std::vector<DatabaseClip> headers;  // all but the motion
   std::vector<StoredMotion> stored;
+  size_t motion_bytes = 0;
   for (int c = 0; c < clips; ++c) {
     DatabaseClip clip;
     if (!in.get_string(clip.name) || !in.get_string(clip.source) || !in.get(clip.skeleton) ||
@@ -272,16 +297,28 @@ bool get_database(BinaryReader& in, MotionDatabase& db) {
     if (clip.skeleton < 0 || clip.skeleton >= skeletons || clip.first_frame != next_frame || clip.frame_count < 1) {
       return false;
     }
+    const Skeleton& skeleton = db.skeletons[clip.skeleton];
     StoredMotion motion;
-    if (!get_stored_motion(in, db.skeletons[clip.skeleton], motion) || motion.frames != clip.frame_count) return false;
+    if (!get_stored_motion(in, skeleton, motion) || motion.frames != clip.frame_count) return false;
     next_frame += clip.frame_count;
-    db.clips.push_back(std::move(clip));
+    const auto frames = static_cast<size_t>(clip.frame_count);
+    // Each vector's bytes and room to align it.
+    motion_bytes += frames * static_cast<size_t>(skeleton.joint_count()) * sizeof(Quat) + alignof(Quat) +
+                    frames * skeleton.translated_joints().size() * sizeof(Vec3) + alignof(Vec3);
+    headers.push_back(std::move(clip));
     stored.push_back(motion);
   }
-  // The clips' motion decoded on all cores (each clip into its own memory).
+  // All the clips' motion in one block (core/huge_pages.h), made here, then decoded on all cores.
+  db.motion_memory = std::make_shared<HugePageArena>(motion_bytes);
+  db.clips.reserve(headers.size());
+  for (size_t c = 0; c < headers.size(); ++c) {
+    DatabaseClip& h = headers[c];
+    const Skeleton& skeleton = db.skeletons[h.skeleton];
+    db.clips.push_back(DatabaseClip{std::move(h.name), std::move(h.source), h.skeleton, h.first_frame, h.frame_count,
+                                    Motion(skeleton, h.frame_count, stored[c].fps, db.motion_memory->resource())});
+  }
   parallel_for(clips, worker_threads(0), 1, [&](int, long long c) {
-    DatabaseClip& clip = db.clips[static_cast<size_t>(c)];
-    decode_motion(stored[static_cast<size_t>(c)], db.skeletons[clip.skeleton], clip.motion);
+    decode_motion(stored[static_cast<size_t>(c)], db.clips[static_cast<size_t>(c)].motion);
   });
   if (!in.get(tags) || tags < 0 || tags > 64) return false;
   db.tag_names.resize(tags);
@@ -314,10 +351,12 @@ bool get_database(BinaryReader& in, MotionDatabase& db) {
   return true;
 }
 
-void put_candidates(BinaryWriter& out, const CandidateSearch& c) {
+// The candidate search, with its minima or (a graph file, which keeps them in a section of
+// their own) without.
+void put_candidates(BinaryWriter& out, const CandidateSearch& c, bool with_minima = true) {
   out.put<std::int32_t>(c.window);
   out.put<std::int32_t>(c.continuation_radius);
-  out.put_vector(c.minima);
+  if (with_minima) out.put_vector(c.minima);
   out.put_vector(c.histogram.counts());
   out.put_vector(c.picture);
   out.put<std::int32_t>(c.picture_side);
@@ -327,10 +366,10 @@ void put_candidates(BinaryWriter& out, const CandidateSearch& c) {
   out.put(c.tiles.pairs);
 }
 
-bool get_candidates(BinaryReader& in, CandidateSearch& c, bool minima = true) {
+bool get_candidates(BinaryReader& in, CandidateSearch& c, bool with_minima = true) {
   std::vector<std::uint64_t> counts;
-  if (!in.get(c.window) || !in.get(c.continuation_radius) ||
-      !(minima ? in.get_vector(c.minima) : in.skip_vector<Transition>()) || !in.get_vector(counts) ||
+  if (!in.get(c.window) || !in.get(c.continuation_radius) || (with_minima && !in.get_vector(c.minima)) ||
+      !in.get_vector(counts) ||
       !in.get_vector(c.picture) || !in.get(c.picture_side) || !in.get(c.picture_block) || !in.get(c.tiles.seconds) ||
       !in.get(c.tiles.tiles) || !in.get(c.tiles.pairs)) {
     return false;
@@ -406,27 +445,33 @@ std::string serialize_graph_file(const GraphFile& file) {
   out.put_string(file.settings_json);
   out.put(file.input_key);
   put_database(out, file.database);
-  put_candidates(out, file.candidates);
+  put_candidates(out, file.candidates, false);
   out.put(file.threshold);
   out.put(file.threshold_quantile);
   out.put<std::int32_t>(file.locality_radius);
   put_graph(out, file.graph);
   out.put_string(file.report_json);
-  return frame(kGraphMagic, kGraphFileVersion, out.data());
+  BinaryWriter minima;
+  minima.put_vector(file.candidates.minima);
+  return frame(kGraphMagic, kGraphFileVersion, {out.data(), minima.data()});
 }
 
 Result<GraphFile> parse_graph_file(std::string_view bytes, const std::string& file_name,
                                    const GraphReadOptions& options) {
-  auto payload = unframe(bytes, file_name, kGraphMagic, kGraphFileVersion, "graph (.mgraph)");
-  if (!payload) return payload.error();
-  BinaryReader in(*payload, file_name);
+  auto sections = unframe(bytes, file_name, kGraphMagic, kGraphFileVersion, "graph (.mgraph)", 2,
+                          options.candidate_minima ? 3u : 1u);
+  if (!sections) return sections.error();
+  BinaryReader in((*sections)[0], file_name);
   GraphFile file;
-  if (!in.get_string(file.settings_json) || !in.get(file.input_key) || !get_database(in, file.database) ||
-      !get_candidates(in, file.candidates, options.candidate_minima) || !in.get(file.threshold) || !in.get(file.threshold_quantile) ||
-      !in.get(file.locality_radius) || !get_graph(in, file.database, file.graph) || !in.get_string(file.report_json) ||
-      !in.at_end()) {
-    return Error{file_name, 0, "inconsistent graph file (written by a different build?)"};
+  bool read = in.get_string(file.settings_json) && in.get(file.input_key) && get_database(in, file.database) &&
+              get_candidates(in, file.candidates, false) && in.get(file.threshold) &&
+              in.get(file.threshold_quantile) && in.get(file.locality_radius) &&
+              get_graph(in, file.database, file.graph) && in.get_string(file.report_json) && in.at_end();
+  if (read && options.candidate_minima) {
+    BinaryReader minima((*sections)[1], file_name);
+    read = minima.get_vector(file.candidates.minima) && minima.at_end();
   }
+  if (!read) return Error{file_name, 0, "inconsistent graph file (written by a different build?)"};
   return file;
 }
 
@@ -434,7 +479,7 @@ std::string serialize_distance_cache(std::uint64_t key, const CandidateSearch& c
   BinaryWriter out;
   out.put(key);
   put_candidates(out, candidates);
-  return frame(kCacheMagic, kCacheVersion, out.data());
+  return frame(kCacheMagic, kCacheVersion, {out.data()});
 }
 
 Result<CandidateSearch> parse_distance_cache(std::string_view bytes, const std::string& file_name,
@@ -477,7 +522,7 @@ std::string serialize_candidate_part(const CandidatePart& part) {
   out.put(c.tiles.seconds);
   out.put(c.tiles.tiles);
   out.put(c.tiles.pairs);
-  return frame(kPartMagic, kPartVersion, out.data());
+  return frame(kPartMagic, kPartVersion, {out.data()});
 }
 
 Result<CandidatePart> parse_candidate_part(std::string_view bytes, const std::string& file_name) {

@@ -1,13 +1,17 @@
 // The .mgraph file: everything a later command needs to walk the graph and play motion, in
 // one versioned, checksummed binary (DESIGN.md section 6):
-//   magic "MGRAPH\r\n\x1a", format version (u32), payload size (u64), CRC-32 of the payload
-//   (u32), then the payload: the settings used (JSON text), the key of the inputs and
-//   distance settings, the motion database (skeletons, clips with their motion at the
-//   database rate, tags, foot joint names and every frame's foot contacts), the transition
-//   candidates and distance histogram (so another threshold needs no distance stage), the
-//   selected transitions, the pruned graph, and the build report (JSON text).
-// The distance cache file (.mgcache) has the same framing with its own magic and holds just
-// the key and the candidate search.
+//   magic "MGRAPH\r\n\x1a", format version (u32), then the size (u64) and CRC-32 (u32) of
+//   each of its two sections, then the sections:
+//   1. the settings used (JSON text), the key of the inputs and distance settings, the motion
+//      database (skeletons, clips with their motion at the database rate, tags, foot joint
+//      names and every frame's foot contacts), the candidate search but its minima (distance
+//      histogram, picture), the selected transitions, the pruned graph, and the build report
+//      (JSON text);
+//   2. the candidate minima (so another threshold needs no distance stage). Synthesis never
+//      reads them, and they are most of a large library's file: a section of their own is
+//      neither checksummed nor read when it is not wanted.
+// The distance cache file (.mgcache) has the same framing with one section, its own magic,
+// and holds just the key and the candidate search.
 // Reading rejects a wrong magic, another version, a size or checksum mismatch, and any
 // inconsistency, each with a clear message; writing produces bytes (io/file.h writes them
 // atomically).
@@ -27,7 +31,8 @@ namespace mg {
 
 // 2: skeletons keep the static joints above a trajectory joint (motion/trajectory_joint.h).
 // 3: the database's foot joint names and every frame's foot contacts (or why there are none).
-constexpr std::uint32_t kGraphFileVersion = 3;
+// 4: the candidate minima in a section of their own, with its own size and CRC-32.
+constexpr std::uint32_t kGraphFileVersion = 4;
 
 struct GraphFile {
   std::string settings_json;
@@ -43,7 +48,8 @@ struct GraphFile {
 
 // What to read of a graph file. Synthesis (walk, path, steer) needs no candidate minima, the
 // bulk of a large library's file (24 bytes each: 160 MB of 214 on the 8-subject library):
-// without them the file opens several times faster, and candidates.minima stays empty.
+// without them the file opens several times faster (their section is neither checksummed nor
+// read), and candidates.minima stays empty.
 struct GraphReadOptions {
   bool candidate_minima = true;
 };
@@ -52,7 +58,7 @@ std::string serialize_graph_file(const GraphFile& file);
 Result<GraphFile> parse_graph_file(std::string_view bytes, const std::string& file_name,
                                    const GraphReadOptions& options = {});
 // Reads the file at `path` (mapped, io/file.h) and parses it (what every command and the
-// studio do). The whole file is checksummed either way.
+// studio do). Every section read is checksummed.
 Result<GraphFile> load_graph_file(const std::string& path, const GraphReadOptions& options = {});
 
 std::string serialize_distance_cache(std::uint64_t key, const CandidateSearch& candidates);

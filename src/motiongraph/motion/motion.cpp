@@ -12,6 +12,18 @@ Motion::Motion(const Skeleton& skeleton, int frames, double frames_per_second)
       local_rotations(static_cast<size_t>(frames) * skeleton.joint_count(), Quat::Identity()),
       local_translations_m(static_cast<size_t>(frames) * skeleton.translated_joints().size(), Vec3::Zero()) {}
 
+Motion::Motion(const Skeleton& skeleton, int frames, double frames_per_second, std::pmr::memory_resource* memory)
+    : fps(frames_per_second),
+      frame_count(frames),
+      joint_count(skeleton.joint_count()),
+      translated_count(static_cast<int>(skeleton.translated_joints().size())),
+      local_rotations(memory),
+      local_translations_m(memory) {
+  // Quat and Vec3 leave their values unset when made: resize() allocates without writing.
+  local_rotations.resize(static_cast<size_t>(frames) * skeleton.joint_count());
+  local_translations_m.resize(static_cast<size_t>(frames) * skeleton.translated_joints().size());
+}
+
 Motion Motion::slice(int first, int count) const {
   assert(first >= 0 && count >= 0 && first + count <= frame_count);
   Motion out = *this;

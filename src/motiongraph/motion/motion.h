@@ -3,6 +3,7 @@
 // joint with animated translation (frames x skeleton.translated_joints()). Sampled at fps.
 #pragma once
 
+#include <memory_resource>
 #include <optional>
 #include <span>
 #include <vector>
@@ -17,11 +18,15 @@ struct Motion {
   int frame_count = 0;
   int joint_count = 0;
   int translated_count = 0;
-  std::vector<Quat> local_rotations;    // frame_count x joint_count
-  std::vector<Vec3> local_translations_m;  // frame_count x translated_count
+  std::pmr::vector<Quat> local_rotations;    // frame_count x joint_count
+  std::pmr::vector<Vec3> local_translations_m;  // frame_count x translated_count
 
   Motion() = default;
   Motion(const Skeleton& skeleton, int frames, double frames_per_second);
+  // Room for `frames` frames in `memory`, their values left for the caller to write (a graph
+  // file's motion, decoded into one block: core/huge_pages.h). The motion keeps `memory` when
+  // moved; a copy is in ordinary memory.
+  Motion(const Skeleton& skeleton, int frames, double frames_per_second, std::pmr::memory_resource* memory);
 
   std::span<Quat> rotations(int frame) {
     return {local_rotations.data() + static_cast<size_t>(frame) * joint_count, static_cast<size_t>(joint_count)};

@@ -161,6 +161,10 @@ Result<Motion> assemble_walk(const MotionDatabase& db, const MotionGraph& graph,
   auto assembler = MotionAssembler::create(db, graph, target_skeleton);
   if (!assembler) return assembler.error();
   Motion out = assembler->empty_motion();
+  size_t frames = 1;
+  for (int e : walk.edges) frames += static_cast<size_t>(graph.edges[e].frame_count);
+  out.local_rotations.reserve(frames * static_cast<size_t>(out.joint_count));
+  out.local_translations_m.reserve(frames * static_cast<size_t>(out.translated_count));
   FloorTransform placement = start;
   for (int e : walk.edges) assembler->append_edge(e, placement, out);
   assembler->append_frame(graph.nodes[walk.end_node(graph)].frame, placement, out);

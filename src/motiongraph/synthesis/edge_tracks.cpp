@@ -4,6 +4,7 @@
 #include <cassert>
 #include <vector>
 
+#include "motiongraph/core/huge_pages.h"
 #include "motiongraph/core/parallel_for.h"
 
 namespace mg {
@@ -16,6 +17,7 @@ EdgeTracks compute_edge_tracks(const MotionAssembler& assembler, const MotionGra
   // Each edge's place in the flat arrays is known from the frame counts: the edges are then
   // filled on all cores (a whole library's graph has 10^5 and more).
   const int edge_count = graph.edge_count();
+  reserve_huge(tracks.edges, static_cast<size_t>(edge_count));
   tracks.edges.resize(static_cast<size_t>(edge_count));
   size_t total = 0;
   for (int e = 0; e < edge_count; ++e) {
@@ -23,6 +25,10 @@ EdgeTracks compute_edge_tracks(const MotionAssembler& assembler, const MotionGra
     tracks.edges[static_cast<size_t>(e)].count = graph.edges[e].frame_count;
     total += static_cast<size_t>(graph.edges[e].frame_count);
   }
+  // Tens of MB on a whole library's graph, written once by the workers below.
+  reserve_huge(tracks.roots, total);
+  reserve_huge(tracks.facings, total);
+  reserve_huge(tracks.tags, total);
   tracks.roots.resize(total);
   tracks.facings.resize(total);
   tracks.tags.resize(total);
