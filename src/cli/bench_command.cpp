@@ -1,7 +1,8 @@
 // motiongraph bench distance [INPUT...]: the distance stage measured in one run against
 //  - the three plain BLAS products it needs (same N, P, tiles and threads): the ceiling;
 //  - the pruned stage (graph/pruned_candidates.h) at the --max-threshold ceiling: its time,
-//    the share of pairs it evaluated, and whether its minima equal the exhaustive stage's;
+//    the share of tiles and pairs it computed, and whether its minima equal the exhaustive
+//    stage's (run again with the pruned stage's tile side when --tile is another);
 //  - the pair-by-pair reference (timed on a random sample of pairs, scaled to all N^2 pairs).
 // Prints the times and their ratios. Speed is measured here, never asserted in tests.
 #include <algorithm>
@@ -33,6 +34,7 @@ struct BenchOptions {
   int reference_pairs = 20000;
   int repeat = 1;
   double max_rms_cm = ThresholdChoiceSettings{}.max_rms_cm;
+  int pruned_tile_frames = 0;
   DistanceSettings distance;
 };
 
@@ -78,13 +80,19 @@ int run_bench(const BenchOptions& o) {
              o.distance.threads == 0 ? std::string("all cores") : std::to_string(o.distance.threads));
 
   // Products, stage and pruned stage alternate, so that all see the same load; medians over
-  // the runs.
+  // the runs. The pruned stage runs the exhaustive stage's tiles (at its own tile side), so the
+  // exhaustive stage at that side is run too: their minima must be the same pairs.
   const double ceiling = distance_of_rms_cm(o.max_rms_cm, *features);
   PrunedSearchSettings pruned_settings;
   pruned_settings.threads = o.distance.threads;
-  std::vector<double> products_runs, stage_runs, ratios, pruned_runs, speedups;
+  pruned_settings.tile_frames = o.pruned_tile_frames;
+  DistanceSettings same_tiles = o.distance;
+  same_tiles.tile_frames = pruned_settings.tile_for(features->window);
+  const bool other_side = same_tiles.tile_frames != o.distance.tile_frames;
+  std::vector<double> products_runs, stage_runs, ratios, pruned_runs, speedups, same_side_runs;
   Result<CandidateSearch> search = Error{"", 0, "not run"};
   Result<CandidateSearch> pruned = Error{"", 0, "not run"};
+  Result<CandidateSearch> same_side = Error{"", 0, "not run"};
   PrunedSearchStatistics pruned_stats;
   for (int run = 0; run < o.repeat; ++run) {
     products_runs.push_back(time_plain_products(*features, o.distance));
@@ -98,18 +106,32 @@ int run_bench(const BenchOptions& o) {
     pruned_runs.push_back(seconds_since(start));
     if (!pruned) return fail(pruned.error());
     speedups.push_back(stage_runs.back() / pruned_runs.back());
+    if (other_side) {
+      start = std::chrono::steady_clock::now();
+      same_side = find_candidates(*features, same_tiles, {});
+      same_side_runs.push_back(seconds_since(start));
+      if (!same_side) return fail(same_side.error());
+    }
   }
   const double products_s = median(products_runs);
   const double stage_s = median(stage_runs);
   const double pruned_s = median(pruned_runs);
   // The minima at or below the ceiling, compared pair by pair.
-  std::vector<std::pair<int, int>> exhaustive_minima, pruned_minima, only_one;
-  for (const Transition& t : search->minima) {
-    if (t.distance <= ceiling) exhaustive_minima.emplace_back(t.from_frame, t.to_frame);
-  }
-  for (const Transition& t : pruned->minima) pruned_minima.emplace_back(t.from_frame, t.to_frame);
-  std::set_symmetric_difference(exhaustive_minima.begin(), exhaustive_minima.end(), pruned_minima.begin(),
-                                pruned_minima.end(), std::back_inserter(only_one));
+  auto below_ceiling = [ceiling](const CandidateSearch& c) {
+    std::vector<std::pair<int, int>> minima;
+    for (const Transition& t : c.minima) {
+      if (t.distance <= ceiling) minima.emplace_back(t.from_frame, t.to_frame);
+    }
+    return minima;
+  };
+  auto in_one_only = [](const std::vector<std::pair<int, int>>& x, const std::vector<std::pair<int, int>>& y) {
+    std::vector<std::pair<int, int>> only_one;
+    std::set_symmetric_difference(x.begin(), x.end(), y.begin(), y.end(), std::back_inserter(only_one));
+    return only_one.size();
+  };
+  const auto exhaustive_minima = below_ceiling(*search), pruned_minima = below_ceiling(*pruned);
+  const size_t differ_default = in_one_only(exhaustive_minima, pruned_minima);
+  const size_t differ_same = other_side ? in_one_only(below_ceiling(*same_side), pruned_minima) : differ_default;
 
   // The reference on random defined pairs, from double clouds of every frame.
   const std::vector<Vec3> clouds = database_clouds(*db, *layout);
@@ -140,17 +162,21 @@ int run_bench(const BenchOptions& o) {
              "= {:.0f}x the distance stage\n",
              pairs.size(), reference_per_pair * 1e6, reference_s, static_cast<long long>(pairs_total), reference_s / stage_s);
   fmt::print("local minima: {} (checksum {:.3g})\n", search->minima.size(), sink);
-  fmt::print("pruned stage at the {:g} cm ceiling (D {:.4g}): {:8.3f} s = {:.2f}x faster than the distance stage "
-             "(embedding {:.3f} s, bound search {:.3f} s, exact D and minima {:.3f} s)\n",
-             o.max_rms_cm, ceiling, pruned_s, median(speedups), pruned_stats.embedding_seconds,
+  fmt::print("pruned stage at the {:g} cm ceiling (D {:.4g}), tiles of {}: {:8.3f} s = {:.2f}x faster than the "
+             "distance stage (embedding {:.3f} s, tile search {:.3f} s, tiles {:.3f} s)\n",
+             o.max_rms_cm, ceiling, pruned_stats.tile_frames, pruned_s, median(speedups), pruned_stats.embedding_seconds,
              pruned_stats.search_seconds, pruned_stats.exact_seconds);
   if (o.repeat > 1) fmt::print("speed-up per run: {:.2f}\n", fmt::join(speedups, " "));
-  fmt::print("pruned stage: D of {:.2f} % of the {} defined pairs, in {} diagonal runs ({:.1f} pairs each); "
-             "{} minima at or below the ceiling, exhaustive {}, in one only {}\n",
-             100.0 * static_cast<double>(pruned_stats.candidate_pairs) / static_cast<double>(pruned_stats.defined_pairs),
-             pruned_stats.defined_pairs, pruned_stats.runs,
-             static_cast<double>(pruned_stats.candidate_pairs) / static_cast<double>(std::max(1LL, pruned_stats.runs)),
-             pruned_minima.size(), exhaustive_minima.size(), only_one.size());
+  if (other_side) {
+    fmt::print("distance stage with the pruned stage's tiles of {}: {:8.3f} s = {:.2f}x the pruned stage's time\n",
+               same_tiles.tile_frames, median(same_side_runs), median(same_side_runs) / pruned_s);
+  }
+  fmt::print("pruned stage: {} of {} tiles, D of {:.2f} % of the {} pairs; {} minima at or below the ceiling, "
+             "exhaustive {}; in one only: {} against the same tiles, {} against tiles of {}\n",
+             pruned_stats.tiles_computed, pruned_stats.tiles,
+             100.0 * static_cast<double>(pruned_stats.computed_pairs) / pairs_total,
+             static_cast<long long>(pairs_total), pruned_minima.size(), exhaustive_minima.size(), differ_same,
+             differ_default, o.distance.tile_frames);
   return 0;
 }
 
@@ -176,6 +202,10 @@ Command add_bench_command(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   sub->add_option("--tile", o->distance.tile_frames, "Tile side in frames")->capture_default_str();
+  sub->add_option("--pruned-tile", o->pruned_tile_frames,
+                  "The pruned stage's tile side in frames (0: chosen from the window)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 16384));
   sub->add_option("--threads", o->distance.threads, "Worker threads (0: one per core)")->capture_default_str();
   return {sub, [o] { return run_bench(*o); }};
 }

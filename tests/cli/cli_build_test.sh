@@ -161,19 +161,27 @@ expect_fail "threshold must be 'auto'" "$bin" build "$data/cmu/16" -o "$work/x.m
 expect_fail "coverage" "$bin" build "$data/cmu/16" -o "$work/x.mgraph" --coverage 0
 ls "$work"/x.mgraph "$work"/g.bin 2>/dev/null && { echo "FAIL: output left behind"; exit 1; }
 
-# bench distance: the stages side by side, the pruned one evaluating part of the pairs and
-# finding the exhaustive one's minima up to its ceiling (ties in the last float bits aside).
+# bench distance: the stages side by side, the pruned one computing part of the tiles and
+# finding exactly the minima of the exhaustive one run with its tiles, up to its ceiling (with
+# tiles of 1024 only ties in the last float bits may differ).
 "$bin" bench distance "$data/cmu/16" --fps 30 --max-threshold 4 --reference-pairs 200 >"$work/bench.txt"
-python3 - "$work/bench.txt" <<'PY'
+"$bin" bench distance "$data/cmu/16" --fps 30 --max-threshold 4 --reference-pairs 200 --pruned-tile 64 --tile 64 \
+    >"$work/bench64.txt"
+python3 - "$work/bench.txt" "$work/bench64.txt" <<'PY'
 import re, sys
-text = open(sys.argv[1]).read()
-m = re.search(r"pruned stage: D of ([0-9.]+) % of the (\d+) defined pairs.*?(\d+) minima at or below the ceiling, "
-              r"exhaustive (\d+), in one only (\d+)", text)
-assert m, text
-share, defined, pruned, exhaustive, differ = float(m[1]), int(m[2]), int(m[3]), int(m[4]), int(m[5])
-assert 0 < share < 50 and defined > 0, text
-assert exhaustive > 100 and differ <= max(2, exhaustive // 100), text
-assert re.search(r"pruned stage at the 4 cm ceiling .* faster than the distance stage", text), text
+for path, tile, other in ((sys.argv[1], 128, True), (sys.argv[2], 64, False)):
+    text = open(path).read()
+    m = re.search(r"pruned stage: (\d+) of (\d+) tiles, D of ([0-9.]+) % of the (\d+) pairs; (\d+) minima at or below "
+                  r"the ceiling, exhaustive (\d+); in one only: (\d+) against the same tiles, (\d+) against tiles of (\d+)",
+                  text)
+    assert m, text
+    computed, tiles, share, pairs, pruned, exhaustive, same, differ, side = (float(x) for x in m.groups())
+    assert 0 < computed < tiles and 0 < share < 100 and pairs == 1235 * 1235, text
+    assert exhaustive > 100 and same == 0 and differ <= max(2, exhaustive // 100), text
+    assert re.search(r"pruned stage at the 4 cm ceiling \(D [0-9.]+\), tiles of %d: .* faster than the distance stage" % tile,
+                     text), text
+    # The exhaustive stage is run again with the pruned stage's tiles only when --tile is another side.
+    assert ("distance stage with the pruned stage's tiles of %d:" % tile in text) == other, text
 PY
 expect_fail "max-threshold" "$bin" bench distance "$data/cmu/16" --max-threshold 0
 echo "cli build ok"

@@ -46,5 +46,25 @@ TEST(DistanceHistogram, AddAllCountsAsAddDoes) {
   EXPECT_EQ(all.total(), finite);
 }
 
+TEST(DistanceHistogram, FoldAboveKeepsFractionsBelowAndTheTotal) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> value(0.0, 100.0);
+  DistanceHistogram h;
+  for (int i = 0; i < 20000; ++i) h.add(static_cast<float>(value(rng)));
+  const DistanceHistogram before = h;
+  const double ceiling = 37.5;
+  h.fold_above(ceiling);
+  EXPECT_EQ(h.total(), before.total());
+  for (double v : {0.5, 10.0, 30.0, 37.0, ceiling}) EXPECT_EQ(h.fraction_below(v), before.fraction_below(v)) << v;
+  // Above the ceiling's bin everything sits in the overflow bin.
+  const int last = DistanceHistogram::bin_of(ceiling);
+  EXPECT_EQ(h.fraction_below(99.0), h.fraction_below(ceiling));
+  EXPECT_LT(before.fraction_below(ceiling), before.fraction_below(99.0));
+  EXPECT_EQ(h.counts().back(), before.total() - static_cast<std::uint64_t>(before.fraction_below(ceiling) *
+                                                                          static_cast<double>(before.total()) + 0.5));
+  EXPECT_GT(h.counts()[static_cast<size_t>(last)], 0u);
+  EXPECT_EQ(h.quantile(0.99), DistanceHistogram::bin_upper_edge(DistanceHistogram::kBins - 1));
+}
+
 }  // namespace
 }  // namespace mg

@@ -1,11 +1,9 @@
-// The window embedding's bound against the tiles' D, and its range search against a scan.
+// The window embedding's bound against the tiles' D.
 #include "motiongraph/metric/window_embedding.h"
 
 #include <algorithm>
 #include <cmath>
 #include <random>
-#include <set>
-#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -15,7 +13,6 @@
 namespace mg {
 namespace {
 
-using test::quantile_of;
 
 TEST(WindowEmbedding, BoundsTheDistanceFromBelowAndTheProjectionBoundsTheBound) {
   for (const DistanceSettings::Taper taper : {DistanceSettings::Taper::kUniform, DistanceSettings::Taper::kHann}) {
@@ -25,7 +22,7 @@ TEST(WindowEmbedding, BoundsTheDistanceFromBelowAndTheProjectionBoundsTheBound) 
                                settings);
     auto embedding = make_window_embedding(m.features);
     ASSERT_TRUE(embedding) << embedding.error().to_string();
-    EXPECT_EQ(embedding->dims, 16);
+    EXPECT_EQ(embedding->dims, 24);
     const int n = m.features.frames, k = m.features.window;
     std::mt19937 rng(3);
     std::uniform_int_distribution<int> frame(0, n - 1);
@@ -48,67 +45,23 @@ TEST(WindowEmbedding, BoundsTheDistanceFromBelowAndTheProjectionBoundsTheBound) 
   }
 }
 
-TEST(WindowEmbedding, RangeSearchFindsEveryPairBelowTheCeilingAndEqualsAScan) {
-  const test::TileMatrix m = test::tile_matrix(test::small_database({"cmu/16/16_15.amc", "cmu/16/16_35.amc", "cmu/16/16_57.amc"}));
-  auto embedding = make_window_embedding(m.features);
-  ASSERT_TRUE(embedding);
-  const int n = m.features.frames, k = m.features.window;
-  for (const double q : {0.005, 0.02, 0.1}) {
-    const double ceiling = quantile_of(m, q);
-    std::vector<std::pair<int, int>> visited;
-    const BoundedPairStatistics stats =
-        for_each_bounded_pair(m.features, *embedding, ceiling, [&](int a, std::span<const int> bs) {
-          for (int b : bs) visited.emplace_back(a, b);
-        });
-    EXPECT_EQ(stats.pairs, static_cast<long long>(visited.size()));
-    EXPECT_TRUE(std::is_sorted(visited.begin(), visited.end()));
-    // The scan: every defined pair whose embedded bound is at most the ceiling.
-    std::vector<std::pair<int, int>> scanned;
-    long long below = 0, defined = 0;
-    for (int a = 0; a < n; ++a) {
-      for (int b = k - 1; b < n; ++b) {
-        if (!m.features.can_leave[a] || !m.features.can_arrive[b]) continue;
-        ++defined;
-        if (embedding->bound(a, b - k + 1) <= ceiling) scanned.emplace_back(a, b);
-        below += m.at(a, b) <= ceiling ? 1 : 0;
-      }
-    }
-    EXPECT_EQ(visited, scanned) << q;
-    // The same on one thread as on three (the batches split differently).
-    for (const int threads : {1, 3}) {
-      std::vector<std::pair<int, int>> again;
-      const BoundedPairStatistics same = for_each_bounded_pair(
-          m.features, *embedding, ceiling, [&](int a, std::span<const int> bs) {
-            for (int b : bs) again.emplace_back(a, b);
-          }, threads);
-      EXPECT_EQ(again, visited) << threads;
-      EXPECT_EQ(same.scanned, stats.scanned) << threads;
-    }
-    // Exact: no pair whose D is below the ceiling is left out (D >= the bound).
-    const std::set<std::pair<int, int>> found(visited.begin(), visited.end());
-    for (int a = 0; a < n; ++a) {
-      for (int b = 0; b < n; ++b) {
-        if (m.at(a, b) <= ceiling * (1.0 - 1e-4)) {
-          EXPECT_TRUE(found.count({a, b})) << a << "," << b << " q " << q;
-        }
-      }
-    }
-    // And it prunes: far fewer candidates than pairs.
-    EXPECT_LT(static_cast<double>(visited.size()), 0.5 * static_cast<double>(defined)) << q;
-    EXPECT_GE(static_cast<long long>(visited.size()), below);
-    EXPECT_GE(stats.scanned, stats.pairs);
-    EXPECT_LE(stats.scanned, defined);
-    RecordProperty("candidates_q" + std::to_string(q), std::to_string(double(visited.size()) / double(defined)));
-  }
-}
-
 TEST(WindowEmbedding, SettingsAndTooFewFramesAreErrors) {
   WindowEmbeddingSettings bad;
   bad.dims = 0;
   EXPECT_FALSE(bad.validate());
   bad = {};
-  bad.per_frame_dims = 0;
+  bad.per_frame_dims = -1;
   EXPECT_FALSE(bad.validate());
+  bad = {};
+  bad.max_samples = 0;
+  EXPECT_FALSE(bad.validate());
+  WindowEmbeddingSettings automatic;
+  EXPECT_TRUE(automatic.validate());
+  EXPECT_EQ(automatic.per_frame_dims_for(10), 16);  // 30 fps
+  EXPECT_EQ(automatic.per_frame_dims_for(40), 8);   // 120 fps
+  EXPECT_EQ(automatic.per_frame_dims_for(1000), 8);
+  automatic.per_frame_dims = 5;
+  EXPECT_EQ(automatic.per_frame_dims_for(10), 5);
   FrameFeatures none;
   EXPECT_FALSE(make_window_embedding(none));
 }

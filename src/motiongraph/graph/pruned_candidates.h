@@ -1,27 +1,27 @@
 // The pruned distance stage (DESIGN.md section 5c): the transition candidates of the exhaustive
-// stage (candidates.h) up to a ceiling on D, found without computing the pairs that cannot
+// stage (candidates.h) up to a ceiling on D, found without computing the tiles that cannot
 // reach it.
 //
-// The yaw-invariant window embedding (metric/window_embedding.h) bounds D from below; its ball
-// search returns every pair whose bound is at most the ceiling (with a relative slack of
-// 1e-3 for rounding), and only those pairs get their exact D, along diagonal runs
-// (metric/diagonal_runs.h). A pair the search leaves out has D above the ceiling, so it never
-// beats a pair at or below it: the local-minimum test of a pair at or below the ceiling reads
-// its computed neighbours and treats the others as larger, which is the exhaustive test's
-// answer. The minima at or below the ceiling are so the exhaustive stage's, up to float
-// rounding: D agrees with the tiles' in all but the last bits (diagonal_runs.h), so a pair
-// whose D ties a neighbour's or the ceiling that closely may be decided the other way. The
-// exhaustive stage's own minima move as much with its tile size (docs/performance.md: 4 of
-// 1 220 on subject 16 at 120 fps, either way).
+// The yaw-invariant window embedding (metric/window_embedding.h) bounds D from below; a tile
+// of the pair matrix is computed only when one of its pairs has a bound at most the ceiling
+// (metric/bounded_tiles.h, with a relative slack of 1e-3 for the bound's float rounding). The
+// tiles computed are the exhaustive stage's own, with their halo: the same products, sums and
+// local-minimum test, so every value computed is the exhaustive stage's bit for bit at the
+// same tile size. A tile left out holds only pairs whose D is above the ceiling, and a pair at
+// or below the ceiling lies in a computed tile whose halo holds its 8 neighbours. The minima
+// at or below the ceiling are so exactly those of the exhaustive stage run with the same tile
+// side (find_candidates), whatever the threads. (Between two tile sides the exhaustive stage's
+// own minima differ in ties within float rounding: docs/performance.md.)
 //
-// Not used by `build` yet: slower than the tiles at the automatic threshold's ceiling on this
-// project's machines (docs/performance.md, "The pruned stage measured against the tiles").
+// The histogram holds the D of every pair of the computed tiles up to the ceiling's bin and
+// counts all other pairs in its overflow bin, so fraction_below is exact up to the ceiling;
+// the picture's block minima are exact where at or below the ceiling, +infinity where a
+// block's defined pairs all lie above it, NaN where it has none. Minima above the ceiling are
+// dropped (the tiles left out would hold more). Memory is one tile per thread, as the
+// exhaustive stage's.
 //
-// The histogram holds the exact D of the pairs at or below the ceiling and counts the others in
-// its overflow bin (so fraction_below is exact up to the ceiling); the picture's block minima
-// are exact where a block has a pair at or below it, +infinity where all its pairs lie above.
-// Pairs are visited a band of leaving frames at a time: memory is linear in the frames plus a
-// band's candidates.
+// Not used by `build` yet: docs/performance.md ("The pruned stage measured against the
+// tiles") says where it is faster and why build cannot use it as it is.
 #pragma once
 
 #include "motiongraph/core/error.h"
@@ -32,18 +32,24 @@ namespace mg {
 
 struct PrunedSearchSettings {
   WindowEmbeddingSettings embedding;
-  int threads = 0;                  // 0: one per core
-  long long band_pairs = 1LL << 22; // candidates gathered before a band's D is computed
+  // The tiles' side in frames; 0: chosen from the window k (tile_for).
+  int tile_frames = 0;
+  int threads = 0;  // 0: one per core
 
   Status validate() const;
+  // The side used: tile_frames, or for 0 the measured best, about 6 to 13 windows
+  // (docs/performance.md): 128 frames for k <= 16, else a multiple of 64 near 6.4 k.
+  int tile_for(int window) const;
 };
 
 struct PrunedSearchStatistics {
   double embedding_seconds = 0.0;  // the projections
-  double search_seconds = 0.0;     // the ball search (its visits excluded)
-  double exact_seconds = 0.0;      // D along the runs, minima, histogram and picture
-  long long candidate_pairs = 0;   // pairs the bound left: their D was computed
-  long long runs = 0;              // diagonal runs they formed (per band)
+  double search_seconds = 0.0;     // finding the tiles the bound cannot rule out
+  double exact_seconds = 0.0;      // those tiles: D, minima, histogram and picture
+  int tile_frames = 0;             // the tiles' side
+  long long tiles = 0;             // tiles of the pair matrix
+  long long tiles_computed = 0;    // of them, run (flagged, or the mirror of a flagged one)
+  long long computed_pairs = 0;    // pairs in the computed tiles (their D was computed)
   long long defined_pairs = 0;     // pairs with a defined D (what the exhaustive stage computes)
 };
 

@@ -1,6 +1,6 @@
-// The closed form of the floor-aligned window distance (DESIGN.md 3.2-3.3), shared by the
-// exhaustive tiles (distance_tiles) and the pruned stage's diagonal runs (diagonal_runs): one
-// definition, so that both compute D the same way from the same sums.
+// The closed form of the floor-aligned window distance (DESIGN.md 3.2-3.3), the tiles'
+// (distance_tiles) per-pair step, kept apart from them so that the offsets and the closed form
+// read as the design states them.
 #pragma once
 
 #include <cmath>

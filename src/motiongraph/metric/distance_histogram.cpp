@@ -71,6 +71,13 @@ void DistanceHistogram::merge(const DistanceHistogram& other) {
   total_ += other.total_;
 }
 
+void DistanceHistogram::fold_above(double value) {
+  for (int b = bin_of(value) + 1; b < kBins - 1; ++b) {
+    counts_.back() += counts_[b];
+    counts_[b] = 0;
+  }
+}
+
 void DistanceHistogram::set_counts(std::vector<std::uint64_t> counts) {
   counts_ = std::move(counts);
   counts_.resize(kBins, 0);

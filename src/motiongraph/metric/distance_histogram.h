@@ -35,6 +35,10 @@ class DistanceHistogram {
     counts_.back() += count;
     total_ += count;
   }
+  // Moves the counts of every bin above `value`'s into the overflow bin: what the pruned
+  // distance stage does with the pairs it computed above its ceiling, since the pairs it left
+  // out would fall there too.
+  void fold_above(double value);
   std::uint64_t total() const { return total_; }
   // The value below which a fraction q (0..1) of the values lie (upper edge of its bin).
   double quantile(double q) const;

@@ -1,15 +1,13 @@
 // The yaw-invariant window embedding: per-frame heights and centroid distances, two principal-
-// component projections, and a range search over the first coordinate.
+// component projections.
 #include "motiongraph/metric/window_embedding.h"
 
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 #include <numeric>
 
 #include <Eigen/Dense>
 
-#include "motiongraph/core/parallel_for.h"
 
 namespace mg {
 
@@ -25,7 +23,8 @@ void frame_values(const FrameFeatures& f, int frame, double* out) {
   for (size_t p = 0; p < P; ++p) {
     const double w = std::sqrt(f.point_weights[p]);
     out[p] = y[p];
-    out[P + p] = std::hypot(xz[2 * p] - w * cx, xz[2 * p + 1] - w * cz);
+    const double dx = xz[2 * p] - w * cx, dz = xz[2 * p + 1] - w * cz;
+    out[P + p] = std::sqrt(dx * dx + dz * dz);
   }
 }
 
@@ -71,10 +70,14 @@ Basis principal_basis(int count, int n, int dims, int max_samples, const Sample&
 }  // namespace
 
 Status WindowEmbeddingSettings::validate() const {
-  if (per_frame_dims < 1) return Error{"", 0, "the embedding needs at least 1 dimension per frame"};
+  if (per_frame_dims < 0) return Error{"", 0, "the embedding's dimensions per frame must be >= 0 (0: automatic)"};
   if (dims < 1) return Error{"", 0, "the embedding needs at least 1 dimension"};
   if (max_samples < 1) return Error{"", 0, "the embedding needs at least 1 sample"};
   return Ok{};
+}
+
+int WindowEmbeddingSettings::per_frame_dims_for(int window) const {
+  return per_frame_dims > 0 ? per_frame_dims : std::clamp(320 / std::max(1, window), 8, 16);
 }
 
 double WindowEmbedding::bound(int s, int t) const {
@@ -95,7 +98,7 @@ Result<WindowEmbedding> make_window_embedding(const FrameFeatures& features, con
     return Error{"", 0, "the embedding needs at least one window of frames and one point"};
   }
   const int n_frame = 2 * features.points;
-  const int d1 = std::min(settings.per_frame_dims, n_frame);
+  const int d1 = std::min(settings.per_frame_dims_for(k), n_frame);
   const Basis frame_basis = principal_basis(features.frames, n_frame, d1, settings.max_samples,
                                             [&](int f, double* out, Eigen::Index) { frame_values(features, f, out); });
   // Each frame projected: Q (f - mean).
@@ -147,124 +150,6 @@ double window_feature_bound(const FrameFeatures& features, int a, int b) {
     sum += features.taper[t] * frame_sum;
   }
   return sum;
-}
-
-namespace {
-
-// Consecutive windows in balls: a centre and the radius that holds them.
-struct Ball {
-  int begin = 0, end = 0;       // window starts
-  std::vector<double> centre;   // dims
-  double radius = 0.0;
-};
-
-std::vector<Ball> balls_of(const WindowEmbedding& e, int size) {
-  std::vector<Ball> balls;
-  const int dims = e.dims;
-  for (int begin = 0; begin < e.windows; begin += size) {
-    Ball ball;
-    ball.begin = begin;
-    ball.end = std::min(e.windows, begin + size);
-    ball.centre.assign(dims, 0.0);
-    for (int s = ball.begin; s < ball.end; ++s) {
-      for (int d = 0; d < dims; ++d) ball.centre[d] += e.coords[static_cast<size_t>(s) * dims + d];
-    }
-    for (double& c : ball.centre) c /= ball.end - ball.begin;
-    for (int s = ball.begin; s < ball.end; ++s) {
-      double sum = 0.0;
-      for (int d = 0; d < dims; ++d) {
-        const double diff = e.coords[static_cast<size_t>(s) * dims + d] - ball.centre[d];
-        sum += diff * diff;
-      }
-      ball.radius = std::max(ball.radius, std::sqrt(sum));
-    }
-    balls.push_back(std::move(ball));
-  }
-  return balls;
-}
-
-// Whether two balls can hold a pair within `radius` of each other (a hair of slack: exact
-// decisions are the pairs' own).
-bool may_meet(const Ball& x, const Ball& y, double radius) {
-  double sum = 0.0;
-  for (size_t d = 0; d < x.centre.size(); ++d) sum += (x.centre[d] - y.centre[d]) * (x.centre[d] - y.centre[d]);
-  const double reach = radius + x.radius + y.radius;
-  return sum <= reach * reach * (1.0 + 1e-9) + 1e-12;
-}
-
-constexpr int kBallsPerGroup = 8;  // small balls per large one
-
-}  // namespace
-
-BoundedPairStatistics for_each_bounded_pair(const FrameFeatures& features, const WindowEmbedding& embedding,
-                                            double ceiling, const BoundedPairVisitor& visit, int threads) {
-  const int dims = embedding.dims;
-  const int k = embedding.window;
-  const double radius = std::sqrt(std::max(ceiling, 0.0));
-  // Consecutive windows lie close together (the motion is smooth): small balls of a fifth of
-  // the window, at least 4 (8 windows at 120 fps, 4 at 30 fps: on the 8-subject set at 30 fps
-  // 2 made the search 1.7x slower, 8 1.3x), large ones of 8 small, pruned pairwise by the
-  // triangle inequality before any pair is summed.
-  const int ball = std::max(4, k / 5);
-  const std::vector<Ball> small = balls_of(embedding, ball);
-  const std::vector<Ball> large = balls_of(embedding, ball * kBallsPerGroup);
-  // The arrivals of each leaving window of large ball gi (found in increasing order).
-  struct GroupResult {
-    std::vector<std::vector<int>> arrivals;
-    long long scanned = 0;
-  };
-  auto search_group = [&](size_t gi, GroupResult& r) {
-    const Ball& leaving = large[gi];
-    r.arrivals.assign(static_cast<size_t>(leaving.end - leaving.begin), {});
-    r.scanned = 0;
-    for (size_t gj = 0; gj < large.size(); ++gj) {
-      if (!may_meet(leaving, large[gj], radius)) continue;
-      for (size_t i = gi * kBallsPerGroup; i < std::min(small.size(), (gi + 1) * kBallsPerGroup); ++i) {
-        for (size_t j = gj * kBallsPerGroup; j < std::min(small.size(), (gj + 1) * kBallsPerGroup); ++j) {
-          if (!may_meet(small[i], small[j], radius)) continue;
-          for (int a = small[i].begin; a < small[i].end; ++a) {
-            if (!features.can_leave[a]) continue;
-            const float* ea = &embedding.coords[static_cast<size_t>(a) * dims];
-            for (int s = small[j].begin; s < small[j].end; ++s) {
-              if (!features.can_arrive[s + k - 1]) continue;
-              ++r.scanned;
-              const float* es = &embedding.coords[static_cast<size_t>(s) * dims];
-              double sum = 0.0;
-              for (int d = 0; d < dims && sum <= ceiling; ++d) {
-                const double diff = static_cast<double>(ea[d]) - es[d];
-                sum += diff * diff;
-              }
-              if (sum <= ceiling) r.arrivals[a - leaving.begin].push_back(s + k - 1);
-            }
-          }
-        }
-      }
-    }
-  };
-  // Large balls are searched on the threads a batch at a time, then visited in order.
-  const int workers = worker_threads(threads);
-  const size_t batch = static_cast<size_t>(4 * workers);
-  BoundedPairStatistics stats;
-  std::vector<GroupResult> results(batch);
-  for (size_t first = 0; first < large.size(); first += batch) {
-    const size_t end = std::min(large.size(), first + batch);
-    parallel_for(static_cast<long long>(end - first), workers, 1,
-                 [&](int, long long i) { search_group(first + static_cast<size_t>(i), results[static_cast<size_t>(i)]); });
-    for (size_t g = first; g < end; ++g) {
-      GroupResult& r = results[g - first];
-      stats.scanned += r.scanned;
-      for (size_t i = 0; i < r.arrivals.size(); ++i) {
-        std::vector<int>& list = r.arrivals[i];
-        if (list.empty()) continue;
-        // Already in increasing order: large balls, small balls and windows are each scanned
-        // in order of their frames.
-        assert(std::is_sorted(list.begin(), list.end()));
-        visit(large[g].begin + static_cast<int>(i), list);
-        stats.pairs += static_cast<long long>(list.size());
-      }
-    }
-  }
-  return stats;
 }
 
 }  // namespace mg

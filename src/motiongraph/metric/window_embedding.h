@@ -10,11 +10,9 @@
 // shrinks distances, so it keeps the bound. Two are composed here, each a principal-component
 // basis: per frame, the 2P values to per_frame_dims; per window, the k per_frame_dims values
 // (each frame's times sqrt(u_t)) to dims. The bound is then |E_a - E_{b-k+1}|^2 in dims
-// numbers per window: cheap to search by range.
+// numbers per window: cheap to search by range (bounded_tiles.h).
 #pragma once
 
-#include <functional>
-#include <span>
 #include <vector>
 
 #include "motiongraph/core/error.h"
@@ -23,13 +21,17 @@
 namespace mg {
 
 struct WindowEmbeddingSettings {
-  int per_frame_dims = 8;  // principal components of each frame's 2P values kept
-  int dims = 16;           // principal components of the window's kept
+  // Principal components of each frame's 2P values kept; 0: 320 / k, from 8 to 16 (so that
+  // the window's basis is found among at most 320 values). Measured on the 8-subject library
+  // (docs/performance.md): at 30 fps 16 leave 16 % fewer tiles to the pruned stage than 8 did.
+  int per_frame_dims = 0;
+  int dims = 24;  // principal components of the window's kept
   // The covariances are estimated on at most this many frames and windows (evenly strided):
   // any orthonormal basis keeps the bound; more samples only fit it better.
-  int max_samples = 20000;
+  int max_samples = 2000;
 
   Status validate() const;
+  int per_frame_dims_for(int window) const;
 };
 
 struct WindowEmbedding {
@@ -48,21 +50,5 @@ Result<WindowEmbedding> make_window_embedding(const FrameFeatures& features,
 // The unprojected bound |F_a - F_{b-k+1}|^2 of pair (a, b), computed from its definition:
 // the reference the embedding is tested against. O(k P).
 double window_feature_bound(const FrameFeatures& features, int a, int b);
-
-// Every pair (a, b) whose embedded bound is at most `ceiling` (D units), a able to leave and
-// b able to arrive (FrameFeatures::can_leave, can_arrive): the pairs that can have D <= ceiling.
-// Found by balls of consecutive windows (a fifth of the window, at least 4, and 8 such: the
-// motion is smooth, so they are small), pairs of balls too far apart for any pair within
-// sqrt(ceiling) skipped by the triangle inequality, the pairs of the rest summed with an
-// early exit.
-struct BoundedPairStatistics {
-  long long pairs = 0;    // visited
-  long long scanned = 0;  // windows whose bound was (partly) summed
-};
-// The search runs on `threads` threads (0: one per core); visit is called on the caller's,
-// once per leaving frame a with any, with its arrival frames b in increasing order.
-using BoundedPairVisitor = std::function<void(int a, std::span<const int> arrivals)>;
-BoundedPairStatistics for_each_bounded_pair(const FrameFeatures& features, const WindowEmbedding& embedding,
-                                            double ceiling, const BoundedPairVisitor& visit, int threads = 0);
 
 }  // namespace mg
