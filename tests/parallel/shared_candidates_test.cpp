@@ -148,6 +148,40 @@ TEST(SharedCandidates, ResumesFromACheckpointWithTheSameSearch) {
   fs::remove_all(folder);
 }
 
+// A subset of the items (the pruned stage's plan): the same search as find_candidates given
+// those items, on one process and from a checkpoint; an empty subset runs nothing.
+TEST(SharedCandidates, RunsOnlyTheItemsGiven) {
+  const Fixture x = fixture();
+  const TileItems items = tile_items(x.features, x.distance);
+  std::vector<long long> some;
+  for (long long i = 0; i < items.count(); i += 3) some.push_back(i);
+  auto plain = find_candidates(x.features, x.distance, {}, {}, some);
+  ASSERT_TRUE(plain);
+  OneProcess team;
+  auto alone = find_candidates_shared(x.features, x.distance, {}, 7, team, {}, &some);
+  ASSERT_TRUE(alone) << alone.error().to_string();
+  EXPECT_EQ(bytes_of(alone->search), bytes_of(*plain));
+  const std::string folder = testing::TempDir() + "motiongraph-checkpoint-subset-test";
+  fs::remove_all(folder);
+  SharedSearchSettings shared;
+  shared.checkpoint_folder = folder;
+  shared.checkpoint_pairs = 5000;
+  auto checkpointed = find_candidates_shared(x.features, x.distance, {}, 7, team, shared, &some);
+  ASSERT_TRUE(checkpointed) << checkpointed.error().to_string();
+  EXPECT_EQ(bytes_of(checkpointed->search), bytes_of(*plain));
+  auto resumed = find_candidates_shared(x.features, x.distance, {}, 7, team, shared, &some);
+  ASSERT_TRUE(resumed);
+  EXPECT_EQ(resumed->restored_tiles, plain->tiles.tiles);
+  EXPECT_EQ(bytes_of(resumed->search), bytes_of(*plain));
+  fs::remove_all(folder);
+  const std::vector<long long> none;
+  auto nothing = find_candidates_shared(x.features, x.distance, {}, 7, team, {}, &none);
+  ASSERT_TRUE(nothing);
+  EXPECT_TRUE(nothing->search.minima.empty());
+  EXPECT_EQ(nothing->search.histogram.total(), 0u);
+  EXPECT_EQ(nothing->search.tiles.tiles, 0);
+}
+
 TEST(CandidatePart, RoundTripsAndRejectsEveryPrefix) {
   const Fixture x = fixture();
   CandidateSettings settings;

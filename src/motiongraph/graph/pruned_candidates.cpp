@@ -38,64 +38,53 @@ int PrunedSearchSettings::tile_for(int window) const {
   return std::max(128, static_cast<int>(std::lround(6.4 * window / 64.0)) * 64);
 }
 
-Result<CandidateSearch> find_candidates_pruned(const FrameFeatures& f, double ceiling,
-                                               const CandidateSettings& settings, const PrunedSearchSettings& pruned,
-                                               PrunedSearchStatistics* statistics) {
+Result<PrunedPlan> plan_pruned_search(const FrameFeatures& f, double ceiling, const PrunedSearchSettings& pruned,
+                                      PrunedSearchStatistics* statistics) {
   if (auto s = pruned.validate(); !s) return s.error();
   if (!(ceiling >= 0.0) || !std::isfinite(ceiling)) return Error{"", 0, "the pruned stage's ceiling must be >= 0"};
-  if (settings.keep_matrix) {
-    return Error{"", 0, "the pruned distance stage holds no matrix (use the exhaustive stage to export it)"};
-  }
-  auto empty = empty_candidate_search(f, settings);
-  if (!empty) return empty.error();
   PrunedSearchStatistics local;
   PrunedSearchStatistics& stats = statistics != nullptr ? *statistics : local;
   stats = {};
   const auto start = std::chrono::steady_clock::now();
-  DistanceSettings distance;
-  distance.tile_frames = pruned.tile_for(f.window);
-  distance.threads = pruned.threads;
-  const TileItems grid = tile_items(f, distance);
+  PrunedPlan plan;
+  plan.distance.tile_frames = pruned.tile_for(f.window);
+  plan.distance.threads = pruned.threads;
+  const TileItems grid = tile_items(f, plan.distance);
   stats.tile_frames = grid.tile;
   stats.tiles = static_cast<long long>(grid.per_side) * grid.per_side;
   const long long leaving = std::count(f.can_leave.begin(), f.can_leave.end(), 1);
   const long long arriving = std::count(f.can_arrive.begin(), f.can_arrive.end(), 1);
   stats.defined_pairs = leaving * arriving;
-  std::vector<long long> items;
-  if (stats.defined_pairs > 0) {
-    auto embedding = make_window_embedding(f, pruned.embedding);
-    if (!embedding) return embedding.error();
-    stats.embedding_seconds = seconds_since(start);
-    // The bound is computed in float: a relative 1e-3 of slack keeps every pair at or below the
-    // ceiling, and flags only tiles that may hold one.
-    const auto search_start = std::chrono::steady_clock::now();
-    const BoundedTiles bounded = find_bounded_tiles(f, *embedding, grid.tile, ceiling * (1.0 + 1e-3), pruned.threads);
-    // An item runs tiles (I, J) and (J, I) from the same products: it is needed when either is.
-    for (long long item = 0; item < grid.count(); ++item) {
-      const auto [i, j] = grid.tiles_of(item);
-      if (bounded.flagged(i, j) || bounded.flagged(j, i)) {
-        items.push_back(item);
-        stats.tiles_computed += grid.tile_count(item);
-      }
+  if (stats.defined_pairs == 0) return plan;
+  auto embedding = make_window_embedding(f, pruned.embedding);
+  if (!embedding) return embedding.error();
+  stats.embedding_seconds = seconds_since(start);
+  // The bound is computed in float: a relative 1e-3 of slack keeps every pair at or below the
+  // ceiling, and flags only tiles that may hold one.
+  const auto search_start = std::chrono::steady_clock::now();
+  const BoundedTiles bounded = find_bounded_tiles(f, *embedding, grid.tile, ceiling * (1.0 + 1e-3), pruned.threads);
+  // An item runs tiles (I, J) and (J, I) from the same products: it is needed when either is.
+  for (long long item = 0; item < grid.count(); ++item) {
+    const auto [i, j] = grid.tiles_of(item);
+    if (bounded.flagged(i, j) || bounded.flagged(j, i)) {
+      plan.items.push_back(item);
+      stats.tiles_computed += grid.tile_count(item);
     }
-    stats.search_seconds = seconds_since(search_start);
   }
-  CandidateSearch search = std::move(*empty);
-  if (!items.empty()) {
-    const auto exact_start = std::chrono::steady_clock::now();
-    auto found = find_candidates(f, distance, settings, {}, items);
-    if (!found) return found.error();
-    search = std::move(*found);
-    stats.exact_seconds = seconds_since(exact_start);
-  }
-  stats.computed_pairs = search.tiles.pairs;
+  stats.search_seconds = seconds_since(search_start);
+  return plan;
+}
+
+void finish_pruned_search(const FrameFeatures& f, double ceiling, CandidateSearch& search) {
   search.ceiling = ceiling;
   // Minima above the ceiling: the tiles left out would hold more of them.
   std::erase_if(search.minima, [ceiling](const Transition& t) { return !(t.distance <= ceiling); });
   // The histogram holds every defined pair of the computed tiles: those above the ceiling's
   // bin join the pairs left out in the overflow bin.
+  const long long leaving = std::count(f.can_leave.begin(), f.can_leave.end(), 1);
+  const long long arriving = std::count(f.can_arrive.begin(), f.can_arrive.end(), 1);
   search.histogram.fold_above(ceiling);
-  search.histogram.add_above(static_cast<std::uint64_t>(stats.defined_pairs) - search.histogram.total());
+  search.histogram.add_above(static_cast<std::uint64_t>(leaving * arriving) - search.histogram.total());
   // Pixels: exact at or below the ceiling; +infinity where the defined pairs all lie above it
   // (the pixel was not computed, or its smallest computed D is above).
   const int block = search.picture_block, side = search.picture_side;
@@ -114,6 +103,31 @@ Result<CandidateSearch> find_candidates_pruned(const FrameFeatures& f, double ce
       }
     }
   }
+}
+
+Result<CandidateSearch> find_candidates_pruned(const FrameFeatures& f, double ceiling,
+                                               const CandidateSettings& settings, const PrunedSearchSettings& pruned,
+                                               PrunedSearchStatistics* statistics) {
+  if (settings.keep_matrix) {
+    return Error{"", 0, "the pruned distance stage holds no matrix (use the exhaustive stage to export it)"};
+  }
+  const auto start = std::chrono::steady_clock::now();
+  PrunedSearchStatistics local;
+  PrunedSearchStatistics& stats = statistics != nullptr ? *statistics : local;
+  auto plan = plan_pruned_search(f, ceiling, pruned, &stats);
+  if (!plan) return plan.error();
+  auto empty = empty_candidate_search(f, settings);
+  if (!empty) return empty.error();
+  CandidateSearch search = std::move(*empty);
+  if (!plan->items.empty()) {
+    const auto exact_start = std::chrono::steady_clock::now();
+    auto found = find_candidates(f, plan->distance, settings, {}, plan->items);
+    if (!found) return found.error();
+    search = std::move(*found);
+    stats.exact_seconds = seconds_since(exact_start);
+  }
+  stats.computed_pairs = search.tiles.pairs;
+  finish_pruned_search(f, ceiling, search);
   search.tiles.seconds = seconds_since(start);
   return search;
 }

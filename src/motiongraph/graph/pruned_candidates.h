@@ -24,6 +24,8 @@
 // tiles") says where it is faster and why build cannot use it as it is.
 #pragma once
 
+#include <vector>
+
 #include "motiongraph/core/error.h"
 #include "motiongraph/graph/candidates.h"
 #include "motiongraph/metric/window_embedding.h"
@@ -52,6 +54,27 @@ struct PrunedSearchStatistics {
   long long computed_pairs = 0;    // pairs in the computed tiles (their D was computed)
   long long defined_pairs = 0;     // pairs with a defined D (what the exhaustive stage computes)
 };
+
+// The stage in two halves, so that a team of processes (parallel/shared_candidates.h) can share
+// the tiles: the plan (the embedding and the tile search; the same on every process, given the
+// same features), the exhaustive stage's search of the plan's items with the plan's
+// `distance`, then finish_pruned_search on the merged result.
+struct PrunedPlan {
+  DistanceSettings distance;     // the tile side and threads the items are numbered for
+  std::vector<long long> items;  // TileItems numbers to run, increasing; may be empty
+};
+
+// `statistics` may be null; it gets the plan's figures (the exact_seconds and computed_pairs
+// are find_candidates_pruned's to fill).
+Result<PrunedPlan> plan_pruned_search(const FrameFeatures& features, double ceiling,
+                                      const PrunedSearchSettings& pruned = {},
+                                      PrunedSearchStatistics* statistics = nullptr);
+
+// Turns the search of the plan's items into the pruned stage's result: the minima above the
+// ceiling dropped, the histogram's pairs above the ceiling's bin and those of the tiles not run
+// counted in its overflow bin, pixels above the ceiling or not computed +infinity (NaN where
+// undefined), `ceiling` set.
+void finish_pruned_search(const FrameFeatures& features, double ceiling, CandidateSearch& search);
 
 // The candidates with D <= ceiling (>= 0, D units). CandidateSettings as for find_candidates;
 // keep_matrix is refused (the pruned stage never has the whole matrix). `statistics` may be

@@ -5,12 +5,12 @@
 //
 // Tile (I, J) holds the pairs (a, b) with a in [I T, I T + T) and b in [J T, J T + T), T the
 // tile side. It is flagged when one of them, a able to leave and b able to arrive, has an
-// embedded bound |E_a - E_{b-k+1}|^2 at most the ceiling; D >= that bound, so an unflagged
-// tile's pairs all have D above the ceiling. The search is exact (a tile is flagged only once
-// such a pair is found): balls of consecutive windows (the motion is smooth, so they are
-// small) are tested by the triangle inequality, the tile's as a whole first, then small ones
-// of `ball` windows, then the pairs of the small balls that may meet, stopping at the first
-// pair found.
+// embedded bound (WindowEmbedding::bound of windows a and b - k + 1) at most the ceiling;
+// D >= that bound, so an unflagged tile's pairs all have D above the ceiling. The search is
+// exact (a tile is flagged only once such a pair is found): balls of consecutive windows (the
+// motion is smooth, so they are small) are tested by the triangle inequality of the bound's
+// square root, the tile's as a whole first, then balls of 8/5 of a window, then balls of a
+// fifth (at least 3 windows), then the pairs of the small balls that may meet, stopping at the first pair found.
 #pragma once
 
 #include <vector>

@@ -97,7 +97,8 @@ double peak_memory_mb() {
 
 Result<SharedSearch> find_candidates_shared(const FrameFeatures& features, const DistanceSettings& distance,
                                             const CandidateSettings& settings, std::uint64_t key, ProcessTeam& team,
-                                            const SharedSearchSettings& shared) {
+                                            const SharedSearchSettings& shared,
+                                            const std::vector<long long>* only_items) {
   const auto start = std::chrono::steady_clock::now();
   const bool with_checkpoint = !shared.checkpoint_folder.empty();
   Status valid = shared.validate();
@@ -124,8 +125,18 @@ Result<SharedSearch> find_candidates_shared(const FrameFeatures& features, const
   out.processes = team.size();
   if (team.size() == 1 && !with_checkpoint) {
     // One process, nothing to save: the plain search (the matrix too, when asked).
-    ProgressBar progress("distance", static_cast<std::uint64_t>(items.per_side) * items.per_side, !shared.progress_bar);
-    auto search = find_candidates(features, distance, settings, [&](long long, long long) { progress.advance(1); });
+    long long tiles = static_cast<long long>(items.per_side) * items.per_side;
+    if (only_items != nullptr) {
+      tiles = 0;
+      for (long long item : *only_items) tiles += items.tile_count(item);
+    }
+    ProgressBar progress("distance", static_cast<std::uint64_t>(tiles), !shared.progress_bar);
+    // An empty subset runs nothing (find_candidates reads no items as all of them).
+    auto search = only_items != nullptr && only_items->empty()
+                      ? empty_candidate_search(features, settings)
+                      : find_candidates(features, distance, settings, [&](long long, long long) { progress.advance(1); },
+                                        only_items != nullptr ? std::span<const long long>(*only_items)
+                                                              : std::span<const long long>());
     progress.finish();
     if (!search) return search.error();
     out.search = std::move(*search);
@@ -139,8 +150,14 @@ Result<SharedSearch> find_candidates_shared(const FrameFeatures& features, const
     for (long long item : part.items) done[static_cast<size_t>(item)] = 1;
   }
   std::vector<long long> pending;
-  for (long long item = 0; item < items.count(); ++item) {
-    if (!done[static_cast<size_t>(item)]) pending.push_back(item);
+  if (only_items != nullptr) {
+    for (long long item : *only_items) {
+      if (!done[static_cast<size_t>(item)]) pending.push_back(item);
+    }
+  } else {
+    for (long long item = 0; item < items.count(); ++item) {
+      if (!done[static_cast<size_t>(item)]) pending.push_back(item);
+    }
   }
   const std::vector<long long> share = items_of_process(items, pending, team.size(), team.rank());
   const std::vector<std::string> messages = team.gather(

@@ -38,9 +38,13 @@ struct SharedSearch {
 
 // `key` is the build's distance cache key (it ties the checkpoint to the inputs and settings).
 // The matrix (settings.keep_matrix) is held by one process without a checkpoint only.
+// `only_items` (when not null): the work items to run, TileItems numbers in increasing order
+// (the pruned stage's plan, graph/pruned_candidates.h); the others are left out, as
+// find_candidates leaves out the items it is not given. The same on every process.
 Result<SharedSearch> find_candidates_shared(const FrameFeatures& features, const DistanceSettings& distance,
                                             const CandidateSettings& settings, std::uint64_t key, ProcessTeam& team,
-                                            const SharedSearchSettings& shared);
+                                            const SharedSearchSettings& shared,
+                                            const std::vector<long long>* only_items = nullptr);
 
 // This process's peak resident memory so far, in MB (0 where the system does not say).
 double peak_memory_mb();
