@@ -156,13 +156,14 @@ TEST(PrunedCandidates, RandomisedClipsTapersRatesTilesCeilingsAndThreads) {
 
 TEST(PrunedCandidates, TileSideFromTheWindow) {
   PrunedSearchSettings automatic;
-  EXPECT_EQ(automatic.tile_for(10), 128);  // 30 fps
+  EXPECT_EQ(automatic.tile_for(10), 64);   // 30 fps
   EXPECT_EQ(automatic.tile_for(40), 256);  // 120 fps
   for (int k = 1; k < 400; ++k) {
     const int tile = automatic.tile_for(k);
-    EXPECT_GE(tile, 128);
+    EXPECT_GE(tile, 64);
     EXPECT_EQ(tile % 64, 0);
-    EXPECT_LE(tile, std::max(128, 7 * k + 64));
+    EXPECT_LE(tile, std::max(64, 7 * k + 64));
+    EXPECT_GE(tile, 6 * k - 64);
   }
   PrunedSearchSettings given;
   given.tile_frames = 200;

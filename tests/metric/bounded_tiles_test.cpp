@@ -41,7 +41,8 @@ TEST(BoundedTiles, EqualsAScanOfEveryPairAndHoldsEveryPairBelowTheCeiling) {
     for (const double q : {0.005, 0.02, 0.1}) {
       const double ceiling = quantile_of(m, q);
       const int tile = 16 + static_cast<int>(rng() % 64);
-      const std::string what = "fps " + std::to_string(fps) + " q " + std::to_string(q) + " tile " + std::to_string(tile);
+      const std::string what =
+          "fps " + std::to_string(fps) + " q " + std::to_string(q) + " tile " + std::to_string(tile);
       const BoundedTiles found = find_bounded_tiles(m.features, *embedding, tile, ceiling);
       ASSERT_EQ(found.per_side, (n + tile - 1) / tile) << what;
       EXPECT_EQ(found.flags, scanned_tiles(m.features, *embedding, tile, ceiling)) << what;

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <mutex>
 #include <numbers>
 #include <random>
@@ -167,6 +169,63 @@ TEST(Distance, ClipTurnedAndMovedIsTheSameClip) {
         ASSERT_NEAR(original_column, copy_column, 1e-4 * median) << b << "," << a;
       }
     }
+  }
+}
+
+// Items and sides: a subset of the items, each visiting one or both of its tiles, gives those
+// tiles with the values of the whole run, bit for bit, and nothing else.
+TEST(Distance, ItemsAndSidesVisitTheirTilesWithTheSameValues) {
+  const MotionDatabase db = test::small_database({"cmu/16/16_15.amc", "cmu/16/16_35.amc"});
+  DistanceSettings settings;
+  settings.tile_frames = 16;
+  settings.threads = 2;
+  auto layout = make_cloud_layout(db.skeletons[0], {});
+  const FrameFeatures f = *make_frame_features(db, *layout, settings);
+  const int n = f.frames;
+  std::vector<float> whole(static_cast<size_t>(n) * n);
+  std::mutex mutex;
+  auto keep = [&](std::vector<float>& into, std::vector<std::pair<int, int>>* seen) {
+    return [&into, seen, &mutex, n](const DistanceTile& tile) {
+      std::lock_guard lock(mutex);
+      if (seen != nullptr) seen->emplace_back(tile.leave_begin, tile.arrive_begin);
+      for (int a = tile.leave_begin; a < tile.leave_begin + tile.leave_count; ++a) {
+        for (int b = tile.arrive_begin; b < tile.arrive_begin + tile.arrive_count; ++b) {
+          into[static_cast<size_t>(a) * n + b] = tile.at(a, b);
+        }
+      }
+    };
+  };
+  for_each_distance_tile(f, settings, keep(whole, nullptr));
+  const TileItems grid = tile_items(f, settings);
+  std::vector<long long> items;
+  std::vector<unsigned char> sides;
+  std::vector<std::pair<int, int>> expected;
+  std::mt19937 rng(9);
+  for (long long item = 0; item < grid.count(); ++item) {
+    const auto side = static_cast<unsigned char>(rng() % 4);
+    if (side == 0) continue;
+    const auto [i, j] = grid.tiles_of(item);
+    if (i == j && (side & 1) == 0) continue;
+    items.push_back(item);
+    sides.push_back(side);
+    if ((side & 1) != 0) expected.emplace_back(i * grid.tile, j * grid.tile);
+    if (i != j && (side & 2) != 0) expected.emplace_back(j * grid.tile, i * grid.tile);
+  }
+  ASSERT_GT(items.size(), 10u);
+  std::vector<float> part(static_cast<size_t>(n) * n, std::numeric_limits<float>::infinity());
+  std::vector<std::pair<int, int>> seen;
+  const TileRunStatistics stats = for_each_distance_tile(f, settings, keep(part, &seen), {}, items, sides);
+  std::sort(seen.begin(), seen.end());
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(seen, expected);
+  EXPECT_EQ(stats.tiles, static_cast<long long>(expected.size()));
+  long long pairs = 0;
+  for (size_t i = 0; i < items.size(); ++i) pairs += grid.pairs(items[i], sides[i]);
+  EXPECT_EQ(stats.pairs, pairs);
+  for (size_t i = 0; i < part.size(); ++i) {
+    if (part[i] == std::numeric_limits<float>::infinity()) continue;  // a tile not visited
+    const bool same = std::memcmp(&part[i], &whole[i], sizeof(float)) == 0;
+    EXPECT_TRUE(same) << "pair " << i / n << "," << i % n;
   }
 }
 

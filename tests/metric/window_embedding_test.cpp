@@ -15,7 +15,8 @@ namespace {
 
 
 // D of every pair from the tiles, for a cloud and window of our choosing.
-test::TileMatrix matrix_of(const MotionDatabase& db, const PointCloudSettings& cloud, const DistanceSettings& settings) {
+test::TileMatrix matrix_of(const MotionDatabase& db, const PointCloudSettings& cloud,
+                           const DistanceSettings& settings) {
   test::TileMatrix m;
   auto layout = make_cloud_layout(db.skeletons[0], cloud);
   EXPECT_TRUE(layout);
@@ -38,11 +39,12 @@ TEST(WindowEmbedding, BoundsTheDistanceFromBelowOnEveryPairAndIsTight) {
       DistanceSettings settings;
       settings.taper = taper;
       const test::TileMatrix m = test::tile_matrix(
-          test::small_database({"cmu/16/16_15.amc", "cmu/16/16_35.amc", "cmu/16/16_01.amc"}, false, 0.0, Vec3::Zero(), fps),
+          test::small_database({"cmu/16/16_15.amc", "cmu/16/16_35.amc", "cmu/16/16_01.amc"}, false, 0.0,
+                               Vec3::Zero(), fps),
           settings);
       auto embedding = make_window_embedding(m.features);
       ASSERT_TRUE(embedding) << embedding.error().to_string();
-      EXPECT_EQ(embedding->dims, 16);
+      EXPECT_EQ(embedding->dims, 24);
       const int n = m.features.frames, k = m.features.window;
       const double median = test::quantile_of(m, 0.5);
       long long checked = 0, above_median = 0;
@@ -111,7 +113,7 @@ TEST(WindowEmbedding, SettingsAndTooFewFramesAreErrors) {
   EXPECT_FALSE(bad.validate());
   WindowEmbeddingSettings automatic;
   EXPECT_TRUE(automatic.validate());
-  EXPECT_EQ(automatic.per_frame_dims_for(10), 8);  // 30 fps
+  EXPECT_EQ(automatic.per_frame_dims_for(10), 12);  // 30 fps
   EXPECT_EQ(automatic.per_frame_dims_for(40), 6);  // 120 fps
   EXPECT_EQ(automatic.per_frame_dims_for(1000), 6);
   automatic.per_frame_dims = 5;

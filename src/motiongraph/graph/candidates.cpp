@@ -94,8 +94,9 @@ Status merge_candidates(CandidateSearch& into, const CandidateSearch& part) {
 Result<CandidateSearch> find_candidates(const FrameFeatures& f, const DistanceSettings& distance,
                                         const CandidateSettings& settings,
                                         const std::function<void(long long, long long)>& on_tile_done,
-                                        std::span<const long long> items) {
+                                        std::span<const long long> items, std::span<const unsigned char> sides) {
   if (auto s = distance.validate(); !s) return s.error();
+  if (!sides.empty() && sides.size() != items.size()) return Error{"", 0, "one side selection per work item is needed"};
   auto empty = empty_candidate_search(f, settings);
   if (!empty) return empty.error();
   CandidateSearch search = std::move(*empty);
@@ -183,7 +184,7 @@ Result<CandidateSearch> find_candidates(const FrameFeatures& f, const DistanceSe
         if (value < std::numeric_limits<float>::infinity() && !(pixel <= value)) pixel = value;  // NaN or larger
       }
     }
-  }, on_tile_done, items);
+  }, on_tile_done, items, sides);
   std::sort(search.minima.begin(), search.minima.end(), minimum_order);
   return search;
 }

@@ -51,11 +51,13 @@ struct CandidateSearch {
   double ceiling = -1.0;
 };
 
-// `items`: the work items to search (empty: all); the others' pixels stay NaN.
+// `items`: the work items to search (empty: all); the others' pixels stay NaN. `sides`: which
+// of each item's tiles (for_each_distance_tile).
 Result<CandidateSearch> find_candidates(const FrameFeatures& features, const DistanceSettings& distance,
                                         const CandidateSettings& settings,
                                         const std::function<void(long long, long long)>& on_tile_done = {},
-                                        std::span<const long long> items = {});
+                                        std::span<const long long> items = {},
+                                        std::span<const unsigned char> sides = {});
 
 // A search of no tiles yet: nothing found, the picture all NaN (what merge_candidates starts
 // from). Fails as find_candidates does on invalid settings or a matrix too large.

@@ -32,10 +32,10 @@ Status PrunedSearchSettings::validate() const {
 
 int PrunedSearchSettings::tile_for(int window) const {
   if (tile_frames > 0) return tile_frames;
-  // Measured (docs/performance.md): 128 at 30 fps (k = 10) on the 8-subject library, 256 at
+  // Measured (docs/performance.md): 64 at 30 fps (k = 10) on the 8-subject library, 256 at
   // 120 fps (k = 40). Smaller tiles skip more pairs but cost more per pair (their halo of k
-  // frames on each side, and BLAS on smaller products).
-  return std::max(128, static_cast<int>(std::lround(6.4 * window / 64.0)) * 64);
+  // frames on each side, and BLAS on smaller products) and more to search.
+  return std::max(64, static_cast<int>(std::lround(6.4 * window / 64.0)) * 64);
 }
 
 Result<PrunedPlan> plan_pruned_search(const FrameFeatures& f, double ceiling, const PrunedSearchSettings& pruned,
@@ -56,20 +56,24 @@ Result<PrunedPlan> plan_pruned_search(const FrameFeatures& f, double ceiling, co
   const long long arriving = std::count(f.can_arrive.begin(), f.can_arrive.end(), 1);
   stats.defined_pairs = leaving * arriving;
   if (stats.defined_pairs == 0) return plan;
-  auto embedding = make_window_embedding(f, pruned.embedding);
+  WindowEmbeddingSettings embedding_settings = pruned.embedding;
+  if (embedding_settings.threads == 0) embedding_settings.threads = pruned.threads;
+  auto embedding = make_window_embedding(f, embedding_settings);
   if (!embedding) return embedding.error();
   stats.embedding_seconds = seconds_since(start);
   // The bound is computed in float: a relative 1e-3 of slack keeps every pair at or below the
   // ceiling, and flags only tiles that may hold one.
   const auto search_start = std::chrono::steady_clock::now();
   const BoundedTiles bounded = find_bounded_tiles(f, *embedding, grid.tile, ceiling * (1.0 + 1e-3), pruned.threads);
-  // An item runs tiles (I, J) and (J, I) from the same products: it is needed when either is.
+  // An item computes the products of tiles (I, J) and (J, I): it is run when either is flagged,
+  // and visits the flagged ones only.
   for (long long item = 0; item < grid.count(); ++item) {
     const auto [i, j] = grid.tiles_of(item);
-    if (bounded.flagged(i, j) || bounded.flagged(j, i)) {
-      plan.items.push_back(item);
-      stats.tiles_computed += grid.tile_count(item);
-    }
+    const auto sides = static_cast<unsigned char>((bounded.flagged(i, j) ? 1 : 0) | (bounded.flagged(j, i) ? 2 : 0));
+    if (sides == 0) continue;
+    plan.items.push_back(item);
+    plan.sides.push_back(i == j ? 1 : sides);
+    stats.tiles_computed += grid.tile_count(item, plan.sides.back());
   }
   stats.search_seconds = seconds_since(search_start);
   return plan;
@@ -121,7 +125,7 @@ Result<CandidateSearch> find_candidates_pruned(const FrameFeatures& f, double ce
   CandidateSearch search = std::move(*empty);
   if (!plan->items.empty()) {
     const auto exact_start = std::chrono::steady_clock::now();
-    auto found = find_candidates(f, plan->distance, settings, {}, plan->items);
+    auto found = find_candidates(f, plan->distance, settings, {}, plan->items, plan->sides);
     if (!found) return found.error();
     search = std::move(*found);
     stats.exact_seconds = seconds_since(exact_start);

@@ -20,8 +20,9 @@
 // dropped (the tiles left out would hold more). Memory is one tile per thread, as the
 // exhaustive stage's.
 //
-// Not used by `build` yet: docs/performance.md ("The pruned stage measured against the
-// tiles") says where it is faster and why build cannot use it as it is.
+// Not used by `build` yet: docs/performance.md ("The search in vector passes, tiles of 64",
+// and what follows it) says how much faster it is and why build cannot use it as it is
+// (bridges and per-tag thresholds read candidates above any ceiling).
 #pragma once
 
 #include <vector>
@@ -39,8 +40,8 @@ struct PrunedSearchSettings {
   int threads = 0;  // 0: one per core
 
   Status validate() const;
-  // The side used: tile_frames, or for 0 the measured best, about 6 to 13 windows
-  // (docs/performance.md): 128 frames for k <= 16, else a multiple of 64 near 6.4 k.
+  // The side used: tile_frames, or for 0 the measured best (docs/performance.md): a multiple
+  // of 64 frames near 6.4 windows, at least 64 (64 at 30 fps, 256 at 120 fps).
   int tile_for(int window) const;
 };
 
@@ -50,7 +51,7 @@ struct PrunedSearchStatistics {
   double exact_seconds = 0.0;      // those tiles: D, minima, histogram and picture
   int tile_frames = 0;             // the tiles' side
   long long tiles = 0;             // tiles of the pair matrix
-  long long tiles_computed = 0;    // of them, run (flagged, or the mirror of a flagged one)
+  long long tiles_computed = 0;    // of them, run (the flagged ones)
   long long computed_pairs = 0;    // pairs in the computed tiles (their D was computed)
   long long defined_pairs = 0;     // pairs with a defined D (what the exhaustive stage computes)
 };
@@ -62,6 +63,9 @@ struct PrunedSearchStatistics {
 struct PrunedPlan {
   DistanceSettings distance;     // the tile side and threads the items are numbered for
   std::vector<long long> items;  // TileItems numbers to run, increasing; may be empty
+  // Per item, the tiles flagged (for_each_distance_tile's sides): a team that runs both tiles
+  // of each item gets the same result, with more pairs computed above the ceiling.
+  std::vector<unsigned char> sides;
 };
 
 // `statistics` may be null; it gets the plan's figures (the exact_seconds and computed_pairs

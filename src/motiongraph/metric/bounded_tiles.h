@@ -9,8 +9,9 @@
 // D >= that bound, so an unflagged tile's pairs all have D above the ceiling. The search is
 // exact (a tile is flagged only once such a pair is found): balls of consecutive windows (the
 // motion is smooth, so they are small) are tested by the triangle inequality of the bound's
-// square root, the tile's as a whole first, then balls of 8/5 of a window, then balls of a
-// fifth (at least 3 windows), then the pairs of the small balls that may meet, stopping at the first pair found.
+// square root, the tile's as a whole first, then middle balls of 8 small ones, then small ones
+// of a fifth of a window (at least 2 windows), one ball against 8 in one vectorised pass, then
+// the pairs of the small balls that may meet, stopping at the first pair found.
 #pragma once
 
 #include <vector>

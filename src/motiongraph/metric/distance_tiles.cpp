@@ -294,10 +294,17 @@ long long TileItems::tile_count(long long item) const {
   return i == j ? 1 : 2;
 }
 
-long long TileItems::pairs(long long item) const {
+long long TileItems::pairs(long long item) const { return pairs(item, 3); }
+
+long long TileItems::tile_count(long long item, unsigned char sides) const {
+  const auto [i, j] = tiles_of(item);
+  return i == j ? ((sides & 1) != 0 ? 1 : 0) : ((sides & 1) != 0 ? 1 : 0) + ((sides & 2) != 0 ? 1 : 0);
+}
+
+long long TileItems::pairs(long long item, unsigned char sides) const {
   const auto [i, j] = tiles_of(item);
   const long long rows = std::min(tile, frames - i * tile), cols = std::min(tile, frames - j * tile);
-  return rows * cols * tile_count(item);
+  return rows * cols * tile_count(item, sides);
 }
 
 TileItems tile_items(const FrameFeatures& f, const DistanceSettings& settings) {
@@ -311,17 +318,18 @@ TileItems tile_items(const FrameFeatures& f, const DistanceSettings& settings) {
 TileRunStatistics for_each_distance_tile(const FrameFeatures& features, const DistanceSettings& settings,
                                          const TileVisitor& visitor,
                                          const std::function<void(long long, long long)>& on_tile_done,
-                                         std::span<const long long> items) {
+                                         std::span<const long long> items, std::span<const unsigned char> sides) {
   const auto start = std::chrono::steady_clock::now();
   const TileItems grid = tile_items(features, settings);
   const int n = grid.frames;
   const int k = features.window;
   const long long item_count = items.empty() ? grid.count() : static_cast<long long>(items.size());
   auto item_at = [&](long long i) { return items.empty() ? i : items[static_cast<size_t>(i)]; };
+  auto sides_at = [&](long long i) -> unsigned char { return sides.empty() ? 3 : sides[static_cast<size_t>(i)]; };
   TileRunStatistics stats;
   for (long long i = 0; i < item_count; ++i) {
-    stats.tiles += grid.tile_count(item_at(i));
-    stats.pairs += grid.pairs(item_at(i));
+    stats.tiles += grid.tile_count(item_at(i), sides_at(i));
+    stats.pairs += grid.pairs(item_at(i), sides_at(i));
   }
   const int workers = static_cast<int>(std::min<long long>(worker_count(settings), std::max(1LL, item_count)));
   struct Scratch {
@@ -342,9 +350,12 @@ TileRunStatistics for_each_distance_tile(const FrameFeatures& features, const Di
     const int r0 = std::max(0, a0 - k), r1 = std::min(n, a0 + a_count + k);
     const int c0 = std::max(0, b0 - k), c1 = std::min(n, b0 + b_count + k);
     s.forward.compute(features, r0, r1 - r0, c0, c1 - c0);
-    visitor(s.worker.run(a0, a_count, b0, b_count, s.forward));
-    if (on_tile_done) on_tile_done(++done, stats.tiles);
-    if (ti != tj) {
+    const unsigned char side = sides_at(i);
+    if ((side & 1) != 0) {
+      visitor(s.worker.run(a0, a_count, b0, b_count, s.forward));
+      if (on_tile_done) on_tile_done(++done, stats.tiles);
+    }
+    if (ti != tj && (side & 2) != 0) {
       s.backward.transpose_from(s.forward);
       visitor(s.worker.run(b0, b_count, a0, a_count, s.backward));
       if (on_tile_done) on_tile_done(++done, stats.tiles);

@@ -43,6 +43,9 @@ struct TileItems {
   std::pair<int, int> tiles_of(long long item) const;  // (I, J)
   long long tile_count(long long item) const;          // 1 or 2
   long long pairs(long long item) const;               // frame pairs of its tiles
+  // The pairs of the tiles `sides` selects (see for_each_distance_tile), and their number.
+  long long pairs(long long item, unsigned char sides) const;
+  long long tile_count(long long item, unsigned char sides) const;
 };
 
 TileItems tile_items(const FrameFeatures& features, const DistanceSettings& settings);
@@ -58,12 +61,16 @@ struct TileRunStatistics {
 };
 
 // Progress is reported as tiles done through on_tile_done (may be empty). `items` are the work
-// items to run (TileItems numbers, each at most once); empty: all of them. The statistics count
-// the tiles and pairs run.
+// items to run (TileItems numbers, each at most once); empty: all of them. `sides` (empty, or
+// one per item): which of an item's tiles to visit, 1 for (I, J), 2 for (J, I), 3 for both (an
+// item of one tile, I = J, has only the first); the products are the item's either way, so a
+// tile's values do not depend on whether its mirror is visited. The statistics count the tiles
+// and pairs visited.
 TileRunStatistics for_each_distance_tile(const FrameFeatures& features, const DistanceSettings& settings,
                                          const TileVisitor& visitor,
                                          const std::function<void(long long done, long long total)>& on_tile_done = {},
-                                         std::span<const long long> items = {});
+                                         std::span<const long long> items = {},
+                                         std::span<const unsigned char> sides = {});
 
 // Times the three plain BLAS products the distance stage needs, over a whole N x N matrix in
 // tiles of the same size and on the same threads, without the diagonal sums: the ceiling

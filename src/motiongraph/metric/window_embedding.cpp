@@ -8,6 +8,8 @@
 
 #include <Eigen/Dense>
 
+#include "motiongraph/core/parallel_for.h"
+
 namespace mg {
 
 namespace {
@@ -65,11 +67,12 @@ Status WindowEmbeddingSettings::validate() const {
   if (per_frame_dims < 0) return Error{"", 0, "the embedding's dimensions per frame must be >= 0 (0: automatic)"};
   if (dims < 1) return Error{"", 0, "the embedding needs at least 1 dimension"};
   if (max_samples < 1) return Error{"", 0, "the embedding needs at least 1 sample"};
+  if (threads < 0) return Error{"", 0, "threads must be >= 0 (0: one per core)"};
   return Ok{};
 }
 
 int WindowEmbeddingSettings::per_frame_dims_for(int window) const {
-  return per_frame_dims > 0 ? per_frame_dims : std::clamp(240 / std::max(1, window), 6, 8);
+  return per_frame_dims > 0 ? per_frame_dims : std::clamp(240 / std::max(1, window), 6, 12);
 }
 
 double WindowEmbedding::bound(int s, int t) const {
@@ -100,16 +103,15 @@ Result<WindowEmbedding> make_window_embedding(const FrameFeatures& f, const Wind
   // the frame's floor coordinates by c adds c times it).
   Eigen::MatrixXcd floor(d1, n);
   Eigen::MatrixXd heights(d1, n);
-  {
+  parallel_for(n, worker_threads(settings.threads), 256, [&](int, long long i) {
+    const int frame = static_cast<int>(i);
     Eigen::VectorXcd values(points);
     Eigen::VectorXd y(points);
-    for (int frame = 0; frame < n; ++frame) {
-      frame_floor(frame, values.data());
-      frame_heights(frame, y.data());
-      floor.col(frame) = floor_basis.rows * values;
-      heights.col(frame) = height_basis.rows * (y - height_basis.mean);
-    }
-  }
+    frame_floor(frame, values.data());
+    frame_heights(frame, y.data());
+    floor.col(frame) = floor_basis.rows * values;
+    heights.col(frame) = height_basis.rows * (y - height_basis.mean);
+  });
   Eigen::VectorXcd root_weights(points);
   for (int p = 0; p < points; ++p) root_weights[p] = std::sqrt(f.point_weights[static_cast<size_t>(p)]);
   const Eigen::VectorXcd shift = floor_basis.rows * root_weights;
@@ -146,9 +148,10 @@ Result<WindowEmbedding> make_window_embedding(const FrameFeatures& f, const Wind
   out.window = k;
   out.coords.resize(static_cast<size_t>(windows) * out.stride());
   out.norms.resize(static_cast<size_t>(windows));
-  Eigen::VectorXcd floor_values(n_window);
-  Eigen::VectorXd height_values(n_window);
-  for (int s = 0; s < windows; ++s) {
+  parallel_for(windows, worker_threads(settings.threads), 256, [&](int, long long i) {
+    const int s = static_cast<int>(i);
+    Eigen::VectorXcd floor_values(n_window);
+    Eigen::VectorXd height_values(n_window);
     window_floor(s, floor_values.data());
     window_heights(s, height_values.data());
     const Eigen::VectorXcd e = window_floor_basis.rows * floor_values;
@@ -162,7 +165,7 @@ Result<WindowEmbedding> make_window_embedding(const FrameFeatures& f, const Wind
       row[2 * dims + d] = static_cast<float>(h[d]);
     }
     out.norms[static_cast<size_t>(s)] = norm;
-  }
+  });
   return out;
 }
 

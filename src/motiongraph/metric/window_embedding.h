@@ -31,13 +31,14 @@ namespace mg {
 
 struct WindowEmbeddingSettings {
   // Principal components of each frame's P values kept (for the floor coordinates and for the
-  // heights each); 0: 240 / k, from 6 to 8 (the window's bases are then found among at most
-  // 320 values; measured in docs/performance.md).
+  // heights each); 0: 240 / k, from 6 to 12 (the window's bases are then found among at most
+  // 240 values; measured in docs/performance.md).
   int per_frame_dims = 0;
-  int dims = 16;  // principal components of the window's kept, for each part
+  int dims = 24;  // principal components of the window's kept, for each part
   // The covariances are estimated on at most this many frames and windows (evenly strided):
   // any basis with orthonormal rows keeps the bound; more samples only fit it better.
   int max_samples = 2000;
+  int threads = 0;  // for projecting the frames and windows; 0: one per core
 
   Status validate() const;
   int per_frame_dims_for(int window) const;
