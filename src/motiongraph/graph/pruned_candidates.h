@@ -2,8 +2,8 @@
 // stage (candidates.h) up to a ceiling on D, found without computing the tiles that cannot
 // reach it.
 //
-// The yaw-invariant window embedding (metric/window_embedding.h) bounds D from below; a tile
-// of the pair matrix is computed only when one of its pairs has a bound at most the ceiling
+// The window embedding (metric/window_embedding.h) bounds D from below; a tile of the pair
+// matrix is computed only when one of its pairs has a bound at most the ceiling
 // (metric/bounded_tiles.h, with a relative slack of 1e-3 for the bound's float rounding). The
 // tiles computed are the exhaustive stage's own, with their halo: the same products, sums and
 // local-minimum test, so every value computed is the exhaustive stage's bit for bit at the
@@ -18,7 +18,9 @@
 // the picture's block minima are exact where at or below the ceiling, +infinity where a
 // block's defined pairs all lie above it, NaN where it has none. Minima above the ceiling are
 // dropped (the tiles left out would hold more). Memory is one tile per thread, as the
-// exhaustive stage's.
+// exhaustive stage's, plus the embedding (under 200 bytes a window) and a byte per tile for
+// the search's flags (N^2 / T^2: 16 MB for 262 144 frames in tiles of 64, 1 MB in tiles of
+// 256).
 //
 // Not used by `build` yet: docs/performance.md ("The search in vector passes, tiles of 64",
 // and what follows it) says how much faster it is and why build cannot use it as it is
