@@ -18,7 +18,7 @@
 // the picture's block minima are exact where at or below the ceiling, +infinity where a
 // block's defined pairs all lie above it, NaN where it has none. Minima above the ceiling are
 // dropped (the tiles left out would hold more). Memory is one tile per thread, as the
-// exhaustive stage's, plus the embedding (under 200 bytes a window) and a byte per tile for
+// exhaustive stage's, plus the embedding (about 300 bytes a window) and a byte per tile for
 // the search's flags (N^2 / T^2: 16 MB for 262 144 frames in tiles of 64, 1 MB in tiles of
 // 256).
 //
