@@ -19,6 +19,11 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The pairs with a defined D: a window can leave from a and arrive at b.
+long long defined_pairs(const FrameFeatures& f) {
+  return std::count(f.can_leave.begin(), f.can_leave.end(), 1) * std::count(f.can_arrive.begin(), f.can_arrive.end(), 1);
+}
+
 }  // namespace
 
 Status PrunedSearchSettings::validate() const {
@@ -52,9 +57,7 @@ Result<PrunedPlan> plan_pruned_search(const FrameFeatures& f, double ceiling, co
   const TileItems grid = tile_items(f, plan.distance);
   stats.tile_frames = grid.tile;
   stats.tiles = static_cast<long long>(grid.per_side) * grid.per_side;
-  const long long leaving = std::count(f.can_leave.begin(), f.can_leave.end(), 1);
-  const long long arriving = std::count(f.can_arrive.begin(), f.can_arrive.end(), 1);
-  stats.defined_pairs = leaving * arriving;
+  stats.defined_pairs = defined_pairs(f);
   if (stats.defined_pairs == 0) return plan;
   WindowEmbeddingSettings embedding_settings = pruned.embedding;
   if (embedding_settings.threads == 0) embedding_settings.threads = pruned.threads;
@@ -85,10 +88,8 @@ void finish_pruned_search(const FrameFeatures& f, double ceiling, CandidateSearc
   std::erase_if(search.minima, [ceiling](const Transition& t) { return !(t.distance <= ceiling); });
   // The histogram holds every defined pair of the computed tiles: those above the ceiling's
   // bin join the pairs left out in the overflow bin.
-  const long long leaving = std::count(f.can_leave.begin(), f.can_leave.end(), 1);
-  const long long arriving = std::count(f.can_arrive.begin(), f.can_arrive.end(), 1);
   search.histogram.fold_above(ceiling);
-  search.histogram.add_above(static_cast<std::uint64_t>(leaving * arriving) - search.histogram.total());
+  search.histogram.add_above(static_cast<std::uint64_t>(defined_pairs(f)) - search.histogram.total());
   // Pixels: exact at or below the ceiling; +infinity where the defined pairs all lie above it
   // (the pixel was not computed, or its smallest computed D is above).
   const int block = search.picture_block, side = search.picture_side;

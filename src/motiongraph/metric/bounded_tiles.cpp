@@ -16,55 +16,33 @@ namespace {
 
 // Windows [begin, end) in a ball: their mean as centre (any point of the space will do: the
 // distance up to rotation obeys the triangle inequality; consecutive windows face alike, so
-// their mean lies close to them all) and the radius that holds them. The centre is kept in
-// float, planar (real parts, imaginary parts, heights, each padded to a multiple of 8), for the
-// vectorised test below.
-constexpr int kLanes = 8;
-
+// their mean lies close to them all), kept in float as the windows are (the embedding's
+// layout), and the radius that holds them.
 struct Ball {
-  std::vector<float> centre;  // 3 * padded dims
-  float norm = 0.0f;          // the complex part's squared norm
-  float scale = 0.0f;         // norm plus the heights' squared norm: what rounding is relative to
+  std::vector<float> centre;  // WindowEmbedding::stride() values
+  double norm = 0.0;          // the complex part's squared norm, of the floats
+  double scale = 0.0;         // norm plus the heights' squared norm: what rounding is relative to
   double radius = 0.0;
 };
 
-int padded(int dims) { return (dims + kLanes - 1) / kLanes * kLanes; }
-
 Ball ball_of(const WindowEmbedding& e, int begin, int end) {
-  const int stride = e.stride(), dims = e.dims, width = padded(dims);
+  const int stride = e.stride(), dims = e.dims;
   Ball ball;
-  ball.centre.assign(static_cast<size_t>(3 * width), 0.0f);
+  ball.centre.assign(static_cast<size_t>(stride), 0.0f);
   if (begin >= end) return ball;
-  std::vector<double> centre(static_cast<size_t>(stride), 0.0);
+  std::vector<double> sum(static_cast<size_t>(stride), 0.0);
   for (int s = begin; s < end; ++s) {
     const float* row = &e.coords[static_cast<size_t>(s) * stride];
-    for (int d = 0; d < stride; ++d) centre[static_cast<size_t>(d)] += row[d];
+    for (int d = 0; d < stride; ++d) sum[static_cast<size_t>(d)] += row[d];
   }
-  for (double& c : centre) c /= end - begin;
-  double norm = 0.0, heights = 0.0;
-  for (int d = 0; d < dims; ++d) {
-    const double re = centre[static_cast<size_t>(2 * d)], im = centre[static_cast<size_t>(2 * d + 1)];
-    const double h = centre[static_cast<size_t>(2 * dims + d)];
-    ball.centre[static_cast<size_t>(d)] = static_cast<float>(re);
-    ball.centre[static_cast<size_t>(width + d)] = static_cast<float>(im);
-    ball.centre[static_cast<size_t>(2 * width + d)] = static_cast<float>(h);
-    norm += re * re + im * im;
-    heights += h * h;
+  for (int d = 0; d < stride; ++d) {
+    const float c = static_cast<float>(sum[static_cast<size_t>(d)] / (end - begin));
+    ball.centre[static_cast<size_t>(d)] = c;
+    (d < 2 * dims ? ball.norm : ball.scale) += static_cast<double>(c) * c;
   }
-  ball.norm = static_cast<float>(norm);
-  ball.scale = static_cast<float>(norm + heights);
-  // The radius from the centre as stored (float), in double.
-  std::vector<double> stored(static_cast<size_t>(stride));
-  double stored_norm = 0.0;
-  for (int d = 0; d < dims; ++d) {
-    stored[static_cast<size_t>(2 * d)] = ball.centre[static_cast<size_t>(d)];
-    stored[static_cast<size_t>(2 * d + 1)] = ball.centre[static_cast<size_t>(width + d)];
-    stored[static_cast<size_t>(2 * dims + d)] = ball.centre[static_cast<size_t>(2 * width + d)];
-    stored_norm += stored[static_cast<size_t>(2 * d)] * stored[static_cast<size_t>(2 * d)] +
-                   stored[static_cast<size_t>(2 * d + 1)] * stored[static_cast<size_t>(2 * d + 1)];
-  }
+  ball.scale += ball.norm;
   for (int s = begin; s < end; ++s) {
-    const double squared = rotation_distance_squared(stored.data(), stored_norm,
+    const double squared = rotation_distance_squared(ball.centre.data(), ball.norm,
                                                      &e.coords[static_cast<size_t>(s) * stride],
                                                      e.norms[static_cast<size_t>(s)], dims);
     ball.radius = std::max(ball.radius, std::sqrt(squared));
@@ -72,82 +50,58 @@ Ball ball_of(const WindowEmbedding& e, int begin, int end) {
   return ball;
 }
 
-// rotation_distance_squared of two planar float centres of `width` values per part, in float:
-// kLanes partial sums, so that the loops vectorise without reordering a reduction.
-MG_VECTOR_CLONES float centre_distance_squared(int width, const float* __restrict x, const float* __restrict y,
-                                               float nx, float ny) {
-  float re[kLanes] = {}, im[kLanes] = {}, heights[kLanes] = {};
-  for (int d = 0; d < width; d += kLanes) {
-    for (int l = 0; l < kLanes; ++l) {
-      const float xr = x[d + l], xi = x[width + d + l], yr = y[d + l], yi = y[width + d + l];
-      const float diff = x[2 * width + d + l] - y[2 * width + d + l];
-      re[l] += xr * yr + xi * yi;
-      im[l] += xr * yi - xi * yr;
-      heights[l] += diff * diff;
-    }
-  }
-  float r = 0.0f, i = 0.0f, h = 0.0f;
-  for (int l = 0; l < kLanes; ++l) {
-    r += re[l];
-    i += im[l];
-    h += heights[l];
-  }
-  return std::max(0.0f, nx + ny - 2.0f * std::sqrt(r * r + i * i)) + h;
-}
-
-// Whether two balls can hold a pair within `reach` of each other. The float distance errs by
-// a few units in the last place of the squared norms; 1e-5 of them is spared, so a pair that
-// can meet is never ruled out (exact decisions are the pairs' own).
-bool may_meet(const Ball& x, const Ball& y, double reach, int width) {
-  const double squared = centre_distance_squared(width, x.centre.data(), y.centre.data(), x.norm, y.norm);
+// Whether two balls can hold a pair within `reach` of each other (in double, as the pairs'
+// bound; a hair of slack: exact decisions are the pairs' own).
+bool may_meet(const Ball& x, const Ball& y, double reach, int dims) {
+  const double squared = rotation_distance_squared(x.centre.data(), x.norm, y.centre.data(), y.norm, dims);
   const double r = reach + x.radius + y.radius;
-  return squared <= r * r + 1e-5 * (static_cast<double>(x.scale) + y.scale) + 1e-12;
+  return squared <= r * r * (1.0 + 1e-9) + 1e-12;
 }
 
-// The kLanes small balls of a middle one, side by side (structure of arrays: for each value
-// of the planar centre, the balls' values), so that one ball is tested against all of them in
-// one vectorised pass.
+// kLanes balls side by side (structure of arrays: for each value of the centre, the balls'
+// values), so that one ball is tested against all of them in one vectorised pass.
+constexpr int kLanes = 8;
 constexpr int kSmallPerMiddle = kLanes;
 
 struct Group {
-  std::vector<float> centres;  // 3 * width values x kLanes balls
-  float norm[kLanes] = {}, scale[kLanes] = {};
-  double radius[kLanes] = {};
+  std::vector<float> centres;  // stride values x kLanes balls
+  float norm[kLanes] = {};
+  double scale[kLanes] = {}, radius[kLanes] = {};
 };
 
-Group group_of(std::span<const Ball> balls, int width) {
+Group group_of(std::span<const Ball> balls, int stride) {
   Group g;
-  g.centres.assign(static_cast<size_t>(3 * width * kLanes), 0.0f);
+  g.centres.assign(static_cast<size_t>(stride * kLanes), 0.0f);
   for (size_t l = 0; l < balls.size() && l < static_cast<size_t>(kLanes); ++l) {
-    for (int v = 0; v < 3 * width; ++v) {
+    for (int v = 0; v < stride; ++v) {
       g.centres[static_cast<size_t>(v) * kLanes + l] = balls[l].centre[static_cast<size_t>(v)];
     }
-    g.norm[l] = balls[l].norm;
+    g.norm[l] = static_cast<float>(balls[l].norm);
     g.scale[l] = balls[l].scale;
     g.radius[l] = balls[l].radius;
   }
   return g;
 }
 
-// out[l] = centre_distance_squared of centre x and the group's ball l, for all kLanes at once
-// (a vector of kLanes floats per sum: GCC's and Clang's vector extension). A first pass over the
-// heights alone, to skip the floor part when no ball is near, measured slower (3.1 s against
-// 2.2 s on the 8-subject library): rarely are all kLanes far.
+// out[l] = rotation_distance_squared of centre x and the group's ball l, in float, for all
+// kLanes at once (a vector of kLanes floats per sum: GCC's and Clang's vector extension). A
+// first pass over the heights alone, to skip the floor part when no ball is near, measured
+// slower (3.1 s against 2.2 s on the 8-subject library): rarely are all kLanes far.
 using Lanes = float __attribute__((vector_size(kLanes * sizeof(float))));
 
-MG_VECTOR_CLONES void group_distances_squared(int width, const float* __restrict x, float nx,
+MG_VECTOR_CLONES void group_distances_squared(int dims, const float* __restrict x, float nx,
                                               const float* __restrict centres, const float* __restrict norms,
                                               float* __restrict out) {
   Lanes re = {}, im = {}, heights = {};
-  for (int d = 0; d < width; ++d) {
+  for (int d = 0; d < dims; ++d) {
     Lanes yr, yi, yh;
-    std::memcpy(&yr, centres + static_cast<size_t>(d) * kLanes, sizeof(Lanes));
-    std::memcpy(&yi, centres + static_cast<size_t>(width + d) * kLanes, sizeof(Lanes));
-    std::memcpy(&yh, centres + static_cast<size_t>(2 * width + d) * kLanes, sizeof(Lanes));
-    const float xr = x[d], xi = x[width + d];
+    std::memcpy(&yr, centres + static_cast<size_t>(2 * d) * kLanes, sizeof(Lanes));
+    std::memcpy(&yi, centres + static_cast<size_t>(2 * d + 1) * kLanes, sizeof(Lanes));
+    std::memcpy(&yh, centres + static_cast<size_t>(2 * dims + d) * kLanes, sizeof(Lanes));
+    const float xr = x[2 * d], xi = x[2 * d + 1];
     re += xr * yr + xi * yi;
     im += xr * yi - xi * yr;
-    const Lanes diff = x[2 * width + d] - yh;
+    const Lanes diff = x[2 * dims + d] - yh;
     heights += diff * diff;
   }
   for (int l = 0; l < kLanes; ++l) {
@@ -155,15 +109,16 @@ MG_VECTOR_CLONES void group_distances_squared(int width, const float* __restrict
   }
 }
 
-// Which of the group's balls may hold a pair within `reach` of ball x's (bit l for ball l),
-// with may_meet's slack.
-unsigned group_may_meet(const Ball& x, const Group& g, double reach, int width) {
+// Which of the group's balls may hold a pair within `reach` of ball x's (bit l for ball l).
+// The float distance errs by a few units in the last place of the squared norms; 1e-5 of them
+// is spared, so a pair that can meet is never ruled out.
+unsigned group_may_meet(const Ball& x, const Group& g, double reach, int dims) {
   float squared[kLanes];
-  group_distances_squared(width, x.centre.data(), x.norm, g.centres.data(), g.norm, squared);
+  group_distances_squared(dims, x.centre.data(), static_cast<float>(x.norm), g.centres.data(), g.norm, squared);
   unsigned meets = 0;
   for (int l = 0; l < kLanes; ++l) {
     const double r = reach + x.radius + g.radius[l];
-    if (squared[l] <= r * r + 1e-5 * (static_cast<double>(x.scale) + g.scale[l]) + 1e-12) meets |= 1u << l;
+    if (squared[l] <= r * r + 1e-5 * (x.scale + g.scale[l]) + 1e-12) meets |= 1u << l;
   }
   return meets;
 }
@@ -177,7 +132,6 @@ long long BoundedTiles::count() const {
 BoundedTiles find_bounded_tiles(const FrameFeatures& f, const WindowEmbedding& e, int tile, double ceiling,
                                 int threads) {
   const int n = f.frames, k = e.window, windows = e.windows, dims = e.dims, stride = e.stride();
-  const int width = padded(dims);
   BoundedTiles out;
   out.tile = std::max(1, tile);
   out.per_side = (n + out.tile - 1) / out.tile;
@@ -185,6 +139,7 @@ BoundedTiles find_bounded_tiles(const FrameFeatures& f, const WindowEmbedding& e
   out.flags.assign(static_cast<size_t>(per_side) * per_side, 0);
   if (per_side == 0 || !(ceiling >= 0.0)) return out;
   const double reach = std::sqrt(ceiling);
+  const int workers = worker_threads(threads);
   // Tile I's leaving windows start at its rows a; its arrival windows at b - k + 1 for its
   // columns b (those that start inside the matrix).
   auto leaving = [&](int i) {
@@ -200,7 +155,7 @@ BoundedTiles find_bounded_tiles(const FrameFeatures& f, const WindowEmbedding& e
   const int size = std::max(2, k / 5), middle_size = kSmallPerMiddle * size;
   auto balls_of_size = [&](int ball_size) {
     std::vector<Ball> balls(static_cast<size_t>((windows + ball_size - 1) / ball_size));
-    parallel_for(static_cast<long long>(balls.size()), worker_threads(threads), 64, [&](int, long long b) {
+    parallel_for(static_cast<long long>(balls.size()), workers, 64, [&](int, long long b) {
       const int s = static_cast<int>(b) * ball_size;
       balls[static_cast<size_t>(b)] = ball_of(e, s, std::min(windows, s + ball_size));
     });
@@ -211,22 +166,21 @@ BoundedTiles find_bounded_tiles(const FrameFeatures& f, const WindowEmbedding& e
   // groups[m]: middle ball m's small balls; middle_groups[g]: middle balls kLanes g on.
   auto groups_of = [&](const std::vector<Ball>& balls) {
     std::vector<Group> out_groups((balls.size() + kLanes - 1) / kLanes);
-    parallel_for(static_cast<long long>(out_groups.size()), worker_threads(threads), 64, [&](int, long long g) {
+    parallel_for(static_cast<long long>(out_groups.size()), workers, 64, [&](int, long long g) {
       const size_t first = static_cast<size_t>(g) * kLanes;
       out_groups[static_cast<size_t>(g)] =
-          group_of(std::span<const Ball>(balls).subspan(first, std::min<size_t>(kLanes, balls.size() - first)), width);
+          group_of(std::span<const Ball>(balls).subspan(first, std::min<size_t>(kLanes, balls.size() - first)), stride);
     });
     return out_groups;
   };
   const std::vector<Group> groups = groups_of(small), middle_groups = groups_of(middle);
   std::vector<Ball> leave_ball(static_cast<size_t>(per_side)), arrive_ball(static_cast<size_t>(per_side));
-  parallel_for(per_side, worker_threads(threads), 1, [&](int, long long i) {
+  parallel_for(per_side, workers, 1, [&](int, long long i) {
     const auto [a0, a1] = leaving(static_cast<int>(i));
     const auto [s0, s1] = arriving(static_cast<int>(i));
     leave_ball[static_cast<size_t>(i)] = ball_of(e, a0, a1);
     arrive_ball[static_cast<size_t>(i)] = ball_of(e, s0, s1);
   });
-  const int workers = worker_threads(threads);
   std::vector<long long> summed(static_cast<size_t>(workers), 0);
   // Whether windows [a0, a1) x [s0, s1) hold a pair (leaving, arriving) within the ceiling.
   // |<E_a, E_s>| <= |E_a| |E_s|, so (|E_a| - |E_s|)^2 plus the heights' part bounds a pair's
@@ -262,27 +216,27 @@ BoundedTiles find_bounded_tiles(const FrameFeatures& f, const WindowEmbedding& e
     const auto [s0, s1] = arriving(j);
     if (a0 >= a1 || s0 >= s1) return false;
     const Ball& arrivals = arrive_ball[static_cast<size_t>(j)];
-    if (!may_meet(leave_ball[static_cast<size_t>(i)], arrivals, reach, width)) return false;
+    if (!may_meet(leave_ball[static_cast<size_t>(i)], arrivals, reach, dims)) return false;
     const int mj_first = s0 / middle_size, mj_last = (s1 - 1) / middle_size;
     for (int mi = a0 / middle_size; mi * middle_size < a1; ++mi) {
       const Ball& mx = middle[static_cast<size_t>(mi)];
-      if (!may_meet(mx, arrivals, reach, width)) continue;
+      if (!may_meet(mx, arrivals, reach, dims)) continue;
       const int ma0 = std::max(a0, mi * middle_size), ma1 = std::min(a1, mi * middle_size + middle_size);
       unsigned near_mx = 0;
       for (int mj = mj_first; mj <= mj_last; ++mj) {
         if (mj == mj_first || mj % kLanes == 0) {
-          near_mx = group_may_meet(mx, middle_groups[static_cast<size_t>(mj / kLanes)], reach, width);
+          near_mx = group_may_meet(mx, middle_groups[static_cast<size_t>(mj / kLanes)], reach, dims);
         }
         if ((near_mx >> (mj % kLanes) & 1u) == 0) continue;
         const Ball& my = middle[static_cast<size_t>(mj)];
         const int ms0 = std::max(s0, mj * middle_size), ms1 = std::min(s1, mj * middle_size + middle_size);
         // The small balls of mx that may meet my, then for each the small balls of my it may
         // meet: kLanes tests in one pass each.
-        const unsigned near_my = group_may_meet(my, groups[static_cast<size_t>(mi)], reach, width);
+        const unsigned near_my = group_may_meet(my, groups[static_cast<size_t>(mi)], reach, dims);
         for (int bi = ma0 / size; bi * size < ma1; ++bi) {
           if ((near_my >> (bi - mi * kSmallPerMiddle) & 1u) == 0) continue;
           const unsigned near_x =
-              group_may_meet(small[static_cast<size_t>(bi)], groups[static_cast<size_t>(mj)], reach, width);
+              group_may_meet(small[static_cast<size_t>(bi)], groups[static_cast<size_t>(mj)], reach, dims);
           for (int bj = ms0 / size; bj * size < ms1; ++bj) {
             if ((near_x >> (bj - mj * kSmallPerMiddle) & 1u) == 0) continue;
             if (pair_within(std::max(ma0, bi * size), std::min(ma1, bi * size + size), std::max(ms0, bj * size),
