@@ -289,16 +289,14 @@ std::pair<int, int> TileItems::tiles_of(long long item) const {
   return {static_cast<int>(low), static_cast<int>(low + item - row_start(low))};
 }
 
-long long TileItems::tile_count(long long item) const {
-  const auto [i, j] = tiles_of(item);
-  return i == j ? 1 : 2;
-}
+long long TileItems::tile_count(long long item) const { return tile_count(item, 3); }
 
 long long TileItems::pairs(long long item) const { return pairs(item, 3); }
 
 long long TileItems::tile_count(long long item, unsigned char sides) const {
   const auto [i, j] = tiles_of(item);
-  return i == j ? ((sides & 1) != 0 ? 1 : 0) : ((sides & 1) != 0 ? 1 : 0) + ((sides & 2) != 0 ? 1 : 0);
+  const int first = (sides & 1) != 0 ? 1 : 0, mirror = (sides & 2) != 0 ? 1 : 0;
+  return i == j ? first : first + mirror;
 }
 
 long long TileItems::pairs(long long item, unsigned char sides) const {
