@@ -8,7 +8,7 @@ namespace mg {
 Result<std::vector<ConsistencyRow>> sweep_consistency(const MotionDatabase& db, const FrameFeatures& features,
                                                       const CandidateSearch& candidates,
                                                       const GraphFromCandidatesSettings& settings,
-                                                      std::span<const double> quantiles) {
+                                                      std::span<const double> quantiles, OnDemandCandidates* more) {
   if (db.clips.empty()) return Error{"", 0, "the database has no clip"};
   const int target = db.clips.front().skeleton;
   const Vec3 forward_axis = learn_forward_axes(db)[target];
@@ -27,7 +27,7 @@ Result<std::vector<ConsistencyRow>> sweep_consistency(const MotionDatabase& db, 
     rows.push_back(row);
     return Ok{};
   };
-  if (auto s = for_each_threshold(db, features, candidates, settings, quantiles, visit); !s) return s.error();
+  if (auto s = for_each_threshold(db, features, candidates, settings, quantiles, visit, more); !s) return s.error();
   return rows;
 }
 

@@ -22,6 +22,7 @@ struct ConsistencyRow {
 Result<std::vector<ConsistencyRow>> sweep_consistency(const MotionDatabase& db, const FrameFeatures& features,
                                                       const CandidateSearch& candidates,
                                                       const GraphFromCandidatesSettings& settings,
-                                                      std::span<const double> quantiles);
+                                                      std::span<const double> quantiles,
+                                                      OnDemandCandidates* more = nullptr);
 
 }  // namespace mg

@@ -49,7 +49,8 @@ Result<std::vector<FootSlideSweepRow>> sweep_foot_slide(const MotionDatabase& db
                                                         const GraphFromCandidatesSettings& settings,
                                                         std::span<const double> quantiles,
                                                         std::span<const std::string> shapes,
-                                                        const PathSynthesisSettings& path_settings) {
+                                                        const PathSynthesisSettings& path_settings,
+                                                        OnDemandCandidates* more) {
   for (const std::string& shape : shapes) {
     if (auto path = make_shape(shape); !path) return path.error();
   }
@@ -77,7 +78,7 @@ Result<std::vector<FootSlideSweepRow>> sweep_foot_slide(const MotionDatabase& db
     }
     return Ok{};
   };
-  if (auto s = for_each_threshold(db, features, candidates, settings, quantiles, visit); !s) return s.error();
+  if (auto s = for_each_threshold(db, features, candidates, settings, quantiles, visit, more); !s) return s.error();
   return rows;
 }
 

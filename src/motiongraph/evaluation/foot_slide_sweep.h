@@ -38,6 +38,7 @@ Result<std::vector<FootSlideSweepRow>> sweep_foot_slide(const MotionDatabase& db
                                                         const GraphFromCandidatesSettings& settings,
                                                         std::span<const double> quantiles,
                                                         std::span<const std::string> shapes,
-                                                        const PathSynthesisSettings& path_settings = {});
+                                                        const PathSynthesisSettings& path_settings = {},
+                                                        OnDemandCandidates* more = nullptr);
 
 }  // namespace mg

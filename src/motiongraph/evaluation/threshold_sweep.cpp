@@ -13,15 +13,24 @@ std::vector<double> log_spaced(double lowest, double highest, int count) {
   return values;
 }
 
+std::vector<double> quantiles_below_ceiling(const CandidateSearch& candidates, std::span<const double> quantiles) {
+  std::vector<double> kept;
+  for (const double q : quantiles) {
+    if (candidates.ceiling < 0.0 || candidates.histogram.quantile(q) <= candidates.ceiling) kept.push_back(q);
+  }
+  return kept;
+}
+
 Status for_each_threshold(
     const MotionDatabase& db, const FrameFeatures& features, const CandidateSearch& candidates,
     const GraphFromCandidatesSettings& settings, std::span<const double> quantiles,
-    const std::function<Status(double quantile, const TransitionsWithBridges&, const Result<PrunedGraph>&)>& visit) {
+    const std::function<Status(double quantile, const TransitionsWithBridges&, const Result<PrunedGraph>&)>& visit,
+    OnDemandCandidates* more) {
   for (const double quantile : quantiles) {
     GraphFromCandidatesSettings at = settings;
     at.transitions.threshold = -1.0;
     at.transitions.threshold_quantile = quantile;
-    auto selected = select_transitions_with_bridges(db, features, candidates, at);
+    auto selected = select_transitions_with_bridges(db, features, candidates, at, more);
     if (!selected) return selected.error();
     const Result<PrunedGraph> pruned = build_spaced_graph(db, *selected, features, at);
     // Nothing left after pruning is a measurement (the visitor's row keeps nothing); any other
@@ -35,7 +44,8 @@ Status for_each_threshold(
 Result<std::vector<ThresholdSweepRow>> sweep_thresholds(const MotionDatabase& db, const FrameFeatures& features,
                                                         const CandidateSearch& candidates,
                                                         const GraphFromCandidatesSettings& settings,
-                                                        std::span<const double> quantiles) {
+                                                        std::span<const double> quantiles,
+                                                        OnDemandCandidates* more) {
   std::vector<ThresholdSweepRow> rows;
   auto visit = [&](double quantile, const TransitionsWithBridges& selected, const Result<PrunedGraph>& pruned) -> Status {
     ThresholdSweepRow row;
@@ -60,7 +70,7 @@ Result<std::vector<ThresholdSweepRow>> sweep_thresholds(const MotionDatabase& db
     rows.push_back(row);
     return Ok{};
   };
-  if (auto s = for_each_threshold(db, features, candidates, settings, quantiles, visit); !s) return s.error();
+  if (auto s = for_each_threshold(db, features, candidates, settings, quantiles, visit, more); !s) return s.error();
   return rows;
 }
 

@@ -34,16 +34,24 @@ std::vector<double> log_spaced(double lowest, double highest, int count);
 // For each quantile in turn: the transitions selected at it (with bridges) and the pruned
 // graph, or the ErrorKind::kEmptyGraph error pruning gave (nothing would remain). `settings`
 // as the graph was built; its threshold is replaced. Stops at the first error selection,
-// building or pruning (other than nothing remaining) or `visit` returns.
+// building or pruning (other than nothing remaining) or `visit` returns. `more`: as
+// select_transitions_with_bridges takes it (a graph built by the pruned stage); such a graph's
+// candidates know the thresholds up to its ceiling only (quantiles_below_ceiling).
 Status for_each_threshold(
     const MotionDatabase& db, const FrameFeatures& features, const CandidateSearch& candidates,
     const GraphFromCandidatesSettings& settings, std::span<const double> quantiles,
-    const std::function<Status(double quantile, const TransitionsWithBridges&, const Result<PrunedGraph>&)>& visit);
+    const std::function<Status(double quantile, const TransitionsWithBridges&, const Result<PrunedGraph>&)>& visit,
+    OnDemandCandidates* more = nullptr);
+
+// The quantiles whose threshold lies at or below the candidates' ceiling (all of them for the
+// exhaustive stage's).
+std::vector<double> quantiles_below_ceiling(const CandidateSearch& candidates, std::span<const double> quantiles);
 
 // One row per quantile.
 Result<std::vector<ThresholdSweepRow>> sweep_thresholds(const MotionDatabase& db, const FrameFeatures& features,
                                                         const CandidateSearch& candidates,
                                                         const GraphFromCandidatesSettings& settings,
-                                                        std::span<const double> quantiles);
+                                                        std::span<const double> quantiles,
+                                                        OnDemandCandidates* more = nullptr);
 
 }  // namespace mg

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 
 #include <nlohmann/json.hpp>
 
@@ -72,7 +73,8 @@ int bridge_blend_frames(const MotionDatabase& db, const Transition& bridge, int 
 
 BridgeSelection select_bridges(std::span<const Transition> candidates, std::span<const Transition> selected,
                                std::span<const TagMask> frame_tags, std::span<const std::vector<char>> cores,
-                               int window, const BridgeSettings& settings) {
+                               int window, const BridgeSettings& settings, std::span<const Transition> above,
+                               std::span<const double> levels) {
   BridgeSelection out;
   std::vector<Transition>& bridges = out.bridges;
   if (settings.per_tag_pair == 0 || frame_tags.empty()) return out;
@@ -83,7 +85,7 @@ BridgeSelection select_bridges(std::span<const Transition> candidates, std::span
            !cores[u].empty() && cores[s][t.from_frame] && cores[u][t.to_frame];
   };
   // Which ordered pairs of tags (s, u), s != u, the selected transitions already join, core to core.
-  constexpr int kTags = 64;
+  constexpr int kTags = kBridgeTags;
   std::vector<char> joined(kTags * kTags, 0);
   for (const Transition& t : selected) {
     const TagMask from = leaving(t), to = arriving(t);
@@ -99,10 +101,14 @@ BridgeSelection select_bridges(std::span<const Transition> candidates, std::span
   // the (stable) sort leaves their order as it was and spares sorting millions of candidates
   // at every threshold the automatic choice tries.
   std::vector<const Transition*> by_distance;
-  for (const Transition& c : candidates) {
-    const TagMask from = leaving(c), to = arriving(c);
-    if ((from & ~to) != 0 && (to & ~from) != 0) by_distance.push_back(&c);
+  for (std::span<const Transition> part : {candidates, above}) {
+    for (const Transition& c : part) {
+      const TagMask from = leaving(c), to = arriving(c);
+      if ((from & ~to) != 0 && (to & ~from) != 0) by_distance.push_back(&c);
+    }
   }
+  constexpr double kAll = std::numeric_limits<double>::infinity();
+  auto level = [&](int pair) { return levels.empty() ? kAll : levels[static_cast<size_t>(pair)]; };
   std::stable_sort(by_distance.begin(), by_distance.end(),
                    [](const Transition* x, const Transition* y) { return x->distance < y->distance; });
   std::vector<std::vector<const Transition*>> chosen(kTags * kTags);
@@ -115,7 +121,7 @@ BridgeSelection select_bridges(std::span<const Transition> candidates, std::span
       for (int u = 0; u < kTags; ++u) {
         // A bridge leaves frames of s that are not u and lands on frames of u that are not s.
         if (u == s || !(to >> u & 1) || (from >> u & 1) || (to >> s & 1) || joined[s * kTags + u]) continue;
-        if (!in_cores(s, u, *c)) continue;
+        if (!in_cores(s, u, *c) || c->distance > level(s * kTags + u)) continue;
         if (best[s * kTags + u] < 0.0f) best[s * kTags + u] = c->distance;  // candidates come by D
         if (capped && c->distance > settings.max_distance) continue;
         auto& list = chosen[s * kTags + u];
@@ -140,6 +146,17 @@ BridgeSelection select_bridges(std::span<const Transition> candidates, std::span
     return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
   });
   const int tag_count = std::min(kTags, static_cast<int>(cores.size()));
+  // The pairs short of bridges with candidates above their level still to look at.
+  for (int s = 0; s < tag_count; ++s) {
+    for (int u = 0; u < tag_count; ++u) {
+      const int pair = s * kTags + u;
+      if (u == s || !(settings.tags >> s & 1) || !(settings.tags >> u & 1) || joined[pair] || cores[s].empty() ||
+          cores[u].empty() || static_cast<int>(chosen[pair].size()) >= settings.per_tag_pair || level(pair) == kAll) {
+        continue;
+      }
+      if (!(capped && level(pair) >= settings.max_distance && best[pair] >= 0.0f)) out.incomplete.push_back({s, u});
+    }
+  }
   for (int s = 0; s < tag_count; ++s) {
     for (int u = 0; u < tag_count; ++u) {
       const int pair = s * kTags + u;

@@ -53,10 +53,22 @@ struct UnjoinedPair {
   float best_distance = -1.0f;  // the lowest D of a candidate that would bridge them; < 0: none
 };
 
+struct TagPair {
+  int from_tag = 0;
+  int to_tag = 0;
+  bool operator==(const TagPair&) const = default;
+};
+
 struct BridgeSelection {
   std::vector<Transition> bridges;      // sorted by (from_frame, to_frame)
   std::vector<UnjoinedPair> unjoined;   // by (from_tag, to_tag)
+  // Pairs short of bridges whose level leaves candidates to look at (see select_bridges): the
+  // selection is final only when this is empty.
+  std::vector<TagPair> incomplete;
 };
+
+// Levels are kept per ordered pair of tags, at from_tag * kBridgeTags + to_tag.
+inline constexpr int kBridgeTags = 64;
 
 // The frames a bridge of distance D blends over, for window k and the threshold of the
 // transitions: k sqrt(D / threshold) rounded (the distance an RMS point error of D spreads
@@ -78,8 +90,17 @@ Result<std::vector<char>> tag_core_frames(const MotionDatabase& db, std::span<co
 // gets no bridges), and its D is at most max_distance. Every ordered pair of distinct tags of
 // settings.tags with a core or candidates, joined by neither a selected transition nor a
 // bridge, is listed in `unjoined`.
+//
+// `candidates` and `above` (each sorted by (from_frame, to_frame), every D of `above` larger
+// than every D of `candidates`) are the local minima known. Empty `levels`: they are all of
+// them. Else, kBridgeTags^2 D levels: for bridging s to u they hold every minimum leaving a
+// frame of s and arriving at a frame of u with D at most levels[s * kBridgeTags + u] (+infinity:
+// all), and the ones above it are not looked at. A pair whose bridges could still change with
+// candidates above its level is listed in `incomplete`: raise its level (on_demand_candidates.h)
+// and select again. The selection with no pair incomplete is the one all the minima give.
 BridgeSelection select_bridges(std::span<const Transition> candidates, std::span<const Transition> selected,
-                                       std::span<const TagMask> frame_tags, std::span<const std::vector<char>> cores,
-                                       int window, const BridgeSettings& settings);
+                               std::span<const TagMask> frame_tags, std::span<const std::vector<char>> cores,
+                               int window, const BridgeSettings& settings, std::span<const Transition> above = {},
+                               std::span<const double> levels = {});
 
 }  // namespace mg

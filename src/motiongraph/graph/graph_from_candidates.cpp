@@ -34,6 +34,10 @@ Result<TagMask> tag_mask_of(const MotionDatabase& db, std::span<const std::strin
   return mask;
 }
 
+bool connected_bridges(const GraphFromCandidatesSettings& settings) {
+  return settings.connected_tags != 0 && settings.bridges.per_tag_pair > 0;
+}
+
 Status GraphFromCandidatesSettings::validate() const {
   if (auto s = transitions.validate(); !s) return s;
   if (auto s = spacing.validate(); !s) return s;
@@ -42,8 +46,12 @@ Status GraphFromCandidatesSettings::validate() const {
 
 Result<TransitionsWithBridges> select_transitions_with_bridges(const MotionDatabase& db, const FrameFeatures& features,
                                                                const CandidateSearch& candidates,
-                                                               const GraphFromCandidatesSettings& settings) {
+                                                               const GraphFromCandidatesSettings& settings,
+                                                               OnDemandCandidates* more) {
   if (auto s = settings.validate(); !s) return s.error();
+  if (candidates.ceiling >= 0.0 && more == nullptr && connected_bridges(settings)) {
+    return Error{"", 0, "bridges on the pruned distance stage's candidates need the minima above its ceiling"};
+  }
   TransitionsWithBridges out;
   const std::vector<TagMask> frame_tags = db.frame_tags();
   const TagMask connected = settings.connected_tags;
@@ -55,7 +63,7 @@ Result<TransitionsWithBridges> select_transitions_with_bridges(const MotionDatab
   BridgeSettings bridge_settings = settings.bridges;
   bridge_settings.locality_radius = out.selection.locality_radius;
   bridge_settings.tags = connected;
-  if (connected != 0 && bridge_settings.per_tag_pair > 0) {
+  if (connected_bridges(settings)) {
     std::vector<std::vector<char>> cores(db.tag_names.size());
     for (size_t t = 0; t < cores.size(); ++t) {
       if (connected >> t & 1) {
@@ -64,8 +72,17 @@ Result<TransitionsWithBridges> select_transitions_with_bridges(const MotionDatab
         cores[t] = std::move(*core);
       }
     }
-    BridgeSelection bridges = select_bridges(candidates.minima, out.selection.transitions, frame_tags, cores,
-                                             features.window, bridge_settings);
+    // With the pruned stage's candidates: raise the levels of the pairs still short of bridges
+    // until none is.
+    const bool pruned = candidates.ceiling >= 0.0 && more != nullptr;
+    BridgeSelection bridges;
+    while (true) {
+      bridges = select_bridges(candidates.minima, out.selection.transitions, frame_tags, cores, features.window,
+                               bridge_settings, pruned ? more->above() : std::span<const Transition>{},
+                               pruned ? more->levels() : std::span<const double>{});
+      if (bridges.incomplete.empty()) break;
+      if (auto s = more->raise(bridges.incomplete); !s) return s.error();
+    }
     out.bridges = std::move(bridges.bridges);
     out.unjoined = std::move(bridges.unjoined);
   }
@@ -136,8 +153,9 @@ Result<PrunedGraph> build_spaced_graph(const MotionDatabase& db, const Transitio
 
 Result<GraphFromCandidates> graph_from_candidates(const MotionDatabase& db, const FrameFeatures& features,
                                                   const CandidateSearch& candidates,
-                                                  const GraphFromCandidatesSettings& settings) {
-  auto transitions = select_transitions_with_bridges(db, features, candidates, settings);
+                                                  const GraphFromCandidatesSettings& settings,
+                                                  OnDemandCandidates* more) {
+  auto transitions = select_transitions_with_bridges(db, features, candidates, settings, more);
   if (!transitions) return transitions.error();
   auto pruned = build_spaced_graph(db, *transitions, features, settings);
   if (!pruned) return pruned.error();

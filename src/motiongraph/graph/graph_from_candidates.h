@@ -15,6 +15,7 @@
 #include "motiongraph/graph/bridges.h"
 #include "motiongraph/graph/candidates.h"
 #include "motiongraph/graph/motion_graph.h"
+#include "motiongraph/graph/on_demand_candidates.h"
 #include "motiongraph/graph/transition_selection.h"
 #include "motiongraph/graph/transition_spacing.h"
 #include "motiongraph/metric/frame_features.h"
@@ -51,10 +52,16 @@ struct TransitionsWithBridges {
   std::vector<int> blend_lengths(std::span<const Transition> transitions, int window) const;
 };
 
-// The first two steps: selection and bridges.
+// Whether the settings make bridges (motion types kept connected, bridges per pair > 0).
+bool connected_bridges(const GraphFromCandidatesSettings& settings);
+
+// The first two steps: selection and bridges. The pruned stage's candidates (ceiling >= 0)
+// need `more`, made for them, when the settings make bridges (the bridges are then those of
+// all the minima: on_demand_candidates.h); `more` is not used with the exhaustive stage's.
 Result<TransitionsWithBridges> select_transitions_with_bridges(const MotionDatabase& db, const FrameFeatures& features,
                                                                const CandidateSearch& candidates,
-                                                               const GraphFromCandidatesSettings& settings);
+                                                               const GraphFromCandidatesSettings& settings,
+                                                               OnDemandCandidates* more = nullptr);
 
 struct PrunedGraph {
   MotionGraph graph;  // pruned
@@ -82,6 +89,7 @@ Result<PrunedGraph> build_spaced_graph(const MotionDatabase& db, const Transitio
 // All four steps.
 Result<GraphFromCandidates> graph_from_candidates(const MotionDatabase& db, const FrameFeatures& features,
                                                   const CandidateSearch& candidates,
-                                                  const GraphFromCandidatesSettings& settings);
+                                                  const GraphFromCandidatesSettings& settings,
+                                                  OnDemandCandidates* more = nullptr);
 
 }  // namespace mg

@@ -22,9 +22,10 @@
 // the search's flags (N^2 / T^2: 16 MB for 262 144 frames in tiles of 64, 1 MB in tiles of
 // 256).
 //
-// Not used by `build` yet: docs/performance.md ("The search in vector passes, tiles of 64",
-// and what follows it) says how much faster it is and why build cannot use it as it is
-// (bridges and per-tag thresholds read candidates above any ceiling).
+// Bridges read minima above any ceiling: on_demand_candidates.h finds those they need. Per-tag
+// thresholds count every candidate of a tag and are refused on this stage's candidates
+// (transition_selection.h), so `build`, whose default has them, does not use the stage yet:
+// docs/performance.md ("Bridges on demand") says how much faster it is and what is left.
 #pragma once
 
 #include <vector>

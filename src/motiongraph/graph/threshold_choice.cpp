@@ -49,7 +49,7 @@ std::vector<int> coverage_tags(const GraphFromCandidatesSettings& settings) {
 
 Result<CoveragePoint> coverage_at(const MotionDatabase& db, const FrameFeatures& features,
                                   const CandidateSearch& candidates, const GraphFromCandidatesSettings& settings,
-                                  double threshold) {
+                                  double threshold, OnDemandCandidates* more) {
   GraphFromCandidatesSettings at = settings;
   at.transitions.threshold = threshold;
   CoveragePoint point;
@@ -58,7 +58,7 @@ Result<CoveragePoint> coverage_at(const MotionDatabase& db, const FrameFeatures&
   point.quantile = candidates.histogram.fraction_below(threshold);
   const std::vector<int> tags = coverage_tags(settings);
   point.tag_coverage.assign(tags.size(), 0.0);
-  auto selected = select_transitions_with_bridges(db, features, candidates, at);
+  auto selected = select_transitions_with_bridges(db, features, candidates, at, more);
   if (!selected) return selected.error();
   // Without spacing the second pruning of build_spaced_graph keeps what the first kept (the
   // graph is rebuilt only to drop the nodes of pruned transitions), so one is enough here.
@@ -93,7 +93,7 @@ Result<CoveragePoint> coverage_at(const MotionDatabase& db, const FrameFeatures&
 Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFeatures& features,
                                          const CandidateSearch& candidates,
                                          const GraphFromCandidatesSettings& settings,
-                                         const ThresholdChoiceSettings& choice) {
+                                         const ThresholdChoiceSettings& choice, OnDemandCandidates* more) {
   if (auto s = choice.validate(); !s) return s.error();
   ThresholdChoice out;
   out.tags = coverage_tags(settings);
@@ -102,7 +102,7 @@ Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFe
   const double ceiling = distance_of_rms_cm(choice.max_rms_cm, features);
   capped.transitions.max_threshold = ceiling;
   auto evaluate = [&](double threshold) -> Result<const CoveragePoint*> {
-    auto point = coverage_at(db, features, candidates, capped, threshold);
+    auto point = coverage_at(db, features, candidates, capped, threshold, more);
     if (!point) return point.error();
     out.curve.push_back(std::move(*point));
     return &out.curve.back();
@@ -111,7 +111,7 @@ Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFe
   // 0. The ceiling first: what each motion type can have at all. A type whose clips are short
   // (cut mid-stride at both ends) never reaches a high share at any threshold; its target is
   // then `reachable_share` of what the ceiling gives it, not a level no threshold reaches.
-  auto top = coverage_at(db, features, candidates, capped, ceiling);
+  auto top = coverage_at(db, features, candidates, capped, ceiling, more);
   if (!top) return top.error();
   out.targets.assign(std::max<size_t>(1, out.tags.size()), choice.coverage);
   if (top->graph) {

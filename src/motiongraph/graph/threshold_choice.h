@@ -93,17 +93,20 @@ struct ThresholdChoice {
 std::vector<int> coverage_tags(const GraphFromCandidatesSettings& settings);
 
 // The coverage of one threshold: `settings` with its threshold replaced by `threshold` (D).
+// `more`: as select_transitions_with_bridges takes it (the pruned stage's candidates).
 Result<CoveragePoint> coverage_at(const MotionDatabase& db, const FrameFeatures& features,
                                   const CandidateSearch& candidates, const GraphFromCandidatesSettings& settings,
-                                  double threshold);
+                                  double threshold, OnDemandCandidates* more = nullptr);
 
-// The threshold for `settings` (its own threshold is ignored). Fails only when a stage fails
+// The threshold for `settings` (its own threshold is ignored). Everything it reads lies at or
+// below the ceiling but the bridges, so the pruned stage's candidates with their ceiling at
+// least max_rms_cm's D, and `more` for the bridges, give the exhaustive stage's choice. Fails only when a stage fails
 // for another reason than pruning leaving nothing; a library where nothing under the ceiling
 // makes a graph gives a choice whose chosen point has graph == false.
 Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFeatures& features,
                                          const CandidateSearch& candidates,
                                          const GraphFromCandidatesSettings& settings,
-                                         const ThresholdChoiceSettings& choice);
+                                         const ThresholdChoiceSettings& choice, OnDemandCandidates* more = nullptr);
 
 // The lowest threshold at or above `from` (D) that makes a graph at all, searched upward to
 // the largest candidate distance and then refined; nullopt when even every candidate makes

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <unordered_map>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "motiongraph/metric/pair_alignment.h"
@@ -66,11 +67,25 @@ Result<TransitionSelection> select_transitions(const FrameFeatures& features, co
   } else {
     selection.threshold = candidates.histogram.quantile(settings.threshold_quantile);
   }
+  // The pruned stage's candidates are all known up to its ceiling only; per-tag thresholds
+  // count every candidate of a tag, above any ceiling too.
+  const double ceiling = candidates.ceiling;
+  if (ceiling >= 0.0 && !(selection.threshold <= ceiling)) {
+    return Error{"", 0,
+                 fmt::format("the threshold (D {:.6g}) lies above the pruned distance stage's ceiling (D {:.6g}); "
+                             "the exhaustive stage knows every distance",
+                             selection.threshold, ceiling)};
+  }
+  const bool tag_thresholds_on = settings.per_tag_thresholds && !frame_tags.empty() && tags != 0;
+  if (ceiling >= 0.0 && tag_thresholds_on) {
+    return Error{"", 0, "per-tag thresholds need the exhaustive distance stage's candidates (they count a tag's "
+                        "candidates above any ceiling)"};
+  }
   selection.threshold_quantile = candidates.histogram.fraction_below(selection.threshold);
   selection.locality_radius = settings.locality_radius < 0 ? features.window / 2 : settings.locality_radius;
 
   std::vector<TagMask> membership;
-  if (settings.per_tag_thresholds && !frame_tags.empty() && tags != 0 && !candidates.minima.empty()) {
+  if (tag_thresholds_on && !candidates.minima.empty()) {
     const auto global_count = std::count_if(candidates.minima.begin(), candidates.minima.end(),
                                             [&](const Transition& t) { return t.distance <= selection.threshold; });
     const double share = static_cast<double>(global_count) / static_cast<double>(candidates.minima.size());

@@ -56,7 +56,8 @@ struct TransitionSelection {
 };
 
 // frame_tags: one mask per frame (or empty: no per-tag thresholds); tags: the tags that get
-// their own threshold.
+// their own threshold. On the pruned stage's candidates (ceiling >= 0) the threshold must lie at
+// or below the ceiling, and per-tag thresholds are refused.
 Result<TransitionSelection> select_transitions(const FrameFeatures& features, const CandidateSearch& candidates,
                                                const TransitionSettings& settings,
                                                std::span<const TagMask> frame_tags = {}, TagMask tags = 0);

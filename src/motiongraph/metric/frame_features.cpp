@@ -98,6 +98,18 @@ Result<FrameFeatures> make_frame_features(const MotionDatabase& db, const CloudL
     }
   }
 
+  // The tags each whole window carries.
+  const std::vector<TagMask> tags = db.frame_tags();
+  f.leave_tags.assign(n, 0);
+  f.arrive_tags.assign(n, 0);
+  for (size_t a = 0; a < n && tags.size() == n; ++a) {
+    if (!f.can_leave[a]) continue;
+    TagMask all = ~TagMask{0};
+    for (int t = 0; t < f.window; ++t) all &= tags[a + t];
+    f.leave_tags[a] = all;
+    f.arrive_tags[a + f.window - 1] = all;  // the window arriving at its last frame
+  }
+
   // Window sums, uncentred: sum_t u_t sum_i v_i p for the window starting at each frame.
   const double v_sum = f.point_weight_sum;
   double u_sum = 0.0;

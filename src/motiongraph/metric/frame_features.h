@@ -50,6 +50,9 @@ struct FrameFeatures {
   std::vector<double> window_x, window_z, window_square;  // X, Z, S
   double window_weight = 0.0;                              // W = (sum u) V
   std::vector<int> clip_of_frame;
+  // The tags every frame of the leaving window a..a+k-1 carries (0 where it cannot leave), and
+  // of the arriving window b-k+1..b: the distance stage's per-tag histograms (candidates.h).
+  std::vector<TagMask> leave_tags, arrive_tags;
 };
 
 Result<FrameFeatures> make_frame_features(const MotionDatabase& db, const CloudLayout& layout,

@@ -98,7 +98,8 @@ double peak_memory_mb() {
 Result<SharedSearch> find_candidates_shared(const FrameFeatures& features, const DistanceSettings& distance,
                                             const CandidateSettings& settings, std::uint64_t key, ProcessTeam& team,
                                             const SharedSearchSettings& shared,
-                                            const std::vector<long long>* only_items) {
+                                            const std::vector<long long>* only_items,
+                                            const std::vector<unsigned char>* only_sides) {
   const auto start = std::chrono::steady_clock::now();
   const bool with_checkpoint = !shared.checkpoint_folder.empty();
   Status valid = shared.validate();
@@ -128,7 +129,10 @@ Result<SharedSearch> find_candidates_shared(const FrameFeatures& features, const
     long long tiles = static_cast<long long>(items.per_side) * items.per_side;
     if (only_items != nullptr) {
       tiles = 0;
-      for (long long item : *only_items) tiles += items.tile_count(item);
+      for (size_t i = 0; i < only_items->size(); ++i) {
+        tiles += only_sides != nullptr ? items.tile_count((*only_items)[i], (*only_sides)[i])
+                                       : items.tile_count((*only_items)[i]);
+      }
     }
     ProgressBar progress("distance", static_cast<std::uint64_t>(tiles), !shared.progress_bar);
     // An empty subset runs nothing (find_candidates reads no items as all of them).
@@ -136,7 +140,10 @@ Result<SharedSearch> find_candidates_shared(const FrameFeatures& features, const
                       ? empty_candidate_search(features, settings)
                       : find_candidates(features, distance, settings, [&](long long, long long) { progress.advance(1); },
                                         only_items != nullptr ? std::span<const long long>(*only_items)
-                                                              : std::span<const long long>());
+                                                              : std::span<const long long>(),
+                                        only_items != nullptr && only_sides != nullptr
+                                            ? std::span<const unsigned char>(*only_sides)
+                                            : std::span<const unsigned char>());
     progress.finish();
     if (!search) return search.error();
     out.search = std::move(*search);

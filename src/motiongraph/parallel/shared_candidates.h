@@ -41,10 +41,14 @@ struct SharedSearch {
 // `only_items` (when not null): the work items to run, TileItems numbers in increasing order
 // (the pruned stage's plan, graph/pruned_candidates.h); the others are left out, as
 // find_candidates leaves out the items it is not given. The same on every process.
+// `only_sides` (with only_items, one per item, or null: both): which of an item's tiles to
+// visit, as find_candidates takes them; used by one process without a checkpoint (a team and
+// a checkpoint visit both tiles of an item: the pruned stage's result is the same).
 Result<SharedSearch> find_candidates_shared(const FrameFeatures& features, const DistanceSettings& distance,
                                             const CandidateSettings& settings, std::uint64_t key, ProcessTeam& team,
                                             const SharedSearchSettings& shared,
-                                            const std::vector<long long>* only_items = nullptr);
+                                            const std::vector<long long>* only_items = nullptr,
+                                            const std::vector<unsigned char>* only_sides = nullptr);
 
 // This process's peak resident memory so far, in MB (0 where the system does not say).
 double peak_memory_mb();

@@ -74,13 +74,13 @@ namespace {
 Result<PathCheckPoint> probe_at(const MotionDatabase& db, const FrameFeatures& features,
                                 const CandidateSearch& candidates, const GraphFromCandidatesSettings& settings,
                                 double threshold, const PathCheckSettings& check, const FloorPath& probe,
-                                double* travel_share) {
+                                double* travel_share, OnDemandCandidates* more) {
   GraphFromCandidatesSettings at = settings;
   at.transitions.threshold = threshold;
   PathCheckPoint point;
   point.threshold = threshold;
   point.rms_cm = rms_cm_of_distance(threshold, features);
-  auto selected = select_transitions_with_bridges(db, features, candidates, at);
+  auto selected = select_transitions_with_bridges(db, features, candidates, at, more);
   if (!selected) return selected.error();
   auto built = build_spaced_graph(db, *selected, features, at);
   if (!built) {
@@ -117,14 +117,15 @@ bool better(const PathCheckPoint& p, const PathCheckPoint& q) {
 
 Result<PathCheck> check_path_following(const MotionDatabase& db, const FrameFeatures& features,
                                        const CandidateSearch& candidates, const GraphFromCandidatesSettings& settings,
-                                       double from_threshold, double ceiling, const PathCheckSettings& check) {
+                                       double from_threshold, double ceiling, const PathCheckSettings& check,
+                                       OnDemandCandidates* more) {
   if (auto s = check.validate(); !s) return s.error();
   const FloorPath probe = path_check_probe();
   PathCheck out;
   out.probe_length_m = probe.length_m();
   out.threshold = from_threshold;
   out.rms_cm = rms_cm_of_distance(from_threshold, features);
-  auto first = probe_at(db, features, candidates, settings, from_threshold, check, probe, &out.travel_share);
+  auto first = probe_at(db, features, candidates, settings, from_threshold, check, probe, &out.travel_share, more);
   if (!first) return first.error();
   out.points.push_back(*first);
   if (first->graph && out.travel_share < check.min_travel_share) {
@@ -141,7 +142,7 @@ Result<PathCheck> check_path_following(const MotionDatabase& db, const FrameFeat
     for (int i = 1; i <= check.steps; ++i) {
       const double rms = from_rms * std::pow(ceiling_rms / from_rms, static_cast<double>(i) / check.steps);
       const double threshold = i == check.steps ? ceiling : distance_of_rms_cm(rms, features);
-      auto point = probe_at(db, features, candidates, settings, threshold, check, probe, nullptr);
+      auto point = probe_at(db, features, candidates, settings, threshold, check, probe, nullptr, more);
       if (!point) return point.error();
       out.points.push_back(*point);
       if (passes(*point, check.tolerance_m)) {

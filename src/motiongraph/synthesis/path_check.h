@@ -72,9 +72,11 @@ double travelling_share(const SynthesisContext& context, double speed_mps);
 
 // The check, from `from_threshold` (D, the coverage choice) up to `ceiling` (D) under
 // `settings` (its own threshold ignored). Fails when a stage fails for another reason than
-// pruning leaving nothing, or when the settings are invalid.
+// pruning leaving nothing, or when the settings are invalid. `more`: as
+// select_transitions_with_bridges takes it.
 Result<PathCheck> check_path_following(const MotionDatabase& db, const FrameFeatures& features,
                                        const CandidateSearch& candidates, const GraphFromCandidatesSettings& settings,
-                                       double from_threshold, double ceiling, const PathCheckSettings& check);
+                                       double from_threshold, double ceiling, const PathCheckSettings& check,
+                                       OnDemandCandidates* more = nullptr);
 
 }  // namespace mg

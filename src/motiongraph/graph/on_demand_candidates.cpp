@@ -1,0 +1,135 @@
+// Minima above the pruned stage's ceiling, computed tile by tile when bridges ask for them.
+#include "motiongraph/graph/on_demand_candidates.h"
+
+#include <algorithm>
+#include <chrono>
+#include <limits>
+
+#include "motiongraph/metric/bounded_tiles.h"
+
+namespace mg {
+
+namespace {
+
+constexpr double kAll = std::numeric_limits<double>::infinity();
+// Levels rise 4x in D (2x in RMS) a step; past this many times the ceiling, to every pair.
+constexpr double kLastStep = 256.0;
+
+bool by_frames(const Transition& x, const Transition& y) {
+  return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
+}
+
+}  // namespace
+
+OnDemandCandidates::OnDemandCandidates(const FrameFeatures& features, double ceiling,
+                                       const PrunedSearchSettings& pruned, const CandidateSettings& candidates)
+    : features_(features),
+      ceiling_(ceiling),
+      pruned_(pruned),
+      candidate_settings_(candidates),
+      levels_(static_cast<size_t>(kBridgeTags) * kBridgeTags, ceiling) {
+  candidate_settings_.keep_matrix = false;
+}
+
+Status OnDemandCandidates::raise(std::span<const TagPair> pairs) {
+  const auto start = std::chrono::steady_clock::now();
+  DistanceSettings distance;
+  distance.tile_frames = pruned_.tile_for(features_.window);
+  distance.threads = pruned_.threads;
+  const TileItems grid = tile_items(features_, distance);
+  const int side = grid.per_side;
+  if (computed_.empty()) {
+    computed_.assign(static_cast<size_t>(side) * side, 0);
+    leave_lacks_.assign(static_cast<size_t>(side) * kBridgeTags, 0);
+    arrive_lacks_.assign(static_cast<size_t>(side) * kBridgeTags, 0);
+    for (int f = 0; f < features_.frames; ++f) {
+      const size_t band = static_cast<size_t>(f / grid.tile) * kBridgeTags;
+      const TagMask leaving = features_.leave_tags[static_cast<size_t>(f)];
+      const TagMask arriving = features_.arrive_tags[static_cast<size_t>(f)];
+      for (int s = 0; s < kBridgeTags; ++s) {
+        if (leaving >> s & 1) leave_lacks_[band + static_cast<size_t>(s)] |= ~leaving;
+        if (arriving >> s & 1) arrive_lacks_[band + static_cast<size_t>(s)] |= ~arriving;
+      }
+    }
+  }
+  const bool any_window = std::find(features_.can_leave.begin(), features_.can_leave.end(), 1) !=
+                          features_.can_leave.end();
+  // The tiles the raised pairs need, flagged at their new levels (one search per level).
+  std::vector<char> wanted(computed_.size(), 0);
+  std::vector<std::pair<size_t, double>> raised;
+  for (const TagPair& pair : pairs) {
+    if (pair.from_tag < 0 || pair.from_tag >= kBridgeTags || pair.to_tag < 0 || pair.to_tag >= kBridgeTags) {
+      return Error{"", 0, "a bridge's tag is out of range"};
+    }
+    const size_t at = static_cast<size_t>(pair.from_tag) * kBridgeTags + pair.to_tag;
+    if (levels_[at] == kAll) continue;
+    double next = 4.0 * levels_[at];
+    if (!(next > 0.0) || next > kLastStep * ceiling_ || !any_window) next = kAll;
+    const BoundedTiles* bounded = nullptr;
+    if (next != kAll) {
+      if (!embedding_) {
+        WindowEmbeddingSettings settings = pruned_.embedding;
+        if (settings.threads == 0) settings.threads = pruned_.threads;
+        auto made = make_window_embedding(features_, settings);
+        if (!made) return made.error();
+        embedding_ = std::move(*made);
+      }
+      auto it = flags_.find(next);
+      if (it == flags_.end()) {
+        // The slack of plan_pruned_search: the bound is summed in float.
+        const auto search_start = std::chrono::steady_clock::now();
+        it = flags_.emplace(next, find_bounded_tiles(features_, *embedding_, grid.tile, next * (1.0 + 1e-3),
+                                                     pruned_.threads))
+                 .first;
+        statistics_.search_seconds +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - search_start).count();
+      }
+      bounded = &it->second;
+    }
+    // Rows leaving a window of s without u, columns arriving at one of u without s.
+    const TagMask s = TagMask{1} << pair.from_tag, u = TagMask{1} << pair.to_tag;
+    for (int i = 0; i < side; ++i) {
+      if (!(leave_lacks_[static_cast<size_t>(i) * kBridgeTags + static_cast<size_t>(pair.from_tag)] & u)) continue;
+      for (int j = 0; j < side; ++j) {
+        const size_t tile = static_cast<size_t>(i) * side + j;
+        if ((arrive_lacks_[static_cast<size_t>(j) * kBridgeTags + static_cast<size_t>(pair.to_tag)] & s) &&
+            !computed_[tile] &&
+            (bounded == nullptr || bounded->flagged(i, j))) {
+          wanted[tile] = 1;
+        }
+      }
+    }
+    raised.emplace_back(at, next);
+  }
+  // The wanted tiles as the exhaustive stage's work items.
+  std::vector<long long> items;
+  std::vector<unsigned char> sides;
+  for (long long item = 0; item < grid.count(); ++item) {
+    const auto [i, j] = grid.tiles_of(item);
+    const auto mine = static_cast<unsigned char>((wanted[static_cast<size_t>(i) * side + j] ? 1 : 0) |
+                                                 (i != j && wanted[static_cast<size_t>(j) * side + i] ? 2 : 0));
+    if (mine == 0) continue;
+    items.push_back(item);
+    sides.push_back(mine);
+  }
+  if (!items.empty()) {
+    const auto tiles_start = std::chrono::steady_clock::now();
+    auto found = find_candidates(features_, distance, candidate_settings_, {}, items, sides);
+    statistics_.tile_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tiles_start).count();
+    if (!found) return found.error();
+    const size_t before = above_.size();
+    for (const Transition& t : found->minima) {
+      if (t.distance > ceiling_) above_.push_back(t);
+    }
+    std::inplace_merge(above_.begin(), above_.begin() + static_cast<std::ptrdiff_t>(before), above_.end(), by_frames);
+    for (size_t tile = 0; tile < wanted.size(); ++tile) computed_[tile] |= wanted[tile];
+    statistics_.raises += 1;
+    statistics_.tiles += found->tiles.tiles;
+    statistics_.pairs += found->tiles.pairs;
+  }
+  for (const auto& [at, level] : raised) levels_[at] = level;
+  statistics_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return Ok{};
+}
+
+}  // namespace mg

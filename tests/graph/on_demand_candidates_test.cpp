@@ -1,0 +1,197 @@
+// The minima above the pruned stage's ceiling, on demand: a pair's level promises every minimum
+// of its region up to it (checked against the exhaustive stage's minima), and the pruned
+// stage's candidates with them give the exhaustive stage's transitions, bridges and threshold
+// choice (one threshold for all motion types), bit for bit, on a walk and run library whose
+// bridges lie far above the ceiling.
+#include "motiongraph/graph/on_demand_candidates.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "motiongraph/graph/graph_from_candidates.h"
+#include "motiongraph/graph/threshold_choice.h"
+#include "test_data.h"
+
+namespace mg {
+namespace {
+
+constexpr int kTile = 64;
+
+struct Library {
+  MotionDatabase db;
+  FrameFeatures features;
+  CandidateSearch exhaustive;
+  PrunedSearchSettings pruned;
+};
+
+// Subject 16's two walks and two runs, tagged: walk to run bridges lie near 20 cm RMS.
+const Library& library() {
+  static const Library x = [] {
+    Library l;
+    l.db = test::small_database({"cmu/16/16_15.amc", "cmu/16/16_16.amc", "cmu/16/16_35.amc", "cmu/16/16_37.amc",
+                                 "cmu/16/16_39.amc", "cmu/16/16_41.amc", "cmu/16/16_43.amc"});
+    l.db.tag_names = {"walk", "run"};
+    const int runs = l.db.clips[2].first_frame;
+    l.db.tag_ranges = {TagRange{0, 0, runs}, TagRange{1, runs, l.db.frame_count() - runs}};
+    DistanceSettings distance;
+    distance.tile_frames = kTile;
+    distance.threads = 2;
+    auto layout = make_cloud_layout(l.db.skeletons[0], {});
+    l.features = *make_frame_features(l.db, *layout, distance);
+    l.exhaustive = *find_candidates(l.features, distance, {});
+    l.pruned.tile_frames = kTile;
+    l.pruned.threads = 2;
+    return l;
+  }();
+  return x;
+}
+
+CandidateSearch pruned_search(double ceiling) {
+  const Library& l = library();
+  auto found = find_candidates_pruned(l.features, ceiling, {}, l.pruned);
+  EXPECT_TRUE(found) << (found ? "" : found.error().to_string());
+  return found ? std::move(*found) : CandidateSearch{};
+}
+
+void expect_same(std::span<const Transition> a, std::span<const Transition> b, const char* what) {
+  ASSERT_EQ(a.size(), b.size()) << what;
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].from_frame, b[i].from_frame) << what << " " << i;
+    EXPECT_EQ(a[i].to_frame, b[i].to_frame) << what << " " << i;
+    EXPECT_EQ(a[i].distance, b[i].distance) << what << " " << i;
+    EXPECT_EQ(a[i].yaw_rad, b[i].yaw_rad) << what << " " << i;
+  }
+}
+
+TEST(OnDemandCandidates, ALevelHoldsEveryMinimumOfItsRegionUpToIt) {
+  const Library& l = library();
+  const double ceiling = distance_of_rms_cm(3.0, l.features);
+  const CandidateSearch search = pruned_search(ceiling);
+  OnDemandCandidates more(l.features, ceiling, l.pruned);
+  const std::vector<TagMask> tags = l.db.frame_tags();
+  for (int step = 0; step < 3; ++step) {
+    const TagPair walk_to_run{0, 1};
+    ASSERT_TRUE(more.raise(std::span(&walk_to_run, 1)));
+    const double level = more.levels()[kBridgeTags * 0 + 1];
+    EXPECT_GT(level, ceiling);
+    EXPECT_EQ(more.levels()[kBridgeTags * 1 + 0], ceiling) << "run to walk was not raised";
+    // Every minimum from a walk frame to a run frame up to the level is known, once.
+    for (const Transition& m : l.exhaustive.minima) {
+      if (!(tags[m.from_frame] & 1) || !(tags[m.to_frame] & 2) || m.distance > level) continue;
+      const auto& known = m.distance <= ceiling ? search.minima : more.above();
+      const auto same = [&](const Transition& t) {
+        return t.from_frame == m.from_frame && t.to_frame == m.to_frame && t.distance == m.distance;
+      };
+      EXPECT_EQ(std::count_if(known.begin(), known.end(), same), 1) << m.from_frame << " -> " << m.to_frame;
+    }
+  }
+  // Everything found above the ceiling is a minimum of the exhaustive stage, above the ceiling.
+  for (const Transition& t : more.above()) {
+    EXPECT_GT(t.distance, ceiling);
+    EXPECT_TRUE(std::binary_search(l.exhaustive.minima.begin(), l.exhaustive.minima.end(), t,
+                                   [](const Transition& x, const Transition& y) {
+                                     return x.from_frame != y.from_frame ? x.from_frame < y.from_frame
+                                                                         : x.to_frame < y.to_frame;
+                                   }));
+  }
+  EXPECT_TRUE(std::is_sorted(more.above().begin(), more.above().end(), [](const Transition& x, const Transition& y) {
+    return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
+  }));
+  EXPECT_GT(more.statistics().tiles, 0);
+  // Raised to the end, the level is every pair.
+  for (int step = 0; step < 8; ++step) {
+    const TagPair walk_to_run{0, 1};
+    ASSERT_TRUE(more.raise(std::span(&walk_to_run, 1)));
+  }
+  EXPECT_EQ(more.levels()[1], std::numeric_limits<double>::infinity());
+}
+
+TEST(OnDemandCandidates, PrunedCandidatesGiveTheExhaustiveTransitionsAndBridges) {
+  const Library& l = library();
+  for (const double ceiling_cm : {6.0, 10.0}) {
+    const double ceiling = distance_of_rms_cm(ceiling_cm, l.features);
+    const CandidateSearch search = pruned_search(ceiling);
+    OnDemandCandidates more(l.features, ceiling, l.pruned);
+    for (const double rms : {2.0, 4.0, ceiling_cm}) {
+      for (const double cap_cm : {0.0, 15.0, 22.0}) {
+        GraphFromCandidatesSettings settings;
+        settings.connected_tags = 0b11;
+        settings.transitions.per_tag_thresholds = false;
+        settings.transitions.threshold = distance_of_rms_cm(rms, l.features);
+        settings.transitions.max_threshold = ceiling;
+        settings.bridges.max_distance = cap_cm > 0.0 ? distance_of_rms_cm(cap_cm, l.features) : -1.0;
+        SCOPED_TRACE(testing::Message() << "ceiling " << ceiling_cm << " cm, threshold " << rms << " cm, cap "
+                                        << cap_cm << " cm");
+        auto want = select_transitions_with_bridges(l.db, l.features, l.exhaustive, settings);
+        auto got = select_transitions_with_bridges(l.db, l.features, search, settings, &more);
+        ASSERT_TRUE(want && got);
+        expect_same(want->selection.transitions, got->selection.transitions, "transitions");
+        expect_same(want->bridges, got->bridges, "bridges");
+        ASSERT_EQ(want->unjoined.size(), got->unjoined.size());
+        for (size_t i = 0; i < want->unjoined.size(); ++i) {
+          EXPECT_EQ(want->unjoined[i].reason, got->unjoined[i].reason);
+          EXPECT_EQ(want->unjoined[i].best_distance, got->unjoined[i].best_distance);
+        }
+        EXPECT_EQ(want->bridge_blends, got->bridge_blends);
+      }
+    }
+    // The walk to run bridges lie far above either ceiling: they were found on demand.
+    EXPECT_GT(more.statistics().raises, 0);
+    EXPECT_FALSE(more.above().empty());
+  }
+}
+
+TEST(OnDemandCandidates, PrunedCandidatesGiveTheExhaustiveThresholdChoice) {
+  const Library& l = library();
+  ThresholdChoiceSettings choice;
+  choice.max_rms_cm = 6.0;
+  choice.grid = 6;
+  choice.refine = 3;
+  const double ceiling = distance_of_rms_cm(choice.max_rms_cm, l.features);
+  const CandidateSearch search = pruned_search(ceiling);
+  OnDemandCandidates more(l.features, ceiling, l.pruned);
+  GraphFromCandidatesSettings settings;
+  settings.connected_tags = 0b11;
+  settings.transitions.per_tag_thresholds = false;
+  auto want = choose_threshold(l.db, l.features, l.exhaustive, settings, choice);
+  auto got = choose_threshold(l.db, l.features, search, settings, choice, &more);
+  ASSERT_TRUE(want && got);
+  EXPECT_EQ(want->threshold, got->threshold);
+  EXPECT_EQ(want->reached, got->reached);
+  ASSERT_EQ(want->curve.size(), got->curve.size());
+  for (size_t i = 0; i < want->curve.size(); ++i) {
+    EXPECT_EQ(want->curve[i].threshold, got->curve[i].threshold);
+    EXPECT_EQ(want->curve[i].quantile, got->curve[i].quantile);
+    EXPECT_EQ(want->curve[i].tag_coverage, got->curve[i].tag_coverage);
+    EXPECT_EQ(want->curve[i].transitions, got->curve[i].transitions);
+  }
+}
+
+TEST(OnDemandCandidates, PrunedCandidatesRefuseWhatTheyCannotKnow) {
+  const Library& l = library();
+  const double ceiling = distance_of_rms_cm(3.0, l.features);
+  const CandidateSearch search = pruned_search(ceiling);
+  GraphFromCandidatesSettings settings;
+  settings.connected_tags = 0b11;
+  settings.transitions.per_tag_thresholds = false;
+  settings.transitions.threshold = distance_of_rms_cm(2.0, l.features);
+  settings.transitions.max_threshold = ceiling;
+  // Bridges without the minima above the ceiling.
+  EXPECT_FALSE(select_transitions_with_bridges(l.db, l.features, search, settings));
+  settings.bridges.per_tag_pair = 0;
+  EXPECT_TRUE(select_transitions_with_bridges(l.db, l.features, search, settings));
+  // A threshold above the ceiling, and per-tag thresholds (they count every candidate of a tag).
+  GraphFromCandidatesSettings above = settings;
+  above.transitions.threshold = 1.5 * ceiling;
+  EXPECT_FALSE(select_transitions_with_bridges(l.db, l.features, search, above));
+  GraphFromCandidatesSettings per_tag = settings;
+  per_tag.transitions.per_tag_thresholds = true;
+  EXPECT_FALSE(select_transitions_with_bridges(l.db, l.features, search, per_tag));
+  EXPECT_TRUE(select_transitions_with_bridges(l.db, l.features, l.exhaustive, per_tag));
+}
+
+}  // namespace
+}  // namespace mg
