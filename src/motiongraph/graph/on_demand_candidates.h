@@ -11,8 +11,10 @@
 // carrying u but not s: the region is the tiles that hold such pairs), and select_bridges, fed the levels and these minima, picks the
 // bridges that all the minima give (the exhaustive stage's bridges at the same tile side).
 //
-// Memory: the window embedding (about 300 bytes a window, made at the first raise) and a byte
-// per tile. Not thread-safe: one selection at a time.
+// Memory: the window embedding (about 300 bytes a window, made at the first raise), a byte per
+// tile, and a byte per tile for each level searched (at most four: 4, 16, 64 and 256 times the
+// ceiling), kept so that no level is searched twice; and the minima found. Not thread-safe: one
+// selection at a time.
 #pragma once
 
 #include <map>
