@@ -204,7 +204,15 @@ Command add_build_command(CLI::App& app) {
   sub->add_option("--continuation-radius", b.continuation_radius,
                   "Ignore pairs of a clip simply continuing within this many frames of b = a + k - 1 (-1: the window)")
       ->capture_default_str();
-  sub->add_option("--tile", b.distance.tile_frames, "Tile side in frames for the distance stage")->capture_default_str();
+  sub->add_option("--tile", b.tile_frames,
+                  "Tile side in frames for the distance stage (0: 1024 for the exhaustive stage, from the window for "
+                  "the pruned one: 64 at 30 fps, 256 at 120 fps)")
+      ->capture_default_str();
+  sub->add_flag("--exhaustive", b.exhaustive,
+                "Compute every pair's distance. By default, with --threshold auto, no per-tag thresholds (clips "
+                "without motion types, --ignore-tags or --no-tag-thresholds) and no --export-matrix, only the tiles "
+                "that can hold a pair below --max-threshold are computed (the same graph at the same --tile; "
+                "bridges above it are found on demand)");
   sub->add_option("--threads", b.distance.threads, "Worker threads (0: one per core)")->capture_default_str();
   sub->add_option("--checkpoint", b.shared.checkpoint_folder,
                   "Keep the distance stage's finished tiles in this folder, so that the same build started again "

@@ -80,8 +80,8 @@ struct Outputs {
 constexpr const char* kCsvSettings = "set datafile separator ','\nset grid\n";
 
 Status evaluate_thresholds(const GraphFile& file, const GraphRebuild& rebuild, std::span<const double> quantiles,
-                           Outputs& out) {
-  auto rows = sweep_thresholds(file.database, rebuild.features, file.candidates, rebuild.settings, quantiles);
+                           OnDemandCandidates* more, Outputs& out) {
+  auto rows = sweep_thresholds(file.database, rebuild.features, file.candidates, rebuild.settings, quantiles, more);
   if (!rows) return rows.error();
   std::string csv =
       "quantile,threshold,transitions,bridges,nodes,largest_component_nodes,kept_nodes,kept_transitions,"
@@ -101,9 +101,9 @@ Status evaluate_thresholds(const GraphFile& file, const GraphRebuild& rebuild, s
 }
 
 Status evaluate_consistency(const GraphFile& file, const GraphRebuild& rebuild, std::span<const double> quantiles,
-                            Outputs& out) {
+                            OnDemandCandidates* more, Outputs& out) {
   const ConsistencySum captured = database_consistency(file.database, learn_forward_axes(file.database));
-  auto rows = sweep_consistency(file.database, rebuild.features, file.candidates, rebuild.settings, quantiles);
+  auto rows = sweep_consistency(file.database, rebuild.features, file.candidates, rebuild.settings, quantiles, more);
   if (!rows) return rows.error();
   std::string csv = "quantile,threshold,transitions,frames,rms_deg,database_frames,database_rms_deg\n";
   for (const ConsistencyRow& r : *rows) {
@@ -178,8 +178,9 @@ Status evaluate_paths(const GraphFile& file, const EvalOptions& o, Outputs& out)
 }
 
 Status evaluate_foot_slide(const GraphFile& file, const GraphRebuild& rebuild, std::span<const double> quantiles,
-                           const EvalOptions& o, Outputs& out) {
-  auto rows = sweep_foot_slide(file.database, rebuild.features, file.candidates, rebuild.settings, quantiles, o.shapes);
+                           OnDemandCandidates* more, const EvalOptions& o, Outputs& out) {
+  auto rows = sweep_foot_slide(file.database, rebuild.features, file.candidates, rebuild.settings, quantiles, o.shapes,
+                               {}, more);
   if (!rows) return rows.error();
   std::string csv =
       "quantile,threshold,rms_cm,shape,graph,frames,transitions,mean_deviation_m,played_mps,cleaned_mps,source_mps,"
@@ -235,23 +236,44 @@ int run_eval(const EvalOptions& o) {
     if (!o.quiet) spdlog::info("{}", line);
   };
 
-  const std::vector<double> quantiles = log_spaced(o.lowest_quantile, o.highest_quantile, o.thresholds);
+  std::vector<double> quantiles = log_spaced(o.lowest_quantile, o.highest_quantile, o.thresholds);
   std::optional<GraphRebuild> rebuild;
+  std::optional<OnDemandCandidates> more;  // for a graph built by the pruned distance stage
   if (wants("threshold") || wants("consistency") || wants("footslide")) {
     auto prepared = prepare_graph_rebuild(*file, o.graph);
     if (!prepared) return fail(prepared.error());
     rebuild = std::move(*prepared);
+    const CandidateSearch& c = file->candidates;
+    if (c.ceiling >= 0.0) {
+      PrunedSearchSettings pruned;
+      pruned.tile_frames = c.tile_frames;
+      CandidateSettings candidate_settings;
+      candidate_settings.continuation_radius = c.continuation_radius;
+      more.emplace(rebuild->features, c.ceiling, pruned, candidate_settings);
+      const std::vector<double> below = quantiles_below_ceiling(c, quantiles);
+      if (below.size() < quantiles.size()) {
+        spdlog::warn("{} of the {} thresholds lie above the ceiling of the pruned distance stage that built the "
+                        "graph (RMS {:.2f} cm) and are left out: build it with --exhaustive to sweep them",
+                        quantiles.size() - below.size(), quantiles.size(), rms_cm_of_distance(c.ceiling, rebuild->features));
+      }
+      if (below.empty()) {
+        return fail(Error{o.graph, 0, "every threshold asked for lies above the pruned distance stage's ceiling: "
+                                      "lower --highest or build the graph with --exhaustive"});
+      }
+      quantiles = below;
+    }
   }
+  OnDemandCandidates* on_demand = more ? &*more : nullptr;
   struct Step {
     const char* name;
     std::function<Status()> run;
   };
   const std::vector<Step> steps = {
-      {"threshold", [&] { return evaluate_thresholds(*file, *rebuild, quantiles, out); }},
-      {"consistency", [&] { return evaluate_consistency(*file, *rebuild, quantiles, out); }},
+      {"threshold", [&] { return evaluate_thresholds(*file, *rebuild, quantiles, on_demand, out); }},
+      {"consistency", [&] { return evaluate_consistency(*file, *rebuild, quantiles, on_demand, out); }},
       {"walks", [&] { return evaluate_walks(*file, o, out); }},
       {"paths", [&] { return evaluate_paths(*file, o, out); }},
-      {"footslide", [&] { return evaluate_foot_slide(*file, *rebuild, quantiles, o, out); }},
+      {"footslide", [&] { return evaluate_foot_slide(*file, *rebuild, quantiles, on_demand, o, out); }},
   };
   for (const Step& step : steps) {
     if (!wants(step.name)) continue;

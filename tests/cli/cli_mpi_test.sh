@@ -29,6 +29,11 @@ def how_built(path):
         r.pop(key)
     for point in (r["path_check"] or {}).get("points", []):
         point.pop("seconds")
+    stage = r["distance_stage"]
+    for part in (stage, stage.get("on_demand") or {}):
+        for key in [k for k in part if k.endswith("seconds")]:
+            part.pop(key)
+    stage.pop("computed_pairs", None)  # a team computes both tiles of a pruned item
     return r
 a, b = (how_built(p) for p in sys.argv[1:3])
 assert a["counts"]["transitions_kept"] > 0 and a["graph_after"]["nodes"] > 0, a["counts"]
@@ -53,6 +58,16 @@ assert one["processes"] == 1 and three["processes"] == 3, (one["processes"], thr
 assert len(three["peak_memory_mb"]) == 3 and all(m > 1 for m in three["peak_memory_mb"]), three["peak_memory_mb"]
 assert len(three["share_seconds"]) == 3 and all(s > 0 for s in three["share_seconds"]), three["share_seconds"]
 PY
+
+# 1b. The pruned distance stage (one threshold for all motion types), on one process and on
+# three: the same graph.
+"$bin" build "$data/cmu/16" -o "$work/pone.mgraph" --report "$work/pone.json" --no-cache --tile 64 \
+  --no-tag-thresholds -q
+"${mpi[@]}" "$bin" build "$data/cmu/16" -o "$work/pthree.mgraph" --report "$work/pthree.json" --no-cache --tile 64 \
+  --no-tag-thresholds --threads 1 2>"$work/pthree.err"
+grep -q "distance stage (pruned below RMS 10 cm): .* on 3 processes" "$work/pthree.err" \
+  || { echo "FAIL: the log of the pruned stage on three processes"; cat "$work/pthree.err"; exit 1; }
+same_graph "$work/pone" "$work/pthree"
 
 # 2. A process killed midway: one line, a failed exit, no graph, no report. At 120 fps in tiles of
 # 128 frames the distance stage is 780 work items, saved in chunks. Rank 1 is stopped once the

@@ -1,5 +1,6 @@
 // build_graph() on the bundled subject 16, in process: the graph it makes is the one its saved
-// settings select again (what eval and the studio rely on), the cache is used and changes
+// settings select again (what eval and the studio rely on), the pruned distance stage runs
+// where it is exact and gives the exhaustive stage's graph, the cache is used and changes
 // nothing, pruning to nothing is an ErrorKind::kEmptyGraph with the report kept, and the
 // exports have their promised sizes.
 #include "motiongraph/pipeline/build_graph.h"
@@ -13,6 +14,7 @@
 #include "motiongraph/core/json_text.h"
 #include "motiongraph/evaluation/graph_rebuild.h"
 #include "motiongraph/graph/graph_from_candidates.h"
+#include "motiongraph/graph/on_demand_candidates.h"
 #include "test_data.h"
 
 namespace mg {
@@ -51,6 +53,8 @@ TEST(BuildGraph, Subject16IsWhatItsSavedSettingsSelectAgain) {
   EXPECT_EQ(built->report.at("frames"), file.database.frame_count());
   EXPECT_EQ(built->report.at("threshold_mode"), "auto");
   EXPECT_EQ(built->report.at("distance_cache"), "off");
+  // Per-tag thresholds count every candidate of a motion type: the exhaustive stage.
+  EXPECT_EQ(built->report.at("distance_stage").at("stage"), "exhaustive");
   EXPECT_EQ(built->report.at("counts").at("transitions_kept"), file.graph.transitions.size());
   EXPECT_EQ(file.report_json, json_text(built->report));
   EXPECT_TRUE(built->matrix_npy.empty() && built->matrix_png.empty() && built->clouds_npy.empty());
@@ -74,6 +78,70 @@ TEST(BuildGraph, Subject16IsWhatItsSavedSettingsSelectAgain) {
     if (file.graph.edges[e].transition && blend_frames(file.graph.edges[e]) > file.graph.window) ++longer;
   }
   EXPECT_GT(longer, 0);
+}
+
+TEST(BuildGraph, ThePrunedStageRunsWhereItIsExactAndGivesTheExhaustiveGraph) {
+  // One threshold for all motion types: the pruned stage runs, its bridges (walk to run, far
+  // above the ceiling) found on demand; with the same tiles the exhaustive stage gives the
+  // same graph.
+  BuildSettings pruned;
+  pruned.transitions.per_tag_thresholds = false;
+  pruned.pruned.tile_frames = 64;
+  pruned.distance_stage.distance.tile_frames = 64;
+  BuildSettings exhaustive = pruned;
+  exhaustive.exhaustive = true;
+  auto a = build_graph(kInputs, pruned);
+  auto b = build_graph(kInputs, exhaustive);
+  ASSERT_TRUE(a && b);
+  ASSERT_TRUE(a->graph_status && b->graph_status);
+  const nlohmann::json& stage = a->report.at("distance_stage");
+  EXPECT_EQ(stage.at("stage"), "pruned");
+  EXPECT_EQ(stage.at("tile_frames"), 64);
+  EXPECT_LT(stage.at("tiles_computed").get<long long>(), stage.at("tiles").get<long long>());
+  EXPECT_GT(stage.at("on_demand").at("raises").get<int>(), 0);
+  EXPECT_EQ(b->report.at("distance_stage").at("stage"), "exhaustive");
+  EXPECT_GE(a->file.candidates.ceiling, 0.0);
+  EXPECT_EQ(a->report.at("threshold"), b->report.at("threshold"));
+  EXPECT_EQ(a->report.at("bridges"), b->report.at("bridges"));
+  EXPECT_EQ(a->report.at("graph_after"), b->report.at("graph_after"));
+  const auto& x = a->file.graph.transitions;
+  const auto& y = b->file.graph.transitions;
+  ASSERT_EQ(x.size(), y.size());
+  for (size_t i = 0; i < x.size(); ++i) {
+    EXPECT_EQ(x[i].from_frame, y[i].from_frame);
+    EXPECT_EQ(x[i].to_frame, y[i].to_frame);
+    EXPECT_EQ(x[i].distance, y[i].distance);
+  }
+  // What eval does with such a file: its saved settings, bridges found on demand again.
+  const GraphFile& file = a->file;
+  auto rebuild = prepare_graph_rebuild(file, "s16.mgraph");
+  ASSERT_TRUE(rebuild) << rebuild.error().to_string();
+  EXPECT_FALSE(graph_from_candidates(file.database, rebuild->features, file.candidates, rebuild->settings));
+  PrunedSearchSettings tiles;
+  tiles.tile_frames = file.candidates.tile_frames;
+  CandidateSettings radius;
+  radius.continuation_radius = file.candidates.continuation_radius;
+  OnDemandCandidates more(rebuild->features, file.candidates.ceiling, tiles, radius);
+  auto again = graph_from_candidates(file.database, rebuild->features, file.candidates, rebuild->settings, &more);
+  ASSERT_TRUE(again) << again.error().to_string();
+  ASSERT_EQ(again->pruned.graph.transitions.size(), x.size());
+  for (size_t i = 0; i < x.size(); ++i) EXPECT_EQ(again->pruned.graph.transitions[i].to_frame, x[i].to_frame);
+}
+
+TEST(BuildGraph, NoGraphUnderThePrunedStagesCeilingStillSaysWhatWouldMakeOne) {
+  BuildSettings settings;
+  settings.transitions.per_tag_thresholds = false;
+  settings.choice.max_rms_cm = 0.6;
+  settings.choice.lowest_rms_cm = 0.3;
+  auto built = build_graph(kInputs, settings);
+  ASSERT_TRUE(built) << built.error().to_string();
+  EXPECT_EQ(built->report.at("distance_stage").at("stage"), "pruned");
+  ASSERT_FALSE(built->graph_status);
+  EXPECT_EQ(built->graph_status.error().kind, ErrorKind::kEmptyGraph);
+  // The lowest threshold that makes a graph lies above the ceiling: found on every distance.
+  EXPECT_NE(built->graph_status.error().message.find("the lowest threshold that makes one"), std::string::npos);
+  ASSERT_TRUE(built->report.contains("lowest_graph_threshold"));
+  EXPECT_GT(built->report.at("lowest_graph_threshold").at("rms_cm").get<double>(), 0.6);
 }
 
 TEST(BuildGraph, ABridgeCapLeavesPairsUnjoinedAndSaysWhatWouldJoinThem) {

@@ -81,6 +81,7 @@ Status merge_candidates(CandidateSearch& into, const CandidateSearch& part) {
   into.minima.insert(into.minima.end(), part.minima.begin(), part.minima.end());
   std::inplace_merge(into.minima.begin(), into.minima.begin() + middle, into.minima.end(), minimum_order);
   into.histogram.merge(part.histogram);
+  if (into.tile_frames == 0) into.tile_frames = part.tile_frames;
   for (size_t i = 0; i < into.picture.size(); ++i) {
     const float value = part.picture[i];
     if (value == value && !(into.picture[i] <= value)) into.picture[i] = value;  // NaN or larger
@@ -100,6 +101,7 @@ Result<CandidateSearch> find_candidates(const FrameFeatures& f, const DistanceSe
   auto empty = empty_candidate_search(f, settings);
   if (!empty) return empty.error();
   CandidateSearch search = std::move(*empty);
+  search.tile_frames = distance.tile_frames;
   const int n = f.frames;
   const int k = f.window;
   const int radius = search.continuation_radius;

@@ -36,6 +36,7 @@ struct CandidateSettings {
 
 struct CandidateSearch {
   int window = 0;
+  int tile_frames = 0;             // the tiles' side (ties between local minima depend on it)
   int continuation_radius = 0;
   std::vector<Transition> minima;  // sorted by (from_frame, to_frame); no alignment yet
   DistanceHistogram histogram;

@@ -20,7 +20,7 @@ namespace {
 
 constexpr std::string_view kGraphMagic("MGRAPH\r\n\x1a", 9);
 constexpr std::string_view kCacheMagic("MGCACHE\r\n\x1a", 10);
-constexpr std::uint32_t kCacheVersion = 1;
+constexpr std::uint32_t kCacheVersion = 2;
 constexpr std::string_view kPartMagic("MGTILES\r\n\x1a", 10);
 constexpr std::uint32_t kPartVersion = 1;
 
@@ -364,6 +364,8 @@ void put_candidates(BinaryWriter& out, const CandidateSearch& c, bool with_minim
   out.put(c.tiles.seconds);
   out.put(c.tiles.tiles);
   out.put(c.tiles.pairs);
+  out.put(c.ceiling);
+  out.put<std::int32_t>(c.tile_frames);
 }
 
 bool get_candidates(BinaryReader& in, CandidateSearch& c, bool with_minima = true) {
@@ -371,7 +373,7 @@ bool get_candidates(BinaryReader& in, CandidateSearch& c, bool with_minima = tru
   if (!in.get(c.window) || !in.get(c.continuation_radius) || (with_minima && !in.get_vector(c.minima)) ||
       !in.get_vector(counts) ||
       !in.get_vector(c.picture) || !in.get(c.picture_side) || !in.get(c.picture_block) || !in.get(c.tiles.seconds) ||
-      !in.get(c.tiles.tiles) || !in.get(c.tiles.pairs)) {
+      !in.get(c.tiles.tiles) || !in.get(c.tiles.pairs) || !in.get(c.ceiling) || !in.get(c.tile_frames)) {
     return false;
   }
   if (counts.size() != static_cast<size_t>(DistanceHistogram::kBins) || c.window < 1 || c.picture_side < 0 ||

@@ -24,8 +24,8 @@
 //
 // Bridges read minima above any ceiling: on_demand_candidates.h finds those they need. Per-tag
 // thresholds count every candidate of a tag and are refused on this stage's candidates
-// (transition_selection.h), so `build`, whose default has them, does not use the stage yet:
-// docs/performance.md ("Bridges on demand") says how much faster it is and what is left.
+// (transition_selection.h), so `build` runs this stage only where they do not apply
+// (BuildSettings::pruned_stage): docs/performance.md ("Bridges on demand").
 #pragma once
 
 #include <vector>

@@ -173,6 +173,7 @@ Result<SharedSearch> find_candidates_shared(const FrameFeatures& features, const
   Status merged = Ok{};
   if (team.rank() == 0) {
     merged = merge_parts(features, settings, restored, messages, out);
+    out.search.tile_frames = distance.tile_frames;
     out.search.tiles.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   if (auto s = team.agree(merged); !s) return s.error();

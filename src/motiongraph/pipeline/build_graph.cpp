@@ -14,6 +14,8 @@
 #include "motiongraph/export/matrix_png.h"
 #include "motiongraph/export/npy.h"
 #include "motiongraph/graph/graph_from_candidates.h"
+#include "motiongraph/graph/on_demand_candidates.h"
+#include "motiongraph/graph/pruned_candidates.h"
 #include "motiongraph/metric/frame_features.h"
 #include "motiongraph/pipeline/build_report.h"
 #include "motiongraph/pipeline/saved_settings.h"
@@ -81,12 +83,51 @@ struct Say {
 struct Candidates {
   CandidateSearch search;
   const char* cache = "off";  // "hit", "stored" or "off"
+  PrunedSearchStatistics pruned;  // the pruned stage's plan, when it ran (not from the cache)
   int processes = 1;
   std::vector<double> peak_memory_mb, share_seconds;
   long long restored_tiles = 0;
 };
 
-Result<Candidates> distance_stage(const FrameFeatures& features, const BuildSettings& settings, DistanceCache* cache,
+// The pruned stage's settings for the build: the distance stage's threads, `tile` when given.
+PrunedSearchSettings pruned_settings(const BuildSettings& settings, int tile = 0) {
+  PrunedSearchSettings pruned = settings.pruned;
+  pruned.threads = settings.distance_stage.distance.threads;
+  if (tile > 0) pruned.tile_frames = tile;
+  return pruned;
+}
+
+CandidateSettings candidate_settings_of(const BuildSettings& settings) {
+  CandidateSettings candidates;
+  candidates.continuation_radius = settings.distance_stage.continuation_radius;
+  candidates.keep_matrix = settings.exports.matrix_npy;
+  return candidates;
+}
+
+// The pruned stage's ceiling: the upper edge of the histogram bin of the quality ceiling's D, so
+// that every pair of that bin is computed and the histograms' fractions are exact up to it.
+double pruned_ceiling(const BuildSettings& settings, const FrameFeatures& features) {
+  return DistanceHistogram::bin_upper_edge(
+      DistanceHistogram::bin_of(distance_of_rms_cm(settings.choice.max_rms_cm, features)));
+}
+
+// What decides the distance stage's result besides the settings' JSON form: which stage, its
+// ceiling and the tile side (ties between local minima depend on it). Part of the cache key.
+json distance_key_json(const BuildSettings& settings, bool pruned, const FrameFeatures& features,
+                       json distance_json) {
+  if (pruned) {
+    distance_json["stage"] = "pruned";
+    distance_json["ceiling"] = pruned_ceiling(settings, features);
+    distance_json["tile"] = pruned_settings(settings).tile_for(features.window);
+  } else {
+    distance_json["stage"] = "exhaustive";
+    distance_json["tile"] = settings.distance_stage.distance.tile_frames;
+  }
+  return distance_json;
+}
+
+Result<Candidates> distance_stage(const MotionDatabase& db, const FrameFeatures& features,
+                                  const BuildSettings& settings, DistanceCache* cache,
                                   std::uint64_t key, const Say& say, bool progress_bar, ProcessTeam& team) {
   // The cache holds no matrix: with the matrix export the stage runs (and refreshes the cache).
   const bool keep_matrix = settings.exports.matrix_npy;
@@ -107,22 +148,49 @@ Result<Candidates> distance_stage(const FrameFeatures& features, const BuildSett
     out.processes = team.size();
     return out;
   }
-  CandidateSettings candidate_settings;
-  candidate_settings.continuation_radius = settings.distance_stage.continuation_radius;
-  candidate_settings.keep_matrix = keep_matrix;
+  const CandidateSettings candidate_settings = candidate_settings_of(settings);
   SharedSearchSettings shared = settings.shared;
   shared.progress_bar = progress_bar;
-  auto found =
-      find_candidates_shared(features, settings.distance_stage.distance, candidate_settings, key, team, shared);
+  // The pruned stage: the plan (the same on every process), its items shared as the
+  // exhaustive stage's are, then what lies above the ceiling set aside.
+  const bool pruned = settings.pruned_stage(db);
+  const auto start = std::chrono::steady_clock::now();
+  const double ceiling = pruned_ceiling(settings, features);
+  PrunedSearchStatistics plan_statistics;
+  std::optional<PrunedPlan> plan;
+  if (pruned) {
+    auto made = plan_pruned_search(features, ceiling, pruned_settings(settings), &plan_statistics);
+    if (!made) return made.error();
+    plan = std::move(*made);
+  }
+  auto found = find_candidates_shared(features, plan ? plan->distance : settings.distance_stage.distance,
+                                      candidate_settings, key, team, shared, plan ? &plan->items : nullptr,
+                                      plan ? &plan->sides : nullptr);
   if (!found) return found.error();
-  Candidates out{std::move(found->search), "off", found->processes, std::move(found->peak_memory_mb),
+  Candidates out{std::move(found->search), "off", plan_statistics, found->processes, std::move(found->peak_memory_mb),
                  std::move(found->share_seconds), found->restored_tiles};
   if (team.rank() != 0) return out;
+  if (pruned) {
+    out.pruned.computed_pairs = out.search.tiles.pairs;
+    out.pruned.exact_seconds = out.search.tiles.seconds;
+    finish_pruned_search(features, ceiling, out.search);
+    out.search.tiles.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
   const std::string restored =
       out.restored_tiles > 0 ? fmt::format(" ({} tiles from the checkpoint)", out.restored_tiles) : "";
   const std::string processes = team.size() > 1 ? fmt::format(" on {} processes", team.size()) : "";
-  say.info(fmt::format("distance stage: {} x {} pairs in {:.2f} s{}{}, {} local minima", features.frames,
-                       features.frames, out.search.tiles.seconds, processes, restored, out.search.minima.size()));
+  if (pruned) {
+    const PrunedSearchStatistics& p = out.pruned;
+    say.info(fmt::format("distance stage (pruned below RMS {:g} cm): {} of {} tiles of {} frames ({:.1f} %) in "
+                         "{:.2f} s{}{}, {} local minima below the ceiling",
+                         settings.choice.max_rms_cm, p.tiles_computed, p.tiles, p.tile_frames,
+                         p.tiles > 0 ? 100.0 * static_cast<double>(p.tiles_computed) / static_cast<double>(p.tiles)
+                                     : 0.0,
+                         out.search.tiles.seconds, processes, restored, out.search.minima.size()));
+  } else {
+    say.info(fmt::format("distance stage: {} x {} pairs in {:.2f} s{}{}, {} local minima", features.frames,
+                         features.frames, out.search.tiles.seconds, processes, restored, out.search.minima.size()));
+  }
   if (cache == nullptr) return out;
   if (auto s = cache->store(key, out.search); !s) {
     say.warning(fmt::format("cannot cache the distance stage: {}", s.error().to_string()));
@@ -135,7 +203,8 @@ Result<Candidates> distance_stage(const FrameFeatures& features, const BuildSett
 // data and path-checked (their report parts in choice_json and check_json).
 Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db, const FrameFeatures& features,
                                                        const CandidateSearch& candidates, const BuildSettings& settings,
-                                                       const Say& say, json& choice_json, json& check_json) {
+                                                       OnDemandCandidates* more, const Say& say, json& choice_json,
+                                                       json& check_json) {
   TagMask connected = motion_type_tags(db);
   if (!settings.connect_tags.empty()) {
     auto mask = tag_mask_of(db, settings.connect_tags);
@@ -164,7 +233,7 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
       break;
   }
   const ThresholdChoiceSettings& choice_settings = settings.choice;
-  auto choice = choose_threshold(db, features, candidates, graph_settings, choice_settings);
+  auto choice = choose_threshold(db, features, candidates, graph_settings, choice_settings, more);
   if (!choice) return choice.error();
   graph_settings.transitions.threshold = choice->threshold;
   graph_settings.transitions.max_threshold = distance_of_rms_cm(choice_settings.max_rms_cm, features);
@@ -184,7 +253,7 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
   if (!settings.path_check) return graph_settings;
   const PathCheckSettings& check_settings = settings.path_check_settings;
   auto check = check_path_following(db, features, candidates, graph_settings, choice->threshold,
-                                    graph_settings.transitions.max_threshold, check_settings);
+                                    graph_settings.transitions.max_threshold, check_settings, more);
   if (!check) return check.error();
   check_json = path_check_json(*check, check_settings);
   const PathCheckPoint& first = check->points.front();
@@ -209,6 +278,37 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
   }
   graph_settings.transitions.threshold = check->threshold;
   return graph_settings;
+}
+
+// The report's "distance_stage": which stage ran and, for the pruned one, what it computed:
+// {"stage", "tile_frames", "seconds"} and {"ceiling", "ceiling_rms_cm", "tiles", "tiles_computed",
+// "computed_pairs", "embedding_seconds", "search_seconds", "on_demand": {"raises", "tiles",
+// "pairs", "seconds", "search_seconds", "tile_seconds", "minima"}} (the plan's figures are null when the stage came from the cache).
+json distance_stage_json(const CandidateSearch& search, const PrunedSearchStatistics& plan,
+                         const OnDemandCandidates* more, const char* cache, const FrameFeatures& features) {
+  json out = {{"stage", search.ceiling >= 0.0 ? "pruned" : "exhaustive"},
+              {"tile_frames", search.tile_frames},
+              {"seconds", search.tiles.seconds}};
+  if (search.ceiling < 0.0) return out;
+  const bool planned = std::string(cache) != "hit";
+  out["ceiling"] = search.ceiling;
+  out["ceiling_rms_cm"] = rms_cm_of_distance(search.ceiling, features);
+  out["tiles"] = planned ? json(plan.tiles) : json(nullptr);
+  out["tiles_computed"] = planned ? json(plan.tiles_computed) : json(nullptr);
+  out["computed_pairs"] = search.tiles.pairs;
+  out["embedding_seconds"] = planned ? json(plan.embedding_seconds) : json(nullptr);
+  out["search_seconds"] = planned ? json(plan.search_seconds) : json(nullptr);
+  if (more != nullptr) {
+    const OnDemandStatistics& s = more->statistics();
+    out["on_demand"] = {{"raises", s.raises},
+                        {"tiles", s.tiles},
+                        {"pairs", s.pairs},
+                        {"seconds", s.seconds},
+                        {"search_seconds", s.search_seconds},
+                        {"tile_seconds", s.tile_seconds},
+                        {"minima", more->above().size()}};
+  }
+  return out;
 }
 
 // The exports asked for, as bytes.
@@ -298,9 +398,11 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
 
   // 3. The distance stage, from the cache when the same inputs and settings were seen.
   const json distance_json = settings.distance_stage.to_json(features->window);
-  const std::uint64_t key = distance_cache_key(*db, json_text(distance_json));
+  const std::uint64_t key =
+      distance_cache_key(*db, json_text(distance_key_json(settings, settings.pruned_stage(*db), *features,
+                                                          distance_json)));
   auto candidates =
-      distance_stage(*features, settings, cache, key, say, processes.rank() == 0 && log.progress_bar, processes);
+      distance_stage(*db, *features, settings, cache, key, say, processes.rank() == 0 && log.progress_bar, processes);
   if (!candidates) return candidates.error();
   timings["distance"] = watch.lap();
   if (processes.rank() != 0) {
@@ -309,12 +411,20 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
     return worker;
   }
 
-  // 4. Transitions, at the threshold asked for or chosen.
+  // 4. Transitions, at the threshold asked for or chosen. Bridges on the pruned stage's
+  // candidates find the minima above its ceiling they need on demand.
+  std::optional<OnDemandCandidates> more;
+  if (candidates->search.ceiling >= 0.0) {
+    more.emplace(*features, candidates->search.ceiling, pruned_settings(settings, candidates->search.tile_frames),
+                 candidate_settings_of(settings));
+  }
+  OnDemandCandidates* on_demand = more ? &*more : nullptr;
   json choice_json = nullptr;
   json check_json = nullptr;
-  auto graph_settings = threshold_settings(*db, *features, candidates->search, settings, say, choice_json, check_json);
+  auto graph_settings =
+      threshold_settings(*db, *features, candidates->search, settings, on_demand, say, choice_json, check_json);
   if (!graph_settings) return graph_settings.error();
-  auto selected = select_transitions_with_bridges(*db, *features, candidates->search, *graph_settings);
+  auto selected = select_transitions_with_bridges(*db, *features, candidates->search, *graph_settings, on_demand);
   if (!selected) return selected.error();
   const TransitionSelection& selection = selected->selection;
   if (!selected->bridges.empty()) say.info(fmt::format("{} bridges between motion types", selected->bridges.size()));
@@ -353,6 +463,8 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
                                              check_json, settings.spacing, graph_settings->bridges,
                                              candidates->cache, candidates->processes, candidates->peak_memory_mb,
                                              candidates->share_seconds, candidates->restored_tiles});
+  out.report["distance_stage"] = distance_stage_json(candidates->search, candidates->pruned, more ? &*more : nullptr,
+                                                    candidates->cache, *features);
   if (auto s = make_exports(settings, *db, *layout, *features, candidates->search, selected->all_transitions, out);
       !s) {
     return s.error();
@@ -362,7 +474,17 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
 
   if (!built) {
     // No graph: say which threshold would make one, and what it would keep.
-    auto lowest = lowest_graph_threshold(*db, *features, candidates->search, *graph_settings, selection.threshold);
+    // It may lie above the pruned stage's ceiling: looked for on every distance.
+    const CandidateSearch* every = &candidates->search;
+    CandidateSearch exhaustive;
+    if (every->ceiling >= 0.0) {
+      say.info("no graph: the exhaustive distance stage runs to find the lowest threshold that makes one");
+      auto found = find_candidates(*features, settings.distance_stage.distance, candidate_settings_of(settings));
+      if (!found) return found.error();
+      exhaustive = std::move(*found);
+      every = &exhaustive;
+    }
+    auto lowest = lowest_graph_threshold(*db, *features, *every, *graph_settings, selection.threshold);
     if (!lowest) return lowest.error();
     std::string advice = "no threshold makes a graph: the clips hold no loop of transitions at all";
     if (*lowest) {

@@ -13,6 +13,11 @@ Result<BuildSettings> build_settings_from(const BuildOptions& o) {
   BuildSettings s;
   s.distance_stage.cloud = o.cloud_settings;
   s.distance_stage.distance = o.distance;
+  s.exhaustive = o.exhaustive;
+  if (o.tile_frames != 0) {
+    s.distance_stage.distance.tile_frames = o.tile_frames;
+    s.pruned.tile_frames = o.tile_frames;
+  }
   s.distance_stage.continuation_radius = o.continuation_radius;
   auto cloud = parse_cloud_kind(o.cloud);
   if (!cloud) return Error{"", 0, fmt::format("--cloud must be 'rings' or 'joints', not '{}'", o.cloud)};

@@ -26,7 +26,9 @@ struct BuildOptions {
   std::string cloud = "rings";
   PointCloudSettings cloud_settings;
   std::vector<std::string> joint_weights;  // NAME=WEIGHT
-  DistanceSettings distance;
+  DistanceSettings distance;  // its tile_frames is set from tile_frames
+  int tile_frames = 0;        // 0: 1024 for the exhaustive stage, from the window for the pruned one
+  bool exhaustive = false;
   std::string taper = "uniform";
   TransitionSettings transitions;
   std::string threshold = "auto";  // auto, D, or an RMS distance with "cm"

@@ -1,6 +1,8 @@
 // The build's settings, checked before any work.
 #include "motiongraph/pipeline/build_settings.h"
 
+#include "motiongraph/graph/graph_from_candidates.h"
+
 #include <cmath>
 
 #include "motiongraph/graph/candidates.h"
@@ -32,7 +34,7 @@ Status BuildSettings::validate() const {
   candidates.keep_matrix = exports.matrix_npy;
   for (const Status& s : {distance_stage.cloud.validate(), distance_stage.distance.validate(), selection.validate(),
                           candidates.validate(), bridges.validate(), choice.validate(), path_check_settings.validate(),
-                          spacing.validate(), shared.validate()}) {
+                          spacing.validate(), shared.validate(), pruned.validate()}) {
     if (!s) return s;
   }
   if ((threshold_mode == ThresholdMode::kDistance || threshold_mode == ThresholdMode::kRmsCm) &&
@@ -46,6 +48,13 @@ Status BuildSettings::validate() const {
     return Error{"", 0, "the matrix export (--export-matrix) is made without --checkpoint only"};
   }
   return Ok{};
+}
+
+bool BuildSettings::pruned_stage(const MotionDatabase& db) const {
+  if (exhaustive || threshold_mode != ThresholdMode::kAuto || exports.matrix_npy) return false;
+  if (!transitions.per_tag_thresholds || ignore_tags) return true;
+  auto connected = connect_tags.empty() ? Result<TagMask>(motion_type_tags(db)) : tag_mask_of(db, connect_tags);
+  return connected && *connected == 0;
 }
 
 }  // namespace mg

@@ -11,6 +11,7 @@
 #include "motiongraph/core/error.h"
 #include "motiongraph/database/database_loader.h"
 #include "motiongraph/graph/bridges.h"
+#include "motiongraph/graph/pruned_candidates.h"
 #include "motiongraph/graph/threshold_choice.h"
 #include "motiongraph/graph/transition_selection.h"
 #include "motiongraph/graph/transition_spacing.h"
@@ -43,6 +44,14 @@ struct BuildSettings {
   // above the inputs when there is one (else the built-in index).
   bool find_cmu_index = true;
   DistanceStageSettings distance_stage;
+  // The distance stage: the pruned one (graph/pruned_candidates.h), with the quality ceiling
+  // (choice.max_rms_cm) as its ceiling, when the threshold is chosen automatically, per-tag
+  // thresholds do not apply (no motion types, --ignore-tags or --no-tag-thresholds: they count
+  // every candidate of a type, above any ceiling) and the matrix is not exported; the exhaustive
+  // one when asked for or when something needs every distance. Both give the same graph at the
+  // same tile side.
+  bool exhaustive = false;
+  PrunedSearchSettings pruned;  // its threads are distance_stage.distance's
   ThresholdMode threshold_mode = ThresholdMode::kAuto;
   double threshold_value = 0.0;  // see ThresholdMode
   // threshold and threshold_quantile are set by threshold_mode; locality, per-tag thresholds
@@ -66,6 +75,8 @@ struct BuildSettings {
   SharedSearchSettings shared;
 
   Status validate() const;
+  // Whether the pruned stage runs on `db` (see `exhaustive`).
+  bool pruned_stage(const MotionDatabase& db) const;
 };
 
 }  // namespace mg
