@@ -113,7 +113,13 @@ TEST(MatrixPng, PixelsShowValuesUndefinedEntriesBoundariesAndTransitions) {
   EXPECT_EQ(image.at(40, 10), matrix_ramp(0.0)) << "the smallest value gets the darkest colour";
   EXPECT_LT(luminance(image.at(21, 20)), luminance(image.at(50, 20))) << "the diagonal valley is darker";
 
-  // Undefined entries.
+  // Undefined entries; and a block above the pruned stage's ceiling.
+  std::vector<float> above = m;
+  set(above, n, 50, 10, std::numeric_limits<float>::infinity());
+  auto with_above = matrix_png(above, n, clip_starts, {}, {});
+  ASSERT_TRUE(with_above);
+  EXPECT_EQ(decode(*with_above).at(10, 50), kMatrixAboveCeilingRgb);
+  EXPECT_NE(kMatrixAboveCeilingRgb, kMatrixUndefinedRgb);
   EXPECT_EQ(image.at(20, 2), kMatrixUndefinedRgb);
   EXPECT_EQ(image.at(59, 4), kMatrixUndefinedRgb);
   EXPECT_NE(image.at(20, 5), kMatrixUndefinedRgb);

@@ -188,7 +188,9 @@ Result<RgbImage> render_matrix_picture(const MinMatrixView& matrix, std::span<co
   for (int y = 0; y < matrix.side; ++y) {
     for (int x = 0; x < matrix.side; ++x) {
       const float value = matrix.values[static_cast<size_t>(y) * matrix.side + x];
-      if (!std::isfinite(value)) {
+      if (value == std::numeric_limits<float>::infinity()) {
+        set_pixel(image, x, y, kMatrixAboveCeilingRgb);
+      } else if (!std::isfinite(value)) {
         set_pixel(image, x, y, kMatrixUndefinedRgb);
       } else {
         const double t = span > 0.0 ? (static_cast<double>(value) - range.low) / span : 0.0;

@@ -14,7 +14,7 @@
 // Colours: finite values from the smallest (dark purple) to the high_percentile-th
 // percentile of the finite pixel values (yellow, everything above clamps there) on the
 // viridis ramp (perceptually uniform, lightness rising with the value); undefined pixels are
-// mid grey; clip starts are thin lines blended halfway toward white; transitions are small
+// mid grey, +infinity (above the pruned distance stage's ceiling) light grey; clip starts are thin lines blended halfway toward white; transitions are small
 // red "+" crosses. Fails (as a value) on invalid settings, inconsistent shapes, or frame
 // indices outside the matrix.
 #pragma once
@@ -34,6 +34,9 @@ namespace mg {
 using Rgb = std::array<std::uint8_t, 3>;
 
 inline constexpr Rgb kMatrixUndefinedRgb = {128, 128, 128};
+// +infinity: a block whose pairs all lie above the pruned distance stage's ceiling (not
+// computed; pruned_candidates.h). Light grey, apart from the undefined and the ramp.
+inline constexpr Rgb kMatrixAboveCeilingRgb = {208, 208, 208};
 inline constexpr Rgb kMatrixTransitionRgb = {255, 0, 0};
 inline constexpr Rgb kMatrixBoundaryRgb = {255, 255, 255};  // blended 50% over the pixel
 
