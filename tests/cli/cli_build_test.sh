@@ -113,6 +113,29 @@ PY
 "$bin" build "$data/cmu/16" -o "$work/g2.mgraph" --cache-dir "$cache" --threshold-quantile 0.05 --report "$work/r2.json" -q
 python3 -c "import json,sys; r=json.load(open(sys.argv[1])); assert r['distance_cache']=='hit', r['distance_cache']" "$work/r2.json"
 
+# The pruned distance stage runs where per-tag thresholds do not apply (here one threshold for
+# all motion types, bridges found on demand): the same graph as --exhaustive with its tiles,
+# its distances cached apart, and eval selects again on what it stored.
+"$bin" build "$data/cmu/16" -o "$work/p.mgraph" --cache-dir "$cache" --no-tag-thresholds --report "$work/p.json" -q
+"$bin" build "$data/cmu/16" -o "$work/p2.mgraph" --cache-dir "$cache" --no-tag-thresholds --report "$work/p2.json" -q
+"$bin" build "$data/cmu/16" -o "$work/e.mgraph" --cache-dir "$cache" --no-tag-thresholds --exhaustive --tile 64 \
+  --report "$work/e.json" -q
+"$bin" inspect --nodes "$work/p.mgraph" >"$work/p.nodes"
+"$bin" inspect --nodes "$work/e.mgraph" >"$work/e.nodes"
+cmp -s "$work/p.nodes" "$work/e.nodes" || { echo "FAIL: pruned and exhaustive graphs differ"; exit 1; }
+python3 - "$work/p.json" "$work/p2.json" "$work/e.json" <<'PY'
+import json, sys
+p, p2, e = (json.load(open(f)) for f in sys.argv[1:])
+s = p["distance_stage"]
+assert s["stage"] == "pruned" and s["tile_frames"] == 64 and 0 < s["tiles_computed"] < s["tiles"], s
+assert s["on_demand"]["raises"] > 0 and p["counts"]["bridges"] > 0, (s, p["counts"])
+assert p["distance_cache"] == "stored" and p2["distance_cache"] == "hit", (p["distance_cache"], p2["distance_cache"])
+assert e["distance_stage"]["stage"] == "exhaustive" and e["distance_cache"] == "stored", e["distance_stage"]
+assert p["threshold"] == e["threshold"] and p["bridges"] == e["bridges"] and p["graph_after"] == e["graph_after"]
+PY
+"$bin" eval "$work/p.mgraph" --what threshold --no-plots --out-dir "$work/peval" -q
+[[ $(wc -l <"$work/peval/threshold.csv") -gt 2 ]] || { echo "FAIL: eval on a pruned graph"; exit 1; }
+
 # A threshold in cm; the same graph from the same threshold given as D.
 "$bin" build "$data/cmu/16" -o "$work/g3.mgraph" --cache-dir "$cache" --threshold 6cm --report "$work/r3.json" -q
 d=$(python3 -c "import json,sys; r=json.load(open(sys.argv[1])); assert r['threshold_mode']=='rms_cm' and abs(r['threshold_rms_cm']-6)<1e-9, r['threshold_rms_cm']; print(repr(r['threshold']))" "$work/r3.json")
