@@ -253,8 +253,9 @@ int run_eval(const EvalOptions& o) {
       const std::vector<double> below = quantiles_below_ceiling(c, quantiles);
       if (below.size() < quantiles.size()) {
         spdlog::warn("{} of the {} thresholds lie above the ceiling of the pruned distance stage that built the "
-                        "graph (RMS {:.2f} cm) and are left out: build it with --exhaustive to sweep them",
-                        quantiles.size() - below.size(), quantiles.size(), rms_cm_of_distance(c.ceiling, rebuild->features));
+                     "graph (RMS {:.2f} cm) and are left out: build it with --exhaustive to sweep them",
+                     quantiles.size() - below.size(), quantiles.size(),
+                     rms_cm_of_distance(c.ceiling, rebuild->features));
       }
       if (below.empty()) {
         return fail(Error{o.graph, 0, "every threshold asked for lies above the pruned distance stage's ceiling: "

@@ -3,13 +3,13 @@
 // bridges (bridges.h) take the best minima between two motion types whatever their D (on
 // subject 16, walk to run at 20-26 cm RMS, above the 10 cm ceiling). So bridges ask, per
 // ordered pair of tags (s, u) still short of bridges, for more: the pair's level rises (4x in
-// D a step, then to every pair), and the tiles that can hold a pair of its region (a leaving
-// frame of s, an arriving frame of u) with a bound at most the new level, and that were not
-// computed yet, are computed as the exhaustive stage computes them. Their minima above the
-// ceiling are kept (those at or below it are the search's already). The region's minima up to
-// the level are then all known (a bridge leaves a window carrying s but not u and arrives at one
-// carrying u but not s: the region is the tiles that hold such pairs), and select_bridges, fed the levels and these minima, picks the
-// bridges that all the minima give (the exhaustive stage's bridges at the same tile side).
+// D a step, then to every pair), and the tiles of its region with a bound at most the new level
+// that were not computed yet are computed as the exhaustive stage computes them. The region:
+// a bridge leaves a window carrying s but not u and arrives at one carrying u but not s, so the
+// tiles holding such pairs. Their minima above the ceiling are kept (those at or below it are
+// the search's already). The region's minima up to the level are then all known, and
+// select_bridges, fed the levels and these minima, picks the bridges that all the minima give
+// (the exhaustive stage's bridges at the same tile side).
 //
 // Memory: the window embedding (about 300 bytes a window, made at the first raise), a byte per
 // tile, and a byte per tile for each level searched (at most four: 4, 16, 64 and 256 times the

@@ -283,7 +283,8 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
 // The report's "distance_stage": which stage ran and, for the pruned one, what it computed:
 // {"stage", "tile_frames", "seconds"} and {"ceiling", "ceiling_rms_cm", "tiles", "tiles_computed",
 // "computed_pairs", "embedding_seconds", "search_seconds", "on_demand": {"raises", "tiles",
-// "pairs", "seconds", "search_seconds", "tile_seconds", "minima"}} (the plan's figures are null when the stage came from the cache).
+// "pairs", "seconds", "search_seconds", "tile_seconds", "minima"}} (the plan's figures are null
+// when the stage came from the cache).
 json distance_stage_json(const CandidateSearch& search, const PrunedSearchStatistics& plan,
                          const OnDemandCandidates* more, const char* cache, const FrameFeatures& features) {
   json out = {{"stage", search.ceiling >= 0.0 ? "pruned" : "exhaustive"},

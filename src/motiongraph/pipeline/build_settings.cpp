@@ -1,11 +1,10 @@
 // The build's settings, checked before any work.
 #include "motiongraph/pipeline/build_settings.h"
 
-#include "motiongraph/graph/graph_from_candidates.h"
-
 #include <cmath>
 
 #include "motiongraph/graph/candidates.h"
+#include "motiongraph/graph/graph_from_candidates.h"
 
 namespace mg {
 
