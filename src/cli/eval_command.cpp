@@ -245,11 +245,7 @@ int run_eval(const EvalOptions& o) {
     rebuild = std::move(*prepared);
     const CandidateSearch& c = file->candidates;
     if (c.ceiling >= 0.0) {
-      PrunedSearchSettings pruned;
-      pruned.tile_frames = c.tile_frames;
-      CandidateSettings candidate_settings;
-      candidate_settings.continuation_radius = c.continuation_radius;
-      more.emplace(rebuild->features, c.ceiling, pruned, candidate_settings);
+      more.emplace(rebuild->features, c);
       const std::vector<double> below = quantiles_below_ceiling(c, quantiles);
       if (below.size() < quantiles.size()) {
         spdlog::warn("{} of the {} thresholds lie above the ceiling of the pruned distance stage that built the "

@@ -70,7 +70,7 @@ TEST(OnDemandCandidates, ALevelHoldsEveryMinimumOfItsRegionUpToIt) {
   const Library& l = library();
   const double ceiling = distance_of_rms_cm(3.0, l.features);
   const CandidateSearch search = pruned_search(ceiling);
-  OnDemandCandidates more(l.features, ceiling, l.pruned);
+  OnDemandCandidates more(l.features, search, l.pruned.embedding, l.pruned.threads);
   const std::vector<TagMask> tags = l.db.frame_tags();
   for (int step = 0; step < 3; ++step) {
     const TagPair walk_to_run{0, 1};
@@ -114,7 +114,7 @@ TEST(OnDemandCandidates, PrunedCandidatesGiveTheExhaustiveTransitionsAndBridges)
   for (const double ceiling_cm : {6.0, 10.0}) {
     const double ceiling = distance_of_rms_cm(ceiling_cm, l.features);
     const CandidateSearch search = pruned_search(ceiling);
-    OnDemandCandidates more(l.features, ceiling, l.pruned);
+    OnDemandCandidates more(l.features, search, l.pruned.embedding, l.pruned.threads);
     for (const double rms : {2.0, 4.0, ceiling_cm}) {
       for (const double cap_cm : {0.0, 15.0, 22.0}) {
         GraphFromCandidatesSettings settings;
@@ -152,7 +152,7 @@ TEST(OnDemandCandidates, PrunedCandidatesGiveTheExhaustiveThresholdChoice) {
   choice.refine = 3;
   const double ceiling = distance_of_rms_cm(choice.max_rms_cm, l.features);
   const CandidateSearch search = pruned_search(ceiling);
-  OnDemandCandidates more(l.features, ceiling, l.pruned);
+  OnDemandCandidates more(l.features, search, l.pruned.embedding, l.pruned.threads);
   GraphFromCandidatesSettings settings;
   settings.connected_tags = 0b11;
   settings.transitions.per_tag_thresholds = false;

@@ -117,11 +117,7 @@ TEST(BuildGraph, ThePrunedStageRunsWhereItIsExactAndGivesTheExhaustiveGraph) {
   auto rebuild = prepare_graph_rebuild(file, "s16.mgraph");
   ASSERT_TRUE(rebuild) << rebuild.error().to_string();
   EXPECT_FALSE(graph_from_candidates(file.database, rebuild->features, file.candidates, rebuild->settings));
-  PrunedSearchSettings tiles;
-  tiles.tile_frames = file.candidates.tile_frames;
-  CandidateSettings radius;
-  radius.continuation_radius = file.candidates.continuation_radius;
-  OnDemandCandidates more(rebuild->features, file.candidates.ceiling, tiles, radius);
+  OnDemandCandidates more(rebuild->features, file.candidates);
   auto again = graph_from_candidates(file.database, rebuild->features, file.candidates, rebuild->settings, &more);
   ASSERT_TRUE(again) << again.error().to_string();
   ASSERT_EQ(again->pruned.graph.transitions.size(), x.size());

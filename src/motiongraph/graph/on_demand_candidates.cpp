@@ -21,15 +21,17 @@ bool by_frames(const Transition& x, const Transition& y) {
 
 }  // namespace
 
-OnDemandCandidates::OnDemandCandidates(const FrameFeatures& features, double ceiling,
-                                       const PrunedSearchSettings& pruned, const CandidateSettings& candidates)
+OnDemandCandidates::OnDemandCandidates(const FrameFeatures& features, const CandidateSearch& search,
+                                       const WindowEmbeddingSettings& embedding, int threads)
     : features_(features),
-      ceiling_(ceiling),
-      pruned_(pruned),
-      candidate_settings_(candidates),
-      levels_(static_cast<size_t>(kBridgeTags) * kBridgeTags, ceiling) {
-  candidate_settings_.keep_matrix = false;
+      ceiling_(search.ceiling),
+      levels_(static_cast<size_t>(kBridgeTags) * kBridgeTags, search.ceiling) {
+  pruned_.embedding = embedding;
+  pruned_.tile_frames = search.tile_frames;
+  pruned_.threads = threads;
+  candidate_settings_.continuation_radius = search.continuation_radius;
 }
+
 
 Status OnDemandCandidates::raise(std::span<const TagPair> pairs) {
   const auto start = std::chrono::steady_clock::now();
@@ -102,19 +104,10 @@ Status OnDemandCandidates::raise(std::span<const TagPair> pairs) {
     raised.emplace_back(at, next);
   }
   // The wanted tiles as the exhaustive stage's work items.
-  std::vector<long long> items;
-  std::vector<unsigned char> sides;
-  for (long long item = 0; item < grid.count(); ++item) {
-    const auto [i, j] = grid.tiles_of(item);
-    const auto mine = static_cast<unsigned char>((wanted[static_cast<size_t>(i) * side + j] ? 1 : 0) |
-                                                 (i != j && wanted[static_cast<size_t>(j) * side + i] ? 2 : 0));
-    if (mine == 0) continue;
-    items.push_back(item);
-    sides.push_back(mine);
-  }
-  if (!items.empty()) {
+  const TileSelection selected = items_of_flagged_tiles(grid, wanted);
+  if (!selected.items.empty()) {
     const auto tiles_start = std::chrono::steady_clock::now();
-    auto found = find_candidates(features_, distance, candidate_settings_, {}, items, sides);
+    auto found = find_candidates(features_, distance, candidate_settings_, {}, selected.items, selected.sides);
     statistics_.tile_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tiles_start).count();
     if (!found) return found.error();
     const size_t before = above_.size();

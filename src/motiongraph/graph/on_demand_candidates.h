@@ -42,11 +42,11 @@ struct OnDemandStatistics {
 
 class OnDemandCandidates {
  public:
-  // `ceiling` is the search's (CandidateSearch::ceiling, >= 0); `pruned` and `candidates` as the
-  // search was made with (tile side, continuation radius). The tags are the features' (their
-  // windows'); `features` must outlive this object.
-  OnDemandCandidates(const FrameFeatures& features, double ceiling, const PrunedSearchSettings& pruned = {},
-                     const CandidateSettings& candidates = {});
+  // For `search`, a pruned stage's result (ceiling >= 0): its ceiling, tile side and continuation
+  // radius are the tiles'; `embedding` and `threads` (0: one per core) as for the stage. The
+  // tags are the features' (their windows'); `features` must outlive this object.
+  OnDemandCandidates(const FrameFeatures& features, const CandidateSearch& search,
+                     const WindowEmbeddingSettings& embedding = {}, int threads = 0);
 
   // kBridgeTags^2 levels (bridges.h), each the ceiling until raised, +infinity once every tile
   // of its region is computed.

@@ -70,14 +70,10 @@ Result<PrunedPlan> plan_pruned_search(const FrameFeatures& f, double ceiling, co
   const BoundedTiles bounded = find_bounded_tiles(f, *embedding, grid.tile, ceiling * (1.0 + 1e-3), pruned.threads);
   // An item computes the products of tiles (I, J) and (J, I): it is run when either is flagged,
   // and visits the flagged ones only.
-  for (long long item = 0; item < grid.count(); ++item) {
-    const auto [i, j] = grid.tiles_of(item);
-    const auto sides = static_cast<unsigned char>((bounded.flagged(i, j) ? 1 : 0) | (bounded.flagged(j, i) ? 2 : 0));
-    if (sides == 0) continue;
-    plan.items.push_back(item);
-    plan.sides.push_back(i == j ? 1 : sides);
-    stats.tiles_computed += grid.tile_count(item, plan.sides.back());
-  }
+  TileSelection selected = items_of_flagged_tiles(grid, bounded.flags);
+  plan.items = std::move(selected.items);
+  plan.sides = std::move(selected.sides);
+  for (size_t i = 0; i < plan.items.size(); ++i) stats.tiles_computed += grid.tile_count(plan.items[i], plan.sides[i]);
   stats.search_seconds = seconds_since(search_start);
   return plan;
 }

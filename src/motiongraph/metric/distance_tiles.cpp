@@ -313,6 +313,19 @@ TileItems tile_items(const FrameFeatures& f, const DistanceSettings& settings) {
   return grid;
 }
 
+TileSelection items_of_flagged_tiles(const TileItems& grid, std::span<const char> flags) {
+  TileSelection out;
+  const auto flagged = [&](int i, int j) { return flags[static_cast<size_t>(i) * grid.per_side + j] != 0; };
+  for (long long item = 0; item < grid.count(); ++item) {
+    const auto [i, j] = grid.tiles_of(item);
+    const auto sides = static_cast<unsigned char>((flagged(i, j) ? 1 : 0) | (i != j && flagged(j, i) ? 2 : 0));
+    if (sides == 0) continue;
+    out.items.push_back(item);
+    out.sides.push_back(sides);
+  }
+  return out;
+}
+
 TileRunStatistics for_each_distance_tile(const FrameFeatures& features, const DistanceSettings& settings,
                                          const TileVisitor& visitor,
                                          const std::function<void(long long, long long)>& on_tile_done,

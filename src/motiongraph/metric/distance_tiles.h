@@ -15,6 +15,7 @@
 #include <functional>
 #include <span>
 #include <utility>
+#include <vector>
 
 #include "motiongraph/metric/frame_features.h"
 
@@ -49,6 +50,15 @@ struct TileItems {
 };
 
 TileItems tile_items(const FrameFeatures& features, const DistanceSettings& settings);
+
+// The work items that hold a flagged tile (`flags`: per_side x per_side, row-major, nonzero
+// where flagged), increasing, and per item which of its tiles are flagged (the `sides` of
+// for_each_distance_tile).
+struct TileSelection {
+  std::vector<long long> items;
+  std::vector<unsigned char> sides;
+};
+TileSelection items_of_flagged_tiles(const TileItems& grid, std::span<const char> flags);
 
 // Called once per tile, from worker threads (the callback must be thread-safe). The tile's
 // memory is reused after the callback returns.

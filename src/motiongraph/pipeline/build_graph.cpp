@@ -89,11 +89,10 @@ struct Candidates {
   long long restored_tiles = 0;
 };
 
-// The pruned stage's settings for the build: the distance stage's threads, `tile` when given.
-PrunedSearchSettings pruned_settings(const BuildSettings& settings, int tile = 0) {
+// The pruned stage's settings for the build: the distance stage's threads.
+PrunedSearchSettings pruned_settings(const BuildSettings& settings) {
   PrunedSearchSettings pruned = settings.pruned;
   pruned.threads = settings.distance_stage.distance.threads;
-  if (tile > 0) pruned.tile_frames = tile;
   return pruned;
 }
 
@@ -126,8 +125,8 @@ json distance_key_json(const BuildSettings& settings, bool pruned, const FrameFe
   return distance_json;
 }
 
-Result<Candidates> distance_stage(const MotionDatabase& db, const FrameFeatures& features,
-                                  const BuildSettings& settings, DistanceCache* cache,
+Result<Candidates> distance_stage(bool pruned, const FrameFeatures& features, const BuildSettings& settings,
+                                  DistanceCache* cache,
                                   std::uint64_t key, const Say& say, bool progress_bar, ProcessTeam& team) {
   // The cache holds no matrix: with the matrix export the stage runs (and refreshes the cache).
   const bool keep_matrix = settings.exports.matrix_npy;
@@ -153,7 +152,6 @@ Result<Candidates> distance_stage(const MotionDatabase& db, const FrameFeatures&
   shared.progress_bar = progress_bar;
   // The pruned stage: the plan (the same on every process), its items shared as the
   // exhaustive stage's are, then what lies above the ceiling set aside.
-  const bool pruned = settings.pruned_stage(db);
   const auto start = std::chrono::steady_clock::now();
   const double ceiling = pruned_ceiling(settings, features);
   PrunedSearchStatistics plan_statistics;
@@ -399,11 +397,12 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
 
   // 3. The distance stage, from the cache when the same inputs and settings were seen.
   const json distance_json = settings.distance_stage.to_json(features->window);
+  const bool pruned_stage = settings.pruned_stage(*db);
   const std::uint64_t key =
-      distance_cache_key(*db, json_text(distance_key_json(settings, settings.pruned_stage(*db), *features,
+      distance_cache_key(*db, json_text(distance_key_json(settings, pruned_stage, *features,
                                                           distance_json)));
   auto candidates =
-      distance_stage(*db, *features, settings, cache, key, say, processes.rank() == 0 && log.progress_bar, processes);
+      distance_stage(pruned_stage, *features, settings, cache, key, say, processes.rank() == 0 && log.progress_bar, processes);
   if (!candidates) return candidates.error();
   timings["distance"] = watch.lap();
   if (processes.rank() != 0) {
@@ -416,8 +415,7 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
   // candidates find the minima above its ceiling they need on demand.
   std::optional<OnDemandCandidates> more;
   if (candidates->search.ceiling >= 0.0) {
-    more.emplace(*features, candidates->search.ceiling, pruned_settings(settings, candidates->search.tile_frames),
-                 candidate_settings_of(settings));
+    more.emplace(*features, candidates->search, settings.pruned.embedding, settings.distance_stage.distance.threads);
   }
   OnDemandCandidates* on_demand = more ? &*more : nullptr;
   json choice_json = nullptr;
