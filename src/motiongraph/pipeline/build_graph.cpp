@@ -401,8 +401,8 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
   const std::uint64_t key =
       distance_cache_key(*db, json_text(distance_key_json(settings, pruned_stage, *features,
                                                           distance_json)));
-  auto candidates =
-      distance_stage(pruned_stage, *features, settings, cache, key, say, processes.rank() == 0 && log.progress_bar, processes);
+  auto candidates = distance_stage(pruned_stage, *features, settings, cache, key, say,
+                                   processes.rank() == 0 && log.progress_bar, processes);
   if (!candidates) return candidates.error();
   timings["distance"] = watch.lap();
   if (processes.rank() != 0) {
