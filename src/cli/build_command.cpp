@@ -166,8 +166,8 @@ Command add_build_command(CLI::App& app) {
   sub->add_option("--taper", b.taper, "Weights over the window: 'uniform' or 'hann'")->capture_default_str();
   sub->add_option("--threshold", b.threshold,
                   "'auto': the lowest threshold at which the pruned graph keeps --coverage of each motion type's "
-                  "frames, at most --max-threshold; or an RMS point distance over the window such as '4cm'; or an "
-                  "absolute distance D")
+                  "frames (one per type unless --no-tag-thresholds), at most --max-threshold; or an RMS point "
+                  "distance over the window such as '4cm'; or an absolute distance D")
       ->capture_default_str();
   sub->add_option("--threshold-quantile", b.quantile,
                   "Instead of --threshold: the fraction of all defined pairs below the threshold (e.g. 0.02)");
@@ -196,8 +196,9 @@ Command add_build_command(CLI::App& app) {
                   "Frames of captured motion between arriving by a transition and leaving by the next (0: off)")
       ->capture_default_str();
   sub->add_flag("!--no-tag-thresholds", b.transitions.per_tag_thresholds,
-                "One threshold for everything: no motion type gets its own (by default each keeps the same share of "
-                "its own candidates as the database keeps of all)");
+                "One threshold for everything: no motion type gets its own (by default, with --threshold auto, each "
+                "gets the lowest at which it reaches --coverage; with a threshold given by hand, each keeps the same "
+                "share of its own candidates as the database keeps of all)");
   sub->add_option("--locality", b.transitions.locality_radius,
                   "Keep the best transition within this many frames (-1: half the window)")
       ->capture_default_str();
@@ -209,9 +210,8 @@ Command add_build_command(CLI::App& app) {
                   "the pruned one: 64 at 30 fps, 256 at 120 fps)")
       ->capture_default_str();
   sub->add_flag("--exhaustive", b.exhaustive,
-                "Compute every pair's distance. By default, with --threshold auto, no per-tag thresholds (clips "
-                "without motion types, --ignore-tags or --no-tag-thresholds) and no --export-matrix, only the tiles "
-                "that can hold a pair below --max-threshold are computed (the same graph at the same --tile; "
+                "Compute every pair's distance. By default, with --threshold auto and no --export-matrix, only the "
+                "tiles that can hold a pair below --max-threshold are computed (the same graph at the same --tile; "
                 "bridges above it are found on demand)");
   sub->add_option("--threads", b.distance.threads, "Worker threads (0: one per core)")->capture_default_str();
   sub->add_option("--checkpoint", b.shared.checkpoint_folder,

@@ -258,6 +258,10 @@ int run_eval(const EvalOptions& o) {
                                       "lower --highest or build the graph with --exhaustive"});
       }
       quantiles = below;
+      if (rebuild->settings.transitions.per_tag_thresholds && rebuild->settings.connected_tags != 0) {
+        spdlog::info("the sweeps give every motion type the same threshold: per-tag thresholds by rank need the "
+                     "exhaustive distance stage (build with --exhaustive to sweep them)");
+      }
     }
   }
   OnDemandCandidates* on_demand = more ? &*more : nullptr;

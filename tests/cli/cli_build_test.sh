@@ -14,7 +14,7 @@ cache="$work/cache"
   --export-matrix "$work/m.npy" --export-clouds "$work/c.npy" --matrix-png "$work/m.png" -q
 "$bin" inspect "$work/g.mgraph" >"$work/inspect.txt"
 grep -q "after pruning" "$work/inspect.txt" || { echo "FAIL: inspect output"; cat "$work/inspect.txt"; exit 1; }
-grep -q "path check: the 29 m test path followed 0\.[0-9]* m off (within 0.1 m; 1 threshold(s) tried)" "$work/inspect.txt" \
+grep -q "path check: the 29 m test path followed 0\.[0-9]* m off (within 0.1 m; [0-9]* threshold(s) tried)" "$work/inspect.txt" \
   || { echo "FAIL: inspect's path check line"; cat "$work/inspect.txt"; exit 1; }
 "$bin" inspect --json "$work/g.mgraph" >"$work/inspect.json"
 grep -q '"graph_after"' "$work/inspect.json" || { echo "FAIL: inspect --json"; exit 1; }
@@ -38,25 +38,39 @@ assert all(kept.get(tag, 0) > 0 for tag in ("walk", "run", "jump")), kept
 # threshold is given in RMS cm consistent with D and the window's weight.
 c = r["threshold_choice"]
 assert r["threshold_mode"] == "auto" and c["reached"], c
-# The path check starts at the coverage choice; on subject 16 the test path is followed there.
-pc = r["path_check"]
-assert pc["points"][0]["threshold"] == c["threshold"] and not pc["skipped"] and pc["travel_share"] > 0.5, pc
-assert pc["passed"] and len(pc["points"]) == 1 and pc["threshold"] == c["threshold"], pc
-assert 0 < pc["points"][0]["mean_deviation_m"] <= pc["tolerance_m"] and pc["points"][0]["reached_end"], pc
-assert abs(pc["probe_length_m"] - (4 + 8 * 3.141592653589793)) < 0.01, pc["probe_length_m"]
-assert abs(r["threshold"] - c["threshold"]) <= 1e-9 * c["threshold"]
-assert abs(r["threshold_rms_cm"] - 100 * (r["threshold"] / r["window_weight"]) ** 0.5) < 1e-6
-assert r["threshold_rms_cm"] <= c["max_rms_cm"]
+# One threshold per motion type, each the lowest tried at which its type reaches its target: no
+# point tried that reaches every target is as low in every type and lower in one.
+own = c["tag_thresholds"]
+assert c["per_type"] and set(own) == set(c["motion_types"]) and c["threshold"] == min(own.values()), c
+assert own["walk"] < own["run"], own
 points = sorted(c["curve"], key=lambda p: p["threshold"])
-chosen = [p for p in points if p["threshold"] == c["threshold"]][0]
+chosen = [p for p in points if p["threshold"] == c["threshold"] and p["tag_thresholds"] == own][0]
 rate = lambda p: p["transitions"] / (p["kept_frames"] / r["fps"]) if p["kept_frames"] else 0
 reaches = lambda p: p["graph"] and rate(p) >= c["target_rate"] and all(p["tag_coverage"][t] >= c["targets"][t] for t in c["motion_types"])
 assert reaches(chosen) and all(c["targets"][t] <= c["coverage_target"] for t in c["motion_types"])
 assert c["target_rate"] <= c["min_transition_rate"] and rate(chosen) >= 1.0
-assert all(not reaches(p) for p in points if p["threshold"] < c["threshold"])
-after = {t["name"]: t for t in r["graph_after"]["tags"]}
-for t in c["motion_types"]:
-    assert abs(after[t]["frames"] / after[t]["database_frames"] - chosen["tag_coverage"][t]) < 1e-9, t
+for p in points:
+    if p is not chosen and p["tag_thresholds"] != own and all(p["tag_thresholds"][t] <= own[t] for t in own):
+        assert not reaches(p), (p, own)
+# The path check starts at the coverage choice and raises the threshold of everything below it
+# until the test path is followed; the report's threshold is where it stopped.
+pc = r["path_check"]
+assert pc["points"][0]["threshold"] == c["threshold"] and not pc["skipped"] and pc["travel_share"] > 0.5, pc
+assert pc["passed"] and pc["threshold"] >= c["threshold"], pc
+last = [p for p in pc["points"] if p["threshold"] == pc["threshold"]][0]
+assert 0 < last["mean_deviation_m"] <= pc["tolerance_m"] and last["reached_end"], pc
+assert all(p["mean_deviation_m"] > pc["tolerance_m"] for p in pc["points"] if p["threshold"] < pc["threshold"]), pc
+assert abs(pc["probe_length_m"] - (4 + 8 * 3.141592653589793)) < 0.01, pc["probe_length_m"]
+assert abs(r["threshold"] - pc["threshold"]) <= 1e-9 * pc["threshold"]
+assert abs(r["threshold_rms_cm"] - 100 * (r["threshold"] / r["window_weight"]) ** 0.5) < 1e-6
+assert r["threshold_rms_cm"] <= c["max_rms_cm"]
+# Each type's own threshold as selected: its choice, lifted to the path check's where below it.
+for t in r["tag_thresholds"]:
+    assert t["chosen"] and t["threshold"] == max(own[t["tag"]], r["threshold"]), (t, own)
+if pc["threshold"] == c["threshold"]:
+    after = {t["name"]: t for t in r["graph_after"]["tags"]}
+    for t in c["motion_types"]:
+        assert abs(after[t]["frames"] / after[t]["database_frames"] - chosen["tag_coverage"][t]) < 1e-9, t
 # Spacing: the counts add up, and the report says what was applied.
 n = r["counts"]
 assert n["transitions_kept"] <= n["spaced"] <= n["survived_first_pruning"] <= n["transitions"] + n["bridges"]
@@ -113,28 +127,33 @@ PY
 "$bin" build "$data/cmu/16" -o "$work/g2.mgraph" --cache-dir "$cache" --threshold-quantile 0.05 --report "$work/r2.json" -q
 python3 -c "import json,sys; r=json.load(open(sys.argv[1])); assert r['distance_cache']=='hit', r['distance_cache']" "$work/r2.json"
 
-# The pruned distance stage runs where per-tag thresholds do not apply (here one threshold for
-# all motion types, bridges found on demand): the same graph as --exhaustive with its tiles,
-# its distances cached apart, and eval selects again on what it stored.
-"$bin" build "$data/cmu/16" -o "$work/p.mgraph" --cache-dir "$cache" --no-tag-thresholds --report "$work/p.json" -q
-"$bin" build "$data/cmu/16" -o "$work/p2.mgraph" --cache-dir "$cache" --no-tag-thresholds --report "$work/p2.json" -q
-"$bin" build "$data/cmu/16" -o "$work/e.mgraph" --cache-dir "$cache" --no-tag-thresholds --exhaustive --tile 64 \
-  --report "$work/e.json" -q
-"$bin" inspect --nodes "$work/p.mgraph" >"$work/p.nodes"
-"$bin" inspect --nodes "$work/e.mgraph" >"$work/e.nodes"
-cmp -s "$work/p.nodes" "$work/e.nodes" || { echo "FAIL: pruned and exhaustive graphs differ"; exit 1; }
-python3 - "$work/p.json" "$work/p2.json" "$work/e.json" <<'PY'
+# The pruned distance stage runs with the automatic threshold, per motion type (the default) or
+# one for all (bridges found on demand either way): the same graph as --exhaustive with its
+# tiles, its distances cached apart, and eval selects again on what it stored.
+for per_tag in "" --no-tag-thresholds; do
+  rm -rf "$cache"
+  "$bin" build "$data/cmu/16" -o "$work/p.mgraph" --cache-dir "$cache" $per_tag --report "$work/p.json" -q
+  "$bin" build "$data/cmu/16" -o "$work/p2.mgraph" --cache-dir "$cache" $per_tag --report "$work/p2.json" -q
+  "$bin" build "$data/cmu/16" -o "$work/e.mgraph" --cache-dir "$cache" $per_tag --exhaustive --tile 64 \
+    --report "$work/e.json" -q
+  "$bin" inspect --nodes "$work/p.mgraph" >"$work/p.nodes"
+  "$bin" inspect --nodes "$work/e.mgraph" >"$work/e.nodes"
+  cmp -s "$work/p.nodes" "$work/e.nodes" || { echo "FAIL: pruned and exhaustive graphs differ ($per_tag)"; exit 1; }
+  python3 - "$work/p.json" "$work/p2.json" "$work/e.json" "$per_tag" <<'PY'
 import json, sys
-p, p2, e = (json.load(open(f)) for f in sys.argv[1:])
+p, p2, e = (json.load(open(f)) for f in sys.argv[1:4])
 s = p["distance_stage"]
 assert s["stage"] == "pruned" and s["tile_frames"] == 64 and 0 < s["tiles_computed"] < s["tiles"], s
 assert s["on_demand"]["raises"] > 0 and p["counts"]["bridges"] > 0, (s, p["counts"])
 assert p["distance_cache"] == "stored" and p2["distance_cache"] == "hit", (p["distance_cache"], p2["distance_cache"])
 assert e["distance_stage"]["stage"] == "exhaustive" and e["distance_cache"] == "stored", e["distance_stage"]
 assert p["threshold"] == e["threshold"] and p["bridges"] == e["bridges"] and p["graph_after"] == e["graph_after"]
+assert p["threshold_choice"]["tag_thresholds"] == e["threshold_choice"]["tag_thresholds"]
+assert p["threshold_choice"]["per_type"] == (sys.argv[4] == ""), p["threshold_choice"]["per_type"]
 PY
-"$bin" eval "$work/p.mgraph" --what threshold --no-plots --out-dir "$work/peval" -q
-[[ $(wc -l <"$work/peval/threshold.csv") -gt 2 ]] || { echo "FAIL: eval on a pruned graph"; exit 1; }
+  "$bin" eval "$work/p.mgraph" --what threshold --no-plots --out-dir "$work/peval" -q
+  [[ $(wc -l <"$work/peval/threshold.csv") -gt 2 ]] || { echo "FAIL: eval on a pruned graph ($per_tag)"; exit 1; }
+done
 
 # A threshold in cm; the same graph from the same threshold given as D.
 "$bin" build "$data/cmu/16" -o "$work/g3.mgraph" --cache-dir "$cache" --threshold 6cm --report "$work/r3.json" -q

@@ -42,10 +42,11 @@ assert not diff and a.keys() == b.keys(), f"the builds differ in {diff}"
 PY
 }
 
-# 1. One process and three: the same graph (tiles of 256 frames: 15 work items to share).
-"$bin" build "$data/cmu/16" -o "$work/one.mgraph" --report "$work/one.json" --no-cache --tile 256 -q
-"${mpi[@]}" "$bin" build "$data/cmu/16" -o "$work/three.mgraph" --report "$work/three.json" --no-cache --tile 256 \
-  --threads 1 2>"$work/three.err"
+# 1. One process and three: the same graph (the exhaustive stage, tiles of 256 frames: 15 work
+# items to share).
+"$bin" build "$data/cmu/16" -o "$work/one.mgraph" --report "$work/one.json" --no-cache --exhaustive --tile 256 -q
+"${mpi[@]}" "$bin" build "$data/cmu/16" -o "$work/three.mgraph" --report "$work/three.json" --no-cache --exhaustive \
+  --tile 256 --threads 1 2>"$work/three.err"
 # Only rank 0 speaks: each line once.
 [[ $(grep -c "info: 15 clips, 1235 frames" "$work/three.err") -eq 1 && $(grep -c "info: wrote " "$work/three.err") -eq 1 ]] \
   && grep -q "distance stage: 1235 x 1235 pairs in .* on 3 processes" "$work/three.err" \
@@ -59,12 +60,10 @@ assert len(three["peak_memory_mb"]) == 3 and all(m > 1 for m in three["peak_memo
 assert len(three["share_seconds"]) == 3 and all(s > 0 for s in three["share_seconds"]), three["share_seconds"]
 PY
 
-# 1b. The pruned distance stage (one threshold for all motion types), on one process and on
-# three: the same graph.
-"$bin" build "$data/cmu/16" -o "$work/pone.mgraph" --report "$work/pone.json" --no-cache --tile 64 \
-  --no-tag-thresholds -q
+# 1b. The pruned distance stage (the default), on one process and on three: the same graph.
+"$bin" build "$data/cmu/16" -o "$work/pone.mgraph" --report "$work/pone.json" --no-cache --tile 64 -q
 "${mpi[@]}" "$bin" build "$data/cmu/16" -o "$work/pthree.mgraph" --report "$work/pthree.json" --no-cache --tile 64 \
-  --no-tag-thresholds --threads 1 2>"$work/pthree.err"
+  --threads 1 2>"$work/pthree.err"
 grep -q "distance stage (pruned below RMS 10 cm): .* on 3 processes" "$work/pthree.err" \
   || { echo "FAIL: the log of the pruned stage on three processes"; cat "$work/pthree.err"; exit 1; }
 same_graph "$work/pone" "$work/pthree"
@@ -73,7 +72,8 @@ same_graph "$work/pone" "$work/pthree"
 # 128 frames the distance stage is 780 work items, saved in chunks. Rank 1 is stopped once the
 # first chunk is saved (the job cannot finish without it) and killed once the others have saved
 # more.
-args=("$data/cmu/16" -q --fps 120 --no-cache --tile 128 --threads 1 --checkpoint "$work/ck" --checkpoint-pairs 300000)
+args=("$data/cmu/16" -q --fps 120 --no-cache --exhaustive --tile 128 --threads 1 --checkpoint "$work/ck"
+      --checkpoint-pairs 300000)
 "${mpi[@]}" "$bin" build "${args[@]}" -o "$work/killed.mgraph" --report "$work/killed.json" 2>"$work/killed.err" &
 job=$!
 rank1=
@@ -108,7 +108,8 @@ chunks=$(ls "$work/ck" | wc -l)
 
 # 3. Started again: the saved tiles are skipped, the graph is the uninterrupted run's.
 "${mpi[@]}" "$bin" build "${args[@]}" -o "$work/resumed.mgraph" --report "$work/resumed.json" 2>"$work/resumed.err"
-"$bin" build "$data/cmu/16" --fps 120 --no-cache --tile 128 -o "$work/whole.mgraph" --report "$work/whole.json" -q
+"$bin" build "$data/cmu/16" --fps 120 --no-cache --exhaustive --tile 128 -o "$work/whole.mgraph" \
+  --report "$work/whole.json" -q
 same_graph "$work/whole" "$work/resumed"
 python3 - "$work/resumed.json" <<'PY'
 import json, sys
@@ -119,7 +120,8 @@ PY
 
 # 4. The checkpoint of another build is refused, and an input error is told once, by rank 0.
 status=0
-"${mpi[@]}" "$bin" build "$data/cmu/16" -q --fps 60 --no-cache --tile 128 --checkpoint "$work/ck" -o "$work/other.mgraph" \
+"${mpi[@]}" "$bin" build "$data/cmu/16" -q --fps 60 --no-cache --exhaustive --tile 128 --checkpoint "$work/ck" \
+  -o "$work/other.mgraph" \
   2>"$work/other.err" || status=$?
 ((status != 0)) && [[ ! -e $work/other.mgraph && $(wc -l <"$work/other.err") -eq 1 ]] \
   && grep -q "a checkpoint of another build" "$work/other.err" \

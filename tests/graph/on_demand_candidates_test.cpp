@@ -1,8 +1,8 @@
 // The minima above the pruned stage's ceiling, on demand: a pair's level promises every minimum
 // of its region up to it (checked against the exhaustive stage's minima), and the pruned
 // stage's candidates with them give the exhaustive stage's transitions, bridges and threshold
-// choice (one threshold for all motion types), bit for bit, on a walk and run library whose
-// bridges lie far above the ceiling.
+// choice (one threshold for all motion types, or one searched for per type), bit for bit, on a
+// walk and run library whose bridges lie far above the ceiling.
 #include "motiongraph/graph/on_demand_candidates.h"
 
 #include <gtest/gtest.h>
@@ -117,14 +117,20 @@ TEST(OnDemandCandidates, PrunedCandidatesGiveTheExhaustiveTransitionsAndBridges)
     OnDemandCandidates more(l.features, search, l.pruned.embedding, l.pruned.threads);
     for (const double rms : {2.0, 4.0, ceiling_cm}) {
       for (const double cap_cm : {0.0, 15.0, 22.0}) {
+       for (const bool given : {false, true}) {
         GraphFromCandidatesSettings settings;
         settings.connected_tags = 0b11;
-        settings.transitions.per_tag_thresholds = false;
+        settings.transitions.per_tag_thresholds = given;
         settings.transitions.threshold = distance_of_rms_cm(rms, l.features);
         settings.transitions.max_threshold = ceiling;
         settings.bridges.max_distance = cap_cm > 0.0 ? distance_of_rms_cm(cap_cm, l.features) : -1.0;
+        if (given) {  // running's own threshold above walking's, both under the ceiling
+          settings.transitions.threshold = distance_of_rms_cm(0.5 * rms, l.features);
+          settings.transitions.tag_thresholds = {{0, distance_of_rms_cm(0.7 * rms, l.features)},
+                                                 {1, distance_of_rms_cm(rms, l.features)}};
+        }
         SCOPED_TRACE(testing::Message() << "ceiling " << ceiling_cm << " cm, threshold " << rms << " cm, cap "
-                                        << cap_cm << " cm");
+                                        << cap_cm << " cm, given per-tag thresholds " << given);
         auto want = select_transitions_with_bridges(l.db, l.features, l.exhaustive, settings);
         auto got = select_transitions_with_bridges(l.db, l.features, search, settings, &more);
         ASSERT_TRUE(want && got);
@@ -136,6 +142,13 @@ TEST(OnDemandCandidates, PrunedCandidatesGiveTheExhaustiveTransitionsAndBridges)
           EXPECT_EQ(want->unjoined[i].best_distance, got->unjoined[i].best_distance);
         }
         EXPECT_EQ(want->bridge_blends, got->bridge_blends);
+        ASSERT_EQ(want->selection.tag_thresholds.size(), given ? 2u : 0u);
+        ASSERT_EQ(got->selection.tag_thresholds.size(), want->selection.tag_thresholds.size());
+        for (size_t i = 0; i < want->selection.tag_thresholds.size(); ++i) {
+          EXPECT_EQ(want->selection.tag_thresholds[i].threshold, got->selection.tag_thresholds[i].threshold);
+          EXPECT_TRUE(got->selection.tag_thresholds[i].given);
+        }
+       }
       }
     }
     // The walk to run bridges lie far above either ceiling: they were found on demand.
@@ -153,20 +166,26 @@ TEST(OnDemandCandidates, PrunedCandidatesGiveTheExhaustiveThresholdChoice) {
   const double ceiling = distance_of_rms_cm(choice.max_rms_cm, l.features);
   const CandidateSearch search = pruned_search(ceiling);
   OnDemandCandidates more(l.features, search, l.pruned.embedding, l.pruned.threads);
-  GraphFromCandidatesSettings settings;
-  settings.connected_tags = 0b11;
-  settings.transitions.per_tag_thresholds = false;
-  auto want = choose_threshold(l.db, l.features, l.exhaustive, settings, choice);
-  auto got = choose_threshold(l.db, l.features, search, settings, choice, &more);
-  ASSERT_TRUE(want && got);
-  EXPECT_EQ(want->threshold, got->threshold);
-  EXPECT_EQ(want->reached, got->reached);
-  ASSERT_EQ(want->curve.size(), got->curve.size());
-  for (size_t i = 0; i < want->curve.size(); ++i) {
-    EXPECT_EQ(want->curve[i].threshold, got->curve[i].threshold);
-    EXPECT_EQ(want->curve[i].quantile, got->curve[i].quantile);
-    EXPECT_EQ(want->curve[i].tag_coverage, got->curve[i].tag_coverage);
-    EXPECT_EQ(want->curve[i].transitions, got->curve[i].transitions);
+  for (const bool per_type : {false, true}) {
+    SCOPED_TRACE(per_type ? "a threshold per motion type" : "one threshold");
+    GraphFromCandidatesSettings settings;
+    settings.connected_tags = 0b11;
+    settings.transitions.per_tag_thresholds = per_type;
+    auto want = choose_threshold(l.db, l.features, l.exhaustive, settings, choice);
+    auto got = choose_threshold(l.db, l.features, search, settings, choice, &more);
+    ASSERT_TRUE(want && got);
+    EXPECT_EQ(want->threshold, got->threshold);
+    EXPECT_EQ(want->tag_thresholds, got->tag_thresholds);
+    EXPECT_EQ(want->tag_thresholds.size(), per_type ? 2u : 0u);
+    EXPECT_EQ(want->reached, got->reached);
+    ASSERT_EQ(want->curve.size(), got->curve.size());
+    for (size_t i = 0; i < want->curve.size(); ++i) {
+      EXPECT_EQ(want->curve[i].threshold, got->curve[i].threshold);
+      EXPECT_EQ(want->curve[i].tag_thresholds, got->curve[i].tag_thresholds);
+      EXPECT_EQ(want->curve[i].quantile, got->curve[i].quantile);
+      EXPECT_EQ(want->curve[i].tag_coverage, got->curve[i].tag_coverage);
+      EXPECT_EQ(want->curve[i].transitions, got->curve[i].transitions);
+    }
   }
 }
 
@@ -183,7 +202,8 @@ TEST(OnDemandCandidates, PrunedCandidatesRefuseWhatTheyCannotKnow) {
   EXPECT_FALSE(select_transitions_with_bridges(l.db, l.features, search, settings));
   settings.bridges.per_tag_pair = 0;
   EXPECT_TRUE(select_transitions_with_bridges(l.db, l.features, search, settings));
-  // A threshold above the ceiling, and per-tag thresholds (they count every candidate of a tag).
+  // A threshold above the ceiling, and per-tag thresholds by rank (they count every candidate
+  // of a tag).
   GraphFromCandidatesSettings above = settings;
   above.transitions.threshold = 1.5 * ceiling;
   EXPECT_FALSE(select_transitions_with_bridges(l.db, l.features, search, above));
@@ -191,6 +211,12 @@ TEST(OnDemandCandidates, PrunedCandidatesRefuseWhatTheyCannotKnow) {
   per_tag.transitions.per_tag_thresholds = true;
   EXPECT_FALSE(select_transitions_with_bridges(l.db, l.features, search, per_tag));
   EXPECT_TRUE(select_transitions_with_bridges(l.db, l.features, l.exhaustive, per_tag));
+  // Given per-tag thresholds: served under the ceiling, refused above it.
+  per_tag.transitions.max_threshold = -1.0;
+  per_tag.transitions.tag_thresholds = {{1, 0.9 * ceiling}};
+  EXPECT_TRUE(select_transitions_with_bridges(l.db, l.features, search, per_tag));
+  per_tag.transitions.tag_thresholds = {{1, 1.5 * ceiling}};
+  EXPECT_FALSE(select_transitions_with_bridges(l.db, l.features, search, per_tag));
 }
 
 }  // namespace

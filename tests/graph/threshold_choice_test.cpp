@@ -82,10 +82,13 @@ TEST(ThresholdChoice, ChoosesTheLowestThresholdTriedThatReachesTheTarget) {
   ThresholdChoiceSettings choice;
   choice.coverage = 0.5;
   choice.max_rms_cm = 30.0;
-  auto chosen = choose_threshold(x.db, x.features, x.search, x.settings, choice);
+  GraphFromCandidatesSettings settings = x.settings;
+  settings.transitions.per_tag_thresholds = false;  // one threshold for all motion types
+  auto chosen = choose_threshold(x.db, x.features, x.search, settings, choice);
   ASSERT_TRUE(chosen) << chosen.error().to_string();
   ASSERT_TRUE(chosen->reached);
   EXPECT_EQ(chosen->tags, (std::vector<int>{0, 1}));
+  EXPECT_TRUE(chosen->tag_thresholds.empty());
   const CoveragePoint& point = chosen->chosen();
   EXPECT_EQ(point.threshold, chosen->threshold);
   EXPECT_TRUE(point.graph);
@@ -112,13 +115,65 @@ TEST(ThresholdChoice, ChoosesTheLowestThresholdTriedThatReachesTheTarget) {
     }
   }
   // The coverage it reports is the coverage a graph built at that threshold has.
-  GraphFromCandidatesSettings capped = x.settings;  // the choice caps the tag thresholds at the ceiling
+  GraphFromCandidatesSettings capped = settings;  // the choice caps the tag thresholds at the ceiling
   capped.transitions.max_threshold = distance_of_rms_cm(choice.max_rms_cm, x.features);
   auto again = coverage_at(x.db, x.features, x.search, capped, chosen->threshold);
   ASSERT_TRUE(again);
   EXPECT_DOUBLE_EQ(again->coverage, point.coverage);
   ASSERT_EQ(point.tag_coverage.size(), 2u);
   EXPECT_DOUBLE_EQ(point.coverage, std::min(point.tag_coverage[0], point.tag_coverage[1]));
+}
+
+TEST(ThresholdChoice, EachMotionTypeGetsTheLowestThresholdTriedThatReachesItsTarget) {
+  // Walking reaches its target far below running: per type, walking keeps its low threshold
+  // while running's rises, and no point tried that reaches every target lies at or below the
+  // chosen one in every type.
+  const Fixture& x = fixture();
+  ThresholdChoiceSettings choice;
+  choice.coverage = 0.5;
+  choice.max_rms_cm = 30.0;
+  auto chosen = choose_threshold(x.db, x.features, x.search, x.settings, choice);
+  ASSERT_TRUE(chosen) << chosen.error().to_string();
+  ASSERT_TRUE(chosen->reached);
+  ASSERT_EQ(chosen->tags, (std::vector<int>{0, 1}));
+  ASSERT_EQ(chosen->tag_thresholds.size(), 2u);
+  EXPECT_EQ(chosen->threshold, std::min(chosen->tag_thresholds[0], chosen->tag_thresholds[1]));
+  EXPECT_LT(chosen->tag_thresholds[0], chosen->tag_thresholds[1]) << "walking's threshold below running's";
+  const double ceiling = distance_of_rms_cm(choice.max_rms_cm, x.features);
+  for (const double t : chosen->tag_thresholds) EXPECT_LE(t, ceiling * (1.0 + 1e-12));
+  const CoveragePoint& point = chosen->chosen();
+  EXPECT_EQ(point.tag_thresholds, chosen->tag_thresholds);
+  auto rate = [&](const CoveragePoint& p) { return p.transitions / (static_cast<double>(p.kept_frames) / x.db.fps); };
+  auto reaches = [&](const CoveragePoint& p) {
+    return p.graph && rate(p) >= chosen->target_rate && p.tag_coverage[0] >= chosen->targets[0] &&
+           p.tag_coverage[1] >= chosen->targets[1];
+  };
+  EXPECT_TRUE(reaches(point));
+  for (const CoveragePoint& p : chosen->curve) {
+    ASSERT_EQ(p.tag_thresholds.size(), 2u);
+    EXPECT_EQ(p.threshold, std::min(p.tag_thresholds[0], p.tag_thresholds[1]));
+    const bool no_higher = p.tag_thresholds[0] <= chosen->tag_thresholds[0] &&
+                           p.tag_thresholds[1] <= chosen->tag_thresholds[1];
+    if (no_higher && p.tag_thresholds != chosen->tag_thresholds) {
+      EXPECT_FALSE(reaches(p)) << "a point lower in one type and no higher in the other reached the targets";
+    }
+  }
+  // One threshold for both must rise to running's needs: the per-type choice keeps walking's
+  // transitions lower.
+  GraphFromCandidatesSettings one = x.settings;
+  one.transitions.per_tag_thresholds = false;
+  auto single = choose_threshold(x.db, x.features, x.search, one, choice);
+  ASSERT_TRUE(single && single->reached);
+  EXPECT_LT(chosen->tag_thresholds[0], single->threshold);
+  // The coverage it reports is the coverage a graph built with those thresholds has.
+  GraphFromCandidatesSettings capped = with_chosen_thresholds(x.settings, *chosen);
+  capped.transitions.max_threshold = ceiling;
+  EXPECT_EQ(capped.transitions.tag_thresholds,
+            (std::vector<OwnThreshold>{{0, chosen->tag_thresholds[0]}, {1, chosen->tag_thresholds[1]}}));
+  auto again = coverage_at(x.db, x.features, x.search, capped, chosen->threshold);
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->tag_coverage, point.tag_coverage);
+  EXPECT_EQ(again->transitions, point.transitions);
 }
 
 TEST(ThresholdChoice, CoverageIsThatOfTheGraphBuildWrites) {

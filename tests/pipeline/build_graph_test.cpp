@@ -53,8 +53,16 @@ TEST(BuildGraph, Subject16IsWhatItsSavedSettingsSelectAgain) {
   EXPECT_EQ(built->report.at("frames"), file.database.frame_count());
   EXPECT_EQ(built->report.at("threshold_mode"), "auto");
   EXPECT_EQ(built->report.at("distance_cache"), "off");
-  // Per-tag thresholds count every candidate of a motion type: the exhaustive stage.
-  EXPECT_EQ(built->report.at("distance_stage").at("stage"), "exhaustive");
+  // The automatic threshold, one per motion type, searched for under the pruned stage's ceiling.
+  EXPECT_EQ(built->report.at("distance_stage").at("stage"), "pruned");
+  EXPECT_TRUE(built->report.at("threshold_choice").at("per_type").get<bool>());
+  const nlohmann::json& own = built->report.at("tag_thresholds");
+  ASSERT_EQ(own.size(), built->report.at("threshold_choice").at("motion_types").size());
+  for (const auto& t : own) {
+    EXPECT_TRUE(t.at("chosen").get<bool>());
+    EXPECT_GE(t.at("threshold").get<double>(), built->report.at("threshold").get<double>());
+    EXPECT_LE(t.at("threshold").get<double>(), file.candidates.ceiling);
+  }
   EXPECT_EQ(built->report.at("counts").at("transitions_kept"), file.graph.transitions.size());
   EXPECT_EQ(file.report_json, json_text(built->report));
   EXPECT_TRUE(built->matrix_npy.empty() && built->matrix_png.empty() && built->clouds_npy.empty());
@@ -62,7 +70,9 @@ TEST(BuildGraph, Subject16IsWhatItsSavedSettingsSelectAgain) {
   // The reference: eval's rebuild from the saved settings selects the very same graph.
   auto rebuild = prepare_graph_rebuild(file, "s16.mgraph");
   ASSERT_TRUE(rebuild) << rebuild.error().to_string();
-  auto again = graph_from_candidates(file.database, rebuild->features, file.candidates, rebuild->settings);
+  EXPECT_EQ(rebuild->settings.transitions.tag_thresholds.size(), own.size());
+  OnDemandCandidates more(rebuild->features, file.candidates);
+  auto again = graph_from_candidates(file.database, rebuild->features, file.candidates, rebuild->settings, &more);
   ASSERT_TRUE(again) << again.error().to_string();
   ASSERT_EQ(again->pruned.graph.transitions.size(), file.graph.transitions.size());
   for (size_t i = 0; i < file.graph.transitions.size(); ++i) {
@@ -80,12 +90,14 @@ TEST(BuildGraph, Subject16IsWhatItsSavedSettingsSelectAgain) {
   EXPECT_GT(longer, 0);
 }
 
-TEST(BuildGraph, ThePrunedStageRunsWhereItIsExactAndGivesTheExhaustiveGraph) {
-  // One threshold for all motion types: the pruned stage runs, its bridges (walk to run, far
-  // above the ceiling) found on demand; with the same tiles the exhaustive stage gives the
-  // same graph.
+class PrunedBuild : public testing::TestWithParam<bool> {};
+
+TEST_P(PrunedBuild, GivesTheExhaustiveGraph) {
+  // With one threshold for all motion types, or one per type: the pruned stage runs, its
+  // bridges (walk to run, far above the ceiling) found on demand; with the same tiles the
+  // exhaustive stage gives the same graph.
   BuildSettings pruned;
-  pruned.transitions.per_tag_thresholds = false;
+  pruned.transitions.per_tag_thresholds = GetParam();
   pruned.pruned.tile_frames = 64;
   pruned.distance_stage.distance.tile_frames = 64;
   BuildSettings exhaustive = pruned;
@@ -102,6 +114,16 @@ TEST(BuildGraph, ThePrunedStageRunsWhereItIsExactAndGivesTheExhaustiveGraph) {
   EXPECT_EQ(b->report.at("distance_stage").at("stage"), "exhaustive");
   EXPECT_GE(a->file.candidates.ceiling, 0.0);
   EXPECT_EQ(a->report.at("threshold"), b->report.at("threshold"));
+  // The same thresholds (the pruned stage counts a type's candidates below its ceiling only).
+  const nlohmann::json& own_a = a->report.at("tag_thresholds");
+  const nlohmann::json& own_b = b->report.at("tag_thresholds");
+  ASSERT_EQ(own_a.size(), own_b.size());
+  EXPECT_EQ(own_a.empty(), !GetParam());
+  for (size_t i = 0; i < own_a.size(); ++i) {
+    EXPECT_EQ(own_a[i].at("tag"), own_b[i].at("tag"));
+    EXPECT_EQ(own_a[i].at("threshold"), own_b[i].at("threshold"));
+    EXPECT_LE(own_a[i].at("candidates").get<int>(), own_b[i].at("candidates").get<int>());
+  }
   EXPECT_EQ(a->report.at("bridges"), b->report.at("bridges"));
   EXPECT_EQ(a->report.at("graph_after"), b->report.at("graph_after"));
   const auto& x = a->file.graph.transitions;
@@ -123,6 +145,11 @@ TEST(BuildGraph, ThePrunedStageRunsWhereItIsExactAndGivesTheExhaustiveGraph) {
   ASSERT_EQ(again->pruned.graph.transitions.size(), x.size());
   for (size_t i = 0; i < x.size(); ++i) EXPECT_EQ(again->pruned.graph.transitions[i].to_frame, x[i].to_frame);
 }
+
+INSTANTIATE_TEST_SUITE_P(BuildGraph, PrunedBuild, testing::Bool(),
+                         [](const testing::TestParamInfo<bool>& param) {
+                           return param.param ? "ThresholdPerMotionType" : "OneThreshold";
+                         });
 
 TEST(BuildGraph, NoGraphUnderThePrunedStagesCeilingStillSaysWhatWouldMakeOne) {
   BuildSettings settings;

@@ -8,9 +8,9 @@
 
 namespace mg::test {
 
-GraphFile build_subject16_graph(const std::string& folder) {
+GraphFile build_subject16_graph(const std::string& folder, const BuildSettings& settings) {
   const std::vector<std::string> inputs = {folder};
-  auto built = build_graph(inputs, BuildSettings{});
+  auto built = build_graph(inputs, settings);
   if (!built) throw std::runtime_error(built.error().to_string());
   if (!built->graph_status) throw std::runtime_error(built->graph_status.error().to_string());
   return std::move(built->file);

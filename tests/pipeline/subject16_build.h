@@ -7,12 +7,13 @@
 #include <string>
 
 #include "motiongraph/graph/graph_file.h"
+#include "motiongraph/pipeline/build_settings.h"
 
 namespace mg::test {
 
-// The graph of the clips in `folder` (data/cmu/16) with BuildSettings{}, no cache; throws
-// std::runtime_error when it cannot be built.
-GraphFile build_subject16_graph(const std::string& folder);
+// The graph of the clips in `folder` (data/cmu/16) with `settings` (by default
+// BuildSettings{}), no cache; throws std::runtime_error when it cannot be built.
+GraphFile build_subject16_graph(const std::string& folder, const BuildSettings& settings = {});
 
 // The graph the fixture wrote (MOTIONGRAPH_TEST_GRAPH, set by ctest) when there is one, else
 // build_subject16_graph() in process. The fixture's file spares each test process the build

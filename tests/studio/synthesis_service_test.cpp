@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include "motiongraph/evaluation/graph_rebuild.h"
 #include "motiongraph/export/matrix_png.h"
 #include "motiongraph/graph/candidates.h"
@@ -17,8 +20,11 @@ namespace {
 TEST(SynthesisService, DistancePictureIsTheStoredOneAsTheDistanceStageWouldDrawIt) {
   // Built in process: the database the distances were computed on, not one read back from a
   // file (whose motion is stored in single precision, so distances recomputed from it differ
-  // in their last bits).
-  auto graph = LoadedGraph::create(test::build_subject16_graph(test::data_path("cmu/16")), "s16.mgraph");
+  // in their last bits). By the exhaustive stage: every block's minimum is known.
+  BuildSettings exhaustive;
+  exhaustive.exhaustive = true;
+  auto graph =
+      LoadedGraph::create(test::build_subject16_graph(test::data_path("cmu/16"), exhaustive), "s16.mgraph");
   ASSERT_TRUE(graph) << graph.error().to_string();
   const auto owned = studio::SynthesisService::create(std::move(*graph), "s16.mgraph");
   const studio::SynthesisService& service = *owned;
@@ -45,6 +51,35 @@ TEST(SynthesisService, DistancePictureIsTheStoredOneAsTheDistanceStageWouldDrawI
                               {}, png_settings);
   ASSERT_TRUE(reference) << reference.error().to_string();
   EXPECT_EQ(*png, *reference);
+}
+
+TEST(SynthesisService, ThePrunedStagesPictureIsExactUpToItsCeiling) {
+  // The default build runs the pruned stage: a block whose minimum lies at or below its
+  // ceiling is the exhaustive stage's, one above it +infinity (the PNG's grey).
+  const GraphFile pruned = test::build_subject16_graph(test::data_path("cmu/16"));
+  BuildSettings settings;
+  settings.exhaustive = true;
+  settings.distance_stage.distance.tile_frames = 64;  // the pruned stage's at 30 fps: the same bits
+  const GraphFile exhaustive = test::build_subject16_graph(test::data_path("cmu/16"), settings);
+  const CandidateSearch& p = pruned.candidates;
+  const CandidateSearch& e = exhaustive.candidates;
+  ASSERT_GE(p.ceiling, 0.0);
+  ASSERT_LT(e.ceiling, 0.0);
+  ASSERT_EQ(p.picture_side, e.picture_side);
+  ASSERT_EQ(p.picture_block, e.picture_block);
+  ASSERT_EQ(p.picture.size(), e.picture.size());
+  int above = 0;
+  for (size_t i = 0; i < p.picture.size(); ++i) {
+    if (std::isnan(e.picture[i])) {
+      EXPECT_TRUE(std::isnan(p.picture[i])) << i;
+    } else if (e.picture[i] <= p.ceiling) {
+      EXPECT_EQ(p.picture[i], e.picture[i]) << i;
+    } else {
+      EXPECT_EQ(p.picture[i], std::numeric_limits<float>::infinity()) << i;
+      ++above;
+    }
+  }
+  EXPECT_GT(above, 0);
 }
 
 }  // namespace

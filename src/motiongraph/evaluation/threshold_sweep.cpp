@@ -30,6 +30,10 @@ Status for_each_threshold(
     GraphFromCandidatesSettings at = settings;
     at.transitions.threshold = -1.0;
     at.transitions.threshold_quantile = quantile;
+    // The automatic choice's per-type thresholds belong to its point: the sweep varies one
+    // threshold, with per-tag thresholds by rank where the candidates allow them.
+    at.transitions.tag_thresholds.clear();
+    if (candidates.ceiling >= 0.0) at.transitions.per_tag_thresholds = false;
     auto selected = select_transitions_with_bridges(db, features, candidates, at, more);
     if (!selected) return selected.error();
     const Result<PrunedGraph> pruned = build_spaced_graph(db, *selected, features, at);

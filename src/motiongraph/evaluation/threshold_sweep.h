@@ -36,7 +36,10 @@ std::vector<double> log_spaced(double lowest, double highest, int count);
 // as the graph was built; its threshold is replaced. Stops at the first error selection,
 // building or pruning (other than nothing remaining) or `visit` returns. `more`: as
 // select_transitions_with_bridges takes it (a graph built by the pruned stage); such a graph's
-// candidates know the thresholds up to its ceiling only (quantiles_below_ceiling).
+// candidates know the thresholds up to its ceiling only (quantiles_below_ceiling). Per-type
+// thresholds the automatic choice gave are not kept: each quantile is one threshold, with
+// per-tag thresholds by rank (transition_selection.h) on the exhaustive stage's candidates and
+// without them on the pruned stage's (by rank they count candidates above its ceiling).
 Status for_each_threshold(
     const MotionDatabase& db, const FrameFeatures& features, const CandidateSearch& candidates,
     const GraphFromCandidatesSettings& settings, std::span<const double> quantiles,

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -34,9 +35,20 @@ Status ThresholdChoiceSettings::validate() const {
 
 const CoveragePoint& ThresholdChoice::chosen() const {
   for (const CoveragePoint& p : curve) {
-    if (p.threshold == threshold) return p;
+    if (p.threshold == threshold && p.tag_thresholds == tag_thresholds) return p;
   }
   return curve.front();
+}
+
+GraphFromCandidatesSettings with_chosen_thresholds(const GraphFromCandidatesSettings& settings,
+                                                  const ThresholdChoice& choice) {
+  GraphFromCandidatesSettings out = settings;
+  out.transitions.threshold = choice.threshold;
+  out.transitions.tag_thresholds.clear();
+  for (size_t i = 0; i < choice.tag_thresholds.size() && i < choice.tags.size(); ++i) {
+    out.transitions.tag_thresholds.push_back({choice.tags[i], choice.tag_thresholds[i]});
+  }
+  return out;
 }
 
 std::vector<int> coverage_tags(const GraphFromCandidatesSettings& settings) {
@@ -101,17 +113,30 @@ Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFe
   GraphFromCandidatesSettings capped = settings;
   const double ceiling = distance_of_rms_cm(choice.max_rms_cm, features);
   capped.transitions.max_threshold = ceiling;
-  auto evaluate = [&](double threshold) -> Result<const CoveragePoint*> {
-    auto point = coverage_at(db, features, candidates, capped, threshold, more);
+  capped.transitions.tag_thresholds.clear();
+  // Per-type: one threshold per motion type (levels[i] for out.tags[i]); else one for all.
+  const bool per_type = settings.transitions.per_tag_thresholds && !out.tags.empty();
+  const size_t n = per_type ? out.tags.size() : 1;
+  auto evaluate = [&](const std::vector<double>& levels) -> Result<CoveragePoint> {
+    GraphFromCandidatesSettings at = capped;
+    const double global = *std::min_element(levels.begin(), levels.end());
+    if (per_type) {
+      for (size_t i = 0; i < n; ++i) at.transitions.tag_thresholds.push_back({out.tags[i], levels[i]});
+    }
+    auto point = coverage_at(db, features, candidates, at, global, more);
     if (!point) return point.error();
-    out.curve.push_back(std::move(*point));
-    return &out.curve.back();
+    if (per_type) {
+      point->tag_thresholds = levels;
+      for (const double level : levels) point->tag_rms_cm.push_back(rms_cm_of_distance(level, features));
+    }
+    out.curve.push_back(*point);
+    return point;
   };
 
   // 0. The ceiling first: what each motion type can have at all. A type whose clips are short
   // (cut mid-stride at both ends) never reaches a high share at any threshold; its target is
   // then `reachable_share` of what the ceiling gives it, not a level no threshold reaches.
-  auto top = coverage_at(db, features, candidates, capped, ceiling, more);
+  auto top = evaluate(std::vector<double>(n, ceiling));
   if (!top) return top.error();
   out.targets.assign(std::max<size_t>(1, out.tags.size()), choice.coverage);
   if (top->graph) {
@@ -128,48 +153,108 @@ Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFe
     return p.kept_frames > 0 ? p.transitions / (static_cast<double>(p.kept_frames) / fps) : 0.0;
   };
   out.target_rate = top->graph ? std::min(choice.min_transition_rate, rate(*top)) : choice.min_transition_rate;
+  auto tag_short = [&](const CoveragePoint& p, size_t i) { return !p.graph || p.tag_coverage[i] < out.targets[i]; };
   auto reaches = [&](const CoveragePoint& p) {
     if (!p.graph || rate(p) < out.target_rate) return false;
     if (out.tags.empty()) return p.coverage >= out.targets[0];
     for (size_t i = 0; i < out.tags.size(); ++i) {
-      if (p.tag_coverage[i] < out.targets[i]) return false;
+      if (tag_short(p, i)) return false;
     }
     return true;
   };
-  out.curve.push_back(std::move(*top));
+  // Whether threshold i is short at p: its own type's coverage, per type; the whole target else.
+  auto short_at = [&](const CoveragePoint& p, size_t i) { return per_type ? tag_short(p, i) : !reaches(p); };
 
-  // 1. The grid, from the lowest threshold up; it stops at the first that reaches the targets.
-  double below = -1.0, above = -1.0;  // the bracket: last short of the targets, first reaching them
-  for (int i = 0; i + 1 < choice.grid; ++i) {
-    const double rms = choice.lowest_rms_cm * std::pow(choice.max_rms_cm / choice.lowest_rms_cm,
-                                                       static_cast<double>(i) / (choice.grid - 1));
-    auto point = evaluate(distance_of_rms_cm(rms, features));
-    if (!point) return point.error();
-    if (reaches(**point)) {
-      above = (*point)->threshold;
-      break;
-    }
-    below = (*point)->threshold;
-  }
-  if (above < 0.0 && reaches(out.curve.front())) above = ceiling;
-  // 2. Bisection in log D between the bracket's ends.
-  if (above > 0.0 && below > 0.0) {
-    for (int step = 0; step < choice.refine; ++step) {
-      const double middle = std::sqrt(below * above);
-      auto point = evaluate(middle);
-      if (!point) return point.error();
-      if (reaches(**point)) {
-        above = middle;
-      } else {
-        below = middle;
+  // 1. The grid, from the lowest threshold up; each step raises the thresholds short at the last
+  // point (all of them when only the transition rate is short). It stops at the first point that
+  // reaches the targets.
+  std::vector<double> levels(n), below(n, -1.0);  // below: each one's last level short of its target
+  std::optional<std::vector<double>> reaching;     // the lowest levels known to reach the targets
+  CoveragePoint last;
+  for (int g = 0; g + 1 < choice.grid; ++g) {
+    const double level = distance_of_rms_cm(
+        choice.lowest_rms_cm * std::pow(choice.max_rms_cm / choice.lowest_rms_cm,
+                                        static_cast<double>(g) / (choice.grid - 1)),
+        features);
+    if (g == 0) {
+      levels.assign(n, level);
+    } else {
+      bool raised = false;
+      for (size_t i = 0; i < n; ++i) {
+        if (short_at(last, i)) {
+          below[i] = levels[i];
+          levels[i] = level;
+          raised = true;
+        }
+      }
+      for (size_t i = 0; i < n && !raised; ++i) {
+        if (levels[i] < level) below[i] = levels[i], levels[i] = level;
       }
     }
+    auto point = evaluate(levels);
+    if (!point) return point.error();
+    last = std::move(*point);
+    if (reaches(last)) {
+      reaching = levels;
+      break;
+    }
   }
-  std::sort(out.curve.begin(), out.curve.end(),
-            [](const CoveragePoint& x, const CoveragePoint& y) { return x.threshold < y.threshold; });
-  if (above > 0.0) {
+  if (!reaching && reaches(*top)) {
+    // The thresholds short at the grid's last point go to the ceiling; all of them when that
+    // is not enough.
+    for (size_t i = 0; i < n; ++i) {
+      if (short_at(last, i)) below[i] = levels[i], levels[i] = ceiling;
+    }
+    if (n > 1) {
+      auto point = evaluate(levels);
+      if (!point) return point.error();
+      if (!reaches(*point)) levels.assign(n, ceiling), below.assign(n, -1.0);
+    }
+    reaching = levels;
+  }
+  // 2. Bisection in log D between each threshold's bracket: its last level short of its target
+  // and its first reaching it. A point that reaches every target moves every bracket down; one
+  // that misses only some types moves theirs up and the others down; one short of the rate
+  // moves them all up.
+  if (reaching) {
+    std::vector<double> above = *reaching;
+    for (int step = 0; step < choice.refine; ++step) {
+      std::vector<double> middle = above;
+      bool any = false;
+      for (size_t i = 0; i < n; ++i) {
+        if (below[i] > 0.0) middle[i] = std::sqrt(below[i] * above[i]), any = true;
+      }
+      if (!any) break;
+      auto point = evaluate(middle);
+      if (!point) return point.error();
+      const bool all = reaches(*point);
+      if (all) reaching = middle;
+      const bool rate_short = !point->graph || rate(*point) < out.target_rate;
+      for (size_t i = 0; i < n; ++i) {
+        if (below[i] <= 0.0) continue;
+        if (all || (!rate_short && !short_at(*point, i))) {
+          above[i] = middle[i];
+        } else {
+          below[i] = middle[i];
+        }
+      }
+    }
+    // Types that reached their targets in different points: their thresholds together.
+    if (above != *reaching) {
+      auto point = evaluate(above);
+      if (!point) return point.error();
+      if (reaches(*point)) reaching = above;
+    }
+  }
+  std::stable_sort(out.curve.begin(), out.curve.end(),
+                   [](const CoveragePoint& x, const CoveragePoint& y) { return x.threshold < y.threshold; });
+  auto choose = [&](const std::vector<double>& chosen) {
+    out.threshold = *std::min_element(chosen.begin(), chosen.end());
+    if (per_type) out.tag_thresholds = chosen;
+  };
+  if (reaching) {
     out.reached = true;
-    out.threshold = above;
+    choose(*reaching);
   } else {
     // No graph reaches the targets (no graph at all, or pruning keeps less at the ceiling than
     // below it): the lowest threshold with the best worst coverage.
@@ -178,7 +263,7 @@ Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFe
       const double c = p.graph ? p.coverage : -0.5;
       if (c > best + 1e-9) {
         best = c;
-        out.threshold = p.threshold;
+        choose(per_type ? p.tag_thresholds : std::vector<double>{p.threshold});
       }
     }
   }
@@ -194,6 +279,7 @@ Result<std::optional<CoveragePoint>> lowest_graph_threshold(const MotionDatabase
   if (largest <= 0.0) return std::optional<CoveragePoint>{};
   GraphFromCandidatesSettings unbounded = settings;
   unbounded.transitions.max_threshold = -1.0;
+  unbounded.transitions.tag_thresholds.clear();
   // Upward by doubling D until a graph is made (or every candidate is in), then bisection.
   double low = std::max(from, 0.0), high = std::max(2.0 * low, largest * 1e-6);
   std::optional<CoveragePoint> found;

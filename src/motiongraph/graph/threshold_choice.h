@@ -28,6 +28,15 @@
 // graph at all under the ceiling), the answer is the lowest threshold whose worst coverage is
 // the best the search saw (`reached` false). Every threshold tried is kept, as the curve the
 // report carries.
+//
+// With per-tag thresholds (the default when clips carry motion types), each motion type gets
+// its own threshold by the same search: a grid step raises only the types still short of their
+// targets (all of them while the graph is short of the transition rate), and the bisection
+// moves each type's threshold within its own bracket. The global threshold, which candidates of
+// no motion type and the mixed windows between types pass, is the lowest of them. Running's
+// larger distances then buy running what it needs, and no more: the threshold of a type depends
+// only on the candidates at or below it, so the pruned distance stage gives the exhaustive
+// stage's choice.
 #pragma once
 
 #include <optional>
@@ -67,7 +76,9 @@ void to_json(nlohmann::json& json, const ThresholdChoiceSettings& settings);
 void from_json(const nlohmann::json& json, ThresholdChoiceSettings& settings);
 
 struct CoveragePoint {
-  double threshold = 0.0;           // D
+  double threshold = 0.0;           // D (the global one, with per-tag thresholds)
+  std::vector<double> tag_thresholds;  // per entry of ThresholdChoice::tags, D; empty: one threshold
+  std::vector<double> tag_rms_cm;      // the same in RMS cm
   double rms_cm = 0.0;
   double quantile = 0.0;            // fraction of all finite D below the threshold
   bool graph = false;               // false: pruning left nothing
@@ -78,8 +89,9 @@ struct CoveragePoint {
 };
 
 struct ThresholdChoice {
-  double threshold = 0.0;            // D chosen
+  double threshold = 0.0;            // D chosen (the global one, with per-tag thresholds)
   double rms_cm = 0.0;
+  std::vector<double> tag_thresholds;  // D chosen per entry of tags; empty: one threshold
   bool reached = false;              // the target coverage was reached under the ceiling
   std::vector<int> tags;             // motion types measured (bit indices); empty: all frames
   std::vector<double> targets;       // the coverage each wanted (one per tag; one value without)
@@ -92,13 +104,19 @@ struct ThresholdChoice {
 // the database's frames as a whole.
 std::vector<int> coverage_tags(const GraphFromCandidatesSettings& settings);
 
-// The coverage of one threshold: `settings` with its threshold replaced by `threshold` (D).
+// The coverage of one threshold: `settings` with its threshold replaced by `threshold` (D) (its
+// given tag thresholds, if any, stay, lifted to `threshold` where below it).
 // `more`: as select_transitions_with_bridges takes it (the pruned stage's candidates).
 Result<CoveragePoint> coverage_at(const MotionDatabase& db, const FrameFeatures& features,
                                   const CandidateSearch& candidates, const GraphFromCandidatesSettings& settings,
                                   double threshold, OnDemandCandidates* more = nullptr);
 
-// The threshold for `settings` (its own threshold is ignored). Everything it reads lies at or
+// The settings' own thresholds replaced by the choice's: the global one, and the given per-tag
+// ones when the choice made them.
+GraphFromCandidatesSettings with_chosen_thresholds(const GraphFromCandidatesSettings& settings,
+                                                  const ThresholdChoice& choice);
+
+// The threshold for `settings` (its own thresholds are ignored). Everything it reads lies at or
 // below the ceiling but the bridges, so the pruned stage's candidates with their ceiling at
 // least max_rms_cm's D, and `more` for the bridges, give the exhaustive stage's choice. Fails only when a stage fails
 // for another reason than pruning leaving nothing; a library where nothing under the ceiling
@@ -110,7 +128,8 @@ Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFe
 
 // The lowest threshold at or above `from` (D) that makes a graph at all, searched upward to
 // the largest candidate distance and then refined; nullopt when even every candidate makes
-// none. For the error a user gets when no graph can be made.
+// none. One threshold, as --threshold gives it (given tag thresholds are dropped). For the error a
+// user gets when no graph can be made.
 Result<std::optional<CoveragePoint>> lowest_graph_threshold(const MotionDatabase& db, const FrameFeatures& features,
                                                             const CandidateSearch& candidates,
                                                             const GraphFromCandidatesSettings& settings, double from);

@@ -18,22 +18,31 @@ Status TransitionSettings::validate() const {
   if (!std::isfinite(threshold)) return Error{"", 0, "threshold must be a finite number"};
   if (locality_radius < -1) return Error{"", 0, "locality radius must be >= 0 (or -1 for half the window)"};
   if (!std::isfinite(max_threshold)) return Error{"", 0, "the maximum threshold must be a finite number"};
+  for (const OwnThreshold& own : tag_thresholds) {
+    if (own.tag < 0 || own.tag >= 64) return Error{"", 0, fmt::format("tag threshold for tag bit {}", own.tag)};
+    if (!(std::isfinite(own.threshold) && own.threshold >= 0.0)) {
+      return Error{"", 0, "a tag's own threshold must be a finite distance >= 0"};
+    }
+  }
   return Ok{};
 }
 
 namespace {
 
 // Per tag: which candidates belong to it (all 2k frames of both windows carry it) and its own
-// threshold, the D at the rank where the tag keeps the share `share` of its candidates.
+// threshold: the one `given` lists, or else the D at the rank where the tag keeps the share
+// `share` of its candidates. Never below `global`.
 std::vector<TagThreshold> tag_thresholds(const CandidateSearch& candidates, std::span<const TagMask> frame_tags,
                                          TagMask tags, int window, double global, double share,
-                                         std::vector<TagMask>& membership) {
+                                         std::span<const OwnThreshold> given, std::vector<TagMask>& membership) {
   std::vector<TagThreshold> result;
   membership.assign(candidates.minima.size(), 0);
   const int frames = static_cast<int>(frame_tags.size());
   std::vector<int> count(static_cast<size_t>(frames) + 1);
   for (int t = 0; t < 64; ++t) {
     if ((tags >> t & 1) == 0) continue;
+    const auto own = std::find_if(given.begin(), given.end(), [t](const OwnThreshold& g) { return g.tag == t; });
+    if (!given.empty() && own == given.end()) continue;  // given for some tags: the others keep the global one
     for (int f = 0; f < frames; ++f) count[f + 1] = count[f] + static_cast<int>(frame_tags[f] >> t & 1);
     auto all_carry = [&](int first, int last) {
       return first >= 0 && last < frames && count[last + 1] - count[first] == last - first + 1;
@@ -46,11 +55,15 @@ std::vector<TagThreshold> tag_thresholds(const CandidateSearch& candidates, std:
         d.push_back(c.distance);
       }
     }
+    if (own != given.end()) {
+      result.push_back({t, static_cast<int>(d.size()), std::max(own->threshold, global), true});
+      continue;
+    }
     if (d.empty()) continue;
     std::sort(d.begin(), d.end());
     const size_t keep = static_cast<size_t>(std::ceil(share * static_cast<double>(d.size())));
-    const double own = keep == 0 ? 0.0 : d[std::min(keep, d.size()) - 1];
-    result.push_back({t, static_cast<int>(d.size()), std::max(own, global)});
+    const double ranked = keep == 0 ? 0.0 : d[std::min(keep, d.size()) - 1];
+    result.push_back({t, static_cast<int>(d.size()), std::max(ranked, global), false});
   }
   return result;
 }
@@ -67,32 +80,41 @@ Result<TransitionSelection> select_transitions(const FrameFeatures& features, co
   } else {
     selection.threshold = candidates.histogram.quantile(settings.threshold_quantile);
   }
-  // The pruned stage's candidates are all known up to its ceiling only; per-tag thresholds
-  // count every candidate of a tag, above any ceiling too.
+  // The pruned stage's candidates are all known up to its ceiling only; per-tag thresholds by
+  // rank count every candidate of a tag, above any ceiling too.
   const double ceiling = candidates.ceiling;
-  if (ceiling >= 0.0 && !(selection.threshold <= ceiling)) {
+  auto above_ceiling = [&](double threshold) {
     return Error{"", 0,
                  fmt::format("the threshold (D {:.6g}) lies above the pruned distance stage's ceiling (D {:.6g}); "
                              "the exhaustive stage knows every distance",
-                             selection.threshold, ceiling)};
-  }
+                             threshold, ceiling)};
+  };
+  if (ceiling >= 0.0 && !(selection.threshold <= ceiling)) return above_ceiling(selection.threshold);
   const bool tag_thresholds_on = settings.per_tag_thresholds && !frame_tags.empty() && tags != 0;
-  if (ceiling >= 0.0 && tag_thresholds_on) {
-    return Error{"", 0, "per-tag thresholds need the exhaustive distance stage's candidates (they count a tag's "
-                        "candidates above any ceiling)"};
+  const bool ranked = settings.tag_thresholds.empty();
+  if (ceiling >= 0.0 && tag_thresholds_on && ranked) {
+    return Error{"", 0, "per-tag thresholds by rank need the exhaustive distance stage's candidates (they count a "
+                        "tag's candidates above any ceiling)"};
   }
   selection.threshold_quantile = candidates.histogram.fraction_below(selection.threshold);
   selection.locality_radius = settings.locality_radius < 0 ? features.window / 2 : settings.locality_radius;
 
   std::vector<TagMask> membership;
-  if (tag_thresholds_on && !candidates.minima.empty()) {
+  if (tag_thresholds_on && (!candidates.minima.empty() || !ranked)) {
     const auto global_count = std::count_if(candidates.minima.begin(), candidates.minima.end(),
                                             [&](const Transition& t) { return t.distance <= selection.threshold; });
-    const double share = static_cast<double>(global_count) / static_cast<double>(candidates.minima.size());
-    selection.tag_thresholds =
-        tag_thresholds(candidates, frame_tags, tags, features.window, selection.threshold, share, membership);
+    const double share = candidates.minima.empty()
+                             ? 0.0
+                             : static_cast<double>(global_count) / static_cast<double>(candidates.minima.size());
+    selection.tag_thresholds = tag_thresholds(candidates, frame_tags, tags, features.window, selection.threshold,
+                                              share, settings.tag_thresholds, membership);
     if (settings.max_threshold >= 0.0) {
-      for (TagThreshold& own : selection.tag_thresholds) own.threshold = std::min(own.threshold, settings.max_threshold);
+      for (TagThreshold& own : selection.tag_thresholds) {
+        own.threshold = std::min(own.threshold, settings.max_threshold);
+      }
+    }
+    for (const TagThreshold& own : selection.tag_thresholds) {
+      if (ceiling >= 0.0 && !(own.threshold <= ceiling)) return above_ceiling(own.threshold);
     }
   }
   std::vector<Transition> below;
@@ -149,6 +171,11 @@ void to_json(nlohmann::json& json, const TransitionSettings& settings) {
           {"max_threshold", settings.max_threshold},
           {"locality_radius", settings.locality_radius},
           {"per_tag_thresholds", settings.per_tag_thresholds}};
+  if (!settings.tag_thresholds.empty()) {
+    nlohmann::json own = nlohmann::json::array();
+    for (const OwnThreshold& t : settings.tag_thresholds) own.push_back({{"tag", t.tag}, {"threshold", t.threshold}});
+    json["tag_thresholds"] = own;
+  }
 }
 
 void from_json(const nlohmann::json& json, TransitionSettings& settings) {
@@ -158,6 +185,12 @@ void from_json(const nlohmann::json& json, TransitionSettings& settings) {
   settings.locality_radius = json.at("locality_radius").get<int>();
   settings.per_tag_thresholds = json.value("per_tag_thresholds", defaults.per_tag_thresholds);
   settings.max_threshold = json.value("max_threshold", defaults.max_threshold);
+  settings.tag_thresholds.clear();
+  if (json.contains("tag_thresholds")) {
+    for (const nlohmann::json& t : json.at("tag_thresholds")) {
+      settings.tag_thresholds.push_back({t.at("tag").get<int>(), t.at("threshold").get<double>()});
+    }
+  }
 }
 
 }  // namespace mg

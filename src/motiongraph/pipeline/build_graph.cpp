@@ -233,17 +233,28 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
   const ThresholdChoiceSettings& choice_settings = settings.choice;
   auto choice = choose_threshold(db, features, candidates, graph_settings, choice_settings, more);
   if (!choice) return choice.error();
-  graph_settings.transitions.threshold = choice->threshold;
+  graph_settings = with_chosen_thresholds(graph_settings, *choice);
   graph_settings.transitions.max_threshold = distance_of_rms_cm(choice_settings.max_rms_cm, features);
   choice_json = threshold_choice_json(*choice, db, choice_settings);
   const CoveragePoint& chosen = choice->chosen();
   std::vector<std::string> kept;
   for (size_t i = 0; i < choice->tags.size(); ++i) {
-    kept.push_back(fmt::format("{} {:.0f} %", db.tag_names[choice->tags[i]], 100.0 * chosen.tag_coverage[i]));
+    if (choice->tag_thresholds.empty()) {
+      kept.push_back(fmt::format("{} {:.0f} %", db.tag_names[choice->tags[i]], 100.0 * chosen.tag_coverage[i]));
+    } else {
+      kept.push_back(fmt::format("{} {:.0f} % at {:.2f} cm", db.tag_names[choice->tags[i]],
+                                 100.0 * chosen.tag_coverage[i],
+                                 rms_cm_of_distance(choice->tag_thresholds[i], features)));
+    }
   }
   if (choice->tags.empty()) kept.push_back(fmt::format("{:.0f} % of the frames", 100.0 * chosen.coverage));
-  say.info(fmt::format("threshold auto: RMS {:.2f} cm keeps {} ({} thresholds tried)", choice->rms_cm,
-                       fmt::join(kept, ", "), choice->curve.size()));
+  if (choice->tag_thresholds.empty()) {
+    say.info(fmt::format("threshold auto: RMS {:.2f} cm keeps {} ({} thresholds tried)", choice->rms_cm,
+                         fmt::join(kept, ", "), choice->curve.size()));
+  } else {
+    say.info(fmt::format("threshold auto, one per motion type: {}; RMS {:.2f} cm for the rest ({} points tried)",
+                         fmt::join(kept, ", "), choice->rms_cm, choice->curve.size()));
+  }
   if (!choice->reached) {
     say.warning(fmt::format("no threshold up to --max-threshold {:g} cm reaches the coverage wanted{}",
                             choice_settings.max_rms_cm, short_tags_text(*choice, db)));
@@ -397,7 +408,7 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
 
   // 3. The distance stage, from the cache when the same inputs and settings were seen.
   const json distance_json = settings.distance_stage.to_json(features->window);
-  const bool pruned_stage = settings.pruned_stage(*db);
+  const bool pruned_stage = settings.pruned_stage();
   const std::uint64_t key =
       distance_cache_key(*db, json_text(distance_key_json(settings, pruned_stage, *features,
                                                           distance_json)));
@@ -518,6 +529,7 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
   saved.transitions.threshold_quantile = selection.threshold_quantile;
   saved.transitions.locality_radius = selection.locality_radius;
   saved.transitions.max_threshold = graph_settings->transitions.max_threshold;
+  saved.transitions.tag_thresholds = graph_settings->transitions.tag_thresholds;
   saved.spacing = settings.spacing;
   saved.bridges = graph_settings->bridges;
   saved.connected_tags = db->tag_names_of(graph_settings->connected_tags);

@@ -38,10 +38,20 @@ json coverage_point_json(const CoveragePoint& p, const MotionDatabase& db, const
   json per_tag = json::object();
   for (size_t i = 0; i < tags.size() && i < p.tag_coverage.size(); ++i)
     per_tag[db.tag_names[tags[i]]] = p.tag_coverage[i];
-  return {{"threshold", p.threshold},     {"rms_cm", p.rms_cm},
-          {"quantile", p.quantile},       {"graph", p.graph},
-          {"coverage", p.coverage},       {"tag_coverage", per_tag},
-          {"kept_frames", p.kept_frames}, {"transitions", p.transitions}};
+  json out = {{"threshold", p.threshold},     {"rms_cm", p.rms_cm},
+              {"quantile", p.quantile},       {"graph", p.graph},
+              {"coverage", p.coverage},       {"tag_coverage", per_tag},
+              {"kept_frames", p.kept_frames}, {"transitions", p.transitions}};
+  if (!p.tag_thresholds.empty()) {
+    json own = json::object(), own_rms = json::object();
+    for (size_t i = 0; i < tags.size() && i < p.tag_thresholds.size(); ++i) {
+      own[db.tag_names[tags[i]]] = p.tag_thresholds[i];
+      own_rms[db.tag_names[tags[i]]] = p.tag_rms_cm[i];
+    }
+    out["tag_thresholds"] = own;
+    out["tag_rms_cm"] = own_rms;
+  }
+  return out;
 }
 
 json threshold_choice_json(const ThresholdChoice& choice, const MotionDatabase& db,
@@ -55,12 +65,18 @@ json threshold_choice_json(const ThresholdChoice& choice, const MotionDatabase& 
     targets[names.back()] = choice.targets[i];
   }
   if (choice.tags.empty() && !choice.targets.empty()) targets["all"] = choice.targets[0];
+  json own = json::object();  // per type: the thresholds chosen (D)
+  for (size_t i = 0; i < choice.tag_thresholds.size() && i < names.size(); ++i) {
+    own[names[i]] = choice.tag_thresholds[i];
+  }
   json out = settings;
   out.update({{"target_rate", choice.target_rate},
               {"targets", targets},
               {"reached", choice.reached},
               {"threshold", choice.threshold},
               {"rms_cm", choice.rms_cm},
+              {"per_type", !choice.tag_thresholds.empty()},
+              {"tag_thresholds", own},
               {"motion_types", names},
               {"curve", curve}});
   return out;
@@ -151,7 +167,8 @@ json build_report(const BuildReportParts& parts) {
     tag_thresholds.push_back({{"tag", db.tag_names[t.tag]},
                               {"candidates", t.candidates},
                               {"threshold", t.threshold},
-                              {"rms_cm", rms_cm_of_distance(t.threshold, features)}});
+                              {"rms_cm", rms_cm_of_distance(t.threshold, features)},
+                              {"chosen", t.given}});
   }
   json bridges = json::array();
   for (size_t b = 0; b < parts.selected.bridges.size(); ++b) {

@@ -29,10 +29,12 @@ nlohmann::json clips_json(const MotionDatabase& db);
 // ("planted_share"); {"error": why} when the database has no contacts.
 nlohmann::json foot_contacts_json(const MotionDatabase& db);
 
-// One point of a coverage curve, per-tag coverage by tag name (`tags`: the tags measured).
+// One point of a coverage curve, per-tag coverage by tag name (`tags`: the tags measured); with
+// per-type thresholds, each type's as "tag_thresholds" (D) and "tag_rms_cm".
 nlohmann::json coverage_point_json(const CoveragePoint& point, const MotionDatabase& db, const std::vector<int>& tags);
 
-// The automatic threshold: the target, the ceiling, and the curve it was chosen on.
+// The automatic threshold: the target, the ceiling, and the curve it was chosen on; per type
+// ("per_type"), the thresholds chosen by type name ("tag_thresholds", D).
 nlohmann::json threshold_choice_json(const ThresholdChoice& choice, const MotionDatabase& db,
                                      const ThresholdChoiceSettings& settings);
 

@@ -49,11 +49,8 @@ Status BuildSettings::validate() const {
   return Ok{};
 }
 
-bool BuildSettings::pruned_stage(const MotionDatabase& db) const {
-  if (exhaustive || threshold_mode != ThresholdMode::kAuto || exports.matrix_npy) return false;
-  if (!transitions.per_tag_thresholds || ignore_tags) return true;
-  auto connected = connect_tags.empty() ? Result<TagMask>(motion_type_tags(db)) : tag_mask_of(db, connect_tags);
-  return connected && *connected == 0;
+bool BuildSettings::pruned_stage() const {
+  return !exhaustive && threshold_mode == ThresholdMode::kAuto && !exports.matrix_npy;
 }
 
 }  // namespace mg

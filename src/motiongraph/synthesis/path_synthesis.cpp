@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include <fmt/format.h>
 
@@ -135,17 +136,28 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
     candidates.push_back(settings.start_node);
   } else {
     const TagMask wanted = cost.wanted_at(0.0);
+    auto tags_at = [&](int n) {
+      const auto out = graph.out_edges(n);
+      return context.tracks.tags_of(static_cast<int>(&out.front() - graph.edges.data())).front();
+    };
     std::vector<int> eligible;
     for (int n = 0; n < graph.node_count(); ++n) {
-      const auto out = graph.out_edges(n);
-      const int e = static_cast<int>(&out.front() - graph.edges.data());
-      if (wanted == 0 || (context.tracks.tags_of(e).front() & wanted) != 0) eligible.push_back(n);
+      if (wanted == 0 || (tags_at(n) & wanted) != 0) eligible.push_back(n);
     }
     if (eligible.empty()) {
       for (int n = 0; n < graph.node_count(); ++n) eligible.push_back(n);
     }
-    const int count = std::min<int>(settings.start_candidates, static_cast<int>(eligible.size()));
-    for (int i = 0; i < count; ++i) candidates.push_back(eligible[static_cast<size_t>(i) * eligible.size() / count]);
+    // Spread over the graph and over its kinds of motion: each set of tags gets its share of
+    // the candidates and at least one, so that a small motion type (running, beside hours of
+    // walking) is tried as a start too.
+    std::map<TagMask, std::vector<int>> kinds;
+    for (int n : eligible) kinds[tags_at(n)].push_back(n);
+    const double share = static_cast<double>(settings.start_candidates) / static_cast<double>(eligible.size());
+    for (const auto& [tags, nodes] : kinds) {
+      const auto wanted_count = static_cast<size_t>(std::lround(share * static_cast<double>(nodes.size())));
+      const size_t count = std::clamp<size_t>(wanted_count, 1, nodes.size());
+      for (size_t i = 0; i < count; ++i) candidates.push_back(nodes[i * nodes.size() / count]);
+    }
   }
   // Candidates are compared on a quarter of the budget each, and a quarter of the beam (which
   // spends its width x out-degree x horizon edges whatever the budget): they only pick the

@@ -8,8 +8,9 @@
 // (whole edges), search again from there.
 //
 // The motion starts at the path's first point facing along it, from the start node whose
-// first search costs least among `start_candidates` nodes spread over the graph (nodes
-// carrying the tag asked for at the start when there is one).
+// first search costs least among about `start_candidates` nodes spread over the graph and over
+// its sets of tags, at least one node of each (nodes carrying the tag asked for at the start
+// when there is one).
 #pragma once
 
 #include "motiongraph/synthesis/floor_path.h"
