@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+
 #include "motiongraph/metric/reference_distance.h"
 #include "test_data.h"
 
@@ -174,6 +176,56 @@ TEST(ThresholdChoice, EachMotionTypeGetsTheLowestThresholdTriedThatReachesItsTar
   ASSERT_TRUE(again);
   EXPECT_EQ(again->tag_coverage, point.tag_coverage);
   EXPECT_EQ(again->transitions, point.transitions);
+}
+
+TEST(ThresholdChoice, FramesOfNoMotionTypeAreAClassOfTheirOwn) {
+  // Only walking is tagged: the runs are frames of no motion type, measured and given a
+  // threshold of their own (no lower than walking's: nothing bridges to frames of no type, so
+  // they join the graph by the transitions between them and walking, at the lower of the two).
+  const Fixture& x = fixture();
+  MotionDatabase db = x.db;
+  db.tag_ranges.resize(1);  // walk only
+  GraphFromCandidatesSettings settings = x.settings;
+  settings.connected_tags = 0b01;
+  EXPECT_EQ(coverage_tags(db, settings), (std::vector<int>{0, kUntaggedClass}));
+  EXPECT_EQ(coverage_tags(x.db, x.settings), (std::vector<int>{0, 1}));  // every frame tagged
+  EXPECT_EQ(motion_class_name(db, kUntaggedClass), "untagged");
+  ThresholdChoiceSettings choice;
+  choice.coverage = 0.5;
+  choice.max_rms_cm = 30.0;
+  auto chosen = choose_threshold(db, x.features, x.search, settings, choice);
+  ASSERT_TRUE(chosen) << chosen.error().to_string();
+  ASSERT_TRUE(chosen->reached);
+  ASSERT_EQ(chosen->tag_thresholds.size(), 2u);
+  EXPECT_LE(chosen->tag_thresholds[0], chosen->tag_thresholds[1]);
+  const CoveragePoint& point = chosen->chosen();
+  EXPECT_GE(point.tag_coverage[1], chosen->targets[1]);
+  // Its coverage is the share of the untagged frames the graph built with those thresholds
+  // plays, counted here frame by frame.
+  GraphFromCandidatesSettings at = with_chosen_thresholds(settings, *chosen);
+  at.transitions.max_threshold = distance_of_rms_cm(choice.max_rms_cm, x.features);
+  EXPECT_EQ(at.transitions.tag_thresholds.back().tag, kUntaggedClass);
+  auto graph = graph_from_candidates(db, x.features, x.search, at);
+  ASSERT_TRUE(graph) << graph.error().to_string();
+  const MotionGraph& g = graph->pruned.graph;
+  const int runs = db.clips[2].first_frame;
+  std::vector<char> played(static_cast<size_t>(db.frame_count()), 0);
+  for (const GraphEdge& e : g.edges) {
+    if (e.transition) continue;
+    for (int f = g.nodes[e.from_node].frame; f < g.nodes[e.to_node].frame; ++f) played[f] = 1;
+  }
+  const long long untagged_played = std::count(played.begin() + runs, played.end(), 1);
+  EXPECT_DOUBLE_EQ(point.tag_coverage[1],
+                   static_cast<double>(untagged_played) / static_cast<double>(db.frame_count() - runs));
+  // The selection gives the class its own threshold, over the run-run candidates.
+  const auto& own = graph->transitions.selection.tag_thresholds;
+  ASSERT_EQ(own.size(), 2u);
+  const auto untagged =
+      std::find_if(own.begin(), own.end(), [](const TagThreshold& t) { return t.tag == kUntaggedClass; });
+  ASSERT_NE(untagged, own.end());
+  EXPECT_GT(untagged->candidates, 0);
+  EXPECT_TRUE(untagged->given);
+  EXPECT_EQ(untagged->threshold, chosen->tag_thresholds[1]);
 }
 
 TEST(ThresholdChoice, CoverageIsThatOfTheGraphBuildWrites) {

@@ -153,6 +153,22 @@ TEST(TransitionSelection, GivenTagThresholdsAreWhatACandidateOfTheTagPasses) {
     EXPECT_EQ(selected->transitions.size(), passing);
     EXPECT_GT(passing, static_cast<size_t>(std::count_if(d.begin(), d.end(), [&](float x) { return x <= global; })));
   }
+  // Given for the frames of none of the tags (here: walk only, so running is untagged).
+  TransitionSettings untagged;
+  untagged.locality_radius = 0;
+  untagged.threshold = global;
+  untagged.tag_thresholds = {{-1, high}};
+  const TagMask walk_only = TagMask{1} << walk;
+  auto selected = select_transitions(*features, *search, untagged, frame_tags, walk_only);
+  ASSERT_TRUE(selected) << selected.error().to_string();
+  ASSERT_EQ(selected->tag_thresholds.size(), 1u);
+  EXPECT_EQ(selected->tag_thresholds[0].tag, -1);
+  size_t passing = 0;
+  for (const Transition& t : search->minima) passing += t.distance <= global || (belongs(t, run) && t.distance <= high);
+  EXPECT_EQ(selected->transitions.size(), passing);
+  EXPECT_EQ(selected->tag_thresholds[0].candidates,
+            std::count_if(search->minima.begin(), search->minima.end(),
+                          [&](const Transition& t) { return belongs(t, run); }));
   // The settings' JSON keeps them.
   TransitionSettings settings;
   settings.tag_thresholds = {{run, high}, {walk, low}};

@@ -24,6 +24,11 @@ TagMask motion_type_tags(const MotionDatabase& db) {
   return mask;
 }
 
+std::string motion_class_name(const MotionDatabase& db, int tag) {
+  if (tag >= 0 && tag < static_cast<int>(db.tag_names.size())) return db.tag_names[tag];
+  return "untagged";
+}
+
 Result<TagMask> tag_mask_of(const MotionDatabase& db, std::span<const std::string> names) {
   TagMask mask = 0;
   for (const std::string& name : names) {

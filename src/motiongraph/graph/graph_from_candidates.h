@@ -29,6 +29,14 @@ bool is_modifier_tag(const std::string& name);
 // The motion types of a database: every tag that is not a modifier.
 TagMask motion_type_tags(const MotionDatabase& db);
 
+// The frames that carry no motion type kept connected, as one more class of motion for the
+// automatic threshold (threshold_choice.h) and the thresholds it gives (transition_selection.h):
+// clips the CMU index does not list, or the untagged part of a user's library.
+inline constexpr int kUntaggedClass = -1;
+
+// A tag's name, or "untagged" for kUntaggedClass.
+std::string motion_class_name(const MotionDatabase& db, int tag);
+
 // The mask of the named tags, or an error naming the first tag no clip carries.
 Result<TagMask> tag_mask_of(const MotionDatabase& db, std::span<const std::string> names);
 

@@ -51,13 +51,37 @@ GraphFromCandidatesSettings with_chosen_thresholds(const GraphFromCandidatesSett
   return out;
 }
 
-std::vector<int> coverage_tags(const GraphFromCandidatesSettings& settings) {
+std::vector<int> coverage_tags(const MotionDatabase& db, const GraphFromCandidatesSettings& settings) {
   std::vector<int> tags;
   for (int t = 0; t < 64; ++t) {
     if (settings.connected_tags >> t & 1) tags.push_back(t);
   }
+  if (tags.empty()) return tags;
+  const std::vector<TagMask> frame_tags = db.frame_tags();
+  if (std::any_of(frame_tags.begin(), frame_tags.end(),
+                  [&](TagMask m) { return (m & settings.connected_tags) == 0; })) {
+    tags.push_back(kUntaggedClass);
+  }
   return tags;
 }
+
+namespace {
+
+// The share of the frames carrying none of `tags` that the graph's clip edges play.
+double untagged_coverage(const MotionDatabase& db, const MotionGraph& graph, TagMask tags) {
+  const std::vector<TagMask> frame_tags = db.frame_tags();
+  long long all = 0, played = 0;
+  for (const TagMask m : frame_tags) all += (m & tags) == 0 ? 1 : 0;
+  for (const GraphEdge& e : graph.edges) {
+    if (e.transition) continue;
+    for (int f = graph.nodes[e.from_node].frame; f < graph.nodes[e.to_node].frame; ++f) {
+      played += (frame_tags[f] & tags) == 0 ? 1 : 0;
+    }
+  }
+  return all > 0 ? static_cast<double>(played) / static_cast<double>(all) : 0.0;
+}
+
+}  // namespace
 
 Result<CoveragePoint> coverage_at(const MotionDatabase& db, const FrameFeatures& features,
                                   const CandidateSearch& candidates, const GraphFromCandidatesSettings& settings,
@@ -68,7 +92,7 @@ Result<CoveragePoint> coverage_at(const MotionDatabase& db, const FrameFeatures&
   point.threshold = threshold;
   point.rms_cm = rms_cm_of_distance(threshold, features);
   point.quantile = candidates.histogram.fraction_below(threshold);
-  const std::vector<int> tags = coverage_tags(settings);
+  const std::vector<int> tags = coverage_tags(db, settings);
   point.tag_coverage.assign(tags.size(), 0.0);
   auto selected = select_transitions_with_bridges(db, features, candidates, at, more);
   if (!selected) return selected.error();
@@ -92,6 +116,9 @@ Result<CoveragePoint> coverage_at(const MotionDatabase& db, const FrameFeatures&
   }
   point.coverage = 1.0;
   for (size_t i = 0; i < tags.size(); ++i) {
+    if (tags[i] == kUntaggedClass) {
+      point.tag_coverage[i] = untagged_coverage(db, pruned->graph, settings.connected_tags);
+    }
     for (const TagStatistics& s : after.tags) {
       if (s.tag == tags[i] && s.database_frames > 0) {
         point.tag_coverage[i] = static_cast<double>(s.frames) / s.database_frames;
@@ -108,7 +135,7 @@ Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFe
                                          const ThresholdChoiceSettings& choice, OnDemandCandidates* more) {
   if (auto s = choice.validate(); !s) return s.error();
   ThresholdChoice out;
-  out.tags = coverage_tags(settings);
+  out.tags = coverage_tags(db, settings);
   // Tag thresholds never pass the ceiling either.
   GraphFromCandidatesSettings capped = settings;
   const double ceiling = distance_of_rms_cm(choice.max_rms_cm, features);

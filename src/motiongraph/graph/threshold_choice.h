@@ -93,16 +93,17 @@ struct ThresholdChoice {
   double rms_cm = 0.0;
   std::vector<double> tag_thresholds;  // D chosen per entry of tags; empty: one threshold
   bool reached = false;              // the target coverage was reached under the ceiling
-  std::vector<int> tags;             // motion types measured (bit indices); empty: all frames
+  std::vector<int> tags;             // motion types measured (coverage_tags); empty: all frames
   std::vector<double> targets;       // the coverage each wanted (one per tag; one value without)
   double target_rate = 0.0;          // transitions per second of kept motion wanted
   std::vector<CoveragePoint> curve;  // every threshold tried, by threshold
   const CoveragePoint& chosen() const;
 };
 
-// The motion types coverage is measured on (bit indices of settings.connected_tags); empty:
-// the database's frames as a whole.
-std::vector<int> coverage_tags(const GraphFromCandidatesSettings& settings);
+// The motion types coverage is measured on (bit indices of settings.connected_tags), and
+// kUntaggedClass when some frames carry none of them (they want a graph too); empty: the
+// database's frames as a whole.
+std::vector<int> coverage_tags(const MotionDatabase& db, const GraphFromCandidatesSettings& settings);
 
 // The coverage of one threshold: `settings` with its threshold replaced by `threshold` (D) (its
 // given tag thresholds, if any, stay, lifted to `threshold` where below it).

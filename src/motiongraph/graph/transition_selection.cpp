@@ -19,7 +19,7 @@ Status TransitionSettings::validate() const {
   if (locality_radius < -1) return Error{"", 0, "locality radius must be >= 0 (or -1 for half the window)"};
   if (!std::isfinite(max_threshold)) return Error{"", 0, "the maximum threshold must be a finite number"};
   for (const OwnThreshold& own : tag_thresholds) {
-    if (own.tag < 0 || own.tag >= 64) return Error{"", 0, fmt::format("tag threshold for tag bit {}", own.tag)};
+    if (own.tag < -1 || own.tag >= 64) return Error{"", 0, fmt::format("tag threshold for tag bit {}", own.tag)};
     if (!(std::isfinite(own.threshold) && own.threshold >= 0.0)) {
       return Error{"", 0, "a tag's own threshold must be a finite distance >= 0"};
     }
@@ -31,19 +31,26 @@ namespace {
 
 // Per tag: which candidates belong to it (all 2k frames of both windows carry it) and its own
 // threshold: the one `given` lists, or else the D at the rank where the tag keeps the share
-// `share` of its candidates. Never below `global`.
+// `share` of its candidates. Never below `global`. A given threshold for tag -1 is that of the
+// candidates whose 2k frames carry none of `tags`. membership[i]: bit t for tag t; untagged[i]:
+// candidate i belongs to tag -1.
 std::vector<TagThreshold> tag_thresholds(const CandidateSearch& candidates, std::span<const TagMask> frame_tags,
                                          TagMask tags, int window, double global, double share,
-                                         std::span<const OwnThreshold> given, std::vector<TagMask>& membership) {
+                                         std::span<const OwnThreshold> given, std::vector<TagMask>& membership,
+                                         std::vector<char>& untagged) {
   std::vector<TagThreshold> result;
   membership.assign(candidates.minima.size(), 0);
+  untagged.assign(candidates.minima.size(), 0);
   const int frames = static_cast<int>(frame_tags.size());
   std::vector<int> count(static_cast<size_t>(frames) + 1);
-  for (int t = 0; t < 64; ++t) {
-    if ((tags >> t & 1) == 0) continue;
+  for (int t = -1; t < 64; ++t) {
+    if (t >= 0 && (tags >> t & 1) == 0) continue;
     const auto own = std::find_if(given.begin(), given.end(), [t](const OwnThreshold& g) { return g.tag == t; });
-    if (!given.empty() && own == given.end()) continue;  // given for some tags: the others keep the global one
-    for (int f = 0; f < frames; ++f) count[f + 1] = count[f] + static_cast<int>(frame_tags[f] >> t & 1);
+    if ((!given.empty() || t < 0) && own == given.end()) continue;  // given for some: the others keep the global one
+    for (int f = 0; f < frames; ++f) {
+      const bool carries = t >= 0 ? (frame_tags[f] >> t & 1) != 0 : (frame_tags[f] & tags) == 0;
+      count[f + 1] = count[f] + static_cast<int>(carries);
+    }
     auto all_carry = [&](int first, int last) {
       return first >= 0 && last < frames && count[last + 1] - count[first] == last - first + 1;
     };
@@ -51,7 +58,11 @@ std::vector<TagThreshold> tag_thresholds(const CandidateSearch& candidates, std:
     for (size_t i = 0; i < candidates.minima.size(); ++i) {
       const Transition& c = candidates.minima[i];
       if (all_carry(c.from_frame, c.from_frame + window - 1) && all_carry(c.to_frame - window + 1, c.to_frame)) {
-        membership[i] |= TagMask{1} << t;
+        if (t >= 0) {
+          membership[i] |= TagMask{1} << t;
+        } else {
+          untagged[i] = 1;
+        }
         d.push_back(c.distance);
       }
     }
@@ -100,6 +111,7 @@ Result<TransitionSelection> select_transitions(const FrameFeatures& features, co
   selection.locality_radius = settings.locality_radius < 0 ? features.window / 2 : settings.locality_radius;
 
   std::vector<TagMask> membership;
+  std::vector<char> untagged;
   if (tag_thresholds_on && (!candidates.minima.empty() || !ranked)) {
     const auto global_count = std::count_if(candidates.minima.begin(), candidates.minima.end(),
                                             [&](const Transition& t) { return t.distance <= selection.threshold; });
@@ -107,7 +119,7 @@ Result<TransitionSelection> select_transitions(const FrameFeatures& features, co
                              ? 0.0
                              : static_cast<double>(global_count) / static_cast<double>(candidates.minima.size());
     selection.tag_thresholds = tag_thresholds(candidates, frame_tags, tags, features.window, selection.threshold,
-                                              share, settings.tag_thresholds, membership);
+                                              share, settings.tag_thresholds, membership, untagged);
     if (settings.max_threshold >= 0.0) {
       for (TagThreshold& own : selection.tag_thresholds) {
         own.threshold = std::min(own.threshold, settings.max_threshold);
@@ -122,7 +134,8 @@ Result<TransitionSelection> select_transitions(const FrameFeatures& features, co
     const Transition& t = candidates.minima[i];
     bool keep = t.distance <= selection.threshold;
     for (const TagThreshold& own : selection.tag_thresholds) {
-      if (!membership.empty() && (membership[i] >> own.tag & 1) && t.distance <= own.threshold) keep = true;
+      const bool member = own.tag >= 0 ? (membership[i] >> own.tag & 1) != 0 : untagged[i] != 0;
+      if (!membership.empty() && member && t.distance <= own.threshold) keep = true;
     }
     if (keep) below.push_back(t);
   }

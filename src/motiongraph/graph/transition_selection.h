@@ -31,7 +31,7 @@ namespace mg {
 
 // A motion type's own threshold, given.
 struct OwnThreshold {
-  int tag = 0;             // bit index into MotionDatabase::tag_names
+  int tag = 0;             // bit index into MotionDatabase::tag_names; -1: frames of none of the tags
   double threshold = 0.0;  // D; a candidate of the tag passes at or below it
   bool operator==(const OwnThreshold&) const = default;
 };
@@ -57,7 +57,7 @@ void to_json(nlohmann::json& json, const TransitionSettings& settings);
 void from_json(const nlohmann::json& json, TransitionSettings& settings);
 
 struct TagThreshold {
-  int tag = 0;
+  int tag = 0;            // -1: the frames that carry none of the tags (given thresholds only)
   int candidates = 0;     // local minima belonging to the tag (under the ceiling of pruned candidates)
   double threshold = 0.0; // the tag's own threshold (never below the global one)
   bool given = false;     // from TransitionSettings::tag_thresholds, not by rank

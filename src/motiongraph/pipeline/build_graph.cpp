@@ -60,8 +60,8 @@ std::string short_tags_text(const ThresholdChoice& choice, const MotionDatabase&
   std::vector<std::string> parts;
   for (size_t i = 0; i < choice.tags.size() && i < p.tag_coverage.size(); ++i) {
     if (p.tag_coverage[i] < choice.targets[i]) {
-      parts.push_back(fmt::format("{} {:.0f} % of {:.0f} %", db.tag_names[choice.tags[i]], 100.0 * p.tag_coverage[i],
-                                  100.0 * choice.targets[i]));
+      parts.push_back(fmt::format("{} {:.0f} % of {:.0f} %", motion_class_name(db, choice.tags[i]),
+                                  100.0 * p.tag_coverage[i], 100.0 * choice.targets[i]));
     }
   }
   return parts.empty() ? std::string() : ": " + fmt::format("{}", fmt::join(parts, ", "));
@@ -240,9 +240,10 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
   std::vector<std::string> kept;
   for (size_t i = 0; i < choice->tags.size(); ++i) {
     if (choice->tag_thresholds.empty()) {
-      kept.push_back(fmt::format("{} {:.0f} %", db.tag_names[choice->tags[i]], 100.0 * chosen.tag_coverage[i]));
+      kept.push_back(
+          fmt::format("{} {:.0f} %", motion_class_name(db, choice->tags[i]), 100.0 * chosen.tag_coverage[i]));
     } else {
-      kept.push_back(fmt::format("{} {:.0f} % at {:.2f} cm", db.tag_names[choice->tags[i]],
+      kept.push_back(fmt::format("{} {:.0f} % at {:.2f} cm", motion_class_name(db, choice->tags[i]),
                                  100.0 * chosen.tag_coverage[i],
                                  rms_cm_of_distance(choice->tag_thresholds[i], features)));
     }
@@ -504,7 +505,7 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
           "{:.3f} % of pairs); it keeps {:.0f} % of {}",
           p.rms_cm, std::ceil(p.rms_cm * 100.0) / 100.0, p.threshold, 100.0 * p.quantile, 100.0 * p.coverage,
           graph_settings->connected_tags ? "each motion type's frames" : "the frames");
-      out.report["lowest_graph_threshold"] = coverage_point_json(p, *db, coverage_tags(*graph_settings));
+      out.report["lowest_graph_threshold"] = coverage_point_json(p, *db, coverage_tags(*db, *graph_settings));
     }
     out.report["error"] = "pruning left nothing";
     out.report["timings"] = timings;

@@ -37,7 +37,7 @@ json clips_json(const MotionDatabase& db) {
 json coverage_point_json(const CoveragePoint& p, const MotionDatabase& db, const std::vector<int>& tags) {
   json per_tag = json::object();
   for (size_t i = 0; i < tags.size() && i < p.tag_coverage.size(); ++i)
-    per_tag[db.tag_names[tags[i]]] = p.tag_coverage[i];
+    per_tag[motion_class_name(db, tags[i])] = p.tag_coverage[i];
   json out = {{"threshold", p.threshold},     {"rms_cm", p.rms_cm},
               {"quantile", p.quantile},       {"graph", p.graph},
               {"coverage", p.coverage},       {"tag_coverage", per_tag},
@@ -45,8 +45,8 @@ json coverage_point_json(const CoveragePoint& p, const MotionDatabase& db, const
   if (!p.tag_thresholds.empty()) {
     json own = json::object(), own_rms = json::object();
     for (size_t i = 0; i < tags.size() && i < p.tag_thresholds.size(); ++i) {
-      own[db.tag_names[tags[i]]] = p.tag_thresholds[i];
-      own_rms[db.tag_names[tags[i]]] = p.tag_rms_cm[i];
+      own[motion_class_name(db, tags[i])] = p.tag_thresholds[i];
+      own_rms[motion_class_name(db, tags[i])] = p.tag_rms_cm[i];
     }
     out["tag_thresholds"] = own;
     out["tag_rms_cm"] = own_rms;
@@ -61,7 +61,7 @@ json threshold_choice_json(const ThresholdChoice& choice, const MotionDatabase& 
   std::vector<std::string> names;
   json targets = json::object();
   for (size_t i = 0; i < choice.tags.size(); ++i) {
-    names.push_back(db.tag_names[choice.tags[i]]);
+    names.push_back(motion_class_name(db, choice.tags[i]));
     targets[names.back()] = choice.targets[i];
   }
   if (choice.tags.empty() && !choice.targets.empty()) targets["all"] = choice.targets[0];
@@ -164,7 +164,7 @@ json build_report(const BuildReportParts& parts) {
   const PrunedGraph* pruned = parts.pruned;
   json tag_thresholds = json::array();
   for (const TagThreshold& t : selection.tag_thresholds) {
-    tag_thresholds.push_back({{"tag", db.tag_names[t.tag]},
+    tag_thresholds.push_back({{"tag", motion_class_name(db, t.tag)},
                               {"candidates", t.candidates},
                               {"threshold", t.threshold},
                               {"rms_cm", rms_cm_of_distance(t.threshold, features)},
