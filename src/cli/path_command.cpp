@@ -79,7 +79,8 @@ Command add_path_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--behind-penalty", o->settings.behind_penalty_m, "Cost (m^2 per metre behind) of dawdling")
       ->capture_default_str();
-  sub->add_option("--start-node", o->settings.start_node, "Start at this node (default: the best of a sample)");
+  sub->add_option("--start-node", o->settings.start_node,
+                  "Start at this node (default: the best of about 16 spread over the graph and over its sets of tags)");
   return {sub, [o] { return run_path(*o); }};
 }
 
