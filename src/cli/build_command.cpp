@@ -210,7 +210,8 @@ Command add_build_command(CLI::App& app) {
                   "the pruned one: 64 at 30 fps, 256 at 120 fps)")
       ->capture_default_str();
   sub->add_flag("--exhaustive", b.exhaustive,
-                "Compute every pair's distance. By default, with --threshold auto and no --export-matrix, only the "
+                "Compute every pair's distance. By default, with --threshold auto (or a threshold given as a distance "
+                "under --max-threshold, with one threshold for all motion types) and no --export-matrix, only the "
                 "tiles that can hold a pair below --max-threshold are computed (the same graph at the same --tile; "
                 "bridges above it are found on demand)");
   sub->add_option("--threads", b.distance.threads, "Worker threads (0: one per core)")->capture_default_str();

@@ -154,6 +154,12 @@ PY
   "$bin" eval "$work/p.mgraph" --what threshold --no-plots --out-dir "$work/peval" -q
   [[ $(wc -l <"$work/peval/threshold.csv") -gt 2 ]] || { echo "FAIL: eval on a pruned graph ($per_tag)"; exit 1; }
 done
+# A threshold given in cm under the ceiling, one for all motion types: the same pruned stage, from
+# the cache.
+"$bin" build "$data/cmu/16" -o "$work/h.mgraph" --cache-dir "$cache" --no-tag-thresholds --threshold 5cm \
+  --report "$work/h.json" -q
+python3 -c "import json,sys; r=json.load(open(sys.argv[1])); s=r['distance_stage']['stage']; c=r['distance_cache']
+assert s == 'pruned' and c == 'hit' and abs(r['threshold_rms_cm'] - 5) < 1e-9, (s, c)" "$work/h.json"
 
 # A threshold in cm; the same graph from the same threshold given as D.
 "$bin" build "$data/cmu/16" -o "$work/g3.mgraph" --cache-dir "$cache" --threshold 6cm --report "$work/r3.json" -q

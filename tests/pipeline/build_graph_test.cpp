@@ -90,6 +90,21 @@ TEST(BuildGraph, Subject16IsWhatItsSavedSettingsSelectAgain) {
   EXPECT_GT(longer, 0);
 }
 
+// `settings` built by default and with --exhaustive, both in tiles of 64 frames (the pruned
+// stage's at 30 fps): where the default runs the pruned stage, the two graphs must be equal.
+struct BothStages {
+  Result<GraphBuild> pruned;
+  Result<GraphBuild> exhaustive;
+};
+
+BothStages build_both_stages(BuildSettings settings) {
+  settings.pruned.tile_frames = 64;
+  settings.distance_stage.distance.tile_frames = 64;
+  BuildSettings exhaustive = settings;
+  exhaustive.exhaustive = true;
+  return {build_graph(kInputs, settings), build_graph(kInputs, exhaustive)};
+}
+
 class PrunedBuild : public testing::TestWithParam<bool> {};
 
 TEST_P(PrunedBuild, GivesTheExhaustiveGraph) {
@@ -98,12 +113,7 @@ TEST_P(PrunedBuild, GivesTheExhaustiveGraph) {
   // exhaustive stage gives the same graph.
   BuildSettings pruned;
   pruned.transitions.per_tag_thresholds = GetParam();
-  pruned.pruned.tile_frames = 64;
-  pruned.distance_stage.distance.tile_frames = 64;
-  BuildSettings exhaustive = pruned;
-  exhaustive.exhaustive = true;
-  auto a = build_graph(kInputs, pruned);
-  auto b = build_graph(kInputs, exhaustive);
+  auto [a, b] = build_both_stages(pruned);
   ASSERT_TRUE(a && b);
   ASSERT_TRUE(a->graph_status && b->graph_status);
   const nlohmann::json& stage = a->report.at("distance_stage");
@@ -150,6 +160,41 @@ INSTANTIATE_TEST_SUITE_P(BuildGraph, PrunedBuild, testing::Bool(),
                          [](const testing::TestParamInfo<bool>& param) {
                            return param.param ? "ThresholdPerMotionType" : "OneThreshold";
                          });
+
+TEST(BuildGraph, AThresholdGivenByHandRunsThePrunedStageWhereItIsExact) {
+  // One threshold for all motion types, given in cm under the ceiling: the pruned stage, the
+  // graph of the exhaustive stage with its tiles. A quantile, a threshold above the ceiling or
+  // per-tag thresholds by rank need every distance.
+  BuildSettings hand;
+  hand.threshold_mode = ThresholdMode::kRmsCm;
+  hand.threshold_value = 4.0;
+  hand.transitions.per_tag_thresholds = false;
+  auto [a, b] = build_both_stages(hand);
+  ASSERT_TRUE(a && b);
+  ASSERT_TRUE(a->graph_status && b->graph_status);
+  EXPECT_EQ(a->report.at("distance_stage").at("stage"), "pruned");
+  EXPECT_EQ(b->report.at("distance_stage").at("stage"), "exhaustive");
+  EXPECT_EQ(a->report.at("threshold"), b->report.at("threshold"));
+  EXPECT_EQ(a->report.at("bridges"), b->report.at("bridges"));
+  EXPECT_EQ(a->report.at("graph_after"), b->report.at("graph_after"));
+  ASSERT_EQ(a->file.graph.transitions.size(), b->file.graph.transitions.size());
+  for (size_t i = 0; i < a->file.graph.transitions.size(); ++i) {
+    EXPECT_EQ(a->file.graph.transitions[i].from_frame, b->file.graph.transitions[i].from_frame);
+    EXPECT_EQ(a->file.graph.transitions[i].to_frame, b->file.graph.transitions[i].to_frame);
+  }
+  for (auto change : {+[](BuildSettings& x) { x.transitions.per_tag_thresholds = true; },
+                      +[](BuildSettings& x) { x.threshold_value = 12.0; },  // above the 10 cm ceiling
+                      +[](BuildSettings& x) {
+                        x.threshold_mode = ThresholdMode::kQuantile;
+                        x.threshold_value = 0.02;
+                      }}) {
+    BuildSettings other = hand;
+    change(other);
+    auto built = build_graph(kInputs, other);
+    ASSERT_TRUE(built) << built.error().to_string();
+    EXPECT_EQ(built->report.at("distance_stage").at("stage"), "exhaustive");
+  }
+}
 
 TEST(BuildGraph, NoGraphUnderThePrunedStagesCeilingStillSaysWhatWouldMakeOne) {
   BuildSettings settings;

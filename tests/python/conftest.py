@@ -17,7 +17,8 @@ import motiongraph as mg
 
 # The report entries that are timings (and peak memory), which differ from run to run.
 TIMING_KEYS = {"seconds", "realtime_factor", "search_seconds", "search_realtime_factor", "search_cpu_seconds",
-               "search_cpu_realtime_factor", "timings", "share_seconds", "peak_memory_mb"}
+               "search_cpu_realtime_factor", "timings", "share_seconds", "peak_memory_mb", "embedding_seconds",
+               "tile_seconds"}
 
 
 def _env(name):

@@ -409,7 +409,7 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
 
   // 3. The distance stage, from the cache when the same inputs and settings were seen.
   const json distance_json = settings.distance_stage.to_json(features->window);
-  const bool pruned_stage = settings.pruned_stage();
+  const bool pruned_stage = settings.pruned_stage(*db, *features);
   const std::uint64_t key =
       distance_cache_key(*db, json_text(distance_key_json(settings, pruned_stage, *features,
                                                           distance_json)));

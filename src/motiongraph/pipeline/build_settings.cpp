@@ -49,8 +49,16 @@ Status BuildSettings::validate() const {
   return Ok{};
 }
 
-bool BuildSettings::pruned_stage() const {
-  return !exhaustive && threshold_mode == ThresholdMode::kAuto && !exports.matrix_npy;
+bool BuildSettings::pruned_stage(const MotionDatabase& db, const FrameFeatures& features) const {
+  if (exhaustive || exports.matrix_npy) return false;
+  if (threshold_mode == ThresholdMode::kAuto) return true;
+  if (threshold_mode == ThresholdMode::kQuantile) return false;
+  const double threshold =
+      threshold_mode == ThresholdMode::kRmsCm ? distance_of_rms_cm(threshold_value, features) : threshold_value;
+  if (!(threshold <= distance_of_rms_cm(choice.max_rms_cm, features))) return false;
+  if (!transitions.per_tag_thresholds || ignore_tags) return true;
+  auto connected = connect_tags.empty() ? Result<TagMask>(motion_type_tags(db)) : tag_mask_of(db, connect_tags);
+  return connected && *connected == 0;
 }
 
 }  // namespace mg

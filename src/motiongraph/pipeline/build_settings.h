@@ -45,11 +45,13 @@ struct BuildSettings {
   bool find_cmu_index = true;
   DistanceStageSettings distance_stage;
   // The distance stage: the pruned one (graph/pruned_candidates.h), with the quality ceiling
-  // (choice.max_rms_cm) as its ceiling, when the threshold is chosen automatically (per motion
-  // type too: each type's threshold is searched for under the ceiling) and the matrix is not
-  // exported; the exhaustive one when asked for or when something needs every distance (a
-  // threshold given by hand: it may lie above any ceiling, and per-tag thresholds by rank count
-  // every candidate of a type). Both give the same graph at the same tile side.
+  // (choice.max_rms_cm) as its ceiling, when the matrix is not exported and the threshold is
+  // chosen automatically (per motion type too: each type's threshold is searched for under the
+  // ceiling) or given by hand as a distance (D or cm) at or below the ceiling with one threshold
+  // for all (no motion types, --ignore-tags or --no-tag-thresholds); the exhaustive one when asked
+  // for or when something needs every distance (a quantile of all pairs, a threshold above the
+  // ceiling, per-tag thresholds by rank: they count every candidate of a type). Both give the
+  // same graph at the same tile side.
   bool exhaustive = false;
   PrunedSearchSettings pruned;  // its threads are distance_stage.distance's
   ThresholdMode threshold_mode = ThresholdMode::kAuto;
@@ -75,8 +77,8 @@ struct BuildSettings {
   SharedSearchSettings shared;
 
   Status validate() const;
-  // Whether the pruned stage runs (see `exhaustive`).
-  bool pruned_stage() const;
+  // Whether the pruned stage runs on `db` (see `exhaustive`).
+  bool pruned_stage(const MotionDatabase& db, const FrameFeatures& features) const;
 };
 
 }  // namespace mg
