@@ -93,6 +93,7 @@ OptionTable build_option_table(BuildCall& call) {
       {"continuation_radius", set(b.continuation_radius)},
       {"tile", set(b.tile_frames)},
       {"exhaustive", set(b.exhaustive)},
+      {"pruned_from", set(b.pruned_from)},
       {"threads", set(b.distance.threads)},
       {"cache_dir", set(call.cache_dir)},
       {"no_cache", set(call.no_cache)},

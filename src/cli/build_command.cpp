@@ -213,7 +213,10 @@ Command add_build_command(CLI::App& app) {
                 "Compute every pair's distance. By default, with --threshold auto (or a threshold given as a distance "
                 "under --max-threshold, with one threshold for all motion types) and no --export-matrix, only the "
                 "tiles that can hold a pair below --max-threshold are computed (the same graph at the same --tile; "
-                "bridges above it are found on demand)");
+                "bridges above it are found on demand), from --pruned-from frames on");
+  sub->add_option("--pruned-from", b.pruned_from,
+                  "Libraries of fewer frames run the exhaustive stage, faster there (0: the pruned stage at any size)")
+      ->capture_default_str();
   sub->add_option("--threads", b.distance.threads, "Worker threads (0: one per core)")->capture_default_str();
   sub->add_option("--checkpoint", b.shared.checkpoint_folder,
                   "Keep the distance stage's finished tiles in this folder, so that the same build started again "

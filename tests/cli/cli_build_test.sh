@@ -128,12 +128,15 @@ PY
 python3 -c "import json,sys; r=json.load(open(sys.argv[1])); assert r['distance_cache']=='hit', r['distance_cache']" "$work/r2.json"
 
 # The pruned distance stage runs with the automatic threshold, per motion type (the default) or
-# one for all (bridges found on demand either way): the same graph as --exhaustive with its
-# tiles, its distances cached apart, and eval selects again on what it stored.
+# one for all (bridges found on demand either way), on libraries of --pruned-from frames or more
+# (subject 16 is smaller than the default): the same graph as --exhaustive with its tiles, its
+# distances cached apart, and eval selects again on what it stored.
 for per_tag in "" --no-tag-thresholds; do
   rm -rf "$cache"
-  "$bin" build "$data/cmu/16" -o "$work/p.mgraph" --cache-dir "$cache" $per_tag --report "$work/p.json" -q
-  "$bin" build "$data/cmu/16" -o "$work/p2.mgraph" --cache-dir "$cache" $per_tag --report "$work/p2.json" -q
+  "$bin" build "$data/cmu/16" -o "$work/p.mgraph" --cache-dir "$cache" $per_tag --pruned-from 0 \
+    --report "$work/p.json" -q
+  "$bin" build "$data/cmu/16" -o "$work/p2.mgraph" --cache-dir "$cache" $per_tag --pruned-from 0 \
+    --report "$work/p2.json" -q
   "$bin" build "$data/cmu/16" -o "$work/e.mgraph" --cache-dir "$cache" $per_tag --exhaustive --tile 64 \
     --report "$work/e.json" -q
   "$bin" inspect --nodes "$work/p.mgraph" >"$work/p.nodes"
@@ -157,7 +160,7 @@ done
 # A threshold given in cm under the ceiling, one for all motion types: the same pruned stage, from
 # the cache.
 "$bin" build "$data/cmu/16" -o "$work/h.mgraph" --cache-dir "$cache" --no-tag-thresholds --threshold 5cm \
-  --report "$work/h.json" -q
+  --pruned-from 0 --report "$work/h.json" -q
 python3 -c "import json,sys; r=json.load(open(sys.argv[1])); s=r['distance_stage']['stage']; c=r['distance_cache']
 assert s == 'pruned' and c == 'hit' and abs(r['threshold_rms_cm'] - 5) < 1e-9, (s, c)" "$work/h.json"
 

@@ -60,10 +60,11 @@ assert len(three["peak_memory_mb"]) == 3 and all(m > 1 for m in three["peak_memo
 assert len(three["share_seconds"]) == 3 and all(s > 0 for s in three["share_seconds"]), three["share_seconds"]
 PY
 
-# 1b. The pruned distance stage (the default), on one process and on three: the same graph.
-"$bin" build "$data/cmu/16" -o "$work/pone.mgraph" --report "$work/pone.json" --no-cache --tile 64 -q
+# 1b. The pruned distance stage (the default on libraries of 10 000 frames or more), on one
+# process and on three: the same graph.
+"$bin" build "$data/cmu/16" -o "$work/pone.mgraph" --report "$work/pone.json" --no-cache --tile 64 --pruned-from 0 -q
 "${mpi[@]}" "$bin" build "$data/cmu/16" -o "$work/pthree.mgraph" --report "$work/pthree.json" --no-cache --tile 64 \
-  --threads 1 2>"$work/pthree.err"
+  --pruned-from 0 --threads 1 2>"$work/pthree.err"
 grep -q "distance stage (pruned below RMS 10 cm): .* on 3 processes" "$work/pthree.err" \
   || { echo "FAIL: the log of the pruned stage on three processes"; cat "$work/pthree.err"; exit 1; }
 same_graph "$work/pone" "$work/pthree"

@@ -45,7 +45,9 @@ class MemoryCache final : public DistanceCache {
 const std::vector<std::string> kInputs = {test::data_path("cmu/16")};
 
 TEST(BuildGraph, Subject16IsWhatItsSavedSettingsSelectAgain) {
-  auto built = build_graph(kInputs, BuildSettings{});
+  BuildSettings settings;
+  settings.pruned_from_frames = 0;  // subject 16 is small: by default the exhaustive stage runs
+  auto built = build_graph(kInputs, settings);
   ASSERT_TRUE(built) << built.error().to_string();
   ASSERT_TRUE(built->graph_status) << built->graph_status.error().to_string();
   const GraphFile& file = built->file;
@@ -98,6 +100,7 @@ struct BothStages {
 };
 
 BothStages build_both_stages(BuildSettings settings) {
+  settings.pruned_from_frames = 0;
   settings.pruned.tile_frames = 64;
   settings.distance_stage.distance.tile_frames = 64;
   BuildSettings exhaustive = settings;
@@ -163,12 +166,13 @@ INSTANTIATE_TEST_SUITE_P(BuildGraph, PrunedBuild, testing::Bool(),
 
 TEST(BuildGraph, AThresholdGivenByHandRunsThePrunedStageWhereItIsExact) {
   // One threshold for all motion types, given in cm under the ceiling: the pruned stage, the
-  // graph of the exhaustive stage with its tiles. A quantile, a threshold above the ceiling or
-  // per-tag thresholds by rank need every distance.
+  // graph of the exhaustive stage with its tiles. A quantile, a threshold above the ceiling,
+  // per-tag thresholds by rank or a library under --pruned-from run the exhaustive stage.
   BuildSettings hand;
   hand.threshold_mode = ThresholdMode::kRmsCm;
   hand.threshold_value = 4.0;
   hand.transitions.per_tag_thresholds = false;
+  hand.pruned_from_frames = 0;
   auto [a, b] = build_both_stages(hand);
   ASSERT_TRUE(a && b);
   ASSERT_TRUE(a->graph_status && b->graph_status);
@@ -183,6 +187,7 @@ TEST(BuildGraph, AThresholdGivenByHandRunsThePrunedStageWhereItIsExact) {
     EXPECT_EQ(a->file.graph.transitions[i].to_frame, b->file.graph.transitions[i].to_frame);
   }
   for (auto change : {+[](BuildSettings& x) { x.transitions.per_tag_thresholds = true; },
+                      +[](BuildSettings& x) { x.pruned_from_frames = 2000; },  // subject 16: 1 235 frames
                       +[](BuildSettings& x) { x.threshold_value = 12.0; },  // above the 10 cm ceiling
                       +[](BuildSettings& x) {
                         x.threshold_mode = ThresholdMode::kQuantile;
@@ -198,6 +203,7 @@ TEST(BuildGraph, AThresholdGivenByHandRunsThePrunedStageWhereItIsExact) {
 
 TEST(BuildGraph, NoGraphUnderThePrunedStagesCeilingStillSaysWhatWouldMakeOne) {
   BuildSettings settings;
+  settings.pruned_from_frames = 0;
   settings.transitions.per_tag_thresholds = false;
   settings.choice.max_rms_cm = 0.6;
   settings.choice.lowest_rms_cm = 0.3;

@@ -54,10 +54,11 @@ TEST(SynthesisService, DistancePictureIsTheStoredOneAsTheDistanceStageWouldDrawI
 }
 
 TEST(SynthesisService, ThePrunedStagesPictureIsExactUpToItsCeiling) {
-  // The default build runs the pruned stage: a block whose minimum lies at or below its
-  // ceiling is the exhaustive stage's, one above it +infinity (the PNG's grey).
-  const GraphFile pruned = test::build_subject16_graph(test::data_path("cmu/16"));
+  // The pruned stage: a block whose minimum lies at or below its ceiling is the exhaustive
+  // stage's, one above it +infinity (the PNG's grey).
   BuildSettings settings;
+  settings.pruned_from_frames = 0;
+  const GraphFile pruned = test::build_subject16_graph(test::data_path("cmu/16"), settings);
   settings.exhaustive = true;
   settings.distance_stage.distance.tile_frames = 64;  // the pruned stage's at 30 fps: the same bits
   const GraphFile exhaustive = test::build_subject16_graph(test::data_path("cmu/16"), settings);

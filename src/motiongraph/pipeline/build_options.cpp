@@ -14,6 +14,7 @@ Result<BuildSettings> build_settings_from(const BuildOptions& o) {
   s.distance_stage.cloud = o.cloud_settings;
   s.distance_stage.distance = o.distance;
   s.exhaustive = o.exhaustive;
+  s.pruned_from_frames = o.pruned_from;
   if (o.tile_frames != 0) {
     s.distance_stage.distance.tile_frames = o.tile_frames;
     s.pruned.tile_frames = o.tile_frames;

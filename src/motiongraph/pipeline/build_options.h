@@ -29,6 +29,7 @@ struct BuildOptions {
   DistanceSettings distance;  // its tile_frames is set from tile_frames
   int tile_frames = 0;        // 0: 1024 for the exhaustive stage, from the window for the pruned one
   bool exhaustive = false;
+  int pruned_from = BuildSettings{}.pruned_from_frames;
   std::string taper = "uniform";
   TransitionSettings transitions;
   std::string threshold = "auto";  // auto, D, or an RMS distance with "cm"

@@ -43,6 +43,7 @@ Status BuildSettings::validate() const {
   if (!(std::isfinite(max_bridge_rms_cm) && max_bridge_rms_cm >= 0.0)) {
     return Error{"", 0, "the bridge cap must be a finite RMS distance >= 0 cm (0: no cap)"};
   }
+  if (pruned_from_frames < 0) return Error{"", 0, "the pruned stage's smallest library must be >= 0 frames"};
   if (exports.matrix_npy && !shared.checkpoint_folder.empty()) {
     return Error{"", 0, "the matrix export (--export-matrix) is made without --checkpoint only"};
   }
@@ -50,7 +51,7 @@ Status BuildSettings::validate() const {
 }
 
 bool BuildSettings::pruned_stage(const MotionDatabase& db, const FrameFeatures& features) const {
-  if (exhaustive || exports.matrix_npy) return false;
+  if (exhaustive || exports.matrix_npy || db.frame_count() < pruned_from_frames) return false;
   if (threshold_mode == ThresholdMode::kAuto) return true;
   if (threshold_mode == ThresholdMode::kQuantile) return false;
   const double threshold =
