@@ -43,6 +43,24 @@ TEST(Bridges, BestCandidatesBetweenCoresInEachDirection) {
   EXPECT_EQ(bridges[2].from_frame, 140);
 }
 
+TEST(Bridges, NoneBetweenCoresThatShareFrames) {
+  // Frames 90..109 carry both tags (a clip tagged walk and run): with both cores through them,
+  // the graph passes from one to the other there, and no pair is bridged or unjoined.
+  WalkRun s;
+  for (int f = 90; f < 110; ++f) s.tags[f] = 3;
+  const std::vector<Transition> candidates = {t(31, 151, 5.0f), t(140, 40, 8.0f)};
+  auto apart = select_bridges(candidates, {}, s.tags, s.cores, 4, {});
+  EXPECT_EQ(apart.bridges.size(), 2u);
+  for (int f = 90; f < 110; ++f) s.cores[0][f] = s.cores[1][f] = 1;
+  auto shared = select_bridges(candidates, {}, s.tags, s.cores, 4, {});
+  EXPECT_TRUE(shared.bridges.empty());
+  EXPECT_TRUE(shared.unjoined.empty());
+  // Not for a tag outside settings.tags (a modifier).
+  BridgeSettings walk_only;
+  walk_only.tags = 0b01;
+  EXPECT_TRUE(select_bridges(candidates, {}, s.tags, s.cores, 4, walk_only).unjoined.empty());
+}
+
 TEST(Bridges, NoneWhereSelectedTransitionsAlreadyJoinTheCores) {
   WalkRun s;
   const std::vector<Transition> candidates = {t(31, 151, 5.0f), t(140, 40, 8.0f)};
@@ -197,9 +215,9 @@ std::vector<Transition> reference_bridges(const std::vector<Transition>& candida
 
 TEST(Bridges, SameAsTheRuleWrittenPairByPairOnRandomLibraries) {
   std::mt19937 rng(7);
-  size_t total = 0, with_joined = 0, unjoined = 0;
+  size_t total = 0, with_joined = 0, unjoined = 0, sharing = 0;
   long above_cap = 0;
-  for (int round = 0; round < 40; ++round) {
+  for (int round = 0; round < 80; ++round) {
     // 300 frames in runs of one or two of three tags (walk, run, jump and mixes such as
     // walk+turn: bit 3), cores on random stretches, many candidates with tied distances.
     const int frames = 300, window = 4;
@@ -212,9 +230,10 @@ TEST(Bridges, SameAsTheRuleWrittenPairByPairOnRandomLibraries) {
       for (int i = f; i < std::min(frames, f + length); ++i) tags[i] = m;
       f += length;
     }
+    // A core holds frames of its own tag only; two share frames where clips carry both.
     std::vector<std::vector<char>> cores(4, std::vector<char>(frames, 0));
-    for (auto& core : cores) {
-      for (int f = 0; f < frames; ++f) core[f] = rng() % 4 != 0;
+    for (int c = 0; c < 4; ++c) {
+      for (int f = 0; f < frames; ++f) cores[c][f] = (tags[f] >> c & 1) && rng() % 4 != 0;
     }
     std::vector<Transition> candidates, selected;
     for (int i = 0; i < 400; ++i) {
@@ -246,6 +265,18 @@ TEST(Bridges, SameAsTheRuleWrittenPairByPairOnRandomLibraries) {
         }
       }
     }
+    // And the pairs whose cores share a frame.
+    for (int s = 0; s < 3; ++s) {
+      for (int u = 0; u < 3; ++u) {
+        for (int f = 0; f < frames && s != u; ++f) {
+          if (cores[s][f] && cores[u][f]) {
+            joined.emplace_back(s, u);
+            ++sharing;
+            break;
+          }
+        }
+      }
+    }
     std::vector<UnjoinedPair> expected_unjoined;
     const auto expected =
         reference_bridges(candidates, tags, {cores[0], cores[1], cores[2]}, window, settings.per_tag_pair,
@@ -270,10 +301,11 @@ TEST(Bridges, SameAsTheRuleWrittenPairByPairOnRandomLibraries) {
     above_cap += std::count_if(expected_unjoined.begin(), expected_unjoined.end(),
                                [](const UnjoinedPair& p) { return p.reason == UnjoinedReason::kAboveCap; });
   }
-  // The rounds exercise the rule: many bridges, pairs already joined in some rounds, and pairs
-  // left unjoined because of the cap.
+  // The rounds exercise the rule: many bridges, pairs already joined in some rounds (by cores
+  // sharing frames in some), and pairs left unjoined because of the cap.
   EXPECT_GT(total, 100u);
   EXPECT_GT(with_joined, 5u);
+  EXPECT_GT(sharing, 5u);
   EXPECT_GT(above_cap, 3);
   EXPECT_GT(unjoined, static_cast<size_t>(above_cap));
 }

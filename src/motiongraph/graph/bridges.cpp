@@ -96,6 +96,21 @@ BridgeSelection select_bridges(std::span<const Transition> candidates, std::span
       }
     }
   }
+  // And the pairs whose cores share a frame (clips tagged both, such as CMU's run-and-jump ones):
+  // the graph goes from one core to the other through it, both ways, with no transition at all.
+  const int core_count = std::min(kTags, static_cast<int>(cores.size()));
+  for (size_t f = 0; f < frame_tags.size(); ++f) {
+    TagMask in = 0;
+    for (int s = 0; s < core_count; ++s) {
+      if ((settings.tags >> s & 1) && f < cores[s].size() && cores[s][f]) in |= TagMask{1} << s;
+    }
+    if ((in & (in - 1)) == 0) continue;  // in one core or none
+    for (int s = 0; s < core_count; ++s) {
+      for (int u = 0; u < core_count; ++u) {
+        if (u != s && (in >> s & 1) && (in >> u & 1)) joined[s * kTags + u] = 1;
+      }
+    }
+  }
   // Only candidates leaving frames of a tag the landing frames lack, and landing on frames of a
   // tag the leaving ones lack, can bridge: a small share of all local minima. Filtering before
   // the (stable) sort leaves their order as it was and spares sorting millions of candidates

@@ -3,7 +3,7 @@
 // candidate may lie above it, and the pruned graph then keeps one kind only. A bridge is the
 // best candidate (lowest D, a local minimum like any other) from frames that all carry tag s
 // to frames that all carry tag t, added for each ordered pair of tags (s, t) that no selected
-// transition joins. Bridges are reported apart, with their D, so the user sees what quality
+// transition joins and whose cores share no frame. Bridges are reported apart, with their D, so the user sees what quality
 // the connection costs; pruning treats them like any transition. A bridge's D can reach 100x
 // the threshold, so it blends longer than a transition (bridge_blend_frames), and a cap keeps
 // out those no blend makes acceptable; the pairs left unjoined are reported with the best D
@@ -87,9 +87,10 @@ Result<std::vector<char>> tag_core_frames(const MotionDatabase& db, std::span<co
 
 // The bridges to add to `selected`; window k. A bridge from s to u leaves from a frame of s's
 // core and lands on a frame of u's core (cores[t] from tag_core_frames; a tag without a core
-// gets no bridges), and its D is at most max_distance. Every ordered pair of distinct tags of
-// settings.tags with a core or candidates, joined by neither a selected transition nor a
-// bridge, is listed in `unjoined`.
+// gets no bridges), and its D is at most max_distance. A pair whose cores share a frame needs
+// none: the graph passes from one to the other there. Every ordered pair of distinct tags of
+// settings.tags with a core or candidates, joined by neither a selected transition, a shared
+// core frame nor a bridge, is listed in `unjoined`.
 //
 // `candidates` and `above` (each sorted by (from_frame, to_frame), every D of `above` larger
 // than every D of `candidates`) are the local minima known. Empty `levels`: they are all of
