@@ -3,11 +3,11 @@
 // candidate may lie above it, and the pruned graph then keeps one kind only. A bridge is the
 // best candidate (lowest D, a local minimum like any other) from frames that all carry tag s
 // to frames that all carry tag t, added for each ordered pair of tags (s, t) that no selected
-// transition joins and whose cores share no frame. Bridges are reported apart, with their D, so the user sees what quality
-// the connection costs; pruning treats them like any transition. A bridge's D can reach 100x
-// the threshold, so it blends longer than a transition (bridge_blend_frames), and a cap keeps
-// out those no blend makes acceptable; the pairs left unjoined are reported with the best D
-// that would join them.
+// transition joins and whose cores share no frame. Bridges are reported apart, with their D, so
+// the user sees what quality the connection costs; pruning treats them like any transition. A
+// bridge's D can reach 100x the threshold, so it blends longer than a transition
+// (bridge_blend_frames), and a cap keeps out those no blend makes acceptable; the pairs left
+// unjoined are reported with the best D that would join them.
 #pragma once
 
 #include <span>
