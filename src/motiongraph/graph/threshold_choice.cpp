@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <span>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -40,14 +41,35 @@ const CoveragePoint& ThresholdChoice::chosen() const {
   return curve.front();
 }
 
+namespace {
+
+// levels[i] as the given threshold of tags[i].
+std::vector<OwnThreshold> own_thresholds(std::span<const int> tags, std::span<const double> levels) {
+  std::vector<OwnThreshold> own;
+  for (size_t i = 0; i < levels.size() && i < tags.size(); ++i) own.push_back({tags[i], levels[i]});
+  return own;
+}
+
+// The share of the frames carrying none of `tags` that the graph's clip edges play.
+double untagged_coverage(std::span<const TagMask> frame_tags, const MotionGraph& graph, TagMask tags) {
+  long long all = 0, played = 0;
+  for (const TagMask m : frame_tags) all += (m & tags) == 0 ? 1 : 0;
+  for (const GraphEdge& e : graph.edges) {
+    if (e.transition) continue;
+    for (int f = graph.nodes[e.from_node].frame; f < graph.nodes[e.to_node].frame; ++f) {
+      played += (frame_tags[f] & tags) == 0 ? 1 : 0;
+    }
+  }
+  return all > 0 ? static_cast<double>(played) / static_cast<double>(all) : 0.0;
+}
+
+}  // namespace
+
 GraphFromCandidatesSettings with_chosen_thresholds(const GraphFromCandidatesSettings& settings,
                                                   const ThresholdChoice& choice) {
   GraphFromCandidatesSettings out = settings;
   out.transitions.threshold = choice.threshold;
-  out.transitions.tag_thresholds.clear();
-  for (size_t i = 0; i < choice.tag_thresholds.size() && i < choice.tags.size(); ++i) {
-    out.transitions.tag_thresholds.push_back({choice.tags[i], choice.tag_thresholds[i]});
-  }
+  out.transitions.tag_thresholds = own_thresholds(choice.tags, choice.tag_thresholds);
   return out;
 }
 
@@ -64,24 +86,6 @@ std::vector<int> coverage_tags(const MotionDatabase& db, const GraphFromCandidat
   }
   return tags;
 }
-
-namespace {
-
-// The share of the frames carrying none of `tags` that the graph's clip edges play.
-double untagged_coverage(const MotionDatabase& db, const MotionGraph& graph, TagMask tags) {
-  const std::vector<TagMask> frame_tags = db.frame_tags();
-  long long all = 0, played = 0;
-  for (const TagMask m : frame_tags) all += (m & tags) == 0 ? 1 : 0;
-  for (const GraphEdge& e : graph.edges) {
-    if (e.transition) continue;
-    for (int f = graph.nodes[e.from_node].frame; f < graph.nodes[e.to_node].frame; ++f) {
-      played += (frame_tags[f] & tags) == 0 ? 1 : 0;
-    }
-  }
-  return all > 0 ? static_cast<double>(played) / static_cast<double>(all) : 0.0;
-}
-
-}  // namespace
 
 Result<CoveragePoint> coverage_at(const MotionDatabase& db, const FrameFeatures& features,
                                   const CandidateSearch& candidates, const GraphFromCandidatesSettings& settings,
@@ -117,7 +121,7 @@ Result<CoveragePoint> coverage_at(const MotionDatabase& db, const FrameFeatures&
   point.coverage = 1.0;
   for (size_t i = 0; i < tags.size(); ++i) {
     if (tags[i] == kUntaggedClass) {
-      point.tag_coverage[i] = untagged_coverage(db, pruned->graph, settings.connected_tags);
+      point.tag_coverage[i] = untagged_coverage(db.frame_tags(), pruned->graph, settings.connected_tags);
     }
     for (const TagStatistics& s : after.tags) {
       if (s.tag == tags[i] && s.database_frames > 0) {
@@ -147,9 +151,7 @@ Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFe
   auto evaluate = [&](const std::vector<double>& levels) -> Result<CoveragePoint> {
     GraphFromCandidatesSettings at = capped;
     const double global = *std::min_element(levels.begin(), levels.end());
-    if (per_type) {
-      for (size_t i = 0; i < n; ++i) at.transitions.tag_thresholds.push_back({out.tags[i], levels[i]});
-    }
+    if (per_type) at.transitions.tag_thresholds = own_thresholds(out.tags, levels);
     auto point = coverage_at(db, features, candidates, at, global, more);
     if (!point) return point.error();
     if (per_type) {

@@ -203,19 +203,15 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
                                                        const CandidateSearch& candidates, const BuildSettings& settings,
                                                        OnDemandCandidates* more, const Say& say, json& choice_json,
                                                        json& check_json) {
-  TagMask connected = motion_type_tags(db);
-  if (!settings.connect_tags.empty()) {
-    auto mask = tag_mask_of(db, settings.connect_tags);
-    if (!mask) return Error{"", 0, "--connect-tags: " + mask.error().message};
-    connected = *mask;
-  }
+  auto connected = settings.connected_tags(db);
+  if (!connected) return connected.error();
   GraphFromCandidatesSettings graph_settings;
   graph_settings.transitions = settings.transitions;
   graph_settings.spacing = settings.spacing;
   graph_settings.bridges = settings.bridges;
   graph_settings.bridges.max_distance =
       settings.max_bridge_rms_cm > 0.0 ? distance_of_rms_cm(settings.max_bridge_rms_cm, features) : -1.0;
-  graph_settings.connected_tags = settings.ignore_tags ? 0 : connected;
+  graph_settings.connected_tags = *connected;
   switch (settings.threshold_mode) {
     case ThresholdMode::kQuantile:
       graph_settings.transitions.threshold = -1.0;

@@ -57,9 +57,19 @@ bool BuildSettings::pruned_stage(const MotionDatabase& db, const FrameFeatures& 
   const double threshold =
       threshold_mode == ThresholdMode::kRmsCm ? distance_of_rms_cm(threshold_value, features) : threshold_value;
   if (!(threshold <= distance_of_rms_cm(choice.max_rms_cm, features))) return false;
-  if (!transitions.per_tag_thresholds || ignore_tags) return true;
-  auto connected = connect_tags.empty() ? Result<TagMask>(motion_type_tags(db)) : tag_mask_of(db, connect_tags);
+  if (!transitions.per_tag_thresholds) return true;
+  auto connected = connected_tags(db);
   return connected && *connected == 0;
+}
+
+Result<TagMask> BuildSettings::connected_tags(const MotionDatabase& db) const {
+  TagMask connected = motion_type_tags(db);
+  if (!connect_tags.empty()) {
+    auto mask = tag_mask_of(db, connect_tags);
+    if (!mask) return Error{"", 0, "--connect-tags: " + mask.error().message};
+    connected = *mask;
+  }
+  return ignore_tags ? 0 : connected;
 }
 
 }  // namespace mg

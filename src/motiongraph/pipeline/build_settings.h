@@ -82,6 +82,9 @@ struct BuildSettings {
   SharedSearchSettings shared;
 
   Status validate() const;
+  // The motion types kept connected on `db`: connect_tags, or every type but the modifiers; none
+  // with ignore_tags. Fails on a connect_tags name no clip carries.
+  Result<TagMask> connected_tags(const MotionDatabase& db) const;
   // Whether the pruned stage runs on `db` (see `exhaustive`).
   bool pruned_stage(const MotionDatabase& db, const FrameFeatures& features) const;
 };
