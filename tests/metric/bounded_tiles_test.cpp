@@ -50,6 +50,17 @@ TEST(BoundedTiles, EqualsAScanOfEveryPairAndHoldsEveryPairBelowTheCeiling) {
       for (const int threads : {1, 3}) {
         EXPECT_EQ(find_bounded_tiles(m.features, *embedding, tile, ceiling, threads).flags, found.flags) << what;
       }
+      // A search of some tiles only: theirs flagged as by the whole search, the others never.
+      std::vector<char> only(found.flags.size(), 0);
+      for (char& c : only) c = static_cast<char>(rng() % 3 == 0);
+      const BoundedTiles some = find_bounded_tiles(m.features, *embedding, tile, ceiling, 2, only);
+      long long searched_flagged = 0;
+      for (size_t t = 0; t < only.size(); ++t) {
+        EXPECT_EQ(some.flags[t], only[t] ? found.flags[t] : 0) << what << " tile " << t;
+        searched_flagged += only[t] && found.flags[t] ? 1 : 0;
+      }
+      EXPECT_GT(searched_flagged, 0) << what;
+      EXPECT_LT(some.pairs, found.pairs) << what;
       // Exact: every pair whose D is at or below the ceiling lies in a flagged tile (D >= the
       // bound; a hair of float rounding spared).
       long long below = 0;

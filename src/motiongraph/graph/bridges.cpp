@@ -1,6 +1,7 @@
 #include "motiongraph/graph/bridges.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -78,76 +79,89 @@ BridgeSelection select_bridges(std::span<const Transition> candidates, std::span
   BridgeSelection out;
   std::vector<Transition>& bridges = out.bridges;
   if (settings.per_tag_pair == 0 || frame_tags.empty()) return out;
-  auto leaving = [&](const Transition& t) { return window_tags(frame_tags, t.from_frame, window) & settings.tags; };
-  auto arriving = [&](const Transition& t) { return window_tags(frame_tags, t.to_frame - window + 1, window) & settings.tags; };
-  auto in_cores = [&](int s, int u, const Transition& t) {
-    return s < static_cast<int>(cores.size()) && u < static_cast<int>(cores.size()) && !cores[s].empty() &&
-           !cores[u].empty() && cores[s][t.from_frame] && cores[u][t.to_frame];
+  // Per frame, once: the tags of the window leaving it and of the window arriving at it, and the
+  // cores it lies in (a call sees a million candidates on a large library, and the threshold
+  // search calls it dozens of times).
+  const int frames = static_cast<int>(frame_tags.size());
+  std::vector<TagMask> leave_tags(frames), arrive_tags(frames), in_core(frames, 0);
+  for (int f = 0; f < frames; ++f) {
+    leave_tags[f] = window_tags(frame_tags, f, window) & settings.tags;
+    arrive_tags[f] = window_tags(frame_tags, f - window + 1, window) & settings.tags;
+  }
+  const int core_count = std::min(kBridgeTags, static_cast<int>(cores.size()));
+  for (int s = 0; s < core_count; ++s) {
+    if (cores[s].empty()) continue;
+    for (int f = 0; f < frames && f < static_cast<int>(cores[s].size()); ++f) {
+      if (cores[s][f]) in_core[f] |= TagMask{1} << s;
+    }
+  }
+  auto leaving = [&](const Transition& t) { return leave_tags[t.from_frame]; };
+  auto arriving = [&](const Transition& t) { return arrive_tags[t.to_frame]; };
+  // The pairs (s, u) a candidate may bridge: leaving frames of s that lack u, in s's core, and
+  // landing on frames of u that lack s, in u's core.
+  auto sources = [&](const Transition& t) { return leaving(t) & ~arriving(t) & in_core[t.from_frame]; };
+  auto sinks = [&](const Transition& t) { return arriving(t) & ~leaving(t) & in_core[t.to_frame]; };
+  auto each_bit = [](TagMask mask, auto&& f) {
+    for (; mask != 0; mask &= mask - 1) f(std::countr_zero(mask));
   };
   // Which ordered pairs of tags (s, u), s != u, the selected transitions already join, core to core.
   constexpr int kTags = kBridgeTags;
   std::vector<char> joined(kTags * kTags, 0);
   for (const Transition& t : selected) {
-    const TagMask from = leaving(t), to = arriving(t);
-    for (int s = 0; s < kTags; ++s) {
-      if (!(from >> s & 1)) continue;
-      for (int u = 0; u < kTags; ++u) {
-        if (u != s && (to >> u & 1) && !(from >> u & 1) && in_cores(s, u, t)) joined[s * kTags + u] = 1;
-      }
-    }
+    const TagMask from = leaving(t) & in_core[t.from_frame], to = arriving(t) & ~leaving(t) & in_core[t.to_frame];
+    each_bit(from, [&](int s) { each_bit(to, [&](int u) { joined[s * kTags + u] = 1; }); });
   }
   // And the pairs whose cores share a frame (clips tagged both, such as CMU's run-and-jump ones):
   // the graph goes from one core to the other through it, both ways, with no transition at all.
-  const int core_count = std::min(kTags, static_cast<int>(cores.size()));
-  for (size_t f = 0; f < frame_tags.size(); ++f) {
-    TagMask in = 0;
-    for (int s = 0; s < core_count; ++s) {
-      if ((settings.tags >> s & 1) && f < cores[s].size() && cores[s][f]) in |= TagMask{1} << s;
-    }
+  for (int f = 0; f < frames; ++f) {
+    const TagMask in = in_core[f] & settings.tags;
     if ((in & (in - 1)) == 0) continue;  // in one core or none
-    for (int s = 0; s < core_count; ++s) {
-      for (int u = 0; u < core_count; ++u) {
-        if (u != s && (in >> s & 1) && (in >> u & 1)) joined[s * kTags + u] = 1;
-      }
-    }
-  }
-  // Only candidates leaving frames of a tag the landing frames lack, and landing on frames of a
-  // tag the leaving ones lack, can bridge: a small share of all local minima. Filtering before
-  // the (stable) sort leaves their order as it was and spares sorting millions of candidates
-  // at every threshold the automatic choice tries.
-  std::vector<const Transition*> by_distance;
-  for (std::span<const Transition> part : {candidates, above}) {
-    for (const Transition& c : part) {
-      const TagMask from = leaving(c), to = arriving(c);
-      if ((from & ~to) != 0 && (to & ~from) != 0) by_distance.push_back(&c);
-    }
+    each_bit(in, [&](int s) {
+      each_bit(in, [&](int u) {
+        if (u != s) joined[s * kTags + u] = 1;
+      });
+    });
   }
   constexpr double kAll = std::numeric_limits<double>::infinity();
   auto level = [&](int pair) { return levels.empty() ? kAll : levels[static_cast<size_t>(pair)]; };
+  // Only candidates that may bridge a pair not yet joined, at or below the pair's level, are
+  // sorted: a small share of all local minima (when the cores are small, at the low thresholds
+  // the automatic choice tries first, a tiny one). Filtering before the (stable) sort leaves
+  // their order as it was.
+  std::vector<const Transition*> by_distance;
+  for (std::span<const Transition> part : {candidates, above}) {
+    for (const Transition& c : part) {
+      const TagMask to = sinks(c);
+      if (to == 0) continue;
+      bool wanted = false;
+      each_bit(sources(c), [&](int s) {
+        each_bit(to, [&](int u) { wanted = wanted || (!joined[s * kTags + u] && c.distance <= level(s * kTags + u)); });
+      });
+      if (wanted) by_distance.push_back(&c);
+    }
+  }
   std::stable_sort(by_distance.begin(), by_distance.end(),
                    [](const Transition* x, const Transition* y) { return x->distance < y->distance; });
   std::vector<std::vector<const Transition*>> chosen(kTags * kTags);
   std::vector<float> best(kTags * kTags, -1.0f);  // the lowest D of any candidate, cap or not
   const bool capped = settings.max_distance >= 0.0;
   for (const Transition* c : by_distance) {
-    const TagMask from = leaving(*c), to = arriving(*c);
-    for (int s = 0; s < kTags; ++s) {
-      if (!(from >> s & 1)) continue;
-      for (int u = 0; u < kTags; ++u) {
-        // A bridge leaves frames of s that are not u and lands on frames of u that are not s.
-        if (u == s || !(to >> u & 1) || (from >> u & 1) || (to >> s & 1) || joined[s * kTags + u]) continue;
-        if (!in_cores(s, u, *c) || c->distance > level(s * kTags + u)) continue;
-        if (best[s * kTags + u] < 0.0f) best[s * kTags + u] = c->distance;  // candidates come by D
-        if (capped && c->distance > settings.max_distance) continue;
-        auto& list = chosen[s * kTags + u];
-        if (static_cast<int>(list.size()) >= settings.per_tag_pair) continue;
+    const TagMask to = sinks(*c);
+    each_bit(sources(*c), [&](int s) {
+      each_bit(to, [&](int u) {
+        const int pair = s * kTags + u;
+        if (joined[pair] || c->distance > level(pair)) return;
+        if (best[pair] < 0.0f) best[pair] = c->distance;  // candidates come by D
+        if (capped && c->distance > settings.max_distance) return;
+        auto& list = chosen[pair];
+        if (static_cast<int>(list.size()) >= settings.per_tag_pair) return;
         const bool near = std::any_of(list.begin(), list.end(), [&](const Transition* other) {
           return std::abs(other->from_frame - c->from_frame) <= settings.locality_radius ||
                  std::abs(other->to_frame - c->to_frame) <= settings.locality_radius;
         });
         if (!near) list.push_back(c);
-      }
-    }
+      });
+    });
   }
   for (const auto& list : chosen) {
     for (const Transition* c : list) {

@@ -56,9 +56,14 @@ Status OnDemandCandidates::raise(std::span<const TagPair> pairs) {
   }
   const bool any_window = std::find(features_.can_leave.begin(), features_.can_leave.end(), 1) !=
                           features_.can_leave.end();
-  // The tiles the raised pairs need, flagged at their new levels (one search per level).
-  std::vector<char> wanted(computed_.size(), 0);
-  std::vector<std::pair<size_t, double>> raised;
+  // Each raised pair's region: rows leaving a window of s without u, columns arriving at one of
+  // u without s, the tiles not computed yet.
+  struct Raised {
+    size_t at;
+    double level;
+    std::vector<char> region;
+  };
+  std::vector<Raised> raised;
   for (const TagPair& pair : pairs) {
     if (pair.from_tag < 0 || pair.from_tag >= kBridgeTags || pair.to_tag < 0 || pair.to_tag >= kBridgeTags) {
       return Error{"", 0, "a bridge's tag is out of range"};
@@ -67,41 +72,61 @@ Status OnDemandCandidates::raise(std::span<const TagPair> pairs) {
     if (levels_[at] == kAll) continue;
     double next = 4.0 * levels_[at];
     if (!(next > 0.0) || next > kLastStep * ceiling_ || !any_window) next = kAll;
-    const BoundedTiles* bounded = nullptr;
-    if (next != kAll) {
-      if (!embedding_) {
-        WindowEmbeddingSettings settings = pruned_.embedding;
-        if (settings.threads == 0) settings.threads = pruned_.threads;
-        auto made = make_window_embedding(features_, settings);
-        if (!made) return made.error();
-        embedding_ = std::move(*made);
-      }
-      auto it = flags_.find(next);
-      if (it == flags_.end()) {
-        // The slack of plan_pruned_search: the bound is summed in float.
-        const auto search_start = std::chrono::steady_clock::now();
-        it = flags_.emplace(next, find_bounded_tiles(features_, *embedding_, grid.tile, next * (1.0 + 1e-3),
-                                                     pruned_.threads))
-                 .first;
-        statistics_.search_seconds +=
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - search_start).count();
-      }
-      bounded = &it->second;
-    }
-    // Rows leaving a window of s without u, columns arriving at one of u without s.
     const TagMask s = TagMask{1} << pair.from_tag, u = TagMask{1} << pair.to_tag;
+    std::vector<char> region(computed_.size(), 0);
     for (int i = 0; i < side; ++i) {
       if (!(leave_lacks_[static_cast<size_t>(i) * kBridgeTags + static_cast<size_t>(pair.from_tag)] & u)) continue;
       for (int j = 0; j < side; ++j) {
         const size_t tile = static_cast<size_t>(i) * side + j;
-        if ((arrive_lacks_[static_cast<size_t>(j) * kBridgeTags + static_cast<size_t>(pair.to_tag)] & s) &&
-            !computed_[tile] &&
-            (bounded == nullptr || bounded->flagged(i, j))) {
-          wanted[tile] = 1;
-        }
+        region[tile] = (arrive_lacks_[static_cast<size_t>(j) * kBridgeTags + static_cast<size_t>(pair.to_tag)] & s) &&
+                       !computed_[tile];
       }
     }
-    raised.emplace_back(at, next);
+    raised.push_back({at, next, std::move(region)});
+  }
+  // The bound searched at each new level, on the tiles of the regions raised to it that no
+  // search at that level has looked at yet (one search per level).
+  for (const Raised& r : raised) {
+    if (r.level == kAll) continue;
+    if (!embedding_) {
+      WindowEmbeddingSettings settings = pruned_.embedding;
+      if (settings.threads == 0) settings.threads = pruned_.threads;
+      auto made = make_window_embedding(features_, settings);
+      if (!made) return made.error();
+      embedding_ = std::move(*made);
+    }
+    LevelFlags& at_level = flags_[r.level];
+    if (at_level.searched.empty()) at_level.searched.assign(computed_.size(), 0);
+    std::vector<char> only(computed_.size(), 0);
+    bool any = false;
+    for (const Raised& q : raised) {
+      if (q.level != r.level) continue;
+      for (size_t tile = 0; tile < only.size(); ++tile) {
+        only[tile] |= q.region[tile] && !at_level.searched[tile];
+        any = any || only[tile];
+      }
+    }
+    if (!any) continue;
+    // The slack of plan_pruned_search: the bound is summed in float.
+    const auto search_start = std::chrono::steady_clock::now();
+    const BoundedTiles found =
+        find_bounded_tiles(features_, *embedding_, grid.tile, r.level * (1.0 + 1e-3), pruned_.threads, only);
+    statistics_.search_seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - search_start).count();
+    if (at_level.flags.empty()) at_level.flags.assign(computed_.size(), 0);
+    for (size_t tile = 0; tile < only.size(); ++tile) {
+      if (!only[tile]) continue;
+      at_level.flags[tile] = found.flags[tile];
+      at_level.searched[tile] = 1;
+    }
+  }
+  // The tiles the raised pairs need: their regions, where the bound at their new level allows.
+  std::vector<char> wanted(computed_.size(), 0);
+  for (const Raised& r : raised) {
+    const LevelFlags* bounded = r.level == kAll ? nullptr : &flags_.at(r.level);
+    for (size_t tile = 0; tile < wanted.size(); ++tile) {
+      if (r.region[tile] && (bounded == nullptr || bounded->flags[tile])) wanted[tile] = 1;
+    }
   }
   // The wanted tiles as the exhaustive stage's work items.
   const TileSelection selected = items_of_flagged_tiles(grid, wanted);
@@ -120,7 +145,7 @@ Status OnDemandCandidates::raise(std::span<const TagPair> pairs) {
     statistics_.tiles += found->tiles.tiles;
     statistics_.pairs += found->tiles.pairs;
   }
-  for (const auto& [at, level] : raised) levels_[at] = level;
+  for (const Raised& r : raised) levels_[r.at] = r.level;
   statistics_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return Ok{};
 }

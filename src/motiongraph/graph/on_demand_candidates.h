@@ -12,8 +12,8 @@
 // (the exhaustive stage's bridges at the same tile side).
 //
 // Memory: the window embedding (about 300 bytes a window, made at the first raise), a byte per
-// tile, and a byte per tile for each level searched (at most four: 4, 16, 64 and 256 times the
-// ceiling), kept so that no level is searched twice; and the minima found. Not thread-safe: one
+// tile, and two bytes per tile for each level searched (at most four: 4, 16, 64 and 256 times the
+// ceiling), kept so that no tile is searched twice at a level; and the minima found. Not thread-safe: one
 // selection at a time.
 #pragma once
 
@@ -71,7 +71,11 @@ class OnDemandCandidates {
   // carrying s lacks (it may be arrived at from u to s).
   std::vector<TagMask> leave_lacks_, arrive_lacks_;
   std::optional<WindowEmbedding> embedding_;
-  std::map<double, BoundedTiles> flags_;  // by level: a byte per tile each
+  struct LevelFlags {
+    std::vector<char> searched;  // per tile: the bound at this level looked at it
+    std::vector<char> flags;     // and found that it may hold a pair at most the level
+  };
+  std::map<double, LevelFlags> flags_;  // by level: two bytes per tile each
 
   OnDemandStatistics statistics_;
 };

@@ -130,7 +130,7 @@ long long BoundedTiles::count() const {
 }
 
 BoundedTiles find_bounded_tiles(const FrameFeatures& f, const WindowEmbedding& e, int tile, double ceiling,
-                                int threads) {
+                                int threads, std::span<const char> only) {
   const int n = f.frames, k = e.window, windows = e.windows, dims = e.dims, stride = e.stride();
   BoundedTiles out;
   out.tile = std::max(1, tile);
@@ -250,6 +250,7 @@ BoundedTiles find_bounded_tiles(const FrameFeatures& f, const WindowEmbedding& e
     return false;
   };
   parallel_for(static_cast<long long>(per_side) * per_side, workers, 16, [&](int w, long long item) {
+    if (!only.empty() && (static_cast<size_t>(item) >= only.size() || !only[static_cast<size_t>(item)])) return;
     const int i = static_cast<int>(item / per_side), j = static_cast<int>(item % per_side);
     out.flags[static_cast<size_t>(item)] = holds_pair(i, j, summed[static_cast<size_t>(w)]) ? 1 : 0;
   });

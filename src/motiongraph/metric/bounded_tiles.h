@@ -14,6 +14,7 @@
 // the pairs of the small balls that may meet, stopping at the first pair found.
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "motiongraph/metric/window_embedding.h"
@@ -30,8 +31,10 @@ struct BoundedTiles {
   long long count() const;   // flagged tiles
 };
 
-// On `threads` threads (0: one per core). `ceiling` in D units (>= 0); `tile` >= 1.
+// On `threads` threads (0: one per core). `ceiling` in D units (>= 0); `tile` >= 1. With `only`
+// (a byte per tile, row-major), the tiles where it is 0 are not searched and stay unflagged; each
+// searched tile's flag is the one the whole search gives it.
 BoundedTiles find_bounded_tiles(const FrameFeatures& features, const WindowEmbedding& embedding, int tile,
-                                double ceiling, int threads = 0);
+                                double ceiling, int threads = 0, std::span<const char> only = {});
 
 }  // namespace mg
