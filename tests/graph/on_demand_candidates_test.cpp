@@ -1,5 +1,5 @@
 // The minima above the pruned stage's ceiling, on demand: a pair's level promises every minimum
-// of its region up to it (checked against the exhaustive stage's minima), and the pruned
+// between its cores up to it (checked against the exhaustive stage's minima), and the pruned
 // stage's candidates with them give the exhaustive stage's transitions, bridges and threshold
 // choice (one threshold for all motion types, or one searched for per type), bit for bit, on a
 // walk and run library whose bridges lie far above the ceiling.
@@ -66,28 +66,74 @@ void expect_same(std::span<const Transition> a, std::span<const Transition> b, c
   }
 }
 
+// Cores of walk (tag 0) and run (tag 1): every frame of its tag kept where keep(frame).
+template <class Keep>
+std::vector<std::vector<char>> cores_where(const std::vector<TagMask>& tags, Keep keep) {
+  std::vector<std::vector<char>> cores(2, std::vector<char>(tags.size(), 0));
+  for (size_t f = 0; f < tags.size(); ++f) {
+    for (int t = 0; t < 2; ++t) cores[t][f] = (tags[f] >> t & 1) && keep(static_cast<int>(f));
+  }
+  return cores;
+}
+
+// Every minimum from a walk frame of its core to a run frame of its core, up to the level, is
+// known once (in the search's minima at or below the ceiling, in `above` over it). Returns how
+// many of them lie above the ceiling.
+long long expect_known_up_to(const OnDemandCandidates& more, const CandidateSearch& search, double ceiling,
+                        const std::vector<std::vector<char>>& cores, double level) {
+  const Library& l = library();
+  const std::vector<TagMask> tags = l.db.frame_tags();
+  long long checked = 0;
+  for (const Transition& m : l.exhaustive.minima) {
+    if (!(tags[m.from_frame] & 1) || !(tags[m.to_frame] & 2) || m.distance > level) continue;
+    if (!cores[0][m.from_frame] || !cores[1][m.to_frame]) continue;
+    const auto& known = m.distance <= ceiling ? search.minima : more.above();
+    const auto same = [&](const Transition& t) {
+      return t.from_frame == m.from_frame && t.to_frame == m.to_frame && t.distance == m.distance;
+    };
+    EXPECT_EQ(std::count_if(known.begin(), known.end(), same), 1) << m.from_frame << " -> " << m.to_frame;
+    checked += m.distance > ceiling ? 1 : 0;
+  }
+  return checked;
+}
+
 TEST(OnDemandCandidates, ALevelHoldsEveryMinimumOfItsRegionUpToIt) {
   const Library& l = library();
   const double ceiling = distance_of_rms_cm(3.0, l.features);
   const CandidateSearch search = pruned_search(ceiling);
-  OnDemandCandidates more(l.features, search, l.pruned.embedding, l.pruned.threads);
   const std::vector<TagMask> tags = l.db.frame_tags();
+  const TagPair walk_to_run{0, 1};
+  // Cores of a few stretches first (the low thresholds' small ones): their levels rise by
+  // computing fewer tiles than whole motion types need.
+  OnDemandCandidates more(l.features, search, l.pruned.embedding, l.pruned.threads);
+  const auto small = cores_where(tags, [](int f) { return f % 300 < 60; });
+  double previous = ceiling;
+  long long above_small = 0, above_whole = 0;
   for (int step = 0; step < 3; ++step) {
-    const TagPair walk_to_run{0, 1};
-    ASSERT_TRUE(more.raise(std::span(&walk_to_run, 1)));
-    const double level = more.levels()[kBridgeTags * 0 + 1];
-    EXPECT_GT(level, ceiling);
-    EXPECT_EQ(more.levels()[kBridgeTags * 1 + 0], ceiling) << "run to walk was not raised";
-    // Every minimum from a walk frame to a run frame up to the level is known, once.
-    for (const Transition& m : l.exhaustive.minima) {
-      if (!(tags[m.from_frame] & 1) || !(tags[m.to_frame] & 2) || m.distance > level) continue;
-      const auto& known = m.distance <= ceiling ? search.minima : more.above();
-      const auto same = [&](const Transition& t) {
-        return t.from_frame == m.from_frame && t.to_frame == m.to_frame && t.distance == m.distance;
-      };
-      EXPECT_EQ(std::count_if(known.begin(), known.end(), same), 1) << m.from_frame << " -> " << m.to_frame;
-    }
+    ASSERT_TRUE(more.raise(std::span(&walk_to_run, 1), small));
+    const double level = more.levels(small)[kBridgeTags * 0 + 1];
+    EXPECT_GT(level, previous);
+    previous = level;
+    EXPECT_EQ(more.levels(small)[kBridgeTags * 1 + 0], ceiling) << "run to walk was not raised";
+    above_small = expect_known_up_to(more, search, ceiling, small, level);
   }
+  EXPECT_GT(above_small, 0) << "no minimum above the ceiling was looked at";
+  const long long small_tiles = more.statistics().tiles;
+  EXPECT_GT(small_tiles, 0);
+  // The whole motion types: the cores grown, the level falls back where the new frames' tiles
+  // are known only to the ceiling, and rises again.
+  const auto whole = cores_where(tags, [](int) { return true; });
+  EXPECT_EQ(more.levels(whole)[kBridgeTags * 0 + 1], ceiling);
+  OnDemandCandidates fresh(l.features, search, l.pruned.embedding, l.pruned.threads);
+  for (int step = 0; step < 3; ++step) {
+    for (OnDemandCandidates* m : {&more, &fresh}) ASSERT_TRUE(m->raise(std::span(&walk_to_run, 1), whole));
+    const double level = more.levels(whole)[kBridgeTags * 0 + 1];
+    EXPECT_EQ(level, fresh.levels(whole)[kBridgeTags * 0 + 1]);
+    above_whole = expect_known_up_to(more, search, ceiling, whole, level);
+    EXPECT_EQ(expect_known_up_to(fresh, search, ceiling, whole, level), above_whole);
+  }
+  EXPECT_GT(above_whole, above_small);
+  EXPECT_LT(small_tiles, fresh.statistics().tiles);
   // Everything found above the ceiling is a minimum of the exhaustive stage, above the ceiling.
   for (const Transition& t : more.above()) {
     EXPECT_GT(t.distance, ceiling);
@@ -100,13 +146,11 @@ TEST(OnDemandCandidates, ALevelHoldsEveryMinimumOfItsRegionUpToIt) {
   EXPECT_TRUE(std::is_sorted(more.above().begin(), more.above().end(), [](const Transition& x, const Transition& y) {
     return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
   }));
-  EXPECT_GT(more.statistics().tiles, 0);
-  // Raised to the end, the level is every pair.
-  for (int step = 0; step < 8; ++step) {
-    const TagPair walk_to_run{0, 1};
-    ASSERT_TRUE(more.raise(std::span(&walk_to_run, 1)));
-  }
-  EXPECT_EQ(more.levels()[1], std::numeric_limits<double>::infinity());
+  // Raised to the end, the level is every pair; a tag without a core has nothing to raise.
+  for (int step = 0; step < 8; ++step) ASSERT_TRUE(more.raise(std::span(&walk_to_run, 1), whole));
+  EXPECT_EQ(more.levels(whole)[1], std::numeric_limits<double>::infinity());
+  const std::vector<std::vector<char>> coreless{whole[0], {}};
+  EXPECT_EQ(fresh.levels(coreless)[1], std::numeric_limits<double>::infinity());
 }
 
 TEST(OnDemandCandidates, PrunedCandidatesGiveTheExhaustiveTransitionsAndBridges) {

@@ -95,8 +95,8 @@ Result<std::vector<char>> tag_core_frames(const MotionDatabase& db, std::span<co
 // `candidates` and `above` (each sorted by (from_frame, to_frame), every D of `above` larger
 // than every D of `candidates`) are the local minima known. Empty `levels`: they are all of
 // them. Else, kBridgeTags^2 D levels: for bridging s to u they hold every minimum leaving a
-// frame of s and arriving at a frame of u with D at most levels[s * kBridgeTags + u] (+infinity:
-// all), and the ones above it are not looked at. A pair whose bridges could still change with
+// frame of s's core and arriving at a frame of u's core with D at most levels[s * kBridgeTags +
+// u] (+infinity: all), and the ones above it are not looked at. A pair whose bridges could still change with
 // candidates above its level is listed in `incomplete`: raise its level (on_demand_candidates.h)
 // and select again. The selection with no pair incomplete is the one all the minima give.
 BridgeSelection select_bridges(std::span<const Transition> candidates, std::span<const Transition> selected,

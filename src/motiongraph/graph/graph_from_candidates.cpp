@@ -82,11 +82,11 @@ Result<TransitionsWithBridges> select_transitions_with_bridges(const MotionDatab
     const bool pruned = candidates.ceiling >= 0.0 && more != nullptr;
     BridgeSelection bridges;
     while (true) {
+      const std::vector<double> levels = pruned ? more->levels(cores) : std::vector<double>{};
       bridges = select_bridges(candidates.minima, out.selection.transitions, frame_tags, cores, features.window,
-                               bridge_settings, pruned ? more->above() : std::span<const Transition>{},
-                               pruned ? more->levels() : std::span<const double>{});
+                               bridge_settings, pruned ? more->above() : std::span<const Transition>{}, levels);
       if (bridges.incomplete.empty()) break;
-      if (auto s = more->raise(bridges.incomplete); !s) return s.error();
+      if (auto s = more->raise(bridges.incomplete, cores); !s) return s.error();
     }
     out.bridges = std::move(bridges.bridges);
     out.unjoined = std::move(bridges.unjoined);

@@ -1,23 +1,24 @@
 // The local minima above the pruned distance stage's ceiling that bridges need, found when they
 // need them. The pruned stage (pruned_candidates.h) knows every minimum up to its ceiling;
-// bridges (bridges.h) take the best minima between two motion types whatever their D (on
-// subject 16, walk to run at 20-26 cm RMS, above the 10 cm ceiling). So bridges ask, per
-// ordered pair of tags (s, u) still short of bridges, for more: the pair's level rises (4x in
-// D a step, then to every pair), and the tiles of its region with a bound at most the new level
-// that were not computed yet are computed as the exhaustive stage computes them. The region:
-// a bridge leaves a window carrying s but not u and arrives at one carrying u but not s, so the
-// tiles holding such pairs. Their minima above the ceiling are kept (those at or below it are
-// the search's already). The region's minima up to the level are then all known, and
+// bridges (bridges.h) take the best minima between the cores of two motion types whatever
+// their D (on subject 16, walk to run at 20-26 cm RMS, above the 10 cm ceiling). Each tile of
+// the pair matrix has a level up to which its minima are known: the ceiling at first, +infinity
+// once it is computed. A pair of tags (s, u)'s level, for the cores of one selection, is the
+// lowest level of the tiles of its region: the tiles that hold a pair leaving a frame of s's
+// core whose window carries s but not u, and arriving at a frame of u's core whose window
+// carries u but not s (a bridge's frames). When bridges ask for more, the pair's level rises (4x
+// in D a step; past 256x the ceiling, to every pair): the tiles of its region below the new
+// level are searched with the window embedding's bound (bounded_tiles.h), those it cannot rule
+// out computed as the exhaustive stage computes them, the others known up to the new level.
+// Minima above the ceiling are kept (those at or below it are the search's already).
 // select_bridges, fed the levels and these minima, picks the bridges that all the minima give
-// (the exhaustive stage's bridges at the same tile side).
+// (the exhaustive stage's bridges at the same tile side). Regions follow the cores, so the low
+// thresholds the automatic choice tries first, whose cores are small, compute few tiles.
 //
-// Memory: the window embedding (about 300 bytes a window, made at the first raise), a byte per
-// tile, and two bytes per tile for each level searched (at most four: 4, 16, 64 and 256 times the
-// ceiling), kept so that no tile is searched twice at a level; and the minima found. Not thread-safe: one
-// selection at a time.
+// Memory: the window embedding (about 300 bytes a window, made at the first raise), 8 bytes per
+// tile, and the minima found. Not thread-safe: one selection at a time.
 #pragma once
 
-#include <map>
 #include <optional>
 #include <span>
 #include <vector>
@@ -48,34 +49,30 @@ class OnDemandCandidates {
   OnDemandCandidates(const FrameFeatures& features, const CandidateSearch& search,
                      const WindowEmbeddingSettings& embedding = {}, int threads = 0);
 
-  // kBridgeTags^2 levels (bridges.h), each the ceiling until raised, +infinity once every tile
-  // of its region is computed.
-  std::span<const double> levels() const { return levels_; }
+  // kBridgeTags^2 levels (bridges.h) for tags' cores (cores[t]: a byte per frame, empty when t
+  // has none): each the lowest level of its region's tiles, +infinity when the region is empty
+  // (a tag without a core, say) or computed.
+  std::vector<double> levels(std::span<const std::vector<char>> cores) const;
   // The minima above the ceiling found so far, sorted by (from_frame, to_frame).
   std::span<const Transition> above() const { return above_; }
   const OnDemandStatistics& statistics() const { return statistics_; }
 
-  // Raises the level of each pair (those at +infinity stay) and computes what that needs.
-  Status raise(std::span<const TagPair> pairs);
+  // Raises the level of each pair for these cores (those at +infinity stay) and computes what
+  // that needs.
+  Status raise(std::span<const TagPair> pairs, std::span<const std::vector<char>> cores);
 
  private:
+  // The tiles of pair (s, u)'s region for these cores, row-major; empty when it has none.
+  std::vector<size_t> region(int s, int u, std::span<const std::vector<char>> cores) const;
+
   const FrameFeatures& features_;
   double ceiling_;
   PrunedSearchSettings pruned_;
   CandidateSettings candidate_settings_;
-  std::vector<double> levels_;
+  int tile_ = 0, side_ = 0;
+  std::vector<double> known_;  // per tile, row-major: the level up to which its minima are known
   std::vector<Transition> above_;
-  std::vector<char> computed_;              // per tile, row-major
-  // Per band of tiles and tag s (band * kBridgeTags + s): the tags u that one of its leaving
-  // windows carrying s lacks (it may bridge s to u), and that one of its arriving windows
-  // carrying s lacks (it may be arrived at from u to s).
-  std::vector<TagMask> leave_lacks_, arrive_lacks_;
   std::optional<WindowEmbedding> embedding_;
-  struct LevelFlags {
-    std::vector<char> searched;  // per tile: the bound at this level looked at it
-    std::vector<char> flags;     // and found that it may hold a pair at most the level
-  };
-  std::map<double, LevelFlags> flags_;  // by level: two bytes per tile each
 
   OnDemandStatistics statistics_;
 };
