@@ -87,6 +87,29 @@ bool passes(const PathCheckPoint& p, double tolerance) {
   return p.graph && p.reached_end && p.mean_deviation_m <= tolerance;
 }
 
+TEST(PathCheck, TheBestProbeHasAGraphThenReachesTheEndOrCoversMostThenDeviatesLeast) {
+  auto point = [](bool graph, bool end, double arc, double deviation) {
+    PathCheckPoint p;
+    p.graph = graph, p.reached_end = end, p.arc_covered_m = arc, p.mean_deviation_m = deviation;
+    return p;
+  };
+  const PathCheckPoint none = point(false, false, 0.0, 0.0), stuck = point(true, false, 5.0, 0.2),
+                       further = point(true, false, 20.0, 0.8), far_off = point(true, true, 29.2, 1.5),
+                       close = point(true, true, 29.3, 0.1);
+  const std::vector<PathCheckPoint> worst_to_best{none, stuck, further, far_off, close};
+  for (size_t i = 0; i < worst_to_best.size(); ++i) {
+    EXPECT_FALSE(went_better(worst_to_best[i], worst_to_best[i])) << i;
+    for (size_t j = i + 1; j < worst_to_best.size(); ++j) {
+      EXPECT_TRUE(went_better(worst_to_best[j], worst_to_best[i])) << j << " over " << i;
+      EXPECT_FALSE(went_better(worst_to_best[i], worst_to_best[j])) << i << " over " << j;
+    }
+  }
+  // Past the end, how far past does not count: deviation decides.
+  EXPECT_TRUE(went_better(point(true, true, 29.1, 0.1), point(true, true, 29.4, 0.2)));
+  // Short of it with the same cover: deviation decides.
+  EXPECT_TRUE(went_better(point(true, false, 12.0, 0.3), point(true, false, 12.0, 0.4)));
+}
+
 TEST(PathCheck, UnreachableToleranceTriesEveryStepToTheCeilingAndKeepsTheBest) {
   const Fixture& x = walking();
   PathCheckSettings s;
@@ -106,12 +129,24 @@ TEST(PathCheck, UnreachableToleranceTriesEveryStepToTheCeilingAndKeepsTheBest) {
   const PathCheckPoint* chosen = check->chosen();
   ASSERT_NE(chosen, nullptr);
   for (const PathCheckPoint& p : check->points) {
-    // None beats the chosen one: reaching the end first, then deviation; ties go to the lowest.
+    // None beats the chosen one: reaching the end first, else getting further along the probe,
+    // then deviation; ties go to the lowest.
+    const bool same_reach = p.reached_end == chosen->reached_end &&
+                            (p.reached_end || p.arc_covered_m == chosen->arc_covered_m);
+    const bool worse_reach = (chosen->reached_end && !p.reached_end) ||
+                             (!p.reached_end && !chosen->reached_end && p.arc_covered_m < chosen->arc_covered_m);
     if (p.threshold < chosen->threshold) {
-      EXPECT_TRUE(!p.graph || (chosen->reached_end && !p.reached_end) ||
-                  (p.reached_end == chosen->reached_end && p.mean_deviation_m >= chosen->mean_deviation_m));
-    } else if (p.graph && p.reached_end == chosen->reached_end) {
-      EXPECT_GE(p.mean_deviation_m, chosen->mean_deviation_m);
+      EXPECT_TRUE(!p.graph || worse_reach || (same_reach && p.mean_deviation_m >= chosen->mean_deviation_m));
+    } else if (p.graph) {
+      EXPECT_TRUE(worse_reach || (same_reach && p.mean_deviation_m >= chosen->mean_deviation_m));
+    }
+    // The arc covered: the probe's length at the end (to the frame that completes it), less short of it.
+    EXPECT_GE(p.arc_covered_m, 0.0);
+    EXPECT_LE(p.arc_covered_m, check->probe_length_m + 0.5);
+    if (p.reached_end) {
+      EXPECT_GE(p.arc_covered_m, check->probe_length_m);
+    } else {
+      EXPECT_LT(p.arc_covered_m, check->probe_length_m);
     }
   }
 }

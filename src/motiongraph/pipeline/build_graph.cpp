@@ -280,7 +280,9 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
         fmt::format("path check: no threshold up to --max-threshold {:g} cm follows the test path within {:g} "
                     "m; the best, RMS {:.2f} cm, follows it {:.3f} m off{} (the clips may hold few turns)",
                     choice_settings.max_rms_cm, check_settings.tolerance_m, check->rms_cm, picked->mean_deviation_m,
-                    picked->reached_end ? "" : " and does not reach its end"));
+                    picked->reached_end ? ""
+                                        : fmt::format(" and covers {:.0f} m of its {:.0f} m", picked->arc_covered_m,
+                                                      check->probe_length_m)));
   }
   graph_settings.transitions.threshold = check->threshold;
   return graph_settings;

@@ -91,6 +91,7 @@ json path_check_json(const PathCheck& check, const PathCheckSettings& settings) 
                       {"mean_deviation_m", p.mean_deviation_m},
                       {"max_deviation_m", p.max_deviation_m},
                       {"reached_end", p.reached_end},
+                      {"arc_covered_m", p.arc_covered_m},
                       {"transitions", p.transitions},
                       {"seconds", p.seconds}});
   }

@@ -98,6 +98,7 @@ Result<PathCheckPoint> probe_at(const MotionDatabase& db, const FrameFeatures& f
   point.mean_deviation_m = result->mean_deviation_m;
   point.max_deviation_m = result->max_deviation_m;
   point.reached_end = result->reached_end;
+  point.arc_covered_m = result->arc_covered_m;
   point.transitions = result->walk.transition_count(built->graph);
   return point;
 }
@@ -106,14 +107,14 @@ bool passes(const PathCheckPoint& p, double tolerance) {
   return p.graph && p.reached_end && p.mean_deviation_m <= tolerance;
 }
 
-// p went better than q: a graph, then reaching the end, then less deviation.
-bool better(const PathCheckPoint& p, const PathCheckPoint& q) {
+}  // namespace
+
+bool went_better(const PathCheckPoint& p, const PathCheckPoint& q) {
   if (p.graph != q.graph) return p.graph;
   if (p.reached_end != q.reached_end) return p.reached_end;
+  if (!p.reached_end && p.arc_covered_m != q.arc_covered_m) return p.arc_covered_m > q.arc_covered_m;
   return p.mean_deviation_m < q.mean_deviation_m;
 }
-
-}  // namespace
 
 Result<PathCheck> check_path_following(const MotionDatabase& db, const FrameFeatures& features,
                                        const CandidateSearch& candidates, const GraphFromCandidatesSettings& settings,
@@ -156,7 +157,7 @@ Result<PathCheck> check_path_following(const MotionDatabase& db, const FrameFeat
   // None passed: the one that went best (the first of equals).
   const PathCheckPoint* best = &out.points.front();
   for (const PathCheckPoint& p : out.points) {
-    if (better(p, *best)) best = &p;
+    if (went_better(p, *best)) best = &p;
   }
   out.threshold = best->threshold;
   out.rms_cm = best->rms_cm;

@@ -7,7 +7,7 @@
 // about 29 m, with `path`'s default search) on the graph of the threshold, and raise the
 // threshold in log-spaced steps towards the ceiling until the probe is followed within
 // `tolerance_m` mean deviation. When no step is, the threshold whose probe went best (reached
-// the end, then least deviation) is kept and `passed` is false.
+// the end; else covered the most of it; then least deviation) is kept and `passed` is false.
 //
 // A library that hardly travels (dance on the spot, sitting, gestures) has no path to follow:
 // when less than `min_travel_share` of the graph's clip frames are played in pieces moving at
@@ -48,9 +48,15 @@ struct PathCheckPoint {
   double mean_deviation_m = 0.0;
   double max_deviation_m = 0.0;
   bool reached_end = false;
+  double arc_covered_m = 0.0;  // the probe's length the walk covered (path synthesis' arc)
   int transitions = 0;     // of the probe's walk
   double seconds = 0.0;    // the probe's search time
 };
+
+// Whether probe p went better than q: a graph, then reaching the end (or, short of it, covering
+// more of the probe: a walk stuck early deviates little only because it went nowhere), then less
+// mean deviation.
+bool went_better(const PathCheckPoint& p, const PathCheckPoint& q);
 
 struct PathCheck {
   double probe_length_m = 0.0;       // of path_check_probe()
