@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "motiongraph/metric/pair_alignment.h"
 #include "test_data.h"
 
 namespace mg {
@@ -103,6 +104,33 @@ TEST(TransitionSelection, EachTagKeepsTheDatabasesShareOfItsOwnCandidates) {
     for (const TagThreshold& own : per_tag->tag_thresholds) passes |= belongs(t, own.tag) && t.distance <= own.threshold;
     EXPECT_TRUE(passes) << t.from_frame << "->" << t.to_frame;
   }
+}
+
+TEST(TransitionSelection, UnalignedSelectsTheSameTransitionsWithoutTheirAlignments) {
+  const WalkAndRun& l = walk_and_run();
+  ASSERT_TRUE(l.features && l.search);
+  TransitionSettings settings;
+  settings.threshold_quantile = 0.05;
+  auto aligned = select_transitions(*l.features, *l.search, settings, l.frame_tags, l.tags);
+  auto shape = select_transitions(*l.features, *l.search, settings, l.frame_tags, l.tags, false);
+  ASSERT_TRUE(aligned && shape);
+  ASSERT_EQ(aligned->transitions.size(), shape->transitions.size());
+  ASSERT_GT(aligned->transitions.size(), 10u);
+  int turned = 0;
+  for (size_t i = 0; i < shape->transitions.size(); ++i) {
+    const Transition &a = aligned->transitions[i], &b = shape->transitions[i];
+    EXPECT_EQ(a.from_frame, b.from_frame);
+    EXPECT_EQ(a.to_frame, b.to_frame);
+    EXPECT_EQ(a.distance, b.distance);
+    EXPECT_EQ(b.yaw_rad, 0.0f);
+    EXPECT_EQ(b.x_m, 0.0f);
+    EXPECT_EQ(b.z_m, 0.0f);
+    const FloorAlignment want = align_pair(*l.features, a.from_frame, a.to_frame);
+    EXPECT_EQ(a.yaw_rad, static_cast<float>(want.yaw_rad));
+    EXPECT_EQ(a.x_m, static_cast<float>(want.x_m));
+    turned += std::abs(a.yaw_rad) > 1e-3f ? 1 : 0;
+  }
+  EXPECT_GT(turned, 0);
 }
 
 TEST(TransitionSelection, GivenTagThresholdsAreWhatACandidateOfTheTagPasses) {

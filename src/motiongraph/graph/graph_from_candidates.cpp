@@ -60,7 +60,8 @@ Result<TransitionsWithBridges> select_transitions_with_bridges(const MotionDatab
   TransitionsWithBridges out;
   const std::vector<TagMask> frame_tags = db.frame_tags();
   const TagMask connected = settings.connected_tags;
-  auto selection = select_transitions(features, candidates, settings.transitions, frame_tags, connected);
+  auto selection =
+      select_transitions(features, candidates, settings.transitions, frame_tags, connected, settings.aligned);
   if (!selection) return selection.error();
   out.selection = std::move(*selection);
 
@@ -92,10 +93,12 @@ Result<TransitionsWithBridges> select_transitions_with_bridges(const MotionDatab
     out.unjoined = std::move(bridges.unjoined);
   }
   for (Transition& t : out.bridges) {
-    const FloorAlignment align = align_pair(features, t.from_frame, t.to_frame);
-    t.yaw_rad = static_cast<float>(align.yaw_rad);
-    t.x_m = static_cast<float>(align.x_m);
-    t.z_m = static_cast<float>(align.z_m);
+    if (settings.aligned) {
+      const FloorAlignment align = align_pair(features, t.from_frame, t.to_frame);
+      t.yaw_rad = static_cast<float>(align.yaw_rad);
+      t.x_m = static_cast<float>(align.x_m);
+      t.z_m = static_cast<float>(align.z_m);
+    }
     out.bridge_blends.push_back(
         bridge_blend_frames(db, t, features.window, out.selection.threshold, bridge_settings.max_blend_factor));
   }

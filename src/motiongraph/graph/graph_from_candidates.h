@@ -45,6 +45,9 @@ struct GraphFromCandidatesSettings {
   TransitionSpacing spacing;      // applied to the transitions that survive a first pruning
   BridgeSettings bridges;         // tags and locality_radius are set from the selection
   TagMask connected_tags = 0;     // motion types kept connected, with bridges; 0: ignore tags
+  // false: transitions and bridges without their floor alignments (0), for graphs built only
+  // for their shape (the automatic threshold's search); not recorded in graph files.
+  bool aligned = true;
 
   Status validate() const;
 };

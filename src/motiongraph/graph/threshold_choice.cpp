@@ -92,6 +92,7 @@ Result<CoveragePoint> coverage_at(const MotionDatabase& db, const FrameFeatures&
                                   double threshold, OnDemandCandidates* more) {
   GraphFromCandidatesSettings at = settings;
   at.transitions.threshold = threshold;
+  at.aligned = false;  // only the graph's shape is counted
   CoveragePoint point;
   point.threshold = threshold;
   point.rms_cm = rms_cm_of_distance(threshold, features);

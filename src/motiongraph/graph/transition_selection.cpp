@@ -30,46 +30,74 @@ Status TransitionSettings::validate() const {
 
 namespace {
 
-// Per tag: which candidates belong to it (all 2k frames of both windows carry it) and its own
-// threshold: the one `given` lists, or else the D at the rank where the tag keeps the share
-// `share` of its candidates. Never below `global`. A given threshold for tag -1 is that of the
-// candidates whose 2k frames carry none of `tags`. membership[i]: bit t for tag t; untagged[i]:
-// candidate i belongs to tag -1.
-std::vector<TagThreshold> tag_thresholds(const CandidateSearch& candidates, std::span<const TagMask> frame_tags,
-                                         TagMask tags, int window, double global, double share,
-                                         std::span<const OwnThreshold> given, std::vector<TagMask>& membership,
-                                         std::vector<char>& untagged) {
-  std::vector<TagThreshold> result;
-  membership.assign(candidates.minima.size(), 0);
-  untagged.assign(candidates.minima.size(), 0);
+// Per frame: the tags of `tags` that every frame of the window leaving it (arriving at it)
+// carries, and whether every one of those frames carries none of them; 0 / false where the
+// window leaves the data. A candidate belongs to a tag when both its windows carry it.
+struct WindowMembership {
+  std::vector<TagMask> leave, arrive;
+  std::vector<char> leave_none, arrive_none;
+
+  bool inside(const Transition& c) const {
+    const int frames = static_cast<int>(leave.size());
+    return c.from_frame >= 0 && c.from_frame < frames && c.to_frame >= 0 && c.to_frame < frames;
+  }
+  TagMask tags_of(const Transition& c) const {
+    return inside(c) ? leave[static_cast<size_t>(c.from_frame)] & arrive[static_cast<size_t>(c.to_frame)] : 0;
+  }
+  bool untagged(const Transition& c) const {
+    return inside(c) && leave_none[static_cast<size_t>(c.from_frame)] && arrive_none[static_cast<size_t>(c.to_frame)];
+  }
+  bool belongs(const Transition& c, int tag) const { return tag >= 0 ? (tags_of(c) >> tag & 1) != 0 : untagged(c); }
+};
+
+WindowMembership window_membership(std::span<const TagMask> frame_tags, TagMask tags, int window) {
   const int frames = static_cast<int>(frame_tags.size());
-  std::vector<int> count(static_cast<size_t>(frames) + 1);
+  std::vector<int> none_count(static_cast<size_t>(frames) + 1, 0);
+  for (int f = 0; f < frames; ++f) none_count[f + 1] = none_count[f] + ((frame_tags[f] & tags) == 0 ? 1 : 0);
+  auto all_none = [&](int first, int last) {
+    return first >= 0 && last < frames && none_count[last + 1] - none_count[first] == last - first + 1;
+  };
+  auto all_carry = [&](int first, int last) {
+    if (first < 0 || last >= frames) return TagMask{0};
+    TagMask m = ~TagMask{0};
+    for (int f = first; f <= last; ++f) m &= frame_tags[f];
+    return m;
+  };
+  WindowMembership out;
+  out.leave.resize(static_cast<size_t>(frames));
+  out.arrive.resize(static_cast<size_t>(frames));
+  out.leave_none.resize(static_cast<size_t>(frames));
+  out.arrive_none.resize(static_cast<size_t>(frames));
+  for (int f = 0; f < frames; ++f) {
+    out.leave[f] = all_carry(f, f + window - 1) & tags;
+    out.arrive[f] = all_carry(f - window + 1, f) & tags;
+    out.leave_none[f] = all_none(f, f + window - 1);
+    out.arrive_none[f] = all_none(f - window + 1, f);
+  }
+  return out;
+}
+
+// Per tag of `tags` (and -1: the candidates whose 2k frames carry none of them) its own
+// threshold: the one `given` lists, or else the D at the rank where the tag keeps the share
+// `share` of its candidates. Never below `global`. Given for some, the others keep the global
+// one; tag -1 only when given.
+std::vector<TagThreshold> tag_thresholds(const CandidateSearch& candidates, const WindowMembership& windows,
+                                         TagMask tags, double global, double share,
+                                         std::span<const OwnThreshold> given) {
+  std::vector<TagThreshold> result;
   for (int t = -1; t < 64; ++t) {
     if (t >= 0 && (tags >> t & 1) == 0) continue;
     const auto own = std::find_if(given.begin(), given.end(), [t](const OwnThreshold& g) { return g.tag == t; });
-    if ((!given.empty() || t < 0) && own == given.end()) continue;  // given for some: the others keep the global one
-    for (int f = 0; f < frames; ++f) {
-      const bool carries = t >= 0 ? (frame_tags[f] >> t & 1) != 0 : (frame_tags[f] & tags) == 0;
-      count[f + 1] = count[f] + static_cast<int>(carries);
-    }
-    auto all_carry = [&](int first, int last) {
-      return first >= 0 && last < frames && count[last + 1] - count[first] == last - first + 1;
-    };
-    std::vector<float> d;
-    for (size_t i = 0; i < candidates.minima.size(); ++i) {
-      const Transition& c = candidates.minima[i];
-      if (all_carry(c.from_frame, c.from_frame + window - 1) && all_carry(c.to_frame - window + 1, c.to_frame)) {
-        if (t >= 0) {
-          membership[i] |= TagMask{1} << t;
-        } else {
-          untagged[i] = 1;
-        }
-        d.push_back(c.distance);
-      }
-    }
+    if ((!given.empty() || t < 0) && own == given.end()) continue;
     if (own != given.end()) {
-      result.push_back({t, static_cast<int>(d.size()), std::max(own->threshold, global), true});
+      const auto members = std::count_if(candidates.minima.begin(), candidates.minima.end(),
+                                         [&](const Transition& c) { return windows.belongs(c, t); });
+      result.push_back({t, static_cast<int>(members), std::max(own->threshold, global), true});
       continue;
+    }
+    std::vector<float> d;
+    for (const Transition& c : candidates.minima) {
+      if (windows.belongs(c, t)) d.push_back(c.distance);
     }
     if (d.empty()) continue;
     std::sort(d.begin(), d.end());
@@ -84,7 +112,7 @@ std::vector<TagThreshold> tag_thresholds(const CandidateSearch& candidates, std:
 
 Result<TransitionSelection> select_transitions(const FrameFeatures& features, const CandidateSearch& candidates,
                                                const TransitionSettings& settings, std::span<const TagMask> frame_tags,
-                                               TagMask tags) {
+                                               TagMask tags, bool aligned) {
   if (auto s = settings.validate(); !s) return s.error();
   TransitionSelection selection;
   if (settings.threshold >= 0.0) {
@@ -111,16 +139,16 @@ Result<TransitionSelection> select_transitions(const FrameFeatures& features, co
   selection.threshold_quantile = candidates.histogram.fraction_below(selection.threshold);
   selection.locality_radius = settings.locality_radius < 0 ? features.window / 2 : settings.locality_radius;
 
-  std::vector<TagMask> membership;
-  std::vector<char> untagged;
+  WindowMembership windows;
   if (tag_thresholds_on && (!candidates.minima.empty() || !ranked)) {
     const auto global_count = std::count_if(candidates.minima.begin(), candidates.minima.end(),
                                             [&](const Transition& t) { return t.distance <= selection.threshold; });
     const double share = candidates.minima.empty()
                              ? 0.0
                              : static_cast<double>(global_count) / static_cast<double>(candidates.minima.size());
-    selection.tag_thresholds = tag_thresholds(candidates, frame_tags, tags, features.window, selection.threshold,
-                                              share, settings.tag_thresholds, membership, untagged);
+    windows = window_membership(frame_tags, tags, features.window);
+    selection.tag_thresholds =
+        tag_thresholds(candidates, windows, tags, selection.threshold, share, settings.tag_thresholds);
     if (settings.max_threshold >= 0.0) {
       for (TagThreshold& own : selection.tag_thresholds) {
         own.threshold = std::min(own.threshold, settings.max_threshold);
@@ -131,12 +159,10 @@ Result<TransitionSelection> select_transitions(const FrameFeatures& features, co
     }
   }
   std::vector<Transition> below;
-  for (size_t i = 0; i < candidates.minima.size(); ++i) {
-    const Transition& t = candidates.minima[i];
+  for (const Transition& t : candidates.minima) {
     bool keep = t.distance <= selection.threshold;
     for (const TagThreshold& own : selection.tag_thresholds) {
-      const bool member = own.tag >= 0 ? (membership[i] >> own.tag & 1) != 0 : untagged[i] != 0;
-      if (!membership.empty() && member && t.distance <= own.threshold) keep = true;
+      if (!keep && t.distance <= own.threshold && windows.belongs(t, own.tag)) keep = true;
     }
     if (keep) below.push_back(t);
   }
@@ -167,8 +193,9 @@ Result<TransitionSelection> select_transitions(const FrameFeatures& features, co
     grid[key(ca, cb)].push_back(static_cast<int>(selection.transitions.size()));
     selection.transitions.push_back(t);
   }
-  // Each transition's alignment on its own (the automatic threshold selects dozens of times).
-  parallel_for(static_cast<long long>(selection.transitions.size()), worker_threads(0), 512, [&](int, long long i) {
+  // Each transition's alignment on its own.
+  const long long to_align = aligned ? static_cast<long long>(selection.transitions.size()) : 0;
+  parallel_for(to_align, worker_threads(0), 512, [&](int, long long i) {
     Transition& t = selection.transitions[static_cast<size_t>(i)];
     const FloorAlignment align = align_pair(features, t.from_frame, t.to_frame);
     t.yaw_rad = static_cast<float>(align.yaw_rad);

@@ -75,8 +75,11 @@ struct TransitionSelection {
 // frame_tags: one mask per frame (or empty: no per-tag thresholds); tags: the tags that get
 // their own threshold. On the pruned stage's candidates (ceiling >= 0) every threshold used must
 // lie at or below the ceiling, and per-tag thresholds by rank are refused (given ones are not).
+// aligned = false leaves the transitions' floor alignments at 0: a graph's shape does not need
+// them (the automatic threshold's search builds dozens of graphs only to count what they keep).
 Result<TransitionSelection> select_transitions(const FrameFeatures& features, const CandidateSearch& candidates,
                                                const TransitionSettings& settings,
-                                               std::span<const TagMask> frame_tags = {}, TagMask tags = 0);
+                                               std::span<const TagMask> frame_tags = {}, TagMask tags = 0,
+                                               bool aligned = true);
 
 }  // namespace mg
