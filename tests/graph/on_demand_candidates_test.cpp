@@ -56,6 +56,24 @@ CandidateSearch pruned_search(double ceiling) {
   return found ? std::move(*found) : CandidateSearch{};
 }
 
+// The same search as pruned_search, with what the stage made beyond it kept as `build` keeps it.
+CandidateSearch pruned_search_keeping(double ceiling, PrunedStageWork& work) {
+  const Library& l = library();
+  auto plan = plan_pruned_search(l.features, ceiling, l.pruned);
+  EXPECT_TRUE(plan && !plan->items.empty());
+  if (!plan || plan->items.empty()) return CandidateSearch{};
+  auto found = find_candidates(l.features, plan->distance, {}, {}, plan->items, plan->sides);
+  EXPECT_TRUE(found);
+  if (!found) return CandidateSearch{};
+  work.embedding = std::move(plan->embedding);
+  work.tiles = std::move(plan->tiles);
+  for (const Transition& t : found->minima) {
+    if (t.distance > ceiling) work.above.push_back(t);
+  }
+  finish_pruned_search(l.features, ceiling, *found);
+  return std::move(*found);
+}
+
 void expect_same(std::span<const Transition> a, std::span<const Transition> b, const char* what) {
   ASSERT_EQ(a.size(), b.size()) << what;
   for (size_t i = 0; i < a.size(); ++i) {
@@ -159,6 +177,12 @@ TEST(OnDemandCandidates, PrunedCandidatesGiveTheExhaustiveTransitionsAndBridges)
     const double ceiling = distance_of_rms_cm(ceiling_cm, l.features);
     const CandidateSearch search = pruned_search(ceiling);
     OnDemandCandidates more(l.features, search, l.pruned.embedding, l.pruned.threads);
+    // And given the stage's own work: its embedding, tiles and their minima above the ceiling.
+    PrunedStageWork work;
+    const CandidateSearch kept = pruned_search_keeping(ceiling, work);
+    ASSERT_FALSE(work.above.empty());
+    ASSERT_EQ(kept.minima.size(), search.minima.size());
+    OnDemandCandidates reusing(l.features, kept, l.pruned.embedding, l.pruned.threads, std::move(work));
     for (const double rms : {2.0, 4.0, ceiling_cm}) {
       for (const double cap_cm : {0.0, 15.0, 22.0}) {
        for (const bool given : {false, true}) {
@@ -177,7 +201,11 @@ TEST(OnDemandCandidates, PrunedCandidatesGiveTheExhaustiveTransitionsAndBridges)
                                         << cap_cm << " cm, given per-tag thresholds " << given);
         auto want = select_transitions_with_bridges(l.db, l.features, l.exhaustive, settings);
         auto got = select_transitions_with_bridges(l.db, l.features, search, settings, &more);
-        ASSERT_TRUE(want && got);
+        auto again = select_transitions_with_bridges(l.db, l.features, kept, settings, &reusing);
+        ASSERT_TRUE(want && got && again);
+        expect_same(want->selection.transitions, again->selection.transitions, "transitions, reusing");
+        expect_same(want->bridges, again->bridges, "bridges, reusing");
+        ASSERT_EQ(want->unjoined.size(), again->unjoined.size());
         expect_same(want->selection.transitions, got->selection.transitions, "transitions");
         expect_same(want->bridges, got->bridges, "bridges");
         ASSERT_EQ(want->unjoined.size(), got->unjoined.size());
@@ -195,9 +223,11 @@ TEST(OnDemandCandidates, PrunedCandidatesGiveTheExhaustiveTransitionsAndBridges)
        }
       }
     }
-    // The walk to run bridges lie far above either ceiling: they were found on demand.
+    // The walk to run bridges lie far above either ceiling: they were found on demand, with
+    // fewer tiles when the stage's own are known.
     EXPECT_GT(more.statistics().raises, 0);
     EXPECT_FALSE(more.above().empty());
+    EXPECT_LT(reusing.statistics().tiles, more.statistics().tiles);
   }
 }
 

@@ -22,8 +22,8 @@ bool by_frames(const Transition& x, const Transition& y) {
 }  // namespace
 
 OnDemandCandidates::OnDemandCandidates(const FrameFeatures& features, const CandidateSearch& search,
-                                       const WindowEmbeddingSettings& embedding, int threads)
-    : features_(features), ceiling_(search.ceiling) {
+                                       const WindowEmbeddingSettings& embedding, int threads, PrunedStageWork done)
+    : features_(features), ceiling_(search.ceiling), embedding_(std::move(done.embedding)) {
   pruned_.embedding = embedding;
   pruned_.tile_frames = search.tile_frames;
   pruned_.threads = threads;
@@ -31,6 +31,16 @@ OnDemandCandidates::OnDemandCandidates(const FrameFeatures& features, const Cand
   tile_ = std::max(1, pruned_.tile_for(features_.window));
   side_ = (features_.frames + tile_ - 1) / tile_;
   known_.assign(static_cast<size_t>(side_) * side_, ceiling_);
+  if (done.tiles.size() == known_.size()) {
+    for (size_t tile = 0; tile < known_.size(); ++tile) {
+      if (done.tiles[tile]) known_[tile] = kAll;
+    }
+    for (const Transition& t : done.above) {
+      const size_t tile = static_cast<size_t>(t.from_frame / tile_) * side_ + static_cast<size_t>(t.to_frame / tile_);
+      if (t.distance > ceiling_ && tile < known_.size() && done.tiles[tile]) above_.push_back(t);
+    }
+    std::sort(above_.begin(), above_.end(), by_frames);
+  }
 }
 
 std::vector<size_t> OnDemandCandidates::region(int s, int u, std::span<const std::vector<char>> cores) const {

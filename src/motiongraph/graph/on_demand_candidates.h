@@ -15,8 +15,8 @@
 // (the exhaustive stage's bridges at the same tile side). Regions follow the cores, so the low
 // thresholds the automatic choice tries first, whose cores are small, compute few tiles.
 //
-// Memory: the window embedding (about 300 bytes a window, made at the first raise), 8 bytes per
-// tile, and the minima found. Not thread-safe: one selection at a time.
+// Memory: the window embedding (about 300 bytes a window: the stage's, or made at the first
+// raise), 8 bytes per tile, and the minima found. Not thread-safe: one selection at a time.
 #pragma once
 
 #include <optional>
@@ -32,6 +32,17 @@
 
 namespace mg {
 
+// What the pruned stage had made beyond its result, so that it is not made again: its window
+// embedding (of these features, with these settings), the tiles it computed (a byte per tile,
+// row-major, on its grid) and their minima above the ceiling (exact: a tile's minima need no
+// other tile; finish_pruned_search drops them from the result, which holds every minimum only
+// up to the ceiling).
+struct PrunedStageWork {
+  std::optional<WindowEmbedding> embedding;
+  std::vector<char> tiles;
+  std::vector<Transition> above;
+};
+
 struct OnDemandStatistics {
   int raises = 0;             // calls of raise that computed anything
   long long tiles = 0;        // tiles computed
@@ -46,8 +57,9 @@ class OnDemandCandidates {
   // For `search`, a pruned stage's result (ceiling >= 0): its ceiling, tile side and continuation
   // radius are the tiles'; `embedding` and `threads` (0: one per core) as for the stage. The
   // tags are the features' (their windows'); `features` must outlive this object.
+  // `done`: what the stage itself computed (its tiles must be on this object's grid).
   OnDemandCandidates(const FrameFeatures& features, const CandidateSearch& search,
-                     const WindowEmbeddingSettings& embedding = {}, int threads = 0);
+                     const WindowEmbeddingSettings& embedding = {}, int threads = 0, PrunedStageWork done = {});
 
   // kBridgeTags^2 levels (bridges.h) for tags' cores (cores[t]: a byte per frame, empty when t
   // has none): each the lowest level of its region's tiles, +infinity when the region is empty

@@ -67,7 +67,7 @@ Result<PrunedPlan> plan_pruned_search(const FrameFeatures& f, double ceiling, co
   // The bound is computed in float: a relative 1e-3 of slack keeps every pair at or below the
   // ceiling, and flags only tiles that may hold one.
   const auto search_start = std::chrono::steady_clock::now();
-  const BoundedTiles bounded = find_bounded_tiles(f, *embedding, grid.tile, ceiling * (1.0 + 1e-3), pruned.threads);
+  BoundedTiles bounded = find_bounded_tiles(f, *embedding, grid.tile, ceiling * (1.0 + 1e-3), pruned.threads);
   // An item computes the products of tiles (I, J) and (J, I): it is run when either is flagged,
   // and visits the flagged ones only.
   TileSelection selected = items_of_flagged_tiles(grid, bounded.flags);
@@ -75,6 +75,8 @@ Result<PrunedPlan> plan_pruned_search(const FrameFeatures& f, double ceiling, co
   plan.sides = std::move(selected.sides);
   for (size_t i = 0; i < plan.items.size(); ++i) stats.tiles_computed += grid.tile_count(plan.items[i], plan.sides[i]);
   stats.search_seconds = seconds_since(search_start);
+  plan.embedding = std::move(*embedding);
+  plan.tiles = std::move(bounded.flags);
   return plan;
 }
 

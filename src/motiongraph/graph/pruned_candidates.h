@@ -28,6 +28,7 @@
 // (BuildSettings::pruned_stage): docs/performance.md ("Bridges on demand").
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "motiongraph/core/error.h"
@@ -69,6 +70,11 @@ struct PrunedPlan {
   // Per item, the tiles flagged (for_each_distance_tile's sides): a team that runs both tiles
   // of each item gets the same result, with more pairs computed above the ceiling.
   std::vector<unsigned char> sides;
+  // The window embedding the bound used, and the tiles the items visit (a byte per tile,
+  // row-major, of tile_frames' grid): for the searches that follow (OnDemandCandidates). Both
+  // empty when no pair is defined.
+  std::optional<WindowEmbedding> embedding;
+  std::vector<char> tiles;
 };
 
 // `statistics` may be null; it gets the plan's figures (the exact_seconds and computed_pairs

@@ -87,6 +87,7 @@ struct Candidates {
   int processes = 1;
   std::vector<double> peak_memory_mb, share_seconds;
   long long restored_tiles = 0;
+  PrunedStageWork work;  // what the pruned stage made beyond its result, when it ran
 };
 
 // The pruned stage's settings for the build: the distance stage's threads.
@@ -166,11 +167,16 @@ Result<Candidates> distance_stage(bool pruned, const FrameFeatures& features, co
                                       plan ? &plan->sides : nullptr);
   if (!found) return found.error();
   Candidates out{std::move(found->search), "off", plan_statistics, found->processes, std::move(found->peak_memory_mb),
-                 std::move(found->share_seconds), found->restored_tiles};
+                 std::move(found->share_seconds), found->restored_tiles, {}};
   if (team.rank() != 0) return out;
   if (pruned) {
     out.pruned.computed_pairs = out.search.tiles.pairs;
     out.pruned.exact_seconds = out.search.tiles.seconds;
+    out.work.embedding = std::move(plan->embedding);
+    out.work.tiles = std::move(plan->tiles);
+    for (const Transition& t : out.search.minima) {
+      if (t.distance > ceiling) out.work.above.push_back(t);
+    }
     finish_pruned_search(features, ceiling, out.search);
     out.search.tiles.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
@@ -425,7 +431,8 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
   // candidates find the minima above its ceiling they need on demand.
   std::optional<OnDemandCandidates> more;
   if (candidates->search.ceiling >= 0.0) {
-    more.emplace(*features, candidates->search, settings.pruned.embedding, settings.distance_stage.distance.threads);
+    more.emplace(*features, candidates->search, settings.pruned.embedding, settings.distance_stage.distance.threads,
+                 std::move(candidates->work));
   }
   OnDemandCandidates* on_demand = more ? &*more : nullptr;
   json choice_json = nullptr;
