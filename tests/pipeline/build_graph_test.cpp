@@ -242,7 +242,15 @@ TEST(BuildGraph, ABridgeCapLeavesPairsUnjoinedAndSaysWhatWouldJoinThem) {
   const nlohmann::json& kept = capped->report.at("bridges");
   EXPECT_TRUE(kept.empty());
   int above_cap = 0;
+  // Whether both keep frames in the pruned graph, which leads from any of its frames to any other.
+  auto in_graph = [&](const std::string& name) {
+    for (const auto& t : capped->report.at("graph_after").at("tags")) {
+      if (t.at("name") == name) return t.at("frames").get<int>() > 0;
+    }
+    return false;
+  };
   for (const auto& u : capped->report.at("unjoined")) {
+    EXPECT_EQ(u.at("through_graph").get<bool>(), in_graph(u.at("from")) && in_graph(u.at("to")));
     if (u.at("best_rms_cm").is_null()) continue;
     ++above_cap;
     EXPECT_GT(u.at("best_rms_cm").get<double>(), settings.max_bridge_rms_cm);

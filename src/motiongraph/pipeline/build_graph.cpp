@@ -460,14 +460,23 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
                     "survived a first pruning, spaced to {}",
                     pruned.after.nodes, pruned.after.edges, pruned.after.transitions, built->survived_first_pruning,
                     pruned.before.transitions));
-    // Motion types that both loop but that nothing joins (the report lists them all).
+    // Motion types that both loop but that nothing joins (the report lists them all): a warning
+    // when the graph lost one of them, else the graph leads from one to the other through
+    // other frames.
     std::vector<UnjoinedPair> unjoined;
     for (const UnjoinedPair& u : selected->unjoined) {
       if (u.reason != UnjoinedReason::kNoCore) unjoined.push_back(u);
     }
-    for (const json& u : unjoined_json(unjoined, *db, *features)) {
-      say.warning(fmt::format("no transition or bridge leads from '{}' to '{}': {}", u["from"].get<std::string>(),
-                              u["to"].get<std::string>(), u["why"].get<std::string>()));
+    for (const json& u : unjoined_json(unjoined, *db, *features, &pruned.after)) {
+      const std::string from = u["from"].get<std::string>(), to = u["to"].get<std::string>();
+      if (u["through_graph"].get<bool>()) {
+        say.info(fmt::format("'{}' leads to '{}' only through other frames of the graph: no transition or bridge "
+                             "between them ({})",
+                             from, to, u["why"].get<std::string>()));
+      } else {
+        say.warning(fmt::format("no transition or bridge leads from '{}' to '{}': {}", from, to,
+                                u["why"].get<std::string>()));
+      }
     }
   }
 

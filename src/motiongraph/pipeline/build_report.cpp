@@ -1,6 +1,7 @@
 // The build report's JSON.
 #include "motiongraph/pipeline/build_report.h"
 
+#include <algorithm>
 #include <string>
 
 #include <fmt/format.h>
@@ -106,7 +107,13 @@ json path_check_json(const PathCheck& check, const PathCheckSettings& settings) 
   return out;
 }
 
-json unjoined_json(const std::vector<UnjoinedPair>& pairs, const MotionDatabase& db, const FrameFeatures& features) {
+json unjoined_json(const std::vector<UnjoinedPair>& pairs, const MotionDatabase& db, const FrameFeatures& features,
+                   const GraphStatistics* after) {
+  auto kept = [&](int tag) {
+    if (after == nullptr) return false;
+    return std::any_of(after->tags.begin(), after->tags.end(),
+                       [&](const TagStatistics& s) { return s.tag == tag && s.frames > 0; });
+  };
   json out = json::array();
   for (const UnjoinedPair& p : pairs) {
     const bool has_best = p.best_distance >= 0.0f;
@@ -127,7 +134,8 @@ json unjoined_json(const std::vector<UnjoinedPair>& pairs, const MotionDatabase&
                    {"to", db.tag_names[p.to_tag]},
                    {"why", why},
                    {"best_distance", has_best ? json(p.best_distance) : json(nullptr)},
-                   {"best_rms_cm", has_best ? json(rms) : json(nullptr)}});
+                   {"best_rms_cm", has_best ? json(rms) : json(nullptr)},
+                   {"through_graph", kept(p.from_tag) && kept(p.to_tag)}});
   }
   return out;
 }
@@ -216,7 +224,7 @@ json build_report(const BuildReportParts& parts) {
       {"graph_before", pruned ? json::parse(to_json(pruned->prune.before, db.tag_names)) : json(nullptr)},
       {"graph_after", pruned ? json::parse(to_json(pruned->prune.after, db.tag_names)) : json(nullptr)},
       {"bridges", bridges},
-      {"unjoined", unjoined_json(parts.selected.unjoined, db, features)},
+      {"unjoined", unjoined_json(parts.selected.unjoined, db, features, pruned ? &pruned->prune.after : nullptr)},
       {"distance_cache", parts.distance_cache},
       {"processes", parts.processes},
       {"peak_memory_mb", parts.peak_memory_mb},

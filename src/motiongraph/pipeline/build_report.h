@@ -42,9 +42,13 @@ nlohmann::json threshold_choice_json(const ThresholdChoice& choice, const Motion
 nlohmann::json path_check_json(const PathCheck& check, const PathCheckSettings& settings);
 
 // The ordered pairs of motion types that no transition or bridge joins: [{"from", "to", "why",
-// "best_distance", "best_rms_cm"}], the best distance null when no candidate would join them.
+// "best_distance", "best_rms_cm", "through_graph"}], the best distance null when no candidate
+// would join them. "through_graph": both keep frames in the pruned graph `after` (null: none),
+// which is strongly connected, so it leads from the one to the other through other frames (CMU
+// 14's walking clips are all tagged jump too: no frame of walking lacks jump, so nothing can
+// bridge walk to jump, yet the graph joins them).
 nlohmann::json unjoined_json(const std::vector<UnjoinedPair>& pairs, const MotionDatabase& db,
-                             const FrameFeatures& features);
+                             const FrameFeatures& features, const GraphStatistics* after = nullptr);
 
 // What the whole report is made of; pruned is null when pruning left nothing.
 struct BuildReportParts {
