@@ -7,7 +7,6 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "motiongraph/core/parallel_for.h"
 #include "motiongraph/metric/pair_alignment.h"
 
 namespace mg {
@@ -193,15 +192,12 @@ Result<TransitionSelection> select_transitions(const FrameFeatures& features, co
     grid[key(ca, cb)].push_back(static_cast<int>(selection.transitions.size()));
     selection.transitions.push_back(t);
   }
-  // Each transition's alignment on its own.
-  const long long to_align = aligned ? static_cast<long long>(selection.transitions.size()) : 0;
-  parallel_for(to_align, worker_threads(0), 512, [&](int, long long i) {
-    Transition& t = selection.transitions[static_cast<size_t>(i)];
+  for (Transition& t : aligned ? std::span<Transition>(selection.transitions) : std::span<Transition>{}) {
     const FloorAlignment align = align_pair(features, t.from_frame, t.to_frame);
     t.yaw_rad = static_cast<float>(align.yaw_rad);
     t.x_m = static_cast<float>(align.x_m);
     t.z_m = static_cast<float>(align.z_m);
-  });
+  }
   std::sort(selection.transitions.begin(), selection.transitions.end(), [](const Transition& x, const Transition& y) {
     return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
   });
