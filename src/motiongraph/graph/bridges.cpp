@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "motiongraph/graph/window_membership.h"
+
 namespace mg {
 
 Status BridgeSettings::validate() const {
@@ -83,11 +85,8 @@ BridgeSelection select_bridges(std::span<const Transition> candidates, std::span
   // cores it lies in (a call sees a million candidates on a large library, and the threshold
   // search calls it dozens of times).
   const int frames = static_cast<int>(frame_tags.size());
-  std::vector<TagMask> leave_tags(frames), arrive_tags(frames), in_core(frames, 0);
-  for (int f = 0; f < frames; ++f) {
-    leave_tags[f] = window_tags(frame_tags, f, window) & settings.tags;
-    arrive_tags[f] = window_tags(frame_tags, f - window + 1, window) & settings.tags;
-  }
+  const WindowMembership windows = window_membership(frame_tags, settings.tags, window);
+  std::vector<TagMask> in_core(frames, 0);
   const int core_count = std::min(kBridgeTags, static_cast<int>(cores.size()));
   for (int s = 0; s < core_count; ++s) {
     if (cores[s].empty()) continue;
@@ -95,8 +94,8 @@ BridgeSelection select_bridges(std::span<const Transition> candidates, std::span
       if (cores[s][f]) in_core[f] |= TagMask{1} << s;
     }
   }
-  auto leaving = [&](const Transition& t) { return leave_tags[t.from_frame]; };
-  auto arriving = [&](const Transition& t) { return arrive_tags[t.to_frame]; };
+  auto leaving = [&](const Transition& t) { return windows.leave[t.from_frame]; };
+  auto arriving = [&](const Transition& t) { return windows.arrive[t.to_frame]; };
   // The pairs (s, u) a candidate may bridge: leaving frames of s that lack u, in s's core, and
   // landing on frames of u that lack s, in u's core.
   auto sources = [&](const Transition& t) { return leaving(t) & ~arriving(t) & in_core[t.from_frame]; };
@@ -135,7 +134,9 @@ BridgeSelection select_bridges(std::span<const Transition> candidates, std::span
       if (to == 0) continue;
       bool wanted = false;
       each_bit(sources(c), [&](int s) {
-        each_bit(to, [&](int u) { wanted = wanted || (!joined[s * kTags + u] && c.distance <= level(s * kTags + u)); });
+        each_bit(to, [&](int u) {
+          wanted = wanted || (!joined[s * kTags + u] && c.distance <= level(s * kTags + u));
+        });
       });
       if (wanted) by_distance.push_back(&c);
     }

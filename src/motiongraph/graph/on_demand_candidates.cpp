@@ -43,40 +43,55 @@ OnDemandCandidates::OnDemandCandidates(const FrameFeatures& features, const Cand
   }
 }
 
-std::vector<size_t> OnDemandCandidates::region(int s, int u, std::span<const std::vector<char>> cores) const {
-  std::vector<size_t> tiles;
-  if (s == u || s >= static_cast<int>(cores.size()) || u >= static_cast<int>(cores.size()) || cores[s].empty() ||
-      cores[u].empty()) {
-    return tiles;
-  }
-  const TagMask ms = TagMask{1} << s, mu = TagMask{1} << u;
-  std::vector<char> rows(static_cast<size_t>(side_), 0), columns(static_cast<size_t>(side_), 0);
-  const int frames = std::min({features_.frames, static_cast<int>(cores[s].size()), static_cast<int>(cores[u].size())});
-  for (int f = 0; f < frames; ++f) {
-    const TagMask leaving = features_.leave_tags[static_cast<size_t>(f)];
-    const TagMask arriving = features_.arrive_tags[static_cast<size_t>(f)];
-    if (cores[s][f] && (leaving & ms) && !(leaving & mu)) rows[static_cast<size_t>(f / tile_)] = 1;
-    if (cores[u][f] && (arriving & mu) && !(arriving & ms)) columns[static_cast<size_t>(f / tile_)] = 1;
-  }
-  for (int i = 0; i < side_; ++i) {
-    if (!rows[static_cast<size_t>(i)]) continue;
-    for (int j = 0; j < side_; ++j) {
-      if (columns[static_cast<size_t>(j)]) tiles.push_back(static_cast<size_t>(i) * side_ + j);
+OnDemandCandidates::Regions OnDemandCandidates::regions(std::span<const std::vector<char>> cores) const {
+  Regions out;
+  out.tags = std::min(kBridgeTags, static_cast<int>(cores.size()));
+  out.rows.assign(static_cast<size_t>(side_) * out.tags, 0);
+  out.columns.assign(static_cast<size_t>(side_) * out.tags, 0);
+  for (int t = 0; t < out.tags; ++t) {
+    const std::vector<char>& core = cores[t];
+    const TagMask mt = TagMask{1} << t;
+    const int frames = std::min(features_.frames, static_cast<int>(core.size()));
+    for (int f = 0; f < frames; ++f) {
+      if (!core[f]) continue;
+      const size_t at = static_cast<size_t>(f / tile_) * out.tags + t;
+      const TagMask leaving = features_.leave_tags[static_cast<size_t>(f)];
+      const TagMask arriving = features_.arrive_tags[static_cast<size_t>(f)];
+      if (leaving & mt) out.rows[at] |= ~leaving;
+      if (arriving & mt) out.columns[at] |= ~arriving;
     }
   }
-  return tiles;
+  return out;
+}
+
+template <class Visit>
+void OnDemandCandidates::for_each_region_tile(const Regions& regions, int s, int u, Visit visit) const {
+  if (s == u || s >= regions.tags || u >= regions.tags) return;
+  const TagMask ms = TagMask{1} << s, mu = TagMask{1} << u;
+  for (int i = 0; i < side_; ++i) {
+    if (!(regions.rows[static_cast<size_t>(i) * regions.tags + s] & mu)) continue;
+    for (int j = 0; j < side_; ++j) {
+      if (!(regions.columns[static_cast<size_t>(j) * regions.tags + u] & ms)) continue;
+      if (!visit(static_cast<size_t>(i) * side_ + j)) return;
+    }
+  }
+}
+
+double OnDemandCandidates::lowest_known(const Regions& regions, int s, int u, double floor) const {
+  double level = kAll;
+  for_each_region_tile(regions, s, u, [&](size_t tile) {
+    level = std::min(level, known_[tile]);
+    return level > floor;
+  });
+  return level;
 }
 
 std::vector<double> OnDemandCandidates::levels(std::span<const std::vector<char>> cores) const {
   std::vector<double> out(static_cast<size_t>(kBridgeTags) * kBridgeTags, kAll);
-  const int tags = std::min(kBridgeTags, static_cast<int>(cores.size()));
-  for (int s = 0; s < tags; ++s) {
-    for (int u = 0; u < tags; ++u) {
-      double& level = out[static_cast<size_t>(s) * kBridgeTags + u];
-      for (const size_t tile : region(s, u, cores)) {
-        level = std::min(level, known_[tile]);
-        if (level <= ceiling_) break;  // no tile knows less
-      }
+  const Regions all = regions(cores);
+  for (int s = 0; s < all.tags; ++s) {
+    for (int u = 0; u < all.tags; ++u) {
+      out[static_cast<size_t>(s) * kBridgeTags + u] = lowest_known(all, s, u, ceiling_);  // no tile knows less
     }
   }
   return out;
@@ -87,18 +102,21 @@ Status OnDemandCandidates::raise(std::span<const TagPair> pairs, std::span<const
   const bool any_window = std::find(features_.can_leave.begin(), features_.can_leave.end(), 1) !=
                           features_.can_leave.end();
   // Each pair's new level, and the tiles of its region below it.
+  const Regions all = regions(cores);
   std::vector<std::pair<double, std::vector<size_t>>> raised;
   for (const TagPair& pair : pairs) {
     if (pair.from_tag < 0 || pair.from_tag >= kBridgeTags || pair.to_tag < 0 || pair.to_tag >= kBridgeTags) {
       return Error{"", 0, "a bridge's tag is out of range"};
     }
-    std::vector<size_t> tiles = region(pair.from_tag, pair.to_tag, cores);
-    double level = kAll;
-    for (const size_t tile : tiles) level = std::min(level, known_[tile]);
+    const double level = lowest_known(all, pair.from_tag, pair.to_tag, -kAll);
     if (level == kAll) continue;
     double next = 4.0 * level;
     if (!(next > 0.0) || next > kLastStep * ceiling_ || !any_window) next = kAll;
-    std::erase_if(tiles, [&](size_t tile) { return known_[tile] >= next; });
+    std::vector<size_t> tiles;
+    for_each_region_tile(all, pair.from_tag, pair.to_tag, [&](size_t tile) {
+      if (known_[tile] < next) tiles.push_back(tile);
+      return true;
+    });
     raised.emplace_back(next, std::move(tiles));
   }
   std::sort(raised.begin(), raised.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
@@ -132,7 +150,8 @@ Status OnDemandCandidates::raise(std::span<const TagPair> pairs, std::span<const
     const auto search_start = std::chrono::steady_clock::now();
     const BoundedTiles bounded =
         find_bounded_tiles(features_, *embedding_, tile_, next * (1.0 + 1e-3), pruned_.threads, only);
-    statistics_.search_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - search_start).count();
+    statistics_.search_seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - search_start).count();
     for (size_t tile = 0; tile < only.size(); ++tile) {
       if (!only[tile]) continue;
       if (bounded.flags[tile]) {

@@ -74,8 +74,21 @@ class OnDemandCandidates {
   Status raise(std::span<const TagPair> pairs, std::span<const std::vector<char>> cores);
 
  private:
-  // The tiles of pair (s, u)'s region for these cores, row-major; empty when it has none.
-  std::vector<size_t> region(int s, int u, std::span<const std::vector<char>> cores) const;
+  // The regions of every pair for some cores, worked out in one pass over the frames: per tile
+  // row i and tag s (rows[i * tags + s]), the tags that the leaving windows of s's core frames
+  // in that row lack, so that row i belongs to (s, u)'s region when u is among them; per tile
+  // column j and tag u (columns[j * tags + u]), the tags the arriving windows of u's core frames
+  // in that column lack.
+  struct Regions {
+    int tags = 0;
+    std::vector<TagMask> rows, columns;
+  };
+  Regions regions(std::span<const std::vector<char>> cores) const;
+  // visit(tile) for each tile of (s, u)'s region, row-major, until it returns false.
+  template <class Visit>
+  void for_each_region_tile(const Regions& regions, int s, int u, Visit visit) const;
+  // The lowest level of (s, u)'s tiles (+infinity when it has none), stopping at `floor`.
+  double lowest_known(const Regions& regions, int s, int u, double floor) const;
 
   const FrameFeatures& features_;
   double ceiling_;

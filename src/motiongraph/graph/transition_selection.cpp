@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "motiongraph/graph/window_membership.h"
 #include "motiongraph/metric/pair_alignment.h"
 
 namespace mg {
@@ -28,53 +29,6 @@ Status TransitionSettings::validate() const {
 }
 
 namespace {
-
-// Per frame: the tags of `tags` that every frame of the window leaving it (arriving at it)
-// carries, and whether every one of those frames carries none of them; 0 / false where the
-// window leaves the data. A candidate belongs to a tag when both its windows carry it.
-struct WindowMembership {
-  std::vector<TagMask> leave, arrive;
-  std::vector<char> leave_none, arrive_none;
-
-  bool inside(const Transition& c) const {
-    const int frames = static_cast<int>(leave.size());
-    return c.from_frame >= 0 && c.from_frame < frames && c.to_frame >= 0 && c.to_frame < frames;
-  }
-  TagMask tags_of(const Transition& c) const {
-    return inside(c) ? leave[static_cast<size_t>(c.from_frame)] & arrive[static_cast<size_t>(c.to_frame)] : 0;
-  }
-  bool untagged(const Transition& c) const {
-    return inside(c) && leave_none[static_cast<size_t>(c.from_frame)] && arrive_none[static_cast<size_t>(c.to_frame)];
-  }
-  bool belongs(const Transition& c, int tag) const { return tag >= 0 ? (tags_of(c) >> tag & 1) != 0 : untagged(c); }
-};
-
-WindowMembership window_membership(std::span<const TagMask> frame_tags, TagMask tags, int window) {
-  const int frames = static_cast<int>(frame_tags.size());
-  std::vector<int> none_count(static_cast<size_t>(frames) + 1, 0);
-  for (int f = 0; f < frames; ++f) none_count[f + 1] = none_count[f] + ((frame_tags[f] & tags) == 0 ? 1 : 0);
-  auto all_none = [&](int first, int last) {
-    return first >= 0 && last < frames && none_count[last + 1] - none_count[first] == last - first + 1;
-  };
-  auto all_carry = [&](int first, int last) {
-    if (first < 0 || last >= frames) return TagMask{0};
-    TagMask m = ~TagMask{0};
-    for (int f = first; f <= last; ++f) m &= frame_tags[f];
-    return m;
-  };
-  WindowMembership out;
-  out.leave.resize(static_cast<size_t>(frames));
-  out.arrive.resize(static_cast<size_t>(frames));
-  out.leave_none.resize(static_cast<size_t>(frames));
-  out.arrive_none.resize(static_cast<size_t>(frames));
-  for (int f = 0; f < frames; ++f) {
-    out.leave[f] = all_carry(f, f + window - 1) & tags;
-    out.arrive[f] = all_carry(f - window + 1, f) & tags;
-    out.leave_none[f] = all_none(f, f + window - 1);
-    out.arrive_none[f] = all_none(f - window + 1, f);
-  }
-  return out;
-}
 
 // Per tag of `tags` (and -1: the candidates whose 2k frames carry none of them) its own
 // threshold: the one `given` lists, or else the D at the rank where the tag keeps the share
