@@ -162,18 +162,20 @@ Status evaluate_paths(const GraphFile& file, const EvalOptions& o, Outputs& out)
   if (!rows) return rows.error();
   std::string csv =
       "shape,path_length_m,arc_covered_m,mean_deviation_m,max_deviation_m,reached_end,frames,searches,"
-      "budget_exhausted\n";
+      "budget_exhausted,graph_mean_deviation_m,graph_max_deviation_m\n";
   for (const PathErrorRow& r : *rows) {
-    csv += fmt::format("{},{},{},{},{},{},{},{},{}\n", r.shape, num(r.path_length_m), num(r.arc_covered_m),
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", r.shape, num(r.path_length_m), num(r.arc_covered_m),
                        num(r.mean_deviation_m), num(r.max_deviation_m), r.reached_end ? 1 : 0, r.frames, r.searches,
-                       r.budget_exhausted);
+                       r.budget_exhausted, num(r.graph_mean_deviation_m), num(r.graph_max_deviation_m));
   }
   if (auto s = out.write_csv("paths.csv", csv); !s) return s;
   return out.plot("paths.png",
                   fmt::format("{}set style data histograms\nset style histogram clustered gap 1\n"
                               "set style fill solid 0.6 border -1\nset yrange [0:*]\nset key top left\n"
                               "set ylabel 'distance from the path (m)'\nset title 'Path-following error'\n"
-                              "plot {} skip 1 using 4:xtic(1) title 'mean', '' skip 1 using 5 title 'max'",
+                              "plot {} skip 1 using 10:xtic(1) title 'mean, as the graph played it', '' skip 1 "
+                              "using 11 title 'max, as played', '' skip 1 using 4 title 'mean, edited onto the path', "
+                              "'' skip 1 using 5 title 'max, edited'",
                               kCsvSettings, out.csv("paths.csv")));
 }
 

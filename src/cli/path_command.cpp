@@ -34,12 +34,20 @@ int run_path(const PathOptions& o) {
   print_cleanup_warning(o.common, result->warning);
   const nlohmann::json& r = result->report;
   if (auto s = write_synthesis_outputs(o.common, **loaded, result->motion, result->walk, r); !s) return fail(s.error());
-  fmt::print("path {:.1f} m: {} frames ({:.1f} s), covered {:.1f} m{}, deviation mean {:.3f} m max {:.3f} m, "
+  const nlohmann::json& edit = r["path_edit"];
+  const std::string edited =
+      edit["edited"].get<bool>()
+          ? fmt::format(" (as the graph played it {:.3f} m, {:.3f} m; bent onto the path, turning at the limit "
+                        "over {:.0f} % of it)",
+                        r["graph_mean_deviation_m"].get<double>(), r["graph_max_deviation_m"].get<double>(),
+                        100.0 * edit["limited_share"].get<double>())
+          : std::string();
+  fmt::print("path {:.1f} m: {} frames ({:.1f} s), covered {:.1f} m{}, deviation mean {:.3f} m max {:.3f} m{}, "
              "{:.1f} s taken ({:.1f} s searching)\n",
              r["path_length_m"].get<double>(), result->motion.frame_count, r["duration_s"].get<double>(),
              r["arc_covered_m"].get<double>(), r["reached_end"].get<bool>() ? "" : " (end not reached)",
-             r["mean_deviation_m"].get<double>(), r["max_deviation_m"].get<double>(), r["seconds"].get<double>(),
-             r["search_seconds"].get<double>());
+             r["mean_deviation_m"].get<double>(), r["max_deviation_m"].get<double>(), edited,
+             r["seconds"].get<double>(), r["search_seconds"].get<double>());
   return 0;
 }
 
@@ -81,6 +89,13 @@ Command add_path_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--start-node", o->settings.start_node,
                   "Start at this node (default: the best of about 16 spread over the graph and over its sets of tags)");
+  sub->add_flag("!--no-path-edit", o->settings.edit_path,
+                "Keep the motion as the graph plays it; by default it is bent onto the path (Gleicher's motion path "
+                "editing), adding at most --edit-max-turn of turning");
+  sub->add_option("--edit-max-turn", o->settings.path_edit.max_turn_deg_per_m,
+                  "Turning (degrees per metre travelled) the path edit may add; where bending the motion onto the "
+                  "path would take more, it is bent less and follows the path less closely")
+      ->capture_default_str();
   return {sub, [o] { return run_path(*o); }};
 }
 

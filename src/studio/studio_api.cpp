@@ -10,6 +10,7 @@
 
 #include "motiongraph/core/json_text.h"
 #include "motiongraph/evaluation/foot_slide_report.h"
+#include "motiongraph/evaluation/synthesis_run.h"
 #include "motiongraph/export/positions_json.h"
 #include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/skeleton/foot_joints.h"
@@ -362,7 +363,9 @@ class Router {
     for (const PathSegment& s : floor_path->segments()) {
       if (auto mask = service_.context().tag_mask(s.tag); !mask) throw ApiError{400, mask.error().message};
     }
-    auto synthesized = service_.path(*floor_path, {}, boolean_field(body, "cleanup", true));
+    PathSynthesisSettings settings;
+    settings.edit_path = boolean_field(body, "edit_path", true);
+    auto synthesized = service_.path(*floor_path, settings, boolean_field(body, "cleanup", true));
     if (!synthesized) throw ApiError{422, synthesized.error().to_string()};
     const PathSynthesisResult* result = &synthesized->synthesis;
     json out = motion_json(skeleton(), result->motion);
@@ -375,6 +378,9 @@ class Router {
     out["reached_end"] = result->reached_end;
     out["mean_deviation_m"] = result->mean_deviation_m;
     out["max_deviation_m"] = result->max_deviation_m;
+    out["graph_mean_deviation_m"] = result->graph_mean_deviation_m;
+    out["graph_max_deviation_m"] = result->graph_max_deviation_m;
+    out["path_edit"] = path_edit_report(settings, *result);
     out["tag_match"] = result->tag_match;
     const int transitions = result->walk.transition_count(graph());
     out["transitions"] = transitions;

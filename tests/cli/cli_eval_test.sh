@@ -78,11 +78,15 @@ for r in w:
 assert all(len(pairs) == 1 for pairs in by_walk.values())   # the same nodes for every cost
 
 p = rows("eval/paths.csv", ["shape", "path_length_m", "arc_covered_m", "mean_deviation_m",
-     "max_deviation_m", "reached_end", "frames", "searches", "budget_exhausted"])
+     "max_deviation_m", "reached_end", "frames", "searches", "budget_exhausted", "graph_mean_deviation_m",
+     "graph_max_deviation_m"])
 assert [r["shape"] for r in p] == ["line:20", "circle:5", "figure8:4", "s-curve:100"]
 for r in p:
     mean, most = float(r["mean_deviation_m"]), float(r["max_deviation_m"])
     assert math.isfinite(mean) and math.isfinite(most) and 0 <= mean <= most, r
+    # Bent onto the path, the motion is closer to it than the graph played it.
+    graph_mean, graph_most = float(r["graph_mean_deviation_m"]), float(r["graph_max_deviation_m"])
+    assert 0 <= mean < graph_mean <= graph_most, r
     assert float(r["path_length_m"]) > 0 and int(r["frames"]) > 0, r
 
 fs = rows("eval/footslide.csv", ["quantile", "threshold", "rms_cm", "shape", "graph", "frames", "transitions",

@@ -258,6 +258,15 @@ TEST(StudioApi, ResultsAreCleanedUnlessAskedNotToAndMeasuredAgainstTheirSource) 
   EXPECT_EQ(fc["source"]["clips"], fr["source"]["clips"]);  // the same walk, played as it is or cleaned
   EXPECT_LT(fc["mean_mps"].get<double>(), 0.5 * fr["mean_mps"].get<double>()) << fc << fr;
   EXPECT_LE(fc["ratio"]["mean_mps"].get<double>(), 1.0) << fc;
+  // Bent onto the path by default, as the CLI's path is; "edit_path": false plays the graph's walk.
+  const ApiCall plain = call_api("POST", "/api/path", path + R"(, "edit_path": false})");
+  ASSERT_EQ(plain.response.status, 200) << plain.response.body;
+  EXPECT_TRUE(cleaned.json["path_edit"]["edited"].get<bool>()) << cleaned.json["path_edit"];
+  EXPECT_FALSE(plain.json["path_edit"]["edited"].get<bool>()) << plain.json["path_edit"];
+  EXPECT_EQ(plain.json["mean_deviation_m"], plain.json["graph_mean_deviation_m"]);
+  EXPECT_EQ(plain.json["mean_deviation_m"], cleaned.json["graph_mean_deviation_m"]);
+  EXPECT_LT(cleaned.json["mean_deviation_m"].get<double>(), cleaned.json["graph_mean_deviation_m"].get<double>());
+  expect_error(call_api("POST", "/api/path", path + R"(, "edit_path": "yes"})"), 400, "edit_path");
   const ApiCall walk = call_api("POST", "/api/walk", R"({"from": 0, "to": 3, "min_frames": 90, "cleanup": false})");
   ASSERT_EQ(walk.response.status, 200) << walk.response.body;
   EXPECT_FALSE(walk.json["cleanup"].get<bool>());

@@ -169,7 +169,8 @@ TEST(PathCheck, ChoosesTheFirstThresholdWithinTheToleranceAndMeasuresAsPathSynth
   while (!passes(all->points[first], s.tolerance_m)) ++first;
   EXPECT_EQ(check->threshold, all->points[first].threshold);
   EXPECT_EQ(check->points.size(), first + 1);  // it stops there
-  // The deviation reported is path synthesis's on that threshold's graph, built again here.
+  // The deviation reported is path synthesis's on that threshold's graph, built again here, as
+  // the graph plays the walk (the check judges the graph, not the edit onto the path).
   GraphFromCandidatesSettings at = x.settings;
   at.transitions.threshold = check->threshold;
   auto graph = graph_from_candidates(x.db, x.features, x.search, at);
@@ -178,7 +179,7 @@ TEST(PathCheck, ChoosesTheFirstThresholdWithinTheToleranceAndMeasuresAsPathSynth
   ASSERT_TRUE(context);
   auto path = synthesize_path(*context, path_check_probe(), s.synthesis);
   ASSERT_TRUE(path);
-  EXPECT_DOUBLE_EQ(path->mean_deviation_m, check->chosen()->mean_deviation_m);
+  EXPECT_DOUBLE_EQ(path->graph_mean_deviation_m, check->chosen()->mean_deviation_m);
   EXPECT_EQ(path->reached_end, check->chosen()->reached_end);
   EXPECT_EQ(path->walk.transition_count(graph->pruned.graph), check->chosen()->transitions);
 }

@@ -25,6 +25,22 @@ TEST(PathSynthesis, FollowsTheBuiltInShapes) {
       sum += path->distance_to(Vec2(root.x(), root.z()));
     }
     EXPECT_NEAR(sum / result->motion.frame_count, result->mean_deviation_m, 1e-9) << spec;
+    // The graph follows the path by itself; the edit (on by default) bends its motion closer.
+    EXPECT_TRUE(result->edit.edited) << spec;
+    EXPECT_LT(result->graph_mean_deviation_m, 0.15) << spec;
+    EXPECT_LT(result->mean_deviation_m, result->graph_mean_deviation_m) << spec;
+    // Without the edit the search finds the same walk, and its motion is the graph's.
+    PathSynthesisSettings unedited;
+    unedited.edit_path = false;
+    auto plain = synthesize_path(s.context(), *path, unedited);
+    ASSERT_TRUE(plain.ok());
+    EXPECT_EQ(plain->walk.edges, result->walk.edges) << spec;
+    EXPECT_FALSE(plain->edit.edited);
+    EXPECT_EQ(plain->mean_deviation_m, result->graph_mean_deviation_m) << spec;
+    EXPECT_EQ(plain->max_deviation_m, result->graph_max_deviation_m) << spec;
+    EXPECT_EQ(plain->graph_mean_deviation_m, plain->mean_deviation_m) << spec;
+    ASSERT_EQ(plain->motion.frame_count, result->motion.frame_count);
+    EXPECT_EQ(plain->motion.translations(0)[0], result->motion.translations(0)[0]) << spec;
   }
 }
 

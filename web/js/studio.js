@@ -291,7 +291,8 @@ $('synthesize').addEventListener('click', async () => {
   $('path-info').textContent = 'synthesizing...';
   try {
     const result = await post('/api/path',
-      { points: state.path.points, segments: pathSegments(), cleanup: $('cleanup').checked });
+      { points: state.path.points, segments: pathSegments(), cleanup: $('cleanup').checked,
+        edit_path: $('edit-path').checked });
     result.roots = result.positions.map((f) => [f[0], f[2]]);
     state.pathResult = result;
     drawPath();
@@ -303,6 +304,8 @@ $('synthesize').addEventListener('click', async () => {
     $('path-info').textContent = `${result.path_length_m.toFixed(1)} m, ${result.frames} frames `
       + `(${(result.frames / result.fps).toFixed(1)} s): deviation mean ${result.mean_deviation_m.toFixed(2)} m, `
       + `max ${result.max_deviation_m.toFixed(2)} m${result.reached_end ? '' : ' (end not reached)'}`
+      + (result.path_edit.edited ? ` (bent onto the path; as the graph played it `
+        + `${result.graph_mean_deviation_m.toFixed(2)} m, max ${result.graph_max_deviation_m.toFixed(2)} m)` : '')
       + `, tags matched ${(100 * result.tag_match).toFixed(0)} %; ${result.transitions} transitions `
       + `(${result.transitions_per_second.toFixed(2)}/s); ${footSlideText(result)}`;
   } catch (err) {

@@ -19,6 +19,8 @@ Result<std::vector<PathErrorRow>> measure_path_errors(const SynthesisContext& co
     row.arc_covered_m = result->arc_covered_m;
     row.mean_deviation_m = result->mean_deviation_m;
     row.max_deviation_m = result->max_deviation_m;
+    row.graph_mean_deviation_m = result->graph_mean_deviation_m;
+    row.graph_max_deviation_m = result->graph_max_deviation_m;
     row.reached_end = result->reached_end;
     row.frames = result->motion.frame_count;
     row.searches = result->searches;

@@ -1,7 +1,7 @@
 // Path-following error (Kovar et al. 2002, section 5): for each built-in shape (floor_path.h),
 // the motion path synthesis makes and how far its root strays from the path: the mean and
-// largest distance to the nearest point of the path over its frames, and whether it reached
-// the path's end.
+// largest distance to the nearest point of the path over its frames, as edited onto the path
+// (path_edit.h) and as the graph played it, and whether it reached the path's end.
 #pragma once
 
 #include <span>
@@ -18,6 +18,8 @@ struct PathErrorRow {
   double arc_covered_m = 0.0;
   double mean_deviation_m = 0.0;
   double max_deviation_m = 0.0;
+  double graph_mean_deviation_m = 0.0;  // before the edit
+  double graph_max_deviation_m = 0.0;
   bool reached_end = false;
   int frames = 0;
   int searches = 0;

@@ -66,6 +66,17 @@ nlohmann::json cleanup_report(const SynthesisContext& context, const SynthesisRu
           {"replants", s.replants}};
 }
 
+nlohmann::json path_edit_report(const PathSynthesisSettings& search, const PathSynthesisResult& result) {
+  const PathEditStats& e = result.edit;
+  nlohmann::json report = {{"enabled", search.edit_path}, {"edited", e.edited}};
+  if (!search.edit_path) return report;
+  report["max_turn_deg_per_m"] = search.path_edit.max_turn_deg_per_m;
+  report["limited_share"] = e.limited_share;
+  report["max_added_turn_deg"] = e.max_added_turn_deg;
+  report["max_shift_m"] = e.max_shift_m;
+  return report;
+}
+
 Result<SynthesizedMotion> run_walk_synthesis(const SynthesisContext& context, int from, int to,
                                              const WalkSearchSettings& walk, const SynthesisRunSettings& settings) {
   if (auto s = walk.validate(); !s) return s.error();
@@ -122,6 +133,9 @@ Result<SynthesizedMotion> run_path_synthesis(const SynthesisContext& context, co
                 {"reached_end", result->reached_end},
                 {"mean_deviation_m", result->mean_deviation_m},
                 {"max_deviation_m", result->max_deviation_m},
+                {"graph_mean_deviation_m", result->graph_mean_deviation_m},
+                {"graph_max_deviation_m", result->graph_max_deviation_m},
+                {"path_edit", path_edit_report(search, *result)},
                 {"tag_match", result->tag_match},
                 {"frames", motion.frame_count},
                 {"fps", motion.fps},

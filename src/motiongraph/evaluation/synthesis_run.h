@@ -44,6 +44,10 @@ std::optional<FootCleanup> make_cleanup(const SynthesisContext& context, const S
 nlohmann::json cleanup_report(const SynthesisContext& context, const SynthesisRunSettings& settings,
                               const std::optional<FootCleanup>& cleanup);
 
+// The report's "path_edit": whether the motion was edited onto the path and what the edit did
+// (path_edit.h).
+nlohmann::json path_edit_report(const PathSynthesisSettings& search, const PathSynthesisResult& result);
+
 // The cheapest walk from node `from` to node `to` (walk_search.h), starting at the origin
 // facing north.
 Result<SynthesizedMotion> run_walk_synthesis(const SynthesisContext& context, int from, int to,

@@ -92,11 +92,13 @@ Result<PathCheckPoint> probe_at(const MotionDatabase& db, const FrameFeatures& f
   if (!context) return context.error();
   if (travel_share != nullptr) *travel_share = travelling_share(*context, check.travel_speed_mps);
   const auto start = std::chrono::steady_clock::now();
-  auto result = synthesize_path(*context, probe, check.synthesis);
+  PathSynthesisSettings search = check.synthesis;
+  search.edit_path = false;  // the graph is judged, not the edit that bends its motion
+  auto result = synthesize_path(*context, probe, search);
   if (!result) return result.error();
   point.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  point.mean_deviation_m = result->mean_deviation_m;
-  point.max_deviation_m = result->max_deviation_m;
+  point.mean_deviation_m = result->graph_mean_deviation_m;
+  point.max_deviation_m = result->graph_max_deviation_m;
   point.reached_end = result->reached_end;
   point.arc_covered_m = result->arc_covered_m;
   point.transitions = result->walk.transition_count(built->graph);

@@ -19,7 +19,7 @@ Status PathSynthesisSettings::validate() const {
   }
   if (max_expansions < 1 || start_candidates < 1) return Error{"", 0, "path search: budgets must be positive"};
   if (beam_width < 0) return Error{"", 0, "path search: the beam width must be >= 0"};
-  return Ok{};
+  return path_edit.validate();
 }
 
 namespace {
@@ -239,6 +239,22 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
   }
   result.frame_tags.push_back(context.frame_tags.empty() ? 0 : context.frame_tags[graph.nodes[result.walk.end_node(graph)].frame]);
   result.frame_tags.resize(static_cast<size_t>(end));
+  double graph_sum = 0.0;
+  for (const Vec2& root : result.roots) {
+    const double d = path.distance_to(root);
+    graph_sum += d;
+    result.graph_max_deviation_m = std::max(result.graph_max_deviation_m, d);
+  }
+  result.graph_mean_deviation_m = graph_sum / end;
+  if (settings.edit_path) {
+    auto edited = edit_onto_path(result.motion, path, settings.path_edit);
+    if (!edited) return edited.error();
+    result.edit = *edited;
+    for (int f = 0; f < end; ++f) {
+      const Vec3& p = result.motion.translations(f)[0];
+      result.roots[f] = Vec2(p.x(), p.z());
+    }
+  }
   double sum = 0.0, in_segments = 0.0, matched = 0.0;
   arc = 0.0;
   for (int f = 0; f < end; ++f) {

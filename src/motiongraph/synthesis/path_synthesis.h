@@ -11,10 +11,15 @@
 // first search costs least among about `start_candidates` nodes spread over the graph and over
 // its sets of tags, at least one node of each (nodes carrying the tag asked for at the start
 // when there is one).
+//
+// The walk's motion is then edited onto the path (path_edit.h: Gleicher's motion path editing,
+// within a limit on the turning it adds) unless edit_path is false; the result gives the
+// deviation of both, the walk as the graph played it and the motion edited.
 #pragma once
 
 #include "motiongraph/synthesis/floor_path.h"
 #include "motiongraph/synthesis/horizon_search.h"
+#include "motiongraph/synthesis/path_edit.h"
 #include "motiongraph/synthesis/synthesis_context.h"
 
 namespace mg {
@@ -41,6 +46,10 @@ struct PathSynthesisSettings {
   // bound (benchmarks compare the two).
   bool lower_bound = true;             // bound the frames still to come (PathCost)
   bool warm_start = true;              // try the rest of the previous search's walk first
+  // Bend the walk's motion onto the path (path_edit.h). The build's path check judges the
+  // graph, and turns it off.
+  bool edit_path = true;
+  PathEditSettings path_edit;
 
   Status validate() const;
 };
@@ -48,13 +57,17 @@ struct PathSynthesisSettings {
 struct PathSynthesisResult {
   Walk walk;
   FloorTransform start;
-  Motion motion;                      // trimmed at the frame that completes the path
+  Motion motion;                      // trimmed at the frame that completes the path; edited
   std::vector<Vec2> roots;            // the motion's root floor positions
   std::vector<TagMask> frame_tags;    // tags of each frame of motion
   double path_length_m = 0.0;
   double arc_covered_m = 0.0;
   double mean_deviation_m = 0.0;      // root's distance to the nearest point of the path
   double max_deviation_m = 0.0;
+  // The same of the walk as the graph plays it, before the edit (equal when there is none).
+  double graph_mean_deviation_m = 0.0;
+  double graph_max_deviation_m = 0.0;
+  PathEditStats edit;                 // edit.edited false: not edited
   double tag_match = 1.0;             // fraction of frames inside a segment that carry its tag
   bool reached_end = false;
   int searches = 0;

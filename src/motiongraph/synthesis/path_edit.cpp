@@ -1,0 +1,174 @@
+#include "motiongraph/synthesis/path_edit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "motiongraph/synthesis/floor_transform.h"
+
+namespace mg {
+
+Status PathEditSettings::validate() const {
+  const bool finite = std::isfinite(smooth_s) && std::isfinite(tangent_m) && std::isfinite(max_turn_deg_per_m) &&
+                      std::isfinite(lookahead_m);
+  if (!finite || smooth_s < 0.0) return Error{"", 0, "path edit: the smoothing must be finite and >= 0 seconds"};
+  if (!(tangent_m > 0.0) || !(lookahead_m > 0.0)) {
+    return Error{"", 0, "path edit: the tangent's chord and the look-ahead must be > 0 metres"};
+  }
+  if (max_turn_deg_per_m < 0.0) return Error{"", 0, "path edit: the turning it may add must be >= 0 degrees per metre"};
+  return Ok{};
+}
+
+namespace {
+
+// The yaw (FloorTransform's sense) that turns floor direction u onto v.
+double yaw_between(const Vec2& u, const Vec2& v) {
+  const double cross = u.x() * v.y() - u.y() * v.x();
+  return std::atan2(-cross, u.dot(v));
+}
+
+// v turned by yaw (FloorTransform::rotate on the floor).
+Vec2 turned(const Vec2& v, double yaw) {
+  const double c = std::cos(yaw), s = std::sin(yaw);
+  return {c * v.x() + s * v.y(), -s * v.x() + c * v.y()};
+}
+
+// The path asked for at arc length s, continued straight past its end (and before its start).
+Vec2 target_at(const FloorPath& path, double s) {
+  const double length = path.length_m();
+  if (s < 0.0) return path.points().front() + s * path.direction_at(0.0);
+  if (s <= length) return path.point_at(s);
+  return path.point_at(length) + (s - length) * path.direction_at(length);
+}
+
+// A polyline parametrised by its arc length (non-decreasing), clamped at its ends.
+struct ArcCurve {
+  std::vector<double> arc;
+  std::vector<Vec2> points;
+
+  Vec2 at(double s) const {
+    const auto it = std::upper_bound(arc.begin(), arc.end(), s);
+    if (it == arc.begin()) return points.front();
+    if (it == arc.end()) return points.back();
+    const auto i = static_cast<size_t>(it - arc.begin());  // arc[i - 1] <= s < arc[i]
+    const double u = (s - arc[i - 1]) / (arc[i] - arc[i - 1]);
+    return points[i - 1] + u * (points[i] - points[i - 1]);
+  }
+};
+
+// The nearest point of the path to p among arc lengths [from, to] (clamped to the path): its
+// arc length. `arc` holds the arc length at each of the path's points.
+double nearest_arc(const FloorPath& path, const std::vector<double>& arc, const Vec2& p, double from, double to) {
+  const std::vector<Vec2>& points = path.points();
+  from = std::max(0.0, from);
+  to = std::min(arc.back(), to);
+  size_t i = static_cast<size_t>(std::upper_bound(arc.begin(), arc.end(), from) - arc.begin());
+  i = i == 0 ? 0 : i - 1;
+  double best_arc = from, best = (path.point_at(from) - p).squaredNorm();
+  for (; i + 1 < points.size() && arc[i] <= to; ++i) {
+    const Vec2 d = points[i + 1] - points[i];
+    const double length = arc[i + 1] - arc[i];
+    double u = length > 0.0 ? (p - points[i]).dot(d) / (length * length) : 0.0;
+    const double s = std::clamp(arc[i] + u * length, from, to);
+    u = length > 0.0 ? (s - arc[i]) / length : 0.0;
+    const double distance = (points[i] + u * d - p).squaredNorm();
+    if (distance < best) {
+      best = distance;
+      best_arc = s;
+    }
+  }
+  return best_arc;
+}
+
+}  // namespace
+
+Result<PathEditStats> edit_onto_path(Motion& motion, const FloorPath& path, const PathEditSettings& settings) {
+  if (auto s = settings.validate(); !s) return s.error();
+  PathEditStats stats;
+  const int frames = motion.frame_count;
+  if (frames < 2 || motion.translated_count < 1 || motion.joint_count < 1) return stats;
+
+  // 1. The motion's own path, and each frame's arc along it.
+  std::vector<Vec2> prefix(static_cast<size_t>(frames) + 1, Vec2::Zero());
+  for (int f = 0; f < frames; ++f) {
+    const Vec3& p = motion.translations(f)[0];
+    prefix[f + 1] = prefix[f] + Vec2(p.x(), p.z());
+  }
+  const int half = static_cast<int>(std::lround(settings.smooth_s * motion.fps / 2.0));
+  ArcCurve own;
+  for (int f = 0; f < frames; ++f) {
+    const int h = std::min({half, f, frames - 1 - f});
+    const Vec2 q = (prefix[f + h + 1] - prefix[f - h]) / static_cast<double>(2 * h + 1);
+    own.arc.push_back(f == 0 ? 0.0 : own.arc.back() + (q - own.points.back()).norm());
+    own.points.push_back(q);
+  }
+  const double end = own.arc.back();
+  if (end < PathEditSettings::kStepM) return stats;  // the root does not travel
+
+  // 2. The added angle, steered along a grid of arc: a[k] turns Q's step from grid[k] to
+  // grid[k + 1], and edited[k] is Q' at grid[k]; along[k] is the arc length of P's point nearest
+  // it, searched near the last one (a path that crosses itself is followed, not jumped across).
+  const auto steps = static_cast<size_t>(std::ceil(end / PathEditSettings::kStepM - 1e-9));
+  std::vector<double> grid(steps + 1);
+  for (size_t k = 0; k <= steps; ++k) grid[k] = std::min(end, static_cast<double>(k) * PathEditSettings::kStepM);
+  std::vector<double> path_arc(1, 0.0);
+  for (size_t i = 1; i < path.points().size(); ++i) {
+    path_arc.push_back(path_arc.back() + (path.points()[i] - path.points()[i - 1]).norm());
+  }
+  std::vector<double> a(grid.size(), 0.0);
+  std::vector<Vec2> edited(grid.size());
+  edited[0] = own.points.front();
+  const double h = settings.tangent_m;
+  const double limit = settings.max_turn_deg_per_m * std::numbers::pi / 180.0;
+  constexpr double kReachM = 1.0;  // how far the nearest point is looked for from the last one
+  double along = 0.0, limited_arc = 0.0;
+  for (size_t k = 0; k < steps; ++k) {
+    const double s = grid[k];
+    const double step = grid[k + 1] - s;
+    along = nearest_arc(path, path_arc, edited[k], along - kReachM, along + kReachM + step);
+    const Vec2 own_chord = turned(own.at(std::min(end, s + h)) - own.at(std::max(0.0, s - h)), a[k]);
+    const Vec2 path_chord = target_at(path, along + h) - target_at(path, along - h);
+    double angle = a[k];
+    if (own_chord.norm() > 1e-9 && path_chord.norm() > 1e-9) {
+      // Along the path, or back along it when the motion goes that way (a step back).
+      Vec2 t = path_chord.normalized();
+      if (own_chord.dot(t) < 0.0) t = -t;
+      const Vec2 n(-t.y(), t.x());
+      const double offset = n.dot(edited[k] - target_at(path, along));
+      const Vec2 wanted = settings.lookahead_m * t - offset * n;
+      const double change = yaw_between(own_chord, wanted);
+      const double room = limit * step;
+      if (std::abs(change) > room) limited_arc += step;
+      angle = a[k] + std::clamp(change, -room, room);
+    }
+    edited[k + 1] = edited[k] + turned(own.at(grid[k + 1]) - own.at(s), a[k]);
+    a[k + 1] = angle;
+  }
+
+  // 3. Each frame moved rigidly on the floor, from Q(s_i) to Q'(s_i), turned by a(s_i).
+  for (int f = 0; f < frames; ++f) {
+    const double s = own.arc[f];
+    const auto k = std::min(steps - 1, static_cast<size_t>(std::upper_bound(grid.begin(), grid.end(), s) -
+                                                           grid.begin() - 1));
+    const double span = grid[k + 1] - grid[k];
+    const double u = span > 0.0 ? std::clamp((s - grid[k]) / span, 0.0, 1.0) : 0.0;
+    const Vec2& q = own.points[f];
+    const Vec2 moved = edited[k] + turned(q - own.at(grid[k]), a[k]);
+    FloorTransform move{a[k] + u * (a[k + 1] - a[k]), 0.0, 0.0};
+    const Vec3 q_turned = move.rotate(Vec3(q.x(), 0.0, q.y()));
+    move.x_m = moved.x() - q_turned.x();
+    move.z_m = moved.y() - q_turned.z();
+    Vec3& root = motion.translations(f)[0];
+    root = move.apply(root);
+    Quat& rotation = motion.rotations(f)[0];
+    rotation = (move.rotation() * rotation).normalized();
+    stats.max_added_turn_deg = std::max(stats.max_added_turn_deg, std::abs(move.yaw_rad) * 180.0 / std::numbers::pi);
+    stats.max_shift_m = std::max(stats.max_shift_m, (moved - q).norm());
+  }
+  stats.edited = true;
+  stats.limited_share = limited_arc / end;
+  return stats;
+}
+
+}  // namespace mg

@@ -1,0 +1,211 @@
+#include "motiongraph/synthesis/path_edit.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "motiongraph/synthesis/floor_transform.h"
+
+namespace mg {
+namespace {
+
+constexpr double kFps = 30.0;
+
+// A motion of `frames` frames on a two-joint figure whose root is at roots[f] on the floor,
+// 0.9 m high, facing along its travel over a second (north at rest: the root's -z; a second is
+// a stride of straight_walk, so its sway does not turn it), and whose second joint
+// turns with time (values the edit must leave alone).
+Motion motion_along(const std::vector<Vec2>& roots) {
+  Motion m;
+  m.fps = kFps;
+  m.frame_count = static_cast<int>(roots.size());
+  m.joint_count = 2;
+  m.translated_count = 1;
+  m.local_rotations.resize(roots.size() * 2);
+  m.local_translations_m.resize(roots.size());
+  for (int f = 0; f < m.frame_count; ++f) {
+    const Vec2 ahead = roots[std::min<size_t>(roots.size() - 1, f + 15)] - roots[std::max(0, f - 15)];
+    // Yaw turning north (0, -1) onto `ahead` (FloorTransform's sense).
+    const double yaw = ahead.norm() > 0.0 ? std::atan2(-ahead.x(), -ahead.y()) : 0.0;
+    m.translations(f)[0] = Vec3(roots[f].x(), 0.9 + 0.02 * std::sin(f * 0.4), roots[f].y());
+    m.rotations(f)[0] = Quat(Eigen::AngleAxisd(yaw, Vec3::UnitY())) * Quat(Eigen::AngleAxisd(0.1, Vec3::UnitX()));
+    m.rotations(f)[1] = Quat(Eigen::AngleAxisd(0.01 * f, Vec3(1.0, 2.0, 3.0).normalized()));
+  }
+  return m;
+}
+
+// A straight walk north from the origin at `speed`, swaying `sway` metres either side with each
+// stride (1 s).
+std::vector<Vec2> straight_walk(double seconds, double speed, double sway) {
+  std::vector<Vec2> roots;
+  for (int f = 0; f <= static_cast<int>(seconds * kFps); ++f) {
+    const double t = f / kFps;
+    roots.emplace_back(sway * std::sin(2.0 * std::numbers::pi * t), -speed * t);
+  }
+  return roots;
+}
+
+Vec2 root_of(const Motion& m, int f) {
+  const Vec3& p = m.translations(f)[0];
+  return {p.x(), p.z()};
+}
+
+// The yaw the edit added at frame f: edited rotation times the original's inverse, about +y.
+double added_yaw(const Motion& edited, const Motion& original, int f) {
+  const Quat d = edited.rotations(f)[0] * original.rotations(f)[0].conjugate();
+  return 2.0 * std::atan2(d.y(), d.w());
+}
+
+// What the edit may change: the root's floor position and its turn about +y; nothing else.
+void expect_only_root_moved_on_floor(const Motion& edited, const Motion& original) {
+  ASSERT_EQ(edited.frame_count, original.frame_count);
+  for (int f = 0; f < edited.frame_count; ++f) {
+    EXPECT_DOUBLE_EQ(edited.translations(f)[0].y(), original.translations(f)[0].y());
+    const Quat d = edited.rotations(f)[0] * original.rotations(f)[0].conjugate();
+    EXPECT_NEAR(std::hypot(d.x(), d.z()), 0.0, 1e-9) << f;  // a turn about the vertical only
+    EXPECT_EQ(edited.rotations(f)[1].coeffs(), original.rotations(f)[1].coeffs());
+  }
+}
+
+TEST(PathEdit, AMotionOnThePathStaysAsItIs) {
+  auto path = make_shape("line:20");
+  ASSERT_TRUE(path.ok());
+  const Motion original = motion_along(straight_walk(10.0, 1.3, 0.0));
+  Motion edited = original;
+  auto stats = edit_onto_path(edited, *path);
+  ASSERT_TRUE(stats.ok()) << stats.error().to_string();
+  EXPECT_TRUE(stats->edited);
+  EXPECT_EQ(stats->limited_share, 0.0);
+  for (int f = 0; f < edited.frame_count; ++f) {
+    EXPECT_LT((root_of(edited, f) - root_of(original, f)).norm(), 1e-9) << f;
+    EXPECT_NEAR(added_yaw(edited, original, f), 0.0, 1e-9) << f;
+  }
+}
+
+TEST(PathEdit, BendsAStraightWalkOntoACircleKeepingItsSwayAndSpeed) {
+  auto path = make_shape("circle:10");  // turning 5.7 degrees a metre
+  ASSERT_TRUE(path.ok());
+  const double sway = 0.03;
+  const Motion original = motion_along(straight_walk(40.0, 1.3, sway));
+  double before = 0.0;
+  for (int f = 0; f < original.frame_count; ++f) before += path->distance_to(root_of(original, f));
+  Motion edited = original;
+  auto stats = edit_onto_path(edited, *path);
+  ASSERT_TRUE(stats.ok());
+  expect_only_root_moved_on_floor(edited, original);
+  EXPECT_LT(stats->limited_share, 0.01);
+  // Off the circle by its sway (a mean of 2 sway / pi), not by the metres the straight walk was.
+  double after = 0.0, travel_before = 0.0, travel_after = 0.0, worst_facing = 0.0;
+  for (int f = 0; f < edited.frame_count; ++f) {
+    after += path->distance_to(root_of(edited, f));
+    if (f > 0) {
+      travel_before += (root_of(original, f) - root_of(original, f - 1)).norm();
+      travel_after += (root_of(edited, f) - root_of(edited, f - 1)).norm();
+    }
+    // It faces along the circle, as the walk faced along its line (its facing turned by the edit).
+    const double t = f / kFps;
+    if (t > 2.0 && 1.3 * t < path->length_m() - 1.0) {
+      const Vec3 facing = edited.rotations(f)[0] * Quat(Eigen::AngleAxisd(0.1, Vec3::UnitX())).conjugate() *
+                          Vec3(0.0, 0.0, -1.0);
+      // The point of the circle nearest the root, and the circle's direction there (clockwise).
+      const Vec2 centre(10.0, 0.0);
+      const Vec2 out = (root_of(edited, f) - centre).normalized();
+      const Vec2 along(-out.y(), out.x());
+      worst_facing = std::max(worst_facing, std::acos(std::clamp(Vec2(facing.x(), facing.z()).dot(along), -1.0, 1.0)));
+    }
+  }
+  before /= original.frame_count;
+  after /= edited.frame_count;
+  EXPECT_GT(before, 3.0);
+  EXPECT_LT(after, 2.0 * sway / std::numbers::pi + 0.015);
+  EXPECT_NEAR(travel_after, travel_before, 0.005 * travel_before);
+  EXPECT_LT(worst_facing * 180.0 / std::numbers::pi, 3.0);
+  EXPECT_GT(stats->max_added_turn_deg, 180.0);  // more than half the circle: the walk went 52 m
+}
+
+TEST(PathEdit, NeverAddsMoreTurningThanAllowed) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int trial = 0; trial < 30; ++trial) {
+    // A wandering walk: its heading drifts at random, its speed varies, it sometimes stops.
+    std::vector<Vec2> roots{Vec2::Zero()};
+    double heading = 0.0;
+    for (int f = 1; f < 900; ++f) {
+      heading += (unit(rng) - 0.5) * 0.2;
+      const double speed = (f / 90) % 4 == 3 ? 0.0 : 0.5 + 1.5 * unit(rng);
+      roots.push_back(roots.back() + speed / kFps * Vec2(std::sin(heading), -std::cos(heading)));
+    }
+    const Motion original = motion_along(roots);
+    const char* shapes[] = {"s-curve:40", "circle:3", "figure8:4", "line:30"};
+    auto path = make_shape(shapes[trial % 4]);
+    ASSERT_TRUE(path.ok());
+    PathEditSettings settings;
+    settings.max_turn_deg_per_m = 5.0 + 40.0 * unit(rng);
+    settings.smooth_s = 0.5 + unit(rng);
+    Motion edited = original;
+    auto stats = edit_onto_path(edited, *path, settings);
+    ASSERT_TRUE(stats.ok());
+    expect_only_root_moved_on_floor(edited, original);
+    // The motion's own path, as the edit defines it, and the turn added from frame to frame.
+    const int half = static_cast<int>(std::lround(settings.smooth_s * kFps / 2.0));
+    const int n = original.frame_count;
+    Vec2 last = Vec2::Zero();
+    for (int f = 0; f < n; ++f) {
+      const int h = std::min({half, f, n - 1 - f});
+      Vec2 q = Vec2::Zero();
+      for (int g = f - h; g <= f + h; ++g) q += root_of(original, g);
+      q /= 2 * h + 1;
+      if (f > 0) {
+        const double step = (q - last).norm();
+        const double turn = std::remainder(added_yaw(edited, original, f) - added_yaw(edited, original, f - 1),
+                                           2.0 * std::numbers::pi);
+        EXPECT_LE(std::abs(turn), settings.max_turn_deg_per_m * std::numbers::pi / 180.0 * step + 1e-9)
+            << "trial " << trial << " frame " << f;
+      }
+      last = q;
+    }
+  }
+}
+
+TEST(PathEdit, NoTurningAllowedLeavesTheMotionAsItIs) {
+  auto path = make_shape("s-curve:40");
+  ASSERT_TRUE(path.ok());
+  const Motion original = motion_along(straight_walk(20.0, 1.3, 0.03));
+  Motion edited = original;
+  PathEditSettings settings;
+  settings.max_turn_deg_per_m = 0.0;
+  auto stats = edit_onto_path(edited, *path, settings);
+  ASSERT_TRUE(stats.ok());
+  EXPECT_GT(stats->limited_share, 0.5);
+  for (int f = 0; f < edited.frame_count; ++f) {
+    EXPECT_LT((root_of(edited, f) - root_of(original, f)).norm(), 1e-9) << f;
+  }
+}
+
+TEST(PathEdit, AMotionThatDoesNotTravelIsLeftAlone) {
+  auto path = make_shape("line:10");
+  ASSERT_TRUE(path.ok());
+  const Motion original = motion_along(std::vector<Vec2>(60, Vec2(0.01, 0.0)));
+  Motion edited = original;
+  auto stats = edit_onto_path(edited, *path);
+  ASSERT_TRUE(stats.ok());
+  EXPECT_FALSE(stats->edited);
+  EXPECT_EQ(edited.local_translations_m, original.local_translations_m);
+}
+
+TEST(PathEdit, BadSettingsAreErrors) {
+  auto path = make_shape("line:10");
+  ASSERT_TRUE(path.ok());
+  Motion m = motion_along(straight_walk(5.0, 1.0, 0.0));
+  for (auto bad : {PathEditSettings{.smooth_s = -1.0}, PathEditSettings{.tangent_m = 0.0},
+                   PathEditSettings{.max_turn_deg_per_m = -1.0}, PathEditSettings{.lookahead_m = 0.0},
+                   PathEditSettings{.max_turn_deg_per_m = std::nan("")}}) {
+    EXPECT_FALSE(bad.validate().ok());
+    EXPECT_FALSE(edit_onto_path(m, *path, bad).ok());
+  }
+}
+
+}  // namespace
+}  // namespace mg
