@@ -42,10 +42,15 @@ int run_path(const PathOptions& o) {
                         r["graph_mean_deviation_m"].get<double>(), r["graph_max_deviation_m"].get<double>(),
                         100.0 * edit["limited_share"].get<double>())
           : std::string();
-  fmt::print("path {:.1f} m: {} frames ({:.1f} s), covered {:.1f} m{}, deviation mean {:.3f} m max {:.3f} m{}, "
+  const int attempts = r["attempts"].get<int>();
+  const std::string pushed =
+      attempts > 1 ? fmt::format(" after {} searches of the whole path (behind penalty {:g})", attempts,
+                                 r["behind_penalty_m"].get<double>())
+                   : std::string();
+  fmt::print("path {:.1f} m: {} frames ({:.1f} s), covered {:.1f} m{}{}, deviation mean {:.3f} m max {:.3f} m{}, "
              "{:.1f} s taken ({:.1f} s searching)\n",
              r["path_length_m"].get<double>(), result->motion.frame_count, r["duration_s"].get<double>(),
-             r["arc_covered_m"].get<double>(), r["reached_end"].get<bool>() ? "" : " (end not reached)",
+             r["arc_covered_m"].get<double>(), r["reached_end"].get<bool>() ? "" : " (end not reached)", pushed,
              r["mean_deviation_m"].get<double>(), r["max_deviation_m"].get<double>(), edited,
              r["seconds"].get<double>(), r["search_seconds"].get<double>());
   return 0;
@@ -89,6 +94,10 @@ Command add_path_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--start-node", o->settings.start_node,
                   "Start at this node (default: the best of about 16 spread over the graph and over its sets of tags)");
+  sub->add_option("--progress-retries", o->settings.progress_retries,
+                  "When the walk does not reach the path's end (it dawdled), search again this many times, the "
+                  "--behind-penalty 4x higher each time; the first to reach the end is kept")
+      ->capture_default_str();
   sub->add_flag("!--no-path-edit", o->settings.edit_path,
                 "Keep the motion as the graph plays it; by default it is bent onto the path (Gleicher's motion path "
                 "editing), adding at most --edit-max-turn of turning");

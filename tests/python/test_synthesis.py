@@ -28,11 +28,13 @@ def test_path_equals_the_cli(cli, graph_file, graph, tmp_path):
 def test_path_from_points_and_options(cli, graph_file, graph, tmp_path):
     points = [[0.0, 0.0], [0.0, -6.0], [4.0, -10.0], [8.0, -10.0]]
     (tmp_path / "path.json").write_text(json.dumps({"points": points}))
-    options = ["--horizon", 2, "--transition-penalty", 0.5, "--beam", 16, "--no-cleanup", "--edit-max-turn", 30]
+    options = ["--horizon", 2, "--transition-penalty", 0.5, "--beam", 16, "--no-cleanup", "--edit-max-turn", 30,
+               "--progress-retries", 1]
     cli("path", graph_file, "--path", tmp_path / "path.json", *options, "-o", tmp_path / "cli.json",
         "--report", tmp_path / "r.json")
     want = read_json(tmp_path / "cli.json")
-    kwargs = dict(horizon=2, transition_penalty=0.5, beam=16, cleanup=False, edit_max_turn=30)
+    kwargs = dict(horizon=2, transition_penalty=0.5, beam=16, cleanup=False, edit_max_turn=30,
+                  progress_retries=1)
     for motion in (graph.path(points=points, **kwargs), graph.path(points=np.array(points), **kwargs),
                    graph.path(file=str(tmp_path / "path.json"), **kwargs)):
         assert_positions_equal(motion, want)

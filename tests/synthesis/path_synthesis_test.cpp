@@ -4,6 +4,7 @@
 
 #include "motiongraph/motion/forward_kinematics.h"
 #include "synthesis/subject16_graph.h"
+#include "test_data.h"
 
 namespace mg {
 namespace {
@@ -121,6 +122,87 @@ TEST(PathSynthesis, ASlowestSpeedAboveWalkingPaceMakesItRun) {
   EXPECT_GT(share_running(*hurried), 0.5);
   EXPECT_LT(hurried->motion.frame_count, 0.6 * walked->motion.frame_count);
   EXPECT_LT(hurried->mean_deviation_m, 0.15);
+}
+
+// A library that can stand still or walk straight ahead (16_15), and a path it cannot follow by
+// walking, a circle of 1 m: Kovar's cost prefers standing at the start, on the path, to walking
+// off it, and the walk dawdles until the search gives up. Searched again with the behind penalty
+// 4x and 16x higher, it walks, and covers the path's length.
+TEST(PathSynthesis, AWalkThatDawdlesIsSearchedAgainPushingOn) {
+  MotionDatabase db = test::small_database({"cmu/16/16_15.amc"});
+  const int n = db.frame_count();
+  const int k = 10;
+  DatabaseClip stand;
+  stand.name = "stand";
+  stand.first_frame = n;
+  stand.frame_count = 90;
+  stand.motion = db.clips[0].motion.slice(0, 1);
+  for (int f = 1; f < stand.frame_count; ++f) {
+    Motion more = db.clips[0].motion.slice(0, 1);
+    stand.motion.local_rotations.insert(stand.motion.local_rotations.end(), more.local_rotations.begin(),
+                                        more.local_rotations.end());
+    stand.motion.local_translations_m.insert(stand.motion.local_translations_m.end(),
+                                             more.local_translations_m.begin(), more.local_translations_m.end());
+    ++stand.motion.frame_count;
+  }
+  db.clips.push_back(stand);
+  const Motion& walk = db.clips[0].motion;
+  // A transition leaving at `from` and arriving at `to`, placed so that the arrival window's last
+  // root lands on the departure window's last root (the clips walk north, unturned).
+  auto transition = [&](int from, int to) {
+    auto root = [&](int frame) {
+      return frame < n ? walk.translations(frame)[0] : walk.translations(0)[0];
+    };
+    const Vec3 shift = root(from + k - 1) - root(to);
+    Transition t;
+    t.from_frame = from;
+    t.to_frame = to;
+    t.x_m = static_cast<float>(shift.x());
+    t.z_m = static_cast<float>(shift.z());
+    return t;
+  };
+  const std::vector<Transition> transitions{
+      transition(n + 60, n + 20 + k - 1),  // stand on
+      transition(n + 30, k - 1),           // start walking
+      transition(n - 2 * k, n + k - 1),    // stop
+      transition(n - 2 * k, 2 * k - 1)};   // walk on
+  auto graph = build_motion_graph(db, transitions, k);
+  ASSERT_TRUE(graph.ok()) << graph.error().to_string();
+  auto context = make_synthesis_context(db, *graph);
+  ASSERT_TRUE(context.ok()) << context.error().to_string();
+  auto path = make_shape("circle:1");
+  ASSERT_TRUE(path.ok());
+  PathSynthesisSettings once;
+  once.progress_retries = 0;
+  once.start_node = graph->node_at_frame(n);  // standing
+  auto dawdled = synthesize_path(*context, *path, once);
+  ASSERT_TRUE(dawdled.ok()) << dawdled.error().to_string();
+  EXPECT_FALSE(dawdled->reached_end);
+  EXPECT_EQ(dawdled->attempts, 1);
+  EXPECT_EQ(dawdled->behind_penalty_m, 1.0);
+
+  PathSynthesisSettings pushing = once;
+  pushing.progress_retries = 2;
+  auto pushed = synthesize_path(*context, *path, pushing);
+  ASSERT_TRUE(pushed.ok());
+  EXPECT_TRUE(pushed->reached_end);
+  ASSERT_GT(pushed->attempts, 1);
+  EXPECT_EQ(pushed->behind_penalty_m, std::pow(kProgressRetryFactor, pushed->attempts - 1));
+  EXPECT_GT(pushed->searches, dawdled->searches);  // every attempt's searches are counted
+  EXPECT_GE(pushed->arc_covered_m, path->length_m());
+  // What was kept is the search at that penalty.
+  PathSynthesisSettings at = once;
+  at.behind_penalty_m = pushed->behind_penalty_m;
+  auto direct = synthesize_path(*context, *path, at);
+  ASSERT_TRUE(direct.ok());
+  EXPECT_EQ(direct->walk.edges, pushed->walk.edges);
+  EXPECT_EQ(direct->walk.start_node, pushed->walk.start_node);
+  // No behind penalty, no pushing.
+  PathSynthesisSettings kovar = pushing;
+  kovar.behind_penalty_m = 0.0;
+  auto plain = synthesize_path(*context, *path, kovar);
+  ASSERT_TRUE(plain.ok());
+  EXPECT_EQ(plain->attempts, 1);
 }
 
 }  // namespace

@@ -151,6 +151,8 @@ Result<SynthesizedMotion> run_path_synthesis(const SynthesisContext& context, co
                 {"searches", result->searches},
                 {"expansions", result->expansions},
                 {"budget_exhausted_searches", result->budget_exhausted},
+                {"attempts", result->attempts},
+                {"behind_penalty_m", result->behind_penalty_m},
                 {"start_node", out.walk.start_node},
                 {"edges", out.walk.edges},
                 {"transitions", transitions},

@@ -93,7 +93,8 @@ Result<PathCheckPoint> probe_at(const MotionDatabase& db, const FrameFeatures& f
   if (travel_share != nullptr) *travel_share = travelling_share(*context, check.travel_speed_mps);
   const auto start = std::chrono::steady_clock::now();
   PathSynthesisSettings search = check.synthesis;
-  search.edit_path = false;  // the graph is judged, not the edit that bends its motion
+  search.edit_path = false;     // the graph is judged, not the edit that bends its motion,
+  search.progress_retries = 0;  // nor another search pushing harder
   auto result = synthesize_path(*context, probe, search);
   if (!result) return result.error();
   point.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -30,7 +30,7 @@ struct PathCheckSettings {
   int steps = 6;                    // thresholds tried above the first, log-spaced in RMS to the ceiling
   double min_travel_share = 0.1;    // of clip frames; below it the check is skipped
   double travel_speed_mps = 0.5;    // a clip piece travels when its root moves this fast on average
-  PathSynthesisSettings synthesis;  // the search `path` uses by default, its motion not edited
+  PathSynthesisSettings synthesis;  // the search `path` uses by default, once, its motion not edited
 
   Status validate() const;
 };

@@ -18,6 +18,7 @@ Status PathSynthesisSettings::validate() const {
     return Error{"", 0, "path search: the slowest speed and its penalty must be >= 0"};
   }
   if (max_expansions < 1 || start_candidates < 1) return Error{"", 0, "path search: budgets must be positive"};
+  if (progress_retries < 0) return Error{"", 0, "path search: the retries must be >= 0"};
   if (beam_width < 0) return Error{"", 0, "path search: the beam width must be >= 0"};
   return path_edit.validate();
 }
@@ -96,11 +97,9 @@ class PathCost final : public FrameCost {
   double search_arc_m_ = 0.0;
 };
 
-}  // namespace
-
-Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, const FloorPath& path,
+// One search of the whole path with these settings, its motion assembled (and edited).
+Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, const FloorPath& path,
                                             const PathSynthesisSettings& settings) {
-  if (auto status = settings.validate(); !status) return status.error();
   const MotionGraph& graph = *context.graph;
   const double fps = context.db->fps;
   std::vector<TagMask> masks;
@@ -270,7 +269,36 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
   }
   result.mean_deviation_m = sum / end;
   result.tag_match = in_segments > 0.0 ? matched / in_segments : 1.0;
+  result.behind_penalty_m = settings.behind_penalty_m;
   return result;
+}
+
+}  // namespace
+
+Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, const FloorPath& path,
+                                            const PathSynthesisSettings& settings) {
+  if (auto status = settings.validate(); !status) return status.error();
+  auto best = synthesize_once(context, path, settings);
+  if (!best) return best.error();
+  int attempts = 1, searches = best->searches, exhausted = best->budget_exhausted;
+  long long expansions = best->expansions;
+  PathSynthesisSettings harder = settings;
+  for (int retry = 0; retry < settings.progress_retries && !best->reached_end && harder.behind_penalty_m > 0.0;
+       ++retry) {
+    harder.behind_penalty_m *= kProgressRetryFactor;
+    auto next = synthesize_once(context, path, harder);
+    if (!next) return next.error();
+    ++attempts;
+    searches += next->searches;
+    exhausted += next->budget_exhausted;
+    expansions += next->expansions;
+    if (next->reached_end || next->arc_covered_m > best->arc_covered_m) best = std::move(next);
+  }
+  best->attempts = attempts;
+  best->searches = searches;
+  best->budget_exhausted = exhausted;
+  best->expansions = expansions;
+  return best;
 }
 
 }  // namespace mg

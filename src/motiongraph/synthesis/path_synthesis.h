@@ -12,6 +12,11 @@
 // its sets of tags, at least one node of each (nodes carrying the tag asked for at the start
 // when there is one).
 //
+// A walk that does not reach the path's end before giving up (the motion would average under
+// 0.2 m/s: the search dawdled, as on a library of dance and karate whose few walking clips turn
+// little) is searched again up to progress_retries times, the behind penalty 4x higher each
+// time; the first to reach the end is kept, or else the one that covered the most.
+//
 // The walk's motion is then edited onto the path (path_edit.h: Gleicher's motion path editing,
 // within a limit on the turning it adds) unless edit_path is false; the result gives the
 // deviation of both, the walk as the graph played it and the motion edited.
@@ -34,6 +39,9 @@ struct PathSynthesisSettings {
   // behind covering the path at min_speed_mps since the search began (0: Kovar's cost alone).
   double min_speed_mps = 0.5;
   double behind_penalty_m = 1.0;
+  // Searches again, pushing on (see above), when the walk does not reach the end (0: never;
+  // nor when behind_penalty_m is 0).
+  int progress_retries = 2;
   // Each transition taken costs this (m^2: as many frames' squared deviation). Kovar's cost
   // alone takes a transition wherever it follows the path a little better, and output then
   // blends almost all the time (0: Kovar's cost alone).
@@ -54,6 +62,8 @@ struct PathSynthesisSettings {
   Status validate() const;
 };
 
+constexpr double kProgressRetryFactor = 4.0;  // the behind penalty's step between attempts
+
 struct PathSynthesisResult {
   Walk walk;
   FloorTransform start;
@@ -73,6 +83,10 @@ struct PathSynthesisResult {
   int searches = 0;
   long long expansions = 0;
   int budget_exhausted = 0;           // searches that ran out of budget
+  // Whole-path attempts made (searches, expansions and budget_exhausted count them all), and
+  // the behind penalty of the one kept.
+  int attempts = 1;
+  double behind_penalty_m = 0.0;
 };
 
 Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, const FloorPath& path,
