@@ -44,8 +44,9 @@ int run_path(const PathOptions& o) {
           : std::string();
   const int attempts = r["attempts"].get<int>();
   const std::string pushed =
-      attempts > 1 ? fmt::format(" after {} searches of the whole path (behind penalty {:g})", attempts,
-                                 r["behind_penalty_m"].get<double>())
+      attempts > 1 ? fmt::format(" after {} searches of the whole path (behind penalty {:g}{})", attempts,
+                                 r["behind_penalty_m"].get<double>(),
+                                 r["edit_in_search"].get<bool>() ? ", the edit in the search" : "")
                    : std::string();
   fmt::print("path {:.1f} m: {} frames ({:.1f} s), covered {:.1f} m{}{}, deviation mean {:.3f} m max {:.3f} m{}, "
              "{:.1f} s taken ({:.1f} s searching)\n",
@@ -95,8 +96,9 @@ Command add_path_command(CLI::App& app) {
   sub->add_option("--start-node", o->settings.start_node,
                   "Start at this node (default: the best of about 16 spread over the graph and over its sets of tags)");
   sub->add_option("--progress-retries", o->settings.progress_retries,
-                  "When the walk does not reach the path's end (it dawdled), search again this many times, the "
-                  "--behind-penalty 4x higher each time; the first to reach the end is kept")
+                  "When the walk does not reach the path's end (it dawdled), search again this many times, pushing "
+                  "on harder: --behind-penalty 4x; then the search sees where the path edit puts the walk, at 1x "
+                  "and 4x; then 16x, 64x, ...; the first to reach the end is kept")
       ->capture_default_str();
   sub->add_flag("!--no-path-edit", o->settings.edit_path,
                 "Keep the motion as the graph plays it; by default it is bent onto the path (Gleicher's motion path "

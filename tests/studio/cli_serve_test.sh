@@ -31,8 +31,10 @@ serve_and_stop() {
     sleep 0.1
   done
   [[ -n $url ]] || fail "no 'studio: http://127.0.0.1:PORT/' line on stdout"
-  curl -sf -m 30 "${url}api/summary" | grep -q '"frames"' || fail "GET /api/summary"
-  curl -sf -m 30 "$url" | grep -q 'importmap' || fail "GET / is not the studio page"
+  # Into files, not `| grep -q`: grep ending at its match while curl still writes a later chunk
+  # fails curl, hence the pipe (pipefail).
+  curl -sf -m 30 "${url}api/summary" -o "$tmp/summary" && grep -q '"frames"' "$tmp/summary" || fail "GET /api/summary"
+  curl -sf -m 30 "$url" -o "$tmp/page" && grep -q 'importmap' "$tmp/page" || fail "GET / is not the studio page"
   [[ $(curl -s -m 30 -o /dev/null -w '%{http_code}' "${url}api/clips/999/frames") == 404 ]] || fail "a bad clip is not 404"
   kill "-$signal" "$pid"
   local status=0
@@ -59,7 +61,8 @@ done
 [[ -n $port ]] || fail "no 'studio: http://0.0.0.0:PORT/' line with --host 0.0.0.0"
 grep -q "listening on every network interface: open http://.*:$port/ from another machine" "$tmp/out" \
   || fail "no line saying what to open: $(cat "$tmp/out")"
-curl -sf -m 30 "http://127.0.0.1:$port/api/summary" | grep -q '"frames"' || fail "GET /api/summary on every interface"
+curl -sf -m 30 "http://127.0.0.1:$port/api/summary" -o "$tmp/summary" && grep -q '"frames"' "$tmp/summary" \
+  || fail "GET /api/summary on every interface"
 kill -INT "$pid"
 wait "$pid" || fail "serve --host 0.0.0.0 did not stop cleanly"
 pid=

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
+
 #include "motiongraph/motion/forward_kinematics.h"
 #include "synthesis/subject16_graph.h"
 #include "test_data.h"
@@ -125,9 +128,11 @@ TEST(PathSynthesis, ASlowestSpeedAboveWalkingPaceMakesItRun) {
 }
 
 // A library that can stand still or walk straight ahead (16_15), and a path it cannot follow by
-// walking, a circle of 1 m: Kovar's cost prefers standing at the start, on the path, to walking
-// off it, and the walk dawdles until the search gives up. Searched again with the behind penalty
-// 4x and 16x higher, it walks, and covers the path's length.
+// walking, an S-curve: Kovar's cost prefers standing at the start, on the path, to walking off
+// it, and the walk dawdles until the search gives up. Searched again pushing on harder (the
+// behind penalty higher, the edit in the search), it walks, and covers the path's length; with
+// the edit in the search sooner, at a lower penalty, since the edit bends its straight walk
+// onto the curve.
 TEST(PathSynthesis, AWalkThatDawdlesIsSearchedAgainPushingOn) {
   MotionDatabase db = test::small_database({"cmu/16/16_15.amc"});
   const int n = db.frame_count();
@@ -170,7 +175,7 @@ TEST(PathSynthesis, AWalkThatDawdlesIsSearchedAgainPushingOn) {
   ASSERT_TRUE(graph.ok()) << graph.error().to_string();
   auto context = make_synthesis_context(db, *graph);
   ASSERT_TRUE(context.ok()) << context.error().to_string();
-  auto path = make_shape("circle:1");
+  auto path = make_shape("s-curve:30");
   ASSERT_TRUE(path.ok());
   PathSynthesisSettings once;
   once.progress_retries = 0;
@@ -181,24 +186,45 @@ TEST(PathSynthesis, AWalkThatDawdlesIsSearchedAgainPushingOn) {
   EXPECT_EQ(dawdled->attempts, 1);
   EXPECT_EQ(dawdled->behind_penalty_m, 1.0);
 
-  PathSynthesisSettings pushing = once;
-  pushing.progress_retries = 2;
-  auto pushed = synthesize_path(*context, *path, pushing);
-  ASSERT_TRUE(pushed.ok());
-  EXPECT_TRUE(pushed->reached_end);
-  ASSERT_GT(pushed->attempts, 1);
-  EXPECT_EQ(pushed->behind_penalty_m, std::pow(kProgressRetryFactor, pushed->attempts - 1));
-  EXPECT_GT(pushed->searches, dawdled->searches);  // every attempt's searches are counted
-  EXPECT_GE(pushed->arc_covered_m, path->length_m());
-  // What was kept is the search at that penalty.
-  PathSynthesisSettings at = once;
-  at.behind_penalty_m = pushed->behind_penalty_m;
-  auto direct = synthesize_path(*context, *path, at);
-  ASSERT_TRUE(direct.ok());
-  EXPECT_EQ(direct->walk.edges, pushed->walk.edges);
-  EXPECT_EQ(direct->walk.start_node, pushed->walk.start_node);
+  std::array<double, 2> kept_penalty{};
+  for (const bool edit : {false, true}) {
+    PathSynthesisSettings pushing = once;
+    pushing.progress_retries = 5;
+    pushing.edit_path = edit;
+    auto pushed = synthesize_path(*context, *path, pushing);
+    ASSERT_TRUE(pushed.ok());
+    EXPECT_TRUE(pushed->reached_end) << edit;
+    ASSERT_GT(pushed->attempts, 1);
+    EXPECT_GT(pushed->searches, dawdled->searches);  // every attempt's searches are counted
+    EXPECT_GE(pushed->arc_covered_m, path->length_m());
+    // The ladder: 4x; when edited, then the edit in the search at 1x and 4x; then 16x, with and
+    // without it when edited; ...
+    const auto retry = static_cast<size_t>(pushed->attempts - 2);
+    const std::array<std::pair<bool, double>, 5> edited{{{false, 4.0}, {true, 1.0}, {true, 4.0}, {false, 16.0},
+                                                         {true, 16.0}}};
+    const std::array<std::pair<bool, double>, 5> plain{{{false, 4.0}, {false, 16.0}, {false, 64.0},
+                                                        {false, 256.0}, {false, 1024.0}}};
+    const auto& want = (edit ? edited : plain)[retry];
+    EXPECT_EQ(pushed->behind_penalty_m, want.second) << edit;
+    EXPECT_EQ(pushed->edit_in_search, want.first) << edit;
+    kept_penalty[edit ? 1 : 0] = pushed->behind_penalty_m;
+    if (pushed->edit_in_search) {
+      EXPECT_LT(pushed->mean_deviation_m, 0.15);
+    }
+    // What was kept is the search with those settings.
+    PathSynthesisSettings at = pushing;
+    at.progress_retries = 0;
+    at.behind_penalty_m = pushed->behind_penalty_m;
+    at.edit_in_search = pushed->edit_in_search;
+    auto direct = synthesize_path(*context, *path, at);
+    ASSERT_TRUE(direct.ok());
+    EXPECT_EQ(direct->walk.edges, pushed->walk.edges);
+    EXPECT_EQ(direct->walk.start_node, pushed->walk.start_node);
+  }
+  EXPECT_LT(kept_penalty[1], kept_penalty[0]);
   // No behind penalty, no pushing.
-  PathSynthesisSettings kovar = pushing;
+  PathSynthesisSettings kovar = once;
+  kovar.progress_retries = 3;
   kovar.behind_penalty_m = 0.0;
   auto plain = synthesize_path(*context, *path, kovar);
   ASSERT_TRUE(plain.ok());

@@ -153,6 +153,7 @@ Result<SynthesizedMotion> run_path_synthesis(const SynthesisContext& context, co
                 {"budget_exhausted_searches", result->budget_exhausted},
                 {"attempts", result->attempts},
                 {"behind_penalty_m", result->behind_penalty_m},
+                {"edit_in_search", result->edit_in_search},
                 {"start_node", out.walk.start_node},
                 {"edges", out.walk.edges},
                 {"transitions", transitions},

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <span>
 #include <vector>
 
 #include "motiongraph/synthesis/floor_transform.h"
@@ -83,19 +84,18 @@ double nearest_arc(const FloorPath& path, const std::vector<double>& arc, const 
 
 }  // namespace
 
-Result<PathEditStats> edit_onto_path(Motion& motion, const FloorPath& path, const PathEditSettings& settings) {
+Result<PathEditStats> plan_path_edit(std::span<const Vec2> roots, double fps, const FloorPath& path,
+                                     const PathEditSettings& settings, std::vector<FloorTransform>& moves) {
   if (auto s = settings.validate(); !s) return s.error();
   PathEditStats stats;
-  const int frames = motion.frame_count;
-  if (frames < 2 || motion.translated_count < 1 || motion.joint_count < 1) return stats;
+  const int frames = static_cast<int>(roots.size());
+  moves.assign(roots.size(), FloorTransform{});
+  if (frames < 2) return stats;
 
   // 1. The motion's own path, and each frame's arc along it.
   std::vector<Vec2> prefix(static_cast<size_t>(frames) + 1, Vec2::Zero());
-  for (int f = 0; f < frames; ++f) {
-    const Vec3& p = motion.translations(f)[0];
-    prefix[f + 1] = prefix[f] + Vec2(p.x(), p.z());
-  }
-  const int half = static_cast<int>(std::lround(settings.smooth_s * motion.fps / 2.0));
+  for (int f = 0; f < frames; ++f) prefix[f + 1] = prefix[f] + roots[f];
+  const int half = static_cast<int>(std::lround(settings.smooth_s * fps / 2.0));
   ArcCurve own;
   for (int f = 0; f < frames; ++f) {
     const int h = std::min({half, f, frames - 1 - f});
@@ -155,19 +155,36 @@ Result<PathEditStats> edit_onto_path(Motion& motion, const FloorPath& path, cons
     const double u = span > 0.0 ? std::clamp((s - grid[k]) / span, 0.0, 1.0) : 0.0;
     const Vec2& q = own.points[f];
     const Vec2 moved = edited[k] + turned(q - own.at(grid[k]), a[k]);
-    FloorTransform move{a[k] + u * (a[k + 1] - a[k]), 0.0, 0.0};
+    FloorTransform& move = moves[f];
+    move.yaw_rad = a[k] + u * (a[k + 1] - a[k]);
     const Vec3 q_turned = move.rotate(Vec3(q.x(), 0.0, q.y()));
     move.x_m = moved.x() - q_turned.x();
     move.z_m = moved.y() - q_turned.z();
-    Vec3& root = motion.translations(f)[0];
-    root = move.apply(root);
-    Quat& rotation = motion.rotations(f)[0];
-    rotation = (move.rotation() * rotation).normalized();
     stats.max_added_turn_deg = std::max(stats.max_added_turn_deg, std::abs(move.yaw_rad) * 180.0 / std::numbers::pi);
     stats.max_shift_m = std::max(stats.max_shift_m, (moved - q).norm());
   }
   stats.edited = true;
   stats.limited_share = limited_arc / end;
+  return stats;
+}
+
+Result<PathEditStats> edit_onto_path(Motion& motion, const FloorPath& path, const PathEditSettings& settings) {
+  if (auto s = settings.validate(); !s) return s.error();
+  if (motion.frame_count < 2 || motion.translated_count < 1 || motion.joint_count < 1) return PathEditStats{};
+  std::vector<Vec2> roots(static_cast<size_t>(motion.frame_count));
+  for (int f = 0; f < motion.frame_count; ++f) {
+    const Vec3& p = motion.translations(f)[0];
+    roots[f] = Vec2(p.x(), p.z());
+  }
+  std::vector<FloorTransform> moves;
+  auto stats = plan_path_edit(roots, motion.fps, path, settings, moves);
+  if (!stats || !stats->edited) return stats;
+  for (int f = 0; f < motion.frame_count; ++f) {
+    Vec3& root = motion.translations(f)[0];
+    root = moves[f].apply(root);
+    Quat& rotation = motion.rotations(f)[0];
+    rotation = (moves[f].rotation() * rotation).normalized();
+  }
   return stats;
 }
 

@@ -28,7 +28,11 @@
 
 #include "motiongraph/core/error.h"
 #include "motiongraph/motion/motion.h"
+#include <span>
+#include <vector>
+
 #include "motiongraph/synthesis/floor_path.h"
+#include "motiongraph/synthesis/floor_transform.h"
 
 namespace mg {
 
@@ -54,5 +58,10 @@ struct PathEditStats {
 // first point the motion starts from. A motion of fewer than 2 frames, or whose root does not
 // travel, is left as it is.
 Result<PathEditStats> edit_onto_path(Motion& motion, const FloorPath& path, const PathEditSettings& settings = {});
+
+// The same edit planned on root floor positions alone (at fps frames a second): moves[f] is the
+// rigid floor motion frame f gets (identity everywhere when the roots do not travel).
+Result<PathEditStats> plan_path_edit(std::span<const Vec2> roots, double fps, const FloorPath& path,
+                                     const PathEditSettings& settings, std::vector<FloorTransform>& moves);
 
 }  // namespace mg

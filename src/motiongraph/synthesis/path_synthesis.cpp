@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -39,12 +41,21 @@ class PathCost final : public FrameCost {
   double transition_cost() const override { return transition_penalty_; }
   // Each search starts where the root has covered arc_m.
   void start_search(double arc_m) { search_arc_m_ = arc_m; }
+  // Roots are compared with the path where `view` puts them (the edit's move of the last frame
+  // committed: where the edited motion is).
+  void set_view(const FloorTransform& view) {
+    c_ = std::cos(view.yaw_rad);
+    s_ = std::sin(view.yaw_rad);
+    x_ = view.x_m;
+    z_ = view.z_m;
+  }
+  Vec2 viewed(const Vec2& p) const { return {c_ * p.x() + s_ * p.y() + x_, -s_ * p.x() + c_ * p.y() + z_}; }
   // In m more frames the root moves at most m * max_step and so does the path's point at its
   // arc length, so the root is at least d - 2 m max_step from it (d: the distance now); and
   // the path's end cannot be reached sooner than (length - arc) / max_step frames.
   double remaining_bound(int frames_left, const Vec2& root, double arc_m) const override {
     if (!(max_step_ > 0.0)) return 0.0;
-    const double d = (root - path_.point_at(arc_m)).norm();
+    const double d = (viewed(root) - path_.point_at(arc_m)).norm();
     const double before_end = (path_.length_m() - arc_m) / max_step_;
     double bound = 0.0;
     for (int m = 1; m <= frames_left && m < before_end; ++m) {
@@ -77,7 +88,7 @@ class PathCost final : public FrameCost {
 
  private:
   double frame_cost(int frame, const Vec2& root, double arc_m, TagMask tags, bool* goal, int& segment) const {
-    double c = (root - path_.point_at(arc_m, segment)).squaredNorm();
+    double c = (viewed(root) - path_.point_at(arc_m, segment)).squaredNorm();
     // Behind the slowest schedule allowed: metres not covered since the search began.
     const double behind = search_arc_m_ + min_step_ * (frame + 1) - arc_m;
     if (behind > 0.0) c += behind_penalty_ * behind;
@@ -95,6 +106,7 @@ class PathCost final : public FrameCost {
   double behind_penalty_;
   double transition_penalty_;
   double search_arc_m_ = 0.0;
+  double c_ = 1.0, s_ = 0.0, x_ = 0.0, z_ = 0.0;
 };
 
 // One search of the whole path with these settings, its motion assembled (and edited).
@@ -193,6 +205,13 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
   // Incremental search until the path's end is reached or the walk takes far too long.
   const long long max_frames = static_cast<long long>((path.length_m() / 0.2 + 10.0) * fps);
   HorizonResult current = std::move(first);
+  // The edit in the loop: the committed walk's roots, edited after each commit.
+  const bool edit_in_search = settings.edit_path && settings.edit_in_search;
+  std::vector<RootPose> played;
+  std::vector<Vec2> played_roots;
+  std::vector<FloorTransform> moves;
+  FloorTransform played_at = result.start;
+  size_t played_edges = 0;
   while (true) {
     long long committed = 0;
     size_t used = 0;
@@ -210,6 +229,16 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
       break;
     }
     if (state.frames >= max_frames || current.edges.empty()) break;
+    if (edit_in_search) {
+      for (; played_edges < result.walk.edges.size(); ++played_edges) {
+        context.assembler.append_edge_roots(result.walk.edges[played_edges], played_at, played);
+      }
+      played_roots.clear();
+      for (const RootPose& r : played) played_roots.emplace_back(r.position.x(), r.position.z());
+      auto planned = plan_path_edit(played_roots, fps, path, settings.path_edit, moves);
+      if (!planned) return planned.error();
+      cost.set_view(moves.back());
+    }
     cost.start_search(state.arc_m);
     current = horizon_search(graph, context.tracks, state, cost, search, hint);
     tally(current);
@@ -270,6 +299,7 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
   result.mean_deviation_m = sum / end;
   result.tag_match = in_segments > 0.0 ? matched / in_segments : 1.0;
   result.behind_penalty_m = settings.behind_penalty_m;
+  result.edit_in_search = edit_in_search;
   return result;
 }
 
@@ -282,10 +312,22 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
   if (!best) return best.error();
   int attempts = 1, searches = best->searches, exhausted = best->budget_exhausted;
   long long expansions = best->expansions;
-  PathSynthesisSettings harder = settings;
-  for (int retry = 0; retry < settings.progress_retries && !best->reached_end && harder.behind_penalty_m > 0.0;
-       ++retry) {
-    harder.behind_penalty_m *= kProgressRetryFactor;
+  // The retries' (edit in the search, factor on the behind penalty), in order.
+  std::vector<std::pair<bool, double>> ladder;
+  for (double factor = kProgressRetryFactor; static_cast<int>(ladder.size()) < settings.progress_retries;
+       factor *= kProgressRetryFactor) {
+    if (settings.edit_path && factor == kProgressRetryFactor) {
+      ladder.insert(ladder.end(), {{false, factor}, {true, 1.0}, {true, factor}});
+    } else {
+      ladder.emplace_back(false, factor);
+      if (settings.edit_path) ladder.emplace_back(true, factor);
+    }
+  }
+  ladder.resize(static_cast<size_t>(settings.progress_retries));
+  for (size_t retry = 0; retry < ladder.size() && !best->reached_end && settings.behind_penalty_m > 0.0; ++retry) {
+    PathSynthesisSettings harder = settings;
+    harder.edit_in_search = ladder[retry].first;
+    harder.behind_penalty_m = settings.behind_penalty_m * ladder[retry].second;
     auto next = synthesize_once(context, path, harder);
     if (!next) return next.error();
     ++attempts;

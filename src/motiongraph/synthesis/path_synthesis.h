@@ -14,8 +14,11 @@
 //
 // A walk that does not reach the path's end before giving up (the motion would average under
 // 0.2 m/s: the search dawdled, as on a library of dance and karate whose few walking clips turn
-// little) is searched again up to progress_retries times, the behind penalty 4x higher each
-// time; the first to reach the end is kept, or else the one that covered the most.
+// little) is searched again up to progress_retries times, pushing on harder each time: the
+// behind penalty 4x higher; when the motion is edited, then with the edit in the search
+// (edit_in_search) at the penalty given and at 4x; then at 16x, 64x, ... (each with and
+// without the edit in the search). The first to reach the end is kept, or else the one that
+// covered the most.
 //
 // The walk's motion is then edited onto the path (path_edit.h: Gleicher's motion path editing,
 // within a limit on the turning it adds) unless edit_path is false; the result gives the
@@ -41,7 +44,7 @@ struct PathSynthesisSettings {
   double behind_penalty_m = 1.0;
   // Searches again, pushing on (see above), when the walk does not reach the end (0: never;
   // nor when behind_penalty_m is 0).
-  int progress_retries = 2;
+  int progress_retries = 3;
   // Each transition taken costs this (m^2: as many frames' squared deviation). Kovar's cost
   // alone takes a transition wherever it follows the path a little better, and output then
   // blends almost all the time (0: Kovar's cost alone).
@@ -58,6 +61,11 @@ struct PathSynthesisSettings {
   // graph, and turns it off.
   bool edit_path = true;
   PathEditSettings path_edit;
+  // The search compares the walk with the path where the edit puts it: after each commit the
+  // walk so far is edited (path_edit.h) and the next search's roots are moved as its last frame
+  // was. The search then leaves the turning to the edit more: the first retry's way on (see
+  // above), not the default (on subject 16 the graph's own turns then go unused).
+  bool edit_in_search = false;
 
   Status validate() const;
 };
@@ -84,9 +92,10 @@ struct PathSynthesisResult {
   long long expansions = 0;
   int budget_exhausted = 0;           // searches that ran out of budget
   // Whole-path attempts made (searches, expansions and budget_exhausted count them all), and
-  // the behind penalty of the one kept.
+  // the behind penalty of the one kept and whether its search saw the edit.
   int attempts = 1;
   double behind_penalty_m = 0.0;
+  bool edit_in_search = false;
 };
 
 Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, const FloorPath& path,
