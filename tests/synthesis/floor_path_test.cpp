@@ -124,6 +124,31 @@ TEST(FloorPath, DistanceAndSegments) {
   EXPECT_EQ(path->tag_at(10.5), "");
 }
 
+TEST(FloorPath, NearestArcIsTheNearestPointOfTheRange) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> coord(-6.0, 6.0), unit(0.0, 1.0);
+  for (const char* spec : {"figure8:4", "s-curve:30", "line:10"}) {
+    auto path = make_shape(spec);
+    ASSERT_TRUE(path.ok());
+    const double length = path->length_m();
+    for (int trial = 0; trial < 200; ++trial) {
+      const Vec2 p(coord(rng), coord(rng) - 4.0);
+      // Over the whole path: the distance is distance_to's.
+      const double whole = path->nearest_arc(p, -1.0, length + 1.0);
+      ASSERT_GE(whole, 0.0);
+      ASSERT_LE(whole, length);
+      EXPECT_NEAR((path->point_at(whole) - p).norm(), path->distance_to(p), 1e-9) << spec;
+      // Over a range: inside it, and no point of the range, sampled every millimetre, is nearer.
+      const double from = unit(rng) * length, to = std::min(length, from + 2.0 * unit(rng));
+      const double s = path->nearest_arc(p, from, to);
+      ASSERT_GE(s, from);
+      ASSERT_LE(s, to);
+      const double found = (path->point_at(s) - p).norm();
+      for (double t = from; t <= to; t += 0.001) EXPECT_GE((path->point_at(t) - p).norm(), found - 1e-9) << spec;
+    }
+  }
+}
+
 TEST(FloorPath, LongPathsStayUsableAndHugeOnesAreErrors) {
   // Found by fuzzing: a point 7.8e21 m away made the bucket count overflow an int. Paths are
   // now at most 100 km long (the studio's bound) and the buckets grow with the length.

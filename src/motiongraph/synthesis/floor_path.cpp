@@ -60,6 +60,24 @@ double FloorPath::distance_to(const Vec2& p) const {
   return best;
 }
 
+double FloorPath::nearest_arc(const Vec2& p, double from, double to) const {
+  from = std::clamp(from, 0.0, length_m());
+  to = std::clamp(to, from, length_m());
+  double best_arc = from, best = (point_at(from) - p).squaredNorm();
+  for (int i = segment_index(from); i + 1 < static_cast<int>(points_.size()) && arc_[i] <= to; ++i) {
+    const Vec2 d = points_[i + 1] - points_[i];
+    const double length = arc_[i + 1] - arc_[i];
+    const double s =
+        std::clamp(arc_[i] + (p - points_[i]).dot(d) / length, std::max(from, arc_[i]), std::min(to, arc_[i + 1]));
+    const double distance = (point_on(i, s) - p).squaredNorm();
+    if (distance < best) {
+      best = distance;
+      best_arc = s;
+    }
+  }
+  return best_arc;
+}
+
 const std::string& FloorPath::tag_at(double s) const {
   static const std::string none;
   for (auto it = segments_.rbegin(); it != segments_.rend(); ++it) {

@@ -66,6 +66,10 @@ class FloorPath {
   Vec2 direction_at(double s) const;
   // Distance from p to the nearest point of the path.
   double distance_to(const Vec2& p) const;
+  // The arc length of the point nearest p among arc lengths [from, to] (clamped to the path):
+  // from a point followed along the path, with a small range, a path that crosses itself is not
+  // jumped across. Costs the segments in the range.
+  double nearest_arc(const Vec2& p, double from, double to) const;
   // The tag asked for at arc length s: the last segment containing s, or "" when none.
   const std::string& tag_at(double s) const;
 

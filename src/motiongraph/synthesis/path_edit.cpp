@@ -58,30 +58,6 @@ struct ArcCurve {
   }
 };
 
-// The nearest point of the path to p among arc lengths [from, to] (clamped to the path): its
-// arc length. `arc` holds the arc length at each of the path's points.
-double nearest_arc(const FloorPath& path, const std::vector<double>& arc, const Vec2& p, double from, double to) {
-  const std::vector<Vec2>& points = path.points();
-  from = std::max(0.0, from);
-  to = std::min(arc.back(), to);
-  size_t i = static_cast<size_t>(std::upper_bound(arc.begin(), arc.end(), from) - arc.begin());
-  i = i == 0 ? 0 : i - 1;
-  double best_arc = from, best = (path.point_at(from) - p).squaredNorm();
-  for (; i + 1 < points.size() && arc[i] <= to; ++i) {
-    const Vec2 d = points[i + 1] - points[i];
-    const double length = arc[i + 1] - arc[i];
-    double u = length > 0.0 ? (p - points[i]).dot(d) / (length * length) : 0.0;
-    const double s = std::clamp(arc[i] + u * length, from, to);
-    u = length > 0.0 ? (s - arc[i]) / length : 0.0;
-    const double distance = (points[i] + u * d - p).squaredNorm();
-    if (distance < best) {
-      best = distance;
-      best_arc = s;
-    }
-  }
-  return best_arc;
-}
-
 }  // namespace
 
 Result<PathEditStats> plan_path_edit(std::span<const Vec2> roots, double fps, const FloorPath& path,
@@ -112,10 +88,6 @@ Result<PathEditStats> plan_path_edit(std::span<const Vec2> roots, double fps, co
   const auto steps = static_cast<size_t>(std::ceil(end / PathEditSettings::kStepM - 1e-9));
   std::vector<double> grid(steps + 1);
   for (size_t k = 0; k <= steps; ++k) grid[k] = std::min(end, static_cast<double>(k) * PathEditSettings::kStepM);
-  std::vector<double> path_arc(1, 0.0);
-  for (size_t i = 1; i < path.points().size(); ++i) {
-    path_arc.push_back(path_arc.back() + (path.points()[i] - path.points()[i - 1]).norm());
-  }
   std::vector<double> a(grid.size(), 0.0);
   std::vector<Vec2> edited(grid.size());
   edited[0] = own.points.front();
@@ -126,7 +98,7 @@ Result<PathEditStats> plan_path_edit(std::span<const Vec2> roots, double fps, co
   for (size_t k = 0; k < steps; ++k) {
     const double s = grid[k];
     const double step = grid[k + 1] - s;
-    along = nearest_arc(path, path_arc, edited[k], along - kReachM, along + kReachM + step);
+    along = path.nearest_arc(edited[k], along - kReachM, along + kReachM + step);
     const Vec2 own_chord = turned(own.at(std::min(end, s + h)) - own.at(std::max(0.0, s - h)), a[k]);
     const Vec2 path_chord = target_at(path, along + h) - target_at(path, along - h);
     double angle = a[k];

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -267,28 +268,35 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
   }
   result.frame_tags.push_back(context.frame_tags.empty() ? 0 : context.frame_tags[graph.nodes[result.walk.end_node(graph)].frame]);
   result.frame_tags.resize(static_cast<size_t>(end));
-  double graph_sum = 0.0;
-  for (const Vec2& root : result.roots) {
-    const double d = path.distance_to(root);
-    graph_sum += d;
-    result.graph_max_deviation_m = std::max(result.graph_max_deviation_m, d);
-  }
-  result.graph_mean_deviation_m = graph_sum / end;
+  // The roots' mean and largest distance from the path: as the graph played the walk, then
+  // (when the edit moved them) edited.
+  auto deviation = [&] {
+    double sum = 0.0, most = 0.0;
+    for (const Vec2& root : result.roots) {
+      const double d = path.distance_to(root);
+      sum += d;
+      most = std::max(most, d);
+    }
+    return std::pair{sum / end, most};
+  };
+  std::tie(result.graph_mean_deviation_m, result.graph_max_deviation_m) = deviation();
+  result.mean_deviation_m = result.graph_mean_deviation_m;
+  result.max_deviation_m = result.graph_max_deviation_m;
   if (settings.edit_path) {
     auto edited = edit_onto_path(result.motion, path, settings.path_edit);
     if (!edited) return edited.error();
     result.edit = *edited;
-    for (int f = 0; f < end; ++f) {
-      const Vec3& p = result.motion.translations(f)[0];
-      result.roots[f] = Vec2(p.x(), p.z());
+    if (edited->edited) {
+      for (int f = 0; f < end; ++f) {
+        const Vec3& p = result.motion.translations(f)[0];
+        result.roots[f] = Vec2(p.x(), p.z());
+      }
+      std::tie(result.mean_deviation_m, result.max_deviation_m) = deviation();
     }
   }
-  double sum = 0.0, in_segments = 0.0, matched = 0.0;
+  double in_segments = 0.0, matched = 0.0;
   arc = 0.0;
   for (int f = 0; f < end; ++f) {
-    const double d = path.distance_to(result.roots[f]);
-    sum += d;
-    result.max_deviation_m = std::max(result.max_deviation_m, d);
     if (f > 0) arc += (result.roots[f] - result.roots[f - 1]).norm();
     const TagMask wanted = cost.wanted_at(arc);
     if (wanted != 0) {
@@ -296,7 +304,6 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
       matched += (result.frame_tags[f] & wanted) != 0 ? 1.0 : 0.0;
     }
   }
-  result.mean_deviation_m = sum / end;
   result.tag_match = in_segments > 0.0 ? matched / in_segments : 1.0;
   result.behind_penalty_m = settings.behind_penalty_m;
   result.edit_in_search = edit_in_search;
