@@ -70,6 +70,7 @@ PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<d
                  {"behind_penalty", set(settings.behind_penalty_m)},
                  {"start_node", set(settings.start_node)},
                  {"progress_retries", set(settings.progress_retries)},
+                 {"retry_deviation", set(settings.retry_deviation_m)},
                  {"path_edit", set(settings.edit_path)},
                  {"edit_max_turn", set(settings.path_edit.max_turn_deg_per_m)},
                  {"cleanup", set(run.cleanup)}},
@@ -172,7 +173,7 @@ void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
            "Motion following a path on the floor (the CLI's path): exactly one of points ([(x, z), ...] metres), "
            "shape ('line:20', 'circle:5', 'figure8:4', 's-curve:100') or file (PATH.json); segments "
            "['TAG:FROM-TO', ...]; keywords horizon, commit, tag_penalty, max_expansions, beam, min_speed, "
-           "transition_penalty, behind_penalty, progress_retries, start_node, path_edit (bend the motion onto "
+           "transition_penalty, behind_penalty, progress_retries, retry_deviation (m), start_node, path_edit (bend the motion onto "
            "the path, default True), edit_max_turn (degrees per metre it may add), cleanup.")
       .def(
           "controller",

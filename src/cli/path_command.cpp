@@ -44,14 +44,16 @@ int run_path(const PathOptions& o) {
           : std::string();
   const int attempts = r["attempts"].get<int>();
   const std::string pushed =
-      attempts > 1 ? fmt::format(" after {} searches of the whole path (behind penalty {:g}{})", attempts,
+      attempts > 1 ? fmt::format(" after {} searches of the whole path (kept: behind penalty {:g}{}{})", attempts,
                                  r["behind_penalty_m"].get<double>(),
+                                 r["anchor_arc"].get<bool>() ? ", its arc corrected as it went" : "",
                                  r["edit_in_search"].get<bool>() ? ", the edit in the search" : "")
                    : std::string();
-  fmt::print("path {:.1f} m: {} frames ({:.1f} s), covered {:.1f} m{}{}, deviation mean {:.3f} m max {:.3f} m{}, "
-             "{:.1f} s taken ({:.1f} s searching)\n",
+  fmt::print("path {:.1f} m: {} frames ({:.1f} s), {:.1f} m along it, ending {:.2f} m from its end{}{}, deviation mean "
+             "{:.3f} m max {:.3f} m{}, {:.1f} s taken ({:.1f} s searching)\n",
              r["path_length_m"].get<double>(), result->motion.frame_count, r["duration_s"].get<double>(),
-             r["arc_covered_m"].get<double>(), r["reached_end"].get<bool>() ? "" : " (end not reached)", pushed,
+             r["arc_covered_m"].get<double>(), r["end_distance_m"].get<double>(),
+             r["reached_end"].get<bool>() ? "" : " (end not reached)", pushed,
              r["mean_deviation_m"].get<double>(), r["max_deviation_m"].get<double>(), edited,
              r["seconds"].get<double>(), r["search_seconds"].get<double>());
   return 0;
@@ -96,9 +98,15 @@ Command add_path_command(CLI::App& app) {
   sub->add_option("--start-node", o->settings.start_node,
                   "Start at this node (default: the best of about 16 spread over the graph and over its sets of tags)");
   sub->add_option("--progress-retries", o->settings.progress_retries,
-                  "When the walk does not reach the path's end (it dawdled), search again this many times, pushing "
-                  "on harder: --behind-penalty 4x; then the search sees where the path edit puts the walk, at 1x "
-                  "and 4x; then 16x, 64x, ...; the first to reach the end is kept")
+                  "When the motion does not reach the path's end (it dawdled) or follows it more than "
+                  "--retry-deviation off, search again up to this many times: with the search's arc corrected to "
+                  "the way along the path the walk has come; --behind-penalty 4x; then the search sees where the "
+                  "path edit puts the walk, at 1x and 4x; then 16x, 64x, ...; the first to reach the end within "
+                  "--retry-deviation is kept, else the one reaching it with the least deviation")
+      ->capture_default_str();
+  sub->add_option("--retry-deviation", o->settings.retry_deviation_m,
+                  "Mean deviation (m) above which --progress-retries searches again (0: only when the end is not "
+                  "reached)")
       ->capture_default_str();
   sub->add_flag("!--no-path-edit", o->settings.edit_path,
                 "Keep the motion as the graph plays it; by default it is bent onto the path (Gleicher's motion path "

@@ -375,6 +375,7 @@ class Router {
     out["foot_slide"] = foot_slide_report(service_.context(), result->walk, result->motion);
     out["path_length_m"] = result->path_length_m;
     out["arc_covered_m"] = result->arc_covered_m;
+    out["end_distance_m"] = result->end_distance_m;
     out["reached_end"] = result->reached_end;
     out["mean_deviation_m"] = result->mean_deviation_m;
     out["max_deviation_m"] = result->max_deviation_m;

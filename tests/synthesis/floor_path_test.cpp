@@ -149,6 +149,41 @@ TEST(FloorPath, NearestArcIsTheNearestPointOfTheRange) {
   }
 }
 
+TEST(FloorPath, FollowedArcsGiveProgressNotDistanceTravelled) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> sway(-0.3, 0.3);
+  // A track along the figure 8 (which crosses itself at the origin, its start and its end),
+  // swaying up to 0.3 m across it: each point's arc is the one it was made at, within a
+  // centimetre, through the crossing and to the end; the distance the track travels is far more.
+  auto path = make_shape("figure8:4");
+  ASSERT_TRUE(path.ok());
+  const double length = path->length_m();
+  std::vector<Vec2> track;
+  std::vector<double> made_at;
+  double travelled = 0.0;
+  for (double s = 0.0; s <= length; s += 0.03) {
+    const Vec2 t = path->direction_at(s);
+    // Sway along the normal, away from the crossing (where the two loops' normals would meet).
+    const double across = std::min(s, length - s) < 1.0 ? 0.0 : sway(rng);
+    track.push_back(path->point_at(s) + across * Vec2(-t.y(), t.x()));
+    made_at.push_back(s);
+    if (track.size() > 1) travelled += (track.back() - track[track.size() - 2]).norm();
+  }
+  track.push_back(path->point_at(length));
+  made_at.push_back(length);
+  const std::vector<double> arcs = path->followed_arcs(track);
+  ASSERT_EQ(arcs.size(), track.size());
+  for (size_t i = 0; i < arcs.size(); ++i) EXPECT_NEAR(arcs[i], made_at[i], 0.01) << i;  // the polyline's corners
+  EXPECT_EQ(arcs.back(), length);
+  EXPECT_GT(travelled, 2.0 * length);
+  // Stepping sideways on the spot and back, then walking on: the steps aside add no progress.
+  auto line = make_shape("line:10");
+  ASSERT_TRUE(line.ok());
+  const std::vector<Vec2> shuffle = {{0.0, 0.0}, {0.0, -0.5}, {0.4, -0.5}, {-0.4, -0.5}, {0.0, -0.5}, {0.0, -1.5}};
+  EXPECT_EQ(line->followed_arcs(shuffle), (std::vector<double>{0.0, 0.5, 0.5, 0.5, 0.5, 1.5}));
+  EXPECT_TRUE(line->followed_arcs({}).empty());
+}
+
 TEST(FloorPath, LongPathsStayUsableAndHugeOnesAreErrors) {
   // Found by fuzzing: a point 7.8e21 m away made the bucket count overflow an int. Paths are
   // now at most 100 km long (the studio's bound) and the buckets grow with the length.

@@ -130,6 +130,7 @@ Result<SynthesizedMotion> run_path_synthesis(const SynthesisContext& context, co
   const int transitions = out.walk.transition_count(*context.graph);
   out.report = {{"path_length_m", result->path_length_m},
                 {"arc_covered_m", result->arc_covered_m},
+                {"end_distance_m", result->end_distance_m},
                 {"reached_end", result->reached_end},
                 {"mean_deviation_m", result->mean_deviation_m},
                 {"max_deviation_m", result->max_deviation_m},
@@ -154,6 +155,7 @@ Result<SynthesizedMotion> run_path_synthesis(const SynthesisContext& context, co
                 {"attempts", result->attempts},
                 {"behind_penalty_m", result->behind_penalty_m},
                 {"edit_in_search", result->edit_in_search},
+                {"anchor_arc", result->anchor_arc},
                 {"start_node", out.walk.start_node},
                 {"edges", out.walk.edges},
                 {"transitions", transitions},

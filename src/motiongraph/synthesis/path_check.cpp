@@ -94,7 +94,8 @@ Result<PathCheckPoint> probe_at(const MotionDatabase& db, const FrameFeatures& f
   const auto start = std::chrono::steady_clock::now();
   PathSynthesisSettings search = check.synthesis;
   search.edit_path = false;     // the graph is judged, not the edit that bends its motion,
-  search.progress_retries = 0;  // nor another search pushing harder
+  search.progress_retries = 0;  // nor another search pushing harder,
+  search.anchor_arc = false;    // nor one that corrects its arc as it goes: Kovar's search alone
   auto result = synthesize_path(*context, probe, search);
   if (!result) return result.error();
   point.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <span>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -22,6 +23,7 @@ Status PathSynthesisSettings::validate() const {
   }
   if (max_expansions < 1 || start_candidates < 1) return Error{"", 0, "path search: budgets must be positive"};
   if (progress_retries < 0) return Error{"", 0, "path search: the retries must be >= 0"};
+  if (!(retry_deviation_m >= 0.0)) return Error{"", 0, "path search: the deviation that asks for a retry must be >= 0"};
   if (beam_width < 0) return Error{"", 0, "path search: the beam width must be >= 0"};
   return path_edit.validate();
 }
@@ -206,13 +208,46 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
   // Incremental search until the path's end is reached or the walk takes far too long.
   const long long max_frames = static_cast<long long>((path.length_m() / 0.2 + 10.0) * fps);
   HorizonResult current = std::move(first);
-  // The edit in the loop: the committed walk's roots, edited after each commit.
+  // The committed walk's roots as played, and (with the edit) the moves the edit gives them:
+  // after each commit with the edit in the search, and wherever the search's arc says the path
+  // is done.
   const bool edit_in_search = settings.edit_path && settings.edit_in_search;
   std::vector<RootPose> played;
   std::vector<Vec2> played_roots;
   std::vector<FloorTransform> moves;
   FloorTransform played_at = result.start;
   size_t played_edges = 0;
+  auto play_new_edges = [&] {
+    for (; played_edges < result.walk.edges.size(); ++played_edges) {
+      context.assembler.append_edge_roots(result.walk.edges[played_edges], played_at, played);
+    }
+  };
+  auto play_and_plan = [&]() -> Status {
+    play_new_edges();
+    played_roots.clear();
+    for (const RootPose& r : played) played_roots.emplace_back(r.position.x(), r.position.z());
+    if (!settings.edit_path) return Ok{};
+    auto planned = plan_path_edit(played_roots, fps, path, settings.path_edit, moves);
+    if (!planned) return planned.error();
+    return Ok{};
+  };
+  // How far along the path the motion made of the walk so far gets (edited, when it is).
+  auto delivered_arc = [&] {
+    std::vector<Vec2> roots = played_roots;
+    if (settings.edit_path) {
+      for (size_t f = 0; f < roots.size(); ++f) {
+        const Vec3 p = moves[f].apply(Vec3(roots[f].x(), 0.0, roots[f].y()));
+        roots[f] = Vec2(p.x(), p.z());
+      }
+    }
+    const std::vector<double> arcs = path.followed_arcs(roots);
+    return arcs.empty() ? 0.0 : arcs.back();
+  };
+  double last_check_arc = -1.0;
+  double followed = 0.0;
+  size_t followed_frames = 0;
+  int end_checks = 0;
+  constexpr int kMaxEndChecks = 16;  // near the end each goes on by a step or less
   while (true) {
     long long committed = 0;
     size_t used = 0;
@@ -225,19 +260,36 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
     }
     std::vector<int> hint(current.edges.begin() + static_cast<std::ptrdiff_t>(used), current.edges.end());
     if (!settings.warm_start) hint.clear();
+    if (settings.anchor_arc && state.arc_m < path.length_m()) {
+      // The next search starts from the way along the path the walk has come, not from the
+      // distance its root travelled.
+      play_new_edges();
+      for (; followed_frames < played.size(); ++followed_frames) {
+        const RootPose& r = played[followed_frames];
+        const Vec2 p = cost.viewed(Vec2(r.position.x(), r.position.z()));
+        followed = followed_frames == 0 ? path.nearest_arc(p, 0.0, 1.0)
+                                        : path.nearest_arc(p, followed - 1.0, followed + 1.0);
+      }
+      state.arc_m = followed;
+    }
     if (state.arc_m >= path.length_m()) {
-      result.reached_end = true;
-      break;
+      // The root has travelled the path's length, but sway, shuffles and steps aside count in
+      // that and not in how far along the path the motion gets (nor in how far the edit, which
+      // follows the motion's smoothed path, takes it): the search goes on from the arc the
+      // motion reaches, seeing the walk where the edit puts it, until it reaches the end or
+      // stops getting further.
+      if (auto status = play_and_plan(); !status) return status.error();
+      const double reached = delivered_arc();
+      if (reached >= path.length_m() - kEndReachedM || reached <= last_check_arc || ++end_checks > kMaxEndChecks) {
+        break;
+      }
+      last_check_arc = reached;
+      state.arc_m = reached;
+      if (settings.edit_path) cost.set_view(moves.back());
     }
     if (state.frames >= max_frames || current.edges.empty()) break;
     if (edit_in_search) {
-      for (; played_edges < result.walk.edges.size(); ++played_edges) {
-        context.assembler.append_edge_roots(result.walk.edges[played_edges], played_at, played);
-      }
-      played_roots.clear();
-      for (const RootPose& r : played) played_roots.emplace_back(r.position.x(), r.position.z());
-      auto planned = plan_path_edit(played_roots, fps, path, settings.path_edit, moves);
-      if (!planned) return planned.error();
+      if (auto status = play_and_plan(); !status) return status.error();
       cost.set_view(moves.back());
     }
     cost.start_search(state.arc_m);
@@ -245,23 +297,38 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
     tally(current);
   }
 
-  // The motion, cut at the frame whose root completes the path.
+  // The motion (edited), cut at the frame that reaches the path's end.
   auto motion = assemble_walk(*context.db, graph, result.walk, result.start, context.assembler.target_skeleton());
   if (!motion) return motion.error();
-  double arc = 0.0;
-  int end = motion->frame_count;
-  for (int f = 0; f < motion->frame_count; ++f) {
-    const Vec3& p = motion->translations(f)[0];
-    const Vec2 root(p.x(), p.z());
-    if (f > 0) arc += (root - result.roots.back()).norm();
-    result.roots.push_back(root);
-    if (arc >= path.length_m()) {
-      end = f + 1;
-      break;
-    }
+  auto roots_of = [](const Motion& m) {
+    std::vector<Vec2> roots;
+    for (int f = 0; f < m.frame_count; ++f) roots.emplace_back(m.translations(f)[0].x(), m.translations(f)[0].z());
+    return roots;
+  };
+  const std::vector<Vec2> graph_roots = roots_of(*motion);
+  if (settings.edit_path) {
+    auto edited = edit_onto_path(*motion, path, settings.path_edit);
+    if (!edited) return edited.error();
+    result.edit = *edited;
   }
+  result.roots = result.edit.edited ? roots_of(*motion) : graph_roots;
+  // The first frame at the path's end or, short of it, the first that gets furthest along it.
+  std::vector<double> arcs = path.followed_arcs(result.roots);
+  const auto furthest = std::max_element(arcs.begin(), arcs.end());
+  const int end = arcs.empty() ? 0 : static_cast<int>(furthest - arcs.begin()) + 1;
+  result.reached_end = !arcs.empty() && *furthest >= path.length_m() - kEndReachedM;
   result.motion = motion->slice(0, end);
-  result.arc_covered_m = arc;
+  // The walk: the edges that play those frames (the search may have gone on past them).
+  long long played_frames = 1;
+  size_t kept_edges = 0;
+  while (kept_edges < result.walk.edges.size() && played_frames < end) {
+    played_frames += graph.edges[result.walk.edges[kept_edges++]].frame_count;
+  }
+  result.walk.edges.resize(kept_edges);
+  result.roots.resize(static_cast<size_t>(end));
+  arcs.resize(static_cast<size_t>(end));
+  result.arc_covered_m = end > 0 ? arcs.back() : 0.0;
+  result.end_distance_m = end > 0 ? (result.roots.back() - path.points().back()).norm() : path.length_m();
   // Tags of the output frames, from the tracks of the edges played.
   for (int e : result.walk.edges) {
     for (TagMask t : context.tracks.tags_of(e)) result.frame_tags.push_back(t);
@@ -270,35 +337,25 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
   result.frame_tags.resize(static_cast<size_t>(end));
   // The roots' mean and largest distance from the path: as the graph played the walk, then
   // (when the edit moved them) edited.
-  auto deviation = [&] {
+  auto deviation = [&](std::span<const Vec2> roots) {
     double sum = 0.0, most = 0.0;
-    for (const Vec2& root : result.roots) {
-      const double d = path.distance_to(root);
+    for (int f = 0; f < end; ++f) {
+      const double d = path.distance_to(roots[f]);
       sum += d;
       most = std::max(most, d);
     }
-    return std::pair{sum / end, most};
+    return std::pair{end > 0 ? sum / end : 0.0, most};
   };
-  std::tie(result.graph_mean_deviation_m, result.graph_max_deviation_m) = deviation();
-  result.mean_deviation_m = result.graph_mean_deviation_m;
-  result.max_deviation_m = result.graph_max_deviation_m;
-  if (settings.edit_path) {
-    auto edited = edit_onto_path(result.motion, path, settings.path_edit);
-    if (!edited) return edited.error();
-    result.edit = *edited;
-    if (edited->edited) {
-      for (int f = 0; f < end; ++f) {
-        const Vec3& p = result.motion.translations(f)[0];
-        result.roots[f] = Vec2(p.x(), p.z());
-      }
-      std::tie(result.mean_deviation_m, result.max_deviation_m) = deviation();
-    }
+  std::tie(result.graph_mean_deviation_m, result.graph_max_deviation_m) = deviation(graph_roots);
+  if (result.edit.edited) {
+    std::tie(result.mean_deviation_m, result.max_deviation_m) = deviation(result.roots);
+  } else {
+    result.mean_deviation_m = result.graph_mean_deviation_m;
+    result.max_deviation_m = result.graph_max_deviation_m;
   }
   double in_segments = 0.0, matched = 0.0;
-  arc = 0.0;
   for (int f = 0; f < end; ++f) {
-    if (f > 0) arc += (result.roots[f] - result.roots[f - 1]).norm();
-    const TagMask wanted = cost.wanted_at(arc);
+    const TagMask wanted = cost.wanted_at(arcs[f]);
     if (wanted != 0) {
       in_segments += 1.0;
       matched += (result.frame_tags[f] & wanted) != 0 ? 1.0 : 0.0;
@@ -307,6 +364,7 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
   result.tag_match = in_segments > 0.0 ? matched / in_segments : 1.0;
   result.behind_penalty_m = settings.behind_penalty_m;
   result.edit_in_search = edit_in_search;
+  result.anchor_arc = settings.anchor_arc;
   return result;
 }
 
@@ -319,29 +377,45 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
   if (!best) return best.error();
   int attempts = 1, searches = best->searches, exhausted = best->budget_exhausted;
   long long expansions = best->expansions;
-  // The retries' (edit in the search, factor on the behind penalty), in order.
-  std::vector<std::pair<bool, double>> ladder;
+  // The retries, in order: first the arc corrected as the walk goes (when it is not already),
+  // then the behind penalty 4x; with the edit, the edit in the search at the penalty given and
+  // at 4x; then 16x, 64x, ... with and without the edit in the search.
+  struct Rung {
+    bool anchor_arc = false;
+    bool edit_in_search = false;
+    double factor = 1.0;
+  };
+  std::vector<Rung> ladder;
+  if (!settings.anchor_arc) ladder.push_back({true, false, 1.0});
   for (double factor = kProgressRetryFactor; static_cast<int>(ladder.size()) < settings.progress_retries;
        factor *= kProgressRetryFactor) {
-    if (settings.edit_path && factor == kProgressRetryFactor) {
-      ladder.insert(ladder.end(), {{false, factor}, {true, 1.0}, {true, factor}});
-    } else {
-      ladder.emplace_back(false, factor);
-      if (settings.edit_path) ladder.emplace_back(true, factor);
-    }
+    ladder.push_back({settings.anchor_arc, false, factor});
+    if (!settings.edit_path) continue;
+    if (factor == kProgressRetryFactor) ladder.push_back({settings.anchor_arc, true, 1.0});
+    ladder.push_back({settings.anchor_arc, true, factor});
   }
   ladder.resize(static_cast<size_t>(settings.progress_retries));
-  for (size_t retry = 0; retry < ladder.size() && !best->reached_end && settings.behind_penalty_m > 0.0; ++retry) {
+  // Good enough: the end reached, within retry_deviation_m of the path. Better: the end reached,
+  // then the least deviation; short of the end, the furthest along.
+  auto good = [&](const PathSynthesisResult& r) {
+    return r.reached_end && (settings.retry_deviation_m <= 0.0 || r.mean_deviation_m <= settings.retry_deviation_m);
+  };
+  auto better = [](const PathSynthesisResult& r, const PathSynthesisResult& than) {
+    if (r.reached_end != than.reached_end) return r.reached_end;
+    return r.reached_end ? r.mean_deviation_m < than.mean_deviation_m : r.arc_covered_m > than.arc_covered_m;
+  };
+  for (size_t retry = 0; retry < ladder.size() && !good(*best) && settings.behind_penalty_m > 0.0; ++retry) {
     PathSynthesisSettings harder = settings;
-    harder.edit_in_search = ladder[retry].first;
-    harder.behind_penalty_m = settings.behind_penalty_m * ladder[retry].second;
+    harder.anchor_arc = ladder[retry].anchor_arc;
+    harder.edit_in_search = ladder[retry].edit_in_search;
+    harder.behind_penalty_m = settings.behind_penalty_m * ladder[retry].factor;
     auto next = synthesize_once(context, path, harder);
     if (!next) return next.error();
     ++attempts;
     searches += next->searches;
     exhausted += next->budget_exhausted;
     expansions += next->expansions;
-    if (next->reached_end || next->arc_covered_m > best->arc_covered_m) best = std::move(next);
+    if (better(*next, *best)) best = std::move(next);
   }
   best->attempts = attempts;
   best->searches = searches;

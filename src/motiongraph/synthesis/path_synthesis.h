@@ -2,10 +2,18 @@
 // floor. The cost of a frame is the squared floor distance between the root and the path's
 // point at the same arc length (arc length the root has covered), plus a penalty for each
 // frame not carrying the motion tag the path asks for there, plus a penalty for falling
-// behind a slowest speed (see min_speed_mps); the walk is complete when its
-// root has covered the path's length. The search is incremental: the best walk of about
+// behind a slowest speed (see min_speed_mps). The search is incremental: the best walk of about
 // horizon_s seconds by branch and bound (horizon_search.h), keep its first commit_s seconds
 // (whole edges), search again from there.
+//
+// The walk is complete when its motion reaches the path's end: when the point of the path
+// nearest its root, followed along the path (FloorPath::followed_arcs), gets there. The root's
+// arc length is not that: sway, shuffling on the spot and steps aside add to it and not to the
+// way along the path (a library whose walking starts and stops, or boxing footwork, travels
+// twice the path's length to cover half of it), and the edit follows the motion's smoothed
+// path. So wherever the root has travelled the path's length, the walk so far is played (and
+// edited) and, short of the end, the search goes on from the arc its motion reached, comparing
+// its roots with the path where the edit puts them.
 //
 // The motion starts at the path's first point facing along it, from the start node whose
 // first search costs least among about `start_candidates` nodes spread over the graph and over
@@ -14,11 +22,12 @@
 //
 // A walk that does not reach the path's end before giving up (the motion would average under
 // 0.2 m/s: the search dawdled, as on a library of dance and karate whose few walking clips turn
-// little) is searched again up to progress_retries times, pushing on harder each time: the
+// little), or follows the path more than retry_deviation_m off on average, is searched again up
+// to progress_retries times: first with its arc corrected at each commit (anchor_arc); then the
 // behind penalty 4x higher; when the motion is edited, then with the edit in the search
-// (edit_in_search) at the penalty given and at 4x; then at 16x, 64x, ... (each with and
-// without the edit in the search). The first to reach the end is kept, or else the one that
-// covered the most.
+// (edit_in_search) at the penalty given and at 4x; then at 16x, 64x, ... (each with and without
+// the edit in the search). The first to reach the end within retry_deviation_m is kept, or else
+// the one reaching it with the least deviation, or else the one that got furthest along.
 //
 // The walk's motion is then edited onto the path (path_edit.h: Gleicher's motion path editing,
 // within a limit on the turning it adds) unless edit_path is false; the result gives the
@@ -42,9 +51,11 @@ struct PathSynthesisSettings {
   // behind covering the path at min_speed_mps since the search began (0: Kovar's cost alone).
   double min_speed_mps = 0.5;
   double behind_penalty_m = 1.0;
-  // Searches again, pushing on (see above), when the walk does not reach the end (0: never;
-  // nor when behind_penalty_m is 0).
-  int progress_retries = 3;
+  // Searches again, pushing on (see above), when the walk does not reach the end or follows the
+  // path more than retry_deviation_m off on average (0: only for the end) (no retries: 0; nor
+  // when behind_penalty_m is 0).
+  int progress_retries = 4;
+  double retry_deviation_m = 0.1;
   // Each transition taken costs this (m^2: as many frames' squared deviation). Kovar's cost
   // alone takes a transition wherever it follows the path a little better, and output then
   // blends almost all the time (0: Kovar's cost alone).
@@ -66,20 +77,31 @@ struct PathSynthesisSettings {
   // was. The search then leaves the turning to the edit more: the first retry's way on (see
   // above), not the default (on subject 16 the graph's own turns then go unused).
   bool edit_in_search = false;
+  // Each search starts from the way along the path the walk has come (its roots, as the search
+  // views them, followed along the path), not from the distance its root travelled. A walk that
+  // shuffles or steps aside is then not taken for further along than it is; but where the walk
+  // runs wide of a tight turn the search, seeing itself level with the path, may stop pushing
+  // on (subject 16's figure 8 run: 0.04 m off becomes 1.0 m): the first retry's way, not the
+  // default.
+  bool anchor_arc = false;
 
   Status validate() const;
 };
 
 constexpr double kProgressRetryFactor = 4.0;  // the behind penalty's step between attempts
+// The motion has reached the path's end when it gets this close to it along the path (a step:
+// the walk is made of whole edges, and the edit moves its end as the walk grows).
+constexpr double kEndReachedM = 0.5;
 
 struct PathSynthesisResult {
   Walk walk;
   FloorTransform start;
-  Motion motion;                      // trimmed at the frame that completes the path; edited
+  Motion motion;                      // edited; trimmed at the first frame furthest along the path
   std::vector<Vec2> roots;            // the motion's root floor positions
   std::vector<TagMask> frame_tags;    // tags of each frame of motion
   double path_length_m = 0.0;
-  double arc_covered_m = 0.0;
+  double arc_covered_m = 0.0;         // how far along the path the motion's last frame is (followed_arcs)
+  double end_distance_m = 0.0;        // from the motion's last root to the path's last point
   double mean_deviation_m = 0.0;      // root's distance to the nearest point of the path
   double max_deviation_m = 0.0;
   // The same of the walk as the graph plays it, before the edit (equal when there is none).
@@ -87,15 +109,22 @@ struct PathSynthesisResult {
   double graph_max_deviation_m = 0.0;
   PathEditStats edit;                 // edit.edited false: not edited
   double tag_match = 1.0;             // fraction of frames inside a segment that carry its tag
-  bool reached_end = false;
+  bool reached_end = false;           // arc_covered_m is within kEndReachedM of the path's length
   int searches = 0;
   long long expansions = 0;
   int budget_exhausted = 0;           // searches that ran out of budget
   // Whole-path attempts made (searches, expansions and budget_exhausted count them all), and
-  // the behind penalty of the one kept and whether its search saw the edit.
+  // the behind penalty of the one kept, whether its search saw the edit and corrected its arc.
   int attempts = 1;
   double behind_penalty_m = 0.0;
   bool edit_in_search = false;
+  // Each search starts from the way along the path the walk has come (its roots, as the search
+  // views them, followed along the path), not from the distance its root travelled. A walk that
+  // shuffles or steps aside is then not taken for further along than it is; but where the walk
+  // runs wide of a tight turn the search, seeing itself level with the path, may stop pushing
+  // on (subject 16's figure 8 run: 0.04 m off becomes 1.0 m): the first retry's way, not the
+  // default.
+  bool anchor_arc = false;
 };
 
 Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, const FloorPath& path,
