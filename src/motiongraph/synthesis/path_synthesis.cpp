@@ -312,11 +312,12 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
     result.edit = *edited;
   }
   result.roots = result.edit.edited ? roots_of(*motion) : graph_roots;
-  // The first frame at the path's end or, short of it, the first that gets furthest along it.
+  // Up to the first frame furthest along the path, when that reaches its end; all of it when
+  // the walk gave up short of the end (what it did is shown, however little it got along).
   std::vector<double> arcs = path.followed_arcs(result.roots);
   const auto furthest = std::max_element(arcs.begin(), arcs.end());
-  const int end = arcs.empty() ? 0 : static_cast<int>(furthest - arcs.begin()) + 1;
   result.reached_end = !arcs.empty() && *furthest >= path.length_m() - kEndReachedM;
+  const int end = result.reached_end ? static_cast<int>(furthest - arcs.begin()) + 1 : motion->frame_count;
   result.motion = motion->slice(0, end);
   // The walk: the edges that play those frames (the search may have gone on past them).
   long long played_frames = 1;
@@ -327,7 +328,7 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
   result.walk.edges.resize(kept_edges);
   result.roots.resize(static_cast<size_t>(end));
   arcs.resize(static_cast<size_t>(end));
-  result.arc_covered_m = end > 0 ? arcs.back() : 0.0;
+  result.arc_covered_m = arcs.empty() ? 0.0 : *std::max_element(arcs.begin(), arcs.end());
   result.end_distance_m = end > 0 ? (result.roots.back() - path.points().back()).norm() : path.length_m();
   // Tags of the output frames, from the tracks of the edges played.
   for (int e : result.walk.edges) {

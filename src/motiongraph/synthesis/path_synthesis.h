@@ -96,11 +96,11 @@ constexpr double kEndReachedM = 0.5;
 struct PathSynthesisResult {
   Walk walk;
   FloorTransform start;
-  Motion motion;                      // edited; trimmed at the first frame furthest along the path
+  Motion motion;                      // edited; trimmed at the first frame furthest along the path when reached_end
   std::vector<Vec2> roots;            // the motion's root floor positions
   std::vector<TagMask> frame_tags;    // tags of each frame of motion
   double path_length_m = 0.0;
-  double arc_covered_m = 0.0;         // how far along the path the motion's last frame is (followed_arcs)
+  double arc_covered_m = 0.0;         // how far along the path the motion got (followed_arcs)
   double end_distance_m = 0.0;        // from the motion's last root to the path's last point
   double mean_deviation_m = 0.0;      // root's distance to the nearest point of the path
   double max_deviation_m = 0.0;
