@@ -162,11 +162,12 @@ Status evaluate_paths(const GraphFile& file, const EvalOptions& o, Outputs& out)
   if (!rows) return rows.error();
   std::string csv =
       "shape,path_length_m,arc_covered_m,mean_deviation_m,max_deviation_m,reached_end,frames,searches,"
-      "budget_exhausted,graph_mean_deviation_m,graph_max_deviation_m\n";
+      "budget_exhausted,graph_mean_deviation_m,graph_max_deviation_m,end_distance_m\n";
   for (const PathErrorRow& r : *rows) {
-    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", r.shape, num(r.path_length_m), num(r.arc_covered_m),
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", r.shape, num(r.path_length_m), num(r.arc_covered_m),
                        num(r.mean_deviation_m), num(r.max_deviation_m), r.reached_end ? 1 : 0, r.frames, r.searches,
-                       r.budget_exhausted, num(r.graph_mean_deviation_m), num(r.graph_max_deviation_m));
+                       r.budget_exhausted, num(r.graph_mean_deviation_m), num(r.graph_max_deviation_m),
+                       num(r.end_distance_m));
   }
   if (auto s = out.write_csv("paths.csv", csv); !s) return s;
   return out.plot("paths.png",

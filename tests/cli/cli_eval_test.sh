@@ -79,7 +79,7 @@ assert all(len(pairs) == 1 for pairs in by_walk.values())   # the same nodes for
 
 p = rows("eval/paths.csv", ["shape", "path_length_m", "arc_covered_m", "mean_deviation_m",
      "max_deviation_m", "reached_end", "frames", "searches", "budget_exhausted", "graph_mean_deviation_m",
-     "graph_max_deviation_m"])
+     "graph_max_deviation_m", "end_distance_m"])
 assert [r["shape"] for r in p] == ["line:20", "circle:5", "figure8:4", "s-curve:100"]
 for r in p:
     mean, most = float(r["mean_deviation_m"]), float(r["max_deviation_m"])
@@ -88,6 +88,9 @@ for r in p:
     graph_mean, graph_most = float(r["graph_mean_deviation_m"]), float(r["graph_max_deviation_m"])
     assert 0 <= mean < graph_mean <= graph_most, r
     assert float(r["path_length_m"]) > 0 and int(r["frames"]) > 0, r
+    # Each reaches its path's end (within half a metre along it), ending near it.
+    assert r["reached_end"] == "1" and float(r["path_length_m"]) - 0.5 <= float(r["arc_covered_m"]), r
+    assert 0 <= float(r["end_distance_m"]) < 1.0, r
 
 fs = rows("eval/footslide.csv", ["quantile", "threshold", "rms_cm", "shape", "graph", "frames", "transitions",
      "mean_deviation_m", "played_mps", "cleaned_mps", "source_mps", "played_ratio", "cleaned_ratio",

@@ -17,6 +17,7 @@ Result<std::vector<PathErrorRow>> measure_path_errors(const SynthesisContext& co
     row.shape = shape;
     row.path_length_m = result->path_length_m;
     row.arc_covered_m = result->arc_covered_m;
+    row.end_distance_m = result->end_distance_m;
     row.mean_deviation_m = result->mean_deviation_m;
     row.max_deviation_m = result->max_deviation_m;
     row.graph_mean_deviation_m = result->graph_mean_deviation_m;

@@ -15,7 +15,8 @@ namespace mg {
 struct PathErrorRow {
   std::string shape;            // as given, e.g. "circle:5"
   double path_length_m = 0.0;
-  double arc_covered_m = 0.0;
+  double arc_covered_m = 0.0;   // the furthest the motion got along the path
+  double end_distance_m = 0.0;  // from its last root to the path's end
   double mean_deviation_m = 0.0;
   double max_deviation_m = 0.0;
   double graph_mean_deviation_m = 0.0;  // before the edit
