@@ -2,8 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <numbers>
 #include <random>
+#include <span>
 
 #include "test_data.h"
 
@@ -176,6 +178,10 @@ TEST(FloorPath, FollowedArcsGiveProgressNotDistanceTravelled) {
   for (size_t i = 0; i < arcs.size(); ++i) EXPECT_NEAR(arcs[i], made_at[i], 0.01) << i;  // the polyline's corners
   EXPECT_EQ(arcs.back(), length);
   EXPECT_GT(travelled, 2.0 * length);
+  // Followed on from where an earlier part of the track left off: the same arcs.
+  const size_t half = track.size() / 2;
+  const std::vector<double> rest = path->followed_arcs(std::span(track).subspan(half), 1.0, arcs[half - 1]);
+  EXPECT_TRUE(std::equal(rest.begin(), rest.end(), arcs.begin() + static_cast<std::ptrdiff_t>(half)));
   // Stepping sideways on the spot and back, then walking on: the steps aside add no progress.
   auto line = make_shape("line:10");
   ASSERT_TRUE(line.ok());

@@ -78,12 +78,12 @@ double FloorPath::nearest_arc(const Vec2& p, double from, double to) const {
   return best_arc;
 }
 
-std::vector<double> FloorPath::followed_arcs(std::span<const Vec2> track, double window_m) const {
+std::vector<double> FloorPath::followed_arcs(std::span<const Vec2> track, double window_m, double from) const {
   std::vector<double> arcs;
   arcs.reserve(track.size());
-  double last = 0.0;
+  double last = from;
   for (const Vec2& p : track) {
-    last = arcs.empty() ? nearest_arc(p, 0.0, window_m) : nearest_arc(p, last - window_m, last + window_m);
+    last = last < 0.0 ? nearest_arc(p, 0.0, window_m) : nearest_arc(p, last - window_m, last + window_m);
     arcs.push_back(last);
   }
   return arcs;

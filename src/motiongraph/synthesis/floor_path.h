@@ -72,10 +72,11 @@ class FloorPath {
   // jumped across. Costs the segments in the range.
   double nearest_arc(const Vec2& p, double from, double to) const;
   // How far along the path each point of a track is: track[0]'s nearest point within
-  // [0, window_m], then each next point's within +-window_m of the last one's (nearest_arc).
-  // A motion's progress: a root that sways, shuffles or steps aside does not add to it, as it
-  // adds to the distance the root travels. Consecutive points must lie less than window_m apart.
-  std::vector<double> followed_arcs(std::span<const Vec2> track, double window_m = 1.0) const;
+  // [0, window_m] (or, given the arc `from` of the point before the track, within +-window_m of
+  // it), then each next point's within +-window_m of the last one's (nearest_arc). A motion's
+  // progress: a root that sways, shuffles or steps aside does not add to it, as it adds to the
+  // distance the root travels. Consecutive points must lie less than window_m apart.
+  std::vector<double> followed_arcs(std::span<const Vec2> track, double window_m = 1.0, double from = -1.0) const;
   // The tag asked for at arc length s: the last segment containing s, or "" when none.
   const std::string& tag_at(double s) const;
 

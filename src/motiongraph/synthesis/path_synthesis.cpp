@@ -208,24 +208,24 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
   // Incremental search until the path's end is reached or the walk takes far too long.
   const long long max_frames = static_cast<long long>((path.length_m() / 0.2 + 10.0) * fps);
   HorizonResult current = std::move(first);
-  // The committed walk's roots as played, and (with the edit) the moves the edit gives them:
-  // after each commit with the edit in the search, and wherever the search's arc says the path
-  // is done.
+  // The committed walk's roots on the floor as played, and (with the edit) the moves the edit
+  // gives them: after each commit with the edit in the search, and wherever the search's arc
+  // says the path is done.
   const bool edit_in_search = settings.edit_path && settings.edit_in_search;
-  std::vector<RootPose> played;
+  std::vector<RootPose> played;  // one edge's, on the way to played_roots
   std::vector<Vec2> played_roots;
   std::vector<FloorTransform> moves;
   FloorTransform played_at = result.start;
   size_t played_edges = 0;
   auto play_new_edges = [&] {
     for (; played_edges < result.walk.edges.size(); ++played_edges) {
+      played.clear();
       context.assembler.append_edge_roots(result.walk.edges[played_edges], played_at, played);
+      for (const RootPose& r : played) played_roots.emplace_back(r.position.x(), r.position.z());
     }
   };
   auto play_and_plan = [&]() -> Status {
     play_new_edges();
-    played_roots.clear();
-    for (const RootPose& r : played) played_roots.emplace_back(r.position.x(), r.position.z());
     if (!settings.edit_path) return Ok{};
     auto planned = plan_path_edit(played_roots, fps, path, settings.path_edit, moves);
     if (!planned) return planned.error();
@@ -264,12 +264,10 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
       // The next search starts from the way along the path the walk has come, not from the
       // distance its root travelled.
       play_new_edges();
-      for (; followed_frames < played.size(); ++followed_frames) {
-        const RootPose& r = played[followed_frames];
-        const Vec2 p = cost.viewed(Vec2(r.position.x(), r.position.z()));
-        followed = followed_frames == 0 ? path.nearest_arc(p, 0.0, 1.0)
-                                        : path.nearest_arc(p, followed - 1.0, followed + 1.0);
-      }
+      std::vector<Vec2> viewed;
+      for (size_t f = followed_frames; f < played_roots.size(); ++f) viewed.push_back(cost.viewed(played_roots[f]));
+      if (!viewed.empty()) followed = path.followed_arcs(viewed, 1.0, followed_frames == 0 ? -1.0 : followed).back();
+      followed_frames = played_roots.size();
       state.arc_m = followed;
     }
     if (state.arc_m >= path.length_m()) {
