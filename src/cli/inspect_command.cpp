@@ -1,5 +1,6 @@
 // motiongraph inspect GRAPH.mgraph: what a graph file holds, from its stored report.
 #include <algorithm>
+#include <cmath>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -7,6 +8,7 @@
 
 #include "cli/commands.h"
 #include "motiongraph/core/json_text.h"
+#include "motiongraph/graph/clip_coverage.h"
 #include "motiongraph/graph/graph_file.h"
 #include "motiongraph/io/file.h"
 
@@ -18,6 +20,7 @@ struct InspectOptions {
   std::string graph;
   bool json = false;
   bool nodes = false;
+  bool clips = false;
 };
 
 // One line per node: its index (what `walk --from/--to` take), frame, clip, tags, edges out.
@@ -35,6 +38,35 @@ void print_nodes(const GraphFile& file) {
     fmt::print("{:>6} {:>7} {:<10} {:>5.2f}s {:>4} {:>11}  {}\n", n, node.frame, clip.name,
                (node.frame - clip.first_frame) / db.fps, graph.out_edges(n).size(), transitions, fmt::join(names, ","));
   }
+}
+
+// One line per clip: its frames, how many the pruned graph plays, its tags, and for a clip the
+// graph keeps nothing of, the threshold from which the stored candidates could join it.
+void print_clips(const GraphFile& file, const nlohmann::json& report) {
+  const MotionDatabase& db = file.database;
+  const std::vector<TagMask> tags = db.frame_tags();
+  const double window_weight = report.is_object() ? report.value("window_weight", 0.0) : 0.0;
+  const std::vector<ClipCoverage> coverage = clip_coverage(file.graph, db, file.candidates.minima);
+  fmt::print("{:<12} {:>7} {:>8} {:>7} {:>5}  {:<24} {}\n", "clip", "frames", "seconds", "kept", "%", "tags",
+             "joins from");
+  long long kept = 0;
+  for (const ClipCoverage& c : coverage) {
+    const DatabaseClip& clip = db.clips[c.clip];
+    TagMask mask = 0;
+    for (int f = clip.first_frame; f < clip.first_frame + clip.frame_count && !tags.empty(); ++f) mask |= tags[f];
+    std::string joins;
+    if (c.kept_frames == 0) {
+      joins = c.best_join < 0.0f || !(window_weight > 0.0)
+                  ? std::string("no candidates")
+                  : fmt::format("RMS {:.2f} cm", 100.0 * std::sqrt(c.best_join / window_weight));
+    }
+    fmt::print("{:<12} {:>7} {:>8.1f} {:>7} {:>5.0f}  {:<24} {}\n", clip.name, c.frames, c.frames / db.fps,
+               c.kept_frames, 100.0 * c.kept_frames / std::max(1, c.frames), fmt::format("{}", fmt::join(
+               db.tag_names_of(mask), ",")), joins);
+    kept += c.kept_frames;
+  }
+  fmt::print("{:<12} {:>7} {:>8.1f} {:>7} {:>5.0f}\n", "all", db.frame_count(), db.frame_count() / db.fps, kept,
+             100.0 * static_cast<double>(kept) / std::max(1, db.frame_count()));
 }
 
 void print_statistics(const char* title, const nlohmann::json& s) {
@@ -64,6 +96,10 @@ int run_inspect(const InspectOptions& o) {
   const auto report = nlohmann::json::parse(file->report_json, nullptr, false);
   if (o.nodes) {
     print_nodes(*file);
+    return 0;
+  }
+  if (o.clips) {
+    print_clips(*file, report);
     return 0;
   }
   if (o.json) {
@@ -126,6 +162,9 @@ Command add_inspect_command(CLI::App& app) {
   sub->add_flag("--nodes", o->nodes,
                 "List the pruned graph's nodes (the numbers 'walk --from/--to' take): frame, clip, time in "
                 "the clip, edges out, transitions out, tags");
+  sub->add_flag("--clips", o->clips,
+                "List the clips: frames, seconds, how many frames the pruned graph plays, tags, and for a clip it "
+                "keeps nothing of, the threshold (RMS) from which its stored candidates could join it");
   return {sub, [o] { return run_inspect(*o); }};
 }
 

@@ -12,6 +12,7 @@
 #include "motiongraph/evaluation/foot_slide_report.h"
 #include "motiongraph/evaluation/synthesis_run.h"
 #include "motiongraph/export/positions_json.h"
+#include "motiongraph/graph/clip_coverage.h"
 #include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/skeleton/foot_joints.h"
 
@@ -238,6 +239,7 @@ class Router {
   ApiResponse clips() {
     json out = json::array();
     const std::vector<TagMask>& tags = service_.context().frame_tags;
+    const std::vector<ClipCoverage> coverage = clip_coverage(graph(), db(), {});
     for (size_t i = 0; i < db().clips.size(); ++i) {
       const DatabaseClip& c = db().clips[i];
       TagMask mask = 0;
@@ -247,6 +249,7 @@ class Router {
                      {"first_frame", c.first_frame},
                      {"frames", c.frame_count},
                      {"duration_s", c.frame_count / db().fps},
+                     {"kept_frames", coverage[i].kept_frames},
                      {"tags", db().tag_names_of(mask)}});
     }
     return json_response(out);

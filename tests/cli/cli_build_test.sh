@@ -123,6 +123,43 @@ n = json.load(open(f"{work}/npc.json"))
 assert n["path_check"] is None and n["threshold"] == n["threshold_choice"]["threshold"] == c["threshold"]
 PY
 
+# What the graph keeps of each clip: the report and `inspect --clips` agree with the graph's own
+# count; subject 16 keeps over half its frames (no warning), the BVH pair 07_01 + 07_12 less
+# (07_12's converted root sits below the floor), so the build names the clips it lost.
+"$bin" build "$data/bvh/07_01.bvh" "$data/bvh/07_12.bvh" -o "$work/b07.mgraph" --cache-dir "$cache" \
+  --report "$work/b07.json" 2>"$work/b07.err" >/dev/null
+"$bin" build "$data/cmu/16" -o "$work/g.mgraph" --cache-dir "$cache" 2>"$work/g.err" >/dev/null
+"$bin" inspect --clips "$work/g.mgraph" >"$work/g.clips"
+"$bin" inspect --clips "$work/b07.mgraph" >"$work/b07.clips"
+python3 - "$work" <<'PY'
+import json, re, sys
+work = sys.argv[1]
+for name, report in (("g", "r.json"), ("b07", "b07.json")):
+    r = json.load(open(f"{work}/{report}"))
+    kept = [c["kept_frames"] for c in r["clips"]]
+    assert sum(kept) == r["graph_after"]["clip_frames"] and all(0 <= k <= c["frames"] for k, c in zip(kept, r["clips"]))
+    rows = {l.split()[0]: l.split() for l in open(f"{work}/{name}.clips").read().splitlines()[1:]}
+    for c in r["clips"]:
+        assert int(rows[c["name"]][3]) == c["kept_frames"], (rows[c["name"]], c)
+    assert int(rows["all"][3]) == sum(kept) and int(rows["all"][1]) == r["frames"], rows["all"]
+    err = open(f"{work}/{name}.err").read()
+    share = sum(kept) / r["frames"]
+    warned = re.search(r"warning: the graph keeps (\d+) % of the frames \((\d+) of (\d+)\); it loses most of (\S+) "
+                       r"\((\d+) of (\d+) frames", err)
+    assert (warned is not None) == (share < 0.5), (share, err)
+    if warned:
+        assert int(warned[2]) == sum(kept) and int(warned[3]) == r["frames"] and int(warned[1]) == round(100 * share)
+        # The clip named first is the one losing most frames, with its counts.
+        worst = max(r["clips"], key=lambda c: c["frames"] - c["kept_frames"])
+        assert warned[4] == worst["name"] and int(warned[5]) == worst["kept_frames"], (warned[0], worst)
+        # It keeps nothing: the report gives the threshold from which candidates would join it,
+        # above the threshold used (or they would have).
+        assert worst["kept_frames"] == 0 and worst["best_join_rms_cm"] > r["threshold_rms_cm"], worst
+        assert f"candidates would join it from RMS {worst['best_join_rms_cm']:.2f} cm" in err, err
+        assert rows[worst["name"]][-1] == "cm" and float(rows[worst["name"]][-2]) == round(worst["best_join_rms_cm"], 2)
+assert json.load(open(f"{work}/b07.json"))["graph_after"]["clip_frames"] * 2 < 145  # the case warned about
+PY
+
 # Another threshold: the distance stage comes from the cache.
 "$bin" build "$data/cmu/16" -o "$work/g2.mgraph" --cache-dir "$cache" --threshold-quantile 0.05 --report "$work/r2.json" -q
 python3 -c "import json,sys; r=json.load(open(sys.argv[1])); assert r['distance_cache']=='hit', r['distance_cache']" "$work/r2.json"

@@ -142,6 +142,14 @@ try {
   check(changed.n > 0.05 * changed.total && changed.n > 300,
     `the figure covers ${changed.n} of ${changed.total} pixels of its box`);
 
+  // 2. The clip selector says what the graph keeps of each clip, as the API counts it.
+  const clipOptions = await page.$$eval('[data-testid=clip-select] option', (os) => os.map((o) => o.textContent));
+  const apiClips = await page.evaluate(async () => (await fetch('/api/clips')).json());
+  const keptShown = apiClips.filter((c, i) => clipOptions[i]
+    && clipOptions[i].includes(`kept ${Math.round((100 * c.kept_frames) / c.frames)} %`)).length;
+  check(clipOptions.length === apiClips.length && keptShown === apiClips.length,
+    `${keptShown} of ${apiClips.length} clips show the share the graph keeps (${clipOptions[0]})`);
+
   // 2. A clip plays: frames advance and the root moves.
   await page.selectOption('[data-testid=clip-select]', '1');
   await page.waitForFunction(() => window.studio.state.clipIndex === 1 && window.studio.state.playing);

@@ -40,6 +40,16 @@ TEST(StudioApi, ClipFramesAreWorldPositionsOfEveryJoint) {
   const ApiCall clips = call_api("GET", "/api/clips");
   ASSERT_EQ(clips.response.status, 200);
   ASSERT_FALSE(clips.json.empty());
+  // Each clip's frames the pruned graph plays, adding up to the graph's own count.
+  const auto& file = studio_service().file();
+  long long kept = 0;
+  for (const json& c : clips.json) {
+    EXPECT_GE(c["kept_frames"].get<int>(), 0);
+    EXPECT_LE(c["kept_frames"].get<int>(), c["frames"].get<int>());
+    kept += c["kept_frames"].get<int>();
+  }
+  EXPECT_EQ(kept, compute_graph_statistics(file.graph, file.database.frame_tags()).clip_frames);
+  EXPECT_GT(kept, 0);
   const ApiCall frames = call_api("GET", "/api/clips/0/frames", "", {{"from", "5"}, {"count", "10"}});
   ASSERT_EQ(frames.response.status, 200) << frames.response.body;
   const size_t joints = frames.json["joints"].size();

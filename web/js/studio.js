@@ -535,8 +535,8 @@ async function start() {
   $('summary').textContent = `${summary.graph}: ${summary.clips} clips, ${summary.frames} frames at ${summary.fps} fps; `
     + `${summary.statistics.nodes} nodes, ${summary.statistics.edges} edges, `
     + `${summary.statistics.transitions} transitions`;
-  $('clip-select').innerHTML = clips.map((c) => `<option value="${c.index}">${c.name} (${c.frames} frames; `
-    + `${c.tags.join(', ') || 'no tag'})</option>`).join('');
+  $('clip-select').innerHTML = clips.map((c) => `<option value="${c.index}">${c.name} (${c.frames} frames, kept `
+    + `${Math.round((100 * c.kept_frames) / c.frames)} %; ${c.tags.join(', ') || 'no tag'})</option>`).join('');
   $('path-tag').innerHTML = ['<option value="">any</option>',
     ...summary.tags.map((t) => `<option value="${t}"${t === 'walk' ? ' selected' : ''}>${t}</option>`)].join('');
   const modifierNote = 'a modifier: says how a motion goes (turn, stop, ...), not what it is; its frames live in '

@@ -13,6 +13,7 @@
 #include "motiongraph/database/database_loader.h"
 #include "motiongraph/export/matrix_png.h"
 #include "motiongraph/export/npy.h"
+#include "motiongraph/graph/clip_coverage.h"
 #include "motiongraph/graph/graph_from_candidates.h"
 #include "motiongraph/graph/on_demand_candidates.h"
 #include "motiongraph/graph/pruned_candidates.h"
@@ -394,6 +395,51 @@ Result<Prepared> prepare(std::span<const std::string> inputs, const BuildSetting
   return Prepared{std::move(*db), std::move(*layout), std::move(*features)};
 }
 
+// The warning for a graph that keeps less than half of the library's frames (nothing when it
+// keeps more): the share, and the clips it loses most of, with the threshold from which
+// candidates could join a clip it keeps nothing of (the pruned stage's reach its ceiling only).
+std::string coverage_warning(const MotionDatabase& db, const FrameFeatures& features,
+                             std::span<const ClipCoverage> coverage, const CandidateSearch& candidates,
+                             const BuildSettings& settings, double threshold_rms_cm) {
+  long long kept = 0;
+  for (const ClipCoverage& c : coverage) kept += c.kept_frames;
+  const long long frames = db.frame_count();
+  if (2 * kept >= frames) return {};
+  std::vector<ClipCoverage> lost(coverage.begin(), coverage.end());
+  std::stable_sort(lost.begin(), lost.end(), [](const ClipCoverage& a, const ClipCoverage& b) {
+    return a.frames - a.kept_frames > b.frames - b.kept_frames;
+  });
+  const std::string searched =
+      candidates.ceiling >= 0.0 ? fmt::format(" under RMS {:.2f} cm", rms_cm_of_distance(candidates.ceiling, features))
+                                : std::string();
+  std::vector<std::string> named;
+  for (size_t i = 0; i < lost.size() && named.size() < 5 && lost[i].kept_frames < lost[i].frames; ++i) {
+    const ClipCoverage& c = lost[i];
+    std::string line = fmt::format("{} ({} of {} frames", db.clips[c.clip].name, c.kept_frames, c.frames);
+    if (c.kept_frames == 0) {
+      const double join_cm = rms_cm_of_distance(c.best_join, features);
+      if (c.best_join < 0.0f) {
+        line += fmt::format("; no candidates lead into it and out again{}", searched);
+      } else if (join_cm <= threshold_rms_cm) {
+        line += fmt::format("; candidates from RMS {:.2f} cm would join it, but pruning by motion type or the "
+                            "spacing dropped them", join_cm);
+      } else {
+        line += fmt::format("; candidates would join it from RMS {:.2f} cm", join_cm);
+      }
+    }
+    named.push_back(line + ")");
+  }
+  const std::string raise = settings.threshold_mode == ThresholdMode::kAuto
+                                ? fmt::format("--max-threshold {:g} cm bounds the automatic one",
+                                              settings.choice.max_rms_cm)
+                                : std::string("--threshold sets it");
+  return fmt::format("the graph keeps {:.0f} % of the frames ({} of {}); it loses most of {}. A clip joins the graph "
+                     "only through transitions under the threshold (here RMS {:.2f} cm; {}): a higher one keeps "
+                     "more, with rougher blends",
+                     100.0 * static_cast<double>(kept) / static_cast<double>(frames), kept, frames,
+                     fmt::join(named, ", "), threshold_rms_cm, raise);
+}
+
 }  // namespace
 
 Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildSettings& settings, DistanceCache* cache,
@@ -453,13 +499,21 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
   auto built = build_spaced_graph(*db, *selected, *features, *graph_settings);
   if (!built && built.error().kind != ErrorKind::kEmptyGraph) return built.error();
   timings["graph"] = watch.lap();
+  std::vector<ClipCoverage> coverage;
   if (built) {
     const PruneReport& pruned = built->prune;
-    say.info(
-        fmt::format("graph: {} nodes, {} edges ({} transitions) after pruning and spacing; {} transitions "
-                    "survived a first pruning, spaced to {}",
-                    pruned.after.nodes, pruned.after.edges, pruned.after.transitions, built->survived_first_pruning,
-                    pruned.before.transitions));
+    coverage = clip_coverage(built->graph, *db, candidates->search.minima);
+    say.info(fmt::format("graph: {} nodes, {} edges ({} transitions) after pruning and spacing, playing {} of the {} "
+                         "frames ({:.0f} %); {} transitions survived a first pruning, spaced to {}",
+                         pruned.after.nodes, pruned.after.edges, pruned.after.transitions, pruned.after.clip_frames,
+                         db->frame_count(),
+                         100.0 * static_cast<double>(pruned.after.clip_frames) / db->frame_count(),
+                         built->survived_first_pruning, pruned.before.transitions));
+    if (const std::string warning =
+            coverage_warning(*db, *features, coverage, candidates->search, settings, threshold_rms_cm);
+        !warning.empty()) {
+      say.warning(warning);
+    }
     // Motion types that both loop but that nothing joins (the report lists them all): a warning
     // when the graph lost one of them, else the graph leads from one to the other through
     // other frames.
@@ -484,7 +538,7 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
   GraphBuild out;
   const char* mode_name = threshold_mode_name(settings.threshold_mode);
   out.report = build_report(BuildReportParts{*db, *features, *layout, candidates->search, *selected,
-                                             built ? &*built : nullptr, distance_json, mode_name, choice_json,
+                                             built ? &*built : nullptr, coverage, distance_json, mode_name, choice_json,
                                              check_json, settings.spacing, graph_settings->bridges,
                                              candidates->cache, candidates->processes, candidates->peak_memory_mb,
                                              candidates->share_seconds, candidates->restored_tiles});

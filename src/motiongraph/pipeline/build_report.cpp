@@ -10,9 +10,10 @@ namespace mg {
 
 using nlohmann::json;
 
-json clips_json(const MotionDatabase& db) {
+json clips_json(const MotionDatabase& db, std::span<const ClipCoverage> coverage, const FrameFeatures* features) {
   json clips = json::array();
-  for (const DatabaseClip& clip : db.clips) {
+  for (size_t c = 0; c < db.clips.size(); ++c) {
+    const DatabaseClip& clip = db.clips[c];
     json tags = json::array();
     for (size_t t = 0; t < db.tag_names.size(); ++t) {
       for (const TagRange& range : db.tag_ranges) {
@@ -31,6 +32,14 @@ json clips_json(const MotionDatabase& db) {
          {"tags", tags},
          {"skeleton", clip.skeleton < static_cast<int>(db.skeleton_names.size()) ? db.skeleton_names[clip.skeleton]
                                                                                  : std::to_string(clip.skeleton)}});
+    if (c < coverage.size()) {
+      const ClipCoverage& kept = coverage[c];
+      clips.back()["kept_frames"] = kept.kept_frames;
+      if (kept.kept_frames == 0 && features != nullptr) {
+        clips.back()["best_join_rms_cm"] =
+            kept.best_join < 0.0f ? json(nullptr) : json(rms_cm_of_distance(kept.best_join, *features));
+      }
+    }
   }
   return clips;
 }
@@ -197,7 +206,7 @@ json build_report(const BuildReportParts& parts) {
       {"point_weights", point_weights},
       {"window_weights", features.taper},
       {"window_weight", features.window_weight},
-      {"clips", clips_json(db)},
+      {"clips", clips_json(db, parts.coverage, &features)},
       {"foot_contacts", foot_contacts_json(db)},
       {"tags", db.tag_names},
       {"distance_settings", parts.distance_settings},

@@ -1,5 +1,6 @@
 // The build report (`motiongraph build --report`, and GraphFile::report_json): the frames,
-// rate, window, point and window weights, the clips with their tags, the feet and how often
+// rate, window, point and window weights, the clips with their tags and what the graph keeps of
+// them, the feet and how often
 // they are planted, the distance settings
 // (DistanceStageSettings::to_json), the threshold and how it was found (the automatic choice's
 // coverage curve, the path check), counts, the graph's statistics before and after pruning,
@@ -9,11 +10,13 @@
 // the RMS point distance in cm (graph/threshold_choice.h).
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "motiongraph/database/motion_database.h"
+#include "motiongraph/graph/clip_coverage.h"
 #include "motiongraph/graph/graph_from_candidates.h"
 #include "motiongraph/graph/threshold_choice.h"
 #include "motiongraph/metric/point_cloud.h"
@@ -21,8 +24,11 @@
 
 namespace mg {
 
-// [{"name", "source", "first_frame", "frames", "tags", "skeleton"}, ...]
-nlohmann::json clips_json(const MotionDatabase& db);
+// [{"name", "source", "first_frame", "frames", "tags", "skeleton"}, ...]; with the pruned graph's
+// coverage (one per clip), each also has "kept_frames", and a clip it keeps nothing of
+// "best_join_rms_cm" (ClipCoverage::best_join as RMS; null when no candidates could join it).
+nlohmann::json clips_json(const MotionDatabase& db, std::span<const ClipCoverage> coverage = {},
+                          const FrameFeatures* features = nullptr);
 
 // The feet found on each skeleton ({"feet": [{"skeleton", "left_ankle", "left_toe",
 // "right_ankle", "right_toe"}]}) and the share of frames each joint is planted
@@ -58,6 +64,7 @@ struct BuildReportParts {
   const CandidateSearch& candidates;
   const TransitionsWithBridges& selected;
   const PrunedGraph* pruned = nullptr;
+  std::span<const ClipCoverage> coverage;  // what pruned keeps of each clip (empty: no graph)
   nlohmann::json distance_settings;
   const char* threshold_mode = "auto";
   nlohmann::json threshold_choice;  // null unless automatic
