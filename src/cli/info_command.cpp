@@ -10,6 +10,7 @@
 #include "cli/unit_report.h"
 #include "motiongraph/core/json_text.h"
 #include "motiongraph/motion/clip_loader.h"
+#include "motiongraph/motion/clip_doubts.h"
 #include "motiongraph/motion/clip_summary.h"
 
 namespace mg::cli {
@@ -67,6 +68,7 @@ int run_info(const InfoOptions& options) {
     if (!loaded) return fail(loaded.error());
     const Clip& clip = loaded->clip;
     const ClipSummary s = summarize(clip.skeleton, clip.motion);
+    const std::vector<std::string> doubts = clip_doubts(clip.skeleton, clip.motion);
     if (clip.detected_unit && !clip.detected_unit->plausible) report_unit(file, *clip.detected_unit);
     std::string unit = fmt::format("{:g} m per unit (--scale)", options.load.scale.value_or(1.0));
     if (loaded->format == "amc") unit = "the ASF's units";
@@ -83,7 +85,7 @@ int run_info(const InfoOptions& options) {
           {"floor_extent_m", {{"x", {s.floor_min_x_m, s.floor_max_x_m}}, {"z", {s.floor_min_z_m, s.floor_max_z_m}}}},
           {"height_m", {s.min_height_m, s.max_height_m}}, {"root_path_m", s.root_path_m},
           {"root", clip.skeleton.joint(0).name}, {"static_joints_above_root", static_ancestor_names(clip.skeleton)},
-          {"skeleton", skeleton_json(clip.skeleton)}};
+          {"doubts", doubts}, {"skeleton", skeleton_json(clip.skeleton)}};
       if (!loaded->skeleton_path.empty()) entry["asf"] = loaded->skeleton_path;
       if (clip.detected_unit) {
         entry["unit"] = {{"name", clip.detected_unit->unit.name},
@@ -106,6 +108,11 @@ int run_info(const InfoOptions& options) {
       fmt::print("  floor:    x {:.2f} .. {:.2f} m, z {:.2f} .. {:.2f} m; height {:.2f} .. {:.2f} m; root travels {:.2f} m\n",
                  s.floor_min_x_m, s.floor_max_x_m, s.floor_min_z_m, s.floor_max_z_m, s.min_height_m,
                  s.max_height_m, s.root_path_m);
+      if (!doubts.empty()) {
+        std::string joined;
+        for (const std::string& d : doubts) joined += (joined.empty() ? "" : ", and ") + d;
+        fmt::print("  warning:  {}; its root translation may be wrong\n", joined);
+      }
     }
   }
   if (options.json) fmt::print("{}\n", json_text(all, 2));

@@ -158,6 +158,22 @@ for name, report in (("g", "r.json"), ("b07", "b07.json")):
         assert f"candidates would join it from RMS {worst['best_join_rms_cm']:.2f} cm" in err, err
         assert rows[worst["name"]][-1] == "cm" and float(rows[worst["name"]][-2]) == round(worst["best_join_rms_cm"], 2)
 assert json.load(open(f"{work}/b07.json"))["graph_after"]["clip_frames"] * 2 < 145  # the case warned about
+# Loading says why: 07_12 as read lies below the floor and never plants a foot; subject 16 is clean.
+b07 = open(f"{work}/b07.err").read()
+assert re.search(r"warning: 07_12: its lowest joint is 0\.\d\d-0\.\d\d m below the floor \(y = 0\), and no foot "
+                 r"rests on the floor in any frame; its root translation may be wrong", b07), b07
+assert "07_01:" not in b07 and "root translation may be wrong" not in open(f"{work}/g.err").read()
+PY
+"$bin" info "$data/bvh/07_12.bvh" "$data/bvh/07_01.bvh" --json >"$work/info07.json" 2>/dev/null
+"$bin" info "$data/bvh/07_12.bvh" 2>/dev/null | grep "warning:  its lowest joint is .* below the floor" >/dev/null \
+  || { echo "FAIL: info's warning on 07_12"; "$bin" info "$data/bvh/07_12.bvh"; exit 1; }
+python3 - "$work/info07.json" <<'PY'
+import json, sys
+i = json.load(open(sys.argv[1]))
+assert len(i[0]["doubts"]) == 2 and i[1]["doubts"] == [], [e["doubts"] for e in i]
+# The heights it gives lie inside the height range info reports for the clip.
+low, high = (float(x) for x in i[0]["doubts"][0].split(" is ")[1].split(" m ")[0].split("-"))
+assert i[0]["height_m"][0] <= -high < -low <= i[0]["height_m"][1], (i[0]["doubts"], i[0]["height_m"])
 PY
 
 # Another threshold: the distance stage comes from the cache.

@@ -15,7 +15,9 @@
 #include "motiongraph/database/manifest.h"
 #include "motiongraph/database/shipped_cmu_index.h"
 #include "motiongraph/io/file.h"
+#include "motiongraph/motion/clip_doubts.h"
 #include "motiongraph/motion/clip_loader.h"
+#include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/motion/resample.h"
 
 namespace mg {
@@ -406,6 +408,20 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
   if (auto s = find_database_contacts(db); !s) {
     if (!settings.foot_names.empty()) return Error{"", 0, "the foot joints named: " + s.error().message};
     return Error{wide.feet_source, wide.feet_line, s.error().message};
+  }
+
+  // 5. What looks wrong with a clip as read, for the caller to say.
+  if (notes != nullptr) {
+    for (const DatabaseClip& clip : db.clips) {
+      const Skeleton& skeleton = db.skeletons[clip.skeleton];
+      const std::span<const ContactMask> contacts =
+          db.frame_contacts.empty() ? std::span<const ContactMask>()
+                                    : std::span<const ContactMask>(db.frame_contacts).subspan(clip.first_frame,
+                                                                                              clip.frame_count);
+      const std::vector<std::string> doubts =
+          clip_doubts(world_positions(skeleton, clip.motion), skeleton.joint_count(), db.fps, contacts);
+      if (!doubts.empty()) notes->clip_doubts.push_back(clip_doubt_line(clip.name, doubts));
+    }
   }
   return db;
 }

@@ -62,14 +62,16 @@ struct DatabaseSettings {
   Status validate() const;
 };
 
-// What loading chose by itself, for the caller to report: the unit of each BVH file read
-// without one (length_unit.h), in clip order.
+// What loading chose by itself or noticed, for the caller to report: the unit of each BVH file
+// read without one (length_unit.h), in clip order, and a line for each clip that looks wrong as
+// read (motion/clip_doubts.h: off the floor, feet never planted).
 struct DatabaseLoadNotes {
   struct DetectedUnit {
     std::string file;
     LengthUnitChoice choice;
   };
   std::vector<DetectedUnit> detected_units;
+  std::vector<std::string> clip_doubts;
 };
 
 Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, const DatabaseSettings& settings,

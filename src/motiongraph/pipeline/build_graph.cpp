@@ -376,6 +376,7 @@ Result<Prepared> prepare(std::span<const std::string> inputs, const BuildSetting
   auto db = load_database(input_list, db_settings, &load_notes);
   if (!db) return db.error();
   if (log.loaded) log.loaded(load_notes);
+  for (const std::string& line : load_notes.clip_doubts) say.warning(line);
   timings["load"] = watch.lap();
   say.info(fmt::format("{} clips, {} frames at {:g} fps ({:.1f} s), {} tags", db->clips.size(), db->frame_count(),
                        db->fps, db->frame_count() / db->fps, db->tag_names.size()));
