@@ -129,12 +129,16 @@ int run_inspect(const InspectOptions& o) {
     if (check.value("skipped", false)) {
       fmt::print("path check: skipped (the clips hardly travel)\n");
     } else if (chosen != points.end()) {
-      fmt::print("path check: the {:.0f} m test path followed {:.3f} m off{} ({}; {} threshold(s) tried)\n",
+      const auto delivered = check.value("delivered", nlohmann::json());
+      fmt::print("path check: the {:.0f} m test path followed {:.3f} m off{} ({}; {} threshold(s) tried){}\n",
                  check.value("probe_length_m", 0.0), (*chosen).value("mean_deviation_m", 0.0),
                  (*chosen).value("reached_end", false) ? "" : ", end not reached",
                  check.value("passed", false) ? fmt::format("within {:g} m", check.value("tolerance_m", 0.0))
                                               : std::string("NOT within the tolerance: the clips may hold few turns"),
-                 points.size());
+                 points.size(),
+                 delivered.is_object() ? fmt::format("; path's motion, bent onto it: {:.3f} m off",
+                                                     delivered.value("mean_deviation_m", 0.0))
+                                       : std::string());
     }
   }
   if (report.is_object()) {

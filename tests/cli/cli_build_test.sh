@@ -105,9 +105,9 @@ done
 # path went best is kept, and the user is told. Without the check, the coverage choice stays.
 "$bin" build "$data/cmu/16" -o "$work/pc.mgraph" --cache-dir "$cache" --path-check 0.0001 --report "$work/pc.json" \
   2>"$work/pc.err" >/dev/null
-grep -q "path check: no threshold up to --max-threshold 10 cm follows the test path within 0.0001 m" "$work/pc.err" \
+grep -q "path check: no threshold up to --max-threshold 10 cm lets the graph's own walks follow the test path within 0.0001 m; the best, RMS [0-9.]* cm, follows it [0-9.]* m off (the clips may hold few turns); \`path\`, bending the motion onto the path, follows it [0-9.]* m off" "$work/pc.err" \
   || { echo "FAIL: path check warning"; cat "$work/pc.err"; exit 1; }
-"$bin" inspect "$work/pc.mgraph" | grep "path check: .* (NOT within the tolerance: the clips may hold few turns; 7 threshold(s) tried)" >/dev/null \
+"$bin" inspect "$work/pc.mgraph" | grep "path check: .* (NOT within the tolerance: the clips may hold few turns; 7 threshold(s) tried); path's motion, bent onto it: [0-9.]* m off" >/dev/null \
   || { echo "FAIL: inspect's failed path check line"; "$bin" inspect "$work/pc.mgraph"; exit 1; }
 "$bin" build "$data/cmu/16" -o "$work/npc.mgraph" --cache-dir "$cache" --no-path-check --report "$work/npc.json" -q
 python3 - "$work" <<'PY'
@@ -119,7 +119,14 @@ assert not pc["passed"] and len(ts) == 7 and ts == sorted(ts) and ts[0] == c["th
 assert abs(pc["points"][-1]["rms_cm"] - c["max_rms_cm"]) < 1e-6, pc["points"][-1]
 best = min((p for p in pc["points"] if p["reached_end"]), key=lambda p: p["mean_deviation_m"])
 assert r["threshold"] == pc["threshold"] == best["threshold"], (r["threshold"], best)
+# What `path` delivers there, its motion bent onto the path: the warning's figure, closer than the
+# graph's own walk.
+d = pc["delivered"]
+assert d["threshold"] == best["threshold"] and d["reached_end"] and d["mean_deviation_m"] < best["mean_deviation_m"], d
+assert f"bending the motion onto the path, follows it {d['mean_deviation_m']:.3f} m off" in open(f"{work}/pc.err").read()
 n = json.load(open(f"{work}/npc.json"))
+r0 = json.load(open(f"{work}/r.json"))
+assert r0["path_check"]["delivered"] is None  # passed: nothing beyond the graph's own walks
 assert n["path_check"] is None and n["threshold"] == n["threshold_choice"]["threshold"] == c["threshold"]
 PY
 

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <memory>
 #include <numbers>
 
 #include "motiongraph/graph/threshold_choice.h"
@@ -83,6 +84,25 @@ const Fixture& walking() {
   return x;
 }
 
+// The graph of the fixture at one threshold, built again as the check builds it, and its
+// synthesis context (which points into it: kept on the heap).
+struct GraphAt {
+  GraphFromCandidates graph;
+  SynthesisContext context;
+};
+std::unique_ptr<GraphAt> graph_at(const Fixture& x, double threshold) {
+  GraphFromCandidatesSettings at = x.settings;
+  at.transitions.threshold = threshold;
+  auto graph = graph_from_candidates(x.db, x.features, x.search, at);
+  EXPECT_TRUE(graph);
+  auto out = std::make_unique<GraphAt>();
+  out->graph = std::move(*graph);
+  auto context = make_synthesis_context(x.db, out->graph.pruned.graph);
+  EXPECT_TRUE(context);
+  out->context = std::move(*context);
+  return out;
+}
+
 bool passes(const PathCheckPoint& p, double tolerance) {
   return p.graph && p.reached_end && p.mean_deviation_m <= tolerance;
 }
@@ -115,6 +135,7 @@ TEST(PathCheck, UnreachableToleranceTriesEveryStepToTheCeilingAndKeepsTheBest) {
   PathCheckSettings s;
   s.steps = 3;
   s.tolerance_m = 1e-6;
+  s.synthesis.progress_retries = 0;  // `path` searching once, for the delivered probe below
   auto check = check_path_following(x.db, x.features, x.search, x.settings, x.from, x.ceiling, s);
   ASSERT_TRUE(check) << check.error().to_string();
   EXPECT_FALSE(check->skipped);
@@ -150,6 +171,18 @@ TEST(PathCheck, UnreachableToleranceTriesEveryStepToTheCeilingAndKeepsTheBest) {
       EXPECT_LT(p.arc_covered_m, check->probe_length_m - kEndReachedM);
     }
   }
+  // None passed, so the probe was synthesized once more at the chosen threshold as `path` does
+  // (the edit bending its motion onto the path): the delivered motion's deviation, as path
+  // synthesis with those settings gives it on that threshold's graph, built again here.
+  ASSERT_TRUE(check->delivered.has_value());
+  EXPECT_EQ(check->delivered->threshold, chosen->threshold);
+  ASSERT_TRUE(s.synthesis.edit_path);
+  const auto graph = graph_at(x, chosen->threshold);
+  auto path = synthesize_path(graph->context, path_check_probe(), s.synthesis);
+  ASSERT_TRUE(path);
+  EXPECT_DOUBLE_EQ(path->mean_deviation_m, check->delivered->mean_deviation_m);
+  EXPECT_EQ(path->reached_end, check->delivered->reached_end);
+  EXPECT_NE(path->mean_deviation_m, path->graph_mean_deviation_m);  // the edit did bend it
 }
 
 TEST(PathCheck, ChoosesTheFirstThresholdWithinTheToleranceAndMeasuresAsPathSynthesisDoes) {
@@ -157,6 +190,7 @@ TEST(PathCheck, ChoosesTheFirstThresholdWithinTheToleranceAndMeasuresAsPathSynth
   PathCheckSettings s;
   s.steps = 3;
   s.tolerance_m = 1e-6;
+  s.synthesis.progress_retries = 0;  // the delivered probe of the first check searches once
   auto all = check_path_following(x.db, x.features, x.search, x.settings, x.from, x.ceiling, s);
   ASSERT_TRUE(all);
   // A tolerance that the last point meets: the answer is the first point meeting it.
@@ -170,23 +204,19 @@ TEST(PathCheck, ChoosesTheFirstThresholdWithinTheToleranceAndMeasuresAsPathSynth
   while (!passes(all->points[first], s.tolerance_m)) ++first;
   EXPECT_EQ(check->threshold, all->points[first].threshold);
   EXPECT_EQ(check->points.size(), first + 1);  // it stops there
+  EXPECT_FALSE(check->delivered.has_value());   // passed: no probe beyond the graph's own
   // The deviation reported is path synthesis's on that threshold's graph, built again here, as
   // the graph plays the walk (the check judges the graph, not the edit onto the path).
-  GraphFromCandidatesSettings at = x.settings;
-  at.transitions.threshold = check->threshold;
-  auto graph = graph_from_candidates(x.db, x.features, x.search, at);
-  ASSERT_TRUE(graph);
-  auto context = make_synthesis_context(x.db, graph->pruned.graph);
-  ASSERT_TRUE(context);
+  const auto graph = graph_at(x, check->threshold);
   PathSynthesisSettings search = s.synthesis;  // as the check searches: Kovar's search alone
   search.edit_path = false;
   search.progress_retries = 0;
   search.anchor_arc = false;
-  auto path = synthesize_path(*context, path_check_probe(), search);
+  auto path = synthesize_path(graph->context, path_check_probe(), search);
   ASSERT_TRUE(path);
   EXPECT_DOUBLE_EQ(path->graph_mean_deviation_m, check->chosen()->mean_deviation_m);
   EXPECT_EQ(path->reached_end, check->chosen()->reached_end);
-  EXPECT_EQ(path->walk.transition_count(graph->pruned.graph), check->chosen()->transitions);
+  EXPECT_EQ(path->walk.transition_count(graph->graph.pruned.graph), check->chosen()->transitions);
 }
 
 TEST(PathCheck, ALibraryWhoseRootStaysPutIsNotChecked) {

@@ -283,13 +283,18 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
                     "cm, where it is followed at {:.3f} m",
                     first.mean_deviation_m, first.rms_cm, check->rms_cm, picked->mean_deviation_m));
   } else {
-    say.warning(
-        fmt::format("path check: no threshold up to --max-threshold {:g} cm follows the test path within {:g} "
-                    "m; the best, RMS {:.2f} cm, follows it {:.3f} m off{} (the clips may hold few turns)",
-                    choice_settings.max_rms_cm, check_settings.tolerance_m, check->rms_cm, picked->mean_deviation_m,
-                    picked->reached_end ? ""
-                                        : fmt::format(" and covers {:.0f} m of its {:.0f} m", picked->arc_covered_m,
-                                                      check->probe_length_m)));
+    const PathCheckPoint* delivered = check->delivered ? &*check->delivered : nullptr;
+    say.warning(fmt::format(
+        "path check: no threshold up to --max-threshold {:g} cm lets the graph's own walks follow the test path "
+        "within {:g} m; the best, RMS {:.2f} cm, follows it {:.3f} m off{} (the clips may hold few turns){}",
+        choice_settings.max_rms_cm, check_settings.tolerance_m, check->rms_cm, picked->mean_deviation_m,
+        picked->reached_end
+            ? ""
+            : fmt::format(" and covers {:.0f} m of its {:.0f} m", picked->arc_covered_m, check->probe_length_m),
+        delivered == nullptr ? ""
+                             : fmt::format("; `path`, bending the motion onto the path, follows it {:.3f} m off{}",
+                                           delivered->mean_deviation_m,
+                                           delivered->reached_end ? "" : ", short of its end")));
   }
   graph_settings.transitions.threshold = check->threshold;
   return graph_settings;

@@ -93,18 +93,19 @@ json threshold_choice_json(const ThresholdChoice& choice, const MotionDatabase& 
 }
 
 json path_check_json(const PathCheck& check, const PathCheckSettings& settings) {
+  const auto point_json = [](const PathCheckPoint& p) {
+    return json{{"threshold", p.threshold},
+                {"rms_cm", p.rms_cm},
+                {"graph", p.graph},
+                {"mean_deviation_m", p.mean_deviation_m},
+                {"max_deviation_m", p.max_deviation_m},
+                {"reached_end", p.reached_end},
+                {"arc_covered_m", p.arc_covered_m},
+                {"transitions", p.transitions},
+                {"seconds", p.seconds}};
+  };
   json points = json::array();
-  for (const PathCheckPoint& p : check.points) {
-    points.push_back({{"threshold", p.threshold},
-                      {"rms_cm", p.rms_cm},
-                      {"graph", p.graph},
-                      {"mean_deviation_m", p.mean_deviation_m},
-                      {"max_deviation_m", p.max_deviation_m},
-                      {"reached_end", p.reached_end},
-                      {"arc_covered_m", p.arc_covered_m},
-                      {"transitions", p.transitions},
-                      {"seconds", p.seconds}});
-  }
+  for (const PathCheckPoint& p : check.points) points.push_back(point_json(p));
   json out = settings;
   out.update({{"probe_length_m", check.probe_length_m},
               {"skipped", check.skipped},
@@ -112,7 +113,8 @@ json path_check_json(const PathCheck& check, const PathCheckSettings& settings) 
               {"passed", check.passed},
               {"threshold", check.threshold},
               {"rms_cm", check.rms_cm},
-              {"points", points}});
+              {"points", points},
+              {"delivered", check.delivered ? point_json(*check.delivered) : json(nullptr)}});
   return out;
 }
 

@@ -70,11 +70,13 @@ double travelling_share(const SynthesisContext& context, double speed_mps) {
 
 namespace {
 
-// The probe on the graph of one threshold. travel_share is set only when asked for.
+// The probe on the graph of one threshold. travel_share is set only when asked for. With
+// as_path_does, the search is `path`'s own, edit and retries included, and the deviations are
+// its delivered motion's.
 Result<PathCheckPoint> probe_at(const MotionDatabase& db, const FrameFeatures& features,
                                 const CandidateSearch& candidates, const GraphFromCandidatesSettings& settings,
                                 double threshold, const PathCheckSettings& check, const FloorPath& probe,
-                                double* travel_share, OnDemandCandidates* more) {
+                                double* travel_share, OnDemandCandidates* more, bool as_path_does = false) {
   GraphFromCandidatesSettings at = settings;
   at.transitions.threshold = threshold;
   PathCheckPoint point;
@@ -93,14 +95,16 @@ Result<PathCheckPoint> probe_at(const MotionDatabase& db, const FrameFeatures& f
   if (travel_share != nullptr) *travel_share = travelling_share(*context, check.travel_speed_mps);
   const auto start = std::chrono::steady_clock::now();
   PathSynthesisSettings search = check.synthesis;
-  search.edit_path = false;     // the graph is judged, not the edit that bends its motion,
-  search.progress_retries = 0;  // nor another search pushing harder,
-  search.anchor_arc = false;    // nor one that corrects its arc as it goes: Kovar's search alone
+  if (!as_path_does) {
+    search.edit_path = false;     // the graph is judged, not the edit that bends its motion,
+    search.progress_retries = 0;  // nor another search pushing harder,
+    search.anchor_arc = false;    // nor one that corrects its arc as it goes: Kovar's search alone
+  }
   auto result = synthesize_path(*context, probe, search);
   if (!result) return result.error();
   point.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  point.mean_deviation_m = result->graph_mean_deviation_m;
-  point.max_deviation_m = result->graph_max_deviation_m;
+  point.mean_deviation_m = as_path_does ? result->mean_deviation_m : result->graph_mean_deviation_m;
+  point.max_deviation_m = as_path_does ? result->max_deviation_m : result->graph_max_deviation_m;
   point.reached_end = result->reached_end;
   point.arc_covered_m = result->arc_covered_m;
   point.transitions = result->walk.transition_count(built->graph);
@@ -165,6 +169,12 @@ Result<PathCheck> check_path_following(const MotionDatabase& db, const FrameFeat
   }
   out.threshold = best->threshold;
   out.rms_cm = best->rms_cm;
+  if (best->graph) {
+    auto delivered = probe_at(db, features, candidates, settings, best->threshold, check, probe, nullptr, more,
+                              /*as_path_does=*/true);
+    if (!delivered) return delivered.error();
+    out.delivered = *delivered;
+  }
   return out;
 }
 

@@ -7,13 +7,15 @@
 // about 29 m, with `path`'s default search) on the graph of the threshold, and raise the
 // threshold in log-spaced steps towards the ceiling until the probe is followed within
 // `tolerance_m` mean deviation. When no step is, the threshold whose probe went best (reached
-// the end; else covered the most of it; then least deviation) is kept and `passed` is false.
+// the end; else covered the most of it; then least deviation) is kept and `passed` is false,
+// and the probe is synthesized there once more as `path` does by default (`delivered`).
 //
 // A library that hardly travels (dance on the spot, sitting, gestures) has no path to follow:
 // when less than `min_travel_share` of the graph's clip frames are played in pieces moving at
 // `travel_speed_mps` or faster, the check is skipped and the threshold stays.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -66,6 +68,10 @@ struct PathCheck {
   double rms_cm = 0.0;
   bool passed = false;               // the chosen threshold's probe is within the tolerance
   std::vector<PathCheckPoint> points;  // every threshold tried, in order (increasing)
+  // When none passed: the probe at the chosen threshold as `path` runs it by default (its motion
+  // bent onto the path by the edit, searched again when off), its deviations the delivered
+  // motion's. The points judge the graph's own walks; this says what a user will get.
+  std::optional<PathCheckPoint> delivered;
   const PathCheckPoint* chosen() const;
 };
 
