@@ -40,7 +40,7 @@ struct PathEditSettings {
   static constexpr double kStepM = 0.1;  // the arc-length grid the added angle is steered on
   double smooth_s = 1.0;                 // the motion's own path: the root averaged over this long
   double tangent_m = 0.5;                // tangents: chords over +- this much arc
-  double max_turn_deg_per_m = 20.0;      // turning the edit may add, per metre travelled
+  double max_turn_deg_per_m = 45.0;      // turning the edit may add, per metre travelled
   double lookahead_m = 2.0;              // the edited path comes back onto P over about this much arc
 
   Status validate() const;
