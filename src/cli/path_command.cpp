@@ -68,10 +68,11 @@ Command add_path_command(CLI::App& app) {
               "its first point facing along it. PATH.json: {\"points\": [[x, z], ...], \"segments\":\n"
               "[{\"from_m\": 0, \"to_m\": 20, \"tag\": \"walk\"}, ...]}. Shapes start at the origin heading north\n"
               "(-z): line:L (metres), circle:R (radius, turning right), figure8:R (right loop then left),\n"
-              "s-curve:L (metres of a sine wave).");
+              "s-curve:L (metres of a sine wave), square:S (side, turning right at its corners), zigzag:L\n"
+              "(eight legs, 45 degrees right and left of north).");
   o->common.add_to(*sub);
   sub->add_option("--path", o->path_file, "PATH.json")->check(CLI::ExistingFile);
-  sub->add_option("--shape", o->shape, "A built-in shape: line:20, circle:5, figure8:4, s-curve:100");
+  sub->add_option("--shape", o->shape, "A built-in shape: line:20, circle:5, figure8:4, s-curve:100, square:10, zigzag:6");
   sub->add_option("--segment", o->segments,
                   "TAG:FROM-TO: ask for a motion type along that arc-length range (metres); repeatable, "
                   "replaces the file's segments");

@@ -99,12 +99,14 @@ TEST(FloorPath, IncrementalPointLookupGivesTheSameBits) {
 TEST(FloorPath, ShapesHaveTheirLengthsAndStartNorth) {
   const double pi = std::numbers::pi;
   const std::vector<std::pair<std::string, double>> shapes = {
-      {"line:20", 20.0}, {"circle:5", 2 * pi * 5}, {"figure8:4", 4 * pi * 4}, {"s-curve:100", 100.0}};
+      {"line:20", 20.0},     {"circle:5", 2 * pi * 5}, {"figure8:4", 4 * pi * 4},
+      {"s-curve:100", 100.0}, {"square:10", 40.0},      {"zigzag:6", 48.0}};
   for (const auto& [spec, length] : shapes) {
     auto path = make_shape(spec);
     ASSERT_TRUE(path.ok()) << spec;
     EXPECT_NEAR(path->length_m(), length, 0.01 * length) << spec;
     EXPECT_LT(path->points().front().norm(), 1e-12) << spec;
+    if (spec.starts_with("zigzag")) continue;  // its first leg: 45 degrees right of north (below)
     EXPECT_LT((path->direction_at(0.0) - Vec2(0.0, -1.0)).norm(), 0.1) << spec;
   }
   // A circle turns right (east) and comes back; a figure 8 passes the origin halfway.
@@ -114,6 +116,17 @@ TEST(FloorPath, ShapesHaveTheirLengthsAndStartNorth) {
   auto eight = make_shape("figure8:4");
   EXPECT_LT(eight->point_at(eight->length_m() / 2).norm(), 1e-9);
   EXPECT_LT(eight->point_at(3 * eight->length_m() / 4).x(), -7.0);
+  // A square turns right at its corners and closes; a zigzag's legs go 45 degrees either side
+  // of north, so it ends 8 L / sqrt 2 north of the origin, on its axis.
+  auto square = make_shape("square:10");
+  EXPECT_LT((square->point_at(10.0) - Vec2(0.0, -10.0)).norm(), 1e-9);
+  EXPECT_LT((square->point_at(20.0) - Vec2(10.0, -10.0)).norm(), 1e-9);
+  EXPECT_LT((square->direction_at(15.0) - Vec2(1.0, 0.0)).norm(), 1e-9);
+  EXPECT_LT(square->points().back().norm(), 1e-9);
+  auto zigzag = make_shape("zigzag:6");
+  EXPECT_LT((zigzag->points().back() - Vec2(0.0, -48.0 / std::numbers::sqrt2)).norm(), 1e-9);
+  EXPECT_LT((zigzag->direction_at(3.0) - Vec2(1.0, -1.0).normalized()).norm(), 1e-9);
+  EXPECT_LT((zigzag->direction_at(9.0) - Vec2(-1.0, -1.0).normalized()).norm(), 1e-9);
 }
 
 TEST(FloorPath, DistanceAndSegments) {

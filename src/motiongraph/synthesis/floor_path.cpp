@@ -135,7 +135,8 @@ Result<FloorPath> make_shape(std::string_view spec) {
   const std::string_view name = spec.substr(0, colon);
   double size = 0.0;
   if (colon == std::string_view::npos) {
-    return Error{"", 0, fmt::format("shape '{}' needs a size: line:20, circle:5, figure8:4 or s-curve:100", spec)};
+    return Error{"", 0, fmt::format("shape '{}' needs a size: line:20, circle:5, figure8:4, s-curve:100, square:10 or zigzag:6",
+                                    spec)};
   }
   const std::string_view number = spec.substr(colon + 1);
   const auto [end, ec] = std::from_chars(number.data(), number.data() + number.size(), size);
@@ -175,8 +176,26 @@ Result<FloorPath> make_shape(std::string_view spec) {
       points.push_back(p);
       last = p;
     }
+  } else if (name == "square" || name == "zigzag") {
+    // Straight legs between corners, sampled every 0.1 m: a square's four sides turning right
+    // (north, east, south, west: back at the origin), or a zigzag's eight legs 45 degrees right
+    // and left of north in turn.
+    std::vector<Vec2> corners{Vec2(0.0, 0.0)};
+    if (name == "square") {
+      for (const Vec2& step : {Vec2(0.0, -size), Vec2(size, 0.0), Vec2(0.0, size), Vec2(-size, 0.0)}) {
+        corners.push_back(corners.back() + step);
+      }
+    } else {
+      const double d = size / std::numbers::sqrt2;
+      for (int leg = 0; leg < 8; ++leg) corners.push_back(corners.back() + Vec2(leg % 2 == 0 ? d : -d, -d));
+    }
+    points.push_back(corners.front());
+    for (size_t c = 1; c < corners.size(); ++c) {
+      const int n = std::max(1, static_cast<int>(std::ceil(size / 0.1)));
+      for (int i = 1; i <= n; ++i) points.push_back(corners[c - 1] + (corners[c] - corners[c - 1]) * i / n);
+    }
   } else {
-    return Error{"", 0, fmt::format("unknown shape '{}': line, circle, figure8 or s-curve", name)};
+    return Error{"", 0, fmt::format("unknown shape '{}': line, circle, figure8, s-curve, square or zigzag", name)};
   }
   return FloorPath::create(std::move(points));
 }

@@ -4,12 +4,15 @@
 //
 // PATH.json:  {"points": [[x, z], ...],
 //              "segments": [{"from_m": 0, "to_m": 20, "tag": "walk"}, ...]}   (segments optional)
-// Built-in shapes, all starting at the origin heading north (-z):
+// Built-in shapes, all starting at the origin heading north (-z) but the zigzag (north-east):
 //   line:L      a straight line L metres long
 //   circle:R    one turn of a circle of radius R, turning right (clockwise seen from above)
 //   figure8:R   two circles of radius R, right then left, meeting at the origin
 //   s-curve:L   L metres of a wave x = A (1 - cos(2 pi d / (L/2))) along d north, A = L/20:
 //               S bends right and left, starting straight north
+//   square:S    a square of side S, turning right at its corners (90 degrees), back at the origin
+//   zigzag:L    eight legs of L metres, 45 degrees right then left of north in turn (corners of
+//               90 degrees)
 #pragma once
 
 #include <algorithm>
