@@ -72,7 +72,8 @@ Command add_path_command(CLI::App& app) {
               "(eight legs, 45 degrees right and left of north).");
   o->common.add_to(*sub);
   sub->add_option("--path", o->path_file, "PATH.json")->check(CLI::ExistingFile);
-  sub->add_option("--shape", o->shape, "A built-in shape: line:20, circle:5, figure8:4, s-curve:100, square:10, zigzag:6");
+  sub->add_option("--shape", o->shape,
+                  "A built-in shape: line:20, circle:5, figure8:4, s-curve:100, square:10, zigzag:6");
   sub->add_option("--segment", o->segments,
                   "TAG:FROM-TO: ask for a motion type along that arc-length range (metres); repeatable, "
                   "replaces the file's segments");

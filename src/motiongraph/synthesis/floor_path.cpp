@@ -135,8 +135,10 @@ Result<FloorPath> make_shape(std::string_view spec) {
   const std::string_view name = spec.substr(0, colon);
   double size = 0.0;
   if (colon == std::string_view::npos) {
-    return Error{"", 0, fmt::format("shape '{}' needs a size: line:20, circle:5, figure8:4, s-curve:100, square:10 or zigzag:6",
-                                    spec)};
+    return Error{"", 0,
+                 fmt::format("shape '{}' needs a size: line:20, circle:5, figure8:4, s-curve:100, square:10 or "
+                             "zigzag:6",
+                             spec)};
   }
   const std::string_view number = spec.substr(colon + 1);
   const auto [end, ec] = std::from_chars(number.data(), number.data() + number.size(), size);
