@@ -171,10 +171,11 @@ void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
       .def("path", &path, py::arg("points") = py::none(), py::arg("shape") = py::none(),
            py::arg("segments") = std::vector<std::string>{}, py::arg("file") = py::none(),
            "Motion following a path on the floor (the CLI's path): exactly one of points ([(x, z), ...] metres), "
-           "shape ('line:20', 'circle:5', 'figure8:4', 's-curve:100') or file (PATH.json); segments "
-           "['TAG:FROM-TO', ...]; keywords horizon, commit, tag_penalty, max_expansions, beam, min_speed, "
-           "transition_penalty, behind_penalty, progress_retries, retry_deviation (m), start_node, path_edit (bend the motion onto "
-           "the path, default True), edit_max_turn (degrees per metre it may add), cleanup.")
+           "shape ('line:20', 'circle:5', 'figure8:4', 's-curve:100', 'square:10', 'zigzag:6') or file "
+           "(PATH.json); segments ['TAG:FROM-TO', ...]; keywords horizon, commit, tag_penalty, max_expansions, "
+           "beam, min_speed, transition_penalty, behind_penalty, progress_retries, retry_deviation (m), "
+           "start_node, path_edit (bend the motion onto the path, default True), edit_max_turn (degrees per "
+           "metre it may add), cleanup.")
       .def(
           "controller",
           [](const PyGraph& g, double heading_deg, const std::optional<std::string>& tag, std::array<double, 2> at,

@@ -108,11 +108,7 @@ int run_info(const InfoOptions& options) {
       fmt::print("  floor:    x {:.2f} .. {:.2f} m, z {:.2f} .. {:.2f} m; height {:.2f} .. {:.2f} m; root travels {:.2f} m\n",
                  s.floor_min_x_m, s.floor_max_x_m, s.floor_min_z_m, s.floor_max_z_m, s.min_height_m,
                  s.max_height_m, s.root_path_m);
-      if (!doubts.empty()) {
-        std::string joined;
-        for (const std::string& d : doubts) joined += (joined.empty() ? "" : ", and ") + d;
-        fmt::print("  warning:  {}; its root translation may be wrong\n", joined);
-      }
+      if (!doubts.empty()) fmt::print("  warning:  {}\n", clip_doubts_text(doubts));
     }
   }
   if (options.json) fmt::print("{}\n", json_text(all, 2));

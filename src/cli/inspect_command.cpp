@@ -1,6 +1,5 @@
 // motiongraph inspect GRAPH.mgraph: what a graph file holds, from its stored report.
 #include <algorithm>
-#include <cmath>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -10,6 +9,7 @@
 #include "motiongraph/core/json_text.h"
 #include "motiongraph/graph/clip_coverage.h"
 #include "motiongraph/graph/graph_file.h"
+#include "motiongraph/graph/threshold_choice.h"
 #include "motiongraph/io/file.h"
 
 namespace mg::cli {
@@ -58,7 +58,7 @@ void print_clips(const GraphFile& file, const nlohmann::json& report) {
     if (c.kept_frames == 0) {
       joins = c.best_join < 0.0f || !(window_weight > 0.0)
                   ? std::string("no candidates")
-                  : fmt::format("RMS {:.2f} cm", 100.0 * std::sqrt(c.best_join / window_weight));
+                  : fmt::format("RMS {:.2f} cm", rms_cm_of_distance(c.best_join, window_weight));
     }
     fmt::print("{:<12} {:>7} {:>8.1f} {:>7} {:>5.0f}  {:<24} {}\n", clip.name, c.frames, c.frames / db.fps,
                c.kept_frames, 100.0 * c.kept_frames / std::max(1, c.frames), fmt::format("{}", fmt::join(

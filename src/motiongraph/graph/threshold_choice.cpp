@@ -11,9 +11,13 @@
 
 namespace mg {
 
+double rms_cm_of_distance(double distance, double window_weight) {
+  if (!(window_weight > 0.0) || !(distance > 0.0)) return 0.0;
+  return 100.0 * std::sqrt(distance / window_weight);
+}
+
 double rms_cm_of_distance(double distance, const FrameFeatures& features) {
-  if (!(features.window_weight > 0.0) || !(distance > 0.0)) return 0.0;
-  return 100.0 * std::sqrt(distance / features.window_weight);
+  return rms_cm_of_distance(distance, features.window_weight);
 }
 
 double distance_of_rms_cm(double rms_cm, const FrameFeatures& features) {

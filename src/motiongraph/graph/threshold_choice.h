@@ -50,8 +50,10 @@
 
 namespace mg {
 
-// RMS point distance in cm of a distance D under the features' weights, and back.
+// RMS point distance in cm of a distance D under the features' weights (or a window's total
+// weight W, as a build report stores it), and back.
 double rms_cm_of_distance(double distance, const FrameFeatures& features);
+double rms_cm_of_distance(double distance, double window_weight);
 double distance_of_rms_cm(double rms_cm, const FrameFeatures& features);
 
 struct ThresholdChoiceSettings {

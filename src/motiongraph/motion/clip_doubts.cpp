@@ -53,12 +53,15 @@ std::vector<std::string> clip_doubts(const Skeleton& skeleton, const Motion& mot
   return clip_doubts(positions, skeleton.joint_count(), motion.fps, masks, settings);
 }
 
-std::string clip_doubt_line(const std::string& name, const std::vector<std::string>& doubts) {
+std::string clip_doubts_text(const std::vector<std::string>& doubts) {
   std::string joined;
   for (size_t i = 0; i < doubts.size(); ++i) joined += (i == 0 ? "" : ", and ") + doubts[i];
-  return fmt::format("{}: {}; its root translation may be wrong (the distances compare clips as read, so the graph "
-                     "may join it to nothing)",
-                     name, joined);
+  return joined + "; its root translation may be wrong";
+}
+
+std::string clip_doubt_line(const std::string& name, const std::vector<std::string>& doubts) {
+  return fmt::format("{}: {} (the distances compare clips as read, so the graph may join it to nothing)", name,
+                     clip_doubts_text(doubts));
 }
 
 }  // namespace mg

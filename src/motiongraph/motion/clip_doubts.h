@@ -35,8 +35,11 @@ std::vector<std::string> clip_doubts(std::span<const Vec3> world_positions_m, in
 std::vector<std::string> clip_doubts(const Skeleton& skeleton, const Motion& motion,
                                      const ClipDoubtSettings& settings = {});
 
-// "NAME: phrase, and phrase; its root translation may be wrong (...)": the one line loading
-// logs for a clip with doubts.
+// "phrase, and phrase; its root translation may be wrong": what `info` prints for a clip with
+// doubts.
+std::string clip_doubts_text(const std::vector<std::string>& doubts);
+
+// "NAME: " + clip_doubts_text + " (...)": the one line loading logs for a clip with doubts.
 std::string clip_doubt_line(const std::string& name, const std::vector<std::string>& doubts);
 
 }  // namespace mg

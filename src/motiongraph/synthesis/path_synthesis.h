@@ -118,13 +118,7 @@ struct PathSynthesisResult {
   int attempts = 1;
   double behind_penalty_m = 0.0;
   bool edit_in_search = false;
-  // Each search starts from the way along the path the walk has come (its roots, as the search
-  // views them, followed along the path), not from the distance its root travelled. A walk that
-  // shuffles or steps aside is then not taken for further along than it is; but where the walk
-  // runs wide of a tight turn the search, seeing itself level with the path, may stop pushing
-  // on (subject 16's figure 8 run: 0.04 m off becomes 1.0 m): the first retry's way, not the
-  // default.
-  bool anchor_arc = false;
+  bool anchor_arc = false;            // the kept attempt's PathSynthesisSettings::anchor_arc
 };
 
 Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, const FloorPath& path,
