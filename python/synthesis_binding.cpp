@@ -71,6 +71,7 @@ PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<d
                  {"start_node", set(settings.start_node)},
                  {"progress_retries", set(settings.progress_retries)},
                  {"retry_deviation", set(settings.retry_deviation_m)},
+                 {"retry_horizon", set(settings.retry_horizon_s)},
                  {"path_edit", set(settings.edit_path)},
                  {"edit_max_turn", set(settings.path_edit.max_turn_deg_per_m)},
                  {"cleanup", set(run.cleanup)}},
@@ -174,6 +175,7 @@ void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
            "shape ('line:20', 'circle:5', 'figure8:4', 's-curve:100', 'square:10', 'zigzag:6') or file "
            "(PATH.json); segments ['TAG:FROM-TO', ...]; keywords horizon, commit, tag_penalty, max_expansions, "
            "beam, min_speed, transition_penalty, behind_penalty, progress_retries, retry_deviation (m), "
+           "retry_horizon (s), "
            "start_node, path_edit (bend the motion onto the path, default True), edit_max_turn (degrees per "
            "metre it may add), cleanup.")
       .def(

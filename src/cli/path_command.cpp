@@ -44,8 +44,8 @@ int run_path(const PathOptions& o) {
           : std::string();
   const int attempts = r["attempts"].get<int>();
   const std::string pushed =
-      attempts > 1 ? fmt::format(" after {} searches of the whole path (kept: behind penalty {:g}{}{})", attempts,
-                                 r["behind_penalty_m"].get<double>(),
+      attempts > 1 ? fmt::format(" after {} searches of the whole path (kept: {:g} s ahead, behind penalty {:g}{}{})",
+                                 attempts, r["horizon_s"].get<double>(), r["behind_penalty_m"].get<double>(),
                                  r["anchor_arc"].get<bool>() ? ", its arc corrected as it went" : "",
                                  r["edit_in_search"].get<bool>() ? ", the edit in the search" : "")
                    : std::string();
@@ -101,10 +101,15 @@ Command add_path_command(CLI::App& app) {
                   "Start at this node (default: the best of about 16 spread over the graph and over its sets of tags)");
   sub->add_option("--progress-retries", o->settings.progress_retries,
                   "When the motion does not reach the path's end (it dawdled) or follows it more than "
-                  "--retry-deviation off, search again up to this many times: with the search's arc corrected to "
-                  "the way along the path the walk has come; --behind-penalty 4x; then the search sees where the "
-                  "path edit puts the walk, at 1x and 4x; then 16x, 64x, ...; the first to reach the end within "
-                  "--retry-deviation is kept, else the one reaching it with the least deviation")
+                  "--retry-deviation off, search again up to this many times, looking --retry-horizon ahead: as "
+                  "before; with the search's arc corrected to the way along the path the walk has come; "
+                  "--behind-penalty 4x; then the search sees where the path edit puts the walk, at 1x and 4x; then "
+                  "16x, 64x, ...; the first to reach the end within --retry-deviation is kept, else the one "
+                  "reaching it with the least deviation")
+      ->capture_default_str();
+  sub->add_option("--retry-horizon", o->settings.retry_horizon_s,
+                  "Seconds of motion each search of the retries looks ahead (0: --horizon): at a sharp corner a "
+                  "longer look finds a turn that pays off later")
       ->capture_default_str();
   sub->add_option("--retry-deviation", o->settings.retry_deviation_m,
                   "Mean deviation (m) above which --progress-retries searches again (0: only when the end is not "

@@ -128,6 +128,13 @@ TEST(PathSynthesis, UnknownTagsAndBadSettingsAreErrors) {
   bad = {};
   bad.beam_width = -1;
   EXPECT_FALSE(bad.validate().ok());
+  bad = {};
+  bad.retry_horizon_s = -1.0;
+  EXPECT_FALSE(bad.validate().ok());
+  bad.retry_horizon_s = 0.5;  // shorter than the commit
+  EXPECT_FALSE(bad.validate().ok());
+  bad.retry_horizon_s = 0.0;  // the first search's
+  EXPECT_TRUE(bad.validate().ok());
 }
 
 // A root that sways 0.4 m from side to side at 1 Hz travels half as far again as it gets along
@@ -274,18 +281,21 @@ TEST(PathSynthesis, AWalkThatDawdlesIsSearchedAgainPushingOn) {
     ASSERT_GT(pushed->attempts, 1);
     EXPECT_GT(pushed->searches, dawdled->searches);  // every attempt's searches are counted
     EXPECT_GE(pushed->arc_covered_m, path->length_m() - kEndReachedM);
-    // The ladder: the arc corrected as the walk goes; 4x; when edited, then the edit in the
-    // search at 1x and 4x; then 16x, with and without it when edited; ...
+    // The ladder, every rung looking retry_horizon_s ahead: the same search; the arc corrected
+    // as the walk goes; 4x; when edited, then the edit in the search at 1x and 4x; then 16x,
+    // with and without it when edited; ...
     struct Rung {
       bool anchor, in_search;
       double factor;
     };
     // The attempts stop at the first that reaches the end within retry_deviation_m; else all are
     // made and the one kept (reaching the end, the least deviation) is one of them.
-    const std::array<Rung, 5> edited{{{true, false, 1.0}, {false, false, 4.0}, {false, true, 1.0},
-                                      {false, true, 4.0}, {false, false, 16.0}}};
-    const std::array<Rung, 5> plain{{{true, false, 1.0}, {false, false, 4.0}, {false, false, 16.0},
-                                     {false, false, 64.0}, {false, false, 256.0}}};
+    const std::array<Rung, 5> edited{{{false, false, 1.0}, {true, false, 1.0}, {false, false, 4.0},
+                                      {false, true, 1.0}, {false, true, 4.0}}};
+    const std::array<Rung, 5> plain{{{false, false, 1.0}, {true, false, 1.0}, {false, false, 4.0},
+                                     {false, false, 16.0}, {false, false, 64.0}}};
+    ASSERT_NE(pushing.retry_horizon_s, pushing.horizon_s);
+    EXPECT_EQ(pushed->horizon_s, pushing.retry_horizon_s) << edit;
     const auto& ladder = edit ? edited : plain;
     const auto made = static_cast<size_t>(pushed->attempts - 1);
     ASSERT_LE(made, ladder.size());
@@ -310,12 +320,28 @@ TEST(PathSynthesis, AWalkThatDawdlesIsSearchedAgainPushingOn) {
     at.behind_penalty_m = pushed->behind_penalty_m;
     at.edit_in_search = pushed->edit_in_search;
     at.anchor_arc = pushed->anchor_arc;
+    at.horizon_s = pushed->horizon_s;
     auto direct = synthesize_path(*context, *path, at);
     ASSERT_TRUE(direct.ok());
     EXPECT_EQ(direct->walk.edges, pushed->walk.edges);
     EXPECT_EQ(direct->walk.start_node, pushed->walk.start_node);
   }
-  EXPECT_LT(kept_penalty[1], kept_penalty[0]);
+  EXPECT_LE(kept_penalty[1], kept_penalty[0]);
+  // With the retries' horizon the first search's (0, or the same value), the ladder has no rung
+  // repeating the first search: its first retry corrects the arc.
+  for (const double retry_horizon : {0.0, once.horizon_s}) {
+    PathSynthesisSettings same = once;
+    same.progress_retries = 1;
+    same.edit_path = false;
+    same.retry_horizon_s = retry_horizon;
+    auto retried = synthesize_path(*context, *path, same);
+    ASSERT_TRUE(retried.ok());
+    EXPECT_EQ(retried->attempts, 2);
+    EXPECT_EQ(retried->horizon_s, once.horizon_s);
+    if (retried->reached_end) {
+      EXPECT_TRUE(retried->anchor_arc);  // else the first may be kept
+    }
+  }
   // No behind penalty, no pushing.
   PathSynthesisSettings kovar = once;
   kovar.progress_retries = 3;

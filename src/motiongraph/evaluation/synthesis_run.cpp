@@ -154,6 +154,7 @@ Result<SynthesizedMotion> run_path_synthesis(const SynthesisContext& context, co
                 {"budget_exhausted_searches", result->budget_exhausted},
                 {"attempts", result->attempts},
                 {"behind_penalty_m", result->behind_penalty_m},
+                {"horizon_s", result->horizon_s},
                 {"edit_in_search", result->edit_in_search},
                 {"anchor_arc", result->anchor_arc},
                 {"start_node", out.walk.start_node},

@@ -24,6 +24,9 @@ Status PathSynthesisSettings::validate() const {
   if (max_expansions < 1 || start_candidates < 1) return Error{"", 0, "path search: budgets must be positive"};
   if (progress_retries < 0) return Error{"", 0, "path search: the retries must be >= 0"};
   if (!(retry_deviation_m >= 0.0)) return Error{"", 0, "path search: the deviation that asks for a retry must be >= 0"};
+  if (!(retry_horizon_s >= 0.0) || (retry_horizon_s > 0.0 && retry_horizon_s < commit_s)) {
+    return Error{"", 0, "path search: the retries' horizon must be 0 (the first search's) or at least commit_s"};
+  }
   if (beam_width < 0) return Error{"", 0, "path search: the beam width must be >= 0"};
   return path_edit.validate();
 }
@@ -362,6 +365,7 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
   }
   result.tag_match = in_segments > 0.0 ? matched / in_segments : 1.0;
   result.behind_penalty_m = settings.behind_penalty_m;
+  result.horizon_s = settings.horizon_s;
   result.edit_in_search = edit_in_search;
   result.anchor_arc = settings.anchor_arc;
   return result;
@@ -376,15 +380,18 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
   if (!best) return best.error();
   int attempts = 1, searches = best->searches, exhausted = best->budget_exhausted;
   long long expansions = best->expansions;
-  // The retries, in order: first the arc corrected as the walk goes (when it is not already),
-  // then the behind penalty 4x; with the edit, the edit in the search at the penalty given and
-  // at 4x; then 16x, 64x, ... with and without the edit in the search.
+  // The retries, in order, each looking retry_horizon_s ahead: first the same search (when that
+  // horizon is another), then the arc corrected as the walk goes (when it is not already), then
+  // the behind penalty 4x; with the edit, the edit in the search at the penalty given and at 4x;
+  // then 16x, 64x, ... with and without the edit in the search.
   struct Rung {
     bool anchor_arc = false;
     bool edit_in_search = false;
     double factor = 1.0;
   };
+  const double retry_horizon_s = settings.retry_horizon_s > 0.0 ? settings.retry_horizon_s : settings.horizon_s;
   std::vector<Rung> ladder;
+  if (retry_horizon_s != settings.horizon_s) ladder.push_back({settings.anchor_arc, settings.edit_in_search, 1.0});
   if (!settings.anchor_arc) ladder.push_back({true, false, 1.0});
   for (double factor = kProgressRetryFactor; static_cast<int>(ladder.size()) < settings.progress_retries;
        factor *= kProgressRetryFactor) {
@@ -408,6 +415,7 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
     harder.anchor_arc = ladder[retry].anchor_arc;
     harder.edit_in_search = ladder[retry].edit_in_search;
     harder.behind_penalty_m = settings.behind_penalty_m * ladder[retry].factor;
+    harder.horizon_s = retry_horizon_s;
     auto next = synthesize_once(context, path, harder);
     if (!next) return next.error();
     ++attempts;
