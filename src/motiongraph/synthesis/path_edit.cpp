@@ -94,18 +94,28 @@ Result<PathEditStats> plan_path_edit(std::span<const Vec2> roots, double fps, co
   const double h = settings.tangent_m;
   const double limit = settings.max_turn_deg_per_m * std::numbers::pi / 180.0;
   constexpr double kReachM = 1.0;  // how far the nearest point is looked for from the last one
+  // Going back along P: the nearest point moved back more than kBackM over kBackLookM of arc.
+  constexpr double kBackLookM = 0.2, kBackM = 0.05;
+  const auto back_steps = static_cast<size_t>(std::lround(kBackLookM / PathEditSettings::kStepM));
   double along = 0.0, limited_arc = 0.0;
+  std::vector<double> along_at(grid.size(), 0.0);
   for (size_t k = 0; k < steps; ++k) {
     const double s = grid[k];
     const double step = grid[k + 1] - s;
     along = path.nearest_arc(edited[k], along - kReachM, along + kReachM + step);
+    along_at[k] = along;
     const Vec2 own_chord = turned(own.at(std::min(end, s + h)) - own.at(std::max(0.0, s - h)), a[k]);
     const Vec2 path_chord = target_at(path, along + h) - target_at(path, along - h);
     double angle = a[k];
     if (own_chord.norm() > 1e-9 && path_chord.norm() > 1e-9) {
-      // Along the path, or back along it when the motion goes that way (a step back).
+      // Along the path, or back along it while the motion goes that way (a step back): heading
+      // against P's direction with its nearest point on P moved back over the last kBackLookM
+      // of arc. Heading against P is no sign alone: past a corner of 90 degrees or more a walk
+      // that has not turned yet heads square to the next leg or against it (and was steered
+      // back the way it came when that was the rule).
       Vec2 t = path_chord.normalized();
-      if (own_chord.dot(t) < 0.0) t = -t;
+      const bool going_back = k >= back_steps && along < along_at[k - back_steps] - kBackM && own_chord.dot(t) < 0.0;
+      if (going_back) t = -t;
       const Vec2 n(-t.y(), t.x());
       const double offset = n.dot(edited[k] - target_at(path, along));
       const Vec2 wanted = settings.lookahead_m * t - offset * n;

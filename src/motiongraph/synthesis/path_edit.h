@@ -13,7 +13,10 @@
 //     The angle steers Q' onto the path asked for, P, as a vehicle keeps to a lane: toward
 //     the direction lookahead_m t - e n, where t is P's tangent at the point of P nearest Q'
 //     (the point is followed along P from the last, so a path that crosses itself is not
-//     jumped across; t is reversed while the motion goes back along P), n its normal and e
+//     jumped across; t is reversed while the motion goes back along P: it heads against t and
+//     that point has moved back, as in a step back; past a sharp corner a motion that has not
+//     turned yet heads against the next leg too, but its point stays at the corner, and it is
+//     steered on along P), n its normal and e
 //     Q''s signed offset from P along n. Q' turns with P's own turns and comes onto P over
 //     about lookahead_m.
 //  3. Frame i is moved rigidly on the floor: turned by a(s_i) and carried from Q(s_i) to
