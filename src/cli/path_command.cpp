@@ -101,8 +101,8 @@ Command add_path_command(CLI::App& app) {
                   "Start at this node (default: the best of about 16 spread over the graph and over its sets of tags)");
   sub->add_option("--progress-retries", o->settings.progress_retries,
                   "When the motion does not reach the path's end (it dawdled) or follows it more than "
-                  "--retry-deviation off, search again up to this many times, looking --retry-horizon ahead: as "
-                  "before; with the search's arc corrected to the way along the path the walk has come; "
+                  "--retry-deviation off, search again up to this many times, looking --retry-horizon ahead: the "
+                  "same search; with the search's arc corrected to the way along the path the walk has come; "
                   "--behind-penalty 4x; then the search sees where the path edit puts the walk, at 1x and 4x; then "
                   "16x, 64x, ...; the first to reach the end within --retry-deviation is kept, else the one "
                   "reaching it with the least deviation")

@@ -60,8 +60,8 @@ struct PathSynthesisSettings {
   // The retries' horizon (0: horizon_s). At a sharp corner a library with little turning in its
   // walking may find nothing within horizon_s that beats shuffling on the spot; a longer look
   // finds the turn that pays off later. Only for the retries: on a large library's dense graph
-  // every search would cost twice as much (path synthesis on the 8-subject library fell from
-  // 100x real time to 60-90x at 5 s), and its first search rarely needs one.
+  // every search costs about twice as much at 5 s (the 8-subject library's search fell from
+  // about 180x real time to about 100x), and its first search rarely needs a retry.
   double retry_horizon_s = 5.0;
   // Each transition taken costs this (m^2: as many frames' squared deviation). Kovar's cost
   // alone takes a transition wherever it follows the path a little better, and output then
