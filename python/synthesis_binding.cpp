@@ -74,6 +74,7 @@ PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<d
                  {"retry_horizon", set(settings.retry_horizon_s)},
                  {"path_edit", set(settings.edit_path)},
                  {"edit_max_turn", set(settings.path_edit.max_turn_deg_per_m)},
+                 {"edit_round_corners", set(settings.path_edit.round_corners_m)},
                  {"cleanup", set(run.cleanup)}},
                 "path");
   check(settings.validate());
@@ -177,7 +178,7 @@ void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
            "beam, min_speed, transition_penalty, behind_penalty, progress_retries, retry_deviation (m), "
            "retry_horizon (s), "
            "start_node, path_edit (bend the motion onto the path, default True), edit_max_turn (degrees per "
-           "metre it may add), cleanup.")
+           "metre it may add), edit_round_corners (m), cleanup.")
       .def(
           "controller",
           [](const PyGraph& g, double heading_deg, const std::optional<std::string>& tag, std::array<double, 2> at,

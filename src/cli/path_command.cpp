@@ -122,6 +122,10 @@ Command add_path_command(CLI::App& app) {
                   "Turning (degrees per metre travelled) the path edit may add; where bending the motion onto the "
                   "path would take more, it is bent less and follows the path less closely")
       ->capture_default_str();
+  sub->add_option("--edit-round-corners", o->settings.path_edit.round_corners_m,
+                  "The path edit steers for the path with its corners rounded over +- this many metres of arc, "
+                  "cutting them evenly where it cannot turn as sharply (0: the path as drawn)")
+      ->capture_default_str();
   return {sub, [o] { return run_path(*o); }};
 }
 

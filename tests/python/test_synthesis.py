@@ -29,12 +29,12 @@ def test_path_from_points_and_options(cli, graph_file, graph, tmp_path):
     points = [[0.0, 0.0], [0.0, -6.0], [4.0, -10.0], [8.0, -10.0]]
     (tmp_path / "path.json").write_text(json.dumps({"points": points}))
     options = ["--horizon", 2, "--transition-penalty", 0.5, "--beam", 16, "--no-cleanup", "--edit-max-turn", 30,
-               "--progress-retries", 1, "--retry-horizon", 4]
+               "--progress-retries", 1, "--retry-horizon", 4, "--edit-round-corners", 1]
     cli("path", graph_file, "--path", tmp_path / "path.json", *options, "-o", tmp_path / "cli.json",
         "--report", tmp_path / "r.json")
     want = read_json(tmp_path / "cli.json")
     kwargs = dict(horizon=2, transition_penalty=0.5, beam=16, cleanup=False, edit_max_turn=30,
-                  progress_retries=1, retry_horizon=4)
+                  progress_retries=1, retry_horizon=4, edit_round_corners=1)
     for motion in (graph.path(points=points, **kwargs), graph.path(points=np.array(points), **kwargs),
                    graph.path(file=str(tmp_path / "path.json"), **kwargs)):
         assert_positions_equal(motion, want)
@@ -45,6 +45,7 @@ def test_path_from_points_and_options(cli, graph_file, graph, tmp_path):
         assert cli_report.pop("cleanup") == {"enabled": False, "reason": "--no-cleanup"}
         assert report == cli_report
         assert report["path_edit"]["max_turn_deg_per_m"] == 30 and report["path_edit"]["edited"]
+        assert report["path_edit"]["round_corners_m"] == 1
         assert report["horizon_s"] in ((2, 4) if report["attempts"] == 2 else (2,))  # the retry's look: 4 s
     # path_edit=False is --no-path-edit: the walk as the graph plays it.
     cli("path", graph_file, "--path", tmp_path / "path.json", *options, "--no-path-edit", "-o", tmp_path / "plain.json")

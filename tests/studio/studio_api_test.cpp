@@ -274,7 +274,10 @@ TEST(StudioApi, ResultsAreCleanedUnlessAskedNotToAndMeasuredAgainstTheirSource) 
   EXPECT_TRUE(cleaned.json["path_edit"]["edited"].get<bool>()) << cleaned.json["path_edit"];
   EXPECT_FALSE(plain.json["path_edit"]["edited"].get<bool>()) << plain.json["path_edit"];
   EXPECT_EQ(plain.json["mean_deviation_m"], plain.json["graph_mean_deviation_m"]);
-  EXPECT_EQ(plain.json["mean_deviation_m"], cleaned.json["graph_mean_deviation_m"]);
+  // The graph's walk, up to where each is cut (at the frame furthest along the path: the edited
+  // motion's may be another) and how the search went on near the end (it sees the edited end).
+  EXPECT_NEAR(plain.json["mean_deviation_m"].get<double>(), cleaned.json["graph_mean_deviation_m"].get<double>(),
+              0.005);
   EXPECT_LT(cleaned.json["mean_deviation_m"].get<double>(), cleaned.json["graph_mean_deviation_m"].get<double>());
   expect_error(call_api("POST", "/api/path", path + R"(, "edit_path": "yes"})"), 400, "edit_path");
   const ApiCall walk = call_api("POST", "/api/walk", R"({"from": 0, "to": 3, "min_frames": 90, "cleanup": false})");

@@ -18,7 +18,36 @@ Status PathEditSettings::validate() const {
     return Error{"", 0, "path edit: the tangent's chord and the look-ahead must be > 0 metres"};
   }
   if (max_turn_deg_per_m < 0.0) return Error{"", 0, "path edit: the turning it may add must be >= 0 degrees per metre"};
+  if (!std::isfinite(round_corners_m) || round_corners_m < 0.0) {
+    return Error{"", 0, "path edit: the corners' rounding must be finite and >= 0 metres"};
+  }
   return Ok{};
+}
+
+FloorPath round_corners(const FloorPath& path, double half_window_m) {
+  constexpr double kSpacingM = 0.05;
+  const double length = path.length_m();
+  const int half = static_cast<int>(std::lround(half_window_m / kSpacingM));
+  if (half < 1 || !(length > 0.0)) return path;
+  const int n = static_cast<int>(std::ceil(length / kSpacingM)) + 1;
+  std::vector<Vec2> points(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) points[i] = path.point_at(length * i / (n - 1));
+  // Centred averages over +- half samples, by prefix sums.
+  auto average = [&](const std::vector<Vec2>& in) {
+    std::vector<Vec2> prefix(in.size() + 1, Vec2::Zero());
+    for (size_t i = 0; i < in.size(); ++i) prefix[i + 1] = prefix[i] + in[i];
+    std::vector<Vec2> out(in.size());
+    for (int i = 0; i < n; ++i) {
+      const int w = std::min({half, i, n - 1 - i});
+      out[i] = (prefix[i + w + 1] - prefix[i - w]) / static_cast<double>(2 * w + 1);
+    }
+    return out;
+  };
+  std::vector<Vec2> once = average(points);
+  const std::vector<Vec2> twice = average(once);
+  for (int i = 0; i < n; ++i) once[i] = 2.0 * once[i] - twice[i];
+  auto rounded = FloorPath::create(once);
+  return rounded ? *rounded : path;
 }
 
 namespace {
@@ -60,13 +89,14 @@ struct ArcCurve {
 
 }  // namespace
 
-Result<PathEditStats> plan_path_edit(std::span<const Vec2> roots, double fps, const FloorPath& path,
+Result<PathEditStats> plan_path_edit(std::span<const Vec2> roots, double fps, const FloorPath& asked,
                                      const PathEditSettings& settings, std::vector<FloorTransform>& moves) {
   if (auto s = settings.validate(); !s) return s.error();
   PathEditStats stats;
   const int frames = static_cast<int>(roots.size());
   moves.assign(roots.size(), FloorTransform{});
   if (frames < 2) return stats;
+  const FloorPath path = round_corners(asked, settings.round_corners_m);
 
   // 1. The motion's own path, and each frame's arc along it.
   std::vector<Vec2> prefix(static_cast<size_t>(frames) + 1, Vec2::Zero());

@@ -18,7 +18,11 @@
 //     turned yet heads against the next leg too, but its point stays at the corner, and it is
 //     steered on along P), n its normal and e
 //     Q''s signed offset from P along n. Q' turns with P's own turns and comes onto P over
-//     about lookahead_m.
+//     about lookahead_m. P here is the path asked for with its corners rounded
+//     (round_corners, over round_corners_m): the edit turns at most max_turn_deg_per_m, so
+//     where the path turns faster (a corner) it must cut it, and steering for the sharp path
+//     it began turning only at the corner and overshot it; the rounded path cuts it evenly,
+//     starting before it.
 //  3. Frame i is moved rigidly on the floor: turned by a(s_i) and carried from Q(s_i) to
 //     Q'(s_i). Only the root's floor position and its rotation about the vertical change;
 //     heights, every other joint's local values and the frames' timing stay.
@@ -45,6 +49,9 @@ struct PathEditSettings {
   double tangent_m = 0.5;                // tangents: chords over +- this much arc
   double max_turn_deg_per_m = 45.0;      // turning the edit may add, per metre travelled
   double lookahead_m = 2.0;              // the edited path comes back onto P over about this much arc
+  // The edit steers for the path asked for rounded over +- this much arc (round_corners; 0: as
+  // asked). Measured on corner paths (docs/performance.md): 1.5 m.
+  double round_corners_m = 1.5;
 
   Status validate() const;
 };
@@ -56,6 +63,14 @@ struct PathEditStats {
   double max_added_turn_deg = 0.0;  // |a|: the most a frame was turned
   double max_shift_m = 0.0;         // |Q' - Q|: the most the motion's path was moved
 };
+
+// The path with its corners rounded: its points every 5 cm averaged over +- half_window_m of arc
+// (the window shrunk evenly at the ends, so that they stay), and averaged so again, twice the
+// first average less the second ("twicing"): a corner is cut, while a bend wider than the window
+// stays within millimetres (a single average would move a circle of radius 5 m 7 cm inward at
+// 1.5 m), and within 3 cm near the ends, where the window shrinks. A straight line is left as it
+// is; half_window_m 0 gives the path itself.
+FloorPath round_corners(const FloorPath& path, double half_window_m);
 
 // Edits `motion` in place (its root: translated joint 0, its rotation joint 0) onto `path`, whose
 // first point the motion starts from. A motion of fewer than 2 frames, or whose root does not
