@@ -89,14 +89,13 @@ struct ArcCurve {
 
 }  // namespace
 
-Result<PathEditStats> plan_path_edit(std::span<const Vec2> roots, double fps, const FloorPath& asked,
+Result<PathEditStats> plan_path_edit(std::span<const Vec2> roots, double fps, const FloorPath& path,
                                      const PathEditSettings& settings, std::vector<FloorTransform>& moves) {
   if (auto s = settings.validate(); !s) return s.error();
   PathEditStats stats;
   const int frames = static_cast<int>(roots.size());
   moves.assign(roots.size(), FloorTransform{});
   if (frames < 2) return stats;
-  const FloorPath path = round_corners(asked, settings.round_corners_m);
 
   // 1. The motion's own path, and each frame's arc along it.
   std::vector<Vec2> prefix(static_cast<size_t>(frames) + 1, Vec2::Zero());
@@ -189,7 +188,7 @@ Result<PathEditStats> edit_onto_path(Motion& motion, const FloorPath& path, cons
     roots[f] = Vec2(p.x(), p.z());
   }
   std::vector<FloorTransform> moves;
-  auto stats = plan_path_edit(roots, motion.fps, path, settings, moves);
+  auto stats = plan_path_edit(roots, motion.fps, round_corners(path, settings.round_corners_m), settings, moves);
   if (!stats || !stats->edited) return stats;
   for (int f = 0; f < motion.frame_count; ++f) {
     Vec3& root = motion.translations(f)[0];

@@ -78,8 +78,11 @@ FloorPath round_corners(const FloorPath& path, double half_window_m);
 Result<PathEditStats> edit_onto_path(Motion& motion, const FloorPath& path, const PathEditSettings& settings = {});
 
 // The same edit planned on root floor positions alone (at fps frames a second): moves[f] is the
-// rigid floor motion frame f gets (identity everywhere when the roots do not travel).
-Result<PathEditStats> plan_path_edit(std::span<const Vec2> roots, double fps, const FloorPath& path,
+// rigid floor motion frame f gets (identity everywhere when the roots do not travel). `rounded`
+// is the path to steer for, already rounded: round_corners(P, settings.round_corners_m), as
+// edit_onto_path makes it (a caller planning again and again, as path synthesis does after each
+// commit, rounds it once).
+Result<PathEditStats> plan_path_edit(std::span<const Vec2> roots, double fps, const FloorPath& rounded,
                                      const PathEditSettings& settings, std::vector<FloorTransform>& moves);
 
 }  // namespace mg

@@ -227,16 +227,13 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
       for (const RootPose& r : played) played_roots.emplace_back(r.position.x(), r.position.z());
     }
   };
-  // The edit steers for the path rounded (PathEditSettings::round_corners_m): rounded once here,
-  // not at each plan.
-  PathEditSettings rounded_settings = settings.path_edit;
-  rounded_settings.round_corners_m = 0.0;
+  // The path the edit steers for, rounded once for all the plans below.
   const FloorPath rounded =
       settings.edit_path ? round_corners(path, settings.path_edit.round_corners_m) : FloorPath{};
   auto play_and_plan = [&]() -> Status {
     play_new_edges();
     if (!settings.edit_path) return Ok{};
-    auto planned = plan_path_edit(played_roots, fps, rounded, rounded_settings, moves);
+    auto planned = plan_path_edit(played_roots, fps, rounded, settings.path_edit, moves);
     if (!planned) return planned.error();
     return Ok{};
   };
