@@ -48,6 +48,7 @@ OptionTable build_option_table(BuildCall& call) {
       {"fps", [&b](py::handle v) { b.fps = v.cast<double>(); b.fps_given = true; }},
       {"asf", set(b.asf)},
       {"scale", [&b](py::handle v) { b.scale = v.cast<std::optional<double>>(); }},
+      {"up_axis", set(b.up_axis)},
       {"input_fps", set(b.input_fps)},
       {"cmu_index", set(b.cmu_index)},
       {"no_cmu_tags", set(b.no_cmu_tags)},

@@ -11,6 +11,7 @@
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/motion/resample.h"
+#include "motiongraph/motion/up_axis.h"
 
 namespace mg::python {
 
@@ -47,10 +48,15 @@ Status save_motion(const PyMotion& m, const std::string& path) {
 }
 
 PyMotion load_clip(const std::string& path, const std::optional<std::string>& asf, std::optional<double> fps,
-                   std::optional<double> scale, double input_fps, bool keep_rest_frames) {
+                   std::optional<double> scale, const std::optional<std::string>& up_axis, double input_fps,
+                   bool keep_rest_frames) {
   ClipLoadSettings settings;
   if (asf) settings.asf_path = *asf;
   settings.bvh_metres_per_unit = scale;
+  if (up_axis) {
+    settings.bvh_up_axis = parse_up_axis(*up_axis);
+    if (!settings.bvh_up_axis) throw py::value_error("up_axis must be 'y' or 'z', not '" + *up_axis + "'");
+  }
   settings.input_fps = input_fps;
   settings.keep_rest_frames = keep_rest_frames;
   check(settings.validate());
@@ -130,10 +136,12 @@ void bind_motion(py::module_& m) {
                            self.motion.frame_count, self.motion.fps, self.skeleton.joint_count());
       });
   m.def("load_clip", &load_clip, py::arg("path"), py::arg("asf") = py::none(), py::arg("fps") = py::none(),
-        py::arg("scale") = py::none(), py::arg("input_fps") = 0.0, py::arg("keep_rest_frames") = false,
+        py::arg("scale") = py::none(), py::arg("up_axis") = py::none(), py::arg("input_fps") = 0.0,
+        py::arg("keep_rest_frames") = false,
         "Reads a clip (.amc with its .asf, or .bvh) as the CLI's convert does: asf the skeleton of an AMC file "
         "(default: the .asf in its folder), fps a rate to resample to, scale metres per BVH unit (default: "
-        "chosen from the figure's size), input_fps the capture rate overriding the file's.");
+        "chosen from the figure's size), up_axis 'y' or 'z' for a BVH (default: whichever the figure stands along; "
+        "z-up is turned y up), input_fps the capture rate overriding the file's.");
 }
 
 }  // namespace mg::python

@@ -46,6 +46,7 @@ int run_convert(const ConvertOptions& options) {
   if (!loaded) return fail(loaded.error());
   Clip& clip = loaded->clip;
   if (clip.detected_unit) report_unit(options.input, *clip.detected_unit);
+  if (clip.detected_up_axis) report_up_axis(options.input, *clip.detected_up_axis);
   if (clip.dropped_leading_frames > 0) {
     spdlog::info("{}: dropped {} leading rest/T-pose frame(s) (--keep-rest-frames keeps them)", options.input,
                  clip.dropped_leading_frames);

@@ -33,6 +33,19 @@ void report_unit(const std::string& file, const LengthUnitChoice& choice) {
   spdlog::info("{}: BVH lengths read in {} (--scale overrides)", file, unit_description(choice));
 }
 
+std::string up_axis_description(const UpAxisChoice& choice) {
+  if (choice.axis == UpAxis::kZ) {
+    return fmt::format("z (the figure stands along z: {:.1f} times as tall as along y; turned y up)",
+                       choice.animation_ratio);
+  }
+  return "y";
+}
+
+void report_up_axis(const std::string& file, const UpAxisChoice& choice) {
+  if (choice.axis != UpAxis::kZ) return;
+  spdlog::info("{}: read z up, {} (--up-axis overrides)", file, up_axis_description(choice));
+}
+
 void report_units(const DatabaseLoadNotes& notes, bool quiet) {
   struct Group {
     int files = 0;
@@ -53,6 +66,13 @@ void report_units(const DatabaseLoadNotes& notes, bool quiet) {
     if (quiet) break;
     spdlog::info("BVH lengths read in {}: {} file{}, figures {:.2f}-{:.2f} m (--scale overrides)", name, g.files,
                  g.files == 1 ? "" : "s", g.lowest_m, g.highest_m);
+  }
+  const auto z_up = std::count_if(notes.detected_up_axes.begin(), notes.detected_up_axes.end(),
+                                  [](const auto& d) { return d.choice.axis == UpAxis::kZ; });
+  if (z_up > 0 && !quiet) {
+    const auto files = static_cast<long>(notes.detected_up_axes.size());
+    spdlog::info("BVH read z up and turned y up: {} of {} file{} (their figures stand along z; --up-axis overrides)",
+                 z_up, files, files == 1 ? "" : "s");
   }
 }
 

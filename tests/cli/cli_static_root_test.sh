@@ -3,7 +3,8 @@
 # static root above the hips, 6 channels on every joint, in centimetres (as Bandai Namco
 # Research's datasets are), under CMU's names in a folder with no CMU index beside it.
 # The unit is found (cm), the hips carry the floor position, the graph keeps frames and paths
-# are followed; written BVH keeps the file's hierarchy; a figure of no human size warns.
+# are followed; written BVH keeps the file's hierarchy; a figure of no human size warns. The
+# same library written z up is read standing.
 # Usage: MOTIONGRAPH=binary MAKE_STATIC_ROOT_BVH=binary cli_static_root_test.sh DATA_DIR
 set -euo pipefail
 data=$1
@@ -78,6 +79,39 @@ assert [(j["name"], j["parent"]) for j in back["skeleton"]] == [(j["name"], j["p
 def joints(path):
     return re.findall(r"(?:ROOT|JOINT) (\S+)", open(path).read())
 assert joints(sys.argv[2]) == joints(sys.argv[3]), "hierarchy changed"
+PY
+
+# The same rig written z up (as 3ds Max and other z-up tools hold it): read standing with no
+# flags, an info line saying so, the same graph, and paths followed; --up-axis y reads it lying.
+mkdir "$work/zlib"
+"$make" --z-up "$work/zlib" "${clips[@]}"
+"$bin" info "$work/zlib/16_15.bvh" >"$work/zinfo.txt"
+grep "up:       z (the figure stands along z" "$work/zinfo.txt" >/dev/null \
+  || { echo "FAIL: z up"; cat "$work/zinfo.txt"; exit 1; }
+"$bin" info --json "$work/zlib/16_15.bvh" "$work/lib/16_15.bvh" >"$work/zinfo.json"
+"$bin" info --json --up-axis y "$work/zlib/16_15.bvh" >"$work/lying.json"
+python3 - "$work/zinfo.json" "$work/lying.json" <<'PY'
+import json, sys
+(z, y), (lying,) = (json.load(open(f)) for f in sys.argv[1:3])
+assert z["up_axis"]["axis"] == "z" and y["up_axis"]["axis"] == "y", (z["up_axis"], y["up_axis"])
+assert z["unit"]["name"] == "cm", z["unit"]
+for key in ("root_path_m",):
+    assert abs(z[key] - y[key]) < 1e-3, (key, z[key], y[key])
+for i in range(2):
+    assert abs(z["height_m"][i] - y["height_m"][i]) < 1e-3, (z["height_m"], y["height_m"])
+# Told y, the figure lies on its back and its walk goes up the wall: metres of "height".
+span = lambda h: h[1] - h[0]
+assert lying["up_axis"] == {"axis": "y"} and span(lying["height_m"]) > span(z["height_m"]) + 1.0, lying["height_m"]
+PY
+"$bin" build "$work/zlib" -o "$work/z.mgraph" --report "$work/zr.json" --no-cache 2>"$work/zbuild.txt"
+grep "BVH read z up and turned y up: 6 of 6 files" "$work/zbuild.txt" >/dev/null \
+  || { echo "FAIL: build up line"; cat "$work/zbuild.txt"; exit 1; }
+"$bin" path "$work/z.mgraph" --shape s-curve:20 -o "$work/zs.bvh" --report "$work/zs.json" >/dev/null
+python3 - "$work/zr.json" "$work/r.json" "$work/zs.json" <<'PY'
+import json, sys
+z, y, s = (json.load(open(f)) for f in sys.argv[1:4])
+assert z["graph_after"]["nodes"] == y["graph_after"]["nodes"], (z["graph_after"]["nodes"], y["graph_after"]["nodes"])
+assert s["mean_deviation_m"] < 0.5 and s["reached_end"], (s["mean_deviation_m"], s["reached_end"])
 PY
 
 # A figure no unit makes human-sized: a warning, read as metres.

@@ -42,6 +42,16 @@ file = "16_35.AMC"
 skeleton = "other/16.asf"
 )";
 
+TEST(Manifest, ReadsUpAxes) {
+  auto manifest =
+      parse_manifest("up_axis = \"Z\"\n[[clip]]\nfile = \"a.bvh\"\n[[clip]]\nfile = \"b.bvh\"\nup_axis = \"y\"\n", "up.toml");
+  ASSERT_TRUE(manifest) << manifest.error().to_string();
+  EXPECT_EQ(manifest->up_axis, UpAxis::kZ);
+  ASSERT_EQ(manifest->clips.size(), 2u);
+  EXPECT_FALSE(manifest->clips[0].up_axis);
+  EXPECT_EQ(manifest->clips[1].up_axis, UpAxis::kY);
+}
+
 TEST(Manifest, ReadsTheExample) {
   auto manifest = parse_manifest(kManifest, "db.toml");
   ASSERT_TRUE(manifest) << manifest.error().to_string();
@@ -78,6 +88,8 @@ TEST(Manifest, ReadsTheExample) {
   EXPECT_EQ(bvh.input_fps, 120.0);
   EXPECT_FALSE(bvh.first_frame);
   EXPECT_FALSE(bvh.tags);
+  EXPECT_FALSE(bvh.up_axis);
+  EXPECT_FALSE(manifest->up_axis);
   ASSERT_EQ(bvh.ranges.size(), 1u);
   EXPECT_EQ(bvh.ranges[0].line, 23);
   EXPECT_TRUE(bvh.gives_tags());
@@ -139,6 +151,10 @@ TEST(Manifest, OneCleanErrorPerRule) {
       {"skeleton on a BVH clip", r("input_fps = 120\n\n[[clip.ranges]]", "skeleton = \"x.asf\"\n\n[[clip.ranges]]"),
        21, "AMC clips only"},
       {"bvh_scale on an AMC clip", r("name = \"walk_a\"", "bvh_scale = 1"), 9, "BVH clips only"},
+      {"up_axis on an AMC clip", r("name = \"walk_a\"", "up_axis = \"z\""), 9, "BVH clips only"},
+      {"default up_axis not y or z", r("bvh_scale = 0.056444", "up_axis = \"x\""), 4,
+       "'up_axis' must be \"y\" or \"z\""},
+      {"clip up_axis not a string", r("bvh_scale = 0.01", "up_axis = 2"), 20, "'up_axis' must be a string"},
       {"first_frame below 1", r("first_frame = 41\n", "first_frame = 0\n"), 10, "numbered from 1"},
       {"first_frame not an integer", r("first_frame = 41\n", "first_frame = 40.5\n"), 10, "integer frame number"},
       {"last_frame before first_frame", r("last_frame = 240\n", "last_frame = 40\n"), 11, "comes before first_frame"},

@@ -28,6 +28,18 @@ def test_bvh_with_scale_equals_the_cli(cli, data, tmp_path):
     assert_positions_equal(clip, read_json(tmp_path / "cli.json"))
 
 
+def test_up_axis_turns_a_bvh_as_told(cli, data, tmp_path):
+    cli("convert", data / "cmu/16/16_15.amc", "-o", tmp_path / "m.bvh")
+    found = mg.load_clip(str(tmp_path / "m.bvh"))
+    y = np.asarray(mg.load_clip(str(tmp_path / "m.bvh"), up_axis="y").positions)
+    np.testing.assert_array_equal(np.asarray(found.positions), y)  # the file stands in y
+    # Told z, the file's +z is turned to +y and its +y to -z: (x, y, z) -> (x, z, -y).
+    z = np.asarray(mg.load_clip(str(tmp_path / "m.bvh"), up_axis="Z").positions)
+    np.testing.assert_allclose(z, np.stack([y[..., 0], y[..., 2], -y[..., 1]], axis=-1), atol=1e-9)
+    with pytest.raises(ValueError, match="up_axis must be 'y' or 'z'"):
+        mg.load_clip(str(tmp_path / "m.bvh"), up_axis="x")
+
+
 def test_arrays_are_views_of_the_clip(data):
     clip = mg.load_clip(str(data / "cmu/16/16_15.amc"), asf=str(data / "cmu/16/16.asf"))
     positions, rotations = clip.positions, clip.rotations

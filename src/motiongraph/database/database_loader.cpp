@@ -58,6 +58,7 @@ ClipLoadSettings default_load_settings(const DatabaseSettings& settings) {
   ClipLoadSettings load;
   load.asf_path = settings.asf_path;
   load.bvh_metres_per_unit = settings.bvh_metres_per_unit;
+  load.bvh_up_axis = settings.bvh_up_axis;
   load.input_fps = settings.input_fps;
   load.keep_rest_frames = settings.keep_rest_frames;
   return load;
@@ -152,6 +153,7 @@ Status expand_manifest(const std::string& input, const DatabaseSettings& setting
     }
     // The clip's own value, else the manifest's default, else the settings'.
     if (auto scale = clip.bvh_scale ? clip.bvh_scale : manifest->bvh_scale) spec.load.bvh_metres_per_unit = *scale;
+    if (auto up = clip.up_axis ? clip.up_axis : manifest->up_axis) spec.load.bvh_up_axis = *up;
     if (auto fps = clip.input_fps ? clip.input_fps : manifest->input_fps) spec.load.input_fps = *fps;
     spec.first_frame = clip.first_frame;
     spec.last_frame = clip.last_frame;
@@ -211,12 +213,14 @@ std::pair<int, int> output_frames(double start_s, double end_s, double fps, int 
   return {first, last};
 }
 
-using LoaderKey = std::tuple<std::string, double, double, bool>;
+using LoaderKey = std::tuple<std::string, double, int, double, bool>;
 
 class Loaders {
  public:
   ClipLoader& for_settings(const ClipLoadSettings& load) {
-    LoaderKey key{load.asf_path.value_or(""), load.bvh_metres_per_unit.value_or(0.0), load.input_fps, load.keep_rest_frames};
+    const int up = load.bvh_up_axis ? static_cast<int>(*load.bvh_up_axis) : -1;
+    LoaderKey key{load.asf_path.value_or(""), load.bvh_metres_per_unit.value_or(0.0), up, load.input_fps,
+                  load.keep_rest_frames};
     auto it = loaders_.find(key);
     if (it == loaders_.end()) it = loaders_.emplace(key, std::make_unique<ClipLoader>(load)).first;
     return *it->second;
@@ -309,6 +313,9 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
     auto loaded = loaders.for_settings(spec.load).load(spec.path);
     if (!loaded) return loaded.error();
     if (notes && loaded->clip.detected_unit) notes->detected_units.push_back({spec.path, *loaded->clip.detected_unit});
+    if (notes && loaded->clip.detected_up_axis) {
+      notes->detected_up_axes.push_back({spec.path, *loaded->clip.detected_up_axis});
+    }
     const Motion& motion = loaded->clip.motion;
     const int dropped = loaded->clip.dropped_leading_frames;
     const int file_frames = dropped + motion.frame_count;

@@ -32,6 +32,7 @@
 #include "motiongraph/core/error.h"
 #include "motiongraph/database/motion_database.h"
 #include "motiongraph/motion/length_unit_choice.h"
+#include "motiongraph/motion/up_axis_choice.h"
 
 namespace mg {
 
@@ -44,6 +45,8 @@ struct DatabaseSettings {
   std::optional<std::string> asf_path;  // skeleton for AMC files given one by one
   std::optional<double> bvh_metres_per_unit;  // BVH carries no unit; nullopt: chosen per file
                                               // from its figure's size (length_unit.h)
+  std::optional<UpAxis> bvh_up_axis;    // nullopt: chosen per file from its figure's shape
+                                        // (up_axis.h)
   double input_fps = 0.0;               // > 0: the capture rate, overriding the files'
   bool keep_rest_frames = false;        // keep leading rest/T-pose frames of BVH files
   // The foot joints' names; given, they win over a manifest's [feet]. The loaded database's
@@ -71,6 +74,11 @@ struct DatabaseLoadNotes {
     LengthUnitChoice choice;
   };
   std::vector<DetectedUnit> detected_units;
+  struct DetectedUpAxis {
+    std::string file;
+    UpAxisChoice choice;
+  };
+  std::vector<DetectedUpAxis> detected_up_axes;  // BVH files read without an up axis given
   std::vector<std::string> clip_doubts;
 };
 

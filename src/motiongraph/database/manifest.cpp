@@ -9,6 +9,8 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include "motiongraph/motion/up_axis.h"
+
 namespace mg {
 
 namespace {
@@ -59,6 +61,15 @@ class Reader {
 
   // A positive finite number written as an integer or a float.
   // An optional positive number: `out` is set when the key is present, left unset otherwise.
+  Status optional_up_axis(const toml::node* node, std::optional<UpAxis>& out) const {
+    if (!node) return Ok{};
+    auto text = string(*node, "up_axis");
+    if (!text) return text.error();
+    out = parse_up_axis(*text);
+    if (!out) return error(line_of(*node), fmt::format("'up_axis' must be \"y\" or \"z\", not \"{}\"", *text));
+    return Ok{};
+  }
+
   Status optional_positive(const toml::node* node, std::string_view key, std::optional<double>& out) const {
     if (!node) return Ok{};
     auto value = positive_number(*node, key);
@@ -166,8 +177,8 @@ Result<ManifestRange> read_range(const Reader& in, const toml::table& table, con
 Result<ManifestClip> read_clip(const Reader& in, const toml::table& table) {
   ManifestClip clip;
   clip.line = line_of(table);
-  if (auto s = in.check_keys(table, {"file", "name", "skeleton", "bvh_scale", "input_fps", "first_frame",
-                                     "last_frame", "tags", "ranges"},
+  if (auto s = in.check_keys(table, {"file", "name", "skeleton", "bvh_scale", "up_axis", "input_fps",
+                                     "first_frame", "last_frame", "tags", "ranges"},
                              "in a [[clip]]");
       !s) {
     return s.error();
@@ -198,6 +209,10 @@ Result<ManifestClip> read_clip(const Reader& in, const toml::table& table) {
     return in.error(line_of(*node), "'bvh_scale' applies to BVH clips only (ASF gives its units)");
   }
   if (auto s = in.optional_positive(table.get("bvh_scale"), "bvh_scale", clip.bvh_scale); !s) return s.error();
+  if (const toml::node* node = table.get("up_axis"); node && ext != ".bvh") {
+    return in.error(line_of(*node), "'up_axis' applies to BVH clips only (ASF/AMC is read y up)");
+  }
+  if (auto s = in.optional_up_axis(table.get("up_axis"), clip.up_axis); !s) return s.error();
   if (auto s = in.optional_positive(table.get("input_fps"), "input_fps", clip.input_fps); !s) return s.error();
   if (const toml::node* node = table.get("first_frame")) {
     auto first = in.frame(*node, "first_frame");
@@ -263,7 +278,8 @@ Result<FootJointNames> read_feet(const Reader& in, const toml::node& node) {
 Result<Manifest> read_manifest(const Reader& in, const toml::table& root, std::string file_name) {
   Manifest manifest;
   manifest.file_name = std::move(file_name);
-  if (auto s = in.check_keys(root, {"fps", "skeleton", "bvh_scale", "input_fps", "feet", "clip"}, "at the top level");
+  if (auto s = in.check_keys(root, {"fps", "skeleton", "bvh_scale", "up_axis", "input_fps", "feet", "clip"},
+                             "at the top level");
       !s) {
     return s.error();
   }
@@ -282,6 +298,7 @@ Result<Manifest> read_manifest(const Reader& in, const toml::table& root, std::s
     manifest.skeleton_line = line_of(*node);
   }
   if (auto s = in.optional_positive(root.get("bvh_scale"), "bvh_scale", manifest.bvh_scale); !s) return s.error();
+  if (auto s = in.optional_up_axis(root.get("up_axis"), manifest.up_axis); !s) return s.error();
   if (auto s = in.optional_positive(root.get("input_fps"), "input_fps", manifest.input_fps); !s) return s.error();
   const toml::node* clips = root.get("clip");
   if (!clips) return in.error(0, "the manifest names no clips: add a [[clip]] table with file = \"...\"");

@@ -8,6 +8,10 @@
 // ASF unit, 0.056444 m, others centimetres, 0.01). Without it, the unit is chosen from the
 // figure's size (length_unit.h) and reported in Clip::detected_unit.
 //
+// A file whose figure stands along z (3ds Max and other z-up tools) is turned y up, every world
+// position turned by one rotation (up_axis.h); `up_axis` says which without looking, and
+// Clip::detected_up_axis reports the choice when it was made by looking.
+//
 // A static root above a travelling joint (the hips) is folded away so that the hips are joint
 // 0 and carry the floor position and heading (trajectory_joint.h); the skeleton keeps the
 // folded joints as its static_ancestors. Tolerance: kStaticRootFraction of the figure's size.
@@ -18,6 +22,7 @@
 #include "motiongraph/core/error.h"
 #include "motiongraph/io/bvh_parser.h"
 #include "motiongraph/motion/motion.h"
+#include "motiongraph/motion/up_axis_choice.h"
 
 namespace mg {
 
@@ -27,6 +32,7 @@ struct BvhImportSettings {
   bool drop_rest_frames = true;  // drop leading rest or T-pose frames a converter added
                                  // (see rest_frame.h)
   bool fold_static_root = true;  // the hips as joint 0 below a static root (see above)
+  std::optional<UpAxis> up_axis;  // nullopt: chosen from the figure's shape (up_axis.h)
 
   Status validate() const;
 };

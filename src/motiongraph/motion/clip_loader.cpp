@@ -93,6 +93,7 @@ Result<LoadedClip> ClipLoader::load(const std::string& path) {
     if (!bvh) return bvh.error();
     BvhImportSettings import;
     import.metres_per_unit = settings_.bvh_metres_per_unit;
+    import.up_axis = settings_.bvh_up_axis;
     import.fps_override = settings_.input_fps;
     import.drop_rest_frames = !settings_.keep_rest_frames;
     auto clip = clip_from_bvh(*bvh, import);

@@ -11,6 +11,7 @@
 #include "motiongraph/core/error.h"
 #include "motiongraph/motion/acclaim_import.h"
 #include "motiongraph/motion/motion.h"
+#include "motiongraph/motion/up_axis_choice.h"
 
 namespace mg {
 
@@ -19,6 +20,7 @@ struct ClipLoadSettings {
                                         // in the AMC's folder
   std::optional<double> bvh_metres_per_unit;  // BVH carries no unit; nullopt: chosen from the
                                               // figure's size (length_unit.h)
+  std::optional<UpAxis> bvh_up_axis;    // nullopt: chosen from the figure's shape (up_axis.h)
   double input_fps = 0.0;               // > 0: the capture rate, overriding the file's
                                         // (AMC files store none: 120 by default, CMU's rate)
   bool keep_rest_frames = false;        // keep leading rest/T-pose frames of a BVH

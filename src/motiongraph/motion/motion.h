@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "motiongraph/motion/length_unit_choice.h"
+#include "motiongraph/motion/up_axis_choice.h"
 #include "motiongraph/skeleton/skeleton.h"
 
 namespace mg {
@@ -55,6 +56,7 @@ struct Clip {
   Motion motion;
   int dropped_leading_frames = 0;  // frames removed at load (an added rest or T-pose)
   std::optional<LengthUnitChoice> detected_unit;  // the unit chosen for a BVH read without one
+  std::optional<UpAxisChoice> detected_up_axis;   // the up axis chosen for a BVH read without one
 };
 
 }  // namespace mg

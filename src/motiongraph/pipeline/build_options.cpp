@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "motiongraph/core/text.h"
+#include "motiongraph/motion/up_axis.h"
 
 namespace mg {
 
@@ -70,6 +71,10 @@ Result<BuildSettings> build_settings_from(const BuildOptions& o) {
   db.prefer_manifest_fps = !o.fps_given;
   if (!o.asf.empty()) db.asf_path = o.asf;
   db.bvh_metres_per_unit = o.scale;
+  if (!o.up_axis.empty()) {
+    db.bvh_up_axis = parse_up_axis(o.up_axis);
+    if (!db.bvh_up_axis) return Error{"", 0, "--up-axis must be y or z, not " + o.up_axis};
+  }
   db.input_fps = o.input_fps;
   db.cmu_tags = !o.no_cmu_tags;
   db.cmu_index_path = o.cmu_index;

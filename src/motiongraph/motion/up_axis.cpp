@@ -1,0 +1,111 @@
+#include "motiongraph/motion/up_axis.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "motiongraph/motion/forward_kinematics.h"
+
+namespace mg {
+
+namespace {
+
+// z extent over y extent; 1 when the figure has no size in either.
+double extent_ratio(double y_extent, double z_extent) {
+  const double most = std::max(y_extent, z_extent);
+  if (!(most > 0.0) || !std::isfinite(most)) return 1.0;
+  // A figure flat in y (every joint at one height) says z however small its z extent is.
+  return z_extent / std::max(y_extent, 1e-9 * most);
+}
+
+double median(std::vector<double> values) {
+  auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+enum class Vote { kNone, kY, kZ };
+
+Vote vote_of(double ratio) {
+  if (ratio >= kUpAxisRatio) return Vote::kZ;
+  if (ratio <= 1.0 / kUpAxisRatio) return Vote::kY;
+  return Vote::kNone;
+}
+
+}  // namespace
+
+std::string_view up_axis_name(UpAxis axis) { return axis == UpAxis::kZ ? "z" : "y"; }
+
+std::optional<UpAxis> parse_up_axis(std::string_view text) {
+  if (text.size() != 1) return std::nullopt;
+  const char c = static_cast<char>(std::tolower(static_cast<unsigned char>(text[0])));
+  if (c == 'y') return UpAxis::kY;
+  if (c == 'z') return UpAxis::kZ;
+  return std::nullopt;
+}
+
+UpAxisChoice choose_up_axis(const Skeleton& skeleton, const Motion& motion) {
+  UpAxisChoice choice;
+  const size_t joints = static_cast<size_t>(skeleton.joint_count());
+  if (joints == 0) return choice;
+  if (motion.frame_count > 0) {
+    std::vector<Vec3> positions(joints);
+    std::vector<Quat> rotations(joints);
+    std::vector<double> y_extents, z_extents;
+    y_extents.reserve(static_cast<size_t>(motion.frame_count));
+    z_extents.reserve(static_cast<size_t>(motion.frame_count));
+    for (int f = 0; f < motion.frame_count; ++f) {
+      forward_kinematics(skeleton, motion, f, positions, rotations);
+      Vec3 low = positions.front(), high = positions.front();
+      for (const Vec3& p : positions) {
+        low = low.cwiseMin(p);
+        high = high.cwiseMax(p);
+      }
+      y_extents.push_back(high.y() - low.y());
+      z_extents.push_back(high.z() - low.z());
+    }
+    choice.animation_ratio = extent_ratio(median(std::move(y_extents)), median(std::move(z_extents)));
+  }
+  // The rest pose: every rotation zero, every joint at its rest offset.
+  std::vector<Vec3> rest(joints, Vec3::Zero());
+  for (size_t j = 1; j < joints; ++j) {
+    rest[j] = rest[static_cast<size_t>(skeleton.parent(static_cast<int>(j)))] +
+              skeleton.joint(static_cast<int>(j)).rest_offset_m;
+  }
+  Vec3 low = rest.front(), high = rest.front();
+  for (const Vec3& p : rest) {
+    low = low.cwiseMin(p);
+    high = high.cwiseMax(p);
+  }
+  choice.rest_ratio = extent_ratio(high.y() - low.y(), high.z() - low.z());
+
+  const Vote animation = vote_of(choice.animation_ratio), rest_pose = vote_of(choice.rest_ratio);
+  const bool z =
+      (animation == Vote::kZ && rest_pose != Vote::kY) || (animation == Vote::kNone && rest_pose == Vote::kZ);
+  choice.axis = z ? UpAxis::kZ : UpAxis::kY;
+  return choice;
+}
+
+Quat up_axis_to_y(UpAxis axis) {
+  if (axis == UpAxis::kY) return Quat::Identity();
+  return Quat(Eigen::AngleAxisd(-std::numbers::pi / 2.0, Vec3::UnitX()));
+}
+
+void turn_clip(Clip& clip, const Quat& rotation) {
+  const Quat inverse = rotation.conjugate();
+  std::vector<JointDef> joints(clip.skeleton.joints().begin(), clip.skeleton.joints().end());
+  for (JointDef& joint : joints) joint.rest_offset_m = rotation * joint.rest_offset_m;
+  std::vector<StaticAncestor> ancestors(clip.skeleton.static_ancestors().begin(),
+                                        clip.skeleton.static_ancestors().end());
+  for (StaticAncestor& ancestor : ancestors) {
+    ancestor.translation_m = rotation * ancestor.translation_m;
+    ancestor.rotation = (rotation * ancestor.rotation * inverse).normalized();
+  }
+  clip.skeleton = Skeleton(std::move(joints), std::move(ancestors));
+  for (Vec3& t : clip.motion.local_translations_m) t = rotation * t;
+  for (Quat& q : clip.motion.local_rotations) q = (rotation * q * inverse).normalized();
+}
+
+}  // namespace mg

@@ -1,0 +1,48 @@
+// Which axis is up in a file that does not say (BVH). Everything here is y up; most BVH is too,
+// but some tools write z up (3ds Max and its Biped, some MotionBuilder and Vicon exports). Read
+// as y up, such a figure lies on the floor: its height is taken for a step across, its travel
+// along z for a climb, and no path or floor alignment makes sense.
+//
+// The choice is made on the figure's shape, the way length_unit.h chooses the unit: per frame
+// the figure's extent along y and along z over all its joints, the median of each over the
+// frames, and their ratio z / y. A standing or walking figure is about three times as tall as
+// it is deep, so a ratio of kUpAxisRatio or more says z, one of 1 / kUpAxisRatio or less says
+// y, and between the two the animation does not say (a T-pose has no depth to compare; a figure
+// lying on the floor along x has neither). The rest pose (every rotation zero) is read the same
+// way, as a second voice: it stands in the file's up axis whatever the clip does. z is chosen
+// when the animation says z and the rest pose does not say y, or when the animation does not
+// say and the rest pose says z; otherwise y (BVH's own convention). So a y-up clip of someone
+// crawling along z keeps y when its rest pose stands, and a file whose root channels already
+// turn a z-up rest pose upright (a converter's fix-up) keeps y.
+//
+// A z-up clip is turned y up by the rotation that takes +z to +y (-90 degrees about x, so that
+// +y becomes -z): every rest offset and local translation is turned by it, and every local
+// rotation conjugated by it (the static ancestors of a folded root too). Every world position
+// is then the file's turned by that rotation, the rest pose stands in y, and the written BVH is
+// a y-up file with the input's hierarchy.
+#pragma once
+
+#include <optional>
+#include <string_view>
+
+#include "motiongraph/motion/motion.h"
+#include "motiongraph/motion/up_axis_choice.h"
+
+namespace mg {
+
+constexpr double kUpAxisRatio = 1.5;
+
+std::string_view up_axis_name(UpAxis axis);  // "y", "z"
+// "y" or "z" (either case); nullopt for anything else.
+std::optional<UpAxis> parse_up_axis(std::string_view text);
+
+// The choice above for a clip in its file's coordinates.
+UpAxisChoice choose_up_axis(const Skeleton& skeleton, const Motion& motion);
+
+// The rotation that takes the file's up axis to +y (identity for y).
+Quat up_axis_to_y(UpAxis axis);
+
+// Every world position of the clip turned by `rotation` (as above), rest pose included.
+void turn_clip(Clip& clip, const Quat& rotation);
+
+}  // namespace mg
