@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <span>
@@ -137,6 +138,58 @@ TEST(FloorPath, DistanceAndSegments) {
   EXPECT_EQ(path->tag_at(1.0), "walk");
   EXPECT_EQ(path->tag_at(4.5), "run");  // the later segment wins where they overlap
   EXPECT_EQ(path->tag_at(10.5), "");
+}
+
+// The distance to the nearest point of the path, every segment looked at.
+double brute_distance(const std::vector<Vec2>& points, const Vec2& p) {
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i + 1 < points.size(); ++i) {
+    const Vec2 d = points[i + 1] - points[i];
+    if (d.squaredNorm() == 0.0) continue;
+    const double u = std::clamp((p - points[i]).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    best = std::min(best, (points[i] + u * d - p).norm());
+  }
+  return best;
+}
+
+TEST(FloorPath, DistanceIsTheNearestSegmentsOverAnyPath) {
+  // Shapes, long ones, random polylines (few long legs, many short ones, self-crossing), and
+  // points near the path, on it and far outside its box: the grid's answer is the scan's.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<std::vector<Vec2>> paths;
+  for (const char* spec : {"figure8:4", "s-curve:1600", "line:10", "circle:0.3", "square:10", "zigzag:6"}) {
+    auto path = make_shape(spec);
+    ASSERT_TRUE(path.ok());
+    paths.push_back(path->points());
+  }
+  for (int legs : {1, 3, 40, 2000}) {
+    std::vector<Vec2> points{Vec2::Zero()};
+    const double step = legs > 100 ? 0.3 : 8.0;
+    for (int i = 0; i < legs; ++i) points.push_back(points.back() + step * Vec2(unit(rng) - 0.5, unit(rng) - 0.5) * 2.0);
+    paths.push_back(points);
+  }
+  for (const std::vector<Vec2>& points : paths) {
+    auto path = FloorPath::create(points);
+    ASSERT_TRUE(path.ok());
+    Vec2 low = points.front(), high = points.front();
+    for (const Vec2& q : points) {
+      low = low.cwiseMin(q);
+      high = high.cwiseMax(q);
+    }
+    const Vec2 size = (high - low).cwiseMax(Vec2(1.0, 1.0));
+    for (int trial = 0; trial < 400; ++trial) {
+      Vec2 p;
+      if (trial % 4 == 0) {  // on or next to the path
+        p = path->point_at(unit(rng) * path->length_m()) + 0.05 * Vec2(unit(rng) - 0.5, unit(rng) - 0.5);
+      } else if (trial % 4 == 1) {  // far outside the box
+        p = low + Vec2(unit(rng) * 6.0 - 2.5, unit(rng) * 6.0 - 2.5).cwiseProduct(size);
+      } else {
+        p = low + Vec2(unit(rng) * 1.2 - 0.1, unit(rng) * 1.2 - 0.1).cwiseProduct(size);
+      }
+      EXPECT_NEAR(path->distance_to(p), brute_distance(path->points(), p), 1e-12) << points.size() << " points";
+    }
+  }
 }
 
 TEST(FloorPath, NearestArcIsTheNearestPointOfTheRange) {

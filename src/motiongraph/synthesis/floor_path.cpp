@@ -42,7 +42,47 @@ Result<FloorPath> FloorPath::create(const std::vector<Vec2>& points, std::vector
     }
     path.bucket_segment_.push_back(segment);
   }
+  path.make_grid();
   return path;
+}
+
+void FloorPath::make_grid() {
+  Vec2 low = points_.front(), high = points_.front();
+  for (const Vec2& p : points_) {
+    low = low.cwiseMin(p);
+    high = high.cwiseMax(p);
+  }
+  const int segments = static_cast<int>(points_.size()) - 1;
+  const Vec2 size = high - low;
+  cell_m_ = std::max({kMinCellM, std::sqrt(size.x() * size.y() / segments), std::max(size.x(), size.y()) / segments});
+  grid_origin_ = low;
+  cells_x_ = static_cast<int>(size.x() / cell_m_) + 1;
+  cells_z_ = static_cast<int>(size.y() / cell_m_) + 1;
+  // A segment is listed in the cells of points along it at most half a side apart (its ends
+  // among them), each cell once: then any point of it lies within a quarter side of a point in
+  // a cell that lists it.
+  auto for_each_cell = [&](int i, auto&& visit) {
+    const Vec2 a = points_[static_cast<size_t>(i)], b = points_[static_cast<size_t>(i) + 1];
+    const int steps = static_cast<int>(std::ceil((b - a).norm() / (0.5 * cell_m_)));
+    int last = -1;
+    for (int k = 0; k <= steps; ++k) {
+      const Vec2 at = (a + (b - a) * (static_cast<double>(k) / std::max(steps, 1)) - low) / cell_m_;
+      const int x = std::clamp(static_cast<int>(at.x()), 0, cells_x_ - 1);
+      const int z = std::clamp(static_cast<int>(at.y()), 0, cells_z_ - 1);
+      const int c = z * cells_x_ + x;
+      if (c != last) visit(c);  // a segment does not come back to a cell it left
+      last = c;
+    }
+  };
+  // Counting, then filling (CSR).
+  cell_start_.assign(static_cast<size_t>(cells_x_) * cells_z_ + 1, 0);
+  for (int i = 0; i < segments; ++i) for_each_cell(i, [&](int c) { ++cell_start_[static_cast<size_t>(c) + 1]; });
+  for (size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
+  cell_segments_.assign(static_cast<size_t>(cell_start_.back()), 0);
+  std::vector<int> fill(cell_start_.begin(), cell_start_.end() - 1);
+  for (int i = 0; i < segments; ++i) {
+    for_each_cell(i, [&](int c) { cell_segments_[static_cast<size_t>(fill[static_cast<size_t>(c)]++)] = i; });
+  }
 }
 
 Vec2 FloorPath::direction_at(double s) const {
@@ -52,10 +92,32 @@ Vec2 FloorPath::direction_at(double s) const {
 
 double FloorPath::distance_to(const Vec2& p) const {
   double best = std::numeric_limits<double>::infinity();
-  for (size_t i = 0; i + 1 < points_.size(); ++i) {
-    const Vec2 d = points_[i + 1] - points_[i];
-    const double u = std::clamp((p - points_[i]).dot(d) / d.squaredNorm(), 0.0, 1.0);
-    best = std::min(best, (points_[i] + u * d - p).norm());
+  auto look_at_cell = [&](int x, int z) {
+    const size_t c = static_cast<size_t>(z) * cells_x_ + x;
+    for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
+      const size_t i = static_cast<size_t>(cell_segments_[static_cast<size_t>(k)]);
+      const Vec2 d = points_[i + 1] - points_[i];
+      const double u = std::clamp((p - points_[i]).dot(d) / d.squaredNorm(), 0.0, 1.0);
+      best = std::min(best, (points_[i] + u * d - p).norm());
+    }
+  };
+  // p's cell, or the nearest cell of the grid to p. A cell r rings out (Chebyshev) lies at
+  // least (r - 1) cell sides from p, and every point of a segment within a quarter side of a
+  // cell listing it, so once rings 0..r are seen, a best of at most r - 1/4 sides is final.
+  const Vec2 at = (p - grid_origin_) / cell_m_;
+  const int cx = std::clamp(static_cast<int>(std::floor(std::clamp(at.x(), -1.0, 1e9))), 0, cells_x_ - 1);
+  const int cz = std::clamp(static_cast<int>(std::floor(std::clamp(at.y(), -1.0, 1e9))), 0, cells_z_ - 1);
+  const int rings = std::max({cx, cells_x_ - 1 - cx, cz, cells_z_ - 1 - cz});
+  for (int r = 0; r <= rings; ++r) {
+    for (int z = cz - r; z <= cz + r; ++z) {
+      if (z < 0 || z >= cells_z_) continue;
+      const bool edge_row = z == cz - r || z == cz + r;
+      for (int x = cx - r; x <= cx + r; x += edge_row ? 1 : 2 * r) {
+        if (x >= 0 && x < cells_x_) look_at_cell(x, z);
+        if (r == 0) break;
+      }
+    }
+    if (best <= (r - 0.25) * cell_m_) break;
   }
   return best;
 }

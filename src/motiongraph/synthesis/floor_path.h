@@ -68,7 +68,9 @@ class FloorPath {
   }
   // The unit direction at arc length s.
   Vec2 direction_at(double s) const;
-  // Distance from p to the nearest point of the path.
+  // Distance from p to the nearest point of the path. Looks at the segments in the grid cells
+  // around p, ring by ring, until no further cell can hold a nearer one: on a long path (a
+  // result's deviation is measured frame by frame) a few segments, not all of them.
   double distance_to(const Vec2& p) const;
   // The arc length of the point nearest p among arc lengths [from, to] (clamped to the path):
   // from a point followed along the path, with a small range, a path that crosses itself is not
@@ -109,6 +111,16 @@ class FloorPath {
   static constexpr int kMaxBuckets = 1 << 20;
   double bucket_m_ = kBucket;
   std::vector<int> bucket_segment_;
+  // A grid over the path's bounding box (about as many cells as segments, square, at least
+  // kMinCellM): cell (i, j) lists the segments that pass through it (make_grid), as the run
+  // cell_segments_[cell_start_[c] .. cell_start_[c + 1]) with c = j * cells_x_ + i.
+  static constexpr double kMinCellM = 0.5;
+  Vec2 grid_origin_ = Vec2::Zero();
+  double cell_m_ = 1.0;
+  int cells_x_ = 1, cells_z_ = 1;
+  std::vector<int> cell_start_;
+  std::vector<int> cell_segments_;
+  void make_grid();
   std::vector<PathSegment> segments_;
 };
 
