@@ -54,8 +54,8 @@ PyMotion load_clip(const std::string& path, const std::optional<std::string>& as
   if (asf) settings.asf_path = *asf;
   settings.bvh_metres_per_unit = scale;
   if (up_axis) {
-    settings.bvh_up_axis = parse_up_axis(*up_axis);
-    if (!settings.bvh_up_axis) throw py::value_error("up_axis must be 'y' or 'z', not '" + *up_axis + "'");
+    settings.up_axis = parse_up_axis(*up_axis);
+    if (!settings.up_axis) throw py::value_error("up_axis must be 'y' or 'z', not '" + *up_axis + "'");
   }
   settings.input_fps = input_fps;
   settings.keep_rest_frames = keep_rest_frames;
@@ -140,7 +140,7 @@ void bind_motion(py::module_& m) {
         py::arg("keep_rest_frames") = false,
         "Reads a clip (.amc with its .asf, or .bvh) as the CLI's convert does: asf the skeleton of an AMC file "
         "(default: the .asf in its folder), fps a rate to resample to, scale metres per BVH unit (default: "
-        "chosen from the figure's size), up_axis 'y' or 'z' for a BVH (default: whichever the figure stands along; "
+        "chosen from the figure's size), up_axis 'y' or 'z' (default: whichever the figure stands along; "
         "z-up is turned y up), input_fps the capture rate overriding the file's.");
 }
 

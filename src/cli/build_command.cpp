@@ -127,8 +127,8 @@ Command add_build_command(CLI::App& app) {
                   "Metres per BVH length unit (default: m, cm, mm, inch or CMU's 1/0.45 inch per file, whichever makes "
                   "the figure human-sized)");
   sub->add_option("--up-axis", b.up_axis,
-                  "Up axis of the BVH files, y or z (default: per file, whichever the figure stands along; z-up files "
-                  "are turned y up)")
+                  "Up axis of the clips, y or z (default: per file, whichever the figure stands along; z-up files are "
+                  "turned y up)")
       ->check(CLI::IsMember({"y", "z"}));
   sub->add_option("--input-fps", b.input_fps, "Capture rate of the inputs, overriding the files' (AMC: 120)");
   sub->add_option("--cmu-index", b.cmu_index,

@@ -73,12 +73,9 @@ int run_info(const InfoOptions& options) {
     std::string unit = fmt::format("{:g} m per unit (--scale)", options.load.scale.value_or(1.0));
     if (loaded->format == "amc") unit = "the ASF's units";
     if (clip.detected_unit) unit = unit_description(*clip.detected_unit) + " (chosen by its size; --scale overrides)";
-    std::string up;
-    if (loaded->format == "bvh") {
-      up = clip.detected_up_axis
-               ? up_axis_description(*clip.detected_up_axis) + " (chosen by its shape; --up-axis overrides)"
-               : options.load.up_axis + " (--up-axis)";
-    }
+    const std::string up = clip.detected_up_axis ? up_axis_description(*clip.detected_up_axis) +
+                                                       " (chosen by its shape; --up-axis overrides)"
+                                                 : options.load.up_axis + " (--up-axis)";
     std::string static_joints;
     for (const StaticAncestor& a : clip.skeleton.static_ancestors()) {
       static_joints += (static_joints.empty() ? "" : ", ") + a.name;
@@ -114,7 +111,7 @@ int run_info(const InfoOptions& options) {
       fmt::print("  motion:   {} frames at {:g} fps, {:.2f} s{}\n", s.frames, s.fps, s.duration_s,
                  clip.dropped_leading_frames > 0 ? " (leading rest/T-pose frames dropped)" : "");
       fmt::print("  lengths:  {}\n", unit);
-      if (!up.empty()) fmt::print("  up:       {}\n", up);
+      fmt::print("  up:       {}\n", up);
       if (!static_joints.empty()) {
         fmt::print("  root:     {} carries the floor position (above it, static: {})\n", clip.skeleton.joint(0).name,
                    static_joints);

@@ -24,8 +24,8 @@ struct LoadOptions {
                    "Metres per BVH length unit (BVH carries no unit; default: m, cm, mm, inch or CMU's "
                    "1/0.45 inch, whichever makes the figure human-sized)");
     app.add_option("--up-axis", up_axis,
-                   "Up axis of a BVH file, y or z (default: whichever the figure stands along; a z-up file is "
-                   "turned y up)")
+                   "Up axis of a clip, y or z (default: whichever the figure stands along; a z-up file is turned "
+                   "y up)")
         ->check(CLI::IsMember({"y", "z"}));
     app.add_option("--input-fps", input_fps,
                    "Capture rate of the input, overriding the file's (AMC default 120, CMU's rate)");
@@ -37,7 +37,7 @@ struct LoadOptions {
     ClipLoadSettings s;
     if (!asf.empty()) s.asf_path = asf;
     s.bvh_metres_per_unit = scale;
-    if (!up_axis.empty()) s.bvh_up_axis = parse_up_axis(up_axis);
+    if (!up_axis.empty()) s.up_axis = parse_up_axis(up_axis);
     s.input_fps = input_fps;
     s.keep_rest_frames = keep_rest_frames;
     return s;

@@ -71,7 +71,7 @@ void report_units(const DatabaseLoadNotes& notes, bool quiet) {
                                   [](const auto& d) { return d.choice.axis == UpAxis::kZ; });
   if (z_up > 0 && !quiet) {
     const auto files = static_cast<long>(notes.detected_up_axes.size());
-    spdlog::info("BVH read z up and turned y up: {} of {} file{} (their figures stand along z; --up-axis overrides)",
+    spdlog::info("read z up and turned y up: {} of {} file{} (their figures stand along z; --up-axis overrides)",
                  z_up, files, files == 1 ? "" : "s");
   }
 }

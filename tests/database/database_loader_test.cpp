@@ -11,6 +11,8 @@
 
 #include "motiongraph/database/database_contacts.h"
 #include "motiongraph/io/file.h"
+#include "motiongraph/motion/forward_kinematics.h"
+#include "motiongraph/motion/up_axis.h"
 #include "test_data.h"
 
 namespace mg {
@@ -260,6 +262,31 @@ TEST(DatabaseLoader, SkeletonFilesWithTheSameJointsShareADatabase) {
   EXPECT_EQ(db->clips[14].skeleton, 0);
   EXPECT_EQ(db->clips[15].skeleton, 1);
   EXPECT_EQ(db->skeleton_names[1], (folder.path() / "16.asf").string());
+}
+
+TEST(DatabaseLoader, ClipsOfOneAsfReadWithOtherUpAxesGetTheirOwnSkeletons) {
+  // The same AMC twice, once told z up: that one is turned ((x, y, z) to (x, z, -y)), on a skeleton
+  // of its own, and every world position is the other's turned.
+  TempFolder folder("up");
+  const std::string manifest = folder.write(
+      "db.toml", fmt::format("skeleton = \"{0}/16.asf\"\n[[clip]]\nfile = \"{0}/16_15.amc\"\n[[clip]]\nfile = "
+                             "\"{0}/16_15.amc\"\nname = \"turned\"\nup_axis = \"z\"\n",
+                             folder.relative_data("cmu/16")));
+  DatabaseLoadNotes notes;
+  auto db = load_database({manifest}, cmu_settings(), &notes);
+  ASSERT_TRUE(db) << db.error().to_string();
+  ASSERT_EQ(db->clips.size(), 2u);
+  ASSERT_EQ(db->skeletons.size(), 2u);
+  EXPECT_EQ(db->clips[0].skeleton, 0);
+  EXPECT_EQ(db->clips[1].skeleton, 1);
+  ASSERT_EQ(notes.detected_up_axes.size(), 1u);  // the first clip's was chosen, and it stands
+  EXPECT_EQ(notes.detected_up_axes[0].choice.axis, UpAxis::kY);
+  const std::vector<Vec3> y = world_positions(db->skeletons[0], db->clips[0].motion);
+  const std::vector<Vec3> z = world_positions(db->skeletons[1], db->clips[1].motion);
+  ASSERT_EQ(y.size(), z.size());
+  double worst = 0.0;
+  for (size_t i = 0; i < y.size(); ++i) worst = std::max(worst, (Vec3(y[i].x(), y[i].z(), -y[i].y()) - z[i]).norm());
+  EXPECT_LT(worst, 1e-9);
 }
 
 TEST(DatabaseLoader, RejectsASkeletonOfOtherJoints) {

@@ -58,7 +58,7 @@ ClipLoadSettings default_load_settings(const DatabaseSettings& settings) {
   ClipLoadSettings load;
   load.asf_path = settings.asf_path;
   load.bvh_metres_per_unit = settings.bvh_metres_per_unit;
-  load.bvh_up_axis = settings.bvh_up_axis;
+  load.up_axis = settings.up_axis;
   load.input_fps = settings.input_fps;
   load.keep_rest_frames = settings.keep_rest_frames;
   return load;
@@ -153,7 +153,7 @@ Status expand_manifest(const std::string& input, const DatabaseSettings& setting
     }
     // The clip's own value, else the manifest's default, else the settings'.
     if (auto scale = clip.bvh_scale ? clip.bvh_scale : manifest->bvh_scale) spec.load.bvh_metres_per_unit = *scale;
-    if (auto up = clip.up_axis ? clip.up_axis : manifest->up_axis) spec.load.bvh_up_axis = *up;
+    if (auto up = clip.up_axis ? clip.up_axis : manifest->up_axis) spec.load.up_axis = *up;
     if (auto fps = clip.input_fps ? clip.input_fps : manifest->input_fps) spec.load.input_fps = *fps;
     spec.first_frame = clip.first_frame;
     spec.last_frame = clip.last_frame;
@@ -218,7 +218,7 @@ using LoaderKey = std::tuple<std::string, double, int, double, bool>;
 class Loaders {
  public:
   ClipLoader& for_settings(const ClipLoadSettings& load) {
-    const int up = load.bvh_up_axis ? static_cast<int>(*load.bvh_up_axis) : -1;
+    const int up = load.up_axis ? static_cast<int>(*load.up_axis) : -1;
     LoaderKey key{load.asf_path.value_or(""), load.bvh_metres_per_unit.value_or(0.0), up, load.input_fps,
                   load.keep_rest_frames};
     auto it = loaders_.find(key);
@@ -351,6 +351,9 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
     std::error_code ec;
     std::string key = fs::weakly_canonical(skeleton_file, ec).string();
     if (ec) key = fs::absolute(skeleton_file).lexically_normal().string();
+    // An ASF's clips read z up have its skeleton turned (motion/up_axis.h): another entry.
+    const auto& detected = loaded->clip.detected_up_axis;
+    if ((detected ? detected->axis : spec.load.up_axis.value_or(UpAxis::kY)) == UpAxis::kZ) key += " (z up)";
     int skeleton = 0;
     if (auto it = skeleton_of_file.find(key); it != skeleton_of_file.end()) {
       skeleton = it->second;

@@ -45,7 +45,7 @@ struct DatabaseSettings {
   std::optional<std::string> asf_path;  // skeleton for AMC files given one by one
   std::optional<double> bvh_metres_per_unit;  // BVH carries no unit; nullopt: chosen per file
                                               // from its figure's size (length_unit.h)
-  std::optional<UpAxis> bvh_up_axis;    // nullopt: chosen per file from its figure's shape
+  std::optional<UpAxis> up_axis;        // nullopt: chosen per file from its figure's shape
                                         // (up_axis.h)
   double input_fps = 0.0;               // > 0: the capture rate, overriding the files'
   bool keep_rest_frames = false;        // keep leading rest/T-pose frames of BVH files
@@ -78,7 +78,7 @@ struct DatabaseLoadNotes {
     std::string file;
     UpAxisChoice choice;
   };
-  std::vector<DetectedUpAxis> detected_up_axes;  // BVH files read without an up axis given
+  std::vector<DetectedUpAxis> detected_up_axes;  // files read without an up axis given
   std::vector<std::string> clip_doubts;
 };
 

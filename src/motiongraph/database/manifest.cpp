@@ -209,9 +209,6 @@ Result<ManifestClip> read_clip(const Reader& in, const toml::table& table) {
     return in.error(line_of(*node), "'bvh_scale' applies to BVH clips only (ASF gives its units)");
   }
   if (auto s = in.optional_positive(table.get("bvh_scale"), "bvh_scale", clip.bvh_scale); !s) return s.error();
-  if (const toml::node* node = table.get("up_axis"); node && ext != ".bvh") {
-    return in.error(line_of(*node), "'up_axis' applies to BVH clips only (ASF/AMC is read y up)");
-  }
   if (auto s = in.optional_up_axis(table.get("up_axis"), clip.up_axis); !s) return s.error();
   if (auto s = in.optional_positive(table.get("input_fps"), "input_fps", clip.input_fps); !s) return s.error();
   if (const toml::node* node = table.get("first_frame")) {

@@ -36,7 +36,7 @@ struct ManifestClip {
                                            // tags are looked up by the stem either way)
   std::optional<std::string> skeleton;     // ASF for an AMC clip (overrides the default)
   std::optional<double> bvh_scale;         // metres per BVH unit (overrides the default)
-  std::optional<UpAxis> up_axis;           // a BVH clip's up axis (overrides the default)
+  std::optional<UpAxis> up_axis;           // the clip's up axis (overrides the default)
   std::optional<double> input_fps;         // capture rate, overriding the file's
   std::optional<int> first_frame;          // file numbering, from 1; absent: the first
   std::optional<int> last_frame;           // inclusive; absent: the last
@@ -60,7 +60,7 @@ struct Manifest {
   std::optional<double> fps;               // database frame rate
   std::optional<std::string> skeleton;     // default ASF for AMC clips
   std::optional<double> bvh_scale;         // default metres per BVH unit
-  std::optional<UpAxis> up_axis;           // default up axis of BVH clips
+  std::optional<UpAxis> up_axis;           // default up axis
   std::optional<double> input_fps;         // default capture rate
   std::vector<ManifestClip> clips;
   // [feet]: the foot joints' names (left_ankle, left_toe, right_ankle, right_toe; any may be
@@ -77,7 +77,7 @@ struct Manifest {
 // Rules (each an error at its line): valid TOML; only known keys; values of the right type
 // (numbers may be written as integers or floats, frames are integers, tags strings); fps,
 // bvh_scale and input_fps positive; up_axis "y" or "z"; at least one [[clip]]; each clip has a non-empty `file`
-// ending in .amc or .bvh; `skeleton` only on AMC clips and `bvh_scale` and `up_axis` only on BVH clips;
+// ending in .amc or .bvh; `skeleton` only on AMC clips and `bvh_scale` only on BVH clips;
 // first_frame >= 1, last_frame >= first_frame; each range has first_frame and last_frame,
 // first >= 1, last >= first, inside the clip's own frame range when the manifest gives it,
 // and at least one tag; tag names non-empty, of letters, digits, '_' and '-'; [feet] names

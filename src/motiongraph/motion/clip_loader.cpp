@@ -11,6 +11,7 @@
 #include "motiongraph/io/bvh_parser.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/bvh_import.h"
+#include "motiongraph/motion/up_axis.h"
 
 namespace mg {
 
@@ -81,6 +82,15 @@ Result<LoadedClip> ClipLoader::load(const std::string& path) {
     const double fps = settings_.input_fps > 0.0 ? settings_.input_fps : kCmuCaptureFps;
     loaded.clip.skeleton = (*rig)->skeleton;
     loaded.clip.motion = motion_from_amc(**rig, *amc, fps);
+    // ASF names no up axis either (CMU's files stand in y; a z-up capture system's need not).
+    UpAxis up = UpAxis::kY;
+    if (settings_.up_axis) {
+      up = *settings_.up_axis;
+    } else {
+      loaded.clip.detected_up_axis = choose_up_axis(loaded.clip.skeleton, loaded.clip.motion);
+      up = loaded.clip.detected_up_axis->axis;
+    }
+    if (up != UpAxis::kY) turn_clip(loaded.clip, up_axis_to_y(up));
     loaded.format = "amc";
     loaded.skeleton_path = *asf_path;
     loaded.source_channels = amc->values_per_frame;
@@ -93,7 +103,7 @@ Result<LoadedClip> ClipLoader::load(const std::string& path) {
     if (!bvh) return bvh.error();
     BvhImportSettings import;
     import.metres_per_unit = settings_.bvh_metres_per_unit;
-    import.up_axis = settings_.bvh_up_axis;
+    import.up_axis = settings_.up_axis;
     import.fps_override = settings_.input_fps;
     import.drop_rest_frames = !settings_.keep_rest_frames;
     auto clip = clip_from_bvh(*bvh, import);

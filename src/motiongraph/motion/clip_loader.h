@@ -20,7 +20,8 @@ struct ClipLoadSettings {
                                         // in the AMC's folder
   std::optional<double> bvh_metres_per_unit;  // BVH carries no unit; nullopt: chosen from the
                                               // figure's size (length_unit.h)
-  std::optional<UpAxis> bvh_up_axis;    // nullopt: chosen from the figure's shape (up_axis.h)
+  std::optional<UpAxis> up_axis;        // nullopt: chosen from the figure's shape (up_axis.h),
+                                        // for AMC and BVH alike
   double input_fps = 0.0;               // > 0: the capture rate, overriding the file's
                                         // (AMC files store none: 120 by default, CMU's rate)
   bool keep_rest_frames = false;        // keep leading rest/T-pose frames of a BVH

@@ -56,7 +56,7 @@ struct Clip {
   Motion motion;
   int dropped_leading_frames = 0;  // frames removed at load (an added rest or T-pose)
   std::optional<LengthUnitChoice> detected_unit;  // the unit chosen for a BVH read without one
-  std::optional<UpAxisChoice> detected_up_axis;   // the up axis chosen for a BVH read without one
+  std::optional<UpAxisChoice> detected_up_axis;   // the up axis chosen for a file read without one
 };
 
 }  // namespace mg

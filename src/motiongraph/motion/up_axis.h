@@ -1,7 +1,9 @@
-// Which axis is up in a file that does not say (BVH). Everything here is y up; most BVH is too,
-// but some tools write z up (3ds Max and its Biped, some MotionBuilder and Vicon exports). Read
-// as y up, such a figure lies on the floor: its height is taken for a step across, its travel
-// along z for a climb, and no path or floor alignment makes sense.
+// Which axis is up in a file that does not say (BVH, and ASF/AMC). Everything here is y up;
+// most BVH is too, and CMU's ASF/AMC, but some tools write z up (3ds Max and its Biped, some
+// MotionBuilder exports, capture systems whose world is z up). Read as y up, such a figure
+// lies on the floor: its height is taken for a step across, its travel along z for a climb,
+// and no path or floor alignment makes sense. BVH import (bvh_import.h) and the AMC loader
+// (clip_loader.h) choose as below unless told.
 //
 // The choice is made on the figure's shape, the way length_unit.h chooses the unit: per frame
 // the figure's extent along y and along z over all its joints, the median of each over the

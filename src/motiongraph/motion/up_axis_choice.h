@@ -1,5 +1,5 @@
-// The up axis chosen for a file that names none (BVH), and what it was chosen on: see
-// up_axis.h.
+// The up axis chosen for a file that names none (BVH, ASF/AMC), and what it was chosen on:
+// see up_axis.h.
 #pragma once
 
 namespace mg {

@@ -72,8 +72,8 @@ Result<BuildSettings> build_settings_from(const BuildOptions& o) {
   if (!o.asf.empty()) db.asf_path = o.asf;
   db.bvh_metres_per_unit = o.scale;
   if (!o.up_axis.empty()) {
-    db.bvh_up_axis = parse_up_axis(o.up_axis);
-    if (!db.bvh_up_axis) return Error{"", 0, "--up-axis must be y or z, not " + o.up_axis};
+    db.up_axis = parse_up_axis(o.up_axis);
+    if (!db.up_axis) return Error{"", 0, "--up-axis must be y or z, not " + o.up_axis};
   }
   db.input_fps = o.input_fps;
   db.cmu_tags = !o.no_cmu_tags;
