@@ -43,7 +43,9 @@ std::string up_axis_description(const UpAxisChoice& choice) {
 
 void report_up_axis(const std::string& file, const UpAxisChoice& choice) {
   if (choice.axis != UpAxis::kZ) return;
-  spdlog::info("{}: read z up, {} (--up-axis overrides)", file, up_axis_description(choice));
+  spdlog::info("{}: read z up (the figure stands along z: {:.1f} times as tall as along y) and turned y up "
+               "(--up-axis overrides)",
+               file, choice.animation_ratio);
 }
 
 void report_units(const DatabaseLoadNotes& notes, bool quiet) {

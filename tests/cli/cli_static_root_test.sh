@@ -103,6 +103,17 @@ for i in range(2):
 span = lambda h: h[1] - h[0]
 assert lying["up_axis"] == {"axis": "y"} and span(lying["height_m"]) > span(z["height_m"]) + 1.0, lying["height_m"]
 PY
+"$bin" convert "$work/zlib/16_15.bvh" -o "$work/zc.bvh" 2>"$work/zconvert.txt"
+grep "zlib/16_15.bvh: read z up (the figure stands along z" "$work/zconvert.txt" >/dev/null \
+  || { echo "FAIL: convert up line"; cat "$work/zconvert.txt"; exit 1; }
+"$bin" info --json "$work/zc.bvh" "$work/lib/16_15.bvh" >"$work/zc.json"
+python3 - "$work/zc.json" <<'PY'
+import json, sys
+written, y = json.load(open(sys.argv[1]))  # written y up, with the file's hierarchy
+assert written["up_axis"]["axis"] == "y" and written["static_joints_above_root"] == ["joint_Root"]
+assert abs(written["root_path_m"] - y["root_path_m"]) < 1e-3
+assert all(abs(a - b) < 1e-3 for a, b in zip(written["height_m"], y["height_m"])), (written["height_m"], y["height_m"])
+PY
 "$bin" build "$work/zlib" -o "$work/z.mgraph" --report "$work/zr.json" --no-cache 2>"$work/zbuild.txt"
 grep "read z up and turned y up: 6 of 6 files" "$work/zbuild.txt" >/dev/null \
   || { echo "FAIL: build up line"; cat "$work/zbuild.txt"; exit 1; }
