@@ -115,14 +115,7 @@ Result<Clip> clip_from_bvh(const BvhDocument& bvh, const BvhImportSettings& sett
     metres_per_unit = clip.detected_unit->unit.metres_per_unit;
   }
   scale_lengths(clip, metres_per_unit);
-  UpAxis up = UpAxis::kY;
-  if (settings.up_axis) {
-    up = *settings.up_axis;
-  } else {
-    clip.detected_up_axis = choose_up_axis(clip.skeleton, clip.motion);
-    up = clip.detected_up_axis->axis;
-  }
-  if (up != UpAxis::kY) turn_clip(clip, up_axis_to_y(up));
+  stand_up(clip, settings.up_axis);
   return clip;
 }
 

@@ -83,14 +83,7 @@ Result<LoadedClip> ClipLoader::load(const std::string& path) {
     loaded.clip.skeleton = (*rig)->skeleton;
     loaded.clip.motion = motion_from_amc(**rig, *amc, fps);
     // ASF names no up axis either (CMU's files stand in y; a z-up capture system's need not).
-    UpAxis up = UpAxis::kY;
-    if (settings_.up_axis) {
-      up = *settings_.up_axis;
-    } else {
-      loaded.clip.detected_up_axis = choose_up_axis(loaded.clip.skeleton, loaded.clip.motion);
-      up = loaded.clip.detected_up_axis->axis;
-    }
-    if (up != UpAxis::kY) turn_clip(loaded.clip, up_axis_to_y(up));
+    stand_up(loaded.clip, settings_.up_axis);
     loaded.format = "amc";
     loaded.skeleton_path = *asf_path;
     loaded.source_channels = amc->values_per_frame;

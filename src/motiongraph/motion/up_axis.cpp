@@ -93,6 +93,14 @@ Quat up_axis_to_y(UpAxis axis) {
   return Quat(Eigen::AngleAxisd(-std::numbers::pi / 2.0, Vec3::UnitX()));
 }
 
+void stand_up(Clip& clip, std::optional<UpAxis> given) {
+  if (!given) {
+    clip.detected_up_axis = choose_up_axis(clip.skeleton, clip.motion);
+    given = clip.detected_up_axis->axis;
+  }
+  if (*given != UpAxis::kY) turn_clip(clip, up_axis_to_y(*given));
+}
+
 void turn_clip(Clip& clip, const Quat& rotation) {
   const Quat inverse = rotation.conjugate();
   std::vector<JointDef> joints(clip.skeleton.joints().begin(), clip.skeleton.joints().end());

@@ -47,4 +47,8 @@ Quat up_axis_to_y(UpAxis axis);
 // Every world position of the clip turned by `rotation` (as above), rest pose included.
 void turn_clip(Clip& clip, const Quat& rotation);
 
+// The clip turned y up from `given`, or when that is nullopt from the axis choose_up_axis
+// finds, which is kept in clip.detected_up_axis.
+void stand_up(Clip& clip, std::optional<UpAxis> given);
+
 }  // namespace mg
