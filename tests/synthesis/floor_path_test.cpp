@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <numbers>
 #include <random>
@@ -190,6 +191,11 @@ TEST(FloorPath, DistanceIsTheNearestSegmentsOverAnyPath) {
       EXPECT_NEAR(path->distance_to(p), brute_distance(path->points(), p), 1e-12) << points.size() << " points";
     }
   }
+  // Points no grid cell holds: no distance, as the scan gives none.
+  auto line = make_shape("line:10");
+  ASSERT_TRUE(line.ok());
+  EXPECT_TRUE(std::isinf(line->distance_to(Vec2(std::numeric_limits<double>::infinity(), 0.0))));
+  EXPECT_TRUE(std::isnan(line->distance_to(Vec2(std::nan(""), 0.0))));
 }
 
 TEST(FloorPath, NearestArcIsTheNearestPointOfTheRange) {

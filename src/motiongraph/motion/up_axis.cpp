@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -63,8 +64,10 @@ UpAxisChoice choose_up_axis(const Skeleton& skeleton, const Motion& motion) {
         low = low.cwiseMin(p);
         high = high.cwiseMax(p);
       }
-      y_extents.push_back(high.y() - low.y());
-      z_extents.push_back(high.z() - low.z());
+      // Huge values in a file can overflow to inf - inf; NaN would break the median's ordering.
+      const double y = high.y() - low.y(), z = high.z() - low.z();
+      y_extents.push_back(std::isnan(y) ? std::numeric_limits<double>::infinity() : y);
+      z_extents.push_back(std::isnan(z) ? std::numeric_limits<double>::infinity() : z);
     }
     choice.animation_ratio = extent_ratio(median(std::move(y_extents)), median(std::move(z_extents)));
   }

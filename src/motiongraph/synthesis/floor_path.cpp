@@ -91,6 +91,7 @@ Vec2 FloorPath::direction_at(double s) const {
 }
 
 double FloorPath::distance_to(const Vec2& p) const {
+  if (!p.allFinite()) return (p - points_.front()).norm();  // infinite or NaN, as a scan gives
   double best = std::numeric_limits<double>::infinity();
   auto look_at_cell = [&](int x, int z) {
     const size_t c = static_cast<size_t>(z) * cells_x_ + x;
