@@ -59,8 +59,7 @@ class Reader {
     return Ok{};
   }
 
-  // A positive finite number written as an integer or a float.
-  // An optional positive number: `out` is set when the key is present, left unset otherwise.
+  // An optional up axis, "y" or "z": `out` is set when the key is present, left unset otherwise.
   Status optional_up_axis(const toml::node* node, std::optional<UpAxis>& out) const {
     if (!node) return Ok{};
     auto text = string(*node, "up_axis");
@@ -70,6 +69,8 @@ class Reader {
     return Ok{};
   }
 
+  // A positive finite number written as an integer or a float.
+  // An optional positive number: `out` is set when the key is present, left unset otherwise.
   Status optional_positive(const toml::node* node, std::string_view key, std::optional<double>& out) const {
     if (!node) return Ok{};
     auto value = positive_number(*node, key);

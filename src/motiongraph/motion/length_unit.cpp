@@ -22,12 +22,12 @@ constexpr std::array<LengthUnit, 5> kCandidates{{{"m", 1.0},
 
 std::span<const LengthUnit> length_unit_candidates() { return kCandidates; }
 
-double figure_size(const Skeleton& skeleton, const Motion& motion) {
-  if (motion.frame_count == 0 || skeleton.joint_count() == 0) return 0.0;
+std::vector<Vec3> frame_extents(const Skeleton& skeleton, const Motion& motion) {
+  if (skeleton.joint_count() == 0) return {};
   const size_t joints = static_cast<size_t>(skeleton.joint_count());
   std::vector<Vec3> positions(joints);
   std::vector<Quat> rotations(joints);
-  std::vector<double> sizes(static_cast<size_t>(motion.frame_count));
+  std::vector<Vec3> extents(static_cast<size_t>(motion.frame_count));
   for (int f = 0; f < motion.frame_count; ++f) {
     forward_kinematics(skeleton, motion, f, positions, rotations);
     Vec3 low = positions.front();
@@ -36,13 +36,27 @@ double figure_size(const Skeleton& skeleton, const Motion& motion) {
       low = low.cwiseMin(p);
       high = high.cwiseMax(p);
     }
-    // Huge values in a file can overflow to inf - inf; NaN would break the ordering below.
-    const double size = (high - low).maxCoeff();
-    sizes[static_cast<size_t>(f)] = std::isfinite(size) ? size : std::numeric_limits<double>::infinity();
+    // Huge values in a file can overflow to inf - inf; NaN would break the medians' ordering.
+    Vec3& extent = extents[static_cast<size_t>(f)];
+    extent = high - low;
+    for (int a = 0; a < 3; ++a) {
+      if (!std::isfinite(extent[a])) extent[a] = std::numeric_limits<double>::infinity();
+    }
   }
-  auto middle = sizes.begin() + static_cast<std::ptrdiff_t>(sizes.size() / 2);
-  std::nth_element(sizes.begin(), middle, sizes.end());
+  return extents;
+}
+
+double median_of(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
   return *middle;
+}
+
+double figure_size(const Skeleton& skeleton, const Motion& motion) {
+  std::vector<double> sizes;
+  for (const Vec3& extent : frame_extents(skeleton, motion)) sizes.push_back(extent.maxCoeff());
+  return median_of(std::move(sizes));
 }
 
 LengthUnitChoice choose_length_unit(double figure_size_units) {

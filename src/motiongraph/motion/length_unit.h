@@ -12,6 +12,7 @@
 #pragma once
 
 #include <span>
+#include <vector>
 
 #include "motiongraph/motion/length_unit_choice.h"
 #include "motiongraph/motion/motion.h"
@@ -27,6 +28,11 @@ constexpr double kPlausibleHeightMaxM = 2.6;
 
 // The figure's size in the units of its skeleton and motion (see above); 0 without frames.
 double figure_size(const Skeleton& skeleton, const Motion& motion);
+// Per frame, the figure's extent along x, y and z over all its joints (+infinity where huge
+// values overflow), in the same units: what figure_size and the up axis (up_axis.h) measure.
+std::vector<Vec3> frame_extents(const Skeleton& skeleton, const Motion& motion);
+// The median (the upper one of an even count); 0 when empty.
+double median_of(std::vector<double> values);
 
 // The unit for a figure of that size.
 LengthUnitChoice choose_length_unit(double figure_size_units);

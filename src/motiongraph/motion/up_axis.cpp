@@ -3,11 +3,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <limits>
 #include <numbers>
 #include <vector>
 
-#include "motiongraph/motion/forward_kinematics.h"
+#include "motiongraph/motion/length_unit.h"
 
 namespace mg {
 
@@ -19,12 +18,6 @@ double extent_ratio(double y_extent, double z_extent) {
   if (!(most > 0.0) || !std::isfinite(most)) return 1.0;
   // A figure flat in y (every joint at one height) says z however small its z extent is.
   return z_extent / std::max(y_extent, 1e-9 * most);
-}
-
-double median(std::vector<double> values) {
-  auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
 }
 
 enum class Vote { kNone, kY, kZ };
@@ -52,24 +45,12 @@ UpAxisChoice choose_up_axis(const Skeleton& skeleton, const Motion& motion) {
   const size_t joints = static_cast<size_t>(skeleton.joint_count());
   if (joints == 0) return choice;
   if (motion.frame_count > 0) {
-    std::vector<Vec3> positions(joints);
-    std::vector<Quat> rotations(joints);
     std::vector<double> y_extents, z_extents;
-    y_extents.reserve(static_cast<size_t>(motion.frame_count));
-    z_extents.reserve(static_cast<size_t>(motion.frame_count));
-    for (int f = 0; f < motion.frame_count; ++f) {
-      forward_kinematics(skeleton, motion, f, positions, rotations);
-      Vec3 low = positions.front(), high = positions.front();
-      for (const Vec3& p : positions) {
-        low = low.cwiseMin(p);
-        high = high.cwiseMax(p);
-      }
-      // Huge values in a file can overflow to inf - inf; NaN would break the median's ordering.
-      const double y = high.y() - low.y(), z = high.z() - low.z();
-      y_extents.push_back(std::isnan(y) ? std::numeric_limits<double>::infinity() : y);
-      z_extents.push_back(std::isnan(z) ? std::numeric_limits<double>::infinity() : z);
+    for (const Vec3& extent : frame_extents(skeleton, motion)) {
+      y_extents.push_back(extent.y());
+      z_extents.push_back(extent.z());
     }
-    choice.animation_ratio = extent_ratio(median(std::move(y_extents)), median(std::move(z_extents)));
+    choice.animation_ratio = extent_ratio(median_of(std::move(y_extents)), median_of(std::move(z_extents)));
   }
   // The rest pose: every rotation zero, every joint at its rest offset.
   std::vector<Vec3> rest(joints, Vec3::Zero());

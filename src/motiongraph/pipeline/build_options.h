@@ -19,7 +19,7 @@ struct BuildOptions {
   bool fps_given = false;  // else a manifest's fps wins
   std::string asf;
   std::optional<double> scale;
-  std::string up_axis;  // "y" or "z" for every BVH file; empty: chosen per file (motion/up_axis.h)
+  std::string up_axis;  // "y" or "z" for every clip; empty: chosen per file (motion/up_axis.h)
   double input_fps = 0.0;
   std::string cmu_index;
   bool no_cmu_tags = false;
