@@ -49,6 +49,7 @@ OptionTable build_option_table(BuildCall& call) {
       {"asf", set(b.asf)},
       {"scale", [&b](py::handle v) { b.scale = v.cast<std::optional<double>>(); }},
       {"up_axis", set(b.up_axis)},
+      {"travel", set(b.travel)},
       {"input_fps", set(b.input_fps)},
       {"cmu_index", set(b.cmu_index)},
       {"no_cmu_tags", set(b.no_cmu_tags)},

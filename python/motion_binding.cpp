@@ -11,6 +11,7 @@
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/motion/resample.h"
+#include "motiongraph/motion/in_place.h"
 #include "motiongraph/motion/up_axis.h"
 
 namespace mg::python {
@@ -49,7 +50,7 @@ Status save_motion(const PyMotion& m, const std::string& path) {
 
 PyMotion load_clip(const std::string& path, const std::optional<std::string>& asf, std::optional<double> fps,
                    std::optional<double> scale, const std::optional<std::string>& up_axis, double input_fps,
-                   bool keep_rest_frames) {
+                   bool keep_rest_frames, const std::string& travel) {
   ClipLoadSettings settings;
   if (asf) settings.asf_path = *asf;
   settings.bvh_metres_per_unit = scale;
@@ -59,6 +60,9 @@ PyMotion load_clip(const std::string& path, const std::optional<std::string>& as
   }
   settings.input_fps = input_fps;
   settings.keep_rest_frames = keep_rest_frames;
+  const auto source = parse_travel_source(travel);
+  if (!source) throw py::value_error("travel must be 'auto', 'root' or 'feet', not '" + travel + "'");
+  settings.travel = *source;
   check(settings.validate());
   Result<LoadedClip> loaded = Error{};
   {
@@ -137,11 +141,13 @@ void bind_motion(py::module_& m) {
       });
   m.def("load_clip", &load_clip, py::arg("path"), py::arg("asf") = py::none(), py::arg("fps") = py::none(),
         py::arg("scale") = py::none(), py::arg("up_axis") = py::none(), py::arg("input_fps") = 0.0,
-        py::arg("keep_rest_frames") = false,
+        py::arg("keep_rest_frames") = false, py::arg("travel") = "auto",
         "Reads a clip (.amc with its .asf, or .bvh) as the CLI's convert does: asf the skeleton of an AMC file "
         "(default: the .asf in its folder), fps a rate to resample to, scale metres per BVH unit (default: "
         "chosen from the figure's size), up_axis 'y' or 'z' (default: whichever the figure stands along; "
-        "z-up is turned y up), input_fps the capture rate overriding the file's.");
+        "z-up is turned y up), input_fps the capture rate overriding the file's, travel where its travel over "
+        "the floor comes from: 'root' as read, 'feet' recovered from the planted feet, 'auto' (default) the "
+        "feet when the clip is animated in place.");
 }
 
 }  // namespace mg::python

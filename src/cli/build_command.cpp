@@ -130,6 +130,11 @@ Command add_build_command(CLI::App& app) {
                   "Up axis of the clips, y or z (default: per file, whichever the figure stands along; z-up files are "
                   "turned y up)")
       ->check(CLI::IsMember({"y", "z"}));
+  sub->add_option("--travel", b.travel,
+                  "Where each clip's travel over the floor comes from: root (as read), feet (recovered from the "
+                  "planted feet), or auto: the feet for clips animated in place, their planted feet sliding")
+      ->check(CLI::IsMember({"auto", "root", "feet"}))
+      ->capture_default_str();
   sub->add_option("--input-fps", b.input_fps, "Capture rate of the inputs, overriding the files' (AMC: 120)");
   sub->add_option("--cmu-index", b.cmu_index,
                   "CMU's motion index (cmu-mocap-index.tsv) for tags from descriptions; default: one beside or above the "

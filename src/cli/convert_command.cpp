@@ -41,12 +41,19 @@ int run_convert(const ConvertOptions& options) {
   BvhWriteSettings write;
   write.units_per_metre = options.output_units_per_metre;
   if (auto s = write.validate(); !s) return fail(s.error());
-  ClipLoader loader(options.load.settings());
+  ClipLoadSettings load = options.load.settings();
+  if (!options.feet.empty()) {
+    auto parsed = parse_foot_joint_names(options.feet);
+    if (!parsed) return fail(Error{"", 0, "--feet: " + parsed.error().message});
+    load.foot_names = *parsed;
+  }
+  ClipLoader loader(load);
   auto loaded = loader.load(options.input);
   if (!loaded) return fail(loaded.error());
   Clip& clip = loaded->clip;
   if (clip.detected_unit) report_unit(options.input, *clip.detected_unit);
   if (clip.detected_up_axis) report_up_axis(options.input, *clip.detected_up_axis);
+  if (clip.in_place) report_travel(options.input, *clip.in_place);
   if (clip.dropped_leading_frames > 0) {
     spdlog::info("{}: dropped {} leading rest/T-pose frame(s) (--keep-rest-frames keeps them)", options.input,
                  clip.dropped_leading_frames);
@@ -62,14 +69,8 @@ int run_convert(const ConvertOptions& options) {
     return std::filesystem::path(path).extension() == ".json";
   });
   if (any_json || !options.feet.empty()) {
-    FootJointNames names;
-    if (!options.feet.empty()) {
-      auto parsed = parse_foot_joint_names(options.feet);
-      if (!parsed) return fail(Error{"", 0, "--feet: " + parsed.error().message});
-      names = *parsed;
-    }
     std::string why;
-    auto found = clip_contacts(clip.skeleton, clip.motion, names, why);
+    auto found = clip_contacts(clip.skeleton, clip.motion, load.foot_names, why);
     if (!found) return fail(Error{options.input, 0, found.error().message});
     contacts = std::move(*found);
     if (!contacts) spdlog::warn("{}: no foot contacts in the JSON: {} (name the feet with --feet)", options.input, why);

@@ -103,6 +103,15 @@ int run_info(const InfoOptions& options) {
       } else if (!options.load.up_axis.empty()) {
         entry["up_axis"] = {{"axis", options.load.up_axis}};
       }
+      if (clip.in_place) {
+        entry["travel"] = {{"source", clip.in_place->recovered ? "feet" : "root"},
+                           {"in_place", clip.in_place->in_place},
+                           {"slide_speed_m_s", clip.in_place->slide_speed_m_s},
+                           {"root_speed_m_s", clip.in_place->root_speed_m_s},
+                           {"recovered_m", clip.in_place->recovered_m}};
+      } else {
+        entry["travel"] = {{"source", "root"}};
+      }
       all.push_back(std::move(entry));
     } else {
       fmt::print("{}: {}{}\n", file, loaded->format == "amc" ? "AMC on " : "BVH",
@@ -112,6 +121,9 @@ int run_info(const InfoOptions& options) {
                  clip.dropped_leading_frames > 0 ? " (leading rest/T-pose frames dropped)" : "");
       fmt::print("  lengths:  {}\n", unit);
       fmt::print("  up:       {}\n", up);
+      if (clip.in_place && clip.in_place->recovered) {
+        fmt::print("  travel:   {} (--travel overrides)\n", travel_description(*clip.in_place));
+      }
       if (!static_joints.empty()) {
         fmt::print("  root:     {} carries the floor position (above it, static: {})\n", clip.skeleton.joint(0).name,
                    static_joints);

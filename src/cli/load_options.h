@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "motiongraph/motion/clip_loader.h"
+#include "motiongraph/motion/in_place.h"
 #include "motiongraph/motion/up_axis.h"
 
 namespace mg::cli {
@@ -15,6 +16,7 @@ struct LoadOptions {
   std::string asf;
   std::optional<double> scale;
   std::string up_axis;
+  std::string travel = "auto";
   double input_fps = 0.0;
   bool keep_rest_frames = false;
 
@@ -27,6 +29,11 @@ struct LoadOptions {
                    "Up axis of a clip, y or z (default: whichever the figure stands along; a z-up file is turned "
                    "y up)")
         ->check(CLI::IsMember({"y", "z"}));
+    app.add_option("--travel", travel,
+                   "Where a clip's travel over the floor comes from: root (as read), feet (recovered from the planted "
+                   "feet), or auto: the feet for a clip animated in place, its planted feet sliding")
+        ->check(CLI::IsMember({"auto", "root", "feet"}))
+        ->capture_default_str();
     app.add_option("--input-fps", input_fps,
                    "Capture rate of the input, overriding the file's (AMC default 120, CMU's rate)");
     app.add_flag("--keep-rest-frames", keep_rest_frames,
@@ -38,6 +45,7 @@ struct LoadOptions {
     if (!asf.empty()) s.asf_path = asf;
     s.bvh_metres_per_unit = scale;
     if (!up_axis.empty()) s.up_axis = parse_up_axis(up_axis);
+    s.travel = parse_travel_source(travel).value_or(TravelSource::kAuto);
     s.input_fps = input_fps;
     s.keep_rest_frames = keep_rest_frames;
     return s;

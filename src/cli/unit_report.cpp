@@ -48,6 +48,19 @@ void report_up_axis(const std::string& file, const UpAxisChoice& choice) {
                file, choice.animation_ratio);
 }
 
+std::string travel_description(const InPlaceChoice& choice) {
+  const std::string why = fmt::format("planted feet slide {:.2f} m/s, the root moves {:.2f} m/s",
+                                      choice.slide_speed_m_s, choice.root_speed_m_s);
+  if (!choice.recovered) return fmt::format("from the root ({})", why);
+  return fmt::format("{} ({}); {:.2f} m recovered from the planted feet",
+                     choice.in_place ? "in place as read" : "from the feet (--travel feet)", why, choice.recovered_m);
+}
+
+void report_travel(const std::string& file, const InPlaceChoice& choice) {
+  if (!choice.recovered) return;
+  spdlog::info("{}: travel {} (--travel overrides)", file, travel_description(choice));
+}
+
 void report_units(const DatabaseLoadNotes& notes, bool quiet) {
   struct Group {
     int files = 0;
@@ -75,6 +88,15 @@ void report_units(const DatabaseLoadNotes& notes, bool quiet) {
     const auto files = static_cast<long>(notes.detected_up_axes.size());
     spdlog::info("read z up and turned y up: {} of {} file{} (their figures stand along z; --up-axis overrides)",
                  z_up, files, files == 1 ? "" : "s");
+  }
+  const auto judged = std::count_if(notes.recovered_travels.begin(), notes.recovered_travels.end(),
+                                    [](const auto& r) { return r.source == TravelSource::kAuto; });
+  if (judged > 0 && !quiet) {
+    double metres = 0.0;
+    for (const auto& r : notes.recovered_travels) metres += r.choice.recovered_m;
+    spdlog::info("travel recovered from the planted feet: {} clip{} animated in place ({:.1f} m in all; --travel "
+                 "overrides)",
+                 judged, judged == 1 ? "" : "s", metres);
   }
 }
 

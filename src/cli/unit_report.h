@@ -1,12 +1,14 @@
 // The log lines about BVH length units chosen from the figure's size (motion/length_unit.h):
 // one info line per file (info, convert), or one per unit for a database (build), and a
 // warning for each file whose figure no unit makes human-sized. Likewise for the files read z
-// up (motion/up_axis.h).
+// up (motion/up_axis.h), and for the clips whose travel was recovered from their feet
+// (motion/in_place.h).
 #pragma once
 
 #include <string>
 
 #include "motiongraph/database/database_loader.h"
+#include "motiongraph/motion/in_place_choice.h"
 #include "motiongraph/motion/length_unit_choice.h"
 #include "motiongraph/motion/up_axis_choice.h"
 
@@ -20,7 +22,13 @@ void report_unit(const std::string& file, const LengthUnitChoice& choice);
 std::string up_axis_description(const UpAxisChoice& choice);
 // An info line for a file read z up (nothing for y, BVH's own convention).
 void report_up_axis(const std::string& file, const UpAxisChoice& choice);
-// Also one info line for the files read z up. quiet: the warnings only.
+// "in place as read (planted feet slide 0.84 m/s, the root moves 0.00 m/s); 3.67 m of travel
+// recovered from the planted feet": what `info` prints for a clip whose travel was recovered.
+std::string travel_description(const InPlaceChoice& choice);
+// An info line for a clip whose travel was recovered (nothing otherwise).
+void report_travel(const std::string& file, const InPlaceChoice& choice);
+// Also one info line for the files read z up, and one for the clips whose travel was recovered.
+// quiet: the warnings only.
 void report_units(const DatabaseLoadNotes& notes, bool quiet);
 
 }  // namespace mg::cli

@@ -4,7 +4,8 @@
 # Research's datasets are), under CMU's names in a folder with no CMU index beside it.
 # The unit is found (cm), the hips carry the floor position, the graph keeps frames and paths
 # are followed; written BVH keeps the file's hierarchy; a figure of no human size warns. The
-# same library written z up is read standing.
+# same library written z up is read standing, and written in place (the hips' travel taken out,
+# as game libraries' "in place" exports are) gets its travel back from the planted feet.
 # Usage: MOTIONGRAPH=binary MAKE_STATIC_ROOT_BVH=binary cli_static_root_test.sh DATA_DIR
 set -euo pipefail
 data=$1
@@ -123,6 +124,44 @@ import json, sys
 z, y, s = (json.load(open(f)) for f in sys.argv[1:4])
 assert z["graph_after"]["nodes"] == y["graph_after"]["nodes"], (z["graph_after"]["nodes"], y["graph_after"]["nodes"])
 assert s["mean_deviation_m"] < 0.5 and s["reached_end"], (s["mean_deviation_m"], s["reached_end"])
+PY
+
+# The same rig in place: each clip walks or runs on the spot, its planted foot sliding back. With
+# no flags the travel comes back from the feet (an info line says so), the graph follows paths,
+# and convert writes the clip travelling; --travel root reads it as written.
+mkdir "$work/iplib"
+"$make" --in-place "$work/iplib" "${clips[@]}"
+"$bin" info "$work/iplib/16_15.bvh" >"$work/ipinfo.txt"
+grep "travel:   in place as read (planted feet slide" "$work/ipinfo.txt" >/dev/null \
+  || { echo "FAIL: in place info"; cat "$work/ipinfo.txt"; exit 1; }
+"$bin" info --json "$work/iplib/16_15.bvh" "$work/lib/16_15.bvh" >"$work/ipinfo.json"
+"$bin" info --json --travel root "$work/iplib/16_15.bvh" >"$work/asread.json"
+python3 - "$work/ipinfo.json" "$work/asread.json" <<'PY'
+import json, sys
+(ip, capture), (as_read,) = (json.load(open(f)) for f in sys.argv[1:3])
+assert ip["travel"]["source"] == "feet" and ip["travel"]["in_place"], ip["travel"]
+assert capture["travel"]["source"] == "root" and not capture["travel"]["in_place"], capture["travel"]
+assert as_read["travel"] == {"source": "root"} and as_read["root_path_m"] < 0.2, as_read["root_path_m"]
+# Back from the feet: within 10 % of the capture's travel.
+assert 0.9 * capture["root_path_m"] <= ip["root_path_m"] <= 1.05 * capture["root_path_m"], \
+    (ip["root_path_m"], capture["root_path_m"])
+PY
+"$bin" build "$work/iplib" -o "$work/ip.mgraph" --no-cache 2>"$work/ipbuild.txt"
+grep "travel recovered from the planted feet: 6 clips animated in place" "$work/ipbuild.txt" >/dev/null \
+  || { echo "FAIL: build travel line"; cat "$work/ipbuild.txt"; exit 1; }
+"$bin" path "$work/ip.mgraph" --shape s-curve:20 -o "$work/ips.bvh" --report "$work/ips.json" >/dev/null
+"$bin" convert "$work/iplib/16_15.bvh" -o "$work/ipc.bvh" 2>"$work/ipconvert.txt"
+grep "iplib/16_15.bvh: travel in place as read" "$work/ipconvert.txt" >/dev/null \
+  || { echo "FAIL: convert travel line"; cat "$work/ipconvert.txt"; exit 1; }
+"$bin" info --json "$work/ipc.bvh" "$work/iplib/16_15.bvh" >"$work/ipc.json"
+python3 - "$work/ips.json" "$work/ipc.json" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+assert s["mean_deviation_m"] < 0.15 and s["reached_end"], (s["mean_deviation_m"], s["reached_end"])
+written, recovered = json.load(open(sys.argv[2]))  # written travelling: read as it is, the same path
+assert written["travel"]["source"] == "root" and not written["travel"]["in_place"], written["travel"]
+assert abs(written["root_path_m"] - recovered["root_path_m"]) < 1e-3, (written["root_path_m"], recovered["root_path_m"])
+print(f"s-curve:20 on the in-place library: mean deviation {s['mean_deviation_m']:.3f} m")
 PY
 
 # A figure no unit makes human-sized: a warning, read as metres.

@@ -1,7 +1,8 @@
-// make_static_root_bvh [--z-up] OUT_DIR AMC...: writes each clip (AMC with the .asf beside it)
-// as OUT_DIR/<stem>.bvh in a Bandai-like rig (tests/motion/static_root_bvh.h): a static root at
-// the origin above the hips, 6 channels per joint, centimetres; with --z-up, every position
-// turned as a z-up tool holds it (+y to +z). For cli_static_root_test.sh.
+// make_static_root_bvh [--z-up] [--in-place] OUT_DIR AMC...: writes each clip (AMC with the .asf
+// beside it) as OUT_DIR/<stem>.bvh in a Bandai-like rig (tests/motion/static_root_bvh.h): a
+// static root at the origin above the hips, 6 channels per joint, centimetres; with --z-up,
+// every position turned as a z-up tool holds it (+y to +z); with --in-place, the hips' travel
+// over the floor taken out (x and z), as "in place" exports do. For cli_static_root_test.sh.
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -12,17 +13,37 @@
 #include "motiongraph/motion/up_axis.h"
 
 int main(int argc, char** argv) {
-  const bool z_up = argc > 1 && std::string(argv[1]) == "--z-up";
-  const int first = z_up ? 2 : 1;
+  bool z_up = false, in_place = false;
+  int first = 1;
+  for (; first < argc && std::string(argv[first]).starts_with("--"); ++first) {
+    const std::string flag = argv[first];
+    if (flag == "--z-up") {
+      z_up = true;
+    } else if (flag == "--in-place") {
+      in_place = true;
+    } else {
+      first = argc;  // unknown: usage
+    }
+  }
   if (argc < first + 2) {
-    std::fprintf(stderr, "usage: make_static_root_bvh [--z-up] OUT_DIR AMC...\n");
+    std::fprintf(stderr, "usage: make_static_root_bvh [--z-up] [--in-place] OUT_DIR AMC...\n");
     return 2;
   }
-  mg::ClipLoader loader({});
+  mg::ClipLoadSettings load;
+  load.travel = mg::TravelSource::kRoot;  // the capture as CMU gives it
+  mg::ClipLoader loader(load);
   for (int i = first + 1; i < argc; ++i) {
     auto loaded = loader.load(argv[i]);
     mg::Status written = mg::Ok{};
     if (loaded) {
+      if (in_place) {
+        mg::Motion& motion = loaded->clip.motion;
+        const int slot = loaded->clip.skeleton.translation_slot(0);
+        for (int f = 0; f < motion.frame_count; ++f) {
+          mg::Vec3& t = motion.translations(f)[slot];
+          t.x() = t.z() = 0.0;
+        }
+      }
       if (z_up) mg::turn_clip(loaded->clip, mg::up_axis_to_y(mg::UpAxis::kZ).conjugate());
       const auto out = std::filesystem::path(argv[first]) / (std::filesystem::path(argv[i]).stem().string() + ".bvh");
       written = mg::write_file_atomic(out.string(), mg::test::static_root_bvh(loaded->clip));

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "motion/static_root_bvh.h"
 #include "motiongraph/database/database_contacts.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/forward_kinematics.h"
@@ -287,6 +288,37 @@ TEST(DatabaseLoader, ClipsOfOneAsfReadWithOtherUpAxesGetTheirOwnSkeletons) {
   double worst = 0.0;
   for (size_t i = 0; i < y.size(); ++i) worst = std::max(worst, (Vec3(y[i].x(), y[i].z(), -y[i].y()) - z[i]).norm());
   EXPECT_LT(worst, 1e-9);
+}
+
+TEST(DatabaseLoader, ClipsInPlaceGetTheirTravelFromTheFeetUnlessTold) {
+  // A walk written in place (the hips' floor travel taken out), twice: once as it comes, once
+  // told `travel = "root"`. The first travels as the capture did, the second stays on the spot.
+  Clip walk = test::load_data_clip("cmu/16/16_15.amc");
+  const int slot = walk.skeleton.translation_slot(0);
+  for (int f = 0; f < walk.motion.frame_count; ++f) walk.motion.translations(f)[slot].x() = 0.0;
+  for (int f = 0; f < walk.motion.frame_count; ++f) walk.motion.translations(f)[slot].z() = 0.0;
+  TempFolder folder("inplace");
+  folder.write("walk.bvh", test::static_root_bvh(walk));
+  const std::string manifest =
+      folder.write("db.toml", "[[clip]]\nfile = \"walk.bvh\"\n[[clip]]\nfile = \"walk.bvh\"\nname = \"as_read\"\n"
+                              "travel = \"root\"\n");
+  DatabaseLoadNotes notes;
+  auto db = load_database({manifest}, cmu_settings(), &notes);
+  ASSERT_TRUE(db) << db.error().to_string();
+  ASSERT_EQ(db->clips.size(), 2u);
+  ASSERT_EQ(notes.recovered_travels.size(), 1u);
+  EXPECT_EQ(notes.recovered_travels[0].source, TravelSource::kAuto);
+  EXPECT_TRUE(notes.recovered_travels[0].choice.in_place);
+  EXPECT_GT(notes.recovered_travels[0].choice.recovered_m, 3.5);  // the capture's 3.9 m, less its feet's slip
+  const auto floor_span = [&](int clip) {
+    const std::vector<Vec3> world = world_positions(db->skeletons[db->clips[clip].skeleton], db->clips[clip].motion);
+    const size_t joints = world.size() / db->clips[clip].motion.frame_count;
+    Vec3 d = world[world.size() - joints] - world[0];
+    d.y() = 0.0;
+    return d.norm();
+  };
+  EXPECT_GT(floor_span(0), 3.5);
+  EXPECT_LT(floor_span(1), 0.2);
 }
 
 TEST(DatabaseLoader, RejectsASkeletonOfOtherJoints) {

@@ -52,6 +52,16 @@ TEST(Manifest, ReadsUpAxes) {
   EXPECT_EQ(manifest->clips[1].up_axis, UpAxis::kY);
 }
 
+TEST(Manifest, ReadsTravelSources) {
+  auto manifest = parse_manifest(
+      "travel = \"Feet\"\n[[clip]]\nfile = \"a.amc\"\n[[clip]]\nfile = \"b.bvh\"\ntravel = \"root\"\n", "t.toml");
+  ASSERT_TRUE(manifest) << manifest.error().to_string();
+  EXPECT_EQ(manifest->travel, TravelSource::kFeet);
+  ASSERT_EQ(manifest->clips.size(), 2u);
+  EXPECT_FALSE(manifest->clips[0].travel);
+  EXPECT_EQ(manifest->clips[1].travel, TravelSource::kRoot);
+}
+
 TEST(Manifest, ReadsTheExample) {
   auto manifest = parse_manifest(kManifest, "db.toml");
   ASSERT_TRUE(manifest) << manifest.error().to_string();
@@ -154,6 +164,9 @@ TEST(Manifest, OneCleanErrorPerRule) {
       {"default up_axis not y or z", r("bvh_scale = 0.056444", "up_axis = \"x\""), 4,
        "'up_axis' must be \"y\" or \"z\""},
       {"clip up_axis not a string", r("bvh_scale = 0.01", "up_axis = 2"), 20, "'up_axis' must be a string"},
+      {"default travel unknown", r("bvh_scale = 0.056444", "travel = \"hips\""), 4,
+       "'travel' must be \"auto\", \"root\" or \"feet\", not \"hips\""},
+      {"clip travel not a string", r("bvh_scale = 0.01", "travel = true"), 20, "'travel' must be a string"},
       {"first_frame below 1", r("first_frame = 41\n", "first_frame = 0\n"), 10, "numbered from 1"},
       {"first_frame not an integer", r("first_frame = 41\n", "first_frame = 40.5\n"), 10, "integer frame number"},
       {"last_frame before first_frame", r("last_frame = 240\n", "last_frame = 40\n"), 11, "comes before first_frame"},

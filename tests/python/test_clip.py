@@ -40,6 +40,37 @@ def test_up_axis_turns_a_bvh_as_told(cli, data, tmp_path):
         mg.load_clip(str(tmp_path / "m.bvh"), up_axis="x")
 
 
+def _in_place(text):
+    """A BVH's text with its root's Xposition and Zposition zeroed in every frame (an "in place" export)."""
+    lines = text.splitlines()
+    channels = next(line.split()[2:] for line in lines if "CHANNELS" in line)
+    x, z = channels.index("Xposition"), channels.index("Zposition")
+    start = next(i for i, line in enumerate(lines) if line.strip().startswith("Frame Time")) + 1
+    for i in range(start, len(lines)):
+        values = lines[i].split()
+        if values:
+            values[x] = values[z] = "0"
+            lines[i] = " ".join(values)
+    return "\n".join(lines) + "\n"
+
+
+def test_travel_of_a_clip_in_place(cli, data, tmp_path):
+    cli("convert", data / "cmu/16/16_15.amc", "-o", tmp_path / "m.bvh")
+    (tmp_path / "in_place.bvh").write_text(_in_place((tmp_path / "m.bvh").read_text()))
+    capture = np.asarray(mg.load_clip(str(tmp_path / "m.bvh")).positions)[:, 0]
+    as_read = np.asarray(mg.load_clip(str(tmp_path / "in_place.bvh"), travel="root").positions)[:, 0]
+    recovered = np.asarray(mg.load_clip(str(tmp_path / "in_place.bvh")).positions)[:, 0]
+    span = lambda root: np.linalg.norm((root[-1] - root[0])[[0, 2]])
+    assert span(as_read) < 0.2
+    assert 0.9 * span(capture) < span(recovered) < 1.05 * span(capture), (span(recovered), span(capture))
+    np.testing.assert_array_equal(recovered[:, 1], as_read[:, 1])  # heights as read
+    # Asked for the feet on the capture itself: a few per cent of its travel change at most.
+    feet = np.asarray(mg.load_clip(str(tmp_path / "m.bvh"), travel="FEET").positions)[:, 0]
+    assert abs(span(feet) - span(capture)) < 0.1 * span(capture)
+    with pytest.raises(ValueError, match="travel must be 'auto', 'root' or 'feet'"):
+        mg.load_clip(str(tmp_path / "m.bvh"), travel="hips")
+
+
 def test_arrays_are_views_of_the_clip(data):
     clip = mg.load_clip(str(data / "cmu/16/16_15.amc"), asf=str(data / "cmu/16/16.asf"))
     positions, rotations = clip.positions, clip.rotations

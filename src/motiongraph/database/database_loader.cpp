@@ -61,6 +61,7 @@ ClipLoadSettings default_load_settings(const DatabaseSettings& settings) {
   load.up_axis = settings.up_axis;
   load.input_fps = settings.input_fps;
   load.keep_rest_frames = settings.keep_rest_frames;
+  load.travel = settings.travel;
   return load;
 }
 
@@ -155,6 +156,7 @@ Status expand_manifest(const std::string& input, const DatabaseSettings& setting
     if (auto scale = clip.bvh_scale ? clip.bvh_scale : manifest->bvh_scale) spec.load.bvh_metres_per_unit = *scale;
     if (auto up = clip.up_axis ? clip.up_axis : manifest->up_axis) spec.load.up_axis = *up;
     if (auto fps = clip.input_fps ? clip.input_fps : manifest->input_fps) spec.load.input_fps = *fps;
+    if (auto travel = clip.travel ? clip.travel : manifest->travel) spec.load.travel = *travel;
     spec.first_frame = clip.first_frame;
     spec.last_frame = clip.last_frame;
     spec.gives_tags = clip.gives_tags();
@@ -213,14 +215,14 @@ std::pair<int, int> output_frames(double start_s, double end_s, double fps, int 
   return {first, last};
 }
 
-using LoaderKey = std::tuple<std::string, double, int, double, bool>;
+using LoaderKey = std::tuple<std::string, double, int, double, bool, int>;
 
 class Loaders {
  public:
   ClipLoader& for_settings(const ClipLoadSettings& load) {
     const int up = load.up_axis ? static_cast<int>(*load.up_axis) : -1;
     LoaderKey key{load.asf_path.value_or(""), load.bvh_metres_per_unit.value_or(0.0), up, load.input_fps,
-                  load.keep_rest_frames};
+                  load.keep_rest_frames, static_cast<int>(load.travel)};
     auto it = loaders_.find(key);
     if (it == loaders_.end()) it = loaders_.emplace(key, std::make_unique<ClipLoader>(load)).first;
     return *it->second;
@@ -283,6 +285,7 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
   MotionDatabase db;
   db.fps = wide.fps.value_or(settings.fps);
   db.foot_names = settings.foot_names.empty() ? wide.feet.value_or(FootJointNames{}) : settings.foot_names;
+  for (ClipSpec& spec : specs) spec.load.foot_names = db.foot_names;  // travel from the feet (in_place.h)
 
   // 2. The CMU index, read once when some clip will look its tags up.
   std::optional<CmuIndex> cmu;
@@ -315,6 +318,9 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
     if (notes && loaded->clip.detected_unit) notes->detected_units.push_back({spec.path, *loaded->clip.detected_unit});
     if (notes && loaded->clip.detected_up_axis) {
       notes->detected_up_axes.push_back({spec.path, *loaded->clip.detected_up_axis});
+    }
+    if (notes && loaded->clip.in_place && loaded->clip.in_place->recovered) {
+      notes->recovered_travels.push_back({spec.path, spec.load.travel, *loaded->clip.in_place});
     }
     const Motion& motion = loaded->clip.motion;
     const int dropped = loaded->clip.dropped_leading_frames;

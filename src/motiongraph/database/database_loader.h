@@ -31,6 +31,7 @@
 
 #include "motiongraph/core/error.h"
 #include "motiongraph/database/motion_database.h"
+#include "motiongraph/motion/in_place_choice.h"
 #include "motiongraph/motion/length_unit_choice.h"
 #include "motiongraph/motion/up_axis_choice.h"
 
@@ -49,6 +50,9 @@ struct DatabaseSettings {
                                         // (up_axis.h)
   double input_fps = 0.0;               // > 0: the capture rate, overriding the files'
   bool keep_rest_frames = false;        // keep leading rest/T-pose frames of BVH files
+  TravelSource travel = TravelSource::kAuto;  // where each clip's travel over the floor comes
+                                              // from (motion/in_place.h): kAuto recovers it
+                                              // from the feet for clips animated in place
   // The foot joints' names; given, they win over a manifest's [feet]. The loaded database's
   // contacts are found with them (database_contacts.h); a named joint that is missing fails
   // the load.
@@ -66,8 +70,9 @@ struct DatabaseSettings {
 };
 
 // What loading chose by itself or noticed, for the caller to report: the unit of each BVH file
-// read without one (length_unit.h), in clip order, and a line for each clip that looks wrong as
-// read (motion/clip_doubts.h: off the floor, feet never planted).
+// read without one (length_unit.h), in clip order, the up axis of each file read without one,
+// the clips whose travel was recovered from their feet (motion/in_place.h), and a line for each
+// clip that looks wrong as read (motion/clip_doubts.h: off the floor, feet never planted).
 struct DatabaseLoadNotes {
   struct DetectedUnit {
     std::string file;
@@ -79,6 +84,12 @@ struct DatabaseLoadNotes {
     UpAxisChoice choice;
   };
   std::vector<DetectedUpAxis> detected_up_axes;  // files read without an up axis given
+  struct RecoveredTravel {
+    std::string file;
+    TravelSource source;  // kAuto: judged in place; kFeet: asked for
+    InPlaceChoice choice;
+  };
+  std::vector<RecoveredTravel> recovered_travels;  // clips whose travel came from their feet
   std::vector<std::string> clip_doubts;
 };
 

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include "motiongraph/motion/in_place.h"
 #include "motiongraph/motion/up_axis.h"
 
 namespace mg {
@@ -66,6 +67,18 @@ class Reader {
     if (!text) return text.error();
     out = parse_up_axis(*text);
     if (!out) return error(line_of(*node), fmt::format("'up_axis' must be \"y\" or \"z\", not \"{}\"", *text));
+    return Ok{};
+  }
+
+  // An optional travel source, "auto", "root" or "feet" (motion/in_place.h).
+  Status optional_travel(const toml::node* node, std::optional<TravelSource>& out) const {
+    if (!node) return Ok{};
+    auto text = string(*node, "travel");
+    if (!text) return text.error();
+    out = parse_travel_source(*text);
+    if (!out) {
+      return error(line_of(*node), fmt::format("'travel' must be \"auto\", \"root\" or \"feet\", not \"{}\"", *text));
+    }
     return Ok{};
   }
 
@@ -178,7 +191,7 @@ Result<ManifestRange> read_range(const Reader& in, const toml::table& table, con
 Result<ManifestClip> read_clip(const Reader& in, const toml::table& table) {
   ManifestClip clip;
   clip.line = line_of(table);
-  if (auto s = in.check_keys(table, {"file", "name", "skeleton", "bvh_scale", "up_axis", "input_fps",
+  if (auto s = in.check_keys(table, {"file", "name", "skeleton", "bvh_scale", "up_axis", "travel", "input_fps",
                                      "first_frame", "last_frame", "tags", "ranges"},
                              "in a [[clip]]");
       !s) {
@@ -211,6 +224,7 @@ Result<ManifestClip> read_clip(const Reader& in, const toml::table& table) {
   }
   if (auto s = in.optional_positive(table.get("bvh_scale"), "bvh_scale", clip.bvh_scale); !s) return s.error();
   if (auto s = in.optional_up_axis(table.get("up_axis"), clip.up_axis); !s) return s.error();
+  if (auto s = in.optional_travel(table.get("travel"), clip.travel); !s) return s.error();
   if (auto s = in.optional_positive(table.get("input_fps"), "input_fps", clip.input_fps); !s) return s.error();
   if (const toml::node* node = table.get("first_frame")) {
     auto first = in.frame(*node, "first_frame");
@@ -276,7 +290,7 @@ Result<FootJointNames> read_feet(const Reader& in, const toml::node& node) {
 Result<Manifest> read_manifest(const Reader& in, const toml::table& root, std::string file_name) {
   Manifest manifest;
   manifest.file_name = std::move(file_name);
-  if (auto s = in.check_keys(root, {"fps", "skeleton", "bvh_scale", "up_axis", "input_fps", "feet", "clip"},
+  if (auto s = in.check_keys(root, {"fps", "skeleton", "bvh_scale", "up_axis", "travel", "input_fps", "feet", "clip"},
                              "at the top level");
       !s) {
     return s.error();
@@ -297,6 +311,7 @@ Result<Manifest> read_manifest(const Reader& in, const toml::table& root, std::s
   }
   if (auto s = in.optional_positive(root.get("bvh_scale"), "bvh_scale", manifest.bvh_scale); !s) return s.error();
   if (auto s = in.optional_up_axis(root.get("up_axis"), manifest.up_axis); !s) return s.error();
+  if (auto s = in.optional_travel(root.get("travel"), manifest.travel); !s) return s.error();
   if (auto s = in.optional_positive(root.get("input_fps"), "input_fps", manifest.input_fps); !s) return s.error();
   const toml::node* clips = root.get("clip");
   if (!clips) return in.error(0, "the manifest names no clips: add a [[clip]] table with file = \"...\"");

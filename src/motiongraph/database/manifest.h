@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "motiongraph/core/error.h"
+#include "motiongraph/motion/in_place_choice.h"
 #include "motiongraph/motion/up_axis_choice.h"
 #include "motiongraph/skeleton/foot_joints.h"
 
@@ -37,6 +38,7 @@ struct ManifestClip {
   std::optional<std::string> skeleton;     // ASF for an AMC clip (overrides the default)
   std::optional<double> bvh_scale;         // metres per BVH unit (overrides the default)
   std::optional<UpAxis> up_axis;           // the clip's up axis (overrides the default)
+  std::optional<TravelSource> travel;      // where its travel comes from (overrides the default)
   std::optional<double> input_fps;         // capture rate, overriding the file's
   std::optional<int> first_frame;          // file numbering, from 1; absent: the first
   std::optional<int> last_frame;           // inclusive; absent: the last
@@ -61,6 +63,7 @@ struct Manifest {
   std::optional<std::string> skeleton;     // default ASF for AMC clips
   std::optional<double> bvh_scale;         // default metres per BVH unit
   std::optional<UpAxis> up_axis;           // default up axis
+  std::optional<TravelSource> travel;      // default travel source (motion/in_place.h)
   std::optional<double> input_fps;         // default capture rate
   std::vector<ManifestClip> clips;
   // [feet]: the foot joints' names (left_ankle, left_toe, right_ankle, right_toe; any may be
@@ -76,8 +79,9 @@ struct Manifest {
 //
 // Rules (each an error at its line): valid TOML; only known keys; values of the right type
 // (numbers may be written as integers or floats, frames are integers, tags strings); fps,
-// bvh_scale and input_fps positive; up_axis "y" or "z"; at least one [[clip]]; each clip has a non-empty `file`
-// ending in .amc or .bvh; `skeleton` only on AMC clips and `bvh_scale` only on BVH clips;
+// bvh_scale and input_fps positive; up_axis "y" or "z"; travel "auto", "root" or "feet"; at
+// least one [[clip]]; each clip has a non-empty `file` ending in .amc or .bvh; `skeleton` only
+// on AMC clips and `bvh_scale` only on BVH clips;
 // first_frame >= 1, last_frame >= first_frame; each range has first_frame and last_frame,
 // first >= 1, last >= first, inside the clip's own frame range when the manifest gives it,
 // and at least one tag; tag names non-empty, of letters, digits, '_' and '-'; [feet] names

@@ -11,6 +11,7 @@
 #include "motiongraph/io/bvh_parser.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/bvh_import.h"
+#include "motiongraph/motion/in_place.h"
 #include "motiongraph/motion/up_axis.h"
 
 namespace mg {
@@ -32,6 +33,7 @@ Status ClipLoadSettings::validate() const {
     return Error{"", 0, "--scale must be a positive number"};
   }
   if (!(input_fps >= 0.0) || !std::isfinite(input_fps)) return Error{"", 0, "--input-fps must be positive"};
+  if (auto s = foot_names.validate(); !s) return s.error();
   return Ok{};
 }
 
@@ -84,6 +86,9 @@ Result<LoadedClip> ClipLoader::load(const std::string& path) {
     loaded.clip.motion = motion_from_amc(**rig, *amc, fps);
     // ASF names no up axis either (CMU's files stand in y; a z-up capture system's need not).
     stand_up(loaded.clip, settings_.up_axis);
+    if (auto s = recover_travel(loaded.clip, settings_.travel, settings_.foot_names); !s) {
+      return Error{path, 0, s.error().message};
+    }
     loaded.format = "amc";
     loaded.skeleton_path = *asf_path;
     loaded.source_channels = amc->values_per_frame;
@@ -104,6 +109,9 @@ Result<LoadedClip> ClipLoader::load(const std::string& path) {
     std::string name = std::move(loaded.clip.name);
     loaded.clip = std::move(*clip);
     loaded.clip.name = std::move(name);
+    if (auto s = recover_travel(loaded.clip, settings_.travel, settings_.foot_names); !s) {
+      return Error{path, 0, s.error().message};
+    }
     loaded.format = "bvh";
     loaded.source_channels = bvh->channel_count;
     return loaded;

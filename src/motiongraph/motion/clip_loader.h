@@ -10,8 +10,10 @@
 
 #include "motiongraph/core/error.h"
 #include "motiongraph/motion/acclaim_import.h"
+#include "motiongraph/motion/in_place_choice.h"
 #include "motiongraph/motion/motion.h"
 #include "motiongraph/motion/up_axis_choice.h"
+#include "motiongraph/skeleton/foot_joints.h"
 
 namespace mg {
 
@@ -25,6 +27,10 @@ struct ClipLoadSettings {
   double input_fps = 0.0;               // > 0: the capture rate, overriding the file's
                                         // (AMC files store none: 120 by default, CMU's rate)
   bool keep_rest_frames = false;        // keep leading rest/T-pose frames of a BVH
+  TravelSource travel = TravelSource::kAuto;  // where the travel over the floor comes from:
+                                              // kAuto recovers it from the feet for clips
+                                              // animated in place (in_place.h)
+  FootJointNames foot_names;            // the feet for that (empty: found by their names)
 
   Status validate() const;
 };

@@ -8,6 +8,7 @@
 #include <span>
 #include <vector>
 
+#include "motiongraph/motion/in_place_choice.h"
 #include "motiongraph/motion/length_unit_choice.h"
 #include "motiongraph/motion/up_axis_choice.h"
 #include "motiongraph/skeleton/skeleton.h"
@@ -57,6 +58,7 @@ struct Clip {
   int dropped_leading_frames = 0;  // frames removed at load (an added rest or T-pose)
   std::optional<LengthUnitChoice> detected_unit;  // the unit chosen for a BVH read without one
   std::optional<UpAxisChoice> detected_up_axis;   // the up axis chosen for a file read without one
+  std::optional<InPlaceChoice> in_place;          // whether its travel was taken out, and recovered (in_place.h)
 };
 
 }  // namespace mg

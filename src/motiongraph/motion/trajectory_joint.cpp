@@ -137,6 +137,7 @@ Clip unfold_static_root(const Clip& clip) {
   unfolded.dropped_leading_frames = clip.dropped_leading_frames;
   unfolded.detected_unit = clip.detected_unit;
   unfolded.detected_up_axis = clip.detected_up_axis;
+  unfolded.in_place = clip.in_place;
   unfolded.skeleton = Skeleton(std::move(joints));
   const Motion& motion = clip.motion;
   unfolded.motion = Motion(unfolded.skeleton, motion.frame_count, motion.fps);

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "motiongraph/core/text.h"
+#include "motiongraph/motion/in_place.h"
 #include "motiongraph/motion/up_axis.h"
 
 namespace mg {
@@ -75,6 +76,9 @@ Result<BuildSettings> build_settings_from(const BuildOptions& o) {
     db.up_axis = parse_up_axis(o.up_axis);
     if (!db.up_axis) return Error{"", 0, "--up-axis must be y or z, not " + o.up_axis};
   }
+  auto travel = parse_travel_source(o.travel);
+  if (!travel) return Error{"", 0, "--travel must be auto, root or feet, not " + o.travel};
+  db.travel = *travel;
   db.input_fps = o.input_fps;
   db.cmu_tags = !o.no_cmu_tags;
   db.cmu_index_path = o.cmu_index;

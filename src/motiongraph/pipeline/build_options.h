@@ -20,6 +20,7 @@ struct BuildOptions {
   std::string asf;
   std::optional<double> scale;
   std::string up_axis;  // "y" or "z" for every clip; empty: chosen per file (motion/up_axis.h)
+  std::string travel = "auto";  // "auto", "root" or "feet" (motion/in_place.h)
   double input_fps = 0.0;
   std::string cmu_index;
   bool no_cmu_tags = false;
