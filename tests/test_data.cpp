@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "motiongraph/io/bvh_parser.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/forward_kinematics.h"
@@ -13,6 +14,14 @@
 namespace mg::test {
 
 std::string data_path(const std::string& relative) { return std::string(MOTIONGRAPH_DATA_DIR) + "/" + relative; }
+
+Clip import_bvh(const std::string& text, const BvhImportSettings& settings) {
+  auto doc = parse_bvh(text, "test.bvh");
+  if (!doc) throw std::runtime_error(doc.error().to_string());
+  auto clip = clip_from_bvh(*doc, settings);
+  if (!clip) throw std::runtime_error(clip.error().to_string());
+  return *std::move(clip);
+}
 
 std::string read_data(const std::string& relative) {
   auto text = read_text_file(data_path(relative));

@@ -6,6 +6,7 @@
 
 #include "motiongraph/core/error.h"
 #include "motiongraph/database/motion_database.h"
+#include "motiongraph/motion/bvh_import.h"
 #include "motiongraph/motion/motion.h"
 
 namespace mg::test {
@@ -19,6 +20,10 @@ std::string read_data(const std::string& relative);
 // A BVH without bvh_metres_per_unit is read in the unit its figure's size gives.
 Clip load_data_clip(const std::string& relative, std::optional<double> bvh_metres_per_unit = std::nullopt,
                     double input_fps = 0.0);
+
+// A BVH file's text read as the loader reads it (parse_bvh, then clip_from_bvh with
+// `settings`); fails the test (throws) when it cannot be read.
+Clip import_bvh(const std::string& text, const BvhImportSettings& settings = {});
 
 // `text` with the first occurrence of `from` replaced by `to`; fails the test if absent.
 std::string replace_once(std::string text, const std::string& from, const std::string& to);

@@ -7,8 +7,6 @@
 
 #include "motion/static_root_bvh.h"
 #include "motiongraph/export/bvh_writer.h"
-#include "motiongraph/io/bvh_parser.h"
-#include "motiongraph/motion/bvh_import.h"
 #include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/motion/trajectory_joint.h"
 #include "test_data.h"
@@ -268,12 +266,7 @@ TEST(InPlace, ARootWithoutTranslationCannotCarryIt) {
 // (the input's hierarchy, the travel in the hips' channels) it reads back to the same positions.
 TEST(InPlace, AStaticRootBvhInCentimetresInPlace) {
   const Clip capture = test::load_data_clip("cmu/16/16_16.amc");
-  const std::string text = test::static_root_bvh(in_place(capture), Vec3(0.5, 0.0, -1.0));
-  auto doc = parse_bvh(text, "in_place.bvh");
-  ASSERT_TRUE(doc) << doc.error().to_string();
-  auto read = clip_from_bvh(*doc, {});
-  ASSERT_TRUE(read) << read.error().to_string();
-  Clip clip = *read;
+  Clip clip = test::import_bvh(test::static_root_bvh(in_place(capture), Vec3(0.5, 0.0, -1.0)));
   ASSERT_EQ(clip.skeleton.static_ancestors().size(), 1u);
   ASSERT_TRUE(recover_travel(clip, TravelSource::kAuto));
   ASSERT_TRUE(clip.in_place && clip.in_place->recovered);
@@ -285,11 +278,7 @@ TEST(InPlace, AStaticRootBvhInCentimetresInPlace) {
   BvhWriteSettings write;
   write.units_per_metre = 100.0;
   const Clip unfolded = unfold_static_root(clip);
-  auto again_doc = parse_bvh(write_bvh(unfolded.skeleton, unfolded.motion, write), "again.bvh");
-  ASSERT_TRUE(again_doc) << again_doc.error().to_string();
-  auto again = clip_from_bvh(*again_doc, {});
-  ASSERT_TRUE(again);
-  Clip kept = *again;
+  Clip kept = test::import_bvh(write_bvh(unfolded.skeleton, unfolded.motion, write));
   ASSERT_TRUE(recover_travel(kept, TravelSource::kAuto));
   EXPECT_FALSE(kept.in_place->in_place);  // it travels now
   EXPECT_LT(test::max_position_error(world_positions(kept.skeleton, kept.motion),

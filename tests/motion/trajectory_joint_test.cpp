@@ -13,13 +13,7 @@
 namespace mg {
 namespace {
 
-Clip import_bvh(const std::string& text, BvhImportSettings settings = {}) {
-  auto doc = parse_bvh(text, "static-root.bvh");
-  EXPECT_TRUE(doc) << doc.error().to_string();
-  auto clip = clip_from_bvh(*doc, settings);
-  EXPECT_TRUE(clip) << clip.error().to_string();
-  return *clip;
-}
+using test::import_bvh;
 
 std::vector<std::pair<std::string, std::string>> hierarchy(const std::string& bvh_text) {
   auto doc = parse_bvh(bvh_text, "h.bvh");

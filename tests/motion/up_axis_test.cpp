@@ -4,7 +4,6 @@
 
 #include "motion/static_root_bvh.h"
 #include "motiongraph/export/bvh_writer.h"
-#include "motiongraph/io/bvh_parser.h"
 #include "motiongraph/motion/bvh_import.h"
 #include "motiongraph/motion/forward_kinematics.h"
 #include "test_data.h"
@@ -25,13 +24,7 @@ Clip z_up(const Clip& clip) {
   return turned;
 }
 
-Clip import_bvh(const std::string& text, BvhImportSettings settings = {}) {
-  auto doc = parse_bvh(text, "up.bvh");
-  EXPECT_TRUE(doc) << doc.error().to_string();
-  auto clip = clip_from_bvh(*doc, settings);
-  EXPECT_TRUE(clip) << clip.error().to_string();
-  return *clip;
-}
+using test::import_bvh;
 
 std::string bvh_text(const Clip& clip, double units_per_metre = 1.0) {
   BvhWriteSettings settings;

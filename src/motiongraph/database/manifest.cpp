@@ -60,26 +60,24 @@ class Reader {
     return Ok{};
   }
 
-  // An optional up axis, "y" or "z": `out` is set when the key is present, left unset otherwise.
-  Status optional_up_axis(const toml::node* node, std::optional<UpAxis>& out) const {
+  // An optional name from a fixed set (an up axis, a travel source): `parse` gives nullopt for a
+  // name outside it, and `names` lists the set for the message ("\"y\" or \"z\""). `out` is set
+  // when the key is present, left unset otherwise.
+  template <typename T, typename Parse>
+  Status optional_name(const toml::node* node, std::string_view key, Parse parse, std::string_view names,
+                       std::optional<T>& out) const {
     if (!node) return Ok{};
-    auto text = string(*node, "up_axis");
+    auto text = string(*node, key);
     if (!text) return text.error();
-    out = parse_up_axis(*text);
-    if (!out) return error(line_of(*node), fmt::format("'up_axis' must be \"y\" or \"z\", not \"{}\"", *text));
+    out = parse(*text);
+    if (!out) return error(line_of(*node), fmt::format("'{}' must be {}, not \"{}\"", key, names, *text));
     return Ok{};
   }
-
-  // An optional travel source, "auto", "root" or "feet" (motion/in_place.h).
+  Status optional_up_axis(const toml::node* node, std::optional<UpAxis>& out) const {
+    return optional_name(node, "up_axis", parse_up_axis, "\"y\" or \"z\"", out);
+  }
   Status optional_travel(const toml::node* node, std::optional<TravelSource>& out) const {
-    if (!node) return Ok{};
-    auto text = string(*node, "travel");
-    if (!text) return text.error();
-    out = parse_travel_source(*text);
-    if (!out) {
-      return error(line_of(*node), fmt::format("'travel' must be \"auto\", \"root\" or \"feet\", not \"{}\"", *text));
-    }
-    return Ok{};
+    return optional_name(node, "travel", parse_travel_source, "\"auto\", \"root\" or \"feet\"", out);
   }
 
   // A positive finite number written as an integer or a float.

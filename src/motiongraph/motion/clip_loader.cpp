@@ -86,15 +86,10 @@ Result<LoadedClip> ClipLoader::load(const std::string& path) {
     loaded.clip.motion = motion_from_amc(**rig, *amc, fps);
     // ASF names no up axis either (CMU's files stand in y; a z-up capture system's need not).
     stand_up(loaded.clip, settings_.up_axis);
-    if (auto s = recover_travel(loaded.clip, settings_.travel, settings_.foot_names); !s) {
-      return Error{path, 0, s.error().message};
-    }
     loaded.format = "amc";
     loaded.skeleton_path = *asf_path;
     loaded.source_channels = amc->values_per_frame;
-    return loaded;
-  }
-  if (ext == ".bvh") {
+  } else if (ext == ".bvh") {
     auto text = read_text_file(path);
     if (!text) return text.error();
     auto bvh = parse_bvh(*text, path);
@@ -109,15 +104,18 @@ Result<LoadedClip> ClipLoader::load(const std::string& path) {
     std::string name = std::move(loaded.clip.name);
     loaded.clip = std::move(*clip);
     loaded.clip.name = std::move(name);
-    if (auto s = recover_travel(loaded.clip, settings_.travel, settings_.foot_names); !s) {
-      return Error{path, 0, s.error().message};
-    }
     loaded.format = "bvh";
     loaded.source_channels = bvh->channel_count;
-    return loaded;
+  } else if (ext == ".asf") {
+    return Error{path, 0, "an ASF file holds a skeleton only; give its AMC files"};
+  } else {
+    return Error{path, 0, "unknown file type (expected .amc or .bvh)"};
   }
-  if (ext == ".asf") return Error{path, 0, "an ASF file holds a skeleton only; give its AMC files"};
-  return Error{path, 0, "unknown file type (expected .amc or .bvh)"};
+  // Either format, standing in y and in metres: its travel over the floor (in_place.h).
+  if (auto s = recover_travel(loaded.clip, settings_.travel, settings_.foot_names); !s) {
+    return Error{path, 0, s.error().message};
+  }
+  return loaded;
 }
 
 }  // namespace mg
