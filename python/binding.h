@@ -6,6 +6,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -62,9 +63,13 @@ struct PyMotion {
   nlohmann::json report;        // null for clips
   std::shared_ptr<const LoadedGraph> graph;
   Walk walk{-1, {}};
-  std::vector<ContactMask> contacts;
+  std::vector<ContactMask> contacts;  // per frame, of `feet`
+  std::optional<FootJoints> feet;     // the foot joints `contacts` follow; nullopt: not known
 
   PyMotion(std::string motion_name, Skeleton motion_skeleton, Motion played);
+  // A synthesis result's feet from its graph, with its contacts (the walk's own when none were
+  // given); none when the graph's feet are unknown.
+  void take_feet_from(const SynthesisContext& context);
 };
 
 // A graph built or read, ready for synthesis, with what its build made.

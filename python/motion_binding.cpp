@@ -6,9 +6,9 @@
 #include <pybind11/stl.h>
 
 #include "binding.h"
-#include "motiongraph/evaluation/synthesis_run.h"
 #include "motiongraph/export/motion_file.h"
 #include "motiongraph/motion/clip_loader.h"
+#include "motiongraph/motion/foot_contacts.h"
 #include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/motion/resample.h"
 #include "motiongraph/motion/in_place.h"
@@ -19,6 +19,19 @@ namespace mg::python {
 PyMotion::PyMotion(std::string motion_name, Skeleton motion_skeleton, Motion played)
     : name(std::move(motion_name)), skeleton(std::move(motion_skeleton)), motion(std::move(played)) {
   positions = world_positions(skeleton, motion);
+}
+
+void PyMotion::take_feet_from(const SynthesisContext& context) {
+  if (!context.frame_contacts.empty() && contacts.empty() && walk.start_node >= 0) {
+    contacts = context.walk_contacts(walk);
+  }
+  if (context.frame_contacts.empty() || static_cast<int>(contacts.size()) < motion.frame_count) {
+    contacts.clear();
+    feet.reset();
+    return;
+  }
+  contacts.resize(static_cast<size_t>(motion.frame_count));
+  feet = context.feet;
 }
 
 namespace {
@@ -37,20 +50,17 @@ py::array_t<double> frames_view(const double* data, const PyMotion& m, py::ssize
   return view;
 }
 
+// The JSON carries the feet's contacts when they are known, as the CLI's convert and synthesis
+// commands write it.
 Status save_motion(const PyMotion& m, const std::string& path) {
-  if (m.graph) return write_synthesized_motion(path, m.graph->context(), m.motion, m.walk, m.contacts);
-  // A captured clip's JSON carries its feet's contacts, as the CLI's convert writes it.
-  std::string why;
-  auto contacts = clip_contacts(m.skeleton, m.motion, FootJointNames{}, why);
-  if (!contacts) return contacts.error();
-  if (!*contacts) return write_motion(path, m.skeleton, m.motion);
-  const PositionsJsonContacts json_contacts{(*contacts)->feet, (*contacts)->masks};
+  if (!m.feet) return write_motion(path, m.skeleton, m.motion);
+  const PositionsJsonContacts json_contacts{*m.feet, m.contacts};
   return write_motion(path, m.skeleton, m.motion, 1.0, &json_contacts);
 }
 
 PyMotion load_clip(const std::string& path, const std::optional<std::string>& asf, std::optional<double> fps,
                    std::optional<double> scale, const std::optional<std::string>& up_axis, double input_fps,
-                   bool keep_rest_frames, const std::string& travel) {
+                   bool keep_rest_frames, const std::string& travel, const std::optional<std::string>& feet) {
   ClipLoadSettings settings;
   if (asf) settings.asf_path = *asf;
   settings.bvh_metres_per_unit = scale;
@@ -63,6 +73,11 @@ PyMotion load_clip(const std::string& path, const std::optional<std::string>& as
   const auto source = parse_travel_source(travel);
   if (!source) throw py::value_error("travel must be 'auto', 'root' or 'feet', not '" + travel + "'");
   settings.travel = *source;
+  if (feet) {
+    auto names = parse_foot_joint_names(*feet);
+    if (!names) throw py::value_error("feet: " + names.error().message);
+    settings.foot_names = *names;
+  }
   check(settings.validate());
   Result<LoadedClip> loaded = Error{};
   {
@@ -78,7 +93,19 @@ PyMotion load_clip(const std::string& path, const std::optional<std::string>& as
     }
   }
   LoadedClip got = take(std::move(loaded));
-  return PyMotion(got.clip.name, std::move(got.clip.skeleton), std::move(got.clip.motion));
+  PyMotion clip(got.clip.name, std::move(got.clip.skeleton), std::move(got.clip.motion));
+  // Its feet's contacts (none when the feet are not found and none were named).
+  Result<std::optional<ClipContacts>> contacts = Error{};
+  {
+    py::gil_scoped_release release;
+    std::string why;
+    contacts = clip_contacts(clip.skeleton, clip.motion, settings.foot_names, why);
+  }
+  if (std::optional<ClipContacts> found = take(std::move(contacts))) {
+    clip.feet = found->feet;
+    clip.contacts = std::move(found->masks);
+  }
+  return clip;
 }
 
 }  // namespace
@@ -120,6 +147,34 @@ void bind_motion(py::module_& m) {
                                return parents;
                              },
                              "Each joint's parent index (-1 for the root); parents come before children.")
+      .def_property_readonly(
+          "foot_joints",
+          [](const PyMotion& self) -> py::object {
+            if (!self.feet) return py::none();
+            py::list names;
+            for (const ContactColumn& column : contact_columns(*self.feet)) {
+              names.append(self.skeleton.joint(column.joint).name);
+            }
+            return names;
+          },
+          "The foot joints that contacts follows: left ankle, left toe, right ankle, right toe (a foot without "
+          "a toe joint gives its ankle only); None when the feet are not known.")
+      .def_property_readonly(
+          "contacts",
+          [](const PyMotion& self) -> py::object {
+            if (!self.feet) return py::none();
+            const std::vector<ContactColumn> columns = contact_columns(*self.feet);
+            const auto frames = static_cast<py::ssize_t>(self.contacts.size());
+            const auto width = static_cast<py::ssize_t>(columns.size());
+            py::array_t<bool> planted({frames, width});
+            auto out = planted.mutable_unchecked<2>();
+            for (py::ssize_t f = 0; f < frames; ++f) {
+              for (py::ssize_t c = 0; c < width; ++c) out(f, c) = (self.contacts[f] & columns[c].bit) != 0;
+            }
+            return planted;
+          },
+          "Whether each foot joint (foot_joints) rests on the floor: bool array frames x foot joints, as "
+          "convert's JSON writes it; None when the feet are not known. A copy.")
       .def_property_readonly("report", [](const PyMotion& self) { return to_python(self.report); },
                              "The CLI's --report of the synthesis (a dict), None for a clip.")
       .def(
@@ -141,13 +196,14 @@ void bind_motion(py::module_& m) {
       });
   m.def("load_clip", &load_clip, py::arg("path"), py::arg("asf") = py::none(), py::arg("fps") = py::none(),
         py::arg("scale") = py::none(), py::arg("up_axis") = py::none(), py::arg("input_fps") = 0.0,
-        py::arg("keep_rest_frames") = false, py::arg("travel") = "auto",
+        py::arg("keep_rest_frames") = false, py::arg("travel") = "auto", py::arg("feet") = py::none(),
         "Reads a clip (.amc with its .asf, or .bvh) as the CLI's convert does: asf the skeleton of an AMC file "
         "(default: the .asf in its folder), fps a rate to resample to, scale metres per BVH unit (default: "
         "chosen from the figure's size), up_axis 'y' or 'z' (default: whichever the figure stands along; "
         "z-up is turned y up), input_fps the capture rate overriding the file's, travel where its travel over "
         "the floor comes from: 'root' as read, 'feet' recovered from the planted feet, 'auto' (default) the "
-        "feet when the clip is animated in place.");
+        "feet when the clip is animated in place; feet the foot joints as 'LEFT_ANKLE,LEFT_TOE,RIGHT_ANKLE,"
+        "RIGHT_TOE', any left empty to find it by name (default: found by name), for the travel and contacts.");
 }
 
 }  // namespace mg::python

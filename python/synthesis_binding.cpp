@@ -31,6 +31,7 @@ PyMotion result_motion(const PyGraph& graph, const char* name, SynthesizedMotion
   motion.graph = graph.loaded;
   motion.walk = std::move(made.walk);
   motion.contacts = std::move(made.contacts);
+  motion.take_feet_from(graph.loaded->context());
   return motion;
 }
 
@@ -153,6 +154,7 @@ class PyController {
     PyMotion out("steer", context().assembler.skeleton(), std::move(motion));
     out.graph = loaded_;
     out.contacts = std::move(contacts);
+    out.take_feet_from(context());
     return out;
   }
 

@@ -31,7 +31,6 @@ struct ConvertOptions {
   LoadOptions load;
   double fps = 0.0;
   double output_units_per_metre = 1.0;
-  std::string feet;  // LEFT_ANKLE,LEFT_TOE,RIGHT_ANKLE,RIGHT_TOE
 };
 
 int run_convert(const ConvertOptions& options) {
@@ -41,12 +40,7 @@ int run_convert(const ConvertOptions& options) {
   BvhWriteSettings write;
   write.units_per_metre = options.output_units_per_metre;
   if (auto s = write.validate(); !s) return fail(s.error());
-  ClipLoadSettings load = options.load.settings();
-  if (!options.feet.empty()) {
-    auto parsed = parse_foot_joint_names(options.feet);
-    if (!parsed) return fail(Error{"", 0, "--feet: " + parsed.error().message});
-    load.foot_names = *parsed;
-  }
+  const ClipLoadSettings load = options.load.settings();
   ClipLoader loader(load);
   auto loaded = loader.load(options.input);
   if (!loaded) return fail(loaded.error());
@@ -68,7 +62,7 @@ int run_convert(const ConvertOptions& options) {
   const bool any_json = std::any_of(options.outputs.begin(), options.outputs.end(), [](const std::string& path) {
     return std::filesystem::path(path).extension() == ".json";
   });
-  if (any_json || !options.feet.empty()) {
+  if (any_json || !load.foot_names.empty()) {
     std::string why;
     auto found = clip_contacts(clip.skeleton, clip.motion, load.foot_names, why);
     if (!found) return fail(Error{options.input, 0, found.error().message});
@@ -104,9 +98,6 @@ Command add_convert_command(CLI::App& app) {
   sub->add_option("--output-scale", options->output_units_per_metre,
                   "BVH length units per metre in the output (100 for centimetres)")
       ->capture_default_str();
-  sub->add_option("--feet", options->feet,
-                  "Foot joints as LEFT_ANKLE,LEFT_TOE,RIGHT_ANKLE,RIGHT_TOE, any left empty to find it by name "
-                  "(default: found by name)");
   options->load.add_to(*sub);
   return {sub, [options] { return run_convert(*options); }};
 }

@@ -9,9 +9,11 @@
 #include "cli/load_options.h"
 #include "cli/unit_report.h"
 #include "motiongraph/core/json_text.h"
+#include "motiongraph/export/motion_file.h"
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/clip_doubts.h"
 #include "motiongraph/motion/clip_summary.h"
+#include "motiongraph/motion/forward_kinematics.h"
 
 namespace mg::cli {
 
@@ -27,6 +29,21 @@ nlohmann::json static_ancestor_names(const Skeleton& skeleton) {
   nlohmann::json names = nlohmann::json::array();
   for (const StaticAncestor& a : skeleton.static_ancestors()) names.push_back(a.name);
   return names;
+}
+
+// "lfoot > ltoes": a foot's joints as found or named (the ankle alone when it has no toe).
+std::string foot_text(const Skeleton& skeleton, const Foot& foot) {
+  const std::string& ankle = skeleton.joint(foot.ankle).name;
+  return foot.toe < 0 ? ankle : ankle + " > " + skeleton.joint(foot.toe).name;
+}
+
+// Share of the frames in which a foot (its ankle or toe) rests on the floor.
+double planted_share(const std::vector<ContactMask>& masks, FootSide side) {
+  if (masks.empty()) return 0.0;
+  const auto bits = static_cast<ContactMask>(contact_bit(side, FootPart::kAnkle) | contact_bit(side, FootPart::kToe));
+  size_t planted = 0;
+  for (ContactMask mask : masks) planted += (mask & bits) != 0 ? 1 : 0;
+  return static_cast<double>(planted) / static_cast<double>(masks.size());
 }
 
 nlohmann::json skeleton_json(const Skeleton& skeleton) {
@@ -68,7 +85,15 @@ int run_info(const InfoOptions& options) {
     if (!loaded) return fail(loaded.error());
     const Clip& clip = loaded->clip;
     const ClipSummary s = summarize(clip.skeleton, clip.motion);
-    const std::vector<std::string> doubts = clip_doubts(clip.skeleton, clip.motion);
+    // The feet (named by --feet or found by name) and their contacts: what the foot clean-up, the
+    // in-place travel and the doubts below follow.
+    std::string feet_missing;
+    auto contacts = clip_contacts(clip.skeleton, clip.motion, settings.foot_names, feet_missing);
+    if (!contacts) return fail(Error{file, 0, "--feet: " + contacts.error().message});
+    const std::vector<std::string> doubts =
+        clip_doubts(world_positions(clip.skeleton, clip.motion), clip.skeleton.joint_count(), clip.motion.fps,
+                    *contacts ? (*contacts)->masks : std::vector<ContactMask>{});
+    const char* feet_source = settings.foot_names.empty() ? "found by name" : "--feet";
     if (clip.detected_unit && !clip.detected_unit->plausible) report_unit(file, *clip.detected_unit);
     std::string unit = fmt::format("{:g} m per unit (--scale)", options.load.scale.value_or(1.0));
     if (loaded->format == "amc") unit = "the ASF's units";
@@ -89,6 +114,18 @@ int run_info(const InfoOptions& options) {
           {"height_m", {s.min_height_m, s.max_height_m}}, {"root_path_m", s.root_path_m},
           {"root", clip.skeleton.joint(0).name}, {"static_joints_above_root", static_ancestor_names(clip.skeleton)},
           {"doubts", doubts}, {"skeleton", skeleton_json(clip.skeleton)}};
+      if (*contacts) {
+        const FootJoints& feet = (*contacts)->feet;
+        const auto foot_json = [&](const Foot& foot, FootSide side) {
+          return nlohmann::json{{"ankle", clip.skeleton.joint(foot.ankle).name},
+                                {"toe", foot.toe < 0 ? nlohmann::json() : nlohmann::json(clip.skeleton.joint(foot.toe).name)},
+                                {"planted_share", planted_share((*contacts)->masks, side)}};
+        };
+        entry["feet"] = {{"source", feet_source}, {"left", foot_json(feet.left, FootSide::kLeft)},
+                         {"right", foot_json(feet.right, FootSide::kRight)}};
+      } else {
+        entry["feet"] = {{"source", nullptr}, {"missing", feet_missing}};
+      }
       if (!loaded->skeleton_path.empty()) entry["asf"] = loaded->skeleton_path;
       if (clip.detected_unit) {
         entry["unit"] = {{"name", clip.detected_unit->unit.name},
@@ -121,6 +158,17 @@ int run_info(const InfoOptions& options) {
                  clip.dropped_leading_frames > 0 ? " (leading rest/T-pose frames dropped)" : "");
       fmt::print("  lengths:  {}\n", unit);
       fmt::print("  up:       {}\n", up);
+      if (*contacts) {
+        const FootJoints& feet = (*contacts)->feet;
+        fmt::print("  feet:     {}, {} ({}; planted {:.0f} % and {:.0f} % of frames)\n",
+                   foot_text(clip.skeleton, feet.left), foot_text(clip.skeleton, feet.right), feet_source,
+                   100.0 * planted_share((*contacts)->masks, FootSide::kLeft),
+                   100.0 * planted_share((*contacts)->masks, FootSide::kRight));
+      } else {
+        fmt::print("  feet:     not found: {}; without them there is no foot clean-up and no travel from the "
+                   "feet (--feet names them)\n",
+                   feet_missing);
+      }
       if (clip.in_place && clip.in_place->recovered) {
         fmt::print("  travel:   {} (--travel overrides)\n", travel_description(*clip.in_place));
       }

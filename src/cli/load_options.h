@@ -9,6 +9,7 @@
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/in_place.h"
 #include "motiongraph/motion/up_axis.h"
+#include "motiongraph/skeleton/foot_joints.h"
 
 namespace mg::cli {
 
@@ -17,6 +18,7 @@ struct LoadOptions {
   std::optional<double> scale;
   std::string up_axis;
   std::string travel = "auto";
+  std::string feet;  // LEFT_ANKLE,LEFT_TOE,RIGHT_ANKLE,RIGHT_TOE
   double input_fps = 0.0;
   bool keep_rest_frames = false;
 
@@ -34,6 +36,15 @@ struct LoadOptions {
                    "feet), or auto: the feet for a clip animated in place, its planted feet sliding")
         ->check(CLI::IsMember({"auto", "root", "feet"}))
         ->capture_default_str();
+    app.add_option("--feet", feet,
+                   "Foot joints as LEFT_ANKLE,LEFT_TOE,RIGHT_ANKLE,RIGHT_TOE, any left empty to find it by name "
+                   "(default: found by name)")
+        ->check(CLI::Validator(
+            [](const std::string& text) {
+              auto parsed = parse_foot_joint_names(text);
+              return parsed ? std::string() : parsed.error().message;
+            },
+            "", "FEET"));
     app.add_option("--input-fps", input_fps,
                    "Capture rate of the input, overriding the file's (AMC default 120, CMU's rate)");
     app.add_flag("--keep-rest-frames", keep_rest_frames,
@@ -46,6 +57,7 @@ struct LoadOptions {
     s.bvh_metres_per_unit = scale;
     if (!up_axis.empty()) s.up_axis = parse_up_axis(up_axis);
     s.travel = parse_travel_source(travel).value_or(TravelSource::kAuto);
+    if (auto names = parse_foot_joint_names(feet); !feet.empty() && names) s.foot_names = *names;
     s.input_fps = input_fps;
     s.keep_rest_frames = keep_rest_frames;
     return s;

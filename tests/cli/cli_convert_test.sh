@@ -23,6 +23,28 @@ x0, x1 = info["floor_extent_m"]["x"]; z0, z1 = info["floor_extent_m"]["z"]
 assert 0.5 < max(x1 - x0, z1 - z0) < 20, info["floor_extent_m"]   # a 1.3 s jog, in metres
 PY
 
+# info names the feet it found and how often each is planted; a rig whose feet it cannot find
+# by name (16_01 with its feet renamed) says so, and --feet names them: the same shares as the
+# original file's.
+"$bin" info "$data/cmu/16/16_35.amc" | grep "feet:     lfoot > ltoes, rfoot > rtoes (found by name; planted" >/dev/null \
+  || { echo "FAIL: info's feet line"; "$bin" info "$data/cmu/16/16_35.amc"; exit 1; }
+sed 's/lfoot/lpes/; s/rfoot/rpes/' "$data/bvh/16_01.bvh" >"$work/pes.bvh"
+"$bin" info "$work/pes.bvh" | grep "feet:     not found: no left ankle joint found" >/dev/null \
+  || { echo "FAIL: info on feet it cannot find"; "$bin" info "$work/pes.bvh"; exit 1; }
+"$bin" info --json "$data/bvh/16_01.bvh" >"$work/feet.json"
+"$bin" info --json "$work/pes.bvh" >"$work/pes.json"
+"$bin" info --json --feet lpes,,rpes, "$work/pes.bvh" >"$work/named.json"
+python3 - "$work/feet.json" "$work/pes.json" "$work/named.json" <<'PY'
+import json, sys
+found, missing, named = (json.load(open(p))[0]["feet"] for p in sys.argv[1:4])
+assert found["source"] == "found by name" and found["left"]["ankle"] == "lfoot" and found["right"]["toe"] == "rtoes", found
+assert missing["source"] is None and "no left ankle joint" in missing["missing"], missing
+assert named["source"] == "--feet" and named["left"]["ankle"] == "lpes" and named["left"]["toe"] == "ltoes", named
+for side in ("left", "right"):
+    assert 0.3 < found[side]["planted_share"] < 1.0, found   # a jump: standing before and after
+    assert named[side]["planted_share"] == found[side]["planted_share"], (named, found)
+PY
+
 # convert: AMC -> BVH and JSON, resampled; BVH -> BVH with a scale.
 "$bin" convert "$data/cmu/16/16_35.amc" -o "$work/jog.bvh" --fps 30
 "$bin" convert "$data/cmu/16/16_35.amc" -o "$work/jog.json" --fps 30

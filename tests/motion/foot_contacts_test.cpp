@@ -413,5 +413,32 @@ TEST(FootContacts, EachSettingsRuleGivesItsError) {
   EXPECT_FALSE(detect_foot_contacts(s.positions, 4, 0.0, s.feet, {}));
 }
 
+TEST(FootContacts, ContactColumnsAreEachFootsAnkleThenToeLeftFirstAndSkipAMissingToe) {
+  // Each column's bit is the one contact_mask sets for that joint's track.
+  const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
+  const FootJoints feet = *find_foot_joints(clip.skeleton);
+  const FootContacts contacts = contacts_of(clip);
+  const std::vector<ContactColumn> columns = contact_columns(feet);
+  ASSERT_EQ(columns.size(), contacts.tracks.size());
+  for (size_t c = 0; c < columns.size(); ++c) {
+    const FootContactTrack& track = contacts.tracks[c];
+    EXPECT_EQ(columns[c].joint, track.joint) << c;
+    for (int f = 0; f < contacts.frame_count; ++f) {
+      ASSERT_EQ((contact_mask(contacts, f) & columns[c].bit) != 0, track.planted[f] != 0) << c << " at " << f;
+    }
+  }
+  const std::vector<int> order = {feet.left.ankle, feet.left.toe, feet.right.ankle, feet.right.toe};
+  for (size_t c = 0; c < columns.size(); ++c) EXPECT_EQ(columns[c].joint, order[c]);
+
+  FootJoints no_left_toe = feet;
+  no_left_toe.left.toe = -1;
+  const std::vector<ContactColumn> three = contact_columns(no_left_toe);
+  ASSERT_EQ(three.size(), 3u);
+  EXPECT_EQ(three[0].joint, feet.left.ankle);
+  EXPECT_EQ(three[1].joint, feet.right.ankle);
+  EXPECT_EQ(three[1].bit, contact_bit(FootSide::kRight, FootPart::kAnkle));
+  EXPECT_EQ(three[2].bit, contact_bit(FootSide::kRight, FootPart::kToe));
+}
+
 }  // namespace
 }  // namespace mg

@@ -21,6 +21,33 @@ def test_positions_equal_the_cli(cli, data, tmp_path, fps):
     assert (tmp_path / "py.bvh").read_bytes() == (tmp_path / "cli.bvh").read_bytes()
 
 
+def test_contacts_of_a_clip_and_feet_named(cli, data, tmp_path):
+    bvh = data / "bvh/16_01.bvh"
+    cli("convert", bvh, "-o", tmp_path / "cli.json")
+    want = read_json(tmp_path / "cli.json")["contacts"]
+    clip = mg.load_clip(str(bvh))
+    assert clip.foot_joints == want["joints"] == ["lfoot", "ltoes", "rfoot", "rtoes"]
+    np.testing.assert_array_equal(clip.contacts, np.array(want["planted"], dtype=bool))
+    # A rig whose feet the finder does not know: no contacts, and none in its JSON, until named.
+    renamed = tmp_path / "pes.bvh"
+    renamed.write_text(bvh.read_text().replace("lfoot", "lpes").replace("rfoot", "rpes"))
+    unknown = mg.load_clip(str(renamed))
+    assert unknown.foot_joints is None and unknown.contacts is None
+    unknown.save(str(tmp_path / "unknown.json"))
+    assert "contacts" not in read_json(tmp_path / "unknown.json")
+    named = mg.load_clip(str(renamed), feet="lpes,,rpes,")
+    assert named.foot_joints == ["lpes", "ltoes", "rpes", "rtoes"]
+    np.testing.assert_array_equal(named.contacts, clip.contacts)
+    named.save(str(tmp_path / "named.json"))
+    assert read_json(tmp_path / "named.json")["contacts"]["planted"] == want["planted"]
+    # Resampled, the contacts are the resampled motion's: one row a frame.
+    assert mg.load_clip(str(bvh), fps=30).contacts.shape == (len(mg.load_clip(str(bvh), fps=30)), 4)
+    with pytest.raises(ValueError, match="feet: .*four comma-separated joint names"):
+        mg.load_clip(str(bvh), feet="lfoot")
+    with pytest.raises(mg.Error, match="no joint named 'LeftAnkle'"):
+        mg.load_clip(str(bvh), feet="LeftAnkle,,,")
+
+
 def test_bvh_with_scale_equals_the_cli(cli, data, tmp_path):
     cli("convert", data / "cmu/16/16_15.amc", "-o", tmp_path / "m.bvh")
     cli("convert", tmp_path / "m.bvh", "--scale", 0.5, "-o", tmp_path / "cli.json")

@@ -23,6 +23,11 @@ def test_path_equals_the_cli(cli, graph_file, graph, tmp_path):
     motion.save(str(tmp_path / "py.json"))
     assert (tmp_path / "py.json").read_bytes() == (tmp_path / "cli.json").read_bytes()
     assert "contacts" in cli_json
+    # .contacts and .foot_joints are the file's, as arrays.
+    assert motion.foot_joints == cli_json["contacts"]["joints"]
+    planted = motion.contacts
+    assert planted.dtype == bool and planted.shape == (len(motion), len(motion.foot_joints))
+    np.testing.assert_array_equal(planted, np.array(cli_json["contacts"]["planted"], dtype=bool))
 
 
 def test_path_from_points_and_options(cli, graph_file, graph, tmp_path):
@@ -83,11 +88,14 @@ def test_steering_equals_the_cli(cli, graph_file, graph, tmp_path):
         step = controller.step(c["heading_deg"], c["tag"])
         assert len(step) > 0
         np.testing.assert_array_equal(step.positions, controller.motion.positions[frames:])
+        np.testing.assert_array_equal(step.contacts, controller.motion.contacts[frames:])
         frames += len(step)
     motion = controller.motion
     assert len(motion) == frames
     want = read_json(tmp_path / "cli.json")
     assert np.max(np.abs(motion.positions[:total] - np.asarray(want["positions"]))) <= 1e-6
+    assert motion.foot_joints == want["contacts"]["joints"]
+    np.testing.assert_array_equal(motion.contacts[:total], np.array(want["contacts"]["planted"], dtype=bool))
 
 
 def test_steering_goes_where_it_is_told(graph):

@@ -13,20 +13,15 @@ nlohmann::json contacts_json(const Skeleton& skeleton, const PositionsJsonContac
   using nlohmann::json;
   json names = json::array();
   json indices = json::array();
-  std::vector<ContactMask> bits;
-  for (const auto& [foot, side] : {std::pair{contacts.feet.left, FootSide::kLeft},
-                                   std::pair{contacts.feet.right, FootSide::kRight}}) {
-    for (const auto& [joint, part] : {std::pair{foot.ankle, FootPart::kAnkle}, std::pair{foot.toe, FootPart::kToe}}) {
-      if (joint < 0) continue;
-      names.push_back(skeleton.joint(joint).name);
-      indices.push_back(joint);
-      bits.push_back(contact_bit(side, part));
-    }
+  const std::vector<ContactColumn> columns = contact_columns(contacts.feet);
+  for (const ContactColumn& column : columns) {
+    names.push_back(skeleton.joint(column.joint).name);
+    indices.push_back(column.joint);
   }
   json planted = json::array();
   for (int f = 0; f < frame_count && f < static_cast<int>(contacts.masks.size()); ++f) {
     json row = json::array();
-    for (ContactMask bit : bits) row.push_back((contacts.masks[f] & bit) != 0 ? 1 : 0);
+    for (const ContactColumn& column : columns) row.push_back((contacts.masks[f] & column.bit) != 0 ? 1 : 0);
     planted.push_back(std::move(row));
   }
   return {{"joints", std::move(names)}, {"joint_indices", std::move(indices)}, {"planted", std::move(planted)}};

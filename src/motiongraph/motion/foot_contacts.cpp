@@ -95,6 +95,16 @@ ContactMask contact_mask(const FootContacts& contacts, int frame) {
   return mask;
 }
 
+std::vector<ContactColumn> contact_columns(const FootJoints& feet) {
+  std::vector<ContactColumn> columns;
+  for (const auto& [foot, side] : {std::pair{feet.left, FootSide::kLeft}, std::pair{feet.right, FootSide::kRight}}) {
+    for (const auto& [joint, part] : {std::pair{foot.ankle, FootPart::kAnkle}, std::pair{foot.toe, FootPart::kToe}}) {
+      if (joint >= 0) columns.push_back({joint, contact_bit(side, part)});
+    }
+  }
+  return columns;
+}
+
 std::vector<ContactInterval> contact_intervals(std::span<const uint8_t> planted) {
   std::vector<ContactInterval> intervals;
   const int frames = static_cast<int>(planted.size());

@@ -81,6 +81,15 @@ constexpr ContactMask contact_bit(FootSide side, FootPart part) {
 // The bits of the tracks planted at `frame`.
 ContactMask contact_mask(const FootContacts& contacts, int frame);
 
+// The feet's joints with their bits, in the order left ankle, left toe, right ankle, right toe,
+// a foot without a toe joint giving its ankle only: the columns of a contact table (the positions
+// JSON's "contacts", Python's Motion.contacts).
+struct ContactColumn {
+  int joint = -1;
+  ContactMask bit = 0;
+};
+std::vector<ContactColumn> contact_columns(const FootJoints& feet);
+
 // A run of planted frames.
 struct ContactInterval {
   int first_frame = 0;
