@@ -83,7 +83,7 @@ void report_units(const DatabaseLoadNotes& notes, bool quiet) {
                  g.files == 1 ? "" : "s", g.lowest_m, g.highest_m);
   }
   const auto z_up = std::count_if(notes.detected_up_axes.begin(), notes.detected_up_axes.end(),
-                                  [](const auto& d) { return d.choice.axis == UpAxis::kZ; });
+                                  [](const auto& d) { return d.axis_read() == UpAxis::kZ; });
   if (z_up > 0 && !quiet) {
     const auto files = static_cast<long>(notes.detected_up_axes.size());
     spdlog::info("read z up and turned y up: {} of {} file{} (their figures stand along z; --up-axis overrides)",

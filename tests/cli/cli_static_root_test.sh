@@ -4,7 +4,7 @@
 # Research's datasets are), under CMU's names in a folder with no CMU index beside it.
 # The unit is found (cm), the hips carry the floor position, the graph keeps frames and paths
 # are followed; written BVH keeps the file's hierarchy; a figure of no human size warns. The
-# same library written z up is read standing, and written in place (the hips' travel taken out,
+# same library written z up is read standing (a crawling clip among it too), and written in place (the hips' travel taken out,
 # as game libraries' "in place" exports are) gets its travel back from the planted feet.
 # Usage: MOTIONGRAPH=binary MAKE_STATIC_ROOT_BVH=binary cli_static_root_test.sh DATA_DIR
 set -euo pipefail
@@ -118,6 +118,18 @@ PY
 "$bin" build "$work/zlib" -o "$work/z.mgraph" --report "$work/zr.json" --no-cache 2>"$work/zbuild.txt"
 grep "read z up and turned y up: 6 of 6 files" "$work/zbuild.txt" >/dev/null \
   || { echo "FAIL: build up line"; cat "$work/zbuild.txt"; exit 1; }
+# One clip of the z-up library lies along the file's y all through (a crawl): alone, its shape
+# says y (its animation against its rest pose); in the library it is read z up like the others,
+# with a warning naming it.
+mkdir "$work/crawl" "$work/zlib2"
+"$make" --z-up --lying "$work/crawl" "$data/cmu/16/16_13.amc"
+"$bin" info "$work/crawl/16_13.bvh" | grep "up:       y" >/dev/null \
+  || { echo "FAIL: a lying clip alone"; "$bin" info "$work/crawl/16_13.bvh"; exit 1; }
+cp "$work"/zlib/*.bvh "$work/zlib2/" && cp "$work/crawl/16_13.bvh" "$work/zlib2/"
+"$bin" build "$work/zlib2" -o "$work/z2.mgraph" --no-cache 2>"$work/z2build.txt"
+grep "warning: .*zlib2/16_13.bvh: read z up like the library's other files, though its own shape says y" \
+  "$work/z2build.txt" >/dev/null && grep "read z up and turned y up: 6 of 6 files" "$work/z2build.txt" >/dev/null \
+  || { echo "FAIL: a lying clip in a z-up library"; cat "$work/z2build.txt"; exit 1; }
 "$bin" path "$work/z.mgraph" --shape s-curve:20 -o "$work/zs.bvh" --report "$work/zs.json" >/dev/null
 python3 - "$work/zr.json" "$work/r.json" "$work/zs.json" <<'PY'
 import json, sys

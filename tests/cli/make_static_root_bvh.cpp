@@ -1,8 +1,10 @@
-// make_static_root_bvh [--z-up] [--in-place] OUT_DIR AMC...: writes each clip (AMC with the .asf
-// beside it) as OUT_DIR/<stem>.bvh in a Bandai-like rig (tests/motion/static_root_bvh.h): a
-// static root at the origin above the hips, 6 channels per joint, centimetres; with --z-up,
+// make_static_root_bvh [--z-up] [--in-place] [--lying] OUT_DIR AMC...: writes each clip (AMC with
+// the .asf beside it) as OUT_DIR/<stem>.bvh in a Bandai-like rig (tests/motion/static_root_bvh.h):
+// a static root at the origin above the hips, 6 channels per joint, centimetres; with --z-up,
 // every position turned as a z-up tool holds it (+y to +z); with --in-place, the hips' travel
-// over the floor taken out (x and z), as "in place" exports do. For cli_static_root_test.sh.
+// over the floor taken out (x and z), as "in place" exports do; with --lying, the figure tipped
+// to lie along z (a crawl, say) before any turn, its rest pose standing. For
+// cli_static_root_test.sh.
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -13,7 +15,7 @@
 #include "motiongraph/motion/up_axis.h"
 
 int main(int argc, char** argv) {
-  bool z_up = false, in_place = false;
+  bool z_up = false, in_place = false, lying = false;
   int first = 1;
   for (; first < argc && std::string(argv[first]).starts_with("--"); ++first) {
     const std::string flag = argv[first];
@@ -21,12 +23,14 @@ int main(int argc, char** argv) {
       z_up = true;
     } else if (flag == "--in-place") {
       in_place = true;
+    } else if (flag == "--lying") {
+      lying = true;
     } else {
       first = argc;  // unknown: usage
     }
   }
   if (argc < first + 2) {
-    std::fprintf(stderr, "usage: make_static_root_bvh [--z-up] [--in-place] OUT_DIR AMC...\n");
+    std::fprintf(stderr, "usage: make_static_root_bvh [--z-up] [--in-place] [--lying] OUT_DIR AMC...\n");
     return 2;
   }
   mg::ClipLoadSettings load;
@@ -42,6 +46,15 @@ int main(int argc, char** argv) {
         for (int f = 0; f < motion.frame_count; ++f) {
           mg::Vec3& t = motion.translations(f)[slot];
           t.x() = t.z() = 0.0;
+        }
+      }
+      if (lying) {  // the hips turned +y to +z, with their path
+        const mg::Quat tip = mg::up_axis_to_y(mg::UpAxis::kZ).conjugate();
+        mg::Motion& motion = loaded->clip.motion;
+        const int slot = loaded->clip.skeleton.translation_slot(0);
+        for (int f = 0; f < motion.frame_count; ++f) {
+          motion.rotations(f)[0] = tip * motion.rotations(f)[0];
+          motion.translations(f)[slot] = tip * motion.translations(f)[slot];
         }
       }
       if (z_up) mg::turn_clip(loaded->clip, mg::up_axis_to_y(mg::UpAxis::kZ).conjugate());

@@ -11,6 +11,7 @@
 
 #include "motion/static_root_bvh.h"
 #include "motiongraph/database/database_contacts.h"
+#include "motiongraph/export/bvh_writer.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/motion/up_axis.h"
@@ -288,6 +289,73 @@ TEST(DatabaseLoader, ClipsOfOneAsfReadWithOtherUpAxesGetTheirOwnSkeletons) {
   double worst = 0.0;
   for (size_t i = 0; i < y.size(); ++i) worst = std::max(worst, (Vec3(y[i].x(), y[i].z(), -y[i].y()) - z[i]).norm());
   EXPECT_LT(worst, 1e-9);
+}
+
+TEST(DatabaseLoader, AFileWhoseOwnUpAxisIsNotSettledIsReadInTheLibrarys) {
+  // Three walks written z up, and a fourth of the same z-up rig whose figure lies along the
+  // file's y all through (crawling): alone it reads y (its animation wins over its rest pose),
+  // among the others it reads z like them, as if told. A file given its axis is not judged.
+  TempFolder folder("library-up");
+  const Quat to_z = up_axis_to_y(UpAxis::kZ).conjugate();
+  const auto z_up_file = [&](const char* clip_file, const std::string& name, bool lying) {
+    Clip clip = test::load_data_clip(clip_file);
+    if (lying) {  // along y-up's z, which the turn to z up makes the file's -y
+      const int slot = clip.skeleton.translation_slot(0);
+      for (int f = 0; f < clip.motion.frame_count; ++f) {
+        clip.motion.rotations(f)[0] = to_z * clip.motion.rotations(f)[0];
+        clip.motion.translations(f)[slot] = to_z * clip.motion.translations(f)[slot];
+      }
+    }
+    turn_clip(clip, to_z);
+    return folder.write(name, write_bvh(clip.skeleton, clip.motion, BvhWriteSettings{}));
+  };
+  std::vector<std::string> files;
+  for (const char* walk : {"cmu/16/16_15.amc", "cmu/16/16_16.amc", "cmu/16/16_11.amc"}) {
+    files.push_back(z_up_file(walk, fmt::format("walk{}.bvh", files.size()), false));
+  }
+  const std::string crawl = z_up_file("cmu/16/16_13.amc", "crawl.bvh", true);
+
+  DatabaseSettings settings = cmu_settings();
+  DatabaseLoadNotes alone_notes;
+  auto alone = load_database({crawl}, settings, &alone_notes);
+  ASSERT_TRUE(alone) << alone.error().to_string();
+  ASSERT_EQ(alone_notes.detected_up_axes.size(), 1u);
+  EXPECT_EQ(alone_notes.detected_up_axes[0].axis_read(), UpAxis::kY);
+  EXPECT_FALSE(up_axis_settled(alone_notes.detected_up_axes[0].choice));
+
+  files.push_back(crawl);
+  DatabaseLoadNotes notes;
+  auto library = load_database(files, settings, &notes);
+  ASSERT_TRUE(library) << library.error().to_string();
+  ASSERT_EQ(library->clips.size(), 4u);
+  ASSERT_EQ(notes.detected_up_axes.size(), 4u);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(notes.detected_up_axes[i].axis_read(), UpAxis::kZ) << i;
+    EXPECT_FALSE(notes.detected_up_axes[i].library_axis) << i;
+  }
+  const auto& followed = notes.detected_up_axes[3];
+  EXPECT_EQ(followed.file, crawl);
+  EXPECT_EQ(followed.choice.axis, UpAxis::kY);
+  EXPECT_EQ(followed.library_axis, UpAxis::kZ);
+
+  settings.up_axis = UpAxis::kZ;
+  DatabaseLoadNotes told_notes;
+  auto told = load_database({crawl}, settings, &told_notes);
+  ASSERT_TRUE(told) << told.error().to_string();
+  EXPECT_TRUE(told_notes.detected_up_axes.empty());
+  const DatabaseClip& in_library = library->clips[3];
+  const std::vector<Vec3> got = world_positions(library->skeletons[in_library.skeleton], in_library.motion);
+  const std::vector<Vec3> want = world_positions(told->skeletons[0], told->clips[0].motion);
+  ASSERT_EQ(got.size(), want.size());
+  for (size_t i = 0; i < got.size(); ++i) ASSERT_EQ(got[i], want[i]) << i;
+  // The clips before it are what they are without it.
+  auto walks = load_database({files[0], files[1], files[2]}, cmu_settings());
+  ASSERT_TRUE(walks) << walks.error().to_string();
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_EQ(world_positions(walks->skeletons[walks->clips[c].skeleton], walks->clips[c].motion),
+              world_positions(library->skeletons[library->clips[c].skeleton], library->clips[c].motion))
+        << c;
+  }
 }
 
 TEST(DatabaseLoader, ClipsInPlaceGetTheirTravelFromTheFeetUnlessTold) {

@@ -53,9 +53,11 @@ TEST(UpAxis, EveryClipStandsInYAndItsZUpTwinInZ) {
     const Clip clip = test::load_data_clip(file);
     const UpAxisChoice y = choose_up_axis(clip.skeleton, clip.motion);
     EXPECT_EQ(y.axis, UpAxis::kY) << file << " ratios " << y.animation_ratio << " " << y.rest_ratio;
+    EXPECT_TRUE(up_axis_settled(y)) << file;
     const Clip turned = z_up(clip);
     const UpAxisChoice z = choose_up_axis(turned.skeleton, turned.motion);
     EXPECT_EQ(z.axis, UpAxis::kZ) << file << " ratios " << z.animation_ratio << " " << z.rest_ratio;
+    EXPECT_TRUE(up_axis_settled(z)) << file;
   }
 }
 
@@ -135,6 +137,7 @@ TEST(UpAxis, AFigureLyingAlongZWithAStandingRestPoseStaysY) {
   EXPECT_GE(choice.animation_ratio, kUpAxisRatio);
   EXPECT_LE(choice.rest_ratio, 1.0 / kUpAxisRatio);
   EXPECT_EQ(choice.axis, UpAxis::kY);
+  EXPECT_FALSE(up_axis_settled(choice));  // chosen against the animation
 }
 
 TEST(UpAxis, AZUpRestPoseThatTheRootTurnsUprightStaysY) {
@@ -153,8 +156,45 @@ TEST(UpAxis, AZUpRestPoseThatTheRootTurnsUprightStaysY) {
   const UpAxisChoice choice = choose_up_axis(fixed.skeleton, fixed.motion);
   EXPECT_GE(choice.rest_ratio, kUpAxisRatio);
   EXPECT_EQ(choice.axis, UpAxis::kY);
+  EXPECT_FALSE(up_axis_settled(choice));  // chosen against the rest pose
   const Clip read = import_bvh(bvh_text(fixed));
   EXPECT_LT(test::max_position_error_by_name(clip, read), 2e-5);
+}
+
+TEST(UpAxis, AChoiceIsSettledWhenNeitherVoiceSpeaksAgainstIt) {
+  const double z = 2.0 * kUpAxisRatio, y = 0.5 / kUpAxisRatio, silent = 1.0;
+  struct Case {
+    UpAxisChoice choice;
+    bool settled;
+  };
+  const Case cases[] = {
+      {{UpAxis::kY, y, y}, true},          {{UpAxis::kZ, z, z}, true},
+      {{UpAxis::kY, y, silent}, true},     {{UpAxis::kY, silent, y}, true},
+      {{UpAxis::kZ, z, silent}, true},     {{UpAxis::kZ, silent, z}, true},
+      {{UpAxis::kY, silent, silent}, false},  // y by default
+      {{UpAxis::kY, z, y}, false},         {{UpAxis::kY, y, z}, false},
+  };
+  for (const Case& c : cases) {
+    EXPECT_EQ(up_axis_settled(c.choice), c.settled)
+        << up_axis_name(c.choice.axis) << " " << c.choice.animation_ratio << " " << c.choice.rest_ratio;
+  }
+}
+
+TEST(UpAxis, TheLibrarysAxisIsItsSettledMajorityWhenTheFilesItWouldTurnAreFewer) {
+  const double z = 2.0 * kUpAxisRatio, y = 0.5 / kUpAxisRatio;
+  const UpAxisChoice settled_z{UpAxis::kZ, z, z}, settled_y{UpAxis::kY, y, y};
+  const UpAxisChoice lying{UpAxis::kY, y, z};  // a z-up rig's clip along y, or a converter's fix-up
+  using Choices = std::vector<UpAxisChoice>;
+  EXPECT_EQ(library_up_axis(Choices{settled_z, settled_z, settled_z, lying}), UpAxis::kZ);
+  EXPECT_EQ(library_up_axis(Choices{settled_z, settled_z, lying}), UpAxis::kZ);
+  EXPECT_EQ(library_up_axis(Choices{settled_y, settled_y, settled_z, lying}), UpAxis::kY);
+  // Too few to overrule: a library of fix-ups with one crawling clip that settles z.
+  EXPECT_EQ(library_up_axis(Choices{settled_z, lying, lying, lying}), std::nullopt);
+  EXPECT_EQ(library_up_axis(Choices{settled_z, settled_z, lying, lying}), std::nullopt);
+  EXPECT_EQ(library_up_axis(Choices{settled_z, lying}), std::nullopt);
+  EXPECT_EQ(library_up_axis(Choices{settled_z, settled_y}), std::nullopt);  // split evenly
+  EXPECT_EQ(library_up_axis(Choices{lying, lying}), std::nullopt);           // none settled
+  EXPECT_EQ(library_up_axis(Choices{}), std::nullopt);
 }
 
 }  // namespace

@@ -19,6 +19,7 @@
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/motion/resample.h"
+#include "motiongraph/motion/up_axis.h"
 
 namespace mg {
 
@@ -254,70 +255,32 @@ Status DatabaseSettings::validate() const {
   return Ok{};
 }
 
-Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, const DatabaseSettings& settings,
-                                     DatabaseLoadNotes* notes) {
-  if (auto s = settings.validate(); !s) return s.error();
-  if (inputs.empty()) return Error{"", 0, "no inputs: give clip folders, clip files or a .toml manifest"};
+namespace {
 
-  // 1. What to read, in order.
-  std::vector<ClipSpec> specs;
-  ManifestWide wide;
-  for (const std::string& input : inputs) {
-    std::error_code ec;
-    const fs::file_status status = fs::status(input, ec);
-    if (!fs::exists(status)) return Error{input, 0, "no such file or folder"};
-    if (fs::is_directory(status)) {
-      if (auto s = expand_folder(input, settings, specs); !s) return s.error();
-      continue;
-    }
-    const std::string ext = lower_extension(input);
-    if (ext == ".toml") {
-      if (auto s = expand_manifest(input, settings, specs, wide); !s) return s.error();
-    } else if (ext == ".amc" || ext == ".bvh") {
-      specs.push_back(spec_for_file(input, default_load_settings(settings)));
-    } else if (ext == ".asf") {
-      return Error{input, 0, "an ASF file holds a skeleton only: give its folder, or its AMC files with --asf"};
-    } else {
-      return Error{input, 0, "unknown input: expected a folder, a .amc or .bvh clip, or a .toml manifest"};
-    }
-  }
-
+// Steps 3-5 of load_database: the clips read, back to back, the feet's contacts, the doubts. A file
+// whose own up axis is not settled and differs from the library's (motion/up_axis.h) is read
+// again in the library's, with every other file: the database is made once more.
+Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSettings& settings,
+                                  const ManifestWide& wide, const std::optional<CmuIndex>& cmu,
+                                  DatabaseLoadNotes* notes) {
   MotionDatabase db;
   db.fps = wide.fps.value_or(settings.fps);
   db.foot_names = settings.foot_names.empty() ? wide.feet.value_or(FootJointNames{}) : settings.foot_names;
   for (ClipSpec& spec : specs) spec.load.foot_names = db.foot_names;  // travel from the feet (in_place.h)
 
-  // 2. The CMU index, read once when some clip will look its tags up.
-  std::optional<CmuIndex> cmu;
-  const bool wants_cmu = settings.cmu_tags &&
-                         std::any_of(specs.begin(), specs.end(), [](const ClipSpec& s) { return !s.gives_tags; });
-  if (wants_cmu) {
-    std::string text = settings.cmu_index_text;
-    std::string name = "CMU index";
-    if (text.empty() && !settings.cmu_index_path.empty()) {
-      auto read = read_text_file(settings.cmu_index_path);
-      if (!read) return read.error();
-      text = std::move(*read);
-      name = settings.cmu_index_path;
-    } else if (text.empty()) {
-      text = shipped_cmu_index();
-      name = kShippedCmuIndexName;
-    }
-    auto index = parse_cmu_index(text, name);
-    if (!index) return index.error();
-    cmu = std::move(*index);
-  }
-
   // 3. Clips, back to back.
   Loaders loaders;
   std::map<std::string, int> skeleton_of_file;  // canonical skeleton path -> index
   int next_frame = 0;
-  for (const ClipSpec& spec : specs) {
+  std::vector<std::pair<size_t, UpAxisChoice>> chosen_up_axes;  // spec index, its own choice
+  for (size_t spec_index = 0; spec_index < specs.size(); ++spec_index) {
+    const ClipSpec& spec = specs[spec_index];
     auto loaded = loaders.for_settings(spec.load).load(spec.path);
     if (!loaded) return loaded.error();
+    if (loaded->clip.detected_up_axis) chosen_up_axes.emplace_back(spec_index, *loaded->clip.detected_up_axis);
     if (notes && loaded->clip.detected_unit) notes->detected_units.push_back({spec.path, *loaded->clip.detected_unit});
     if (notes && loaded->clip.detected_up_axis) {
-      notes->detected_up_axes.push_back({spec.path, *loaded->clip.detected_up_axis});
+      notes->detected_up_axes.push_back({spec.path, *loaded->clip.detected_up_axis, std::nullopt});
     }
     if (notes && loaded->clip.in_place && loaded->clip.in_place->recovered) {
       notes->recovered_travels.push_back({spec.path, spec.load.travel, *loaded->clip.in_place});
@@ -420,6 +383,26 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
     db.clips.push_back(std::move(clip));
   }
 
+  // 3b. Files whose own up axis is not settled follow the library's: read again in it.
+  std::vector<UpAxisChoice> choices;
+  for (const auto& [spec_index, choice] : chosen_up_axes) choices.push_back(choice);
+  if (const std::optional<UpAxis> library = library_up_axis(choices)) {
+    std::vector<DatabaseLoadNotes::DetectedUpAxis> followed;
+    for (const auto& [spec_index, choice] : chosen_up_axes) {
+      if (up_axis_settled(choice) || choice.axis == *library) continue;
+      specs[spec_index].load.up_axis = *library;
+      followed.push_back({specs[spec_index].path, choice, *library});
+    }
+    if (!followed.empty()) {
+      if (notes != nullptr) *notes = DatabaseLoadNotes{};
+      auto again = load_clips(std::move(specs), settings, wide, cmu, notes);
+      if (again && notes != nullptr) {
+        notes->detected_up_axes.insert(notes->detected_up_axes.end(), followed.begin(), followed.end());
+      }
+      return again;
+    }
+  }
+
   // 4. The feet's contacts (a rig whose feet are not found keeps the reason instead).
   if (auto s = find_database_contacts(db); !s) {
     if (!settings.foot_names.empty()) return Error{"", 0, "the foot joints named: " + s.error().message};
@@ -440,6 +423,61 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
     }
   }
   return db;
+}
+
+}  // namespace
+
+Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, const DatabaseSettings& settings,
+                                     DatabaseLoadNotes* notes) {
+  if (auto s = settings.validate(); !s) return s.error();
+  if (inputs.empty()) return Error{"", 0, "no inputs: give clip folders, clip files or a .toml manifest"};
+
+  // 1. What to read, in order.
+  std::vector<ClipSpec> specs;
+  ManifestWide wide;
+  for (const std::string& input : inputs) {
+    std::error_code ec;
+    const fs::file_status status = fs::status(input, ec);
+    if (!fs::exists(status)) return Error{input, 0, "no such file or folder"};
+    if (fs::is_directory(status)) {
+      if (auto s = expand_folder(input, settings, specs); !s) return s.error();
+      continue;
+    }
+    const std::string ext = lower_extension(input);
+    if (ext == ".toml") {
+      if (auto s = expand_manifest(input, settings, specs, wide); !s) return s.error();
+    } else if (ext == ".amc" || ext == ".bvh") {
+      specs.push_back(spec_for_file(input, default_load_settings(settings)));
+    } else if (ext == ".asf") {
+      return Error{input, 0, "an ASF file holds a skeleton only: give its folder, or its AMC files with --asf"};
+    } else {
+      return Error{input, 0, "unknown input: expected a folder, a .amc or .bvh clip, or a .toml manifest"};
+    }
+  }
+
+  // 2. The CMU index, read once when some clip will look its tags up.
+  std::optional<CmuIndex> cmu;
+  const bool wants_cmu = settings.cmu_tags &&
+                         std::any_of(specs.begin(), specs.end(), [](const ClipSpec& s) { return !s.gives_tags; });
+  if (wants_cmu) {
+    std::string text = settings.cmu_index_text;
+    std::string name = "CMU index";
+    if (text.empty() && !settings.cmu_index_path.empty()) {
+      auto read = read_text_file(settings.cmu_index_path);
+      if (!read) return read.error();
+      text = std::move(*read);
+      name = settings.cmu_index_path;
+    } else if (text.empty()) {
+      text = shipped_cmu_index();
+      name = kShippedCmuIndexName;
+    }
+    auto index = parse_cmu_index(text, name);
+    if (!index) return index.error();
+    cmu = std::move(*index);
+  }
+
+  if (notes != nullptr) *notes = DatabaseLoadNotes{};
+  return load_clips(std::move(specs), settings, wide, cmu, notes);
 }
 
 }  // namespace mg

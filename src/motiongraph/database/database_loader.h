@@ -81,9 +81,13 @@ struct DatabaseLoadNotes {
   std::vector<DetectedUnit> detected_units;
   struct DetectedUpAxis {
     std::string file;
-    UpAxisChoice choice;
+    UpAxisChoice choice;                // the file's own
+    std::optional<UpAxis> library_axis;  // read in the library's axis instead, its own not settled
+
+    UpAxis axis_read() const { return library_axis.value_or(choice.axis); }
   };
-  std::vector<DetectedUpAxis> detected_up_axes;  // files read without an up axis given
+  // Files read without an up axis given, those that follow the library's last.
+  std::vector<DetectedUpAxis> detected_up_axes;
   struct RecoveredTravel {
     std::string file;
     TravelSource source;  // kAuto: judged in place; kFeet: asked for

@@ -72,6 +72,32 @@ UpAxisChoice choose_up_axis(const Skeleton& skeleton, const Motion& motion) {
   return choice;
 }
 
+bool up_axis_settled(const UpAxisChoice& choice) {
+  const Vote animation = vote_of(choice.animation_ratio), rest_pose = vote_of(choice.rest_ratio);
+  const Vote axis = choice.axis == UpAxis::kZ ? Vote::kZ : Vote::kY;
+  if (animation == Vote::kNone && rest_pose == Vote::kNone) return false;
+  return (animation == axis || animation == Vote::kNone) && (rest_pose == axis || rest_pose == Vote::kNone);
+}
+
+std::optional<UpAxis> library_up_axis(std::span<const UpAxisChoice> choices) {
+  int settled_y = 0, settled_z = 0, unsettled_y = 0, unsettled_z = 0;
+  for (const UpAxisChoice& choice : choices) {
+    const bool z = choice.axis == UpAxis::kZ;
+    if (up_axis_settled(choice)) {
+      (z ? settled_z : settled_y) += 1;
+    } else {
+      (z ? unsettled_z : unsettled_y) += 1;
+    }
+  }
+  if (settled_y == settled_z) return std::nullopt;
+  const UpAxis axis = settled_z > settled_y ? UpAxis::kZ : UpAxis::kY;
+  // The files it would turn must be fewer than those that settle it.
+  const int supporters = axis == UpAxis::kZ ? settled_z : settled_y;
+  const int turned = axis == UpAxis::kZ ? unsettled_y : unsettled_z;
+  if (turned >= supporters) return std::nullopt;
+  return axis;
+}
+
 Quat up_axis_to_y(UpAxis axis) {
   if (axis == UpAxis::kY) return Quat::Identity();
   return Quat(Eigen::AngleAxisd(-std::numbers::pi / 2.0, Vec3::UnitX()));

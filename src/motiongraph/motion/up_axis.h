@@ -25,6 +25,7 @@
 #pragma once
 
 #include <optional>
+#include <span>
 #include <string_view>
 
 #include "motiongraph/motion/motion.h"
@@ -40,6 +41,19 @@ std::optional<UpAxis> parse_up_axis(std::string_view text);
 
 // The choice above for a clip in its file's coordinates.
 UpAxisChoice choose_up_axis(const Skeleton& skeleton, const Motion& motion);
+
+// Whether a choice rests on evidence that agrees: the animation and the rest pose both say its
+// axis, or one says it and the other is silent. A choice made against one of them (a z-up rest
+// pose whose clip lies along y all through, or a converter's fix-up; a standing rest pose whose
+// clip lies along z) or on neither (y by default) is not settled.
+bool up_axis_settled(const UpAxisChoice& choice);
+
+// The up axis of a library (the files of one database, one rig): the axis most of its settled
+// choices have, provided the unsettled choices of the other axis are fewer than the settled ones
+// of it; else nullopt (none settled, an even split, or too few to overrule the rest: a library of
+// converter fix-ups, every one unsettled y, keeps y though one crawling clip settles z). A file
+// whose own choice is not settled and differs from it is read in it (database_loader.h).
+std::optional<UpAxis> library_up_axis(std::span<const UpAxisChoice> choices);
 
 // The rotation that takes the file's up axis to +y (identity for y).
 Quat up_axis_to_y(UpAxis axis);

@@ -18,6 +18,7 @@
 #include "motiongraph/graph/on_demand_candidates.h"
 #include "motiongraph/graph/pruned_candidates.h"
 #include "motiongraph/metric/frame_features.h"
+#include "motiongraph/motion/up_axis.h"
 #include "motiongraph/pipeline/build_report.h"
 #include "motiongraph/pipeline/saved_settings.h"
 
@@ -381,6 +382,13 @@ Result<Prepared> prepare(std::span<const std::string> inputs, const BuildSetting
   auto db = load_database(input_list, db_settings, &load_notes);
   if (!db) return db.error();
   if (log.loaded) log.loaded(load_notes);
+  for (const auto& d : load_notes.detected_up_axes) {
+    if (!d.library_axis) continue;
+    say.warning(fmt::format("{}: read {} up like the library's other files, though its own shape says {} (z over y: "
+                            "{:.2f} as played, {:.2f} at rest); --up-axis or a manifest's up_axis decides",
+                            d.file, up_axis_name(*d.library_axis), up_axis_name(d.choice.axis),
+                            d.choice.animation_ratio, d.choice.rest_ratio));
+  }
   for (const std::string& line : load_notes.clip_doubts) say.warning(line);
   timings["load"] = watch.lap();
   say.info(fmt::format("{} clips, {} frames at {:g} fps ({:.1f} s), {} tags", db->clips.size(), db->frame_count(),
