@@ -1,4 +1,5 @@
 // motiongraph info FILE...: skeleton and clip summary per file (text, or --json).
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -6,6 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "cli/feet_report.h"
+#include "cli/library_info.h"
 #include "cli/load_options.h"
 #include "cli/unit_report.h"
 #include "motiongraph/core/json_text.h"
@@ -23,27 +26,37 @@ struct InfoOptions {
   std::vector<std::string> files;
   LoadOptions load;
   bool json = false;
+  // For folders and manifests, read as build reads them.
+  double fps = 30.0;
+  bool fps_given = false;
+  std::string cmu_index;
+  bool no_cmu_tags = false;
 };
+
+// Folders and manifests are a library: the whole of what is given is read as `build` reads it.
+bool is_library(const std::vector<std::string>& files) {
+  return std::any_of(files.begin(), files.end(), [](const std::string& file) {
+    std::error_code ec;
+    return std::filesystem::is_directory(file, ec) || std::filesystem::path(file).extension() == ".toml";
+  });
+}
+
+int run_library(const InfoOptions& options) {
+  LibraryInfoOptions library;
+  library.json = options.json;
+  DatabaseSettings& db = library.database;
+  db = database_settings_reading_as(options.load.settings());
+  db.fps = options.fps;
+  db.prefer_manifest_fps = !options.fps_given;
+  db.cmu_tags = !options.no_cmu_tags;
+  db.cmu_index_path = options.cmu_index;
+  return run_library_info(options.files, library);
+}
 
 nlohmann::json static_ancestor_names(const Skeleton& skeleton) {
   nlohmann::json names = nlohmann::json::array();
   for (const StaticAncestor& a : skeleton.static_ancestors()) names.push_back(a.name);
   return names;
-}
-
-// "lfoot > ltoes": a foot's joints as found or named (the ankle alone when it has no toe).
-std::string foot_text(const Skeleton& skeleton, const Foot& foot) {
-  const std::string& ankle = skeleton.joint(foot.ankle).name;
-  return foot.toe < 0 ? ankle : ankle + " > " + skeleton.joint(foot.toe).name;
-}
-
-// Share of the frames in which a foot (its ankle or toe) rests on the floor.
-double planted_share(const std::vector<ContactMask>& masks, FootSide side) {
-  if (masks.empty()) return 0.0;
-  const auto bits = static_cast<ContactMask>(contact_bit(side, FootPart::kAnkle) | contact_bit(side, FootPart::kToe));
-  size_t planted = 0;
-  for (ContactMask mask : masks) planted += (mask & bits) != 0 ? 1 : 0;
-  return static_cast<double>(planted) / static_cast<double>(masks.size());
 }
 
 nlohmann::json skeleton_json(const Skeleton& skeleton) {
@@ -55,6 +68,7 @@ nlohmann::json skeleton_json(const Skeleton& skeleton) {
 }
 
 int run_info(const InfoOptions& options) {
+  if (is_library(options.files)) return run_library(options);
   ClipLoadSettings settings = options.load.settings();
   // An .asf among the files is the skeleton of the .amc files given with it.
   for (const std::string& file : options.files) {
@@ -114,18 +128,8 @@ int run_info(const InfoOptions& options) {
           {"height_m", {s.min_height_m, s.max_height_m}}, {"root_path_m", s.root_path_m},
           {"root", clip.skeleton.joint(0).name}, {"static_joints_above_root", static_ancestor_names(clip.skeleton)},
           {"doubts", doubts}, {"skeleton", skeleton_json(clip.skeleton)}};
-      if (*contacts) {
-        const FootJoints& feet = (*contacts)->feet;
-        const auto foot_json = [&](const Foot& foot, FootSide side) {
-          return nlohmann::json{{"ankle", clip.skeleton.joint(foot.ankle).name},
-                                {"toe", foot.toe < 0 ? nlohmann::json() : nlohmann::json(clip.skeleton.joint(foot.toe).name)},
-                                {"planted_share", planted_share((*contacts)->masks, side)}};
-        };
-        entry["feet"] = {{"source", feet_source}, {"left", foot_json(feet.left, FootSide::kLeft)},
-                         {"right", foot_json(feet.right, FootSide::kRight)}};
-      } else {
-        entry["feet"] = {{"source", nullptr}, {"missing", feet_missing}};
-      }
+      entry["feet"] = *contacts ? feet_json(clip.skeleton, (*contacts)->feet, (*contacts)->masks, feet_source)
+                                : missing_feet_json(feet_missing);
       if (!loaded->skeleton_path.empty()) entry["asf"] = loaded->skeleton_path;
       if (clip.detected_unit) {
         entry["unit"] = {{"name", clip.detected_unit->unit.name},
@@ -158,17 +162,9 @@ int run_info(const InfoOptions& options) {
                  clip.dropped_leading_frames > 0 ? " (leading rest/T-pose frames dropped)" : "");
       fmt::print("  lengths:  {}\n", unit);
       fmt::print("  up:       {}\n", up);
-      if (*contacts) {
-        const FootJoints& feet = (*contacts)->feet;
-        fmt::print("  feet:     {}, {} ({}; planted {:.0f} % and {:.0f} % of frames)\n",
-                   foot_text(clip.skeleton, feet.left), foot_text(clip.skeleton, feet.right), feet_source,
-                   100.0 * planted_share((*contacts)->masks, FootSide::kLeft),
-                   100.0 * planted_share((*contacts)->masks, FootSide::kRight));
-      } else {
-        fmt::print("  feet:     not found: {}; without them there is no foot clean-up and no travel from the "
-                   "feet (--feet names them)\n",
-                   feet_missing);
-      }
+      fmt::print("  feet:     {}\n", *contacts ? feet_description(clip.skeleton, (*contacts)->feet,
+                                                                (*contacts)->masks, feet_source)
+                                               : missing_feet_description(feet_missing));
       if (clip.in_place && clip.in_place->recovered) {
         fmt::print("  travel:   {} (--travel overrides)\n", travel_description(*clip.in_place));
       }
@@ -191,11 +187,21 @@ int run_info(const InfoOptions& options) {
 Command add_info_command(CLI::App& app) {
   auto options = std::make_shared<InfoOptions>();
   CLI::App* sub = app.add_subcommand("info", "Summarise skeletons and clips: joints, dofs, frames, fps, "
-                                             "duration and floor extent (metres).");
+                                             "duration, floor extent (metres), up axis, feet; or a library "
+                                             "(folders, manifests) as build reads it: its clips, tags and feet.");
   sub->add_option("FILE", options->files, "ASF, AMC or BVH files (an AMC uses the .asf given with it, --asf, "
-                                          "or the only .asf in its folder)")
+                                          "or the only .asf in its folder); or clip folders and .toml "
+                                          "manifests, summarised together as one library")
       ->required()
+      ->check(CLI::ExistingPath);
+  sub->add_option("--fps", options->fps, "A library's frame rate, as build's --fps (default 30; a manifest's own)")
+      ->check(CLI::Range(0.01, 10000.0))
+      ->each([o = options.get()](const std::string&) { o->fps_given = true; });
+  sub->add_option("--cmu-index", options->cmu_index,
+                  "For a library: CMU's motion index for tags, as build's (default: one beside or above the "
+                  "inputs, else the one the program ships)")
       ->check(CLI::ExistingFile);
+  sub->add_flag("--no-cmu-tags", options->no_cmu_tags, "For a library: no tags from CMU's descriptions");
   sub->add_flag("--json", options->json, "Print the summary as JSON");
   options->load.add_to(*sub);
   return {sub, [options] { return run_info(*options); }};

@@ -294,5 +294,57 @@ for path, tile, other in ((sys.argv[1], 64, True), (sys.argv[2], 96, False)):
     # The exhaustive stage is run again with the pruned stage's tiles only when --tile is another side.
     assert ("distance stage with the pruned stage's tiles of %d:" % tile in text) == other, text
 PY
+# info on a folder or a manifest: the library as build reads it (the same clips, tags and feet
+# as the build report of the same folder), its tags' totals, and tag ranges within a clip.
+"$bin" info "$data/cmu/16" >"$work/lib.txt"
+grep "^$data/cmu/16: library of 15 clips, 1235 frames at 30 fps (41.2 s)" "$work/lib.txt" >/dev/null \
+  && [[ $(grep -c "^  16_" "$work/lib.txt") -eq 15 ]] \
+  || { echo "FAIL: info on a folder"; cat "$work/lib.txt"; exit 1; }
+"$bin" info --json "$data/cmu/16" >"$work/lib.json"
+"$bin" info --json --fps 120 "$data/cmu/16" >"$work/lib120.json"
+cat >"$work/db.toml" <<EOF
+skeleton = "$data/cmu/16/16.asf"
+[[clip]]
+file = "$data/cmu/16/16_15.amc"
+name = "walk_middle"
+first_frame = 41
+last_frame = 240
+tags = ["walk"]
+ranges = [{ first_frame = 41, last_frame = 120, tags = ["start"] }, { first_frame = 121, last_frame = 240, tags = ["steady"] }]
+[[clip]]
+file = "$data/cmu/16/16_35.amc"
+[[clip]]
+file = "$data/cmu/16/16_57.amc"
+tags = []
+EOF
+"$bin" info "$work/db.toml" >"$work/manifest.txt"
+grep -E "^  walk_middle +[0-9]+ +[0-9.]+ +[0-9.]+ m  walk, start 0-[0-9]+, steady [0-9]+-[0-9]+$" "$work/manifest.txt" \
+  >/dev/null && grep "tags:     run 1 clip .*none 1 clip" "$work/manifest.txt" >/dev/null \
+  || { echo "FAIL: info on a manifest"; cat "$work/manifest.txt"; exit 1; }
+"$bin" info --json "$work/db.toml" >"$work/manifest.json"
+python3 - "$work/lib.json" "$work/r.json" "$work/lib120.json" "$work/manifest.json" <<'PY'
+import json, sys
+lib, report, lib120, manifest = (json.load(open(p)) for p in sys.argv[1:5])
+added = ("duration_s", "root_path_m", "tag_ranges")
+clips = [{k: v for k, v in c.items() if k not in added} for c in lib["clips"]]
+built = [{k: v for k, v in c.items() if k not in ("kept_frames", "best_join_rms_cm")} for c in report["clips"]]
+assert clips == built, (clips, built)
+assert lib["foot_contacts"] == report["foot_contacts"] and lib["frames"] == report["frames"] == 1235
+for tag, total in lib["tags"].items():
+    assert total["clips"] == sum(tag in c["tags"] for c in report["clips"]), (tag, total)
+    assert total["frames"] == sum(c["frames"] for c in report["clips"] if tag in c["tags"]), (tag, total)
+assert lib["untagged"] == {"clips": 0, "frames": 0}, lib["untagged"]
+for c in lib["clips"]:   # CMU's tags are on whole clips; the walks travel metres, the jumps less
+    assert all(r["first_frame"] == 0 and r["frames"] == c["frames"] for r in c["tag_ranges"]), c
+    assert ("walk" in c["tags"]) <= (c["root_path_m"] > 1.0), c
+assert lib120["fps"] == 120 and lib120["frames"] == 4920, (lib120["fps"], lib120["frames"])
+walk, run, untagged = manifest["clips"]
+ranges = {r["tag"]: r for r in walk["tag_ranges"]}
+assert ranges["walk"]["first_frame"] == 0 and ranges["walk"]["frames"] == walk["frames"], ranges
+assert ranges["start"]["first_frame"] == 0 and ranges["steady"]["first_frame"] + ranges["steady"]["frames"] == walk["frames"]
+assert ranges["start"]["frames"] + ranges["steady"]["frames"] == walk["frames"], ranges
+assert abs(walk["duration_s"] - 200 / 120) < 0.05, walk["duration_s"]   # file frames 41..240 at 120 fps
+assert run["tags"] == ["run"] and untagged["tags"] == [] and manifest["untagged"]["clips"] == 1, manifest["untagged"]
+PY
 expect_fail "max-threshold" "$bin" bench distance "$data/cmu/16" --max-threshold 0
 echo "cli build ok"

@@ -243,6 +243,18 @@ Status add_tag_range(MotionDatabase& db, const std::string& tag, int first_frame
 
 }  // namespace
 
+DatabaseSettings database_settings_reading_as(const ClipLoadSettings& load) {
+  DatabaseSettings settings;
+  settings.asf_path = load.asf_path;
+  settings.bvh_metres_per_unit = load.bvh_metres_per_unit;
+  settings.up_axis = load.up_axis;
+  settings.input_fps = load.input_fps;
+  settings.keep_rest_frames = load.keep_rest_frames;
+  settings.travel = load.travel;
+  settings.foot_names = load.foot_names;
+  return settings;
+}
+
 Status DatabaseSettings::validate() const {
   if (!(fps > 0.0) || !std::isfinite(fps)) return Error{"", 0, fmt::format("fps must be positive, not {}", fps)};
   if (bvh_metres_per_unit && (!(*bvh_metres_per_unit > 0.0) || !std::isfinite(*bvh_metres_per_unit))) {
@@ -426,6 +438,32 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
 }
 
 }  // namespace
+
+std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes) {
+  std::vector<std::string> lines;
+  for (const auto& d : notes.detected_up_axes) {
+    if (!d.library_axis) continue;
+    lines.push_back(fmt::format("{}: read {} up like the library's other files, though its own shape says {} (z over "
+                                "y: {:.2f} as played, {:.2f} at rest); --up-axis or a manifest's up_axis decides",
+                                d.file, up_axis_name(*d.library_axis), up_axis_name(d.choice.axis),
+                                d.choice.animation_ratio, d.choice.rest_ratio));
+  }
+  lines.insert(lines.end(), notes.clip_doubts.begin(), notes.clip_doubts.end());
+  return lines;
+}
+
+std::string find_cmu_index(std::span<const std::string> inputs) {
+  for (const std::string& input : inputs) {
+    fs::path folder = fs::is_directory(input) ? fs::path(input) : fs::path(input).parent_path();
+    for (int up = 0; up < 3 && !folder.empty(); ++up) {
+      const fs::path candidate = folder / "cmu-mocap-index.tsv";
+      std::error_code ec;
+      if (fs::is_regular_file(candidate, ec)) return candidate.string();
+      folder = folder.parent_path();
+    }
+  }
+  return "";
+}
 
 Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, const DatabaseSettings& settings,
                                      DatabaseLoadNotes* notes) {

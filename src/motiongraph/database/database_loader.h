@@ -26,11 +26,13 @@
 #pragma once
 
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "motiongraph/core/error.h"
 #include "motiongraph/database/motion_database.h"
+#include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/in_place_choice.h"
 #include "motiongraph/motion/length_unit_choice.h"
 #include "motiongraph/motion/up_axis_choice.h"
@@ -69,6 +71,10 @@ struct DatabaseSettings {
   Status validate() const;
 };
 
+// Settings that read every clip as `load` does (and find its feet with load.foot_names); the
+// rate and the CMU tags at their defaults. `info` on a library reads it so.
+DatabaseSettings database_settings_reading_as(const ClipLoadSettings& load);
+
 // What loading chose by itself or noticed, for the caller to report: the unit of each BVH file
 // read without one (length_unit.h), in clip order, the up axis of each file read without one,
 // the clips whose travel was recovered from their feet (motion/in_place.h), and a line for each
@@ -96,6 +102,14 @@ struct DatabaseLoadNotes {
   std::vector<RecoveredTravel> recovered_travels;  // clips whose travel came from their feet
   std::vector<std::string> clip_doubts;
 };
+
+// The warnings loading gives the user, one line each: the files read in the library's up axis
+// rather than their own, then the clips that look wrong as read.
+std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes);
+
+// cmu-mocap-index.tsv beside, or up to two folders above, the first input (a folder, or a
+// file's folder) that has one; "" when none has (the shipped index is used then).
+std::string find_cmu_index(std::span<const std::string> inputs);
 
 Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, const DatabaseSettings& settings,
                                      DatabaseLoadNotes* notes = nullptr);

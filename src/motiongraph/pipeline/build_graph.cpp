@@ -18,7 +18,6 @@
 #include "motiongraph/graph/on_demand_candidates.h"
 #include "motiongraph/graph/pruned_candidates.h"
 #include "motiongraph/metric/frame_features.h"
-#include "motiongraph/motion/up_axis.h"
 #include "motiongraph/pipeline/build_report.h"
 #include "motiongraph/pipeline/saved_settings.h"
 
@@ -41,20 +40,6 @@ class Stopwatch {
  private:
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
-
-// cmu-mocap-index.tsv beside or up to two folders above the first input folder that has one.
-std::string find_cmu_index(std::span<const std::string> inputs) {
-  for (const std::string& input : inputs) {
-    fs::path folder = fs::is_directory(input) ? fs::path(input) : fs::path(input).parent_path();
-    for (int up = 0; up < 3 && !folder.empty(); ++up) {
-      const fs::path candidate = folder / "cmu-mocap-index.tsv";
-      std::error_code ec;
-      if (fs::is_regular_file(candidate, ec)) return candidate.string();
-      folder = folder.parent_path();
-    }
-  }
-  return "";
-}
 
 // ": walk 64 % of 70 %, run 12 % of 36 %" for the motion types short of their targets.
 std::string short_tags_text(const ThresholdChoice& choice, const MotionDatabase& db) {
@@ -382,14 +367,7 @@ Result<Prepared> prepare(std::span<const std::string> inputs, const BuildSetting
   auto db = load_database(input_list, db_settings, &load_notes);
   if (!db) return db.error();
   if (log.loaded) log.loaded(load_notes);
-  for (const auto& d : load_notes.detected_up_axes) {
-    if (!d.library_axis) continue;
-    say.warning(fmt::format("{}: read {} up like the library's other files, though its own shape says {} (z over y: "
-                            "{:.2f} as played, {:.2f} at rest); --up-axis or a manifest's up_axis decides",
-                            d.file, up_axis_name(*d.library_axis), up_axis_name(d.choice.axis),
-                            d.choice.animation_ratio, d.choice.rest_ratio));
-  }
-  for (const std::string& line : load_notes.clip_doubts) say.warning(line);
+  for (const std::string& line : load_warnings(load_notes)) say.warning(line);
   timings["load"] = watch.lap();
   say.info(fmt::format("{} clips, {} frames at {:g} fps ({:.1f} s), {} tags", db->clips.size(), db->frame_count(),
                        db->fps, db->frame_count() / db->fps, db->tag_names.size()));

@@ -1,0 +1,24 @@
+// motiongraph info FOLDER|MANIFEST...: a library summarised as `build` reads it (motion database,
+// database/database_loader.h): its clips at the database's rate with their tags, frames and
+// travel, the tags' totals, the skeletons, the feet found and how often each is planted, and
+// what loading chose or doubts (units, up axes, travel from the feet, clips that look wrong).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "motiongraph/database/database_loader.h"
+
+namespace mg::cli {
+
+struct LibraryInfoOptions {
+  DatabaseSettings database;  // as build makes them; cmu_index_path empty: found beside the inputs
+  bool find_cmu_index = true;
+  bool json = false;
+};
+
+// Prints the summary (text, or JSON with --json) on stdout, the loading's lines on stderr as
+// `build` logs them; the exit status, with one error line on failure.
+int run_library_info(const std::vector<std::string>& inputs, const LibraryInfoOptions& options);
+
+}  // namespace mg::cli
