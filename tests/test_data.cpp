@@ -108,4 +108,34 @@ double max_position_error_by_name(const Clip& a, const Clip& b) {
   return worst;
 }
 
+// The clip with a three-joint finger hung from each wrist (appended after the other joints, so
+// theirs keep their indices), turning a little every frame: a rig exported with fingers.
+Clip with_fingers(const Clip& clip) {
+  std::vector<JointDef> joints(clip.skeleton.joints().begin(), clip.skeleton.joints().end());
+  for (const char* wrist : {"lwrist", "rwrist"}) {
+    int parent = *clip.skeleton.find(wrist);
+    for (int k = 0; k < 3; ++k) {
+      JointDef finger;
+      finger.name = std::string(wrist) + "_finger" + std::to_string(k);
+      finger.parent = parent;
+      finger.rest_offset_m = Vec3(0.0, -0.03, 0.0);
+      parent = static_cast<int>(joints.size());
+      joints.push_back(finger);
+    }
+  }
+  Clip out = clip;
+  out.skeleton = Skeleton(std::move(joints));
+  out.motion = Motion(out.skeleton, clip.motion.frame_count, clip.motion.fps);
+  for (int f = 0; f < clip.motion.frame_count; ++f) {
+    auto rotations = out.motion.rotations(f);
+    for (int j = 0; j < out.skeleton.joint_count(); ++j) {
+      rotations[j] = j < clip.skeleton.joint_count() ? clip.motion.rotations(f)[j]
+                                                     : Quat(Eigen::AngleAxisd(0.01 * f, Vec3::UnitZ()));
+    }
+    std::copy(clip.motion.translations(f).begin(), clip.motion.translations(f).end(),
+              out.motion.translations(f).begin());
+  }
+  return out;
+}
+
 }  // namespace mg::test

@@ -52,4 +52,9 @@ double max_position_error(const std::vector<Vec3>& a, const std::vector<Vec3>& b
 // the frame counts differ.
 double max_position_error_by_name(const Clip& a, const Clip& b);
 
+// The clip with a three-joint finger hung from each wrist (lwrist, rwrist: CMU's names),
+// appended after its joints so that theirs keep their indices, turning a little every frame: a
+// rig exported with fingers.
+Clip with_fingers(const Clip& clip);
+
 }  // namespace mg::test

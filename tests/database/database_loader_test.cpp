@@ -389,6 +389,39 @@ TEST(DatabaseLoader, ClipsInPlaceGetTheirTravelFromTheFeetUnlessTold) {
   EXPECT_LT(floor_span(1), 0.2);
 }
 
+TEST(DatabaseLoader, SkeletonsThatDifferInSomeJointsAreReadOnTheJointsTheyShare) {
+  // Two walks as BVH, one exported with fingers: every clip is read on the joints both have,
+  // each moving as its own file has it; the notes name the fingers and their file.
+  TempFolder folder("fingers");
+  const Clip plain = test::load_data_clip("cmu/16/16_15.amc");
+  const Clip other = test::load_data_clip("cmu/16/16_16.amc");
+  const std::string plain_file = folder.write("a.bvh", write_bvh(plain.skeleton, plain.motion, BvhWriteSettings{}));
+  const Clip fingers = test::with_fingers(other);
+  const std::string fingers_file =
+      folder.write("b.bvh", write_bvh(fingers.skeleton, fingers.motion, BvhWriteSettings{}));
+  const std::string other_file = folder.write("c.bvh", write_bvh(other.skeleton, other.motion, BvhWriteSettings{}));
+
+  DatabaseLoadNotes notes;
+  auto db = load_database({plain_file, fingers_file}, cmu_settings(), &notes);
+  ASSERT_TRUE(db) << db.error().to_string();
+  ASSERT_EQ(db->clips.size(), 2u);
+  ASSERT_EQ(db->skeletons.size(), 2u);
+  EXPECT_EQ(db->skeletons[1].joint_count(), db->skeletons[0].joint_count());
+  ASSERT_EQ(notes.dropped_joints.size(), 1u);
+  EXPECT_EQ(notes.dropped_joints[0].skeleton, fingers_file);
+  EXPECT_EQ(notes.dropped_joints[0].joints.size(), 8u);  // 3 a finger, and the End Site BVH gives its tip
+  EXPECT_EQ(notes.common_joints.size(), static_cast<size_t>(db->skeletons[0].joint_count()));
+  const std::vector<std::string> warnings = load_warnings(notes);
+  ASSERT_FALSE(warnings.empty());
+  EXPECT_NE(warnings[0].find("dropped lwrist_finger0"), std::string::npos) << warnings[0];
+  // The fingered walk plays as the same walk without fingers, read on its own.
+  auto alone = load_database({other_file}, cmu_settings());
+  ASSERT_TRUE(alone) << alone.error().to_string();
+  EXPECT_EQ(world_positions(db->skeletons[1], db->clips[1].motion),
+            world_positions(alone->skeletons[0], alone->clips[0].motion));
+  EXPECT_FALSE(db->frame_contacts.empty());  // the feet are found on the shared joints
+}
+
 TEST(DatabaseLoader, RejectsASkeletonOfOtherJoints) {
   const std::string bvh = test::data_path("bvh/07_01.bvh");
   auto db = load_database({test::data_path("cmu/16"), bvh}, cmu_settings());

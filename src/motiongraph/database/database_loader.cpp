@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "motiongraph/database/cmu_tags.h"
 #include "motiongraph/database/database_contacts.h"
@@ -17,6 +18,7 @@
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/clip_doubts.h"
 #include "motiongraph/motion/clip_loader.h"
+#include "motiongraph/motion/common_joints.h"
 #include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/motion/resample.h"
 #include "motiongraph/motion/up_axis.h"
@@ -269,12 +271,28 @@ Status DatabaseSettings::validate() const {
 
 namespace {
 
-// Steps 3-5 of load_database: the clips read, back to back, the feet's contacts, the doubts. A file
-// whose own up axis is not settled and differs from the library's (motion/up_axis.h) is read
-// again in the library's, with every other file: the database is made once more.
+// Whether the joints every skeleton has can hold the library: at least two thirds of the
+// smallest skeleton's joints, both ankles among them.
+bool common_joints_suffice(const MotionDatabase& db, const std::vector<std::string>& common) {
+  size_t smallest = static_cast<size_t>(db.skeletons.front().joint_count());
+  for (const Skeleton& skeleton : db.skeletons) smallest = std::min(smallest, static_cast<size_t>(skeleton.joint_count()));
+  if (common.empty() || 3 * common.size() < 2 * smallest) return false;
+  auto feet = find_foot_joints(db.skeletons.front(), db.foot_names);
+  if (!feet) return true;  // the feet are missing anyway (a warning later), not for want of joints
+  const auto kept = [&](int joint) {
+    return joint < 0 || std::find(common.begin(), common.end(), db.skeletons.front().joint(joint).name) != common.end();
+  };
+  return kept(feet->left.ankle) && kept(feet->right.ankle);
+}
+
+// Steps 3-5 of load_database: the clips read, back to back, on `joints` when given (else as
+// read), the feet's contacts, the doubts. When the skeletons differ in some joints, every clip
+// is read again on those they share (motion/common_joints.h); a file whose own up axis is not
+// settled and differs from the library's (motion/up_axis.h) is read again in the library's. Each
+// time the database is made once more, with every file.
 Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSettings& settings,
                                   const ManifestWide& wide, const std::optional<CmuIndex>& cmu,
-                                  DatabaseLoadNotes* notes) {
+                                  DatabaseLoadNotes* notes, const std::vector<std::string>& joints) {
   MotionDatabase db;
   db.fps = wide.fps.value_or(settings.fps);
   db.foot_names = settings.foot_names.empty() ? wide.feet.value_or(FootJointNames{}) : settings.foot_names;
@@ -285,10 +303,16 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
   std::map<std::string, int> skeleton_of_file;  // canonical skeleton path -> index
   int next_frame = 0;
   std::vector<std::pair<size_t, UpAxisChoice>> chosen_up_axes;  // spec index, its own choice
+  std::optional<Error> other_joints;  // the first skeleton whose joints differ from the first's
   for (size_t spec_index = 0; spec_index < specs.size(); ++spec_index) {
     const ClipSpec& spec = specs[spec_index];
     auto loaded = loaders.for_settings(spec.load).load(spec.path);
     if (!loaded) return loaded.error();
+    if (!joints.empty()) {
+      auto kept = keep_joints(loaded->clip, joints);
+      if (!kept) return spec.error(kept.error().message);
+      loaded->clip = std::move(*kept);
+    }
     if (loaded->clip.detected_up_axis) chosen_up_axes.emplace_back(spec_index, *loaded->clip.detected_up_axis);
     if (notes && loaded->clip.detected_unit) notes->detected_units.push_back({spec.path, *loaded->clip.detected_unit});
     if (notes && loaded->clip.detected_up_axis) {
@@ -341,10 +365,12 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     } else {
       if (!db.skeletons.empty()) {
         if (auto difference = topology_difference(db.skeletons.front(), loaded->clip.skeleton)) {
-          return spec.error(fmt::format(
+          Error error = spec.error(fmt::format(
               "skeleton {} does not match {}, the database's first skeleton: {}; clips of one database need the "
-              "same joints (names and parents, in the same order)",
+              "same joints (names and parents), or at least most of them in common",
               skeleton_file, db.skeleton_names.front(), *difference));
+          if (!joints.empty()) return error;
+          if (!other_joints) other_joints = std::move(error);
         }
       }
       skeleton = static_cast<int>(db.skeletons.size());
@@ -395,7 +421,28 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     db.clips.push_back(std::move(clip));
   }
 
-  // 3b. Files whose own up axis is not settled follow the library's: read again in it.
+  // 3b. Skeletons that differ in some joints: every clip read again on the joints all share.
+  if (other_joints) {
+    std::vector<std::string> common = common_joints(db.skeletons);
+    if (!common_joints_suffice(db, common)) return *other_joints;
+    std::vector<DatabaseLoadNotes::DroppedJoints> dropped;
+    for (size_t s = 0; s < db.skeletons.size(); ++s) {
+      DatabaseLoadNotes::DroppedJoints d{db.skeleton_names[s], {}};
+      for (const JointDef& joint : db.skeletons[s].joints()) {
+        if (std::find(common.begin(), common.end(), joint.name) == common.end()) d.joints.push_back(joint.name);
+      }
+      if (!d.joints.empty()) dropped.push_back(std::move(d));
+    }
+    if (notes != nullptr) *notes = DatabaseLoadNotes{};
+    auto again = load_clips(std::move(specs), settings, wide, cmu, notes, common);
+    if (again && notes != nullptr) {
+      notes->common_joints = std::move(common);
+      notes->dropped_joints = std::move(dropped);
+    }
+    return again;
+  }
+
+  // 3c. Files whose own up axis is not settled follow the library's: read again in it.
   std::vector<UpAxisChoice> choices;
   for (const auto& [spec_index, choice] : chosen_up_axes) choices.push_back(choice);
   if (const std::optional<UpAxis> library = library_up_axis(choices)) {
@@ -407,7 +454,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     }
     if (!followed.empty()) {
       if (notes != nullptr) *notes = DatabaseLoadNotes{};
-      auto again = load_clips(std::move(specs), settings, wide, cmu, notes);
+      auto again = load_clips(std::move(specs), settings, wide, cmu, notes, joints);
       if (again && notes != nullptr) {
         notes->detected_up_axes.insert(notes->detected_up_axes.end(), followed.begin(), followed.end());
       }
@@ -447,6 +494,25 @@ std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes) {
                                 "y: {:.2f} as played, {:.2f} at rest); --up-axis or a manifest's up_axis decides",
                                 d.file, up_axis_name(*d.library_axis), up_axis_name(d.choice.axis),
                                 d.choice.animation_ratio, d.choice.rest_ratio));
+  }
+  if (!notes.dropped_joints.empty()) {
+    std::vector<std::string> names, files;
+    for (const auto& d : notes.dropped_joints) {
+      files.push_back(d.skeleton);
+      for (const std::string& name : d.joints) {
+        if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+      }
+    }
+    constexpr size_t kShown = 4;
+    const auto listed = [](const std::vector<std::string>& all, size_t shown) {
+      const std::vector<std::string> first(all.begin(), all.begin() + static_cast<long>(std::min(shown, all.size())));
+      return fmt::format("{}{}", fmt::join(first, ", "),
+                         all.size() > shown ? fmt::format(" and {} more", all.size() - shown) : "");
+    };
+    lines.push_back(fmt::format("the skeletons differ in some joints: every clip is read on the {} joints all of them "
+                                "have; dropped {} ({} joint{}) from {}",
+                                notes.common_joints.size(), listed(names, kShown), names.size(),
+                                names.size() == 1 ? "" : "s", listed(files, 2)));
   }
   lines.insert(lines.end(), notes.clip_doubts.begin(), notes.clip_doubts.end());
   return lines;
@@ -515,7 +581,7 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
   }
 
   if (notes != nullptr) *notes = DatabaseLoadNotes{};
-  return load_clips(std::move(specs), settings, wide, cmu, notes);
+  return load_clips(std::move(specs), settings, wide, cmu, notes, {});
 }
 
 }  // namespace mg

@@ -11,9 +11,12 @@
 //   - a .toml manifest.
 //
 // Skeletons: each distinct skeleton file (an ASF, or a BVH, which holds its own) is one entry
-// of db.skeletons. Clips of different skeletons may share a database only when their joints
-// have the same names and the same parents, in the same order (point clouds compare joints
-// by index); otherwise loading fails, naming both files and the first joint that differs.
+// of db.skeletons. Clips of different skeletons share a database when their joints have the
+// same names and the same parents, in the same order (point clouds compare joints by index).
+// Skeletons that differ in some joints only (fingers in some files, a prop joint) are all read
+// on the joints they share (motion/common_joints.h), in the first skeleton's order, when those
+// are at least two thirds of the smallest skeleton's and hold both ankles; the notes name what
+// was dropped. Otherwise loading fails, naming both files and the first joint that differs.
 //
 // Tags: a manifest clip that mentions tags (tags = [...] or ranges) gets exactly those; any
 // other clip, when settings.cmu_tags is on, gets the tags of its CMU description
@@ -21,7 +24,7 @@
 // clip), for all its frames.
 //
 // Errors: a missing input or clip file, a clip with fewer than 2 frames after resampling (it
-// holds no motion), a frame range past the end of its file, skeletons that do not match,
+// holds no motion), a frame range past the end of its file, skeletons too unlike to share,
 // more than 64 tags; each names the file (and the manifest line when a manifest gave it).
 #pragma once
 
@@ -100,11 +103,20 @@ struct DatabaseLoadNotes {
     InPlaceChoice choice;
   };
   std::vector<RecoveredTravel> recovered_travels;  // clips whose travel came from their feet
+  // When the skeletons differ in some joints (motion/common_joints.h): the joints every clip
+  // was read on, and each skeleton's dropped ones (those of skeletons that lost any).
+  std::vector<std::string> common_joints;
+  struct DroppedJoints {
+    std::string skeleton;
+    std::vector<std::string> joints;
+  };
+  std::vector<DroppedJoints> dropped_joints;
   std::vector<std::string> clip_doubts;
 };
 
 // The warnings loading gives the user, one line each: the files read in the library's up axis
-// rather than their own, then the clips that look wrong as read.
+// rather than their own, the joints dropped to read every clip on the same ones, then the clips
+// that look wrong as read.
 std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes);
 
 // cmu-mocap-index.tsv beside, or up to two folders above, the first input (a folder, or a

@@ -1,0 +1,95 @@
+#include "motiongraph/motion/common_joints.h"
+
+#include <map>
+
+#include <fmt/format.h>
+
+namespace mg {
+
+namespace {
+
+// The parent's name of each joint by its name ("" for the root).
+std::map<std::string, std::string> parent_names(const Skeleton& skeleton) {
+  std::map<std::string, std::string> parents;
+  for (int j = 0; j < skeleton.joint_count(); ++j) {
+    const int parent = skeleton.parent(j);
+    parents[skeleton.joint(j).name] = parent < 0 ? std::string() : skeleton.joint(parent).name;
+  }
+  return parents;
+}
+
+}  // namespace
+
+std::vector<std::string> common_joints(std::span<const Skeleton> skeletons) {
+  if (skeletons.empty() || skeletons.front().joint_count() == 0) return {};
+  std::vector<std::map<std::string, std::string>> others;
+  for (const Skeleton& skeleton : skeletons.subspan(1)) others.push_back(parent_names(skeleton));
+  const Skeleton& first = skeletons.front();
+  std::vector<bool> kept(static_cast<size_t>(first.joint_count()), false);
+  std::vector<std::string> names;
+  for (int j = 0; j < first.joint_count(); ++j) {
+    const int parent = first.parent(j);
+    if (parent >= 0 && !kept[static_cast<size_t>(parent)]) continue;  // below a dropped joint
+    const std::string& name = first.joint(j).name;
+    const std::string parent_name = parent < 0 ? std::string() : first.joint(parent).name;
+    bool everywhere = true;
+    for (const auto& other : others) {
+      const auto it = other.find(name);
+      everywhere = everywhere && it != other.end() && it->second == parent_name;
+    }
+    if (!everywhere) {
+      if (j == 0) return {};
+      continue;
+    }
+    kept[static_cast<size_t>(j)] = true;
+    names.push_back(name);
+  }
+  return names;
+}
+
+Result<Clip> keep_joints(const Clip& clip, std::span<const std::string> names) {
+  const Skeleton& skeleton = clip.skeleton;
+  std::vector<int> source;          // kept joint -> its index in the clip's skeleton
+  std::map<int, int> kept_index;    // the clip's index -> kept joint
+  std::vector<JointDef> joints;
+  for (const std::string& name : names) {
+    const std::optional<int> j = skeleton.find(name);
+    if (!j) return Error{"", 0, fmt::format("the skeleton has no joint '{}'", name)};
+    JointDef def = skeleton.joint(*j);
+    if (joints.empty()) {
+      if (*j != 0) return Error{"", 0, fmt::format("'{}' is not the skeleton's root", name)};
+    } else {
+      const auto parent = kept_index.find(skeleton.parent(*j));
+      if (parent == kept_index.end()) {
+        return Error{"", 0, fmt::format("the parent of '{}' is not among the joints kept before it", name)};
+      }
+      def.parent = parent->second;
+    }
+    kept_index[*j] = static_cast<int>(joints.size());
+    source.push_back(*j);
+    joints.push_back(std::move(def));
+  }
+  const std::vector<StaticAncestor> ancestors(skeleton.static_ancestors().begin(), skeleton.static_ancestors().end());
+  Clip out;
+  out.name = clip.name;
+  out.skeleton = Skeleton(std::move(joints), ancestors);
+  out.motion = Motion(out.skeleton, clip.motion.frame_count, clip.motion.fps);
+  out.dropped_leading_frames = clip.dropped_leading_frames;
+  out.detected_unit = clip.detected_unit;
+  out.detected_up_axis = clip.detected_up_axis;
+  out.in_place = clip.in_place;
+  for (int f = 0; f < clip.motion.frame_count; ++f) {
+    const auto rotations = clip.motion.rotations(f);
+    const auto translations = clip.motion.translations(f);
+    auto kept_rotations = out.motion.rotations(f);
+    auto kept_translations = out.motion.translations(f);
+    for (size_t k = 0; k < source.size(); ++k) {
+      kept_rotations[k] = rotations[static_cast<size_t>(source[k])];
+      const int slot = out.skeleton.translation_slot(static_cast<int>(k));
+      if (slot >= 0) kept_translations[slot] = translations[skeleton.translation_slot(source[k])];
+    }
+  }
+  return out;
+}
+
+}  // namespace mg

@@ -1,0 +1,27 @@
+// Clips of skeletons that differ only in some joints (fingers in some files and not in others,
+// an extra toe or end site, a prop joint) read on the joints they share, so that one database
+// can hold them all. Joints are matched by name (exactly) with the same parent's name.
+#pragma once
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "motiongraph/core/error.h"
+#include "motiongraph/motion/motion.h"
+
+namespace mg {
+
+// The joints every skeleton has, by name with the same parent's name, in the first skeleton's
+// order; a joint whose parent is not common is not either, so what is dropped from each
+// skeleton is whole subtrees hanging from kept joints. Empty when the roots differ (or no
+// skeleton is given).
+std::vector<std::string> common_joints(std::span<const Skeleton> skeletons);
+
+// The clip on the joints named (in that order; the first must be its root, and each joint's
+// parent must come before it): every kept joint moves as before, in the world too, since only
+// subtrees below kept joints are dropped. Fails naming a joint the skeleton lacks or one whose
+// parent is not kept.
+Result<Clip> keep_joints(const Clip& clip, std::span<const std::string> names);
+
+}  // namespace mg
