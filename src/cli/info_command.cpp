@@ -1,5 +1,6 @@
 // motiongraph info FILE...: skeleton and clip summary per file (text, or --json).
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 
@@ -37,7 +38,9 @@ struct InfoOptions {
 bool is_library(const std::vector<std::string>& files) {
   return std::any_of(files.begin(), files.end(), [](const std::string& file) {
     std::error_code ec;
-    return std::filesystem::is_directory(file, ec) || std::filesystem::path(file).extension() == ".toml";
+    std::string extension = std::filesystem::path(file).extension().string();
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return std::filesystem::is_directory(file, ec) || extension == ".toml";
   });
 }
 
@@ -195,7 +198,7 @@ Command add_info_command(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingPath);
   sub->add_option("--fps", options->fps, "A library's frame rate, as build's --fps (default 30; a manifest's own)")
-      ->check(CLI::Range(0.01, 10000.0))
+      ->check(CLI::Range(1.0, 1000.0))
       ->each([o = options.get()](const std::string&) { o->fps_given = true; });
   sub->add_option("--cmu-index", options->cmu_index,
                   "For a library: CMU's motion index for tags, as build's (default: one beside or above the "

@@ -1,5 +1,6 @@
 #include "cli/library_info.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <map>
 
@@ -26,12 +27,31 @@ struct ClipTag {
   int frame_count = 0;
 };
 
+// Each tag's frames of the clip as runs of consecutive frames (ranges of one tag that overlap
+// or touch merged), in tag order.
 std::vector<ClipTag> tags_of_clip(const MotionDatabase& db, const DatabaseClip& clip) {
-  std::vector<ClipTag> tags;
+  std::vector<std::vector<bool>> covered(db.tag_names.size());
   for (const TagRange& range : db.tag_ranges) {
     const int first = std::max(range.first_frame, clip.first_frame);
     const int end = std::min(range.first_frame + range.frame_count, clip.first_frame + clip.frame_count);
-    if (first < end) tags.push_back({db.tag_names[static_cast<size_t>(range.tag)], first - clip.first_frame, end - first});
+    if (first >= end) continue;
+    std::vector<bool>& frames = covered[static_cast<size_t>(range.tag)];
+    frames.resize(static_cast<size_t>(clip.frame_count), false);
+    for (int f = first; f < end; ++f) frames[static_cast<size_t>(f - clip.first_frame)] = true;
+  }
+  std::vector<ClipTag> tags;
+  for (size_t t = 0; t < covered.size(); ++t) {
+    const std::vector<bool>& frames = covered[t];
+    for (size_t f = 0; f < frames.size();) {
+      if (!frames[f]) {
+        ++f;
+        continue;
+      }
+      size_t end = f;
+      while (end < frames.size() && frames[end]) ++end;
+      tags.push_back({db.tag_names[t], static_cast<int>(f), static_cast<int>(end - f)});
+      f = end;
+    }
   }
   return tags;
 }
@@ -79,11 +99,11 @@ int run_library_info(const std::vector<std::string>& inputs, const LibraryInfoOp
   for (const DatabaseClip& clip : db.clips) {
     clip_tags.push_back(tags_of_clip(db, clip));
     summaries.push_back(summarize(db.skeletons[static_cast<size_t>(clip.skeleton)], clip.motion));
-    std::map<std::string, int> frames_of_tag;
+    std::map<std::string, int> frames_of_tag;  // the runs of one tag do not overlap
     for (const ClipTag& tag : clip_tags.back()) frames_of_tag[tag.name] += tag.frame_count;
     for (const auto& [name, frames] : frames_of_tag) {
       totals[name].clips += 1;
-      totals[name].frames += std::min(frames, clip.frame_count);
+      totals[name].frames += frames;
     }
     if (clip_tags.back().empty()) {
       ++untagged_clips;
@@ -139,14 +159,20 @@ int run_library_info(const std::vector<std::string>& inputs, const LibraryInfoOp
 
   fmt::print("{}: library of {} clip{}, {} frames at {:g} fps ({:.1f} s)\n", name, db.clips.size(),
              db.clips.size() == 1 ? "" : "s", db.frame_count(), db.fps, seconds);
-  // Skeletons: one per ASF or BVH file, all with the same joints.
-  const size_t skeletons = db.skeleton_names.size();
+  // Skeletons: one per ASF or BVH file (an ASF read both y and z up is two), all with the same joints.
+  std::vector<std::string> skeleton_files;
+  for (const std::string& file : db.skeleton_names) {
+    if (std::find(skeleton_files.begin(), skeleton_files.end(), file) == skeleton_files.end()) {
+      skeleton_files.push_back(file);
+    }
+  }
+  const size_t skeletons = skeleton_files.size();
   if (skeletons == 1) {
-    fmt::print("  skeleton: {}\n", db.skeleton_names.front());
+    fmt::print("  skeleton: {}\n", skeleton_files.front());
   } else {
     constexpr size_t kNamed = 3;
-    const std::vector<std::string> named(db.skeleton_names.begin(),
-                                         db.skeleton_names.begin() + static_cast<long>(std::min(skeletons, kNamed)));
+    const std::vector<std::string> named(skeleton_files.begin(),
+                                         skeleton_files.begin() + static_cast<long>(std::min(skeletons, kNamed)));
     fmt::print("  skeleton: {} with the same joints ({}{})\n", skeletons, fmt::join(named, ", "),
                skeletons > kNamed ? fmt::format(" and {} more", skeletons - kNamed) : "");
   }

@@ -346,5 +346,27 @@ assert ranges["start"]["frames"] + ranges["steady"]["frames"] == walk["frames"],
 assert abs(walk["duration_s"] - 200 / 120) < 0.05, walk["duration_s"]   # file frames 41..240 at 120 fps
 assert run["tags"] == ["run"] and untagged["tags"] == [] and manifest["untagged"]["clips"] == 1, manifest["untagged"]
 PY
+# Ranges of one tag that overlap count their frames once: as one range over both.
+for ranges in "{ first_frame = 1, last_frame = 200, tags = [\"walk\"] }, { first_frame = 100, last_frame = 300, tags = [\"walk\"] }" \
+              "{ first_frame = 1, last_frame = 300, tags = [\"walk\"] }"; do
+  printf 'skeleton = "%s"\n[[clip]]\nfile = "%s"\nranges = [%s]\n' "$data/cmu/16/16.asf" "$data/cmu/16/16_15.amc" \
+    "$ranges" >"$work/overlap.toml"
+  "$bin" info --json "$work/overlap.toml" >>"$work/overlap.jsonl"
+  "$bin" info "$work/overlap.toml" | grep -E "^  16_15 .* walk 0-[0-9]+$" >/dev/null \
+    || { echo "FAIL: overlapping ranges shown as one"; "$bin" info "$work/overlap.toml"; exit 1; }
+done
+python3 - "$work/overlap.jsonl" <<'PY'
+import json, sys
+text = open(sys.argv[1]).read()
+decoder, docs, at = json.JSONDecoder(), [], 0
+while at < len(text.rstrip()):
+    doc, at = decoder.raw_decode(text, at)
+    docs.append(doc)
+    while at < len(text) and text[at].isspace():
+        at += 1
+overlapping, single = docs
+assert overlapping["tags"] == single["tags"] and overlapping["tags"]["walk"]["frames"] < overlapping["frames"], docs
+assert overlapping["clips"][0]["tag_ranges"] == single["clips"][0]["tag_ranges"], docs
+PY
 expect_fail "max-threshold" "$bin" bench distance "$data/cmu/16" --max-threshold 0
 echo "cli build ok"

@@ -338,6 +338,24 @@ TEST(DatabaseLoader, AFileWhoseOwnUpAxisIsNotSettledIsReadInTheLibrarys) {
   EXPECT_EQ(followed.choice.axis, UpAxis::kY);
   EXPECT_EQ(followed.library_axis, UpAxis::kZ);
 
+  // A file cut into several clips votes once: two walks and the crawl given as two frame ranges
+  // still read the crawl z up, with one note for it.
+  const std::string manifest = folder.write(
+      "split.toml", fmt::format("[[clip]]\nfile = \"{}\"\n[[clip]]\nfile = \"{}\"\n[[clip]]\nfile = \"{}\"\n"
+                                "name = \"crawl_a\"\nlast_frame = 150\n[[clip]]\nfile = \"{}\"\nname = \"crawl_b\"\n"
+                                "first_frame = 151\n",
+                                files[0], files[1], crawl, crawl));
+  DatabaseLoadNotes split_notes;
+  auto split = load_database({manifest}, settings, &split_notes);
+  ASSERT_TRUE(split) << split.error().to_string();
+  ASSERT_EQ(split->clips.size(), 4u);
+  int followed_notes = 0;
+  for (const auto& d : split_notes.detected_up_axes) followed_notes += d.library_axis ? 1 : 0;
+  EXPECT_EQ(followed_notes, 1);
+  // Its first clip starts where the whole file does, read z up as in the library.
+  EXPECT_EQ(world_positions(split->skeletons[split->clips[2].skeleton], split->clips[2].motion).front(),
+            world_positions(library->skeletons[library->clips[3].skeleton], library->clips[3].motion).front());
+
   settings.up_axis = UpAxis::kZ;
   DatabaseLoadNotes told_notes;
   auto told = load_database({crawl}, settings, &told_notes);
@@ -432,6 +450,21 @@ TEST(DatabaseLoader, RejectsASkeletonOfOtherJoints) {
   EXPECT_NE(message.find("16.asf"), std::string::npos) << message;
   EXPECT_NE(message.find("names and parents"), std::string::npos) << message;
   EXPECT_NE(message.find("joint 0 is 'root' there, 'hip' here"), std::string::npos) << message;  // the first difference
+  EXPECT_NE(message.find("they share 0 joints"), std::string::npos) << message;  // roots of other names
+}
+
+TEST(DatabaseLoader, RejectsSkeletonsWhoseSharedJointsLackAnAnkle) {
+  // Most joints shared, but the left ankle renamed in one file: the shared joints cannot carry
+  // the feet, and the error says so.
+  TempFolder folder("ankle");
+  const Clip walk = test::load_data_clip("cmu/16/16_15.amc");
+  const std::string text = write_bvh(walk.skeleton, walk.motion, BvhWriteSettings{});
+  const std::string plain = folder.write("a.bvh", text);
+  const std::string renamed = folder.write("b.bvh", test::replace_once(text, "JOINT lfoot", "JOINT lpes"));
+  auto db = load_database({plain, renamed}, cmu_settings());
+  ASSERT_FALSE(db);
+  EXPECT_EQ(db.error().file, renamed);
+  EXPECT_NE(db.error().message.find("the ankle 'lfoot' is not among the"), std::string::npos) << db.error().message;
 }
 
 TEST(DatabaseLoader, ErrorsNameTheFileAndManifestLine) {

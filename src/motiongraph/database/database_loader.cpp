@@ -271,18 +271,25 @@ Status DatabaseSettings::validate() const {
 
 namespace {
 
-// Whether the joints every skeleton has can hold the library: at least two thirds of the
-// smallest skeleton's joints, both ankles among them.
-bool common_joints_suffice(const MotionDatabase& db, const std::vector<std::string>& common) {
+// Why the joints every skeleton has cannot hold the library (nullopt when they can): they must
+// be at least two thirds of the smallest skeleton's joints, both ankles among them.
+std::optional<std::string> common_joints_fall_short(const MotionDatabase& db, const std::vector<std::string>& common) {
   size_t smallest = static_cast<size_t>(db.skeletons.front().joint_count());
   for (const Skeleton& skeleton : db.skeletons) smallest = std::min(smallest, static_cast<size_t>(skeleton.joint_count()));
-  if (common.empty() || 3 * common.size() < 2 * smallest) return false;
+  if (common.empty() || 3 * common.size() < 2 * smallest) {
+    return fmt::format("they share {} joints (by name, with the same parent's name), fewer than two thirds of the "
+                       "smallest skeleton's {}",
+                       common.size(), smallest);
+  }
   auto feet = find_foot_joints(db.skeletons.front(), db.foot_names);
-  if (!feet) return true;  // the feet are missing anyway (a warning later), not for want of joints
-  const auto kept = [&](int joint) {
-    return joint < 0 || std::find(common.begin(), common.end(), db.skeletons.front().joint(joint).name) != common.end();
-  };
-  return kept(feet->left.ankle) && kept(feet->right.ankle);
+  if (!feet) return std::nullopt;  // the feet are missing anyway (a warning later), not for want of joints
+  for (const int ankle : {feet->left.ankle, feet->right.ankle}) {
+    const std::string& name = db.skeletons.front().joint(ankle).name;
+    if (std::find(common.begin(), common.end(), name) == common.end()) {
+      return fmt::format("the ankle '{}' is not among the {} joints they share", name, common.size());
+    }
+  }
+  return std::nullopt;
 }
 
 // Steps 3-5 of load_database: the clips read, back to back, on `joints` when given (else as
@@ -367,7 +374,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
         if (auto difference = topology_difference(db.skeletons.front(), loaded->clip.skeleton)) {
           Error error = spec.error(fmt::format(
               "skeleton {} does not match {}, the database's first skeleton: {}; clips of one database need the "
-              "same joints (names and parents), or at least most of them in common",
+              "same joints (names and parents), or most of them in common",
               skeleton_file, db.skeleton_names.front(), *difference));
           if (!joints.empty()) return error;
           if (!other_joints) other_joints = std::move(error);
@@ -424,7 +431,9 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
   // 3b. Skeletons that differ in some joints: every clip read again on the joints all share.
   if (other_joints) {
     std::vector<std::string> common = common_joints(db.skeletons);
-    if (!common_joints_suffice(db, common)) return *other_joints;
+    if (auto short_by = common_joints_fall_short(db, common)) {
+      return Error{other_joints->file, other_joints->line, other_joints->message + " (" + *short_by + ")"};
+    }
     std::vector<DatabaseLoadNotes::DroppedJoints> dropped;
     for (size_t s = 0; s < db.skeletons.size(); ++s) {
       DatabaseLoadNotes::DroppedJoints d{db.skeleton_names[s], {}};
@@ -442,15 +451,24 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     return again;
   }
 
-  // 3c. Files whose own up axis is not settled follow the library's: read again in it.
+  // 3c. Files whose own up axis is not settled follow the library's: read again in it. Each file
+  // votes once, however many clips (frame ranges) a manifest cuts from it.
+  std::map<std::string, UpAxisChoice> choice_of_file;
+  std::vector<std::string> voting_files;  // in clip order
+  for (const auto& [spec_index, choice] : chosen_up_axes) {
+    if (choice_of_file.emplace(specs[spec_index].path, choice).second) voting_files.push_back(specs[spec_index].path);
+  }
   std::vector<UpAxisChoice> choices;
-  for (const auto& [spec_index, choice] : chosen_up_axes) choices.push_back(choice);
+  for (const std::string& file : voting_files) choices.push_back(choice_of_file.at(file));
   if (const std::optional<UpAxis> library = library_up_axis(choices)) {
     std::vector<DatabaseLoadNotes::DetectedUpAxis> followed;
-    for (const auto& [spec_index, choice] : chosen_up_axes) {
+    for (const std::string& file : voting_files) {
+      const UpAxisChoice& choice = choice_of_file.at(file);
       if (up_axis_settled(choice) || choice.axis == *library) continue;
-      specs[spec_index].load.up_axis = *library;
-      followed.push_back({specs[spec_index].path, choice, *library});
+      followed.push_back({file, choice, *library});
+    }
+    for (const auto& [spec_index, choice] : chosen_up_axes) {
+      if (!up_axis_settled(choice) && choice.axis != *library) specs[spec_index].load.up_axis = *library;
     }
     if (!followed.empty()) {
       if (notes != nullptr) *notes = DatabaseLoadNotes{};
@@ -498,7 +516,7 @@ std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes) {
   if (!notes.dropped_joints.empty()) {
     std::vector<std::string> names, files;
     for (const auto& d : notes.dropped_joints) {
-      files.push_back(d.skeleton);
+      if (std::find(files.begin(), files.end(), d.skeleton) == files.end()) files.push_back(d.skeleton);
       for (const std::string& name : d.joints) {
         if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
       }
