@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
 
 #include "cli/commands.h"
 #include "cli/feet_report.h"
@@ -72,6 +73,10 @@ nlohmann::json skeleton_json(const Skeleton& skeleton) {
 
 int run_info(const InfoOptions& options) {
   if (is_library(options.files)) return run_library(options);
+  if (options.fps_given || !options.cmu_index.empty() || options.no_cmu_tags) {
+    spdlog::warn("--fps, --cmu-index and --no-cmu-tags apply to folders and manifests (a library); these files are "
+                 "summarised as read");
+  }
   ClipLoadSettings settings = options.load.settings();
   // An .asf among the files is the skeleton of the .amc files given with it.
   for (const std::string& file : options.files) {

@@ -45,6 +45,10 @@ for side in ("left", "right"):
     assert named[side]["planted_share"] == found[side]["planted_share"], (named, found)
 PY
 
+# A library's options on plain files: said, not silently ignored.
+"$bin" info --fps 60 "$data/bvh/16_01.bvh" 2>&1 >/dev/null | grep "apply to folders and manifests" >/dev/null \
+  || { echo "FAIL: info --fps on a file"; exit 1; }
+
 # convert: AMC -> BVH and JSON, resampled; BVH -> BVH with a scale.
 "$bin" convert "$data/cmu/16/16_35.amc" -o "$work/jog.bvh" --fps 30
 "$bin" convert "$data/cmu/16/16_35.amc" -o "$work/jog.json" --fps 30
