@@ -338,20 +338,21 @@ TEST(DatabaseLoader, AFileWhoseOwnUpAxisIsNotSettledIsReadInTheLibrarys) {
   EXPECT_EQ(followed.choice.axis, UpAxis::kY);
   EXPECT_EQ(followed.library_axis, UpAxis::kZ);
 
-  // A file cut into several clips votes once: two walks and the crawl given as two frame ranges
-  // still read the crawl z up, with one note for it.
+  // A file cut into several clips votes once: two walks (the first also cut again) and the crawl
+  // given as two frame ranges still read the crawl z up, with one note a file.
   const std::string manifest = folder.write(
       "split.toml", fmt::format("[[clip]]\nfile = \"{}\"\n[[clip]]\nfile = \"{}\"\n[[clip]]\nfile = \"{}\"\n"
                                 "name = \"crawl_a\"\nlast_frame = 150\n[[clip]]\nfile = \"{}\"\nname = \"crawl_b\"\n"
-                                "first_frame = 151\n",
-                                files[0], files[1], crawl, crawl));
+                                "first_frame = 151\n[[clip]]\nfile = \"{}\"\nname = \"walk_again\"\nlast_frame = 100\n",
+                                files[0], files[1], crawl, crawl, files[0]));
   DatabaseLoadNotes split_notes;
   auto split = load_database({manifest}, settings, &split_notes);
   ASSERT_TRUE(split) << split.error().to_string();
-  ASSERT_EQ(split->clips.size(), 4u);
+  ASSERT_EQ(split->clips.size(), 5u);
   int followed_notes = 0;
   for (const auto& d : split_notes.detected_up_axes) followed_notes += d.library_axis ? 1 : 0;
   EXPECT_EQ(followed_notes, 1);
+  EXPECT_EQ(split_notes.detected_up_axes.size(), 3u);  // a note a file: two walks (one cut twice), the crawl
   // Its first clip starts where the whole file does, read z up as in the library.
   EXPECT_EQ(world_positions(split->skeletons[split->clips[2].skeleton], split->clips[2].motion).front(),
             world_positions(library->skeletons[library->clips[3].skeleton], library->clips[3].motion).front());

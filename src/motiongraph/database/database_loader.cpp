@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <set>
 #include <tuple>
 
 #include <fmt/format.h>
@@ -311,6 +312,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
   int next_frame = 0;
   std::vector<std::pair<size_t, UpAxisChoice>> chosen_up_axes;  // spec index, its own choice
   std::optional<Error> other_joints;  // the first skeleton whose joints differ from the first's
+  std::set<std::string> noted_units, noted_up_axes, noted_travels;  // files
   for (size_t spec_index = 0; spec_index < specs.size(); ++spec_index) {
     const ClipSpec& spec = specs[spec_index];
     auto loaded = loaders.for_settings(spec.load).load(spec.path);
@@ -321,11 +323,15 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
       loaded->clip = std::move(*kept);
     }
     if (loaded->clip.detected_up_axis) chosen_up_axes.emplace_back(spec_index, *loaded->clip.detected_up_axis);
-    if (notes && loaded->clip.detected_unit) notes->detected_units.push_back({spec.path, *loaded->clip.detected_unit});
-    if (notes && loaded->clip.detected_up_axis) {
+    // Noted once a file, however many clips a manifest cuts from it.
+    if (notes && loaded->clip.detected_unit && noted_units.insert(spec.path).second) {
+      notes->detected_units.push_back({spec.path, *loaded->clip.detected_unit});
+    }
+    if (notes && loaded->clip.detected_up_axis && noted_up_axes.insert(spec.path).second) {
       notes->detected_up_axes.push_back({spec.path, *loaded->clip.detected_up_axis, std::nullopt});
     }
-    if (notes && loaded->clip.in_place && loaded->clip.in_place->recovered) {
+    if (notes && loaded->clip.in_place && loaded->clip.in_place->recovered &&
+        noted_travels.insert(spec.path).second) {
       notes->recovered_travels.push_back({spec.path, spec.load.travel, *loaded->clip.in_place});
     }
     const Motion& motion = loaded->clip.motion;
