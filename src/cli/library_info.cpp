@@ -77,12 +77,8 @@ struct TagTotal {
 }  // namespace
 
 int run_library_info(const std::vector<std::string>& inputs, const LibraryInfoOptions& options) {
-  DatabaseSettings settings = options.database;
-  if (options.find_cmu_index && settings.cmu_tags && settings.cmu_index_path.empty()) {
-    settings.cmu_index_path = find_cmu_index(inputs);
-  }
   DatabaseLoadNotes notes;
-  auto loaded = load_database(inputs, settings, &notes);
+  auto loaded = load_database(inputs, options.database, &notes);
   if (!loaded) return fail(loaded.error());
   const MotionDatabase& db = *loaded;
   report_units(notes, false);

@@ -12,8 +12,7 @@
 namespace mg::cli {
 
 struct LibraryInfoOptions {
-  DatabaseSettings database;  // as build makes them; cmu_index_path empty: found beside the inputs
-  bool find_cmu_index = true;
+  DatabaseSettings database;  // as build makes them
   bool json = false;
 };
 

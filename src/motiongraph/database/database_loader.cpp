@@ -272,6 +272,21 @@ Status DatabaseSettings::validate() const {
 
 namespace {
 
+// cmu-mocap-index.tsv beside, or up to two folders above, the first input (a folder, or a
+// file's folder) that has one; "" when none has.
+std::string find_cmu_index(std::span<const std::string> inputs) {
+  for (const std::string& input : inputs) {
+    fs::path folder = fs::is_directory(input) ? fs::path(input) : fs::path(input).parent_path();
+    for (int up = 0; up < 3 && !folder.empty(); ++up) {
+      const fs::path candidate = folder / "cmu-mocap-index.tsv";
+      std::error_code ec;
+      if (fs::is_regular_file(candidate, ec)) return candidate.string();
+      folder = folder.parent_path();
+    }
+  }
+  return "";
+}
+
 // Why the joints every skeleton has cannot hold the library (nullopt when they can): they must
 // be at least two thirds of the smallest skeleton's joints, both ankles among them.
 std::optional<std::string> common_joints_fall_short(const MotionDatabase& db, const std::vector<std::string>& common) {
@@ -542,19 +557,6 @@ std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes) {
   return lines;
 }
 
-std::string find_cmu_index(std::span<const std::string> inputs) {
-  for (const std::string& input : inputs) {
-    fs::path folder = fs::is_directory(input) ? fs::path(input) : fs::path(input).parent_path();
-    for (int up = 0; up < 3 && !folder.empty(); ++up) {
-      const fs::path candidate = folder / "cmu-mocap-index.tsv";
-      std::error_code ec;
-      if (fs::is_regular_file(candidate, ec)) return candidate.string();
-      folder = folder.parent_path();
-    }
-  }
-  return "";
-}
-
 Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, const DatabaseSettings& settings,
                                      DatabaseLoadNotes* notes) {
   if (auto s = settings.validate(); !s) return s.error();
@@ -590,11 +592,13 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
   if (wants_cmu) {
     std::string text = settings.cmu_index_text;
     std::string name = "CMU index";
-    if (text.empty() && !settings.cmu_index_path.empty()) {
-      auto read = read_text_file(settings.cmu_index_path);
+    std::string path = settings.cmu_index_path;
+    if (text.empty() && path.empty() && settings.cmu_index_beside_inputs) path = find_cmu_index(inputs);
+    if (text.empty() && !path.empty()) {
+      auto read = read_text_file(path);
       if (!read) return read.error();
       text = std::move(*read);
-      name = settings.cmu_index_path;
+      name = path;
     } else if (text.empty()) {
       text = shipped_cmu_index();
       name = kShippedCmuIndexName;

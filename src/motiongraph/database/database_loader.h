@@ -29,7 +29,6 @@
 #pragma once
 
 #include <optional>
-#include <span>
 #include <string>
 #include <vector>
 
@@ -64,12 +63,14 @@ struct DatabaseSettings {
   FootJointNames foot_names;
 
   // Tags from CMU's descriptions for clips a manifest gives no tags. The index is
-  // cmu_index_text when not empty, else the file at cmu_index_path when not empty (the CLI
-  // passes an index found beside the inputs, or --cmu-index); with neither, the index the
+  // cmu_index_text when not empty, else the file at cmu_index_path when not empty (--cmu-index),
+  // else, with cmu_index_beside_inputs, a cmu-mocap-index.tsv beside or up to two folders above
+  // the first input (a folder, or a file's folder) that has one; with none, the index the
   // project ships, built in (shipped_cmu_index.h).
   bool cmu_tags = true;
   std::string cmu_index_text;
   std::string cmu_index_path;
+  bool cmu_index_beside_inputs = true;
 
   Status validate() const;
 };
@@ -118,10 +119,6 @@ struct DatabaseLoadNotes {
 // rather than their own, the joints dropped to read every clip on the same ones, then the clips
 // that look wrong as read.
 std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes);
-
-// cmu-mocap-index.tsv beside, or up to two folders above, the first input (a folder, or a
-// file's folder) that has one; "" when none has (the shipped index is used then).
-std::string find_cmu_index(std::span<const std::string> inputs);
 
 Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, const DatabaseSettings& settings,
                                      DatabaseLoadNotes* notes = nullptr);

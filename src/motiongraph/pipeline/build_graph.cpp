@@ -6,7 +6,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <filesystem>
 #include <optional>
 
 #include "motiongraph/core/json_text.h"
@@ -25,7 +24,6 @@ namespace mg {
 
 namespace {
 
-namespace fs = std::filesystem;
 using nlohmann::json;
 
 class Stopwatch {
@@ -358,13 +356,9 @@ Result<Prepared> prepare(std::span<const std::string> inputs, const BuildSetting
                          const Say& say, Stopwatch& watch, json& timings) {
   if (auto s = settings.validate(); !s) return s.error();
   // 1. The database.
-  DatabaseSettings db_settings = settings.database;
-  if (settings.find_cmu_index && db_settings.cmu_index_path.empty() && db_settings.cmu_index_text.empty()) {
-    db_settings.cmu_index_path = find_cmu_index(inputs);
-  }
   DatabaseLoadNotes load_notes;
   const std::vector<std::string> input_list(inputs.begin(), inputs.end());
-  auto db = load_database(input_list, db_settings, &load_notes);
+  auto db = load_database(input_list, settings.database, &load_notes);
   if (!db) return db.error();
   if (log.loaded) log.loaded(load_notes);
   for (const std::string& line : load_warnings(load_notes)) say.warning(line);

@@ -40,9 +40,6 @@ struct BuildExports {
 
 struct BuildSettings {
   DatabaseSettings database;
-  // With database.cmu_index_path empty: use a cmu-mocap-index.tsv beside or up to two folders
-  // above the inputs when there is one (else the built-in index).
-  bool find_cmu_index = true;
   DistanceStageSettings distance_stage;
   // The distance stage: the pruned one (graph/pruned_candidates.h), with the quality ceiling
   // (choice.max_rms_cm) as its ceiling, when the matrix is not exported and the threshold is
