@@ -84,7 +84,7 @@ void write_seed(const char* path, const char* clips) {
   mg::BuildSettings settings;
   settings.threshold_mode = mg::ThresholdMode::kRmsCm;
   settings.threshold_value = 6.0;
-  settings.find_cmu_index = false;
+  settings.database.cmu_index_beside_inputs = false;
   auto built = mg::build_graph(inputs, settings);
   check(built.ok() && built->graph_status.ok());
   check(mg::write_file_atomic(path, mg::serialize_graph_file(built->file)).ok());
