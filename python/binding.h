@@ -16,6 +16,7 @@
 
 #include "motiongraph/core/error.h"
 #include "motiongraph/motion/motion.h"
+#include "motiongraph/pipeline/build_options.h"
 #include "motiongraph/synthesis/loaded_graph.h"
 #include "motiongraph/synthesis/walk.h"
 
@@ -52,6 +53,16 @@ std::function<void(py::handle)> set(T& field) {
   return [&field](py::handle value) { field = value.cast<T>(); };
 }
 
+// build()'s keywords: the CLI's build options, snake_case ('--no-tag-thresholds' is
+// no_tag_thresholds), plus cache_dir, no_cache, and distance_matrix and clouds (keep those
+// exports for Graph.distance_matrix(), .clouds()). graph_binding.cpp.
+struct BuildCall {
+  BuildOptions options;
+  std::string cache_dir;
+  bool no_cache = false;
+};
+OptionTable build_option_table(BuildCall& call);
+
 // A motion on a skeleton with its world positions: a loaded clip, a synthesis result, or the
 // frames a controller step made. Synthesis results keep their graph, so that saving them
 // writes the feet's contacts as the CLI does.
@@ -84,5 +95,6 @@ struct PyGraph {
 void bind_motion(py::module_& m);
 void bind_graph(py::module_& m, py::class_<PyGraph>& graph_class);
 void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph_class);
+void bind_library(py::module_& m);
 
 }  // namespace mg::python

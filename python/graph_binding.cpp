@@ -34,14 +34,8 @@ std::string exact_text(py::handle number) {
   return py::repr(py::float_(py::reinterpret_borrow<py::object>(number))).cast<std::string>();
 }
 
-struct BuildCall {
-  BuildOptions options;
-  std::string cache_dir;
-  bool no_cache = false;
-};
+}  // namespace
 
-// The CLI's build options as keywords, snake_case ('--no-tag-thresholds' is no_tag_thresholds),
-// plus distance_matrix and clouds (keep those exports for Graph.distance_matrix(), .clouds()).
 OptionTable build_option_table(BuildCall& call) {
   BuildOptions& b = call.options;
   return {
@@ -103,6 +97,8 @@ OptionTable build_option_table(BuildCall& call) {
       {"clouds", set(b.exports.clouds_npy)},
   };
 }
+
+namespace {
 
 // The loaded graph of a file made or read under `name`.
 std::shared_ptr<const LoadedGraph> load_file(GraphFile file, const std::string& name) {

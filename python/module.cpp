@@ -61,4 +61,5 @@ PYBIND11_MODULE(_motiongraph, m) {
   pybind11::class_<mg::python::PyGraph> graph(m, "Graph", "A motion graph, built or read from a .mgraph file.");
   mg::python::bind_graph(m, graph);
   mg::python::bind_synthesis(m, graph);
+  mg::python::bind_library(m);
 }

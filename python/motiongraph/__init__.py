@@ -2,6 +2,7 @@
 
     import motiongraph as mg
     clip = mg.load_clip("data/cmu/16/16_15.amc")        # clip.positions: frames x joints x 3
+    library = mg.load_library("data/cmu/16")             # the clips as build reads them, and a summary
     graph = mg.build(["data/cmu/16"])                    # options as the CLI's build, snake_case
     motion = graph.path(shape="figure8:4", segments=["walk:0-25", "run:25-51"])
     motion.save("figure8.bvh")
@@ -12,9 +13,16 @@ import io as _io
 import os as _os
 
 from ._motiongraph import Controller, EmptyGraphError, Error, Graph, Motion, load_clip, load_graph
-from ._motiongraph import _build
+from ._motiongraph import _build, _load_library
 
-__all__ = ["Controller", "EmptyGraphError", "Error", "Graph", "Motion", "build", "load_clip", "load_graph"]
+__all__ = ["Controller", "EmptyGraphError", "Error", "Graph", "Library", "Motion", "build", "load_clip",
+           "load_graph", "load_library"]
+
+
+def _paths(inputs):
+    if isinstance(inputs, (str, _os.PathLike)):
+        inputs = [inputs]
+    return [_os.fspath(i) for i in inputs]
 
 
 def build(inputs, progress=None, **options):
@@ -26,9 +34,77 @@ def build(inputs, progress=None, **options):
     with each line the build logs. Raises motiongraph.Error with the CLI's message, or
     EmptyGraphError (with .report) when pruning leaves nothing.
     """
-    if isinstance(inputs, (str, _os.PathLike)):
-        inputs = [inputs]
-    return _build([_os.fspath(i) for i in inputs], options, progress)
+    return _build(_paths(inputs), options, progress)
+
+
+class Library:
+    """A motion library as build reads it: its clips (Motion, at the library's rate, with their feet's
+    contacts) and its summary (the dict `motiongraph info --json` prints for the same inputs).
+
+    len(library) is its clip count; library[i] or library["16_15"] a clip; iterating gives the clips.
+    """
+
+    def __init__(self, summary, clips):
+        self.summary = summary
+        self.clips = clips
+
+    @property
+    def fps(self):
+        """The library's frame rate: every clip is resampled to it."""
+        return self.summary["fps"]
+
+    @property
+    def frame_count(self):
+        return self.summary["frames"]
+
+    @property
+    def tags(self):
+        """{tag: {"clips", "frames", "seconds"}}: how much of the library each motion type holds."""
+        return self.summary["tags"]
+
+    @property
+    def warnings(self):
+        """What loading doubts or chose against a file's own voice, one line each (also given as
+        UserWarning when the library is loaded)."""
+        return self.summary["warnings"]
+
+    def clip_tags(self, clip):
+        """The tags of a clip (index or name) as [(tag, first_frame, frame_count), ...] in its own frames."""
+        index = self._index(clip)
+        return [(r["tag"], r["first_frame"], r["frames"]) for r in self.summary["clips"][index]["tag_ranges"]]
+
+    def _index(self, clip):
+        if isinstance(clip, str):
+            for index, row in enumerate(self.summary["clips"]):
+                if row["name"] == clip:
+                    return index
+            raise KeyError(clip)
+        return range(len(self.clips))[clip]
+
+    def __len__(self):
+        return len(self.clips)
+
+    def __getitem__(self, clip):
+        return self.clips[self._index(clip)]
+
+    def __iter__(self):
+        return iter(self.clips)
+
+    def __repr__(self):
+        return (f"<motiongraph.Library: {len(self.clips)} clips, {self.frame_count} frames at {self.fps:g} fps, "
+                f"tags {sorted(self.tags)}>")
+
+
+def load_library(inputs, **options):
+    """Reads a library as `build` does: inputs one path or a list (folders, clip files or .toml
+    manifests), each clip resampled to the library's rate, tagged, on the joints all share.
+
+    Keywords are build's options for reading: fps, asf, scale, up_axis, travel, input_fps, cmu_index,
+    no_cmu_tags, feet. Loading's doubts (files read in the library's up axis, joints dropped, clips
+    that look wrong) are given as UserWarning. Returns a Library; raises motiongraph.Error with the
+    CLI's message.
+    """
+    return Library(*_load_library(_paths(inputs), options))
 
 
 def _npy(data, what):

@@ -9,7 +9,6 @@
 #include <spdlog/spdlog.h>
 
 #include "cli/commands.h"
-#include "cli/feet_report.h"
 #include "cli/library_info.h"
 #include "cli/load_options.h"
 #include "cli/unit_report.h"
@@ -19,6 +18,7 @@
 #include "motiongraph/motion/clip_doubts.h"
 #include "motiongraph/motion/clip_summary.h"
 #include "motiongraph/motion/forward_kinematics.h"
+#include "motiongraph/pipeline/feet_report.h"
 
 namespace mg::cli {
 

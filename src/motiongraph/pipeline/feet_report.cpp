@@ -1,8 +1,8 @@
-#include "cli/feet_report.h"
+#include "motiongraph/pipeline/feet_report.h"
 
 #include <fmt/format.h>
 
-namespace mg::cli {
+namespace mg {
 
 namespace {
 
@@ -49,4 +49,4 @@ std::string missing_feet_description(const std::string& why) {
 
 nlohmann::json missing_feet_json(const std::string& why) { return {{"source", nullptr}, {"missing", why}}; }
 
-}  // namespace mg::cli
+}  // namespace mg

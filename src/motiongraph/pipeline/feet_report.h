@@ -1,5 +1,5 @@
-// How `info` tells the feet it found (skeleton/foot_joints.h) and their contacts
-// (motion/foot_contacts.h): for one clip, and for a library.
+// How `info` and Python's load_library() tell the feet found (skeleton/foot_joints.h) and their
+// contacts (motion/foot_contacts.h): for one clip, and for a library.
 #pragma once
 
 #include <span>
@@ -10,7 +10,7 @@
 #include "motiongraph/motion/foot_contacts.h"
 #include "motiongraph/skeleton/skeleton.h"
 
-namespace mg::cli {
+namespace mg {
 
 // "lfoot > ltoes, rfoot > rtoes (found by name; planted 84 % and 83 % of frames)"; source says
 // how the feet were got ("found by name", "--feet").
@@ -24,4 +24,4 @@ nlohmann::json feet_json(const Skeleton& skeleton, const FootJoints& feet, std::
 std::string missing_feet_description(const std::string& why);
 nlohmann::json missing_feet_json(const std::string& why);
 
-}  // namespace mg::cli
+}  // namespace mg

@@ -1,0 +1,127 @@
+"""load_library() and Library: a library as build reads it, its summary the CLI's info --json."""
+import json
+import re
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import motiongraph as mg
+from conftest import cli_error
+
+
+def cli_info(cli, *args):
+    return json.loads(cli("info", "--json", *args).stdout)
+
+
+def edited_bvh(text, offsets=1.0, root=lambda frame: frame):
+    """A BVH file's text with its OFFSETs scaled and each frame's values edited by `root` (a list of
+    floats in, a list out)."""
+    head, motion = text.split("MOTION\n")
+    head = re.sub(r"OFFSET (\S+) (\S+) (\S+)",
+                  lambda m: "OFFSET " + " ".join(repr(float(v) * offsets) for v in m.groups()), head)
+    lines = motion.splitlines()
+    frames = [" ".join(repr(v) for v in root([float(v) for v in line.split()])) for line in lines[2:]]
+    return head + "MOTION\n" + "\n".join(lines[:2] + frames) + "\n"
+
+
+@pytest.mark.parametrize("fps", [None, 120.0])
+def test_summary_is_the_cli_info_and_clips_are_load_clip(cli, data, fps):
+    folder = data / "cmu/16"
+    args = ["--fps", fps] if fps else []
+    options = {"fps": fps} if fps else {}
+    library = mg.load_library(folder, **options)
+    assert library.summary == cli_info(cli, folder, *args)
+    assert library.fps == (fps or 30.0)
+    assert library.frame_count == sum(len(clip) for clip in library) == (4920 if fps else 1235)
+    # Each clip is the file read and resampled as load_clip reads it, with the same contacts.
+    assert [clip.name for clip in library] == [row["name"] for row in library.summary["clips"]]
+    for clip, row in zip(library, library.summary["clips"]):
+        alone = mg.load_clip(row["source"], fps=library.fps)
+        assert clip.fps == library.fps and len(clip) == row["frames"]
+        np.testing.assert_array_equal(clip.positions, alone.positions)
+        np.testing.assert_array_equal(clip.rotations, alone.rotations)
+        assert clip.foot_joints == alone.foot_joints == ["lfoot", "ltoes", "rfoot", "rtoes"]
+        np.testing.assert_array_equal(clip.contacts, alone.contacts)
+
+
+def test_tags_per_clip_add_up_to_the_totals(data):
+    library = mg.load_library(data / "cmu/16")
+    frames, clips = {}, {}
+    for index, clip in enumerate(library):
+        runs = library.clip_tags(index)
+        assert runs == library.clip_tags(clip.name)
+        for tag, first, count in runs:
+            assert 0 <= first and first + count <= len(clip)
+            frames[tag] = frames.get(tag, 0) + count
+        for tag in {tag for tag, _, _ in runs}:
+            clips[tag] = clips.get(tag, 0) + 1
+    assert {tag: (total["clips"], total["frames"]) for tag, total in library.tags.items()} == \
+        {tag: (clips[tag], frames[tag]) for tag in frames}
+    assert library.clip_tags("16_15") == [("walk", 0, len(library["16_15"]))]
+    assert library[-1] is library.clips[-1] and len(library) == 15
+    with pytest.raises(KeyError):
+        library["16_99"]
+    with pytest.raises(IndexError):
+        library[15]
+
+
+def test_units_chosen_and_doubts_warned(cli, data, tmp_path):
+    """A folder of BVH in centimetres, one of them floating half a metre up: read in cm, the
+    floating clip warned about as the CLI warns, and the same summary."""
+    cli("convert", data / "cmu/16/16_15.amc", "-o", tmp_path / "walk_m.bvh")
+    text = (tmp_path / "walk_m.bvh").read_text()
+    folder = tmp_path / "lib"
+    folder.mkdir()
+    (folder / "walk.bvh").write_text(edited_bvh(text, 100.0, lambda v: [x * 100 for x in v[:3]] + v[3:]))
+    (folder / "float.bvh").write_text(
+        edited_bvh(text, 100.0, lambda v: [v[0] * 100, v[1] * 100 + 50, v[2] * 100] + v[3:]))
+    with pytest.warns(UserWarning, match=r"^float: its lowest joint stays 0\.5.* above the floor") as caught:
+        library = mg.load_library(folder)
+    assert [str(w.message) for w in caught] == library.warnings
+    assert library.summary == cli_info(cli, folder)
+    units = library.summary["reading"]["units"]
+    assert [(Path(u["file"]).name, u["unit"], u["metres_per_unit"], u["plausible"]) for u in units] == \
+        [("float.bvh", "cm", 0.01, True), ("walk.bvh", "cm", 0.01, True)]
+    # In metres, as the clip read from the metre file.
+    np.testing.assert_allclose(library["walk"].positions, mg.load_clip(str(tmp_path / "walk_m.bvh"), fps=30).positions,
+                               atol=1e-9)
+    # Warnings as errors stop the load with the warning.
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(UserWarning, match="^float: "):
+            mg.load_library(folder)
+    # Given a scale, no unit is chosen.
+    assert mg.load_library(folder / "walk.bvh", scale=0.01).summary["reading"]["units"] == []
+
+
+def test_feet_named_and_options_refused(cli, data, tmp_path):
+    bvh = data / "bvh/16_01.bvh"
+    renamed = tmp_path / "pes.bvh"
+    renamed.write_text(bvh.read_text().replace("lfoot", "lpes").replace("rfoot", "rpes"))
+    unknown = mg.load_library(renamed)
+    assert unknown.summary["feet"]["source"] is None and unknown[0].contacts is None
+    named = mg.load_library(renamed, feet="lpes,,rpes,")
+    assert named.summary["feet"]["source"] == "--feet"
+    assert named[0].foot_joints == ["lpes", "ltoes", "rpes", "rtoes"]
+    np.testing.assert_array_equal(named[0].contacts, mg.load_library(bvh)[0].contacts)
+    # Only the options that say how clips are read; the rest of build's are refused.
+    with pytest.raises(TypeError, match="load_library\\(\\) got an unexpected keyword argument 'threshold'"):
+        mg.load_library(bvh, threshold="4cm")
+    with pytest.raises(mg.Error, match="--travel must be auto, root or feet, not walk"):
+        mg.load_library(bvh, travel="walk")
+
+
+def test_bad_library_raises_the_cli_message(cli, data, tmp_path):
+    missing = tmp_path / "nothing-here"
+    missing.mkdir()
+    with pytest.raises(mg.Error, match="holds no .amc or .bvh files") as raised:
+        mg.load_library(missing)
+    assert str(raised.value) == cli_error(cli("info", missing, check=False))
+    broken = tmp_path / "broken.toml"
+    amc = (data / "cmu/16/16_15.amc").as_posix()
+    broken.write_text(f'[[clip]]\nfile = "{amc}"\nfirst_frame = 10\nlast_frame = 5\n')
+    with pytest.raises(mg.Error, match="broken.toml:4: last_frame 5 comes before first_frame 10") as raised:
+        mg.load_library(broken)
+    assert str(raised.value) == cli_error(cli("info", broken, check=False))
