@@ -369,4 +369,22 @@ assert overlapping["tags"] == single["tags"] and overlapping["tags"]["walk"]["fr
 assert overlapping["clips"][0]["tag_ranges"] == single["clips"][0]["tag_ranges"], docs
 PY
 expect_fail "max-threshold" "$bin" bench distance "$data/cmu/16" --max-threshold 0
+
+# Two converters of CMU's capture in one library: MotionBuilder's names and rest pose
+# (111_36) first, then 3ds Max's names with the arms hanging down at rest (131_01). One
+# warning names what was matched and re-expressed; the graph is built and follows a path.
+"$bin" build "$data/bvh/111_36.bvh" "$data/bvh/131_01.bvh" -o "$work/rigs.mgraph" --cache-dir "$cache" \
+  --report "$work/rigs.json" 2>"$work/rigs.err"
+grep "warning: .*131_01.bvh: its joints are the library's first rig's under other names, matched by their place in the \
+hierarchy (LeftHip as LeftUpLeg, LeftKnee as LeftLeg, LeftAnkle as LeftFoot, 25 in all); it rests in another pose than \
+the library's first rig (the bone to 'LeftForeArm' 90 degrees away)" "$work/rigs.err" >/dev/null \
+  && [[ $(grep -c "warning: .*under other names" "$work/rigs.err") -eq 1 ]] \
+  || { echo "FAIL: two converters' rigs in one library"; cat "$work/rigs.err"; exit 1; }
+"$bin" path "$work/rigs.mgraph" --shape s-curve:20 -o "$work/rigs.bvh" --report "$work/rigs-path.json" >/dev/null 2>&1
+python3 - "$work/rigs.json" "$work/rigs-path.json" <<'PY'
+import json, sys
+report, path = (json.load(open(p)) for p in sys.argv[1:3])
+assert [c["name"] for c in report["clips"]] == ["111_36", "131_01"], report["clips"]
+assert path["mean_deviation_m"] < 0.15, path["mean_deviation_m"]
+PY
 echo "cli build ok"

@@ -14,6 +14,7 @@
 #include "motiongraph/export/bvh_writer.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/forward_kinematics.h"
+#include "motiongraph/motion/rig_matching.h"
 #include "motiongraph/motion/up_axis.h"
 #include "test_data.h"
 
@@ -455,17 +456,116 @@ TEST(DatabaseLoader, RejectsASkeletonOfOtherJoints) {
 }
 
 TEST(DatabaseLoader, RejectsSkeletonsWhoseSharedJointsLackAnAnkle) {
-  // Most joints shared, but the left ankle renamed in one file: the shared joints cannot carry
-  // the feet, and the error says so.
+  // Most joints shared, but one file has fingers and its left ankle renamed: the shared joints
+  // cannot carry the feet, and the error says so. (With the ankle renamed alone, the hierarchy
+  // is the same, matched by place: ReadsTheFirstRigUnderOtherNamesAndInAnotherRestPose.)
   TempFolder folder("ankle");
   const Clip walk = test::load_data_clip("cmu/16/16_15.amc");
-  const std::string text = write_bvh(walk.skeleton, walk.motion, BvhWriteSettings{});
-  const std::string plain = folder.write("a.bvh", text);
-  const std::string renamed = folder.write("b.bvh", test::replace_once(text, "JOINT lfoot", "JOINT lpes"));
+  const Clip fingers = test::with_fingers(walk);
+  const std::string plain = folder.write("a.bvh", write_bvh(walk.skeleton, walk.motion, BvhWriteSettings{}));
+  const std::string renamed = folder.write(
+      "b.bvh", test::replace_once(write_bvh(fingers.skeleton, fingers.motion, BvhWriteSettings{}), "JOINT lfoot",
+                                  "JOINT lpes"));
   auto db = load_database({plain, renamed}, cmu_settings());
   ASSERT_FALSE(db);
   EXPECT_EQ(db.error().file, renamed);
   EXPECT_NE(db.error().message.find("the ankle 'lfoot' is not among the"), std::string::npos) << db.error().message;
+}
+
+// The clip on `names`' joint names (the same hierarchy) and resting as `rest` (the same joints),
+// every joint where it was: what another converter of the same capture writes.
+Clip as_other_rig(const Clip& clip, const Skeleton& names, const Skeleton& rest) {
+  return renamed_as(on_rest_pose_of(clip, rest), names);
+}
+
+TEST(DatabaseLoader, ReadsTheFirstRigUnderOtherNamesAndInAnotherRestPose) {
+  // A walk written as CMU's names, and another walk as a converter that names the joints as
+  // MotionBuilder does (111_36.bvh) and hangs the arms down (131_01.bvh's rest pose): one
+  // library, every clip on the first's names and rest pose, every joint where its file has it.
+  TempFolder folder("rigs");
+  const Clip cmu = test::load_data_clip("bvh/16_01.bvh", 0.056444);
+  const Clip walk = test::load_data_clip("cmu/16/16_15.amc");
+  ASSERT_EQ(hierarchy_mismatch(cmu.skeleton, walk.skeleton), std::nullopt);  // AMC and its conversion
+  const Clip other = as_other_rig(test::load_data_clip("cmu/16/16_16.amc"),
+                                  test::load_data_clip("bvh/111_36.bvh").skeleton,
+                                  test::load_data_clip("bvh/131_01.bvh").skeleton);
+  const std::string first = folder.write("a.bvh", write_bvh(walk.skeleton, walk.motion, BvhWriteSettings{}));
+  const std::string second = folder.write("b.bvh", write_bvh(other.skeleton, other.motion, BvhWriteSettings{}));
+
+  DatabaseLoadNotes notes;
+  auto db = load_database({first, second}, cmu_settings(), &notes);
+  ASSERT_TRUE(db) << db.error().to_string();
+  ASSERT_EQ(db->skeletons.size(), 2u);
+  for (int j = 0; j < db->skeletons[0].joint_count(); ++j) {
+    EXPECT_EQ(db->skeletons[1].joint(j).name, db->skeletons[0].joint(j).name);
+  }
+  EXPECT_LT(rest_pose_difference(db->skeletons[0], db->skeletons[1]).angle_deg, kRestPoseRetargetDeg);
+  ASSERT_EQ(notes.matched_rigs.size(), 1u);
+  const DatabaseLoadNotes::MatchedRig& rig = notes.matched_rigs[0];
+  EXPECT_EQ(rig.file, second);
+  const std::pair<std::string, std::string> thigh("LeftUpLeg", "lfemur");
+  EXPECT_NE(std::find(rig.renamed.begin(), rig.renamed.end(), thigh), rig.renamed.end());
+  ASSERT_TRUE(rig.rest_pose.has_value());
+  EXPECT_NEAR(rig.rest_pose->angle_deg, 90.0, 5.0);
+  const std::vector<std::string> warnings = load_warnings(notes);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("b.bvh: its joints are the library's first rig's under other names, matched by their "
+                             "place in the hierarchy (Hips as root, LHipJoint as lhipjoint, LeftUpLeg as lfemur, 31 "
+                             "in all)"),
+            std::string::npos)
+      << warnings[0];
+  EXPECT_NE(warnings[0].find("re-expressed on that rest pose"), std::string::npos) << warnings[0];
+  // Every joint where the file alone has it, and the feet found on the first's names.
+  auto alone = load_database({second}, cmu_settings());
+  ASSERT_TRUE(alone) << alone.error().to_string();
+  EXPECT_LT(test::max_position_error(world_positions(db->skeletons[1], db->clips[1].motion),
+                                     world_positions(alone->skeletons[0], alone->clips[0].motion)),
+            1e-9);
+  EXPECT_FALSE(db->frame_contacts.empty());
+  // Synthesis plays every clip's rotations on one skeleton: on the first's, each bone of the
+  // second clip points where its own skeleton has it (as read, its forearms would hang 90
+  // degrees off).
+  const auto largest_bone_turn = [&](const Skeleton& played_on, const Motion& motion, const Skeleton& own) {
+    const std::vector<Vec3> a = world_positions(played_on, motion);
+    const std::vector<Vec3> b = world_positions(own, motion);
+    const auto joints = static_cast<size_t>(own.joint_count());
+    double worst = 0.0;
+    for (size_t f = 0; f < a.size() / joints; ++f) {
+      for (int j = 1; j < own.joint_count(); ++j) {
+        const size_t i = f * joints + static_cast<size_t>(j);
+        const size_t p = f * joints + static_cast<size_t>(own.parent(j));
+        const Vec3 u = a[i] - a[p], v = b[i] - b[p];
+        if (u.norm() < 0.01 || v.norm() < 0.01) continue;
+        worst = std::max(worst, std::acos(std::clamp(u.normalized().dot(v.normalized()), -1.0, 1.0)));
+      }
+    }
+    return worst * 180.0 / 3.141592653589793;
+  };
+  const double turned = largest_bone_turn(db->skeletons[0], db->clips[1].motion, db->skeletons[1]);
+  const double as_read = largest_bone_turn(db->skeletons[0], alone->clips[0].motion, alone->skeletons[0]);
+  EXPECT_GT(as_read, 60.0);
+  EXPECT_LT(turned, 1.0) << "as read " << as_read;
+  // The first file alone, or the library of one rig, is read as before: nothing noted.
+  DatabaseLoadNotes plain_notes;
+  ASSERT_TRUE(load_database({first, first}, cmu_settings(), &plain_notes));
+  EXPECT_TRUE(plain_notes.matched_rigs.empty());
+}
+
+TEST(DatabaseLoader, RejectsTheSameHierarchyWithItsSidesNamedTheOtherWay) {
+  TempFolder folder("sides");
+  const Clip walk = test::load_data_clip("cmu/16/16_15.amc");
+  const std::string text = write_bvh(walk.skeleton, walk.motion, BvhWriteSettings{});
+  const std::string first = folder.write("a.bvh", text);
+  const std::string swapped = folder.write(
+      "b.bvh", test::replace_once(test::replace_once(text, "JOINT lfemur", "JOINT RightUpLeg"), "JOINT rfemur",
+                                  "JOINT LeftUpLeg"));
+  auto db = load_database({first, swapped}, cmu_settings());
+  ASSERT_FALSE(db);
+  EXPECT_EQ(db.error().file, swapped);
+  EXPECT_NE(db.error().message.find("nor is it the same hierarchy under other names: joint 2 is 'lfemur' (left) "
+                                    "there and 'RightUpLeg' (right) here"),
+            std::string::npos)
+      << db.error().message;
 }
 
 TEST(DatabaseLoader, ErrorsNameTheFileAndManifestLine) {

@@ -136,6 +136,8 @@ TEST(LibrarySummary, JsonCarriesTheClipsAndWhatLoadingChose) {
   in_place.recovered_m = 3.5;
   in_place.slide_speed_m_s = 0.8;
   notes.recovered_travels.push_back({"loop.bvh", TravelSource::kAuto, in_place});
+  notes.matched_rigs.push_back({"max.bvh", {{"LeftHip", "lfemur"}}, RestPoseDifference{90.0, "lradius"}});
+  notes.matched_rigs.push_back({"builder.bvh", {{"LeftUpLeg", "lfemur"}}, std::nullopt});
   notes.clip_doubts.push_back("float: off the floor");
   const LibrarySummary s = summarize_library(db, notes, false);
   const nlohmann::json doc = library_summary_json(std::vector<std::string>{"a", "b"}, db, s);
@@ -151,8 +153,8 @@ TEST(LibrarySummary, JsonCarriesTheClipsAndWhatLoadingChose) {
   EXPECT_EQ(doc["clips"][1]["tags"], (nlohmann::json{"run"}));
   EXPECT_DOUBLE_EQ(doc["clips"][2]["root_path_m"].get<double>(), s.clip_travel_m[2]);
   EXPECT_EQ(doc["warnings"], nlohmann::json(load_warnings(notes)));
-  ASSERT_EQ(doc["warnings"].size(), 2u);  // the file read in the library's axis, and the doubt
-  EXPECT_EQ(doc["warnings"][1], "float: off the floor");
+  ASSERT_EQ(doc["warnings"].size(), 4u);  // the file read in the library's axis, two rigs, the doubt
+  EXPECT_EQ(doc["warnings"][3], "float: off the floor");
   const nlohmann::json& reading = doc["reading"];
   EXPECT_EQ(reading["units"], (nlohmann::json::array({{{"file", "walk.bvh"},
                                                          {"unit", "cm"},
@@ -167,6 +169,13 @@ TEST(LibrarySummary, JsonCarriesTheClipsAndWhatLoadingChose) {
   EXPECT_EQ(reading["travel_recovered"][0]["file"], "loop.bvh");
   EXPECT_EQ(reading["travel_recovered"][0]["recovered_m"], 3.5);
   EXPECT_EQ(reading["travel_recovered"][0]["in_place"], true);
+  EXPECT_EQ(reading["rigs"], (nlohmann::json::array(
+                                 {{{"file", "max.bvh"},
+                                   {"renamed", nlohmann::json::array({nlohmann::json::array({"LeftHip", "lfemur"})})},
+                                   {"rest_pose", {{"bone", "lradius"}, {"angle_deg", 90.0}}}},
+                                  {{"file", "builder.bvh"},
+                                   {"renamed", nlohmann::json::array({nlohmann::json::array({"LeftUpLeg", "lfemur"})})},
+                                   {"rest_pose", nullptr}}})));
 }
 
 }  // namespace

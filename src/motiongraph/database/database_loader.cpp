@@ -22,6 +22,7 @@
 #include "motiongraph/motion/common_joints.h"
 #include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/motion/resample.h"
+#include "motiongraph/motion/rig_matching.h"
 #include "motiongraph/motion/up_axis.h"
 
 namespace mg {
@@ -287,6 +288,36 @@ std::string find_cmu_index(std::span<const std::string> inputs) {
   return "";
 }
 
+// The clip read as the database's first rig (motion/rig_matching.h): its joints renamed when they
+// are that rig's hierarchy under other names, re-expressed on its rest pose when a bone rests
+// further than kRestPoseRetargetDeg from it. What was done (nothing when the joints differ
+// otherwise: topology_difference tells that).
+DatabaseLoadNotes::MatchedRig match_first_rig(Clip& clip, const Skeleton& first) {
+  DatabaseLoadNotes::MatchedRig matched;
+  const Skeleton& skeleton = clip.skeleton;
+  bool same_names = skeleton.joint_count() == first.joint_count();
+  for (int j = 0; same_names && j < first.joint_count(); ++j) {
+    same_names = skeleton.joint(j).name == first.joint(j).name;
+  }
+  if (!same_names) {
+    if (hierarchy_mismatch(first, skeleton)) return matched;
+    for (int j = 0; j < first.joint_count(); ++j) {
+      if (skeleton.joint(j).name != first.joint(j).name && !first.joint(j).end_site) {
+        matched.renamed.emplace_back(skeleton.joint(j).name, first.joint(j).name);
+      }
+    }
+    clip = renamed_as(clip, first);
+  } else if (topology_difference(first, skeleton)) {
+    return matched;
+  }
+  const RestPoseDifference difference = rest_pose_difference(first, clip.skeleton);
+  if (difference.angle_deg > kRestPoseRetargetDeg) {
+    clip = on_rest_pose_of(clip, first);
+    matched.rest_pose = difference;
+  }
+  return matched;
+}
+
 // Why the joints every skeleton has cannot hold the library (nullopt when they can): they must
 // be at least two thirds of the smallest skeleton's joints, both ankles among them.
 std::optional<std::string> common_joints_fall_short(const MotionDatabase& db, const std::vector<std::string>& common) {
@@ -327,7 +358,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
   int next_frame = 0;
   std::vector<std::pair<size_t, UpAxisChoice>> chosen_up_axes;  // spec index, its own choice
   std::optional<Error> other_joints;  // the first skeleton whose joints differ from the first's
-  std::set<std::string> noted_units, noted_up_axes, noted_travels;  // files
+  std::set<std::string> noted_units, noted_up_axes, noted_travels, noted_rigs;  // files
   for (size_t spec_index = 0; spec_index < specs.size(); ++spec_index) {
     const ClipSpec& spec = specs[spec_index];
     auto loaded = loaders.for_settings(spec.load).load(spec.path);
@@ -336,6 +367,13 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
       auto kept = keep_joints(loaded->clip, joints);
       if (!kept) return spec.error(kept.error().message);
       loaded->clip = std::move(*kept);
+    }
+    if (!db.skeletons.empty()) {
+      DatabaseLoadNotes::MatchedRig matched = match_first_rig(loaded->clip, db.skeletons.front());
+      if (notes && (!matched.renamed.empty() || matched.rest_pose) && noted_rigs.insert(spec.path).second) {
+        matched.file = spec.path;
+        notes->matched_rigs.push_back(std::move(matched));
+      }
     }
     if (loaded->clip.detected_up_axis) chosen_up_axes.emplace_back(spec_index, *loaded->clip.detected_up_axis);
     // Noted once a file, however many clips a manifest cuts from it.
@@ -393,10 +431,16 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     } else {
       if (!db.skeletons.empty()) {
         if (auto difference = topology_difference(db.skeletons.front(), loaded->clip.skeleton)) {
+          // The same hierarchy under other names was matched above unless a joint's side says not.
+          const auto other_hierarchy = hierarchy_mismatch(db.skeletons.front(), loaded->clip.skeleton);
+          const std::string sides =
+              other_hierarchy && db.skeletons.front().joint_count() == loaded->clip.skeleton.joint_count()
+                  ? fmt::format(" (nor is it the same hierarchy under other names: {})", *other_hierarchy)
+                  : "";
           Error error = spec.error(fmt::format(
-              "skeleton {} does not match {}, the database's first skeleton: {}; clips of one database need the "
-              "same joints (names and parents), or most of them in common",
-              skeleton_file, db.skeleton_names.front(), *difference));
+              "skeleton {} does not match {}, the database's first skeleton: {}{}; clips of one database need the "
+              "same joints (names and parents, or the same hierarchy), or most of them in common",
+              skeleton_file, db.skeleton_names.front(), *difference, sides));
           if (!joints.empty()) return error;
           if (!other_joints) other_joints = std::move(error);
         }
@@ -552,6 +596,27 @@ std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes) {
                                 "have; dropped {} ({} joint{}) from {}",
                                 notes.common_joints.size(), listed(names, kShown), names.size(),
                                 names.size() == 1 ? "" : "s", listed(files, 2)));
+  }
+  for (const auto& rig : notes.matched_rigs) {
+    std::vector<std::string> parts;
+    if (!rig.renamed.empty()) {
+      constexpr size_t kShown = 3;
+      std::vector<std::string> pairs;
+      for (size_t i = 0; i < std::min(kShown, rig.renamed.size()); ++i) {
+        pairs.push_back(fmt::format("{} as {}", rig.renamed[i].first, rig.renamed[i].second));
+      }
+      parts.push_back(fmt::format("its joints are the library's first rig's under other names, matched by their place "
+                                  "in the hierarchy ({}{})",
+                                  fmt::join(pairs, ", "),
+                                  rig.renamed.size() > kShown ? fmt::format(", {} in all", rig.renamed.size()) : ""));
+    }
+    if (rig.rest_pose) {
+      parts.push_back(fmt::format("it rests in another pose than the library's first rig (the bone to '{}' {:.0f} "
+                                  "degrees away), so its rotations are re-expressed on that rest pose, every joint "
+                                  "where it was",
+                                  rig.rest_pose->bone, rig.rest_pose->angle_deg));
+    }
+    lines.push_back(fmt::format("{}: {}", rig.file, fmt::join(parts, "; ")));
   }
   lines.insert(lines.end(), notes.clip_doubts.begin(), notes.clip_doubts.end());
   return lines;

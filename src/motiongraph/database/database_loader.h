@@ -37,6 +37,7 @@
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/in_place_choice.h"
 #include "motiongraph/motion/length_unit_choice.h"
+#include "motiongraph/motion/rig_matching.h"
 #include "motiongraph/motion/up_axis_choice.h"
 
 namespace mg {
@@ -112,12 +113,21 @@ struct DatabaseLoadNotes {
     std::vector<std::string> joints;
   };
   std::vector<DroppedJoints> dropped_joints;
+  // Files whose rig is the first file's under other names or in another rest pose
+  // (motion/rig_matching.h), read on the first's names and rest pose.
+  struct MatchedRig {
+    std::string file;
+    std::vector<std::pair<std::string, std::string>> renamed;  // (its name, the library's) where they differ
+    std::optional<RestPoseDifference> rest_pose;              // when re-expressed on the first's rest pose
+  };
+  std::vector<MatchedRig> matched_rigs;
   std::vector<std::string> clip_doubts;
 };
 
 // The warnings loading gives the user, one line each: the files read in the library's up axis
-// rather than their own, the joints dropped to read every clip on the same ones, then the clips
-// that look wrong as read.
+// rather than their own, the joints dropped to read every clip on the same ones, the files read
+// as the first file's rig (other names, another rest pose), then the clips that look wrong as
+// read.
 std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes);
 
 Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, const DatabaseSettings& settings,

@@ -69,7 +69,20 @@ nlohmann::json reading_json(const DatabaseLoadNotes& notes) {
                       {"slide_m_s", recovered.choice.slide_speed_m_s},
                       {"root_m_s", recovered.choice.root_speed_m_s}});
   }
-  return {{"units", std::move(units)}, {"up_axes", std::move(up_axes)}, {"travel_recovered", std::move(travel)}};
+  nlohmann::json rigs = nlohmann::json::array();
+  for (const auto& rig : notes.matched_rigs) {
+    nlohmann::json renamed = nlohmann::json::array();
+    for (const auto& [own, library] : rig.renamed) renamed.push_back({own, library});
+    rigs.push_back({{"file", rig.file},
+                    {"renamed", std::move(renamed)},
+                    {"rest_pose", rig.rest_pose ? nlohmann::json{{"bone", rig.rest_pose->bone},
+                                                                 {"angle_deg", rig.rest_pose->angle_deg}}
+                                                : nlohmann::json(nullptr)}});
+  }
+  return {{"units", std::move(units)},
+          {"up_axes", std::move(up_axes)},
+          {"travel_recovered", std::move(travel)},
+          {"rigs", std::move(rigs)}};
 }
 
 }  // namespace

@@ -1,0 +1,161 @@
+#include "motiongraph/motion/rig_matching.h"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+namespace mg {
+
+namespace {
+
+constexpr double kBoneMinM = 0.01;  // shorter bones have no direction worth comparing
+
+// Words a side letter may come before in lower-case names (CMU's lfemur, Daz's lShldr folded).
+constexpr std::array<std::string_view, 26> kLimbWords = {
+    "hip",    "femur", "tibia",  "foot",    "toe",   "clavicle", "humerus", "radius", "wrist",
+    "hand",   "finger", "thumb", "knee",    "ankle", "shoulder", "elbow",   "collar", "shldr",
+    "forearm", "shin",  "thigh", "buttock", "arm",   "leg",      "upleg",   "eye"};
+
+std::string lower(std::string_view text) {
+  std::string out(text);
+  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+std::string_view side_name(JointSide side) { return side == JointSide::kLeft ? "left" : "right"; }
+
+}  // namespace
+
+JointSide joint_side(std::string_view name) {
+  const std::string folded = lower(name);
+  const bool left = folded.find("left") != std::string::npos;
+  const bool right = folded.find("right") != std::string::npos;
+  if (left != right) return left ? JointSide::kLeft : JointSide::kRight;
+  if (left) return JointSide::kNone;
+  const auto letter_side = [](char c) {
+    return c == 'l' ? JointSide::kLeft : c == 'r' ? JointSide::kRight : JointSide::kNone;
+  };
+  // A separated side letter at the end: Hand_L, foot.r, arm-l.
+  if (folded.size() >= 3 && (folded[folded.size() - 2] == '_' || folded[folded.size() - 2] == '.' ||
+                             folded[folded.size() - 2] == '-')) {
+    if (const JointSide side = letter_side(folded.back()); side != JointSide::kNone) return side;
+  }
+  if (folded.size() < 2) return JointSide::kNone;
+  const JointSide first = letter_side(folded.front());
+  if (first == JointSide::kNone) return JointSide::kNone;
+  // LHipJoint, rCollar: the side letter, then a capital.
+  if (std::isupper(static_cast<unsigned char>(name[1])) != 0) return first;
+  if (name[1] == '_' || name[1] == '.' || name[1] == '-') return first;
+  const std::string_view rest = std::string_view(folded).substr(1);
+  for (std::string_view word : kLimbWords) {
+    if (rest.starts_with(word)) return first;
+  }
+  return JointSide::kNone;
+}
+
+std::optional<std::string> hierarchy_mismatch(const Skeleton& reference, const Skeleton& other) {
+  if (reference.joint_count() != other.joint_count()) {
+    return fmt::format("{} joints there, {} here", reference.joint_count(), other.joint_count());
+  }
+  for (int j = 0; j < reference.joint_count(); ++j) {
+    const JointDef& a = reference.joint(j);
+    const JointDef& b = other.joint(j);
+    if (a.parent != b.parent) {
+      return fmt::format("joint {} ('{}' there, '{}' here) hangs from joint {} there, {} here", j, a.name, b.name,
+                         a.parent, b.parent);
+    }
+    if (a.end_site != b.end_site) {
+      return fmt::format("joint {} is {} there ('{}'), {} here ('{}')", j, a.end_site ? "an end site" : "a joint",
+                         a.name, b.end_site ? "an end site" : "a joint", b.name);
+    }
+    const JointSide side_a = joint_side(a.name);
+    const JointSide side_b = joint_side(b.name);
+    if (side_a != JointSide::kNone && side_b != JointSide::kNone && side_a != side_b) {
+      return fmt::format("joint {} is '{}' ({}) there and '{}' ({}) here", j, a.name, side_name(side_a), b.name,
+                         side_name(side_b));
+    }
+  }
+  return std::nullopt;
+}
+
+Clip renamed_as(const Clip& clip, const Skeleton& reference) {
+  std::vector<JointDef> joints(clip.skeleton.joints().begin(), clip.skeleton.joints().end());
+  for (size_t j = 0; j < joints.size(); ++j) joints[j].name = reference.joint(static_cast<int>(j)).name;
+  const auto ancestors = clip.skeleton.static_ancestors();
+  Clip out = clip;
+  out.skeleton = Skeleton(std::move(joints), std::vector<StaticAncestor>(ancestors.begin(), ancestors.end()));
+  return out;
+}
+
+RestPoseDifference rest_pose_difference(const Skeleton& reference, const Skeleton& other) {
+  RestPoseDifference worst;
+  const int joints = std::min(reference.joint_count(), other.joint_count());
+  for (int j = 1; j < joints; ++j) {
+    const Vec3& a = reference.joint(j).rest_offset_m;
+    const Vec3& b = other.joint(j).rest_offset_m;
+    if (a.norm() < kBoneMinM || b.norm() < kBoneMinM) continue;
+    const double cosine = std::clamp(a.dot(b) / (a.norm() * b.norm()), -1.0, 1.0);
+    const double angle = std::acos(cosine) * 180.0 / std::numbers::pi;
+    if (angle > worst.angle_deg) worst = {angle, reference.joint(j).name};
+  }
+  return worst;
+}
+
+Clip on_rest_pose_of(const Clip& clip, const Skeleton& reference) {
+  const Skeleton& skeleton = clip.skeleton;
+  const int joints = skeleton.joint_count();
+  // turn[j] takes the reference's rest directions in joint j's frame to the clip's: the
+  // re-expressed joint's world rotation is the clip's times turn[j].
+  std::vector<Quat> turn(static_cast<size_t>(joints), Quat::Identity());
+  std::vector<int> bone_child(static_cast<size_t>(joints), -1);  // the single bone of 1 cm+, or -1
+  std::vector<int> bones(static_cast<size_t>(joints), 0);
+  for (int c = 1; c < joints && c < reference.joint_count(); ++c) {
+    if (skeleton.joint(c).rest_offset_m.norm() < kBoneMinM || reference.joint(c).rest_offset_m.norm() < kBoneMinM) {
+      continue;
+    }
+    const auto p = static_cast<size_t>(skeleton.parent(c));
+    bone_child[p] = c;
+    ++bones[p];
+  }
+  for (int j = 0; j < joints; ++j) {
+    const auto jj = static_cast<size_t>(j);
+    const Quat inherited = j == 0 ? Quat::Identity() : turn[static_cast<size_t>(skeleton.parent(j))];
+    turn[jj] = inherited;
+    if (bones[jj] != 1) continue;
+    const int c = bone_child[jj];
+    const Vec3 wanted = inherited * reference.joint(c).rest_offset_m.normalized();
+    const Vec3 has = skeleton.joint(c).rest_offset_m.normalized();
+    turn[jj] = (Quat::FromTwoVectors(wanted, has) * inherited).normalized();
+  }
+
+  // Offsets seen from the turned parent frames; the root's translation is its parent's (world).
+  std::vector<JointDef> defs(skeleton.joints().begin(), skeleton.joints().end());
+  for (int c = 1; c < joints; ++c) {
+    defs[static_cast<size_t>(c)].rest_offset_m =
+        turn[static_cast<size_t>(skeleton.parent(c))].conjugate() * defs[static_cast<size_t>(c)].rest_offset_m;
+  }
+  const auto ancestors = skeleton.static_ancestors();
+  Clip out = clip;
+  out.skeleton = Skeleton(std::move(defs), std::vector<StaticAncestor>(ancestors.begin(), ancestors.end()));
+  for (int f = 0; f < clip.motion.frame_count; ++f) {
+    const auto rotations = out.motion.rotations(f);
+    const auto translations = out.motion.translations(f);
+    for (int j = 0; j < joints; ++j) {
+      const auto jj = static_cast<size_t>(j);
+      const Quat parent_turn = j == 0 ? Quat::Identity() : turn[static_cast<size_t>(skeleton.parent(j))];
+      rotations[jj] = (parent_turn.conjugate() * rotations[jj] * turn[jj]).normalized();
+      const int slot = skeleton.translation_slot(j);
+      if (j > 0 && slot >= 0) {
+        Vec3& translation = translations[static_cast<size_t>(slot)];
+        translation = parent_turn.conjugate() * translation;
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace mg
