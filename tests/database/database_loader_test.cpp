@@ -358,6 +358,28 @@ TEST(DatabaseLoader, AFileWhoseOwnUpAxisIsNotSettledIsReadInTheLibrarys) {
   EXPECT_EQ(world_positions(split->skeletons[split->clips[2].skeleton], split->clips[2].motion).front(),
             world_positions(library->skeletons[library->clips[3].skeleton], library->clips[3].motion).front());
 
+  // With fingers in one walk as well: kept on the shared joints and the crawl z up, both noted;
+  // the crawl moves as in the library without fingers.
+  Clip fingered = test::with_fingers(test::load_data_clip("cmu/16/16_16.amc"));
+  turn_clip(fingered, to_z);
+  std::vector<std::string> with_fingers = files;
+  with_fingers[1] = folder.write("fingers.bvh", write_bvh(fingered.skeleton, fingered.motion, BvhWriteSettings{}));
+  DatabaseLoadNotes fingers_notes;
+  auto both = load_database(with_fingers, settings, &fingers_notes);
+  ASSERT_TRUE(both) << both.error().to_string();
+  EXPECT_EQ(fingers_notes.common_joints.size(), static_cast<size_t>(library->skeletons[0].joint_count()));
+  ASSERT_EQ(fingers_notes.dropped_joints.size(), 1u);
+  EXPECT_EQ(fingers_notes.dropped_joints[0].skeleton, with_fingers[1]);
+  ASSERT_EQ(fingers_notes.detected_up_axes.size(), 4u);
+  EXPECT_EQ(fingers_notes.detected_up_axes[3].library_axis, UpAxis::kZ);
+  const std::vector<std::string> fingers_warnings = load_warnings(fingers_notes);
+  ASSERT_EQ(fingers_warnings.size(), 3u);  // the crawl followed, the fingers dropped, the crawl off the floor
+  EXPECT_NE(fingers_warnings[0].find("crawl.bvh: read z up like the library's other files"), std::string::npos);
+  EXPECT_NE(fingers_warnings[1].find("dropped lwrist_finger0"), std::string::npos);
+  EXPECT_NE(fingers_warnings[2].find("crawl: its lowest joint"), std::string::npos);
+  EXPECT_EQ(world_positions(both->skeletons[both->clips[3].skeleton], both->clips[3].motion),
+            world_positions(library->skeletons[library->clips[3].skeleton], library->clips[3].motion));
+
   settings.up_axis = UpAxis::kZ;
   DatabaseLoadNotes told_notes;
   auto told = load_database({crawl}, settings, &told_notes);

@@ -341,9 +341,9 @@ std::optional<std::string> common_joints_fall_short(const MotionDatabase& db, co
 
 // Steps 3-5 of load_database: the clips read, back to back, on `joints` when given (else as
 // read), the feet's contacts, the doubts. When the skeletons differ in some joints, every clip
-// is read again on those they share (motion/common_joints.h); a file whose own up axis is not
-// settled and differs from the library's (motion/up_axis.h) is read again in the library's. Each
-// time the database is made once more, with every file.
+// is kept on those they share (motion/common_joints.h); a file whose own up axis is not settled
+// and differs from the library's (motion/up_axis.h) is read again in the library's: the
+// database is made once more, with every file.
 Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSettings& settings,
                                   const ManifestWide& wide, const std::optional<CmuIndex>& cmu,
                                   DatabaseLoadNotes* notes, const std::vector<std::string>& joints) {
@@ -493,7 +493,11 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     db.clips.push_back(std::move(clip));
   }
 
-  // 3b. Skeletons that differ in some joints: every clip read again on the joints all share.
+  // 3b. Skeletons that differ in some joints: every clip on the joints all share, as read (a
+  // joint's motion is resampled on its own, so dropping joints after resampling is the same),
+  // then on the first's rest pose where its bones rest far from it.
+  std::vector<std::string> read_on = joints;
+  std::vector<DatabaseLoadNotes::DroppedJoints> dropped_joints;
   if (other_joints) {
     std::vector<std::string> common = common_joints(db.skeletons);
     if (auto short_by = common_joints_fall_short(db, common)) {
@@ -507,13 +511,33 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
       }
       if (!d.joints.empty()) dropped.push_back(std::move(d));
     }
-    if (notes != nullptr) *notes = DatabaseLoadNotes{};
-    auto again = load_clips(std::move(specs), settings, wide, cmu, notes, common);
-    if (again && notes != nullptr) {
-      notes->common_joints = std::move(common);
-      notes->dropped_joints = std::move(dropped);
+    std::vector<std::optional<Skeleton>> kept_skeletons(db.skeletons.size());
+    std::set<std::string> noted_kept_rigs;
+    for (DatabaseClip& clip : db.clips) {
+      Clip whole;
+      whole.name = clip.name;
+      whole.skeleton = db.skeletons[static_cast<size_t>(clip.skeleton)];
+      whole.motion = std::move(clip.motion);
+      auto kept = keep_joints(whole, common);
+      if (!kept) return Error{clip.source, 0, kept.error().message};
+      std::optional<Skeleton>& skeleton = kept_skeletons[static_cast<size_t>(clip.skeleton)];
+      if (clip.skeleton > 0) {
+        DatabaseLoadNotes::MatchedRig matched = match_first_rig(*kept, *kept_skeletons.front());
+        if (notes && matched.rest_pose && noted_kept_rigs.insert(clip.source).second) {
+          matched.file = clip.source;
+          notes->matched_rigs.push_back(std::move(matched));
+        }
+      }
+      if (!skeleton) skeleton = kept->skeleton;
+      clip.motion = std::move(kept->motion);
     }
-    return again;
+    for (size_t s = 0; s < db.skeletons.size(); ++s) db.skeletons[s] = std::move(*kept_skeletons[s]);
+    dropped_joints = std::move(dropped);
+    read_on = std::move(common);
+    if (notes != nullptr) {
+      notes->common_joints = read_on;
+      notes->dropped_joints = dropped_joints;
+    }
   }
 
   // 3c. Files whose own up axis is not settled follow the library's: read again in it. Each file
@@ -537,9 +561,13 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     }
     if (!followed.empty()) {
       if (notes != nullptr) *notes = DatabaseLoadNotes{};
-      auto again = load_clips(std::move(specs), settings, wide, cmu, notes, joints);
+      auto again = load_clips(std::move(specs), settings, wide, cmu, notes, read_on);
       if (again && notes != nullptr) {
         notes->detected_up_axes.insert(notes->detected_up_axes.end(), followed.begin(), followed.end());
+        if (other_joints) {  // read on the shared joints this time, as 3b kept them
+          notes->common_joints = read_on;
+          notes->dropped_joints = std::move(dropped_joints);
+        }
       }
       return again;
     }
