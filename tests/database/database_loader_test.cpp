@@ -13,6 +13,7 @@
 #include "motiongraph/database/database_contacts.h"
 #include "motiongraph/export/bvh_writer.h"
 #include "motiongraph/io/file.h"
+#include "motiongraph/motion/common_joints.h"
 #include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/motion/rig_matching.h"
 #include "motiongraph/motion/up_axis.h"
@@ -364,6 +365,10 @@ TEST(DatabaseLoader, AFileWhoseOwnUpAxisIsNotSettledIsReadInTheLibrarys) {
   turn_clip(fingered, to_z);
   std::vector<std::string> with_fingers = files;
   with_fingers[1] = folder.write("fingers.bvh", write_bvh(fingered.skeleton, fingered.motion, BvhWriteSettings{}));
+  // And a walk under MotionBuilder's names: renamed as it is read, before the joints are kept.
+  Clip builder = renamed_as(test::load_data_clip("cmu/16/16_11.amc"), test::load_data_clip("bvh/111_36.bvh").skeleton);
+  turn_clip(builder, to_z);
+  with_fingers[2] = folder.write("builder.bvh", write_bvh(builder.skeleton, builder.motion, BvhWriteSettings{}));
   DatabaseLoadNotes fingers_notes;
   auto both = load_database(with_fingers, settings, &fingers_notes);
   ASSERT_TRUE(both) << both.error().to_string();
@@ -373,10 +378,14 @@ TEST(DatabaseLoader, AFileWhoseOwnUpAxisIsNotSettledIsReadInTheLibrarys) {
   ASSERT_EQ(fingers_notes.detected_up_axes.size(), 4u);
   EXPECT_EQ(fingers_notes.detected_up_axes[3].library_axis, UpAxis::kZ);
   const std::vector<std::string> fingers_warnings = load_warnings(fingers_notes);
-  ASSERT_EQ(fingers_warnings.size(), 3u);  // the crawl followed, the fingers dropped, the crawl off the floor
+  ASSERT_EQ(fingers_warnings.size(), 4u);  // the crawl followed, the fingers dropped, the names, the crawl's floor
   EXPECT_NE(fingers_warnings[0].find("crawl.bvh: read z up like the library's other files"), std::string::npos);
   EXPECT_NE(fingers_warnings[1].find("dropped lwrist_finger0"), std::string::npos);
-  EXPECT_NE(fingers_warnings[2].find("crawl: its lowest joint"), std::string::npos);
+  EXPECT_NE(fingers_warnings[2].find("builder.bvh: its joints are the library's first rig's under other names"),
+            std::string::npos);
+  EXPECT_NE(fingers_warnings[3].find("crawl: its lowest joint"), std::string::npos);
+  EXPECT_EQ(world_positions(both->skeletons[both->clips[2].skeleton], both->clips[2].motion),
+            world_positions(library->skeletons[library->clips[2].skeleton], library->clips[2].motion));
   EXPECT_EQ(world_positions(both->skeletons[both->clips[3].skeleton], both->clips[3].motion),
             world_positions(library->skeletons[library->clips[3].skeleton], library->clips[3].motion));
 
@@ -571,6 +580,59 @@ TEST(DatabaseLoader, ReadsTheFirstRigUnderOtherNamesAndInAnotherRestPose) {
   DatabaseLoadNotes plain_notes;
   ASSERT_TRUE(load_database({first, first}, cmu_settings(), &plain_notes));
   EXPECT_TRUE(plain_notes.matched_rigs.empty());
+}
+
+TEST(DatabaseLoader, JointsOfTheFirstsNamesInAnotherOrderAreMatchedByName) {
+  // Names that say no side (bone0, bone1, ...), the legs listed the other way round in the second
+  // file: the same parents by index, but every name is the first's, so each joint keeps its name
+  // (matching by place would swap the legs).
+  TempFolder folder("order");
+  const Clip walk = test::load_data_clip("cmu/16/16_15.amc");
+  std::vector<std::pair<int, std::string>> neutral;
+  for (int j = 0; j < walk.skeleton.joint_count(); ++j) neutral.emplace_back(j, fmt::format("bone{}", j));
+  Clip plain = walk;
+  {
+    std::vector<JointDef> joints(walk.skeleton.joints().begin(), walk.skeleton.joints().end());
+    for (const auto& [j, name] : neutral) joints[static_cast<size_t>(j)].name = name;
+    plain.skeleton = Skeleton(std::move(joints));
+  }
+  const int left_hip = *walk.skeleton.find("lhipjoint");
+  const int right_hip = *walk.skeleton.find("rhipjoint");
+  const auto below = [&](int top, int j) {
+    for (; j >= 0; j = walk.skeleton.parent(j)) {
+      if (j == top) return true;
+    }
+    return false;
+  };
+  std::vector<std::string> order{"bone0"};
+  for (const bool end_sites : {false, true}) {  // the joints, then the end sites (listed last), each
+    for (const bool right_leg : {true, false}) {  // the right leg's first
+      for (int j = 1; j < walk.skeleton.joint_count(); ++j) {
+        if (walk.skeleton.joint(j).end_site == end_sites && below(right_hip, j) == right_leg) {
+          order.push_back(fmt::format("bone{}", j));
+        }
+      }
+    }
+  }
+  ASSERT_TRUE(below(left_hip, left_hip + 1));
+  auto reordered = keep_joints(plain, order);
+  ASSERT_TRUE(reordered) << reordered.error().to_string();
+  ASSERT_EQ(hierarchy_mismatch(plain.skeleton, reordered->skeleton), std::nullopt);  // the legs look alike
+  const std::string first = folder.write("a.bvh", write_bvh(plain.skeleton, plain.motion, BvhWriteSettings{}));
+  const std::string second =
+      folder.write("b.bvh", write_bvh(reordered->skeleton, reordered->motion, BvhWriteSettings{}));
+  DatabaseLoadNotes notes;
+  auto db = load_database({first, second}, cmu_settings(), &notes);
+  ASSERT_TRUE(db) << db.error().to_string();
+  EXPECT_TRUE(notes.matched_rigs.empty());
+  auto alone = load_database({second}, cmu_settings());
+  ASSERT_TRUE(alone) << alone.error().to_string();
+  Clip in_library, read_alone;
+  in_library.skeleton = db->skeletons[1];
+  in_library.motion = db->clips[1].motion;
+  read_alone.skeleton = alone->skeletons[0];
+  read_alone.motion = alone->clips[0].motion;
+  EXPECT_LT(test::max_position_error_by_name(in_library, read_alone), 1e-9);
 }
 
 TEST(DatabaseLoader, RejectsTheSameHierarchyWithItsSidesNamedTheOtherWay) {

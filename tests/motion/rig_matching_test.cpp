@@ -48,7 +48,10 @@ TEST(RigMatching, SidesFromNames) {
       {"hand_l", JointSide::kLeft},      {"foot.R", JointSide::kRight},            {"l_hip", JointSide::kLeft},
       {"lowerback", JointSide::kNone},   {"LowerBack", JointSide::kNone},          {"root", JointSide::kNone},
       {"radius", JointSide::kNone},      {"Hips", JointSide::kNone},               {"rtoes", JointSide::kRight},
-      {"lthumb", JointSide::kLeft},      {"lpes", JointSide::kNone},               {"LeftRight", JointSide::kNone}};
+      {"lthumb", JointSide::kLeft},      {"lpes", JointSide::kNone},               {"LeftRight", JointSide::kNone},
+      {"Bip01 L Thigh", JointSide::kLeft}, {"Bip001_R_Calf", JointSide::kRight},   {"hand.L.001", JointSide::kLeft},
+      {"thigh.L", JointSide::kLeft},     {"ROOT", JointSide::kNone},               {"RIBS", JointSide::kNone},
+      {"lShldr", JointSide::kLeft},      {"lowerJaw", JointSide::kNone},           {"L R", JointSide::kNone}};
   for (const auto& [name, side] : cases) EXPECT_EQ(joint_side(name), side) << name;
 }
 

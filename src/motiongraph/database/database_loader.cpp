@@ -288,34 +288,57 @@ std::string find_cmu_index(std::span<const std::string> inputs) {
   return "";
 }
 
-// The clip read as the database's first rig (motion/rig_matching.h): its joints renamed when they
-// are that rig's hierarchy under other names, re-expressed on its rest pose when a bone rests
-// further than kRestPoseRetargetDeg from it. What was done (nothing when the joints differ
-// otherwise: topology_difference tells that).
-DatabaseLoadNotes::MatchedRig match_first_rig(Clip& clip, const Skeleton& first) {
-  DatabaseLoadNotes::MatchedRig matched;
+// The clip's joints renamed as the database's first skeleton's (read in full) when they are its
+// hierarchy under other names (motion/rig_matching.h): the pairs renamed (its name, the first's),
+// none when its joints are named as the first's, or differ otherwise (topology_difference tells
+// that), or all bear names the first has (in another order: matched by name, not by place).
+std::vector<std::pair<std::string, std::string>> rename_as_first(Clip& clip, const Skeleton& first) {
+  std::vector<std::pair<std::string, std::string>> renamed;
   const Skeleton& skeleton = clip.skeleton;
-  bool same_names = skeleton.joint_count() == first.joint_count();
-  for (int j = 0; same_names && j < first.joint_count(); ++j) {
-    same_names = skeleton.joint(j).name == first.joint(j).name;
+  bool all_known = true;
+  for (int j = 0; all_known && j < skeleton.joint_count(); ++j) {
+    all_known = first.find(skeleton.joint(j).name).has_value();
   }
-  if (!same_names) {
-    if (hierarchy_mismatch(first, skeleton)) return matched;
-    for (int j = 0; j < first.joint_count(); ++j) {
-      if (skeleton.joint(j).name != first.joint(j).name && !first.joint(j).end_site) {
-        matched.renamed.emplace_back(skeleton.joint(j).name, first.joint(j).name);
-      }
+  if (all_known || hierarchy_mismatch(first, skeleton)) return renamed;
+  for (int j = 0; j < first.joint_count(); ++j) {
+    if (skeleton.joint(j).name != first.joint(j).name && !first.joint(j).end_site) {
+      renamed.emplace_back(skeleton.joint(j).name, first.joint(j).name);
     }
-    clip = renamed_as(clip, first);
-  } else if (topology_difference(first, skeleton)) {
-    return matched;
   }
-  const RestPoseDifference difference = rest_pose_difference(first, clip.skeleton);
-  if (difference.angle_deg > kRestPoseRetargetDeg) {
-    clip = on_rest_pose_of(clip, first);
-    matched.rest_pose = difference;
+  clip = renamed_as(clip, first);
+  return renamed;
+}
+
+// The notes' entry of a skeleton file read as the first file's rig, made when missing.
+DatabaseLoadNotes::MatchedRig& rig_note(DatabaseLoadNotes& notes, const std::string& file) {
+  for (DatabaseLoadNotes::MatchedRig& rig : notes.matched_rigs) {
+    if (rig.file == file) return rig;
   }
-  return matched;
+  notes.matched_rigs.push_back({file, {}, std::nullopt});
+  return notes.matched_rigs.back();
+}
+
+// Every clip of a skeleton whose bones rest further than kRestPoseRetargetDeg from the first
+// skeleton's re-expressed on the first's rest pose (motion/rig_matching.h), once the joints are
+// settled (the same joints in every skeleton).
+void rest_as_first(MotionDatabase& db, DatabaseLoadNotes* notes) {
+  for (size_t s = 1; s < db.skeletons.size(); ++s) {
+    if (topology_difference(db.skeletons.front(), db.skeletons[s])) continue;
+    const RestPoseDifference difference = rest_pose_difference(db.skeletons.front(), db.skeletons[s]);
+    if (difference.angle_deg <= kRestPoseRetargetDeg) continue;
+    std::optional<Skeleton> rested;
+    for (DatabaseClip& clip : db.clips) {
+      if (clip.skeleton != static_cast<int>(s)) continue;
+      Clip whole;
+      whole.skeleton = db.skeletons[s];
+      whole.motion = std::move(clip.motion);
+      Clip out = on_rest_pose_of(whole, db.skeletons.front());
+      clip.motion = std::move(out.motion);
+      rested = std::move(out.skeleton);
+    }
+    if (rested) db.skeletons[s] = std::move(*rested);
+    if (notes != nullptr) rig_note(*notes, db.skeleton_names[s]).rest_pose = difference;
+  }
 }
 
 // Why the joints every skeleton has cannot hold the library (nullopt when they can): they must
@@ -358,22 +381,19 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
   int next_frame = 0;
   std::vector<std::pair<size_t, UpAxisChoice>> chosen_up_axes;  // spec index, its own choice
   std::optional<Error> other_joints;  // the first skeleton whose joints differ from the first's
-  std::set<std::string> noted_units, noted_up_axes, noted_travels, noted_rigs;  // files
+  std::set<std::string> noted_units, noted_up_axes, noted_travels;  // files
+  std::optional<Skeleton> first_skeleton;  // the first clip's, as read (all its joints)
   for (size_t spec_index = 0; spec_index < specs.size(); ++spec_index) {
     const ClipSpec& spec = specs[spec_index];
     auto loaded = loaders.for_settings(spec.load).load(spec.path);
     if (!loaded) return loaded.error();
+    // Another converter's names on the first skeleton's hierarchy: the first's names.
+    if (!first_skeleton) first_skeleton = loaded->clip.skeleton;
+    const auto renamed = rename_as_first(loaded->clip, *first_skeleton);
     if (!joints.empty()) {
       auto kept = keep_joints(loaded->clip, joints);
       if (!kept) return spec.error(kept.error().message);
       loaded->clip = std::move(*kept);
-    }
-    if (!db.skeletons.empty()) {
-      DatabaseLoadNotes::MatchedRig matched = match_first_rig(loaded->clip, db.skeletons.front());
-      if (notes && (!matched.renamed.empty() || matched.rest_pose) && noted_rigs.insert(spec.path).second) {
-        matched.file = spec.path;
-        notes->matched_rigs.push_back(std::move(matched));
-      }
     }
     if (loaded->clip.detected_up_axis) chosen_up_axes.emplace_back(spec_index, *loaded->clip.detected_up_axis);
     // Noted once a file, however many clips a manifest cuts from it.
@@ -419,6 +439,10 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
 
     // Skeleton: one entry per skeleton file, all with the same joints.
     const std::string skeleton_file = loaded->format == "amc" ? loaded->skeleton_path : spec.path;
+    if (notes != nullptr && !renamed.empty()) {
+      DatabaseLoadNotes::MatchedRig& rig = rig_note(*notes, skeleton_file);
+      if (rig.renamed.empty()) rig.renamed = renamed;
+    }
     std::error_code ec;
     std::string key = fs::weakly_canonical(skeleton_file, ec).string();
     if (ec) key = fs::absolute(skeleton_file).lexically_normal().string();
@@ -494,8 +518,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
   }
 
   // 3b. Skeletons that differ in some joints: every clip on the joints all share, as read (a
-  // joint's motion is resampled on its own, so dropping joints after resampling is the same),
-  // then on the first's rest pose where its bones rest far from it.
+  // joint's motion is resampled on its own, so dropping joints after resampling is the same).
   std::vector<std::string> read_on = joints;
   std::vector<DatabaseLoadNotes::DroppedJoints> dropped_joints;
   if (other_joints) {
@@ -512,7 +535,6 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
       if (!d.joints.empty()) dropped.push_back(std::move(d));
     }
     std::vector<std::optional<Skeleton>> kept_skeletons(db.skeletons.size());
-    std::set<std::string> noted_kept_rigs;
     for (DatabaseClip& clip : db.clips) {
       Clip whole;
       whole.name = clip.name;
@@ -521,13 +543,6 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
       auto kept = keep_joints(whole, common);
       if (!kept) return Error{clip.source, 0, kept.error().message};
       std::optional<Skeleton>& skeleton = kept_skeletons[static_cast<size_t>(clip.skeleton)];
-      if (clip.skeleton > 0) {
-        DatabaseLoadNotes::MatchedRig matched = match_first_rig(*kept, *kept_skeletons.front());
-        if (notes && matched.rest_pose && noted_kept_rigs.insert(clip.source).second) {
-          matched.file = clip.source;
-          notes->matched_rigs.push_back(std::move(matched));
-        }
-      }
       if (!skeleton) skeleton = kept->skeleton;
       clip.motion = std::move(kept->motion);
     }
@@ -539,6 +554,9 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
       notes->dropped_joints = dropped_joints;
     }
   }
+
+  // 3b'. Rest poses, with the joints settled.
+  rest_as_first(db, notes);
 
   // 3c. Files whose own up axis is not settled follow the library's: read again in it. Each file
   // votes once, however many clips (frame ranges) a manifest cuts from it.

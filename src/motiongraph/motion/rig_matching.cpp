@@ -39,17 +39,25 @@ JointSide joint_side(std::string_view name) {
   const auto letter_side = [](char c) {
     return c == 'l' ? JointSide::kLeft : c == 'r' ? JointSide::kRight : JointSide::kNone;
   };
-  // A separated side letter at the end: Hand_L, foot.r, arm-l.
-  if (folded.size() >= 3 && (folded[folded.size() - 2] == '_' || folded[folded.size() - 2] == '.' ||
-                             folded[folded.size() - 2] == '-')) {
-    if (const JointSide side = letter_side(folded.back()); side != JointSide::kNone) return side;
+  // A side letter standing alone between separators: Bip01 L Thigh, Bip01_R_Calf, hand.L.001.
+  JointSide alone = JointSide::kNone;
+  for (size_t begin = 0; begin < folded.size();) {
+    size_t end = begin;
+    while (end < folded.size() && std::isalnum(static_cast<unsigned char>(folded[end])) != 0) ++end;
+    if (end == begin + 1 && letter_side(folded[begin]) != JointSide::kNone) {
+      if (alone != JointSide::kNone && alone != letter_side(folded[begin])) return JointSide::kNone;
+      alone = letter_side(folded[begin]);
+    }
+    begin = end + 1;
   }
-  if (folded.size() < 2) return JointSide::kNone;
+  if (alone != JointSide::kNone) return alone;
+  if (folded.size() < 3) return JointSide::kNone;
   const JointSide first = letter_side(folded.front());
   if (first == JointSide::kNone) return JointSide::kNone;
-  // LHipJoint, rCollar: the side letter, then a capital.
-  if (std::isupper(static_cast<unsigned char>(name[1])) != 0) return first;
-  if (name[1] == '_' || name[1] == '.' || name[1] == '-') return first;
+  // LHipJoint, rCollar: the side letter, then a capital starting a word (not ROOT, RIBS).
+  const auto is_upper = [&](size_t i) { return std::isupper(static_cast<unsigned char>(name[i])) != 0; };
+  const auto is_lower = [&](size_t i) { return std::islower(static_cast<unsigned char>(name[i])) != 0; };
+  if (is_upper(1) && is_lower(2)) return first;
   const std::string_view rest = std::string_view(folded).substr(1);
   for (std::string_view word : kLimbWords) {
     if (rest.starts_with(word)) return first;

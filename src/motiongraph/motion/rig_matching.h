@@ -19,8 +19,10 @@ namespace mg {
 
 enum class JointSide { kNone, kLeft, kRight };
 
-// The side a joint's name says: "left"/"right" anywhere, a _l/.l suffix, an l/r prefix before a
-// capital (LHipJoint, rCollar) or before a limb word (lfemur, rhumerus). kNone otherwise.
+// The side a joint's name says: "left"/"right" anywhere, an l or r standing alone between
+// separators (thigh.L, Bip01 R Calf, hand_l, hand.L.001), or starting the name before a capital
+// that starts a word (LHipJoint, rCollar; not ROOT) or before a limb word (lfemur, rhumerus).
+// kNone otherwise.
 JointSide joint_side(std::string_view name);
 
 // Why `other` is not `reference`'s hierarchy under other names (nullopt when it is): both must
