@@ -140,6 +140,9 @@ Command add_build_command(CLI::App& app) {
                   "CMU's motion index (cmu-mocap-index.tsv) for tags from descriptions; default: one beside or above the "
                   "inputs, else the index the project ships (built in)");
   sub->add_flag("--no-cmu-tags", b.no_cmu_tags, "Do not tag clips from CMU's descriptions");
+  sub->add_flag("--no-loops", b.no_loops,
+                "Do not play clips that loop (a game's cycle: their end meets their start) on past their end; by "
+                "default they go on a window further, so that the graph can play them round");
   sub->add_option("--feet", b.feet,
                   "Foot joints as LEFT_ANKLE,LEFT_TOE,RIGHT_ANKLE,RIGHT_TOE, any left empty to find it by name "
                   "(default: found by name; a manifest's [feet] otherwise)");

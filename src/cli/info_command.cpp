@@ -33,6 +33,7 @@ struct InfoOptions {
   bool fps_given = false;
   std::string cmu_index;
   bool no_cmu_tags = false;
+  bool no_loops = false;
 };
 
 // Folders and manifests are a library: the whole of what is given is read as `build` reads it.
@@ -53,6 +54,7 @@ int run_library(const InfoOptions& options) {
   db.fps = options.fps;
   db.prefer_manifest_fps = !options.fps_given;
   db.cmu_tags = !options.no_cmu_tags;
+  db.loops = !options.no_loops;
   db.cmu_index_path = options.cmu_index;
   return run_library_info(options.files, library);
 }
@@ -73,9 +75,9 @@ nlohmann::json skeleton_json(const Skeleton& skeleton) {
 
 int run_info(const InfoOptions& options) {
   if (is_library(options.files)) return run_library(options);
-  if (options.fps_given || !options.cmu_index.empty() || options.no_cmu_tags) {
-    spdlog::warn("--fps, --cmu-index and --no-cmu-tags apply to folders and manifests (a library); these files are "
-                 "summarised as read");
+  if (options.fps_given || !options.cmu_index.empty() || options.no_cmu_tags || options.no_loops) {
+    spdlog::warn("--fps, --cmu-index, --no-cmu-tags and --no-loops apply to folders and manifests (a library); these "
+                 "files are summarised as read");
   }
   ClipLoadSettings settings = options.load.settings();
   // An .asf among the files is the skeleton of the .amc files given with it.
@@ -210,6 +212,7 @@ Command add_info_command(CLI::App& app) {
                   "inputs, else the one the program ships)")
       ->check(CLI::ExistingFile);
   sub->add_flag("--no-cmu-tags", options->no_cmu_tags, "For a library: no tags from CMU's descriptions");
+  sub->add_flag("--no-loops", options->no_loops, "For a library: clips that loop are not played on past their end");
   sub->add_flag("--json", options->json, "Print the summary as JSON");
   options->load.add_to(*sub);
   return {sub, [options] { return run_info(*options); }};

@@ -89,6 +89,14 @@ void report_units(const DatabaseLoadNotes& notes, bool quiet) {
     spdlog::info("read z up and turned y up: {} of {} file{} (their figures stand along z; --up-axis overrides)",
                  z_up, files, files == 1 ? "" : "s");
   }
+  if (!notes.loops.empty() && !quiet) {
+    int added = 0;
+    for (const auto& loop : notes.loops) added += loop.added_frames;
+    spdlog::info("{} clip{} loop (their end meets their start: {}{}): played on past their end, {} frames in all, so "
+                 "that the graph can play them round (--no-loops turns this off)",
+                 notes.loops.size(), notes.loops.size() == 1 ? "" : "s", notes.loops.front().clip,
+                 notes.loops.size() > 1 ? fmt::format(" and {} more", notes.loops.size() - 1) : "", added);
+  }
   const auto judged = std::count_if(notes.recovered_travels.begin(), notes.recovered_travels.end(),
                                     [](const auto& r) { return r.source == TravelSource::kAuto; });
   if (judged > 0 && !quiet) {

@@ -27,7 +27,8 @@ void report_up_axis(const std::string& file, const UpAxisChoice& choice);
 std::string travel_description(const InPlaceChoice& choice);
 // An info line for a clip whose travel was recovered (nothing otherwise).
 void report_travel(const std::string& file, const InPlaceChoice& choice);
-// Also one info line for the files read z up, and one for the clips whose travel was recovered.
+// Also one info line for the files read z up, one for the clips whose travel was recovered, and
+// one for the clips that loop.
 // quiet: the warnings only.
 void report_units(const DatabaseLoadNotes& notes, bool quiet);
 

@@ -176,6 +176,33 @@ assert abs(written["root_path_m"] - recovered["root_path_m"]) < 1e-3, (written["
 print(f"s-curve:20 on the in-place library: mean deviation {s['mean_deviation_m']:.3f} m")
 PY
 
+# A game's cycles (one walk cycle each of two clips and a run cycle, each made a loop, in a
+# Bandai-like rig): the build plays them on past their end so the graph can play them round;
+# without that (--no-loops) a cycle of one period holds no transition back to its start.
+mkdir -p "$work/loops"
+"$make" --loop 32:34 "$work/loops" "$data/cmu/16/16_15.amc"
+"$make" --loop 15:36 "$work/loops" "$data/cmu/16/16_16.amc"
+"$make" --loop 0:24 "$work/loops" "$data/cmu/16/16_35.amc"
+"$bin" build "$work/loops" -o "$work/loops.mgraph" --no-cache --report "$work/loops.json" 2>"$work/loops.txt"
+grep "3 clips loop (their end meets their start: 16_15 and 2 more): played on past their end, 36 frames in all" \
+  "$work/loops.txt" >/dev/null || { echo "FAIL: loops line"; cat "$work/loops.txt"; exit 1; }
+"$bin" build "$work/loops" -o "$work/noloops.mgraph" --no-cache --no-loops --report "$work/noloops.json" 2>/dev/null
+"$bin" info --json "$work/loops" >"$work/loops-info.json" 2>/dev/null
+"$bin" path "$work/loops.mgraph" --shape s-curve:20 -o "$work/loops.bvh" --report "$work/loops-path.json" >/dev/null 2>&1
+python3 - "$work/loops.json" "$work/noloops.json" "$work/loops-info.json" "$work/loops-path.json" <<'PY'
+import json, sys
+loops, noloops, info, path = (json.load(open(p)) for p in sys.argv[1:5])
+kept = lambda r: sum(c["kept_frames"] for c in r["clips"])
+# Every clip joins the graph played round; as read, the run cycle joins nothing.
+assert all(c["kept_frames"] > 0 for c in loops["clips"]), loops["clips"]
+assert [c["kept_frames"] for c in noloops["clips"]][2] == 0, noloops["clips"]
+assert kept(loops) > 2 * kept(noloops), (kept(loops), kept(noloops))
+assert [l["period_frames"] for l in info["reading"]["loops"]] == [34, 36, 24], info["reading"]["loops"]
+assert [c["frames"] for c in info["clips"]] == [34 + 12, 36 + 12, 24 + 12], info["clips"]
+assert path["mean_deviation_m"] < 0.15 and path["reached_end"], path["mean_deviation_m"]
+print(f"loops: {kept(loops)} frames kept against {kept(noloops)} as read; s-curve:20 {path['mean_deviation_m']:.3f} m")
+PY
+
 # A figure no unit makes human-sized: a warning, read as metres.
 printf 'HIERARCHY\nROOT a\n{\n OFFSET 0 0 0\n CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n JOINT b\n {\n  OFFSET 0 0.05 0\n  CHANNELS 3 Zrotation Xrotation Yrotation\n  End Site\n  {\n   OFFSET 0 0.05 0\n  }\n }\n}\nMOTION\nFrames: 2\nFrame Time: 0.04\n0 0 0 0 0 0 0 0 0\n0 0 0 0 0 0 0 0 0\n' >"$work/tiny.bvh"
 "$bin" info "$work/tiny.bvh" >"$work/tiny.txt" 2>"$work/tiny.err"

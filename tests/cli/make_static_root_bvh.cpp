@@ -1,21 +1,27 @@
-// make_static_root_bvh [--z-up] [--in-place] [--lying] OUT_DIR AMC...: writes each clip (AMC with
+// make_static_root_bvh [--z-up] [--in-place] [--lying] [--loop FIRST:PERIOD] OUT_DIR AMC...:
+// writes each clip (AMC with
 // the .asf beside it) as OUT_DIR/<stem>.bvh in a Bandai-like rig (tests/motion/static_root_bvh.h):
 // a static root at the origin above the hips, 6 channels per joint, centimetres; with --z-up,
 // every position turned as a z-up tool holds it (+y to +z); with --in-place, the hips' travel
 // over the floor taken out (x and z), as "in place" exports do; with --lying, the figure tipped
-// to lie along z (a crawl, say) before any turn, its rest pose standing. For
-// cli_static_root_test.sh.
+// to lie along z (a crawl, say) before any turn, its rest pose standing; with --loop, resampled to
+// 30 fps and cut to one cycle of PERIOD frames from FIRST made a loop (tests/motion/cycle_loop.h),
+// as a game's walk or run cycle is. For cli_static_root_test.sh.
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <string>
 
+#include "motion/cycle_loop.h"
 #include "motion/static_root_bvh.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/clip_loader.h"
+#include "motiongraph/motion/resample.h"
 #include "motiongraph/motion/up_axis.h"
 
 int main(int argc, char** argv) {
   bool z_up = false, in_place = false, lying = false;
+  int loop_first = -1, loop_period = 0;
   int first = 1;
   for (; first < argc && std::string(argv[first]).starts_with("--"); ++first) {
     const std::string flag = argv[first];
@@ -25,12 +31,16 @@ int main(int argc, char** argv) {
       in_place = true;
     } else if (flag == "--lying") {
       lying = true;
+    } else if (flag == "--loop" && first + 1 < argc &&
+               std::sscanf(argv[first + 1], "%d:%d", &loop_first, &loop_period) == 2) {
+      ++first;
     } else {
       first = argc;  // unknown: usage
     }
   }
   if (argc < first + 2) {
-    std::fprintf(stderr, "usage: make_static_root_bvh [--z-up] [--in-place] [--lying] OUT_DIR AMC...\n");
+    std::fprintf(stderr, "usage: make_static_root_bvh [--z-up] [--in-place] [--lying] [--loop FIRST:PERIOD] OUT_DIR "
+                         "AMC...\n");
     return 2;
   }
   mg::ClipLoadSettings load;
@@ -39,6 +49,20 @@ int main(int argc, char** argv) {
   for (int i = first + 1; i < argc; ++i) {
     auto loaded = loader.load(argv[i]);
     mg::Status written = mg::Ok{};
+    if (loaded && loop_period > 0) {
+      auto resampled = mg::resample(loaded->clip.motion, 30.0);
+      if (!resampled) {
+        std::fprintf(stderr, "make_static_root_bvh: %s\n", resampled.error().to_string().c_str());
+        return 1;
+      }
+      loaded->clip.motion = std::move(*resampled);
+      try {
+        loaded->clip = mg::test::loop_of(loaded->clip, loop_first, loop_period, false);
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "make_static_root_bvh: %s: %s\n", argv[i], e.what());
+        return 1;
+      }
+    }
     if (loaded) {
       if (in_place) {
         mg::Motion& motion = loaded->clip.motion;

@@ -9,12 +9,14 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "motion/cycle_loop.h"
 #include "motion/static_root_bvh.h"
 #include "motiongraph/database/database_contacts.h"
 #include "motiongraph/export/bvh_writer.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/common_joints.h"
 #include "motiongraph/motion/forward_kinematics.h"
+#include "motiongraph/motion/resample.h"
 #include "motiongraph/motion/rig_matching.h"
 #include "motiongraph/motion/up_axis.h"
 #include "test_data.h"
@@ -580,6 +582,58 @@ TEST(DatabaseLoader, ReadsTheFirstRigUnderOtherNamesAndInAnotherRestPose) {
   DatabaseLoadNotes plain_notes;
   ASSERT_TRUE(load_database({first, first}, cmu_settings(), &plain_notes));
   EXPECT_TRUE(plain_notes.matched_rigs.empty());
+}
+
+TEST(DatabaseLoader, ClipsThatLoopArePlayedOnPastTheirEnd) {
+  // A walk cycle whose first frame follows its last, and one whose last frame repeats its first
+  // (at 30 fps, the database's rate): each goes on for a window and a frame (11 at 30 fps), as
+  // the cycle carries on; a capture does not, and with loops off neither does a cycle.
+  TempFolder folder("loops");
+  Clip walk = test::load_data_clip("cmu/16/16_15.amc");
+  walk.motion = *resample(walk.motion, 30.0);
+  const Clip following = test::loop_of(walk, 32, 34, false);
+  const Clip repeating = test::loop_of(walk, 32, 34, true);
+  const std::vector<std::string> files = {
+      folder.write("following.bvh", write_bvh(following.skeleton, following.motion, BvhWriteSettings{})),
+      folder.write("repeating.bvh", write_bvh(repeating.skeleton, repeating.motion, BvhWriteSettings{})),
+      test::data_path("bvh/16_01.bvh")};
+  DatabaseSettings settings = cmu_settings();
+  DatabaseLoadNotes notes;
+  auto db = load_database(files, settings, &notes);
+  ASSERT_TRUE(db) << db.error().to_string();
+  ASSERT_EQ(notes.loops.size(), 2u);
+  EXPECT_EQ(notes.loops[0].clip, "following");
+  EXPECT_FALSE(notes.loops[0].choice.last_repeats_first);
+  EXPECT_EQ(notes.loops[0].choice.period, 34);
+  EXPECT_TRUE(notes.loops[1].choice.last_repeats_first);
+  EXPECT_EQ(notes.loops[1].choice.period, 34);
+  EXPECT_EQ(settings.loop_frames_at(30.0), 11);
+  EXPECT_EQ(notes.loops[0].added_frames, 12);  // ceil(11 frames) + 1 at the file's rate, 30 fps
+  EXPECT_EQ(db->clips[0].frame_count, 34 + 12);
+  EXPECT_EQ(db->clips[1].frame_count, 35 + 12);
+  // The frames added are the cycle's first, moved on by one cycle: the same pose about the root.
+  const std::vector<Vec3> played = world_positions(db->skeletons[0], db->clips[0].motion);
+  const auto joints = static_cast<size_t>(db->skeletons[0].joint_count());
+  for (size_t j = 1; j < joints; ++j) {
+    const Vec3 start = played[j] - played[0];
+    const Vec3 again = played[34 * joints + j] - played[34 * joints];
+    EXPECT_LT((start - again).norm(), 0.02) << j;  // the root does not turn in this cycle
+  }
+  EXPECT_EQ(db->frame_contacts.size(), static_cast<size_t>(db->frame_count()));
+
+  settings.loops = false;
+  DatabaseLoadNotes off_notes;
+  auto off = load_database(files, settings, &off_notes);
+  ASSERT_TRUE(off) << off.error().to_string();
+  EXPECT_TRUE(off_notes.loops.empty());
+  EXPECT_EQ(off->clips[0].frame_count, 34);
+  settings.loops = true;
+  settings.loop_overlap_frames = 4;
+  DatabaseLoadNotes short_notes;
+  ASSERT_TRUE(load_database(files, settings, &short_notes));
+  EXPECT_EQ(short_notes.loops[0].added_frames, 5);
+  settings.loop_overlap_frames = -1;
+  EXPECT_FALSE(load_database(files, settings));
 }
 
 TEST(DatabaseLoader, JointsOfTheFirstsNamesInAnotherOrderAreMatchedByName) {

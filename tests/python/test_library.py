@@ -106,6 +106,7 @@ def test_feet_named_and_options_refused(cli, data, tmp_path):
     assert named.summary["feet"]["source"] == "--feet"
     assert named[0].foot_joints == ["lpes", "ltoes", "rpes", "rtoes"]
     np.testing.assert_array_equal(named[0].contacts, mg.load_library(bvh)[0].contacts)
+    assert mg.load_library(bvh, no_loops=True).summary["reading"]["loops"] == []
     # Only the options that say how clips are read; the rest of build's are refused.
     with pytest.raises(TypeError, match="load_library\\(\\) got an unexpected keyword argument 'threshold'"):
         mg.load_library(bvh, threshold="4cm")

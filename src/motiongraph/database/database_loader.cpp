@@ -268,7 +268,15 @@ Status DatabaseSettings::validate() const {
   if (!(input_fps >= 0.0) || !std::isfinite(input_fps)) {
     return Error{"", 0, fmt::format("input_fps must be positive (or 0: the files' own), not {}", input_fps)};
   }
+  if (loop_overlap_frames < 0 || loop_overlap_frames > 10001) {
+    return Error{"", 0, fmt::format("loop_overlap_frames must be 0 (automatic) to 10001, not {}", loop_overlap_frames)};
+  }
   return Ok{};
+}
+
+int DatabaseSettings::loop_frames_at(double database_fps) const {
+  if (loop_overlap_frames > 0) return loop_overlap_frames;
+  return std::max(1, static_cast<int>(std::lround(database_fps / 3.0))) + 1;  // the default window, and one
 }
 
 namespace {
@@ -429,7 +437,19 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     if (!whole) sliced = motion.slice(first - 1 - dropped, last - first + 1);
     const Motion& cut = whole ? motion : sliced;
     const double input_fps = cut.fps;
-    auto resampled = resample(cut, db.fps);
+    // A clip that loops goes on past its end (motion/loop.h), as far as a window and a frame at
+    // the database's rate, so that a transition can lead from its end back to its start.
+    Motion unrolled;
+    std::optional<DatabaseLoadNotes::Loop> loop_note;
+    if (settings.loops) {
+      const LoopChoice loop = find_loop(loaded->clip.skeleton, cut);
+      if (loop.loops) {
+        const int extra = static_cast<int>(std::ceil(settings.loop_frames_at(db.fps) * input_fps / db.fps)) + 1;
+        unrolled = unrolled_loop(loaded->clip.skeleton, cut, loop, extra);
+        loop_note = DatabaseLoadNotes::Loop{spec.name, spec.path, loop, 0};
+      }
+    }
+    auto resampled = resample(loop_note ? unrolled : cut, db.fps);
     if (!resampled) return spec.error(resampled.error().message);
     if (resampled->frame_count < 2) {
       return spec.error(fmt::format("{} frame{} at {} fps ({} frames at {} fps in the file{}): a clip needs at least 2",
@@ -473,6 +493,11 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
       db.skeletons.push_back(loaded->clip.skeleton);
       db.skeleton_names.push_back(skeleton_file);
       skeleton_of_file.emplace(key, skeleton);
+    }
+
+    if (loop_note && notes != nullptr) {
+      loop_note->added_frames = resampled->frame_count - static_cast<int>(resampled_frame_count(cut, db.fps));
+      notes->loops.push_back(std::move(*loop_note));
     }
 
     DatabaseClip clip;

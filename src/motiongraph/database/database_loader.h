@@ -37,6 +37,7 @@
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/in_place_choice.h"
 #include "motiongraph/motion/length_unit_choice.h"
+#include "motiongraph/motion/loop.h"
 #include "motiongraph/motion/rig_matching.h"
 #include "motiongraph/motion/up_axis_choice.h"
 
@@ -72,6 +73,14 @@ struct DatabaseSettings {
   std::string cmu_index_text;
   std::string cmu_index_path;
   bool cmu_index_beside_inputs = true;
+
+  // Clips that loop (motion/loop.h: a game's cycle, its end meeting its start) go on past their
+  // end for loop_overlap_frames frames at the database's rate (0: a third of a second and one,
+  // the default window's and one), so a transition's window can lead from the end back to the
+  // start.
+  bool loops = true;
+  int loop_overlap_frames = 0;
+  int loop_frames_at(double database_fps) const;
 
   Status validate() const;
 };
@@ -121,6 +130,14 @@ struct DatabaseLoadNotes {
     std::optional<RestPoseDifference> rest_pose;              // when re-expressed on the first's rest pose
   };
   std::vector<MatchedRig> matched_rigs;
+  // Clips found to loop, played on past their end (DatabaseSettings::loops).
+  struct Loop {
+    std::string clip;
+    std::string file;
+    LoopChoice choice;
+    int added_frames = 0;  // at the database's rate
+  };
+  std::vector<Loop> loops;
   std::vector<std::string> clip_doubts;
 };
 

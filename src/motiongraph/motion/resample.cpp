@@ -6,6 +6,13 @@
 
 namespace mg {
 
+double resampled_frame_count(const Motion& motion, double fps_out) {
+  if (motion.frame_count == 0 || fps_out == motion.fps) return motion.frame_count;
+  // A tiny epsilon keeps exact multiples (120 -> 30 fps, 4 source frames per output frame)
+  // from losing their last frame to rounding.
+  return std::floor(motion.duration_s() * fps_out + 1e-9) + 1.0;
+}
+
 Result<Motion> resample(const Motion& motion, double fps_out) {
   if (!(fps_out > 0.0) || !std::isfinite(fps_out)) {
     return Error{"", 0, fmt::format("frame rate {} must be positive", fps_out)};
@@ -15,9 +22,7 @@ Result<Motion> resample(const Motion& motion, double fps_out) {
     same.fps = fps_out;
     return same;
   }
-  // A tiny epsilon keeps exact multiples (120 -> 30 fps, 4 source frames per output frame)
-  // from losing their last frame to rounding.
-  const double frames_out = std::floor(motion.duration_s() * fps_out + 1e-9) + 1.0;
+  const double frames_out = resampled_frame_count(motion, fps_out);
   if (frames_out > 1e8) return Error{"", 0, "resampled motion would have too many frames"};
   Motion out = motion;
   out.fps = fps_out;

@@ -10,4 +10,7 @@ namespace mg {
 
 Result<Motion> resample(const Motion& motion, double fps_out);
 
+// The number of frames resample() gives (fps_out positive).
+double resampled_frame_count(const Motion& motion, double fps_out);
+
 }  // namespace mg

@@ -81,6 +81,9 @@ Result<BuildSettings> build_settings_from(const BuildOptions& o) {
   db.travel = *travel;
   db.input_fps = o.input_fps;
   db.cmu_tags = !o.no_cmu_tags;
+  db.loops = !o.no_loops;
+  // A loop goes on past its end as far as a transition's window reaches, and a frame.
+  if (o.distance.window_frames > 0) db.loop_overlap_frames = o.distance.window_frames + 1;
   db.cmu_index_path = o.cmu_index;
   if (!o.feet.empty()) {
     auto feet = parse_foot_joint_names(o.feet);

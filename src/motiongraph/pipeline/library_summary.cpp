@@ -79,10 +79,20 @@ nlohmann::json reading_json(const DatabaseLoadNotes& notes) {
                                                                  {"angle_deg", rig.rest_pose->angle_deg}}
                                                 : nlohmann::json(nullptr)}});
   }
+  nlohmann::json loops = nlohmann::json::array();
+  for (const auto& loop : notes.loops) {
+    loops.push_back({{"clip", loop.clip},
+                     {"file", loop.file},
+                     {"period_frames", loop.choice.period},
+                     {"last_repeats_first", loop.choice.last_repeats_first},
+                     {"seam_ratio", loop.choice.seam_ratio},
+                     {"added_frames", loop.added_frames}});
+  }
   return {{"units", std::move(units)},
           {"up_axes", std::move(up_axes)},
           {"travel_recovered", std::move(travel)},
-          {"rigs", std::move(rigs)}};
+          {"rigs", std::move(rigs)},
+          {"loops", std::move(loops)}};
 }
 
 }  // namespace

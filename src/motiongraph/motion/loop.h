@@ -1,0 +1,46 @@
+// Clips that loop: a game's walk or run cycle ends where it starts, so played again it goes on
+// seamlessly. A motion graph blends over a window of frames inside a clip, so a cycle of one
+// period could never be played round: the window that would lead from its end back to its
+// start runs past the end. A clip found to loop is therefore played on after its end, its first
+// frames again, the root carried on over the floor as one cycle carries it, so that the graph
+// finds the transition from the end back to the start (at distance zero) like any other.
+#pragma once
+
+#include "motiongraph/motion/motion.h"
+
+namespace mg {
+
+struct LoopChoice {
+  bool loops = false;
+  bool last_repeats_first = false;  // the last frame is the first again (period frames - 1);
+                                    // else the first follows the last (period frames)
+  int period = 0;                   // frames of one cycle
+  // How far the seam is from a loop's: with the last frame repeating the first, their
+  // difference over the clip's median frame step; else the first frame's departure from the
+  // cubic through the two frames either side of the seam (the last two and the next two), over
+  // the clip's median departure of a frame from its neighbours' cubic.
+  double seam_ratio = 0.0;
+  double step_m = 0.0;  // the median frame step (RMS over joints, in the root's floor frame)
+};
+
+// A clip loops when its last frame repeats the first (within a quarter of its median step), or
+// when its first frame follows its last as smoothly as its frames follow each other (departure
+// at most 3 times the median, the seam a step of at most twice the median). CMU's 170 captures
+// of the 8-subject library measure 0.76 steps and 4.3 departures at the least, one cycle of a
+// walk cut from a capture 2.4-8 departures, cycles made loops 1.0-2.6.
+inline constexpr double kRepeatedSeamRatio = 0.25;
+inline constexpr double kFollowingSeamRatio = 3.0;
+inline constexpr double kFollowingStepRatio = 2.0;
+
+// Whether the clip loops, its poses compared in the root's floor frame (the joints' positions
+// about the root's floor point, turned by its heading), so a cycle that travels or turns loops
+// too. Clips of fewer than 8 frames, or that hardly move (median step under 2 mm), do not.
+LoopChoice find_loop(const Skeleton& skeleton, const Motion& motion);
+
+// The loop with `extra_frames` more frames (at most one period): its frames from the start of
+// the cycle again, placed by the floor transform (heading and floor position) one cycle makes,
+// so the motion goes on across the seam as played round. Only the root's rotation and
+// translation change in the frames added; the clip's own frames are unchanged.
+Motion unrolled_loop(const Skeleton& skeleton, const Motion& motion, const LoopChoice& loop, int extra_frames);
+
+}  // namespace mg
