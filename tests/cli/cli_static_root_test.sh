@@ -184,7 +184,7 @@ mkdir -p "$work/loops"
 "$make" --loop 15:36 "$work/loops" "$data/cmu/16/16_16.amc"
 "$make" --loop 0:24 "$work/loops" "$data/cmu/16/16_35.amc"
 "$bin" build "$work/loops" -o "$work/loops.mgraph" --no-cache --report "$work/loops.json" 2>"$work/loops.txt"
-grep "3 clips loop (their end meets their start: 16_15 and 2 more): played on past their end, 36 frames in all" \
+grep "3 clips loop (their end meets their start: 16_15 and 2 more): played on past their end, 33 frames in all" \
   "$work/loops.txt" >/dev/null || { echo "FAIL: loops line"; cat "$work/loops.txt"; exit 1; }
 "$bin" build "$work/loops" -o "$work/noloops.mgraph" --no-cache --no-loops --report "$work/noloops.json" 2>/dev/null
 "$bin" info --json "$work/loops" >"$work/loops-info.json" 2>/dev/null
@@ -198,7 +198,7 @@ assert all(c["kept_frames"] > 0 for c in loops["clips"]), loops["clips"]
 assert [c["kept_frames"] for c in noloops["clips"]][2] == 0, noloops["clips"]
 assert kept(loops) > 2 * kept(noloops), (kept(loops), kept(noloops))
 assert [l["period_frames"] for l in info["reading"]["loops"]] == [34, 36, 24], info["reading"]["loops"]
-assert [c["frames"] for c in info["clips"]] == [34 + 12, 36 + 12, 24 + 12], info["clips"]
+assert [c["frames"] for c in info["clips"]] == [34 + 11, 36 + 11, 24 + 11], info["clips"]
 assert path["mean_deviation_m"] < 0.15 and path["reached_end"], path["mean_deviation_m"]
 print(f"loops: {kept(loops)} frames kept against {kept(noloops)} as read; s-curve:20 {path['mean_deviation_m']:.3f} m")
 PY

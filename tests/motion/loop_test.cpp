@@ -134,5 +134,67 @@ TEST(Loop, UnrolledFramesAreTheCycleAgainOneCycleOn) {
   }
 }
 
+TEST(Loop, CyclesAtTheirCaptureRateLoopToo) {
+  // The same cycles at 120 fps: poses are compared about 1/30 s apart at any rate.
+  for (const auto& [file, first, period] : {std::tuple{"cmu/16/16_15.amc", 128, 136},
+                                            std::tuple{"cmu/16/16_35.amc", 0, 96}}) {
+    const Clip clip = test::load_data_clip(file);
+    ASSERT_EQ(clip.motion.fps, 120.0);
+    for (const bool repeat : {true, false}) {
+      const LoopChoice loop = find_loop(clip.skeleton, test::loop_of(clip, first, period, repeat).motion);
+      EXPECT_TRUE(loop.loops) << file << " repeat " << repeat << " seam " << loop.seam_ratio;
+      EXPECT_EQ(loop.period, period) << file;
+    }
+    EXPECT_FALSE(find_loop(clip.skeleton, clip.motion).loops) << file;
+  }
+}
+
+TEST(Loop, ATurningCycleGoesOnRoundItsCircle) {
+  // A walk cycle turned onto a circle, 40 degrees a cycle: every frame the straight cycle's pose
+  // (its travel taken out) turned by 40 t / P degrees about the circle's centre, so one cycle
+  // on is exactly the cycle turned 40 degrees. The frames added are its continuation: exactly
+  // when the last frame repeats the first, within a few centimetres when it is extrapolated.
+  const Clip walk = at_30fps("cmu/16/16_15.amc");
+  const int period = 34;
+  const Clip straight_loop = test::loop_of(walk, 32, period, true);
+  const LoopChoice straight = find_loop(straight_loop.skeleton, straight_loop.motion);
+  ASSERT_TRUE(straight.loops);
+  const Motion two_cycles = unrolled_loop(straight_loop.skeleton, straight_loop.motion, straight, period);
+  const int slot = walk.skeleton.translation_slot(0);
+  const Vec3 travel = two_cycles.translations(period)[static_cast<size_t>(slot)] -
+                      two_cycles.translations(0)[static_cast<size_t>(slot)];
+  const double turn = 40.0 * 3.141592653589793 / 180.0;
+  const Vec3 along(travel.x(), 0.0, travel.z());
+  const double radius = along.norm() / turn;
+  const Vec3 start = two_cycles.translations(0)[static_cast<size_t>(slot)];
+  const Vec3 centre = Vec3(start.x(), 0.0, start.z()) - radius * Vec3(-along.z(), 0.0, along.x()) / along.norm();
+  Motion circle = two_cycles;
+  for (int t = 0; t < circle.frame_count; ++t) {
+    const Quat yaw(Eigen::AngleAxisd(turn * t / period, Vec3::UnitY()));
+    Vec3& root = circle.translations(t)[static_cast<size_t>(slot)];
+    root -= along * (static_cast<double>(t) / period);
+    root = yaw * (root - centre) + centre;
+    circle.rotations(t)[0] = yaw * circle.rotations(t)[0];
+  }
+  const int joints = walk.skeleton.joint_count();
+  const std::vector<Vec3> truth = world_positions(walk.skeleton, circle);
+  for (const bool repeat : {true, false}) {
+    const Motion cycle = circle.slice(0, period + (repeat ? 1 : 0));
+    const LoopChoice loop = find_loop(walk.skeleton, cycle);
+    ASSERT_TRUE(loop.loops) << "repeat " << repeat << " seam " << loop.seam_ratio;
+    ASSERT_EQ(loop.period, period);
+    const Motion on = unrolled_loop(walk.skeleton, cycle, loop, 11);
+    const std::vector<Vec3> played = world_positions(walk.skeleton, on);
+    double worst = 0.0;
+    for (int n = cycle.frame_count; n < on.frame_count; ++n) {
+      for (int j = 0; j < joints; ++j) {
+        const auto i = static_cast<size_t>(n * joints + j);
+        worst = std::max(worst, (played[i] - truth[i]).norm());
+      }
+    }
+    EXPECT_LT(worst, repeat ? 1e-9 : 0.05) << "repeat " << repeat;
+  }
+}
+
 }  // namespace
 }  // namespace mg

@@ -437,14 +437,15 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     if (!whole) sliced = motion.slice(first - 1 - dropped, last - first + 1);
     const Motion& cut = whole ? motion : sliced;
     const double input_fps = cut.fps;
-    // A clip that loops goes on past its end (motion/loop.h), as far as a window and a frame at
-    // the database's rate, so that a transition can lead from its end back to its start.
+    // A whole file that loops goes on past its end (motion/loop.h), as far as a window and a
+    // frame at the database's rate, so that a transition can lead from its end back to its start.
+    // A clip cut out of a longer file is not judged: its file holds what comes after it.
     Motion unrolled;
     std::optional<DatabaseLoadNotes::Loop> loop_note;
-    if (settings.loops) {
+    if (settings.loops && whole) {
       const LoopChoice loop = find_loop(loaded->clip.skeleton, cut);
       if (loop.loops) {
-        const int extra = static_cast<int>(std::ceil(settings.loop_frames_at(db.fps) * input_fps / db.fps)) + 1;
+        const int extra = static_cast<int>(std::ceil(settings.loop_frames_at(db.fps) * input_fps / db.fps - 1e-9));
         unrolled = unrolled_loop(loaded->clip.skeleton, cut, loop, extra);
         loop_note = DatabaseLoadNotes::Loop{spec.name, spec.path, loop, 0};
       }

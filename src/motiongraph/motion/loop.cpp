@@ -12,12 +12,13 @@ namespace mg {
 
 namespace {
 
-constexpr int kMinFrames = 8;
+constexpr int kMinSteps = 8;        // a clip of fewer steps of about 1/30 s does not loop
+constexpr double kStepRate = 30.0;  // poses are compared this many times a second, whatever the rate
 constexpr double kMinStepM = 0.002;
-constexpr int kSamples = 200;  // frames the medians are taken over, evenly spread
+constexpr int kSamples = 200;      // frames the medians are taken over, evenly spread
 
-// A frame's floor placement: the root's point on the floor and its heading (the yaw of its
-// x axis, which stands level in every rig read y up).
+// A frame's floor placement: the root's point on the floor and its heading (the yaw of one of
+// its axes, the one that lies most level at the clip's first frame).
 struct Placement {
   double yaw = 0.0;
   Vec3 floor = Vec3::Zero();
@@ -33,11 +34,20 @@ struct LocalPose {
   std::vector<Vec3> joints;
 };
 
-LocalPose local_pose(const Skeleton& skeleton, const Motion& motion, int frame) {
+// The root's axis (x or z) that lies most level at the first frame: its heading is the clip's.
+Vec3 heading_axis(const Skeleton& skeleton, const Motion& motion) {
+  std::vector<Vec3> positions(static_cast<size_t>(skeleton.joint_count()));
+  std::vector<Quat> rotations(positions.size());
+  forward_kinematics(skeleton, motion, 0, positions, rotations);
+  const Vec3 x = rotations[0] * Vec3::UnitX(), z = rotations[0] * Vec3::UnitZ();
+  return std::abs(x.y()) <= std::abs(z.y()) ? Vec3::UnitX() : Vec3::UnitZ();
+}
+
+LocalPose local_pose(const Skeleton& skeleton, const Motion& motion, int frame, const Vec3& axis) {
   std::vector<Vec3> positions(static_cast<size_t>(skeleton.joint_count()));
   std::vector<Quat> rotations(positions.size());
   forward_kinematics(skeleton, motion, frame, positions, rotations);
-  const Vec3 x = rotations[0] * Vec3::UnitX();
+  const Vec3 x = rotations[0] * axis;
   LocalPose pose;
   pose.placement.yaw = std::atan2(-x.z(), x.x());
   pose.placement.floor = Vec3(positions[0].x(), 0.0, positions[0].z());
@@ -58,11 +68,14 @@ double rms_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
 LoopChoice find_loop(const Skeleton& skeleton, const Motion& motion) {
   LoopChoice choice;
   const int frames = motion.frame_count;
-  if (frames < kMinFrames || skeleton.joint_count() == 0) return choice;
+  // Poses s frames apart, about 1/30 s whatever the rate, so the measures mean the same at 120 fps.
+  const int s = std::max(1, static_cast<int>(std::lround(motion.fps / kStepRate)));
+  if (frames < kMinSteps * s + 1 || skeleton.joint_count() == 0) return choice;
+  const Vec3 axis = heading_axis(skeleton, motion);
   std::map<int, std::vector<Vec3>> poses;  // local poses, worked out once each
   const auto pose = [&](int frame) -> const std::vector<Vec3>& {
     auto it = poses.find(frame);
-    if (it == poses.end()) it = poses.emplace(frame, local_pose(skeleton, motion, frame).joints).first;
+    if (it == poses.end()) it = poses.emplace(frame, local_pose(skeleton, motion, frame, axis).joints).first;
     return it->second;
   };
   // The pose a frame would have between its two neighbours either side (a cubic through them).
@@ -75,23 +88,27 @@ LoopChoice find_loop(const Skeleton& skeleton, const Motion& motion) {
     std::nth_element(values.begin(), values.begin() + static_cast<long>(values.size() / 2), values.end());
     return values[values.size() / 2];
   };
-  // The clip's median frame step, and its median departure from the cubic through the frames
-  // around (how smooth it is), over evenly spread frames.
-  std::vector<double> steps, departures;
-  const int samples = std::min(kSamples, frames - 4);
-  for (int s = 0; s < samples; ++s) {
-    const int f = 2 + static_cast<int>(static_cast<long long>(s) * (frames - 5) / std::max(1, samples - 1));
-    steps.push_back(rms_distance(pose(f), pose(f + 1)));
-    departures.push_back(rms_distance(pose(f), between(f - 2, f - 1, f + 1, f + 2)));
+  // The clip's median step, and its median departure from the cubic through the poses around
+  // (how smooth it is), over evenly spread frames.
+  std::vector<double> steps, frame_steps, departures;
+  const int span = frames - 1 - 4 * s;  // frames f with f - 2s and f + 2s inside the clip
+  const int samples = std::min(kSamples, span + 1);
+  for (int i = 0; i < samples; ++i) {
+    const int f = 2 * s + static_cast<int>(static_cast<long long>(i) * span / std::max(1, samples - 1));
+    steps.push_back(rms_distance(pose(f), pose(f + s)));
+    frame_steps.push_back(rms_distance(pose(f), pose(f + 1)));
+    departures.push_back(rms_distance(pose(f), between(f - 2 * s, f - s, f + s, f + 2 * s)));
   }
-  choice.step_m = median(steps);
+  // The seam is one frame's step (or none): judged against a frame's; the motion against 1/30 s.
+  choice.step_m = median(frame_steps);
   const double departure = median(departures);
-  if (choice.step_m < kMinStepM) return choice;
+  if (median(steps) < kMinStepM || choice.step_m <= 0.0) return choice;
 
   const int last = frames - 1;
   const double repeated = rms_distance(pose(0), pose(last)) / choice.step_m;  // also the seam's step
+  // The frame after the last is the first again: its neighbours are s and 2s frames either side.
   const double following =
-      rms_distance(pose(0), between(last - 1, last, 1, 2)) / std::max(departure, 1e-12);
+      rms_distance(pose(0), between(last + 1 - 2 * s, last + 1 - s, s, 2 * s)) / std::max(departure, 1e-12);
   if (repeated <= kRepeatedSeamRatio) {
     choice = {true, true, frames - 1, repeated, choice.step_m};
   } else if (following <= kFollowingSeamRatio && repeated <= kFollowingStepRatio) {
@@ -108,10 +125,11 @@ Motion unrolled_loop(const Skeleton& skeleton, const Motion& motion, const LoopC
   extra_frames = std::min(extra_frames, loop.period);
   // Where the next cycle starts: the last frame itself when it repeats the first, else one step
   // on from the last, as the step before it went.
-  const Placement start = local_pose(skeleton, motion, 0).placement;
-  Placement next = local_pose(skeleton, motion, frames - 1).placement;
+  const Vec3 axis = heading_axis(skeleton, motion);
+  const Placement start = local_pose(skeleton, motion, 0, axis).placement;
+  Placement next = local_pose(skeleton, motion, frames - 1, axis).placement;
   if (!loop.last_repeats_first) {
-    const Placement before = local_pose(skeleton, motion, frames - 2).placement;
+    const Placement before = local_pose(skeleton, motion, frames - 2, axis).placement;
     const double turn = wrapped(next.yaw - before.yaw);
     next.floor += yaw_rotation(turn) * (next.floor - before.floor);
     next.yaw += turn;

@@ -20,21 +20,25 @@ struct LoopChoice {
   // cubic through the two frames either side of the seam (the last two and the next two), over
   // the clip's median departure of a frame from its neighbours' cubic.
   double seam_ratio = 0.0;
-  double step_m = 0.0;  // the median frame step (RMS over joints, in the root's floor frame)
+  double step_m = 0.0;  // the median step from a frame to the next (RMS over joints, in the root's floor frame)
 };
 
 // A clip loops when its last frame repeats the first (within a quarter of its median step), or
 // when its first frame follows its last as smoothly as its frames follow each other (departure
-// at most 3 times the median, the seam a step of at most twice the median). CMU's 170 captures
-// of the 8-subject library measure 0.76 steps and 4.3 departures at the least, one cycle of a
-// walk cut from a capture 2.4-8 departures, cycles made loops 1.0-2.6.
+// at most 3 times the median, the seam a step of at most twice the median). The seam is
+// judged against a frame's step, the departures between poses about 1/30 s apart, whatever
+// the clip's rate. CMU's 170 captures of the 8-subject library measure 4.7 departures at the
+// least (at 120 fps), one cycle of a walk cut from a capture 2.4-8 at 30 fps, cycles made
+// loops 1.0-2.6.
 inline constexpr double kRepeatedSeamRatio = 0.25;
 inline constexpr double kFollowingSeamRatio = 3.0;
 inline constexpr double kFollowingStepRatio = 2.0;
 
 // Whether the clip loops, its poses compared in the root's floor frame (the joints' positions
-// about the root's floor point, turned by its heading), so a cycle that travels or turns loops
-// too. Clips of fewer than 8 frames, or that hardly move (median step under 2 mm), do not.
+// about the root's floor point, turned by its heading: the yaw of the root's x or z axis,
+// whichever lies more level at the first frame), so a cycle that travels or turns loops too.
+// Clips of fewer than 8 steps of about 1/30 s, or that hardly move (median step of 1/30 s
+// under 2 mm), do not.
 LoopChoice find_loop(const Skeleton& skeleton, const Motion& motion);
 
 // The loop with `extra_frames` more frames (at most one period): its frames from the start of
