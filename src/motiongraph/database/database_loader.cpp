@@ -581,9 +581,6 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     }
   }
 
-  // 3b'. Rest poses, with the joints settled.
-  rest_as_first(db, notes);
-
   // 3c. Files whose own up axis is not settled follow the library's: read again in it. Each file
   // votes once, however many clips (frame ranges) a manifest cuts from it.
   std::map<std::string, UpAxisChoice> choice_of_file;
@@ -616,6 +613,9 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
       return again;
     }
   }
+
+  // 3d. Rest poses, with the joints settled (after 3c, which reads everything again when it must).
+  rest_as_first(db, notes);
 
   // 4. The feet's contacts (a rig whose feet are not found keeps the reason instead).
   if (auto s = find_database_contacts(db); !s) {
