@@ -68,6 +68,7 @@ PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<d
                  {"beam", set(settings.beam_width)},
                  {"min_speed", set(settings.min_speed_mps)},
                  {"transition_penalty", set(settings.transition_penalty_m2)},
+                 {"bridge_penalty", set(settings.bridge_penalty_m2)},
                  {"behind_penalty", set(settings.behind_penalty_m)},
                  {"start_node", set(settings.start_node)},
                  {"progress_retries", set(settings.progress_retries)},
@@ -108,6 +109,7 @@ class PyController {
                    {"commit", set(settings.commit_s)},
                    {"tag_penalty", set(settings.tag_penalty)},
                    {"transition_penalty", set(settings.transition_penalty)},
+                   {"bridge_penalty", set(settings.bridge_penalty)},
                    {"max_expansions", set(settings.max_expansions)},
                    {"beam", set(settings.beam_width)},
                    {"time_budget", set(settings.time_budget_s)},
@@ -177,7 +179,7 @@ void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
            "Motion following a path on the floor (the CLI's path): exactly one of points ([(x, z), ...] metres), "
            "shape ('line:20', 'circle:5', 'figure8:4', 's-curve:100', 'square:10', 'zigzag:6') or file "
            "(PATH.json); segments ['TAG:FROM-TO', ...]; keywords horizon, commit, tag_penalty, max_expansions, "
-           "beam, min_speed, transition_penalty, behind_penalty, progress_retries, retry_deviation (m), "
+           "beam, min_speed, transition_penalty, bridge_penalty, behind_penalty, progress_retries, retry_deviation (m), "
            "retry_horizon (s), "
            "start_node, path_edit (bend the motion onto the path, default True), edit_max_turn (degrees per "
            "metre it may add), edit_round_corners (m), cleanup.")
@@ -187,8 +189,8 @@ void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
              const py::kwargs& options) { return PyController(g, heading_deg, tag, at, options); },
           py::arg("heading_deg") = 0.0, py::arg("tag") = py::none(), py::arg("at") = std::array<double, 2>{0.0, 0.0},
           "A steering controller (the CLI's steer) starting at `at` (x, z) facing heading_deg (degrees clockwise "
-          "from north, -z): keywords horizon, commit, tag_penalty, transition_penalty, max_expansions, beam, "
-          "time_budget, start_node, cleanup.");
+          "from north, -z): keywords horizon, commit, tag_penalty, transition_penalty, bridge_penalty, max_expansions, "
+          "beam, time_budget, start_node, cleanup.");
   py::class_<PyController>(m, "Controller", "Steers motion on a graph from a heading and a motion type.")
       .def("step", &PyController::step, py::arg("heading_deg"), py::arg("tag") = py::none(),
            "Decides the next frames towards heading_deg (degrees clockwise from north) with motion type `tag` "

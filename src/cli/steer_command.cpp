@@ -63,6 +63,7 @@ int run_steer(const SteerOptions& o) {
   std::vector<double> latencies;
   int exhausted = 0;
   int transitions = 0;  // transition edges that start within the script's duration
+  int bridges = 0;      // of which bridges
   Walk played{-1, {}};  // every edge the controller chose (for the clips the motion is cut from)
   const SynthesisRunSettings run = run_settings(o.common, std::chrono::steady_clock::now());
   std::string cleanup_warning;
@@ -90,6 +91,7 @@ int run_steer(const SteerOptions& o) {
     for (int e : d.edges) {
       const GraphEdge& edge = context.graph->edges[e];
       if (edge.transition && edge_start < total) ++transitions;
+      if (edge.bridge && edge_start < total) ++bridges;
       edge_start += edge.frame_count;
     }
   }
@@ -112,6 +114,7 @@ int run_steer(const SteerOptions& o) {
                                  {"fps", fps},
                                  {"transitions", transitions},
                                  {"transitions_per_second", transitions_per_second(transitions, motion.frame_count, fps)},
+                                 {"bridges", bridges},
                                  {"decisions", latencies.size()},
                                  {"decision_ms_p50", 1e3 * percentile(latencies, 0.5)},
                                  {"decision_ms_p99", 1e3 * percentile(latencies, 0.99)},
@@ -150,6 +153,10 @@ Command add_steer_command(CLI::App& app) {
   sub->add_option("--max-expansions", o->settings.max_expansions, "Search budget per decision")->capture_default_str();
   sub->add_option("--transition-penalty", o->settings.transition_penalty,
                   "Cost of each transition taken, in frames facing 90 degrees off (0: none)")
+      ->capture_default_str();
+  sub->add_option("--bridge-penalty", o->settings.bridge_penalty,
+                  "Cost of each bridge (a blend between motion types above the threshold) taken while no tag is "
+                  "asked for, on top of --transition-penalty, in frames facing 90 degrees off (0: as any transition)")
       ->capture_default_str();
   sub->add_option("--beam", o->settings.beam_width,
                   "Beam width of each decision's first pass (0: depth-first branch and bound alone)")

@@ -189,9 +189,19 @@ grep "3 clips loop (their end meets their start: 16_15 and 2 more): played on pa
 "$bin" build "$work/loops" -o "$work/noloops.mgraph" --no-cache --no-loops --report "$work/noloops.json" 2>/dev/null
 "$bin" info --json "$work/loops" >"$work/loops-info.json" 2>/dev/null
 "$bin" path "$work/loops.mgraph" --shape s-curve:20 -o "$work/loops.bvh" --report "$work/loops-path.json" >/dev/null 2>&1
-python3 - "$work/loops.json" "$work/noloops.json" "$work/loops-info.json" "$work/loops-path.json" <<'PY'
+"$bin" path "$work/loops.mgraph" --shape s-curve:20 -o "$work/loops-b0.bvh" --bridge-penalty 0 \
+  --report "$work/loops-path-b0.json" >/dev/null 2>&1
+python3 - "$work/loops.json" "$work/noloops.json" "$work/loops-info.json" "$work/loops-path.json" \
+  "$work/loops-path-b0.json" <<'PY'
 import json, sys
-loops, noloops, info, path = (json.load(open(p)) for p in sys.argv[1:5])
+loops, noloops, info, path, anyway = (json.load(open(p)) for p in sys.argv[1:6])
+# The walk and run cycles are joined only by bridges (24 cm RMS apart). A path that asks for no
+# motion type keeps to the walking (one bridge into the run for the last metres, measured), and
+# its feet slide less than the cycles' own. Priced as any transition, the search wanders into the
+# run and back (4 bridges, measured), and the blends slide the feet.
+assert path["bridges"] <= 1 and path["bridges"] < anyway["bridges"], (path["bridges"], anyway["bridges"])
+assert path["foot_slide"]["ratio"]["mean_mps"] < 1.0, path["foot_slide"]
+assert anyway["foot_slide"]["ratio"]["mean_mps"] > 2.0, anyway["foot_slide"]
 kept = lambda r: sum(c["kept_frames"] for c in r["clips"])
 # Every clip joins the graph played round; as read, the run cycle joins nothing.
 assert all(c["kept_frames"] > 0 for c in loops["clips"]), loops["clips"]

@@ -38,7 +38,7 @@ GraphFile sample() {
   file.locality_radius = 5;
   file.graph.window = 10;
   file.graph.nodes = {{3, 0}, {50, 1}};
-  file.graph.edges = {{0, 1, true, 0, 9}, {1, 0, true, 1, 9}};
+  file.graph.edges = {{0, 1, true, 0, 9}, {1, 0, true, 1, 9, true}};
   file.graph.edge_offsets = {0, 1, 2};
   file.graph.transitions = file.candidates.minima;
   file.report_json = R"({"frames": 2})";
@@ -68,6 +68,8 @@ TEST(GraphFile, RoundTripIsExact) {
   EXPECT_EQ(read->threshold, 0.75);
   EXPECT_EQ(read->graph.edges.size(), 2u);
   EXPECT_EQ(read->graph.edges[1].transition_index, 1);
+  EXPECT_FALSE(read->graph.edges[0].bridge);
+  EXPECT_TRUE(read->graph.edges[1].bridge);
   EXPECT_EQ(read->report_json, original.report_json);
   EXPECT_EQ(read->database.foot_names, original.database.foot_names);
   EXPECT_EQ(read->database.frame_contacts, original.database.frame_contacts);
@@ -91,9 +93,21 @@ TEST(GraphFile, TheSameGraphGivesTheSameBytesWhateverItsEdgesPadding) {
       file->graph.edges[i].transition = edges[i].transition;
       file->graph.edges[i].transition_index = edges[i].transition_index;
       file->graph.edges[i].frame_count = edges[i].frame_count;
+      file->graph.edges[i].bridge = edges[i].bridge;
     }
   }
   EXPECT_EQ(serialize_graph_file(a), serialize_graph_file(b));
+}
+
+// Only a transition can be a bridge: a clip edge flagged as one is refused.
+TEST(GraphFile, AClipEdgeFlaggedABridgeIsRefused) {
+  GraphFile file = sample();
+  ASSERT_TRUE(parse_graph_file(serialize_graph_file(file), "g.mgraph"));
+  file.graph.edges[0].transition = false;
+  file.graph.edges[0].transition_index = -1;
+  ASSERT_TRUE(parse_graph_file(serialize_graph_file(file), "g.mgraph"));
+  file.graph.edges[0].bridge = true;
+  EXPECT_FALSE(parse_graph_file(serialize_graph_file(file), "g.mgraph"));
 }
 
 TEST(GraphFile, LoadsFromAPath) {

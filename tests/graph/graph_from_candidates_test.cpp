@@ -57,7 +57,7 @@ bool same_pair(const Transition& x, const Transition& y) {
 TEST(GraphFromCandidates, PrunedGraphUsesTheSelectionAndAlignedBridges) {
   const Fixture x = run();
   GraphFromCandidatesSettings settings;
-  settings.transitions.threshold_quantile = 0.05;
+  settings.transitions.threshold_quantile = 0.01;  // low enough that motion types need bridges
   settings.connected_tags = motion_type_tags(x.db);
   auto built = graph_from_candidates(x.db, x.features, x.search, settings);
   ASSERT_TRUE(built) << built.error().to_string();
@@ -79,6 +79,41 @@ TEST(GraphFromCandidates, PrunedGraphUsesTheSelectionAndAlignedBridges) {
     EXPECT_TRUE(std::any_of(t.all_transitions.begin(), t.all_transitions.end(),
                             [&](const Transition& c) { return same_pair(c, kept); }));
   }
+  // Each transition edge is flagged a bridge exactly when its transition is one of the bridges
+  // (and keeps the bridge's blend); clip edges never are.
+  ASSERT_FALSE(t.bridges.empty());
+  int bridge_edges = 0;
+  for (const GraphEdge& edge : graph.edges) {
+    if (!edge.transition) {
+      EXPECT_FALSE(edge.bridge);
+      continue;
+    }
+    const Transition& kept = graph.transitions[edge.transition_index];
+    const auto bridge = std::find_if(t.bridges.begin(), t.bridges.end(),
+                                     [&](const Transition& c) { return same_pair(c, kept); });
+    EXPECT_EQ(edge.bridge, bridge != t.bridges.end()) << kept.from_frame << " -> " << kept.to_frame;
+    if (bridge != t.bridges.end()) {
+      ++bridge_edges;
+      EXPECT_EQ(blend_frames(edge), t.bridge_blends[bridge - t.bridges.begin()]);
+    }
+  }
+  EXPECT_GT(bridge_edges, 0);
+  // The same through spacing (which spaces the others; the second pruning may drop bridges).
+  settings.spacing.max_out = 1;
+  auto spaced_graph = graph_from_candidates(x.db, x.features, x.search, settings);
+  ASSERT_TRUE(spaced_graph) << spaced_graph.error().to_string();
+  int spaced_bridges = 0;
+  for (const GraphEdge& edge : spaced_graph->pruned.graph.edges) {
+    if (!edge.transition) continue;
+    const Transition& kept = spaced_graph->pruned.graph.transitions[edge.transition_index];
+    const bool is_bridge = std::any_of(t.bridges.begin(), t.bridges.end(),
+                                       [&](const Transition& c) { return same_pair(c, kept); });
+    EXPECT_EQ(edge.bridge, is_bridge);
+    spaced_bridges += edge.bridge ? 1 : 0;
+  }
+  EXPECT_GT(spaced_bridges, 0);
+  EXPECT_LE(spaced_bridges, bridge_edges);
+  settings.spacing.max_out = 0;
 
   // Tags ignored: no bridges, no per-tag thresholds; the same steps one by one agree.
   settings.connected_tags = 0;

@@ -33,12 +33,12 @@ def test_path_equals_the_cli(cli, graph_file, graph, tmp_path):
 def test_path_from_points_and_options(cli, graph_file, graph, tmp_path):
     points = [[0.0, 0.0], [0.0, -6.0], [4.0, -10.0], [8.0, -10.0]]
     (tmp_path / "path.json").write_text(json.dumps({"points": points}))
-    options = ["--horizon", 2, "--transition-penalty", 0.5, "--beam", 16, "--no-cleanup", "--edit-max-turn", 30,
+    options = ["--horizon", 2, "--transition-penalty", 0.5, "--bridge-penalty", 7, "--beam", 16, "--no-cleanup", "--edit-max-turn", 30,
                "--progress-retries", 1, "--retry-horizon", 4, "--edit-round-corners", 1]
     cli("path", graph_file, "--path", tmp_path / "path.json", *options, "-o", tmp_path / "cli.json",
         "--report", tmp_path / "r.json")
     want = read_json(tmp_path / "cli.json")
-    kwargs = dict(horizon=2, transition_penalty=0.5, beam=16, cleanup=False, edit_max_turn=30,
+    kwargs = dict(horizon=2, transition_penalty=0.5, bridge_penalty=7, beam=16, cleanup=False, edit_max_turn=30,
                   progress_retries=1, retry_horizon=4, edit_round_corners=1)
     for motion in (graph.path(points=points, **kwargs), graph.path(points=np.array(points), **kwargs),
                    graph.path(file=str(tmp_path / "path.json"), **kwargs)):
@@ -71,21 +71,21 @@ def test_walk_equals_the_cli(cli, graph_file, graph, tmp_path):
 
 
 def test_steering_equals_the_cli(cli, graph_file, graph, tmp_path):
-    controls = [{"at_s": 0, "heading_deg": 0, "tag": "walk"}, {"at_s": 2, "heading_deg": 90, "tag": "walk"},
+    controls = [{"at_s": 0, "heading_deg": 0, "tag": "walk"}, {"at_s": 2, "heading_deg": 90, "tag": "any"},
                 {"at_s": 4, "heading_deg": 200, "tag": "run"}]
     (tmp_path / "controls.json").write_text(json.dumps({"duration_s": 6, "controls": controls}))
-    cli("steer", graph_file, "--script", tmp_path / "controls.json", "-o", tmp_path / "cli.json")
+    cli("steer", graph_file, "--script", tmp_path / "controls.json", "--bridge-penalty", 3, "-o", tmp_path / "cli.json")
     fps = graph.fps
     total = round(6 * fps)
 
     def control(frame):
         return [c for c in controls if c["at_s"] <= frame / fps][-1]
 
-    controller = graph.controller(heading_deg=0, tag="walk")
+    controller = graph.controller(heading_deg=0, tag="walk", bridge_penalty=3)
     frames = 0
     while frames < total:
         c = control(frames)
-        step = controller.step(c["heading_deg"], c["tag"])
+        step = controller.step(c["heading_deg"], None if c["tag"] == "any" else c["tag"])
         assert len(step) > 0
         np.testing.assert_array_equal(step.positions, controller.motion.positions[frames:])
         np.testing.assert_array_equal(step.contacts, controller.motion.contacts[frames:])

@@ -76,6 +76,47 @@ TEST(Controller, SwitchesToTheTagAskedFor) {
   EXPECT_GT(walking_before, 0.8 * static_cast<double>(switch_frame));
 }
 
+// Asked for no motion type, the character starts among the walking (the type most nodes carry;
+// subject 16's node 0 is a jump, whose only ways out are bridges) and steers there: every heading
+// reached, no bridge taken. Started on node 0 with bridges priced as any transition, the same
+// session takes bridges.
+TEST(Controller, AskedForNoMotionTypeItKeepsItsOwnWithoutBridges) {
+  const auto& s = test::subject16();
+  const SynthesisContext& context = s.context();
+  auto walk = context.tag_mask("walk");
+  ASSERT_TRUE(walk.ok());
+  const int start = controller_start_node(context, 0);
+  EXPECT_NE(context.tracks.tags_of(context.graph->edge_offsets[start]).front() & *walk, 0u);
+  EXPECT_EQ(controller_start_node(context, *walk), start);  // the first walking node
+  auto session = [&](const ControllerSettings& settings, int* bridges) {
+    auto controller = Controller::create(context, settings, {bearing_direction(0.0), 0});
+    EXPECT_TRUE(controller.ok());
+    Motion motion = context.assembler.empty_motion();
+    const std::vector<double> headings = {0.0, 90.0, 200.0, 300.0, 45.0, 180.0};
+    std::vector<double> responses;
+    *bridges = 0;
+    for (size_t i = 0; i < headings.size(); ++i) {
+      controller->set_input({bearing_direction(headings[i]), 0});
+      const double from_s = motion.frame_count / motion.fps;
+      while (motion.frame_count < 4.0 * static_cast<double>(i + 1) * motion.fps) {
+        for (int e : controller->step(motion).edges) *bridges += context.graph->edges[e].bridge ? 1 : 0;
+      }
+      responses.push_back(response_time(motion, context.tracks.forward_axis, from_s,
+                                        bearing_direction(headings[i]), 20.0));
+    }
+    return responses;
+  };
+  int bridges = 0;
+  for (double response : session({}, &bridges)) EXPECT_GE(response, 0.0);
+  EXPECT_EQ(bridges, 0);
+  ControllerSettings free;
+  free.bridge_penalty = 0.0;
+  free.start_node = 0;
+  int free_bridges = 0;
+  session(free, &free_bridges);
+  EXPECT_GT(free_bridges, 0);
+}
+
 // Default settings have no wall-clock budget: the same script gives the same motion, frame for
 // frame, whatever the machine's load (a time budget made a loaded CI machine turn late).
 TEST(Controller, SameInputsGiveTheSameMotion) {

@@ -37,6 +37,7 @@ TEST(PathCheck, SettingsAreValidated) {
   EXPECT_TRUE(PathCheckSettings{}.validate());
   for (auto broken : {+[](PathCheckSettings& x) { x.tolerance_m = 0.0; },
                       +[](PathCheckSettings& x) { x.steps = -1; },
+                      +[](PathCheckSettings& x) { x.lost_m = 0.0; },
                       +[](PathCheckSettings& x) { x.min_travel_share = 1.5; },
                       +[](PathCheckSettings& x) { x.travel_speed_mps = 0.0; },
                       +[](PathCheckSettings& x) { x.synthesis.commit_s = 10.0; }}) {
@@ -156,9 +157,11 @@ TEST(PathCheck, UnreachableToleranceTriesEveryStepToTheCeilingAndKeepsTheBest) {
                             (p.reached_end || p.arc_covered_m == chosen->arc_covered_m);
     const bool worse_reach = (chosen->reached_end && !p.reached_end) ||
                              (!p.reached_end && !chosen->reached_end && p.arc_covered_m < chosen->arc_covered_m);
+    // A higher threshold than the first competes only when its probe was not lost.
+    const bool competes = p.graph && (p.threshold == x.from || p.mean_deviation_m <= s.lost_m);
     if (p.threshold < chosen->threshold) {
-      EXPECT_TRUE(!p.graph || worse_reach || (same_reach && p.mean_deviation_m >= chosen->mean_deviation_m));
-    } else if (p.graph) {
+      EXPECT_TRUE(!competes || worse_reach || (same_reach && p.mean_deviation_m >= chosen->mean_deviation_m));
+    } else if (competes) {
       EXPECT_TRUE(worse_reach || (same_reach && p.mean_deviation_m >= chosen->mean_deviation_m));
     }
     // The way along the probe the motion got: within kEndReachedM of its length when it reached
@@ -183,6 +186,17 @@ TEST(PathCheck, UnreachableToleranceTriesEveryStepToTheCeilingAndKeepsTheBest) {
   EXPECT_DOUBLE_EQ(path->mean_deviation_m, check->delivered->mean_deviation_m);
   EXPECT_EQ(path->reached_end, check->delivered->reached_end);
   EXPECT_NE(path->mean_deviation_m, path->graph_mean_deviation_m);  // the edit did bend it
+  if (chosen->threshold != x.from) {
+    EXPECT_LE(chosen->mean_deviation_m, s.lost_m);
+  }
+
+  // Every probe taken for lost: the first threshold stays, whatever the others did.
+  s.lost_m = 1e-9;
+  auto kept = check_path_following(x.db, x.features, x.search, x.settings, x.from, x.ceiling, s);
+  ASSERT_TRUE(kept) << kept.error().to_string();
+  EXPECT_FALSE(kept->passed);
+  EXPECT_EQ(kept->points.size(), check->points.size());
+  EXPECT_EQ(kept->threshold, x.from);
 }
 
 TEST(PathCheck, ChoosesTheFirstThresholdWithinTheToleranceAndMeasuresAsPathSynthesisDoes) {
@@ -246,11 +260,13 @@ TEST(PathCheck, SettingsJsonRoundTripAndMissingKeysKeepDefaults) {
   s.steps = 3;
   s.min_travel_share = 0.3;
   s.travel_speed_mps = 0.7;
+  s.lost_m = 2.5;
   const nlohmann::json json = s;
   const auto back = json.get<PathCheckSettings>();
   EXPECT_EQ(nlohmann::json(back), json);
   EXPECT_EQ(back.steps, 3);
   EXPECT_EQ(back.travel_speed_mps, 0.7);
+  EXPECT_EQ(back.lost_m, 2.5);
   const auto defaults = nlohmann::json{{"tolerance_m", 0.3}}.get<PathCheckSettings>();
   EXPECT_EQ(defaults.tolerance_m, 0.3);
   EXPECT_EQ(defaults.steps, PathCheckSettings{}.steps);

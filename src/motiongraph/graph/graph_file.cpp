@@ -395,6 +395,7 @@ void put_graph(BinaryWriter& out, const MotionGraph& g) {
     edges[i].from_node = g.edges[i].from_node;
     edges[i].to_node = g.edges[i].to_node;
     edges[i].transition = g.edges[i].transition;
+    edges[i].bridge = g.edges[i].bridge;
     edges[i].transition_index = g.edges[i].transition_index;
     edges[i].frame_count = g.edges[i].frame_count;
   }
@@ -422,6 +423,7 @@ bool get_graph(BinaryReader& in, const MotionDatabase& db, MotionGraph& g) {
   }
   for (const GraphEdge& e : g.edges) {
     if (e.from_node < 0 || e.from_node >= nodes || e.to_node < 0 || e.to_node >= nodes || e.frame_count < 0) return false;
+    if (e.bridge && !e.transition) return false;
     if (e.transition && (e.transition_index < 0 || e.transition_index >= static_cast<int>(g.transitions.size()))) {
       return false;
     }

@@ -32,7 +32,8 @@ namespace mg {
 // 2: skeletons keep the static joints above a trajectory joint (motion/trajectory_joint.h).
 // 3: the database's foot joint names and every frame's foot contacts (or why there are none).
 // 4: the candidate minima in a section of their own, with its own size and CRC-32.
-constexpr std::uint32_t kGraphFileVersion = 5;
+// 6: transition edges say whether they are bridges (GraphEdge::bridge).
+constexpr std::uint32_t kGraphFileVersion = 6;
 
 struct GraphFile {
   std::string settings_json;

@@ -110,21 +110,37 @@ Result<TransitionsWithBridges> select_transitions_with_bridges(const MotionDatab
   return out;
 }
 
-std::vector<int> TransitionsWithBridges::blend_lengths(std::span<const Transition> transitions, int window) const {
-  std::vector<int> lengths(transitions.size(), window);
+namespace {
+
+// The index of `t` among `bridges` (sorted by (from_frame, to_frame)), or -1.
+long bridge_index(std::span<const Transition> bridges, const Transition& t) {
   auto before = [](const Transition& x, const Transition& y) {
     return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
   };
+  auto it = std::lower_bound(bridges.begin(), bridges.end(), t, before);
+  return it != bridges.end() && !before(t, *it) ? static_cast<long>(it - bridges.begin()) : -1;
+}
+
+}  // namespace
+
+std::vector<int> TransitionsWithBridges::blend_lengths(std::span<const Transition> transitions, int window) const {
+  std::vector<int> lengths(transitions.size(), window);
   for (size_t i = 0; i < transitions.size() && !bridges.empty(); ++i) {
-    auto it = std::lower_bound(bridges.begin(), bridges.end(), transitions[i], before);  // bridges are sorted
-    if (it != bridges.end() && !before(transitions[i], *it)) lengths[i] = bridge_blends[it - bridges.begin()];
+    if (const long b = bridge_index(bridges, transitions[i]); b >= 0) lengths[i] = bridge_blends[static_cast<size_t>(b)];
   }
   return lengths;
 }
 
+std::vector<char> TransitionsWithBridges::bridge_flags(std::span<const Transition> transitions) const {
+  std::vector<char> flags(transitions.size(), 0);
+  for (size_t i = 0; i < transitions.size() && !bridges.empty(); ++i) flags[i] = bridge_index(bridges, transitions[i]) >= 0;
+  return flags;
+}
+
 Result<PrunedGraph> build_pruned_graph(const MotionDatabase& db, std::span<const Transition> transitions, int window,
-                                       TagMask connected_tags, std::span<const int> blend_lengths) {
-  auto graph = build_motion_graph(db, transitions, window, blend_lengths);
+                                       TagMask connected_tags, std::span<const int> blend_lengths,
+                                       std::span<const char> bridges) {
+  auto graph = build_motion_graph(db, transitions, window, blend_lengths, bridges);
   if (!graph) return graph.error();
   PruneSettings prune;
   prune.connected_tags = connected_tags;
@@ -136,24 +152,23 @@ Result<PrunedGraph> build_pruned_graph(const MotionDatabase& db, std::span<const
 Result<PrunedGraph> build_spaced_graph(const MotionDatabase& db, const TransitionsWithBridges& transitions,
                                        const FrameFeatures& features, const GraphFromCandidatesSettings& settings) {
   auto first = build_pruned_graph(db, transitions.all_transitions, features.window, settings.connected_tags,
-                                  transitions.blend_lengths(transitions.all_transitions, features.window));
+                                  transitions.blend_lengths(transitions.all_transitions, features.window),
+                                  transitions.bridge_flags(transitions.all_transitions));
   if (!first) return first.error();
-  auto same = [](const Transition& x, const Transition& y) {
-    return x.from_frame == y.from_frame && x.to_frame == y.to_frame;
-  };
-  std::vector<Transition> survivors, bridges;
-  for (const Transition& t : first->graph.transitions) {
-    const bool bridge = std::any_of(transitions.bridges.begin(), transitions.bridges.end(),
-                                    [&](const Transition& b) { return same(b, t); });
-    (bridge ? bridges : survivors).push_back(t);
+  const MotionGraph& kept = first->graph;
+  std::vector<char> is_bridge(kept.transitions.size(), 0);
+  for (const GraphEdge& edge : kept.edges) {
+    if (edge.transition) is_bridge[static_cast<size_t>(edge.transition_index)] = edge.bridge;
   }
+  std::vector<Transition> survivors, bridges;
+  for (size_t t = 0; t < kept.transitions.size(); ++t) (is_bridge[t] ? bridges : survivors).push_back(kept.transitions[t]);
   std::vector<Transition> spaced = space_transitions(survivors, features.clip_of_frame, features.window, settings.spacing);
   spaced.insert(spaced.end(), bridges.begin(), bridges.end());
   std::sort(spaced.begin(), spaced.end(), [](const Transition& x, const Transition& y) {
     return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
   });
   auto second = build_pruned_graph(db, spaced, features.window, settings.connected_tags,
-                                   transitions.blend_lengths(spaced, features.window));
+                                   transitions.blend_lengths(spaced, features.window), transitions.bridge_flags(spaced));
   if (!second) return second.error();
   second->survived_first_pruning = static_cast<int>(first->graph.transitions.size());
   return second;

@@ -61,6 +61,8 @@ struct TransitionsWithBridges {
 
   // The blend length of each of `transitions`: a bridge's own, the window for the others.
   std::vector<int> blend_lengths(std::span<const Transition> transitions, int window) const;
+  // Which of `transitions` are bridges (1) and which selected (0).
+  std::vector<char> bridge_flags(std::span<const Transition> transitions) const;
 };
 
 // Whether the settings make bridges (motion types kept connected, bridges per pair > 0).
@@ -80,11 +82,12 @@ struct PrunedGraph {
   int survived_first_pruning = 0;  // transitions (bridges too) before spacing; build_spaced_graph
 };
 
-// The last two: the graph of `transitions` (window k; blend_lengths as build_motion_graph
-// takes them), pruned keeping connected_tags connected. Fails as build_motion_graph and
+// The last two: the graph of `transitions` (window k; blend_lengths and bridges as
+// build_motion_graph takes them), pruned keeping connected_tags connected. Fails as build_motion_graph and
 // prune_motion_graph do (in particular when the transitions form no cycle).
 Result<PrunedGraph> build_pruned_graph(const MotionDatabase& db, std::span<const Transition> transitions, int window,
-                                       TagMask connected_tags, std::span<const int> blend_lengths = {});
+                                       TagMask connected_tags, std::span<const int> blend_lengths = {},
+                                       std::span<const char> bridges = {});
 
 struct GraphFromCandidates {
   TransitionsWithBridges transitions;

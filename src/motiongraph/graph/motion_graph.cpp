@@ -43,7 +43,7 @@ int MotionGraph::node_at_frame(int frame) const {
 }
 
 Result<MotionGraph> build_motion_graph(const MotionDatabase& db, std::span<const Transition> transitions, int window,
-                                       std::span<const int> blend_lengths) {
+                                       std::span<const int> blend_lengths, std::span<const char> bridges) {
   if (window < 2) {
     return graph_error(fmt::format("the window must be at least 2 frames (got {}): a transition plays its k-1 first "
                                    "blended frames, the last one being the frame it lands on",
@@ -61,6 +61,9 @@ Result<MotionGraph> build_motion_graph(const MotionDatabase& db, std::span<const
 
   if (!blend_lengths.empty() && blend_lengths.size() != transitions.size()) {
     return graph_error(fmt::format("{} blend lengths for {} transitions", blend_lengths.size(), transitions.size()));
+  }
+  if (!bridges.empty() && bridges.size() != transitions.size()) {
+    return graph_error(fmt::format("{} bridge flags for {} transitions", bridges.size(), transitions.size()));
   }
   auto blend_of = [&](size_t i) { return blend_lengths.empty() ? window : blend_lengths[i]; };
   for (size_t i = 0; i < transitions.size(); ++i) {
@@ -132,7 +135,7 @@ Result<MotionGraph> build_motion_graph(const MotionDatabase& db, std::span<const
   }
   for (size_t i = 0; i < transitions.size(); ++i) {
     graph.edges[next[transition_from[i]]++] = {transition_from[i], transition_to[i], true, static_cast<int>(i),
-                                                  blend_of(i) - 1};
+                                                  blend_of(i) - 1, !bridges.empty() && bridges[i] != 0};
   }
   return graph;
 }

@@ -22,6 +22,10 @@
 //    reads L frames on each side and plays L - 1, so L = frame_count + 1 always
 //    (blend_frames below).
 //
+// Bridges: transitions between motion types above the threshold, added so that each type can
+// reach the others (graph/bridges.h). Their edges carry `bridge`; searches price them so that a
+// walk changes motion type through one only when asked to (horizon_search.h).
+//
 // Tags: an edge belongs to tag t when every frame it reads carries t (a clip edge: f1..f2-1;
 // a transition: all 2k frames of both windows). Frames beyond the frame_tags span carry no
 // tag, so an empty span means "no tags".
@@ -48,6 +52,9 @@ struct GraphEdge {
   bool transition = false;
   int transition_index = -1;  // into MotionGraph::transitions; -1 for clip edges
   int frame_count = 0;        // frames played (see the header comment): f2 - f1, or k - 1
+  // A transition that joins two motion types far above the threshold (graph/bridges.h): a
+  // visible blend, which searches take only where a change of motion type is asked for.
+  bool bridge = false;
 };
 
 struct MotionGraph {
@@ -75,8 +82,9 @@ inline int blend_frames(const GraphEdge& edge) { return edge.frame_count + 1; }
 // global frame 0 (each at least one frame), or when a transition's windows do not lie inside
 // one clip each (from_frame .. from_frame+L-1, to_frame-L+1 .. to_frame). blend_lengths gives
 // each transition's L (at least the window); empty: every transition blends over the window.
+// bridges flags the transitions that are bridges (GraphEdge::bridge); empty: none is.
 Result<MotionGraph> build_motion_graph(const MotionDatabase& db, std::span<const Transition> transitions, int window,
-                                       std::span<const int> blend_lengths = {});
+                                       std::span<const int> blend_lengths = {}, std::span<const char> bridges = {});
 
 // The tags of one edge: the AND of frame_tags over every frame the edge reads (see above).
 TagMask edge_tags(const MotionGraph& graph, const GraphEdge& edge, std::span<const TagMask> frame_tags);

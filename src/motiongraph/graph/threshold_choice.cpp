@@ -110,7 +110,8 @@ Result<CoveragePoint> coverage_at(const MotionDatabase& db, const FrameFeatures&
   const bool spaced = at.spacing.max_out > 0 || at.spacing.min_piece_frames > 0;
   auto pruned = spaced ? build_spaced_graph(db, *selected, features, at)
                        : build_pruned_graph(db, selected->all_transitions, features.window, at.connected_tags,
-                                            selected->blend_lengths(selected->all_transitions, features.window));
+                                            selected->blend_lengths(selected->all_transitions, features.window),
+                                            selected->bridge_flags(selected->all_transitions));
   if (!pruned) {
     if (pruned.error().kind == ErrorKind::kEmptyGraph) return point;
     return pruned.error();

@@ -1,5 +1,8 @@
 #include "motiongraph/synthesis/controller.h"
 
+#include <algorithm>
+#include <array>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -11,6 +14,7 @@ Status ControllerSettings::validate() const {
     return Error{"", 0, "controller: need 0 < commit_s <= horizon_s"};
   }
   if (!(transition_penalty >= 0.0)) return Error{"", 0, "controller: the transition penalty must be >= 0"};
+  if (!(bridge_penalty >= 0.0)) return Error{"", 0, "controller: the bridge penalty must be >= 0"};
   if (!(tag_penalty >= 0.0) || !(time_budget_s >= 0.0) || max_expansions < 1 || beam_width < 0) {
     return Error{"", 0, "controller: penalties, budgets and the beam width must be >= 0 (expansions >= 1)"};
   }
@@ -31,9 +35,11 @@ namespace {
 
 class SteerCost final : public FrameCost {
  public:
-  SteerCost(const ControlInput& input, double penalty, double transition_penalty)
-      : input_(input), penalty_(penalty), transition_penalty_(transition_penalty) {}
-  double transition_cost() const override { return transition_penalty_; }
+  SteerCost(const ControlInput& input, double penalty, double transition_penalty, double bridge_penalty)
+      : input_(input), penalty_(penalty), transition_penalty_(transition_penalty), bridge_penalty_(bridge_penalty) {}
+  double transition_cost(const GraphEdge& edge, const SearchState&) const override {
+    return edge.bridge && input_.tag == 0 ? transition_penalty_ + bridge_penalty_ : transition_penalty_;
+  }
   double cost(int, const Vec2&, const Vec2& facing, double, TagMask tags, bool*) const override {
     double c = 1.0 - facing.dot(input_.direction);
     if (input_.tag != 0 && (tags & input_.tag) == 0) c += penalty_;
@@ -44,9 +50,31 @@ class SteerCost final : public FrameCost {
   const ControlInput& input_;
   double penalty_;
   double transition_penalty_;
+  double bridge_penalty_;
 };
 
 }  // namespace
+
+int controller_start_node(const SynthesisContext& context, TagMask tag) {
+  const MotionGraph& graph = *context.graph;
+  // The tag whose frames start most nodes when none is asked for: the motion type the graph
+  // holds most of (nodes of no tag: node 0).
+  if (tag == 0) {
+    std::array<int, 64> nodes{};
+    for (int n = 0; n < graph.node_count(); ++n) {
+      for (TagMask m = context.tracks.tags_of(graph.edge_offsets[n]).front(); m != 0; m &= m - 1) {
+        ++nodes[static_cast<size_t>(std::countr_zero(m))];
+      }
+    }
+    const auto most = std::max_element(nodes.begin(), nodes.end());
+    if (*most == 0) return 0;
+    tag = TagMask{1} << (most - nodes.begin());
+  }
+  for (int n = 0; n < graph.node_count(); ++n) {
+    if ((context.tracks.tags_of(graph.edge_offsets[n]).front() & tag) != 0) return n;
+  }
+  return 0;
+}
 
 Result<Controller> Controller::create(const SynthesisContext& context, const ControllerSettings& settings,
                                       const ControlInput& first_input, const Vec2& at) {
@@ -54,16 +82,7 @@ Result<Controller> Controller::create(const SynthesisContext& context, const Con
   const MotionGraph& graph = *context.graph;
   int start = settings.start_node;
   if (start >= graph.node_count()) return Error{"", 0, "controller: the start node does not exist"};
-  if (start < 0) {
-    start = 0;
-    for (int n = 0; n < graph.node_count() && first_input.tag != 0; ++n) {
-      const int e = graph.edge_offsets[n];
-      if ((context.tracks.tags_of(e).front() & first_input.tag) != 0) {
-        start = n;
-        break;
-      }
-    }
-  }
+  if (start < 0) start = controller_start_node(context, first_input.tag);
   Controller controller(context, settings);
   controller.input_ = first_input;
   controller.state_.node = start;
@@ -81,7 +100,7 @@ ControllerDecision Controller::step(Motion& out) {
   search.max_expansions = settings_.max_expansions;
   search.time_budget_s = settings_.time_budget_s;
   search.beam_width = settings_.beam_width;
-  const SteerCost cost(input_, settings_.tag_penalty, settings_.transition_penalty);
+  const SteerCost cost(input_, settings_.tag_penalty, settings_.transition_penalty, settings_.bridge_penalty);
   const HorizonResult best = horizon_search(graph, context_->tracks, state_, cost, search);
   ControllerDecision decision;
   decision.expansions = best.expansions;

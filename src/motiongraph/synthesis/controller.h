@@ -27,6 +27,10 @@ struct ControllerSettings {
   // Per transition taken (as many frames facing 90 degrees off): keeps captured motion between
   // blends while the direction holds (0: none).
   double transition_penalty = 1.0;
+  // Per bridge (GraphEdge::bridge) taken while no motion tag is asked for, on top of the
+  // transition penalty: unasked, the character keeps its motion type rather than blend visibly
+  // into another (0: bridges cost as any transition).
+  double bridge_penalty = 30.0;
   long long max_expansions = 3000;
   int beam_width = 8;                // HorizonSettings::beam_width (0: none)
   // Per decision; 0 (the default): only the expansion budget, so that the same inputs give the
@@ -34,7 +38,7 @@ struct ControllerSettings {
   // A wall-clock budget cuts the search short when the machine is busy, and a search cut short
   // follows its first (greedy) walk: use it only where a late answer is worse than a poor one.
   double time_budget_s = 0.0;
-  int start_node = -1;               // -1: a node carrying the first input's tag (or node 0)
+  int start_node = -1;               // -1: controller_start_node()
 
   Status validate() const;
 };
@@ -46,6 +50,12 @@ struct ControllerDecision {
   long long expansions = 0;
   bool budget_exhausted = false;
 };
+
+// Where a controller starts without a start node: the first node carrying `tag`, or with no tag
+// (0) the first carrying the tag most nodes carry, the motion type the graph holds most of (a
+// steering session that asks for no motion type walks, rather than start among jumps it could
+// leave only through a bridge); node 0 when no node carries it.
+int controller_start_node(const SynthesisContext& context, TagMask tag);
 
 class Controller {
  public:

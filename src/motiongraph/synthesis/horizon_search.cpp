@@ -61,7 +61,7 @@ bool play_edge(const MotionGraph& graph, const EdgeTracks& tracks, const FrameCo
   const auto facings = tracks.facings_of(e);
   const auto tags = tracks.tags_of(e);
   if (graph.edges[e].transition && played < horizon) {
-    out.cost += frame_cost.transition_cost();
+    out.cost += frame_cost.transition_cost(graph.edges[e], from);
     if (out.cost >= bound) return false;
   }
   // The placement holds for the whole edge: its rotation once (FloorTransform::rotate).

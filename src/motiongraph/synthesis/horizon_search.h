@@ -58,9 +58,14 @@ class FrameCost {
     (void)frames_left, (void)root, (void)arc_m;
     return 0.0;
   }
-  // The cost (>= 0) of taking a transition edge that starts within the horizon: each one is a
-  // blend, so a cost here keeps captured motion between blends where the path allows it.
-  virtual double transition_cost() const { return 0.0; }
+  // The cost (>= 0) of taking transition edge `edge` from state `from`, when it starts within
+  // the horizon: each one is a blend, so a cost here keeps captured motion between blends where
+  // the path allows it; a bridge (GraphEdge::bridge, a visible blend between motion types) may
+  // cost more where no change of motion type is asked for.
+  virtual double transition_cost(const GraphEdge& edge, const SearchState& from) const {
+    (void)edge, (void)from;
+    return 0.0;
+  }
 };
 
 // The loop of FrameCost::add_costs, for `count` frames whose costs frame_cost(p, &reached)

@@ -1,6 +1,7 @@
 // Can the graph follow a path: a probe synthesized at rising thresholds.
 #include "motiongraph/synthesis/path_check.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -13,6 +14,7 @@ namespace mg {
 
 Status PathCheckSettings::validate() const {
   if (!(tolerance_m > 0.0) || !std::isfinite(tolerance_m)) return Error{"", 0, "the path check's tolerance must be > 0 m"};
+  if (!(lost_m > 0.0)) return Error{"", 0, "the path check's lost distance must be > 0 m"};
   if (steps < 0) return Error{"", 0, "the path check's steps must be >= 0"};
   if (!(min_travel_share >= 0.0 && min_travel_share <= 1.0)) {
     return Error{"", 0, "the path check's travelling share must be in [0, 1]"};
@@ -162,10 +164,12 @@ Result<PathCheck> check_path_following(const MotionDatabase& db, const FrameFeat
       }
     }
   }
-  // None passed: the one that went best (the first of equals).
+  // None passed: the one that went best (the first of equals), a higher threshold only where its
+  // probe was not lost (or the first made no graph).
   const PathCheckPoint* best = &out.points.front();
   for (const PathCheckPoint& p : out.points) {
-    if (went_better(p, *best)) best = &p;
+    const bool near = p.graph && p.mean_deviation_m <= std::max(check.lost_m, check.tolerance_m);
+    if ((near || !best->graph) && went_better(p, *best)) best = &p;
   }
   out.threshold = best->threshold;
   out.rms_cm = best->rms_cm;
@@ -180,6 +184,7 @@ Result<PathCheck> check_path_following(const MotionDatabase& db, const FrameFeat
 
 void to_json(nlohmann::json& json, const PathCheckSettings& settings) {
   json = {{"tolerance_m", settings.tolerance_m},
+          {"lost_m", settings.lost_m},
           {"steps", settings.steps},
           {"min_travel_share", settings.min_travel_share},
           {"travel_speed_mps", settings.travel_speed_mps}};
@@ -188,6 +193,7 @@ void to_json(nlohmann::json& json, const PathCheckSettings& settings) {
 void from_json(const nlohmann::json& json, PathCheckSettings& settings) {
   const PathCheckSettings defaults;
   settings.tolerance_m = json.value("tolerance_m", defaults.tolerance_m);
+  settings.lost_m = json.value("lost_m", defaults.lost_m);
   settings.steps = json.value("steps", defaults.steps);
   settings.min_travel_share = json.value("min_travel_share", defaults.min_travel_share);
   settings.travel_speed_mps = json.value("travel_speed_mps", defaults.travel_speed_mps);

@@ -8,7 +8,11 @@
 // threshold in log-spaced steps towards the ceiling until the probe is followed within
 // `tolerance_m` mean deviation. When no step is, the threshold whose probe went best (reached
 // the end; else covered the most of it; then least deviation) is kept and `passed` is false,
-// and the probe is synthesized there once more as `path` does by default (`delivered`).
+// and the probe is synthesized there once more as `path` does by default (`delivered`). A
+// higher threshold adds rougher transitions, so it is kept only when its probe came near the
+// path at all (within `lost_m`, or the tolerance when larger, on average): a library whose clips hold no turns (game cycles
+// walking straight, dance on the spot with a few steps) wanders tens of metres off at every
+// threshold, and keeps the first.
 //
 // A library that hardly travels (dance on the spot, sitting, gestures) has no path to follow:
 // when less than `min_travel_share` of the graph's clip frames are played in pieces moving at
@@ -29,6 +33,7 @@ namespace mg {
 
 struct PathCheckSettings {
   double tolerance_m = 0.1;         // mean deviation the probe must be followed within
+  double lost_m = 1.0;              // a probe further off on average is lost (see above)
   int steps = 6;                    // thresholds tried above the first, log-spaced in RMS to the ceiling
   double min_travel_share = 0.1;    // of clip frames; below it the check is skipped
   double travel_speed_mps = 0.5;    // a clip piece travels when its root moves this fast on average
@@ -37,7 +42,7 @@ struct PathCheckSettings {
   Status validate() const;
 };
 
-// Its JSON form, the settings part of the build report's "path_check": {"tolerance_m",
+// Its JSON form, the settings part of the build report's "path_check": {"tolerance_m", "lost_m",
 // "steps", "min_travel_share", "travel_speed_mps"} (the search is `path`'s default, not
 // recorded); a key missing on reading keeps its default.
 void to_json(nlohmann::json& json, const PathCheckSettings& settings);

@@ -18,6 +18,7 @@ Status PathSynthesisSettings::validate() const {
   }
   if (!(tag_penalty_m2 >= 0.0)) return Error{"", 0, "path search: the tag penalty must be >= 0"};
   if (!(transition_penalty_m2 >= 0.0)) return Error{"", 0, "path search: the transition penalty must be >= 0"};
+  if (!(bridge_penalty_m2 >= 0.0)) return Error{"", 0, "path search: the bridge penalty must be >= 0"};
   if (!(min_speed_mps >= 0.0) || !(behind_penalty_m >= 0.0)) {
     return Error{"", 0, "path search: the slowest speed and its penalty must be >= 0"};
   }
@@ -36,15 +37,19 @@ namespace {
 class PathCost final : public FrameCost {
  public:
   PathCost(const FloorPath& path, const std::vector<TagMask>& segment_masks, double penalty, double max_step,
-           double min_step, double behind_penalty, double transition_penalty)
+           double min_step, double behind_penalty, double transition_penalty, double bridge_penalty)
       : path_(path),
         masks_(segment_masks),
         penalty_(penalty),
         max_step_(max_step),
         min_step_(min_step),
         behind_penalty_(behind_penalty),
-        transition_penalty_(transition_penalty) {}
-  double transition_cost() const override { return transition_penalty_; }
+        transition_penalty_(transition_penalty),
+        bridge_penalty_(bridge_penalty) {}
+  // A bridge where no motion type is asked for costs the bridge penalty more.
+  double transition_cost(const GraphEdge& edge, const SearchState& from) const override {
+    return edge.bridge && wanted_at(from.arc_m) == 0 ? transition_penalty_ + bridge_penalty_ : transition_penalty_;
+  }
   // Each search starts where the root has covered arc_m.
   void start_search(double arc_m) { search_arc_m_ = arc_m; }
   // Roots are compared with the path where `view` puts them (the edit's move of the last frame
@@ -111,6 +116,7 @@ class PathCost final : public FrameCost {
   double min_step_;
   double behind_penalty_;
   double transition_penalty_;
+  double bridge_penalty_;
   double search_arc_m_ = 0.0;
   double c_ = 1.0, s_ = 0.0, x_ = 0.0, z_ = 0.0;
 };
@@ -131,7 +137,8 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
                                     graph.node_count())};
   }
   PathCost cost(path, masks, settings.tag_penalty_m2, settings.lower_bound ? context.tracks.max_root_step_m : 0.0,
-                settings.min_speed_mps / fps, settings.behind_penalty_m, settings.transition_penalty_m2);
+                settings.min_speed_mps / fps, settings.behind_penalty_m, settings.transition_penalty_m2,
+                settings.bridge_penalty_m2);
   HorizonSettings search;
   search.horizon_frames = std::max(1, static_cast<int>(std::lround(settings.horizon_s * fps)));
   search.max_expansions = settings.max_expansions;
