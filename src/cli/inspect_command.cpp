@@ -70,8 +70,10 @@ void print_clips(const GraphFile& file, const nlohmann::json& report) {
 }
 
 void print_statistics(const char* title, const nlohmann::json& s) {
-  fmt::print("{}: {} nodes, {} edges ({} clip pieces, {} transitions), {} clip frames, largest SCC {} nodes\n", title,
+  const int bridges = s.value("bridges", 0);
+  fmt::print("{}: {} nodes, {} edges ({} clip pieces, {} transitions{}), {} clip frames, largest SCC {} nodes\n", title,
              s.value("nodes", 0), s.value("edges", 0), s.value("clip_edges", 0), s.value("transitions", 0),
+             bridges > 0 ? fmt::format(" of which {} bridges", bridges) : std::string(),
              s.value("clip_frames", 0), s.value("largest_component_nodes", 0));
   if (s.contains("tags")) {
     bool any_modifier = false;

@@ -386,11 +386,10 @@ class Router {
     out["graph_max_deviation_m"] = result->graph_max_deviation_m;
     out["path_edit"] = path_edit_report(settings, *result);
     out["tag_match"] = result->tag_match;
-    const PlayedTransitions played = count_played_transitions(graph(), result->walk.edges, result->motion.frame_count);
-    out["transitions"] = played.transitions;
-    out["transitions_per_second"] =
-        transitions_per_second(played.transitions, result->motion.frame_count, result->motion.fps);
-    out["bridges"] = played.bridges;
+    const int transitions = result->walk.transition_count(graph());
+    out["transitions"] = transitions;
+    out["transitions_per_second"] = transitions_per_second(transitions, result->motion.frame_count, result->motion.fps);
+    out["bridges"] = count_bridges(graph(), result->walk.edges);
     json frame_tags = json::array();
     for (TagMask m : result->frame_tags) frame_tags.push_back(db().tag_names_of(m));
     out["frame_tags"] = std::move(frame_tags);

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstddef>
 #include <cstdio>
 #include <cstring>
 #include <optional>
@@ -108,6 +109,48 @@ TEST(GraphFile, AClipEdgeFlaggedABridgeIsRefused) {
   ASSERT_TRUE(parse_graph_file(serialize_graph_file(file), "g.mgraph"));
   file.graph.edges[0].bridge = true;
   EXPECT_FALSE(parse_graph_file(serialize_graph_file(file), "g.mgraph"));
+}
+
+// A flag byte that is neither 0 nor 1 is no bool: refused, not read as one. The edge is found in
+// the first section by its bytes and the section's CRC-32 (after the magic, the version and the
+// first section's size) made right again, so that only the flag is wrong.
+TEST(GraphFile, AnEdgeFlagThatIsNoBoolIsRefused) {
+  GraphFile file = sample();
+  const std::string bytes = serialize_graph_file(file);
+  ASSERT_TRUE(parse_graph_file(bytes, "g.mgraph"));
+  GraphEdge edge;
+  std::memset(static_cast<void*>(&edge), 0, sizeof edge);
+  edge.from_node = 1;
+  edge.transition = true;
+  edge.transition_index = 1;
+  edge.frame_count = 9;
+  edge.bridge = true;
+  ASSERT_EQ(file.graph.edges[1].from_node, 1);
+  ASSERT_TRUE(file.graph.edges[1].bridge);
+  const std::string pattern(reinterpret_cast<const char*>(&edge), sizeof edge);
+  const size_t at = bytes.find(pattern);
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_EQ(bytes.find(pattern, at + 1), std::string::npos);
+  constexpr size_t kMagic = 9, kSectionStart = kMagic + 4 + 2 * (8 + 4);
+  std::uint64_t size = 0;
+  std::memcpy(&size, bytes.data() + kMagic + 4, 8);
+  ASSERT_GT(at, kSectionStart);
+  ASSERT_LT(at, kSectionStart + size);
+  for (const size_t member : {offsetof(GraphEdge, transition), offsetof(GraphEdge, bridge)}) {
+    std::string broken = bytes;
+    broken[at + member] = 2;
+    uLong crc = crc32(0L, Z_NULL, 0);
+    crc = crc32(crc, reinterpret_cast<const Bytef*>(broken.data() + kSectionStart), static_cast<uInt>(size));
+    const auto crc32_value = static_cast<std::uint32_t>(crc);
+    std::memcpy(broken.data() + kMagic + 4 + 8, &crc32_value, 4);
+    EXPECT_FALSE(parse_graph_file(broken, "g.mgraph")) << member;
+    broken[at + member] = 1;  // the same CRC fix with the byte as it was: read again
+    crc = crc32(crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(broken.data() + kSectionStart),
+                static_cast<uInt>(size));
+    const auto restored = static_cast<std::uint32_t>(crc);
+    std::memcpy(broken.data() + kMagic + 4 + 8, &restored, 4);
+    EXPECT_TRUE(parse_graph_file(broken, "g.mgraph")) << member;
+  }
 }
 
 TEST(GraphFile, LoadsFromAPath) {

@@ -146,3 +146,25 @@ def test_errors_name_the_graph_file_as_the_cli_does(cli, graph_file, graph, tmp_
 
 def test_path_releases_the_gil(graph):
     assert_releases_the_gil(lambda: graph.path(shape="figure8:4", segments=["walk:0-25", "run:25-51"]))
+
+
+def test_bridge_penalty_reaches_the_steering_search(cli, graph_file, graph, tmp_path):
+    # Asked for no motion type, subject 16's steering turns through bridges when they cost as any
+    # transition (--bridge-penalty 0: 3 bridges in 8 s, measured) and without them by default.
+    controls = [{"at_s": 0, "heading_deg": 0}, {"at_s": 3, "heading_deg": 120}]
+    (tmp_path / "controls.json").write_text(json.dumps({"duration_s": 8, "controls": controls}))
+    reports = {}
+    for penalty in (0, 30):
+        cli("steer", graph_file, "--script", tmp_path / "controls.json", "--bridge-penalty", penalty,
+            "-o", tmp_path / f"cli{penalty}.json", "--report", tmp_path / f"r{penalty}.json")
+        reports[penalty] = read_json(tmp_path / f"r{penalty}.json")
+    assert reports[0]["bridges"] > 0 and reports[30]["bridges"] == 0, (reports[0]["bridges"], reports[30]["bridges"])
+    fps = graph.fps
+    total = round(8 * fps)
+    for penalty, kwargs in ((0, dict(bridge_penalty=0)), (30, {})):
+        controller = graph.controller(heading_deg=0, **kwargs)
+        while len(controller.motion) < total:
+            heading = [c for c in controls if c["at_s"] <= len(controller.motion) / fps][-1]["heading_deg"]
+            controller.step(heading)
+        want = read_json(tmp_path / f"cli{penalty}.json")
+        assert np.max(np.abs(controller.motion.positions[:total] - np.asarray(want["positions"]))) <= 1e-6

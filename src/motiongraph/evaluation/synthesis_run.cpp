@@ -90,8 +90,7 @@ Result<SynthesizedMotion> run_walk_synthesis(const SynthesisContext& context, in
   SynthesizedMotion out{std::move(*motion), found->walk, {}, {}, {}};
   auto cleanup = clean_up(context, settings, out.walk, out.motion, out.warning);
   if (!cleanup) return cleanup.error();
-  const PlayedTransitions played = count_played_transitions(graph, out.walk.edges, out.motion.frame_count);
-  const int transitions = played.transitions;
+  const int transitions = out.walk.transition_count(graph);
   out.report = {{"from", from},
                 {"to", to},
                 {"cost_function", walk_cost_name(walk.cost)},
@@ -100,7 +99,7 @@ Result<SynthesizedMotion> run_walk_synthesis(const SynthesisContext& context, in
                 {"edges", out.walk.edges},
                 {"transitions", transitions},
                 {"transitions_per_second", transitions_per_second(transitions, out.motion.frame_count, out.motion.fps)},
-                {"bridges", played.bridges},
+                {"bridges", count_bridges(graph, out.walk.edges)},
                 {"frames", out.motion.frame_count},
                 {"fps", out.motion.fps},
                 {"expansions", found->expansions},
@@ -130,8 +129,7 @@ Result<SynthesizedMotion> run_path_synthesis(const SynthesisContext& context, co
   for (const Vec2& p : path.points()) points.push_back({p.x(), p.y()});
   nlohmann::json roots = nlohmann::json::array();
   for (const Vec2& p : result->roots) roots.push_back({std::round(p.x() * 1e4) / 1e4, std::round(p.y() * 1e4) / 1e4});
-  const PlayedTransitions played = count_played_transitions(*context.graph, out.walk.edges, motion.frame_count);
-  const int transitions = played.transitions;
+  const int transitions = out.walk.transition_count(*context.graph);
   out.report = {{"path_length_m", result->path_length_m},
                 {"arc_covered_m", result->arc_covered_m},
                 {"end_distance_m", result->end_distance_m},
@@ -165,7 +163,7 @@ Result<SynthesizedMotion> run_path_synthesis(const SynthesisContext& context, co
                 {"edges", out.walk.edges},
                 {"transitions", transitions},
                 {"transitions_per_second", transitions_per_second(transitions, motion.frame_count, motion.fps)},
-                {"bridges", played.bridges},
+                {"bridges", count_bridges(*context.graph, out.walk.edges)},
                 {"segments", segments},
                 {"path", points},
                 {"roots", roots},

@@ -1,6 +1,7 @@
 #include "motiongraph/graph/graph_file.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstring>
 #include <initializer_list>
 #include <limits>
@@ -387,8 +388,8 @@ bool get_candidates(BinaryReader& in, CandidateSearch& c, bool with_minima = tru
 void put_graph(BinaryWriter& out, const MotionGraph& g) {
   out.put<std::int32_t>(g.window);
   out.put_vector(g.nodes);
-  // GraphEdge has padding after `transition`: written as zeros, so that one graph always gives
-  // the same bytes (its fields are set one by one on zeroed memory).
+  // GraphEdge has padding after `transition` and after `bridge`: written as zeros, so that one
+  // graph always gives the same bytes (its fields are set one by one on zeroed memory).
   std::vector<GraphEdge> edges(g.edges.size());
   std::memset(static_cast<void*>(edges.data()), 0, edges.size() * sizeof(GraphEdge));
   for (size_t i = 0; i < edges.size(); ++i) {
@@ -404,10 +405,21 @@ void put_graph(BinaryWriter& out, const MotionGraph& g) {
   out.put_vector(g.transitions);
 }
 
+// Whether the byte of a bool member read from a file is 0 or 1 (any other is no bool: reading it
+// as one is undefined). The object's bytes may be inspected as unsigned char.
+bool bool_byte_valid(const GraphEdge& edge, size_t offset) {
+  return reinterpret_cast<const unsigned char*>(&edge)[offset] <= 1;
+}
+
 bool get_graph(BinaryReader& in, const MotionDatabase& db, MotionGraph& g) {
   if (!in.get(g.window) || !in.get_vector(g.nodes) || !in.get_vector(g.edges) || !in.get_vector(g.edge_offsets) ||
       !in.get_vector(g.transitions)) {
     return false;
+  }
+  for (const GraphEdge& e : g.edges) {
+    if (!bool_byte_valid(e, offsetof(GraphEdge, transition)) || !bool_byte_valid(e, offsetof(GraphEdge, bridge))) {
+      return false;
+    }
   }
   const int nodes = g.node_count();
   if (g.edge_offsets.size() != static_cast<size_t>(nodes) + 1 || g.edge_offsets.front() != 0 ||

@@ -166,6 +166,7 @@ GraphStatistics compute_graph_statistics(const MotionGraph& graph, std::span<con
   for (const GraphEdge& e : graph.edges) {
     if (e.transition) {
       ++s.transitions;
+      s.bridges += e.bridge ? 1 : 0;
     } else {
       ++s.clip_edges;
       s.clip_frames += e.frame_count;
@@ -357,6 +358,7 @@ std::string to_json(const GraphStatistics& statistics, std::span<const std::stri
               {"edges", statistics.edges},
               {"clip_edges", statistics.clip_edges},
               {"transitions", statistics.transitions},
+              {"bridges", statistics.bridges},
               {"clip_frames", statistics.clip_frames},
               {"components", statistics.components},
               {"largest_component_nodes", statistics.largest_component_nodes},

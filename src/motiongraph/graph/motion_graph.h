@@ -129,6 +129,7 @@ struct GraphStatistics {
   int edges = 0;                    // clip and transition edges
   int clip_edges = 0;
   int transitions = 0;              // transition edges
+  int bridges = 0;                  // of which bridges (GraphEdge::bridge)
   long long clip_frames = 0;        // database frames played by clip edges (distinct)
   int largest_component_nodes = 0;  // 0 when the graph has no cycle
   int components = 0;               // strongly connected components, trivial ones included

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "motiongraph/graph/graph_from_candidates.h"
+
 namespace mg {
 
 Status ControllerSettings::validate() const {
@@ -57,12 +59,13 @@ class SteerCost final : public FrameCost {
 
 int controller_start_node(const SynthesisContext& context, TagMask tag) {
   const MotionGraph& graph = *context.graph;
-  // The tag whose frames start most nodes when none is asked for: the motion type the graph
-  // holds most of (nodes of no tag: node 0).
+  // The motion type whose frames start most nodes when none is asked for (modifiers such as
+  // turn ride on the types; nodes of no type: node 0).
   if (tag == 0) {
+    const TagMask types = motion_type_tags(*context.db);
     std::array<int, 64> nodes{};
     for (int n = 0; n < graph.node_count(); ++n) {
-      for (TagMask m = context.tracks.tags_of(graph.edge_offsets[n]).front(); m != 0; m &= m - 1) {
+      for (TagMask m = context.tracks.tags_of(graph.edge_offsets[n]).front() & types; m != 0; m &= m - 1) {
         ++nodes[static_cast<size_t>(std::countr_zero(m))];
       }
     }

@@ -52,7 +52,8 @@ struct ControllerDecision {
 };
 
 // Where a controller starts without a start node: the first node carrying `tag`, or with no tag
-// (0) the first carrying the tag most nodes carry, the motion type the graph holds most of (a
+// (0) the first carrying the motion type (graph_from_candidates.h: not a modifier such as turn)
+// most nodes carry, the type the graph holds most of (a
 // steering session that asks for no motion type walks, rather than start among jumps it could
 // leave only through a bridge); node 0 when no node carries it.
 int controller_start_node(const SynthesisContext& context, TagMask tag);

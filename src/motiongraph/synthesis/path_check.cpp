@@ -164,12 +164,17 @@ Result<PathCheck> check_path_following(const MotionDatabase& db, const FrameFeat
       }
     }
   }
-  // None passed: the one that went best (the first of equals), a higher threshold only where its
-  // probe was not lost (or the first made no graph).
+  // None passed: the one that went best (the first of equals) among the first and the probes
+  // not lost; when the first made no graph and every probe was lost, the best of all.
+  const double lost_m = std::max(check.lost_m, check.tolerance_m);
   const PathCheckPoint* best = &out.points.front();
   for (const PathCheckPoint& p : out.points) {
-    const bool near = p.graph && p.mean_deviation_m <= std::max(check.lost_m, check.tolerance_m);
-    if ((near || !best->graph) && went_better(p, *best)) best = &p;
+    if (p.graph && p.mean_deviation_m <= lost_m && went_better(p, *best)) best = &p;
+  }
+  if (!best->graph) {
+    for (const PathCheckPoint& p : out.points) {
+      if (went_better(p, *best)) best = &p;
+    }
   }
   out.threshold = best->threshold;
   out.rms_cm = best->rms_cm;

@@ -17,23 +17,11 @@ inline int count_transitions(const MotionGraph& graph, std::span<const int> edge
   return n;
 }
 
-// The transitions, and of them the bridges (GraphEdge::bridge: blends between motion types above
-// the threshold), among `edges` played one after the other that start before frame `frames` (a
-// path's motion is cut where it reaches the path's end, short of its walk's last edges).
-struct PlayedTransitions {
-  int transitions = 0;
-  int bridges = 0;
-};
-inline PlayedTransitions count_played_transitions(const MotionGraph& graph, std::span<const int> edges,
-                                                  long long frames) {
-  PlayedTransitions n;
-  long long start = 0;
-  for (int e : edges) {
-    if (start >= frames) break;
-    n.transitions += graph.edges[e].transition ? 1 : 0;
-    n.bridges += graph.edges[e].bridge ? 1 : 0;
-    start += graph.edges[e].frame_count;
-  }
+// How many of `edges` are bridges (GraphEdge::bridge: blends between motion types above the
+// threshold).
+inline int count_bridges(const MotionGraph& graph, std::span<const int> edges) {
+  int n = 0;
+  for (int e : edges) n += graph.edges[e].bridge ? 1 : 0;
   return n;
 }
 
