@@ -280,10 +280,14 @@ class Router {
   }
 
   ApiResponse transitions() {
-    // Each transition's blend length, from its edge (bridges blend longer than the window).
+    // Each transition's blend length and whether it is a bridge, from its edge (bridges blend
+    // longer than the window).
     std::vector<int> blend(graph().transitions.size(), graph().window);
+    std::vector<char> bridge(graph().transitions.size(), 0);
     for (const GraphEdge& e : graph().edges) {
-      if (e.transition) blend[e.transition_index] = blend_frames(e);
+      if (!e.transition) continue;
+      blend[e.transition_index] = blend_frames(e);
+      bridge[e.transition_index] = e.bridge;
     }
     json out = json::array();
     for (size_t i = 0; i < graph().transitions.size(); ++i) {
@@ -293,6 +297,7 @@ class Router {
                      {"to_frame", t.to_frame},
                      {"distance", t.distance},
                      {"blend_frames", blend[i]},
+                     {"bridge", bridge[i] != 0},
                      {"from_clip", db().clips[db().clip_of(t.from_frame)].name},
                      {"to_clip", db().clips[db().clip_of(t.to_frame)].name}});
     }
@@ -348,6 +353,7 @@ class Router {
     out["transitions"] = result->transitions;
     out["transitions_per_second"] =
         transitions_per_second(result->transitions, result->motion.frame_count, result->motion.fps);
+    out["bridges"] = count_bridges(graph(), result->walk.edges);
     return json_response(out);
   }
 
@@ -423,6 +429,8 @@ class Router {
                           {"search_ms", 1e3 * step->search_seconds},
                           {"transitions", step->transitions},
                           {"session_transitions", step->session_transitions},
+                          {"bridges", step->bridges},
+                          {"session_bridges", step->session_bridges},
                           {"session_transitions_per_second",
                            transitions_per_second(step->session_transitions, step->first_frame + step->motion.frame_count,
                                                   db().fps)},

@@ -167,11 +167,14 @@ Result<SteerStepResult> SynthesisService::step_session(int id, const ControlInpu
     out.contacts.insert(out.contacts.end(), contacts.begin(), contacts.end());
     out.search_seconds += decision.search_seconds;
     out.transitions += count_transitions(file().graph, decision.edges);
+    out.bridges += count_bridges(file().graph, decision.edges);
     if (decision.frames == 0) break;
   } while (out.motion.frame_count < min_frames);
   session->frames += out.motion.frame_count;
   session->transitions += out.transitions;
   out.session_transitions = session->transitions;
+  session->bridges += out.bridges;
+  out.session_bridges = session->bridges;
   std::lock_guard record(session->recorded->mutex);
   Motion& recorded = session->recorded->motion;
   if (recorded.frame_count + out.motion.frame_count <= kMaxRecordedFrames) {

@@ -57,6 +57,8 @@ struct SteerStepResult {
   double search_seconds = 0.0;
   int transitions = 0;           // transition edges this step committed
   int session_transitions = 0;   // and the session so far
+  int bridges = 0;               // of this step's transitions, the bridges (GraphEdge::bridge)
+  int session_bridges = 0;       // and the session's
   std::vector<ContactMask> contacts;  // per frame of motion, as above
 };
 
@@ -114,6 +116,7 @@ class SynthesisService {
     std::shared_ptr<Recorded> recorded;
     long long frames = 0;
     int transitions = 0;
+    int bridges = 0;
     long long last_used = 0;
   };
   SynthesisService() = default;

@@ -246,7 +246,7 @@ try {
     document.querySelector('[data-testid=path-info]').textContent), null, { timeout: 180000 });
   const pathInfo = await page.textContent('[data-testid=path-info]');
   check(/deviation mean [\d.]+ m/.test(pathInfo), `the path is synthesized: ${pathInfo}`);
-  check(/\d+ transitions \([\d.]+\/s\)/.test(pathInfo), `the path's transitions per second are shown: ${pathInfo}`);
+  check(/\d+ transitions \([\d.]+\/s(, \d+ bridges?)?\)/.test(pathInfo), `the path's transitions per second are shown: ${pathInfo}`);
   check(/bent onto the path; as the graph played it [\d.]+ m, max [\d.]+ m/.test(pathInfo),
     `the path is bent onto the path drawn by default, the graph's own deviation shown: ${pathInfo}`);
   check(/feet slide [\d.]+ m\/s \([\d.]+x the capture\), cleaned up/.test(pathInfo),

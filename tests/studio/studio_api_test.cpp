@@ -219,14 +219,19 @@ TEST(StudioApi, TransitionsAndTheirPoses) {
   const ApiCall poses = call_api("GET", "/api/transitions/0/poses");
   ASSERT_EQ(poses.response.status, 200) << poses.response.body;
   const int k = studio_service().file().graph.window;
-  // Each transition's blend length is its edge's: the window, or longer for a bridge.
+  // Each transition's blend length is its edge's: the window, or longer for a bridge; and so is
+  // whether it is a bridge (subject 16's graph has some).
   const MotionGraph& graph = studio_service().file().graph;
+  int bridges = 0;
   for (const GraphEdge& e : graph.edges) {
     if (e.transition) {
       EXPECT_EQ(list.json[e.transition_index]["blend_frames"].get<int>(), e.frame_count + 1);
       EXPECT_GE(e.frame_count + 1, k);
+      EXPECT_EQ(list.json[e.transition_index]["bridge"].get<bool>(), e.bridge);
+      bridges += e.bridge ? 1 : 0;
     }
   }
+  EXPECT_GT(bridges, 0);
   ASSERT_EQ(poses.json["from"]["positions"].size(), static_cast<size_t>(k));
   ASSERT_EQ(poses.json["to"]["positions"].size(), static_cast<size_t>(k));
   EXPECT_EQ(poses.json["from"]["first_frame"], list.json[0]["from_frame"]);
@@ -287,6 +292,19 @@ TEST(StudioApi, ResultsAreCleanedUnlessAskedNotToAndMeasuredAgainstTheirSource) 
   const ApiCall session = call_api("POST", "/api/steer/sessions", R"({"heading_deg": 90, "cleanup": true})");
   ASSERT_EQ(session.response.status, 200) << session.response.body;
   EXPECT_TRUE(session.json["cleanup"].get<bool>());
+  // Steps report their bridges, and the session's add up (walking, then asked to run: a bridge
+  // or a transition between the two may be taken).
+  const std::string step = "/api/steer/sessions/" + std::to_string(session.json["session"].get<int>()) + "/step";
+  int bridges = 0;
+  for (int i = 0; i < 30; ++i) {
+    const ApiCall s = call_api("POST", step, i < 10 ? R"({"heading_deg": 90})" : R"({"heading_deg": 90, "tag": "run"})");
+    ASSERT_EQ(s.response.status, 200) << s.response.body;
+    EXPECT_LE(s.json["bridges"].get<int>(), s.json["transitions"].get<int>());
+    bridges += s.json["bridges"].get<int>();
+    EXPECT_EQ(s.json["session_bridges"].get<int>(), bridges);
+  }
+  EXPECT_GE(walk.json["bridges"].get<int>(), 0);
+  EXPECT_LE(walk.json["bridges"].get<int>(), walk.json["transitions"].get<int>());
   expect_error(call_api("POST", "/api/walk", R"({"cleanup": "yes"})"), 400, "cleanup");
   expect_error(call_api("POST", "/api/path", R"({"points": [[0, 0], [0, 5]], "cleanup": 1})"), 400, "cleanup");
 }

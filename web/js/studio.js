@@ -307,7 +307,8 @@ $('synthesize').addEventListener('click', async () => {
       + (result.path_edit.edited ? ` (bent onto the path; as the graph played it `
         + `${result.graph_mean_deviation_m.toFixed(2)} m, max ${result.graph_max_deviation_m.toFixed(2)} m)` : '')
       + `, tags matched ${(100 * result.tag_match).toFixed(0)} %; ${result.transitions} transitions `
-      + `(${result.transitions_per_second.toFixed(2)}/s); ${footSlideText(result)}`;
+      + `(${result.transitions_per_second.toFixed(2)}/s${result.bridges ? `, ${result.bridges} bridge${result.bridges === 1 ? '' : 's'}` : ''}); `
+      + footSlideText(result);
   } catch (err) {
     $('path-info').textContent = `error: ${err.message}`;
   }
@@ -408,6 +409,7 @@ async function requestSteps() {
     s.planted.push(...(step.contacts ? step.contacts.planted : step.positions.map(() => null)));
     s.received += step.frames;
     s.transitionsPerSecond = step.session_transitions_per_second;
+    s.bridges = step.session_bridges;
   } catch (err) {
     $('steer-info').textContent = `error: ${err.message}`;
     stopSteering();
@@ -505,7 +507,8 @@ function tick() {
     requestSteps();
     $('steer-info').textContent = `heading ${s.heading.toFixed(0)} deg, ${s.tag || 'any'}; `
       + `${s.received} frames received, step ${s.lastStepMs.toFixed(0)} ms, `
-      + `${(s.transitionsPerSecond || 0).toFixed(2)} transitions/s${s.gamepad ? `; gamepad ${s.gamepad}` : ''}`;
+      + `${(s.transitionsPerSecond || 0).toFixed(2)} transitions/s${s.bridges ? ` (${s.bridges} bridge${s.bridges === 1 ? '' : 's'})` : ''}`
+      + `${s.gamepad ? `; gamepad ${s.gamepad}` : ''}`;
   } else if (state.track && figure) {
     const n = state.track.frames.length;
     if (state.playing) state.time += dt * state.track.fps * state.speed;
