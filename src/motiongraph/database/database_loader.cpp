@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "motiongraph/core/default_window.h"
 #include "motiongraph/database/cmu_tags.h"
 #include "motiongraph/database/database_contacts.h"
 #include "motiongraph/database/manifest.h"
@@ -276,7 +277,7 @@ Status DatabaseSettings::validate() const {
 
 int DatabaseSettings::loop_frames_at(double database_fps) const {
   if (loop_overlap_frames > 0) return loop_overlap_frames;
-  return std::max(1, static_cast<int>(std::lround(database_fps / 3.0))) + 1;  // the default window, and one
+  return default_window_frames(database_fps) + 1;
 }
 
 namespace {

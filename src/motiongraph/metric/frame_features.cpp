@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "motiongraph/core/default_window.h"
+
 namespace mg {
 
 Status DistanceSettings::validate() const {
@@ -15,7 +17,7 @@ Status DistanceSettings::validate() const {
 }
 
 int DistanceSettings::window_for(double fps) const {
-  return window_frames > 0 ? window_frames : std::max(1, static_cast<int>(std::lround(fps / 3.0)));
+  return window_frames > 0 ? window_frames : default_window_frames(fps);
 }
 
 std::vector<double> window_weights(int k, DistanceSettings::Taper taper) {

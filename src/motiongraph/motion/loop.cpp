@@ -72,12 +72,13 @@ LoopChoice find_loop(const Skeleton& skeleton, const Motion& motion) {
   const int s = std::max(1, static_cast<int>(std::lround(motion.fps / kStepRate)));
   if (frames < kMinSteps * s + 1 || skeleton.joint_count() == 0) return choice;
   const Vec3 axis = heading_axis(skeleton, motion);
-  std::map<int, std::vector<Vec3>> poses;  // local poses, worked out once each
-  const auto pose = [&](int frame) -> const std::vector<Vec3>& {
+  std::map<int, LocalPose> poses;  // local poses and placements, worked out once each
+  const auto local = [&](int frame) -> const LocalPose& {
     auto it = poses.find(frame);
-    if (it == poses.end()) it = poses.emplace(frame, local_pose(skeleton, motion, frame, axis).joints).first;
+    if (it == poses.end()) it = poses.emplace(frame, local_pose(skeleton, motion, frame, axis)).first;
     return it->second;
   };
+  const auto pose = [&](int frame) -> const std::vector<Vec3>& { return local(frame).joints; };
   // The pose a frame would have between its two neighbours either side (a cubic through them).
   const auto between = [&](int a, int b, int c, int d) {
     std::vector<Vec3> mid(pose(a).size());
@@ -115,7 +116,20 @@ LoopChoice find_loop(const Skeleton& skeleton, const Motion& motion) {
     choice = {true, false, frames, following, choice.step_m};
   } else {
     choice.seam_ratio = following;
+    return choice;
   }
+  // Where the next cycle starts: the last frame itself when it repeats the first, else one step
+  // on from the last, as the step before it went. One cycle over the floor: p -> cycle p + shift.
+  const Placement& start = local(0).placement;
+  Placement next = local(last).placement;
+  if (!choice.last_repeats_first) {
+    const Placement& before = local(last - 1).placement;
+    const double turn = wrapped(next.yaw - before.yaw);
+    next.floor += yaw_rotation(turn) * (next.floor - before.floor);
+    next.yaw += turn;
+  }
+  choice.cycle_yaw_rad = wrapped(next.yaw - start.yaw);
+  choice.cycle_shift_m = next.floor - yaw_rotation(choice.cycle_yaw_rad) * start.floor;
   return choice;
 }
 
@@ -123,21 +137,10 @@ Motion unrolled_loop(const Skeleton& skeleton, const Motion& motion, const LoopC
   if (!loop.loops || extra_frames <= 0) return motion;
   const int frames = motion.frame_count;
   extra_frames = std::min(extra_frames, loop.period);
-  // Where the next cycle starts: the last frame itself when it repeats the first, else one step
-  // on from the last, as the step before it went.
-  const Vec3 axis = heading_axis(skeleton, motion);
-  const Placement start = local_pose(skeleton, motion, 0, axis).placement;
-  Placement next = local_pose(skeleton, motion, frames - 1, axis).placement;
-  if (!loop.last_repeats_first) {
-    const Placement before = local_pose(skeleton, motion, frames - 2, axis).placement;
-    const double turn = wrapped(next.yaw - before.yaw);
-    next.floor += yaw_rotation(turn) * (next.floor - before.floor);
-    next.yaw += turn;
-  }
-  // One cycle over the floor: p -> cycle p + shift, on the root's world transform (joint 0's,
-  // a static ancestor of the file's folded into it: skeleton.h).
-  const Quat cycle = yaw_rotation(wrapped(next.yaw - start.yaw));
-  const Vec3 shift = next.floor - cycle * start.floor;
+  // The cycle's floor transform, on the root's world transform (joint 0's, a static ancestor of
+  // the file's folded into it: skeleton.h).
+  const Quat cycle = yaw_rotation(loop.cycle_yaw_rad);
+  const Vec3& shift = loop.cycle_shift_m;
 
   Motion out(skeleton, frames + extra_frames, motion.fps);
   std::copy(motion.local_rotations.begin(), motion.local_rotations.end(), out.local_rotations.begin());

@@ -21,6 +21,11 @@ struct LoopChoice {
   // the clip's median departure of a frame from its neighbours' cubic.
   double seam_ratio = 0.0;
   double step_m = 0.0;  // the median step from a frame to the next (RMS over joints, in the root's floor frame)
+  // For a loop, the floor transform one cycle makes (p -> turn by cycle_yaw_rad about the
+  // vertical, then shift): the placement of the next cycle's start, the last frame when it
+  // repeats the first, else one step on from the last as the step before it went.
+  double cycle_yaw_rad = 0.0;
+  Vec3 cycle_shift_m = Vec3::Zero();
 };
 
 // A clip loops when its last frame repeats the first (within a quarter of its median step), or
@@ -41,8 +46,8 @@ inline constexpr double kFollowingStepRatio = 2.0;
 // under 2 mm), do not.
 LoopChoice find_loop(const Skeleton& skeleton, const Motion& motion);
 
-// The loop with `extra_frames` more frames (at most one period): its frames from the start of
-// the cycle again, placed by the floor transform (heading and floor position) one cycle makes,
+// The loop (find_loop's choice for this motion) with `extra_frames` more frames (at most one
+// period): its frames from the start of the cycle again, placed by the cycle's floor transform,
 // so the motion goes on across the seam as played round. Only the root's rotation and
 // translation change in the frames added; the clip's own frames are unchanged.
 Motion unrolled_loop(const Skeleton& skeleton, const Motion& motion, const LoopChoice& loop, int extra_frames);
