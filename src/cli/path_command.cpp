@@ -96,8 +96,9 @@ Command add_path_command(CLI::App& app) {
                   "Cost (m^2) of each transition taken: keeps captured motion between blends (0: Kovar's cost alone)")
       ->capture_default_str();
   sub->add_option("--bridge-penalty", o->settings.bridge_penalty_m2,
-                  "Cost (m^2) of each bridge (a blend between motion types above the threshold) taken where no "
-                  "--segment asks for a motion type, on top of --transition-penalty (0: as any transition)")
+                  "Cost (m^2) of each bridge (a blend between motion types above the threshold) taken, on top of "
+                  "--transition-penalty, unless it leads into the motion type a --segment asks for there (0: as any "
+                  "transition)")
       ->capture_default_str();
   sub->add_option("--behind-penalty", o->settings.behind_penalty_m, "Cost (m^2 per metre behind) of dawdling")
       ->capture_default_str();

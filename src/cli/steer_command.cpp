@@ -115,6 +115,7 @@ int run_steer(const SteerOptions& o) {
                                  {"transitions", transitions},
                                  {"transitions_per_second", transitions_per_second(transitions, motion.frame_count, fps)},
                                  {"bridges", bridges},
+                                 {"edges", played.edges},
                                  {"decisions", latencies.size()},
                                  {"decision_ms_p50", 1e3 * percentile(latencies, 0.5)},
                                  {"decision_ms_p99", 1e3 * percentile(latencies, 0.99)},
@@ -155,8 +156,9 @@ Command add_steer_command(CLI::App& app) {
                   "Cost of each transition taken, in frames facing 90 degrees off (0: none)")
       ->capture_default_str();
   sub->add_option("--bridge-penalty", o->settings.bridge_penalty,
-                  "Cost of each bridge (a blend between motion types above the threshold) taken while no tag is "
-                  "asked for, on top of --transition-penalty, in frames facing 90 degrees off (0: as any transition)")
+                  "Cost of each bridge (a blend between motion types above the threshold) taken, on top of "
+                  "--transition-penalty, unless it leads into the tag asked for, in frames facing 90 degrees off (0: as "
+                  "any transition)")
       ->capture_default_str();
   sub->add_option("--beam", o->settings.beam_width,
                   "Beam width of each decision's first pass (0: depth-first branch and bound alone)")

@@ -117,20 +117,71 @@ MotionDatabase two_clips() {
   return db;
 }
 
+// Where a bridge's blend leaves and lands, checked against what every blend must keep: it lies
+// inside its two clips, is at least the window long, and pairs the frames D was measured on
+// (frame from + p of the clip it leaves with to - k + 1 + p of the one it arrives in).
+BridgeBlend checked_blend(const MotionDatabase& db, const Transition& bridge, int k, double factor,
+                          std::span<const char> core = {}) {
+  const BridgeBlend b = bridge_blend(db, bridge, k, 1.0, factor, core);
+  EXPECT_GE(b.frames, k);
+  EXPECT_EQ((b.to_frame - b.frames + 1) - b.from_frame, (bridge.to_frame - k + 1) - bridge.from_frame)
+      << "pairs other frames than the measured window";
+  EXPECT_LE(b.from_frame, bridge.from_frame);
+  EXPECT_GE(b.to_frame, bridge.to_frame);
+  EXPECT_EQ(db.clip_of(b.from_frame), db.clip_of(bridge.from_frame));
+  EXPECT_EQ(db.clip_of(b.from_frame + b.frames - 1), db.clip_of(bridge.from_frame));
+  EXPECT_EQ(db.clip_of(b.to_frame - b.frames + 1), db.clip_of(bridge.to_frame));
+  EXPECT_EQ(db.clip_of(b.to_frame), db.clip_of(bridge.to_frame));
+  for (int f = b.from_frame; f <= bridge.from_frame && !core.empty(); ++f) EXPECT_TRUE(core[f]) << f;
+  for (int f = bridge.to_frame; f <= b.to_frame && !core.empty(); ++f) EXPECT_TRUE(core[f]) << f;
+  return b;
+}
+
 TEST(Bridges, BlendLengthGrowsWithTheSquareRootOfDistanceWithinItsBoundsAndClips) {
   const MotionDatabase db = two_clips();
   const int k = 10;
+  auto frames = [&](const Transition& bridge, double factor) { return checked_blend(db, bridge, k, factor).frames; };
   // Interior: k sqrt(D / threshold), between k and 3k.
-  EXPECT_EQ(bridge_blend_frames(db, t(20, 150, 4.0f), k, 1.0, 3.0), 20);
-  EXPECT_EQ(bridge_blend_frames(db, t(20, 150, 2.25f), k, 1.0, 3.0), 15);
-  EXPECT_EQ(bridge_blend_frames(db, t(20, 150, 100.0f), k, 1.0, 3.0), 30);
-  EXPECT_EQ(bridge_blend_frames(db, t(20, 150, 0.5f), k, 1.0, 3.0), k);
-  EXPECT_EQ(bridge_blend_frames(db, t(20, 150, 100.0f), k, 1.0, 1.0), k);
-  // Near the end of the clip it leaves (frames 80..99 remain) or the start of the one it lands
-  // in (frames 100..124): no longer than the clips allow, never below the window.
-  EXPECT_EQ(bridge_blend_frames(db, t(80, 150, 100.0f), k, 1.0, 3.0), 20);
-  EXPECT_EQ(bridge_blend_frames(db, t(20, 124, 100.0f), k, 1.0, 3.0), 25);
-  EXPECT_EQ(bridge_blend_frames(db, t(90, 150, 100.0f), k, 1.0, 3.0), k);
+  EXPECT_EQ(frames(t(20, 150, 4.0f), 3.0), 20);
+  EXPECT_EQ(frames(t(20, 150, 2.25f), 3.0), 15);
+  EXPECT_EQ(frames(t(20, 150, 100.0f), 3.0), 30);
+  EXPECT_EQ(frames(t(20, 150, 0.5f), 3.0), k);
+  EXPECT_EQ(frames(t(20, 150, 100.0f), 1.0), k);
+  // Near the end of the clip it leaves (frames 80..99) the blend starts earlier to keep its
+  // length; with frames 88..99 left and the arrival window at 103..112 (3 frames before it in
+  // its clip), it grows by those 3 and the 2 after; with neither, it is the window.
+  EXPECT_EQ(frames(t(80, 150, 100.0f), 3.0), 30);
+  EXPECT_EQ(frames(t(88, 112, 100.0f), 3.0), 15);
+  EXPECT_EQ(frames(t(90, 109, 100.0f), 3.0), k);
+}
+
+TEST(Bridges, ALongerBlendIsCentredOnTheMeasuredWindowAndKeepsItsPairs) {
+  const MotionDatabase db = two_clips();
+  const int k = 10;
+  // 20 frames for a window of 10: 5 before the window's first pair (20 <-> 141) and 5 after its
+  // last (29 <-> 150). Reading 20 frames from 20 and 20 up to 150 would pair 20 with 131.
+  BridgeBlend b = checked_blend(db, t(20, 150, 4.0f), k, 3.0);
+  EXPECT_EQ(b.from_frame, 15);
+  EXPECT_EQ(b.to_frame, 155);
+  // 15 frames: 2 before, 3 after.
+  b = checked_blend(db, t(20, 150, 2.25f), k, 3.0);
+  EXPECT_EQ(b.from_frame, 18);
+  EXPECT_EQ(b.to_frame, 153);
+  // No frames after the window in the clip it leaves (90..99): all 20 extra before it.
+  b = checked_blend(db, t(90, 140, 100.0f), k, 3.0);
+  EXPECT_EQ(b.from_frame, 70);
+  EXPECT_EQ(b.to_frame, 140);
+  // Its ends stay in the core: frames from 17 and up to 157 only.
+  std::vector<char> core(200, 0);
+  std::fill(core.begin() + 17, core.begin() + 158, 1);
+  b = checked_blend(db, t(20, 150, 100.0f), k, 3.0, core);
+  EXPECT_EQ(b.from_frame, 17);
+  EXPECT_EQ(b.to_frame, 157);
+  EXPECT_EQ(b.frames, 20);
+  // A frame outside the core between the candidate and a longer blend's end stops it there.
+  core[147 + 5] = 0;
+  b = checked_blend(db, t(20, 150, 100.0f), k, 3.0, core);
+  EXPECT_EQ(b.to_frame, 151);
 }
 
 TEST(TagCoreFrames, TheCycleOfATagsOwnTransitionsOrNothing) {

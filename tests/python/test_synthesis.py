@@ -103,10 +103,12 @@ def test_steering_goes_where_it_is_told(graph):
     while len(controller.motion) < 5 * graph.fps:
         controller.step(90, "walk")
     root = controller.motion.positions[:, 0, :]
-    last_second = root[-int(graph.fps):]
-    # East is +x: over the last second the root moves east more than it moves north or south.
-    dx, dz = last_second[-1, 0] - last_second[0, 0], last_second[-1, 2] - last_second[0, 2]
-    assert dx > 0.5 and abs(dz) < dx
+    last = root[-3 * int(graph.fps):]
+    # East is +x: over the last three seconds the root moves east more than twice as far as it moves
+    # north or south. (A walk held to a heading weaves about it, on subject 16 by 0.6-0.7 m either
+    # side over 4-5 s: a single second can head 45 degrees off.)
+    dx, dz = last[-1, 0] - last[0, 0], last[-1, 2] - last[0, 2]
+    assert dx > 1.5 and abs(dz) < dx / 2, (dx, dz)
 
 
 @pytest.mark.parametrize("cli_args, call", [
@@ -149,9 +151,10 @@ def test_path_releases_the_gil(graph):
 
 
 def test_bridge_penalty_reaches_the_steering_search(cli, graph_file, graph, tmp_path):
-    # Asked for no motion type, subject 16's steering turns through bridges when they cost as any
-    # transition (--bridge-penalty 0: 3 bridges in 8 s, measured) and without them by default.
-    controls = [{"at_s": 0, "heading_deg": 0}, {"at_s": 3, "heading_deg": 120}]
+    # Asked for no motion type, subject 16's steering turns about and back through bridges when they
+    # cost as any transition (--bridge-penalty 0: 3 bridges in 8 s, measured) and without them by
+    # default.
+    controls = [{"at_s": 0, "heading_deg": 0}, {"at_s": 2, "heading_deg": 180}, {"at_s": 5, "heading_deg": 0}]
     (tmp_path / "controls.json").write_text(json.dumps({"duration_s": 8, "controls": controls}))
     reports = {}
     for penalty in (0, 30):

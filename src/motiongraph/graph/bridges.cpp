@@ -63,15 +63,30 @@ Result<std::vector<char>> tag_core_frames(const MotionDatabase& db, std::span<co
   return core;
 }
 
-int bridge_blend_frames(const MotionDatabase& db, const Transition& bridge, int window, double threshold,
-                        double max_blend_factor) {
+BridgeBlend bridge_blend(const MotionDatabase& db, const Transition& bridge, int window, double threshold,
+                         double max_blend_factor, std::span<const char> core) {
   const double ratio = threshold > 0.0 ? std::sqrt(std::max(0.0, static_cast<double>(bridge.distance)) / threshold) : 1.0;
-  int frames = static_cast<int>(std::lround(window * std::clamp(ratio, 1.0, max_blend_factor)));
+  const int wanted = static_cast<int>(std::lround(window * std::clamp(ratio, 1.0, max_blend_factor)));
   const DatabaseClip& leave = db.clips[db.clip_of(bridge.from_frame)];
   const DatabaseClip& arrive = db.clips[db.clip_of(bridge.to_frame)];
-  frames = std::min({frames, leave.first_frame + leave.frame_count - bridge.from_frame,
-                     bridge.to_frame - arrive.first_frame + 1});
-  return std::max(frames, window);
+  // The frames a blend may take before the measured window's first pair and after its last: held
+  // by both clips, and (with a core) core frames up to the moved end.
+  auto in_core = [&](int f) {
+    return core.empty() || (f >= 0 && f < static_cast<int>(core.size()) && core[f] != 0);
+  };
+  const int before_held =
+      std::min(bridge.from_frame - leave.first_frame, bridge.to_frame - window + 1 - arrive.first_frame);
+  const int after_held = std::min(leave.first_frame + leave.frame_count - (bridge.from_frame + window),
+                                  arrive.first_frame + arrive.frame_count - 1 - bridge.to_frame);
+  int before = 0;
+  while (before < before_held && in_core(bridge.from_frame - before - 1)) ++before;
+  int after = 0;
+  while (after < after_held && in_core(bridge.to_frame + after + 1)) ++after;
+  const int extra = std::max(0, wanted - window);
+  int lead = std::min(extra / 2, before);
+  const int trail = std::min(extra - lead, after);
+  lead = std::min(extra - trail, before);
+  return {bridge.from_frame - lead, bridge.to_frame + trail, window + lead + trail};
 }
 
 BridgeSelection select_bridges(std::span<const Transition> candidates, std::span<const Transition> selected,

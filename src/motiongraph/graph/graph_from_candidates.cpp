@@ -2,6 +2,7 @@
 #include "motiongraph/graph/graph_from_candidates.h"
 
 #include <algorithm>
+#include <numeric>
 
 #include <fmt/format.h>
 
@@ -69,6 +70,7 @@ Result<TransitionsWithBridges> select_transitions_with_bridges(const MotionDatab
   BridgeSettings bridge_settings = settings.bridges;
   bridge_settings.locality_radius = out.selection.locality_radius;
   bridge_settings.tags = connected;
+  std::vector<char> any_core;  // frames of any tag's core: where a bridge's blend may leave and land
   if (connected_bridges(settings)) {
     std::vector<std::vector<char>> cores(db.tag_names.size());
     for (size_t t = 0; t < cores.size(); ++t) {
@@ -91,6 +93,10 @@ Result<TransitionsWithBridges> select_transitions_with_bridges(const MotionDatab
     }
     out.bridges = std::move(bridges.bridges);
     out.unjoined = std::move(bridges.unjoined);
+    any_core.assign(frame_tags.size(), 0);
+    for (const std::vector<char>& core : cores) {
+      for (size_t f = 0; f < core.size() && f < any_core.size(); ++f) any_core[f] |= core[f];
+    }
   }
   for (Transition& t : out.bridges) {
     if (settings.aligned) {
@@ -99,8 +105,31 @@ Result<TransitionsWithBridges> select_transitions_with_bridges(const MotionDatab
       t.x_m = static_cast<float>(align.x_m);
       t.z_m = static_cast<float>(align.z_m);
     }
-    out.bridge_blends.push_back(
-        bridge_blend_frames(db, t, features.window, out.selection.threshold, bridge_settings.max_blend_factor));
+    // The blend keeps the measured window's pairing of frames, so a longer one leaves earlier
+    // and lands later than the candidate (bridges.h); D and the alignment stay the window's.
+    const BridgeBlend blend =
+        bridge_blend(db, t, features.window, out.selection.threshold, bridge_settings.max_blend_factor, any_core);
+    t.from_frame = blend.from_frame;
+    t.to_frame = blend.to_frame;
+    out.bridge_blends.push_back(blend.frames);
+  }
+  {
+    // Sorted again by (from_frame, to_frame), their blends with them.
+    std::vector<size_t> order(out.bridges.size());
+    std::iota(order.begin(), order.end(), size_t{0});
+    std::sort(order.begin(), order.end(), [&](size_t x, size_t y) {
+      const Transition& a = out.bridges[x];
+      const Transition& b = out.bridges[y];
+      return a.from_frame != b.from_frame ? a.from_frame < b.from_frame : a.to_frame < b.to_frame;
+    });
+    std::vector<Transition> bridges(order.size());
+    std::vector<int> blends(order.size());
+    for (size_t i = 0; i < order.size(); ++i) {
+      bridges[i] = out.bridges[order[i]];
+      blends[i] = out.bridge_blends[order[i]];
+    }
+    out.bridges = std::move(bridges);
+    out.bridge_blends = std::move(blends);
   }
   out.all_transitions = out.selection.transitions;
   out.all_transitions.insert(out.all_transitions.end(), out.bridges.begin(), out.bridges.end());

@@ -54,8 +54,10 @@ struct GraphFromCandidatesSettings {
 
 struct TransitionsWithBridges {
   TransitionSelection selection;
-  std::vector<Transition> bridges;          // aligned, sorted by (from_frame, to_frame)
-  std::vector<int> bridge_blends;           // each bridge's blend length in frames (bridge_blend_frames)
+  // Aligned, sorted by (from_frame, to_frame); each leaves and lands where its blend does
+  // (bridge_blend in bridges.h), with the D and alignment of the window it was chosen by.
+  std::vector<Transition> bridges;
+  std::vector<int> bridge_blends;           // each bridge's blend length in frames (bridge_blend)
   std::vector<UnjoinedPair> unjoined;       // pairs of motion types neither joins
   std::vector<Transition> all_transitions;  // selected and bridges, by (from_frame, to_frame)
 

@@ -37,10 +37,18 @@ namespace {
 
 class SteerCost final : public FrameCost {
  public:
-  SteerCost(const ControlInput& input, double penalty, double transition_penalty, double bridge_penalty)
-      : input_(input), penalty_(penalty), transition_penalty_(transition_penalty), bridge_penalty_(bridge_penalty) {}
+  SteerCost(const SynthesisContext& context, const ControlInput& input, double penalty, double transition_penalty,
+            double bridge_penalty)
+      : context_(context),
+        input_(input),
+        penalty_(penalty),
+        transition_penalty_(transition_penalty),
+        bridge_penalty_(bridge_penalty) {}
+  // A bridge costs the bridge penalty more unless it lands in the motion type asked for.
   double transition_cost(const GraphEdge& edge, const SearchState&) const override {
-    return edge.bridge && input_.tag == 0 ? transition_penalty_ + bridge_penalty_ : transition_penalty_;
+    if (!edge.bridge) return transition_penalty_;
+    return (bridge_landing_tags(context_, edge) & input_.tag) != 0 ? transition_penalty_
+                                                                    : transition_penalty_ + bridge_penalty_;
   }
   double cost(int, const Vec2&, const Vec2& facing, double, TagMask tags, bool*) const override {
     double c = 1.0 - facing.dot(input_.direction);
@@ -49,6 +57,7 @@ class SteerCost final : public FrameCost {
   }
 
  private:
+  const SynthesisContext& context_;
   const ControlInput& input_;
   double penalty_;
   double transition_penalty_;
@@ -103,7 +112,7 @@ ControllerDecision Controller::step(Motion& out) {
   search.max_expansions = settings_.max_expansions;
   search.time_budget_s = settings_.time_budget_s;
   search.beam_width = settings_.beam_width;
-  const SteerCost cost(input_, settings_.tag_penalty, settings_.transition_penalty, settings_.bridge_penalty);
+  const SteerCost cost(*context_, input_, settings_.tag_penalty, settings_.transition_penalty, settings_.bridge_penalty);
   const HorizonResult best = horizon_search(graph, context_->tracks, state_, cost, search);
   ControllerDecision decision;
   decision.expansions = best.expansions;

@@ -27,9 +27,10 @@ struct ControllerSettings {
   // Per transition taken (as many frames facing 90 degrees off): keeps captured motion between
   // blends while the direction holds (0: none).
   double transition_penalty = 1.0;
-  // Per bridge (GraphEdge::bridge) taken while no motion tag is asked for, on top of the
-  // transition penalty: unasked, the character keeps its motion type rather than blend visibly
-  // into another (0: bridges cost as any transition).
+  // Per bridge (GraphEdge::bridge) taken, on top of the transition penalty, unless it leads into
+  // the motion tag asked for (its target node's frame carries it): unasked, the character keeps
+  // its motion type rather than blend visibly into another, and asked for one it goes there
+  // directly, not by way of a third (0: bridges cost as any transition).
   double bridge_penalty = 30.0;
   long long max_expansions = 3000;
   int beam_width = 8;                // HorizonSettings::beam_width (0: none)

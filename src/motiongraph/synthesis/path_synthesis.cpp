@@ -36,9 +36,11 @@ namespace {
 
 class PathCost final : public FrameCost {
  public:
-  PathCost(const FloorPath& path, const std::vector<TagMask>& segment_masks, double penalty, double max_step,
-           double min_step, double behind_penalty, double transition_penalty, double bridge_penalty)
-      : path_(path),
+  PathCost(const SynthesisContext& context, const FloorPath& path, const std::vector<TagMask>& segment_masks,
+           double penalty, double max_step, double min_step, double behind_penalty, double transition_penalty,
+           double bridge_penalty)
+      : context_(context),
+        path_(path),
         masks_(segment_masks),
         penalty_(penalty),
         max_step_(max_step),
@@ -46,9 +48,12 @@ class PathCost final : public FrameCost {
         behind_penalty_(behind_penalty),
         transition_penalty_(transition_penalty),
         bridge_penalty_(bridge_penalty) {}
-  // A bridge where no motion type is asked for costs the bridge penalty more.
+  // A bridge costs the bridge penalty more unless it lands in the motion type asked for there.
   double transition_cost(const GraphEdge& edge, const SearchState& from) const override {
-    return edge.bridge && wanted_at(from.arc_m) == 0 ? transition_penalty_ + bridge_penalty_ : transition_penalty_;
+    if (!edge.bridge) return transition_penalty_;
+    const TagMask wanted = wanted_at(from.arc_m);
+    return (bridge_landing_tags(context_, edge) & wanted) != 0 ? transition_penalty_
+                                                                : transition_penalty_ + bridge_penalty_;
   }
   // Each search starts where the root has covered arc_m.
   void start_search(double arc_m) { search_arc_m_ = arc_m; }
@@ -109,6 +114,7 @@ class PathCost final : public FrameCost {
     return c;
   }
 
+  const SynthesisContext& context_;
   const FloorPath& path_;
   const std::vector<TagMask>& masks_;
   double penalty_;
@@ -136,7 +142,7 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
     return Error{"", 0, fmt::format("start node {} does not exist (the graph has {})", settings.start_node,
                                     graph.node_count())};
   }
-  PathCost cost(path, masks, settings.tag_penalty_m2, settings.lower_bound ? context.tracks.max_root_step_m : 0.0,
+  PathCost cost(context, path, masks, settings.tag_penalty_m2, settings.lower_bound ? context.tracks.max_root_step_m : 0.0,
                 settings.min_speed_mps / fps, settings.behind_penalty_m, settings.transition_penalty_m2,
                 settings.bridge_penalty_m2);
   HorizonSettings search;

@@ -68,11 +68,12 @@ struct PathSynthesisSettings {
   // blends almost all the time (0: Kovar's cost alone).
   double transition_penalty_m2 = 0.2;
   // Each bridge (GraphEdge::bridge: a blend between motion types far above the threshold) taken
-  // where the path asks for no motion type costs this more (m^2). Bridges are there to change
-  // motion type when asked; unasked, a library whose walking follows the path would otherwise
-  // wander into running or jumping and back through visible blends (three game cycles: feet slid
-  // 7x the source's). Where a segment asks for a motion type, a bridge costs as any transition
-  // and the tag penalty decides (0: bridges cost as any transition everywhere).
+  // costs this more (m^2) unless it leads into the motion type a segment asks for there (its
+  // target node's frame carries the tag). Bridges are there to change motion type when asked;
+  // unasked, a library whose walking follows the path would otherwise wander into running or
+  // jumping and back through visible blends (three game cycles: feet slid 7x the source's), and
+  // a walk asked to run would go by way of a jump. A bridge into the asked type costs as any
+  // transition and the tag penalty decides (0: bridges cost as any transition everywhere).
   double bridge_penalty_m2 = 100.0;
   long long max_expansions = 20000;    // per search
   int beam_width = 64;                 // HorizonSettings::beam_width (0: none)

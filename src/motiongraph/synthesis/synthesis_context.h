@@ -46,6 +46,13 @@ struct SynthesisContext {
   Result<TagMask> tag_mask(const std::string& name) const;
 };
 
+// The tags of the frame a transition edge lands on (its target node's): for a bridge, the motion
+// type it leads into. 0 without tags.
+inline TagMask bridge_landing_tags(const SynthesisContext& context, const GraphEdge& edge) {
+  const int frame = context.graph->nodes[edge.to_node].frame;
+  return frame < static_cast<int>(context.frame_tags.size()) ? context.frame_tags[frame] : TagMask{0};
+}
+
 // target_skeleton -1: the skeleton of the database's first clip.
 Result<SynthesisContext> make_synthesis_context(const MotionDatabase& db, const MotionGraph& graph,
                                                 int target_skeleton = -1);
