@@ -284,10 +284,15 @@ class Router {
     // longer than the window).
     std::vector<int> blend(graph().transitions.size(), graph().window);
     std::vector<char> bridge(graph().transitions.size(), 0);
+    std::vector<MeasuredPair> measured(graph().transitions.size());
+    for (size_t i = 0; i < measured.size(); ++i) {
+      measured[i] = {graph().transitions[i].from_frame, graph().transitions[i].to_frame};
+    }
     for (const GraphEdge& e : graph().edges) {
       if (!e.transition) continue;
       blend[e.transition_index] = blend_frames(e);
       bridge[e.transition_index] = e.bridge;
+      measured[e.transition_index] = measured_pair(graph(), e);
     }
     json out = json::array();
     for (size_t i = 0; i < graph().transitions.size(); ++i) {
@@ -295,6 +300,8 @@ class Router {
       out.push_back({{"index", i},
                      {"from_frame", t.from_frame},
                      {"to_frame", t.to_frame},
+                     {"window_from_frame", measured[i].from_frame},
+                     {"window_to_frame", measured[i].to_frame},
                      {"distance", t.distance},
                      {"blend_frames", blend[i]},
                      {"bridge", bridge[i] != 0},
@@ -319,16 +326,22 @@ class Router {
             {"contacts", database_contacts_json(first, count)}};
   }
 
+  // The two windows the transition's D was measured on (a bridge blends over more frames,
+  // centred on them).
   ApiResponse transition_poses() {
     const int index = index_part(2, static_cast<int>(graph().transitions.size()), "transition");
     const Transition& t = graph().transitions[index];
     const int k = graph().window;
+    MeasuredPair pair{t.from_frame, t.to_frame};
+    for (const GraphEdge& e : graph().edges) {
+      if (e.transition && e.transition_index == index) pair = measured_pair(graph(), e);
+    }
     return json_response({{"index", index},
                           {"distance", t.distance},
                           {"fps", db().fps},
                           {"joints", joints_json(skeleton())},
-                          {"from", window_json(t.from_frame, k)},
-                          {"to", window_json(t.to_frame - k + 1, k)}});
+                          {"from", window_json(pair.from_frame, k)},
+                          {"to", window_json(pair.to_frame - k + 1, k)}});
   }
 
   ApiResponse walk() {

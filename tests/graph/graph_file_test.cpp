@@ -95,6 +95,7 @@ TEST(GraphFile, TheSameGraphGivesTheSameBytesWhateverItsEdgesPadding) {
       file->graph.edges[i].transition_index = edges[i].transition_index;
       file->graph.edges[i].frame_count = edges[i].frame_count;
       file->graph.edges[i].bridge = edges[i].bridge;
+      file->graph.edges[i].blend_lead = edges[i].blend_lead;
     }
   }
   EXPECT_EQ(serialize_graph_file(a), serialize_graph_file(b));
@@ -108,6 +109,26 @@ TEST(GraphFile, AClipEdgeFlaggedABridgeIsRefused) {
   file.graph.edges[0].transition_index = -1;
   ASSERT_TRUE(parse_graph_file(serialize_graph_file(file), "g.mgraph"));
   file.graph.edges[0].bridge = true;
+  EXPECT_FALSE(parse_graph_file(serialize_graph_file(file), "g.mgraph"));
+}
+
+// A blend lead only on a bridge, never negative, and within the frames its blend has beyond the
+// window; a bridge's lead is read back as written.
+TEST(GraphFile, ABlendLeadOnlyOnABridgeWithinItsBlend) {
+  GraphFile file = sample();
+  GraphEdge& bridge = file.graph.edges[1];
+  ASSERT_TRUE(bridge.bridge);
+  bridge.frame_count = file.graph.window + 4;  // blends over window + 5 frames
+  bridge.blend_lead = 5;
+  auto read = parse_graph_file(serialize_graph_file(file), "g.mgraph");
+  ASSERT_TRUE(read) << read.error().to_string();
+  EXPECT_EQ(read->graph.edges[1].blend_lead, 5);
+  bridge.blend_lead = 6;
+  EXPECT_FALSE(parse_graph_file(serialize_graph_file(file), "g.mgraph"));
+  bridge.blend_lead = -1;
+  EXPECT_FALSE(parse_graph_file(serialize_graph_file(file), "g.mgraph"));
+  bridge.blend_lead = 0;
+  file.graph.edges[0].blend_lead = 1;  // not a bridge
   EXPECT_FALSE(parse_graph_file(serialize_graph_file(file), "g.mgraph"));
 }
 
@@ -281,8 +302,8 @@ TEST(GraphFile, RejectsAnythingElse) {
   flipped[bytes.size() / 2] ^= 0x40;
   expect_error(flipped, "checksum mismatch");
   std::string other_version = bytes;
-  other_version[9] = 7;  // the version follows the 9-byte magic
-  expect_error(other_version, "version 7");
+  other_version[9] = 8;  // the version follows the 9-byte magic
+  expect_error(other_version, "version 8");
   // Contacts for some frames only, contacts beside a reason for none, or bits of no foot.
   const auto with_database = [](auto change) {
     GraphFile file = sample();

@@ -66,64 +66,74 @@ TEST(GraphFromCandidates, PrunedGraphUsesTheSelectionAndAlignedBridges) {
   EXPECT_TRUE(std::is_sorted(t.all_transitions.begin(), t.all_transitions.end(), [](const auto& p, const auto& q) {
     return p.from_frame != q.from_frame ? p.from_frame < q.from_frame : p.to_frame < q.to_frame;
   }));
-  // Each bridge is a candidate minimum whose longer blend leaves earlier and lands later on the
-  // same pairing of frames (graph/bridges.h): its D and alignment are the candidate's.
+  // Each bridge is a candidate minimum, aligned as its window; it asks for the blend its D gives.
   const int k = x.features.window;
   for (size_t b = 0; b < t.bridges.size(); ++b) {
     const Transition& bridge = t.bridges[b];
-    const int blend = t.bridge_blends[b];
-    const auto candidate = std::find_if(x.search.minima.begin(), x.search.minima.end(), [&](const Transition& c) {
-      return c.to_frame - k + 1 - c.from_frame == bridge.to_frame - blend + 1 - bridge.from_frame &&
-             c.from_frame >= bridge.from_frame && c.to_frame <= bridge.to_frame && c.distance == bridge.distance;
-    });
-    ASSERT_NE(candidate, x.search.minima.end()) << bridge.from_frame << " -> " << bridge.to_frame;
-    const FloorAlignment align = align_pair(x.features, candidate->from_frame, candidate->to_frame);
+    EXPECT_TRUE(std::any_of(x.search.minima.begin(), x.search.minima.end(), [&](const Transition& c) {
+      return same_pair(c, bridge) && c.distance == bridge.distance;
+    }));
+    const FloorAlignment align = align_pair(x.features, bridge.from_frame, bridge.to_frame);
     EXPECT_FLOAT_EQ(bridge.yaw_rad, static_cast<float>(align.yaw_rad));
     EXPECT_FLOAT_EQ(bridge.x_m, static_cast<float>(align.x_m));
+    EXPECT_EQ(t.bridge_blends[b], bridge_blend_frames(bridge, k, t.selection.threshold, settings.bridges.max_blend_factor));
   }
+  // The graph's transitions are the selection's and the bridges. A bridge edge's blend is centred
+  // on its candidate's window: its transition leaves blend_lead frames before the candidate and
+  // lands the rest of its blend's extra frames after it, on the same pairs of frames, as long as
+  // the bridge asks or shorter; every other edge has no lead. Clip edges are never bridges.
+  ASSERT_FALSE(t.bridges.empty());
+  // The candidate a graph edge plays, and whether it is a bridge.
+  auto candidate_of = [&](const MotionGraph& g, const GraphEdge& edge) {
+    Transition c = g.transitions[static_cast<size_t>(edge.transition_index)];
+    const int extra = blend_frames(edge) - k;
+    c.from_frame += edge.blend_lead;
+    c.to_frame -= extra - edge.blend_lead;
+    const auto bridge = std::find_if(t.bridges.begin(), t.bridges.end(), [&](const Transition& b) {
+      return same_pair(b, c);
+    });
+    return std::pair{c, bridge == t.bridges.end() ? -1 : static_cast<int>(bridge - t.bridges.begin())};
+  };
+  auto check_edges = [&](const MotionGraph& g) {
+    int bridge_edges = 0;
+    for (const GraphEdge& edge : g.edges) {
+      if (!edge.transition) {
+        EXPECT_FALSE(edge.bridge);
+        EXPECT_EQ(edge.blend_lead, 0);
+        continue;
+      }
+      const auto [c, b] = candidate_of(g, edge);
+      EXPECT_EQ(edge.bridge, b >= 0) << c.from_frame << " -> " << c.to_frame;
+      EXPECT_TRUE(std::any_of(t.all_transitions.begin(), t.all_transitions.end(),
+                              [&](const Transition& a) { return same_pair(a, c); }));
+      if (b < 0) {
+        EXPECT_EQ(blend_frames(edge), k);
+        EXPECT_EQ(edge.blend_lead, 0);
+        continue;
+      }
+      ++bridge_edges;
+      EXPECT_GE(blend_frames(edge), k);
+      EXPECT_LE(blend_frames(edge), t.bridge_blends[static_cast<size_t>(b)]);
+      EXPECT_GE(edge.blend_lead, 0);
+      EXPECT_LE(edge.blend_lead, blend_frames(edge) - k);
+    }
+    return bridge_edges;
+  };
   const MotionGraph& graph = built->pruned.graph;
   ASSERT_GT(graph.node_count(), 0);
   EXPECT_EQ(built->pruned.prune.after.nodes, graph.node_count());
   EXPECT_LE(built->pruned.prune.after.nodes, built->pruned.prune.before.nodes);
-  for (const Transition& kept : graph.transitions) {
-    EXPECT_TRUE(std::any_of(t.all_transitions.begin(), t.all_transitions.end(),
-                            [&](const Transition& c) { return same_pair(c, kept); }));
-  }
-  // Each transition edge is flagged a bridge exactly when its transition is one of the bridges
-  // (and keeps the bridge's blend); clip edges never are.
-  ASSERT_FALSE(t.bridges.empty());
-  int bridge_edges = 0;
-  for (const GraphEdge& edge : graph.edges) {
-    if (!edge.transition) {
-      EXPECT_FALSE(edge.bridge);
-      continue;
-    }
-    const Transition& kept = graph.transitions[edge.transition_index];
-    const auto bridge = std::find_if(t.bridges.begin(), t.bridges.end(),
-                                     [&](const Transition& c) { return same_pair(c, kept); });
-    EXPECT_EQ(edge.bridge, bridge != t.bridges.end()) << kept.from_frame << " -> " << kept.to_frame;
-    if (bridge != t.bridges.end()) {
-      ++bridge_edges;
-      EXPECT_EQ(blend_frames(edge), t.bridge_blends[bridge - t.bridges.begin()]);
-    }
-  }
+  const int bridge_edges = check_edges(graph);
   EXPECT_GT(bridge_edges, 0);
-  // The same through spacing (which spaces the others; the second pruning may drop bridges: at
-  // one transition leaving any window it drops all three here, whose blends land a frame or two
-  // later than their candidates, where little of motion type "b" is left).
-  settings.spacing.max_out = 2;
+  // Some bridge blends longer than the window, and some leaves before its candidate.
+  EXPECT_TRUE(std::any_of(graph.edges.begin(), graph.edges.end(),
+                          [&](const GraphEdge& e) { return e.bridge && e.blend_lead > 0; }));
+  // The same through spacing (which spaces the others; the second pruning may drop bridges).
+  settings.spacing.max_out = 1;
   auto spaced_graph = graph_from_candidates(x.db, x.features, x.search, settings);
   ASSERT_TRUE(spaced_graph) << spaced_graph.error().to_string();
   EXPECT_LT(spaced_graph->pruned.graph.transitions.size(), graph.transitions.size()) << "nothing spaced";
-  int spaced_bridges = 0;
-  for (const GraphEdge& edge : spaced_graph->pruned.graph.edges) {
-    if (!edge.transition) continue;
-    const Transition& kept = spaced_graph->pruned.graph.transitions[edge.transition_index];
-    const bool is_bridge = std::any_of(t.bridges.begin(), t.bridges.end(),
-                                       [&](const Transition& c) { return same_pair(c, kept); });
-    EXPECT_EQ(edge.bridge, is_bridge);
-    spaced_bridges += edge.bridge ? 1 : 0;
-  }
+  const int spaced_bridges = check_edges(spaced_graph->pruned.graph);
   EXPECT_GT(spaced_bridges, 0);
   EXPECT_LE(spaced_bridges, bridge_edges);
   settings.spacing.max_out = 0;

@@ -234,11 +234,39 @@ TEST(StudioApi, TransitionsAndTheirPoses) {
   EXPECT_GT(bridges, 0);
   ASSERT_EQ(poses.json["from"]["positions"].size(), static_cast<size_t>(k));
   ASSERT_EQ(poses.json["to"]["positions"].size(), static_cast<size_t>(k));
-  EXPECT_EQ(poses.json["from"]["first_frame"], list.json[0]["from_frame"]);
-  EXPECT_EQ(poses.json["to"]["first_frame"].get<int>(), list.json[0]["to_frame"].get<int>() - k + 1);
+  EXPECT_EQ(poses.json["from"]["first_frame"], list.json[0]["window_from_frame"]);
+  EXPECT_EQ(poses.json["to"]["first_frame"].get<int>(), list.json[0]["window_to_frame"].get<int>() - k + 1);
   // Root-centred on the floor.
   EXPECT_EQ(poses.json["from"]["positions"][0][0], 0.0);
   EXPECT_EQ(poses.json["to"]["positions"][0][2], 0.0);
+  // The windows are those D was measured on: a transition's own frames; for a bridge whose blend
+  // is centred on them, inside its blend on the same pairs of frames (found again among the
+  // candidate minima with the same D), and for some bridge not where its blend leaves.
+  const CandidateSearch& candidates = studio_service().file().candidates;
+  int moved = 0;
+  for (const GraphEdge& e : graph.edges) {
+    if (!e.transition) continue;
+    const json& t = list.json[e.transition_index];
+    const int from = t["from_frame"].get<int>(), to = t["to_frame"].get<int>();
+    const int window_from = t["window_from_frame"].get<int>(), window_to = t["window_to_frame"].get<int>();
+    if (!e.bridge) {
+      EXPECT_EQ(window_from, from);
+      EXPECT_EQ(window_to, to);
+      continue;
+    }
+    EXPECT_GE(window_from, from);
+    EXPECT_LE(window_to, to);
+    EXPECT_EQ((to - (e.frame_count + 1) + 1) - from, (window_to - k + 1) - window_from);
+    moved += window_from != from ? 1 : 0;
+    EXPECT_TRUE(std::any_of(candidates.minima.begin(), candidates.minima.end(), [&](const Transition& c) {
+      return c.from_frame == window_from && c.to_frame == window_to && c.distance == t["distance"].get<float>();
+    })) << from << " -> " << to;
+    const ApiCall bridge_poses = call_api("GET", "/api/transitions/" + std::to_string(e.transition_index) + "/poses");
+    ASSERT_EQ(bridge_poses.response.status, 200);
+    EXPECT_EQ(bridge_poses.json["from"]["first_frame"].get<int>(), window_from);
+    EXPECT_EQ(bridge_poses.json["to"]["first_frame"].get<int>(), window_to - k + 1);
+  }
+  EXPECT_GT(moved, 0);
 }
 
 TEST(StudioApi, MatrixPictureIsAPng) {

@@ -139,9 +139,11 @@ $('scrub').addEventListener('input', (e) => {
 // --- the distance matrix and transitions ---------------------------------------------------
 const overlay = $('matrix-overlay');
 const MATRIX_PX = 300;
+// Where the transition's D lies on the matrix: the pair of frames it was measured on (a
+// bridge's blend leaves earlier and lands later than that).
 function transitionPoint(t) {
   const span = state.summary.matrix.side * state.summary.matrix.block;
-  return [(t.to_frame + 0.5) / span * MATRIX_PX, (t.from_frame + 0.5) / span * MATRIX_PX];
+  return [(t.window_to_frame + 0.5) / span * MATRIX_PX, (t.window_from_frame + 0.5) / span * MATRIX_PX];
 }
 function drawTransitions() {
   overlay.width = MATRIX_PX;
@@ -188,8 +190,11 @@ async function selectTransition(index) {
   chaseCamera([0, 0.6, 4]);
   second.group.visible = true;
   const t = state.transitions[index];
-  $('transition-info').textContent = `transition ${index}: ${t.from_clip} frame ${t.from_frame} (orange) -> `
-    + `${t.to_clip} frame ${t.to_frame} (blue), D = ${t.distance.toFixed(3)}, blended over ${t.blend_frames} frames`;
+  const moved = t.window_from_frame !== t.from_frame || t.window_to_frame !== t.to_frame;
+  $('transition-info').textContent = `transition ${index}: ${t.from_clip} frame ${t.window_from_frame} (orange) -> `
+    + `${t.to_clip} frame ${t.window_to_frame} (blue), D = ${t.distance.toFixed(3)}, blended over ${t.blend_frames} frames`
+    + (moved ? ` (from frame ${t.from_frame} to frame ${t.to_frame}, centred on these)` : '')
+    + (t.bridge ? ', a bridge' : '');
   drawTransitions();
 }
 

@@ -63,10 +63,14 @@ Result<std::vector<char>> tag_core_frames(const MotionDatabase& db, std::span<co
   return core;
 }
 
+int bridge_blend_frames(const Transition& bridge, int window, double threshold, double max_blend_factor) {
+  const double ratio = threshold > 0.0 ? std::sqrt(std::max(0.0, static_cast<double>(bridge.distance)) / threshold) : 1.0;
+  return static_cast<int>(std::lround(window * std::clamp(ratio, 1.0, max_blend_factor)));
+}
+
 BridgeBlend bridge_blend(const MotionDatabase& db, const Transition& bridge, int window, double threshold,
                          double max_blend_factor, std::span<const char> core) {
-  const double ratio = threshold > 0.0 ? std::sqrt(std::max(0.0, static_cast<double>(bridge.distance)) / threshold) : 1.0;
-  const int wanted = static_cast<int>(std::lround(window * std::clamp(ratio, 1.0, max_blend_factor)));
+  const int wanted = bridge_blend_frames(bridge, window, threshold, max_blend_factor);
   const DatabaseClip& leave = db.clips[db.clip_of(bridge.from_frame)];
   const DatabaseClip& arrive = db.clips[db.clip_of(bridge.to_frame)];
   // The frames a blend may take before the measured window's first pair and after its last: held

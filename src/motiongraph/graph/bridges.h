@@ -70,19 +70,21 @@ struct BridgeSelection {
 // Levels are kept per ordered pair of tags, at from_tag * kBridgeTags + to_tag.
 inline constexpr int kBridgeTags = 64;
 
-// Where a bridge of distance D blends, and over how many frames L: k sqrt(D / threshold)
-// rounded (the distance an RMS point error of D spreads over as many frames as a threshold one
-// over k), at least k and at most k * max_blend_factor. The blend keeps the pairing of frames D
-// was measured on: frame from_frame + p of the clip it leaves with frame to_frame - k + 1 + p
-// of the one it arrives in (reading L frames from from_frame and L up to to_frame, as a
-// transition of window k does, would pair frames L - k apart: half a stride for a walk into a
-// run, the feet out of step). So a longer blend leaves earlier and lands later than the
-// candidate: it is centred on the measured window, (L - k) / 2 frames before it and the rest
-// after, as far as the two clips hold frames and, given `core` (per frame, 1 where a blend may
-// leave or land: the tags' cores, tag_core_frames, so that the moved ends stay where the pruned
-// graph keeps its nodes), as far as the frames up to the new ends are all core frames; where
-// fewer are left, L is shortened, never below k. The bridge's D and floor alignment stay those
-// of the measured window.
+// The frames a bridge of distance D asks to blend over: k sqrt(D / threshold) rounded (the
+// distance an RMS point error of D spreads over as many frames as a threshold one over k), at
+// least k and at most k * max_blend_factor.
+int bridge_blend_frames(const Transition& bridge, int window, double threshold, double max_blend_factor);
+
+// Where a bridge's blend of bridge_blend_frames() frames (L) leaves and lands. It keeps the
+// pairing of frames D was measured on: frame from_frame + p of the clip it leaves with frame
+// to_frame - k + 1 + p of the one it arrives in (reading L frames from from_frame and L up to
+// to_frame, as a transition of window k does, would pair frames L - k apart: a third of a
+// second for subject 16's walk into its run, the walk's stance against the run's swing). So a
+// longer blend is centred on the measured window: it leaves up to (L - k) / 2 frames before
+// from_frame and lands the rest after to_frame, as far as the two clips hold frames and, given
+// `core` (per frame, 1 where a blend may leave or land: the frames a pruned graph's clip pieces
+// play), as far as the frames up to the moved ends are all core frames; where fewer are left, L
+// is shortened, never below k. The bridge's D and floor alignment stay the measured window's.
 struct BridgeBlend {
   int from_frame = 0;  // where the blend leaves: its first frame in the clip it leaves
   int to_frame = 0;    // where it lands: its last frame in the clip it arrives in

@@ -399,6 +399,7 @@ void put_graph(BinaryWriter& out, const MotionGraph& g) {
     edges[i].bridge = g.edges[i].bridge;
     edges[i].transition_index = g.edges[i].transition_index;
     edges[i].frame_count = g.edges[i].frame_count;
+    edges[i].blend_lead = g.edges[i].blend_lead;
   }
   out.put_vector(edges);
   out.put_vector(g.edge_offsets);
@@ -436,6 +437,10 @@ bool get_graph(BinaryReader& in, const MotionDatabase& db, MotionGraph& g) {
   for (const GraphEdge& e : g.edges) {
     if (e.from_node < 0 || e.from_node >= nodes || e.to_node < 0 || e.to_node >= nodes || e.frame_count < 0) return false;
     if (e.bridge && !e.transition) return false;
+    // A lead only on a bridge, and within the frames its blend has beyond the window.
+    if (e.blend_lead < 0 || (e.blend_lead > 0 && (!e.bridge || e.blend_lead > e.frame_count + 1 - g.window))) {
+      return false;
+    }
     if (e.transition && (e.transition_index < 0 || e.transition_index >= static_cast<int>(g.transitions.size()))) {
       return false;
     }

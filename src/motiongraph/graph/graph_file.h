@@ -33,7 +33,8 @@ namespace mg {
 // 3: the database's foot joint names and every frame's foot contacts (or why there are none).
 // 4: the candidate minima in a section of their own, with its own size and CRC-32.
 // 6: transition edges say whether they are bridges (GraphEdge::bridge).
-constexpr std::uint32_t kGraphFileVersion = 6;
+// 7: a bridge's blend is centred on the window its D was measured on (GraphEdge::blend_lead).
+constexpr std::uint32_t kGraphFileVersion = 7;
 
 struct GraphFile {
   std::string settings_json;

@@ -70,7 +70,6 @@ Result<TransitionsWithBridges> select_transitions_with_bridges(const MotionDatab
   BridgeSettings bridge_settings = settings.bridges;
   bridge_settings.locality_radius = out.selection.locality_radius;
   bridge_settings.tags = connected;
-  std::vector<char> any_core;  // frames of any tag's core: where a bridge's blend may leave and land
   if (connected_bridges(settings)) {
     std::vector<std::vector<char>> cores(db.tag_names.size());
     for (size_t t = 0; t < cores.size(); ++t) {
@@ -93,10 +92,6 @@ Result<TransitionsWithBridges> select_transitions_with_bridges(const MotionDatab
     }
     out.bridges = std::move(bridges.bridges);
     out.unjoined = std::move(bridges.unjoined);
-    any_core.assign(frame_tags.size(), 0);
-    for (const std::vector<char>& core : cores) {
-      for (size_t f = 0; f < core.size() && f < any_core.size(); ++f) any_core[f] |= core[f];
-    }
   }
   for (Transition& t : out.bridges) {
     if (settings.aligned) {
@@ -105,31 +100,8 @@ Result<TransitionsWithBridges> select_transitions_with_bridges(const MotionDatab
       t.x_m = static_cast<float>(align.x_m);
       t.z_m = static_cast<float>(align.z_m);
     }
-    // The blend keeps the measured window's pairing of frames, so a longer one leaves earlier
-    // and lands later than the candidate (bridges.h); D and the alignment stay the window's.
-    const BridgeBlend blend =
-        bridge_blend(db, t, features.window, out.selection.threshold, bridge_settings.max_blend_factor, any_core);
-    t.from_frame = blend.from_frame;
-    t.to_frame = blend.to_frame;
-    out.bridge_blends.push_back(blend.frames);
-  }
-  {
-    // Sorted again by (from_frame, to_frame), their blends with them.
-    std::vector<size_t> order(out.bridges.size());
-    std::iota(order.begin(), order.end(), size_t{0});
-    std::sort(order.begin(), order.end(), [&](size_t x, size_t y) {
-      const Transition& a = out.bridges[x];
-      const Transition& b = out.bridges[y];
-      return a.from_frame != b.from_frame ? a.from_frame < b.from_frame : a.to_frame < b.to_frame;
-    });
-    std::vector<Transition> bridges(order.size());
-    std::vector<int> blends(order.size());
-    for (size_t i = 0; i < order.size(); ++i) {
-      bridges[i] = out.bridges[order[i]];
-      blends[i] = out.bridge_blends[order[i]];
-    }
-    out.bridges = std::move(bridges);
-    out.bridge_blends = std::move(blends);
+    out.bridge_blends.push_back(
+        bridge_blend_frames(t, features.window, out.selection.threshold, bridge_settings.max_blend_factor));
   }
   out.all_transitions = out.selection.transitions;
   out.all_transitions.insert(out.all_transitions.end(), out.bridges.begin(), out.bridges.end());
@@ -152,14 +124,6 @@ long bridge_index(std::span<const Transition> bridges, const Transition& t) {
 
 }  // namespace
 
-std::vector<int> TransitionsWithBridges::blend_lengths(std::span<const Transition> transitions, int window) const {
-  std::vector<int> lengths(transitions.size(), window);
-  for (size_t i = 0; i < transitions.size() && !bridges.empty(); ++i) {
-    if (const long b = bridge_index(bridges, transitions[i]); b >= 0) lengths[i] = bridge_blends[static_cast<size_t>(b)];
-  }
-  return lengths;
-}
-
 std::vector<char> TransitionsWithBridges::bridge_flags(std::span<const Transition> transitions) const {
   std::vector<char> flags(transitions.size(), 0);
   for (size_t i = 0; i < transitions.size() && !bridges.empty(); ++i) flags[i] = bridge_index(bridges, transitions[i]) >= 0;
@@ -180,8 +144,7 @@ Result<PrunedGraph> build_pruned_graph(const MotionDatabase& db, std::span<const
 
 Result<PrunedGraph> build_spaced_graph(const MotionDatabase& db, const TransitionsWithBridges& transitions,
                                        const FrameFeatures& features, const GraphFromCandidatesSettings& settings) {
-  auto first = build_pruned_graph(db, transitions.all_transitions, features.window, settings.connected_tags,
-                                  transitions.blend_lengths(transitions.all_transitions, features.window),
+  auto first = build_pruned_graph(db, transitions.all_transitions, features.window, settings.connected_tags, {},
                                   transitions.bridge_flags(transitions.all_transitions));
   if (!first) return first.error();
   const MotionGraph& kept = first->graph;
@@ -196,11 +159,72 @@ Result<PrunedGraph> build_spaced_graph(const MotionDatabase& db, const Transitio
   std::sort(spaced.begin(), spaced.end(), [](const Transition& x, const Transition& y) {
     return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
   });
-  auto second = build_pruned_graph(db, spaced, features.window, settings.connected_tags,
-                                   transitions.blend_lengths(spaced, features.window), transitions.bridge_flags(spaced));
+  auto second =
+      build_pruned_graph(db, spaced, features.window, settings.connected_tags, {}, transitions.bridge_flags(spaced));
   if (!second) return second.error();
   second->survived_first_pruning = static_cast<int>(first->graph.transitions.size());
-  return second;
+  return place_bridge_blends(db, transitions.selection.threshold, settings, std::move(*second));
+}
+
+Result<PrunedGraph> place_bridge_blends(const MotionDatabase& db, double threshold,
+                                        const GraphFromCandidatesSettings& settings, PrunedGraph pruned) {
+  const MotionGraph& g = pruned.graph;
+  if (std::none_of(g.edges.begin(), g.edges.end(), [](const GraphEdge& e) { return e.bridge; })) return pruned;
+  // The frames the graph's clip pieces play: a node moved onto one of them splits a piece the
+  // graph keeps, so it is reached and leads on as the piece did.
+  std::vector<char> kept(static_cast<size_t>(db.frame_count()), 0);
+  for (const GraphEdge& e : g.edges) {
+    if (e.transition) continue;
+    const int first = g.nodes[e.from_node].frame;
+    std::fill(kept.begin() + first, kept.begin() + first + e.frame_count, 1);
+  }
+  struct Placed {
+    Transition transition;
+    int frames = 0;
+    char bridge = 0;
+    int lead = 0;
+  };
+  std::vector<Placed> placed(g.transitions.size());
+  for (size_t t = 0; t < placed.size(); ++t) placed[t] = {g.transitions[t], g.window, 0, 0};
+  for (const GraphEdge& e : g.edges) {
+    if (!e.bridge) continue;
+    Placed& p = placed[static_cast<size_t>(e.transition_index)];
+    const BridgeBlend blend = bridge_blend(db, p.transition, g.window, threshold, settings.bridges.max_blend_factor, kept);
+    p.lead = p.transition.from_frame - blend.from_frame;
+    p.transition.from_frame = blend.from_frame;
+    p.transition.to_frame = blend.to_frame;
+    p.frames = blend.frames;
+    p.bridge = 1;
+  }
+  std::sort(placed.begin(), placed.end(), [](const Placed& x, const Placed& y) {
+    const Transition& a = x.transition;
+    const Transition& b = y.transition;
+    return a.from_frame != b.from_frame ? a.from_frame < b.from_frame : a.to_frame < b.to_frame;
+  });
+  std::vector<Transition> transitions;
+  std::vector<int> frames;
+  std::vector<char> bridges;
+  for (const Placed& p : placed) {
+    transitions.push_back(p.transition);
+    frames.push_back(p.frames);
+    bridges.push_back(p.bridge);
+  }
+  auto again = build_pruned_graph(db, transitions, g.window, settings.connected_tags, frames, bridges);
+  if (!again) return again.error();
+  // Every transition stays (the moved ends lie on kept pieces); should pruning take one, the
+  // bridges keep the window's blend.
+  if (again->graph.transitions.size() != g.transitions.size()) return pruned;
+  for (GraphEdge& e : again->graph.edges) {
+    if (!e.bridge) continue;
+    const Transition& t = again->graph.transitions[static_cast<size_t>(e.transition_index)];
+    const auto p = std::find_if(placed.begin(), placed.end(), [&](const Placed& x) {
+      return x.bridge && x.transition.from_frame == t.from_frame && x.transition.to_frame == t.to_frame;
+    });
+    if (p != placed.end()) e.blend_lead = p->lead;
+  }
+  pruned.prune.after = again->prune.after;
+  pruned.graph = std::move(again->graph);
+  return pruned;
 }
 
 Result<GraphFromCandidates> graph_from_candidates(const MotionDatabase& db, const FrameFeatures& features,

@@ -54,15 +54,13 @@ struct GraphFromCandidatesSettings {
 
 struct TransitionsWithBridges {
   TransitionSelection selection;
-  // Aligned, sorted by (from_frame, to_frame); each leaves and lands where its blend does
-  // (bridge_blend in bridges.h), with the D and alignment of the window it was chosen by.
-  std::vector<Transition> bridges;
-  std::vector<int> bridge_blends;           // each bridge's blend length in frames (bridge_blend)
+  std::vector<Transition> bridges;          // aligned, sorted by (from_frame, to_frame)
+  // Each bridge's blend length in frames as its D asks (bridge_blend_frames); the graph places
+  // it (place_bridge_blends), within what its clips and the pruned graph leave room for.
+  std::vector<int> bridge_blends;
   std::vector<UnjoinedPair> unjoined;       // pairs of motion types neither joins
   std::vector<Transition> all_transitions;  // selected and bridges, by (from_frame, to_frame)
 
-  // The blend length of each of `transitions`: a bridge's own, the window for the others.
-  std::vector<int> blend_lengths(std::span<const Transition> transitions, int window) const;
   // Which of `transitions` are bridges (1) and which selected (0).
   std::vector<char> bridge_flags(std::span<const Transition> transitions) const;
 };
@@ -91,6 +89,16 @@ Result<PrunedGraph> build_pruned_graph(const MotionDatabase& db, std::span<const
                                        TagMask connected_tags, std::span<const int> blend_lengths = {},
                                        std::span<const char> bridges = {});
 
+// The bridges of a pruned graph blended as long as their D asks (bridge_blend_frames), each
+// blend centred on the window its D was measured on (bridge_blend, bridges.h): it leaves before
+// the bridge's from_frame and lands after its to_frame, on frames the graph's clip pieces play
+// (so the graph stays strongly connected: the moved ends split pieces it keeps), and its edge
+// carries how far it leaves before (GraphEdge::blend_lead). The graph is built again from the
+// placed transitions; its prune report keeps `before` and gets the new `after`. Should pruning
+// the placed graph lose a transition (not expected), the graph comes back as given.
+Result<PrunedGraph> place_bridge_blends(const MotionDatabase& db, double threshold,
+                                        const GraphFromCandidatesSettings& settings, PrunedGraph pruned);
+
 struct GraphFromCandidates {
   TransitionsWithBridges transitions;
   PrunedGraph pruned;
@@ -98,7 +106,9 @@ struct GraphFromCandidates {
 
 // The graph of the selection and bridges, spaced: pruned once, the surviving transitions but
 // the bridges spaced (transition_spacing.h: the useful ones compete, not those pruning would
-// drop anyway; bridges join motion types and are few), then built and pruned again.
+// drop anyway; bridges join motion types and are few), then built and pruned again, and its
+// bridges' blends placed (place_bridge_blends). Every transition blends over the window while
+// the graph is pruned.
 Result<PrunedGraph> build_spaced_graph(const MotionDatabase& db, const TransitionsWithBridges& transitions,
                                        const FrameFeatures& features, const GraphFromCandidatesSettings& settings);
 

@@ -55,6 +55,10 @@ struct GraphEdge {
   // A transition that joins two motion types far above the threshold (graph/bridges.h): a
   // visible blend, which searches take only where a change of motion type is asked for.
   bool bridge = false;
+  // A bridge blended longer than the window is centred on the window its D was measured on
+  // (bridges.h bridge_blend): it leaves this many frames before that window's first frame (and
+  // lands blend_frames() - window - blend_lead after its last). 0 for every other edge.
+  int blend_lead = 0;
 };
 
 struct MotionGraph {
@@ -77,6 +81,19 @@ struct MotionGraph {
 
 // The frames a transition edge blends over (L, the window k or more; see the header comment).
 inline int blend_frames(const GraphEdge& edge) { return edge.frame_count + 1; }
+
+// The frames a transition edge's D was measured on: the first frame of the window it leaves and
+// the last of the one it arrives in. A transition's own; a bridge whose blend is centred on its
+// window leaves blend_lead frames before it and lands the rest of its extra frames after it.
+struct MeasuredPair {
+  int from_frame = 0;
+  int to_frame = 0;
+};
+inline MeasuredPair measured_pair(const MotionGraph& graph, const GraphEdge& edge) {
+  const Transition& t = graph.transitions[static_cast<size_t>(edge.transition_index)];
+  const int extra = blend_frames(edge) - graph.window;
+  return {t.from_frame + edge.blend_lead, t.to_frame - (extra - edge.blend_lead)};
+}
 
 // The unpruned graph. Fails when window < 2, when the clips are not one after the other from
 // global frame 0 (each at least one frame), or when a transition's windows do not lie inside

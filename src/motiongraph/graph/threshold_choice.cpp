@@ -109,8 +109,7 @@ Result<CoveragePoint> coverage_at(const MotionDatabase& db, const FrameFeatures&
   // graph is rebuilt only to drop the nodes of pruned transitions), so one is enough here.
   const bool spaced = at.spacing.max_out > 0 || at.spacing.min_piece_frames > 0;
   auto pruned = spaced ? build_spaced_graph(db, *selected, features, at)
-                       : build_pruned_graph(db, selected->all_transitions, features.window, at.connected_tags,
-                                            selected->blend_lengths(selected->all_transitions, features.window),
+                       : build_pruned_graph(db, selected->all_transitions, features.window, at.connected_tags, {},
                                             selected->bridge_flags(selected->all_transitions));
   if (!pruned) {
     if (pruned.error().kind == ErrorKind::kEmptyGraph) return point;

@@ -2,7 +2,9 @@
 // `from_frame` (the first frame of the window we leave, a..a+k-1) and arrive at `to_frame`
 // (the last frame of the window we arrive in, b-k+1..b). The floor alignment (rotation about
 // the vertical axis by yaw_rad, then translation x_m, z_m) maps the arrival window onto the
-// departure window: it is the minimiser T of DESIGN.md section 3.1.
+// departure window: it is the minimiser T of DESIGN.md section 3.1. In a graph, a bridge that
+// blends longer than the window leaves before and lands after the window its D and alignment
+// were measured on (GraphEdge::blend_lead, measured_pair in motion_graph.h).
 #pragma once
 
 namespace mg {

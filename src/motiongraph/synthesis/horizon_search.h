@@ -61,7 +61,7 @@ class FrameCost {
   // The cost (>= 0) of taking transition edge `edge` from state `from`, when it starts within
   // the horizon: each one is a blend, so a cost here keeps captured motion between blends where
   // the path allows it; a bridge (GraphEdge::bridge, a visible blend between motion types) may
-  // cost more where no change of motion type is asked for.
+  // cost more unless it leads into the motion type asked for.
   virtual double transition_cost(const GraphEdge& edge, const SearchState& from) const {
     (void)edge, (void)from;
     return 0.0;
