@@ -76,7 +76,14 @@ TEST(GraphFromCandidates, PrunedGraphUsesTheSelectionAndAlignedBridges) {
     const FloorAlignment align = align_pair(x.features, bridge.from_frame, bridge.to_frame);
     EXPECT_FLOAT_EQ(bridge.yaw_rad, static_cast<float>(align.yaw_rad));
     EXPECT_FLOAT_EQ(bridge.x_m, static_cast<float>(align.x_m));
-    EXPECT_EQ(t.bridge_blends[b], bridge_blend_frames(bridge, k, t.selection.threshold, settings.bridges.max_blend_factor));
+    // Between the window and 3 windows, longer for a larger D.
+    EXPECT_GE(t.bridge_blends[b], k);
+    EXPECT_LE(t.bridge_blends[b], 3 * k);
+    for (size_t c = 0; c < t.bridges.size(); ++c) {
+      if (t.bridges[c].distance < bridge.distance) {
+        EXPECT_LE(t.bridge_blends[c], t.bridge_blends[b]);
+      }
+    }
   }
   // The graph's transitions are the selection's and the bridges. A bridge edge's blend is centred
   // on its candidate's window: its transition leaves blend_lead frames before the candidate and
@@ -102,7 +109,9 @@ TEST(GraphFromCandidates, PrunedGraphUsesTheSelectionAndAlignedBridges) {
         EXPECT_EQ(edge.blend_lead, 0);
         continue;
       }
-      const auto [c, b] = candidate_of(g, edge);
+      const auto found = candidate_of(g, edge);
+      const Transition c = found.first;
+      const int b = found.second;
       EXPECT_EQ(edge.bridge, b >= 0) << c.from_frame << " -> " << c.to_frame;
       EXPECT_TRUE(std::any_of(t.all_transitions.begin(), t.all_transitions.end(),
                               [&](const Transition& a) { return same_pair(a, c); }));
@@ -119,10 +128,25 @@ TEST(GraphFromCandidates, PrunedGraphUsesTheSelectionAndAlignedBridges) {
     }
     return bridge_edges;
   };
+  // Placed, the graph prunes to itself, and its report's before and after are of one graph.
+  auto placed_and_steady = [&](const PrunedGraph& pruned) {
+    EXPECT_TRUE(pruned.bridge_blends_placed);
+    EXPECT_TRUE(std::any_of(pruned.graph.edges.begin(), pruned.graph.edges.end(),
+                            [&](const GraphEdge& e) { return e.bridge && blend_frames(e) > k; }));
+    EXPECT_EQ(pruned.prune.after.nodes, pruned.graph.node_count());
+    EXPECT_LE(pruned.prune.after.nodes, pruned.prune.before.largest_component_nodes);
+    EXPECT_EQ(pruned.prune.kept_transitions.size(), pruned.graph.transitions.size());
+    MotionGraph again = pruned.graph;
+    PruneSettings prune;
+    prune.connected_tags = settings.connected_tags;
+    auto report = prune_motion_graph(again, x.db.frame_tags(), prune);
+    ASSERT_TRUE(report) << report.error().to_string();
+    EXPECT_EQ(report->after.nodes, pruned.graph.node_count());
+    EXPECT_EQ(report->after.transitions, static_cast<int>(pruned.graph.transitions.size()));
+  };
   const MotionGraph& graph = built->pruned.graph;
   ASSERT_GT(graph.node_count(), 0);
-  EXPECT_EQ(built->pruned.prune.after.nodes, graph.node_count());
-  EXPECT_LE(built->pruned.prune.after.nodes, built->pruned.prune.before.nodes);
+  placed_and_steady(built->pruned);
   const int bridge_edges = check_edges(graph);
   EXPECT_GT(bridge_edges, 0);
   // Some bridge blends longer than the window, and some leaves before its candidate.
@@ -136,7 +160,33 @@ TEST(GraphFromCandidates, PrunedGraphUsesTheSelectionAndAlignedBridges) {
   const int spaced_bridges = check_edges(spaced_graph->pruned.graph);
   EXPECT_GT(spaced_bridges, 0);
   EXPECT_LE(spaced_bridges, bridge_edges);
+  placed_and_steady(spaced_graph->pruned);
   settings.spacing.max_out = 0;
+  // A tag on single frames next to where the bridges leave and land (a manifest's range): a
+  // moved end there would split a piece into pieces of other tags, which pruning may drop. The
+  // bridges are still placed, on pieces of one set of tags, and pruning keeps every transition.
+  {
+    Fixture tagged = run();
+    tagged.db.tag_names.push_back("steady");
+    const int steady = static_cast<int>(tagged.db.tag_names.size()) - 1;
+    for (const Transition& bridge : t.bridges) {
+      tagged.db.tag_ranges.push_back(TagRange{steady, bridge.from_frame - 2, 1});
+      tagged.db.tag_ranges.push_back(TagRange{steady, bridge.to_frame + 2, 1});
+    }
+    GraphFromCandidatesSettings steady_settings = settings;
+    steady_settings.connected_tags = motion_type_tags(tagged.db);
+    auto steady_graph = graph_from_candidates(tagged.db, tagged.features, tagged.search, steady_settings);
+    ASSERT_TRUE(steady_graph) << steady_graph.error().to_string();
+    EXPECT_TRUE(steady_graph->pruned.bridge_blends_placed);
+    const std::vector<TagMask> tags = tagged.db.frame_tags();
+    for (const GraphEdge& e : steady_graph->pruned.graph.edges) {
+      if (!e.bridge) continue;
+      const MeasuredPair pair = measured_pair(steady_graph->pruned.graph, e);
+      const Transition& moved = steady_graph->pruned.graph.transitions[static_cast<size_t>(e.transition_index)];
+      for (int f = moved.from_frame; f < pair.from_frame; ++f) EXPECT_EQ(tags[f] >> steady & 1, 0u) << f;
+      for (int f = pair.to_frame + 1; f <= moved.to_frame; ++f) EXPECT_EQ(tags[f] >> steady & 1, 0u) << f;
+    }
+  }
 
   // Tags ignored: no bridges, no per-tag thresholds; the same steps one by one agree.
   settings.connected_tags = 0;

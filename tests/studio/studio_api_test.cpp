@@ -254,9 +254,6 @@ TEST(StudioApi, TransitionsAndTheirPoses) {
       EXPECT_EQ(window_to, to);
       continue;
     }
-    EXPECT_GE(window_from, from);
-    EXPECT_LE(window_to, to);
-    EXPECT_EQ((to - (e.frame_count + 1) + 1) - from, (window_to - k + 1) - window_from);
     moved += window_from != from ? 1 : 0;
     EXPECT_TRUE(std::any_of(candidates.minima.begin(), candidates.minima.end(), [&](const Transition& c) {
       return c.from_frame == window_from && c.to_frame == window_to && c.distance == t["distance"].get<float>();

@@ -2,6 +2,7 @@
 #include "motiongraph/graph/graph_from_candidates.h"
 
 #include <algorithm>
+#include <functional>
 #include <numeric>
 
 #include <fmt/format.h>
@@ -159,72 +160,59 @@ Result<PrunedGraph> build_spaced_graph(const MotionDatabase& db, const Transitio
   std::sort(spaced.begin(), spaced.end(), [](const Transition& x, const Transition& y) {
     return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
   });
-  auto second =
-      build_pruned_graph(db, spaced, features.window, settings.connected_tags, {}, transitions.bridge_flags(spaced));
+  const std::vector<char> spaced_bridges = transitions.bridge_flags(spaced);
+  auto second = build_pruned_graph(db, spaced, features.window, settings.connected_tags, {}, spaced_bridges);
   if (!second) return second.error();
   second->survived_first_pruning = static_cast<int>(first->graph.transitions.size());
-  return place_bridge_blends(db, transitions.selection.threshold, settings, std::move(*second));
+  return place_bridge_blends(db, spaced, spaced_bridges, transitions.selection.threshold, settings,
+                             std::move(*second));
 }
 
-Result<PrunedGraph> place_bridge_blends(const MotionDatabase& db, double threshold,
+Result<PrunedGraph> place_bridge_blends(const MotionDatabase& db, std::span<const Transition> transitions,
+                                        std::span<const char> bridges, double threshold,
                                         const GraphFromCandidatesSettings& settings, PrunedGraph pruned) {
   const MotionGraph& g = pruned.graph;
   if (std::none_of(g.edges.begin(), g.edges.end(), [](const GraphEdge& e) { return e.bridge; })) return pruned;
-  // The frames the graph's clip pieces play: a node moved onto one of them splits a piece the
-  // graph keeps, so it is reached and leads on as the piece did.
+  // The frames of the clip pieces the pruned graph plays whose frames all carry the same tags: a
+  // node moved onto one splits a piece the graph keeps into pieces of the same tags, so it is
+  // reached and leads on as the piece did.
+  const std::vector<TagMask> frame_tags = db.frame_tags();
   std::vector<char> kept(static_cast<size_t>(db.frame_count()), 0);
   for (const GraphEdge& e : g.edges) {
     if (e.transition) continue;
     const int first = g.nodes[e.from_node].frame;
+    const auto tags = frame_tags.begin() + std::min<size_t>(frame_tags.size(), static_cast<size_t>(first));
+    const auto tags_end = frame_tags.begin() + std::min<size_t>(frame_tags.size(), static_cast<size_t>(first + e.frame_count));
+    if (std::adjacent_find(tags, tags_end, std::not_equal_to<>()) != tags_end) continue;
     std::fill(kept.begin() + first, kept.begin() + first + e.frame_count, 1);
   }
-  struct Placed {
-    Transition transition;
-    int frames = 0;
-    char bridge = 0;
-    int lead = 0;
-  };
-  std::vector<Placed> placed(g.transitions.size());
-  for (size_t t = 0; t < placed.size(); ++t) placed[t] = {g.transitions[t], g.window, 0, 0};
-  for (const GraphEdge& e : g.edges) {
-    if (!e.bridge) continue;
-    Placed& p = placed[static_cast<size_t>(e.transition_index)];
-    const BridgeBlend blend = bridge_blend(db, p.transition, g.window, threshold, settings.bridges.max_blend_factor, kept);
-    p.lead = p.transition.from_frame - blend.from_frame;
-    p.transition.from_frame = blend.from_frame;
-    p.transition.to_frame = blend.to_frame;
-    p.frames = blend.frames;
-    p.bridge = 1;
+  // Each bridge the pruning kept, placed; the others as they were (the pruning drops them again).
+  std::vector<Transition> placed(transitions.begin(), transitions.end());
+  std::vector<int> frames(placed.size(), g.window);
+  std::vector<int> leads(placed.size(), 0);
+  for (const int t : pruned.prune.kept_transitions) {
+    const size_t i = static_cast<size_t>(t);
+    if (i >= bridges.size() || bridges[i] == 0) continue;
+    const BridgeBlend blend =
+        bridge_blend(db, placed[i], g.window, threshold, settings.bridges.max_blend_factor, kept);
+    leads[i] = placed[i].from_frame - blend.from_frame;
+    placed[i].from_frame = blend.from_frame;
+    placed[i].to_frame = blend.to_frame;
+    frames[i] = blend.frames;
   }
-  std::sort(placed.begin(), placed.end(), [](const Placed& x, const Placed& y) {
-    const Transition& a = x.transition;
-    const Transition& b = y.transition;
-    return a.from_frame != b.from_frame ? a.from_frame < b.from_frame : a.to_frame < b.to_frame;
-  });
-  std::vector<Transition> transitions;
-  std::vector<int> frames;
-  std::vector<char> bridges;
-  for (const Placed& p : placed) {
-    transitions.push_back(p.transition);
-    frames.push_back(p.frames);
-    bridges.push_back(p.bridge);
-  }
-  auto again = build_pruned_graph(db, transitions, g.window, settings.connected_tags, frames, bridges);
+  auto again = build_pruned_graph(db, placed, g.window, settings.connected_tags, frames, bridges);
   if (!again) return again.error();
-  // Every transition stays (the moved ends lie on kept pieces); should pruning take one, the
-  // bridges keep the window's blend.
-  if (again->graph.transitions.size() != g.transitions.size()) return pruned;
-  for (GraphEdge& e : again->graph.edges) {
-    if (!e.bridge) continue;
-    const Transition& t = again->graph.transitions[static_cast<size_t>(e.transition_index)];
-    const auto p = std::find_if(placed.begin(), placed.end(), [&](const Placed& x) {
-      return x.bridge && x.transition.from_frame == t.from_frame && x.transition.to_frame == t.to_frame;
-    });
-    if (p != placed.end()) e.blend_lead = p->lead;
+  // The same transitions stay (the moved ends lie on kept pieces of unchanged tags); should
+  // pruning take one, the bridges keep the window's blend, and the graph says so.
+  if (again->prune.kept_transitions != pruned.prune.kept_transitions) {
+    pruned.bridge_blends_placed = false;
+    return pruned;
   }
-  pruned.prune.after = again->prune.after;
-  pruned.graph = std::move(again->graph);
-  return pruned;
+  for (GraphEdge& e : again->graph.edges) {
+    if (e.bridge) e.blend_lead = leads[static_cast<size_t>(again->prune.kept_transitions[e.transition_index])];
+  }
+  again->survived_first_pruning = pruned.survived_first_pruning;
+  return again;
 }
 
 Result<GraphFromCandidates> graph_from_candidates(const MotionDatabase& db, const FrameFeatures& features,

@@ -80,6 +80,9 @@ struct PrunedGraph {
   MotionGraph graph;  // pruned
   PruneReport prune;
   int survived_first_pruning = 0;  // transitions (bridges too) before spacing; build_spaced_graph
+  // false: pruning the graph with its bridges' blends placed would have lost a transition, and
+  // they blend over the window (place_bridge_blends).
+  bool bridge_blends_placed = true;
 };
 
 // The last two: the graph of `transitions` (window k; blend_lengths and bridges as
@@ -89,14 +92,17 @@ Result<PrunedGraph> build_pruned_graph(const MotionDatabase& db, std::span<const
                                        TagMask connected_tags, std::span<const int> blend_lengths = {},
                                        std::span<const char> bridges = {});
 
-// The bridges of a pruned graph blended as long as their D asks (bridge_blend_frames), each
-// blend centred on the window its D was measured on (bridge_blend, bridges.h): it leaves before
-// the bridge's from_frame and lands after its to_frame, on frames the graph's clip pieces play
-// (so the graph stays strongly connected: the moved ends split pieces it keeps), and its edge
-// carries how far it leaves before (GraphEdge::blend_lead). The graph is built again from the
-// placed transitions; its prune report keeps `before` and gets the new `after`. Should pruning
-// the placed graph lose a transition (not expected), the graph comes back as given.
-Result<PrunedGraph> place_bridge_blends(const MotionDatabase& db, double threshold,
+// `pruned` (the graph of `transitions`, flagged bridges by `bridges`, blending over the window,
+// pruned) with its bridges blended as long as their D asks (bridge_blend_frames), each blend
+// centred on the window its D was measured on (bridge_blend, bridges.h): it leaves before the
+// bridge's from_frame and lands after its to_frame, on frames of the clip pieces the pruned
+// graph plays whose frames carry one set of tags (the moved ends split pieces the graph keeps
+// into pieces of the same tags, so pruning keeps the same transitions), and its edge carries how
+// far it leaves before (GraphEdge::blend_lead). The graph of the placed transitions is pruned
+// again (the report's before and after are its). Should that lose a transition, `pruned` comes
+// back as given, bridge_blends_placed false.
+Result<PrunedGraph> place_bridge_blends(const MotionDatabase& db, std::span<const Transition> transitions,
+                                        std::span<const char> bridges, double threshold,
                                         const GraphFromCandidatesSettings& settings, PrunedGraph pruned);
 
 struct GraphFromCandidates {

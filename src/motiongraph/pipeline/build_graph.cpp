@@ -488,6 +488,10 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
   std::vector<ClipCoverage> coverage;
   if (built) {
     const PruneReport& pruned = built->prune;
+    if (!built->bridge_blends_placed) {
+      say.warning("bridges blend over the window: centring their longer blends on their measured windows would have "
+                  "cost the graph a transition");
+    }
     coverage = clip_coverage(built->graph, *db, candidates->search.minima);
     say.info(fmt::format("graph: {} nodes, {} edges ({} transitions) after pruning and spacing, playing {} of the {} "
                          "frames ({:.0f} %); {} transitions survived a first pruning, spaced to {}",
