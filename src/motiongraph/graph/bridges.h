@@ -82,8 +82,9 @@ int bridge_blend_frames(const Transition& bridge, int window, double threshold, 
 // second for subject 16's walk into its run, the walk's stance against the run's swing). So a
 // longer blend is centred on the measured window: it leaves up to (L - k) / 2 frames before
 // from_frame and lands the rest after to_frame, as far as the two clips hold frames and, given
-// `core` (per frame, 1 where a blend may leave or land: the frames a pruned graph's clip pieces
-// play), as far as the frames up to the moved ends are all core frames; where fewer are left, L
+// `core` (per frame, 1 where a blend may leave or land: place_bridge_blends gives the frames of
+// the clip pieces a pruned graph plays that carry one set of tags), as far as the frames up to
+// the moved ends are all core frames; where fewer are left, L
 // is shortened, never below k. The bridge's D and floor alignment stay the measured window's.
 struct BridgeBlend {
   int from_frame = 0;  // where the blend leaves: its first frame in the clip it leaves

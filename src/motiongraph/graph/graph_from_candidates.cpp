@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <functional>
-#include <numeric>
 
 #include <fmt/format.h>
 
@@ -181,9 +180,11 @@ Result<PrunedGraph> place_bridge_blends(const MotionDatabase& db, std::span<cons
   for (const GraphEdge& e : g.edges) {
     if (e.transition) continue;
     const int first = g.nodes[e.from_node].frame;
-    const auto tags = frame_tags.begin() + std::min<size_t>(frame_tags.size(), static_cast<size_t>(first));
-    const auto tags_end = frame_tags.begin() + std::min<size_t>(frame_tags.size(), static_cast<size_t>(first + e.frame_count));
-    if (std::adjacent_find(tags, tags_end, std::not_equal_to<>()) != tags_end) continue;
+    auto tags_at = [&](int f) {
+      return frame_tags.begin() + std::min<size_t>(frame_tags.size(), static_cast<size_t>(f));
+    };
+    const auto tags_end = tags_at(first + e.frame_count);
+    if (std::adjacent_find(tags_at(first), tags_end, std::not_equal_to<>()) != tags_end) continue;
     std::fill(kept.begin() + first, kept.begin() + first + e.frame_count, 1);
   }
   // Each bridge the pruning kept, placed; the others as they were (the pruning drops them again).
