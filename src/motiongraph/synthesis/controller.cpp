@@ -46,9 +46,7 @@ class SteerCost final : public FrameCost {
         bridge_penalty_(bridge_penalty) {}
   // A bridge costs the bridge penalty more unless it lands in the motion type asked for.
   double transition_cost(const GraphEdge& edge, const SearchState&) const override {
-    if (!edge.bridge) return transition_penalty_;
-    return (bridge_landing_tags(context_, edge) & input_.tag) != 0 ? transition_penalty_
-                                                                    : transition_penalty_ + bridge_penalty_;
+    return unasked_bridge(context_, edge, input_.tag) ? transition_penalty_ + bridge_penalty_ : transition_penalty_;
   }
   double cost(int, const Vec2&, const Vec2& facing, double, TagMask tags, bool*) const override {
     double c = 1.0 - facing.dot(input_.direction);

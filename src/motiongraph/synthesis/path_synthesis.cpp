@@ -50,10 +50,8 @@ class PathCost final : public FrameCost {
         bridge_penalty_(bridge_penalty) {}
   // A bridge costs the bridge penalty more unless it lands in the motion type asked for there.
   double transition_cost(const GraphEdge& edge, const SearchState& from) const override {
-    if (!edge.bridge) return transition_penalty_;
-    const TagMask wanted = wanted_at(from.arc_m);
-    return (bridge_landing_tags(context_, edge) & wanted) != 0 ? transition_penalty_
-                                                                : transition_penalty_ + bridge_penalty_;
+    return unasked_bridge(context_, edge, wanted_at(from.arc_m)) ? transition_penalty_ + bridge_penalty_
+                                                                  : transition_penalty_;
   }
   // Each search starts where the root has covered arc_m.
   void start_search(double arc_m) { search_arc_m_ = arc_m; }

@@ -53,6 +53,12 @@ inline TagMask bridge_landing_tags(const SynthesisContext& context, const GraphE
   return frame < static_cast<int>(context.frame_tags.size()) ? context.frame_tags[frame] : TagMask{0};
 }
 
+// Whether a transition edge is a bridge that does not lead into the motion type `asked` (0: none
+// asked, so every bridge): the bridges path and steering searches price (--bridge-penalty).
+inline bool unasked_bridge(const SynthesisContext& context, const GraphEdge& edge, TagMask asked) {
+  return edge.bridge && (bridge_landing_tags(context, edge) & asked) == 0;
+}
+
 // target_skeleton -1: the skeleton of the database's first clip.
 Result<SynthesisContext> make_synthesis_context(const MotionDatabase& db, const MotionGraph& graph,
                                                 int target_skeleton = -1);
