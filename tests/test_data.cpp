@@ -51,6 +51,25 @@ void expect_error_matches(const Error& error, const ErrorCase& expected) {
   EXPECT_NE(error.message.find(expected.message_part), std::string::npos) << expected.rule << ": " << error.to_string();
 }
 
+ScaledPair scaled_pair(double scale, int from, int window) {
+  ScaledPair pair{load_data_clip("bvh/131_01.bvh", 0.056444), load_data_clip("bvh/131_01.bvh", 0.056444 * scale), {}, {}};
+  MotionDatabase& db = pair.db;
+  db.fps = pair.small.motion.fps;
+  db.skeletons = {pair.small.skeleton, pair.large.skeleton};
+  db.skeleton_names = {"small", "large"};
+  const int n = pair.small.motion.frame_count;
+  db.clips.push_back({"small", "", 0, 0, n, pair.small.motion});
+  db.clips.push_back({"large", "", 1, n, n, pair.large.motion});
+  Transition& t = pair.transition;
+  t.from_frame = from;
+  t.to_frame = n + from + window - 1;
+  // The floor alignment of the large window onto the small one: the shift of the centroids.
+  const Vec3 c_large = pair.large.motion.translations(from + window - 1)[0];
+  t.x_m = static_cast<float>(c_large.x() / scale - c_large.x());
+  t.z_m = static_cast<float>(c_large.z() / scale - c_large.z());
+  return pair;
+}
+
 MotionDatabase small_database(const std::vector<std::string>& files, bool add_moved_copy, double yaw, Vec3 shift,
                               double fps) {
   MotionDatabase db;

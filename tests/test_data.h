@@ -6,6 +6,7 @@
 
 #include "motiongraph/core/error.h"
 #include "motiongraph/database/motion_database.h"
+#include "motiongraph/graph/transition.h"
 #include "motiongraph/motion/bvh_import.h"
 #include "motiongraph/motion/motion.h"
 
@@ -43,6 +44,19 @@ void expect_error_matches(const Error& error, const ErrorCase& expected);
 // with a copy of the first clip turned by `yaw` about the vertical and moved by `shift`.
 MotionDatabase small_database(const std::vector<std::string>& files, bool add_moved_copy = false, double yaw = 0.0,
                               Vec3 shift = Vec3::Zero(), double fps = 30.0);
+
+// One clip (131_01's BVH) read as two subjects, the second `scale` times larger (a larger
+// unit), back to back, with the transition that leaves the first at frame `from` and arrives
+// in the second at the same frames over a window of `window` (to_frame = n + from + window -
+// 1), its floor alignment the shift of the root between the two scales: played on the first
+// subject's skeleton, the walk across it is the first clip itself.
+struct ScaledPair {
+  Clip small;
+  Clip large;
+  MotionDatabase db;
+  Transition transition;
+};
+ScaledPair scaled_pair(double scale, int from, int window);
 
 // Largest distance (metres) between two frames x joints position arrays of the same shape.
 double max_position_error(const std::vector<Vec3>& a, const std::vector<Vec3>& b);

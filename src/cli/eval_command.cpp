@@ -6,8 +6,9 @@
 //                threshold, with the captured data's value (figure 3.2)
 //   walks        lengths of walks between random node pairs per cost function (figure 3.3)
 //   paths        path-following error on the built-in shapes
-//   footslide    foot slide in contact, as played and cleaned, times the source clips', on the
-//                built-in shapes against the threshold; with the largest joint step
+//   footslide    foot slide in contact, as played and cleaned, times the source clips' and times
+//                the capture's on the frames played, on the built-in shapes against the
+//                threshold; with the largest joint step
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -187,14 +188,16 @@ Status evaluate_foot_slide(const GraphFile& file, const GraphRebuild& rebuild, s
   if (!rows) return rows.error();
   std::string csv =
       "quantile,threshold,rms_cm,shape,graph,frames,transitions,mean_deviation_m,played_mps,cleaned_mps,source_mps,"
-      "played_ratio,cleaned_ratio,step_over_source_p999\n";
+      "played_ratio,cleaned_ratio,step_over_source_p999,same_frames_source_mps,played_same_ratio,cleaned_same_ratio\n";
   for (const FootSlideSweepRow& r : *rows) {
     const bool g = r.graph;
-    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", num(r.quantile), num(r.threshold),
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", num(r.quantile), num(r.threshold),
                        num(rms_cm_of_distance(r.threshold, rebuild.features)), r.shape, g ? 1 : 0, r.frames,
                        r.transitions, g ? num(r.mean_deviation_m) : "", g ? num(r.played_mps) : "",
                        g ? num(r.cleaned_mps) : "", g ? num(r.source_mps) : "", g ? num(r.played_ratio) : "",
-                       g ? num(r.cleaned_ratio) : "", g ? num(r.step_over_source_p999) : "");
+                       g ? num(r.cleaned_ratio) : "", g ? num(r.step_over_source_p999) : "",
+                       g ? num(r.same_frames_source_mps) : "", g ? num(r.played_same_ratio) : "",
+                       g ? num(r.cleaned_same_ratio) : "");
   }
   if (auto s = out.write_csv("footslide.csv", csv); !s) return s;
   std::string plots;
@@ -203,12 +206,13 @@ Status evaluate_foot_slide(const GraphFile& file, const GraphRebuild& rebuild, s
     const std::string pick = fmt::format("(strcol(4) eq '{}' ? ${{}} : NaN)", shape);
     plots += fmt::format("{}{} skip 1 using 3:{} with linespoints lc {} pt 7 title '{} cleaned', "
                          "'' skip 1 using 3:{} with linespoints lc {} dt 2 pt 6 title '{} as played'",
-                         i ? ", " : "", out.csv("footslide.csv"), fmt::format(fmt::runtime(pick), 13), i + 1, shape,
-                         fmt::format(fmt::runtime(pick), 12), i + 1, shape);
+                         i ? ", " : "", out.csv("footslide.csv"), fmt::format(fmt::runtime(pick), 17), i + 1, shape,
+                         fmt::format(fmt::runtime(pick), 16), i + 1, shape);
   }
   return out.plot("footslide.png",
                   fmt::format("{}set logscale x\nset xlabel 'transition threshold, RMS point distance (cm, log scale)'\n"
-                              "set ylabel 'foot slide in contact, x the source clips'\nset yrange [0:*]\n"
+                              "set ylabel 'foot slide in contact, x the capture on the frames played'\n"
+                              "set yrange [0:*]\n"
                               "set key top left\nset title 'Foot slide of path synthesis against the threshold'\n"
                               "set arrow from graph 0, first 1 to graph 1, first 1 nohead dt 3\nplot {}",
                               kCsvSettings, plots));
@@ -306,7 +310,8 @@ Command add_eval_command(CLI::App& app) {
               "  walks        lengths of walks between random node pairs for each cost function\n"
               "  paths        path-following error on built-in shapes\n"
               "  footslide    foot slide in contact of path synthesis on the shapes, as played and cleaned,\n"
-              "               times the source clips', against the threshold");
+              "               times the capture's on the frames played (and the source clips' whole),\n"
+              "               against the threshold");
   sub->add_option("GRAPH", o->graph, "A .mgraph file written by 'motiongraph build'")->required();
   sub->add_option("--out-dir", o->out_dir, "Folder for the CSV and PNG files (created)")->required();
   sub->add_option("--what", o->what, "Evaluations to run, comma separated")->delimiter(',')->capture_default_str();

@@ -106,6 +106,10 @@ for rep in (r, w, s):
     for key in ("mean_mps", "p95_mps", "max_joint_step_m"):
         assert fs[key] >= 0 and src[key] > 0, (key, fs)
         assert abs(fs["ratio"][key] - fs[key] / src[key]) < 1e-9 * fs["ratio"][key] + 1e-12, (key, fs)
+    # And on the very frames it plays, beside those frames in the capture.
+    same = fs["same_frames"]
+    assert same["steps"] > 0 and same["source_mean_mps"] > 0 and same["mean_mps"] >= 0, same
+    assert abs(same["ratio"] - same["mean_mps"] / same["source_mean_mps"]) < 1e-9, same
 # The walk-then-run figure 8 is cut from walks and runs.
 walks = {"16_11", "16_13", "16_15", "16_16", "16_17", "16_19", "16_33"}
 runs = {"16_35", "16_37", "16_39", "16_41", "16_43", "16_57"}
@@ -151,6 +155,11 @@ for pa, pb in zip(a["positions"], b["positions"]):
 fc, fr = clean["foot_slide"], raw["foot_slide"]
 assert fc["ratio"]["mean_mps"] <= 1.0 and fc["mean_mps"] < 0.5 * fr["mean_mps"], (fc, fr)
 assert fc["ratio"]["max_joint_step_over_source_p999"] <= 1.5, fc
+# Judged on the frames played: the same steps and capture, the cleaned toes slower than the
+# capture's there and than the played ones.
+sc, sr = fc["same_frames"], fr["same_frames"]
+assert sc["steps"] == sr["steps"] and sc["source_mean_mps"] == sr["source_mean_mps"], (sc, sr)
+assert sc["ratio"] <= 1.0 and sc["mean_mps"] < 0.5 * sr["mean_mps"], (sc, sr)
 PY
 
 # A rig whose feet are not found by name: synthesis still works, with a warning; the report says

@@ -249,7 +249,7 @@ try {
   check(/\d+ transitions \([\d.]+\/s(, \d+ bridges?)?\)/.test(pathInfo), `the path's transitions per second are shown: ${pathInfo}`);
   check(/bent onto the path; as the graph played it [\d.]+ m, max [\d.]+ m/.test(pathInfo),
     `the path is bent onto the path drawn by default, the graph's own deviation shown: ${pathInfo}`);
-  check(/feet slide [\d.]+ m\/s \([\d.]+x the capture\), cleaned up/.test(pathInfo),
+  check(/feet slide [\d.]+ m\/s \([\d.]+x the capture; [\d.]+x on the frames played\), cleaned up/.test(pathInfo),
     `the path's foot slide beside its source is shown, cleaned up by default: ${pathInfo}`);
   check(await page.evaluate(() => window.studio.state.mode === 'result' && window.studio.state.playing),
     'the path result plays');

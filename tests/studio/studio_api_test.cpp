@@ -298,6 +298,10 @@ TEST(StudioApi, ResultsAreCleanedUnlessAskedNotToAndMeasuredAgainstTheirSource) 
   EXPECT_EQ(fc["source"]["clips"], fr["source"]["clips"]);  // the same walk, played as it is or cleaned
   EXPECT_LT(fc["mean_mps"].get<double>(), 0.5 * fr["mean_mps"].get<double>()) << fc << fr;
   EXPECT_LE(fc["ratio"]["mean_mps"].get<double>(), 1.0) << fc;
+  // On the frames played: the same steps of the capture, held still where played they slid.
+  EXPECT_EQ(fc["same_frames"]["steps"], fr["same_frames"]["steps"]);
+  EXPECT_GT(fc["same_frames"]["steps"].get<long long>(), 0) << fc;
+  EXPECT_LT(fc["same_frames"]["mean_mps"].get<double>(), 0.5 * fr["same_frames"]["mean_mps"].get<double>()) << fc << fr;
   // Bent onto the path by default, as the CLI's path is; "edit_path": false plays the graph's walk.
   const ApiCall plain = call_api("POST", "/api/path", path + R"(, "edit_path": false})");
   ASSERT_EQ(plain.response.status, 200) << plain.response.body;

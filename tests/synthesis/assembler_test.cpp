@@ -132,6 +132,9 @@ TEST(Assembler, RootTracksAreTheRootsOfTheWholePoses) {
   }
 }
 
+// Each played frame knows the database frames it is made of (both the same frame for a clip
+// edge, the blend's two with its weight for a transition) and carries the contacts of the one
+// that weighs most.
 TEST(Assembler, PlayedFramesCarryTheContactsOfTheFramesThatWeighMost) {
   const auto& s = test::subject16();
   const MotionGraph& graph = s.file().graph;
@@ -142,24 +145,37 @@ TEST(Assembler, PlayedFramesCarryTheContactsOfTheFramesThatWeighMost) {
   for (int e = 0; e < graph.edge_count(); ++e) {
     const GraphEdge& edge = graph.edges[e];
     std::vector<ContactMask> played;
+    std::vector<FrameSource> sources;
     s.context().assembler.append_edge_contacts(e, masks, played);
+    s.context().assembler.append_edge_sources(e, sources);
     ASSERT_EQ(static_cast<int>(played.size()), edge.frame_count);
+    ASSERT_EQ(static_cast<int>(sources.size()), edge.frame_count);
     for (int p = 0; p < edge.frame_count; ++p) {
-      int frame = graph.nodes[edge.from_node].frame + p;
+      const int clip_frame = graph.nodes[edge.from_node].frame + p;
+      FrameSource want{clip_frame, clip_frame, 1.0};
+      int frame = clip_frame;
       if (edge.transition) {
         const Transition& t = graph.transitions[edge.transition_index];
         const int length = blend_frames(edge);
-        frame = blend_weight(p, length) >= 0.5 ? t.from_frame + p : t.to_frame - length + 1 + p;
+        want = {t.from_frame + p, t.to_frame - length + 1 + p, blend_weight(p, length)};
+        frame = want.alpha >= 0.5 ? want.departure : want.arrival;
       }
       ASSERT_EQ(played[p], masks[frame]) << "edge " << e << " frame " << p;
+      ASSERT_EQ(sources[p], want) << "edge " << e << " frame " << p;
+      ASSERT_EQ(sources[p].dominant(), frame);
     }
     transitions += edge.transition ? 1 : 0;
   }
   EXPECT_GT(transitions, 10);
-  // The context's masks: a walk's frames and its end node's frame, as assemble_walk plays them.
+  // The context's: a walk's frames and its end node's frame, as assemble_walk plays them;
+  // steering's record of edges (no start node) its edges' frames alone.
   ASSERT_EQ(s.context().frame_contacts.size(), masks.size());
   const Walk walk{0, {graph.edge_offsets[0]}};
   EXPECT_EQ(static_cast<long long>(s.context().walk_contacts(walk).size()), walk.frame_count(graph) + 1);
+  const std::vector<FrameSource> sources = s.context().walk_sources(walk);
+  ASSERT_EQ(static_cast<long long>(sources.size()), walk.frame_count(graph) + 1);
+  EXPECT_EQ(sources.back().departure, graph.nodes[walk.end_node(graph)].frame);
+  EXPECT_EQ(static_cast<long long>(s.context().walk_sources(Walk{-1, walk.edges}).size()), walk.frame_count(graph));
 }
 
 TEST(Assembler, RejectsAWalkThatDoesNotFollowTheGraph) {
@@ -183,24 +199,13 @@ namespace {
 // unit): played on the first subject's skeleton, a walk that crosses to it by a transition
 // between the same frames must be the original clip itself.
 TEST(Assembler, OtherSubjectsAreScaledToTheTarget) {
-  const Clip small = test::load_data_clip("bvh/131_01.bvh", 0.056444);
-  const Clip large = test::load_data_clip("bvh/131_01.bvh", 0.056444 * 1.2);
-  MotionDatabase db;
-  db.fps = small.motion.fps;
-  db.skeletons = {small.skeleton, large.skeleton};
-  db.skeleton_names = {"small", "large"};
+  const int k = 10;
+  const test::ScaledPair pair = test::scaled_pair(1.2, 40, k);
+  const Clip& small = pair.small;
+  const Clip& large = pair.large;
+  const MotionDatabase& db = pair.db;
   const int n = small.motion.frame_count;
-  db.clips.push_back({"small", "", 0, 0, n, small.motion});
-  db.clips.push_back({"large", "", 1, n, n, large.motion});
-  const int k = 10, a = 40;
-  // Leave the small copy at a, arrive in the large copy at the same frames: b = a + k - 1.
-  Transition t;
-  t.from_frame = a;
-  t.to_frame = n + a + k - 1;
-  // The floor alignment of the large window onto the small one: the shift of the centroids.
-  const Vec3 c_large = large.motion.translations(a + k - 1)[0];
-  t.x_m = static_cast<float>(c_large.x() / 1.2 - c_large.x());
-  t.z_m = static_cast<float>(c_large.z() / 1.2 - c_large.z());
+  const Transition& t = pair.transition;
   auto graph = build_motion_graph(db, std::vector<Transition>{t}, k);
   ASSERT_TRUE(graph.ok()) << graph.error().to_string();
   // From the small clip's first frame to the transition, across it, to the large clip's end.

@@ -323,8 +323,11 @@ $('synthesize').addEventListener('click', async () => {
 function footSlideText(result) {
   const fs = result.foot_slide;
   if (!fs || fs.error) return `foot slide not measured${fs ? `: ${fs.error}` : ''}`;
-  const times = fs.ratio.mean_mps === null ? '' : ` (${fs.ratio.mean_mps.toFixed(2)}x the capture)`;
-  return `feet slide ${fs.mean_mps.toFixed(3)} m/s${times}, ${result.cleanup ? 'cleaned up' : 'as played'}`;
+  const times = [];
+  if (fs.ratio.mean_mps !== null) times.push(`${fs.ratio.mean_mps.toFixed(2)}x the capture`);
+  const same = fs.same_frames;
+  if (same && !same.error && same.ratio !== null) times.push(`${same.ratio.toFixed(2)}x on the frames played`);
+  return `feet slide ${fs.mean_mps.toFixed(3)} m/s${times.length ? ` (${times.join('; ')})` : ''}, ${result.cleanup ? 'cleaned up' : 'as played'}`;
 }
 
 // --- steering ------------------------------------------------------------------------------

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "motiongraph/evaluation/same_frames_slide.h"
 #include "motiongraph/evaluation/source_foot_slide.h"
 
 namespace mg {
@@ -38,6 +39,16 @@ nlohmann::json foot_slide_report(const SynthesisContext& context, const Walk& wa
                      {"p95_mps", ratio_json(output.p95_mps, source.p95_mps)},
                      {"max_joint_step_m", ratio_json(output.max_joint_step_m, source.max_joint_step_m)},
                      {"max_joint_step_over_source_p999", ratio_json(output.max_joint_step_m, source.p999_joint_step_m)}};
+  const std::vector<FrameSource> sources = context.walk_sources(walk);
+  auto same = same_frames_foot_slide(*context.db, context.assembler, motion, sources);
+  if (!same) {
+    report["same_frames"] = {{"error", same.error().message}};
+  } else {
+    report["same_frames"] = {{"steps", same->steps},
+                             {"mean_mps", same->mean_mps},
+                             {"source_mean_mps", same->source_mean_mps},
+                             {"ratio", ratio_json(same->mean_mps, same->source_mean_mps)}};
+  }
   return report;
 }
 

@@ -4,10 +4,13 @@
 //
 //   {"mean_mps", "p95_mps", "max_joint_step_m", "p999_joint_step_m", "contact_steps",
 //    "source": {the same, "clips": [names]},
-//    "ratio": {"mean_mps", "p95_mps", "max_joint_step_m", "max_joint_step_over_source_p999"}}
+//    "ratio": {"mean_mps", "p95_mps", "max_joint_step_m", "max_joint_step_over_source_p999"},
+//    "same_frames": {"steps", "mean_mps", "source_mean_mps", "ratio"}}
 // A ratio is output / source (null where the source's is 0); max_joint_step_over_source_p999
 // is the output's largest step over the source's 99.9th percentile (the clean-up's bound is
-// 1.5). {"error": "..."} when a skeleton's feet cannot be found by name.
+// 1.5). "same_frames" is the result's foot slide on the steps its frames' own source frames
+// are planted, beside theirs (evaluation/same_frames_slide.h): what synthesis added to the
+// capture it played. {"error": "..."} when a skeleton's feet cannot be found by name.
 #pragma once
 
 #include <nlohmann/json.hpp>

@@ -1,6 +1,7 @@
 // Foot slide against the threshold.
 #include "motiongraph/evaluation/foot_slide_sweep.h"
 
+#include "motiongraph/evaluation/same_frames_slide.h"
 #include "motiongraph/evaluation/source_foot_slide.h"
 #include "motiongraph/evaluation/threshold_sweep.h"
 #include "motiongraph/synthesis/floor_path.h"
@@ -39,6 +40,14 @@ Result<FootSlideSweepRow> measure(const SynthesisContext& context, const std::st
   row.played_ratio = times_the_source(row.played_mps, row.source_mps);
   row.cleaned_ratio = times_the_source(row.cleaned_mps, row.source_mps);
   row.step_over_source_p999 = times_the_source(after->output.max_joint_step_m, after->source.p999_joint_step_m);
+  const std::vector<FrameSource> sources = context.walk_sources(result->walk);
+  auto played_same = same_frames_foot_slide(*context.db, context.assembler, result->motion, sources);
+  if (!played_same) return played_same.error();
+  auto cleaned_same = same_frames_foot_slide(*context.db, context.assembler, cleaned, sources);
+  if (!cleaned_same) return cleaned_same.error();
+  row.same_frames_source_mps = played_same->source_mean_mps;
+  row.played_same_ratio = times_the_source(played_same->mean_mps, row.same_frames_source_mps);
+  row.cleaned_same_ratio = times_the_source(cleaned_same->mean_mps, row.same_frames_source_mps);
   return row;
 }
 

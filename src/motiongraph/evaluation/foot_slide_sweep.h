@@ -3,7 +3,8 @@
 // candidates (threshold_sweep.h), each built-in shape is followed (path_synthesis.h), and the
 // motion is measured as played and after the foot clean-up against the clips it was cut from
 // (source_foot_slide.h): the mean toe speed in contact and the largest per-frame joint step,
-// each as "x times the capture". A threshold whose transitions form no graph gives rows with
+// each as "x times the capture", and the toe speed on the frames played beside the same frames'
+// in the capture (same_frames_slide.h). A threshold whose transitions form no graph gives rows with
 // `graph` false; a rig whose feet are not found is an error (nothing to measure).
 #pragma once
 
@@ -31,6 +32,11 @@ struct FootSlideSweepRow {
   double played_ratio = 0.0;          // played / source (NaN when the source's is 0)
   double cleaned_ratio = 0.0;
   double step_over_source_p999 = 0.0; // cleaned largest joint step / the source's 99.9th percentile
+  // On the frames played (same_frames_slide.h): the capture's toe speed on those steps, and the
+  // result's as played and cleaned over it (NaN when it is 0).
+  double same_frames_source_mps = 0.0;
+  double played_same_ratio = 0.0;
+  double cleaned_same_ratio = 0.0;
 };
 
 Result<std::vector<FootSlideSweepRow>> sweep_foot_slide(const MotionDatabase& db, const FrameFeatures& features,

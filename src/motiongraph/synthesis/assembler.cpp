@@ -149,7 +149,16 @@ void MotionAssembler::append_edge_contacts(int edge, std::span<const ContactMask
   visit_edge(
       edge, placement, [&](int frame, const PreparedFloorTransform&) { out.push_back(frame_contacts[frame]); },
       [&](int d, const PreparedFloorTransform&, int a, const PreparedFloorTransform&, double alpha) {
-        out.push_back(frame_contacts[alpha >= 0.5 ? d : a]);
+        out.push_back(frame_contacts[FrameSource{d, a, alpha}.dominant()]);
+      });
+}
+
+void MotionAssembler::append_edge_sources(int edge, std::vector<FrameSource>& out) const {
+  FloorTransform placement;
+  visit_edge(
+      edge, placement, [&](int frame, const PreparedFloorTransform&) { out.push_back({frame, frame, 1.0}); },
+      [&](int d, const PreparedFloorTransform&, int a, const PreparedFloorTransform&, double alpha) {
+        out.push_back({d, a, alpha});
       });
 }
 

@@ -38,6 +38,19 @@ struct RootPose {
   Quat rotation = Quat::Identity();
 };
 
+// Where a played frame comes from: database frame `departure` weighing `alpha` and `arrival`
+// weighing 1 - alpha (a clip frame: both the same, alpha 1).
+struct FrameSource {
+  int departure = 0;
+  int arrival = 0;
+  double alpha = 1.0;
+
+  // The frame that weighs more (the departure while alpha >= 0.5), whose contacts the frame
+  // carries.
+  int dominant() const { return alpha >= 0.5 ? departure : arrival; }
+  bool operator==(const FrameSource&) const = default;
+};
+
 // What playing edges needs, for one target skeleton.
 class MotionAssembler {
  public:
@@ -74,9 +87,11 @@ class MotionAssembler {
   Quat root_rotation(int frame, const FloorTransform& placement) const { return root_pose(frame, placement).rotation; }
   // The foot contacts (motion/foot_contacts.h) of the frames append_edge plays, from those of
   // the database frames (`frame_contacts`, per global frame): a clip frame has its own; a
-  // blended frame those of the frame that weighs more in it (the departure while alpha >= 0.5).
+  // blended frame those of the frame that weighs more in it (FrameSource::dominant).
   void append_edge_contacts(int edge, std::span<const ContactMask> frame_contacts,
                             std::vector<ContactMask>& out) const;
+  // The database frames each frame append_edge plays is made of, in order.
+  void append_edge_sources(int edge, std::vector<FrameSource>& out) const;
   // What append_edge plays, root only (what searches need; much cheaper than whole poses).
   void append_edge_roots(int edge, FloorTransform& placement, std::vector<RootPose>& out) const;
 

@@ -70,6 +70,16 @@ std::vector<ContactMask> SynthesisContext::walk_contacts(const Walk& walk) const
   return out;
 }
 
+std::vector<FrameSource> SynthesisContext::walk_sources(const Walk& walk) const {
+  std::vector<FrameSource> out;
+  for (int e : walk.edges) assembler.append_edge_sources(e, out);
+  if (walk.start_node >= 0) {
+    const int end = graph->nodes[walk.end_node(*graph)].frame;
+    out.push_back({end, end, 1.0});
+  }
+  return out;
+}
+
 Result<FootCleanup> SynthesisContext::foot_cleanup(const FootCleanupSettings& settings) const {
   if (frame_contacts.empty()) return Error{"", 0, "no foot clean-up: " + feet_error};
   return FootCleanup::create(assembler.skeleton(), feet, db->fps, settings);

@@ -37,6 +37,9 @@ struct SynthesisContext {
   // The contact masks of the frames assemble_walk() plays for `walk` (its edges' frames and
   // the end node's frame).
   std::vector<ContactMask> walk_contacts(const Walk& walk) const;
+  // The database frames of the frames a walk plays: its edges' frames, and when it has a start
+  // node (assemble_walk's walks; steering's record of edges has none) its end node's frame.
+  std::vector<FrameSource> walk_sources(const Walk& walk) const;
   // A clean-up for motion on the target skeleton; fails with feet_error without feet.
   Result<FootCleanup> foot_cleanup(const FootCleanupSettings& settings) const;
   // Cleans the motion assemble_walk() played for `walk` (or its first motion.frame_count frames,
