@@ -188,15 +188,17 @@ Status evaluate_foot_slide(const GraphFile& file, const GraphRebuild& rebuild, s
   if (!rows) return rows.error();
   std::string csv =
       "quantile,threshold,rms_cm,shape,graph,frames,transitions,mean_deviation_m,played_mps,cleaned_mps,source_mps,"
-      "played_ratio,cleaned_ratio,step_over_source_p999,same_frames_source_mps,played_same_ratio,cleaned_same_ratio\n";
+      "played_ratio,cleaned_ratio,step_over_source_p999,same_frames_steps,same_frames_source_mps,played_same_ratio,"
+      "cleaned_same_ratio\n";
   for (const FootSlideSweepRow& r : *rows) {
     const bool g = r.graph;
-    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", num(r.quantile), num(r.threshold),
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", num(r.quantile), num(r.threshold),
                        num(rms_cm_of_distance(r.threshold, rebuild.features)), r.shape, g ? 1 : 0, r.frames,
                        r.transitions, g ? num(r.mean_deviation_m) : "", g ? num(r.played_mps) : "",
                        g ? num(r.cleaned_mps) : "", g ? num(r.source_mps) : "", g ? num(r.played_ratio) : "",
                        g ? num(r.cleaned_ratio) : "", g ? num(r.step_over_source_p999) : "",
-                       g ? num(r.same_frames_source_mps) : "", g ? num(r.played_same_ratio) : "",
+                       g ? std::to_string(r.same_frames_steps) : "", g ? num(r.same_frames_source_mps) : "",
+                       g ? num(r.played_same_ratio) : "",
                        g ? num(r.cleaned_same_ratio) : "");
   }
   if (auto s = out.write_csv("footslide.csv", csv); !s) return s;
@@ -206,8 +208,8 @@ Status evaluate_foot_slide(const GraphFile& file, const GraphRebuild& rebuild, s
     const std::string pick = fmt::format("(strcol(4) eq '{}' ? ${{}} : NaN)", shape);
     plots += fmt::format("{}{} skip 1 using 3:{} with linespoints lc {} pt 7 title '{} cleaned', "
                          "'' skip 1 using 3:{} with linespoints lc {} dt 2 pt 6 title '{} as played'",
-                         i ? ", " : "", out.csv("footslide.csv"), fmt::format(fmt::runtime(pick), 17), i + 1, shape,
-                         fmt::format(fmt::runtime(pick), 16), i + 1, shape);
+                         i ? ", " : "", out.csv("footslide.csv"), fmt::format(fmt::runtime(pick), 18), i + 1, shape,
+                         fmt::format(fmt::runtime(pick), 17), i + 1, shape);
   }
   return out.plot("footslide.png",
                   fmt::format("{}set logscale x\nset xlabel 'transition threshold, RMS point distance (cm, log scale)'\n"

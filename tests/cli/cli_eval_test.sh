@@ -94,7 +94,7 @@ for r in p:
 
 fs = rows("eval/footslide.csv", ["quantile", "threshold", "rms_cm", "shape", "graph", "frames", "transitions",
      "mean_deviation_m", "played_mps", "cleaned_mps", "source_mps", "played_ratio", "cleaned_ratio",
-     "step_over_source_p999", "same_frames_source_mps", "played_same_ratio", "cleaned_same_ratio"])
+     "step_over_source_p999", "same_frames_steps", "same_frames_source_mps", "played_same_ratio", "cleaned_same_ratio"])
 assert len(fs) == 3 * 2, len(fs)
 assert all([r["shape"] for r in fs[2 * i:2 * i + 2]] == ["circle:5", "figure8:4"] for i in range(3))
 # The threshold sweep's first and last thresholds (the same quantiles).
@@ -107,7 +107,7 @@ for r in made:
     assert math.isclose(float(r["played_ratio"]), played / source, rel_tol=1e-9), r
     assert math.isclose(float(r["cleaned_ratio"]), cleaned / source, rel_tol=1e-9), r
     assert 0 < float(r["step_over_source_p999"]) < 10, r
-    assert float(r["same_frames_source_mps"]) > 0, r
+    assert int(r["same_frames_steps"]) > 0 and float(r["same_frames_source_mps"]) > 0, r
     assert 0 <= float(r["cleaned_same_ratio"]) < float(r["played_same_ratio"]), r
 # The clean-up takes most of the slide away: below the capture's own on most paths.
 cleaned = sorted(float(r["cleaned_ratio"]) for r in made)

@@ -180,6 +180,18 @@ assert r["cleanup"]["enabled"] is False and "no left ankle joint" in r["cleanup"
 assert "no left ankle joint" in r["foot_slide"]["error"], r["foot_slide"]
 assert "contacts" not in json.load(open(f"{work}/paws.json"))
 PY
+# Named with --feet, the same rig is cleaned and measured on those joints.
+"$bin" build "$work/paws" -o "$work/paws-named.mgraph" --no-cache -q --feet lpaw,lclaw,rpaw,rclaw
+"$bin" path "$work/paws-named.mgraph" --shape line:2 -o "$work/paws-named.json" --report "$work/paws-named-report.json" \
+  >/dev/null
+python3 - "$work" <<'PY'
+import json, sys
+r = json.load(open(f"{sys.argv[1]}/paws-named-report.json"))
+assert r["cleanup"]["enabled"] is True, r["cleanup"]
+fs = r["foot_slide"]
+assert "error" not in fs and fs["contact_steps"] > 0, fs
+assert "error" not in fs["same_frames"] and fs["same_frames"]["steps"] > 0, fs["same_frames"]
+PY
 
 # Bad input: one line naming the file (and line), exit 1, nothing written.
 expect_error() {  # expected-part output command...

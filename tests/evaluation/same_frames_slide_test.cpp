@@ -6,6 +6,7 @@
 
 #include "motiongraph/evaluation/synthesis_run.h"
 #include "motiongraph/graph/motion_graph.h"
+#include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/synthesis/floor_path.h"
 #include "synthesis/subject16_graph.h"
 #include "test_data.h"
@@ -88,6 +89,74 @@ TEST(SameFramesSlide, EachFrameIsJudgedOnItsOwnClipsFloor) {
   auto one_floor = measure_foot_slide(db.skeletons[0], *motion);
   ASSERT_TRUE(one_floor.ok());
   EXPECT_LT(one_floor->contact_steps, capture->contact_steps * 2 / 3);
+}
+
+// A blend from a walk into a clip that stands still (every frame the walk's frame `still`, both
+// toes planted): on a blended step the capture's speed is the walk's times its weight (the
+// still clip adds nothing), and a step counts by the frame that weighs more, the walk's own
+// contacts while it does and the still clip's (always planted) after. Worked out here from the
+// clips' positions and the blend weights, step by step.
+TEST(SameFramesSlide, ABlendWeighsItsTwoSourcesAsItBlendsThem) {
+  MotionDatabase db = test::small_database({"cmu/16/16_15.amc"});
+  const Skeleton& skeleton = db.skeletons[0];
+  const Motion& walk = db.clips[0].motion;
+  const int n = walk.frame_count, joints = skeleton.joint_count();
+  auto feet = find_foot_joints(skeleton);
+  ASSERT_TRUE(feet.ok());
+  const int toes[2] = {feet->left.toe, feet->right.toe};
+  const std::vector<Vec3> p = world_positions(skeleton, walk);
+  auto contacts = detect_foot_contacts(p, joints, walk.fps, *feet, foot_slide_contact_settings());
+  ASSERT_TRUE(contacts.ok());
+  std::vector<const std::vector<uint8_t>*> planted;
+  for (const FootContactTrack& track : contacts->tracks) {
+    if (track.part == FootPart::kToe) planted.push_back(&track.planted);
+  }
+  ASSERT_EQ(planted.size(), 2u);
+  int still = 0;
+  while (!((*planted[0])[still] && (*planted[1])[still])) ++still;
+  Motion standing = walk;
+  for (int f = 0; f < n; ++f) {
+    std::copy(walk.rotations(still).begin(), walk.rotations(still).end(), standing.rotations(f).begin());
+    std::copy(walk.translations(still).begin(), walk.translations(still).end(), standing.translations(f).begin());
+  }
+  db.clips.push_back({"standing", "", 0, n, n, standing});
+  const int k = 10, a = n / 2;
+  Transition t;
+  t.from_frame = a;
+  t.to_frame = n + 2 * k;
+  auto graph = build_motion_graph(db, std::vector<Transition>{t}, k);
+  ASSERT_TRUE(graph.ok()) << graph.error().to_string();
+  auto assembler = MotionAssembler::create(db, *graph, 0);
+  ASSERT_TRUE(assembler.ok());
+  const Walk played = walk_between(*graph, 0, 2 * n - 1);
+  ASSERT_EQ(played.transition_count(*graph), 1);
+  auto motion = assemble_walk(db, *graph, played, {}, 0);
+  ASSERT_TRUE(motion.ok()) << motion.error().to_string();
+  const std::vector<FrameSource> sources = sources_of(*assembler, *graph, played);
+  const std::vector<Vec3> out = world_positions(skeleton, *motion);
+  auto speed = [&](const std::vector<Vec3>& at, int f, int toe) {
+    const Vec3 step = at[static_cast<size_t>(f) * joints + toe] - at[static_cast<size_t>(f - 1) * joints + toe];
+    return std::hypot(step.x(), step.z()) * walk.fps;
+  };
+  long long steps = 0, blended = 0;
+  double source = 0.0, output = 0.0;
+  for (int f = 1; f < motion->frame_count; ++f) {
+    const FrameSource& s = sources[f];
+    for (int side = 0; side < 2; ++side) {
+      const int g = s.dominant();
+      if (g < n && !(g >= 1 && (*planted[side])[g - 1] && (*planted[side])[g])) continue;
+      if (s.departure < n) source += s.alpha * speed(p, s.departure, toes[side]);  // only the walk moves
+      output += speed(out, f, toes[side]);
+      ++steps;
+      blended += s.alpha < 1.0 ? 1 : 0;
+    }
+  }
+  ASSERT_GT(blended, 6);
+  auto same = same_frames_foot_slide(db, *assembler, *motion, sources);
+  ASSERT_TRUE(same.ok()) << same.error().to_string();
+  EXPECT_EQ(same->steps, steps);
+  EXPECT_NEAR(same->source_mean_mps, source / steps, 1e-12);
+  EXPECT_NEAR(same->mean_mps, output / steps, 1e-12);
 }
 
 // A subject 1.2 times larger played on the smaller one's skeleton: its speeds are counted at the

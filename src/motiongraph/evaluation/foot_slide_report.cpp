@@ -26,7 +26,8 @@ nlohmann::json ratio_json(double output, double source) {
 
 nlohmann::json foot_slide_report(const SynthesisContext& context, const Walk& walk, const Motion& motion) {
   const std::vector<int> clips = walk_source_clips(*context.graph, walk.start_node, walk.edges);
-  auto comparison = compare_foot_slide(context.assembler.skeleton(), motion, *context.db, clips);
+  const FootSlideSettings settings = database_foot_slide_settings(*context.db);
+  auto comparison = compare_foot_slide(context.assembler.skeleton(), motion, *context.db, clips, settings);
   if (!comparison) return {{"error", comparison.error().message}};
   const FootSlide& output = comparison->output;
   const FootSlide& source = comparison->source;
@@ -40,7 +41,7 @@ nlohmann::json foot_slide_report(const SynthesisContext& context, const Walk& wa
                      {"max_joint_step_m", ratio_json(output.max_joint_step_m, source.max_joint_step_m)},
                      {"max_joint_step_over_source_p999", ratio_json(output.max_joint_step_m, source.p999_joint_step_m)}};
   const std::vector<FrameSource> sources = context.walk_sources(walk);
-  auto same = same_frames_foot_slide(*context.db, context.assembler, motion, sources);
+  auto same = same_frames_foot_slide(*context.db, context.assembler, motion, sources, settings);
   if (!same) {
     report["same_frames"] = {{"error", same.error().message}};
   } else {

@@ -34,6 +34,7 @@ struct FootSlideSweepRow {
   double step_over_source_p999 = 0.0; // cleaned largest joint step / the source's 99.9th percentile
   // On the frames played (same_frames_slide.h): the capture's toe speed on those steps, and the
   // result's as played and cleaned over it (NaN when it is 0).
+  long long same_frames_steps = 0;
   double same_frames_source_mps = 0.0;
   double played_same_ratio = 0.0;
   double cleaned_same_ratio = 0.0;

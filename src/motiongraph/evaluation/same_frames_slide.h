@@ -5,8 +5,10 @@
 // its own 2nd percentile, and its source clips whole, each with its own floor. Which pieces a
 // result plays then moves both sides: a path round a tight circle plays the clips' turning
 // steps, whose toes pivot on the floor (CMU 135's karate walks: 0.23 m/s on those frames
-// against 0.07 m/s over the clips whole), and clips captured on floors of other heights (CMU
-// 03's uneven ground, 15 cm apart) leave most of the result's steps above its one floor.
+// against 0.07 m/s over the clips whole), and a result cut from clips captured on floors of
+// other heights has the higher ones' steps above its one floor (a copy raised 10 cm: 32 of 72
+// steps counted). Height alone still cannot judge a clip walking on uneven ground (CMU 03:
+// its toes come within 2 cm of the clip's floor only where the ground is lowest).
 //
 // Here every played frame f knows its database frames (assembler.h FrameSource: departure,
 // arrival, alpha). A step f-1 -> f of a measured foot joint (the toes; a foot without a toe by

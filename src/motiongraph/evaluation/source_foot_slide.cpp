@@ -6,6 +6,12 @@
 
 namespace mg {
 
+FootSlideSettings database_foot_slide_settings(const MotionDatabase& db) {
+  FootSlideSettings settings;
+  settings.joint_names = db.foot_names;
+  return settings;
+}
+
 std::vector<int> walk_source_clips(const MotionGraph& graph, int start_node, std::span<const int> edges) {
   std::vector<int> clips;
   if (start_node >= 0 && start_node < graph.node_count()) clips.push_back(graph.nodes[start_node].clip);

@@ -22,6 +22,10 @@ struct FootSlideComparison {
   std::vector<int> source_clips;  // indices into MotionDatabase::clips, ascending
 };
 
+// The measure's settings with the feet the database names (db.foot_names: `--feet`, a
+// manifest's [feet]; empty: found by name), as the clean-up finds them.
+FootSlideSettings database_foot_slide_settings(const MotionDatabase& db);
+
 // The clips `edges` read (see above), each once, ascending; the start node's clip as well.
 std::vector<int> walk_source_clips(const MotionGraph& graph, int start_node, std::span<const int> edges);
 
