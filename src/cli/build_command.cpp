@@ -195,7 +195,7 @@ Command add_build_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--path-check", b.path_check.tolerance_m,
                   "--threshold auto: raise the threshold (up to --max-threshold) until a test path of half circles of "
-                  "4 m is followed within this mean deviation in metres")
+                  "4 m, right then left, and its mirror are both followed within this mean deviation in metres")
       ->capture_default_str();
   sub->add_flag("--no-path-check", b.no_path_check, "--threshold auto: keep the coverage threshold, untested");
   sub->add_option("--max-out", b.spacing.max_out,

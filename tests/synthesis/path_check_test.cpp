@@ -7,6 +7,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <memory>
 #include <numbers>
 
@@ -31,6 +34,19 @@ TEST(PathCheck, ProbeIsStraightThenRightAndLeftHalfCircles) {
   // The left half circle brings it 8 m further east heading north again; then 2 m north.
   EXPECT_NEAR((probe.point_at(probe.length_m()) - Vec2(16.0, -4.0)).norm(), 0.0, 0.03);
   EXPECT_NEAR((probe.point_at(right_end + 2.0 * kPi) - Vec2(12.0, 2.0)).norm(), 0.0, 0.02);
+}
+
+TEST(PathCheck, TheMirroredProbeTurnsLeftFirst) {
+  const FloorPath probe = path_check_probe();
+  const FloorPath mirror = path_check_probe(true);
+  ASSERT_EQ(mirror.points().size(), probe.points().size());
+  EXPECT_DOUBLE_EQ(mirror.length_m(), probe.length_m());
+  for (double arc = 0.0; arc <= probe.length_m(); arc += 0.7) {
+    const Vec2 p = probe.point_at(arc), q = mirror.point_at(arc);
+    EXPECT_NEAR(q.x(), -p.x(), 1e-9) << arc;
+    EXPECT_NEAR(q.y(), p.y(), 1e-9) << arc;
+  }
+  EXPECT_NEAR((mirror.point_at(2.0 + 4.0 * std::numbers::pi) - Vec2(-8.0, -2.0)).norm(), 0.0, 0.02);  // west
 }
 
 TEST(PathCheck, SettingsAreValidated) {
@@ -108,6 +124,34 @@ bool passes(const PathCheckPoint& p, double tolerance) {
   return p.graph && p.reached_end && p.mean_deviation_m <= tolerance;
 }
 
+// The search the check runs on each threshold's graph: Kovar's search alone.
+PathSynthesisSettings check_search(const PathCheckSettings& check) {
+  PathSynthesisSettings search = check.synthesis;
+  search.edit_path = false;
+  search.progress_retries = 0;
+  search.anchor_arc = false;
+  return search;
+}
+
+// The point the check makes of a graph: the probe and its mirror synthesized here with
+// `search`, the worse of the two (deviation as played, or as delivered when `delivered`).
+PathCheckPoint probes_here(const GraphAt& graph, const PathSynthesisSettings& search, bool delivered) {
+  std::array<PathCheckPoint, 2> probe;
+  for (int mirrored = 0; mirrored < 2; ++mirrored) {
+    auto path = synthesize_path(graph.context, path_check_probe(mirrored == 1), search);
+    EXPECT_TRUE(path);
+    PathCheckPoint& one = probe[mirrored];
+    one.graph = true;
+    one.mean_deviation_m = delivered ? path->mean_deviation_m : path->graph_mean_deviation_m;
+    one.reached_end = path->reached_end;
+    one.arc_covered_m = path->arc_covered_m;
+    one.transitions = path->walk.transition_count(graph.graph.pruned.graph);
+  }
+  PathCheckPoint worse = went_better(probe[0], probe[1]) ? probe[1] : probe[0];
+  worse.probe_deviations_m = {probe[0].mean_deviation_m, probe[1].mean_deviation_m};
+  return worse;
+}
+
 TEST(PathCheck, TheBestProbeHasAGraphThenReachesTheEndOrCoversMostThenDeviatesLeast) {
   auto point = [](bool graph, bool end, double arc, double deviation) {
     PathCheckPoint p;
@@ -181,11 +225,12 @@ TEST(PathCheck, UnreachableToleranceTriesEveryStepToTheCeilingAndKeepsTheBest) {
   EXPECT_EQ(check->delivered->threshold, chosen->threshold);
   ASSERT_TRUE(s.synthesis.edit_path);
   const auto graph = graph_at(x, chosen->threshold);
-  auto path = synthesize_path(graph->context, path_check_probe(), s.synthesis);
-  ASSERT_TRUE(path);
-  EXPECT_DOUBLE_EQ(path->mean_deviation_m, check->delivered->mean_deviation_m);
-  EXPECT_EQ(path->reached_end, check->delivered->reached_end);
-  EXPECT_NE(path->mean_deviation_m, path->graph_mean_deviation_m);  // the edit did bend it
+  const PathCheckPoint delivered = probes_here(*graph, s.synthesis, true);
+  EXPECT_DOUBLE_EQ(delivered.mean_deviation_m, check->delivered->mean_deviation_m);
+  EXPECT_EQ(delivered.reached_end, check->delivered->reached_end);
+  EXPECT_EQ(delivered.probe_deviations_m, check->delivered->probe_deviations_m);
+  const PathCheckPoint played = probes_here(*graph, check_search(s), false);
+  EXPECT_NE(delivered.probe_deviations_m, played.probe_deviations_m);  // the edit did bend them
   if (chosen->threshold != x.from) {
     EXPECT_LE(chosen->mean_deviation_m, s.lost_m);
   }
@@ -204,13 +249,15 @@ TEST(PathCheck, ChoosesTheFirstThresholdWithinTheToleranceAndMeasuresAsPathSynth
   PathCheckSettings s;
   s.steps = 3;
   s.tolerance_m = 1e-6;
+  s.mirrored = false;  // the probe as drawn alone: the fixture's walks follow its mirror nowhere
   s.synthesis.progress_retries = 0;  // the delivered probe of the first check searches once
   auto all = check_path_following(x.db, x.features, x.search, x.settings, x.from, x.ceiling, s);
   ASSERT_TRUE(all);
-  // A tolerance that the last point meets: the answer is the first point meeting it.
-  const PathCheckPoint& last = all->points.back();
-  ASSERT_TRUE(last.graph && last.reached_end);
-  s.tolerance_m = last.mean_deviation_m;
+  // A tolerance that a point reaching the end meets: the answer is the first point meeting it.
+  auto reaching = std::find_if(all->points.rbegin(), all->points.rend(),
+                               [](const PathCheckPoint& p) { return p.graph && p.reached_end; });
+  ASSERT_NE(reaching, all->points.rend());
+  s.tolerance_m = reaching->mean_deviation_m;
   auto check = check_path_following(x.db, x.features, x.search, x.settings, x.from, x.ceiling, s);
   ASSERT_TRUE(check);
   EXPECT_TRUE(check->passed);
@@ -222,15 +269,43 @@ TEST(PathCheck, ChoosesTheFirstThresholdWithinTheToleranceAndMeasuresAsPathSynth
   // The deviation reported is path synthesis's on that threshold's graph, built again here, as
   // the graph plays the walk (the check judges the graph, not the edit onto the path).
   const auto graph = graph_at(x, check->threshold);
-  PathSynthesisSettings search = s.synthesis;  // as the check searches: Kovar's search alone
-  search.edit_path = false;
-  search.progress_retries = 0;
-  search.anchor_arc = false;
-  auto path = synthesize_path(graph->context, path_check_probe(), search);
+  auto path = synthesize_path(graph->context, path_check_probe(), check_search(s));
   ASSERT_TRUE(path);
-  EXPECT_DOUBLE_EQ(path->graph_mean_deviation_m, check->chosen()->mean_deviation_m);
-  EXPECT_EQ(path->reached_end, check->chosen()->reached_end);
-  EXPECT_EQ(path->walk.transition_count(graph->graph.pruned.graph), check->chosen()->transitions);
+  const PathCheckPoint* chosen = check->chosen();
+  EXPECT_DOUBLE_EQ(path->graph_mean_deviation_m, chosen->mean_deviation_m);
+  EXPECT_EQ(path->reached_end, chosen->reached_end);
+  EXPECT_EQ(path->walk.transition_count(graph->graph.pruned.graph), chosen->transitions);
+  EXPECT_EQ(chosen->probe_deviations_m[0], chosen->mean_deviation_m);
+  EXPECT_TRUE(std::isnan(chosen->probe_deviations_m[1]));  // no mirror followed
+}
+
+// By default each threshold's point is the worse of the probe and its mirror, each measured as
+// path synthesis measures it on that threshold's graph, built again here.
+TEST(PathCheck, EachPointIsTheWorseOfTheProbeAndItsMirror) {
+  const Fixture& x = walking();
+  PathCheckSettings s;
+  ASSERT_TRUE(s.mirrored);
+  s.steps = 2;
+  s.tolerance_m = 1e-6;
+  s.lost_m = 1e9;
+  s.synthesis.progress_retries = 0;
+  auto check = check_path_following(x.db, x.features, x.search, x.settings, x.from, x.ceiling, s);
+  ASSERT_TRUE(check) << check.error().to_string();
+  ASSERT_EQ(check->points.size(), 3u);
+  for (const PathCheckPoint& p : check->points) {
+    ASSERT_TRUE(p.graph);
+    const PathCheckPoint here = probes_here(*graph_at(x, p.threshold), check_search(s), false);
+    EXPECT_DOUBLE_EQ(here.mean_deviation_m, p.mean_deviation_m);
+    EXPECT_EQ(here.reached_end, p.reached_end);
+    EXPECT_EQ(here.arc_covered_m, p.arc_covered_m);
+    EXPECT_EQ(here.transitions, p.transitions);
+    EXPECT_EQ(here.probe_deviations_m, p.probe_deviations_m);
+  }
+  // Not followed, so the chosen one was delivered as `path` does, both probes again.
+  ASSERT_TRUE(check->delivered.has_value());
+  const PathCheckPoint delivered = probes_here(*graph_at(x, check->threshold), s.synthesis, true);
+  EXPECT_DOUBLE_EQ(delivered.mean_deviation_m, check->delivered->mean_deviation_m);
+  EXPECT_EQ(delivered.probe_deviations_m, check->delivered->probe_deviations_m);
 }
 
 TEST(PathCheck, ALibraryWhoseRootStaysPutIsNotChecked) {
@@ -261,15 +336,18 @@ TEST(PathCheck, SettingsJsonRoundTripAndMissingKeysKeepDefaults) {
   s.min_travel_share = 0.3;
   s.travel_speed_mps = 0.7;
   s.lost_m = 2.5;
+  s.mirrored = false;
   const nlohmann::json json = s;
   const auto back = json.get<PathCheckSettings>();
   EXPECT_EQ(nlohmann::json(back), json);
   EXPECT_EQ(back.steps, 3);
   EXPECT_EQ(back.travel_speed_mps, 0.7);
   EXPECT_EQ(back.lost_m, 2.5);
+  EXPECT_FALSE(back.mirrored);
   const auto defaults = nlohmann::json{{"tolerance_m", 0.3}}.get<PathCheckSettings>();
   EXPECT_EQ(defaults.tolerance_m, 0.3);
   EXPECT_EQ(defaults.steps, PathCheckSettings{}.steps);
+  EXPECT_TRUE(defaults.mirrored);
 }
 
 }  // namespace

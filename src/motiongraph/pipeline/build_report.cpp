@@ -1,6 +1,7 @@
 // The build report's JSON.
 #include "motiongraph/pipeline/build_report.h"
 
+#include <cmath>
 #include <algorithm>
 #include <string>
 
@@ -93,7 +94,8 @@ json threshold_choice_json(const ThresholdChoice& choice, const MotionDatabase& 
 }
 
 json path_check_json(const PathCheck& check, const PathCheckSettings& settings) {
-  const auto point_json = [](const PathCheckPoint& p) {
+  const auto finite_or_null = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+  const auto point_json = [&](const PathCheckPoint& p) {
     return json{{"threshold", p.threshold},
                 {"rms_cm", p.rms_cm},
                 {"graph", p.graph},
@@ -102,7 +104,9 @@ json path_check_json(const PathCheck& check, const PathCheckSettings& settings) 
                 {"reached_end", p.reached_end},
                 {"arc_covered_m", p.arc_covered_m},
                 {"transitions", p.transitions},
-                {"seconds", p.seconds}};
+                {"seconds", p.seconds},
+                {"probe_deviations_m", json::array({finite_or_null(p.probe_deviations_m[0]),
+                                                    finite_or_null(p.probe_deviations_m[1])})}};
   };
   json points = json::array();
   for (const PathCheckPoint& p : check.points) points.push_back(point_json(p));

@@ -30,7 +30,7 @@ const PathCheckPoint* PathCheck::chosen() const {
   return nullptr;
 }
 
-FloorPath path_check_probe() {
+FloorPath path_check_probe(bool mirrored) {
   constexpr double kPi = std::numbers::pi;
   constexpr double kStraight = 2.0, kRadius = 4.0, kStep = 0.1;
   // Heading h is measured from north (-z) towards east (+x): direction (sin h, -cos h).
@@ -49,6 +49,9 @@ FloorPath path_check_probe() {
   go(kPi * kRadius, 1.0 / kRadius);   // right
   go(kPi * kRadius, -1.0 / kRadius);  // left
   go(kStraight, 0.0);
+  if (mirrored) {
+    for (Vec2& p : points) p.x() = -p.x();
+  }
   auto path = FloorPath::create(points);
   return std::move(*path);  // a fixed, valid polyline
 }
@@ -72,12 +75,12 @@ double travelling_share(const SynthesisContext& context, double speed_mps) {
 
 namespace {
 
-// The probe on the graph of one threshold. travel_share is set only when asked for. With
-// as_path_does, the search is `path`'s own, edit and retries included, and the deviations are
-// its delivered motion's.
+// The probes (the probe, and its mirror when asked) on the graph of one threshold, the point
+// the worse of them. travel_share is set only when asked for. With as_path_does, the search is
+// `path`'s own, edit and retries included, and the deviations are its delivered motion's.
 Result<PathCheckPoint> probe_at(const MotionDatabase& db, const FrameFeatures& features,
                                 const CandidateSearch& candidates, const GraphFromCandidatesSettings& settings,
-                                double threshold, const PathCheckSettings& check, const FloorPath& probe,
+                                double threshold, const PathCheckSettings& check, std::span<const FloorPath> probes,
                                 double* travel_share, OnDemandCandidates* more, bool as_path_does = false) {
   GraphFromCandidatesSettings at = settings;
   at.transitions.threshold = threshold;
@@ -102,15 +105,22 @@ Result<PathCheckPoint> probe_at(const MotionDatabase& db, const FrameFeatures& f
     search.progress_retries = 0;  // nor another search pushing harder,
     search.anchor_arc = false;    // nor one that corrects its arc as it goes: Kovar's search alone
   }
-  auto result = synthesize_path(*context, probe, search);
-  if (!result) return result.error();
-  point.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  point.mean_deviation_m = as_path_does ? result->mean_deviation_m : result->graph_mean_deviation_m;
-  point.max_deviation_m = as_path_does ? result->max_deviation_m : result->graph_max_deviation_m;
-  point.reached_end = result->reached_end;
-  point.arc_covered_m = result->arc_covered_m;
-  point.transitions = result->walk.transition_count(built->graph);
-  return point;
+  PathCheckPoint worse = point;
+  for (size_t i = 0; i < probes.size(); ++i) {
+    auto result = synthesize_path(*context, probes[i], search);
+    if (!result) return result.error();
+    PathCheckPoint one = point;
+    one.mean_deviation_m = as_path_does ? result->mean_deviation_m : result->graph_mean_deviation_m;
+    one.max_deviation_m = as_path_does ? result->max_deviation_m : result->graph_max_deviation_m;
+    one.reached_end = result->reached_end;
+    one.arc_covered_m = result->arc_covered_m;
+    one.transitions = result->walk.transition_count(built->graph);
+    point.probe_deviations_m[i] = one.mean_deviation_m;
+    if (i == 0 || went_better(worse, one)) worse = one;
+  }
+  worse.probe_deviations_m = point.probe_deviations_m;
+  worse.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return worse;
 }
 
 bool passes(const PathCheckPoint& p, double tolerance) {
@@ -131,9 +141,10 @@ Result<PathCheck> check_path_following(const MotionDatabase& db, const FrameFeat
                                        double from_threshold, double ceiling, const PathCheckSettings& check,
                                        OnDemandCandidates* more) {
   if (auto s = check.validate(); !s) return s.error();
-  const FloorPath probe = path_check_probe();
+  std::vector<FloorPath> probe{path_check_probe()};
+  if (check.mirrored) probe.push_back(path_check_probe(true));
   PathCheck out;
-  out.probe_length_m = probe.length_m();
+  out.probe_length_m = probe.front().length_m();
   out.threshold = from_threshold;
   out.rms_cm = rms_cm_of_distance(from_threshold, features);
   auto first = probe_at(db, features, candidates, settings, from_threshold, check, probe, &out.travel_share, more);
@@ -192,7 +203,8 @@ void to_json(nlohmann::json& json, const PathCheckSettings& settings) {
           {"lost_m", settings.lost_m},
           {"steps", settings.steps},
           {"min_travel_share", settings.min_travel_share},
-          {"travel_speed_mps", settings.travel_speed_mps}};
+          {"travel_speed_mps", settings.travel_speed_mps},
+          {"mirrored", settings.mirrored}};
 }
 
 void from_json(const nlohmann::json& json, PathCheckSettings& settings) {
@@ -202,6 +214,7 @@ void from_json(const nlohmann::json& json, PathCheckSettings& settings) {
   settings.steps = json.value("steps", defaults.steps);
   settings.min_travel_share = json.value("min_travel_share", defaults.min_travel_share);
   settings.travel_speed_mps = json.value("travel_speed_mps", defaults.travel_speed_mps);
+  settings.mirrored = json.value("mirrored", defaults.mirrored);
 }
 
 }  // namespace mg

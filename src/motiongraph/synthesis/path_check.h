@@ -4,9 +4,11 @@
 // at 6.5 cm, where a few more transitions join its turning steps to its straight ones. So the
 // automatic threshold is checked by doing what a user will do: synthesize a test path (the
 // probe: 2 m straight, a half circle of 4 m radius to the right, one to the left, 2 m straight,
-// about 29 m, with `path`'s default search) on the graph of the threshold, and raise the
-// threshold in log-spaced steps towards the ceiling until the probe is followed within
-// `tolerance_m` mean deviation. When no step is, the threshold whose probe went best (reached
+// about 29 m, with `path`'s default search) and its mirror (left first) on the graph of the
+// threshold, and raise the threshold in log-spaced steps towards the ceiling until both are
+// followed within `tolerance_m` mean deviation. Paths turn either way: one probe alone let a
+// few moved nodes flip a library's choice (subject 16 followed the probe 0.081 m off at 2.65
+// cm, its mirror 0.205 m off; both within 0.053 m at 3.46 cm). When no step is, the threshold whose probe went best (reached
 // the end; else covered the most of it; then least deviation) is kept and `passed` is false,
 // and the probe is synthesized there once more as `path` does by default (`delivered`). A
 // higher threshold adds rougher transitions, so it is kept only when its probe came near the
@@ -19,6 +21,8 @@
 // `travel_speed_mps` or faster, the check is skipped and the threshold stays.
 #pragma once
 
+#include <array>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,13 +41,14 @@ struct PathCheckSettings {
   int steps = 6;                    // thresholds tried above the first, log-spaced in RMS to the ceiling
   double min_travel_share = 0.1;    // of clip frames; below it the check is skipped
   double travel_speed_mps = 0.5;    // a clip piece travels when its root moves this fast on average
+  bool mirrored = true;             // follow the probe's mirror too; a threshold is judged by the worse
   PathSynthesisSettings synthesis;  // the search `path` uses by default, once, its motion not edited
 
   Status validate() const;
 };
 
 // Its JSON form, the settings part of the build report's "path_check": {"tolerance_m", "lost_m",
-// "steps", "min_travel_share", "travel_speed_mps"} (the search is `path`'s default, not
+// "steps", "min_travel_share", "travel_speed_mps", "mirrored"} (the search is `path`'s default, not
 // recorded); a key missing on reading keeps its default.
 void to_json(nlohmann::json& json, const PathCheckSettings& settings);
 void from_json(const nlohmann::json& json, PathCheckSettings& settings);
@@ -57,7 +62,10 @@ struct PathCheckPoint {
   bool reached_end = false;
   double arc_covered_m = 0.0;  // the probe's length the walk covered (path synthesis' arc)
   int transitions = 0;     // of the probe's walk
-  double seconds = 0.0;    // the probe's search time
+  double seconds = 0.0;    // the probes' search time
+  // The mean deviation of the probe as drawn and of its mirror (NaN when not followed); the
+  // fields above are the worse one's (went_better below).
+  std::array<double, 2> probe_deviations_m{std::nan(""), std::nan("")};
 };
 
 // Whether probe p went better than q: a graph, then reaching the end (or, short of it, covering
@@ -80,8 +88,9 @@ struct PathCheck {
   const PathCheckPoint* chosen() const;
 };
 
-// The probe path (see above), starting at the origin heading north.
-FloorPath path_check_probe();
+// The probe path (see above), starting at the origin heading north; mirrored, turning left
+// first (x negated).
+FloorPath path_check_probe(bool mirrored = false);
 
 // The share of the graph's clip frames played by clip edges whose root travels at
 // `speed_mps` or faster on average.
