@@ -82,6 +82,7 @@ OptionTable build_option_table(BuildCall& call) {
       {"max_threshold", set(b.choice.max_rms_cm)},
       {"path_check", set(b.path_check.tolerance_m)},
       {"no_path_check", set(b.no_path_check)},
+      {"no_path_check_mirror", set(b.no_path_check_mirror)},
       {"max_out", set(b.spacing.max_out)},
       {"out_window", set(b.spacing.out_window_frames)},
       {"min_piece", set(b.spacing.min_piece_frames)},

@@ -198,6 +198,8 @@ Command add_build_command(CLI::App& app) {
                   "4 m, right then left, and its mirror are both followed within this mean deviation in metres")
       ->capture_default_str();
   sub->add_flag("--no-path-check", b.no_path_check, "--threshold auto: keep the coverage threshold, untested");
+  sub->add_flag("--no-path-check-mirror", b.no_path_check_mirror,
+                "--threshold auto: judge a threshold by the test path alone, not by the worse of it and its mirror");
   sub->add_option("--max-out", b.spacing.max_out,
                   "Transitions leaving any --out-window consecutive frames of a clip, the best kept (0: no limit)")
       ->capture_default_str();

@@ -132,8 +132,10 @@ int run_inspect(const InspectOptions& o) {
       fmt::print("path check: skipped (the clips hardly travel)\n");
     } else if (chosen != points.end()) {
       const auto delivered = check.value("delivered", nlohmann::json());
-      fmt::print("path check: the {:.0f} m test path followed {:.3f} m off{} ({}; {} threshold(s) tried){}\n",
-                 check.value("probe_length_m", 0.0), (*chosen).value("mean_deviation_m", 0.0),
+      fmt::print("path check: the {:.0f} m test path{} followed {:.3f} m off{} ({}; {} threshold(s) tried){}\n",
+                 check.value("probe_length_m", 0.0),
+                 check.value("mirrored", false) ? " and its mirror (the worse of the two)" : "",
+                 (*chosen).value("mean_deviation_m", 0.0),
                  (*chosen).value("reached_end", false) ? "" : ", end not reached",
                  check.value("passed", false) ? fmt::format("within {:g} m", check.value("tolerance_m", 0.0))
                                               : std::string("NOT within the tolerance: the clips may hold few turns"),

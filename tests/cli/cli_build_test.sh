@@ -14,7 +14,7 @@ cache="$work/cache"
   --export-matrix "$work/m.npy" --export-clouds "$work/c.npy" --matrix-png "$work/m.png" -q
 "$bin" inspect "$work/g.mgraph" >"$work/inspect.txt"
 grep -q "after pruning" "$work/inspect.txt" || { echo "FAIL: inspect output"; cat "$work/inspect.txt"; exit 1; }
-grep -q "path check: the 29 m test path followed 0\.[0-9]* m off (within 0.1 m; [0-9]* threshold(s) tried)" "$work/inspect.txt" \
+grep -q "path check: the 29 m test path and its mirror (the worse of the two) followed 0\.[0-9]* m off (within 0.1 m; [0-9]* threshold(s) tried)" "$work/inspect.txt" \
   || { echo "FAIL: inspect's path check line"; cat "$work/inspect.txt"; exit 1; }
 "$bin" inspect --json "$work/g.mgraph" >"$work/inspect.json"
 grep -q '"graph_after"' "$work/inspect.json" || { echo "FAIL: inspect --json"; exit 1; }
@@ -61,6 +61,14 @@ last = [p for p in pc["points"] if p["threshold"] == pc["threshold"]][0]
 assert 0 < last["mean_deviation_m"] <= pc["tolerance_m"] and last["reached_end"], pc
 assert all(p["mean_deviation_m"] > pc["tolerance_m"] for p in pc["points"] if p["threshold"] < pc["threshold"]), pc
 assert abs(pc["probe_length_m"] - (4 + 8 * 3.141592653589793)) < 0.01, pc["probe_length_m"]
+# Each point is the worse of the probe and its mirror, both reported.
+assert pc["mirrored"] is True, pc
+for p in pc["points"]:
+    d = p["probe_deviations_m"]
+    assert len(d) == 2 and all(x is not None and x >= 0 for x in d), p
+    assert p["mean_deviation_m"] in d, p
+    if p["reached_end"]:
+        assert p["mean_deviation_m"] == max(d), p
 assert abs(r["threshold"] - pc["threshold"]) <= 1e-9 * pc["threshold"]
 assert abs(r["threshold_rms_cm"] - 100 * (r["threshold"] / r["window_weight"]) ** 0.5) < 1e-6
 assert r["threshold_rms_cm"] <= c["max_rms_cm"]
@@ -105,11 +113,12 @@ done
 # path went best is kept, and the user is told. Without the check, the coverage choice stays.
 "$bin" build "$data/cmu/16" -o "$work/pc.mgraph" --cache-dir "$cache" --path-check 0.0001 --report "$work/pc.json" \
   2>"$work/pc.err" >/dev/null
-grep -q "path check: no threshold up to --max-threshold 10 cm lets the graph's own walks follow the test path within 0.0001 m; the best, RMS [0-9.]* cm, follows it [0-9.]* m off (the clips may hold few turns); \`path\`, bending the motion onto the path, follows it [0-9.]* m off" "$work/pc.err" \
+grep -q "path check: no threshold up to --max-threshold 10 cm lets the graph's own walks follow the test path and its mirror within 0.0001 m; the best, RMS [0-9.]* cm, follows them [0-9.]* m off, the worse of the two (the clips may hold few turns); \`path\`, bending the motion onto the path, follows them [0-9.]* m off, the worse of the two" "$work/pc.err" \
   || { echo "FAIL: path check warning"; cat "$work/pc.err"; exit 1; }
 "$bin" inspect "$work/pc.mgraph" | grep "path check: .* (NOT within the tolerance: the clips may hold few turns; 7 threshold(s) tried); path's motion, bent onto it: [0-9.]* m off" >/dev/null \
   || { echo "FAIL: inspect's failed path check line"; "$bin" inspect "$work/pc.mgraph"; exit 1; }
 "$bin" build "$data/cmu/16" -o "$work/npc.mgraph" --cache-dir "$cache" --no-path-check --report "$work/npc.json" -q
+"$bin" build "$data/cmu/16" -o "$work/one.mgraph" --cache-dir "$cache" --no-path-check-mirror --report "$work/one.json" -q
 python3 - "$work" <<'PY'
 import json, sys
 work = sys.argv[1]
@@ -123,11 +132,21 @@ assert r["threshold"] == pc["threshold"] == best["threshold"], (r["threshold"], 
 # graph's own walk.
 d = pc["delivered"]
 assert d["threshold"] == best["threshold"] and d["reached_end"] and d["mean_deviation_m"] < best["mean_deviation_m"], d
-assert f"bending the motion onto the path, follows it {d['mean_deviation_m']:.3f} m off" in open(f"{work}/pc.err").read()
+assert f"bending the motion onto the path, follows them {d['mean_deviation_m']:.3f} m off" in open(f"{work}/pc.err").read()
 n = json.load(open(f"{work}/npc.json"))
 r0 = json.load(open(f"{work}/r.json"))
 assert r0["path_check"]["delivered"] is None  # passed: nothing beyond the graph's own walks
 assert n["path_check"] is None and n["threshold"] == n["threshold_choice"]["threshold"] == c["threshold"]
+# The probe alone: no mirror followed, and a threshold no higher than where both are followed
+# (each point's probe as drawn is the same search on the same graph).
+one = json.load(open(f"{work}/one.json"))["path_check"]
+assert one["mirrored"] is False and one["passed"], one
+assert all(p["probe_deviations_m"][1] is None and p["mean_deviation_m"] == p["probe_deviations_m"][0]
+           for p in one["points"]), one["points"]
+both = r0["path_check"]
+assert one["threshold"] <= both["threshold"], (one["threshold"], both["threshold"])
+for p, q in zip(one["points"], both["points"]):
+    assert p["threshold"] == q["threshold"] and p["probe_deviations_m"][0] == q["probe_deviations_m"][0], (p, q)
 PY
 
 # What the graph keeps of each clip: the report and `inspect --clips` agree with the graph's own

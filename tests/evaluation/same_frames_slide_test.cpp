@@ -99,7 +99,7 @@ TEST(SameFramesSlide, EachFrameIsJudgedOnItsOwnClipsFloor) {
 TEST(SameFramesSlide, ABlendWeighsItsTwoSourcesAsItBlendsThem) {
   MotionDatabase db = test::small_database({"cmu/16/16_15.amc"});
   const Skeleton& skeleton = db.skeletons[0];
-  const Motion& walk = db.clips[0].motion;
+  const Motion walk = db.clips[0].motion;  // a copy: the clips grow below
   const int n = walk.frame_count, joints = skeleton.joint_count();
   auto feet = find_foot_joints(skeleton);
   ASSERT_TRUE(feet.ok());

@@ -84,6 +84,16 @@ def test_options_as_the_cli(cli, data, tmp_path):
     assert python_nodes(graph) == inspect_nodes(cli, tmp_path / "g.mgraph")
 
 
+def test_the_path_check_mirror_can_be_left_out(data, built):
+    # By default each threshold is judged by the worse of the test path and its mirror; with
+    # no_path_check_mirror=True (the CLI's --no-path-check-mirror) by the test path alone.
+    assert built.report["path_check"]["mirrored"] is True
+    one = mg.build(str(data / "cmu/16"), no_path_check_mirror=True)
+    check = one.report["path_check"]
+    assert check["mirrored"] is False and all(p["probe_deviations_m"][1] is None for p in check["points"])
+    assert check["threshold"] <= built.report["path_check"]["threshold"]
+
+
 def test_cache_dir_gives_the_same_graph(data, built, tmp_path):
     first = mg.build(str(data / "cmu/16"), cache_dir=str(tmp_path))
     assert any(tmp_path.iterdir())

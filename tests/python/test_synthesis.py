@@ -153,9 +153,10 @@ def test_path_releases_the_gil(graph):
 def test_bridge_penalty_reaches_the_steering_search(cli, graph_file, graph, tmp_path):
     # Asked for no motion type, subject 16's steering turns through bridges when they cost as any
     # transition (--bridge-penalty 0) and without them by default. Which turns a graph takes
-    # through bridges is its own (measured: 1-2 bridges in each of these 8 s scripts on the
-    # graph of RMS 3.46 cm, none in several others), so four scripts are run and the bridges
-    # summed; Python's controller plays each exactly as the CLI's.
+    # through bridges is its own (measured: 2 bridges in each of the first three 8 s scripts on
+    # the graph of RMS 3.46 cm, none in the fourth, which took 3 on that of 2.65 cm), so four
+    # scripts are run and the bridges summed; Python's controller plays each exactly as the
+    # CLI's.
     scripts = [[(0, 0), (2, 60), (5, 270)], [(0, 0), (1, 90), (4, 0)], [(0, 0), (1, 135), (4, 0)],
                [(0, 0), (2, 180), (5, 0)]]
     fps = graph.fps

@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <algorithm>
 #include <array>
 #include <cmath>
 #include <memory>
@@ -253,11 +252,10 @@ TEST(PathCheck, ChoosesTheFirstThresholdWithinTheToleranceAndMeasuresAsPathSynth
   s.synthesis.progress_retries = 0;  // the delivered probe of the first check searches once
   auto all = check_path_following(x.db, x.features, x.search, x.settings, x.from, x.ceiling, s);
   ASSERT_TRUE(all);
-  // A tolerance that a point reaching the end meets: the answer is the first point meeting it.
-  auto reaching = std::find_if(all->points.rbegin(), all->points.rend(),
-                               [](const PathCheckPoint& p) { return p.graph && p.reached_end; });
-  ASSERT_NE(reaching, all->points.rend());
-  s.tolerance_m = reaching->mean_deviation_m;
+  // A tolerance that the last point meets: the answer is the first point meeting it.
+  const PathCheckPoint& last = all->points.back();
+  ASSERT_TRUE(last.graph && last.reached_end);
+  s.tolerance_m = last.mean_deviation_m;
   auto check = check_path_following(x.db, x.features, x.search, x.settings, x.from, x.ceiling, s);
   ASSERT_TRUE(check);
   EXPECT_TRUE(check->passed);

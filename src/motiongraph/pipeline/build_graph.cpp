@@ -255,30 +255,35 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
   check_json = path_check_json(*check, check_settings);
   const PathCheckPoint& first = check->points.front();
   const PathCheckPoint* picked = check->chosen();
+  // With the mirror, each figure is the worse of the probe and its mirror.
+  const bool both = check_settings.mirrored;
+  const std::string probes = both ? "the test path and its mirror" : "the test path";
+  const std::string worse = both ? ", the worse of the two" : "";
+  const std::string them = both ? "them" : "it";
   if (check->skipped) {
     say.info(fmt::format("path check: skipped, the library hardly travels ({:.0f} % of its frames at {:g} m/s or more)",
                          100.0 * check->travel_share, check_settings.travel_speed_mps));
   } else if (check->passed && check->points.size() == 1) {
-    say.info(fmt::format("path check: a {:.0f} m test path is followed at {:.3f} m mean deviation",
-                         check->probe_length_m, first.mean_deviation_m));
+    say.info(fmt::format("path check: {} ({:.0f} m) followed at {:.3f} m mean deviation{}", probes,
+                         check->probe_length_m, first.mean_deviation_m, worse));
   } else if (check->passed) {
-    say.info(
-        fmt::format("path check: the test path is followed {:.3f} m off at RMS {:.2f} cm; raised to RMS {:.2f} "
-                    "cm, where it is followed at {:.3f} m",
-                    first.mean_deviation_m, first.rms_cm, check->rms_cm, picked->mean_deviation_m));
+    say.info(fmt::format("path check: {} followed {:.3f} m off at RMS {:.2f} cm{}; raised to RMS {:.2f} cm, where "
+                         "followed at {:.3f} m",
+                         probes, first.mean_deviation_m, first.rms_cm, worse, check->rms_cm, picked->mean_deviation_m));
   } else {
     const PathCheckPoint* delivered = check->delivered ? &*check->delivered : nullptr;
     say.warning(fmt::format(
-        "path check: no threshold up to --max-threshold {:g} cm lets the graph's own walks follow the test path "
-        "within {:g} m; the best, RMS {:.2f} cm, follows it {:.3f} m off{} (the clips may hold few turns){}",
-        choice_settings.max_rms_cm, check_settings.tolerance_m, check->rms_cm, picked->mean_deviation_m,
+        "path check: no threshold up to --max-threshold {:g} cm lets the graph's own walks follow {} within {:g} m; "
+        "the best, RMS {:.2f} cm, follows {} {:.3f} m off{}{} (the clips may hold few turns){}",
+        choice_settings.max_rms_cm, probes, check_settings.tolerance_m, check->rms_cm, them, picked->mean_deviation_m,
         picked->reached_end
             ? ""
             : fmt::format(" and covers {:.0f} m of its {:.0f} m", picked->arc_covered_m, check->probe_length_m),
+        worse,
         delivered == nullptr ? ""
-                             : fmt::format("; `path`, bending the motion onto the path, follows it {:.3f} m off{}",
+                             : fmt::format("; `path`, bending the motion onto the path, follows {} {:.3f} m off{}{}", them,
                                            delivered->mean_deviation_m,
-                                           delivered->reached_end ? "" : ", short of its end")));
+                                           delivered->reached_end ? "" : ", short of its end", worse)));
   }
   graph_settings.transitions.threshold = check->threshold;
   return graph_settings;

@@ -60,6 +60,7 @@ Result<BuildSettings> build_settings_from(const BuildOptions& o) {
   s.choice = o.choice;
   s.path_check = !o.no_path_check;
   s.path_check_settings = o.path_check;
+  s.path_check_settings.mirrored = !o.no_path_check_mirror;
   s.spacing = o.spacing;
   s.bridges = o.bridges;
   s.max_bridge_rms_cm = o.max_bridge_cm;

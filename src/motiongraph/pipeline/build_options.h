@@ -40,6 +40,7 @@ struct BuildOptions {
   ThresholdChoiceSettings choice;
   PathCheckSettings path_check;
   bool no_path_check = false;
+  bool no_path_check_mirror = false;  // the probe alone (PathCheckSettings::mirrored off)
   TransitionSpacing spacing;
   int continuation_radius = -1;
   bool ignore_tags = false;

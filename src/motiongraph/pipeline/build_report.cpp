@@ -1,8 +1,8 @@
 // The build report's JSON.
 #include "motiongraph/pipeline/build_report.h"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include <fmt/format.h>

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <span>
 
 #include <nlohmann/json.hpp>
 
@@ -106,7 +107,7 @@ Result<PathCheckPoint> probe_at(const MotionDatabase& db, const FrameFeatures& f
     search.anchor_arc = false;    // nor one that corrects its arc as it goes: Kovar's search alone
   }
   PathCheckPoint worse = point;
-  for (size_t i = 0; i < probes.size(); ++i) {
+  for (size_t i = 0; i < probes.size() && i < point.probe_deviations_m.size(); ++i) {
     auto result = synthesize_path(*context, probes[i], search);
     if (!result) return result.error();
     PathCheckPoint one = point;

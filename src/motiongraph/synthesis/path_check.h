@@ -8,11 +8,13 @@
 // threshold, and raise the threshold in log-spaced steps towards the ceiling until both are
 // followed within `tolerance_m` mean deviation. Paths turn either way: one probe alone let a
 // few moved nodes flip a library's choice (subject 16 followed the probe 0.081 m off at 2.65
-// cm, its mirror 0.205 m off; both within 0.053 m at 3.46 cm). When no step is, the threshold whose probe went best (reached
-// the end; else covered the most of it; then least deviation) is kept and `passed` is false,
-// and the probe is synthesized there once more as `path` does by default (`delivered`). A
-// higher threshold adds rougher transitions, so it is kept only when its probe came near the
-// path at all (within `lost_m`, or the tolerance when larger, on average): a library whose clips hold no turns (game cycles
+// cm, its mirror 0.205 m off; both within 0.053 m at 3.46 cm). Each threshold is judged by the
+// worse of the two (`mirrored`; off: the probe alone). When no step passes, the threshold
+// whose probes went best (reached the end; else covered the most of it; then least deviation)
+// is kept and `passed` is false, and the probes are synthesized there once more as `path` does
+// by default (`delivered`). A higher threshold adds rougher transitions, so it is kept only
+// when its probes came near the path at all (within `lost_m`, or the tolerance when larger, on
+// average): a library whose clips hold no turns (game cycles
 // walking straight, dance on the spot with a few steps) wanders tens of metres off at every
 // threshold, and keeps the first.
 //
@@ -81,9 +83,10 @@ struct PathCheck {
   double rms_cm = 0.0;
   bool passed = false;               // the chosen threshold's probe is within the tolerance
   std::vector<PathCheckPoint> points;  // every threshold tried, in order (increasing)
-  // When none passed: the probe at the chosen threshold as `path` runs it by default (its motion
-  // bent onto the path by the edit, searched again when off), its deviations the delivered
-  // motion's. The points judge the graph's own walks; this says what a user will get.
+  // When none passed: the probes at the chosen threshold as `path` runs them by default (the
+  // motion bent onto the path by the edit, searched again when off), the deviations the
+  // delivered motion's, the worse of the two. The points judge the graph's own walks; this says
+  // what a user will get.
   std::optional<PathCheckPoint> delivered;
   const PathCheckPoint* chosen() const;
 };
