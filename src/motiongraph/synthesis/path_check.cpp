@@ -2,6 +2,7 @@
 #include "motiongraph/synthesis/path_check.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -107,7 +108,8 @@ Result<PathCheckPoint> probe_at(const MotionDatabase& db, const FrameFeatures& f
     search.anchor_arc = false;    // nor one that corrects its arc as it goes: Kovar's search alone
   }
   PathCheckPoint worse = point;
-  for (size_t i = 0; i < probes.size() && i < point.probe_deviations_m.size(); ++i) {
+  std::array<double, 2> deviations = point.probe_deviations_m;
+  for (size_t i = 0; i < probes.size() && i < deviations.size(); ++i) {
     auto result = synthesize_path(*context, probes[i], search);
     if (!result) return result.error();
     PathCheckPoint one = point;
@@ -116,10 +118,10 @@ Result<PathCheckPoint> probe_at(const MotionDatabase& db, const FrameFeatures& f
     one.reached_end = result->reached_end;
     one.arc_covered_m = result->arc_covered_m;
     one.transitions = result->walk.transition_count(built->graph);
-    point.probe_deviations_m[i] = one.mean_deviation_m;
+    deviations[i] = one.mean_deviation_m;
     if (i == 0 || went_better(worse, one)) worse = one;
   }
-  worse.probe_deviations_m = point.probe_deviations_m;
+  worse.probe_deviations_m = deviations;
   worse.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return worse;
 }

@@ -64,9 +64,9 @@ std::vector<ContactMask> SynthesisContext::edges_contacts(std::span<const int> e
 }
 
 std::vector<ContactMask> SynthesisContext::walk_contacts(const Walk& walk) const {
-  std::vector<ContactMask> out = edges_contacts(walk.edges);
+  std::vector<ContactMask> out;
   if (frame_contacts.empty()) return out;
-  out.push_back(frame_contacts[graph->nodes[walk.end_node(*graph)].frame]);
+  for (const FrameSource& source : walk_sources(walk)) out.push_back(frame_contacts[source.dominant()]);
   return out;
 }
 

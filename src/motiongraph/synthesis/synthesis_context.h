@@ -34,8 +34,8 @@ struct SynthesisContext {
   // The contact masks of the frames `edges` play, in order (none without feet): what a
   // steering decision's frames carry.
   std::vector<ContactMask> edges_contacts(std::span<const int> edges) const;
-  // The contact masks of the frames assemble_walk() plays for `walk` (its edges' frames and
-  // the end node's frame).
+  // The contact masks of the frames assemble_walk() plays for `walk` (walk_sources: its edges'
+  // frames and the end node's frame), each its dominant source frame's.
   std::vector<ContactMask> walk_contacts(const Walk& walk) const;
   // The database frames of the frames a walk plays: its edges' frames, and when it has a start
   // node (assemble_walk's walks; steering's record of edges has none) its end node's frame.
