@@ -197,6 +197,7 @@ TEST(FootContacts, HysteresisKeepsAContactThatWouldNotStartThere) {
   });
   FootContactSettings settings;
   settings.enter_speed_mps = settings.leave_speed_mps = std::numeric_limits<double>::infinity();
+  settings.local_window_s = 0.0;  // from the clip's floor: the last hover would rest on its own
   auto contacts = detect_foot_contacts(s.positions, 4, fps, s.feet, settings);
   ASSERT_TRUE(contacts);
   const auto intervals = contact_intervals(contacts->tracks[0].planted);
@@ -232,9 +233,11 @@ TEST(FootContacts, TheSpeedSpanIsOneFifteenthOfASecondAtAnyFrameRate) {
 }
 
 TEST(FootContacts, WithoutGapsFilledEveryContactStartsWithinTheEnterThresholdsAndStaysWithinTheLeaveOnes) {
-  // The state machine's invariants, on every bundled clip of subject 16 at two frame rates.
+  // The state machine's invariants, on every bundled clip of subject 16 at two frame rates,
+  // heights measured from the clip's floor (the local floor's rules are tested below).
   FootContactSettings settings;
   settings.max_gap_s = 0.0;
+  settings.local_window_s = 0.0;
   for_each_clip_and_rate(kAllClips, [&](const Clip& clip, double fps, const std::string& file) {
     const FootContacts contacts = contacts_of(clip, settings);
     const auto positions = world_positions(clip.skeleton, clip.motion);
@@ -382,6 +385,205 @@ TEST(FootContacts, ShortGapsBetweenContactsAreFilled) {
   }
 }
 
+// Two feet on ground of two heights at 30 fps: 4 joints (left ankle, left toe, right ankle, right
+// toe), the toe 5 cm below its ankle and 15 cm ahead. The left foot's ground at y = 0, the
+// right's at y = right_ground. Walking, in turns of `phase` frames one foot stands still on its
+// ground while the other swings, 1.5 m/s forward along an arc 10 cm high; not walking, both
+// stand still throughout.
+std::vector<Vec3> two_grounds(int phases, int phase, double right_ground, bool walking) {
+  std::vector<Vec3> positions;
+  double x[2] = {0.0, 0.0};
+  for (int p = 0; p < phases; ++p) {
+    const int swinging = p % 2 == 0 ? 1 : 0;  // right first
+    for (int i = 0; i < phase; ++i) {
+      double y[2] = {0.0, right_ground};
+      if (walking) {
+        x[swinging] += 1.5 / 30.0;
+        y[swinging] += 0.1 * std::sin(M_PI * (i + 1) / phase);
+      }
+      for (int side = 0; side < 2; ++side) {
+        const double z = side == 0 ? 0.1 : -0.1;
+        positions.push_back(Vec3(x[side], y[side], z));
+        positions.push_back(Vec3(x[side] + 0.15, y[side] - 0.05, z));
+      }
+    }
+  }
+  return positions;
+}
+
+// The share of frames each track is planted.
+std::vector<double> planted_shares(const FootContacts& contacts) {
+  std::vector<double> shares;
+  for (const FootContactTrack& track : contacts.tracks) {
+    shares.push_back(static_cast<double>(std::count(track.planted.begin(), track.planted.end(), 1)) /
+                     contacts.frame_count);
+  }
+  return shares;
+}
+
+TEST(FootContacts, TheLocalFloorPlantsStepsOnHigherGroundButNotALegHeldUp) {
+  const FootJoints feet{{0, 1}, {2, 3}};
+  FootContactSettings clip_floor;
+  clip_floor.local_window_s = 0.0;
+  const FootContactSettings local;
+  for (double step : {0.1, 0.3}) {
+    // Walking with the right foot on a ledge `step` higher: each foot carries the body while the
+    // other swings, so both plant on their own ground, about half the time; on the clip's floor
+    // the right foot never does.
+    const auto walk = two_grounds(8, 20, step, true);
+    auto on_ledge = detect_foot_contacts(walk, 4, 30.0, feet, local);
+    ASSERT_TRUE(on_ledge) << on_ledge.error().to_string();
+    for (double share : planted_shares(*on_ledge)) {
+      EXPECT_GT(share, 0.4) << step;
+      EXPECT_LT(share, 0.65) << step;
+    }
+    const auto flat_rule = planted_shares(*detect_foot_contacts(walk, 4, 30.0, feet, clip_floor));
+    EXPECT_GT(flat_rule[0], 0.4) << step;
+    EXPECT_EQ(flat_rule[2], 0.0) << step;
+    EXPECT_EQ(flat_rule[3], 0.0) << step;
+    // Each contact on the ledge is the foot's standing phase.
+    for (const FootContactTrack& track : on_ledge->tracks) {
+      for (int f = 0; f < on_ledge->frame_count; ++f) {
+        const bool stands = (f / 20) % 2 == (track.side == FootSide::kLeft ? 0 : 1);
+        if (track.planted[f]) {
+          EXPECT_TRUE(stands || f % 20 < 2 || f % 20 >= 18) << step << " frame " << f;
+        }
+      }
+    }
+    // The right foot held still `step` up while the left stands: a leg held up, not planted.
+    const auto held = two_grounds(8, 20, step, false);
+    auto held_up = detect_foot_contacts(held, 4, 30.0, feet, local);
+    ASSERT_TRUE(held_up);
+    const auto shares = planted_shares(*held_up);
+    EXPECT_EQ(shares[0], 1.0) << step;
+    EXPECT_EQ(shares[2], 0.0) << step;
+    EXPECT_EQ(shares[3], 0.0) << step;
+  }
+  // A foot held above max_step_m while the other swings is not carrying the body: not planted.
+  FootContactSettings low_steps;
+  low_steps.max_step_m = 0.2;
+  const auto shares = planted_shares(*detect_foot_contacts(two_grounds(8, 20, 0.3, true), 4, 30.0, feet, low_steps));
+  EXPECT_GT(shares[0], 0.4);
+  EXPECT_EQ(shares[2], 0.0);
+  // Both feet held still 0.6 m up for 2 s after a walk (hanging from a bar): above max_step_m,
+  // never planted there, though each rests on the lowest "ground" around.
+  std::vector<Vec3> hang = two_grounds(4, 20, 0.0, true);
+  const std::vector<Vec3> last(hang.end() - 4, hang.end());
+  for (int f = 0; f < 60; ++f) {
+    for (const Vec3& joint : last) hang.push_back(joint + Vec3(0.0, 0.6, 0.0));
+  }
+  auto hanging = detect_foot_contacts(hang, 4, 30.0, feet, local);
+  ASSERT_TRUE(hanging);
+  for (const FootContactTrack& track : hanging->tracks) {
+    EXPECT_GT(std::count(track.planted.begin(), track.planted.begin() + 80, 1), 20);
+    EXPECT_EQ(std::count(track.planted.begin() + 80, track.planted.end(), 1), 0);
+  }
+  // A rig with a toe on the left foot only: the left foot held still 30 cm up while the right
+  // foot stands is a leg held up (the toe's own heights are no ground), planted while it walks.
+  const FootJoints one_toe{{0, 1}, {2, -1}};
+  for (bool walking : {false, true}) {
+    const auto four = two_grounds(8, 20, 0.0, walking);
+    std::vector<Vec3> three;
+    for (size_t f = 0; f < four.size() / 4; ++f) {
+      const Vec3 lift = walking ? Vec3::Zero() : Vec3(0.0, 0.3, 0.0);
+      three.push_back(four[4 * f] + lift);
+      three.push_back(four[4 * f + 1] + lift);
+      three.push_back(four[4 * f + 2]);
+    }
+    auto toe_rig = detect_foot_contacts(three, 3, 30.0, one_toe, local);
+    ASSERT_TRUE(toe_rig);
+    ASSERT_EQ(toe_rig->tracks.size(), 3u);
+    const auto toe_rig_shares = planted_shares(*toe_rig);
+    if (walking) {
+      for (double share : toe_rig_shares) EXPECT_GT(share, 0.4);
+    } else {
+      EXPECT_EQ(toe_rig_shares[0], 0.0);
+      EXPECT_EQ(toe_rig_shares[1], 0.0);
+      EXPECT_EQ(toe_rig_shares[2], 1.0);
+    }
+  }
+}
+
+TEST(FootContacts, WithTheLocalFloorEveryContactStartsWithinTheEnterThresholdsOfItsRestingHeight) {
+  // The state machine's invariants measured from each joint's resting height, on every bundled
+  // clip of subject 16 at two frame rates (a and b only take stances away or give whole ones).
+  FootContactSettings settings;
+  settings.max_gap_s = 0.0;
+  for_each_clip_and_rate(kAllClips, [&](const Clip& clip, double fps, const std::string& file) {
+    const FootContacts contacts = contacts_of(clip, settings);
+    const auto positions = world_positions(clip.skeleton, clip.motion);
+    const int joints = clip.skeleton.joint_count();
+    const int half = settings.speed_half_span_frames(fps);
+    int starts = 0;
+    for (const FootContactTrack& track : contacts.tracks) {
+      JointSignal s = signal_of(positions, joints, track.joint, fps, 0.0, half);
+      for (int f = 0; f < contacts.frame_count; ++f) s.height_m[f] -= track.rest_height_m[f];
+      for (const ContactInterval& interval : contact_intervals(track.planted)) {
+        const int start = interval.first_frame, end = start + interval.frame_count;
+        EXPECT_GE(interval.frame_count, settings.min_frames(fps)) << file;
+        for (int f = start; f < end; ++f) {
+          EXPECT_LE(s.height_m[f], settings.leave_height_m) << file << " " << f;
+          EXPECT_LE(s.speed_mps[f], settings.leave_speed_mps) << file << " " << f;
+        }
+        // A contact starts where a stance does (within the enter thresholds), or where a. let a
+        // stance go on (the frame before it within the leave thresholds).
+        const bool entered = s.height_m[start] <= settings.enter_height_m && s.speed_mps[start] <= settings.enter_speed_mps;
+        starts += entered ? 1 : 0;
+        if (!entered) {
+          ASSERT_GT(start, 0) << file;
+          EXPECT_LE(s.height_m[start - 1], settings.leave_height_m) << file << " " << start;
+          EXPECT_LE(s.speed_mps[start - 1], settings.leave_speed_mps) << file << " " << start;
+        }
+      }
+    }
+    EXPECT_GT(starts, 0) << file;
+  });
+}
+
+TEST(FootContacts, TheLocalFloorKeepsTheLabelsOfAClipOnLevelGround) {
+  // Subject 16 runs and walks on a level floor: measured from each joint's resting height or
+  // from the clip's floor, the labels agree over most of the time. Each resting height is the
+  // 5 % quantile of the joint's heights over +-0.4 s (sorted here).
+  FootContactSettings clip_floor;
+  clip_floor.local_window_s = 0.0;
+  const FootContactSettings local;
+  double agreement_sum = 0.0;
+  int tracks = 0;
+  for_each_clip_and_rate(kAllClips, [&](const Clip& clip, double fps, const std::string& what) {
+    const FootContacts with = contacts_of(clip, local);
+    const FootContacts without = contacts_of(clip, clip_floor);
+    const auto positions = world_positions(clip.skeleton, clip.motion);
+    const int joints = clip.skeleton.joint_count();
+    const int half = local.local_window_frames(fps);
+    ASSERT_EQ(half, static_cast<int>(std::lround(0.4 * fps)));
+    for (size_t t = 0; t < with.tracks.size(); ++t) {
+      const FootContactTrack& track = with.tracks[t];
+      EXPECT_TRUE(without.tracks[t].rest_height_m.empty());
+      ASSERT_EQ(track.rest_height_m.size(), static_cast<size_t>(with.frame_count));
+      for (int f = 0; f < with.frame_count; f += 7) {
+        std::vector<double> window;
+        for (int g = std::max(0, f - half); g <= std::min(with.frame_count - 1, f + half); ++g) {
+          window.push_back(positions[g * joints + track.joint].y());
+        }
+        std::sort(window.begin(), window.end());
+        const double at = 0.05 * (window.size() - 1);
+        const size_t below = static_cast<size_t>(at);
+        const double expected = below + 1 < window.size()
+                                    ? window[below] + (at - below) * (window[below + 1] - window[below])
+                                    : window[below];
+        EXPECT_NEAR(track.rest_height_m[f], expected, 1e-12) << what << " frame " << f;
+      }
+      int same = 0;
+      for (int f = 0; f < with.frame_count; ++f) same += track.planted[f] == without.tracks[t].planted[f] ? 1 : 0;
+      const double agreement = static_cast<double>(same) / with.frame_count;
+      EXPECT_GE(agreement, 0.85) << what << " track " << t;
+      agreement_sum += agreement;
+      ++tracks;
+    }
+  });
+  EXPECT_GE(agreement_sum / tracks, 0.96);
+}
+
 TEST(FootContacts, EachSettingsRuleGivesItsError) {
   struct Case {
     const char* rule;
@@ -399,6 +601,11 @@ TEST(FootContacts, EachSettingsRuleGivesItsError) {
       {"speed span", [](FootContactSettings& s) { s.speed_span_s = 0.0; }, "span speeds are measured over"},
       {"max gap", [](FootContactSettings& s) { s.max_gap_s = -0.1; }, "longest gap filled"},
       {"min duration", [](FootContactSettings& s) { s.min_duration_s = -1.0; }, "shortest contact"},
+      {"local window", [](FootContactSettings& s) { s.local_window_s = -0.4; }, "local floor's window"},
+      {"local window inf", [](FootContactSettings& s) { s.local_window_s = HUGE_VAL; }, "local floor's window"},
+      {"local quantile", [](FootContactSettings& s) { s.local_quantile = 0.7; }, "local floor's quantile"},
+      {"rest tolerance", [](FootContactSettings& s) { s.rest_tolerance_m = -0.01; }, "resting height's tolerance"},
+      {"max step", [&](FootContactSettings& s) { s.max_step_m = nan; }, "highest step"},
   };
   const Synthetic s = synthetic(20, 0.0, [](int) { return 0.0; });
   for (const Case& c : cases) {

@@ -31,6 +31,7 @@ FootContactSettings foot_slide_contact_settings() {
   settings.enter_speed_mps = settings.leave_speed_mps = std::numeric_limits<double>::infinity();
   settings.max_gap_s = 0.0;
   settings.min_duration_s = 0.0;
+  settings.local_window_s = 0.0;
   return settings;
 }
 

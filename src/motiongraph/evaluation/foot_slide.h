@@ -29,8 +29,8 @@
 
 namespace mg {
 
-// Contacts by height alone: within 2 cm of the floor, no speed limit, no gap filled, no
-// shortest contact.
+// Contacts by height alone: within 2 cm of the clip's floor (not the local floor the database's
+// contacts use), no speed limit, no gap filled, no shortest contact.
 FootContactSettings foot_slide_contact_settings();
 
 struct FootSlideSettings {

@@ -34,7 +34,8 @@ namespace mg {
 // 4: the candidate minima in a section of their own, with its own size and CRC-32.
 // 6: transition edges say whether they are bridges (GraphEdge::bridge).
 // 7: a bridge's blend is centred on the window its D was measured on (GraphEdge::blend_lead).
-constexpr std::uint32_t kGraphFileVersion = 7;
+// 8: foot contacts measured from each joint's resting height (motion/foot_contacts.h's local floor).
+constexpr std::uint32_t kGraphFileVersion = 8;
 
 struct GraphFile {
   std::string settings_json;

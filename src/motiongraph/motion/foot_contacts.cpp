@@ -1,5 +1,6 @@
-// Foot contacts: the clip's floor per part, planted by height and speed with hysteresis,
-// short gaps filled, short contacts dropped.
+// Foot contacts: the clip's floor per part (or each joint's resting height, where it rests on the
+// lowest ground around or carries the body alone), planted by height and speed with
+// hysteresis, short gaps filled, short contacts dropped.
 #include "motiongraph/motion/foot_contacts.h"
 
 #include <algorithm>
@@ -39,6 +40,35 @@ double joint_speed(std::span<const Vec3> positions, size_t joints, int frames, i
   return step.norm() * fps / (after - before);
 }
 
+// Per frame f, the q-quantile of the values of every series over frames f-half .. f+half
+// (shortened at the ends).
+std::vector<double> window_quantile(std::span<const std::vector<double>* const> series, int half, double q) {
+  const int frames = static_cast<int>(series.front()->size());
+  std::vector<double> result(static_cast<size_t>(frames));
+  std::vector<double> window;
+  for (int f = 0; f < frames; ++f) {
+    window.clear();
+    const int first = std::max(f - half, 0);
+    const int end = std::min(f + half + 1, frames);
+    for (const std::vector<double>* values : series) window.insert(window.end(), values->begin() + first, values->begin() + end);
+    result[f] = quantile(window, q);
+  }
+  return result;
+}
+
+// Planted by height and speed with hysteresis.
+std::vector<uint8_t> hysteresis(std::span<const double> height, std::span<const double> speed,
+                                const FootContactSettings& settings) {
+  std::vector<uint8_t> planted(height.size(), 0);
+  bool on = false;
+  for (size_t f = 0; f < height.size(); ++f) {
+    on = on ? height[f] <= settings.leave_height_m && speed[f] <= settings.leave_speed_mps
+            : height[f] <= settings.enter_height_m && speed[f] <= settings.enter_speed_mps;
+    planted[f] = on ? 1 : 0;
+  }
+  return planted;
+}
+
 }  // namespace
 
 Status FootContactSettings::validate() const {
@@ -64,6 +94,18 @@ Status FootContactSettings::validate() const {
   if (!(min_duration_s >= 0.0) || !std::isfinite(min_duration_s)) {
     return Error{"", 0, "the shortest contact must be a finite duration >= 0 s"};
   }
+  if (!(local_window_s >= 0.0) || !std::isfinite(local_window_s)) {
+    return Error{"", 0, "the local floor's window must be a finite duration >= 0 s (0: the clip's floor alone)"};
+  }
+  if (!(local_quantile >= 0.0 && local_quantile <= 0.5)) {
+    return Error{"", 0, "the local floor's quantile must be within 0..0.5 (a low quantile of the joint's heights)"};
+  }
+  if (!(rest_tolerance_m >= 0.0) || !std::isfinite(rest_tolerance_m)) {
+    return Error{"", 0, "the resting height's tolerance above the ground around must be a finite height >= 0 m"};
+  }
+  if (!(max_step_m >= 0.0) || !std::isfinite(max_step_m)) {
+    return Error{"", 0, "the highest step a foot carries the body on must be a finite height >= 0 m"};
+  }
   return Ok{};
 }
 
@@ -78,6 +120,11 @@ int FootContactSettings::max_gap_frames(double fps) const {
 
 int FootContactSettings::speed_half_span_frames(double fps) const {
   return std::max(1, static_cast<int>(std::lround(speed_span_s * fps / 2.0)));
+}
+
+int FootContactSettings::local_window_frames(double fps) const {
+  if (local_window_s <= 0.0) return 0;
+  return std::max(1, static_cast<int>(std::lround(local_window_s * fps)));
 }
 
 bool FootContacts::foot_planted(FootSide side, int frame) const {
@@ -131,39 +178,95 @@ Result<FootContacts> detect_foot_contacts(std::span<const Vec3> world_positions_
   FootContacts contacts;
   contacts.frame_count = frames;
 
-  // The floor of each part, from both feet's heights.
+  // Each joint's heights and speeds.
   const std::vector<Joint> list = foot_joint_list(feet);
-  for ([[maybe_unused]] const Joint& joint : list) assert(joint.joint >= 0 && joint.joint < joint_count);
+  const int half_span = settings.speed_half_span_frames(fps);
+  std::vector<std::vector<double>> heights(list.size()), speeds(list.size());
+  for (size_t j = 0; j < list.size(); ++j) {
+    assert(list[j].joint >= 0 && list[j].joint < joint_count);
+    for (int f = 0; f < frames; ++f) {
+      heights[j].push_back(world_positions_m[f * joints + list[j].joint].y());
+      speeds[j].push_back(joint_speed(world_positions_m, joints, frames, list[j].joint, f, half_span, fps));
+    }
+  }
+  // The joints of each part (both feet's), and the part's floor over the clip.
+  auto part_series = [&](FootPart part) {
+    std::vector<const std::vector<double>*> series;
+    for (size_t j = 0; j < list.size(); ++j) {
+      if (list[j].part == part) series.push_back(&heights[j]);
+    }
+    return series;
+  };
   double floor[2] = {0.0, 0.0};
   for (FootPart part : {FootPart::kAnkle, FootPart::kToe}) {
-    std::vector<double> heights;
-    for (const Joint& joint : list) {
-      if (joint.part != part) continue;
-      for (int f = 0; f < frames; ++f) heights.push_back(world_positions_m[f * joints + joint.joint].y());
-    }
-    floor[static_cast<int>(part)] = quantile(heights, settings.floor_quantile);
+    std::vector<double> pooled;
+    for (const std::vector<double>* series : part_series(part)) pooled.insert(pooled.end(), series->begin(), series->end());
+    floor[static_cast<int>(part)] = quantile(pooled, settings.floor_quantile);
   }
 
-  // 1. Planted by height and speed, with hysteresis; 2. short gaps filled; 3. short contacts
-  // dropped.
-  const int half_span = settings.speed_half_span_frames(fps);
-  const int max_gap = settings.max_gap_frames(fps);
-  const int min_frames = settings.min_frames(fps);
-  for (const Joint& joint : list) {
-    FootContactTrack track;
-    track.joint = joint.joint;
-    track.side = joint.side;
-    track.part = joint.part;
-    track.floor_height_m = floor[static_cast<int>(joint.part)];
-    track.planted.assign(static_cast<size_t>(frames), 0);
-    bool planted = false;
-    for (int f = 0; f < frames; ++f) {
-      const double height = world_positions_m[f * joints + joint.joint].y() - track.floor_height_m;
-      const double speed = joint_speed(world_positions_m, joints, frames, joint.joint, f, half_span, fps);
-      planted = planted ? height <= settings.leave_height_m && speed <= settings.leave_speed_mps
-                        : height <= settings.enter_height_m && speed <= settings.enter_speed_mps;
-      track.planted[f] = planted ? 1 : 0;
+  // 1. Planted by height (above the clip's floor, or the joint's resting height) and speed, with
+  // hysteresis.
+  const int local_half = settings.local_window_frames(fps);
+  // Per part, the lowest ground around each frame; none for a part on one foot only (a rig with
+  // one toe): its own heights are no ground, so it counts by b. alone.
+  std::vector<std::vector<double>> ground(2);
+  if (local_half > 0) {
+    for (FootPart part : {FootPart::kAnkle, FootPart::kToe}) {
+      const auto series = part_series(part);
+      if (series.size() >= 2) ground[static_cast<int>(part)] = window_quantile(series, local_half, settings.local_quantile);
     }
+  }
+  std::vector<std::vector<uint8_t>> stance(list.size());  // what 1 gives, before a. and b.
+  for (size_t j = 0; j < list.size(); ++j) {
+    FootContactTrack track;
+    track.joint = list[j].joint;
+    track.side = list[j].side;
+    track.part = list[j].part;
+    track.floor_height_m = floor[static_cast<int>(list[j].part)];
+    std::vector<double> height(static_cast<size_t>(frames));
+    if (local_half > 0) {
+      const std::vector<double>* own[] = {&heights[j]};
+      track.rest_height_m = window_quantile(own, local_half, settings.local_quantile);
+      for (int f = 0; f < frames; ++f) height[f] = heights[j][f] - track.rest_height_m[f];
+    } else {
+      for (int f = 0; f < frames; ++f) height[f] = heights[j][f] - track.floor_height_m;
+    }
+    stance[j] = hysteresis(height, speeds[j], settings);
+    track.planted = stance[j];
+    contacts.tracks.push_back(std::move(track));
+  }
+
+  // a. Resting on the lowest ground around; b. carrying the body alone.
+  const int min_frames = settings.min_frames(fps);
+  if (local_half > 0) {
+    for (size_t j = 0; j < list.size(); ++j) {
+      FootContactTrack& track = contacts.tracks[j];
+      const std::vector<double>& lowest = ground[static_cast<int>(track.part)];
+      for (int f = 0; f < frames; ++f) {
+        if (lowest.empty() || track.rest_height_m[f] - lowest[f] > settings.rest_tolerance_m ||
+            track.rest_height_m[f] - track.floor_height_m > settings.max_step_m) {
+          track.planted[f] = 0;
+        }
+      }
+      std::vector<uint8_t> other(static_cast<size_t>(frames), 0);  // the other foot at rest
+      for (size_t k = 0; k < list.size(); ++k) {
+        if (list[k].side == track.side) continue;
+        for (int f = 0; f < frames; ++f) other[f] |= stance[k][f];
+      }
+      for (const ContactInterval& run : contact_intervals(stance[j])) {
+        int alone = 0, longest = 0;
+        for (int f = run.first_frame; f < run.first_frame + run.frame_count; ++f) {
+          alone = !other[f] && track.rest_height_m[f] - track.floor_height_m <= settings.max_step_m ? alone + 1 : 0;
+          longest = std::max(longest, alone);
+        }
+        if (longest >= min_frames) std::fill_n(track.planted.begin() + run.first_frame, run.frame_count, 1);
+      }
+    }
+  }
+
+  // 2. Short gaps filled; 3. short contacts dropped.
+  const int max_gap = settings.max_gap_frames(fps);
+  for (FootContactTrack& track : contacts.tracks) {
     const auto planted_runs = contact_intervals(track.planted);
     for (size_t i = 1; i < planted_runs.size(); ++i) {
       const int gap_start = planted_runs[i - 1].first_frame + planted_runs[i - 1].frame_count;
@@ -174,7 +277,6 @@ Result<FootContacts> detect_foot_contacts(std::span<const Vec3> world_positions_
       if (interval.frame_count >= min_frames) continue;
       std::fill_n(track.planted.begin() + interval.first_frame, interval.frame_count, 0);
     }
-    contacts.tracks.push_back(std::move(track));
   }
   return contacts;
 }
