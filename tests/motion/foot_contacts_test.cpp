@@ -479,13 +479,15 @@ TEST(FootContacts, TheLocalFloorPlantsStepsOnHigherGroundButNotALegHeldUp) {
     EXPECT_EQ(std::count(track.planted.begin() + 80, track.planted.end(), 1), 0);
   }
   // A rig with a toe on the left foot only: the left foot held still 30 cm up while the right
-  // foot stands is a leg held up (the toe's own heights are no ground), planted while it walks.
+  // foot stands is a leg held up (the toe's own heights are no ground); standing on both feet or
+  // walking, the toe is planted as its ankle is.
   const FootJoints one_toe{{0, 1}, {2, -1}};
-  for (bool walking : {false, true}) {
+  for (int mode = 0; mode < 3; ++mode) {  // held up, standing, walking
+    const bool walking = mode == 2;
     const auto four = two_grounds(8, 20, 0.0, walking);
     std::vector<Vec3> three;
     for (size_t f = 0; f < four.size() / 4; ++f) {
-      const Vec3 lift = walking ? Vec3::Zero() : Vec3(0.0, 0.3, 0.0);
+      const Vec3 lift = mode == 0 ? Vec3(0.0, 0.3, 0.0) : Vec3::Zero();
       three.push_back(four[4 * f] + lift);
       three.push_back(four[4 * f + 1] + lift);
       three.push_back(four[4 * f + 2]);
@@ -494,7 +496,9 @@ TEST(FootContacts, TheLocalFloorPlantsStepsOnHigherGroundButNotALegHeldUp) {
     ASSERT_TRUE(toe_rig);
     ASSERT_EQ(toe_rig->tracks.size(), 3u);
     const auto toe_rig_shares = planted_shares(*toe_rig);
-    if (walking) {
+    if (mode == 1) {
+      for (double share : toe_rig_shares) EXPECT_EQ(share, 1.0);
+    } else if (walking) {
       for (double share : toe_rig_shares) EXPECT_GT(share, 0.4);
     } else {
       EXPECT_EQ(toe_rig_shares[0], 0.0);

@@ -239,15 +239,32 @@ Result<FootContacts> detect_foot_contacts(std::span<const Vec3> world_positions_
   // a. Resting on the lowest ground around; b. carrying the body alone.
   const int min_frames = settings.min_frames(fps);
   if (local_half > 0) {
+    // a. per frame, for the parts with a ground; a part without one takes its own foot's other
+    // part's (a one-toe rig's toe its ankle's).
+    auto within_step = [&](const FootContactTrack& track, int f) {
+      return track.rest_height_m[f] - track.floor_height_m <= settings.max_step_m;
+    };
+    std::vector<std::vector<uint8_t>> on_ground(list.size());
+    for (size_t j = 0; j < list.size(); ++j) {
+      const FootContactTrack& track = contacts.tracks[j];
+      const std::vector<double>& lowest = ground[static_cast<int>(track.part)];
+      if (lowest.empty()) continue;
+      on_ground[j].assign(static_cast<size_t>(frames), 0);
+      for (int f = 0; f < frames; ++f) {
+        on_ground[j][f] = track.rest_height_m[f] - lowest[f] <= settings.rest_tolerance_m && within_step(track, f);
+      }
+    }
+    for (size_t j = 0; j < list.size(); ++j) {
+      if (!on_ground[j].empty()) continue;
+      for (size_t k = 0; k < list.size(); ++k) {
+        if (list[k].side == list[j].side && !on_ground[k].empty()) on_ground[j] = on_ground[k];
+      }
+      if (on_ground[j].empty()) on_ground[j].assign(static_cast<size_t>(frames), 0);
+    }
     for (size_t j = 0; j < list.size(); ++j) {
       FootContactTrack& track = contacts.tracks[j];
-      const std::vector<double>& lowest = ground[static_cast<int>(track.part)];
-      for (int f = 0; f < frames; ++f) {
-        if (lowest.empty() || track.rest_height_m[f] - lowest[f] > settings.rest_tolerance_m ||
-            track.rest_height_m[f] - track.floor_height_m > settings.max_step_m) {
-          track.planted[f] = 0;
-        }
-      }
+      for (int f = 0; f < frames; ++f) track.planted[f] = stance[j][f] && on_ground[j][f];
+      // b. a stance with 0.1 s in a row alone, planted where within max_step_m.
       std::vector<uint8_t> other(static_cast<size_t>(frames), 0);  // the other foot at rest
       for (size_t k = 0; k < list.size(); ++k) {
         if (list[k].side == track.side) continue;
@@ -256,10 +273,13 @@ Result<FootContacts> detect_foot_contacts(std::span<const Vec3> world_positions_
       for (const ContactInterval& run : contact_intervals(stance[j])) {
         int alone = 0, longest = 0;
         for (int f = run.first_frame; f < run.first_frame + run.frame_count; ++f) {
-          alone = !other[f] && track.rest_height_m[f] - track.floor_height_m <= settings.max_step_m ? alone + 1 : 0;
+          alone = !other[f] && within_step(track, f) ? alone + 1 : 0;
           longest = std::max(longest, alone);
         }
-        if (longest >= min_frames) std::fill_n(track.planted.begin() + run.first_frame, run.frame_count, 1);
+        if (longest < min_frames) continue;
+        for (int f = run.first_frame; f < run.first_frame + run.frame_count; ++f) {
+          if (within_step(track, f)) track.planted[f] = 1;
+        }
       }
     }
   }

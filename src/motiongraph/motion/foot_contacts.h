@@ -22,14 +22,14 @@
 // holds a stance), and a stretch planted by the rules above counts, at most max_step_m above
 // the clip's floor, where either
 //  a. that resting height is within rest_tolerance_m of the lowest ground around, the same
-//     quantile of both feet's heights (that part's) over the same frames (not for a part only
-//     one foot has, a rig with one toe: its own heights are no ground), or
+//     quantile of both feet's heights (that part's) over the same frames (a part only one foot
+//     has, a rig with one toe, takes its ankle's: its own heights are no ground), or
 //  b. the foot carries the body alone: for min_duration_s in a row of the stance the other
 //     foot (ankle and toe) is in no stance of its own. A step onto a stone or a stair.
 // A leg held up still while the other stands (CMU 49_18's balance, its toe 31 cm up; a
 // dancer's pointed foot) is neither; nor are both feet held up above max_step_m (hanging from
-// a bar). Stairs more than max_step_m above the clip's floor are left to b's frames and a's
-// within reach. A foot whose markers sit higher than the other's is planted where it stands
+// a bar), nor a stair more than max_step_m above the clip's floor (a flight keeps its first
+// steps only). A foot whose markers sit higher than the other's is planted where it stands
 // alone (b), not while both stand (a), as on the clip's floor. With local_window_s = 0 the clip's
 // floor alone, as the foot-slide measure uses it.
 // Labels depend on heights and speeds only, so a clip turned about the vertical or moved on
