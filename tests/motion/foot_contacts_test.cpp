@@ -222,6 +222,16 @@ JointSignal signal_of(const std::vector<Vec3>& positions, int joints, int joint,
   return s;
 }
 
+// The same for a track, heights above what its contacts were measured from: its resting height
+// with the local floor, its floor otherwise.
+JointSignal track_signal(const std::vector<Vec3>& positions, int joints, const FootContactTrack& track, double fps,
+                         int half) {
+  if (track.rest_height_m.empty()) return signal_of(positions, joints, track.joint, fps, track.floor_height_m, half);
+  JointSignal s = signal_of(positions, joints, track.joint, fps, 0.0, half);
+  for (size_t f = 0; f < s.height_m.size(); ++f) s.height_m[f] -= track.rest_height_m[f];
+  return s;
+}
+
 TEST(FootContacts, TheSpeedSpanIsOneFifteenthOfASecondAtAnyFrameRate) {
   const FootContactSettings settings;
   EXPECT_EQ(settings.speed_half_span_frames(120.0), 4);
@@ -245,7 +255,8 @@ TEST(FootContacts, WithoutGapsFilledEveryContactStartsWithinTheEnterThresholdsAn
     const int half = settings.speed_half_span_frames(fps);
     int contacts_seen = 0;
     for (const FootContactTrack& track : contacts.tracks) {
-      const JointSignal s = signal_of(positions, joints, track.joint, fps, track.floor_height_m, half);
+      ASSERT_TRUE(track.rest_height_m.empty());
+      const JointSignal s = track_signal(positions, joints, track, fps, half);
       for (const ContactInterval& interval : contact_intervals(track.planted)) {
         ++contacts_seen;
         EXPECT_GE(interval.frame_count, settings.min_frames(fps)) << file;
@@ -510,7 +521,7 @@ TEST(FootContacts, TheLocalFloorPlantsStepsOnHigherGroundButNotALegHeldUp) {
 
 TEST(FootContacts, WithTheLocalFloorEveryContactStartsWithinTheEnterThresholdsOfItsRestingHeight) {
   // The state machine's invariants measured from each joint's resting height, on every bundled
-  // clip of subject 16 at two frame rates (a and b only take stances away or give whole ones).
+  // clip of subject 16 at two frame rates (a and b only keep or give frames of stances).
   FootContactSettings settings;
   settings.max_gap_s = 0.0;
   for_each_clip_and_rate(kAllClips, [&](const Clip& clip, double fps, const std::string& file) {
@@ -520,8 +531,8 @@ TEST(FootContacts, WithTheLocalFloorEveryContactStartsWithinTheEnterThresholdsOf
     const int half = settings.speed_half_span_frames(fps);
     int starts = 0;
     for (const FootContactTrack& track : contacts.tracks) {
-      JointSignal s = signal_of(positions, joints, track.joint, fps, 0.0, half);
-      for (int f = 0; f < contacts.frame_count; ++f) s.height_m[f] -= track.rest_height_m[f];
+      ASSERT_EQ(track.rest_height_m.size(), static_cast<size_t>(contacts.frame_count));
+      const JointSignal s = track_signal(positions, joints, track, fps, half);
       for (const ContactInterval& interval : contact_intervals(track.planted)) {
         const int start = interval.first_frame, end = start + interval.frame_count;
         EXPECT_GE(interval.frame_count, settings.min_frames(fps)) << file;

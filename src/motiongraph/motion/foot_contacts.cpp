@@ -256,20 +256,23 @@ Result<FootContacts> detect_foot_contacts(std::span<const Vec3> world_positions_
     }
     for (size_t j = 0; j < list.size(); ++j) {
       if (!on_ground[j].empty()) continue;
+      // Every foot has an ankle, and both ankles make the ankles' ground.
       for (size_t k = 0; k < list.size(); ++k) {
         if (list[k].side == list[j].side && !on_ground[k].empty()) on_ground[j] = on_ground[k];
       }
-      if (on_ground[j].empty()) on_ground[j].assign(static_cast<size_t>(frames), 0);
+      assert(!on_ground[j].empty());
+    }
+    // Per side, whether that foot (ankle or toe) is in a stance.
+    std::vector<uint8_t> at_rest[2];
+    for (std::vector<uint8_t>& rest : at_rest) rest.assign(static_cast<size_t>(frames), 0);
+    for (size_t k = 0; k < list.size(); ++k) {
+      for (int f = 0; f < frames; ++f) at_rest[static_cast<int>(list[k].side)][f] |= stance[k][f];
     }
     for (size_t j = 0; j < list.size(); ++j) {
       FootContactTrack& track = contacts.tracks[j];
       for (int f = 0; f < frames; ++f) track.planted[f] = stance[j][f] && on_ground[j][f];
       // b. a stance with 0.1 s in a row alone, planted where within max_step_m.
-      std::vector<uint8_t> other(static_cast<size_t>(frames), 0);  // the other foot at rest
-      for (size_t k = 0; k < list.size(); ++k) {
-        if (list[k].side == track.side) continue;
-        for (int f = 0; f < frames; ++f) other[f] |= stance[k][f];
-      }
+      const std::vector<uint8_t>& other = at_rest[track.side == FootSide::kLeft ? 1 : 0];
       for (const ContactInterval& run : contact_intervals(stance[j])) {
         int alone = 0, longest = 0;
         for (int f = run.first_frame; f < run.first_frame + run.frame_count; ++f) {
