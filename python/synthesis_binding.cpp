@@ -114,6 +114,8 @@ class PyController {
                    {"beam", set(settings.beam_width)},
                    {"time_budget", set(settings.time_budget_s)},
                    {"start_node", set(settings.start_node)},
+                   {"edit_max_turn", set(settings.heading_edit.max_turn_deg_per_m)},
+                   {"edit_turn_distance", set(settings.heading_edit.turn_distance_m)},
                    {"cleanup", set(run.cleanup)}},
                   "controller");
     check(settings.validate());
@@ -190,7 +192,8 @@ void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
           py::arg("heading_deg") = 0.0, py::arg("tag") = py::none(), py::arg("at") = std::array<double, 2>{0.0, 0.0},
           "A steering controller (the CLI's steer) starting at `at` (x, z) facing heading_deg (degrees clockwise "
           "from north, -z): keywords horizon, commit, tag_penalty, transition_penalty, bridge_penalty, max_expansions, "
-          "beam, time_budget, start_node, cleanup.");
+          "beam, time_budget, start_node, edit_max_turn (degrees per metre the heading edit may turn the motion "
+          "toward the heading; 0: as the graph plays it), edit_turn_distance (m), cleanup.");
   py::class_<PyController>(m, "Controller", "Steers motion on a graph from a heading and a motion type.")
       .def("step", &PyController::step, py::arg("heading_deg"), py::arg("tag") = py::none(),
            "Decides the next frames towards heading_deg (degrees clockwise from north) with motion type `tag` "

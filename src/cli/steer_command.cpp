@@ -122,6 +122,11 @@ int run_steer(const SteerOptions& o) {
                                  {"decision_ms_max", 1e3 * percentile(latencies, 1.0)},
                                  {"budget_exhausted_decisions", exhausted},
                                  {"tolerance_deg", o.tolerance_deg},
+                                 {"heading_edit",
+                                  {{"max_turn_deg_per_m", o.settings.heading_edit.max_turn_deg_per_m},
+                                   {"turn_distance_m", o.settings.heading_edit.turn_distance_m},
+                                   {"added_turn_deg", controller->heading_edit_stats().added_turn_rad * 180.0 / std::numbers::pi},
+                                   {"max_rate_deg_per_m", controller->heading_edit_stats().max_rate_deg_per_m}}},
                                  {"cleanup", cleanup_report(context, run, cleanup)},
                                  {"cleanup_ms_p99", cleanup ? nlohmann::json(1e3 * percentile(cleanup_seconds, 0.99))
                                                             : nlohmann::json(nullptr)},
@@ -164,6 +169,13 @@ Command add_steer_command(CLI::App& app) {
                   "Beam width of each decision's first pass (0: depth-first branch and bound alone)")
       ->capture_default_str();
   sub->add_option("--time-budget", o->settings.time_budget_s, "Wall-clock seconds per decision (0: expansions only, the same motion on any machine)")
+      ->capture_default_str();
+  sub->add_option("--edit-max-turn", o->settings.heading_edit.max_turn_deg_per_m,
+                  "Degrees per metre travelled the heading edit may turn the motion toward the heading asked for "
+                  "(0: as the graph plays it)")
+      ->capture_default_str();
+  sub->add_option("--edit-turn-distance", o->settings.heading_edit.turn_distance_m,
+                  "Metres travelled over which the heading edit takes out the facing's error (about)")
       ->capture_default_str();
   sub->add_option("--tolerance", o->tolerance_deg, "Report: degrees within which a heading counts as reached")
       ->capture_default_str();

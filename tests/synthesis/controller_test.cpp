@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+
 #include "synthesis/subject16_graph.h"
 
 namespace mg {
@@ -115,6 +117,88 @@ TEST(Controller, AskedForNoMotionTypeItKeepsItsOwnWithoutBridges) {
   int free_bridges = 0;
   session(free, &free_bridges);
   EXPECT_GT(free_bridges, 0);
+}
+
+// Steering's heading edit (heading_edit.h): subject 16 walking east for 15 s weaved 0.34 m
+// either side of its line as the graph plays it; edited it walks straight (1-2 cm), and every
+// frame's step is one the graph plays (the edit folded into the placement of what follows: no
+// jump between decisions).
+TEST(Controller, HeldToOneHeadingItWalksStraight) {
+  const auto& s = test::subject16();
+  auto walk = s.context().tag_mask("walk");
+  ASSERT_TRUE(walk.ok());
+  auto play = [&](double max_turn) {
+    ControllerSettings settings;
+    settings.heading_edit.max_turn_deg_per_m = max_turn;
+    auto controller = Controller::create(s.context(), settings, {bearing_direction(90.0), *walk});
+    EXPECT_TRUE(controller.ok());
+    Motion motion = s.context().assembler.empty_motion();
+    while (motion.frame_count < 15 * motion.fps) controller->step(motion);
+    return motion;
+  };
+  // RMS distance of the root from its least-squares line after the first 3 s, and how far the
+  // line is from east.
+  auto weave = [](const Motion& m, double* line_bearing_deg) {
+    std::vector<Vec2> roots;
+    for (int f = 90; f < m.frame_count; ++f) roots.emplace_back(m.translations(f)[0].x(), m.translations(f)[0].z());
+    Vec2 mean = Vec2::Zero();
+    for (const Vec2& p : roots) mean += p;
+    mean /= static_cast<double>(roots.size());
+    Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+    for (const Vec2& p : roots) scatter += (p - mean) * (p - mean).transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(scatter);
+    const Vec2 across = eig.eigenvectors().col(0);  // the least spread
+    const Vec2 along = eig.eigenvectors().col(1);
+    *line_bearing_deg = std::abs(std::asin(std::abs(along.y()))) * 180.0 / std::numbers::pi;  // 0: east-west
+    double sum = 0.0;
+    for (const Vec2& p : roots) sum += std::pow((p - mean).dot(across), 2);
+    return std::sqrt(sum / static_cast<double>(roots.size()));
+  };
+  const Motion edited = play(HeadingEditSettings{}.max_turn_deg_per_m);
+  const Motion unedited = play(0.0);
+  double edited_line = 0.0, unedited_line = 0.0;
+  const double edited_weave = weave(edited, &edited_line);
+  const double unedited_weave = weave(unedited, &unedited_line);
+  EXPECT_LT(edited_weave, 0.1);
+  EXPECT_LT(edited_line, 10.0);
+  EXPECT_GT(unedited_weave, 2.0 * edited_weave);
+  EXPECT_GT(edited.translations(edited.frame_count - 1)[0].x(), 10.0);  // it went east
+  for (int f = 1; f < edited.frame_count; ++f) {
+    const Vec3 step = edited.translations(f)[0] - edited.translations(f - 1)[0];
+    EXPECT_LE(std::hypot(step.x(), step.z()), s.context().tracks.max_root_step_m + 1e-9) << f;
+  }
+}
+
+// The studio gives each step a motion of its own: the controller keeps what the edit needs, so
+// the frames are those of one motion stepped through.
+TEST(Controller, AMotionPerStepPlaysTheSameFrames) {
+  const auto& s = test::subject16();
+  auto walk = s.context().tag_mask("walk");
+  ASSERT_TRUE(walk.ok());
+  auto one = Controller::create(s.context(), {}, {bearing_direction(0.0), *walk});
+  auto each = Controller::create(s.context(), {}, {bearing_direction(0.0), *walk});
+  ASSERT_TRUE(one.ok() && each.ok());
+  Motion whole = s.context().assembler.empty_motion();
+  std::vector<Quat> rotations;
+  std::vector<Vec3> translations;
+  for (int i = 0; i < 40; ++i) {
+    const ControlInput input{bearing_direction(i < 20 ? 0.0 : 135.0), *walk};
+    one->set_input(input);
+    each->set_input(input);
+    one->step(whole);
+    Motion part = s.context().assembler.empty_motion();
+    each->step(part);
+    for (int f = 0; f < part.frame_count; ++f) {
+      rotations.push_back(part.rotations(f)[0]);
+      translations.push_back(part.translations(f)[0]);
+    }
+  }
+  ASSERT_EQ(static_cast<int>(translations.size()), whole.frame_count);
+  for (int f = 0; f < whole.frame_count; ++f) {
+    ASSERT_EQ(whole.translations(f)[0], translations[f]) << f;
+    ASSERT_EQ(whole.rotations(f)[0].coeffs(), rotations[f].coeffs()) << f;
+  }
+  EXPECT_GT(one->heading_edit_stats().added_turn_rad, 0.0);
 }
 
 // Default settings have no wall-clock budget: the same script gives the same motion, frame for

@@ -20,7 +20,7 @@ Status ControllerSettings::validate() const {
   if (!(tag_penalty >= 0.0) || !(time_budget_s >= 0.0) || max_expansions < 1 || beam_width < 0) {
     return Error{"", 0, "controller: penalties, budgets and the beam width must be >= 0 (expansions >= 1)"};
   }
-  return Ok{};
+  return heading_edit.validate();
 }
 
 Vec2 bearing_direction(double bearing_deg) {
@@ -123,11 +123,31 @@ ControllerDecision Controller::step(Motion& out) {
     decision.frames += graph.edges[e].frame_count;
     if (decision.frames >= commit_frames) break;
   }
+  // The facings the decision's walk plans from the first frame committed, unedited, as far as
+  // the heading edit looks past the last committed (or as far as the walk goes).
+  std::vector<Vec2> planned;
+  if (settings_.heading_edit.max_turn_deg_per_m > 0.0) {
+    const size_t wanted = static_cast<size_t>(decision.frames + edit_.half_window_frames());
+    SearchState plan = state_;
+    for (int e : edges) {
+      for (const Vec2& f : context_->tracks.facings_of(e)) planned.push_back(turn(plan.placement, f));
+      if (planned.size() >= wanted) break;
+      plan = advance(graph, context_->tracks, plan, e);
+    }
+  }
   decision.search_seconds = std::chrono::duration<double>(Clock::now() - begin).count();
+  const int first = out.frame_count;
+  const SearchState before = state_;
   for (int e : decision.edges) {
     FloorTransform placement = state_.placement;
     context_->assembler.append_edge(e, placement, out);
     state_ = advance(graph, context_->tracks, state_, e);
+  }
+  if (settings_.heading_edit.max_turn_deg_per_m > 0.0) {
+    const FloorTransform move =
+        edit_.apply(out, first, before.has_last ? &before.last_root : nullptr, planned, input_.direction);
+    state_.placement = move * state_.placement;
+    state_.last_root = place(move, state_.last_root);
   }
   return decision;
 }

@@ -5,11 +5,14 @@
 // character's facing and the desired direction, plus tag_penalty for a frame without the
 // tag; it then commits whole edges for at least commit_s seconds and returns their frames.
 // The expansion budget (and an optional time budget) bounds every decision, and the first
-// (greedy) walk is always there, so a decision always answers in bounded time.
+// (greedy) walk is always there, so a decision always answers in bounded time. The frames
+// committed are turned toward the direction asked for by the heading edit (heading_edit.h), and
+// the next decision starts where it left the character.
 #pragma once
 
 #include <vector>
 
+#include "motiongraph/synthesis/heading_edit.h"
 #include "motiongraph/synthesis/horizon_search.h"
 #include "motiongraph/synthesis/synthesis_context.h"
 
@@ -40,6 +43,9 @@ struct ControllerSettings {
   // follows its first (greedy) walk: use it only where a late answer is worse than a poor one.
   double time_budget_s = 0.0;
   int start_node = -1;               // -1: controller_start_node()
+  // The committed frames turned toward the direction asked for (max_turn_deg_per_m 0: as the
+  // graph plays them).
+  HeadingEditSettings heading_edit;
 
   Status validate() const;
 };
@@ -68,14 +74,19 @@ class Controller {
   void set_input(const ControlInput& input) { input_ = input; }
   const ControlInput& input() const { return input_; }
   const SearchState& state() const { return state_; }
+  const HeadingEditStats& heading_edit_stats() const { return edit_.stats(); }
   // Decides and appends the next frames to `out` (a motion on the context's target skeleton,
   // e.g. from MotionAssembler::empty_motion()).
   ControllerDecision step(Motion& out);
 
  private:
-  Controller(const SynthesisContext& context, const ControllerSettings& settings) : context_(&context), settings_(settings) {}
+  Controller(const SynthesisContext& context, const ControllerSettings& settings)
+      : context_(&context),
+        settings_(settings),
+        edit_(settings.heading_edit, context.db->fps, context.tracks.forward_axis) {}
   const SynthesisContext* context_;
   ControllerSettings settings_;
+  HeadingEdit edit_;
   ControlInput input_;
   SearchState state_;
 };

@@ -39,6 +39,13 @@ struct FloorTransform {
   }
 };
 
+// The yaw (FloorTransform's sense) that turns floor direction u onto v ((x, z) each), in
+// (-pi, pi].
+inline double yaw_between(const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
+  const double cross = u.x() * v.y() - u.y() * v.x();
+  return std::atan2(-cross, u.dot(v));
+}
+
 // A floor transform with its cosine, sine and rotation worked out once, for placing many
 // frames under it: apply() and rotation give FloorTransform's values bit for bit.
 struct PreparedFloorTransform {

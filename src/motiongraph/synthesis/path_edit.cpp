@@ -52,12 +52,6 @@ FloorPath round_corners(const FloorPath& path, double half_window_m) {
 
 namespace {
 
-// The yaw (FloorTransform's sense) that turns floor direction u onto v.
-double yaw_between(const Vec2& u, const Vec2& v) {
-  const double cross = u.x() * v.y() - u.y() * v.x();
-  return std::atan2(-cross, u.dot(v));
-}
-
 // v turned by yaw (FloorTransform::rotate on the floor).
 Vec2 turned(const Vec2& v, double yaw) {
   const double c = std::cos(yaw), s = std::sin(yaw);

@@ -1,0 +1,89 @@
+#include "motiongraph/synthesis/heading_edit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+namespace mg {
+
+Status HeadingEditSettings::validate() const {
+  if (!std::isfinite(max_turn_deg_per_m) || max_turn_deg_per_m < 0.0) {
+    return Error{"", 0, "heading edit: the turning it may add must be finite and >= 0 degrees per metre"};
+  }
+  if (!std::isfinite(turn_distance_m) || !(turn_distance_m > 0.0)) {
+    return Error{"", 0, "heading edit: the turning distance must be > 0 metres"};
+  }
+  if (!std::isfinite(window_s) || window_s < 0.0) {
+    return Error{"", 0, "heading edit: the facing's window must be finite and >= 0 seconds"};
+  }
+  return Ok{};
+}
+
+HeadingEdit::HeadingEdit(const HeadingEditSettings& settings, double fps, const Vec3& forward_axis)
+    : settings_(settings),
+      forward_axis_(forward_axis),
+      half_window_(std::max(0, static_cast<int>(std::lround(0.5 * settings.window_s * fps)))) {}
+
+FloorTransform HeadingEdit::apply(Motion& motion, int first, const Vec2* previous_root,
+                                  std::span<const Vec2> planned_facings, const Vec2& direction) {
+  FloorTransform move;
+  if (first >= motion.frame_count) return move;
+  const bool steer = direction.norm() > 1e-6;
+  const double limit = settings_.max_turn_deg_per_m * std::numbers::pi / 180.0;
+  // The facings of the frames played before, as they would play under the present placement
+  // without the turning added since (turned back by it): with the plan, one motion.
+  std::vector<Vec2> window;
+  window.reserve(played_facings_.size() + planned_facings.size());
+  for (const auto& [facing, added_then] : played_facings_) {
+    const Vec3 back = FloorTransform{total_added_ - added_then, 0.0, 0.0}.rotate(Vec3(facing.x(), 0.0, facing.y()));
+    window.emplace_back(back.x(), back.z());
+  }
+  const int past = static_cast<int>(played_facings_.size());
+  window.insert(window.end(), planned_facings.begin(), planned_facings.end());
+  std::vector<Vec2> prefix(window.size() + 1, Vec2::Zero());
+  for (size_t i = 0; i < window.size(); ++i) prefix[i + 1] = prefix[i] + window[i];
+  double added = 0.0;  // since frame first - 1, whose placement the frames have
+  Vec2 last_unedited = previous_root != nullptr ? *previous_root : Vec2::Zero();
+  Vec2 last_edited = last_unedited;
+  bool has_last = previous_root != nullptr;
+  for (int f = first; f < motion.frame_count; ++f) {
+    Vec3& root = motion.translations(f)[0];
+    const Vec2 at(root.x(), root.z());
+    const Vec2 step = has_last ? Vec2(at - last_unedited) : Vec2::Zero();
+    // 1-2. The facing judged at f, and the turn that puts it on the direction asked for.
+    const int centre = past + (f - first);
+    const int lo = std::max(0, centre - half_window_);
+    const int hi = std::min(static_cast<int>(window.size()), centre + half_window_ + 1);
+    const Vec2 mean = hi > lo ? Vec2(prefix[hi] - prefix[lo]) : Vec2::Zero();
+    if (steer && mean.norm() > 1e-6 && step.norm() > 0.0) {
+      const double wanted = yaw_between(mean.normalized(), direction.normalized());
+      const double ds = step.norm();
+      const double change = std::clamp((wanted - added) * std::min(1.0, ds / settings_.turn_distance_m),
+                                       -limit * ds, limit * ds);
+      stats_.max_rate_deg_per_m = std::max(stats_.max_rate_deg_per_m, std::abs(change) / ds * 180.0 / std::numbers::pi);
+      stats_.added_turn_rad += std::abs(change);
+      added += change;
+    }
+    // 3. The frame moved rigidly: turned by the angle added, its step from the last frame too.
+    move.yaw_rad = added;
+    const Vec3 turned_step = move.rotate(Vec3(step.x(), 0.0, step.y()));
+    const Vec2 edited = has_last ? Vec2(last_edited + Vec2(turned_step.x(), turned_step.z())) : at;
+    const Vec3 turned_at = move.rotate(Vec3(at.x(), 0.0, at.y()));
+    move.x_m = edited.x() - turned_at.x();
+    move.z_m = edited.y() - turned_at.z();
+    root = move.apply(root);
+    Quat& rotation = motion.rotations(f)[0];
+    rotation = (move.rotation() * rotation).normalized();
+    last_unedited = at;
+    last_edited = edited;
+    has_last = true;
+    played_facings_.emplace_back(facing_on_floor(rotation, forward_axis_), total_added_ + added);
+    while (static_cast<int>(played_facings_.size()) > half_window_) played_facings_.pop_front();
+    ++stats_.frames;
+  }
+  total_added_ += added;
+  return move;
+}
+
+}  // namespace mg
