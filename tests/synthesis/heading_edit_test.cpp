@@ -20,8 +20,9 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 const Vec3 kForward(0.0, 0.0, -1.0);  // motion_along's figures face their root's -z
 
 // Plays `original` through the edit as the controller does: `chunk` frames a decision, each
-// placed by the moves folded so far, the plan being the original's next second under them.
-Motion play_edited(const Motion& original, int chunk, const Vec2& direction, HeadingEdit& edit) {
+// placed by the moves folded so far, the plan being the original's next `plan` frames (a second)
+// under them.
+Motion play_edited(const Motion& original, int chunk, const Vec2& direction, HeadingEdit& edit, int plan = 30) {
   Motion out = original;
   out.frame_count = 0;
   out.local_rotations.clear();
@@ -36,7 +37,7 @@ Motion play_edited(const Motion& original, int chunk, const Vec2& direction, Hea
       ++out.frame_count;
     }
     std::vector<Vec2> planned;
-    for (int f = first; f < std::min(original.frame_count, first + 30); ++f) {
+    for (int f = first; f < std::min(original.frame_count, first + plan); ++f) {
       const Vec3 facing = folded.rotate(Vec3(facing_on_floor(original.rotations(f)[0], kForward).x(), 0.0,
                                              facing_on_floor(original.rotations(f)[0], kForward).y()));
       planned.emplace_back(facing.x(), facing.z());
@@ -63,6 +64,10 @@ TEST(HeadingEdit, TurnsAStraightWalkOntoTheHeadingAskedForAndHoldsIt) {
     const double step = (root_of(original, f) - root_of(original, f - 1)).norm();
     EXPECT_NEAR((root_of(edited, f) - root_of(edited, f - 1)).norm(), step, 1e-9) << f;
     const double yaw = added_yaw(edited, original, f);
+    // The step is the capture's, turned by the frame's added angle.
+    const Vec2 own = root_of(original, f) - root_of(original, f - 1);
+    const Vec3 turned = FloorTransform{yaw, 0.0, 0.0}.rotate(Vec3(own.x(), 0.0, own.y()));
+    EXPECT_LT((root_of(edited, f) - root_of(edited, f - 1) - Vec2(turned.x(), turned.z())).norm(), 1e-9) << f;
     EXPECT_LE(std::abs(yaw - last_yaw), defaults.max_turn_deg_per_m * kDeg * step + 1e-9) << f;
     // Toward north-east (FloorTransform's sense: negative yaw), never past it.
     EXPECT_LE(yaw, 1e-12) << f;
@@ -108,6 +113,10 @@ TEST(HeadingEdit, AWeavingWalkIsHeldStraight) {
   EXPECT_LT(swing_edited(HeadingEditSettings{}.turn_distance_m), 0.35 * swing_deg(original));
   EXPECT_LT(swing_edited(0.25), swing_edited(0.5));
   EXPECT_LT(swing_edited(0.5), swing_edited(1.0));
+  // Without the plan past the frames committed the window trails them, and the edit lags.
+  HeadingEdit trailing({}, original.fps, kForward);
+  const double lagging = swing_deg(play_edited(original, 6, bearing_direction(0.0), trailing, 6));
+  EXPECT_LT(swing_edited(HeadingEditSettings{}.turn_distance_m), 0.75 * lagging);  // 2.8 and 4.4 degrees
 }
 
 TEST(HeadingEdit, AMotionThatDoesNotTravelOrMayNotTurnIsLeftAsItIs) {

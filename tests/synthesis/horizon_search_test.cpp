@@ -7,6 +7,7 @@
 #include <random>
 
 #include "synthesis/search_test_graphs.h"
+#include "synthesis/subject16_graph.h"
 
 namespace mg {
 namespace {
@@ -169,6 +170,42 @@ TEST(HorizonSearch, ABudgetStillAnswersWithAWalk) {
   HorizonSettings bad = settings;
   bad.horizon_frames = 0;
   EXPECT_FALSE(bad.validate().ok());
+}
+
+// walk_facings against the motion the assembler plays for the same edges (subject 16's graph,
+// random walks through its transitions, started anywhere on the floor): the facing of every frame.
+TEST(HorizonSearch, WalkFacingsAreThoseOfTheMotionPlayed) {
+  const auto& s = test::subject16();
+  const SynthesisContext& context = s.context();
+  const MotionGraph& graph = *context.graph;
+  std::mt19937 rng(3);
+  int transitions = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    SearchState state;
+    state.node = std::uniform_int_distribution<int>(0, graph.node_count() - 1)(rng);
+    state.placement = {std::uniform_real_distribution<double>(-3.0, 3.0)(rng), 1.5 * trial, -0.7 * trial};
+    std::vector<int> edges;
+    for (int node = state.node; edges.size() < 8;) {
+      const int e = std::uniform_int_distribution<int>(graph.edge_offsets[node], graph.edge_offsets[node + 1] - 1)(rng);
+      edges.push_back(e);
+      transitions += graph.edges[e].transition ? 1 : 0;
+      node = graph.edges[e].to_node;
+    }
+    Motion motion = context.assembler.empty_motion();
+    FloorTransform placement = state.placement;
+    for (int e : edges) context.assembler.append_edge(e, placement, motion);
+    const std::vector<Vec2> all = walk_facings(graph, context.tracks, state, edges, static_cast<size_t>(1) << 30);
+    ASSERT_EQ(static_cast<int>(all.size()), motion.frame_count);
+    for (int f = 0; f < motion.frame_count; ++f) {
+      // The graph file keeps rotations in single precision, unit to float precision (the fixture's,
+      // under ctest), which the roots-only play and the whole poses round differently.
+      EXPECT_LT((all[f] - facing_on_floor(motion.rotations(f)[0], context.tracks.forward_axis)).norm(), 1e-6) << f;
+    }
+    const std::vector<Vec2> some = walk_facings(graph, context.tracks, state, edges, 7);
+    ASSERT_EQ(some.size(), 7u);
+    for (size_t f = 0; f < some.size(); ++f) EXPECT_EQ(some[f], all[f]);
+  }
+  EXPECT_GT(transitions, 20);  // placed by their alignments
 }
 
 }  // namespace

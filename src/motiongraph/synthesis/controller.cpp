@@ -127,13 +127,8 @@ ControllerDecision Controller::step(Motion& out) {
   // the heading edit looks past the last committed (or as far as the walk goes).
   std::vector<Vec2> planned;
   if (settings_.heading_edit.max_turn_deg_per_m > 0.0) {
-    const size_t wanted = static_cast<size_t>(decision.frames + edit_.half_window_frames());
-    SearchState plan = state_;
-    for (int e : edges) {
-      for (const Vec2& f : context_->tracks.facings_of(e)) planned.push_back(turn(plan.placement, f));
-      if (planned.size() >= wanted) break;
-      plan = advance(graph, context_->tracks, plan, e);
-    }
+    planned = walk_facings(graph, context_->tracks, state_, edges,
+                           static_cast<size_t>(decision.frames + edit_.half_window_frames()));
   }
   decision.search_seconds = std::chrono::duration<double>(Clock::now() - begin).count();
   const int first = out.frame_count;

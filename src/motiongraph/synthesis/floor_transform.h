@@ -40,7 +40,7 @@ struct FloorTransform {
 };
 
 // The yaw (FloorTransform's sense) that turns floor direction u onto v ((x, z) each), in
-// (-pi, pi].
+// [-pi, pi].
 inline double yaw_between(const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
   const double cross = u.x() * v.y() - u.y() * v.x();
   return std::atan2(-cross, u.dot(v));

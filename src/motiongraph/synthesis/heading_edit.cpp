@@ -32,7 +32,8 @@ FloorTransform HeadingEdit::apply(Motion& motion, int first, const Vec2* previou
   const bool steer = direction.norm() > 1e-6;
   const double limit = settings_.max_turn_deg_per_m * std::numbers::pi / 180.0;
   // The facings of the frames played before, as they would play under the present placement
-  // without the turning added since (turned back by it): with the plan, one motion.
+  // without the turning added since they played (turned on by what was added after them, which
+  // the present placement holds): with the plan, one motion.
   std::vector<Vec2> window;
   window.reserve(played_facings_.size() + planned_facings.size());
   for (const auto& [facing, added_then] : played_facings_) {
@@ -59,8 +60,8 @@ FloorTransform HeadingEdit::apply(Motion& motion, int first, const Vec2* previou
     if (steer && mean.norm() > 1e-6 && step.norm() > 0.0) {
       const double wanted = yaw_between(mean.normalized(), direction.normalized());
       const double ds = step.norm();
-      const double change = std::clamp((wanted - added) * std::min(1.0, ds / settings_.turn_distance_m),
-                                       -limit * ds, limit * ds);
+      const double left = std::remainder(wanted - added, 2.0 * std::numbers::pi);  // the short way round
+      const double change = std::clamp(left * std::min(1.0, ds / settings_.turn_distance_m), -limit * ds, limit * ds);
       stats_.max_rate_deg_per_m = std::max(stats_.max_rate_deg_per_m, std::abs(change) / ds * 180.0 / std::numbers::pi);
       stats_.added_turn_rad += std::abs(change);
       added += change;

@@ -13,8 +13,9 @@
 //  2. The turn w_i that would put it on the direction asked for. The angle added since the last
 //     decision, a, follows it: each frame moves a toward w_i by the share ds / turn_distance_m
 //     of what is left, ds the root's floor step (so an error is taken out over about
-//     turn_distance_m travelled), and by at most max_turn_deg_per_m per metre. A motion that
-//     does not travel (a turn on the spot, standing) is not turned.
+//     turn_distance_m travelled), and by at most max_turn_deg_per_m per metre: the turn goes
+//     with the root's travel, so a motion that does not travel (standing, a turn on the spot)
+//     is not turned, and one that barely travels barely.
 //  3. Frame i is moved rigidly on the floor: turned by a_i, its root's floor step from the
 //     frame before turned by it too (the edited root is the last edited root plus the step
 //     turned by a_i), so it travels as far, turning a_i - a_{i-1} more than the capture.
@@ -22,7 +23,9 @@
 // The rigid motion of the last frame moves on the placement of what follows (the controller
 // composes it onto its state), so the next decision starts where the edit left the character
 // and a starts again from 0. The foot clean-up (foot_cleanup.h) holds the planted feet, as after
-// the path edit.
+// the path edit. Asked for a new heading, the edit shares the turn with the walk the search
+// finds (on subject 16 it adds about 60 of a 90-degree turn's degrees): it turns no faster than
+// max_turn_deg_per_m, and the graph's turning steps carry the rest.
 #pragma once
 
 #include <deque>

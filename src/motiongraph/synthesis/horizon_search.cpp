@@ -197,6 +197,21 @@ SearchState advance(const MotionGraph& graph, const EdgeTracks& tracks, const Se
   return child.state;
 }
 
+std::vector<Vec2> walk_facings(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& state,
+                               std::span<const int> edges, size_t count) {
+  std::vector<Vec2> facings;
+  SearchState at = state;
+  for (int e : edges) {
+    if (facings.size() >= count) break;
+    for (const Vec2& f : tracks.facings_of(e)) {
+      if (facings.size() >= count) break;
+      facings.push_back(turn(at.placement, f));
+    }
+    at = advance(graph, tracks, at, e);
+  }
+  return facings;
+}
+
 HorizonResult horizon_search(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& start,
                              const FrameCost& frame_cost, const HorizonSettings& settings,
                              std::span<const int> hint) {

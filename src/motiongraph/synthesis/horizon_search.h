@@ -115,6 +115,11 @@ HorizonResult horizon_search(const MotionGraph& graph, const EdgeTracks& tracks,
 // The state after playing edge `edge` from `state`.
 SearchState advance(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& state, int edge);
 
+// The world floor facings of the frames `edges` play from `state`, in order: the first `count`
+// (all when they play fewer).
+std::vector<Vec2> walk_facings(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& state,
+                               std::span<const int> edges, size_t count);
+
 // World floor position of a track point under a placement.
 inline Vec2 place(const FloorTransform& w, const Vec2& p) {
   const Vec3 q = w.apply(Vec3(p.x(), 0.0, p.y()));
