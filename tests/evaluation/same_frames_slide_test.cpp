@@ -37,14 +37,20 @@ std::vector<FrameSource> sources_of(const MotionAssembler& assembler, const Moti
 
 // A clip played whole, as captured, is its capture step for step: the steps are the measure's own
 // on that clip, and the speeds the same, wherever the walk is placed.
+// One clip as a database, its graph without transitions, and the walk that plays it whole.
+struct WholeClip {
+  MotionDatabase db = test::small_database({"cmu/16/16_15.amc"});
+  int n = db.clips[0].frame_count;
+  Result<MotionGraph> graph = build_motion_graph(db, std::vector<Transition>{}, 10);
+  Result<MotionAssembler> assembler =
+      graph.ok() ? MotionAssembler::create(db, *graph, 0) : Result<MotionAssembler>(graph.error());
+  Walk walk = graph.ok() ? walk_between(*graph, 0, n - 1) : Walk{};
+};
+
 TEST(SameFramesSlide, AClipPlayedAsCapturedIsItsCapture) {
-  const MotionDatabase db = test::small_database({"cmu/16/16_15.amc"});
-  const int n = db.clips[0].frame_count;
-  auto graph = build_motion_graph(db, std::vector<Transition>{}, 10);
-  ASSERT_TRUE(graph.ok()) << graph.error().to_string();
-  auto assembler = MotionAssembler::create(db, *graph, 0);
-  ASSERT_TRUE(assembler.ok());
-  const Walk walk = walk_between(*graph, 0, n - 1);
+  const WholeClip whole_clip;
+  const auto& [db, n, graph, assembler, walk] = whole_clip;
+  ASSERT_TRUE(graph.ok() && assembler.ok());
   auto capture = measure_foot_slide(db.skeletons[0], db.clips[0].motion);
   ASSERT_TRUE(capture.ok());
   ASSERT_GT(capture->contact_steps, 20);
@@ -57,6 +63,43 @@ TEST(SameFramesSlide, AClipPlayedAsCapturedIsItsCapture) {
     EXPECT_EQ(same->steps, capture->contact_steps);
     EXPECT_NEAR(same->mean_mps, capture->mean_mps, 1e-9);
     EXPECT_NEAR(same->source_mean_mps, capture->mean_mps, 1e-9);
+  }
+}
+
+// The same clip played with the whole figure raised 5 cm over a stretch of frames (as the foot
+// clean-up lifts a foot stepping to a new plant): the capture's planted steps there are off the
+// floor in the result, counted as lifted and not as slide; raised by 1 cm (within the contacts'
+// 2 cm), they count as before.
+TEST(SameFramesSlide, AFootTheResultLiftsIsNotSliding) {
+  const WholeClip whole_clip;
+  const auto& [db, n, graph, assembler, walk] = whole_clip;
+  ASSERT_TRUE(graph.ok() && assembler.ok());
+  const std::vector<FrameSource> sources = sources_of(*assembler, *graph, walk);
+  auto motion = assemble_walk(db, *graph, walk, {}, 0);
+  ASSERT_TRUE(motion.ok());
+  auto whole = same_frames_foot_slide(db, *assembler, *motion, sources);
+  ASSERT_TRUE(whole.ok());
+  EXPECT_EQ(whole->lifted_steps, 0);
+  const int root = db.skeletons[0].translation_slot(0);
+  ASSERT_GE(root, 0);
+  for (double lift : {0.05, 0.01}) {
+    Motion raised = *motion;
+    for (int f = n / 3; f < 2 * n / 3; ++f) raised.translations(f)[root].y() += lift;
+    // The steps into the raised frames, measured on the motion as played.
+    auto part = same_frames_foot_slide(db, *assembler, motion->slice(0, 2 * n / 3), sources);
+    auto before = same_frames_foot_slide(db, *assembler, motion->slice(0, n / 3), sources);
+    ASSERT_TRUE(part.ok() && before.ok());
+    const long long raised_steps = part->steps - before->steps;
+    ASSERT_GT(raised_steps, 10);
+    auto same = same_frames_foot_slide(db, *assembler, raised, sources);
+    ASSERT_TRUE(same.ok());
+    if (lift > 0.02) {
+      EXPECT_EQ(same->lifted_steps, raised_steps);
+      EXPECT_EQ(same->steps, whole->steps - raised_steps);
+    } else {
+      EXPECT_EQ(same->lifted_steps, 0);
+      EXPECT_EQ(same->steps, whole->steps);
+    }
   }
 }
 

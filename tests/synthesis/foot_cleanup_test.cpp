@@ -251,13 +251,66 @@ TEST(FootCleanup, APlantTheMotionLeavesFarBehindIsMadeAgainWhereTheFootIs) {
   EXPECT_LT(max_joint_step(world_positions(w.clip.skeleton, output), joints), input_step + 0.06);
 }
 
+// The foot goes to a plant made again by a step: lifted midway (by at most step_height_m, and
+// half the step's length) above where the same clean-up without the step has it, on the floor
+// where the step starts and ends, so that it moves along the floor far less; with step_height_m 0
+// it slides the whole way.
+TEST(FootCleanup, APlantMadeAgainIsReachedByAStep) {
+  Walked w = walked();
+  const ContactMask left = contact_bit(FootSide::kLeft, FootPart::kAnkle) | contact_bit(FootSide::kLeft, FootPart::kToe);
+  for (ContactMask& m : w.contacts) m = static_cast<ContactMask>((m & ~left) | left);
+  const Motion input = sliding(w.clip.motion, 0.3);
+  const int joints = w.clip.skeleton.joint_count(), ankle = w.feet.left.ankle;
+  const FootCleanupSettings defaults;
+  auto ankles = [&](double step_height, long long* replants) {
+    FootCleanupSettings settings;
+    settings.step_height_m = step_height;
+    FootCleanupStats stats;
+    const std::vector<Vec3> out = world_positions(w.clip.skeleton, cleaned(w, input, settings, &stats));
+    *replants = stats.replants;
+    // Its height from the root's (which the clean-up lowers less where a lifted foot is
+    // reached more easily).
+    std::vector<Vec3> track;
+    for (size_t f = 0; f < out.size() / joints; ++f) {
+      track.push_back(out[f * joints + ankle] - Vec3(0.0, out[f * joints].y(), 0.0));
+    }
+    return track;
+  };
+  long long slid_replants = 0, replants = 0;
+  const std::vector<Vec3> slid = ankles(0.0, &slid_replants), stepped = ankles(defaults.step_height_m, &replants);
+  ASSERT_GT(replants, 3);
+  EXPECT_EQ(replants, slid_replants);  // the same plants, reached another way
+  // The ankle's travel on the floor over the frames where the step does not lift it (by 2 cm or
+  // more), against its travel without steps; the highest lift; frames lifted by 1 cm or more.
+  double on_floor = 0.0, all = 0.0, highest = 0.0;
+  int lifted = 0;
+  for (size_t f = 1; f < stepped.size(); ++f) {
+    const double rise = stepped[f].y() - slid[f].y();
+    if (rise < 0.02) on_floor += horizontal(stepped[f], stepped[f - 1]);
+    all += horizontal(slid[f], slid[f - 1]);
+    if (rise > 0.01) ++lifted;
+    highest = std::max(highest, rise);
+  }
+  // Each step of about 25 cm is mostly in the air.
+  EXPECT_LT(on_floor, all - 0.5 * defaults.max_hold_m * static_cast<double>(replants)) << on_floor << " of " << all;
+  EXPECT_GT(highest, 0.8 * defaults.step_height_m);
+  // Up to 4 cm more where the leg without the lift cannot reach its plant (this walk's stride
+  // and 25 cm: stretched straight, its ankle pulled down along the leg).
+  EXPECT_LT(highest, defaults.step_height_m + 0.05);
+  // Lifted only while stepping: at most an ease's frames a step.
+  const int ease = static_cast<int>(std::lround(defaults.ease_s * input.fps));
+  EXPECT_LE(lifted, ease * replants);
+  EXPECT_GT(lifted, replants);
+}
+
 TEST(FootCleanup, BadSettingsLegsAndCallsAreErrors) {
   const Walked w = walked();
   for (auto change : {+[](FootCleanupSettings& s) { s.ease_s = -1.0; },
                       +[](FootCleanupSettings& s) { s.max_extension = 1.0; },
                       +[](FootCleanupSettings& s) { s.max_root_drop_m = std::nan(""); },
                       +[](FootCleanupSettings& s) { s.root_speed_mps = 0.0; },
-                      +[](FootCleanupSettings& s) { s.max_hold_m = 0.0; }}) {
+                      +[](FootCleanupSettings& s) { s.max_hold_m = 0.0; },
+                      +[](FootCleanupSettings& s) { s.step_height_m = -0.01; }}) {
     FootCleanupSettings settings;
     change(settings);
     EXPECT_FALSE(settings.validate());

@@ -46,6 +46,7 @@ nlohmann::json foot_slide_report(const SynthesisContext& context, const Walk& wa
     report["same_frames"] = {{"error", same.error().message}};
   } else {
     report["same_frames"] = {{"steps", same->steps},
+                             {"lifted_steps", same->lifted_steps},
                              {"mean_mps", same->mean_mps},
                              {"source_mean_mps", same->source_mean_mps},
                              {"ratio", ratio_json(same->mean_mps, same->source_mean_mps)}};

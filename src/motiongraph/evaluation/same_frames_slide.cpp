@@ -24,6 +24,7 @@ std::array<int, kKinds> kind_joints(const FootJoints& feet) {
 struct ClipFeet {
   bool read = false;
   std::array<std::vector<Vec2>, kKinds> floor;       // (x, z) per frame; empty: no such joint
+  std::array<std::vector<double>, kKinds> height;    // y per frame
   std::array<std::vector<uint8_t>, kKinds> planted;  // per frame
 };
 
@@ -41,9 +42,11 @@ Status read_clip(const MotionDatabase& db, int c, const FootSlideSettings& setti
     const int kind = kind_of(track.side, track.part);
     out.planted[kind] = track.planted;
     out.floor[kind].resize(static_cast<size_t>(clip.frame_count));
+    out.height[kind].resize(static_cast<size_t>(clip.frame_count));
     for (size_t f = 0; f < out.floor[kind].size(); ++f) {
       const Vec3& p = positions[f * joints + static_cast<size_t>(track.joint)];
       out.floor[kind][f] = Vec2(p.x(), p.z());
+      out.height[kind][f] = p.y();
     }
   }
   out.read = true;
@@ -109,6 +112,14 @@ Result<SameFramesSlide> same_frames_foot_slide(const MotionDatabase& db, const M
       if (!measured[kind]) continue;
       const std::vector<uint8_t>& planted = (*got)->planted[kind];
       if (planted.empty() || !planted[local - 1] || !planted[local]) continue;
+      // Lifted off the floor in the result (a foot stepping to a new plant, a blend with a
+      // swing): not on the floor, so not sliding on it.
+      const double height = positions[static_cast<size_t>(f) * joints + joint[kind]].y();
+      const double scale = assembler.scale_of(db.clips[c].skeleton);
+      if (height > scale * (*got)->height[kind][static_cast<size_t>(local)] + settings.contacts.enter_height_m) {
+        ++slide.lifted_steps;
+        continue;
+      }
       auto departure = source_speed(from.departure, kind);
       if (!departure) return departure.error();
       auto arrival = source_speed(from.arrival, kind);

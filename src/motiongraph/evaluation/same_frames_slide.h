@@ -15,7 +15,9 @@
 // its ankle; the ankles too with include_ankles) counts when the frame that weighs most in f,
 // g, and the frame before it in its clip, g-1, are both planted there by the measure's contacts
 // (FootSlideSettings::contacts: height alone, within 2 cm of the clip's own floor; a clip is
-// judged on its own skeleton's joint of the same side and part, and skipped without one).
+// judged on its own skeleton's joint of the same side and part, and skipped without one), and
+// the result's joint at f is no more than those 2 cm above g's (a foot the result lifts, as the
+// foot clean-up's step to a new plant or a blend toward a swing, is off the floor: not sliding).
 // For a counted step:
 //   output speed: the joint's horizontal step in the result times fps;
 //   source speed: alpha v(departure) + (1 - alpha) v(arrival), v(x) the same joint's
@@ -35,6 +37,7 @@ namespace mg {
 
 struct SameFramesSlide {
   long long steps = 0;           // steps counted (see above), over all measured joints
+  long long lifted_steps = 0;    // planted in the capture, lifted in the result: not counted
   double mean_mps = 0.0;         // the result's mean speed over them (0 without any)
   double source_mean_mps = 0.0;  // the capture's over the same steps
 };

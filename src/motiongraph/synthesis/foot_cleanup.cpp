@@ -43,6 +43,9 @@ Status FootCleanupSettings::validate() const {
   if (!(root_speed_mps > 0.0) || !std::isfinite(root_speed_mps)) {
     return Error{"", 0, "the clean-up's root speed must be finite and > 0 m/s"};
   }
+  if (!(step_height_m >= 0.0) || !std::isfinite(step_height_m)) {
+    return Error{"", 0, "foot clean-up: the step's height must be finite and >= 0 metres"};
+  }
   if (!(max_hold_m > 0.0) || !std::isfinite(max_hold_m)) {
     return Error{"", 0, "the clean-up's longest hold must be finite and > 0 m"};
   }
@@ -127,6 +130,7 @@ Status FootCleanup::clean(Motion& motion, int first, std::span<const ContactMask
           leg.switch_offset = leg.offset;
           leg.since_switch = 0;
         }
+        leg.stepping = false;  // a step's lift eases out with the offset it is part of
         leg.mode = mode;
       }
       Vec3 mode_offset =
@@ -146,11 +150,16 @@ Status FootCleanup::clean(Motion& motion, int first, std::span<const ContactMask
         leg.toe_plant = toe;
         leg.switch_offset = leg.offset;
         leg.since_switch = 0;
+        leg.stepping = true;
+        leg.step_lift_m = std::min(settings_.step_height_m,
+                                   0.5 * std::hypot(leg.switch_offset.x(), leg.switch_offset.z()));
         mode_offset = Vec3::Zero();
         ++stats_.replants;
       }
       const double w = ease_weight(leg.since_switch);
+      if (leg.since_switch >= ease_frames_) leg.stepping = false;
       leg.offset = w * leg.switch_offset + (1.0 - w) * mode_offset;
+      if (leg.stepping) leg.offset.y() += leg.step_lift_m * 4.0 * w * (1.0 - w);
       if (leg.since_switch < kLongAgo) ++leg.since_switch;
       frame.ankle[side] = ankle + leg.offset;
       frame.toe_planted[side] = toe_on;

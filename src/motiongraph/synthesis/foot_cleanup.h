@@ -14,7 +14,9 @@
 //     the motion's foot has left by more than max_hold_m on the floor (a long contact over
 //     which the pieces' placement drifted: a dancer standing for minutes) is made again
 //     where the motion has the foot, the offset eased to it like any switch (and the toe's
-//     plant of step 4 with it).
+//     plant of step 4 with it), and the foot steps there: lifted by step_height_m (at most
+//     half the step's length) times 4 w (1 - w), w the ease's weight, so that it leaves and
+//     reaches the floor where the ease starts and ends, rather than slide along it.
 //  2. The root is lowered (only vertically, at most max_root_drop_m) just enough that both
 //     legs reach their targets with the knee bent to at most max_extension of the leg's
 //     length (or as straight as the motion had it); the drop is spread over the frames around
@@ -53,6 +55,9 @@ struct FootCleanupSettings {
   // A plant that would pull the foot further than this on the floor from where the motion has
   // it is let go of, and a new one made where the foot is (see step 1).
   double max_hold_m = 0.25;
+  // The foot steps to the new plant, lifted at most this high (and at most half the step's
+  // length) midway; 0: it slides there on the floor.
+  double step_height_m = 0.05;
 
   Status validate() const;
 };
@@ -96,6 +101,8 @@ class FootCleanup {
     Vec3 switch_offset = Vec3::Zero();
     int since_switch = 1 << 30;
     Vec3 replant_move = Vec3::Zero(); // the last replant's old toe plant minus its new one
+    double step_lift_m = 0.0;         // the height of the step to the last replant's plant
+    bool stepping = false;            // the ease under way is a replant's step
     // Solving (steps 3 and 4).
     Vec3 hinge_sum = Vec3::Zero();    // the knee's bend axis in the hip joint's frame, summed
     Vec3 bend_axis = Vec3::Zero();    // the last frame's, in the world
