@@ -258,7 +258,7 @@ TEST(FootCleanup, APlantTheMotionLeavesFarBehindIsMadeAgainWhereTheFootIs) {
 TEST(FootCleanup, APlantMadeAgainIsReachedByAStep) {
   Walked w = walked();
   const ContactMask left = contact_bit(FootSide::kLeft, FootPart::kAnkle) | contact_bit(FootSide::kLeft, FootPart::kToe);
-  for (ContactMask& m : w.contacts) m = static_cast<ContactMask>((m & ~left) | left);
+  std::fill(w.contacts.begin(), w.contacts.end(), left);  // the right foot free: one foot steps
   const Motion input = sliding(w.clip.motion, 0.3);
   const int joints = w.clip.skeleton.joint_count(), ankle = w.feet.left.ankle;
   const FootCleanupSettings defaults;
@@ -301,6 +301,74 @@ TEST(FootCleanup, APlantMadeAgainIsReachedByAStep) {
   const int ease = static_cast<int>(std::lround(defaults.ease_s * input.fps));
   EXPECT_LE(lifted, ease * replants);
   EXPECT_GT(lifted, replants);
+}
+
+// The lift belongs to the steps to plants made again: where no plant is made again the frames
+// are those of the clean-up without steps, whatever the contacts' switches.
+TEST(FootCleanup, NoPlantMadeAgainNoLift) {
+  const Walked w = walked();
+  const Motion input = sliding(w.clip.motion, 0.3, 0.05);
+  FootCleanupSettings held, held_flat;
+  held.max_hold_m = held_flat.max_hold_m = 100.0;
+  held_flat.step_height_m = 0.0;
+  FootCleanupStats stats;
+  const Motion a = cleaned(w, input, held, &stats);
+  const Motion b = cleaned(w, input, held_flat);
+  EXPECT_EQ(stats.replants, 0);
+  EXPECT_EQ(stats.stepping_leg_frames, 0);
+  EXPECT_EQ(a.local_rotations, b.local_rotations);
+  EXPECT_EQ(a.local_translations_m, b.local_translations_m);
+}
+
+// A figure standing with both feet planted while the pieces' placement drifts (0.3 m/s): both
+// plants are left 25 cm behind together, and the feet step in turn. A step cut short by its
+// contact's switches (a frame without contact, the heel alone) eases its lift out: the ankle's
+// height above the clean-up without steps never jumps.
+TEST(FootCleanup, FeetStepInTurnAndAStepCutShortLandsSmoothly) {
+  Walked w = walked();
+  Motion standing = w.clip.motion;
+  for (int f = 0; f < standing.frame_count; ++f) {
+    std::copy(w.clip.motion.rotations(0).begin(), w.clip.motion.rotations(0).end(), standing.rotations(f).begin());
+    std::copy(w.clip.motion.translations(0).begin(), w.clip.motion.translations(0).end(), standing.translations(f).begin());
+  }
+  const Motion input = sliding(standing, 0.3);
+  const ContactMask both = contact_bit(FootSide::kLeft, FootPart::kAnkle) | contact_bit(FootSide::kLeft, FootPart::kToe) |
+                           contact_bit(FootSide::kRight, FootPart::kAnkle) | contact_bit(FootSide::kRight, FootPart::kToe);
+  const int joints = w.clip.skeleton.joint_count();
+  FootCleanupSettings flat;
+  flat.step_height_m = 0.0;
+  for (bool cut : {false, true}) {
+    std::fill(w.contacts.begin(), w.contacts.end(), both);
+    if (cut) {
+      for (size_t f = 30; f < w.contacts.size(); f += 23) w.contacts[f] = 0;  // a frame free
+      for (size_t f = 40; f < w.contacts.size(); f += 31) {                    // the heels alone
+        w.contacts[f] = contact_bit(FootSide::kLeft, FootPart::kAnkle) | contact_bit(FootSide::kRight, FootPart::kAnkle);
+      }
+    }
+    FootCleanupStats stats;
+    const std::vector<Vec3> stepped = world_positions(w.clip.skeleton, cleaned(w, input, {}, &stats));
+    const std::vector<Vec3> slid = world_positions(w.clip.skeleton, cleaned(w, input, flat));
+    ASSERT_GT(stats.replants, 4) << cut;
+    EXPECT_GT(stats.stepping_leg_frames, 2 * stats.replants) << cut;
+    if (!cut) {  // (a plant left twice as far while the other foot steps is let go all the same)
+      EXPECT_LE(20 * stats.both_stepping_frames, stats.stepping_leg_frames) << stats.both_stepping_frames;
+    }
+    for (int ankle : {w.feet.left.ankle, w.feet.right.ankle}) {
+      double jump = 0.0, highest = 0.0;
+      auto rise = [&](size_t g) {
+        return (stepped[g * joints + ankle].y() - stepped[g * joints].y()) -
+               (slid[g * joints + ankle].y() - slid[g * joints].y());
+      };
+      for (size_t f = 1; f < stepped.size() / joints; ++f) {
+        jump = std::max(jump, std::abs(rise(f) - rise(f - 1)));
+        highest = std::max(highest, rise(f));
+      }
+      // A 5 cm step rises at most 1.8 cm a frame at 30 fps, the legs' reach moving it a little
+      // more (cut short without easing: 5 cm at once).
+      EXPECT_LT(jump, 0.03) << cut << " " << ankle;
+      EXPECT_GT(highest, 0.04) << cut << " " << ankle;
+    }
+  }
 }
 
 TEST(FootCleanup, BadSettingsLegsAndCallsAreErrors) {

@@ -5,7 +5,7 @@
 //   {"mean_mps", "p95_mps", "max_joint_step_m", "p999_joint_step_m", "contact_steps",
 //    "source": {the same, "clips": [names]},
 //    "ratio": {"mean_mps", "p95_mps", "max_joint_step_m", "max_joint_step_over_source_p999"},
-//    "same_frames": {"steps", "mean_mps", "source_mean_mps", "ratio"}}
+//    "same_frames": {"steps", "lifted_steps", "mean_mps", "source_mean_mps", "ratio"}}
 // A ratio is output / source (null where the source's is 0); max_joint_step_over_source_p999
 // is the output's largest step over the source's 99.9th percentile (the clean-up's bound is
 // 1.5). "same_frames" is the result's foot slide on the steps its frames' own source frames

@@ -49,7 +49,8 @@ Result<FootSlideSweepRow> measure(const SynthesisContext& context, const std::st
   row.same_frames_steps = played_same->steps;
   row.same_frames_source_mps = played_same->source_mean_mps;
   row.played_same_ratio = times_the_source(played_same->mean_mps, row.same_frames_source_mps);
-  row.cleaned_same_ratio = times_the_source(cleaned_same->mean_mps, row.same_frames_source_mps);
+  // Over its own steps: the clean-up's lifted ones are not counted (the report's ratio).
+  row.cleaned_same_ratio = times_the_source(cleaned_same->mean_mps, cleaned_same->source_mean_mps);
   return row;
 }
 

@@ -98,6 +98,16 @@ Result<SameFramesSlide> same_frames_foot_slide(const MotionDatabase& db, const M
     return (track[local] - track[local - 1]).norm() * fps * scale;
   };
 
+  // The joint's height at database frame x, in the result's scale; NaN without the joint.
+  auto source_height = [&](int x, int kind) -> Result<double> {
+    const int c = db.clip_of(x);
+    auto got = clip_feet(c);
+    if (!got) return got.error();
+    const std::vector<double>& heights = (*got)->height[kind];
+    if (heights.empty()) return std::nan("");
+    return heights[static_cast<size_t>(x - db.clips[c].first_frame)] * assembler.scale_of(db.clips[c].skeleton);
+  };
+
   SameFramesSlide slide;
   double output_sum = 0.0, source_sum = 0.0;
   for (int f = 1; f < output.frame_count; ++f) {
@@ -112,11 +122,15 @@ Result<SameFramesSlide> same_frames_foot_slide(const MotionDatabase& db, const M
       if (!measured[kind]) continue;
       const std::vector<uint8_t>& planted = (*got)->planted[kind];
       if (planted.empty() || !planted[local - 1] || !planted[local]) continue;
-      // Lifted off the floor in the result (a foot stepping to a new plant, a blend with a
-      // swing): not on the floor, so not sliding on it.
+      // Lifted off the floor in the result (a foot stepping to a new plant): above the height
+      // the capture's frames give the joint, blended as the frame blends them.
+      auto departure_height = source_height(from.departure, kind);
+      if (!departure_height) return departure_height.error();
+      auto arrival_height = source_height(from.arrival, kind);
+      if (!arrival_height) return arrival_height.error();
+      const double captured = from.alpha * *departure_height + (1.0 - from.alpha) * *arrival_height;
       const double height = positions[static_cast<size_t>(f) * joints + joint[kind]].y();
-      const double scale = assembler.scale_of(db.clips[c].skeleton);
-      if (height > scale * (*got)->height[kind][static_cast<size_t>(local)] + settings.contacts.enter_height_m) {
+      if (height > captured + settings.contacts.enter_height_m) {
         ++slide.lifted_steps;
         continue;
       }

@@ -16,8 +16,10 @@
 // g, and the frame before it in its clip, g-1, are both planted there by the measure's contacts
 // (FootSlideSettings::contacts: height alone, within 2 cm of the clip's own floor; a clip is
 // judged on its own skeleton's joint of the same side and part, and skipped without one), and
-// the result's joint at f is no more than those 2 cm above g's (a foot the result lifts, as the
-// foot clean-up's step to a new plant or a blend toward a swing, is off the floor: not sliding).
+// the result's joint at f is no more than those 2 cm above the capture's height there (the
+// joint's heights at the frame's departure and arrival, weighed by alpha, in the result's
+// scale): a foot the result lifts, as the foot clean-up's step to a new plant, is off the floor,
+// not sliding. Such a step is counted in lifted_steps.
 // For a counted step:
 //   output speed: the joint's horizontal step in the result times fps;
 //   source speed: alpha v(departure) + (1 - alpha) v(arrival), v(x) the same joint's

@@ -63,7 +63,9 @@ nlohmann::json cleanup_report(const SynthesisContext& context, const SynthesisRu
           {"max_root_drop_m", s.max_root_drop_m},
           {"max_correction_m", s.max_correction_m},
           {"max_ankle_miss_m", s.max_ankle_miss_m},
-          {"replants", s.replants}};
+          {"replants", s.replants},
+          {"stepping_leg_frames", s.stepping_leg_frames},
+          {"both_stepping_frames", s.both_stepping_frames}};
 }
 
 nlohmann::json path_edit_report(const PathSynthesisSettings& search, const PathSynthesisResult& result) {

@@ -130,7 +130,11 @@ Status FootCleanup::clean(Motion& motion, int first, std::span<const ContactMask
           leg.switch_offset = leg.offset;
           leg.since_switch = 0;
         }
-        leg.stepping = false;  // a step's lift eases out with the offset it is part of
+        if (leg.stepping) {  // a step cut short: what is left of its lift eases out
+          leg.stepping = false;
+          leg.lift_release_m = leg.lift_m;
+          leg.since_lift_release = 0;
+        }
         leg.mode = mode;
       }
       Vec3 mode_offset =
@@ -142,7 +146,12 @@ Status FootCleanup::clean(Motion& motion, int first, std::span<const ContactMask
       // A plant the motion has left further than max_hold_m (a long contact over which the
       // placement drifted) is let go: a new one where the motion has the foot, reached by
       // easing as at any switch (a quick step instead of a leg stretched out of reach).
-      frame.replanted[side] = mode != kFree && mode_offset.norm() > settings_.max_hold_m;
+      // One foot steps at a time: while the other is stepping this one is held on (a plant
+      // left twice as far is let go of all the same), so that both do not leave the floor.
+      const Leg& other = legs_[1 - side];
+      const bool other_stepping = settings_.step_height_m > 0.0 && other.stepping && other.since_switch < ease_frames_;
+      const double hold = other_stepping ? 2.0 * settings_.max_hold_m : settings_.max_hold_m;
+      frame.replanted[side] = mode != kFree && mode_offset.norm() > hold;
       if (frame.replanted[side]) {
         if (mode == kAnklePlanted) leg.ankle_plant = ankle;
         leg.replant_move = mode == kToePlanted ? Vec3(leg.toe_plant - toe) : Vec3::Zero();
@@ -150,7 +159,8 @@ Status FootCleanup::clean(Motion& motion, int first, std::span<const ContactMask
         leg.toe_plant = toe;
         leg.switch_offset = leg.offset;
         leg.since_switch = 0;
-        leg.stepping = true;
+        leg.lift_carry_m = leg.lift_m;  // a step made again mid-step goes on from its height
+        leg.stepping = settings_.step_height_m > 0.0;
         leg.step_lift_m = std::min(settings_.step_height_m,
                                    0.5 * std::hypot(leg.switch_offset.x(), leg.switch_offset.z()));
         mode_offset = Vec3::Zero();
@@ -159,9 +169,14 @@ Status FootCleanup::clean(Motion& motion, int first, std::span<const ContactMask
       const double w = ease_weight(leg.since_switch);
       if (leg.since_switch >= ease_frames_) leg.stepping = false;
       leg.offset = w * leg.switch_offset + (1.0 - w) * mode_offset;
-      if (leg.stepping) leg.offset.y() += leg.step_lift_m * 4.0 * w * (1.0 - w);
       if (leg.since_switch < kLongAgo) ++leg.since_switch;
-      frame.ankle[side] = ankle + leg.offset;
+      // The step's lift, kept out of the offset (the plants continue the offset on the floor).
+      leg.lift_m = leg.stepping ? std::max(leg.lift_carry_m * w, leg.step_lift_m * 4.0 * w * (1.0 - w))
+                                : leg.lift_release_m * ease_weight(leg.since_lift_release);
+      if (leg.since_lift_release < kLongAgo) ++leg.since_lift_release;
+      frame.ankle[side] = ankle + leg.offset + Vec3(0.0, leg.lift_m, 0.0);
+      if (leg.stepping) ++stats_.stepping_leg_frames;
+      if (side == 1 && leg.stepping && legs_[0].stepping) ++stats_.both_stepping_frames;
       frame.toe_planted[side] = toe_on;
       frame.toe_plant[side] = leg.toe_plant;
       // A toe's plant starts only where its contact starts (the offset continued: w = 0); a

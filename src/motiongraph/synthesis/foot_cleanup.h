@@ -16,7 +16,9 @@
 //     where the motion has the foot, the offset eased to it like any switch (and the toe's
 //     plant of step 4 with it), and the foot steps there: lifted by step_height_m (at most
 //     half the step's length) times 4 w (1 - w), w the ease's weight, so that it leaves and
-//     reaches the floor where the ease starts and ends, rather than slide along it.
+//     reaches the floor where the ease starts and ends, rather than slide along it (a contact
+//     switch cutting the step short eases what is left of the lift out over ease_s). One foot
+//     steps at a time: while the other steps, a plant is held up to twice max_hold_m.
 //  2. The root is lowered (only vertically, at most max_root_drop_m) just enough that both
 //     legs reach their targets with the knee bent to at most max_extension of the leg's
 //     length (or as straight as the motion had it); the drop is spread over the frames around
@@ -71,6 +73,8 @@ struct FootCleanupStats {
   double max_ankle_miss_m = 0.0;     // the furthest an ankle stayed from its target
   double max_correction_m = 0.0;     // the furthest an ankle target was from the ankle
   long long replants = 0;            // plants let go of and made again (max_hold_m)
+  long long stepping_leg_frames = 0; // legs stepping to a plant made again, summed over frames
+  long long both_stepping_frames = 0;  // frames both legs were (one foot steps at a time: 0)
 };
 
 class FootCleanup {
@@ -103,6 +107,10 @@ class FootCleanup {
     Vec3 replant_move = Vec3::Zero(); // the last replant's old toe plant minus its new one
     double step_lift_m = 0.0;         // the height of the step to the last replant's plant
     bool stepping = false;            // the ease under way is a replant's step
+    double lift_m = 0.0;              // the last frame's lift of the ankle's target
+    double lift_release_m = 0.0;      // the lift a step cut short had, eased out
+    double lift_carry_m = 0.0;        // the lift when the step under way began
+    int since_lift_release = 1 << 30;
     // Solving (steps 3 and 4).
     Vec3 hinge_sum = Vec3::Zero();    // the knee's bend axis in the hip joint's frame, summed
     Vec3 bend_axis = Vec3::Zero();    // the last frame's, in the world
