@@ -44,7 +44,7 @@ Status FootCleanupSettings::validate() const {
     return Error{"", 0, "the clean-up's root speed must be finite and > 0 m/s"};
   }
   if (!(step_height_m >= 0.0) || !std::isfinite(step_height_m)) {
-    return Error{"", 0, "foot clean-up: the step's height must be finite and >= 0 metres"};
+    return Error{"", 0, "the clean-up's step height must be finite and >= 0 m"};
   }
   if (!(max_hold_m > 0.0) || !std::isfinite(max_hold_m)) {
     return Error{"", 0, "the clean-up's longest hold must be finite and > 0 m"};
