@@ -38,9 +38,7 @@ Motion play_edited(const Motion& original, int chunk, const Vec2& direction, Hea
     }
     std::vector<Vec2> planned;
     for (int f = first; f < std::min(original.frame_count, first + plan); ++f) {
-      const Vec3 facing = folded.rotate(Vec3(facing_on_floor(original.rotations(f)[0], kForward).x(), 0.0,
-                                             facing_on_floor(original.rotations(f)[0], kForward).y()));
-      planned.emplace_back(facing.x(), facing.z());
+      planned.push_back(turn(folded, facing_on_floor(original.rotations(f)[0], kForward)));
     }
     const Vec2 previous = first > 0 ? root_of(out, first - 1) : Vec2::Zero();
     const FloorTransform move = edit.apply(out, first, first > 0 ? &previous : nullptr, planned, direction);
@@ -66,8 +64,8 @@ TEST(HeadingEdit, TurnsAStraightWalkOntoTheHeadingAskedForAndHoldsIt) {
     const double yaw = added_yaw(edited, original, f);
     // The step is the capture's, turned by the frame's added angle.
     const Vec2 own = root_of(original, f) - root_of(original, f - 1);
-    const Vec3 turned = FloorTransform{yaw, 0.0, 0.0}.rotate(Vec3(own.x(), 0.0, own.y()));
-    EXPECT_LT((root_of(edited, f) - root_of(edited, f - 1) - Vec2(turned.x(), turned.z())).norm(), 1e-9) << f;
+    const Vec2 turned = turn(FloorTransform{yaw, 0.0, 0.0}, own);
+    EXPECT_LT((root_of(edited, f) - root_of(edited, f - 1) - turned).norm(), 1e-9) << f;
     EXPECT_LE(std::abs(yaw - last_yaw), defaults.max_turn_deg_per_m * kDeg * step + 1e-9) << f;
     // Toward north-east (FloorTransform's sense: negative yaw), never past it.
     EXPECT_LE(yaw, 1e-12) << f;

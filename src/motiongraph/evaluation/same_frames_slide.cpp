@@ -85,27 +85,27 @@ Result<SameFramesSlide> same_frames_foot_slide(const MotionDatabase& db, const M
     }
     return &clips[c];
   };
-  // A joint's horizontal speed into database frame x (out of it at its clip's first frame), in
-  // the result's scale; NaN when x's clip has no joint of that kind.
-  auto source_speed = [&](int x, int kind) -> Result<double> {
+  // A joint at database frame x as the capture has it, in the result's scale: its horizontal
+  // speed into the frame (out of it at its clip's first frame) and its height; NaN where x's clip
+  // has no joint of that kind (the speed too in a clip of one frame).
+  struct Captured {
+    double speed_mps, height_m;
+  };
+  auto captured_at = [&](int x, int kind) -> Result<Captured> {
     const int c = db.clip_of(x);
     auto got = clip_feet(c);
     if (!got) return got.error();
     const std::vector<Vec2>& track = (*got)->floor[kind];
-    if (track.size() < 2) return std::nan("");
-    const size_t local = static_cast<size_t>(std::max(x - db.clips[c].first_frame, 1));
-    const double scale = assembler.scale_of(db.clips[c].skeleton);
-    return (track[local] - track[local - 1]).norm() * fps * scale;
-  };
-
-  // The joint's height at database frame x, in the result's scale; NaN without the joint.
-  auto source_height = [&](int x, int kind) -> Result<double> {
-    const int c = db.clip_of(x);
-    auto got = clip_feet(c);
-    if (!got) return got.error();
     const std::vector<double>& heights = (*got)->height[kind];
-    if (heights.empty()) return std::nan("");
-    return heights[static_cast<size_t>(x - db.clips[c].first_frame)] * assembler.scale_of(db.clips[c].skeleton);
+    const double scale = assembler.scale_of(db.clips[c].skeleton);
+    const int local = x - db.clips[c].first_frame;
+    Captured at{std::nan(""), std::nan("")};
+    if (!heights.empty()) at.height_m = heights[static_cast<size_t>(local)] * scale;
+    if (track.size() >= 2) {
+      const size_t i = static_cast<size_t>(std::max(local, 1));
+      at.speed_mps = (track[i] - track[i - 1]).norm() * fps * scale;
+    }
+    return at;
   };
 
   SameFramesSlide slide;
@@ -122,23 +122,19 @@ Result<SameFramesSlide> same_frames_foot_slide(const MotionDatabase& db, const M
       if (!measured[kind]) continue;
       const std::vector<uint8_t>& planted = (*got)->planted[kind];
       if (planted.empty() || !planted[local - 1] || !planted[local]) continue;
+      auto departure = captured_at(from.departure, kind);
+      if (!departure) return departure.error();
+      auto arrival = captured_at(from.arrival, kind);
+      if (!arrival) return arrival.error();
       // Lifted off the floor in the result (a foot stepping to a new plant): above the height
       // the capture's frames give the joint, blended as the frame blends them.
-      auto departure_height = source_height(from.departure, kind);
-      if (!departure_height) return departure_height.error();
-      auto arrival_height = source_height(from.arrival, kind);
-      if (!arrival_height) return arrival_height.error();
-      const double captured = from.alpha * *departure_height + (1.0 - from.alpha) * *arrival_height;
+      const double captured = from.alpha * departure->height_m + (1.0 - from.alpha) * arrival->height_m;
       const double height = positions[static_cast<size_t>(f) * joints + joint[kind]].y();
       if (height > captured + settings.contacts.enter_height_m) {
         ++slide.lifted_steps;
         continue;
       }
-      auto departure = source_speed(from.departure, kind);
-      if (!departure) return departure.error();
-      auto arrival = source_speed(from.arrival, kind);
-      if (!arrival) return arrival.error();
-      const double source = from.alpha * *departure + (1.0 - from.alpha) * *arrival;
+      const double source = from.alpha * departure->speed_mps + (1.0 - from.alpha) * arrival->speed_mps;
       if (std::isnan(source)) continue;
       const Vec3 step = positions[static_cast<size_t>(f) * joints + joint[kind]] -
                         positions[static_cast<size_t>(f - 1) * joints + joint[kind]];

@@ -39,6 +39,16 @@ struct FloorTransform {
   }
 };
 
+// A floor point ((x, z)) placed by w, and a floor direction turned by it.
+inline Eigen::Vector2d place(const FloorTransform& w, const Eigen::Vector2d& p) {
+  const Vec3 q = w.apply(Vec3(p.x(), 0.0, p.y()));
+  return {q.x(), q.z()};
+}
+inline Eigen::Vector2d turn(const FloorTransform& w, const Eigen::Vector2d& d) {
+  const Vec3 q = w.rotate(Vec3(d.x(), 0.0, d.y()));
+  return {q.x(), q.z()};
+}
+
 // The yaw (FloorTransform's sense) that turns floor direction u onto v ((x, z) each), in
 // [-pi, pi].
 inline double yaw_between(const Eigen::Vector2d& u, const Eigen::Vector2d& v) {

@@ -37,8 +37,7 @@ FloorTransform HeadingEdit::apply(Motion& motion, int first, const Vec2* previou
   std::vector<Vec2> window;
   window.reserve(played_facings_.size() + planned_facings.size());
   for (const auto& [facing, added_then] : played_facings_) {
-    const Vec3 back = FloorTransform{total_added_ - added_then, 0.0, 0.0}.rotate(Vec3(facing.x(), 0.0, facing.y()));
-    window.emplace_back(back.x(), back.z());
+    window.push_back(turn(FloorTransform{total_added_ - added_then, 0.0, 0.0}, facing));
   }
   const int past = static_cast<int>(played_facings_.size());
   window.insert(window.end(), planned_facings.begin(), planned_facings.end());
@@ -68,11 +67,10 @@ FloorTransform HeadingEdit::apply(Motion& motion, int first, const Vec2* previou
     }
     // 3. The frame moved rigidly: turned by the angle added, its step from the last frame too.
     move.yaw_rad = added;
-    const Vec3 turned_step = move.rotate(Vec3(step.x(), 0.0, step.y()));
-    const Vec2 edited = has_last ? Vec2(last_edited + Vec2(turned_step.x(), turned_step.z())) : at;
-    const Vec3 turned_at = move.rotate(Vec3(at.x(), 0.0, at.y()));
+    const Vec2 edited = has_last ? Vec2(last_edited + turn(move, step)) : at;
+    const Vec2 turned_at = turn(move, at);
     move.x_m = edited.x() - turned_at.x();
-    move.z_m = edited.y() - turned_at.z();
+    move.z_m = edited.y() - turned_at.y();
     root = move.apply(root);
     Quat& rotation = motion.rotations(f)[0];
     rotation = (move.rotation() * rotation).normalized();

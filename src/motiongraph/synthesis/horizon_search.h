@@ -120,14 +120,4 @@ SearchState advance(const MotionGraph& graph, const EdgeTracks& tracks, const Se
 std::vector<Vec2> walk_facings(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& state,
                                std::span<const int> edges, size_t count);
 
-// World floor position of a track point under a placement.
-inline Vec2 place(const FloorTransform& w, const Vec2& p) {
-  const Vec3 q = w.apply(Vec3(p.x(), 0.0, p.y()));
-  return {q.x(), q.z()};
-}
-inline Vec2 turn(const FloorTransform& w, const Vec2& d) {
-  const Vec3 q = w.rotate(Vec3(d.x(), 0.0, d.y()));
-  return {q.x(), q.z()};
-}
-
 }  // namespace mg
