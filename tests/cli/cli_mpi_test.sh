@@ -72,13 +72,16 @@ same_graph "$work/pone" "$work/pthree"
 # 2. A process killed midway: one line, a failed exit, no graph, no report. At 120 fps in tiles of
 # 128 frames the distance stage is 780 work items, saved in chunks. Rank 1 is stopped once the
 # first chunk is saved (the job cannot finish without it) and killed once the others have saved
-# more.
-args=("$data/cmu/16" -q --fps 120 --no-cache --exhaustive --tile 128 --threads 1 --checkpoint "$work/ck"
+# more. Its share must outlast the test's look at the folder on a loaded machine: with the default
+# cloud it ended 0.3 s after the first chunk (the rare failure under ctest -j2 fits rank 1 gone
+# before it was stopped); clouds of 8 times the points (rings of 16 every 12.5 cm) make it 3 s.
+cloud=(--ring-points 16 --ring-spacing 0.125)
+args=("$data/cmu/16" -q --fps 120 --no-cache --exhaustive --tile 128 "${cloud[@]}" --threads 1 --checkpoint "$work/ck"
       --checkpoint-pairs 300000)
 "${mpi[@]}" "$bin" build "${args[@]}" -o "$work/killed.mgraph" --report "$work/killed.json" 2>"$work/killed.err" &
 job=$!
 rank1=
-for _ in $(seq 500); do
+for _ in $(seq 3000); do
   for pid in $(pgrep -P "$job" || true); do
     grep -qz '^OMPI_COMM_WORLD_RANK=1$' "/proc/$pid/environ" 2>/dev/null && rank1=$pid
   done
@@ -86,17 +89,17 @@ for _ in $(seq 500); do
   sleep 0.01
 done
 [[ -n $rank1 ]] || { echo "FAIL: no rank 1 process under mpirun"; exit 1; }
-for _ in $(seq 1000); do
+for _ in $(seq 6000); do
   [[ -n $(ls "$work/ck" 2>/dev/null) ]] && break
   sleep 0.01
 done
-kill -STOP "$rank1"
+kill -STOP "$rank1" || { echo "FAIL: rank 1 ended before it could be stopped"; exit 1; }
 chunks_then=$(ls "$work/ck" | wc -l)
 for _ in $(seq 300); do
   (($(ls "$work/ck" | wc -l) >= chunks_then + 5)) && break
   sleep 0.01
 done
-kill -KILL "$rank1"
+kill -KILL "$rank1" || { echo "FAIL: rank 1 ended while stopped"; exit 1; }
 status=0
 wait "$job" || status=$?
 job=
@@ -109,7 +112,7 @@ chunks=$(ls "$work/ck" | wc -l)
 
 # 3. Started again: the saved tiles are skipped, the graph is the uninterrupted run's.
 "${mpi[@]}" "$bin" build "${args[@]}" -o "$work/resumed.mgraph" --report "$work/resumed.json" 2>"$work/resumed.err"
-"$bin" build "$data/cmu/16" --fps 120 --no-cache --exhaustive --tile 128 -o "$work/whole.mgraph" \
+"$bin" build "$data/cmu/16" --fps 120 --no-cache --exhaustive --tile 128 "${cloud[@]}" -o "$work/whole.mgraph" \
   --report "$work/whole.json" -q
 same_graph "$work/whole" "$work/resumed"
 python3 - "$work/resumed.json" <<'PY'
