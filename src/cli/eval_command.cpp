@@ -103,7 +103,7 @@ Status evaluate_thresholds(const GraphFile& file, const GraphRebuild& rebuild, s
 
 Status evaluate_consistency(const GraphFile& file, const GraphRebuild& rebuild, std::span<const double> quantiles,
                             OnDemandCandidates* more, Outputs& out) {
-  const ConsistencySum captured = database_consistency(file.database, learn_forward_axes(file.database));
+  const ConsistencySum captured = database_consistency(file.database, learn_travel_axes(file.database));
   auto rows = sweep_consistency(file.database, rebuild.features, file.candidates, rebuild.settings, quantiles, more);
   if (!rows) return rows.error();
   std::string csv = "quantile,threshold,transitions,frames,rms_deg,database_frames,database_rms_deg\n";

@@ -65,11 +65,11 @@ Command add_path_command(CLI::App& app) {
   auto o = std::make_shared<PathOptions>();
   CLI::App* sub = app.add_subcommand(
       "path", "Synthesize motion whose root follows a path on the floor (x east, z south, metres), starting at\n"
-              "its first point facing along it. PATH.json: {\"points\": [[x, z], ...], \"segments\":\n"
-              "[{\"from_m\": 0, \"to_m\": 20, \"tag\": \"walk\"}, ...]}. Shapes start at the origin heading north\n"
-              "(-z): line:L (metres), circle:R (radius, turning right), figure8:R (right loop then left),\n"
-              "s-curve:L (metres of a sine wave), square:S (side, turning right at its corners), zigzag:L\n"
-              "(eight legs, 45 degrees right and left of north).");
+              "its first point heading along it (the skeleton's mean direction of travel). PATH.json:\n"
+              "{\"points\": [[x, z], ...], \"segments\": [{\"from_m\": 0, \"to_m\": 20, \"tag\": \"walk\"}, ...]}.\n"
+              "Shapes start at the origin heading north (-z): line:L (metres), circle:R (radius, turning\n"
+              "right), figure8:R (right loop then left), s-curve:L (metres of a sine wave), square:S (side,\n"
+              "turning right at its corners), zigzag:L (eight legs, 45 degrees right and left of north).");
   o->common.add_to(*sub);
   sub->add_option("--path", o->path_file, "PATH.json")->check(CLI::ExistingFile);
   sub->add_option("--shape", o->shape,

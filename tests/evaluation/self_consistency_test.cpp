@@ -60,7 +60,7 @@ TEST(SelfConsistency, AnglesFromTheirDefinition) {
 TEST(SelfConsistency, UnchangedByTurningAndMovingAClipOnTheFloor) {
   const MotionDatabase one = test::small_database({"cmu/16/16_15.amc"});
   const MotionDatabase two = test::small_database({"cmu/16/16_15.amc"}, true, 1.1, Vec3(3.0, 0.0, -2.0));
-  const std::vector<Vec3> axes = learn_forward_axes(one);
+  const std::vector<Vec3> axes = learn_travel_axes(one);
   const ConsistencySum a = database_consistency(one, axes);
   const ConsistencySum b = database_consistency(two, axes);
   ASSERT_GT(a.frames, 50);
@@ -80,7 +80,7 @@ TEST(SelfConsistency, ATransitionContinuingItsClipMeasuresTheClipsFrames) {
   ASSERT_TRUE(graph) << graph.error().to_string();
   auto assembler = MotionAssembler::create(db, *graph, 0);
   ASSERT_TRUE(assembler) << assembler.error().to_string();
-  const Vec3 axis = learn_forward_axes(db)[0];
+  const Vec3 axis = learn_travel_axes(db)[0];
   const ConsistencySum around = transition_consistency(db, *graph, *assembler, axis);
 
   const Motion& clip = db.clips[0].motion;

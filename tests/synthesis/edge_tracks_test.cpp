@@ -1,5 +1,5 @@
 // The edge tracks (filled on all cores) against each edge played by the assembler alone: the
-// same roots, facings and tags, edge by edge, and the longest root step found again serially.
+// same roots, facings, first headings and tags, edge by edge, and the longest root step found again serially.
 #include "motiongraph/synthesis/edge_tracks.h"
 
 #include <gtest/gtest.h>
@@ -16,7 +16,7 @@ TEST(EdgeTracks, EveryEdgeAsTheAssemblerPlaysIt) {
   const SynthesisContext& c = test::subject16().context();
   const MotionGraph& graph = *c.graph;
   ASSERT_GT(graph.edge_count(), 512) << "too few edges to fill on more than one thread";
-  const EdgeTracks tracks = compute_edge_tracks(c.assembler, graph, c.frame_tags, c.tracks.forward_axis);
+  const EdgeTracks tracks = compute_edge_tracks(c.assembler, graph, c.frame_tags, c.tracks.forward_axis, c.tracks.travel_axis);
   ASSERT_EQ(tracks.edges.size(), static_cast<size_t>(graph.edge_count()));
   double max_step = 0.0;
   int first = 0;
@@ -29,6 +29,7 @@ TEST(EdgeTracks, EveryEdgeAsTheAssemblerPlaysIt) {
     ASSERT_EQ(track.count, static_cast<int>(roots.size()));
     first += track.count;
     EXPECT_EQ(track.change.apply(Vec3(1.0, 0.0, 2.0)), placement.apply(Vec3(1.0, 0.0, 2.0)));
+    ASSERT_EQ(track.first_heading, facing_on_floor(roots.front().rotation, c.tracks.travel_axis)) << e;
     Vec3 next3 = c.assembler.root_position(graph.nodes[graph.edges[e].to_node].frame, placement);
     Vec2 next(next3.x(), next3.z());
     for (int p = track.count; p-- > 0;) {

@@ -11,7 +11,7 @@ Result<std::vector<ConsistencyRow>> sweep_consistency(const MotionDatabase& db, 
                                                       std::span<const double> quantiles, OnDemandCandidates* more) {
   if (db.clips.empty()) return Error{"", 0, "the database has no clip"};
   const int target = db.clips.front().skeleton;
-  const Vec3 forward_axis = learn_forward_axes(db)[target];
+  const Vec3 forward_axis = learn_travel_axes(db)[target];
   std::vector<ConsistencyRow> rows;
   auto visit = [&](double quantile, const TransitionsWithBridges& selected, const Result<PrunedGraph>& pruned) -> Status {
     ConsistencyRow row;

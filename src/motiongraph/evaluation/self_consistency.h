@@ -1,12 +1,12 @@
 // The seed's self-consistency measure (its figure 3.2): the RMS angle, in degrees, between
-// where the root faces and where it travels. Facing is the learnt forward axis turned by the
-// root's world rotation, on the floor (synthesis/facing.h); travel is the floor direction from
+// where the root faces and where it travels. Facing is the learnt travel axis (learn_travel_axes
+// in synthesis/facing.h) turned by the root's world rotation, on the floor; travel is the floor direction from
 // the root now to the root kTravelLookaheadFrames later. Frames whose root moves slower than
 // kMovingSpeedMps over that span, whose lookahead runs past the motion's end, or whose forward
 // axis points straight up, are left out. Each angle lies in [0, 180].
 //
-// Captured motion is consistent by construction of the forward axis (it is the mean travel
-// direction in the root's frame), so the database's value is the baseline transitions are
+// Captured motion is consistent by construction of the travel axis (the mean travel direction
+// in the root's frame), so the database's value is the baseline transitions are
 // compared with. Around a transition the measure covers every frame whose lookahead span
 // touches the blend: the kTravelLookaheadFrames frames before it (from the clip we leave),
 // the k - 1 blended frames, with the frames after it (from the clip we arrive in) as the
@@ -40,7 +40,7 @@ struct ConsistencySum {
 ConsistencySum consistency_over(std::span<const Quat> root_rotations, const std::vector<Vec2>& roots,
                                 const Vec3& forward_axis, double fps, int first, int last);
 
-// Every frame of every clip as captured; forward_axes from learn_forward_axes(db).
+// Every frame of every clip as captured; forward_axes from learn_travel_axes(db).
 ConsistencySum database_consistency(const MotionDatabase& db, std::span<const Vec3> forward_axes);
 
 // Around every transition edge of `graph`, played by `assembler` (on its target skeleton,

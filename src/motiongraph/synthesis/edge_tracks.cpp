@@ -10,9 +10,11 @@
 namespace mg {
 
 EdgeTracks compute_edge_tracks(const MotionAssembler& assembler, const MotionGraph& graph,
-                               std::span<const TagMask> frame_tags, const Vec3& forward_axis) {
+                               std::span<const TagMask> frame_tags, const Vec3& forward_axis,
+                               const Vec3& travel_axis) {
   EdgeTracks tracks;
   tracks.forward_axis = forward_axis;
+  tracks.travel_axis = travel_axis;
   auto tag_of = [&](int frame) { return frame_tags.empty() ? TagMask{0} : frame_tags[frame]; };
   // Each edge's place in the flat arrays is known from the frame counts: the edges are then
   // filled on all cores (a whole library's graph has 10^5 and more).
@@ -48,6 +50,7 @@ EdgeTracks compute_edge_tracks(const MotionAssembler& assembler, const MotionGra
     assembler.append_edge_roots(e, placement, roots);
     assert(static_cast<int>(roots.size()) == track.count);
     track.change = placement;
+    if (!roots.empty()) track.first_heading = facing_on_floor(roots.front().rotation, travel_axis);
     const auto first = static_cast<size_t>(track.first);
     for (size_t p = 0; p < roots.size(); ++p) {
       tracks.roots[first + p] = Vec2(roots[p].position.x(), roots[p].position.z());

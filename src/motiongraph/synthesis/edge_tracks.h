@@ -1,5 +1,5 @@
 // What searches need of every edge, computed once: the root's floor position and facing for
-// each frame the edge plays, as the assembler plays it under the identity placement, the
+// each frame the edge plays (and the heading of its first, for placing a path's start), as the assembler plays it under the identity placement, the
 // placement change the edge makes, the root's largest step from one frame to the next, (identity for clip pieces, the transition's transform for
 // transitions) and the tags of each frame (a blended frame has the tags of the side with the
 // larger weight). Under a placement W a frame's world floor position is W applied to it.
@@ -17,6 +17,7 @@ struct EdgeTrack {
   int first = 0;  // into EdgeTracks::roots / facings / tags
   int count = 0;  // the edge's frame_count
   FloorTransform change;
+  Vec2 first_heading = Vec2::Zero();  // the travel axis turned by its first frame's root, on the floor
 };
 
 struct EdgeTracks {
@@ -24,7 +25,8 @@ struct EdgeTracks {
   std::vector<Vec2> roots;       // metres, identity placement
   std::vector<Vec2> facings;     // unit (or zero when the forward axis is vertical)
   std::vector<TagMask> tags;
-  Vec3 forward_axis = Vec3::UnitZ();  // of the target skeleton, in the root's frame
+  Vec3 forward_axis = Vec3::UnitZ();  // of the target skeleton, in the root's frame (facing.h)
+  Vec3 travel_axis = Vec3::UnitZ();   // of the target skeleton, in the root's frame (facing.h)
   double max_root_step_m = 0.0;       // the longest floor step of the root between two frames
                                       // any walk plays one after the other
 
@@ -35,6 +37,7 @@ struct EdgeTracks {
 
 // frame_tags: one mask per database frame, or empty (no tags).
 EdgeTracks compute_edge_tracks(const MotionAssembler& assembler, const MotionGraph& graph,
-                               std::span<const TagMask> frame_tags, const Vec3& forward_axis);
+                               std::span<const TagMask> frame_tags, const Vec3& forward_axis,
+                               const Vec3& travel_axis);
 
 }  // namespace mg

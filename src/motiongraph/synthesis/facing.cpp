@@ -1,5 +1,10 @@
 #include "motiongraph/synthesis/facing.h"
 
+#include <algorithm>
+#include <optional>
+
+#include "motiongraph/skeleton/foot_joints.h"
+
 namespace mg {
 
 Vec2 travel_direction(const std::vector<Vec2>& roots, int i, int lookahead, double fps, double min_speed_mps) {
@@ -10,14 +15,95 @@ Vec2 travel_direction(const std::vector<Vec2>& roots, int i, int lookahead, doub
   return d / n;
 }
 
-std::vector<Vec3> learn_forward_axes(const MotionDatabase& db) {
+namespace {
+
+// A joint's rest offset shorter than this does not set it off from its parent (ASF's
+// hipjoint starts where the root is).
+constexpr double kSetOffM = 0.01;
+
+// The root's floor positions over a clip.
+std::vector<Vec2> floor_roots(const Motion& motion) {
+  std::vector<Vec2> roots(static_cast<size_t>(motion.frame_count));
+  for (int f = 0; f < motion.frame_count; ++f) {
+    const Vec3& p = motion.translations(f)[0];
+    roots[static_cast<size_t>(f)] = Vec2(p.x(), p.z());
+  }
+  return roots;
+}
+
+// The joints from the root down to `joint`, root first.
+std::vector<int> chain_to(const Skeleton& skeleton, int joint) {
+  std::vector<int> chain;
+  for (int j = joint; j >= 0; j = skeleton.joint(j).parent) chain.push_back(j);
+  std::reverse(chain.begin(), chain.end());
+  return chain;
+}
+
+// The left and right hips: below the joint where the chains to the two ankles part, the first
+// joint of each chain set off from its parent; nullopt when a chain has none.
+std::optional<std::pair<int, int>> find_hips(const Skeleton& skeleton, const FootJoints& feet) {
+  const std::vector<int> left = chain_to(skeleton, feet.left.ankle);
+  const std::vector<int> right = chain_to(skeleton, feet.right.ankle);
+  size_t common = 0;
+  while (common < left.size() && common < right.size() && left[common] == right[common]) ++common;
+  auto hip = [&](const std::vector<int>& chain) -> int {
+    for (size_t i = common; i < chain.size(); ++i) {
+      if (skeleton.joint(chain[i]).rest_offset_m.norm() > kSetOffM) return chain[i];
+    }
+    return -1;
+  };
+  const int l = hip(left), r = hip(right);
+  if (l < 0 || r < 0) return std::nullopt;
+  return std::pair(l, r);
+}
+
+// A joint's position in the root's frame (the root's own rotation and translation left out).
+Vec3 in_root_frame(const Skeleton& skeleton, const Motion& motion, int frame, int joint) {
+  const auto rotations = motion.rotations(frame);
+  const auto translations = motion.translations(frame);
+  Vec3 p = Vec3::Zero();
+  for (int j = joint; skeleton.joint(j).parent >= 0; j = skeleton.joint(j).parent) {
+    const int slot = skeleton.translation_slot(j);
+    p = rotations[j] * p + (slot >= 0 ? translations[slot] : skeleton.joint(j).rest_offset_m);
+  }
+  return p;
+}
+
+// Where the hips of skeleton `s` face, in its root's frame; nullopt without feet, hips or a
+// frame whose hips lie apart on the floor.
+std::optional<Vec3> hips_axis(const MotionDatabase& db, int s) {
+  const Skeleton& skeleton = db.skeletons[static_cast<size_t>(s)];
+  const auto feet = find_foot_joints(skeleton, db.foot_names);
+  if (!feet) return std::nullopt;
+  const auto hips = find_hips(skeleton, *feet);
+  if (!hips) return std::nullopt;
+  Vec3 sum = Vec3::Zero();
+  double along_travel = 0.0;
+  for (const DatabaseClip& clip : db.clips) {
+    if (clip.skeleton != s) continue;
+    const std::vector<Vec2> roots = floor_roots(clip.motion);
+    for (int f = 0; f < clip.frame_count; ++f) {
+      const Quat& root = clip.motion.rotations(f)[0];
+      const Vec3 across =
+          root * (in_root_frame(skeleton, clip.motion, f, hips->second) - in_root_frame(skeleton, clip.motion, f, hips->first));
+      const Vec2 facing(across.z(), -across.x());  // up x across, on the floor
+      const double n = facing.norm();
+      if (n < 1e-3) continue;
+      sum += root.conjugate() * Vec3(facing.x() / n, 0.0, facing.y() / n);
+      const Vec2 d = travel_direction(roots, f, kTravelLookaheadFrames, db.fps, kMovingSpeedMps);
+      along_travel += d.dot(facing) / n;
+    }
+  }
+  if (sum.norm() == 0.0) return std::nullopt;
+  return Vec3((along_travel < 0.0 ? -sum : sum).normalized());
+}
+
+}  // namespace
+
+std::vector<Vec3> learn_travel_axes(const MotionDatabase& db) {
   std::vector<Vec3> sums(db.skeletons.size(), Vec3::Zero());
   for (const DatabaseClip& clip : db.clips) {
-    std::vector<Vec2> roots(static_cast<size_t>(clip.frame_count));
-    for (int f = 0; f < clip.frame_count; ++f) {
-      const Vec3& p = clip.motion.translations(f)[0];
-      roots[f] = Vec2(p.x(), p.z());
-    }
+    const std::vector<Vec2> roots = floor_roots(clip.motion);
     for (int f = 0; f < clip.frame_count; ++f) {
       const Vec2 d = travel_direction(roots, f, kTravelLookaheadFrames, db.fps, kMovingSpeedMps);
       if (d.isZero()) continue;
@@ -27,6 +113,14 @@ std::vector<Vec3> learn_forward_axes(const MotionDatabase& db) {
   std::vector<Vec3> axes;
   axes.reserve(sums.size());
   for (const Vec3& s : sums) axes.push_back(s.norm() > 0.0 ? Vec3(s.normalized()) : Vec3(Vec3::UnitZ()));
+  return axes;
+}
+
+std::vector<Vec3> learn_forward_axes(const MotionDatabase& db) {
+  std::vector<Vec3> axes = learn_travel_axes(db);
+  for (size_t s = 0; s < axes.size(); ++s) {
+    if (const auto hips = hips_axis(db, static_cast<int>(s))) axes[s] = *hips;
+  }
   return axes;
 }
 

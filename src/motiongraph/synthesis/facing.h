@@ -1,9 +1,24 @@
 // Which way a character faces. Skeletons do not say which of the root's axes points forward
-// (CMU's ASF, BVH converters and other studios all differ), so it is learnt from the data:
-// the forward axis of a skeleton is the mean, in the root's own frame, of the horizontal
-// direction of travel over the frames of its clips that move (root faster than 0.3 m/s over
-// the next 10 frames, as in the seed's self-consistency measure). Most capture walks forwards,
-// so the mean points forwards; a skeleton with no moving frame gets the root's +z axis.
+// (CMU's ASF, BVH converters and other studios all differ), so it is learnt from the data.
+//
+// The forward axis of a skeleton is where its hips face: square to the line from the left hip to
+// the right one, on the floor, averaged over every frame of its clips and expressed in the root
+// joint's frame. The hips are where the legs start: on the chain from the joint where the two
+// legs part down to each ankle (skeleton/foot_joints.h finds the ankles), the first joint set off
+// from it (ASF's hipjoint, a bone that starts at the root, is passed over). Its sign is the one
+// along which the skeleton's moving frames mostly travel (a mirrored rig or swapped feet still
+// face forwards); with no moving frame, up x (right - left). A walk's direction of travel swings
+// with its steps, and sidesteps, dance and pivots travel across the body: a library's mean travel
+// direction in the root's frame can be 12 degrees off its walking (CMU 05), its hips are not.
+//
+// A skeleton whose feet cannot be found, or whose hips lie one above the other, gets its
+// travel axis instead: the mean, in the root's frame, of the horizontal direction of travel
+// over the frames of its clips that move (root faster than 0.3 m/s over the next 10 frames, as
+// in the seed's self-consistency measure), or the root's +z axis with no moving frame. The
+// self-consistency measure (evaluation/self_consistency.h) uses the travel axis itself, and a
+// path's start lines it up with the path (SynthesisContext::placement_heading): the root goes
+// the path's way.
+//
 // A frame's facing is that axis turned by the root's world rotation, projected on the floor.
 #pragma once
 
@@ -22,8 +37,12 @@ using Vec2 = Eigen::Vector2d;  // (x, z) on the floor, metres
 constexpr int kTravelLookaheadFrames = 10;
 constexpr double kMovingSpeedMps = 0.3;
 
-// One axis per skeleton of db, unit length, in the root joint's frame.
+// One axis per skeleton of db, unit length, in the root joint's frame: where its hips face.
 std::vector<Vec3> learn_forward_axes(const MotionDatabase& db);
+
+// One axis per skeleton of db, unit length, in the root joint's frame: its mean direction of
+// travel.
+std::vector<Vec3> learn_travel_axes(const MotionDatabase& db);
 
 // The unit facing direction on the floor of a root world rotation; (0, 0) when the axis is
 // vertical.

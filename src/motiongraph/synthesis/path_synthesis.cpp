@@ -154,7 +154,7 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
   auto start_state = [&](int node) {
     SearchState s;
     s.node = node;
-    s.placement = context.placement_facing(node, path.points().front(), path.direction_at(0.0));
+    s.placement = context.placement_heading(node, path.points().front(), path.direction_at(0.0));
     return s;
   };
 
@@ -215,7 +215,7 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
   }
   SearchState state = start_state(result.walk.start_node);
   if (!first.edges.empty()) {
-    state.placement = context.placement_facing_edge(first.edges.front(), path.points().front(), path.direction_at(0.0));
+    state.placement = context.placement_heading_edge(first.edges.front(), path.points().front(), path.direction_at(0.0));
   }
   result.start = state.placement;
 

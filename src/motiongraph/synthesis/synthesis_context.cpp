@@ -16,8 +16,8 @@ Result<SynthesisContext> make_synthesis_context(const MotionDatabase& db, const 
   auto assembler = MotionAssembler::create(db, graph, target_skeleton);
   if (!assembler) return assembler.error();
   SynthesisContext context{&db, &graph, std::move(*assembler), db.frame_tags(), {}, {}, {}, {}};
-  const std::vector<Vec3> axes = learn_forward_axes(db);
-  context.tracks = compute_edge_tracks(context.assembler, graph, context.frame_tags, axes[target_skeleton]);
+  context.tracks = compute_edge_tracks(context.assembler, graph, context.frame_tags,
+                                       learn_forward_axes(db)[target_skeleton], learn_travel_axes(db)[target_skeleton]);
   auto feet = find_foot_joints(db.skeletons[target_skeleton], db.foot_names);
   auto contacts = feet ? contacts_of(db) : Result<std::vector<ContactMask>>(feet.error());
   if (feet && contacts) {
@@ -52,8 +52,15 @@ FloorTransform SynthesisContext::placement_facing(int node, const Vec2& at, cons
                     at, direction);
 }
 
-FloorTransform SynthesisContext::placement_facing_edge(int edge, const Vec2& at, const Vec2& direction) const {
-  return place_root(tracks.roots_of(edge).front(), tracks.facings_of(edge).front(), at, direction);
+FloorTransform SynthesisContext::placement_heading(int node, const Vec2& at, const Vec2& direction) const {
+  const int frame = graph->nodes[node].frame;
+  const Vec3 root = assembler.root_position(frame, {});
+  return place_root(Vec2(root.x(), root.z()), facing_on_floor(assembler.root_rotation(frame, {}), tracks.travel_axis),
+                    at, direction);
+}
+
+FloorTransform SynthesisContext::placement_heading_edge(int edge, const Vec2& at, const Vec2& direction) const {
+  return place_root(tracks.roots_of(edge).front(), tracks.edges[static_cast<size_t>(edge)].first_heading, at, direction);
 }
 
 std::vector<ContactMask> SynthesisContext::edges_contacts(std::span<const int> edges) const {

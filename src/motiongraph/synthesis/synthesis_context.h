@@ -1,5 +1,5 @@
 // What every synthesis command needs of a graph, set up once: the assembler on the target
-// skeleton, the learnt forward axis, per-frame tags, the edge tracks, and the feet with the
+// skeleton, the learnt forward and travel axes, per-frame tags, the edge tracks, and the feet with the
 // foot contacts of every database frame (for the foot clean-up, synthesis/foot_cleanup.h).
 #pragma once
 
@@ -28,9 +28,13 @@ struct SynthesisContext {
   // The placement that puts node `node`'s frame with its root at `at` facing `direction`
   // (unit, on the floor).
   FloorTransform placement_facing(int node, const Vec2& at, const Vec2& direction) const;
+  // The placement that puts node `node`'s frame with its root at `at`, the skeleton's travel
+  // axis (facing.h: its mean direction of travel) turned along `direction`: where a path starts,
+  // the root going its way.
+  FloorTransform placement_heading(int node, const Vec2& at, const Vec2& direction) const;
   // The same for the first frame edge `edge` plays (a transition's first frame is already
   // blended, a few millimetres from its node's frame).
-  FloorTransform placement_facing_edge(int edge, const Vec2& at, const Vec2& direction) const;
+  FloorTransform placement_heading_edge(int edge, const Vec2& at, const Vec2& direction) const;
   // The contact masks of the frames `edges` play, in order (none without feet): what a
   // steering decision's frames carry.
   std::vector<ContactMask> edges_contacts(std::span<const int> edges) const;
