@@ -5,14 +5,18 @@
 #include "motiongraph/synthesis/facing.h"
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
+#include <string>
 
 #include <gtest/gtest.h>
 
+#include "motiongraph/motion/bvh_import.h"
 #include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/motion/resample.h"
 #include "motiongraph/skeleton/foot_joints.h"
 #include "motiongraph/skeleton/rotation.h"
+#include "synthesis/subject16_graph.h"
 #include "test_data.h"
 
 namespace mg {
@@ -22,15 +26,15 @@ double angle_deg(const Vec2& a, const Vec2& b) {
   return std::abs(std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b))) * 180.0 / std::numbers::pi;
 }
 
-double angle_deg(const Vec3& a, const Vec3& b) { return std::acos(std::clamp(a.dot(b), -1.0, 1.0)) * 180.0 / std::numbers::pi; }
 
-// A database of the clips, resampled to 30 fps, on the first one's skeleton.
+// A database of the clips, resampled to 30 fps, each on a skeleton of its own.
 MotionDatabase database_of(std::vector<Clip> clips) {
   MotionDatabase db;
   db.fps = 30.0;
-  db.skeletons.push_back(clips.front().skeleton);
   for (Clip& clip : clips) {
+    db.skeletons.push_back(clip.skeleton);
     DatabaseClip entry;
+    entry.skeleton = static_cast<int>(db.skeletons.size()) - 1;
     entry.name = clip.name;
     entry.first_frame = db.frame_count();
     entry.motion = *resample(clip.motion, db.fps);
@@ -90,9 +94,9 @@ TEST(ForwardAxis, UnmovedByClipsThatTravelAcrossTheBody) {
   turn_travel(mixed.clips[1], std::numbers::pi / 2);
   turn_travel(mixed.clips[2], std::numbers::pi / 2);
   // Two sidesteps to one walk pull the mean travel 60 degrees round ...
-  EXPECT_GT(angle_deg(learn_travel_axes(mixed)[0], learn_travel_axes(walk)[0]), 45.0);
+  EXPECT_LT(learn_travel_axes(mixed)[0].dot(learn_travel_axes(walk)[0]), std::cos(45.0 * std::numbers::pi / 180.0));
   // ... the hips face where they did.
-  EXPECT_LT(angle_deg(learn_forward_axes(mixed)[0], learn_forward_axes(walk)[0]), 1e-6);
+  EXPECT_LT((learn_forward_axes(mixed)[0] - learn_forward_axes(walk)[0]).norm(), 1e-9);
 }
 
 TEST(ForwardAxis, ItsSignIsTheTravelsWhateverTheFeetAreCalled) {
@@ -100,13 +104,13 @@ TEST(ForwardAxis, ItsSignIsTheTravelsWhateverTheFeetAreCalled) {
   const Vec3 axis = learn_forward_axes(db)[0];
   // The feet named the other way round: the hips' line reversed, the sign from the travel.
   db.foot_names = FootJointNames{"rfoot", "rtoes", "lfoot", "ltoes"};
-  EXPECT_LT(angle_deg(learn_forward_axes(db)[0], axis), 1e-6);
+  EXPECT_LT((learn_forward_axes(db)[0] - axis).norm(), 1e-9);
   // A walk played backwards (its root turned about while it travels on): the hips face back,
   // so the axis is the other way round in the root's frame, and the facing is the travel's.
   db.foot_names = {};
   const Quat about = axis_rotation(Axis::kY, std::numbers::pi);
   for (int f = 0; f < db.clips[0].frame_count; ++f) db.clips[0].motion.rotations(f)[0] = about * db.clips[0].motion.rotations(f)[0];
-  EXPECT_LT(angle_deg(learn_forward_axes(db)[0], -axis), 1e-6);
+  EXPECT_LT((learn_forward_axes(db)[0] + axis).norm(), 1e-9);
 }
 
 TEST(ForwardAxis, TheTravelAxisWhenTheFeetCannotBeFound) {
@@ -130,6 +134,79 @@ TEST(ForwardAxis, TheSameFacingThroughAnotherConvertersRig) {
                                       facing_on_floor(bvh.clips[0].motion.rotations(f)[0], bvh_axis)));
   }
   EXPECT_LT(worst, 0.01);  // the converter placed the hips where the ASF has them
+}
+
+// A still pose (no frame moves, so the hips' own sign) whose hip joints are turned: ASF's
+// lhipjoint and rhipjoint, bones of zero length at the root, carry the hips where forward
+// kinematics puts them, and the axis is square to that.
+TEST(ForwardAxis, SquareToTheHipsWhereTheJointsAboveThemAreTurned) {
+  Clip clip = test::load_data_clip("cmu/16/16_15.amc");
+  const Skeleton& skeleton = clip.skeleton;
+  const int lhip = *skeleton.find("lhipjoint"), rhip = *skeleton.find("rhipjoint");
+  const Motion pose = clip.motion;
+  for (int f = 0; f < clip.motion.frame_count; ++f) {
+    for (int j = 0; j < skeleton.joint_count(); ++j) clip.motion.rotations(f)[j] = pose.rotations(40)[j];
+    clip.motion.translations(f)[0] = pose.translations(40)[0];
+    clip.motion.rotations(f)[lhip] = axis_rotation(Axis::kY, 0.4) * axis_rotation(Axis::kX, 0.3);
+    clip.motion.rotations(f)[rhip] = axis_rotation(Axis::kY, 0.4) * axis_rotation(Axis::kZ, -0.2);
+  }
+  const MotionDatabase db = database_of({clip});
+  std::vector<Vec3> positions(static_cast<size_t>(skeleton.joint_count()));
+  std::vector<Quat> rotations(positions.size());
+  forward_kinematics(skeleton, db.clips[0].motion, 0, positions, rotations);
+  const Vec3 across = positions[static_cast<size_t>(*skeleton.find("rfemur"))] - positions[static_cast<size_t>(*skeleton.find("lfemur"))];
+  const Vec2 facing = facing_on_floor(db.clips[0].motion.rotations(0)[0], learn_forward_axes(db)[0]);
+  EXPECT_LT((facing - Vec2(across.z(), -across.x()).normalized()).norm(), 1e-9);
+}
+
+// A rig of another shape: the legs hang from a pelvis below the root, turned 20 degrees about
+// the vertical from where the root's +z points; it walks along the root's +z. The hips face 20
+// degrees round (the pelvis' +z), the travel axis along the walk.
+TEST(ForwardAxis, TheLegsHangingFromAPelvisTurnedBelowTheRoot) {
+  std::string bvh =
+      "HIERARCHY\nROOT Hips\n{\n OFFSET 0 0 0\n CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n"
+      " JOINT Pelvis\n {\n  OFFSET 0 -0.05 0\n  CHANNELS 3 Zrotation Xrotation Yrotation\n";
+  for (const char* side : {"Left", "Right"}) {
+    bvh += std::string("  JOINT ") + side + "UpLeg\n  {\n   OFFSET " + (side[0] == 'L' ? "0.1" : "-0.1") +
+           " 0 0\n   CHANNELS 3 Zrotation Xrotation Yrotation\n   JOINT " + side +
+           "Leg\n   {\n    OFFSET 0 -0.45 0\n    CHANNELS 3 Zrotation Xrotation Yrotation\n    JOINT " + side +
+           "Foot\n    {\n     OFFSET 0 -0.45 0\n     CHANNELS 3 Zrotation Xrotation Yrotation\n"
+           "     End Site\n     {\n      OFFSET 0 -0.05 0.15\n     }\n    }\n   }\n  }\n";
+  }
+  bvh += " }\n JOINT Spine\n {\n  OFFSET 0 0.5 0\n  CHANNELS 3 Zrotation Xrotation Yrotation\n"
+         "  End Site\n  {\n   OFFSET 0 0.2 0\n  }\n }\n}\nMOTION\nFrames: 90\nFrame Time: 0.0333333\n";
+  for (int f = 0; f < 90; ++f) {
+    char line[160];
+    std::snprintf(line, sizeof line, "0 1.0 %.4f 0 0 0 0 0 20 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0\n", 0.04 * f);
+    bvh += line;
+  }
+  BvhImportSettings settings;
+  settings.metres_per_unit = 1.0;
+  settings.up_axis = UpAxis::kY;
+  const MotionDatabase db = database_of({test::import_bvh(bvh, settings)});
+  const Quat root = db.clips[0].motion.rotations(0)[0];
+  const double turned = 20.0 * std::numbers::pi / 180.0;
+  EXPECT_LT((facing_on_floor(root, learn_forward_axes(db)[0]) - Vec2(std::sin(turned), std::cos(turned))).norm(), 1e-9);
+  EXPECT_LT((facing_on_floor(root, learn_travel_axes(db)[0]) - Vec2(0.0, 1.0)).norm(), 1e-9);
+}
+
+// Each skeleton of a library its own axis, from its own clips.
+TEST(ForwardAxis, EachSkeletonItsOwn) {
+  const Clip amc = test::load_data_clip("cmu/16/16_15.amc"), bvh = test::load_data_clip("bvh/131_01.bvh");
+  const std::vector<Vec3> both = learn_forward_axes(database_of({amc, bvh}));
+  ASSERT_EQ(both.size(), 2u);
+  EXPECT_LT((both[0] - learn_forward_axes(database_of({amc}))[0]).norm(), 1e-12);
+  EXPECT_LT((both[1] - learn_forward_axes(database_of({bvh}))[0]).norm(), 1e-12);
+  EXPECT_GT((both[0] - both[1]).norm(), 0.1);  // rigs of other root frames
+}
+
+// Synthesis faces with the hips and starts paths with the travel axis, the target skeleton's.
+TEST(ForwardAxis, TheSynthesisContextHoldsBothAxesOfItsSkeleton) {
+  const SynthesisContext& context = test::subject16().context();
+  const int target = context.assembler.target_skeleton();
+  EXPECT_EQ(context.tracks.forward_axis, learn_forward_axes(*context.db)[static_cast<size_t>(target)]);
+  EXPECT_EQ(context.tracks.travel_axis, learn_travel_axes(*context.db)[static_cast<size_t>(target)]);
+  EXPECT_NE(context.tracks.forward_axis, context.tracks.travel_axis);
 }
 
 }  // namespace

@@ -69,8 +69,14 @@ Vec3 in_root_frame(const Skeleton& skeleton, const Motion& motion, int frame, in
   return p;
 }
 
+// Below this mean cosine between the hips' facing and the travel over the moving frames, the
+// travel does not say which way is forward (a library of sidesteps, or of turns on the spot):
+// the hips' own sign, up x (right - left), stands.
+constexpr double kTravelSignMargin = 0.2;
+
 // Where the hips of skeleton `s` face, in its root's frame; nullopt without feet, hips or a
-// frame whose hips lie apart on the floor.
+// frame whose hips lie apart on the floor. Each frame weighs as far as its hips lie apart on the
+// floor (a figure lying on its side, hips one above the other, says little).
 std::optional<Vec3> hips_axis(const MotionDatabase& db, int s) {
   const Skeleton& skeleton = db.skeletons[static_cast<size_t>(s)];
   const auto feet = find_foot_joints(skeleton, db.foot_names);
@@ -79,6 +85,7 @@ std::optional<Vec3> hips_axis(const MotionDatabase& db, int s) {
   if (!hips) return std::nullopt;
   Vec3 sum = Vec3::Zero();
   double along_travel = 0.0;
+  long long moving = 0;
   for (const DatabaseClip& clip : db.clips) {
     if (clip.skeleton != s) continue;
     const std::vector<Vec2> roots = floor_roots(clip.motion);
@@ -88,14 +95,17 @@ std::optional<Vec3> hips_axis(const MotionDatabase& db, int s) {
           root * (in_root_frame(skeleton, clip.motion, f, hips->second) - in_root_frame(skeleton, clip.motion, f, hips->first));
       const Vec2 facing(across.z(), -across.x());  // up x across, on the floor
       const double n = facing.norm();
-      if (n < 1e-3) continue;
-      sum += root.conjugate() * Vec3(facing.x() / n, 0.0, facing.y() / n);
+      if (n < 1e-6) continue;
+      sum += root.conjugate() * Vec3(facing.x(), 0.0, facing.y());
       const Vec2 d = travel_direction(roots, f, kTravelLookaheadFrames, db.fps, kMovingSpeedMps);
+      if (d.isZero()) continue;
       along_travel += d.dot(facing) / n;
+      ++moving;
     }
   }
-  if (sum.norm() == 0.0) return std::nullopt;
-  return Vec3((along_travel < 0.0 ? -sum : sum).normalized());
+  if (sum.norm() < 1e-9) return std::nullopt;
+  const bool backwards = moving > 0 && along_travel < -kTravelSignMargin * static_cast<double>(moving);
+  return Vec3((backwards ? -sum : sum).normalized());
 }
 
 }  // namespace

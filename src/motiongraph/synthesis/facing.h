@@ -5,11 +5,13 @@
 // the right one, on the floor, averaged over every frame of its clips and expressed in the root
 // joint's frame. The hips are where the legs start: on the chain from the joint where the two
 // legs part down to each ankle (skeleton/foot_joints.h finds the ankles), the first joint set off
-// from it (ASF's hipjoint, a bone that starts at the root, is passed over). Its sign is the one
-// along which the skeleton's moving frames mostly travel (a mirrored rig or swapped feet still
-// face forwards); with no moving frame, up x (right - left). A walk's direction of travel swings
-// with its steps, and sidesteps, dance and pivots travel across the body: a library's mean travel
-// direction in the root's frame can be 12 degrees off its walking (CMU 05), its hips are not.
+// from it (ASF's hipjoint, a bone that starts at the root, is passed over); each frame weighs
+// as far as its hips lie apart on the floor. Its sign is up x (right - left), turned about when
+// the skeleton's moving frames travel against it (a mean cosine below -0.2: a mirrored rig or
+// swapped feet still face forwards; a library of sidesteps keeps the hips' sign). A walk's
+// direction of travel swings with its steps, and sidesteps, dance and pivots travel across the
+// body: a library's mean travel direction in the root's frame can be 12 degrees off its walking
+// (CMU 05), its hips are not.
 //
 // A skeleton whose feet cannot be found, or whose hips lie one above the other, gets its
 // travel axis instead: the mean, in the root's frame, of the horizontal direction of travel
