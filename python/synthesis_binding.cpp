@@ -104,6 +104,7 @@ class PyController {
       : loaded_(graph.loaded), motion_(graph.loaded->context().assembler.empty_motion()) {
     ControllerSettings settings;
     SynthesisRunSettings run = run_settings(graph);
+    std::string hold = "facing";
     apply_options(options,
                   {{"horizon", set(settings.horizon_s)},
                    {"commit", set(settings.commit_s)},
@@ -116,8 +117,11 @@ class PyController {
                    {"start_node", set(settings.start_node)},
                    {"edit_max_turn", set(settings.heading_edit.max_turn_deg_per_m)},
                    {"edit_turn_distance", set(settings.heading_edit.turn_distance_m)},
+                   {"edit_hold", set(hold)},
                    {"cleanup", set(run.cleanup)}},
                   "controller");
+    if (hold != "travel" && hold != "facing") check(Error{"", 0, "--edit-hold must be 'travel' or 'facing', not '" + hold + "'"});
+    settings.heading_edit.hold_travel = hold == "travel";
     check(settings.validate());
     std::string warning;
     cleanup_ = make_cleanup(context(), run, warning);

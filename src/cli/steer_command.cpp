@@ -125,6 +125,11 @@ int run_steer(const SteerOptions& o) {
                                  {"heading_edit",
                                   {{"max_turn_deg_per_m", o.settings.heading_edit.max_turn_deg_per_m},
                                    {"turn_distance_m", o.settings.heading_edit.turn_distance_m},
+                                   {"hold", o.settings.heading_edit.hold_travel ? "travel" : "facing"},
+                                   {"travel_share", controller->heading_edit_stats().frames > 0
+                                                        ? controller->heading_edit_stats().travel_share /
+                                                              static_cast<double>(controller->heading_edit_stats().frames)
+                                                        : 0.0},
                                    {"added_turn_deg", controller->heading_edit_stats().added_turn_rad * 180.0 / std::numbers::pi},
                                    {"max_rate_deg_per_m", controller->heading_edit_stats().max_rate_deg_per_m}}},
                                  {"cleanup", cleanup_report(context, run, cleanup)},
@@ -177,6 +182,13 @@ Command add_steer_command(CLI::App& app) {
   sub->add_option("--edit-turn-distance", o->settings.heading_edit.turn_distance_m,
                   "Metres travelled over which the heading edit takes out the facing's error (about)")
       ->capture_default_str();
+  sub->add_option_function<std::string>(
+         "--edit-hold", [o](const std::string& hold) { o->settings.heading_edit.hold_travel = hold == "travel"; },
+         "What the heading edit holds on the heading: 'facing', the body's facing, or 'travel', the direction the "
+         "root travels over a second where it walks roughly where it faces (else the facing): held walks go "
+         "straighter, turns take more transitions (docs/performance.md)")
+      ->check(CLI::IsMember({"travel", "facing"}))
+      ->default_str("facing");
   sub->add_option("--tolerance", o->tolerance_deg, "Report: degrees within which a heading counts as reached")
       ->capture_default_str();
   return {sub, [o] { return run_steer(*o); }};

@@ -116,7 +116,8 @@ def test_heading_edit_options_reach_the_controller(cli, graph_file, graph, tmp_p
     total = round(4 * graph.fps)
     played = {}
     for name, args, kwargs in (("default", [], {}), ("off", ["--edit-max-turn", 0], dict(edit_max_turn=0)),
-                               ("slow", ["--edit-turn-distance", 3], dict(edit_turn_distance=3))):
+                               ("slow", ["--edit-turn-distance", 3], dict(edit_turn_distance=3)),
+                               ("travel", ["--edit-hold", "travel"], dict(edit_hold="travel"))):
         cli("steer", graph_file, "--script", tmp_path / "controls.json", "-o", tmp_path / f"{name}.json",
             "--report", tmp_path / f"{name}-r.json", *args)
         controller = graph.controller(heading_deg=60, **kwargs)
@@ -127,10 +128,15 @@ def test_heading_edit_options_reach_the_controller(cli, graph_file, graph, tmp_p
         played[name] = want
         report = read_json(tmp_path / f"{name}-r.json")["heading_edit"]
         assert (report["added_turn_deg"] == 0) == (name == "off"), (name, report)
+        assert report["hold"] == ("travel" if name == "travel" else "facing"), (name, report)
+        assert (report["travel_share"] > 0.5) == (name == "travel"), (name, report)
     assert np.max(np.abs(played["default"] - played["off"])) > 0.05
     assert np.max(np.abs(played["default"] - played["slow"])) > 0.01
+    assert np.max(np.abs(played["default"] - played["travel"])) > 0.01
     with pytest.raises(mg.Error):
         graph.controller(edit_turn_distance=0)
+    with pytest.raises(mg.Error, match="--edit-hold"):
+        graph.controller(edit_hold="sideways")
 
 
 @pytest.mark.parametrize("cli_args, call", [

@@ -4,7 +4,9 @@
 
 #include <cmath>
 #include <numbers>
+#include <utility>
 
+#include "motiongraph/skeleton/rotation.h"
 #include "motiongraph/synthesis/controller.h"
 #include "synthesis/floor_motions.h"
 
@@ -36,12 +38,13 @@ Motion play_edited(const Motion& original, int chunk, const Vec2& direction, Hea
       out.rotations(f)[0] = (folded.rotation() * original.rotations(f)[0]).normalized();
       ++out.frame_count;
     }
-    std::vector<Vec2> planned;
+    std::vector<Vec2> planned, planned_roots;
     for (int f = first; f < std::min(original.frame_count, first + plan); ++f) {
       planned.push_back(turn(folded, facing_on_floor(original.rotations(f)[0], kForward)));
+      planned_roots.push_back(place(folded, root_of(original, f)));
     }
     const Vec2 previous = first > 0 ? root_of(out, first - 1) : Vec2::Zero();
-    const FloorTransform move = edit.apply(out, first, first > 0 ? &previous : nullptr, planned, direction);
+    const FloorTransform move = edit.apply(out, first, first > 0 ? &previous : nullptr, planned, planned_roots, direction);
     folded = move * folded;
   }
   return out;
@@ -143,9 +146,10 @@ TEST(HeadingEdit, ASmallErrorTurnsInProportion) {
   for (double distance : {0.5, 1.0, 2.0}) {
     HeadingEdit edit({.turn_distance_m = distance}, original.fps, kForward);
     Motion out = original;
-    std::vector<Vec2> planned(31, Vec2(0.0, -1.0));  // north, as the walk
+    std::vector<Vec2> planned(31, Vec2(0.0, -1.0)), roots;  // north, as the walk
+    for (int f = 30; f < 40; ++f) roots.push_back(root_of(original, f));  // travelling north too
     const Vec2 previous = root_of(out, 29);
-    const FloorTransform move = edit.apply(out, 30, &previous, planned, bearing_direction(5.0));
+    const FloorTransform move = edit.apply(out, 30, &previous, planned, roots, bearing_direction(5.0));
     const double ds = 1.3 / 30.0;
     EXPECT_NEAR(-move.yaw_rad, 5.0 * kDeg * (1.0 - std::pow(1.0 - ds / distance, 10)), 1e-9) << distance;
     EXPECT_NEAR(added_yaw(out, original, out.frame_count - 1), move.yaw_rad, 1e-9);
@@ -154,10 +158,52 @@ TEST(HeadingEdit, ASmallErrorTurnsInProportion) {
   }
 }
 
+// A walk that travels 8 degrees right of where it faces (each clip has such an offset of its
+// own) is turned, with hold_travel, so that it travels the heading asked; by default, so that it
+// faces it. A sidestep (travel 90 degrees off the facing) keeps its facing held either way.
+TEST(HeadingEdit, HoldsTheTravelOfAWalkButTheFacingOfASidestep) {
+  const Motion straight = motion_along(straight_walk(8.0, 1.3, 0.03));
+  auto facing_off = [&](double degrees) {
+    Motion m = straight;
+    const Quat yaw = axis_rotation(Axis::kY, degrees * kDeg);
+    for (int f = 0; f < m.frame_count; ++f) m.rotations(f)[0] = (yaw * m.rotations(f)[0]).normalized();
+    return m;
+  };
+  // Over the last 3 s: the bearing of the travel and the mean facing.
+  auto bearings = [](const Motion& m) {
+    const int from = m.frame_count - 90, to = m.frame_count - 1;
+    Vec2 facing = Vec2::Zero();
+    for (int f = from; f <= to; ++f) facing += facing_on_floor(m.rotations(f)[0], kForward);
+    return std::pair(bearing_of(root_of(m, to) - root_of(m, from)), bearing_of(facing));
+  };
+  const Motion walk = facing_off(8.0);
+  const auto [travel0, facing0] = bearings(walk);
+  ASSERT_NEAR(travel0, 0.0, 0.5);
+  ASSERT_NEAR(std::abs(facing0), 8.0, 0.5);
+  HeadingEdit travel({.hold_travel = true}, walk.fps, kForward), facing({}, walk.fps, kForward);
+  const auto [travel_t, facing_t] = bearings(play_edited(walk, 6, bearing_direction(30.0), travel));
+  EXPECT_NEAR(travel_t, 30.0, 0.5);
+  EXPECT_NEAR(std::abs(facing_t - 30.0), 8.0, 0.5);
+  EXPECT_GT(travel.stats().travel_share, 0.9 * static_cast<double>(travel.stats().frames));
+  const auto [travel_f, facing_f] = bearings(play_edited(walk, 6, bearing_direction(30.0), facing));
+  EXPECT_NEAR(facing_f, 30.0, 0.5);
+  EXPECT_NEAR(std::abs(travel_f - 30.0), 8.0, 0.5);
+  EXPECT_EQ(facing.stats().travel_share, 0.0);
+
+  const Motion sidestep = facing_off(90.0);
+  HeadingEdit side({.hold_travel = true}, sidestep.fps, kForward);
+  const auto [travel_s, facing_s] = bearings(play_edited(sidestep, 6, bearing_direction(30.0), side));
+  EXPECT_NEAR(facing_s, 30.0, 0.5);
+  EXPECT_NEAR(std::abs(travel_s - 30.0), 90.0, 0.5);
+  EXPECT_EQ(side.stats().travel_share, 0.0);
+}
+
 TEST(HeadingEdit, BadSettingsAreErrors) {
   EXPECT_TRUE(HeadingEditSettings{}.validate().ok());
   for (auto bad : {HeadingEditSettings{.max_turn_deg_per_m = -1.0}, HeadingEditSettings{.max_turn_deg_per_m = std::nan("")},
-                   HeadingEditSettings{.turn_distance_m = 0.0}, HeadingEditSettings{.window_s = -1.0}}) {
+                   HeadingEditSettings{.turn_distance_m = 0.0}, HeadingEditSettings{.window_s = -1.0},
+                   HeadingEditSettings{.travel_from_mps = 0.6, .travel_full_mps = 0.6},
+                   HeadingEditSettings{.travel_full_mps = std::nan("")}}) {
     EXPECT_FALSE(bad.validate().ok());
     ControllerSettings controller;
     controller.heading_edit = bad;

@@ -123,12 +123,13 @@ ControllerDecision Controller::step(Motion& out) {
     decision.frames += graph.edges[e].frame_count;
     if (decision.frames >= commit_frames) break;
   }
-  // The facings the decision's walk plans from the first frame committed, unedited, as far as
-  // the heading edit looks past the last committed (or as far as the walk goes).
-  std::vector<Vec2> planned;
+  // The facings and roots the decision's walk plans from the first frame committed, unedited, as
+  // far as the heading edit looks past the last committed (or as far as the walk goes).
+  std::vector<Vec2> planned, planned_roots;
   if (settings_.heading_edit.max_turn_deg_per_m > 0.0) {
-    planned = walk_facings(graph, context_->tracks, state_, edges,
-                           static_cast<size_t>(decision.frames + edit_.half_window_frames()));
+    const auto count = static_cast<size_t>(decision.frames + edit_.half_window_frames());
+    planned = walk_facings(graph, context_->tracks, state_, edges, count);
+    planned_roots = walk_roots(graph, context_->tracks, state_, edges, count);
   }
   decision.search_seconds = std::chrono::duration<double>(Clock::now() - begin).count();
   const int first = out.frame_count;
@@ -140,7 +141,7 @@ ControllerDecision Controller::step(Motion& out) {
   }
   if (settings_.heading_edit.max_turn_deg_per_m > 0.0) {
     const FloorTransform move =
-        edit_.apply(out, first, before.has_last ? &before.last_root : nullptr, planned, input_.direction);
+        edit_.apply(out, first, before.has_last ? &before.last_root : nullptr, planned, planned_roots, input_.direction);
     state_.placement = move * state_.placement;
     state_.last_root = place(move, state_.last_root);
   }

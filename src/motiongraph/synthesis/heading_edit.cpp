@@ -17,16 +17,39 @@ Status HeadingEditSettings::validate() const {
   if (!std::isfinite(window_s) || window_s < 0.0) {
     return Error{"", 0, "heading edit: the facing's window must be finite and >= 0 seconds"};
   }
+  if (!std::isfinite(travel_from_mps) || !std::isfinite(travel_full_mps) || travel_from_mps < 0.0 ||
+      !(travel_full_mps > travel_from_mps)) {
+    return Error{"", 0, "heading edit: the travel speeds must be finite, >= 0 and the second above the first"};
+  }
   return Ok{};
 }
 
 HeadingEdit::HeadingEdit(const HeadingEditSettings& settings, double fps, const Vec3& forward_axis)
     : settings_(settings),
       forward_axis_(forward_axis),
+      fps_(fps),
       half_window_(std::max(0, static_cast<int>(std::lround(0.5 * settings.window_s * fps)))) {}
 
+namespace {
+
+// How much of the direction judged is the travel's: 0 below travel_from_mps over the window, 1
+// from travel_full_mps, and none unless the travel is within 45 degrees of the facing (a
+// sidestep or a backward walk keeps its facing), all of it within 20.
+double travel_share(const HeadingEditSettings& settings, const Vec2& facing, const Vec2& travel, double seconds) {
+  if (!settings.hold_travel || seconds <= 0.0 || facing.norm() <= 1e-6 || travel.norm() <= 1e-9) return 0.0;
+  const double speed = travel.norm() / seconds;
+  const double by_speed =
+      std::clamp((speed - settings.travel_from_mps) / (settings.travel_full_mps - settings.travel_from_mps), 0.0, 1.0);
+  const double cosine = facing.normalized().dot(travel.normalized());
+  const double lo = std::cos(45.0 * std::numbers::pi / 180.0), hi = std::cos(20.0 * std::numbers::pi / 180.0);
+  return by_speed * std::clamp((cosine - lo) / (hi - lo), 0.0, 1.0);
+}
+
+}  // namespace
+
 FloorTransform HeadingEdit::apply(Motion& motion, int first, const Vec2* previous_root,
-                                  std::span<const Vec2> planned_facings, const Vec2& direction) {
+                                  std::span<const Vec2> planned_facings, std::span<const Vec2> planned_roots,
+                                  const Vec2& direction) {
   FloorTransform move;
   if (first >= motion.frame_count) return move;
   const bool steer = direction.norm() > 1e-6;
@@ -34,15 +57,27 @@ FloorTransform HeadingEdit::apply(Motion& motion, int first, const Vec2* previou
   // The facings of the frames played before, as they would play under the present placement
   // without the turning added since they played (turned on by what was added after them, which
   // the present placement holds): with the plan, one motion.
-  std::vector<Vec2> window;
-  window.reserve(played_facings_.size() + planned_facings.size());
-  for (const auto& [facing, added_then] : played_facings_) {
-    window.push_back(turn(FloorTransform{total_added_ - added_then, 0.0, 0.0}, facing));
+  // The root's floor steps likewise (each from the frame before; the first planned one from
+  // previous_root), for the direction of travel over the window.
+  std::vector<Vec2> window, steps;
+  window.reserve(played_.size() + planned_facings.size());
+  steps.reserve(window.capacity());
+  for (const PlayedFrame& played : played_) {
+    const FloorTransform since{total_added_ - played.added, 0.0, 0.0};
+    window.push_back(turn(since, played.facing));
+    steps.push_back(turn(since, played.step));
   }
-  const int past = static_cast<int>(played_facings_.size());
+  const int past = static_cast<int>(played_.size());
   window.insert(window.end(), planned_facings.begin(), planned_facings.end());
-  std::vector<Vec2> prefix(window.size() + 1, Vec2::Zero());
-  for (size_t i = 0; i < window.size(); ++i) prefix[i + 1] = prefix[i] + window[i];
+  for (size_t k = 0; k < planned_facings.size(); ++k) {
+    const bool known = k < planned_roots.size() && (k > 0 || previous_root != nullptr);
+    steps.push_back(known ? Vec2(planned_roots[k] - (k > 0 ? planned_roots[k - 1] : *previous_root)) : Vec2::Zero());
+  }
+  std::vector<Vec2> prefix(window.size() + 1, Vec2::Zero()), travel_prefix(window.size() + 1, Vec2::Zero());
+  for (size_t i = 0; i < window.size(); ++i) {
+    prefix[i + 1] = prefix[i] + window[i];
+    travel_prefix[i + 1] = travel_prefix[i] + steps[i];
+  }
   double added = 0.0;  // since frame first - 1, whose placement the frames have
   Vec2 last_unedited = previous_root != nullptr ? *previous_root : Vec2::Zero();
   Vec2 last_edited = last_unedited;
@@ -55,7 +90,17 @@ FloorTransform HeadingEdit::apply(Motion& motion, int first, const Vec2* previou
     const int centre = past + (f - first);
     const int lo = std::max(0, centre - half_window_);
     const int hi = std::min(static_cast<int>(window.size()), centre + half_window_ + 1);
-    const Vec2 mean = hi > lo ? Vec2(prefix[hi] - prefix[lo]) : Vec2::Zero();
+    Vec2 mean = hi > lo ? Vec2(prefix[hi] - prefix[lo]) : Vec2::Zero();
+    // The steps lo + 1 .. hi - 1 span the frames lo .. hi - 1.
+    const Vec2 travel = hi > lo + 1 ? Vec2(travel_prefix[hi] - travel_prefix[lo + 1]) : Vec2::Zero();
+    // A window cut short (the motion's first frames, the plan's end) spans less than a stride,
+    // whose sway it does not average out: the travel's share falls from a whole window to none
+    // at three quarters of one.
+    const double spanned = half_window_ > 0 ? (hi - lo - 1) / (2.0 * half_window_) : 1.0;
+    const double whole = std::clamp((spanned - 0.75) / 0.25, 0.0, 1.0);
+    const double share = whole * travel_share(settings_, mean, travel, (hi - lo - 1) / fps_);
+    if (share > 0.0) mean = (1.0 - share) * mean.normalized() + share * travel.normalized();
+    stats_.travel_share += share;
     if (steer && mean.norm() > 1e-6 && step.norm() > 0.0) {
       const double wanted = yaw_between(mean.normalized(), direction.normalized());
       const double ds = step.norm();
@@ -77,8 +122,8 @@ FloorTransform HeadingEdit::apply(Motion& motion, int first, const Vec2* previou
     last_unedited = at;
     last_edited = edited;
     has_last = true;
-    played_facings_.emplace_back(facing_on_floor(rotation, forward_axis_), total_added_ + added);
-    while (static_cast<int>(played_facings_.size()) > half_window_) played_facings_.pop_front();
+    played_.push_back({facing_on_floor(rotation, forward_axis_), turn(move, step), total_added_ + added});
+    while (static_cast<int>(played_.size()) > half_window_) played_.pop_front();
     ++stats_.frames;
   }
   total_added_ += added;

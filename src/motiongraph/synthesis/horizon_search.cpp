@@ -197,19 +197,40 @@ SearchState advance(const MotionGraph& graph, const EdgeTracks& tracks, const Se
   return child.state;
 }
 
-std::vector<Vec2> walk_facings(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& state,
-                               std::span<const int> edges, size_t count) {
-  std::vector<Vec2> facings;
+namespace {
+
+// The first `count` frames `edges` play from `state`, each of an edge's `track` values (its
+// facings or roots) as `world` puts it under the edge's placement.
+template <class Track, class World>
+std::vector<Vec2> walk_values(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& state,
+                              std::span<const int> edges, size_t count, Track&& track, World&& world) {
+  std::vector<Vec2> values;
   SearchState at = state;
   for (int e : edges) {
-    if (facings.size() >= count) break;
-    for (const Vec2& f : tracks.facings_of(e)) {
-      if (facings.size() >= count) break;
-      facings.push_back(turn(at.placement, f));
+    if (values.size() >= count) break;
+    for (const Vec2& v : track(e)) {
+      if (values.size() >= count) break;
+      values.push_back(world(at.placement, v));
     }
     at = advance(graph, tracks, at, e);
   }
-  return facings;
+  return values;
+}
+
+}  // namespace
+
+std::vector<Vec2> walk_facings(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& state,
+                               std::span<const int> edges, size_t count) {
+  return walk_values(
+      graph, tracks, state, edges, count, [&](int e) { return tracks.facings_of(e); },
+      [](const FloorTransform& w, const Vec2& f) { return turn(w, f); });
+}
+
+std::vector<Vec2> walk_roots(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& state,
+                             std::span<const int> edges, size_t count) {
+  return walk_values(
+      graph, tracks, state, edges, count, [&](int e) { return tracks.roots_of(e); },
+      [](const FloorTransform& w, const Vec2& r) { return place(w, r); });
 }
 
 HorizonResult horizon_search(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& start,

@@ -119,5 +119,8 @@ SearchState advance(const MotionGraph& graph, const EdgeTracks& tracks, const Se
 // (all when they play fewer).
 std::vector<Vec2> walk_facings(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& state,
                                std::span<const int> edges, size_t count);
+// Their world floor root positions likewise.
+std::vector<Vec2> walk_roots(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& state,
+                             std::span<const int> edges, size_t count);
 
 }  // namespace mg
