@@ -197,7 +197,8 @@ void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
           "A steering controller (the CLI's steer) starting at `at` (x, z) facing heading_deg (degrees clockwise "
           "from north, -z): keywords horizon, commit, tag_penalty, transition_penalty, bridge_penalty, max_expansions, "
           "beam, time_budget, start_node, edit_max_turn (degrees per metre the heading edit may turn the motion "
-          "toward the heading; 0: as the graph plays it), edit_turn_distance (m), cleanup.");
+          "toward the heading; 0: as the graph plays it), edit_turn_distance (m), edit_hold ('facing' or 'travel': "
+          "what the heading edit holds on the heading), cleanup.");
   py::class_<PyController>(m, "Controller", "Steers motion on a graph from a heading and a motion type.")
       .def("step", &PyController::step, py::arg("heading_deg"), py::arg("tag") = py::none(),
            "Decides the next frames towards heading_deg (degrees clockwise from north) with motion type `tag` "

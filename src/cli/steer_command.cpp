@@ -185,7 +185,7 @@ Command add_steer_command(CLI::App& app) {
   sub->add_option_function<std::string>(
          "--edit-hold", [o](const std::string& hold) { o->settings.heading_edit.hold_travel = hold == "travel"; },
          "What the heading edit holds on the heading: 'facing', the body's facing, or 'travel', the direction the "
-         "root travels over a second where it walks roughly where it faces (else the facing): held walks go "
+         "root travels over a second where it walks roughly where it faces (blended in by speed and angle, else the facing): held walks go "
          "straighter, turns take more transitions (docs/performance.md)")
       ->check(CLI::IsMember({"travel", "facing"}))
       ->default_str("facing");

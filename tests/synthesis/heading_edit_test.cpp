@@ -190,6 +190,19 @@ TEST(HeadingEdit, HoldsTheTravelOfAWalkButTheFacingOfASidestep) {
   EXPECT_NEAR(std::abs(travel_f - 30.0), 8.0, 0.5);
   EXPECT_EQ(facing.stats().travel_share, 0.0);
 
+  // In between, the travel's share: a walk at 0.45 m/s (half way from 0.3 to 0.6) is held by the
+  // bisector of its facing and travel, 4 degrees each side; one 30 degrees off its facing (share
+  // (cos 30 - cos 45) / (cos 20 - cos 45) = 0.68 of the direction judged) travels about 9.5 off
+  // (10.5 measured: the facing judged is a mean over a swaying stride).
+  auto slow = motion_along(straight_walk(8.0, 0.45, 0.0));
+  const Quat eight = axis_rotation(Axis::kY, 8.0 * kDeg);
+  for (int f = 0; f < slow.frame_count; ++f) slow.rotations(f)[0] = (eight * slow.rotations(f)[0]).normalized();
+  HeadingEdit half({.hold_travel = true}, slow.fps, kForward);
+  EXPECT_NEAR(std::abs(bearings(play_edited(slow, 6, bearing_direction(30.0), half)).first - 30.0), 4.0, 0.5);
+  HeadingEdit thirty({.hold_travel = true}, walk.fps, kForward);
+  const double judged = std::atan2(0.32 * std::sin(30.0 * kDeg), 0.68 + 0.32 * std::cos(30.0 * kDeg)) / kDeg;
+  EXPECT_NEAR(std::abs(bearings(play_edited(facing_off(30.0), 6, bearing_direction(30.0), thirty)).first - 30.0), judged, 1.5);
+
   const Motion sidestep = facing_off(90.0);
   HeadingEdit side({.hold_travel = true}, sidestep.fps, kForward);
   const auto [travel_s, facing_s] = bearings(play_edited(sidestep, 6, bearing_direction(30.0), side));

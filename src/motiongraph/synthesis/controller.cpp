@@ -129,7 +129,7 @@ ControllerDecision Controller::step(Motion& out) {
   if (settings_.heading_edit.max_turn_deg_per_m > 0.0) {
     const auto count = static_cast<size_t>(decision.frames + edit_.half_window_frames());
     planned = walk_facings(graph, context_->tracks, state_, edges, count);
-    planned_roots = walk_roots(graph, context_->tracks, state_, edges, count);
+    if (settings_.heading_edit.hold_travel) planned_roots = walk_roots(graph, context_->tracks, state_, edges, count);
   }
   decision.search_seconds = std::chrono::duration<double>(Clock::now() - begin).count();
   const int first = out.frame_count;

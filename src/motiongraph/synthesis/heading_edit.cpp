@@ -91,14 +91,15 @@ FloorTransform HeadingEdit::apply(Motion& motion, int first, const Vec2* previou
     const int lo = std::max(0, centre - half_window_);
     const int hi = std::min(static_cast<int>(window.size()), centre + half_window_ + 1);
     Vec2 mean = hi > lo ? Vec2(prefix[hi] - prefix[lo]) : Vec2::Zero();
-    // The steps lo + 1 .. hi - 1 span the frames lo .. hi - 1.
-    const Vec2 travel = hi > lo + 1 ? Vec2(travel_prefix[hi] - travel_prefix[lo + 1]) : Vec2::Zero();
+    // The steps lo + 1 .. end - 1 span the frames lo .. end - 1, as far as the roots are known.
+    const int end = std::min(hi, past + static_cast<int>(planned_roots.size()));
+    const Vec2 travel = end > lo + 1 ? Vec2(travel_prefix[end] - travel_prefix[lo + 1]) : Vec2::Zero();
     // A window cut short (the motion's first frames, the plan's end) spans less than a stride,
     // whose sway it does not average out: the travel's share falls from a whole window to none
     // at three quarters of one.
-    const double spanned = half_window_ > 0 ? (hi - lo - 1) / (2.0 * half_window_) : 1.0;
+    const double spanned = half_window_ > 0 ? (end - lo - 1) / (2.0 * half_window_) : 1.0;
     const double whole = std::clamp((spanned - 0.75) / 0.25, 0.0, 1.0);
-    const double share = whole * travel_share(settings_, mean, travel, (hi - lo - 1) / fps_);
+    const double share = whole * travel_share(settings_, mean, travel, (end - lo - 1) / fps_);
     if (share > 0.0) mean = (1.0 - share) * mean.normalized() + share * travel.normalized();
     stats_.travel_share += share;
     if (steer && mean.norm() > 1e-6 && step.norm() > 0.0) {

@@ -78,7 +78,8 @@ class HeadingEdit {
   // position of the frame played before frame `first` (nullptr before the first frame): the
   // frames' steps are taken from it. `planned_facings` and `planned_roots` are the world facings
   // and floor root positions of the frames the decision's walk plays from frame `first` on,
-  // unedited (walk_facings, walk_roots). Returns the rigid floor motion the last frame got
+  // unedited (walk_facings, walk_roots; the travel is judged only as far as roots are given, and
+  // none are needed without hold_travel). Returns the rigid floor motion the last frame got
   // (identity when there was no frame or nothing to turn).
   FloorTransform apply(Motion& motion, int first, const Vec2* previous_root, std::span<const Vec2> planned_facings,
                        std::span<const Vec2> planned_roots, const Vec2& direction);
