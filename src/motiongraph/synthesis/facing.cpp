@@ -126,11 +126,13 @@ std::vector<Vec3> learn_travel_axes(const MotionDatabase& db) {
   return axes;
 }
 
+Vec3 learn_forward_axis(const MotionDatabase& db, int skeleton, const Vec3& travel_axis) {
+  return hips_axis(db, skeleton).value_or(travel_axis);
+}
+
 std::vector<Vec3> learn_forward_axes(const MotionDatabase& db) {
   std::vector<Vec3> axes = learn_travel_axes(db);
-  for (size_t s = 0; s < axes.size(); ++s) {
-    if (const auto hips = hips_axis(db, static_cast<int>(s))) axes[s] = *hips;
-  }
+  for (size_t s = 0; s < axes.size(); ++s) axes[s] = learn_forward_axis(db, static_cast<int>(s), axes[s]);
   return axes;
 }
 

@@ -41,6 +41,8 @@ constexpr double kMovingSpeedMps = 0.3;
 
 // One axis per skeleton of db, unit length, in the root joint's frame: where its hips face.
 std::vector<Vec3> learn_forward_axes(const MotionDatabase& db);
+// The same for skeleton `skeleton` alone, given its travel axis (the answer without hips).
+Vec3 learn_forward_axis(const MotionDatabase& db, int skeleton, const Vec3& travel_axis);
 
 // One axis per skeleton of db, unit length, in the root joint's frame: its mean direction of
 // travel.

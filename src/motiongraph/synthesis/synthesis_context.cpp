@@ -16,8 +16,10 @@ Result<SynthesisContext> make_synthesis_context(const MotionDatabase& db, const 
   auto assembler = MotionAssembler::create(db, graph, target_skeleton);
   if (!assembler) return assembler.error();
   SynthesisContext context{&db, &graph, std::move(*assembler), db.frame_tags(), {}, {}, {}, {}};
+  // The travel axes once (the hips' axis falls back on the target's), the hips' of the target only.
+  const Vec3 travel_axis = learn_travel_axes(db)[target_skeleton];
   context.tracks = compute_edge_tracks(context.assembler, graph, context.frame_tags,
-                                       learn_forward_axes(db)[target_skeleton], learn_travel_axes(db)[target_skeleton]);
+                                       learn_forward_axis(db, target_skeleton, travel_axis), travel_axis);
   auto feet = find_foot_joints(db.skeletons[target_skeleton], db.foot_names);
   auto contacts = feet ? contacts_of(db) : Result<std::vector<ContactMask>>(feet.error());
   if (feet && contacts) {
