@@ -185,8 +185,8 @@ Command add_steer_command(CLI::App& app) {
   sub->add_option_function<std::string>(
          "--edit-hold", [o](const std::string& hold) { o->settings.heading_edit.hold_travel = hold == "travel"; },
          "What the heading edit holds on the heading: 'facing', the body's facing, or 'travel', the direction the "
-         "root travels over a second where it walks roughly where it faces (blended in by speed and angle, else the facing): held walks go "
-         "straighter, turns take more transitions (docs/performance.md)")
+         "root travels over a second where it walks roughly where it faces (blended in by speed and angle, else the facing; the "
+         "search judges it too): held walks go straighter, but on some libraries change piece more often (docs/performance.md)")
       ->check(CLI::IsMember({"travel", "facing"}))
       ->default_str("facing");
   sub->add_option("--tolerance", o->tolerance_deg, "Report: degrees within which a heading counts as reached")

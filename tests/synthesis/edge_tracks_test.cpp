@@ -1,12 +1,16 @@
 // The edge tracks (filled on all cores) against each edge played by the assembler alone: the
-// same roots, facings, first headings and tags, edge by edge, and the longest root step found again serially.
+// same roots, facings, first headings and tags, edge by edge, and the longest root step found again serially;
+// the headings, each frame's facing turned by its sources' travel turns as blended.
 #include "motiongraph/synthesis/edge_tracks.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 
 #include "motiongraph/synthesis/facing.h"
+#include "motiongraph/synthesis/travel_heading.h"
 #include "synthesis/subject16_graph.h"
 
 namespace mg {
@@ -51,6 +55,43 @@ TEST(EdgeTracks, EveryEdgeAsTheAssemblerPlaysIt) {
   // The context's own tracks are these.
   EXPECT_EQ(c.tracks.roots, tracks.roots);
   EXPECT_EQ(c.tracks.tags, tracks.tags);
+  EXPECT_TRUE(tracks.headings.empty());  // no turns given
+}
+
+TEST(EdgeTracks, HeadingsAreFacingsTurnedByTheirSourcesTravelTurns) {
+  const SynthesisContext& c = test::subject16().context();
+  const MotionGraph& graph = *c.graph;
+  HeadingEditSettings held;
+  held.hold_travel = true;
+  const std::vector<float> turns = travel_turns(*c.db, c.assembler, c.tracks.forward_axis, held);
+  const EdgeTracks tracks =
+      compute_edge_tracks(c.assembler, graph, c.frame_tags, c.tracks.forward_axis, c.tracks.travel_axis, turns);
+  ASSERT_EQ(tracks.headings.size(), tracks.facings.size());
+  double largest_deg = 0.0;
+  int blended = 0;
+  for (int e = 0; e < graph.edge_count(); ++e) {
+    std::vector<FrameSource> sources;
+    c.assembler.append_edge_sources(e, sources);
+    ASSERT_EQ(sources.size(), tracks.headings_of(e).size());
+    for (size_t p = 0; p < sources.size(); ++p) {
+      const FrameSource& s = sources[p];
+      const double turn_rad = s.alpha * turns[static_cast<size_t>(s.departure)] +
+                              (1.0 - s.alpha) * turns[static_cast<size_t>(s.arrival)];
+      const Vec2 facing = tracks.facings_of(e)[p];
+      const Vec2 want(std::cos(turn_rad) * facing.x() + std::sin(turn_rad) * facing.y(),
+                      -std::sin(turn_rad) * facing.x() + std::cos(turn_rad) * facing.y());
+      ASSERT_LT((tracks.headings_of(e)[p] - want).norm(), 1e-12) << e << ":" << p;
+      largest_deg = std::max(largest_deg, std::abs(turn_rad) * 180.0 / std::numbers::pi);
+      if (s.departure != s.arrival && std::abs(turns[static_cast<size_t>(s.departure)] - turns[static_cast<size_t>(s.arrival)]) > 1e-3) ++blended;
+    }
+  }
+  // Subject 16's walks travel a few degrees off their hips (docs/performance.md: 3.9 degrees
+  // left on its held walk); transitions join frames of different turns.
+  EXPECT_GT(largest_deg, 2.0);
+  EXPECT_LT(largest_deg, 45.0);
+  EXPECT_GT(blended, 0);
+  // The context's tracks carry these headings.
+  EXPECT_EQ(c.tracks.headings, tracks.headings);
 }
 
 }  // namespace

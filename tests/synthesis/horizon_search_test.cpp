@@ -117,6 +117,44 @@ TEST(HorizonSearch, MatchesBruteForceWithAGenerousBudget) {
   }
 }
 
+// A cost that judges headings (FrameCost::uses_heading) is given each frame's heading where the
+// facing would be: the search equals the brute force over tracks whose facings are the headings,
+// and differs from the one over the facings.
+TEST(HorizonSearch, ACostJudgingHeadingsIsGivenThem) {
+  class HeadingCost final : public FrameCost {
+   public:
+    bool uses_heading() const override { return true; }
+    double cost(int, const Vec2&, const Vec2& facing, double, TagMask, bool*) const override {
+      return 1.0 - facing.x();  // east
+    }
+  } cost;
+  std::mt19937 rng(8);
+  int differ = 0;
+  for (int trial = 0; trial < 30; ++trial) {
+    const MotionGraph graph = test::random_search_graph(rng, 8, 10, 4);
+    EdgeTracks tracks = test::random_tracks(rng, graph);
+    std::uniform_real_distribution<double> angle(-0.7, 0.7);
+    for (const Vec2& f : tracks.facings) tracks.headings.push_back(turn(FloorTransform{angle(rng), 0.0, 0.0}, f));
+    EdgeTracks as_headings = tracks;
+    as_headings.facings = tracks.headings;
+    SearchState start;
+    start.node = static_cast<int>(rng() % 8);
+    start.placement = {0.3 * trial, 0.1, 0.4};
+    HorizonSettings settings;
+    settings.horizon_frames = 12;
+    settings.max_expansions = 10'000'000;
+    const double judged = brute_force(graph, as_headings, start, cost, settings.horizon_frames);
+    for (int beam : {0, 2}) {
+      settings.beam_width = beam;
+      const HorizonResult result = horizon_search(graph, tracks, start, cost, settings);
+      ASSERT_FALSE(result.budget_exhausted);
+      EXPECT_NEAR(result.cost, judged, 1e-9) << trial << " beam " << beam;
+    }
+    if (std::abs(brute_force(graph, tracks, start, cost, settings.horizon_frames) - judged) > 1e-6) ++differ;
+  }
+  EXPECT_GT(differ, 20);
+}
+
 // With no budget left for the depth-first search, the answer is the beam's: a complete walk
 // (the budgeted depth-first search alone may have none) that costs what it says.
 TEST(HorizonSearch, TheBeamAloneAnswersWithACompleteWalk) {

@@ -38,12 +38,15 @@ namespace {
 class SteerCost final : public FrameCost {
  public:
   SteerCost(const SynthesisContext& context, const ControlInput& input, double penalty, double transition_penalty,
-            double bridge_penalty)
+            double bridge_penalty, bool judge_travel)
       : context_(context),
         input_(input),
         penalty_(penalty),
         transition_penalty_(transition_penalty),
-        bridge_penalty_(bridge_penalty) {}
+        bridge_penalty_(bridge_penalty),
+        judge_travel_(judge_travel) {}
+  // Holding the travel, the search judges the direction the edit holds: each frame's heading.
+  bool uses_heading() const override { return judge_travel_; }
   // A bridge costs the bridge penalty more unless it lands in the motion type asked for.
   double transition_cost(const GraphEdge& edge, const SearchState&) const override {
     return unasked_bridge(context_, edge, input_.tag) ? transition_penalty_ + bridge_penalty_ : transition_penalty_;
@@ -60,6 +63,7 @@ class SteerCost final : public FrameCost {
   double penalty_;
   double transition_penalty_;
   double bridge_penalty_;
+  bool judge_travel_;
 };
 
 }  // namespace
@@ -110,7 +114,8 @@ ControllerDecision Controller::step(Motion& out) {
   search.max_expansions = settings_.max_expansions;
   search.time_budget_s = settings_.time_budget_s;
   search.beam_width = settings_.beam_width;
-  const SteerCost cost(*context_, input_, settings_.tag_penalty, settings_.transition_penalty, settings_.bridge_penalty);
+  const SteerCost cost(*context_, input_, settings_.tag_penalty, settings_.transition_penalty, settings_.bridge_penalty,
+                       settings_.heading_edit.hold_travel);
   const HorizonResult best = horizon_search(graph, context_->tracks, state_, cost, search);
   ControllerDecision decision;
   decision.expansions = best.expansions;

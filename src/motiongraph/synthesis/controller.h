@@ -2,7 +2,8 @@
 // motion tags): the walk is extended from live input, a desired facing direction on the floor
 // and optionally a motion tag. Each decision runs a bounded branch and bound (horizon_search.h)
 // over about horizon_s seconds minimising, per frame, (1 - cos) of the angle between the
-// character's facing and the desired direction, plus tag_penalty for a frame without the
+// character's facing (holding the travel, HeadingEditSettings::hold_travel: its heading,
+// the direction it walks, travel_heading.h) and the desired direction, plus tag_penalty for a frame without the
 // tag; it then commits whole edges for at least commit_s seconds and returns their frames.
 // The expansion budget (and an optional time budget) bounds every decision, and the first
 // (greedy) walk is always there, so a decision always answers in bounded time. The frames

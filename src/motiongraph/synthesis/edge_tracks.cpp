@@ -11,7 +11,7 @@ namespace mg {
 
 EdgeTracks compute_edge_tracks(const MotionAssembler& assembler, const MotionGraph& graph,
                                std::span<const TagMask> frame_tags, const Vec3& forward_axis,
-                               const Vec3& travel_axis) {
+                               const Vec3& travel_axis, std::span<const float> travel_turns) {
   EdgeTracks tracks;
   tracks.forward_axis = forward_axis;
   tracks.travel_axis = travel_axis;
@@ -33,6 +33,11 @@ EdgeTracks compute_edge_tracks(const MotionAssembler& assembler, const MotionGra
   reserve_huge(tracks.tags, total);
   tracks.roots.resize(total);
   tracks.facings.resize(total);
+  const bool headings = !travel_turns.empty();
+  if (headings) {
+    reserve_huge(tracks.headings, total);
+    tracks.headings.resize(total);
+  }
   tracks.tags.resize(total);
   // Per worker: a buffer for an edge's roots and the longest step it saw (combined below; a
   // maximum does not depend on the order).
@@ -54,15 +59,25 @@ EdgeTracks compute_edge_tracks(const MotionAssembler& assembler, const MotionGra
     const auto first = static_cast<size_t>(track.first);
     for (size_t p = 0; p < roots.size(); ++p) {
       tracks.roots[first + p] = Vec2(roots[p].position.x(), roots[p].position.z());
-      tracks.facings[first + p] = facing_on_floor(roots[p].rotation, forward_axis);
+      const Vec2 facing = facing_on_floor(roots[p].rotation, forward_axis);
+      tracks.facings[first + p] = facing;
+      double turn_rad = 0.0;
       if (!edge.transition) {
-        tracks.tags[first + p] = tag_of(graph.nodes[edge.from_node].frame + static_cast<int>(p));
+        const int frame = graph.nodes[edge.from_node].frame + static_cast<int>(p);
+        tracks.tags[first + p] = tag_of(frame);
+        if (headings) turn_rad = travel_turns[static_cast<size_t>(frame)];
       } else {
         const Transition& t = graph.transitions[edge.transition_index];
         const int k = blend_frames(edge);
         const int q = static_cast<int>(p);
-        tracks.tags[first + p] = blend_weight(q, k) >= 0.5 ? tag_of(t.from_frame + q) : tag_of(t.to_frame - k + 1 + q);
+        const double w = blend_weight(q, k);
+        const int departure = t.from_frame + q, arrival = t.to_frame - k + 1 + q;
+        tracks.tags[first + p] = w >= 0.5 ? tag_of(departure) : tag_of(arrival);
+        if (headings) {
+          turn_rad = w * travel_turns[static_cast<size_t>(departure)] + (1.0 - w) * travel_turns[static_cast<size_t>(arrival)];
+        }
       }
+      if (headings) tracks.headings[first + p] = turn(FloorTransform{turn_rad, 0.0, 0.0}, facing);
     }
     // Steps inside the edge and on to the first frame of whatever edge follows.
     const Vec3 next = assembler.root_position(graph.nodes[edge.to_node].frame, placement);

@@ -5,6 +5,8 @@
 #include <numbers>
 #include <vector>
 
+#include "motiongraph/synthesis/travel_heading.h"
+
 namespace mg {
 
 Status HeadingEditSettings::validate() const {
@@ -29,23 +31,6 @@ HeadingEdit::HeadingEdit(const HeadingEditSettings& settings, double fps, const 
       forward_axis_(forward_axis),
       fps_(fps),
       half_window_(std::max(0, static_cast<int>(std::lround(0.5 * settings.window_s * fps)))) {}
-
-namespace {
-
-// How much of the direction judged is the travel's: 0 below travel_from_mps over the window, 1
-// from travel_full_mps, and none unless the travel is within 45 degrees of the facing (a
-// sidestep or a backward walk keeps its facing), all of it within 20.
-double travel_share(const HeadingEditSettings& settings, const Vec2& facing, const Vec2& travel, double seconds) {
-  if (!settings.hold_travel || seconds <= 0.0 || facing.norm() <= 1e-6 || travel.norm() <= 1e-9) return 0.0;
-  const double speed = travel.norm() / seconds;
-  const double by_speed =
-      std::clamp((speed - settings.travel_from_mps) / (settings.travel_full_mps - settings.travel_from_mps), 0.0, 1.0);
-  const double cosine = facing.normalized().dot(travel.normalized());
-  const double lo = std::cos(45.0 * std::numbers::pi / 180.0), hi = std::cos(20.0 * std::numbers::pi / 180.0);
-  return by_speed * std::clamp((cosine - lo) / (hi - lo), 0.0, 1.0);
-}
-
-}  // namespace
 
 FloorTransform HeadingEdit::apply(Motion& motion, int first, const Vec2* previous_root,
                                   std::span<const Vec2> planned_facings, std::span<const Vec2> planned_roots,
@@ -94,12 +79,9 @@ FloorTransform HeadingEdit::apply(Motion& motion, int first, const Vec2* previou
     // The steps lo + 1 .. end - 1 span the frames lo .. end - 1, as far as the roots are known.
     const int end = std::min(hi, past + static_cast<int>(planned_roots.size()));
     const Vec2 travel = end > lo + 1 ? Vec2(travel_prefix[end] - travel_prefix[lo + 1]) : Vec2::Zero();
-    // A window cut short (the motion's first frames, the plan's end) spans less than a stride,
-    // whose sway it does not average out: the travel's share falls from a whole window to none
-    // at three quarters of one.
+    // A window cut short (the motion's first frames, the plan's end) counts as far as it spans.
     const double spanned = half_window_ > 0 ? (end - lo - 1) / (2.0 * half_window_) : 1.0;
-    const double whole = std::clamp((spanned - 0.75) / 0.25, 0.0, 1.0);
-    const double share = whole * travel_share(settings_, mean, travel, (end - lo - 1) / fps_);
+    const double share = travel_share(settings_, mean, travel, (end - lo - 1) / fps_, spanned);
     if (share > 0.0) mean = (1.0 - share) * mean.normalized() + share * travel.normalized();
     stats_.travel_share += share;
     if (steer && mean.norm() > 1e-6 && step.norm() > 0.0) {

@@ -50,10 +50,12 @@ struct HeadingEditSettings {
   // that is held (a walk travels a few degrees off its facing, each clip its own); its share of
   // the direction judged rises from 0 at travel_from_mps to 1 at travel_full_mps, and only while
   // the travel is within 45 degrees of the facing (all of it within 20): a sidestep, a backward
-  // walk or a motion on the spot keeps its facing held. Held walks go straighter (the 8-subject
-  // library weaved 12.7 cm about its line, 2.8 cm so), but the controller's search judges the
-  // facing, and the two disagreeing cost transitions where the heading changes (subject 16's
-  // README script 0.95 -> 1.15 a second): off by default.
+  // walk or a motion on the spot keeps its facing held (travel_heading.h). Held walks go
+  // straighter (the 8-subject library weaved 12.7 cm about its line, 2.6 cm so), and the
+  // controller's search then judges the same direction (EdgeTracks::headings, whose turns
+  // use the default speeds and window); but a held walk's pieces then all aim alike, the
+  // search has less reason to play one on, and three of six libraries' held walks took half
+  // as many transitions again or more: off by default (docs/performance.md).
   bool hold_travel = false;
   double travel_from_mps = 0.3;
   double travel_full_mps = 0.6;

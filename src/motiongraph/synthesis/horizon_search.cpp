@@ -45,6 +45,7 @@ struct Rotation {
 // longest edge once, then reused.
 struct FrameBuffers {
   bool facings_used = true;
+  bool headings = false;  // the facings handed on are the headings (FrameCost::uses_heading)
   std::vector<Vec2> roots, facings;
   std::vector<double> arcs_m;
 };
@@ -58,7 +59,7 @@ bool play_edge(const MotionGraph& graph, const EdgeTracks& tracks, const FrameCo
   out.goal = false;
   SearchState& s = out.state;
   const auto roots = tracks.roots_of(e);
-  const auto facings = tracks.facings_of(e);
+  const auto facings = buffers.headings && !tracks.headings.empty() ? tracks.headings_of(e) : tracks.facings_of(e);
   const auto tags = tracks.tags_of(e);
   if (graph.edges[e].transition && played < horizon) {
     out.cost += frame_cost.transition_cost(graph.edges[e], from);
@@ -250,6 +251,7 @@ HorizonResult horizon_search(const MotionGraph& graph, const EdgeTracks& tracks,
   std::vector<int> greedy;  // the deepest-first partial walk, in case nothing completes
   FrameBuffers buffers;
   buffers.facings_used = frame_cost.uses_facing();
+  buffers.headings = frame_cost.uses_heading();
 
   auto expand = [&](const SearchState& state, double cost, long long played) {
     Level level;

@@ -52,6 +52,9 @@ class FrameCost {
   virtual bool add_costs(const PlayedFrames& frames, double bound, double* total, bool* goal) const;
   // Whether cost() reads the facing: false spares the search turning each frame's facing.
   virtual bool uses_facing() const { return true; }
+  // Whether the facing cost() is given is the frame's heading (EdgeTracks::headings, the
+  // direction a walk goes) instead, where the tracks have headings.
+  virtual bool uses_heading() const { return false; }
   // A lower bound of the cost of the next `frames_left` frames of any walk from a state whose
   // last frame had this root and arc length (0 is always right; tighter bounds cut more).
   virtual double remaining_bound(int frames_left, const Vec2& root, double arc_m) const {

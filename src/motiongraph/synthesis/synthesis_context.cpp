@@ -6,6 +6,7 @@
 #include <fmt/ranges.h>
 
 #include "motiongraph/database/database_contacts.h"
+#include "motiongraph/synthesis/travel_heading.h"
 
 namespace mg {
 
@@ -18,8 +19,13 @@ Result<SynthesisContext> make_synthesis_context(const MotionDatabase& db, const 
   SynthesisContext context{&db, &graph, std::move(*assembler), db.frame_tags(), {}, {}, {}, {}};
   // The travel axes once (the hips' axis falls back on the target's), the hips' of the target only.
   const Vec3 travel_axis = learn_travel_axes(db)[target_skeleton];
-  context.tracks = compute_edge_tracks(context.assembler, graph, context.frame_tags,
-                                       learn_forward_axis(db, target_skeleton, travel_axis), travel_axis);
+  const Vec3 forward_axis = learn_forward_axis(db, target_skeleton, travel_axis);
+  // The headings as the heading edit holding the travel judges them (steering's search, with
+  // either hold, reads them or the facings).
+  HeadingEditSettings travel_hold;
+  travel_hold.hold_travel = true;
+  context.tracks = compute_edge_tracks(context.assembler, graph, context.frame_tags, forward_axis, travel_axis,
+                                       travel_turns(db, context.assembler, forward_axis, travel_hold));
   auto feet = find_foot_joints(db.skeletons[target_skeleton], db.foot_names);
   auto contacts = feet ? contacts_of(db) : Result<std::vector<ContactMask>>(feet.error());
   if (feet && contacts) {
