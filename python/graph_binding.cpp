@@ -47,6 +47,7 @@ OptionTable build_option_table(BuildCall& call) {
       {"input_fps", set(b.input_fps)},
       {"cmu_index", set(b.cmu_index)},
       {"no_cmu_tags", set(b.no_cmu_tags)},
+      {"whole_clip_tags", set(b.whole_clip_tags)},
       {"no_loops", set(b.no_loops)},
       {"feet", set(b.feet)},
       {"ignore_tags", set(b.ignore_tags)},

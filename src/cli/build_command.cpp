@@ -140,6 +140,9 @@ Command add_build_command(CLI::App& app) {
                   "CMU's motion index (cmu-mocap-index.tsv) for tags from descriptions; default: one beside or above the "
                   "inputs, else the index the project ships (built in)");
   sub->add_flag("--no-cmu-tags", b.no_cmu_tags, "Do not tag clips from CMU's descriptions");
+  sub->add_flag("--whole-clip-tags", b.whole_clip_tags,
+                "Tag whole clips with the walk or run of their CMU description (by default only the frames where the "
+                "root travels 0.25 m/s or more over a second keep them)");
   sub->add_flag("--no-loops", b.no_loops,
                 "Do not play clips that loop (a game's cycle: their end meets their start) on past their end; by "
                 "default they go on a window further, so that the graph can play them round");

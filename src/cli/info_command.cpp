@@ -33,6 +33,7 @@ struct InfoOptions {
   bool fps_given = false;
   std::string cmu_index;
   bool no_cmu_tags = false;
+  bool whole_clip_tags = false;
   bool no_loops = false;
 };
 
@@ -54,6 +55,7 @@ int run_library(const InfoOptions& options) {
   db.fps = options.fps;
   db.prefer_manifest_fps = !options.fps_given;
   db.cmu_tags = !options.no_cmu_tags;
+  if (options.whole_clip_tags) db.travel_tags.min_speed_mps = 0.0;
   db.loops = !options.no_loops;
   db.cmu_index_path = options.cmu_index;
   return run_library_info(options.files, library);
@@ -75,8 +77,9 @@ nlohmann::json skeleton_json(const Skeleton& skeleton) {
 
 int run_info(const InfoOptions& options) {
   if (is_library(options.files)) return run_library(options);
-  if (options.fps_given || !options.cmu_index.empty() || options.no_cmu_tags || options.no_loops) {
-    spdlog::warn("--fps, --cmu-index, --no-cmu-tags and --no-loops apply to folders and manifests (a library); these "
+  if (options.fps_given || !options.cmu_index.empty() || options.no_cmu_tags || options.whole_clip_tags ||
+      options.no_loops) {
+    spdlog::warn("--fps, --cmu-index, --no-cmu-tags, --whole-clip-tags and --no-loops apply to folders and manifests (a library); these "
                  "files are summarised as read");
   }
   ClipLoadSettings settings = options.load.settings();
@@ -212,6 +215,9 @@ Command add_info_command(CLI::App& app) {
                   "inputs, else the one the program ships)")
       ->check(CLI::ExistingFile);
   sub->add_flag("--no-cmu-tags", options->no_cmu_tags, "For a library: no tags from CMU's descriptions");
+  sub->add_flag("--whole-clip-tags", options->whole_clip_tags,
+                "For a library: a CMU description's walk or run on the whole clip (by default only where the root "
+                "travels 0.25 m/s or more over a second)");
   sub->add_flag("--no-loops", options->no_loops, "For a library: clips that loop are not played on past their end");
   sub->add_flag("--json", options->json, "Print the summary as JSON");
   options->load.add_to(*sub);

@@ -97,6 +97,18 @@ void report_units(const DatabaseLoadNotes& notes, bool quiet) {
                  notes.loops.size(), notes.loops.size() == 1 ? "" : "s", notes.loops.front().clip,
                  notes.loops.size() > 1 ? fmt::format(" and {} more", notes.loops.size() - 1) : "", added);
   }
+  if (!notes.standing_tags.empty() && !quiet) {
+    std::vector<std::string> clips;
+    int left_off = 0;
+    for (const auto& t : notes.standing_tags) {
+      left_off += t.frames - t.tagged_frames;
+      if (std::find(clips.begin(), clips.end(), t.clip) == clips.end()) clips.push_back(t.clip);
+    }
+    spdlog::info("walk and run from CMU's descriptions left off {} frames of {} clip{} where the root stands (under "
+                 "{} m/s over a second: {}{}; --whole-clip-tags keeps them)",
+                 left_off, clips.size(), clips.size() == 1 ? "" : "s", TravelTagSettings{}.min_speed_mps, clips.front(),
+                 clips.size() > 1 ? fmt::format(" and {} more", clips.size() - 1) : "");
+  }
   const auto judged = std::count_if(notes.recovered_travels.begin(), notes.recovered_travels.end(),
                                     [](const auto& r) { return r.source == TravelSource::kAuto; });
   if (judged > 0 && !quiet) {

@@ -27,8 +27,9 @@ void report_up_axis(const std::string& file, const UpAxisChoice& choice);
 std::string travel_description(const InPlaceChoice& choice);
 // An info line for a clip whose travel was recovered (nothing otherwise).
 void report_travel(const std::string& file, const InPlaceChoice& choice);
-// Also one info line for the files read z up, one for the clips whose travel was recovered, and
-// one for the clips that loop.
+// Also one info line for the files read z up, one for the clips whose travel was recovered, one
+// for the clips that loop, and one for the clips whose description's walk or run was left off
+// the frames where they stand (database/travel_tags.h).
 // quiet: the warnings only.
 void report_units(const DatabaseLoadNotes& notes, bool quiet);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <set>
+#include <sstream>
 
 #include <unistd.h>
 
@@ -106,11 +107,12 @@ TEST(DatabaseLoader, LoadsTheBundledFolderAt30Fps) {
   EXPECT_EQ(tags_named("16_05"), Set{"jump"});
   EXPECT_EQ(tags_named("16_15"), Set{"walk"});
   EXPECT_EQ(tags_named("16_17"), (Set{"walk", "turn"}));
-  EXPECT_EQ(tags_named("16_33"), (Set{"walk", "stop"}));
+  EXPECT_EQ(tags_named("16_33"), Set{"stop"});  // "walk, stop": walking until it stops
   EXPECT_EQ(tags_named("16_35"), Set{"run"});
   EXPECT_EQ(tags_named("16_37"), Set{"run"});  // veer is no turn
-  EXPECT_EQ(tags_named("16_57"), (Set{"run", "stop"}));
-  // Every frame has a tag, and the walk/run/jump frames are those of the right clips.
+  EXPECT_EQ(tags_named("16_57"), Set{"stop"});  // "run/jog, sudden stop"
+  // Every frame has a tag, and the walk/run/jump frames are those of the right clips but for
+  // the stops of 16_33 and 16_57, where the root stands: their last frames.
   const std::vector<TagMask> frame_tags = db->frame_tags();
   const auto bit = [&](const char* tag) {
     auto it = std::find(db->tag_names.begin(), db->tag_names.end(), tag);
@@ -118,7 +120,24 @@ TEST(DatabaseLoader, LoadsTheBundledFolderAt30Fps) {
     return TagMask{1} << (it - db->tag_names.begin());
   };
   const TagMask locomotion = bit("walk") | bit("run") | bit("jump");
-  for (size_t f = 0; f < frame_tags.size(); ++f) ASSERT_NE(frame_tags[f] & locomotion, 0u) << f;
+  std::vector<int> standing;
+  for (size_t f = 0; f < frame_tags.size(); ++f) {
+    ASSERT_NE(frame_tags[f], 0u) << f;
+    if ((frame_tags[f] & locomotion) == 0) standing.push_back(static_cast<int>(f));
+  }
+  ASSERT_FALSE(standing.empty());
+  for (const char* name : {"16_33", "16_57"}) {
+    const DatabaseClip& clip = db->clips[static_cast<size_t>(std::find(kSubject16.begin(), kSubject16.end(), name) -
+                                                             kSubject16.begin())];
+    const int end = clip.first_frame + clip.frame_count;
+    const auto in_clip = std::count_if(standing.begin(), standing.end(),
+                                       [&](int f) { return f >= clip.first_frame && f < end; });
+    EXPECT_GT(in_clip, 0) << name;
+    EXPECT_LT(in_clip, clip.frame_count / 2) << name;
+    // A run of frames up to the clip's end.
+    EXPECT_EQ((frame_tags[static_cast<size_t>(end - 1)] & locomotion), 0u) << name;
+    EXPECT_EQ((frame_tags[static_cast<size_t>(end - in_clip - 1)] & locomotion) != 0, true) << name;
+  }
   EXPECT_EQ(db->tag_names.size(), 5u);  // walk, run, jump, turn, stop
 }
 
@@ -136,6 +155,86 @@ TEST(DatabaseLoader, CmuTagsOffOrFromText) {
   EXPECT_EQ(tags_of(*tagged, 0), (std::set<std::string>{"walk", "stop"}));
 }
 
+// 16_15 (a walk) with its root held where it is from its `freeze`th file frame on: the figure
+// walks, then its root stands (the limbs go on as captured).
+std::string walk_then_stand(int freeze) {
+  const std::string amc = test::read_data("cmu/16/16_15.amc");
+  std::string out, held;
+  int frame = 0;
+  size_t start = 0;
+  while (start < amc.size()) {
+    size_t end = amc.find('\n', start);
+    if (end == std::string::npos) end = amc.size();
+    std::string line = amc.substr(start, end - start);
+    start = end + 1;
+    if (!line.empty() && std::isdigit(static_cast<unsigned char>(line[0])) != 0) frame = std::stoi(line);
+    if (line.rfind("root ", 0) == 0) {
+      std::istringstream in(line.substr(5));
+      double x = 0, y = 0, z = 0;
+      std::string rest;
+      in >> x >> y >> z;
+      std::getline(in, rest);
+      if (frame == freeze) held = fmt::format("{} {{}} {}", x, z);
+      if (frame >= freeze) line = "root " + fmt::format(fmt::runtime(held), y) + rest;
+    }
+    out += line + "\n";
+  }
+  return out;
+}
+
+// A description's walk stays where the root travels: the clip that stops walking loses it from
+// about where its root stands (within half the second it is judged over), and the note says so;
+// the unchanged walk keeps it whole, and so does every clip tagged by a manifest or with the
+// travel rule off. The description's other tags (stop) are on the whole clip.
+TEST(DatabaseLoader, ADescriptionsWalkStaysWhereTheRootTravels) {
+  TempFolder folder("travel-tags");
+  folder.write("16.asf", test::read_data("cmu/16/16.asf"));
+  const int freeze = 300;  // of 471 file frames at 120 fps: frame 75 at 30 fps
+  folder.write("01_01.amc", walk_then_stand(freeze));
+  folder.write("01_02.amc", test::read_data("cmu/16/16_15.amc"));
+  DatabaseSettings settings;
+  settings.cmu_index_text = "01_01\twalk, stop\n01_02\twalk\n";
+  DatabaseLoadNotes notes;
+  auto db = load_database({folder.path().string()}, settings, &notes);
+  ASSERT_TRUE(db) << db.error().to_string();
+  ASSERT_EQ(db->clips.size(), 2u);
+  EXPECT_EQ(tags_of(*db, 0), std::set<std::string>{"stop"});
+  EXPECT_EQ(tags_of(*db, 1), std::set<std::string>{"walk"});
+  const auto walk = std::find(db->tag_names.begin(), db->tag_names.end(), "walk") - db->tag_names.begin();
+  std::vector<TagRange> walks;
+  for (const TagRange& r : db->tag_ranges) {
+    if (r.tag == walk && r.first_frame < db->clips[1].first_frame) walks.push_back(r);
+  }
+  ASSERT_EQ(walks.size(), 1u);
+  const int stands = freeze / 4;  // 30 of 120 fps
+  EXPECT_EQ(walks[0].first_frame, 0);
+  EXPECT_GE(walks[0].frame_count, stands - 15);
+  EXPECT_LE(walks[0].frame_count, stands + 15);
+  ASSERT_EQ(notes.standing_tags.size(), 1u);
+  EXPECT_EQ(notes.standing_tags[0].clip, "01_01");
+  EXPECT_EQ(notes.standing_tags[0].tag, "walk");
+  EXPECT_EQ(notes.standing_tags[0].tagged_frames, walks[0].frame_count);
+  EXPECT_EQ(notes.standing_tags[0].frames, db->clips[0].frame_count);
+
+  settings.travel_tags.min_speed_mps = 0.0;
+  auto whole = load_database({folder.path().string()}, settings, &notes);
+  ASSERT_TRUE(whole) << whole.error().to_string();
+  EXPECT_EQ(tags_of(*whole, 0), (std::set<std::string>{"walk", "stop"}));
+  EXPECT_TRUE(notes.standing_tags.empty());
+
+  const std::string manifest = folder.write(
+      "db.toml", "skeleton = \"16.asf\"\n[[clip]]\nfile = \"01_01.amc\"\ntags = [\"walk\"]\n");
+  auto given = load_database({manifest}, DatabaseSettings{}, &notes);
+  ASSERT_TRUE(given) << given.error().to_string();
+  EXPECT_EQ(tags_of(*given, 0), std::set<std::string>{"walk"});
+  EXPECT_TRUE(notes.standing_tags.empty());
+
+  settings.travel_tags.min_speed_mps = -1.0;
+  auto refused = load_database({folder.path().string()}, settings);
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("walk and run"), std::string::npos) << refused.error().message;
+}
+
 TEST(DatabaseLoader, ClipsNamedLikeCmusGetTagsFromTheShippedIndexWhenNoneIsGiven) {
   // Copies in a folder with no index beside or above it; 16_15 is "walk" in CMU's index,
   // 16_57 "run/jog, sudden stop"; a clip under another name gets no tags.
@@ -150,8 +249,13 @@ TEST(DatabaseLoader, ClipsNamedLikeCmusGetTagsFromTheShippedIndexWhenNoneIsGiven
   ASSERT_TRUE(db) << db.error().to_string();
   ASSERT_EQ(db->clips.size(), 3u);
   EXPECT_EQ(tags_of(*db, 0), std::set<std::string>{"walk"});
-  EXPECT_EQ(tags_of(*db, 1), (std::set<std::string>{"run", "stop"}));
+  EXPECT_EQ(tags_of(*db, 1), std::set<std::string>{"stop"});  // its run only where it runs
   EXPECT_TRUE(tags_of(*db, 2).empty());
+  DatabaseSettings whole;
+  whole.travel_tags.min_speed_mps = 0.0;
+  auto as_said = load_database({folder.path().string()}, whole);
+  ASSERT_TRUE(as_said) << as_said.error().to_string();
+  EXPECT_EQ(tags_of(*as_said, 1), (std::set<std::string>{"run", "stop"}));
   // --no-cmu-tags still turns them off.
   none.cmu_tags = false;
   auto off = load_database({folder.path().string()}, none);

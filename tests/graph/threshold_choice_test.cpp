@@ -228,6 +228,35 @@ TEST(ThresholdChoice, FramesOfNoMotionTypeAreAClassOfTheirOwn) {
   EXPECT_EQ(untagged->threshold, chosen->tag_thresholds[1]);
 }
 
+TEST(ThresholdChoice, ATypeTheCeilingGivesNothingTakesTheGlobalThreshold) {
+  // A third type on the last 6 frames of a walk (fewer than a window: no transition leaves
+  // them, so no graph plays them at any threshold) wants nothing; it follows the lowest of the
+  // others' thresholds instead of holding the global one at the grid's first level.
+  const Fixture& x = fixture();
+  MotionDatabase db = x.db;
+  db.tag_names.push_back("jump");
+  const int end = db.clips[1].first_frame + db.clips[1].frame_count;
+  db.tag_ranges.push_back(TagRange{2, end - 6, 6});
+  GraphFromCandidatesSettings settings = x.settings;
+  settings.connected_tags = 0b111;
+  ThresholdChoiceSettings choice;
+  choice.coverage = 0.5;
+  choice.max_rms_cm = 30.0;
+  auto chosen = choose_threshold(db, x.features, x.search, settings, choice);
+  ASSERT_TRUE(chosen) << chosen.error().to_string();
+  ASSERT_TRUE(chosen->reached);
+  ASSERT_EQ(chosen->tags, (std::vector<int>{0, 1, 2}));
+  EXPECT_EQ(chosen->targets[2], 0.0);
+  EXPECT_EQ(chosen->chosen().tag_coverage[2], 0.0);
+  ASSERT_EQ(chosen->tag_thresholds.size(), 3u);
+  EXPECT_EQ(chosen->threshold, std::min(chosen->tag_thresholds[0], chosen->tag_thresholds[1]));
+  EXPECT_EQ(chosen->tag_thresholds[2], chosen->threshold);
+  EXPECT_GT(chosen->rms_cm, 1.5 * choice.lowest_rms_cm);
+  for (const CoveragePoint& p : chosen->curve) {
+    EXPECT_EQ(p.tag_thresholds[2], std::min(p.tag_thresholds[0], p.tag_thresholds[1]));
+  }
+}
+
 TEST(ThresholdChoice, CoverageIsThatOfTheGraphBuildWrites) {
   // coverage_at prunes once when there is no spacing; the graph `build` writes is pruned,
   // rebuilt from the survivors and pruned again. Their counts must agree, spaced or not.

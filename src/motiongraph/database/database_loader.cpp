@@ -14,6 +14,7 @@
 
 #include "motiongraph/core/default_window.h"
 #include "motiongraph/database/cmu_tags.h"
+#include "motiongraph/database/travel_tags.h"
 #include "motiongraph/database/database_contacts.h"
 #include "motiongraph/database/manifest.h"
 #include "motiongraph/database/shipped_cmu_index.h"
@@ -246,6 +247,45 @@ Status add_tag_range(MotionDatabase& db, const std::string& tag, int first_frame
   return Ok{};
 }
 
+// A clip tagged by its CMU description: the tags it gives.
+struct DescribedClip {
+  size_t spec_index = 0;
+  size_t clip = 0;
+  std::vector<std::string> tags;
+};
+
+// Its tags on the database: walk and run on the frames where its root travels (travel_tags.h),
+// the others on all its frames.
+Status tag_described_clip(MotionDatabase& db, const DescribedClip& d, const ClipSpec& spec,
+                          const TravelTagSettings& settings, DatabaseLoadNotes* notes) {
+  const DatabaseClip& clip = db.clips[d.clip];
+  std::optional<std::vector<FrameSpan>> spans;  // the clip's travelling spans, found once
+  for (const std::string& tag : d.tags) {
+    if (!is_locomotion_tag(tag)) {
+      if (auto s = add_tag_range(db, tag, clip.first_frame, clip.frame_count, spec); !s) return s;
+      continue;
+    }
+    if (!spans) {
+      // The root's translation (a root without one stays where it is: it travels nowhere).
+      const int slot = db.skeletons[static_cast<size_t>(clip.skeleton)].translation_slot(0);
+      std::vector<Vec3> roots(static_cast<size_t>(clip.frame_count), Vec3::Zero());
+      for (int f = 0; slot >= 0 && f < clip.frame_count; ++f) {
+        roots[static_cast<size_t>(f)] = clip.motion.translations(f)[static_cast<size_t>(slot)];
+      }
+      spans = travelling_spans(roots, db.fps, settings);
+    }
+    int tagged = 0;
+    for (const FrameSpan& span : *spans) {
+      if (auto s = add_tag_range(db, tag, clip.first_frame + span.first, span.count, spec); !s) return s;
+      tagged += span.count;
+    }
+    if (tagged < clip.frame_count && notes != nullptr) {
+      notes->standing_tags.push_back({clip.name, tag, tagged, clip.frame_count});
+    }
+  }
+  return Ok{};
+}
+
 }  // namespace
 
 DatabaseSettings database_settings_reading_as(const ClipLoadSettings& load) {
@@ -269,6 +309,7 @@ Status DatabaseSettings::validate() const {
   if (!(input_fps >= 0.0) || !std::isfinite(input_fps)) {
     return Error{"", 0, fmt::format("input_fps must be positive (or 0: the files' own), not {}", input_fps)};
   }
+  if (auto s = travel_tags.validate(); !s) return s.error();
   if (loop_overlap_frames < 0 || loop_overlap_frames > 10001) {
     return Error{"", 0, fmt::format("loop_overlap_frames must be 0 (automatic) to 10001, not {}", loop_overlap_frames)};
   }
@@ -392,6 +433,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
   std::optional<Error> other_joints;  // the first skeleton whose joints differ from the first's
   std::set<std::string> noted_units, noted_up_axes, noted_travels;  // files
   std::optional<Skeleton> first_skeleton;  // the first clip's, as read (all its joints)
+  std::vector<DescribedClip> described;    // clips tagged by their CMU descriptions
   for (size_t spec_index = 0; spec_index < specs.size(); ++spec_index) {
     const ClipSpec& spec = specs[spec_index];
     auto loaded = loaders.for_settings(spec.load).load(spec.path);
@@ -535,10 +577,9 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
         }
       }
     } else if (cmu) {
+      // Tagged once the motion is settled (3e): walk and run only where the root travels.
       if (const CmuMotion* motion_entry = cmu->find(spec.cmu_name)) {
-        for (const std::string& tag : cmu_description_tags(motion_entry->description)) {
-          if (auto s = add_tag_range(db, tag, clip.first_frame, clip.frame_count, spec); !s) return s.error();
-        }
+        described.push_back({spec_index, db.clips.size(), cmu_description_tags(motion_entry->description)});
       }
     }
     db.clips.push_back(std::move(clip));
@@ -617,6 +658,11 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
 
   // 3d. Rest poses, with the joints settled (after 3c, which reads everything again when it must).
   rest_as_first(db, notes);
+
+  // 3e. The tags of CMU's descriptions, in clip order: walk and run where the root travels.
+  for (const DescribedClip& d : described) {
+    if (auto s = tag_described_clip(db, d, specs[d.spec_index], settings.travel_tags, notes); !s) return s.error();
+  }
 
   // 4. The feet's contacts (a rig whose feet are not found keeps the reason instead).
   if (auto s = find_database_contacts(db); !s) {

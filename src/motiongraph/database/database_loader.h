@@ -21,7 +21,8 @@
 // Tags: a manifest clip that mentions tags (tags = [...] or ranges) gets exactly those; any
 // other clip, when settings.cmu_tags is on, gets the tags of its CMU description
 // (cmu_tags.h), looked up by its file's stem ("16_15"; also when a manifest renames the
-// clip), for all its frames.
+// clip), for all its frames, but walk and run only where its root travels (travel_tags.h;
+// settings.travel_tags).
 //
 // Errors: a missing input or clip file, a clip with fewer than 2 frames after resampling (it
 // holds no motion), a frame range past the end of its file, skeletons too unlike to share,
@@ -34,6 +35,7 @@
 
 #include "motiongraph/core/error.h"
 #include "motiongraph/database/motion_database.h"
+#include "motiongraph/database/travel_tags.h"
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/in_place_choice.h"
 #include "motiongraph/motion/length_unit_choice.h"
@@ -73,6 +75,9 @@ struct DatabaseSettings {
   std::string cmu_index_text;
   std::string cmu_index_path;
   bool cmu_index_beside_inputs = true;
+  // Walk and run from a description only on the frames where the root travels (min_speed_mps
+  // 0: on the whole clip).
+  TravelTagSettings travel_tags;
 
   // Clips that loop (motion/loop.h: a game's cycle, its end meeting its start) go on past their
   // end for loop_overlap_frames frames at the database's rate (0: a third of a second and one,
@@ -139,6 +144,15 @@ struct DatabaseLoadNotes {
   };
   std::vector<Loop> loops;
   std::vector<std::string> clip_doubts;
+  // Clips whose description's walk or run was left off some of their frames (the root stands
+  // there: DatabaseSettings::travel_tags), in clip order.
+  struct StandingTag {
+    std::string clip;
+    std::string tag;
+    int tagged_frames = 0;  // the frames that keep it
+    int frames = 0;         // the clip's
+  };
+  std::vector<StandingTag> standing_tags;
 };
 
 // The warnings loading gives the user, one line each: the files read in the library's up axis

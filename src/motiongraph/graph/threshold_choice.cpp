@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <span>
 
@@ -153,8 +154,25 @@ Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFe
   // Per-type: one threshold per motion type (levels[i] for out.tags[i]); else one for all.
   const bool per_type = settings.transitions.per_tag_thresholds && !out.tags.empty();
   const size_t n = per_type ? out.tags.size() : 1;
-  auto evaluate = [&](const std::vector<double>& levels) -> Result<CoveragePoint> {
+  // Per type, whether a type takes part: one the ceiling gives nothing (a few frames of no motion
+  // type at clips' ends, a clip too short to leave and come back to) wants nothing, reaches its
+  // target at any threshold and would pull the global threshold, the lowest, down to the grid's
+  // first level; it follows the global one instead.
+  std::vector<bool> takes_part(n, true);
+  auto applied = [&](std::vector<double> levels) {
+    double global = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < n; ++i) {
+      if (takes_part[i]) global = std::min(global, levels[i]);
+    }
+    if (!std::isfinite(global)) global = *std::min_element(levels.begin(), levels.end());
+    for (size_t i = 0; i < n; ++i) {
+      if (!takes_part[i]) levels[i] = global;
+    }
+    return levels;
+  };
+  auto evaluate = [&](const std::vector<double>& asked) -> Result<CoveragePoint> {
     GraphFromCandidatesSettings at = capped;
+    const std::vector<double> levels = applied(asked);
     const double global = *std::min_element(levels.begin(), levels.end());
     if (per_type) at.transitions.tag_thresholds = own_thresholds(out.tags, levels);
     auto point = coverage_at(db, features, candidates, at, global, more);
@@ -179,6 +197,7 @@ Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFe
     } else {
       for (size_t i = 0; i < out.tags.size(); ++i) {
         out.targets[i] = std::min(choice.coverage, choice.reachable_share * top->tag_coverage[i]);
+        if (per_type) takes_part[i] = out.targets[i] > 0.0;
       }
     }
   }
@@ -282,7 +301,8 @@ Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFe
   }
   std::stable_sort(out.curve.begin(), out.curve.end(),
                    [](const CoveragePoint& x, const CoveragePoint& y) { return x.threshold < y.threshold; });
-  auto choose = [&](const std::vector<double>& chosen) {
+  auto choose = [&](const std::vector<double>& asked) {
+    const std::vector<double> chosen = applied(asked);
     out.threshold = *std::min_element(chosen.begin(), chosen.end());
     if (per_type) out.tag_thresholds = chosen;
   };

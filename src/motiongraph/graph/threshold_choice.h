@@ -33,7 +33,10 @@
 // its own threshold by the same search: a grid step raises only the types still short of their
 // targets (all of them while the graph is short of the transition rate), and the bisection
 // moves each type's threshold within its own bracket. The global threshold, which candidates of
-// no motion type and the mixed windows between types pass, is the lowest of them. Running's
+// no motion type and the mixed windows between types pass, is the lowest of them, but for types
+// the ceiling gives no frames at all (a few untagged frames at clips' ends, a clip too short to
+// leave and come back to): they want nothing, and take the global threshold rather than pull it
+// down to the grid's first level. Running's
 // larger distances then buy running what it needs, and no more: the threshold of a type depends
 // only on the candidates at or below it, so the pruned distance stage gives the exhaustive
 // stage's choice.

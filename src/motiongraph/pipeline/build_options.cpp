@@ -82,6 +82,7 @@ Result<BuildSettings> build_settings_from(const BuildOptions& o) {
   db.travel = *travel;
   db.input_fps = o.input_fps;
   db.cmu_tags = !o.no_cmu_tags;
+  if (o.whole_clip_tags) db.travel_tags.min_speed_mps = 0.0;
   db.loops = !o.no_loops;
   // A loop goes on past its end as far as a transition's window reaches, and a frame.
   if (o.distance.window_frames > 0) db.loop_overlap_frames = o.distance.window_frames + 1;

@@ -24,6 +24,7 @@ struct BuildOptions {
   double input_fps = 0.0;
   std::string cmu_index;
   bool no_cmu_tags = false;
+  bool whole_clip_tags = false;  // walk and run from descriptions on whole clips (travel_tags.h)
   bool no_loops = false;  // clips that loop are not played on past their end (motion/loop.h)
   std::string feet;  // LEFT_ANKLE,LEFT_TOE,RIGHT_ANKLE,RIGHT_TOE (skeleton/foot_joints.h)
   std::string cloud = "rings";

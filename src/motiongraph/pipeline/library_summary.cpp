@@ -88,11 +88,16 @@ nlohmann::json reading_json(const DatabaseLoadNotes& notes) {
                      {"seam_ratio", loop.choice.seam_ratio},
                      {"added_frames", loop.added_frames}});
   }
+  nlohmann::json standing = nlohmann::json::array();
+  for (const auto& t : notes.standing_tags) {
+    standing.push_back({{"clip", t.clip}, {"tag", t.tag}, {"tagged_frames", t.tagged_frames}, {"frames", t.frames}});
+  }
   return {{"units", std::move(units)},
           {"up_axes", std::move(up_axes)},
           {"travel_recovered", std::move(travel)},
           {"rigs", std::move(rigs)},
-          {"loops", std::move(loops)}};
+          {"loops", std::move(loops)},
+          {"standing_tags", std::move(standing)}};
 }
 
 }  // namespace

@@ -1,0 +1,68 @@
+#include "motiongraph/database/travel_tags.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace mg {
+
+Status TravelTagSettings::validate() const {
+  if (!(min_speed_mps >= 0.0) || !std::isfinite(min_speed_mps)) {
+    return Error{"", 0, fmt::format("the speed under which walk and run are left off must be >= 0, not {}",
+                                    min_speed_mps)};
+  }
+  if (!(window_s > 0.0) || !std::isfinite(window_s)) {
+    return Error{"", 0, fmt::format("the window the travel is judged over must be positive, not {} s", window_s)};
+  }
+  if (!(min_gap_s >= 0.0) || !(min_run_s >= 0.0) || !std::isfinite(min_gap_s) || !std::isfinite(min_run_s)) {
+    return Error{"", 0, "the shortest pause and the shortest travel must be >= 0"};
+  }
+  return Ok{};
+}
+
+bool is_locomotion_tag(std::string_view tag) {
+  constexpr std::array<std::string_view, 2> kLocomotion = {"walk", "run"};
+  return std::find(kLocomotion.begin(), kLocomotion.end(), tag) != kLocomotion.end();
+}
+
+std::vector<FrameSpan> travelling_spans(std::span<const Vec3> roots, double fps, const TravelTagSettings& settings) {
+  const int n = static_cast<int>(roots.size());
+  if (n == 0) return {};
+  if (settings.min_speed_mps <= 0.0) return {{0, n}};
+  const int half = std::max(1, static_cast<int>(std::lround(0.5 * settings.window_s * fps)));
+  std::vector<bool> travels(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    const int lo = std::max(0, i - half), hi = std::min(n - 1, i + half);
+    if (hi == lo) continue;  // a one-frame clip goes nowhere
+    const Vec3 step = roots[static_cast<size_t>(hi)] - roots[static_cast<size_t>(lo)];
+    const double metres = std::hypot(step.x(), step.z());
+    travels[static_cast<size_t>(i)] = metres >= settings.min_speed_mps * (hi - lo) / fps;
+  }
+  std::vector<FrameSpan> spans;
+  for (int i = 0; i < n;) {
+    if (!travels[static_cast<size_t>(i)]) {
+      ++i;
+      continue;
+    }
+    int end = i;
+    while (end < n && travels[static_cast<size_t>(end)]) ++end;
+    spans.push_back({i, end - i});
+    i = end;
+  }
+  // Pauses between two spans shorter than min_gap_s keep the tag.
+  const double min_gap = settings.min_gap_s * fps, min_run = settings.min_run_s * fps;
+  std::vector<FrameSpan> joined;
+  for (const FrameSpan& span : spans) {
+    if (!joined.empty() && span.first - (joined.back().first + joined.back().count) < min_gap) {
+      joined.back().count = span.first + span.count - joined.back().first;
+    } else {
+      joined.push_back(span);
+    }
+  }
+  std::erase_if(joined, [&](const FrameSpan& span) { return span.count < min_run; });
+  return joined;
+}
+
+}  // namespace mg

@@ -1,0 +1,47 @@
+// Walk and run where the figure goes somewhere. CMU's descriptions tag whole clips
+// (cmu_tags.h), but a clip described "jump up to grab, reach for, tiptoe" walks for a few of its
+// frames, one described "walk, stop" stands at its end, and "jumping jacks, jog, squats" jogs on
+// the spot. Asked to walk, a search that judges the facing (controller.h) finds a standing frame
+// that faces the right way as good as any walk, and the character asked to walk stands (CMU
+// 14's walk went 0.05 m/s). So the locomotion tags a description gives (walk, run:
+// is_locomotion_tag) stay only where the root travels at least min_speed_mps: the root's floor
+// displacement over window_s centred on the frame (cut at the clip's ends) by the time it spans.
+// Pauses shorter than min_gap_s keep the tag, and what travels for less than min_run_s loses it.
+// A manifest's tags are the user's word and stay as given (database_loader.h).
+#pragma once
+
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "motiongraph/core/error.h"
+#include "motiongraph/skeleton/rotation.h"
+
+namespace mg {
+
+struct TravelTagSettings {
+  double min_speed_mps = 0.25;  // 0: descriptions tag whole clips, as they say
+  double window_s = 1.0;
+  double min_gap_s = 0.5;
+  double min_run_s = 0.5;
+
+  Status validate() const;
+};
+
+// walk and run: the tags that ask the character to go somewhere (cmu_tags.h's families).
+bool is_locomotion_tag(std::string_view tag);
+
+// Frames [first, first + count) of a clip.
+struct FrameSpan {
+  int first = 0;
+  int count = 0;
+
+  bool operator==(const FrameSpan&) const = default;
+};
+
+// The spans of a clip (its root's positions, y up, one per frame at `fps`) over which the root
+// travels on the floor as above, in order; all its frames when settings.min_speed_mps is 0.
+std::vector<FrameSpan> travelling_spans(std::span<const Vec3> roots, double fps,
+                                        const TravelTagSettings& settings);
+
+}  // namespace mg

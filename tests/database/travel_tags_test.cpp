@@ -1,0 +1,148 @@
+#include "motiongraph/database/travel_tags.h"
+
+#include <random>
+
+#include <gtest/gtest.h>
+
+namespace mg {
+namespace {
+
+// A root that goes along x at each frame's speed (m/s), y up.
+std::vector<Vec3> roots_at(const std::vector<double>& speeds, double fps) {
+  std::vector<Vec3> roots;
+  Vec3 at(0.0, 0.9, 0.0);
+  for (double v : speeds) {
+    at.x() += v / fps;
+    roots.push_back(at);
+  }
+  return roots;
+}
+
+std::vector<double> pieces(std::initializer_list<std::pair<int, double>> frames_at_speed) {
+  std::vector<double> speeds;
+  for (const auto& [frames, speed] : frames_at_speed) speeds.insert(speeds.end(), frames, speed);
+  return speeds;
+}
+
+TEST(TravelTags, WalkAndRunAreTheLocomotionTags) {
+  EXPECT_TRUE(is_locomotion_tag("walk"));
+  EXPECT_TRUE(is_locomotion_tag("run"));
+  for (const char* other : {"jump", "stop", "turn", "sit", "dance", "sidestep", "Walk", ""}) {
+    EXPECT_FALSE(is_locomotion_tag(other)) << other;
+  }
+}
+
+TEST(TravelTags, AWalkThatStopsKeepsItsTagUntilAboutWhereItStops) {
+  const double fps = 30.0;
+  const TravelTagSettings settings;
+  // 3 s at 1 m/s, then 2 s standing: the window's half (15 frames) past the stop still travels
+  // at least 0.25 m/s, so the span ends between frame 90 and 90 + 15.
+  const auto spans = travelling_spans(roots_at(pieces({{90, 1.0}, {60, 0.0}}), fps), fps, settings);
+  ASSERT_EQ(spans.size(), 1u);
+  EXPECT_EQ(spans[0].first, 0);
+  EXPECT_GE(spans[0].count, 90);
+  EXPECT_LE(spans[0].count, 105);
+  // Starting from standing: the span starts at most a half window before the walk.
+  const auto starts = travelling_spans(roots_at(pieces({{60, 0.0}, {90, 1.0}}), fps), fps, settings);
+  ASSERT_EQ(starts.size(), 1u);
+  EXPECT_GE(starts[0].first, 45);
+  EXPECT_LE(starts[0].first, 60);
+  EXPECT_EQ(starts[0].first + starts[0].count, 150);
+}
+
+TEST(TravelTags, NothingThatStandsOrCreepsAndAllOfAWalk) {
+  const double fps = 30.0;
+  const TravelTagSettings settings;
+  EXPECT_TRUE(travelling_spans(roots_at(pieces({{120, 0.0}}), fps), fps, settings).empty());
+  EXPECT_TRUE(travelling_spans(roots_at(pieces({{120, 0.2}}), fps), fps, settings).empty());  // below 0.25 m/s
+  EXPECT_EQ(travelling_spans(roots_at(pieces({{120, 0.3}}), fps), fps, settings), (std::vector<FrameSpan>{{0, 120}}));
+  // On the spot, swaying 10 cm to and fro twice a second: 0.4 m/s of movement, but no travel.
+  std::vector<Vec3> sway;
+  for (int f = 0; f < 120; ++f) sway.emplace_back(0.05 * std::sin(f * 2.0 * 3.14159265 * 2.0 / fps), 0.9, 0.0);
+  EXPECT_TRUE(travelling_spans(sway, fps, settings).empty());
+  // The height does not count: only the floor.
+  std::vector<Vec3> rising;
+  for (int f = 0; f < 120; ++f) rising.emplace_back(0.0, 0.9 + f / fps, 0.0);
+  EXPECT_TRUE(travelling_spans(rising, fps, settings).empty());
+  // Off: every frame, even standing ones; an empty clip has none.
+  TravelTagSettings off;
+  off.min_speed_mps = 0.0;
+  EXPECT_EQ(travelling_spans(roots_at(pieces({{40, 0.0}}), fps), fps, off), (std::vector<FrameSpan>{{0, 40}}));
+  EXPECT_TRUE(travelling_spans({}, fps, settings).empty());
+}
+
+TEST(TravelTags, ShortPausesAreBridgedAndShortTravelsDropped) {
+  const double fps = 30.0;
+  TravelTagSettings settings;
+  settings.window_s = 0.2;  // 3 frames each side: the spans follow the speeds closely
+  settings.min_gap_s = 0.5;
+  settings.min_run_s = 1.0;
+  // A pause of 0.3 s between two walks keeps one span; one of 1.5 s splits it.
+  const auto bridged = travelling_spans(roots_at(pieces({{60, 1.0}, {9, 0.0}, {60, 1.0}}), fps), fps, settings);
+  ASSERT_EQ(bridged.size(), 1u);
+  EXPECT_EQ(bridged[0], (FrameSpan{0, 129}));
+  const auto split = travelling_spans(roots_at(pieces({{60, 1.0}, {45, 0.0}, {60, 1.0}}), fps), fps, settings);
+  ASSERT_EQ(split.size(), 2u);
+  EXPECT_EQ(split[0].first, 0);
+  EXPECT_EQ(split[1].first + split[1].count, 165);
+  // Half a second of travel among standing is dropped; two seconds stay.
+  EXPECT_TRUE(travelling_spans(roots_at(pieces({{60, 0.0}, {15, 1.0}, {60, 0.0}}), fps), fps, settings).empty());
+  EXPECT_EQ(travelling_spans(roots_at(pieces({{60, 0.0}, {60, 1.0}, {60, 0.0}}), fps), fps, settings).size(), 1u);
+}
+
+// Invariants on random walks and stands: spans in order, within the clip, at least min_run_s
+// long, at least min_gap_s apart; a frame far (a window) from every span stands by its window.
+TEST(TravelTags, SpansAreOrderedLongEnoughAndApart) {
+  const double fps = 30.0;
+  const TravelTagSettings settings;
+  std::mt19937 random(7);
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<double> speeds;
+    const int pieces_count = 1 + static_cast<int>(random() % 6);
+    for (int p = 0; p < pieces_count; ++p) {
+      speeds.insert(speeds.end(), 5 + random() % 80, (random() % 2) != 0 ? 0.0 : 0.2 + 0.1 * (random() % 20));
+    }
+    const auto roots = roots_at(speeds, fps);
+    const auto spans = travelling_spans(roots, fps, settings);
+    const int n = static_cast<int>(roots.size());
+    for (size_t i = 0; i < spans.size(); ++i) {
+      EXPECT_GE(spans[i].first, 0);
+      EXPECT_LE(spans[i].first + spans[i].count, n);
+      EXPECT_GE(spans[i].count, settings.min_run_s * fps);
+      if (i > 0) {
+        EXPECT_GE(spans[i].first - (spans[i - 1].first + spans[i - 1].count), settings.min_gap_s * fps);
+      }
+    }
+    // Not every frame in a span travels (pauses are bridged), but every frame whose whole
+    // window travels fast (>= 0.5 m/s) is in one.
+    for (int f = 15; f + 15 < n; ++f) {
+      const bool in_span = std::any_of(spans.begin(), spans.end(),
+                                       [&](const FrameSpan& s) { return f >= s.first && f < s.first + s.count; });
+      bool fast = true;
+      for (int g = f - 15; g <= f + 15; ++g) fast = fast && speeds[static_cast<size_t>(g)] >= 0.5;
+      // 31 frames of fast travel make a span of 31 frames or more: at least min_run_s (15).
+      if (fast) {
+        EXPECT_TRUE(in_span) << trial << " frame " << f;
+      }
+    }
+  }
+}
+
+TEST(TravelTags, SettingsAreChecked) {
+  EXPECT_TRUE(TravelTagSettings{}.validate());
+  TravelTagSettings s;
+  s.min_speed_mps = -0.1;
+  EXPECT_FALSE(s.validate());
+  s = {};
+  s.window_s = 0.0;
+  EXPECT_FALSE(s.validate());
+  s = {};
+  s.min_gap_s = -1.0;
+  EXPECT_FALSE(s.validate());
+  s = {};
+  s.min_run_s = std::nan("");
+  EXPECT_FALSE(s.validate());
+}
+
+}  // namespace
+}  // namespace mg
