@@ -1,5 +1,7 @@
 // motiongraph inspect GRAPH.mgraph: what a graph file holds, from its stored report.
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -11,6 +13,7 @@
 #include "motiongraph/graph/graph_file.h"
 #include "motiongraph/graph/threshold_choice.h"
 #include "motiongraph/io/file.h"
+#include "motiongraph/synthesis/facing.h"
 
 namespace mg::cli {
 
@@ -22,6 +25,28 @@ struct InspectOptions {
   bool nodes = false;
   bool clips = false;
 };
+
+// One line per skeleton: which way it faces (synthesis/facing.h), so that a rig whose hips were
+// not found, or whose facing was turned about by its travel, shows it.
+void print_facings(const MotionDatabase& db) {
+  const std::vector<Vec3> travel = learn_travel_axes(db);
+  for (size_t s = 0; s < db.skeletons.size(); ++s) {
+    const ForwardAxisChoice c = choose_forward_axis(db, static_cast<int>(s), travel[s]);
+    const Skeleton& skeleton = db.skeletons[s];
+    const std::string who = db.skeletons.size() > 1 ? fmt::format(" ({})", db.skeleton_names[s]) : "";
+    const std::string axis = fmt::format("{:+.2f} {:+.2f} {:+.2f} in the root's frame", c.axis.x(), c.axis.y(),
+                                         c.axis.z());
+    if (c.left_hip < 0) {
+      fmt::print("facing{}: {}, the way its clips travel ({})\n", who, axis, c.why_not_hips);
+      continue;
+    }
+    const double off = std::acos(std::clamp(c.axis.normalized().dot(c.travel_axis.normalized()), -1.0, 1.0)) * 180.0 /
+                       std::numbers::pi;
+    fmt::print("facing{}: {}, square to the hips {} and {}{}; its clips travel {:.1f} degrees off it\n", who, axis,
+               skeleton.joint(c.left_hip).name, skeleton.joint(c.right_hip).name,
+               c.turned_about ? " (turned about: its clips travel the other way from up x (right - left))" : "", off);
+  }
+}
 
 // One line per node: its index (what `walk --from/--to` take), frame, clip, tags, edges out.
 void print_nodes(const GraphFile& file) {
@@ -112,6 +137,7 @@ int run_inspect(const InspectOptions& o) {
   fmt::print("{}: motion graph, format version {}\n", o.graph, kGraphFileVersion);
   fmt::print("database: {} clips, {} frames at {:g} fps ({:.1f} s), {} skeleton(s), tags: {}\n", db.clips.size(),
              db.frame_count(), db.fps, db.frame_count() / db.fps, db.skeletons.size(), fmt::join(db.tag_names, ", "));
+  print_facings(db);
   const std::string rms = report.is_object() && report.contains("threshold_rms_cm")
                               ? fmt::format("RMS {:.2f} cm, ", report["threshold_rms_cm"].get<double>())
                               : std::string();

@@ -4,6 +4,7 @@
 #include <map>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include "motiongraph/motion/length_unit.h"
@@ -98,16 +99,25 @@ void report_units(const DatabaseLoadNotes& notes, bool quiet) {
                  notes.loops.size() > 1 ? fmt::format(" and {} more", notes.loops.size() - 1) : "", added);
   }
   if (!notes.standing_tags.empty() && !quiet) {
-    std::vector<std::string> clips;
-    int left_off = 0;
+    // Per tag: the frames left off and the clips they are in, in clip order.
+    std::vector<std::string> tags;
+    std::map<std::string, std::pair<int, std::vector<std::string>>> of_tag;
     for (const auto& t : notes.standing_tags) {
-      left_off += t.frames - t.tagged_frames;
-      if (std::find(clips.begin(), clips.end(), t.clip) == clips.end()) clips.push_back(t.clip);
+      if (!of_tag.contains(t.tag)) tags.push_back(t.tag);
+      auto& [frames, clips] = of_tag[t.tag];
+      frames += t.frames - t.tagged_frames;
+      clips.push_back(t.clip);
     }
-    spdlog::info("walk and run from CMU's descriptions left off {} frames of {} clip{} where the root stands (under "
-                 "{} m/s over a second: {}{}; --whole-clip-tags keeps them)",
-                 left_off, clips.size(), clips.size() == 1 ? "" : "s", TravelTagSettings{}.min_speed_mps, clips.front(),
-                 clips.size() > 1 ? fmt::format(" and {} more", clips.size() - 1) : "");
+    std::vector<std::string> parts;
+    for (const std::string& tag : tags) {
+      const auto& [frames, clips] = of_tag.at(tag);
+      parts.push_back(fmt::format("{} {} frames of {} clip{} ({}{})", tag, frames, clips.size(),
+                                  clips.size() == 1 ? "" : "s", clips.front(),
+                                  clips.size() > 1 ? fmt::format(" and {} more", clips.size() - 1) : ""));
+    }
+    spdlog::info("walk and run from CMU's descriptions left off where the root stands (under {} m/s over a second, "
+                 "or travels less than half a second): {}; --whole-clip-tags keeps them",
+                 notes.standing_speed_mps, fmt::join(parts, ", "));
   }
   const auto judged = std::count_if(notes.recovered_travels.begin(), notes.recovered_travels.end(),
                                     [](const auto& r) { return r.source == TravelSource::kAuto; });

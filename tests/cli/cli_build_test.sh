@@ -14,6 +14,10 @@ cache="$work/cache"
   --export-matrix "$work/m.npy" --export-clouds "$work/c.npy" --matrix-png "$work/m.png" -q
 "$bin" inspect "$work/g.mgraph" >"$work/inspect.txt"
 grep -q "after pruning" "$work/inspect.txt" || { echo "FAIL: inspect output"; cat "$work/inspect.txt"; exit 1; }
+# Which way the skeleton faces: square to CMU's thigh joints (the hipjoint bones start at the
+# root), about +z in the root's frame, a walk's travel within a few degrees of it.
+grep -Eq "^facing: [+-]0\.0[0-9] [+-]0\.[01][0-9] \+(1\.00|0\.99) in the root's frame, square to the hips lfemur and rfemur; its clips travel [0-4]\.[0-9] degrees off it$" "$work/inspect.txt" \
+  || { echo "FAIL: inspect's facing line"; cat "$work/inspect.txt"; exit 1; }
 grep -q "path check: the 29 m test path and its mirror (the worse of the two) followed 0\.[0-9]* m off (within 0.1 m; [0-9]* threshold(s) tried)" "$work/inspect.txt" \
   || { echo "FAIL: inspect's path check line"; cat "$work/inspect.txt"; exit 1; }
 "$bin" inspect --json "$work/g.mgraph" >"$work/inspect.json"

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <gtest/gtest.h>
 
 #include "motion/cycle_loop.h"
@@ -155,8 +156,8 @@ TEST(DatabaseLoader, CmuTagsOffOrFromText) {
   EXPECT_EQ(tags_of(*tagged, 0), (std::set<std::string>{"walk", "stop"}));
 }
 
-// 16_15 (a walk) with its root held where it is from its `freeze`th file frame on: the figure
-// walks, then its root stands (the limbs go on as captured).
+// 16_15 (a walk) held still from its `freeze`th file frame on (that frame's pose repeated): the
+// figure walks, then stands.
 std::string walk_then_stand(int freeze) {
   const std::string amc = test::read_data("cmu/16/16_15.amc");
   std::string out, held;
@@ -165,19 +166,13 @@ std::string walk_then_stand(int freeze) {
   while (start < amc.size()) {
     size_t end = amc.find('\n', start);
     if (end == std::string::npos) end = amc.size();
-    std::string line = amc.substr(start, end - start);
+    const std::string line = amc.substr(start, end - start);
     start = end + 1;
-    if (!line.empty() && std::isdigit(static_cast<unsigned char>(line[0])) != 0) frame = std::stoi(line);
-    if (line.rfind("root ", 0) == 0) {
-      std::istringstream in(line.substr(5));
-      double x = 0, y = 0, z = 0;
-      std::string rest;
-      in >> x >> y >> z;
-      std::getline(in, rest);
-      if (frame == freeze) held = fmt::format("{} {{}} {}", x, z);
-      if (frame >= freeze) line = "root " + fmt::format(fmt::runtime(held), y) + rest;
-    }
-    out += line + "\n";
+    const bool number = !line.empty() && std::isdigit(static_cast<unsigned char>(line[0])) != 0;
+    if (number) frame = std::stoi(line);
+    if (frame == freeze && !number) held += line + "\n";
+    out += frame > freeze && !number ? "" : line + "\n";
+    if (frame > freeze && number) out += held;
   }
   return out;
 }
@@ -192,12 +187,23 @@ TEST(DatabaseLoader, ADescriptionsWalkStaysWhereTheRootTravels) {
   const int freeze = 300;  // of 471 file frames at 120 fps: frame 75 at 30 fps
   folder.write("01_01.amc", walk_then_stand(freeze));
   folder.write("01_02.amc", test::read_data("cmu/16/16_15.amc"));
+  folder.write("01_03.amc", walk_then_stand(1));  // stands throughout: its "jog" is on the spot
   DatabaseSettings settings;
-  settings.cmu_index_text = "01_01\twalk, stop\n01_02\twalk\n";
+  settings.cmu_index_text = "01_01\twalk, stop\n01_02\twalk\n01_03\tjog, turn\n";
   DatabaseLoadNotes notes;
   auto db = load_database({folder.path().string()}, settings, &notes);
   ASSERT_TRUE(db) << db.error().to_string();
-  ASSERT_EQ(db->clips.size(), 2u);
+  ASSERT_EQ(db->clips.size(), 3u);
+  // No frame keeps the run: the library has none, and a warning says so.
+  EXPECT_EQ(tags_of(*db, 2), std::set<std::string>{"turn"});
+  EXPECT_EQ(std::count(db->tag_names.begin(), db->tag_names.end(), "run"), 0);
+  ASSERT_EQ(notes.vanished_tags.size(), 1u);
+  EXPECT_EQ(notes.vanished_tags[0].tag, "run");
+  EXPECT_EQ(notes.vanished_tags[0].clips, std::vector<std::string>{"01_03"});
+  const std::vector<std::string> warnings = load_warnings(notes);
+  EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(), [](const std::string& w) {
+    return w.find("the library has no run") != std::string::npos && w.find("--whole-clip-tags") != std::string::npos;
+  })) << fmt::format("{}", fmt::join(warnings, "\n"));
   EXPECT_EQ(tags_of(*db, 0), std::set<std::string>{"stop"});
   EXPECT_EQ(tags_of(*db, 1), std::set<std::string>{"walk"});
   const auto walk = std::find(db->tag_names.begin(), db->tag_names.end(), "walk") - db->tag_names.begin();
@@ -210,7 +216,9 @@ TEST(DatabaseLoader, ADescriptionsWalkStaysWhereTheRootTravels) {
   EXPECT_EQ(walks[0].first_frame, 0);
   EXPECT_GE(walks[0].frame_count, stands - 15);
   EXPECT_LE(walks[0].frame_count, stands + 15);
-  ASSERT_EQ(notes.standing_tags.size(), 1u);
+  ASSERT_EQ(notes.standing_tags.size(), 2u);  // and 01_03's run
+  EXPECT_EQ(notes.standing_tags[1].clip, "01_03");
+  EXPECT_EQ(notes.standing_tags[1].tagged_frames, 0);
   EXPECT_EQ(notes.standing_tags[0].clip, "01_01");
   EXPECT_EQ(notes.standing_tags[0].tag, "walk");
   EXPECT_EQ(notes.standing_tags[0].tagged_frames, walks[0].frame_count);
@@ -220,7 +228,9 @@ TEST(DatabaseLoader, ADescriptionsWalkStaysWhereTheRootTravels) {
   auto whole = load_database({folder.path().string()}, settings, &notes);
   ASSERT_TRUE(whole) << whole.error().to_string();
   EXPECT_EQ(tags_of(*whole, 0), (std::set<std::string>{"walk", "stop"}));
+  EXPECT_EQ(tags_of(*whole, 2), (std::set<std::string>{"run", "turn"}));
   EXPECT_TRUE(notes.standing_tags.empty());
+  EXPECT_TRUE(notes.vanished_tags.empty());
 
   const std::string manifest = folder.write(
       "db.toml", "skeleton = \"16.asf\"\n[[clip]]\nfile = \"01_01.amc\"\ntags = [\"walk\"]\n");

@@ -50,6 +50,20 @@ TEST(TravelTags, AWalkThatStopsKeepsItsTagUntilAboutWhereItStops) {
   EXPECT_EQ(starts[0].first + starts[0].count, 150);
 }
 
+TEST(TravelTags, TheSameSecondsAtAnyFrameRate) {
+  // 3 s at 1 m/s then 2 s standing: the span ends within the window's half second of the stop
+  // (between 3.0 and 3.5 s) at 24, 30, 60 and 120 fps alike.
+  const TravelTagSettings settings;
+  for (const double fps : {24.0, 30.0, 60.0, 120.0}) {
+    const int walk = static_cast<int>(3 * fps), stand = static_cast<int>(2 * fps);
+    const auto spans = travelling_spans(roots_at(pieces({{walk, 1.0}, {stand, 0.0}}), fps), fps, settings);
+    ASSERT_EQ(spans.size(), 1u) << fps;
+    EXPECT_EQ(spans[0].first, 0) << fps;
+    EXPECT_GE(spans[0].count / fps, 3.0) << fps;
+    EXPECT_LE(spans[0].count / fps, 3.5) << fps;
+  }
+}
+
 TEST(TravelTags, NothingThatStandsOrCreepsAndAllOfAWalk) {
   const double fps = 30.0;
   const TravelTagSettings settings;
@@ -85,6 +99,9 @@ TEST(TravelTags, ShortPausesAreBridgedAndShortTravelsDropped) {
   ASSERT_EQ(split.size(), 2u);
   EXPECT_EQ(split[0].first, 0);
   EXPECT_EQ(split[1].first + split[1].count, 165);
+  // A clip shorter than min_run_s that travels throughout keeps it; one that stands part of it not.
+  EXPECT_EQ(travelling_spans(roots_at(pieces({{20, 1.0}}), fps), fps, settings), (std::vector<FrameSpan>{{0, 20}}));
+  EXPECT_TRUE(travelling_spans(roots_at(pieces({{14, 1.0}, {6, 0.0}}), fps), fps, settings).empty());
   // Half a second of travel among standing is dropped; two seconds stay.
   EXPECT_TRUE(travelling_spans(roots_at(pieces({{60, 0.0}, {15, 1.0}, {60, 0.0}}), fps), fps, settings).empty());
   EXPECT_EQ(travelling_spans(roots_at(pieces({{60, 0.0}, {60, 1.0}, {60, 0.0}}), fps), fps, settings).size(), 1u);
@@ -108,7 +125,9 @@ TEST(TravelTags, SpansAreOrderedLongEnoughAndApart) {
     for (size_t i = 0; i < spans.size(); ++i) {
       EXPECT_GE(spans[i].first, 0);
       EXPECT_LE(spans[i].first + spans[i].count, n);
-      EXPECT_GE(spans[i].count, settings.min_run_s * fps);
+      if (spans[i].count < n) {  // or the whole clip
+        EXPECT_GE(spans[i].count, settings.min_run_s * fps);
+      }
       if (i > 0) {
         EXPECT_GE(spans[i].first - (spans[i - 1].first + spans[i - 1].count), settings.min_gap_s * fps);
       }

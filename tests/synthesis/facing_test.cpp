@@ -102,9 +102,21 @@ TEST(ForwardAxis, UnmovedByClipsThatTravelAcrossTheBody) {
 TEST(ForwardAxis, ItsSignIsTheTravelsWhateverTheFeetAreCalled) {
   MotionDatabase db = test::small_database({"cmu/16/16_15.amc"});
   const Vec3 axis = learn_forward_axes(db)[0];
+  const Vec3 travel = learn_travel_axes(db)[0];
+  // What `inspect` reports: the hips it faces square to, not turned about.
+  const ForwardAxisChoice as_named = choose_forward_axis(db, 0, travel);
+  EXPECT_EQ(as_named.axis, axis);
+  EXPECT_EQ(as_named.travel_axis, travel);
+  EXPECT_EQ(db.skeletons[0].joint(as_named.left_hip).name, "lfemur");
+  EXPECT_EQ(db.skeletons[0].joint(as_named.right_hip).name, "rfemur");
+  EXPECT_FALSE(as_named.turned_about);
+  EXPECT_TRUE(as_named.why_not_hips.empty());
   // The feet named the other way round: the hips' line reversed, the sign from the travel.
   db.foot_names = FootJointNames{"rfoot", "rtoes", "lfoot", "ltoes"};
   EXPECT_LT((learn_forward_axes(db)[0] - axis).norm(), 1e-9);
+  const ForwardAxisChoice swapped = choose_forward_axis(db, 0, travel);
+  EXPECT_EQ(db.skeletons[0].joint(swapped.left_hip).name, "rfemur");
+  EXPECT_TRUE(swapped.turned_about);
   // A walk played backwards (its root turned about while it travels on): the hips face back,
   // so the axis is the other way round in the root's frame, and the facing is the travel's.
   db.foot_names = {};
@@ -118,6 +130,10 @@ TEST(ForwardAxis, TheTravelAxisWhenTheFeetCannotBeFound) {
   db.foot_names = FootJointNames{"no_such_ankle", "", "", ""};
   ASSERT_FALSE(find_foot_joints(db.skeletons[0], db.foot_names));
   EXPECT_EQ(learn_forward_axes(db)[0], learn_travel_axes(db)[0]);
+  const ForwardAxisChoice choice = choose_forward_axis(db, 0, learn_travel_axes(db)[0]);
+  EXPECT_EQ(choice.axis, learn_travel_axes(db)[0]);
+  EXPECT_EQ(choice.left_hip, -1);
+  EXPECT_NE(choice.why_not_hips.find("no_such_ankle"), std::string::npos) << choice.why_not_hips;
 }
 
 TEST(ForwardAxis, TheSameFacingThroughAnotherConvertersRig) {

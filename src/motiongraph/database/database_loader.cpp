@@ -663,6 +663,18 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
   for (const DescribedClip& d : described) {
     if (auto s = tag_described_clip(db, d, specs[d.spec_index], settings.travel_tags, notes); !s) return s.error();
   }
+  if (notes != nullptr) {
+    notes->standing_speed_mps = settings.travel_tags.min_speed_mps;
+    for (const DescribedClip& d : described) {
+      for (const std::string& tag : d.tags) {
+        if (std::find(db.tag_names.begin(), db.tag_names.end(), tag) != db.tag_names.end()) continue;
+        auto it = std::find_if(notes->vanished_tags.begin(), notes->vanished_tags.end(),
+                               [&](const auto& v) { return v.tag == tag; });
+        if (it == notes->vanished_tags.end()) it = notes->vanished_tags.insert(it, {tag, {}});
+        it->clips.push_back(db.clips[d.clip].name);
+      }
+    }
+  }
 
   // 4. The feet's contacts (a rig whose feet are not found keeps the reason instead).
   if (auto s = find_database_contacts(db); !s) {
@@ -736,6 +748,13 @@ std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes) {
                                   rig.rest_pose->bone, rig.rest_pose->angle_deg));
     }
     lines.push_back(fmt::format("{}: {}", rig.file, fmt::join(parts, "; ")));
+  }
+  for (const auto& v : notes.vanished_tags) {
+    lines.push_back(fmt::format("the library has no {0}: every clip CMU's descriptions call {0} stands where it is "
+                                "({1}{2}; under {3} m/s over a second); --whole-clip-tags keeps their {0}",
+                                v.tag, v.clips.front(),
+                                v.clips.size() > 1 ? fmt::format(" and {} more", v.clips.size() - 1) : "",
+                                notes.standing_speed_mps));
   }
   lines.insert(lines.end(), notes.clip_doubts.begin(), notes.clip_doubts.end());
   return lines;

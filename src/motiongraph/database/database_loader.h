@@ -153,12 +153,20 @@ struct DatabaseLoadNotes {
     int frames = 0;         // the clip's
   };
   std::vector<StandingTag> standing_tags;
+  double standing_speed_mps = 0.0;  // the speed under which they were left off
+  // Tags a description gave that no frame keeps (every clip it named stands: CMU 14's "jog" on
+  // the spot), with the clips that asked for them: the library has none of them.
+  struct VanishedTag {
+    std::string tag;
+    std::vector<std::string> clips;
+  };
+  std::vector<VanishedTag> vanished_tags;
 };
 
 // The warnings loading gives the user, one line each: the files read in the library's up axis
 // rather than their own, the joints dropped to read every clip on the same ones, the files read
-// as the first file's rig (other names, another rest pose), then the clips that look wrong as
-// read.
+// as the first file's rig (other names, another rest pose), the tags of descriptions no frame
+// keeps (walk or run where every clip stands), then the clips that look wrong as read.
 std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes);
 
 Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, const DatabaseSettings& settings,

@@ -61,7 +61,8 @@ std::vector<FrameSpan> travelling_spans(std::span<const Vec3> roots, double fps,
       joined.push_back(span);
     }
   }
-  std::erase_if(joined, [&](const FrameSpan& span) { return span.count < min_run; });
+  // A clip shorter than min_run_s that travels throughout keeps its tag.
+  std::erase_if(joined, [&](const FrameSpan& span) { return span.count < min_run && span.count < n; });
   return joined;
 }
 

@@ -6,7 +6,8 @@
 // 14's walk went 0.05 m/s). So the locomotion tags a description gives (walk, run:
 // is_locomotion_tag) stay only where the root travels at least min_speed_mps: the root's floor
 // displacement over window_s centred on the frame (cut at the clip's ends) by the time it spans.
-// Pauses shorter than min_gap_s keep the tag, and what travels for less than min_run_s loses it.
+// Pauses shorter than min_gap_s keep the tag, and what travels for less than min_run_s loses it
+// (unless it is the whole clip).
 // A manifest's tags are the user's word and stay as given (database_loader.h).
 #pragma once
 

@@ -229,6 +229,8 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
     if (choice->tag_thresholds.empty()) {
       kept.push_back(
           fmt::format("{} {:.0f} %", motion_class_name(db, choice->tags[i]), 100.0 * chosen.tag_coverage[i]));
+    } else if (choice->targets[i] <= 0.0) {
+      kept.push_back(fmt::format("{} none at any threshold", motion_class_name(db, choice->tags[i])));
     } else {
       kept.push_back(fmt::format("{} {:.0f} % at {:.2f} cm", motion_class_name(db, choice->tags[i]),
                                  100.0 * chosen.tag_coverage[i],

@@ -74,15 +74,22 @@ Vec3 in_root_frame(const Skeleton& skeleton, const Motion& motion, int frame, in
 // the hips' own sign, up x (right - left), stands.
 constexpr double kTravelSignMargin = 0.2;
 
-// Where the hips of skeleton `s` face, in its root's frame; nullopt without feet, hips or a
-// frame whose hips lie apart on the floor. Each frame weighs as far as its hips lie apart on the
-// floor (a figure lying on its side, hips one above the other, says little).
-std::optional<Vec3> hips_axis(const MotionDatabase& db, int s) {
+// Where the hips of skeleton `s` face, in its root's frame, into *choice (axis, hips,
+// turned_about); false (choice->why_not_hips said) without feet, hips or a frame whose hips lie
+// apart on the floor. Each frame weighs as far as its hips lie apart on the floor (a figure lying
+// on its side, hips one above the other, says little).
+bool hips_axis(const MotionDatabase& db, int s, ForwardAxisChoice* choice) {
   const Skeleton& skeleton = db.skeletons[static_cast<size_t>(s)];
   const auto feet = find_foot_joints(skeleton, db.foot_names);
-  if (!feet) return std::nullopt;
+  if (!feet) {
+    choice->why_not_hips = "no feet: " + feet.error().message;
+    return false;
+  }
   const auto hips = find_hips(skeleton, *feet);
-  if (!hips) return std::nullopt;
+  if (!hips) {
+    choice->why_not_hips = "no hip joint set off on the chains from where the legs part to the ankles";
+    return false;
+  }
   Vec3 sum = Vec3::Zero();
   double along_travel = 0.0;
   long long moving = 0;
@@ -103,9 +110,16 @@ std::optional<Vec3> hips_axis(const MotionDatabase& db, int s) {
       ++moving;
     }
   }
-  if (sum.norm() < 1e-9) return std::nullopt;
+  if (sum.norm() < 1e-9) {
+    choice->why_not_hips = "the hips never lie apart on the floor";
+    return false;
+  }
   const bool backwards = moving > 0 && along_travel < -kTravelSignMargin * static_cast<double>(moving);
-  return Vec3((backwards ? -sum : sum).normalized());
+  choice->axis = (backwards ? -sum : sum).normalized();
+  choice->left_hip = hips->first;
+  choice->right_hip = hips->second;
+  choice->turned_about = backwards;
+  return true;
 }
 
 }  // namespace
@@ -126,8 +140,15 @@ std::vector<Vec3> learn_travel_axes(const MotionDatabase& db) {
   return axes;
 }
 
+ForwardAxisChoice choose_forward_axis(const MotionDatabase& db, int skeleton, const Vec3& travel_axis) {
+  ForwardAxisChoice choice;
+  choice.travel_axis = travel_axis;
+  if (!hips_axis(db, skeleton, &choice)) choice.axis = travel_axis;
+  return choice;
+}
+
 Vec3 learn_forward_axis(const MotionDatabase& db, int skeleton, const Vec3& travel_axis) {
-  return hips_axis(db, skeleton).value_or(travel_axis);
+  return choose_forward_axis(db, skeleton, travel_axis).axis;
 }
 
 std::vector<Vec3> learn_forward_axes(const MotionDatabase& db) {

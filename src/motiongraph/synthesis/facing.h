@@ -24,6 +24,7 @@
 // A frame's facing is that axis turned by the root's world rotation, projected on the floor.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -41,6 +42,16 @@ constexpr double kMovingSpeedMps = 0.3;
 
 // One axis per skeleton of db, unit length, in the root joint's frame: where its hips face.
 std::vector<Vec3> learn_forward_axes(const MotionDatabase& db);
+
+// How a skeleton's forward axis was found, for a user to check a rig by (`inspect`).
+struct ForwardAxisChoice {
+  Vec3 axis = Vec3::UnitZ();         // learn_forward_axis's
+  Vec3 travel_axis = Vec3::UnitZ();  // the one given: its mean travel, in the root's frame
+  int left_hip = -1, right_hip = -1; // the joints it faces square to; -1: none (the travel axis)
+  bool turned_about = false;         // the hips' up x (right - left) turned: the moving frames went against it
+  std::string why_not_hips;          // when the travel axis stands in
+};
+ForwardAxisChoice choose_forward_axis(const MotionDatabase& db, int skeleton, const Vec3& travel_axis);
 // The same for skeleton `skeleton` alone, given its travel axis (the answer without hips).
 Vec3 learn_forward_axis(const MotionDatabase& db, int skeleton, const Vec3& travel_axis);
 
