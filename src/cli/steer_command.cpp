@@ -96,9 +96,29 @@ int run_steer(const SteerOptions& o) {
     }
   }
   motion = motion.slice(0, total);
-  // Response: the first frame after a control whose facing is within the tolerance of it.
+  // Each frame's tags, from the edges played (each plays its track's frames, in order).
+  std::vector<TagMask> played_tags;
+  for (int e : played.edges) {
+    const auto tags = context.tracks.tags_of(e);
+    played_tags.insert(played_tags.end(), tags.begin(), tags.end());
+  }
+  // Response: the first frame after a control whose facing is within the tolerance of it; for a
+  // control that changes the tag, the first that carries it.
   nlohmann::json controls = nlohmann::json::array();
+  std::string tag_before;
   for (const ScriptedControl& c : script->controls) {
+    nlohmann::json tag_response = nullptr;
+    const bool changes_tag = !c.tag.empty() && c.tag != tag_before;
+    if (changes_tag) {
+      const TagMask mask = *context.tag_mask(c.tag);
+      for (int f = static_cast<int>(std::ceil(c.at_s * fps)); f < motion.frame_count; ++f) {
+        if ((played_tags[static_cast<size_t>(f)] & mask) != 0) {
+          tag_response = f / fps - c.at_s;
+          break;
+        }
+      }
+    }
+    if (!c.tag.empty()) tag_before = c.tag;
     const Vec2 want = bearing_direction(c.bearing_deg);
     nlohmann::json response = nullptr;
     for (int f = static_cast<int>(std::ceil(c.at_s * fps)); f < motion.frame_count; ++f) {
@@ -108,7 +128,9 @@ int run_steer(const SteerOptions& o) {
         break;
       }
     }
-    controls.push_back({{"at_s", c.at_s}, {"heading_deg", c.bearing_deg}, {"tag", c.tag}, {"response_s", response}});
+    nlohmann::json control = {{"at_s", c.at_s}, {"heading_deg", c.bearing_deg}, {"tag", c.tag}, {"response_s", response}};
+    if (changes_tag) control["tag_response_s"] = tag_response;
+    controls.push_back(std::move(control));
   }
   const nlohmann::json report = {{"frames", motion.frame_count},
                                  {"fps", fps},
@@ -140,10 +162,17 @@ int run_steer(const SteerOptions& o) {
   fmt::print("steer: {} frames ({:.1f} s), {} decisions, decision p99 {:.3f} ms\n", motion.frame_count,
              motion.frame_count / fps, latencies.size(), 1e3 * percentile(latencies, 0.99));
   for (const auto& c : controls) {
-    fmt::print("  at {:5.1f} s heading {:5.1f} deg {:<6} -> {}\n", c["at_s"].get<double>(), c["heading_deg"].get<double>(),
+    std::string tag_reached;
+    if (c.contains("tag_response_s")) {
+      tag_reached = c["tag_response_s"].is_null()
+                        ? fmt::format(", no {}", c["tag"].get<std::string>())
+                        : fmt::format(", {} after {:.2f} s", c["tag"].get<std::string>(), c["tag_response_s"].get<double>());
+    }
+    fmt::print("  at {:5.1f} s heading {:5.1f} deg {:<6} -> {}{}\n", c["at_s"].get<double>(), c["heading_deg"].get<double>(),
                c["tag"].get<std::string>().empty() ? "any" : c["tag"].get<std::string>(),
                c["response_s"].is_null() ? std::string("not reached")
-                                         : fmt::format("facing it after {:.2f} s", c["response_s"].get<double>()));
+                                         : fmt::format("facing it after {:.2f} s", c["response_s"].get<double>()),
+               tag_reached);
   }
   return 0;
 }

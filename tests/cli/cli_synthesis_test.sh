@@ -89,6 +89,17 @@ assert s["frames"] == len(m["positions"]) == 270, (s["frames"], len(m["positions
 assert len(s["edges"]) >= s["decisions"] and len(s["edges"]) >= s["transitions"] >= s["bridges"] >= 0, s
 assert all(isinstance(e, int) and e >= 0 for e in s["edges"]), s["edges"]
 assert s["controls"][1]["response_s"] is not None and s["controls"][1]["response_s"] <= 3.0, s["controls"]
+# A control that changes the tag says when the frames first carry it (walk from the start; run
+# within 3 s of 6 s, and the root runs from there: faster than it walked before the run).
+c = s["controls"]
+assert c[0]["tag_response_s"] == 0 and "tag_response_s" not in c[1], c
+assert c[2]["tag_response_s"] is not None and 0 <= c[2]["tag_response_s"] <= 3.0, c
+_, sr = roots("steer.json")
+def speed(a, b):
+    i, j = int(a * s["fps"]), min(len(sr) - 1, int(b * s["fps"]))
+    return math.hypot(sr[j][0] - sr[i][0], sr[j][1] - sr[i][1]) / ((j - i) / s["fps"])
+ran = 6 + c[2]["tag_response_s"]
+assert speed(ran, ran + 0.5) > 1.5 * speed(1, 3), (speed(ran, ran + 0.5), speed(1, 3))
 # Every report counts its transitions (blends) and their rate; the figure 8 plays captured motion
 # between blends: at most 1.5 transitions a second on the bundled data.
 for rep, edges in ((r, r["edges"]), (w, w["edges"]), (s, None)):

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <Eigen/Eigenvalues>
 
 #include "synthesis/subject16_graph.h"
@@ -76,6 +78,39 @@ TEST(Controller, SwitchesToTheTagAskedFor) {
   int walking_before = 0;
   for (size_t f = 0; f < switch_frame; ++f) walking_before += (tags[f] & *walk) != 0 ? 1 : 0;
   EXPECT_GT(walking_before, 0.8 * static_cast<double>(switch_frame));
+}
+
+// Looking a third of a second ahead, no walk within the horizon reaches running from the walks
+// of subject 16, so every one is as far from it: priced by how far each leaves the character
+// from the tag (ControllerSettings::tag_beyond_horizon), the search heads for it and runs within
+// three seconds of being asked; seeing its horizon only, it runs later or not at all.
+TEST(Controller, ATagBeyondTheHorizonIsReached) {
+  const auto& s = test::subject16();
+  auto walk = s.context().tag_mask("walk"), run = s.context().tag_mask("run");
+  ASSERT_TRUE(walk.ok() && run.ok());
+  auto first_run_s = [&](bool beyond) -> double {
+    ControllerSettings settings;
+    settings.horizon_s = 0.3;
+    settings.tag_beyond_horizon = beyond;
+    auto controller = Controller::create(s.context(), settings, {bearing_direction(0.0), *walk});
+    EXPECT_TRUE(controller.ok());
+    Motion motion = s.context().assembler.empty_motion();
+    std::vector<TagMask> tags;
+    const double asked = 3.0;
+    while (motion.frame_count < 12.0 * motion.fps) {
+      if (motion.frame_count >= asked * motion.fps) controller->set_input({bearing_direction(0.0), *run});
+      for (int e : controller->step(motion).edges) {
+        for (TagMask t : s.context().tracks.tags_of(e)) tags.push_back(t);
+      }
+    }
+    for (size_t f = static_cast<size_t>(asked * motion.fps); f < tags.size(); ++f) {
+      if ((tags[f] & *run) != 0) return f / motion.fps - asked;
+    }
+    return std::numeric_limits<double>::infinity();
+  };
+  const double beyond = first_run_s(true), horizon_only = first_run_s(false);
+  EXPECT_LE(beyond, 3.0);
+  EXPECT_GT(horizon_only, beyond);
 }
 
 // Asked for no motion type, the character starts among the walking (the type most nodes carry;

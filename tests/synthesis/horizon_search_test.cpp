@@ -6,6 +6,7 @@
 #include <limits>
 #include <random>
 
+#include "motiongraph/synthesis/tag_distance.h"
 #include "synthesis/search_test_graphs.h"
 #include "synthesis/subject16_graph.h"
 
@@ -115,6 +116,74 @@ TEST(HorizonSearch, MatchesBruteForceWithAGenerousBudget) {
       EXPECT_NEAR(s.cost, result.cost, 1e-9) << trial << " beam " << beam;
     }
   }
+}
+
+// A tag asked for with its cost-to-go, as steering prices it: each frame without bit 1 costs 1,
+// a walk that reaches the horizon costs 1 for each frame any walk must still play before bit 1
+// (the rest of its last edge's, then the distance from where it ends), and a partial walk is
+// bounded below by its node's distance.
+class TagToGoCost final : public FrameCost {
+ public:
+  TagToGoCost(const EdgeTracks& tracks, const std::vector<int>& to_tag) : tracks_(tracks), to_tag_(to_tag) {}
+  double cost(int, const Vec2&, const Vec2& facing, double, TagMask tags, bool*) const override {
+    return 0.2 * (1.0 - facing.x()) + ((tags & 2) != 0 ? 0.0 : 1.0);
+  }
+  double terminal_cost(int edge, size_t costed, const SearchState& end) const override {
+    const auto rest = tracks_.tags_of(edge).subspan(costed);
+    for (size_t f = 0; f < rest.size(); ++f) {
+      if ((rest[f] & 2) != 0) return static_cast<double>(f);
+    }
+    const int d = to_tag_[static_cast<size_t>(end.node)];
+    return d < 0 ? 0.0 : static_cast<double>(rest.size() + static_cast<size_t>(d));
+  }
+  double node_bound(int node) const override { return std::max(0, to_tag_[static_cast<size_t>(node)]); }
+
+ private:
+  const EdgeTracks& tracks_;
+  const std::vector<int>& to_tag_;
+};
+
+TEST(HorizonSearch, ACostToGoAndItsBoundKeepTheSearchExact) {
+  std::mt19937 rng(33);
+  int took_terminal = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    const MotionGraph graph = test::random_search_graph(rng, 9, 12, 5);
+    EdgeTracks tracks = test::random_tracks(rng, graph);
+    for (TagMask& t : tracks.tags) t = (rng() % 6 == 0) ? TagMask{2} : TagMask{0};
+    const std::vector<int> to_tag = frames_to_tag(graph, tracks, 2);
+    SearchState start;
+    start.node = static_cast<int>(rng() % 9);
+    const TagToGoCost cost(tracks, to_tag);
+    HorizonSettings settings;
+    settings.horizon_frames = 8;
+    settings.max_expansions = 10'000'000;
+    // Every walk played out, its terminal cost added where it reaches the horizon.
+    double best = std::numeric_limits<double>::infinity();
+    std::function<void(const Played&)> go = [&](const Played& s) {
+      for (int e = graph.edge_offsets[s.node]; e < graph.edge_offsets[s.node + 1]; ++e) {
+        const Played next = play(graph, tracks, cost, settings.horizon_frames, s, e);
+        if (!next.done) {
+          go(next);
+          continue;
+        }
+        const size_t costed = static_cast<size_t>(settings.horizon_frames - s.frames);
+        SearchState end;
+        end.node = next.node;
+        best = std::min(best, next.cost + cost.terminal_cost(e, costed, end));
+      }
+    };
+    go(played_from(start));
+    double without = std::numeric_limits<double>::infinity();
+    for (int beam : {0, 2}) {
+      settings.beam_width = beam;
+      const HorizonResult result = horizon_search(graph, tracks, start, cost, settings);
+      ASSERT_FALSE(result.budget_exhausted);
+      EXPECT_NEAR(result.cost, best, 1e-9) << trial << " beam " << beam;
+    }
+    without = brute_force(graph, tracks, start, cost, settings.horizon_frames);
+    if (best > without + 1e-9) ++took_terminal;
+  }
+  EXPECT_GT(took_terminal, 10);  // the cost-to-go mattered in many trials
 }
 
 // A cost that judges headings (FrameCost::uses_heading) is given each frame's heading where the

@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "motiongraph/graph/graph_from_candidates.h"
+#include "motiongraph/synthesis/tag_distance.h"
 
 namespace mg {
 
@@ -38,13 +39,31 @@ namespace {
 class SteerCost final : public FrameCost {
  public:
   SteerCost(const SynthesisContext& context, const ControlInput& input, double penalty, double transition_penalty,
-            double bridge_penalty, bool judge_travel)
+            double bridge_penalty, bool judge_travel, const std::vector<int>* frames_to_tag)
       : context_(context),
         input_(input),
         penalty_(penalty),
         transition_penalty_(transition_penalty),
         bridge_penalty_(bridge_penalty),
-        judge_travel_(judge_travel) {}
+        judge_travel_(judge_travel),
+        frames_to_tag_(frames_to_tag) {}
+  // Past the horizon: the frames still to play before the tag, the rest of the last edge's
+  // first (a node the tag cannot be reached from costs nothing more: none can reach it then).
+  double terminal_cost(int edge, size_t costed, const SearchState& end) const override {
+    if (frames_to_tag_ == nullptr || input_.tag == 0) return 0.0;
+    const auto rest = context_.tracks.tags_of(edge).subspan(costed);
+    for (size_t f = 0; f < rest.size(); ++f) {
+      if ((rest[f] & input_.tag) != 0) return penalty_ * static_cast<double>(f);
+    }
+    const int beyond = (*frames_to_tag_)[static_cast<size_t>(end.node)];
+    return beyond < 0 ? 0.0 : penalty_ * static_cast<double>(rest.size() + static_cast<size_t>(beyond));
+  }
+  // Any walk from a node plays its frames to the tag untagged, within the horizon or past it.
+  double node_bound(int node) const override {
+    if (frames_to_tag_ == nullptr || input_.tag == 0) return 0.0;
+    const int frames = (*frames_to_tag_)[static_cast<size_t>(node)];
+    return frames < 0 ? 0.0 : penalty_ * static_cast<double>(frames);
+  }
   // Holding the travel, the search judges the direction the edit holds: each frame's heading.
   bool uses_heading() const override { return judge_travel_; }
   // A bridge costs the bridge penalty more unless it lands in the motion type asked for.
@@ -64,6 +83,7 @@ class SteerCost final : public FrameCost {
   double transition_penalty_;
   double bridge_penalty_;
   bool judge_travel_;
+  const std::vector<int>* frames_to_tag_;  // for input_.tag; null: the horizon only
 };
 
 }  // namespace
@@ -114,8 +134,18 @@ ControllerDecision Controller::step(Motion& out) {
   search.max_expansions = settings_.max_expansions;
   search.time_budget_s = settings_.time_budget_s;
   search.beam_width = settings_.beam_width;
+  const std::vector<int>* to_tag = nullptr;
+  if (settings_.tag_beyond_horizon && input_.tag != 0) {
+    auto known = std::find_if(frames_to_tag_.begin(), frames_to_tag_.end(),
+                              [&](const auto& entry) { return entry.first == input_.tag; });
+    if (known == frames_to_tag_.end()) {
+      frames_to_tag_.emplace_back(input_.tag, frames_to_tag(graph, context_->tracks, input_.tag));
+      known = frames_to_tag_.end() - 1;
+    }
+    to_tag = &known->second;
+  }
   const SteerCost cost(*context_, input_, settings_.tag_penalty, settings_.transition_penalty, settings_.bridge_penalty,
-                       settings_.heading_edit.hold_travel);
+                       settings_.heading_edit.hold_travel, to_tag);
   const HorizonResult best = horizon_search(graph, context_->tracks, state_, cost, search);
   ControllerDecision decision;
   decision.expansions = best.expansions;

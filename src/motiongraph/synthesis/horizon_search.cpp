@@ -104,10 +104,15 @@ bool play_edge(const MotionGraph& graph, const EdgeTracks& tracks, const FrameCo
                                -sn * change.x_m + c * change.z_m + shift.y()};
   s.node = graph.edges[e].to_node;
   const long long after = played + static_cast<long long>(count);
+  if (after >= horizon && !out.goal) {
+    out.cost += frame_cost.terminal_cost(e, costed, s);
+    if (out.cost >= bound) return false;
+  }
   if (after >= horizon) out.complete = true;
   out.priority = out.cost;
   if (!out.complete) {
-    out.priority += frame_cost.remaining_bound(static_cast<int>(horizon - after), s.last_root, s.arc_m);
+    out.priority += std::max(frame_cost.remaining_bound(static_cast<int>(horizon - after), s.last_root, s.arc_m),
+                             frame_cost.node_bound(s.node));
     if (out.priority >= bound) return false;
   }
   return true;

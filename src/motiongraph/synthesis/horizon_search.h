@@ -69,6 +69,23 @@ class FrameCost {
     (void)edge, (void)from;
     return 0.0;
   }
+  // The cost (>= 0) of what follows a walk that reaches the horizon (not the goal): it reached
+  // it in edge `edge`, whose first `costed` frames were costed, and leaves the character at
+  // `end`. A cost-to-go: what any continuation must still pay (0 by default: the search sees
+  // its horizon only). Added to the walk's cost, it is no lower bound of the frames within the
+  // horizon, so the remaining bounds stay true.
+  virtual double terminal_cost(int edge, size_t costed, const SearchState& end) const {
+    (void)edge, (void)costed, (void)end;
+    return 0.0;
+  }
+  // A lower bound of what any walk from node `node` still costs, the frames within the horizon
+  // and terminal_cost together (0 is always right); a partial walk's priority adds the larger of
+  // this and remaining_bound, so that walks whose cost-to-go is high are cut before they are
+  // played out.
+  virtual double node_bound(int node) const {
+    (void)node;
+    return 0.0;
+  }
 };
 
 // The loop of FrameCost::add_costs, for `count` frames whose costs frame_cost(p, &reached)
