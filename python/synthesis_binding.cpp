@@ -111,6 +111,7 @@ class PyController {
                    {"tag_penalty", set(settings.tag_penalty)},
                    {"transition_penalty", set(settings.transition_penalty)},
                    {"bridge_penalty", set(settings.bridge_penalty)},
+                   {"tag_lookahead", set(settings.tag_lookahead)},
                    {"max_expansions", set(settings.max_expansions)},
                    {"beam", set(settings.beam_width)},
                    {"time_budget", set(settings.time_budget_s)},
@@ -195,7 +196,8 @@ void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
              const py::kwargs& options) { return PyController(g, heading_deg, tag, at, options); },
           py::arg("heading_deg") = 0.0, py::arg("tag") = py::none(), py::arg("at") = std::array<double, 2>{0.0, 0.0},
           "A steering controller (the CLI's steer) starting at `at` (x, z) facing heading_deg (degrees clockwise "
-          "from north, -z): keywords horizon, commit, tag_penalty, transition_penalty, bridge_penalty, max_expansions, "
+          "from north, -z): keywords horizon, commit, tag_penalty, transition_penalty, bridge_penalty, tag_lookahead (0 "
+          "to 1: the weight of what is still to pay before the tag past the horizon), max_expansions, "
           "beam, time_budget, start_node, edit_max_turn (degrees per metre the heading edit may turn the motion "
           "toward the heading; 0: as the graph plays it), edit_turn_distance (m), edit_hold ('facing' or 'travel': "
           "what the heading edit holds on the heading), cleanup.");

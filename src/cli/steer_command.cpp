@@ -106,19 +106,30 @@ int run_steer(const SteerOptions& o) {
   // control that changes the tag, the first that carries it.
   nlohmann::json controls = nlohmann::json::array();
   std::string tag_before;
-  for (const ScriptedControl& c : script->controls) {
+  for (size_t i = 0; i < script->controls.size(); ++i) {
+    const ScriptedControl& c = script->controls[i];
     nlohmann::json tag_response = nullptr;
     const bool changes_tag = !c.tag.empty() && c.tag != tag_before;
     if (changes_tag) {
+      // Until the next control asks for another tag (or none): a tag reached after that was asked
+      // again.
+      double until_s = script->duration_s;
+      for (size_t j = i + 1; j < script->controls.size(); ++j) {
+        if (script->controls[j].tag != c.tag) {
+          until_s = script->controls[j].at_s;
+          break;
+        }
+      }
+      const int until = std::min(motion.frame_count, static_cast<int>(std::ceil(until_s * fps)));
       const TagMask mask = *context.tag_mask(c.tag);
-      for (int f = static_cast<int>(std::ceil(c.at_s * fps)); f < motion.frame_count; ++f) {
+      for (int f = static_cast<int>(std::ceil(c.at_s * fps)); f < until; ++f) {
         if ((played_tags[static_cast<size_t>(f)] & mask) != 0) {
           tag_response = f / fps - c.at_s;
           break;
         }
       }
     }
-    if (!c.tag.empty()) tag_before = c.tag;
+    tag_before = c.tag;
     const Vec2 want = bearing_direction(c.bearing_deg);
     nlohmann::json response = nullptr;
     for (int f = static_cast<int>(std::ceil(c.at_s * fps)); f < motion.frame_count; ++f) {
@@ -198,6 +209,11 @@ Command add_steer_command(CLI::App& app) {
                   "Cost of each bridge (a blend between motion types above the threshold) taken, on top of "
                   "--transition-penalty, unless it leads into the tag asked for, in frames facing 90 degrees off (0: as "
                   "any transition)")
+      ->capture_default_str();
+  sub->add_option("--tag-lookahead", o->settings.tag_lookahead,
+                  "Weight (0 to 1) of what a walk that reaches the horizon still pays before the tag asked for (its "
+                  "frames without it, the transitions and bridges on the way), so that a tag beyond the horizon is "
+                  "headed for (0: the horizon only)")
       ->capture_default_str();
   sub->add_option("--beam", o->settings.beam_width,
                   "Beam width of each decision's first pass (0: depth-first branch and bound alone)")

@@ -36,6 +36,20 @@ cat >"$work/controls.json" <<'JSON'
 JSON
 "$bin" steer "$work/g.mgraph" --script "$work/controls.json" -o "$work/steer.json" \
   --report "$work/steer-report.json" >/dev/null
+# A tag asked for a moment, then any, then again: each asking is answered on its own.
+cat >"$work/again.json" <<'JSON'
+{"duration_s": 9, "controls": [{"at_s": 0, "tag": "walk"}, {"at_s": 3, "tag": "run"}, {"at_s": 3.2, "tag": "any"},
+                               {"at_s": 6, "tag": "run"}]}
+JSON
+"$bin" steer "$work/g.mgraph" --script "$work/again.json" -o "$work/again.bvh" --report "$work/again-report.json" >/dev/null
+python3 - "$work/again-report.json" <<'PY'
+import json, sys
+c = json.load(open(sys.argv[1]))["controls"]
+# The first run: within its 0.2 s or not at all (not the run asked again at 6 s); "any" asks for
+# no tag; the run asked again is answered.
+assert c[1]["tag_response_s"] is None or c[1]["tag_response_s"] <= 0.2, c
+assert "tag_response_s" not in c[2] and c[3]["tag_response_s"] is not None and c[3]["tag_response_s"] <= 3.0, c
+PY
 
 python3 - "$work" <<'PY'
 import json, math, sys

@@ -82,8 +82,8 @@ TEST(Controller, SwitchesToTheTagAskedFor) {
 
 // Looking a third of a second ahead, no walk within the horizon reaches running from the walks
 // of subject 16, so every one is as far from it: priced by how far each leaves the character
-// from the tag (ControllerSettings::tag_beyond_horizon), the search heads for it and runs within
-// three seconds of being asked; seeing its horizon only, it runs later or not at all.
+// from the tag (ControllerSettings::tag_lookahead), the search heads for it and runs within
+// three seconds of being asked; seeing its horizon only (tag_lookahead 0), later or not at all.
 TEST(Controller, ATagBeyondTheHorizonIsReached) {
   const auto& s = test::subject16();
   auto walk = s.context().tag_mask("walk"), run = s.context().tag_mask("run");
@@ -91,7 +91,7 @@ TEST(Controller, ATagBeyondTheHorizonIsReached) {
   auto first_run_s = [&](bool beyond) -> double {
     ControllerSettings settings;
     settings.horizon_s = 0.3;
-    settings.tag_beyond_horizon = beyond;
+    if (!beyond) settings.tag_lookahead = 0.0;
     auto controller = Controller::create(s.context(), settings, {bearing_direction(0.0), *walk});
     EXPECT_TRUE(controller.ok());
     Motion motion = s.context().assembler.empty_motion();

@@ -124,7 +124,7 @@ TEST(HorizonSearch, MatchesBruteForceWithAGenerousBudget) {
 // bounded below by its node's distance.
 class TagToGoCost final : public FrameCost {
  public:
-  TagToGoCost(const EdgeTracks& tracks, const std::vector<int>& to_tag) : tracks_(tracks), to_tag_(to_tag) {}
+  TagToGoCost(const EdgeTracks& tracks, const std::vector<double>& to_tag) : tracks_(tracks), to_tag_(to_tag) {}
   double cost(int, const Vec2&, const Vec2& facing, double, TagMask tags, bool*) const override {
     return 0.2 * (1.0 - facing.x()) + ((tags & 2) != 0 ? 0.0 : 1.0);
   }
@@ -133,14 +133,14 @@ class TagToGoCost final : public FrameCost {
     for (size_t f = 0; f < rest.size(); ++f) {
       if ((rest[f] & 2) != 0) return static_cast<double>(f);
     }
-    const int d = to_tag_[static_cast<size_t>(end.node)];
-    return d < 0 ? 0.0 : static_cast<double>(rest.size() + static_cast<size_t>(d));
+    const double d = to_tag_[static_cast<size_t>(end.node)];
+    return d < 0.0 ? 0.0 : static_cast<double>(rest.size()) + d;
   }
-  double node_bound(int node) const override { return std::max(0, to_tag_[static_cast<size_t>(node)]); }
+  double node_bound(int node) const override { return std::max(0.0, to_tag_[static_cast<size_t>(node)]); }
 
  private:
   const EdgeTracks& tracks_;
-  const std::vector<int>& to_tag_;
+  const std::vector<double>& to_tag_;
 };
 
 TEST(HorizonSearch, ACostToGoAndItsBoundKeepTheSearchExact) {
@@ -150,7 +150,7 @@ TEST(HorizonSearch, ACostToGoAndItsBoundKeepTheSearchExact) {
     const MotionGraph graph = test::random_search_graph(rng, 9, 12, 5);
     EdgeTracks tracks = test::random_tracks(rng, graph);
     for (TagMask& t : tracks.tags) t = (rng() % 6 == 0) ? TagMask{2} : TagMask{0};
-    const std::vector<int> to_tag = frames_to_tag(graph, tracks, 2);
+    const std::vector<double> to_tag = cost_to_tag(graph, tracks, 2, 1.0);
     SearchState start;
     start.node = static_cast<int>(rng() % 9);
     const TagToGoCost cost(tracks, to_tag);

@@ -3,7 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <functional>
+#include <limits>
 #include <random>
+#include <string>
+
+#include <fmt/format.h>
 
 #include "synthesis/search_test_graphs.h"
 #include "synthesis/subject16_graph.h"
@@ -12,29 +17,37 @@ namespace mg {
 namespace {
 
 // The definition, solved by relaxing every edge until nothing changes (Bellman-Ford): from u by
-// e to v, the frames of e before its first tagged one, or all of e's frames and v's distance.
-std::vector<int> by_relaxation(const MotionGraph& graph, const EdgeTracks& tracks, TagMask tag) {
-  const int far = 1 << 30;
-  std::vector<int> d(static_cast<size_t>(graph.node_count()), far);
+// e to v, e's cost and per_frame for each of e's frames before its first tagged one, or for all
+// of them and v's cost.
+std::vector<double> by_relaxation(const MotionGraph& graph, const EdgeTracks& tracks, TagMask tag, double per_frame,
+                                  const std::function<double(int)>& edge_cost) {
+  const double far = std::numeric_limits<double>::infinity();
+  std::vector<double> d(static_cast<size_t>(graph.node_count()), far);
   for (bool changed = true; changed;) {
     changed = false;
     for (int e = 0; e < static_cast<int>(graph.edges.size()); ++e) {
       const auto tags = tracks.tags_of(e);
-      int through = far;
+      const double taken = edge_cost ? edge_cost(e) : 0.0;
+      double through = far;
       for (size_t f = 0; f < tags.size(); ++f) {
         if ((tags[f] & tag) != 0) {
-          through = static_cast<int>(f);
+          through = taken + per_frame * static_cast<double>(f);
           break;
         }
       }
-      const int v = d[static_cast<size_t>(graph.edges[e].to_node)];
-      if (through == far && v < far) through = static_cast<int>(tags.size()) + v;
-      int& u = d[static_cast<size_t>(graph.edges[e].from_node)];
-      if (through < u) u = through, changed = true;
+      const double v = d[static_cast<size_t>(graph.edges[e].to_node)];
+      if (through == far && v < far) through = taken + per_frame * static_cast<double>(tags.size()) + v;
+      double& u = d[static_cast<size_t>(graph.edges[e].from_node)];
+      if (through < u - 1e-12) u = through, changed = true;
     }
   }
-  for (int& x : d) x = x == far ? -1 : x;
+  for (double& x : d) x = x == far ? -1.0 : x;
   return d;
+}
+
+void expect_near(const std::vector<double>& a, const std::vector<double>& b, const std::string& what) {
+  ASSERT_EQ(a.size(), b.size()) << what;
+  for (size_t i = 0; i < a.size(); ++i) EXPECT_NEAR(a[i], b[i], 1e-9) << what << " node " << i;
 }
 
 TEST(TagDistance, EqualsTheDefinitionOnRandomGraphs) {
@@ -44,8 +57,13 @@ TEST(TagDistance, EqualsTheDefinitionOnRandomGraphs) {
     EdgeTracks tracks = test::random_tracks(rng, graph);
     // Sparse tags: most frames carry none of bit 2, some none at all.
     for (TagMask& t : tracks.tags) t = (rng() % 9 == 0) ? TagMask{4} : TagMask{0};
+    // Each transition costs 0.7, plus 3 for one in five (a bridge, say).
+    auto edge_cost = [&](int e) { return graph.edges[e].transition ? 0.7 + (e % 5 == 0 ? 3.0 : 0.0) : 0.0; };
     for (TagMask tag : {TagMask{1}, TagMask{2}, TagMask{4}, TagMask{8}}) {
-      EXPECT_EQ(frames_to_tag(graph, tracks, tag), by_relaxation(graph, tracks, tag)) << trial << " tag " << tag;
+      const std::string what = fmt::format("trial {} tag {}", trial, tag);
+      expect_near(cost_to_tag(graph, tracks, tag, 1.0), by_relaxation(graph, tracks, tag, 1.0, {}), what);
+      expect_near(cost_to_tag(graph, tracks, tag, 2.0, edge_cost), by_relaxation(graph, tracks, tag, 2.0, edge_cost),
+                  what + " with edge costs");
     }
   }
 }
@@ -55,12 +73,20 @@ TEST(TagDistance, OnSubject16ZeroWhereTheNodeCarriesTheTag) {
   const MotionGraph& graph = *context.graph;
   for (const char* name : {"walk", "run", "jump"}) {
     const TagMask tag = *context.tag_mask(name);
-    const std::vector<int> d = frames_to_tag(graph, context.tracks, tag);
-    EXPECT_EQ(d, by_relaxation(graph, context.tracks, tag)) << name;
+    const std::vector<double> d = cost_to_tag(graph, context.tracks, tag, 1.0);
+    expect_near(d, by_relaxation(graph, context.tracks, tag, 1.0, {}), name);
+    // Bridges priced as steering prices them: never cheaper, and the definition still.
+    auto bridges = [&](int e) {
+      const GraphEdge& edge = graph.edges[static_cast<size_t>(e)];
+      return edge.transition ? 1.0 + (unasked_bridge(context, edge, tag) ? 30.0 : 0.0) : 0.0;
+    };
+    const std::vector<double> priced = cost_to_tag(graph, context.tracks, tag, 2.0, bridges);
+    expect_near(priced, by_relaxation(graph, context.tracks, tag, 2.0, bridges), std::string(name) + " priced");
+    for (size_t n = 0; n < d.size(); ++n) EXPECT_GE(priced[n], 2.0 * d[n] - 1e-9) << name << " node " << n;
     // Strongly connected and the tag kept: every node reaches it; 0 exactly where a node's
     // out-edges start on a frame carrying it.
     for (int n = 0; n < graph.node_count(); ++n) {
-      ASSERT_GE(d[static_cast<size_t>(n)], 0) << name << " node " << n;
+      ASSERT_GE(d[static_cast<size_t>(n)], 0.0) << name << " node " << n;
       bool starts_tagged = false;
       for (int e = graph.edge_offsets[n]; e < graph.edge_offsets[n + 1]; ++e) {
         starts_tagged = starts_tagged || (context.tracks.tags_of(e).front() & tag) != 0;
@@ -70,8 +96,8 @@ TEST(TagDistance, OnSubject16ZeroWhereTheNodeCarriesTheTag) {
     EXPECT_GT(*std::max_element(d.begin(), d.end()), 0) << name;
   }
   // A tag no frame carries: no node reaches it.
-  const std::vector<int> none = frames_to_tag(graph, context.tracks, TagMask{1} << 63);
-  EXPECT_TRUE(std::all_of(none.begin(), none.end(), [](int x) { return x == -1; }));
+  const std::vector<double> none = cost_to_tag(graph, context.tracks, TagMask{1} << 63, 1.0);
+  EXPECT_TRUE(std::all_of(none.begin(), none.end(), [](double x) { return x == -1.0; }));
 }
 
 }  // namespace

@@ -18,6 +18,9 @@ Status ControllerSettings::validate() const {
   }
   if (!(transition_penalty >= 0.0)) return Error{"", 0, "controller: the transition penalty must be >= 0"};
   if (!(bridge_penalty >= 0.0)) return Error{"", 0, "controller: the bridge penalty must be >= 0"};
+  if (!(tag_lookahead >= 0.0 && tag_lookahead <= 1.0)) {
+    return Error{"", 0, "controller: the tag lookahead must be from 0 to 1"};
+  }
   if (!(tag_penalty >= 0.0) || !(time_budget_s >= 0.0) || max_expansions < 1 || beam_width < 0) {
     return Error{"", 0, "controller: penalties, budgets and the beam width must be >= 0 (expansions >= 1)"};
   }
@@ -36,44 +39,54 @@ double direction_bearing(const Vec2& d) {
 
 namespace {
 
+// A transition's cost to a search asked for `tag`: the transition penalty, and the bridge penalty
+// more for a bridge that does not lead into the tag.
+double steer_transition_cost(const SynthesisContext& context, const GraphEdge& edge, TagMask tag,
+                             double transition_penalty, double bridge_penalty) {
+  return unasked_bridge(context, edge, tag) ? transition_penalty + bridge_penalty : transition_penalty;
+}
+
 class SteerCost final : public FrameCost {
  public:
   SteerCost(const SynthesisContext& context, const ControlInput& input, double penalty, double transition_penalty,
-            double bridge_penalty, bool judge_travel, const std::vector<int>* frames_to_tag)
+            double bridge_penalty, bool judge_travel, double lookahead, const std::vector<double>* cost_to_tag)
       : context_(context),
         input_(input),
         penalty_(penalty),
         transition_penalty_(transition_penalty),
         bridge_penalty_(bridge_penalty),
         judge_travel_(judge_travel),
-        frames_to_tag_(frames_to_tag) {}
-  // Past the horizon: the frames still to play before the tag, the rest of the last edge's
-  // first (a node the tag cannot be reached from costs nothing more: none can reach it then).
-  double terminal_cost(int edge, size_t costed, const SearchState& end) const override {
-    if (frames_to_tag_ == nullptr || input_.tag == 0) return 0.0;
-    const auto rest = context_.tracks.tags_of(edge).subspan(costed);
-    for (size_t f = 0; f < rest.size(); ++f) {
-      if ((rest[f] & input_.tag) != 0) return penalty_ * static_cast<double>(f);
-    }
-    const int beyond = (*frames_to_tag_)[static_cast<size_t>(end.node)];
-    return beyond < 0 ? 0.0 : penalty_ * static_cast<double>(rest.size() + static_cast<size_t>(beyond));
-  }
-  // Any walk from a node plays its frames to the tag untagged, within the horizon or past it.
-  double node_bound(int node) const override {
-    if (frames_to_tag_ == nullptr || input_.tag == 0) return 0.0;
-    const int frames = (*frames_to_tag_)[static_cast<size_t>(node)];
-    return frames < 0 ? 0.0 : penalty_ * static_cast<double>(frames);
-  }
+        lookahead_(lookahead),
+        cost_to_tag_(cost_to_tag) {}
   // Holding the travel, the search judges the direction the edit holds: each frame's heading.
   bool uses_heading() const override { return judge_travel_; }
   // A bridge costs the bridge penalty more unless it lands in the motion type asked for.
   double transition_cost(const GraphEdge& edge, const SearchState&) const override {
-    return unasked_bridge(context_, edge, input_.tag) ? transition_penalty_ + bridge_penalty_ : transition_penalty_;
+    return steer_transition_cost(context_, edge, input_.tag, transition_penalty_, bridge_penalty_);
   }
   double cost(int, const Vec2&, const Vec2& facing, double, TagMask tags, bool*) const override {
     double c = 1.0 - facing.dot(input_.direction);
     if (input_.tag != 0 && (tags & input_.tag) == 0) c += penalty_;
     return c;
+  }
+  // Past the horizon: what is still to pay before the tag, the rest of the last edge's frames
+  // first (its transition cost was paid as it started), weighted. A node the tag cannot be
+  // reached from costs nothing more: in a strongly connected graph none reaches it then.
+  double terminal_cost(int edge, size_t costed, const SearchState& end) const override {
+    if (cost_to_tag_ == nullptr || input_.tag == 0) return 0.0;
+    const auto rest = context_.tracks.tags_of(edge).subspan(costed);
+    for (size_t f = 0; f < rest.size(); ++f) {
+      if ((rest[f] & input_.tag) != 0) return lookahead_ * penalty_ * static_cast<double>(f);
+    }
+    const double beyond = (*cost_to_tag_)[static_cast<size_t>(end.node)];
+    return beyond < 0.0 ? 0.0 : lookahead_ * (penalty_ * static_cast<double>(rest.size()) + beyond);
+  }
+  // Any walk from a node pays its cost to the tag, within the horizon or past it (weighted by at
+  // most 1, a lower bound of both).
+  double node_bound(int node) const override {
+    if (cost_to_tag_ == nullptr || input_.tag == 0) return 0.0;
+    const double beyond = (*cost_to_tag_)[static_cast<size_t>(node)];
+    return beyond < 0.0 ? 0.0 : lookahead_ * beyond;
   }
 
  private:
@@ -83,7 +96,8 @@ class SteerCost final : public FrameCost {
   double transition_penalty_;
   double bridge_penalty_;
   bool judge_travel_;
-  const std::vector<int>* frames_to_tag_;  // for input_.tag; null: the horizon only
+  double lookahead_;
+  const std::vector<double>* cost_to_tag_;  // for input_.tag; null: the horizon only
 };
 
 }  // namespace
@@ -134,18 +148,25 @@ ControllerDecision Controller::step(Motion& out) {
   search.max_expansions = settings_.max_expansions;
   search.time_budget_s = settings_.time_budget_s;
   search.beam_width = settings_.beam_width;
-  const std::vector<int>* to_tag = nullptr;
-  if (settings_.tag_beyond_horizon && input_.tag != 0) {
-    auto known = std::find_if(frames_to_tag_.begin(), frames_to_tag_.end(),
+  const std::vector<double>* to_tag = nullptr;
+  if (settings_.tag_lookahead > 0.0 && input_.tag != 0) {
+    auto known = std::find_if(cost_to_tag_.begin(), cost_to_tag_.end(),
                               [&](const auto& entry) { return entry.first == input_.tag; });
-    if (known == frames_to_tag_.end()) {
-      frames_to_tag_.emplace_back(input_.tag, frames_to_tag(graph, context_->tracks, input_.tag));
-      known = frames_to_tag_.end() - 1;
+    if (known == cost_to_tag_.end()) {
+      const TagMask tag = input_.tag;
+      auto edge_cost = [&](int e) {
+        const GraphEdge& edge = graph.edges[static_cast<size_t>(e)];
+        return edge.transition ? steer_transition_cost(*context_, edge, tag, settings_.transition_penalty,
+                                                       settings_.bridge_penalty)
+                               : 0.0;
+      };
+      cost_to_tag_.emplace_back(tag, cost_to_tag(graph, context_->tracks, tag, settings_.tag_penalty, edge_cost));
+      known = cost_to_tag_.end() - 1;
     }
     to_tag = &known->second;
   }
   const SteerCost cost(*context_, input_, settings_.tag_penalty, settings_.transition_penalty, settings_.bridge_penalty,
-                       settings_.heading_edit.hold_travel, to_tag);
+                       settings_.heading_edit.hold_travel, settings_.tag_lookahead, to_tag);
   const HorizonResult best = horizon_search(graph, context_->tracks, state_, cost, search);
   ControllerDecision decision;
   decision.expansions = best.expansions;

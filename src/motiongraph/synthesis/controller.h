@@ -4,8 +4,8 @@
 // over about horizon_s seconds minimising, per frame, (1 - cos) of the angle between the
 // character's facing (holding the travel, HeadingEditSettings::hold_travel: its heading,
 // the direction it walks, travel_heading.h) and the desired direction, plus tag_penalty for a frame without the
-// tag, and for a walk that reaches the horizon tag_penalty for each frame any walk from where it
-// ends must still play before the tag (tag_distance.h: asked to run far from any way into
+// tag, and for a walk that reaches the horizon tag_lookahead times what any walk from where it
+// ends must still pay before the tag (tag_distance.h: asked to run far from any way into
 // running, every walk within a second is as far, and the character would walk on); it then
 // commits whole edges for at least commit_s seconds and returns their frames.
 // The expansion budget (and an optional time budget) bounds every decision, and the first
@@ -39,11 +39,12 @@ struct ControllerSettings {
   // its motion type rather than blend visibly into another, and asked for one it goes there
   // directly, not by way of a third (0: bridges cost as any transition).
   double bridge_penalty = 30.0;
-  // Asked for a tag, a walk that reaches the horizon costs tag_penalty for each frame any walk
-  // from where it ends must still play before the tag (tag_distance.h): the search heads for a
-  // tag beyond its horizon instead of finding every walk within it as far (false: the horizon
-  // only).
-  bool tag_beyond_horizon = true;
+  // Asked for a tag, a walk that reaches the horizon also costs tag_lookahead times what any walk
+  // from where it ends must still pay before the tag (tag_distance.h: tag_penalty per frame, the
+  // transition and bridge penalties per edge): the search heads for a tag beyond its horizon
+  // instead of finding every walk within it as far. Below 1 the facing counts for more on the
+  // way (0: the horizon only; at most 1).
+  double tag_lookahead = 0.5;
   long long max_expansions = 3000;
   int beam_width = 8;                // HorizonSettings::beam_width (0: none)
   // Per decision; 0 (the default): only the expansion budget, so that the same inputs give the
@@ -98,8 +99,8 @@ class Controller {
   HeadingEdit edit_;
   ControlInput input_;
   SearchState state_;
-  // Per tag asked for so far, each node's frames to it (tag_distance.h).
-  std::vector<std::pair<TagMask, std::vector<int>>> frames_to_tag_;
+  // Per tag asked for so far, each node's cost to it (tag_distance.h), weighted by tag_lookahead.
+  std::vector<std::pair<TagMask, std::vector<double>>> cost_to_tag_;
 };
 
 // Bearing in degrees (0 north = -z, 90 east = +x) as a unit floor direction, and back.

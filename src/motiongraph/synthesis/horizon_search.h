@@ -72,8 +72,8 @@ class FrameCost {
   // The cost (>= 0) of what follows a walk that reaches the horizon (not the goal): it reached
   // it in edge `edge`, whose first `costed` frames were costed, and leaves the character at
   // `end`. A cost-to-go: what any continuation must still pay (0 by default: the search sees
-  // its horizon only). Added to the walk's cost, it is no lower bound of the frames within the
-  // horizon, so the remaining bounds stay true.
+  // its horizon only). It is added to complete walks only; the bounds of partial walks
+  // (remaining_bound, node_bound) must stay below it plus the frames' costs.
   virtual double terminal_cost(int edge, size_t costed, const SearchState& end) const {
     (void)edge, (void)costed, (void)end;
     return 0.0;

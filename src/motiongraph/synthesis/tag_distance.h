@@ -1,23 +1,28 @@
-// How far a motion tag lies from each node of a graph, in frames: the fewest frames any walk from
-// the node plays before it plays a frame carrying the tag (0 where the node's own first frame
-// carries it). A search that sees only its horizon finds every walk within it as far from a tag
-// it cannot reach in time: asked to run, a character walking far from any way into running
-// would walk on. Priced per frame as the frames within the horizon are, this distance is what
-// any continuation beyond the horizon must still pay, a cost-to-go (controller.h).
+// How far a motion tag lies from each node of a graph, priced as a search prices it: the least
+// cost any walk from the node pays before it plays a frame carrying the tag, `per_frame` for each
+// frame it plays without it and edge_cost(e) for each edge e it takes on the way (a transition's
+// penalty, a bridge's into another motion type; charged as the edge starts). A search that sees
+// only its horizon finds every walk within it as far from a tag it cannot reach in time: asked
+// to run, a character walking far from any way into running would walk on. This is what any
+// continuation beyond the horizon must still pay, a cost-to-go (controller.h).
 //
 // Each edge's frames are its track's (EdgeTracks::tags_of: a transition's blended frames carry
-// both sides' tags); from node u by edge e to node v, the distance is e's frames before its
-// first tagged one, or all of e's frames and then v's distance. Dijkstra over the reversed edges.
+// the tags of the side that weighs more); from node u by edge e to node v the cost is
+// edge_cost(e) plus per_frame times e's frames before its first tagged one, or its frames all
+// and v's cost. Dijkstra over the reversed edges. In a strongly connected graph (a pruned one)
+// a tag is reached from every node or from none.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "motiongraph/synthesis/edge_tracks.h"
 
 namespace mg {
 
-// Per node of `graph`, the frames to the first frame carrying any tag of `tag`; -1 where no walk
-// reaches one (every node, in a strongly connected graph without the tag).
-std::vector<int> frames_to_tag(const MotionGraph& graph, const EdgeTracks& tracks, TagMask tag);
+// Per node of `graph`, the cost to the first frame carrying any tag of `tag`; -1 where no walk
+// reaches one. edge_cost(e) >= 0 (empty: 0 for every edge).
+std::vector<double> cost_to_tag(const MotionGraph& graph, const EdgeTracks& tracks, TagMask tag, double per_frame,
+                                const std::function<double(int edge)>& edge_cost = {});
 
 }  // namespace mg
