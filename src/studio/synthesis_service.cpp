@@ -118,8 +118,10 @@ Result<bool> SynthesisService::clean_up(bool asked, std::span<const ContactMask>
 }
 
 Result<int> SynthesisService::create_session(const ControlInput& input, bool cleanup) {
-  // The controller's defaults: an expansion budget (well under a millisecond a decision) and
-  // no wall-clock budget, so that a loaded machine or a slow build steers the same way.
+  // The controller's defaults: an expansion budget (well under a millisecond a decision, but
+  // for the first asking for each tag, which prices the way to it: a few milliseconds on an
+  // 8-subject graph) and no wall-clock budget, so that a loaded machine or a slow build steers
+  // the same way.
   auto controller = Controller::create(context(), ControllerSettings{}, input);
   if (!controller) return controller.error();
   auto session = std::make_shared<Session>();
