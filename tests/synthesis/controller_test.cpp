@@ -113,6 +113,35 @@ TEST(Controller, ATagBeyondTheHorizonIsReached) {
   EXPECT_GT(horizon_only, beyond);
 }
 
+// The costs to a tag are the context's: a second controller asking for the same tag with the
+// same penalties finds them made, other penalties make their own.
+TEST(Controller, TheWayToATagIsPricedOncePerContext) {
+  const auto& s = test::subject16();
+  SynthesisContext context = s.context();  // a copy: its own cache, not the other tests'
+  context.tag_costs = std::make_shared<TagCostCache>();
+  auto run = context.tag_mask("run");
+  ASSERT_TRUE(run.ok());
+  auto decide = [&](const ControllerSettings& settings) {
+    auto controller = Controller::create(context, settings, {bearing_direction(0.0), *run});
+    ASSERT_TRUE(controller.ok());
+    Motion motion = context.assembler.empty_motion();
+    controller->step(motion);
+  };
+  EXPECT_EQ(context.tag_costs->size(), 0u);
+  decide({});
+  EXPECT_EQ(context.tag_costs->size(), 1u);
+  decide({});
+  EXPECT_EQ(context.tag_costs->size(), 1u);
+  ControllerSettings other;
+  other.bridge_penalty = 5.0;
+  decide(other);
+  EXPECT_EQ(context.tag_costs->size(), 2u);
+  ControllerSettings none;
+  none.tag_lookahead = 0.0;
+  decide(none);
+  EXPECT_EQ(context.tag_costs->size(), 2u);
+}
+
 // Asked for no motion type, the character starts among the walking (the type most nodes carry;
 // subject 16's node 0 is a jump, whose only ways out are bridges) and steers there: every heading
 // reached, no bridge taken. Started on node 0 with bridges priced as any transition, the same

@@ -149,21 +149,18 @@ ControllerDecision Controller::step(Motion& out) {
   search.time_budget_s = settings_.time_budget_s;
   search.beam_width = settings_.beam_width;
   const std::vector<double>* to_tag = nullptr;
-  if (settings_.tag_lookahead > 0.0 && input_.tag != 0) {
-    auto known = std::find_if(cost_to_tag_.begin(), cost_to_tag_.end(),
-                              [&](const auto& entry) { return entry.first == input_.tag; });
-    if (known == cost_to_tag_.end()) {
-      const TagMask tag = input_.tag;
+  if (settings_.tag_lookahead > 0.0 && input_.tag != 0 && context_->tag_costs) {
+    const TagMask tag = input_.tag;
+    const TagCostCache::Key key{tag, settings_.tag_penalty, settings_.transition_penalty, settings_.bridge_penalty};
+    to_tag = &context_->tag_costs->get(key, [&] {
       auto edge_cost = [&](int e) {
         const GraphEdge& edge = graph.edges[static_cast<size_t>(e)];
         return edge.transition ? steer_transition_cost(*context_, edge, tag, settings_.transition_penalty,
                                                        settings_.bridge_penalty)
                                : 0.0;
       };
-      cost_to_tag_.emplace_back(tag, cost_to_tag(graph, context_->tracks, tag, settings_.tag_penalty, edge_cost));
-      known = cost_to_tag_.end() - 1;
-    }
-    to_tag = &known->second;
+      return cost_to_tag(graph, context_->tracks, tag, settings_.tag_penalty, edge_cost);
+    });
   }
   const SteerCost cost(*context_, input_, settings_.tag_penalty, settings_.transition_penalty, settings_.bridge_penalty,
                        settings_.heading_edit.hold_travel, settings_.tag_lookahead, to_tag);

@@ -99,8 +99,6 @@ class Controller {
   HeadingEdit edit_;
   ControlInput input_;
   SearchState state_;
-  // Per tag asked for so far, each node's cost to it (tag_distance.h), weighted by tag_lookahead.
-  std::vector<std::pair<TagMask, std::vector<double>>> cost_to_tag_;
 };
 
 // Bearing in degrees (0 north = -z, 90 east = +x) as a unit floor direction, and back.

@@ -16,7 +16,8 @@ Result<SynthesisContext> make_synthesis_context(const MotionDatabase& db, const 
   if (target_skeleton < 0) target_skeleton = db.clips.front().skeleton;
   auto assembler = MotionAssembler::create(db, graph, target_skeleton);
   if (!assembler) return assembler.error();
-  SynthesisContext context{&db, &graph, std::move(*assembler), db.frame_tags(), {}, {}, {}, {}};
+  SynthesisContext context{&db, &graph, std::move(*assembler), db.frame_tags(), {}, {}, {}, {},
+                           std::make_shared<TagCostCache>()};
   // The travel axes once (the hips' axis falls back on the target's), the hips' of the target only.
   const Vec3 travel_axis = learn_travel_axes(db)[target_skeleton];
   const Vec3 forward_axis = learn_forward_axis(db, target_skeleton, travel_axis);

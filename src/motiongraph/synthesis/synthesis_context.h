@@ -3,6 +3,9 @@
 // foot contacts of every database frame (for the foot clean-up, synthesis/foot_cleanup.h).
 #pragma once
 
+#include <deque>
+#include <memory>
+#include <mutex>
 #include <span>
 #include <string>
 #include <vector>
@@ -12,6 +15,36 @@
 #include "motiongraph/synthesis/walk.h"
 
 namespace mg {
+
+// Each tag's costs as steering prices the way to it (tag_distance.h), computed once per tag and
+// penalties for every controller of a context (a studio's sessions, Python's controllers).
+class TagCostCache {
+ public:
+  struct Key {
+    TagMask tag = 0;
+    double per_frame = 0.0, transition_penalty = 0.0, bridge_penalty = 0.0;
+    bool operator==(const Key&) const = default;
+  };
+  // The costs of `key`, made by `make` the first time (under the lock: concurrent sessions asking
+  // for the same tag compute it once). The reference stays valid as long as the cache.
+  template <class Make>
+  const std::vector<double>& get(const Key& key, Make&& make) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& [k, costs] : entries_) {
+      if (k == key) return costs;
+    }
+    entries_.emplace_back(key, make());
+    return entries_.back().second;
+  }
+  size_t size() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return entries_.size();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::deque<std::pair<Key, std::vector<double>>> entries_;
+};
 
 struct SynthesisContext {
   const MotionDatabase* db = nullptr;
@@ -24,6 +57,8 @@ struct SynthesisContext {
   FootJoints feet;
   std::vector<ContactMask> frame_contacts;
   std::string feet_error;
+  // Shared by copies of the context (they hold the same graph).
+  std::shared_ptr<TagCostCache> tag_costs = std::make_shared<TagCostCache>();
 
   // The placement that puts node `node`'s frame with its root at `at` facing `direction`
   // (unit, on the floor).
