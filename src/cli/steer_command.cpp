@@ -143,6 +143,7 @@ int run_steer(const SteerOptions& o) {
     if (changes_tag) control["tag_response_s"] = tag_response;
     controls.push_back(std::move(control));
   }
+  const HeadingEditStats& edit_stats = controller->heading_edit_stats();
   const nlohmann::json report = {{"frames", motion.frame_count},
                                  {"fps", fps},
                                  {"transitions", transitions},
@@ -159,12 +160,11 @@ int run_steer(const SteerOptions& o) {
                                   {{"max_turn_deg_per_m", o.settings.heading_edit.max_turn_deg_per_m},
                                    {"turn_distance_m", o.settings.heading_edit.turn_distance_m},
                                    {"hold", o.settings.heading_edit.hold_travel ? "travel" : "facing"},
-                                   {"travel_share", controller->heading_edit_stats().frames > 0
-                                                        ? controller->heading_edit_stats().travel_share /
-                                                              static_cast<double>(controller->heading_edit_stats().frames)
+                                   {"travel_share", edit_stats.frames > 0
+                                                        ? edit_stats.travel_share / static_cast<double>(edit_stats.frames)
                                                         : 0.0},
-                                   {"added_turn_deg", controller->heading_edit_stats().added_turn_rad * 180.0 / std::numbers::pi},
-                                   {"max_rate_deg_per_m", controller->heading_edit_stats().max_rate_deg_per_m}}},
+                                   {"added_turn_deg", edit_stats.added_turn_rad * 180.0 / std::numbers::pi},
+                                   {"max_rate_deg_per_m", edit_stats.max_rate_deg_per_m}}},
                                  {"cleanup", cleanup_report(context, run, cleanup)},
                                  {"cleanup_ms_p99", cleanup ? nlohmann::json(1e3 * percentile(cleanup_seconds, 0.99))
                                                             : nlohmann::json(nullptr)},

@@ -111,8 +111,9 @@ assert c[2]["tag_response_s"] is not None and 0 <= c[2]["tag_response_s"] <= 3.0
 _, sr = roots("steer.json")
 def speed(a, b):
     i, j = int(a * s["fps"]), min(len(sr) - 1, int(b * s["fps"]))
+    assert j > i, (a, b)
     return math.hypot(sr[j][0] - sr[i][0], sr[j][1] - sr[i][1]) / ((j - i) / s["fps"])
-ran = 6 + c[2]["tag_response_s"]
+ran = min(6 + c[2]["tag_response_s"], 8.4)  # half a second of it within the 9 s script
 assert speed(ran, ran + 0.5) > 1.5 * speed(1, 3), (speed(ran, ran + 0.5), speed(1, 3))
 # Every report counts its transitions (blends) and their rate; the figure 8 plays captured motion
 # between blends: at most 1.5 transitions a second on the bundled data.
