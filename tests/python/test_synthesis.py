@@ -98,6 +98,22 @@ def test_steering_equals_the_cli(cli, graph_file, graph, tmp_path):
     np.testing.assert_array_equal(motion.contacts[:total], np.array(want["contacts"]["planted"], dtype=bool))
 
 
+def test_tag_lookahead_reaches_the_controller(cli, graph_file, graph, tmp_path):
+    """tag_lookahead is the CLI's --tag-lookahead: the same motion at 0 (the horizon only) from
+    both; out of 0..1 it is refused."""
+    controls = [{"at_s": 0, "heading_deg": 0, "tag": "walk"}, {"at_s": 1, "heading_deg": 0, "tag": "run"}]
+    (tmp_path / "controls.json").write_text(json.dumps({"duration_s": 4, "controls": controls}))
+    cli("steer", graph_file, "--script", tmp_path / "controls.json", "--tag-lookahead", 0, "-o", tmp_path / "cli.json")
+    want = np.asarray(read_json(tmp_path / "cli.json")["positions"])
+    controller = graph.controller(heading_deg=0, tag="walk", tag_lookahead=0)
+    while len(controller.motion) < len(want):
+        tag = "walk" if len(controller.motion) < graph.fps else "run"
+        controller.step(0, tag)
+    assert np.max(np.abs(controller.motion.positions[:len(want)] - want)) <= 1e-6
+    with pytest.raises(mg.Error, match="lookahead"):
+        graph.controller(tag_lookahead=1.5)
+
+
 def test_steering_goes_where_it_is_told(graph):
     controller = graph.controller(heading_deg=90, tag="walk")
     while len(controller.motion) < 5 * graph.fps:
