@@ -79,11 +79,17 @@ const Fixture& fixture() {
   return x;
 }
 
-TEST(ThresholdChoice, ChoosesTheLowestThresholdTriedThatReachesTheTarget) {
-  const Fixture& x = fixture();
+// What the fixture's tests ask: half of each motion type's frames, under a 30 cm ceiling.
+ThresholdChoiceSettings half_under_30cm() {
   ThresholdChoiceSettings choice;
   choice.coverage = 0.5;
   choice.max_rms_cm = 30.0;
+  return choice;
+}
+
+TEST(ThresholdChoice, ChoosesTheLowestThresholdTriedThatReachesTheTarget) {
+  const Fixture& x = fixture();
+  const ThresholdChoiceSettings choice = half_under_30cm();
   GraphFromCandidatesSettings settings = x.settings;
   settings.transitions.per_tag_thresholds = false;  // one threshold for all motion types
   auto chosen = choose_threshold(x.db, x.features, x.search, settings, choice);
@@ -131,9 +137,7 @@ TEST(ThresholdChoice, EachMotionTypeGetsTheLowestThresholdTriedThatReachesItsTar
   // while running's rises, and no point tried that reaches every target lies at or below the
   // chosen one in every type.
   const Fixture& x = fixture();
-  ThresholdChoiceSettings choice;
-  choice.coverage = 0.5;
-  choice.max_rms_cm = 30.0;
+  const ThresholdChoiceSettings choice = half_under_30cm();
   auto chosen = choose_threshold(x.db, x.features, x.search, x.settings, choice);
   ASSERT_TRUE(chosen) << chosen.error().to_string();
   ASSERT_TRUE(chosen->reached);
@@ -190,9 +194,7 @@ TEST(ThresholdChoice, FramesOfNoMotionTypeAreAClassOfTheirOwn) {
   EXPECT_EQ(coverage_tags(db, settings), (std::vector<int>{0, kUntaggedClass}));
   EXPECT_EQ(coverage_tags(x.db, x.settings), (std::vector<int>{0, 1}));  // every frame tagged
   EXPECT_EQ(motion_class_name(db, kUntaggedClass), "untagged");
-  ThresholdChoiceSettings choice;
-  choice.coverage = 0.5;
-  choice.max_rms_cm = 30.0;
+  const ThresholdChoiceSettings choice = half_under_30cm();
   auto chosen = choose_threshold(db, x.features, x.search, settings, choice);
   ASSERT_TRUE(chosen) << chosen.error().to_string();
   ASSERT_TRUE(chosen->reached);
@@ -239,9 +241,7 @@ TEST(ThresholdChoice, ATypeTheCeilingGivesNothingTakesTheGlobalThreshold) {
   db.tag_ranges.push_back(TagRange{2, end - 6, 6});
   GraphFromCandidatesSettings settings = x.settings;
   settings.connected_tags = 0b111;
-  ThresholdChoiceSettings choice;
-  choice.coverage = 0.5;
-  choice.max_rms_cm = 30.0;
+  const ThresholdChoiceSettings choice = half_under_30cm();
   auto chosen = choose_threshold(db, x.features, x.search, settings, choice);
   ASSERT_TRUE(chosen) << chosen.error().to_string();
   ASSERT_TRUE(chosen->reached);

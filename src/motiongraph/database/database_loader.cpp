@@ -665,14 +665,13 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
   }
   if (notes != nullptr) {
     notes->standing_speed_mps = settings.travel_tags.min_speed_mps;
-    for (const DescribedClip& d : described) {
-      for (const std::string& tag : d.tags) {
-        if (std::find(db.tag_names.begin(), db.tag_names.end(), tag) != db.tag_names.end()) continue;
-        auto it = std::find_if(notes->vanished_tags.begin(), notes->vanished_tags.end(),
-                               [&](const auto& v) { return v.tag == tag; });
-        if (it == notes->vanished_tags.end()) it = notes->vanished_tags.insert(it, {tag, {}});
-        it->clips.push_back(db.clips[d.clip].name);
-      }
+    // A tag no frame keeps: every clip that asked for it is among the standing ones.
+    for (const auto& t : notes->standing_tags) {
+      if (std::find(db.tag_names.begin(), db.tag_names.end(), t.tag) != db.tag_names.end()) continue;
+      auto it = std::find_if(notes->vanished_tags.begin(), notes->vanished_tags.end(),
+                             [&](const auto& v) { return v.tag == t.tag; });
+      if (it == notes->vanished_tags.end()) it = notes->vanished_tags.insert(it, {t.tag, {}});
+      it->clips.push_back(t.clip);
     }
   }
 
