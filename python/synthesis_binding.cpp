@@ -64,6 +64,7 @@ PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<d
                 {{"horizon", set(settings.horizon_s)},
                  {"commit", set(settings.commit_s)},
                  {"tag_penalty", set(settings.tag_penalty_m2)},
+                 {"tag_lookahead", set(settings.tag_lookahead)},
                  {"max_expansions", set(settings.max_expansions)},
                  {"beam", set(settings.beam_width)},
                  {"min_speed", set(settings.min_speed_mps)},
@@ -185,7 +186,7 @@ void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
            py::arg("segments") = std::vector<std::string>{}, py::arg("file") = py::none(),
            "Motion following a path on the floor (the CLI's path): exactly one of points ([(x, z), ...] metres), "
            "shape ('line:20', 'circle:5', 'figure8:4', 's-curve:100', 'square:10', 'zigzag:6') or file "
-           "(PATH.json); segments ['TAG:FROM-TO', ...]; keywords horizon, commit, tag_penalty, max_expansions, "
+           "(PATH.json); segments ['TAG:FROM-TO', ...]; keywords horizon, commit, tag_penalty, tag_lookahead (0 to 1), max_expansions, "
            "beam, min_speed, transition_penalty, bridge_penalty, behind_penalty, progress_retries, retry_deviation (m), "
            "retry_horizon (s), "
            "start_node, path_edit (bend the motion onto the path, default True), edit_max_turn (degrees per "

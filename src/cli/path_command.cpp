@@ -84,6 +84,11 @@ Command add_path_command(CLI::App& app) {
   sub->add_option("--tag-penalty", o->settings.tag_penalty_m2,
                   "Cost (squared metres) of a frame without the tag its segment asks for")
       ->capture_default_str();
+  sub->add_option("--tag-lookahead", o->settings.tag_lookahead,
+                  "Weight (0 to 1) of what a walk that reaches the horizon inside a segment still pays before its tag "
+                  "(its frames without it, the transitions and bridges on the way), so that a motion type no walk "
+                  "within the horizon reaches is headed for (0: the horizon only)")
+      ->capture_default_str();
   sub->add_option("--max-expansions", o->settings.max_expansions, "Search budget per search (edges evaluated)")
       ->capture_default_str();
   sub->add_option("--beam", o->settings.beam_width,

@@ -57,6 +57,17 @@ def test_path_from_points_and_options(cli, graph_file, graph, tmp_path):
     assert_positions_equal(graph.path(points=points, path_edit=False, **kwargs), read_json(tmp_path / "plain.json"))
 
 
+def test_tag_lookahead_reaches_the_path(cli, graph_file, graph, tmp_path):
+    """tag_lookahead is the path's --tag-lookahead: at 0 (each search sees its horizon only) the
+    same motion from both, another than the default's."""
+    cli("path", graph_file, *FIGURE8, "--tag-lookahead", 0, "-o", tmp_path / "cli.json")
+    want = read_json(tmp_path / "cli.json")
+    blind = graph.path(shape="figure8:4", segments=["walk:0-25", "run:25-51"], tag_lookahead=0)
+    assert_positions_equal(blind, want)
+    default = graph.path(shape="figure8:4", segments=["walk:0-25", "run:25-51"])
+    assert len(default) != len(blind) or np.max(np.abs(default.positions - blind.positions)) > 1e-3
+
+
 def test_walk_equals_the_cli(cli, graph_file, graph, tmp_path):
     cli("walk", graph_file, "--from", 0, "--to", 7, "--cost", "hybrid", "--seed", 3, "--min-frames", 60,
         "-o", tmp_path / "cli.json", "--report", tmp_path / "r.json")
@@ -160,6 +171,7 @@ def test_heading_edit_options_reach_the_controller(cli, graph_file, graph, tmp_p
     (["--shape", "line:5", "--segment", "walk0-5"], lambda g: g.path(shape="line:5", segments=["walk0-5"])),
     (["--shape", "wiggle:5"], lambda g: g.path(shape="wiggle:5")),
     (["--shape", "line:5", "--horizon", "-1"], lambda g: g.path(shape="line:5", horizon=-1)),
+    (["--shape", "line:5", "--tag-lookahead", "1.5"], lambda g: g.path(shape="line:5", tag_lookahead=1.5)),
     ([], lambda g: g.path()),
 ])
 def test_path_errors_raise_the_cli_message(cli, graph_file, graph, tmp_path, cli_args, call):

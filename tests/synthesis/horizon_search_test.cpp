@@ -128,7 +128,7 @@ class TagToGoCost final : public FrameCost {
   double cost(int, const Vec2&, const Vec2& facing, double, TagMask tags, bool*) const override {
     return 0.2 * (1.0 - facing.x()) + ((tags & 2) != 0 ? 0.0 : 1.0);
   }
-  double terminal_cost(int edge, size_t costed, const SearchState& end) const override {
+  double terminal_cost(int edge, size_t costed, double, const SearchState& end) const override {
     const auto rest = tracks_.tags_of(edge).subspan(costed);
     for (size_t f = 0; f < rest.size(); ++f) {
       if ((rest[f] & 2) != 0) return static_cast<double>(f);
@@ -136,7 +136,9 @@ class TagToGoCost final : public FrameCost {
     const double d = to_tag_[static_cast<size_t>(end.node)];
     return d < 0.0 ? 0.0 : static_cast<double>(rest.size()) + d;
   }
-  double node_bound(int node) const override { return std::max(0.0, to_tag_[static_cast<size_t>(node)]); }
+  double node_bound(const SearchState& state, int) const override {
+    return std::max(0.0, to_tag_[static_cast<size_t>(state.node)]);
+  }
 
  private:
   const EdgeTracks& tracks_;
@@ -169,7 +171,7 @@ TEST(HorizonSearch, ACostToGoAndItsBoundKeepTheSearchExact) {
         const size_t costed = static_cast<size_t>(settings.horizon_frames - s.frames);
         SearchState end;
         end.node = next.node;
-        best = std::min(best, next.cost + cost.terminal_cost(e, costed, end));
+        best = std::min(best, next.cost + cost.terminal_cost(e, costed, 0.0, end));
       }
     };
     go(played_from(start));

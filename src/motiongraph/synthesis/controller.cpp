@@ -39,13 +39,6 @@ double direction_bearing(const Vec2& d) {
 
 namespace {
 
-// A transition's cost to a search asked for `tag`: the transition penalty, and the bridge penalty
-// more for a bridge that does not lead into the tag.
-double steer_transition_cost(const SynthesisContext& context, const GraphEdge& edge, TagMask tag,
-                             double transition_penalty, double bridge_penalty) {
-  return unasked_bridge(context, edge, tag) ? transition_penalty + bridge_penalty : transition_penalty;
-}
-
 class SteerCost final : public FrameCost {
  public:
   SteerCost(const SynthesisContext& context, const ControlInput& input, double penalty, double transition_penalty,
@@ -62,7 +55,7 @@ class SteerCost final : public FrameCost {
   bool uses_heading() const override { return judge_travel_; }
   // A bridge costs the bridge penalty more unless it lands in the motion type asked for.
   double transition_cost(const GraphEdge& edge, const SearchState&) const override {
-    return steer_transition_cost(context_, edge, input_.tag, transition_penalty_, bridge_penalty_);
+    return unasked_bridge(context_, edge, input_.tag) ? transition_penalty_ + bridge_penalty_ : transition_penalty_;
   }
   double cost(int, const Vec2&, const Vec2& facing, double, TagMask tags, bool*) const override {
     double c = 1.0 - facing.dot(input_.direction);
@@ -72,7 +65,7 @@ class SteerCost final : public FrameCost {
   // Past the horizon: what is still to pay before the tag, the rest of the last edge's frames
   // first (its transition cost was paid as it started), weighted. A node the tag cannot be
   // reached from costs nothing more: in a strongly connected graph none reaches it then.
-  double terminal_cost(int edge, size_t costed, const SearchState& end) const override {
+  double terminal_cost(int edge, size_t costed, double, const SearchState& end) const override {
     if (cost_to_tag_ == nullptr || input_.tag == 0) return 0.0;
     const auto rest = context_.tracks.tags_of(edge).subspan(costed);
     for (size_t f = 0; f < rest.size(); ++f) {
@@ -83,9 +76,9 @@ class SteerCost final : public FrameCost {
   }
   // Any walk from a node pays its cost to the tag, within the horizon or past it (weighted by at
   // most 1, a lower bound of both).
-  double node_bound(int node) const override {
+  double node_bound(const SearchState& state, int) const override {
     if (cost_to_tag_ == nullptr || input_.tag == 0) return 0.0;
-    const double beyond = (*cost_to_tag_)[static_cast<size_t>(node)];
+    const double beyond = (*cost_to_tag_)[static_cast<size_t>(state.node)];
     return beyond < 0.0 ? 0.0 : lookahead_ * beyond;
   }
 
@@ -149,18 +142,9 @@ ControllerDecision Controller::step(Motion& out) {
   search.time_budget_s = settings_.time_budget_s;
   search.beam_width = settings_.beam_width;
   const std::vector<double>* to_tag = nullptr;
-  if (settings_.tag_lookahead > 0.0 && input_.tag != 0 && context_->tag_costs) {
-    const TagMask tag = input_.tag;
-    const TagCostCache::Key key{tag, settings_.tag_penalty, settings_.transition_penalty, settings_.bridge_penalty};
-    to_tag = &context_->tag_costs->get(key, [&] {
-      auto edge_cost = [&](int e) {
-        const GraphEdge& edge = graph.edges[static_cast<size_t>(e)];
-        return edge.transition ? steer_transition_cost(*context_, edge, tag, settings_.transition_penalty,
-                                                       settings_.bridge_penalty)
-                               : 0.0;
-      };
-      return cost_to_tag(graph, context_->tracks, tag, settings_.tag_penalty, edge_cost);
-    });
+  if (settings_.tag_lookahead > 0.0 && input_.tag != 0) {
+    to_tag = searched_costs_to_tag(*context_, {input_.tag, settings_.tag_penalty, settings_.transition_penalty,
+                                               settings_.bridge_penalty});
   }
   const SteerCost cost(*context_, input_, settings_.tag_penalty, settings_.transition_penalty, settings_.bridge_penalty,
                        settings_.heading_edit.hold_travel, settings_.tag_lookahead, to_tag);

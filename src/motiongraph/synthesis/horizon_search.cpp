@@ -105,14 +105,15 @@ bool play_edge(const MotionGraph& graph, const EdgeTracks& tracks, const FrameCo
   s.node = graph.edges[e].to_node;
   const long long after = played + static_cast<long long>(count);
   if (after >= horizon && !out.goal) {
-    out.cost += frame_cost.terminal_cost(e, costed, s);
+    out.cost += frame_cost.terminal_cost(e, costed, buffers.arcs_m[costed - 1], s);
     if (out.cost >= bound) return false;
   }
   if (after >= horizon) out.complete = true;
   out.priority = out.cost;
   if (!out.complete) {
-    out.priority += std::max(frame_cost.remaining_bound(static_cast<int>(horizon - after), s.last_root, s.arc_m),
-                             frame_cost.node_bound(s.node));
+    const int frames_left = static_cast<int>(horizon - after);
+    out.priority += std::max(frame_cost.remaining_bound(frames_left, s.last_root, s.arc_m),
+                             frame_cost.node_bound(s, frames_left));
     if (out.priority >= bound) return false;
   }
   return true;

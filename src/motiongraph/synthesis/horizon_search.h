@@ -70,20 +70,21 @@ class FrameCost {
     return 0.0;
   }
   // The cost (>= 0) of what follows a walk that reaches the horizon (not the goal): it reached
-  // it in edge `edge`, whose first `costed` frames were costed, and leaves the character at
-  // `end`. A cost-to-go: what any continuation must still pay (0 by default: the search sees
-  // its horizon only). It is added to complete walks only; the bounds of partial walks
-  // (remaining_bound, node_bound) must stay below it plus the frames' costs.
-  virtual double terminal_cost(int edge, size_t costed, const SearchState& end) const {
-    (void)edge, (void)costed, (void)end;
+  // it in edge `edge`, whose first `costed` frames were costed (the last of them with the root
+  // at arc length horizon_arc_m), and leaves the character at `end` (the edge played out). A
+  // cost-to-go: what any continuation must still pay (0 by default: the search sees its horizon
+  // only). It is added to complete walks only; the bounds of partial walks (remaining_bound,
+  // node_bound) must stay below it plus the frames' costs.
+  virtual double terminal_cost(int edge, size_t costed, double horizon_arc_m, const SearchState& end) const {
+    (void)edge, (void)costed, (void)horizon_arc_m, (void)end;
     return 0.0;
   }
-  // A lower bound of what any walk from node `node` still costs, the frames within the horizon
-  // and terminal_cost together (0 is always right); a partial walk's priority adds the larger of
-  // this and remaining_bound, so that walks whose cost-to-go is high are cut before they are
-  // played out.
-  virtual double node_bound(int node) const {
-    (void)node;
+  // A lower bound of what any walk from `state` (a partial walk's end, at a node, `frames_left`
+  // frames short of the horizon) still costs, the frames within the horizon and terminal_cost
+  // together (0 is always right); a partial walk's priority adds the larger of this and
+  // remaining_bound, so that walks whose cost-to-go is high are cut before they are played out.
+  virtual double node_bound(const SearchState& state, int frames_left) const {
+    (void)state, (void)frames_left;
     return 0.0;
   }
 };

@@ -10,6 +10,8 @@
 
 #include <fmt/format.h>
 
+#include "motiongraph/synthesis/path_cost.h"
+
 namespace mg {
 
 Status PathSynthesisSettings::validate() const {
@@ -29,101 +31,13 @@ Status PathSynthesisSettings::validate() const {
     return Error{"", 0, "path search: the retries' horizon must be 0 (the first search's) or at least commit_s"};
   }
   if (beam_width < 0) return Error{"", 0, "path search: the beam width must be >= 0"};
+  if (!(tag_lookahead >= 0.0 && tag_lookahead <= 1.0)) {
+    return Error{"", 0, "path search: the tag lookahead must be from 0 to 1"};
+  }
   return path_edit.validate();
 }
 
 namespace {
-
-class PathCost final : public FrameCost {
- public:
-  PathCost(const SynthesisContext& context, const FloorPath& path, const std::vector<TagMask>& segment_masks,
-           double penalty, double max_step, double min_step, double behind_penalty, double transition_penalty,
-           double bridge_penalty)
-      : context_(context),
-        path_(path),
-        masks_(segment_masks),
-        penalty_(penalty),
-        max_step_(max_step),
-        min_step_(min_step),
-        behind_penalty_(behind_penalty),
-        transition_penalty_(transition_penalty),
-        bridge_penalty_(bridge_penalty) {}
-  // A bridge costs the bridge penalty more unless it lands in the motion type asked for there.
-  double transition_cost(const GraphEdge& edge, const SearchState& from) const override {
-    return unasked_bridge(context_, edge, wanted_at(from.arc_m)) ? transition_penalty_ + bridge_penalty_
-                                                                  : transition_penalty_;
-  }
-  // Each search starts where the root has covered arc_m.
-  void start_search(double arc_m) { search_arc_m_ = arc_m; }
-  // Roots are compared with the path where `view` puts them (the edit's move of the last frame
-  // committed: where the edited motion is).
-  void set_view(const FloorTransform& view) {
-    c_ = std::cos(view.yaw_rad);
-    s_ = std::sin(view.yaw_rad);
-    x_ = view.x_m;
-    z_ = view.z_m;
-  }
-  Vec2 viewed(const Vec2& p) const { return {c_ * p.x() + s_ * p.y() + x_, -s_ * p.x() + c_ * p.y() + z_}; }
-  // In m more frames the root moves at most m * max_step and so does the path's point at its
-  // arc length, so the root is at least d - 2 m max_step from it (d: the distance now); and
-  // the path's end cannot be reached sooner than (length - arc) / max_step frames.
-  double remaining_bound(int frames_left, const Vec2& root, double arc_m) const override {
-    if (!(max_step_ > 0.0)) return 0.0;
-    const double d = (viewed(root) - path_.point_at(arc_m)).norm();
-    const double before_end = (path_.length_m() - arc_m) / max_step_;
-    double bound = 0.0;
-    for (int m = 1; m <= frames_left && m < before_end; ++m) {
-      const double gap = d - 2.0 * m * max_step_;
-      if (gap <= 0.0) break;
-      bound += gap * gap;
-    }
-    return bound;
-  }
-  double cost(int frame, const Vec2& root, const Vec2&, double arc_m, TagMask tags, bool* goal) const override {
-    int segment = -1;
-    return frame_cost(frame, root, arc_m, tags, goal, segment);
-  }
-  // The same costs as cost(), with the path's point found from the last frame's segment.
-  bool add_costs(const PlayedFrames& frames, double bound, double* total, bool* goal) const override {
-    int segment = -1;
-    return add_frame_costs(frames.roots.size(), bound, total, goal, [&](size_t p, bool* reached) {
-      return frame_cost(frames.first_frame + static_cast<int>(p), frames.roots[p], frames.arcs_m[p], frames.tags[p],
-                        reached, segment);
-    });
-  }
-  bool uses_facing() const override { return false; }
-  TagMask wanted_at(double s) const {
-    const auto& segments = path_.segments();
-    for (size_t i = segments.size(); i-- > 0;) {
-      if (s >= segments[i].from_m && s < segments[i].to_m) return masks_[i];
-    }
-    return 0;
-  }
-
- private:
-  double frame_cost(int frame, const Vec2& root, double arc_m, TagMask tags, bool* goal, int& segment) const {
-    double c = (viewed(root) - path_.point_at(arc_m, segment)).squaredNorm();
-    // Behind the slowest schedule allowed: metres not covered since the search began.
-    const double behind = search_arc_m_ + min_step_ * (frame + 1) - arc_m;
-    if (behind > 0.0) c += behind_penalty_ * behind;
-    const TagMask wanted = wanted_at(arc_m);
-    if (wanted != 0 && (tags & wanted) == 0) c += penalty_;
-    if (arc_m >= path_.length_m()) *goal = true;
-    return c;
-  }
-
-  const SynthesisContext& context_;
-  const FloorPath& path_;
-  const std::vector<TagMask>& masks_;
-  double penalty_;
-  double max_step_;
-  double min_step_;
-  double behind_penalty_;
-  double transition_penalty_;
-  double bridge_penalty_;
-  double search_arc_m_ = 0.0;
-  double c_ = 1.0, s_ = 0.0, x_ = 0.0, z_ = 0.0;
-};
 
 // One search of the whole path with these settings, its motion assembled (and edited).
 Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, const FloorPath& path,
@@ -140,9 +54,7 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
     return Error{"", 0, fmt::format("start node {} does not exist (the graph has {})", settings.start_node,
                                     graph.node_count())};
   }
-  PathCost cost(context, path, masks, settings.tag_penalty_m2, settings.lower_bound ? context.tracks.max_root_step_m : 0.0,
-                settings.min_speed_mps / fps, settings.behind_penalty_m, settings.transition_penalty_m2,
-                settings.bridge_penalty_m2);
+  PathCost cost(context, path, masks, settings);
   HorizonSettings search;
   search.horizon_frames = std::max(1, static_cast<int>(std::lround(settings.horizon_s * fps)));
   search.max_expansions = settings.max_expansions;

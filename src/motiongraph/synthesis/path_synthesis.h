@@ -2,9 +2,10 @@
 // floor. The cost of a frame is the squared floor distance between the root and the path's
 // point at the same arc length (arc length the root has covered), plus a penalty for each
 // frame not carrying the motion tag the path asks for there, plus a penalty for falling
-// behind a slowest speed (see min_speed_mps). The search is incremental: the best walk of about
-// horizon_s seconds by branch and bound (horizon_search.h), keep its first commit_s seconds
-// (whole edges), search again from there.
+// behind a slowest speed (see min_speed_mps), plus for a walk that reaches its horizon the way
+// still to go to the tag asked for there (tag_lookahead; path_cost.h). The search is
+// incremental: the best walk of about horizon_s seconds by branch and bound (horizon_search.h),
+// keep its first commit_s seconds (whole edges), search again from there.
 //
 // The walk is complete when its motion reaches the path's end: when the point of the path
 // nearest its root, followed along the path (FloorPath::followed_arcs), gets there. The root's
@@ -46,6 +47,12 @@ struct PathSynthesisSettings {
   double horizon_s = 3.0;
   double commit_s = 1.0;
   double tag_penalty_m2 = 1.0;         // per frame without the tag asked for
+  // A walk that reaches the horizon in a segment asking for a tag also costs tag_lookahead times
+  // what any walk from where it ends must still pay before that tag (tag_distance.h: the tag
+  // penalty for each frame without it, the transition and bridge penalties on the way): a
+  // segment's motion type that no walk within the horizon reaches is headed for (0: the horizon
+  // only; at most 1).
+  double tag_lookahead = 0.5;
   // Kovar's cost compares the root with the path at equal arc length, which a root that
   // stays put (standing, sitting, dancing on the spot) matches perfectly: with many such clips
   // the walk dawdles. Each frame also costs behind_penalty_m times the metres the root is

@@ -16,8 +16,9 @@
 
 namespace mg {
 
-// Each tag's costs as steering prices the way to it (tag_distance.h), computed once per tag and
-// penalties for every controller of a context (a studio's sessions, Python's controllers).
+// Each tag's costs as path and steering searches price the way to it (tag_distance.h), computed
+// once per tag and penalties for every search of a context (a studio's sessions and paths,
+// Python's controllers and paths).
 class TagCostCache {
  public:
   struct Key {

@@ -71,4 +71,18 @@ std::vector<double> cost_to_tag(const MotionGraph& graph, const EdgeTracks& trac
   return cost;
 }
 
+const std::vector<double>* searched_costs_to_tag(const SynthesisContext& context, const TagCostCache::Key& key) {
+  if (!context.tag_costs) return nullptr;
+  return &context.tag_costs->get(key, [&] {
+    const MotionGraph& graph = *context.graph;
+    auto edge_cost = [&](int e) {
+      const GraphEdge& edge = graph.edges[static_cast<size_t>(e)];
+      if (!edge.transition) return 0.0;
+      return unasked_bridge(context, edge, key.tag) ? key.transition_penalty + key.bridge_penalty
+                                                    : key.transition_penalty;
+    };
+    return cost_to_tag(graph, context.tracks, key.tag, key.per_frame, edge_cost);
+  });
+}
+
 }  // namespace mg

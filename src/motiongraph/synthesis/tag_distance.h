@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "motiongraph/synthesis/edge_tracks.h"
+#include "motiongraph/synthesis/synthesis_context.h"
 
 namespace mg {
 
@@ -24,5 +25,11 @@ namespace mg {
 // reaches one. edge_cost(e) >= 0 (empty: 0 for every edge).
 std::vector<double> cost_to_tag(const MotionGraph& graph, const EdgeTracks& tracks, TagMask tag, double per_frame,
                                 const std::function<double(int edge)>& edge_cost = {});
+
+// The costs to `key.tag` of `context`'s graph as path and steering searches price them: per_frame
+// for each frame without it, the transition penalty for each transition and the bridge penalty
+// more for each bridge that does not lead into it (unasked_bridge). Kept in the context's cache
+// (made the first time any search asks); null when the context has none.
+const std::vector<double>* searched_costs_to_tag(const SynthesisContext& context, const TagCostCache::Key& key);
 
 }  // namespace mg
