@@ -1,6 +1,11 @@
 #include "synthesis/search_test_graphs.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
 
 namespace mg::test {
 
@@ -49,6 +54,74 @@ EdgeTracks random_tracks(std::mt19937& rng, const MotionGraph& graph) {
     tracks.edges.push_back(track);
   }
   return tracks;
+}
+
+double every_walk(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& start, const FrameCost& cost,
+                  int horizon) {
+  const bool headings = cost.uses_heading() && !tracks.headings.empty();
+  double best = std::numeric_limits<double>::infinity();
+  std::function<void(const SearchState&, double)> go = [&](const SearchState& from, double paid) {
+    for (int e = graph.edge_offsets[from.node]; e < graph.edge_offsets[from.node + 1]; ++e) {
+      double total = paid;
+      if (graph.edges[e].transition) total += cost.transition_cost(graph.edges[e], from);
+      SearchState s = from;
+      bool goal = false;
+      size_t costed = 0;
+      double horizon_arc = 0.0;
+      const auto roots = tracks.roots_of(e);
+      const auto facings = headings ? tracks.headings_of(e) : tracks.facings_of(e);
+      for (size_t p = 0; p < roots.size(); ++p) {
+        const Vec3 r = s.placement.apply(Vec3(roots[p].x(), 0.0, roots[p].y()));
+        const Vec3 f = s.placement.rotate(Vec3(facings[p].x(), 0.0, facings[p].y()));
+        const Vec2 root(r.x(), r.z());
+        if (s.has_last) s.arc_m += (root - s.last_root).norm();
+        s.last_root = root;
+        s.has_last = true;
+        const long long frame = s.frames + static_cast<long long>(p);
+        if (frame < horizon && !goal) {
+          total += cost.cost(static_cast<int>(frame), root, Vec2(f.x(), f.z()), s.arc_m, tracks.tags_of(e)[p], &goal);
+          costed = p + 1;
+          horizon_arc = s.arc_m;
+        }
+      }
+      s.frames += static_cast<long long>(roots.size());
+      s.placement = s.placement * tracks.edges[e].change;
+      s.node = graph.edges[e].to_node;
+      if (goal) {
+        best = std::min(best, total);
+      } else if (s.frames >= horizon) {
+        best = std::min(best, total + cost.terminal_cost(e, costed, horizon_arc, s));
+      } else {
+        go(s, total);
+      }
+    }
+  };
+  go(start, 0.0);
+  return best;
+}
+
+double expect_search_exact(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& start,
+                           const FrameCost& cost, int horizon, BoundTally& tally, const std::string& what) {
+  const double best = every_walk(graph, tracks, start, cost, horizon);
+  EXPECT_TRUE(std::isfinite(best)) << what;
+  const double tolerance = 1e-9 * std::max(1.0, best);
+  const WithoutNodeBound unbounded(cost);
+  HorizonSettings search;
+  search.horizon_frames = horizon;
+  search.max_expansions = 100'000'000;
+  for (int beam : {0, 4}) {
+    search.beam_width = beam;
+    const HorizonResult found = horizon_search(graph, tracks, start, cost, search);
+    EXPECT_FALSE(found.budget_exhausted) << what;
+    EXPECT_NEAR(found.cost, best, tolerance) << what << ", beam " << beam;
+    const HorizonResult plain = horizon_search(graph, tracks, start, unbounded, search);
+    EXPECT_NEAR(plain.cost, best, tolerance) << what << ", beam " << beam << ", no node bound";
+    if (beam > 0) continue;
+    tally.with_bound += found.expansions;
+    tally.without_bound += plain.expansions;
+    tally.cut += found.expansions < plain.expansions ? 1 : 0;
+  }
+  return best;
 }
 
 }  // namespace mg::test

@@ -8,7 +8,7 @@
 #include <numbers>
 
 #include "motiongraph/graph/graph_from_candidates.h"
-#include "motiongraph/synthesis/tag_distance.h"
+#include "motiongraph/synthesis/steer_cost.h"
 
 namespace mg {
 
@@ -36,64 +36,6 @@ double direction_bearing(const Vec2& d) {
   double b = std::atan2(d.x(), -d.y()) * 180.0 / std::numbers::pi;
   return b < 0.0 ? b + 360.0 : b;
 }
-
-namespace {
-
-class SteerCost final : public FrameCost {
- public:
-  SteerCost(const SynthesisContext& context, const ControlInput& input, double penalty, double transition_penalty,
-            double bridge_penalty, bool judge_travel, double lookahead, const std::vector<double>* cost_to_tag)
-      : context_(context),
-        input_(input),
-        penalty_(penalty),
-        transition_penalty_(transition_penalty),
-        bridge_penalty_(bridge_penalty),
-        judge_travel_(judge_travel),
-        lookahead_(lookahead),
-        cost_to_tag_(cost_to_tag) {}
-  // Holding the travel, the search judges the direction the edit holds: each frame's heading.
-  bool uses_heading() const override { return judge_travel_; }
-  // A bridge costs the bridge penalty more unless it lands in the motion type asked for.
-  double transition_cost(const GraphEdge& edge, const SearchState&) const override {
-    return unasked_bridge(context_, edge, input_.tag) ? transition_penalty_ + bridge_penalty_ : transition_penalty_;
-  }
-  double cost(int, const Vec2&, const Vec2& facing, double, TagMask tags, bool*) const override {
-    double c = 1.0 - facing.dot(input_.direction);
-    if (input_.tag != 0 && (tags & input_.tag) == 0) c += penalty_;
-    return c;
-  }
-  // Past the horizon: what is still to pay before the tag, the rest of the last edge's frames
-  // first (its transition cost was paid as it started), weighted. A node the tag cannot be
-  // reached from costs nothing more: in a strongly connected graph none reaches it then.
-  double terminal_cost(int edge, size_t costed, double, const SearchState& end) const override {
-    if (cost_to_tag_ == nullptr || input_.tag == 0) return 0.0;
-    const auto rest = context_.tracks.tags_of(edge).subspan(costed);
-    for (size_t f = 0; f < rest.size(); ++f) {
-      if ((rest[f] & input_.tag) != 0) return lookahead_ * penalty_ * static_cast<double>(f);
-    }
-    const double beyond = (*cost_to_tag_)[static_cast<size_t>(end.node)];
-    return beyond < 0.0 ? 0.0 : lookahead_ * (penalty_ * static_cast<double>(rest.size()) + beyond);
-  }
-  // Any walk from a node pays its cost to the tag, within the horizon or past it (weighted by at
-  // most 1, a lower bound of both).
-  double node_bound(const SearchState& state, int) const override {
-    if (cost_to_tag_ == nullptr || input_.tag == 0) return 0.0;
-    const double beyond = (*cost_to_tag_)[static_cast<size_t>(state.node)];
-    return beyond < 0.0 ? 0.0 : lookahead_ * beyond;
-  }
-
- private:
-  const SynthesisContext& context_;
-  const ControlInput& input_;
-  double penalty_;
-  double transition_penalty_;
-  double bridge_penalty_;
-  bool judge_travel_;
-  double lookahead_;
-  const std::vector<double>* cost_to_tag_;  // for input_.tag; null: the horizon only
-};
-
-}  // namespace
 
 int controller_start_node(const SynthesisContext& context, TagMask tag) {
   const MotionGraph& graph = *context.graph;
@@ -141,13 +83,7 @@ ControllerDecision Controller::step(Motion& out) {
   search.max_expansions = settings_.max_expansions;
   search.time_budget_s = settings_.time_budget_s;
   search.beam_width = settings_.beam_width;
-  const std::vector<double>* to_tag = nullptr;
-  if (settings_.tag_lookahead > 0.0 && input_.tag != 0) {
-    to_tag = searched_costs_to_tag(*context_, {input_.tag, settings_.tag_penalty, settings_.transition_penalty,
-                                               settings_.bridge_penalty});
-  }
-  const SteerCost cost(*context_, input_, settings_.tag_penalty, settings_.transition_penalty, settings_.bridge_penalty,
-                       settings_.heading_edit.hold_travel, settings_.tag_lookahead, to_tag);
+  const SteerCost cost(*context_, input_, settings_);
   const HorizonResult best = horizon_search(graph, context_->tracks, state_, cost, search);
   ControllerDecision decision;
   decision.expansions = best.expansions;

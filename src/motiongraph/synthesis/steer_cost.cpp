@@ -1,0 +1,46 @@
+#include "motiongraph/synthesis/steer_cost.h"
+
+#include "motiongraph/synthesis/tag_distance.h"
+
+namespace mg {
+
+SteerCost::SteerCost(const SynthesisContext& context, const ControlInput& input, const ControllerSettings& settings)
+    : context_(context),
+      input_(input),
+      penalty_(settings.tag_penalty),
+      transition_penalty_(settings.transition_penalty),
+      bridge_penalty_(settings.bridge_penalty),
+      judge_travel_(settings.heading_edit.hold_travel),
+      lookahead_(settings.tag_lookahead) {
+  if (lookahead_ > 0.0 && input.tag != 0) {
+    cost_to_tag_ = searched_costs_to_tag(context, {input.tag, penalty_, transition_penalty_, bridge_penalty_});
+  }
+}
+
+double SteerCost::cost(int, const Vec2&, const Vec2& facing, double, TagMask tags, bool*) const {
+  double c = 1.0 - facing.dot(input_.direction);
+  if (input_.tag != 0 && (tags & input_.tag) == 0) c += penalty_;
+  return c;
+}
+
+double SteerCost::transition_cost(const GraphEdge& edge, const SearchState&) const {
+  return unasked_bridge(context_, edge, input_.tag) ? transition_penalty_ + bridge_penalty_ : transition_penalty_;
+}
+
+double SteerCost::terminal_cost(int edge, size_t costed, double, const SearchState& end) const {
+  if (cost_to_tag_ == nullptr) return 0.0;
+  const auto rest = context_.tracks.tags_of(edge).subspan(costed);
+  for (size_t f = 0; f < rest.size(); ++f) {
+    if ((rest[f] & input_.tag) != 0) return lookahead_ * penalty_ * static_cast<double>(f);
+  }
+  const double beyond = (*cost_to_tag_)[static_cast<size_t>(end.node)];
+  return beyond < 0.0 ? 0.0 : lookahead_ * (penalty_ * static_cast<double>(rest.size()) + beyond);
+}
+
+double SteerCost::node_bound(const SearchState& state, int) const {
+  if (cost_to_tag_ == nullptr) return 0.0;
+  const double beyond = (*cost_to_tag_)[static_cast<size_t>(state.node)];
+  return beyond < 0.0 ? 0.0 : lookahead_ * beyond;
+}
+
+}  // namespace mg
