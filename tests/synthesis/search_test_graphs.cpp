@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <limits>
 
 namespace mg::test {
@@ -56,53 +55,71 @@ EdgeTracks random_tracks(std::mt19937& rng, const MotionGraph& graph) {
   return tracks;
 }
 
-double every_walk(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& start, const FrameCost& cost,
-                  int horizon) {
+namespace {
+
+// The least cost any walk from `from` still adds (its transitions, its frames within the
+// horizon, its terminal cost), every walk played out as horizon_search plays it. With `tally`,
+// also expects each partial walk's bound, as horizon_search adds it (the larger of
+// remaining_bound and node_bound), to be at most that least cost of its own.
+double least_completion(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& from,
+                        const FrameCost& cost, int horizon, BoundTally* tally, const std::string& what) {
   const bool headings = cost.uses_heading() && !tracks.headings.empty();
   double best = std::numeric_limits<double>::infinity();
-  std::function<void(const SearchState&, double)> go = [&](const SearchState& from, double paid) {
-    for (int e = graph.edge_offsets[from.node]; e < graph.edge_offsets[from.node + 1]; ++e) {
-      double total = paid;
-      if (graph.edges[e].transition) total += cost.transition_cost(graph.edges[e], from);
-      SearchState s = from;
-      bool goal = false;
-      size_t costed = 0;
-      double horizon_arc = 0.0;
-      const auto roots = tracks.roots_of(e);
-      const auto facings = headings ? tracks.headings_of(e) : tracks.facings_of(e);
-      for (size_t p = 0; p < roots.size(); ++p) {
-        const Vec3 r = s.placement.apply(Vec3(roots[p].x(), 0.0, roots[p].y()));
-        const Vec3 f = s.placement.rotate(Vec3(facings[p].x(), 0.0, facings[p].y()));
-        const Vec2 root(r.x(), r.z());
-        if (s.has_last) s.arc_m += (root - s.last_root).norm();
-        s.last_root = root;
-        s.has_last = true;
-        const long long frame = s.frames + static_cast<long long>(p);
-        if (frame < horizon && !goal) {
-          total += cost.cost(static_cast<int>(frame), root, Vec2(f.x(), f.z()), s.arc_m, tracks.tags_of(e)[p], &goal);
-          costed = p + 1;
-          horizon_arc = s.arc_m;
-        }
-      }
-      s.frames += static_cast<long long>(roots.size());
-      s.placement = s.placement * tracks.edges[e].change;
-      s.node = graph.edges[e].to_node;
-      if (goal) {
-        best = std::min(best, total);
-      } else if (s.frames >= horizon) {
-        best = std::min(best, total + cost.terminal_cost(e, costed, horizon_arc, s));
-      } else {
-        go(s, total);
+  for (int e = graph.edge_offsets[from.node]; e < graph.edge_offsets[from.node + 1]; ++e) {
+    double total = graph.edges[e].transition ? cost.transition_cost(graph.edges[e], from) : 0.0;
+    SearchState s = from;
+    bool goal = false;
+    size_t costed = 0;
+    double horizon_arc = 0.0;
+    const auto roots = tracks.roots_of(e);
+    const auto facings = headings ? tracks.headings_of(e) : tracks.facings_of(e);
+    for (size_t p = 0; p < roots.size(); ++p) {
+      const Vec3 r = s.placement.apply(Vec3(roots[p].x(), 0.0, roots[p].y()));
+      const Vec3 f = s.placement.rotate(Vec3(facings[p].x(), 0.0, facings[p].y()));
+      const Vec2 root(r.x(), r.z());
+      if (s.has_last) s.arc_m += (root - s.last_root).norm();
+      s.last_root = root;
+      s.has_last = true;
+      const long long frame = s.frames + static_cast<long long>(p);
+      if (frame < horizon && !goal) {
+        total += cost.cost(static_cast<int>(frame), root, Vec2(f.x(), f.z()), s.arc_m, tracks.tags_of(e)[p], &goal);
+        costed = p + 1;
+        horizon_arc = s.arc_m;
       }
     }
-  };
-  go(start, 0.0);
+    s.frames += static_cast<long long>(roots.size());
+    s.placement = s.placement * tracks.edges[e].change;
+    s.node = graph.edges[e].to_node;
+    if (goal) {
+      best = std::min(best, total);
+    } else if (s.frames >= horizon) {
+      best = std::min(best, total + cost.terminal_cost(e, costed, horizon_arc, s));
+    } else {
+      const double rest = least_completion(graph, tracks, s, cost, horizon, tally, what);
+      if (tally != nullptr) {
+        const int frames_left = static_cast<int>(horizon - s.frames);
+        const double node = cost.node_bound(s, frames_left);
+        const double bound = std::max(cost.remaining_bound(frames_left, s.last_root, s.arc_m), node);
+        EXPECT_LE(bound, rest + 1e-9 * std::max(1.0, rest)) << what << ": a partial walk's bound above its least completion";
+        ++tally->partial_walks;
+        tally->node_bounded += node > 0.0 ? 1 : 0;
+      }
+      best = std::min(best, total + rest);
+    }
+  }
   return best;
+}
+
+}  // namespace
+
+double every_walk(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& start, const FrameCost& cost,
+                  int horizon) {
+  return least_completion(graph, tracks, start, cost, horizon, nullptr, "");
 }
 
 double expect_search_exact(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& start,
                            const FrameCost& cost, int horizon, BoundTally& tally, const std::string& what) {
-  const double best = every_walk(graph, tracks, start, cost, horizon);
+  const double best = least_completion(graph, tracks, start, cost, horizon, &tally, what);
   EXPECT_TRUE(std::isfinite(best)) << what;
   const double tolerance = 1e-9 * std::max(1.0, best);
   const WithoutNodeBound unbounded(cost);

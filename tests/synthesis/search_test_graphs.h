@@ -26,16 +26,19 @@ double every_walk(const MotionGraph& graph, const EdgeTracks& tracks, const Sear
                   int horizon);
 
 // What node bounds saved: the depth-first searches' expansions with the bound and without it,
-// and in how many searches it cut.
+// in how many searches it cut, and how many partial walks were checked and had a node bound.
 struct BoundTally {
   long long with_bound = 0, without_bound = 0;
   int cut = 0;
+  long long partial_walks = 0, node_bounded = 0;
 };
 
-// Expects horizon_search with `cost` (with a generous budget, with and without a beam) to find
-// every_walk's least cost, and to find it without the cost's node bound too; tallies the
-// expansions of both (a bound reorders the children too, so one search may take more; summed
-// over many, fewer). `what` names the case in failures. Returns the least cost.
+// Expects each partial walk's bound from `start` (the larger of remaining_bound and node_bound,
+// as horizon_search adds it) to be at most the least cost of the walks that complete it, and
+// horizon_search with `cost` (a generous budget, with and without a beam) to find every_walk's
+// least cost, without the cost's node bound too; tallies the expansions of both (a bound
+// reorders the children too, so one search may take more; summed over many, fewer). `what`
+// names the case in failures. Returns the least cost.
 double expect_search_exact(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& start,
                            const FrameCost& cost, int horizon, BoundTally& tally, const std::string& what);
 

@@ -14,8 +14,9 @@ namespace mg {
 namespace {
 
 // Subject 16's graph, decisions started anywhere facing anywhere, asked for walk, run, jump or
-// no tag, judging facings or (holding the travel) headings: the branch and bound with the
-// steering cost, its cost-to-go and its node bound finds the least cost of every walk; without
+// no tag, judging facings or (holding the travel) headings: every partial walk's node bound stays
+// below the least cost of the walks that complete it, and the branch and bound with the steering
+// cost, its cost-to-go and its node bound finds the least cost of every walk; without
 // the node bound it finds the same and expands more; and the cost-to-go changes the walk chosen.
 TEST(SteerCost, TheSearchWithTheTagsCostToGoIsExact) {
   const auto& s = test::subject16();
@@ -52,6 +53,7 @@ TEST(SteerCost, TheSearchWithTheTagsCostToGoIsExact) {
       EXPECT_NEAR(best, blind_best, 1e-12);  // no tag, nothing to look for
     }
   }
+  EXPECT_GT(tally.node_bounded, 150) << tally.partial_walks;
   EXPECT_LT(tally.with_bound, tally.without_bound) << tally.with_bound << " " << tally.without_bound;
   EXPECT_GT(took_terminal, 6) << took_terminal;
 }

@@ -89,6 +89,21 @@ EdgeTracks compute_edge_tracks(const MotionAssembler& assembler, const MotionGra
     }
   });
   for (double step : max_steps) tracks.max_root_step_m = std::max(tracks.max_root_step_m, step);
+  // And on to the first frame of a transition leaving that node: already blended, a few
+  // millimetres from the node's own.
+  for (int e = 0; e < edge_count; ++e) {
+    const EdgeTrack& track = tracks.edges[static_cast<size_t>(e)];
+    if (track.count == 0) continue;
+    const Vec2& last = tracks.roots[static_cast<size_t>(track.first + track.count - 1)];
+    const int to = graph.edges[e].to_node;
+    for (int f = graph.edge_offsets[to]; f < graph.edge_offsets[to + 1]; ++f) {
+      const EdgeTrack& next = tracks.edges[static_cast<size_t>(f)];
+      if (!graph.edges[f].transition || next.count == 0) continue;
+      const Vec2& first = tracks.roots[static_cast<size_t>(next.first)];
+      const Vec3 placed = track.change.apply(Vec3(first.x(), 0.0, first.y()));
+      tracks.max_root_step_m = std::max(tracks.max_root_step_m, (Vec2(placed.x(), placed.z()) - last).norm());
+    }
+  }
   return tracks;
 }
 

@@ -32,7 +32,8 @@ struct EdgeTracks {
   Vec3 forward_axis = Vec3::UnitZ();  // of the target skeleton, in the root's frame (facing.h)
   Vec3 travel_axis = Vec3::UnitZ();   // of the target skeleton, in the root's frame (facing.h)
   double max_root_step_m = 0.0;       // the longest floor step of the root between two frames
-                                      // any walk plays one after the other
+                                      // any walk plays one after the other (the bounds of path
+                                      // searches rest on it: path_cost.h)
 
   std::span<const Vec2> roots_of(int edge) const { return std::span(roots).subspan(edges[edge].first, edges[edge].count); }
   std::span<const Vec2> facings_of(int edge) const { return std::span(facings).subspan(edges[edge].first, edges[edge].count); }

@@ -104,7 +104,8 @@ bool play_edge(const MotionGraph& graph, const EdgeTracks& tracks, const FrameCo
                                -sn * change.x_m + c * change.z_m + shift.y()};
   s.node = graph.edges[e].to_node;
   const long long after = played + static_cast<long long>(count);
-  if (after >= horizon && !out.goal) {
+  // (An edge played past the horizon, as advance() plays them, costs nothing.)
+  if (after >= horizon && !out.goal && costed > 0) {
     out.cost += frame_cost.terminal_cost(e, costed, buffers.arcs_m[costed - 1], s);
     if (out.cost >= bound) return false;
   }

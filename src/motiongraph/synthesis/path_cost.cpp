@@ -101,8 +101,10 @@ double PathCost::node_bound(const SearchState& state, int frames_left) const {
   if (!(c > 0.0)) return 0.0;
   const double length = path_.length_m();
   const double region_end = std::next(at) == regions_.end() ? length : std::min(std::next(at)->from_m, length);
-  // The frames j = 1, 2, ... whose root has covered at most arc + j max_step < region_end.
-  const double in_region = std::ceil((region_end - state.arc_m) / max_step_) - 1.0;
+  // The frames j = 1, 2, ... whose root has covered at most arc + j max_step < region_end (a
+  // count just below a whole number taken for the one below it: the arcs are sums of rounded
+  // steps).
+  const double in_region = std::ceil((region_end - state.arc_m) / max_step_ - 1e-6) - 1.0;
   double bound = lookahead_ * c;
   if (in_region < frames_left) bound = std::min(bound, penalty_ * std::max(0.0, in_region));
   return bound > 0.0 ? bound + remaining_bound(frames_left, state.last_root, state.arc_m) : 0.0;

@@ -42,7 +42,8 @@ class PathCost final : public FrameCost {
   double transition_cost(const GraphEdge& edge, const SearchState& from) const override;
   // A walk whose root is in a segment asking for a tag at the horizon's last frame costs
   // tag_lookahead times what any walk from there must still pay before the tag: the rest of its
-  // last edge's frames without it, then its node's cost to the tag.
+  // last edge's frames without it, then its node's cost to the tag (none where no walk reaches
+  // the tag: in a strongly connected graph, a pruned one, that is every node or none).
   double terminal_cost(int edge, size_t costed, double horizon_arc_m, const SearchState& end) const override;
   // A partial walk in a segment asking for a tag pays, on the way to the tag, its node's cost c
   // to it: within the horizon, or past it (weighted) when the walk ends in the segment, which it

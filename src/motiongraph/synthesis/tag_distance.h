@@ -4,7 +4,7 @@
 // penalty, a bridge's into another motion type; charged as the edge starts). A search that sees
 // only its horizon finds every walk within it as far from a tag it cannot reach in time: asked
 // to run, a character walking far from any way into running would walk on. This is what any
-// continuation beyond the horizon must still pay, a cost-to-go (controller.h).
+// continuation beyond the horizon must still pay, a cost-to-go (steer_cost.h, path_cost.h).
 //
 // Each edge's frames are its track's (EdgeTracks::tags_of: a transition's blended frames carry
 // the tags of the side that weighs more); from node u by edge e to node v the cost is
