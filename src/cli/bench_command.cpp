@@ -185,7 +185,8 @@ int run_bench(const BenchOptions& o) {
 Command add_bench_command(CLI::App& app) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* sub = app.add_subcommand("bench", "Measure a stage against its baselines in one run and print ratios "
-                                              "(benchmarks: distance; synthesis GRAPH.mgraph: path synthesis and the controller).");
+                                              "(benchmarks: distance; synthesis GRAPH.mgraph: path synthesis, its tag "
+                                              "lookahead and the controller).");
   sub->add_option("WHAT", o->what, "The benchmark: distance or synthesis")->required();
   sub->add_option("INPUT", o->inputs, "Database inputs (folders, clips, manifests); default: data/cmu/16")
       ->default_val(std::vector<std::string>{"data/cmu/16"});

@@ -5,6 +5,10 @@
 //    (loading included, so the figure a user of `path` gets), and the same search without its
 //    lower bound, warm start and beam (the plain depth-first branch and bound) for the ratio;
 //  - the foot clean-up of each path's motion (its seconds beside the search's);
+//  - a figure 8 asking for the graph's two commonest motion types, one after the other: the
+//    search looking past its horizon for the type asked (tag_lookahead, the default) against
+//    the horizon only, as `path` searches (retries included): their tag match, deviation and
+//    seconds;
 //  - the controller on a 60 s scripted run (heading every 2 s, walk/run every 10 s): decision
 //    latency percentiles, the clean-up of each decision's frames, and both together.
 // Speed is measured here, never asserted in tests.
@@ -13,11 +17,16 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
 #include "cli/commands.h"
 #include "motiongraph/graph/graph_file.h"
+#include "motiongraph/graph/graph_from_candidates.h"
 #include "motiongraph/synthesis/controller.h"
 #include "motiongraph/synthesis/loaded_graph.h"
 #include "motiongraph/synthesis/path_synthesis.h"
@@ -88,6 +97,47 @@ int run_synthesis_bench(const std::string& graph_path) {
                cleanup_s, plain_s, plain->graph_mean_deviation_m, plain_s / fast_s);
   }
   fmt::print("(x realtime: seconds of motion per second of loading, set-up and search)\n");
+
+  // The two motion types most nodes carry (modifiers such as turn ride on them), asked for over
+  // the two halves of a figure 8, searched as `path` searches (retries included).
+  std::vector<std::pair<int, std::string>> types;
+  const TagMask type_mask = motion_type_tags(db);
+  for (size_t t = 0; t < db.tag_names.size() && t < 64; ++t) {
+    const TagMask bit = TagMask{1} << t;
+    if ((type_mask & bit) == 0) continue;
+    int nodes = 0;
+    for (int n = 0; n < graph.node_count(); ++n) {
+      nodes += (context->tracks.tags_of(graph.edge_offsets[n]).front() & bit) != 0 ? 1 : 0;
+    }
+    types.emplace_back(nodes, db.tag_names[t]);
+  }
+  std::sort(types.begin(), types.end(), std::greater<>());
+  if (types.size() < 2 || types[1].first == 0) {
+    fmt::print("tag lookahead: the graph has fewer than two motion types; not measured\n");
+  } else {
+    auto shape = make_shape("figure8:4");
+    if (!shape) return fail(shape.error());
+    const double half = shape->length_m() / 2.0;
+    auto path = FloorPath::create(shape->points(), {{0.0, half, types[0].second},
+                                                    {half, shape->length_m() + 1.0, types[1].second}});
+    if (!path) return fail(path.error());
+    PathSynthesisSettings settings;  // as `path` searches, retries included
+    start = std::chrono::steady_clock::now();
+    auto ahead = synthesize_path(*context, *path, settings);
+    const double ahead_s = seconds_since(start);
+    if (!ahead) return fail(ahead.error());
+    settings.tag_lookahead = 0.0;
+    start = std::chrono::steady_clock::now();
+    auto blind = synthesize_path(*context, *path, settings);
+    const double blind_s = seconds_since(start);
+    if (!blind) return fail(blind.error());
+    auto end = [](const PathSynthesisResult& r) { return r.reached_end ? "end reached" : "end not reached"; };
+    fmt::print("figure8:4, {} then {}: looking past the horizon (--tag-lookahead {:g}) tag match {:.0f} %, mean dev "
+               "{:.3f} m, {}, {:.3f} s; the horizon only {:.0f} %, {:.3f} m, {}, {:.3f} s ({:.2f}x the time)\n",
+               types[0].second, types[1].second, PathSynthesisSettings{}.tag_lookahead, 100.0 * ahead->tag_match,
+               ahead->mean_deviation_m, end(*ahead), ahead_s, 100.0 * blind->tag_match, blind->mean_deviation_m,
+               end(*blind), blind_s, ahead_s / blind_s);
+  }
 
   auto walk = context->tag_mask("walk");
   auto run = context->tag_mask("run");

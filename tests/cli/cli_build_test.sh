@@ -317,6 +317,22 @@ for path, tile, other in ((sys.argv[1], 64, True), (sys.argv[2], 96, False)):
     # The exhaustive stage is run again with the pruned stage's tiles only when --tile is another side.
     assert ("distance stage with the pruned stage's tiles of %d:" % tile in text) == other, text
 PY
+# bench synthesis: each shape against the plain branch and bound, and a figure 8 asking for the
+# graph's two commonest motion types (subject 16: walk, then run) with and without looking past
+# the horizon for them, both reaching the path's end.
+"$bin" bench synthesis "$work/g.mgraph" >"$work/bench-synthesis.txt"
+python3 - "$work/bench-synthesis.txt" <<'PY'
+import re, sys
+text = open(sys.argv[1]).read()
+for shape in ("line:20", "circle:5", "figure8:4", "s-curve:100"):
+    assert re.search(r"^%s +[0-9.]+ " % re.escape(shape), text, re.M), text
+m = re.search(r"figure8:4, (\w+) then (\w+): looking past the horizon \(--tag-lookahead 0.5\) tag match (\d+) %, mean dev "
+              r"([0-9.]+) m, end reached, [0-9.]+ s; the horizon only (\d+) %, ([0-9.]+) m, end reached, [0-9.]+ s "
+              r"\(([0-9.]+)x the time\)", text)
+assert m, text
+assert (m[1], m[2]) == ("walk", "run"), text
+assert all(0 <= int(m[i]) <= 100 for i in (3, 5)) and float(m[4]) < 0.15 and float(m[6]) < 0.15, text
+PY
 # info on a folder or a manifest: the library as build reads it (the same clips, tags and feet
 # as the build report of the same folder), its tags' totals, and tag ranges within a clip.
 "$bin" info "$data/cmu/16" >"$work/lib.txt"
