@@ -100,7 +100,8 @@ double least_completion(const MotionGraph& graph, const EdgeTracks& tracks, cons
         const int frames_left = static_cast<int>(horizon - s.frames);
         const double node = cost.node_bound(s, frames_left);
         const double bound = std::max(cost.remaining_bound(frames_left, s.last_root, s.arc_m), node);
-        EXPECT_LE(bound, rest + 1e-9 * std::max(1.0, rest)) << what << ": a partial walk's bound above its least completion";
+        EXPECT_LE(bound, rest + 1e-9 * std::max(1.0, rest))
+            << what << ": a partial walk's bound above its least completion";
         ++tally->partial_walks;
         tally->node_bounded += node > 0.0 ? 1 : 0;
       }

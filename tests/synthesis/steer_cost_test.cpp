@@ -47,7 +47,8 @@ TEST(SteerCost, TheSearchWithTheTagsCostToGoIsExact) {
                                                bearing_direction(std::uniform_real_distribution<double>(0, 360)(rng)));
     const std::string what = "trial " + std::to_string(trial);
     const double best = test::expect_search_exact(graph, context.tracks, start, cost, 14, tally, what);
-    const double blind_best = test::expect_search_exact(graph, context.tracks, start, horizon_only, 14, blind_tally, what);
+    const double blind_best =
+        test::expect_search_exact(graph, context.tracks, start, horizon_only, 14, blind_tally, what);
     if (best > blind_best + 1e-9) ++took_terminal;
     if (input.tag == 0) {
       EXPECT_NEAR(best, blind_best, 1e-12);  // no tag, nothing to look for
