@@ -56,6 +56,16 @@ int run_path(const PathOptions& o) {
              r["reached_end"].get<bool>() ? "" : " (end not reached)", pushed,
              r["mean_deviation_m"].get<double>(), r["max_deviation_m"].get<double>(), edited,
              r["seconds"].get<double>(), r["search_seconds"].get<double>());
+  // Each segment's motion type: how much of the motion in it carries it.
+  std::string segments;
+  for (const nlohmann::json& s : r["segments"]) {
+    segments += fmt::format("{}{} {:g}-{:g} m: ", segments.empty() ? "" : "; ", s["tag"].get<std::string>(),
+                            s["from_m"].get<double>(), s["to_m"].get<double>());
+    segments += s["tag_match"].is_null()
+                    ? std::string("no frame reached it")
+                    : fmt::format("{:.0f} % of {} frames", 100.0 * s["tag_match"].get<double>(), s["frames"].get<int>());
+  }
+  if (!segments.empty()) fmt::print("segments (frames carrying the type asked): {}\n", segments);
   return 0;
 }
 

@@ -61,6 +61,15 @@ r = json.load(open(f"{work}/f8-report.json"))
 m, rs = roots("f8.json")
 assert r["reached_end"] and r["frames"] == len(m["positions"]), (r["frames"], len(m["positions"]))
 assert r["tag_match"] > 0.85 and r["mean_deviation_m"] < 0.5, r
+# Each segment's frames and match: together the whole match, and the summary's line says the same.
+segs = r["segments"]
+assert [(s["tag"], s["from_m"], s["to_m"]) for s in segs] == [("walk", 0, 25), ("run", 25, 51)], segs
+assert all(s["frames"] > 0 and 0 <= s["tag_match"] <= 1 for s in segs), segs
+frames = sum(s["frames"] for s in segs)
+assert frames <= r["frames"] and abs(sum(s["tag_match"] * s["frames"] for s in segs) / frames - r["tag_match"]) < 1e-9, segs
+line = "segments (frames carrying the type asked): " + "; ".join(
+    "%s %g-%g m: %.0f %% of %d frames" % (s["tag"], s["from_m"], s["to_m"], 100 * s["tag_match"], s["frames"]) for s in segs)
+assert line in open(f"{work}/path.txt").read().splitlines(), (line, open(f"{work}/path.txt").read())
 assert abs(rs[0][0]) < 1e-6 and abs(rs[0][1]) < 1e-6          # starts at the path's first point
 # The motion is bent onto the path; without the edit it is the walk as the graph plays it (the
 # same walk until its root has travelled the path's length, where neither retried). Both end within half a metre of the

@@ -360,6 +360,14 @@ TEST(StudioApi, PathFollowsTheLineDrawnWithItsDeviation) {
   EXPECT_NEAR(last[0].get<double>(), 3.0, 1.0);   // root x
   EXPECT_NEAR(last[2].get<double>(), -7.0, 1.0);  // root z
   EXPECT_EQ(call.json["frame_tags"].size(), call.json["positions"].size());
+  // The one segment: its frames, all of the motion's within 8.3 m along the path, and its match,
+  // the whole path's.
+  ASSERT_EQ(call.json["segments"].size(), 1u);
+  const json& segment = call.json["segments"][0];
+  EXPECT_EQ(segment["tag"], "walk");
+  EXPECT_GT(segment["frames"].get<int>(), 0);
+  EXPECT_LE(segment["frames"].get<size_t>(), call.json["positions"].size());
+  EXPECT_DOUBLE_EQ(segment["tag_match"].get<double>(), call.json["tag_match"].get<double>());
 }
 
 TEST(StudioApi, BadPathsAre4xx) {

@@ -142,6 +142,50 @@ TEST(PathSynthesis, BridgesLeadIntoTheMotionTypeAsked) {
   }
 }
 
+// Each segment's frames and match, counted again here from the motion's roots followed along the
+// path and its frames' tags: overlapping segments give their frames to the last given (as the
+// search asks), one beyond the end gets none, and together they make the whole match.
+TEST(PathSynthesis, EachSegmentsMatchIsItsFrames) {
+  const auto& s = test::subject16();
+  const SynthesisContext& context = s.context();
+  auto shape = make_shape("figure8:4");
+  ASSERT_TRUE(shape.ok());
+  const double length = shape->length_m();
+  auto path = FloorPath::create(shape->points(), {{0.0, 30.0, "walk"},
+                                                  {20.0, 40.0, "run"},  // over the walk's last 10 m
+                                                  {35.0, 45.0, "jump"},
+                                                  {length + 5.0, length + 9.0, "walk"}});
+  ASSERT_TRUE(path.ok());
+  auto result = synthesize_path(context, *path);
+  ASSERT_TRUE(result.ok()) << result.error().to_string();
+  const auto& segments = path->segments();
+  ASSERT_EQ(result->segment_tag_matches.size(), segments.size());
+  const std::vector<double> arcs = path->followed_arcs(result->roots);
+  ASSERT_EQ(arcs.size(), result->frame_tags.size());
+  std::vector<int> frames(segments.size(), 0), matched(segments.size(), 0);
+  for (size_t f = 0; f < arcs.size(); ++f) {
+    int owner = -1;
+    for (size_t i = 0; i < segments.size(); ++i) {
+      if (arcs[f] >= segments[i].from_m && arcs[f] < segments[i].to_m) owner = static_cast<int>(i);
+    }
+    if (owner < 0) continue;
+    ++frames[static_cast<size_t>(owner)];
+    matched[static_cast<size_t>(owner)] += (result->frame_tags[f] & *context.tag_mask(segments[owner].tag)) != 0;
+  }
+  int all = 0, all_matched = 0;
+  for (size_t i = 0; i < segments.size(); ++i) {
+    EXPECT_EQ(result->segment_tag_matches[i].frames, frames[i]) << i;
+    EXPECT_EQ(result->segment_tag_matches[i].matched, matched[i]) << i;
+    all += frames[i];
+    all_matched += matched[i];
+  }
+  EXPECT_GT(frames[0], 0);
+  EXPECT_GT(frames[1], 0);
+  EXPECT_GT(frames[2], 0);
+  EXPECT_EQ(frames[3], 0);  // past the path's end
+  EXPECT_DOUBLE_EQ(result->tag_match, static_cast<double>(all_matched) / all);
+}
+
 TEST(PathSynthesis, UnknownTagsAndBadSettingsAreErrors) {
   const auto& s = test::subject16();
   auto path = FloorPath::create({{0.0, 0.0}, {5.0, 0.0}}, {{0.0, 5.0, "swim"}});

@@ -311,13 +311,21 @@ $('synthesize').addEventListener('click', async () => {
       + `max ${result.max_deviation_m.toFixed(2)} m${result.reached_end ? '' : ' (end not reached)'}`
       + (result.path_edit.edited ? ` (bent onto the path; as the graph played it `
         + `${result.graph_mean_deviation_m.toFixed(2)} m, max ${result.graph_max_deviation_m.toFixed(2)} m)` : '')
-      + `, tags matched ${(100 * result.tag_match).toFixed(0)} %; ${result.transitions} transitions `
+      + `, tags matched ${(100 * result.tag_match).toFixed(0)} %${segmentMatches(result)}; ${result.transitions} transitions `
       + `(${result.transitions_per_second.toFixed(2)}/s${result.bridges ? `, ${result.bridges} bridge${result.bridges === 1 ? '' : 's'}` : ''}); `
       + footSlideText(result);
   } catch (err) {
     $('path-info').textContent = `error: ${err.message}`;
   }
 });
+
+// Each segment's type and how much of the motion in it carries it, when there are two or more
+// (one is the total): " (walk 100 %, run 52 %)".
+function segmentMatches(result) {
+  const parts = (result.segments || []).map((s) => `${s.tag} ${s.tag_match === null ? 'not reached'
+    : `${(100 * s.tag_match).toFixed(0)} %`}`);
+  return parts.length > 1 ? ` (${parts.join(', ')})` : '';
+}
 
 // How much a result's planted feet slide, beside the clips it was cut from.
 function footSlideText(result) {

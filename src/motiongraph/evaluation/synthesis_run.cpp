@@ -80,6 +80,22 @@ nlohmann::json path_edit_report(const PathSynthesisSettings& search, const PathS
   return report;
 }
 
+nlohmann::json path_segments_report(const FloorPath& path, const PathSynthesisResult& result) {
+  nlohmann::json segments = nlohmann::json::array();
+  for (size_t i = 0; i < path.segments().size(); ++i) {
+    const PathSegment& s = path.segments()[i];
+    const PathSynthesisResult::SegmentTagMatch m =
+        i < result.segment_tag_matches.size() ? result.segment_tag_matches[i] : PathSynthesisResult::SegmentTagMatch{};
+    segments.push_back({{"from_m", s.from_m},
+                        {"to_m", s.to_m},
+                        {"tag", s.tag},
+                        {"frames", m.frames},
+                        {"tag_match", m.frames > 0 ? nlohmann::json(static_cast<double>(m.matched) / m.frames)
+                                                   : nlohmann::json(nullptr)}});
+  }
+  return segments;
+}
+
 Result<SynthesizedMotion> run_walk_synthesis(const SynthesisContext& context, int from, int to,
                                              const WalkSearchSettings& walk, const SynthesisRunSettings& settings) {
   if (auto s = walk.validate(); !s) return s.error();
@@ -125,8 +141,6 @@ Result<SynthesizedMotion> run_path_synthesis(const SynthesisContext& context, co
   auto cleanup = clean_up(context, settings, out.walk, out.motion, out.warning);
   if (!cleanup) return cleanup.error();
   const double seconds = seconds_since(settings.begin);
-  nlohmann::json segments = nlohmann::json::array();
-  for (const PathSegment& s : path.segments()) segments.push_back({{"from_m", s.from_m}, {"to_m", s.to_m}, {"tag", s.tag}});
   nlohmann::json points = nlohmann::json::array();
   for (const Vec2& p : path.points()) points.push_back({p.x(), p.y()});
   nlohmann::json roots = nlohmann::json::array();
@@ -166,7 +180,7 @@ Result<SynthesizedMotion> run_path_synthesis(const SynthesisContext& context, co
                 {"transitions", transitions},
                 {"transitions_per_second", transitions_per_second(transitions, motion.frame_count, motion.fps)},
                 {"bridges", count_bridges(*context.graph, out.walk.edges)},
-                {"segments", segments},
+                {"segments", path_segments_report(path, *result)},
                 {"path", points},
                 {"roots", roots},
                 {"cleanup", *cleanup}};

@@ -47,6 +47,9 @@ nlohmann::json cleanup_report(const SynthesisContext& context, const SynthesisRu
 // The report's "path_edit": whether the motion was edited onto the path and what the edit did
 // (path_edit.h).
 nlohmann::json path_edit_report(const PathSynthesisSettings& search, const PathSynthesisResult& result);
+// The report's "segments": each of the path's segments as given (from_m, to_m, tag), the frames
+// of the motion that fall in it and the share of them carrying its tag (null: none fell in it).
+nlohmann::json path_segments_report(const FloorPath& path, const PathSynthesisResult& result);
 
 // The cheapest walk from node `from` to node `to` (walk_search.h), starting at the origin
 // facing north.

@@ -281,15 +281,21 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
     result.mean_deviation_m = result.graph_mean_deviation_m;
     result.max_deviation_m = result.graph_max_deviation_m;
   }
-  double in_segments = 0.0, matched = 0.0;
+  const auto& segments = path.segments();
+  result.segment_tag_matches.assign(segments.size(), {});
+  int in_segments = 0, matched = 0;
   for (int f = 0; f < end; ++f) {
-    const TagMask wanted = cost.wanted_at(arcs[f]);
-    if (wanted != 0) {
-      in_segments += 1.0;
-      matched += (result.frame_tags[f] & wanted) != 0 ? 1.0 : 0.0;
+    for (size_t i = segments.size(); i-- > 0;) {  // the last given that holds the arc (PathCost::wanted_at)
+      if (arcs[f] < segments[i].from_m || arcs[f] >= segments[i].to_m) continue;
+      const bool carries = (result.frame_tags[f] & masks[i]) != 0;
+      ++result.segment_tag_matches[i].frames;
+      result.segment_tag_matches[i].matched += carries ? 1 : 0;
+      ++in_segments;
+      matched += carries ? 1 : 0;
+      break;
     }
   }
-  result.tag_match = in_segments > 0.0 ? matched / in_segments : 1.0;
+  result.tag_match = in_segments > 0 ? static_cast<double>(matched) / in_segments : 1.0;
   result.behind_penalty_m = settings.behind_penalty_m;
   result.horizon_s = settings.horizon_s;
   result.edit_in_search = edit_in_search;

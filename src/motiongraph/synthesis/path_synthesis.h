@@ -131,6 +131,14 @@ struct PathSynthesisResult {
   double graph_max_deviation_m = 0.0;
   PathEditStats edit;                 // edit.edited false: not edited
   double tag_match = 1.0;             // fraction of frames inside a segment that carry its tag
+  // Per segment of the path, in order: the frames of the motion whose arc along the path it asks
+  // for (the last segment given that holds the arc; none for one the motion did not reach or
+  // later segments cover), and how many of them carry its tag.
+  struct SegmentTagMatch {
+    int frames = 0;
+    int matched = 0;
+  };
+  std::vector<SegmentTagMatch> segment_tag_matches;
   bool reached_end = false;           // arc_covered_m is within kEndReachedM of the path's length
   int searches = 0;
   long long expansions = 0;
