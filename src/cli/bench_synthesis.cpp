@@ -106,8 +106,8 @@ int run_synthesis_bench(const std::string& graph_path) {
     const TagMask bit = TagMask{1} << t;
     if ((type_mask & bit) == 0) continue;
     int nodes = 0;
-    for (int n = 0; n < graph.node_count(); ++n) {
-      nodes += (context->tracks.tags_of(graph.edge_offsets[n]).front() & bit) != 0 ? 1 : 0;
+    for (const GraphNode& node : graph.nodes) {
+      nodes += !context->frame_tags.empty() && (context->frame_tags[node.frame] & bit) != 0 ? 1 : 0;
     }
     types.emplace_back(nodes, db.tag_names[t]);
   }
@@ -133,7 +133,7 @@ int run_synthesis_bench(const std::string& graph_path) {
     if (!blind) return fail(blind.error());
     auto end = [](const PathSynthesisResult& r) { return r.reached_end ? "end reached" : "end not reached"; };
     fmt::print("figure8:4, {} then {}: looking past the horizon (--tag-lookahead {:g}) tag match {:.0f} %, mean dev "
-               "{:.3f} m, {}, {:.3f} s; the horizon only {:.0f} %, {:.3f} m, {}, {:.3f} s ({:.2f}x the time)\n",
+               "{:.3f} m, {}, {:.3f} s; the horizon only {:.0f} %, {:.3f} m, {}, {:.3f} s (looking ahead {:.2f}x its time)\n",
                types[0].second, types[1].second, PathSynthesisSettings{}.tag_lookahead, 100.0 * ahead->tag_match,
                ahead->mean_deviation_m, end(*ahead), ahead_s, 100.0 * blind->tag_match, blind->mean_deviation_m,
                end(*blind), blind_s, ahead_s / blind_s);

@@ -62,7 +62,7 @@ int run_path(const PathOptions& o) {
     segments += fmt::format("{}{} {:g}-{:g} m: ", segments.empty() ? "" : "; ", s["tag"].get<std::string>(),
                             s["from_m"].get<double>(), s["to_m"].get<double>());
     segments += s["tag_match"].is_null()
-                    ? std::string("no frame reached it")
+                    ? std::string("no frames")
                     : fmt::format("{:.0f} % of {} frames", 100.0 * s["tag_match"].get<double>(), s["frames"].get<int>());
   }
   if (!segments.empty()) fmt::print("segments (frames carrying the type asked): {}\n", segments);

@@ -328,7 +328,7 @@ for shape in ("line:20", "circle:5", "figure8:4", "s-curve:100"):
     assert re.search(r"^%s +[0-9.]+ " % re.escape(shape), text, re.M), text
 m = re.search(r"figure8:4, (\w+) then (\w+): looking past the horizon \(--tag-lookahead 0.5\) tag match (\d+) %, mean dev "
               r"([0-9.]+) m, end reached, [0-9.]+ s; the horizon only (\d+) %, ([0-9.]+) m, end reached, [0-9.]+ s "
-              r"\(([0-9.]+)x the time\)", text)
+              r"\(looking ahead ([0-9.]+)x its time\)", text)
 assert m, text
 assert (m[1], m[2]) == ("walk", "run"), text
 assert all(0 <= int(m[i]) <= 100 for i in (3, 5)) and float(m[4]) < 0.15 and float(m[6]) < 0.15, text

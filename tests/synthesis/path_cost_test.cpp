@@ -58,7 +58,7 @@ TEST(PathCost, TheSearchWithTheTagsCostToGoIsExact) {
                       ? std::max(0.0, segments[rng() % segments.size()].to_m -
                                           std::uniform_real_distribution<double>(0.0, 14.0 * step)(rng))
                       : std::uniform_real_distribution<double>(0.0, path->length_m() - 0.5)(rng);
-    // The root where the path is at that arc, heading along it, up to 45 cm off it.
+    // The root where the path is at that arc, heading along it, up to 45 cm off it each way.
     std::uniform_real_distribution<double> off(-0.45, 0.45);
     const Vec2 at = path->point_at(start.arc_m) + Vec2(off(rng), off(rng));
     start.placement = context.placement_heading(start.node, at, path->direction_at(start.arc_m));

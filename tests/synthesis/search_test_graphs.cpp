@@ -59,8 +59,8 @@ namespace {
 
 // The least cost any walk from `from` still adds (its transitions, its frames within the
 // horizon, its terminal cost), every walk played out as horizon_search plays it. With `tally`,
-// also expects each partial walk's bound, as horizon_search adds it (the larger of
-// remaining_bound and node_bound), to be at most that least cost of its own.
+// also expects each partial walk's bound, as horizon_search adds it (remaining_bound plus
+// node_bound), to be at most that least cost of its own.
 double least_completion(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& from,
                         const FrameCost& cost, int horizon, BoundTally* tally, const std::string& what) {
   const bool headings = cost.uses_heading() && !tracks.headings.empty();
@@ -99,7 +99,7 @@ double least_completion(const MotionGraph& graph, const EdgeTracks& tracks, cons
       if (tally != nullptr) {
         const int frames_left = static_cast<int>(horizon - s.frames);
         const double node = cost.node_bound(s, frames_left);
-        const double bound = std::max(cost.remaining_bound(frames_left, s.last_root, s.arc_m), node);
+        const double bound = cost.remaining_bound(frames_left, s.last_root, s.arc_m) + node;
         EXPECT_LE(bound, rest + 1e-9 * std::max(1.0, rest))
             << what << ": a partial walk's bound above its least completion";
         ++tally->partial_walks;
@@ -120,6 +120,7 @@ double every_walk(const MotionGraph& graph, const EdgeTracks& tracks, const Sear
 
 double expect_search_exact(const MotionGraph& graph, const EdgeTracks& tracks, const SearchState& start,
                            const FrameCost& cost, int horizon, BoundTally& tally, const std::string& what) {
+  EXPECT_EQ(start.frames, 0) << what;  // frames are counted from the search's start
   const double best = least_completion(graph, tracks, start, cost, horizon, &tally, what);
   EXPECT_TRUE(std::isfinite(best)) << what;
   const double tolerance = 1e-9 * std::max(1.0, best);

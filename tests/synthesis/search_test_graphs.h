@@ -33,8 +33,8 @@ struct BoundTally {
   long long partial_walks = 0, node_bounded = 0;
 };
 
-// Expects each partial walk's bound from `start` (the larger of remaining_bound and node_bound,
-// as horizon_search adds it) to be at most the least cost of the walks that complete it, and
+// Expects each partial walk's bound from `start` (remaining_bound plus node_bound, as
+// horizon_search adds them) to be at most the least cost of the walks that complete it, and
 // horizon_search with `cost` (a generous budget, with and without a beam) to find every_walk's
 // least cost, without the cost's node bound too; tallies the expansions of both (a bound
 // reorders the children too, so one search may take more; summed over many, fewer). `what`

@@ -322,7 +322,7 @@ $('synthesize').addEventListener('click', async () => {
 // Each segment's type and how much of the motion in it carries it, when there are two or more
 // (one is the total): " (walk 100 %, run 52 %)".
 function segmentMatches(result) {
-  const parts = (result.segments || []).map((s) => `${s.tag} ${s.tag_match === null ? 'not reached'
+  const parts = (result.segments || []).map((s) => `${s.tag} ${s.tag_match === null ? 'no frames'
     : `${(100 * s.tag_match).toFixed(0)} %`}`);
   return parts.length > 1 ? ` (${parts.join(', ')})` : '';
 }

@@ -1,5 +1,6 @@
 #include "motiongraph/evaluation/synthesis_run.h"
 
+#include <cassert>
 #include <cmath>
 #include <ctime>
 
@@ -81,11 +82,11 @@ nlohmann::json path_edit_report(const PathSynthesisSettings& search, const PathS
 }
 
 nlohmann::json path_segments_report(const FloorPath& path, const PathSynthesisResult& result) {
+  assert(result.segment_tag_matches.size() == path.segments().size());
   nlohmann::json segments = nlohmann::json::array();
   for (size_t i = 0; i < path.segments().size(); ++i) {
     const PathSegment& s = path.segments()[i];
-    const PathSynthesisResult::SegmentTagMatch m =
-        i < result.segment_tag_matches.size() ? result.segment_tag_matches[i] : PathSynthesisResult::SegmentTagMatch{};
+    const PathSynthesisResult::SegmentTagMatch& m = result.segment_tag_matches[i];
     segments.push_back({{"from_m", s.from_m},
                         {"to_m", s.to_m},
                         {"tag", s.tag},

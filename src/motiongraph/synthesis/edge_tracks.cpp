@@ -79,7 +79,7 @@ EdgeTracks compute_edge_tracks(const MotionAssembler& assembler, const MotionGra
       }
       if (headings) tracks.headings[first + p] = turn(FloorTransform{turn_rad, 0.0, 0.0}, facing);
     }
-    // Steps inside the edge and on to the first frame of whatever edge follows.
+    // Steps inside the edge and on to its node's own frame (the first of a clip piece leaving it).
     const Vec3 next = assembler.root_position(graph.nodes[edge.to_node].frame, placement);
     Vec2 last(next.x(), next.z());
     for (int p = track.count; p-- > 0;) {

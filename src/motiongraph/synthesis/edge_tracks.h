@@ -1,9 +1,10 @@
 // What searches need of every edge, computed once: the root's floor position, facing and heading
 // (the direction a walk goes, travel_heading.h) for each frame the edge plays (and the heading
-// of its first along the travel axis, for placing a path's start), as the assembler plays it under the identity placement, the
-// placement change the edge makes, the root's largest step from one frame to the next, (identity for clip pieces, the transition's transform for
-// transitions) and the tags of each frame (a blended frame has the tags of the side with the
-// larger weight). Under a placement W a frame's world floor position is W applied to it.
+// of its first along the travel axis, for placing a path's start), as the assembler plays it
+// under the identity placement; the placement change the edge makes (identity for clip pieces,
+// the transition's transform for transitions); the tags of each frame (a blended frame has the
+// tags of the side with the larger weight); and the root's largest step from one frame to the
+// next. Under a placement W a frame's world floor position is W applied to it.
 #pragma once
 
 #include <span>

@@ -152,12 +152,17 @@ std::vector<double> FloorPath::followed_arcs(std::span<const Vec2> track, double
   return arcs;
 }
 
+int FloorPath::segment_at(double s) const {
+  for (size_t i = segments_.size(); i-- > 0;) {
+    if (s >= segments_[i].from_m && s < segments_[i].to_m) return static_cast<int>(i);
+  }
+  return -1;
+}
+
 const std::string& FloorPath::tag_at(double s) const {
   static const std::string none;
-  for (auto it = segments_.rbegin(); it != segments_.rend(); ++it) {
-    if (s >= it->from_m && s < it->to_m) return it->tag;
-  }
-  return none;
+  const int i = segment_at(s);
+  return i < 0 ? none : segments_[static_cast<size_t>(i)].tag;
 }
 
 Result<FloorPath> parse_path_json(std::string_view text, const std::string& file_name) {

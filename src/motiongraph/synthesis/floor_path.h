@@ -82,7 +82,9 @@ class FloorPath {
   // progress: a root that sways, shuffles or steps aside does not add to it, as it adds to the
   // distance the root travels. Consecutive points must lie less than window_m apart.
   std::vector<double> followed_arcs(std::span<const Vec2> track, double window_m = 1.0, double from = -1.0) const;
-  // The tag asked for at arc length s: the last segment containing s, or "" when none.
+  // The segment asked for at arc length s: the index of the last one given containing s
+  // ([from_m, to_m)), or -1 when none; and its tag ("" when none).
+  int segment_at(double s) const;
   const std::string& tag_at(double s) const;
 
  private:

@@ -113,8 +113,8 @@ bool play_edge(const MotionGraph& graph, const EdgeTracks& tracks, const FrameCo
   out.priority = out.cost;
   if (!out.complete) {
     const int frames_left = static_cast<int>(horizon - after);
-    out.priority += std::max(frame_cost.remaining_bound(frames_left, s.last_root, s.arc_m),
-                             frame_cost.node_bound(s, frames_left));
+    out.priority +=
+        frame_cost.remaining_bound(frames_left, s.last_root, s.arc_m) + frame_cost.node_bound(s, frames_left);
     if (out.priority >= bound) return false;
   }
   return true;

@@ -56,7 +56,8 @@ class FrameCost {
   // direction a walk goes) instead, where the tracks have headings.
   virtual bool uses_heading() const { return false; }
   // A lower bound of the cost of the next `frames_left` frames of any walk from a state whose
-  // last frame had this root and arc length (0 is always right; tighter bounds cut more).
+  // last frame had this root and arc length (0 is always right; tighter bounds cut more), of the
+  // parts of the cost node_bound does not bound.
   virtual double remaining_bound(int frames_left, const Vec2& root, double arc_m) const {
     (void)frames_left, (void)root, (void)arc_m;
     return 0.0;
@@ -81,8 +82,9 @@ class FrameCost {
   }
   // A lower bound of what any walk from `state` (a partial walk's end, at a node, `frames_left`
   // frames short of the horizon) still costs, the frames within the horizon and terminal_cost
-  // together (0 is always right); a partial walk's priority adds the larger of this and
-  // remaining_bound, so that walks whose cost-to-go is high are cut before they are played out.
+  // together, of the parts of the cost remaining_bound does not bound (0 is always right): a
+  // partial walk's priority adds both, so that walks whose cost-to-go is high are cut before they
+  // are played out.
   virtual double node_bound(const SearchState& state, int frames_left) const {
     (void)state, (void)frames_left;
     return 0.0;

@@ -102,12 +102,11 @@ double PathCost::node_bound(const SearchState& state, int frames_left) const {
   const double length = path_.length_m();
   const double region_end = std::next(at) == regions_.end() ? length : std::min(std::next(at)->from_m, length);
   // The frames j = 1, 2, ... whose root has covered at most arc + j max_step < region_end (a
-  // count just below a whole number taken for the one below it: the arcs are sums of rounded
-  // steps).
+  // ratio within 1e-6 above a whole number n taken for n: the arcs are sums of rounded steps).
   const double in_region = std::ceil((region_end - state.arc_m) / max_step_ - 1e-6) - 1.0;
   double bound = lookahead_ * c;
   if (in_region < frames_left) bound = std::min(bound, penalty_ * std::max(0.0, in_region));
-  return bound > 0.0 ? bound + remaining_bound(frames_left, state.last_root, state.arc_m) : 0.0;
+  return bound;
 }
 
 void PathCost::set_view(const FloorTransform& view) {
@@ -118,11 +117,8 @@ void PathCost::set_view(const FloorTransform& view) {
 }
 
 TagMask PathCost::wanted_at(double s) const {
-  const auto& segments = path_.segments();
-  for (size_t i = segments.size(); i-- > 0;) {
-    if (s >= segments[i].from_m && s < segments[i].to_m) return masks_[i];
-  }
-  return 0;
+  const int segment = path_.segment_at(s);
+  return segment < 0 ? TagMask{0} : masks_[static_cast<size_t>(segment)];
 }
 
 std::vector<PathCost::Region>::const_iterator PathCost::region_at(double arc_m) const {

@@ -7,10 +7,11 @@
 // any walk from where it ends must still pay before that tag (tag_distance.h), so that a motion
 // type no walk within the horizon reaches is headed for.
 //
-// The search's bounds: remaining_bound (how far the root is from the path, against how fast the
-// root and the path's point can close in) and node_bound (that plus the way to the tag, where the
-// walk surely plays frames asking for it); both stay below every walk's cost, so the branch and
-// bound stays exact (tests/synthesis/path_cost_test.cpp checks it against every walk).
+// The search's bounds, of two parts of the cost: remaining_bound (the distance from the path: how
+// far the root is from it, against how fast the root and the path's point can close in) and
+// node_bound (the tag penalties, transitions and cost-to-go: the way to the tag, where the walk
+// surely plays frames asking for it); together they stay below every walk's cost, so the branch
+// and bound stays exact (tests/synthesis/path_cost_test.cpp checks it against every walk).
 #pragma once
 
 #include <vector>
@@ -49,9 +50,8 @@ class PathCost final : public FrameCost {
   // to it: within the horizon, or past it (weighted) when the walk ends in the segment, which it
   // surely does when the root cannot reach the segment's end (nor the path's) in the frames left
   // at its fastest step. Otherwise the frames it surely plays in the segment, g of them, cost
-  // the tag penalty each until the tag: min(c tag_lookahead, g penalty) bounds it. Added to
-  // remaining_bound, which bounds another part of the frames' cost (their distance from the
-  // path).
+  // the tag penalty each until the tag: min(c tag_lookahead, g penalty) bounds it. The frames'
+  // distance from the path, another part of their cost, is remaining_bound's.
   double node_bound(const SearchState& state, int frames_left) const override;
 
   // Each search starts where the root has covered arc_m (the behind penalty counts from there).

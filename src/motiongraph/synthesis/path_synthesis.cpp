@@ -285,15 +285,13 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
   result.segment_tag_matches.assign(segments.size(), {});
   int in_segments = 0, matched = 0;
   for (int f = 0; f < end; ++f) {
-    for (size_t i = segments.size(); i-- > 0;) {  // the last given that holds the arc (PathCost::wanted_at)
-      if (arcs[f] < segments[i].from_m || arcs[f] >= segments[i].to_m) continue;
-      const bool carries = (result.frame_tags[f] & masks[i]) != 0;
-      ++result.segment_tag_matches[i].frames;
-      result.segment_tag_matches[i].matched += carries ? 1 : 0;
-      ++in_segments;
-      matched += carries ? 1 : 0;
-      break;
-    }
+    const int i = path.segment_at(arcs[f]);  // as the search asks (PathCost::wanted_at)
+    if (i < 0) continue;
+    const bool carries = (result.frame_tags[f] & masks[static_cast<size_t>(i)]) != 0;
+    ++result.segment_tag_matches[static_cast<size_t>(i)].frames;
+    result.segment_tag_matches[static_cast<size_t>(i)].matched += carries ? 1 : 0;
+    ++in_segments;
+    matched += carries ? 1 : 0;
   }
   result.tag_match = in_segments > 0 ? static_cast<double>(matched) / in_segments : 1.0;
   result.behind_penalty_m = settings.behind_penalty_m;
