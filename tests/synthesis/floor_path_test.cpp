@@ -139,6 +139,13 @@ TEST(FloorPath, DistanceAndSegments) {
   EXPECT_EQ(path->tag_at(1.0), "walk");
   EXPECT_EQ(path->tag_at(4.5), "run");  // the later segment wins where they overlap
   EXPECT_EQ(path->tag_at(10.5), "");
+  // Segments are half open: [from_m, to_m).
+  EXPECT_EQ(path->segment_at(0.0), 0);
+  EXPECT_EQ(path->segment_at(3.999), 0);
+  EXPECT_EQ(path->segment_at(4.0), 1);
+  EXPECT_EQ(path->segment_at(9.999), 1);
+  EXPECT_EQ(path->segment_at(10.0), -1);
+  EXPECT_EQ(path->segment_at(-0.1), -1);
 }
 
 // The distance to the nearest point of the path, every segment looked at.
