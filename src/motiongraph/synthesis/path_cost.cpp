@@ -78,19 +78,14 @@ double PathCost::remaining_bound(int frames_left, const Vec2& root, double arc_m
 }
 
 double PathCost::transition_cost(const GraphEdge& edge, const SearchState& from) const {
-  return unasked_bridge(context_, edge, wanted_at(from.arc_m)) ? transition_penalty_ + bridge_penalty_
-                                                                : transition_penalty_;
+  return transition_price(context_, edge, wanted_at(from.arc_m), transition_penalty_, bridge_penalty_);
 }
 
 double PathCost::terminal_cost(int edge, size_t costed, double horizon_arc_m, const SearchState& end) const {
   const Region& region = *region_at(horizon_arc_m);
   if (region.to_tag == nullptr) return 0.0;
-  const auto rest = context_.tracks.tags_of(edge).subspan(costed);
-  for (size_t f = 0; f < rest.size(); ++f) {
-    if ((rest[f] & region.wanted) != 0) return lookahead_ * penalty_ * static_cast<double>(f);
-  }
-  const double beyond = (*region.to_tag)[static_cast<size_t>(end.node)];
-  return beyond < 0.0 ? 0.0 : lookahead_ * (penalty_ * static_cast<double>(rest.size()) + beyond);
+  return lookahead_ *
+         cost_to_tag_after(context_.tracks, edge, costed, end.node, region.wanted, penalty_, *region.to_tag);
 }
 
 double PathCost::node_bound(const SearchState& state, int frames_left) const {

@@ -24,17 +24,12 @@ double SteerCost::cost(int, const Vec2&, const Vec2& facing, double, TagMask tag
 }
 
 double SteerCost::transition_cost(const GraphEdge& edge, const SearchState&) const {
-  return unasked_bridge(context_, edge, input_.tag) ? transition_penalty_ + bridge_penalty_ : transition_penalty_;
+  return transition_price(context_, edge, input_.tag, transition_penalty_, bridge_penalty_);
 }
 
 double SteerCost::terminal_cost(int edge, size_t costed, double, const SearchState& end) const {
   if (cost_to_tag_ == nullptr) return 0.0;
-  const auto rest = context_.tracks.tags_of(edge).subspan(costed);
-  for (size_t f = 0; f < rest.size(); ++f) {
-    if ((rest[f] & input_.tag) != 0) return lookahead_ * penalty_ * static_cast<double>(f);
-  }
-  const double beyond = (*cost_to_tag_)[static_cast<size_t>(end.node)];
-  return beyond < 0.0 ? 0.0 : lookahead_ * (penalty_ * static_cast<double>(rest.size()) + beyond);
+  return lookahead_ * cost_to_tag_after(context_.tracks, edge, costed, end.node, input_.tag, penalty_, *cost_to_tag_);
 }
 
 double SteerCost::node_bound(const SearchState& state, int) const {

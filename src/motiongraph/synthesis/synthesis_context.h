@@ -102,6 +102,14 @@ inline bool unasked_bridge(const SynthesisContext& context, const GraphEdge& edg
   return edge.bridge && (bridge_landing_tags(context, edge) & asked) == 0;
 }
 
+// What path and steering searches charge for taking transition edge `edge` while `asked` is asked
+// for: the transition penalty, and the bridge penalty more for an unasked bridge. Their costs to a
+// tag price the way there alike (tag_distance.h): their bounds rest on the two agreeing.
+inline double transition_price(const SynthesisContext& context, const GraphEdge& edge, TagMask asked,
+                               double transition_penalty, double bridge_penalty) {
+  return unasked_bridge(context, edge, asked) ? transition_penalty + bridge_penalty : transition_penalty;
+}
+
 // target_skeleton -1: the skeleton of the database's first clip.
 Result<SynthesisContext> make_synthesis_context(const MotionDatabase& db, const MotionGraph& graph,
                                                 int target_skeleton = -1);

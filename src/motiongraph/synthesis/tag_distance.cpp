@@ -71,15 +71,24 @@ std::vector<double> cost_to_tag(const MotionGraph& graph, const EdgeTracks& trac
   return cost;
 }
 
+double cost_to_tag_after(const EdgeTracks& tracks, int edge, size_t costed, int end_node, TagMask tag,
+                         double per_frame, const std::vector<double>& to_tag) {
+  const auto rest = tracks.tags_of(edge).subspan(costed);
+  for (size_t f = 0; f < rest.size(); ++f) {
+    if ((rest[f] & tag) != 0) return per_frame * static_cast<double>(f);
+  }
+  const double beyond = to_tag[static_cast<size_t>(end_node)];
+  return beyond < 0.0 ? 0.0 : per_frame * static_cast<double>(rest.size()) + beyond;
+}
+
 const std::vector<double>* searched_costs_to_tag(const SynthesisContext& context, const TagCostCache::Key& key) {
   if (!context.tag_costs) return nullptr;
   return &context.tag_costs->get(key, [&] {
     const MotionGraph& graph = *context.graph;
     auto edge_cost = [&](int e) {
       const GraphEdge& edge = graph.edges[static_cast<size_t>(e)];
-      if (!edge.transition) return 0.0;
-      return unasked_bridge(context, edge, key.tag) ? key.transition_penalty + key.bridge_penalty
-                                                    : key.transition_penalty;
+      return edge.transition ? transition_price(context, edge, key.tag, key.transition_penalty, key.bridge_penalty)
+                             : 0.0;
     };
     return cost_to_tag(graph, context.tracks, key.tag, key.per_frame, edge_cost);
   });

@@ -26,6 +26,14 @@ namespace mg {
 std::vector<double> cost_to_tag(const MotionGraph& graph, const EdgeTracks& tracks, TagMask tag, double per_frame,
                                 const std::function<double(int edge)>& edge_cost = {});
 
+// What any walk still pays before `tag` after a walk that reached its horizon in edge `edge`, its
+// first `costed` frames costed, and ends at node `end_node`: per_frame for each later frame of
+// the edge before one carrying the tag, or for all of them and then the node's cost in `to_tag`
+// (cost_to_tag's; 0 where no walk reaches the tag from there). The path and steering searches'
+// cost-to-go, before their weight.
+double cost_to_tag_after(const EdgeTracks& tracks, int edge, size_t costed, int end_node, TagMask tag,
+                         double per_frame, const std::vector<double>& to_tag);
+
 // The costs to `key.tag` of `context`'s graph as path and steering searches price them: per_frame
 // for each frame without it, the transition penalty for each transition and the bridge penalty
 // more for each bridge that does not lead into it (unasked_bridge). Kept in the context's cache
