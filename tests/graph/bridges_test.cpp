@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <random>
 
 namespace mg {
@@ -36,11 +37,53 @@ TEST(Bridges, BestCandidatesBetweenCoresInEachDirection) {
       t(98, 104, 0.5f),                      // windows mixing walk and run frames: no bridge
       t(30, 60, 0.1f),                       // walk -> walk: no bridge
   };
-  auto bridges = select_bridges(candidates, {}, s.tags, s.cores, 4, settings).bridges;
+  auto bridges = select_bridges(candidates, {}, s.tags, {}, s.cores, 4, settings).bridges;
   ASSERT_EQ(bridges.size(), 3u);
   EXPECT_EQ(bridges[0].from_frame, 31);
   EXPECT_EQ(bridges[1].from_frame, 50);
   EXPECT_EQ(bridges[2].from_frame, 140);
+}
+
+// The run frames in two clips (100..149, 150..199): the two best walk -> run candidates land in
+// the first, the third best in the second. Two bridges: the best into each clip. Without clips
+// given (all one clip), the two best.
+TEST(Bridges, TheBestIntoEachClipFirst) {
+  WalkRun s;
+  BridgeSettings settings;
+  settings.per_tag_pair = 2;
+  settings.locality_radius = 3;
+  const std::vector<Transition> candidates = {t(30, 125, 2.0f), t(50, 140, 3.0f), t(60, 170, 4.0f),
+                                              t(70, 175, 5.0f)};
+  std::vector<int> clips(200, 0);
+  std::fill(clips.begin() + 100, clips.begin() + 150, 1);
+  std::fill(clips.begin() + 150, clips.end(), 2);
+  auto spread = select_bridges(candidates, {}, s.tags, clips, s.cores, 4, settings).bridges;
+  ASSERT_EQ(spread.size(), 2u);
+  EXPECT_EQ(spread[0].to_frame, 125);
+  EXPECT_EQ(spread[1].to_frame, 170);
+  auto one_clip = select_bridges(candidates, {}, s.tags, {}, s.cores, 4, settings).bridges;
+  ASSERT_EQ(one_clip.size(), 2u);
+  EXPECT_EQ(one_clip[0].to_frame, 125);
+  EXPECT_EQ(one_clip[1].to_frame, 140);
+  // Three bridges: one into each clip, then the best of the rest.
+  settings.per_tag_pair = 3;
+  auto three = select_bridges(candidates, {}, s.tags, clips, s.cores, 4, settings).bridges;
+  ASSERT_EQ(three.size(), 3u);
+  EXPECT_EQ(three[1].to_frame, 140);
+  // With the candidates known only up to D 3 (levels), the pair is short of clips: incomplete.
+  std::vector<double> levels(kBridgeTags * kBridgeTags, std::numeric_limits<double>::infinity());
+  levels[0 * kBridgeTags + 1] = 3.0;
+  settings.per_tag_pair = 2;
+  const std::vector<Transition> known(candidates.begin(), candidates.begin() + 2);
+  auto partial = select_bridges(known, {}, s.tags, clips, s.cores, 4, settings, {}, levels);
+  ASSERT_EQ(partial.incomplete.size(), 1u);
+  EXPECT_EQ(partial.incomplete[0], (TagPair{0, 1}));
+  // Known up to D 4: one bridge into each clip, nothing above it can change that.
+  levels[0 * kBridgeTags + 1] = 4.0;
+  const std::vector<Transition> more(candidates.begin(), candidates.begin() + 3);
+  auto done = select_bridges(more, {}, s.tags, clips, s.cores, 4, settings, {}, levels);
+  EXPECT_TRUE(done.incomplete.empty());
+  EXPECT_EQ(done.bridges.size(), 2u);
 }
 
 TEST(Bridges, NoneBetweenCoresThatShareFrames) {
@@ -49,30 +92,30 @@ TEST(Bridges, NoneBetweenCoresThatShareFrames) {
   WalkRun s;
   for (int f = 90; f < 110; ++f) s.tags[f] = 3;
   const std::vector<Transition> candidates = {t(31, 151, 5.0f), t(140, 40, 8.0f)};
-  auto apart = select_bridges(candidates, {}, s.tags, s.cores, 4, {});
+  auto apart = select_bridges(candidates, {}, s.tags, {}, s.cores, 4, {});
   EXPECT_EQ(apart.bridges.size(), 2u);
   for (int f = 90; f < 110; ++f) s.cores[0][f] = s.cores[1][f] = 1;
-  auto shared = select_bridges(candidates, {}, s.tags, s.cores, 4, {});
+  auto shared = select_bridges(candidates, {}, s.tags, {}, s.cores, 4, {});
   EXPECT_TRUE(shared.bridges.empty());
   EXPECT_TRUE(shared.unjoined.empty());
   // Not for a tag outside settings.tags (a modifier).
   BridgeSettings walk_only;
   walk_only.tags = 0b01;
-  EXPECT_TRUE(select_bridges(candidates, {}, s.tags, s.cores, 4, walk_only).unjoined.empty());
+  EXPECT_TRUE(select_bridges(candidates, {}, s.tags, {}, s.cores, 4, walk_only).unjoined.empty());
 }
 
 TEST(Bridges, NoneWhereSelectedTransitionsAlreadyJoinTheCores) {
   WalkRun s;
   const std::vector<Transition> candidates = {t(31, 151, 5.0f), t(140, 40, 8.0f)};
   const std::vector<Transition> selected = {t(45, 165, 2.0f)};  // walk core -> run core
-  auto bridges = select_bridges(candidates, selected, s.tags, s.cores, 4, {});
+  auto bridges = select_bridges(candidates, selected, s.tags, {}, s.cores, 4, {});
   ASSERT_EQ(bridges.bridges.size(), 1u);
   EXPECT_EQ(bridges.bridges[0].from_frame, 140);
   EXPECT_TRUE(bridges.unjoined.empty());
   // A tag without a core gets none, and both directions are reported unjoined for that reason;
   // nor do bridges come when switched off.
   s.cores[1].clear();
-  auto coreless = select_bridges(candidates, {}, s.tags, s.cores, 4, {});
+  auto coreless = select_bridges(candidates, {}, s.tags, {}, s.cores, 4, {});
   EXPECT_TRUE(coreless.bridges.empty());
   ASSERT_EQ(coreless.unjoined.size(), 2u);
   EXPECT_EQ(coreless.unjoined[0].reason, UnjoinedReason::kNoCore);
@@ -80,7 +123,7 @@ TEST(Bridges, NoneWhereSelectedTransitionsAlreadyJoinTheCores) {
   EXPECT_LT(coreless.unjoined[1].best_distance, 0.0f);
   BridgeSettings off;
   off.per_tag_pair = 0;
-  EXPECT_TRUE(select_bridges(candidates, {}, WalkRun().tags, WalkRun().cores, 4, off).bridges.empty());
+  EXPECT_TRUE(select_bridges(candidates, {}, WalkRun().tags, {}, WalkRun().cores, 4, off).bridges.empty());
 }
 
 TEST(Bridges, NoneAboveTheCapAndThePairReportedWithItsBestDistance) {
@@ -88,7 +131,7 @@ TEST(Bridges, NoneAboveTheCapAndThePairReportedWithItsBestDistance) {
   const std::vector<Transition> candidates = {t(31, 151, 5.0f), t(50, 170, 7.0f), t(140, 40, 8.0f)};
   BridgeSettings settings;
   settings.max_distance = 6.0;
-  auto got = select_bridges(candidates, {}, s.tags, s.cores, 4, settings);
+  auto got = select_bridges(candidates, {}, s.tags, {}, s.cores, 4, settings);
   ASSERT_EQ(got.bridges.size(), 1u);  // walk -> run at 5; run -> walk's only candidate is 8
   EXPECT_EQ(got.bridges[0].from_frame, 31);
   ASSERT_EQ(got.unjoined.size(), 1u);
@@ -97,7 +140,7 @@ TEST(Bridges, NoneAboveTheCapAndThePairReportedWithItsBestDistance) {
   EXPECT_EQ(got.unjoined[0].reason, UnjoinedReason::kAboveCap);
   EXPECT_FLOAT_EQ(got.unjoined[0].best_distance, 8.0f);
   // Without any candidate from run to walk the reason says so.
-  got = select_bridges(std::vector<Transition>{t(31, 151, 5.0f)}, {}, s.tags, s.cores, 4, settings);
+  got = select_bridges(std::vector<Transition>{t(31, 151, 5.0f)}, {}, s.tags, {}, s.cores, 4, settings);
   ASSERT_EQ(got.unjoined.size(), 1u);
   EXPECT_EQ(got.unjoined[0].reason, UnjoinedReason::kNoCandidate);
   EXPECT_LT(got.unjoined[0].best_distance, 0.0f);
@@ -212,10 +255,12 @@ TEST(TagCoreFrames, AGraphThatCannotBeBuiltIsAnError) {
 // The rule written pair by pair, over every candidate in order of distance (ties in input
 // order): for each ordered pair of tags (s, u) not already joined, the best candidates leaving
 // frames of s (not u) in s's core and landing on frames of u (not s) in u's core, at most
-// per_tag_pair of them, none within the locality radius of a better one.
+// per_tag_pair of them, none within the locality radius of one taken before it: first one into
+// each clip (of `clips`, per frame), then the best of the rest.
 // Candidates above `cap` (when >= 0) bridge nothing; a pair not joined and left without a
 // bridge is listed in `unjoined` with the best D of the candidates that would bridge it.
 std::vector<Transition> reference_bridges(const std::vector<Transition>& candidates, const std::vector<TagMask>& tags,
+                                          const std::vector<int>& clips,
                                           const std::vector<std::vector<char>>& cores, int window, int per_pair,
                                           int radius, const std::vector<std::pair<int, int>>& joined, double cap,
                                           std::vector<UnjoinedPair>& unjoined) {
@@ -233,17 +278,25 @@ std::vector<Transition> reference_bridges(const std::vector<Transition>& candida
       if (s == u || std::count(joined.begin(), joined.end(), std::make_pair(s, u)) > 0) continue;
       std::vector<Transition> pair;
       float best = -1.0f;
-      for (const Transition& c : sorted) {
-        const TagMask from = window_tags(c.from_frame), to = window_tags(c.to_frame - window + 1);
-        if (!(from >> s & 1) || (from >> u & 1) || !(to >> u & 1) || (to >> s & 1)) continue;
-        if (!cores[s][c.from_frame] || !cores[u][c.to_frame]) continue;
-        if (best < 0.0f || c.distance < best) best = c.distance;
-        if (cap >= 0.0 && c.distance > cap) continue;
-        if (static_cast<int>(pair.size()) >= per_pair) continue;
-        if (std::none_of(pair.begin(), pair.end(), [&](const Transition& o) {
-              return std::abs(o.from_frame - c.from_frame) <= radius || std::abs(o.to_frame - c.to_frame) <= radius;
-            })) {
-          pair.push_back(c);
+      for (const bool first_round : {true, false}) {
+        for (const Transition& c : sorted) {
+          const TagMask from = window_tags(c.from_frame), to = window_tags(c.to_frame - window + 1);
+          if (!(from >> s & 1) || (from >> u & 1) || !(to >> u & 1) || (to >> s & 1)) continue;
+          if (!cores[s][c.from_frame] || !cores[u][c.to_frame]) continue;
+          if (first_round && (best < 0.0f || c.distance < best)) best = c.distance;
+          if (cap >= 0.0 && c.distance > cap) continue;
+          if (static_cast<int>(pair.size()) >= per_pair) continue;
+          const bool taken = std::any_of(pair.begin(), pair.end(), [&](const Transition& o) {
+            return o.from_frame == c.from_frame && o.to_frame == c.to_frame;
+          });
+          const bool clip_taken = std::any_of(pair.begin(), pair.end(),
+                                              [&](const Transition& o) { return clips[o.to_frame] == clips[c.to_frame]; });
+          if (taken || (first_round && clip_taken)) continue;
+          if (std::none_of(pair.begin(), pair.end(), [&](const Transition& o) {
+                return std::abs(o.from_frame - c.from_frame) <= radius || std::abs(o.to_frame - c.to_frame) <= radius;
+              })) {
+            pair.push_back(c);
+          }
         }
       }
       if (pair.empty()) {
@@ -279,6 +332,13 @@ TEST(Bridges, SameAsTheRuleWrittenPairByPairOnRandomLibraries) {
       if (rng() % 3 == 0) m |= TagMask{1} << 3;
       if (rng() % 5 == 0) m |= TagMask{1} << (rng() % 3);
       for (int i = f; i < std::min(frames, f + length); ++i) tags[i] = m;
+      f += length;
+    }
+    // Clips of 10-80 frames, their tags changing within them or not.
+    std::vector<int> clips(frames, 0);
+    for (int f = 0, clip = 0; f < frames; ++clip) {
+      const int length = 10 + static_cast<int>(rng() % 71);
+      for (int i = f; i < std::min(frames, f + length); ++i) clips[i] = clip;
       f += length;
     }
     // A core holds frames of its own tag only; two share frames where clips carry both.
@@ -330,9 +390,9 @@ TEST(Bridges, SameAsTheRuleWrittenPairByPairOnRandomLibraries) {
     }
     std::vector<UnjoinedPair> expected_unjoined;
     const auto expected =
-        reference_bridges(candidates, tags, {cores[0], cores[1], cores[2]}, window, settings.per_tag_pair,
+        reference_bridges(candidates, tags, clips, {cores[0], cores[1], cores[2]}, window, settings.per_tag_pair,
                           settings.locality_radius, joined, settings.max_distance, expected_unjoined);
-    const auto selection = select_bridges(candidates, selected, tags, cores, window, settings);
+    const auto selection = select_bridges(candidates, selected, tags, clips, cores, window, settings);
     const auto& got = selection.bridges;
     ASSERT_EQ(got.size(), expected.size()) << "round " << round;
     total += got.size();

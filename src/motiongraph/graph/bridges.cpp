@@ -94,7 +94,8 @@ BridgeBlend bridge_blend(const MotionDatabase& db, const Transition& bridge, int
 }
 
 BridgeSelection select_bridges(std::span<const Transition> candidates, std::span<const Transition> selected,
-                               std::span<const TagMask> frame_tags, std::span<const std::vector<char>> cores,
+                               std::span<const TagMask> frame_tags, std::span<const int> frame_clips,
+                               std::span<const std::vector<char>> cores,
                                int window, const BridgeSettings& settings, std::span<const Transition> above,
                                std::span<const double> levels) {
   BridgeSelection out;
@@ -162,9 +163,21 @@ BridgeSelection select_bridges(std::span<const Transition> candidates, std::span
   }
   std::stable_sort(by_distance.begin(), by_distance.end(),
                    [](const Transition* x, const Transition* y) { return x->distance < y->distance; });
-  std::vector<std::vector<const Transition*>> chosen(kTags * kTags);
+  // By D, each pair's bridges land in as many clips as they can: first the best candidate into
+  // each clip of the arriving tag's core (in order of D: the two best may both land in one clip,
+  // a run turning left, say, while a straight run a little further is the only way on along a
+  // line), then, with bridges still to pick, the best of the rest.
+  std::vector<std::vector<const Transition*>> chosen(kTags * kTags), deferred(kTags * kTags);
+  std::vector<int> distinct(kTags * kTags, 0);  // how many of chosen[pair] landed in a clip first
   std::vector<float> best(kTags * kTags, -1.0f);  // the lowest D of any candidate, cap or not
   const bool capped = settings.max_distance >= 0.0;
+  auto clip_of = [&](int frame) { return frame_clips.empty() ? 0 : frame_clips[static_cast<size_t>(frame)]; };
+  auto near = [&](const std::vector<const Transition*>& list, const Transition* c) {
+    return std::any_of(list.begin(), list.end(), [&](const Transition* other) {
+      return std::abs(other->from_frame - c->from_frame) <= settings.locality_radius ||
+             std::abs(other->to_frame - c->to_frame) <= settings.locality_radius;
+    });
+  };
   for (const Transition* c : by_distance) {
     const TagMask to = sinks(*c);
     each_bit(sources(*c), [&](int s) {
@@ -174,14 +187,23 @@ BridgeSelection select_bridges(std::span<const Transition> candidates, std::span
         if (best[pair] < 0.0f) best[pair] = c->distance;  // candidates come by D
         if (capped && c->distance > settings.max_distance) return;
         auto& list = chosen[pair];
-        if (static_cast<int>(list.size()) >= settings.per_tag_pair) return;
-        const bool near = std::any_of(list.begin(), list.end(), [&](const Transition* other) {
-          return std::abs(other->from_frame - c->from_frame) <= settings.locality_radius ||
-                 std::abs(other->to_frame - c->to_frame) <= settings.locality_radius;
-        });
-        if (!near) list.push_back(c);
+        if (distinct[pair] >= settings.per_tag_pair) return;
+        const bool landed = std::any_of(list.begin(), list.end(),
+                                        [&](const Transition* other) { return clip_of(other->to_frame) == clip_of(c->to_frame); });
+        if (landed) {
+          deferred[pair].push_back(c);
+        } else if (!near(list, c)) {
+          list.push_back(c);
+          ++distinct[pair];
+        }
       });
     });
+  }
+  for (int pair = 0; pair < kTags * kTags; ++pair) {
+    for (const Transition* c : deferred[pair]) {
+      if (static_cast<int>(chosen[pair].size()) >= settings.per_tag_pair) break;
+      if (!near(chosen[pair], c)) chosen[pair].push_back(c);
+    }
   }
   for (const auto& list : chosen) {
     for (const Transition* c : list) {
@@ -195,12 +217,27 @@ BridgeSelection select_bridges(std::span<const Transition> candidates, std::span
     return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
   });
   const int tag_count = std::min(kTags, static_cast<int>(cores.size()));
-  // The pairs short of bridges with candidates above their level still to look at.
+  // How many clips each tag's core reaches into: a pair whose bridges land in that many (or in
+  // per_tag_pair) is not short of distinct clips.
+  std::vector<int> core_clips(kTags, 0);
+  {
+    std::vector<int> last_clip(kTags, -1);
+    for (int f = 0; f < frames; ++f) {
+      each_bit(in_core[f], [&](int u) {
+        if (clip_of(f) != last_clip[u]) ++core_clips[u];
+        last_clip[u] = clip_of(f);
+      });
+    }
+  }
+  // The pairs short of bridges, or of clips they land in, with candidates above their level still
+  // to look at.
   for (int s = 0; s < tag_count; ++s) {
     for (int u = 0; u < tag_count; ++u) {
       const int pair = s * kTags + u;
+      const bool full = static_cast<int>(chosen[pair].size()) >= settings.per_tag_pair &&
+                        distinct[pair] >= std::min(settings.per_tag_pair, core_clips[u]);
       if (u == s || !(settings.tags >> s & 1) || !(settings.tags >> u & 1) || joined[pair] || cores[s].empty() ||
-          cores[u].empty() || static_cast<int>(chosen[pair].size()) >= settings.per_tag_pair || level(pair) == kAll) {
+          cores[u].empty() || full || level(pair) == kAll) {
         continue;
       }
       if (!(capped && level(pair) >= settings.max_distance && best[pair] >= 0.0f)) out.incomplete.push_back({s, u});

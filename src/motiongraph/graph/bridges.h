@@ -1,9 +1,11 @@
 // Bridges between motion types. Transitions below the threshold connect frames of one kind
 // of motion with each other; between kinds (walking and running of one subject, say) every
-// candidate may lie above it, and the pruned graph then keeps one kind only. A bridge is the
-// best candidate (lowest D, a local minimum like any other) from frames that all carry tag s
+// candidate may lie above it, and the pruned graph then keeps one kind only. A bridge is one of the
+// best candidates (lowest D, a local minimum like any other) from frames that all carry tag s
 // to frames that all carry tag t, added for each ordered pair of tags (s, t) that no selected
-// transition joins and whose cores share no frame. Bridges are reported apart, with their D, so
+// transition joins and whose cores share no frame; the best into each of t's clips first, so
+// that the pair's bridges lead into as many captured motions as they can (subject 16's three
+// best from walk to run all land in runs turning 90 degrees, which a straight path cannot use). Bridges are reported apart, with their D, so
 // the user sees what quality the connection costs; pruning treats them like any transition. A
 // bridge's D can reach 100x the threshold, so it blends longer than a transition
 // (bridge_blend_frames), and a cap keeps out those no blend makes acceptable; the pairs left
@@ -62,7 +64,7 @@ struct TagPair {
 struct BridgeSelection {
   std::vector<Transition> bridges;      // sorted by (from_frame, to_frame)
   std::vector<UnjoinedPair> unjoined;   // by (from_tag, to_tag)
-  // Pairs short of bridges whose level leaves candidates to look at (see select_bridges): the
+  // Pairs short of bridges (or of clips they land in) whose level leaves candidates to look at (see select_bridges): the
   // selection is final only when this is empty.
   std::vector<TagPair> incomplete;
 };
@@ -103,7 +105,10 @@ Result<std::vector<char>> tag_core_frames(const MotionDatabase& db, std::span<co
 
 // The bridges to add to `selected`; window k. A bridge from s to u leaves from a frame of s's
 // core and lands on a frame of u's core (cores[t] from tag_core_frames; a tag without a core
-// gets no bridges), and its D is at most max_distance. A pair whose cores share a frame needs
+// gets no bridges), and its D is at most max_distance. Each pair's per_tag_pair bridges are, in
+// order of D, the best candidate landing in each clip (frame_clips: per frame; empty: all one
+// clip) not landed in yet, then, while the pair is short of bridges, the best of the others;
+// none within locality_radius frames of another of the pair's at either end. A pair whose cores share a frame needs
 // none: the graph passes from one to the other there. Every ordered pair of distinct tags of
 // settings.tags with a core or candidates, joined by neither a selected transition, a shared
 // core frame nor a bridge, is listed in `unjoined`.
@@ -113,10 +118,11 @@ Result<std::vector<char>> tag_core_frames(const MotionDatabase& db, std::span<co
 // them. Else, kBridgeTags^2 D levels: for bridging s to u they hold every minimum leaving a
 // frame of s's core and arriving at a frame of u's core with D at most levels[s * kBridgeTags +
 // u] (+infinity: all), and the ones above it are not looked at. A pair whose bridges could still change with
-// candidates above its level is listed in `incomplete`: raise its level (on_demand_candidates.h)
+// candidates above its level (short of bridges, or of the clips they land in) is listed in `incomplete`: raise its level (on_demand_candidates.h)
 // and select again. The selection with no pair incomplete is the one all the minima give.
 BridgeSelection select_bridges(std::span<const Transition> candidates, std::span<const Transition> selected,
-                               std::span<const TagMask> frame_tags, std::span<const std::vector<char>> cores,
+                               std::span<const TagMask> frame_tags, std::span<const int> frame_clips,
+                               std::span<const std::vector<char>> cores,
                                int window, const BridgeSettings& settings, std::span<const Transition> above = {},
                                std::span<const double> levels = {});
 
