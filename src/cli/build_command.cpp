@@ -152,7 +152,7 @@ Command add_build_command(CLI::App& app) {
   sub->add_flag("--ignore-tags", b.ignore_tags, "Prune to the largest strongly connected component only, ignoring tags");
   sub->add_option("--bridges", b.bridges.per_tag_pair,
                   "Bridges per ordered pair of tags that no transition below the threshold joins: their best candidates, "
-                  "the best into each clip of the arriving tag first (0: none)")
+                  "the best onto each set of tags the arriving frames carry first, then into each clip (0: none)")
       ->capture_default_str();
   sub->add_option("--max-bridge", b.max_bridge_cm,
                   "No bridge above this RMS point distance in cm (0: no cap); the report names the motion types left "

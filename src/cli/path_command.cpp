@@ -120,12 +120,13 @@ Command add_path_command(CLI::App& app) {
   sub->add_option("--start-node", o->settings.start_node,
                   "Start at this node (default: the best of about 16 spread over the graph and over its sets of tags)");
   sub->add_option("--progress-retries", o->settings.progress_retries,
-                  "When the motion does not reach the path's end (it dawdled) or follows it more than "
-                  "--retry-deviation off, search again up to this many times, looking --retry-horizon ahead: the "
+                  "When the motion does not reach the path's end, or takes longer over a segment than --min-speed "
+                  "(or the median speed of the type it asks for, where slower) would, a second more (it dawdled), or "
+                  "follows it more than --retry-deviation off, search again up to this many times, looking --retry-horizon ahead: the "
                   "same search; with the search's arc corrected to the way along the path the walk has come; "
                   "--behind-penalty 4x; then the search sees where the path edit puts the walk, at 1x and 4x; then "
-                  "16x, 64x, ...; the first to reach the end within --retry-deviation is kept, else the one "
-                  "reaching it with the least deviation")
+                  "16x, 64x, ...; the first to reach the end without dawdling within --retry-deviation is "
+                  "kept, else the one reaching it (without dawdling if any does) with the least deviation")
       ->capture_default_str();
   sub->add_option("--retry-horizon", o->settings.retry_horizon_s,
                   "Seconds of motion each search of the retries looks ahead (0: --horizon): at a sharp corner a "

@@ -86,6 +86,64 @@ TEST(Bridges, TheBestIntoEachClipFirst) {
   EXPECT_EQ(done.bridges.size(), 2u);
 }
 
+// Run frames 150..199 also carry turn (a run that turns): the two best walk -> run candidates
+// land on plain run, the third on the turning run. Two bridges: the best onto each set of tags,
+// before any second clip.
+TEST(Bridges, TheBestOntoEachSetOfTagsFirst) {
+  WalkRun s;
+  for (int f = 150; f < 200; ++f) s.tags[f] |= 0b100;
+  BridgeSettings settings;
+  settings.per_tag_pair = 2;
+  settings.locality_radius = 3;
+  settings.tags = 0b011;
+  const std::vector<Transition> candidates = {t(30, 125, 2.0f), t(50, 140, 3.0f), t(60, 170, 4.0f)};
+  std::vector<int> clips(200, 0);
+  std::fill(clips.begin() + 100, clips.begin() + 130, 1);  // 125 and 140 in two clips
+  std::fill(clips.begin() + 130, clips.end(), 2);
+  auto got = select_bridges(candidates, {}, s.tags, clips, s.cores, 4, settings).bridges;
+  ASSERT_EQ(got.size(), 2u);
+  EXPECT_EQ(got[0].to_frame, 125);
+  EXPECT_EQ(got[1].to_frame, 170);
+  // Known only up to D 3, the pair has not landed on the turning run its core holds: incomplete.
+  std::vector<double> levels(kBridgeTags * kBridgeTags, std::numeric_limits<double>::infinity());
+  levels[0 * kBridgeTags + 1] = 3.0;
+  const std::vector<Transition> known(candidates.begin(), candidates.begin() + 2);
+  auto partial = select_bridges(known, {}, s.tags, clips, s.cores, 4, settings, {}, levels);
+  ASSERT_EQ(partial.incomplete.size(), 1u);
+  EXPECT_EQ(partial.incomplete[0], (TagPair{0, 1}));
+}
+
+// Clip 2 (150..199) carries walk and run: no bridge from walk lands there, so clip 1 is all a
+// walk -> run bridge can land in: one bridge there and the pair is complete whatever lies above
+// its level.
+TEST(Bridges, OnlyTheClipsABridgeCanLandInCount) {
+  WalkRun s;
+  for (int f = 150; f < 200; ++f) s.tags[f] = 3;
+  BridgeSettings settings;
+  settings.per_tag_pair = 1;
+  const std::vector<Transition> candidates = {t(30, 125, 2.0f), t(60, 170, 1.0f)};
+  std::vector<int> clips(200, 0);
+  std::fill(clips.begin() + 100, clips.begin() + 150, 1);
+  std::fill(clips.begin() + 150, clips.end(), 2);
+  std::vector<double> levels(kBridgeTags * kBridgeTags, std::numeric_limits<double>::infinity());
+  levels[0 * kBridgeTags + 1] = 2.0;
+  auto got = select_bridges(candidates, {}, s.tags, clips, s.cores, 4, settings, {}, levels);
+  EXPECT_TRUE(got.incomplete.empty());
+  ASSERT_EQ(got.bridges.size(), 1u);
+  EXPECT_EQ(got.bridges[0].to_frame, 125);
+  // Two bridges a pair, the run frames one clip (no clips given): the best and the next, both in
+  // it, complete; one known, short of bridges: incomplete.
+  WalkRun plain;
+  settings.per_tag_pair = 2;
+  settings.locality_radius = 3;
+  const std::vector<Transition> two = {t(30, 125, 2.0f), t(50, 140, 3.0f)};
+  levels[0 * kBridgeTags + 1] = 3.0;
+  EXPECT_TRUE(select_bridges(two, {}, plain.tags, {}, plain.cores, 4, settings, {}, levels).incomplete.empty());
+  levels[0 * kBridgeTags + 1] = 2.0;
+  const std::vector<Transition> one(two.begin(), two.begin() + 1);
+  EXPECT_EQ(select_bridges(one, {}, plain.tags, {}, plain.cores, 4, settings, {}, levels).incomplete.size(), 1u);
+}
+
 TEST(Bridges, NoneBetweenCoresThatShareFrames) {
   // Frames 90..109 carry both tags (a clip tagged walk and run): with both cores through them,
   // the graph passes from one to the other there, and no pair is bridged or unjoined.
@@ -255,8 +313,9 @@ TEST(TagCoreFrames, AGraphThatCannotBeBuiltIsAnError) {
 // The rule written pair by pair, over every candidate in order of distance (ties in input
 // order): for each ordered pair of tags (s, u) not already joined, the best candidates leaving
 // frames of s (not u) in s's core and landing on frames of u (not s) in u's core, at most
-// per_tag_pair of them, none within the locality radius of one taken before it: first one into
-// each clip (of `clips`, per frame), then the best of the rest.
+// per_tag_pair of them, none within the locality radius of one taken before it: first one onto
+// each set of tags (the frame's), then one into each clip (of `clips`, per frame), then the best
+// of the rest.
 // Candidates above `cap` (when >= 0) bridge nothing; a pair not joined and left without a
 // bridge is listed in `unjoined` with the best D of the candidates that would bridge it.
 std::vector<Transition> reference_bridges(const std::vector<Transition>& candidates, const std::vector<TagMask>& tags,
@@ -278,20 +337,22 @@ std::vector<Transition> reference_bridges(const std::vector<Transition>& candida
       if (s == u || std::count(joined.begin(), joined.end(), std::make_pair(s, u)) > 0) continue;
       std::vector<Transition> pair;
       float best = -1.0f;
-      for (const bool first_round : {true, false}) {
+      for (const int round : {0, 1, 2}) {
         for (const Transition& c : sorted) {
           const TagMask from = window_tags(c.from_frame), to = window_tags(c.to_frame - window + 1);
           if (!(from >> s & 1) || (from >> u & 1) || !(to >> u & 1) || (to >> s & 1)) continue;
           if (!cores[s][c.from_frame] || !cores[u][c.to_frame]) continue;
-          if (first_round && (best < 0.0f || c.distance < best)) best = c.distance;
+          if (round == 0 && (best < 0.0f || c.distance < best)) best = c.distance;
           if (cap >= 0.0 && c.distance > cap) continue;
           if (static_cast<int>(pair.size()) >= per_pair) continue;
           const bool taken = std::any_of(pair.begin(), pair.end(), [&](const Transition& o) {
             return o.from_frame == c.from_frame && o.to_frame == c.to_frame;
           });
+          const bool tags_taken =
+              std::any_of(pair.begin(), pair.end(), [&](const Transition& o) { return tags[o.to_frame] == tags[c.to_frame]; });
           const bool clip_taken = std::any_of(pair.begin(), pair.end(),
                                               [&](const Transition& o) { return clips[o.to_frame] == clips[c.to_frame]; });
-          if (taken || (first_round && clip_taken)) continue;
+          if (taken || (round == 0 && tags_taken) || (round == 1 && clip_taken)) continue;
           if (std::none_of(pair.begin(), pair.end(), [&](const Transition& o) {
                 return std::abs(o.from_frame - c.from_frame) <= radius || std::abs(o.to_frame - c.to_frame) <= radius;
               })) {
@@ -317,40 +378,56 @@ std::vector<Transition> reference_bridges(const std::vector<Transition>& candida
   return out;
 }
 
+// A random library of kRandomFrames frames (window kRandomWindow): runs of one or two of three
+// tags (walk, run, jump and mixes such as walk+turn: bit 3), clips of 10-80 frames (their tags
+// changing within them or not), a core per tag on random stretches of its frames (two share
+// frames where clips carry both), and `count` candidates with D from 0 to distances - 1 (many
+// tied).
+constexpr int kRandomFrames = 300, kRandomWindow = 4;
+struct RandomLibrary {
+  std::vector<TagMask> tags;
+  std::vector<int> clips;
+  std::vector<std::vector<char>> cores;
+  std::vector<Transition> candidates;
+};
+RandomLibrary random_library(std::mt19937& rng, int count, int distances) {
+  const int frames = kRandomFrames, window = kRandomWindow;
+  RandomLibrary l;
+  l.tags.assign(frames, 0);
+  for (int f = 0; f < frames;) {
+    const int length = 5 + static_cast<int>(rng() % 40);
+    TagMask m = TagMask{1} << (rng() % 3);
+    if (rng() % 3 == 0) m |= TagMask{1} << 3;
+    if (rng() % 5 == 0) m |= TagMask{1} << (rng() % 3);
+    for (int i = f; i < std::min(frames, f + length); ++i) l.tags[i] = m;
+    f += length;
+  }
+  l.clips.assign(frames, 0);
+  for (int f = 0, clip = 0; f < frames; ++clip) {
+    const int length = 10 + static_cast<int>(rng() % 71);
+    for (int i = f; i < std::min(frames, f + length); ++i) l.clips[i] = clip;
+    f += length;
+  }
+  l.cores.assign(4, std::vector<char>(frames, 0));
+  for (int c = 0; c < 4; ++c) {
+    for (int f = 0; f < frames; ++f) l.cores[c][f] = (l.tags[f] >> c & 1) && rng() % 4 != 0;
+  }
+  for (int i = 0; i < count; ++i) {
+    const int from = static_cast<int>(rng() % (frames - window)), to = window - 1 + static_cast<int>(rng() % (frames - window));
+    l.candidates.push_back(t(from, to, static_cast<float>(rng() % static_cast<unsigned>(distances))));
+  }
+  return l;
+}
+
 TEST(Bridges, SameAsTheRuleWrittenPairByPairOnRandomLibraries) {
   std::mt19937 rng(7);
   size_t total = 0, with_joined = 0, unjoined = 0, sharing = 0;
   long above_cap = 0;
   for (int round = 0; round < 80; ++round) {
-    // 300 frames in runs of one or two of three tags (walk, run, jump and mixes such as
-    // walk+turn: bit 3), cores on random stretches, many candidates with tied distances.
-    const int frames = 300, window = 4;
-    std::vector<TagMask> tags(frames, 0);
-    for (int f = 0; f < frames;) {
-      const int length = 5 + static_cast<int>(rng() % 40);
-      TagMask m = TagMask{1} << (rng() % 3);
-      if (rng() % 3 == 0) m |= TagMask{1} << 3;
-      if (rng() % 5 == 0) m |= TagMask{1} << (rng() % 3);
-      for (int i = f; i < std::min(frames, f + length); ++i) tags[i] = m;
-      f += length;
-    }
-    // Clips of 10-80 frames, their tags changing within them or not.
-    std::vector<int> clips(frames, 0);
-    for (int f = 0, clip = 0; f < frames; ++clip) {
-      const int length = 10 + static_cast<int>(rng() % 71);
-      for (int i = f; i < std::min(frames, f + length); ++i) clips[i] = clip;
-      f += length;
-    }
-    // A core holds frames of its own tag only; two share frames where clips carry both.
-    std::vector<std::vector<char>> cores(4, std::vector<char>(frames, 0));
-    for (int c = 0; c < 4; ++c) {
-      for (int f = 0; f < frames; ++f) cores[c][f] = (tags[f] >> c & 1) && rng() % 4 != 0;
-    }
-    std::vector<Transition> candidates, selected;
-    for (int i = 0; i < 400; ++i) {
-      const int from = static_cast<int>(rng() % (frames - window)), to = window - 1 + static_cast<int>(rng() % (frames - window));
-      candidates.push_back(t(from, to, static_cast<float>(rng() % 20)));
-    }
+    const int frames = kRandomFrames, window = kRandomWindow;
+    const RandomLibrary library = random_library(rng, 400, 20);
+    const auto& [tags, clips, cores, candidates] = library;
+    std::vector<Transition> selected;
     for (int i = 0; i < 3; ++i) selected.push_back(candidates[rng() % candidates.size()]);
     BridgeSettings settings;
     settings.per_tag_pair = 1 + static_cast<int>(rng() % 3);
@@ -419,6 +496,49 @@ TEST(Bridges, SameAsTheRuleWrittenPairByPairOnRandomLibraries) {
   EXPECT_GT(sharing, 5u);
   EXPECT_GT(above_cap, 3);
   EXPECT_GT(unjoined, static_cast<size_t>(above_cap));
+}
+
+// Known only up to a level (the pruned stage's candidates), a pair not listed incomplete has the
+// bridges all its candidates give: on random libraries (tags, clips, cores), every pair at a
+// random level, candidates above it left out.
+TEST(Bridges, APairNotIncompleteHasTheBridgesAllCandidatesGive) {
+  std::mt19937 rng(11);
+  long complete = 0, incomplete = 0;
+  auto same = [](const std::vector<Transition>& a, const std::vector<Transition>& b) {
+    return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const Transition& x, const Transition& y) {
+      return x.from_frame == y.from_frame && x.to_frame == y.to_frame;
+    });
+  };
+  for (int round = 0; round < 300; ++round) {
+    const int window = kRandomWindow;
+    const RandomLibrary library = random_library(rng, 150, 40);
+    const auto& [tags, clips, cores, candidates] = library;
+    BridgeSettings settings;
+    settings.per_tag_pair = 1 + static_cast<int>(rng() % 4);
+    settings.locality_radius = static_cast<int>(rng() % 6);
+    settings.tags = 0b0111;
+    settings.max_distance = round % 3 == 0 ? -1.0 : static_cast<double>(rng() % 40);
+    const auto all = select_bridges(candidates, {}, tags, clips, cores, window, settings);
+    for (int s = 0; s < 3; ++s) {
+      for (int u = 0; u < 3; ++u) {
+        if (s == u) continue;
+        std::vector<double> levels(kBridgeTags * kBridgeTags, std::numeric_limits<double>::infinity());
+        levels[s * kBridgeTags + u] = static_cast<double>(rng() % 40);
+        const auto part = select_bridges(candidates, {}, tags, clips, cores, window, settings, {}, levels);
+        const bool listed = std::any_of(part.incomplete.begin(), part.incomplete.end(),
+                                        [&](const TagPair& p) { return p.from_tag == s && p.to_tag == u; });
+        if (listed) {
+          ++incomplete;
+          continue;
+        }
+        ++complete;
+        EXPECT_TRUE(same(part.bridges, all.bridges)) << "round " << round << ", pair " << s << " -> " << u;
+      }
+    }
+  }
+  // Both answers are common.
+  EXPECT_GT(complete, 300);
+  EXPECT_GT(incomplete, 300);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "motiongraph/graph/bridges.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdlib>
@@ -163,21 +164,11 @@ BridgeSelection select_bridges(std::span<const Transition> candidates, std::span
   }
   std::stable_sort(by_distance.begin(), by_distance.end(),
                    [](const Transition* x, const Transition* y) { return x->distance < y->distance; });
-  // By D, each pair's bridges land in as many clips as they can: first the best candidate into
-  // each clip of the arriving tag's core (in order of D: the two best may both land in one clip,
-  // a run turning left, say, while a straight run a little further is the only way on along a
-  // line), then, with bridges still to pick, the best of the rest.
-  std::vector<std::vector<const Transition*>> chosen(kTags * kTags), deferred(kTags * kTags);
-  std::vector<int> distinct(kTags * kTags, 0);  // how many of chosen[pair] landed in a clip first
+  // Each pair's candidates at or below its level and the cap, by D.
+  constexpr int kBridgePasses = 3;  // onto new sets of tags, into new clips, any
+  std::vector<std::vector<const Transition*>> eligible(kTags * kTags);
   std::vector<float> best(kTags * kTags, -1.0f);  // the lowest D of any candidate, cap or not
   const bool capped = settings.max_distance >= 0.0;
-  auto clip_of = [&](int frame) { return frame_clips.empty() ? 0 : frame_clips[static_cast<size_t>(frame)]; };
-  auto near = [&](const std::vector<const Transition*>& list, const Transition* c) {
-    return std::any_of(list.begin(), list.end(), [&](const Transition* other) {
-      return std::abs(other->from_frame - c->from_frame) <= settings.locality_radius ||
-             std::abs(other->to_frame - c->to_frame) <= settings.locality_radius;
-    });
-  };
   for (const Transition* c : by_distance) {
     const TagMask to = sinks(*c);
     each_bit(sources(*c), [&](int s) {
@@ -186,23 +177,39 @@ BridgeSelection select_bridges(std::span<const Transition> candidates, std::span
         if (joined[pair] || c->distance > level(pair)) return;
         if (best[pair] < 0.0f) best[pair] = c->distance;  // candidates come by D
         if (capped && c->distance > settings.max_distance) return;
-        auto& list = chosen[pair];
-        if (distinct[pair] >= settings.per_tag_pair) return;
-        const bool landed = std::any_of(list.begin(), list.end(),
-                                        [&](const Transition* other) { return clip_of(other->to_frame) == clip_of(c->to_frame); });
-        if (landed) {
-          deferred[pair].push_back(c);
-        } else if (!near(list, c)) {
-          list.push_back(c);
-          ++distinct[pair];
-        }
+        eligible[pair].push_back(c);
       });
     });
   }
+  // By D, each pair's bridges land on as many kinds of the arriving type and in as many of its
+  // clips as they can: first the best candidate onto each set of tags not landed on yet (a run,
+  // a run that turns: subject 16's three best from walk to run all land in runs turning 90
+  // degrees, which a straight path cannot use), then into each clip not landed in yet, then the
+  // best of the rest; none within locality_radius frames of one taken before it, at either end.
+  // (frame_clips is empty or holds every frame's clip.)
+  const bool clips_given = frame_clips.size() == frame_tags.size();
+  auto clip_of = [&](int frame) { return clips_given ? frame_clips[static_cast<size_t>(frame)] : 0; };
+  std::vector<std::vector<const Transition*>> chosen(kTags * kTags);
+  std::vector<std::array<int, kBridgePasses>> taken(kTags * kTags);  // chosen[pair].size() after each pass
   for (int pair = 0; pair < kTags * kTags; ++pair) {
-    for (const Transition* c : deferred[pair]) {
-      if (static_cast<int>(chosen[pair].size()) >= settings.per_tag_pair) break;
-      if (!near(chosen[pair], c)) chosen[pair].push_back(c);
+    auto& list = chosen[pair];
+    for (int pass = 0; pass < kBridgePasses; ++pass) {
+      for (const Transition* c : eligible[pair]) {
+        if (static_cast<int>(list.size()) >= settings.per_tag_pair) break;
+        const bool fresh = std::none_of(list.begin(), list.end(), [&](const Transition* other) {
+          switch (pass) {
+            case 0: return frame_tags[other->to_frame] == frame_tags[c->to_frame];
+            case 1: return clip_of(other->to_frame) == clip_of(c->to_frame);
+            default: return other == c;
+          }
+        });
+        const bool near = std::any_of(list.begin(), list.end(), [&](const Transition* other) {
+          return std::abs(other->from_frame - c->from_frame) <= settings.locality_radius ||
+                 std::abs(other->to_frame - c->to_frame) <= settings.locality_radius;
+        });
+        if (fresh && !near) list.push_back(c);
+      }
+      taken[pair][pass] = static_cast<int>(list.size());
     }
   }
   for (const auto& list : chosen) {
@@ -217,25 +224,42 @@ BridgeSelection select_bridges(std::span<const Transition> candidates, std::span
     return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
   });
   const int tag_count = std::min(kTags, static_cast<int>(cores.size()));
-  // How many clips each tag's core reaches into: a pair whose bridges land in that many (or in
-  // per_tag_pair) is not short of distinct clips.
-  std::vector<int> core_clips(kTags, 0);
-  {
-    std::vector<int> last_clip(kTags, -1);
-    for (int f = 0; f < frames; ++f) {
-      each_bit(in_core[f], [&](int u) {
-        if (clip_of(f) != last_clip[u]) ++core_clips[u];
-        last_clip[u] = clip_of(f);
+  // How many sets of tags and clips each pair's bridges could land on: the frames of u's core
+  // whose arriving window carries u and not s. A pair is short of bridges while a pass ends with
+  // fewer than per_tag_pair of them and fewer sets of tags (clips) landed on than that, for a
+  // candidate above its level might then be taken.
+  std::vector<std::vector<TagMask>> landable_sets(kTags * kTags);
+  std::vector<int> landable_clips(kTags * kTags, 0), last_clip(kTags * kTags, -1);
+  for (int f = 0; f < frames; ++f) {
+    const TagMask arrive = windows.arrive[f];
+    each_bit(in_core[f] & arrive & settings.tags, [&](int u) {
+      each_bit(settings.tags & ~arrive, [&](int s) {
+        const int pair = s * kTags + u;
+        if (clip_of(f) != last_clip[pair]) ++landable_clips[pair];
+        last_clip[pair] = clip_of(f);
+        auto& sets = landable_sets[pair];
+        if (std::find(sets.begin(), sets.end(), frame_tags[f]) == sets.end()) sets.push_back(frame_tags[f]);
       });
-    }
+    });
   }
-  // The pairs short of bridges, or of clips they land in, with candidates above their level still
-  // to look at.
+  auto landed_on = [&](int pair, auto&& key) {
+    std::vector<long long> keys;
+    for (const Transition* c : chosen[pair]) keys.push_back(key(c->to_frame));
+    std::sort(keys.begin(), keys.end());
+    return static_cast<int>(std::unique(keys.begin(), keys.end()) - keys.begin());
+  };
+  // The pairs short of bridges with candidates above their level still to look at.
   for (int s = 0; s < tag_count; ++s) {
     for (int u = 0; u < tag_count; ++u) {
       const int pair = s * kTags + u;
-      const bool full = static_cast<int>(chosen[pair].size()) >= settings.per_tag_pair &&
-                        distinct[pair] >= std::min(settings.per_tag_pair, core_clips[u]);
+      const int n = settings.per_tag_pair;
+      const auto& after = taken[pair];
+      const bool full =
+          after[kBridgePasses - 1] >= n &&
+          (after[0] >= n ||
+           landed_on(pair, [&](int f) { return static_cast<long long>(frame_tags[f]); }) >=
+               static_cast<int>(landable_sets[pair].size())) &&
+          (after[1] >= n || landed_on(pair, clip_of) >= landable_clips[pair]);
       if (u == s || !(settings.tags >> s & 1) || !(settings.tags >> u & 1) || joined[pair] || cores[s].empty() ||
           cores[u].empty() || full || level(pair) == kAll) {
         continue;

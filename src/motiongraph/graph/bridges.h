@@ -1,12 +1,14 @@
 // Bridges between motion types. Transitions below the threshold connect frames of one kind
 // of motion with each other; between kinds (walking and running of one subject, say) every
-// candidate may lie above it, and the pruned graph then keeps one kind only. A bridge is one of the
-// best candidates (lowest D, a local minimum like any other) from frames that all carry tag s
-// to frames that all carry tag t, added for each ordered pair of tags (s, t) that no selected
-// transition joins and whose cores share no frame; the best into each of t's clips first, so
-// that the pair's bridges lead into as many captured motions as they can (subject 16's three
-// best from walk to run all land in runs turning 90 degrees, which a straight path cannot use). Bridges are reported apart, with their D, so
-// the user sees what quality the connection costs; pruning treats them like any transition. A
+// candidate may lie above it, and the pruned graph then keeps one kind only. A bridge is one of
+// the best candidates (lowest D, a local minimum like any other) from frames that all carry tag
+// s to frames that all carry tag t, added for each ordered pair of tags (s, t) that no selected
+// transition joins and whose cores share no frame: the best onto each set of tags t's frames
+// carry (a run, a run that turns) and into each of its clips first, so that the pair's bridges
+// lead into as many kinds of captured motion as they can (by D alone, subject 16's three best
+// from walk to run land in runs turning 90 degrees, which a straight path cannot use). Bridges
+// are reported apart, with their D, so the user sees what quality the connection costs; pruning
+// treats them like any transition. A
 // bridge's D can reach 100x the threshold, so it blends longer than a transition
 // (bridge_blend_frames), and a cap keeps out those no blend makes acceptable; the pairs left
 // unjoined are reported with the best D that would join them.
@@ -106,9 +108,10 @@ Result<std::vector<char>> tag_core_frames(const MotionDatabase& db, std::span<co
 // The bridges to add to `selected`; window k. A bridge from s to u leaves from a frame of s's
 // core and lands on a frame of u's core (cores[t] from tag_core_frames; a tag without a core
 // gets no bridges), and its D is at most max_distance. Each pair's per_tag_pair bridges are, in
-// order of D, the best candidate landing in each clip (frame_clips: per frame; empty: all one
-// clip) not landed in yet, then, while the pair is short of bridges, the best of the others;
-// none within locality_radius frames of another of the pair's at either end. A pair whose cores share a frame needs
+// order of D, the best candidate landing on each set of tags (frame_tags of the frame it lands
+// on) not landed on yet, then the best landing in each clip (frame_clips: per frame; empty: all
+// one clip) not landed in yet, then, while the pair is short of bridges, the best of the others;
+// none within locality_radius frames of one taken before it, at either end. A pair whose cores share a frame needs
 // none: the graph passes from one to the other there. Every ordered pair of distinct tags of
 // settings.tags with a core or candidates, joined by neither a selected transition, a shared
 // core frame nor a bridge, is listed in `unjoined`.
@@ -118,7 +121,8 @@ Result<std::vector<char>> tag_core_frames(const MotionDatabase& db, std::span<co
 // them. Else, kBridgeTags^2 D levels: for bridging s to u they hold every minimum leaving a
 // frame of s's core and arriving at a frame of u's core with D at most levels[s * kBridgeTags +
 // u] (+infinity: all), and the ones above it are not looked at. A pair whose bridges could still change with
-// candidates above its level (short of bridges, or of the clips they land in) is listed in `incomplete`: raise its level (on_demand_candidates.h)
+// candidates above its level (short of bridges, or of the sets of tags or clips they land on,
+// of those its landing frames hold) is listed in `incomplete`: raise its level (on_demand_candidates.h)
 // and select again. The selection with no pair incomplete is the one all the minima give.
 BridgeSelection select_bridges(std::span<const Transition> candidates, std::span<const Transition> selected,
                                std::span<const TagMask> frame_tags, std::span<const int> frame_clips,

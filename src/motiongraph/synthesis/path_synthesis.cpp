@@ -37,6 +37,44 @@ Status PathSynthesisSettings::validate() const {
   return path_edit.validate();
 }
 
+double typical_speed_mps(const SynthesisContext& context, TagMask mask) {
+  std::vector<double> steps;
+  const MotionGraph& graph = *context.graph;
+  for (int e = 0; e < graph.edge_count(); ++e) {
+    if (graph.edges[e].transition) continue;
+    const auto roots = context.tracks.roots_of(e);
+    const auto tags = context.tracks.tags_of(e);
+    for (size_t p = 0; p + 1 < roots.size(); ++p) {
+      if ((tags[p] & mask) != 0) steps.push_back((roots[p + 1] - roots[p]).norm());
+    }
+  }
+  if (steps.empty()) return 0.0;
+  auto middle = steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2);
+  std::nth_element(steps.begin(), middle, steps.end());
+  return *middle * context.db->fps;
+}
+
+std::vector<double> slowest_seconds(const SynthesisContext& context, const FloorPath& path, double min_speed_mps) {
+  std::vector<double> speeds;  // per segment
+  for (const PathSegment& segment : path.segments()) {
+    auto mask = context.tag_mask(segment.tag);
+    const double typical = mask ? typical_speed_mps(context, *mask) : 0.0;
+    speeds.push_back(typical > 0.0 ? std::min(min_speed_mps, typical) : min_speed_mps);
+  }
+  std::vector<double> seconds(speeds.size() + 1, 1.0);
+  constexpr double kStepM = 0.05;
+  for (double s = 0.0; s < path.length_m(); s += kStepM) {
+    const int segment = path.segment_at(s);
+    const double step = std::min(kStepM, path.length_m() - s);
+    if (segment < 0) {
+      seconds.back() += step / min_speed_mps;
+    } else {
+      seconds[static_cast<size_t>(segment)] += step / speeds[static_cast<size_t>(segment)];
+    }
+  }
+  return seconds;
+}
+
 namespace {
 
 // One search of the whole path with these settings, its motion assembled (and edited).
@@ -331,14 +369,34 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
     ladder.push_back({settings.anchor_arc, true, factor});
   }
   ladder.resize(static_cast<size_t>(settings.progress_retries));
-  // Good enough: the end reached, within retry_deviation_m of the path. Better: the end reached,
-  // then the least deviation; short of the end, the furthest along.
-  auto good = [&](const PathSynthesisResult& r) {
-    return r.reached_end && (settings.retry_deviation_m <= 0.0 || r.mean_deviation_m <= settings.retry_deviation_m);
+  // Dawdled: slower on average, in a segment or where none is, than the slowest speed asked for
+  // (min_speed_mps, or a slower motion type's typical speed in a segment asking for it:
+  // slowest_seconds), as a walk does
+  // that loops in place beside the path, its edit following it, where the type asked for would
+  // take it off the path within the horizon. Good enough: the end reached, not dawdling, within
+  // retry_deviation_m of the path. Better: the end reached, then not dawdling, then the least
+  // deviation; short of the end, the furthest along.
+  const std::vector<double> slowest =
+      settings.min_speed_mps > 0.0 ? slowest_seconds(context, path, settings.min_speed_mps) : std::vector<double>{};
+  auto dawdled = [&](const PathSynthesisResult& r) {
+    if (slowest.empty()) return false;
+    const double fps = context.db->fps;
+    int in_segments = 0;
+    for (size_t i = 0; i < r.segment_tag_matches.size(); ++i) {
+      in_segments += r.segment_tag_matches[i].frames;
+      if (r.segment_tag_matches[i].frames / fps > slowest[i]) return true;
+    }
+    return (r.motion.frame_count - in_segments) / fps > slowest.back();
   };
-  auto better = [](const PathSynthesisResult& r, const PathSynthesisResult& than) {
+  auto good = [&](const PathSynthesisResult& r) {
+    return r.reached_end && !dawdled(r) &&
+           (settings.retry_deviation_m <= 0.0 || r.mean_deviation_m <= settings.retry_deviation_m);
+  };
+  auto better = [&](const PathSynthesisResult& r, const PathSynthesisResult& than) {
     if (r.reached_end != than.reached_end) return r.reached_end;
-    return r.reached_end ? r.mean_deviation_m < than.mean_deviation_m : r.arc_covered_m > than.arc_covered_m;
+    if (!r.reached_end) return r.arc_covered_m > than.arc_covered_m;
+    if (dawdled(r) != dawdled(than)) return !dawdled(r);
+    return r.mean_deviation_m < than.mean_deviation_m;
   };
   for (size_t retry = 0; retry < ladder.size() && !good(*best) && settings.behind_penalty_m > 0.0; ++retry) {
     PathSynthesisSettings harder = settings;

@@ -23,13 +23,16 @@
 //
 // A walk that does not reach the path's end before giving up (the motion would average under
 // 0.2 m/s: the search dawdled, as on a library of dance and karate whose few walking clips turn
-// little), or follows the path more than retry_deviation_m off on average, is searched again up
+// little), or reaches it with a segment (or the stretches no segment holds) taking longer than
+// slowest_seconds gives (looping in place beside the path, its edit following it, where the type
+// asked for would take it off the path within the horizon),
+// or follows the path more than retry_deviation_m off on average, is searched again up
 // to progress_retries times, each looking retry_horizon_s ahead: first as it was; then with its
 // arc corrected at each commit (anchor_arc); then the behind penalty 4x higher; when the motion
 // is edited, then with the edit in the search (edit_in_search) at the penalty given and at 4x;
 // then at 16x, 64x, ... (each with and without the edit in the search). The first to reach the
-// end within retry_deviation_m is kept, or else the one reaching it with the least deviation, or
-// else the one that got furthest along.
+// end without dawdling within retry_deviation_m is kept, or else the one reaching it (without
+// dawdling if any does) with the least deviation, or else the one that got furthest along.
 //
 // The walk's motion is then edited onto the path (path_edit.h: Gleicher's motion path editing,
 // within a limit on the turning it adds) unless edit_path is false; the result gives the
@@ -59,9 +62,9 @@ struct PathSynthesisSettings {
   // behind covering the path at min_speed_mps since the search began (0: Kovar's cost alone).
   double min_speed_mps = 0.5;
   double behind_penalty_m = 1.0;
-  // Searches again, pushing on (see above), when the walk does not reach the end or follows the
-  // path more than retry_deviation_m off on average (0: only for the end) (no retries: 0; nor
-  // when behind_penalty_m is 0).
+  // Searches again, pushing on (see above), when the walk does not reach the end, dawdles in a
+  // segment (slowest_seconds), or follows the path more than retry_deviation_m off on average
+  // (0: not for the deviation) (no retries: 0; nor when behind_penalty_m is 0).
   int progress_retries = 4;
   double retry_deviation_m = 0.1;
   // The retries' horizon (0: horizon_s). At a sharp corner a library with little turning in its
@@ -152,6 +155,17 @@ struct PathSynthesisResult {
   bool edit_in_search = false;
   bool anchor_arc = false;            // the kept attempt's PathSynthesisSettings::anchor_arc
 };
+
+// The median speed (m/s) of the root over the frames of the graph's clip pieces that carry one
+// of `mask`'s tags (each frame's floor step to the next one of its piece); 0 when none does.
+double typical_speed_mps(const SynthesisContext& context, TagMask mask);
+
+// The longest a walk may spend in each of the path's segments (the frames FloorPath::segment_at
+// gives it), and last in the stretches no segment holds, without dawdling: at min_speed_mps, or
+// where a segment asks for a motion type whose typical speed is lower (a dance on the spot), at
+// that speed; plus a second each, for a start or a change of type. Segments asking for a tag the
+// graph does not know count at min_speed_mps.
+std::vector<double> slowest_seconds(const SynthesisContext& context, const FloorPath& path, double min_speed_mps);
 
 Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, const FloorPath& path,
                                             const PathSynthesisSettings& settings = {});
