@@ -105,7 +105,8 @@ Command add_path_command(CLI::App& app) {
                   "Beam width of the search's first pass (0: depth-first branch and bound alone)")
       ->capture_default_str();
   sub->add_option("--min-speed", o->settings.min_speed_mps,
-                  "Slowest speed (m/s) before falling behind costs --behind-penalty per metre per frame")
+                  "Slowest speed (m/s) before falling behind costs --behind-penalty per metre per frame; a motion "
+                  "slower than it (or than the type a segment asks for moves) over a segment dawdled (0: neither)")
       ->capture_default_str();
   sub->add_option("--transition-penalty", o->settings.transition_penalty_m2,
                   "Cost (m^2) of each transition taken: keeps captured motion between blends (0: Kovar's cost alone)")
@@ -120,8 +121,9 @@ Command add_path_command(CLI::App& app) {
   sub->add_option("--start-node", o->settings.start_node,
                   "Start at this node (default: the best of about 16 spread over the graph and over its sets of tags)");
   sub->add_option("--progress-retries", o->settings.progress_retries,
-                  "When the motion does not reach the path's end, or takes longer over a segment than --min-speed "
-                  "(or the median speed of the type it asks for, where slower) would, a second more (it dawdled), or "
+                  "When the motion does not reach the path's end, or takes longer over a segment (or over the "
+                  "stretches no segment holds) than --min-speed (or the median speed of the type it asks for, where "
+                  "slower) would, a second more (it dawdled), or "
                   "follows it more than --retry-deviation off, search again up to this many times, looking --retry-horizon ahead: the "
                   "same search; with the search's arc corrected to the way along the path the walk has come; "
                   "--behind-penalty 4x; then the search sees where the path edit puts the walk, at 1x and 4x; then "
@@ -134,7 +136,7 @@ Command add_path_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--retry-deviation", o->settings.retry_deviation_m,
                   "Mean deviation (m) above which --progress-retries searches again (0: only when the end is not "
-                  "reached)")
+                  "reached or the motion dawdled)")
       ->capture_default_str();
   sub->add_flag("!--no-path-edit", o->settings.edit_path,
                 "Keep the motion as the graph plays it; by default it is bent onto the path (Gleicher's motion path "

@@ -499,8 +499,9 @@ TEST(Bridges, SameAsTheRuleWrittenPairByPairOnRandomLibraries) {
 }
 
 // Known only up to a level (the pruned stage's candidates), a pair not listed incomplete has the
-// bridges all its candidates give: on random libraries (tags, clips, cores), every pair at a
-// random level, candidates above it left out.
+// bridges all its candidates give: on random libraries (tags, clips, cores), each pair at a
+// random level, candidates above it left out; and raising the levels of the pairs listed until
+// none is gives all the candidates' bridges and unjoined pairs.
 TEST(Bridges, APairNotIncompleteHasTheBridgesAllCandidatesGive) {
   std::mt19937 rng(11);
   long complete = 0, incomplete = 0;
@@ -534,6 +535,31 @@ TEST(Bridges, APairNotIncompleteHasTheBridgesAllCandidatesGive) {
         ++complete;
         EXPECT_TRUE(same(part.bridges, all.bridges)) << "round " << round << ", pair " << s << " -> " << u;
       }
+    }
+    // As the build does it: every pair at a random level, the incomplete ones raised (4x and 1
+    // more, past the highest D to all) until none is; the bridges and the pairs left unjoined
+    // are those all the candidates give.
+    std::vector<double> levels(kBridgeTags * kBridgeTags, std::numeric_limits<double>::infinity());
+    for (int s = 0; s < 3; ++s) {
+      for (int u = 0; u < 3; ++u) levels[s * kBridgeTags + u] = static_cast<double>(rng() % 40);
+    }
+    BridgeSelection raised;
+    for (int step = 0;; ++step) {
+      ASSERT_LT(step, 100) << "round " << round;
+      raised = select_bridges(candidates, {}, tags, clips, cores, window, settings, {}, levels);
+      if (raised.incomplete.empty()) break;
+      for (const TagPair& p : raised.incomplete) {
+        double& level = levels[p.from_tag * kBridgeTags + p.to_tag];
+        level = 4.0 * level + 1.0 > 40.0 ? std::numeric_limits<double>::infinity() : 4.0 * level + 1.0;
+      }
+    }
+    EXPECT_TRUE(same(raised.bridges, all.bridges)) << "round " << round;
+    ASSERT_EQ(raised.unjoined.size(), all.unjoined.size()) << "round " << round;
+    for (size_t i = 0; i < all.unjoined.size(); ++i) {
+      EXPECT_EQ(raised.unjoined[i].from_tag, all.unjoined[i].from_tag) << "round " << round;
+      EXPECT_EQ(raised.unjoined[i].to_tag, all.unjoined[i].to_tag) << "round " << round;
+      EXPECT_EQ(raised.unjoined[i].reason, all.unjoined[i].reason) << "round " << round;
+      EXPECT_EQ(raised.unjoined[i].best_distance, all.unjoined[i].best_distance) << "round " << round;
     }
   }
   // Both answers are common.

@@ -66,7 +66,8 @@ struct TagPair {
 struct BridgeSelection {
   std::vector<Transition> bridges;      // sorted by (from_frame, to_frame)
   std::vector<UnjoinedPair> unjoined;   // by (from_tag, to_tag)
-  // Pairs short of bridges (or of clips they land in) whose level leaves candidates to look at (see select_bridges): the
+  // Pairs short of bridges (or of the sets of tags or clips they land on) whose level leaves
+  // candidates to look at (see select_bridges): the
   // selection is final only when this is empty.
   std::vector<TagPair> incomplete;
 };

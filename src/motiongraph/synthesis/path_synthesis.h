@@ -157,14 +157,15 @@ struct PathSynthesisResult {
 };
 
 // The median speed (m/s) of the root over the frames of the graph's clip pieces that carry one
-// of `mask`'s tags (each frame's floor step to the next one of its piece); 0 when none does.
+// of `mask`'s tags (each frame's floor step to the next frame of its clip: within its piece, or
+// the first of the piece leaving the node the piece reaches); 0 when none does.
 double typical_speed_mps(const SynthesisContext& context, TagMask mask);
 
 // The longest a walk may spend in each of the path's segments (the frames FloorPath::segment_at
 // gives it), and last in the stretches no segment holds, without dawdling: at min_speed_mps, or
 // where a segment asks for a motion type whose typical speed is lower (a dance on the spot), at
 // that speed; plus a second each, for a start or a change of type. Segments asking for a tag the
-// graph does not know count at min_speed_mps.
+// graph does not know count at min_speed_mps; min_speed_mps must be > 0.
 std::vector<double> slowest_seconds(const SynthesisContext& context, const FloorPath& path, double min_speed_mps);
 
 Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, const FloorPath& path,
