@@ -383,11 +383,10 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
   ladder.resize(static_cast<size_t>(settings.progress_retries));
   // Dawdled: slower on average, in a segment or where none is, than the slowest speed asked for
   // (min_speed_mps, or a slower motion type's typical speed in a segment asking for it:
-  // slowest_seconds), as a walk does
-  // that loops in place beside the path, its edit following it, where the type asked for would
-  // take it off the path within the horizon. Good enough: the end reached, not dawdling, within
-  // retry_deviation_m of the path. Better: the end reached, then not dawdling, then the least
-  // deviation; short of the end, the furthest along.
+  // slowest_seconds), as a walk does that loops in place beside the path, its edit following it,
+  // where the type asked for would take it off the path within the horizon. Good enough: the end
+  // reached, not dawdling, within retry_deviation_m of the path. Better: the end reached, then
+  // not dawdling, then the least deviation; short of the end, the furthest along.
   const std::vector<double> slowest =
       settings.min_speed_mps > 0.0 ? slowest_seconds(context, path, settings.min_speed_mps) : std::vector<double>{};
   auto dawdled = [&](const PathSynthesisResult& r) {
