@@ -148,6 +148,32 @@ TEST(FloorPath, DistanceAndSegments) {
   EXPECT_EQ(path->segment_at(-0.1), -1);
 }
 
+// Between the arcs segment_spans gives, segment_at gives their segment: random segments on a
+// 20 m line (overlapping, some ending past its end), arcs every centimetre.
+TEST(FloorPath, SegmentSpansAreWhereTheSegmentAskedForChanges) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> at(0.0, 23.0);
+  for (int round = 0; round < 50; ++round) {
+    std::vector<PathSegment> segments;
+    for (int i = 0; i < static_cast<int>(rng() % 5); ++i) {
+      const double a = at(rng), b = at(rng);
+      if (a != b) segments.push_back({std::min(a, b), std::max(a, b), "walk"});
+    }
+    auto path = FloorPath::create({{0.0, 0.0}, {20.0, 0.0}}, segments);
+    ASSERT_TRUE(path.ok());
+    const auto spans = path->segment_spans();
+    ASSERT_FALSE(spans.empty());
+    EXPECT_EQ(spans.front().from_m, 0.0);
+    for (size_t i = 1; i < spans.size(); ++i) ASSERT_LT(spans[i - 1].from_m, spans[i].from_m);
+    size_t span = 0;
+    for (int cm = 0; cm <= 2400; ++cm) {
+      const double s = cm / 100.0;
+      while (span + 1 < spans.size() && spans[span + 1].from_m <= s) ++span;
+      EXPECT_EQ(spans[span].segment, path->segment_at(s)) << "round " << round << " at " << s;
+    }
+  }
+}
+
 // The distance to the nearest point of the path, every segment looked at.
 double brute_distance(const std::vector<Vec2>& points, const Vec2& p) {
   double best = std::numeric_limits<double>::infinity();

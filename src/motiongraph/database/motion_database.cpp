@@ -20,14 +20,6 @@ std::vector<TagMask> MotionDatabase::frame_tags() const {
   return tags;
 }
 
-std::vector<int> MotionDatabase::frame_clips() const {
-  std::vector<int> of(static_cast<size_t>(frame_count()));
-  for (size_t c = 0; c < clips.size(); ++c) {
-    std::fill_n(of.begin() + clips[c].first_frame, clips[c].frame_count, static_cast<int>(c));
-  }
-  return of;
-}
-
 int MotionDatabase::tag_index(const std::string& name) {
   auto it = std::find(tag_names.begin(), tag_names.end(), name);
   if (it != tag_names.end()) return static_cast<int>(it - tag_names.begin());

@@ -60,8 +60,6 @@ struct MotionDatabase {
   int clip_of(int frame) const;
   // Tags of every frame (frame_count entries).
   std::vector<TagMask> frame_tags() const;
-  // The clip of every frame (frame_count entries, in order: clips follow one another).
-  std::vector<int> frame_clips() const;
   // Index of a tag name, adding it when new; -1 when the 64 tags are used up.
   int tag_index(const std::string& name);
   // Names of the tags in a mask, in tag order.

@@ -79,14 +79,14 @@ Result<TransitionsWithBridges> select_transitions_with_bridges(const MotionDatab
         cores[t] = std::move(*core);
       }
     }
-    const std::vector<int> frame_clips = db.frame_clips();
     // With the pruned stage's candidates: raise the levels of the pairs still short of bridges
     // until none is.
     const bool pruned = candidates.ceiling >= 0.0 && more != nullptr;
     BridgeSelection bridges;
     while (true) {
       const std::vector<double> levels = pruned ? more->levels(cores) : std::vector<double>{};
-      bridges = select_bridges(candidates.minima, out.selection.transitions, frame_tags, frame_clips, cores, features.window,
+      bridges = select_bridges(candidates.minima, out.selection.transitions, frame_tags, features.clip_of_frame, cores,
+                               features.window,
                                bridge_settings, pruned ? more->above() : std::span<const Transition>{}, levels);
       if (bridges.incomplete.empty()) break;
       if (auto s = more->raise(bridges.incomplete, cores); !s) return s.error();

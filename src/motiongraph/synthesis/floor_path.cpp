@@ -159,6 +159,19 @@ int FloorPath::segment_at(double s) const {
   return -1;
 }
 
+std::vector<FloorPath::SegmentSpan> FloorPath::segment_spans() const {
+  std::vector<double> cuts{0.0, length_m()};
+  for (const PathSegment& segment : segments_) {
+    cuts.push_back(std::max(0.0, segment.from_m));
+    cuts.push_back(std::max(0.0, segment.to_m));
+  }
+  std::sort(cuts.begin(), cuts.end());
+  cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+  std::vector<SegmentSpan> spans;
+  for (double cut : cuts) spans.push_back({cut, segment_at(cut)});
+  return spans;
+}
+
 const std::string& FloorPath::tag_at(double s) const {
   static const std::string none;
   const int i = segment_at(s);

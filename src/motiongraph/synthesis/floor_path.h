@@ -86,6 +86,14 @@ class FloorPath {
   // ([from_m, to_m)), or -1 when none; and its tag ("" when none).
   int segment_at(double s) const;
   const std::string& tag_at(double s) const;
+  // Where segment_at may change, in order: 0, the path's length and every segment's ends (those
+  // before 0 at 0), each with the segment it gives from there to the next (the last on past the
+  // path's end).
+  struct SegmentSpan {
+    double from_m = 0.0;
+    int segment = -1;
+  };
+  std::vector<SegmentSpan> segment_spans() const;
 
  private:
   // s is clamped to [0, length]: the segment i with arc_[i] <= s < arc_[i + 1] (the last one at

@@ -22,17 +22,10 @@ PathCost::PathCost(const SynthesisContext& context, const FloorPath& path, std::
       bridge_penalty_(settings.bridge_penalty_m2),
       lookahead_(settings.tag_lookahead) {
   // The arc lengths where what is asked for may change, and what is asked for between them.
-  std::vector<double> cuts{0.0, path.length_m()};
-  for (const PathSegment& segment : path.segments()) {
-    cuts.push_back(std::max(0.0, segment.from_m));
-    cuts.push_back(std::max(0.0, segment.to_m));
-  }
-  std::sort(cuts.begin(), cuts.end());
-  cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
-  for (double cut : cuts) {
-    const TagMask wanted = wanted_at(cut);
+  for (const FloorPath::SegmentSpan& span : path.segment_spans()) {
+    const TagMask wanted = span.segment < 0 ? TagMask{0} : masks_[static_cast<size_t>(span.segment)];
     if (!regions_.empty() && regions_.back().wanted == wanted) continue;
-    Region region{cut, wanted, nullptr};
+    Region region{span.from_m, wanted, nullptr};
     if (wanted != 0 && lookahead_ > 0.0) {
       region.to_tag = searched_costs_to_tag(context, {wanted, penalty_, transition_penalty_, bridge_penalty_});
     }

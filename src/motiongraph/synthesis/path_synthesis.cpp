@@ -67,22 +67,25 @@ double typical_speed_mps(const SynthesisContext& context, TagMask mask) {
 }
 
 std::vector<double> slowest_seconds(const SynthesisContext& context, const FloorPath& path, double min_speed_mps) {
-  std::vector<double> speeds;  // per segment
+  // Each tag's typical speed once, however many segments ask for it.
+  std::map<std::string, double> by_tag;
+  std::vector<double> speeds;  // per segment, then where none is
   for (const PathSegment& segment : path.segments()) {
-    auto mask = context.tag_mask(segment.tag);
-    const double typical = mask ? typical_speed_mps(context, *mask) : 0.0;
-    speeds.push_back(typical > 0.0 ? std::min(min_speed_mps, typical) : min_speed_mps);
-  }
-  std::vector<double> seconds(speeds.size() + 1, 1.0);
-  constexpr double kStepM = 0.05;
-  for (double s = 0.0; s < path.length_m(); s += kStepM) {
-    const int segment = path.segment_at(s);
-    const double step = std::min(kStepM, path.length_m() - s);
-    if (segment < 0) {
-      seconds.back() += step / min_speed_mps;
-    } else {
-      seconds[static_cast<size_t>(segment)] += step / speeds[static_cast<size_t>(segment)];
+    auto [at, made] = by_tag.try_emplace(segment.tag, min_speed_mps);
+    if (made) {
+      auto mask = context.tag_mask(segment.tag);
+      const double typical = mask ? typical_speed_mps(context, *mask) : 0.0;
+      if (typical > 0.0) at->second = std::min(min_speed_mps, typical);
     }
+    speeds.push_back(at->second);
+  }
+  speeds.push_back(min_speed_mps);
+  std::vector<double> seconds(speeds.size(), 1.0);
+  const auto spans = path.segment_spans();
+  for (size_t i = 0; i < spans.size() && spans[i].from_m < path.length_m(); ++i) {
+    const double to = i + 1 < spans.size() ? std::min(spans[i + 1].from_m, path.length_m()) : path.length_m();
+    const size_t owner = spans[i].segment < 0 ? speeds.size() - 1 : static_cast<size_t>(spans[i].segment);
+    seconds[owner] += (to - spans[i].from_m) / speeds[owner];
   }
   return seconds;
 }
