@@ -426,7 +426,10 @@ TEST(Bridges, SameAsTheRuleWrittenPairByPairOnRandomLibraries) {
   for (int round = 0; round < 80; ++round) {
     const int frames = kRandomFrames, window = kRandomWindow;
     const RandomLibrary library = random_library(rng, 400, 20);
-    const auto& [tags, clips, cores, candidates] = library;
+    const auto& tags = library.tags;
+    const auto& clips = library.clips;
+    const auto& cores = library.cores;
+    const auto& candidates = library.candidates;
     std::vector<Transition> selected;
     for (int i = 0; i < 3; ++i) selected.push_back(candidates[rng() % candidates.size()]);
     BridgeSettings settings;
@@ -513,7 +516,10 @@ TEST(Bridges, APairNotIncompleteHasTheBridgesAllCandidatesGive) {
   for (int round = 0; round < 300; ++round) {
     const int window = kRandomWindow;
     const RandomLibrary library = random_library(rng, 150, 40);
-    const auto& [tags, clips, cores, candidates] = library;
+    const auto& tags = library.tags;
+    const auto& clips = library.clips;
+    const auto& cores = library.cores;
+    const auto& candidates = library.candidates;
     BridgeSettings settings;
     settings.per_tag_pair = 1 + static_cast<int>(rng() % 4);
     settings.locality_radius = static_cast<int>(rng() % 6);
