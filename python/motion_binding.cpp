@@ -188,8 +188,8 @@ void bind_motion(py::module_& m) {
             check(saved);
           },
           py::arg("path"),
-          "Writes the motion: .bvh (metres) or .json (world positions, with the feet's contacts), as the CLI "
-          "does.")
+          "Writes the motion: .bvh (metres), .glb (binary glTF 2.0, metres) or .json (world positions, with the "
+          "feet's contacts), as the CLI does.")
       .def("__repr__", [](const PyMotion& self) {
         return fmt::format("<motiongraph.Motion '{}': {} frames at {:g} fps, {} joints>", self.name,
                            self.motion.frame_count, self.motion.fps, self.skeleton.joint_count());

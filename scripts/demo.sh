@@ -47,6 +47,9 @@ echo "== the motion graph of subject 16 (distance stage cached in out/cache)"
 echo "== new motion: walking then running a figure 8 (4 m loops), a walk, a steered run"
 "$bin" path out/subject16.mgraph --shape figure8:4 --segment walk:0-25 --segment run:25-51 \
   -o out/figure8-walk-run.bvh --report out/figure8-walk-run.json
+# The same motion (path synthesis is deterministic) as binary glTF, for game engines and viewers.
+"$bin" path out/subject16.mgraph --shape figure8:4 --segment walk:0-25 --segment run:25-51 \
+  -o out/figure8-walk-run.glb >/dev/null
 cat >out/steer-demo.json <<'JSON'
 {"duration_s": 16, "controls": [{"at_s": 0, "heading": "north", "tag": "walk"},
   {"at_s": 4, "heading": "east"}, {"at_s": 8, "heading": "south"}, {"at_s": 11, "tag": "run"}]}
@@ -60,7 +63,8 @@ echo "== evaluating the graph of subject 16 (CSV and PNG plots in out/eval)"
 echo "== done: $(ls out/bvh | wc -l) BVH files in out/bvh (open them in Blender: File > Import > BVH),"
 echo "   JSON world positions in out/json, summary in out/summary.txt,"
 echo "   the graph in out/subject16.mgraph with its report and distance picture (out/subject16-*),"
-echo "   synthesized motion: out/figure8-walk-run.bvh, out/steer-demo.bvh, out/walk-demo.bvh,"
+echo "   synthesized motion: out/figure8-walk-run.bvh (and .glb, glTF for game engines: File > Import >"
+echo "   glTF 2.0 in Blender, or drop it on any glTF viewer), out/steer-demo.bvh, out/walk-demo.bvh,"
 echo "   the graph's evaluation in out/eval (threshold, consistency, walks, paths: .csv and .png)"
 
 echo "== the studio: open the address below in a browser (Ctrl-C stops it; PORT=... and HOST=... to change it)"

@@ -87,16 +87,17 @@ int run_convert(const ConvertOptions& options) {
 Command add_convert_command(CLI::App& app) {
   auto options = std::make_shared<ConvertOptions>();
   CLI::App* sub = app.add_subcommand(
-      "convert", "Convert an AMC or BVH clip to BVH (metres) or to JSON world positions "
+      "convert", "Convert an AMC or BVH clip to BVH (metres), to binary glTF (.glb: the skeleton, its animation and "
+                 "a stick figure skinned to it, in metres) or to JSON world positions "
                  "({\"fps\", \"joints\": [{\"name\", \"parent\"}], \"positions\": [frame][joint][x,y,z], "
                  "\"contacts\": {\"joints\": [the foot joints], \"planted\": [frame][foot joint] 0 or 1}}).");
   sub->add_option("IN", options->input, "Input clip (.amc or .bvh)")->required()->check(CLI::ExistingFile);
-  sub->add_option("-o,--output", options->outputs, "Output file, .bvh or .json; repeat for several (read once)")
+  sub->add_option("-o,--output", options->outputs, "Output file, .bvh, .glb (binary glTF 2.0) or .json; repeat for several (read once)")
       ->required();
   sub->add_option("--fps", options->fps, "Resample to this frame rate (slerp rotations, lerp translations)")
       ->check(CLI::Range(0.01, 10000.0));
   sub->add_option("--output-scale", options->output_units_per_metre,
-                  "BVH length units per metre in the output (100 for centimetres)")
+                  "BVH length units per metre in the output (100 for centimetres); glTF is always in metres")
       ->capture_default_str();
   options->load.add_to(*sub);
   return {sub, [options] { return run_convert(*options); }};

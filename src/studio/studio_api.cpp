@@ -156,7 +156,7 @@ class Router {
     if (n == 2 && p[1] == "path") return post(&Router::path);
     if (n == 3 && p[1] == "steer" && p[2] == "sessions") return post(&Router::create_session);
     if (n == 5 && p[1] == "steer" && p[2] == "sessions" && p[4] == "step") return post(&Router::step_session);
-    if (n == 3 && p[1] == "results") return get(&Router::result_bvh);
+    if (n == 3 && p[1] == "results") return get(&Router::result_file);
     throw ApiError{404, fmt::format("no such endpoint: {}", request_.path)};
   }
 
@@ -452,21 +452,26 @@ class Router {
                           {"contacts", played_contacts_json(step->contacts, step->motion.frame_count)}});
   }
 
-  ApiResponse result_bvh() {
+  // ID.bvh or ID.glb.
+  ApiResponse result_file() {
     const std::string& name = parts_[2];
-    const std::string suffix = ".bvh";
     std::optional<long long> id;
-    if (name.size() > suffix.size() && name.ends_with(suffix)) {
-      id = parse_integer(name.substr(0, name.size() - suffix.size()), 0, 1LL << 30);
+    std::string suffix;
+    for (const char* s : {".bvh", ".glb"}) {
+      if (name.size() > 4 && name.ends_with(s)) {
+        suffix = s;
+        id = parse_integer(name.substr(0, name.size() - 4), 0, 1LL << 30);
+      }
     }
-    if (!id) throw ApiError{404, fmt::format("no result '{}': expected /api/results/ID.bvh", name)};
-    auto bvh = service_.result_bvh(static_cast<int>(*id));
-    if (!bvh) throw ApiError{404, fmt::format("no result {} (results are kept for the latest {})", *id,
-                                              SynthesisService::kMaxResults)};
+    if (!id) throw ApiError{404, fmt::format("no result '{}': expected /api/results/ID.bvh or ID.glb", name)};
+    const bool glb = suffix == ".glb";
+    auto bytes = service_.result_file(static_cast<int>(*id), glb);
+    if (!bytes) throw ApiError{404, fmt::format("no result {} (results are kept for the latest {})", *id,
+                                                SynthesisService::kMaxResults)};
     ApiResponse r;
-    r.content_type = "application/octet-stream";
-    r.body = std::move(*bvh);
-    r.file_name = fmt::format("motiongraph-{}.bvh", *id);
+    r.content_type = glb ? "model/gltf-binary" : "application/octet-stream";
+    r.body = std::move(*bytes);
+    r.file_name = fmt::format("motiongraph-{}{}", *id, suffix);
     return r;
   }
 

@@ -17,6 +17,7 @@
 // ("foot_slide", evaluation/foot_slide_report.h).
 //   POST /api/steer/sessions/{id}/step      {"heading_deg", "tag", "min_frames"}
 //   GET  /api/results/{id}.bvh              a synthesized motion as BVH (metres)
+//   GET  /api/results/{id}.glb              the same as binary glTF 2.0 (metres; export/gltf_writer.h)
 // Every answer with frames to play (clip frames, both windows of a transition, walk, path,
 // steering step) carries their foot contacts as the CLI writes them (export/positions_json.h):
 // "contacts": {"joints": [foot joint names], "joint_indices": [...], "planted": [frame][joint]

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "motiongraph/export/bvh_writer.h"
+#include "motiongraph/export/gltf_writer.h"
 #include "motiongraph/export/matrix_png.h"
 #include "motiongraph/graph/candidates.h"
 
@@ -37,7 +38,7 @@ int SynthesisService::store_result(Motion motion) {
   return store_recorded(std::move(recorded));
 }
 
-std::optional<std::string> SynthesisService::result_bvh(int result) const {
+std::optional<std::string> SynthesisService::result_file(int result, bool glb) const {
   std::shared_ptr<Recorded> recorded;
   {
     std::lock_guard lock(mutex_);
@@ -50,7 +51,10 @@ std::optional<std::string> SynthesisService::result_bvh(int result) const {
     std::lock_guard lock(recorded->mutex);
     motion = recorded->motion;
   }
-  return write_bvh(context().assembler.skeleton(), motion, BvhWriteSettings{});
+  if (!glb) return write_bvh(context().assembler.skeleton(), motion, BvhWriteSettings{});
+  auto bytes = write_glb(context().assembler.skeleton(), motion, GltfWriteSettings{});
+  if (!bytes) return std::nullopt;  // a recorded motion always fits the skeleton it was played on
+  return std::move(*bytes);
 }
 
 Result<SynthesizedMotion> SynthesisService::walk(const WalkRequest& request) {

@@ -35,7 +35,7 @@ struct WalkRequest {
 };
 
 struct SynthesizedMotion {
-  int result = 0;   // id for result_bvh()
+  int result = 0;   // id for result_file()
   Motion motion;
   Walk walk;
   int transitions = 0;  // transition edges the walk took
@@ -90,8 +90,9 @@ class SynthesisService {
   // Sets the input and appends at least min_frames frames (one decision or more).
   Result<SteerStepResult> step_session(int session, const ControlInput& input, int min_frames);
 
-  // The BVH text of a result, or nothing when there is no such result (any more).
-  std::optional<std::string> result_bvh(int result) const;
+  // A result as a file: BVH text, or binary glTF with `glb`; nothing when there is no such
+  // result (any more).
+  std::optional<std::string> result_file(int result, bool glb = false) const;
   // Stores a motion for download and returns its id.
   int store_result(Motion motion);
 

@@ -6,8 +6,10 @@
 # fps and joints, the same world joint positions as our own forward kinematics, and no pop: no
 # joint moves further in one frame than joints move in the source clips the graph was built
 # from, read by Blender the same way; and each planted toe (the foot clean-up) within 1 cm of its
-# plant on the floor over its contact. Needs Blender (Debian package blender; the test fails
-# with a message when it is missing, it never passes silently).
+# plant on the floor over its contact. The same figure 8 written as glTF (.glb): check_gltf.py
+# imports it with Blender's glTF importer and checks its armature, keys and joint positions.
+# Needs Blender (Debian package blender; the test fails with a message when it is missing, it
+# never passes silently).
 set -euo pipefail
 
 if [[ $# -ne 3 ]]; then
@@ -27,8 +29,8 @@ fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-# The same synthesis twice: BVH for Blender, JSON world positions for the comparison.
-for ext in bvh json; do
+# The same synthesis three times: BVH and glTF for Blender, JSON world positions for the comparison.
+for ext in bvh glb json; do
   "$motiongraph" path "$graph" --shape figure8:4 --segment walk:0-25 --segment run:25-51 -o "$tmp/figure8.$ext" >/dev/null
 done
 sources=()
@@ -39,16 +41,23 @@ for amc in "$data"/cmu/16/*.amc; do
 done
 
 "$blender" --version | head -n 1
-# Blender prints its own log on stdout; check_bvh.py's lines start with "check_bvh:".
-set +e
-"$blender" --background --factory-startup --python-exit-code 1 --python "$here/check_bvh.py" -- \
-  "$tmp/figure8.bvh" "$tmp/figure8.json" "${sources[@]}" >"$tmp/blender.log" 2>&1
-status=$?
-set -e
-grep '^check_bvh:' "$tmp/blender.log" || true
-if [[ $status -ne 0 ]]; then
-  echo "blender_import_test: FAIL (Blender exited with $status); its log:" >&2
-  tail -n 40 "$tmp/blender.log" >&2
-  exit 1
-fi
-grep -q '^check_bvh: PASS' "$tmp/blender.log"
+# check SCRIPT ARGS...: runs tests/blender/SCRIPT.py inside Blender. Blender prints its own log on
+# stdout; the script's lines start with "SCRIPT:" and its last with "SCRIPT: PASS".
+check() {
+  local script=$1 status
+  shift
+  set +e
+  "$blender" --background --factory-startup --python-exit-code 1 --python "$here/$script.py" -- "$@" \
+    >"$tmp/$script.log" 2>&1
+  status=$?
+  set -e
+  grep "^$script:" "$tmp/$script.log" || true
+  if [[ $status -ne 0 ]]; then
+    echo "blender_import_test: FAIL ($script: Blender exited with $status); its log:" >&2
+    tail -n 40 "$tmp/$script.log" >&2
+    exit 1
+  fi
+  grep -q "^$script: PASS" "$tmp/$script.log"
+}
+check check_bvh "$tmp/figure8.bvh" "$tmp/figure8.json" "${sources[@]}"
+check check_gltf "$tmp/figure8.glb" "$tmp/figure8.json"

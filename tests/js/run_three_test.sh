@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Usage: bash run_three_test.sh MOTIONGRAPH_BINARY DATA_DIR
 #
-# Checks that three.js's BVHLoader (npm package "three", in Node) reads the BVH
-# files `motiongraph convert` and `motiongraph path` write and finds the same world joint positions as
-# our own forward kinematics (`motiongraph convert ... -o X.json`), to 1e-5 m.
+# Checks that three.js's BVHLoader and GLTFLoader (npm package "three", in Node) read the BVH
+# and glTF files `motiongraph convert` and `motiongraph path` write and find the same world joint
+# positions as our own forward kinematics (`motiongraph convert ... -o X.json`), to 1e-5 m; each
+# glTF file must also pass the Khronos glTF validator (npm "gltf-validator") with no issue.
 # Needs tests/js/node_modules, installed by `npm ci` in tests/js
 # (scripts/install-deps.sh does that).
 set -euo pipefail
@@ -45,9 +46,11 @@ check() {
   echo "== $name: $input $*"
   # (set -e is off inside a function called with ||, hence the explicit returns)
   "$motiongraph" convert "$input" "$@" -o "$tmp/$name.bvh" || return 1
-  "$motiongraph" convert "$input" "$@" -o "$tmp/$name.json" || return 1
+  "$motiongraph" convert "$input" "$@" -o "$tmp/$name.json" -o "$tmp/$name.glb" || return 1
   "$node" "$here/bvh_world_positions.mjs" "$tmp/$name.bvh" "$tmp/$name.three.json" || return 1
   "$node" "$here/compare_positions.mjs" "$tmp/$name.json" "$tmp/$name.three.json" "$tolerance" || return 1
+  "$node" "$here/gltf_world_positions.mjs" "$tmp/$name.glb" "$tmp/$name.gltf.json" || return 1
+  "$node" "$here/compare_positions.mjs" "$tmp/$name.json" "$tmp/$name.gltf.json" "$tolerance" || return 1
 }
 
 # Synthesized motion: a walk-then-run figure 8 on the subject-16 graph, written once as BVH
@@ -56,12 +59,14 @@ check_synthesized() {
   echo "== synthesized: figure8:4, walk then run"
   "$motiongraph" build "$data/cmu/16" -o "$tmp/s16.mgraph" --no-cache -q || return 1
   local out
-  for out in bvh json; do
+  for out in bvh json glb; do
     "$motiongraph" path "$tmp/s16.mgraph" --shape figure8:4 --segment walk:0-25 --segment run:25-51 \
       -o "$tmp/figure8.$out" >/dev/null || return 1
   done
   "$node" "$here/bvh_world_positions.mjs" "$tmp/figure8.bvh" "$tmp/figure8.three.json" || return 1
   "$node" "$here/compare_positions.mjs" "$tmp/figure8.json" "$tmp/figure8.three.json" "$tolerance" || return 1
+  "$node" "$here/gltf_world_positions.mjs" "$tmp/figure8.glb" "$tmp/figure8.gltf.json" || return 1
+  "$node" "$here/compare_positions.mjs" "$tmp/figure8.json" "$tmp/figure8.gltf.json" "$tolerance" || return 1
 }
 
 failed=0

@@ -264,6 +264,12 @@ try {
   const href = await page.getAttribute('[data-testid=download]', 'href');
   const bvh = await page.evaluate(async (h) => (await fetch(h)).text(), href);
   check(bvh.startsWith('HIERARCHY'), `the result downloads as BVH (${href})`);
+  const glbHref = await page.getAttribute('[data-testid=download-glb]', 'href');
+  const glbMagic = await page.evaluate(async (h) => {
+    const bytes = new Uint8Array(await (await fetch(h)).arrayBuffer());
+    return String.fromCharCode(...bytes.slice(0, 4));
+  }, glbHref);
+  check(glbMagic === 'glTF', `the result downloads as binary glTF (${glbHref})`);
   await page.waitForTimeout(800);
   await page.screenshot({ path: join(shots, '4-path.png') });
 

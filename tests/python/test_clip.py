@@ -13,12 +13,12 @@ def test_positions_equal_the_cli(cli, data, tmp_path, fps):
     cli("convert", amc, "-o", tmp_path / "cli.json", *args)
     clip = mg.load_clip(str(amc), fps=fps)
     assert_positions_equal(clip, read_json(tmp_path / "cli.json"))
-    # What save() writes is the CLI's file, byte for byte, in both formats.
-    cli("convert", amc, "-o", tmp_path / "cli.bvh", *args)
-    clip.save(str(tmp_path / "py.json"))
-    clip.save(str(tmp_path / "py.bvh"))
-    assert (tmp_path / "py.json").read_bytes() == (tmp_path / "cli.json").read_bytes()
-    assert (tmp_path / "py.bvh").read_bytes() == (tmp_path / "cli.bvh").read_bytes()
+    # What save() writes is the CLI's file, byte for byte, in every format.
+    cli("convert", amc, "-o", tmp_path / "cli.bvh", "-o", tmp_path / "cli.glb", *args)
+    for ext in ("json", "bvh", "glb"):
+        clip.save(str(tmp_path / f"py.{ext}"))
+        assert (tmp_path / f"py.{ext}").read_bytes() == (tmp_path / f"cli.{ext}").read_bytes()
+    assert (tmp_path / "py.glb").read_bytes()[:4] == b"glTF"
 
 
 def test_contacts_of_a_clip_and_feet_named(cli, data, tmp_path):

@@ -282,6 +282,13 @@ TEST(StudioApi, WalkReturnsMotionAndABvhDownload) {
   ASSERT_EQ(bvh.response.status, 200);
   EXPECT_EQ(bvh.response.body.rfind("HIERARCHY", 0), 0u);
   EXPECT_FALSE(bvh.response.file_name.empty());
+  const ApiCall glb = call_api("GET", "/api/results/" + std::to_string(walk.json["result"].get<int>()) + ".glb");
+  ASSERT_EQ(glb.response.status, 200);
+  EXPECT_EQ(glb.response.body.rfind("glTF", 0), 0u);
+  EXPECT_EQ(glb.response.content_type, "model/gltf-binary");
+  EXPECT_TRUE(glb.response.file_name.ends_with(".glb"));
+  expect_error(call_api("GET", "/api/results/" + std::to_string(walk.json["result"].get<int>()) + ".fbx"), 404,
+               "expected /api/results/ID.bvh or ID.glb");
 }
 
 TEST(StudioApi, ResultsAreCleanedUnlessAskedNotToAndMeasuredAgainstTheirSource) {

@@ -84,10 +84,12 @@ function ensureFigure(joints) {
 
 function setResultLink(id) {
   state.result = id;
-  const a = $('download');
-  a.href = `/api/results/${id}.bvh`;
-  a.download = `motiongraph-${id}.bvh`;
-  a.hidden = false;
+  for (const [link, ext] of [['download', 'bvh'], ['download-glb', 'glb']]) {
+    const a = $(link);
+    a.href = `/api/results/${id}.${ext}`;
+    a.download = `motiongraph-${id}.${ext}`;
+    a.hidden = false;
+  }
 }
 
 function play(track, mode) {

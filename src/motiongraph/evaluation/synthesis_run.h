@@ -59,7 +59,7 @@ Result<SynthesizedMotion> run_walk_synthesis(const SynthesisContext& context, in
 Result<SynthesizedMotion> run_path_synthesis(const SynthesisContext& context, const FloorPath& path,
                                              const PathSynthesisSettings& search, const SynthesisRunSettings& settings);
 
-// Writes the motion (.bvh or .json, export/motion_file.h); JSON gets the feet's contacts per
+// Writes the motion (.bvh, .glb or .json, export/motion_file.h); JSON gets the feet's contacts per
 // frame: `contacts`, or when empty those of the frames `walk` plays.
 Status write_synthesized_motion(const std::string& path, const SynthesisContext& context, const Motion& motion,
                                 const Walk& walk, std::vector<ContactMask> contacts = {});

@@ -3,13 +3,14 @@
 #include <filesystem>
 
 #include "motiongraph/export/bvh_writer.h"
+#include "motiongraph/export/gltf_writer.h"
 #include "motiongraph/io/file.h"
 
 namespace mg {
 
 Status check_motion_output(const std::string& path) {
   const std::string ext = std::filesystem::path(path).extension().string();
-  if (ext != ".bvh" && ext != ".json") return Error{path, 0, "output must end in .bvh or .json"};
+  if (ext != ".bvh" && ext != ".json" && ext != ".glb") return Error{path, 0, "output must end in .bvh, .glb or .json"};
   return Ok{};
 }
 
@@ -19,8 +20,14 @@ Status write_motion(const std::string& path, const Skeleton& skeleton, const Mot
   BvhWriteSettings write;
   write.units_per_metre = units_per_metre;
   if (auto s = write.validate(); !s) return s;
-  const bool bvh = std::filesystem::path(path).extension() == ".bvh";
-  return write_file_atomic(path, bvh ? write_bvh(skeleton, motion, write) : write_positions_json(skeleton, motion, contacts));
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext == ".glb") {
+    auto glb = write_glb(skeleton, motion, GltfWriteSettings{});
+    if (!glb) return Error{path, 0, glb.error().message};
+    return write_file_atomic(path, *glb);
+  }
+  return write_file_atomic(path, ext == ".bvh" ? write_bvh(skeleton, motion, write)
+                                               : write_positions_json(skeleton, motion, contacts));
 }
 
 Result<std::optional<ClipContacts>> clip_contacts(const Skeleton& skeleton, const Motion& motion,

@@ -1,5 +1,6 @@
-// Motion written to a file, the format by extension: .bvh in metres (times units_per_metre)
-// or .json world positions (positions_json.h), checked before any work.
+// Motion written to a file, the format by extension: .bvh in metres (times units_per_metre),
+// .glb binary glTF in metres (gltf_writer.h) or .json world positions (positions_json.h),
+// checked before any work.
 #pragma once
 
 #include <optional>
@@ -12,9 +13,9 @@
 
 namespace mg {
 
-// Fails unless the path ends in .bvh or .json.
+// Fails unless the path ends in .bvh, .glb or .json.
 Status check_motion_output(const std::string& path);
-// Writes the motion atomically as BVH (metres * units_per_metre) or JSON positions.
+// Writes the motion atomically as BVH (metres * units_per_metre), glTF (metres) or JSON positions.
 // JSON gets the feet's contacts too when `contacts` is given (positions_json.h).
 Status write_motion(const std::string& path, const Skeleton& skeleton, const Motion& motion,
                     double units_per_metre = 1.0, const PositionsJsonContacts* contacts = nullptr);

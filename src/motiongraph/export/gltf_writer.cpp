@@ -1,0 +1,299 @@
+#include "motiongraph/export/gltf_writer.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <sstream>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+#include <tiny_gltf.h>
+
+namespace mg {
+
+namespace {
+
+using Affine = Eigen::Affine3d;
+
+// Appends arrays to the model's one buffer, each as a 4-byte aligned buffer view with an
+// accessor over it. Float accessors carry their exact min and max (glTF requires them on
+// positions and animation inputs; the others may have them too).
+class BufferWriter {
+ public:
+  explicit BufferWriter(tinygltf::Model& model) : model_(model) { model_.buffers.emplace_back(); }
+
+  int floats(const std::vector<float>& values, int type, int components, int target = 0) {
+    const int index = add(values.data(), values.size() * sizeof(float), TINYGLTF_COMPONENT_TYPE_FLOAT, type,
+                          static_cast<int>(values.size()) / components, target);
+    tinygltf::Accessor& accessor = model_.accessors[index];
+    accessor.minValues.assign(components, std::numeric_limits<double>::infinity());
+    accessor.maxValues.assign(components, -std::numeric_limits<double>::infinity());
+    for (size_t i = 0; i < values.size(); ++i) {
+      const size_t c = i % components;
+      accessor.minValues[c] = std::min(accessor.minValues[c], static_cast<double>(values[i]));
+      accessor.maxValues[c] = std::max(accessor.maxValues[c], static_cast<double>(values[i]));
+    }
+    return index;
+  }
+
+  int unsigned_shorts(const std::vector<uint16_t>& values, int type, int components, int target = 0) {
+    return add(values.data(), values.size() * sizeof(uint16_t), TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, type,
+               static_cast<int>(values.size()) / components, target);
+  }
+
+ private:
+  int add(const void* data, size_t bytes, int component_type, int type, int count, int target) {
+    std::vector<unsigned char>& buffer = model_.buffers[0].data;
+    buffer.resize((buffer.size() + 3) / 4 * 4, 0);
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = buffer.size();
+    view.byteLength = bytes;
+    if (target != 0) view.target = target;
+    const auto* begin = static_cast<const unsigned char*>(data);
+    buffer.insert(buffer.end(), begin, begin + bytes);
+    model_.bufferViews.push_back(std::move(view));
+    tinygltf::Accessor accessor;
+    accessor.bufferView = static_cast<int>(model_.bufferViews.size()) - 1;
+    accessor.byteOffset = 0;
+    accessor.componentType = component_type;
+    accessor.type = type;
+    accessor.count = static_cast<size_t>(count);
+    model_.accessors.push_back(std::move(accessor));
+    return static_cast<int>(model_.accessors.size()) - 1;
+  }
+
+  tinygltf::Model& model_;
+};
+
+std::vector<double> to_vector(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+std::vector<double> to_vector(const Quat& q) { return {q.x(), q.y(), q.z(), q.w()}; }
+
+void push(std::vector<float>& out, const Vec3& v) {
+  for (int i = 0; i < 3; ++i) out.push_back(static_cast<float>(v[i]));
+}
+
+// A unit quaternion in single precision (x, y, z, w), renormalised after rounding.
+void push_unit(std::vector<float>& out, const Quat& q) {
+  std::array<float, 4> f{static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()),
+                         static_cast<float>(q.w())};
+  float norm = 0.0f;
+  for (float c : f) norm += c * c;
+  norm = std::sqrt(norm);
+  for (float c : f) out.push_back(c / norm);
+}
+
+// The octahedral bone from `head` to `tail` (world, bind pose): 8 flat faces, 24 vertices with
+// their face normals, all bound to skin joint `joint`.
+void add_bone(const Vec3& head, const Vec3& tail, uint16_t joint, std::vector<float>& positions,
+              std::vector<float>& normals, std::vector<uint16_t>& joints, std::vector<float>& weights) {
+  const Vec3 axis = tail - head;
+  const double length = axis.norm();
+  const Vec3 d = axis / length;
+  const Vec3 u = d.unitOrthogonal();
+  const Vec3 v = d.cross(u);
+  const double radius = std::min(0.1 * length, 0.03);
+  const Vec3 middle = head + 0.2 * axis;
+  const std::array<Vec3, 4> ring{middle + radius * u, middle + radius * v, middle - radius * u, middle - radius * v};
+  for (int i = 0; i < 4; ++i) {
+    for (const Vec3& apex : {head, tail}) {
+      std::array<Vec3, 3> corner{apex, ring[i], ring[(i + 1) % 4]};
+      Vec3 normal = (corner[1] - corner[0]).cross(corner[2] - corner[0]).normalized();
+      // Counter-clockwise seen from outside: the normal points away from the axis.
+      if (normal.dot((corner[0] + corner[1] + corner[2]) / 3.0 - middle) < 0.0) {
+        std::swap(corner[1], corner[2]);
+        normal = -normal;
+      }
+      for (const Vec3& p : corner) {
+        push(positions, p);
+        push(normals, normal);
+        joints.insert(joints.end(), {joint, 0, 0, 0});
+        weights.insert(weights.end(), {1.0f, 0.0f, 0.0f, 0.0f});
+      }
+    }
+  }
+}
+
+Status check_fits(const Skeleton& skeleton, const Motion& motion) {
+  const size_t frames = static_cast<size_t>(std::max(motion.frame_count, 0));
+  if (motion.joint_count != skeleton.joint_count() ||
+      motion.translated_count != static_cast<int>(skeleton.translated_joints().size()) ||
+      motion.local_rotations.size() != frames * static_cast<size_t>(skeleton.joint_count()) ||
+      motion.local_translations_m.size() != frames * skeleton.translated_joints().size()) {
+    return Error{"", 0, "the motion does not fit its skeleton (joint or translation counts differ)"};
+  }
+  if (!(motion.fps > 0.0) || !std::isfinite(motion.fps)) {
+    return Error{"", 0, fmt::format("the motion's frame rate {} is not a positive number", motion.fps)};
+  }
+  return Ok{};
+}
+
+}  // namespace
+
+Status GltfWriteSettings::validate() const {
+  if (animation_name.empty()) return Error{"", 0, "the glTF animation needs a name"};
+  return Ok{};
+}
+
+Result<std::string> write_glb(const Skeleton& skeleton, const Motion& motion, const GltfWriteSettings& settings) {
+  if (auto s = settings.validate(); !s) return s.error();
+  if (auto s = check_fits(skeleton, motion); !s) return s.error();
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "motiongraph";
+  BufferWriter buffer(model);
+
+  // Nodes: the static ancestors (a chain, root first), then one per joint; the skin's joints
+  // are the nodes in that order.
+  const auto ancestors = skeleton.static_ancestors();
+  const int first_joint = static_cast<int>(ancestors.size());
+  const int joint_count = skeleton.joint_count();
+  const int node_count = first_joint + joint_count;
+  // Joint 0's transform in the file's hierarchy is the ancestors' inverse times its own here.
+  const Quat ancestor_rotation = skeleton.static_ancestor_rotation();
+  const Vec3 ancestor_translation = skeleton.static_ancestor_translation_m();
+  const auto below_ancestors = [&](const Vec3& t) -> Vec3 {
+    return ancestor_rotation.conjugate() * (t - ancestor_translation);
+  };
+  std::vector<Affine> bind(static_cast<size_t>(node_count), Affine::Identity());
+  for (int a = 0; a < first_joint; ++a) {
+    tinygltf::Node node;
+    node.name = ancestors[a].name;
+    node.translation = to_vector(ancestors[a].translation_m);
+    if (!ancestors[a].rotation.isApprox(Quat::Identity(), 0.0)) node.rotation = to_vector(ancestors[a].rotation);
+    if (a + 1 < node_count) node.children.push_back(a + 1);
+    const Affine local = Eigen::Translation3d(ancestors[a].translation_m) * ancestors[a].rotation;
+    bind[a] = a == 0 ? local : bind[a - 1] * local;
+    model.nodes.push_back(std::move(node));
+  }
+  for (int j = 0; j < joint_count; ++j) {
+    const JointDef& joint = skeleton.joint(j);
+    const int slot = skeleton.translation_slot(j);
+    Vec3 translation = slot >= 0 && motion.frame_count > 0 ? motion.translations(0)[slot] : joint.rest_offset_m;
+    if (j == 0) translation = below_ancestors(translation);
+    tinygltf::Node node;
+    node.name = joint.name;
+    node.translation = to_vector(translation);
+    const Affine local{Eigen::Translation3d(translation)};
+    const int parent_node = j == 0 ? first_joint - 1 : first_joint + joint.parent;
+    bind[first_joint + j] = parent_node < 0 ? local : bind[parent_node] * local;
+    if (j > 0) model.nodes[first_joint + joint.parent].children.push_back(first_joint + j);
+    model.nodes.push_back(std::move(node));
+  }
+
+  tinygltf::Skin skin;
+  skin.name = "skeleton";
+  skin.skeleton = 0;
+  std::vector<float> inverse_binds;
+  for (int n = 0; n < node_count; ++n) {
+    skin.joints.push_back(n);
+    const Eigen::Matrix4d inverse = bind[n].inverse().matrix();
+    for (int c = 0; c < 4; ++c) {
+      for (int r = 0; r < 4; ++r) inverse_binds.push_back(static_cast<float>(inverse(r, c)));  // column-major
+    }
+  }
+  skin.inverseBindMatrices = buffer.floats(inverse_binds, TINYGLTF_TYPE_MAT4, 16);
+  model.skins.push_back(std::move(skin));
+
+  tinygltf::Scene scene;
+  scene.name = "motiongraph";
+  scene.nodes.push_back(0);
+
+  if (settings.bone_mesh) {
+    std::vector<float> positions, normals, weights;
+    std::vector<uint16_t> joints;
+    for (int j = 1; j < joint_count; ++j) {
+      const int parent = first_joint + skeleton.parent(j);
+      const Vec3 head = bind[parent].translation(), tail = bind[first_joint + j].translation();
+      if ((tail - head).norm() < 1e-3) continue;  // no bone to draw
+      add_bone(head, tail, static_cast<uint16_t>(parent), positions, normals, joints, weights);
+    }
+    if (!positions.empty()) {
+      tinygltf::Material material;
+      material.name = "bone";
+      material.pbrMetallicRoughness.baseColorFactor = {0.8, 0.8, 0.8, 1.0};
+      material.pbrMetallicRoughness.metallicFactor = 0.0;
+      material.pbrMetallicRoughness.roughnessFactor = 0.8;
+      model.materials.push_back(std::move(material));
+      tinygltf::Primitive primitive;
+      primitive.mode = TINYGLTF_MODE_TRIANGLES;
+      primitive.material = 0;
+      primitive.attributes["POSITION"] =
+          buffer.floats(positions, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER);
+      primitive.attributes["NORMAL"] = buffer.floats(normals, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER);
+      primitive.attributes["JOINTS_0"] =
+          buffer.unsigned_shorts(joints, TINYGLTF_TYPE_VEC4, 4, TINYGLTF_TARGET_ARRAY_BUFFER);
+      primitive.attributes["WEIGHTS_0"] =
+          buffer.floats(weights, TINYGLTF_TYPE_VEC4, 4, TINYGLTF_TARGET_ARRAY_BUFFER);
+      tinygltf::Mesh mesh;
+      mesh.name = "bones";
+      mesh.primitives.push_back(std::move(primitive));
+      model.meshes.push_back(std::move(mesh));
+      tinygltf::Node node;
+      node.name = "bones";
+      node.mesh = 0;
+      node.skin = 0;
+      model.nodes.push_back(std::move(node));
+      scene.nodes.push_back(static_cast<int>(model.nodes.size()) - 1);
+    }
+  }
+  model.scenes.push_back(std::move(scene));
+  model.defaultScene = 0;
+
+  if (motion.frame_count > 0) {
+    tinygltf::Animation animation;
+    animation.name = settings.animation_name;
+    std::vector<float> times;
+    for (int f = 0; f < motion.frame_count; ++f) times.push_back(static_cast<float>(f / motion.fps));
+    const int input = buffer.floats(times, TINYGLTF_TYPE_SCALAR, 1);
+    const auto track = [&](int node, const char* path, int output) {
+      tinygltf::AnimationSampler sampler;
+      sampler.input = input;
+      sampler.output = output;
+      sampler.interpolation = "LINEAR";
+      animation.samplers.push_back(std::move(sampler));
+      tinygltf::AnimationChannel channel;
+      channel.sampler = static_cast<int>(animation.samplers.size()) - 1;
+      channel.target_node = node;
+      channel.target_path = path;
+      animation.channels.push_back(std::move(channel));
+    };
+    for (int j = 0; j < joint_count; ++j) {
+      if (skeleton.joint(j).end_site) continue;
+      bool moves = false;
+      for (int f = 0; f < motion.frame_count && !moves; ++f) moves = !motion.rotations(f)[j].isApprox(Quat::Identity(), 1e-12);
+      if (!moves && !(j == 0 && first_joint > 0)) continue;  // the node's own rotation, identity, holds
+      std::vector<float> rotations;
+      Quat previous = Quat::Identity();
+      for (int f = 0; f < motion.frame_count; ++f) {
+        Quat q = motion.rotations(f)[j];
+        if (j == 0) q = ancestor_rotation.conjugate() * q;
+        q = same_hemisphere(q, previous);  // slerp between neighbours takes the short way
+        push_unit(rotations, q);
+        previous = q;
+      }
+      track(first_joint + j, "rotation", buffer.floats(rotations, TINYGLTF_TYPE_VEC4, 4));
+    }
+    for (int j : skeleton.translated_joints()) {
+      const int slot = skeleton.translation_slot(j);
+      std::vector<float> translations;
+      for (int f = 0; f < motion.frame_count; ++f) {
+        const Vec3& t = motion.translations(f)[slot];
+        push(translations, j == 0 ? below_ancestors(t) : t);
+      }
+      track(first_joint + j, "translation", buffer.floats(translations, TINYGLTF_TYPE_VEC3, 3));
+    }
+    model.animations.push_back(std::move(animation));
+  }
+
+  model.buffers[0].data.resize((model.buffers[0].data.size() + 3) / 4 * 4, 0);
+  tinygltf::TinyGLTF writer;
+  std::ostringstream out;
+  if (!writer.WriteGltfSceneToStream(&model, out, false, true)) return Error{"", 0, "glTF serialisation failed"};
+  return out.str();
+}
+
+}  // namespace mg

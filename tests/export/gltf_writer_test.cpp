@@ -1,0 +1,292 @@
+#include "motiongraph/export/gltf_writer.h"
+
+#include <cstring>
+#include <map>
+#include <random>
+
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+
+#include "motion/static_root_bvh.h"
+#include "motiongraph/motion/forward_kinematics.h"
+#include "test_data.h"
+
+namespace mg {
+namespace {
+
+using Affine = Eigen::Affine3d;
+
+// The file read back by tinygltf's own parser, and evaluated here from the glTF rules alone
+// (node TRS, animation keys, skins), not from anything the writer computes.
+struct Glb {
+  tinygltf::Model model;
+
+  explicit Glb(const std::string& bytes) {
+    tinygltf::TinyGLTF loader;
+    std::string error, warning;
+    const bool ok = loader.LoadBinaryFromMemory(&model, &error, &warning,
+                                                reinterpret_cast<const unsigned char*>(bytes.data()),
+                                                static_cast<unsigned>(bytes.size()));
+    EXPECT_TRUE(ok) << error;
+    EXPECT_EQ(warning, "");
+  }
+
+  template <class T>
+  std::vector<T> values(int accessor_index, int component_type, int components) const {
+    const tinygltf::Accessor& accessor = model.accessors.at(accessor_index);
+    EXPECT_EQ(accessor.componentType, component_type);
+    EXPECT_EQ(tinygltf::GetNumComponentsInType(accessor.type), components);
+    const tinygltf::BufferView& view = model.bufferViews.at(accessor.bufferView);
+    EXPECT_EQ(view.byteStride, 0u);
+    const size_t count = accessor.count * components;
+    EXPECT_LE(accessor.byteOffset + count * sizeof(T), view.byteLength);
+    std::vector<T> out(count);
+    std::memcpy(out.data(), model.buffers.at(view.buffer).data.data() + view.byteOffset + accessor.byteOffset,
+                count * sizeof(T));
+    return out;
+  }
+  std::vector<float> floats(int accessor, int components) const {
+    return values<float>(accessor, TINYGLTF_COMPONENT_TYPE_FLOAT, components);
+  }
+
+  int node_named(const std::string& name) const {
+    for (size_t n = 0; n < model.nodes.size(); ++n) {
+      if (model.nodes[n].name == name) return static_cast<int>(n);
+    }
+    ADD_FAILURE() << "no node " << name;
+    return -1;
+  }
+
+  // Every node's world transform at animation key `frame` (< 0: the nodes' own TRS, no animation).
+  std::vector<Affine> world(int frame) const {
+    const size_t nodes = model.nodes.size();
+    std::vector<Vec3> translation(nodes, Vec3::Zero());
+    std::vector<Quat> rotation(nodes, Quat::Identity());
+    for (size_t n = 0; n < nodes; ++n) {
+      const auto& t = model.nodes[n].translation;
+      const auto& r = model.nodes[n].rotation;
+      EXPECT_TRUE(model.nodes[n].matrix.empty() && model.nodes[n].scale.empty());
+      if (!t.empty()) translation[n] = Vec3(t[0], t[1], t[2]);
+      if (!r.empty()) rotation[n] = Quat(r[3], r[0], r[1], r[2]);
+    }
+    if (frame >= 0) {
+      const tinygltf::Animation& animation = model.animations.at(0);
+      for (const tinygltf::AnimationChannel& channel : animation.channels) {
+        const tinygltf::AnimationSampler& sampler = animation.samplers.at(channel.sampler);
+        EXPECT_EQ(sampler.interpolation, "LINEAR");
+        if (channel.target_path == "rotation") {
+          const auto q = floats(sampler.output, 4);
+          rotation[channel.target_node] = Quat(q[4 * frame + 3], q[4 * frame], q[4 * frame + 1], q[4 * frame + 2]);
+        } else {
+          EXPECT_EQ(channel.target_path, "translation");
+          const auto t = floats(sampler.output, 3);
+          translation[channel.target_node] = Vec3(t[3 * frame], t[3 * frame + 1], t[3 * frame + 2]);
+        }
+      }
+    }
+    std::vector<Affine> out(nodes, Affine::Identity());
+    std::vector<int> parent(nodes, -1);
+    for (size_t n = 0; n < nodes; ++n) {
+      for (int child : model.nodes[n].children) parent[child] = static_cast<int>(n);
+    }
+    // Parents come first in the writer's order; check that instead of sorting.
+    for (size_t n = 0; n < nodes; ++n) {
+      EXPECT_LT(parent[n], static_cast<int>(n));
+      const Affine local = Eigen::Translation3d(translation[n]) * rotation[n].normalized();
+      out[n] = parent[n] < 0 ? local : out[parent[n]] * local;
+    }
+    return out;
+  }
+};
+
+// The largest distance between a joint's world position by forward kinematics and its node's
+// world position read from the file, over all joints and frames.
+double max_world_error(const Glb& glb, const Skeleton& skeleton, const Motion& motion) {
+  std::vector<int> node_of(skeleton.joint_count());
+  for (int j = 0; j < skeleton.joint_count(); ++j) node_of[j] = glb.node_named(skeleton.joint(j).name);
+  std::vector<Vec3> positions(skeleton.joint_count());
+  std::vector<Quat> rotations(skeleton.joint_count());
+  double worst = 0.0;
+  for (int f = 0; f < motion.frame_count; ++f) {
+    forward_kinematics(skeleton, motion, f, positions, rotations);
+    const auto world = glb.world(f);
+    for (int j = 0; j < skeleton.joint_count(); ++j) {
+      worst = std::max(worst, (world[node_of[j]].translation() - positions[j]).norm());
+    }
+  }
+  return worst;
+}
+
+Glb written(const Skeleton& skeleton, const Motion& motion, const GltfWriteSettings& settings = {}) {
+  auto bytes = write_glb(skeleton, motion, settings);
+  EXPECT_TRUE(bytes) << bytes.error().message;
+  return Glb(bytes ? *bytes : std::string());
+}
+
+TEST(GltfWriter, NodesPlayedByTheFileRulesAreWhereForwardKinematicsPutsTheJoints) {
+  for (const char* file : {"cmu/16/16_15.amc", "cmu/16/16_35.amc"}) {
+    const Clip clip = test::load_data_clip(file);
+    const Glb glb = written(clip.skeleton, clip.motion);
+    EXPECT_EQ(glb.model.asset.version, "2.0");
+    ASSERT_EQ(glb.model.animations.size(), 1u);
+    // Key times are the frames' times; every track has one key per frame.
+    const auto& animation = glb.model.animations[0];
+    const auto times = glb.floats(animation.samplers.at(0).input, 1);
+    ASSERT_EQ(static_cast<int>(times.size()), clip.motion.frame_count);
+    for (int f = 0; f < clip.motion.frame_count; ++f) EXPECT_FLOAT_EQ(times[f], static_cast<float>(f / clip.motion.fps));
+    EXPECT_LT(max_world_error(glb, clip.skeleton, clip.motion), 1e-5) << file;  // float32 of metres
+  }
+}
+
+TEST(GltfWriter, AStaticRootAboveTheHipsIsWrittenBackAboveThem) {
+  const Clip plain = test::load_data_clip("cmu/16/16_15.amc");
+  const Vec3 root_at(-2.0, 0.1, 3.0);
+  const Quat root_turn(Eigen::AngleAxisd(-2.5, Vec3(0.1, 1.0, 0.2).normalized()));
+  const Clip clip = test::import_bvh(test::static_root_bvh(plain, root_at, root_turn));
+  ASSERT_EQ(clip.skeleton.static_ancestors().size(), 1u);
+  ASSERT_GT(clip.skeleton.translated_joints().size(), 1u);  // every joint has position channels
+  const Glb glb = written(clip.skeleton, clip.motion);
+  const int root = glb.node_named(test::kStaticRootName);
+  const int hips = glb.node_named(clip.skeleton.joint(0).name);
+  ASSERT_EQ(glb.model.scenes.at(0).nodes.at(0), root);
+  EXPECT_EQ(glb.model.nodes[root].children, std::vector<int>{hips});
+  for (int f : {0, clip.motion.frame_count / 2}) {
+    EXPECT_LT((glb.world(f)[root].translation() - root_at).norm(), 1e-6);
+    EXPECT_LT(Quat(glb.world(f)[root].rotation()).angularDistance(root_turn), 1e-6);
+  }
+  EXPECT_LT(max_world_error(glb, clip.skeleton, clip.motion), 1e-5);
+}
+
+TEST(GltfWriter, TheSkinBindsEachBoneOfTheStickFigureToItsJointAtRest) {
+  const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
+  const Glb glb = written(clip.skeleton, clip.motion);
+  ASSERT_EQ(glb.model.skins.size(), 1u);
+  const tinygltf::Skin& skin = glb.model.skins[0];
+  const auto rest = glb.world(-1);
+  // Inverse bind matrices are the inverses of the joints' rest transforms.
+  const auto inverse_binds = glb.floats(skin.inverseBindMatrices, 16);
+  ASSERT_EQ(inverse_binds.size(), 16 * skin.joints.size());
+  for (size_t i = 0; i < skin.joints.size(); ++i) {
+    const Eigen::Matrix4d inverse = Eigen::Map<const Eigen::Matrix4f>(inverse_binds.data() + 16 * i).cast<double>();
+    EXPECT_TRUE((inverse * rest[skin.joints[i]].matrix()).isIdentity(1e-5)) << i;
+  }
+  // The mesh: 24 vertices a bone, each bound to one joint with weight 1, its first vertex on that
+  // joint at rest (the bone's head), the bone's tip on one of the joint's children.
+  ASSERT_EQ(glb.model.meshes.size(), 1u);
+  const auto& attributes = glb.model.meshes[0].primitives.at(0).attributes;
+  const auto positions = glb.floats(attributes.at("POSITION"), 3);
+  const auto normals = glb.floats(attributes.at("NORMAL"), 3);
+  const auto weights = glb.floats(attributes.at("WEIGHTS_0"), 4);
+  const auto joints = glb.values<uint16_t>(attributes.at("JOINTS_0"), TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, 4);
+  const size_t vertices = positions.size() / 3;
+  ASSERT_EQ(vertices % 24, 0u);
+  int bones = 0;
+  for (int j = 1; j < clip.skeleton.joint_count(); ++j) {
+    bones += (clip.skeleton.joint(j).rest_offset_m.norm() >= 1e-3 || clip.skeleton.translation_slot(j) >= 0);
+  }
+  EXPECT_EQ(static_cast<int>(vertices / 24), bones);
+  for (size_t v = 0; v < vertices; ++v) {
+    EXPECT_EQ(weights[4 * v], 1.0f);
+    EXPECT_EQ(weights[4 * v + 1] + weights[4 * v + 2] + weights[4 * v + 3], 0.0f);
+    EXPECT_NEAR(Vec3(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]).norm(), 1.0, 1e-6);
+    ASSERT_LT(joints[4 * v], skin.joints.size());
+  }
+  for (size_t b = 0; b < vertices / 24; ++b) {
+    const int joint_node = skin.joints[joints[4 * 24 * b]];
+    const Vec3 head(positions[3 * 24 * b], positions[3 * 24 * b + 1], positions[3 * 24 * b + 2]);
+    EXPECT_LT((head - rest[joint_node].translation()).norm(), 1e-6) << b;
+    bool tip_on_a_child = false;
+    for (int child : glb.model.nodes[joint_node].children) {
+      for (size_t v = 24 * b; v < 24 * (b + 1); ++v) {
+        const Vec3 p(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
+        tip_on_a_child = tip_on_a_child || (p - rest[child].translation()).norm() < 1e-6;
+      }
+    }
+    EXPECT_TRUE(tip_on_a_child) << b;
+  }
+  // The node that draws it carries mesh and skin, and is a root of the scene.
+  const int mesh_node = glb.node_named("bones");
+  EXPECT_EQ(glb.model.nodes[mesh_node].skin, 0);
+  const auto& roots = glb.model.scenes.at(0).nodes;
+  EXPECT_NE(std::find(roots.begin(), roots.end(), mesh_node), roots.end());
+}
+
+TEST(GltfWriter, FloatAccessorsCarryTheirExactBounds) {
+  const Clip clip = test::load_data_clip("cmu/16/16_01.amc");
+  const Glb glb = written(clip.skeleton, clip.motion);
+  for (size_t a = 0; a < glb.model.accessors.size(); ++a) {
+    const tinygltf::Accessor& accessor = glb.model.accessors[a];
+    if (accessor.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) continue;
+    const int components = tinygltf::GetNumComponentsInType(accessor.type);
+    const auto values = glb.floats(static_cast<int>(a), components);
+    ASSERT_EQ(accessor.minValues.size(), static_cast<size_t>(components));
+    for (int c = 0; c < components; ++c) {
+      float lo = values[c], hi = values[c];
+      for (size_t i = c; i < values.size(); i += components) lo = std::min(lo, values[i]), hi = std::max(hi, values[i]);
+      EXPECT_EQ(accessor.minValues[c], lo) << a;
+      EXPECT_EQ(accessor.maxValues[c], hi) << a;
+    }
+  }
+}
+
+// Property: any rotations, signs flipped at random from frame to frame (q and -q are one
+// rotation), come out as unit keys on one hemisphere after another, so that the slerp between
+// two keys takes the short way, and still give forward kinematics' positions.
+TEST(GltfWriter, RandomRotationsGiveContinuousUnitKeysAndTheSamePositions) {
+  const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
+  std::mt19937 rng(3);
+  std::normal_distribution<double> normal;
+  for (int round = 0; round < 5; ++round) {
+    Motion motion(clip.skeleton, 40, 60.0);
+    for (int f = 0; f < motion.frame_count; ++f) {
+      for (int j = 0; j < motion.joint_count; ++j) {
+        Quat q(normal(rng), normal(rng), normal(rng), normal(rng));
+        q.normalize();
+        if (clip.skeleton.joint(j).end_site) q = Quat::Identity();
+        motion.rotations(f)[j] = q;
+      }
+      for (auto& t : motion.translations(f)) t = Vec3(normal(rng), 1.0 + normal(rng), normal(rng));
+    }
+    const Glb glb = written(clip.skeleton, motion);
+    for (const auto& sampler : glb.model.animations.at(0).samplers) {
+      if (glb.model.accessors.at(sampler.output).type != TINYGLTF_TYPE_VEC4) continue;
+      const auto q = glb.floats(sampler.output, 4);
+      for (size_t k = 0; k + 4 <= q.size(); k += 4) {
+        EXPECT_NEAR(Eigen::Vector4f(q[k], q[k + 1], q[k + 2], q[k + 3]).norm(), 1.0f, 1e-6f);
+        if (k >= 4) {
+          EXPECT_GE(q[k] * q[k - 4] + q[k + 1] * q[k - 3] + q[k + 2] * q[k - 2] + q[k + 3] * q[k - 1], 0.0f);
+        }
+      }
+    }
+    EXPECT_LT(max_world_error(glb, clip.skeleton, motion), 1e-5);
+  }
+}
+
+TEST(GltfWriter, WithoutFramesOrMeshTheSkeletonIsStillWritten) {
+  const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
+  GltfWriteSettings no_mesh;
+  no_mesh.bone_mesh = false;
+  const Glb skeleton_only = written(clip.skeleton, clip.motion, no_mesh);
+  EXPECT_TRUE(skeleton_only.model.meshes.empty());
+  EXPECT_EQ(skeleton_only.model.animations.size(), 1u);
+  EXPECT_LT(max_world_error(skeleton_only, clip.skeleton, clip.motion), 1e-5);
+  const Glb still = written(clip.skeleton, clip.motion.slice(0, 0));
+  EXPECT_TRUE(still.model.animations.empty());
+  EXPECT_EQ(still.model.nodes.size(), static_cast<size_t>(clip.skeleton.joint_count()) + 1);  // + the mesh's
+}
+
+TEST(GltfWriter, AMotionThatDoesNotFitItsSkeletonIsAnError) {
+  const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
+  Motion fewer_joints = clip.motion;
+  fewer_joints.joint_count -= 1;
+  EXPECT_FALSE(write_glb(clip.skeleton, fewer_joints, {}));
+  Motion no_rate = clip.motion;
+  no_rate.fps = 0.0;
+  EXPECT_FALSE(write_glb(clip.skeleton, no_rate, {}));
+  GltfWriteSettings unnamed;
+  unnamed.animation_name.clear();
+  EXPECT_FALSE(write_glb(clip.skeleton, clip.motion, unnamed));
+}
+
+}  // namespace
+}  // namespace mg
