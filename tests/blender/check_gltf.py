@@ -59,6 +59,6 @@ for f in range(frames):
         worst = max(worst, max(abs(a - b) for a, b in zip(here, positions[f][j])))
 print(f"check_gltf: largest joint difference from our forward kinematics {worst:.2e} m over "
       f"{frames * len(names)} joint frames")
-if worst > 1e-4:
+if worst > 1e-5:
     fail(f"joints differ from ours by up to {worst} m")
 print("check_gltf: PASS")

@@ -205,7 +205,7 @@ TEST(GltfWriter, TheSkinBindsEachBoneOfTheStickFigureToItsJointAtRest) {
     EXPECT_TRUE(tip_on_a_child) << b;
   }
   // The node that draws it carries mesh and skin, and is a root of the scene.
-  const int mesh_node = glb.node_named("bones");
+  const int mesh_node = glb.node_named("stick_figure");
   EXPECT_EQ(glb.model.nodes[mesh_node].skin, 0);
   const auto& roots = glb.model.scenes.at(0).nodes;
   EXPECT_NE(std::find(roots.begin(), roots.end(), mesh_node), roots.end());
@@ -231,12 +231,19 @@ TEST(GltfWriter, FloatAccessorsCarryTheirExactBounds) {
 
 // Property: any rotations, signs flipped at random from frame to frame (q and -q are one
 // rotation), come out as unit keys on one hemisphere after another, so that the slerp between
-// two keys takes the short way, and still give forward kinematics' positions.
-TEST(GltfWriter, RandomRotationsGiveContinuousUnitKeysAndTheSamePositions) {
-  const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
+// two keys takes the short way, and any translations of the joints that have them (CMU's root
+// alone; every joint of a rig with position channels everywhere) play where forward kinematics
+// puts them.
+TEST(GltfWriter, RandomRotationsAndTranslationsGiveContinuousUnitKeysAndTheSamePositions) {
+  const Clip cmu = test::load_data_clip("cmu/16/16_15.amc");
+  const Clip six_channels = test::import_bvh(test::static_root_bvh(cmu));
+  ASSERT_EQ(six_channels.skeleton.translated_joints().size(),
+            static_cast<size_t>(std::count_if(six_channels.skeleton.joints().begin(), six_channels.skeleton.joints().end(),
+                                              [](const JointDef& joint) { return !joint.end_site; })));
   std::mt19937 rng(3);
   std::normal_distribution<double> normal;
-  for (int round = 0; round < 5; ++round) {
+  for (int round = 0; round < 6; ++round) {
+    const Clip& clip = round % 2 == 0 ? cmu : six_channels;
     Motion motion(clip.skeleton, 40, 60.0);
     for (int f = 0; f < motion.frame_count; ++f) {
       for (int j = 0; j < motion.joint_count; ++j) {
@@ -248,7 +255,12 @@ TEST(GltfWriter, RandomRotationsGiveContinuousUnitKeysAndTheSamePositions) {
       for (auto& t : motion.translations(f)) t = Vec3(normal(rng), 1.0 + normal(rng), normal(rng));
     }
     const Glb glb = written(clip.skeleton, motion);
-    for (const auto& sampler : glb.model.animations.at(0).samplers) {
+    // One translation track per joint that has translations (they all move here).
+    const auto& samplers = glb.model.animations.at(0).samplers;
+    EXPECT_EQ(std::count_if(samplers.begin(), samplers.end(),
+                            [&](const auto& s) { return glb.model.accessors.at(s.output).type == TINYGLTF_TYPE_VEC3; }),
+              static_cast<long>(clip.skeleton.translated_joints().size()));
+    for (const auto& sampler : samplers) {
       if (glb.model.accessors.at(sampler.output).type != TINYGLTF_TYPE_VEC4) continue;
       const auto q = glb.floats(sampler.output, 4);
       for (size_t k = 0; k + 4 <= q.size(); k += 4) {
@@ -262,12 +274,48 @@ TEST(GltfWriter, RandomRotationsGiveContinuousUnitKeysAndTheSamePositions) {
   }
 }
 
+// Position channels that hold still (a rig that gives every joint them) need no track: the
+// node's translation holds their value; the root's always moves.
+TEST(GltfWriter, TranslationsThatNeverChangeAreTheNodesOwn) {
+  const Clip plain = test::load_data_clip("cmu/16/16_15.amc");
+  const Clip clip = test::import_bvh(test::static_root_bvh(plain));
+  ASSERT_GT(clip.skeleton.translated_joints().size(), 20u);
+  const Glb glb = written(clip.skeleton, clip.motion);
+  int translation_tracks = 0;
+  for (const auto& channel : glb.model.animations.at(0).channels) {
+    if (channel.target_path != "translation") continue;
+    ++translation_tracks;
+    EXPECT_EQ(glb.model.nodes.at(channel.target_node).name, clip.skeleton.joint(0).name);
+  }
+  EXPECT_EQ(translation_tracks, 1);
+  EXPECT_LT(max_world_error(glb, clip.skeleton, clip.motion), 1e-5);
+  // At rest the root stands over the origin, at its first frame's height.
+  const Vec3 rest_root = glb.world(-1)[glb.node_named(clip.skeleton.joint(0).name)].translation();
+  EXPECT_NEAR(rest_root.x(), 0.0, 1e-6);
+  EXPECT_NEAR(rest_root.z(), 0.0, 1e-6);
+  EXPECT_NEAR(rest_root.y(), plain.motion.translations(0)[0].y(), 1e-5);
+}
+
+// glTF's JSON is UTF-8: a joint named in Latin-1 (as some older tools write BVH) gets U+FFFD for
+// the bytes that are not, instead of failing the file.
+TEST(GltfWriter, NamesThatAreNotUtf8AreRepaired) {
+  const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
+  std::vector<JointDef> joints(clip.skeleton.joints().begin(), clip.skeleton.joints().end());
+  joints[1].name = "H\xfc" "fte";
+  const Skeleton latin1(joints);
+  auto bytes = write_glb(latin1, clip.motion, {});
+  ASSERT_TRUE(bytes) << bytes.error().message;
+  const Glb glb(*bytes);
+  EXPECT_EQ(glb.model.nodes.at(1).name, "H\xef\xbf\xbd" "fte");
+}
+
 TEST(GltfWriter, WithoutFramesOrMeshTheSkeletonIsStillWritten) {
   const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
   GltfWriteSettings no_mesh;
   no_mesh.bone_mesh = false;
   const Glb skeleton_only = written(clip.skeleton, clip.motion, no_mesh);
   EXPECT_TRUE(skeleton_only.model.meshes.empty());
+  EXPECT_TRUE(skeleton_only.model.skins.empty());  // no skin without a mesh it deforms
   EXPECT_EQ(skeleton_only.model.animations.size(), 1u);
   EXPECT_LT(max_world_error(skeleton_only, clip.skeleton, clip.motion), 1e-5);
   const Glb still = written(clip.skeleton, clip.motion.slice(0, 0));

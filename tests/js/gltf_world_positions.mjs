@@ -2,7 +2,7 @@
 //
 // Reads FILE.glb as a viewer or an engine would: first the Khronos glTF validator
 // (npm "gltf-validator", the reference implementation of the spec's rules), which
-// must report no error, warning or info; then three.js's GLTFLoader, whose
+// must report no error, warning, info or hint; then three.js's GLTFLoader, whose
 // animation is played on the loaded scene with an AnimationMixer, every frame in
 // turn. Writes the world position of every joint (the skin's joints, in skin
 // order, named as in the file) as
@@ -10,11 +10,14 @@
 // the shape `motiongraph convert X -o Y.json` writes, for compare_positions.mjs.
 //
 // It also checks the skin as three.js draws it: the file's stick figure has one
-// octahedral bone per joint and child, its first vertex the bone's head, bound to
-// the parent joint alone. Skinned on the GPU's formula (SkinnedMesh.applyBoneTransform:
-// bind matrix, bone matrix times inverse bind matrix, weights), that vertex must sit
-// on its joint's world position in every frame, which only holds when the inverse
-// bind matrices are the inverses of the nodes' rest transforms.
+// octahedral bone per joint and child, 24 vertices, its vertex 0 the bone's head
+// and vertex 3 its tip, all bound to the parent joint alone. Skinned on the GPU's
+// formula (SkinnedMesh.applyBoneTransform: bind matrix, bone matrix times inverse
+// bind matrix, weights), the head must sit on its joint in every frame, and the tip
+// on the child joint it was made to (the one at the tip at rest) whenever that
+// child's translation is not animated: the tip lies off the joint the bone hangs
+// from, so it lands right only when the inverse bind matrix undoes the rest
+// rotation and translation both.
 //
 // Key times: the glTF input accessor holds frame / fps in float32; three.js keeps
 // them in a Float32Array, so mixer.setTime(times[f]) lands exactly on key f.
@@ -46,9 +49,9 @@ try {
 
 const report = await validator.validateBytes(new Uint8Array(bytes), { maxIssues: 20 });
 const issues = report.issues;
-if (issues.numErrors + issues.numWarnings + issues.numInfos > 0) {
+if (issues.numErrors + issues.numWarnings + issues.numInfos + issues.numHints > 0) {
 	fail(`the glTF validator on ${inPath}: ${issues.numErrors} errors, ${issues.numWarnings} warnings, ` +
-		`${issues.numInfos} infos:\n  ${issues.messages.map((m) => `${m.code} at ${m.pointer}: ${m.message}`).join('\n  ')}`);
+		`${issues.numInfos} infos, ${issues.numHints} hints:\n  ${issues.messages.map((m) => `${m.code} at ${m.pointer}: ${m.message}`).join('\n  ')}`);
 }
 
 const arrayBuffer = bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength);
@@ -86,14 +89,26 @@ let mesh = null;
 gltf.scene.traverse((object) => {
 	if (object.isSkinnedMesh) mesh = object;
 });
-const heads = [];  // [vertex, joint] for the head vertex of each octahedral bone
-if (mesh) {
+// [vertex, joint]: each bone's head on the joint it hangs from, its tip on the child it points to.
+const onJoints = [];
+const world = new Vector3();
+const vertex = new Vector3();
+if (!mesh) fail('no skinned mesh (the stick figure) in the scene');
+{
 	const position = mesh.geometry.getAttribute('position');
 	const skinIndex = mesh.geometry.getAttribute('skinIndex');
 	if (position.count % 24 !== 0) fail(`the stick figure has ${position.count} vertices, not 24 per bone`);
-	for (let v = 0; v < position.count; v += 24) heads.push([v, skinIndex.getX(v)]);
-} else {
-	fail('no skinned mesh (the stick figure) in the scene');
+	// At rest (no animation played yet) the mesh is in its bind pose, where the joints are.
+	gltf.scene.updateMatrixWorld(true);
+	const animatedTranslation = new Set(clip.tracks.filter((t) => t.name.endsWith('.position'))
+		.map((t) => t.name.slice(0, t.name.lastIndexOf('.'))));
+	for (let v = 0; v < position.count; v += 24) {
+		onJoints.push([v, skinIndex.getX(v)]);
+		vertex.fromBufferAttribute(position, v + 3).applyMatrix4(mesh.matrixWorld);
+		const child = bones.findIndex((bone) => world.setFromMatrixPosition(bone.matrixWorld).distanceTo(vertex) < 1e-5);
+		if (child < 0) fail(`the tip of bone ${v / 24} is on no joint at rest`);
+		if (!animatedTranslation.has(bones[child].name)) onJoints.push([v + 3, child]);
+	}
 }
 
 const mixer = new AnimationMixer(gltf.scene);
@@ -102,8 +117,6 @@ action.setLoop(LoopOnce, 1);
 action.clampWhenFinished = true;
 action.play();
 
-const world = new Vector3();
-const vertex = new Vector3();
 const positions = [];
 let worstSkin = 0;
 for (let f = 0; f < frameCount; f++) {
@@ -112,7 +125,7 @@ for (let f = 0; f < frameCount; f++) {
 	const frame = bones.map((bone) => world.setFromMatrixPosition(bone.matrixWorld).toArray());
 	positions.push(frame);
 	mesh.skeleton.update();
-	for (const [v, joint] of heads) {
+	for (const [v, joint] of onJoints) {
 		vertex.fromBufferAttribute(mesh.geometry.getAttribute('position'), v);
 		mesh.applyBoneTransform(v, vertex);
 		vertex.applyMatrix4(mesh.matrixWorld);
@@ -120,8 +133,8 @@ for (let f = 0; f < frameCount; f++) {
 		worstSkin = Math.max(worstSkin, Math.hypot(vertex.x - x, vertex.y - y, vertex.z - z));
 	}
 }
-if (worstSkin > 1e-4) fail(`a bone's head vertex, skinned, lies ${worstSkin} m from its joint`);
+if (worstSkin > 1e-5) fail(`a bone's head or tip, skinned, lies ${worstSkin} m from its joint`);
 
 writeFileSync(outPath, JSON.stringify({ fps, joints, positions }));
 console.log(`gltf_world_positions: ${inPath}: ${joints.length} joints, ${frameCount} frames, ` +
-	`${heads.length} bones skinned onto their joints within ${worstSkin.toExponential(1)} m`);
+	`${onJoints.length} bone heads and tips skinned onto their joints within ${worstSkin.toExponential(1)} m`);

@@ -10,6 +10,7 @@
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
 namespace mg {
@@ -68,6 +69,23 @@ class BufferWriter {
 
   tinygltf::Model& model_;
 };
+
+// A name as valid UTF-8, which glTF's JSON must be: a byte that is not (a Latin-1 joint name, say)
+// becomes U+FFFD, as the project's other JSON writes it (core/json_text.h).
+std::string utf8(const std::string& name) {
+  const std::string quoted = nlohmann::json(name).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  return nlohmann::json::parse(quoted).get<std::string>();
+}
+
+// `wanted`, or with "_2", "_3"... appended while a node already has it.
+std::string unused_name(const tinygltf::Model& model, const std::string& wanted) {
+  std::string name = wanted;
+  const auto taken = [&](const std::string& n) {
+    return std::any_of(model.nodes.begin(), model.nodes.end(), [&](const tinygltf::Node& node) { return node.name == n; });
+  };
+  for (int n = 2; taken(name); ++n) name = fmt::format("{}_{}", wanted, n);
+  return name;
+}
 
 std::vector<double> to_vector(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 std::vector<double> to_vector(const Quat& q) { return {q.x(), q.y(), q.z(), q.w()}; }
@@ -161,7 +179,7 @@ Result<std::string> write_glb(const Skeleton& skeleton, const Motion& motion, co
   std::vector<Affine> bind(static_cast<size_t>(node_count), Affine::Identity());
   for (int a = 0; a < first_joint; ++a) {
     tinygltf::Node node;
-    node.name = ancestors[a].name;
+    node.name = utf8(ancestors[a].name);
     node.translation = to_vector(ancestors[a].translation_m);
     if (!ancestors[a].rotation.isApprox(Quat::Identity(), 0.0)) node.rotation = to_vector(ancestors[a].rotation);
     if (a + 1 < node_count) node.children.push_back(a + 1);
@@ -173,9 +191,10 @@ Result<std::string> write_glb(const Skeleton& skeleton, const Motion& motion, co
     const JointDef& joint = skeleton.joint(j);
     const int slot = skeleton.translation_slot(j);
     Vec3 translation = slot >= 0 && motion.frame_count > 0 ? motion.translations(0)[slot] : joint.rest_offset_m;
-    if (j == 0) translation = below_ancestors(translation);
+    // The root stands over the origin at rest, at its first frame's height.
+    if (j == 0) translation = below_ancestors(Vec3(0.0, translation.y(), 0.0));
     tinygltf::Node node;
-    node.name = joint.name;
+    node.name = utf8(joint.name);
     node.translation = to_vector(translation);
     const Affine local{Eigen::Translation3d(translation)};
     const int parent_node = j == 0 ? first_joint - 1 : first_joint + joint.parent;
@@ -184,24 +203,11 @@ Result<std::string> write_glb(const Skeleton& skeleton, const Motion& motion, co
     model.nodes.push_back(std::move(node));
   }
 
-  tinygltf::Skin skin;
-  skin.name = "skeleton";
-  skin.skeleton = 0;
-  std::vector<float> inverse_binds;
-  for (int n = 0; n < node_count; ++n) {
-    skin.joints.push_back(n);
-    const Eigen::Matrix4d inverse = bind[n].inverse().matrix();
-    for (int c = 0; c < 4; ++c) {
-      for (int r = 0; r < 4; ++r) inverse_binds.push_back(static_cast<float>(inverse(r, c)));  // column-major
-    }
-  }
-  skin.inverseBindMatrices = buffer.floats(inverse_binds, TINYGLTF_TYPE_MAT4, 16);
-  model.skins.push_back(std::move(skin));
-
   tinygltf::Scene scene;
   scene.name = "motiongraph";
   scene.nodes.push_back(0);
 
+  // The skin, only with a mesh to deform (a skin no mesh uses is an unused object to glTF).
   if (settings.bone_mesh) {
     std::vector<float> positions, normals, weights;
     std::vector<uint16_t> joints;
@@ -212,6 +218,19 @@ Result<std::string> write_glb(const Skeleton& skeleton, const Motion& motion, co
       add_bone(head, tail, static_cast<uint16_t>(parent), positions, normals, joints, weights);
     }
     if (!positions.empty()) {
+      tinygltf::Skin skin;
+      skin.name = "skeleton";
+      skin.skeleton = 0;
+      std::vector<float> inverse_binds;
+      for (int n = 0; n < node_count; ++n) {
+        skin.joints.push_back(n);
+        const Eigen::Matrix4d inverse = bind[n].inverse().matrix();
+        for (int c = 0; c < 4; ++c) {
+          for (int r = 0; r < 4; ++r) inverse_binds.push_back(static_cast<float>(inverse(r, c)));  // column-major
+        }
+      }
+      skin.inverseBindMatrices = buffer.floats(inverse_binds, TINYGLTF_TYPE_MAT4, 16);
+      model.skins.push_back(std::move(skin));
       tinygltf::Material material;
       material.name = "bone";
       material.pbrMetallicRoughness.baseColorFactor = {0.8, 0.8, 0.8, 1.0};
@@ -229,11 +248,11 @@ Result<std::string> write_glb(const Skeleton& skeleton, const Motion& motion, co
       primitive.attributes["WEIGHTS_0"] =
           buffer.floats(weights, TINYGLTF_TYPE_VEC4, 4, TINYGLTF_TARGET_ARRAY_BUFFER);
       tinygltf::Mesh mesh;
-      mesh.name = "bones";
+      mesh.name = "stick_figure";
       mesh.primitives.push_back(std::move(primitive));
       model.meshes.push_back(std::move(mesh));
       tinygltf::Node node;
-      node.name = "bones";
+      node.name = unused_name(model, "stick_figure");
       node.mesh = 0;
       node.skin = 0;
       model.nodes.push_back(std::move(node));
@@ -245,7 +264,7 @@ Result<std::string> write_glb(const Skeleton& skeleton, const Motion& motion, co
 
   if (motion.frame_count > 0) {
     tinygltf::Animation animation;
-    animation.name = settings.animation_name;
+    animation.name = utf8(settings.animation_name);
     std::vector<float> times;
     for (int f = 0; f < motion.frame_count; ++f) times.push_back(static_cast<float>(f / motion.fps));
     const int input = buffer.floats(times, TINYGLTF_TYPE_SCALAR, 1);
@@ -279,6 +298,11 @@ Result<std::string> write_glb(const Skeleton& skeleton, const Motion& motion, co
     }
     for (int j : skeleton.translated_joints()) {
       const int slot = skeleton.translation_slot(j);
+      // A translation that never changes is the node's own (the first frame's), except the root's,
+      // which stands over the origin at rest.
+      bool moves = j == 0;
+      for (int f = 1; f < motion.frame_count && !moves; ++f) moves = motion.translations(f)[slot] != motion.translations(0)[slot];
+      if (!moves) continue;
       std::vector<float> translations;
       for (int f = 0; f < motion.frame_count; ++f) {
         const Vec3& t = motion.translations(f)[slot];
@@ -292,7 +316,11 @@ Result<std::string> write_glb(const Skeleton& skeleton, const Motion& motion, co
   model.buffers[0].data.resize((model.buffers[0].data.size() + 3) / 4 * 4, 0);
   tinygltf::TinyGLTF writer;
   std::ostringstream out;
-  if (!writer.WriteGltfSceneToStream(&model, out, false, true)) return Error{"", 0, "glTF serialisation failed"};
+  try {
+    if (!writer.WriteGltfSceneToStream(&model, out, false, true)) return Error{"", 0, "glTF serialisation failed"};
+  } catch (const std::exception& e) {
+    return Error{"", 0, fmt::format("glTF serialisation failed: {}", e.what())};
+  }
   return out.str();
 }
 
