@@ -13,6 +13,7 @@
 #include "motiongraph/motion/resample.h"
 #include "motiongraph/motion/in_place.h"
 #include "motiongraph/motion/up_axis.h"
+#include "motiongraph/synthesis/facing.h"
 
 namespace mg::python {
 
@@ -51,11 +52,23 @@ py::array_t<double> frames_view(const double* data, const PyMotion& m, py::ssize
 }
 
 // The JSON carries the feet's contacts when they are known, as the CLI's convert and synthesis
-// commands write it.
-Status save_motion(const PyMotion& m, const std::string& path) {
-  if (!m.feet) return write_motion(path, m.skeleton, m.motion);
+// commands write it. A root-motion joint faces where the graph's skeleton faces (a synthesis
+// result) or where the clip's does, learnt from it as convert does.
+Status save_motion(const PyMotion& m, const std::string& path, const std::optional<RootMotionSettings>& root) {
+  std::optional<RootMotionOutput> root_motion;
+  if (root) {
+    FootJointNames names;
+    if (m.feet) {
+      const auto name = [&](int joint) { return joint >= 0 ? m.skeleton.joint(joint).name : std::string(); };
+      names = {name(m.feet->left.ankle), name(m.feet->left.toe), name(m.feet->right.ankle), name(m.feet->right.toe)};
+    }
+    root_motion = RootMotionOutput{*root, m.graph ? m.graph->context().tracks.forward_axis
+                                                  : learn_clip_forward_axis(m.skeleton, m.motion, names)};
+  }
+  const RootMotionOutput* with_root = root_motion ? &*root_motion : nullptr;
+  if (!m.feet) return write_motion(path, m.skeleton, m.motion, 1.0, nullptr, with_root);
   const PositionsJsonContacts json_contacts{*m.feet, m.contacts};
-  return write_motion(path, m.skeleton, m.motion, 1.0, &json_contacts);
+  return write_motion(path, m.skeleton, m.motion, 1.0, &json_contacts, with_root);
 }
 
 PyMotion load_clip(const std::string& path, const std::optional<std::string>& asf, std::optional<double> fps,
@@ -179,17 +192,23 @@ void bind_motion(py::module_& m) {
                              "The CLI's --report of the synthesis (a dict), None for a clip.")
       .def(
           "save",
-          [](const PyMotion& self, const std::string& path) {
+          [](const PyMotion& self, const std::string& path, bool root_motion, double root_motion_smoothing) {
+            std::optional<RootMotionSettings> root;
+            if (root_motion) {
+              root.emplace();
+              root->smoothing_s = root_motion_smoothing;
+            }
             Status saved = Ok{};
             {
               py::gil_scoped_release release;
-              saved = save_motion(self, path);
+              saved = save_motion(self, path, root);
             }
             check(saved);
           },
-          py::arg("path"),
+          py::arg("path"), py::arg("root_motion") = false, py::arg("root_motion_smoothing") = 0.5,
           "Writes the motion: .bvh (metres), .glb (binary glTF 2.0, metres) or .json (world positions, with the "
-          "feet's contacts), as the CLI does.")
+          "feet's contacts), as the CLI does; root_motion adds a root-motion joint above the root (the CLI's "
+          "--root-motion, averaged over root_motion_smoothing seconds).")
       .def("__repr__", [](const PyMotion& self) {
         return fmt::format("<motiongraph.Motion '{}': {} frames at {:g} fps, {} joints>", self.name,
                            self.motion.frame_count, self.motion.fps, self.skeleton.joint_count());

@@ -12,6 +12,7 @@
 
 #include "cli/commands.h"
 #include "cli/load_options.h"
+#include "cli/root_motion_options.h"
 #include "cli/unit_report.h"
 #include "motiongraph/export/bvh_writer.h"
 #include "motiongraph/export/motion_file.h"
@@ -20,6 +21,7 @@
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/foot_contacts.h"
 #include "motiongraph/motion/resample.h"
+#include "motiongraph/synthesis/facing.h"
 
 namespace mg::cli {
 
@@ -31,6 +33,7 @@ struct ConvertOptions {
   LoadOptions load;
   double fps = 0.0;
   double output_units_per_metre = 1.0;
+  RootMotionOptions root_motion;
 };
 
 int run_convert(const ConvertOptions& options) {
@@ -72,9 +75,14 @@ int run_convert(const ConvertOptions& options) {
   const PositionsJsonContacts json_contacts{contacts ? contacts->feet : FootJoints{},
                                             contacts ? std::span<const ContactMask>(contacts->masks)
                                                      : std::span<const ContactMask>()};
+  // Where the clip's skeleton faces, for its root-motion joint.
+  const std::optional<RootMotionOutput> root_motion =
+      options.root_motion.output(options.root_motion.enabled
+                                     ? learn_clip_forward_axis(clip.skeleton, clip.motion, load.foot_names)
+                                     : Vec3::UnitZ());
   for (const std::string& output : options.outputs) {
     if (auto s = write_motion(output, clip.skeleton, clip.motion, options.output_units_per_metre,
-                              contacts ? &json_contacts : nullptr);
+                              contacts ? &json_contacts : nullptr, root_motion ? &*root_motion : nullptr);
         !s) {
       return fail(s.error());
     }
@@ -99,6 +107,7 @@ Command add_convert_command(CLI::App& app) {
   sub->add_option("--output-scale", options->output_units_per_metre,
                   "BVH length units per metre in the output (100 for centimetres); glTF is always in metres")
       ->capture_default_str();
+  options->root_motion.add_to(*sub);
   options->load.add_to(*sub);
   return {sub, [options] { return run_convert(*options); }};
 }

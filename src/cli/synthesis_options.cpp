@@ -29,7 +29,11 @@ void print_cleanup_warning(const SynthesisOptions& options, const std::string& w
 Status write_synthesis_outputs(const SynthesisOptions& options, const LoadedGraph& loaded, const Motion& motion,
                                const Walk& walk, nlohmann::json report, std::vector<ContactMask> contacts) {
   const SynthesisContext& context = loaded.context();
-  if (auto s = write_synthesized_motion(options.output, context, motion, walk, std::move(contacts)); !s) return s;
+  if (auto s = write_synthesized_motion(options.output, context, motion, walk, std::move(contacts),
+                                       options.root_motion.enabled ? &options.root_motion.settings : nullptr);
+      !s) {
+    return s;
+  }
   if (!options.report.empty()) {
     if (!report.contains("foot_slide")) report["foot_slide"] = foot_slide_report(context, walk, motion);
     if (auto s = write_file_atomic(options.report, json_text(report, 2) + "\n"); !s) return s;

@@ -96,6 +96,24 @@ if "$bin" convert "$data/cmu/16/16_35.amc" -o "$work/nofoot.json" --feet LeftAnk
 fi
 [[ $(wc -l <"$work/nofoot.err") -eq 1 && ! -e "$work/nofoot.json" ]] && grep -q "LeftAnkle" "$work/nofoot.err" \
   || { echo "FAIL: missing foot joint: $(cat "$work/nofoot.err")"; exit 1; }
+# --root-motion: a joint on the floor above the hips, every other joint where it was (the contacts
+# naming the same feet); read back from BVH, the new joint is the root; a bad smoothing is one line.
+"$bin" convert "$data/cmu/16/16_35.amc" --fps 30 --root-motion -o "$work/jog-rm.json" -o "$work/jog-rm.bvh"
+python3 - "$work/jog.json" "$work/jog-rm.json" <<'PY'
+import json, sys
+plain, moved = (json.load(open(p)) for p in sys.argv[1:])
+assert moved["joints"][0] == {"name": "root_motion", "parent": -1}, moved["joints"][:2]
+assert moved["joints"][1]["parent"] == 0 and moved["contacts"]["joints"] == plain["contacts"]["joints"]
+assert moved["contacts"]["planted"] == plain["contacts"]["planted"]
+for f, (a, b) in enumerate(zip(plain["positions"], moved["positions"])):
+    assert b[0][1] == 0.0, (f, b[0])
+    assert max(abs(x - y) for p, q in zip(a, b[1:]) for x, y in zip(p, q)) < 2e-6, f
+PY
+grep -q "^ROOT root_motion" "$work/jog-rm.bvh" || { echo "FAIL: the root-motion joint is not the BVH's root"; exit 1; }
+if "$bin" convert "$data/cmu/16/16_35.amc" --root-motion --root-motion-smoothing -1 -o "$work/bad-rm.json" 2>"$work/rm.err"; then
+  echo "FAIL: a negative smoothing was accepted"; exit 1
+fi
+[[ ! -e "$work/bad-rm.json" ]] || { echo "FAIL: output written despite a bad smoothing"; exit 1; }
 # The converted BVH reads back.
 "$bin" info "$work/jog.bvh" | grep "41 frames at 30 fps" >/dev/null || { echo "FAIL: written BVH does not read back"; exit 1; }
 ls -A "$work" | grep -q "tmp-" && { echo "FAIL: temporary files left"; exit 1; }

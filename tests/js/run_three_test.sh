@@ -74,6 +74,8 @@ check_synthesized || failed=1
 check 16_15 "$data/cmu/16/16_15.amc" || failed=1
 check 16_01 "$data/cmu/16/16_01.amc" || failed=1
 check 131_01 "$data/bvh/131_01.bvh" --scale 0.056444 || failed=1
+# A root-motion joint above the hips: the hips become a joint with position channels in BVH.
+check 16_35_root_motion "$data/cmu/16/16_35.amc" --root-motion || failed=1
 
 if [[ $failed -ne 0 ]]; then
   echo "run_three_test: FAIL" >&2

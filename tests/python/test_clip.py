@@ -19,6 +19,9 @@ def test_positions_equal_the_cli(cli, data, tmp_path, fps):
         clip.save(str(tmp_path / f"py.{ext}"))
         assert (tmp_path / f"py.{ext}").read_bytes() == (tmp_path / f"cli.{ext}").read_bytes()
     assert (tmp_path / "py.glb").read_bytes()[:4] == b"glTF"
+    cli("convert", amc, "--root-motion", "-o", tmp_path / "cli-rm.json", *args)
+    clip.save(str(tmp_path / "py-rm.json"), root_motion=True)
+    assert (tmp_path / "py-rm.json").read_bytes() == (tmp_path / "cli-rm.json").read_bytes()
 
 
 def test_contacts_of_a_clip_and_feet_named(cli, data, tmp_path):

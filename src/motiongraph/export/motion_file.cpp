@@ -15,8 +15,22 @@ Status check_motion_output(const std::string& path) {
 }
 
 Status write_motion(const std::string& path, const Skeleton& skeleton, const Motion& motion, double units_per_metre,
-                    const PositionsJsonContacts* contacts) {
+                    const PositionsJsonContacts* contacts, const RootMotionOutput* root_motion) {
   if (auto s = check_motion_output(path); !s) return s;
+  if (root_motion) {
+    auto added = add_root_motion(skeleton, motion, root_motion->forward_axis, root_motion->settings);
+    if (!added) return Error{path, 0, added.error().message};
+    // The feet are one joint further on.
+    std::optional<PositionsJsonContacts> shifted;
+    if (contacts) {
+      shifted = *contacts;
+      for (Foot* foot : {&shifted->feet.left, &shifted->feet.right}) {
+        foot->ankle += 1;
+        if (foot->toe >= 0) foot->toe += 1;
+      }
+    }
+    return write_motion(path, added->skeleton, added->motion, units_per_metre, shifted ? &*shifted : nullptr);
+  }
   BvhWriteSettings write;
   write.units_per_metre = units_per_metre;
   if (auto s = write.validate(); !s) return s;

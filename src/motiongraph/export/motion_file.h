@@ -10,15 +10,25 @@
 #include "motiongraph/core/error.h"
 #include "motiongraph/export/positions_json.h"
 #include "motiongraph/motion/motion.h"
+#include "motiongraph/motion/root_motion.h"
 
 namespace mg {
 
 // Fails unless the path ends in .bvh, .glb or .json.
 Status check_motion_output(const std::string& path);
+// A root-motion joint to add before writing (motion/root_motion.h), and where the skeleton faces
+// in its root's frame (synthesis/facing.h).
+struct RootMotionOutput {
+  RootMotionSettings settings;
+  Vec3 forward_axis = Vec3::UnitZ();
+};
+
 // Writes the motion atomically as BVH (metres * units_per_metre), glTF (metres) or JSON positions.
-// JSON gets the feet's contacts too when `contacts` is given (positions_json.h).
+// JSON gets the feet's contacts too when `contacts` is given (positions_json.h). With
+// `root_motion`, the motion gets a root-motion joint above its root first.
 Status write_motion(const std::string& path, const Skeleton& skeleton, const Motion& motion,
-                    double units_per_metre = 1.0, const PositionsJsonContacts* contacts = nullptr);
+                    double units_per_metre = 1.0, const PositionsJsonContacts* contacts = nullptr,
+                    const RootMotionOutput* root_motion = nullptr);
 
 // A captured clip's foot contacts, for its JSON: the feet found by name unless `names` gives
 // them (skeleton/foot_joints.h). nullopt, with `why` set, when they are not found and none was

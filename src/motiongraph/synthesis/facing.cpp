@@ -157,6 +157,16 @@ std::vector<Vec3> learn_forward_axes(const MotionDatabase& db) {
   return axes;
 }
 
+Vec3 learn_clip_forward_axis(const Skeleton& skeleton, const Motion& motion, const FootJointNames& feet) {
+  MotionDatabase db;
+  db.fps = motion.fps;
+  db.foot_names = feet;
+  db.skeletons.push_back(skeleton);
+  db.skeleton_names.emplace_back();
+  db.clips.push_back(DatabaseClip{"clip", "", 0, 0, motion.frame_count, motion});
+  return learn_forward_axes(db)[0];
+}
+
 Vec2 facing_on_floor(const Quat& root_world_rotation, const Vec3& forward_axis) {
   const Vec3 f = root_world_rotation * forward_axis;
   const Vec2 d(f.x(), f.z());

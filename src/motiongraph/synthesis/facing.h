@@ -59,6 +59,10 @@ Vec3 learn_forward_axis(const MotionDatabase& db, int skeleton, const Vec3& trav
 // travel.
 std::vector<Vec3> learn_travel_axes(const MotionDatabase& db);
 
+// Where a clip's skeleton faces, learnt from that clip alone (learn_forward_axes on a library
+// of it), its feet found by name unless `feet` names them.
+Vec3 learn_clip_forward_axis(const Skeleton& skeleton, const Motion& motion, const FootJointNames& feet = {});
+
 // The unit facing direction on the floor of a root world rotation; (0, 0) when the axis is
 // vertical.
 Vec2 facing_on_floor(const Quat& root_world_rotation, const Vec3& forward_axis);
