@@ -52,7 +52,9 @@ std::optional<std::string> SynthesisService::result_file(int result, bool glb) c
     motion = recorded->motion;
   }
   if (!glb) return write_bvh(context().assembler.skeleton(), motion, BvhWriteSettings{});
-  auto bytes = write_glb(context().assembler.skeleton(), motion, GltfWriteSettings{});
+  GltfWriteSettings gltf;
+  gltf.animation_name = fmt::format("motiongraph-{}", result);  // as the file downloads
+  auto bytes = write_glb(context().assembler.skeleton(), motion, gltf);
   if (!bytes) return std::nullopt;  // a recorded motion always fits the skeleton it was played on
   return std::move(*bytes);
 }

@@ -61,6 +61,9 @@ const gltf = await new Promise((resolve, reject) => new GLTFLoader().parse(array
 const json = gltf.parser.json;
 if (!json.skins || json.skins.length !== 1) fail(`expected one skin, found ${json.skins?.length ?? 0}`);
 if (gltf.animations.length !== 1) fail(`expected one animation, found ${gltf.animations.length}`);
+// Named as the file, without its extension.
+const stem = inPath.replace(/^.*\//, '').replace(/\.glb$/, '');
+if (json.animations[0].name !== stem) fail(`the animation is named '${json.animations[0].name}', not '${stem}'`);
 const skinJoints = json.skins[0].joints;
 const nodes = await gltf.parser.getDependencies('node');
 const bones = skinJoints.map((n) => nodes[n]);

@@ -13,12 +13,17 @@ def test_positions_equal_the_cli(cli, data, tmp_path, fps):
     cli("convert", amc, "-o", tmp_path / "cli.json", *args)
     clip = mg.load_clip(str(amc), fps=fps)
     assert_positions_equal(clip, read_json(tmp_path / "cli.json"))
-    # What save() writes is the CLI's file, byte for byte, in every format.
-    cli("convert", amc, "-o", tmp_path / "cli.bvh", "-o", tmp_path / "cli.glb", *args)
-    for ext in ("json", "bvh", "glb"):
+    # What save() writes is the CLI's file, byte for byte, in every format (glTF names its
+    # animation as the file: the same name in two folders).
+    (tmp_path / "cli").mkdir()
+    (tmp_path / "py").mkdir()
+    cli("convert", amc, "-o", tmp_path / "cli.bvh", "-o", tmp_path / "cli" / "walk.glb", *args)
+    for ext in ("json", "bvh"):
         clip.save(str(tmp_path / f"py.{ext}"))
         assert (tmp_path / f"py.{ext}").read_bytes() == (tmp_path / f"cli.{ext}").read_bytes()
-    assert (tmp_path / "py.glb").read_bytes()[:4] == b"glTF"
+    clip.save(str(tmp_path / "py" / "walk.glb"))
+    assert (tmp_path / "py" / "walk.glb").read_bytes() == (tmp_path / "cli" / "walk.glb").read_bytes()
+    assert (tmp_path / "py" / "walk.glb").read_bytes()[:4] == b"glTF"
     cli("convert", amc, "--root-motion", "-o", tmp_path / "cli-rm.json", *args)
     clip.save(str(tmp_path / "py-rm.json"), root_motion=True)
     assert (tmp_path / "py-rm.json").read_bytes() == (tmp_path / "cli-rm.json").read_bytes()

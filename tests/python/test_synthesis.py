@@ -24,9 +24,11 @@ def test_path_equals_the_cli(cli, graph_file, graph, tmp_path):
     assert (tmp_path / "py.json").read_bytes() == (tmp_path / "cli.json").read_bytes()
     assert "contacts" in cli_json
     # With a root-motion joint, as the CLI's --root-motion writes it.
-    cli("path", graph_file, *FIGURE8, "--root-motion", "--root-motion-smoothing", 0.25, "-o", tmp_path / "cli-rm.glb")
-    motion.save(str(tmp_path / "py-rm.glb"), root_motion=True, root_motion_smoothing=0.25)
-    assert (tmp_path / "py-rm.glb").read_bytes() == (tmp_path / "cli-rm.glb").read_bytes()
+    (tmp_path / "cli").mkdir()
+    (tmp_path / "py").mkdir()
+    cli("path", graph_file, *FIGURE8, "--root-motion", "--root-motion-smoothing", 0.25, "-o", tmp_path / "cli" / "rm.glb")
+    motion.save(str(tmp_path / "py" / "rm.glb"), root_motion=True, root_motion_smoothing=0.25)
+    assert (tmp_path / "py" / "rm.glb").read_bytes() == (tmp_path / "cli" / "rm.glb").read_bytes()
     # .contacts and .foot_joints are the file's, as arrays.
     assert motion.foot_joints == cli_json["contacts"]["joints"]
     planted = motion.contacts

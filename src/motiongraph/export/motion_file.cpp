@@ -36,7 +36,11 @@ Status write_motion(const std::string& path, const Skeleton& skeleton, const Mot
   if (auto s = write.validate(); !s) return s;
   const std::string ext = std::filesystem::path(path).extension().string();
   if (ext == ".glb") {
-    auto glb = write_glb(skeleton, motion, GltfWriteSettings{});
+    // The animation is named as the file (an engine lists every imported file's as its name).
+    GltfWriteSettings gltf;
+    const std::string stem = std::filesystem::path(path).stem().string();
+    if (!stem.empty()) gltf.animation_name = stem;
+    auto glb = write_glb(skeleton, motion, gltf);
     if (!glb) return Error{path, 0, glb.error().message};
     return write_file_atomic(path, *glb);
   }

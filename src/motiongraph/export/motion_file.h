@@ -23,7 +23,8 @@ struct RootMotionOutput {
   Vec3 forward_axis = Vec3::UnitZ();
 };
 
-// Writes the motion atomically as BVH (metres * units_per_metre), glTF (metres) or JSON positions.
+// Writes the motion atomically as BVH (metres * units_per_metre), glTF (metres, its animation named
+// as the file without its extension) or JSON positions.
 // JSON gets the feet's contacts too when `contacts` is given (positions_json.h). With
 // `root_motion`, the motion gets a root-motion joint above its root first.
 Status write_motion(const std::string& path, const Skeleton& skeleton, const Motion& motion,
