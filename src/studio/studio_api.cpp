@@ -465,7 +465,8 @@ class Router {
     }
     if (!id) throw ApiError{404, fmt::format("no result '{}': expected /api/results/ID.bvh or ID.glb", name)};
     const bool glb = suffix == ".glb";
-    auto bytes = service_.result_file(static_cast<int>(*id), glb);
+    const bool root_motion = query_integer(request_, "root_motion", 0, 0, 1) == 1;
+    auto bytes = service_.result_file(static_cast<int>(*id), glb, root_motion);
     if (!bytes) throw ApiError{404, fmt::format("no result {} (results are kept for the latest {})", *id,
                                                 SynthesisService::kMaxResults)};
     ApiResponse r;

@@ -6,6 +6,7 @@
 
 #include "motiongraph/export/bvh_writer.h"
 #include "motiongraph/export/gltf_writer.h"
+#include "motiongraph/motion/root_motion.h"
 #include "motiongraph/export/matrix_png.h"
 #include "motiongraph/graph/candidates.h"
 
@@ -38,7 +39,7 @@ int SynthesisService::store_result(Motion motion) {
   return store_recorded(std::move(recorded));
 }
 
-std::optional<std::string> SynthesisService::result_file(int result, bool glb) const {
+std::optional<std::string> SynthesisService::result_file(int result, bool glb, bool root_motion) const {
   std::shared_ptr<Recorded> recorded;
   {
     std::lock_guard lock(mutex_);
@@ -51,10 +52,17 @@ std::optional<std::string> SynthesisService::result_file(int result, bool glb) c
     std::lock_guard lock(recorded->mutex);
     motion = recorded->motion;
   }
-  if (!glb) return write_bvh(context().assembler.skeleton(), motion, BvhWriteSettings{});
+  Skeleton skeleton = context().assembler.skeleton();
+  if (root_motion) {
+    auto added = add_root_motion(skeleton, motion, context().tracks.forward_axis, RootMotionSettings{});
+    if (!added) return std::nullopt;  // a recorded motion's root always travels
+    skeleton = std::move(added->skeleton);
+    motion = std::move(added->motion);
+  }
+  if (!glb) return write_bvh(skeleton, motion, BvhWriteSettings{});
   GltfWriteSettings gltf;
   gltf.animation_name = fmt::format("motiongraph-{}", result);  // as the file downloads
-  auto bytes = write_glb(context().assembler.skeleton(), motion, gltf);
+  auto bytes = write_glb(skeleton, motion, gltf);
   if (!bytes) return std::nullopt;  // a recorded motion always fits the skeleton it was played on
   return std::move(*bytes);
 }

@@ -270,6 +270,12 @@ try {
     return String.fromCharCode(...bytes.slice(0, 4));
   }, glbHref);
   check(glbMagic === 'glTF', `the result downloads as binary glTF (${glbHref})`);
+  await page.check('[data-testid=root-motion]');
+  const rootMotionHref = await page.getAttribute('[data-testid=download]', 'href');
+  const rootMotionBvh = await page.evaluate(async (h) => (await fetch(h)).text(), rootMotionHref);
+  check(rootMotionBvh.startsWith('HIERARCHY\nROOT root_motion'),
+    `with the root-motion box checked the BVH's root is the root-motion joint (${rootMotionHref})`);
+  await page.uncheck('[data-testid=root-motion]');
   await page.waitForTimeout(800);
   await page.screenshot({ path: join(shots, '4-path.png') });
 

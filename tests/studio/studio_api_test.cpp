@@ -287,6 +287,10 @@ TEST(StudioApi, WalkReturnsMotionAndABvhDownload) {
   EXPECT_EQ(glb.response.body.rfind("glTF", 0), 0u);
   EXPECT_EQ(glb.response.content_type, "model/gltf-binary");
   EXPECT_TRUE(glb.response.file_name.ends_with(".glb"));
+  const ApiCall root_motion =
+      call_api("GET", "/api/results/" + std::to_string(walk.json["result"].get<int>()) + ".bvh", "", {{"root_motion", "1"}});
+  ASSERT_EQ(root_motion.response.status, 200);
+  EXPECT_EQ(root_motion.response.body.rfind("HIERARCHY\nROOT root_motion", 0), 0u);
   expect_error(call_api("GET", "/api/results/" + std::to_string(walk.json["result"].get<int>()) + ".fbx"), 404,
                "expected /api/results/ID.bvh or ID.glb");
 }

@@ -84,12 +84,14 @@ function ensureFigure(joints) {
 
 function setResultLink(id) {
   state.result = id;
+  const query = $('root-motion').checked ? '?root_motion=1' : '';
   for (const [link, ext] of [['download', 'bvh'], ['download-glb', 'glb']]) {
     const a = $(link);
-    a.href = `/api/results/${id}.${ext}`;
+    a.href = `/api/results/${id}.${ext}${query}`;
     a.download = `motiongraph-${id}.${ext}`;
     a.hidden = false;
   }
+  $('root-motion-label').hidden = false;
 }
 
 function play(track, mode) {
@@ -500,6 +502,7 @@ function markFeet(fig, contacts, row) {
   else fig.setPlanted(null, null);
 }
 $('mark-feet').addEventListener('change', (e) => { state.markFeet = e.target.checked; });
+$('root-motion').addEventListener('change', () => { if (state.result !== undefined) setResultLink(state.result); });
 
 function tick() {
   const dt = Math.min(clock.getDelta(), 0.25);  // real time down to 4 frames a second
