@@ -158,13 +158,26 @@ std::vector<Vec3> learn_forward_axes(const MotionDatabase& db) {
 }
 
 Vec3 learn_clip_forward_axis(const Skeleton& skeleton, const Motion& motion, const FootJointNames& feet) {
+  if (skeleton.translation_slot(0) != 0) return Vec3::UnitZ();
   MotionDatabase db;
   db.fps = motion.fps;
   db.foot_names = feet;
   db.skeletons.push_back(skeleton);
   db.skeleton_names.emplace_back();
   db.clips.push_back(DatabaseClip{"clip", "", 0, 0, motion.frame_count, motion});
-  return learn_forward_axes(db)[0];
+  const ForwardAxisChoice choice = choose_forward_axis(db, 0, learn_travel_axes(db)[0]);
+  if (choice.left_hip < 0) return choice.axis;
+  Vec3 axis = choice.turned_about ? Vec3(-choice.axis) : choice.axis;  // the hips' own sign
+  const auto found = find_foot_joints(skeleton, feet);
+  if (!found) return axis;
+  double along = 0.0;
+  for (int f = 0; f < motion.frame_count; ++f) {
+    for (const Foot& foot : {found->left, found->right}) {
+      if (foot.toe < 0) continue;
+      along += (in_root_frame(skeleton, motion, f, foot.toe) - in_root_frame(skeleton, motion, f, foot.ankle)).dot(axis);
+    }
+  }
+  return along < 0.0 ? Vec3(-axis) : axis;
 }
 
 Vec2 facing_on_floor(const Quat& root_world_rotation, const Vec3& forward_axis) {

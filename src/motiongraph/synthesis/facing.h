@@ -59,8 +59,11 @@ Vec3 learn_forward_axis(const MotionDatabase& db, int skeleton, const Vec3& trav
 // travel.
 std::vector<Vec3> learn_travel_axes(const MotionDatabase& db);
 
-// Where a clip's skeleton faces, learnt from that clip alone (learn_forward_axes on a library
-// of it), its feet found by name unless `feet` names them.
+// Where a clip's skeleton faces, learnt from that clip alone: square to its hips as above, but
+// signed by its toes (the mean of ankle -> toe in the root's frame points forward), since one
+// clip's travel may well go backwards (a backwards walk, or a jump whose few moving frames
+// settle the sign); the travel axis without hips, as above; +z when its root has no translation
+// (it has no travel). Its feet found by name unless `feet` names them.
 Vec3 learn_clip_forward_axis(const Skeleton& skeleton, const Motion& motion, const FootJointNames& feet = {});
 
 // The unit facing direction on the floor of a root world rotation; (0, 0) when the axis is
