@@ -65,10 +65,12 @@ Result<RootMotionClip> add_root_motion(const Skeleton& skeleton, const Motion& m
   const int frames = motion.frame_count;
   const int joints = skeleton.joint_count();
   const std::vector<Vec3> world = world_positions(skeleton, motion);
-  // A root that stands while a joint below it travels (a fixed root the import did not fold
-  // away) would give a root-motion joint that stands still: say so instead.
+  // A root that stands while a joint below it with position channels travels (a fixed root the
+  // import did not fold away) would give a root-motion joint that stands still: say so instead.
+  // (Joints without position channels only swing about it: an arm waving over a standing root.)
   if (frames > 1 && floor_reach(world, joints, 0, frames) < 0.01) {
-    for (int j = 1; j < joints; ++j) {
+    for (int j : skeleton.translated_joints()) {
+      if (j == 0) continue;
       const double reach = floor_reach(world, joints, j, frames);
       if (reach > 0.5) {
         return Error{"", 0, fmt::format("the root joint '{}' does not travel but '{}' below it goes {:.2f} m: root "

@@ -22,7 +22,8 @@
 // fixed root) gets the new joint in the place of the one directly above the hips, named as it;
 // those further up stay above it: the rig's own root bone then carries the root motion, as an
 // engine expects of it. A root without position channels, or one that stands while a joint
-// below it travels (a fixed root the import did not fold away), is an error.
+// below it with position channels travels (a fixed root the import did not fold away), is an
+// error.
 #pragma once
 
 #include <string>
