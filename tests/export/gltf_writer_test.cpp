@@ -323,6 +323,19 @@ TEST(GltfWriter, WithoutFramesOrMeshTheSkeletonIsStillWritten) {
   EXPECT_EQ(still.model.nodes.size(), static_cast<size_t>(clip.skeleton.joint_count()) + 1);  // + the mesh's
 }
 
+// A root without position channels keeps its offset: with no translation track, the node's own
+// translation is where forward kinematics puts it.
+TEST(GltfWriter, ARootWithoutPositionChannelsStaysAtItsOffset) {
+  const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
+  std::vector<JointDef> joints(clip.skeleton.joints().begin(), clip.skeleton.joints().end());
+  joints[0].animated_translation = false;
+  joints[0].rest_offset_m = Vec3(0.3, 0.9, -0.2);
+  const Skeleton fixed(joints);
+  Motion motion(fixed, clip.motion.frame_count, clip.motion.fps);
+  motion.local_rotations = clip.motion.local_rotations;
+  EXPECT_LT(max_world_error(written(fixed, motion), fixed, motion), 1e-5);
+}
+
 TEST(GltfWriter, AMotionThatDoesNotFitItsSkeletonIsAnError) {
   const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
   Motion fewer_joints = clip.motion;

@@ -191,8 +191,9 @@ Result<std::string> write_glb(const Skeleton& skeleton, const Motion& motion, co
     const JointDef& joint = skeleton.joint(j);
     const int slot = skeleton.translation_slot(j);
     Vec3 translation = slot >= 0 && motion.frame_count > 0 ? motion.translations(0)[slot] : joint.rest_offset_m;
-    // The root stands over the origin at rest, at its first frame's height.
-    if (j == 0) translation = below_ancestors(Vec3(0.0, translation.y(), 0.0));
+    // A travelling root stands over the origin at rest, at its first frame's height (its track
+    // moves it); a root without position channels stays at its offset.
+    if (j == 0) translation = below_ancestors(slot >= 0 ? Vec3(0.0, translation.y(), 0.0) : translation);
     tinygltf::Node node;
     node.name = utf8(joint.name);
     node.translation = to_vector(translation);
