@@ -502,7 +502,7 @@ function markFeet(fig, contacts, row) {
   else fig.setPlanted(null, null);
 }
 $('mark-feet').addEventListener('change', (e) => { state.markFeet = e.target.checked; });
-$('root-motion').addEventListener('change', () => { if (state.result !== undefined) setResultLink(state.result); });
+$('root-motion').addEventListener('change', () => { if (state.result !== null) setResultLink(state.result); });
 
 function tick() {
   const dt = Math.min(clock.getDelta(), 0.25);  // real time down to 4 frames a second
