@@ -13,6 +13,8 @@
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
+#include "motiongraph/core/unique_name.h"
+
 namespace mg {
 
 namespace {
@@ -77,16 +79,6 @@ std::string utf8(const std::string& name) {
   return nlohmann::json::parse(quoted).get<std::string>();
 }
 
-// `wanted`, or with "_2", "_3"... appended while a node already has it.
-std::string unused_name(const tinygltf::Model& model, const std::string& wanted) {
-  std::string name = wanted;
-  const auto taken = [&](const std::string& n) {
-    return std::any_of(model.nodes.begin(), model.nodes.end(), [&](const tinygltf::Node& node) { return node.name == n; });
-  };
-  for (int n = 2; taken(name); ++n) name = fmt::format("{}_{}", wanted, n);
-  return name;
-}
-
 std::vector<double> to_vector(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 std::vector<double> to_vector(const Quat& q) { return {q.x(), q.y(), q.z(), q.w()}; }
 
@@ -133,20 +125,6 @@ void add_bone(const Vec3& head, const Vec3& tail, uint16_t joint, std::vector<fl
       }
     }
   }
-}
-
-Status check_fits(const Skeleton& skeleton, const Motion& motion) {
-  const size_t frames = static_cast<size_t>(std::max(motion.frame_count, 0));
-  if (motion.joint_count != skeleton.joint_count() ||
-      motion.translated_count != static_cast<int>(skeleton.translated_joints().size()) ||
-      motion.local_rotations.size() != frames * static_cast<size_t>(skeleton.joint_count()) ||
-      motion.local_translations_m.size() != frames * skeleton.translated_joints().size()) {
-    return Error{"", 0, "the motion does not fit its skeleton (joint or translation counts differ)"};
-  }
-  if (!(motion.fps > 0.0) || !std::isfinite(motion.fps)) {
-    return Error{"", 0, fmt::format("the motion's frame rate {} is not a positive number", motion.fps)};
-  }
-  return Ok{};
 }
 
 }  // namespace
@@ -253,7 +231,9 @@ Result<std::string> write_glb(const Skeleton& skeleton, const Motion& motion, co
       mesh.primitives.push_back(std::move(primitive));
       model.meshes.push_back(std::move(mesh));
       tinygltf::Node node;
-      node.name = unused_name(model, "stick_figure");
+      node.name = unique_name("stick_figure", [&](const std::string& n) {
+        return std::any_of(model.nodes.begin(), model.nodes.end(), [&](const tinygltf::Node& other) { return other.name == n; });
+      });
       node.mesh = 0;
       node.skin = 0;
       model.nodes.push_back(std::move(node));

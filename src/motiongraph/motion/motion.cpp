@@ -1,6 +1,10 @@
 #include "motiongraph/motion/motion.h"
 
+#include <algorithm>
 #include <cassert>
+#include <cmath>
+
+#include <fmt/format.h>
 
 namespace mg {
 
@@ -22,6 +26,20 @@ Motion::Motion(const Skeleton& skeleton, int frames, double frames_per_second, s
   // Quat and Vec3 leave their values unset when made: resize() allocates without writing.
   local_rotations.resize(static_cast<size_t>(frames) * skeleton.joint_count());
   local_translations_m.resize(static_cast<size_t>(frames) * skeleton.translated_joints().size());
+}
+
+Status check_fits(const Skeleton& skeleton, const Motion& motion) {
+  const size_t frames = static_cast<size_t>(std::max(motion.frame_count, 0));
+  if (motion.joint_count != skeleton.joint_count() ||
+      motion.translated_count != static_cast<int>(skeleton.translated_joints().size()) ||
+      motion.local_rotations.size() != frames * static_cast<size_t>(skeleton.joint_count()) ||
+      motion.local_translations_m.size() != frames * skeleton.translated_joints().size()) {
+    return Error{"", 0, "the motion does not fit its skeleton (joint or translation counts differ)"};
+  }
+  if (!(motion.fps > 0.0) || !std::isfinite(motion.fps)) {
+    return Error{"", 0, fmt::format("the motion's frame rate {} is not a positive number", motion.fps)};
+  }
+  return Ok{};
 }
 
 Motion Motion::slice(int first, int count) const {

@@ -8,6 +8,7 @@
 #include <span>
 #include <vector>
 
+#include "motiongraph/core/error.h"
 #include "motiongraph/motion/in_place_choice.h"
 #include "motiongraph/motion/length_unit_choice.h"
 #include "motiongraph/motion/up_axis_choice.h"
@@ -49,6 +50,10 @@ struct Motion {
   // Frames [first, first + count) as a new motion.
   Motion slice(int first, int count) const;
 };
+
+// Whether `motion` can play on `skeleton`: its joint and translation counts and its arrays match
+// the skeleton, and its frame rate is a positive number; an error saying which does not.
+Status check_fits(const Skeleton& skeleton, const Motion& motion);
 
 // A skeleton with one motion on it: what a file gives.
 struct Clip {

@@ -8,17 +8,12 @@
 #include <fmt/format.h>
 
 #include "motiongraph/core/quantile.h"
+#include "motiongraph/core/unique_name.h"
 #include "motiongraph/motion/forward_kinematics.h"
 
 namespace mg {
 
 namespace {
-
-std::string unique_name(const Skeleton& skeleton, const std::string& wanted) {
-  std::string name = wanted;
-  for (int n = 2; skeleton.find(name); ++n) name = fmt::format("{}_{}", wanted, n);
-  return name;
-}
 
 // The value at `f` of the least-squares line through values[first..last] (a centred window's
 // mean; near the ends, where the window is cut, the line's value, so that steady motion stays
@@ -57,7 +52,7 @@ Status RootMotionSettings::validate() const {
 Result<RootMotionClip> add_root_motion(const Skeleton& skeleton, const Motion& motion, const Vec3& forward_axis,
                                        const RootMotionSettings& settings) {
   if (auto s = settings.validate(); !s) return s.error();
-  if (motion.joint_count != skeleton.joint_count()) return Error{"", 0, "the motion does not fit its skeleton"};
+  if (auto s = check_fits(skeleton, motion); !s) return s.error();
   if (skeleton.translation_slot(0) != 0) {
     return Error{"", 0, fmt::format("root motion needs the root joint '{}' to carry the travel, but it has no position "
                                     "channels", skeleton.joint(0).name)};
@@ -120,7 +115,9 @@ Result<RootMotionClip> add_root_motion(const Skeleton& skeleton, const Motion& m
   std::vector<JointDef> new_joints;
   JointDef top;
   const auto ancestors = skeleton.static_ancestors();
-  top.name = ancestors.empty() ? unique_name(skeleton, settings.joint_name) : ancestors.back().name;
+  top.name = ancestors.empty()
+                 ? unique_name(settings.joint_name, [&](const std::string& n) { return skeleton.find(n).has_value(); })
+                 : ancestors.back().name;
   top.animated_translation = true;
   top.euler_order = ancestors.empty() ? skeleton.joint(0).euler_order : ancestors.back().euler_order;
   new_joints.push_back(top);
