@@ -15,6 +15,7 @@
 
 #include "cli/bench_synthesis.h"
 #include "cli/commands.h"
+#include "motiongraph/core/file_extension.h"
 #include "motiongraph/database/database_loader.h"
 #include "motiongraph/graph/candidates.h"
 #include "motiongraph/graph/pruned_candidates.h"
@@ -50,7 +51,7 @@ double median(std::vector<double> values) {
 
 int run_bench(const BenchOptions& o) {
   if (o.what == "synthesis") {
-    if (o.inputs.size() != 1 || !o.inputs[0].ends_with(".mgraph")) {
+    if (o.inputs.size() != 1 || lower_extension(o.inputs[0]) != ".mgraph") {
       return fail(Error{"", 0, "bench synthesis needs one GRAPH.mgraph"});
     }
     return run_synthesis_bench(o.inputs[0]);

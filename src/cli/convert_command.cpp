@@ -11,6 +11,7 @@
 #include <spdlog/spdlog.h>
 
 #include "cli/commands.h"
+#include "motiongraph/core/file_extension.h"
 #include "cli/load_options.h"
 #include "cli/root_motion_options.h"
 #include "cli/unit_report.h"
@@ -63,7 +64,7 @@ int run_convert(const ConvertOptions& options) {
   // The clip's foot contacts for its JSON (none, with a warning, when its feet are not found).
   std::optional<ClipContacts> contacts;
   const bool any_json = std::any_of(options.outputs.begin(), options.outputs.end(), [](const std::string& path) {
-    return std::filesystem::path(path).extension() == ".json";
+    return lower_extension(path) == ".json";
   });
   if (any_json || !load.foot_names.empty()) {
     std::string why;

@@ -9,6 +9,7 @@
 #include <spdlog/spdlog.h>
 
 #include "cli/commands.h"
+#include "motiongraph/core/file_extension.h"
 #include "cli/library_info.h"
 #include "cli/load_options.h"
 #include "cli/unit_report.h"
@@ -41,9 +42,7 @@ struct InfoOptions {
 bool is_library(const std::vector<std::string>& files) {
   return std::any_of(files.begin(), files.end(), [](const std::string& file) {
     std::error_code ec;
-    std::string extension = std::filesystem::path(file).extension().string();
-    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return std::filesystem::is_directory(file, ec) || extension == ".toml";
+    return std::filesystem::is_directory(file, ec) || lower_extension(file) == ".toml";
   });
 }
 
@@ -85,12 +84,12 @@ int run_info(const InfoOptions& options) {
   ClipLoadSettings settings = options.load.settings();
   // An .asf among the files is the skeleton of the .amc files given with it.
   for (const std::string& file : options.files) {
-    if (std::filesystem::path(file).extension() == ".asf" && !settings.asf_path) settings.asf_path = file;
+    if (lower_extension(file) == ".asf" && !settings.asf_path) settings.asf_path = file;
   }
   ClipLoader loader(settings);
   nlohmann::json all = nlohmann::json::array();
   for (const std::string& file : options.files) {
-    if (std::filesystem::path(file).extension() == ".asf") {
+    if (lower_extension(file) == ".asf") {
       auto rig = loader.load_asf(file);
       if (!rig) return fail(rig.error());
       const Skeleton& skeleton = (*rig)->skeleton;

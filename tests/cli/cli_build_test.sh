@@ -161,6 +161,12 @@ PY
 "$bin" build "$data/cmu/16" -o "$work/g.mgraph" --cache-dir "$cache" 2>"$work/g.err" >/dev/null
 "$bin" inspect --clips "$work/g.mgraph" >"$work/g.clips"
 "$bin" inspect --clips "$work/b07.mgraph" >"$work/b07.clips"
+# An upper-case graph name and upper-case clip names (in a folder) give the same graph.
+mkdir "$work/upper"
+cp "$data/bvh/07_01.bvh" "$work/upper/07_01.BVH" && cp "$data/bvh/07_12.bvh" "$work/upper/07_12.BVH"
+"$bin" build "$work/upper" -o "$work/B07.MGRAPH" --cache-dir "$cache" -q
+"$bin" inspect --clips "$work/B07.MGRAPH" | diff - "$work/b07.clips" >/dev/null \
+  || { echo "FAIL: upper-case names give another graph"; exit 1; }
 python3 - "$work" <<'PY'
 import json, re, sys
 work = sys.argv[1]

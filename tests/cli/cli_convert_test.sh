@@ -58,6 +58,11 @@ PY
 "$bin" convert "$data/bvh/111_36.bvh" --scale 0.056444 -o "$work/carry1.json" 2>/dev/null
 cmp -s "$work/carry.bvh" "$work/carry2.bvh" || { echo "FAIL: the BVH of a two-output convert differs"; exit 1; }
 cmp -s "$work/carry1.json" "$work/carry2.json" || { echo "FAIL: the JSON of a two-output convert differs"; exit 1; }
+# Upper-case extensions (files from systems that keep them) are the same outputs.
+"$bin" convert "$data/bvh/111_36.bvh" --scale 0.056444 -o "$work/CARRY.BVH" -o "$work/CARRY.JSON" -o "$work/Carry.GlB" 2>/dev/null
+cmp -s "$work/carry.bvh" "$work/CARRY.BVH" || { echo "FAIL: .BVH is not written as .bvh"; exit 1; }
+cmp -s "$work/carry1.json" "$work/CARRY.JSON" || { echo "FAIL: .JSON is not written as .json (with contacts)"; exit 1; }
+[[ $(head -c 4 "$work/Carry.GlB") == glTF ]] || { echo "FAIL: .GlB is not binary glTF"; exit 1; }
 [[ $(grep -c "dropped 1 leading" "$work/two.err") -eq 1 ]] || { echo "FAIL: the dropped-frame message is not said once"; cat "$work/two.err"; exit 1; }
 grep -q "^Frames: 41$" "$work/jog.bvh" || { echo "FAIL: 162 frames at 120 fps should give 41 at 30 fps"; exit 1; }
 grep -q "^Frame Time: 0.0333333333$" "$work/jog.bvh" || { echo "FAIL: frame time"; exit 1; }

@@ -13,6 +13,7 @@
 #include <fmt/ranges.h>
 
 #include "motiongraph/core/default_window.h"
+#include "motiongraph/core/file_extension.h"
 #include "motiongraph/database/cmu_tags.h"
 #include "motiongraph/database/travel_tags.h"
 #include "motiongraph/database/database_contacts.h"
@@ -32,12 +33,6 @@ namespace mg {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string lower_extension(const fs::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
-}
 
 // One clip to read, with everything the inputs said about it.
 struct ClipSpec {
@@ -87,7 +82,7 @@ Status expand_folder(const std::string& input, const DatabaseSettings& settings,
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(input, ec)) {
     if (!entry.is_regular_file(ec)) continue;
-    const std::string ext = lower_extension(entry.path());
+    const std::string ext = lower_extension(entry.path().string());
     if (ext == ".amc" || ext == ".bvh") clips.push_back(entry.path());
     if (ext == ".asf") asfs.push_back(entry.path());
   }
@@ -100,7 +95,7 @@ Status expand_folder(const std::string& input, const DatabaseSettings& settings,
   std::sort(asfs.begin(), asfs.end(), by_name);
   if (clips.empty()) return Error{input, 0, "the folder holds no .amc or .bvh files"};
   const bool has_amc =
-      std::any_of(clips.begin(), clips.end(), [](const fs::path& p) { return lower_extension(p) == ".amc"; });
+      std::any_of(clips.begin(), clips.end(), [](const fs::path& p) { return lower_extension(p.string()) == ".amc"; });
   ClipLoadSettings load = default_load_settings(settings);
   if (has_amc) {
     if (asfs.empty()) return Error{input, 0, "the folder holds AMC files but no .asf skeleton"};

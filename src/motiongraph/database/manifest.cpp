@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include "motiongraph/core/file_extension.h"
 #include "motiongraph/motion/in_place.h"
 #include "motiongraph/motion/up_axis.h"
 
@@ -32,12 +33,6 @@ std::string type_name(const toml::node& node) {
     case toml::node_type::date_time: return "a date-time";
     default: return "nothing";
   }
-}
-
-std::string lower_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
 }
 
 // Reads the values of one manifest table; every error carries the manifest's name and a line.

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "motiongraph/core/file_extension.h"
 #include "motiongraph/export/bvh_writer.h"
 #include "motiongraph/export/gltf_writer.h"
 #include "motiongraph/io/file.h"
@@ -9,7 +10,7 @@
 namespace mg {
 
 Status check_motion_output(const std::string& path) {
-  const std::string ext = std::filesystem::path(path).extension().string();
+  const std::string ext = lower_extension(path);
   if (ext != ".bvh" && ext != ".json" && ext != ".glb") return Error{path, 0, "output must end in .bvh, .glb or .json"};
   return Ok{};
 }
@@ -34,7 +35,7 @@ Status write_motion(const std::string& path, const Skeleton& skeleton, const Mot
   BvhWriteSettings write;
   write.units_per_metre = units_per_metre;
   if (auto s = write.validate(); !s) return s;
-  const std::string ext = std::filesystem::path(path).extension().string();
+  const std::string ext = lower_extension(path);
   if (ext == ".glb") {
     // The animation is named as the file (an engine lists every imported file's as its name).
     GltfWriteSettings gltf;

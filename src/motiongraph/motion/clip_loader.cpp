@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "motiongraph/core/file_extension.h"
 #include "motiongraph/io/amc_parser.h"
 #include "motiongraph/io/bvh_parser.h"
 #include "motiongraph/io/file.h"
@@ -17,16 +18,6 @@
 namespace mg {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-std::string extension_of(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
-}
-
-}  // namespace
 
 Status ClipLoadSettings::validate() const {
   if (bvh_metres_per_unit && (!(*bvh_metres_per_unit > 0.0) || !std::isfinite(*bvh_metres_per_unit))) {
@@ -44,7 +35,7 @@ Result<std::string> ClipLoader::find_asf_for(const std::string& amc_path) const 
   std::vector<std::string> found;
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(folder, ec)) {
-    if (entry.is_regular_file() && extension_of(entry.path().string()) == ".asf") {
+    if (entry.is_regular_file() && lower_extension(entry.path().string()) == ".asf") {
       found.push_back(entry.path().string());
     }
   }
@@ -69,7 +60,7 @@ Result<std::shared_ptr<const AcclaimRig>> ClipLoader::load_asf(const std::string
 
 Result<LoadedClip> ClipLoader::load(const std::string& path) {
   if (auto s = settings_.validate(); !s) return s.error();
-  const std::string ext = extension_of(path);
+  const std::string ext = lower_extension(path);
   LoadedClip loaded;
   loaded.clip.name = fs::path(path).stem().string();
   if (ext == ".amc") {

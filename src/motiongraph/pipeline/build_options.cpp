@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "motiongraph/core/file_extension.h"
 #include "motiongraph/core/text.h"
 #include "motiongraph/motion/in_place.h"
 #include "motiongraph/motion/up_axis.h"
@@ -97,7 +98,7 @@ Result<BuildSettings> build_settings_from(const BuildOptions& o) {
 }
 
 Status check_graph_output(const std::string& path) {
-  if (std::filesystem::path(path).extension() != ".mgraph") return Error{path, 0, "the graph file must end in .mgraph"};
+  if (lower_extension(path) != ".mgraph") return Error{path, 0, "the graph file must end in .mgraph"};
   return Ok{};
 }
 
