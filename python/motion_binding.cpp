@@ -54,21 +54,19 @@ py::array_t<double> frames_view(const double* data, const PyMotion& m, py::ssize
 // The JSON carries the feet's contacts when they are known, as the CLI's convert and synthesis
 // commands write it. A root-motion joint faces where the graph's skeleton faces (a synthesis
 // result) or where the clip's does, learnt from it as convert does.
-Status save_motion(const PyMotion& m, const std::string& path, const std::optional<RootMotionSettings>& root) {
-  std::optional<RootMotionOutput> root_motion;
-  if (root) {
+Status save_motion(const PyMotion& m, const std::string& path, MotionFileSettings settings) {
+  if (settings.root_motion) {
     FootJointNames names;
     if (m.feet) {
       const auto name = [&](int joint) { return joint >= 0 ? m.skeleton.joint(joint).name : std::string(); };
       names = {name(m.feet->left.ankle), name(m.feet->left.toe), name(m.feet->right.ankle), name(m.feet->right.toe)};
     }
-    root_motion = RootMotionOutput{*root, m.graph ? m.graph->context().tracks.forward_axis
-                                                  : learn_clip_forward_axis(m.skeleton, m.motion, names)};
+    settings.root_motion->forward_axis = m.graph ? m.graph->context().tracks.forward_axis
+                                                 : learn_clip_forward_axis(m.skeleton, m.motion, names);
   }
-  const RootMotionOutput* with_root = root_motion ? &*root_motion : nullptr;
-  if (!m.feet) return write_motion(path, m.skeleton, m.motion, 1.0, nullptr, with_root);
+  if (!m.feet) return write_motion(path, m.skeleton, m.motion, settings);
   const PositionsJsonContacts json_contacts{*m.feet, m.contacts};
-  return write_motion(path, m.skeleton, m.motion, 1.0, &json_contacts, with_root);
+  return write_motion(path, m.skeleton, m.motion, settings, &json_contacts);
 }
 
 PyMotion load_clip(const std::string& path, const std::optional<std::string>& asf, std::optional<double> fps,
@@ -192,22 +190,27 @@ void bind_motion(py::module_& m) {
                              "The CLI's --report of the synthesis (a dict), None for a clip.")
       .def(
           "save",
-          [](const PyMotion& self, const std::string& path, bool root_motion, double root_motion_smoothing) {
-            std::optional<RootMotionSettings> root;
+          [](const PyMotion& self, const std::string& path, bool root_motion, double root_motion_smoothing,
+             double output_scale, bool figure) {
+            MotionFileSettings settings;
+            settings.units_per_metre = output_scale;
+            settings.figure = figure;
             if (root_motion) {
-              root.emplace();
-              root->smoothing_s = root_motion_smoothing;
+              settings.root_motion.emplace();
+              settings.root_motion->settings.smoothing_s = root_motion_smoothing;
             }
             Status saved = Ok{};
             {
               py::gil_scoped_release release;
-              saved = save_motion(self, path, root);
+              saved = save_motion(self, path, settings);
             }
             check(saved);
           },
           py::arg("path"), py::arg("root_motion") = false, py::arg("root_motion_smoothing") = 0.5,
-          "Writes the motion: .bvh (metres), .glb (binary glTF 2.0, metres) or .json (world positions, with the "
-          "feet's contacts), as the CLI does; root_motion adds a root-motion joint above the root (the CLI's "
+          py::arg("output_scale") = 1.0, py::arg("figure") = true,
+          "Writes the motion: .bvh (metres times output_scale), .glb (binary glTF 2.0, metres; figure=False leaves "
+          "out its stick figure) or .json (world positions, with the feet's contacts), as the CLI does (its "
+          "--output-scale and --no-figure); root_motion adds a root-motion joint above the root (the CLI's "
           "--root-motion, averaged over root_motion_smoothing seconds).")
       .def("__repr__", [](const PyMotion& self) {
         return fmt::format("<motiongraph.Motion '{}': {} frames at {:g} fps, {} joints>", self.name,

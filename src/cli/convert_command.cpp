@@ -13,7 +13,7 @@
 #include "cli/commands.h"
 #include "motiongraph/core/file_extension.h"
 #include "cli/load_options.h"
-#include "cli/root_motion_options.h"
+#include "cli/motion_output_options.h"
 #include "cli/unit_report.h"
 #include "motiongraph/export/bvh_writer.h"
 #include "motiongraph/export/motion_file.h"
@@ -33,17 +33,14 @@ struct ConvertOptions {
   std::vector<std::string> outputs;
   LoadOptions load;
   double fps = 0.0;
-  double output_units_per_metre = 1.0;
-  RootMotionOptions root_motion;
+  MotionOutputOptions output;
 };
 
 int run_convert(const ConvertOptions& options) {
   for (const std::string& output : options.outputs) {
     if (auto s = check_motion_output(output); !s) return fail(s.error());
   }
-  BvhWriteSettings write;
-  write.units_per_metre = options.output_units_per_metre;
-  if (auto s = write.validate(); !s) return fail(s.error());
+  if (auto s = options.output.settings().validate(); !s) return fail(s.error());
   const ClipLoadSettings load = options.load.settings();
   ClipLoader loader(load);
   auto loaded = loader.load(options.input);
@@ -77,14 +74,10 @@ int run_convert(const ConvertOptions& options) {
                                             contacts ? std::span<const ContactMask>(contacts->masks)
                                                      : std::span<const ContactMask>()};
   // Where the clip's skeleton faces, for its root-motion joint.
-  const std::optional<RootMotionOutput> root_motion =
-      options.root_motion.output(options.root_motion.enabled
-                                     ? learn_clip_forward_axis(clip.skeleton, clip.motion, load.foot_names)
-                                     : Vec3::UnitZ());
+  const MotionFileSettings settings = options.output.settings(
+      options.output.root_motion ? learn_clip_forward_axis(clip.skeleton, clip.motion, load.foot_names) : Vec3::UnitZ());
   for (const std::string& output : options.outputs) {
-    if (auto s = write_motion(output, clip.skeleton, clip.motion, options.output_units_per_metre,
-                              contacts ? &json_contacts : nullptr, root_motion ? &*root_motion : nullptr);
-        !s) {
+    if (auto s = write_motion(output, clip.skeleton, clip.motion, settings, contacts ? &json_contacts : nullptr); !s) {
       return fail(s.error());
     }
   }
@@ -105,10 +98,7 @@ Command add_convert_command(CLI::App& app) {
       ->required();
   sub->add_option("--fps", options->fps, "Resample to this frame rate (slerp rotations, lerp translations)")
       ->check(CLI::Range(0.01, 10000.0));
-  sub->add_option("--output-scale", options->output_units_per_metre,
-                  "BVH length units per metre in the output (100 for centimetres); glTF is always in metres")
-      ->capture_default_str();
-  options->root_motion.add_to(*sub);
+  options->output.add_to(*sub);
   options->load.add_to(*sub);
   return {sub, [options] { return run_convert(*options); }};
 }

@@ -10,6 +10,7 @@ namespace mg::cli {
 
 Result<std::unique_ptr<LoadedGraph>> load_for_synthesis(const SynthesisOptions& options) {
   if (auto s = check_motion_output(options.output); !s) return s.error();
+  if (auto s = options.motion_output.settings().validate(); !s) return s.error();
   // Synthesis reads no candidate minima: the file opens faster without them.
   return LoadedGraph::load(options.graph, options.skeleton, GraphReadOptions{.candidate_minima = false});
 }
@@ -30,7 +31,7 @@ Status write_synthesis_outputs(const SynthesisOptions& options, const LoadedGrap
                                const Walk& walk, nlohmann::json report, std::vector<ContactMask> contacts) {
   const SynthesisContext& context = loaded.context();
   if (auto s = write_synthesized_motion(options.output, context, motion, walk, std::move(contacts),
-                                       options.root_motion.enabled ? &options.root_motion.settings : nullptr);
+                                       options.motion_output.settings());
       !s) {
     return s;
   }

@@ -9,7 +9,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "cli/root_motion_options.h"
+#include "cli/motion_output_options.h"
 #include "motiongraph/evaluation/synthesis_run.h"
 #include "motiongraph/export/motion_file.h"
 #include "motiongraph/synthesis/loaded_graph.h"
@@ -24,7 +24,7 @@ struct SynthesisOptions {
   std::string report;
   int skeleton = -1;
   bool no_cleanup = false;
-  RootMotionOptions root_motion;
+  MotionOutputOptions motion_output;
 
   void add_to(CLI::App& app) {
     app.add_option("GRAPH", graph, "A .mgraph file written by 'motiongraph build'")->required();
@@ -35,7 +35,7 @@ struct SynthesisOptions {
     app.add_flag("--no-cleanup", no_cleanup,
                  "Write the motion as played, without the foot clean-up (planted feet held on their plants by "
                  "two-bone leg IK, the root lowered where a leg cannot reach)");
-    root_motion.add_to(app);
+    motion_output.add_to(app);
   }
 };
 

@@ -30,6 +30,22 @@ assert all(int(r[4]) >= 1 for r in rows)                              # pruned: 
 PY
 "$bin" walk "$work/g.mgraph" --from 0 --to 10 --cost hybrid --seed 3 --min-frames 200 \
   -o "$work/walk.json" --report "$work/walk-report.json" >/dev/null
+# The same walk in centimetres: every offset and position of the BVH 100 times (to its 6 decimals),
+# angles kept.
+"$bin" walk "$work/g.mgraph" --from 0 --to 10 --cost hybrid --seed 3 --min-frames 200 -o "$work/walk.bvh" >/dev/null
+"$bin" walk "$work/g.mgraph" --from 0 --to 10 --cost hybrid --seed 3 --min-frames 200 -o "$work/walk-cm.bvh" \
+  --output-scale 100 >/dev/null
+python3 - "$work/walk.bvh" "$work/walk-cm.bvh" <<'PY'
+import sys
+m, cm = (open(p).read().split("MOTION")  for p in sys.argv[1:])
+offsets = lambda text: [[float(v) for v in l.split()[1:]] for l in text.splitlines() if l.strip().startswith("OFFSET")]
+assert len(offsets(m[0])) > 20 and all(abs(c - 100 * a) < 1e-4 for o, p in zip(offsets(m[0]), offsets(cm[0])) for a, c in zip(o, p))
+rows = lambda text: [[float(v) for v in l.split()] for l in text.splitlines()[3:] if l.strip()]
+rm, rc = rows(m[1]), rows(cm[1])
+assert len(rm) == len(rc) >= 200
+# The root's first three channels are its position; the rest are angles.
+assert all(abs(b[i] - (100 * a[i] if i < 3 else a[i])) < 2e-4 for a, b in zip(rm, rc) for i in range(len(a)))
+PY
 cat >"$work/controls.json" <<'JSON'
 {"duration_s": 9, "controls": [{"at_s": 0, "heading": "north", "tag": "walk"},
                                {"at_s": 3, "heading": "east"}, {"at_s": 6, "tag": "run"}]}
@@ -256,6 +272,7 @@ printf '{"points": [[0, 0],\n [1, 2]\n' >"$work/bad-path.json"
 expect_error "bad-path.json:3: not valid JSON" "$work/o.bvh" "$bin" path "$work/g.mgraph" --path "$work/bad-path.json" -o "$work/o.bvh"
 expect_error "unknown shape 'spiral'" "$work/o.bvh" "$bin" path "$work/g.mgraph" --shape spiral:3 -o "$work/o.bvh"
 expect_error "'swim' is not a motion tag" "$work/o.bvh" "$bin" path "$work/g.mgraph" --shape line:5 --segment swim:0-5 -o "$work/o.bvh"
+expect_error "BVH output scale must be a positive number" "$work/o.bvh" "$bin" walk "$work/g.mgraph" --from 0 --to 10 --output-scale 0 -o "$work/o.bvh"
 expect_error "must end in .bvh, .glb or .json" "$work/o.txt" "$bin" path "$work/g.mgraph" --shape line:5 -o "$work/o.txt"
 expect_error "node 99999 does not exist" "$work/o.bvh" "$bin" walk "$work/g.mgraph" --from 0 --to 99999 -o "$work/o.bvh"
 expect_error "unknown cost 'cheap'" "$work/o.bvh" "$bin" walk "$work/g.mgraph" --from 0 --to 1 --cost cheap -o "$work/o.bvh"

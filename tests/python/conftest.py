@@ -111,3 +111,21 @@ def assert_releases_the_gil(work):
     duration = times["end"] - times["begin"]
     assert duration > 0.05, "too short to tell"
     assert longest < duration / 2, (longest, duration)
+
+
+def glb_json(path):
+    """The JSON chunk of a binary glTF file."""
+    data = path.read_bytes()
+    length = int.from_bytes(data[12:16], "little")
+    assert data[16:20] == b"JSON"
+    return json.loads(data[20:20 + length])
+
+
+def assert_bare_glb(bare, figured):
+    """The glTF without its stick figure has the same joints and animation, and no mesh or skin."""
+    without, with_figure = glb_json(bare), glb_json(figured)
+    assert "meshes" in with_figure and "skins" in with_figure
+    assert "meshes" not in without and "skins" not in without
+    joints = [n["name"] for n in with_figure["nodes"] if "mesh" not in n]
+    assert [n["name"] for n in without["nodes"]] == joints
+    assert len(without["animations"][0]["channels"]) == len(with_figure["animations"][0]["channels"])

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 import motiongraph as mg
-from conftest import assert_positions_equal, cli_error, read_json
+from conftest import assert_bare_glb, assert_positions_equal, cli_error, read_json
 
 
 @pytest.mark.parametrize("fps", [None, 30.0])
@@ -27,6 +27,26 @@ def test_positions_equal_the_cli(cli, data, tmp_path, fps):
     cli("convert", amc, "--root-motion", "-o", tmp_path / "cli-rm.json", *args)
     clip.save(str(tmp_path / "py-rm.json"), root_motion=True)
     assert (tmp_path / "py-rm.json").read_bytes() == (tmp_path / "cli-rm.json").read_bytes()
+    # In centimetres, and glTF without its stick figure: the CLI's --output-scale and --no-figure.
+    cli("convert", amc, "--output-scale", 100, "--no-figure", "-o", tmp_path / "cli-cm.bvh", "-o",
+        tmp_path / "cli" / "bare.glb", *args)
+    clip.save(str(tmp_path / "py-cm.bvh"), output_scale=100)
+    assert (tmp_path / "py-cm.bvh").read_bytes() == (tmp_path / "cli-cm.bvh").read_bytes()
+    clip.save(str(tmp_path / "py" / "bare.glb"), figure=False)
+    assert (tmp_path / "py" / "bare.glb").read_bytes() == (tmp_path / "cli" / "bare.glb").read_bytes()
+    assert_bare_glb(tmp_path / "py" / "bare.glb", tmp_path / "py" / "walk.glb")
+    metres, centimetres = (offsets(tmp_path / name) for name in ("py.bvh", "py-cm.bvh"))
+    assert len(metres) == len(centimetres) > 20
+    np.testing.assert_allclose(centimetres, 100 * metres, atol=1e-6 * 100)
+    with pytest.raises(mg.Error, match="BVH output scale must be a positive number"):
+        clip.save(str(tmp_path / "zero.bvh"), output_scale=0)
+    assert not (tmp_path / "zero.bvh").exists()
+
+
+def offsets(bvh):
+    """Every OFFSET of a BVH file, in its own units."""
+    return np.array([[float(v) for v in line.split()[1:4]] for line in bvh.read_text().splitlines()
+                     if line.strip().startswith("OFFSET")])
 
 
 def test_contacts_of_a_clip_and_feet_named(cli, data, tmp_path):

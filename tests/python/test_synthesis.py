@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import motiongraph as mg
-from conftest import assert_positions_equal, assert_releases_the_gil, cli_error, read_json, without_timings
+from conftest import assert_bare_glb, assert_positions_equal, assert_releases_the_gil, cli_error, read_json, without_timings
 
 FIGURE8 = ["--shape", "figure8:4", "--segment", "walk:0-25", "--segment", "run:25-51"]
 
@@ -29,6 +29,12 @@ def test_path_equals_the_cli(cli, graph_file, graph, tmp_path):
     cli("path", graph_file, *FIGURE8, "--root-motion", "--root-motion-smoothing", 0.25, "-o", tmp_path / "cli" / "rm.glb")
     motion.save(str(tmp_path / "py" / "rm.glb"), root_motion=True, root_motion_smoothing=0.25)
     assert (tmp_path / "py" / "rm.glb").read_bytes() == (tmp_path / "cli" / "rm.glb").read_bytes()
+    # Without the stick figure, as --no-figure writes it.
+    cli("path", graph_file, *FIGURE8, "--root-motion", "--root-motion-smoothing", 0.25, "--no-figure", "-o",
+        tmp_path / "cli" / "bare.glb")
+    motion.save(str(tmp_path / "py" / "bare.glb"), root_motion=True, root_motion_smoothing=0.25, figure=False)
+    assert (tmp_path / "py" / "bare.glb").read_bytes() == (tmp_path / "cli" / "bare.glb").read_bytes()
+    assert_bare_glb(tmp_path / "py" / "bare.glb", tmp_path / "py" / "rm.glb")
     # .contacts and .foot_joints are the file's, as arrays.
     assert motion.foot_joints == cli_json["contacts"]["joints"]
     planted = motion.contacts

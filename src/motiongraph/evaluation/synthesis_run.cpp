@@ -191,15 +191,13 @@ Result<SynthesizedMotion> run_path_synthesis(const SynthesisContext& context, co
 
 Status write_synthesized_motion(const std::string& path, const SynthesisContext& context, const Motion& motion,
                                 const Walk& walk, std::vector<ContactMask> contacts,
-                                const RootMotionSettings* root_motion) {
+                                MotionFileSettings settings) {
   if (contacts.empty() && walk.start_node >= 0) contacts = context.walk_contacts(walk);
   const bool with_contacts = !context.frame_contacts.empty() && static_cast<int>(contacts.size()) >= motion.frame_count;
   contacts.resize(static_cast<size_t>(motion.frame_count));
   const PositionsJsonContacts json_contacts{context.feet, contacts};
-  std::optional<RootMotionOutput> root;
-  if (root_motion) root = RootMotionOutput{*root_motion, context.tracks.forward_axis};
-  return write_motion(path, context.assembler.skeleton(), motion, 1.0, with_contacts ? &json_contacts : nullptr,
-                      root ? &*root : nullptr);
+  if (settings.root_motion) settings.root_motion->forward_axis = context.tracks.forward_axis;
+  return write_motion(path, context.assembler.skeleton(), motion, settings, with_contacts ? &json_contacts : nullptr);
 }
 
 }  // namespace mg

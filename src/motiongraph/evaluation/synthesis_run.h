@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "motiongraph/core/error.h"
-#include "motiongraph/motion/root_motion.h"
+#include "motiongraph/export/motion_file.h"
 #include "motiongraph/synthesis/floor_path.h"
 #include "motiongraph/synthesis/path_synthesis.h"
 #include "motiongraph/synthesis/synthesis_context.h"
@@ -62,10 +62,10 @@ Result<SynthesizedMotion> run_path_synthesis(const SynthesisContext& context, co
 
 // Writes the motion (.bvh, .glb or .json, export/motion_file.h); JSON gets the feet's contacts per
 // frame: `contacts`, or when empty those of the frames `walk` plays.
-// With `root_motion`, a root-motion joint goes above the root (motion/root_motion.h), facing
-// the way the target skeleton faces (the context's forward axis).
+// A root-motion joint asked for in `settings` faces the way the target skeleton faces (the
+// context's forward axis, whatever the settings' own).
 Status write_synthesized_motion(const std::string& path, const SynthesisContext& context, const Motion& motion,
                                 const Walk& walk, std::vector<ContactMask> contacts = {},
-                                const RootMotionSettings* root_motion = nullptr);
+                                MotionFileSettings settings = {});
 
 }  // namespace mg

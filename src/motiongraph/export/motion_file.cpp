@@ -15,10 +15,19 @@ Status check_motion_output(const std::string& path) {
   return Ok{};
 }
 
-Status write_motion(const std::string& path, const Skeleton& skeleton, const Motion& motion, double units_per_metre,
-                    const PositionsJsonContacts* contacts, const RootMotionOutput* root_motion) {
+Status MotionFileSettings::validate() const {
+  BvhWriteSettings bvh;
+  bvh.units_per_metre = units_per_metre;
+  if (auto s = bvh.validate(); !s) return s;
+  if (root_motion) return root_motion->settings.validate();
+  return Ok{};
+}
+
+Status write_motion(const std::string& path, const Skeleton& skeleton, const Motion& motion,
+                    const MotionFileSettings& settings, const PositionsJsonContacts* contacts) {
   if (auto s = check_motion_output(path); !s) return s;
-  if (root_motion) {
+  if (auto s = settings.validate(); !s) return Error{path, 0, s.error().message};
+  if (const auto& root_motion = settings.root_motion) {
     auto added = add_root_motion(skeleton, motion, root_motion->forward_axis, root_motion->settings);
     if (!added) return Error{path, 0, added.error().message};
     // The feet are one joint further on.
@@ -30,17 +39,19 @@ Status write_motion(const std::string& path, const Skeleton& skeleton, const Mot
         if (foot->toe >= 0) foot->toe += 1;
       }
     }
-    return write_motion(path, added->skeleton, added->motion, units_per_metre, shifted ? &*shifted : nullptr);
+    MotionFileSettings added_settings = settings;
+    added_settings.root_motion.reset();
+    return write_motion(path, added->skeleton, added->motion, added_settings, shifted ? &*shifted : nullptr);
   }
   BvhWriteSettings write;
-  write.units_per_metre = units_per_metre;
-  if (auto s = write.validate(); !s) return s;
+  write.units_per_metre = settings.units_per_metre;
   const std::string ext = lower_extension(path);
   if (ext == ".glb") {
     // The animation is named as the file (an engine lists every imported file's as its name).
     GltfWriteSettings gltf;
     const std::string stem = std::filesystem::path(path).stem().string();
     if (!stem.empty()) gltf.animation_name = stem;
+    gltf.bone_mesh = settings.figure;
     auto glb = write_glb(skeleton, motion, gltf);
     if (!glb) return Error{path, 0, glb.error().message};
     return write_file_atomic(path, *glb);

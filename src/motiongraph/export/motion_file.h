@@ -23,13 +23,20 @@ struct RootMotionOutput {
   Vec3 forward_axis = Vec3::UnitZ();
 };
 
+// How motion is written, beyond the format its file's extension names.
+struct MotionFileSettings {
+  double units_per_metre = 1.0;  // BVH length units per metre (glTF and JSON are in metres)
+  bool figure = true;            // glTF: a stick figure skinned to the joints (false: the skeleton and its animation only)
+  std::optional<RootMotionOutput> root_motion;  // a root-motion joint added above the root first
+
+  Status validate() const;
+};
+
 // Writes the motion atomically as BVH (metres * units_per_metre), glTF (metres, its animation named
 // as the file without its extension) or JSON positions.
-// JSON gets the feet's contacts too when `contacts` is given (positions_json.h). With
-// `root_motion`, the motion gets a root-motion joint above its root first.
+// JSON gets the feet's contacts too when `contacts` is given (positions_json.h).
 Status write_motion(const std::string& path, const Skeleton& skeleton, const Motion& motion,
-                    double units_per_metre = 1.0, const PositionsJsonContacts* contacts = nullptr,
-                    const RootMotionOutput* root_motion = nullptr);
+                    const MotionFileSettings& settings = {}, const PositionsJsonContacts* contacts = nullptr);
 
 // A captured clip's foot contacts, for its JSON: the feet found by name unless `names` gives
 // them (skeleton/foot_joints.h). nullopt, with `why` set, when they are not found and none was
