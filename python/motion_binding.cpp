@@ -51,19 +51,34 @@ py::array_t<double> frames_view(const double* data, const PyMotion& m, py::ssize
   return view;
 }
 
-// The JSON carries the feet's contacts when they are known, as the CLI's convert and synthesis
-// commands write it. A root-motion joint faces where the graph's skeleton faces (a synthesis
-// result) or where the clip's does, learnt from it as convert does.
-Status save_motion(const PyMotion& m, const std::string& path, MotionFileSettings settings) {
-  if (settings.root_motion) {
-    FootJointNames names;
-    if (m.feet) {
-      const auto name = [&](int joint) { return joint >= 0 ? m.skeleton.joint(joint).name : std::string(); };
-      names = {name(m.feet->left.ankle), name(m.feet->left.toe), name(m.feet->right.ankle), name(m.feet->right.toe)};
-    }
-    settings.root_motion->forward_axis = m.graph ? m.graph->context().tracks.forward_axis
-                                                 : learn_clip_forward_axis(m.skeleton, m.motion, names);
+// Where the motion's skeleton faces, for a root-motion joint: where the graph's skeleton faces (a
+// synthesis result) or where the clip's does, learnt from it as convert does.
+Vec3 forward_axis_of(const PyMotion& m) {
+  if (m.graph) return m.graph->context().tracks.forward_axis;
+  FootJointNames names;
+  if (m.feet) {
+    const auto name = [&](int joint) { return joint >= 0 ? m.skeleton.joint(joint).name : std::string(); };
+    names = {name(m.feet->left.ankle), name(m.feet->left.toe), name(m.feet->right.ankle), name(m.feet->right.toe)};
   }
+  return learn_clip_forward_axis(m.skeleton, m.motion, names);
+}
+
+// The file settings save() and save_animations() take.
+MotionFileSettings file_settings(bool root_motion, double root_motion_smoothing, double output_scale, bool figure) {
+  MotionFileSettings settings;
+  settings.units_per_metre = output_scale;
+  settings.figure = figure;
+  if (root_motion) {
+    settings.root_motion.emplace();
+    settings.root_motion->settings.smoothing_s = root_motion_smoothing;
+  }
+  return settings;
+}
+
+// The JSON carries the feet's contacts when they are known, as the CLI's convert and synthesis
+// commands write it.
+Status save_motion(const PyMotion& m, const std::string& path, MotionFileSettings settings) {
+  if (settings.root_motion) settings.root_motion->forward_axis = forward_axis_of(m);
   if (!m.feet) return write_motion(path, m.skeleton, m.motion, settings);
   const PositionsJsonContacts json_contacts{*m.feet, m.contacts};
   return write_motion(path, m.skeleton, m.motion, settings, &json_contacts);
@@ -192,13 +207,7 @@ void bind_motion(py::module_& m) {
           "save",
           [](const PyMotion& self, const std::string& path, bool root_motion, double root_motion_smoothing,
              double output_scale, bool figure) {
-            MotionFileSettings settings;
-            settings.units_per_metre = output_scale;
-            settings.figure = figure;
-            if (root_motion) {
-              settings.root_motion.emplace();
-              settings.root_motion->settings.smoothing_s = root_motion_smoothing;
-            }
+            const MotionFileSettings settings = file_settings(root_motion, root_motion_smoothing, output_scale, figure);
             Status saved = Ok{};
             {
               py::gil_scoped_release release;
@@ -216,6 +225,35 @@ void bind_motion(py::module_& m) {
         return fmt::format("<motiongraph.Motion '{}': {} frames at {:g} fps, {} joints>", self.name,
                            self.motion.frame_count, self.motion.fps, self.skeleton.joint_count());
       });
+  m.def(
+      "save_animations",
+      [](const std::string& path, const std::vector<const PyMotion*>& motions,
+         const std::optional<std::vector<std::string>>& names, bool root_motion, double root_motion_smoothing,
+         bool figure) {
+        if (names && names->size() != motions.size()) {
+          throw py::value_error(fmt::format("names: {} given for {} motions", names->size(), motions.size()));
+        }
+        std::vector<NamedMotion> set;
+        for (size_t i = 0; i < motions.size(); ++i) {
+          if (!motions[i]) throw py::value_error(fmt::format("motions[{}] is None", i));
+          const PyMotion& motion = *motions[i];
+          set.push_back({motion.name, names ? (*names)[i] : motion.name, &motion.skeleton, &motion.motion,
+                         root_motion ? forward_axis_of(motion) : Vec3::UnitZ()});
+        }
+        const MotionFileSettings settings = file_settings(root_motion, root_motion_smoothing, 1.0, figure);
+        Status saved = Ok{};
+        {
+          py::gil_scoped_release release;
+          saved = write_animation_set(path, set, settings);
+        }
+        check(saved);
+      },
+      py::arg("path"), py::arg("motions"), py::arg("names") = py::none(), py::arg("root_motion") = false,
+      py::arg("root_motion_smoothing") = 0.5, py::arg("figure") = true,
+      "Writes several motions of one rig (clips of one skeleton, or results of one graph) into one .glb, an "
+      "animation each, as the CLI's convert does with several clips: names the animations' (default: each "
+      "motion's name; a name repeated gets _2, _3...), root_motion, root_motion_smoothing and figure as save() "
+      "takes them.");
   m.def("load_clip", &load_clip, py::arg("path"), py::arg("asf") = py::none(), py::arg("fps") = py::none(),
         py::arg("scale") = py::none(), py::arg("up_axis") = py::none(), py::arg("input_fps") = 0.0,
         py::arg("keep_rest_frames") = false, py::arg("travel") = "auto", py::arg("feet") = py::none(),

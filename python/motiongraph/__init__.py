@@ -12,11 +12,11 @@ See docs/python.md.
 import io as _io
 import os as _os
 
-from ._motiongraph import Controller, EmptyGraphError, Error, Graph, Motion, load_clip, load_graph
+from ._motiongraph import Controller, EmptyGraphError, Error, Graph, Motion, load_clip, load_graph, save_animations
 from ._motiongraph import _build, _load_library
 
 __all__ = ["Controller", "EmptyGraphError", "Error", "Graph", "Library", "Motion", "build", "load_clip",
-           "load_graph", "load_library"]
+           "load_graph", "load_library", "save_animations"]
 
 
 def _paths(inputs):

@@ -1,5 +1,6 @@
-// motiongraph convert IN -o OUT [-o OUT...]: AMC or BVH in, BVH or positions JSON out (metres,
-// the JSON with the feet's contacts); the clip is read once for all outputs.
+// motiongraph convert IN... -o OUT [-o OUT...]: AMC or BVH in, BVH, glTF or positions JSON out
+// (metres, the JSON with the feet's contacts); the clip is read once for all outputs. Several
+// clips of one rig go into one glTF file, an animation each.
 #include <algorithm>
 #include <filesystem>
 #include <optional>
@@ -29,12 +30,61 @@ namespace mg::cli {
 namespace {
 
 struct ConvertOptions {
-  std::string input;
+  std::vector<std::string> inputs;
   std::vector<std::string> outputs;
   LoadOptions load;
   double fps = 0.0;
   MotionOutputOptions output;
 };
+
+// A clip read as the options say, its messages printed, resampled when asked.
+Result<Clip> read_clip(const ConvertOptions& options, ClipLoader& loader, const std::string& input) {
+  auto loaded = loader.load(input);
+  if (!loaded) return loaded.error();
+  Clip& clip = loaded->clip;
+  if (clip.detected_unit) report_unit(input, *clip.detected_unit);
+  if (clip.detected_up_axis) report_up_axis(input, *clip.detected_up_axis);
+  if (clip.in_place) report_travel(input, *clip.in_place);
+  if (clip.dropped_leading_frames > 0) {
+    spdlog::info("{}: dropped {} leading rest/T-pose frame(s) (--keep-rest-frames keeps them)", input,
+                 clip.dropped_leading_frames);
+  }
+  if (options.fps > 0.0) {
+    auto resampled = resample(clip.motion, options.fps);
+    if (!resampled) return Error{input, 0, resampled.error().message};
+    clip.motion = std::move(*resampled);
+  }
+  return std::move(clip);
+}
+
+// Several clips of one rig: one .glb, an animation each, named as its file.
+int convert_animation_set(const ConvertOptions& options, const ClipLoadSettings& load) {
+  for (const std::string& output : options.outputs) {
+    if (lower_extension(output) != ".glb") {
+      return fail(Error{output, 0, "several clips go into a .glb only (an animation each); convert them one at a "
+                                   "time for .bvh or .json"});
+    }
+  }
+  ClipLoader loader(load);
+  std::vector<Clip> clips;
+  for (const std::string& input : options.inputs) {
+    auto clip = read_clip(options, loader, input);
+    if (!clip) return fail(clip.error());
+    clips.push_back(std::move(*clip));
+  }
+  std::vector<NamedMotion> motions;
+  for (size_t i = 0; i < clips.size(); ++i) {
+    const Clip& clip = clips[i];
+    motions.push_back({options.inputs[i], std::filesystem::path(options.inputs[i]).stem().string(), &clip.skeleton,
+                       &clip.motion,
+                       options.output.root_motion ? learn_clip_forward_axis(clip.skeleton, clip.motion, load.foot_names)
+                                                  : Vec3::UnitZ()});
+  }
+  for (const std::string& output : options.outputs) {
+    if (auto s = write_animation_set(output, motions, options.output.settings()); !s) return fail(s.error());
+  }
+  return 0;
+}
 
 int run_convert(const ConvertOptions& options) {
   for (const std::string& output : options.outputs) {
@@ -42,22 +92,12 @@ int run_convert(const ConvertOptions& options) {
   }
   if (auto s = options.output.settings().validate(); !s) return fail(s.error());
   const ClipLoadSettings load = options.load.settings();
+  if (options.inputs.size() > 1) return convert_animation_set(options, load);
+  const std::string& input = options.inputs.front();
   ClipLoader loader(load);
-  auto loaded = loader.load(options.input);
+  auto loaded = read_clip(options, loader, input);
   if (!loaded) return fail(loaded.error());
-  Clip& clip = loaded->clip;
-  if (clip.detected_unit) report_unit(options.input, *clip.detected_unit);
-  if (clip.detected_up_axis) report_up_axis(options.input, *clip.detected_up_axis);
-  if (clip.in_place) report_travel(options.input, *clip.in_place);
-  if (clip.dropped_leading_frames > 0) {
-    spdlog::info("{}: dropped {} leading rest/T-pose frame(s) (--keep-rest-frames keeps them)", options.input,
-                 clip.dropped_leading_frames);
-  }
-  if (options.fps > 0.0) {
-    auto resampled = resample(clip.motion, options.fps);
-    if (!resampled) return fail(resampled.error());
-    clip.motion = std::move(*resampled);
-  }
+  const Clip& clip = *loaded;
   // The clip's foot contacts for its JSON (none, with a warning, when its feet are not found).
   std::optional<ClipContacts> contacts;
   const bool any_json = std::any_of(options.outputs.begin(), options.outputs.end(), [](const std::string& path) {
@@ -66,9 +106,9 @@ int run_convert(const ConvertOptions& options) {
   if (any_json || !load.foot_names.empty()) {
     std::string why;
     auto found = clip_contacts(clip.skeleton, clip.motion, load.foot_names, why);
-    if (!found) return fail(Error{options.input, 0, found.error().message});
+    if (!found) return fail(Error{input, 0, found.error().message});
     contacts = std::move(*found);
-    if (!contacts) spdlog::warn("{}: no foot contacts in the JSON: {} (name the feet with --feet)", options.input, why);
+    if (!contacts) spdlog::warn("{}: no foot contacts in the JSON: {} (name the feet with --feet)", input, why);
   }
   const PositionsJsonContacts json_contacts{contacts ? contacts->feet : FootJoints{},
                                             contacts ? std::span<const ContactMask>(contacts->masks)
@@ -90,10 +130,15 @@ Command add_convert_command(CLI::App& app) {
   auto options = std::make_shared<ConvertOptions>();
   CLI::App* sub = app.add_subcommand(
       "convert", "Convert an AMC or BVH clip to BVH (metres), to binary glTF (.glb: the skeleton, its animation and "
-                 "a stick figure skinned to it, in metres) or to JSON world positions "
+                 "a stick figure skinned to it, in metres; several clips of one rig make one file, an animation each) or to "
+                 "JSON world positions "
                  "({\"fps\", \"joints\": [{\"name\", \"parent\"}], \"positions\": [frame][joint][x,y,z], "
                  "\"contacts\": {\"joints\": [the foot joints], \"planted\": [frame][foot joint] 0 or 1}}).");
-  sub->add_option("IN", options->input, "Input clip (.amc or .bvh)")->required()->check(CLI::ExistingFile);
+  sub->add_option("IN", options->inputs,
+                  "Input clip (.amc or .bvh); several clips of one rig go into one .glb, an animation each named as "
+                  "its file (a character's animation set, as game engines import it)")
+      ->required()
+      ->check(CLI::ExistingFile);
   sub->add_option("-o,--output", options->outputs, "Output file, .bvh, .glb (binary glTF 2.0) or .json; repeat for several (read once)")
       ->required();
   sub->add_option("--fps", options->fps, "Resample to this frame rate (slerp rotations, lerp translations)")

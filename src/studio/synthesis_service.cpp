@@ -60,9 +60,8 @@ std::optional<std::string> SynthesisService::result_file(int result, bool glb, b
     motion = std::move(added->motion);
   }
   if (!glb) return write_bvh(skeleton, motion, BvhWriteSettings{});
-  GltfWriteSettings gltf;
-  gltf.animation_name = fmt::format("motiongraph-{}", result);  // as the file downloads
-  auto bytes = write_glb(skeleton, motion, gltf);
+  // The animation is named as the file downloads.
+  auto bytes = write_glb(skeleton, motion, fmt::format("motiongraph-{}", result));
   if (!bytes) return std::nullopt;  // a recorded motion always fits the skeleton it was played on
   return std::move(*bytes);
 }

@@ -119,6 +119,32 @@ if "$bin" convert "$data/cmu/16/16_35.amc" --root-motion --root-motion-smoothing
   echo "FAIL: a negative smoothing was accepted"; exit 1
 fi
 [[ ! -e "$work/bad-rm.json" ]] || { echo "FAIL: output written despite a bad smoothing"; exit 1; }
+# Several clips of one rig: one .glb, an animation each named as its file (a name repeated made
+# unique), each as long as its clip; any other output, or a clip of another rig, is one line and
+# no file.
+mkdir "$work/again"
+cp "$data/cmu/16/16_15.amc" "$work/again/"
+"$bin" convert "$data/cmu/16/16_15.amc" "$data/cmu/16/16_35.amc" "$work/again/16_15.amc" --asf "$data/cmu/16/16.asf" \
+  --fps 30 -o "$work/set.glb"
+python3 - "$work/set.glb" "$work/jog.json" <<'PY'
+import json, sys
+data = open(sys.argv[1], "rb").read()
+gltf = json.loads(data[20:20 + int.from_bytes(data[12:16], "little")])
+assert [a["name"] for a in gltf["animations"]] == ["16_15", "16_35", "16_15_2"], gltf["animations"]
+keys = [gltf["accessors"][a["samplers"][0]["input"]]["count"] for a in gltf["animations"]]
+assert keys[1] == len(json.load(open(sys.argv[2]))["positions"]) == 41 and keys[0] == keys[2] > keys[1], keys
+PY
+if "$bin" convert "$data/cmu/16/16_15.amc" "$data/cmu/16/16_35.amc" -o "$work/set.glb" -o "$work/set.bvh" 2>"$work/set.err"; then
+  echo "FAIL: several clips into a BVH were accepted"; exit 1
+fi
+[[ $(wc -l <"$work/set.err") -eq 1 && ! -e "$work/set.bvh" ]] && grep -q "set.bvh: several clips go into a .glb only" "$work/set.err" \
+  || { echo "FAIL: several clips into a BVH"; cat "$work/set.err"; exit 1; }
+if "$bin" convert "$data/cmu/16/16_15.amc" "$data/bvh/16_01.bvh" -o "$work/mixed.glb" 2>"$work/mixed.err"; then
+  echo "FAIL: clips of two rigs went into one file"; exit 1
+fi
+[[ $(grep -vc "info:" "$work/mixed.err") -eq 1 && ! -e "$work/mixed.glb" ]] \
+  && grep -q "16_01.bvh: its rig is not .*16_15.amc's (joint 0 is 'root' there, 'hip' here): one .glb holds one skeleton" "$work/mixed.err" \
+  || { echo "FAIL: clips of two rigs"; cat "$work/mixed.err"; exit 1; }
 # The converted BVH reads back.
 "$bin" info "$work/jog.bvh" | grep "41 frames at 30 fps" >/dev/null || { echo "FAIL: written BVH does not read back"; exit 1; }
 ls -A "$work" | grep -q "tmp-" && { echo "FAIL: temporary files left"; exit 1; }

@@ -2,6 +2,7 @@
 
 #include <cstring>
 #include <map>
+#include <set>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -57,8 +58,9 @@ struct Glb {
     return -1;
   }
 
-  // Every node's world transform at animation key `frame` (< 0: the nodes' own TRS, no animation).
-  std::vector<Affine> world(int frame) const {
+  // Every node's world transform at key `frame` of animation `animation_index` (frame < 0: the
+  // nodes' own TRS, no animation).
+  std::vector<Affine> world(int frame, int animation_index = 0) const {
     const size_t nodes = model.nodes.size();
     std::vector<Vec3> translation(nodes, Vec3::Zero());
     std::vector<Quat> rotation(nodes, Quat::Identity());
@@ -70,7 +72,7 @@ struct Glb {
       if (!r.empty()) rotation[n] = Quat(r[3], r[0], r[1], r[2]);
     }
     if (frame >= 0) {
-      const tinygltf::Animation& animation = model.animations.at(0);
+      const tinygltf::Animation& animation = model.animations.at(animation_index);
       for (const tinygltf::AnimationChannel& channel : animation.channels) {
         const tinygltf::AnimationSampler& sampler = animation.samplers.at(channel.sampler);
         EXPECT_EQ(sampler.interpolation, "LINEAR");
@@ -101,7 +103,7 @@ struct Glb {
 
 // The largest distance between a joint's world position by forward kinematics and its node's
 // world position read from the file, over all joints and frames.
-double max_world_error(const Glb& glb, const Skeleton& skeleton, const Motion& motion) {
+double max_world_error(const Glb& glb, const Skeleton& skeleton, const Motion& motion, int animation = 0) {
   std::vector<int> node_of(skeleton.joint_count());
   for (int j = 0; j < skeleton.joint_count(); ++j) node_of[j] = glb.node_named(skeleton.joint(j).name);
   std::vector<Vec3> positions(skeleton.joint_count());
@@ -109,7 +111,7 @@ double max_world_error(const Glb& glb, const Skeleton& skeleton, const Motion& m
   double worst = 0.0;
   for (int f = 0; f < motion.frame_count; ++f) {
     forward_kinematics(skeleton, motion, f, positions, rotations);
-    const auto world = glb.world(f);
+    const auto world = glb.world(f, animation);
     for (int j = 0; j < skeleton.joint_count(); ++j) {
       worst = std::max(worst, (world[node_of[j]].translation() - positions[j]).norm());
     }
@@ -118,7 +120,7 @@ double max_world_error(const Glb& glb, const Skeleton& skeleton, const Motion& m
 }
 
 Glb written(const Skeleton& skeleton, const Motion& motion, const GltfWriteSettings& settings = {}) {
-  auto bytes = write_glb(skeleton, motion, settings);
+  auto bytes = write_glb(skeleton, motion, "motion", settings);
   EXPECT_TRUE(bytes) << bytes.error().message;
   return Glb(bytes ? *bytes : std::string());
 }
@@ -303,10 +305,11 @@ TEST(GltfWriter, NamesThatAreNotUtf8AreRepaired) {
   std::vector<JointDef> joints(clip.skeleton.joints().begin(), clip.skeleton.joints().end());
   joints[1].name = "H\xfc" "fte";
   const Skeleton latin1(joints);
-  auto bytes = write_glb(latin1, clip.motion, {});
+  auto bytes = write_glb(latin1, clip.motion, "H\xfc" "pfen");
   ASSERT_TRUE(bytes) << bytes.error().message;
   const Glb glb(*bytes);
   EXPECT_EQ(glb.model.nodes.at(1).name, "H\xef\xbf\xbd" "fte");
+  EXPECT_EQ(glb.model.animations.at(0).name, "H\xef\xbf\xbd" "pfen");
 }
 
 TEST(GltfWriter, WithoutFramesOrMeshTheSkeletonIsStillWritten) {
@@ -340,13 +343,86 @@ TEST(GltfWriter, AMotionThatDoesNotFitItsSkeletonIsAnError) {
   const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
   Motion fewer_joints = clip.motion;
   fewer_joints.joint_count -= 1;
-  EXPECT_FALSE(write_glb(clip.skeleton, fewer_joints, {}));
+  EXPECT_FALSE(write_glb(clip.skeleton, fewer_joints, "motion"));
   Motion no_rate = clip.motion;
   no_rate.fps = 0.0;
-  EXPECT_FALSE(write_glb(clip.skeleton, no_rate, {}));
-  GltfWriteSettings unnamed;
-  unnamed.animation_name.clear();
-  EXPECT_FALSE(write_glb(clip.skeleton, clip.motion, unnamed));
+  EXPECT_FALSE(write_glb(clip.skeleton, no_rate, "motion"));
+  EXPECT_FALSE(write_glb(clip.skeleton, clip.motion, ""));
+  // Among several, any one that does not fit, or has no name or motion, fails the file.
+  const std::vector<GltfAnimation> second_bad{{"a", &clip.motion}, {"b", &fewer_joints}};
+  EXPECT_FALSE(write_glb(clip.skeleton, second_bad));
+  const std::vector<GltfAnimation> unnamed{{"a", &clip.motion}, {"", &clip.motion}};
+  EXPECT_FALSE(write_glb(clip.skeleton, unnamed));
+  const std::vector<GltfAnimation> empty{{"a", &clip.motion}, {"b", nullptr}};
+  EXPECT_FALSE(write_glb(clip.skeleton, empty));
+}
+
+// An animation set: each motion its own animation, named as given (a name repeated made unique),
+// each played by the file's rules where forward kinematics puts the joints, at its own frame
+// rate; a joint only one of them turns or moves is keyed in every one, so each poses the whole
+// figure whichever played before it; a motion without frames makes none.
+TEST(GltfWriter, SeveralMotionsAreOneAnimationEachKeyingTheSameJoints) {
+  const Clip walk = test::load_data_clip("cmu/16/16_15.amc");
+  const Clip jog = test::load_data_clip("cmu/16/16_35.amc");
+  ASSERT_EQ(walk.skeleton.joint_count(), jog.skeleton.joint_count());
+  // A joint turned in the jog only (held at identity in the walk).
+  const int held = *walk.skeleton.find("lradius");
+  Motion stiff = walk.motion;
+  for (int f = 0; f < stiff.frame_count; ++f) stiff.rotations(f)[held] = Quat::Identity();
+  Motion slow = jog.motion;
+  slow.fps = 60.0;
+  const Motion none = walk.motion.slice(0, 0);
+  const std::vector<GltfAnimation> set{{"walk", &stiff}, {"empty", &none}, {"jog", &slow}, {"walk", &walk.motion}};
+  auto bytes = write_glb(walk.skeleton, set);
+  ASSERT_TRUE(bytes) << bytes.error().message;
+  const Glb glb(*bytes);
+  ASSERT_EQ(glb.model.animations.size(), 3u);
+  EXPECT_EQ(glb.model.animations[0].name, "walk");
+  EXPECT_EQ(glb.model.animations[1].name, "jog");
+  EXPECT_EQ(glb.model.animations[2].name, "walk_2");
+  EXPECT_LT(max_world_error(glb, walk.skeleton, stiff, 0), 1e-5);
+  EXPECT_LT(max_world_error(glb, walk.skeleton, slow, 1), 1e-5);
+  EXPECT_LT(max_world_error(glb, walk.skeleton, walk.motion, 2), 1e-5);
+  const auto keyed = [&](int a) {
+    std::set<std::pair<int, std::string>> out;
+    for (const auto& channel : glb.model.animations[a].channels) out.emplace(channel.target_node, channel.target_path);
+    return out;
+  };
+  EXPECT_TRUE(keyed(0).count({glb.node_named("lradius"), "rotation"}));
+  EXPECT_EQ(keyed(0), keyed(1));
+  EXPECT_EQ(keyed(0), keyed(2));
+  // Each animation's keys at its own rate.
+  const auto& jog_sampler = glb.model.animations[1].samplers.at(0);
+  const auto times = glb.floats(jog_sampler.input, 1);
+  ASSERT_EQ(static_cast<int>(times.size()), slow.frame_count);
+  EXPECT_NEAR(times.back(), (slow.frame_count - 1) / 60.0, 1e-5);
+  EXPECT_FLOAT_EQ(static_cast<float>(glb.model.accessors.at(jog_sampler.input).maxValues.at(0)), times.back());
+}
+
+// A translation one animation moves and another holds still is keyed in both: the one holding
+// it still would otherwise leave the joint wherever the other put it.
+TEST(GltfWriter, ATranslationOneAnimationMovesIsKeyedInAll) {
+  const Clip plain = test::load_data_clip("cmu/16/16_15.amc");
+  const Clip clip = test::import_bvh(test::static_root_bvh(plain));
+  ASSERT_GT(clip.skeleton.translated_joints().size(), 4u);
+  const int joint = clip.skeleton.translated_joints()[3];
+  const int slot = clip.skeleton.translation_slot(joint);
+  ASSERT_GE(slot, 0);
+  Motion stretched = clip.motion;
+  for (int f = 0; f < stretched.frame_count; ++f) stretched.translations(f)[slot] += Vec3(0.0, 0.05 * f / stretched.frame_count, 0.0);
+  const std::vector<GltfAnimation> set{{"still", &clip.motion}, {"stretched", &stretched}};
+  auto bytes = write_glb(clip.skeleton, set);
+  ASSERT_TRUE(bytes) << bytes.error().message;
+  const Glb glb(*bytes);
+  for (int a = 0; a < 2; ++a) {
+    int tracks = 0;
+    for (const auto& channel : glb.model.animations.at(a).channels) {
+      if (channel.target_path == "translation") ++tracks;
+    }
+    EXPECT_EQ(tracks, 2) << a;  // the root's and the joint's
+  }
+  EXPECT_LT(max_world_error(glb, clip.skeleton, clip.motion, 0), 1e-5);
+  EXPECT_LT(max_world_error(glb, clip.skeleton, stretched, 1), 1e-5);
 }
 
 }  // namespace

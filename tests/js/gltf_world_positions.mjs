@@ -1,4 +1,8 @@
-// Usage: node gltf_world_positions.mjs FILE.glb OUT.json
+// Usage: node gltf_world_positions.mjs FILE.glb OUT.json [ANIMATION]
+//
+// Without ANIMATION the file must hold one animation, named as the file; with it, that one of
+// the file's animations is played (an animation set: every animation must key the same
+// tracks, so that each poses the whole figure whichever played before it).
 //
 // Reads FILE.glb as a viewer or an engine would: first the Khronos glTF validator
 // (npm "gltf-validator", the reference implementation of the spec's rules), which
@@ -34,11 +38,11 @@ function fail(message) {
 	process.exit(1);
 }
 
-if (process.argv.length !== 4) {
-	console.error('usage: node gltf_world_positions.mjs FILE.glb OUT.json');
+if (process.argv.length !== 4 && process.argv.length !== 5) {
+	console.error('usage: node gltf_world_positions.mjs FILE.glb OUT.json [ANIMATION]');
 	process.exit(2);
 }
-const [inPath, outPath] = process.argv.slice(2);
+const [inPath, outPath, animationName] = process.argv.slice(2);
 
 let bytes;
 try {
@@ -60,10 +64,21 @@ const gltf = await new Promise((resolve, reject) => new GLTFLoader().parse(array
 
 const json = gltf.parser.json;
 if (!json.skins || json.skins.length !== 1) fail(`expected one skin, found ${json.skins?.length ?? 0}`);
-if (gltf.animations.length !== 1) fail(`expected one animation, found ${gltf.animations.length}`);
-// Named as the file, without its extension.
-const stem = inPath.replace(/^.*\//, '').replace(/\.glb$/, '');
-if (json.animations[0].name !== stem) fail(`the animation is named '${json.animations[0].name}', not '${stem}'`);
+let clip;
+if (animationName === undefined) {
+	if (gltf.animations.length !== 1) fail(`expected one animation, found ${gltf.animations.length}`);
+	// Named as the file, without its extension.
+	const stem = inPath.replace(/^.*\//, '').replace(/\.glb$/, '');
+	if (json.animations[0].name !== stem) fail(`the animation is named '${json.animations[0].name}', not '${stem}'`);
+	clip = gltf.animations[0];
+} else {
+	clip = gltf.animations.find((a) => a.name === animationName);
+	if (!clip) fail(`no animation '${animationName}' among ${gltf.animations.map((a) => a.name).join(', ')}`);
+	const keyed = (a) => a.tracks.map((t) => t.name).sort().join(' ');
+	for (const other of gltf.animations) {
+		if (keyed(other) !== keyed(clip)) fail(`animations '${other.name}' and '${clip.name}' key different tracks`);
+	}
+}
 const skinJoints = json.skins[0].joints;
 const nodes = await gltf.parser.getDependencies('node');
 const bones = skinJoints.map((n) => nodes[n]);
@@ -80,7 +95,6 @@ const joints = skinJoints.map((n) => ({
 	parent: parentNode.has(n) ? (jointOf.get(parentNode.get(n)) ?? -1) : -1,
 }));
 
-const clip = gltf.animations[0];
 const times = clip.tracks[0].times;
 const frameCount = times.length;
 for (const track of clip.tracks) {

@@ -69,7 +69,21 @@ check_synthesized() {
   "$node" "$here/compare_positions.mjs" "$tmp/figure8.json" "$tmp/figure8.gltf.json" "$tolerance" || return 1
 }
 
+# An animation set: two clips of one rig in one .glb, each animation where its clip's JSON puts
+# the joints.
+check_set() {
+  echo "== animation set: 16_15 and 16_35 with root motion"
+  "$motiongraph" convert "$data/cmu/16/16_15.amc" "$data/cmu/16/16_35.amc" --root-motion -o "$tmp/set.glb" || return 1
+  local clip
+  for clip in 16_15 16_35; do
+    "$motiongraph" convert "$data/cmu/16/$clip.amc" --root-motion -o "$tmp/set-$clip.json" || return 1
+    "$node" "$here/gltf_world_positions.mjs" "$tmp/set.glb" "$tmp/set-$clip.gltf.json" "$clip" || return 1
+    "$node" "$here/compare_positions.mjs" "$tmp/set-$clip.json" "$tmp/set-$clip.gltf.json" "$tolerance" || return 1
+  done
+}
+
 failed=0
+check_set || failed=1
 check_synthesized || failed=1
 check 16_15 "$data/cmu/16/16_15.amc" || failed=1
 check 16_01 "$data/cmu/16/16_01.amc" || failed=1

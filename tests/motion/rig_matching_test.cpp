@@ -76,6 +76,42 @@ TEST(RigMatching, TheConvertersOfCmuShareOneHierarchyUnderTheirOwnNames) {
   EXPECT_EQ(world_positions(renamed.skeleton, renamed.motion), world_positions(builder.skeleton, builder.motion));
 }
 
+// The same rig: one subject's clips (one ASF), whatever their motion; not: other names, a bone
+// 1 mm longer, position channels on another joint, a static root above the hips.
+TEST(RigMatching, TheSameRigOnlyWithTheSameNamesChannelsAndBones) {
+  const Clip walk = test::load_data_clip("cmu/16/16_15.amc");
+  const Clip jog = test::load_data_clip("cmu/16/16_35.amc");
+  EXPECT_EQ(rig_difference(walk.skeleton, jog.skeleton), std::nullopt);
+  EXPECT_EQ(rig_difference(walk.skeleton, walk.skeleton), std::nullopt);
+  const auto renamed = rig_difference(walk.skeleton, with_joint_names(walk, {{2, "LeftUpLeg"}}).skeleton);
+  ASSERT_TRUE(renamed);
+  EXPECT_NE(renamed->find("'LeftUpLeg' here"), std::string::npos) << *renamed;
+  std::vector<JointDef> joints(walk.skeleton.joints().begin(), walk.skeleton.joints().end());
+  const int femur = *walk.skeleton.find("lfemur");
+  std::vector<JointDef> longer = joints;
+  longer[static_cast<size_t>(femur)].rest_offset_m *= 1.0 + 0.001 / longer[static_cast<size_t>(femur)].rest_offset_m.norm();
+  const auto bone = rig_difference(walk.skeleton, Skeleton(longer));
+  ASSERT_TRUE(bone);
+  EXPECT_NE(bone->find("the bone to 'lfemur' is 0.10 cm"), std::string::npos) << *bone;
+  // Within 0.1 mm is the same bone (rounding in a file's text).
+  std::vector<JointDef> rounded = joints;
+  rounded[static_cast<size_t>(femur)].rest_offset_m += Vec3(5e-5, 0.0, 0.0);
+  EXPECT_EQ(rig_difference(walk.skeleton, Skeleton(rounded)), std::nullopt);
+  std::vector<JointDef> channels = joints;
+  channels[static_cast<size_t>(femur)].animated_translation = true;
+  const auto moved = rig_difference(walk.skeleton, Skeleton(channels));
+  ASSERT_TRUE(moved);
+  EXPECT_NE(moved->find("'lfemur' has position channels here only"), std::string::npos) << *moved;
+  // A rig whose every joint has position channels: its offsets are its channels', not compared.
+  const Clip six = test::import_bvh(test::static_root_bvh(walk));
+  ASSERT_FALSE(six.skeleton.static_ancestors().empty());
+  EXPECT_EQ(rig_difference(six.skeleton, six.skeleton), std::nullopt);
+  const auto above = rig_difference(
+      six.skeleton, Skeleton(std::vector<JointDef>(six.skeleton.joints().begin(), six.skeleton.joints().end())));
+  ASSERT_TRUE(above);
+  EXPECT_NE(above->find("static joint(s) above the root"), std::string::npos) << *above;
+}
+
 TEST(RigMatching, LegsNamedTheOtherWayRoundDoNotMatch) {
   const Clip cmu = test::load_data_clip("bvh/16_01.bvh");
   const int left = *cmu.skeleton.find("lfemur");

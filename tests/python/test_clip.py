@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 import motiongraph as mg
-from conftest import assert_bare_glb, assert_positions_equal, cli_error, read_json
+from conftest import assert_bare_glb, assert_positions_equal, cli_error, glb_json, read_json
 
 
 @pytest.mark.parametrize("fps", [None, 30.0])
@@ -41,6 +41,31 @@ def test_positions_equal_the_cli(cli, data, tmp_path, fps):
     with pytest.raises(mg.Error, match="BVH output scale must be a positive number"):
         clip.save(str(tmp_path / "zero.bvh"), output_scale=0)
     assert not (tmp_path / "zero.bvh").exists()
+
+
+def test_animation_set_equals_the_cli(cli, data, tmp_path):
+    clips = [data / "cmu/16/16_15.amc", data / "cmu/16/16_35.amc"]
+    cli("convert", *clips, "--fps", 30, "-o", tmp_path / "cli.glb")
+    cli("convert", *clips, "--fps", 30, "--root-motion", "--no-figure", "-o", tmp_path / "cli-rm.glb")
+    motions = [mg.load_clip(str(c), fps=30) for c in clips]
+    mg.save_animations(str(tmp_path / "py.glb"), motions)
+    assert (tmp_path / "py.glb").read_bytes() == (tmp_path / "cli.glb").read_bytes()
+    mg.save_animations(str(tmp_path / "py-rm.glb"), motions, root_motion=True, figure=False)
+    assert (tmp_path / "py-rm.glb").read_bytes() == (tmp_path / "cli-rm.glb").read_bytes()
+    gltf = glb_json(tmp_path / "py.glb")
+    assert [a["name"] for a in gltf["animations"]] == ["16_15", "16_35"]
+    mg.save_animations(str(tmp_path / "named.glb"), motions + motions[:1], names=["walk", "jog", "walk"])
+    assert [a["name"] for a in glb_json(tmp_path / "named.glb")["animations"]] == ["walk", "jog", "walk_2"]
+    # Another rig (a converter's BVH of the same capture), names that do not match the motions,
+    # another format: errors, and no file.
+    other = mg.load_clip(str(data / "bvh/16_01.bvh"))
+    with pytest.raises(mg.Error, match="its rig is not 16_15's .*one .glb holds one skeleton"):
+        mg.save_animations(str(tmp_path / "mixed.glb"), [motions[0], other])
+    with pytest.raises(ValueError, match="names: 1 given for 2 motions"):
+        mg.save_animations(str(tmp_path / "mixed.glb"), motions, names=["walk"])
+    with pytest.raises(mg.Error, match="several motions go into a .glb only"):
+        mg.save_animations(str(tmp_path / "set.bvh"), motions)
+    assert not (tmp_path / "mixed.glb").exists() and not (tmp_path / "set.bvh").exists()
 
 
 def offsets(bvh):

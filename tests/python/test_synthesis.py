@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 import motiongraph as mg
-from conftest import assert_bare_glb, assert_positions_equal, assert_releases_the_gil, cli_error, read_json, without_timings
+from conftest import (assert_bare_glb, assert_positions_equal, assert_releases_the_gil, cli_error, glb_json, read_json,
+                      without_timings)
 
 FIGURE8 = ["--shape", "figure8:4", "--segment", "walk:0-25", "--segment", "run:25-51"]
 
@@ -91,6 +92,24 @@ def test_walk_equals_the_cli(cli, graph_file, graph, tmp_path):
     cli("walk", graph_file, "--from", 0, "--to", 7, "--cost", "hybrid", "--seed", 3, "--min-frames", 60,
         "-o", tmp_path / "cli.bvh")
     assert (tmp_path / "py.bvh").read_bytes() == (tmp_path / "cli.bvh").read_bytes()
+
+
+def test_results_of_one_graph_as_an_animation_set(graph, tmp_path):
+    """A walk, a path and steering of one graph: one .glb, an animation each, all keying the same
+    joints, at rest as the first one's own file is."""
+    controller = graph.controller()
+    for _ in range(30):
+        controller.step(90.0)
+    motions = [graph.walk(0, 7, cost="hybrid", seed=3, min_frames=60), graph.path(shape="line:6"), controller.motion]
+    mg.save_animations(str(tmp_path / "set.glb"), motions, root_motion=True)
+    gltf = glb_json(tmp_path / "set.glb")
+    assert [a["name"] for a in gltf["animations"]] == ["walk", "path", "steer"]
+    motions[0].save(str(tmp_path / "walk.glb"), root_motion=True)
+    assert glb_json(tmp_path / "walk.glb")["nodes"] == gltf["nodes"]
+    keyed = [{(c["target"]["node"], c["target"]["path"]) for c in a["channels"]} for a in gltf["animations"]]
+    assert keyed[0] == keyed[1] == keyed[2]
+    for animation, motion in zip(gltf["animations"], motions):
+        assert gltf["accessors"][animation["samplers"][0]["input"]]["count"] == len(motion)
 
 
 def test_steering_equals_the_cli(cli, graph_file, graph, tmp_path):

@@ -129,14 +129,27 @@ void add_bone(const Vec3& head, const Vec3& tail, uint16_t joint, std::vector<fl
 
 }  // namespace
 
-Status GltfWriteSettings::validate() const {
-  if (animation_name.empty()) return Error{"", 0, "the glTF animation needs a name"};
-  return Ok{};
+Result<std::string> write_glb(const Skeleton& skeleton, const Motion& motion, const std::string& animation_name,
+                              const GltfWriteSettings& settings) {
+  const GltfAnimation one{animation_name, &motion};
+  return write_glb(skeleton, std::span(&one, 1), settings);
 }
 
-Result<std::string> write_glb(const Skeleton& skeleton, const Motion& motion, const GltfWriteSettings& settings) {
-  if (auto s = settings.validate(); !s) return s.error();
-  if (auto s = check_fits(skeleton, motion); !s) return s.error();
+Result<std::string> write_glb(const Skeleton& skeleton, std::span<const GltfAnimation> animations,
+                              const GltfWriteSettings& settings) {
+  std::vector<const GltfAnimation*> played;  // those with frames
+  for (const GltfAnimation& a : animations) {
+    if (a.name.empty()) return Error{"", 0, "a glTF animation needs a name"};
+    if (!a.motion) return Error{"", 0, fmt::format("glTF animation '{}' has no motion", a.name)};
+    if (auto s = check_fits(skeleton, *a.motion); !s) return s.error();
+    if (a.motion->frame_count > 0) played.push_back(&a);
+  }
+  // The rest pose's translations: the first animation's first frame's.
+  const Motion* first = played.empty() ? nullptr : played.front()->motion;
+  const auto rest_translation = [&](int joint) -> Vec3 {
+    const int slot = skeleton.translation_slot(joint);
+    return slot >= 0 && first ? first->translations(0)[slot] : skeleton.joint(joint).rest_offset_m;
+  };
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = "motiongraph";
@@ -167,11 +180,12 @@ Result<std::string> write_glb(const Skeleton& skeleton, const Motion& motion, co
   }
   for (int j = 0; j < joint_count; ++j) {
     const JointDef& joint = skeleton.joint(j);
-    const int slot = skeleton.translation_slot(j);
-    Vec3 translation = slot >= 0 && motion.frame_count > 0 ? motion.translations(0)[slot] : joint.rest_offset_m;
+    Vec3 translation = rest_translation(j);
     // A travelling root stands over the origin at rest, at its first frame's height (its track
     // moves it); a root without position channels stays at its offset.
-    if (j == 0) translation = below_ancestors(slot >= 0 ? Vec3(0.0, translation.y(), 0.0) : translation);
+    if (j == 0) {
+      translation = below_ancestors(skeleton.translation_slot(0) >= 0 ? Vec3(0.0, translation.y(), 0.0) : translation);
+    }
     tinygltf::Node node;
     node.name = utf8(joint.name);
     node.translation = to_vector(translation);
@@ -243,9 +257,36 @@ Result<std::string> write_glb(const Skeleton& skeleton, const Motion& motion, co
   model.scenes.push_back(std::move(scene));
   model.defaultScene = 0;
 
-  if (motion.frame_count > 0) {
+  // The joints keyed: those any animation turns (and the root below static ancestors, whose
+  // rotation the node's own does not hold), and the translated joints any animation moves from
+  // the rest pose (and a travelling root, which stands over the origin at rest).
+  std::vector<int> turned, moved;
+  for (int j = 0; j < joint_count; ++j) {
+    if (skeleton.joint(j).end_site) continue;
+    bool turns = j == 0 && first_joint > 0;
+    for (const GltfAnimation* a : played) {
+      for (int f = 0; f < a->motion->frame_count && !turns; ++f) {
+        turns = !a->motion->rotations(f)[j].isApprox(Quat::Identity(), 1e-12);
+      }
+    }
+    if (turns) turned.push_back(j);
+  }
+  for (int j : skeleton.translated_joints()) {
+    const int slot = skeleton.translation_slot(j);
+    bool moves = j == 0;
+    for (const GltfAnimation* a : played) {
+      for (int f = 0; f < a->motion->frame_count && !moves; ++f) moves = a->motion->translations(f)[slot] != rest_translation(j);
+    }
+    if (moves) moved.push_back(j);
+  }
+  std::vector<std::string> names;
+  for (const GltfAnimation* a : played) {
+    const Motion& motion = *a->motion;
     tinygltf::Animation animation;
-    animation.name = utf8(settings.animation_name);
+    animation.name = unique_name(utf8(a->name), [&](const std::string& n) {
+      return std::find(names.begin(), names.end(), n) != names.end();
+    });
+    names.push_back(animation.name);
     std::vector<float> times;
     for (int f = 0; f < motion.frame_count; ++f) times.push_back(static_cast<float>(f / motion.fps));
     const int input = buffer.floats(times, TINYGLTF_TYPE_SCALAR, 1);
@@ -261,11 +302,7 @@ Result<std::string> write_glb(const Skeleton& skeleton, const Motion& motion, co
       channel.target_path = path;
       animation.channels.push_back(std::move(channel));
     };
-    for (int j = 0; j < joint_count; ++j) {
-      if (skeleton.joint(j).end_site) continue;
-      bool moves = false;
-      for (int f = 0; f < motion.frame_count && !moves; ++f) moves = !motion.rotations(f)[j].isApprox(Quat::Identity(), 1e-12);
-      if (!moves && !(j == 0 && first_joint > 0)) continue;  // the node's own rotation, identity, holds
+    for (int j : turned) {
       std::vector<float> rotations;
       Quat previous = Quat::Identity();
       for (int f = 0; f < motion.frame_count; ++f) {
@@ -277,13 +314,8 @@ Result<std::string> write_glb(const Skeleton& skeleton, const Motion& motion, co
       }
       track(first_joint + j, "rotation", buffer.floats(rotations, TINYGLTF_TYPE_VEC4, 4));
     }
-    for (int j : skeleton.translated_joints()) {
+    for (int j : moved) {
       const int slot = skeleton.translation_slot(j);
-      // A translation that never changes is the node's own (the first frame's), except the root's,
-      // which stands over the origin at rest.
-      bool moves = j == 0;
-      for (int f = 1; f < motion.frame_count && !moves; ++f) moves = motion.translations(f)[slot] != motion.translations(0)[slot];
-      if (!moves) continue;
       std::vector<float> translations;
       for (int f = 0; f < motion.frame_count; ++f) {
         const Vec3& t = motion.translations(f)[slot];

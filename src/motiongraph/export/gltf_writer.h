@@ -5,6 +5,10 @@
 // animated, keyed at every frame (LINEAR: glTF interpolates rotations by slerp). Lengths are
 // metres and +Y is up, as glTF asks and as the skeleton already is.
 //
+// Several motions of one skeleton make one animation each (a character's animation set, as an
+// engine imports it): a joint that any of them turns or moves is keyed in all of them, so that
+// each animation poses the whole figure whichever played before it.
+//
 // Each node's local transform is the skeleton's (skeleton.h: Translate(t_j) * Rotate(L_j)), so a
 // glTF reader finds the same world positions as forward kinematics. The rest pose the nodes hold
 // without the animation (the skin's bind pose) has every rotation at identity, the rest offsets,
@@ -17,6 +21,7 @@
 // gets neither mesh nor skin).
 #pragma once
 
+#include <span>
 #include <string>
 
 #include "motiongraph/core/error.h"
@@ -25,13 +30,21 @@
 namespace mg {
 
 struct GltfWriteSettings {
-  std::string animation_name = "motion";
-  bool bone_mesh = true;  // the stick figure (false: the skeleton and its animation only)
-
-  Status validate() const;
+  bool bone_mesh = true;  // the stick figure (false: the skeleton and its animations only)
 };
 
-// The .glb bytes. Fails only on a motion that does not fit its skeleton.
-Result<std::string> write_glb(const Skeleton& skeleton, const Motion& motion, const GltfWriteSettings& settings);
+struct GltfAnimation {
+  std::string name;  // not empty; names that repeat get "_2", "_3"...
+  const Motion* motion = nullptr;
+};
+
+// The .glb bytes: the skeleton at rest as its first animation's first frame has it, and one
+// animation per motion with frames (none without). Fails on a motion that does not fit the
+// skeleton and on an animation without a name.
+Result<std::string> write_glb(const Skeleton& skeleton, std::span<const GltfAnimation> animations,
+                              const GltfWriteSettings& settings = {});
+// One animation.
+Result<std::string> write_glb(const Skeleton& skeleton, const Motion& motion, const std::string& animation_name,
+                              const GltfWriteSettings& settings = {});
 
 }  // namespace mg

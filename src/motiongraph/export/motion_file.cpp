@@ -2,10 +2,13 @@
 
 #include <filesystem>
 
+#include <fmt/format.h>
+
 #include "motiongraph/core/file_extension.h"
 #include "motiongraph/export/bvh_writer.h"
 #include "motiongraph/export/gltf_writer.h"
 #include "motiongraph/io/file.h"
+#include "motiongraph/motion/rig_matching.h"
 
 namespace mg {
 
@@ -48,16 +51,43 @@ Status write_motion(const std::string& path, const Skeleton& skeleton, const Mot
   const std::string ext = lower_extension(path);
   if (ext == ".glb") {
     // The animation is named as the file (an engine lists every imported file's as its name).
-    GltfWriteSettings gltf;
     const std::string stem = std::filesystem::path(path).stem().string();
-    if (!stem.empty()) gltf.animation_name = stem;
-    gltf.bone_mesh = settings.figure;
-    auto glb = write_glb(skeleton, motion, gltf);
+    auto glb = write_glb(skeleton, motion, stem.empty() ? "motion" : stem, GltfWriteSettings{settings.figure});
     if (!glb) return Error{path, 0, glb.error().message};
     return write_file_atomic(path, *glb);
   }
   return write_file_atomic(path, ext == ".bvh" ? write_bvh(skeleton, motion, write)
                                                : write_positions_json(skeleton, motion, contacts));
+}
+
+Status write_animation_set(const std::string& path, std::span<const NamedMotion> motions,
+                           const MotionFileSettings& settings) {
+  if (lower_extension(path) != ".glb") return Error{path, 0, "several motions go into a .glb only (an animation each)"};
+  if (auto s = settings.validate(); !s) return Error{path, 0, s.error().message};
+  if (motions.empty()) return Error{path, 0, "no motion to write"};
+  for (const NamedMotion& m : motions) {
+    if (auto why = rig_difference(*motions.front().skeleton, *m.skeleton)) {
+      return Error{m.source, 0,
+                   fmt::format("its rig is not {}'s ({}): one .glb holds one skeleton", motions.front().source, *why)};
+    }
+  }
+  // With root motion, each motion on its own skeleton with the joint added (the same rig again).
+  std::vector<RootMotionClip> added;
+  if (const auto& root_motion = settings.root_motion) {
+    for (const NamedMotion& m : motions) {
+      auto clip = add_root_motion(*m.skeleton, *m.motion, m.forward_axis, root_motion->settings);
+      if (!clip) return Error{m.source, 0, clip.error().message};
+      added.push_back(std::move(*clip));
+    }
+  }
+  std::vector<GltfAnimation> animations;
+  for (size_t i = 0; i < motions.size(); ++i) {
+    animations.push_back({motions[i].name, added.empty() ? motions[i].motion : &added[i].motion});
+  }
+  const Skeleton& skeleton = added.empty() ? *motions.front().skeleton : added.front().skeleton;
+  auto glb = write_glb(skeleton, animations, GltfWriteSettings{settings.figure});
+  if (!glb) return Error{path, 0, glb.error().message};
+  return write_file_atomic(path, *glb);
 }
 
 Result<std::optional<ClipContacts>> clip_contacts(const Skeleton& skeleton, const Motion& motion,

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,23 @@ struct MotionFileSettings {
 // JSON gets the feet's contacts too when `contacts` is given (positions_json.h).
 Status write_motion(const std::string& path, const Skeleton& skeleton, const Motion& motion,
                     const MotionFileSettings& settings = {}, const PositionsJsonContacts* contacts = nullptr);
+
+// One motion of an animation set.
+struct NamedMotion {
+  std::string source;                 // where it came from, for messages (a clip's file)
+  std::string name;                   // its animation's name
+  const Skeleton* skeleton = nullptr;
+  const Motion* motion = nullptr;
+  Vec3 forward_axis = Vec3::UnitZ();  // where its skeleton faces, for a root-motion joint
+};
+
+// Several motions of one rig into one .glb, an animation each (gltf_writer.h), written
+// atomically: a character's animation set as game engines import it. Each gets the root-motion
+// joint asked for in `settings` facing its own forward axis (settings.root_motion's is not
+// used). Fails unless the path ends in .glb, and when a motion's rig is not the first's
+// (motion/rig_matching.h: rig_difference), naming its source.
+Status write_animation_set(const std::string& path, std::span<const NamedMotion> motions,
+                           const MotionFileSettings& settings = {});
 
 // A captured clip's foot contacts, for its JSON: the feet found by name unless `names` gives
 // them (skeleton/foot_joints.h). nullopt, with `why` set, when they are not found and none was

@@ -90,6 +90,37 @@ std::optional<std::string> hierarchy_mismatch(const Skeleton& reference, const S
   return std::nullopt;
 }
 
+std::optional<std::string> rig_difference(const Skeleton& reference, const Skeleton& other) {
+  if (auto why = hierarchy_mismatch(reference, other)) return why;
+  constexpr double kSameOffsetM = 1e-4;
+  for (int j = 0; j < reference.joint_count(); ++j) {
+    const JointDef& a = reference.joint(j);
+    const JointDef& b = other.joint(j);
+    if (a.name != b.name) return fmt::format("joint {} is '{}' there, '{}' here", j, a.name, b.name);
+    if (a.animated_translation != b.animated_translation) {
+      return fmt::format("'{}' has position channels {}", a.name, a.animated_translation ? "there only" : "here only");
+    }
+    const double apart = (a.rest_offset_m - b.rest_offset_m).norm();
+    if (!a.animated_translation && !(apart <= kSameOffsetM)) {
+      return fmt::format("the bone to '{}' is {:.2f} cm from where it is there", a.name, 100.0 * apart);
+    }
+  }
+  const auto ancestors_a = reference.static_ancestors();
+  const auto ancestors_b = other.static_ancestors();
+  if (ancestors_a.size() != ancestors_b.size()) {
+    return fmt::format("{} static joint(s) above the root there, {} here", ancestors_a.size(), ancestors_b.size());
+  }
+  for (size_t i = 0; i < ancestors_a.size(); ++i) {
+    const StaticAncestor& a = ancestors_a[i];
+    const StaticAncestor& b = ancestors_b[i];
+    if (a.name != b.name) return fmt::format("the static joint above the root is '{}' there, '{}' here", a.name, b.name);
+    if (!((a.translation_m - b.translation_m).norm() <= kSameOffsetM) || a.rotation.angularDistance(b.rotation) > 1e-6) {
+      return fmt::format("the static joint '{}' above the root stands elsewhere", a.name);
+    }
+  }
+  return std::nullopt;
+}
+
 Clip renamed_as(const Clip& clip, const Skeleton& reference) {
   std::vector<JointDef> joints(clip.skeleton.joints().begin(), clip.skeleton.joints().end());
   for (size_t j = 0; j < joints.size(); ++j) joints[j].name = reference.joint(static_cast<int>(j)).name;

@@ -30,6 +30,12 @@ JointSide joint_side(std::string_view name);
 // and no joint named for one side may stand where the other names the opposite side.
 std::optional<std::string> hierarchy_mismatch(const Skeleton& reference, const Skeleton& other);
 
+// Why `other` is not the same rig as `reference` (nullopt when it is), so that one file can hold
+// both's motion on one skeleton: the same hierarchy (hierarchy_mismatch) with the same names and
+// position channels, the same static ancestors, and every offset that no channel animates (the
+// bones) within 0.1 mm.
+std::optional<std::string> rig_difference(const Skeleton& reference, const Skeleton& other);
+
 // The clip with its joints named as `reference`'s (the same hierarchy: hierarchy_mismatch is
 // nullopt); nothing moves.
 Clip renamed_as(const Clip& clip, const Skeleton& reference);
