@@ -13,15 +13,19 @@
 
 #include "cli/commands.h"
 #include "motiongraph/core/file_extension.h"
+#include "cli/library_info.h"
 #include "cli/load_options.h"
 #include "cli/motion_output_options.h"
 #include "cli/unit_report.h"
+#include "motiongraph/database/clip_on_skeleton.h"
+#include "motiongraph/database/database_loader.h"
 #include "motiongraph/export/bvh_writer.h"
 #include "motiongraph/export/motion_file.h"
 #include "motiongraph/export/positions_json.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/foot_contacts.h"
+#include "motiongraph/motion/rig_matching.h"
 #include "motiongraph/motion/resample.h"
 #include "motiongraph/synthesis/facing.h"
 
@@ -34,6 +38,7 @@ struct ConvertOptions {
   std::vector<std::string> outputs;
   LoadOptions load;
   double fps = 0.0;
+  int skeleton = -1;
   MotionOutputOptions output;
 };
 
@@ -57,14 +62,61 @@ Result<Clip> read_clip(const ConvertOptions& options, ClipLoader& loader, const 
   return std::move(clip);
 }
 
-// Several clips of one rig: one .glb, an animation each, named as its file.
-int convert_animation_set(const ConvertOptions& options, const ClipLoadSettings& load) {
+// Fails unless every output is a .glb (several clips make an animation set).
+Status check_set_outputs(const ConvertOptions& options) {
   for (const std::string& output : options.outputs) {
     if (lower_extension(output) != ".glb") {
-      return fail(Error{output, 0, "several clips go into a .glb only (an animation each); convert them one at a "
-                                   "time for .bvh or .json"});
+      return Error{output, 0, "several clips go into a .glb only (an animation each); convert them one at a time for "
+                              ".bvh or .json"};
     }
   }
+  return Ok{};
+}
+
+// A library: every clip as `build` reads it (whole, not played on past a loop's end), on one of
+// its skeletons as synthesis plays them, an animation each named as the clip.
+int convert_library(const ConvertOptions& options, const ClipLoadSettings& load) {
+  if (auto s = check_set_outputs(options); !s) return fail(s.error());
+  DatabaseSettings settings = database_settings_reading_as(load);
+  if (options.fps > 0.0) settings.fps = options.fps;
+  settings.prefer_manifest_fps = options.fps <= 0.0;
+  settings.cmu_tags = false;  // no tags go into the file
+  settings.loops = false;
+  DatabaseLoadNotes notes;
+  auto loaded = load_database(options.inputs, settings, &notes);
+  if (!loaded) return fail(loaded.error());
+  const MotionDatabase& db = *loaded;
+  report_units(notes, false);
+  for (const std::string& line : load_warnings(notes)) spdlog::warn("{}", line);
+  const int target = options.skeleton >= 0 ? options.skeleton : db.clips.front().skeleton;
+  if (target >= static_cast<int>(db.skeletons.size())) {
+    return fail(Error{"", 0, fmt::format("--skeleton {}: the library has {} skeleton(s)", target, db.skeletons.size())});
+  }
+  std::vector<Motion> played;
+  for (size_t c = 0; c < db.clips.size(); ++c) {
+    auto motion = clip_on_skeleton(db, static_cast<int>(c), target);
+    if (!motion) return fail(Error{db.clips[c].source, 0, motion.error().message});
+    played.push_back(std::move(*motion));
+  }
+  const Vec3 forward_axis =
+      options.output.root_motion ? learn_forward_axis(db, target, learn_travel_axes(db)[target]) : Vec3::UnitZ();
+  std::vector<NamedMotion> motions;
+  for (size_t c = 0; c < db.clips.size(); ++c) {
+    motions.push_back({db.clips[c].source, db.clips[c].name, &db.skeletons[target], &played[c], forward_axis});
+  }
+  for (const std::string& output : options.outputs) {
+    if (auto s = write_animation_set(output, motions, options.output.settings()); !s) return fail(s.error());
+  }
+  if (db.skeletons.size() > 1) {
+    spdlog::info("{} clips of {} skeletons played on {}'s (--skeleton {})", db.clips.size(), db.skeletons.size(),
+                 db.skeleton_names[target], target);
+  }
+  return 0;
+}
+
+// Several clips of one rig: one .glb, an animation each, named as its file.
+int convert_animation_set(const ConvertOptions& options, const ClipLoadSettings& load) {
+  if (auto s = check_set_outputs(options); !s) return fail(s.error());
   ClipLoader loader(load);
   std::vector<Clip> clips;
   for (const std::string& input : options.inputs) {
@@ -80,6 +132,14 @@ int convert_animation_set(const ConvertOptions& options, const ClipLoadSettings&
                        options.output.root_motion ? learn_clip_forward_axis(clip.skeleton, clip.motion, load.foot_names)
                                                   : Vec3::UnitZ()});
   }
+  for (size_t i = 1; i < clips.size(); ++i) {
+    if (auto why = rig_difference(clips[0].skeleton, clips[i].skeleton)) {
+      return fail(Error{options.inputs[i], 0,
+                        fmt::format("its rig is not {}'s ({}): one .glb holds one skeleton (a folder of them is read "
+                                    "as build reads a library, every clip on one rig)",
+                                    options.inputs[0], *why)});
+    }
+  }
   for (const std::string& output : options.outputs) {
     if (auto s = write_animation_set(output, motions, options.output.settings()); !s) return fail(s.error());
   }
@@ -92,6 +152,8 @@ int run_convert(const ConvertOptions& options) {
   }
   if (auto s = options.output.settings().validate(); !s) return fail(s.error());
   const ClipLoadSettings load = options.load.settings();
+  if (is_library(options.inputs)) return convert_library(options, load);
+  if (options.skeleton >= 0) return fail(Error{"", 0, "--skeleton applies to a library (a folder or a manifest)"});
   if (options.inputs.size() > 1) return convert_animation_set(options, load);
   const std::string& input = options.inputs.front();
   ClipLoader loader(load);
@@ -136,9 +198,15 @@ Command add_convert_command(CLI::App& app) {
                  "\"contacts\": {\"joints\": [the foot joints], \"planted\": [frame][foot joint] 0 or 1}}).");
   sub->add_option("IN", options->inputs,
                   "Input clip (.amc or .bvh); several clips of one rig go into one .glb, an animation each named as "
-                  "its file (a character's animation set, as game engines import it)")
+                  "its file (a character's animation set, as game engines import it); a library (folders, .toml "
+                  "manifests) goes into one .glb as build reads it (at 30 fps unless --fps or its manifest says), "
+                  "every clip on one of its skeletons")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(CLI::ExistingPath);
+  sub->add_option("--skeleton", options->skeleton,
+                  "A library's skeleton to play every clip on, as synthesis plays them: rotations kept, translations "
+                  "scaled by the legs' lengths (default: the first clip's)")
+      ->check(CLI::NonNegativeNumber);
   sub->add_option("-o,--output", options->outputs, "Output file, .bvh, .glb (binary glTF 2.0) or .json; repeat for several (read once)")
       ->required();
   sub->add_option("--fps", options->fps, "Resample to this frame rate (slerp rotations, lerp translations)")

@@ -38,14 +38,6 @@ struct InfoOptions {
   bool no_loops = false;
 };
 
-// Folders and manifests are a library: the whole of what is given is read as `build` reads it.
-bool is_library(const std::vector<std::string>& files) {
-  return std::any_of(files.begin(), files.end(), [](const std::string& file) {
-    std::error_code ec;
-    return std::filesystem::is_directory(file, ec) || lower_extension(file) == ".toml";
-  });
-}
-
 int run_library(const InfoOptions& options) {
   LibraryInfoOptions library;
   library.json = options.json;

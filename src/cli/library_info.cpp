@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -9,11 +10,19 @@
 
 #include "cli/commands.h"
 #include "cli/unit_report.h"
+#include "motiongraph/core/file_extension.h"
 #include "motiongraph/core/json_text.h"
 #include "motiongraph/pipeline/feet_report.h"
 #include "motiongraph/pipeline/library_summary.h"
 
 namespace mg::cli {
+
+bool is_library(const std::vector<std::string>& inputs) {
+  return std::any_of(inputs.begin(), inputs.end(), [](const std::string& input) {
+    std::error_code ec;
+    return std::filesystem::is_directory(input, ec) || lower_extension(input) == ".toml";
+  });
+}
 
 int run_library_info(const std::vector<std::string>& inputs, const LibraryInfoOptions& options) {
   DatabaseLoadNotes notes;

@@ -16,6 +16,10 @@ struct LibraryInfoOptions {
   bool json = false;
 };
 
+// Folders and .toml manifests are a library: when any input is one, the whole of what is given
+// is read as `build` reads it (info, convert).
+bool is_library(const std::vector<std::string>& inputs);
+
 // Prints the summary (text, or JSON with --json) on stdout, the loading's lines on stderr as
 // `build` logs them; the exit status, with one error line on failure.
 int run_library_info(const std::vector<std::string>& inputs, const LibraryInfoOptions& options);

@@ -143,8 +143,37 @@ if "$bin" convert "$data/cmu/16/16_15.amc" "$data/bvh/16_01.bvh" -o "$work/mixed
   echo "FAIL: clips of two rigs went into one file"; exit 1
 fi
 [[ $(grep -vc "info:" "$work/mixed.err") -eq 1 && ! -e "$work/mixed.glb" ]] \
-  && grep -q "16_01.bvh: its rig is not .*16_15.amc's (joint 0 is 'root' there, 'hip' here): one .glb holds one skeleton" "$work/mixed.err" \
+  && grep -q "16_01.bvh: its rig is not .*16_15.amc's (joint 0 is 'root' there, 'hip' here): one .glb holds one skeleton (a folder" "$work/mixed.err" \
   || { echo "FAIL: clips of two rigs"; cat "$work/mixed.err"; exit 1; }
+# A library (a folder): every clip as build reads it, an animation each; BVH of three converters
+# (other names, another rest pose) in one folder are read on one rig, each clip played on the
+# first's skeleton (--skeleton picks another); only a .glb, and a skeleton the library has.
+"$bin" convert "$data/cmu/16" -o "$work/s16.glb" 2>/dev/null
+mkdir "$work/rigs"
+cp "$data/bvh/16_01.bvh" "$data/bvh/111_36.bvh" "$data/bvh/131_01.bvh" "$work/rigs/"
+"$bin" convert "$work/rigs" --skeleton 2 -o "$work/rigs.glb" 2>"$work/rigs.err"
+grep -q "3 clips of 3 skeletons played on .*16_01.bvh's (--skeleton 2)" "$work/rigs.err" || { echo "FAIL: rigs"; cat "$work/rigs.err"; exit 1; }
+"$bin" convert "$work/rigs" -o "$work/rigs0.glb" 2>/dev/null
+python3 - "$work/s16.glb" "$work/rigs.glb" "$work/rigs0.glb" "$data/cmu/16" <<'PY'
+import json, os, sys
+def gltf(path):
+    data = open(path, "rb").read()
+    return json.loads(data[20:20 + int.from_bytes(data[12:16], "little")])
+s16, rigs, rigs0 = (gltf(p) for p in sys.argv[1:4])
+clips = sorted(f[:-4] for f in os.listdir(sys.argv[4]) if f.endswith(".amc"))
+assert [a["name"] for a in s16["animations"]] == clips, [a["name"] for a in s16["animations"]]
+assert [a["name"] for a in rigs["animations"]] == ["111_36", "131_01", "16_01"], rigs["animations"]
+# The library's joint names (its first file's, 111_36), on 16_01's bones with --skeleton 2.
+node = lambda g, name: next(n for n in g["nodes"] if n["name"] == name)
+assert node(rigs, "LeftUpLeg") and node(rigs0, "LeftUpLeg") and "lfemur" not in {n["name"] for n in rigs["nodes"]}
+assert node(rigs, "LeftLeg")["translation"] != node(rigs0, "LeftLeg")["translation"]
+PY
+for bad in "-o $work/lib.bvh" "--skeleton 3 -o $work/lib.glb"; do
+  if "$bin" convert "$work/rigs" $bad 2>"$work/lib.err"; then echo "FAIL: accepted $bad"; exit 1; fi
+  [[ $(grep -vc "info:\|warning:" "$work/lib.err") -eq 1 && ! -e "$work/lib.bvh" && ! -e "$work/lib.glb" ]] \
+    || { echo "FAIL: $bad"; cat "$work/lib.err"; exit 1; }
+done
+grep -q "skeleton 3: the library has 3 skeleton(s)" "$work/lib.err" || { echo "FAIL: --skeleton 3"; cat "$work/lib.err"; exit 1; }
 # The converted BVH reads back.
 "$bin" info "$work/jog.bvh" | grep "41 frames at 30 fps" >/dev/null || { echo "FAIL: written BVH does not read back"; exit 1; }
 ls -A "$work" | grep -q "tmp-" && { echo "FAIL: temporary files left"; exit 1; }

@@ -69,8 +69,8 @@ check_synthesized() {
   "$node" "$here/compare_positions.mjs" "$tmp/figure8.json" "$tmp/figure8.gltf.json" "$tolerance" || return 1
 }
 
-# An animation set: two clips of one rig in one .glb, each animation where its clip's JSON puts
-# the joints.
+# An animation set: two clips of one rig in one .glb, and a library (a folder), each animation
+# where its clip's JSON puts the joints.
 check_set() {
   echo "== animation set: 16_15 and 16_35 with root motion"
   "$motiongraph" convert "$data/cmu/16/16_15.amc" "$data/cmu/16/16_35.amc" --root-motion -o "$tmp/set.glb" || return 1
@@ -80,6 +80,11 @@ check_set() {
     "$node" "$here/gltf_world_positions.mjs" "$tmp/set.glb" "$tmp/set-$clip.gltf.json" "$clip" || return 1
     "$node" "$here/compare_positions.mjs" "$tmp/set-$clip.json" "$tmp/set-$clip.gltf.json" "$tolerance" || return 1
   done
+  echo "== animation set: the subject-16 library, as build reads it (30 fps)"
+  "$motiongraph" convert "$data/cmu/16" -o "$tmp/library.glb" 2>/dev/null || return 1
+  "$motiongraph" convert "$data/cmu/16/16_35.amc" --fps 30 -o "$tmp/library-16_35.json" || return 1
+  "$node" "$here/gltf_world_positions.mjs" "$tmp/library.glb" "$tmp/library-16_35.gltf.json" 16_35 || return 1
+  "$node" "$here/compare_positions.mjs" "$tmp/library-16_35.json" "$tmp/library-16_35.gltf.json" "$tolerance" || return 1
 }
 
 failed=0

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "motiongraph/database/clip_on_skeleton.h"
+
 namespace mg {
 
 double blend_weight(int p, int k) {
@@ -23,7 +25,6 @@ Result<MotionAssembler> MotionAssembler::create(const MotionDatabase& db, const 
   a.db_ = &db;
   a.graph_ = &graph;
   a.target_ = target_skeleton;
-  const double target_leg = target.leg_length_m();
   for (size_t s = 0; s < db.skeletons.size(); ++s) {
     const Skeleton& other = db.skeletons[s];
     if (other.joint_count() != target.joint_count() ||
@@ -31,8 +32,7 @@ Result<MotionAssembler> MotionAssembler::create(const MotionDatabase& db, const 
       return Error{"", 0, fmt::format("skeletons '{}' and '{}' differ in joints or translated joints",
                                       db.skeleton_names[s], db.skeleton_names[target_skeleton])};
     }
-    const double leg = other.leg_length_m();
-    a.scale_.push_back(leg > 0.0 && target_leg > 0.0 ? target_leg / leg : 1.0);
+    a.scale_.push_back(leg_scale(target, other));
   }
   a.clip_of_frame_.resize(static_cast<size_t>(db.frame_count()));
   for (size_t c = 0; c < db.clips.size(); ++c) {
