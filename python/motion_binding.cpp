@@ -86,7 +86,8 @@ Status save_motion(const PyMotion& m, const std::string& path, MotionFileSetting
 
 PyMotion load_clip(const std::string& path, const std::optional<std::string>& asf, std::optional<double> fps,
                    std::optional<double> scale, const std::optional<std::string>& up_axis, double input_fps,
-                   bool keep_rest_frames, const std::string& travel, const std::optional<std::string>& feet) {
+                   bool keep_rest_frames, const std::string& travel, const std::optional<std::string>& feet,
+                   const std::optional<std::string>& animation) {
   ClipLoadSettings settings;
   if (asf) settings.asf_path = *asf;
   settings.bvh_metres_per_unit = scale;
@@ -108,7 +109,7 @@ PyMotion load_clip(const std::string& path, const std::optional<std::string>& as
   Result<LoadedClip> loaded = Error{};
   {
     py::gil_scoped_release release;
-    loaded = ClipLoader(settings).load(path);
+    loaded = ClipLoader(settings).load(path, animation);
     if (loaded && fps) {
       auto resampled = resample(loaded->clip.motion, *fps);
       if (!resampled) {
@@ -257,13 +258,16 @@ void bind_motion(py::module_& m) {
   m.def("load_clip", &load_clip, py::arg("path"), py::arg("asf") = py::none(), py::arg("fps") = py::none(),
         py::arg("scale") = py::none(), py::arg("up_axis") = py::none(), py::arg("input_fps") = 0.0,
         py::arg("keep_rest_frames") = false, py::arg("travel") = "auto", py::arg("feet") = py::none(),
-        "Reads a clip (.amc with its .asf, or .bvh) as the CLI's convert does: asf the skeleton of an AMC file "
+        py::arg("animation") = py::none(),
+        "Reads a clip (.amc with its .asf, .bvh, or an animation of a .glb/.gltf) as the CLI's convert does: asf "
+        "the skeleton of an AMC file "
         "(default: the .asf in its folder), fps a rate to resample to, scale metres per BVH unit (default: "
         "chosen from the figure's size), up_axis 'y' or 'z' (default: whichever the figure stands along; "
         "z-up is turned y up), input_fps the capture rate overriding the file's, travel where its travel over "
         "the floor comes from: 'root' as read, 'feet' recovered from the planted feet, 'auto' (default) the "
         "feet when the clip is animated in place; feet the foot joints as 'LEFT_ANKLE,LEFT_TOE,RIGHT_ANKLE,"
-        "RIGHT_TOE', any left empty to find it by name (default: found by name), for the travel and contacts.");
+        "RIGHT_TOE', any left empty to find it by name (default: found by name), for the travel and contacts; "
+        "animation the glTF file's animation to read (default: its first).");
 }
 
 }  // namespace mg::python

@@ -39,12 +39,13 @@ struct ConvertOptions {
   LoadOptions load;
   double fps = 0.0;
   int skeleton = -1;
+  std::optional<std::string> animation;
   MotionOutputOptions output;
 };
 
 // A clip read as the options say, its messages printed, resampled when asked.
 Result<Clip> read_clip(const ConvertOptions& options, ClipLoader& loader, const std::string& input) {
-  auto loaded = loader.load(input);
+  auto loaded = loader.load(input, options.animation);
   if (!loaded) return loaded.error();
   Clip& clip = loaded->clip;
   if (clip.detected_unit) report_unit(input, *clip.detected_unit);
@@ -152,7 +153,10 @@ int run_convert(const ConvertOptions& options) {
   }
   if (auto s = options.output.settings().validate(); !s) return fail(s.error());
   const ClipLoadSettings load = options.load.settings();
-  if (is_library(options.inputs)) return convert_library(options, load);
+  if (is_library(options.inputs)) {
+    if (options.animation) return fail(Error{"", 0, "--animation applies to glTF files, not to a library"});
+    return convert_library(options, load);
+  }
   if (options.skeleton >= 0) return fail(Error{"", 0, "--skeleton applies to a library (a folder or a manifest)"});
   if (options.inputs.size() > 1) return convert_animation_set(options, load);
   const std::string& input = options.inputs.front();
@@ -197,12 +201,14 @@ Command add_convert_command(CLI::App& app) {
                  "({\"fps\", \"joints\": [{\"name\", \"parent\"}], \"positions\": [frame][joint][x,y,z], "
                  "\"contacts\": {\"joints\": [the foot joints], \"planted\": [frame][foot joint] 0 or 1}}).");
   sub->add_option("IN", options->inputs,
-                  "Input clip (.amc or .bvh); several clips of one rig go into one .glb, an animation each named as "
+                  "Input clip (.amc, .bvh, or .glb/.gltf: an animation of it); several clips of one rig go into one .glb, an animation each named as "
                   "its file (a character's animation set, as game engines import it); a library (folders, .toml "
                   "manifests) goes into one .glb as build reads it (at 30 fps unless --fps or its manifest says), "
                   "every clip on one of its skeletons")
       ->required()
       ->check(CLI::ExistingPath);
+  sub->add_option("--animation", options->animation,
+                  "The animation of a glTF input to read (default: its first; a library reads them all)");
   sub->add_option("--skeleton", options->skeleton,
                   "A library's skeleton to play every clip on, as synthesis plays them: rotations kept, translations "
                   "scaled by the legs' lengths (default: the first clip's)")

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
@@ -115,6 +116,7 @@ int run_info(const InfoOptions& options) {
     if (clip.detected_unit && !clip.detected_unit->plausible) report_unit(file, *clip.detected_unit);
     std::string unit = fmt::format("{:g} m per unit (--scale)", options.load.scale.value_or(1.0));
     if (loaded->format == "amc") unit = "the ASF's units";
+    if (loaded->format == "gltf") unit = "metres (glTF's)";
     if (clip.detected_unit) unit = unit_description(*clip.detected_unit) + " (chosen by its size; --scale overrides)";
     const std::string up = clip.detected_up_axis ? up_axis_description(*clip.detected_up_axis) +
                                                        " (chosen by its shape; --up-axis overrides)"
@@ -135,6 +137,7 @@ int run_info(const InfoOptions& options) {
       entry["feet"] = *contacts ? feet_json(clip.skeleton, (*contacts)->feet, (*contacts)->masks, feet_source)
                                 : missing_feet_json(feet_missing);
       if (!loaded->skeleton_path.empty()) entry["asf"] = loaded->skeleton_path;
+      if (!loaded->animations.empty()) entry["animations"] = loaded->animations;
       if (clip.detected_unit) {
         entry["unit"] = {{"name", clip.detected_unit->unit.name},
                          {"metres_per_unit", clip.detected_unit->unit.metres_per_unit},
@@ -159,8 +162,15 @@ int run_info(const InfoOptions& options) {
       }
       all.push_back(std::move(entry));
     } else {
-      fmt::print("{}: {}{}\n", file, loaded->format == "amc" ? "AMC on " : "BVH",
-                 loaded->format == "amc" ? loaded->skeleton_path : "");
+      if (loaded->format == "gltf") {
+        fmt::print("{}: glTF, animation '{}' ({} of {}: {}; convert --animation picks one, a library reads "
+                   "them all)\n",
+                   file, loaded->animations[static_cast<size_t>(loaded->animation)], loaded->animation + 1,
+                   loaded->animations.size(), fmt::join(loaded->animations, ", "));
+      } else {
+        fmt::print("{}: {}{}\n", file, loaded->format == "amc" ? "AMC on " : "BVH",
+                   loaded->format == "amc" ? loaded->skeleton_path : "");
+      }
       fmt::print("  skeleton: {} joints + {} end sites, {} dofs\n", s.joints, s.end_sites, loaded->source_channels);
       fmt::print("  motion:   {} frames at {:g} fps, {:.2f} s{}\n", s.frames, s.fps, s.duration_s,
                  clip.dropped_leading_frames > 0 ? " (leading rest/T-pose frames dropped)" : "");

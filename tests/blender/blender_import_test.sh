@@ -8,6 +8,8 @@
 # from, read by Blender the same way; and each planted toe (the foot clean-up) within 1 cm of its
 # plant on the floor over its contact. The same figure 8 written as glTF (.glb): check_gltf.py
 # imports it with Blender's glTF importer and checks its armature, keys and joint positions.
+# And glTF that Blender writes (export_gltf.py, from its BVH import of data/bvh/16_01.bvh) reads in
+# motiongraph to the joint positions of the BVH itself.
 # Needs Blender (Debian package blender; the test fails with a message when it is missing, it
 # never passes silently).
 set -euo pipefail
@@ -61,3 +63,24 @@ check() {
 }
 check check_bvh "$tmp/figure8.bvh" "$tmp/figure8.json" "${sources[@]}"
 check check_gltf "$tmp/figure8.glb" "$tmp/figure8.json"
+
+# And the other way: glTF written by Blender (its armature from a BVH import, bones resting along
+# themselves under an armature turned from Blender's z up, keys from frame 1) read by motiongraph
+# gives the joint positions motiongraph finds in the BVH itself (in the file's units: --scale 1).
+check export_gltf "$data/bvh/16_01.bvh" "$tmp/blender.glb"
+"$motiongraph" convert "$tmp/blender.glb" -o "$tmp/blender.json"
+"$motiongraph" convert "$data/bvh/16_01.bvh" --scale 1 -o "$tmp/bvh.json"
+python3 - "$tmp/blender.json" "$tmp/bvh.json" <<'PY'
+import json, sys
+ours, bvh = (json.load(open(p)) for p in sys.argv[1:])
+names = [j["name"] for j in bvh["joints"]]
+index = {n: i for i, n in enumerate(names)}
+joints = [j["name"] for j in ours["joints"]]
+# Blender makes no bone of an End Site: every other joint is there.
+assert sorted(joints) == sorted(n for n in names if not n.endswith("_end")), (joints, names)
+assert ours["fps"] == bvh["fps"] and len(ours["positions"]) == len(bvh["positions"]) > 300
+worst = max(abs(a - b) for fo, fb in zip(ours["positions"], bvh["positions"])
+            for j, p in enumerate(fo) for a, b in zip(p, fb[index[joints[j]]]))
+assert worst < 1e-4, worst  # float32 keys, in CMU's units (0.056 m)
+print(f"blender_import_test: Blender's glTF of 16_01 read as its BVH is, within {worst:.1e} units")
+PY

@@ -174,6 +174,27 @@ for bad in "-o $work/lib.bvh" "--skeleton 3 -o $work/lib.glb"; do
     || { echo "FAIL: $bad"; cat "$work/lib.err"; exit 1; }
 done
 grep -q "skeleton 3: the library has 3 skeleton(s)" "$work/lib.err" || { echo "FAIL: --skeleton 3"; cat "$work/lib.err"; exit 1; }
+# glTF in: an animation of a set reads back to its clip's joints; a library of glTF files reads
+# every animation, named FILE:ANIMATION, tagged by CMU's index when named as CMU's clips are.
+"$bin" convert "$work/set.glb" --animation 16_35 -o "$work/set-jog.json"
+"$bin" info "$work/set.glb" | head -1 | grep -q "glTF, animation '16_15' (1 of 3: 16_15, 16_35, 16_15_2;" \
+  || { echo "FAIL: info on a glTF set"; "$bin" info "$work/set.glb"; exit 1; }
+python3 - "$work/jog.json" "$work/set-jog.json" <<'PY'
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:])
+index = {j["name"]: i for i, j in enumerate(b["joints"])}
+assert a["fps"] == b["fps"] and len(a["positions"]) == len(b["positions"]) == 41
+worst = max(abs(x - y) for fa, fb in zip(a["positions"], b["positions"])
+            for j, p in enumerate(fa) for x, y in zip(p, fb[index[a["joints"][j]["name"]]]))
+assert worst < 2e-5, worst
+PY
+if "$bin" convert "$work/set.glb" --animation swim -o "$work/swim.json" 2>"$work/swim.err"; then echo "FAIL: no such animation"; exit 1; fi
+[[ $(wc -l <"$work/swim.err") -eq 1 && ! -e "$work/swim.json" ]] && grep -q "set.glb: no animation 'swim' (the file has 16_15, 16_35, 16_15_2)" "$work/swim.err" \
+  || { echo "FAIL: --animation swim"; cat "$work/swim.err"; exit 1; }
+"$bin" build "$work/s16.glb" -o "$work/glb.mgraph" --no-cache -q
+"$bin" inspect --clips "$work/glb.mgraph" >"$work/glb.clips"
+grep -q "^s16:16_15 .* walk" "$work/glb.clips" && [[ $(grep -c "^s16:16_" "$work/glb.clips") -eq 15 ]] \
+  || { echo "FAIL: a glTF library's clips"; cat "$work/glb.clips"; exit 1; }
 # The converted BVH reads back.
 "$bin" info "$work/jog.bvh" | grep "41 frames at 30 fps" >/dev/null || { echo "FAIL: written BVH does not read back"; exit 1; }
 ls -A "$work" | grep -q "tmp-" && { echo "FAIL: temporary files left"; exit 1; }

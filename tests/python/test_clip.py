@@ -61,6 +61,12 @@ def test_animation_set_equals_the_cli(cli, data, tmp_path):
     other = mg.load_clip(str(data / "bvh/16_01.bvh"))
     with pytest.raises(mg.Error, match="its rig is not 16_15's .*one .glb holds one skeleton"):
         mg.save_animations(str(tmp_path / "mixed.glb"), [motions[0], other])
+    # And read back: each animation of the set is its clip (float32 keys).
+    back = [mg.load_clip(str(tmp_path / "py.glb"), animation=name) for name in ("16_15", "16_35")]
+    for clip, read in zip(motions, back):
+        assert read.name == f"py:{clip.name}" and read.fps == 30 and len(read) == len(clip)
+        order = [read.joint_names.index(n) for n in clip.joint_names]
+        np.testing.assert_allclose(read.positions[:, order], clip.positions, atol=2e-5)
     with pytest.raises(ValueError, match="names: 1 given for 2 motions"):
         mg.save_animations(str(tmp_path / "mixed.glb"), motions, names=["walk"])
     with pytest.raises(mg.Error, match="several motions go into a .glb only"):

@@ -24,6 +24,7 @@
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/common_joints.h"
 #include "motiongraph/motion/forward_kinematics.h"
+#include "motiongraph/motion/gltf_import.h"
 #include "motiongraph/motion/resample.h"
 #include "motiongraph/motion/rig_matching.h"
 #include "motiongraph/motion/up_axis.h"
@@ -40,6 +41,7 @@ struct ClipSpec {
   std::string name;
   std::string cmu_name;            // the file's stem, the key into CMU's index
   ClipLoadSettings load;
+  std::optional<std::string> animation;  // of a glTF file
   std::optional<int> first_frame;  // file numbering, from 1
   std::optional<int> last_frame;
   bool gives_tags = false;         // the manifest decides the tags (no CMU lookup)
@@ -76,6 +78,34 @@ ClipSpec spec_for_file(const fs::path& path, const ClipLoadSettings& load) {
   return spec;
 }
 
+bool is_gltf(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  return ext == ".glb" || ext == ".gltf";
+}
+
+// The clips of a file: one, or one per animation of a glTF file (named FILE:ANIMATION when it
+// has several, as the clip loader names them).
+Status add_file_specs(const fs::path& path, const ClipLoadSettings& load, std::vector<ClipSpec>& specs) {
+  if (!is_gltf(path.string())) {
+    specs.push_back(spec_for_file(path, load));
+    return Ok{};
+  }
+  auto bytes = read_text_file(path.string());
+  if (!bytes) return bytes.error();
+  auto names = gltf_animation_names(*bytes, path.string(), path.parent_path().string());
+  if (!names) return names.error();
+  for (const std::string& animation : *names) {
+    ClipSpec spec = spec_for_file(path, load);
+    spec.animation = animation;
+    if (names->size() > 1) {
+      spec.name = fmt::format("{}:{}", spec.name, animation);
+      spec.cmu_name = animation;  // an animation set of CMU's clips keeps their tags
+    }
+    specs.push_back(std::move(spec));
+  }
+  return Ok{};
+}
+
 Status expand_folder(const std::string& input, const DatabaseSettings& settings, std::vector<ClipSpec>& specs) {
   std::vector<fs::path> clips;
   std::vector<fs::path> asfs;
@@ -83,7 +113,7 @@ Status expand_folder(const std::string& input, const DatabaseSettings& settings,
   for (const auto& entry : fs::directory_iterator(input, ec)) {
     if (!entry.is_regular_file(ec)) continue;
     const std::string ext = lower_extension(entry.path().string());
-    if (ext == ".amc" || ext == ".bvh") clips.push_back(entry.path());
+    if (ext == ".amc" || ext == ".bvh" || ext == ".glb" || ext == ".gltf") clips.push_back(entry.path());
     if (ext == ".asf") asfs.push_back(entry.path());
   }
   if (ec) return Error{input, 0, fmt::format("cannot list the folder: {}", ec.message())};
@@ -93,7 +123,7 @@ Status expand_folder(const std::string& input, const DatabaseSettings& settings,
   };
   std::sort(clips.begin(), clips.end(), by_name);
   std::sort(asfs.begin(), asfs.end(), by_name);
-  if (clips.empty()) return Error{input, 0, "the folder holds no .amc or .bvh files"};
+  if (clips.empty()) return Error{input, 0, "the folder holds no .amc, .bvh, .glb or .gltf files"};
   const bool has_amc =
       std::any_of(clips.begin(), clips.end(), [](const fs::path& p) { return lower_extension(p.string()) == ".amc"; });
   ClipLoadSettings load = default_load_settings(settings);
@@ -105,7 +135,9 @@ Status expand_folder(const std::string& input, const DatabaseSettings& settings,
     }
     load.asf_path = asfs.front().string();
   }
-  for (const fs::path& clip : clips) specs.push_back(spec_for_file(clip, load));
+  for (const fs::path& clip : clips) {
+    if (auto s = add_file_specs(clip, load, specs); !s) return s;
+  }
   return Ok{};
 }
 
@@ -431,7 +463,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
   std::vector<DescribedClip> described;    // clips tagged by their CMU descriptions
   for (size_t spec_index = 0; spec_index < specs.size(); ++spec_index) {
     const ClipSpec& spec = specs[spec_index];
-    auto loaded = loaders.for_settings(spec.load).load(spec.path);
+    auto loaded = loaders.for_settings(spec.load).load(spec.path, spec.animation);
     if (!loaded) return loaded.error();
     // Another converter's names on the first skeleton's hierarchy: the first's names.
     if (!first_skeleton) first_skeleton = loaded->clip.skeleton;
@@ -773,12 +805,12 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
     const std::string ext = lower_extension(input);
     if (ext == ".toml") {
       if (auto s = expand_manifest(input, settings, specs, wide); !s) return s.error();
-    } else if (ext == ".amc" || ext == ".bvh") {
-      specs.push_back(spec_for_file(input, default_load_settings(settings)));
+    } else if (ext == ".amc" || ext == ".bvh" || ext == ".glb" || ext == ".gltf") {
+      if (auto s = add_file_specs(input, default_load_settings(settings), specs); !s) return s.error();
     } else if (ext == ".asf") {
       return Error{input, 0, "an ASF file holds a skeleton only: give its folder, or its AMC files with --asf"};
     } else {
-      return Error{input, 0, "unknown input: expected a folder, a .amc or .bvh clip, or a .toml manifest"};
+      return Error{input, 0, "unknown input: expected a folder, a .amc, .bvh, .glb or .gltf clip, or a .toml manifest"};
     }
   }
 

@@ -6,12 +6,14 @@
 #include <filesystem>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "motiongraph/core/file_extension.h"
 #include "motiongraph/io/amc_parser.h"
 #include "motiongraph/io/bvh_parser.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/bvh_import.h"
+#include "motiongraph/motion/gltf_import.h"
 #include "motiongraph/motion/in_place.h"
 #include "motiongraph/motion/up_axis.h"
 
@@ -58,7 +60,7 @@ Result<std::shared_ptr<const AcclaimRig>> ClipLoader::load_asf(const std::string
   return shared;
 }
 
-Result<LoadedClip> ClipLoader::load(const std::string& path) {
+Result<LoadedClip> ClipLoader::load(const std::string& path, const std::optional<std::string>& animation) {
   if (auto s = settings_.validate(); !s) return s.error();
   const std::string ext = lower_extension(path);
   LoadedClip loaded;
@@ -97,10 +99,45 @@ Result<LoadedClip> ClipLoader::load(const std::string& path) {
     loaded.clip.name = std::move(name);
     loaded.format = "bvh";
     loaded.source_channels = bvh->channel_count;
+  } else if (ext == ".glb" || ext == ".gltf") {
+    // A library reads each animation of a file in turn: the file is read once for all.
+    if (gltf_path_ != path) {
+      auto bytes = read_text_file(path);
+      if (!bytes) return bytes.error();
+      GltfImportSettings import;
+      import.fps_override = settings_.input_fps;
+      import.up_axis = settings_.up_axis;
+      import.base_dir = fs::path(path).parent_path().string();
+      auto read = clips_from_gltf(*bytes, path, import);
+      if (!read) return read.error();
+      gltf_path_ = path;
+      gltf_clips_ = std::move(*read);
+    }
+    const std::vector<Clip>* clips = &gltf_clips_;
+    for (const Clip& clip : *clips) loaded.animations.push_back(clip.name);
+    size_t chosen = 0;
+    if (animation) {
+      const auto it = std::find(loaded.animations.begin(), loaded.animations.end(), *animation);
+      if (it == loaded.animations.end()) {
+        return Error{path, 0, fmt::format("no animation '{}' (the file has {})", *animation,
+                                          fmt::join(loaded.animations, ", "))};
+      }
+      chosen = static_cast<size_t>(it - loaded.animations.begin());
+    }
+    std::string name = std::move(loaded.clip.name);
+    loaded.clip = (*clips)[chosen];
+    // One animation is the file's clip; among several, the animation is named too.
+    loaded.clip.name = clips->size() == 1 ? name : fmt::format("{}:{}", name, loaded.clip.name);
+    loaded.format = "gltf";
+    loaded.animation = static_cast<int>(chosen);
+    loaded.source_channels = 0;
+    for (int j = 0; j < loaded.clip.skeleton.joint_count(); ++j) {
+      loaded.source_channels += loaded.clip.skeleton.translation_slot(j) >= 0 ? 7 : 4;  // a quaternion each
+    }
   } else if (ext == ".asf") {
     return Error{path, 0, "an ASF file holds a skeleton only; give its AMC files"};
   } else {
-    return Error{path, 0, "unknown file type (expected .amc or .bvh)"};
+    return Error{path, 0, "unknown file type (expected .amc, .bvh, .glb or .gltf)"};
   }
   // Either format, standing in y and in metres: its travel over the floor (in_place.h).
   if (auto s = recover_travel(loaded.clip, settings_.travel, settings_.foot_names); !s) {

@@ -1,4 +1,5 @@
-// Loading a clip from files: picks the reader by extension (.amc with its .asf, .bvh), reads
+// Loading a clip from files: picks the reader by extension (.amc with its .asf, .bvh, .glb and
+// .gltf: motion/gltf_import.h), reads
 // the text through io/file.h and builds Skeleton + Motion. Parsed ASF skeletons are cached, so
 // loading many AMC files of one subject reads its ASF once.
 #pragma once
@@ -7,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "motiongraph/core/error.h"
 #include "motiongraph/motion/acclaim_import.h"
@@ -37,7 +39,9 @@ struct ClipLoadSettings {
 
 struct LoadedClip {
   Clip clip;
-  std::string format;         // "amc" or "bvh"
+  std::string format;         // "amc", "bvh" or "gltf"
+  std::vector<std::string> animations;  // a glTF file's, in order
+  int animation = -1;                   // the one read among them
   std::string skeleton_path;  // the ASF used, for AMC
   int source_channels = 0;    // values per frame in the file (its degrees of freedom)
 };
@@ -46,7 +50,9 @@ class ClipLoader {
  public:
   explicit ClipLoader(ClipLoadSettings settings) : settings_(std::move(settings)) {}
 
-  Result<LoadedClip> load(const std::string& path);
+  // `animation`: the one of a glTF file's animations to read (default: its first), sampled at
+  // the rate of its keys unless input_fps gives one.
+  Result<LoadedClip> load(const std::string& path, const std::optional<std::string>& animation = std::nullopt);
   // An ASF file alone: its skeleton, with no frames.
   Result<std::shared_ptr<const AcclaimRig>> load_asf(const std::string& path);
 
@@ -55,6 +61,8 @@ class ClipLoader {
 
   ClipLoadSettings settings_;
   std::map<std::string, std::shared_ptr<const AcclaimRig>> rigs_;
+  std::string gltf_path_;  // the glTF file last read, and its clips
+  std::vector<Clip> gltf_clips_;
 };
 
 constexpr double kCmuCaptureFps = 120.0;

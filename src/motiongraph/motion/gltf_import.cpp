@@ -1,0 +1,504 @@
+#include "motiongraph/motion/gltf_import.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <set>
+
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+#include <tiny_gltf.h>
+
+#include "motiongraph/core/unique_name.h"
+#include "motiongraph/motion/bvh_import.h"
+#include "motiongraph/motion/length_unit.h"
+#include "motiongraph/motion/trajectory_joint.h"
+#include "motiongraph/motion/up_axis.h"
+
+namespace mg {
+
+Status GltfImportSettings::validate() const {
+  if (!(fps_override >= 0.0) || !std::isfinite(fps_override)) {
+    return Error{"", 0, "the frame rate to sample glTF at must be 0 (the keys') or more"};
+  }
+  return Ok{};
+}
+
+namespace {
+
+// A scale within this of 1 is no scale (exporters write 0.99999994).
+constexpr double kUnitScale = 1e-4;
+
+// A node's transform at rest.
+struct Trs {
+  Vec3 translation = Vec3::Zero();
+  Quat rotation = Quat::Identity();
+  Vec3 scale = Vec3::Ones();
+};
+
+std::string node_label(const tinygltf::Model& model, int node) {
+  const std::string& name = model.nodes[static_cast<size_t>(node)].name;
+  return name.empty() ? fmt::format("node {}", node) : fmt::format("node '{}'", name);
+}
+
+Result<Trs> node_trs(const tinygltf::Model& model, int index, const std::string& file) {
+  const tinygltf::Node& node = model.nodes[static_cast<size_t>(index)];
+  Trs out;
+  if (node.matrix.size() == 16) {
+    Eigen::Matrix4d m;
+    for (int c = 0; c < 4; ++c) {
+      for (int r = 0; r < 4; ++r) m(r, c) = node.matrix[static_cast<size_t>(4 * c + r)];
+    }
+    out.translation = m.block<3, 1>(0, 3);
+    Eigen::Matrix3d a = m.block<3, 3>(0, 0);
+    for (int c = 0; c < 3; ++c) out.scale[c] = a.col(c).norm();
+    if (!(out.scale.minCoeff() > 0.0) || a.determinant() < 0.0) {
+      return Error{file, 0, fmt::format("{} has a matrix that is not a rotation and a positive scale",
+                                        node_label(model, index))};
+    }
+    for (int c = 0; c < 3; ++c) a.col(c) /= out.scale[c];
+    out.rotation = Quat(a).normalized();
+    return out;
+  }
+  if (node.translation.size() == 3) out.translation = Vec3(node.translation[0], node.translation[1], node.translation[2]);
+  if (node.rotation.size() == 4) {
+    out.rotation = Quat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]).normalized();
+  }
+  if (node.scale.size() == 3) out.scale = Vec3(node.scale[0], node.scale[1], node.scale[2]);
+  return out;
+}
+
+bool is_uniform(const Vec3& scale) {
+  return scale.minCoeff() > 0.0 && scale.maxCoeff() - scale.minCoeff() <= kUnitScale * scale.maxCoeff();
+}
+
+// An accessor's elements as doubles, `components` each: floats as they are, normalised integers
+// as glTF maps them to [-1, 1] or [0, 1].
+Result<std::vector<double>> accessor_values(const tinygltf::Model& model, int index, int components,
+                                            const std::string& file) {
+  if (index < 0 || index >= static_cast<int>(model.accessors.size())) {
+    return Error{file, 0, fmt::format("accessor {} does not exist", index)};
+  }
+  const tinygltf::Accessor& accessor = model.accessors[static_cast<size_t>(index)];
+  if (accessor.sparse.isSparse) return Error{file, 0, fmt::format("accessor {} is sparse, which is not read", index)};
+  if (tinygltf::GetNumComponentsInType(static_cast<uint32_t>(accessor.type)) != components) {
+    return Error{file, 0, fmt::format("accessor {} has {} components, not {}", index,
+                                      tinygltf::GetNumComponentsInType(static_cast<uint32_t>(accessor.type)), components)};
+  }
+  std::vector<double> out(accessor.count * static_cast<size_t>(components), 0.0);
+  if (accessor.bufferView < 0) return out;  // all zeros, as glTF says
+  const int size = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(accessor.componentType));
+  if (size <= 0) return Error{file, 0, fmt::format("accessor {} has an unknown component type", index)};
+  const tinygltf::BufferView& view = model.bufferViews.at(static_cast<size_t>(accessor.bufferView));
+  const std::vector<unsigned char>& buffer = model.buffers.at(static_cast<size_t>(view.buffer)).data;
+  const size_t stride = view.byteStride > 0 ? view.byteStride : static_cast<size_t>(size * components);
+  const size_t end = std::min(buffer.size(), view.byteOffset + view.byteLength);
+  if (accessor.count > 0 &&
+      view.byteOffset + accessor.byteOffset + (accessor.count - 1) * stride + static_cast<size_t>(size * components) > end) {
+    return Error{file, 0, fmt::format("accessor {} runs past its buffer", index)};
+  }
+  for (size_t i = 0; i < accessor.count; ++i) {
+    const unsigned char* element = buffer.data() + view.byteOffset + accessor.byteOffset + i * stride;
+    for (int c = 0; c < components; ++c) {
+      const unsigned char* p = element + c * size;
+      double v = 0.0;
+      switch (accessor.componentType) {
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+          float f;
+          std::memcpy(&f, p, sizeof f);
+          v = f;
+          break;
+        }
+        case TINYGLTF_COMPONENT_TYPE_BYTE: {
+          int8_t x;
+          std::memcpy(&x, p, 1);
+          v = accessor.normalized ? std::max(x / 127.0, -1.0) : x;
+          break;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+          v = accessor.normalized ? *p / 255.0 : *p;
+          break;
+        case TINYGLTF_COMPONENT_TYPE_SHORT: {
+          int16_t x;
+          std::memcpy(&x, p, 2);
+          v = accessor.normalized ? std::max(x / 32767.0, -1.0) : x;
+          break;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+          uint16_t x;
+          std::memcpy(&x, p, 2);
+          v = accessor.normalized ? x / 65535.0 : x;
+          break;
+        }
+        default:
+          return Error{file, 0, fmt::format("accessor {} has a component type animation cannot use", index)};
+      }
+      if (!std::isfinite(v)) return Error{file, 0, fmt::format("accessor {} holds a value that is not finite", index)};
+      out[i * static_cast<size_t>(components) + static_cast<size_t>(c)] = v;
+    }
+  }
+  return out;
+}
+
+// One animated property of one node.
+struct Track {
+  std::vector<double> times;
+  std::vector<double> values;  // per key: width values (CUBICSPLINE: in-tangent, value, out-tangent)
+  int width = 3;
+  enum class Rule { kLinear, kStep, kCubic } rule = Rule::kLinear;
+
+  Eigen::VectorXd at_key(size_t key, int part) const {
+    const size_t per_key = rule == Rule::kCubic ? 3 * static_cast<size_t>(width) : static_cast<size_t>(width);
+    return Eigen::Map<const Eigen::VectorXd>(values.data() + key * per_key + static_cast<size_t>(part * width), width);
+  }
+  Eigen::VectorXd value(size_t key) const { return at_key(key, rule == Rule::kCubic ? 1 : 0); }
+
+  // The value at time t (before the first key the first, after the last the last).
+  Eigen::VectorXd sample(double t) const {
+    const size_t n = times.size();
+    if (n == 1 || t <= times.front()) return value(0);
+    if (t >= times.back()) return value(n - 1);
+    // A time on a key (to float32's rounding of the key times) is that key's, for STEP's sake.
+    const double on_key = 1e-6 * std::max(1.0, std::abs(t));
+    const size_t k = static_cast<size_t>(std::upper_bound(times.begin(), times.end(), t + on_key) - times.begin()) - 1;
+    if (k >= n - 1) return value(n - 1);
+    const double dt = times[k + 1] - times[k];
+    const double s = dt > 0.0 ? (t - times[k]) / dt : 0.0;
+    switch (rule) {
+      case Rule::kStep:
+        return value(k);
+      case Rule::kCubic: {
+        const double s2 = s * s, s3 = s2 * s;
+        return (2 * s3 - 3 * s2 + 1) * value(k) + (s3 - 2 * s2 + s) * dt * at_key(k, 2) +
+               (-2 * s3 + 3 * s2) * value(k + 1) + (s3 - s2) * dt * at_key(k + 1, 0);
+      }
+      case Rule::kLinear:
+        break;
+    }
+    if (width == 4) {
+      const Eigen::VectorXd a = value(k), b = value(k + 1);
+      const Quat qa(a[3], a[0], a[1], a[2]), qb(b[3], b[0], b[1], b[2]);
+      const Quat q = qa.normalized().slerp(s, qb.normalized());
+      Eigen::VectorXd out(4);
+      out << q.x(), q.y(), q.z(), q.w();
+      return out;
+    }
+    return (1 - s) * value(k) + s * value(k + 1);
+  }
+};
+
+Quat as_quat(const Eigen::VectorXd& v) { return Quat(v[3], v[0], v[1], v[2]).normalized(); }
+Vec3 as_vec3(const Eigen::VectorXd& v) { return Vec3(v[0], v[1], v[2]); }
+
+// The tracks of one animation, by node and path ("translation", "rotation", "scale").
+using Tracks = std::map<std::pair<int, std::string>, Track>;
+
+Result<Tracks> read_tracks(const tinygltf::Model& model, const tinygltf::Animation& animation, const std::string& file) {
+  Tracks tracks;
+  for (const tinygltf::AnimationChannel& channel : animation.channels) {
+    const std::string& path = channel.target_path;
+    if (path == "weights" || channel.target_node < 0) continue;  // morph targets: not a skeleton's
+    if (path != "translation" && path != "rotation" && path != "scale") {
+      return Error{file, 0, fmt::format("animation '{}' animates '{}', which is not read", animation.name, path)};
+    }
+    if (channel.sampler < 0 || channel.sampler >= static_cast<int>(animation.samplers.size())) {
+      return Error{file, 0, fmt::format("animation '{}' has a channel without a sampler", animation.name)};
+    }
+    const tinygltf::AnimationSampler& sampler = animation.samplers[static_cast<size_t>(channel.sampler)];
+    Track track;
+    track.width = path == "rotation" ? 4 : 3;
+    if (sampler.interpolation == "STEP") {
+      track.rule = Track::Rule::kStep;
+    } else if (sampler.interpolation == "CUBICSPLINE") {
+      track.rule = Track::Rule::kCubic;
+    } else if (sampler.interpolation != "LINEAR" && !sampler.interpolation.empty()) {
+      return Error{file, 0, fmt::format("animation '{}': unknown interpolation '{}'", animation.name, sampler.interpolation)};
+    }
+    auto times = accessor_values(model, sampler.input, 1, file);
+    if (!times) return times.error();
+    auto values = accessor_values(model, sampler.output, track.width, file);
+    if (!values) return values.error();
+    track.times = std::move(*times);
+    track.values = std::move(*values);
+    const size_t keys = track.times.size();
+    const size_t per_key = (track.rule == Track::Rule::kCubic ? 3 : 1) * static_cast<size_t>(track.width);
+    if (keys == 0 || track.values.size() != keys * per_key) {
+      return Error{file, 0, fmt::format("animation '{}': the {} of {} has {} keys and {} values", animation.name, path,
+                                        node_label(model, channel.target_node), keys, track.values.size() / track.width)};
+    }
+    if (!std::is_sorted(track.times.begin(), track.times.end())) {
+      return Error{file, 0, fmt::format("animation '{}': the key times of the {} of {} are not in order", animation.name,
+                                        path, node_label(model, channel.target_node))};
+    }
+    tracks[{channel.target_node, path}] = std::move(track);
+  }
+  return tracks;
+}
+
+// The frame rate of the keys: the most common step between two keys (to 10 microseconds).
+double key_rate(const Tracks& tracks) {
+  std::map<long long, std::vector<double>> steps;
+  for (const auto& [target, track] : tracks) {
+    for (size_t k = 1; k < track.times.size(); ++k) {
+      const double step = track.times[k] - track.times[k - 1];
+      if (step > 1e-6) steps[std::llround(step * 1e5)].push_back(step);
+    }
+  }
+  if (steps.empty()) return 30.0;
+  const auto most = std::max_element(steps.begin(), steps.end(),
+                                     [](const auto& a, const auto& b) { return a.second.size() < b.second.size(); });
+  std::vector<double>& bin = most->second;
+  std::nth_element(bin.begin(), bin.begin() + static_cast<long>(bin.size() / 2), bin.end());
+  return fps_from_frame_time(bin[bin.size() / 2]);
+}
+
+// The nodes from the scene's top down to `node`, top first.
+std::vector<int> path_to(const std::vector<int>& parent, int node) {
+  std::vector<int> path;
+  for (int n = node; n >= 0; n = parent[static_cast<size_t>(n)]) path.push_back(n);
+  std::reverse(path.begin(), path.end());
+  return path;
+}
+
+Result<tinygltf::Model> parse(std::string_view bytes, const std::string& file, const std::string& base_dir) {
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string error, warning;
+  bool ok = false;
+  if (bytes.size() >= 4 && bytes.substr(0, 4) == "glTF") {
+    ok = loader.LoadBinaryFromMemory(&model, &error, &warning, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                     static_cast<unsigned>(bytes.size()), base_dir);
+  } else {
+    ok = loader.LoadASCIIFromString(&model, &error, &warning, bytes.data(), static_cast<unsigned>(bytes.size()),
+                                    base_dir);
+  }
+  if (!ok) {
+    std::string first = error.substr(0, error.find('\n'));
+    if (first.empty()) first = "not a glTF 2.0 file";
+    return Error{file, 0, fmt::format("cannot read glTF: {}", first)};
+  }
+  if (model.animations.empty()) return Error{file, 0, "the glTF file has no animation"};
+  return model;
+}
+
+// The animations' names as the clips take them: their own, "animation_N" without one, a name
+// repeated made unique.
+std::vector<std::string> clip_names(const tinygltf::Model& model) {
+  std::vector<std::string> names;
+  for (size_t a = 0; a < model.animations.size(); ++a) {
+    const std::string& name = model.animations[a].name;
+    names.push_back(unique_name(name.empty() ? fmt::format("animation_{}", a + 1) : name, [&](const std::string& n) {
+      return std::find(names.begin(), names.end(), n) != names.end();
+    }));
+  }
+  return names;
+}
+
+}  // namespace
+
+Result<std::vector<std::string>> gltf_animation_names(std::string_view bytes, const std::string& file,
+                                                      const std::string& base_dir) {
+  auto model = parse(bytes, file, base_dir);
+  if (!model) return model.error();
+  return clip_names(*model);
+}
+
+Result<std::vector<Clip>> clips_from_gltf(std::string_view bytes, const std::string& file,
+                                          const GltfImportSettings& settings) {
+  if (auto s = settings.validate(); !s) return Error{file, 0, s.error().message};
+  auto parsed = parse(bytes, file, settings.base_dir);
+  if (!parsed) return parsed.error();
+  const tinygltf::Model& model = *parsed;
+  const std::vector<std::string> names_of_clips = clip_names(model);
+
+  const int node_count = static_cast<int>(model.nodes.size());
+  std::vector<int> parent(static_cast<size_t>(node_count), -1);
+  for (int n = 0; n < node_count; ++n) {
+    for (int child : model.nodes[static_cast<size_t>(n)].children) {
+      if (child < 0 || child >= node_count || parent[static_cast<size_t>(child)] >= 0) {
+        return Error{file, 0, fmt::format("{} has a child that is not a node of one parent", node_label(model, n))};
+      }
+      parent[static_cast<size_t>(child)] = n;
+    }
+  }
+  // The nodes the skeleton must hold: the first skin's joints, or without a skin those moved.
+  std::set<int> wanted;
+  if (!model.skins.empty()) {
+    wanted.insert(model.skins.front().joints.begin(), model.skins.front().joints.end());
+  } else {
+    for (const tinygltf::Animation& animation : model.animations) {
+      for (const auto& channel : animation.channels) {
+        if (channel.target_node >= 0 && channel.target_path != "weights") wanted.insert(channel.target_node);
+      }
+    }
+  }
+  if (wanted.empty()) return Error{file, 0, "the glTF file has no skin and no animated node"};
+  for (int n : wanted) {
+    if (n < 0 || n >= node_count) return Error{file, 0, fmt::format("joint {} is not a node", n)};
+  }
+  // The root: the lowest node above (or among) them all.
+  std::vector<int> common = path_to(parent, *wanted.begin());
+  for (int n : wanted) {
+    const std::vector<int> path = path_to(parent, n);
+    size_t same = 0;
+    while (same < common.size() && same < path.size() && common[same] == path[same]) ++same;
+    common.resize(same);
+  }
+  if (common.empty()) return Error{file, 0, "the skeleton's joints are in separate trees of nodes"};
+  const int root = common.back();
+  std::set<int> in_skeleton;
+  for (int n : wanted) {
+    for (int m = n; m != parent[static_cast<size_t>(root)]; m = parent[static_cast<size_t>(m)]) in_skeleton.insert(m);
+  }
+  // Parents before children: depth first from the root in the children's order.
+  std::vector<int> order;
+  std::vector<int> stack{root};
+  while (!stack.empty()) {
+    const int n = stack.back();
+    stack.pop_back();
+    order.push_back(n);
+    const auto& children = model.nodes[static_cast<size_t>(n)].children;
+    for (auto it = children.rbegin(); it != children.rend(); ++it) {
+      if (in_skeleton.count(*it)) stack.push_back(*it);
+    }
+  }
+  std::map<int, int> joint_of;
+  for (size_t j = 0; j < order.size(); ++j) joint_of[order[j]] = static_cast<int>(j);
+
+  // The nodes above the root, composed: rotation, translation and a uniform scale; with the
+  // root's own (uniform, constant) scale, the scale of every length below it.
+  Quat above_rotation = Quat::Identity();
+  Vec3 above_translation = Vec3::Zero();
+  double above_scale = 1.0;
+  for (size_t i = 0; i + 1 < common.size(); ++i) {
+    auto trs = node_trs(model, common[i], file);
+    if (!trs) return trs.error();
+    if (!is_uniform(trs->scale)) {
+      return Error{file, 0, fmt::format("{} above the skeleton scales unevenly", node_label(model, common[i]))};
+    }
+    above_translation += above_rotation * (above_scale * trs->translation);
+    above_rotation = (above_rotation * trs->rotation).normalized();
+    above_scale *= trs->scale.x();
+  }
+  const int joints = static_cast<int>(order.size());
+  std::vector<Trs> rest(static_cast<size_t>(joints));
+  for (int j = 0; j < joints; ++j) {
+    auto trs = node_trs(model, order[static_cast<size_t>(j)], file);
+    if (!trs) return trs.error();
+    rest[static_cast<size_t>(j)] = *trs;
+  }
+  const double root_scale = rest[0].scale.x();
+  if (!is_uniform(rest[0].scale)) {
+    return Error{file, 0, fmt::format("the root {} scales unevenly", node_label(model, root))};
+  }
+  for (int j = 1; j < joints; ++j) {
+    if ((rest[static_cast<size_t>(j)].scale - Vec3::Ones()).cwiseAbs().maxCoeff() > kUnitScale) {
+      return Error{file, 0, fmt::format("{} is scaled; only the skeleton's root and the nodes above it may be",
+                                        node_label(model, order[static_cast<size_t>(j)]))};
+    }
+  }
+  const double length_scale = above_scale * root_scale;  // of every offset below the root
+
+  // Every animation's tracks, the scale tracks checked.
+  std::vector<Tracks> animations;
+  for (const tinygltf::Animation& animation : model.animations) {
+    auto tracks = read_tracks(model, animation, file);
+    if (!tracks) return tracks.error();
+    for (const auto& [target, track] : *tracks) {
+      if (target.second != "scale" || !joint_of.count(target.first)) continue;
+      const Vec3 at_rest = target.first == root ? rest[0].scale : Vec3::Ones();
+      for (size_t k = 0; k < track.values.size(); k += 3) {
+        const Vec3 s(track.values[k], track.values[k + 1], track.values[k + 2]);
+        if ((s - at_rest).cwiseAbs().maxCoeff() > kUnitScale) {
+          return Error{file, 0, fmt::format("animation '{}' scales {}; the project reads rigid skeletons", animation.name,
+                                            node_label(model, target.first))};
+        }
+      }
+    }
+    animations.push_back(std::move(*tracks));
+  }
+
+  // Rest world rotations (the frames each joint is re-expressed in) and the skeleton: offsets in
+  // the world's axes, position channels where an animation moves a joint's translation.
+  std::vector<Quat> rest_world(static_cast<size_t>(joints));
+  std::vector<JointDef> defs(static_cast<size_t>(joints));
+  std::set<std::string> names;
+  for (int j = 0; j < joints; ++j) {
+    const int node = order[static_cast<size_t>(j)];
+    JointDef& def = defs[static_cast<size_t>(j)];
+    const std::string& name = model.nodes[static_cast<size_t>(node)].name;
+    def.name = unique_name(name.empty() ? fmt::format("joint_{}", j) : name,
+                           [&](const std::string& n) { return names.count(n) > 0; });
+    names.insert(def.name);
+    def.parent = j == 0 ? -1 : joint_of.at(parent[static_cast<size_t>(node)]);
+    const Quat parent_world = j == 0 ? above_rotation : rest_world[static_cast<size_t>(def.parent)];
+    rest_world[static_cast<size_t>(j)] = (parent_world * rest[static_cast<size_t>(j)].rotation).normalized();
+    def.rest_offset_m = j == 0 ? Vec3(above_translation + above_scale * (above_rotation * rest[0].translation))
+                               : Vec3(length_scale * (parent_world * rest[static_cast<size_t>(j)].translation));
+    def.animated_translation = j == 0;
+    for (const Tracks& tracks : animations) {
+      const auto it = tracks.find({node, "translation"});
+      if (it == tracks.end() || def.animated_translation) continue;
+      for (size_t k = 0; k < it->second.values.size() && !def.animated_translation; k += 3) {
+        const Vec3 t(it->second.values[k], it->second.values[k + 1], it->second.values[k + 2]);
+        def.animated_translation = (t - rest[static_cast<size_t>(j)].translation).norm() * length_scale > 1e-6;
+      }
+    }
+  }
+  const Skeleton skeleton(defs);
+
+  std::vector<Clip> clips;
+  for (size_t a = 0; a < animations.size(); ++a) {
+    const Tracks& tracks = animations[a];
+    double first = std::numeric_limits<double>::infinity(), last = -std::numeric_limits<double>::infinity();
+    for (const auto& [target, track] : tracks) {
+      if (!joint_of.count(target.first)) continue;
+      first = std::min(first, track.times.front());
+      last = std::max(last, track.times.back());
+    }
+    if (!std::isfinite(first)) first = last = 0.0;  // moves none of the joints: one frame at rest
+    const double fps = settings.fps_override > 0.0 ? settings.fps_override : key_rate(tracks);
+    const int frames = static_cast<int>(std::llround((last - first) * fps)) + 1;
+    Clip clip;
+    clip.name = names_of_clips[a];
+    clip.skeleton = skeleton;
+    clip.motion = Motion(skeleton, frames, fps);
+    std::vector<const Track*> rotation(static_cast<size_t>(joints)), translation(static_cast<size_t>(joints));
+    for (int j = 0; j < joints; ++j) {
+      const int node = order[static_cast<size_t>(j)];
+      const auto r = tracks.find({node, "rotation"});
+      const auto t = tracks.find({node, "translation"});
+      rotation[static_cast<size_t>(j)] = r == tracks.end() ? nullptr : &r->second;
+      translation[static_cast<size_t>(j)] = t == tracks.end() ? nullptr : &t->second;
+    }
+    for (int f = 0; f < frames; ++f) {
+      const double time = first + f / fps;
+      auto rotations = clip.motion.rotations(f);
+      auto translations = clip.motion.translations(f);
+      for (int j = 0; j < joints; ++j) {
+        const size_t js = static_cast<size_t>(j);
+        const Quat local = rotation[js] ? as_quat(rotation[js]->sample(time)) : rest[js].rotation;
+        const Quat parent_world = j == 0 ? above_rotation : rest_world[static_cast<size_t>(defs[js].parent)];
+        rotations[js] = (parent_world * local * rest_world[js].conjugate()).normalized();
+        const int slot = skeleton.translation_slot(j);
+        if (slot < 0) continue;
+        const Vec3 t = translation[js] ? as_vec3(translation[js]->sample(time)) : rest[js].translation;
+        translations[static_cast<size_t>(slot)] =
+            j == 0 ? Vec3(above_translation + above_scale * (above_rotation * t)) : Vec3(length_scale * (parent_world * t));
+      }
+    }
+    if (settings.fold_static_root) {
+      const double size = figure_size(clip.skeleton, clip.motion);
+      if (auto joint = find_trajectory_joint(clip.skeleton, clip.motion, kStaticRootFraction * size)) {
+        clip = fold_static_root(clip, *joint);
+      }
+    }
+    stand_up(clip, settings.up_axis);
+    clips.push_back(std::move(clip));
+  }
+  return clips;
+}
+
+}  // namespace mg

@@ -1,0 +1,321 @@
+// glTF in: what the project's glTF writer writes reads back to the same world positions (a CMU
+// rig, a static root above the hips, several animations); a rig built here by glTF's rules alone
+// (joints resting turned along their bones, an armature turned and scaled by 0.01 above them,
+// LINEAR, STEP and CUBICSPLINE keys at half the rate sampled) reads where those rules put its
+// joints; and files that cannot be read are one error each.
+#include "motiongraph/motion/gltf_import.h"
+
+#include <cmath>
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+
+#include "motion/static_root_bvh.h"
+#include "motiongraph/export/gltf_writer.h"
+#include "motiongraph/motion/forward_kinematics.h"
+#include "motiongraph/motion/resample.h"
+#include "test_data.h"
+
+namespace mg {
+namespace {
+
+// The largest distance between the joints of two clips named alike, over every frame.
+double max_apart(const Clip& a, const Clip& b) {
+  EXPECT_EQ(a.motion.frame_count, b.motion.frame_count);
+  const std::vector<Vec3> pa = world_positions(a.skeleton, a.motion), pb = world_positions(b.skeleton, b.motion);
+  double worst = 0.0;
+  for (int j = 0; j < a.skeleton.joint_count(); ++j) {
+    const auto k = b.skeleton.find(a.skeleton.joint(j).name);
+    if (!k) {
+      ADD_FAILURE() << "no joint " << a.skeleton.joint(j).name;
+      continue;
+    }
+    for (int f = 0; f < std::min(a.motion.frame_count, b.motion.frame_count); ++f) {
+      worst = std::max(worst, (pa[static_cast<size_t>(f * a.skeleton.joint_count() + j)] -
+                               pb[static_cast<size_t>(f * b.skeleton.joint_count() + *k)]).norm());
+    }
+  }
+  return worst;
+}
+
+std::vector<Clip> read_back(const std::string& bytes, const GltfImportSettings& settings = {}) {
+  auto clips = clips_from_gltf(bytes, "test.glb", settings);
+  EXPECT_TRUE(clips) << clips.error().message;
+  return clips ? std::move(*clips) : std::vector<Clip>();
+}
+
+TEST(GltfImport, OurOwnFileReadsBackToTheSameJointsAndRate) {
+  const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
+  auto bytes = write_glb(clip.skeleton, clip.motion, "walk");
+  ASSERT_TRUE(bytes);
+  const std::vector<Clip> clips = read_back(*bytes);
+  ASSERT_EQ(clips.size(), 1u);
+  EXPECT_EQ(clips[0].name, "walk");
+  EXPECT_EQ(clips[0].motion.fps, clip.motion.fps);  // 120, from float32 key times
+  EXPECT_EQ(clips[0].skeleton.joint_count(), clip.skeleton.joint_count());
+  EXPECT_LT(max_apart(clip, clips[0]), 2e-5);  // float32 keys
+  EXPECT_EQ(clips[0].skeleton.translated_joints().size(), 1u);
+}
+
+TEST(GltfImport, AStaticRootAboveTheHipsIsFoldedAsForBvh) {
+  const Clip plain = test::load_data_clip("cmu/16/16_15.amc");
+  const Clip clip = test::import_bvh(test::static_root_bvh(plain, Vec3(0.3, 0.0, -0.2)));
+  ASSERT_FALSE(clip.skeleton.static_ancestors().empty());
+  auto bytes = write_glb(clip.skeleton, clip.motion, "walk");
+  ASSERT_TRUE(bytes);
+  const std::vector<Clip> clips = read_back(*bytes);
+  ASSERT_EQ(clips.size(), 1u);
+  EXPECT_EQ(clips[0].skeleton.joint(0).name, clip.skeleton.joint(0).name);  // the hips, travelling
+  EXPECT_EQ(clips[0].skeleton.static_ancestors().size(), clip.skeleton.static_ancestors().size());
+  EXPECT_LT(max_apart(clip, clips[0]), 2e-5);
+}
+
+TEST(GltfImport, EveryAnimationIsAClipOnOneSkeleton) {
+  const Clip walk = test::load_data_clip("cmu/16/16_15.amc");
+  const Clip jog = test::load_data_clip("cmu/16/16_35.amc");
+  const Motion jog30 = *resample(jog.motion, 30.0);
+  const std::vector<GltfAnimation> set{{"walk", &walk.motion}, {"jog", &jog30}, {"walk", &walk.motion}};
+  auto bytes = write_glb(walk.skeleton, set);
+  ASSERT_TRUE(bytes);
+  const std::vector<Clip> clips = read_back(*bytes);
+  ASSERT_EQ(clips.size(), 3u);
+  EXPECT_EQ(clips[1].name, "jog");
+  EXPECT_EQ(clips[1].motion.fps, 30.0);
+  Clip jog_at30 = jog;
+  jog_at30.motion = jog30;
+  EXPECT_LT(max_apart(jog_at30, clips[1]), 2e-5);
+  // The writer named the third "walk_2" (names repeat in no glTF file it writes).
+  EXPECT_EQ(clips[2].name, "walk_2");
+  // A rate given samples between the keys.
+  GltfImportSettings at60;
+  at60.fps_override = 60.0;
+  const std::vector<Clip> resampled = read_back(*bytes, at60);
+  EXPECT_EQ(resampled[1].motion.fps, 60.0);
+  EXPECT_EQ(resampled[1].motion.frame_count, 2 * jog30.frame_count - 1);
+}
+
+// --- A rig built by glTF's rules alone ---
+
+struct Built {
+  tinygltf::Model model;
+  std::vector<uint8_t>& buffer() { return model.buffers[0].data; }
+
+  Built() { model.buffers.emplace_back(); model.asset.version = "2.0"; }
+
+  int floats(const std::vector<float>& values, int type) {
+    const size_t offset = buffer().size();
+    buffer().resize(offset + values.size() * sizeof(float));
+    std::memcpy(buffer().data() + offset, values.data(), values.size() * sizeof(float));
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = offset;
+    view.byteLength = values.size() * sizeof(float);
+    model.bufferViews.push_back(view);
+    tinygltf::Accessor accessor;
+    accessor.bufferView = static_cast<int>(model.bufferViews.size()) - 1;
+    accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    accessor.type = type;
+    accessor.count = values.size() / static_cast<size_t>(tinygltf::GetNumComponentsInType(static_cast<uint32_t>(type)));
+    if (type == TINYGLTF_TYPE_SCALAR) {
+      accessor.minValues = {*std::min_element(values.begin(), values.end())};
+      accessor.maxValues = {*std::max_element(values.begin(), values.end())};
+    }
+    model.accessors.push_back(accessor);
+    return static_cast<int>(model.accessors.size()) - 1;
+  }
+
+  std::string glb() {
+    tinygltf::TinyGLTF writer;
+    std::ostringstream out;
+    EXPECT_TRUE(writer.WriteGltfSceneToStream(&model, out, false, true));
+    return out.str();
+  }
+};
+
+Quat turn(double degrees, const Vec3& axis) { return Quat(Eigen::AngleAxisd(degrees * M_PI / 180.0, axis.normalized())); }
+
+// An armature (turned 30 degrees about y, scaled 0.01: lengths in centimetres) above a chain
+// hips -> thigh -> shin -> foot whose joints rest turned along the bones (each +y down the leg,
+// as Blender makes bones), and a spine. Keys every 1/15 s for 1 s: the hips travel and turn
+// (LINEAR), the thigh swings (LINEAR), the shin kicks (STEP), the foot turns by CUBICSPLINE.
+struct Rig {
+  Built built;
+  std::vector<Vec3> t;  // rest translations, by node
+  std::vector<Quat> r;  // rest rotations
+  std::vector<int> parent;
+  static constexpr int kKeys = 16;
+  static constexpr double kKeyRate = 15.0;
+
+  static Quat hips_turn(double s) { return turn(40.0 * s, Vec3::UnitY()); }
+  static Vec3 hips_at(double s) { return Vec3(10.0 * s, 95.0 + 3.0 * std::sin(6 * s), 120.0 * s); }
+  static Quat thigh_swing(double s) { return turn(180.0, Vec3::UnitZ()) * turn(35.0 * std::sin(5 * s), Vec3::UnitX()); }
+  static Quat shin_kick(int key) { return turn(key % 2 ? 20.0 : 5.0, Vec3::UnitX()); }
+  static Quat foot_turn(int key) { return turn(90.0, Vec3::UnitX()) * turn(4.0 * key, Vec3::UnitZ()); }
+
+  Rig() {
+    // Nodes: 0 armature, 1 hips, 2 thigh, 3 shin, 4 foot, 5 spine, 6 mesh-less extra under the scene.
+    t = {Vec3(1, 0, 2), Vec3(0, 95, 0), Vec3(10, -5, 0), Vec3(0, 45, 0), Vec3(0, 42, 0), Vec3(0, 20, 0)};
+    r = {turn(30, Vec3::UnitY()), Quat::Identity(), turn(180, Vec3::UnitZ()), Quat::Identity(), turn(90, Vec3::UnitX()),
+         turn(10, Vec3(1, 0, 1))};
+    parent = {-1, 0, 1, 2, 3, 1};
+    const char* names[] = {"Armature", "Hips", "Thigh", "Shin", "Foot", "Spine"};
+    for (size_t n = 0; n < t.size(); ++n) {
+      tinygltf::Node node;
+      node.name = names[n];
+      node.translation = {t[n].x(), t[n].y(), t[n].z()};
+      node.rotation = {r[n].x(), r[n].y(), r[n].z(), r[n].w()};
+      if (n == 0) node.scale = {0.01, 0.01, 0.01};
+      built.model.nodes.push_back(node);
+    }
+    for (size_t n = 1; n < t.size(); ++n) built.model.nodes[static_cast<size_t>(parent[n])].children.push_back(static_cast<int>(n));
+    tinygltf::Skin skin;
+    skin.joints = {1, 2, 3, 4, 5};
+    built.model.skins.push_back(skin);
+    tinygltf::Scene scene;
+    scene.nodes = {0};
+    built.model.scenes.push_back(scene);
+    built.model.defaultScene = 0;
+
+    std::vector<float> times, hips_t, hips_r, thigh_r, shin_r, foot_r;
+    const auto push_q = [](std::vector<float>& out, const Quat& q) {
+      out.insert(out.end(), {static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()), static_cast<float>(q.w())});
+    };
+    for (int k = 0; k < kKeys; ++k) {
+      const double s = k / kKeyRate;
+      times.push_back(static_cast<float>(s));
+      const Vec3 p = hips_at(s);
+      hips_t.insert(hips_t.end(), {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())});
+      push_q(hips_r, hips_turn(s));
+      push_q(thigh_r, thigh_swing(s));
+      push_q(shin_r, shin_kick(k));
+      // CUBICSPLINE: in-tangent, value, out-tangent (zero tangents).
+      push_q(foot_r, Quat(0, 0, 0, 0));
+      push_q(foot_r, foot_turn(k));
+      push_q(foot_r, Quat(0, 0, 0, 0));
+    }
+    const int input = built.floats(times, TINYGLTF_TYPE_SCALAR);
+    tinygltf::Animation animation;
+    animation.name = "kick";
+    const auto track = [&](int node, const char* path, const std::vector<float>& values, int type, const char* rule) {
+      tinygltf::AnimationSampler sampler;
+      sampler.input = input;
+      sampler.output = built.floats(values, type);
+      sampler.interpolation = rule;
+      animation.samplers.push_back(sampler);
+      tinygltf::AnimationChannel channel;
+      channel.sampler = static_cast<int>(animation.samplers.size()) - 1;
+      channel.target_node = node;
+      channel.target_path = path;
+      animation.channels.push_back(channel);
+    };
+    track(1, "translation", hips_t, TINYGLTF_TYPE_VEC3, "LINEAR");
+    track(1, "rotation", hips_r, TINYGLTF_TYPE_VEC4, "LINEAR");
+    track(2, "rotation", thigh_r, TINYGLTF_TYPE_VEC4, "LINEAR");
+    track(3, "rotation", shin_r, TINYGLTF_TYPE_VEC4, "STEP");
+    track(4, "rotation", foot_r, TINYGLTF_TYPE_VEC4, "CUBICSPLINE");
+    built.model.animations.push_back(animation);
+  }
+
+  // World positions (metres) of nodes 1..5 at time s, by glTF's rules: local = T R S, the
+  // animated values at exact keys (every second frame at 30 fps) or between them as each rule says.
+  std::vector<Vec3> world_at(int frame_at_30) const {
+    const double s = frame_at_30 / 30.0;
+    const int key = frame_at_30 / 2;
+    const bool between = frame_at_30 % 2 == 1;
+    std::vector<Vec3> tt = t;
+    std::vector<Quat> rr = r;
+    if (!between) {
+      tt[1] = hips_at(s);
+      rr[1] = hips_turn(s);
+      rr[2] = thigh_swing(s);
+    } else {
+      const double s0 = key / kKeyRate, s1 = (key + 1) / kKeyRate;
+      tt[1] = 0.5 * (hips_at(s0) + hips_at(s1));
+      rr[1] = hips_turn(s0).slerp(0.5, hips_turn(s1));
+      rr[2] = thigh_swing(s0).slerp(0.5, thigh_swing(s1));
+    }
+    rr[3] = shin_kick(key);  // STEP: the key before
+    // Hermite with zero tangents at s = 1/2: the mean of the two values, renormalised.
+    rr[4] = between ? Quat((0.5 * (foot_turn(key).coeffs() + foot_turn(key + 1).coeffs())).normalized())
+                    : foot_turn(key);
+    std::vector<Eigen::Affine3d> world(t.size());
+    for (size_t n = 0; n < t.size(); ++n) {
+      Eigen::Affine3d local = Eigen::Translation3d(tt[n]) * rr[n];
+      if (n == 0) local = local * Eigen::Scaling(0.01);
+      world[n] = n == 0 ? local : world[static_cast<size_t>(parent[n])] * local;
+    }
+    std::vector<Vec3> out;
+    for (size_t n = 1; n < t.size(); ++n) out.push_back(world[n].translation());
+    return out;
+  }
+};
+
+TEST(GltfImport, ARigRestingTurnedUnderAScaledArmatureReadsWhereGltfPutsItsJoints) {
+  Rig rig;
+  GltfImportSettings at30;
+  at30.fps_override = 30.0;
+  at30.up_axis = UpAxis::kY;
+  const std::vector<Clip> clips = read_back(rig.built.glb(), at30);
+  ASSERT_EQ(clips.size(), 1u);
+  const Clip& clip = clips[0];
+  EXPECT_EQ(clip.name, "kick");
+  ASSERT_EQ(clip.skeleton.joint_count(), 5);
+  EXPECT_EQ(clip.skeleton.joint(0).name, "Hips");
+  EXPECT_EQ(clip.motion.frame_count, 2 * (Rig::kKeys - 1) + 1);
+  const std::vector<Vec3> positions = world_positions(clip.skeleton, clip.motion);
+  double worst = 0.0;
+  for (int f = 0; f < clip.motion.frame_count; ++f) {
+    const std::vector<Vec3> want = rig.world_at(f);
+    for (int j = 0; j < 5; ++j) worst = std::max(worst, (positions[static_cast<size_t>(f * 5 + j)] - want[static_cast<size_t>(j)]).norm());
+  }
+  EXPECT_LT(worst, 1e-5);  // float32 keys, metres
+  // Re-expressed on its rest pose: every joint at rest has the identity rotation, its offset the
+  // rest offset in the world's axes (the shin 0.45 m straight down from the knee: the thigh
+  // rests turned 180 degrees, and the armature's 30-degree turn is in the hips' frame).
+  const Vec3 shin = clip.skeleton.joint(*clip.skeleton.find("Shin")).rest_offset_m;
+  EXPECT_LT((shin - Vec3(0, -0.45, 0)).norm(), 1e-9) << shin.transpose();
+  // The keys' own rate without a rate given.
+  GltfImportSettings own;
+  own.up_axis = UpAxis::kY;
+  const std::vector<Clip> at_keys = read_back(rig.built.glb(), own);
+  EXPECT_EQ(at_keys[0].motion.fps, Rig::kKeyRate);
+  EXPECT_EQ(at_keys[0].motion.frame_count, Rig::kKeys);
+}
+
+TEST(GltfImport, FilesThatCannotBeReadAreOneErrorEach) {
+  const auto message = [](const std::string& bytes) {
+    auto clips = clips_from_gltf(bytes, "bad.glb", {});
+    EXPECT_FALSE(clips);
+    return clips ? std::string() : clips.error().file + ": " + clips.error().message;
+  };
+  EXPECT_NE(message(std::string("glTF\x02\0\0\0garbage", 15)).find("bad.glb: cannot read glTF"), std::string::npos);
+  EXPECT_NE(message("{\"asset\": {\"version\": \"2.0\"}}").find("has no animation"), std::string::npos);
+  Rig scaled;
+  scaled.built.model.nodes[3].scale = {1.0, 2.0, 1.0};
+  EXPECT_NE(message(scaled.built.glb()).find("node 'Shin' is scaled"), std::string::npos);
+  Rig squashed;
+  squashed.built.model.nodes[0].scale = {0.01, 0.02, 0.01};
+  EXPECT_NE(message(squashed.built.glb()).find("node 'Armature' above the skeleton scales unevenly"), std::string::npos);
+  Rig scale_track;
+  {
+    tinygltf::Animation& animation = scale_track.built.model.animations[0];
+    tinygltf::AnimationSampler sampler = animation.samplers[0];
+    std::vector<float> scales;
+    for (int k = 0; k < Rig::kKeys; ++k) scales.insert(scales.end(), {1.0f, 1.0f + 0.1f * k, 1.0f});
+    sampler.output = scale_track.built.floats(scales, TINYGLTF_TYPE_VEC3);
+    animation.samplers.push_back(sampler);
+    tinygltf::AnimationChannel channel;
+    channel.sampler = static_cast<int>(animation.samplers.size()) - 1;
+    channel.target_node = 2;
+    channel.target_path = "scale";
+    animation.channels.push_back(channel);
+  }
+  EXPECT_NE(message(scale_track.built.glb()).find("animation 'kick' scales node 'Thigh'"), std::string::npos);
+  GltfImportSettings negative;
+  negative.fps_override = -1.0;
+  EXPECT_FALSE(clips_from_gltf(Rig().built.glb(), "x.glb", negative));
+}
+
+}  // namespace
+}  // namespace mg
