@@ -24,7 +24,11 @@ void define_exceptions(py::module_& m) {
 
 void raise_error(const Error& error, const nlohmann::json& report) {
   PyObject* type = error.kind == ErrorKind::kEmptyGraph ? empty_graph_type : error_type;
-  py::object instance = py::reinterpret_borrow<py::object>(type)(error.to_string());
+  // The message as text, bytes that are not UTF-8 (a Latin-1 joint or file name) as U+FFFD.
+  const std::string message = error.to_string();
+  const py::object text =
+      py::reinterpret_steal<py::object>(PyUnicode_DecodeUTF8(message.data(), static_cast<Py_ssize_t>(message.size()), "replace"));
+  py::object instance = py::reinterpret_borrow<py::object>(type)(text);
   instance.attr("report") = report.is_null() ? py::none() : to_python(report);
   PyErr_SetObject(type, instance.ptr());
   throw py::error_already_set();

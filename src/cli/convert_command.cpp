@@ -25,7 +25,7 @@
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/foot_contacts.h"
-#include "motiongraph/motion/rig_matching.h"
+#include "motiongraph/skeleton/foot_joints.h"
 #include "motiongraph/motion/resample.h"
 #include "motiongraph/synthesis/facing.h"
 
@@ -123,6 +123,12 @@ int convert_animation_set(const ConvertOptions& options, const ClipLoadSettings&
   for (const std::string& input : options.inputs) {
     auto clip = read_clip(options, loader, input);
     if (!clip) return fail(clip.error());
+    // Feet named must be there, as for one clip.
+    if (!load.foot_names.empty()) {
+      if (auto feet = find_foot_joints(clip->skeleton, load.foot_names); !feet) {
+        return fail(Error{input, 0, feet.error().message});
+      }
+    }
     clips.push_back(std::move(*clip));
   }
   std::vector<NamedMotion> motions;
@@ -132,14 +138,6 @@ int convert_animation_set(const ConvertOptions& options, const ClipLoadSettings&
                        &clip.motion,
                        options.output.root_motion ? learn_clip_forward_axis(clip.skeleton, clip.motion, load.foot_names)
                                                   : Vec3::UnitZ()});
-  }
-  for (size_t i = 1; i < clips.size(); ++i) {
-    if (auto why = rig_difference(clips[0].skeleton, clips[i].skeleton)) {
-      return fail(Error{options.inputs[i], 0,
-                        fmt::format("its rig is not {}'s ({}): one .glb holds one skeleton (a folder of them is read "
-                                    "as build reads a library, every clip on one rig)",
-                                    options.inputs[0], *why)});
-    }
   }
   for (const std::string& output : options.outputs) {
     if (auto s = write_animation_set(output, motions, options.output.settings()); !s) return fail(s.error());
@@ -213,8 +211,10 @@ Command add_convert_command(CLI::App& app) {
                   "A library's skeleton to play every clip on, as synthesis plays them: rotations kept, translations "
                   "scaled by the legs' lengths (default: the first clip's)")
       ->check(CLI::NonNegativeNumber);
-  sub->add_option("-o,--output", options->outputs, "Output file, .bvh, .glb (binary glTF 2.0) or .json; repeat for several (read once)")
-      ->required();
+  sub->add_option("-o,--output", options->outputs,
+                  "Output file, .bvh, .glb (binary glTF 2.0) or .json; repeat -o for several (read once)")
+      ->required()
+      ->allow_extra_args(false);  // one file each: inputs may follow it
   sub->add_option("--fps", options->fps, "Resample to this frame rate (slerp rotations, lerp translations)")
       ->check(CLI::Range(0.01, 10000.0));
   options->output.add_to(*sub);

@@ -139,11 +139,16 @@ if "$bin" convert "$data/cmu/16/16_15.amc" "$data/cmu/16/16_35.amc" -o "$work/se
 fi
 [[ $(wc -l <"$work/set.err") -eq 1 && ! -e "$work/set.bvh" ]] && grep -q "set.bvh: several clips go into a .glb only" "$work/set.err" \
   || { echo "FAIL: several clips into a BVH"; cat "$work/set.err"; exit 1; }
+if "$bin" convert "$data/cmu/16/16_15.amc" "$data/cmu/16/16_35.amc" --feet LeftAnkle,,, -o "$work/feet.glb" 2>"$work/feet.err"; then
+  echo "FAIL: feet that are not there were accepted"; exit 1
+fi
+[[ $(wc -l <"$work/feet.err") -eq 1 && ! -e "$work/feet.glb" ]] && grep -q "16_15.amc: .*LeftAnkle" "$work/feet.err" \
+  || { echo "FAIL: --feet with several clips"; cat "$work/feet.err"; exit 1; }
 if "$bin" convert "$data/cmu/16/16_15.amc" "$data/bvh/16_01.bvh" -o "$work/mixed.glb" 2>"$work/mixed.err"; then
   echo "FAIL: clips of two rigs went into one file"; exit 1
 fi
 [[ $(grep -vc "info:" "$work/mixed.err") -eq 1 && ! -e "$work/mixed.glb" ]] \
-  && grep -q "16_01.bvh: its rig is not .*16_15.amc's (joint 0 is 'root' there, 'hip' here): one .glb holds one skeleton (a folder" "$work/mixed.err" \
+  && grep -q "16_01.bvh: its rig is not .*16_15.amc's (joint 0 is 'root' there, 'hip' here): one .glb holds one skeleton (a library read as one" "$work/mixed.err" \
   || { echo "FAIL: clips of two rigs"; cat "$work/mixed.err"; exit 1; }
 # A library (a folder): every clip as build reads it, an animation each; BVH of three converters
 # (other names, another rest pose) in one folder are read on one rig, each clip played on the

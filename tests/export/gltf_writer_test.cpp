@@ -318,7 +318,9 @@ TEST(GltfWriter, WithoutFramesOrMeshTheSkeletonIsStillWritten) {
   no_mesh.bone_mesh = false;
   const Glb skeleton_only = written(clip.skeleton, clip.motion, no_mesh);
   EXPECT_TRUE(skeleton_only.model.meshes.empty());
-  EXPECT_TRUE(skeleton_only.model.skins.empty());  // no skin without a mesh it deforms
+  // The skin stays: it makes the nodes a skeleton (Blender's armature).
+  ASSERT_EQ(skeleton_only.model.skins.size(), 1u);
+  EXPECT_EQ(skeleton_only.model.skins[0].joints.size(), static_cast<size_t>(clip.skeleton.joint_count()));
   EXPECT_EQ(skeleton_only.model.animations.size(), 1u);
   EXPECT_LT(max_world_error(skeleton_only, clip.skeleton, clip.motion), 1e-5);
   const Glb still = written(clip.skeleton, clip.motion.slice(0, 0));

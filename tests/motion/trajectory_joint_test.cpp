@@ -120,6 +120,32 @@ TEST(TrajectoryJoint, UnfoldThenFoldIsTheIdentity) {
   EXPECT_EQ(folded.skeleton.joint_count(), clip.skeleton.joint_count());
 }
 
+// A held pose of the rig stays unfolded (its hips never travel); folded as a clip of the rig
+// that travels is, the two share a skeleton and the pose keeps every joint where it was. A clip
+// of another rig, or one already folded, is left as it is.
+TEST(TrajectoryJoint, AHeldPoseFoldsAsItsRigsTravellingClips) {
+  const Clip plain = test::load_data_clip("cmu/16/16_35.amc");
+  const Clip walk = import_bvh(test::static_root_bvh(plain, kRoots[1].translation_m, kRoots[1].rotation));
+  ASSERT_EQ(walk.skeleton.static_ancestors().size(), 1u);
+  Clip pose = plain;
+  pose.motion = plain.motion.slice(40, 5);
+  for (int f = 1; f < pose.motion.frame_count; ++f) {
+    for (int j = 0; j < plain.skeleton.joint_count(); ++j) pose.motion.rotations(f)[j] = pose.motion.rotations(0)[j];
+    pose.motion.translations(f)[0] = pose.motion.translations(0)[0];
+  }
+  const Clip held = import_bvh(test::static_root_bvh(pose, kRoots[1].translation_m, kRoots[1].rotation));
+  ASSERT_TRUE(held.skeleton.static_ancestors().empty());
+  ASSERT_EQ(held.skeleton.joint_count(), walk.skeleton.joint_count() + 1);
+  const Clip refolded = fold_as(held, walk.skeleton);
+  EXPECT_EQ(refolded.skeleton.joint_count(), walk.skeleton.joint_count());
+  EXPECT_EQ(refolded.skeleton.joint(0).name, walk.skeleton.joint(0).name);
+  EXPECT_EQ(refolded.skeleton.static_ancestors().size(), 1u);
+  EXPECT_LT(test::max_position_error_by_name(refolded, held), 1e-9);
+  // Already folded, or not the rig: as it is.
+  EXPECT_EQ(fold_as(walk, walk.skeleton).skeleton.joint_count(), walk.skeleton.joint_count());
+  EXPECT_EQ(fold_as(plain, walk.skeleton).skeleton.joint_count(), plain.skeleton.joint_count());
+}
+
 TEST(TrajectoryJoint, NoFoldWhenTheRootTravelsOrTheStaticRootHasNoTravellingChild) {
   // CMU data: the root is the hips and travels.
   const Clip plain = test::load_data_clip("cmu/16/16_15.amc");

@@ -122,10 +122,10 @@ def glb_json(path):
 
 
 def assert_bare_glb(bare, figured):
-    """The glTF without its stick figure has the same joints and animation, and no mesh or skin."""
+    """The glTF without its stick figure has the same joints, skin and animation, and no mesh."""
     without, with_figure = glb_json(bare), glb_json(figured)
-    assert "meshes" in with_figure and "skins" in with_figure
-    assert "meshes" not in without and "skins" not in without
+    assert "meshes" in with_figure and "meshes" not in without
+    assert without["skins"][0]["joints"] == with_figure["skins"][0]["joints"]
     joints = [n["name"] for n in with_figure["nodes"] if "mesh" not in n]
     assert [n["name"] for n in without["nodes"]] == joints
     assert len(without["animations"][0]["channels"]) == len(with_figure["animations"][0]["channels"])

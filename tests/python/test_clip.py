@@ -67,6 +67,12 @@ def test_animation_set_equals_the_cli(cli, data, tmp_path):
         assert read.name == f"py:{clip.name}" and read.fps == 30 and len(read) == len(clip)
         order = [read.joint_names.index(n) for n in clip.joint_names]
         np.testing.assert_allclose(read.positions[:, order], clip.positions, atol=2e-5)
+    # A message naming a joint whose name is not UTF-8 (Latin-1) is still motiongraph.Error.
+    latin1 = tmp_path / "latin1.bvh"
+    latin1.write_bytes((data / "bvh/16_01.bvh").read_bytes().replace(b"lfemur", b"Oberschenkel\xfc"))
+    with pytest.raises(mg.Error, match="'Oberschenkel\ufffd' here"):
+        mg.save_animations(str(tmp_path / "mixed.glb"), [mg.load_clip(str(data / "bvh/16_01.bvh")),
+                                                         mg.load_clip(str(latin1))])
     with pytest.raises(ValueError, match="names: 1 given for 2 motions"):
         mg.save_animations(str(tmp_path / "mixed.glb"), motions, names=["walk"])
     with pytest.raises(mg.Error, match="several motions go into a .glb only"):

@@ -141,7 +141,9 @@ Result<std::string> write_glb(const Skeleton& skeleton, std::span<const GltfAnim
   for (const GltfAnimation& a : animations) {
     if (a.name.empty()) return Error{"", 0, "a glTF animation needs a name"};
     if (!a.motion) return Error{"", 0, fmt::format("glTF animation '{}' has no motion", a.name)};
-    if (auto s = check_fits(skeleton, *a.motion); !s) return s.error();
+    if (auto s = check_fits(skeleton, *a.motion); !s) {
+      return Error{"", 0, fmt::format("animation '{}': {}", a.name, s.error().message)};
+    }
     if (a.motion->frame_count > 0) played.push_back(&a);
   }
   // The rest pose's translations: the first animation's first frame's.
@@ -200,59 +202,63 @@ Result<std::string> write_glb(const Skeleton& skeleton, std::span<const GltfAnim
   scene.name = "motiongraph";
   scene.nodes.push_back(0);
 
-  // The skin, only with a mesh to deform (a skin no mesh uses is an unused object to glTF).
+  // The stick figure's bones: none when not asked for, or when no bone is 1 mm long.
+  std::vector<float> positions, normals, weights;
+  std::vector<uint16_t> joints;
   if (settings.bone_mesh) {
-    std::vector<float> positions, normals, weights;
-    std::vector<uint16_t> joints;
     for (int j = 1; j < joint_count; ++j) {
       const int parent = first_joint + skeleton.parent(j);
       const Vec3 head = bind[parent].translation(), tail = bind[first_joint + j].translation();
       if ((tail - head).norm() < 1e-3) continue;  // no bone to draw
       add_bone(head, tail, static_cast<uint16_t>(parent), positions, normals, joints, weights);
     }
-    if (!positions.empty()) {
-      tinygltf::Skin skin;
-      skin.name = "skeleton";
-      skin.skeleton = 0;
-      std::vector<float> inverse_binds;
-      for (int n = 0; n < node_count; ++n) {
-        skin.joints.push_back(n);
-        const Eigen::Matrix4d inverse = bind[n].inverse().matrix();
-        for (int c = 0; c < 4; ++c) {
-          for (int r = 0; r < 4; ++r) inverse_binds.push_back(static_cast<float>(inverse(r, c)));  // column-major
-        }
+  }
+  // The skin: what makes the nodes a skeleton to Blender (an armature) and to engines, with or
+  // without a figure for it to deform.
+  {
+    tinygltf::Skin skin;
+    skin.name = "skeleton";
+    skin.skeleton = 0;
+    std::vector<float> inverse_binds;
+    for (int n = 0; n < node_count; ++n) {
+      skin.joints.push_back(n);
+      const Eigen::Matrix4d inverse = bind[n].inverse().matrix();
+      for (int c = 0; c < 4; ++c) {
+        for (int r = 0; r < 4; ++r) inverse_binds.push_back(static_cast<float>(inverse(r, c)));  // column-major
       }
-      skin.inverseBindMatrices = buffer.floats(inverse_binds, TINYGLTF_TYPE_MAT4, 16);
-      model.skins.push_back(std::move(skin));
-      tinygltf::Material material;
-      material.name = "bone";
-      material.pbrMetallicRoughness.baseColorFactor = {0.8, 0.8, 0.8, 1.0};
-      material.pbrMetallicRoughness.metallicFactor = 0.0;
-      material.pbrMetallicRoughness.roughnessFactor = 0.8;
-      model.materials.push_back(std::move(material));
-      tinygltf::Primitive primitive;
-      primitive.mode = TINYGLTF_MODE_TRIANGLES;
-      primitive.material = 0;
-      primitive.attributes["POSITION"] =
-          buffer.floats(positions, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER);
-      primitive.attributes["NORMAL"] = buffer.floats(normals, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER);
-      primitive.attributes["JOINTS_0"] =
-          buffer.unsigned_shorts(joints, TINYGLTF_TYPE_VEC4, 4, TINYGLTF_TARGET_ARRAY_BUFFER);
-      primitive.attributes["WEIGHTS_0"] =
-          buffer.floats(weights, TINYGLTF_TYPE_VEC4, 4, TINYGLTF_TARGET_ARRAY_BUFFER);
-      tinygltf::Mesh mesh;
-      mesh.name = "stick_figure";
-      mesh.primitives.push_back(std::move(primitive));
-      model.meshes.push_back(std::move(mesh));
-      tinygltf::Node node;
-      node.name = unique_name("stick_figure", [&](const std::string& n) {
-        return std::any_of(model.nodes.begin(), model.nodes.end(), [&](const tinygltf::Node& other) { return other.name == n; });
-      });
-      node.mesh = 0;
-      node.skin = 0;
-      model.nodes.push_back(std::move(node));
-      scene.nodes.push_back(static_cast<int>(model.nodes.size()) - 1);
     }
+    skin.inverseBindMatrices = buffer.floats(inverse_binds, TINYGLTF_TYPE_MAT4, 16);
+    model.skins.push_back(std::move(skin));
+  }
+  if (!positions.empty()) {
+    tinygltf::Material material;
+    material.name = "bone";
+    material.pbrMetallicRoughness.baseColorFactor = {0.8, 0.8, 0.8, 1.0};
+    material.pbrMetallicRoughness.metallicFactor = 0.0;
+    material.pbrMetallicRoughness.roughnessFactor = 0.8;
+    model.materials.push_back(std::move(material));
+    tinygltf::Primitive primitive;
+    primitive.mode = TINYGLTF_MODE_TRIANGLES;
+    primitive.material = 0;
+    primitive.attributes["POSITION"] =
+        buffer.floats(positions, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER);
+    primitive.attributes["NORMAL"] = buffer.floats(normals, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER);
+    primitive.attributes["JOINTS_0"] =
+        buffer.unsigned_shorts(joints, TINYGLTF_TYPE_VEC4, 4, TINYGLTF_TARGET_ARRAY_BUFFER);
+    primitive.attributes["WEIGHTS_0"] =
+        buffer.floats(weights, TINYGLTF_TYPE_VEC4, 4, TINYGLTF_TARGET_ARRAY_BUFFER);
+    tinygltf::Mesh mesh;
+    mesh.name = "stick_figure";
+    mesh.primitives.push_back(std::move(primitive));
+    model.meshes.push_back(std::move(mesh));
+    tinygltf::Node node;
+    node.name = unique_name("stick_figure", [&](const std::string& n) {
+      return std::any_of(model.nodes.begin(), model.nodes.end(), [&](const tinygltf::Node& other) { return other.name == n; });
+    });
+    node.mesh = 0;
+    node.skin = 0;
+    model.nodes.push_back(std::move(node));
+    scene.nodes.push_back(static_cast<int>(model.nodes.size()) - 1);
   }
   model.scenes.push_back(std::move(scene));
   model.defaultScene = 0;

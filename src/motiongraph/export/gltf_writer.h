@@ -12,13 +12,16 @@
 // Each node's local transform is the skeleton's (skeleton.h: Translate(t_j) * Rotate(L_j)), so a
 // glTF reader finds the same world positions as forward kinematics. The rest pose the nodes hold
 // without the animation (the skin's bind pose) has every rotation at identity, the rest offsets,
-// the animated translations of the first frame, and the root over the origin at its first
-// frame's height. Names that are not valid UTF-8 get U+FFFD for the bytes that are not.
+// the animated translations of the first animation's first frame, and the root over the origin
+// at its first frame's height. Names that are not valid UTF-8 get U+FFFD for the bytes that are
+// not. The joints are a skin's, which is what makes them a skeleton (Blender's armature, an
+// engine's Skeleton) rather than loose nodes.
 //
 // A skeleton alone shows as nothing in most viewers and engines, so the file also carries a stick
 // figure skinned to the joints: an octahedral bone from each joint to each of its children (as
 // Blender draws bones), bound rigidly to the parent joint (a rig with no bone 1 mm long or more
-// gets neither mesh nor skin).
+// gets none). Without it (bone_mesh false) the skin is used by no mesh, which the Khronos
+// validator notes (an info, not an error).
 #pragma once
 
 #include <span>

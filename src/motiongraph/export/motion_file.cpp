@@ -9,6 +9,7 @@
 #include "motiongraph/export/gltf_writer.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/rig_matching.h"
+#include "motiongraph/motion/trajectory_joint.h"
 
 namespace mg {
 
@@ -66,11 +67,36 @@ Status write_animation_set(const std::string& path, std::span<const NamedMotion>
   if (auto s = settings.validate(); !s) return Error{path, 0, s.error().message};
   if (motions.empty()) return Error{path, 0, "no motion to write"};
   for (const NamedMotion& m : motions) {
-    if (auto why = rig_difference(*motions.front().skeleton, *m.skeleton)) {
-      return Error{m.source, 0,
-                   fmt::format("its rig is not {}'s ({}): one .glb holds one skeleton", motions.front().source, *why)};
+    if (m.motion->frame_count == 0) return Error{m.source, 0, "has no frames: an animation needs one"};
+  }
+  // A held pose of a rig with a static root above the hips did not fold it (its hips never
+  // travel): folded as the clips that did, it is their rig (motion/trajectory_joint.h).
+  std::vector<NamedMotion> same(motions.begin(), motions.end());
+  std::vector<Clip> refolded;
+  refolded.reserve(same.size());
+  const auto folded = std::find_if(same.begin(), same.end(),
+                                   [](const NamedMotion& m) { return !m.skeleton->static_ancestors().empty(); });
+  if (folded != same.end()) {
+    const Skeleton reference = *folded->skeleton;
+    for (NamedMotion& m : same) {
+      if (m.skeleton->static_ancestors().size() >= reference.static_ancestors().size()) continue;
+      Clip clip;
+      clip.skeleton = *m.skeleton;
+      clip.motion = *m.motion;
+      refolded.push_back(fold_as(clip, reference));
+      m.skeleton = &refolded.back().skeleton;
+      m.motion = &refolded.back().motion;
     }
   }
+  for (const NamedMotion& m : same) {
+    if (auto why = rig_difference(*same.front().skeleton, *m.skeleton)) {
+      return Error{m.source, 0,
+                   fmt::format("its rig is not {}'s ({}): one .glb holds one skeleton (a library read as one puts "
+                               "its clips on one rig: convert FOLDER, Python's load_library)",
+                               same.front().source, *why)};
+    }
+  }
+  motions = same;
   // With root motion, each motion on its own skeleton with the joint added (the same rig again).
   std::vector<RootMotionClip> added;
   if (const auto& root_motion = settings.root_motion) {

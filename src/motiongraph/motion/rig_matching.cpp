@@ -114,7 +114,9 @@ std::optional<std::string> rig_difference(const Skeleton& reference, const Skele
     const StaticAncestor& a = ancestors_a[i];
     const StaticAncestor& b = ancestors_b[i];
     if (a.name != b.name) return fmt::format("the static joint above the root is '{}' there, '{}' here", a.name, b.name);
-    if (!((a.translation_m - b.translation_m).norm() <= kSameOffsetM) || a.rotation.angularDistance(b.rotation) > 1e-6) {
+    // A static root is folded where it moves less than about 3 mm and 0.5 degrees over a clip,
+    // keeping its first frame: two clips' folds of one rig differ by as much.
+    if (!((a.translation_m - b.translation_m).norm() <= 0.005) || a.rotation.angularDistance(b.rotation) > 0.02) {
       return fmt::format("the static joint '{}' above the root stands elsewhere", a.name);
     }
   }

@@ -32,8 +32,8 @@ std::optional<std::string> hierarchy_mismatch(const Skeleton& reference, const S
 
 // Why `other` is not the same rig as `reference` (nullopt when it is), so that one file can hold
 // both's motion on one skeleton: the same hierarchy (hierarchy_mismatch) with the same names and
-// position channels, the same static ancestors, and every offset that no channel animates (the
-// bones) within 0.1 mm.
+// position channels, every offset that no channel animates (the bones) within 0.1 mm, and the
+// same static ancestors (within 5 mm and about 1 degree: the fold keeps a clip's first frame).
 std::optional<std::string> rig_difference(const Skeleton& reference, const Skeleton& other);
 
 // The clip with its joints named as `reference`'s (the same hierarchy: hierarchy_mismatch is

@@ -60,6 +60,23 @@ std::optional<int> find_trajectory_joint(const Skeleton& skeleton, const Motion&
   return std::nullopt;
 }
 
+Clip fold_as(const Clip& clip, const Skeleton& folded) {
+  const auto have = clip.skeleton.static_ancestors();
+  const auto want = folded.static_ancestors();
+  if (have.size() >= want.size()) return clip;
+  const size_t extra = want.size() - have.size();
+  const std::optional<int> joint = clip.skeleton.find(folded.joint(0).name);
+  if (!joint || *joint != static_cast<int>(extra)) return clip;
+  for (size_t i = 0; i < want.size(); ++i) {
+    const std::string& name = i < have.size() ? have[i].name : clip.skeleton.joint(static_cast<int>(i - have.size())).name;
+    if (name != want[i].name) return clip;
+  }
+  for (size_t j = 1; j < extra; ++j) {
+    if (clip.skeleton.parent(static_cast<int>(j)) != static_cast<int>(j) - 1) return clip;  // a chain
+  }
+  return fold_static_root(clip, *joint);
+}
+
 Clip fold_static_root(const Clip& clip, int trajectory_joint) {
   const Skeleton& skeleton = clip.skeleton;
   const Motion& motion = clip.motion;

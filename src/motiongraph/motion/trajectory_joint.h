@@ -29,6 +29,12 @@ std::optional<int> find_trajectory_joint(const Skeleton& skeleton, const Motion&
 // The clip with `trajectory_joint` (from find_trajectory_joint) as joint 0, as above.
 Clip fold_static_root(const Clip& clip, int trajectory_joint);
 
+// The clip folded as `folded` (a clip of the same rig) is: when the clip's first joints are the
+// ones `folded` has as static ancestors and it did not fold (a held pose, whose hips never
+// travel), it is folded above the joint named as folded's joint 0, so that the two share a
+// skeleton; otherwise the clip as it is.
+Clip fold_as(const Clip& clip, const Skeleton& folded);
+
 // The inverse: the skeleton's static ancestors as joints again (the root first, each with its
 // constant transform; the root with animated translation), joint 0 below them with its local
 // transform in the file's hierarchy. Returns the clip unchanged when there are none.

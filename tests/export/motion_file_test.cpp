@@ -1,0 +1,82 @@
+// An animation set written by write_animation_set reads back (motion/gltf_import.h) to each of
+// its motions, a held pose of a static-root rig folded as the rig's travelling clips are; a
+// motion without frames, another rig, or another format is an error naming what is wrong.
+#include "motiongraph/export/motion_file.h"
+
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "motion/static_root_bvh.h"
+#include "motiongraph/io/file.h"
+#include "motiongraph/motion/gltf_import.h"
+#include "motiongraph/motion/trajectory_joint.h"
+#include "test_data.h"
+
+namespace mg {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct TempDir {
+  fs::path path = fs::temp_directory_path() / fs::path("motion_file_test_" + std::to_string(::getpid()));
+  TempDir() { fs::create_directories(path); }
+  ~TempDir() { fs::remove_all(path); }
+};
+
+TEST(AnimationSet, AHeldPoseOfAStaticRootRigJoinsItsTravellingClips) {
+  const Clip plain = test::load_data_clip("cmu/16/16_35.amc");
+  const Clip walk = test::import_bvh(test::static_root_bvh(plain));
+  Clip pose = plain;
+  pose.motion = plain.motion.slice(40, 4);
+  for (int f = 1; f < pose.motion.frame_count; ++f) {
+    for (int j = 0; j < plain.skeleton.joint_count(); ++j) pose.motion.rotations(f)[j] = pose.motion.rotations(0)[j];
+    pose.motion.translations(f)[0] = pose.motion.translations(0)[0];
+  }
+  const Clip held = test::import_bvh(test::static_root_bvh(pose));
+  ASSERT_NE(held.skeleton.joint_count(), walk.skeleton.joint_count());  // not folded
+  TempDir dir;
+  const std::string out = (dir.path / "set.glb").string();
+  const std::vector<NamedMotion> set{{"walk.bvh", "walk", &walk.skeleton, &walk.motion},
+                                     {"pose.bvh", "pose", &held.skeleton, &held.motion}};
+  for (const bool root_motion : {false, true}) {
+    MotionFileSettings settings;
+    if (root_motion) settings.root_motion = RootMotionOutput{};
+    ASSERT_TRUE(write_animation_set(out, set, settings));
+    auto bytes = read_text_file(out);
+    ASSERT_TRUE(bytes);
+    auto clips = clips_from_gltf(*bytes, out, {});
+    ASSERT_TRUE(clips) << clips.error().message;
+    ASSERT_EQ(clips->size(), 2u);
+    EXPECT_LT(test::max_position_error_by_name(walk, (*clips)[0]), 2e-5) << root_motion;
+    // Every joint where it was (but the static root, which becomes the root-motion joint).
+    EXPECT_LT(test::max_position_error_by_name(fold_as(held, walk.skeleton), (*clips)[1]), 2e-5) << root_motion;
+  }
+}
+
+TEST(AnimationSet, NoFramesAnotherRigOrFormatIsAnErrorAndNoFile) {
+  const Clip walk = test::load_data_clip("cmu/16/16_15.amc");
+  const Clip other = test::load_data_clip("bvh/16_01.bvh");
+  const Motion none = walk.motion.slice(0, 0);
+  TempDir dir;
+  const std::string out = (dir.path / "set.glb").string();
+  const auto message = [&](const std::string& path, const std::vector<NamedMotion>& set) {
+    const Status s = write_animation_set(path, set);
+    EXPECT_FALSE(s);
+    EXPECT_FALSE(fs::exists(path));
+    return s ? std::string() : s.error().to_string();
+  };
+  EXPECT_NE(message(out, {{"a.amc", "a", &walk.skeleton, &walk.motion}, {"empty.amc", "e", &walk.skeleton, &none}})
+                .find("empty.amc: has no frames"),
+            std::string::npos);
+  EXPECT_NE(message(out, {{"a.amc", "a", &walk.skeleton, &walk.motion}, {"b.bvh", "b", &other.skeleton, &other.motion}})
+                .find("b.bvh: its rig is not a.amc's"),
+            std::string::npos);
+  EXPECT_NE(message((dir.path / "set.bvh").string(), {{"a.amc", "a", &walk.skeleton, &walk.motion}})
+                .find("several motions go into a .glb only"),
+            std::string::npos);
+  EXPECT_NE(message(out, {}).find("no motion to write"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace mg
