@@ -30,7 +30,7 @@ max_len=65536
 CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja \
   -DMOTIONGRAPH_FUZZ=ON -DMOTIONGRAPH_SANITIZE=address,undefined \
   -DMOTIONGRAPH_TESTS=OFF -DMOTIONGRAPH_BENCHMARKS=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
-targets=(asf amc bvh manifest floor_path control_script graph_file)
+targets=(asf amc bvh gltf manifest floor_path control_script graph_file)
 cmake --build "$build" --target "${targets[@]/#/fuzz_}"
 
 # --- seed corpora --------------------------------------------------------------------------
@@ -83,6 +83,9 @@ printf '{"controls": [{"at_s": 0, "heading": "west"}]}\n' >"$build/corpus-contro
 MOTIONGRAPH_FUZZ_GRAPH_SEED="$build/corpus-graph_file/two-clips.mgraph" \
   MOTIONGRAPH_FUZZ_CLIPS="$root/data/cmu/16/16_35.amc,$root/data/cmu/16/16_39.amc" "$build/fuzz/fuzz_graph_file"
 head -c 16384 "$build/corpus-graph_file/two-clips.mgraph" >"$build/corpus-graph_file/two-clips.16k"
+# glTF files of the first frames of two clips, and the two as one animation set.
+MOTIONGRAPH_FUZZ_GLTF_SEED="$build/corpus-gltf" \
+  MOTIONGRAPH_FUZZ_CLIPS="$root/data/cmu/16/16_35.amc,$root/data/cmu/16/16_39.amc" "$build/fuzz/fuzz_gltf"
 
 # --- run -----------------------------------------------------------------------------------
 export MOTIONGRAPH_FUZZ_ASF="$root/data/cmu/16/16.asf"  # fuzz_amc's skeleton

@@ -31,6 +31,10 @@ namespace {
 // A scale within this of 1 is no scale (exporters write 0.99999994).
 constexpr double kUnitScale = 1e-4;
 
+// The most frames an animation is sampled to (9 hours at 30 fps): key times far apart, or a
+// rate far above the keys', would otherwise ask for more memory than a machine has.
+constexpr int kMaxFrames = 1'000'000;
+
 // A node's transform at rest.
 struct Trs {
   Vec3 translation = Vec3::Zero();
@@ -460,7 +464,12 @@ Result<std::vector<Clip>> clips_from_gltf(std::string_view bytes, const std::str
     }
     if (!std::isfinite(first)) first = last = 0.0;  // moves none of the joints: one frame at rest
     const double fps = settings.fps_override > 0.0 ? settings.fps_override : key_rate(tracks);
-    const int frames = static_cast<int>(std::llround((last - first) * fps)) + 1;
+    const double span = (last - first) * fps;
+    if (!(span < kMaxFrames)) {
+      return Error{file, 0, fmt::format("animation '{}' would be {:.0f} frames ({:g} s at {:g} fps), more than the {} "
+                                        "read", names_of_clips[a], span + 1, last - first, fps, kMaxFrames)};
+    }
+    const int frames = static_cast<int>(std::llround(span)) + 1;
     Clip clip;
     clip.name = names_of_clips[a];
     clip.skeleton = skeleton;

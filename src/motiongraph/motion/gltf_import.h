@@ -14,10 +14,10 @@
 //
 // Animations are sampled at one rate: the rate of their keys (the most common step between two
 // keys, snapped to a whole number of frames per second within 1e-4), or `fps_override`, from
-// their first key to their last, by their samplers' rules (LINEAR: lerp, and slerp for
-// rotations; STEP; CUBICSPLINE: Hermite, renormalised). A joint an animation does not move holds
-// its rest transform. Scale other than 1 on a joint (or animated) is an error, as are morph
-// weights alone: the project reads rigid skeletons.
+// their first key to their last (at most 1 000 000 frames), by their samplers' rules (LINEAR:
+// lerp, and slerp for rotations; STEP; CUBICSPLINE: Hermite, renormalised). A joint an animation
+// does not move holds its rest transform. Scale other than 1 on a joint (or animated) is an
+// error; morph weights are not read: the project reads rigid skeletons.
 //
 // Then, as for BVH: a static root above the travelling hips is folded away (trajectory_joint.h),
 // and a file whose figure lies along z is turned y up unless `up_axis` says (up_axis.h).
