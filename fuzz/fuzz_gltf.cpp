@@ -44,17 +44,17 @@ void write_seeds(const std::string& folder, const std::string& clips) {
 
 }  // namespace
 
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  const char* folder = std::getenv("MOTIONGRAPH_FUZZ_GLTF_SEED");
+  const char* clips = std::getenv("MOTIONGRAPH_FUZZ_CLIPS");
+  if (folder != nullptr && clips != nullptr) {
+    write_seeds(folder, clips);
+    std::exit(0);
+  }
+  return 0;
+}
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const bool seeded = [] {
-    const char* folder = std::getenv("MOTIONGRAPH_FUZZ_GLTF_SEED");
-    const char* clips = std::getenv("MOTIONGRAPH_FUZZ_CLIPS");
-    if (folder && clips) {
-      write_seeds(folder, clips);
-      std::exit(0);
-    }
-    return true;
-  }();
-  (void)seeded;
   mg::GltfImportSettings settings;
   settings.base_dir = "/nonexistent-motiongraph-fuzz";
   auto clips = mg::clips_from_gltf(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.glb", settings);

@@ -312,6 +312,21 @@ TEST(GltfImport, FilesThatCannotBeReadAreOneErrorEach) {
     animation.channels.push_back(channel);
   }
   EXPECT_NE(message(scale_track.built.glb()).find("animation 'kick' scales node 'Thigh'"), std::string::npos);
+  // Indices and sizes the file gets wrong: no crash, one error each.
+  Rig no_view;
+  no_view.built.model.accessors[0].bufferView = 99;
+  EXPECT_NE(message(no_view.built.glb()).find("accessor 0 names buffer view 99, which does not exist"), std::string::npos);
+  Rig too_many;
+  too_many.built.model.accessors[1].count = size_t{1} << 61;
+  EXPECT_NE(message(too_many.built.glb()).find("accessor 1 runs past its buffer"), std::string::npos);
+  Rig far_apart;
+  {
+    std::vector<float> times(Rig::kKeys);
+    for (int k = 0; k < Rig::kKeys; ++k) times[static_cast<size_t>(k)] = k == Rig::kKeys - 1 ? 1e9f : k / 15.0f;
+    const int input = far_apart.built.floats(times, TINYGLTF_TYPE_SCALAR);
+    for (auto& sampler : far_apart.built.model.animations[0].samplers) sampler.input = input;
+  }
+  EXPECT_NE(message(far_apart.built.glb()).find("animation 'kick' would be"), std::string::npos);
   GltfImportSettings negative;
   negative.fps_override = -1.0;
   EXPECT_FALSE(clips_from_gltf(Rig().built.glb(), "x.glb", negative));

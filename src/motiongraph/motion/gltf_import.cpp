@@ -34,6 +34,8 @@ constexpr double kUnitScale = 1e-4;
 // The most frames an animation is sampled to (9 hours at 30 fps): key times far apart, or a
 // rate far above the keys', would otherwise ask for more memory than a machine has.
 constexpr int kMaxFrames = 1'000'000;
+// And the most joint poses (frames x joints: 1.6 GB of rotations).
+constexpr double kMaxSamples = 5e7;
 
 // A node's transform at rest.
 struct Trs {
@@ -43,6 +45,7 @@ struct Trs {
 };
 
 std::string node_label(const tinygltf::Model& model, int node) {
+  if (node < 0 || node >= static_cast<int>(model.nodes.size())) return fmt::format("node {}", node);
   const std::string& name = model.nodes[static_cast<size_t>(node)].name;
   return name.empty() ? fmt::format("node {}", node) : fmt::format("node '{}'", name);
 }
@@ -91,22 +94,38 @@ Result<std::vector<double>> accessor_values(const tinygltf::Model& model, int in
     return Error{file, 0, fmt::format("accessor {} has {} components, not {}", index,
                                       tinygltf::GetNumComponentsInType(static_cast<uint32_t>(accessor.type)), components)};
   }
-  std::vector<double> out(accessor.count * static_cast<size_t>(components), 0.0);
-  if (accessor.bufferView < 0) return out;  // all zeros, as glTF says
+  if (accessor.bufferView < 0) {  // all zeros, as glTF says
+    if (accessor.count > static_cast<size_t>(kMaxFrames) * 4) {
+      return Error{file, 0, fmt::format("accessor {} holds {} zeros, more than any animation reads", index, accessor.count)};
+    }
+    return std::vector<double>(accessor.count * static_cast<size_t>(components), 0.0);
+  }
   const int size = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(accessor.componentType));
   if (size <= 0) return Error{file, 0, fmt::format("accessor {} has an unknown component type", index)};
-  const tinygltf::BufferView& view = model.bufferViews.at(static_cast<size_t>(accessor.bufferView));
-  const std::vector<unsigned char>& buffer = model.buffers.at(static_cast<size_t>(view.buffer)).data;
-  const size_t stride = view.byteStride > 0 ? view.byteStride : static_cast<size_t>(size * components);
-  const size_t end = std::min(buffer.size(), view.byteOffset + view.byteLength);
-  if (accessor.count > 0 &&
-      view.byteOffset + accessor.byteOffset + (accessor.count - 1) * stride + static_cast<size_t>(size * components) > end) {
+  if (accessor.bufferView >= static_cast<int>(model.bufferViews.size())) {
+    return Error{file, 0, fmt::format("accessor {} names buffer view {}, which does not exist", index, accessor.bufferView)};
+  }
+  const tinygltf::BufferView& view = model.bufferViews[static_cast<size_t>(accessor.bufferView)];
+  if (view.buffer < 0 || view.buffer >= static_cast<int>(model.buffers.size())) {
+    return Error{file, 0, fmt::format("buffer view {} names buffer {}, which does not exist", accessor.bufferView, view.buffer)};
+  }
+  const std::vector<unsigned char>& buffer = model.buffers[static_cast<size_t>(view.buffer)].data;
+  const size_t element = static_cast<size_t>(size * components);
+  const size_t stride = view.byteStride > 0 ? view.byteStride : element;
+  const size_t end = view.byteLength <= buffer.size() && view.byteOffset <= buffer.size() - view.byteLength
+                         ? view.byteOffset + view.byteLength
+                         : 0;
+  const size_t start = view.byteOffset + accessor.byteOffset;
+  // In size_t without overflow: the last element ends within the view, which lies in the buffer.
+  if (accessor.count > 0 && (end == 0 || start < view.byteOffset || start > end || end - start < element ||
+                             (accessor.count - 1) > (end - start - element) / stride)) {
     return Error{file, 0, fmt::format("accessor {} runs past its buffer", index)};
   }
+  std::vector<double> out(accessor.count * static_cast<size_t>(components), 0.0);
   for (size_t i = 0; i < accessor.count; ++i) {
-    const unsigned char* element = buffer.data() + view.byteOffset + accessor.byteOffset + i * stride;
+    const unsigned char* at = buffer.data() + start + i * stride;
     for (int c = 0; c < components; ++c) {
-      const unsigned char* p = element + c * size;
+      const unsigned char* p = at + c * size;
       double v = 0.0;
       switch (accessor.componentType) {
         case TINYGLTF_COMPONENT_TYPE_FLOAT: {
@@ -465,9 +484,10 @@ Result<std::vector<Clip>> clips_from_gltf(std::string_view bytes, const std::str
     if (!std::isfinite(first)) first = last = 0.0;  // moves none of the joints: one frame at rest
     const double fps = settings.fps_override > 0.0 ? settings.fps_override : key_rate(tracks);
     const double span = (last - first) * fps;
-    if (!(span < kMaxFrames)) {
-      return Error{file, 0, fmt::format("animation '{}' would be {:.0f} frames ({:g} s at {:g} fps), more than the {} "
-                                        "read", names_of_clips[a], span + 1, last - first, fps, kMaxFrames)};
+    if (!(span < kMaxFrames) || (span + 1) * joints > kMaxSamples) {
+      return Error{file, 0, fmt::format("animation '{}' would be {:.0f} frames of {} joints ({:g} s at {:g} fps), more "
+                                        "than motiongraph reads ({} frames, {:g} joint poses)",
+                                        names_of_clips[a], span + 1, joints, last - first, fps, kMaxFrames, kMaxSamples)};
     }
     const int frames = static_cast<int>(std::llround(span)) + 1;
     Clip clip;
