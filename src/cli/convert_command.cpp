@@ -193,7 +193,7 @@ int run_convert(const ConvertOptions& options) {
 Command add_convert_command(CLI::App& app) {
   auto options = std::make_shared<ConvertOptions>();
   CLI::App* sub = app.add_subcommand(
-      "convert", "Convert an AMC or BVH clip to BVH (metres), to binary glTF (.glb: the skeleton, its animation and "
+      "convert", "Convert an AMC, BVH or glTF clip to BVH (metres), to binary glTF (.glb: the skeleton, its animation and "
                  "a stick figure skinned to it, in metres; several clips of one rig make one file, an animation each) or to "
                  "JSON world positions "
                  "({\"fps\", \"joints\": [{\"name\", \"parent\"}], \"positions\": [frame][joint][x,y,z], "

@@ -118,9 +118,10 @@ int run_info(const InfoOptions& options) {
     if (loaded->format == "amc") unit = "the ASF's units";
     if (loaded->format == "gltf") unit = "metres (glTF's)";
     if (clip.detected_unit) unit = unit_description(*clip.detected_unit) + " (chosen by its size; --scale overrides)";
-    const std::string up = clip.detected_up_axis ? up_axis_description(*clip.detected_up_axis) +
-                                                       " (chosen by its shape; --up-axis overrides)"
-                                                 : options.load.up_axis + " (--up-axis)";
+    std::string up = clip.detected_up_axis ? up_axis_description(*clip.detected_up_axis) +
+                                                 " (chosen by its shape; --up-axis overrides)"
+                                           : options.load.up_axis + " (--up-axis)";
+    if (loaded->format == "gltf" && options.load.up_axis.empty()) up = "y (glTF's; --up-axis z turns it)";
     std::string static_joints;
     for (const StaticAncestor& a : clip.skeleton.static_ancestors()) {
       static_joints += (static_joints.empty() ? "" : ", ") + a.name;
@@ -203,7 +204,7 @@ Command add_info_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("info", "Summarise skeletons and clips: joints, dofs, frames, fps, "
                                              "duration, floor extent (metres), up axis, feet; or a library "
                                              "(folders, manifests) as build reads it: its clips, tags and feet.");
-  sub->add_option("FILE", options->files, "ASF, AMC or BVH files (an AMC uses the .asf given with it, --asf, "
+  sub->add_option("FILE", options->files, "ASF, AMC, BVH or glTF (.glb, .gltf) files (an AMC uses the .asf given with it, --asf, "
                                           "or the only .asf in its folder); or clip folders and .toml "
                                           "manifests, summarised together as one library")
       ->required()

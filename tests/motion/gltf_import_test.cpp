@@ -148,12 +148,16 @@ struct Rig {
   static constexpr double kKeyRate = 15.0;
 
   static Quat hips_turn(double s) { return turn(40.0 * s, Vec3::UnitY()); }
+  // Blender's object animation: the armature itself moved and turned.
+  static Vec3 armature_at(double s) { return Vec3(1.0 + 2.0 * s, 0.0, 2.0 - s); }
+  static Quat armature_turn(double s) { return turn(30.0 + 50.0 * s, Vec3::UnitY()); }
+  bool armature_moves = false;
   static Vec3 hips_at(double s) { return Vec3(10.0 * s, 95.0 + 3.0 * std::sin(6 * s), 120.0 * s); }
   static Quat thigh_swing(double s) { return turn(180.0, Vec3::UnitZ()) * turn(35.0 * std::sin(5 * s), Vec3::UnitX()); }
   static Quat shin_kick(int key) { return turn(key % 2 ? 20.0 : 5.0, Vec3::UnitX()); }
   static Quat foot_turn(int key) { return turn(90.0, Vec3::UnitX()) * turn(4.0 * key, Vec3::UnitZ()); }
 
-  Rig() {
+  explicit Rig(bool move_armature = false) : armature_moves(move_armature) {
     // Nodes: 0 armature, 1 hips, 2 thigh, 3 shin, 4 foot, 5 spine, 6 mesh-less extra under the scene.
     t = {Vec3(1, 0, 2), Vec3(0, 95, 0), Vec3(10, -5, 0), Vec3(0, 45, 0), Vec3(0, 42, 0), Vec3(0, 20, 0)};
     r = {turn(30, Vec3::UnitY()), Quat::Identity(), turn(180, Vec3::UnitZ()), Quat::Identity(), turn(90, Vec3::UnitX()),
@@ -177,7 +181,7 @@ struct Rig {
     built.model.scenes.push_back(scene);
     built.model.defaultScene = 0;
 
-    std::vector<float> times, hips_t, hips_r, thigh_r, shin_r, foot_r;
+    std::vector<float> times, hips_t, hips_r, thigh_r, shin_r, foot_r, armature_t, armature_r;
     const auto push_q = [](std::vector<float>& out, const Quat& q) {
       out.insert(out.end(), {static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()), static_cast<float>(q.w())});
     };
@@ -187,6 +191,9 @@ struct Rig {
       const Vec3 p = hips_at(s);
       hips_t.insert(hips_t.end(), {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())});
       push_q(hips_r, hips_turn(s));
+      const Vec3 a = armature_at(s);
+      armature_t.insert(armature_t.end(), {static_cast<float>(a.x()), static_cast<float>(a.y()), static_cast<float>(a.z())});
+      push_q(armature_r, armature_turn(s));
       push_q(thigh_r, thigh_swing(s));
       push_q(shin_r, shin_kick(k));
       // CUBICSPLINE: in-tangent, value, out-tangent (zero tangents).
@@ -214,6 +221,10 @@ struct Rig {
     track(2, "rotation", thigh_r, TINYGLTF_TYPE_VEC4, "LINEAR");
     track(3, "rotation", shin_r, TINYGLTF_TYPE_VEC4, "STEP");
     track(4, "rotation", foot_r, TINYGLTF_TYPE_VEC4, "CUBICSPLINE");
+    if (armature_moves) {
+      track(0, "translation", armature_t, TINYGLTF_TYPE_VEC3, "LINEAR");
+      track(0, "rotation", armature_r, TINYGLTF_TYPE_VEC4, "LINEAR");
+    }
     built.model.animations.push_back(animation);
   }
 
@@ -229,11 +240,16 @@ struct Rig {
       tt[1] = hips_at(s);
       rr[1] = hips_turn(s);
       rr[2] = thigh_swing(s);
+      if (armature_moves) tt[0] = armature_at(s), rr[0] = armature_turn(s);
     } else {
       const double s0 = key / kKeyRate, s1 = (key + 1) / kKeyRate;
       tt[1] = 0.5 * (hips_at(s0) + hips_at(s1));
       rr[1] = hips_turn(s0).slerp(0.5, hips_turn(s1));
       rr[2] = thigh_swing(s0).slerp(0.5, thigh_swing(s1));
+      if (armature_moves) {
+        tt[0] = 0.5 * (armature_at(s0) + armature_at(s1));
+        rr[0] = armature_turn(s0).slerp(0.5, armature_turn(s1));
+      }
     }
     rr[3] = shin_kick(key);  // STEP: the key before
     // Hermite with zero tangents at s = 1/2: the mean of the two values, renormalised.
@@ -251,17 +267,9 @@ struct Rig {
   }
 };
 
-TEST(GltfImport, ARigRestingTurnedUnderAScaledArmatureReadsWhereGltfPutsItsJoints) {
-  Rig rig;
-  GltfImportSettings at30;
-  at30.fps_override = 30.0;
-  at30.up_axis = UpAxis::kY;
-  const std::vector<Clip> clips = read_back(rig.built.glb(), at30);
-  ASSERT_EQ(clips.size(), 1u);
-  const Clip& clip = clips[0];
-  EXPECT_EQ(clip.name, "kick");
-  ASSERT_EQ(clip.skeleton.joint_count(), 5);
-  EXPECT_EQ(clip.skeleton.joint(0).name, "Hips");
+// World positions of the rig's clip against glTF's rules, over every frame (at 30 fps).
+double worst_against_rules(const Rig& rig, const Clip& clip) {
+  EXPECT_EQ(clip.motion.fps, 30.0);
   EXPECT_EQ(clip.motion.frame_count, 2 * (Rig::kKeys - 1) + 1);
   const std::vector<Vec3> positions = world_positions(clip.skeleton, clip.motion);
   double worst = 0.0;
@@ -269,18 +277,125 @@ TEST(GltfImport, ARigRestingTurnedUnderAScaledArmatureReadsWhereGltfPutsItsJoint
     const std::vector<Vec3> want = rig.world_at(f);
     for (int j = 0; j < 5; ++j) worst = std::max(worst, (positions[static_cast<size_t>(f * 5 + j)] - want[static_cast<size_t>(j)]).norm());
   }
-  EXPECT_LT(worst, 1e-5);  // float32 keys, metres
+  return worst;
+}
+
+TEST(GltfImport, ARigRestingTurnedUnderAScaledArmatureReadsWhereGltfPutsItsJoints) {
+  Rig rig;
+  GltfImportSettings at30;
+  at30.fps_override = 30.0;
+  const std::vector<Clip> clips = read_back(rig.built.glb(), at30);
+  ASSERT_EQ(clips.size(), 1u);
+  const Clip& clip = clips[0];
+  EXPECT_EQ(clip.name, "kick");
+  ASSERT_EQ(clip.skeleton.joint_count(), 5);
+  EXPECT_EQ(clip.skeleton.joint(0).name, "Hips");
+  EXPECT_LT(worst_against_rules(rig, clip), 1e-5);  // float32 keys, metres
   // Re-expressed on its rest pose: every joint at rest has the identity rotation, its offset the
   // rest offset in the world's axes (the shin 0.45 m straight down from the knee: the thigh
   // rests turned 180 degrees, and the armature's 30-degree turn is in the hips' frame).
   const Vec3 shin = clip.skeleton.joint(*clip.skeleton.find("Shin")).rest_offset_m;
   EXPECT_LT((shin - Vec3(0, -0.45, 0)).norm(), 1e-9) << shin.transpose();
-  // The keys' own rate without a rate given.
-  GltfImportSettings own;
-  own.up_axis = UpAxis::kY;
-  const std::vector<Clip> at_keys = read_back(rig.built.glb(), own);
-  EXPECT_EQ(at_keys[0].motion.fps, Rig::kKeyRate);
-  EXPECT_EQ(at_keys[0].motion.frame_count, Rig::kKeys);
+  // Keys 15 a second are sampled at 30 fps without a rate given (a curve between them).
+  const std::vector<Clip> at_keys = read_back(rig.built.glb());
+  EXPECT_LT(worst_against_rules(rig, at_keys[0]), 1e-5);
+  // The armature moved and turned by its own animation (Blender's object animation) carries
+  // the skeleton with it.
+  Rig moved(true);
+  const std::vector<Clip> carried = read_back(moved.built.glb());
+  ASSERT_EQ(carried.size(), 1u);
+  EXPECT_LT(worst_against_rules(moved, carried[0]), 1e-5);
+  // Skins of parts (a mesh each) make one skeleton of them all.
+  Rig parts;
+  parts.built.model.skins = {tinygltf::Skin(), tinygltf::Skin()};
+  parts.built.model.skins[0].joints = {4};
+  parts.built.model.skins[1].joints = {1, 2, 3, 5};
+  const std::vector<Clip> joined = read_back(parts.built.glb());
+  ASSERT_EQ(joined.size(), 1u);
+  EXPECT_EQ(joined[0].skeleton.joint_count(), 5);
+  EXPECT_LT(worst_against_rules(parts, joined[0]), 1e-5);
+}
+
+// What else a scene holds: a camera flying on its own (its animation is no clip, and its keys
+// set no rate), a texture in a format no decoder here knows (KTX2).
+TEST(GltfImport, ACameraAndATextureAreLeftAlone) {
+  Rig rig;
+  tinygltf::Model& model = rig.built.model;
+  tinygltf::Node camera;
+  camera.name = "Camera";
+  model.nodes.push_back(camera);
+  model.scenes[0].nodes.push_back(static_cast<int>(model.nodes.size()) - 1);
+  std::vector<float> times, path;
+  for (int k = 0; k < 121; ++k) {
+    times.push_back(k / 120.0f);
+    path.insert(path.end(), {static_cast<float>(k), 2.0f, 5.0f});
+  }
+  tinygltf::Animation fly;
+  fly.name = "fly";
+  tinygltf::AnimationSampler sampler;
+  sampler.input = rig.built.floats(times, TINYGLTF_TYPE_SCALAR);
+  sampler.output = rig.built.floats(path, TINYGLTF_TYPE_VEC3);
+  fly.samplers.push_back(sampler);
+  tinygltf::AnimationChannel channel;
+  channel.sampler = 0;
+  channel.target_node = static_cast<int>(model.nodes.size()) - 1;
+  channel.target_path = "translation";
+  fly.channels.push_back(channel);
+  model.animations.push_back(fly);
+  tinygltf::Image image;
+  image.mimeType = "image/ktx2";
+  image.bufferView = 0;
+  model.images.push_back(image);
+  const std::string bytes = rig.built.glb();
+  const std::vector<Clip> clips = read_back(bytes);
+  ASSERT_EQ(clips.size(), 1u);
+  EXPECT_EQ(clips[0].name, "kick");
+  EXPECT_LT(worst_against_rules(rig, clips[0]), 1e-5);
+  auto names = gltf_animation_names(bytes, "scene.glb");
+  ASSERT_TRUE(names) << names.error().message;
+  EXPECT_EQ(*names, std::vector<std::string>{"kick"});
+}
+
+// A long take keyed at 120 fps in float32 (5 minutes, keys from t = 1000 s): 120 fps exactly,
+// each frame on its key.
+TEST(GltfImport, TheRateOfALongLateTakeIsItsKeys) {
+  Built built;
+  tinygltf::Node node;
+  node.name = "Hips";
+  built.model.nodes.push_back(node);
+  built.model.scenes.push_back(tinygltf::Scene());
+  built.model.scenes[0].nodes = {0};
+  std::vector<float> times, positions;
+  const int keys = 300 * 120 + 1;
+  for (int k = 0; k < keys; ++k) {
+    times.push_back(static_cast<float>(1000.0 + k / 120.0));
+    positions.insert(positions.end(), {static_cast<float>(std::sin(k * 0.01)), 1.0f, static_cast<float>(k % 7)});
+  }
+  tinygltf::Animation take;
+  tinygltf::AnimationSampler sampler;
+  sampler.input = built.floats(times, TINYGLTF_TYPE_SCALAR);
+  sampler.output = built.floats(positions, TINYGLTF_TYPE_VEC3);
+  take.samplers.push_back(sampler);
+  tinygltf::AnimationChannel channel;
+  channel.sampler = 0;
+  channel.target_node = 0;
+  channel.target_path = "translation";
+  take.channels.push_back(channel);
+  built.model.animations.push_back(take);
+  GltfImportSettings as_read;
+  as_read.fold_static_root = false;
+  const std::vector<Clip> clips = read_back(built.glb(), as_read);
+  ASSERT_EQ(clips.size(), 1u);
+  EXPECT_EQ(clips[0].name, "animation_1");
+  EXPECT_EQ(clips[0].motion.fps, 120.0);
+  ASSERT_EQ(clips[0].motion.frame_count, keys);
+  double worst = 0.0;
+  for (int k = 0; k < keys; ++k) {
+    const Vec3 want(positions[3 * static_cast<size_t>(k)], positions[3 * static_cast<size_t>(k) + 1],
+                    positions[3 * static_cast<size_t>(k) + 2]);
+    worst = std::max(worst, (clips[0].motion.translations(k)[0] - want).norm());
+  }
+  EXPECT_LT(worst, 1e-6);  // STEP-like values (k % 7): off by whole units if a frame fell between keys
 }
 
 TEST(GltfImport, FilesThatCannotBeReadAreOneErrorEach) {
@@ -327,6 +442,14 @@ TEST(GltfImport, FilesThatCannotBeReadAreOneErrorEach) {
     for (auto& sampler : far_apart.built.model.animations[0].samplers) sampler.input = input;
   }
   EXPECT_NE(message(far_apart.built.glb()).find("animation 'kick' would be"), std::string::npos);
+  Rig cycle;
+  cycle.built.model.nodes[5].children = {1};  // the spine above the hips, which hold it
+  EXPECT_NE(message(cycle.built.glb()).find("a child that is not a node of one parent"), std::string::npos);
+  Rig loop;
+  loop.built.model.nodes[0].children.clear();  // nothing above the hips: hips -> spine -> hips
+  loop.built.model.nodes[5].children = {1};
+  loop.built.model.scenes[0].nodes = {0};
+  EXPECT_NE(message(loop.built.glb()).find("form a cycle"), std::string::npos);
   GltfImportSettings negative;
   negative.fps_override = -1.0;
   EXPECT_FALSE(clips_from_gltf(Rig().built.glb(), "x.glb", negative));

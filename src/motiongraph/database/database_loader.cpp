@@ -84,8 +84,10 @@ bool is_gltf(const std::string& path) {
 }
 
 // The clips of a file: one, or one per animation of a glTF file (named FILE:ANIMATION when it
-// has several, as the clip loader names them).
-Status add_file_specs(const fs::path& path, const ClipLoadSettings& load, std::vector<ClipSpec>& specs) {
+// has several, as the clip loader names them). A glTF file without animation (a character's
+// model) is passed over in a folder, an error when given itself.
+Status add_file_specs(const fs::path& path, const ClipLoadSettings& load, std::vector<ClipSpec>& specs,
+                      bool in_folder) {
   if (!is_gltf(path.string())) {
     specs.push_back(spec_for_file(path, load));
     return Ok{};
@@ -94,6 +96,7 @@ Status add_file_specs(const fs::path& path, const ClipLoadSettings& load, std::v
   if (!bytes) return bytes.error();
   auto names = gltf_animation_names(*bytes, path.string(), path.parent_path().string());
   if (!names) return names.error();
+  if (names->empty() && !in_folder) return Error{path.string(), 0, "the glTF file has no animation that moves a skeleton"};
   for (const std::string& animation : *names) {
     ClipSpec spec = spec_for_file(path, load);
     spec.animation = animation;
@@ -136,7 +139,7 @@ Status expand_folder(const std::string& input, const DatabaseSettings& settings,
     load.asf_path = asfs.front().string();
   }
   for (const fs::path& clip : clips) {
-    if (auto s = add_file_specs(clip, load, specs); !s) return s;
+    if (auto s = add_file_specs(clip, load, specs, true); !s) return s;
   }
   return Ok{};
 }
@@ -806,7 +809,7 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
     if (ext == ".toml") {
       if (auto s = expand_manifest(input, settings, specs, wide); !s) return s.error();
     } else if (ext == ".amc" || ext == ".bvh" || ext == ".glb" || ext == ".gltf") {
-      if (auto s = add_file_specs(input, default_load_settings(settings), specs); !s) return s.error();
+      if (auto s = add_file_specs(input, default_load_settings(settings), specs, false); !s) return s.error();
     } else if (ext == ".asf") {
       return Error{input, 0, "an ASF file holds a skeleton only: give its folder, or its AMC files with --asf"};
     } else {

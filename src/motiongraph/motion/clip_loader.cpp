@@ -63,6 +63,9 @@ Result<std::shared_ptr<const AcclaimRig>> ClipLoader::load_asf(const std::string
 Result<LoadedClip> ClipLoader::load(const std::string& path, const std::optional<std::string>& animation) {
   if (auto s = settings_.validate(); !s) return s.error();
   const std::string ext = lower_extension(path);
+  if (animation && ext != ".glb" && ext != ".gltf") {
+    return Error{path, 0, "an animation is chosen from a glTF file (.glb, .gltf) only"};
+  }
   LoadedClip loaded;
   loaded.clip.name = fs::path(path).stem().string();
   if (ext == ".amc") {

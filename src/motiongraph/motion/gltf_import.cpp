@@ -23,6 +23,7 @@ Status GltfImportSettings::validate() const {
   if (!(fps_override >= 0.0) || !std::isfinite(fps_override)) {
     return Error{"", 0, "the frame rate to sample glTF at must be 0 (the keys') or more"};
   }
+  if (!(max_joint_poses > 0.0)) return Error{"", 0, "the most joint poses to read must be positive"};
   return Ok{};
 }
 
@@ -34,8 +35,6 @@ constexpr double kUnitScale = 1e-4;
 // The most frames an animation is sampled to (9 hours at 30 fps): key times far apart, or a
 // rate far above the keys', would otherwise ask for more memory than a machine has.
 constexpr int kMaxFrames = 1'000'000;
-// And the most joint poses (frames x joints: 1.6 GB of rotations).
-constexpr double kMaxSamples = 5e7;
 
 // A node's transform at rest.
 struct Trs {
@@ -167,28 +166,33 @@ Result<std::vector<double>> accessor_values(const tinygltf::Model& model, int in
 
 // One animated property of one node.
 struct Track {
+  using Value = Eigen::Vector4d;  // x, y, z (and w for rotations)
+
   std::vector<double> times;
   std::vector<double> values;  // per key: width values (CUBICSPLINE: in-tangent, value, out-tangent)
   int width = 3;
   enum class Rule { kLinear, kStep, kCubic } rule = Rule::kLinear;
 
-  Eigen::VectorXd at_key(size_t key, int part) const {
+  Value at_key(size_t key, int part) const {
     const size_t per_key = rule == Rule::kCubic ? 3 * static_cast<size_t>(width) : static_cast<size_t>(width);
-    return Eigen::Map<const Eigen::VectorXd>(values.data() + key * per_key + static_cast<size_t>(part * width), width);
+    const double* v = values.data() + key * per_key + static_cast<size_t>(part * width);
+    return Value(v[0], v[1], v[2], width == 4 ? v[3] : 0.0);
   }
-  Eigen::VectorXd value(size_t key) const { return at_key(key, rule == Rule::kCubic ? 1 : 0); }
+  Value value(size_t key) const { return at_key(key, rule == Rule::kCubic ? 1 : 0); }
 
   // The value at time t (before the first key the first, after the last the last).
-  Eigen::VectorXd sample(double t) const {
+  Value sample(double t) const {
     const size_t n = times.size();
     if (n == 1 || t <= times.front()) return value(0);
     if (t >= times.back()) return value(n - 1);
-    // A time on a key (to float32's rounding of the key times) is that key's, for STEP's sake.
-    const double on_key = 1e-6 * std::max(1.0, std::abs(t));
+    // A time on a key, to two float32 roundings of the key times, is that key's: a frame sampled
+    // at the keys' own rate takes each key's value as it is.
+    const double on_key = 1e-6 + 2.4e-7 * std::abs(t);
     const size_t k = static_cast<size_t>(std::upper_bound(times.begin(), times.end(), t + on_key) - times.begin()) - 1;
     if (k >= n - 1) return value(n - 1);
+    if (std::abs(t - times[k]) <= on_key) return value(k);
     const double dt = times[k + 1] - times[k];
-    const double s = dt > 0.0 ? (t - times[k]) / dt : 0.0;
+    const double s = dt > 0.0 ? std::clamp((t - times[k]) / dt, 0.0, 1.0) : 0.0;
     switch (rule) {
       case Rule::kStep:
         return value(k);
@@ -201,33 +205,34 @@ struct Track {
         break;
     }
     if (width == 4) {
-      const Eigen::VectorXd a = value(k), b = value(k + 1);
-      const Quat qa(a[3], a[0], a[1], a[2]), qb(b[3], b[0], b[1], b[2]);
-      const Quat q = qa.normalized().slerp(s, qb.normalized());
-      Eigen::VectorXd out(4);
-      out << q.x(), q.y(), q.z(), q.w();
-      return out;
+      const Value a = value(k), b = value(k + 1);
+      const Quat q = Quat(a[3], a[0], a[1], a[2]).normalized().slerp(s, Quat(b[3], b[0], b[1], b[2]).normalized());
+      return Value(q.x(), q.y(), q.z(), q.w());
     }
     return (1 - s) * value(k) + s * value(k + 1);
   }
 };
 
-Quat as_quat(const Eigen::VectorXd& v) { return Quat(v[3], v[0], v[1], v[2]).normalized(); }
-Vec3 as_vec3(const Eigen::VectorXd& v) { return Vec3(v[0], v[1], v[2]); }
+Quat as_quat(const Track::Value& v) {
+  const Quat q(v[3], v[0], v[1], v[2]);
+  return q.norm() > 0.0 ? q.normalized() : Quat::Identity();
+}
+Vec3 as_vec3(const Track::Value& v) { return Vec3(v[0], v[1], v[2]); }
 
 // The tracks of one animation, by node and path ("translation", "rotation", "scale").
 using Tracks = std::map<std::pair<int, std::string>, Track>;
 
-Result<Tracks> read_tracks(const tinygltf::Model& model, const tinygltf::Animation& animation, const std::string& file) {
+Result<Tracks> read_tracks(const tinygltf::Model& model, const tinygltf::Animation& animation, const std::string& name,
+                           const std::string& file) {
   Tracks tracks;
   for (const tinygltf::AnimationChannel& channel : animation.channels) {
     const std::string& path = channel.target_path;
     if (path == "weights" || channel.target_node < 0) continue;  // morph targets: not a skeleton's
     if (path != "translation" && path != "rotation" && path != "scale") {
-      return Error{file, 0, fmt::format("animation '{}' animates '{}', which is not read", animation.name, path)};
+      return Error{file, 0, fmt::format("animation '{}' animates '{}', which is not read", name, path)};
     }
     if (channel.sampler < 0 || channel.sampler >= static_cast<int>(animation.samplers.size())) {
-      return Error{file, 0, fmt::format("animation '{}' has a channel without a sampler", animation.name)};
+      return Error{file, 0, fmt::format("animation '{}' has a channel without a sampler", name)};
     }
     const tinygltf::AnimationSampler& sampler = animation.samplers[static_cast<size_t>(channel.sampler)];
     Track track;
@@ -237,7 +242,7 @@ Result<Tracks> read_tracks(const tinygltf::Model& model, const tinygltf::Animati
     } else if (sampler.interpolation == "CUBICSPLINE") {
       track.rule = Track::Rule::kCubic;
     } else if (sampler.interpolation != "LINEAR" && !sampler.interpolation.empty()) {
-      return Error{file, 0, fmt::format("animation '{}': unknown interpolation '{}'", animation.name, sampler.interpolation)};
+      return Error{file, 0, fmt::format("animation '{}': unknown interpolation '{}'", name, sampler.interpolation)};
     }
     auto times = accessor_values(model, sampler.input, 1, file);
     if (!times) return times.error();
@@ -248,11 +253,11 @@ Result<Tracks> read_tracks(const tinygltf::Model& model, const tinygltf::Animati
     const size_t keys = track.times.size();
     const size_t per_key = (track.rule == Track::Rule::kCubic ? 3 : 1) * static_cast<size_t>(track.width);
     if (keys == 0 || track.values.size() != keys * per_key) {
-      return Error{file, 0, fmt::format("animation '{}': the {} of {} has {} keys and {} values", animation.name, path,
+      return Error{file, 0, fmt::format("animation '{}': the {} of {} has {} keys and {} values", name, path,
                                         node_label(model, channel.target_node), keys, track.values.size() / track.width)};
     }
     if (!std::is_sorted(track.times.begin(), track.times.end())) {
-      return Error{file, 0, fmt::format("animation '{}': the key times of the {} of {} are not in order", animation.name,
+      return Error{file, 0, fmt::format("animation '{}': the key times of the {} of {} are not in order", name,
                                         path, node_label(model, channel.target_node))};
     }
     tracks[{channel.target_node, path}] = std::move(track);
@@ -260,12 +265,31 @@ Result<Tracks> read_tracks(const tinygltf::Model& model, const tinygltf::Animati
   return tracks;
 }
 
-// The frame rate of the keys: the most common step between two keys (to 10 microseconds).
-double key_rate(const Tracks& tracks) {
+// The step between a track's keys when they are evenly spaced (to a quarter of it), else 0: from
+// its first and last key, which float32's rounding of long or late times does not upset.
+double even_step(const std::vector<double>& times) {
+  if (times.size() < 2) return 0.0;
+  const double step = (times.back() - times.front()) / static_cast<double>(times.size() - 1);
+  if (!(step > 1e-6)) return 0.0;
+  for (size_t k = 1; k + 1 < times.size(); ++k) {
+    if (std::abs(times[k] - (times.front() + static_cast<double>(k) * step)) > 0.25 * step) return 0.0;
+  }
+  return step;
+}
+
+// The rate the tracks are sampled at: that of their keys (the step of the evenly keyed tracks, or
+// the most common step between two keys, to 10 microseconds), unless the keys lie off that
+// rate's frames (tracks keyed at different times) or come slower than 24 a second (keys far
+// apart, a curve between them), which are sampled at 30 fps or their rate, whichever is higher.
+double key_rate(const std::vector<const Track*>& tracks) {
   std::map<long long, std::vector<double>> steps;
-  for (const auto& [target, track] : tracks) {
-    for (size_t k = 1; k < track.times.size(); ++k) {
-      const double step = track.times[k] - track.times[k - 1];
+  for (const Track* track : tracks) {
+    if (const double step = even_step(track->times); step > 0.0) {
+      steps[std::llround(step * 1e5)].push_back(step);
+      continue;
+    }
+    for (size_t k = 1; k < track->times.size(); ++k) {
+      const double step = track->times[k] - track->times[k - 1];
       if (step > 1e-6) steps[std::llround(step * 1e5)].push_back(step);
     }
   }
@@ -274,7 +298,17 @@ double key_rate(const Tracks& tracks) {
                                      [](const auto& a, const auto& b) { return a.second.size() < b.second.size(); });
   std::vector<double>& bin = most->second;
   std::nth_element(bin.begin(), bin.begin() + static_cast<long>(bin.size() / 2), bin.end());
-  return fps_from_frame_time(bin[bin.size() / 2]);
+  const double fps = fps_from_frame_time(bin[bin.size() / 2]);
+  if (fps < 24.0) return 30.0;
+  double first = std::numeric_limits<double>::infinity();
+  for (const Track* track : tracks) first = std::min(first, track->times.front());
+  for (const Track* track : tracks) {
+    for (double t : track->times) {
+      const double frame = (t - first) * fps;
+      if (std::abs(frame - std::round(frame)) > 1e-3 + 1e-6 * std::abs(frame)) return std::max(fps, 30.0);
+    }
+  }
+  return fps;
 }
 
 // The nodes from the scene's top down to `node`, top first.
@@ -288,6 +322,11 @@ std::vector<int> path_to(const std::vector<int>& parent, int node) {
 Result<tinygltf::Model> parse(std::string_view bytes, const std::string& file, const std::string& base_dir) {
   tinygltf::Model model;
   tinygltf::TinyGLTF loader;
+  // Images are not decoded: a skeleton's motion needs none, and a texture in a format the
+  // decoder does not know (KTX2, WebP) would fail the file.
+  loader.SetImageLoader([](tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
+                           void*) { return true; },
+                        nullptr);
   std::string error, warning;
   bool ok = false;
   if (bytes.size() >= 4 && bytes.substr(0, 4) == "glTF") {
@@ -302,7 +341,6 @@ Result<tinygltf::Model> parse(std::string_view bytes, const std::string& file, c
     if (first.empty()) first = "not a glTF 2.0 file";
     return Error{file, 0, fmt::format("cannot read glTF: {}", first)};
   }
-  if (model.animations.empty()) return Error{file, 0, "the glTF file has no animation"};
   return model;
 }
 
@@ -319,13 +357,106 @@ std::vector<std::string> clip_names(const tinygltf::Model& model) {
   return names;
 }
 
+// Which nodes make the skeleton, and which animations move it.
+struct Layout {
+  std::vector<int> parent;          // per node, -1 at a scene's top
+  std::vector<int> above;           // the nodes above the root, top first
+  std::vector<int> order;           // the skeleton's nodes, parents first; order[0] the root
+  std::map<int, int> joint_of;      // node -> joint
+  std::vector<std::string> names;   // every animation's clip name
+  std::vector<size_t> moving;       // the animations that move a joint or a node above them
+};
+
+Result<Layout> layout_of(const tinygltf::Model& model, const std::string& file) {
+  Layout out;
+  const int node_count = static_cast<int>(model.nodes.size());
+  out.parent.assign(static_cast<size_t>(node_count), -1);
+  for (int n = 0; n < node_count; ++n) {
+    for (int child : model.nodes[static_cast<size_t>(n)].children) {
+      if (child < 0 || child >= node_count || child == n || out.parent[static_cast<size_t>(child)] >= 0) {
+        return Error{file, 0, fmt::format("{} has a child that is not a node of one parent", node_label(model, n))};
+      }
+      out.parent[static_cast<size_t>(child)] = n;
+    }
+  }
+  // Every node reaches a top within as many steps as there are nodes, or the hierarchy is a cycle.
+  for (int n = 0; n < node_count; ++n) {
+    int steps = 0;
+    for (int m = n; m >= 0; m = out.parent[static_cast<size_t>(m)]) {
+      if (++steps > node_count) return Error{file, 0, fmt::format("the nodes above {} form a cycle", node_label(model, n))};
+    }
+  }
+  // The nodes the skeleton must hold: every skin's joints, or without a skin the nodes moved,
+  // those of the tree most of them are in (a camera's or a prop's are left out).
+  std::set<int> wanted;
+  for (const tinygltf::Skin& skin : model.skins) wanted.insert(skin.joints.begin(), skin.joints.end());
+  for (int n : wanted) {
+    if (n < 0 || n >= node_count) return Error{file, 0, fmt::format("a skin's joint {} is not a node", n)};
+  }
+  if (wanted.empty()) {
+    std::map<int, std::set<int>> by_top;
+    for (const tinygltf::Animation& animation : model.animations) {
+      for (const auto& channel : animation.channels) {
+        if (channel.target_node < 0 || channel.target_node >= node_count || channel.target_path == "weights") continue;
+        by_top[path_to(out.parent, channel.target_node).front()].insert(channel.target_node);
+      }
+    }
+    const auto most = std::max_element(by_top.begin(), by_top.end(),
+                                       [](const auto& a, const auto& b) { return a.second.size() < b.second.size(); });
+    if (most != by_top.end()) wanted = most->second;
+  }
+  if (wanted.empty()) return Error{file, 0, "the glTF file has no skin and no animated node"};
+  // The root: the lowest node above (or among) them all.
+  std::vector<int> common = path_to(out.parent, *wanted.begin());
+  for (int n : wanted) {
+    const std::vector<int> path = path_to(out.parent, n);
+    size_t same = 0;
+    while (same < common.size() && same < path.size() && common[same] == path[same]) ++same;
+    common.resize(same);
+  }
+  if (common.empty()) return Error{file, 0, "the skeleton's joints are in separate trees of nodes"};
+  const int root = common.back();
+  out.above.assign(common.begin(), common.end() - 1);
+  std::set<int> in_skeleton;
+  for (int n : wanted) {
+    for (int m = n; m != out.parent[static_cast<size_t>(root)]; m = out.parent[static_cast<size_t>(m)]) in_skeleton.insert(m);
+  }
+  std::vector<int> stack{root};
+  while (!stack.empty()) {
+    const int n = stack.back();
+    stack.pop_back();
+    out.order.push_back(n);
+    const auto& children = model.nodes[static_cast<size_t>(n)].children;
+    for (auto it = children.rbegin(); it != children.rend(); ++it) {
+      if (in_skeleton.count(*it)) stack.push_back(*it);
+    }
+  }
+  for (size_t j = 0; j < out.order.size(); ++j) out.joint_of[out.order[j]] = static_cast<int>(j);
+  out.names = clip_names(model);
+  const std::set<int> above(out.above.begin(), out.above.end());
+  for (size_t a = 0; a < model.animations.size(); ++a) {
+    for (const auto& channel : model.animations[a].channels) {
+      if (channel.target_path != "weights" && (out.joint_of.count(channel.target_node) || above.count(channel.target_node))) {
+        out.moving.push_back(a);
+        break;
+      }
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 Result<std::vector<std::string>> gltf_animation_names(std::string_view bytes, const std::string& file,
                                                       const std::string& base_dir) {
   auto model = parse(bytes, file, base_dir);
   if (!model) return model.error();
-  return clip_names(*model);
+  if (model->animations.empty()) return std::vector<std::string>();
+  auto layout = layout_of(*model, file);
+  if (!layout) return layout.error();
+  std::vector<std::string> names;
+  for (size_t a : layout->moving) names.push_back(layout->names[a]);
+  return names;
 }
 
 Result<std::vector<Clip>> clips_from_gltf(std::string_view bytes, const std::string& file,
@@ -334,77 +465,49 @@ Result<std::vector<Clip>> clips_from_gltf(std::string_view bytes, const std::str
   auto parsed = parse(bytes, file, settings.base_dir);
   if (!parsed) return parsed.error();
   const tinygltf::Model& model = *parsed;
-  const std::vector<std::string> names_of_clips = clip_names(model);
+  if (model.animations.empty()) return Error{file, 0, "the glTF file has no animation"};
+  auto laid = layout_of(model, file);
+  if (!laid) return laid.error();
+  const Layout& layout = *laid;
+  if (layout.moving.empty()) return Error{file, 0, "no animation of the glTF file moves its skeleton"};
+  const std::vector<int>& order = layout.order;
+  const int root = order.front();
 
-  const int node_count = static_cast<int>(model.nodes.size());
-  std::vector<int> parent(static_cast<size_t>(node_count), -1);
-  for (int n = 0; n < node_count; ++n) {
-    for (int child : model.nodes[static_cast<size_t>(n)].children) {
-      if (child < 0 || child >= node_count || parent[static_cast<size_t>(child)] >= 0) {
-        return Error{file, 0, fmt::format("{} has a child that is not a node of one parent", node_label(model, n))};
-      }
-      parent[static_cast<size_t>(child)] = n;
-    }
-  }
-  // The nodes the skeleton must hold: the first skin's joints, or without a skin those moved.
-  std::set<int> wanted;
-  if (!model.skins.empty()) {
-    wanted.insert(model.skins.front().joints.begin(), model.skins.front().joints.end());
-  } else {
-    for (const tinygltf::Animation& animation : model.animations) {
-      for (const auto& channel : animation.channels) {
-        if (channel.target_node >= 0 && channel.target_path != "weights") wanted.insert(channel.target_node);
-      }
-    }
-  }
-  if (wanted.empty()) return Error{file, 0, "the glTF file has no skin and no animated node"};
-  for (int n : wanted) {
-    if (n < 0 || n >= node_count) return Error{file, 0, fmt::format("joint {} is not a node", n)};
-  }
-  // The root: the lowest node above (or among) them all.
-  std::vector<int> common = path_to(parent, *wanted.begin());
-  for (int n : wanted) {
-    const std::vector<int> path = path_to(parent, n);
-    size_t same = 0;
-    while (same < common.size() && same < path.size() && common[same] == path[same]) ++same;
-    common.resize(same);
-  }
-  if (common.empty()) return Error{file, 0, "the skeleton's joints are in separate trees of nodes"};
-  const int root = common.back();
-  std::set<int> in_skeleton;
-  for (int n : wanted) {
-    for (int m = n; m != parent[static_cast<size_t>(root)]; m = parent[static_cast<size_t>(m)]) in_skeleton.insert(m);
-  }
-  // Parents before children: depth first from the root in the children's order.
-  std::vector<int> order;
-  std::vector<int> stack{root};
-  while (!stack.empty()) {
-    const int n = stack.back();
-    stack.pop_back();
-    order.push_back(n);
-    const auto& children = model.nodes[static_cast<size_t>(n)].children;
-    for (auto it = children.rbegin(); it != children.rend(); ++it) {
-      if (in_skeleton.count(*it)) stack.push_back(*it);
-    }
-  }
-  std::map<int, int> joint_of;
-  for (size_t j = 0; j < order.size(); ++j) joint_of[order[j]] = static_cast<int>(j);
-
-  // The nodes above the root, composed: rotation, translation and a uniform scale; with the
-  // root's own (uniform, constant) scale, the scale of every length below it.
-  Quat above_rotation = Quat::Identity();
-  Vec3 above_translation = Vec3::Zero();
-  double above_scale = 1.0;
-  for (size_t i = 0; i + 1 < common.size(); ++i) {
-    auto trs = node_trs(model, common[i], file);
+  // The nodes above the root at rest: composed, with a uniform scale; with the root's own
+  // (uniform, constant) scale, the scale of every length below it.
+  std::vector<Trs> above_rest;
+  for (int n : layout.above) {
+    auto trs = node_trs(model, n, file);
     if (!trs) return trs.error();
     if (!is_uniform(trs->scale)) {
-      return Error{file, 0, fmt::format("{} above the skeleton scales unevenly", node_label(model, common[i]))};
+      return Error{file, 0, fmt::format("{} above the skeleton scales unevenly", node_label(model, n))};
     }
-    above_translation += above_rotation * (above_scale * trs->translation);
-    above_rotation = (above_rotation * trs->rotation).normalized();
-    above_scale *= trs->scale.x();
+    above_rest.push_back(*trs);
   }
+  double above_scale = 1.0;
+  for (const Trs& trs : above_rest) above_scale *= trs.scale.x();
+  // The nodes above composed, each with its own translation and rotation (its rest, or sampled).
+  const auto compose_above = [&](const std::vector<Vec3>& t, const std::vector<Quat>& r, Vec3& translation,
+                                 Quat& rotation) {
+    translation = Vec3::Zero();
+    rotation = Quat::Identity();
+    double scale = 1.0;
+    for (size_t i = 0; i < above_rest.size(); ++i) {
+      translation += rotation * (scale * t[i]);
+      rotation = (rotation * r[i]).normalized();
+      scale *= above_rest[i].scale.x();
+    }
+  };
+  std::vector<Vec3> above_t;
+  std::vector<Quat> above_r;
+  for (const Trs& trs : above_rest) {
+    above_t.push_back(trs.translation);
+    above_r.push_back(trs.rotation);
+  }
+  Vec3 above_translation;
+  Quat above_rotation;
+  compose_above(above_t, above_r, above_translation, above_rotation);
+
   const int joints = static_cast<int>(order.size());
   std::vector<Trs> rest(static_cast<size_t>(joints));
   for (int j = 0; j < joints; ++j) {
@@ -424,19 +527,25 @@ Result<std::vector<Clip>> clips_from_gltf(std::string_view bytes, const std::str
   }
   const double length_scale = above_scale * root_scale;  // of every offset below the root
 
-  // Every animation's tracks, the scale tracks checked.
+  // The moving animations' tracks, their scale tracks checked (a joint's or a node above's
+  // scale may not change).
+  std::map<int, Vec3> rest_scale;
+  for (size_t i = 0; i < layout.above.size(); ++i) rest_scale[layout.above[i]] = above_rest[i].scale;
+  for (int j = 0; j < joints; ++j) rest_scale[order[static_cast<size_t>(j)]] = j == 0 ? rest[0].scale : Vec3::Ones();
   std::vector<Tracks> animations;
-  for (const tinygltf::Animation& animation : model.animations) {
-    auto tracks = read_tracks(model, animation, file);
+  double poses = 0.0;
+  for (size_t a : layout.moving) {
+    const tinygltf::Animation& animation = model.animations[a];
+    auto tracks = read_tracks(model, animation, layout.names[a], file);
     if (!tracks) return tracks.error();
     for (const auto& [target, track] : *tracks) {
-      if (target.second != "scale" || !joint_of.count(target.first)) continue;
-      const Vec3 at_rest = target.first == root ? rest[0].scale : Vec3::Ones();
+      const auto at_rest = rest_scale.find(target.first);
+      if (target.second != "scale" || at_rest == rest_scale.end()) continue;
       for (size_t k = 0; k < track.values.size(); k += 3) {
         const Vec3 s(track.values[k], track.values[k + 1], track.values[k + 2]);
-        if ((s - at_rest).cwiseAbs().maxCoeff() > kUnitScale) {
-          return Error{file, 0, fmt::format("animation '{}' scales {}; the project reads rigid skeletons", animation.name,
-                                            node_label(model, target.first))};
+        if ((s - at_rest->second).cwiseAbs().maxCoeff() > kUnitScale * at_rest->second.cwiseAbs().maxCoeff()) {
+          return Error{file, 0, fmt::format("animation '{}' scales {}; the project reads rigid skeletons",
+                                            layout.names[a], node_label(model, target.first))};
         }
       }
     }
@@ -455,7 +564,7 @@ Result<std::vector<Clip>> clips_from_gltf(std::string_view bytes, const std::str
     def.name = unique_name(name.empty() ? fmt::format("joint_{}", j) : name,
                            [&](const std::string& n) { return names.count(n) > 0; });
     names.insert(def.name);
-    def.parent = j == 0 ? -1 : joint_of.at(parent[static_cast<size_t>(node)]);
+    def.parent = j == 0 ? -1 : layout.joint_of.at(layout.parent[static_cast<size_t>(node)]);
     const Quat parent_world = j == 0 ? above_rotation : rest_world[static_cast<size_t>(def.parent)];
     rest_world[static_cast<size_t>(j)] = (parent_world * rest[static_cast<size_t>(j)].rotation).normalized();
     def.rest_offset_m = j == 0 ? Vec3(above_translation + above_scale * (above_rotation * rest[0].translation))
@@ -473,59 +582,96 @@ Result<std::vector<Clip>> clips_from_gltf(std::string_view bytes, const std::str
   const Skeleton skeleton(defs);
 
   std::vector<Clip> clips;
-  for (size_t a = 0; a < animations.size(); ++a) {
-    const Tracks& tracks = animations[a];
-    double first = std::numeric_limits<double>::infinity(), last = -std::numeric_limits<double>::infinity();
-    for (const auto& [target, track] : tracks) {
-      if (!joint_of.count(target.first)) continue;
-      first = std::min(first, track.times.front());
-      last = std::max(last, track.times.back());
+  for (size_t i = 0; i < animations.size(); ++i) {
+    const Tracks& tracks = animations[i];
+    const std::string& clip_name = layout.names[layout.moving[i]];
+    // The tracks that move the skeleton: its joints' and the nodes' above it.
+    std::vector<const Track*> moving;
+    const auto track_of = [&](int node, const char* path) -> const Track* {
+      const auto it = tracks.find({node, path});
+      return it == tracks.end() ? nullptr : &it->second;
+    };
+    std::vector<const Track*> rotation(static_cast<size_t>(joints)), translation(static_cast<size_t>(joints));
+    for (int j = 0; j < joints; ++j) {
+      rotation[static_cast<size_t>(j)] = track_of(order[static_cast<size_t>(j)], "rotation");
+      translation[static_cast<size_t>(j)] = track_of(order[static_cast<size_t>(j)], "translation");
     }
-    if (!std::isfinite(first)) first = last = 0.0;  // moves none of the joints: one frame at rest
-    const double fps = settings.fps_override > 0.0 ? settings.fps_override : key_rate(tracks);
+    std::vector<const Track*> above_rotation_tracks, above_translation_tracks;
+    for (int n : layout.above) {
+      above_rotation_tracks.push_back(track_of(n, "rotation"));
+      above_translation_tracks.push_back(track_of(n, "translation"));
+    }
+    for (const auto* list : {&rotation, &translation, &above_rotation_tracks, &above_translation_tracks}) {
+      for (const Track* track : *list) {
+        if (track) moving.push_back(track);
+      }
+    }
+    double first = std::numeric_limits<double>::infinity(), last = -std::numeric_limits<double>::infinity();
+    for (const Track* track : moving) {
+      first = std::min(first, track->times.front());
+      last = std::max(last, track->times.back());
+    }
+    if (!std::isfinite(first)) first = last = 0.0;
+    const double fps = settings.fps_override > 0.0 ? settings.fps_override : key_rate(moving);
     const double span = (last - first) * fps;
-    if (!(span < kMaxFrames) || (span + 1) * joints > kMaxSamples) {
+    poses += (span + 1) * joints;
+    if (!(span < kMaxFrames) || poses > settings.max_joint_poses) {
       return Error{file, 0, fmt::format("animation '{}' would be {:.0f} frames of {} joints ({:g} s at {:g} fps), more "
-                                        "than motiongraph reads ({} frames, {:g} joint poses)",
-                                        names_of_clips[a], span + 1, joints, last - first, fps, kMaxFrames, kMaxSamples)};
+                                        "than motiongraph reads ({} frames, {:g} joint poses in a file)",
+                                        clip_name, span + 1, joints, last - first, fps, kMaxFrames,
+                                        settings.max_joint_poses)};
     }
     const int frames = static_cast<int>(std::llround(span)) + 1;
     Clip clip;
-    clip.name = names_of_clips[a];
+    clip.name = clip_name;
     clip.skeleton = skeleton;
     clip.motion = Motion(skeleton, frames, fps);
-    std::vector<const Track*> rotation(static_cast<size_t>(joints)), translation(static_cast<size_t>(joints));
-    for (int j = 0; j < joints; ++j) {
-      const int node = order[static_cast<size_t>(j)];
-      const auto r = tracks.find({node, "rotation"});
-      const auto t = tracks.find({node, "translation"});
-      rotation[static_cast<size_t>(j)] = r == tracks.end() ? nullptr : &r->second;
-      translation[static_cast<size_t>(j)] = t == tracks.end() ? nullptr : &t->second;
-    }
     for (int f = 0; f < frames; ++f) {
       const double time = first + f / fps;
+      // The nodes above the root at this time (their rest where not animated).
+      for (size_t a = 0; a < layout.above.size(); ++a) {
+        above_t[a] = above_translation_tracks[a] ? as_vec3(above_translation_tracks[a]->sample(time))
+                                                 : above_rest[a].translation;
+        above_r[a] = above_rotation_tracks[a] ? as_quat(above_rotation_tracks[a]->sample(time)) : above_rest[a].rotation;
+      }
+      Vec3 frame_translation;
+      Quat frame_rotation;
+      compose_above(above_t, above_r, frame_translation, frame_rotation);
       auto rotations = clip.motion.rotations(f);
       auto translations = clip.motion.translations(f);
       for (int j = 0; j < joints; ++j) {
         const size_t js = static_cast<size_t>(j);
         const Quat local = rotation[js] ? as_quat(rotation[js]->sample(time)) : rest[js].rotation;
-        const Quat parent_world = j == 0 ? above_rotation : rest_world[static_cast<size_t>(defs[js].parent)];
+        const Quat parent_world = j == 0 ? frame_rotation : rest_world[static_cast<size_t>(defs[js].parent)];
         rotations[js] = (parent_world * local * rest_world[js].conjugate()).normalized();
         const int slot = skeleton.translation_slot(j);
         if (slot < 0) continue;
         const Vec3 t = translation[js] ? as_vec3(translation[js]->sample(time)) : rest[js].translation;
         translations[static_cast<size_t>(slot)] =
-            j == 0 ? Vec3(above_translation + above_scale * (above_rotation * t)) : Vec3(length_scale * (parent_world * t));
+            j == 0 ? Vec3(frame_translation + above_scale * (frame_rotation * t)) : Vec3(length_scale * (parent_world * t));
       }
     }
-    if (settings.fold_static_root) {
+    clips.push_back(std::move(clip));
+  }
+  // A static root above the hips, folded where the hips travel; then every clip of the file
+  // folded as the first that was, so that they share a skeleton (a held pose's hips never travel).
+  if (settings.fold_static_root) {
+    const Clip* folded = nullptr;
+    for (Clip& clip : clips) {
       const double size = figure_size(clip.skeleton, clip.motion);
       if (auto joint = find_trajectory_joint(clip.skeleton, clip.motion, kStaticRootFraction * size)) {
         clip = fold_static_root(clip, *joint);
+        if (!folded) folded = &clip;
       }
     }
-    stand_up(clip, settings.up_axis);
-    clips.push_back(std::move(clip));
+    if (folded) {
+      const Skeleton reference = folded->skeleton;
+      for (Clip& clip : clips) clip = fold_as(clip, reference);
+    }
+  }
+  // glTF's up axis is +y; a file says otherwise only through the user.
+  for (Clip& clip : clips) {
+    if (settings.up_axis && *settings.up_axis != UpAxis::kY) stand_up(clip, settings.up_axis);
   }
   return clips;
 }
