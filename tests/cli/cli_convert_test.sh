@@ -196,6 +196,27 @@ PY
 if "$bin" convert "$work/set.glb" --animation swim -o "$work/swim.json" 2>"$work/swim.err"; then echo "FAIL: no such animation"; exit 1; fi
 [[ $(wc -l <"$work/swim.err") -eq 1 && ! -e "$work/swim.json" ]] && grep -q "set.glb: no animation 'swim' (the file has 16_15, 16_35, 16_15_2)" "$work/swim.err" \
   || { echo "FAIL: --animation swim"; cat "$work/swim.err"; exit 1; }
+# A manifest names an animation of a glTF file, with its own tags.
+cat >"$work/glb.toml" <<'TOML'
+fps = 30
+[[clip]]
+file = "s16.glb"
+animation = "16_35"
+tags = ["jog"]
+[[clip]]
+file = "s16.glb"
+animation = "16_15"
+name = "stroll"
+TOML
+"$bin" info --json "$work/glb.toml" >"$work/glb-info.json" 2>/dev/null
+python3 - "$work/glb-info.json" <<'PY'
+import json, sys
+info = json.load(open(sys.argv[1]))
+clips = {c["name"]: c for c in info["clips"]}
+assert set(clips) == {"s16:16_35", "stroll"}, clips.keys()
+assert clips["s16:16_35"]["tags"] == ["jog"] and clips["s16:16_35"]["frames"] == 41, clips["s16:16_35"]
+assert "walk" in clips["stroll"]["tags"], clips["stroll"]  # CMU's index, by the animation's name
+PY
 "$bin" build "$work/s16.glb" -o "$work/glb.mgraph" --no-cache -q
 "$bin" inspect --clips "$work/glb.mgraph" >"$work/glb.clips"
 grep -q "^s16:16_15 .* walk" "$work/glb.clips" && [[ $(grep -c "^s16:16_" "$work/glb.clips") -eq 15 ]] \

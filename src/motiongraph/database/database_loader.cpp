@@ -185,6 +185,12 @@ Status expand_manifest(const std::string& input, const DatabaseSettings& setting
     spec.path = resolve(clip.file);
     spec.cmu_name = fs::path(clip.file).stem().string();
     spec.name = clip.name ? *clip.name : spec.cmu_name;
+    if (clip.animation) {
+      // An animation of a glTF file: named and looked up in CMU's index as the animation.
+      spec.animation = clip.animation;
+      if (!clip.name) spec.name = fmt::format("{}:{}", spec.cmu_name, *clip.animation);
+      spec.cmu_name = *clip.animation;
+    }
     spec.load = default_load_settings(settings);
     if (clip.skeleton || manifest->skeleton) {
       spec.load.asf_path = resolve(clip.skeleton ? *clip.skeleton : *manifest->skeleton);

@@ -185,7 +185,7 @@ Result<ManifestClip> read_clip(const Reader& in, const toml::table& table) {
   ManifestClip clip;
   clip.line = line_of(table);
   if (auto s = in.check_keys(table, {"file", "name", "skeleton", "bvh_scale", "up_axis", "travel", "input_fps",
-                                     "first_frame", "last_frame", "tags", "ranges"},
+                                     "first_frame", "last_frame", "tags", "ranges", "animation"},
                              "in a [[clip]]");
       !s) {
     return s.error();
@@ -197,8 +197,14 @@ Result<ManifestClip> read_clip(const Reader& in, const toml::table& table) {
   clip.file = std::move(*path);
   clip.file_line = line_of(*file);
   const std::string ext = lower_extension(clip.file);
-  if (ext != ".amc" && ext != ".bvh") {
-    return in.error(clip.file_line, fmt::format("clip file \"{}\" is neither .amc nor .bvh", clip.file));
+  if (ext != ".amc" && ext != ".bvh" && ext != ".glb" && ext != ".gltf") {
+    return in.error(clip.file_line, fmt::format("clip file \"{}\" is not .amc, .bvh, .glb or .gltf", clip.file));
+  }
+  if (const toml::node* node = table.get("animation")) {
+    if (ext != ".glb" && ext != ".gltf") return in.error(line_of(*node), "'animation' applies to glTF clips only");
+    auto animation = in.string(*node, "animation");
+    if (!animation) return animation.error();
+    clip.animation = std::move(*animation);
   }
   if (const toml::node* node = table.get("name")) {
     auto name = in.string(*node, "name");

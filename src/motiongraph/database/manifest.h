@@ -36,6 +36,7 @@ struct ManifestClip {
   std::optional<std::string> name;         // clip name; the file's stem when absent (CMU
                                            // tags are looked up by the stem either way)
   std::optional<std::string> skeleton;     // ASF for an AMC clip (overrides the default)
+  std::optional<std::string> animation;    // of a glTF clip (default: its first)
   std::optional<double> bvh_scale;         // metres per BVH unit (overrides the default)
   std::optional<UpAxis> up_axis;           // the clip's up axis (overrides the default)
   std::optional<TravelSource> travel;      // where its travel comes from (overrides the default)
