@@ -581,7 +581,13 @@ Result<std::vector<Clip>> clips_from_gltf(std::string_view bytes, const std::str
   }
   const Skeleton skeleton(defs);
 
-  std::vector<Clip> clips;
+  // Each animation's tracks, span and rate, all checked against the limits before any is sampled.
+  struct Plan {
+    std::vector<const Track*> rotation, translation, above_rotation, above_translation;
+    double first = 0.0, fps = 30.0;
+    int frames = 1;
+  };
+  std::vector<Plan> plans;
   for (size_t i = 0; i < animations.size(); ++i) {
     const Tracks& tracks = animations[i];
     const std::string& clip_name = layout.names[layout.moving[i]];
@@ -621,9 +627,20 @@ Result<std::vector<Clip>> clips_from_gltf(std::string_view bytes, const std::str
                                         clip_name, span + 1, joints, last - first, fps, kMaxFrames,
                                         settings.max_joint_poses)};
     }
-    const int frames = static_cast<int>(std::llround(span)) + 1;
+    plans.push_back({std::move(rotation), std::move(translation), std::move(above_rotation_tracks),
+                     std::move(above_translation_tracks), first, fps, static_cast<int>(std::llround(span)) + 1});
+  }
+  std::vector<Clip> clips;
+  for (size_t i = 0; i < plans.size(); ++i) {
+    const Plan& plan = plans[i];
+    const std::vector<const Track*>& rotation = plan.rotation;
+    const std::vector<const Track*>& translation = plan.translation;
+    const std::vector<const Track*>& above_rotation_tracks = plan.above_rotation;
+    const std::vector<const Track*>& above_translation_tracks = plan.above_translation;
+    const double first = plan.first, fps = plan.fps;
+    const int frames = plan.frames;
     Clip clip;
-    clip.name = clip_name;
+    clip.name = layout.names[layout.moving[i]];
     clip.skeleton = skeleton;
     clip.motion = Motion(skeleton, frames, fps);
     for (int f = 0; f < frames; ++f) {
