@@ -217,6 +217,12 @@ assert set(clips) == {"s16:16_35", "stroll"}, clips.keys()
 assert clips["s16:16_35"]["tags"] == ["jog"] and clips["s16:16_35"]["frames"] == 41, clips["s16:16_35"]
 assert "walk" in clips["stroll"]["tags"], clips["stroll"]  # CMU's index, by the animation's name
 PY
+# A folder of a character's model alone (glTF without animation) holds no clip.
+mkdir "$work/model"
+printf '{"asset": {"version": "2.0"}, "nodes": [{"name": "Body"}], "scenes": [{"nodes": [0]}]}\n' >"$work/model/character.gltf"
+if "$bin" info "$work/model" 2>"$work/model.err" >/dev/null; then echo "FAIL: a folder without clips was a library"; exit 1; fi
+grep -q "model: the folder holds no clip (its glTF files have no animation)" "$work/model.err" \
+  || { echo "FAIL: a folder of a model"; cat "$work/model.err"; exit 1; }
 "$bin" build "$work/s16.glb" -o "$work/glb.mgraph" --no-cache -q
 "$bin" inspect --clips "$work/glb.mgraph" >"$work/glb.clips"
 grep -q "^s16:16_15 .* walk" "$work/glb.clips" && [[ $(grep -c "^s16:16_" "$work/glb.clips") -eq 15 ]] \

@@ -138,9 +138,11 @@ Status expand_folder(const std::string& input, const DatabaseSettings& settings,
     }
     load.asf_path = asfs.front().string();
   }
+  const size_t before = specs.size();
   for (const fs::path& clip : clips) {
     if (auto s = add_file_specs(clip, load, specs, true); !s) return s;
   }
+  if (specs.size() == before) return Error{input, 0, "the folder holds no clip (its glTF files have no animation)"};
   return Ok{};
 }
 
