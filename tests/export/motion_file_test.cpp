@@ -11,6 +11,7 @@
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/gltf_import.h"
 #include "motiongraph/motion/trajectory_joint.h"
+#include "motiongraph/synthesis/facing.h"
 #include "test_data.h"
 
 namespace mg {
@@ -24,16 +25,22 @@ struct TempDir {
   ~TempDir() { fs::remove_all(path); }
 };
 
-TEST(AnimationSet, AHeldPoseOfAStaticRootRigJoinsItsTravellingClips) {
-  const Clip plain = test::load_data_clip("cmu/16/16_35.amc");
-  const Clip walk = test::import_bvh(test::static_root_bvh(plain));
+// Frame `frame` of the clip held for 4 frames, as a static-root rig's BVH reads it: its hips
+// never travel, so its static root is not folded.
+Clip held_pose(const Clip& plain, int frame) {
   Clip pose = plain;
-  pose.motion = plain.motion.slice(40, 4);
+  pose.motion = plain.motion.slice(frame, 4);
   for (int f = 1; f < pose.motion.frame_count; ++f) {
     for (int j = 0; j < plain.skeleton.joint_count(); ++j) pose.motion.rotations(f)[j] = pose.motion.rotations(0)[j];
     pose.motion.translations(f)[0] = pose.motion.translations(0)[0];
   }
-  const Clip held = test::import_bvh(test::static_root_bvh(pose));
+  return test::import_bvh(test::static_root_bvh(pose));
+}
+
+TEST(AnimationSet, AHeldPoseOfAStaticRootRigJoinsItsTravellingClips) {
+  const Clip plain = test::load_data_clip("cmu/16/16_35.amc");
+  const Clip walk = test::import_bvh(test::static_root_bvh(plain));
+  const Clip held = held_pose(plain, 40);
   ASSERT_NE(held.skeleton.joint_count(), walk.skeleton.joint_count());  // not folded
   TempDir dir;
   const std::string out = (dir.path / "set.glb").string();
@@ -54,6 +61,32 @@ TEST(AnimationSet, AHeldPoseOfAStaticRootRigJoinsItsTravellingClips) {
     // Every joint where it was (but the static root, which becomes the root-motion joint).
     EXPECT_LT(test::max_position_error_by_name(fold_as(held, walk.skeleton), (*clips)[1]), 2e-5) << root_motion;
   }
+}
+
+// With root motion, the held pose's root-motion joint faces where its hips do by the walk's
+// forward axis (its own was learnt on the static root it had before the fold).
+TEST(AnimationSet, AHeldPoseFoldedFacesByItsRigsAxis) {
+  const Clip plain = test::load_data_clip("cmu/16/16_35.amc");
+  const Clip walk = test::import_bvh(test::static_root_bvh(plain));
+  const Clip held = held_pose(plain, 60);
+  const Vec3 axis = learn_clip_forward_axis(walk.skeleton, walk.motion);
+  const std::vector<NamedMotion> set{{"walk.bvh", "walk", &walk.skeleton, &walk.motion, axis},
+                                     {"pose.bvh", "pose", &held.skeleton, &held.motion,
+                                      learn_clip_forward_axis(held.skeleton, held.motion)}};
+  TempDir dir;
+  const std::string out = (dir.path / "set.glb").string();
+  MotionFileSettings settings;
+  settings.root_motion = RootMotionOutput{};
+  ASSERT_TRUE(write_animation_set(out, set, settings));
+  auto bytes = read_text_file(out);
+  ASSERT_TRUE(bytes);
+  auto clips = clips_from_gltf(*bytes, out, {});
+  ASSERT_TRUE(clips) << clips.error().message;
+  const Clip& read = (*clips)[1];
+  ASSERT_EQ(read.skeleton.joint(0).name, test::kStaticRootName);  // the root-motion joint
+  const Vec2 want = facing_on_floor(fold_as(held, walk.skeleton).motion.rotations(0)[0], axis);
+  const Vec2 got = facing_on_floor(read.motion.rotations(0)[0], Vec3::UnitZ());
+  EXPECT_LT((got - want).norm(), 1e-4) << got.transpose() << " / " << want.transpose();
 }
 
 TEST(AnimationSet, NoFramesAnotherRigOrFormatIsAnErrorAndNoFile) {

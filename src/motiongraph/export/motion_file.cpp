@@ -78,6 +78,7 @@ Status write_animation_set(const std::string& path, std::span<const NamedMotion>
                                    [](const NamedMotion& m) { return !m.skeleton->static_ancestors().empty(); });
   if (folded != same.end()) {
     const Skeleton reference = *folded->skeleton;
+    const Vec3 reference_axis = folded->forward_axis;
     for (NamedMotion& m : same) {
       if (m.skeleton->static_ancestors().size() >= reference.static_ancestors().size()) continue;
       Clip clip;
@@ -86,6 +87,8 @@ Status write_animation_set(const std::string& path, std::span<const NamedMotion>
       refolded.push_back(fold_as(clip, reference));
       m.skeleton = &refolded.back().skeleton;
       m.motion = &refolded.back().motion;
+      // Its forward axis was learnt in the frame of the root it had; now the folded clips' root.
+      if (m.skeleton->static_ancestors().size() == reference.static_ancestors().size()) m.forward_axis = reference_axis;
     }
   }
   for (const NamedMotion& m : same) {

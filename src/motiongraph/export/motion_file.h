@@ -51,7 +51,8 @@ struct NamedMotion {
 // Several motions of one rig into one .glb, an animation each (gltf_writer.h), written
 // atomically: a character's animation set as game engines import it. Each gets the root-motion
 // joint asked for in `settings` facing its own forward axis (settings.root_motion's is not
-// used). Fails unless the path ends in .glb, and when a motion's rig is not the first's
+// used); a held pose folded as the set's static-root clips (trajectory_joint.h: fold_as) faces
+// theirs, its own having been learnt on the root it had. Fails unless the path ends in .glb, and when a motion's rig is not the first's
 // (motion/rig_matching.h: rig_difference), naming its source.
 Status write_animation_set(const std::string& path, std::span<const NamedMotion> motions,
                            const MotionFileSettings& settings = {});
