@@ -12,14 +12,13 @@
 #include <spdlog/spdlog.h>
 
 #include "cli/commands.h"
-#include "motiongraph/core/file_extension.h"
 #include "cli/library_info.h"
 #include "cli/load_options.h"
 #include "cli/motion_output_options.h"
 #include "cli/unit_report.h"
+#include "motiongraph/core/file_extension.h"
 #include "motiongraph/database/clip_on_skeleton.h"
 #include "motiongraph/database/database_loader.h"
-#include "motiongraph/export/bvh_writer.h"
 #include "motiongraph/export/motion_file.h"
 #include "motiongraph/export/positions_json.h"
 #include "motiongraph/io/file.h"

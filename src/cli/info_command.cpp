@@ -10,10 +10,10 @@
 #include <spdlog/spdlog.h>
 
 #include "cli/commands.h"
-#include "motiongraph/core/file_extension.h"
 #include "cli/library_info.h"
 #include "cli/load_options.h"
 #include "cli/unit_report.h"
+#include "motiongraph/core/file_extension.h"
 #include "motiongraph/core/json_text.h"
 #include "motiongraph/export/motion_file.h"
 #include "motiongraph/motion/clip_loader.h"

@@ -78,17 +78,12 @@ ClipSpec spec_for_file(const fs::path& path, const ClipLoadSettings& load) {
   return spec;
 }
 
-bool is_gltf(const std::string& path) {
-  const std::string ext = lower_extension(path);
-  return ext == ".glb" || ext == ".gltf";
-}
-
 // The clips of a file: one, or one per animation of a glTF file (named FILE:ANIMATION when it
 // has several, as the clip loader names them). A glTF file without animation (a character's
 // model) is passed over in a folder, an error when given itself.
 Status add_file_specs(const fs::path& path, const ClipLoadSettings& load, std::vector<ClipSpec>& specs,
                       bool in_folder) {
-  if (!is_gltf(path.string())) {
+  if (!is_gltf_file(path.string())) {
     specs.push_back(spec_for_file(path, load));
     return Ok{};
   }
@@ -116,7 +111,7 @@ Status expand_folder(const std::string& input, const DatabaseSettings& settings,
   for (const auto& entry : fs::directory_iterator(input, ec)) {
     if (!entry.is_regular_file(ec)) continue;
     const std::string ext = lower_extension(entry.path().string());
-    if (ext == ".amc" || ext == ".bvh" || ext == ".glb" || ext == ".gltf") clips.push_back(entry.path());
+    if (is_clip_file(entry.path().string())) clips.push_back(entry.path());
     if (ext == ".asf") asfs.push_back(entry.path());
   }
   if (ec) return Error{input, 0, fmt::format("cannot list the folder: {}", ec.message())};
@@ -816,7 +811,7 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
     const std::string ext = lower_extension(input);
     if (ext == ".toml") {
       if (auto s = expand_manifest(input, settings, specs, wide); !s) return s.error();
-    } else if (ext == ".amc" || ext == ".bvh" || ext == ".glb" || ext == ".gltf") {
+    } else if (is_clip_file(input)) {
       if (auto s = add_file_specs(input, default_load_settings(settings), specs, false); !s) return s.error();
     } else if (ext == ".asf") {
       return Error{input, 0, "an ASF file holds a skeleton only: give its folder, or its AMC files with --asf"};

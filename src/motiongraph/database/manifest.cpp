@@ -10,6 +10,7 @@
 #include <toml++/toml.h>
 
 #include "motiongraph/core/file_extension.h"
+#include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/in_place.h"
 #include "motiongraph/motion/up_axis.h"
 
@@ -197,11 +198,11 @@ Result<ManifestClip> read_clip(const Reader& in, const toml::table& table) {
   clip.file = std::move(*path);
   clip.file_line = line_of(*file);
   const std::string ext = lower_extension(clip.file);
-  if (ext != ".amc" && ext != ".bvh" && ext != ".glb" && ext != ".gltf") {
+  if (!is_clip_file(clip.file)) {
     return in.error(clip.file_line, fmt::format("clip file \"{}\" is not .amc, .bvh, .glb or .gltf", clip.file));
   }
   if (const toml::node* node = table.get("animation")) {
-    if (ext != ".glb" && ext != ".gltf") return in.error(line_of(*node), "'animation' applies to glTF clips only");
+    if (!is_gltf_file(clip.file)) return in.error(line_of(*node), "'animation' applies to glTF clips only");
     auto animation = in.string(*node, "animation");
     if (!animation) return animation.error();
     clip.animation = std::move(*animation);

@@ -21,6 +21,16 @@ namespace mg {
 
 namespace fs = std::filesystem;
 
+bool is_gltf_file(std::string_view path) {
+  const std::string ext = lower_extension(path);
+  return ext == ".glb" || ext == ".gltf";
+}
+
+bool is_clip_file(std::string_view path) {
+  const std::string ext = lower_extension(path);
+  return ext == ".amc" || ext == ".bvh" || is_gltf_file(path);
+}
+
 Status ClipLoadSettings::validate() const {
   if (bvh_metres_per_unit && (!(*bvh_metres_per_unit > 0.0) || !std::isfinite(*bvh_metres_per_unit))) {
     return Error{"", 0, "--scale must be a positive number"};
@@ -63,7 +73,7 @@ Result<std::shared_ptr<const AcclaimRig>> ClipLoader::load_asf(const std::string
 Result<LoadedClip> ClipLoader::load(const std::string& path, const std::optional<std::string>& animation) {
   if (auto s = settings_.validate(); !s) return s.error();
   const std::string ext = lower_extension(path);
-  if (animation && ext != ".glb" && ext != ".gltf") {
+  if (animation && !is_gltf_file(path)) {
     return Error{path, 0, "an animation is chosen from a glTF file (.glb, .gltf) only"};
   }
   LoadedClip loaded;
@@ -102,7 +112,7 @@ Result<LoadedClip> ClipLoader::load(const std::string& path, const std::optional
     loaded.clip.name = std::move(name);
     loaded.format = "bvh";
     loaded.source_channels = bvh->channel_count;
-  } else if (ext == ".glb" || ext == ".gltf") {
+  } else if (is_gltf_file(path)) {
     // A library reads each animation of a file in turn: the file is read once for all.
     if (gltf_path_ != path) {
       auto bytes = read_text_file(path);

@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "motiongraph/core/error.h"
@@ -66,5 +67,10 @@ class ClipLoader {
 };
 
 constexpr double kCmuCaptureFps = 120.0;
+
+// By extension, in any case: a file the loader reads as clips (.amc, .bvh, .glb, .gltf), and a
+// glTF file among them (whose every animation is a clip).
+bool is_clip_file(std::string_view path);
+bool is_gltf_file(std::string_view path);
 
 }  // namespace mg
