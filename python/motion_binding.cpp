@@ -259,7 +259,7 @@ void bind_motion(py::module_& m) {
         py::arg("scale") = py::none(), py::arg("up_axis") = py::none(), py::arg("input_fps") = 0.0,
         py::arg("keep_rest_frames") = false, py::arg("travel") = "auto", py::arg("feet") = py::none(),
         py::arg("animation") = py::none(),
-        "Reads a clip (.amc with its .asf, .bvh, or an animation of a .glb/.gltf) as the CLI's convert does: asf "
+        "Reads a clip (.amc with its .asf, .bvh, or an animation of a .glb/.gltf/.fbx) as the CLI's convert does: asf "
         "the skeleton of an AMC file "
         "(default: the .asf in its folder), fps a rate to resample to, scale metres per BVH unit (default: "
         "chosen from the figure's size), up_axis 'y' or 'z' (default: whichever the figure stands along; "
@@ -267,7 +267,7 @@ void bind_motion(py::module_& m) {
         "the floor comes from: 'root' as read, 'feet' recovered from the planted feet, 'auto' (default) the "
         "feet when the clip is animated in place; feet the foot joints as 'LEFT_ANKLE,LEFT_TOE,RIGHT_ANKLE,"
         "RIGHT_TOE', any left empty to find it by name (default: found by name), for the travel and contacts; "
-        "animation the glTF file's animation to read (default: its first).");
+        "animation the glTF or FBX file's animation to read (default: its first).");
 }
 
 }  // namespace mg::python

@@ -24,7 +24,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libopenblas-dev
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev libtomlplusplus-dev
-  libstb-dev zlib1g-dev libcpp-httplib-dev libtinygltf-dev
+  libstb-dev zlib1g-dev libcpp-httplib-dev libtinygltf-dev libassimp-dev
   gnuplot-nox
 )
 if [ "$mode" = test ]; then

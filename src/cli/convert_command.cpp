@@ -1,4 +1,4 @@
-// motiongraph convert IN... -o OUT [-o OUT...]: AMC or BVH in, BVH, glTF or positions JSON out
+// motiongraph convert IN... -o OUT [-o OUT...]: AMC, BVH, glTF or FBX in, BVH, glTF or positions JSON out
 // (metres, the JSON with the feet's contacts); the clip is read once for all outputs. Several
 // clips of one rig go into one glTF file, an animation each.
 #include <algorithm>
@@ -151,7 +151,7 @@ int run_convert(const ConvertOptions& options) {
   if (auto s = options.output.settings().validate(); !s) return fail(s.error());
   const ClipLoadSettings load = options.load.settings();
   if (is_library(options.inputs)) {
-    if (options.animation) return fail(Error{"", 0, "--animation applies to glTF files, not to a library"});
+    if (options.animation) return fail(Error{"", 0, "--animation applies to glTF and FBX files, not to a library"});
     return convert_library(options, load);
   }
   if (options.skeleton >= 0) return fail(Error{"", 0, "--skeleton applies to a library (a folder or a manifest)"});
@@ -192,20 +192,20 @@ int run_convert(const ConvertOptions& options) {
 Command add_convert_command(CLI::App& app) {
   auto options = std::make_shared<ConvertOptions>();
   CLI::App* sub = app.add_subcommand(
-      "convert", "Convert an AMC, BVH or glTF clip to BVH (metres), to binary glTF (.glb: the skeleton, its animation and "
+      "convert", "Convert an AMC, BVH, glTF or FBX clip to BVH (metres), to binary glTF (.glb: the skeleton, its animation and "
                  "a stick figure skinned to it, in metres; several clips of one rig make one file, an animation each) or to "
                  "JSON world positions "
                  "({\"fps\", \"joints\": [{\"name\", \"parent\"}], \"positions\": [frame][joint][x,y,z], "
                  "\"contacts\": {\"joints\": [the foot joints], \"planted\": [frame][foot joint] 0 or 1}}).");
   sub->add_option("IN", options->inputs,
-                  "Input clip (.amc, .bvh, or .glb/.gltf: an animation of it); several clips of one rig go into one .glb, an animation each named as "
+                  "Input clip (.amc, .bvh, or .glb/.gltf/.fbx: an animation of it); several clips of one rig go into one .glb, an animation each named as "
                   "its file (a character's animation set, as game engines import it); a library (folders, .toml "
                   "manifests) goes into one .glb as build reads it (at 30 fps unless --fps or its manifest says), "
                   "every clip on one of its skeletons")
       ->required()
       ->check(CLI::ExistingPath);
   sub->add_option("--animation", options->animation,
-                  "The animation of a glTF input to read (default: its first; a library reads them all)");
+                  "The animation of a glTF or FBX input to read (default: its first; a library reads them all)");
   sub->add_option("--skeleton", options->skeleton,
                   "A library's skeleton to play every clip on, as synthesis plays them: rotations kept, translations "
                   "scaled by the legs' lengths (default: the first clip's)")

@@ -20,6 +20,7 @@
 #include "motiongraph/motion/clip_doubts.h"
 #include "motiongraph/motion/clip_summary.h"
 #include "motiongraph/motion/forward_kinematics.h"
+#include "motiongraph/motion/up_axis.h"
 #include "motiongraph/pipeline/feet_report.h"
 
 namespace mg::cli {
@@ -117,11 +118,19 @@ int run_info(const InfoOptions& options) {
     std::string unit = fmt::format("{:g} m per unit (--scale)", options.load.scale.value_or(1.0));
     if (loaded->format == "amc") unit = "the ASF's units";
     if (loaded->format == "gltf") unit = "metres (glTF's)";
+    if (loaded->format == "fbx") {
+      unit = fmt::format("{:g} m (the FBX file's: centimetres times its UnitScaleFactor {:g})",
+                         loaded->file_metres_per_unit, loaded->file_metres_per_unit * 100.0);
+    }
     if (clip.detected_unit) unit = unit_description(*clip.detected_unit) + " (chosen by its size; --scale overrides)";
     std::string up = clip.detected_up_axis ? up_axis_description(*clip.detected_up_axis) +
                                                  " (chosen by its shape; --up-axis overrides)"
                                            : options.load.up_axis + " (--up-axis)";
     if (loaded->format == "gltf" && options.load.up_axis.empty()) up = "y (glTF's; --up-axis z turns it)";
+    if (loaded->format == "fbx" && options.load.up_axis.empty() && loaded->file_up_axis) {
+      up = fmt::format("{} (the FBX file's{}; --up-axis overrides)", up_axis_name(*loaded->file_up_axis),
+                       *loaded->file_up_axis == UpAxis::kY ? "" : ", turned y up");
+    }
     std::string static_joints;
     for (const StaticAncestor& a : clip.skeleton.static_ancestors()) {
       static_joints += (static_joints.empty() ? "" : ", ") + a.name;
@@ -145,6 +154,12 @@ int run_info(const InfoOptions& options) {
                          {"figure_size_m", clip.detected_unit->figure_size_m},
                          {"plausible", clip.detected_unit->plausible}};
       }
+      if (loaded->format == "fbx") {
+        entry["unit"] = {{"name", "fbx"}, {"metres_per_unit", loaded->file_metres_per_unit}};
+        if (loaded->file_up_axis && options.load.up_axis.empty()) {
+          entry["up_axis"] = {{"axis", up_axis_name(*loaded->file_up_axis)}, {"source", "file"}};
+        }
+      }
       if (clip.detected_up_axis) {
         entry["up_axis"] = {{"axis", up_axis_name(clip.detected_up_axis->axis)},
                             {"animation_ratio", clip.detected_up_axis->animation_ratio},
@@ -163,10 +178,10 @@ int run_info(const InfoOptions& options) {
       }
       all.push_back(std::move(entry));
     } else {
-      if (loaded->format == "gltf") {
-        fmt::print("{}: glTF, animation '{}' ({} of {}: {}; convert --animation picks one, a library reads "
+      if (loaded->format == "gltf" || loaded->format == "fbx") {
+        fmt::print("{}: {}, animation '{}' ({} of {}: {}; convert --animation picks one, a library reads "
                    "them all)\n",
-                   file, loaded->animations[static_cast<size_t>(loaded->animation)], loaded->animation + 1,
+                   file, loaded->format == "fbx" ? "FBX" : "glTF", loaded->animations[static_cast<size_t>(loaded->animation)], loaded->animation + 1,
                    loaded->animations.size(), fmt::join(loaded->animations, ", "));
       } else {
         fmt::print("{}: {}{}\n", file, loaded->format == "amc" ? "AMC on " : "BVH",
@@ -204,7 +219,7 @@ Command add_info_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("info", "Summarise skeletons and clips: joints, dofs, frames, fps, "
                                              "duration, floor extent (metres), up axis, feet; or a library "
                                              "(folders, manifests) as build reads it: its clips, tags and feet.");
-  sub->add_option("FILE", options->files, "ASF, AMC, BVH or glTF (.glb, .gltf) files (an AMC uses the .asf given with it, --asf, "
+  sub->add_option("FILE", options->files, "ASF, AMC, BVH, glTF (.glb, .gltf) or FBX files (an AMC uses the .asf given with it, --asf, "
                                           "or the only .asf in its folder); or clip folders and .toml "
                                           "manifests, summarised together as one library")
       ->required()

@@ -46,8 +46,8 @@ struct LoadOptions {
             },
             "", "FEET"));
     app.add_option("--input-fps", input_fps,
-                   "Capture rate of the input, overriding the file's (AMC default 120, CMU's rate); for glTF, whose "
-                   "keys are timed in seconds, the rate its animations are sampled at (default: their keys')");
+                   "Capture rate of the input, overriding the file's (AMC default 120, CMU's rate); for glTF and "
+                   "FBX, whose keys are timed in seconds, the rate their animations are sampled at (default: their keys')");
     app.add_flag("--keep-rest-frames", keep_rest_frames,
                  "Keep leading rest or T-pose frames that a BVH converter added (dropped by default)");
   }

@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
   spdlog::set_default_logger(logger);
 
   CLI::App app{"motiongraph: build motion graphs from motion capture and synthesize new motion.\n"
-               "Reads CMU ASF/AMC, BVH and glTF; lengths in metres."};
+               "Reads CMU ASF/AMC, BVH, glTF and FBX; lengths in metres."};
   app.require_subcommand(1);
   // Usage errors, like input errors, are one line.
   app.failure_message([](const CLI::App*, const CLI::Error& e) {

@@ -8,8 +8,8 @@
 # from, read by Blender the same way; and each planted toe (the foot clean-up) within 1 cm of its
 # plant on the floor over its contact. The same figure 8 written as glTF (.glb): check_gltf.py
 # imports it with Blender's glTF importer and checks its armature, keys and joint positions.
-# And glTF that Blender writes (export_gltf.py, from its BVH import of data/bvh/16_01.bvh) reads in
-# motiongraph to the joint positions of the BVH itself.
+# And glTF and FBX that Blender writes (export_gltf.py, export_fbx.py, from its BVH import of
+# data/bvh/16_01.bvh) read in motiongraph to the joint positions of the BVH itself.
 # Needs Blender (Debian package blender; the test fails with a message when it is missing, it
 # never passes silently).
 set -euo pipefail
@@ -83,4 +83,26 @@ worst = max(abs(a - b) for fo, fb in zip(ours["positions"], bvh["positions"])
             for j, p in enumerate(fo) for a, b in zip(p, fb[index[joints[j]]]))
 assert worst < 1e-4, worst  # float32 keys, in CMU's units (0.056 m)
 print(f"blender_import_test: Blender's glTF of 16_01 read as its BVH is, within {worst:.1e} units")
+PY
+
+# FBX written by Blender (export_fbx.py: centimetres under an armature scaled by 100, bones resting
+# along themselves, y up or z up) reads to the same joint positions: within float32 with every
+# frame's keys, and within Blender's own key reduction (its default) without them.
+check export_fbx "$data/bvh/16_01.bvh" "$tmp/every-key.fbx" Z 0
+check export_fbx "$data/bvh/16_01.bvh" "$tmp/reduced.fbx" Y 1
+"$motiongraph" convert "$tmp/every-key.fbx" -o "$tmp/every-key.json"
+"$motiongraph" convert "$tmp/reduced.fbx" -o "$tmp/reduced.json"
+python3 - "$tmp/every-key.json" "$tmp/reduced.json" "$tmp/bvh.json" <<'PY'
+import json, sys
+every, reduced, bvh = (json.load(open(p)) for p in sys.argv[1:])
+names = [j["name"] for j in bvh["joints"]]
+index = {n: i for i, n in enumerate(names)}
+for ours, bound in ((every, 1e-4), (reduced, 0.15)):
+    joints = [j["name"] for j in ours["joints"]]
+    assert sorted(joints) == sorted(n for n in names if not n.endswith("_end")), (joints, names)
+    assert ours["fps"] == bvh["fps"] and len(ours["positions"]) == len(bvh["positions"]) > 300
+    worst = max(abs(a - b) for fo, fb in zip(ours["positions"], bvh["positions"])
+                for j, p in enumerate(fo) for a, b in zip(p, fb[index[joints[j]]]))
+    assert worst < bound, (worst, bound)  # in CMU's units (0.056 m)
+    print(f"blender_import_test: Blender's FBX of 16_01 read as its BVH is, within {worst:.1e} units")
 PY

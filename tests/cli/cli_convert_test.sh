@@ -221,7 +221,7 @@ PY
 mkdir "$work/model"
 printf '{"asset": {"version": "2.0"}, "nodes": [{"name": "Body"}], "scenes": [{"nodes": [0]}]}\n' >"$work/model/character.gltf"
 if "$bin" info "$work/model" 2>"$work/model.err" >/dev/null; then echo "FAIL: a folder without clips was a library"; exit 1; fi
-grep -q "model: the folder holds no clip (its glTF files have no animation)" "$work/model.err" \
+grep -q "model: the folder holds no clip (its glTF and FBX files have no animation)" "$work/model.err" \
   || { echo "FAIL: a folder of a model"; cat "$work/model.err"; exit 1; }
 "$bin" build "$work/s16.glb" -o "$work/glb.mgraph" --no-cache -q
 "$bin" inspect --clips "$work/glb.mgraph" >"$work/glb.clips"

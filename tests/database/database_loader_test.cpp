@@ -898,7 +898,7 @@ TEST(DatabaseLoader, BadInputsAndSettings) {
   EXPECT_NE(asf.error().message.find("skeleton only"), std::string::npos);
   auto empty = load_database({test::data_path("cmu")}, settings);
   ASSERT_FALSE(empty);
-  EXPECT_NE(empty.error().message.find("no .amc, .bvh, .glb or .gltf"), std::string::npos);
+  EXPECT_NE(empty.error().message.find("no .amc, .bvh, .glb, .gltf or .fbx"), std::string::npos);
   auto tsv = load_database({test::data_path("cmu/cmu-mocap-index.tsv")}, settings);
   ASSERT_FALSE(tsv);
   EXPECT_NE(tsv.error().message.find("unknown input"), std::string::npos);

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
+#include "motion/max_apart.h"
 #include "motion/static_root_bvh.h"
 #include "motiongraph/export/gltf_writer.h"
 #include "motiongraph/motion/forward_kinematics.h"
@@ -19,25 +20,6 @@
 
 namespace mg {
 namespace {
-
-// The largest distance between the joints of two clips named alike, over every frame.
-double max_apart(const Clip& a, const Clip& b) {
-  EXPECT_EQ(a.motion.frame_count, b.motion.frame_count);
-  const std::vector<Vec3> pa = world_positions(a.skeleton, a.motion), pb = world_positions(b.skeleton, b.motion);
-  double worst = 0.0;
-  for (int j = 0; j < a.skeleton.joint_count(); ++j) {
-    const auto k = b.skeleton.find(a.skeleton.joint(j).name);
-    if (!k) {
-      ADD_FAILURE() << "no joint " << a.skeleton.joint(j).name;
-      continue;
-    }
-    for (int f = 0; f < std::min(a.motion.frame_count, b.motion.frame_count); ++f) {
-      worst = std::max(worst, (pa[static_cast<size_t>(f * a.skeleton.joint_count() + j)] -
-                               pb[static_cast<size_t>(f * b.skeleton.joint_count() + *k)]).norm());
-    }
-  }
-  return worst;
-}
 
 std::vector<Clip> read_back(const std::string& bytes, const GltfImportSettings& settings = {}) {
   auto clips = clips_from_gltf(bytes, "test.glb", settings);
@@ -54,7 +36,7 @@ TEST(GltfImport, OurOwnFileReadsBackToTheSameJointsAndRate) {
   EXPECT_EQ(clips[0].name, "walk");
   EXPECT_EQ(clips[0].motion.fps, clip.motion.fps);  // 120, from float32 key times
   EXPECT_EQ(clips[0].skeleton.joint_count(), clip.skeleton.joint_count());
-  EXPECT_LT(max_apart(clip, clips[0]), 2e-5);  // float32 keys
+  EXPECT_LT(test::max_apart(clip, clips[0]), 2e-5);  // float32 keys
   EXPECT_EQ(clips[0].skeleton.translated_joints().size(), 1u);
 }
 
@@ -68,7 +50,7 @@ TEST(GltfImport, AStaticRootAboveTheHipsIsFoldedAsForBvh) {
   ASSERT_EQ(clips.size(), 1u);
   EXPECT_EQ(clips[0].skeleton.joint(0).name, clip.skeleton.joint(0).name);  // the hips, travelling
   EXPECT_EQ(clips[0].skeleton.static_ancestors().size(), clip.skeleton.static_ancestors().size());
-  EXPECT_LT(max_apart(clip, clips[0]), 2e-5);
+  EXPECT_LT(test::max_apart(clip, clips[0]), 2e-5);
 }
 
 TEST(GltfImport, EveryAnimationIsAClipOnOneSkeleton) {
@@ -84,7 +66,7 @@ TEST(GltfImport, EveryAnimationIsAClipOnOneSkeleton) {
   EXPECT_EQ(clips[1].motion.fps, 30.0);
   Clip jog_at30 = jog;
   jog_at30.motion = jog30;
-  EXPECT_LT(max_apart(jog_at30, clips[1]), 2e-5);
+  EXPECT_LT(test::max_apart(jog_at30, clips[1]), 2e-5);
   // The writer named the third "walk_2" (names repeat in no glTF file it writes).
   EXPECT_EQ(clips[2].name, "walk_2");
   // A rate given samples between the keys.

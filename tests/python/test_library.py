@@ -126,7 +126,7 @@ def test_feet_named_and_options_refused(cli, data, tmp_path):
 def test_bad_library_raises_the_cli_message(cli, data, tmp_path):
     missing = tmp_path / "nothing-here"
     missing.mkdir()
-    with pytest.raises(mg.Error, match="holds no .amc, .bvh, .glb or .gltf files") as raised:
+    with pytest.raises(mg.Error, match="holds no .amc, .bvh, .glb, .gltf or .fbx files") as raised:
         mg.load_library(missing)
     assert str(raised.value) == cli_error(cli("info", missing, check=False))
     broken = tmp_path / "broken.toml"

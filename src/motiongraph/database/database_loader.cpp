@@ -24,7 +24,6 @@
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/common_joints.h"
 #include "motiongraph/motion/forward_kinematics.h"
-#include "motiongraph/motion/gltf_import.h"
 #include "motiongraph/motion/resample.h"
 #include "motiongraph/motion/rig_matching.h"
 #include "motiongraph/motion/up_axis.h"
@@ -41,7 +40,7 @@ struct ClipSpec {
   std::string name;
   std::string cmu_name;            // the file's stem, the key into CMU's index
   ClipLoadSettings load;
-  std::optional<std::string> animation;  // of a glTF file
+  std::optional<std::string> animation;  // of a glTF or FBX file
   std::optional<int> first_frame;  // file numbering, from 1
   std::optional<int> last_frame;
   bool gives_tags = false;         // the manifest decides the tags (no CMU lookup)
@@ -78,20 +77,21 @@ ClipSpec spec_for_file(const fs::path& path, const ClipLoadSettings& load) {
   return spec;
 }
 
-// The clips of a file: one, or one per animation of a glTF file (named FILE:ANIMATION when it
-// has several, as the clip loader names them). A glTF file without animation (a character's
+// The clips of a file: one, or one per animation of a glTF or FBX file (named FILE:ANIMATION when
+// it has several, as the clip loader names them). Such a file without animation (a character's
 // model) is passed over in a folder, an error when given itself.
 Status add_file_specs(const fs::path& path, const ClipLoadSettings& load, std::vector<ClipSpec>& specs,
                       bool in_folder) {
-  if (!is_gltf_file(path.string())) {
+  if (!is_scene_file(path.string())) {
     specs.push_back(spec_for_file(path, load));
     return Ok{};
   }
-  auto bytes = read_text_file(path.string());
-  if (!bytes) return bytes.error();
-  auto names = gltf_animation_names(*bytes, path.string(), path.parent_path().string());
+  auto names = animation_names(path.string());
   if (!names) return names.error();
-  if (names->empty() && !in_folder) return Error{path.string(), 0, "the glTF file has no animation that moves a skeleton"};
+  if (names->empty() && !in_folder) {
+    return Error{path.string(), 0, fmt::format("the {} file has no animation that moves a skeleton",
+                                               is_fbx_file(path.string()) ? "FBX" : "glTF")};
+  }
   for (const std::string& animation : *names) {
     ClipSpec spec = spec_for_file(path, load);
     spec.animation = animation;
@@ -121,7 +121,7 @@ Status expand_folder(const std::string& input, const DatabaseSettings& settings,
   };
   std::sort(clips.begin(), clips.end(), by_name);
   std::sort(asfs.begin(), asfs.end(), by_name);
-  if (clips.empty()) return Error{input, 0, "the folder holds no .amc, .bvh, .glb or .gltf files"};
+  if (clips.empty()) return Error{input, 0, "the folder holds no .amc, .bvh, .glb, .gltf or .fbx files"};
   const bool has_amc =
       std::any_of(clips.begin(), clips.end(), [](const fs::path& p) { return lower_extension(p.string()) == ".amc"; });
   ClipLoadSettings load = default_load_settings(settings);
@@ -137,7 +137,7 @@ Status expand_folder(const std::string& input, const DatabaseSettings& settings,
   for (const fs::path& clip : clips) {
     if (auto s = add_file_specs(clip, load, specs, true); !s) return s;
   }
-  if (specs.size() == before) return Error{input, 0, "the folder holds no clip (its glTF files have no animation)"};
+  if (specs.size() == before) return Error{input, 0, "the folder holds no clip (its glTF and FBX files have no animation)"};
   return Ok{};
 }
 
@@ -183,7 +183,7 @@ Status expand_manifest(const std::string& input, const DatabaseSettings& setting
     spec.cmu_name = fs::path(clip.file).stem().string();
     spec.name = clip.name ? *clip.name : spec.cmu_name;
     if (clip.animation) {
-      // An animation of a glTF file: named and looked up in CMU's index as the animation.
+      // An animation of a glTF or FBX file: named and looked up in CMU's index as the animation.
       spec.animation = clip.animation;
       if (!clip.name) spec.name = fmt::format("{}:{}", spec.cmu_name, *clip.animation);
       spec.cmu_name = *clip.animation;
@@ -816,7 +816,7 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
     } else if (ext == ".asf") {
       return Error{input, 0, "an ASF file holds a skeleton only: give its folder, or its AMC files with --asf"};
     } else {
-      return Error{input, 0, "unknown input: expected a folder, a .amc, .bvh, .glb or .gltf clip, or a .toml manifest"};
+      return Error{input, 0, "unknown input: expected a folder, a .amc, .bvh, .glb, .gltf or .fbx clip, or a .toml manifest"};
     }
   }
 

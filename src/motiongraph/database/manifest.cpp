@@ -199,10 +199,10 @@ Result<ManifestClip> read_clip(const Reader& in, const toml::table& table) {
   clip.file_line = line_of(*file);
   const std::string ext = lower_extension(clip.file);
   if (!is_clip_file(clip.file)) {
-    return in.error(clip.file_line, fmt::format("clip file \"{}\" is not .amc, .bvh, .glb or .gltf", clip.file));
+    return in.error(clip.file_line, fmt::format("clip file \"{}\" is not .amc, .bvh, .glb, .gltf or .fbx", clip.file));
   }
   if (const toml::node* node = table.get("animation")) {
-    if (!is_gltf_file(clip.file)) return in.error(line_of(*node), "'animation' applies to glTF clips only");
+    if (!is_scene_file(clip.file)) return in.error(line_of(*node), "'animation' applies to glTF and FBX clips only");
     auto animation = in.string(*node, "animation");
     if (!animation) return animation.error();
     clip.animation = std::move(*animation);

@@ -13,6 +13,7 @@
 #include "motiongraph/io/bvh_parser.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/bvh_import.h"
+#include "motiongraph/motion/fbx_import.h"
 #include "motiongraph/motion/gltf_import.h"
 #include "motiongraph/motion/in_place.h"
 #include "motiongraph/motion/up_axis.h"
@@ -26,9 +27,21 @@ bool is_gltf_file(std::string_view path) {
   return ext == ".glb" || ext == ".gltf";
 }
 
+bool is_fbx_file(std::string_view path) { return lower_extension(path) == ".fbx"; }
+
+bool is_scene_file(std::string_view path) { return is_gltf_file(path) || is_fbx_file(path); }
+
 bool is_clip_file(std::string_view path) {
   const std::string ext = lower_extension(path);
-  return ext == ".amc" || ext == ".bvh" || is_gltf_file(path);
+  return ext == ".amc" || ext == ".bvh" || is_scene_file(path);
+}
+
+Result<std::vector<std::string>> animation_names(const std::string& path) {
+  if (!is_scene_file(path)) return Error{path, 0, "only glTF and FBX files hold animations by name"};
+  auto bytes = read_text_file(path);
+  if (!bytes) return bytes.error();
+  if (is_fbx_file(path)) return fbx_animation_names(*bytes, path);
+  return gltf_animation_names(*bytes, path, fs::path(path).parent_path().string());
 }
 
 Status ClipLoadSettings::validate() const {
@@ -73,8 +86,8 @@ Result<std::shared_ptr<const AcclaimRig>> ClipLoader::load_asf(const std::string
 Result<LoadedClip> ClipLoader::load(const std::string& path, const std::optional<std::string>& animation) {
   if (auto s = settings_.validate(); !s) return s.error();
   const std::string ext = lower_extension(path);
-  if (animation && !is_gltf_file(path)) {
-    return Error{path, 0, "an animation is chosen from a glTF file (.glb, .gltf) only"};
+  if (animation && !is_scene_file(path)) {
+    return Error{path, 0, "an animation is chosen from a glTF (.glb, .gltf) or FBX (.fbx) file only"};
   }
   LoadedClip loaded;
   loaded.clip.name = fs::path(path).stem().string();
@@ -112,21 +125,34 @@ Result<LoadedClip> ClipLoader::load(const std::string& path, const std::optional
     loaded.clip.name = std::move(name);
     loaded.format = "bvh";
     loaded.source_channels = bvh->channel_count;
-  } else if (is_gltf_file(path)) {
+  } else if (is_scene_file(path)) {
     // A library reads each animation of a file in turn: the file is read once for all.
-    if (gltf_path_ != path) {
+    if (scene_path_ != path) {
       auto bytes = read_text_file(path);
       if (!bytes) return bytes.error();
-      GltfImportSettings import;
-      import.fps_override = settings_.input_fps;
-      import.up_axis = settings_.up_axis;
-      import.base_dir = fs::path(path).parent_path().string();
-      auto read = clips_from_gltf(*bytes, path, import);
+      Result<std::vector<Clip>> read = Error{path, 0, ""};
+      scene_metres_per_unit_ = 0.0;
+      scene_up_axis_.reset();
+      if (is_fbx_file(path)) {
+        FbxImportSettings import;
+        import.fps_override = settings_.input_fps;
+        import.up_axis = settings_.up_axis;
+        FbxFileFacts facts;
+        read = clips_from_fbx(*bytes, path, import, &facts);
+        scene_metres_per_unit_ = facts.metres_per_unit;
+        scene_up_axis_ = facts.up_axis;
+      } else {
+        GltfImportSettings import;
+        import.fps_override = settings_.input_fps;
+        import.up_axis = settings_.up_axis;
+        import.base_dir = fs::path(path).parent_path().string();
+        read = clips_from_gltf(*bytes, path, import);
+      }
       if (!read) return read.error();
-      gltf_path_ = path;
-      gltf_clips_ = std::move(*read);
+      scene_path_ = path;
+      scene_clips_ = std::move(*read);
     }
-    const std::vector<Clip>* clips = &gltf_clips_;
+    const std::vector<Clip>* clips = &scene_clips_;
     for (const Clip& clip : *clips) loaded.animations.push_back(clip.name);
     size_t chosen = 0;
     if (animation) {
@@ -141,7 +167,9 @@ Result<LoadedClip> ClipLoader::load(const std::string& path, const std::optional
     loaded.clip = (*clips)[chosen];
     // One animation is the file's clip; among several, the animation is named too.
     loaded.clip.name = clips->size() == 1 ? name : fmt::format("{}:{}", name, loaded.clip.name);
-    loaded.format = "gltf";
+    loaded.format = is_fbx_file(path) ? "fbx" : "gltf";
+    loaded.file_metres_per_unit = scene_metres_per_unit_;
+    loaded.file_up_axis = scene_up_axis_;
     loaded.animation = static_cast<int>(chosen);
     loaded.source_channels = 0;
     for (int j = 0; j < loaded.clip.skeleton.joint_count(); ++j) {
@@ -150,7 +178,7 @@ Result<LoadedClip> ClipLoader::load(const std::string& path, const std::optional
   } else if (ext == ".asf") {
     return Error{path, 0, "an ASF file holds a skeleton only; give its AMC files"};
   } else {
-    return Error{path, 0, "unknown file type (expected .amc, .bvh, .glb or .gltf)"};
+    return Error{path, 0, "unknown file type (expected .amc, .bvh, .glb, .gltf or .fbx)"};
   }
   // Either format, standing in y and in metres: its travel over the floor (in_place.h).
   if (auto s = recover_travel(loaded.clip, settings_.travel, settings_.foot_names); !s) {

@@ -1,5 +1,5 @@
 // Loading a clip from files: picks the reader by extension (.amc with its .asf, .bvh, .glb and
-// .gltf: motion/gltf_import.h), reads
+// .gltf: motion/gltf_import.h, .fbx: motion/fbx_import.h), reads
 // the text through io/file.h and builds Skeleton + Motion. Parsed ASF skeletons are cached, so
 // loading many AMC files of one subject reads its ASF once.
 #pragma once
@@ -40,9 +40,11 @@ struct ClipLoadSettings {
 
 struct LoadedClip {
   Clip clip;
-  std::string format;         // "amc", "bvh" or "gltf"
-  std::vector<std::string> animations;  // a glTF file's, in order
+  std::string format;         // "amc", "bvh", "gltf" or "fbx"
+  std::vector<std::string> animations;  // a glTF or FBX file's, in order
   int animation = -1;                   // the one read among them
+  double file_metres_per_unit = 0.0;    // an FBX file's unit, as it says (0: none said)
+  std::optional<UpAxis> file_up_axis;   // an FBX file's up axis, as it says
   std::string skeleton_path;  // the ASF used, for AMC
   int source_channels = 0;    // values per frame in the file (its degrees of freedom)
 };
@@ -51,7 +53,7 @@ class ClipLoader {
  public:
   explicit ClipLoader(ClipLoadSettings settings) : settings_(std::move(settings)) {}
 
-  // `animation`: the one of a glTF file's animations to read (default: its first), sampled at
+  // `animation`: the one of a glTF or FBX file's animations to read (default: its first), sampled at
   // the rate of its keys unless input_fps gives one.
   Result<LoadedClip> load(const std::string& path, const std::optional<std::string>& animation = std::nullopt);
   // An ASF file alone: its skeleton, with no frames.
@@ -62,15 +64,22 @@ class ClipLoader {
 
   ClipLoadSettings settings_;
   std::map<std::string, std::shared_ptr<const AcclaimRig>> rigs_;
-  std::string gltf_path_;  // the glTF file last read, and its clips
-  std::vector<Clip> gltf_clips_;
+  std::string scene_path_;  // the glTF or FBX file last read, and its clips
+  std::vector<Clip> scene_clips_;
+  double scene_metres_per_unit_ = 0.0;  // an FBX file's facts
+  std::optional<UpAxis> scene_up_axis_;
 };
 
 constexpr double kCmuCaptureFps = 120.0;
 
-// By extension, in any case: a file the loader reads as clips (.amc, .bvh, .glb, .gltf), and a
-// glTF file among them (whose every animation is a clip).
+// By extension, in any case: a file the loader reads as clips (.amc, .bvh, .glb, .gltf, .fbx); a
+// scene file among them, whose every animation is a clip (glTF, FBX); a glTF file; an FBX file.
 bool is_clip_file(std::string_view path);
+bool is_scene_file(std::string_view path);
 bool is_gltf_file(std::string_view path);
+bool is_fbx_file(std::string_view path);
+
+// A scene file's clip names (its animations that move a skeleton), without sampling them.
+Result<std::vector<std::string>> animation_names(const std::string& path);
 
 }  // namespace mg
