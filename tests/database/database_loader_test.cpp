@@ -15,6 +15,7 @@
 #include "motion/static_root_bvh.h"
 #include "motiongraph/database/database_contacts.h"
 #include "motiongraph/export/bvh_writer.h"
+#include "motiongraph/export/gltf_writer.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/common_joints.h"
 #include "motiongraph/motion/forward_kinematics.h"
@@ -999,6 +1000,56 @@ TEST(DatabaseLoader, ARigWithoutFeetLoadsWithTheReasonForNoContacts) {
   EXPECT_TRUE(db->frame_contacts.empty());
   EXPECT_NE(db->contacts_error.find("ankle"), std::string::npos) << db->contacts_error;
   EXPECT_FALSE(contacts_of(*db));
+}
+
+}  // namespace
+}  // namespace mg
+
+namespace mg {
+namespace {
+
+// One take in two formats in a folder (a BVH and the glTF converted from it, CMU's AMC beside its
+// BVH) is read once, from the capture's own format, with a warning; a clip given twice (a folder
+// and a file of it, one file twice in a manifest) gets a name of its own, with a warning.
+TEST(DatabaseLoader, OneTakeInTwoFormatsIsReadOnceAndEveryClipHasANameOfItsOwn) {
+  TempFolder folder("formats");
+  const std::string bvh_text = test::read_data("bvh/16_01.bvh");
+  const std::string bvh = folder.write("16_01.bvh", bvh_text);
+  const Clip clip = test::load_data_clip("bvh/16_01.bvh");
+  auto glb = write_glb(clip.skeleton, clip.motion, "16_01");
+  ASSERT_TRUE(glb);
+  folder.write("16_01.glb", *glb);  // the glTF first in name order, the BVH kept
+  folder.write("16_05.glb", *glb);  // another name: read
+  DatabaseLoadNotes notes;
+  auto db = load_database({folder.path().string()}, cmu_settings(), &notes);
+  ASSERT_TRUE(db) << db.error().to_string();
+  ASSERT_EQ(db->clips.size(), 2u);
+  EXPECT_EQ(db->clips[0].name, "16_01");
+  EXPECT_EQ(db->clips[0].source, bvh);
+  EXPECT_EQ(db->clips[1].name, "16_05");
+  ASSERT_EQ(notes.name_clashes.size(), 1u);
+  EXPECT_NE(notes.name_clashes[0].find("16_01.glb left out: 16_01.bvh holds the clip of that name"), std::string::npos)
+      << notes.name_clashes[0];
+  EXPECT_EQ(load_warnings(notes).front(), notes.name_clashes[0]);
+
+  // The folder and a file of it: the file's clip is 16_01_2; and so in a manifest that reads one
+  // file twice without names.
+  db = load_database({folder.path().string(), bvh}, cmu_settings(), &notes);
+  ASSERT_TRUE(db) << db.error().to_string();
+  ASSERT_EQ(db->clips.size(), 3u);
+  EXPECT_EQ(db->clips[2].name, "16_01_2");
+  ASSERT_EQ(notes.name_clashes.size(), 2u);
+  EXPECT_NE(notes.name_clashes[1].find("a clip is named 16_01 already; this one is 16_01_2"), std::string::npos)
+      << notes.name_clashes[1];
+  const std::string manifest =
+      folder.write("twice.toml", "[[clip]]\nfile = \"16_01.bvh\"\n[[clip]]\nfile = \"16_01.bvh\"\nlast_frame = 100\n");
+  db = load_database({manifest}, cmu_settings(), &notes);
+  ASSERT_TRUE(db) << db.error().to_string();
+  ASSERT_EQ(db->clips.size(), 2u);
+  EXPECT_EQ(db->clips[0].name, "16_01");
+  EXPECT_EQ(db->clips[1].name, "16_01_2");
+  ASSERT_EQ(notes.name_clashes.size(), 1u);
+  EXPECT_NE(notes.name_clashes[0].find("twice.toml:3)"), std::string::npos) << notes.name_clashes[0];
 }
 
 }  // namespace

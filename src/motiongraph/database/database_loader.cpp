@@ -14,6 +14,7 @@
 
 #include "motiongraph/core/default_window.h"
 #include "motiongraph/core/file_extension.h"
+#include "motiongraph/core/unique_name.h"
 #include "motiongraph/database/cmu_tags.h"
 #include "motiongraph/database/travel_tags.h"
 #include "motiongraph/database/database_contacts.h"
@@ -104,7 +105,20 @@ Status add_file_specs(const fs::path& path, const ClipLoadSettings& load, std::v
   return Ok{};
 }
 
-Status expand_folder(const std::string& input, const DatabaseSettings& settings, std::vector<ClipSpec>& specs) {
+// A take saved in several formats in one folder (x.bvh and the x.glb or x.fbx converted from it,
+// CMU's x.amc beside its x.bvh) would be read twice: the same frames twice, joined by transitions
+// of distance 0. The folder reads one file of each name, the capture's own formats first.
+int format_preference(const fs::path& path) {
+  const std::string ext = lower_extension(path.string());
+  for (int i = 0; const char* preferred : {".amc", ".bvh", ".fbx", ".glb", ".gltf"}) {
+    if (ext == preferred) return i;
+    ++i;
+  }
+  return 5;
+}
+
+Status expand_folder(const std::string& input, const DatabaseSettings& settings, std::vector<ClipSpec>& specs,
+                     std::vector<std::string>& remarks) {
   std::vector<fs::path> clips;
   std::vector<fs::path> asfs;
   std::error_code ec;
@@ -122,6 +136,23 @@ Status expand_folder(const std::string& input, const DatabaseSettings& settings,
   std::sort(clips.begin(), clips.end(), by_name);
   std::sort(asfs.begin(), asfs.end(), by_name);
   if (clips.empty()) return Error{input, 0, "the folder holds no .amc, .bvh, .glb, .gltf or .fbx files"};
+  std::map<std::string, fs::path> by_stem;  // the file read for each name
+  for (const fs::path& clip : clips) {
+    auto [it, added] = by_stem.emplace(clip.stem().string(), clip);
+    if (!added && format_preference(clip) < format_preference(it->second)) it->second = clip;
+  }
+  std::vector<fs::path> kept;
+  for (const fs::path& clip : clips) {
+    const fs::path& read = by_stem.at(clip.stem().string());
+    if (read == clip) {
+      kept.push_back(clip);
+    } else {
+      remarks.push_back(fmt::format("{}: {} left out: {} holds the clip of that name (one take in two formats?); "
+                                    "a manifest can read both under names of their own",
+                                    input, clip.filename().string(), read.filename().string()));
+    }
+  }
+  clips = std::move(kept);
   const bool has_amc =
       std::any_of(clips.begin(), clips.end(), [](const fs::path& p) { return lower_extension(p.string()) == ".amc"; });
   ClipLoadSettings load = default_load_settings(settings);
@@ -789,6 +820,7 @@ std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes) {
                                 notes.standing_speed_mps));
   }
   lines.insert(lines.end(), notes.clip_doubts.begin(), notes.clip_doubts.end());
+  lines.insert(lines.begin(), notes.name_clashes.begin(), notes.name_clashes.end());
   return lines;
 }
 
@@ -800,12 +832,13 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
   // 1. What to read, in order.
   std::vector<ClipSpec> specs;
   ManifestWide wide;
+  std::vector<std::string> name_clashes;
   for (const std::string& input : inputs) {
     std::error_code ec;
     const fs::file_status status = fs::status(input, ec);
     if (!fs::exists(status)) return Error{input, 0, "no such file or folder"};
     if (fs::is_directory(status)) {
-      if (auto s = expand_folder(input, settings, specs); !s) return s.error();
+      if (auto s = expand_folder(input, settings, specs, name_clashes); !s) return s.error();
       continue;
     }
     const std::string ext = lower_extension(input);
@@ -818,6 +851,19 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
     } else {
       return Error{input, 0, "unknown input: expected a folder, a .amc, .bvh, .glb, .gltf or .fbx clip, or a .toml manifest"};
     }
+  }
+
+  // Every clip under a name of its own: a name met again (a file given twice, a folder and a
+  // file of it, one file's ranges in a manifest) gets _2, _3..., with a warning.
+  std::set<std::string> names;
+  for (ClipSpec& spec : specs) {
+    if (names.insert(spec.name).second) continue;
+    const std::string taken = spec.name;
+    spec.name = unique_name(taken, [&](const std::string& n) { return names.count(n) > 0; });
+    names.insert(spec.name);
+    name_clashes.push_back(fmt::format("{}{}: a clip is named {} already; this one is {}", spec.path,
+                                       spec.manifest.empty() ? "" : fmt::format(" ({}:{})", spec.manifest, spec.line),
+                                       taken, spec.name));
   }
 
   // 2. The CMU index, read once when some clip will look its tags up.
@@ -844,7 +890,9 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
   }
 
   if (notes != nullptr) *notes = DatabaseLoadNotes{};
-  return load_clips(std::move(specs), settings, wide, cmu, notes, {});
+  auto database = load_clips(std::move(specs), settings, wide, cmu, notes, {});
+  if (notes != nullptr) notes->name_clashes = std::move(name_clashes);
+  return database;
 }
 
 }  // namespace mg

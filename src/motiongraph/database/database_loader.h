@@ -161,9 +161,13 @@ struct DatabaseLoadNotes {
     std::vector<std::string> clips;
   };
   std::vector<VanishedTag> vanished_tags;
+  // Files a folder left out (another file holds a clip of the same name: one take in two
+  // formats), and clips renamed because their name was taken, one line each.
+  std::vector<std::string> name_clashes;
 };
 
-// The warnings loading gives the user, one line each: the files read in the library's up axis
+// The warnings loading gives the user, one line each: files left out and clips renamed for
+// their names (a take in two formats, a clip given twice), the files read in the library's up axis
 // rather than their own, the joints dropped to read every clip on the same ones, the files read
 // as the first file's rig (other names, another rest pose), the tags of descriptions no frame
 // keeps (walk or run where every clip stands), then the clips that look wrong as read.
