@@ -127,9 +127,9 @@ int run_info(const InfoOptions& options) {
                                                  " (chosen by its shape; --up-axis overrides)"
                                            : options.load.up_axis + " (--up-axis)";
     if (loaded->format == "gltf" && options.load.up_axis.empty()) up = "y (glTF's; --up-axis z turns it)";
-    if (loaded->format == "fbx" && options.load.up_axis.empty() && loaded->file_up_axis) {
-      up = fmt::format("{} (the FBX file's{}; --up-axis overrides)", up_axis_name(*loaded->file_up_axis),
-                       *loaded->file_up_axis == UpAxis::kY ? "" : ", turned y up");
+    if (loaded->format == "fbx" && options.load.up_axis.empty()) {
+      up = fmt::format("{} (the FBX file's{}; --up-axis takes the file as y or z up)", loaded->file_up_axis,
+                       loaded->file_up_axis == "+y" ? "" : ", turned y up");
     }
     std::string static_joints;
     for (const StaticAncestor& a : clip.skeleton.static_ancestors()) {
@@ -156,9 +156,7 @@ int run_info(const InfoOptions& options) {
       }
       if (loaded->format == "fbx") {
         entry["unit"] = {{"name", "fbx"}, {"metres_per_unit", loaded->file_metres_per_unit}};
-        if (loaded->file_up_axis && options.load.up_axis.empty()) {
-          entry["up_axis"] = {{"axis", up_axis_name(*loaded->file_up_axis)}, {"source", "file"}};
-        }
+        if (options.load.up_axis.empty()) entry["up_axis"] = {{"axis", loaded->file_up_axis}, {"source", "file"}};
       }
       if (clip.detected_up_axis) {
         entry["up_axis"] = {{"axis", up_axis_name(clip.detected_up_axis->axis)},

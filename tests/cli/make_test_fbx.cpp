@@ -1,8 +1,8 @@
-// make_test_fbx [--z-up] [--unit FACTOR] OUT.fbx AMC...: writes the clips (AMC with the .asf
+// make_test_fbx [--up AXIS] [--unit FACTOR] OUT.fbx AMC...: writes the clips (AMC with the .asf
 // beside them), resampled to 30 fps, as one ASCII FBX built by FBX's rules (tests/motion/ascii_fbx.h:
 // joints resting in frames of their own, PreRotations, every rotation order, an armature turned
 // and scaled, a skinned mesh and an animated prop), an animation stack each named as its file
-// ("Armature|16_15", as Blender names them); --z-up: the file z up; --unit: FBX's UnitScaleFactor
+// ("Armature|16_15", as Blender names them); --up: the file's up axis (+y, +z, -z, +x, ...); --unit: FBX's UnitScaleFactor
 // (centimetres times it; 2.54: inches). For cli_fbx_test.sh.
 #include <cstdio>
 #include <cstdlib>
@@ -24,8 +24,8 @@ int main(int argc, char** argv) {
   int first = 1;
   for (; first < argc && std::string(argv[first]).starts_with("--"); ++first) {
     const std::string flag = argv[first];
-    if (flag == "--z-up") {
-      settings.z_up = true;
+    if (flag == "--up" && first + 1 < argc) {
+      settings.up = argv[++first];
     } else if (flag == "--unit" && first + 1 < argc) {
       settings.unit_scale_factor = std::atof(argv[++first]);
     } else {
@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
     }
   }
   if (argc < first + 2 || !(settings.unit_scale_factor > 0.0)) {
-    std::fprintf(stderr, "usage: make_test_fbx [--z-up] [--unit FACTOR] OUT.fbx AMC...\n");
+    std::fprintf(stderr, "usage: make_test_fbx [--up AXIS] [--unit FACTOR] OUT.fbx AMC...\n");
     return 2;
   }
   mg::ClipLoadSettings load;

@@ -70,8 +70,16 @@ std::string ascii_fbx(const std::vector<std::pair<std::string, Clip>>& clips, co
     pre[js] = from_degrees(0, pre_degrees[js]);  // FBX's pre-rotations are XYZ whatever the order
     order[js] = j % 6;
   }
-  // Our world -> the file's world: y up unless z up (a +y of ours is a +z there), in its unit.
-  const Quat to_file = settings.z_up ? Quat(Eigen::AngleAxisd(std::numbers::pi / 2, Vec3::UnitX())) : Quat::Identity();
+  // Our world -> the file's world: our +y turned to its up axis, in its unit.
+  if (settings.up.size() != 2 || (settings.up[0] != '+' && settings.up[0] != '-') ||
+      std::string_view("xyz").find(settings.up[1]) == std::string_view::npos) {
+    throw std::invalid_argument("ascii_fbx: up is +x, -z, ...");
+  }
+  const int up_axis = settings.up[1] == 'x' ? 0 : settings.up[1] == 'y' ? 1 : 2;
+  Vec3 up = Vec3::Zero();
+  up[up_axis] = settings.up[0] == '-' ? -1.0 : 1.0;
+  const Quat to_file = up.y() < -0.5 ? Quat(Eigen::AngleAxisd(std::numbers::pi, Vec3::UnitX()))
+                                     : Quat::FromTwoVectors(Vec3::UnitY(), up);
   const double units_per_metre = 100.0 / settings.unit_scale_factor;
   // Armature space: under the armature's rotation and scale.
   const Quat armature_inverse = settings.armature_rotation.conjugate();
@@ -200,13 +208,13 @@ std::string ascii_fbx(const std::vector<std::pair<std::string, Clip>>& clips, co
   std::string out = "; FBX 7.4.0 project file\nFBXHeaderExtension:  {\n\tFBXHeaderVersion: 1003\n\tFBXVersion: 7400\n}\n";
   out += fmt::format(
       "GlobalSettings:  {{\n\tVersion: 1000\n\tProperties70:  {{\n"
-      "\t\tP: \"UpAxis\", \"int\", \"Integer\", \"\",{}\n\t\tP: \"UpAxisSign\", \"int\", \"Integer\", \"\",1\n"
+      "\t\tP: \"UpAxis\", \"int\", \"Integer\", \"\",{}\n\t\tP: \"UpAxisSign\", \"int\", \"Integer\", \"\",{}\n"
       "\t\tP: \"FrontAxis\", \"int\", \"Integer\", \"\",{}\n\t\tP: \"FrontAxisSign\", \"int\", \"Integer\", \"\",1\n"
       "\t\tP: \"CoordAxis\", \"int\", \"Integer\", \"\",0\n\t\tP: \"CoordAxisSign\", \"int\", \"Integer\", \"\",1\n"
       "\t\tP: \"UnitScaleFactor\", \"double\", \"Number\", \"\",{:.9g}\n"
       "\t\tP: \"TimeMode\", \"enum\", \"\", \"\",{}\n\t\tP: \"CustomFrameRate\", \"double\", \"Number\", \"\",{:.9g}\n"
       "\t}}\n}}\n",
-      settings.z_up ? 2 : 1, settings.z_up ? 1 : 2, settings.unit_scale_factor, time_mode, fps);
+      up_axis, settings.up[0] == '-' ? -1 : 1, (up_axis + 1) % 3, settings.unit_scale_factor, time_mode, fps);
   out += "Objects:  {\n" + objects + "}\nConnections:  {\n" + connections + "}\n";
   return out;
 }

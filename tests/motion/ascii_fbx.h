@@ -3,7 +3,8 @@
 // (each joint's axes turned by a rotation of its own, as bones along themselves are), with a
 // PreRotation and a rotation order of its own (all six in turn), Euler keys in degrees at the
 // clip's rate; the root's translation keyed; lengths in the file's unit (centimetres times
-// `unit_scale_factor`) under an armature turned and scaled; +y or +z up. Each clip is an animation
+// `unit_scale_factor`) under an armature turned and scaled; any axis up (our +y turned to it the
+// shortest way, as the reader turns it back; half a turn about x for -y). Each clip is an animation
 // stack (all on one skeleton, named as given). With `skin`, a mesh skinned to every joint and an
 // animated prop beside the armature, which is not a joint. So each clip's joints lie where the
 // clip puts them, and nothing of the file says so but its rules.
@@ -18,7 +19,7 @@
 namespace mg::test {
 
 struct AsciiFbxSettings {
-  bool z_up = false;
+  std::string up = "+y";           // "+y", "+z", "-z", "+x", "-x", "-y"
   double unit_scale_factor = 1.0;  // FBX's unit: centimetres times this
   double armature_scale = 1.0;     // the Armature node's (uniform) scale
   Quat armature_rotation = Quat::Identity();

@@ -132,7 +132,7 @@ Result<LoadedClip> ClipLoader::load(const std::string& path, const std::optional
       if (!bytes) return bytes.error();
       Result<std::vector<Clip>> read = Error{path, 0, ""};
       scene_metres_per_unit_ = 0.0;
-      scene_up_axis_.reset();
+      scene_up_axis_.clear();
       if (is_fbx_file(path)) {
         FbxImportSettings import;
         import.fps_override = settings_.input_fps;

@@ -44,7 +44,7 @@ struct LoadedClip {
   std::vector<std::string> animations;  // a glTF or FBX file's, in order
   int animation = -1;                   // the one read among them
   double file_metres_per_unit = 0.0;    // an FBX file's unit, as it says (0: none said)
-  std::optional<UpAxis> file_up_axis;   // an FBX file's up axis, as it says
+  std::string file_up_axis;             // an FBX file's up axis, as it says ("+y", "+z", "-z", ...)
   std::string skeleton_path;  // the ASF used, for AMC
   int source_channels = 0;    // values per frame in the file (its degrees of freedom)
 };
@@ -67,7 +67,7 @@ class ClipLoader {
   std::string scene_path_;  // the glTF or FBX file last read, and its clips
   std::vector<Clip> scene_clips_;
   double scene_metres_per_unit_ = 0.0;  // an FBX file's facts
-  std::optional<UpAxis> scene_up_axis_;
+  std::string scene_up_axis_;
 };
 
 constexpr double kCmuCaptureFps = 120.0;

@@ -5,6 +5,10 @@
 #include <exception>
 #include <map>
 #include <memory>
+#include <numbers>
+#include <optional>
+#include <set>
+#include <string_view>
 
 #include <assimp/Importer.hpp>
 #include <assimp/config.h>
@@ -34,13 +38,13 @@ namespace {
 constexpr size_t kMaxBytes = size_t{1} << 31;
 
 Result<const aiScene*> parse(Assimp::Importer& importer, std::string_view bytes, const std::string& file) {
+  if (bytes.empty()) return Error{file, 0, "the FBX file is empty"};
   if (bytes.size() >= kMaxBytes) return Error{file, 0, "the FBX file is larger than motiongraph reads (2 GB)"};
-  // Pivots folded into each node's transform, not kept as helper nodes between the joints.
-  importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_PRESERVE_PIVOTS, false);
+  // Pivots kept as helper nodes, composed back into their nodes here (scene_of): assimp's own
+  // folding leaves an animated pivot's keys on a helper it does not make.
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_PRESERVE_PIVOTS, true);
   importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_READ_MATERIALS, false);
   importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_READ_TEXTURES, false);
-  importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_READ_LIGHTS, false);
-  importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_READ_CAMERAS, false);
   importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_EMBEDDED_TEXTURES_LEGACY_NAMING, false);
   const aiScene* scene = nullptr;
   try {
@@ -70,11 +74,22 @@ std::optional<double> metadata_number(const aiScene& scene, const char* key) {
   return std::nullopt;
 }
 
-Result<NodeTrs> trs_of(const aiMatrix4x4& matrix) {
-  Eigen::Matrix4d m;
+Eigen::Matrix4d matrix_of(const aiMatrix4x4& m) {
+  Eigen::Matrix4d out;
   for (int r = 0; r < 4; ++r) {
-    for (int c = 0; c < 4; ++c) m(r, c) = matrix[static_cast<unsigned>(r)][static_cast<unsigned>(c)];
+    for (int c = 0; c < 4; ++c) out(r, c) = m[static_cast<unsigned>(r)][static_cast<unsigned>(c)];
   }
+  return out;
+}
+
+Eigen::Matrix4d matrix_of(const Vec3& translation, const Quat& rotation, const Vec3& scale) {
+  Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+  m.block<3, 3>(0, 0) = rotation.normalized().toRotationMatrix() * scale.asDiagonal();
+  m.block<3, 1>(0, 3) = translation;
+  return m;
+}
+
+Result<NodeTrs> trs_of(const Eigen::Matrix4d& m) {
   if (!m.allFinite()) return Error{"", 0, "has a transform that is not finite"};
   NodeTrs out;
   out.translation = m.block<3, 1>(0, 3);
@@ -88,42 +103,172 @@ Result<NodeTrs> trs_of(const aiMatrix4x4& matrix) {
   return out;
 }
 
-// The file as a scene of nodes (depth first from assimp's root), its meshes' bones as skins and
-// its animation stacks as animations, key times in seconds.
+// Assimp keeps FBX's pivots as helper nodes above a node ("Knee_$AssimpFbx$_RotationPivot", ...,
+// its animated parts "_Translation", "_Rotation", "_Scaling" among them) and its geometric
+// transform as helpers around it ("_GeometricRotation" above, "_GeometricRotationInverse"
+// below), which apply to its mesh only. The node a helper serves, and its part.
+constexpr std::string_view kHelper = "_$AssimpFbx$_";
+
+struct HelperName {
+  std::string node;
+  std::string part;
+};
+
+std::optional<HelperName> helper_name(const std::string& name) {
+  const size_t at = name.find(kHelper);
+  if (at == std::string::npos) return std::nullopt;
+  return HelperName{name.substr(0, at), name.substr(at + kHelper.size())};
+}
+
+// A node of assimp's tree.
+struct RawNode {
+  std::string name;
+  int parent = -1;  // -1: a top (below assimp's RootNode, which is left out)
+  Eigen::Matrix4d matrix;
+  bool content = false;  // holds a mesh, a camera or a light
+};
+
+// An animated helper or node at `time`: its keys' translation, rotation and scale (sampled
+// linearly, as assimp reads them), its rest's where a part has no keys.
+Eigen::Matrix4d channel_matrix(const Eigen::Matrix4d& rest, double time, const std::vector<KeyTrack>& tracks) {
+  Vec3 translation = rest.block<3, 1>(0, 3);
+  Eigen::Matrix3d a = rest.block<3, 3>(0, 0);
+  Vec3 scale(a.col(0).norm(), a.col(1).norm(), a.col(2).norm());
+  for (int i = 0; i < 3; ++i) a.col(i) /= scale[i] > 0.0 ? scale[i] : 1.0;
+  Quat rotation(a);
+  if (!tracks[0].times.empty()) translation = tracks[0].sample(time).head<3>();
+  if (!tracks[1].times.empty()) {
+    const KeyTrack::Value q = tracks[1].sample(time);
+    rotation = Quat(q[3], q[0], q[1], q[2]);
+  }
+  if (!tracks[2].times.empty()) scale = tracks[2].sample(time).head<3>();
+  return matrix_of(translation, rotation, scale);
+}
+
+// A channel's keys as three tracks (translation, rotation, scale; empty where it has none), in
+// seconds; an error message when they cannot be read.
+std::string channel_tracks(const aiNodeAnim& channel, double ticks, std::vector<KeyTrack>& tracks) {
+  tracks.assign(3, KeyTrack{});
+  const std::string name = channel.mNodeName.C_Str();
+  const auto add = [&](size_t path, unsigned keys, auto&& key_of) -> std::string {
+    KeyTrack& track = tracks[path];
+    track.width = path == 1 ? 4 : 3;
+    for (unsigned k = 0; k < keys; ++k) {
+      const auto [time, value] = key_of(k);
+      if (!std::isfinite(time) || !value.allFinite()) return fmt::format("a key of node '{}' is not finite", name);
+      track.times.push_back(time / ticks);
+      for (int i = 0; i < track.width; ++i) track.values.push_back(value[i]);
+    }
+    if (!std::is_sorted(track.times.begin(), track.times.end())) {
+      return fmt::format("the key times of node '{}' are not in order", name);
+    }
+    return "";
+  };
+  std::string error = add(0, channel.mNumPositionKeys, [&](unsigned k) {
+    const aiVectorKey& key = channel.mPositionKeys[k];
+    return std::pair{key.mTime, KeyTrack::Value(key.mValue.x, key.mValue.y, key.mValue.z, 0.0)};
+  });
+  if (error.empty()) {
+    error = add(1, channel.mNumRotationKeys, [&](unsigned k) {
+      const aiQuatKey& key = channel.mRotationKeys[k];
+      return std::pair{key.mTime, KeyTrack::Value(key.mValue.x, key.mValue.y, key.mValue.z, key.mValue.w)};
+    });
+  }
+  if (error.empty()) {
+    error = add(2, channel.mNumScalingKeys, [&](unsigned k) {
+      const aiVectorKey& key = channel.mScalingKeys[k];
+      return std::pair{key.mTime, KeyTrack::Value(key.mValue.x, key.mValue.y, key.mValue.z, 0.0)};
+    });
+  }
+  return error;
+}
+
+// The file as a scene of nodes: assimp's tree without its RootNode (its transform composed into
+// the tops), each node with its pivot helpers composed into it (at rest, and key by key where
+// an animation moves any of them) and its geometric helpers left out; its meshes' bones as
+// skins; its animation stacks as animations, key times in seconds.
 Result<NodeScene> scene_of(const aiScene& in, const std::string& file) {
   NodeScene scene;
   scene.format = "FBX";
-  std::map<std::string, int> by_name;  // the first node of each name
-  // Depth first; a node's index is known before its children are visited.
-  std::vector<std::pair<const aiNode*, int>> stack{{in.mRootNode, -1}};
-  while (!stack.empty()) {
-    const auto [node, parent] = stack.back();
-    stack.pop_back();
-    const int index = static_cast<int>(scene.nodes.size());
-    if (index > 10'000'000) return Error{file, 0, "the FBX file has more nodes than motiongraph reads"};
-    SceneNode out;
-    out.name = node->mName.C_Str();
-    if (auto trs = trs_of(node->mTransformation)) {
-      out.rest = *trs;
-    } else {
-      out.rest_error = trs.error().message;
+  // Assimp's tree, depth first, children in the file's order.
+  std::set<std::string> content_names;
+  for (unsigned i = 0; i < in.mNumCameras; ++i) content_names.insert(in.mCameras[i]->mName.C_Str());
+  for (unsigned i = 0; i < in.mNumLights; ++i) content_names.insert(in.mLights[i]->mName.C_Str());
+  std::vector<RawNode> raw;
+  const Eigen::Matrix4d top = matrix_of(in.mRootNode->mTransformation);
+  {
+    std::vector<std::pair<const aiNode*, int>> stack;
+    for (unsigned c = in.mRootNode->mNumChildren; c-- > 0;) {
+      if (in.mRootNode->mChildren[c]) stack.push_back({in.mRootNode->mChildren[c], -1});
     }
-    by_name.emplace(out.name, index);
-    scene.nodes.push_back(std::move(out));
-    if (parent >= 0) scene.nodes[static_cast<size_t>(parent)].children.push_back(index);
-    for (unsigned c = node->mNumChildren; c-- > 0;) {
-      if (node->mChildren[c]) stack.push_back({node->mChildren[c], index});
+    while (!stack.empty()) {
+      const auto [node, parent] = stack.back();
+      stack.pop_back();
+      if (raw.size() > 10'000'000) return Error{file, 0, "the FBX file has more nodes than motiongraph reads"};
+      RawNode out;
+      out.name = node->mName.C_Str();
+      out.parent = parent;
+      out.matrix = parent < 0 ? Eigen::Matrix4d(top * matrix_of(node->mTransformation)) : matrix_of(node->mTransformation);
+      out.content = node->mNumMeshes > 0 || content_names.count(out.name) > 0;
+      const int index = static_cast<int>(raw.size());
+      raw.push_back(std::move(out));
+      for (unsigned c = node->mNumChildren; c-- > 0;) {
+        if (node->mChildren[c]) stack.push_back({node->mChildren[c], index});
+      }
     }
   }
-  // Children were pushed last first: put each node's children back in the file's order.
-  for (SceneNode& node : scene.nodes) std::sort(node.children.begin(), node.children.end());
+  // Each node's own: the node itself (not a helper), its parent the first such above it, and the
+  // pivot helpers just above it that serve it (top first).
+  std::vector<int> scene_index(raw.size(), -1), owner(raw.size(), -1);
+  std::vector<std::vector<int>> chain;  // per scene node: its helpers, then itself
+  for (size_t r = 0; r < raw.size(); ++r) {
+    if (helper_name(raw[r].name)) continue;
+    std::vector<int> helpers;
+    int parent = raw[r].parent;
+    while (parent >= 0) {
+      const auto helper = helper_name(raw[static_cast<size_t>(parent)].name);
+      if (!helper) break;
+      if (helper->node == raw[r].name && !helper->part.starts_with("Geometric")) helpers.push_back(parent);
+      parent = raw[static_cast<size_t>(parent)].parent;
+    }
+    std::reverse(helpers.begin(), helpers.end());
+    helpers.push_back(static_cast<int>(r));
+    const int index = static_cast<int>(scene.nodes.size());
+    scene_index[r] = index;
+    for (int h : helpers) owner[static_cast<size_t>(h)] = index;
+    SceneNode node;
+    node.name = raw[r].name;
+    node.content = raw[r].content;
+    Eigen::Matrix4d rest = Eigen::Matrix4d::Identity();
+    for (int h : helpers) rest = rest * raw[static_cast<size_t>(h)].matrix;
+    if (auto trs = trs_of(rest)) {
+      node.rest = *trs;
+    } else {
+      node.rest_error = trs.error().message;
+    }
+    scene.nodes.push_back(std::move(node));
+    chain.push_back(std::move(helpers));
+    if (parent >= 0) {
+      // The parent is a node of the scene (a helper's chain ends in its node, which came first).
+      const int p = scene_index[static_cast<size_t>(parent)];
+      if (p >= 0) scene.nodes[static_cast<size_t>(p)].children.push_back(index);
+    }
+  }
+  // Names: a channel or a bone names its node, so a name two nodes bear is known by its first only.
+  std::map<std::string, int> by_name;  // raw index
+  std::set<std::string> repeated;
+  for (size_t r = 0; r < raw.size(); ++r) {
+    if (!by_name.emplace(raw[r].name, static_cast<int>(r)).second) repeated.insert(raw[r].name);
+  }
   for (unsigned m = 0; m < in.mNumMeshes; ++m) {
     const aiMesh* mesh = in.mMeshes[m];
     if (!mesh || mesh->mNumBones == 0) continue;
     std::vector<int> joints;
     for (unsigned b = 0; b < mesh->mNumBones; ++b) {
       const auto it = by_name.find(mesh->mBones[b]->mName.C_Str());
-      if (it != by_name.end()) joints.push_back(it->second);
+      if (it != by_name.end() && owner[static_cast<size_t>(it->second)] >= 0) {
+        joints.push_back(owner[static_cast<size_t>(it->second)]);
+      }
     }
     if (!joints.empty()) scene.skins.push_back(std::move(joints));
   }
@@ -139,43 +284,64 @@ Result<NodeScene> scene_of(const aiScene& in, const std::string& file) {
     // Ticks per second: assimp gives FBX's frame rate, and 0 when the file has none (then 25,
     // as assimp's own viewer takes it).
     const double ticks = animation.mTicksPerSecond > 0.0 ? animation.mTicksPerSecond : 25.0;
+    // The channels of each scene node's chain, by raw node.
+    std::map<int, std::map<int, std::vector<KeyTrack>>> moved;  // scene node -> raw node -> tracks
     for (unsigned c = 0; c < animation.mNumChannels && out.error.empty(); ++c) {
       const aiNodeAnim& channel = *animation.mChannels[c];
-      const auto it = by_name.find(channel.mNodeName.C_Str());
-      if (it == by_name.end()) continue;  // a node assimp left out (a light's, a camera's)
-      const int node = it->second;
+      const std::string name = channel.mNodeName.C_Str();
+      const auto it = by_name.find(name);
+      if (it == by_name.end()) continue;  // a node assimp left out
+      const int node = owner[static_cast<size_t>(it->second)];
+      if (node < 0) continue;  // a geometric helper: the mesh's, not the skeleton's
       out.targets.push_back(node);
-      const auto add = [&](TrackPath path, unsigned keys, auto&& key_of) {
-        if (keys == 0 || !out.error.empty()) return;
-        KeyTrack track;
-        track.width = path == TrackPath::kRotation ? 4 : 3;
-        for (unsigned k = 0; k < keys; ++k) {
-          const auto [time, value] = key_of(k);
-          if (!std::isfinite(time) || !value.allFinite()) {
-            out.error = fmt::format("a key of node '{}' is not finite", channel.mNodeName.C_Str());
-            return;
-          }
-          track.times.push_back(time / ticks);
-          for (int i = 0; i < track.width; ++i) track.values.push_back(value[i]);
+      if (repeated.count(name)) {
+        out.error = fmt::format("it moves node '{}', a name {} nodes bear: which one cannot be told", name,
+                                std::count_if(raw.begin(), raw.end(), [&](const RawNode& n) { return n.name == name; }));
+        break;
+      }
+      out.error = channel_tracks(channel, ticks, moved[node][it->second]);
+    }
+    for (auto& [node, parts] : moved) {
+      if (!out.error.empty()) break;
+      const std::vector<int>& nodes = chain[static_cast<size_t>(node)];
+      // Keys on the node itself are its whole transform, helpers and all (assimp bakes a node
+      // whose animated parts are its translation, rotation and scale so, pre-rotation in).
+      if (const auto own = parts.find(nodes.back()); own != parts.end()) {
+        std::vector<KeyTrack>& tracks = own->second;
+        for (size_t p = 0; p < 3; ++p) {
+          if (!tracks[p].times.empty()) out.tracks[{node, static_cast<TrackPath>(p)}] = std::move(tracks[p]);
         }
-        if (!std::is_sorted(track.times.begin(), track.times.end())) {
-          out.error = fmt::format("the key times of node '{}' are not in order", channel.mNodeName.C_Str());
-          return;
+        continue;
+      }
+      // Else its helpers (a pivot's parts moved) and itself composed at every key time of any of them.
+      std::vector<double> times;
+      for (auto& [r, tracks] : parts) {
+        for (const KeyTrack& track : tracks) times.insert(times.end(), track.times.begin(), track.times.end());
+      }
+      std::sort(times.begin(), times.end());
+      times.erase(std::unique(times.begin(), times.end()), times.end());
+      KeyTrack translation, rotation, scale;
+      rotation.width = 4;
+      for (double t : times) {
+        Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+        for (int r : nodes) {
+          const auto part = parts.find(r);
+          m = m * (part == parts.end() ? raw[static_cast<size_t>(r)].matrix
+                                       : channel_matrix(raw[static_cast<size_t>(r)].matrix, t, part->second));
         }
-        out.tracks[{node, path}] = std::move(track);
-      };
-      add(TrackPath::kTranslation, channel.mNumPositionKeys, [&](unsigned k) {
-        const aiVectorKey& key = channel.mPositionKeys[k];
-        return std::pair{key.mTime, KeyTrack::Value(key.mValue.x, key.mValue.y, key.mValue.z, 0.0)};
-      });
-      add(TrackPath::kRotation, channel.mNumRotationKeys, [&](unsigned k) {
-        const aiQuatKey& key = channel.mRotationKeys[k];
-        return std::pair{key.mTime, KeyTrack::Value(key.mValue.x, key.mValue.y, key.mValue.z, key.mValue.w)};
-      });
-      add(TrackPath::kScale, channel.mNumScalingKeys, [&](unsigned k) {
-        const aiVectorKey& key = channel.mScalingKeys[k];
-        return std::pair{key.mTime, KeyTrack::Value(key.mValue.x, key.mValue.y, key.mValue.z, 0.0)};
-      });
+        auto trs = trs_of(m);
+        if (!trs) {
+          out.error = fmt::format("node '{}' {}", scene.nodes[static_cast<size_t>(node)].name, trs.error().message);
+          break;
+        }
+        for (KeyTrack* track : {&translation, &rotation, &scale}) track->times.push_back(t);
+        translation.values.insert(translation.values.end(), {trs->translation.x(), trs->translation.y(), trs->translation.z()});
+        rotation.values.insert(rotation.values.end(), {trs->rotation.x(), trs->rotation.y(), trs->rotation.z(), trs->rotation.w()});
+        scale.values.insert(scale.values.end(), {trs->scale.x(), trs->scale.y(), trs->scale.z()});
+      }
+      out.tracks[{node, TrackPath::kTranslation}] = std::move(translation);
+      out.tracks[{node, TrackPath::kRotation}] = std::move(rotation);
+      out.tracks[{node, TrackPath::kScale}] = std::move(scale);
     }
     scene.animations.push_back(std::move(out));
   }
@@ -188,15 +354,20 @@ Result<NodeScene> scene_of(const aiScene& in, const std::string& file) {
   return scene;
 }
 
-// The file's up axis as assimp reports FBX's GlobalSettings: y or z (pointing up), else an error.
-Result<UpAxis> up_axis_of(const aiScene& scene, const std::string& file) {
+// The file's up axis as assimp reports FBX's GlobalSettings: "+y", "-z", ...
+std::string up_axis_of(const aiScene& scene) {
   const double axis = metadata_number(scene, "UpAxis").value_or(1.0);
   const double sign = metadata_number(scene, "UpAxisSign").value_or(1.0);
-  if (axis == 1.0 && sign > 0.0) return UpAxis::kY;
-  if (axis == 2.0 && sign > 0.0) return UpAxis::kZ;
-  const char* name = axis == 0.0 ? "x" : axis == 1.0 ? "y" : axis == 2.0 ? "z" : "?";
-  return Error{file, 0, fmt::format("the FBX file's up axis is {}{}, which is not read (give the axis with --up-axis)",
-                                    sign < 0.0 ? "-" : "+", name)};
+  const char* name = axis == 0.0 ? "x" : axis == 2.0 ? "z" : "y";
+  return fmt::format("{}{}", sign < 0.0 ? "-" : "+", name);
+}
+
+// The turn that takes that axis to +y (the shortest: the figure's heading does not matter).
+Quat turn_to_y_up(const std::string& up) {
+  Vec3 axis = Vec3::Zero();
+  axis[up[1] == 'x' ? 0 : up[1] == 'z' ? 2 : 1] = up[0] == '-' ? -1.0 : 1.0;
+  if (axis.y() < -0.5) return Quat(Eigen::AngleAxisd(std::numbers::pi, Vec3::UnitX()));
+  return Quat::FromTwoVectors(axis, Vec3::UnitY());
 }
 
 }  // namespace
@@ -216,17 +387,14 @@ Result<std::vector<Clip>> clips_from_fbx(std::string_view bytes, const std::stri
   Assimp::Importer importer;
   auto parsed = parse(importer, bytes, file);
   if (!parsed) return parsed.error();
-  FbxImportSettings as_read = settings;
-  auto up = up_axis_of(**parsed, file);
-  if (!as_read.up_axis) {
-    if (!up) return up.error();
-    as_read.up_axis = *up;
-  }
   auto scene = scene_of(**parsed, file);
   if (!scene) return scene.error();
-  if (facts) *facts = {scene->metres_per_unit, up ? *up : *as_read.up_axis};
+  const std::string up = up_axis_of(**parsed);
   importer.FreeScene();
-  return clips_from_scene(*scene, file, as_read);
+  // The file's up axis turned to +y, unless the user says which axis is up.
+  if (!settings.up_axis) scene->turn = turn_to_y_up(up);
+  if (facts) *facts = {scene->metres_per_unit, up};
+  return clips_from_scene(*scene, file, settings);
 }
 
 }  // namespace mg

@@ -230,6 +230,8 @@ NodeScene scene_of(const tinygltf::Model& model, const std::string& file) {
     SceneNode node;
     node.name = model.nodes[n].name;
     node.children = model.nodes[n].children;
+    node.content = model.nodes[n].mesh >= 0 || model.nodes[n].camera >= 0 ||
+                   model.nodes[n].extensions.count("KHR_lights_punctual") > 0;
     if (auto trs = node_trs(model, static_cast<int>(n), file)) {
       node.rest = *trs;
     } else {

@@ -184,6 +184,31 @@ std::vector<std::string> clip_names(const NodeScene& scene) {
   return names;
 }
 
+// Whether an animation's keys take a node off its rest (by more than float32's rounding).
+bool moves(const NodeScene& scene, const SceneAnimation& animation, int node) {
+  const NodeTrs& rest = scene.nodes[static_cast<size_t>(node)].rest;
+  for (const TrackPath path : {TrackPath::kTranslation, TrackPath::kRotation, TrackPath::kScale}) {
+    const auto it = animation.tracks.find({node, path});
+    if (it == animation.tracks.end()) continue;
+    const KeyTrack& track = it->second;
+    for (size_t k = 0; k < track.times.size(); ++k) {
+      const KeyTrack::Value v = track.value(k);
+      switch (path) {
+        case TrackPath::kTranslation:
+          if ((as_vec3(v) - rest.translation).norm() > 1e-5 * (1.0 + rest.translation.norm())) return true;
+          break;
+        case TrackPath::kRotation:
+          if (as_quat(v).angularDistance(rest.rotation) > 1e-5) return true;
+          break;
+        case TrackPath::kScale:
+          if ((as_vec3(v) - rest.scale).norm() > 1e-5 * rest.scale.norm()) return true;
+          break;
+      }
+    }
+  }
+  return false;
+}
+
 // Which nodes make the skeleton, and which animations move it.
 struct Layout {
   std::vector<int> parent;          // per node, -1 at a scene's top
@@ -218,15 +243,23 @@ Result<Layout> layout_of(const NodeScene& scene, const std::string& file) {
   // those of the tree most of them are in (a camera's or a prop's are left out).
   std::set<int> wanted;
   for (const std::vector<int>& skin : scene.skins) wanted.insert(skin.begin(), skin.end());
+  const bool skinned = !wanted.empty();
   for (int n : wanted) {
     if (!is_node(n)) return Error{file, 0, fmt::format("a skin's joint {} is not a node", n)};
   }
   if (wanted.empty()) {
+    // The nodes whose keys move them off their rest (an armature keyed where it stands is no
+    // joint: it is composed in above the skeleton), or, when none does, every node keyed.
     std::map<int, std::set<int>> by_top;
-    for (const SceneAnimation& animation : scene.animations) {
-      for (int node : animation.targets) {
-        if (is_node(node)) by_top[path_to(out.parent, node).front()].insert(node);
+    for (const bool moved_only : {true, false}) {
+      for (const SceneAnimation& animation : scene.animations) {
+        for (int node : animation.targets) {
+          if (is_node(node) && (!moved_only || moves(scene, animation, node))) {
+            by_top[path_to(out.parent, node).front()].insert(node);
+          }
+        }
       }
+      if (!by_top.empty()) break;
     }
     const auto most = std::max_element(by_top.begin(), by_top.end(),
                                        [](const auto& a, const auto& b) { return a.second.size() < b.second.size(); });
@@ -247,6 +280,17 @@ Result<Layout> layout_of(const NodeScene& scene, const std::string& file) {
   std::set<int> in_skeleton;
   for (int n : wanted) {
     for (int m = n; m != out.parent[static_cast<size_t>(root)]; m = out.parent[static_cast<size_t>(m)]) in_skeleton.insert(m);
+  }
+  if (!skinned) {  // the bones no key moves, below the root, but no mesh, camera or light
+    std::vector<int> below{root};
+    while (!below.empty()) {
+      const int n = below.back();
+      below.pop_back();
+      in_skeleton.insert(n);
+      for (int child : scene.nodes[static_cast<size_t>(n)].children) {
+        if (child >= 0 && child < node_count && !scene.nodes[static_cast<size_t>(child)].content) below.push_back(child);
+      }
+    }
   }
   std::vector<int> stack{root};
   while (!stack.empty()) {
@@ -316,7 +360,7 @@ Result<std::vector<Clip>> clips_from_scene(const NodeScene& scene, const std::st
   const auto compose_above = [&](const std::vector<Vec3>& t, const std::vector<Quat>& r, Vec3& translation,
                                  Quat& rotation) {
     translation = Vec3::Zero();
-    rotation = Quat::Identity();
+    rotation = scene.turn;
     double scale = scene.metres_per_unit;
     for (size_t i = 0; i < above_rest.size(); ++i) {
       translation += rotation * (scale * t[i]);

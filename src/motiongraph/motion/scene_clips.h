@@ -3,8 +3,9 @@
 // its file into a NodeScene, and this makes the clips.
 //
 // The skeleton is every skin's joints (without a skin: the nodes the animations move, those of the
-// tree most of them are in),
-// rooted at the lowest node above them all, with the nodes on the way between them; the nodes
+// tree most of them are in, and every node below their root that holds no mesh, camera or light,
+// fingers no key moves among them), rooted at the lowest node above them all, with the nodes on
+// the way between them; the nodes
 // above the root (an armature, a scene node) are composed into it, frame by frame where they are
 // animated (Blender's object animation), their uniform, constant scale (Blender's and Mixamo's
 // 0.01 armatures, FBX's 100) into every length, and the file's unit (`metres_per_unit`). An
@@ -83,6 +84,7 @@ struct SceneNode {
   std::vector<int> children;
   NodeTrs rest;
   std::string rest_error;  // not empty: the rest transform could not be read (an error if the node is used)
+  bool content = false;    // holds a mesh, a camera or a light: no joint unless a skin says
 };
 
 struct SceneAnimation {
@@ -98,6 +100,7 @@ struct NodeScene {
   std::vector<std::vector<int>> skins;  // each skin's joints
   std::vector<SceneAnimation> animations;
   double metres_per_unit = 1.0;
+  Quat turn = Quat::Identity();  // the file's axes turned y up, above every node
 };
 
 // One clip per animation that moves the skeleton, in the scene's order, named as the animation
