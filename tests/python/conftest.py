@@ -2,7 +2,8 @@
 
 CTest runs them (tests/CMakeLists.txt) with the package on PYTHONPATH and MOTIONGRAPH (the CLI),
 MOTIONGRAPH_DATA (data/) and MOTIONGRAPH_TEST_GRAPH (the subject-16 graph the library makes,
-the CTest fixture subject16_graph) in the environment. Every comparison is with what the CLI
+the CTest fixture subject16_graph) in the environment, and MAKE_TEST_FBX (tests/cli/make_test_fbx,
+for FBX input). Every comparison is with what the CLI
 writes for the same input.
 """
 import json

@@ -1,4 +1,7 @@
 """load_clip() and Motion: the same clip as the CLI's convert, arrays without copies."""
+import os
+import subprocess
+
 import numpy as np
 import pytest
 
@@ -197,3 +200,23 @@ def test_bad_clip_raises_the_cli_message(cli, data, tmp_path):
 def test_missing_clip_raises(tmp_path):
     with pytest.raises(mg.Error, match="missing.amc"):
         mg.load_clip(str(tmp_path / "missing.amc"))
+
+
+def test_fbx_stacks_read_as_the_cli(cli, data, tmp_path):
+    # Two clips of subject 16 as one FBX built by FBX's rules (tests/cli/make_test_fbx: z up,
+    # inches, pre-rotations, every rotation order), an animation stack each.
+    make = os.environ.get("MAKE_TEST_FBX")
+    if not make:
+        pytest.skip("MAKE_TEST_FBX is not set (run the tests through ctest)")
+    fbx = tmp_path / "s16.fbx"
+    subprocess.run([make, "--up", "+z", "--unit", "2.54", str(fbx), str(data / "cmu/16/16_15.amc"),
+                    str(data / "cmu/16/16_35.amc")], check=True)
+    clip = mg.load_clip(str(fbx), animation="16_35")
+    assert clip.name == "s16:16_35" and clip.fps == 30
+    cli("convert", fbx, "--animation", "16_35", "-o", tmp_path / "cli.json")
+    assert_positions_equal(clip, read_json(tmp_path / "cli.json"))
+    amc = mg.load_clip(str(data / "cmu/16/16_35.amc"), fps=30)
+    order = [clip.joint_names.index(n) for n in amc.joint_names]
+    np.testing.assert_allclose(clip.positions[:, order], amc.positions, atol=1e-4)
+    with pytest.raises(mg.Error, match="no animation 'swim' \\(the file has 16_15, 16_35\\)"):
+        mg.load_clip(str(fbx), animation="swim")
