@@ -183,8 +183,7 @@ std::string channel_tracks(const aiNodeAnim& channel, double ticks, std::vector<
   return error;
 }
 
-// The file as a scene of nodes: assimp's tree without its RootNode (its transform composed into
-// the tops), each node with its pivot helpers composed into it (at rest, and key by key where
+// The file as a scene of nodes: assimp's tree without its RootNode, each node with its pivot helpers composed into it (at rest, and key by key where
 // an animation moves any of them) and its geometric helpers left out; its meshes' bones as
 // skins; its animation stacks as animations, key times in seconds.
 Result<NodeScene> scene_of(const aiScene& in, const std::string& file) {
@@ -195,11 +194,17 @@ Result<NodeScene> scene_of(const aiScene& in, const std::string& file) {
   for (unsigned i = 0; i < in.mNumCameras; ++i) content_names.insert(in.mCameras[i]->mName.C_Str());
   for (unsigned i = 0; i < in.mNumLights; ++i) content_names.insert(in.mLights[i]->mName.C_Str());
   std::vector<RawNode> raw;
-  const Eigen::Matrix4d top = matrix_of(in.mRootNode->mTransformation);
   {
+    // Assimp's RootNode stands for the file, not an object of it: left out, so that the file's
+    // top objects are trees of their own (one holding the armature, one a prop), unless it
+    // carries a transform (then it stays, above them all).
     std::vector<std::pair<const aiNode*, int>> stack;
-    for (unsigned c = in.mRootNode->mNumChildren; c-- > 0;) {
-      if (in.mRootNode->mChildren[c]) stack.push_back({in.mRootNode->mChildren[c], -1});
+    if (matrix_of(in.mRootNode->mTransformation).isIdentity(1e-12)) {
+      for (unsigned c = in.mRootNode->mNumChildren; c-- > 0;) {
+        if (in.mRootNode->mChildren[c]) stack.push_back({in.mRootNode->mChildren[c], -1});
+      }
+    } else {
+      stack.push_back({in.mRootNode, -1});
     }
     while (!stack.empty()) {
       const auto [node, parent] = stack.back();
@@ -208,7 +213,7 @@ Result<NodeScene> scene_of(const aiScene& in, const std::string& file) {
       RawNode out;
       out.name = node->mName.C_Str();
       out.parent = parent;
-      out.matrix = parent < 0 ? Eigen::Matrix4d(top * matrix_of(node->mTransformation)) : matrix_of(node->mTransformation);
+      out.matrix = matrix_of(node->mTransformation);
       out.content = node->mNumMeshes > 0 || content_names.count(out.name) > 0;
       const int index = static_cast<int>(raw.size());
       raw.push_back(std::move(out));
