@@ -261,7 +261,7 @@ void bind_motion(py::module_& m) {
         py::arg("animation") = py::none(),
         "Reads a clip (.amc with its .asf, .bvh, or an animation of a .glb/.gltf/.fbx) as the CLI's convert does: asf "
         "the skeleton of an AMC file "
-        "(default: the .asf in its folder), fps a rate to resample to, scale metres per BVH unit (default: "
+        "(default: the .asf in its folder), fps a rate to resample to, scale metres per BVH (or FBX number) unit (default: "
         "chosen from the figure's size), up_axis 'y' or 'z' (default: whichever the figure stands along; "
         "z-up is turned y up), input_fps the capture rate overriding the file's, travel where its travel over "
         "the floor comes from: 'root' as read, 'feet' recovered from the planted feet, 'auto' (default) the "

@@ -26,7 +26,8 @@ struct LoadOptions {
     app.add_option("--asf", asf, "ASF skeleton of the AMC files")->check(CLI::ExistingFile);
     app.add_option("--scale", scale,
                    "Metres per BVH length unit (BVH carries no unit; default: m, cm, mm, inch or CMU's "
-                   "1/0.45 inch, whichever makes the figure human-sized)");
+                   "1/0.45 inch, whichever makes the figure human-sized); for FBX, metres per unit of its "
+                   "numbers, instead of its own unit (which is kept unless it makes the figure no human size)");
     app.add_option("--up-axis", up_axis,
                    "Up axis of a clip, y or z (default: whichever the figure stands along; a z-up file is turned "
                    "y up)")

@@ -31,7 +31,7 @@ void report_unit(const std::string& file, const LengthUnitChoice& choice) {
     warn_implausible(file, choice);
     return;
   }
-  spdlog::info("{}: BVH lengths read in {} (--scale overrides)", file, unit_description(choice));
+  spdlog::info("{}: lengths read in {} (--scale overrides)", file, unit_description(choice));
 }
 
 std::string up_axis_description(const UpAxisChoice& choice) {
@@ -80,7 +80,7 @@ void report_units(const DatabaseLoadNotes& notes, bool quiet) {
   }
   for (const auto& [name, g] : groups) {
     if (quiet) break;
-    spdlog::info("BVH lengths read in {}: {} file{}, figures {:.2f}-{:.2f} m (--scale overrides)", name, g.files,
+    spdlog::info("lengths read in {}: {} file{}, figures {:.2f}-{:.2f} m (--scale overrides)", name, g.files,
                  g.files == 1 ? "" : "s", g.lowest_m, g.highest_m);
   }
   const auto z_up = std::count_if(notes.detected_up_axes.begin(), notes.detected_up_axes.end(),

@@ -90,8 +90,13 @@ PY
 # frame's keys, and within Blender's own key reduction (its default) without them.
 check export_fbx "$data/bvh/16_01.bvh" "$tmp/every-key.fbx" Z 0
 check export_fbx "$data/bvh/16_01.bvh" "$tmp/reduced.fbx" Y 1
-"$motiongraph" convert "$tmp/every-key.fbx" -o "$tmp/every-key.json"
-"$motiongraph" convert "$tmp/reduced.fbx" -o "$tmp/reduced.json"
+# Blender imported the BVH in its own units as metres, so the file's unit makes the figure 25 m
+# tall: motiongraph reads it in the unit that makes it human-sized unless --scale gives one (here
+# the file's own, 0.01 m per unit, to compare with the BVH in its units).
+"$motiongraph" info "$tmp/reduced.fbx" | grep -q "lengths:  mm (0.001 m), figure 2.48 m (chosen by its size: the FBX file's own unit, 0.01 m, made it 24.8 m" \
+  || { echo "blender_import_test: FAIL: an FBX of no human size"; "$motiongraph" info "$tmp/reduced.fbx"; exit 1; }
+"$motiongraph" convert "$tmp/every-key.fbx" --scale 0.01 -o "$tmp/every-key.json"
+"$motiongraph" convert "$tmp/reduced.fbx" --scale 0.01 -o "$tmp/reduced.json"
 python3 - "$tmp/every-key.json" "$tmp/reduced.json" "$tmp/bvh.json" <<'PY'
 import json, sys
 every, reduced, bvh = (json.load(open(p)) for p in sys.argv[1:])

@@ -39,7 +39,7 @@ PY
 # Build with no flags: tags from the index the project ships, and the graph of the same clips
 # read from CMU's AMC files (same frame distances, so the same transitions).
 "$bin" build "$work/lib" -o "$work/g.mgraph" --report "$work/r.json" --no-cache 2>"$work/build.txt"
-grep -q "BVH lengths read in cm: 6 files" "$work/build.txt" || { echo "FAIL: build unit line"; cat "$work/build.txt"; exit 1; }
+grep -q "lengths read in cm: 6 files" "$work/build.txt" || { echo "FAIL: build unit line"; cat "$work/build.txt"; exit 1; }
 "$bin" build "$work/amc" -o "$work/amc.mgraph" --report "$work/amc.json" --no-cache -q
 python3 - "$work/r.json" "$work/amc.json" <<'PY'
 import json, sys
@@ -68,7 +68,7 @@ head -1 "$work/s.bvh" | grep -q HIERARCHY && sed -n 2p "$work/s.bvh" | grep -q "
 
 # convert keeps the hierarchy and reads back to the same figure.
 "$bin" convert "$work/lib/16_15.bvh" -o "$work/c.bvh" 2>"$work/convert.txt"
-grep -q "BVH lengths read in cm" "$work/convert.txt" || { echo "FAIL: convert unit line"; cat "$work/convert.txt"; exit 1; }
+grep -q "lengths read in cm" "$work/convert.txt" || { echo "FAIL: convert unit line"; cat "$work/convert.txt"; exit 1; }
 "$bin" info --json "$work/c.bvh" "$work/lib/16_15.bvh" >"$work/back.json"
 python3 - "$work/back.json" "$work/c.bvh" "$work/lib/16_15.bvh" <<'PY'
 import json, re, sys

@@ -16,6 +16,7 @@
 #include "motiongraph/motion/fbx_import.h"
 #include "motiongraph/motion/gltf_import.h"
 #include "motiongraph/motion/in_place.h"
+#include "motiongraph/motion/length_unit.h"
 #include "motiongraph/motion/up_axis.h"
 
 namespace mg {
@@ -42,6 +43,32 @@ Result<std::vector<std::string>> animation_names(const std::string& path) {
   if (!bytes) return bytes.error();
   if (is_fbx_file(path)) return fbx_animation_names(*bytes, path);
   return gltf_animation_names(*bytes, path, fs::path(path).parent_path().string());
+}
+
+// An FBX file names its unit, but a figure it makes 170 m or 1.7 cm tall was exported with the
+// wrong one (the classic factor of 100 between tools, a BVH imported unscaled): the file's clips
+// are then read in the unit that makes the figure human-sized, as a BVH's are, and say so
+// (detected_unit); `given` (--scale: metres per unit of the file's numbers) overrides both.
+void settle_fbx_unit(std::vector<Clip>& clips, double file_metres_per_unit, std::optional<double> given) {
+  if (clips.empty() || !(file_metres_per_unit > 0.0)) return;
+  double factor = 1.0;
+  std::optional<LengthUnitChoice> choice;
+  if (given) {
+    factor = *given / file_metres_per_unit;
+  } else {
+    // The file's figure: the first clip's, the largest of its clips' (a held pose is small).
+    double size_m = 0.0;
+    for (const Clip& clip : clips) size_m = std::max(size_m, figure_size(clip.skeleton, clip.motion));
+    if (size_m >= kPlausibleHeightMinM && size_m <= kPlausibleHeightMaxM) return;
+    LengthUnitChoice chosen = choose_length_unit(size_m / file_metres_per_unit);
+    if (!chosen.plausible) return;  // no unit helps: the file's own stands (the doubts will say)
+    factor = chosen.unit.metres_per_unit / file_metres_per_unit;
+    choice = chosen;
+  }
+  for (Clip& clip : clips) {
+    scale_lengths(clip, factor);
+    clip.detected_unit = choice;
+  }
 }
 
 Status ClipLoadSettings::validate() const {
@@ -141,6 +168,7 @@ Result<LoadedClip> ClipLoader::load(const std::string& path, const std::optional
         read = clips_from_fbx(*bytes, path, import, &facts);
         scene_metres_per_unit_ = facts.metres_per_unit;
         scene_up_axis_ = facts.up_axis;
+        if (read) settle_fbx_unit(*read, facts.metres_per_unit, settings_.bvh_metres_per_unit);
       } else {
         GltfImportSettings import;
         import.fps_override = settings_.input_fps;
