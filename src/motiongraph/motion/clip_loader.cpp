@@ -49,6 +49,8 @@ Result<std::vector<std::string>> animation_names(const std::string& path) {
 // wrong one (the classic factor of 100 between tools, a BVH imported unscaled): the file's clips
 // are then read in the unit that makes the figure human-sized, as a BVH's are, and say so
 // (detected_unit); `given` (--scale: metres per unit of the file's numbers) overrides both.
+namespace {
+
 void settle_fbx_unit(std::vector<Clip>& clips, double file_metres_per_unit, std::optional<double> given) {
   if (clips.empty() || !(file_metres_per_unit > 0.0)) return;
   double factor = 1.0;
@@ -70,6 +72,8 @@ void settle_fbx_unit(std::vector<Clip>& clips, double file_metres_per_unit, std:
     clip.detected_unit = choice;
   }
 }
+
+}  // namespace
 
 Status ClipLoadSettings::validate() const {
   if (bvh_metres_per_unit && (!(*bvh_metres_per_unit > 0.0) || !std::isfinite(*bvh_metres_per_unit))) {
