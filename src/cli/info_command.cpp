@@ -123,11 +123,12 @@ int run_info(const InfoOptions& options) {
                          loaded->file_metres_per_unit, loaded->file_metres_per_unit * 100.0);
       if (options.load.scale) unit = fmt::format("{:g} m per unit of the file's numbers (--scale)", *options.load.scale);
     }
-    if (clip.detected_unit) unit = unit_description(*clip.detected_unit) + " (chosen by its size; --scale overrides)";
     if (clip.detected_unit && loaded->format == "fbx") {
       unit = fmt::format("{} (chosen by its size: the FBX file's own unit, {:g} m, made it {:.3g} m; --scale overrides)",
                          unit_description(*clip.detected_unit), loaded->file_metres_per_unit,
                          clip.detected_unit->figure_size_units * loaded->file_metres_per_unit);
+    } else if (clip.detected_unit) {
+      unit = unit_description(*clip.detected_unit) + " (chosen by its size; --scale overrides)";
     }
     std::string up = clip.detected_up_axis ? up_axis_description(*clip.detected_up_axis) +
                                                  " (chosen by its shape; --up-axis overrides)"

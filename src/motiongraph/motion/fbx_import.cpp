@@ -4,7 +4,6 @@
 #include <cmath>
 #include <exception>
 #include <map>
-#include <memory>
 #include <numbers>
 #include <optional>
 #include <set>
@@ -359,20 +358,24 @@ Result<NodeScene> scene_of(const aiScene& in, const std::string& file) {
   return scene;
 }
 
-// The file's up axis as assimp reports FBX's GlobalSettings: "+y", "-z", ...
-std::string up_axis_of(const aiScene& scene) {
-  const double axis = metadata_number(scene, "UpAxis").value_or(1.0);
-  const double sign = metadata_number(scene, "UpAxisSign").value_or(1.0);
-  const char* name = axis == 0.0 ? "x" : axis == 2.0 ? "z" : "y";
-  return fmt::format("{}{}", sign < 0.0 ? "-" : "+", name);
-}
+// The file's up axis as assimp reports FBX's GlobalSettings (UpAxis 0, 1, 2 and UpAxisSign).
+struct FileUp {
+  int axis = 1;  // x, y, z
+  bool negative = false;
 
-// The turn that takes that axis to +y (the shortest: the figure's heading does not matter).
-Quat turn_to_y_up(const std::string& up) {
-  Vec3 axis = Vec3::Zero();
-  axis[up[1] == 'x' ? 0 : up[1] == 'z' ? 2 : 1] = up[0] == '-' ? -1.0 : 1.0;
-  if (axis.y() < -0.5) return Quat(Eigen::AngleAxisd(std::numbers::pi, Vec3::UnitX()));
-  return Quat::FromTwoVectors(axis, Vec3::UnitY());
+  std::string name() const { return fmt::format("{}{}", negative ? '-' : '+', "xyz"[axis]); }
+  // The turn that takes it to +y (the shortest: the figure's heading does not matter).
+  Quat turn_to_y() const {
+    if (axis == 1 && negative) return Quat(Eigen::AngleAxisd(std::numbers::pi, Vec3::UnitX()));
+    Vec3 up = Vec3::Zero();
+    up[axis] = negative ? -1.0 : 1.0;
+    return Quat::FromTwoVectors(up, Vec3::UnitY());
+  }
+};
+
+FileUp up_axis_of(const aiScene& scene) {
+  const double axis = metadata_number(scene, "UpAxis").value_or(1.0);
+  return {axis == 0.0 ? 0 : axis == 2.0 ? 2 : 1, metadata_number(scene, "UpAxisSign").value_or(1.0) < 0.0};
 }
 
 }  // namespace
@@ -394,11 +397,11 @@ Result<std::vector<Clip>> clips_from_fbx(std::string_view bytes, const std::stri
   if (!parsed) return parsed.error();
   auto scene = scene_of(**parsed, file);
   if (!scene) return scene.error();
-  const std::string up = up_axis_of(**parsed);
+  const FileUp up = up_axis_of(**parsed);
   importer.FreeScene();
   // The file's up axis turned to +y, unless the user says which axis is up.
-  if (!settings.up_axis) scene->turn = turn_to_y_up(up);
-  if (facts) *facts = {scene->metres_per_unit, up};
+  if (!settings.up_axis) scene->turn = up.turn_to_y();
+  if (facts) *facts = {scene->metres_per_unit, up.name()};
   return clips_from_scene(*scene, file, settings);
 }
 

@@ -3,9 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <limits>
-#include <map>
-#include <set>
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>
