@@ -19,11 +19,23 @@ void check(bool condition) {
   if (!condition) std::abort();
 }
 
-// The file's extension in lower case (the reader accepts .AMC as .amc, as the loader does).
+// glTF and FBX files hold animations by name.
+bool is_scene_extension(const std::string& ext) {
+  return ext == ".glb" || ext == ".gltf" || ext == ".fbx";
+}
+
+// The file's extension (from its last dot) in lower case (the reader accepts .AMC as .amc, as
+// the loader does).
 std::string lower_extension(const std::string& file) {
-  std::string ext = file.size() >= 4 ? file.substr(file.size() - 4) : file;
+  const std::size_t dot = file.rfind('.');
+  std::string ext = dot == std::string::npos ? std::string() : file.substr(dot);
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return ext;
+}
+
+// The clip formats docs/manifest.md names.
+bool is_clip_extension(const std::string& ext) {
+  return ext == ".amc" || ext == ".bvh" || is_scene_extension(ext);
 }
 
 }  // namespace
@@ -34,7 +46,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!manifest.ok()) return 0;
   check(!manifest->clips.empty());
   for (const mg::ManifestClip& clip : manifest->clips) {
-    check(lower_extension(clip.file) == ".amc" || lower_extension(clip.file) == ".bvh");
+    const std::string ext = lower_extension(clip.file);
+    check(is_clip_extension(ext));
+    if (clip.animation) check(is_scene_extension(ext));
+    if (clip.skeleton) check(ext == ".amc");
+    if (clip.bvh_scale) check(ext == ".bvh" && *clip.bvh_scale > 0);
     if (clip.first_frame) check(*clip.first_frame >= 1);
     if (clip.first_frame && clip.last_frame) check(*clip.last_frame >= *clip.first_frame);
     for (const mg::ManifestRange& range : clip.ranges) {
