@@ -5,7 +5,7 @@
 # an animation stack each named as Blender names them ("Armature|16_15"). `info` lists the
 # stacks, `convert --animation` reads one to the AMC's joint positions, `build` reads every stack as
 # a clip named FILE:ANIMATION with CMU's tags by the animation's name and its graph follows a path,
-# a manifest picks stacks; a file standing along -x reads standing; a stack not there is one error.
+# a manifest picks stacks (and overrides a file's up axis); a file standing along -x reads standing; a stack not there is one error.
 # Usage: MOTIONGRAPH=binary MAKE_TEST_FBX=binary cli_fbx_test.sh DATA_DIR
 set -euo pipefail
 data=$1
@@ -79,13 +79,21 @@ tags = ["jog"]
 file = "s16.fbx"
 animation = "16_15"
 name = "stroll"
+[[clip]]
+file = "s16.fbx"
+animation = "16_15"
+name = "taken_y_up"
+up_axis = "y"
 TOML
 "$bin" info --json "$work/fbx.toml" >"$work/fbx-info.json" 2>/dev/null
 python3 - "$work/fbx-info.json" <<'PY'
 import json, sys
 info = json.load(open(sys.argv[1]))
 clips = {c["name"]: c for c in info["clips"]}
-assert set(clips) == {"s16:16_35", "stroll"}, clips.keys()
+assert set(clips) == {"s16:16_35", "stroll", "taken_y_up"}, clips.keys()
+# The clip's up_axis overrides the file's +z: the figure lies on its side, its walk no longer
+# over the floor alone.
+assert abs(clips["taken_y_up"]["root_path_m"] - clips["stroll"]["root_path_m"]) > 0.2, clips
 assert clips["s16:16_35"]["tags"] == ["jog"], clips["s16:16_35"]
 assert "walk" in clips["stroll"]["tags"], clips["stroll"]  # CMU's index, by the animation's name
 PY
