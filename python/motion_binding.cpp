@@ -219,7 +219,7 @@ void bind_motion(py::module_& m) {
           py::arg("path"), py::arg("root_motion") = false, py::arg("root_motion_smoothing") = 0.5,
           py::arg("output_scale") = 1.0, py::arg("figure") = true,
           "Writes the motion: .bvh (metres times output_scale), .glb (binary glTF 2.0, metres; figure=False leaves "
-          "out its stick figure) or .json (world positions, with the feet's contacts), as the CLI does (its "
+          "out its stick figure), .fbx (binary FBX 7.4, centimetres) or .json (world positions, with the feet's contacts), as the CLI does (its "
           "--output-scale and --no-figure); root_motion adds a root-motion joint above the root (the CLI's "
           "--root-motion, averaged over root_motion_smoothing seconds).")
       .def("__repr__", [](const PyMotion& self) {
@@ -251,7 +251,7 @@ void bind_motion(py::module_& m) {
       },
       py::arg("path"), py::arg("motions"), py::arg("names") = py::none(), py::arg("root_motion") = false,
       py::arg("root_motion_smoothing") = 0.5, py::arg("figure") = true,
-      "Writes several motions of one rig (clips of one skeleton, or results of one graph) into one .glb, an "
+      "Writes several motions of one rig (clips of one skeleton, or results of one graph) into one .glb or .fbx, an "
       "animation each, as the CLI's convert does with several clips: names the animations' (default: each "
       "motion's name; a name repeated gets _2, _3...), root_motion, root_motion_smoothing and figure as save() "
       "takes them.");

@@ -62,12 +62,12 @@ Result<Clip> read_clip(const ConvertOptions& options, ClipLoader& loader, const 
   return std::move(clip);
 }
 
-// Fails unless every output is a .glb (several clips make an animation set).
+// Fails unless every output is a .glb or .fbx (several clips make an animation set).
 Status check_set_outputs(const ConvertOptions& options) {
   for (const std::string& output : options.outputs) {
-    if (lower_extension(output) != ".glb") {
-      return Error{output, 0, "several clips go into a .glb only (an animation each); convert them one at a time for "
-                              ".bvh or .json"};
+    if (const std::string ext = lower_extension(output); ext != ".glb" && ext != ".fbx") {
+      return Error{output, 0, "several clips go into a .glb or .fbx only (an animation each); convert them one at a "
+                              "time for .bvh or .json"};
     }
   }
   return Ok{};
@@ -114,7 +114,7 @@ int convert_library(const ConvertOptions& options, const ClipLoadSettings& load)
   return 0;
 }
 
-// Several clips of one rig: one .glb, an animation each, named as its file.
+// Several clips of one rig: one .glb or .fbx, an animation each, named as its file.
 int convert_animation_set(const ConvertOptions& options, const ClipLoadSettings& load) {
   if (auto s = check_set_outputs(options); !s) return fail(s.error());
   ClipLoader loader(load);
@@ -193,14 +193,15 @@ Command add_convert_command(CLI::App& app) {
   auto options = std::make_shared<ConvertOptions>();
   CLI::App* sub = app.add_subcommand(
       "convert", "Convert an AMC, BVH, glTF or FBX clip to BVH (metres), to binary glTF (.glb: the skeleton, its animation and "
-                 "a stick figure skinned to it, in metres; several clips of one rig make one file, an animation each) or to "
-                 "JSON world positions "
+                 "a stick figure skinned to it, in metres), to binary FBX (.fbx: the skeleton and its animation, in "
+                 "centimetres, for Maya, MotionBuilder, Unity, Unreal; several clips of one rig make one .glb or .fbx, an "
+                 "animation each) or to JSON world positions "
                  "({\"fps\", \"joints\": [{\"name\", \"parent\"}], \"positions\": [frame][joint][x,y,z], "
                  "\"contacts\": {\"joints\": [the foot joints], \"planted\": [frame][foot joint] 0 or 1}}).");
   sub->add_option("IN", options->inputs,
-                  "Input clip (.amc, .bvh, or .glb/.gltf/.fbx: an animation of it); several clips of one rig go into one .glb, an animation each named as "
-                  "its file (a character's animation set, as game engines import it); a library (folders, .toml "
-                  "manifests) goes into one .glb as build reads it (at 30 fps unless --fps or its manifest says), "
+                  "Input clip (.amc, .bvh, or .glb/.gltf/.fbx: an animation of it); several clips of one rig go into one .glb or .fbx, an animation each "
+                  "named as its file (a character's animation set, as game engines import it); a library (folders, .toml "
+                  "manifests) goes into one .glb or .fbx as build reads it (at 30 fps unless --fps or its manifest says), "
                   "every clip on one of its skeletons")
       ->required()
       ->check(CLI::ExistingPath);
@@ -211,7 +212,7 @@ Command add_convert_command(CLI::App& app) {
                   "scaled by the legs' lengths (default: the first clip's)")
       ->check(CLI::NonNegativeNumber);
   sub->add_option("-o,--output", options->outputs,
-                  "Output file, .bvh, .glb (binary glTF 2.0) or .json; repeat -o for several (read once)")
+                  "Output file, .bvh, .glb (binary glTF 2.0), .fbx (binary FBX 7.4) or .json; repeat -o for several (read once)")
       ->required()
       ->allow_extra_args(false);  // one file each: inputs may follow it
   sub->add_option("--fps", options->fps, "Resample to this frame rate (slerp rotations, lerp translations)")

@@ -19,7 +19,7 @@ struct MotionOutputOptions {
   void add_to(CLI::App& app) {
     app.add_option("--output-scale", units_per_metre,
                    "BVH length units per metre in the output (100 for centimetres); glTF and JSON are always in "
-                   "metres")
+                   "metres, FBX in centimetres (its UnitScaleFactor 1)")
         ->capture_default_str();
     app.add_flag("--no-figure", no_figure,
                  "glTF: write the skeleton and its animation only, without the grey stick figure skinned to it (for "

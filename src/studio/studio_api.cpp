@@ -452,25 +452,27 @@ class Router {
                           {"contacts", played_contacts_json(step->contacts, step->motion.frame_count)}});
   }
 
-  // ID.bvh or ID.glb.
+  // ID.bvh, ID.glb or ID.fbx.
   ApiResponse result_file() {
+    using Format = SynthesisService::FileFormat;
     const std::string& name = parts_[2];
     std::optional<long long> id;
     std::string suffix;
-    for (const char* s : {".bvh", ".glb"}) {
+    Format format = Format::kBvh;
+    for (const auto& [s, f] : {std::pair{".bvh", Format::kBvh}, std::pair{".glb", Format::kGlb}, std::pair{".fbx", Format::kFbx}}) {
       if (name.size() > 4 && name.ends_with(s)) {
         suffix = s;
+        format = f;
         id = parse_integer(name.substr(0, name.size() - 4), 0, 1LL << 30);
       }
     }
-    if (!id) throw ApiError{404, fmt::format("no result '{}': expected /api/results/ID.bvh or ID.glb", name)};
-    const bool glb = suffix == ".glb";
+    if (!id) throw ApiError{404, fmt::format("no result '{}': expected /api/results/ID.bvh, ID.glb or ID.fbx", name)};
     const bool root_motion = query_integer(request_, "root_motion", 0, 0, 1) == 1;
-    auto bytes = service_.result_file(static_cast<int>(*id), glb, root_motion);
+    auto bytes = service_.result_file(static_cast<int>(*id), format, root_motion);
     if (!bytes) throw ApiError{404, fmt::format("no result {} (results are kept for the latest {})", *id,
                                                 SynthesisService::kMaxResults)};
     ApiResponse r;
-    r.content_type = glb ? "model/gltf-binary" : "application/octet-stream";
+    r.content_type = format == Format::kGlb ? "model/gltf-binary" : "application/octet-stream";
     r.body = std::move(*bytes);
     r.file_name = fmt::format("motiongraph-{}{}", *id, suffix);
     return r;

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "motiongraph/export/bvh_writer.h"
+#include "motiongraph/export/fbx_writer.h"
 #include "motiongraph/export/gltf_writer.h"
 #include "motiongraph/motion/root_motion.h"
 #include "motiongraph/export/matrix_png.h"
@@ -39,7 +40,7 @@ int SynthesisService::store_result(Motion motion) {
   return store_recorded(std::move(recorded));
 }
 
-std::optional<std::string> SynthesisService::result_file(int result, bool glb, bool root_motion) const {
+std::optional<std::string> SynthesisService::result_file(int result, FileFormat format, bool root_motion) const {
   std::shared_ptr<Recorded> recorded;
   {
     std::lock_guard lock(mutex_);
@@ -59,9 +60,10 @@ std::optional<std::string> SynthesisService::result_file(int result, bool glb, b
     skeleton = std::move(added->skeleton);
     motion = std::move(added->motion);
   }
-  if (!glb) return write_bvh(skeleton, motion, BvhWriteSettings{});
+  if (format == FileFormat::kBvh) return write_bvh(skeleton, motion, BvhWriteSettings{});
   // The animation is named as the file downloads.
-  auto bytes = write_glb(skeleton, motion, fmt::format("motiongraph-{}", result));
+  const std::string name = fmt::format("motiongraph-{}", result);
+  auto bytes = format == FileFormat::kGlb ? write_glb(skeleton, motion, name) : write_fbx(skeleton, motion, name);
   if (!bytes) return std::nullopt;  // a recorded motion always fits the skeleton it was played on
   return std::move(*bytes);
 }

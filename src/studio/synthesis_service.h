@@ -90,10 +90,11 @@ class SynthesisService {
   // Sets the input and appends at least min_frames frames (one decision or more).
   Result<SteerStepResult> step_session(int session, const ControlInput& input, int min_frames);
 
-  // A result as a file: BVH text, or binary glTF with `glb`, with a root-motion joint above the
+  // A result as a file: BVH text, binary glTF or binary FBX, with a root-motion joint above the
   // root when asked (motion/root_motion.h, default settings); nothing when there is no such
   // result (any more).
-  std::optional<std::string> result_file(int result, bool glb = false, bool root_motion = false) const;
+  enum class FileFormat { kBvh, kGlb, kFbx };
+  std::optional<std::string> result_file(int result, FileFormat format = FileFormat::kBvh, bool root_motion = false) const;
   // Stores a motion for download and returns its id.
   int store_result(Motion motion);
 

@@ -137,7 +137,7 @@ PY
 if "$bin" convert "$data/cmu/16/16_15.amc" "$data/cmu/16/16_35.amc" -o "$work/set.glb" -o "$work/set.bvh" 2>"$work/set.err"; then
   echo "FAIL: several clips into a BVH were accepted"; exit 1
 fi
-[[ $(wc -l <"$work/set.err") -eq 1 && ! -e "$work/set.bvh" ]] && grep -q "set.bvh: several clips go into a .glb only" "$work/set.err" \
+[[ $(wc -l <"$work/set.err") -eq 1 && ! -e "$work/set.bvh" ]] && grep -q "set.bvh: several clips go into a .glb or .fbx only" "$work/set.err" \
   || { echo "FAIL: several clips into a BVH"; cat "$work/set.err"; exit 1; }
 if "$bin" convert "$data/cmu/16/16_15.amc" "$data/cmu/16/16_35.amc" --feet LeftAnkle,,, -o "$work/feet.glb" 2>"$work/feet.err"; then
   echo "FAIL: feet that are not there were accepted"; exit 1

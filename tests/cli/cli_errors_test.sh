@@ -73,7 +73,7 @@ sed 's/^:hierarchy/:hierarchy\n  begin\n    root nosuchbone\n  end\n:ignored/' "
 expect_error unknown-in-hierarchy "bad\.asf:[0-9]+: unknown bone 'nosuchbone'" "$data/cmu/16/16_35.amc" --asf "$work/in/bad.asf"
 
 # Usage errors from the command line itself.
-EXT=.txt expect_error wrong-extension "out-wrong-extension\.txt: output must end in \.bvh, \.glb or \.json" "$good"
+EXT=.txt expect_error wrong-extension "out-wrong-extension\.txt: output must end in \.bvh, \.glb, \.fbx or \.json" "$good"
 expect_error bad-scale "scale" "$good" --scale -1
 
 # A write that cannot happen leaves nothing behind either.

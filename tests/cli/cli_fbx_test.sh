@@ -5,7 +5,9 @@
 # an animation stack each named as Blender names them ("Armature|16_15"). `info` lists the
 # stacks, `convert --animation` reads one to the AMC's joint positions, `build` reads every stack as
 # a clip named FILE:ANIMATION with CMU's tags by the animation's name and its graph follows a path,
-# a manifest picks stacks (and overrides a file's up axis); a file standing along -x reads standing; a stack not there is one error.
+# a manifest picks stacks (and overrides a file's up axis); clips written as FBX (one, and a set
+# with a root-motion joint) read back to their joints; a file standing along -x reads standing;
+# a stack not there is one error.
 # Usage: MOTIONGRAPH=binary MAKE_TEST_FBX=binary cli_fbx_test.sh DATA_DIR
 set -euo pipefail
 data=$1
@@ -97,4 +99,35 @@ assert abs(clips["taken_y_up"]["root_path_m"] - clips["stroll"]["root_path_m"]) 
 assert clips["s16:16_35"]["tags"] == ["jog"], clips["s16:16_35"]
 assert "walk" in clips["stroll"]["tags"], clips["stroll"]  # CMU's index, by the animation's name
 PY
+
+# FBX out: a clip written as FBX (centimetres, y up) reads back to its joints; several clips make
+# one file, a stack each named as its file; a root-motion joint goes in too.
+mkdir "$work/out"
+"$bin" convert "$data/cmu/16/16_35.amc" --fps 30 -o "$work/out/jog.fbx" -o "$work/out/jog.json"
+"$bin" info "$work/out/jog.fbx" >"$work/out-info.txt"
+grep -q "jog.fbx: FBX, animation 'jog' (1 of 1: jog" "$work/out-info.txt" \
+  && grep -q "lengths:  0.01 m (the FBX file's: centimetres times its UnitScaleFactor 1)" "$work/out-info.txt" \
+  && grep -q "up:       +y (the FBX file's" "$work/out-info.txt" \
+  || { echo "FAIL: info on an FBX file written"; cat "$work/out-info.txt"; exit 1; }
+"$bin" convert "$work/out/jog.fbx" -o "$work/out/jog-back.json"
+"$bin" convert "$data/cmu/16/16_15.amc" "$data/cmu/16/16_35.amc" --fps 30 --root-motion -o "$work/out/set.fbx"
+"$bin" convert "$work/out/set.fbx" --animation 16_15 -o "$work/out/set-walk.json"
+"$bin" convert "$data/cmu/16/16_15.amc" --fps 30 --root-motion -o "$work/out/walk.json"
+python3 - "$work/out" <<'PY'
+import json, sys
+out = sys.argv[1]
+def worst(a, b):
+    a, b = (json.load(open(f"{out}/{n}.json")) for n in (a, b))
+    index = {j["name"]: i for i, j in enumerate(b["joints"])}
+    assert a["fps"] == b["fps"] == 30 and len(a["positions"]) == len(b["positions"]) > 30
+    assert sorted(index) == sorted(j["name"] for j in a["joints"]), (index, a["joints"])
+    return max(abs(x - y) for fa, fb in zip(a["positions"], b["positions"])
+               for j, p in enumerate(fa) for x, y in zip(p, fb[index[a["joints"][j]["name"]]]))
+for a, b in (("jog", "jog-back"), ("walk", "set-walk")):
+    w = worst(a, b)
+    assert w < 2e-5, (a, b, w)  # float32 keys in centimetres
+    print(f"cli_fbx_test: {a} written as FBX reads back within {w:.1e} m")
+PY
+"$bin" info "$work/out/set.fbx" | head -1 | grep -q "set.fbx: FBX, animation '16_15' (1 of 2: 16_15, 16_35" \
+  || { echo "FAIL: an animation set as FBX"; "$bin" info "$work/out/set.fbx"; exit 1; }
 echo "cli_fbx_test: PASS"

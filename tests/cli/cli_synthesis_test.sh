@@ -273,7 +273,7 @@ expect_error "bad-path.json:3: not valid JSON" "$work/o.bvh" "$bin" path "$work/
 expect_error "unknown shape 'spiral'" "$work/o.bvh" "$bin" path "$work/g.mgraph" --shape spiral:3 -o "$work/o.bvh"
 expect_error "'swim' is not a motion tag" "$work/o.bvh" "$bin" path "$work/g.mgraph" --shape line:5 --segment swim:0-5 -o "$work/o.bvh"
 expect_error "BVH output scale must be a positive number" "$work/o.bvh" "$bin" walk "$work/g.mgraph" --from 0 --to 10 --output-scale 0 -o "$work/o.bvh"
-expect_error "must end in .bvh, .glb or .json" "$work/o.txt" "$bin" path "$work/g.mgraph" --shape line:5 -o "$work/o.txt"
+expect_error "must end in .bvh, .glb, .fbx or .json" "$work/o.txt" "$bin" path "$work/g.mgraph" --shape line:5 -o "$work/o.txt"
 expect_error "node 99999 does not exist" "$work/o.bvh" "$bin" walk "$work/g.mgraph" --from 0 --to 99999 -o "$work/o.bvh"
 expect_error "unknown cost 'cheap'" "$work/o.bvh" "$bin" walk "$work/g.mgraph" --from 0 --to 1 --cost cheap -o "$work/o.bvh"
 echo '{"controls": [{"at_s": 1}]}' >"$work/bad-controls.json"

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
+#include "export/random_motion.h"
 #include "motion/static_root_bvh.h"
 #include "motiongraph/motion/forward_kinematics.h"
 #include "test_data.h"
@@ -243,19 +244,9 @@ TEST(GltfWriter, RandomRotationsAndTranslationsGiveContinuousUnitKeysAndTheSameP
             static_cast<size_t>(std::count_if(six_channels.skeleton.joints().begin(), six_channels.skeleton.joints().end(),
                                               [](const JointDef& joint) { return !joint.end_site; })));
   std::mt19937 rng(3);
-  std::normal_distribution<double> normal;
   for (int round = 0; round < 6; ++round) {
     const Clip& clip = round % 2 == 0 ? cmu : six_channels;
-    Motion motion(clip.skeleton, 40, 60.0);
-    for (int f = 0; f < motion.frame_count; ++f) {
-      for (int j = 0; j < motion.joint_count; ++j) {
-        Quat q(normal(rng), normal(rng), normal(rng), normal(rng));
-        q.normalize();
-        if (clip.skeleton.joint(j).end_site) q = Quat::Identity();
-        motion.rotations(f)[j] = q;
-      }
-      for (auto& t : motion.translations(f)) t = Vec3(normal(rng), 1.0 + normal(rng), normal(rng));
-    }
+    const Motion motion = test::random_motion(clip.skeleton, 40, 60.0, rng);
     const Glb glb = written(clip.skeleton, motion);
     // One translation track per joint that has translations (they all move here).
     const auto& samplers = glb.model.animations.at(0).samplers;

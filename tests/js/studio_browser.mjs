@@ -264,12 +264,19 @@ try {
   const href = await page.getAttribute('[data-testid=download]', 'href');
   const bvh = await page.evaluate(async (h) => (await fetch(h)).text(), href);
   check(bvh.startsWith('HIERARCHY'), `the result downloads as BVH (${href})`);
-  const glbHref = await page.getAttribute('[data-testid=download-glb]', 'href');
-  const glbMagic = await page.evaluate(async (h) => {
-    const bytes = new Uint8Array(await (await fetch(h)).arrayBuffer());
-    return String.fromCharCode(...bytes.slice(0, 4));
-  }, glbHref);
+  // The first bytes of what a download link gives, as text.
+  const downloadMagic = async (testid, length) => {
+    const link = await page.getAttribute(`[data-testid=${testid}]`, 'href');
+    const magic = await page.evaluate(async ([h, n]) => {
+      const bytes = new Uint8Array(await (await fetch(h)).arrayBuffer());
+      return String.fromCharCode(...bytes.slice(0, n));
+    }, [link, length]);
+    return [magic, link];
+  };
+  const [glbMagic, glbHref] = await downloadMagic('download-glb', 4);
   check(glbMagic === 'glTF', `the result downloads as binary glTF (${glbHref})`);
+  const [fbxMagic, fbxHref] = await downloadMagic('download-fbx', 18);
+  check(fbxMagic === 'Kaydara FBX Binary', `the result downloads as binary FBX (${fbxHref})`);
   await page.check('[data-testid=root-motion]');
   const rootMotionHref = await page.getAttribute('[data-testid=download]', 'href');
   const rootMotionBvh = await page.evaluate(async (h) => (await fetch(h)).text(), rootMotionHref);

@@ -20,13 +20,17 @@ def test_positions_equal_the_cli(cli, data, tmp_path, fps):
     # animation as the file: the same name in two folders).
     (tmp_path / "cli").mkdir()
     (tmp_path / "py").mkdir()
-    cli("convert", amc, "-o", tmp_path / "cli.bvh", "-o", tmp_path / "cli" / "walk.glb", *args)
+    cli("convert", amc, "-o", tmp_path / "cli.bvh", "-o", tmp_path / "cli" / "walk.glb", "-o",
+        tmp_path / "cli" / "walk.fbx", *args)
     for ext in ("json", "bvh"):
         clip.save(str(tmp_path / f"py.{ext}"))
         assert (tmp_path / f"py.{ext}").read_bytes() == (tmp_path / f"cli.{ext}").read_bytes()
     clip.save(str(tmp_path / "py" / "walk.glb"))
     assert (tmp_path / "py" / "walk.glb").read_bytes() == (tmp_path / "cli" / "walk.glb").read_bytes()
     assert (tmp_path / "py" / "walk.glb").read_bytes()[:4] == b"glTF"
+    clip.save(str(tmp_path / "py" / "walk.fbx"))
+    assert (tmp_path / "py" / "walk.fbx").read_bytes() == (tmp_path / "cli" / "walk.fbx").read_bytes()
+    assert (tmp_path / "py" / "walk.fbx").read_bytes()[:21] == b"Kaydara FBX Binary  \0"
     cli("convert", amc, "--root-motion", "-o", tmp_path / "cli-rm.json", *args)
     clip.save(str(tmp_path / "py-rm.json"), root_motion=True)
     assert (tmp_path / "py-rm.json").read_bytes() == (tmp_path / "cli-rm.json").read_bytes()
@@ -70,6 +74,15 @@ def test_animation_set_equals_the_cli(cli, data, tmp_path):
         assert read.name == f"py:{clip.name}" and read.fps == 30 and len(read) == len(clip)
         order = [read.joint_names.index(n) for n in clip.joint_names]
         np.testing.assert_allclose(read.positions[:, order], clip.positions, atol=2e-5)
+    # The same set as FBX: the CLI's file, a stack each, read back to each clip.
+    cli("convert", *clips, "--fps", 30, "-o", tmp_path / "cli.fbx")
+    mg.save_animations(str(tmp_path / "py.fbx"), motions)
+    assert (tmp_path / "py.fbx").read_bytes() == (tmp_path / "cli.fbx").read_bytes()
+    for clip in motions:
+        read = mg.load_clip(str(tmp_path / "py.fbx"), animation=clip.name)
+        assert read.name == f"py:{clip.name}" and read.fps == 30 and len(read) == len(clip)
+        order = [read.joint_names.index(n) for n in clip.joint_names]
+        np.testing.assert_allclose(read.positions[:, order], clip.positions, atol=2e-5)
     # A message naming a joint whose name is not UTF-8 (Latin-1) is still motiongraph.Error.
     latin1 = tmp_path / "latin1.bvh"
     latin1.write_bytes((data / "bvh/16_01.bvh").read_bytes().replace(b"lfemur", b"Oberschenkel\xfc"))
@@ -78,7 +91,7 @@ def test_animation_set_equals_the_cli(cli, data, tmp_path):
                                                          mg.load_clip(str(latin1))])
     with pytest.raises(ValueError, match="names: 1 given for 2 motions"):
         mg.save_animations(str(tmp_path / "mixed.glb"), motions, names=["walk"])
-    with pytest.raises(mg.Error, match="several motions go into a .glb only"):
+    with pytest.raises(mg.Error, match="several motions go into a .glb or .fbx only"):
         mg.save_animations(str(tmp_path / "set.bvh"), motions)
     assert not (tmp_path / "mixed.glb").exists() and not (tmp_path / "set.bvh").exists()
 

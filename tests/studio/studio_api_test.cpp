@@ -291,8 +291,12 @@ TEST(StudioApi, WalkReturnsMotionAndABvhDownload) {
       call_api("GET", "/api/results/" + std::to_string(walk.json["result"].get<int>()) + ".bvh", "", {{"root_motion", "1"}});
   ASSERT_EQ(root_motion.response.status, 200);
   EXPECT_EQ(root_motion.response.body.rfind("HIERARCHY\nROOT root_motion", 0), 0u);
-  expect_error(call_api("GET", "/api/results/" + std::to_string(walk.json["result"].get<int>()) + ".fbx"), 404,
-               "expected /api/results/ID.bvh or ID.glb");
+  const ApiCall fbx = call_api("GET", "/api/results/" + std::to_string(walk.json["result"].get<int>()) + ".fbx");
+  ASSERT_EQ(fbx.response.status, 200);
+  EXPECT_EQ(fbx.response.body.rfind(std::string("Kaydara FBX Binary  \0", 21), 0), 0u);
+  EXPECT_TRUE(fbx.response.file_name.ends_with(".fbx"));
+  expect_error(call_api("GET", "/api/results/" + std::to_string(walk.json["result"].get<int>()) + ".dae"), 404,
+               "expected /api/results/ID.bvh, ID.glb or ID.fbx");
 }
 
 TEST(StudioApi, ResultsAreCleanedUnlessAskedNotToAndMeasuredAgainstTheirSource) {

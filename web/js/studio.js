@@ -85,7 +85,7 @@ function ensureFigure(joints) {
 function setResultLink(id) {
   state.result = id;
   const query = $('root-motion').checked ? '?root_motion=1' : '';
-  for (const [link, ext] of [['download', 'bvh'], ['download-glb', 'glb']]) {
+  for (const [link, ext] of [['download', 'bvh'], ['download-glb', 'glb'], ['download-fbx', 'fbx']]) {
     const a = $(link);
     a.href = `/api/results/${id}.${ext}${query}`;
     a.download = `motiongraph-${id}.${ext}`;

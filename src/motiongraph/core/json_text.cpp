@@ -35,4 +35,8 @@ std::string json_text(const nlohmann::json& doc, int indent) {
   return doc.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
+std::string valid_utf8(const std::string& text) {
+  return nlohmann::json::parse(json_text(nlohmann::json(text))).get<std::string>();
+}
+
 }  // namespace mg

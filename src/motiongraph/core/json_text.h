@@ -18,4 +18,8 @@ Result<nlohmann::json> parse_json_text(std::string_view text, const std::string&
 // The document's text; indent < 0: on one line.
 std::string json_text(const nlohmann::json& doc, int indent = -1);
 
+// The text as valid UTF-8, as json_text writes it: each byte that is not becomes U+FFFD (for
+// formats whose strings must be UTF-8: glTF's JSON, FBX's names).
+std::string valid_utf8(const std::string& text);
+
 }  // namespace mg

@@ -13,7 +13,9 @@
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
+#include "motiongraph/core/json_text.h"
 #include "motiongraph/core/unique_name.h"
+#include "motiongraph/export/keyed_joints.h"
 
 namespace mg {
 
@@ -71,13 +73,6 @@ class BufferWriter {
 
   tinygltf::Model& model_;
 };
-
-// A name as valid UTF-8, which glTF's JSON must be: a byte that is not (a Latin-1 joint name, say)
-// becomes U+FFFD, as the project's other JSON writes it (core/json_text.h).
-std::string utf8(const std::string& name) {
-  const std::string quoted = nlohmann::json(name).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-  return nlohmann::json::parse(quoted).get<std::string>();
-}
 
 std::vector<double> to_vector(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 std::vector<double> to_vector(const Quat& q) { return {q.x(), q.y(), q.z(), q.w()}; }
@@ -146,12 +141,9 @@ Result<std::string> write_glb(const Skeleton& skeleton, std::span<const GltfAnim
     }
     if (a.motion->frame_count > 0) played.push_back(&a);
   }
-  // The rest pose's translations: the first animation's first frame's.
-  const Motion* first = played.empty() ? nullptr : played.front()->motion;
-  const auto rest_translation = [&](int joint) -> Vec3 {
-    const int slot = skeleton.translation_slot(joint);
-    return slot >= 0 && first ? first->translations(0)[slot] : skeleton.joint(joint).rest_offset_m;
-  };
+  std::vector<const Motion*> motions;
+  for (const GltfAnimation* a : played) motions.push_back(a->motion);
+  const Motion* first = motions.empty() ? nullptr : motions.front();
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = "motiongraph";
@@ -163,16 +155,10 @@ Result<std::string> write_glb(const Skeleton& skeleton, std::span<const GltfAnim
   const int first_joint = static_cast<int>(ancestors.size());
   const int joint_count = skeleton.joint_count();
   const int node_count = first_joint + joint_count;
-  // Joint 0's transform in the file's hierarchy is the ancestors' inverse times its own here.
-  const Quat ancestor_rotation = skeleton.static_ancestor_rotation();
-  const Vec3 ancestor_translation = skeleton.static_ancestor_translation_m();
-  const auto below_ancestors = [&](const Vec3& t) -> Vec3 {
-    return ancestor_rotation.conjugate() * (t - ancestor_translation);
-  };
   std::vector<Affine> bind(static_cast<size_t>(node_count), Affine::Identity());
   for (int a = 0; a < first_joint; ++a) {
     tinygltf::Node node;
-    node.name = utf8(ancestors[a].name);
+    node.name = valid_utf8(ancestors[a].name);
     node.translation = to_vector(ancestors[a].translation_m);
     if (!ancestors[a].rotation.isApprox(Quat::Identity(), 0.0)) node.rotation = to_vector(ancestors[a].rotation);
     if (a + 1 < node_count) node.children.push_back(a + 1);
@@ -182,14 +168,9 @@ Result<std::string> write_glb(const Skeleton& skeleton, std::span<const GltfAnim
   }
   for (int j = 0; j < joint_count; ++j) {
     const JointDef& joint = skeleton.joint(j);
-    Vec3 translation = rest_translation(j);
-    // A travelling root stands over the origin at rest, at its first frame's height (its track
-    // moves it); a root without position channels stays at its offset.
-    if (j == 0) {
-      translation = below_ancestors(skeleton.translation_slot(0) >= 0 ? Vec3(0.0, translation.y(), 0.0) : translation);
-    }
+    const Vec3 translation = rest_node_translation(skeleton, first, j);
     tinygltf::Node node;
-    node.name = utf8(joint.name);
+    node.name = valid_utf8(joint.name);
     node.translation = to_vector(translation);
     const Affine local{Eigen::Translation3d(translation)};
     const int parent_node = j == 0 ? first_joint - 1 : first_joint + joint.parent;
@@ -263,33 +244,12 @@ Result<std::string> write_glb(const Skeleton& skeleton, std::span<const GltfAnim
   model.scenes.push_back(std::move(scene));
   model.defaultScene = 0;
 
-  // The joints keyed: those any animation turns (and the root below static ancestors, whose
-  // rotation the node's own does not hold), and the translated joints any animation moves from
-  // the rest pose (and a travelling root, which stands over the origin at rest).
-  std::vector<int> turned, moved;
-  for (int j = 0; j < joint_count; ++j) {
-    if (skeleton.joint(j).end_site) continue;
-    bool turns = j == 0 && first_joint > 0;
-    for (const GltfAnimation* a : played) {
-      for (int f = 0; f < a->motion->frame_count && !turns; ++f) {
-        turns = !a->motion->rotations(f)[j].isApprox(Quat::Identity(), 1e-12);
-      }
-    }
-    if (turns) turned.push_back(j);
-  }
-  for (int j : skeleton.translated_joints()) {
-    const int slot = skeleton.translation_slot(j);
-    bool moves = j == 0;
-    for (const GltfAnimation* a : played) {
-      for (int f = 0; f < a->motion->frame_count && !moves; ++f) moves = a->motion->translations(f)[slot] != rest_translation(j);
-    }
-    if (moves) moved.push_back(j);
-  }
+  const KeyedJoints keyed = keyed_joints(skeleton, motions);
   std::vector<std::string> names;
   for (const GltfAnimation* a : played) {
     const Motion& motion = *a->motion;
     tinygltf::Animation animation;
-    animation.name = unique_name(utf8(a->name), [&](const std::string& n) {
+    animation.name = unique_name(valid_utf8(a->name), [&](const std::string& n) {
       return std::find(names.begin(), names.end(), n) != names.end();
     });
     names.push_back(animation.name);
@@ -308,24 +268,24 @@ Result<std::string> write_glb(const Skeleton& skeleton, std::span<const GltfAnim
       channel.target_path = path;
       animation.channels.push_back(std::move(channel));
     };
-    for (int j : turned) {
+    for (int j : keyed.turned) {
       std::vector<float> rotations;
       Quat previous = Quat::Identity();
       for (int f = 0; f < motion.frame_count; ++f) {
         Quat q = motion.rotations(f)[j];
-        if (j == 0) q = ancestor_rotation.conjugate() * q;
+        if (j == 0) q = below_static_ancestors(skeleton, q);
         q = same_hemisphere(q, previous);  // slerp between neighbours takes the short way
         push_unit(rotations, q);
         previous = q;
       }
       track(first_joint + j, "rotation", buffer.floats(rotations, TINYGLTF_TYPE_VEC4, 4));
     }
-    for (int j : moved) {
+    for (int j : keyed.moved) {
       const int slot = skeleton.translation_slot(j);
       std::vector<float> translations;
       for (int f = 0; f < motion.frame_count; ++f) {
         const Vec3& t = motion.translations(f)[slot];
-        push(translations, j == 0 ? below_ancestors(t) : t);
+        push(translations, j == 0 ? below_static_ancestors(skeleton, t) : t);
       }
       track(first_joint + j, "translation", buffer.floats(translations, TINYGLTF_TYPE_VEC3, 3));
     }

@@ -6,6 +6,7 @@
 
 #include "motiongraph/core/file_extension.h"
 #include "motiongraph/export/bvh_writer.h"
+#include "motiongraph/export/fbx_writer.h"
 #include "motiongraph/export/gltf_writer.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/rig_matching.h"
@@ -15,7 +16,9 @@ namespace mg {
 
 Status check_motion_output(const std::string& path) {
   const std::string ext = lower_extension(path);
-  if (ext != ".bvh" && ext != ".json" && ext != ".glb") return Error{path, 0, "output must end in .bvh, .glb or .json"};
+  if (ext != ".bvh" && ext != ".json" && ext != ".glb" && ext != ".fbx") {
+    return Error{path, 0, "output must end in .bvh, .glb, .fbx or .json"};
+  }
   return Ok{};
 }
 
@@ -50,12 +53,14 @@ Status write_motion(const std::string& path, const Skeleton& skeleton, const Mot
   BvhWriteSettings write;
   write.units_per_metre = settings.units_per_metre;
   const std::string ext = lower_extension(path);
-  if (ext == ".glb") {
+  if (ext == ".glb" || ext == ".fbx") {
     // The animation is named as the file (an engine lists every imported file's as its name).
     const std::string stem = std::filesystem::path(path).stem().string();
-    auto glb = write_glb(skeleton, motion, stem.empty() ? "motion" : stem, GltfWriteSettings{settings.figure});
-    if (!glb) return Error{path, 0, glb.error().message};
-    return write_file_atomic(path, *glb);
+    const std::string name = stem.empty() ? "motion" : stem;
+    auto bytes = ext == ".glb" ? write_glb(skeleton, motion, name, GltfWriteSettings{settings.figure})
+                               : write_fbx(skeleton, motion, name);
+    if (!bytes) return Error{path, 0, bytes.error().message};
+    return write_file_atomic(path, *bytes);
   }
   return write_file_atomic(path, ext == ".bvh" ? write_bvh(skeleton, motion, write)
                                                : write_positions_json(skeleton, motion, contacts));
@@ -63,7 +68,10 @@ Status write_motion(const std::string& path, const Skeleton& skeleton, const Mot
 
 Status write_animation_set(const std::string& path, std::span<const NamedMotion> motions,
                            const MotionFileSettings& settings) {
-  if (lower_extension(path) != ".glb") return Error{path, 0, "several motions go into a .glb only (an animation each)"};
+  const std::string ext = lower_extension(path);
+  if (ext != ".glb" && ext != ".fbx") {
+    return Error{path, 0, "several motions go into a .glb or .fbx only (an animation each)"};
+  }
   if (auto s = settings.validate(); !s) return Error{path, 0, s.error().message};
   if (motions.empty()) return Error{path, 0, "no motion to write"};
   for (const NamedMotion& m : motions) {
@@ -94,9 +102,9 @@ Status write_animation_set(const std::string& path, std::span<const NamedMotion>
   for (const NamedMotion& m : same) {
     if (auto why = rig_difference(*same.front().skeleton, *m.skeleton)) {
       return Error{m.source, 0,
-                   fmt::format("its rig is not {}'s ({}): one .glb holds one skeleton (a library read as one puts "
+                   fmt::format("its rig is not {}'s ({}): one {} holds one skeleton (a library read as one puts "
                                "its clips on one rig: convert FOLDER, Python's load_library)",
-                               same.front().source, *why)};
+                               same.front().source, *why, ext)};
     }
   }
   motions = same;
@@ -109,14 +117,23 @@ Status write_animation_set(const std::string& path, std::span<const NamedMotion>
       added.push_back(std::move(*clip));
     }
   }
-  std::vector<GltfAnimation> animations;
-  for (size_t i = 0; i < motions.size(); ++i) {
-    animations.push_back({motions[i].name, added.empty() ? motions[i].motion : &added[i].motion});
-  }
   const Skeleton& skeleton = added.empty() ? *motions.front().skeleton : added.front().skeleton;
-  auto glb = write_glb(skeleton, animations, GltfWriteSettings{settings.figure});
-  if (!glb) return Error{path, 0, glb.error().message};
-  return write_file_atomic(path, *glb);
+  Result<std::string> bytes = std::string();
+  if (ext == ".glb") {
+    std::vector<GltfAnimation> animations;
+    for (size_t i = 0; i < motions.size(); ++i) {
+      animations.push_back({motions[i].name, added.empty() ? motions[i].motion : &added[i].motion});
+    }
+    bytes = write_glb(skeleton, animations, GltfWriteSettings{settings.figure});
+  } else {
+    std::vector<FbxAnimation> animations;
+    for (size_t i = 0; i < motions.size(); ++i) {
+      animations.push_back({motions[i].name, added.empty() ? motions[i].motion : &added[i].motion});
+    }
+    bytes = write_fbx(skeleton, animations);
+  }
+  if (!bytes) return Error{path, 0, bytes.error().message};
+  return write_file_atomic(path, *bytes);
 }
 
 Result<std::optional<ClipContacts>> clip_contacts(const Skeleton& skeleton, const Motion& motion,

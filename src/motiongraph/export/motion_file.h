@@ -1,6 +1,6 @@
 // Motion written to a file, the format by extension: .bvh in metres (times units_per_metre),
-// .glb binary glTF in metres (gltf_writer.h) or .json world positions (positions_json.h),
-// checked before any work.
+// .glb binary glTF in metres (gltf_writer.h), .fbx binary FBX in centimetres (fbx_writer.h) or
+// .json world positions (positions_json.h), checked before any work.
 #pragma once
 
 #include <optional>
@@ -15,7 +15,7 @@
 
 namespace mg {
 
-// Fails unless the path ends in .bvh, .glb or .json.
+// Fails unless the path ends in .bvh, .glb, .fbx or .json.
 Status check_motion_output(const std::string& path);
 // A root-motion joint to add before writing (motion/root_motion.h), and where the skeleton faces
 // in its root's frame (synthesis/facing.h).
@@ -33,7 +33,7 @@ struct MotionFileSettings {
   Status validate() const;
 };
 
-// Writes the motion atomically as BVH (metres * units_per_metre), glTF (metres, its animation named
+// Writes the motion atomically as BVH (metres * units_per_metre), glTF or FBX (its animation named
 // as the file without its extension) or JSON positions.
 // JSON gets the feet's contacts too when `contacts` is given (positions_json.h).
 Status write_motion(const std::string& path, const Skeleton& skeleton, const Motion& motion,
@@ -48,11 +48,11 @@ struct NamedMotion {
   Vec3 forward_axis = Vec3::UnitZ();  // where its skeleton faces, for a root-motion joint
 };
 
-// Several motions of one rig into one .glb, an animation each (gltf_writer.h), written
+// Several motions of one rig into one .glb or .fbx, an animation each (gltf_writer.h, fbx_writer.h), written
 // atomically: a character's animation set as game engines import it. Each gets the root-motion
 // joint asked for in `settings` facing its own forward axis (settings.root_motion's is not
 // used); a held pose folded as the set's static-root clips (trajectory_joint.h: fold_as) faces
-// theirs, its own having been learnt on the root it had. Fails unless the path ends in .glb, and when a motion's rig is not the first's
+// theirs, its own having been learnt on the root it had. Fails unless the path ends in .glb or .fbx, and when a motion's rig is not the first's
 // (motion/rig_matching.h: rig_difference), naming its source.
 Status write_animation_set(const std::string& path, std::span<const NamedMotion> motions,
                            const MotionFileSettings& settings = {});

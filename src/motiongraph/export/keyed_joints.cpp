@@ -1,0 +1,48 @@
+#include "motiongraph/export/keyed_joints.h"
+
+namespace mg {
+
+Vec3 rest_node_translation(const Skeleton& skeleton, const Motion* first, int joint) {
+  const int slot = skeleton.translation_slot(joint);
+  Vec3 translation =
+      slot >= 0 && first && first->frame_count > 0 ? first->translations(0)[slot] : skeleton.joint(joint).rest_offset_m;
+  if (joint != 0) return translation;
+  // A travelling root stands over the origin at rest, at its first frame's height (its track
+  // moves it); a root without position channels stays at its offset.
+  if (slot >= 0) translation = Vec3(0.0, translation.y(), 0.0);
+  return below_static_ancestors(skeleton, translation);
+}
+
+Vec3 below_static_ancestors(const Skeleton& skeleton, const Vec3& translation) {
+  return skeleton.static_ancestor_rotation().conjugate() * (translation - skeleton.static_ancestor_translation_m());
+}
+
+Quat below_static_ancestors(const Skeleton& skeleton, const Quat& rotation) {
+  return skeleton.static_ancestor_rotation().conjugate() * rotation;
+}
+
+KeyedJoints keyed_joints(const Skeleton& skeleton, std::span<const Motion* const> motions) {
+  const Motion* first = motions.empty() ? nullptr : motions.front();
+  KeyedJoints keyed;
+  for (int j = 0; j < skeleton.joint_count(); ++j) {
+    if (skeleton.joint(j).end_site) continue;
+    // Joint 0 below static ancestors: the node's own rotation does not hold the ancestors'.
+    bool turns = j == 0 && !skeleton.static_ancestors().empty();
+    for (const Motion* m : motions) {
+      for (int f = 0; f < m->frame_count && !turns; ++f) turns = !m->rotations(f)[j].isApprox(Quat::Identity(), 1e-12);
+    }
+    if (turns) keyed.turned.push_back(j);
+  }
+  for (int j : skeleton.translated_joints()) {
+    const int slot = skeleton.translation_slot(j);
+    const Vec3 rest = first && first->frame_count > 0 ? first->translations(0)[slot] : skeleton.joint(j).rest_offset_m;
+    bool moves = j == 0;
+    for (const Motion* m : motions) {
+      for (int f = 0; f < m->frame_count && !moves; ++f) moves = m->translations(f)[slot] != rest;
+    }
+    if (moves) keyed.moved.push_back(j);
+  }
+  return keyed;
+}
+
+}  // namespace mg

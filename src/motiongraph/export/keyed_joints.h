@@ -1,0 +1,31 @@
+// What the scene writers (glTF, FBX) share about a skeleton written as a node hierarchy with
+// animations: the rest pose its nodes hold, joint 0 below the static ancestors a trajectory joint
+// was found under (skeleton.h), and which joints the animations key.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "motiongraph/motion/motion.h"
+
+namespace mg {
+
+// The node's translation at rest (metres, its parent node's frame): the rest offset, or for a
+// joint with animated translation the first animation's first frame's (`first` null: none); a
+// travelling root stands over the origin at that frame's height, re-expressed below the static
+// ancestors.
+Vec3 rest_node_translation(const Skeleton& skeleton, const Motion* first, int joint);
+
+// Joint 0's transform in the file's hierarchy, below the static ancestors, from its transform
+// here (where they are composed in).
+Vec3 below_static_ancestors(const Skeleton& skeleton, const Vec3& translation);
+Quat below_static_ancestors(const Skeleton& skeleton, const Quat& rotation);
+
+struct KeyedJoints {
+  std::vector<int> turned;  // joints any motion turns (and joint 0 below static ancestors)
+  std::vector<int> moved;   // translated joints any motion moves from rest (and a travelling root)
+};
+// The joints that need keys so that each motion poses the whole figure whichever played before.
+KeyedJoints keyed_joints(const Skeleton& skeleton, std::span<const Motion* const> motions);
+
+}  // namespace mg

@@ -1,0 +1,337 @@
+#include "motiongraph/export/fbx_writer.h"
+
+#include <map>
+#include <functional>
+#include <numbers>
+#include <random>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "export/fbx_binary_reader.h"
+#include "motion/max_apart.h"
+#include "export/random_motion.h"
+#include "motion/static_root_bvh.h"
+#include "motiongraph/motion/fbx_import.h"
+#include "motiongraph/motion/forward_kinematics.h"
+#include "test_data.h"
+
+namespace mg {
+namespace {
+
+using Affine = Eigen::Affine3d;
+
+std::string text(const FbxValue& v) { return std::get<std::string>(v); }
+std::int64_t id(const FbxValue& v) { return std::get<std::int64_t>(v); }
+
+// A Properties70 entry's numbers (from its fifth value on) by its name.
+std::map<std::string, std::vector<double>> properties(const FbxRecord& owner) {
+  std::map<std::string, std::vector<double>> out;
+  const FbxRecord* p70 = test::find_record(owner.records, "Properties70");
+  if (!p70) return out;
+  for (const FbxRecord& p : p70->records) {
+    std::vector<double> numbers;
+    for (size_t i = 4; i < p.values.size(); ++i) {
+      std::visit(
+          [&](const auto& x) {
+            using T = std::decay_t<decltype(x)>;
+            if constexpr (std::is_arithmetic_v<T>) numbers.push_back(static_cast<double>(x));
+          },
+          p.values[i]);
+    }
+    out[text(p.values[0])] = numbers;
+  }
+  return out;
+}
+
+// The file read by the test's own FBX reader and played by FBX's rules alone (a model's local
+// transform is Translate(Lcl Translation) * Rotate(Lcl Rotation in its RotationOrder), curves
+// replacing the properties they are connected to), not by anything the writer computes.
+struct FbxScene {
+  struct Model {
+    std::string name;
+    std::int64_t parent = 0;
+    Vec3 translation = Vec3::Zero(), rotation = Vec3::Zero();  // cm, degrees
+    int order = 0;
+  };
+  struct Curves {  // a curve node's three curves
+    std::vector<std::int64_t> times[3];
+    std::vector<float> values[3];
+  };
+  std::vector<FbxRecord> records;
+  std::map<std::int64_t, Model> models;
+  std::vector<std::pair<std::string, std::int64_t>> stacks;  // name, id
+  std::map<std::int64_t, std::vector<std::tuple<std::int64_t, std::string, Curves>>> stack_curves;  // model, property
+  std::map<std::string, std::vector<double>> settings;
+
+  explicit FbxScene(const std::string& bytes) {
+    auto read = test::read_fbx_binary(bytes);
+    if (!read) {
+      ADD_FAILURE() << read.error().message << " at byte " << read.error().line;
+      return;
+    }
+    records = std::move(*read);
+    settings = properties(*test::find_record(records, "GlobalSettings"));
+    std::map<std::int64_t, const FbxRecord*> objects;
+    for (const FbxRecord& r : test::find_record(records, "Objects")->records) objects[id(r.values[0])] = &r;
+    const auto name_of = [](const FbxRecord& r) {
+      const std::string full = text(r.values[1]);
+      return full.substr(0, full.find(std::string("\0\1", 2)));
+    };
+    for (const auto& [key, r] : objects) {
+      if (r->name == "Model") {
+        auto p = properties(*r);
+        Model m;
+        m.name = name_of(*r);
+        if (p.count("Lcl Translation")) m.translation = Vec3(p["Lcl Translation"][0], p["Lcl Translation"][1], p["Lcl Translation"][2]);
+        if (p.count("Lcl Rotation")) m.rotation = Vec3(p["Lcl Rotation"][0], p["Lcl Rotation"][1], p["Lcl Rotation"][2]);
+        if (p.count("RotationOrder")) m.order = static_cast<int>(p["RotationOrder"][0]);
+        models[key] = m;
+      } else if (r->name == "AnimationStack") {
+        stacks.emplace_back(name_of(*r), key);
+      }
+    }
+    // Connections: child -> parent (OO), or child -> parent's property (OP).
+    std::map<std::int64_t, std::int64_t> layer_stack, node_layer;
+    std::map<std::int64_t, std::pair<std::int64_t, std::string>> node_target;
+    std::map<std::int64_t, Curves> node_curves;
+    for (const FbxRecord& c : test::find_record(records, "Connections")->records) {
+      const std::int64_t child = id(c.values[1]), parent = id(c.values[2]);
+      const FbxRecord* from = objects.count(child) ? objects[child] : nullptr;
+      const FbxRecord* to = objects.count(parent) ? objects[parent] : nullptr;
+      if (!from) continue;
+      if (from->name == "Model") models[child].parent = parent;
+      if (from->name == "AnimationLayer") layer_stack[child] = parent;
+      if (from->name == "AnimationCurveNode" && text(c.values[0]) == "OO") node_layer[child] = parent;
+      if (from->name == "AnimationCurveNode" && text(c.values[0]) == "OP") node_target[child] = {parent, text(c.values[3])};
+      if (from->name == "AnimationCurve" && to) {
+        const std::string axis = text(c.values[3]);
+        const int a = axis == "d|X" ? 0 : axis == "d|Y" ? 1 : 2;
+        node_curves[parent].times[a] = std::get<std::vector<std::int64_t>>(test::find_record(from->records, "KeyTime")->values[0]);
+        node_curves[parent].values[a] = std::get<std::vector<float>>(test::find_record(from->records, "KeyValueFloat")->values[0]);
+      }
+    }
+    for (const auto& [node, target] : node_target) {
+      stack_curves[layer_stack[node_layer[node]]].emplace_back(target.first, target.second, node_curves[node]);
+    }
+  }
+
+  // World transforms (centimetres) of the models at key `key` of the stack.
+  std::map<std::string, Affine> world(std::int64_t stack, size_t key) const {
+    std::map<std::int64_t, Model> posed = models;
+    if (stack_curves.count(stack)) {
+      for (const auto& [model, property, curves] : stack_curves.at(stack)) {
+        Vec3 v;
+        for (int a = 0; a < 3; ++a) v[a] = curves.values[a].at(key);
+        (property == "Lcl Translation" ? posed[model].translation : posed[model].rotation) = v;
+      }
+    }
+    std::map<std::string, Affine> out;
+    std::function<Affine(std::int64_t)> world_of = [&](std::int64_t key_id) -> Affine {
+      if (key_id == 0) return Affine::Identity();
+      const Model& m = posed.at(key_id);
+      static const char* kOrders[] = {"XYZ", "XZY", "YZX", "YXZ", "ZXY", "ZYX"};  // applied first to last
+      Quat r = Quat::Identity();
+      for (const char axis : std::string(kOrders[m.order])) {
+        const int a = axis - 'X';
+        r = Quat(Eigen::AngleAxisd(m.rotation[a] * std::numbers::pi / 180.0, Vec3::Unit(a))) * r;
+      }
+      return world_of(m.parent) * Eigen::Translation3d(m.translation) * r;
+    };
+    for (const auto& [key_id, m] : posed) out[m.name] = world_of(key_id);
+    return out;
+  }
+};
+
+FbxScene written(const Skeleton& skeleton, const Motion& motion, const std::string& name = "take") {
+  auto bytes = write_fbx(skeleton, motion, name);
+  EXPECT_TRUE(bytes.ok()) << bytes.error().message;
+  return FbxScene(bytes.ok() ? *bytes : std::string());
+}
+
+// The largest distance (metres) between a joint as the file's first stack plays it and as forward
+// kinematics puts it, over every frame.
+double max_world_error(const FbxScene& scene, const Skeleton& skeleton, const Motion& motion, size_t stack = 0) {
+  const std::vector<Vec3> positions = world_positions(skeleton, motion);
+  double worst = 0.0;
+  for (int f = 0; f < motion.frame_count; ++f) {
+    const auto world = scene.world(scene.stacks.at(stack).second, static_cast<size_t>(f));
+    for (int j = 0; j < skeleton.joint_count(); ++j) {
+      const Vec3 p = world.at(skeleton.joint(j).name).translation() / 100.0;
+      worst = std::max(worst, (p - positions[static_cast<size_t>(f * skeleton.joint_count() + j)]).norm());
+    }
+  }
+  return worst;
+}
+
+TEST(FbxWriter, ModelsPlayedByTheFileRulesAreWhereForwardKinematicsPutsTheJoints) {
+  for (const char* file : {"cmu/16/16_15.amc", "cmu/16/16_35.amc", "bvh/16_01.bvh", "bvh/131_01.bvh"}) {
+    const Clip clip = test::load_data_clip(file);
+    const FbxScene scene = written(clip.skeleton, clip.motion);
+    ASSERT_EQ(scene.stacks.size(), 1u) << file;
+    EXPECT_EQ(scene.stacks[0].first, "take");
+    EXPECT_EQ(scene.models.size(), static_cast<size_t>(clip.skeleton.joint_count()) + clip.skeleton.static_ancestors().size());
+    // Centimetres, y up, z front, right-handed (x across).
+    EXPECT_EQ(scene.settings.at("UnitScaleFactor"), std::vector<double>{1.0});
+    EXPECT_EQ(scene.settings.at("UpAxis"), std::vector<double>{1.0});
+    EXPECT_EQ(scene.settings.at("FrontAxis"), std::vector<double>{2.0});
+    EXPECT_EQ(scene.settings.at("CoordAxis"), std::vector<double>{0.0});
+    EXPECT_LT(max_world_error(scene, clip.skeleton, clip.motion), 1e-5) << file;  // float32 keys
+  }
+}
+
+TEST(FbxWriter, EachJointKeepsItsOwnRotationOrder) {
+  const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
+  std::vector<JointDef> joints(clip.skeleton.joints().begin(), clip.skeleton.joints().end());
+  const std::vector<ComposeOrder> orders{{Axis::kZ, Axis::kY, Axis::kX}, {Axis::kY, Axis::kZ, Axis::kX},
+                                         {Axis::kX, Axis::kZ, Axis::kY}, {Axis::kZ, Axis::kX, Axis::kY},
+                                         {Axis::kY, Axis::kX, Axis::kZ}, {Axis::kX, Axis::kY, Axis::kZ}};
+  for (size_t j = 0; j < joints.size(); ++j) joints[j].euler_order = orders[j % orders.size()];
+  const Skeleton skeleton(joints);
+  const FbxScene scene = written(skeleton, clip.motion);
+  std::set<int> seen;
+  for (const auto& [key, m] : scene.models) seen.insert(m.order);
+  EXPECT_EQ(seen.size(), 6u);
+  // R = Rz Ry Rx (x applied first) is FBX's XYZ, 0; R = Rx Ry Rz its ZYX, 5.
+  for (const auto& [key, m] : scene.models) {
+    const ComposeOrder& order = joints.at(*skeleton.find(m.name)).euler_order;
+    if (order == orders[0]) {
+      EXPECT_EQ(m.order, 0);
+    }
+    if (order == orders[5]) {
+      EXPECT_EQ(m.order, 5);
+    }
+  }
+  EXPECT_LT(max_world_error(scene, skeleton, clip.motion), 1e-5);
+}
+
+TEST(FbxWriter, AStaticRootAboveTheHipsIsWrittenBackAboveThem) {
+  const Clip plain = test::load_data_clip("cmu/16/16_15.amc");
+  const Vec3 root_at(-2.0, 0.1, 3.0);
+  const Quat root_turn(Eigen::AngleAxisd(-2.5, Vec3(0.1, 1.0, 0.2).normalized()));
+  const Clip clip = test::import_bvh(test::static_root_bvh(plain, root_at, root_turn));
+  ASSERT_EQ(clip.skeleton.static_ancestors().size(), 1u);
+  const FbxScene scene = written(clip.skeleton, clip.motion);
+  std::int64_t root = -1;
+  for (const auto& [key, m] : scene.models) {
+    if (m.name == test::kStaticRootName) root = key;
+  }
+  ASSERT_GE(root, 0);
+  EXPECT_EQ(scene.models.at(root).parent, 0);
+  for (const auto& [key, m] : scene.models) {
+    if (m.name == clip.skeleton.joint(0).name) {
+      EXPECT_EQ(m.parent, root);
+    }
+  }
+  for (size_t f : {size_t{0}, static_cast<size_t>(clip.motion.frame_count / 2)}) {
+    const Affine world = scene.world(scene.stacks[0].second, f).at(test::kStaticRootName);
+    EXPECT_LT((world.translation() / 100.0 - root_at).norm(), 1e-6);
+    EXPECT_LT(Quat(world.rotation()).angularDistance(root_turn), 1e-6);
+  }
+  EXPECT_LT(max_world_error(scene, clip.skeleton, clip.motion), 1e-5);
+}
+
+// Random rotations and translations in every frame: the same positions, and Euler keys that never
+// jump more than half a turn from one frame to the next (an importer resampling the curves would
+// swing the long way round).
+TEST(FbxWriter, RandomRotationsGiveContinuousEulerKeysAndTheSamePositions) {
+  const Clip cmu = test::load_data_clip("cmu/16/16_15.amc");
+  const Clip six_channels = test::import_bvh(test::static_root_bvh(cmu));
+  std::mt19937 rng(5);
+  for (int round = 0; round < 4; ++round) {
+    const Clip& clip = round % 2 == 0 ? cmu : six_channels;
+    const Motion motion = test::random_motion(clip.skeleton, 30, 60.0, rng);
+    const FbxScene scene = written(clip.skeleton, motion);
+    int rotation_nodes = 0;
+    for (const auto& [model, property, curves] : scene.stack_curves.at(scene.stacks[0].second)) {
+      if (property != "Lcl Rotation") continue;
+      ++rotation_nodes;
+      for (int a = 0; a < 3; ++a) {
+        for (size_t k = 1; k < curves.values[a].size(); ++k) EXPECT_LE(std::abs(curves.values[a][k] - curves.values[a][k - 1]), 180.001f);
+      }
+    }
+    EXPECT_GT(rotation_nodes, 20);
+    EXPECT_LT(max_world_error(scene, clip.skeleton, motion), 1e-5);
+  }
+}
+
+TEST(FbxWriter, KeyTimesAreFbxTicksAndTheRateItsTimeMode) {
+  const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
+  for (const auto& [fps, mode] : std::vector<std::pair<double, double>>{{30.0, 6.0}, {120.0, 1.0}, {24.5, 14.0}}) {
+    Motion motion = clip.motion.slice(0, 10);
+    motion.fps = fps;
+    const FbxScene scene = written(clip.skeleton, motion);
+    EXPECT_EQ(scene.settings.at("TimeMode"), std::vector<double>{mode}) << fps;
+    EXPECT_EQ(scene.settings.at("CustomFrameRate"), std::vector<double>{fps});
+    const auto& [model, property, curves] = scene.stack_curves.at(scene.stacks[0].second).front();
+    ASSERT_EQ(curves.times[0].size(), 10u);
+    for (int f = 0; f < 10; ++f) EXPECT_NEAR(static_cast<double>(curves.times[0][f]), f * 46186158000.0 / fps, 0.5) << fps;
+    EXPECT_EQ(scene.settings.at("TimeSpanStop"), std::vector<double>{static_cast<double>(curves.times[0].back())});
+  }
+}
+
+// A character's animation set: a stack per motion, each keying the same joints, read back by
+// Open Asset Import Library (the project's FBX reader) to the motions' own joint positions.
+TEST(FbxWriter, SeveralMotionsAreAStackEachThatAnFbxReaderReadsBack) {
+  const Clip walk = test::load_data_clip("cmu/16/16_15.amc");
+  const Clip jog = test::load_data_clip("cmu/16/16_35.amc");
+  const std::vector<FbxAnimation> animations{{"walk", &walk.motion}, {"jog", &jog.motion}, {"walk", &walk.motion}};
+  auto bytes = write_fbx(walk.skeleton, animations);
+  ASSERT_TRUE(bytes.ok()) << bytes.error().message;
+  const FbxScene scene(*bytes);
+  ASSERT_EQ(scene.stacks.size(), 3u);
+  EXPECT_EQ(scene.stacks[0].first, "walk");
+  EXPECT_EQ(scene.stacks[1].first, "jog");
+  EXPECT_EQ(scene.stacks[2].first, "walk_2");
+  EXPECT_EQ(scene.stack_curves.at(scene.stacks[0].second).size(), scene.stack_curves.at(scene.stacks[1].second).size());
+  EXPECT_LT(max_world_error(scene, walk.skeleton, jog.motion, 1), 1e-5);
+
+  auto clips = clips_from_fbx(*bytes, "set.fbx", FbxImportSettings{});
+  ASSERT_TRUE(clips.ok()) << clips.error().message;
+  ASSERT_EQ(clips->size(), 3u);
+  EXPECT_EQ((*clips)[1].name, "jog");
+  for (size_t i = 0; i < 3; ++i) {
+    const Clip& source = i == 1 ? jog : walk;
+    EXPECT_EQ((*clips)[i].motion.fps, source.motion.fps);
+    EXPECT_LT(test::max_apart(source, (*clips)[i]), 1e-5) << i;
+  }
+}
+
+TEST(FbxWriter, WithoutFramesTheSkeletonIsStillWritten) {
+  const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
+  const FbxScene still = written(clip.skeleton, clip.motion.slice(0, 0));
+  EXPECT_TRUE(still.stacks.empty());
+  ASSERT_EQ(still.models.size(), static_cast<size_t>(clip.skeleton.joint_count()));
+  // At rest each joint stands at its offset from its parent (the root over the origin).
+  const auto world = still.world(0, 0);
+  for (int j = 1; j < clip.skeleton.joint_count(); ++j) {
+    const JointDef& joint = clip.skeleton.joint(j);
+    const Vec3 offset = world.at(joint.name).translation() - world.at(clip.skeleton.joint(joint.parent).name).translation();
+    EXPECT_LT((offset / 100.0 - joint.rest_offset_m).norm(), 1e-9) << joint.name;
+  }
+}
+
+TEST(FbxWriter, NamesThatAreNotUtf8AreRepaired) {
+  const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
+  std::vector<JointDef> joints(clip.skeleton.joints().begin(), clip.skeleton.joints().end());
+  joints[1].name = "H\xfc" "fte";
+  const FbxScene scene = written(Skeleton(joints), clip.motion, "H\xfc" "pfen");
+  EXPECT_EQ(scene.stacks.at(0).first, "H\xef\xbf\xbd" "pfen");
+  bool found = false;
+  for (const auto& [key, m] : scene.models) found = found || m.name == "H\xef\xbf\xbd" "fte";
+  EXPECT_TRUE(found);
+}
+
+TEST(FbxWriter, AnAnimationWithoutANameOrThatDoesNotFitIsAnError) {
+  const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
+  auto unnamed = write_fbx(clip.skeleton, clip.motion, "");
+  ASSERT_FALSE(unnamed.ok());
+  EXPECT_EQ(unnamed.error().message, "an FBX animation needs a name");
+  const Clip other = test::with_fingers(clip);  // more joints
+  auto misfit = write_fbx(clip.skeleton, other.motion, "other");
+  ASSERT_FALSE(misfit.ok());
+  EXPECT_EQ(misfit.error().message.rfind("animation 'other': ", 0), 0u) << misfit.error().message;
+}
+
+}  // namespace
+}  // namespace mg
