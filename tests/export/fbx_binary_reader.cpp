@@ -5,6 +5,7 @@
 #include <optional>
 
 #include <fmt/format.h>
+#include <zlib.h>
 
 namespace mg::test {
 
@@ -28,6 +29,7 @@ class Reader {
     return true;
   }
   size_t pos() const { return pos_; }
+  int deflated() const { return deflated_; }
   size_t size() const { return bytes_.size(); }
   Error error(const std::string& what) const { return Error{"fbx", static_cast<int>(pos_), what}; }
 
@@ -35,12 +37,22 @@ class Reader {
   Result<FbxValue> array() {
     std::uint32_t count = 0, encoding = 0, length = 0;
     if (!get(count) || !get(encoding) || !get(length)) return error("array header cut short");
-    if (encoding != 0) return error(fmt::format("array encoding {}", encoding));
-    if (length != count * sizeof(T)) return error("array byte length is not its count's");
+    if (encoding > 1) return error(fmt::format("array encoding {}", encoding));
+    if (encoding == 0 && length != count * sizeof(T)) return error("array byte length is not its count's");
     std::vector<T> values(count);
     std::string raw;
     if (!get_bytes(length, raw)) return error("array cut short");
-    std::memcpy(values.data(), raw.data(), length);
+    if (encoding == 0) {
+      std::memcpy(values.data(), raw.data(), length);
+    } else {
+      uLongf size = count * sizeof(T);
+      if (uncompress(reinterpret_cast<Bytef*>(values.data()), &size, reinterpret_cast<const Bytef*>(raw.data()), length) !=
+              Z_OK ||
+          size != count * sizeof(T)) {
+        return error("deflated array does not inflate to its count");
+      }
+      ++deflated_;
+    }
     return FbxValue(std::move(values));
   }
 
@@ -102,11 +114,12 @@ class Reader {
  private:
   std::string_view bytes_;
   size_t pos_ = 0;
+  int deflated_ = 0;
 };
 
 }  // namespace
 
-Result<std::vector<FbxRecord>> read_fbx_binary(std::string_view bytes) {
+Result<std::vector<FbxRecord>> read_fbx_binary(std::string_view bytes, int* deflated_arrays) {
   Reader in(bytes);
   std::string magic;
   std::uint32_t version = 0;
@@ -140,6 +153,7 @@ Result<std::vector<FbxRecord>> read_fbx_binary(std::string_view bytes) {
     if (bytes[i] != '\0') return Error{"fbx", static_cast<int>(i), "footer zeros"};
   }
   if (bytes.substr(bytes.size() - 16) != end_magic) return Error{"fbx", static_cast<int>(bytes.size() - 16), "footer magic"};
+  if (deflated_arrays) *deflated_arrays = in.deflated();
   return top;
 }
 

@@ -70,6 +70,26 @@ TEST(FbxBinary, RandomTreesReadBackAsWrittenWithTheFooterOnItsBoundary) {
   }
 }
 
+// Long arrays are deflated where that makes them smaller (FBX's encoding 1); short ones, and long
+// ones that do not shrink, are written as they are.
+TEST(FbxBinary, LongArraysAreDeflatedWhenThatMakesThemSmaller) {
+  std::vector<std::int64_t> times;
+  for (std::int64_t f = 0; f < 10000; ++f) times.push_back(f * 1539538600);
+  std::mt19937 rng(1);
+  std::vector<std::int32_t> noise(64);
+  for (auto& n : noise) n = static_cast<std::int32_t>(rng());
+  const std::vector<FbxRecord> top{leaf("KeyTime", {times}), leaf("Short", {std::vector<float>{1.0f, 2.0f}}),
+                                   leaf("Noise", {noise})};
+  auto bytes = encode_fbx_binary(top);
+  ASSERT_TRUE(bytes.ok());
+  EXPECT_LT(bytes->size(), times.size() * sizeof(std::int64_t) * 3 / 4);
+  int deflated = 0;
+  auto back = test::read_fbx_binary(*bytes, &deflated);
+  ASSERT_TRUE(back.ok()) << back.error().message;
+  EXPECT_EQ(*back, top);
+  EXPECT_EQ(deflated, 1);  // the times; random bytes do not shrink
+}
+
 TEST(FbxBinary, ANameOver255BytesIsAnError) {
   const std::vector<FbxRecord> top{FbxRecord{"Objects", {}, {leaf(std::string(256, 'x'), {})}, false}};
   auto bytes = encode_fbx_binary(top);

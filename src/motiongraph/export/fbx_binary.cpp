@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include <fmt/format.h>
+#include <zlib.h>
 
 namespace mg {
 
@@ -16,6 +17,7 @@ constexpr unsigned char kFooterId[16] = {0xfa, 0xbc, 0xab, 0x09, 0xd0, 0xc8, 0xd
 constexpr unsigned char kFooterMagic[16] = {0xf8, 0x5a, 0x8c, 0x6a, 0xde, 0xf5, 0xd9, 0x7e,
                                             0xec, 0xe9, 0x0c, 0xe3, 0x75, 0x8f, 0x29, 0x0b};
 constexpr size_t kNullRecord = 13;  // 7.4: three uint32 and a name length, all zero
+constexpr size_t kCompressFrom = 128;  // arrays of this many bytes or more are deflated (as Blender does)
 
 class Encoder {
  public:
@@ -37,14 +39,28 @@ class Encoder {
     bytes(text.data(), text.size());
   }
 
-  // An array value: count, encoding 0 (as it is), byte length, the values.
+  // An array value: count, encoding (0: as it is, 1: zlib's deflate, when long and smaller so),
+  // byte length, the bytes.
   template <class T>
   void array(char type, const std::vector<T>& values) {
+    const size_t size = values.size() * sizeof(T);
     put(type);
     put(static_cast<std::uint32_t>(values.size()));
+    if (size >= kCompressFrom && size <= std::numeric_limits<uLong>::max()) {
+      uLongf packed_size = compressBound(static_cast<uLong>(size));
+      std::string packed(packed_size, '\0');
+      if (compress2(reinterpret_cast<Bytef*>(packed.data()), &packed_size, reinterpret_cast<const Bytef*>(values.data()),
+                    static_cast<uLong>(size), Z_BEST_SPEED) == Z_OK &&
+          packed_size < size) {
+        put(std::uint32_t{1});
+        put(static_cast<std::uint32_t>(packed_size));
+        bytes(packed.data(), packed_size);
+        return;
+      }
+    }
     put(std::uint32_t{0});
-    put(static_cast<std::uint32_t>(values.size() * sizeof(T)));
-    bytes(values.data(), values.size() * sizeof(T));
+    put(static_cast<std::uint32_t>(size));
+    bytes(values.data(), size);
   }
 
   void value(const FbxValue& v) {

@@ -6,7 +6,8 @@
 // "Kaydara FBX Binary  \0\x1a\0" and the version; each record as its end's offset in the file,
 // its value count, its values' byte length, its name's length and name, its values (a type
 // letter each: I int32, L int64, F float, D double, S string, R raw bytes, and arrays i l f d as
-// count, encoding 0 = plain, byte length, values), its records, and a 13-byte null record ending
+// count, encoding (0 plain; 1 zlib-deflated, which arrays of 128 bytes or more get when it makes
+// them smaller, as Blender's and the FBX SDK's files have them), byte length, bytes), its records, and a 13-byte null record ending
 // the list of records inside it; a null record after the last top record; then the footer the
 // FBX SDK checks: a fixed 16-byte id, zeros to a 16-byte boundary, the version, 120 zeros and a
 // fixed 16-byte magic. The file id and creation time the footer's id goes with are the header's
