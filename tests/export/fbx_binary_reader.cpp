@@ -43,7 +43,7 @@ class Reader {
     std::string raw;
     if (!get_bytes(length, raw)) return error("array cut short");
     if (encoding == 0) {
-      std::memcpy(values.data(), raw.data(), length);
+      if (length > 0) std::memcpy(values.data(), raw.data(), length);
     } else {
       uLongf size = count * sizeof(T);
       if (uncompress(reinterpret_cast<Bytef*>(values.data()), &size, reinterpret_cast<const Bytef*>(raw.data()), length) !=

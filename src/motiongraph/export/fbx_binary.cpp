@@ -26,7 +26,9 @@ class Encoder {
     static_assert(std::is_trivially_copyable_v<T>);
     out_.append(reinterpret_cast<const char*>(&value), sizeof(T));
   }
-  void bytes(const void* data, size_t size) { out_.append(static_cast<const char*>(data), size); }
+  void bytes(const void* data, size_t size) {
+    if (size > 0) out_.append(static_cast<const char*>(data), size);  // an empty vector's data() may be null
+  }
   void zeros(size_t count) { out_.append(count, '\0'); }
   size_t size() const { return out_.size(); }
   void patch_u32(size_t at, std::uint32_t value) { std::memcpy(out_.data() + at, &value, sizeof value); }
