@@ -48,9 +48,26 @@ FbxRecord vector_property(const char* name, const Vec3& v) {
   return property(name, name, "", "A", {v.x(), v.y(), v.z()});
 }
 
-// An object's name as FBX stores it: "name\0\1Class".
-std::string object_name(const std::string& name, const char* type) {
-  return valid_utf8(name) + std::string("\0\1", 2) + type;
+// A name as FBX can hold it: valid UTF-8, without the bytes 0 and 1 that separate a name from its
+// class ("name\0\1Class"), each of which becomes '_'.
+std::string fbx_name(const std::string& name) {
+  std::string out = valid_utf8(name);
+  std::replace_if(out.begin(), out.end(), [](char c) { return c == '\0' || c == '\1'; }, '_');
+  return out;
+}
+
+// An object's name as FBX stores it: "name\0\1Class" (`name` already an fbx_name).
+std::string object_name(const std::string& name, const char* type) { return name + std::string("\0\1", 2) + type; }
+
+// The order joint 0's rotation is written in: the axis nearest the vertical (y, in the frame of
+// the static ancestors above it) outermost, so that the middle angle, where Euler angles lock,
+// is a lean rather than the heading a travelling figure turns through freely (CMU's root, in
+// Acclaim's XYZ, has the heading in the middle: its keys jumped at every quarter turn).
+ComposeOrder root_order(const Skeleton& skeleton) {
+  const Vec3 up = skeleton.static_ancestor_rotation().conjugate() * Vec3::UnitY();
+  int a = 0;
+  up.cwiseAbs().maxCoeff(&a);
+  return {static_cast<Axis>(a), static_cast<Axis>((a + 2) % 3), static_cast<Axis>((a + 1) % 3)};
 }
 
 // FBX's RotationOrder enum, named by the axis applied first: eEulerXYZ (0) is R = Rz Ry Rx.
@@ -134,8 +151,18 @@ Result<std::string> write_fbx(const Skeleton& skeleton, std::span<const FbxAnima
 
   // Models: the static ancestors (a chain, root first), then one per joint, each with its
   // LimbNode attribute.
-  const auto add_model = [&](const std::string& name, const Vec3& translation_m, const Vec3& rotation_degrees,
+  // Model names as FBX holds them, unique (two names that differ only in bytes that are not UTF-8
+  // would be one), each its node attribute's too.
+  std::vector<std::string> model_names;
+  const auto model_name = [&](const std::string& wanted) {
+    model_names.push_back(unique_name(fbx_name(wanted), [&](const std::string& n) {
+      return std::find(model_names.begin(), model_names.end(), n) != model_names.end();
+    }));
+    return model_names.back();
+  };
+  const auto add_model = [&](const std::string& wanted, const Vec3& translation_m, const Vec3& rotation_degrees,
                              const ComposeOrder& order, std::int64_t parent) {
+    const std::string name = model_name(wanted);
     const std::int64_t attribute = ids.next(), model = ids.next();
     objects.add(record("NodeAttribute", {attribute, object_name(name, "NodeAttribute"), std::string("LimbNode")},
                        {record("TypeFlags", {std::string("Skeleton")})}));
@@ -160,9 +187,11 @@ Result<std::string> write_fbx(const Skeleton& skeleton, std::span<const FbxAnima
     parent = add_model(a.name, a.translation_m, euler_degrees(a.euler_order, a.rotation, near), a.euler_order, parent);
   }
   std::vector<std::int64_t> models;
+  std::vector<ComposeOrder> orders;
   for (int j = 0; j < skeleton.joint_count(); ++j) {
     const JointDef& joint = skeleton.joint(j);
-    models.push_back(add_model(joint.name, rest_node_translation(skeleton, first, j), Vec3::Zero(), joint.euler_order,
+    orders.push_back(j == 0 ? root_order(skeleton) : joint.euler_order);
+    models.push_back(add_model(joint.name, rest_node_translation(skeleton, first, j), Vec3::Zero(), orders.back(),
                                j == 0 ? parent : models[joint.parent]));
   }
 
@@ -175,7 +204,7 @@ Result<std::string> write_fbx(const Skeleton& skeleton, std::span<const FbxAnima
   int counts[4] = {0, 0, 0, 0};  // stacks, layers, curve nodes, curves
   for (const FbxAnimation* a : played) {
     const Motion& motion = *a->motion;
-    const std::string name = unique_name(valid_utf8(a->name), [&](const std::string& n) {
+    const std::string name = unique_name(fbx_name(a->name), [&](const std::string& n) {
       return std::find(names.begin(), names.end(), n) != names.end();
     });
     names.push_back(name);
@@ -228,7 +257,7 @@ Result<std::string> write_fbx(const Skeleton& skeleton, std::span<const FbxAnima
       for (int f = 0; f < motion.frame_count; ++f) {
         Quat q = motion.rotations(f)[j];
         if (j == 0) q = below_static_ancestors(skeleton, q);
-        const Vec3 degrees = euler_degrees(skeleton.joint(j).euler_order, q, near);
+        const Vec3 degrees = euler_degrees(orders[j], q, near);
         values.push_back({static_cast<float>(degrees.x()), static_cast<float>(degrees.y()), static_cast<float>(degrees.z())});
       }
       curves(j, "R", "Lcl Rotation", values);

@@ -1,5 +1,5 @@
-// Motion -> binary FBX 7.4 (.fbx), the format Maya, MotionBuilder, 3ds Max, Unity and Unreal
-// import natively (and Blender: File > Import > FBX): the skeleton as a hierarchy of LimbNode
+// Motion -> binary FBX 7.4 (.fbx), the format Maya, MotionBuilder, 3ds Max and Unity import
+// natively (and Blender: File > Import > FBX; Unreal the animation onto a skeleton it has): the skeleton as a hierarchy of LimbNode
 // models (the static joints a trajectory joint was found below put back above it, as the BVH and
 // glTF writers do), one animation stack per motion with a rotation curve per joint that turns and
 // a translation curve per joint whose translation is animated, keyed at every frame (linear).
@@ -7,8 +7,10 @@
 // Lengths are centimetres (UnitScaleFactor 1, as Maya and most FBX files are), +Y up, +Z front:
 // an importer that works in metres (Unity, Blender with its default settings) scales by 0.01.
 // Rotations are Euler angles in degrees in each joint's own order (the order its file gave it:
-// ZXY for a BVH's "Zrotation Xrotation Yrotation", FBX's RotationOrder), kept continuous from
-// frame to frame so that an importer resampling the curves never swings the long way round.
+// ZXY for a BVH's "Zrotation Xrotation Yrotation", FBX's RotationOrder; the root's with the
+// vertical axis outermost, so that its heading never sits in the middle angle, where Euler angles
+// lock), kept continuous from frame to frame so that an importer resampling the curves never
+// swings the long way round.
 // The frame rate is the file's TimeMode (FBX's own rates, or custom), the key times FBX's ticks.
 //
 // Each model's local transform is the skeleton's (skeleton.h: Translate(t_j) * Rotate(L_j)), so an
@@ -16,7 +18,8 @@
 // the identity and the translations are the first animation's first frame's, the root over the
 // origin at its first frame's height (keyed_joints.h), as in the glTF writer. No mesh: FBX
 // applications draw a LimbNode hierarchy as bones themselves. Names that are not valid UTF-8 get
-// U+FFFD for the bytes that are not.
+// U+FFFD for the bytes that are not, bytes 0 and 1 (FBX's separator of name and class) '_', and
+// names made alike so get "_2", "_3"....
 #pragma once
 
 #include <span>
