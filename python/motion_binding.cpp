@@ -218,8 +218,8 @@ void bind_motion(py::module_& m) {
           },
           py::arg("path"), py::arg("root_motion") = false, py::arg("root_motion_smoothing") = 0.5,
           py::arg("output_scale") = 1.0, py::arg("figure") = true,
-          "Writes the motion: .bvh (metres times output_scale), .glb (binary glTF 2.0, metres; figure=False leaves "
-          "out its stick figure), .fbx (binary FBX 7.4, centimetres) or .json (world positions, with the feet's contacts), as the CLI does (its "
+          "Writes the motion: .bvh (metres times output_scale), .glb (binary glTF 2.0, metres), .fbx (binary FBX "
+          "7.4, centimetres; figure=False leaves either's stick figure out) or .json (world positions, with the feet's contacts), as the CLI does (its "
           "--output-scale and --no-figure); root_motion adds a root-motion joint above the root (the CLI's "
           "--root-motion, averaged over root_motion_smoothing seconds).")
       .def("__repr__", [](const PyMotion& self) {

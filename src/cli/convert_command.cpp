@@ -193,8 +193,8 @@ Command add_convert_command(CLI::App& app) {
   auto options = std::make_shared<ConvertOptions>();
   CLI::App* sub = app.add_subcommand(
       "convert", "Convert an AMC, BVH, glTF or FBX clip to BVH (metres), to binary glTF (.glb: the skeleton, its animation and "
-                 "a stick figure skinned to it, in metres), to binary FBX (.fbx: the skeleton and its animation, in "
-                 "centimetres, for Maya, MotionBuilder, Unity, Blender; several clips of one rig make one .glb or .fbx, an "
+                 "a stick figure skinned to it, in metres), to binary FBX (.fbx: the same, in "
+                 "centimetres, for Maya, MotionBuilder, Unity, Unreal, Blender; several clips of one rig make one .glb or .fbx, an "
                  "animation each) or to JSON world positions "
                  "({\"fps\", \"joints\": [{\"name\", \"parent\"}], \"positions\": [frame][joint][x,y,z], "
                  "\"contacts\": {\"joints\": [the foot joints], \"planted\": [frame][foot joint] 0 or 1}}).");

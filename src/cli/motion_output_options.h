@@ -1,6 +1,6 @@
 // How the commands that write motion (convert, walk, path, steer) write it, beyond the format the
-// output's extension names: --output-scale (BVH units), --no-figure (glTF without its stick
-// figure), --root-motion and --root-motion-smoothing (a root-motion joint above the root,
+// output's extension names: --output-scale (BVH units), --no-figure (glTF and FBX without their
+// stick figure), --root-motion and --root-motion-smoothing (a root-motion joint above the root,
 // motion/root_motion.h).
 #pragma once
 
@@ -22,8 +22,8 @@ struct MotionOutputOptions {
                    "metres, FBX in centimetres (its UnitScaleFactor 1)")
         ->capture_default_str();
     app.add_flag("--no-figure", no_figure,
-                 "glTF: write the skeleton and its animation only, without the grey stick figure skinned to it (for "
-                 "retargeting onto a character of one's own)");
+                 "glTF and FBX: write the skeleton and its animation only, without the grey stick figure skinned to it "
+                 "(for retargeting onto a character of one's own)");
     app.add_flag("--root-motion", root_motion,
                  "Add a root-motion joint above the root, as game engines take root motion: on the clip's floor "
                  "under the hips, turned the way the character faces (its +z axis), carrying the travel; the hips "

@@ -2,8 +2,8 @@
 # Imports SYNTH.glb with Blender's own glTF importer, or SYNTH.fbx with its FBX importer, and
 # checks it against SYNTH.json (our world joint positions, y up, metres): one armature with a bone
 # per joint, one key per frame, every bone's head where our forward kinematics puts its joint in
-# every frame; in glTF the stick figure deformed by that armature, in FBX (which has no figure,
-# its applications drawing the bones) the frame rate the file gives.
+# every frame; the stick figure deformed by that armature, its bones on their joints at the
+# first, middle and last frame; in FBX the frame rate the file gives.
 import json
 import sys
 
@@ -58,20 +58,35 @@ missing = [name for name in names if name not in arm.pose.bones]
 if missing:
     fail(f"joints without a bone: {', '.join(missing)}")
 meshes = [o for o in bpy.data.objects if o.type == "MESH"]
-if fbx and meshes:
-    fail(f"Blender found {len(meshes)} meshes in an FBX file we wrote without one")
-if not fbx and (len(meshes) != 1 or not any(m.type == "ARMATURE" and m.object == arm for m in meshes[0].modifiers)):
+if len(meshes) != 1 or not any(m.type == "ARMATURE" and m.object == arm for m in meshes[0].modifiers):
     fail("the stick figure is not one mesh deformed by the armature")
+figure = meshes[0]
+# Each bone of the figure runs from a joint to a child: a joint with a child 1 mm away or more is
+# the apex of a bone, so some vertex of the deformed figure lies on it.
+parents = {j["name"]: j["parent"] for j in ours["joints"]}
+apexes = sorted({n for n, p in parents.items() if p is not None and p >= 0} | {names[p] for p in parents.values() if p is not None and p >= 0})
 
 worst = 0.0
+worst_apex = 0.0
 for f in range(frames):
     bpy.context.scene.frame_set(first + f)
     for j, name in enumerate(names):
         p = arm.matrix_world @ arm.pose.bones[name].head
         here = (p.x, p.z, -p.y)  # Blender is z up, -y forward: back to x, y up, z
         worst = max(worst, max(abs(a - b) for a, b in zip(here, positions[f][j])))
+    if f in (0, frames // 2, frames - 1):  # the skinned figure, deformed, on the joints
+        mesh = figure.evaluated_get(bpy.context.evaluated_depsgraph_get()).to_mesh()
+        points = [figure.matrix_world @ v.co for v in mesh.vertices]
+        points = [(p.x, p.z, -p.y) for p in points]
+        for name in apexes:
+            joint = positions[f][names.index(name)]
+            nearest = min(sum((a - b) ** 2 for a, b in zip(p, joint)) for p in points) ** 0.5
+            worst_apex = max(worst_apex, nearest)
+        figure.evaluated_get(bpy.context.evaluated_depsgraph_get()).to_mesh_clear()
 print(f"check_scene: largest joint difference from our forward kinematics {worst:.2e} m over "
-      f"{frames * len(names)} joint frames")
+      f"{frames * len(names)} joint frames; the deformed figure's bones on their joints within {worst_apex:.2e} m")
 if worst > 1e-5:
     fail(f"joints differ from ours by up to {worst} m")
+if worst_apex > 1e-4:
+    fail(f"the deformed figure's bones miss their joints by up to {worst_apex} m")
 print("check_scene: PASS")

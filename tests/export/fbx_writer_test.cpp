@@ -1,7 +1,8 @@
 #include "motiongraph/export/fbx_writer.h"
 
-#include <map>
 #include <functional>
+#include <limits>
+#include <map>
 #include <numbers>
 #include <random>
 #include <set>
@@ -9,8 +10,8 @@
 #include <gtest/gtest.h>
 
 #include "export/fbx_binary_reader.h"
-#include "motion/max_apart.h"
 #include "export/random_motion.h"
+#include "motion/max_apart.h"
 #include "motion/static_root_bvh.h"
 #include "motiongraph/motion/fbx_import.h"
 #include "motiongraph/motion/forward_kinematics.h"
@@ -58,8 +59,17 @@ struct FbxScene {
     std::vector<std::int64_t> times[3];
     std::vector<float> values[3];
   };
+  struct Cluster {
+    std::int64_t bone = -1;  // the LimbNode model linked
+    std::vector<std::int32_t> indexes;
+    Affine transform = Affine::Identity(), transform_link = Affine::Identity();  // centimetres
+  };
   std::vector<FbxRecord> records;
-  std::map<std::int64_t, Model> models;
+  std::map<std::int64_t, Model> models;  // the LimbNodes
+  std::vector<Vec3> vertices;            // the stick figure's, centimetres
+  std::vector<std::int32_t> polygons;
+  std::map<std::int64_t, Cluster> clusters;
+  std::vector<std::pair<std::int64_t, Affine>> bind_pose;
   std::vector<std::pair<std::string, std::int64_t>> stacks;  // name, id
   std::map<std::int64_t, std::vector<std::tuple<std::int64_t, std::string, Curves>>> stack_curves;  // model, property
   std::map<std::string, std::vector<double>> settings;
@@ -78,8 +88,35 @@ struct FbxScene {
       const std::string full = text(r.values[1]);
       return full.substr(0, full.find(std::string("\0\1", 2)));
     };
+    const auto matrix = [](const FbxRecord& r) {
+      const auto& values = std::get<std::vector<double>>(r.values.at(0));
+      Affine m;
+      m.matrix() = Eigen::Map<const Eigen::Matrix4d>(values.data());  // column-major
+      return m;
+    };
     for (const auto& [key, r] : objects) {
-      if (r->name == "Model") {
+      if (r->name == "Geometry") {
+        const auto& v = std::get<std::vector<double>>(test::find_record(r->records, "Vertices")->values.at(0));
+        for (size_t i = 0; i + 2 < v.size(); i += 3) vertices.emplace_back(v[i], v[i + 1], v[i + 2]);
+        polygons = std::get<std::vector<std::int32_t>>(test::find_record(r->records, "PolygonVertexIndex")->values.at(0));
+      } else if (r->name == "Deformer" && text(r->values[2]) == "Cluster") {
+        Cluster& c = clusters[key];
+        if (const FbxRecord* indexes = test::find_record(r->records, "Indexes")) {
+          c.indexes = std::get<std::vector<std::int32_t>>(indexes->values.at(0));
+          EXPECT_EQ(std::get<std::vector<double>>(test::find_record(r->records, "Weights")->values.at(0)),
+                    std::vector<double>(c.indexes.size(), 1.0));
+        }
+        c.transform = matrix(*test::find_record(r->records, "Transform"));
+        c.transform_link = matrix(*test::find_record(r->records, "TransformLink"));
+      } else if (r->name == "Pose") {
+        for (const FbxRecord& node : r->records) {
+          if (node.name == "PoseNode") {
+            bind_pose.emplace_back(id(test::find_record(node.records, "Node")->values.at(0)),
+                                   matrix(*test::find_record(node.records, "Matrix")));
+          }
+        }
+      }
+      if (r->name == "Model" && text(r->values[2]) == "LimbNode") {
         auto p = properties(*r);
         Model m;
         m.name = name_of(*r);
@@ -100,7 +137,13 @@ struct FbxScene {
       const FbxRecord* from = objects.count(child) ? objects[child] : nullptr;
       const FbxRecord* to = objects.count(parent) ? objects[parent] : nullptr;
       if (!from) continue;
-      if (from->name == "Model") models[child].parent = parent;
+      if (from->name == "Model" && models.count(child)) {
+        if (to && to->name == "Deformer") {
+          clusters[parent].bone = child;
+        } else {
+          models[child].parent = parent;
+        }
+      }
       if (from->name == "AnimationLayer") layer_stack[child] = parent;
       if (from->name == "AnimationCurveNode" && text(c.values[0]) == "OO") node_layer[child] = parent;
       if (from->name == "AnimationCurveNode" && text(c.values[0]) == "OP") node_target[child] = {parent, text(c.values[3])};
@@ -141,6 +184,18 @@ struct FbxScene {
     for (const auto& [key_id, m] : posed) out[m.name] = world_of(key_id);
     return out;
   }
+
+  // The stick figure's vertices (metres) as the skin deforms them at that key: each by its
+  // cluster's joint's world transform times the cluster's Transform (the mesh at the origin).
+  std::vector<Vec3> deformed(std::int64_t stack, size_t key) const {
+    const auto world_of = world(stack, key);
+    std::vector<Vec3> out(vertices.size(), Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
+    for (const auto& [cluster_id, c] : clusters) {
+      const Affine m = world_of.at(models.at(c.bone).name) * c.transform;
+      for (std::int32_t i : c.indexes) out.at(static_cast<size_t>(i)) = m * vertices[static_cast<size_t>(i)] / 100.0;
+    }
+    return out;
+  }
 };
 
 FbxScene written(const Skeleton& skeleton, const Motion& motion, const std::string& name = "take") {
@@ -178,6 +233,71 @@ TEST(FbxWriter, ModelsPlayedByTheFileRulesAreWhereForwardKinematicsPutsTheJoints
     EXPECT_EQ(scene.settings.at("CoordAxis"), std::vector<double>{0.0});
     EXPECT_LT(max_world_error(scene, clip.skeleton, clip.motion), 1e-5) << file;  // float32 keys
   }
+}
+
+// The stick figure: triangles (a polygon's last index written -(i + 1)), every vertex bound by
+// exactly one cluster, a cluster for every joint (its TransformLink the joint at rest), the bind
+// pose the models' world transforms at rest, and the figure as the skin deforms it with a
+// vertex on each joint a bone hangs from or ends at, in every frame.
+TEST(FbxWriter, TheStickFigureIsSkinnedToTheJoints) {
+  for (const char* file : {"cmu/16/16_35.amc", "bvh/131_01.bvh"}) {
+    const Clip plain = test::load_data_clip(file);
+    const Clip clip = std::string(file).ends_with(".bvh") ? test::import_bvh(test::static_root_bvh(plain)) : plain;
+    const Motion motion = clip.motion.slice(0, 20);
+    const FbxScene scene = written(clip.skeleton, motion);
+    ASSERT_FALSE(scene.vertices.empty()) << file;
+    ASSERT_EQ(scene.polygons.size(), scene.vertices.size());
+    for (size_t i = 0; i < scene.polygons.size(); ++i) {
+      EXPECT_EQ(scene.polygons[i], i % 3 == 2 ? -static_cast<std::int32_t>(i) - 1 : static_cast<std::int32_t>(i));
+    }
+    std::vector<int> bound(scene.vertices.size(), 0);
+    for (const auto& [key, c] : scene.clusters) {
+      for (std::int32_t i : c.indexes) ++bound.at(static_cast<size_t>(i));
+    }
+    EXPECT_EQ(std::count(bound.begin(), bound.end(), 1), static_cast<long>(bound.size()));
+    EXPECT_EQ(scene.clusters.size(), static_cast<size_t>(clip.skeleton.joint_count()));
+    const auto rest = scene.world(-1, 0);  // no stack: the models' own transforms
+    for (const auto& [key, c] : scene.clusters) {
+      const Affine& at_rest = rest.at(scene.models.at(c.bone).name);
+      EXPECT_TRUE(c.transform_link.isApprox(at_rest, 1e-12));
+      EXPECT_TRUE((c.transform * c.transform_link).isApprox(Affine::Identity(), 1e-12));
+    }
+    EXPECT_EQ(scene.bind_pose.size(), scene.models.size() + 1);  // + the mesh, at the origin
+    for (const auto& [model, matrix] : scene.bind_pose) {
+      if (scene.models.count(model)) {
+        EXPECT_TRUE(matrix.isApprox(rest.at(scene.models.at(model).name), 1e-12));
+      } else {
+        EXPECT_TRUE(matrix.isApprox(Affine::Identity(), 0.0));
+      }
+    }
+    const std::vector<Vec3> positions = world_positions(clip.skeleton, motion);
+    for (int f = 0; f < motion.frame_count; f += 7) {
+      const std::vector<Vec3> figure = scene.deformed(scene.stacks[0].second, static_cast<size_t>(f));
+      for (int j = 1; j < clip.skeleton.joint_count(); ++j) {
+        const int parent = clip.skeleton.parent(j);
+        const Vec3& tail = positions[static_cast<size_t>(f * clip.skeleton.joint_count() + j)];
+        const Vec3& head = positions[static_cast<size_t>(f * clip.skeleton.joint_count() + parent)];
+        if ((tail - head).norm() < 1e-3) continue;  // no bone
+        for (const Vec3& joint : {head, tail}) {
+          double nearest = std::numeric_limits<double>::infinity();
+          for (const Vec3& v : figure) nearest = std::min(nearest, (v - joint).norm());
+          EXPECT_LT(nearest, 1e-5) << file << " frame " << f << " joint " << clip.skeleton.joint(j).name;
+        }
+      }
+    }
+  }
+}
+
+TEST(FbxWriter, WithoutTheStickFigureOnlyTheSkeletonAndItsAnimation) {
+  const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
+  auto bytes = write_fbx(clip.skeleton, clip.motion, "take", FbxWriteSettings{false});
+  ASSERT_TRUE(bytes.ok());
+  const FbxScene scene(*bytes);
+  EXPECT_TRUE(scene.vertices.empty());
+  EXPECT_TRUE(scene.clusters.empty());
+  EXPECT_TRUE(scene.bind_pose.empty());
+  for (const char* type : {"Geometry", "Deformer", "Pose"}) EXPECT_FALSE(test::find_record(test::find_record(scene.records, "Objects")->records, type)) << type;
+  EXPECT_LT(max_world_error(scene, clip.skeleton, clip.motion), 1e-5);
 }
 
 TEST(FbxWriter, EachJointKeepsItsOwnRotationOrder) {

@@ -4,19 +4,24 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <numbers>
 #include <vector>
 
+#include <Eigen/Geometry>
 #include <fmt/format.h>
 
 #include "motiongraph/core/json_text.h"
 #include "motiongraph/core/unique_name.h"
 #include "motiongraph/export/fbx_binary.h"
 #include "motiongraph/export/keyed_joints.h"
+#include "motiongraph/export/stick_figure.h"
 
 namespace mg {
 
 namespace {
+
+using Affine = Eigen::Affine3d;
 
 constexpr std::int64_t kTicksPerSecond = 46186158000;  // FBX's KTime unit
 constexpr double kCentimetresPerMetre = 100.0;
@@ -119,12 +124,14 @@ class Ids {
 
 }  // namespace
 
-Result<std::string> write_fbx(const Skeleton& skeleton, const Motion& motion, const std::string& animation_name) {
+Result<std::string> write_fbx(const Skeleton& skeleton, const Motion& motion, const std::string& animation_name,
+                              const FbxWriteSettings& settings) {
   const FbxAnimation one{animation_name, &motion};
-  return write_fbx(skeleton, std::span(&one, 1));
+  return write_fbx(skeleton, std::span(&one, 1), settings);
 }
 
-Result<std::string> write_fbx(const Skeleton& skeleton, std::span<const FbxAnimation> animations) {
+Result<std::string> write_fbx(const Skeleton& skeleton, std::span<const FbxAnimation> animations,
+                              const FbxWriteSettings& settings) {
   std::vector<const FbxAnimation*> played;  // those with frames
   std::vector<const Motion*> motions;
   for (const FbxAnimation& a : animations) {
@@ -150,9 +157,8 @@ Result<std::string> write_fbx(const Skeleton& skeleton, std::span<const FbxAnima
   };
 
   // Models: the static ancestors (a chain, root first), then one per joint, each with its
-  // LimbNode attribute.
-  // Model names as FBX holds them, unique (two names that differ only in bytes that are not UTF-8
-  // would be one), each its node attribute's too.
+  // LimbNode attribute. Their names as FBX holds them, unique (two names that differ only in bytes
+  // that are not UTF-8 would be one), each its node attribute's too.
   std::vector<std::string> model_names;
   const auto model_name = [&](const std::string& wanted) {
     model_names.push_back(unique_name(fbx_name(wanted), [&](const std::string& n) {
@@ -182,17 +188,104 @@ Result<std::string> write_fbx(const Skeleton& skeleton, std::span<const FbxAnima
     return model;
   };
   std::int64_t parent = 0;
+  std::vector<std::pair<std::int64_t, Affine>> bind_pose;  // each model's world transform at rest (metres)
+  Affine above = Affine::Identity();
   for (const StaticAncestor& a : skeleton.static_ancestors()) {
     std::optional<Vec3> near;
     parent = add_model(a.name, a.translation_m, euler_degrees(a.euler_order, a.rotation, near), a.euler_order, parent);
+    above = above * Eigen::Translation3d(a.translation_m) * a.rotation;
+    bind_pose.emplace_back(parent, above);
   }
+  const size_t first_joint = skeleton.static_ancestors().size();
   std::vector<std::int64_t> models;
   std::vector<ComposeOrder> orders;
+  std::vector<Vec3> rest_world;
   for (int j = 0; j < skeleton.joint_count(); ++j) {
     const JointDef& joint = skeleton.joint(j);
+    const Vec3 translation = rest_node_translation(skeleton, first, j);
     orders.push_back(j == 0 ? root_order(skeleton) : joint.euler_order);
-    models.push_back(add_model(joint.name, rest_node_translation(skeleton, first, j), Vec3::Zero(), orders.back(),
-                               j == 0 ? parent : models[joint.parent]));
+    models.push_back(add_model(joint.name, translation, Vec3::Zero(), orders.back(), j == 0 ? parent : models[joint.parent]));
+    // The pose's entries are the ancestors', then the joints' in order.
+    const Affine parent_world = j == 0 ? above : bind_pose[first_joint + static_cast<size_t>(joint.parent)].second;
+    bind_pose.emplace_back(models.back(), parent_world * Eigen::Translation3d(translation));
+    rest_world.push_back(bind_pose.back().second.translation());
+  }
+
+  // The stick figure skinned to the joints at rest (stick_figure.h): a mesh, its skin with a
+  // cluster per joint it binds (Transform: the joint's bind matrix inverted, the mesh standing at
+  // the origin; TransformLink: the bind matrix), and the bind pose of every model.
+  int figure_models = 0, geometries = 0, deformers = 0, poses = 0;
+  const StickFigure figure = settings.stick_figure ? stick_figure(skeleton, rest_world) : StickFigure{};
+  if (!figure.empty()) {
+    const auto centimetres = [](const Affine& metres) {
+      Eigen::Matrix4d m = metres.matrix();
+      m.block<3, 1>(0, 3) *= kCentimetresPerMetre;
+      return std::vector<double>(m.data(), m.data() + 16);  // column-major: the translation at 12..14
+    };
+    std::vector<double> vertices, normals;
+    std::vector<std::int32_t> polygons;
+    for (size_t v = 0; v < figure.positions.size(); ++v) {
+      for (int c = 0; c < 3; ++c) {
+        vertices.push_back(figure.positions[v][c] * kCentimetresPerMetre);
+        normals.push_back(figure.normals[v][c]);
+      }
+      // A triangle's last vertex index is written as -(index + 1).
+      polygons.push_back(v % 3 == 2 ? -static_cast<std::int32_t>(v) - 1 : static_cast<std::int32_t>(v));
+    }
+    const std::int64_t geometry = ids.next(), mesh = ids.next(), skin = ids.next(), pose = ids.next();
+    const std::string mesh_name = model_name("stick_figure");
+    objects.add(record(
+        "Geometry", {geometry, object_name(mesh_name, "Geometry"), std::string("Mesh")},
+        {record("Vertices", {std::move(vertices)}), record("PolygonVertexIndex", {std::move(polygons)}),
+         record("GeometryVersion", {std::int32_t{124}}),
+         record("LayerElementNormal", {std::int32_t{0}},
+                {record("Version", {std::int32_t{101}}), record("Name", {std::string()}),
+                 record("MappingInformationType", {std::string("ByPolygonVertex")}),
+                 record("ReferenceInformationType", {std::string("Direct")}), record("Normals", {std::move(normals)})}),
+         record("Layer", {std::int32_t{0}},
+                {record("Version", {std::int32_t{100}}),
+                 record("LayerElement", {},
+                        {record("Type", {std::string("LayerElementNormal")}), record("TypedIndex", {std::int32_t{0}})})})}));
+    objects.add(record("Model", {mesh, object_name(mesh_name, "Model"), std::string("Mesh")},
+                       {record("Version", {std::int32_t{232}}),
+                        record("Properties70", {}, {int_property("DefaultAttributeIndex", 0)}),
+                        record("Culling", {std::string("CullingOff")})}));
+    connect(geometry, mesh);
+    connect(mesh, 0);
+    objects.add(record("Deformer", {skin, object_name("", "Deformer"), std::string("Skin")},
+                       {record("Version", {std::int32_t{101}}), record("Link_DeformAcuracy", {50.0})}));
+    connect(skin, geometry);
+    std::map<int, std::vector<std::int32_t>> bound;  // joint -> its vertices
+    for (int j = 0; j < skeleton.joint_count(); ++j) bound[j];  // every joint a bone of the skin (Unreal's skeleton)
+    for (size_t v = 0; v < figure.joints.size(); ++v) bound[figure.joints[v]].push_back(static_cast<std::int32_t>(v));
+    for (const auto& [joint, indexes] : bound) {
+      const std::int64_t cluster = ids.next();
+      const Affine& at_rest = bind_pose[first_joint + static_cast<size_t>(joint)].second;
+      FbxRecord cluster_record = record("Deformer", {cluster, object_name("", "SubDeformer"), std::string("Cluster")},
+                                        {record("Version", {std::int32_t{100}}), record("UserData", {std::string(), std::string()})});
+      if (!indexes.empty()) {  // a joint no vertex hangs from has a cluster all the same: its bind matrix
+        cluster_record.add(record("Indexes", {indexes}));
+        cluster_record.add(record("Weights", {std::vector<double>(indexes.size(), 1.0)}));
+      }
+      cluster_record.add(record("Transform", {centimetres(at_rest.inverse())}));
+      cluster_record.add(record("TransformLink", {centimetres(at_rest)}));
+      objects.add(std::move(cluster_record));
+      connect(cluster, skin);
+      connect(models[static_cast<size_t>(joint)], cluster);
+      deformers += 1;
+    }
+    FbxRecord pose_record = record("Pose", {pose, object_name("BindPose", "Pose"), std::string("BindPose")},
+                                   {record("Type", {std::string("BindPose")}), record("Version", {std::int32_t{100}}),
+                                    record("NbPoseNodes", {static_cast<std::int32_t>(bind_pose.size() + 1)}),
+                                    record("PoseNode", {}, {record("Node", {mesh}), record("Matrix", {centimetres(Affine::Identity())})})});
+    for (const auto& [model, world] : bind_pose) {
+      pose_record.add(record("PoseNode", {}, {record("Node", {model}), record("Matrix", {centimetres(world)})}));
+    }
+    objects.add(std::move(pose_record));
+    figure_models = 1;
+    geometries = 1;
+    deformers += 1;
+    poses = 1;
   }
 
   // An animation stack (with its one layer) per motion: per keyed joint a curve node of three
@@ -293,19 +386,19 @@ Result<std::string> write_fbx(const Skeleton& skeleton, std::span<const FbxAnima
   file.push_back(record("FileId", {FbxRaw{std::string(reinterpret_cast<const char*>(kFileId), sizeof kFileId)}}));
   file.push_back(record("CreationTime", {std::string(kCreationTime)}));
   file.push_back(record("Creator", {std::string("motiongraph")}));
-  FbxRecord settings = record("Properties70");
+  FbxRecord global_settings = record("Properties70");
   for (const auto& [name, value] : std::array<std::pair<const char*, std::int32_t>, 8>{
            {{"UpAxis", 1}, {"UpAxisSign", 1}, {"FrontAxis", 2}, {"FrontAxisSign", 1}, {"CoordAxis", 0},
             {"CoordAxisSign", 1}, {"OriginalUpAxis", 1}, {"OriginalUpAxisSign", 1}}}) {
-    settings.add(int_property(name, value));
+    global_settings.add(int_property(name, value));
   }
-  settings.add(property("UnitScaleFactor", "double", "Number", "", {1.0}));
-  settings.add(property("OriginalUnitScaleFactor", "double", "Number", "", {1.0}));
-  settings.add(enum_property("TimeMode", time_mode(fps)));
-  settings.add(time_property("TimeSpanStart", 0));
-  settings.add(time_property("TimeSpanStop", longest));
-  settings.add(property("CustomFrameRate", "double", "Number", "", {fps}));
-  file.push_back(record("GlobalSettings", {}, {record("Version", {std::int32_t{1000}}), std::move(settings)}));
+  global_settings.add(property("UnitScaleFactor", "double", "Number", "", {1.0}));
+  global_settings.add(property("OriginalUnitScaleFactor", "double", "Number", "", {1.0}));
+  global_settings.add(enum_property("TimeMode", time_mode(fps)));
+  global_settings.add(time_property("TimeSpanStart", 0));
+  global_settings.add(time_property("TimeSpanStop", longest));
+  global_settings.add(property("CustomFrameRate", "double", "Number", "", {fps}));
+  file.push_back(record("GlobalSettings", {}, {record("Version", {std::int32_t{1000}}), std::move(global_settings)}));
   file.push_back(record(
       "Documents", {},
       {record("Count", {std::int32_t{1}}),
@@ -317,10 +410,13 @@ Result<std::string> write_fbx(const Skeleton& skeleton, std::span<const FbxAnima
   FbxRecord references = record("References");
   references.block = true;
   file.push_back(std::move(references));
-  const int model_count = static_cast<int>(models.size() + skeleton.static_ancestors().size());
-  const std::array<std::pair<const char*, int>, 7> types{{{"GlobalSettings", 1},
-                                                          {"NodeAttribute", model_count},
-                                                          {"Model", model_count},
+  const int limb_count = static_cast<int>(models.size() + skeleton.static_ancestors().size());
+  const std::array<std::pair<const char*, int>, 10> types{{{"GlobalSettings", 1},
+                                                          {"NodeAttribute", limb_count},
+                                                          {"Model", limb_count + figure_models},
+                                                          {"Geometry", geometries},
+                                                          {"Deformer", deformers},
+                                                          {"Pose", poses},
                                                           {"AnimationStack", counts[0]},
                                                           {"AnimationLayer", counts[1]},
                                                           {"AnimationCurveNode", counts[2]},

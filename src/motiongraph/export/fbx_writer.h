@@ -1,5 +1,5 @@
-// Motion -> binary FBX 7.4 (.fbx), the format Maya, MotionBuilder, 3ds Max and Unity import
-// natively (and Blender: File > Import > FBX; Unreal the animation onto a skeleton it has): the skeleton as a hierarchy of LimbNode
+// Motion -> binary FBX 7.4 (.fbx), the format Maya, MotionBuilder, 3ds Max, Unity and Unreal
+// import natively (and Blender: File > Import > FBX): the skeleton as a hierarchy of LimbNode
 // models (the static joints a trajectory joint was found below put back above it, as the BVH and
 // glTF writers do), one animation stack per motion with a rotation curve per joint that turns and
 // a translation curve per joint whose translation is animated, keyed at every frame (linear).
@@ -16,8 +16,12 @@
 // Each model's local transform is the skeleton's (skeleton.h: Translate(t_j) * Rotate(L_j)), so an
 // FBX reader finds the same world positions as forward kinematics. At rest every rotation is
 // the identity and the translations are the first animation's first frame's, the root over the
-// origin at its first frame's height (keyed_joints.h), as in the glTF writer. No mesh: FBX
-// applications draw a LimbNode hierarchy as bones themselves. Names that are not valid UTF-8 get
+// origin at its first frame's height (keyed_joints.h), as in the glTF writer. FBX applications
+// draw a LimbNode hierarchy as bones themselves, but engines show nothing of a skeleton alone and
+// Unreal makes a skeleton only of a skinned mesh's bones, so the file also carries glTF's grey
+// stick figure (stick_figure.h) skinned to the joints (a cluster for every joint, those no vertex
+// hangs from too, carrying its bind matrix; the mesh at the origin), with its bind pose (leave it
+// out with stick_figure false). Names that are not valid UTF-8 get
 // U+FFFD for the bytes that are not, bytes 0 and 1 (FBX's separator of name and class) '_', and
 // names made alike so get "_2", "_3"....
 #pragma once
@@ -30,6 +34,10 @@
 
 namespace mg {
 
+struct FbxWriteSettings {
+  bool stick_figure = true;  // a mesh skinned to the joints (false: the skeleton and its animation only)
+};
+
 struct FbxAnimation {
   std::string name;  // not empty; names that repeat get "_2", "_3"...
   const Motion* motion = nullptr;
@@ -38,8 +46,10 @@ struct FbxAnimation {
 // The .fbx bytes: the skeleton at rest as its first animation's first frame has it, and one
 // animation stack per motion with frames (none without). Fails on a motion that does not fit the
 // skeleton, an animation without a name, and a file over FBX 7.4's 4 GB.
-Result<std::string> write_fbx(const Skeleton& skeleton, std::span<const FbxAnimation> animations);
+Result<std::string> write_fbx(const Skeleton& skeleton, std::span<const FbxAnimation> animations,
+                              const FbxWriteSettings& settings = {});
 // One animation.
-Result<std::string> write_fbx(const Skeleton& skeleton, const Motion& motion, const std::string& animation_name);
+Result<std::string> write_fbx(const Skeleton& skeleton, const Motion& motion, const std::string& animation_name,
+                              const FbxWriteSettings& settings = {});
 
 }  // namespace mg

@@ -16,6 +16,7 @@
 #include "motiongraph/core/json_text.h"
 #include "motiongraph/core/unique_name.h"
 #include "motiongraph/export/keyed_joints.h"
+#include "motiongraph/export/stick_figure.h"
 
 namespace mg {
 
@@ -91,37 +92,6 @@ void push_unit(std::vector<float>& out, const Quat& q) {
   for (float c : f) out.push_back(c / norm);
 }
 
-// The octahedral bone from `head` to `tail` (world, bind pose): 8 flat faces, 24 vertices with
-// their face normals, all bound to skin joint `joint`.
-void add_bone(const Vec3& head, const Vec3& tail, uint16_t joint, std::vector<float>& positions,
-              std::vector<float>& normals, std::vector<uint16_t>& joints, std::vector<float>& weights) {
-  const Vec3 axis = tail - head;
-  const double length = axis.norm();
-  const Vec3 d = axis / length;
-  const Vec3 u = d.unitOrthogonal();
-  const Vec3 v = d.cross(u);
-  const double radius = std::min(0.1 * length, 0.03);
-  const Vec3 middle = head + 0.2 * axis;
-  const std::array<Vec3, 4> ring{middle + radius * u, middle + radius * v, middle - radius * u, middle - radius * v};
-  for (int i = 0; i < 4; ++i) {
-    for (const Vec3& apex : {head, tail}) {
-      std::array<Vec3, 3> corner{apex, ring[i], ring[(i + 1) % 4]};
-      Vec3 normal = (corner[1] - corner[0]).cross(corner[2] - corner[0]).normalized();
-      // Counter-clockwise seen from outside: the normal points away from the axis.
-      if (normal.dot((corner[0] + corner[1] + corner[2]) / 3.0 - middle) < 0.0) {
-        std::swap(corner[1], corner[2]);
-        normal = -normal;
-      }
-      for (const Vec3& p : corner) {
-        push(positions, p);
-        push(normals, normal);
-        joints.insert(joints.end(), {joint, 0, 0, 0});
-        weights.insert(weights.end(), {1.0f, 0.0f, 0.0f, 0.0f});
-      }
-    }
-  }
-}
-
 }  // namespace
 
 Result<std::string> write_glb(const Skeleton& skeleton, const Motion& motion, const std::string& animation_name,
@@ -187,11 +157,14 @@ Result<std::string> write_glb(const Skeleton& skeleton, std::span<const GltfAnim
   std::vector<float> positions, normals, weights;
   std::vector<uint16_t> joints;
   if (settings.bone_mesh) {
-    for (int j = 1; j < joint_count; ++j) {
-      const int parent = first_joint + skeleton.parent(j);
-      const Vec3 head = bind[parent].translation(), tail = bind[first_joint + j].translation();
-      if ((tail - head).norm() < 1e-3) continue;  // no bone to draw
-      add_bone(head, tail, static_cast<uint16_t>(parent), positions, normals, joints, weights);
+    std::vector<Vec3> rest_world;
+    for (int j = 0; j < joint_count; ++j) rest_world.push_back(bind[first_joint + j].translation());
+    const StickFigure figure = stick_figure(skeleton, rest_world);
+    for (size_t v = 0; v < figure.positions.size(); ++v) {
+      push(positions, figure.positions[v]);
+      push(normals, figure.normals[v]);
+      joints.insert(joints.end(), {static_cast<uint16_t>(first_joint + figure.joints[v]), 0, 0, 0});
+      weights.insert(weights.end(), {1.0f, 0.0f, 0.0f, 0.0f});
     }
   }
   // The skin: what makes the nodes a skeleton to Blender (an armature) and to engines, with or

@@ -58,7 +58,7 @@ Status write_motion(const std::string& path, const Skeleton& skeleton, const Mot
     const std::string stem = std::filesystem::path(path).stem().string();
     const std::string name = stem.empty() ? "motion" : stem;
     auto bytes = ext == ".glb" ? write_glb(skeleton, motion, name, GltfWriteSettings{settings.figure})
-                               : write_fbx(skeleton, motion, name);
+                               : write_fbx(skeleton, motion, name, FbxWriteSettings{settings.figure});
     if (!bytes) return Error{path, 0, bytes.error().message};
     return write_file_atomic(path, *bytes);
   }
@@ -130,7 +130,7 @@ Status write_animation_set(const std::string& path, std::span<const NamedMotion>
     for (size_t i = 0; i < motions.size(); ++i) {
       animations.push_back({motions[i].name, added.empty() ? motions[i].motion : &added[i].motion});
     }
-    bytes = write_fbx(skeleton, animations);
+    bytes = write_fbx(skeleton, animations, FbxWriteSettings{settings.figure});
   }
   if (!bytes) return Error{path, 0, bytes.error().message};
   return write_file_atomic(path, *bytes);
