@@ -237,13 +237,16 @@ TEST(FbxWriter, ModelsPlayedByTheFileRulesAreWhereForwardKinematicsPutsTheJoints
 
 // The stick figure: triangles (a polygon's last index written -(i + 1)), every vertex bound by
 // exactly one cluster, a cluster for every joint (its TransformLink the joint at rest), the bind
-// pose the models' world transforms at rest, and the figure as the skin deforms it with a
-// vertex on each joint a bone hangs from or ends at, in every frame.
+// pose the models' world transforms at rest, and the figure as the skin deforms it with each
+// bone's apexes on its joints in every frame (its tip too where the child's translation moves).
 TEST(FbxWriter, TheStickFigureIsSkinnedToTheJoints) {
-  for (const char* file : {"cmu/16/16_35.amc", "bvh/131_01.bvh"}) {
-    const Clip plain = test::load_data_clip(file);
-    const Clip clip = std::string(file).ends_with(".bvh") ? test::import_bvh(test::static_root_bvh(plain)) : plain;
-    const Motion motion = clip.motion.slice(0, 20);
+  std::mt19937 rng(2);
+  for (const char* file : {"cmu/16/16_35.amc", "bvh/131_01.bvh", "random"}) {
+    const Clip plain = test::load_data_clip(file == std::string("random") ? "cmu/16/16_15.amc" : file);
+    const Clip clip = std::string(file).ends_with(".amc") ? plain : test::import_bvh(test::static_root_bvh(plain));
+    // Random: every joint's translation animated, so that the bones' tips must follow the children.
+    const Motion motion =
+        file == std::string("random") ? test::random_motion(clip.skeleton, 20, 30.0, rng) : clip.motion.slice(0, 20);
     const FbxScene scene = written(clip.skeleton, motion);
     ASSERT_FALSE(scene.vertices.empty()) << file;
     ASSERT_EQ(scene.polygons.size(), scene.vertices.size());
@@ -270,19 +273,27 @@ TEST(FbxWriter, TheStickFigureIsSkinnedToTheJoints) {
         EXPECT_TRUE(matrix.isApprox(Affine::Identity(), 0.0));
       }
     }
+    // The figure's apexes: the vertices standing on a joint at rest stay on it (or on a joint that
+    // stood with it) in every frame.
+    const int n = clip.skeleton.joint_count();
+    std::vector<std::vector<int>> on_joints(scene.vertices.size());
+    for (size_t v = 0; v < scene.vertices.size(); ++v) {
+      for (int j = 0; j < n; ++j) {
+        if ((scene.vertices[v] / 100.0 - rest.at(clip.skeleton.joint(j).name).translation() / 100.0).norm() < 1e-9) {
+          on_joints[v].push_back(j);
+        }
+      }
+    }
+    const size_t apexes = static_cast<size_t>(std::count_if(on_joints.begin(), on_joints.end(), [](const auto& o) { return !o.empty(); }));
+    EXPECT_EQ(apexes, scene.vertices.size() / 3);  // one corner of each triangle
     const std::vector<Vec3> positions = world_positions(clip.skeleton, motion);
     for (int f = 0; f < motion.frame_count; f += 7) {
       const std::vector<Vec3> figure = scene.deformed(scene.stacks[0].second, static_cast<size_t>(f));
-      for (int j = 1; j < clip.skeleton.joint_count(); ++j) {
-        const int parent = clip.skeleton.parent(j);
-        const Vec3& tail = positions[static_cast<size_t>(f * clip.skeleton.joint_count() + j)];
-        const Vec3& head = positions[static_cast<size_t>(f * clip.skeleton.joint_count() + parent)];
-        if ((tail - head).norm() < 1e-3) continue;  // no bone
-        for (const Vec3& joint : {head, tail}) {
-          double nearest = std::numeric_limits<double>::infinity();
-          for (const Vec3& v : figure) nearest = std::min(nearest, (v - joint).norm());
-          EXPECT_LT(nearest, 1e-5) << file << " frame " << f << " joint " << clip.skeleton.joint(j).name;
-        }
+      for (size_t v = 0; v < figure.size(); ++v) {
+        if (on_joints[v].empty()) continue;
+        double nearest = std::numeric_limits<double>::infinity();
+        for (int j : on_joints[v]) nearest = std::min(nearest, (figure[v] - positions[static_cast<size_t>(f * n + j)]).norm());
+        EXPECT_LT(nearest, 1e-5) << file << " frame " << f << " vertex " << v;
       }
     }
   }

@@ -9,8 +9,8 @@ namespace mg {
 namespace {
 
 // Every bone of 1 mm or more is 8 counter-clockwise triangles (24 vertices) bound to the parent
-// joint, with apexes on both joints, faces lit from outside and no vertex further from the bone's
-// axis than 3 cm; shorter ones make none.
+// joint but for the tip (bound to the child), with apexes on both joints, faces lit from outside
+// and no vertex further from the bone's axis than 3 cm; shorter ones make none.
 TEST(StickFigure, AnOctahedronPerBoneBoundToItsParent) {
   const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
   std::vector<Vec3> rest;
@@ -30,8 +30,7 @@ TEST(StickFigure, AnOctahedronPerBoneBoundToItsParent) {
     const Vec3& n = figure.normals[t];
     EXPECT_NEAR(n.norm(), 1.0, 1e-12);
     EXPECT_GT((b - a).cross(c - a).dot(n), 0.0);  // counter-clockwise seen from where the normal points
-    EXPECT_EQ(figure.joints[t], figure.joints[t + 1]);
-    EXPECT_EQ(figure.joints[t], figure.joints[t + 2]);
+    EXPECT_EQ(figure.joints[t + 1], figure.joints[t + 2]);  // the ring's corners, the bone's joint
   }
   // Each bone's 24 vertices: its apexes are its joints; its other corners within 3 cm of its axis.
   for (size_t start = 0; start < figure.positions.size(); start += 24) {
@@ -51,6 +50,12 @@ TEST(StickFigure, AnOctahedronPerBoneBoundToItsParent) {
       const Vec3& p = figure.positions[v];
       on_head += (p - head).norm() < 1e-12;
       on_tail += (p - tail).norm() < 1e-12;
+      if ((p - tail).norm() < 1e-12) {  // the tip: bound to a child of the joint standing there
+        const int bound = figure.joints[v];
+        EXPECT_TRUE(bound > 0 && clip.skeleton.parent(bound) == parent && (rest[static_cast<size_t>(bound)] - p).norm() < 1e-12);
+      } else {
+        EXPECT_EQ(figure.joints[v], parent);
+      }
       EXPECT_LE(((p - head) - (p - head).dot(axis) * axis).norm(), 0.03 + 1e-12);
     }
     EXPECT_EQ(on_head, 4);

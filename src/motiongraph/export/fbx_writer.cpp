@@ -214,7 +214,7 @@ Result<std::string> write_fbx(const Skeleton& skeleton, std::span<const FbxAnima
   // The stick figure skinned to the joints at rest (stick_figure.h): a mesh, its skin with a
   // cluster per joint it binds (Transform: the joint's bind matrix inverted, the mesh standing at
   // the origin; TransformLink: the bind matrix), and the bind pose of every model.
-  int figure_models = 0, geometries = 0, deformers = 0, poses = 0;
+  int figure_models = 0, geometries = 0, materials = 0, deformers = 0, poses = 0;
   const StickFigure figure = settings.stick_figure ? stick_figure(skeleton, rest_world) : StickFigure{};
   if (!figure.empty()) {
     const auto centimetres = [](const Affine& metres) {
@@ -232,7 +232,7 @@ Result<std::string> write_fbx(const Skeleton& skeleton, std::span<const FbxAnima
       // A triangle's last vertex index is written as -(index + 1).
       polygons.push_back(v % 3 == 2 ? -static_cast<std::int32_t>(v) - 1 : static_cast<std::int32_t>(v));
     }
-    const std::int64_t geometry = ids.next(), mesh = ids.next(), skin = ids.next(), pose = ids.next();
+    const std::int64_t geometry = ids.next(), mesh = ids.next(), material = ids.next(), skin = ids.next(), pose = ids.next();
     const std::string mesh_name = model_name("stick_figure");
     objects.add(record(
         "Geometry", {geometry, object_name(mesh_name, "Geometry"), std::string("Mesh")},
@@ -242,17 +242,31 @@ Result<std::string> write_fbx(const Skeleton& skeleton, std::span<const FbxAnima
                 {record("Version", {std::int32_t{101}}), record("Name", {std::string()}),
                  record("MappingInformationType", {std::string("ByPolygonVertex")}),
                  record("ReferenceInformationType", {std::string("Direct")}), record("Normals", {std::move(normals)})}),
+         record("LayerElementMaterial", {std::int32_t{0}},
+                {record("Version", {std::int32_t{101}}), record("Name", {std::string()}),
+                 record("MappingInformationType", {std::string("AllSame")}),
+                 record("ReferenceInformationType", {std::string("IndexToDirect")}),
+                 record("Materials", {std::vector<std::int32_t>{0}})}),
          record("Layer", {std::int32_t{0}},
                 {record("Version", {std::int32_t{100}}),
                  record("LayerElement", {},
-                        {record("Type", {std::string("LayerElementNormal")}), record("TypedIndex", {std::int32_t{0}})})})}));
+                        {record("Type", {std::string("LayerElementNormal")}), record("TypedIndex", {std::int32_t{0}})}),
+                 record("LayerElement", {},
+                        {record("Type", {std::string("LayerElementMaterial")}), record("TypedIndex", {std::int32_t{0}})})})}));
     objects.add(record("Model", {mesh, object_name(mesh_name, "Model"), std::string("Mesh")},
                        {record("Version", {std::int32_t{232}}),
-                        record("Properties70", {}, {int_property("DefaultAttributeIndex", 0)}),
+                        record("Properties70", {}, {enum_property("InheritType", 1), int_property("DefaultAttributeIndex", 0)}),
                         record("Culling", {std::string("CullingOff")})}));
     connect(geometry, mesh);
     connect(mesh, 0);
-    objects.add(record("Deformer", {skin, object_name("", "Deformer"), std::string("Skin")},
+    // Its material: grey, as glTF's figure.
+    objects.add(record("Material", {material, object_name("bone", "Material"), std::string()},
+                       {record("Version", {std::int32_t{102}}), record("ShadingModel", {std::string("phong")}),
+                        record("MultiLayer", {std::int32_t{0}}),
+                        record("Properties70", {}, {property("DiffuseColor", "Color", "", "A", {0.8, 0.8, 0.8}),
+                                                    property("DiffuseFactor", "Number", "", "A", {1.0})})}));
+    connect(material, mesh);
+    objects.add(record("Deformer", {skin, object_name(mesh_name, "Deformer"), std::string("Skin")},
                        {record("Version", {std::int32_t{101}}), record("Link_DeformAcuracy", {50.0})}));
     connect(skin, geometry);
     std::map<int, std::vector<std::int32_t>> bound;  // joint -> its vertices
@@ -261,7 +275,7 @@ Result<std::string> write_fbx(const Skeleton& skeleton, std::span<const FbxAnima
     for (const auto& [joint, indexes] : bound) {
       const std::int64_t cluster = ids.next();
       const Affine& at_rest = bind_pose[first_joint + static_cast<size_t>(joint)].second;
-      FbxRecord cluster_record = record("Deformer", {cluster, object_name("", "SubDeformer"), std::string("Cluster")},
+      FbxRecord cluster_record = record("Deformer", {cluster, object_name(model_names[first_joint + static_cast<size_t>(joint)], "SubDeformer"), std::string("Cluster")},
                                         {record("Version", {std::int32_t{100}}), record("UserData", {std::string(), std::string()})});
       if (!indexes.empty()) {  // a joint no vertex hangs from has a cluster all the same: its bind matrix
         cluster_record.add(record("Indexes", {indexes}));
@@ -284,6 +298,7 @@ Result<std::string> write_fbx(const Skeleton& skeleton, std::span<const FbxAnima
     objects.add(std::move(pose_record));
     figure_models = 1;
     geometries = 1;
+    materials = 1;
     deformers += 1;
     poses = 1;
   }
@@ -411,10 +426,11 @@ Result<std::string> write_fbx(const Skeleton& skeleton, std::span<const FbxAnima
   references.block = true;
   file.push_back(std::move(references));
   const int limb_count = static_cast<int>(models.size() + skeleton.static_ancestors().size());
-  const std::array<std::pair<const char*, int>, 10> types{{{"GlobalSettings", 1},
+  const std::array<std::pair<const char*, int>, 11> types{{{"GlobalSettings", 1},
                                                           {"NodeAttribute", limb_count},
                                                           {"Model", limb_count + figure_models},
                                                           {"Geometry", geometries},
+                                                          {"Material", materials},
                                                           {"Deformer", deformers},
                                                           {"Pose", poses},
                                                           {"AnimationStack", counts[0]},

@@ -7,8 +7,9 @@ namespace mg {
 
 namespace {
 
-// The octahedral bone from `head` to `tail`: 8 flat faces, 24 vertices with their face normals.
-void add_bone(const Vec3& head, const Vec3& tail, int joint, StickFigure& figure) {
+// The octahedral bone from `head` to `tail`: 8 flat faces, 24 vertices with their face normals;
+// the tail's apex bound to `child`, the rest to `joint`.
+void add_bone(const Vec3& head, const Vec3& tail, int joint, int child, StickFigure& figure) {
   const Vec3 axis = tail - head;
   const double length = axis.norm();
   const Vec3 d = axis / length;
@@ -18,7 +19,8 @@ void add_bone(const Vec3& head, const Vec3& tail, int joint, StickFigure& figure
   const Vec3 middle = head + 0.2 * axis;
   const std::array<Vec3, 4> ring{middle + radius * u, middle + radius * v, middle - radius * u, middle - radius * v};
   for (int i = 0; i < 4; ++i) {
-    for (const Vec3& apex : {head, tail}) {
+    for (int end = 0; end < 2; ++end) {
+      const Vec3& apex = end == 0 ? head : tail;
       std::array<Vec3, 3> corner{apex, ring[i], ring[(i + 1) % 4]};
       Vec3 normal = (corner[1] - corner[0]).cross(corner[2] - corner[0]).normalized();
       // Counter-clockwise seen from outside: the normal points away from the axis.
@@ -26,10 +28,10 @@ void add_bone(const Vec3& head, const Vec3& tail, int joint, StickFigure& figure
         std::swap(corner[1], corner[2]);
         normal = -normal;
       }
-      for (const Vec3& p : corner) {
-        figure.positions.push_back(p);
+      for (int c = 0; c < 3; ++c) {
+        figure.positions.push_back(corner[c]);
         figure.normals.push_back(normal);
-        figure.joints.push_back(joint);
+        figure.joints.push_back(c == 0 && end == 1 ? child : joint);  // corner 0 is the apex
       }
     }
   }
@@ -44,7 +46,7 @@ StickFigure stick_figure(const Skeleton& skeleton, std::span<const Vec3> rest_wo
     const Vec3& head = rest_world_m[static_cast<size_t>(parent)];
     const Vec3& tail = rest_world_m[static_cast<size_t>(j)];
     if ((tail - head).norm() < 1e-3) continue;  // no bone to draw
-    add_bone(head, tail, parent, figure);
+    add_bone(head, tail, parent, j, figure);
   }
   return figure;
 }

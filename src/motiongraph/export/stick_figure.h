@@ -1,6 +1,8 @@
 // The grey stick figure the scene writers (glTF, FBX) skin to a skeleton so that it shows in any
 // viewer: an octahedral bone from each joint to each of its children (as Blender draws bones),
-// flat-shaded, each bound rigidly to the joint it hangs from.
+// flat-shaded, each bound rigidly to the joint it hangs from but for its tip, bound to the child,
+// so that a bone reaches a child whose translation is animated (the hips below a root-motion
+// joint, a rig with position channels on every joint).
 #pragma once
 
 #include <span>
@@ -14,7 +16,7 @@ struct StickFigure {
   // Three vertices per triangle, counter-clockwise seen from outside, at rest (world, metres).
   std::vector<Vec3> positions;
   std::vector<Vec3> normals;  // each vertex its face's
-  std::vector<int> joints;    // each vertex's joint (the bone's parent joint)
+  std::vector<int> joints;    // each vertex's joint (the bone's parent joint; the child for its tip)
 
   bool empty() const { return positions.empty(); }
 };
