@@ -468,7 +468,8 @@ class Router {
     }
     if (!id) throw ApiError{404, fmt::format("no result '{}': expected /api/results/ID.bvh, ID.glb or ID.fbx", name)};
     const bool root_motion = query_integer(request_, "root_motion", 0, 0, 1) == 1;
-    auto bytes = service_.result_file(static_cast<int>(*id), format, root_motion);
+    const bool figure = query_integer(request_, "figure", 1, 0, 1) == 1;
+    auto bytes = service_.result_file(static_cast<int>(*id), format, root_motion, figure);
     if (!bytes) throw ApiError{404, fmt::format("no result {} (results are kept for the latest {})", *id,
                                                 SynthesisService::kMaxResults)};
     ApiResponse r;

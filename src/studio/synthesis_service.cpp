@@ -40,7 +40,8 @@ int SynthesisService::store_result(Motion motion) {
   return store_recorded(std::move(recorded));
 }
 
-std::optional<std::string> SynthesisService::result_file(int result, FileFormat format, bool root_motion) const {
+std::optional<std::string> SynthesisService::result_file(int result, FileFormat format, bool root_motion,
+                                                         bool figure) const {
   std::shared_ptr<Recorded> recorded;
   {
     std::lock_guard lock(mutex_);
@@ -63,7 +64,8 @@ std::optional<std::string> SynthesisService::result_file(int result, FileFormat 
   if (format == FileFormat::kBvh) return write_bvh(skeleton, motion, BvhWriteSettings{});
   // The animation is named as the file downloads.
   const std::string name = fmt::format("motiongraph-{}", result);
-  auto bytes = format == FileFormat::kGlb ? write_glb(skeleton, motion, name) : write_fbx(skeleton, motion, name);
+  auto bytes = format == FileFormat::kGlb ? write_glb(skeleton, motion, name, GltfWriteSettings{figure})
+                                          : write_fbx(skeleton, motion, name, FbxWriteSettings{figure});
   if (!bytes) return std::nullopt;  // a recorded motion always fits the skeleton it was played on
   return std::move(*bytes);
 }

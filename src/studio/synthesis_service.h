@@ -90,11 +90,12 @@ class SynthesisService {
   // Sets the input and appends at least min_frames frames (one decision or more).
   Result<SteerStepResult> step_session(int session, const ControlInput& input, int min_frames);
 
-  // A result as a file: BVH text, binary glTF or binary FBX, with a root-motion joint above the
-  // root when asked (motion/root_motion.h, default settings); nothing when there is no such
-  // result (any more).
+  // A result as a file: BVH text, binary glTF or binary FBX (with its stick figure unless
+  // `figure` is false), with a root-motion joint above the root when asked (motion/root_motion.h,
+  // default settings); nothing when there is no such result (any more).
   enum class FileFormat { kBvh, kGlb, kFbx };
-  std::optional<std::string> result_file(int result, FileFormat format = FileFormat::kBvh, bool root_motion = false) const;
+  std::optional<std::string> result_file(int result, FileFormat format = FileFormat::kBvh, bool root_motion = false,
+                                         bool figure = true) const;
   // Stores a motion for download and returns its id.
   int store_result(Motion motion);
 

@@ -277,6 +277,13 @@ try {
   check(glbMagic === 'glTF', `the result downloads as binary glTF (${glbHref})`);
   const [fbxMagic, fbxHref] = await downloadMagic('download-fbx', 18);
   check(fbxMagic === 'Kaydara FBX Binary', `the result downloads as binary FBX (${fbxHref})`);
+  await page.check('[data-testid=no-figure]');
+  const bareHref = await page.getAttribute('[data-testid=download-glb]', 'href');
+  const [figured, bare] = await page.evaluate(async ([a, b]) => [
+    (await (await fetch(a)).arrayBuffer()).byteLength, (await (await fetch(b)).arrayBuffer()).byteLength], [glbHref, bareHref]);
+  check(bareHref.includes('figure=0') && bare < figured,
+    `with the no-figure box checked the glTF leaves the stick figure out (${bareHref}: ${bare} bytes, ${figured} with it)`);
+  await page.uncheck('[data-testid=no-figure]');
   await page.check('[data-testid=root-motion]');
   const rootMotionHref = await page.getAttribute('[data-testid=download]', 'href');
   const rootMotionBvh = await page.evaluate(async (h) => (await fetch(h)).text(), rootMotionHref);

@@ -295,6 +295,17 @@ TEST(StudioApi, WalkReturnsMotionAndABvhDownload) {
   ASSERT_EQ(fbx.response.status, 200);
   EXPECT_EQ(fbx.response.body.rfind(std::string("Kaydara FBX Binary  \0", 21), 0), 0u);
   EXPECT_TRUE(fbx.response.file_name.ends_with(".fbx"));
+  // Without the stick figure: no mesh in either.
+  const std::string id = std::to_string(walk.json["result"].get<int>());
+  const ApiCall bare_fbx = call_api("GET", "/api/results/" + id + ".fbx", "", {{"figure", "0"}});
+  const ApiCall bare_glb = call_api("GET", "/api/results/" + id + ".glb", "", {{"figure", "0"}});
+  ASSERT_EQ(bare_fbx.response.status, 200);
+  ASSERT_EQ(bare_glb.response.status, 200);
+  EXPECT_NE(fbx.response.body.find("Geometry"), std::string::npos);
+  EXPECT_EQ(bare_fbx.response.body.find("Geometry"), std::string::npos);
+  EXPECT_NE(glb.response.body.find("\"meshes\""), std::string::npos);
+  EXPECT_EQ(bare_glb.response.body.find("\"meshes\""), std::string::npos);
+  expect_error(call_api("GET", "/api/results/" + id + ".glb", "", {{"figure", "2"}}), 400, "figure");
   expect_error(call_api("GET", "/api/results/" + std::to_string(walk.json["result"].get<int>()) + ".dae"), 404,
                "expected /api/results/ID.bvh, ID.glb or ID.fbx");
 }

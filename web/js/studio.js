@@ -84,7 +84,10 @@ function ensureFigure(joints) {
 
 function setResultLink(id) {
   state.result = id;
-  const query = $('root-motion').checked ? '?root_motion=1' : '';
+  const params = new URLSearchParams();
+  if ($('root-motion').checked) params.set('root_motion', '1');
+  if ($('no-figure').checked) params.set('figure', '0');
+  const query = params.toString() ? `?${params}` : '';
   for (const [link, ext] of [['download', 'bvh'], ['download-glb', 'glb'], ['download-fbx', 'fbx']]) {
     const a = $(link);
     a.href = `/api/results/${id}.${ext}${query}`;
@@ -92,6 +95,7 @@ function setResultLink(id) {
     a.hidden = false;
   }
   $('root-motion-label').hidden = false;
+  $('no-figure-label').hidden = false;
 }
 
 function play(track, mode) {
@@ -502,7 +506,9 @@ function markFeet(fig, contacts, row) {
   else fig.setPlanted(null, null);
 }
 $('mark-feet').addEventListener('change', (e) => { state.markFeet = e.target.checked; });
-$('root-motion').addEventListener('change', () => { if (state.result !== null) setResultLink(state.result); });
+for (const box of ['root-motion', 'no-figure']) {
+  $(box).addEventListener('change', () => { if (state.result !== null) setResultLink(state.result); });
+}
 
 function tick() {
   const dt = Math.min(clock.getDelta(), 0.25);  // real time down to 4 frames a second
