@@ -6,8 +6,8 @@
 # stacks, `convert --animation` reads one to the AMC's joint positions, `build` reads every stack as
 # a clip named FILE:ANIMATION with CMU's tags by the animation's name and its graph follows a path,
 # a manifest picks stacks (and overrides a file's up axis); clips written as FBX (one, and a set
-# with a root-motion joint) read back to their joints; a file standing along -x reads standing;
-# a stack not there is one error.
+# with a root-motion joint) read back to their joints, a library written as FBX builds its graph;
+# a file standing along -x reads standing; a stack not there is one error.
 # Usage: MOTIONGRAPH=binary MAKE_TEST_FBX=binary cli_fbx_test.sh DATA_DIR
 set -euo pipefail
 data=$1
@@ -130,4 +130,19 @@ for a, b in (("jog", "jog-back"), ("walk", "set-walk")):
 PY
 "$bin" info "$work/out/set.fbx" | head -1 | grep -q "set.fbx: FBX, animation '16_15' (1 of 2: 16_15, 16_35" \
   || { echo "FAIL: an animation set as FBX"; "$bin" info "$work/out/set.fbx"; exit 1; }
+# The library written as one FBX (a stack a clip) builds the graph the library builds.
+"$bin" convert "$data/cmu/16" -o "$work/out/library.fbx" 2>/dev/null
+"$bin" build "$work/out/library.fbx" -o "$work/out/library.mgraph" --no-cache -q --report "$work/out/fbx-report.json"
+"$bin" build "$data/cmu/16" -o "$work/out/amc.mgraph" --no-cache -q --report "$work/out/amc-report.json"
+python3 - "$work/out/amc-report.json" "$work/out/fbx-report.json" <<'PY'
+import json, sys
+amc, fbx = (json.load(open(p)) for p in sys.argv[1:])
+assert len(fbx["clips"]) == len(amc["clips"]) == 15 and fbx["frames"] == amc["frames"], (len(fbx["clips"]), fbx["frames"])
+for key in ("transitions", "transitions_kept"):
+    assert abs(fbx["counts"][key] - amc["counts"][key]) <= 1, (key, fbx["counts"][key], amc["counts"][key])
+a, b = amc["graph_after"]["nodes"], fbx["graph_after"]["nodes"]
+assert abs(a - b) <= 0.01 * a, (a, b)
+print(f"cli_fbx_test: the library as FBX builds {fbx['counts']['transitions_kept']} transitions, {b} nodes "
+      f"({amc['counts']['transitions_kept']}, {a} from its AMC files)")
+PY
 echo "cli_fbx_test: PASS"
