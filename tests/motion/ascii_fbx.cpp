@@ -188,7 +188,10 @@ std::string ascii_fbx(const std::vector<std::pair<std::string, Clip>>& clips, co
     connections += fmt::format("\tC: \"OO\",{},0\n\tC: \"OO\",{},{}\n\tC: \"OO\",{},{}\n", mesh, geometry, mesh, skin, geometry);
     const std::vector<std::string> identity{"1", "0", "0", "0", "0", "1", "0", "0", "0", "0", "1", "0", "0", "0", "0", "1"};
     const std::string weight = fmt::format("{:.9g}", 1.0 / joints);
+    std::vector<bool> leaf(static_cast<size_t>(joints), true);
+    for (int j = 1; j < joints; ++j) leaf[static_cast<size_t>(skeleton.parent(j))] = false;
     for (int j = 0; j < joints; ++j) {
+      if (!settings.skin_leaves && leaf[static_cast<size_t>(j)]) continue;
       const long long cluster = next_id++;
       objects += fmt::format("\tDeformer: {}, \"SubDeformer::{}\", \"Cluster\" {{\n\t\tVersion: 100\n{}{}{}{}\t}}\n",
                              cluster, skeleton.joint(j).name, array("Indexes", {"0", "1", "2"}),

@@ -5,7 +5,8 @@
 // clip's rate; the root's translation keyed; lengths in the file's unit (centimetres times
 // `unit_scale_factor`) under an armature turned and scaled; any axis up (our +y turned to it the
 // shortest way, as the reader turns it back; half a turn about x for -y). Each clip is an animation
-// stack (all on one skeleton, named as given). With `skin`, a mesh skinned to every joint and an
+// stack (all on one skeleton, named as given). With `skin`, a mesh skinned to every joint (or every
+// joint with a child: `skin_leaves`) and an
 // animated prop beside the armature, which is not a joint. So each clip's joints lie where the
 // clip puts them, and nothing of the file says so but its rules.
 #pragma once
@@ -24,6 +25,7 @@ struct AsciiFbxSettings {
   double armature_scale = 1.0;     // the Armature node's (uniform) scale
   Quat armature_rotation = Quat::Identity();
   bool skin = false;
+  bool skin_leaves = true;  // false: joints without children get no cluster (Mixamo's end bones)
   std::string stack_prefix;  // e.g. "Armature|", as Blender names its stacks
 };
 

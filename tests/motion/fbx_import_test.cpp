@@ -99,6 +99,20 @@ TEST_F(FbxImport, ASkinMakesTheSkeletonAndAnimatedPropsAreLeftOut) {
   EXPECT_FALSE(read(test::ascii_fbx(stacks(), settings))[0].skeleton.find("Prop"));
 }
 
+// A skin's bones are the joints vertices hang from; end bones and fingers that none does (Mixamo's
+// HeadTop_End) are joints of the skeleton all the same.
+TEST_F(FbxImport, BonesNoVertexHangsFromAreJointsToo) {
+  test::AsciiFbxSettings settings;
+  settings.skin = true;
+  settings.skin_leaves = false;
+  const std::vector<Clip> clips = read(test::ascii_fbx(stacks(), settings));
+  ASSERT_EQ(clips.size(), 2u);
+  EXPECT_EQ(clips[0].skeleton.joint_count(), walk_->skeleton.joint_count());
+  EXPECT_FALSE(clips[0].skeleton.find("Prop"));
+  EXPECT_FALSE(clips[0].skeleton.find("Body"));
+  EXPECT_LT(test::max_apart(*walk_, clips[0]), 1e-5);
+}
+
 TEST_F(FbxImport, NamesAsBlenderWritesThemAndRates) {
   test::AsciiFbxSettings settings;
   settings.stack_prefix = "Armature|";  // Blender's OBJECT|ACTION, OBJECT a node of the file

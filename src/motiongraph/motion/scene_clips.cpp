@@ -243,7 +243,6 @@ Result<Layout> layout_of(const NodeScene& scene, const std::string& file) {
   // those of the tree most of them are in (a camera's or a prop's are left out).
   std::set<int> wanted;
   for (const std::vector<int>& skin : scene.skins) wanted.insert(skin.begin(), skin.end());
-  const bool skinned = !wanted.empty();
   for (int n : wanted) {
     if (!is_node(n)) return Error{file, 0, fmt::format("a skin's joint {} is not a node", n)};
   }
@@ -281,7 +280,10 @@ Result<Layout> layout_of(const NodeScene& scene, const std::string& file) {
   for (int n : wanted) {
     for (int m = n; m != out.parent[static_cast<size_t>(root)]; m = out.parent[static_cast<size_t>(m)]) in_skeleton.insert(m);
   }
-  if (!skinned) {  // the bones no key moves, below the root, but no mesh, camera or light
+  // The bones no key moves (without a skin) or no skin lists (an FBX skin's bones are the joints
+  // a vertex hangs from: end bones and unskinned fingers are not among them), below the root, but
+  // no mesh, camera or light.
+  {
     std::vector<int> below{root};
     while (!below.empty()) {
       const int n = below.back();

@@ -3,9 +3,9 @@
 // its file into a NodeScene, and this makes the clips.
 //
 // The skeleton is every skin's joints (without a skin: the nodes the animations move, those of the
-// tree most of them are in, and every node below their root that holds no mesh, camera or light,
-// fingers no key moves among them), rooted at the lowest node above them all, with the nodes on
-// the way between them; the nodes
+// tree most of them are in), rooted at the lowest node above them all, with the nodes on the way
+// between them and every node below the root that holds no mesh, camera or light (fingers no key
+// moves, end bones no skin lists: an FBX skin's bones are those vertices hang from); the nodes
 // above the root (an armature, a scene node) are composed into it, frame by frame where they are
 // animated (Blender's object animation), their uniform, constant scale (Blender's and Mixamo's
 // 0.01 armatures, FBX's 100) into every length, and the file's unit (`metres_per_unit`). An
