@@ -1,6 +1,6 @@
-// motiongraph convert IN... -o OUT [-o OUT...]: AMC, BVH, glTF or FBX in, BVH, glTF or positions JSON out
-// (metres, the JSON with the feet's contacts); the clip is read once for all outputs. Several
-// clips of one rig go into one glTF file, an animation each.
+// motiongraph convert IN... -o OUT [-o OUT...]: AMC, BVH, glTF or FBX in; BVH, glTF, FBX or
+// positions JSON out (metres, FBX centimetres; the JSON with the feet's contacts); the clip is read
+// once for all outputs. Several clips of one rig go into one glTF or FBX file, an animation each.
 #include <algorithm>
 #include <filesystem>
 #include <optional>
@@ -194,10 +194,10 @@ Command add_convert_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "convert", "Convert an AMC, BVH, glTF or FBX clip to BVH (metres), to binary glTF (.glb: the skeleton, its animation and "
                  "a stick figure skinned to it, in metres), to binary FBX (.fbx: the same, in "
-                 "centimetres, for Maya, MotionBuilder, Unity, Unreal, Blender; several clips of one rig make one .glb or .fbx, an "
-                 "animation each) or to JSON world positions "
+                 "centimetres, for Maya, MotionBuilder, Unity, Unreal, Blender) or to JSON world positions "
                  "({\"fps\", \"joints\": [{\"name\", \"parent\"}], \"positions\": [frame][joint][x,y,z], "
-                 "\"contacts\": {\"joints\": [the foot joints], \"planted\": [frame][foot joint] 0 or 1}}).");
+                 "\"contacts\": {\"joints\": [the foot joints], \"planted\": [frame][foot joint] 0 or 1}}). Several "
+                 "clips of one rig make one .glb or .fbx, an animation each.");
   sub->add_option("IN", options->inputs,
                   "Input clip (.amc, .bvh, or .glb/.gltf/.fbx: an animation of it); several clips of one rig go into one .glb or .fbx, an animation each "
                   "named as its file (a character's animation set, as game engines import it); a library (folders, .toml "

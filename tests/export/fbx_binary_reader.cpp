@@ -46,8 +46,8 @@ class Reader {
       if (length > 0) std::memcpy(values.data(), raw.data(), length);
     } else {
       uLongf size = count * sizeof(T);
-      if (uncompress(reinterpret_cast<Bytef*>(values.data()), &size, reinterpret_cast<const Bytef*>(raw.data()), length) !=
-              Z_OK ||
+      if (uncompress(reinterpret_cast<Bytef*>(values.data()), &size, reinterpret_cast<const Bytef*>(raw.data()),
+                     length) != Z_OK ||
           size != count * sizeof(T)) {
         return error("deflated array does not inflate to its count");
       }
@@ -60,10 +60,26 @@ class Reader {
     char type = 0;
     if (!get(type)) return error("value cut short");
     switch (type) {
-      case 'I': { std::int32_t v; if (get(v)) return FbxValue(v); break; }
-      case 'L': { std::int64_t v; if (get(v)) return FbxValue(v); break; }
-      case 'F': { float v; if (get(v)) return FbxValue(v); break; }
-      case 'D': { double v; if (get(v)) return FbxValue(v); break; }
+      case 'I': {
+        std::int32_t v;
+        if (get(v)) return FbxValue(v);
+        break;
+      }
+      case 'L': {
+        std::int64_t v;
+        if (get(v)) return FbxValue(v);
+        break;
+      }
+      case 'F': {
+        float v;
+        if (get(v)) return FbxValue(v);
+        break;
+      }
+      case 'D': {
+        double v;
+        if (get(v)) return FbxValue(v);
+        break;
+      }
       case 'S':
       case 'R': {
         std::uint32_t length = 0;
@@ -72,11 +88,16 @@ class Reader {
         if (type == 'S') return FbxValue(text);
         return FbxValue(FbxRaw{text});
       }
-      case 'i': return array<std::int32_t>();
-      case 'l': return array<std::int64_t>();
-      case 'f': return array<float>();
-      case 'd': return array<double>();
-      default: return error(fmt::format("value type '{}'", type));
+      case 'i':
+        return array<std::int32_t>();
+      case 'l':
+        return array<std::int64_t>();
+      case 'f':
+        return array<float>();
+      case 'd':
+        return array<double>();
+      default:
+        return error(fmt::format("value type '{}'", type));
     }
     return error("value cut short");
   }
@@ -96,8 +117,10 @@ class Reader {
       if (!v) return v.error();
       r.values.push_back(std::move(*v));
     }
-    if (pos_ - values_start != length) return error(fmt::format("record '{}': values' length {} is not {}", r.name, length, pos_ - values_start));
-    if (end < pos_ || end > bytes_.size()) return error(fmt::format("record '{}' (at {}): end {} out of place", r.name, start, end));
+    if (pos_ - values_start != length)
+      return error(fmt::format("record '{}': values' length {} is not {}", r.name, length, pos_ - values_start));
+    if (end < pos_ || end > bytes_.size())
+      return error(fmt::format("record '{}' (at {}): end {} out of place", r.name, start, end));
     if (pos_ < end) {  // records inside, then a null record
       for (;;) {
         auto inner = record();
@@ -123,7 +146,8 @@ Result<std::vector<FbxRecord>> read_fbx_binary(std::string_view bytes, int* defl
   Reader in(bytes);
   std::string magic;
   std::uint32_t version = 0;
-  if (!in.get_bytes(23, magic) || magic != std::string("Kaydara FBX Binary  \0\x1a\0", 23)) return in.error("not FBX's magic");
+  if (!in.get_bytes(23, magic) || magic != std::string("Kaydara FBX Binary  \0\x1a\0", 23))
+    return in.error("not FBX's magic");
   if (!in.get(version) || version != 7400) return in.error("not version 7400");
   std::vector<FbxRecord> top;
   for (;;) {
@@ -141,7 +165,8 @@ Result<std::vector<FbxRecord>> read_fbx_binary(std::string_view bytes, int* defl
   const size_t version_at = bytes.size() - 16 - 120 - 4;
   if (rest.compare(0, 16, id) != 0) return Error{"fbx", static_cast<int>(footer), "footer id"};
   if (version_at % 16 != 0 || version_at < footer + 16 + 5 || version_at > footer + 16 + 20) {
-    return Error{"fbx", static_cast<int>(version_at), "footer version not on the 16-byte boundary after the id and 4 zeros"};
+    return Error{"fbx", static_cast<int>(version_at),
+                 "footer version not on the 16-byte boundary after the id and 4 zeros"};
   }
   for (size_t i = footer + 16; i < version_at; ++i) {
     if (bytes[i] != '\0') return Error{"fbx", static_cast<int>(i), "footer padding not zero"};
@@ -152,7 +177,8 @@ Result<std::vector<FbxRecord>> read_fbx_binary(std::string_view bytes, int* defl
   for (size_t i = version_at + 4; i < version_at + 124; ++i) {
     if (bytes[i] != '\0') return Error{"fbx", static_cast<int>(i), "footer zeros"};
   }
-  if (bytes.substr(bytes.size() - 16) != end_magic) return Error{"fbx", static_cast<int>(bytes.size() - 16), "footer magic"};
+  if (bytes.substr(bytes.size() - 16) != end_magic)
+    return Error{"fbx", static_cast<int>(bytes.size() - 16), "footer magic"};
   if (deflated_arrays) *deflated_arrays = in.deflated();
   return top;
 }

@@ -10,7 +10,9 @@
 namespace mg {
 namespace {
 
-FbxRecord leaf(std::string name, std::vector<FbxValue> values) { return FbxRecord{std::move(name), std::move(values), {}, false}; }
+FbxRecord leaf(std::string name, std::vector<FbxValue> values) {
+  return FbxRecord{std::move(name), std::move(values), {}, false};
+}
 
 TEST(FbxBinary, EveryKindOfValueAndNestingReadsBackAsWritten) {
   FbxRecord objects{"Objects", {}, {}, false};
@@ -21,7 +23,7 @@ TEST(FbxBinary, EveryKindOfValueAndNestingReadsBackAsWritten) {
   objects.add(leaf("AnimationCurve", {std::vector<std::int64_t>{0, 1539538600, -7}, std::vector<float>{0.5f, -1.0f},
                                       std::vector<std::int32_t>{}, std::vector<double>{3.25}}));
   objects.add(FbxRecord{"AnimationLayer", {std::int64_t{9}}, {}, true});  // an empty block
-  objects.add(leaf("", {}));                                               // no name, nothing
+  objects.add(leaf("", {}));                                              // no name, nothing
   objects.add(leaf(std::string(255, 'n'), {float{-0.0f}, FbxRaw{std::string("\0\xff\x01", 3)}, std::string()}));
   const std::vector<FbxRecord> top{leaf("FileId", {FbxRaw{std::string(16, '\x28')}}), objects,
                                    FbxRecord{"References", {}, {}, true}};
@@ -37,16 +39,26 @@ TEST(FbxBinary, RandomTreesReadBackAsWrittenWithTheFooterOnItsBoundary) {
   std::uniform_int_distribution<int> small(0, 4);
   const auto random_value = [&]() -> FbxValue {
     switch (std::uniform_int_distribution<int>(0, 9)(rng)) {
-      case 0: return static_cast<std::int32_t>(rng());
-      case 1: return static_cast<std::int64_t>(rng()) << 20;
-      case 2: return std::uniform_real_distribution<float>(-1e6f, 1e6f)(rng);
-      case 3: return std::uniform_real_distribution<double>(-1e6, 1e6)(rng);
-      case 4: return std::string(static_cast<size_t>(small(rng)) * 3, static_cast<char>(rng()));
-      case 5: return FbxRaw{std::string(static_cast<size_t>(small(rng)), static_cast<char>(rng()))};
-      case 6: return std::vector<std::int32_t>(static_cast<size_t>(small(rng)), static_cast<std::int32_t>(rng()));
-      case 7: return std::vector<std::int64_t>(static_cast<size_t>(small(rng)), static_cast<std::int64_t>(rng()));
-      case 8: return std::vector<float>(static_cast<size_t>(small(rng)), 0.25f);
-      default: return std::vector<double>(static_cast<size_t>(small(rng)), -0.5);
+      case 0:
+        return static_cast<std::int32_t>(rng());
+      case 1:
+        return static_cast<std::int64_t>(rng()) << 20;
+      case 2:
+        return std::uniform_real_distribution<float>(-1e6f, 1e6f)(rng);
+      case 3:
+        return std::uniform_real_distribution<double>(-1e6, 1e6)(rng);
+      case 4:
+        return std::string(static_cast<size_t>(small(rng)) * 3, static_cast<char>(rng()));
+      case 5:
+        return FbxRaw{std::string(static_cast<size_t>(small(rng)), static_cast<char>(rng()))};
+      case 6:
+        return std::vector<std::int32_t>(static_cast<size_t>(small(rng)), static_cast<std::int32_t>(rng()));
+      case 7:
+        return std::vector<std::int64_t>(static_cast<size_t>(small(rng)), static_cast<std::int64_t>(rng()));
+      case 8:
+        return std::vector<float>(static_cast<size_t>(small(rng)), 0.25f);
+      default:
+        return std::vector<double>(static_cast<size_t>(small(rng)), -0.5);
     }
   };
   std::function<FbxRecord(int)> random_record = [&](int depth) {

@@ -58,6 +58,7 @@ struct FbxScene {
   struct Curves {  // a curve node's three curves
     std::vector<std::int64_t> times[3];
     std::vector<float> values[3];
+    std::vector<std::int32_t> flags, flag_keys;  // the X curve's KeyAttrFlags and KeyAttrRefCount
   };
   struct Cluster {
     std::int64_t bone = -1;  // the LimbNode model linked
@@ -70,7 +71,7 @@ struct FbxScene {
   std::vector<std::int32_t> polygons;
   std::map<std::int64_t, Cluster> clusters;
   std::vector<std::pair<std::int64_t, Affine>> bind_pose;
-  std::vector<std::pair<std::string, std::int64_t>> stacks;  // name, id
+  std::vector<std::pair<std::string, std::int64_t>> stacks;                                         // name, id
   std::map<std::int64_t, std::vector<std::tuple<std::int64_t, std::string, Curves>>> stack_curves;  // model, property
   std::map<std::string, std::vector<double>> settings;
 
@@ -98,7 +99,8 @@ struct FbxScene {
       if (r->name == "Geometry") {
         const auto& v = std::get<std::vector<double>>(test::find_record(r->records, "Vertices")->values.at(0));
         for (size_t i = 0; i + 2 < v.size(); i += 3) vertices.emplace_back(v[i], v[i + 1], v[i + 2]);
-        polygons = std::get<std::vector<std::int32_t>>(test::find_record(r->records, "PolygonVertexIndex")->values.at(0));
+        polygons =
+            std::get<std::vector<std::int32_t>>(test::find_record(r->records, "PolygonVertexIndex")->values.at(0));
       } else if (r->name == "Deformer" && text(r->values[2]) == "Cluster") {
         Cluster& c = clusters[key];
         if (const FbxRecord* indexes = test::find_record(r->records, "Indexes")) {
@@ -120,8 +122,10 @@ struct FbxScene {
         auto p = properties(*r);
         Model m;
         m.name = name_of(*r);
-        if (p.count("Lcl Translation")) m.translation = Vec3(p["Lcl Translation"][0], p["Lcl Translation"][1], p["Lcl Translation"][2]);
-        if (p.count("Lcl Rotation")) m.rotation = Vec3(p["Lcl Rotation"][0], p["Lcl Rotation"][1], p["Lcl Rotation"][2]);
+        if (p.count("Lcl Translation"))
+          m.translation = Vec3(p["Lcl Translation"][0], p["Lcl Translation"][1], p["Lcl Translation"][2]);
+        if (p.count("Lcl Rotation"))
+          m.rotation = Vec3(p["Lcl Rotation"][0], p["Lcl Rotation"][1], p["Lcl Rotation"][2]);
         if (p.count("RotationOrder")) m.order = static_cast<int>(p["RotationOrder"][0]);
         models[key] = m;
       } else if (r->name == "AnimationStack") {
@@ -146,12 +150,21 @@ struct FbxScene {
       }
       if (from->name == "AnimationLayer") layer_stack[child] = parent;
       if (from->name == "AnimationCurveNode" && text(c.values[0]) == "OO") node_layer[child] = parent;
-      if (from->name == "AnimationCurveNode" && text(c.values[0]) == "OP") node_target[child] = {parent, text(c.values[3])};
+      if (from->name == "AnimationCurveNode" && text(c.values[0]) == "OP")
+        node_target[child] = {parent, text(c.values[3])};
       if (from->name == "AnimationCurve" && to) {
         const std::string axis = text(c.values[3]);
         const int a = axis == "d|X" ? 0 : axis == "d|Y" ? 1 : 2;
-        node_curves[parent].times[a] = std::get<std::vector<std::int64_t>>(test::find_record(from->records, "KeyTime")->values[0]);
-        node_curves[parent].values[a] = std::get<std::vector<float>>(test::find_record(from->records, "KeyValueFloat")->values[0]);
+        node_curves[parent].times[a] =
+            std::get<std::vector<std::int64_t>>(test::find_record(from->records, "KeyTime")->values[0]);
+        node_curves[parent].values[a] =
+            std::get<std::vector<float>>(test::find_record(from->records, "KeyValueFloat")->values[0]);
+        if (a == 0) {
+          node_curves[parent].flags =
+              std::get<std::vector<std::int32_t>>(test::find_record(from->records, "KeyAttrFlags")->values[0]);
+          node_curves[parent].flag_keys =
+              std::get<std::vector<std::int32_t>>(test::find_record(from->records, "KeyAttrRefCount")->values[0]);
+        }
       }
     }
     for (const auto& [node, target] : node_target) {
@@ -225,7 +238,8 @@ TEST(FbxWriter, ModelsPlayedByTheFileRulesAreWhereForwardKinematicsPutsTheJoints
     const FbxScene scene = written(clip.skeleton, clip.motion);
     ASSERT_EQ(scene.stacks.size(), 1u) << file;
     EXPECT_EQ(scene.stacks[0].first, "take");
-    EXPECT_EQ(scene.models.size(), static_cast<size_t>(clip.skeleton.joint_count()) + clip.skeleton.static_ancestors().size());
+    EXPECT_EQ(scene.models.size(),
+              static_cast<size_t>(clip.skeleton.joint_count()) + clip.skeleton.static_ancestors().size());
     // Centimetres, y up, z front, right-handed (x across).
     EXPECT_EQ(scene.settings.at("UnitScaleFactor"), std::vector<double>{1.0});
     EXPECT_EQ(scene.settings.at("UpAxis"), std::vector<double>{1.0});
@@ -258,7 +272,9 @@ TEST(FbxWriter, TheStickFigureIsSkinnedToTheJoints) {
       for (std::int32_t i : c.indexes) ++bound.at(static_cast<size_t>(i));
     }
     EXPECT_EQ(std::count(bound.begin(), bound.end(), 1), static_cast<long>(bound.size()));
-    EXPECT_EQ(scene.clusters.size(), static_cast<size_t>(clip.skeleton.joint_count()));
+    // A cluster for every model, the static ancestors' too (as glTF's skin lists every node).
+    EXPECT_EQ(scene.clusters.size(),
+              static_cast<size_t>(clip.skeleton.joint_count()) + clip.skeleton.static_ancestors().size());
     const auto rest = scene.world(-1, 0);  // no stack: the models' own transforms
     for (const auto& [key, c] : scene.clusters) {
       const Affine& at_rest = rest.at(scene.models.at(c.bone).name);
@@ -284,7 +300,8 @@ TEST(FbxWriter, TheStickFigureIsSkinnedToTheJoints) {
         }
       }
     }
-    const size_t apexes = static_cast<size_t>(std::count_if(on_joints.begin(), on_joints.end(), [](const auto& o) { return !o.empty(); }));
+    const size_t apexes = static_cast<size_t>(
+        std::count_if(on_joints.begin(), on_joints.end(), [](const auto& o) { return !o.empty(); }));
     EXPECT_EQ(apexes, scene.vertices.size() / 3);  // one corner of each triangle
     const std::vector<Vec3> positions = world_positions(clip.skeleton, motion);
     for (int f = 0; f < motion.frame_count; f += 7) {
@@ -292,7 +309,8 @@ TEST(FbxWriter, TheStickFigureIsSkinnedToTheJoints) {
       for (size_t v = 0; v < figure.size(); ++v) {
         if (on_joints[v].empty()) continue;
         double nearest = std::numeric_limits<double>::infinity();
-        for (int j : on_joints[v]) nearest = std::min(nearest, (figure[v] - positions[static_cast<size_t>(f * n + j)]).norm());
+        for (int j : on_joints[v])
+          nearest = std::min(nearest, (figure[v] - positions[static_cast<size_t>(f * n + j)]).norm());
         EXPECT_LT(nearest, 1e-5) << file << " frame " << f << " vertex " << v;
       }
     }
@@ -307,7 +325,8 @@ TEST(FbxWriter, WithoutTheStickFigureOnlyTheSkeletonAndItsAnimation) {
   EXPECT_TRUE(scene.vertices.empty());
   EXPECT_TRUE(scene.clusters.empty());
   EXPECT_TRUE(scene.bind_pose.empty());
-  for (const char* type : {"Geometry", "Deformer", "Pose"}) EXPECT_FALSE(test::find_record(test::find_record(scene.records, "Objects")->records, type)) << type;
+  for (const char* type : {"Geometry", "Deformer", "Pose"})
+    EXPECT_FALSE(test::find_record(test::find_record(scene.records, "Objects")->records, type)) << type;
   EXPECT_LT(max_world_error(scene, clip.skeleton, clip.motion), 1e-5);
 }
 
@@ -348,8 +367,8 @@ TEST(FbxWriter, TheRootTurnsAboutTheVerticalOutermost) {
   Motion motion = clip.motion.slice(0, 80);
   for (int f = 0; f < motion.frame_count; ++f) {
     const double heading = 4.0 * std::numbers::pi * f / motion.frame_count;
-    motion.rotations(f)[0] = Quat(Eigen::AngleAxisd(heading, Vec3::UnitY())) * Quat(Eigen::AngleAxisd(0.2, Vec3::UnitX())) *
-                             Quat(Eigen::AngleAxisd(-0.1, Vec3::UnitZ()));
+    motion.rotations(f)[0] = Quat(Eigen::AngleAxisd(heading, Vec3::UnitY())) *
+                             Quat(Eigen::AngleAxisd(0.2, Vec3::UnitX())) * Quat(Eigen::AngleAxisd(-0.1, Vec3::UnitZ()));
   }
   const FbxScene scene = written(clip.skeleton, motion);
   for (const auto& [key, m] : scene.models) {
@@ -412,7 +431,8 @@ TEST(FbxWriter, RandomRotationsGiveContinuousEulerKeysAndTheSamePositions) {
       if (property != "Lcl Rotation") continue;
       ++rotation_nodes;
       for (int a = 0; a < 3; ++a) {
-        for (size_t k = 1; k < curves.values[a].size(); ++k) EXPECT_LE(std::abs(curves.values[a][k] - curves.values[a][k - 1]), 180.001f);
+        for (size_t k = 1; k < curves.values[a].size(); ++k)
+          EXPECT_LE(std::abs(curves.values[a][k] - curves.values[a][k - 1]), 180.001f);
       }
     }
     EXPECT_GT(rotation_nodes, 20);
@@ -424,7 +444,10 @@ TEST(FbxWriter, RandomRotationsGiveContinuousEulerKeysAndTheSamePositions) {
 
 TEST(FbxWriter, KeyTimesAreFbxTicksAndTheRateItsTimeMode) {
   const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
-  for (const auto& [fps, mode] : std::vector<std::pair<double, double>>{{30.0, 6.0}, {120.0, 1.0}, {24.5, 14.0}}) {
+  // FBX's TimeMode values: eFrames120 1, eFrames60 3, eFrames30 6, ePAL (25) 10, eFrames24 11,
+  // eCustom 14.
+  for (const auto& [fps, mode] : std::vector<std::pair<double, double>>{
+           {30.0, 6.0}, {120.0, 1.0}, {60.0, 3.0}, {25.0, 10.0}, {24.0, 11.0}, {24.5, 14.0}}) {
     Motion motion = clip.motion.slice(0, 10);
     motion.fps = fps;
     const FbxScene scene = written(clip.skeleton, motion);
@@ -432,16 +455,23 @@ TEST(FbxWriter, KeyTimesAreFbxTicksAndTheRateItsTimeMode) {
     EXPECT_EQ(scene.settings.at("CustomFrameRate"), std::vector<double>{fps});
     const auto& [model, property, curves] = scene.stack_curves.at(scene.stacks[0].second).front();
     ASSERT_EQ(curves.times[0].size(), 10u);
-    for (int f = 0; f < 10; ++f) EXPECT_NEAR(static_cast<double>(curves.times[0][f]), f * 46186158000.0 / fps, 0.5) << fps;
+    for (int f = 0; f < 10; ++f)
+      EXPECT_NEAR(static_cast<double>(curves.times[0][f]), f * 46186158000.0 / fps, 0.5) << fps;
+    // Keys interpolated linearly between frames: FBX's eInterpolationLinear (0x4), one attribute
+    // shared by every key.
+    EXPECT_EQ(curves.flags, std::vector<std::int32_t>{0x4});
+    EXPECT_EQ(curves.flag_keys, std::vector<std::int32_t>{10});
     EXPECT_EQ(scene.settings.at("TimeSpanStop"), std::vector<double>{static_cast<double>(curves.times[0].back())});
   }
 }
 
-// A character's animation set: a stack per motion, each keying the same joints, read back by
-// Open Asset Import Library (the project's FBX reader) to the motions' own joint positions.
+// A character's animation set: a stack per motion, each keying the same joints at its own rate
+// (the file's TimeMode is the first's), read back by Open Asset Import Library (the project's FBX
+// reader) to the motions' own joint positions and rates.
 TEST(FbxWriter, SeveralMotionsAreAStackEachThatAnFbxReaderReadsBack) {
   const Clip walk = test::load_data_clip("cmu/16/16_15.amc");
-  const Clip jog = test::load_data_clip("cmu/16/16_35.amc");
+  Clip jog = test::load_data_clip("cmu/16/16_35.amc");
+  jog.motion.fps = 30.0;  // its frames played at another rate than the walk's 120
   const std::vector<FbxAnimation> animations{{"walk", &walk.motion}, {"jog", &jog.motion}, {"walk", &walk.motion}};
   auto bytes = write_fbx(walk.skeleton, animations);
   ASSERT_TRUE(bytes.ok()) << bytes.error().message;
@@ -452,6 +482,15 @@ TEST(FbxWriter, SeveralMotionsAreAStackEachThatAnFbxReaderReadsBack) {
   EXPECT_EQ(scene.stacks[2].first, "walk_2");
   EXPECT_EQ(scene.stack_curves.at(scene.stacks[0].second).size(), scene.stack_curves.at(scene.stacks[1].second).size());
   EXPECT_LT(max_world_error(scene, walk.skeleton, jog.motion, 1), 1e-5);
+  EXPECT_EQ(scene.settings.at("TimeMode"), std::vector<double>{1.0});  // 120, the first's
+  for (size_t stack = 0; stack < 2; ++stack) {
+    const double fps = stack == 0 ? 120.0 : 30.0;
+    const auto& [model, property, curves] = scene.stack_curves.at(scene.stacks[stack].second).front();
+    for (size_t f = 0; f < curves.times[0].size(); ++f) {
+      EXPECT_EQ(curves.times[0][f], static_cast<std::int64_t>(f) * static_cast<std::int64_t>(46186158000.0 / fps))
+          << stack;
+    }
+  }
 
   auto clips = clips_from_fbx(*bytes, "set.fbx", FbxImportSettings{});
   ASSERT_TRUE(clips.ok()) << clips.error().message;
@@ -473,7 +512,8 @@ TEST(FbxWriter, WithoutFramesTheSkeletonIsStillWritten) {
   const auto world = still.world(0, 0);
   for (int j = 1; j < clip.skeleton.joint_count(); ++j) {
     const JointDef& joint = clip.skeleton.joint(j);
-    const Vec3 offset = world.at(joint.name).translation() - world.at(clip.skeleton.joint(joint.parent).name).translation();
+    const Vec3 offset =
+        world.at(joint.name).translation() - world.at(clip.skeleton.joint(joint.parent).name).translation();
     EXPECT_LT((offset / 100.0 - joint.rest_offset_m).norm(), 1e-9) << joint.name;
   }
 }
@@ -484,24 +524,38 @@ TEST(FbxWriter, WithoutFramesTheSkeletonIsStillWritten) {
 TEST(FbxWriter, NamesAreRepairedAndKeptApart) {
   const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
   std::vector<JointDef> joints(clip.skeleton.joints().begin(), clip.skeleton.joints().end());
-  joints[1].name = "H\xfc" "fte";
-  joints[2].name = "H\xe4" "fte";
+  joints[1].name =
+      "H\xfc"
+      "fte";
+  joints[2].name =
+      "H\xe4"
+      "fte";
   joints[3].name = std::string("a\0\1Model", 8);
-  auto bytes = write_fbx(Skeleton(joints), clip.motion, std::string("H\xfc" "pfen\0\1x", 9));
+  auto bytes = write_fbx(Skeleton(joints), clip.motion,
+                         std::string("H\xfc"
+                                     "pfen\0\1x",
+                                     9));
   ASSERT_TRUE(bytes.ok());
   const FbxScene scene(*bytes);
-  EXPECT_EQ(scene.stacks.at(0).first, "H\xef\xbf\xbd" "pfen__x");
+  EXPECT_EQ(scene.stacks.at(0).first,
+            "H\xef\xbf\xbd"
+            "pfen__x");
   std::set<std::string> names;
   for (const auto& [key, m] : scene.models) names.insert(m.name);
   EXPECT_EQ(names.size(), scene.models.size());
-  for (const char* name : {"H\xef\xbf\xbd" "fte", "H\xef\xbf\xbd" "fte_2", "a__Model"}) EXPECT_TRUE(names.count(name)) << name;
+  for (const char* name : {"H\xef\xbf\xbd"
+                           "fte",
+                           "H\xef\xbf\xbd"
+                           "fte_2",
+                           "a__Model"})
+    EXPECT_TRUE(names.count(name)) << name;
 }
 
 TEST(FbxWriter, AnAnimationWithoutANameOrThatDoesNotFitIsAnError) {
   const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
   auto unnamed = write_fbx(clip.skeleton, clip.motion, "");
   ASSERT_FALSE(unnamed.ok());
-  EXPECT_EQ(unnamed.error().message, "an FBX animation needs a name");
+  EXPECT_EQ(unnamed.error().message, "every FBX animation needs a name");
   const Clip other = test::with_fingers(clip);  // more joints
   auto misfit = write_fbx(clip.skeleton, other.motion, "other");
   ASSERT_FALSE(misfit.ok());

@@ -44,7 +44,8 @@ TEST(KeyedJoints, JointsAnyMotionTurnsOrMovesAreKeyedAndEndSitesNever) {
   const Clip clip = test::import_bvh(test::static_root_bvh(plain));
   Motion still(clip.skeleton, 3, 30.0);  // identity rotations, rest translations
   for (int f = 0; f < 3; ++f) {
-    for (int j : clip.skeleton.translated_joints()) still.translations(f)[clip.skeleton.translation_slot(j)] = clip.skeleton.joint(j).rest_offset_m;
+    for (int j : clip.skeleton.translated_joints())
+      still.translations(f)[clip.skeleton.translation_slot(j)] = clip.skeleton.joint(j).rest_offset_m;
   }
   Motion bent = still;
   const int knee = *clip.skeleton.find("ltibia");

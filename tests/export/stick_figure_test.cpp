@@ -29,7 +29,7 @@ TEST(StickFigure, AnOctahedronPerBoneBoundToItsParent) {
     const Vec3 &a = figure.positions[t], &b = figure.positions[t + 1], &c = figure.positions[t + 2];
     const Vec3& n = figure.normals[t];
     EXPECT_NEAR(n.norm(), 1.0, 1e-12);
-    EXPECT_GT((b - a).cross(c - a).dot(n), 0.0);  // counter-clockwise seen from where the normal points
+    EXPECT_GT((b - a).cross(c - a).dot(n), 0.0);            // counter-clockwise seen from where the normal points
     EXPECT_EQ(figure.joints[t + 1], figure.joints[t + 2]);  // the ring's corners, the bone's joint
   }
   // Each bone's 24 vertices: its apexes are its joints; its other corners within 3 cm of its axis.
@@ -39,7 +39,8 @@ TEST(StickFigure, AnOctahedronPerBoneBoundToItsParent) {
     int child = -1;
     for (size_t v = start; v < start + 24; ++v) {
       for (int j = 1; j < clip.skeleton.joint_count(); ++j) {
-        if (clip.skeleton.parent(j) == parent && (figure.positions[v] - rest[static_cast<size_t>(j)]).norm() < 1e-12) child = j;
+        if (clip.skeleton.parent(j) == parent && (figure.positions[v] - rest[static_cast<size_t>(j)]).norm() < 1e-12)
+          child = j;
       }
     }
     ASSERT_GE(child, 0) << "no child joint is an apex of the bone from " << clip.skeleton.joint(parent).name;
@@ -52,7 +53,8 @@ TEST(StickFigure, AnOctahedronPerBoneBoundToItsParent) {
       on_tail += (p - tail).norm() < 1e-12;
       if ((p - tail).norm() < 1e-12) {  // the tip: bound to a child of the joint standing there
         const int bound = figure.joints[v];
-        EXPECT_TRUE(bound > 0 && clip.skeleton.parent(bound) == parent && (rest[static_cast<size_t>(bound)] - p).norm() < 1e-12);
+        EXPECT_TRUE(bound > 0 && clip.skeleton.parent(bound) == parent &&
+                    (rest[static_cast<size_t>(bound)] - p).norm() < 1e-12);
       } else {
         EXPECT_EQ(figure.joints[v], parent);
       }

@@ -283,6 +283,10 @@ try {
     (await (await fetch(a)).arrayBuffer()).byteLength, (await (await fetch(b)).arrayBuffer()).byteLength], [glbHref, bareHref]);
   check(bareHref.includes('figure=0') && bare < figured,
     `with the no-figure box checked the glTF leaves the stick figure out (${bareHref}: ${bare} bytes, ${figured} with it)`);
+  const bareFbxHref = await page.getAttribute('[data-testid=download-fbx]', 'href');
+  const bareFbx = await page.evaluate(async (h) => new TextDecoder('latin1').decode(await (await fetch(h)).arrayBuffer()), bareFbxHref);
+  check(bareFbxHref.includes('figure=0') && bareFbx.startsWith('Kaydara FBX Binary') && !bareFbx.includes('Geometry'),
+    `with the no-figure box checked the FBX has no mesh (${bareFbxHref})`);
   await page.uncheck('[data-testid=no-figure]');
   await page.check('[data-testid=root-motion]');
   const rootMotionHref = await page.getAttribute('[data-testid=download]', 'href');

@@ -16,7 +16,7 @@ constexpr unsigned char kFooterId[16] = {0xfa, 0xbc, 0xab, 0x09, 0xd0, 0xc8, 0xd
                                          0xb1, 0x76, 0xfb, 0x83, 0x1c, 0xf7, 0x26, 0x7e};
 constexpr unsigned char kFooterMagic[16] = {0xf8, 0x5a, 0x8c, 0x6a, 0xde, 0xf5, 0xd9, 0x7e,
                                             0xec, 0xe9, 0x0c, 0xe3, 0x75, 0x8f, 0x29, 0x0b};
-constexpr size_t kNullRecord = 13;  // 7.4: three uint32 and a name length, all zero
+constexpr size_t kNullRecord = 13;     // 7.4: three uint32 and a name length, all zero
 constexpr size_t kCompressFrom = 128;  // arrays of this many bytes or more are deflated (as Blender does)
 
 class Encoder {
@@ -51,8 +51,8 @@ class Encoder {
     if (size >= kCompressFrom && size <= std::numeric_limits<uLong>::max()) {
       uLongf packed_size = compressBound(static_cast<uLong>(size));
       std::string packed(packed_size, '\0');
-      if (compress2(reinterpret_cast<Bytef*>(packed.data()), &packed_size, reinterpret_cast<const Bytef*>(values.data()),
-                    static_cast<uLong>(size), Z_BEST_SPEED) == Z_OK &&
+      if (compress2(reinterpret_cast<Bytef*>(packed.data()), &packed_size,
+                    reinterpret_cast<const Bytef*>(values.data()), static_cast<uLong>(size), Z_BEST_SPEED) == Z_OK &&
           packed_size < size) {
         put(std::uint32_t{1});
         put(static_cast<std::uint32_t>(packed_size));
@@ -96,7 +96,8 @@ class Encoder {
   }
 
   Status record(const FbxRecord& r) {
-    if (r.name.size() > 255) return Error{"", 0, fmt::format("FBX record name '{}...' is over 255 bytes", r.name.substr(0, 40))};
+    if (r.name.size() > 255)
+      return Error{"", 0, fmt::format("FBX record name '{}...' is over 255 bytes", r.name.substr(0, 40))};
     const size_t start = size();
     put(std::uint32_t{0});  // the end's offset, patched below
     put(static_cast<std::uint32_t>(r.values.size()));
@@ -116,7 +117,9 @@ class Encoder {
     return Ok{};
   }
 
-  static Error too_large() { return Error{"", 0, "the FBX file would be over 4 GB, FBX 7.4's limit: write fewer frames"}; }
+  static Error too_large() {
+    return Error{"", 0, "the FBX file would be over 4 GB, FBX 7.4's limit: write fewer frames"};
+  }
 
  private:
   std::string out_;

@@ -30,6 +30,7 @@
 #include <string>
 
 #include "motiongraph/core/error.h"
+#include "motiongraph/export/keyed_joints.h"
 #include "motiongraph/motion/motion.h"
 
 namespace mg {
@@ -38,10 +39,7 @@ struct FbxWriteSettings {
   bool stick_figure = true;  // a mesh skinned to the joints (false: the skeleton and its animation only)
 };
 
-struct FbxAnimation {
-  std::string name;  // not empty; names that repeat get "_2", "_3"...
-  const Motion* motion = nullptr;
-};
+using FbxAnimation = ExportAnimation;  // a stack each
 
 // The .fbx bytes: the skeleton at rest as its first animation's first frame has it, and one
 // animation stack per motion with frames (none without). Fails on a motion that does not fit the

@@ -102,17 +102,11 @@ Result<std::string> write_glb(const Skeleton& skeleton, const Motion& motion, co
 
 Result<std::string> write_glb(const Skeleton& skeleton, std::span<const GltfAnimation> animations,
                               const GltfWriteSettings& settings) {
-  std::vector<const GltfAnimation*> played;  // those with frames
-  for (const GltfAnimation& a : animations) {
-    if (a.name.empty()) return Error{"", 0, "a glTF animation needs a name"};
-    if (!a.motion) return Error{"", 0, fmt::format("glTF animation '{}' has no motion", a.name)};
-    if (auto s = check_fits(skeleton, *a.motion); !s) {
-      return Error{"", 0, fmt::format("animation '{}': {}", a.name, s.error().message)};
-    }
-    if (a.motion->frame_count > 0) played.push_back(&a);
-  }
+  auto checked = played_animations(skeleton, animations, "glTF");
+  if (!checked) return checked.error();
+  const std::vector<const ExportAnimation*>& played = *checked;
   std::vector<const Motion*> motions;
-  for (const GltfAnimation* a : played) motions.push_back(a->motion);
+  for (const ExportAnimation* a : played) motions.push_back(a->motion);
   const Motion* first = motions.empty() ? nullptr : motions.front();
   tinygltf::Model model;
   model.asset.version = "2.0";
@@ -219,7 +213,7 @@ Result<std::string> write_glb(const Skeleton& skeleton, std::span<const GltfAnim
 
   const KeyedJoints keyed = keyed_joints(skeleton, motions);
   std::vector<std::string> names;
-  for (const GltfAnimation* a : played) {
+  for (const ExportAnimation* a : played) {
     const Motion& motion = *a->motion;
     tinygltf::Animation animation;
     animation.name = unique_name(valid_utf8(a->name), [&](const std::string& n) {

@@ -28,6 +28,7 @@
 #include <string>
 
 #include "motiongraph/core/error.h"
+#include "motiongraph/export/keyed_joints.h"
 #include "motiongraph/motion/motion.h"
 
 namespace mg {
@@ -36,10 +37,7 @@ struct GltfWriteSettings {
   bool bone_mesh = true;  // the stick figure (false: the skeleton and its animations only)
 };
 
-struct GltfAnimation {
-  std::string name;  // not empty; names that repeat get "_2", "_3"...
-  const Motion* motion = nullptr;
-};
+using GltfAnimation = ExportAnimation;
 
 // The .glb bytes: the skeleton at rest as its first animation's first frame has it, and one
 // animation per motion with frames (none without). Fails on a motion that does not fit the

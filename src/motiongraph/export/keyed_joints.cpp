@@ -1,6 +1,23 @@
 #include "motiongraph/export/keyed_joints.h"
 
+#include <fmt/format.h>
+
 namespace mg {
+
+Result<std::vector<const ExportAnimation*>> played_animations(const Skeleton& skeleton,
+                                                              std::span<const ExportAnimation> animations,
+                                                              const char* format) {
+  std::vector<const ExportAnimation*> played;
+  for (const ExportAnimation& a : animations) {
+    if (a.name.empty()) return Error{"", 0, fmt::format("every {} animation needs a name", format)};
+    if (!a.motion) return Error{"", 0, fmt::format("{} animation '{}' has no motion", format, a.name)};
+    if (auto s = check_fits(skeleton, *a.motion); !s) {
+      return Error{"", 0, fmt::format("animation '{}': {}", a.name, s.error().message)};
+    }
+    if (a.motion->frame_count > 0) played.push_back(&a);
+  }
+  return played;
+}
 
 Vec3 rest_node_translation(const Skeleton& skeleton, const Motion* first, int joint) {
   const int slot = skeleton.translation_slot(joint);

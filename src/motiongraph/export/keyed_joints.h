@@ -1,14 +1,28 @@
 // What the scene writers (glTF, FBX) share about a skeleton written as a node hierarchy with
-// animations: the rest pose its nodes hold, joint 0 below the static ancestors a trajectory joint
-// was found under (skeleton.h), and which joints the animations key.
+// animations: the animations they take, the rest pose its nodes hold, joint 0 below the static
+// ancestors a trajectory joint was found under (skeleton.h), and which joints the animations key.
 #pragma once
 
 #include <span>
+#include <string>
 #include <vector>
 
+#include "motiongraph/core/error.h"
 #include "motiongraph/motion/motion.h"
 
 namespace mg {
+
+// A motion to write as a named animation (glTF) or animation stack (FBX).
+struct ExportAnimation {
+  std::string name;  // not empty; names that repeat get "_2", "_3"...
+  const Motion* motion = nullptr;
+};
+
+// Those of the animations with frames, after checking that each has a name and a motion that fits
+// the skeleton (`format` names the file's format in the messages).
+Result<std::vector<const ExportAnimation*>> played_animations(const Skeleton& skeleton,
+                                                              std::span<const ExportAnimation> animations,
+                                                              const char* format);
 
 // The node's translation at rest (metres, its parent node's frame): the rest offset, or for a
 // joint with animated translation the first animation's first frame's (`first` null: none); a

@@ -118,20 +118,12 @@ Status write_animation_set(const std::string& path, std::span<const NamedMotion>
     }
   }
   const Skeleton& skeleton = added.empty() ? *motions.front().skeleton : added.front().skeleton;
-  Result<std::string> bytes = std::string();
-  if (ext == ".glb") {
-    std::vector<GltfAnimation> animations;
-    for (size_t i = 0; i < motions.size(); ++i) {
-      animations.push_back({motions[i].name, added.empty() ? motions[i].motion : &added[i].motion});
-    }
-    bytes = write_glb(skeleton, animations, GltfWriteSettings{settings.figure});
-  } else {
-    std::vector<FbxAnimation> animations;
-    for (size_t i = 0; i < motions.size(); ++i) {
-      animations.push_back({motions[i].name, added.empty() ? motions[i].motion : &added[i].motion});
-    }
-    bytes = write_fbx(skeleton, animations, FbxWriteSettings{settings.figure});
+  std::vector<ExportAnimation> animations;
+  for (size_t i = 0; i < motions.size(); ++i) {
+    animations.push_back({motions[i].name, added.empty() ? motions[i].motion : &added[i].motion});
   }
+  auto bytes = ext == ".glb" ? write_glb(skeleton, animations, GltfWriteSettings{settings.figure})
+                             : write_fbx(skeleton, animations, FbxWriteSettings{settings.figure});
   if (!bytes) return Error{path, 0, bytes.error().message};
   return write_file_atomic(path, *bytes);
 }

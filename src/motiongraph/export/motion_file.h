@@ -26,7 +26,7 @@ struct RootMotionOutput {
 
 // How motion is written, beyond the format its file's extension names.
 struct MotionFileSettings {
-  double units_per_metre = 1.0;  // BVH length units per metre (glTF and JSON are in metres)
+  double units_per_metre = 1.0;  // BVH length units per metre (glTF and JSON are in metres, FBX in centimetres)
   bool figure = true;            // glTF, FBX: a stick figure skinned to the joints (false: the skeleton and its animation only)
   std::optional<RootMotionOutput> root_motion;  // a root-motion joint added above the root first
 
