@@ -5,8 +5,7 @@
 #include <fmt/format.h>
 
 #include "motiongraph/export/bvh_writer.h"
-#include "motiongraph/export/fbx_writer.h"
-#include "motiongraph/export/gltf_writer.h"
+#include "motiongraph/export/motion_file.h"
 #include "motiongraph/motion/root_motion.h"
 #include "motiongraph/export/matrix_png.h"
 #include "motiongraph/graph/candidates.h"
@@ -63,9 +62,8 @@ std::optional<std::string> SynthesisService::result_file(int result, FileFormat 
   }
   if (format == FileFormat::kBvh) return write_bvh(skeleton, motion, BvhWriteSettings{});
   // The animation is named as the file downloads.
-  const std::string name = fmt::format("motiongraph-{}", result);
-  auto bytes = format == FileFormat::kGlb ? write_glb(skeleton, motion, name, GltfWriteSettings{figure})
-                                          : write_fbx(skeleton, motion, name, FbxWriteSettings{figure});
+  const ExportAnimation animation{fmt::format("motiongraph-{}", result), &motion};
+  auto bytes = scene_bytes(format == FileFormat::kGlb ? ".glb" : ".fbx", skeleton, std::span(&animation, 1), figure);
   if (!bytes) return std::nullopt;  // a recorded motion always fits the skeleton it was played on
   return std::move(*bytes);
 }

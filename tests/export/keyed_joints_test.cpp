@@ -39,6 +39,32 @@ TEST(KeyedJoints, BelowStaticAncestorsComposesBackToTheJointsTransform) {
   EXPECT_LT((ancestor_turn * below_static_ancestors(clip.skeleton, q)).angularDistance(q), 1e-12);
 }
 
+// At rest every node stands unturned below its parent: the static root where the file puts it,
+// the hips over the origin at their first frame's height below it, each other joint at its
+// first-frame translation from its parent.
+TEST(KeyedJoints, RestTransformsComposeTheNodesDownTheHierarchy) {
+  const Clip plain = test::load_data_clip("cmu/16/16_15.amc");
+  const Clip clip =
+      test::import_bvh(test::static_root_bvh(plain, Vec3(1.0, 0.2, -3.0), Quat(Eigen::AngleAxisd(0.7, Vec3::UnitY()))));
+  ASSERT_EQ(clip.skeleton.static_ancestors().size(), 1u);
+  const auto rest = rest_transforms(clip.skeleton, &clip.motion);
+  ASSERT_EQ(rest.size(), static_cast<size_t>(clip.skeleton.joint_count()) + 1);
+  const Quat ancestor_turn = clip.skeleton.static_ancestor_rotation();
+  EXPECT_LT((rest[0].translation() - clip.skeleton.static_ancestor_translation_m()).norm(), 1e-12);
+  EXPECT_LT(Quat(rest[0].rotation()).angularDistance(ancestor_turn), 1e-12);
+  const Vec3 hips = clip.motion.translations(0)[clip.skeleton.translation_slot(0)];
+  EXPECT_LT(std::abs(rest[1].translation().y() - hips.y()), 1e-9);
+  EXPECT_LT(Vec3(rest[1].translation().x(), 0.0, rest[1].translation().z()).norm(), 1e-9);
+  for (int j = 1; j < clip.skeleton.joint_count(); ++j) {
+    const Eigen::Affine3d& parent = rest[1 + static_cast<size_t>(clip.skeleton.parent(j))];
+    const int slot = clip.skeleton.translation_slot(j);
+    const Vec3 t = slot >= 0 ? clip.motion.translations(0)[slot] : clip.skeleton.joint(j).rest_offset_m;
+    EXPECT_LT((rest[1 + static_cast<size_t>(j)].translation() - (parent.translation() + parent.rotation() * t)).norm(),
+              1e-12);
+    EXPECT_LT(Quat(rest[1 + static_cast<size_t>(j)].rotation()).angularDistance(ancestor_turn), 1e-12);
+  }
+}
+
 TEST(KeyedJoints, JointsAnyMotionTurnsOrMovesAreKeyedAndEndSitesNever) {
   const Clip plain = test::load_data_clip("cmu/16/16_15.amc");
   const Clip clip = test::import_bvh(test::static_root_bvh(plain));

@@ -202,7 +202,7 @@ class Document {
 struct Models {
   std::vector<std::int64_t> ids;     // the ancestors', then the joints'
   std::vector<std::string> names;    // alike
-  std::vector<Affine> rest;          // alike: world transforms at rest (metres)
+  std::vector<Affine> rest;          // alike: world transforms at rest (metres; rest_transforms)
   std::vector<ComposeOrder> orders;  // the joints' rotation orders
   size_t first_joint = 0;            // the joints' place in the above
 
@@ -236,24 +236,19 @@ Models add_models(Document& doc, const Skeleton& skeleton, const Motion* first) 
     doc.connect(model, parent);
     m.ids.push_back(model);
   };
-  Affine above = Affine::Identity();
   for (const StaticAncestor& a : skeleton.static_ancestors()) {
     std::optional<Vec3> near;
     add(a.name, a.translation_m, euler_degrees(a.euler_order, a.rotation, near), a.euler_order,
         m.ids.empty() ? 0 : m.ids.back());
-    above = above * Eigen::Translation3d(a.translation_m) * a.rotation;
-    m.rest.push_back(above);
   }
   m.first_joint = m.ids.size();
   for (int j = 0; j < skeleton.joint_count(); ++j) {
     const JointDef& joint = skeleton.joint(j);
-    const Vec3 translation = rest_node_translation(skeleton, first, j);
     m.orders.push_back(j == 0 ? root_order(skeleton) : joint.euler_order);
     const std::int64_t parent = j > 0 ? m.joint(joint.parent) : m.first_joint > 0 ? m.ids[m.first_joint - 1] : 0;
-    add(joint.name, translation, Vec3::Zero(), m.orders.back(), parent);
-    const Affine parent_rest = j > 0 ? m.rest[m.first_joint + static_cast<size_t>(joint.parent)] : above;
-    m.rest.push_back(parent_rest * Eigen::Translation3d(translation));
+    add(joint.name, rest_node_translation(skeleton, first, j), Vec3::Zero(), m.orders.back(), parent);
   }
+  m.rest = rest_transforms(skeleton, first);
   return m;
 }
 

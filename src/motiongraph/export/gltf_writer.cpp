@@ -119,15 +119,13 @@ Result<std::string> write_glb(const Skeleton& skeleton, std::span<const GltfAnim
   const int first_joint = static_cast<int>(ancestors.size());
   const int joint_count = skeleton.joint_count();
   const int node_count = first_joint + joint_count;
-  std::vector<Affine> bind(static_cast<size_t>(node_count), Affine::Identity());
+  const std::vector<Affine> bind = rest_transforms(skeleton, first);
   for (int a = 0; a < first_joint; ++a) {
     tinygltf::Node node;
     node.name = valid_utf8(ancestors[a].name);
     node.translation = to_vector(ancestors[a].translation_m);
     if (!ancestors[a].rotation.isApprox(Quat::Identity(), 0.0)) node.rotation = to_vector(ancestors[a].rotation);
     if (a + 1 < node_count) node.children.push_back(a + 1);
-    const Affine local = Eigen::Translation3d(ancestors[a].translation_m) * ancestors[a].rotation;
-    bind[a] = a == 0 ? local : bind[a - 1] * local;
     model.nodes.push_back(std::move(node));
   }
   for (int j = 0; j < joint_count; ++j) {
@@ -136,9 +134,6 @@ Result<std::string> write_glb(const Skeleton& skeleton, std::span<const GltfAnim
     tinygltf::Node node;
     node.name = valid_utf8(joint.name);
     node.translation = to_vector(translation);
-    const Affine local{Eigen::Translation3d(translation)};
-    const int parent_node = j == 0 ? first_joint - 1 : first_joint + joint.parent;
-    bind[first_joint + j] = parent_node < 0 ? local : bind[parent_node] * local;
     if (j > 0) model.nodes[first_joint + joint.parent].children.push_back(first_joint + j);
     model.nodes.push_back(std::move(node));
   }

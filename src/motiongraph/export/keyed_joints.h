@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include "motiongraph/core/error.h"
 #include "motiongraph/motion/motion.h"
 
@@ -29,6 +31,10 @@ Result<std::vector<const ExportAnimation*>> played_animations(const Skeleton& sk
 // travelling root stands over the origin at that frame's height, re-expressed below the static
 // ancestors.
 Vec3 rest_node_translation(const Skeleton& skeleton, const Motion* first, int joint);
+
+// Every node's world transform at rest (metres): the static ancestors' (root first), then the
+// joints', each joint resting unturned at rest_node_translation.
+std::vector<Eigen::Affine3d> rest_transforms(const Skeleton& skeleton, const Motion* first);
 
 // Joint 0's transform in the file's hierarchy, below the static ancestors, from its transform
 // here (where they are composed in).

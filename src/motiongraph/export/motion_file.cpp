@@ -22,6 +22,13 @@ Status check_motion_output(const std::string& path) {
   return Ok{};
 }
 
+Result<std::string> scene_bytes(const std::string& ext, const Skeleton& skeleton,
+                                std::span<const ExportAnimation> animations, bool figure) {
+  if (ext == ".glb") return write_glb(skeleton, animations, GltfWriteSettings{figure});
+  if (ext == ".fbx") return write_fbx(skeleton, animations, FbxWriteSettings{figure});
+  return Error{"", 0, fmt::format("'{}' is no scene format (.glb, .fbx)", ext)};
+}
+
 Status MotionFileSettings::validate() const {
   BvhWriteSettings bvh;
   bvh.units_per_metre = units_per_metre;
@@ -56,9 +63,8 @@ Status write_motion(const std::string& path, const Skeleton& skeleton, const Mot
   if (ext == ".glb" || ext == ".fbx") {
     // The animation is named as the file (an engine lists every imported file's as its name).
     const std::string stem = std::filesystem::path(path).stem().string();
-    const std::string name = stem.empty() ? "motion" : stem;
-    auto bytes = ext == ".glb" ? write_glb(skeleton, motion, name, GltfWriteSettings{settings.figure})
-                               : write_fbx(skeleton, motion, name, FbxWriteSettings{settings.figure});
+    const ExportAnimation animation{stem.empty() ? "motion" : stem, &motion};
+    auto bytes = scene_bytes(ext, skeleton, std::span(&animation, 1), settings.figure);
     if (!bytes) return Error{path, 0, bytes.error().message};
     return write_file_atomic(path, *bytes);
   }
@@ -122,8 +128,7 @@ Status write_animation_set(const std::string& path, std::span<const NamedMotion>
   for (size_t i = 0; i < motions.size(); ++i) {
     animations.push_back({motions[i].name, added.empty() ? motions[i].motion : &added[i].motion});
   }
-  auto bytes = ext == ".glb" ? write_glb(skeleton, animations, GltfWriteSettings{settings.figure})
-                             : write_fbx(skeleton, animations, FbxWriteSettings{settings.figure});
+  auto bytes = scene_bytes(ext, skeleton, animations, settings.figure);
   if (!bytes) return Error{path, 0, bytes.error().message};
   return write_file_atomic(path, *bytes);
 }

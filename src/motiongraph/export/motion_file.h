@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "motiongraph/core/error.h"
+#include "motiongraph/export/keyed_joints.h"
 #include "motiongraph/export/positions_json.h"
 #include "motiongraph/motion/motion.h"
 #include "motiongraph/motion/root_motion.h"
@@ -17,6 +18,11 @@ namespace mg {
 
 // Fails unless the path ends in .bvh, .glb, .fbx or .json.
 Status check_motion_output(const std::string& path);
+
+// The bytes of a scene file, `ext` ".glb" (gltf_writer.h) or ".fbx" (fbx_writer.h), holding the
+// animations, with the stick figure when `figure`.
+Result<std::string> scene_bytes(const std::string& ext, const Skeleton& skeleton,
+                                std::span<const ExportAnimation> animations, bool figure);
 // A root-motion joint to add before writing (motion/root_motion.h), and where the skeleton faces
 // in its root's frame (synthesis/facing.h).
 struct RootMotionOutput {
