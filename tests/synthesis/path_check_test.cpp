@@ -55,6 +55,7 @@ TEST(PathCheck, SettingsAreValidated) {
                       +[](PathCheckSettings& x) { x.lost_m = 0.0; },
                       +[](PathCheckSettings& x) { x.min_travel_share = 1.5; },
                       +[](PathCheckSettings& x) { x.travel_speed_mps = 0.0; },
+                      +[](PathCheckSettings& x) { x.transition_penalty_m2 = -0.1; },
                       +[](PathCheckSettings& x) { x.synthesis.commit_s = 10.0; }}) {
     PathCheckSettings x;
     broken(x);
@@ -123,12 +124,14 @@ bool passes(const PathCheckPoint& p, double tolerance) {
   return p.graph && p.reached_end && p.mean_deviation_m <= tolerance;
 }
 
-// The search the check runs on each threshold's graph: Kovar's search alone.
+// The search the check runs on each threshold's graph: Kovar's search alone, transitions priced
+// at the check's own penalty.
 PathSynthesisSettings check_search(const PathCheckSettings& check) {
   PathSynthesisSettings search = check.synthesis;
   search.edit_path = false;
   search.progress_retries = 0;
   search.anchor_arc = false;
+  search.transition_penalty_m2 = check.transition_penalty_m2;
   return search;
 }
 

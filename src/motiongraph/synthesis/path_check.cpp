@@ -22,6 +22,9 @@ Status PathCheckSettings::validate() const {
     return Error{"", 0, "the path check's travelling share must be in [0, 1]"};
   }
   if (!(travel_speed_mps > 0.0)) return Error{"", 0, "the path check's travelling speed must be > 0"};
+  if (!(transition_penalty_m2 >= 0.0) || !std::isfinite(transition_penalty_m2)) {
+    return Error{"", 0, "the path check's transition penalty must be >= 0"};
+  }
   return synthesis.validate();
 }
 
@@ -106,6 +109,7 @@ Result<PathCheckPoint> probe_at(const MotionDatabase& db, const FrameFeatures& f
     search.edit_path = false;     // the graph is judged, not the edit that bends its motion,
     search.progress_retries = 0;  // nor another search pushing harder,
     search.anchor_arc = false;    // nor one that corrects its arc as it goes: Kovar's search alone
+    search.transition_penalty_m2 = check.transition_penalty_m2;
   }
   PathCheckPoint worse = point;
   std::array<double, 2> deviations = point.probe_deviations_m;

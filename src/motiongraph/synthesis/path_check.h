@@ -4,7 +4,7 @@
 // at 6.5 cm, where a few more transitions join its turning steps to its straight ones. So the
 // automatic threshold is checked by doing what a user will do: synthesize a test path (the
 // probe: 2 m straight, a half circle of 4 m radius to the right, one to the left, 2 m straight,
-// about 29 m, with `path`'s default search) and its mirror (left first) on the graph of the
+// about 29 m, with `path`'s default search, transitions priced as below) and its mirror (left first) on the graph of the
 // threshold, and raise the threshold in log-spaced steps towards the ceiling until both are
 // followed within `tolerance_m` mean deviation. Paths turn either way: one probe alone let a
 // few moved nodes flip a library's choice (subject 16 followed the probe 0.081 m off at 2.65
@@ -45,6 +45,10 @@ struct PathCheckSettings {
   double travel_speed_mps = 0.5;    // a clip piece travels when its root moves this fast on average
   bool mirrored = true;             // follow the probe's mirror too; a threshold is judged by the worse
   PathSynthesisSettings synthesis;  // the search `path` uses by default, once, its motion not edited
+  // ... but for the cost of a transition (m^2), when the graph's own walk is judged: the check
+  // asks whether the graph can turn, and `path`'s default (0.8) trades some of the walk's
+  // deviation for fewer blends, which the edit then takes back. The tolerance was set with 0.2.
+  double transition_penalty_m2 = 0.2;
 
   Status validate() const;
 };
