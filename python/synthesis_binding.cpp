@@ -75,6 +75,7 @@ PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<d
                  {"progress_retries", set(settings.progress_retries)},
                  {"retry_deviation", set(settings.retry_deviation_m)},
                  {"retry_horizon", set(settings.retry_horizon_s)},
+                 {"retry_tag_match", set(settings.retry_tag_match)},
                  {"path_edit", set(settings.edit_path)},
                  {"edit_max_turn", set(settings.path_edit.max_turn_deg_per_m)},
                  {"edit_round_corners", set(settings.path_edit.round_corners_m)},
@@ -188,7 +189,7 @@ void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
            "shape ('line:20', 'circle:5', 'figure8:4', 's-curve:100', 'square:10', 'zigzag:6') or file "
            "(PATH.json); segments ['TAG:FROM-TO', ...]; keywords horizon, commit, tag_penalty, tag_lookahead (0 to 1), max_expansions, "
            "beam, min_speed, transition_penalty, bridge_penalty, behind_penalty, progress_retries, retry_deviation (m), "
-           "retry_horizon (s), "
+           "retry_horizon (s), retry_tag_match (0 to 1), "
            "start_node, path_edit (bend the motion onto the path, default True), edit_max_turn (degrees per "
            "metre it may add), edit_round_corners (m), cleanup.")
       .def(

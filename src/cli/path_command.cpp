@@ -44,8 +44,10 @@ int run_path(const PathOptions& o) {
           : std::string();
   const int attempts = r["attempts"].get<int>();
   const std::string pushed =
-      attempts > 1 ? fmt::format(" after {} searches of the whole path (kept: {:g} s ahead, behind penalty {:g}{}{})",
+      attempts > 1 ? fmt::format(" after {} searches of the whole path (kept: {:g} s ahead, behind penalty {:g}, tag "
+                                 "penalty {:g}{}{})",
                                  attempts, r["horizon_s"].get<double>(), r["behind_penalty_m"].get<double>(),
+                                 r["tag_penalty_m2"].get<double>(),
                                  r["anchor_arc"].get<bool>() ? ", its arc corrected as it went" : "",
                                  r["edit_in_search"].get<bool>() ? ", the edit in the search" : "")
                    : std::string();
@@ -124,11 +126,14 @@ Command add_path_command(CLI::App& app) {
                   "When the motion does not reach the path's end, or takes longer over a segment (or over the "
                   "stretches no segment holds) than --min-speed (or the median speed of the type it asks for, where "
                   "slower) would, a second more (it dawdled), or "
-                  "follows it more than --retry-deviation off, search again up to this many times, looking --retry-horizon ahead: the "
+                  "follows it more than --retry-deviation off, or misses a segment's motion type (--retry-tag-match), "
+                  "search again up to this many times, looking --retry-horizon ahead: the "
                   "same search; with the search's arc corrected to the way along the path the walk has come; "
                   "--behind-penalty 4x; then the search sees where the path edit puts the walk, at 1x and 4x; then "
-                  "16x, 64x, ...; the first to reach the end without dawdling within --retry-deviation is "
-                  "kept, else the one reaching it (without dawdling if any does) with the least deviation")
+                  "16x, 64x, ...; while the best so far misses a type, --tag-penalty 4x the last retry's too; the "
+                  "first to reach the end without dawdling within --retry-deviation, missing no type, is "
+                  "kept, else the one reaching it (without dawdling if any does; then within --retry-deviation; then "
+                  "missing the fewest types) with the least deviation")
       ->capture_default_str();
   sub->add_option("--retry-horizon", o->settings.retry_horizon_s,
                   "Seconds of motion each search of the retries looks ahead (0: --horizon): at a sharp corner a "
@@ -137,6 +142,11 @@ Command add_path_command(CLI::App& app) {
   sub->add_option("--retry-deviation", o->settings.retry_deviation_m,
                   "Mean deviation (m) above which --progress-retries searches again (0: only when the end is not "
                   "reached or the motion dawdled)")
+      ->capture_default_str();
+  sub->add_option("--retry-tag-match", o->settings.retry_tag_match,
+                  "A segment of 2 s or more of motion whose frames carry the type it asks for (one the graph plays) "
+                  "less than this share of them missed it, and --progress-retries searches again (0: never for that)")
+      ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   sub->add_flag("!--no-path-edit", o->settings.edit_path,
                 "Keep the motion as the graph plays it; by default it is bent onto the path (Gleicher's motion path "

@@ -81,6 +81,22 @@ def test_tag_lookahead_reaches_the_path(cli, graph_file, graph, tmp_path):
     assert len(default) != len(blind) or np.max(np.abs(default.positions - blind.positions)) > 1e-3
 
 
+def test_retry_tag_match_reaches_the_path(cli, graph_file, graph, tmp_path):
+    """retry_tag_match is the path's --retry-tag-match: with the run priced too low to matter the
+    first search walks on; at 0 it is kept (one attempt, the CLI's motion), by default it is
+    searched again."""
+    cli("path", graph_file, *FIGURE8, "--tag-penalty", 0.01, "--retry-tag-match", 0, "-o", tmp_path / "cli.json")
+    want = read_json(tmp_path / "cli.json")
+    kept = graph.path(shape="figure8:4", segments=["walk:0-25", "run:25-51"], tag_penalty=0.01, retry_tag_match=0)
+    assert_positions_equal(kept, want)
+    assert kept.report["attempts"] == 1
+    again = graph.path(shape="figure8:4", segments=["walk:0-25", "run:25-51"], tag_penalty=0.01)
+    assert again.report["attempts"] > 1
+    assert again.report["tag_penalty_m2"] > 0.01
+    with pytest.raises(mg.Error, match="tag match"):
+        graph.path(shape="figure8:4", retry_tag_match=2)
+
+
 def test_walk_equals_the_cli(cli, graph_file, graph, tmp_path):
     cli("walk", graph_file, "--from", 0, "--to", 7, "--cost", "hybrid", "--seed", 3, "--min-frames", 60,
         "-o", tmp_path / "cli.json", "--report", tmp_path / "r.json")

@@ -212,6 +212,58 @@ TEST(PathSynthesis, UnknownTagsAndBadSettingsAreErrors) {
   EXPECT_FALSE(bad.validate().ok());
   bad.retry_horizon_s = 0.0;  // the first search's
   EXPECT_TRUE(bad.validate().ok());
+  for (double share : {-0.1, 1.5, std::nan("")}) {
+    bad.retry_tag_match = share;
+    EXPECT_FALSE(bad.validate().ok()) << share;
+  }
+}
+
+// A walk that misses the motion type a segment asks for is searched again, the tag priced 4x
+// higher at each retry while the best so far misses it: asked to walk then run round subject 16's
+// figure 8 with a tag penalty too low to matter, the first search walks on (reaching the end,
+// close to the path); the retries run.
+TEST(PathSynthesis, AWalkThatMissesTheTypeAskedIsSearchedAgainPricingItHigher) {
+  const auto& s = test::subject16();
+  auto shape = make_shape("figure8:4");
+  ASSERT_TRUE(shape.ok());
+  const double half = shape->length_m() / 2;
+  auto path = FloorPath::create(shape->points(), {{0.0, half, "walk"}, {half, shape->length_m() + 1.0, "run"}});
+  ASSERT_TRUE(path.ok());
+  PathSynthesisSettings once;
+  once.tag_penalty_m2 = 0.01;
+  once.progress_retries = 0;
+  auto missed = synthesize_path(s.context(), *path, once);
+  ASSERT_TRUE(missed.ok()) << missed.error().to_string();
+  ASSERT_TRUE(missed->reached_end);
+  ASSERT_LE(missed->mean_deviation_m, once.retry_deviation_m);
+  const auto& run = missed->segment_tag_matches[1];
+  ASSERT_GE(run.frames, kTagMissMinSeconds * s.context().db->fps);
+  ASSERT_LT(run.matched, once.retry_tag_match * run.frames);  // walked on
+  EXPECT_EQ(missed->tag_penalty_m2, once.tag_penalty_m2);
+
+  PathSynthesisSettings pushing = once;
+  pushing.progress_retries = 4;
+  auto ran = synthesize_path(s.context(), *path, pushing);
+  ASSERT_TRUE(ran.ok());
+  EXPECT_GT(ran->attempts, 1);
+  EXPECT_TRUE(ran->reached_end);
+  const auto& running = ran->segment_tag_matches[1];
+  EXPECT_GE(running.matched, pushing.retry_tag_match * running.frames) << running.matched << " of " << running.frames;
+  // The kept attempt's penalty: 4x per retry made while the best missed the run.
+  bool stepped = false;
+  for (double p = 4.0 * once.tag_penalty_m2; p <= std::pow(4.0, pushing.progress_retries) * once.tag_penalty_m2;
+       p *= 4.0) {
+    stepped = stepped || std::abs(ran->tag_penalty_m2 - p) < 1e-12;
+  }
+  EXPECT_TRUE(stepped) << ran->tag_penalty_m2;
+
+  // Not for a missed type: the first search is good enough.
+  PathSynthesisSettings indifferent = pushing;
+  indifferent.retry_tag_match = 0.0;
+  auto walked = synthesize_path(s.context(), *path, indifferent);
+  ASSERT_TRUE(walked.ok());
+  EXPECT_EQ(walked->attempts, 1);
+  EXPECT_EQ(walked->segment_tag_matches[1].matched, run.matched);
 }
 
 // A root that sways 0.4 m from side to side at 1 Hz travels half as far again as it gets along

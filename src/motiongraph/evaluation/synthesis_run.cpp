@@ -173,6 +173,7 @@ Result<SynthesizedMotion> run_path_synthesis(const SynthesisContext& context, co
                 {"budget_exhausted_searches", result->budget_exhausted},
                 {"attempts", result->attempts},
                 {"behind_penalty_m", result->behind_penalty_m},
+                {"tag_penalty_m2", result->tag_penalty_m2},
                 {"horizon_s", result->horizon_s},
                 {"edit_in_search", result->edit_in_search},
                 {"anchor_arc", result->anchor_arc},

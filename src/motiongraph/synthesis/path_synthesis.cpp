@@ -27,6 +27,9 @@ Status PathSynthesisSettings::validate() const {
   if (max_expansions < 1 || start_candidates < 1) return Error{"", 0, "path search: budgets must be positive"};
   if (progress_retries < 0) return Error{"", 0, "path search: the retries must be >= 0"};
   if (!(retry_deviation_m >= 0.0)) return Error{"", 0, "path search: the deviation that asks for a retry must be >= 0"};
+  if (!(retry_tag_match >= 0.0 && retry_tag_match <= 1.0)) {
+    return Error{"", 0, "path search: the tag match that asks for a retry must be from 0 to 1"};
+  }
   if (!(retry_horizon_s >= 0.0) || (retry_horizon_s > 0.0 && retry_horizon_s < commit_s)) {
     return Error{"", 0, "path search: the retries' horizon must be 0 (the first search's) or at least commit_s"};
   }
@@ -36,6 +39,22 @@ Status PathSynthesisSettings::validate() const {
   }
   return path_edit.validate();
 }
+
+namespace {
+
+// Whether any frame of the graph's clip pieces carries one of `mask`'s tags.
+bool graph_plays(const SynthesisContext& context, TagMask mask) {
+  const MotionGraph& graph = *context.graph;
+  for (int e = 0; e < graph.edge_count(); ++e) {
+    if (graph.edges[e].transition) continue;
+    for (TagMask tags : context.tracks.tags_of(e)) {
+      if ((tags & mask) != 0) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
 
 double typical_speed_mps(const SynthesisContext& context, TagMask mask) {
   std::vector<double> steps;
@@ -348,6 +367,7 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
   }
   result.tag_match = in_segments > 0 ? static_cast<double>(matched) / in_segments : 1.0;
   result.behind_penalty_m = settings.behind_penalty_m;
+  result.tag_penalty_m2 = settings.tag_penalty_m2;
   result.horizon_s = settings.horizon_s;
   result.edit_in_search = edit_in_search;
   result.anchor_arc = settings.anchor_arc;
@@ -402,21 +422,44 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
     }
     return (r.motion.frame_count - in_segments) / fps > slowest.back();
   };
-  auto good = [&](const PathSynthesisResult& r) {
-    return r.reached_end && !dawdled(r) &&
-           (settings.retry_deviation_m <= 0.0 || r.mean_deviation_m <= settings.retry_deviation_m);
+  // Missed: segments of kTagMissMinSeconds or more whose type, one the graph plays, carries
+  // less than retry_tag_match of their frames.
+  std::vector<bool> played(path.segments().size(), false);
+  for (size_t i = 0; i < played.size(); ++i) {
+    auto mask = context.tag_mask(path.segments()[i].tag);
+    played[i] = mask && graph_plays(context, *mask);
+  }
+  auto missed = [&](const PathSynthesisResult& r) {
+    int count = 0;
+    for (size_t i = 0; i < r.segment_tag_matches.size() && i < played.size(); ++i) {
+      const auto& m = r.segment_tag_matches[i];
+      if (played[i] && m.frames >= kTagMissMinSeconds * context.db->fps &&
+          m.matched < settings.retry_tag_match * m.frames) {
+        ++count;
+      }
+    }
+    return count;
   };
+  auto within = [&](const PathSynthesisResult& r) {
+    return settings.retry_deviation_m <= 0.0 || r.mean_deviation_m <= settings.retry_deviation_m;
+  };
+  auto good = [&](const PathSynthesisResult& r) { return r.reached_end && !dawdled(r) && within(r) && missed(r) == 0; };
   auto better = [&](const PathSynthesisResult& r, const PathSynthesisResult& than) {
     if (r.reached_end != than.reached_end) return r.reached_end;
     if (!r.reached_end) return r.arc_covered_m > than.arc_covered_m;
     if (dawdled(r) != dawdled(than)) return !dawdled(r);
+    if (within(r) != within(than)) return within(r);
+    if (missed(r) != missed(than)) return missed(r) < missed(than);
     return r.mean_deviation_m < than.mean_deviation_m;
   };
+  double tag_factor = 1.0;
   for (size_t retry = 0; retry < ladder.size() && !good(*best) && settings.behind_penalty_m > 0.0; ++retry) {
+    if (missed(*best) > 0) tag_factor *= kProgressRetryFactor;
     PathSynthesisSettings harder = settings;
     harder.anchor_arc = ladder[retry].anchor_arc;
     harder.edit_in_search = ladder[retry].edit_in_search;
     harder.behind_penalty_m = settings.behind_penalty_m * ladder[retry].factor;
+    harder.tag_penalty_m2 = settings.tag_penalty_m2 * tag_factor;
     harder.horizon_s = retry_horizon_s;
     auto next = synthesize_once(context, path, harder);
     if (!next) return next.error();

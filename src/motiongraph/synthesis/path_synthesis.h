@@ -26,13 +26,16 @@
 // little), or reaches it with a segment (or the stretches no segment holds) taking longer than
 // slowest_seconds gives (looping in place beside the path, its edit following it, where the type
 // asked for would take it off the path within the horizon),
-// or follows the path more than retry_deviation_m off on average, is searched again up
+// or follows the path more than retry_deviation_m off on average, or misses the motion type a
+// segment asks for (retry_tag_match), is searched again up
 // to progress_retries times, each looking retry_horizon_s ahead: first as it was; then with its
 // arc corrected at each commit (anchor_arc); then the behind penalty 4x higher; when the motion
 // is edited, then with the edit in the search (edit_in_search) at the penalty given and at 4x;
-// then at 16x, 64x, ... (each with and without the edit in the search). The first to reach the
-// end without dawdling within retry_deviation_m is kept, or else the one reaching it (without
-// dawdling if any does) with the least deviation, or else the one that got furthest along.
+// then at 16x, 64x, ... (each with and without the edit in the search); while the best so far
+// misses a type, each retry also has the tag penalty 4x the last's. The first to reach the
+// end without dawdling within retry_deviation_m, missing no type, is kept, or else the one
+// reaching it (without dawdling if any does; then within retry_deviation_m; then missing the
+// fewest types) with the least deviation, or else the one that got furthest along.
 //
 // The walk's motion is then edited onto the path (path_edit.h: Gleicher's motion path editing,
 // within a limit on the turning it adds) unless edit_path is false; the result gives the
@@ -67,6 +70,12 @@ struct PathSynthesisSettings {
   // (0: not for the deviation) (no retries: 0; nor when behind_penalty_m is 0).
   int progress_retries = 4;
   double retry_deviation_m = 0.1;
+  // A segment of at least kTagMissMinSeconds of motion, asking for a type the graph plays, whose
+  // frames carry it less than this share of them missed it (the 8 subjects' circle of 5 m asked
+  // to walk then run walked on: a run leaves the circle within the horizon, at a tag penalty
+  // each frame walking stays under): the walk is searched again, each retry while the best so
+  // far misses a type with the tag penalty 4x higher (0: not for a missed type).
+  double retry_tag_match = 0.5;
   // The retries' horizon (0: horizon_s). At a sharp corner a library with little turning in its
   // walking may find nothing within horizon_s that beats shuffling on the spot; a longer look
   // finds the turn that pays off later. Only for the retries: on a large library's dense graph
@@ -115,7 +124,10 @@ struct PathSynthesisSettings {
   Status validate() const;
 };
 
-constexpr double kProgressRetryFactor = 4.0;  // the behind penalty's step between attempts
+constexpr double kProgressRetryFactor = 4.0;  // the behind and tag penalties' step between attempts
+// A segment shorter than this (in the motion's frames) is not judged by its type: changing
+// type takes a blend and a step or two.
+constexpr double kTagMissMinSeconds = 2.0;
 // The motion has reached the path's end when it gets this close to it along the path (a step:
 // the walk is made of whole edges, and the edit moves its end as the walk grows).
 constexpr double kEndReachedM = 0.5;
@@ -153,6 +165,7 @@ struct PathSynthesisResult {
   // its arc.
   int attempts = 1;
   double behind_penalty_m = 0.0;
+  double tag_penalty_m2 = 0.0;        // the kept attempt's
   double horizon_s = 0.0;             // the kept attempt's horizon
   bool edit_in_search = false;
   bool anchor_arc = false;            // the kept attempt's PathSynthesisSettings::anchor_arc
