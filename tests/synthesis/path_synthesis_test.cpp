@@ -6,6 +6,8 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
+#include <string>
 
 #include "motiongraph/motion/forward_kinematics.h"
 #include "synthesis/subject16_graph.h"
@@ -13,6 +15,16 @@
 
 namespace mg {
 namespace {
+
+// The figure 8 of 4 m loops asking for `first` over its first half and `second` over the rest.
+FloorPath figure8_halves(const std::string& first, const std::string& second) {
+  auto shape = make_shape("figure8:4");
+  if (!shape) throw std::runtime_error(shape.error().to_string());
+  const double half = shape->length_m() / 2;
+  auto path = FloorPath::create(shape->points(), {{0.0, half, first}, {half, shape->length_m() + 1.0, second}});
+  if (!path) throw std::runtime_error(path.error().to_string());
+  return *path;
+}
 
 TEST(PathSynthesis, FollowsTheBuiltInShapes) {
   const auto& s = test::subject16();
@@ -96,12 +108,9 @@ TEST(PathSynthesis, StartsAtThePathsStartHeadingAlongIt) {
 
 TEST(PathSynthesis, WalksThenRunsWhereTheSegmentsAsk) {
   const auto& s = test::subject16();
-  auto shape = make_shape("figure8:4");
-  ASSERT_TRUE(shape.ok());
-  const double half = shape->length_m() / 2;
-  auto path = FloorPath::create(shape->points(), {{0.0, half, "walk"}, {half, shape->length_m() + 1.0, "run"}});
-  ASSERT_TRUE(path.ok());
-  auto result = synthesize_path(s.context(), *path);
+  const FloorPath path = figure8_halves("walk", "run");
+  const double half = path.length_m() / 2;
+  auto result = synthesize_path(s.context(), path);
   ASSERT_TRUE(result.ok()) << result.error().to_string();
   EXPECT_TRUE(result->reached_end);
   EXPECT_GT(result->tag_match, 0.85);
@@ -121,14 +130,8 @@ TEST(PathSynthesis, WalksThenRunsWhereTheSegmentsAsk) {
 TEST(PathSynthesis, BridgesLeadIntoTheMotionTypeAsked) {
   const auto& s = test::subject16();
   const SynthesisContext& context = s.context();
-  auto shape = make_shape("figure8:4");
-  ASSERT_TRUE(shape.ok());
-  const double half = shape->length_m() / 2;
   for (const auto& [first, second] : {std::pair{"walk", "run"}, std::pair{"run", "walk"}}) {
-    auto path =
-        FloorPath::create(shape->points(), {{0.0, half, first}, {half, shape->length_m() + 1.0, second}});
-    ASSERT_TRUE(path.ok());
-    auto result = synthesize_path(context, *path);
+    auto result = synthesize_path(context, figure8_halves(first, second));
     ASSERT_TRUE(result.ok()) << result.error().to_string();
     int bridges = 0;
     for (int e : result->walk.edges) {
@@ -224,15 +227,11 @@ TEST(PathSynthesis, UnknownTagsAndBadSettingsAreErrors) {
 // close to the path); the retries run.
 TEST(PathSynthesis, AWalkThatMissesTheTypeAskedIsSearchedAgainPricingItHigher) {
   const auto& s = test::subject16();
-  auto shape = make_shape("figure8:4");
-  ASSERT_TRUE(shape.ok());
-  const double half = shape->length_m() / 2;
-  auto path = FloorPath::create(shape->points(), {{0.0, half, "walk"}, {half, shape->length_m() + 1.0, "run"}});
-  ASSERT_TRUE(path.ok());
+  const FloorPath path = figure8_halves("walk", "run");
   PathSynthesisSettings once;
   once.tag_penalty_m2 = 0.01;
   once.progress_retries = 0;
-  auto missed = synthesize_path(s.context(), *path, once);
+  auto missed = synthesize_path(s.context(), path, once);
   ASSERT_TRUE(missed.ok()) << missed.error().to_string();
   ASSERT_TRUE(missed->reached_end);
   ASSERT_LE(missed->mean_deviation_m, once.retry_deviation_m);
@@ -243,7 +242,7 @@ TEST(PathSynthesis, AWalkThatMissesTheTypeAskedIsSearchedAgainPricingItHigher) {
 
   PathSynthesisSettings pushing = once;
   pushing.progress_retries = 4;
-  auto ran = synthesize_path(s.context(), *path, pushing);
+  auto ran = synthesize_path(s.context(), path, pushing);
   ASSERT_TRUE(ran.ok());
   EXPECT_GT(ran->attempts, 1);
   EXPECT_TRUE(ran->reached_end);
@@ -260,7 +259,7 @@ TEST(PathSynthesis, AWalkThatMissesTheTypeAskedIsSearchedAgainPricingItHigher) {
   // Not for a missed type: the first search is good enough.
   PathSynthesisSettings indifferent = pushing;
   indifferent.retry_tag_match = 0.0;
-  auto walked = synthesize_path(s.context(), *path, indifferent);
+  auto walked = synthesize_path(s.context(), path, indifferent);
   ASSERT_TRUE(walked.ok());
   EXPECT_EQ(walked->attempts, 1);
   EXPECT_EQ(walked->segment_tag_matches[1].matched, run.matched);
