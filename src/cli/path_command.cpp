@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "cli/commands.h"
 #include "cli/synthesis_options.h"
@@ -29,6 +30,11 @@ int run_path(const PathOptions& o) {
   auto loaded = load_for_synthesis(o.common);
   if (!loaded) return fail(loaded.error());
   const SynthesisContext& context = (*loaded)->context();
+  for (const PathSegment& segment : path->segments()) {
+    if (auto why = unplayable_tag(context, segment.tag)) {
+      spdlog::warn("the segment {:g}-{:g} m asks for {}", segment.from_m, segment.to_m, *why);
+    }
+  }
   auto result = run_path_synthesis(context, *path, o.settings, run_settings(o.common, begin));
   if (!result) return fail(result.error());
   print_cleanup_warning(o.common, result->warning);

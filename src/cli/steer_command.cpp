@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "cli/commands.h"
 #include "cli/synthesis_options.h"
@@ -54,6 +55,7 @@ int run_steer(const SteerOptions& o) {
   };
   for (const ScriptedControl& c : script->controls) {
     if (auto input = input_at(c.at_s); !input) return fail(input.error());
+    if (auto why = unplayable_tag(context, c.tag)) spdlog::warn("the control at {:g} s asks for {}", c.at_s, *why);
   }
   auto controller = Controller::create(context, o.settings, *input_at(0.0));
   if (!controller) return fail(controller.error());

@@ -405,7 +405,7 @@ class Router {
     out["graph_max_deviation_m"] = result->graph_max_deviation_m;
     out["path_edit"] = path_edit_report(settings, *result);
     out["tag_match"] = result->tag_match;
-    out["segments"] = path_segments_report(*floor_path, *result);
+    out["segments"] = path_segments_report(service_.context(), *floor_path, *result);
     const int transitions = result->walk.transition_count(graph());
     out["transitions"] = transitions;
     out["transitions_per_second"] = transitions_per_second(transitions, result->motion.frame_count, result->motion.fps);

@@ -19,6 +19,38 @@ grep -q "deviation mean" "$work/path.txt" || { echo "FAIL: path summary"; cat "$
 "$bin" path "$work/g.mgraph" --shape figure8:4 --no-path-edit -o "$work/f8-untagged-plain.json" \
   --report "$work/f8-untagged-plain-report.json" >/dev/null
 head -1 "$work/f8.bvh" | grep -q HIERARCHY || { echo "FAIL: BVH output"; exit 1; }
+# Each segment's type counted in the graph and in its clips, as inspect counts each type's frames
+# after pruning ("run 100 frames of 272"); a graph at 1 cm keeps walking alone, and a path or a
+# steering script asking it to run says so, once, naming the segment or the control.
+"$bin" inspect "$work/g.mgraph" >"$work/inspect.txt"
+"$bin" build "$data/cmu/16" --threshold 1cm -o "$work/walk-only.mgraph" -q
+"$bin" inspect "$work/walk-only.mgraph" >"$work/walk-only.txt"
+"$bin" path "$work/walk-only.mgraph" --shape line:10 --segment walk:0-5 --segment run:5-10 -o "$work/no-run.json" \
+  --report "$work/no-run-report.json" >/dev/null 2>"$work/no-run.err"
+printf '%s\n' '{"duration_s": 4, "controls": [{"at_s": 0, "heading": "north"}, {"at_s": 2, "tag": "run"}]}' \
+  >"$work/run.json"
+"$bin" steer "$work/walk-only.mgraph" --script "$work/run.json" -o "$work/no-run-steer.json" >/dev/null \
+  2>"$work/no-run-steer.err"
+python3 - "$work" <<'PY'
+import json, re, sys
+work = sys.argv[1]
+def after_pruning(name):
+    text = open(f"{work}/{name}").read().split("after pruning")[1]
+    return {m[0]: (int(m[1]), int(m[2])) for m in re.findall(r"^  (\w+) +(\d+) frames of +(\d+),", text, re.M)}
+kept = after_pruning("inspect.txt")
+for s in json.load(open(f"{work}/f8-report.json"))["segments"]:
+    assert (s["graph_frames"], s["clip_frames"]) == kept[s["tag"]], (s, kept)
+    assert s["graph_frames"] > 0, s
+kept = after_pruning("walk-only.txt")
+assert kept["run"][0] == 0 and kept["walk"][0] > 0, kept
+walk, run = json.load(open(f"{work}/no-run-report.json"))["segments"]
+assert (walk["graph_frames"], walk["clip_frames"]) == kept["walk"] and (run["graph_frames"], run["clip_frames"]) == kept["run"]
+assert run["tag_match"] == 0, run
+why = f"'run', which the graph plays in no frame ({kept['run'][1]} of its clips' frames carry it;"
+for name, where in (("no-run.err", "the segment 5-10 m asks for "), ("no-run-steer.err", "the control at 2 s asks for ")):
+    lines = [l for l in open(f"{work}/{name}").read().splitlines() if "plays in no frame" in l]
+    assert len(lines) == 1 and where + why in lines[0], (name, lines)
+PY
 "$bin" inspect "$work/g.mgraph" --nodes >"$work/nodes.txt"
 python3 - "$work/nodes.txt" <<'PY'
 import sys

@@ -394,6 +394,9 @@ TEST(StudioApi, PathFollowsTheLineDrawnWithItsDeviation) {
   EXPECT_GT(segment["frames"].get<int>(), 0);
   EXPECT_LE(segment["frames"].get<size_t>(), call.json["positions"].size());
   EXPECT_DOUBLE_EQ(segment["tag_match"].get<double>(), call.json["tag_match"].get<double>());
+  // The graph plays walking (some of its clips' walking frames).
+  EXPECT_GT(segment["graph_frames"].get<int>(), 0);
+  EXPECT_LE(segment["graph_frames"].get<int>(), segment["clip_frames"].get<int>());
 }
 
 TEST(StudioApi, BadPathsAre4xx) {

@@ -328,11 +328,13 @@ $('synthesize').addEventListener('click', async () => {
 });
 
 // Each segment's type and how much of the motion in it carries it, when there are two or more
-// (one is the total): " (walk 100 %, run 52 %)".
+// (one is the total), and any type the graph plays in no frame: " (walk 100 %, run 0 %: not in
+// the graph)".
 function segmentMatches(result) {
-  const parts = (result.segments || []).map((s) => `${s.tag} ${s.tag_match === null ? 'no frames'
-    : `${(100 * s.tag_match).toFixed(0)} %`}`);
-  return parts.length > 1 ? ` (${parts.join(', ')})` : '';
+  const segments = result.segments || [];
+  const parts = segments.map((s) => `${s.tag} ${s.tag_match === null ? 'no frames'
+    : `${(100 * s.tag_match).toFixed(0)} %`}${s.graph_frames === 0 ? ': not in the graph' : ''}`);
+  return parts.length > 1 || segments.some((s) => s.graph_frames === 0) ? ` (${parts.join(', ')})` : '';
 }
 
 // How much a result's planted feet slide, beside the clips it was cut from.

@@ -1,8 +1,11 @@
 #include "motiongraph/evaluation/synthesis_run.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <ctime>
+
+#include <fmt/format.h>
 
 #include "motiongraph/evaluation/foot_slide_report.h"
 #include "motiongraph/export/motion_file.h"
@@ -81,20 +84,37 @@ nlohmann::json path_edit_report(const PathSynthesisSettings& search, const PathS
   return report;
 }
 
-nlohmann::json path_segments_report(const FloorPath& path, const PathSynthesisResult& result) {
+nlohmann::json path_segments_report(const SynthesisContext& context, const FloorPath& path,
+                                    const PathSynthesisResult& result) {
   assert(result.segment_tag_matches.size() == path.segments().size());
+  const std::vector<TagMask> clip_tags = context.db->frame_tags();
   nlohmann::json segments = nlohmann::json::array();
   for (size_t i = 0; i < path.segments().size(); ++i) {
     const PathSegment& s = path.segments()[i];
     const PathSynthesisResult::SegmentTagMatch& m = result.segment_tag_matches[i];
+    const auto known = context.tag_mask(s.tag);  // the path's tags were checked by the synthesis
+    const TagMask mask = known ? *known : 0;
+    const auto in_clips = std::count_if(clip_tags.begin(), clip_tags.end(), [&](TagMask t) { return (t & mask) != 0; });
     segments.push_back({{"from_m", s.from_m},
                         {"to_m", s.to_m},
                         {"tag", s.tag},
                         {"frames", m.frames},
                         {"tag_match", m.frames > 0 ? nlohmann::json(static_cast<double>(m.matched) / m.frames)
-                                                   : nlohmann::json(nullptr)}});
+                                                   : nlohmann::json(nullptr)},
+                        {"graph_frames", graph_frames_with(context, mask)},
+                        {"clip_frames", in_clips}});
   }
   return segments;
+}
+
+std::optional<std::string> unplayable_tag(const SynthesisContext& context, const std::string& tag) {
+  const auto mask = context.tag_mask(tag);
+  if (!mask || graph_frames_with(context, *mask) > 0) return std::nullopt;
+  const std::vector<TagMask> clip_tags = context.db->frame_tags();
+  const auto in_clips = std::count_if(clip_tags.begin(), clip_tags.end(), [&](TagMask t) { return (t & *mask) != 0; });
+  return fmt::format("'{}', which the graph plays in no frame ({} of its clips' frames carry it; the build kept none: "
+                     "`inspect` gives each type's frames before and after pruning)",
+                     tag, in_clips);
 }
 
 Result<SynthesizedMotion> run_walk_synthesis(const SynthesisContext& context, int from, int to,
@@ -182,7 +202,7 @@ Result<SynthesizedMotion> run_path_synthesis(const SynthesisContext& context, co
                 {"transitions", transitions},
                 {"transitions_per_second", transitions_per_second(transitions, motion.frame_count, motion.fps)},
                 {"bridges", count_bridges(*context.graph, out.walk.edges)},
-                {"segments", path_segments_report(path, *result)},
+                {"segments", path_segments_report(context, path, *result)},
                 {"path", points},
                 {"roots", roots},
                 {"cleanup", *cleanup}};

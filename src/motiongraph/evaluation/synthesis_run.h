@@ -49,8 +49,16 @@ nlohmann::json cleanup_report(const SynthesisContext& context, const SynthesisRu
 // (path_edit.h).
 nlohmann::json path_edit_report(const PathSynthesisSettings& search, const PathSynthesisResult& result);
 // The report's "segments": each of the path's segments as given (from_m, to_m, tag), the frames
-// of the motion that fall in it and the share of them carrying its tag (null: none fell in it).
-nlohmann::json path_segments_report(const FloorPath& path, const PathSynthesisResult& result);
+// of the motion that fall in it and the share of them carrying its tag (null: none fell in it),
+// and how many frames carry the tag in the graph's clip pieces ("graph_frames"; 0: the segment
+// cannot be followed) and in the database's clips ("clip_frames": the pruning may keep none).
+nlohmann::json path_segments_report(const SynthesisContext& context, const FloorPath& path,
+                                    const PathSynthesisResult& result);
+// When the graph plays `tag` in no frame (graph_frames_with: the pruning kept none of its
+// clips' frames, or none carry it), what to tell a user asking for it: "'run', which the graph
+// plays in no frame (104 of its clips' frames carry it; ...)"; nullopt when it plays it or the
+// tag is unknown (an error elsewhere).
+std::optional<std::string> unplayable_tag(const SynthesisContext& context, const std::string& tag);
 
 // The cheapest walk from node `from` to node `to` (walk_search.h), starting at the origin
 // facing north.

@@ -40,21 +40,15 @@ Status PathSynthesisSettings::validate() const {
   return path_edit.validate();
 }
 
-namespace {
-
-// Whether any frame of the graph's clip pieces carries one of `mask`'s tags.
-bool graph_plays(const SynthesisContext& context, TagMask mask) {
+int graph_frames_with(const SynthesisContext& context, TagMask mask) {
   const MotionGraph& graph = *context.graph;
+  int count = 0;
   for (int e = 0; e < graph.edge_count(); ++e) {
     if (graph.edges[e].transition) continue;
-    for (TagMask tags : context.tracks.tags_of(e)) {
-      if ((tags & mask) != 0) return true;
-    }
+    for (TagMask tags : context.tracks.tags_of(e)) count += (tags & mask) != 0 ? 1 : 0;
   }
-  return false;
+  return count;
 }
-
-}  // namespace
 
 double typical_speed_mps(const SynthesisContext& context, TagMask mask) {
   std::vector<double> steps;
@@ -427,7 +421,7 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
   std::vector<bool> played(path.segments().size(), false);
   for (size_t i = 0; i < played.size(); ++i) {
     auto mask = context.tag_mask(path.segments()[i].tag);
-    played[i] = mask && graph_plays(context, *mask);
+    played[i] = mask && graph_frames_with(context, *mask) > 0;
   }
   auto missed = [&](const PathSynthesisResult& r) {
     int count = 0;

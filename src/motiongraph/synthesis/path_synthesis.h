@@ -171,6 +171,10 @@ struct PathSynthesisResult {
   bool anchor_arc = false;            // the kept attempt's PathSynthesisSettings::anchor_arc
 };
 
+// How many frames of the graph's clip pieces carry one of `mask`'s tags (0: a segment asking for
+// it cannot be followed; the pruning may have left none of the clips' frames of a type).
+int graph_frames_with(const SynthesisContext& context, TagMask mask);
+
 // The median speed (m/s) of the root over the frames of the graph's clip pieces that carry one
 // of `mask`'s tags (each frame's floor step to the next frame of its clip: within its piece, or
 // the first of the piece leaving the node the piece reaches); 0 when none does.
