@@ -3,7 +3,10 @@
 // and with the same options as keywords.
 #include <array>
 #include <optional>
+#include <set>
+#include <string>
 
+#include <fmt/format.h>
 #include <pybind11/stl.h>
 
 #include "binding.h"
@@ -94,6 +97,15 @@ PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<d
       made = run_path_synthesis(graph.loaded->context(), *floor_path, settings, run);
     }
   }
+  if (made) {
+    for (const nlohmann::json& segment : made->report["segments"]) {
+      if (auto why = unplayable_tag(graph.loaded->context(), segment["tag"].get<std::string>())) {
+        const std::string line = fmt::format("{}: the segment {:g}-{:g} m asks for {}", graph.name,
+                                             segment["from_m"].get<double>(), segment["to_m"].get<double>(), *why);
+        if (PyErr_WarnEx(PyExc_UserWarning, line.c_str(), 1) < 0) throw py::error_already_set();
+      }
+    }
+  }
   return result_motion(graph, "path", take(std::move(made)));
 }
 
@@ -103,7 +115,7 @@ class PyController {
  public:
   PyController(const PyGraph& graph, double heading_deg, const std::optional<std::string>& tag,
                std::array<double, 2> at, const py::kwargs& options)
-      : loaded_(graph.loaded), motion_(graph.loaded->context().assembler.empty_motion()) {
+      : loaded_(graph.loaded), name_(graph.name), motion_(graph.loaded->context().assembler.empty_motion()) {
     ControllerSettings settings;
     SynthesisRunSettings run = run_settings(graph);
     std::string hold = "facing";
@@ -154,10 +166,17 @@ class PyController {
  private:
   const SynthesisContext& context() const { return loaded_->context(); }
 
-  ControlInput input(double heading_deg, const std::optional<std::string>& tag) const {
+  // The first time a motion type the graph plays in no frame is asked for, a warning says so.
+  ControlInput input(double heading_deg, const std::optional<std::string>& tag) {
     ControlInput in;
     in.direction = bearing_direction(heading_deg);
-    if (tag && !tag->empty()) in.tag = take(context().tag_mask(*tag));
+    if (tag && !tag->empty()) {
+      in.tag = take(context().tag_mask(*tag));
+      if (auto why = unplayable_tag(context(), *tag); why && warned_.insert(*tag).second) {
+        const std::string line = fmt::format("{}: the controller is asked for {}", name_, *why);
+        if (PyErr_WarnEx(PyExc_UserWarning, line.c_str(), 1) < 0) throw py::error_already_set();
+      }
+    }
     return in;
   }
 
@@ -170,6 +189,8 @@ class PyController {
   }
 
   std::shared_ptr<const LoadedGraph> loaded_;
+  std::string name_;
+  std::set<std::string> warned_;  // tags the graph does not play, warned of once
   Motion motion_;
   std::optional<FootCleanup> cleanup_;
   std::optional<Controller> controller_;

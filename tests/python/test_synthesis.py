@@ -97,6 +97,23 @@ def test_retry_tag_match_reaches_the_path(cli, graph_file, graph, tmp_path):
         graph.path(shape="figure8:4", retry_tag_match=2)
 
 
+def test_a_type_the_graph_does_not_play_is_warned_of(data):
+    """A graph at 1 cm keeps walking alone: a path or a controller asking it to run warns, naming
+    the segment, as the CLI does; the controller once however often it is asked."""
+    with pytest.warns(UserWarning, match="the graph keeps 2 % of the frames"):  # as the build says
+        walking = mg.build(str(data / "cmu/16"), threshold="1cm")
+    with pytest.warns(UserWarning, match=r"the segment 5-10 m asks for 'run', which the graph plays in no frame") as caught:
+        motion = walking.path(shape="line:10", segments=["walk:0-5", "run:5-10"])
+    assert len([w for w in caught if "plays in no frame" in str(w.message)]) == 1
+    run = motion.report["segments"][1]
+    assert run["graph_frames"] == 0 and run["clip_frames"] > 0 and run["tag_match"] == 0, run
+    with pytest.warns(UserWarning, match="the controller is asked for 'run'") as caught:
+        controller = walking.controller(heading_deg=0, tag="walk")
+        controller.step(0, "run")
+        controller.step(90, "run")
+    assert len([w for w in caught if "plays in no frame" in str(w.message)]) == 1
+
+
 def test_walk_equals_the_cli(cli, graph_file, graph, tmp_path):
     cli("walk", graph_file, "--from", 0, "--to", 7, "--cost", "hybrid", "--seed", 3, "--min-frames", 60,
         "-o", tmp_path / "cli.json", "--report", tmp_path / "r.json")
