@@ -136,10 +136,11 @@ Command add_path_command(CLI::App& app) {
                   "search again up to this many times, looking --retry-horizon ahead: the "
                   "same search; with the search's arc corrected to the way along the path the walk has come; "
                   "--behind-penalty 4x; then the search sees where the path edit puts the walk, at 1x and 4x; then "
-                  "16x, 64x, ...; while the best so far misses a type, --tag-penalty 4x the last retry's too; the "
+                  "16x, 64x, ...; where a missed type is all that is wrong with the best so far, --tag-penalty 4x the "
+                  "last retry's too, until that brings the type no closer; the "
                   "first to reach the end without dawdling within --retry-deviation, missing no type, is "
-                  "kept, else the one reaching it (without dawdling if any does; then within --retry-deviation; then "
-                  "missing the fewest types) with the least deviation")
+                  "kept, else the one reaching it (without dawdling if any does; then within --retry-deviation, and "
+                  "among those missing the fewest types) with the least deviation")
       ->capture_default_str();
   sub->add_option("--retry-horizon", o->settings.retry_horizon_s,
                   "Seconds of motion each search of the retries looks ahead (0: --horizon): at a sharp corner a "
@@ -150,8 +151,9 @@ Command add_path_command(CLI::App& app) {
                   "reached or the motion dawdled)")
       ->capture_default_str();
   sub->add_option("--retry-tag-match", o->settings.retry_tag_match,
-                  "A segment of 2 s or more of motion whose frames carry the type it asks for (one the graph plays) "
-                  "less than this share of them missed it, and --progress-retries searches again (0: never for that)")
+                  "A segment of 2 s or more of motion whose frames carry the motion type it asks for (one the graph "
+                  "plays; not a modifier such as stop or turn) less than this share of them missed it, and "
+                  "--progress-retries searches again (0, or --tag-penalty 0: never for that)")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   sub->add_flag("!--no-path-edit", o->settings.edit_path,

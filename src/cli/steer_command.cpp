@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <set>
+#include <string>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -53,9 +55,12 @@ int run_steer(const SteerOptions& o) {
     }
     return input;
   };
+  std::set<std::string> warned;  // a control carries the last tag on: each type is warned of once
   for (const ScriptedControl& c : script->controls) {
     if (auto input = input_at(c.at_s); !input) return fail(input.error());
-    if (auto why = unplayable_tag(context, c.tag)) spdlog::warn("the control at {:g} s asks for {}", c.at_s, *why);
+    if (auto why = unplayable_tag(context, c.tag); why && warned.insert(c.tag).second) {
+      spdlog::warn("the control at {:g} s asks for {}", c.at_s, *why);
+    }
   }
   auto controller = Controller::create(context, o.settings, *input_at(0.0));
   if (!controller) return fail(controller.error());

@@ -27,7 +27,8 @@ head -1 "$work/f8.bvh" | grep -q HIERARCHY || { echo "FAIL: BVH output"; exit 1;
 "$bin" inspect "$work/walk-only.mgraph" >"$work/walk-only.txt"
 "$bin" path "$work/walk-only.mgraph" --shape line:10 --segment walk:0-5 --segment run:5-10 -o "$work/no-run.json" \
   --report "$work/no-run-report.json" >/dev/null 2>"$work/no-run.err"
-printf '%s\n' '{"duration_s": 4, "controls": [{"at_s": 0, "heading": "north"}, {"at_s": 2, "tag": "run"}]}' \
+printf '%s\n' '{"duration_s": 4, "controls": [{"at_s": 0, "heading": "north"}, {"at_s": 2, "tag": "run"},
+  {"at_s": 3, "heading_deg": 90}]}' \
   >"$work/run.json"
 "$bin" steer "$work/walk-only.mgraph" --script "$work/run.json" -o "$work/no-run-steer.json" >/dev/null \
   2>"$work/no-run-steer.err"

@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <string>
 
+#include "motiongraph/graph/graph_from_candidates.h"
 #include "motiongraph/motion/forward_kinematics.h"
 #include "synthesis/subject16_graph.h"
 #include "test_data.h"
@@ -219,6 +221,12 @@ TEST(PathSynthesis, UnknownTagsAndBadSettingsAreErrors) {
     bad.retry_tag_match = share;
     EXPECT_FALSE(bad.validate().ok()) << share;
   }
+  for (auto penalty : {&PathSynthesisSettings::tag_penalty_m2, &PathSynthesisSettings::transition_penalty_m2,
+                       &PathSynthesisSettings::bridge_penalty_m2}) {
+    bad = {};
+    bad.*penalty = std::numeric_limits<double>::infinity();
+    EXPECT_FALSE(bad.validate().ok());
+  }
 }
 
 // A walk that misses the motion type a segment asks for is searched again, the tag priced 4x
@@ -256,13 +264,37 @@ TEST(PathSynthesis, AWalkThatMissesTheTypeAskedIsSearchedAgainPricingItHigher) {
   }
   EXPECT_TRUE(stepped) << ran->tag_penalty_m2;
 
-  // Not for a missed type: the first search is good enough.
+  // Not for a missed type: the first search is good enough; nor with no tag penalty to raise.
   PathSynthesisSettings indifferent = pushing;
   indifferent.retry_tag_match = 0.0;
-  auto walked = synthesize_path(s.context(), path, indifferent);
-  ASSERT_TRUE(walked.ok());
-  EXPECT_EQ(walked->attempts, 1);
-  EXPECT_EQ(walked->segment_tag_matches[1].matched, run.matched);
+  PathSynthesisSettings untagged = pushing;
+  untagged.tag_penalty_m2 = 0.0;
+  for (const PathSynthesisSettings& settings : {indifferent, untagged}) {
+    auto walked = synthesize_path(s.context(), path, settings);
+    ASSERT_TRUE(walked.ok());
+    ASSERT_TRUE(walked->reached_end);
+    ASSERT_LE(walked->mean_deviation_m, settings.retry_deviation_m);
+    EXPECT_LT(walked->segment_tag_matches[1].matched, pushing.retry_tag_match * walked->segment_tag_matches[1].frames);
+    EXPECT_EQ(walked->attempts, 1) << settings.tag_penalty_m2;
+  }
+}
+
+// A modifier tag (a stop, a turn: how a motion goes, not a type of its own) is not chased:
+// subject 16's figure 8 asking to walk then stop, the stop priced too low to matter, keeps its
+// first search though few of its frames stop.
+TEST(PathSynthesis, AModifierTagMissedIsNotSearchedAgain) {
+  const auto& s = test::subject16();
+  ASSERT_TRUE(is_modifier_tag("stop"));
+  PathSynthesisSettings settings;
+  settings.tag_penalty_m2 = 0.01;
+  auto stopped = synthesize_path(s.context(), figure8_halves("walk", "stop"), settings);
+  ASSERT_TRUE(stopped.ok()) << stopped.error().to_string();
+  ASSERT_TRUE(stopped->reached_end);
+  ASSERT_LE(stopped->mean_deviation_m, settings.retry_deviation_m);
+  const auto& stop = stopped->segment_tag_matches[1];
+  ASSERT_GE(stop.frames, kTagMissMinSeconds * s.context().db->fps);
+  ASSERT_LT(stop.matched, settings.retry_tag_match * stop.frames);
+  EXPECT_EQ(stopped->attempts, 1);
 }
 
 // A root that sways 0.4 m from side to side at 1 Hz travels half as far again as it gets along

@@ -15,6 +15,12 @@ namespace mg {
 
 namespace {
 
+// How many of the database's frames carry one of `mask`'s tags (tag ranges may overlap).
+long long clip_frames_with(const MotionDatabase& db, TagMask mask) {
+  const std::vector<TagMask> tags = db.frame_tags();
+  return std::count_if(tags.begin(), tags.end(), [&](TagMask t) { return (t & mask) != 0; });
+}
+
 // CPU seconds this thread has run (the search runs on one thread).
 double thread_cpu_seconds() {
   timespec t{};
@@ -87,14 +93,12 @@ nlohmann::json path_edit_report(const PathSynthesisSettings& search, const PathS
 nlohmann::json path_segments_report(const SynthesisContext& context, const FloorPath& path,
                                     const PathSynthesisResult& result) {
   assert(result.segment_tag_matches.size() == path.segments().size());
-  const std::vector<TagMask> clip_tags = context.db->frame_tags();
   nlohmann::json segments = nlohmann::json::array();
   for (size_t i = 0; i < path.segments().size(); ++i) {
     const PathSegment& s = path.segments()[i];
     const PathSynthesisResult::SegmentTagMatch& m = result.segment_tag_matches[i];
     const auto known = context.tag_mask(s.tag);  // the path's tags were checked by the synthesis
     const TagMask mask = known ? *known : 0;
-    const auto in_clips = std::count_if(clip_tags.begin(), clip_tags.end(), [&](TagMask t) { return (t & mask) != 0; });
     segments.push_back({{"from_m", s.from_m},
                         {"to_m", s.to_m},
                         {"tag", s.tag},
@@ -102,7 +106,7 @@ nlohmann::json path_segments_report(const SynthesisContext& context, const Floor
                         {"tag_match", m.frames > 0 ? nlohmann::json(static_cast<double>(m.matched) / m.frames)
                                                    : nlohmann::json(nullptr)},
                         {"graph_frames", graph_frames_with(context, mask)},
-                        {"clip_frames", in_clips}});
+                        {"clip_frames", clip_frames_with(*context.db, mask)}});
   }
   return segments;
 }
@@ -110,11 +114,9 @@ nlohmann::json path_segments_report(const SynthesisContext& context, const Floor
 std::optional<std::string> unplayable_tag(const SynthesisContext& context, const std::string& tag) {
   const auto mask = context.tag_mask(tag);
   if (!mask || graph_frames_with(context, *mask) > 0) return std::nullopt;
-  const std::vector<TagMask> clip_tags = context.db->frame_tags();
-  const auto in_clips = std::count_if(clip_tags.begin(), clip_tags.end(), [&](TagMask t) { return (t & *mask) != 0; });
   return fmt::format("'{}', which the graph plays in no frame ({} of its clips' frames carry it; the build kept none: "
                      "`inspect` gives each type's frames before and after pruning)",
-                     tag, in_clips);
+                     tag, clip_frames_with(*context.db, *mask));
 }
 
 Result<SynthesizedMotion> run_walk_synthesis(const SynthesisContext& context, int from, int to,

@@ -4,8 +4,9 @@
 // at 6.5 cm, where a few more transitions join its turning steps to its straight ones. So the
 // automatic threshold is checked by doing what a user will do: synthesize a test path (the
 // probe: 2 m straight, a half circle of 4 m radius to the right, one to the left, 2 m straight,
-// about 29 m, with `path`'s default search, transitions priced as below) and its mirror (left first) on the graph of the
-// threshold, and raise the threshold in log-spaced steps towards the ceiling until both are
+// about 29 m, with `path`'s default search, transitions priced as below) and its mirror (left
+// first) on the graph of the threshold, and raise the threshold in log-spaced steps towards the
+// ceiling until both are
 // followed within `tolerance_m` mean deviation. Paths turn either way: one probe alone let a
 // few moved nodes flip a library's choice (subject 16 followed the probe 0.081 m off at 2.65
 // cm, its mirror 0.205 m off; both within 0.053 m at 3.46 cm). Each threshold is judged by the

@@ -4,12 +4,14 @@
 #include <cmath>
 #include <map>
 #include <span>
+#include <string>
 #include <tuple>
 #include <utility>
 #include <vector>
 
 #include <fmt/format.h>
 
+#include "motiongraph/graph/graph_from_candidates.h"
 #include "motiongraph/synthesis/path_cost.h"
 
 namespace mg {
@@ -18,9 +20,15 @@ Status PathSynthesisSettings::validate() const {
   if (!(horizon_s > 0.0) || !(commit_s > 0.0) || commit_s > horizon_s) {
     return Error{"", 0, "path search: need 0 < commit_s <= horizon_s"};
   }
-  if (!(tag_penalty_m2 >= 0.0)) return Error{"", 0, "path search: the tag penalty must be >= 0"};
-  if (!(transition_penalty_m2 >= 0.0)) return Error{"", 0, "path search: the transition penalty must be >= 0"};
-  if (!(bridge_penalty_m2 >= 0.0)) return Error{"", 0, "path search: the bridge penalty must be >= 0"};
+  if (!(tag_penalty_m2 >= 0.0) || !std::isfinite(tag_penalty_m2)) {
+    return Error{"", 0, "path search: the tag penalty must be >= 0"};
+  }
+  if (!(transition_penalty_m2 >= 0.0) || !std::isfinite(transition_penalty_m2)) {
+    return Error{"", 0, "path search: the transition penalty must be >= 0"};
+  }
+  if (!(bridge_penalty_m2 >= 0.0) || !std::isfinite(bridge_penalty_m2)) {
+    return Error{"", 0, "path search: the bridge penalty must be >= 0"};
+  }
   if (!(min_speed_mps >= 0.0) || !(behind_penalty_m >= 0.0)) {
     return Error{"", 0, "path search: the slowest speed and its penalty must be >= 0"};
   }
@@ -110,11 +118,14 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
                                             const PathSynthesisSettings& settings) {
   const MotionGraph& graph = *context.graph;
   const double fps = context.db->fps;
+  // A segment asking for a type the graph plays in no frame (its frames pruned away) asks the
+  // search for nothing: no walk can carry it, and pricing every frame there alike held the walk
+  // back (CMU 49 asked to run round a figure 8 took 194 s over its run half, walking).
   std::vector<TagMask> masks;
   for (const PathSegment& segment : path.segments()) {
     auto mask = context.tag_mask(segment.tag);
     if (!mask) return mask.error();
-    masks.push_back(*mask);
+    masks.push_back(graph_frames_with(context, *mask) > 0 ? *mask : 0);
   }
   if (settings.start_node >= graph.node_count()) {
     return Error{"", 0, fmt::format("start node {} does not exist (the graph has {})", settings.start_node,
@@ -416,23 +427,35 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
     }
     return (r.motion.frame_count - in_segments) / fps > slowest.back();
   };
-  // Missed: segments of kTagMissMinSeconds or more whose type, one the graph plays, carries
-  // less than retry_tag_match of their frames.
-  std::vector<bool> played(path.segments().size(), false);
-  for (size_t i = 0; i < played.size(); ++i) {
-    auto mask = context.tag_mask(path.segments()[i].tag);
-    played[i] = mask && graph_frames_with(context, *mask) > 0;
+  // Missed: segments of kTagMissMinSeconds or more asking for a motion type (not a modifier:
+  // a stop or a turn is how a motion goes) the graph plays, whose frames carry it less than
+  // retry_tag_match of the time; never with no tag penalty to raise.
+  std::vector<bool> judged(path.segments().size(), false);
+  for (size_t i = 0; i < judged.size() && settings.tag_penalty_m2 > 0.0; ++i) {
+    const std::string& tag = path.segments()[i].tag;
+    auto mask = context.tag_mask(tag);
+    judged[i] = mask && !is_modifier_tag(tag) && graph_frames_with(context, *mask) > 0;
   }
+  bool chase_tags = settings.retry_tag_match > 0.0;
+  auto misses = [&](const PathSynthesisResult& r, size_t i) {
+    const auto& m = r.segment_tag_matches[i];
+    return chase_tags && judged[i] && m.frames >= kTagMissMinSeconds * context.db->fps &&
+           m.matched < settings.retry_tag_match * m.frames;
+  };
   auto missed = [&](const PathSynthesisResult& r) {
     int count = 0;
-    for (size_t i = 0; i < r.segment_tag_matches.size() && i < played.size(); ++i) {
-      const auto& m = r.segment_tag_matches[i];
-      if (played[i] && m.frames >= kTagMissMinSeconds * context.db->fps &&
-          m.matched < settings.retry_tag_match * m.frames) {
-        ++count;
-      }
-    }
+    for (size_t i = 0; i < r.segment_tag_matches.size() && i < judged.size(); ++i) count += misses(r, i) ? 1 : 0;
     return count;
+  };
+  // The share of r's frames carrying the type asked over the segments `of` missed.
+  auto share_where_missed = [&](const PathSynthesisResult& r, const PathSynthesisResult& of) {
+    int frames = 0, matched = 0;
+    for (size_t i = 0; i < of.segment_tag_matches.size() && i < judged.size(); ++i) {
+      if (!misses(of, i)) continue;
+      frames += r.segment_tag_matches[i].frames;
+      matched += r.segment_tag_matches[i].matched;
+    }
+    return frames > 0 ? static_cast<double>(matched) / frames : 0.0;
   };
   auto within = [&](const PathSynthesisResult& r) {
     return settings.retry_deviation_m <= 0.0 || r.mean_deviation_m <= settings.retry_deviation_m;
@@ -443,12 +466,16 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
     if (!r.reached_end) return r.arc_covered_m > than.arc_covered_m;
     if (dawdled(r) != dawdled(than)) return !dawdled(r);
     if (within(r) != within(than)) return within(r);
-    if (missed(r) != missed(than)) return missed(r) < missed(than);
+    if (within(r) && missed(r) != missed(than)) return missed(r) < missed(than);
     return r.mean_deviation_m < than.mean_deviation_m;
   };
   double tag_factor = 1.0;
   for (size_t retry = 0; retry < ladder.size() && !good(*best) && settings.behind_penalty_m > 0.0; ++retry) {
-    if (missed(*best) > 0) tag_factor *= kProgressRetryFactor;
+    // The tag is priced higher only where it is all that is wrong: the end reached, not dawdling,
+    // close to the path (a walk held up in a segment misses its type too, and the rungs that
+    // push it on are searched at the penalty given).
+    const bool for_tags = best->reached_end && !dawdled(*best) && within(*best) && missed(*best) > 0;
+    if (for_tags) tag_factor *= kProgressRetryFactor;
     PathSynthesisSettings harder = settings;
     harder.anchor_arc = ladder[retry].anchor_arc;
     harder.edit_in_search = ladder[retry].edit_in_search;
@@ -461,6 +488,12 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
     searches += next->searches;
     exhausted += next->budget_exhausted;
     expansions += next->expansions;
+    if (for_tags && share_where_missed(*next, *best) <= share_where_missed(*best, *best)) {
+      // Priced higher, the type came no closer: the graph cannot play it there (a type it keeps
+      // a few frames of). It is no longer chased, and the rest is searched at the penalty given.
+      chase_tags = false;
+      tag_factor = 1.0;
+    }
     if (better(*next, *best)) best = std::move(next);
   }
   best->attempts = attempts;

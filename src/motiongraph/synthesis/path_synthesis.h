@@ -31,11 +31,13 @@
 // to progress_retries times, each looking retry_horizon_s ahead: first as it was; then with its
 // arc corrected at each commit (anchor_arc); then the behind penalty 4x higher; when the motion
 // is edited, then with the edit in the search (edit_in_search) at the penalty given and at 4x;
-// then at 16x, 64x, ... (each with and without the edit in the search); while the best so far
-// misses a type, each retry also has the tag penalty 4x the last's. The first to reach the
-// end without dawdling within retry_deviation_m, missing no type, is kept, or else the one
-// reaching it (without dawdling if any does; then within retry_deviation_m; then missing the
-// fewest types) with the least deviation, or else the one that got furthest along.
+// then at 16x, 64x, ... (each with and without the edit in the search); where a missed type is
+// all that is wrong with the best so far, the retry has the tag penalty 4x the last's
+// (retry_tag_match). The first to reach the end without dawdling within retry_deviation_m,
+// missing no type, is kept, or else the one reaching it (without dawdling if any does; then
+// within retry_deviation_m, and among those missing the fewest types) with the least deviation,
+// or else the one that got furthest along. A segment asking for a type the graph plays in no
+// frame asks the search for nothing.
 //
 // The walk's motion is then edited onto the path (path_edit.h: Gleicher's motion path editing,
 // within a limit on the turning it adds) unless edit_path is false; the result gives the
@@ -70,11 +72,14 @@ struct PathSynthesisSettings {
   // (0: not for the deviation) (no retries: 0; nor when behind_penalty_m is 0).
   int progress_retries = 4;
   double retry_deviation_m = 0.1;
-  // A segment of at least kTagMissMinSeconds of motion, asking for a type the graph plays, whose
-  // frames carry it less than this share of them missed it (the 8 subjects' circle of 5 m asked
-  // to walk then run walked on: a run leaves the circle within the horizon, at a tag penalty
-  // each frame walking stays under): the walk is searched again, each retry while the best so
-  // far misses a type with the tag penalty 4x higher (0: not for a missed type).
+  // A segment of at least kTagMissMinSeconds of motion, asking for a motion type the graph plays
+  // (not a modifier tag such as stop or turn), whose frames carry it less than this share of
+  // them missed it (the 8 subjects' circle of 5 m asked to walk then run walked on: a run leaves
+  // the circle within the horizon, at a tag penalty each frame walking stays under): the walk is
+  // searched again. Where a missed type is all that is wrong with the best so far (the end
+  // reached without dawdling, within retry_deviation_m), the retry prices the tag 4x higher than
+  // the last, until a retry brings the missed segments no closer to their types: then they are no
+  // longer chased (0, or tag_penalty_m2 0: not for a missed type).
   double retry_tag_match = 0.5;
   // The retries' horizon (0: horizon_s). At a sharp corner a library with little turning in its
   // walking may find nothing within horizon_s that beats shuffling on the spot; a longer look
