@@ -136,8 +136,8 @@ Command add_path_command(CLI::App& app) {
                   "search again up to this many times, looking --retry-horizon ahead: the "
                   "same search; with the search's arc corrected to the way along the path the walk has come; "
                   "--behind-penalty 4x; then the search sees where the path edit puts the walk, at 1x and 4x; then "
-                  "16x, 64x, ...; where a missed type is all that is wrong with the best so far, --tag-penalty 4x the "
-                  "last retry's too, until that brings the type no closer; the "
+                  "16x, 64x, ...; where a missed type is all that is wrong with the best so far, --tag-penalty 4x "
+                  "the last raised one too; the "
                   "first to reach the end without dawdling within --retry-deviation, missing no type, is "
                   "kept, else the one reaching it (without dawdling if any does; then within --retry-deviation, and "
                   "among those missing the fewest types) with the least deviation")

@@ -23,7 +23,7 @@ head -1 "$work/f8.bvh" | grep -q HIERARCHY || { echo "FAIL: BVH output"; exit 1;
 # after pruning ("run 100 frames of 272"); a graph at 1 cm keeps walking alone, and a path or a
 # steering script asking it to run says so, once, naming the segment or the control.
 "$bin" inspect "$work/g.mgraph" >"$work/inspect.txt"
-"$bin" build "$data/cmu/16" --threshold 1cm -o "$work/walk-only.mgraph" -q
+"$bin" build "$data/cmu/16" --threshold 1cm --no-cache -o "$work/walk-only.mgraph" -q
 "$bin" inspect "$work/walk-only.mgraph" >"$work/walk-only.txt"
 "$bin" path "$work/walk-only.mgraph" --shape line:10 --segment walk:0-5 --segment run:5-10 -o "$work/no-run.json" \
   --report "$work/no-run-report.json" >/dev/null 2>"$work/no-run.err"
@@ -32,6 +32,24 @@ printf '%s\n' '{"duration_s": 4, "controls": [{"at_s": 0, "heading": "north"}, {
   >"$work/run.json"
 "$bin" steer "$work/walk-only.mgraph" --script "$work/run.json" -o "$work/no-run-steer.json" >/dev/null \
   2>"$work/no-run-steer.err"
+# A type the graph keeps few frames of is chased through the retries: at 1.6 cm subject 16's
+# graph keeps 15 of its running frames; a circle asked to run then walk runs at a price raised
+# over several retries (5 % of its run half at the price given).
+"$bin" build "$data/cmu/16" --threshold 1.6cm --no-cache -o "$work/few-runs.mgraph" -q 2>/dev/null
+"$bin" path "$work/few-runs.mgraph" --shape circle:5 --segment run:0-15.708 --segment walk:15.708-31.416 \
+  -o "$work/few-runs.json" --report "$work/few-runs-report.json" >/dev/null
+"$bin" path "$work/few-runs.mgraph" --shape circle:5 --segment run:0-15.708 --segment walk:15.708-31.416 \
+  --retry-tag-match 0 -o "$work/few-runs-once.json" --report "$work/few-runs-once-report.json" >/dev/null
+python3 - "$work" <<'PY'
+import json, re, sys
+work = sys.argv[1]
+once = json.load(open(f"{work}/few-runs-once-report.json"))
+chased = json.load(open(f"{work}/few-runs-report.json"))
+assert 0 < once["segments"][0]["graph_frames"] < 50, once["segments"]   # few runs
+assert once["reached_end"] and once["segments"][0]["tag_match"] < 0.5, once["segments"]
+assert chased["reached_end"] and chased["segments"][0]["tag_match"] >= 0.5, chased["segments"]
+assert chased["tag_penalty_m2"] >= 16 and chased["attempts"] > 2, (chased["tag_penalty_m2"], chased["attempts"])
+PY
 python3 - "$work" <<'PY'
 import json, re, sys
 work = sys.argv[1]

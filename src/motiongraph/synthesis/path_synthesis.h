@@ -32,7 +32,7 @@
 // arc corrected at each commit (anchor_arc); then the behind penalty 4x higher; when the motion
 // is edited, then with the edit in the search (edit_in_search) at the penalty given and at 4x;
 // then at 16x, 64x, ... (each with and without the edit in the search); where a missed type is
-// all that is wrong with the best so far, the retry has the tag penalty 4x the last's
+// all that is wrong with the best so far, the retry has the tag penalty 4x the last raised one
 // (retry_tag_match). The first to reach the end without dawdling within retry_deviation_m,
 // missing no type, is kept, or else the one reaching it (without dawdling if any does; then
 // within retry_deviation_m, and among those missing the fewest types) with the least deviation,
@@ -78,8 +78,7 @@ struct PathSynthesisSettings {
   // the circle within the horizon, at a tag penalty each frame walking stays under): the walk is
   // searched again. Where a missed type is all that is wrong with the best so far (the end
   // reached without dawdling, within retry_deviation_m), the retry prices the tag 4x higher than
-  // the last, until a retry brings the missed segments no closer to their types: then they are no
-  // longer chased (0, or tag_penalty_m2 0: not for a missed type).
+  // the last time (0, or tag_penalty_m2 0: not for a missed type).
   double retry_tag_match = 0.5;
   // The retries' horizon (0: horizon_s). At a sharp corner a library with little turning in its
   // walking may find nothing within horizon_s that beats shuffling on the spot; a longer look
