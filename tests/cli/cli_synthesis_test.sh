@@ -23,7 +23,7 @@ head -1 "$work/f8.bvh" | grep -q HIERARCHY || { echo "FAIL: BVH output"; exit 1;
 # after pruning ("run 100 frames of 272"); a graph at 1 cm keeps walking alone, and a path or a
 # steering script asking it to run says so, once, naming the segment or the control.
 "$bin" inspect "$work/g.mgraph" >"$work/inspect.txt"
-"$bin" build "$data/cmu/16" --threshold 1cm --no-cache -o "$work/walk-only.mgraph" -q
+"$bin" build "$data/cmu/16" --threshold 1cm --no-cache -o "$work/walk-only.mgraph" 2>"$work/walk-only.err"
 "$bin" inspect "$work/walk-only.mgraph" >"$work/walk-only.txt"
 "$bin" path "$work/walk-only.mgraph" --shape line:10 --segment walk:0-5 --segment run:5-10 -o "$work/no-run.json" \
   --report "$work/no-run-report.json" >/dev/null 2>"$work/no-run.err"
@@ -62,6 +62,14 @@ for s in json.load(open(f"{work}/f8-report.json"))["segments"]:
     assert s["graph_frames"] > 0, s
 kept = after_pruning("walk-only.txt")
 assert kept["run"][0] == 0 and kept["walk"][0] > 0, kept
+# The build warned of each motion type it keeps none of (not of a modifier such as stop).
+lost = re.findall(r"warning: the graph keeps none of the (\d+) frames of '(\w+)' in its clips",
+                  open(f"{work}/walk-only.err").read())
+text = open(f"{work}/walk-only.txt").read().split("after pruning")[1]
+modifiers = set(re.findall(r"^  (\w+) .*\(modifier\*\)$", text, re.M))
+assert "stop" in modifiers and kept["stop"][0] == 0, (modifiers, kept)
+assert sorted((t, int(n)) for n, t in lost) == sorted((t, k[1]) for t, k in kept.items()
+                                                      if k[0] == 0 and t not in modifiers), (lost, kept)
 walk, run = json.load(open(f"{work}/no-run-report.json"))["segments"]
 assert (walk["graph_frames"], walk["clip_frames"]) == kept["walk"] and (run["graph_frames"], run["clip_frames"]) == kept["run"]
 assert run["tag_match"] == 0, run

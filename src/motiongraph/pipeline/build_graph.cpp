@@ -388,6 +388,13 @@ Result<Prepared> prepare(std::span<const std::string> inputs, const BuildSetting
   return Prepared{std::move(*db), std::move(*layout), std::move(*features)};
 }
 
+// Where the threshold comes from, for a warning that a higher one would keep more.
+std::string threshold_hint(const BuildSettings& settings) {
+  return settings.threshold_mode == ThresholdMode::kAuto
+             ? fmt::format("--max-threshold {:g} cm bounds the automatic one", settings.choice.max_rms_cm)
+             : std::string("--threshold sets it");
+}
+
 // The warning for a graph that keeps less than half of the library's frames (nothing when it
 // keeps more): the share, and the clips it loses most of, with the threshold from which
 // candidates could join a clip it keeps nothing of (the pruned stage's reach its ceiling only).
@@ -422,15 +429,27 @@ std::string coverage_warning(const MotionDatabase& db, const FrameFeatures& feat
     }
     named.push_back(line + ")");
   }
-  const std::string raise = settings.threshold_mode == ThresholdMode::kAuto
-                                ? fmt::format("--max-threshold {:g} cm bounds the automatic one",
-                                              settings.choice.max_rms_cm)
-                                : std::string("--threshold sets it");
   return fmt::format("the graph keeps {:.0f} % of the frames ({} of {}); it loses most of {}. A clip joins the graph "
                      "only through transitions under the threshold (here RMS {:.2f} cm; {}): a higher one keeps "
                      "more, with rougher blends",
                      100.0 * static_cast<double>(kept) / static_cast<double>(frames), kept, frames,
-                     fmt::join(named, ", "), threshold_rms_cm, raise);
+                     fmt::join(named, ", "), threshold_rms_cm, threshold_hint(settings));
+}
+
+// A warning for each motion type (not a modifier) the clips carry and the pruned graph plays in
+// no frame: `path` and `steer` cannot play it (CMU 49 keeps none of its 104 running frames).
+std::vector<std::string> lost_type_warnings(const MotionDatabase& db, const GraphStatistics& after,
+                                            const BuildSettings& settings, double threshold_rms_cm) {
+  std::vector<std::string> lines;
+  for (const TagStatistics& t : after.tags) {
+    const std::string& name = db.tag_names[static_cast<size_t>(t.tag)];
+    if (t.frames > 0 || t.database_frames == 0 || is_modifier_tag(name)) continue;
+    lines.push_back(fmt::format("the graph keeps none of the {} frames of '{}' in its clips: a path or steering asking "
+                                "for it cannot play it. A motion type is kept where transitions under the threshold "
+                                "(here RMS {:.2f} cm; {}) make its frames loop",
+                                t.database_frames, name, threshold_rms_cm, threshold_hint(settings)));
+  }
+  return lines;
 }
 
 }  // namespace
@@ -509,6 +528,9 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
     if (const std::string warning =
             coverage_warning(*db, *features, coverage, candidates->search, settings, threshold_rms_cm);
         !warning.empty()) {
+      say.warning(warning);
+    }
+    for (const std::string& warning : lost_type_warnings(*db, pruned.after, settings, threshold_rms_cm)) {
       say.warning(warning);
     }
     // Motion types that both loop but that nothing joins (the report lists them all): a warning
