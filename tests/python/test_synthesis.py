@@ -101,7 +101,7 @@ def test_a_type_the_graph_does_not_play_is_warned_of(data):
     """A graph at 1 cm keeps walking alone: a path or a controller asking it to run warns, naming
     the segment, as the CLI does; the controller once however often it is asked."""
     with pytest.warns(UserWarning, match="the graph keeps 2 % of the frames"):  # as the build says
-        walking = mg.build(str(data / "cmu/16"), threshold="1cm")
+        walking = mg.build(str(data / "cmu/16"), threshold="1cm", no_cache=True)
     with pytest.warns(UserWarning, match=r"the segment 5-10 m asks for 'run', which the graph plays in no frame") as caught:
         motion = walking.path(shape="line:10", segments=["walk:0-5", "run:5-10"])
     assert len([w for w in caught if "plays in no frame" in str(w.message)]) == 1
