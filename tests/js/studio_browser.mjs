@@ -3,13 +3,16 @@
 // and checks what a user sees: the figure on the canvas (pixels), a clip playing with its
 // planted feet marked, a clicked transition's two poses, a drawn path synthesized with its
 // deviation, keyboard steering.
-// Usage: node studio_browser.mjs MOTIONGRAPH_BINARY GRAPH SCREENSHOT_DIR
+// With DATA_DIR, also a graph of subject 16 at 1 cm, which keeps walking alone: the path's tag
+// picker and a drawn path asking to run say that running is not in the graph.
+// Usage: node studio_browser.mjs MOTIONGRAPH_BINARY GRAPH SCREENSHOT_DIR [DATA_DIR]
 // Needs chromium (CHROMIUM=... or /usr/bin/chromium; scripts/install-deps.sh installs it).
 import { spawn } from 'node:child_process';
-import { existsSync, mkdirSync } from 'node:fs';
+import { existsSync, mkdirSync, mkdtempSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 
-const [motiongraph, graph, shots] = process.argv.slice(2);
+const [motiongraph, graph, shots, dataDir] = process.argv.slice(2);
 if (!shots) {
   console.error('usage: node studio_browser.mjs MOTIONGRAPH_BINARY GRAPH SCREENSHOT_DIR');
   process.exit(2);
@@ -69,18 +72,50 @@ async function sampleMarks(page, count, everyMs) {
   return samples;
 }
 
-// The studio on a free port; its address is the line it prints once listening.
-const server = spawn(motiongraph, ['serve', graph, '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
-const url = await new Promise((resolve, reject) => {
-  let out = '';
-  server.stdout.on('data', (d) => {
-    out += d;
-    const m = out.match(/studio: (http:\/\/\S+)/);
-    if (m) resolve(m[1]);
+// The studio on a free port for `graphFile`; its address is the line it prints once listening.
+async function serve(graphFile) {
+  const process_ = spawn(motiongraph, ['serve', graphFile, '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
+  const address = await new Promise((resolve, reject) => {
+    let out = '';
+    process_.stdout.on('data', (d) => {
+      out += d;
+      const m = out.match(/studio: (http:\/\/\S+)/);
+      if (m) resolve(m[1]);
+    });
+    process_.on('exit', (code) => reject(new Error(`motiongraph serve exited with ${code} before listening`)));
+    setTimeout(() => reject(new Error('motiongraph serve printed no address within 20 s')), 20000);
   });
-  server.on('exit', (code) => reject(new Error(`motiongraph serve exited with ${code} before listening`)));
-  setTimeout(() => reject(new Error('motiongraph serve printed no address within 20 s')), 20000);
-});
+  return [process_, address];
+}
+// Stops a server with SIGINT and checks that it stopped cleanly.
+async function stopServer(process_, what) {
+  process_.kill('SIGINT');
+  const code = await new Promise((resolve) => {
+    if (process_.exitCode !== null) resolve(process_.exitCode);
+    else process_.on('exit', (c) => resolve(c));
+  });
+  check(code === 0, `motiongraph serve${what} stopped cleanly on SIGINT (exit ${code})`);
+}
+// Draws a path on the canvas in the top view: up and to the right from below its centre.
+async function drawPath(page) {
+  await page.click('[data-testid=draw]');
+  await page.waitForTimeout(100);
+  const view = await page.locator('[data-testid=canvas]').boundingBox();
+  const cx = view.x + view.width / 2;
+  const cy = view.y + view.height / 2;
+  await page.mouse.move(cx, cy + 40);
+  await page.mouse.down();
+  for (let i = 1; i <= 12; ++i) await page.mouse.move(cx + i * 6, cy + 40 - i * 20);
+  await page.mouse.up();
+}
+async function synthesizePath(page) {
+  await page.click('[data-testid=synthesize]');
+  await page.waitForFunction(() => window.studio.state.pathResult || /error/.test(
+    document.querySelector('[data-testid=path-info]').textContent), null, { timeout: 180000 });
+  return page.textContent('[data-testid=path-info]');
+}
+
+const [server, url] = await serve(graph);
 console.log(`studio at ${url}`);
 
 const browser = await chromium.launch({
@@ -230,21 +265,10 @@ try {
   await page.screenshot({ path: join(shots, '3-transition.png') });
 
   // 4. Draw a path on the ground (top view) and synthesize it.
-  await page.click('[data-testid=draw]');
-  await page.waitForTimeout(100);
-  const view = await page.locator('[data-testid=canvas]').boundingBox();
-  const cx = view.x + view.width / 2;
-  const cy = view.y + view.height / 2;
-  await page.mouse.move(cx, cy + 40);
-  await page.mouse.down();
-  for (let i = 1; i <= 12; ++i) await page.mouse.move(cx + i * 6, cy + 40 - i * 20);
-  await page.mouse.up();
+  await drawPath(page);
   const pathPoints = await page.evaluate(() => window.studio.state.path.points.length);
   check(pathPoints >= 5, `the path drawn has ${pathPoints} points`);
-  await page.click('[data-testid=synthesize]');
-  await page.waitForFunction(() => window.studio.state.pathResult || /error/.test(
-    document.querySelector('[data-testid=path-info]').textContent), null, { timeout: 180000 });
-  const pathInfo = await page.textContent('[data-testid=path-info]');
+  const pathInfo = await synthesizePath(page);
   check(/deviation mean [\d.]+ m/.test(pathInfo), `the path is synthesized: ${pathInfo}`);
   check(/\d+ transitions \([\d.]+\/s(, \d+ bridges?)?\)/.test(pathInfo), `the path's transitions per second are shown: ${pathInfo}`);
   check(/bent onto the path; as the graph played it [\d.]+ m, max [\d.]+ m/.test(pathInfo),
@@ -333,11 +357,49 @@ try {
   check(steerPlanted > 0 && steerWhole,
     `steering marks planted feet (${steerPlanted} of ${steerMarks.length} samples)`);
   check(errors.length === 0, `no errors in the page${errors.length ? `: ${errors.join('; ')}` : ''}`);
+  const tagOptions = await page.$$eval('[data-testid=path-tag] option', (os) => os.map((o) => o.textContent));
+  check(tagOptions.length > 1 && !tagOptions.some((t) => /not in the graph/.test(t)),
+    `the default graph plays every type its path picker offers: ${tagOptions.join(', ')}`);
+} catch (err) {
+  console.log(`FAIL ${err.message}`);
+  failures += 1;
+}
+
+// A graph that keeps walking alone: running is offered as not in the graph, and a path drawn
+// asking to run says so beside its match.
+let second = null;
+const work = dataDir ? mkdtempSync(join(tmpdir(), 'studio-walk-only-')) : null;
+try {
+  if (dataDir) {
+    const walkOnly = join(work, 'walk-only.mgraph');
+    const built = spawn(motiongraph, ['build', join(dataDir, 'cmu/16'), '--threshold', '1cm', '--no-cache', '-q',
+      '-o', walkOnly], { stdio: 'ignore' });
+    const builtCode = await new Promise((resolve) => built.on('exit', resolve));
+    check(builtCode === 0, `the graph at 1 cm is built (exit ${builtCode})`);
+    let address;
+    [second, address] = await serve(walkOnly);
+    const page = await browser.newPage({ viewport: { width: 1100, height: 700 } });
+    page.setDefaultTimeout(180000);
+    await page.goto(address);
+    await page.waitForFunction(() => window.studio && (window.studio.state.ready || window.studio.state.error),
+      null, { timeout: 30000 });
+    check(!(await page.evaluate(() => window.studio.state.error)), 'the studio loads the walking graph');
+    const options = await page.$$eval('[data-testid=path-tag] option', (os) => os.map((o) => [o.value, o.textContent]));
+    const label = (tag) => (options.find(([v]) => v === tag) || [])[1];
+    check(label('run') === 'run (not in the graph)' && label('walk') === 'walk',
+      `the walking graph's picker marks running: ${options.map(([, t]) => t).join(', ')}`);
+    await page.selectOption('[data-testid=path-tag]', 'run');
+    await drawPath(page);
+    const info = await synthesizePath(page);
+    check(/run 0 %: not in the graph/.test(info), `a path asking it to run says running is not in the graph: ${info}`);
+  }
 } catch (err) {
   console.log(`FAIL ${err.message}`);
   failures += 1;
 } finally {
   await stopAll();
+  if (second) await stopServer(second, ' (the walking graph)');
+  if (work) rmSync(work, { recursive: true, force: true });
 }
 const code = await new Promise((resolve) => {
   if (server.exitCode !== null) resolve(server.exitCode);

@@ -569,8 +569,12 @@ async function start() {
     + `${summary.statistics.transitions} transitions`;
   $('clip-select').innerHTML = clips.map((c) => `<option value="${c.index}">${c.name} (${c.frames} frames, kept `
     + `${Math.round((100 * c.kept_frames) / c.frames)} %; ${c.tags.join(', ') || 'no tag'})</option>`).join('');
+  // A type the graph plays in no frame (its frames pruned away) says so: a path asking for it
+  // cannot follow it.
+  const absent = new Set(summary.statistics.tags.filter((t) => t.frames === 0).map((t) => t.name));
   $('path-tag').innerHTML = ['<option value="">any</option>',
-    ...summary.tags.map((t) => `<option value="${t}"${t === 'walk' ? ' selected' : ''}>${t}</option>`)].join('');
+    ...summary.tags.map((t) => `<option value="${t}"${t === 'walk' ? ' selected' : ''}>${t}`
+      + `${absent.has(t) ? ' (not in the graph)' : ''}</option>`)].join('');
   const modifierNote = 'a modifier: says how a motion goes (turn, stop, ...), not what it is; its frames live in '
     + 'the motion types\' regions and need no connected region (SCC) of their own';
   const rows = summary.statistics.tags.map((t) => `<tr${t.modifier ? ` class="modifier" title="${modifierNote}"` : ''}>`
