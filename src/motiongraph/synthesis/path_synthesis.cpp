@@ -113,20 +113,26 @@ std::vector<double> slowest_seconds(const SynthesisContext& context, const Floor
 
 namespace {
 
-// One search of the whole path with these settings, its motion assembled (and edited).
-Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, const FloorPath& path,
-                                            const PathSynthesisSettings& settings) {
-  const MotionGraph& graph = *context.graph;
-  const double fps = context.db->fps;
-  // A segment asking for a type the graph plays in no frame (its frames pruned away) asks the
-  // search for nothing: no walk can carry it, and pricing every frame there alike held the walk
-  // back (CMU 49 asked to run round a figure 8 took 194 s over its run half, walking).
+// The tag bits each of the path's segments asks the search for. A segment asking for a type the
+// graph plays in no frame (its frames pruned away) asks for nothing (0): no walk can carry it,
+// and pricing every frame there alike held the walk back (CMU 49 asked to run round a figure 8
+// took 194 s over its run half, walking). Fails on a tag the graph does not know.
+Result<std::vector<TagMask>> asked_masks(const SynthesisContext& context, const FloorPath& path) {
   std::vector<TagMask> masks;
   for (const PathSegment& segment : path.segments()) {
     auto mask = context.tag_mask(segment.tag);
     if (!mask) return mask.error();
     masks.push_back(graph_frames_with(context, *mask) > 0 ? *mask : 0);
   }
+  return masks;
+}
+
+// One search of the whole path with these settings, its motion assembled (and edited); `masks`:
+// asked_masks().
+Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, const FloorPath& path,
+                                            const std::vector<TagMask>& masks, const PathSynthesisSettings& settings) {
+  const MotionGraph& graph = *context.graph;
+  const double fps = context.db->fps;
   if (settings.start_node >= graph.node_count()) {
     return Error{"", 0, fmt::format("start node {} does not exist (the graph has {})", settings.start_node,
                                     graph.node_count())};
@@ -384,7 +390,9 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
 Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, const FloorPath& path,
                                             const PathSynthesisSettings& settings) {
   if (auto status = settings.validate(); !status) return status.error();
-  auto best = synthesize_once(context, path, settings);
+  auto masks = asked_masks(context, path);
+  if (!masks) return masks.error();
+  auto best = synthesize_once(context, path, *masks, settings);
   if (!best) return best.error();
   int attempts = 1, searches = best->searches, exhausted = best->budget_exhausted;
   long long expansions = best->expansions;
@@ -432,9 +440,7 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
   // retry_tag_match of the time; never with no tag penalty to raise.
   std::vector<bool> judged(path.segments().size(), false);
   for (size_t i = 0; i < judged.size() && settings.tag_penalty_m2 > 0.0; ++i) {
-    const std::string& tag = path.segments()[i].tag;
-    auto mask = context.tag_mask(tag);
-    judged[i] = mask && !is_modifier_tag(tag) && graph_frames_with(context, *mask) > 0;
+    judged[i] = (*masks)[i] != 0 && !is_modifier_tag(path.segments()[i].tag);
   }
   auto misses = [&](const PathSynthesisResult& r, size_t i) {
     const auto& m = r.segment_tag_matches[i];
@@ -474,7 +480,7 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
     harder.behind_penalty_m = settings.behind_penalty_m * ladder[retry].factor;
     harder.tag_penalty_m2 = settings.tag_penalty_m2 * (for_tags ? tag_factor : 1.0);
     harder.horizon_s = retry_horizon_s;
-    auto next = synthesize_once(context, path, harder);
+    auto next = synthesize_once(context, path, *masks, harder);
     if (!next) return next.error();
     ++attempts;
     searches += next->searches;
