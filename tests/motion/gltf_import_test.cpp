@@ -1,13 +1,16 @@
 // glTF in: what the project's glTF writer writes reads back to the same world positions (a CMU
 // rig, a static root above the hips, several animations); a rig built here by glTF's rules alone
 // (joints resting turned along their bones, an armature turned and scaled by 0.01 above them,
-// LINEAR, STEP and CUBICSPLINE keys at half the rate sampled) reads where those rules put its
-// joints; and files that cannot be read are one error each.
+// LINEAR, STEP and CUBICSPLINE keys at half the rate sampled, tracks in sparse accessors) reads
+// where those rules put its joints; and files that cannot be read are one error each.
 #include "motiongraph/motion/gltf_import.h"
 
 #include <cmath>
+#include <functional>
+#include <numeric>
 #include <sstream>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
@@ -85,17 +88,22 @@ struct Built {
 
   Built() { model.buffers.emplace_back(); model.asset.version = "2.0"; }
 
-  int floats(const std::vector<float>& values, int type) {
-    const size_t offset = buffer().size();
-    buffer().resize(offset + values.size() * sizeof(float));
-    std::memcpy(buffer().data() + offset, values.data(), values.size() * sizeof(float));
+  // Bytes appended to the buffer (4-aligned), as a buffer view of their own.
+  int view(const void* data, size_t bytes) {
+    const size_t offset = (buffer().size() + 3) / 4 * 4;
+    buffer().resize(offset + bytes);
+    std::memcpy(buffer().data() + offset, data, bytes);
     tinygltf::BufferView view;
     view.buffer = 0;
     view.byteOffset = offset;
-    view.byteLength = values.size() * sizeof(float);
+    view.byteLength = bytes;
     model.bufferViews.push_back(view);
+    return static_cast<int>(model.bufferViews.size()) - 1;
+  }
+
+  int floats(const std::vector<float>& values, int type) {
     tinygltf::Accessor accessor;
-    accessor.bufferView = static_cast<int>(model.bufferViews.size()) - 1;
+    accessor.bufferView = view(values.data(), values.size() * sizeof(float));
     accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
     accessor.type = type;
     accessor.count = values.size() / static_cast<size_t>(tinygltf::GetNumComponentsInType(static_cast<uint32_t>(type)));
@@ -105,6 +113,22 @@ struct Built {
     }
     model.accessors.push_back(accessor);
     return static_cast<int>(model.accessors.size()) - 1;
+  }
+
+  // Makes an accessor sparse: `values` (floats, its elements' width each) replace its elements
+  // at `at`, stored as unsigned bytes, shorts or ints (`index_type`).
+  void make_sparse(int accessor, const std::vector<uint32_t>& at, const std::vector<float>& values, int index_type) {
+    const size_t size = static_cast<size_t>(tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(index_type)));
+    std::vector<uint8_t> bytes(at.size() * size);
+    for (size_t i = 0; i < at.size(); ++i) std::memcpy(bytes.data() + i * size, &at[i], size);  // little-endian
+    auto& sparse = model.accessors[static_cast<size_t>(accessor)].sparse;
+    sparse.isSparse = true;
+    sparse.count = static_cast<int>(at.size());
+    sparse.indices.bufferView = view(bytes.data(), bytes.size());
+    sparse.indices.byteOffset = 0;
+    sparse.indices.componentType = index_type;
+    sparse.values.bufferView = view(values.data(), values.size() * sizeof(float));
+    sparse.values.byteOffset = 0;
   }
 
   std::string glb() {
@@ -378,6 +402,80 @@ TEST(GltfImport, TheRateOfALongLateTakeIsItsKeys) {
     worst = std::max(worst, (clips[0].motion.translations(k)[0] - want).norm());
   }
   EXPECT_LT(worst, 1e-6);  // STEP-like values (k % 7): off by whole units if a frame fell between keys
+}
+
+// A sparse accessor (glTF 2.0, "Sparse Accessors"): its values replace those of its buffer view,
+// or of zeros where it has none, at its indices.
+TEST(GltfImport, SparseAccessorsReplaceTheirBaseAtTheirIndices) {
+  const Rig plain;
+  const tinygltf::Animation& kick = plain.built.model.animations[0];
+  const auto floats_of = [&](int accessor) {
+    const tinygltf::Accessor& a = plain.built.model.accessors[static_cast<size_t>(accessor)];
+    const tinygltf::BufferView& v = plain.built.model.bufferViews[static_cast<size_t>(a.bufferView)];
+    std::vector<float> out(v.byteLength / sizeof(float));
+    std::memcpy(out.data(), plain.built.model.buffers[0].data.data() + v.byteOffset, v.byteLength);
+    return out;
+  };
+  const int hips_t = kick.samplers[0].output, thigh_r = kick.samplers[2].output;
+  Rig rig;
+  // The hips' translation: no buffer view (zeros), every key given sparse, in unsigned bytes.
+  std::vector<uint32_t> every(Rig::kKeys);
+  std::iota(every.begin(), every.end(), 0u);
+  rig.built.model.accessors[static_cast<size_t>(hips_t)].bufferView = -1;
+  rig.built.make_sparse(hips_t, every, floats_of(hips_t), TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE);
+  // The thigh's rotation: a view whose keys 3, 7 and 11 do not turn, put right sparse, in
+  // unsigned shorts.
+  std::vector<float> wrong = floats_of(thigh_r), right;
+  for (size_t k : {3, 7, 11}) {
+    for (size_t c = 0; c < 4; ++c) right.push_back(wrong[4 * k + c]);
+    for (size_t c = 0; c < 4; ++c) wrong[4 * k + c] = c == 3 ? 1.0f : 0.0f;
+  }
+  rig.built.model.accessors[static_cast<size_t>(thigh_r)].bufferView =
+      rig.built.view(wrong.data(), wrong.size() * sizeof(float));
+  rig.built.make_sparse(thigh_r, {3, 7, 11}, right, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+  GltfImportSettings at30;
+  at30.fps_override = 30.0;
+  const std::vector<Clip> clips = read_back(rig.built.glb(), at30);
+  ASSERT_EQ(clips.size(), 1u);
+  EXPECT_LT(worst_against_rules(rig, clips[0]), 1e-5);
+  // Without either one's sparse values the joints are elsewhere: the base alone is read.
+  for (const int accessor : {hips_t, thigh_r}) {
+    Rig base = rig;
+    base.built.model.accessors[static_cast<size_t>(accessor)].sparse.isSparse = false;
+    const std::vector<Clip> read = read_back(base.built.glb(), at30);
+    ASSERT_EQ(read.size(), 1u);
+    EXPECT_GT(worst_against_rules(rig, read[0]), 0.05) << accessor;
+  }
+
+  // Sparse parts a file gets wrong: one error each.
+  const auto message = [&](const std::function<void(Rig&)>& spoil) {
+    Rig bad = rig;
+    spoil(bad);
+    auto read = clips_from_gltf(bad.built.glb(), "bad.glb", at30);
+    EXPECT_FALSE(read);
+    return read ? std::string() : read.error().message;
+  };
+  const auto has = [](const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; };
+  const int u8 = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, u16 = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+  const std::string unordered = message([&](Rig& r) { r.built.make_sparse(thigh_r, {7, 3, 11}, right, u16); });
+  EXPECT_TRUE(has(unordered, fmt::format("accessor {} has sparse index 1 at 3: sparse indices must increase", thigh_r)))
+      << unordered;
+  const std::string beyond =
+      message([&](Rig& r) { r.built.make_sparse(thigh_r, {3, 7, 16}, right, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT); });
+  EXPECT_TRUE(has(beyond, fmt::format("accessor {} has sparse index 2 at 16", thigh_r))) << beyond;
+  const std::string signed_indices =
+      message([&](Rig& r) { r.built.make_sparse(thigh_r, {3, 7, 11}, right, TINYGLTF_COMPONENT_TYPE_SHORT); });
+  EXPECT_TRUE(has(signed_indices, "has sparse indices that are not unsigned integers")) << signed_indices;
+  const std::string too_many =
+      message([&](Rig& r) { r.built.model.accessors[static_cast<size_t>(thigh_r)].sparse.count = 17; });
+  EXPECT_TRUE(has(too_many, fmt::format("accessor {} replaces 17 of its 16 elements", thigh_r))) << too_many;
+  const std::string short_values =
+      message([&](Rig& r) { r.built.make_sparse(thigh_r, {3, 7, 11}, {right.begin(), right.begin() + 8}, u8); });
+  EXPECT_TRUE(has(short_values, fmt::format("accessor {} (sparse values) runs past its buffer", thigh_r)))
+      << short_values;
+  const std::string no_view = message(
+      [&](Rig& r) { r.built.model.accessors[static_cast<size_t>(hips_t)].sparse.indices.bufferView = 99; });
+  EXPECT_TRUE(has(no_view, fmt::format("accessor {} (sparse indices) names buffer view 99", hips_t))) << no_view;
 }
 
 TEST(GltfImport, FilesThatCannotBeReadAreOneErrorEach) {

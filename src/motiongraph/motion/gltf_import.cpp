@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <optional>
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>
@@ -50,86 +51,171 @@ Result<NodeTrs> node_trs(const tinygltf::Model& model, int index, const std::str
   return out;
 }
 
+// One component at `p` as a double: floats as they are, normalised integers as glTF maps them
+// to [-1, 1] or [0, 1]; nullopt for a component type glTF does not have.
+std::optional<double> component_value(const unsigned char* p, int type, bool normalized) {
+  switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+      float f;
+      std::memcpy(&f, p, sizeof f);
+      return f;
+    }
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+      int8_t x;
+      std::memcpy(&x, p, 1);
+      return normalized ? std::max(x / 127.0, -1.0) : x;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return normalized ? *p / 255.0 : *p;
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+      int16_t x;
+      std::memcpy(&x, p, 2);
+      return normalized ? std::max(x / 32767.0, -1.0) : x;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      uint16_t x;
+      std::memcpy(&x, p, 2);
+      return normalized ? x / 65535.0 : x;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+      uint32_t x;
+      std::memcpy(&x, p, 4);
+      return normalized ? x / 4294967295.0 : x;
+    }
+    default:
+      return std::nullopt;
+  }
+}
+
+// Where a run of elements lies in a buffer view, as an accessor or a sparse accessor's indices
+// or values name it; `what` names it in errors ("accessor 3", "accessor 3 (sparse indices)").
+struct ElementRun {
+  int view = -1;
+  size_t offset = 0;  // bytes into the view
+  size_t count = 0;
+  int components = 1;
+  int component_type = -1;
+  bool normalized = false;
+  bool strided = true;  // the view's byteStride applies (not to sparse indices and values)
+  std::string what;
+};
+
+Result<std::vector<double>> run_values(const tinygltf::Model& model, const ElementRun& run, const std::string& file) {
+  const int size = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(run.component_type));
+  if (size <= 0) return Error{file, 0, fmt::format("{} has an unknown component type", run.what)};
+  if (run.view < 0 || run.view >= static_cast<int>(model.bufferViews.size())) {
+    return Error{file, 0, fmt::format("{} names buffer view {}, which does not exist", run.what, run.view)};
+  }
+  const tinygltf::BufferView& view = model.bufferViews[static_cast<size_t>(run.view)];
+  if (view.buffer < 0 || view.buffer >= static_cast<int>(model.buffers.size())) {
+    return Error{file, 0, fmt::format("buffer view {} names buffer {}, which does not exist", run.view, view.buffer)};
+  }
+  const std::vector<unsigned char>& buffer = model.buffers[static_cast<size_t>(view.buffer)].data;
+  const size_t element = static_cast<size_t>(size * run.components);
+  const size_t stride = run.strided && view.byteStride > 0 ? view.byteStride : element;
+  const size_t end = view.byteLength <= buffer.size() && view.byteOffset <= buffer.size() - view.byteLength
+                         ? view.byteOffset + view.byteLength
+                         : 0;
+  const size_t start = view.byteOffset + run.offset;
+  // In size_t without overflow: the last element ends within the view, which lies in the buffer.
+  if (run.count > 0 && (end == 0 || start < view.byteOffset || start > end || end - start < element ||
+                        (run.count - 1) > (end - start - element) / stride)) {
+    return Error{file, 0, fmt::format("{} runs past its buffer", run.what)};
+  }
+  std::vector<double> out(run.count * static_cast<size_t>(run.components), 0.0);
+  for (size_t i = 0; i < run.count; ++i) {
+    const unsigned char* at = buffer.data() + start + i * stride;
+    for (int c = 0; c < run.components; ++c) {
+      const std::optional<double> v = component_value(at + c * size, run.component_type, run.normalized);
+      if (!v) return Error{file, 0, fmt::format("{} has an unknown component type", run.what)};
+      if (!std::isfinite(*v)) return Error{file, 0, fmt::format("{} holds a value that is not finite", run.what)};
+      out[i * static_cast<size_t>(run.components) + static_cast<size_t>(c)] = *v;
+    }
+  }
+  return out;
+}
+
 // An accessor's elements as doubles, `components` each: floats as they are, normalised integers
-// as glTF maps them to [-1, 1] or [0, 1].
+// as glTF maps them to [-1, 1] or [0, 1]. A sparse accessor's values replace those of its buffer
+// view (or of zeros, without one) at its indices.
 Result<std::vector<double>> accessor_values(const tinygltf::Model& model, int index, int components,
                                             const std::string& file) {
   if (index < 0 || index >= static_cast<int>(model.accessors.size())) {
     return Error{file, 0, fmt::format("accessor {} does not exist", index)};
   }
   const tinygltf::Accessor& accessor = model.accessors[static_cast<size_t>(index)];
-  if (accessor.sparse.isSparse) return Error{file, 0, fmt::format("accessor {} is sparse, which is not read", index)};
   if (tinygltf::GetNumComponentsInType(static_cast<uint32_t>(accessor.type)) != components) {
     return Error{file, 0, fmt::format("accessor {} has {} components, not {}", index,
                                       tinygltf::GetNumComponentsInType(static_cast<uint32_t>(accessor.type)), components)};
   }
+  const int size = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(accessor.componentType));
+  if (size <= 0) return Error{file, 0, fmt::format("accessor {} has an unknown component type", index)};
+  if (accessor.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT || size > 4) {
+    return Error{file, 0, fmt::format("accessor {} has a component type animation cannot use", index)};
+  }
+  ElementRun run;
+  run.view = accessor.bufferView;
+  run.offset = accessor.byteOffset;
+  run.count = accessor.count;
+  run.components = components;
+  run.component_type = accessor.componentType;
+  run.normalized = accessor.normalized;
+  run.what = fmt::format("accessor {}", index);
+  std::vector<double> out;
   if (accessor.bufferView < 0) {  // all zeros, as glTF says
     if (accessor.count > static_cast<size_t>(kMaxFrames) * 4) {
       return Error{file, 0, fmt::format("accessor {} holds {} zeros, more than any animation reads", index, accessor.count)};
     }
-    return std::vector<double>(accessor.count * static_cast<size_t>(components), 0.0);
+    out.assign(accessor.count * static_cast<size_t>(components), 0.0);
+  } else {
+    auto values = run_values(model, run, file);
+    if (!values) return values.error();
+    out = std::move(*values);
   }
-  const int size = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(accessor.componentType));
-  if (size <= 0) return Error{file, 0, fmt::format("accessor {} has an unknown component type", index)};
-  if (accessor.bufferView >= static_cast<int>(model.bufferViews.size())) {
-    return Error{file, 0, fmt::format("accessor {} names buffer view {}, which does not exist", index, accessor.bufferView)};
+  if (!accessor.sparse.isSparse) return out;
+
+  const auto& sparse = accessor.sparse;
+  if (sparse.count < 1 || static_cast<size_t>(sparse.count) > accessor.count) {
+    return Error{file, 0, fmt::format("accessor {} replaces {} of its {} elements", index, sparse.count, accessor.count)};
   }
-  const tinygltf::BufferView& view = model.bufferViews[static_cast<size_t>(accessor.bufferView)];
-  if (view.buffer < 0 || view.buffer >= static_cast<int>(model.buffers.size())) {
-    return Error{file, 0, fmt::format("buffer view {} names buffer {}, which does not exist", accessor.bufferView, view.buffer)};
+  const int index_type = sparse.indices.componentType;
+  if (index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+      index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
+    return Error{file, 0, fmt::format("accessor {} has sparse indices that are not unsigned integers", index)};
   }
-  const std::vector<unsigned char>& buffer = model.buffers[static_cast<size_t>(view.buffer)].data;
-  const size_t element = static_cast<size_t>(size * components);
-  const size_t stride = view.byteStride > 0 ? view.byteStride : element;
-  const size_t end = view.byteLength <= buffer.size() && view.byteOffset <= buffer.size() - view.byteLength
-                         ? view.byteOffset + view.byteLength
-                         : 0;
-  const size_t start = view.byteOffset + accessor.byteOffset;
-  // In size_t without overflow: the last element ends within the view, which lies in the buffer.
-  if (accessor.count > 0 && (end == 0 || start < view.byteOffset || start > end || end - start < element ||
-                             (accessor.count - 1) > (end - start - element) / stride)) {
-    return Error{file, 0, fmt::format("accessor {} runs past its buffer", index)};
+  if (sparse.indices.byteOffset < 0 || sparse.values.byteOffset < 0) {
+    return Error{file, 0, fmt::format("accessor {} has sparse indices or values before their buffer view", index)};
   }
-  std::vector<double> out(accessor.count * static_cast<size_t>(components), 0.0);
-  for (size_t i = 0; i < accessor.count; ++i) {
-    const unsigned char* at = buffer.data() + start + i * stride;
-    for (int c = 0; c < components; ++c) {
-      const unsigned char* p = at + c * size;
-      double v = 0.0;
-      switch (accessor.componentType) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: {
-          float f;
-          std::memcpy(&f, p, sizeof f);
-          v = f;
-          break;
-        }
-        case TINYGLTF_COMPONENT_TYPE_BYTE: {
-          int8_t x;
-          std::memcpy(&x, p, 1);
-          v = accessor.normalized ? std::max(x / 127.0, -1.0) : x;
-          break;
-        }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-          v = accessor.normalized ? *p / 255.0 : *p;
-          break;
-        case TINYGLTF_COMPONENT_TYPE_SHORT: {
-          int16_t x;
-          std::memcpy(&x, p, 2);
-          v = accessor.normalized ? std::max(x / 32767.0, -1.0) : x;
-          break;
-        }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-          uint16_t x;
-          std::memcpy(&x, p, 2);
-          v = accessor.normalized ? x / 65535.0 : x;
-          break;
-        }
-        default:
-          return Error{file, 0, fmt::format("accessor {} has a component type animation cannot use", index)};
-      }
-      if (!std::isfinite(v)) return Error{file, 0, fmt::format("accessor {} holds a value that is not finite", index)};
-      out[i * static_cast<size_t>(components) + static_cast<size_t>(c)] = v;
+  ElementRun at = run;
+  at.view = sparse.indices.bufferView;
+  at.offset = static_cast<size_t>(sparse.indices.byteOffset);
+  at.count = static_cast<size_t>(sparse.count);
+  at.components = 1;
+  at.component_type = index_type;
+  at.normalized = false;
+  at.strided = false;
+  at.what = fmt::format("accessor {} (sparse indices)", index);
+  auto indices = run_values(model, at, file);
+  if (!indices) return indices.error();
+  ElementRun replaced = run;
+  replaced.view = sparse.values.bufferView;
+  replaced.offset = static_cast<size_t>(sparse.values.byteOffset);
+  replaced.count = static_cast<size_t>(sparse.count);
+  replaced.strided = false;
+  replaced.what = fmt::format("accessor {} (sparse values)", index);
+  auto values = run_values(model, replaced, file);
+  if (!values) return values.error();
+  const size_t width = static_cast<size_t>(components);
+  for (size_t i = 0; i < indices->size(); ++i) {
+    const double element = (*indices)[i];
+    if (element >= static_cast<double>(accessor.count) || (i > 0 && element <= (*indices)[i - 1])) {
+      return Error{file, 0,
+                   fmt::format("accessor {} has sparse index {} at {}: sparse indices must increase and stay under "
+                               "the accessor's {} elements",
+                               index, i, static_cast<uint64_t>(element), accessor.count)};
     }
+    std::copy_n(values->begin() + static_cast<std::ptrdiff_t>(i * width), width,
+                out.begin() + static_cast<std::ptrdiff_t>(static_cast<size_t>(element) * width));
   }
   return out;
 }
