@@ -12,6 +12,7 @@
 
 #include "motiongraph/graph/graph_from_candidates.h"
 #include "motiongraph/motion/forward_kinematics.h"
+#include "motiongraph/synthesis/loaded_graph.h"
 #include "synthesis/subject16_graph.h"
 #include "test_data.h"
 
@@ -276,6 +277,42 @@ TEST(PathSynthesis, AWalkThatMissesTheTypeAskedIsSearchedAgainPricingItHigher) {
     ASSERT_LE(walked->mean_deviation_m, settings.retry_deviation_m);
     EXPECT_LT(walked->segment_tag_matches[1].matched, pushing.retry_tag_match * walked->segment_tag_matches[1].frames);
     EXPECT_EQ(walked->attempts, 1) << settings.tag_penalty_m2;
+  }
+}
+
+// A segment asking for a motion type the graph plays in no frame (its frames pruned away) asks
+// the search for nothing: subject 16's graph with a tag no frame carries, asked for over the
+// figure 8's second half, plays what the path asking nothing there plays, frame for frame, and is
+// not searched again for the type it cannot play.
+TEST(PathSynthesis, ASegmentAskingForATypeTheGraphCannotPlayAsksForNothing) {
+  GraphFile file = test::subject16().file();
+  file.database.tag_names.push_back("swim");
+  auto swimmer = LoadedGraph::create(std::move(file), "subject16 with swim");
+  ASSERT_TRUE(swimmer) << swimmer.error().to_string();
+  const SynthesisContext& context = (*swimmer)->context();
+  const TagMask swim = *context.tag_mask("swim");
+  ASSERT_EQ(graph_frames_with(context, swim), 0);
+  auto shape = make_shape("figure8:4");
+  ASSERT_TRUE(shape.ok());
+  const double half = shape->length_m() / 2;
+  auto asked = FloorPath::create(shape->points(), {{0.0, half, "walk"}, {half, shape->length_m() + 1.0, "swim"}});
+  auto nothing = FloorPath::create(shape->points(), {{0.0, half, "walk"}});
+  ASSERT_TRUE(asked && nothing);
+  PathSynthesisSettings settings;
+  auto swum = synthesize_path(context, *asked, settings);
+  auto walked = synthesize_path(context, *nothing, settings);
+  ASSERT_TRUE(swum.ok()) << swum.error().to_string();
+  ASSERT_TRUE(walked.ok()) << walked.error().to_string();
+  ASSERT_EQ(swum->segment_tag_matches.size(), 2u);
+  EXPECT_GT(swum->segment_tag_matches[1].frames, kTagMissMinSeconds * context.db->fps);
+  EXPECT_EQ(swum->segment_tag_matches[1].matched, 0);
+  EXPECT_EQ(swum->attempts, walked->attempts);
+  EXPECT_EQ(swum->tag_penalty_m2, walked->tag_penalty_m2);
+  ASSERT_EQ(swum->frame_tags.size(), walked->frame_tags.size());
+  ASSERT_EQ(swum->roots.size(), walked->roots.size());
+  for (size_t f = 0; f < swum->roots.size(); ++f) {
+    ASSERT_EQ(swum->roots[f], walked->roots[f]) << f;
+    ASSERT_EQ(swum->frame_tags[f], walked->frame_tags[f]) << f;
   }
 }
 
