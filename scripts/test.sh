@@ -10,18 +10,20 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 jobs=$(nproc)
+# Each phase's heading says how long the run has taken so far (a slow phase shows in the log).
+phase() { echo "== $1 [$((SECONDS / 60)) min $((SECONDS % 60)) s in]"; }
 scripts/install-deps.sh
 
-echo "== build (warnings as errors)"
+phase "build (warnings as errors)"
 # The Python package and its tests on Debian's python3 (the one install-deps.sh gave pybind11,
 # numpy and pytest; another python3 earlier on PATH would have none of them).
 cmake -S . -B build -G Ninja -DMOTIONGRAPH_WERROR=ON -DMOTIONGRAPH_TESTS=ON -DMOTIONGRAPH_BENCHMARKS=ON \
   -DMOTIONGRAPH_PYTHON=ON -DPython_EXECUTABLE=/usr/bin/python3 >/dev/null
 cmake --build build -j "$jobs"
-echo "== tests"
+phase "tests"
 ctest --test-dir build --output-on-failure -j "$jobs"
 
-echo "== tests under AddressSanitizer + UndefinedBehaviorSanitizer"
+phase "tests under AddressSanitizer + UndefinedBehaviorSanitizer"
 # No Python package there: a plain python cannot load an extension built with the sanitizers.
 CC=clang CXX=clang++ cmake -S . -B build-asan -G Ninja -DMOTIONGRAPH_WERROR=ON -DMOTIONGRAPH_PYTHON=OFF \
   -DMOTIONGRAPH_SANITIZE=address,undefined -DMOTIONGRAPH_BENCHMARKS=OFF -DCMAKE_BUILD_TYPE=Debug >/dev/null
@@ -29,7 +31,7 @@ cmake --build build-asan -j "$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j "$jobs"
 
-echo "== fuzzing each parser for ${FUZZ_SECONDS:-20} s"
+phase "fuzzing each parser for ${FUZZ_SECONDS:-20} s"
 scripts/fuzz.sh "${FUZZ_SECONDS:-20}"
 
-echo "== all tests passed"
+phase "all tests passed"
