@@ -3,6 +3,7 @@
 // keyword options, and the motion object that clips and synthesis results are.
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <memory>
@@ -13,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+#include <pybind11/stl/filesystem.h>  // paths as str or os.PathLike
 
 #include "motiongraph/core/error.h"
 #include "motiongraph/motion/motion.h"
@@ -38,6 +40,12 @@ T take(Result<T>&& result) {
 }
 inline void check(const Status& status) {
   if (!status) raise_error(status.error());
+}
+
+// A UserWarning, `stack` frames up; raises its exception when the warning filter makes it one
+// (warnings.simplefilter("error")).
+inline void warn(const std::string& line, int stack = 1) {
+  if (PyErr_WarnEx(PyExc_UserWarning, line.c_str(), stack) < 0) throw py::error_already_set();
 }
 
 // A JSON value as the Python object json.loads makes of the same text.

@@ -145,7 +145,7 @@ PyGraph build(const std::vector<std::string>& inputs, const py::dict& options, c
     built = build_graph(inputs, settings, cache.get(), log);
   }
   if (callback_error) throw std::move(*callback_error);
-  for (const std::string& line : warnings) PyErr_WarnEx(PyExc_UserWarning, line.c_str(), 1);
+  for (const std::string& line : warnings) warn(line);
   GraphBuild b = take(std::move(built));
   if (!b.graph_status) raise_error(b.graph_status.error(), b.report);
   PyGraph graph;
@@ -157,7 +157,8 @@ PyGraph build(const std::vector<std::string>& inputs, const py::dict& options, c
   return graph;
 }
 
-PyGraph load_graph(const std::string& path, int skeleton) {
+PyGraph load_graph(const std::filesystem::path& file, int skeleton) {
+  const std::string path = file.string();
   PyGraph graph;
   graph.name = path;
   Result<std::unique_ptr<LoadedGraph>> loaded = Error{};
@@ -213,7 +214,8 @@ void bind_graph(py::module_& m, py::class_<PyGraph>& graph) {
       .def("_clouds_npy", [](const PyGraph& g) { return py::bytes(g.clouds_npy); })
       .def(
           "save",
-          [](PyGraph& g, const std::string& path) {
+          [](PyGraph& g, const std::filesystem::path& file) {
+            const std::string path = file.string();
             check(check_graph_output(path));
             Status saved = Ok{};
             {

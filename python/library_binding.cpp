@@ -35,7 +35,7 @@ py::tuple load_library(const std::vector<std::string>& inputs, const py::dict& o
   const LibrarySummary summary = summarize_library(db, notes, !settings.foot_names.empty());
   py::object summary_dict = to_python(library_summary_json(inputs, db, summary));
   for (const std::string& line : summary.warnings) {
-    if (PyErr_WarnEx(PyExc_UserWarning, line.c_str(), 2) < 0) throw py::error_already_set();  // warnings as errors
+    warn(line, 2);
   }
 
   py::list clips;

@@ -84,12 +84,14 @@ Status save_motion(const PyMotion& m, const std::string& path, MotionFileSetting
   return write_motion(path, m.skeleton, m.motion, settings, &json_contacts);
 }
 
-PyMotion load_clip(const std::string& path, const std::optional<std::string>& asf, std::optional<double> fps,
+PyMotion load_clip(const std::filesystem::path& file, const std::optional<std::filesystem::path>& asf,
+                   std::optional<double> fps,
                    std::optional<double> scale, const std::optional<std::string>& up_axis, double input_fps,
                    bool keep_rest_frames, const std::string& travel, const std::optional<std::string>& feet,
                    const std::optional<std::string>& animation) {
+  const std::string path = file.string();
   ClipLoadSettings settings;
-  if (asf) settings.asf_path = *asf;
+  if (asf) settings.asf_path = asf->string();
   settings.bvh_metres_per_unit = scale;
   if (up_axis) {
     settings.up_axis = parse_up_axis(*up_axis);
@@ -206,13 +208,13 @@ void bind_motion(py::module_& m) {
                              "The CLI's --report of the synthesis (a dict), None for a clip.")
       .def(
           "save",
-          [](const PyMotion& self, const std::string& path, bool root_motion, double root_motion_smoothing,
+          [](const PyMotion& self, const std::filesystem::path& path, bool root_motion, double root_motion_smoothing,
              double output_scale, bool figure) {
             const MotionFileSettings settings = file_settings(root_motion, root_motion_smoothing, output_scale, figure);
             Status saved = Ok{};
             {
               py::gil_scoped_release release;
-              saved = save_motion(self, path, settings);
+              saved = save_motion(self, path.string(), settings);
             }
             check(saved);
           },
@@ -228,7 +230,7 @@ void bind_motion(py::module_& m) {
       });
   m.def(
       "save_animations",
-      [](const std::string& path, const std::vector<const PyMotion*>& motions,
+      [](const std::filesystem::path& path, const std::vector<const PyMotion*>& motions,
          const std::optional<std::vector<std::string>>& names, bool root_motion, double root_motion_smoothing,
          bool figure) {
         if (names && names->size() != motions.size()) {
@@ -245,7 +247,7 @@ void bind_motion(py::module_& m) {
         Status saved = Ok{};
         {
           py::gil_scoped_release release;
-          saved = write_animation_set(path, set, settings);
+          saved = write_animation_set(path.string(), set, settings);
         }
         check(saved);
       },

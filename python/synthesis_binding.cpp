@@ -2,6 +2,9 @@
 // in memory, through the same library calls (evaluation/synthesis_run.h, synthesis/controller.h)
 // and with the same options as keywords.
 #include <array>
+#include <cmath>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <string>
@@ -26,9 +29,7 @@ SynthesisRunSettings run_settings(const PyGraph& graph) {
 
 // The synthesized motion as a Python Motion that keeps its graph.
 PyMotion result_motion(const PyGraph& graph, const char* name, SynthesizedMotion&& made) {
-  if (!made.warning.empty()) {
-    PyErr_WarnEx(PyExc_UserWarning, (graph.name + ": " + made.warning).c_str(), 1);
-  }
+  if (!made.warning.empty()) warn(graph.name + ": " + made.warning);
   PyMotion motion(name, graph.loaded->context().assembler.skeleton(), std::move(made.motion));
   motion.report = std::move(made.report);
   motion.graph = graph.loaded;
@@ -59,7 +60,7 @@ PyMotion walk(const PyGraph& graph, int from, int to, const py::kwargs& options)
 }
 
 PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<double, 2>>>& points,
-              const std::optional<std::string>& shape, const std::vector<std::string>& segments,
+              const std::optional<std::string>& shape, const std::optional<std::vector<std::string>>& segments,
               const std::optional<std::string>& file, const py::kwargs& options) {
   PathSynthesisSettings settings;
   SynthesisRunSettings run = run_settings(graph);
@@ -85,7 +86,7 @@ PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<d
                  {"cleanup", set(run.cleanup)}},
                 "path");
   check(settings.validate());
-  FloorPathSource source{file.value_or(""), shape.value_or(""), {}, segments};
+  FloorPathSource source{file.value_or(""), shape.value_or(""), {}, segments.value_or(std::vector<std::string>{})};
   for (const auto& [x, z] : points.value_or(std::vector<std::array<double, 2>>{})) source.points.emplace_back(x, z);
   Result<SynthesizedMotion> made = Error{};
   {
@@ -102,7 +103,7 @@ PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<d
       if (auto why = unplayable_tag(graph.loaded->context(), segment["tag"].get<std::string>())) {
         const std::string line = fmt::format("{}: the segment {:g}-{:g} m asks for {}", graph.name,
                                              segment["from_m"].get<double>(), segment["to_m"].get<double>(), *why);
-        if (PyErr_WarnEx(PyExc_UserWarning, line.c_str(), 1) < 0) throw py::error_already_set();
+        warn(line);
       }
     }
   }
@@ -140,41 +141,63 @@ class PyController {
     check(settings.validate());
     std::string warning;
     cleanup_ = make_cleanup(context(), run, warning);
-    if (!warning.empty()) PyErr_WarnEx(PyExc_UserWarning, (graph.name + ": " + warning).c_str(), 1);
+    if (!warning.empty()) warn(graph.name + ": " + warning);
     controller_ = take(Controller::create(context(), settings, input(heading_deg, tag), Vec2(at[0], at[1])));
   }
 
+  // Threads may share a controller: its steps take turns (the lock taken without the GIL, which a
+  // step gives up while it searches).
   PyMotion step(double heading_deg, const std::optional<std::string>& tag) {
-    controller_->set_input(input(heading_deg, tag));
-    const int first = motion_.frame_count;
+    const ControlInput in = input(heading_deg, tag);
+    std::unique_lock<std::mutex> lock(mutex_, std::defer_lock);
+    int first = 0;
     std::vector<ContactMask> contacts;
     Status cleaned = Ok{};
+    Motion decided;
     {
       py::gil_scoped_release release;
+      lock.lock();
+      controller_->set_input(in);
+      first = motion_.frame_count;
       const ControllerDecision decision = controller_->step(motion_);
       contacts = context().edges_contacts(decision.edges);
       if (cleanup_) cleaned = cleanup_->clean(motion_, first, contacts);
       played_.edges.insert(played_.edges.end(), decision.edges.begin(), decision.edges.end());
+      if (cleaned) {
+        contacts_.insert(contacts_.end(), contacts.begin(), contacts.end());
+        decided = motion_.slice(first, motion_.frame_count - first);
+      }
     }
+    lock.unlock();
     check(cleaned);
-    contacts_.insert(contacts_.end(), contacts.begin(), contacts.end());
-    return frames(motion_.slice(first, motion_.frame_count - first), std::move(contacts));
+    return frames(std::move(decided), std::move(contacts));
   }
 
-  PyMotion motion() const { return frames(motion_, contacts_); }
+  PyMotion motion() const {
+    Motion all;
+    std::vector<ContactMask> contacts;
+    {
+      py::gil_scoped_release release;
+      const std::lock_guard<std::mutex> lock(mutex_);
+      all = motion_;
+      contacts = contacts_;
+    }
+    return frames(std::move(all), std::move(contacts));
+  }
 
  private:
   const SynthesisContext& context() const { return loaded_->context(); }
 
   // The first time a motion type the graph plays in no frame is asked for, a warning says so.
   ControlInput input(double heading_deg, const std::optional<std::string>& tag) {
+    if (!std::isfinite(heading_deg)) throw py::value_error(fmt::format("heading_deg must be finite, not {}", heading_deg));
     ControlInput in;
     in.direction = bearing_direction(heading_deg);
     if (tag && !tag->empty()) {
       in.tag = take(context().tag_mask(*tag));
       if (auto why = unplayable_tag(context(), *tag); why && warned_.insert(*tag).second) {
         const std::string line = fmt::format("{}: the controller is asked for {}", name_, *why);
-        if (PyErr_WarnEx(PyExc_UserWarning, line.c_str(), 1) < 0) throw py::error_already_set();
+        warn(line);
       }
     }
     return in;
@@ -190,7 +213,8 @@ class PyController {
 
   std::shared_ptr<const LoadedGraph> loaded_;
   std::string name_;
-  std::set<std::string> warned_;  // tags the graph does not play, warned of once
+  std::set<std::string> warned_;  // tags the graph does not play, warned of once (with the GIL held)
+  mutable std::mutex mutex_;       // held by a step, and while the motion so far is copied
   Motion motion_;
   std::optional<FootCleanup> cleanup_;
   std::optional<Controller> controller_;
@@ -205,7 +229,7 @@ void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
             "The cheapest walk between two nodes (the CLI's walk): keywords cost ('constant', 'quality', "
             "'random', 'hybrid'), seed, min_frames, max_expansions, cleanup.")
       .def("path", &path, py::arg("points") = py::none(), py::arg("shape") = py::none(),
-           py::arg("segments") = std::vector<std::string>{}, py::arg("file") = py::none(),
+           py::arg("segments") = py::none(), py::arg("file") = py::none(),
            "Motion following a path on the floor (the CLI's path): exactly one of points ([(x, z), ...] metres), "
            "shape ('line:20', 'circle:5', 'figure8:4', 's-curve:100', 'square:10', 'zigzag:6') or file "
            "(PATH.json); segments ['TAG:FROM-TO', ...]; keywords horizon, commit, tag_penalty, tag_lookahead (0 to 1), max_expansions, "
@@ -216,7 +240,7 @@ void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
       .def(
           "controller",
           [](const PyGraph& g, double heading_deg, const std::optional<std::string>& tag, std::array<double, 2> at,
-             const py::kwargs& options) { return PyController(g, heading_deg, tag, at, options); },
+             const py::kwargs& options) { return std::make_unique<PyController>(g, heading_deg, tag, at, options); },
           py::arg("heading_deg") = 0.0, py::arg("tag") = py::none(), py::arg("at") = std::array<double, 2>{0.0, 0.0},
           "A steering controller (the CLI's steer) starting at `at` (x, z) facing heading_deg (degrees clockwise "
           "from north, -z): keywords horizon, commit, tag_penalty, transition_penalty, bridge_penalty, tag_lookahead (0 "

@@ -297,6 +297,9 @@ printf '\x55' | dd of="$work/flip.mgraph" bs=1 seek=4000 conv=notrunc status=non
 expect_fail "checksum mismatch" "$bin" inspect "$work/flip.mgraph"
 expect_fail "must end in .mgraph" "$bin" build "$data/cmu/16" -o "$work/g.bin" --cache-dir "$cache"
 expect_fail "threshold quantile" "$bin" build "$data/cmu/16" -o "$work/x.mgraph" --threshold-quantile 2
+expect_fail "threshold quantile must be in" "$bin" build "$data/cmu/16" -o "$work/x.mgraph" --threshold-quantile -0.5 -q
+expect_fail "joint weight \(--joint-weight\) names 'lhead', which is not a joint of the skeleton \(its joints: root, " \
+    "$bin" build "$data/cmu/16" -o "$work/x.mgraph" --joint-weight head=2 --joint-weight lhead=2 -q
 expect_fail "threshold must be 'auto'" "$bin" build "$data/cmu/16" -o "$work/x.mgraph" --threshold 5inch
 expect_fail "coverage" "$bin" build "$data/cmu/16" -o "$work/x.mgraph" --coverage 0
 ls "$work"/x.mgraph "$work"/g.bin 2>/dev/null && { echo "FAIL: output left behind"; exit 1; }

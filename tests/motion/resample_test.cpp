@@ -45,6 +45,13 @@ TEST(Resample, RejectsBadRates) {
   EXPECT_FALSE(resample(clip.motion, 0.0));
   EXPECT_FALSE(resample(clip.motion, -30.0));
   EXPECT_FALSE(resample(clip.motion, std::numeric_limits<double>::quiet_NaN()));
+  // A rate that would make more joint poses than a clip may hold: an error, not gigabytes.
+  const double poses = clip.motion.duration_s() * 1e6 * clip.motion.joint_count;
+  ASSERT_GT(poses, 5e7);
+  auto huge = resample(clip.motion, 1e6);
+  ASSERT_FALSE(huge);
+  EXPECT_NE(huge.error().message.find("over the 50 million joint poses a clip may hold"), std::string::npos)
+      << huge.error().message;
 }
 
 }  // namespace

@@ -210,6 +210,19 @@ def test_bad_clip_raises_the_cli_message(cli, data, tmp_path):
     assert str(raised.value) == want
 
 
+def test_paths_may_be_path_objects(data, tmp_path):
+    clip = mg.load_clip(data / "cmu/16/16_15.amc", asf=data / "cmu/16/16.asf")
+    assert np.array_equal(clip.positions, mg.load_clip(str(data / "cmu/16/16_15.amc")).positions)
+    clip.save(tmp_path / "c.bvh")
+    mg.save_animations(tmp_path / "c.glb", [clip])
+    assert (tmp_path / "c.bvh").stat().st_size > 0 and (tmp_path / "c.glb").stat().st_size > 0
+
+
+def test_a_rate_past_what_a_clip_may_hold_raises(data):
+    with pytest.raises(mg.Error, match="over the 50 million joint poses a clip may hold"):
+        mg.load_clip(data / "cmu/16/16_15.amc", fps=1e6)
+
+
 def test_missing_clip_raises(tmp_path):
     with pytest.raises(mg.Error, match="missing.amc"):
         mg.load_clip(str(tmp_path / "missing.amc"))

@@ -108,6 +108,8 @@ def test_cache_dir_gives_the_same_graph(data, built, tmp_path):
     (["--threshold", "4cm", "--threshold-quantile", "0.1"], {"threshold": "4cm", "threshold_quantile": 0.1}),
     (["--joint-weight", "head"], {"joint_weight": ["head"]}),
     (["--coverage", "2"], {"coverage": 2.0}),
+    (["--threshold-quantile", "-0.5"], {"threshold_quantile": -0.5}),
+    (["--joint-weight", "lhead=2"], {"joint_weight": ["lhead=2"]}),
 ])
 def test_bad_options_raise_the_cli_message(cli, data, tmp_path, cli_args, options):
     want = cli_error(cli("build", data / "cmu/16", "-o", tmp_path / "g.mgraph", "--no-cache", *cli_args, check=False))
@@ -155,6 +157,12 @@ def test_progress_callback(data):
 
     with pytest.raises(KeyboardInterrupt):
         mg.build(str(data / "cmu/16"), no_cache=True, progress=stop)
+
+
+def test_paths_may_be_path_objects(graph_file, tmp_path):
+    graph = mg.load_graph(graph_file)
+    graph.save(tmp_path / "g.mgraph")
+    assert mg.load_graph(tmp_path / "g.mgraph").nodes == graph.nodes
 
 
 def test_build_releases_the_gil(data):

@@ -298,3 +298,69 @@ def test_bridge_penalty_reaches_the_steering_search(cli, graph_file, graph, tmp_
             want = read_json(out)
             assert np.max(np.abs(controller.motion.positions[:total] - np.asarray(want["positions"]))) <= 1e-6
     assert bridges[0] > 0 and bridges[30] == 0, bridges
+
+
+def test_warnings_made_errors_raise_the_warning(data):
+    """Under warnings.simplefilter("error") a warning is raised as its UserWarning (not a
+    SystemError): the build's, and the clean-up's on path, walk and the controller."""
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ankles_at_hips = mg.build(str(data / "cmu/16"), no_cache=True, feet="lhipjoint,,rhipjoint,",
+                                  threshold="4cm", no_path_check=True)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(UserWarning, match="the graph keeps 2 % of the frames"):
+            mg.build(str(data / "cmu/16"), no_cache=True, threshold="1cm", no_path_check=True)
+        for call in (lambda: ankles_at_hips.path(shape="line:5"), lambda: ankles_at_hips.walk(0, 5),
+                     lambda: ankles_at_hips.controller()):
+            with pytest.raises(UserWarning, match="the clean-up needs a knee and a hip above ankle 'lhipjoint'"):
+                call()
+
+
+def test_threads_sharing_a_controller_take_turns(graph):
+    """Steps of one controller from several threads run one at a time: every frame each returned
+    is in the motion, in the order the steps ran, and nothing is lost or torn."""
+    import threading
+    controller = graph.controller(heading_deg=0, tag="walk")
+    steps, errors, lock = [], [], threading.Lock()
+
+    def steer(k):
+        try:
+            for i in range(12):
+                step = controller.step((i * 37 * k) % 360, ["walk", "run", None][i % 3])
+                with lock:
+                    steps.append(step.positions)
+        except Exception as e:  # noqa: BLE001 -- any failure fails the test below
+            errors.append(e)
+
+    threads = [threading.Thread(target=steer, args=(k,)) for k in range(1, 5)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not errors, errors
+    assert len(steps) == 48
+    everything = controller.motion.positions
+    assert len(everything) == sum(len(s) for s in steps)
+    # The steps appended in the order their lock was taken, which each thread's list order follows
+    # but the shared list may not: each step's frames are a run of the whole motion's.
+    for s in steps:
+        hits = [f for f in range(len(everything) - len(s) + 1) if np.array_equal(everything[f], s[0])]
+        assert any(np.array_equal(everything[f:f + len(s)], s) for f in hits)
+
+
+def test_controller_headings_and_start_must_be_finite(graph):
+    with pytest.raises(mg.Error, match="the start position is not a finite point"):
+        graph.controller(at=(float("nan"), 0.0))
+    with pytest.raises(ValueError, match="heading_deg must be finite"):
+        graph.controller(heading_deg=float("inf"))
+    controller = graph.controller()
+    with pytest.raises(ValueError, match="heading_deg must be finite"):
+        controller.step(float("nan"), "walk")
+    assert np.isfinite(controller.step(90, "walk").positions).all()
+
+
+def test_path_segments_may_be_none(graph):
+    with_none = graph.path(shape="line:5", segments=None)
+    assert np.array_equal(with_none.positions, graph.path(shape="line:5").positions)

@@ -33,6 +33,14 @@ Vec3 perpendicular(const Vec3& axis) {
 
 Result<CloudLayout> make_cloud_layout(const Skeleton& reference, const PointCloudSettings& settings) {
   if (auto s = settings.validate(); !s) return s.error();
+  for (const auto& [name, weight] : settings.joint_weights) {
+    if (!reference.find(name)) {
+      std::vector<std::string> names;
+      for (int j = 0; j < reference.joint_count(); ++j) names.push_back(reference.joint(j).name);
+      return Error{"", 0, fmt::format("a joint weight (--joint-weight) names '{}', which is not a joint of the skeleton (its joints: {})",
+                                      name, fmt::join(names, ", "))};
+    }
+  }
   CloudLayout layout;
   auto weight_of = [&](int joint) {
     for (const auto& [name, weight] : settings.joint_weights) {

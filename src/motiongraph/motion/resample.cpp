@@ -1,5 +1,6 @@
 #include "motiongraph/motion/resample.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -23,7 +24,14 @@ Result<Motion> resample(const Motion& motion, double fps_out) {
     return same;
   }
   const double frames_out = resampled_frame_count(motion, fps_out);
-  if (frames_out > 1e8) return Error{"", 0, "resampled motion would have too many frames"};
+  // As many joint poses as a scene file may hold (scene_clips.h): 1.6 GB of rotations.
+  const double poses = frames_out * std::max(1, motion.joint_count);
+  if (frames_out > 1e8 || poses > 5e7) {
+    return Error{"", 0,
+                 fmt::format("resampled to {:g} fps the motion would have {:g} frames of {} joints, over the 50 million "
+                             "joint poses a clip may hold",
+                             fps_out, frames_out, motion.joint_count)};
+  }
   Motion out = motion;
   out.fps = fps_out;
   out.frame_count = static_cast<int>(frames_out);

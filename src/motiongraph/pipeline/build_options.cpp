@@ -40,10 +40,10 @@ Result<BuildSettings> build_settings_from(const BuildOptions& o) {
   s.distance_stage.distance.taper = *taper;
   // The threshold: chosen from the data (auto), a quantile of all pairs, D, or an RMS in cm.
   s.transitions = o.transitions;
-  if (o.quantile >= 0.0) {
+  if (o.quantile) {  // checked with the settings: in (0, 1]
     if (o.threshold != "auto") return Error{"", 0, "give --threshold or --threshold-quantile, not both"};
     s.threshold_mode = ThresholdMode::kQuantile;
-    s.threshold_value = o.quantile;
+    s.threshold_value = *o.quantile;
   } else if (o.threshold != "auto") {
     std::string text = o.threshold;
     s.threshold_mode = ThresholdMode::kDistance;

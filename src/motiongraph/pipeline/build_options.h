@@ -37,7 +37,7 @@ struct BuildOptions {
   std::string taper = "uniform";
   TransitionSettings transitions;
   std::string threshold = "auto";  // auto, D, or an RMS distance with "cm"
-  double quantile = -1.0;          // given: the threshold is this quantile of all pairs
+  std::optional<double> quantile;  // given: the threshold is this quantile of all pairs
   ThresholdChoiceSettings choice;
   PathCheckSettings path_check;
   bool no_path_check = false;

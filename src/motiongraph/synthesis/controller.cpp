@@ -65,6 +65,8 @@ Result<Controller> Controller::create(const SynthesisContext& context, const Con
   const MotionGraph& graph = *context.graph;
   int start = settings.start_node;
   if (start >= graph.node_count()) return Error{"", 0, "controller: the start node does not exist"};
+  if (!at.allFinite()) return Error{"", 0, "controller: the start position is not a finite point"};
+  if (!first_input.direction.allFinite()) return Error{"", 0, "controller: the heading is not a finite direction"};
   if (start < 0) start = controller_start_node(context, first_input.tag);
   Controller controller(context, settings);
   controller.input_ = first_input;
