@@ -44,10 +44,30 @@ HttpServer::HttpServer(const StudioApi& api, std::string web_root)
   auto api_handler = [this](const httplib::Request& req, httplib::Response& res) {
     send(api_->handle(to_api_request(req)), res);
   };
+  // A request with a body method but neither Content-Length nor Transfer-Encoding has an empty
+  // body (HTTP/1.1); httplib would read one until its read timeout, holding a worker 10 s.
+  s.set_pre_routing_handler([api_handler](const httplib::Request& req, httplib::Response& res) {
+    const bool body_method = req.method == "POST" || req.method == "PUT" || req.method == "PATCH";
+    if (!body_method || req.has_header("Content-Length") || req.has_header("Transfer-Encoding")) {
+      return httplib::Server::HandlerResponse::Unhandled;
+    }
+    if (req.path.rfind("/api/", 0) == 0) {
+      api_handler(req, res);
+    } else {
+      res.status = 405;
+      res.set_content(json_text(nlohmann::json({{"error", fmt::format("{} {}: HTTP 405", req.method, req.path)}})),
+                      "application/json");
+    }
+    return httplib::Server::HandlerResponse::Handled;
+  });
   s.Get(R"(/api/.*)", api_handler);
   s.Post(R"(/api/.*)", api_handler);
   s.Put(R"(/api/.*)", api_handler);
+  s.Patch(R"(/api/.*)", api_handler);
   s.Delete(R"(/api/.*)", api_handler);
+  // Workers enough that a browser's idle keep-alive connections (each holds one for up to 5 s)
+  // leave others free.
+  s.new_task_queue = [] { return new httplib::ThreadPool(32); };
   s.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
     if (!res.body.empty()) return;
     const std::string message =

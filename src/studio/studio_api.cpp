@@ -376,6 +376,10 @@ class Router {
         body["points"].size() > static_cast<size_t>(StudioApi::kMaxPathPoints)) {
       throw ApiError{400, fmt::format("at most {} points", StudioApi::kMaxPathPoints)};
     }
+    if (body.contains("segments") && body["segments"].is_array() &&
+        body["segments"].size() > static_cast<size_t>(StudioApi::kMaxPathSegments)) {
+      throw ApiError{400, fmt::format("at most {} segments", StudioApi::kMaxPathSegments)};
+    }
     auto floor_path = parse_path_json(request_.body, "request body");
     if (!floor_path) throw ApiError{400, floor_path.error().to_string()};
     if (floor_path->length_m() > StudioApi::kMaxPathLengthM) {

@@ -54,6 +54,7 @@ class StudioApi {
   static constexpr int kMaxFramesPerRequest = 600;
   static constexpr double kMaxPathLengthM = 200.0;
   static constexpr int kMaxPathPoints = 5000;
+  static constexpr int kMaxPathSegments = 100;
 
   explicit StudioApi(SynthesisService& service) : service_(&service) {}
 

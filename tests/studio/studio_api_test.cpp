@@ -1,5 +1,6 @@
 // The studio's JSON API on the subject-16 graph, without sockets: what each endpoint answers,
 // and 4xx with a message for every kind of bad request.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -407,6 +408,10 @@ TEST(StudioApi, BadPathsAre4xx) {
   expect_error(call_api("POST", "/api/path", R"({"points": [[0, 0], [0, 5]], "segments": [{"from_m": 0, "to_m": 5, "tag": "fly"}]})"),
                400, "fly");
   expect_error(call_api("POST", "/api/path", std::string(2000, '[')), 400, "request body");
+  // Each segment costs the search (15 000 fit in a body: a minute's work): at most 100.
+  std::string many = R"({"points": [[0, 0], [0, -150]], "segments": [)";
+  for (int i = 0; i < 101; ++i) many += fmt::format(R"({}{{"from_m": {}, "to_m": {}, "tag": "walk"}})", i ? ", " : "", i, i + 1);
+  expect_error(call_api("POST", "/api/path", many + "]}"), 400, "at most 100 segments");
 }
 
 TEST(StudioApi, SteeringTurnsTheCharacterTheWayAsked) {
