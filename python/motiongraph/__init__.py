@@ -41,7 +41,8 @@ class Library:
     """A motion library as build reads it: its clips (Motion, at the library's rate, with their feet's
     contacts) and its summary (the dict `motiongraph info --json` prints for the same inputs).
 
-    len(library) is its clip count; library[i] or library["16_15"] a clip; iterating gives the clips.
+    len(library) is its clip count; library[i] or library["16_15"] a clip, library[i:j] a list of
+    clips; iterating gives the clips.
     """
 
     def __init__(self, summary, clips):
@@ -85,6 +86,8 @@ class Library:
         return len(self.clips)
 
     def __getitem__(self, clip):
+        if isinstance(clip, slice):
+            return self.clips[clip]
         return self.clips[self._index(clip)]
 
     def __iter__(self):

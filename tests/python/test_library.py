@@ -70,6 +70,7 @@ def test_tags_per_clip_add_up_to_the_totals(data):
     assert ("walk", 0, len(whole["16_33"])) in whole.clip_tags("16_33")
     assert whole.summary["reading"]["standing_tags"] == []
     assert library[-1] is library.clips[-1] and len(library) == 15
+    assert library[1:3] == library.clips[1:3] and len(library[1:3]) == 2
     with pytest.raises(KeyError):
         library["16_99"]
     with pytest.raises(IndexError):
