@@ -67,6 +67,10 @@ int run_steer(const SteerOptions& o) {
   Motion motion = context.assembler.empty_motion();
   const double fps = context.db->fps;
   const int total = static_cast<int>(std::lround(script->duration_s * fps));
+  if (total < 1) {
+    return fail(Error{o.script, 0, fmt::format("duration_s {:g} is shorter than a frame at {:g} fps",
+                                                    script->duration_s, fps)});
+  }
   std::vector<double> latencies;
   int exhausted = 0;
   int transitions = 0;  // transition edges that start within the script's duration

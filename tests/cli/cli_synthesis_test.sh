@@ -337,6 +337,8 @@ expect_error "node 99999 does not exist" "$work/o.bvh" "$bin" walk "$work/g.mgra
 expect_error "unknown cost 'cheap'" "$work/o.bvh" "$bin" walk "$work/g.mgraph" --from 0 --to 1 --cost cheap -o "$work/o.bvh"
 echo '{"controls": [{"at_s": 1}]}' >"$work/bad-controls.json"
 expect_error "bad-controls.json: controls[0]: at_s must start at 0" "$work/o.bvh" "$bin" steer "$work/g.mgraph" --script "$work/bad-controls.json" -o "$work/o.bvh"
+echo '{"duration_s": 1e-9, "controls": [{"at_s": 0}]}' >"$work/short-controls.json"
+expect_error "short-controls.json: duration_s 1e-09 is shorter than a frame at 30 fps" "$work/o.bvh" "$bin" steer "$work/g.mgraph" --script "$work/short-controls.json" -o "$work/o.bvh"
 head -c 100 "$work/g.mgraph" >"$work/cut.mgraph"
 expect_error "cut.mgraph" "$work/o.bvh" "$bin" path "$work/cut.mgraph" --shape line:5 -o "$work/o.bvh"
 echo "cli synthesis: ok"

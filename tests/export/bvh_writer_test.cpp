@@ -70,6 +70,23 @@ TEST(BvhWriter, RootOnlyPositionChannelsAndUnits) {
   EXPECT_LT(test::max_position_error_by_name(clip, *back), 1e-5);
 }
 
+// Numbers of any length are written whole: at 1e60 units a metre an offset has 60 digits (a
+// 64-byte buffer once took past its end, writing what lay beyond it).
+TEST(BvhWriter, HugeUnitsAreWrittenWhole) {
+  Clip clip = test::load_data_clip("cmu/16/16_15.amc");
+  BvhWriteSettings huge;
+  huge.units_per_metre = 1e60;
+  const std::string text = write_bvh(clip.skeleton, clip.motion, huge);
+  for (const char c : text) ASSERT_TRUE(c == '\n' || (c >= ' ' && c <= '~')) << static_cast<int>(c);
+  auto doc = parse_bvh(text, "huge.bvh");
+  ASSERT_TRUE(doc) << doc.error().to_string();
+  BvhImportSettings settings;
+  settings.metres_per_unit = 1e-60;
+  auto back = clip_from_bvh(*doc, settings);
+  ASSERT_TRUE(back) << back.error().to_string();
+  EXPECT_LT(test::max_position_error_by_name(clip, *back), 1e-5);  // as at 1 unit a metre
+}
+
 TEST(BvhWriter, MovingNonRootJointsKeepPositionChannelsWithAZeroOffset) {
   // A child whose translation really moves keeps its position channels; its OFFSET is zero so
   // that readers that add channels to OFFSET (three.js) and readers that replace it agree.

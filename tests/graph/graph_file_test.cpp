@@ -3,9 +3,11 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstddef>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <optional>
 
 #include <zlib.h>
@@ -325,6 +327,41 @@ TEST(GraphFile, RejectsAnythingElse) {
   EXPECT_EQ(without->database.contacts_error, "skeleton '16.asf': no left ankle");
   // A valid cache file is not a graph file.
   expect_error(serialize_distance_cache(1, sample().candidates), "not a motiongraph graph");
+}
+
+// Values a checksum cannot vouch for (a file written by another build, or edited and summed
+// again) are checked: out of range they would be read outside the motion (a transition leaving
+// frame 1e9 crashed walk).
+TEST(GraphFile, ValuesOutOfRangeAreRefused) {
+  const auto refused = [](const std::function<void(GraphFile&)>& change) {
+    GraphFile file = sample();
+    change(file);
+    auto read = parse_graph_file(serialize_graph_file(file), "bad.mgraph");
+    return !read && read.error().message.find("inconsistent") != std::string::npos;
+  };
+  ASSERT_FALSE(refused([](GraphFile&) {}));
+  const int frames = sample().database.frame_count();
+  EXPECT_TRUE(refused([](GraphFile& f) { f.graph.transitions[0].from_frame = 1'000'000'000; }));
+  EXPECT_TRUE(refused([](GraphFile& f) { f.graph.transitions[0].from_frame = -1; }));
+  EXPECT_TRUE(refused([&](GraphFile& f) { f.graph.transitions[0].from_frame = frames - f.graph.window + 1; }));
+  EXPECT_FALSE(refused([&](GraphFile& f) { f.graph.transitions[0].from_frame = frames - f.graph.window; }));
+  EXPECT_TRUE(refused([&](GraphFile& f) { f.graph.transitions[1].to_frame = frames; }));
+  EXPECT_TRUE(refused([&](GraphFile& f) { f.graph.transitions[1].to_frame = f.graph.window - 2; }));
+  EXPECT_FALSE(refused([&](GraphFile& f) { f.graph.transitions[1].to_frame = f.graph.window - 1; }));
+  EXPECT_TRUE(refused([](GraphFile& f) { f.graph.transitions[0].yaw_rad = std::nanf(""); }));
+  EXPECT_TRUE(refused([](GraphFile& f) { f.graph.transitions[1].x_m = INFINITY; }));
+  EXPECT_TRUE(refused([](GraphFile& f) { f.candidates.minima[1].to_frame = 1'000'000'000; }));
+  EXPECT_TRUE(refused([](GraphFile& f) { f.graph.window = 0; }));
+  EXPECT_TRUE(refused([](GraphFile& f) { f.graph.edges[0].frame_count = 100'000'000; }));
+  EXPECT_TRUE(refused([](GraphFile& f) { f.graph.nodes[1].clip = 0; }));  // frame 50 is in clip 1
+  EXPECT_TRUE(refused([](GraphFile& f) { f.database.fps = INFINITY; }));
+  // A clip edge plays its node's frames onward, within the motion.
+  EXPECT_FALSE(refused([&](GraphFile& f) {
+    f.graph.edges[0] = {0, 1, false, -1, frames - f.graph.nodes[0].frame};
+  }));
+  EXPECT_TRUE(refused([&](GraphFile& f) {
+    f.graph.edges[0] = {0, 1, false, -1, frames - f.graph.nodes[0].frame + 1};
+  }));
 }
 
 TEST(DistanceCache, RoundTripAndKey) {

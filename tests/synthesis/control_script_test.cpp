@@ -40,6 +40,9 @@ TEST(ControlScript, BadInputIsOneClearError) {
       {"time going back", "{\"controls\": [{\"at_s\": 0}, {\"at_s\": 3}, {\"at_s\": 2}]}", 0, "controls[2]"},
       {"bad heading", "{\"controls\": [{\"at_s\": 0, \"heading\": \"up\"}]}", 0, "north, east, south or west"},
       {"bad duration", "{\"duration_s\": -1, \"controls\": [{\"at_s\": 0}]}", 0, "duration_s"},
+      // Frame counts past an int's range (a control at 1e9 s crashed steer).
+      {"control past a day", "{\"controls\": [{\"at_s\": 0}, {\"at_s\": 1e9}]}", 0, "controls[1]: at_s 1e+09 is past a day"},
+      {"duration past a day", "{\"duration_s\": 1e300, \"controls\": [{\"at_s\": 0}]}", 0, "longer than a day"},
   };
   for (const auto& c : cases) {
     auto script = parse_control_script(c.text, "c.json");

@@ -1,6 +1,7 @@
 #include "motiongraph/export/bvh_writer.h"
 
 #include <cmath>
+#include <iterator>
 #include <numbers>
 #include <optional>
 
@@ -22,9 +23,9 @@ namespace {
 
 // Fixed decimals with trailing zeros removed ("1.250000" -> "1.25", "-0.000000" -> "0").
 void append_number(std::string& out, double value, int decimals) {
-  char buffer[64];
-  auto result = fmt::format_to_n(buffer, sizeof(buffer) - 1, "{:.{}f}", value, decimals);
-  std::string_view s(buffer, result.size);
+  fmt::memory_buffer buffer;  // on the stack, growing for a number of hundreds of digits (1e300)
+  fmt::format_to(std::back_inserter(buffer), "{:.{}f}", value, decimals);
+  std::string_view s(buffer.data(), buffer.size());
   if (s.find('.') != std::string_view::npos) {
     while (s.back() == '0') s.remove_suffix(1);
     if (s.back() == '.') s.remove_suffix(1);

@@ -1,6 +1,7 @@
 #include "motiongraph/graph/graph_file.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstring>
 #include <initializer_list>
@@ -208,6 +209,9 @@ void put_motion(BinaryWriter& out, const Motion& motion) {
   out.put_vector(translations);
 }
 
+// The highest frame rate a file may hold (a rate past any capture's; finite).
+constexpr double kMaxStoredFps = 1e6;
+
 // A clip's motion as stored: checked against its skeleton, decoded later (decode_motion).
 struct StoredMotion {
   double fps = 0.0;
@@ -218,7 +222,10 @@ struct StoredMotion {
 
 bool get_stored_motion(BinaryReader& in, const Skeleton& skeleton, StoredMotion& stored) {
   std::uint64_t rotation_values = 0, translation_values = 0;
-  if (!in.get(stored.fps) || !in.get(stored.frames) || !(stored.fps > 0.0) || stored.frames < 0) return false;
+  if (!in.get(stored.fps) || !in.get(stored.frames) || !(stored.fps > 0.0 && stored.fps <= kMaxStoredFps) ||
+      stored.frames < 0) {
+    return false;
+  }
   if (!in.view_vector<float>(rotation_values, stored.rotations) ||
       !in.view_vector<double>(translation_values, stored.translations)) {
     return false;
@@ -278,7 +285,10 @@ void put_database(BinaryWriter& out, const MotionDatabase& db) {
 
 bool get_database(BinaryReader& in, MotionDatabase& db) {
   std::int32_t skeletons = 0, clips = 0, tags = 0, ranges = 0;
-  if (!in.get(db.fps) || !(db.fps > 0.0) || !in.get(skeletons) || skeletons < 0 || skeletons > 100000) return false;
+  if (!in.get(db.fps) || !(db.fps > 0.0 && db.fps <= kMaxStoredFps) || !in.get(skeletons) || skeletons < 0 ||
+      skeletons > 100000) {
+    return false;
+  }
   db.skeletons.resize(skeletons);
   db.skeleton_names.resize(skeletons);
   for (int s = 0; s < skeletons; ++s) {
@@ -412,6 +422,15 @@ bool bool_byte_valid(const GraphEdge& edge, size_t offset) {
   return reinterpret_cast<const unsigned char*>(&edge)[offset] <= 1;
 }
 
+// A transition's windows lie within the database's frames (it leaves from_frame's window and
+// arrives at to_frame's), and its floor alignment is finite. A file whose checksum holds may still
+// carry other values (written by another build, or edited): out of range, they would be read
+// outside the motion.
+bool transition_in_range(const Transition& t, int frames, int window) {
+  return t.from_frame >= 0 && t.from_frame <= frames - window && t.to_frame >= window - 1 && t.to_frame < frames &&
+         std::isfinite(t.yaw_rad) && std::isfinite(t.x_m) && std::isfinite(t.z_m);
+}
+
 bool get_graph(BinaryReader& in, const MotionDatabase& db, MotionGraph& g) {
   if (!in.get(g.window) || !in.get_vector(g.nodes) || !in.get_vector(g.edges) || !in.get_vector(g.edge_offsets) ||
       !in.get_vector(g.transitions)) {
@@ -423,20 +442,28 @@ bool get_graph(BinaryReader& in, const MotionDatabase& db, MotionGraph& g) {
     }
   }
   const int nodes = g.node_count();
+  const int frames = db.frame_count();
+  if (g.window < 1 || g.window > frames) return false;
+  for (const Transition& t : g.transitions) {
+    if (!transition_in_range(t, frames, g.window)) return false;
+  }
   if (g.edge_offsets.size() != static_cast<size_t>(nodes) + 1 || g.edge_offsets.front() != 0 ||
       g.edge_offsets.back() != g.edge_count()) {
     return false;
   }
   for (int n = 0; n < nodes; ++n) {
     if (g.edge_offsets[n] > g.edge_offsets[n + 1]) return false;
-    if (g.nodes[n].frame < 0 || g.nodes[n].frame >= db.frame_count() || g.nodes[n].clip < 0 ||
-        g.nodes[n].clip >= static_cast<int>(db.clips.size())) {
+    if (g.nodes[n].frame < 0 || g.nodes[n].frame >= frames || g.nodes[n].clip != db.clip_of(g.nodes[n].frame)) {
       return false;
     }
   }
   for (const GraphEdge& e : g.edges) {
-    if (e.from_node < 0 || e.from_node >= nodes || e.to_node < 0 || e.to_node >= nodes || e.frame_count < 0) return false;
+    if (e.from_node < 0 || e.from_node >= nodes || e.to_node < 0 || e.to_node >= nodes || e.frame_count < 0 ||
+        e.frame_count > frames) {
+      return false;
+    }
     if (e.bridge && !e.transition) return false;
+    if (!e.transition && g.nodes[e.from_node].frame + e.frame_count > frames) return false;
     // A lead only on a bridge, and within the frames its blend has beyond the window.
     if (e.blend_lead < 0 || (e.blend_lead > 0 && (!e.bridge || e.blend_lead > e.frame_count + 1 - g.window))) {
       return false;
@@ -490,7 +517,10 @@ Result<GraphFile> parse_graph_file(std::string_view bytes, const std::string& fi
               get_graph(in, file.database, file.graph) && in.get_string(file.report_json) && in.at_end();
   if (read && options.candidate_minima) {
     BinaryReader minima((*sections)[1], file_name);
-    read = minima.get_vector(file.candidates.minima) && minima.at_end();
+    read = minima.get_vector(file.candidates.minima) && minima.at_end() &&
+           std::all_of(file.candidates.minima.begin(), file.candidates.minima.end(), [&](const Transition& t) {
+             return transition_in_range(t, file.database.frame_count(), file.candidates.window);
+           });
   }
   if (!read) return Error{file_name, 0, "inconsistent graph file (written by a different build?)"};
   return file;

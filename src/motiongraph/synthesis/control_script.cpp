@@ -35,6 +35,9 @@ Result<ControlScript> parse_control_script(std::string_view text, const std::str
     if (!std::isfinite(at) || at < 0.0 || (i == 0 && at != 0.0) || (i > 0 && at <= current.at_s)) {
       return fail(fmt::format("controls[{}]: at_s must start at 0 and increase", i));
     }
+    if (at > ControlScript::kMaxSeconds) {
+      return fail(fmt::format("controls[{}]: at_s {:g} is past a day ({:g} s)", i, at, ControlScript::kMaxSeconds));
+    }
     current.at_s = at;
     if (c.contains("heading")) {
       const std::string h = c["heading"].is_string() ? c["heading"].get<std::string>() : "";
@@ -62,6 +65,10 @@ Result<ControlScript> parse_control_script(std::string_view text, const std::str
     if (!doc["duration_s"].is_number() || !(doc["duration_s"].get<double>() > 0.0) ||
         !std::isfinite(doc["duration_s"].get<double>())) {
       return fail("\"duration_s\" must be a positive number of seconds");
+    }
+    if (doc["duration_s"].get<double>() > ControlScript::kMaxSeconds) {
+      return fail(fmt::format("\"duration_s\" {:g} is longer than a day ({:g} s)", doc["duration_s"].get<double>(),
+                              ControlScript::kMaxSeconds));
     }
     script.duration_s = doc["duration_s"].get<double>();
   }

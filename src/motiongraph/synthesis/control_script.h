@@ -6,7 +6,7 @@
 // heading: north, east, south, west (north = -z, east = +x) or heading_deg, a bearing in
 // degrees clockwise from north. A control keeps what it does not say from the one before
 // (the first starts from north and any tag); tag "" or "any" clears the tag. Controls must be
-// in increasing time from 0.
+// in increasing time from 0, and end within a day (kMaxSeconds).
 #pragma once
 
 #include <string>
@@ -24,6 +24,8 @@ struct ScriptedControl {
 };
 
 struct ControlScript {
+  static constexpr double kMaxSeconds = 86400.0;  // a day: the latest control and the longest duration
+
   double duration_s = 0.0;
   std::vector<ScriptedControl> controls;  // each complete (earlier values carried over)
 
