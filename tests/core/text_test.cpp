@@ -55,6 +55,24 @@ TEST(LineReader, NumbersLinesAndStripsCarriageReturns) {
   EXPECT_EQ(in.error("bad").to_string(), "f.txt:4: bad");
 }
 
+// A byte-order mark (Windows tools write one) is skipped; a text whose lines end with CR alone
+// (classic Mac OS) is read line by line, and one with LF keeps a stray CR as a separator.
+TEST(LineReader, AByteOrderMarkAndLinesEndedByCarriageReturnsAlone) {
+  LineReader marked("\xEF\xBB\xBFHIERARCHY\nROOT x", "m.bvh");
+  EXPECT_EQ(marked.next(), "HIERARCHY");
+  EXPECT_EQ(marked.next(), "ROOT x");
+  LineReader mac("HIERARCHY\rROOT x\r\r{\r", "mac.bvh");
+  EXPECT_EQ(mac.next(), "HIERARCHY");
+  EXPECT_EQ(mac.next_tokens().size(), 2u);
+  EXPECT_EQ(mac.next_tokens().at(0), "{");
+  EXPECT_EQ(mac.line_number(), 4);
+  EXPECT_FALSE(mac.next().has_value());
+  LineReader mixed("a\rb\r\r\nc\n", "mixed.txt");
+  EXPECT_EQ(mixed.next_tokens().size(), 2u);  // "a\rb\r": CR a separator where lines end with LF
+  EXPECT_EQ(mixed.next(), "c");
+  EXPECT_EQ(mixed.line_number(), 2);
+}
+
 TEST(Quoted, ShortPrintableTokensAreShownAsThey) {
   EXPECT_EQ(quoted("HIERARCHY"), "'HIERARCHY'");
   EXPECT_EQ(quoted(""), "''");

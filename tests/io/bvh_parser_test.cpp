@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "test_data.h"
 
 namespace mg {
@@ -78,6 +80,24 @@ TEST(BvhParser, ReadsEveryBundledFile) {
     EXPECT_EQ(with_channels, e.joints_with_channels) << e.file;
     EXPECT_EQ(doc->frame_count, e.frames) << e.file;
     EXPECT_EQ(doc->values.size(), static_cast<size_t>(e.frames) * doc->channel_count) << e.file;
+  }
+}
+
+// The same file with a byte-order mark first (Windows tools write one), and with its lines
+// ended by CR alone (classic Mac OS), reads to the same joints and values.
+TEST(BvhParser, AByteOrderMarkAndCarriageReturnLinesReadTheSame) {
+  const std::string text = test::read_data("bvh/16_01.bvh");
+  auto plain = parse_bvh(text, "16_01.bvh");
+  ASSERT_TRUE(plain) << plain.error().to_string();
+  std::string mac = text;
+  mac.erase(std::remove(mac.begin(), mac.end(), '\r'), mac.end());
+  std::replace(mac.begin(), mac.end(), '\n', '\r');
+  for (const std::string& variant : {"\xEF\xBB\xBF" + text, mac}) {
+    auto doc = parse_bvh(variant, "variant.bvh");
+    ASSERT_TRUE(doc) << doc.error().to_string();
+    ASSERT_EQ(doc->joints.size(), plain->joints.size());
+    EXPECT_EQ(doc->joints[0].name, plain->joints[0].name);
+    EXPECT_EQ(doc->values, plain->values);
   }
 }
 

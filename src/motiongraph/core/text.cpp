@@ -43,11 +43,17 @@ std::optional<long long> parse_integer(std::string_view token) {
 }
 
 LineReader::LineReader(std::string_view text, std::string file_name)
-    : text_(text), file_(std::move(file_name)) {}
+    : text_(text),
+      file_(std::move(file_name)),
+      // Lines ended by CR alone (classic Mac OS) only where no line ends with LF.
+      line_end_(text.find('\n') == std::string_view::npos && text.find('\r') != std::string_view::npos ? '\r' : '\n') {
+  // A UTF-8 byte-order mark, which Windows tools write first, is no part of the first line.
+  if (text_.substr(0, 3) == "\xEF\xBB\xBF") pos_ = 3;
+}
 
 std::optional<std::string_view> LineReader::next() {
   if (pos_ >= text_.size()) return std::nullopt;
-  size_t end = text_.find('\n', pos_);
+  size_t end = text_.find(line_end_, pos_);
   if (end == std::string_view::npos) end = text_.size();
   std::string_view line = text_.substr(pos_, end - pos_);
   pos_ = end + 1;

@@ -1,4 +1,4 @@
-// Reading text formats line by line: CRLF or LF endings, tabs and spaces as separators,
+// Reading text formats line by line: LF, CRLF or CR endings, tabs and spaces as separators,
 // numbers parsed strictly (whole token, finite). Used by the ASF, AMC and BVH parsers, which
 // all take the file's text in memory plus its name for messages.
 #pragma once
@@ -23,7 +23,9 @@ std::optional<double> parse_finite(std::string_view token);
 // it does not fit.
 std::optional<long long> parse_integer(std::string_view token);
 
-// Walks text line by line. Line numbers are 1-based; a trailing '\r' is removed.
+// Walks text line by line. Line numbers are 1-based; a trailing '\r' is removed. Lines end
+// with LF (CRLF), or with CR alone in a text that has no LF; a UTF-8 byte-order mark first is
+// skipped.
 class LineReader {
  public:
   LineReader(std::string_view text, std::string file_name);
@@ -50,6 +52,7 @@ class LineReader {
   std::string file_;
   size_t pos_ = 0;
   int line_number_ = 0;
+  char line_end_ = '\n';
 };
 
 // Quotes a token for an error message: at most 40 characters (then "..."), control bytes and
