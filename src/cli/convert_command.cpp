@@ -148,6 +148,7 @@ int run_convert(const ConvertOptions& options) {
   for (const std::string& output : options.outputs) {
     if (auto s = check_motion_output(output); !s) return fail(s.error());
   }
+  if (auto s = check_outputs(options.outputs, options.inputs); !s) return fail(s.error());
   if (auto s = options.output.settings().validate(); !s) return fail(s.error());
   const ClipLoadSettings load = options.load.settings();
   if (is_library(options.inputs)) {

@@ -27,7 +27,7 @@ int run_path(const PathOptions& o) {
   if (auto s = o.settings.validate(); !s) return fail(s.error());
   auto path = make_floor_path({o.path_file, o.shape, {}, o.segments});
   if (!path) return fail(path.error());
-  auto loaded = load_for_synthesis(o.common);
+  auto loaded = load_for_synthesis(o.common, {o.path_file});
   if (!loaded) return fail(loaded.error());
   const SynthesisContext& context = (*loaded)->context();
   for (const PathSegment& segment : path->segments()) {

@@ -41,7 +41,7 @@ int run_steer(const SteerOptions& o) {
   if (!text) return fail(text.error());
   auto script = parse_control_script(*text, o.script);
   if (!script) return fail(script.error());
-  auto loaded = load_for_synthesis(o.common);
+  auto loaded = load_for_synthesis(o.common, {o.script});
   if (!loaded) return fail(loaded.error());
   const SynthesisContext& context = (*loaded)->context();
   auto input_at = [&](double t) -> Result<ControlInput> {

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -40,8 +41,10 @@ struct SynthesisOptions {
 };
 
 // Loads GRAPH and sets up synthesis on --skeleton (synthesis/loaded_graph.h); checks the
-// output's extension first.
-Result<std::unique_ptr<LoadedGraph>> load_for_synthesis(const SynthesisOptions& options);
+// outputs first: the motion's extension, and that the motion and the report can be written and
+// are neither GRAPH nor one of the command's other `inputs` (io/file.h check_outputs).
+Result<std::unique_ptr<LoadedGraph>> load_for_synthesis(const SynthesisOptions& options,
+                                                        const std::vector<std::string>& inputs = {});
 
 // The run settings the options give (evaluation/synthesis_run.h), the report's seconds counted
 // from `begin`.

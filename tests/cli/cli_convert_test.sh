@@ -229,5 +229,12 @@ grep -q "^s16:16_15 .* walk" "$work/glb.clips" && [[ $(grep -c "^s16:16_" "$work
   || { echo "FAIL: a glTF library's clips"; cat "$work/glb.clips"; exit 1; }
 # The converted BVH reads back.
 "$bin" info "$work/jog.bvh" | grep "41 frames at 30 fps" >/dev/null || { echo "FAIL: written BVH does not read back"; exit 1; }
+# An output that is the input is refused, the input untouched.
+cp "$work/jog.bvh" "$work/jog-in.bvh"
+if "$bin" convert "$work/jog-in.bvh" -o "$work/jog-in.bvh" --output-scale 100 2>"$work/same.err"; then
+  echo "FAIL: converted a file over itself"; exit 1
+fi
+grep -q "jog-in.bvh: is also an input" "$work/same.err" && cmp -s "$work/jog.bvh" "$work/jog-in.bvh" \
+  || { echo "FAIL: output over the input"; cat "$work/same.err"; exit 1; }
 ls -A "$work" | grep -q "tmp-" && { echo "FAIL: temporary files left"; exit 1; }
 echo "cli convert ok"

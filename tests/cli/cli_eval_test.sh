@@ -132,5 +132,12 @@ if env PATH=/nonexistent "$bin" eval "$work/g.mgraph" --out-dir "$work/bad" 2>"$
   echo "FAIL: plotted without gnuplot"; exit 1
 fi
 grep -q "gnuplot" "$work/err.txt" && [ "$(wc -l <"$work/err.txt")" -eq 1 ] || { cat "$work/err.txt"; exit 1; }
+# A bad shape is found before any evaluation runs (the walks' CSV was written before).
+if "$bin" eval "$work/g.mgraph" --out-dir "$work/bad" --what walks,paths --shapes line:5,bogus:3 --no-plots \
+    2>"$work/err.txt"; then
+  echo "FAIL: an unknown shape was accepted"; exit 1
+fi
+grep -q "^--shapes: unknown shape 'bogus'" "$work/err.txt" && [ "$(wc -l <"$work/err.txt")" -eq 1 ] \
+  || { cat "$work/err.txt"; exit 1; }
 [ ! -e "$work/bad" ] || { echo "FAIL: a failed eval left output"; exit 1; }
 echo "cli_eval: ok"

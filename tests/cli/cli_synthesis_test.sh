@@ -339,6 +339,15 @@ echo '{"controls": [{"at_s": 1}]}' >"$work/bad-controls.json"
 expect_error "bad-controls.json: controls[0]: at_s must start at 0" "$work/o.bvh" "$bin" steer "$work/g.mgraph" --script "$work/bad-controls.json" -o "$work/o.bvh"
 echo '{"duration_s": 1e-9, "controls": [{"at_s": 0}]}' >"$work/short-controls.json"
 expect_error "short-controls.json: duration_s 1e-09 is shorter than a frame at 30 fps" "$work/o.bvh" "$bin" steer "$work/g.mgraph" --script "$work/short-controls.json" -o "$work/o.bvh"
+# Outputs checked before any work: a report that cannot be written leaves no motion behind; an
+# output that is an input, or two outputs of one name, are refused with the input untouched.
+expect_error "there is no folder '$work/nodir'" "$work/o.bvh" "$bin" path "$work/g.mgraph" --shape line:5 -o "$work/o.bvh" --report "$work/nodir/r.json"
+cp "$work/g.mgraph" "$work/g-copy.mgraph"
+expect_error "is also an input ('$work/g-copy.mgraph')" "$work/o.bvh" "$bin" walk "$work/g-copy.mgraph" --from 0 --to 5 -o "$work/o.bvh" --report "$work/./g-copy.mgraph"
+cmp -s "$work/g.mgraph" "$work/g-copy.mgraph" || { echo "FAIL: the graph was written over"; exit 1; }
+expect_error "is also an input" "$work/o.bvh" "$bin" steer "$work/g.mgraph" --script "$work/short-controls.json" -o "$work/o.bvh" --report "$work/short-controls.json"
+expect_error "is named for two outputs" "$work/o.json" "$bin" path "$work/g.mgraph" --shape line:5 -o "$work/o.json" --report "$work/o.json"
+expect_error "a path is at most 100000 m" "$work/o.bvh" "$bin" path "$work/g.mgraph" --shape zigzag:1e7 -o "$work/o.bvh"
 head -c 100 "$work/g.mgraph" >"$work/cut.mgraph"
 expect_error "cut.mgraph" "$work/o.bvh" "$bin" path "$work/cut.mgraph" --shape line:5 -o "$work/o.bvh"
 echo "cli synthesis: ok"

@@ -310,6 +310,16 @@ TEST(FloorPath, LongPathsStayUsableAndHugeOnesAreErrors) {
     EXPECT_LE((path->point_at(s) - expected).norm(), 1e-9 * std::max(1.0, expected.norm())) << s;
   }
   EXPECT_NEAR(path->point_at(2.5).x(), 1.5, 1e-12);
+  // A shape is refused by its length before its points are made (zigzag:1e7 made 8 GB of them;
+  // s-curve:1e8 lost most of its to rounding and was followed for 5 cm).
+  for (const char* spec : {"zigzag:1e7", "s-curve:1e8", "circle:16000", "figure8:8000", "square:25001", "line:1e5000"}) {
+    auto shape = make_shape(spec);
+    ASSERT_FALSE(shape.ok()) << spec;
+    if (std::string(spec) != "line:1e5000") {  // not a finite number
+      EXPECT_NE(shape.error().message.find("a path is at most 100000 m"), std::string::npos) << shape.error().message;
+    }
+  }
+  EXPECT_TRUE(make_shape("square:24000").ok());
 }
 
 TEST(FloorPath, BadInputIsOneClearError) {

@@ -117,6 +117,43 @@ Status write_file_atomic(const std::string& path, std::string_view content) {
   return Ok{};
 }
 
+namespace {
+
+// Whether two names are one file: the same existing file, or the same path once resolved.
+bool same_file(const std::string& a, const std::string& b) {
+  std::error_code error;
+  if (std::filesystem::equivalent(a, b, error)) return true;
+  const std::filesystem::path resolved_a = std::filesystem::weakly_canonical(a, error);
+  if (error) return false;
+  const std::filesystem::path resolved_b = std::filesystem::weakly_canonical(b, error);
+  return !error && resolved_a == resolved_b;
+}
+
+}  // namespace
+
+Status check_outputs(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs) {
+  for (size_t i = 0; i < outputs.size(); ++i) {
+    const std::string& output = outputs[i];
+    if (output.empty()) continue;
+    std::filesystem::path folder = std::filesystem::path(output).parent_path();
+    if (folder.empty()) folder = ".";
+    std::error_code error;
+    if (!std::filesystem::is_directory(folder, error)) {
+      return Error{output, 0, fmt::format("cannot write: there is no folder '{}'", folder.string())};
+    }
+    if (std::filesystem::is_directory(output, error)) return Error{output, 0, "cannot write: it is a folder"};
+    for (const std::string& input : inputs) {
+      if (!input.empty() && same_file(output, input)) {
+        return Error{output, 0, fmt::format("is also an input ('{}'): give the output another name", input)};
+      }
+    }
+    for (size_t j = 0; j < i; ++j) {
+      if (!outputs[j].empty() && same_file(output, outputs[j])) return Error{output, 0, "is named for two outputs"};
+    }
+  }
+  return Ok{};
+}
+
 Status create_folders(const std::string& path) {
   std::error_code ec;
   std::filesystem::create_directories(path, ec);

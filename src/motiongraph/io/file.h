@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "motiongraph/core/error.h"
 
@@ -33,6 +34,12 @@ class FileBytes {
 };
 
 Status write_file_atomic(const std::string& path, std::string_view content);
+
+// Before any work is done: each output (empty names skipped) lies in a folder that exists, is no
+// folder itself, and is none of the inputs nor another output, so that a run never fails after
+// writing some of its outputs, nor writes over a file it reads. Paths are compared as the files
+// they name (links and "./" resolved).
+Status check_outputs(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs);
 
 // Creates the folder and its missing parents (nothing to do when it exists).
 Status create_folders(const std::string& path);

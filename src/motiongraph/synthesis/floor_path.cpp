@@ -227,6 +227,16 @@ Result<FloorPath> make_shape(std::string_view spec) {
     return Error{"", 0, fmt::format("shape '{}': the size must be a positive number of metres", spec)};
   }
   constexpr double kPi = std::numbers::pi;
+  // Its length before its points are made (s-curve:1e8 would make two billion).
+  const double length = name == "circle"    ? 2 * kPi * size
+                        : name == "figure8" ? 4 * kPi * size
+                        : name == "square"  ? 4 * size
+                        : name == "zigzag"  ? 8 * size
+                                            : size;
+  if (length > FloorPath::kMaxLengthM) {
+    return Error{"", 0, fmt::format("shape '{}' would be {:.0f} m long; a path is at most {:.0f} m", spec, length,
+                                    FloorPath::kMaxLengthM)};
+  }
   std::vector<Vec2> points;
   auto arc = [&](const Vec2& centre, double radius, double start_angle, double sweep) {
     const int n = std::max(8, static_cast<int>(std::ceil(std::abs(sweep) * radius / 0.1)));

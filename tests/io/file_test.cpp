@@ -1,0 +1,55 @@
+// The disk: outputs checked before any work is done (check_outputs), and written atomically.
+#include "motiongraph/io/file.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
+namespace mg {
+namespace {
+
+namespace fs = std::filesystem;
+
+class OutputFolder : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() / fs::path("motiongraph-file-test-" + std::to_string(::getpid()));
+    fs::create_directories(root_ / "sub");
+  }
+  void TearDown() override { fs::remove_all(root_); }
+  std::string at(const std::string& name) const { return (root_ / name).string(); }
+  fs::path root_;
+};
+
+TEST_F(OutputFolder, OutputsAreCheckedAsTheFilesTheyName) {
+  ASSERT_TRUE(write_file_atomic(at("in.bvh"), "HIERARCHY"));
+  // Outputs in folders that exist, named for nothing read: fine; empty names are skipped.
+  EXPECT_TRUE(check_outputs({at("out.bvh"), "", at("sub/report.json")}, {at("in.bvh"), ""}));
+  // No folder: the file and the folder named.
+  auto no_folder = check_outputs({at("out.bvh"), at("nodir/report.json")}, {});
+  ASSERT_FALSE(no_folder);
+  EXPECT_EQ(no_folder.error().file, at("nodir/report.json"));
+  EXPECT_NE(no_folder.error().message.find("there is no folder '" + at("nodir") + "'"), std::string::npos);
+  // A folder is no output.
+  auto folder = check_outputs({at("sub")}, {});
+  ASSERT_FALSE(folder);
+  EXPECT_NE(folder.error().message.find("it is a folder"), std::string::npos);
+  // An input under another name (./, .., a link) is still the input.
+  for (const std::string& same : {at("./in.bvh"), at("sub/../in.bvh")}) {
+    auto input = check_outputs({same}, {at("in.bvh")});
+    ASSERT_FALSE(input) << same;
+    EXPECT_NE(input.error().message.find("is also an input"), std::string::npos);
+  }
+  fs::create_symlink(at("in.bvh"), at("link.bvh"));
+  EXPECT_FALSE(check_outputs({at("link.bvh")}, {at("in.bvh")}));
+  // Two outputs of one file, whether it exists yet or not.
+  auto twice = check_outputs({at("o.json"), at("sub/../o.json")}, {});
+  ASSERT_FALSE(twice);
+  EXPECT_NE(twice.error().message.find("is named for two outputs"), std::string::npos);
+  EXPECT_FALSE(check_outputs({at("in.bvh"), at("./in.bvh")}, {}));
+}
+
+}  // namespace
+}  // namespace mg
