@@ -1,7 +1,9 @@
 // motiongraph: motion graphs from motion capture (Kovar, Gleicher & Pighin 2002).
 // Entry point: parses the command line with CLI11 and runs one subcommand. Exceptions never
 // escape: they become one line on stderr and a non-zero exit.
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <new>
 
@@ -16,6 +18,26 @@ int fail(const Error& error) {
   std::fprintf(stderr, "%s\n", error.to_string().c_str());
   return 1;
 }
+
+namespace {
+
+// Every number option of `app` and its subcommands refuses nan and inf (CLI11 reads them, and
+// its range checks let NaN through: --fps nan resampled nothing, silently).
+void refuse_non_finite_numbers(CLI::App& app) {
+  static const CLI::Validator finite(
+      [](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        return end != text.c_str() && !std::isfinite(value) ? "must be a finite number, not " + text : "";
+      },
+      "");
+  for (CLI::Option* option : app.get_options()) {
+    if (option->get_type_name().rfind("FLOAT", 0) == 0) option->check(finite);  // "FLOAT", "FLOAT:FLOAT in [...]"
+  }
+  for (CLI::App* sub : app.get_subcommands({})) refuse_non_finite_numbers(*sub);
+}
+
+}  // namespace
 
 }  // namespace mg::cli
 
@@ -44,6 +66,7 @@ int main(int argc, char** argv) {
       mg::cli::add_eval_command(app),
       mg::cli::add_serve_command(app),
   };
+  mg::cli::refuse_non_finite_numbers(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
