@@ -301,6 +301,9 @@ expect_fail "threshold quantile must be in" "$bin" build "$data/cmu/16" -o "$wor
 expect_fail "joint weight \(--joint-weight\) names 'lhead', which is not a joint of the skeleton \(its joints: root, " \
     "$bin" build "$data/cmu/16" -o "$work/x.mgraph" --joint-weight head=2 --joint-weight lhead=2 -q
 expect_fail "threshold must be 'auto'" "$bin" build "$data/cmu/16" -o "$work/x.mgraph" --threshold 5inch
+expect_fail "rings every 1e-09 m would put .* points on the skeleton, more than 10000" \
+    "$bin" build "$data/cmu/16" -o "$work/x.mgraph" --ring-spacing 1e-9 -q
+expect_fail "from 1 to 10000 frames" "$bin" build "$data/cmu/16" -o "$work/x.mgraph" --out-window 1000000 -q
 expect_fail "coverage" "$bin" build "$data/cmu/16" -o "$work/x.mgraph" --coverage 0
 ls "$work"/x.mgraph "$work"/g.bin 2>/dev/null && { echo "FAIL: output left behind"; exit 1; }
 

@@ -211,6 +211,14 @@ TEST(PathSynthesis, UnknownTagsAndBadSettingsAreErrors) {
   bad = {};
   bad.beam_width = -1;
   EXPECT_FALSE(bad.validate().ok());
+  // Beams and retries that would take memory or time without end (a beam of 2e9 ran out of memory).
+  bad.beam_width = kMaxBeamWidth + 1;
+  EXPECT_FALSE(bad.validate().ok());
+  bad.beam_width = kMaxBeamWidth;
+  EXPECT_TRUE(bad.validate().ok());
+  bad = {};
+  bad.progress_retries = 101;
+  EXPECT_FALSE(bad.validate().ok());
   bad = {};
   bad.retry_horizon_s = -1.0;
   EXPECT_FALSE(bad.validate().ok());

@@ -11,8 +11,10 @@ namespace mg {
 
 Status TransitionSpacing::validate() const {
   if (min_piece_frames < 0) return Error{"", 0, "the minimum piece must be >= 0 frames (0: off)"};
-  if (out_window_frames < -1 || out_window_frames == 0) {
-    return Error{"", 0, "the stretch transitions leaving are counted over must be >= 1 frame (or -1 for the window)"};
+  if (out_window_frames < -1 || out_window_frames == 0 || out_window_frames > 10'000) {
+    return Error{"", 0,
+                 "the stretch transitions leaving are counted over must be from 1 to 10000 frames (or -1 for the "
+                 "window)"};
   }
   if (max_out < 0) return Error{"", 0, "the transitions leaving a stretch must be >= 0 (0: no limit)"};
   return Ok{};

@@ -59,6 +59,17 @@ Result<CloudLayout> make_cloud_layout(const Skeleton& reference, const PointClou
   if (settings.kind == PointCloudSettings::Kind::kJoints) {
     for (int j = 0; j < reference.joint_count(); ++j) add(j == 0 ? 0 : reference.parent(j), j, 1.0, 0.0, 0.0);
   } else {
+    // The points counted before any is made (a ring every nanometre would be billions).
+    double points = 0.0;
+    for (int j = 1; j < reference.joint_count(); ++j) {
+      const double length = reference.joint(j).rest_offset_m.norm();
+      if (length >= 1e-6) points += std::max(1.0, std::ceil(length / settings.ring_spacing_m)) * settings.points_per_ring;
+    }
+    if (points > kMaxCloudPoints) {
+      return Error{"", 0, fmt::format("rings every {:g} m would put {:g} points on the skeleton, more than {}: space "
+                                      "them wider (--ring-spacing)",
+                                      settings.ring_spacing_m, points, kMaxCloudPoints)};
+    }
     for (int j = 1; j < reference.joint_count(); ++j) {
       const double length = reference.joint(j).rest_offset_m.norm();
       if (length < 1e-6) continue;  // bones of zero length (e.g. at the root) carry no ring

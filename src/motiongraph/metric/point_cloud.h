@@ -45,6 +45,9 @@ struct CloudLayout {
 };
 
 // The layout for a skeleton; fails on bad settings or a skeleton without bones.
+// The most points a cloud may have (the default rings put about 160 on a CMU skeleton).
+inline constexpr int kMaxCloudPoints = 10000;
+
 Result<CloudLayout> make_cloud_layout(const Skeleton& reference, const PointCloudSettings& settings);
 
 // Whether `skeleton` has the topology the layout was made for.

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <fmt/format.h>
+
 #include "motiongraph/graph/graph_from_candidates.h"
 #include "motiongraph/synthesis/steer_cost.h"
 
@@ -23,6 +25,9 @@ Status ControllerSettings::validate() const {
   }
   if (!(tag_penalty >= 0.0) || !(time_budget_s >= 0.0) || max_expansions < 1 || beam_width < 0) {
     return Error{"", 0, "controller: penalties, budgets and the beam width must be >= 0 (expansions >= 1)"};
+  }
+  if (beam_width > kMaxBeamWidth) {
+    return Error{"", 0, fmt::format("controller: the beam width must be at most {}", kMaxBeamWidth)};
   }
   return heading_edit.validate();
 }

@@ -4,13 +4,17 @@
 #include <chrono>
 #include <cmath>
 
+#include <fmt/format.h>
+
 namespace mg {
 
 Status HorizonSettings::validate() const {
   if (horizon_frames < 1) return Error{"", 0, "the search horizon must be at least one frame"};
   if (max_expansions < 1) return Error{"", 0, "the search needs an expansion budget of at least 1"};
   if (!(time_budget_s >= 0.0)) return Error{"", 0, "the search time budget must be >= 0"};
-  if (beam_width < 0) return Error{"", 0, "the beam width must be >= 0"};
+  if (beam_width < 0 || beam_width > kMaxBeamWidth) {
+    return Error{"", 0, fmt::format("the beam width must be from 0 to {}", kMaxBeamWidth)};
+  }
   return Ok{};
 }
 

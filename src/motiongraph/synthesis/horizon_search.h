@@ -107,6 +107,9 @@ bool add_frame_costs(size_t count, double bound, double* total, bool* goal, PerF
   return true;
 }
 
+// The widest beam a search takes (each partial walk is kept in memory).
+inline constexpr int kMaxBeamWidth = 1'000'000;
+
 struct HorizonSettings {
   int horizon_frames = 90;
   long long max_expansions = 200000;  // edges evaluated

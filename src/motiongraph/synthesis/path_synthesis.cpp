@@ -33,7 +33,7 @@ Status PathSynthesisSettings::validate() const {
     return Error{"", 0, "path search: the slowest speed and its penalty must be >= 0"};
   }
   if (max_expansions < 1 || start_candidates < 1) return Error{"", 0, "path search: budgets must be positive"};
-  if (progress_retries < 0) return Error{"", 0, "path search: the retries must be >= 0"};
+  if (progress_retries < 0 || progress_retries > 100) return Error{"", 0, "path search: the retries must be from 0 to 100"};
   if (!(retry_deviation_m >= 0.0)) return Error{"", 0, "path search: the deviation that asks for a retry must be >= 0"};
   if (!(retry_tag_match >= 0.0 && retry_tag_match <= 1.0)) {
     return Error{"", 0, "path search: the tag match that asks for a retry must be from 0 to 1"};
@@ -41,7 +41,9 @@ Status PathSynthesisSettings::validate() const {
   if (!(retry_horizon_s >= 0.0) || (retry_horizon_s > 0.0 && retry_horizon_s < commit_s)) {
     return Error{"", 0, "path search: the retries' horizon must be 0 (the first search's) or at least commit_s"};
   }
-  if (beam_width < 0) return Error{"", 0, "path search: the beam width must be >= 0"};
+  if (beam_width < 0 || beam_width > kMaxBeamWidth) {
+    return Error{"", 0, fmt::format("path search: the beam width must be from 0 to {}", kMaxBeamWidth)};
+  }
   if (!(tag_lookahead >= 0.0 && tag_lookahead <= 1.0)) {
     return Error{"", 0, "path search: the tag lookahead must be from 0 to 1"};
   }

@@ -27,7 +27,7 @@ const char* walk_cost_name(WalkCost cost) {
 }
 
 Status WalkSearchSettings::validate() const {
-  if (min_frames < 0) return Error{"", 0, "--min-frames must be >= 0"};
+  if (min_frames < 0 || min_frames > 10'000'000) return Error{"", 0, "--min-frames must be from 0 to 10000000"};
   if (max_expansions < 1) return Error{"", 0, "the expansion budget must be >= 1"};
   return Ok{};
 }
