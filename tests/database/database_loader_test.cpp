@@ -888,6 +888,19 @@ TEST(DatabaseLoader, ShortClipIsAnErrorNamingTheFile) {
       << db.error().to_string();
 }
 
+// A BVH of a skeleton and no frames (Frames: 0): an error naming it, not a frame range "1..0"
+// of a rest pose.
+TEST(DatabaseLoader, AClipWithoutFramesIsAnErrorNamingTheFile) {
+  TempFolder folder("noframes");
+  const std::string text = test::read_data("bvh/07_01.bvh");
+  const std::string bvh = folder.write("still.bvh", text.substr(0, text.find("MOTION")) +
+                                                        "MOTION\nFrames: 0\nFrame Time: 0.008333\n");
+  auto db = load_database({bvh, test::data_path("bvh/07_01.bvh")}, DatabaseSettings{});
+  ASSERT_FALSE(db);
+  EXPECT_EQ(db.error().file, bvh);
+  EXPECT_EQ(db.error().message, "the clip has no frames (a skeleton without motion)");
+}
+
 TEST(DatabaseLoader, BadInputsAndSettings) {
   DatabaseSettings settings = cmu_settings();
   EXPECT_FALSE(load_database({}, settings));

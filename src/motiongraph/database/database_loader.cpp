@@ -526,6 +526,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     const int dropped = loaded->clip.dropped_leading_frames;
     const int file_frames = dropped + motion.frame_count;
 
+    if (file_frames == 0) return Error{spec.path, 0, "the clip has no frames (a skeleton without motion)"};
     // Frame range, in the file's numbering; frames the reader dropped are not part of it.
     const int first = std::max(spec.first_frame.value_or(1), dropped + 1);
     const int last = spec.last_frame.value_or(file_frames);
