@@ -94,6 +94,8 @@ PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<d
     auto floor_path = make_floor_path(source);
     if (!floor_path) {
       made = floor_path.error();
+    } else if (auto known = check_segment_tags(graph.loaded->context(), *floor_path, source.file); !known) {
+      made = known.error();
     } else {
       made = run_path_synthesis(graph.loaded->context(), *floor_path, settings, run);
     }

@@ -30,15 +30,7 @@ int run_path(const PathOptions& o) {
   auto loaded = load_for_synthesis(o.common, {o.path_file});
   if (!loaded) return fail(loaded.error());
   const SynthesisContext& context = (*loaded)->context();
-  // A tag the graph does not know is the path's fault: its file's, or the --segment's.
-  for (const PathSegment& segment : path->segments()) {
-    if (auto mask = context.tag_mask(segment.tag); !mask) {
-      return fail(o.path_file.empty()
-                      ? Error{"", 0, fmt::format("--segment {}:{:g}-{:g}: {}", segment.tag, segment.from_m,
-                                                 segment.to_m, mask.error().message)}
-                      : Error{o.path_file, 0, mask.error().message});
-    }
-  }
+  if (auto s = check_segment_tags(context, *path, o.path_file); !s) return fail(s.error());
   for (const PathSegment& segment : path->segments()) {
     if (auto why = unplayable_tag(context, segment.tag)) {
       spdlog::warn("the segment {:g}-{:g} m asks for {}", segment.from_m, segment.to_m, *why);

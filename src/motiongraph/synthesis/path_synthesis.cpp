@@ -50,6 +50,17 @@ Status PathSynthesisSettings::validate() const {
   return path_edit.validate();
 }
 
+Status check_segment_tags(const SynthesisContext& context, const FloorPath& path, const std::string& path_file) {
+  for (const PathSegment& segment : path.segments()) {
+    if (auto mask = context.tag_mask(segment.tag); !mask) {
+      if (!path_file.empty()) return Error{path_file, 0, mask.error().message};
+      return Error{"", 0, fmt::format("--segment {}:{:g}-{:g}: {}", segment.tag, segment.from_m, segment.to_m,
+                                      mask.error().message)};
+    }
+  }
+  return Ok{};
+}
+
 int graph_frames_with(const SynthesisContext& context, TagMask mask) {
   const MotionGraph& graph = *context.graph;
   int count = 0;

@@ -179,6 +179,10 @@ struct PathSynthesisResult {
 // it cannot be followed; the pruning may have left none of the clips' frames of a type).
 int graph_frames_with(const SynthesisContext& context, TagMask mask);
 
+// Fails on a segment asking for a tag the graph does not know, blaming the path: its file
+// (`path_file`) or, without one, the segment as --segment gives it ("--segment swim:0-5: ...").
+Status check_segment_tags(const SynthesisContext& context, const FloorPath& path, const std::string& path_file);
+
 // The median speed (m/s) of the root over the frames of the graph's clip pieces that carry one
 // of `mask`'s tags (each frame's floor step to the next frame of its clip: within its piece, or
 // the first of the piece leaving the node the piece reaches); 0 when none does.
