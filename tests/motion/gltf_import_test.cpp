@@ -522,6 +522,13 @@ TEST(GltfImport, FilesThatCannotBeReadAreOneErrorEach) {
     for (auto& sampler : far_apart.built.model.animations[0].samplers) sampler.input = input;
   }
   EXPECT_NE(message(far_apart.built.glb()).find("animation 'kick' would be"), std::string::npos);
+  Rig aimed_nowhere;
+  aimed_nowhere.built.model.animations[0].channels[1].target_node = 99;
+  EXPECT_NE(message(aimed_nowhere.built.glb()).find("a channel aimed at node 99, which does not exist"),
+            std::string::npos);
+  std::string version_one = Rig().built.glb();
+  version_one[4] = 1;  // the header's version, after the magic
+  EXPECT_NE(message(version_one).find("GLB version 1: only glTF 2.0 is read"), std::string::npos);
   Rig cycle;
   cycle.built.model.nodes[5].children = {1};  // the spine above the hips, which hold it
   EXPECT_NE(message(cycle.built.glb()).find("a child that is not a node of one parent"), std::string::npos);

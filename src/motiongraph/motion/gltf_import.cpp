@@ -230,6 +230,10 @@ void read_tracks(const tinygltf::Model& model, const tinygltf::Animation& animat
     if (channel.target_node < node_count) out.targets.push_back(channel.target_node);
     if (!out.error.empty()) continue;
     const auto fail = [&](std::string message) { out.error = std::move(message); };
+    if (channel.target_node >= node_count) {
+      fail(fmt::format("it has a channel aimed at node {}, which does not exist", channel.target_node));
+      continue;
+    }
     if (path != "translation" && path != "rotation" && path != "scale") {
       fail(fmt::format("it animates '{}', which is not read", path));
       continue;
@@ -290,6 +294,11 @@ Result<tinygltf::Model> parse(std::string_view bytes, const std::string& file, c
   std::string error, warning;
   bool ok = false;
   if (bytes.size() >= 4 && bytes.substr(0, 4) == "glTF") {
+    if (bytes.size() >= 8) {
+      uint32_t version = 0;
+      std::memcpy(&version, bytes.data() + 4, sizeof version);  // little-endian, as GLB is
+      if (version != 2) return Error{file, 0, fmt::format("GLB version {}: only glTF 2.0 is read", version)};
+    }
     ok = loader.LoadBinaryFromMemory(&model, &error, &warning, reinterpret_cast<const unsigned char*>(bytes.data()),
                                      static_cast<unsigned>(bytes.size()), base_dir);
   } else {
