@@ -16,6 +16,10 @@
 
 namespace mg {
 
+// The most joint poses (frames x joints) a clip, or a scene file's animations together, may hold
+// as read or resampled: 1.6 GB of rotations.
+inline constexpr double kMaxJointPoses = 5e7;
+
 struct Motion {
   double fps = 30.0;
   int frame_count = 0;

@@ -24,13 +24,12 @@ Result<Motion> resample(const Motion& motion, double fps_out) {
     return same;
   }
   const double frames_out = resampled_frame_count(motion, fps_out);
-  // As many joint poses as a scene file may hold (scene_clips.h): 1.6 GB of rotations.
   const double poses = frames_out * std::max(1, motion.joint_count);
-  if (frames_out > 1e8 || poses > 5e7) {
+  if (frames_out > 1e8 || poses > kMaxJointPoses) {
     return Error{"", 0,
-                 fmt::format("resampled to {:g} fps the motion would have {:g} frames of {} joints, over the 50 million "
-                             "joint poses a clip may hold",
-                             fps_out, frames_out, motion.joint_count)};
+                 fmt::format("resampled to {:g} fps the motion would have {:g} frames of {} joints, over the {:g} "
+                             "million joint poses a clip may hold",
+                             fps_out, frames_out, motion.joint_count, kMaxJointPoses / 1e6)};
   }
   Motion out = motion;
   out.fps = fps_out;

@@ -47,7 +47,7 @@ struct SceneClipSettings {
   double fps_override = 0.0;     // > 0: sample at this rate instead of the keys'
   bool fold_static_root = true;  // the hips as joint 0 below a static root
   std::optional<UpAxis> up_axis;  // nullopt or y: the scene's own (+y up); z: turned
-  double max_joint_poses = 5e7;  // frames x joints over all the file's animations (1.6 GB of rotations)
+  double max_joint_poses = kMaxJointPoses;  // frames x joints over all the file's animations
 
   Status validate() const;
 };
