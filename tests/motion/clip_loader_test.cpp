@@ -1,12 +1,15 @@
 // Which files the clip loader takes, by extension in any case; an FBX file's unit.
 #include "motiongraph/motion/clip_loader.h"
 
+#include <cstring>
 #include <filesystem>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "motion/ascii_fbx.h"
 #include "motion/max_apart.h"
+#include "motiongraph/export/gltf_writer.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/length_unit.h"
 #include "motiongraph/motion/resample.h"
@@ -83,6 +86,54 @@ TEST(ClipLoader, AnFbxFilesUnitIsKeptUnlessItMakesNoHumanFigure) {
   EXPECT_NEAR(figure_size(scaled->clip.skeleton, scaled->clip.motion), 2.0 * size, 1e-4);
   std::filesystem::remove(right);
   std::filesystem::remove(wrong);
+}
+
+// A .gltf whose buffer is a file beside it (as Blender writes "glTF Separate") reads as the .glb
+// holding the same bytes; a buffer that is a folder, or missing, is an error naming it.
+TEST(ClipLoader, AGltfReadsItsBufferFromTheFileItNames) {
+  Clip walk = test::load_data_clip("cmu/16/16_15.amc");
+  auto at30 = resample(walk.motion, 30.0);
+  ASSERT_TRUE(at30);
+  walk.motion = std::move(*at30);
+  auto glb = write_glb(walk.skeleton, walk.motion, "walk");
+  ASSERT_TRUE(glb) << glb.error().to_string();
+  // A GLB: a 12-byte header, then chunks of (length, type, bytes): the JSON, then the buffer.
+  const auto chunk = [&](size_t at) {
+    uint32_t length = 0;
+    std::memcpy(&length, glb->data() + at, sizeof length);
+    return std::string_view(*glb).substr(at + 8, length);
+  };
+  const std::string_view json_chunk = chunk(12);
+  const std::string_view bin_chunk = chunk(12 + 8 + json_chunk.size());
+  auto json = nlohmann::json::parse(json_chunk);
+  ASSERT_EQ(json["buffers"].size(), 1u);
+  json["buffers"][0]["uri"] = "walk.bin";
+  const size_t length = json["buffers"][0]["byteLength"].get<size_t>();
+  ASSERT_LE(length, bin_chunk.size());
+
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() / "motiongraph-separate-gltf";
+  std::filesystem::remove_all(folder);
+  ASSERT_TRUE(std::filesystem::create_directories(folder));
+  const std::string gltf = (folder / "walk.gltf").string();
+  ASSERT_TRUE(write_file_atomic(gltf, json.dump()));
+  ASSERT_TRUE(write_file_atomic((folder / "walk.bin").string(), bin_chunk.substr(0, length)));
+  auto read = ClipLoader({}).load(gltf);
+  ASSERT_TRUE(read) << read.error().to_string();
+  EXPECT_EQ(read->format, "gltf");
+  EXPECT_EQ(read->clip.motion.frame_count, walk.motion.frame_count);
+  EXPECT_LT(test::max_apart(walk, read->clip), 1e-5);
+
+  std::filesystem::remove(folder / "walk.bin");
+  auto missing = ClipLoader({}).load(gltf);
+  ASSERT_FALSE(missing);
+  EXPECT_EQ(missing.error().file, gltf);
+  EXPECT_NE(missing.error().message.find("walk.bin"), std::string::npos) << missing.error().message;
+  std::filesystem::create_directory(folder / "walk.bin");
+  auto folder_buffer = ClipLoader({}).load(gltf);
+  ASSERT_FALSE(folder_buffer);
+  EXPECT_NE(folder_buffer.error().message.find("is a folder, not a file"), std::string::npos)
+      << folder_buffer.error().message;
+  std::filesystem::remove_all(folder);
 }
 
 }  // namespace

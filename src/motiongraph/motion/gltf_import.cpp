@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <tiny_gltf.h>
 
+#include "motiongraph/io/file.h"
 
 namespace mg {
 
@@ -283,9 +284,24 @@ void read_tracks(const tinygltf::Model& model, const tinygltf::Animation& animat
   }
 }
 
+// A .gltf's external buffer, read as the project reads every file (io/file): a folder or a file
+// that cannot be read is an error saying so. tinygltf's own reader sized a folder as the largest
+// file there is, and the run ended "out of memory".
+bool read_external_file(std::vector<unsigned char>* out, std::string* error, const std::string& path, void*) {
+  auto bytes = FileBytes::open(path);
+  if (!bytes) {
+    if (error != nullptr) *error += bytes.error().message;
+    return false;
+  }
+  out->assign(bytes->bytes().begin(), bytes->bytes().end());
+  return true;
+}
+
 Result<tinygltf::Model> parse(std::string_view bytes, const std::string& file, const std::string& base_dir) {
   tinygltf::Model model;
   tinygltf::TinyGLTF loader;
+  loader.SetFsCallbacks(
+      tinygltf::FsCallbacks{&tinygltf::FileExists, &tinygltf::ExpandFilePath, &read_external_file, nullptr, nullptr});
   // Images are not decoded: a skeleton's motion needs none, and a texture in a format the
   // decoder does not know (KTX2, WebP) would fail the file.
   loader.SetImageLoader([](tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
