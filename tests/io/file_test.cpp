@@ -49,6 +49,17 @@ TEST_F(OutputFolder, OutputsAreCheckedAsTheFilesTheyName) {
   ASSERT_FALSE(twice);
   EXPECT_NE(twice.error().message.find("is named for two outputs"), std::string::npos);
   EXPECT_FALSE(check_outputs({at("in.bvh"), at("./in.bvh")}, {}));
+  // Names relative to the working folder, of files not yet written: "g.mgraph" and "./g.mgraph".
+  const fs::path was = fs::current_path();
+  fs::current_path(root_);
+  const Status relative = check_outputs({"g.mgraph", "./g.mgraph"}, {});
+  const Status relative_input = check_outputs({"sub/../new.bvh"}, {"./new.bvh"});
+  const Status apart = check_outputs({"g.mgraph", "sub/g.mgraph"}, {"in.bvh"});
+  fs::current_path(was);
+  ASSERT_FALSE(relative);
+  EXPECT_NE(relative.error().message.find("is named for two outputs"), std::string::npos);
+  EXPECT_FALSE(relative_input);
+  EXPECT_TRUE(apart) << apart.error().message;
 }
 
 }  // namespace

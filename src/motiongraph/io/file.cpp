@@ -119,13 +119,19 @@ Status write_file_atomic(const std::string& path, std::string_view content) {
 
 namespace {
 
-// Whether two names are one file: the same existing file, or the same path once resolved.
+// Whether two names are one file: the same existing file, or the same path once resolved. Made
+// absolute first: weakly_canonical leaves a relative name none of whose folders exists as it is
+// ("g.mgraph"), and resolves one whose folder does ("./g.mgraph" -> "/home/me/g.mgraph").
 bool same_file(const std::string& a, const std::string& b) {
   std::error_code error;
   if (std::filesystem::equivalent(a, b, error)) return true;
-  const std::filesystem::path resolved_a = std::filesystem::weakly_canonical(a, error);
+  const auto resolved = [&error](const std::string& name) {
+    const std::filesystem::path absolute = std::filesystem::absolute(name, error);
+    return error ? std::filesystem::path() : std::filesystem::weakly_canonical(absolute, error);
+  };
+  const std::filesystem::path resolved_a = resolved(a);
   if (error) return false;
-  const std::filesystem::path resolved_b = std::filesystem::weakly_canonical(b, error);
+  const std::filesystem::path resolved_b = resolved(b);
   return !error && resolved_a == resolved_b;
 }
 
