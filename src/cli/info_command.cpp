@@ -110,7 +110,7 @@ int run_info(const InfoOptions& options) {
     std::string feet_missing;
     auto contacts = clip_contacts(clip.skeleton, clip.motion, settings.foot_names, feet_missing);
     if (!contacts) return fail(Error{file, 0, "--feet: " + contacts.error().message});
-    const std::vector<std::string> doubts =
+    const ClipDoubts doubts =
         clip_doubts(world_positions(clip.skeleton, clip.motion), clip.skeleton.joint_count(), clip.motion.fps,
                     *contacts ? (*contacts)->masks : std::vector<ContactMask>{});
     const char* feet_source = settings.foot_names.empty() ? "found by name" : "--feet";
@@ -150,7 +150,7 @@ int run_info(const InfoOptions& options) {
           {"floor_extent_m", {{"x", {s.floor_min_x_m, s.floor_max_x_m}}, {"z", {s.floor_min_z_m, s.floor_max_z_m}}}},
           {"height_m", {s.min_height_m, s.max_height_m}}, {"root_path_m", s.root_path_m},
           {"root", clip.skeleton.joint(0).name}, {"static_joints_above_root", static_ancestor_names(clip.skeleton)},
-          {"doubts", doubts}, {"skeleton", skeleton_json(clip.skeleton)}};
+          {"doubts", doubts.phrases()}, {"skeleton", skeleton_json(clip.skeleton)}};
       entry["feet"] = *contacts ? feet_json(clip.skeleton, (*contacts)->feet, (*contacts)->masks, feet_source)
                                 : missing_feet_json(feet_missing);
       if (!loaded->skeleton_path.empty()) entry["asf"] = loaded->skeleton_path;

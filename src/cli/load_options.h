@@ -25,7 +25,7 @@ struct LoadOptions {
   void add_to(CLI::App& app) {
     app.add_option("--asf", asf, "ASF skeleton of the AMC files")->check(CLI::ExistingFile);
     app.add_option("--scale", scale,
-                   "Metres per BVH length unit (BVH carries no unit; default: m, cm, mm, inch or CMU's "
+                   "Metres per BVH length unit, 1e-6 to 1e6 (BVH carries no unit; default: m, cm, mm, inch or CMU's "
                    "1/0.45 inch, whichever makes the figure human-sized); for FBX, metres per unit of its "
                    "numbers, instead of its own unit (which is kept unless it makes the figure no human size)");
     app.add_option("--up-axis", up_axis,

@@ -18,7 +18,8 @@ struct MotionOutputOptions {
 
   void add_to(CLI::App& app) {
     app.add_option("--output-scale", units_per_metre,
-                   "BVH length units per metre in the output (100 for centimetres); glTF and JSON are always in "
+                   "BVH length units per metre in the output, 1e-6 to 1e6 (100 for centimetres); glTF and JSON are "
+                   "always in "
                    "metres, FBX in centimetres (its UnitScaleFactor 1)")
         ->capture_default_str();
     app.add_flag("--no-figure", no_figure,

@@ -305,6 +305,13 @@ expect_fail "rings every 1e-09 m would put .* points on the skeleton, more than 
     "$bin" build "$data/cmu/16" -o "$work/x.mgraph" --ring-spacing 1e-9 -q
 expect_fail "from 1 to 10000 frames" "$bin" build "$data/cmu/16" -o "$work/x.mgraph" --out-window 1000000 -q
 expect_fail "coverage" "$bin" build "$data/cmu/16" -o "$work/x.mgraph" --coverage 0
+# A BVH whose OFFSETs are all zero: no bones to put the clouds on, said of its file.
+mkdir -p "$work/zero"
+sed -E 's/OFFSET .*/OFFSET 0 0 0/' "$data/bvh/16_01.bvh" >"$work/zero/16_01.bvh"
+# (Its loading warns first: the figure is no size, and no unit helps.)
+if "$bin" build "$work/zero" -o "$work/x.mgraph" -q 2>"$work/err"; then echo "FAIL: zero offsets built"; exit 1; fi
+tail -n 1 "$work/err" | grep -q "zero/16_01.bvh: the skeleton has no bones to put points on (every bone has length 0)" \
+  && grep -q "16_01: its joints all lie at one point" "$work/err" || { echo "FAIL: $(cat "$work/err")"; exit 1; }
 ls "$work"/x.mgraph "$work"/g.bin 2>/dev/null && { echo "FAIL: output left behind"; exit 1; }
 
 # bench distance: the stages side by side, the pruned one computing part of the tiles and

@@ -74,7 +74,8 @@ expect_error unknown-in-hierarchy "bad\.asf:[0-9]+: unknown bone 'nosuchbone'" "
 
 # Usage errors from the command line itself.
 EXT=.txt expect_error wrong-extension "out-wrong-extension\.txt: output must end in \.bvh, \.glb, \.fbx or \.json" "$good"
-expect_error bad-scale "scale" "$good" --scale -1
+expect_error bad-scale "--scale must lie between 1e-06 and 1e\+06 metres per unit, not -1" "$good" --scale -1
+expect_error huge-scale "--scale must lie between 1e-06 and 1e\+06 metres per unit, not 1e\+300" "$good" --scale 1e300
 # Every number option refuses nan and inf (a range check let --fps nan through: nothing resampled).
 expect_error fps-nan "--fps: must be a finite number, not nan" "$good" --fps nan
 expect_error scale-inf "--scale: must be a finite number, not inf" "$good" --scale inf

@@ -148,6 +148,8 @@ TEST(Manifest, OneCleanErrorPerRule) {
       {"fps not positive", r("fps = 30", "fps = 0"), 2, "positive"},
       {"fps not finite", r("fps = 30", "fps = inf"), 2, "positive"},
       {"default bvh_scale not positive", r("bvh_scale = 0.056444", "bvh_scale = -1"), 4, "positive"},
+      {"clip bvh_scale past a unit's range", r("bvh_scale = 0.01", "bvh_scale = 1e9"), 20,
+       "'bvh_scale' must lie between 1e-06 and 1e+06 metres per unit, not 1e+09"},
       {"clip input_fps not positive", r("input_fps = 120\n\n[[clip.ranges]]", "input_fps = 0\n\n[[clip.ranges]]"), 21,
        "'input_fps' must be a positive number"},
       {"skeleton not a string", r("skeleton = \"16.asf\"", "skeleton = 16"), 3, "'skeleton' must be a string"},

@@ -5,13 +5,14 @@
 #include <string>
 #include <vector>
 
+#include "motiongraph/motion/forward_kinematics.h"
 #include "test_data.h"
 
 namespace mg {
 namespace {
 
-bool has(const std::vector<std::string>& doubts, const std::string& words) {
-  for (const std::string& d : doubts) {
+bool has(const ClipDoubts& doubts, const std::string& words) {
+  for (const std::string& d : doubts.phrases()) {
     if (d.find(words) != std::string::npos) return true;
   }
   return false;
@@ -34,11 +35,11 @@ TEST(ClipDoubts, AFigureOffTheFloorIsNamedWithItsLowestJointsHeights) {
   EXPECT_TRUE(clip_doubts(figure(100, -0.2, 0.1), 2, 30.0, planted).empty());  // within 0.25 m
   // Lowest joint from -0.80 to -0.70 m: the 2 % and 98 % quantiles of each frame's lowest.
   const auto below = clip_doubts(figure(100, -0.8, 0.1), 2, 30.0, planted);
-  ASSERT_EQ(below.size(), 1u);
-  EXPECT_EQ(below[0], "its lowest joint is 0.70-0.80 m below the floor (y = 0)");
+  ASSERT_EQ(below.floor.size(), 1u);
+  EXPECT_EQ(below.floor[0], "its lowest joint is 0.70-0.80 m below the floor (y = 0)");
   const auto above = clip_doubts(figure(100, 0.5, 0.1), 2, 30.0, planted);
-  ASSERT_EQ(above.size(), 1u);
-  EXPECT_EQ(above[0], "its lowest joint stays 0.50-0.60 m above the floor (y = 0)");
+  ASSERT_EQ(above.floor.size(), 1u);
+  EXPECT_EQ(above.floor[0], "its lowest joint stays 0.50-0.60 m above the floor (y = 0)");
 }
 
 TEST(ClipDoubts, FeetThatNeverRestAreNamedInClipsOfASecondOrMore) {
@@ -51,9 +52,9 @@ TEST(ClipDoubts, FeetThatNeverRestAreNamedInClipsOfASecondOrMore) {
   once[30] = contact_bit(FootSide::kRight, FootPart::kAnkle);
   EXPECT_TRUE(clip_doubts(p, 2, 30.0, once).empty());
   const auto both = clip_doubts(figure(60, -0.8, 0.1), 2, 30.0, never);
-  EXPECT_EQ(both.size(), 2u);
+  EXPECT_EQ(both.floor.size(), 2u);
   EXPECT_EQ(clip_doubt_line("07_12", both),
-            "07_12: " + both[0] + ", and " + both[1] +
+            "07_12: " + both.floor[0] + ", and " + both.floor[1] +
                 "; its root translation may be wrong (the distances compare clips as read, so the graph may join "
                 "it to nothing)");
 }
@@ -66,10 +67,40 @@ TEST(ClipDoubts, ACapturedWalkHasNoneAndItsRootLoweredSinks) {
   ASSERT_GE(clip.motion.translated_count, 1);
   for (int f = 0; f < clip.motion.frame_count; ++f) clip.motion.translations(f)[0].y() -= 0.8;
   const auto doubts = clip_doubts(clip.skeleton, clip.motion);
-  ASSERT_EQ(doubts.size(), 1u) << doubts.back();
-  EXPECT_TRUE(has(doubts, "m below the floor (y = 0)")) << doubts[0];
+  ASSERT_EQ(doubts.floor.size(), 1u) << clip_doubts_text(doubts);
+  EXPECT_TRUE(has(doubts, "m below the floor (y = 0)")) << doubts.floor[0];
   // Planted feet are found on the clip's own floor, so they still rest: only the height is wrong.
   EXPECT_FALSE(has(doubts, "no foot rests"));
+}
+
+// A figure read in the wrong unit (a walk in metres read as centimetres, or as millimetres taken
+// for metres) is named by its size alone: its floor and feet are a person's limits, not judged.
+TEST(ClipDoubts, AFigureOfNoPersonsSizeIsNamedAloneByItsSize) {
+  const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
+  const std::vector<Vec3> positions = world_positions(clip.skeleton, clip.motion);
+  const int joints = clip.skeleton.joint_count();
+  const auto scaled = [&](double factor) {
+    std::vector<Vec3> p = positions;
+    for (Vec3& v : p) v *= static_cast<float>(factor);
+    return clip_doubts(p, joints, clip.motion.fps, {});
+  };
+  EXPECT_TRUE(scaled(1.0).empty());
+  EXPECT_TRUE(scaled(1.5).empty());  // a tall person's arms swung wide
+  for (const double factor : {0.01, 0.1, 4.0, 100.0, 1e30}) {
+    const ClipDoubts doubts = scaled(factor);
+    EXPECT_FALSE(doubts.size.empty()) << factor;
+    EXPECT_TRUE(doubts.floor.empty()) << factor;  // 100 m tall: its lowest joint off the floor, unsaid
+    EXPECT_NE(clip_doubts_text(doubts).find("no person's size (0.4-4 m)"), std::string::npos) << factor;
+  }
+  // The figure's size is its largest extent, the median over the frames: a walk of 1.7 m by 1.7.
+  const ClipDoubts tall = scaled(100.0);
+  EXPECT_NE(tall.size.find("its figure is 1"), std::string::npos) << tall.size;
+  EXPECT_EQ(tall.phrases(), std::vector<std::string>{tall.size});
+  EXPECT_EQ(scaled(0.0).size, "its joints all lie at one point (its bones have no length)");
+  ClipDoubtSettings upside_down;
+  upside_down.min_figure_m = 3.0;
+  upside_down.max_figure_m = 2.0;
+  EXPECT_FALSE(upside_down.validate());
 }
 
 }  // namespace

@@ -45,7 +45,7 @@ def test_positions_equal_the_cli(cli, data, tmp_path, fps):
     metres, centimetres = (offsets(tmp_path / name) for name in ("py.bvh", "py-cm.bvh"))
     assert len(metres) == len(centimetres) > 20
     np.testing.assert_allclose(centimetres, 100 * metres, atol=1e-6 * 100)
-    with pytest.raises(mg.Error, match="BVH output scale must be a positive number"):
+    with pytest.raises(mg.Error, match="BVH output scale must lie between 1e-06 and 1e\\+06 units per metre, not 0"):
         clip.save(str(tmp_path / "zero.bvh"), output_scale=0)
     assert not (tmp_path / "zero.bvh").exists()
 

@@ -754,7 +754,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
           db.frame_contacts.empty() ? std::span<const ContactMask>()
                                     : std::span<const ContactMask>(db.frame_contacts).subspan(clip.first_frame,
                                                                                               clip.frame_count);
-      const std::vector<std::string> doubts =
+      const ClipDoubts doubts =
           clip_doubts(world_positions(skeleton, clip.motion), skeleton.joint_count(), db.fps, contacts);
       if (!doubts.empty()) notes->clip_doubts.push_back(clip_doubt_line(clip.name, doubts));
     }

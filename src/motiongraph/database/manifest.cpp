@@ -12,6 +12,7 @@
 #include "motiongraph/core/file_extension.h"
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/in_place.h"
+#include "motiongraph/motion/length_unit_choice.h"
 #include "motiongraph/motion/up_axis.h"
 
 namespace mg {
@@ -83,6 +84,15 @@ class Reader {
     auto value = positive_number(*node, key);
     if (!value) return value.error();
     out = *value;
+    return Ok{};
+  }
+  // The same, within the range of a length unit's scale (length_unit_choice.h).
+  Status optional_scale(const toml::node* node, std::string_view key, std::optional<double>& out) const {
+    if (auto s = optional_positive(node, key, out); !s) return s;
+    if (out && !is_length_unit_scale(*out)) {
+      return error(line_of(*node), fmt::format("'{}' must lie between {:g} and {:g} metres per unit, not {:g}", key,
+                                               kMinLengthUnitScale, kMaxLengthUnitScale, *out));
+    }
     return Ok{};
   }
 
@@ -222,7 +232,7 @@ Result<ManifestClip> read_clip(const Reader& in, const toml::table& table) {
   if (const toml::node* node = table.get("bvh_scale"); node && ext != ".bvh") {
     return in.error(line_of(*node), "'bvh_scale' applies to BVH clips only (ASF gives its units)");
   }
-  if (auto s = in.optional_positive(table.get("bvh_scale"), "bvh_scale", clip.bvh_scale); !s) return s.error();
+  if (auto s = in.optional_scale(table.get("bvh_scale"), "bvh_scale", clip.bvh_scale); !s) return s.error();
   if (auto s = in.optional_up_axis(table.get("up_axis"), clip.up_axis); !s) return s.error();
   if (auto s = in.optional_travel(table.get("travel"), clip.travel); !s) return s.error();
   if (auto s = in.optional_positive(table.get("input_fps"), "input_fps", clip.input_fps); !s) return s.error();
@@ -309,7 +319,7 @@ Result<Manifest> read_manifest(const Reader& in, const toml::table& root, std::s
     manifest.skeleton = std::move(*skeleton);
     manifest.skeleton_line = line_of(*node);
   }
-  if (auto s = in.optional_positive(root.get("bvh_scale"), "bvh_scale", manifest.bvh_scale); !s) return s.error();
+  if (auto s = in.optional_scale(root.get("bvh_scale"), "bvh_scale", manifest.bvh_scale); !s) return s.error();
   if (auto s = in.optional_up_axis(root.get("up_axis"), manifest.up_axis); !s) return s.error();
   if (auto s = in.optional_travel(root.get("travel"), manifest.travel); !s) return s.error();
   if (auto s = in.optional_positive(root.get("input_fps"), "input_fps", manifest.input_fps); !s) return s.error();

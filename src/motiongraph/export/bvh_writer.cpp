@@ -7,13 +7,16 @@
 
 #include <fmt/format.h>
 
+#include "motiongraph/motion/length_unit_choice.h"
 #include "motiongraph/motion/trajectory_joint.h"
 
 namespace mg {
 
 Status BvhWriteSettings::validate() const {
-  if (!(units_per_metre > 0.0) || !std::isfinite(units_per_metre)) {
-    return Error{"", 0, "BVH output scale must be a positive number"};
+  if (!is_length_unit_scale(units_per_metre)) {
+    return Error{"", 0,
+                 fmt::format("BVH output scale must lie between {:g} and {:g} units per metre, not {:g}",
+                             kMinLengthUnitScale, kMaxLengthUnitScale, units_per_metre)};
   }
   if (decimals < 1 || decimals > 12) return Error{"", 0, "BVH decimals must be between 1 and 12"};
   return Ok{};

@@ -80,7 +80,7 @@ Result<AmcDocument> parse_amc(std::string_view text, std::string file_name,
       if (auto s = finish_frame(); !s) return s.error();
       if (in_header) {
         doc.first_frame_number = *number;
-      } else if (*number != frame_number + 1) {
+      } else if (frame_number == std::numeric_limits<long long>::max() || *number != frame_number + 1) {
         return in.error(fmt::format("frame {} follows frame {}; frame numbers must be consecutive",
                                     *number, frame_number));
       }
@@ -94,6 +94,9 @@ Result<AmcDocument> parse_amc(std::string_view text, std::string file_name,
       std::fill(seen.begin(), seen.end(), 0);
       seen_count = 0;
       continue;
+    }
+    if (tokens.size() == 1 && tokens[0].find_first_not_of("+-0123456789") == std::string_view::npos) {
+      return in.error(fmt::format("frame number {} is out of range", quoted(tokens[0])));
     }
     if (in_header) {
       return in.error(fmt::format("expected a frame number before bone line {}", quoted(tokens[0])));

@@ -83,7 +83,7 @@ Result<CloudLayout> make_cloud_layout(const Skeleton& reference, const PointClou
       }
     }
   }
-  if (layout.point_count() == 0) return Error{"", 0, "the skeleton has no bones to put points on"};
+  if (layout.point_count() == 0) return Error{"", 0, "the skeleton has no bones to put points on (every bone has length 0)"};
   return layout;
 }
 

@@ -13,8 +13,10 @@
 namespace mg {
 
 Status BvhImportSettings::validate() const {
-  if (metres_per_unit && (!(*metres_per_unit > 0.0) || !std::isfinite(*metres_per_unit))) {
-    return Error{"", 0, "the BVH scale must be a positive number"};
+  if (metres_per_unit && !is_length_unit_scale(*metres_per_unit)) {
+    return Error{"", 0,
+                 fmt::format("the BVH scale must lie between {:g} and {:g} metres per unit, not {:g}",
+                             kMinLengthUnitScale, kMaxLengthUnitScale, *metres_per_unit)};
   }
   if (!(fps_override >= 0.0) || !std::isfinite(fps_override)) {
     return Error{"", 0, "the BVH frame rate override must be positive (or 0 for the file's)"};

@@ -2,6 +2,7 @@
 #include "motiongraph/motion/clip_doubts.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include <fmt/format.h>
@@ -14,35 +15,55 @@ namespace mg {
 Status ClipDoubtSettings::validate() const {
   if (!(off_floor_m > 0.0)) return Error{"", 0, "the distance off the floor must be positive"};
   if (!(min_contactless_s >= 0.0)) return Error{"", 0, "the shortest clip without contact must be >= 0 s"};
+  if (!(min_figure_m > 0.0) || !(max_figure_m > min_figure_m) || !std::isfinite(max_figure_m)) {
+    return Error{"", 0, "a person's size must be a range of positive lengths"};
+  }
   return Ok{};
 }
 
-std::vector<std::string> clip_doubts(std::span<const Vec3> world_positions_m, int joint_count, double fps,
-                                     std::span<const ContactMask> contacts, const ClipDoubtSettings& settings) {
-  std::vector<std::string> out;
+ClipDoubts clip_doubts(std::span<const Vec3> world_positions_m, int joint_count, double fps,
+                       std::span<const ContactMask> contacts, const ClipDoubtSettings& settings) {
+  ClipDoubts out;
   if (joint_count <= 0 || world_positions_m.empty()) return out;
   const size_t frames = world_positions_m.size() / static_cast<size_t>(joint_count);
   std::vector<double> lowest(frames, std::numeric_limits<double>::infinity());
+  std::vector<double> extent(frames, 0.0);  // the largest along x, y or z (length_unit.h's figure size)
   for (size_t f = 0; f < frames; ++f) {
-    for (int j = 0; j < joint_count; ++j) {
-      lowest[f] = std::min(lowest[f], static_cast<double>(world_positions_m[f * joint_count + j].y()));
+    const std::span<const Vec3> pose = world_positions_m.subspan(f * static_cast<size_t>(joint_count),
+                                                                 static_cast<size_t>(joint_count));
+    Vec3 low = pose[0], high = pose[0];
+    for (const Vec3& p : pose) {
+      low = low.cwiseMin(p);
+      high = high.cwiseMax(p);
     }
+    lowest[f] = low.y();
+    extent[f] = static_cast<double>((high - low).maxCoeff());
+  }
+  const double size = quantile(extent, 0.5);
+  if (size == 0.0) {
+    out.size = "its joints all lie at one point (its bones have no length)";
+    return out;
+  }
+  if (!(size >= settings.min_figure_m && size <= settings.max_figure_m)) {
+    out.size = fmt::format("its figure is {:.3g} m tall, no person's size ({:g}-{:g} m): its length unit is wrong "
+                           "(--scale gives metres per unit of the file)",
+                           size, settings.min_figure_m, settings.max_figure_m);
+    return out;
   }
   const double low = quantile(lowest, 0.02), median = quantile(lowest, 0.5), high = quantile(lowest, 0.98);
   if (median < -settings.off_floor_m) {
-    out.push_back(fmt::format("its lowest joint is {:.2f}-{:.2f} m below the floor (y = 0)", -high, -low));
+    out.floor.push_back(fmt::format("its lowest joint is {:.2f}-{:.2f} m below the floor (y = 0)", -high, -low));
   } else if (low > settings.off_floor_m) {
-    out.push_back(fmt::format("its lowest joint stays {:.2f}-{:.2f} m above the floor (y = 0)", low, high));
+    out.floor.push_back(fmt::format("its lowest joint stays {:.2f}-{:.2f} m above the floor (y = 0)", low, high));
   }
   if (contacts.size() == frames && fps > 0.0 && static_cast<double>(frames) / fps >= settings.min_contactless_s &&
       std::all_of(contacts.begin(), contacts.end(), [](ContactMask m) { return m == 0; })) {
-    out.push_back("no foot rests on the floor in any frame");
+    out.floor.push_back("no foot rests on the floor in any frame");
   }
   return out;
 }
 
-std::vector<std::string> clip_doubts(const Skeleton& skeleton, const Motion& motion,
-                                     const ClipDoubtSettings& settings) {
+ClipDoubts clip_doubts(const Skeleton& skeleton, const Motion& motion, const ClipDoubtSettings& settings) {
   const std::vector<Vec3> positions = world_positions(skeleton, motion);
   std::vector<ContactMask> masks;
   if (auto feet = find_foot_joints(skeleton, {})) {
@@ -53,13 +74,14 @@ std::vector<std::string> clip_doubts(const Skeleton& skeleton, const Motion& mot
   return clip_doubts(positions, skeleton.joint_count(), motion.fps, masks, settings);
 }
 
-std::string clip_doubts_text(const std::vector<std::string>& doubts) {
+std::string clip_doubts_text(const ClipDoubts& doubts) {
+  if (!doubts.size.empty()) return doubts.size;
   std::string joined;
-  for (size_t i = 0; i < doubts.size(); ++i) joined += (i == 0 ? "" : ", and ") + doubts[i];
+  for (size_t i = 0; i < doubts.floor.size(); ++i) joined += (i == 0 ? "" : ", and ") + doubts.floor[i];
   return joined + "; its root translation may be wrong";
 }
 
-std::string clip_doubt_line(const std::string& name, const std::vector<std::string>& doubts) {
+std::string clip_doubt_line(const std::string& name, const ClipDoubts& doubts) {
   return fmt::format("{}: {} (the distances compare clips as read, so the graph may join it to nothing)", name,
                      clip_doubts_text(doubts));
 }

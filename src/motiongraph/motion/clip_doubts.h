@@ -1,7 +1,8 @@
-// What looks wrong with a clip as read: a figure that floats above the floor or sinks below it
+// What looks wrong with a clip as read: a figure of no person's size (read in the wrong unit:
+// `--scale 0.01` given for a file in metres), one that floats above the floor or sinks below it
 // (y = 0), and feet that never rest on it. A converter that offsets or rescales the root's
-// translation gives both (the BVH 07_12 in data/bvh: hips at -0.33..0 m, the lowest joint
-// 0.57-0.90 m below the floor, feet sliding 3 m/s), and the distance metric, which compares
+// translation gives the last two (the BVH 07_12 in data/bvh: hips at -0.33..0 m, the lowest
+// joint 0.57-0.90 m below the floor, feet sliding 3 m/s), and the distance metric, which compares
 // heights as read, then joins such a clip to nothing. Loading reports them (one warning per
 // clip) so that the user checks the file before wondering about the graph.
 #pragma once
@@ -20,26 +21,39 @@ struct ClipDoubtSettings {
   double off_floor_m = 0.25;       // the median of each frame's lowest joint height below -this, or
                                    // its 2 % quantile above this: off the floor
   double min_contactless_s = 1.0;  // a clip at least this long in which no foot joint is planted
+  double min_figure_m = 0.4;       // the figure's size (its largest extent, the median over the
+  double max_figure_m = 4.0;       // frames) outside these: no person's size, its unit wrong
 
   Status validate() const;
 };
 
-// Phrases such as "its lowest joint is 0.57-0.90 m below the floor (y = 0)"; empty when nothing
-// looks wrong. world_positions_m: frames x joint_count, frame-major (world_positions()); contacts:
-// one mask per frame (contact_mask()), empty when the feet are unknown (not judged then).
-std::vector<std::string> clip_doubts(std::span<const Vec3> world_positions_m, int joint_count, double fps,
-                                     std::span<const ContactMask> contacts, const ClipDoubtSettings& settings = {});
+struct ClipDoubts {
+  // "its figure is 48.00 m tall ...": no person's size (the file's unit, or --scale, is wrong).
+  // The floor and the feet are not judged then: their limits are a person's.
+  std::string size;
+  // Phrases such as "its lowest joint is 0.57-0.90 m below the floor (y = 0)".
+  std::vector<std::string> floor;
+
+  bool empty() const { return size.empty() && floor.empty(); }
+  // The size's phrase, or the floor's.
+  std::vector<std::string> phrases() const { return size.empty() ? floor : std::vector<std::string>{size}; }
+};
+
+// What looks wrong with a clip; empty when nothing does. world_positions_m: frames x joint_count,
+// frame-major (world_positions()); contacts: one mask per frame (contact_mask()), empty when the
+// feet are unknown (not judged then).
+ClipDoubts clip_doubts(std::span<const Vec3> world_positions_m, int joint_count, double fps,
+                       std::span<const ContactMask> contacts, const ClipDoubtSettings& settings = {});
 
 // The same for a clip on its own: forward kinematics, and the contacts of the feet found by their
 // usual names (skeleton/foot_joints.h; not judged when none are found).
-std::vector<std::string> clip_doubts(const Skeleton& skeleton, const Motion& motion,
-                                     const ClipDoubtSettings& settings = {});
+ClipDoubts clip_doubts(const Skeleton& skeleton, const Motion& motion, const ClipDoubtSettings& settings = {});
 
-// "phrase, and phrase; its root translation may be wrong": what `info` prints for a clip with
-// doubts.
-std::string clip_doubts_text(const std::vector<std::string>& doubts);
+// "phrase, and phrase; its root translation may be wrong", or the size's phrase: what `info`
+// prints for a clip with doubts.
+std::string clip_doubts_text(const ClipDoubts& doubts);
 
 // "NAME: " + clip_doubts_text + " (...)": the one line loading logs for a clip with doubts.
-std::string clip_doubt_line(const std::string& name, const std::vector<std::string>& doubts);
+std::string clip_doubt_line(const std::string& name, const ClipDoubts& doubts);
 
 }  // namespace mg

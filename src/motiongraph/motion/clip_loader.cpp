@@ -76,8 +76,10 @@ void settle_fbx_unit(std::vector<Clip>& clips, double file_metres_per_unit, std:
 }  // namespace
 
 Status ClipLoadSettings::validate() const {
-  if (bvh_metres_per_unit && (!(*bvh_metres_per_unit > 0.0) || !std::isfinite(*bvh_metres_per_unit))) {
-    return Error{"", 0, "--scale must be a positive number"};
+  if (bvh_metres_per_unit && !is_length_unit_scale(*bvh_metres_per_unit)) {
+    return Error{"", 0,
+                 fmt::format("--scale must lie between {:g} and {:g} metres per unit, not {:g}", kMinLengthUnitScale,
+                             kMaxLengthUnitScale, *bvh_metres_per_unit)};
   }
   if (!(input_fps >= 0.0) || !std::isfinite(input_fps)) return Error{"", 0, "--input-fps must be positive"};
   if (auto s = foot_names.validate(); !s) return s.error();

@@ -10,6 +10,17 @@ struct LengthUnit {
   double metres_per_unit = 1.0;
 };
 
+// The units a file's lengths may be given in, by --scale (metres per unit) or --output-scale
+// (units per metre): from the micrometre to 1000 km. Beyond, a person's figure is a speck or
+// beyond a float's range, and the files written from it hold infinities.
+inline constexpr double kMinLengthUnitScale = 1e-6;
+inline constexpr double kMaxLengthUnitScale = 1e6;
+
+// Whether `scale` lies in that range (false for NaN).
+constexpr bool is_length_unit_scale(double scale) {
+  return scale >= kMinLengthUnitScale && scale <= kMaxLengthUnitScale;
+}
+
 struct LengthUnitChoice {
   LengthUnit unit;
   double figure_size_units = 0.0;  // the figure's measured size, in the file's units

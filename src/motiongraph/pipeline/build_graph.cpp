@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <optional>
@@ -380,7 +381,12 @@ Result<Prepared> prepare(std::span<const std::string> inputs, const BuildSetting
 
   // 2. Point clouds and per-frame features.
   auto layout = make_cloud_layout(db->skeletons.front(), settings.distance_stage.cloud);
-  if (!layout) return layout.error();
+  if (!layout) {
+    // Named by the file whose skeleton the clouds stand on (a BVH whose OFFSETs are all zero).
+    const auto first = std::find_if(db->clips.begin(), db->clips.end(),
+                                    [](const DatabaseClip& clip) { return clip.skeleton == 0; });
+    return Error{first != db->clips.end() ? first->source : "", 0, layout.error().message};
+  }
   auto features = make_frame_features(*db, *layout, settings.distance_stage.distance);
   if (!features) return features.error();
   if (features->window < 2) return Error{"", 0, "the window must be at least 2 frames (raise --fps or --window)"};
