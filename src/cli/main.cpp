@@ -1,11 +1,17 @@
 // motiongraph: motion graphs from motion capture (Kovar, Gleicher & Pighin 2002).
 // Entry point: parses the command line with CLI11 and runs one subcommand. Exceptions never
 // escape: they become one line on stderr and a non-zero exit.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <new>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <fmt/format.h>
 
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
@@ -35,6 +41,42 @@ void refuse_non_finite_numbers(CLI::App& app) {
     if (option->get_type_name().rfind("FLOAT", 0) == 0) option->check(finite);  // "FLOAT", "FLOAT:FLOAT in [...]"
   }
   for (CLI::App* sub : app.get_subcommands({})) refuse_non_finite_numbers(*sub);
+}
+
+// The edits (insertions, deletions, substitutions) that turn `a` into `b`.
+size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// "unknown command 'biuld': did you mean 'build'? (commands: info, convert, ...)", for a first
+// argument that is no option and no command; empty otherwise. (CLI11 took it for a stray
+// argument and said "A subcommand is required".)
+std::string unknown_command(CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return "";
+  const std::string_view word = argv[1];
+  std::string names, closest;
+  size_t closest_edits = 3;  // at most two edits away to be suggested
+  for (const CLI::App* sub : app.get_subcommands({})) {
+    if (sub->get_name() == word) return "";
+    names += (names.empty() ? "" : ", ") + sub->get_name();
+    if (const size_t edits = edit_distance(word, sub->get_name()); edits < closest_edits) {
+      closest_edits = edits;
+      closest = sub->get_name();
+    }
+  }
+  return fmt::format("unknown command '{}'{} (commands: {}; see --help)", word,
+                     closest.empty() ? "" : fmt::format(": did you mean '{}'?", closest), names);
 }
 
 }  // namespace
@@ -67,10 +109,17 @@ int main(int argc, char** argv) {
       mg::cli::add_serve_command(app),
   };
   mg::cli::refuse_non_finite_numbers(app);
+  // A command line that cannot be parsed exits 2 (as a shell's builtins do); --help and
+  // --version exit 0; every other error 1.
+  if (const std::string unknown = mg::cli::unknown_command(app, argc, argv); !unknown.empty()) {
+    std::fprintf(stderr, "motiongraph: %s\n", unknown.c_str());
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
   }
   try {
     for (const auto& command : commands) {

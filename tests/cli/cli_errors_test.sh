@@ -91,5 +91,34 @@ else
   echo "ok   unwritable: $(cat "$work/stderr")"
 fi
 
+# Exit codes: 1 for what the program finds wrong, 2 for a command line it cannot parse; a
+# misspelled command is named, with the command it is closest to.
+exit_code() {  # name expected-code expected-part command...
+  local name=$1 expected=$2 part=$3
+  shift 3
+  set +e
+  "$@" >/dev/null 2>"$work/stderr"
+  local code=$?
+  set -e
+  if [[ $code -ne $expected || $(wc -l <"$work/stderr") -ne 1 ]] || ! grep -qF -- "$part" "$work/stderr"; then
+    echo "FAIL $name: exit $code (expected $expected): $(cat "$work/stderr")"; failures=$((failures + 1))
+  else
+    echo "ok   $name: exit $code: $(cat "$work/stderr")"
+  fi
+}
+exit_code misspelled 2 "unknown command 'biuld': did you mean 'build'? (commands: info, convert, build," \
+  "$bin" biuld "$good" -o "$work/x.mgraph"
+exit_code unknown-word 2 "unknown command 'frobnicate' (commands: info, convert" "$bin" frobnicate
+exit_code missing-output 2 "--output is required" "$bin" build "$good"
+exit_code unknown-option 2 "The following argument was not expected: --bogus" "$bin" convert "$good" -o "$work/x.bvh" --bogus
+exit_code out-of-range 2 "--fps" "$bin" convert "$good" -o "$work/x.bvh" --fps 0
+exit_code missing-input 2 "nonexist.bvh" "$bin" info "$work/nonexist.bvh"
+exit_code bad-file 1 "time.bvh:187: Frame Time '0' must be a positive number" "$bin" info "$work/in/time.bvh"
+set +e
+"$bin" --help >/dev/null 2>&1; help_code=$?
+"$bin" --version >/dev/null 2>&1; version_code=$?
+set -e
+[[ $help_code -eq 0 && $version_code -eq 0 ]] || { echo "FAIL help/version exit $help_code/$version_code"; failures=$((failures + 1)); }
+
 if ((failures)); then echo "$failures failure(s)"; exit 1; fi
 echo "all error cases clean"
