@@ -52,7 +52,7 @@ inline void warn(const std::string& line, int stack = 1) {
 py::object to_python(const nlohmann::json& value);
 
 // Keyword options: each name sets something from its value; an unknown name raises TypeError
-// as Python does for a function's unexpected keyword.
+// as Python does for a function's unexpected keyword; None leaves the keyword's default.
 using OptionTable = std::map<std::string, std::function<void(py::handle)>>;
 void apply_options(const py::dict& options, const OptionTable& table, const char* function);
 // The table's usual entry: the value cast to the field's type (TypeError when it cannot be).

@@ -45,6 +45,7 @@ OptionTable build_option_table(BuildCall& call) {
       {"up_axis", set(b.up_axis)},
       {"travel", set(b.travel)},
       {"input_fps", set(b.input_fps)},
+      {"keep_rest_frames", set(b.keep_rest_frames)},
       {"cmu_index", set(b.cmu_index)},
       {"no_cmu_tags", set(b.no_cmu_tags)},
       {"whole_clip_tags", set(b.whole_clip_tags)},

@@ -47,6 +47,7 @@ void apply_options(const py::dict& options, const OptionTable& table, const char
     if (it == table.end()) {
       throw py::type_error(std::string(function) + "() got an unexpected keyword argument '" + name + "'");
     }
+    if (value.is_none()) continue;  // None: the keyword's default, as if not given
     try {
       it->second(value);
     } catch (const py::cast_error&) {

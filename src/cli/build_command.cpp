@@ -139,6 +139,8 @@ Command add_build_command(CLI::App& app) {
       ->check(CLI::IsMember({"auto", "root", "feet"}))
       ->capture_default_str();
   sub->add_option("--input-fps", b.input_fps, "Capture rate of the inputs, overriding the files' (AMC: 120)");
+  sub->add_flag("--keep-rest-frames", b.keep_rest_frames,
+                "Keep leading rest or T-pose frames that a BVH converter added (dropped by default)");
   sub->add_option("--cmu-index", b.cmu_index,
                   "CMU's motion index (cmu-mocap-index.tsv) for tags from descriptions; default: one beside or above the "
                   "inputs, else the index the project ships (built in)");

@@ -124,6 +124,42 @@ def test_feet_named_and_options_refused(cli, data, tmp_path):
         mg.load_library(bvh, travel="walk")
 
 
+def test_rest_frames_kept_as_the_cli_and_a_manifest_say(cli, data, tmp_path):
+    """07_01.bvh opens on a converter's T-pose frame: dropped by default, kept by the keyword, by
+    the CLI's --keep-rest-frames and by a manifest's keep_rest_frames, at the top or on the clip;
+    None is the keyword's default."""
+    bvh = data / "bvh/07_01.bvh"
+    folder = tmp_path / "lib"
+    folder.mkdir()
+    (folder / bvh.name).write_bytes(bvh.read_bytes())
+    at_120 = {"fps": 120}
+    dropped = mg.load_library(folder, **at_120)
+    kept = mg.load_library(folder, keep_rest_frames=True, **at_120)
+    assert kept.frame_count == dropped.frame_count + 1
+    assert kept.summary == cli_info(cli, folder, "--fps", 120, "--keep-rest-frames")
+    assert mg.load_library(folder, keep_rest_frames=None, up_axis=None, scale=None, **at_120).summary == \
+        dropped.summary
+    # The clip as kept is the clip read by load_clip with its rest frame.
+    np.testing.assert_allclose(kept[0].positions, mg.load_clip(bvh, keep_rest_frames=True).positions, atol=1e-9)
+    path = bvh.as_posix()
+    for manifest in (f'fps = 120\nkeep_rest_frames = true\n[[clip]]\nfile = "{path}"\n',
+                     f'fps = 120\n[[clip]]\nfile = "{path}"\nkeep_rest_frames = true\n'):
+        (tmp_path / "keep.toml").write_text(manifest)
+        assert mg.load_library(tmp_path / "keep.toml").frame_count == kept.frame_count
+    # The clip's own word wins over the manifest's.
+    (tmp_path / "keep.toml").write_text(
+        f'fps = 120\nkeep_rest_frames = true\n[[clip]]\nfile = "{path}"\nkeep_rest_frames = false\n')
+    assert mg.load_library(tmp_path / "keep.toml").frame_count == dropped.frame_count
+    amc = (data / "cmu/16/16_15.amc").as_posix()
+    (tmp_path / "amc.toml").write_text(f'[[clip]]\nfile = "{amc}"\nkeep_rest_frames = true\n')
+    with pytest.raises(mg.Error, match="amc.toml:3: 'keep_rest_frames' applies to BVH clips only"):
+        mg.load_library(tmp_path / "amc.toml")
+    # build reads the library as load_library does.
+    cli("build", bvh, "--fps", 120, "--keep-rest-frames", "-o", tmp_path / "g.mgraph", "--report", tmp_path / "g.json",
+        "-q")
+    assert json.loads((tmp_path / "g.json").read_text())["frames"] == kept.frame_count
+
+
 def test_bad_library_raises_the_cli_message(cli, data, tmp_path):
     missing = tmp_path / "nothing-here"
     missing.mkdir()

@@ -143,6 +143,13 @@ def test_results_of_one_graph_as_an_animation_set(graph, tmp_path):
     assert keyed[0] == keyed[1] == keyed[2]
     for animation, motion in zip(gltf["animations"], motions):
         assert gltf["accessors"][animation["samplers"][0]["input"]]["count"] == len(motion)
+    # None is a keyword's default, as for build().
+    np.testing.assert_array_equal(graph.path(shape="line:6", start_node=None, horizon=None).positions,
+                                  motions[1].positions)
+    again = graph.controller(start_node=None)
+    for _ in range(30):
+        again.step(90.0)
+    np.testing.assert_array_equal(again.motion.positions, controller.motion.positions)
 
 
 def test_steering_equals_the_cli(cli, graph_file, graph, tmp_path):

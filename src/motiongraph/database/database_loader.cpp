@@ -227,6 +227,9 @@ Status expand_manifest(const std::string& input, const DatabaseSettings& setting
     if (auto scale = clip.bvh_scale ? clip.bvh_scale : manifest->bvh_scale) spec.load.bvh_metres_per_unit = *scale;
     if (auto up = clip.up_axis ? clip.up_axis : manifest->up_axis) spec.load.up_axis = *up;
     if (auto fps = clip.input_fps ? clip.input_fps : manifest->input_fps) spec.load.input_fps = *fps;
+    if (auto keep = clip.keep_rest_frames ? clip.keep_rest_frames : manifest->keep_rest_frames) {
+      spec.load.keep_rest_frames = *keep;
+    }
     if (auto travel = clip.travel ? clip.travel : manifest->travel) spec.load.travel = *travel;
     spec.first_frame = clip.first_frame;
     spec.last_frame = clip.last_frame;

@@ -86,6 +86,14 @@ class Reader {
     out = *value;
     return Ok{};
   }
+  // An optional boolean: `out` is set when the key is present.
+  Status optional_boolean(const toml::node* node, std::string_view key, std::optional<bool>& out) const {
+    if (!node) return Ok{};
+    auto value = node->as_boolean();
+    if (!value) return error(line_of(*node), fmt::format("'{}' must be true or false, not {}", key, type_name(*node)));
+    out = value->get();
+    return Ok{};
+  }
   // The same, within the range of a length unit's scale (length_unit_choice.h).
   Status optional_scale(const toml::node* node, std::string_view key, std::optional<double>& out) const {
     if (auto s = optional_positive(node, key, out); !s) return s;
@@ -196,7 +204,7 @@ Result<ManifestClip> read_clip(const Reader& in, const toml::table& table) {
   ManifestClip clip;
   clip.line = line_of(table);
   if (auto s = in.check_keys(table, {"file", "name", "skeleton", "bvh_scale", "up_axis", "travel", "input_fps",
-                                     "first_frame", "last_frame", "tags", "ranges", "animation"},
+                                     "keep_rest_frames", "first_frame", "last_frame", "tags", "ranges", "animation"},
                              "in a [[clip]]");
       !s) {
     return s.error();
@@ -233,6 +241,12 @@ Result<ManifestClip> read_clip(const Reader& in, const toml::table& table) {
     return in.error(line_of(*node), "'bvh_scale' applies to BVH clips only (ASF gives its units)");
   }
   if (auto s = in.optional_scale(table.get("bvh_scale"), "bvh_scale", clip.bvh_scale); !s) return s.error();
+  if (const toml::node* node = table.get("keep_rest_frames"); node && ext != ".bvh") {
+    return in.error(line_of(*node), "'keep_rest_frames' applies to BVH clips only (their converters add rest frames)");
+  }
+  if (auto s = in.optional_boolean(table.get("keep_rest_frames"), "keep_rest_frames", clip.keep_rest_frames); !s) {
+    return s.error();
+  }
   if (auto s = in.optional_up_axis(table.get("up_axis"), clip.up_axis); !s) return s.error();
   if (auto s = in.optional_travel(table.get("travel"), clip.travel); !s) return s.error();
   if (auto s = in.optional_positive(table.get("input_fps"), "input_fps", clip.input_fps); !s) return s.error();
@@ -300,7 +314,9 @@ Result<FootJointNames> read_feet(const Reader& in, const toml::node& node) {
 Result<Manifest> read_manifest(const Reader& in, const toml::table& root, std::string file_name) {
   Manifest manifest;
   manifest.file_name = std::move(file_name);
-  if (auto s = in.check_keys(root, {"fps", "skeleton", "bvh_scale", "up_axis", "travel", "input_fps", "feet", "clip"},
+  if (auto s = in.check_keys(root,
+                             {"fps", "skeleton", "bvh_scale", "up_axis", "travel", "input_fps", "keep_rest_frames",
+                              "feet", "clip"},
                              "at the top level");
       !s) {
     return s.error();
@@ -320,6 +336,9 @@ Result<Manifest> read_manifest(const Reader& in, const toml::table& root, std::s
     manifest.skeleton_line = line_of(*node);
   }
   if (auto s = in.optional_scale(root.get("bvh_scale"), "bvh_scale", manifest.bvh_scale); !s) return s.error();
+  if (auto s = in.optional_boolean(root.get("keep_rest_frames"), "keep_rest_frames", manifest.keep_rest_frames); !s) {
+    return s.error();
+  }
   if (auto s = in.optional_up_axis(root.get("up_axis"), manifest.up_axis); !s) return s.error();
   if (auto s = in.optional_travel(root.get("travel"), manifest.travel); !s) return s.error();
   if (auto s = in.optional_positive(root.get("input_fps"), "input_fps", manifest.input_fps); !s) return s.error();

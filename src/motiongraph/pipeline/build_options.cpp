@@ -82,6 +82,7 @@ Result<BuildSettings> build_settings_from(const BuildOptions& o) {
   if (!travel) return Error{"", 0, "--travel must be auto, root or feet, not " + o.travel};
   db.travel = *travel;
   db.input_fps = o.input_fps;
+  db.keep_rest_frames = o.keep_rest_frames;
   db.cmu_tags = !o.no_cmu_tags;
   if (o.whole_clip_tags) db.travel_tags.min_speed_mps = 0.0;
   db.loops = !o.no_loops;
