@@ -43,6 +43,14 @@ TEST(ControlScript, BadInputIsOneClearError) {
       // Frame counts past an int's range (a control at 1e9 s crashed steer).
       {"control past a day", "{\"controls\": [{\"at_s\": 0}, {\"at_s\": 1e9}]}", 0, "controls[1]: at_s 1e+09 is past a day"},
       {"duration past a day", "{\"duration_s\": 1e300, \"controls\": [{\"at_s\": 0}]}", 0, "longer than a day"},
+      // Mistakes that were read silently: a misspelt or unknown key (ignored), both headings (the
+      // degrees won), a control after the end (never played).
+      {"unknown key", "{\"controls\": [{\"at_s\": 0, \"speed\": 2}]}", 0, "controls[0]: unknown key \"speed\""},
+      {"misspelt top key", "{\"duration\": 10, \"controls\": [{\"at_s\": 0}]}", 0, "unknown key \"duration\""},
+      {"two headings", "{\"controls\": [{\"at_s\": 0, \"heading\": \"north\", \"heading_deg\": 45}]}", 0,
+       "controls[0] gives both \"heading\" and \"heading_deg\""},
+      {"control after the end", "{\"duration_s\": 5, \"controls\": [{\"at_s\": 0}, {\"at_s\": 7}]}", 0,
+       "controls[1] at 7 s comes at or after the script's end (\"duration_s\" 5)"},
   };
   for (const auto& c : cases) {
     auto script = parse_control_script(c.text, "c.json");

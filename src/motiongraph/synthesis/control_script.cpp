@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
+#include <string>
+#include <string_view>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -16,6 +19,18 @@ const ScriptedControl& ControlScript::at(double t) const {
   return controls[i];
 }
 
+namespace {
+
+// The first key of `object` not among `known`, or empty.
+std::string unknown_key(const nlohmann::json& object, std::initializer_list<std::string_view> known) {
+  for (const auto& [key, value] : object.items()) {
+    if (std::find(known.begin(), known.end(), key) == known.end()) return key;
+  }
+  return "";
+}
+
+}  // namespace
+
 Result<ControlScript> parse_control_script(std::string_view text, const std::string& file_name) {
   auto parsed = parse_json_text(text, file_name);
   if (!parsed) return parsed.error();
@@ -24,12 +39,23 @@ Result<ControlScript> parse_control_script(std::string_view text, const std::str
   if (!doc.is_object() || !doc.contains("controls") || !doc["controls"].is_array() || doc["controls"].empty()) {
     return fail("expected an object with a non-empty \"controls\" array");
   }
+  if (const std::string key = unknown_key(doc, {"duration_s", "controls"}); !key.empty()) {
+    return fail(fmt::format("unknown key \"{}\" (a script has \"duration_s\" and \"controls\")", key));
+  }
   ControlScript script;
   ScriptedControl current;
   for (size_t i = 0; i < doc["controls"].size(); ++i) {
     const auto& c = doc["controls"][i];
     if (!c.is_object() || !c.contains("at_s") || !c["at_s"].is_number()) {
       return fail(fmt::format("controls[{}] needs \"at_s\" (seconds)", i));
+    }
+    if (const std::string key = unknown_key(c, {"at_s", "heading", "heading_deg", "tag"}); !key.empty()) {
+      return fail(fmt::format("controls[{}]: unknown key \"{}\" (a control has \"at_s\", \"heading\" or "
+                              "\"heading_deg\", and \"tag\")",
+                              i, key));
+    }
+    if (c.contains("heading") && c.contains("heading_deg")) {
+      return fail(fmt::format("controls[{}] gives both \"heading\" and \"heading_deg\": give one", i));
     }
     const double at = c["at_s"].get<double>();
     if (!std::isfinite(at) || at < 0.0 || (i == 0 && at != 0.0) || (i > 0 && at <= current.at_s)) {
@@ -71,6 +97,10 @@ Result<ControlScript> parse_control_script(std::string_view text, const std::str
                               ControlScript::kMaxSeconds));
     }
     script.duration_s = doc["duration_s"].get<double>();
+    if (script.controls.back().at_s >= script.duration_s) {
+      return fail(fmt::format("controls[{}] at {:g} s comes at or after the script's end (\"duration_s\" {:g})",
+                              script.controls.size() - 1, script.controls.back().at_s, script.duration_s));
+    }
   }
   return script;
 }
