@@ -1,9 +1,12 @@
 #include "studio/studio_api.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <exception>
+#include <initializer_list>
 #include <span>
+#include <string_view>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -63,6 +66,17 @@ json body_object(const ApiRequest& request) {
   if (!parsed) throw ApiError{400, parsed.error().to_string()};
   if (!parsed->is_object()) throw ApiError{400, "the request body must be a JSON object"};
   return std::move(*parsed);
+}
+
+// A body's keys are the request's: one it does not take (a misspelt "min_frame", an option of the
+// CLI's) is an error rather than ignored.
+void check_keys(const json& body, std::initializer_list<std::string_view> known) {
+  for (const auto& [key, value] : body.items()) {
+    if (std::find(known.begin(), known.end(), key) != known.end()) continue;
+    std::string names;
+    for (std::string_view name : known) names += fmt::format("{}'{}'", names.empty() ? "" : ", ", name);
+    throw ApiError{400, fmt::format("unknown key '{}' (this request takes {})", key, names)};
+  }
 }
 
 double number_field(const json& body, const std::string& name, double fallback, double lo, double hi) {
@@ -346,6 +360,7 @@ class Router {
 
   ApiResponse walk() {
     const json body = body_object(request_);
+    check_keys(body, {"from", "to", "min_frames", "seed", "cost", "cleanup"});
     const int nodes = graph().node_count();
     WalkRequest w;
     w.from = static_cast<int>(integer_field(body, "from", 0, 0, nodes - 1));
@@ -372,6 +387,7 @@ class Router {
 
   ApiResponse path() {
     const json body = body_object(request_);
+    check_keys(body, {"points", "segments", "edit_path", "cleanup"});
     if (body.contains("points") && body["points"].is_array() &&
         body["points"].size() > static_cast<size_t>(StudioApi::kMaxPathPoints)) {
       throw ApiError{400, fmt::format("at most {} points", StudioApi::kMaxPathPoints)};
@@ -422,6 +438,7 @@ class Router {
 
   ApiResponse create_session() {
     const json body = body_object(request_);
+    check_keys(body, {"heading_deg", "tag", "cleanup"});
     const bool cleanup = boolean_field(body, "cleanup", true);
     auto id = service_.create_session(control_of(body), cleanup);
     if (!id) throw ApiError{422, id.error().to_string()};
@@ -437,6 +454,7 @@ class Router {
     auto id = parse_integer(parts_[3], 0, 1LL << 30);
     if (!id) throw ApiError{404, fmt::format("no steering session '{}'", parts_[3])};
     const json body = body_object(request_);
+    check_keys(body, {"heading_deg", "tag", "min_frames"});
     const ControlInput input = control_of(body);
     const int min_frames = static_cast<int>(integer_field(body, "min_frames", 1, 1, 90));
     auto step = service_.step_session(static_cast<int>(*id), input, min_frames);

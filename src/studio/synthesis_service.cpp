@@ -77,7 +77,8 @@ Result<SynthesizedMotion> SynthesisService::walk(const WalkRequest& request) {
   settings.cost = request.cost;
   settings.seed = request.seed;
   settings.min_frames = request.min_frames;
-  settings.max_expansions = 500000;
+  settings.max_expansions = kWalkExpansions;
+  settings.budget_advice = "ask for fewer frames (min_frames) or another pair of nodes";
   if (auto s = settings.validate(); !s) return s.error();
   auto found = find_walk(graph, request.from, request.to, settings);
   if (!found) return found.error();

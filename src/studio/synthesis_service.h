@@ -67,6 +67,7 @@ class SynthesisService {
   static constexpr int kMaxResults = 32;
   static constexpr int kMaxSessions = 16;
   static constexpr int kMaxRecordedFrames = 30 * 60 * 2;  // 2 minutes at 30 fps
+  static constexpr long long kWalkExpansions = 500000;     // a walk's search budget (the CLI's is 4x)
 
   // Loads a .mgraph file and sets up synthesis on it.
   static Result<std::unique_ptr<SynthesisService>> load(const std::string& graph_path);

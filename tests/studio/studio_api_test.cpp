@@ -373,6 +373,14 @@ TEST(StudioApi, BadWalksAre4xx) {
   expect_error(call_api("POST", "/api/walk", R"({"from": "0"})"), 400, "from");
   expect_error(call_api("POST", "/api/walk", R"({"min_frames": 1e9})"), 400, "min_frames");
   expect_error(call_api("POST", "/api/walk", R"({"cost": "cheap"})"), 400, "cheap");
+  // A key the request does not take (a misspelling, a CLI option) is an error, not ignored.
+  expect_error(call_api("POST", "/api/walk", R"({"min_frame": 10})"), 400,
+               "unknown key 'min_frame' (this request takes 'from', 'to', 'min_frames', 'seed', 'cost', 'cleanup')");
+  expect_error(call_api("POST", "/api/walk", R"({"max_expansions": 5000000})"), 400, "unknown key 'max_expansions'");
+  // A budget run out says what the studio's request can change.
+  const ApiCall long_walk = call_api("POST", "/api/walk", R"({"from": 0, "to": 40, "min_frames": 1800})");
+  expect_error(long_walk, 422, "ask for fewer frames (min_frames) or another pair of nodes");
+  EXPECT_EQ(long_walk.response.body.find("--max-expansions"), std::string::npos);
 }
 
 TEST(StudioApi, PathFollowsTheLineDrawnWithItsDeviation) {
@@ -412,6 +420,8 @@ TEST(StudioApi, BadPathsAre4xx) {
   std::string many = R"({"points": [[0, 0], [0, -150]], "segments": [)";
   for (int i = 0; i < 101; ++i) many += fmt::format(R"({}{{"from_m": {}, "to_m": {}, "tag": "walk"}})", i ? ", " : "", i, i + 1);
   expect_error(call_api("POST", "/api/path", many + "]}"), 400, "at most 100 segments");
+  expect_error(call_api("POST", "/api/path", R"({"points": [[0, 0], [0, 5]], "edit": false})"), 400,
+               "unknown key 'edit'");
 }
 
 TEST(StudioApi, SteeringTurnsTheCharacterTheWayAsked) {
@@ -444,6 +454,8 @@ TEST(StudioApi, BadSteeringIs4xx) {
   const std::string step = "/api/steer/sessions/" + std::to_string(session.json["session"].get<int>()) + "/step";
   expect_error(call_api("POST", step, R"({"min_frames": 0})"), 400, "min_frames");
   expect_error(call_api("POST", step, R"({"heading_deg": "north"})"), 400, "heading_deg");
+  expect_error(call_api("POST", step, R"({"heading": 90})"), 400, "unknown key 'heading'");
+  expect_error(call_api("POST", "/api/steer/sessions", R"({"bogus": 1})"), 400, "unknown key 'bogus'");
 }
 
 TEST(StudioApi, SessionsAndResultsAreBounded) {

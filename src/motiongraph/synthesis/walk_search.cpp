@@ -88,8 +88,8 @@ Result<WalkSearchResult> find_walk(const MotionGraph& graph, int from, int to, c
     if (extended[state]) continue;
     extended[state] = true;
     if (++result.expansions > settings.max_expansions) {
-      return Error{"", 0, fmt::format("the search budget of {} expansions ran out before reaching node {}; "
-                                      "raise --max-expansions or lower --min-frames", settings.max_expansions, to)};
+      return Error{"", 0, fmt::format("the search budget of {} expansions ran out before reaching node {}; {}",
+                                      settings.max_expansions, to, settings.budget_advice)};
     }
     for (int e = graph.edge_offsets[entry.node]; e < graph.edge_offsets[entry.node + 1]; ++e) {
       const GraphEdge& edge = graph.edges[e];

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -28,6 +29,8 @@ struct WalkSearchSettings {
   std::uint64_t seed = 1;
   int min_frames = 0;                   // the walk plays at least this many frames
   long long max_expansions = 2000000;   // partial walks extended
+  // What the error says to do when the budget runs out, in the words of the caller's options.
+  std::string budget_advice = "raise --max-expansions or lower --min-frames";
 
   Status validate() const;
 };
