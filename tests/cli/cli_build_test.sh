@@ -279,6 +279,13 @@ grep -q "the lowest threshold that makes one is RMS [0-9.]* cm (--threshold [0-9
   || { echo "FAIL: no-graph message: $(cat "$work/none.err")"; exit 1; }
 [[ -s "$work/none.png" && ! -e "$work/none.mgraph" ]] || { echo "FAIL: no-graph outputs"; exit 1; }
 lowest=$(python3 -c "import json,sys; r=json.load(open(sys.argv[1])); p=r['lowest_graph_threshold']; assert r['graph_after'] is None and p['graph'] and p['rms_cm'] > 0.01; print(repr(p['threshold']))" "$work/none.json")
+# What it keeps, motion type by motion type, as the report's point has it.
+python3 - "$work/none.json" "$work/none.err" <<'PY'
+import json, re, sys
+point = json.load(open(sys.argv[1]))["lowest_graph_threshold"]
+said = dict((tag, int(share)) for share, tag in re.findall(r"(\d+) % of the (\S+) frames", open(sys.argv[2]).read()))
+assert said == {tag: round(100 * share) for tag, share in point["tag_coverage"].items()} and len(said) >= 3, said
+PY
 "$bin" build "$data/cmu/16" -o "$work/lowest.mgraph" --cache-dir "$cache" --threshold "$lowest" -q \
   || { echo "FAIL: the threshold the error named ($lowest) makes no graph"; exit 1; }
 

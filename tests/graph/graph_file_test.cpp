@@ -306,7 +306,14 @@ TEST(GraphFile, RejectsAnythingElse) {
   expect_error(flipped, "checksum mismatch");
   std::string other_version = bytes;
   other_version[9] = static_cast<char>(kGraphFileVersion + 1);  // the version follows the 9-byte magic
-  expect_error(other_version, fmt::format("version {}", kGraphFileVersion + 1).c_str());
+  expect_error(other_version, fmt::format("version {}, a newer motiongraph's; this one reads version {}: open it with the "
+                                          "motiongraph that wrote it",
+                                          kGraphFileVersion + 1, kGraphFileVersion)
+                                  .c_str());
+  other_version[9] = static_cast<char>(kGraphFileVersion - 1);
+  expect_error(other_version, fmt::format("version {}, an older motiongraph's; this one reads version {}: build it again",
+                                          kGraphFileVersion - 1, kGraphFileVersion)
+                                  .c_str());
   // Contacts for some frames only, contacts beside a reason for none, or bits of no foot.
   const auto with_database = [](auto change) {
     GraphFile file = sample();

@@ -84,9 +84,17 @@ Result<std::vector<std::string_view>> unframe(std::string_view bytes, const std:
   BinaryReader in(bytes.substr(magic.size()), file_name);
   std::uint32_t file_version = 0;
   if (!in.get(file_version)) return Error{file_name, 0, "truncated header"};
-  if (file_version != version) {
-    return Error{file_name, 0, fmt::format("{} file format version {}, this motiongraph reads version {}: build it again",
-                                           what, file_version, version)};
+  if (file_version < version) {
+    return Error{file_name, 0,
+                 fmt::format("{} file format version {}, an older motiongraph's; this one reads version {}: build it "
+                             "again",
+                             what, file_version, version)};
+  }
+  if (file_version > version) {
+    return Error{file_name, 0,
+                 fmt::format("{} file format version {}, a newer motiongraph's; this one reads version {}: open it "
+                             "with the motiongraph that wrote it, or build it again with this one",
+                             what, file_version, version)};
   }
   std::vector<std::uint64_t> sizes(count);
   std::vector<std::uint32_t> crcs(count);

@@ -593,11 +593,20 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
     std::string advice = "no threshold makes a graph: the clips hold no loop of transitions at all";
     if (*lowest) {
       const CoveragePoint& p = **lowest;
+      // What it keeps of each motion type (the worst alone read "0 % of each motion type's").
+      const std::vector<int> tags = coverage_tags(*db, *graph_settings);
+      std::string kept = fmt::format("{:.0f} % of the frames", 100.0 * p.coverage);
+      if (!tags.empty() && p.tag_coverage.size() == tags.size()) {
+        kept.clear();
+        for (size_t t = 0; t < tags.size(); ++t) {
+          kept += fmt::format("{}{:.0f} % of the {} frames", t == 0 ? "" : t + 1 == tags.size() ? " and " : ", ",
+                              100.0 * p.tag_coverage[t], motion_class_name(*db, tags[t]));
+        }
+      }
       advice = fmt::format(
           "the lowest threshold that makes one is RMS {:.2f} cm (--threshold {:.2f}cm, D {:.4g}, "
-          "{:.3f} % of pairs); it keeps {:.0f} % of {}",
-          p.rms_cm, std::ceil(p.rms_cm * 100.0) / 100.0, p.threshold, 100.0 * p.quantile, 100.0 * p.coverage,
-          graph_settings->connected_tags ? "each motion type's frames" : "the frames");
+          "{:.3f} % of pairs); it keeps {}",
+          p.rms_cm, std::ceil(p.rms_cm * 100.0) / 100.0, p.threshold, 100.0 * p.quantile, kept);
       out.report["lowest_graph_threshold"] = coverage_point_json(p, *db, coverage_tags(*db, *graph_settings));
     }
     out.report["error"] = "pruning left nothing";
