@@ -217,10 +217,12 @@ Command add_build_command(CLI::App& app) {
   sub->add_option("--min-piece", b.spacing.min_piece_frames,
                   "Frames of captured motion between arriving by a transition and leaving by the next (0: off)")
       ->capture_default_str();
-  sub->add_flag("!--no-tag-thresholds", b.transitions.per_tag_thresholds,
-                "One threshold for everything: no motion type gets its own (by default, with --threshold auto, each "
-                "gets the lowest at which it reaches --coverage; with a threshold given by hand, each keeps the same "
-                "share of its own candidates as the database keeps of all)");
+  // A callback rather than "!--no-tag-thresholds", whose help read "--no-tag-thresholds{false}".
+  sub->add_flag_callback(
+      "--no-tag-thresholds", [o] { o->build.transitions.per_tag_thresholds = false; },
+      "One threshold for everything: no motion type gets its own (by default, with --threshold auto, each gets the "
+      "lowest at which it reaches --coverage; with a threshold given by hand, each keeps the same share of its own "
+      "candidates as the database keeps of all)");
   sub->add_option("--locality", b.transitions.locality_radius,
                   "Keep the best transition within this many frames (-1: half the window)")
       ->capture_default_str();

@@ -19,13 +19,12 @@ struct MotionOutputOptions {
   void add_to(CLI::App& app) {
     app.add_option("--output-scale", units_per_metre,
                    "BVH length units per metre in the output, 1e-6 to 1e6 (100 for centimetres); glTF and JSON are "
-                   "always in "
-                   "metres, FBX in centimetres (its UnitScaleFactor 1)")
+                   "always in metres, FBX in centimetres (its UnitScaleFactor 1)")
         ->capture_default_str();
     app.add_flag("--no-figure", no_figure,
                  "glTF and FBX: write the skeleton and its animation only, without the grey stick figure skinned to it "
                  "(for retargeting onto a character of one's own)");
-    app.add_flag("--root-motion", root_motion,
+    CLI::Option* root_motion_flag = app.add_flag("--root-motion", root_motion,
                  "Add a root-motion joint above the root, as game engines take root motion: on the clip's floor "
                  "under the hips, turned the way the character faces (its +z axis), carrying the travel; the hips "
                  "hang below it and no joint moves (a rig's fixed root right above the hips becomes that joint)");
@@ -34,7 +33,8 @@ struct MotionOutputOptions {
                    "takes the least-squares line through the frames within half of it either side), so that it "
                    "does not sway with each step (0: the hips' own)")
         ->capture_default_str()
-        ->check(CLI::Range(0.0, 60.0));
+        ->check(CLI::Range(0.0, 60.0))
+        ->needs(root_motion_flag);  // without it there is no joint to smooth: said, not ignored
   }
 
   // What write_motion takes, a root-motion joint (when asked for) facing `forward_axis`.

@@ -157,9 +157,10 @@ Command add_path_command(CLI::App& app) {
                   "--progress-retries searches again (0, or --tag-penalty 0: never for that)")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
-  sub->add_flag("!--no-path-edit", o->settings.edit_path,
-                "Keep the motion as the graph plays it; by default it is bent onto the path (Gleicher's motion path "
-                "editing), adding at most --edit-max-turn of turning");
+  sub->add_flag_callback(
+      "--no-path-edit", [o] { o->settings.edit_path = false; },
+      "Keep the motion as the graph plays it; by default it is bent onto the path (Gleicher's motion path editing), "
+      "adding at most --edit-max-turn of turning");
   sub->add_option("--edit-max-turn", o->settings.path_edit.max_turn_deg_per_m,
                   "Turning (degrees per metre travelled) the path edit may add; where bending the motion onto the "
                   "path would take more, it is bent less and follows the path less closely")

@@ -217,6 +217,12 @@ assert set(clips) == {"s16:16_35", "stroll"}, clips.keys()
 assert clips["s16:16_35"]["tags"] == ["jog"] and clips["s16:16_35"]["frames"] == 41, clips["s16:16_35"]
 assert "walk" in clips["stroll"]["tags"], clips["stroll"]  # CMU's index, by the animation's name
 PY
+# An animation the file has not: the manifest's line that asks for it is blamed.
+sed 's/animation = "16_15"/animation = "swim"/' "$work/glb.toml" >"$work/swim.toml"
+if "$bin" info "$work/swim.toml" >/dev/null 2>"$work/swim.err"; then echo "FAIL: manifest animation swim"; exit 1; fi
+[[ $(wc -l <"$work/swim.err") -eq 1 ]] \
+  && grep -q "swim.toml:8: clip .*s16.glb: no animation 'swim' (the file has 16_01, " "$work/swim.err" \
+  || { echo "FAIL: manifest animation swim"; cat "$work/swim.err"; exit 1; }
 # A folder of a character's model alone (glTF without animation) holds no clip.
 mkdir "$work/model"
 printf '{"asset": {"version": "2.0"}, "nodes": [{"name": "Body"}], "scenes": [{"nodes": [0]}]}\n' >"$work/model/character.gltf"

@@ -112,6 +112,8 @@ exit_code unknown-word 2 "unknown command 'frobnicate' (commands: info, convert"
 exit_code missing-output 2 "--output is required" "$bin" build "$good"
 exit_code unknown-option 2 "The following argument was not expected: --bogus" "$bin" convert "$good" -o "$work/x.bvh" --bogus
 exit_code out-of-range 2 "--fps" "$bin" convert "$good" -o "$work/x.bvh" --fps 0
+exit_code smoothing-alone 2 "--root-motion-smoothing requires --root-motion" \
+  "$bin" convert "$good" -o "$work/x.bvh" --root-motion-smoothing 2
 exit_code missing-input 2 "nonexist.bvh" "$bin" info "$work/nonexist.bvh"
 exit_code bad-file 1 "time.bvh:187: Frame Time '0' must be a positive number" "$bin" info "$work/in/time.bvh"
 set +e

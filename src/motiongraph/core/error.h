@@ -15,6 +15,7 @@ enum class ErrorKind {
   kGeneral,
   kEmptyGraph,  // pruning left nothing: the transitions form no cycle
   kOtherProcess,  // another process of a parallel job failed; rank 0 reports why
+  kNoSuchAnimation,  // a glTF or FBX file has no animation of the name asked for
 };
 
 struct Error {

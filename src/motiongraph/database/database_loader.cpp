@@ -42,6 +42,7 @@ struct ClipSpec {
   std::string cmu_name;            // the file's stem, the key into CMU's index
   ClipLoadSettings load;
   std::optional<std::string> animation;  // of a glTF or FBX file
+  int animation_line = 0;                // of the manifest's `animation`
   std::optional<int> first_frame;  // file numbering, from 1
   std::optional<int> last_frame;
   bool gives_tags = false;         // the manifest decides the tags (no CMU lookup)
@@ -239,6 +240,7 @@ Status expand_manifest(const std::string& input, const DatabaseSettings& setting
     spec.manifest = input;
     spec.line = clip.line;
     spec.frames_line = clip.frames_line;
+    spec.animation_line = clip.animation_line;
     std::error_code ec;
     if (!fs::is_regular_file(spec.path, ec)) {
       return Error{input, clip.file_line,
@@ -504,6 +506,10 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
   for (size_t spec_index = 0; spec_index < specs.size(); ++spec_index) {
     const ClipSpec& spec = specs[spec_index];
     auto loaded = loaders.for_settings(spec.load).load(spec.path, spec.animation);
+    if (!loaded && loaded.error().kind == ErrorKind::kNoSuchAnimation && !spec.manifest.empty()) {
+      // The manifest's line that asked for it is what to change.
+      return Error{spec.manifest, spec.animation_line, fmt::format("clip {}: {}", spec.path, loaded.error().message)};
+    }
     if (!loaded) return loaded.error();
     // Another converter's names on the first skeleton's hierarchy: the first's names.
     if (!first_skeleton) first_skeleton = loaded->clip.skeleton;

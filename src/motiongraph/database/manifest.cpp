@@ -223,6 +223,7 @@ Result<ManifestClip> read_clip(const Reader& in, const toml::table& table) {
     if (!is_scene_file(clip.file)) return in.error(line_of(*node), "'animation' applies to glTF and FBX clips only");
     auto animation = in.string(*node, "animation");
     if (!animation) return animation.error();
+    clip.animation_line = line_of(*node);
     clip.animation = std::move(*animation);
   }
   if (const toml::node* node = table.get("name")) {

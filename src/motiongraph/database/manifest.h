@@ -36,7 +36,7 @@ struct ManifestClip {
   std::optional<std::string> name;         // clip name; the file's stem when absent (CMU
                                            // tags are looked up by the stem either way)
   std::optional<std::string> skeleton;     // ASF for an AMC clip (overrides the default)
-  std::optional<std::string> animation;    // of a glTF clip (default: its first)
+  std::optional<std::string> animation;    // of a glTF or FBX clip (default: its first)
   std::optional<double> bvh_scale;         // metres per BVH unit (overrides the default)
   std::optional<UpAxis> up_axis;           // the clip's up axis (overrides the default)
   std::optional<TravelSource> travel;      // where its travel comes from (overrides the default)
@@ -53,6 +53,7 @@ struct ManifestClip {
   int file_line = 0;
   int skeleton_line = 0;
   int frames_line = 0;  // of last_frame, or of first_frame when only it is given
+  int animation_line = 0;
 
   // True when the manifest says anything about tags for this clip (even `tags = []`):
   // then the manifest alone decides its tags and no CMU index lookup is made.

@@ -192,8 +192,9 @@ Result<LoadedClip> ClipLoader::load(const std::string& path, const std::optional
     if (animation) {
       const auto it = std::find(loaded.animations.begin(), loaded.animations.end(), *animation);
       if (it == loaded.animations.end()) {
-        return Error{path, 0, fmt::format("no animation '{}' (the file has {})", *animation,
-                                          fmt::join(loaded.animations, ", "))};
+        return Error{path, 0,
+                     fmt::format("no animation '{}' (the file has {})", *animation, fmt::join(loaded.animations, ", ")),
+                     ErrorKind::kNoSuchAnimation};
       }
       chosen = static_cast<size_t>(it - loaded.animations.begin());
     }
