@@ -80,7 +80,10 @@ class Library:
                 if row["name"] == clip:
                     return index
             raise KeyError(clip)
-        return range(len(self.clips))[clip]
+        count = len(self.clips)
+        if not -count <= clip < count:
+            raise IndexError(f"clip {clip} out of range: the library has {count} clips")
+        return range(count)[clip]
 
     def __len__(self):
         return len(self.clips)

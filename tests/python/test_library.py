@@ -73,8 +73,10 @@ def test_tags_per_clip_add_up_to_the_totals(data):
     assert library[1:3] == library.clips[1:3] and len(library[1:3]) == 2
     with pytest.raises(KeyError):
         library["16_99"]
-    with pytest.raises(IndexError):
+    with pytest.raises(IndexError, match="^clip 15 out of range: the library has 15 clips$"):
         library[15]
+    with pytest.raises(IndexError, match="^clip -16 out of range"):
+        library[-16]
 
 
 def test_units_chosen_and_doubts_warned(cli, data, tmp_path):
