@@ -9,6 +9,7 @@
 
 #include "motiongraph/core/quantile.h"
 #include "motiongraph/motion/forward_kinematics.h"
+#include "motiongraph/motion/length_unit.h"
 
 namespace mg {
 
@@ -27,19 +28,12 @@ ClipDoubts clip_doubts(std::span<const Vec3> world_positions_m, int joint_count,
   if (joint_count <= 0 || world_positions_m.empty()) return out;
   const size_t frames = world_positions_m.size() / static_cast<size_t>(joint_count);
   std::vector<double> lowest(frames, std::numeric_limits<double>::infinity());
-  std::vector<double> extent(frames, 0.0);  // the largest along x, y or z (length_unit.h's figure size)
   for (size_t f = 0; f < frames; ++f) {
-    const std::span<const Vec3> pose = world_positions_m.subspan(f * static_cast<size_t>(joint_count),
-                                                                 static_cast<size_t>(joint_count));
-    Vec3 low = pose[0], high = pose[0];
-    for (const Vec3& p : pose) {
-      low = low.cwiseMin(p);
-      high = high.cwiseMax(p);
+    for (int j = 0; j < joint_count; ++j) {
+      lowest[f] = std::min(lowest[f], static_cast<double>(world_positions_m[f * joint_count + j].y()));
     }
-    lowest[f] = low.y();
-    extent[f] = static_cast<double>((high - low).maxCoeff());
   }
-  const double size = quantile(extent, 0.5);
+  const double size = figure_size(world_positions_m, joint_count);  // the size units are chosen by
   if (size == 0.0) {
     out.size = "its joints all lie at one point (its bones have no length)";
     return out;

@@ -18,6 +18,22 @@ constexpr std::array<LengthUnit, 5> kCandidates{{{"m", 1.0},
                                                   {"inch", kMetresPerInch},
                                                   {"CMU unit (1/0.45 inch)", kMetresPerInch / 0.45}}};
 
+// One pose's extent along x, y and z over all its joints (+infinity where huge values overflow:
+// inf - inf is NaN, which would break the medians' ordering).
+Vec3 pose_extent(std::span<const Vec3> pose) {
+  Vec3 low = pose.front();
+  Vec3 high = low;
+  for (const Vec3& p : pose) {
+    low = low.cwiseMin(p);
+    high = high.cwiseMax(p);
+  }
+  Vec3 extent = high - low;
+  for (int a = 0; a < 3; ++a) {
+    if (!std::isfinite(extent[a])) extent[a] = std::numeric_limits<double>::infinity();
+  }
+  return extent;
+}
+
 }  // namespace
 
 std::span<const LengthUnit> length_unit_candidates() { return kCandidates; }
@@ -30,18 +46,7 @@ std::vector<Vec3> frame_extents(const Skeleton& skeleton, const Motion& motion) 
   std::vector<Vec3> extents(static_cast<size_t>(motion.frame_count));
   for (int f = 0; f < motion.frame_count; ++f) {
     forward_kinematics(skeleton, motion, f, positions, rotations);
-    Vec3 low = positions.front();
-    Vec3 high = low;
-    for (const Vec3& p : positions) {
-      low = low.cwiseMin(p);
-      high = high.cwiseMax(p);
-    }
-    // Huge values in a file can overflow to inf - inf; NaN would break the medians' ordering.
-    Vec3& extent = extents[static_cast<size_t>(f)];
-    extent = high - low;
-    for (int a = 0; a < 3; ++a) {
-      if (!std::isfinite(extent[a])) extent[a] = std::numeric_limits<double>::infinity();
-    }
+    extents[static_cast<size_t>(f)] = pose_extent(positions);
   }
   return extents;
 }
@@ -56,6 +61,16 @@ double median_of(std::vector<double> values) {
 double figure_size(const Skeleton& skeleton, const Motion& motion) {
   std::vector<double> sizes;
   for (const Vec3& extent : frame_extents(skeleton, motion)) sizes.push_back(extent.maxCoeff());
+  return median_of(std::move(sizes));
+}
+
+double figure_size(std::span<const Vec3> world_positions, int joint_count) {
+  if (joint_count <= 0) return 0.0;
+  const size_t joints = static_cast<size_t>(joint_count);
+  std::vector<double> sizes;
+  for (size_t first = 0; first + joints <= world_positions.size(); first += joints) {
+    sizes.push_back(pose_extent(world_positions.subspan(first, joints)).maxCoeff());
+  }
   return median_of(std::move(sizes));
 }
 

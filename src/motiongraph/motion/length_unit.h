@@ -28,6 +28,8 @@ constexpr double kPlausibleHeightMaxM = 2.6;
 
 // The figure's size in the units of its skeleton and motion (see above); 0 without frames.
 double figure_size(const Skeleton& skeleton, const Motion& motion);
+// The same from world positions already computed: frames x joint_count, frame-major.
+double figure_size(std::span<const Vec3> world_positions, int joint_count);
 // Per frame, the figure's extent along x, y and z over all its joints (+infinity where huge
 // values overflow), in the same units: what figure_size and the up axis (up_axis.h) measure.
 std::vector<Vec3> frame_extents(const Skeleton& skeleton, const Motion& motion);
