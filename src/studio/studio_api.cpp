@@ -71,12 +71,11 @@ json body_object(const ApiRequest& request) {
 // A body's keys are the request's: one it does not take (a misspelt "min_frame", an option of the
 // CLI's) is an error rather than ignored.
 void check_keys(const json& body, std::initializer_list<std::string_view> known) {
-  for (const auto& [key, value] : body.items()) {
-    if (std::find(known.begin(), known.end(), key) != known.end()) continue;
-    std::string names;
-    for (std::string_view name : known) names += fmt::format("{}'{}'", names.empty() ? "" : ", ", name);
-    throw ApiError{400, fmt::format("unknown key '{}' (this request takes {})", key, names)};
-  }
+  const std::string key = unknown_key(body, known);
+  if (key.empty()) return;
+  std::string names;
+  for (std::string_view name : known) names += fmt::format("{}'{}'", names.empty() ? "" : ", ", name);
+  throw ApiError{400, fmt::format("unknown key '{}' (this request takes {})", key, names)};
 }
 
 double number_field(const json& body, const std::string& name, double fallback, double lo, double hi) {

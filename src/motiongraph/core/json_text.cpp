@@ -14,6 +14,14 @@ int line_at(std::string_view text, size_t pos) {
 
 }  // namespace
 
+std::string unknown_key(const nlohmann::json& doc, std::initializer_list<std::string_view> known) {
+  if (!doc.is_object()) return "";
+  for (const auto& [key, value] : doc.items()) {
+    if (std::find(known.begin(), known.end(), key) == known.end()) return key;
+  }
+  return "";
+}
+
 Result<nlohmann::json> parse_json_text(std::string_view text, const std::string& file_name) {
   try {
     return nlohmann::json::parse(text);

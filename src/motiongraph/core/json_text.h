@@ -4,6 +4,7 @@
 // Latin-1 joint name in a BVH file; they are written as U+FFFD.
 #pragma once
 
+#include <initializer_list>
 #include <string>
 #include <string_view>
 
@@ -14,6 +15,9 @@
 namespace mg {
 
 Result<nlohmann::json> parse_json_text(std::string_view text, const std::string& file_name);
+
+// The first key of the object `doc` not among `known` (a misspelt or unknown option), or empty.
+std::string unknown_key(const nlohmann::json& doc, std::initializer_list<std::string_view> known);
 
 // The document's text; indent < 0: on one line.
 std::string json_text(const nlohmann::json& doc, int indent = -1);

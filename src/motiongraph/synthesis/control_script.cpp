@@ -2,9 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <initializer_list>
-#include <string>
-#include <string_view>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -18,18 +15,6 @@ const ScriptedControl& ControlScript::at(double t) const {
   while (i + 1 < controls.size() && controls[i + 1].at_s <= t) ++i;
   return controls[i];
 }
-
-namespace {
-
-// The first key of `object` not among `known`, or empty.
-std::string unknown_key(const nlohmann::json& object, std::initializer_list<std::string_view> known) {
-  for (const auto& [key, value] : object.items()) {
-    if (std::find(known.begin(), known.end(), key) == known.end()) return key;
-  }
-  return "";
-}
-
-}  // namespace
 
 Result<ControlScript> parse_control_script(std::string_view text, const std::string& file_name) {
   auto parsed = parse_json_text(text, file_name);
