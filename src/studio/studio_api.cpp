@@ -395,7 +395,7 @@ class Router {
         body["segments"].size() > static_cast<size_t>(StudioApi::kMaxPathSegments)) {
       throw ApiError{400, fmt::format("at most {} segments", StudioApi::kMaxPathSegments)};
     }
-    auto floor_path = parse_path_json(request_.body, "request body");
+    auto floor_path = parse_path_document(body, "request body");
     if (!floor_path) throw ApiError{400, floor_path.error().to_string()};
     if (floor_path->length_m() > StudioApi::kMaxPathLengthM) {
       throw ApiError{400, fmt::format("the path is {:.0f} m long; at most {:.0f} m", floor_path->length_m(),

@@ -422,6 +422,10 @@ TEST(StudioApi, BadPathsAre4xx) {
   expect_error(call_api("POST", "/api/path", many + "]}"), 400, "at most 100 segments");
   expect_error(call_api("POST", "/api/path", R"({"points": [[0, 0], [0, 5]], "edit": false})"), 400,
                "unknown key 'edit'");
+  // The body's own options pass; a segment's keys are checked as in a PATH.json file.
+  expect_error(call_api("POST", "/api/path",
+                        R"({"points": [[0, 0], [0, 5]], "segments": [{"from_m": 0, "to_m": 5, "tag": "walk", "tga": 1}]})"),
+               400, "segments[0]: unknown key \"tga\"");
 }
 
 TEST(StudioApi, SteeringTurnsTheCharacterTheWayAsked) {

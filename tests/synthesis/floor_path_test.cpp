@@ -333,6 +333,13 @@ TEST(FloorPath, BadInputIsOneClearError) {
        0, "from_m < to_m"},
       {"segment without tag", "{\"points\": [[0, 0], [1, 0]], \"segments\": [{\"from_m\": 0, \"to_m\": 1}]}", 0,
        "segments[0]"},
+      // A misspelt key is named: "segment" would otherwise follow the path with no tags at all.
+      {"misspelt segments",
+       "{\"points\": [[0, 0], [1, 0]], \"segment\": [{\"from_m\": 0, \"to_m\": 1, \"tag\": \"run\"}]}", 0,
+       "unknown key \"segment\""},
+      {"unknown segment key",
+       "{\"points\": [[0, 0], [1, 0]], \"segments\": [{\"from_m\": 0, \"to_m\": 1, \"tag\": \"run\", \"speed\": 2}]}",
+       0, "segments[0]: unknown key \"speed\""},
   };
   for (const auto& c : cases) {
     auto path = parse_path_json(c.text, "p.json");

@@ -181,7 +181,15 @@ const std::string& FloorPath::tag_at(double s) const {
 Result<FloorPath> parse_path_json(std::string_view text, const std::string& file_name) {
   auto parsed = parse_json_text(text, file_name);
   if (!parsed) return parsed.error();
-  const nlohmann::json& doc = *parsed;
+  if (parsed->is_object()) {
+    if (const std::string key = unknown_key(*parsed, {"points", "segments"}); !key.empty()) {
+      return Error{file_name, 0, fmt::format("unknown key \"{}\" (a path has \"points\" and \"segments\")", key)};
+    }
+  }
+  return parse_path_document(*parsed, file_name);
+}
+
+Result<FloorPath> parse_path_document(const nlohmann::json& doc, const std::string& file_name) {
   auto fail = [&](const std::string& what) { return Error{file_name, 0, what}; };
   if (!doc.is_object() || !doc.contains("points") || !doc["points"].is_array()) {
     return fail("expected an object with \"points\": [[x, z], ...]");
@@ -202,6 +210,10 @@ Result<FloorPath> parse_path_json(std::string_view text, const std::string& file
       if (!s.is_object() || !s.contains("from_m") || !s["from_m"].is_number() || !s.contains("to_m") ||
           !s["to_m"].is_number() || !s.contains("tag") || !s["tag"].is_string()) {
         return fail(fmt::format("segments[{}] needs \"from_m\", \"to_m\" (numbers) and \"tag\" (a string)", i));
+      }
+      if (const std::string key = unknown_key(s, {"from_m", "to_m", "tag"}); !key.empty()) {
+        return fail(fmt::format("segments[{}]: unknown key \"{}\" (a segment has \"from_m\", \"to_m\" and \"tag\")",
+                                i, key));
       }
       segments.push_back({s["from_m"].get<double>(), s["to_m"].get<double>(), s["tag"].get<std::string>()});
     }

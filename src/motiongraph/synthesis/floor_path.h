@@ -21,6 +21,8 @@
 #include <string_view>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "motiongraph/core/error.h"
 #include "motiongraph/synthesis/facing.h"
 
@@ -134,8 +136,14 @@ class FloorPath {
   std::vector<PathSegment> segments_;
 };
 
-// PATH.json as above; errors name the file (and the line for JSON syntax errors).
+// PATH.json as above; errors name the file (and the line for JSON syntax errors). A key that is
+// none of those above is an error (a misspelt "segments" would otherwise drop every tag).
 Result<FloorPath> parse_path_json(std::string_view text, const std::string& file_name);
+
+// The same from a parsed document whose top-level keys the caller has checked (the studio's
+// request body carries its own options beside "points" and "segments"); a segment's keys are
+// checked here.
+Result<FloorPath> parse_path_document(const nlohmann::json& doc, const std::string& file_name);
 
 // A built-in shape "name:metres" (see above), sampled every 0.1 m or finer.
 Result<FloorPath> make_shape(std::string_view spec);
