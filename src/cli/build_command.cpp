@@ -13,6 +13,7 @@
 #include <spdlog/spdlog.h>
 
 #include "cli/commands.h"
+#include "cli/load_options.h"
 #include "cli/unit_report.h"
 #include "motiongraph/core/json_text.h"
 #include "motiongraph/core/text.h"
@@ -126,9 +127,7 @@ Command add_build_command(CLI::App& app) {
       ->capture_default_str()
       ->each([o](const std::string&) { o->build.fps_given = true; });
   sub->add_option("--asf", b.asf, "ASF skeleton of AMC files given one by one")->check(CLI::ExistingFile);
-  sub->add_option("--scale", b.scale,
-                  "Metres per BVH length unit (default: m, cm, mm, inch or CMU's 1/0.45 inch per file, whichever makes "
-                  "the figure human-sized)");
+  sub->add_option("--scale", b.scale, kScaleHelp);
   sub->add_option("--up-axis", b.up_axis,
                   "Up axis of the clips, y or z (default: per file, whichever the figure stands along; z-up files are "
                   "turned y up)")
@@ -138,9 +137,8 @@ Command add_build_command(CLI::App& app) {
                   "planted feet), or auto: the feet for clips animated in place, their planted feet sliding")
       ->check(CLI::IsMember({"auto", "root", "feet"}))
       ->capture_default_str();
-  sub->add_option("--input-fps", b.input_fps, "Capture rate of the inputs, overriding the files' (AMC: 120)");
-  sub->add_flag("--keep-rest-frames", b.keep_rest_frames,
-                "Keep leading rest or T-pose frames that a BVH converter added (dropped by default)");
+  sub->add_option("--input-fps", b.input_fps, kInputFpsHelp);
+  sub->add_flag("--keep-rest-frames", b.keep_rest_frames, kKeepRestFramesHelp);
   sub->add_option("--cmu-index", b.cmu_index,
                   "CMU's motion index (cmu-mocap-index.tsv) for tags from descriptions; default: one beside or above the "
                   "inputs, else the index the project ships (built in)");

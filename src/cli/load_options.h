@@ -13,6 +13,18 @@
 
 namespace mg::cli {
 
+// Help of the options `build` shares with the commands that read clips (build has its own
+// settings struct, but not its own meanings).
+inline constexpr const char* kScaleHelp =
+    "Metres per BVH length unit, 1e-6 to 1e6 (BVH carries no unit; default: m, cm, mm, inch or CMU's 1/0.45 inch per "
+    "file, whichever makes the figure human-sized); for FBX, metres per unit of its numbers, instead of its own unit "
+    "(which is kept unless it makes the figure no human size)";
+inline constexpr const char* kInputFpsHelp =
+    "Capture rate of ASF/AMC and BVH input, overriding the files' (AMC default 120, CMU's rate); for glTF and FBX, "
+    "whose keys are timed in seconds, the rate their animations are sampled at (default: their keys')";
+inline constexpr const char* kKeepRestFramesHelp =
+    "Keep leading rest or T-pose frames that a BVH converter added (dropped by default)";
+
 struct LoadOptions {
   std::string asf;
   std::optional<double> scale;
@@ -24,10 +36,7 @@ struct LoadOptions {
 
   void add_to(CLI::App& app) {
     app.add_option("--asf", asf, "ASF skeleton of the AMC files")->check(CLI::ExistingFile);
-    app.add_option("--scale", scale,
-                   "Metres per BVH length unit, 1e-6 to 1e6 (BVH carries no unit; default: m, cm, mm, inch or CMU's "
-                   "1/0.45 inch, whichever makes the figure human-sized); for FBX, metres per unit of its "
-                   "numbers, instead of its own unit (which is kept unless it makes the figure no human size)");
+    app.add_option("--scale", scale, kScaleHelp);
     app.add_option("--up-axis", up_axis,
                    "Up axis of a clip, y or z (default: whichever the figure stands along; a z-up file is turned "
                    "y up)")
@@ -46,11 +55,8 @@ struct LoadOptions {
               return parsed ? std::string() : parsed.error().message;
             },
             "", "FEET"));
-    app.add_option("--input-fps", input_fps,
-                   "Capture rate of the input, overriding the file's (AMC default 120, CMU's rate); for glTF and "
-                   "FBX, whose keys are timed in seconds, the rate their animations are sampled at (default: their keys')");
-    app.add_flag("--keep-rest-frames", keep_rest_frames,
-                 "Keep leading rest or T-pose frames that a BVH converter added (dropped by default)");
+    app.add_option("--input-fps", input_fps, kInputFpsHelp);
+    app.add_flag("--keep-rest-frames", keep_rest_frames, kKeepRestFramesHelp);
   }
 
   ClipLoadSettings settings() const {
