@@ -462,4 +462,8 @@ report, path = (json.load(open(p)) for p in sys.argv[1:3])
 assert [c["name"] for c in report["clips"]] == ["111_36", "131_01"], report["clips"]
 assert path["mean_deviation_m"] < 0.15, path["mean_deviation_m"]
 PY
+# info on them as a folder says how the two rigs became one (not "with the same joints").
+mkdir "$work/rigs" && cp "$data/bvh/111_36.bvh" "$data/bvh/131_01.bvh" "$work/rigs/"
+"$bin" info "$work/rigs" 2>/dev/null | grep -E "^  skeleton: 2 read on the first's joint names and rest pose \(.*111_36.bvh, \
+.*131_01.bvh\)$" >/dev/null || { echo "FAIL: info on two rigs"; "$bin" info "$work/rigs"; exit 1; }
 echo "cli build ok"

@@ -115,6 +115,15 @@ for f, (a, b) in enumerate(zip(plain["positions"], moved["positions"])):
     assert max(abs(x - y) for p, q in zip(a, b[1:]) for x, y in zip(p, q)) < 2e-6, f
 PY
 grep -q "^ROOT root_motion" "$work/jog-rm.bvh" || { echo "FAIL: the root-motion joint is not the BVH's root"; exit 1; }
+# A library of that export beside a plain file (roots root_motion and root): read from the plain
+# file's root down, the root-motion joint composed into it, and said so.
+mkdir "$work/mixed"
+cp "$work/jog-rm.bvh" "$work/mixed/"
+"$bin" convert "$data/cmu/16/16_15.amc" --fps 30 -o "$work/mixed/walk.bvh"
+"$bin" info "$work/mixed" >"$work/mixed.txt" 2>"$work/mixed.err" \
+  && grep -q "^  skeleton: 2 read from 'root' down" "$work/mixed.txt" \
+  && grep -q "jog-rm.bvh: read from 'root' down, the root of the library's other rigs: the motion of 'root_motion' above" \
+    "$work/mixed.err" || { echo "FAIL: a root-motion export beside a plain file"; cat "$work/mixed.txt" "$work/mixed.err"; exit 1; }
 if "$bin" convert "$data/cmu/16/16_35.amc" --root-motion --root-motion-smoothing -1 -o "$work/bad-rm.json" 2>"$work/rm.err"; then
   echo "FAIL: a negative smoothing was accepted"; exit 1
 fi

@@ -460,12 +460,54 @@ void rest_as_first(MotionDatabase& db, DatabaseLoadNotes* notes) {
   }
 }
 
+// Every skeleton of `db` whose root is not `root` read from that joint down (reroot_at), with
+// its clips; a note for each.
+Status reroot_database(MotionDatabase& db, const std::string& root, std::vector<DatabaseLoadNotes::Rerooted>& notes) {
+  for (size_t s = 0; s < db.skeletons.size(); ++s) {
+    const Skeleton skeleton = db.skeletons[s];
+    if (skeleton.joint(0).name == root) continue;
+    std::optional<Skeleton> rerooted;
+    for (DatabaseClip& clip : db.clips) {
+      if (clip.skeleton != static_cast<int>(s)) continue;
+      Clip whole;
+      whole.name = clip.name;
+      whole.skeleton = skeleton;
+      whole.motion = std::move(clip.motion);
+      auto out = reroot_at(whole, root);
+      if (!out) return Error{clip.source, 0, out.error().message};
+      clip.motion = std::move(out->motion);
+      if (!rerooted) rerooted = std::move(out->skeleton);
+    }
+    if (!rerooted) continue;
+    DatabaseLoadNotes::Rerooted note{db.skeleton_names[s], root, {}, 0};
+    const int at = *skeleton.find(root);
+    for (int a = skeleton.parent(at); a >= 0; a = skeleton.parent(a)) note.above.insert(note.above.begin(), skeleton.joint(a).name);
+    note.dropped = skeleton.joint_count() - rerooted->joint_count() - static_cast<int>(note.above.size());
+    notes.push_back(std::move(note));
+    db.skeletons[s] = std::move(*rerooted);
+  }
+  return Ok{};
+}
+
+// The first root name that is not the first skeleton's.
+std::string other_root(const MotionDatabase& db) {
+  for (const Skeleton& skeleton : db.skeletons) {
+    if (skeleton.joint(0).name != db.skeletons.front().joint(0).name) return skeleton.joint(0).name;
+  }
+  return db.skeletons.front().joint(0).name;
+}
+
 // Why the joints every skeleton has cannot hold the library (nullopt when they can): they must
 // be at least two thirds of the smallest skeleton's joints, both ankles among them.
 std::optional<std::string> common_joints_fall_short(const MotionDatabase& db, const std::vector<std::string>& common) {
   size_t smallest = static_cast<size_t>(db.skeletons.front().joint_count());
   for (const Skeleton& skeleton : db.skeletons) smallest = std::min(smallest, static_cast<size_t>(skeleton.joint_count()));
-  if (common.empty() || 3 * common.size() < 2 * smallest) {
+  if (common.empty()) {
+    return fmt::format("they share no joint: joints match by name and their parent's name from the root down, and the "
+                       "roots are '{}' and '{}'",
+                       db.skeletons.front().joint(0).name, other_root(db));
+  }
+  if (3 * common.size() < 2 * smallest) {
     return fmt::format("they share {} joints (by name, with the same parent's name), fewer than two thirds of the "
                        "smallest skeleton's {}",
                        common.size(), smallest);
@@ -515,6 +557,11 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     if (!first_skeleton) first_skeleton = loaded->clip.skeleton;
     const auto renamed = rename_as_first(loaded->clip, *first_skeleton);
     if (!joints.empty()) {
+      if (loaded->clip.skeleton.joint(0).name != joints.front()) {  // rerooted in 3b, as read before
+        auto rerooted = reroot_at(loaded->clip, joints.front());
+        if (!rerooted) return spec.error(rerooted.error().message);
+        loaded->clip = std::move(*rerooted);
+      }
       auto kept = keep_joints(loaded->clip, joints);
       if (!kept) return spec.error(kept.error().message);
       loaded->clip = std::move(*kept);
@@ -663,8 +710,15 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
   // joint's motion is resampled on its own, so dropping joints after resampling is the same).
   std::vector<std::string> read_on = joints;
   std::vector<DatabaseLoadNotes::DroppedJoints> dropped_joints;
+  std::vector<DatabaseLoadNotes::Rerooted> rerooted;
   if (other_joints) {
     std::vector<std::string> common = common_joints(db.skeletons);
+    // Roots that differ: a root-motion joint above the hips in some rigs, the hips the root of
+    // the others. Those read from the hips down, their root's motion composed into them.
+    if (const std::string root = common.empty() ? shared_root(db.skeletons) : std::string(); !root.empty()) {
+      if (auto s = reroot_database(db, root, rerooted); !s) return s.error();
+      common = common_joints(db.skeletons);
+    }
     if (auto short_by = common_joints_fall_short(db, common)) {
       return Error{other_joints->file, other_joints->line, other_joints->message + " (" + *short_by + ")"};
     }
@@ -694,6 +748,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     if (notes != nullptr) {
       notes->common_joints = read_on;
       notes->dropped_joints = dropped_joints;
+      notes->rerooted = rerooted;
     }
   }
 
@@ -724,6 +779,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
         if (other_joints) {  // read on the shared joints this time, as 3b kept them
           notes->common_joints = read_on;
           notes->dropped_joints = std::move(dropped_joints);
+          notes->rerooted = std::move(rerooted);
         }
       }
       return again;
@@ -800,6 +856,16 @@ std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes) {
                                 "have; dropped {} ({} joint{}) from {}",
                                 notes.common_joints.size(), listed(names, kShown), names.size(),
                                 names.size() == 1 ? "" : "s", listed(files, 2)));
+  }
+  for (const auto& r : notes.rerooted) {
+    lines.push_back(fmt::format("{}: read from '{}' down, the root of the library's other rigs: the motion of {} above "
+                                "it is composed into it{}",
+                                r.skeleton, r.root,
+                                fmt::format("'{}'", fmt::join(r.above, "', '")),
+                                r.dropped > 0 ? fmt::format(", and the {} joint{} hanging off {} dropped", r.dropped,
+                                                            r.dropped == 1 ? "" : "s",
+                                                            r.above.size() == 1 ? "it" : "them")
+                                              : std::string()));
   }
   for (const auto& rig : notes.matched_rigs) {
     std::vector<std::string> parts;

@@ -127,6 +127,15 @@ struct DatabaseLoadNotes {
     std::vector<std::string> joints;
   };
   std::vector<DroppedJoints> dropped_joints;
+  // Skeletons read from a joint below their root, the library's other rigs' root
+  // (motion/common_joints.h reroot_at): a root-motion joint above the hips composed into them.
+  struct Rerooted {
+    std::string skeleton;
+    std::string root;                // the joint they start at now
+    std::vector<std::string> above;  // the joints composed into it, their root first
+    int dropped = 0;                 // joints that hung off those, dropped
+  };
+  std::vector<Rerooted> rerooted;
   // Files whose rig is the first file's under other names or in another rest pose
   // (motion/rig_matching.h), read on the first's names and rest pose.
   struct MatchedRig {

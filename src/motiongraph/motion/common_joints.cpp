@@ -1,8 +1,11 @@
 #include "motiongraph/motion/common_joints.h"
 
+#include <algorithm>
 #include <map>
 
 #include <fmt/format.h>
+
+#include "motiongraph/motion/trajectory_joint.h"
 
 namespace mg {
 
@@ -45,6 +48,60 @@ std::vector<std::string> common_joints(std::span<const Skeleton> skeletons) {
     names.push_back(name);
   }
   return names;
+}
+
+std::string shared_root(std::span<const Skeleton> skeletons) {
+  std::string deepest;
+  int deepest_depth = -1;
+  for (const Skeleton& candidate : skeletons) {
+    if (candidate.joint_count() == 0) return {};
+    const std::string& name = candidate.joint(0).name;
+    int depth = -1;  // in the skeletons where it lies deepest below their root
+    for (const Skeleton& skeleton : skeletons) {
+      const std::optional<int> j = skeleton.find(name);
+      if (!j) {
+        depth = -1;
+        break;
+      }
+      int d = 0;
+      for (int a = *j; skeleton.parent(a) >= 0; a = skeleton.parent(a)) ++d;
+      depth = std::max(depth, d);
+    }
+    if (depth > deepest_depth) {
+      deepest = name;
+      deepest_depth = depth;
+    }
+  }
+  return deepest_depth > 0 ? deepest : std::string();
+}
+
+Result<Clip> reroot_at(const Clip& clip, const std::string& root_name) {
+  const Skeleton& skeleton = clip.skeleton;
+  const std::optional<int> root = skeleton.find(root_name);
+  if (!root) return Error{"", 0, fmt::format("the skeleton has no joint '{}'", root_name)};
+  if (*root == 0) return clip;
+  // The chain above it and everything below it, in the skeleton's order.
+  std::vector<bool> kept(static_cast<size_t>(skeleton.joint_count()), false);
+  for (int a = *root; a >= 0; a = skeleton.parent(a)) kept[static_cast<size_t>(a)] = true;
+  std::vector<std::string> names;
+  int new_root = -1;
+  for (int j = 0; j < skeleton.joint_count(); ++j) {
+    const int parent = skeleton.parent(j);
+    if (j > *root && parent >= 0 && parent >= *root && kept[static_cast<size_t>(parent)]) kept[static_cast<size_t>(j)] = true;
+    if (!kept[static_cast<size_t>(j)]) continue;
+    if (j == *root) new_root = static_cast<int>(names.size());
+    names.push_back(skeleton.joint(j).name);
+  }
+  auto chain = keep_joints(clip, names);
+  if (!chain) return chain.error();
+  Clip folded = fold_static_root(*chain, new_root);
+  // Its ancestors moved: they are gone, not static ones to write back.
+  std::vector<JointDef> joints(folded.skeleton.joints().begin(), folded.skeleton.joints().end());
+  folded.skeleton = Skeleton(std::move(joints));
+  folded.detected_unit = clip.detected_unit;
+  folded.detected_up_axis = clip.detected_up_axis;
+  folded.in_place = clip.in_place;
+  return folded;
 }
 
 Result<Clip> keep_joints(const Clip& clip, std::span<const std::string> names) {

@@ -18,6 +18,18 @@ namespace mg {
 // skeleton is given).
 std::vector<std::string> common_joints(std::span<const Skeleton> skeletons);
 
+// The name of a root that every skeleton has as a joint, when the roots differ, or empty: a
+// rig with a root-motion joint above the hips ("root" -> "Hips") beside rigs whose root is
+// the hips gives "Hips". When several qualify, the deepest (the one below the others).
+std::string shared_root(std::span<const Skeleton> skeletons);
+
+// The clip with the joint named as its root (shared_root's): the joints above it, its chain of
+// ancestors, are composed into it frame by frame (so it carries the travel, with animated
+// translation), the joints hanging off that chain are dropped, and every kept joint moves as
+// before in the world. The joints above are not kept to be written back: the clip is the
+// other rigs' from their root down. Fails naming a joint the skeleton lacks.
+Result<Clip> reroot_at(const Clip& clip, const std::string& root_name);
+
 // The clip on the joints named (in that order; the first must be its root, and each joint's
 // parent must come before it): every kept joint moves as before, in the world too, since only
 // subtrees below kept joints are dropped. Fails naming a joint the skeleton lacks or one whose

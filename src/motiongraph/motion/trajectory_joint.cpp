@@ -100,6 +100,7 @@ Clip fold_static_root(const Clip& clip, int trajectory_joint) {
   for (int j = trajectory_joint; j < old_count; ++j) {
     JointDef joint = skeleton.joint(j);
     joint.parent = j == trajectory_joint ? -1 : joint.parent - removed;
+    if (j == trajectory_joint) joint.animated_translation = true;  // its world position, frame by frame
     assert(j == trajectory_joint || joint.parent >= 0);
     joints.push_back(std::move(joint));
   }

@@ -26,7 +26,9 @@ namespace mg {
 // The joint that would become joint 0 (nullopt when the root itself is the trajectory joint).
 std::optional<int> find_trajectory_joint(const Skeleton& skeleton, const Motion& motion, double tolerance);
 
-// The clip with `trajectory_joint` (from find_trajectory_joint) as joint 0, as above.
+// The clip with `trajectory_joint` (from find_trajectory_joint, or any joint whose ancestors
+// form a chain of one child each and whose descendants are the joints after it) as joint 0,
+// with animated translation, as above.
 Clip fold_static_root(const Clip& clip, int trajectory_joint);
 
 // The clip folded as `folded` (a clip of the same rig) is: when the clip's first joints are the
