@@ -16,6 +16,7 @@
 
 #include "motion/max_apart.h"
 #include "motion/static_root_bvh.h"
+#include "motiongraph/export/bvh_writer.h"
 #include "motiongraph/export/gltf_writer.h"
 #include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/motion/resample.h"
@@ -41,6 +42,18 @@ TEST(GltfImport, OurOwnFileReadsBackToTheSameJointsAndRate) {
   EXPECT_EQ(clips[0].skeleton.joint_count(), clip.skeleton.joint_count());
   EXPECT_LT(test::max_apart(clip, clips[0]), 2e-5);  // float32 keys
   EXPECT_EQ(clips[0].skeleton.translated_joints().size(), 1u);
+  // The end sites (lhand_end, ...: nodes no animation moves) are end sites again, so that a
+  // BVH written from it has the joints the clip had, however often it goes round.
+  int end_sites = 0;
+  for (const JointDef& joint : clip.skeleton.joints()) {
+    const std::optional<int> read = clips[0].skeleton.find(joint.name);
+    ASSERT_TRUE(read) << joint.name;
+    EXPECT_EQ(clips[0].skeleton.joint(*read).end_site, joint.end_site) << joint.name;
+    end_sites += joint.end_site ? 1 : 0;
+  }
+  EXPECT_GE(end_sites, 5);
+  const Clip bvh = test::import_bvh(write_bvh(clips[0].skeleton, clips[0].motion, BvhWriteSettings{}));
+  EXPECT_EQ(bvh.skeleton.joint_count(), clip.skeleton.joint_count());
 }
 
 TEST(GltfImport, AStaticRootAboveTheHipsIsFoldedAsForBvh) {

@@ -1,6 +1,7 @@
 #include "motiongraph/motion/scene_clips.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -207,6 +208,13 @@ bool moves(const NodeScene& scene, const SceneAnimation& animation, int node) {
     }
   }
   return false;
+}
+
+// Whether a joint's name marks the end of a chain: it ends in "end" or "nub", in any case.
+bool names_an_end(const std::string& name) {
+  std::string lower = name;
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  return lower.ends_with("end") || lower.ends_with("nub");
 }
 
 // Which nodes make the skeleton, and which animations move it.
@@ -456,6 +464,24 @@ Result<std::vector<Clip>> clips_from_scene(const NodeScene& scene, const std::st
         def.animated_translation = (t - rest[static_cast<size_t>(j)].translation).norm() * length_scale > still;
       }
     }
+  }
+  // A leaf named as a marker ("ltoes_end", "HeadTop_End", "Bip01 L Toe0Nub") that no animation
+  // moves is an end site, as BVH's End Site is: the project's own files write theirs so, and a
+  // file read back (or beside BVH files of its rig) keeps its joints.
+  std::vector<int> children(static_cast<size_t>(joints), 0);
+  for (int j = 1; j < joints; ++j) ++children[static_cast<size_t>(defs[static_cast<size_t>(j)].parent)];
+  for (int j = 1; j < joints; ++j) {
+    JointDef& def = defs[static_cast<size_t>(j)];
+    if (children[static_cast<size_t>(j)] > 0 || def.animated_translation || !names_an_end(def.name)) continue;
+    const int node = order[static_cast<size_t>(j)];
+    def.end_site = std::none_of(animations.begin(), animations.end(), [&](const Tracks* tracks) {
+      const auto it = tracks->find({node, TrackPath::kRotation});
+      if (it == tracks->end()) return false;
+      for (size_t k = 0; k < it->second.times.size(); ++k) {
+        if (as_quat(it->second.value(k)).angularDistance(rest[static_cast<size_t>(j)].rotation) > 1e-5) return true;
+      }
+      return false;
+    });
   }
   const Skeleton skeleton(defs);
 
