@@ -150,6 +150,7 @@ int run_info(const InfoOptions& options) {
           {"floor_extent_m", {{"x", {s.floor_min_x_m, s.floor_max_x_m}}, {"z", {s.floor_min_z_m, s.floor_max_z_m}}}},
           {"height_m", {s.min_height_m, s.max_height_m}}, {"root_path_m", s.root_path_m},
           {"root", clip.skeleton.joint(0).name}, {"static_joints_above_root", static_ancestor_names(clip.skeleton)},
+          {"joints_dropped_above_root", clip.dropped_at_fold},
           {"doubts", doubts.phrases()}, {"skeleton", skeleton_json(clip.skeleton)}};
       entry["feet"] = *contacts ? feet_json(clip.skeleton, (*contacts)->feet, (*contacts)->masks, feet_source)
                                 : missing_feet_json(feet_missing);
@@ -204,8 +205,11 @@ int run_info(const InfoOptions& options) {
         fmt::print("  travel:   {} (--travel overrides)\n", travel_description(*clip.in_place));
       }
       if (!static_joints.empty()) {
-        fmt::print("  root:     {} carries the floor position (above it, static: {})\n", clip.skeleton.joint(0).name,
-                   static_joints);
+        fmt::print("  root:     {} carries the floor position and facing (above it, folded in: {}{})\n",
+                   clip.skeleton.joint(0).name, static_joints,
+                   clip.dropped_at_fold.empty() ? ""
+                                                : fmt::format("; dropped, as they hung off it: {}",
+                                                              fmt::join(clip.dropped_at_fold, ", ")));
       }
       fmt::print("  floor:    x {:.2f} .. {:.2f} m, z {:.2f} .. {:.2f} m; height {:.2f} .. {:.2f} m; root travels {:.2f} m\n",
                  s.floor_min_x_m, s.floor_max_x_m, s.floor_min_z_m, s.floor_max_z_m, s.min_height_m,

@@ -21,7 +21,7 @@ head -3 "$work/lib/16_15.bvh" | grep -q "ROOT joint_Root" || { echo "FAIL: test 
 
 "$bin" info "$work/lib/16_15.bvh" >"$work/info.txt"
 grep -q "lengths:  cm (0.01 m)" "$work/info.txt" || { echo "FAIL: unit"; cat "$work/info.txt"; exit 1; }
-grep -q "root:     root carries the floor position (above it, static: joint_Root)" "$work/info.txt" \
+grep -q "root:     root carries the floor position and facing (above it, folded in: joint_Root)" "$work/info.txt" \
   || { echo "FAIL: trajectory joint"; cat "$work/info.txt"; exit 1; }
 "$bin" info --json "$work/lib/16_15.bvh" "$data/cmu/16/16.asf" "$data/cmu/16/16_15.amc" >"$work/info.json"
 python3 - "$work/info.json" <<'PY'

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "motion/cycle_loop.h"
+#include "motion/max_apart.h"
 #include "motion/static_root_bvh.h"
 #include "motiongraph/database/database_contacts.h"
 #include "motiongraph/export/bvh_writer.h"
@@ -624,7 +625,7 @@ TEST(DatabaseLoader, ARootMotionJointAboveTheHipsIsComposedIntoThemWhenTheOtherR
     EXPECT_EQ(notes.rerooted[0].skeleton, engine_file);
     EXPECT_EQ(notes.rerooted[0].root, "root");
     EXPECT_EQ(notes.rerooted[0].above, std::vector<std::string>{"root_motion"});
-    EXPECT_EQ(notes.rerooted[0].dropped, 0);
+    EXPECT_TRUE(notes.rerooted[0].dropped.empty());
     const DatabaseClip& clip = db->clips[engine_first ? 0 : 1];
     const std::vector<Vec3> got = world_positions(db->skeletons[static_cast<size_t>(clip.skeleton)], clip.motion);
     ASSERT_EQ(got.size(), want.size());
@@ -637,6 +638,55 @@ TEST(DatabaseLoader, ARootMotionJointAboveTheHipsIsComposedIntoThemWhenTheOtherR
                        "'root_motion' above it is composed into it") != std::string::npos;
     })) << fmt::format("{}", fmt::join(warnings, "\n"));
     EXPECT_FALSE(db->frame_contacts.empty());  // the feet are found
+  }
+}
+
+TEST(DatabaseLoader, AHeldPoseOfARigWhoseRootTravelsWithoutTurningJoinsItsWalks) {
+  // An engine's library: the walk's root carries the translation alone (folded at import, its
+  // root kept to write back, the IK helper dropped); a pose held still does not travel, so
+  // it is not folded there. The library reads it from the walk's body joint down, its root
+  // kept to write back as the walk's is, every joint where its file has it.
+  TempFolder folder("held");
+  const Clip walk = test::load_data_clip("cmu/16/16_15.amc");
+  Clip pose = walk;
+  pose.motion = walk.motion.slice(40, 60);
+  for (int f = 1; f < pose.motion.frame_count; ++f) {
+    for (int j = 0; j < walk.skeleton.joint_count(); ++j) pose.motion.rotations(f)[j] = pose.motion.rotations(0)[j];
+    pose.motion.translations(f)[0] = pose.motion.translations(0)[0];
+  }
+  const Clip engine_walk = test::translation_root_clip(walk, Quat::Identity(), 0.0, true);
+  const Clip engine_pose = test::translation_root_clip(pose, Quat::Identity(), 0.0, true);
+  const std::string walk_file =
+      folder.write("a.bvh", write_bvh(engine_walk.skeleton, engine_walk.motion, BvhWriteSettings{}));
+  const std::string pose_file =
+      folder.write("b.bvh", write_bvh(engine_pose.skeleton, engine_pose.motion, BvhWriteSettings{}));
+  DatabaseSettings settings = cmu_settings();
+  settings.fps = 120.0;
+  for (const bool pose_first : {false, true}) {
+    DatabaseLoadNotes notes;
+    auto db = load_database(pose_first ? std::vector<std::string>{pose_file, walk_file}
+                                       : std::vector<std::string>{walk_file, pose_file},
+                            settings, &notes);
+    ASSERT_TRUE(db) << db.error().to_string();
+    ASSERT_EQ(db->skeletons.size(), 2u);
+    for (const Skeleton& skeleton : db->skeletons) {
+      EXPECT_EQ(skeleton.joint(0).name, "root");
+      ASSERT_EQ(skeleton.static_ancestors().size(), 1u);
+      EXPECT_EQ(skeleton.static_ancestors()[0].name, "root_motion");
+      EXPECT_FALSE(skeleton.find("ik_foot_l"));
+    }
+    ASSERT_EQ(notes.folded_roots.size(), 1u);
+    EXPECT_EQ(notes.folded_roots[0].skeleton, walk_file);
+    EXPECT_EQ(notes.folded_roots[0].dropped, std::vector<std::string>{"ik_foot_l"});
+    ASSERT_EQ(notes.rerooted.size(), 1u);
+    EXPECT_EQ(notes.rerooted[0].skeleton, pose_file);
+    EXPECT_EQ(notes.rerooted[0].dropped, std::vector<std::string>{"ik_foot_l"});
+    const DatabaseClip& held = db->clips[pose_first ? 0 : 1];
+    Clip read;
+    read.name = held.name;
+    read.skeleton = db->skeletons[static_cast<size_t>(held.skeleton)];
+    read.motion = held.motion;
+    EXPECT_LT(test::max_apart(read, pose), 1e-4);  // the BVH text's rounding
   }
 }
 

@@ -80,4 +80,47 @@ std::string static_root_bvh(const Clip& clip, const Vec3& root_translation_m, co
   return out;
 }
 
+Clip translation_root_clip(const Clip& walk, const Quat& turn, double yaw_per_frame, bool ik) {
+  std::vector<JointDef> joints;
+  JointDef top;
+  top.name = "root_motion";
+  top.animated_translation = true;
+  joints.push_back(top);
+  for (const JointDef& joint : walk.skeleton.joints()) {
+    JointDef moved = joint;
+    moved.parent = joint.parent + 1;
+    joints.push_back(moved);
+  }
+  if (ik) {
+    JointDef helper;
+    helper.name = "ik_foot_l";
+    helper.parent = 0;
+    helper.rest_offset_m = Vec3(0.1, 0.0, 0.05);
+    joints.push_back(helper);
+  }
+  Clip out;
+  out.name = walk.name;
+  out.skeleton = Skeleton(std::move(joints));
+  out.motion = Motion(out.skeleton, walk.motion.frame_count, walk.motion.fps);
+  for (int f = 0; f < walk.motion.frame_count; ++f) {
+    const Vec3 hips = walk.motion.translations(f)[0];
+    const Quat hips_rotation = walk.motion.rotations(f)[0];
+    const Quat r = (turn * Quat(Eigen::AngleAxisd(yaw_per_frame * f, Vec3::UnitY()))).normalized();
+    const Vec3 t(hips.x(), 0.0, hips.z());
+    auto rotations = out.motion.rotations(f);
+    auto translations = out.motion.translations(f);
+    rotations[0] = r;
+    translations[out.skeleton.translation_slot(0)] = t;
+    rotations[1] = (r.conjugate() * hips_rotation).normalized();
+    translations[out.skeleton.translation_slot(1)] = r.conjugate() * (hips - t);
+    for (int j = 1; j < walk.skeleton.joint_count(); ++j) {
+      rotations[j + 1] = walk.motion.rotations(f)[j];
+      const int slot = walk.skeleton.translation_slot(j);
+      if (slot >= 0) translations[out.skeleton.translation_slot(j + 1)] = walk.motion.translations(f)[slot];
+    }
+    if (ik) rotations[out.skeleton.joint_count() - 1] = Quat::Identity();
+  }
+  return out;
+}
+
 }  // namespace mg::test

@@ -1,5 +1,7 @@
 #include "motiongraph/motion/trajectory_joint.h"
 
+#include <numbers>
+
 #include <gtest/gtest.h>
 
 #include "motion/static_root_bvh.h"
@@ -144,6 +146,41 @@ TEST(TrajectoryJoint, AHeldPoseFoldsAsItsRigsTravellingClips) {
   // Already folded, or not the rig: as it is.
   EXPECT_EQ(fold_as(walk, walk.skeleton).skeleton.joint_count(), walk.skeleton.joint_count());
   EXPECT_EQ(fold_as(plain, walk.skeleton).skeleton.joint_count(), plain.skeleton.joint_count());
+}
+
+TEST(TrajectoryJoint, ARootThatTravelsWithoutTurningGivesItsTravelToTheBody) {
+  const Clip walk = test::load_data_clip("cmu/16/16_15.amc");
+  // Turned as a z-up export's root is, once for all frames.
+  const Quat turn(Eigen::AngleAxisd(-0.5 * std::numbers::pi, Vec3::UnitX()));
+  const Clip engine = test::translation_root_clip(walk, turn, 0.0, true);
+  EXPECT_LT(test::max_position_error_by_name(walk, engine), 1e-9);
+  const auto joint = find_trajectory_joint(engine.skeleton, engine.motion, 0.003);
+  ASSERT_TRUE(joint);
+  EXPECT_EQ(engine.skeleton.joint(*joint).name, "root");  // CMU's root, where the legs part
+  const Clip folded = fold_static_root(engine, *joint);
+  ASSERT_EQ(folded.skeleton.joint_count(), walk.skeleton.joint_count());
+  for (int j = 0; j < walk.skeleton.joint_count(); ++j) EXPECT_EQ(folded.skeleton.joint(j).name, walk.skeleton.joint(j).name);
+  EXPECT_LT(test::max_position_error_by_name(walk, folded), 1e-9);
+  EXPECT_EQ(folded.dropped_at_fold, std::vector<std::string>{"ik_foot_l"});
+  ASSERT_EQ(folded.skeleton.static_ancestors().size(), 1u);
+  EXPECT_EQ(folded.skeleton.static_ancestors()[0].name, "root_motion");
+  // The body's joint turns as the walk's root does: the facing is the walk's.
+  for (int f = 0; f < walk.motion.frame_count; f += 40) {
+    EXPECT_LT(folded.motion.rotations(f)[0].angularDistance(walk.motion.rotations(f)[0]), 1e-9) << f;
+  }
+  // Read from a BVH file: folded at import, the helper named.
+  const Clip read = import_bvh(write_bvh(engine.skeleton, engine.motion, BvhWriteSettings{}));
+  EXPECT_EQ(read.skeleton.joint(0).name, "root");
+  EXPECT_EQ(read.dropped_at_fold, std::vector<std::string>{"ik_foot_l"});
+  EXPECT_LT(test::max_position_error_by_name(walk, read), 1e-4);
+
+  // A root that turns says where the body faces (an engine's full root motion): no fold; nor
+  // where the legs part at the root that travels without turning (a CMU root held level).
+  const Clip turning = test::translation_root_clip(walk, turn, 0.01, true);
+  EXPECT_FALSE(find_trajectory_joint(turning.skeleton, turning.motion, 0.003));
+  Clip level = walk;
+  for (int f = 0; f < level.motion.frame_count; ++f) level.motion.rotations(f)[0] = Quat::Identity();
+  EXPECT_FALSE(find_trajectory_joint(level.skeleton, level.motion, 0.003));
 }
 
 TEST(TrajectoryJoint, NoFoldWhenTheRootTravelsOrTheStaticRootHasNoTravellingChild) {

@@ -466,6 +466,19 @@ Status reroot_database(MotionDatabase& db, const std::string& root, std::vector<
   for (size_t s = 0; s < db.skeletons.size(); ++s) {
     const Skeleton skeleton = db.skeletons[s];
     if (skeleton.joint(0).name == root) continue;
+    // The joints above the root, root first: kept to be written back where another skeleton of
+    // the rig has them as its static ancestors (folded at import: trajectory_joint.h).
+    std::vector<std::string> chain;
+    for (int a = skeleton.parent(*skeleton.find(root)); a >= 0; a = skeleton.parent(a)) {
+      chain.insert(chain.begin(), skeleton.joint(a).name);
+    }
+    const bool keep_above = std::any_of(db.skeletons.begin(), db.skeletons.end(), [&](const Skeleton& other) {
+      if (other.joint(0).name != root || other.static_ancestors().size() != chain.size()) return false;
+      for (size_t i = 0; i < chain.size(); ++i) {
+        if (other.static_ancestors()[i].name != chain[i]) return false;
+      }
+      return true;
+    });
     std::optional<Skeleton> rerooted;
     for (DatabaseClip& clip : db.clips) {
       if (clip.skeleton != static_cast<int>(s)) continue;
@@ -473,16 +486,18 @@ Status reroot_database(MotionDatabase& db, const std::string& root, std::vector<
       whole.name = clip.name;
       whole.skeleton = skeleton;
       whole.motion = std::move(clip.motion);
-      auto out = reroot_at(whole, root);
+      auto out = reroot_at(whole, root, keep_above);
       if (!out) return Error{clip.source, 0, out.error().message};
       clip.motion = std::move(out->motion);
       if (!rerooted) rerooted = std::move(out->skeleton);
     }
     if (!rerooted) continue;
-    DatabaseLoadNotes::Rerooted note{db.skeleton_names[s], root, {}, 0};
-    const int at = *skeleton.find(root);
-    for (int a = skeleton.parent(at); a >= 0; a = skeleton.parent(a)) note.above.insert(note.above.begin(), skeleton.joint(a).name);
-    note.dropped = skeleton.joint_count() - rerooted->joint_count() - static_cast<int>(note.above.size());
+    DatabaseLoadNotes::Rerooted note{db.skeleton_names[s], root, chain, {}};
+    for (const JointDef& joint : skeleton.joints()) {
+      const bool kept = rerooted->find(joint.name).has_value();
+      const bool above = std::find(note.above.begin(), note.above.end(), joint.name) != note.above.end();
+      if (!kept && !above && !joint.end_site) note.dropped.push_back(joint.name);
+    }
     notes.push_back(std::move(note));
     db.skeletons[s] = std::move(*rerooted);
   }
@@ -542,7 +557,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
   int next_frame = 0;
   std::vector<std::pair<size_t, UpAxisChoice>> chosen_up_axes;  // spec index, its own choice
   std::optional<Error> other_joints;  // the first skeleton whose joints differ from the first's
-  std::set<std::string> noted_units, noted_up_axes, noted_travels;  // files
+  std::set<std::string> noted_units, noted_up_axes, noted_travels, noted_folds;  // files
   std::optional<Skeleton> first_skeleton;  // the first clip's, as read (all its joints)
   std::vector<DescribedClip> described;    // clips tagged by their CMU descriptions
   for (size_t spec_index = 0; spec_index < specs.size(); ++spec_index) {
@@ -573,6 +588,11 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     }
     if (notes && loaded->clip.detected_up_axis && noted_up_axes.insert(spec.path).second) {
       notes->detected_up_axes.push_back({spec.path, *loaded->clip.detected_up_axis, std::nullopt});
+    }
+    if (notes && !loaded->clip.dropped_at_fold.empty() && noted_folds.insert(spec.path).second) {
+      DatabaseLoadNotes::Rerooted fold{spec.path, loaded->clip.skeleton.joint(0).name, {}, loaded->clip.dropped_at_fold};
+      for (const StaticAncestor& a : loaded->clip.skeleton.static_ancestors()) fold.above.push_back(a.name);
+      notes->folded_roots.push_back(std::move(fold));
     }
     if (notes && loaded->clip.in_place && loaded->clip.in_place->recovered &&
         noted_travels.insert(spec.path).second) {
@@ -857,15 +877,36 @@ std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes) {
                                 notes.common_joints.size(), listed(names, kShown), names.size(),
                                 names.size() == 1 ? "" : "s", listed(files, 2)));
   }
+  const auto hanging_off = [](const DatabaseLoadNotes::Rerooted& r) {
+    if (r.dropped.empty()) return std::string();
+    constexpr size_t kShown = 4;
+    const std::vector<std::string> shown(r.dropped.begin(), r.dropped.begin() + static_cast<long>(std::min(kShown, r.dropped.size())));
+    return fmt::format("; dropped {}{}, which hung off {}", fmt::join(shown, ", "),
+                       r.dropped.size() > kShown ? fmt::format(" and {} more", r.dropped.size() - kShown) : "",
+                       r.above.size() == 1 ? "it" : "them");
+  };
   for (const auto& r : notes.rerooted) {
-    lines.push_back(fmt::format("{}: read from '{}' down, the root of the library's other rigs: the motion of {} above "
+    lines.push_back(fmt::format("{}: read from '{}' down, the root of the library's other rigs: the motion of '{}' above "
                                 "it is composed into it{}",
-                                r.skeleton, r.root,
-                                fmt::format("'{}'", fmt::join(r.above, "', '")),
-                                r.dropped > 0 ? fmt::format(", and the {} joint{} hanging off {} dropped", r.dropped,
-                                                            r.dropped == 1 ? "" : "s",
-                                                            r.above.size() == 1 ? "it" : "them")
-                                              : std::string()));
+                                r.skeleton, r.root, fmt::join(r.above, "', '"), hanging_off(r)));
+  }
+  // Files of one rig folded alike: one line for them all.
+  std::vector<std::pair<const DatabaseLoadNotes::Rerooted*, std::vector<std::string>>> alike;
+  for (const auto& r : notes.folded_roots) {
+    auto same = std::find_if(alike.begin(), alike.end(), [&](const auto& a) {
+      return a.first->root == r.root && a.first->above == r.above && a.first->dropped == r.dropped;
+    });
+    if (same == alike.end()) same = alike.insert(alike.end(), {&r, {}});
+    same->second.push_back(r.skeleton);
+  }
+  for (const auto& [r, files] : alike) {
+    const std::string who = files.size() == 1 ? files.front()
+                            : files.size() <= 2 ? fmt::format("{} and {}", files[0], files[1])
+                                                : fmt::format("{}, {} and {} more", files[0], files[1], files.size() - 2);
+    lines.push_back(fmt::format("{}: {} root '{}' travels without turning (an engine's root motion), so '{}' below it "
+                                "carries the floor position and facing{}",
+                                who, files.size() == 1 ? "its" : "their", fmt::join(r->above, "', '"), r->root,
+                                hanging_off(*r)));
   }
   for (const auto& rig : notes.matched_rigs) {
     std::vector<std::string> parts;

@@ -133,9 +133,13 @@ struct DatabaseLoadNotes {
     std::string skeleton;
     std::string root;                // the joint they start at now
     std::vector<std::string> above;  // the joints composed into it, their root first
-    int dropped = 0;                 // joints that hung off those, dropped
+    std::vector<std::string> dropped;  // joints that hung off those, dropped
   };
   std::vector<Rerooted> rerooted;
+  // Files whose root travels without turning (an engine's root motion) and had joints beside the
+  // body, dropped as the body's joint took the root's travel (motion/trajectory_joint.h): the
+  // skeleton is that file's, the root the body's joint, `above` the folded root.
+  std::vector<Rerooted> folded_roots;
   // Files whose rig is the first file's under other names or in another rest pose
   // (motion/rig_matching.h), read on the first's names and rest pose.
   struct MatchedRig {

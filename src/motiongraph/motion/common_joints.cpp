@@ -75,29 +75,15 @@ std::string shared_root(std::span<const Skeleton> skeletons) {
   return deepest_depth > 0 ? deepest : std::string();
 }
 
-Result<Clip> reroot_at(const Clip& clip, const std::string& root_name) {
-  const Skeleton& skeleton = clip.skeleton;
-  const std::optional<int> root = skeleton.find(root_name);
+Result<Clip> reroot_at(const Clip& clip, const std::string& root_name, bool keep_above) {
+  const std::optional<int> root = clip.skeleton.find(root_name);
   if (!root) return Error{"", 0, fmt::format("the skeleton has no joint '{}'", root_name)};
   if (*root == 0) return clip;
-  // The chain above it and everything below it, in the skeleton's order.
-  std::vector<bool> kept(static_cast<size_t>(skeleton.joint_count()), false);
-  for (int a = *root; a >= 0; a = skeleton.parent(a)) kept[static_cast<size_t>(a)] = true;
-  std::vector<std::string> names;
-  int new_root = -1;
-  for (int j = 0; j < skeleton.joint_count(); ++j) {
-    const int parent = skeleton.parent(j);
-    if (j > *root && parent >= 0 && parent >= *root && kept[static_cast<size_t>(parent)]) kept[static_cast<size_t>(j)] = true;
-    if (!kept[static_cast<size_t>(j)]) continue;
-    if (j == *root) new_root = static_cast<int>(names.size());
-    names.push_back(skeleton.joint(j).name);
+  Clip folded = fold_static_root(clip, *root);
+  if (!keep_above) {  // they moved: gone, not static ones to write back
+    std::vector<JointDef> joints(folded.skeleton.joints().begin(), folded.skeleton.joints().end());
+    folded.skeleton = Skeleton(std::move(joints));
   }
-  auto chain = keep_joints(clip, names);
-  if (!chain) return chain.error();
-  Clip folded = fold_static_root(*chain, new_root);
-  // Its ancestors moved: they are gone, not static ones to write back.
-  std::vector<JointDef> joints(folded.skeleton.joints().begin(), folded.skeleton.joints().end());
-  folded.skeleton = Skeleton(std::move(joints));
   folded.detected_unit = clip.detected_unit;
   folded.detected_up_axis = clip.detected_up_axis;
   folded.in_place = clip.in_place;
@@ -135,6 +121,7 @@ Result<Clip> keep_joints(const Clip& clip, std::span<const std::string> names) {
   out.detected_unit = clip.detected_unit;
   out.detected_up_axis = clip.detected_up_axis;
   out.in_place = clip.in_place;
+  out.dropped_at_fold = clip.dropped_at_fold;
   for (int f = 0; f < clip.motion.frame_count; ++f) {
     const auto rotations = clip.motion.rotations(f);
     const auto translations = clip.motion.translations(f);

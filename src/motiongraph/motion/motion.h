@@ -6,6 +6,7 @@
 #include <memory_resource>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "motiongraph/core/error.h"
@@ -68,6 +69,9 @@ struct Clip {
   std::optional<LengthUnitChoice> detected_unit;  // the unit chosen for a BVH read without one
   std::optional<UpAxisChoice> detected_up_axis;   // the up axis chosen for a file read without one
   std::optional<InPlaceChoice> in_place;          // whether its travel was taken out, and recovered (in_place.h)
+  // Joints that hung off the joints folded away above joint 0 (trajectory_joint.h: an engine's
+  // IK targets beside the hips, under a root that travels without turning), dropped at import.
+  std::vector<std::string> dropped_at_fold;
 };
 
 }  // namespace mg

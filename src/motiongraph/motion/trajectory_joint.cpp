@@ -5,12 +5,16 @@
 #include <numbers>
 
 #include "motiongraph/motion/forward_kinematics.h"
+#include "motiongraph/skeleton/foot_joints.h"
 
 namespace mg {
 
 namespace {
 
 constexpr double kStaticAngleRad = 0.5 * std::numbers::pi / 180.0;
+// A root that travels without turning must leave its first place by this many tolerances (a
+// tenth of the figure's size at kStaticRootFraction): an idle clip's sway is no travel.
+constexpr double kTravelOverTolerance = 50.0;
 
 Vec3 local_translation(const Skeleton& skeleton, const Motion& motion, int frame, int joint) {
   const int slot = skeleton.translation_slot(joint);
@@ -30,6 +34,31 @@ bool is_static(const Skeleton& skeleton, const Motion& motion, int joint, double
   return true;
 }
 
+// The joint below a root that travels without ever turning (an engine's root-motion joint that
+// carries the translation alone): the root's child above both ankles, where the body hangs.
+std::optional<int> body_below_unturning_root(const Skeleton& skeleton, const Motion& motion, double tolerance) {
+  if (!skeleton.joint(0).animated_translation) return std::nullopt;
+  const Quat first_rotation = motion.rotations(0)[0];
+  const Vec3 first_translation = motion.translations(0)[skeleton.translation_slot(0)];
+  bool travels = false;
+  for (int f = 1; f < motion.frame_count; ++f) {
+    if (motion.rotations(f)[0].angularDistance(first_rotation) > kStaticAngleRad) return std::nullopt;
+    const Vec3 moved = first_rotation.conjugate() * (motion.translations(f)[skeleton.translation_slot(0)] - first_translation);
+    travels = travels || moved.lpNorm<Eigen::Infinity>() > kTravelOverTolerance * tolerance;
+  }
+  if (!travels) return std::nullopt;  // jitter, or an idle clip's sway, is no travel
+  const auto feet = find_foot_joints(skeleton);
+  if (!feet) return std::nullopt;
+  std::optional<int> body;
+  for (const int ankle : {feet->left.ankle, feet->right.ankle}) {
+    int child = ankle;
+    while (skeleton.parent(child) > 0) child = skeleton.parent(child);
+    if (child <= 0 || (body && *body != child)) return std::nullopt;  // an ankle at the root, or the legs part there
+    body = child;
+  }
+  return body;
+}
+
 }  // namespace
 
 std::optional<int> find_trajectory_joint(const Skeleton& skeleton, const Motion& motion, double tolerance) {
@@ -43,7 +72,9 @@ std::optional<int> find_trajectory_joint(const Skeleton& skeleton, const Motion&
   // Down the chain from the root to the first joint with animated translation.
   int joint = 0;
   do {
-    if (child_count[joint] != 1 || !is_static(skeleton, motion, joint, tolerance)) return std::nullopt;
+    if (child_count[joint] != 1 || !is_static(skeleton, motion, joint, tolerance)) {
+      return joint == 0 ? body_below_unturning_root(skeleton, motion, tolerance) : std::nullopt;
+    }
     joint = only_child[joint];
     if (skeleton.joint(joint).end_site) return std::nullopt;
   } while (!skeleton.joint(joint).animated_translation);
@@ -94,19 +125,32 @@ Clip fold_static_root(const Clip& clip, int trajectory_joint) {
                                        joint.animated_translation, joint.euler_order});
   }
 
-  // Joints from the trajectory joint on (all of them below it: the chain has one child each).
-  const int removed = static_cast<int>(chain.size());
+  // The trajectory joint and the joints below it; those hanging off the chain are dropped.
+  std::vector<int> new_index(static_cast<size_t>(old_count), -1);
+  std::vector<int> kept;
+  std::vector<std::string> dropped;
   std::vector<JointDef> joints;
-  for (int j = trajectory_joint; j < old_count; ++j) {
+  for (int j = 0; j < old_count; ++j) {
+    const int parent = skeleton.parent(j);
+    const bool below = j == trajectory_joint || (j > trajectory_joint && new_index[static_cast<size_t>(parent)] >= 0);
+    if (!below) {
+      if (std::find(chain.begin(), chain.end(), j) == chain.end() && !skeleton.joint(j).end_site) {
+        dropped.push_back(skeleton.joint(j).name);
+      }
+      continue;
+    }
+    new_index[static_cast<size_t>(j)] = static_cast<int>(joints.size());
+    kept.push_back(j);
     JointDef joint = skeleton.joint(j);
-    joint.parent = j == trajectory_joint ? -1 : joint.parent - removed;
+    joint.parent = j == trajectory_joint ? -1 : new_index[static_cast<size_t>(parent)];
     if (j == trajectory_joint) joint.animated_translation = true;  // its world position, frame by frame
-    assert(j == trajectory_joint || joint.parent >= 0);
     joints.push_back(std::move(joint));
   }
   Clip folded;
   folded.name = clip.name;
   folded.dropped_leading_frames = clip.dropped_leading_frames;
+  folded.dropped_at_fold = clip.dropped_at_fold;
+  folded.dropped_at_fold.insert(folded.dropped_at_fold.end(), dropped.begin(), dropped.end());
   folded.skeleton = Skeleton(std::move(joints), std::move(ancestors));
   folded.motion = Motion(folded.skeleton, motion.frame_count, motion.fps);
 
@@ -119,8 +163,9 @@ Clip fold_static_root(const Clip& clip, int trajectory_joint) {
     auto out_translations = folded.motion.translations(f);
     const auto in_rotations = motion.rotations(f);
     const auto in_translations = motion.translations(f);
-    for (int j = trajectory_joint; j < old_count; ++j) {
-      const int target = j - removed;
+    for (size_t k = 0; k < kept.size(); ++k) {
+      const int j = kept[k];
+      const int target = static_cast<int>(k);
       out_rotations[target] = j == trajectory_joint ? rotations[j].normalized() : in_rotations[j];
       const int slot = folded.skeleton.translation_slot(target);
       if (slot < 0) continue;
@@ -156,6 +201,7 @@ Clip unfold_static_root(const Clip& clip) {
   unfolded.detected_unit = clip.detected_unit;
   unfolded.detected_up_axis = clip.detected_up_axis;
   unfolded.in_place = clip.in_place;
+  unfolded.dropped_at_fold = clip.dropped_at_fold;  // not restored
   unfolded.skeleton = Skeleton(std::move(joints));
   const Motion& motion = clip.motion;
   unfolded.motion = Motion(unfolded.skeleton, motion.frame_count, motion.fps);

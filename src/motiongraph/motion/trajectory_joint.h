@@ -14,6 +14,12 @@
 // the trajectory joint is the first joint below the root with animated translation, and over
 // the clip the chain's local translations stay within `tolerance` (and its rotations within
 // 0.5 degrees) while the trajectory joint's world position moves further than `tolerance`.
+// Also when the root travels (by 50 tolerances) without ever turning (its rotation within 0.5
+// degrees of its first frame's): an engine's root motion that carries the translation alone,
+// whose rotation says nothing of where the body faces. Then the root's child above both ankles
+// (found by name) is the trajectory joint, and joints hanging off the root beside it (an
+// engine's IK targets) are dropped (Clip::dropped_at_fold). Not where the legs part at the
+// root itself.
 // Lengths in the clip's units (file units at import: the tolerance is relative to the figure).
 #pragma once
 
