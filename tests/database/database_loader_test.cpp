@@ -690,6 +690,27 @@ TEST(DatabaseLoader, AHeldPoseOfARigWhoseRootTravelsWithoutTurningJoinsItsWalks)
   }
 }
 
+TEST(DatabaseLoader, OneRigUnderOtherNamesInGltfAndBvhIsMatched) {
+  // The same rig written to glTF (its end sites nodes among the joints) and, under a prefix
+  // an exporter adds, to BVH (its End Sites last): one hierarchy, matched joint by joint.
+  TempFolder folder("formats");
+  const Clip walk = test::load_data_clip("cmu/16/16_15.amc");
+  const Clip other = test::load_data_clip("cmu/16/16_16.amc");
+  auto glb = write_glb(walk.skeleton, walk.motion, "walk");
+  ASSERT_TRUE(glb) << glb.error().to_string();
+  const std::string glb_file = folder.write("a.glb", *glb);
+  std::vector<JointDef> prefixed(other.skeleton.joints().begin(), other.skeleton.joints().end());
+  for (JointDef& joint : prefixed) joint.name = "mixamorig:" + joint.name;
+  const std::string bvh_file =
+      folder.write("b.bvh", write_bvh(Skeleton(prefixed), other.motion, BvhWriteSettings{}));
+  DatabaseLoadNotes notes;
+  auto db = load_database({glb_file, bvh_file}, cmu_settings(), &notes);
+  ASSERT_TRUE(db) << db.error().to_string();
+  ASSERT_EQ(notes.matched_rigs.size(), 1u);
+  EXPECT_EQ(notes.matched_rigs[0].file, bvh_file);
+  EXPECT_EQ(db->skeletons[1].joint(0).name, "root");  // the first's names
+}
+
 TEST(DatabaseLoader, RejectsASkeletonOfOtherJoints) {
   const std::string bvh = test::data_path("bvh/07_01.bvh");
   auto db = load_database({test::data_path("cmu/16"), bvh}, cmu_settings());

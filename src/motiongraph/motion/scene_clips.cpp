@@ -346,7 +346,7 @@ Result<std::vector<Clip>> clips_from_scene(const NodeScene& scene, const std::st
   if (scene.animations.empty()) return Error{file, 0, fmt::format("the {} file has no animation", scene.format)};
   auto laid = layout_of(scene, file);
   if (!laid) return laid.error();
-  const Layout& layout = *laid;
+  Layout& layout = *laid;  // its joint order settled below (end sites last)
   if (layout.moving.empty()) {
     return Error{file, 0, fmt::format("no animation of the {} file moves its skeleton", scene.format)};
   }
@@ -482,6 +482,32 @@ Result<std::vector<Clip>> clips_from_scene(const NodeScene& scene, const std::st
       }
       return false;
     });
+  }
+  // End sites after the joints, as a BVH file's are read (bvh_import.h), so that one rig read
+  // from both has its joints in one order (rig_matching.h compares hierarchies joint by joint).
+  std::vector<int> moved;  // new index -> old
+  for (const bool ends : {false, true}) {
+    for (int j = 0; j < joints; ++j) {
+      if (defs[static_cast<size_t>(j)].end_site == ends) moved.push_back(j);
+    }
+  }
+  if (!std::is_sorted(moved.begin(), moved.end())) {
+    std::vector<int> new_index(static_cast<size_t>(joints));
+    for (int n = 0; n < joints; ++n) new_index[static_cast<size_t>(moved[static_cast<size_t>(n)])] = n;
+    const std::vector<JointDef> old_defs = defs;
+    const std::vector<NodeTrs> old_rest = rest;
+    const std::vector<Quat> old_rest_world = rest_world;
+    const std::vector<int> old_order = layout.order;
+    for (int n = 0; n < joints; ++n) {
+      const size_t old = static_cast<size_t>(moved[static_cast<size_t>(n)]);
+      defs[static_cast<size_t>(n)] = old_defs[old];
+      const int parent = old_defs[old].parent;
+      defs[static_cast<size_t>(n)].parent = parent < 0 ? -1 : new_index[static_cast<size_t>(parent)];
+      rest[static_cast<size_t>(n)] = old_rest[old];
+      rest_world[static_cast<size_t>(n)] = old_rest_world[old];
+      layout.order[static_cast<size_t>(n)] = old_order[old];
+      layout.joint_of[old_order[old]] = n;
+    }
   }
   const Skeleton skeleton(defs);
 
