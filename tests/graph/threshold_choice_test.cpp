@@ -114,7 +114,8 @@ TEST(ThresholdChoice, ChoosesTheLowestThresholdTriedThatReachesTheTarget) {
   EXPECT_DOUBLE_EQ(chosen->target_rate, std::min(5.0, rate(top)));
   EXPECT_TRUE(reaches(point));
   for (size_t i = 0; i < 2; ++i) {
-    EXPECT_DOUBLE_EQ(chosen->targets[i], std::min(0.5, 0.9 * top.tag_coverage[i]));
+    EXPECT_DOUBLE_EQ(chosen->targets[i],
+                     top.tag_coverage[i] < kMinServedShare ? 0.0 : std::min(0.5, 0.9 * top.tag_coverage[i]));
     EXPECT_GE(point.tag_coverage[i], chosen->targets[i]);
   }
   for (const CoveragePoint& p : chosen->curve) {
@@ -255,6 +256,34 @@ TEST(ThresholdChoice, ATypeTheCeilingGivesNothingTakesTheGlobalThreshold) {
   for (const CoveragePoint& p : chosen->curve) {
     EXPECT_EQ(p.tag_thresholds[2], std::min(p.tag_thresholds[0], p.tag_thresholds[1]));
   }
+}
+
+TEST(ThresholdChoice, ATypeTheCeilingServesASliverOfWantsNothing) {
+  // Frames of no motion type: the last 6 of the second walk and of the second run (no graph
+  // plays them) and two in the middle of the first walk (which graphs play, one of them at the
+  // ceiling): a sliver of the 14. Chasing it would hold every type's search until it is met (a
+  // library's "stop"-only frames took all its types to the ceiling); they want nothing.
+  const Fixture& x = fixture();
+  MotionDatabase db = x.db;
+  const int span = 2;
+  const int middle = db.clips[0].first_frame + db.clips[0].frame_count / 2;
+  const int walk_end = db.clips[1].first_frame + db.clips[1].frame_count - 6;
+  const int run_end = db.clips[3].first_frame + db.clips[3].frame_count - 6;
+  db.tag_ranges = {TagRange{0, 0, middle}, TagRange{0, middle + span, walk_end - middle - span},
+                   TagRange{1, db.clips[2].first_frame, run_end - db.clips[2].first_frame}};
+  const ThresholdChoiceSettings choice = half_under_30cm();
+  auto chosen = choose_threshold(db, x.features, x.search, x.settings, choice);
+  ASSERT_TRUE(chosen) << chosen.error().to_string();
+  ASSERT_TRUE(chosen->reached);
+  ASSERT_EQ(chosen->tags, (std::vector<int>{0, 1, kUntaggedClass}));
+  const CoveragePoint& top = chosen->curve.back();  // the ceiling, the highest tried
+  EXPECT_DOUBLE_EQ(top.rms_cm, 30.0);
+  EXPECT_GT(top.tag_coverage[2], 0.0);
+  EXPECT_LT(top.tag_coverage[2], kMinServedShare);
+  EXPECT_EQ(chosen->targets[2], 0.0);
+  ASSERT_EQ(chosen->tag_thresholds.size(), 3u);
+  EXPECT_EQ(chosen->tag_thresholds[2], chosen->threshold);  // the global one
+  EXPECT_LT(chosen->rms_cm, 30.0);
 }
 
 TEST(ThresholdChoice, CoverageIsThatOfTheGraphBuildWrites) {

@@ -154,10 +154,12 @@ Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFe
   // Per-type: one threshold per motion type (levels[i] for out.tags[i]); else one for all.
   const bool per_type = settings.transitions.per_tag_thresholds && !out.tags.empty();
   const size_t n = per_type ? out.tags.size() : 1;
-  // Per type, whether a type takes part: one the ceiling gives nothing (a few frames of no motion
-  // type at clips' ends, a clip too short to leave and come back to) wants nothing, reaches its
-  // target at any threshold and would pull the global threshold, the lowest, down to the grid's
-  // first level; it follows the global one instead.
+  // Per type, whether a type takes part: one the ceiling gives less than kMinServedShare of its
+  // frames (a few frames of no motion type at clips' ends, tagged only "stop"; a clip too short
+  // to leave and come back to) wants nothing: no threshold serves it, and chasing its last frames
+  // would take every type to the ceiling. It reaches its target at any threshold and would pull
+  // the global threshold, the lowest, down to the grid's first level; it follows the global one
+  // instead.
   std::vector<bool> takes_part(n, true);
   auto applied = [&](std::vector<double> levels) {
     double global = std::numeric_limits<double>::infinity();
@@ -196,7 +198,9 @@ Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFe
       out.targets[0] = std::min(choice.coverage, choice.reachable_share * top->coverage);
     } else {
       for (size_t i = 0; i < out.tags.size(); ++i) {
-        out.targets[i] = std::min(choice.coverage, choice.reachable_share * top->tag_coverage[i]);
+        out.targets[i] = top->tag_coverage[i] < kMinServedShare
+                             ? 0.0
+                             : std::min(choice.coverage, choice.reachable_share * top->tag_coverage[i]);
         if (per_type) takes_part[i] = out.targets[i] > 0.0;
       }
     }

@@ -34,9 +34,11 @@
 // targets (all of them while the graph is short of the transition rate), and the bisection
 // moves each type's threshold within its own bracket. The global threshold, which candidates of
 // no motion type and the mixed windows between types pass, is the lowest of them, but for types
-// the ceiling gives no frames at all (a few untagged frames at clips' ends, a clip too short to
-// leave and come back to): they want nothing, and take the global threshold rather than pull it
-// down to the grid's first level. Running's
+// the ceiling gives less than a tenth of their frames (kMinServedShare: a few untagged frames at
+// clips' ends, tagged only "stop"; a clip too short to leave and come back to): no threshold
+// serves them, so they want nothing (in either mode: chasing one frame of 26 took a library's
+// every type to the ceiling), and take the global threshold rather than pull it down to the
+// grid's first level. Running's
 // larger distances then buy running what it needs, and no more: the threshold of a type depends
 // only on the candidates at or below it, so the pruned distance stage gives the exhaustive
 // stage's choice.
@@ -58,6 +60,9 @@ namespace mg {
 double rms_cm_of_distance(double distance, const FrameFeatures& features);
 double rms_cm_of_distance(double distance, double window_weight);
 double distance_of_rms_cm(double rms_cm, const FrameFeatures& features);
+
+// A motion type the ceiling keeps less of than this share of its frames wants nothing (above).
+inline constexpr double kMinServedShare = 0.1;
 
 struct ThresholdChoiceSettings {
   double coverage = 0.7;        // share of each motion type's frames the pruned graph keeps
