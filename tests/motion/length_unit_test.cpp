@@ -65,6 +65,12 @@ TEST(LengthUnit, TheSizeScalesWithTheLengthsAndSurvivesATPose) {
   const double rest_size = figure_size(rest.skeleton, rest.motion);
   EXPECT_GT(rest_size, 1.4);
   EXPECT_LT(rest_size, 2.2);
+  // A skeleton without frames is its rest pose: the same size (a BVH of a skeleton alone).
+  Clip none = clip;
+  none.motion = clip.motion.slice(0, 0);
+  EXPECT_NEAR(figure_size(none.skeleton, none.motion), rest_size, 1e-9);
+  scale_lengths(none, 100.0);
+  EXPECT_EQ(choose_length_unit(figure_size(none.skeleton, none.motion)).unit.name, "cm");
 }
 
 TEST(LengthUnit, AStaticRootFileInMillimetresOrInchesIsReadInThem) {

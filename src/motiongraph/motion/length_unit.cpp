@@ -59,6 +59,13 @@ double median_of(std::vector<double> values) {
 }
 
 double figure_size(const Skeleton& skeleton, const Motion& motion) {
+  if (motion.frame_count == 0 && skeleton.joint_count() > 0) {  // a skeleton alone: its rest pose
+    Motion rest(skeleton, 1, motion.fps);
+    for (size_t slot = 0; slot < skeleton.translated_joints().size(); ++slot) {
+      rest.local_translations_m[slot] = skeleton.joint(skeleton.translated_joints()[slot]).rest_offset_m;
+    }
+    return figure_size(skeleton, rest);
+  }
   std::vector<double> sizes;
   for (const Vec3& extent : frame_extents(skeleton, motion)) sizes.push_back(extent.maxCoeff());
   return median_of(std::move(sizes));

@@ -26,7 +26,8 @@ constexpr double kTypicalHeightM = 1.7;
 constexpr double kPlausibleHeightMinM = 0.9;
 constexpr double kPlausibleHeightMaxM = 2.6;
 
-// The figure's size in the units of its skeleton and motion (see above); 0 without frames.
+// The figure's size in the units of its skeleton and motion (see above); without frames, its
+// rest pose's (a BVH of a skeleton alone).
 double figure_size(const Skeleton& skeleton, const Motion& motion);
 // The same from world positions already computed: frames x joint_count, frame-major.
 double figure_size(std::span<const Vec3> world_positions, int joint_count);
