@@ -74,7 +74,7 @@ int run_library_info(const std::vector<std::string>& inputs, const LibraryInfoOp
   for (size_t c = 0; c < db.clips.size(); ++c) {
     const DatabaseClip& clip = db.clips[c];
     fmt::print("  {:<{}}  {:>7}  {:>7.2f}  {:>6.2f} m  {}\n", clip.name, width, clip.frame_count,
-               clip.frame_count / db.fps, summary.clip_travel_m[c],
+               std::max(0, clip.frame_count - 1) / db.fps, summary.clip_travel_m[c],
                clip_tags_text(summary.clip_tags[c], clip.frame_count));
   }
   return 0;

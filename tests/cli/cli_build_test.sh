@@ -367,6 +367,7 @@ grep "^$data/cmu/16: library of 15 clips, 1235 frames at 30 fps (41.2 s)" "$work
   || { echo "FAIL: info on a folder"; cat "$work/lib.txt"; exit 1; }
 "$bin" info --json "$data/cmu/16" >"$work/lib.json"
 "$bin" info --json --fps 120 "$data/cmu/16" >"$work/lib120.json"
+"$bin" info --json "$data/cmu/16/16.asf" "$data/cmu/16/16_15.amc" >"$work/file15.json"
 cat >"$work/db.toml" <<EOF
 skeleton = "$data/cmu/16/16.asf"
 [[clip]]
@@ -387,7 +388,7 @@ grep -E "^  walk_middle +[0-9]+ +[0-9.]+ +[0-9.]+ m  walk, start 0-[0-9]+, stead
   >/dev/null && grep "tags:     run 1 clip .*none 1 clip" "$work/manifest.txt" >/dev/null \
   || { echo "FAIL: info on a manifest"; cat "$work/manifest.txt"; exit 1; }
 "$bin" info --json "$work/db.toml" >"$work/manifest.json"
-python3 - "$work/lib.json" "$work/r.json" "$work/lib120.json" "$work/manifest.json" <<'PY'
+python3 - "$work/lib.json" "$work/r.json" "$work/lib120.json" "$work/manifest.json" "$work/file15.json" <<'PY'
 import json, sys
 lib, report, lib120, manifest = (json.load(open(p)) for p in sys.argv[1:5])
 added = ("duration_s", "root_path_m", "tag_ranges")
@@ -413,6 +414,10 @@ for c in lib["clips"]:   # the walks travel metres, the jumps less
             assert whole, (c, r)
     assert ("walk" in c["tags"]) <= (c["root_path_m"] > 1.0), c
 assert lib120["fps"] == 120 and lib120["frames"] == 4920, (lib120["fps"], lib120["frames"])
+# A clip lasts as long in the library read at its rate as its file says (first frame to last).
+file15 = [e for e in json.load(open(sys.argv[5])) if e["format"] == "amc"][0]
+lib15 = [c for c in lib120["clips"] if c["name"] == "16_15"][0]
+assert lib15["frames"] == file15["frames"] and abs(lib15["duration_s"] - file15["duration_s"]) < 1e-9, (lib15, file15)
 walk, run, untagged = manifest["clips"]
 ranges = {r["tag"]: r for r in walk["tag_ranges"]}
 assert ranges["walk"]["first_frame"] == 0 and ranges["walk"]["frames"] == walk["frames"], ranges

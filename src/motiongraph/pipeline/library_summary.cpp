@@ -163,7 +163,7 @@ nlohmann::json library_summary_json(std::span<const std::string> inputs, const M
     for (const ClipTagRun& run : summary.clip_tags[c]) {
       ranges.push_back({{"tag", run.tag}, {"first_frame", run.first_frame}, {"frames", run.frame_count}});
     }
-    clips[c]["duration_s"] = db.clips[c].frame_count / db.fps;
+    clips[c]["duration_s"] = std::max(0, db.clips[c].frame_count - 1) / db.fps;  // as a file's: first frame to last
     clips[c]["root_path_m"] = summary.clip_travel_m[c];
     clips[c]["tag_ranges"] = std::move(ranges);
   }
