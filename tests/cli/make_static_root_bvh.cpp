@@ -1,4 +1,4 @@
-// make_static_root_bvh [--z-up] [--in-place] [--lying] [--loop FIRST:PERIOD] OUT_DIR AMC...:
+// make_static_root_bvh [--z-up] [--in-place] [--lying] [--loop FIRST:PERIOD] [--translation-root] OUT_DIR AMC...:
 // writes each clip (AMC with
 // the .asf beside it) as OUT_DIR/<stem>.bvh in a Bandai-like rig (tests/motion/static_root_bvh.h):
 // a static root at the origin above the hips, 6 channels per joint, centimetres; with --z-up,
@@ -6,7 +6,10 @@
 // over the floor taken out (x and z), as "in place" exports do; with --lying, the figure tipped
 // to lie along z (a crawl, say) before any turn, its rest pose standing; with --loop, resampled to
 // 30 fps and cut to one cycle of PERIOD frames from FIRST made a loop (tests/motion/cycle_loop.h),
-// as a game's walk or run cycle is. For cli_static_root_test.sh.
+// as a game's walk or run cycle is; with --translation-root, instead an engine's root motion
+// carrying the translation alone (tests/motion/static_root_bvh.h translation_root_clip: a root
+// that travels without turning, an IK helper hanging off it), in metres. For
+// cli_static_root_test.sh.
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -14,13 +17,14 @@
 
 #include "motion/cycle_loop.h"
 #include "motion/static_root_bvh.h"
+#include "motiongraph/export/bvh_writer.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/resample.h"
 #include "motiongraph/motion/up_axis.h"
 
 int main(int argc, char** argv) {
-  bool z_up = false, in_place = false, lying = false;
+  bool z_up = false, in_place = false, lying = false, translation_root = false;
   int loop_first = -1, loop_period = 0;
   int first = 1;
   for (; first < argc && std::string(argv[first]).starts_with("--"); ++first) {
@@ -31,6 +35,8 @@ int main(int argc, char** argv) {
       in_place = true;
     } else if (flag == "--lying") {
       lying = true;
+    } else if (flag == "--translation-root") {
+      translation_root = true;
     } else if (flag == "--loop" && first + 1 < argc &&
                std::sscanf(argv[first + 1], "%d:%d", &loop_first, &loop_period) == 2) {
       ++first;
@@ -39,8 +45,8 @@ int main(int argc, char** argv) {
     }
   }
   if (argc < first + 2) {
-    std::fprintf(stderr, "usage: make_static_root_bvh [--z-up] [--in-place] [--lying] [--loop FIRST:PERIOD] OUT_DIR "
-                         "AMC...\n");
+    std::fprintf(stderr, "usage: make_static_root_bvh [--z-up] [--in-place] [--lying] [--loop FIRST:PERIOD] "
+                         "[--translation-root] OUT_DIR AMC...\n");
     return 2;
   }
   mg::ClipLoadSettings load;
@@ -83,7 +89,12 @@ int main(int argc, char** argv) {
       }
       if (z_up) mg::turn_clip(loaded->clip, mg::up_axis_to_y(mg::UpAxis::kZ).conjugate());
       const auto out = std::filesystem::path(argv[first]) / (std::filesystem::path(argv[i]).stem().string() + ".bvh");
-      written = mg::write_file_atomic(out.string(), mg::test::static_root_bvh(loaded->clip));
+      if (translation_root) {
+        const mg::Clip engine = mg::test::translation_root_clip(loaded->clip, mg::Quat::Identity(), 0.0, true);
+        written = mg::write_file_atomic(out.string(), mg::write_bvh(engine.skeleton, engine.motion, mg::BvhWriteSettings{}));
+      } else {
+        written = mg::write_file_atomic(out.string(), mg::test::static_root_bvh(loaded->clip));
+      }
     }
     if (!loaded || !written) {
       std::fprintf(stderr, "%s\n", (loaded ? written.error() : loaded.error()).to_string().c_str());

@@ -523,9 +523,9 @@ std::optional<std::string> common_joints_fall_short(const MotionDatabase& db, co
                        db.skeletons.front().joint(0).name, other_root(db));
   }
   if (3 * common.size() < 2 * smallest) {
-    return fmt::format("they share {} joints (by name, with the same parent's name), fewer than two thirds of the "
+    return fmt::format("they share {} joint{} (by name, with the same parent's name), fewer than two thirds of the "
                        "smallest skeleton's {}",
-                       common.size(), smallest);
+                       common.size(), common.size() == 1 ? "" : "s", smallest);
   }
   auto feet = find_foot_joints(db.skeletons.front(), db.foot_names);
   if (!feet) return std::nullopt;  // the feet are missing anyway (a warning later), not for want of joints
