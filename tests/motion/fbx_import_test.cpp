@@ -12,6 +12,7 @@
 
 #include "motion/ascii_fbx.h"
 #include "motion/max_apart.h"
+#include "motiongraph/export/fbx_writer.h"
 #include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/motion/resample.h"
 #include "test_data.h"
@@ -136,6 +137,22 @@ TEST_F(FbxImport, NamesAsBlenderWritesThemAndRates) {
   Clip every_other = clips[0];
   every_other.motion = std::move(*back);
   EXPECT_LT(test::max_apart(*walk_, every_other), 1e-5);  // the keys' frames are the keys
+}
+
+TEST_F(FbxImport, KeysOnTheFramesOfTheRateTheFileDeclaresAreReadAtItHoweverSlow) {
+  // Our own FBX at 15 fps (TimeMode custom, CustomFrameRate 15): read back at 15, every key a
+  // frame (keys slower than 24 a second were sampled at 30 where no rate was declared).
+  auto at15 = resample(walk_->motion, 15.0);
+  ASSERT_TRUE(at15);
+  auto bytes = write_fbx(walk_->skeleton, *at15, "walk");
+  ASSERT_TRUE(bytes) << bytes.error().message;
+  const std::vector<Clip> clips = read(*bytes);
+  ASSERT_EQ(clips.size(), 1u);
+  EXPECT_EQ(clips[0].motion.fps, 15.0);
+  EXPECT_EQ(clips[0].motion.frame_count, at15->frame_count);
+  Clip fifteen = *walk_;
+  fifteen.motion = *at15;
+  EXPECT_LT(test::max_apart(fifteen, clips[0]), 1e-4);
 }
 
 TEST_F(FbxImport, UpAxisGivenOverridesTheFiles) {

@@ -288,6 +288,7 @@ Result<NodeScene> scene_of(const aiScene& in, const std::string& file) {
     // Ticks per second: assimp gives FBX's frame rate, and 0 when the file has none (then 25,
     // as assimp's own viewer takes it).
     const double ticks = animation.mTicksPerSecond > 0.0 ? animation.mTicksPerSecond : 25.0;
+    out.declared_fps = animation.mTicksPerSecond > 0.0 ? animation.mTicksPerSecond : 0.0;
     // The channels of each scene node's chain, by raw node.
     std::map<int, std::map<int, std::vector<KeyTrack>>> moved;  // scene node -> raw node -> tracks
     for (unsigned c = 0; c < animation.mNumChannels && out.error.empty(); ++c) {

@@ -120,8 +120,9 @@ struct KeyRate {
 // keys, to 10 microseconds, snapped to a whole rate), sampled on the keys themselves where they
 // lie a little off the snapped rate's frames (Blender's FBX keys 30.0003 a second); keys off any
 // such grid (tracks keyed at different times) or slower than 24 a second (keys far apart, a curve
-// between them) are sampled at 30 fps or their rate, whichever is higher.
-KeyRate key_rate(const std::vector<const KeyTrack*>& tracks) {
+// between them) are sampled at 30 fps or their rate, whichever is higher, unless the file
+// declares that rate (`declared_fps`, FBX's; 0: none) and they lie on its frames.
+KeyRate key_rate(const std::vector<const KeyTrack*>& tracks, double declared_fps) {
   std::map<long long, std::vector<double>> steps;
   for (const KeyTrack* track : tracks) {
     if (const double step = even_step(track->times); step > 0.0) {
@@ -140,7 +141,6 @@ KeyRate key_rate(const std::vector<const KeyTrack*>& tracks) {
   std::nth_element(bin.begin(), bin.begin() + static_cast<long>(bin.size() / 2), bin.end());
   const double median = bin[bin.size() / 2];
   const double fps = fps_from_frame_time(median);
-  if (fps < 24.0) return {};
   double first = std::numeric_limits<double>::infinity(), last = -first;
   for (const KeyTrack* track : tracks) {
     first = std::min(first, track->times.front());
@@ -155,6 +155,11 @@ KeyRate key_rate(const std::vector<const KeyTrack*>& tracks) {
     }
     return true;
   };
+  // Keys every frame of the rate the file declares are read at it however slow (but for a rate
+  // under 5 a second: no frame rate; assimp gives 1 for FBX's default time mode).
+  const bool declared = declared_fps >= 5.0 && std::abs(fps - declared_fps) < 1e-3 * declared_fps &&
+                        on_grid(1.0 / declared_fps);
+  if (fps < 24.0 && !declared) return {};
   if (on_grid(1.0 / fps)) return {fps, 1.0 / fps};
   // The keys' own step, from their whole span (exact where the median of float keys is not).
   const double span = last - first;
@@ -549,7 +554,7 @@ Result<std::vector<Clip>> clips_from_scene(const NodeScene& scene, const std::st
     }
     if (!std::isfinite(first)) first = last = 0.0;
     const KeyRate rate = settings.fps_override > 0.0 ? KeyRate{settings.fps_override, 1.0 / settings.fps_override}
-                                                      : key_rate(moving);
+                                                      : key_rate(moving, scene.animations[layout.moving[i]].declared_fps);
     const double fps = rate.fps;
     const double span = (last - first) / rate.step;
     poses += (span + 1) * joints;

@@ -92,6 +92,9 @@ struct SceneAnimation {
   std::vector<int> targets;  // the nodes its tracks move (scale included)
   std::map<std::pair<int, TrackPath>, KeyTrack> tracks;
   std::string error;  // not empty: its tracks could not be read (an error if it moves the skeleton)
+  // The frame rate the file declares (FBX's), 0 when it declares none (glTF): keys on its frames
+  // are sampled at it, however slow (keys slower than 24 a second are otherwise sampled at 30).
+  double declared_fps = 0.0;
 };
 
 struct NodeScene {
