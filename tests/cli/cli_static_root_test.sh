@@ -224,6 +224,9 @@ mkdir "$work/engine"
   && grep -q "16_11.bvh, .*16_13.bvh and 4 more: their root 'root_motion' travels without turning (an engine's root \
 motion), so 'root' below it carries the floor position and facing; dropped ik_foot_l, which hung off it" "$work/engine.err" \
   || { echo "FAIL: a root travelling without turning"; cat "$work/engine.err"; exit 1; }
+# Its clips are one rig: one .glb holds two of them (the travelling root written back at the origin).
+"$bin" convert "$work/engine/16_11.bvh" "$work/engine/16_13.bvh" -o "$work/engine-set.glb" 2>"$work/engine-set.err" \
+  || { echo "FAIL: two clips of an engine rig in one .glb"; cat "$work/engine-set.err"; exit 1; }
 printf '{"duration_s": 10, "controls": [{"at_s": 0, "heading": "north", "tag": "walk"}, {"at_s": 4, "heading_deg": 90}]}\n' \
   >"$work/north-east.json"
 "$bin" steer "$work/engine.mgraph" --script "$work/north-east.json" -o "$work/engine-steer.json" >/dev/null 2>&1

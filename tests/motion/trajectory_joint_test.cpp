@@ -183,6 +183,65 @@ TEST(TrajectoryJoint, ARootThatTravelsWithoutTurningGivesItsTravelToTheBody) {
   EXPECT_FALSE(find_trajectory_joint(level.skeleton, level.motion, 0.003));
 }
 
+// The clip with its last joint (a leaf hanging off the root) moved to index 1, before the body,
+// as an engine may list its IK targets.
+Clip last_joint_first(const Clip& clip) {
+  const int n = clip.skeleton.joint_count();
+  std::vector<int> old_of = {0, n - 1};  // new index -> old
+  for (int j = 1; j < n - 1; ++j) old_of.push_back(j);
+  std::vector<int> new_of(static_cast<size_t>(n));
+  for (int k = 0; k < n; ++k) new_of[static_cast<size_t>(old_of[static_cast<size_t>(k)])] = k;
+  std::vector<JointDef> joints;
+  for (int k = 0; k < n; ++k) {
+    JointDef joint = clip.skeleton.joint(old_of[static_cast<size_t>(k)]);
+    if (joint.parent >= 0) joint.parent = new_of[static_cast<size_t>(joint.parent)];
+    joints.push_back(joint);
+  }
+  Clip out = clip;
+  out.skeleton = Skeleton(std::move(joints));
+  out.motion = Motion(out.skeleton, clip.motion.frame_count, clip.motion.fps);
+  for (int f = 0; f < clip.motion.frame_count; ++f) {
+    for (int k = 0; k < n; ++k) {
+      const int j = old_of[static_cast<size_t>(k)];
+      out.motion.rotations(f)[k] = clip.motion.rotations(f)[j];
+      const int slot = out.skeleton.translation_slot(k);
+      if (slot >= 0) out.motion.translations(f)[slot] = clip.motion.translations(f)[clip.skeleton.translation_slot(j)];
+    }
+  }
+  return out;
+}
+
+// A held pose of a rig whose root travels without turning (not folded: it does not travel) is
+// folded as its walks are, whatever the order of the joints beside the body, with their
+// ancestors: the two share one skeleton to write (a .glb of both).
+TEST(TrajectoryJoint, AHeldPoseFoldsAsItsRigsWalksWhateverItsJointsOrder) {
+  const Clip walk = test::load_data_clip("cmu/16/16_15.amc");
+  Clip pose = walk;
+  pose.motion = walk.motion.slice(40, 5);
+  for (int f = 1; f < pose.motion.frame_count; ++f) {
+    for (int j = 0; j < walk.skeleton.joint_count(); ++j) pose.motion.rotations(f)[j] = pose.motion.rotations(0)[j];
+    pose.motion.translations(f)[0] = pose.motion.translations(0)[0];
+  }
+  const Clip engine = test::translation_root_clip(walk, Quat::Identity(), 0.0, true);
+  const Clip folded = fold_static_root(engine, *find_trajectory_joint(engine.skeleton, engine.motion, 0.003));
+  // The travelling root is written back at the origin: every walk of the rig has one hierarchy.
+  ASSERT_EQ(folded.skeleton.static_ancestors().size(), 1u);
+  EXPECT_EQ(folded.skeleton.static_ancestors()[0].translation_m, Vec3::Zero());
+  for (const bool helper_first : {false, true}) {
+    Clip held = test::translation_root_clip(pose, Quat::Identity(), 0.0, true);
+    if (helper_first) held = last_joint_first(held);
+    ASSERT_FALSE(find_trajectory_joint(held.skeleton, held.motion, 0.003));
+    const Clip refolded = fold_as(held, folded.skeleton);
+    ASSERT_EQ(refolded.skeleton.joint_count(), folded.skeleton.joint_count()) << helper_first;
+    for (int j = 0; j < folded.skeleton.joint_count(); ++j) {
+      EXPECT_EQ(refolded.skeleton.joint(j).name, folded.skeleton.joint(j).name);
+    }
+    ASSERT_EQ(refolded.skeleton.static_ancestors().size(), 1u);
+    EXPECT_EQ(refolded.skeleton.static_ancestors()[0].translation_m, Vec3::Zero());
+    EXPECT_LT(test::max_position_error_by_name(refolded, held), 1e-9);
+  }
+}
+
 TEST(TrajectoryJoint, NoFoldWhenTheRootTravelsOrTheStaticRootHasNoTravellingChild) {
   // CMU data: the root is the hips and travels.
   const Clip plain = test::load_data_clip("cmu/16/16_15.amc");

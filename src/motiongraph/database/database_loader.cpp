@@ -472,13 +472,16 @@ Status reroot_database(MotionDatabase& db, const std::string& root, std::vector<
     for (int a = skeleton.parent(*skeleton.find(root)); a >= 0; a = skeleton.parent(a)) {
       chain.insert(chain.begin(), skeleton.joint(a).name);
     }
-    const bool keep_above = std::any_of(db.skeletons.begin(), db.skeletons.end(), [&](const Skeleton& other) {
+    const auto above_as = std::find_if(db.skeletons.begin(), db.skeletons.end(), [&](const Skeleton& other) {
       if (other.joint(0).name != root || other.static_ancestors().size() != chain.size()) return false;
       for (size_t i = 0; i < chain.size(); ++i) {
         if (other.static_ancestors()[i].name != chain[i]) return false;
       }
       return true;
     });
+    // A copy: db.skeletons changes below.
+    const std::optional<Skeleton> kept_as =
+        above_as == db.skeletons.end() ? std::nullopt : std::optional<Skeleton>(*above_as);
     std::optional<Skeleton> rerooted;
     for (DatabaseClip& clip : db.clips) {
       if (clip.skeleton != static_cast<int>(s)) continue;
@@ -486,7 +489,7 @@ Status reroot_database(MotionDatabase& db, const std::string& root, std::vector<
       whole.name = clip.name;
       whole.skeleton = skeleton;
       whole.motion = std::move(clip.motion);
-      auto out = reroot_at(whole, root, keep_above);
+      auto out = reroot_at(whole, root, kept_as ? &*kept_as : nullptr);
       if (!out) return Error{clip.source, 0, out.error().message};
       clip.motion = std::move(out->motion);
       if (!rerooted) rerooted = std::move(out->skeleton);
@@ -568,6 +571,12 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
       return Error{spec.manifest, spec.animation_line, fmt::format("clip {}: {}", spec.path, loaded.error().message)};
     }
     if (!loaded) return loaded.error();
+    // Folded at import as read (before the library's own rerooting below, which it notes apart).
+    if (notes && !loaded->clip.dropped_at_fold.empty() && noted_folds.insert(spec.path).second) {
+      DatabaseLoadNotes::Rerooted fold{spec.path, loaded->clip.skeleton.joint(0).name, {}, loaded->clip.dropped_at_fold};
+      for (const StaticAncestor& a : loaded->clip.skeleton.static_ancestors()) fold.above.push_back(a.name);
+      notes->folded_roots.push_back(std::move(fold));
+    }
     // Another converter's names on the first skeleton's hierarchy: the first's names.
     if (!first_skeleton) first_skeleton = loaded->clip.skeleton;
     const auto renamed = rename_as_first(loaded->clip, *first_skeleton);
@@ -588,11 +597,6 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     }
     if (notes && loaded->clip.detected_up_axis && noted_up_axes.insert(spec.path).second) {
       notes->detected_up_axes.push_back({spec.path, *loaded->clip.detected_up_axis, std::nullopt});
-    }
-    if (notes && !loaded->clip.dropped_at_fold.empty() && noted_folds.insert(spec.path).second) {
-      DatabaseLoadNotes::Rerooted fold{spec.path, loaded->clip.skeleton.joint(0).name, {}, loaded->clip.dropped_at_fold};
-      for (const StaticAncestor& a : loaded->clip.skeleton.static_ancestors()) fold.above.push_back(a.name);
-      notes->folded_roots.push_back(std::move(fold));
     }
     if (notes && loaded->clip.in_place && loaded->clip.in_place->recovered &&
         noted_travels.insert(spec.path).second) {

@@ -75,18 +75,20 @@ std::string shared_root(std::span<const Skeleton> skeletons) {
   return deepest_depth > 0 ? deepest : std::string();
 }
 
-Result<Clip> reroot_at(const Clip& clip, const std::string& root_name, bool keep_above) {
+Result<Clip> reroot_at(const Clip& clip, const std::string& root_name, const Skeleton* above_as) {
   const std::optional<int> root = clip.skeleton.find(root_name);
   if (!root) return Error{"", 0, fmt::format("the skeleton has no joint '{}'", root_name)};
   if (*root == 0) return clip;
   Clip folded = fold_static_root(clip, *root);
-  if (!keep_above) {  // they moved: gone, not static ones to write back
-    std::vector<JointDef> joints(folded.skeleton.joints().begin(), folded.skeleton.joints().end());
-    folded.skeleton = Skeleton(std::move(joints));
-  }
+  // The joints above: written back as `above_as` has them, or gone (only written back: every
+  // joint stays where it was either way).
+  std::vector<JointDef> joints(folded.skeleton.joints().begin(), folded.skeleton.joints().end());
+  const auto ancestors = above_as ? above_as->static_ancestors() : std::span<const StaticAncestor>();
+  folded.skeleton = Skeleton(std::move(joints), std::vector<StaticAncestor>(ancestors.begin(), ancestors.end()));
   folded.detected_unit = clip.detected_unit;
   folded.detected_up_axis = clip.detected_up_axis;
   folded.in_place = clip.in_place;
+  folded.dropped_at_fold = clip.dropped_at_fold;  // the caller notes what rerooting drops
   return folded;
 }
 

@@ -95,17 +95,24 @@ Clip fold_as(const Clip& clip, const Skeleton& folded) {
   const auto have = clip.skeleton.static_ancestors();
   const auto want = folded.static_ancestors();
   if (have.size() >= want.size()) return clip;
-  const size_t extra = want.size() - have.size();
   const std::optional<int> joint = clip.skeleton.find(folded.joint(0).name);
-  if (!joint || *joint != static_cast<int>(extra)) return clip;
+  if (!joint || *joint == 0) return clip;
+  // The joints above it, root first, after the clip's own ancestors: the ones `folded` has.
+  std::vector<std::string> above;
+  for (const StaticAncestor& a : have) above.push_back(a.name);
+  const size_t own = above.size();
+  for (int a = clip.skeleton.parent(*joint); a >= 0; a = clip.skeleton.parent(a)) {
+    above.insert(above.begin() + static_cast<long>(own), clip.skeleton.joint(a).name);
+  }
+  if (above.size() != want.size()) return clip;
   for (size_t i = 0; i < want.size(); ++i) {
-    const std::string& name = i < have.size() ? have[i].name : clip.skeleton.joint(static_cast<int>(i - have.size())).name;
-    if (name != want[i].name) return clip;
+    if (above[i] != want[i].name) return clip;
   }
-  for (size_t j = 1; j < extra; ++j) {
-    if (clip.skeleton.parent(static_cast<int>(j)) != static_cast<int>(j) - 1) return clip;  // a chain
-  }
-  return fold_static_root(clip, *joint);
+  // The rig's ancestors as `folded` has them (only written back: every joint stays in place).
+  Clip out = fold_static_root(clip, *joint);
+  std::vector<JointDef> joints(out.skeleton.joints().begin(), out.skeleton.joints().end());
+  out.skeleton = Skeleton(std::move(joints), std::vector<StaticAncestor>(want.begin(), want.end()));
+  return out;
 }
 
 Clip fold_static_root(const Clip& clip, int trajectory_joint) {
@@ -121,7 +128,14 @@ Clip fold_static_root(const Clip& clip, int trajectory_joint) {
   std::reverse(chain.begin(), chain.end());
   for (int j : chain) {
     const JointDef& joint = skeleton.joint(j);
-    ancestors.push_back(StaticAncestor{joint.name, local_translation(skeleton, motion, 0, j), motion.rotations(0)[j],
+    // A joint that travels (a root carrying root motion) is written back at the origin, so that
+    // every clip of its rig has one hierarchy; a static one where it stands.
+    const Vec3 first = local_translation(skeleton, motion, 0, j);
+    bool travels = false;
+    for (int f = 1; f < motion.frame_count && !travels; ++f) {
+      travels = (local_translation(skeleton, motion, f, j) - first).norm() > 1e-6 * (1.0 + first.norm());
+    }
+    ancestors.push_back(StaticAncestor{joint.name, travels ? Vec3::Zero() : first, motion.rotations(0)[j],
                                        joint.animated_translation, joint.euler_order});
   }
 

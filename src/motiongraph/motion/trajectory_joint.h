@@ -32,15 +32,18 @@ namespace mg {
 // The joint that would become joint 0 (nullopt when the root itself is the trajectory joint).
 std::optional<int> find_trajectory_joint(const Skeleton& skeleton, const Motion& motion, double tolerance);
 
-// The clip with `trajectory_joint` (from find_trajectory_joint, or any joint whose ancestors
-// form a chain of one child each and whose descendants are the joints after it) as joint 0,
-// with animated translation, as above.
+// The clip with `trajectory_joint` (from find_trajectory_joint, or any joint below the root)
+// as joint 0, with animated translation, as above; the joints hanging off its ancestors beside
+// it are dropped (Clip::dropped_at_fold). Each ancestor keeps its first frame's transform, but a
+// travelling one (a root carrying root motion) is kept at the origin, so that every clip of its
+// rig has one hierarchy to write.
 Clip fold_static_root(const Clip& clip, int trajectory_joint);
 
-// The clip folded as `folded` (a clip of the same rig) is: when the clip's first joints are the
-// ones `folded` has as static ancestors and it did not fold (a held pose, whose hips never
-// travel), it is folded above the joint named as folded's joint 0, so that the two share a
-// skeleton; otherwise the clip as it is.
+// The clip folded as `folded` (a clip of the same rig) is: when the joints above the one named
+// as folded's joint 0 (after the clip's own static ancestors) are the ones `folded` has as
+// static ancestors and it did not fold (a held pose, whose hips never travel), it is folded
+// above that joint, with folded's ancestors, so that the two share a skeleton; otherwise the
+// clip as it is.
 Clip fold_as(const Clip& clip, const Skeleton& folded);
 
 // The inverse: the skeleton's static ancestors as joints again (the root first, each with its
