@@ -157,4 +157,14 @@ Clip with_fingers(const Clip& clip) {
   return out;
 }
 
+Clip held_pose(const Clip& clip, int first, int frames) {
+  Clip pose = clip;
+  pose.motion = clip.motion.slice(first, frames);
+  for (int f = 1; f < pose.motion.frame_count; ++f) {
+    for (int j = 0; j < clip.skeleton.joint_count(); ++j) pose.motion.rotations(f)[j] = pose.motion.rotations(0)[j];
+    pose.motion.translations(f)[0] = pose.motion.translations(0)[0];
+  }
+  return pose;
+}
+
 }  // namespace mg::test

@@ -71,4 +71,8 @@ double max_position_error_by_name(const Clip& a, const Clip& b);
 // rig exported with fingers.
 Clip with_fingers(const Clip& clip);
 
+// Frame `first` of a clip whose root is its only joint with translation, held still for
+// `frames` frames: a pose that never travels.
+Clip held_pose(const Clip& clip, int first, int frames);
+
 }  // namespace mg::test

@@ -648,12 +648,7 @@ TEST(DatabaseLoader, AHeldPoseOfARigWhoseRootTravelsWithoutTurningJoinsItsWalks)
   // kept to write back as the walk's is, every joint where its file has it.
   TempFolder folder("held");
   const Clip walk = test::load_data_clip("cmu/16/16_15.amc");
-  Clip pose = walk;
-  pose.motion = walk.motion.slice(40, 60);
-  for (int f = 1; f < pose.motion.frame_count; ++f) {
-    for (int j = 0; j < walk.skeleton.joint_count(); ++j) pose.motion.rotations(f)[j] = pose.motion.rotations(0)[j];
-    pose.motion.translations(f)[0] = pose.motion.translations(0)[0];
-  }
+  const Clip pose = test::held_pose(walk, 40, 60);
   const Clip engine_walk = test::translation_root_clip(walk, Quat::Identity(), 0.0, true);
   const Clip engine_pose = test::translation_root_clip(pose, Quat::Identity(), 0.0, true);
   const std::string walk_file =

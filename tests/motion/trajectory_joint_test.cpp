@@ -129,12 +129,7 @@ TEST(TrajectoryJoint, AHeldPoseFoldsAsItsRigsTravellingClips) {
   const Clip plain = test::load_data_clip("cmu/16/16_35.amc");
   const Clip walk = import_bvh(test::static_root_bvh(plain, kRoots[1].translation_m, kRoots[1].rotation));
   ASSERT_EQ(walk.skeleton.static_ancestors().size(), 1u);
-  Clip pose = plain;
-  pose.motion = plain.motion.slice(40, 5);
-  for (int f = 1; f < pose.motion.frame_count; ++f) {
-    for (int j = 0; j < plain.skeleton.joint_count(); ++j) pose.motion.rotations(f)[j] = pose.motion.rotations(0)[j];
-    pose.motion.translations(f)[0] = pose.motion.translations(0)[0];
-  }
+  const Clip pose = test::held_pose(plain, 40, 5);
   const Clip held = import_bvh(test::static_root_bvh(pose, kRoots[1].translation_m, kRoots[1].rotation));
   ASSERT_TRUE(held.skeleton.static_ancestors().empty());
   ASSERT_EQ(held.skeleton.joint_count(), walk.skeleton.joint_count() + 1);
@@ -216,12 +211,7 @@ Clip last_joint_first(const Clip& clip) {
 // ancestors: the two share one skeleton to write (a .glb of both).
 TEST(TrajectoryJoint, AHeldPoseFoldsAsItsRigsWalksWhateverItsJointsOrder) {
   const Clip walk = test::load_data_clip("cmu/16/16_15.amc");
-  Clip pose = walk;
-  pose.motion = walk.motion.slice(40, 5);
-  for (int f = 1; f < pose.motion.frame_count; ++f) {
-    for (int j = 0; j < walk.skeleton.joint_count(); ++j) pose.motion.rotations(f)[j] = pose.motion.rotations(0)[j];
-    pose.motion.translations(f)[0] = pose.motion.translations(0)[0];
-  }
+  const Clip pose = test::held_pose(walk, 40, 5);
   const Clip engine = test::translation_root_clip(walk, Quat::Identity(), 0.0, true);
   const Clip folded = fold_static_root(engine, *find_trajectory_joint(engine.skeleton, engine.motion, 0.003));
   // The travelling root is written back at the origin: every walk of the rig has one hierarchy.
