@@ -467,6 +467,30 @@ report, path = (json.load(open(p)) for p in sys.argv[1:3])
 assert [c["name"] for c in report["clips"]] == ["111_36", "131_01"], report["clips"]
 assert path["mean_deviation_m"] < 0.15, path["mean_deviation_m"]
 PY
+# A motion type the ceiling serves a sliver of (a "jump" on the last frames of two walks, which
+# no graph plays, and a few in the middle of one): not chased, and said so.
+cat >"$work/sliver.toml" <<EOF
+skeleton = "$data/cmu/16/16.asf"
+[[clip]]
+file = "$data/cmu/16/16_15.amc"
+tags = ["walk"]
+ranges = [{ first_frame = 448, last_frame = 471, tags = ["jump"] }, { first_frame = 280, last_frame = 287, tags = ["jump"] }]
+[[clip]]
+file = "$data/cmu/16/16_16.amc"
+tags = ["walk"]
+ranges = [{ first_frame = 487, last_frame = 510, tags = ["jump"] }]
+[[clip]]
+file = "$data/cmu/16/16_35.amc"
+tags = ["run"]
+[[clip]]
+file = "$data/cmu/16/16_37.amc"
+tags = ["run"]
+EOF
+"$bin" build "$work/sliver.toml" -o "$work/sliver.mgraph" --cache-dir "$cache" 2>"$work/sliver.err"
+grep -E "warning: motion type 'jump': even the ceiling \(--max-threshold 10 cm\) keeps only [1-9] % of its frames, under \
+10 %, so the threshold does not rise for it" "$work/sliver.err" >/dev/null \
+  && grep -E "jump [0-9] % \(the ceiling keeps [1-9] %: not chased\)" "$work/sliver.err" >/dev/null \
+  || { echo "FAIL: a motion type served a sliver"; cat "$work/sliver.err"; exit 1; }
 # info on them as a folder says how the two rigs became one (not "with the same joints").
 mkdir "$work/rigs" && cp "$data/bvh/111_36.bvh" "$data/bvh/131_01.bvh" "$work/rigs/"
 "$bin" info "$work/rigs" 2>/dev/null | grep -E "^  skeleton: 2 read on the first's joint names and rest pose \(.*111_36.bvh, \

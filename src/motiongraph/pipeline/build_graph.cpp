@@ -231,7 +231,22 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
       kept.push_back(
           fmt::format("{} {:.0f} %", motion_class_name(db, choice->tags[i]), 100.0 * chosen.tag_coverage[i]));
     } else if (choice->targets[i] <= 0.0) {
-      kept.push_back(fmt::format("{} none at any threshold", motion_class_name(db, choice->tags[i])));
+      // The ceiling (the highest point tried) kept none, or too few to chase (kMinServedShare).
+      const double top = choice->curve.empty() ? 0.0 : choice->curve.back().tag_coverage[i];
+      const std::string name = motion_class_name(db, choice->tags[i]);
+      if (top <= 0.0) {
+        kept.push_back(fmt::format("{} none at any threshold", name));
+      } else {
+        kept.push_back(fmt::format("{} {:.0f} % (the ceiling keeps {:.0f} %: not chased)", name,
+                                   100.0 * chosen.tag_coverage[i], 100.0 * top));
+        if (choice->tags[i] != kUntaggedClass) {
+          say.warning(fmt::format("motion type '{}': even the ceiling (--max-threshold {:g} cm) keeps only {:.0f} % of "
+                                  "its frames, under {:.0f} %, so the threshold does not rise for it; the graph keeps "
+                                  "{:.0f} %",
+                                  name, choice_settings.max_rms_cm, 100.0 * top, 100.0 * kMinServedShare,
+                                  100.0 * chosen.tag_coverage[i]));
+        }
+      }
     } else {
       kept.push_back(fmt::format("{} {:.0f} % at {:.2f} cm", motion_class_name(db, choice->tags[i]),
                                  100.0 * chosen.tag_coverage[i],
