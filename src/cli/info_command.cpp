@@ -194,7 +194,8 @@ int run_info(const InfoOptions& options) {
                    loaded->format == "amc" ? loaded->skeleton_path : "");
       }
       fmt::print("  skeleton: {} joints + {} end sites, {} dofs\n", s.joints, s.end_sites, loaded->source_channels);
-      fmt::print("  motion:   {} frames at {:g} fps, {:.2f} s{}\n", s.frames, s.fps, s.duration_s,
+      fmt::print("  motion:   {} frame{} at {:g} fps, {:.2f} s{}\n", s.frames, s.frames == 1 ? "" : "s", s.fps,
+                 s.duration_s,
                  clip.dropped_leading_frames > 0 ? " (leading rest/T-pose frames dropped)" : "");
       fmt::print("  lengths:  {}\n", unit);
       fmt::print("  up:       {}\n", up);

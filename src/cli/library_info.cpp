@@ -52,7 +52,9 @@ int run_library_info(const std::vector<std::string>& inputs, const LibraryInfoOp
     // How the clips came to one skeleton (the warnings above say what was matched or dropped).
     std::vector<std::string> how;
     if (!notes.rerooted.empty()) how.push_back(fmt::format("from '{}' down", notes.rerooted.front().root));
-    if (!notes.dropped_joints.empty()) how.push_back(fmt::format("on the {} joints they share", notes.common_joints.size()));
+    if (!notes.dropped_joints.empty()) {
+      how.push_back(fmt::format("on the {} joints they share", notes.common_joints.size()));
+    }
     if (!notes.matched_rigs.empty()) how.push_back("on the first's joint names and rest pose");
     const std::string read = how.empty() ? "with the same joints" : fmt::format("read {}", fmt::join(how, ", "));
     fmt::print("  skeleton: {} {} ({}{})\n", files.size(), read, fmt::join(named, ", "),

@@ -573,7 +573,8 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     if (!loaded) return loaded.error();
     // Folded at import as read (before the library's own rerooting below, which it notes apart).
     if (notes && !loaded->clip.dropped_at_fold.empty() && noted_folds.insert(spec.path).second) {
-      DatabaseLoadNotes::Rerooted fold{spec.path, loaded->clip.skeleton.joint(0).name, {}, loaded->clip.dropped_at_fold};
+      DatabaseLoadNotes::Rerooted fold{spec.path, loaded->clip.skeleton.joint(0).name, {},
+                                       loaded->clip.dropped_at_fold};
       for (const StaticAncestor& a : loaded->clip.skeleton.static_ancestors()) fold.above.push_back(a.name);
       notes->folded_roots.push_back(std::move(fold));
     }
@@ -884,14 +885,15 @@ std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes) {
   const auto hanging_off = [](const DatabaseLoadNotes::Rerooted& r) {
     if (r.dropped.empty()) return std::string();
     constexpr size_t kShown = 4;
-    const std::vector<std::string> shown(r.dropped.begin(), r.dropped.begin() + static_cast<long>(std::min(kShown, r.dropped.size())));
+    const std::vector<std::string> shown(r.dropped.begin(),
+                                         r.dropped.begin() + static_cast<long>(std::min(kShown, r.dropped.size())));
     return fmt::format("; dropped {}{}, which hung off {}", fmt::join(shown, ", "),
                        r.dropped.size() > kShown ? fmt::format(" and {} more", r.dropped.size() - kShown) : "",
                        r.above.size() == 1 ? "it" : "them");
   };
   for (const auto& r : notes.rerooted) {
-    lines.push_back(fmt::format("{}: read from '{}' down, the root of the library's other rigs: the motion of '{}' above "
-                                "it is composed into it{}",
+    lines.push_back(fmt::format("{}: read from '{}' down, the root of the library's other rigs: the motion of '{}' "
+                                "above it is composed into it{}",
                                 r.skeleton, r.root, fmt::join(r.above, "', '"), hanging_off(r)));
   }
   // Files of one rig folded alike: one line for them all.
@@ -906,7 +908,8 @@ std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes) {
   for (const auto& [r, files] : alike) {
     const std::string who = files.size() == 1 ? files.front()
                             : files.size() <= 2 ? fmt::format("{} and {}", files[0], files[1])
-                                                : fmt::format("{}, {} and {} more", files[0], files[1], files.size() - 2);
+                                                : fmt::format("{}, {} and {} more", files[0], files[1],
+                                                              files.size() - 2);
     lines.push_back(fmt::format("{}: {} root '{}' travels without turning (an engine's root motion), so '{}' below it "
                                 "carries the floor position and facing{}",
                                 who, files.size() == 1 ? "its" : "their", fmt::join(r->above, "', '"), r->root,

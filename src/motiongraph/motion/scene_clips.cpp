@@ -553,8 +553,9 @@ Result<std::vector<Clip>> clips_from_scene(const NodeScene& scene, const std::st
       last = std::max(last, track->times.back());
     }
     if (!std::isfinite(first)) first = last = 0.0;
-    const KeyRate rate = settings.fps_override > 0.0 ? KeyRate{settings.fps_override, 1.0 / settings.fps_override}
-                                                      : key_rate(moving, scene.animations[layout.moving[i]].declared_fps);
+    const KeyRate rate = settings.fps_override > 0.0
+                             ? KeyRate{settings.fps_override, 1.0 / settings.fps_override}
+                             : key_rate(moving, scene.animations[layout.moving[i]].declared_fps);
     const double fps = rate.fps;
     const double span = (last - first) / rate.step;
     poses += (span + 1) * joints;

@@ -43,7 +43,8 @@ std::optional<int> body_below_unturning_root(const Skeleton& skeleton, const Mot
   bool travels = false;
   for (int f = 1; f < motion.frame_count; ++f) {
     if (motion.rotations(f)[0].angularDistance(first_rotation) > kStaticAngleRad) return std::nullopt;
-    const Vec3 moved = first_rotation.conjugate() * (motion.translations(f)[skeleton.translation_slot(0)] - first_translation);
+    const Vec3 at = motion.translations(f)[skeleton.translation_slot(0)];
+    const Vec3 moved = first_rotation.conjugate() * (at - first_translation);
     travels = travels || moved.lpNorm<Eigen::Infinity>() > kTravelOverTolerance * tolerance;
   }
   if (!travels) return std::nullopt;  // jitter, or an idle clip's sway, is no travel
