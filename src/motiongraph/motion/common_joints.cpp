@@ -79,15 +79,9 @@ Result<Clip> reroot_at(const Clip& clip, const std::string& root_name, const Ske
   const std::optional<int> root = clip.skeleton.find(root_name);
   if (!root) return Error{"", 0, fmt::format("the skeleton has no joint '{}'", root_name)};
   if (*root == 0) return clip;
-  Clip folded = fold_static_root(clip, *root);
-  // The joints above: written back as `above_as` has them, or gone (only written back: every
-  // joint stays where it was either way).
-  std::vector<JointDef> joints(folded.skeleton.joints().begin(), folded.skeleton.joints().end());
-  const auto ancestors = above_as ? above_as->static_ancestors() : std::span<const StaticAncestor>();
-  folded.skeleton = Skeleton(std::move(joints), std::vector<StaticAncestor>(ancestors.begin(), ancestors.end()));
-  folded.detected_unit = clip.detected_unit;
-  folded.detected_up_axis = clip.detected_up_axis;
-  folded.in_place = clip.in_place;
+  // The joints above: written back as `above_as` has them, or gone.
+  Clip folded = fold_static_root(
+      clip, *root, above_as ? above_as->static_ancestors() : std::span<const StaticAncestor>());
   folded.dropped_at_fold = clip.dropped_at_fold;  // the caller notes what rerooting drops
   return folded;
 }

@@ -109,14 +109,11 @@ Clip fold_as(const Clip& clip, const Skeleton& folded) {
   for (size_t i = 0; i < want.size(); ++i) {
     if (above[i] != want[i].name) return clip;
   }
-  // The rig's ancestors as `folded` has them (only written back: every joint stays in place).
-  Clip out = fold_static_root(clip, *joint);
-  std::vector<JointDef> joints(out.skeleton.joints().begin(), out.skeleton.joints().end());
-  out.skeleton = Skeleton(std::move(joints), std::vector<StaticAncestor>(want.begin(), want.end()));
-  return out;
+  return fold_static_root(clip, *joint, want);  // the rig's ancestors, as `folded` has them
 }
 
-Clip fold_static_root(const Clip& clip, int trajectory_joint) {
+Clip fold_static_root(const Clip& clip, int trajectory_joint,
+                      std::optional<std::span<const StaticAncestor>> write_back) {
   const Skeleton& skeleton = clip.skeleton;
   const Motion& motion = clip.motion;
   const int old_count = skeleton.joint_count();
@@ -166,7 +163,12 @@ Clip fold_static_root(const Clip& clip, int trajectory_joint) {
   folded.dropped_leading_frames = clip.dropped_leading_frames;
   folded.dropped_at_fold = clip.dropped_at_fold;
   folded.dropped_at_fold.insert(folded.dropped_at_fold.end(), dropped.begin(), dropped.end());
-  folded.skeleton = Skeleton(std::move(joints), std::move(ancestors));
+  folded.detected_unit = clip.detected_unit;
+  folded.detected_up_axis = clip.detected_up_axis;
+  folded.in_place = clip.in_place;
+  folded.skeleton =
+      Skeleton(std::move(joints), write_back ? std::vector<StaticAncestor>(write_back->begin(), write_back->end())
+                                             : std::move(ancestors));
   folded.motion = Motion(folded.skeleton, motion.frame_count, motion.fps);
 
   const size_t old_joints = static_cast<size_t>(old_count);

@@ -24,6 +24,7 @@
 #pragma once
 
 #include <optional>
+#include <span>
 
 #include "motiongraph/motion/motion.h"
 
@@ -36,8 +37,10 @@ std::optional<int> find_trajectory_joint(const Skeleton& skeleton, const Motion&
 // as joint 0, with animated translation, as above; the joints hanging off its ancestors beside
 // it are dropped (Clip::dropped_at_fold). Each ancestor keeps its first frame's transform, but a
 // travelling one (a root carrying root motion) is kept at the origin, so that every clip of its
-// rig has one hierarchy to write.
-Clip fold_static_root(const Clip& clip, int trajectory_joint);
+// rig has one hierarchy to write. `write_back`, when given, are the ancestors kept instead (only
+// written back: every joint stays where it was whichever are kept).
+Clip fold_static_root(const Clip& clip, int trajectory_joint,
+                      std::optional<std::span<const StaticAncestor>> write_back = std::nullopt);
 
 // The clip folded as `folded` (a clip of the same rig) is: when the joints above the one named
 // as folded's joint 0 (after the clip's own static ancestors) are the ones `folded` has as
