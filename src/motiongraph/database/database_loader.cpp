@@ -483,6 +483,7 @@ Status reroot_database(MotionDatabase& db, const std::string& root, std::vector<
     const std::optional<Skeleton> kept_as =
         above_as == db.skeletons.end() ? std::nullopt : std::optional<Skeleton>(*above_as);
     std::optional<Skeleton> rerooted;
+    std::vector<std::string> dropped;
     for (DatabaseClip& clip : db.clips) {
       if (clip.skeleton != static_cast<int>(s)) continue;
       Clip whole;
@@ -492,16 +493,13 @@ Status reroot_database(MotionDatabase& db, const std::string& root, std::vector<
       auto out = reroot_at(whole, root, kept_as ? &*kept_as : nullptr);
       if (!out) return Error{clip.source, 0, out.error().message};
       clip.motion = std::move(out->motion);
-      if (!rerooted) rerooted = std::move(out->skeleton);
+      if (!rerooted) {
+        rerooted = std::move(out->skeleton);
+        dropped = std::move(out->dropped_at_fold);  // those hanging off the joints above (none before)
+      }
     }
     if (!rerooted) continue;
-    DatabaseLoadNotes::Rerooted note{db.skeleton_names[s], root, chain, {}};
-    for (const JointDef& joint : skeleton.joints()) {
-      const bool kept = rerooted->find(joint.name).has_value();
-      const bool above = std::find(note.above.begin(), note.above.end(), joint.name) != note.above.end();
-      if (!kept && !above && !joint.end_site) note.dropped.push_back(joint.name);
-    }
-    notes.push_back(std::move(note));
+    notes.push_back(DatabaseLoadNotes::Rerooted{db.skeleton_names[s], root, chain, std::move(dropped)});
     db.skeletons[s] = std::move(*rerooted);
   }
   return Ok{};
@@ -856,6 +854,12 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
 
 std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes) {
   std::vector<std::string> lines;
+  // The first `shown` names, "and N more".
+  const auto listed = [](const std::vector<std::string>& all, size_t shown) {
+    const std::vector<std::string> first(all.begin(), all.begin() + static_cast<long>(std::min(shown, all.size())));
+    return fmt::format("{}{}", fmt::join(first, ", "),
+                       all.size() > shown ? fmt::format(" and {} more", all.size() - shown) : "");
+  };
   for (const auto& d : notes.detected_up_axes) {
     if (!d.library_axis) continue;
     lines.push_back(fmt::format("{}: read {} up like the library's other files, though its own shape says {} (z over "
@@ -872,24 +876,14 @@ std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes) {
       }
     }
     constexpr size_t kShown = 4;
-    const auto listed = [](const std::vector<std::string>& all, size_t shown) {
-      const std::vector<std::string> first(all.begin(), all.begin() + static_cast<long>(std::min(shown, all.size())));
-      return fmt::format("{}{}", fmt::join(first, ", "),
-                         all.size() > shown ? fmt::format(" and {} more", all.size() - shown) : "");
-    };
     lines.push_back(fmt::format("the skeletons differ in some joints: every clip is read on the {} joints all of them "
                                 "have; dropped {} ({} joint{}) from {}",
                                 notes.common_joints.size(), listed(names, kShown), names.size(),
                                 names.size() == 1 ? "" : "s", listed(files, 2)));
   }
-  const auto hanging_off = [](const DatabaseLoadNotes::Rerooted& r) {
+  const auto hanging_off = [&listed](const DatabaseLoadNotes::Rerooted& r) {
     if (r.dropped.empty()) return std::string();
-    constexpr size_t kShown = 4;
-    const std::vector<std::string> shown(r.dropped.begin(),
-                                         r.dropped.begin() + static_cast<long>(std::min(kShown, r.dropped.size())));
-    return fmt::format("; dropped {}{}, which hung off {}", fmt::join(shown, ", "),
-                       r.dropped.size() > kShown ? fmt::format(" and {} more", r.dropped.size() - kShown) : "",
-                       r.above.size() == 1 ? "it" : "them");
+    return fmt::format("; dropped {}, which hung off {}", listed(r.dropped, 4), r.above.size() == 1 ? "it" : "them");
   };
   for (const auto& r : notes.rerooted) {
     lines.push_back(fmt::format("{}: read from '{}' down, the root of the library's other rigs: the motion of '{}' "

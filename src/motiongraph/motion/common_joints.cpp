@@ -80,10 +80,7 @@ Result<Clip> reroot_at(const Clip& clip, const std::string& root_name, const Ske
   if (!root) return Error{"", 0, fmt::format("the skeleton has no joint '{}'", root_name)};
   if (*root == 0) return clip;
   // The joints above: written back as `above_as` has them, or gone.
-  Clip folded = fold_static_root(
-      clip, *root, above_as ? above_as->static_ancestors() : std::span<const StaticAncestor>());
-  folded.dropped_at_fold = clip.dropped_at_fold;  // the caller notes what rerooting drops
-  return folded;
+  return fold_static_root(clip, *root, above_as ? above_as->static_ancestors() : std::span<const StaticAncestor>());
 }
 
 Result<Clip> keep_joints(const Clip& clip, std::span<const std::string> names) {
