@@ -26,10 +26,11 @@ std::string shared_root(std::span<const Skeleton> skeletons);
 // The clip with the joint named as its root (shared_root's): the joints above it, its chain of
 // ancestors, are composed into it frame by frame (so it carries the travel, with animated
 // translation), the joints hanging off that chain are dropped (added to Clip::dropped_at_fold),
-// and every kept joint moves as before in the world. The joints above are kept to be written back only as `above_as` has
-// them as static ancestors (motion/trajectory_joint.h: a skeleton of the rig whose travelling
-// clips were folded at import, beside a clip that did not travel); without it the clip is the
-// other rigs' from their root down. Fails naming a joint the skeleton lacks.
+// and every kept joint moves as before in the world. The joints above are kept to be written
+// back only as `above_as` has them as static ancestors (motion/trajectory_joint.h: a skeleton
+// of the rig whose travelling clips were folded at import, beside a clip that did not travel);
+// without it the clip is the other rigs' from their root down. Fails naming a joint the
+// skeleton lacks.
 Result<Clip> reroot_at(const Clip& clip, const std::string& root_name, const Skeleton* above_as = nullptr);
 
 // The clip on the joints named (in that order; the first must be its root, and each joint's
