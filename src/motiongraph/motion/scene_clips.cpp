@@ -190,27 +190,32 @@ std::vector<std::string> clip_names(const NodeScene& scene) {
   return names;
 }
 
-// Whether an animation's keys take a node off its rest (by more than float32's rounding).
+// Whether a track's keys take its part of a node's transform off `rest` (by more than float32's
+// rounding).
+bool leaves_rest(const KeyTrack& track, TrackPath path, const NodeTrs& rest) {
+  for (size_t k = 0; k < track.times.size(); ++k) {
+    const KeyTrack::Value v = track.value(k);
+    switch (path) {
+      case TrackPath::kTranslation:
+        if ((as_vec3(v) - rest.translation).norm() > 1e-5 * (1.0 + rest.translation.norm())) return true;
+        break;
+      case TrackPath::kRotation:
+        if (as_quat(v).angularDistance(rest.rotation) > 1e-5) return true;
+        break;
+      case TrackPath::kScale:
+        if ((as_vec3(v) - rest.scale).norm() > 1e-5 * rest.scale.norm()) return true;
+        break;
+    }
+  }
+  return false;
+}
+
+// Whether an animation's keys take a node off its rest.
 bool moves(const NodeScene& scene, const SceneAnimation& animation, int node) {
   const NodeTrs& rest = scene.nodes[static_cast<size_t>(node)].rest;
   for (const TrackPath path : {TrackPath::kTranslation, TrackPath::kRotation, TrackPath::kScale}) {
     const auto it = animation.tracks.find({node, path});
-    if (it == animation.tracks.end()) continue;
-    const KeyTrack& track = it->second;
-    for (size_t k = 0; k < track.times.size(); ++k) {
-      const KeyTrack::Value v = track.value(k);
-      switch (path) {
-        case TrackPath::kTranslation:
-          if ((as_vec3(v) - rest.translation).norm() > 1e-5 * (1.0 + rest.translation.norm())) return true;
-          break;
-        case TrackPath::kRotation:
-          if (as_quat(v).angularDistance(rest.rotation) > 1e-5) return true;
-          break;
-        case TrackPath::kScale:
-          if ((as_vec3(v) - rest.scale).norm() > 1e-5 * rest.scale.norm()) return true;
-          break;
-      }
-    }
+    if (it != animation.tracks.end() && leaves_rest(it->second, path, rest)) return true;
   }
   return false;
 }
@@ -481,11 +486,7 @@ Result<std::vector<Clip>> clips_from_scene(const NodeScene& scene, const std::st
     const int node = order[static_cast<size_t>(j)];
     def.end_site = std::none_of(animations.begin(), animations.end(), [&](const Tracks* tracks) {
       const auto it = tracks->find({node, TrackPath::kRotation});
-      if (it == tracks->end()) return false;
-      for (size_t k = 0; k < it->second.times.size(); ++k) {
-        if (as_quat(it->second.value(k)).angularDistance(rest[static_cast<size_t>(j)].rotation) > 1e-5) return true;
-      }
-      return false;
+      return it != tracks->end() && leaves_rest(it->second, TrackPath::kRotation, rest[static_cast<size_t>(j)]);
     });
   }
   // End sites after the joints, as a BVH file's are read (bvh_import.h), so that one rig read
