@@ -183,6 +183,39 @@ TEST(ThresholdChoice, EachMotionTypeGetsTheLowestThresholdTriedThatReachesItsTar
   EXPECT_EQ(again->transitions, point.transitions);
 }
 
+TEST(ThresholdChoice, AGraphShortOfTheTransitionRateRaisesEveryTypeOnlyAsFarAsTheRateNeeds) {
+  // The defaults (70 %, 10 cm) on two walks and two runs: walking reaches its coverage low, and
+  // running's rises; with running there, the graph is still short of transitions a second, so
+  // every type rises, but only as far as the rate needs: walking stays well under the ceiling
+  // (it went to the ceiling with running, where it keeps four times the transitions).
+  const Fixture& x = fixture();
+  const ThresholdChoiceSettings choice;
+  auto chosen = choose_threshold(x.db, x.features, x.search, x.settings, choice);
+  ASSERT_TRUE(chosen) << chosen.error().to_string();
+  ASSERT_TRUE(chosen->reached);
+  ASSERT_EQ(chosen->tag_thresholds.size(), 2u);
+  auto rate = [&](const CoveragePoint& p) { return p.transitions / (static_cast<double>(p.kept_frames) / x.db.fps); };
+  auto covered = [&](const CoveragePoint& p) {
+    return p.graph && p.tag_coverage[0] >= chosen->targets[0] && p.tag_coverage[1] >= chosen->targets[1];
+  };
+  auto reaches = [&](const CoveragePoint& p) { return covered(p) && rate(p) >= chosen->target_rate; };
+  const CoveragePoint& point = chosen->chosen();
+  EXPECT_TRUE(reaches(point));
+  // What the case is: a point tried covers every type and is short of the rate alone.
+  EXPECT_TRUE(std::any_of(chosen->curve.begin(), chosen->curve.end(),
+                          [&](const CoveragePoint& p) { return covered(p) && !reaches(p); }));
+  const double ceiling = distance_of_rms_cm(choice.max_rms_cm, x.features);
+  EXPECT_LT(rms_cm_of_distance(chosen->tag_thresholds[0], x.features), 0.5 * choice.max_rms_cm) << "walking taken to the ceiling";
+  for (const double t : chosen->tag_thresholds) EXPECT_LE(t, ceiling * (1.0 + 1e-12));
+  for (const CoveragePoint& p : chosen->curve) {
+    const bool no_higher = p.tag_thresholds[0] <= chosen->tag_thresholds[0] &&
+                           p.tag_thresholds[1] <= chosen->tag_thresholds[1];
+    if (no_higher && p.tag_thresholds != chosen->tag_thresholds) {
+      EXPECT_FALSE(reaches(p)) << "a point lower in one type and no higher in the other reached the targets";
+    }
+  }
+}
+
 TEST(ThresholdChoice, FramesOfNoMotionTypeAreAClassOfTheirOwn) {
   // Only walking is tagged: the runs are frames of no motion type, measured and given a
   // threshold of their own (no lower than walking's: nothing bridges to frames of no type, so

@@ -258,14 +258,21 @@ Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFe
   }
   if (!reaching && reaches(*top)) {
     // The thresholds short at the grid's last point go to the ceiling; all of them when that
-    // is not enough.
+    // is not enough (the graph short of the transition rate), each bracketed from its level
+    // there, so that the bisection brings them down together to where the rate is met: a
+    // library of two short walks and two runs meets the rate with walking at 1.85 cm, and kept
+    // 10 cm, the ceiling, without the bracket.
     for (size_t i = 0; i < n; ++i) {
       if (short_at(last, i)) below[i] = levels[i], levels[i] = ceiling;
     }
     if (n > 1) {
       auto point = evaluate(levels);
       if (!point) return point.error();
-      if (!reaches(*point)) levels.assign(n, ceiling), below.assign(n, -1.0);
+      if (!reaches(*point)) {
+        for (size_t i = 0; i < n; ++i) {
+          if (levels[i] < ceiling) below[i] = levels[i], levels[i] = ceiling;
+        }
+      }
     }
     reaching = levels;
   }

@@ -21,8 +21,11 @@
 // The search: the ceiling first (what each type can reach), then `grid` thresholds log-spaced
 // in RMS from `lowest_rms_cm` up to the ceiling, each run through selection, spacing, bridges,
 // graph and pruning (graph_from_candidates.h) on the cached candidates, stopping at the first
-// that reaches every target; then `refine` bisection steps (in log D) between the last
-// threshold short of the targets and the first that reaches them. Coverage is close to
+// that reaches every target (the types still short at the grid's end go to the ceiling; all of
+// them when the graph is then short of the transition rate alone, each from its own level, so
+// that the bisection lowers them together to where the rate is met); then `refine` bisection
+// steps (in log D) between the last threshold short of the targets and the first that reaches
+// them. Coverage is close to
 // monotone in the threshold but not exactly (pruning is not), so the answer is the lowest
 // threshold found that reaches them, not a proof that no lower one does. When none does (no
 // graph at all under the ceiling), the answer is the lowest threshold whose worst coverage is
