@@ -1,6 +1,7 @@
 #include "cli/unit_report.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <map>
 
 #include <fmt/format.h>
@@ -89,6 +90,16 @@ void report_units(const DatabaseLoadNotes& notes, bool quiet) {
     const auto files = static_cast<long>(notes.detected_up_axes.size());
     spdlog::info("read z up and turned y up: {} of {} file{} (their figures stand along z; --up-axis overrides)",
                  z_up, files, files == 1 ? "" : "s");
+  }
+  if (!notes.rest_frames.empty() && !quiet) {
+    int frames = 0;
+    for (const auto& r : notes.rest_frames) frames += r.frames;
+    const size_t files = notes.rest_frames.size();
+    spdlog::info("leading rest/T-pose frames a converter added, dropped: {} frame{} of {} file{} ({}{}; "
+                 "--keep-rest-frames keeps them)",
+                 frames, frames == 1 ? "" : "s", files, files == 1 ? "" : "s",
+                 std::filesystem::path(notes.rest_frames.front().file).filename().string(),
+                 files > 1 ? fmt::format(" and {} more", files - 1) : "");
   }
   if (!notes.loops.empty() && !quiet) {
     int added = 0;

@@ -199,6 +199,10 @@ b07 = open(f"{work}/b07.err").read()
 assert re.search(r"warning: 07_12: its lowest joint is 0\.\d\d-0\.\d\d m below the floor \(y = 0\), and no foot "
                  r"rests on the floor in any frame; its root translation may be wrong", b07), b07
 assert "07_01:" not in b07 and "root translation may be wrong" not in open(f"{work}/g.err").read()
+# And that it dropped the converters' T-pose frames (one in 07_01, two in 07_12); AMC has none.
+assert "info: leading rest/T-pose frames a converter added, dropped: 3 frames of 2 files (07_01.bvh and 1 more; " \
+       "--keep-rest-frames keeps them)" in b07, b07
+assert "T-pose" not in open(f"{work}/g.err").read()
 PY
 "$bin" info "$data/bvh/07_12.bvh" "$data/bvh/07_01.bvh" --json >"$work/info07.json" 2>/dev/null
 "$bin" info "$data/bvh/07_12.bvh" 2>/dev/null | grep "warning:  its lowest joint is .* below the floor" >/dev/null \

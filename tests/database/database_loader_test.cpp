@@ -706,6 +706,45 @@ TEST(DatabaseLoader, OneRigUnderOtherNamesInGltfAndBvhIsMatched) {
   EXPECT_EQ(db->skeletons[1].joint(0).name, "root");  // the first's names
 }
 
+TEST(DatabaseLoader, NotesTheRestFramesItDroppedOnceAFile) {
+  // 07_01.bvh opens on a converter's T-pose frame, 07_12.bvh on two: two clips cut from the one
+  // and the other whole note each file once, with the frames dropped; kept, none.
+  TempFolder folder("rest");
+  const std::string manifest = folder.write("rest.toml", fmt::format(R"([[clip]]
+file = "{0}"
+name = "first"
+last_frame = 150
+[[clip]]
+file = "{0}"
+name = "second"
+first_frame = 151
+[[clip]]
+file = "{1}"
+)", folder.relative_data("bvh/07_01.bvh"), folder.relative_data("bvh/07_12.bvh")));
+  DatabaseSettings settings;
+  settings.fps = 120.0;  // the files' rate
+  DatabaseLoadNotes notes;
+  auto db = load_database({manifest}, settings, &notes);
+  ASSERT_TRUE(db) << db.error().to_string();
+  ASSERT_EQ(db->clips.size(), 3u);
+  ASSERT_EQ(notes.rest_frames.size(), 2u);
+  EXPECT_NE(notes.rest_frames[0].file.find("07_01.bvh"), std::string::npos) << notes.rest_frames[0].file;
+  EXPECT_EQ(notes.rest_frames[0].frames, 1);
+  EXPECT_NE(notes.rest_frames[1].file.find("07_12.bvh"), std::string::npos) << notes.rest_frames[1].file;
+  EXPECT_EQ(notes.rest_frames[1].frames, 2);
+  settings.keep_rest_frames = true;
+  DatabaseLoadNotes kept;
+  auto all = load_database({manifest}, settings, &kept);
+  ASSERT_TRUE(all) << all.error().to_string();
+  EXPECT_TRUE(kept.rest_frames.empty());
+  // At the files' rate, the kept frames are there: the first clip starts at the file's first
+  // frame, the whole 07_12 has its two back.
+  ASSERT_EQ(all->clips.size(), 3u);
+  EXPECT_EQ(all->clips[0].frame_count, db->clips[0].frame_count + 1);
+  EXPECT_EQ(all->clips[1].frame_count, db->clips[1].frame_count);
+  EXPECT_EQ(all->clips[2].frame_count, db->clips[2].frame_count + 2);
+}
+
 TEST(DatabaseLoader, RejectsASkeletonOfOtherJoints) {
   const std::string bvh = test::data_path("bvh/07_01.bvh");
   auto db = load_database({test::data_path("cmu/16"), bvh}, cmu_settings());

@@ -138,6 +138,8 @@ def test_rest_frames_kept_as_the_cli_and_a_manifest_say(cli, data, tmp_path):
     dropped = mg.load_library(folder, **at_120)
     kept = mg.load_library(folder, keep_rest_frames=True, **at_120)
     assert kept.frame_count == dropped.frame_count + 1
+    assert dropped.summary["reading"]["rest_frames"] == [{"file": str(folder / bvh.name), "frames": 1}]
+    assert kept.summary["reading"]["rest_frames"] == []
     assert kept.summary == cli_info(cli, folder, "--fps", 120, "--keep-rest-frames")
     assert mg.load_library(folder, keep_rest_frames=None, up_axis=None, scale=None, **at_120).summary == \
         dropped.summary

@@ -558,7 +558,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
   int next_frame = 0;
   std::vector<std::pair<size_t, UpAxisChoice>> chosen_up_axes;  // spec index, its own choice
   std::optional<Error> other_joints;  // the first skeleton whose joints differ from the first's
-  std::set<std::string> noted_units, noted_up_axes, noted_travels, noted_folds;  // files
+  std::set<std::string> noted_units, noted_up_axes, noted_travels, noted_folds, noted_rests;  // files
   std::optional<Skeleton> first_skeleton;  // the first clip's, as read (all its joints)
   std::vector<DescribedClip> described;    // clips tagged by their CMU descriptions
   for (size_t spec_index = 0; spec_index < specs.size(); ++spec_index) {
@@ -603,6 +603,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     }
     const Motion& motion = loaded->clip.motion;
     const int dropped = loaded->clip.dropped_leading_frames;
+    if (notes && dropped > 0 && noted_rests.insert(spec.path).second) notes->rest_frames.push_back({spec.path, dropped});
     const int file_frames = dropped + motion.frame_count;
 
     if (file_frames == 0) return Error{spec.path, 0, "the clip has no frames (a skeleton without motion)"};

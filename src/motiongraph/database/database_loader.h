@@ -119,6 +119,13 @@ struct DatabaseLoadNotes {
     InPlaceChoice choice;
   };
   std::vector<RecoveredTravel> recovered_travels;  // clips whose travel came from their feet
+  // BVH files whose leading rest or T-pose frames (a converter's, motion/rest_frame.h) were
+  // dropped, once a file (DatabaseSettings::keep_rest_frames keeps them).
+  struct RestFrames {
+    std::string file;
+    int frames = 0;  // at the file's rate
+  };
+  std::vector<RestFrames> rest_frames;
   // When the skeletons differ in some joints (motion/common_joints.h): the joints every clip
   // was read on, and each skeleton's dropped ones (those of skeletons that lost any).
   std::vector<std::string> common_joints;

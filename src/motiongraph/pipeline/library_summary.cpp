@@ -69,6 +69,8 @@ nlohmann::json reading_json(const DatabaseLoadNotes& notes) {
                       {"slide_m_s", recovered.choice.slide_speed_m_s},
                       {"root_m_s", recovered.choice.root_speed_m_s}});
   }
+  nlohmann::json rest = nlohmann::json::array();
+  for (const auto& r : notes.rest_frames) rest.push_back({{"file", r.file}, {"frames", r.frames}});
   nlohmann::json rigs = nlohmann::json::array();
   for (const auto& rig : notes.matched_rigs) {
     nlohmann::json renamed = nlohmann::json::array();
@@ -95,6 +97,7 @@ nlohmann::json reading_json(const DatabaseLoadNotes& notes) {
   return {{"units", std::move(units)},
           {"up_axes", std::move(up_axes)},
           {"travel_recovered", std::move(travel)},
+          {"rest_frames", std::move(rest)},
           {"rigs", std::move(rigs)},
           {"loops", std::move(loops)},
           {"standing_tags", std::move(standing)}};
