@@ -29,14 +29,28 @@ std::string read_data(const std::string& relative) {
   return std::move(*text);
 }
 
-Clip load_data_clip(const std::string& relative, std::optional<double> bvh_metres_per_unit, double input_fps) {
-  ClipLoadSettings settings;
-  settings.bvh_metres_per_unit = bvh_metres_per_unit;
-  settings.input_fps = input_fps;
+namespace {
+
+Clip load_with(const std::string& relative, const ClipLoadSettings& settings) {
   ClipLoader loader(settings);
   auto loaded = loader.load(data_path(relative));
   if (!loaded) throw std::runtime_error(loaded.error().to_string());
   return std::move(loaded->clip);
+}
+
+}  // namespace
+
+Clip load_data_clip(const std::string& relative, std::optional<double> bvh_metres_per_unit, double input_fps) {
+  ClipLoadSettings settings;
+  settings.bvh_metres_per_unit = bvh_metres_per_unit;
+  settings.input_fps = input_fps;
+  return load_with(relative, settings);
+}
+
+Clip load_whole_data_clip(const std::string& relative) {
+  ClipLoadSettings settings;
+  settings.keep_rest_frames = true;
+  return load_with(relative, settings);
 }
 
 std::string replace_once(std::string text, const std::string& from, const std::string& to) {

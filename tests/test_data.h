@@ -21,6 +21,8 @@ std::string read_data(const std::string& relative);
 // A BVH without bvh_metres_per_unit is read in the unit its figure's size gives.
 Clip load_data_clip(const std::string& relative, std::optional<double> bvh_metres_per_unit = std::nullopt,
                     double input_fps = 0.0);
+// The same with every frame of the file: rest frames and glitched ends kept (--keep-rest-frames).
+Clip load_whole_data_clip(const std::string& relative);
 
 // A BVH file's text read as the loader reads it (parse_bvh, then clip_from_bvh with
 // `settings`); fails the test (throws) when it cannot be read.

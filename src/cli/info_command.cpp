@@ -147,6 +147,8 @@ int run_info(const InfoOptions& options) {
           {"file", file}, {"format", loaded->format}, {"joints", s.joints}, {"end_sites", s.end_sites},
           {"dofs", loaded->source_channels}, {"frames", s.frames}, {"fps", s.fps}, {"duration_s", s.duration_s},
           {"dropped_leading_frames", clip.dropped_leading_frames},
+          {"glitched_leading_frames", clip.glitched_leading_frames},
+          {"glitched_trailing_frames", clip.glitched_trailing_frames},
           {"floor_extent_m", {{"x", {s.floor_min_x_m, s.floor_max_x_m}}, {"z", {s.floor_min_z_m, s.floor_max_z_m}}}},
           {"height_m", {s.min_height_m, s.max_height_m}}, {"root_path_m", s.root_path_m},
           {"root", clip.skeleton.joint(0).name}, {"static_joints_above_root", static_ancestor_names(clip.skeleton)},
@@ -194,9 +196,13 @@ int run_info(const InfoOptions& options) {
                    loaded->format == "amc" ? loaded->skeleton_path : "");
       }
       fmt::print("  skeleton: {} joints + {} end sites, {} dofs\n", s.joints, s.end_sites, loaded->source_channels);
+      std::vector<std::string> dropped;
+      if (clip.dropped_leading_frames > 0) dropped.push_back("leading rest/T-pose frames dropped");
+      if (clip.glitched_leading_frames > 0 || clip.glitched_trailing_frames > 0) {
+        dropped.push_back(glitched_ends_description(clip.glitched_leading_frames, clip.glitched_trailing_frames));
+      }
       fmt::print("  motion:   {} frame{} at {:g} fps, {:.2f} s{}\n", s.frames, s.frames == 1 ? "" : "s", s.fps,
-                 s.duration_s,
-                 clip.dropped_leading_frames > 0 ? " (leading rest/T-pose frames dropped)" : "");
+                 s.duration_s, dropped.empty() ? "" : fmt::format(" ({})", fmt::join(dropped, "; ")));
       fmt::print("  lengths:  {}\n", unit);
       fmt::print("  up:       {}\n", up);
       fmt::print("  feet:     {}\n", *contacts ? feet_description(clip.skeleton, (*contacts)->feet,

@@ -23,7 +23,8 @@ inline constexpr const char* kInputFpsHelp =
     "Capture rate of ASF/AMC and BVH input, overriding the files' (AMC default 120, CMU's rate); for glTF and FBX, "
     "whose keys are timed in seconds, the rate their animations are sampled at (default: their keys')";
 inline constexpr const char* kKeepRestFramesHelp =
-    "Keep leading rest or T-pose frames that a BVH converter added (dropped by default)";
+    "Keep the frames read but not played by default: leading rest or T-pose frames that a BVH converter added, "
+    "and first or last frames that a capture glitch cuts off (a joint jumping 25 m/s or faster between two frames)";
 
 struct LoadOptions {
   std::string asf;

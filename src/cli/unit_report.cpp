@@ -8,6 +8,7 @@
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
+#include "motiongraph/motion/glitched_ends.h"
 #include "motiongraph/motion/length_unit.h"
 
 namespace mg::cli {
@@ -63,6 +64,19 @@ void report_travel(const std::string& file, const InPlaceChoice& choice) {
   spdlog::info("{}: travel {} (--travel overrides)", file, travel_description(choice));
 }
 
+std::string glitched_ends_description(int leading, int trailing) {
+  if (leading <= 0 && trailing <= 0) return "";
+  auto frames = [](const char* which, int n) {
+    return n == 1 ? fmt::format("the {} frame", which) : fmt::format("the {} {} frames", which, n);
+  };
+  const std::string ends = leading > 0 && trailing > 0
+                               ? fmt::format("{} and {}", frames("first", leading), frames("last", trailing))
+                           : leading > 0 ? frames("first", leading)
+                                         : frames("last", trailing);
+  return fmt::format("{} dropped, cut off by a capture glitch: a joint jumping {:g} m/s or faster between two frames",
+                     ends, kGlitchSpeedMps);
+}
+
 void report_units(const DatabaseLoadNotes& notes, bool quiet) {
   struct Group {
     int files = 0;
@@ -99,6 +113,16 @@ void report_units(const DatabaseLoadNotes& notes, bool quiet) {
                  "--keep-rest-frames keeps them)",
                  frames, frames == 1 ? "" : "s", files, files == 1 ? "" : "s",
                  std::filesystem::path(notes.rest_frames.front().file).filename().string(),
+                 files > 1 ? fmt::format(" and {} more", files - 1) : "");
+  }
+  if (!notes.glitched_ends.empty() && !quiet) {
+    int frames = 0;
+    for (const auto& g : notes.glitched_ends) frames += g.leading + g.trailing;
+    const size_t files = notes.glitched_ends.size();
+    spdlog::info("first or last frames a capture glitch cut off (a joint jumping {:g} m/s or faster between two "
+                 "frames), dropped: {} frame{} of {} file{} ({}{})",
+                 kGlitchSpeedMps, frames, frames == 1 ? "" : "s", files, files == 1 ? "" : "s",
+                 std::filesystem::path(notes.glitched_ends.front().file).filename().string(),
                  files > 1 ? fmt::format(" and {} more", files - 1) : "");
   }
   if (!notes.loops.empty() && !quiet) {

@@ -27,7 +27,11 @@ void report_up_axis(const std::string& file, const UpAxisChoice& choice);
 std::string travel_description(const InPlaceChoice& choice);
 // An info line for a clip whose travel was recovered (nothing otherwise).
 void report_travel(const std::string& file, const InPlaceChoice& choice);
-// Also one info line for the files read z up, one for the clips whose travel was recovered, one
+// "the first 2 frames and the last frame dropped, cut off by a capture glitch: a joint jumping
+// 25 m/s or faster between two frames" (motion/glitched_ends.h); empty when neither.
+std::string glitched_ends_description(int leading, int trailing);
+// Also one info line for the files read z up, for the files whose leading rest frames were
+// dropped, for those whose ends a glitch cut off, one for the clips whose travel was recovered, one
 // for the clips that loop, and one for the clips whose description's walk or run was left off
 // the frames where they stand (database/travel_tags.h).
 // quiet: the warnings only.

@@ -198,10 +198,10 @@ loops, noloops, info, path, anyway = (json.load(open(p)) for p in sys.argv[1:6])
 # The walk and run cycles are joined only by bridges (24 cm RMS apart). A path that asks for no
 # motion type keeps to the walking (one bridge into the run for the last metres, measured), and
 # its feet slide less than the cycles' own. Priced as any transition, the search wanders into the
-# run and back (5 bridges, measured), and the blends slide the feet several times more.
+# run and back (5 bridges, measured; the clean-up keeps their feet planted all the same).
 assert path["bridges"] <= 1 and path["bridges"] < anyway["bridges"], (path["bridges"], anyway["bridges"])
 assert path["foot_slide"]["ratio"]["mean_mps"] < 1.0, path["foot_slide"]
-assert anyway["foot_slide"]["mean_mps"] > 3 * path["foot_slide"]["mean_mps"], (anyway["foot_slide"], path["foot_slide"])
+assert anyway["foot_slide"]["ratio"]["mean_mps"] < 1.0, anyway["foot_slide"]
 kept = lambda r: sum(c["kept_frames"] for c in r["clips"])
 # Every clip joins the graph played round; as read, the run cycle joins nothing.
 assert all(c["kept_frames"] > 0 for c in loops["clips"]), loops["clips"]

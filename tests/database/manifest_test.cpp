@@ -148,7 +148,6 @@ TEST(Manifest, OneCleanErrorPerRule) {
       {"fps not positive", r("fps = 30", "fps = 0"), 2, "positive"},
       {"fps not finite", r("fps = 30", "fps = inf"), 2, "positive"},
       {"default bvh_scale not positive", r("bvh_scale = 0.056444", "bvh_scale = -1"), 4, "positive"},
-      {"keep_rest_frames on an AMC clip", r("name = \"walk_a\"", "keep_rest_frames = true"), 9, "BVH clips only"},
       {"keep_rest_frames not a boolean", r("input_fps = 120\n\n[[clip]]\nfile = \"16_15.amc\"",
                                           "keep_rest_frames = 1\n\n[[clip]]\nfile = \"16_15.amc\""), 5,
        "'keep_rest_frames' must be true or false, not an integer"},

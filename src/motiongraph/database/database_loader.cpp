@@ -558,7 +558,8 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
   int next_frame = 0;
   std::vector<std::pair<size_t, UpAxisChoice>> chosen_up_axes;  // spec index, its own choice
   std::optional<Error> other_joints;  // the first skeleton whose joints differ from the first's
-  std::set<std::string> noted_units, noted_up_axes, noted_travels, noted_folds, noted_rests;  // files
+  std::set<std::string> noted_units, noted_up_axes, noted_travels, noted_folds, noted_rests,
+      noted_glitches;  // files
   std::optional<Skeleton> first_skeleton;  // the first clip's, as read (all its joints)
   std::vector<DescribedClip> described;    // clips tagged by their CMU descriptions
   for (size_t spec_index = 0; spec_index < specs.size(); ++spec_index) {
@@ -602,25 +603,35 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
       notes->recovered_travels.push_back({spec.path, spec.load.travel, *loaded->clip.in_place});
     }
     const Motion& motion = loaded->clip.motion;
-    const int dropped = loaded->clip.dropped_leading_frames;
-    if (notes && dropped > 0 && noted_rests.insert(spec.path).second) notes->rest_frames.push_back({spec.path, dropped});
-    const int file_frames = dropped + motion.frame_count;
+    const int rest = loaded->clip.dropped_leading_frames;
+    if (notes && rest > 0 && noted_rests.insert(spec.path).second) notes->rest_frames.push_back({spec.path, rest});
+    const int glitched_leading = loaded->clip.glitched_leading_frames;
+    const int trailing = loaded->clip.glitched_trailing_frames;
+    if (notes && (glitched_leading > 0 || trailing > 0) && noted_glitches.insert(spec.path).second) {
+      notes->glitched_ends.push_back({spec.path, glitched_leading, trailing});
+    }
+    const int dropped = rest + glitched_leading;  // leading frames the reader dropped
+    const int file_frames = dropped + motion.frame_count + trailing;
 
     if (file_frames == 0) return Error{spec.path, 0, "the clip has no frames (a skeleton without motion)"};
     // Frame range, in the file's numbering; frames the reader dropped are not part of it.
     const int first = std::max(spec.first_frame.value_or(1), dropped + 1);
-    const int last = spec.last_frame.value_or(file_frames);
-    if (last > file_frames) {
+    const int asked_last = spec.last_frame.value_or(file_frames);
+    const int last = std::min(asked_last, file_frames - trailing);
+    if (asked_last > file_frames) {
       return Error{spec.manifest, spec.frames_line,
-                   fmt::format("last_frame {} is past the end of {} ({} frames)", last, spec.path, file_frames)};
+                   fmt::format("last_frame {} is past the end of {} ({} frames)", asked_last, spec.path, file_frames)};
     }
     if (last < first) {
+      const char* why = rest > 0 && glitched_leading + trailing == 0 ? "a rest pose before the capture"
+                        : rest == 0 ? "cut off by a capture glitch"
+                                    : "a rest pose before the capture, or cut off by a capture glitch";
       return Error{spec.manifest, spec.frames_line,
-                   fmt::format("frames {}..{} of {} hold only frames the reader drops (a rest pose before the "
-                               "capture); the clip starts at frame {}", spec.first_frame.value_or(1), last,
-                               spec.path, dropped + 1)};
+                   fmt::format("frames {}..{} of {} hold only frames the reader drops ({}); the clip's frames are "
+                               "{}..{}", spec.first_frame.value_or(1), asked_last, spec.path, why, dropped + 1,
+                               file_frames - trailing)};
     }
-    const bool whole = first == dropped + 1 && last == file_frames;
+    const bool whole = first == dropped + 1 && last == file_frames - trailing;
     Motion sliced;
     if (!whole) sliced = motion.slice(first - 1 - dropped, last - first + 1);
     const Motion& cut = whole ? motion : sliced;

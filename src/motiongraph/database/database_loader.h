@@ -57,7 +57,8 @@ struct DatabaseSettings {
   std::optional<UpAxis> up_axis;        // nullopt: chosen per file from its figure's shape
                                         // (up_axis.h)
   double input_fps = 0.0;               // > 0: the capture rate, overriding the files'
-  bool keep_rest_frames = false;        // keep leading rest/T-pose frames of BVH files
+  bool keep_rest_frames = false;        // keep leading rest/T-pose frames of BVH files, and the
+                                        // frames a capture glitch cuts off clips' ends
   TravelSource travel = TravelSource::kAuto;  // where each clip's travel over the floor comes
                                               // from (motion/in_place.h): kAuto recovers it
                                               // from the feet for clips animated in place
@@ -126,6 +127,14 @@ struct DatabaseLoadNotes {
     int frames = 0;  // at the file's rate
   };
   std::vector<RestFrames> rest_frames;
+  // Files whose first or last frames a capture glitch cut off (motion/glitched_ends.h), once a
+  // file.
+  struct GlitchedEnds {
+    std::string file;
+    int leading = 0;  // frames, at the file's rate
+    int trailing = 0;
+  };
+  std::vector<GlitchedEnds> glitched_ends;
   // When the skeletons differ in some joints (motion/common_joints.h): the joints every clip
   // was read on, and each skeleton's dropped ones (those of skeletons that lost any).
   std::vector<std::string> common_joints;

@@ -242,9 +242,6 @@ Result<ManifestClip> read_clip(const Reader& in, const toml::table& table) {
     return in.error(line_of(*node), "'bvh_scale' applies to BVH clips only (ASF gives its units)");
   }
   if (auto s = in.optional_scale(table.get("bvh_scale"), "bvh_scale", clip.bvh_scale); !s) return s.error();
-  if (const toml::node* node = table.get("keep_rest_frames"); node && ext != ".bvh") {
-    return in.error(line_of(*node), "'keep_rest_frames' applies to BVH clips only (their converters add rest frames)");
-  }
   if (auto s = in.optional_boolean(table.get("keep_rest_frames"), "keep_rest_frames", clip.keep_rest_frames); !s) {
     return s.error();
   }

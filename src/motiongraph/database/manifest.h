@@ -41,7 +41,7 @@ struct ManifestClip {
   std::optional<UpAxis> up_axis;           // the clip's up axis (overrides the default)
   std::optional<TravelSource> travel;      // where its travel comes from (overrides the default)
   std::optional<double> input_fps;         // capture rate, overriding the file's
-  std::optional<bool> keep_rest_frames;    // a BVH converter's leading rest frames kept
+  std::optional<bool> keep_rest_frames;    // a BVH converter's leading rest frames, and glitched ends, kept
   std::optional<int> first_frame;          // file numbering, from 1; absent: the first
   std::optional<int> last_frame;           // inclusive; absent: the last
   std::optional<std::vector<std::string>> tags;  // absent: no whole-clip tags given
@@ -68,7 +68,7 @@ struct Manifest {
   std::optional<UpAxis> up_axis;           // default up axis
   std::optional<TravelSource> travel;      // default travel source (motion/in_place.h)
   std::optional<double> input_fps;         // default capture rate
-  std::optional<bool> keep_rest_frames;    // default for BVH clips (dropped by default)
+  std::optional<bool> keep_rest_frames;    // default for the clips (dropped by default)
   std::vector<ManifestClip> clips;
   // [feet]: the foot joints' names (left_ankle, left_toe, right_ankle, right_toe; any may be
   // left out to find that joint by name).
@@ -85,7 +85,7 @@ struct Manifest {
 // (numbers may be written as integers or floats, frames are integers, tags strings); fps,
 // bvh_scale and input_fps positive; up_axis "y" or "z"; travel "auto", "root" or "feet"; at
 // least one [[clip]]; each clip has a non-empty `file` ending in .amc or .bvh; `skeleton` only
-// on AMC clips and `bvh_scale` and `keep_rest_frames` (a boolean) only on BVH clips;
+// on AMC clips and `bvh_scale` only on BVH clips; `keep_rest_frames` a boolean;
 // first_frame >= 1, last_frame >= first_frame; each range has first_frame and last_frame,
 // first >= 1, last >= first, inside the clip's own frame range when the manifest gives it,
 // and at least one tag; tag names non-empty, of letters, digits, '_' and '-'; [feet] names

@@ -14,6 +14,7 @@
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/bvh_import.h"
 #include "motiongraph/motion/fbx_import.h"
+#include "motiongraph/motion/glitched_ends.h"
 #include "motiongraph/motion/gltf_import.h"
 #include "motiongraph/motion/in_place.h"
 #include "motiongraph/motion/length_unit.h"
@@ -215,7 +216,9 @@ Result<LoadedClip> ClipLoader::load(const std::string& path, const std::optional
   } else {
     return Error{path, 0, "unknown file type (expected .amc, .bvh, .glb, .gltf or .fbx)"};
   }
-  // Either format, standing in y and in metres: its travel over the floor (in_place.h).
+  // Any format, standing in y and in metres: the frames a glitch cuts off its ends
+  // (glitched_ends.h), kept with the rest frames, then its travel over the floor (in_place.h).
+  if (!settings_.keep_rest_frames) drop_glitched_ends(loaded.clip);
   if (auto s = recover_travel(loaded.clip, settings_.travel, settings_.foot_names); !s) {
     return Error{path, 0, s.error().message};
   }

@@ -29,7 +29,8 @@ struct ClipLoadSettings {
                                         // for AMC and BVH alike
   double input_fps = 0.0;               // > 0: the capture rate, overriding the file's
                                         // (AMC files store none: 120 by default, CMU's rate)
-  bool keep_rest_frames = false;        // keep leading rest/T-pose frames of a BVH
+  bool keep_rest_frames = false;        // keep leading rest/T-pose frames of a BVH, and the first or
+                                        // last frames a capture glitch cuts off (glitched_ends.h)
   TravelSource travel = TravelSource::kAuto;  // where the travel over the floor comes from:
                                               // kAuto recovers it from the feet for clips
                                               // animated in place (in_place.h)

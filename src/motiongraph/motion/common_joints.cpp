@@ -111,6 +111,8 @@ Result<Clip> keep_joints(const Clip& clip, std::span<const std::string> names) {
   out.skeleton = Skeleton(std::move(joints), ancestors);
   out.motion = Motion(out.skeleton, clip.motion.frame_count, clip.motion.fps);
   out.dropped_leading_frames = clip.dropped_leading_frames;
+  out.glitched_leading_frames = clip.glitched_leading_frames;
+  out.glitched_trailing_frames = clip.glitched_trailing_frames;
   out.detected_unit = clip.detected_unit;
   out.detected_up_axis = clip.detected_up_axis;
   out.in_place = clip.in_place;

@@ -66,6 +66,10 @@ struct Clip {
   Skeleton skeleton;
   Motion motion;
   int dropped_leading_frames = 0;  // frames removed at load (an added rest or T-pose)
+  // Frames removed at load before a capture glitch at the start, and after one at the end
+  // (glitched_ends.h), after any rest frames.
+  int glitched_leading_frames = 0;
+  int glitched_trailing_frames = 0;
   std::optional<LengthUnitChoice> detected_unit;  // the unit chosen for a BVH read without one
   std::optional<UpAxisChoice> detected_up_axis;   // the up axis chosen for a file read without one
   std::optional<InPlaceChoice> in_place;          // whether its travel was taken out, and recovered (in_place.h)

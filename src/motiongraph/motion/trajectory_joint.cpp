@@ -161,6 +161,8 @@ Clip fold_static_root(const Clip& clip, int trajectory_joint,
   Clip folded;
   folded.name = clip.name;
   folded.dropped_leading_frames = clip.dropped_leading_frames;
+  folded.glitched_leading_frames = clip.glitched_leading_frames;
+  folded.glitched_trailing_frames = clip.glitched_trailing_frames;
   folded.dropped_at_fold = clip.dropped_at_fold;
   folded.dropped_at_fold.insert(folded.dropped_at_fold.end(), dropped.begin(), dropped.end());
   folded.detected_unit = clip.detected_unit;
@@ -215,6 +217,8 @@ Clip unfold_static_root(const Clip& clip) {
   Clip unfolded;
   unfolded.name = clip.name;
   unfolded.dropped_leading_frames = clip.dropped_leading_frames;
+  unfolded.glitched_leading_frames = clip.glitched_leading_frames;
+  unfolded.glitched_trailing_frames = clip.glitched_trailing_frames;
   unfolded.detected_unit = clip.detected_unit;
   unfolded.detected_up_axis = clip.detected_up_axis;
   unfolded.in_place = clip.in_place;

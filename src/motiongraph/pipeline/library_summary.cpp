@@ -71,6 +71,10 @@ nlohmann::json reading_json(const DatabaseLoadNotes& notes) {
   }
   nlohmann::json rest = nlohmann::json::array();
   for (const auto& r : notes.rest_frames) rest.push_back({{"file", r.file}, {"frames", r.frames}});
+  nlohmann::json glitched = nlohmann::json::array();
+  for (const auto& g : notes.glitched_ends) {
+    glitched.push_back({{"file", g.file}, {"leading", g.leading}, {"trailing", g.trailing}});
+  }
   nlohmann::json rigs = nlohmann::json::array();
   for (const auto& rig : notes.matched_rigs) {
     nlohmann::json renamed = nlohmann::json::array();
@@ -98,6 +102,7 @@ nlohmann::json reading_json(const DatabaseLoadNotes& notes) {
           {"up_axes", std::move(up_axes)},
           {"travel_recovered", std::move(travel)},
           {"rest_frames", std::move(rest)},
+          {"glitched_ends", std::move(glitched)},
           {"rigs", std::move(rigs)},
           {"loops", std::move(loops)},
           {"standing_tags", std::move(standing)}};

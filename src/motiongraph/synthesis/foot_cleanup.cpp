@@ -270,6 +270,12 @@ void FootCleanup::solve_leg(Leg& leg, const FrameTargets& targets, int side, std
       Quat turn = Quat::FromTwoVectors(foot, across + Vec3(0.0, rise, 0.0));
       const double angle = turn.angularDistance(Quat::Identity());
       if (angle > kMaxToeTurn) turn = Quat::Identity().slerp(kMaxToeTurn / angle, turn);
+      // And no faster than kMaxToeTurn over the ease: a plant the motion carries the ankle past
+      // (its toe rising above the ankle, then not) swings the foot round, capped at once the
+      // other way, a pop of the toe by 0.2 m in a frame; over frames, it is a turn.
+      const double swing = turn.angularDistance(leg.applied_toe_turn);
+      const double most = kMaxToeTurn / ease_frames_;
+      if (swing > most) turn = leg.applied_toe_turn.slerp(most / swing, turn);
       leg.last_toe_turn = turn;
       toe_turn = leg.last_toe_turn;
     } else {
@@ -281,6 +287,7 @@ void FootCleanup::solve_leg(Leg& leg, const FrameTargets& targets, int side, std
       if (leg.since_toe_release < kLongAgo) ++leg.since_toe_release;
     }
   }
+  leg.applied_toe_turn = toe_turn;
   if (toe_turn.vec().norm() > 1e-12 || leg_turn.vec().norm() > 1e-12) {
     // The foot keeps its world orientation (turned onto the toe's plant): the ankle's world
     // rotation becomes toe_turn * W[ankle] under its parent, the knee, now at leg_turn * W[knee].

@@ -117,6 +117,7 @@ class FootCleanup {
     bool toe_turning = false;
     Vec3 toe_turn_plant = Vec3::Zero();
     Quat last_toe_turn = Quat::Identity();
+    Quat applied_toe_turn = Quat::Identity();  // the last frame's, whichever way it came
     int since_toe_release = 1 << 30;
   };
   struct FrameTargets {

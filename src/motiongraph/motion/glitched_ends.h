@@ -1,0 +1,43 @@
+// Frames cut off from the rest of a clip by a capture glitch at its start or end. Some CMU takes
+// open with a frame or two whose arm is elsewhere (16_15: the left hand 0.92 m from where the
+// next frame has it, 111 m/s; 16_23, 16_28 likewise), so that a walk that plays the clip from
+// its start, or a transition landing there, pops; and the capture's own measure (the largest
+// step of any joint in a frame, evaluation/foot_slide.h) is that jump, not the motion's.
+//
+// The test, on world positions: a step of some joint between two frames is a glitch when it is
+// at least `kGlitchJumpM` (0.2 m) and over `kGlitchSpeedMps` (25 m/s: no limb of a person moves
+// so fast but a pitcher's hand at release), and when every joint's largest step in the frames
+// on either side of it (the frame step before, the one after; one at the clip's ends) is under a
+// fifth of it: motion speeds up and slows down over frames, a glitch in one. The frames before
+// the last such step among the first quarter second (at most) are dropped, and those after the
+// first such step among the last quarter second, as long as two frames are left. Glitches within
+// a clip are left: they are the capture's (03_02 moves both arms 0.9 m in a frame at 0.4 s).
+#pragma once
+
+#include <string>
+
+#include "motiongraph/motion/motion.h"
+
+namespace mg {
+
+inline constexpr double kGlitchJumpM = 0.2;
+inline constexpr double kGlitchSpeedMps = 25.0;
+inline constexpr double kGlitchEndSeconds = 0.25;
+
+struct GlitchedEnds {
+  int leading = 0;   // frames before a glitch at the start
+  int trailing = 0;  // frames after one at the end
+  double leading_jump_m = 0.0;   // the glitch's largest joint step
+  double trailing_jump_m = 0.0;
+  std::string leading_joint;     // the joint that steps it
+  std::string trailing_joint;
+};
+
+// The glitches at `motion`'s ends on `skeleton` (metres; see above).
+GlitchedEnds find_glitched_ends(const Skeleton& skeleton, const Motion& motion);
+
+// The clip without the frames find_glitched_ends() finds; its glitched_* fields say how many
+// (added to any it had). Returns what was found.
+GlitchedEnds drop_glitched_ends(Clip& clip);
+
+}  // namespace mg

@@ -1,0 +1,116 @@
+// Frames cut off by a capture glitch at a clip's ends: 16_15's first two (measured by hand: its
+// left hand 0.92 m from the third frame's), a glitch put at a clean clip's end, none where the
+// motion is fast but smooth, none in the middle, and the loader's numbering of what is left.
+#include "motiongraph/motion/glitched_ends.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+
+#include "motiongraph/motion/forward_kinematics.h"
+#include "test_data.h"
+
+namespace mg {
+namespace {
+
+// The largest step of any joint between frames f and f + 1, by brute force.
+double largest_step(const Skeleton& skeleton, const Motion& motion, int f) {
+  const std::vector<Vec3> p = world_positions(skeleton, motion.slice(f, 2));
+  const int joints = skeleton.joint_count();
+  double most = 0.0;
+  for (int j = 0; j < joints; ++j) most = std::max(most, (p[joints + j] - p[j]).norm());
+  return most;
+}
+
+// The clip with joint `name` turned by `radians` about x from frame `first` to `last`.
+Clip with_turn(Clip clip, const std::string& name, int first, int last, double radians) {
+  const std::optional<int> found = clip.skeleton.find(name);
+  EXPECT_TRUE(found.has_value()) << name;
+  const int j = found.value_or(0);
+  for (int f = first; f <= last; ++f) {
+    Quat& q = clip.motion.rotations(f)[j];
+    q = (q * Quat(Eigen::AngleAxisd(radians, Vec3::UnitX()))).normalized();
+  }
+  return clip;
+}
+
+TEST(GlitchedEnds, SixteenFifteenOpensOnTwoFramesOfALeftArmElsewhere) {
+  const Clip whole = test::load_whole_data_clip("cmu/16/16_15.amc");
+  const GlitchedEnds found = find_glitched_ends(whole.skeleton, whole.motion);
+  EXPECT_EQ(found.leading, 2);
+  EXPECT_EQ(found.trailing, 0);
+  EXPECT_NEAR(found.leading_jump_m, 0.92, 0.01);
+  EXPECT_EQ(found.leading_jump_m, largest_step(whole.skeleton, whole.motion, 1));
+  EXPECT_EQ(found.leading_joint.front(), 'l') << found.leading_joint;  // the left arm's
+  // The steps either side are a fraction of it; the motion after it is smooth.
+  EXPECT_LT(largest_step(whole.skeleton, whole.motion, 0), 0.05);
+  EXPECT_LT(largest_step(whole.skeleton, whole.motion, 2), 0.05);
+  // The loader drops them: the clip is the file from its third frame on.
+  const Clip loaded = test::load_data_clip("cmu/16/16_15.amc");
+  EXPECT_EQ(loaded.glitched_leading_frames, 2);
+  EXPECT_EQ(loaded.glitched_trailing_frames, 0);
+  ASSERT_EQ(loaded.motion.frame_count, whole.motion.frame_count - 2);
+  for (int f : {0, 100, loaded.motion.frame_count - 1}) {
+    for (int j = 0; j < loaded.motion.joint_count; ++j) {
+      EXPECT_EQ(loaded.motion.rotations(f)[j].coeffs(), whole.motion.rotations(f + 2)[j].coeffs());
+    }
+  }
+  EXPECT_EQ(whole.glitched_leading_frames, 0);  // kept
+}
+
+TEST(GlitchedEnds, CleanClipsKeepEveryFrame) {
+  for (const char* file : {"cmu/16/16_16.amc", "cmu/16/16_35.amc", "cmu/16/16_57.amc", "bvh/131_01.bvh"}) {
+    const Clip clip = test::load_whole_data_clip(file);
+    const GlitchedEnds found = find_glitched_ends(clip.skeleton, clip.motion);
+    EXPECT_EQ(found.leading, 0) << file;
+    EXPECT_EQ(found.trailing, 0) << file;
+  }
+}
+
+TEST(GlitchedEnds, AGlitchAtTheEndIsCutOffOneInTheMiddleIsNot) {
+  const Clip clean = test::load_whole_data_clip("cmu/16/16_16.amc");
+  const int n = clean.motion.frame_count;
+  // The last three frames' right upper arm turned by 100 degrees: a glitch before them.
+  const Clip tail = with_turn(clean, "rhumerus", n - 3, n - 1, 1.745);
+  const GlitchedEnds found = find_glitched_ends(tail.skeleton, tail.motion);
+  EXPECT_EQ(found.leading, 0);
+  EXPECT_EQ(found.trailing, 3);
+  EXPECT_GE(found.trailing_jump_m, kGlitchJumpM);
+  EXPECT_EQ(found.trailing_jump_m, largest_step(tail.skeleton, tail.motion, n - 4));
+  Clip dropped = tail;
+  const GlitchedEnds again = drop_glitched_ends(dropped);
+  EXPECT_EQ(again.trailing, 3);
+  EXPECT_EQ(dropped.motion.frame_count, n - 3);
+  EXPECT_EQ(dropped.glitched_trailing_frames, 3);
+  EXPECT_EQ(find_glitched_ends(dropped.skeleton, dropped.motion).trailing, 0);
+  // The same frames a second in: the capture's, left.
+  const Clip middle = with_turn(clean, "rhumerus", 120, 122, 1.745);
+  const GlitchedEnds none = find_glitched_ends(middle.skeleton, middle.motion);
+  EXPECT_EQ(none.leading + none.trailing, 0);
+  // A quarter second in, at most: frames 40 in (a third of a second at 120 fps) are left.
+  const Clip later = with_turn(clean, "rhumerus", 0, 39, 1.745);
+  EXPECT_EQ(find_glitched_ends(later.skeleton, later.motion).leading, 0);
+  const Clip within = with_turn(clean, "rhumerus", 0, 19, 1.745);
+  EXPECT_EQ(find_glitched_ends(within.skeleton, within.motion).leading, 20);
+}
+
+TEST(GlitchedEnds, FastSmoothMotionIsNoGlitch) {
+  // The clip played 12 times as fast (every 12th frame at 120 fps): its hands move over 25 m/s
+  // and 0.2 m a frame, but no faster in one frame than in the next.
+  const Clip clean = test::load_whole_data_clip("cmu/16/16_35.amc");  // a run
+  Motion fast(clean.skeleton, clean.motion.frame_count / 12, 120.0);
+  for (int f = 0; f < fast.frame_count; ++f) {
+    std::copy_n(clean.motion.rotations(12 * f).begin(), fast.joint_count, fast.rotations(f).begin());
+    std::copy_n(clean.motion.translations(12 * f).begin(), fast.translated_count, fast.translations(f).begin());
+  }
+  double fastest = 0.0;
+  for (int f = 0; f + 1 < fast.frame_count; ++f) fastest = std::max(fastest, largest_step(clean.skeleton, fast, f));
+  ASSERT_GT(fastest, kGlitchJumpM);
+  ASSERT_GT(fastest * fast.fps, kGlitchSpeedMps);
+  const GlitchedEnds found = find_glitched_ends(clean.skeleton, fast);
+  EXPECT_EQ(found.leading + found.trailing, 0);
+}
+
+}  // namespace
+}  // namespace mg
