@@ -8,6 +8,7 @@
 #include "cli/commands.h"
 #include "cli/synthesis_options.h"
 #include "motiongraph/synthesis/floor_path.h"
+#include "motiongraph/synthesis/path_check.h"
 #include "motiongraph/synthesis/path_synthesis.h"
 
 namespace mg::cli {
@@ -65,6 +66,23 @@ int run_path(const PathOptions& o) {
              r["reached_end"].get<bool>() ? "" : " (end not reached)", pushed,
              r["mean_deviation_m"].get<double>(), r["max_deviation_m"].get<double>(), edited,
              r["seconds"].get<double>(), r["search_seconds"].get<double>());
+  if (!r["reached_end"].get<bool>()) {
+    // Said apart from the summary: the motion is written, but it is not what was asked.
+    const PathCheckSettings check;
+    const double share = travelling_share(context, check.travel_speed_mps);
+    const std::string why =
+        share < check.min_travel_share
+            ? fmt::format("the graph's clips hardly travel ({:.0f} % of its clip frames move {:g} m/s or faster): "
+                          "a path wants clips that walk or run",
+                          100.0 * share, check.travel_speed_mps)
+            : fmt::format("the search gave up after {} search{} of the whole path (--max-expansions, --horizon and "
+                          "--progress-retries search further)",
+                          attempts, attempts == 1 ? "" : "es");
+    spdlog::warn("the motion did not reach the path's end: it went {:.1f} m of {:.1f} m and stops {:.2f} m from the "
+                 "end; {}",
+                 r["arc_covered_m"].get<double>(), r["path_length_m"].get<double>(), r["end_distance_m"].get<double>(),
+                 why);
+  }
   // Each segment's motion type: how much of the motion in it carries it.
   std::string segments;
   for (const nlohmann::json& s : r["segments"]) {

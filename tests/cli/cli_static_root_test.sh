@@ -161,7 +161,16 @@ PY
 "$bin" build "$work/iplib" -o "$work/ip.mgraph" --no-cache 2>"$work/ipbuild.txt"
 grep "travel recovered from the planted feet: 6 clips animated in place" "$work/ipbuild.txt" >/dev/null \
   || { echo "FAIL: build travel line"; cat "$work/ipbuild.txt"; exit 1; }
-"$bin" path "$work/ip.mgraph" --shape s-curve:20 -o "$work/ips.bvh" --report "$work/ips.json" >/dev/null
+"$bin" path "$work/ip.mgraph" --shape s-curve:20 -o "$work/ips.bvh" --report "$work/ips.json" >/dev/null \
+  2>"$work/ips.err"
+# Read as written (--travel root) the clips walk on the spot: a path is not followed, and path
+# says why beside its summary (the motion is written all the same).
+"$bin" build "$work/iplib" -o "$work/iproot.mgraph" --no-cache --travel root -q
+"$bin" path "$work/iproot.mgraph" --shape line:10 -o "$work/iproot.bvh" >/dev/null 2>"$work/iproot.err" \
+  && grep -Eq "warning: the motion did not reach the path's end: it went [0-9.]+ m of 10.0 m and stops [0-9.]+ m from \
+the end; the graph's clips hardly travel \([0-9] % of its clip frames move 0.5 m/s or faster\)" "$work/iproot.err" \
+  && [[ -s "$work/iproot.bvh" ]] && ! grep -q "did not reach" "$work/ips.err" \
+  || { echo "FAIL: a path the clips cannot follow"; cat "$work/iproot.err"; exit 1; }
 "$bin" convert "$work/iplib/16_15.bvh" -o "$work/ipc.bvh" 2>"$work/ipconvert.txt"
 grep "iplib/16_15.bvh: travel in place as read" "$work/ipconvert.txt" >/dev/null \
   || { echo "FAIL: convert travel line"; cat "$work/ipconvert.txt"; exit 1; }
