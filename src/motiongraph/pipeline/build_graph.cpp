@@ -9,6 +9,7 @@
 #include <cmath>
 #include <optional>
 
+#include "motiongraph/core/counted.h"
 #include "motiongraph/core/json_text.h"
 #include "motiongraph/database/database_loader.h"
 #include "motiongraph/export/matrix_png.h"
@@ -386,8 +387,8 @@ Result<Prepared> prepare(std::span<const std::string> inputs, const BuildSetting
   if (log.loaded) log.loaded(load_notes);
   for (const std::string& line : load_warnings(load_notes)) say.warning(line);
   timings["load"] = watch.lap();
-  say.info(fmt::format("{} clips, {} frames at {:g} fps ({:.1f} s), {} tags", db->clips.size(), db->frame_count(),
-                       db->fps, db->frame_count() / db->fps, db->tag_names.size()));
+  say.info(fmt::format("{}, {} frames at {:g} fps ({:.1f} s), {}", counted(std::ssize(db->clips), "clip"),
+                       db->frame_count(), db->fps, db->frame_count() / db->fps, counted(std::ssize(db->tag_names), "tag")));
   if (!db->contacts_error.empty()) {
     say.warning(fmt::format("no foot contacts, so no foot clean-up in synthesis: {} (name the feet with --feet or a "
                             "manifest's [feet])",
@@ -525,8 +526,9 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
   if (!selected->bridges.empty()) say.info(fmt::format("{} bridges between motion types", selected->bridges.size()));
   timings["transitions"] = watch.lap();
   const double threshold_rms_cm = rms_cm_of_distance(selection.threshold, *features);
-  say.info(fmt::format("threshold {:.4g} (RMS {:.2f} cm; {:.3f} % of pairs below): {} transitions", selection.threshold,
-                       threshold_rms_cm, 100.0 * selection.threshold_quantile, selection.transitions.size()));
+  say.info(fmt::format("threshold {:.4g} (RMS {:.2f} cm; {:.3f} % of pairs below): {}", selection.threshold,
+                       threshold_rms_cm, 100.0 * selection.threshold_quantile,
+                       counted(std::ssize(selection.transitions), "transition")));
 
   // 5. The graph, pruned.
   auto built = build_spaced_graph(*db, *selected, *features, *graph_settings);
@@ -540,12 +542,13 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
                   "cost the graph a transition");
     }
     coverage = clip_coverage(built->graph, *db, candidates->search.minima);
-    say.info(fmt::format("graph: {} nodes, {} edges ({} transitions) after pruning and spacing, playing {} of the {} "
-                         "frames ({:.0f} %); {} transitions survived a first pruning, spaced to {}",
-                         pruned.after.nodes, pruned.after.edges, pruned.after.transitions, pruned.after.clip_frames,
+    say.info(fmt::format("graph: {}, {} ({}) after pruning and spacing, playing {} of the {} "
+                         "frames ({:.0f} %); {} survived a first pruning, spaced to {}",
+                         counted(pruned.after.nodes, "node"), counted(pruned.after.edges, "edge"),
+                         counted(pruned.after.transitions, "transition"), pruned.after.clip_frames,
                          db->frame_count(),
                          100.0 * static_cast<double>(pruned.after.clip_frames) / db->frame_count(),
-                         built->survived_first_pruning, pruned.before.transitions));
+                         counted(built->survived_first_pruning, "transition"), pruned.before.transitions));
     if (const std::string warning =
             coverage_warning(*db, *features, coverage, candidates->search, settings, threshold_rms_cm);
         !warning.empty()) {
