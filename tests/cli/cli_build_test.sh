@@ -502,6 +502,35 @@ grep -E "warning: motion type 'jump': even the ceiling \(--max-threshold 10 cm\)
 10 %, so the threshold does not rise for it" "$work/sliver.err" >/dev/null \
   && grep -E "jump [0-9]+ % \(the ceiling keeps [1-9] %: not chased\)" "$work/sliver.err" >/dev/null \
   || { echo "FAIL: a motion type served a sliver"; cat "$work/sliver.err"; exit 1; }
+# A short run alone keeps a third of its frames, its ends: the warning says so, without
+# promising that a higher threshold keeps more (the ceiling keeps no more). 131_01 alone makes a
+# loop of one transition: the graph can seldom turn, and the build says so.
+"$bin" build "$data/cmu/16/16_35.amc" -o "$work/run35.mgraph" --cache-dir "$cache" --report "$work/run35.json" \
+  2>"$work/run35.err"
+"$bin" build "$data/cmu/16/16_35.amc" -o "$work/run35top.mgraph" --cache-dir "$cache" --threshold 10cm \
+  --report "$work/run35top.json" 2>/dev/null
+grep -Eq "warning: the graph keeps [0-9]+ % of the frames \([0-9]+ of 41\); it loses most of 16_35 \([0-9]+ of 41 \
+frames\)\. A clip keeps the frames between transitions into it and out of it under the threshold \(here RMS [0-9.]+ \
+cm; --max-threshold 10 cm bounds the automatic one\): the frames before the first and after the last lead nowhere" \
+  "$work/run35.err" && ! grep -q "a higher one keeps more" "$work/run35.err" \
+  || { echo "FAIL: a short clip's coverage warning"; cat "$work/run35.err"; exit 1; }
+python3 - "$work/run35.json" "$work/run35top.json" <<'PY'
+import json, sys
+auto, top = (json.load(open(p)) for p in sys.argv[1:3])
+assert top["graph_after"]["clip_frames"] <= auto["graph_after"]["clip_frames"], (top["graph_after"], auto["graph_after"])
+PY
+"$bin" build "$data/bvh/131_01.bvh" -o "$work/one131.mgraph" --cache-dir "$cache" --report "$work/one131.json" \
+  2>"$work/one131.err"
+python3 - "$work/one131.json" "$work/one131.err" <<'PY'
+import json, re, sys
+r, err = json.load(open(sys.argv[1])), open(sys.argv[2]).read()
+after = r["graph_after"]
+rate = after["transitions"] / (after["clip_frames"] / r["fps"])
+m = re.search(r"warning: the graph offers ([0-9.]+) transitions a second of the motion it plays \((\d+) transitions? "
+              r"in ([0-9.]+) s\), under 1: walks, paths and steering can seldom turn", err)
+assert rate < 1 and m and float(m[1]) == round(rate, 2) and int(m[2]) == after["transitions"], (rate, err)
+PY
+grep -q "transitions a second" "$work/g.err" && { echo "FAIL: subject 16 warned of few transitions"; exit 1; }
 # info on them as a folder says how the two rigs became one (not "with the same joints").
 mkdir "$work/rigs" && cp "$data/bvh/111_36.bvh" "$data/bvh/131_01.bvh" "$work/rigs/"
 "$bin" info "$work/rigs" 2>/dev/null | grep -E "^  skeleton: 2 read on the first's joint names and rest pose \(.*111_36.bvh, \
