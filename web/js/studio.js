@@ -316,7 +316,8 @@ $('synthesize').addEventListener('click', async () => {
     setResultLink(result.result);
     $('path-info').textContent = `${result.path_length_m.toFixed(1)} m, ${result.frames} frames `
       + `(${(result.frames / result.fps).toFixed(1)} s): deviation mean ${result.mean_deviation_m.toFixed(2)} m, `
-      + `max ${result.max_deviation_m.toFixed(2)} m${result.reached_end ? '' : ' (end not reached)'}`
+      + `max ${result.max_deviation_m.toFixed(2)} m${result.reached_end ? ''
+        : ` (end not reached: ${result.arc_covered_m.toFixed(1)} m along it, ${result.end_distance_m.toFixed(1)} m from its end)`}`
       + (result.path_edit.edited ? ` (bent onto the path; as the graph played it `
         + `${result.graph_mean_deviation_m.toFixed(2)} m, max ${result.graph_max_deviation_m.toFixed(2)} m)` : '')
       + `, tags matched ${(100 * result.tag_match).toFixed(0)} %${segmentMatches(result)}; ${result.transitions} transitions `
