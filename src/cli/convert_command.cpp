@@ -55,7 +55,8 @@ Result<Clip> read_clip(const ConvertOptions& options, ClipLoader& loader, const 
                  clip.dropped_leading_frames);
   }
   if (clip.glitched_leading_frames > 0 || clip.glitched_trailing_frames > 0) {
-    spdlog::info("{}: {}", input, glitched_ends_description(clip.glitched_leading_frames, clip.glitched_trailing_frames));
+    spdlog::info("{}: {} (--keep-rest-frames keeps them)", input,
+                 glitched_ends_description(clip.glitched_leading_frames, clip.glitched_trailing_frames));
   }
   if (options.fps > 0.0) {
     auto resampled = resample(clip.motion, options.fps);

@@ -120,7 +120,7 @@ void report_units(const DatabaseLoadNotes& notes, bool quiet) {
     for (const auto& g : notes.glitched_ends) frames += g.leading + g.trailing;
     const size_t files = notes.glitched_ends.size();
     spdlog::info("first or last frames a capture glitch cut off (a joint jumping {:g} m/s or faster between two "
-                 "frames), dropped: {} frame{} of {} file{} ({}{})",
+                 "frames), dropped: {} frame{} of {} file{} ({}{}; --keep-rest-frames keeps them)",
                  kGlitchSpeedMps, frames, frames == 1 ? "" : "s", files, files == 1 ? "" : "s",
                  std::filesystem::path(notes.glitched_ends.front().file).filename().string(),
                  files > 1 ? fmt::format(" and {} more", files - 1) : "");

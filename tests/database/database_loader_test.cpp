@@ -709,6 +709,59 @@ TEST(DatabaseLoader, OneRigUnderOtherNamesInGltfAndBvhIsMatched) {
   EXPECT_EQ(db->skeletons[1].joint(0).name, "root");  // the first's names
 }
 
+TEST(DatabaseLoader, RangesCoverTheFramesAGlitchLeavesAtAClipsEnd) {
+  // 16_16 with its last three frames' right upper arm turned by 100 degrees (a glitch before
+  // them, cut off on reading): a range to the file's last frame covers the clip to its new end;
+  // one wholly in the frames cut off is an error saying why, at its line.
+  TempFolder folder("tail");
+  Clip clip = test::load_whole_data_clip("cmu/16/16_16.amc");
+  const int n = clip.motion.frame_count;
+  const int arm = clip.skeleton.find("rhumerus").value_or(0);
+  for (int f = n - 3; f < n; ++f) {
+    Quat& q = clip.motion.rotations(f)[arm];
+    q = (q * Quat(Eigen::AngleAxisd(1.745, Vec3::UnitX()))).normalized();
+  }
+  folder.write("tail.bvh", write_bvh(clip.skeleton, clip.motion, BvhWriteSettings{}));
+  DatabaseSettings settings;
+  settings.fps = 120.0;  // the file's rate: frames are frames
+  const std::string good = folder.write("good.toml", fmt::format(R"([[clip]]
+file = "tail.bvh"
+ranges = [{{ first_frame = 1, last_frame = {0}, tags = ["walk"] }}]
+)", n));
+  DatabaseLoadNotes notes;
+  auto db = load_database({good}, settings, &notes);
+  ASSERT_TRUE(db) << db.error().to_string();
+  ASSERT_EQ(db->clips.size(), 1u);
+  EXPECT_EQ(db->clips[0].frame_count, n - 3);
+  ASSERT_EQ(notes.glitched_ends.size(), 1u);
+  EXPECT_EQ(notes.glitched_ends[0].leading, 0);
+  EXPECT_EQ(notes.glitched_ends[0].trailing, 3);
+  ASSERT_EQ(db->tag_ranges.size(), 1u);
+  EXPECT_EQ(db->tag_ranges[0].first_frame, 0);
+  EXPECT_EQ(db->tag_ranges[0].frame_count, n - 3);
+  const std::string bad = folder.write("bad.toml", fmt::format(R"([[clip]]
+file = "tail.bvh"
+ranges = [
+  {{ first_frame = 1, last_frame = 10, tags = ["walk"] }},
+  {{ first_frame = {0}, last_frame = {1}, tags = ["stop"] }},
+]
+)", n - 1, n));
+  auto refused = load_database({bad}, settings);
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().line, 5);
+  EXPECT_NE(refused.error().message.find(fmt::format("range {}..{} holds only frames the reader drops from", n - 1, n)),
+            std::string::npos)
+      << refused.error().to_string();
+  EXPECT_NE(refused.error().message.find(fmt::format("tail.bvh (cut off by a capture glitch; --keep-rest-frames keeps "
+                                                     "them); the clip's frames are 1..{}", n - 3)),
+            std::string::npos)
+      << refused.error().to_string();
+  settings.keep_rest_frames = true;
+  auto kept = load_database({bad}, settings);
+  ASSERT_TRUE(kept) << kept.error().to_string();
+  EXPECT_EQ(kept->clips[0].frame_count, n);
+}
+
 TEST(DatabaseLoader, NotesTheRestFramesItDroppedOnceAFile) {
   // 07_01.bvh opens on a converter's T-pose frame, 07_12.bvh on two: two clips cut from the one
   // and the other whole note each file once, with the frames dropped; kept, none.

@@ -95,6 +95,21 @@ TEST(GlitchedEnds, AGlitchAtTheEndIsCutOffOneInTheMiddleIsNot) {
   EXPECT_EQ(find_glitched_ends(within.skeleton, within.motion).leading, 20);
 }
 
+TEST(GlitchedEnds, AShortClipsEndsAreMeasuredWhereTheyMeet) {
+  // 50 frames at 120 fps: the windows of a quarter second (30 steps) at either end overlap. A
+  // glitch before the last 18 frames (step 31, just past the first window) is found.
+  const Clip clean = test::load_whole_data_clip("cmu/16/16_16.amc");
+  Clip short_clip = clean;
+  short_clip.motion = clean.motion.slice(0, 50);
+  const Clip glitched = with_turn(short_clip, "rhumerus", 32, 49, 1.745);
+  const GlitchedEnds found = find_glitched_ends(glitched.skeleton, glitched.motion);
+  EXPECT_EQ(found.leading, 0);
+  EXPECT_EQ(found.trailing, 18);
+  EXPECT_EQ(found.trailing_jump_m, largest_step(glitched.skeleton, glitched.motion, 31));
+  const GlitchedEnds none = find_glitched_ends(short_clip.skeleton, short_clip.motion);
+  EXPECT_EQ(none.leading + none.trailing, 0);
+}
+
 TEST(GlitchedEnds, FastSmoothMotionIsNoGlitch) {
   // The clip played 12 times as fast (every 12th frame at 120 fps): its hands move over 25 m/s
   // and 0.2 m a frame, but no faster in one frame than in the next.

@@ -622,13 +622,20 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
       return Error{spec.manifest, spec.frames_line,
                    fmt::format("last_frame {} is past the end of {} ({} frames)", asked_last, spec.path, file_frames)};
     }
+    if (spec.first_frame.value_or(1) > file_frames) {
+      return Error{spec.manifest, spec.frames_line,
+                   fmt::format("first_frame {} is past the end of {} ({} frames)", *spec.first_frame, spec.path,
+                               file_frames)};
+    }
+    // Why frames of the file are not the clip's: what the reader dropped, and where.
+    const std::string dropped_why =
+        rest > 0 && glitched_leading + trailing == 0 ? "a rest pose before the capture"
+        : rest == 0 ? "cut off by a capture glitch; --keep-rest-frames keeps them"
+                    : "a rest pose before the capture, or cut off by a capture glitch; --keep-rest-frames keeps them";
     if (last < first) {
-      const char* why = rest > 0 && glitched_leading + trailing == 0 ? "a rest pose before the capture"
-                        : rest == 0 ? "cut off by a capture glitch"
-                                    : "a rest pose before the capture, or cut off by a capture glitch";
       return Error{spec.manifest, spec.frames_line,
                    fmt::format("frames {}..{} of {} hold only frames the reader drops ({}); the clip's frames are "
-                               "{}..{}", spec.first_frame.value_or(1), asked_last, spec.path, why, dropped + 1,
+                               "{}..{}", spec.first_frame.value_or(1), asked_last, spec.path, dropped_why, dropped + 1,
                                file_frames - trailing)};
     }
     const bool whole = first == dropped + 1 && last == file_frames - trailing;
@@ -715,18 +722,21 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
         if (auto s = add_tag_range(db, tag, clip.first_frame, clip.frame_count, spec); !s) return s.error();
       }
       for (const ManifestRange& range : spec.ranges) {
-        if (range.last_frame > last) {
+        // Ranges are in the file's frames, as far as the clip's last asked (the file's end);
+        // they cover the frames the clip keeps of them.
+        if (range.last_frame > asked_last) {
           return Error{spec.manifest, range.line,
                        fmt::format("range last_frame {} is past the end of {} (frame {})", range.last_frame,
-                                   spec.path, last)};
+                                   spec.path, asked_last)};
         }
-        if (range.last_frame < first) {
+        if (range.last_frame < first || range.first_frame > last) {
           return Error{spec.manifest, range.line,
-                       fmt::format("range {}..{} holds only frames the reader drops from {} (a rest pose); the "
-                                   "clip starts at frame {}", range.first_frame, range.last_frame, spec.path, first)};
+                       fmt::format("range {}..{} holds only frames the reader drops from {} ({}); the clip's frames "
+                                   "are {}..{}", range.first_frame, range.last_frame, spec.path, dropped_why, first,
+                                   last)};
         }
         const double start_s = (std::max(range.first_frame, first) - first) / input_fps;
-        const double end_s = (range.last_frame - first) / input_fps;
+        const double end_s = (std::min(range.last_frame, last) - first) / input_fps;
         const auto [lo, hi] = output_frames(start_s, end_s, db.fps, clip.frame_count);
         for (const std::string& tag : range.tags) {
           if (auto s = add_tag_range(db, tag, clip.first_frame + lo, hi - lo + 1, spec); !s) return s.error();

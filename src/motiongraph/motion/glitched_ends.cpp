@@ -24,8 +24,9 @@ GlitchedEnds find_glitched_ends(const Skeleton& skeleton, const Motion& motion) 
   const int joints = skeleton.joint_count();
   if (frames < 4 || joints == 0 || !(motion.fps > 0.0)) return out;
   const int window = std::max(1, static_cast<int>(std::floor(kGlitchEndSeconds * motion.fps)));
-  // The steps within a window of either end (each needs its neighbours), FK on those frames only.
-  const int head = std::min(frames, window + 2), tail = std::max(head, frames - window - 2);
+  // The steps within a window of either end (each needs its neighbours), FK on those frames only:
+  // steps 0..head-2 and tail..frames-2, which meet or overlap in a short clip.
+  const int head = std::min(frames, window + 2), tail = std::max(head - 1, frames - window - 2);
   std::vector<Vec3> positions(static_cast<size_t>(joints)), previous(static_cast<size_t>(joints));
   std::vector<Quat> rotations(static_cast<size_t>(joints));
   std::vector<Step> steps(static_cast<size_t>(frames - 1));
