@@ -117,7 +117,7 @@ done
 # path went best is kept, and the user is told. Without the check, the coverage choice stays.
 "$bin" build "$data/cmu/16" -o "$work/pc.mgraph" --cache-dir "$cache" --path-check 0.0001 --report "$work/pc.json" \
   2>"$work/pc.err" >/dev/null
-grep -q "path check: no threshold up to --max-threshold 10 cm lets the graph's own walks follow the test path and its mirror within 0.0001 m; the best, RMS [0-9.]* cm, follows the test path [0-9.]* m off and its mirror [0-9.]* m off (the clips may hold few turns); \`path\`, bending the motion onto the path, follows them [0-9.]* m off, the worse of the two" "$work/pc.err" \
+grep -q "path check: no threshold up to --max-threshold 10 cm lets the graph's own walks follow the test path and its mirror within 0.0001 m; the best, RMS [0-9.]* cm, follows the test path [0-9.]* m off and its mirror [0-9.]* m off (the clips may hold few turns); \`path\`, bending the motion onto the path, follows the test path [0-9.]* m off and its mirror [0-9.]* m off" "$work/pc.err" \
   || { echo "FAIL: path check warning"; cat "$work/pc.err"; exit 1; }
 "$bin" inspect "$work/pc.mgraph" | grep "path check: .* (NOT within the tolerance: the clips may hold few turns; 7 threshold(s) tried); path's motion, bent onto it: [0-9.]* m off" >/dev/null \
   || { echo "FAIL: inspect's failed path check line"; "$bin" inspect "$work/pc.mgraph"; exit 1; }
@@ -137,7 +137,9 @@ assert r["threshold"] == pc["threshold"] == best["threshold"], (r["threshold"], 
 d = pc["delivered"]
 assert d["threshold"] == best["threshold"] and d["reached_end"] and d["mean_deviation_m"] < best["mean_deviation_m"], d
 err = open(f"{work}/pc.err").read()
-assert f"bending the motion onto the path, follows them {d['mean_deviation_m']:.3f} m off" in err
+assert f"bending the motion onto the path, follows the test path {d['probe_deviations_m'][0]:.3f} m off and its mirror " \
+    f"{d['probe_deviations_m'][1]:.3f} m off" in err, err
+assert d["mean_deviation_m"] == max(d["probe_deviations_m"]), d  # the worse of the two
 # Both probes of the threshold kept, as its point has them.
 probe, mirror = next(p for p in pc["points"] if p["threshold"] == best["threshold"])["probe_deviations_m"]
 assert f"follows the test path {probe:.3f} m off and its mirror {mirror:.3f} m off" in err, (probe, mirror, err)

@@ -293,23 +293,23 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
     const PathCheckPoint* delivered = check->delivered ? &*check->delivered : nullptr;
     // Both probes' deviations when both were walked: the worse is judged by the way it covered
     // first, so that it need not be the one further off.
-    const auto& d = picked->probe_deviations_m;
-    const bool two = both && std::isfinite(d[0]) && std::isfinite(d[1]);
-    const std::string off = two ? fmt::format("the test path {:.3f} m off and its mirror {:.3f} m off", d[0], d[1])
-                                : fmt::format("{} {:.3f} m off", them, picked->mean_deviation_m);
+    auto off = [&](const PathCheckPoint& p) {
+      const auto& d = p.probe_deviations_m;
+      return both && std::isfinite(d[0]) && std::isfinite(d[1])
+                 ? fmt::format("the test path {:.3f} m off and its mirror {:.3f} m off", d[0], d[1])
+                 : fmt::format("{} {:.3f} m off{}", them, p.mean_deviation_m, worse);
+    };
     const std::string covered =
         picked->reached_end ? ""
-                            : fmt::format("{} {:.0f} m of its {:.0f} m", two ? ", the worse covering" : " and covers",
+                            : fmt::format(", {} {:.0f} m of its {:.0f} m", both ? "the worse covering" : "covering",
                                           picked->arc_covered_m, check->probe_length_m);
     say.warning(fmt::format(
         "path check: no threshold up to --max-threshold {:g} cm lets the graph's own walks follow {} within {:g} m; "
-        "the best, RMS {:.2f} cm, follows {}{}{} (the clips may hold few turns){}",
-        choice_settings.max_rms_cm, probes, check_settings.tolerance_m, check->rms_cm, off, covered,
-        two ? "" : worse,
+        "the best, RMS {:.2f} cm, follows {}{} (the clips may hold few turns){}",
+        choice_settings.max_rms_cm, probes, check_settings.tolerance_m, check->rms_cm, off(*picked), covered,
         delivered == nullptr ? ""
-                             : fmt::format("; `path`, bending the motion onto the path, follows {} {:.3f} m off{}{}", them,
-                                           delivered->mean_deviation_m,
-                                           delivered->reached_end ? "" : ", short of its end", worse)));
+                             : fmt::format("; `path`, bending the motion onto the path, follows {}{}", off(*delivered),
+                                           delivered->reached_end ? "" : ", short of its end")));
   }
   graph_settings.transitions.threshold = check->threshold;
   return graph_settings;
