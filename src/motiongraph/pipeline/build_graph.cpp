@@ -486,10 +486,13 @@ std::string few_transitions_warning(const GraphStatistics& after, double fps) {
   const double seconds = static_cast<double>(after.clip_frames) / fps;
   const double rate = after.transitions / seconds;
   if (rate >= kFewTransitionsPerSecond) return {};
-  return fmt::format("the graph offers {:.2f} transitions a second of the motion it plays ({} in {:.1f} s), under "
+  // Three decimals where two would round up to the bound ("1.00 ... under 1").
+  const std::string shown = rate < kFewTransitionsPerSecond - 0.005 ? fmt::format("{:.2f}", rate)
+                                                                     : fmt::format("{:.3f}", rate);
+  return fmt::format("the graph offers {} transitions a second of the motion it plays ({} in {:.1f} s), under "
                      "{:g}: walks, paths and steering can seldom turn or change motion on it; more clips of the "
                      "same motion give more",
-                     rate, counted(after.transitions, "transition"), seconds, kFewTransitionsPerSecond);
+                     shown, counted(after.transitions, "transition"), seconds, kFewTransitionsPerSecond);
 }
 
 // A warning for each motion type (not a modifier) the clips carry and the pruned graph plays in
