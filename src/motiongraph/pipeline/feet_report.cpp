@@ -25,6 +25,10 @@ double planted_share(std::span<const ContactMask> masks, FootSide side) {
 
 std::string feet_description(const Skeleton& skeleton, const FootJoints& feet, std::span<const ContactMask> masks,
                              const std::string& source) {
+  if (masks.size() < 2) {  // a held pose of one frame: no motion to see a foot rest in
+    return fmt::format("{}, {} ({}; one frame: contacts not measured)", foot_text(skeleton, feet.left),
+                       foot_text(skeleton, feet.right), source);
+  }
   return fmt::format("{}, {} ({}; planted {:.0f} % and {:.0f} % of frames)", foot_text(skeleton, feet.left),
                      foot_text(skeleton, feet.right), source, 100.0 * planted_share(masks, FootSide::kLeft),
                      100.0 * planted_share(masks, FootSide::kRight));
@@ -35,7 +39,8 @@ nlohmann::json feet_json(const Skeleton& skeleton, const FootJoints& feet, std::
   const auto foot_json = [&](const Foot& foot, FootSide side) {
     return nlohmann::json{{"ankle", skeleton.joint(foot.ankle).name},
                           {"toe", foot.toe < 0 ? nlohmann::json() : nlohmann::json(skeleton.joint(foot.toe).name)},
-                          {"planted_share", planted_share(masks, side)}};
+                          {"planted_share",
+                           masks.size() < 2 ? nlohmann::json() : nlohmann::json(planted_share(masks, side))}};
   };
   return {{"source", source}, {"left", foot_json(feet.left, FootSide::kLeft)},
           {"right", foot_json(feet.right, FootSide::kRight)}};

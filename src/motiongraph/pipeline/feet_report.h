@@ -16,7 +16,8 @@ namespace mg {
 // how the feet were got ("found by name", "--feet").
 std::string feet_description(const Skeleton& skeleton, const FootJoints& feet, std::span<const ContactMask> masks,
                              const std::string& source);
-// {"source", "left": {"ankle", "toe" (null without one), "planted_share"}, "right": {...}}.
+// {"source", "left": {"ankle", "toe" (null without one), "planted_share" (null for one frame)},
+// "right": {...}}.
 nlohmann::json feet_json(const Skeleton& skeleton, const FootJoints& feet, std::span<const ContactMask> masks,
                          const std::string& source);
 // "not found: WHY; without them there is no foot clean-up and no travel from the feet (--feet
