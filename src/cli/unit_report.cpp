@@ -8,6 +8,7 @@
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
+#include "motiongraph/core/counted.h"
 #include "motiongraph/motion/glitched_ends.h"
 #include "motiongraph/motion/length_unit.h"
 
@@ -19,6 +20,14 @@ void warn_implausible(const std::string& file, const LengthUnitChoice& choice) {
   spdlog::warn("{}: no length unit makes the figure human-sized ({:g}-{:g} m): it is {:.4g} units tall; read as "
                "{} (give --scale, metres per unit)",
                file, kPlausibleHeightMinM, kPlausibleHeightMaxM, choice.figure_size_units, choice.unit.name);
+}
+
+// "3 frames of 2 files (07_01.bvh and 1 more; --keep-rest-frames keeps them)": the frames the
+// reader dropped from files, the first named.
+std::string dropped_from_files(int frames, size_t files, const std::string& first) {
+  return fmt::format("{} of {} ({}{}; --keep-rest-frames keeps them)", counted(frames, "frame"),
+                     counted(static_cast<long long>(files), "file"), std::filesystem::path(first).filename().string(),
+                     files > 1 ? fmt::format(" and {} more", files - 1) : "");
 }
 
 }  // namespace
@@ -108,22 +117,16 @@ void report_units(const DatabaseLoadNotes& notes, bool quiet) {
   if (!notes.rest_frames.empty() && !quiet) {
     int frames = 0;
     for (const auto& r : notes.rest_frames) frames += r.frames;
-    const size_t files = notes.rest_frames.size();
-    spdlog::info("leading rest/T-pose frames a converter added, dropped: {} frame{} of {} file{} ({}{}; "
-                 "--keep-rest-frames keeps them)",
-                 frames, frames == 1 ? "" : "s", files, files == 1 ? "" : "s",
-                 std::filesystem::path(notes.rest_frames.front().file).filename().string(),
-                 files > 1 ? fmt::format(" and {} more", files - 1) : "");
+    spdlog::info("leading rest/T-pose frames a converter added, dropped: {}",
+                 dropped_from_files(frames, notes.rest_frames.size(), notes.rest_frames.front().file));
   }
   if (!notes.glitched_ends.empty() && !quiet) {
     int frames = 0;
     for (const auto& g : notes.glitched_ends) frames += g.leading + g.trailing;
-    const size_t files = notes.glitched_ends.size();
     spdlog::info("first or last frames a capture glitch cut off (a joint jumping {:g} m/s or faster between two "
-                 "frames), dropped: {} frame{} of {} file{} ({}{}; --keep-rest-frames keeps them)",
-                 kGlitchSpeedMps, frames, frames == 1 ? "" : "s", files, files == 1 ? "" : "s",
-                 std::filesystem::path(notes.glitched_ends.front().file).filename().string(),
-                 files > 1 ? fmt::format(" and {} more", files - 1) : "");
+                 "frames), dropped: {}",
+                 kGlitchSpeedMps,
+                 dropped_from_files(frames, notes.glitched_ends.size(), notes.glitched_ends.front().file));
   }
   if (!notes.loops.empty() && !quiet) {
     int added = 0;

@@ -627,8 +627,8 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
                    fmt::format("first_frame {} is past the end of {} ({} frames)", *spec.first_frame, spec.path,
                                file_frames)};
     }
-    // Why frames of the file are not the clip's: what the reader dropped, and where.
-    const std::string dropped_why =
+    // Why frames of the file are not the clip's, for the errors below: what the reader dropped.
+    const char* dropped_why =
         rest > 0 && glitched_leading + trailing == 0 ? "a rest pose before the capture"
         : rest == 0 ? "cut off by a capture glitch; --keep-rest-frames keeps them"
                     : "a rest pose before the capture, or cut off by a capture glitch; --keep-rest-frames keeps them";

@@ -21,6 +21,7 @@
 #include "motiongraph/metric/frame_features.h"
 #include "motiongraph/pipeline/build_report.h"
 #include "motiongraph/pipeline/saved_settings.h"
+#include "motiongraph/synthesis/walk.h"
 
 namespace mg {
 
@@ -395,7 +396,8 @@ Result<Prepared> prepare(std::span<const std::string> inputs, const BuildSetting
   for (const std::string& line : load_warnings(load_notes)) say.warning(line);
   timings["load"] = watch.lap();
   say.info(fmt::format("{}, {} frames at {:g} fps ({:.1f} s), {}", counted(std::ssize(db->clips), "clip"),
-                       db->frame_count(), db->fps, db->frame_count() / db->fps, counted(std::ssize(db->tag_names), "tag")));
+                       db->frame_count(), db->fps, db->frame_count() / db->fps,
+                       counted(std::ssize(db->tag_names), "tag")));
   if (!db->contacts_error.empty()) {
     say.warning(fmt::format("no foot contacts, so no foot clean-up in synthesis: {} (name the feet with --feet or a "
                             "manifest's [feet])",
@@ -483,8 +485,7 @@ std::string coverage_warning(const MotionDatabase& db, const FrameFeatures& feat
 constexpr double kFewTransitionsPerSecond = 1.0;
 std::string few_transitions_warning(const GraphStatistics& after, double fps) {
   if (after.clip_frames <= 0 || !(fps > 0.0)) return {};
-  const double seconds = static_cast<double>(after.clip_frames) / fps;
-  const double rate = after.transitions / seconds;
+  const double rate = transitions_per_second(after.transitions, after.clip_frames, fps);
   if (rate >= kFewTransitionsPerSecond) return {};
   // Three decimals where two would round up to the bound ("1.00 ... under 1").
   const std::string shown = rate < kFewTransitionsPerSecond - 0.005 ? fmt::format("{:.2f}", rate)
@@ -492,7 +493,8 @@ std::string few_transitions_warning(const GraphStatistics& after, double fps) {
   return fmt::format("the graph offers {} transitions a second of the motion it plays ({} in {:.1f} s), under "
                      "{:g}: walks, paths and steering can seldom turn or change motion on it; more clips of the "
                      "same motion give more",
-                     shown, counted(after.transitions, "transition"), seconds, kFewTransitionsPerSecond);
+                     shown, counted(after.transitions, "transition"), static_cast<double>(after.clip_frames) / fps,
+                     kFewTransitionsPerSecond);
 }
 
 // A warning for each motion type (not a modifier) the clips carry and the pruned graph plays in
