@@ -55,15 +55,14 @@ std::vector<OwnThreshold> own_thresholds(std::span<const int> tags, std::span<co
   return own;
 }
 
-// The share of the frames carrying none of `tags` that the graph's clip edges play.
-double untagged_coverage(std::span<const TagMask> frame_tags, const MotionGraph& graph, TagMask tags) {
-  long long all = 0, played = 0;
-  for (const TagMask m : frame_tags) all += (m & tags) == 0 ? 1 : 0;
+// The share of the untagged class's frames (untagged_class_frames) that the graph's clip edges
+// play.
+double untagged_coverage(std::span<const char> in_class, const MotionGraph& graph) {
+  const long long all = std::count(in_class.begin(), in_class.end(), 1);
+  long long played = 0;
   for (const GraphEdge& e : graph.edges) {
     if (e.transition) continue;
-    for (int f = graph.nodes[e.from_node].frame; f < graph.nodes[e.to_node].frame; ++f) {
-      played += (frame_tags[f] & tags) == 0 ? 1 : 0;
-    }
+    for (int f = graph.nodes[e.from_node].frame; f < graph.nodes[e.to_node].frame; ++f) played += in_class[f];
   }
   return all > 0 ? static_cast<double>(played) / static_cast<double>(all) : 0.0;
 }
@@ -78,17 +77,25 @@ GraphFromCandidatesSettings with_chosen_thresholds(const GraphFromCandidatesSett
   return out;
 }
 
+std::vector<char> untagged_class_frames(const MotionDatabase& db, TagMask tags) {
+  const std::vector<TagMask> frame_tags = db.frame_tags();
+  std::vector<char> in_class(frame_tags.size(), 0);
+  for (const DatabaseClip& clip : db.clips) {
+    const auto first = frame_tags.begin() + clip.first_frame, last = first + clip.frame_count;
+    if (std::any_of(first, last, [&](TagMask m) { return (m & tags) != 0; })) continue;
+    std::fill(in_class.begin() + clip.first_frame, in_class.begin() + clip.first_frame + clip.frame_count, 1);
+  }
+  return in_class;
+}
+
 std::vector<int> coverage_tags(const MotionDatabase& db, const GraphFromCandidatesSettings& settings) {
   std::vector<int> tags;
   for (int t = 0; t < 64; ++t) {
     if (settings.connected_tags >> t & 1) tags.push_back(t);
   }
   if (tags.empty()) return tags;
-  const std::vector<TagMask> frame_tags = db.frame_tags();
-  if (std::any_of(frame_tags.begin(), frame_tags.end(),
-                  [&](TagMask m) { return (m & settings.connected_tags) == 0; })) {
-    tags.push_back(kUntaggedClass);
-  }
+  const std::vector<char> in_class = untagged_class_frames(db, settings.connected_tags);
+  if (std::find(in_class.begin(), in_class.end(), 1) != in_class.end()) tags.push_back(kUntaggedClass);
   return tags;
 }
 
@@ -127,7 +134,7 @@ Result<CoveragePoint> coverage_at(const MotionDatabase& db, const FrameFeatures&
   point.coverage = 1.0;
   for (size_t i = 0; i < tags.size(); ++i) {
     if (tags[i] == kUntaggedClass) {
-      point.tag_coverage[i] = untagged_coverage(db.frame_tags(), pruned->graph, settings.connected_tags);
+      point.tag_coverage[i] = untagged_coverage(untagged_class_frames(db, settings.connected_tags), pruned->graph);
     }
     for (const TagStatistics& s : after.tags) {
       if (s.tag == tags[i] && s.database_frames > 0) {
@@ -155,8 +162,8 @@ Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFe
   const bool per_type = settings.transitions.per_tag_thresholds && !out.tags.empty();
   const size_t n = per_type ? out.tags.size() : 1;
   // Per type, whether a type takes part: one the ceiling gives less than kMinServedShare of its
-  // frames (a few frames of no motion type at clips' ends, tagged only "stop"; a clip too short
-  // to leave and come back to) wants nothing: no threshold serves it, and chasing its last frames
+  // frames (a clip of no type too short to leave and come back to; a type on a few frames amid
+  // other motion) wants nothing: no threshold serves it, and chasing its last frames
   // would take every type to the ceiling. It reaches its target at any threshold and would pull
   // the global threshold, the lowest, down to the grid's first level; it follows the global one
   // instead.
