@@ -190,8 +190,8 @@ Command add_build_command(CLI::App& app) {
   sub->add_option("--threshold-quantile", b.quantile,
                   "Instead of --threshold: the fraction of all defined pairs below the threshold (e.g. 0.02)");
   sub->add_option("--coverage", b.choice.coverage,
-                  "--threshold auto: the share of each motion type's frames (of all frames without tags) the pruned "
-                  "graph keeps")
+                  "--threshold auto: the share of each motion type's frames (and of the clips' of no type; of all "
+                  "frames when no clip has a type) the pruned graph keeps")
       ->capture_default_str();
   sub->add_option("--min-transition-rate", b.choice.min_transition_rate,
                   "--threshold auto: transitions per second of kept motion the graph must offer (to be steerable)")

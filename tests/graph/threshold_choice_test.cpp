@@ -226,7 +226,7 @@ TEST(ThresholdChoice, FramesOfNoMotionTypeAreAClassOfTheirOwn) {
   GraphFromCandidatesSettings settings = x.settings;
   settings.connected_tags = 0b01;
   EXPECT_EQ(coverage_tags(db, settings), (std::vector<int>{0, kUntaggedClass}));
-  EXPECT_EQ(coverage_tags(x.db, x.settings), (std::vector<int>{0, 1}));  // every frame tagged
+  EXPECT_EQ(coverage_tags(x.db, x.settings), (std::vector<int>{0, 1}));  // every clip typed
   EXPECT_EQ(motion_class_name(db, kUntaggedClass), "untagged");
   const ThresholdChoiceSettings choice = half_under_30cm();
   auto chosen = choose_threshold(db, x.features, x.search, settings, choice);
@@ -281,7 +281,14 @@ TEST(ThresholdChoice, FramesOfNoTypeInATypedClipAreItsWayInAndOutNotAClass) {
   const std::vector<char> none(static_cast<size_t>(db.frame_count()), 0);
   EXPECT_EQ(untagged_class_frames(db, x.settings.connected_tags), none);
   EXPECT_EQ(coverage_tags(db, x.settings), (std::vector<int>{0, 1}));
-  // The runs untagged: the class is their clips, every frame of them and nothing else.
+  const ThresholdChoiceSettings choice = half_under_30cm();
+  auto typed = choose_threshold(db, x.features, x.search, x.settings, choice);
+  ASSERT_TRUE(typed) << typed.error().to_string();
+  EXPECT_TRUE(typed->reached);
+  EXPECT_EQ(typed->tags, (std::vector<int>{0, 1}));
+  EXPECT_EQ(typed->tag_thresholds.size(), 2u);
+
+  // The runs untagged too: the class is their clips, every frame of them and nothing else.
   db.tag_ranges.resize(2);
   GraphFromCandidatesSettings settings = x.settings;
   settings.connected_tags = 0b01;
@@ -289,14 +296,15 @@ TEST(ThresholdChoice, FramesOfNoTypeInATypedClipAreItsWayInAndOutNotAClass) {
   std::fill(runs.begin() + db.clips[2].first_frame, runs.end(), 1);
   EXPECT_EQ(untagged_class_frames(db, settings.connected_tags), runs);
   EXPECT_EQ(coverage_tags(db, settings), (std::vector<int>{0, kUntaggedClass}));
-  // Its coverage counts those frames alone: the share of the runs' frames the graph plays.
-  const ThresholdChoiceSettings choice = half_under_30cm();
   auto chosen = choose_threshold(db, x.features, x.search, settings, choice);
   ASSERT_TRUE(chosen) << chosen.error().to_string();
+  ASSERT_TRUE(chosen->reached);
   GraphFromCandidatesSettings at = with_chosen_thresholds(settings, *chosen);
   at.transitions.max_threshold = distance_of_rms_cm(choice.max_rms_cm, x.features);
   auto graph = graph_from_candidates(db, x.features, x.search, at);
   ASSERT_TRUE(graph) << graph.error().to_string();
+  // Its coverage counts those frames alone: the share of the runs' frames the graph plays,
+  // counted here frame by frame.
   const MotionGraph& g = graph->pruned.graph;
   long long played = 0;
   for (const GraphEdge& e : g.edges) {
@@ -306,6 +314,31 @@ TEST(ThresholdChoice, FramesOfNoTypeInATypedClipAreItsWayInAndOutNotAClass) {
   EXPECT_GT(played, 0);
   EXPECT_DOUBLE_EQ(chosen->chosen().tag_coverage[1],
                    static_cast<double>(played) / static_cast<double>(db.frame_count() - db.clips[2].first_frame));
+  // Its threshold governs the candidates whose two windows lie in its clips, not those in the
+  // walks' left-off frames.
+  const int k = x.features.window;
+  auto within = [&](int first) {
+    return first >= 0 && first + k <= db.frame_count() &&
+           std::all_of(runs.begin() + first, runs.begin() + first + k, [](char r) { return r != 0; });
+  };
+  auto left_off_window = [&](int first) {
+    if (first < 0 || first + k > db.clips[2].first_frame) return false;
+    for (int f = first; f < first + k; ++f) {
+      if ((db.frame_tags()[f] & 1) != 0) return false;
+    }
+    return true;
+  };
+  long long in_class = 0, in_left_off = 0;
+  for (const Transition& t : x.search.minima) {
+    in_class += within(t.from_frame) && within(t.to_frame - k + 1) ? 1 : 0;
+    in_left_off += left_off_window(t.from_frame) && left_off_window(t.to_frame - k + 1) ? 1 : 0;
+  }
+  EXPECT_GT(in_left_off, 0);  // the case is there
+  const auto& own = graph->transitions.selection.tag_thresholds;
+  const auto untagged =
+      std::find_if(own.begin(), own.end(), [](const TagThreshold& t) { return t.tag == kUntaggedClass; });
+  ASSERT_NE(untagged, own.end());
+  EXPECT_EQ(untagged->candidates, in_class);
 }
 
 TEST(ThresholdChoice, ATypeTheCeilingGivesNothingTakesTheGlobalThreshold) {
@@ -335,11 +368,10 @@ TEST(ThresholdChoice, ATypeTheCeilingGivesNothingTakesTheGlobalThreshold) {
   }
 }
 
-TEST(ThresholdChoice, FramesOfNoTypeAmidTypedClipsHoldNoSearchUp) {
+TEST(ThresholdChoice, FramesOfNoTypeAmidTypedClipsAreNoClass) {
   // Frames of no motion type in typed clips: the last 6 of the second walk and of the second run
-  // (no graph plays them) and two in the middle of the first walk (which graphs play, one of them
-  // at the ceiling). As a class they were a sliver of its 14 at the ceiling (a library's
-  // "stop"-only frames took all its types there); they are no class now, and hold nothing up.
+  // (no graph plays them) and two in the middle of the first walk (which graphs play, one of
+  // them at the ceiling). As a class they were a sliver of its 14; they are no class now.
   const Fixture& x = fixture();
   MotionDatabase db = x.db;
   const int span = 2;
@@ -354,8 +386,7 @@ TEST(ThresholdChoice, FramesOfNoTypeAmidTypedClipsHoldNoSearchUp) {
   ASSERT_TRUE(chosen->reached);
   ASSERT_EQ(chosen->tags, (std::vector<int>{0, 1}));
   ASSERT_EQ(chosen->tag_thresholds.size(), 2u);
-  EXPECT_LT(chosen->rms_cm, 0.5 * choice.max_rms_cm);
-  EXPECT_LT(rms_cm_of_distance(chosen->tag_thresholds[0], x.features), 0.5 * choice.max_rms_cm);
+  for (const CoveragePoint& p : chosen->curve) EXPECT_EQ(p.tag_coverage.size(), 2u);
 }
 
 TEST(ThresholdChoice, CoverageIsThatOfTheGraphBuildWrites) {

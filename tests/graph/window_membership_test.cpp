@@ -1,4 +1,5 @@
-// A candidate's classes from the per-frame masks, against the definition checked frame by frame.
+// A candidate's classes from the per-frame masks (and a given untagged class), against the
+// definition checked frame by frame.
 #include "motiongraph/graph/window_membership.h"
 
 #include <random>
@@ -10,7 +11,7 @@ namespace {
 
 TEST(WindowMembership, ACandidateBelongsToWhatEveryFrameOfBothWindowsCarries) {
   std::mt19937 rng(20261202);
-  long long members = 0, untagged = 0, outside = 0;
+  long long members = 0, untagged = 0, outside = 0, classed_members = 0;
   for (int round = 0; round < 40; ++round) {
     const int frames = 60 + static_cast<int>(rng() % 60), window = 1 + static_cast<int>(rng() % 8);
     std::vector<TagMask> frame_tags(static_cast<size_t>(frames));
@@ -21,10 +22,17 @@ TEST(WindowMembership, ACandidateBelongsToWhatEveryFrameOfBothWindowsCarries) {
     }
     const TagMask tags = 0b0111;  // tag 3 is not asked about
     const WindowMembership windows = window_membership(frame_tags, tags, window);
+    // The untagged class given (as whole clips are): runs of frames in it or not.
+    std::vector<char> in_class(static_cast<size_t>(frames));
+    for (int f = 0; f < frames;) {
+      const char c = rng() % 2 == 0 ? 1 : 0;
+      for (int n = 3 + static_cast<int>(rng() % 25); n > 0 && f < frames; --n) in_class[f++] = c;
+    }
+    const WindowMembership classed = window_membership(frame_tags, tags, window, in_class);
     for (int i = 0; i < 200; ++i) {
       const Transition c{static_cast<int>(rng() % (frames + 4)) - 2, static_cast<int>(rng() % (frames + 4)) - 2};
       const int first[2] = {c.from_frame, c.to_frame - window + 1};
-      bool inside = true, none = true;
+      bool inside = true, none = true, of_class = true;
       TagMask all = ~TagMask{0};
       for (const int start : first) {
         for (int f = start; f < start + window; ++f) {
@@ -34,8 +42,13 @@ TEST(WindowMembership, ACandidateBelongsToWhatEveryFrameOfBothWindowsCarries) {
           }
           all &= frame_tags[f];
           none = none && (frame_tags[f] & tags) == 0;
+          of_class = of_class && in_class[f] != 0;
         }
       }
+      EXPECT_EQ(classed.tags_of(c), windows.tags_of(c));
+      EXPECT_EQ(classed.untagged(c), inside && of_class) << round;
+      EXPECT_EQ(classed.belongs(c, -1), inside && of_class) << round;
+      classed_members += inside && of_class ? 1 : 0;
       EXPECT_EQ(windows.tags_of(c), inside ? all & tags : 0) << round << ": " << c.from_frame << "->" << c.to_frame;
       EXPECT_EQ(windows.untagged(c), inside && none) << round;
       for (int t = -1; t < 4; ++t) {
@@ -50,6 +63,7 @@ TEST(WindowMembership, ACandidateBelongsToWhatEveryFrameOfBothWindowsCarries) {
   EXPECT_GT(members, 100);
   EXPECT_GT(untagged, 20);
   EXPECT_GT(outside, 20);
+  EXPECT_GT(classed_members, 100);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "motiongraph/graph/window_membership.h"
 #include "motiongraph/metric/pair_alignment.h"
 
 namespace mg {
@@ -61,8 +62,9 @@ Result<TransitionsWithBridges> select_transitions_with_bridges(const MotionDatab
   TransitionsWithBridges out;
   const std::vector<TagMask> frame_tags = db.frame_tags();
   const TagMask connected = settings.connected_tags;
-  auto selection =
-      select_transitions(features, candidates, settings.transitions, frame_tags, connected, settings.aligned);
+  const std::vector<char> untagged_class = untagged_class_frames(db, connected);
+  auto selection = select_transitions(features, candidates, settings.transitions, frame_tags, connected,
+                                      settings.aligned, untagged_class);
   if (!selection) return selection.error();
   out.selection = std::move(*selection);
 

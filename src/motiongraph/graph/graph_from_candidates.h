@@ -29,9 +29,11 @@ bool is_modifier_tag(const std::string& name);
 // The motion types of a database: every tag that is not a modifier.
 TagMask motion_type_tags(const MotionDatabase& db);
 
-// The frames that carry no motion type kept connected, as one more class of motion for the
-// automatic threshold (threshold_choice.h) and the thresholds it gives (transition_selection.h):
-// clips the CMU index does not list, or the untagged part of a user's library.
+// The clips none of whose frames carries a motion type kept connected (window_membership.h's
+// untagged_class_frames), as one more class of motion for the automatic threshold
+// (threshold_choice.h) and the thresholds it gives (transition_selection.h): clips the CMU index
+// does not list, or the untagged clips of a user's library. Frames of no type in a typed clip
+// belong to no class.
 inline constexpr int kUntaggedClass = -1;
 
 // A tag's name, or "untagged" for kUntaggedClass.

@@ -77,26 +77,24 @@ GraphFromCandidatesSettings with_chosen_thresholds(const GraphFromCandidatesSett
   return out;
 }
 
-std::vector<char> untagged_class_frames(const MotionDatabase& db, TagMask tags) {
-  const std::vector<TagMask> frame_tags = db.frame_tags();
-  std::vector<char> in_class(frame_tags.size(), 0);
-  for (const DatabaseClip& clip : db.clips) {
-    const auto first = frame_tags.begin() + clip.first_frame, last = first + clip.frame_count;
-    if (std::any_of(first, last, [&](TagMask m) { return (m & tags) != 0; })) continue;
-    std::fill(in_class.begin() + clip.first_frame, in_class.begin() + clip.first_frame + clip.frame_count, 1);
-  }
-  return in_class;
-}
+namespace {
 
-std::vector<int> coverage_tags(const MotionDatabase& db, const GraphFromCandidatesSettings& settings) {
+// coverage_tags with the untagged class's frames known.
+std::vector<int> coverage_tags(TagMask connected, std::span<const char> in_class) {
   std::vector<int> tags;
   for (int t = 0; t < 64; ++t) {
-    if (settings.connected_tags >> t & 1) tags.push_back(t);
+    if (connected >> t & 1) tags.push_back(t);
   }
-  if (tags.empty()) return tags;
-  const std::vector<char> in_class = untagged_class_frames(db, settings.connected_tags);
-  if (std::find(in_class.begin(), in_class.end(), 1) != in_class.end()) tags.push_back(kUntaggedClass);
+  if (!tags.empty() && std::find(in_class.begin(), in_class.end(), 1) != in_class.end()) {
+    tags.push_back(kUntaggedClass);
+  }
   return tags;
+}
+
+}  // namespace
+
+std::vector<int> coverage_tags(const MotionDatabase& db, const GraphFromCandidatesSettings& settings) {
+  return coverage_tags(settings.connected_tags, untagged_class_frames(db, settings.connected_tags));
 }
 
 Result<CoveragePoint> coverage_at(const MotionDatabase& db, const FrameFeatures& features,
@@ -109,7 +107,8 @@ Result<CoveragePoint> coverage_at(const MotionDatabase& db, const FrameFeatures&
   point.threshold = threshold;
   point.rms_cm = rms_cm_of_distance(threshold, features);
   point.quantile = candidates.histogram.fraction_below(threshold);
-  const std::vector<int> tags = coverage_tags(db, settings);
+  const std::vector<char> in_class = untagged_class_frames(db, settings.connected_tags);
+  const std::vector<int> tags = coverage_tags(settings.connected_tags, in_class);
   point.tag_coverage.assign(tags.size(), 0.0);
   auto selected = select_transitions_with_bridges(db, features, candidates, at, more);
   if (!selected) return selected.error();
@@ -134,7 +133,7 @@ Result<CoveragePoint> coverage_at(const MotionDatabase& db, const FrameFeatures&
   point.coverage = 1.0;
   for (size_t i = 0; i < tags.size(); ++i) {
     if (tags[i] == kUntaggedClass) {
-      point.tag_coverage[i] = untagged_coverage(untagged_class_frames(db, settings.connected_tags), pruned->graph);
+      point.tag_coverage[i] = untagged_coverage(in_class, pruned->graph);
     }
     for (const TagStatistics& s : after.tags) {
       if (s.tag == tags[i] && s.database_frames > 0) {

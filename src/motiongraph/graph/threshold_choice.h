@@ -36,16 +36,16 @@
 // its own threshold by the same search: a grid step raises only the types still short of their
 // targets (all of them while the graph is short of the transition rate), and the bisection
 // moves each type's threshold within its own bracket. Clips of no motion type are one more class
-// (untagged_class_frames below); frames of no type in a typed clip are its way in and out, not a
-// class. The global threshold, which candidates of no motion type and the mixed windows between
-// types pass, is the lowest of them, but for types the ceiling gives less than a tenth of their
-// frames (kMinServedShare: a clip of no type too short to leave and come back to; a type on a
-// few frames amid other motion): no threshold serves them, so they want nothing (in either mode:
-// chasing one frame of 26 took a library's every type to the ceiling), and take the global
-// threshold rather than pull it down to the grid's first level. Running's
-// larger distances then buy running what it needs, and no more: the threshold of a type depends
-// only on the candidates at or below it, so the pruned distance stage gives the exhaustive
-// stage's choice.
+// (window_membership.h's untagged_class_frames), whose threshold the windows within them pass;
+// frames of no type in a typed clip are its way in and out, of no class. The global threshold,
+// which the mixed windows (between types, or a type and frames of none) pass, is the lowest of
+// them, but for types the ceiling gives less than a tenth of their frames (kMinServedShare: a
+// clip of no type too short to leave and come back to; a type on a few frames amid other
+// motion): no threshold serves them, so they want nothing (in either mode: chasing one frame of
+// 26 took a library's every type to the ceiling), and take the global threshold rather than pull
+// it down to the grid's first level. Running's larger distances then buy running what it needs,
+// and no more: the threshold of a type depends only on the candidates at or below it, so the
+// pruned distance stage gives the exhaustive stage's choice.
 #pragma once
 
 #include <optional>
@@ -56,6 +56,7 @@
 
 #include "motiongraph/core/error.h"
 #include "motiongraph/graph/graph_from_candidates.h"
+#include "motiongraph/graph/window_membership.h"
 
 namespace mg {
 
@@ -113,14 +114,6 @@ struct ThresholdChoice {
   std::vector<CoveragePoint> curve;  // every threshold tried, by threshold
   const CoveragePoint& chosen() const;
 };
-
-// The frames of the untagged class: those of clips no frame of which carries one of `tags`
-// (connected_tags). A clip of a type elsewhere is measured by its type alone: its frames of no
-// type are its way in and out (the steps where a walk's root stands, which walk is left off:
-// database/travel_tags.h), joined through windows mixed with the type's; as a class of their
-// own they held the complete CMU subject 16, where they are 2 % of the frames, at the ceiling
-// for every type (docs/performance.md).
-std::vector<char> untagged_class_frames(const MotionDatabase& db, TagMask tags);
 
 // The motion types coverage is measured on (bit indices of settings.connected_tags), and
 // kUntaggedClass when some clips carry none of them (untagged_class_frames: they want a graph

@@ -65,7 +65,7 @@ std::vector<TagThreshold> tag_thresholds(const CandidateSearch& candidates, cons
 
 Result<TransitionSelection> select_transitions(const FrameFeatures& features, const CandidateSearch& candidates,
                                                const TransitionSettings& settings, std::span<const TagMask> frame_tags,
-                                               TagMask tags, bool aligned) {
+                                               TagMask tags, bool aligned, std::span<const char> untagged_class) {
   if (auto s = settings.validate(); !s) return s.error();
   TransitionSelection selection;
   if (settings.threshold >= 0.0) {
@@ -99,7 +99,7 @@ Result<TransitionSelection> select_transitions(const FrameFeatures& features, co
     const double share = candidates.minima.empty()
                              ? 0.0
                              : static_cast<double>(global_count) / static_cast<double>(candidates.minima.size());
-    windows = window_membership(frame_tags, tags, features.window);
+    windows = window_membership(frame_tags, tags, features.window, untagged_class);
     selection.tag_thresholds =
         tag_thresholds(candidates, windows, tags, selection.threshold, share, settings.tag_thresholds);
     if (settings.max_threshold >= 0.0) {

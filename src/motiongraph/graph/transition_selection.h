@@ -31,7 +31,7 @@ namespace mg {
 
 // A motion type's own threshold, given.
 struct OwnThreshold {
-  int tag = 0;             // bit index into MotionDatabase::tag_names; -1: frames of none of the tags
+  int tag = 0;             // bit index into MotionDatabase::tag_names; -1: the untagged class
   double threshold = 0.0;  // D; a candidate of the tag passes at or below it
   bool operator==(const OwnThreshold&) const = default;
 };
@@ -57,7 +57,7 @@ void to_json(nlohmann::json& json, const TransitionSettings& settings);
 void from_json(const nlohmann::json& json, TransitionSettings& settings);
 
 struct TagThreshold {
-  int tag = 0;            // -1: the frames that carry none of the tags (given thresholds only)
+  int tag = 0;            // -1: the untagged class (given thresholds only)
   int candidates = 0;     // local minima belonging to the tag (under the ceiling of pruned candidates)
   double threshold = 0.0; // the tag's own threshold (never below the global one)
   bool given = false;     // from TransitionSettings::tag_thresholds, not by rank
@@ -77,9 +77,12 @@ struct TransitionSelection {
 // lie at or below the ceiling, and per-tag thresholds by rank are refused (given ones are not).
 // aligned = false leaves the transitions' floor alignments at 0: a graph's shape does not need
 // them (the automatic threshold's search builds dozens of graphs only to count what they keep).
+// untagged_class: the frames whose windows tag -1's threshold governs, one entry per frame
+// (window_membership.h's untagged_class_frames: the clips of no type); empty: every frame that
+// carries none of `tags`.
 Result<TransitionSelection> select_transitions(const FrameFeatures& features, const CandidateSearch& candidates,
                                                const TransitionSettings& settings,
                                                std::span<const TagMask> frame_tags = {}, TagMask tags = 0,
-                                               bool aligned = true);
+                                               bool aligned = true, std::span<const char> untagged_class = {});
 
 }  // namespace mg

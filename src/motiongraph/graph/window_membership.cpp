@@ -1,12 +1,31 @@
 // Which motion classes a candidate transition belongs to, per frame once.
 #include "motiongraph/graph/window_membership.h"
 
+#include <algorithm>
+
 namespace mg {
 
-WindowMembership window_membership(std::span<const TagMask> frame_tags, TagMask tags, int window) {
+std::vector<char> untagged_class_frames(const MotionDatabase& db, TagMask tags) {
+  const std::vector<TagMask> frame_tags = db.frame_tags();
+  std::vector<char> in_class(frame_tags.size(), 0);
+  for (const DatabaseClip& clip : db.clips) {
+    const auto first = frame_tags.begin() + clip.first_frame, last = first + clip.frame_count;
+    if (std::none_of(first, last, [&](TagMask m) { return (m & tags) != 0; })) {
+      std::fill(in_class.begin() + (first - frame_tags.begin()), in_class.begin() + (last - frame_tags.begin()), 1);
+    }
+  }
+  return in_class;
+}
+
+WindowMembership window_membership(std::span<const TagMask> frame_tags, TagMask tags, int window,
+                                   std::span<const char> untagged_class) {
   const int frames = static_cast<int>(frame_tags.size());
+  const bool classed = untagged_class.size() == frame_tags.size();
   std::vector<int> none_count(static_cast<size_t>(frames) + 1, 0);
-  for (int f = 0; f < frames; ++f) none_count[f + 1] = none_count[f] + ((frame_tags[f] & tags) == 0 ? 1 : 0);
+  for (int f = 0; f < frames; ++f) {
+    const bool none = classed ? untagged_class[f] != 0 : (frame_tags[f] & tags) == 0;
+    none_count[f + 1] = none_count[f] + (none ? 1 : 0);
+  }
   auto all_none = [&](int first, int last) {
     return first >= 0 && last < frames && none_count[last + 1] - none_count[first] == last - first + 1;
   };

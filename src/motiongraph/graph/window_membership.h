@@ -13,8 +13,9 @@
 namespace mg {
 
 // Per frame: the tags of `tags` that every frame of the window leaving it (arriving at it)
-// carries, and whether every one of those frames carries none of them; 0 / false where the
-// window leaves the data. A candidate belongs to a tag when both its windows carry it.
+// carries, and whether every one of those frames is of the untagged class; 0 / false where the
+// window leaves the data. A candidate belongs to a tag when both its windows carry it, and to the
+// untagged class (tag -1) when both windows are of it.
 struct WindowMembership {
   std::vector<TagMask> leave, arrive;
   std::vector<char> leave_none, arrive_none;
@@ -32,7 +33,17 @@ struct WindowMembership {
   bool belongs(const Transition& c, int tag) const { return tag >= 0 ? (tags_of(c) >> tag & 1) != 0 : untagged(c); }
 };
 
-// For frames tagged `frame_tags` and windows of `window` frames.
-WindowMembership window_membership(std::span<const TagMask> frame_tags, TagMask tags, int window);
+// The frames of the untagged class: those of clips no frame of which carries one of `tags` (the
+// connected tags). A clip of a type elsewhere belongs to its type alone: its frames of no type are
+// its way in and out (the steps where a walk's root stands, which walk is left off:
+// database/travel_tags.h), joined to the graph through windows mixed with the type's. As a class
+// of their own they held the complete CMU subject 16, where they are 2 % of the frames, at the
+// automatic threshold's ceiling for every type (docs/performance.md).
+std::vector<char> untagged_class_frames(const MotionDatabase& db, TagMask tags);
+
+// For frames tagged `frame_tags` and windows of `window` frames; `untagged_class` one entry per
+// frame (untagged_class_frames), or empty: every frame that carries none of `tags`.
+WindowMembership window_membership(std::span<const TagMask> frame_tags, TagMask tags, int window,
+                                   std::span<const char> untagged_class = {});
 
 }  // namespace mg

@@ -661,7 +661,8 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
         kept.clear();
         for (size_t t = 0; t < tags.size(); ++t) {
           kept += fmt::format("{}{:.0f} % of the {} frames", t == 0 ? "" : t + 1 == tags.size() ? " and " : ", ",
-                              100.0 * p.tag_coverage[t], motion_class_name(*db, tags[t]));
+                              100.0 * p.tag_coverage[t],
+                              tags[t] == kUntaggedClass ? "untagged clips'" : motion_class_name(*db, tags[t]));
         }
       }
       advice = fmt::format(
