@@ -45,6 +45,19 @@ for side in ("left", "right"):
     assert named[side]["planted_share"] == found[side]["planted_share"], (named, found)
 PY
 
+# A Frame Time 4x too long (amc2bvh's 30 fps on CMU's 120 fps frames): the jump's flight falls at
+# g / 16, and info says which rate the file more likely has; read at that rate, nothing is said.
+"$bin" info "$data/bvh/16_01.bvh" \
+  | grep -E "warning:  its flights fall at 0\.[56][0-9] m/s\^2, not 9\.81: it plays [34]\.[0-9]x slower than it was captured; its frame rate, 30 fps, is likely 120 \(--input-fps 120\)" >/dev/null \
+  || { echo "FAIL: info on a clock 4x slow"; "$bin" info "$data/bvh/16_01.bvh"; exit 1; }
+if "$bin" info --input-fps 120 "$data/bvh/16_01.bvh" | grep -q "flights fall"; then
+  echo "FAIL: info at the right rate still doubts the clock"; exit 1
+fi
+"$bin" info --json "$data/bvh/16_01.bvh" | python3 -c '
+import json, sys
+doubts = json.load(sys.stdin)[0]["doubts"]
+assert len(doubts) == 1 and doubts[0].startswith("its flights fall at"), doubts'
+
 # A library's options on plain files: said, not silently ignored.
 "$bin" info --fps 60 "$data/bvh/16_01.bvh" 2>&1 >/dev/null | grep "apply to folders and manifests" >/dev/null \
   || { echo "FAIL: info --fps on a file"; exit 1; }

@@ -105,3 +105,66 @@ TEST(ClipDoubts, AFigureOfNoPersonsSizeIsNamedAloneByItsSize) {
 
 }  // namespace
 }  // namespace mg
+
+namespace mg {
+namespace {
+
+// Two jumps of a figure 1.5 m tall, 0.5 and 0.4 s in the air at g, sampled at 30 fps.
+struct Jumping {
+  std::vector<Vec3> positions;
+  std::vector<ContactMask> contacts;
+};
+
+Jumping jumping() {
+  Jumping out;
+  auto add = [&](double h, bool planted) {
+    out.positions.emplace_back(0.0, h, 0.0);
+    out.positions.emplace_back(0.0, h + 1.5, 0.0);
+    out.contacts.push_back(planted ? contact_bit(FootSide::kRight, FootPart::kToe) : 0);
+  };
+  for (const double air : {0.5, 0.4}) {
+    for (int f = 0; f < 20; ++f) add(0.0, true);
+    for (int f = 1; f * (1.0 / 30.0) < air; ++f) {
+      const double t = f / 30.0;
+      add(9.81 * air / 2.0 * t - 0.5 * 9.81 * t * t, false);
+    }
+  }
+  for (int f = 0; f < 20; ++f) add(0.0, true);
+  return out;
+}
+
+// A clock that is not the capture's (a Frame Time of 30 fps on 120 fps frames) is named with
+// the rate the file more likely has; at its own clock, or within 1.5x of it, nothing is said.
+TEST(ClipDoubts, FlightsFallingAtASixteenthOfGravityNameTheLikelyFrameRate) {
+  const Jumping j = jumping();
+  EXPECT_TRUE(clip_doubts(j.positions, 2, 30.0, j.contacts).empty());
+  EXPECT_TRUE(clip_doubts(j.positions, 2, 25.0, j.contacts).empty());  // 1.2x slow: within
+  const ClipDoubts slow = clip_doubts(j.positions, 2, 7.5, j.contacts, {}, 7.5);
+  EXPECT_TRUE(slow.floor.empty());
+  EXPECT_EQ(slow.clock,
+            "its flights fall at 0.61 m/s^2, not 9.81: it plays 4.0x slower than it was captured; its frame rate, "
+            "7.5 fps, is likely 30 (--input-fps 30)");
+  EXPECT_EQ(slow.phrases(), std::vector<std::string>{slow.clock});
+  EXPECT_EQ(clip_doubts_text(slow), slow.clock);
+  // Loading knows the database's rate, not the file's: the phrase says how many times it.
+  const ClipDoubts loaded = clip_doubts(j.positions, 2, 7.5, j.contacts);
+  EXPECT_NE(loaded.clock.find("its file's frame rate is likely 4.0 times what it says (--input-fps sets it)"),
+            std::string::npos)
+      << loaded.clock;
+  const ClipDoubts fast = clip_doubts(j.positions, 2, 60.0, j.contacts, {}, 60.0);
+  EXPECT_NE(fast.clock.find("it plays 2.0x faster than it was captured; its frame rate, 60 fps, is likely 30"),
+            std::string::npos)
+      << fast.clock;
+  // A figure below the floor is judged by its floor alone: its contacts mean nothing.
+  std::vector<Vec3> sunk = j.positions;
+  for (Vec3& p : sunk) p.y() -= 0.8;
+  const ClipDoubts floor = clip_doubts(sunk, 2, 7.5, j.contacts);
+  EXPECT_FALSE(floor.floor.empty());
+  EXPECT_TRUE(floor.clock.empty());
+  ClipDoubtSettings none;
+  none.max_slowdown = 1.0;
+  EXPECT_FALSE(none.validate());
+}
+
+}  // namespace
+}  // namespace mg

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "motiongraph/core/quantile.h"
+#include "motiongraph/motion/flight_fall.h"
 #include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/motion/length_unit.h"
 
@@ -19,11 +20,46 @@ Status ClipDoubtSettings::validate() const {
   if (!(min_figure_m > 0.0) || !(max_figure_m > min_figure_m) || !std::isfinite(max_figure_m)) {
     return Error{"", 0, "a person's size must be a range of positive lengths"};
   }
+  if (!(max_slowdown > 1.0) || !std::isfinite(max_slowdown)) return Error{"", 0, "the largest slowdown must be > 1"};
   return Ok{};
 }
 
+std::vector<std::string> ClipDoubts::phrases() const {
+  if (!size.empty()) return {size};
+  std::vector<std::string> out = floor;
+  if (!clock.empty()) out.push_back(clock);
+  return out;
+}
+
+namespace {
+
+// The usual capture or animation rate nearest `fps` (within 15 %), else `fps` rounded.
+double usual_rate(double fps) {
+  double best = std::round(fps), gap = 0.15;
+  for (const double rate : {24.0, 25.0, 30.0, 48.0, 50.0, 60.0, 90.0, 100.0, 120.0, 240.0, 480.0}) {
+    if (std::abs(std::log(fps / rate)) < gap) best = rate, gap = std::abs(std::log(fps / rate));
+  }
+  return best;
+}
+
+// The clock's phrase for flights falling at `fall`, `slowdown` times slower than captured.
+std::string clock_phrase(const FlightFall& fall, double file_fps) {
+  const double k = fall.slowdown();
+  const std::string pace = k > 1.0 ? fmt::format("it plays {:.1f}x slower than it was captured", k)
+                                   : fmt::format("it plays {:.1f}x faster than it was captured", 1.0 / k);
+  const std::string rate =
+      file_fps > 0.0
+          ? fmt::format("its frame rate, {:g} fps, is likely {:g} (--input-fps {:g})", file_fps,
+                        usual_rate(file_fps * k), usual_rate(file_fps * k))
+          : fmt::format("its file's frame rate is likely {:.1f} times what it says (--input-fps sets it)", k);
+  return fmt::format("its flights fall at {:.2f} m/s^2, not {:.2f}: {}; {}", fall.fall_mps2, kGravityMps2, pace,
+                     rate);
+}
+
+}  // namespace
+
 ClipDoubts clip_doubts(std::span<const Vec3> world_positions_m, int joint_count, double fps,
-                       std::span<const ContactMask> contacts, const ClipDoubtSettings& settings) {
+                       std::span<const ContactMask> contacts, const ClipDoubtSettings& settings, double file_fps) {
   ClipDoubts out;
   if (joint_count <= 0 || world_positions_m.empty()) return out;
   const size_t frames = world_positions_m.size() / static_cast<size_t>(joint_count);
@@ -54,6 +90,13 @@ ClipDoubts clip_doubts(std::span<const Vec3> world_positions_m, int joint_count,
       std::all_of(contacts.begin(), contacts.end(), [](ContactMask m) { return m == 0; })) {
     out.floor.push_back("no foot rests on the floor in any frame");
   }
+  if (out.floor.empty()) {
+    const FlightFall fall = measure_flight_fall(world_positions_m, joint_count, fps, contacts);
+    const double k = fall.slowdown();
+    if (fall.measured() && (k > settings.max_slowdown || k < 1.0 / settings.max_slowdown)) {
+      out.clock = clock_phrase(fall, file_fps);
+    }
+  }
   return out;
 }
 
@@ -65,14 +108,16 @@ ClipDoubts clip_doubts(const Skeleton& skeleton, const Motion& motion, const Cli
       for (int f = 0; f < motion.frame_count; ++f) masks.push_back(contact_mask(*contacts, f));
     }
   }
-  return clip_doubts(positions, skeleton.joint_count(), motion.fps, masks, settings);
+  return clip_doubts(positions, skeleton.joint_count(), motion.fps, masks, settings, motion.fps);
 }
 
 std::string clip_doubts_text(const ClipDoubts& doubts) {
   if (!doubts.size.empty()) return doubts.size;
   std::string joined;
   for (size_t i = 0; i < doubts.floor.size(); ++i) joined += (i == 0 ? "" : ", and ") + doubts.floor[i];
-  return joined + "; its root translation may be wrong";
+  if (!joined.empty()) joined += "; its root translation may be wrong";
+  if (!doubts.clock.empty()) joined += (joined.empty() ? "" : "; and ") + doubts.clock;
+  return joined;
 }
 
 std::string clip_doubt_line(const std::string& name, const ClipDoubts& doubts) {

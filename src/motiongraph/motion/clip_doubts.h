@@ -3,8 +3,10 @@
 // (y = 0), and feet that never rest on it. A converter that offsets or rescales the root's
 // translation gives the last two (the BVH 07_12 in data/bvh: hips at -0.33..0 m, the lowest
 // joint 0.57-0.90 m below the floor, feet sliding 3 m/s), and the distance metric, which compares
-// heights as read, then joins such a clip to nothing. Loading reports them (one warning per
-// clip) so that the user checks the file before wondering about the graph.
+// heights as read, then joins such a clip to nothing. And a clock that is not the capture's: its
+// flights falling much slower or faster than gravity (flight_fall.h; a Frame Time of 30 fps on
+// 120 fps data, data/bvh/16_01.bvh). Loading reports them (one warning per clip) so that the user
+// checks the file before wondering about the graph.
 #pragma once
 
 #include <span>
@@ -23,6 +25,8 @@ struct ClipDoubtSettings {
   double min_contactless_s = 1.0;  // a clip at least this long in which no foot joint is planted
   double min_figure_m = 0.4;       // the figure's size (its largest extent, the median over the
   double max_figure_m = 4.0;       // frames) outside these: no person's size, its unit wrong
+  double max_slowdown = 1.5;       // flights falling this many times slower than the capture's
+                                   // clock would (or faster, 1 / this): its clock wrong
 
   Status validate() const;
 };
@@ -33,24 +37,30 @@ struct ClipDoubts {
   std::string size;
   // Phrases such as "its lowest joint is 0.57-0.90 m below the floor (y = 0)".
   std::vector<std::string> floor;
+  // "its flights fall at 0.62 m/s^2, not 9.81: it plays 4.0x slower than it was captured ...".
+  // Judged only where the size and the floor are right (its feet's contacts mean something).
+  std::string clock;
 
-  bool empty() const { return size.empty() && floor.empty(); }
-  // The size's phrase, or the floor's.
-  std::vector<std::string> phrases() const { return size.empty() ? floor : std::vector<std::string>{size}; }
+  bool empty() const { return size.empty() && floor.empty() && clock.empty(); }
+  // The size's phrase, or the floor's, or the clock's.
+  std::vector<std::string> phrases() const;
 };
 
 // What looks wrong with a clip; empty when nothing does. world_positions_m: frames x joint_count,
-// frame-major (world_positions()); contacts: one mask per frame (contact_mask()), empty when the
-// feet are unknown (not judged then).
+// frame-major (world_positions()), at `fps`; contacts: one mask per frame (contact_mask()), empty
+// when the feet are unknown (not judged then). file_fps: the rate the file says it was captured
+// at, for the clock's phrase to name the rate it more likely was (0: unknown, the phrase says
+// how many times the file's).
 ClipDoubts clip_doubts(std::span<const Vec3> world_positions_m, int joint_count, double fps,
-                       std::span<const ContactMask> contacts, const ClipDoubtSettings& settings = {});
+                       std::span<const ContactMask> contacts, const ClipDoubtSettings& settings = {},
+                       double file_fps = 0.0);
 
 // The same for a clip on its own: forward kinematics, and the contacts of the feet found by their
 // usual names (skeleton/foot_joints.h; not judged when none are found).
 ClipDoubts clip_doubts(const Skeleton& skeleton, const Motion& motion, const ClipDoubtSettings& settings = {});
 
-// "phrase, and phrase; its root translation may be wrong", or the size's phrase: what `info`
-// prints for a clip with doubts.
+// "phrase, and phrase; its root translation may be wrong", or the size's phrase, then the
+// clock's: what `info` prints for a clip with doubts.
 std::string clip_doubts_text(const ClipDoubts& doubts);
 
 // "NAME: " + clip_doubts_text + " (...)": the one line loading logs for a clip with doubts.
