@@ -112,7 +112,8 @@ int run_info(const InfoOptions& options) {
     if (!contacts) return fail(Error{file, 0, "--feet: " + contacts.error().message});
     const ClipDoubts doubts =
         clip_doubts(world_positions(clip.skeleton, clip.motion), clip.skeleton.joint_count(), clip.motion.fps,
-                    *contacts ? (*contacts)->masks : std::vector<ContactMask>{}, {}, clip.motion.fps);
+                    *contacts ? (*contacts)->masks : std::vector<ContactMask>{}, {},
+                    ClipClock{clip.motion.fps, loaded->format == "gltf" || loaded->format == "fbx"});
     const char* feet_source = settings.foot_names.empty() ? "found by name" : "--feet";
     if (clip.detected_unit && !clip.detected_unit->plausible) report_unit(file, *clip.detected_unit);
     std::string unit = fmt::format("{:g} m per unit (--scale)", options.load.scale.value_or(1.0));

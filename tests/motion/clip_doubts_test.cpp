@@ -139,20 +139,27 @@ TEST(ClipDoubts, FlightsFallingAtASixteenthOfGravityNameTheLikelyFrameRate) {
   const Jumping j = jumping();
   EXPECT_TRUE(clip_doubts(j.positions, 2, 30.0, j.contacts).empty());
   EXPECT_TRUE(clip_doubts(j.positions, 2, 25.0, j.contacts).empty());  // 1.2x slow: within
-  const ClipDoubts slow = clip_doubts(j.positions, 2, 7.5, j.contacts, {}, 7.5);
+  const ClipDoubts slow = clip_doubts(j.positions, 2, 7.5, j.contacts, {}, ClipClock{7.5, false});
   EXPECT_TRUE(slow.floor.empty());
   EXPECT_EQ(slow.clock,
-            "its flights fall at 0.61 m/s^2, not 9.81: it plays 4.0x slower than it was captured; its frame rate, "
-            "7.5 fps, is likely 30 (--input-fps 30)");
+            "its flights fall at 0.61 m/s^2, not 9.81: it plays about 4.0x slower than it was captured; its frame "
+            "rate as read, 7.5 fps, is likely about 4.0 times that (--input-fps; a manifest's input_fps for one clip)");
   EXPECT_EQ(slow.phrases(), std::vector<std::string>{slow.clock});
   EXPECT_EQ(clip_doubts_text(slow), slow.clock);
-  // Loading knows the database's rate, not the file's: the phrase says how many times it.
+  EXPECT_EQ(clip_doubt_line("16_01", slow), "16_01: " + slow.clock);  // no word on distances
+  // The rate read unknown (the database's is not the file's): how many times it.
   const ClipDoubts loaded = clip_doubts(j.positions, 2, 7.5, j.contacts);
-  EXPECT_NE(loaded.clock.find("its file's frame rate is likely 4.0 times what it says (--input-fps sets it)"),
-            std::string::npos)
+  EXPECT_NE(loaded.clock.find("its frame rate is likely about 4.0 times the one read (--input-fps"), std::string::npos)
       << loaded.clock;
-  const ClipDoubts fast = clip_doubts(j.positions, 2, 60.0, j.contacts, {}, 60.0);
-  EXPECT_NE(fast.clock.find("it plays 2.0x faster than it was captured; its frame rate, 60 fps, is likely 30"),
+  // Keys timed in seconds (glTF, FBX): --input-fps samples them and cannot help.
+  const ClipDoubts keyed = clip_doubts(j.positions, 2, 7.5, j.contacts, {}, ClipClock{7.5, true});
+  EXPECT_NE(keyed.clock.find("its keys' times look about 4.0 times what they should (export it again"),
+            std::string::npos)
+      << keyed.clock;
+  EXPECT_EQ(keyed.clock.find("--input-fps"), std::string::npos) << keyed.clock;
+  const ClipDoubts fast = clip_doubts(j.positions, 2, 60.0, j.contacts, {}, ClipClock{60.0, false});
+  EXPECT_NE(fast.clock.find("it plays about 2.0x faster than it was captured; its frame rate as read, 60 fps, is "
+                            "likely about 1/2.0 of that"),
             std::string::npos)
       << fast.clock;
   // A figure below the floor is judged by its floor alone: its contacts mean nothing.

@@ -109,6 +109,39 @@ TEST(FlightFall, RunsWithoutContactThatAreNoFlightsAreLeftOut) {
     rising.contacts.push_back(0);
   }
   EXPECT_EQ(measure_flight_fall(rising.positions, 2, 30.0, rising.contacts).flights, 0);
+  // Falling only, the apex before the run's start (CMU 05_20 and 14_22 have such runs, and fit
+  // them at 0.3 g): no flight either.
+  Jumps falling;
+  for (int f = 0; f < 10; ++f) {
+    const double t = (f + 10) / 30.0;  // from 0.33 s after leaving at 3 m/s, past the apex
+    falling.positions.emplace_back(0.0, 1.0 + 3.0 * t - 0.5 * kGravityMps2 * t * t, 0.0);
+    falling.positions.emplace_back(0.0, 2.0 + 3.0 * t - 0.5 * kGravityMps2 * t * t, 0.0);
+    falling.contacts.push_back(0);
+  }
+  for (int f = 0; f < 10; ++f) {
+    falling.positions.emplace_back(0.0, 0.0, 0.0);
+    falling.positions.emplace_back(0.0, 1.0, 0.0);
+    falling.contacts.push_back(kPlanted);
+  }
+  EXPECT_EQ(measure_flight_fall(falling.positions, 2, 30.0, falling.contacts).flights, 0);
+  // Arcs of a centimetre (a body swaying over feet on a step) rise too little to be judged,
+  // however well they fit.
+  const Jumps sways = jumps(30.0, {0.3, 0.3, 0.3}, 1.0);
+  EXPECT_EQ(measure_flight_fall(sways.positions, 2, 30.0, sways.contacts).flights, 0);
+  EXPECT_EQ(measure_flight_fall(jumps(30.0, {0.3, 0.3, 0.3}, 4.0).positions, 2, 30.0, sways.contacts).flights, 3);
+}
+
+TEST(FlightFall, TheFallIsTheMedianOfTheFlights) {
+  // Three flights of 0.5 s falling at g, 0.8 g and 1.3 g: the clip falls at g.
+  Jumps j = jumps(30.0, {0.5}, kGravityMps2);
+  for (const double g : {0.8 * kGravityMps2, 1.3 * kGravityMps2}) {
+    const Jumps more = jumps(30.0, {0.5}, g);
+    j.positions.insert(j.positions.end(), more.positions.begin(), more.positions.end());
+    j.contacts.insert(j.contacts.end(), more.contacts.begin(), more.contacts.end());
+  }
+  const FlightFall f = measure_flight_fall(j.positions, 2, 30.0, j.contacts);
+  EXPECT_EQ(f.flights, 3);
+  EXPECT_NEAR(f.fall_mps2, kGravityMps2, 1e-6);
 }
 
 // The clip's own joints and contacts, at the rate it is read at.

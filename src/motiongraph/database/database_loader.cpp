@@ -864,8 +864,10 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
           db.frame_contacts.empty() ? std::span<const ContactMask>()
                                     : std::span<const ContactMask>(db.frame_contacts).subspan(clip.first_frame,
                                                                                               clip.frame_count);
-      const ClipDoubts doubts =
-          clip_doubts(world_positions(skeleton, clip.motion), skeleton.joint_count(), db.fps, contacts);
+      // Keys timed in seconds (glTF, FBX): --input-fps only samples them.
+      const bool keyed = is_gltf_file(clip.source) || is_fbx_file(clip.source);
+      const ClipDoubts doubts = clip_doubts(world_positions(skeleton, clip.motion), skeleton.joint_count(), db.fps,
+                                            contacts, {}, ClipClock{0.0, keyed});
       if (!doubts.empty()) notes->clip_doubts.push_back(clip_doubt_line(clip.name, doubts));
     }
   }

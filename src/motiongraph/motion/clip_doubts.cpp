@@ -33,33 +33,35 @@ std::vector<std::string> ClipDoubts::phrases() const {
 
 namespace {
 
-// The usual capture or animation rate nearest `fps` (within 15 %), else `fps` rounded.
-double usual_rate(double fps) {
-  double best = std::round(fps), gap = 0.15;
-  for (const double rate : {24.0, 25.0, 30.0, 48.0, 50.0, 60.0, 90.0, 100.0, 120.0, 240.0, 480.0}) {
-    if (std::abs(std::log(fps / rate)) < gap) best = rate, gap = std::abs(std::log(fps / rate));
-  }
-  return best;
-}
-
-// The clock's phrase for flights falling at `fall`, `slowdown` times slower than captured.
-std::string clock_phrase(const FlightFall& fall, double file_fps) {
+// The clock's phrase for flights falling at `fall`. Captures' flights fall at 0.7-1.55 g (the
+// mean of the joints is not the centre of mass), so the factor is known to a fifth or so: the
+// phrase gives it, "about", and no rate of its own.
+std::string clock_phrase(const FlightFall& fall, const ClipClock& clock) {
   const double k = fall.slowdown();
-  const std::string pace = k > 1.0 ? fmt::format("it plays {:.1f}x slower than it was captured", k)
-                                   : fmt::format("it plays {:.1f}x faster than it was captured", 1.0 / k);
-  const std::string rate =
-      file_fps > 0.0
-          ? fmt::format("its frame rate, {:g} fps, is likely {:g} (--input-fps {:g})", file_fps,
-                        usual_rate(file_fps * k), usual_rate(file_fps * k))
-          : fmt::format("its file's frame rate is likely {:.1f} times what it says (--input-fps sets it)", k);
-  return fmt::format("its flights fall at {:.2f} m/s^2, not {:.2f}: {}; {}", fall.fall_mps2, kGravityMps2, pace,
-                     rate);
+  const std::string pace = k > 1.0 ? fmt::format("it plays about {:.1f}x slower than it was captured", k)
+                                   : fmt::format("it plays about {:.1f}x faster than it was captured", 1.0 / k);
+  const std::string higher = k > 1.0 ? fmt::format("about {:.1f} times", k) : fmt::format("about 1/{:.1f} of", 1.0 / k);
+  std::string fix;
+  if (clock.keys_in_seconds) {
+    fix = fmt::format("its keys' times look {} what they should (export it again at the capture's rate)",
+                      k > 1.0 ? fmt::format("about {:.1f} times", k) : fmt::format("about 1/{:.1f} of", 1.0 / k));
+  } else if (clock.read_fps > 0.0) {
+    fix = fmt::format("its frame rate as read, {:g} fps, is likely {} that (--input-fps; a manifest's input_fps "
+                      "for one clip)",
+                      clock.read_fps, higher);
+  } else {
+    fix = fmt::format("its frame rate is likely {} the one read (--input-fps; a manifest's input_fps for one "
+                      "clip)",
+                      higher);
+  }
+  return fmt::format("its flights fall at {:.2f} m/s^2, not {:.2f}: {}; {}", fall.fall_mps2, kGravityMps2, pace, fix);
 }
 
 }  // namespace
 
 ClipDoubts clip_doubts(std::span<const Vec3> world_positions_m, int joint_count, double fps,
-                       std::span<const ContactMask> contacts, const ClipDoubtSettings& settings, double file_fps) {
+                       std::span<const ContactMask> contacts, const ClipDoubtSettings& settings,
+                       const ClipClock& clock) {
   ClipDoubts out;
   if (joint_count <= 0 || world_positions_m.empty()) return out;
   const size_t frames = world_positions_m.size() / static_cast<size_t>(joint_count);
@@ -94,7 +96,7 @@ ClipDoubts clip_doubts(std::span<const Vec3> world_positions_m, int joint_count,
     const FlightFall fall = measure_flight_fall(world_positions_m, joint_count, fps, contacts);
     const double k = fall.slowdown();
     if (fall.measured() && (k > settings.max_slowdown || k < 1.0 / settings.max_slowdown)) {
-      out.clock = clock_phrase(fall, file_fps);
+      out.clock = clock_phrase(fall, clock);
     }
   }
   return out;
@@ -108,7 +110,7 @@ ClipDoubts clip_doubts(const Skeleton& skeleton, const Motion& motion, const Cli
       for (int f = 0; f < motion.frame_count; ++f) masks.push_back(contact_mask(*contacts, f));
     }
   }
-  return clip_doubts(positions, skeleton.joint_count(), motion.fps, masks, settings, motion.fps);
+  return clip_doubts(positions, skeleton.joint_count(), motion.fps, masks, settings, ClipClock{motion.fps, false});
 }
 
 std::string clip_doubts_text(const ClipDoubts& doubts) {
@@ -121,8 +123,9 @@ std::string clip_doubts_text(const ClipDoubts& doubts) {
 }
 
 std::string clip_doubt_line(const std::string& name, const ClipDoubts& doubts) {
-  return fmt::format("{}: {} (the distances compare clips as read, so the graph may join it to nothing)", name,
-                     clip_doubts_text(doubts));
+  const bool placed = !doubts.size.empty() || !doubts.floor.empty();
+  return fmt::format("{}: {}{}", name, clip_doubts_text(doubts),
+                     placed ? " (the distances compare clips as read, so the graph may join it to nothing)" : "");
 }
 
 }  // namespace mg

@@ -46,14 +46,18 @@ struct ClipDoubts {
   std::vector<std::string> phrases() const;
 };
 
+// Where a clip's clock comes from, for the clock's phrase to say what to change.
+struct ClipClock {
+  double read_fps = 0.0;         // the rate it was read at (its file's, or --input-fps); 0: unknown
+  bool keys_in_seconds = false;  // glTF and FBX: keys timed in seconds (--input-fps only samples them)
+};
+
 // What looks wrong with a clip; empty when nothing does. world_positions_m: frames x joint_count,
 // frame-major (world_positions()), at `fps`; contacts: one mask per frame (contact_mask()), empty
-// when the feet are unknown (not judged then). file_fps: the rate the file says it was captured
-// at, for the clock's phrase to name the rate it more likely was (0: unknown, the phrase says
-// how many times the file's).
+// when the feet are unknown (not judged then).
 ClipDoubts clip_doubts(std::span<const Vec3> world_positions_m, int joint_count, double fps,
                        std::span<const ContactMask> contacts, const ClipDoubtSettings& settings = {},
-                       double file_fps = 0.0);
+                       const ClipClock& clock = {});
 
 // The same for a clip on its own: forward kinematics, and the contacts of the feet found by their
 // usual names (skeleton/foot_joints.h; not judged when none are found).
@@ -63,7 +67,8 @@ ClipDoubts clip_doubts(const Skeleton& skeleton, const Motion& motion, const Cli
 // clock's: what `info` prints for a clip with doubts.
 std::string clip_doubts_text(const ClipDoubts& doubts);
 
-// "NAME: " + clip_doubts_text + " (...)": the one line loading logs for a clip with doubts.
+// "NAME: " + clip_doubts_text (+ " (...)", why a size or floor doubt matters): the one line
+// loading logs for a clip with doubts.
 std::string clip_doubt_line(const std::string& name, const ClipDoubts& doubts);
 
 }  // namespace mg

@@ -14,8 +14,10 @@
 // keep 2 such runs of the 40-odd clips with flights. So a clip's fall is measured when it has
 // two flights or more, or one that rises kMinSingleFlightRiseM (a jump); then the median of the
 // flights' accelerations. Measured so, CMU's captures (subjects 16, 03, 05, 14, 17, 29, 49, 135)
-// fall at 0.7-1.5 g (the mean of the joints is not quite the centre of mass), and 16_01.bvh at
-// 0.063 g: read 4.0x slow.
+// fall at 0.7-1.55 g (the mean of the joints is not quite the centre of mass), and 16_01.bvh at
+// 0.063 g: read 4.0x slow. Not found as yet: a clock 3x too fast or more, where contacts detected
+// at the wrong speeds stretch the runs into the take-off and landing, which then fit no parabola
+// within the residual (trimming the runs' ends would be the next step).
 #pragma once
 
 #include <span>
