@@ -50,6 +50,9 @@ PY
 "$bin" info "$data/bvh/16_01.bvh" \
   | grep -E "warning:  its flights fall at 0\.[56][0-9] m/s\^2, not 9\.81: it plays about [34]\.[0-9]x slower than it was captured; its frame rate as read, 30 fps, is likely about [34]\.[0-9] times that \(--input-fps" >/dev/null \
   || { echo "FAIL: info on a clock 4x slow"; "$bin" info "$data/bvh/16_01.bvh"; exit 1; }
+"$bin" build --no-cache "$data/bvh/16_01.bvh" -o "$work/clock.mgraph" 2>"$work/clock.err" >/dev/null
+grep -E "warning: 16_01: its flights fall at .* its frame rate as read, 30 fps, is likely about [34]\.[0-9] times that" \
+  "$work/clock.err" >/dev/null || { echo "FAIL: build on a clock 4x slow"; cat "$work/clock.err"; exit 1; }
 if "$bin" info --input-fps 120 "$data/bvh/16_01.bvh" | grep -q "flights fall"; then
   echo "FAIL: info at the right rate still doubts the clock"; exit 1
 fi

@@ -147,7 +147,7 @@ TEST(ClipDoubts, FlightsFallingAtASixteenthOfGravityNameTheLikelyFrameRate) {
   EXPECT_EQ(slow.phrases(), std::vector<std::string>{slow.clock});
   EXPECT_EQ(clip_doubts_text(slow), slow.clock);
   EXPECT_EQ(clip_doubt_line("16_01", slow), "16_01: " + slow.clock);  // no word on distances
-  // The rate read unknown (the database's is not the file's): how many times it.
+  // The rate read unknown (a graph file's clips keep none): how many times it.
   const ClipDoubts loaded = clip_doubts(j.positions, 2, 7.5, j.contacts);
   EXPECT_NE(loaded.clock.find("its frame rate is likely about 4.0 times the one read (--input-fps"), std::string::npos)
       << loaded.clock;

@@ -714,6 +714,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     clip.first_frame = next_frame;
     clip.frame_count = resampled->frame_count;
     clip.motion = std::move(*resampled);
+    clip.read_fps = input_fps;
     next_frame += clip.frame_count;
 
     // Tags.
@@ -867,7 +868,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
       // Keys timed in seconds (glTF, FBX): --input-fps only samples them.
       const bool keyed = is_gltf_file(clip.source) || is_fbx_file(clip.source);
       const ClipDoubts doubts = clip_doubts(world_positions(skeleton, clip.motion), skeleton.joint_count(), db.fps,
-                                            contacts, {}, ClipClock{0.0, keyed});
+                                            contacts, {}, ClipClock{clip.read_fps, keyed});
       if (!doubts.empty()) notes->clip_doubts.push_back(clip_doubt_line(clip.name, doubts));
     }
   }

@@ -334,7 +334,8 @@ bool get_database(BinaryReader& in, MotionDatabase& db) {
     DatabaseClip& h = headers[c];
     const Skeleton& skeleton = db.skeletons[h.skeleton];
     db.clips.push_back(DatabaseClip{std::move(h.name), std::move(h.source), h.skeleton, h.first_frame, h.frame_count,
-                                    Motion(skeleton, h.frame_count, stored[c].fps, db.motion_memory->resource())});
+                                    Motion(skeleton, h.frame_count, stored[c].fps, db.motion_memory->resource()),
+                                    0.0});
   }
   parallel_for(clips, worker_threads(0), 1, [&](int, long long c) {
     decode_motion(stored[static_cast<size_t>(c)], db.clips[static_cast<size_t>(c)].motion);
