@@ -155,6 +155,12 @@ int run_info(const InfoOptions& options) {
           {"root", clip.skeleton.joint(0).name}, {"static_joints_above_root", static_ancestor_names(clip.skeleton)},
           {"joints_dropped_above_root", clip.dropped_at_fold},
           {"doubts", doubts.phrases()}, {"skeleton", skeleton_json(clip.skeleton)}};
+      // How fast its flights fall: the clock's evidence, doubted or not.
+      const FlightFall& fall = doubts.flight_fall;
+      entry["flight_fall"] = {{"flights", fall.flights},
+                              {"highest_rise_m", fall.highest_rise_m},
+                              {"fall_mps2", fall.measured() ? nlohmann::json(fall.fall_mps2) : nlohmann::json(nullptr)},
+                              {"slowdown", fall.measured() ? nlohmann::json(fall.slowdown()) : nlohmann::json(nullptr)}};
       entry["feet"] = *contacts ? feet_json(clip.skeleton, (*contacts)->feet, (*contacts)->masks, feet_source)
                                 : missing_feet_json(feet_missing);
       if (!loaded->skeleton_path.empty()) entry["asf"] = loaded->skeleton_path;

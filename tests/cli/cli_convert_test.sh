@@ -58,8 +58,15 @@ if "$bin" info --input-fps 120 "$data/bvh/16_01.bvh" | grep -q "flights fall"; t
 fi
 "$bin" info --json "$data/bvh/16_01.bvh" | python3 -c '
 import json, sys
-doubts = json.load(sys.stdin)[0]["doubts"]
-assert len(doubts) == 1 and doubts[0].startswith("its flights fall at"), doubts'
+clip = json.load(sys.stdin)[0]
+doubts, fall = clip["doubts"], clip["flight_fall"]
+assert len(doubts) == 1 and doubts[0].startswith("its flights fall at"), doubts
+assert fall["flights"] == 1 and fall["highest_rise_m"] > 0.1 and 3.6 < fall["slowdown"] < 4.4, fall
+assert abs(fall["fall_mps2"] * fall["slowdown"] ** 2 - 9.81) < 1e-6, fall'
+"$bin" info --json "$data/cmu/16/16_15.amc" | python3 -c '
+import json, sys
+fall = json.load(sys.stdin)[0]["flight_fall"]   # a walk: no flight, nothing measured
+assert fall["flights"] == 0 and fall["fall_mps2"] is None and fall["slowdown"] is None, fall'
 
 # A library's options on plain files: said, not silently ignored.
 "$bin" info --fps 60 "$data/bvh/16_01.bvh" 2>&1 >/dev/null | grep "apply to folders and manifests" >/dev/null \

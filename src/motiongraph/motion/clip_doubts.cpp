@@ -94,6 +94,7 @@ ClipDoubts clip_doubts(std::span<const Vec3> world_positions_m, int joint_count,
   }
   if (out.floor.empty()) {
     const FlightFall fall = measure_flight_fall(world_positions_m, joint_count, fps, contacts);
+    out.flight_fall = fall;
     const double k = fall.slowdown();
     if (fall.measured() && (k > settings.max_slowdown || k < 1.0 / settings.max_slowdown)) {
       out.clock = clock_phrase(fall, clock);

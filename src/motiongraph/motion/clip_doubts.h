@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "motiongraph/core/error.h"
+#include "motiongraph/motion/flight_fall.h"
 #include "motiongraph/motion/foot_contacts.h"
 #include "motiongraph/motion/motion.h"
 
@@ -40,6 +41,8 @@ struct ClipDoubts {
   // "its flights fall at 0.62 m/s^2, not 9.81: it plays 4.0x slower than it was captured ...".
   // Judged only where the size and the floor are right (its feet's contacts mean something).
   std::string clock;
+  // What the clock is judged on, doubt or not (not measured: size or floor doubts, too few flights).
+  FlightFall flight_fall;
 
   bool empty() const { return size.empty() && floor.empty() && clock.empty(); }
   // The size's phrase, or the floor's, or the clock's.
