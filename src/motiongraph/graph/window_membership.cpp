@@ -11,7 +11,7 @@ std::vector<char> untagged_class_frames(const MotionDatabase& db, TagMask tags) 
   for (const DatabaseClip& clip : db.clips) {
     const auto first = frame_tags.begin() + clip.first_frame, last = first + clip.frame_count;
     if (std::none_of(first, last, [&](TagMask m) { return (m & tags) != 0; })) {
-      std::fill(in_class.begin() + (first - frame_tags.begin()), in_class.begin() + (last - frame_tags.begin()), 1);
+      std::fill_n(in_class.begin() + clip.first_frame, clip.frame_count, 1);
     }
   }
   return in_class;

@@ -40,19 +40,18 @@ std::string clock_phrase(const FlightFall& fall, const ClipClock& clock) {
   const double k = fall.slowdown();
   const std::string pace = k > 1.0 ? fmt::format("it plays about {:.1f}x slower than it was captured", k)
                                    : fmt::format("it plays about {:.1f}x faster than it was captured", 1.0 / k);
-  const std::string higher = k > 1.0 ? fmt::format("about {:.1f} times", k) : fmt::format("about 1/{:.1f} of", 1.0 / k);
+  const std::string times = k > 1.0 ? fmt::format("about {:.1f} times", k) : fmt::format("about 1/{:.1f} of", 1.0 / k);
   std::string fix;
   if (clock.keys_in_seconds) {
-    fix = fmt::format("its keys' times look {} what they should (export it again at the capture's rate)",
-                      k > 1.0 ? fmt::format("about {:.1f} times", k) : fmt::format("about 1/{:.1f} of", 1.0 / k));
+    fix = fmt::format("its keys' times look {} what they should (export it again at the capture's rate)", times);
   } else if (clock.read_fps > 0.0) {
     fix = fmt::format("its frame rate as read, {:g} fps, is likely {} that (--input-fps; a manifest's input_fps "
                       "for one clip)",
-                      clock.read_fps, higher);
+                      clock.read_fps, times);
   } else {
     fix = fmt::format("its frame rate is likely {} the one read (--input-fps; a manifest's input_fps for one "
                       "clip)",
-                      higher);
+                      times);
   }
   return fmt::format("its flights fall at {:.2f} m/s^2, not {:.2f}: {}; {}", fall.fall_mps2, kGravityMps2, pace, fix);
 }
@@ -118,9 +117,8 @@ std::string clip_doubts_text(const ClipDoubts& doubts) {
   if (!doubts.size.empty()) return doubts.size;
   std::string joined;
   for (size_t i = 0; i < doubts.floor.size(); ++i) joined += (i == 0 ? "" : ", and ") + doubts.floor[i];
-  if (!joined.empty()) joined += "; its root translation may be wrong";
-  if (!doubts.clock.empty()) joined += (joined.empty() ? "" : "; and ") + doubts.clock;
-  return joined;
+  if (!joined.empty()) return joined + "; its root translation may be wrong";
+  return doubts.clock;  // judged only where the floor is right
 }
 
 std::string clip_doubt_line(const std::string& name, const ClipDoubts& doubts) {

@@ -66,7 +66,7 @@ ClipDoubts clip_doubts(std::span<const Vec3> world_positions_m, int joint_count,
 // usual names (skeleton/foot_joints.h; not judged when none are found).
 ClipDoubts clip_doubts(const Skeleton& skeleton, const Motion& motion, const ClipDoubtSettings& settings = {});
 
-// "phrase, and phrase; its root translation may be wrong", or the size's phrase, then the
+// "phrase, and phrase; its root translation may be wrong", or the size's phrase, or the
 // clock's: what `info` prints for a clip with doubts.
 std::string clip_doubts_text(const ClipDoubts& doubts);
 
