@@ -264,6 +264,18 @@ TEST(ThresholdChoice, FramesOfNoMotionTypeAreAClassOfTheirOwn) {
   EXPECT_EQ(untagged->threshold, chosen->tag_thresholds[1]);
 }
 
+// The choice on a library whose every clip has a motion type, whatever frames of none they hold:
+// walk and run measured, no untagged class.
+void expect_typed_classes_only(const MotionDatabase& db, const Fixture& x) {
+  EXPECT_EQ(coverage_tags(db, x.settings), (std::vector<int>{0, 1}));
+  auto chosen = choose_threshold(db, x.features, x.search, x.settings, half_under_30cm());
+  ASSERT_TRUE(chosen) << chosen.error().to_string();
+  ASSERT_TRUE(chosen->reached);
+  ASSERT_EQ(chosen->tags, (std::vector<int>{0, 1}));
+  ASSERT_EQ(chosen->tag_thresholds.size(), 2u);
+  for (const CoveragePoint& p : chosen->curve) EXPECT_EQ(p.tag_coverage.size(), 2u);
+}
+
 TEST(ThresholdChoice, FramesOfNoTypeInATypedClipAreItsWayInAndOutNotAClass) {
   // Walk left off the first and last 15 frames of each walk (where a walk's root stands, as
   // travel_tags leaves it off): those frames are how the graph enters and leaves walking, joined
@@ -280,13 +292,7 @@ TEST(ThresholdChoice, FramesOfNoTypeInATypedClipAreItsWayInAndOutNotAClass) {
   for (int c = 2; c < 4; ++c) db.tag_ranges.push_back({1, db.clips[c].first_frame, db.clips[c].frame_count});
   const std::vector<char> none(static_cast<size_t>(db.frame_count()), 0);
   EXPECT_EQ(untagged_class_frames(db, x.settings.connected_tags), none);
-  EXPECT_EQ(coverage_tags(db, x.settings), (std::vector<int>{0, 1}));
-  const ThresholdChoiceSettings choice = half_under_30cm();
-  auto typed = choose_threshold(db, x.features, x.search, x.settings, choice);
-  ASSERT_TRUE(typed) << typed.error().to_string();
-  EXPECT_TRUE(typed->reached);
-  EXPECT_EQ(typed->tags, (std::vector<int>{0, 1}));
-  EXPECT_EQ(typed->tag_thresholds.size(), 2u);
+  expect_typed_classes_only(db, x);
 
   // The runs untagged too: the class is their clips, every frame of them and nothing else.
   db.tag_ranges.resize(2);
@@ -296,6 +302,7 @@ TEST(ThresholdChoice, FramesOfNoTypeInATypedClipAreItsWayInAndOutNotAClass) {
   std::fill(runs.begin() + db.clips[2].first_frame, runs.end(), 1);
   EXPECT_EQ(untagged_class_frames(db, settings.connected_tags), runs);
   EXPECT_EQ(coverage_tags(db, settings), (std::vector<int>{0, kUntaggedClass}));
+  const ThresholdChoiceSettings choice = half_under_30cm();
   auto chosen = choose_threshold(db, x.features, x.search, settings, choice);
   ASSERT_TRUE(chosen) << chosen.error().to_string();
   ASSERT_TRUE(chosen->reached);
@@ -380,13 +387,7 @@ TEST(ThresholdChoice, FramesOfNoTypeAmidTypedClipsAreNoClass) {
   const int run_end = db.clips[3].first_frame + db.clips[3].frame_count - 6;
   db.tag_ranges = {TagRange{0, 0, middle}, TagRange{0, middle + span, walk_end - middle - span},
                    TagRange{1, db.clips[2].first_frame, run_end - db.clips[2].first_frame}};
-  const ThresholdChoiceSettings choice = half_under_30cm();
-  auto chosen = choose_threshold(db, x.features, x.search, x.settings, choice);
-  ASSERT_TRUE(chosen) << chosen.error().to_string();
-  ASSERT_TRUE(chosen->reached);
-  ASSERT_EQ(chosen->tags, (std::vector<int>{0, 1}));
-  ASSERT_EQ(chosen->tag_thresholds.size(), 2u);
-  for (const CoveragePoint& p : chosen->curve) EXPECT_EQ(p.tag_coverage.size(), 2u);
+  expect_typed_classes_only(db, x);
 }
 
 TEST(ThresholdChoice, CoverageIsThatOfTheGraphBuildWrites) {

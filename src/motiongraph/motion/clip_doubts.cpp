@@ -44,14 +44,11 @@ std::string clock_phrase(const FlightFall& fall, const ClipClock& clock) {
   std::string fix;
   if (clock.keys_in_seconds) {
     fix = fmt::format("its keys' times look {} what they should (export it again at the capture's rate)", times);
-  } else if (clock.read_fps > 0.0) {
-    fix = fmt::format("its frame rate as read, {:g} fps, is likely {} that (--input-fps; a manifest's input_fps "
-                      "for one clip)",
-                      clock.read_fps, times);
   } else {
-    fix = fmt::format("its frame rate is likely {} the one read (--input-fps; a manifest's input_fps for one "
-                      "clip)",
-                      times);
+    const std::string rate = clock.read_fps > 0.0 ? fmt::format("its frame rate as read, {:g} fps, is likely {} that",
+                                                                clock.read_fps, times)
+                                                  : fmt::format("its frame rate is likely {} the one read", times);
+    fix = rate + " (--input-fps; a manifest's input_fps for one clip)";
   }
   return fmt::format("its flights fall at {:.2f} m/s^2, not {:.2f}: {}; {}", fall.fall_mps2, kGravityMps2, pace, fix);
 }
