@@ -113,7 +113,8 @@ int run_info(const InfoOptions& options) {
     const ClipDoubts doubts =
         clip_doubts(world_positions(clip.skeleton, clip.motion), clip.skeleton.joint_count(), clip.motion.fps,
                     *contacts ? (*contacts)->masks : std::vector<ContactMask>{}, {},
-                    ClipClock{clip.motion.fps, loaded->format == "gltf" || loaded->format == "fbx"});
+                    ClipClock{clip.motion.fps, loaded->format == "gltf" || loaded->format == "fbx"},
+                    *contacts ? (*contacts)->feet : FootJoints{});
     const char* feet_source = settings.foot_names.empty() ? "found by name" : "--feet";
     if (clip.detected_unit && !clip.detected_unit->plausible) report_unit(file, *clip.detected_unit);
     std::string unit = fmt::format("{:g} m per unit (--scale)", options.load.scale.value_or(1.0));
@@ -161,6 +162,13 @@ int run_info(const InfoOptions& options) {
                               {"highest_rise_m", fall.highest_rise_m},
                               {"fall_mps2", fall.measured() ? nlohmann::json(fall.fall_mps2) : nlohmann::json(nullptr)},
                               {"slowdown", fall.measured() ? nlohmann::json(fall.slowdown()) : nlohmann::json(nullptr)}};
+      // How long its walking strides take for their length: the clock's evidence where it has no flights.
+      const WalkPace& walk = doubts.walk_pace;
+      entry["walk_pace"] = {{"strides", walk.strides},
+                            {"stride_m", walk.measured() ? nlohmann::json(walk.stride_m) : nlohmann::json(nullptr)},
+                            {"stride_s", walk.measured() ? nlohmann::json(walk.stride_s) : nlohmann::json(nullptr)},
+                            {"walk_ratio", walk.measured() ? nlohmann::json(walk.walk_ratio) : nlohmann::json(nullptr)},
+                            {"slowdown", walk.measured() ? nlohmann::json(walk.slowdown()) : nlohmann::json(nullptr)}};
       entry["feet"] = *contacts ? feet_json(clip.skeleton, (*contacts)->feet, (*contacts)->masks, feet_source)
                                 : missing_feet_json(feet_missing);
       if (!loaded->skeleton_path.empty()) entry["asf"] = loaded->skeleton_path;

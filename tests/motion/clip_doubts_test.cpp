@@ -1,11 +1,15 @@
 #include "motiongraph/motion/clip_doubts.h"
 
-#include <gtest/gtest.h>
-
+#include <cmath>
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
 #include "motiongraph/motion/forward_kinematics.h"
+#include "motiongraph/motion/length_unit.h"
+#include "motion/walker.h"
 #include "test_data.h"
 
 namespace mg {
@@ -171,6 +175,49 @@ TEST(ClipDoubts, FlightsFallingAtASixteenthOfGravityNameTheLikelyFrameRate) {
   ClipDoubtSettings none;
   none.max_slowdown = 1.0;
   EXPECT_FALSE(none.validate());
+}
+
+// A clip without flights is judged by its walk: the phrase names its strides and what a walk's
+// of their length take.
+TEST(ClipDoubts, AWalkWhoseStridesTakeFourTimesTooLongNamesTheLikelyFrameRate) {
+  const test::Walker w = test::walker({});  // 1.3 m strides of 1 s at 30 fps
+  EXPECT_TRUE(clip_doubts(w.positions, test::kWalkerJoints, 30.0, w.contacts, {}, {}, w.feet).empty());
+  // Read at 7.5 fps its strides take 4 s; a walk's of 1.3 m take kWalkRatio / their walk ratio of that.
+  const ClipDoubts slow = clip_doubts(w.positions, test::kWalkerJoints, 7.5, w.contacts, {}, ClipClock{7.5, false}, w.feet);
+  const double figure = figure_size(w.positions, test::kWalkerJoints);
+  const double k = 1.3 / figure * 4.0 * std::sqrt(kGravityMps2 / figure) / kWalkRatio;
+  ASSERT_GT(k, 3.0);
+  EXPECT_EQ(slow.clock, fmt::format("its walking strides of 1.30 m take 4.00 s, where a walk's take about {:.2f} s: it "
+                                    "plays about {:.1f}x slower than it was captured; its frame rate as read, 7.5 fps, is "
+                                    "likely about {:.1f} times that (--input-fps; a manifest's input_fps for one clip)",
+                                    4.0 / k, k, k));
+  // The feet's joints unknown: the walk is not judged.
+  EXPECT_TRUE(clip_doubts(w.positions, test::kWalkerJoints, 7.5, w.contacts).empty());
+}
+
+// Where both are measured, the flights judge the clock: gravity is the surer clock.
+TEST(ClipDoubts, FlightsJudgeTheClockBeforeTheWalk) {
+  // The walker at 120 fps read at 30 (its strides 4x too long), then two jumps falling at g at 30 fps.
+  test::Walker w = test::walker({.fps = 120.0});
+  const std::vector<Vec3> last(w.positions.end() - test::kWalkerJoints, w.positions.end());
+  const auto add = [&](double h, ContactMask contacts) {
+    for (const Vec3& p : last) w.positions.push_back(p + Vec3(0.0, h, 0.0));
+    w.contacts.push_back(contacts);
+  };
+  const ContactMask standing = w.contacts.back();
+  for (const double air : {0.5, 0.4}) {
+    for (int f = 0; f < 10; ++f) add(0.0, standing);
+    for (int f = 1; f * (1.0 / 30.0) < air; ++f) {
+      const double t = f / 30.0;
+      add(kGravityMps2 * air / 2.0 * t - 0.5 * kGravityMps2 * t * t, 0);
+    }
+  }
+  for (int f = 0; f < 10; ++f) add(0.0, standing);
+  const ClipDoubts doubts = clip_doubts(w.positions, test::kWalkerJoints, 30.0, w.contacts, {}, {}, w.feet);
+  ASSERT_TRUE(doubts.flight_fall.measured());
+  EXPECT_NEAR(doubts.flight_fall.slowdown(), 1.0, 0.05);
+  EXPECT_GT(doubts.walk_pace.slowdown(), 3.0);
+  EXPECT_TRUE(doubts.clock.empty()) << doubts.clock;
 }
 
 }  // namespace

@@ -859,6 +859,12 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
 
   // 5. What looks wrong with a clip as read, for the caller to say.
   if (notes != nullptr) {
+    // The feet the contacts were found for (their ankles judge a walk's pace).
+    std::vector<FootJoints> feet;
+    for (const Skeleton& skeleton : db.skeletons) {
+      auto found = find_foot_joints(skeleton, db.foot_names);
+      feet.push_back(found ? *found : FootJoints{});
+    }
     for (const DatabaseClip& clip : db.clips) {
       const Skeleton& skeleton = db.skeletons[clip.skeleton];
       const std::span<const ContactMask> contacts =
@@ -868,7 +874,8 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
       // Keys timed in seconds (glTF, FBX): --input-fps only samples them.
       const bool keyed = is_gltf_file(clip.source) || is_fbx_file(clip.source);
       const ClipDoubts doubts = clip_doubts(world_positions(skeleton, clip.motion), skeleton.joint_count(), db.fps,
-                                            contacts, {}, ClipClock{clip.read_fps, keyed});
+                                            contacts, {}, ClipClock{clip.read_fps, keyed},
+                                            feet[static_cast<size_t>(clip.skeleton)]);
       if (!doubts.empty()) notes->clip_doubts.push_back(clip_doubt_line(clip.name, doubts));
     }
   }

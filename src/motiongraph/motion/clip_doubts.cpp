@@ -11,6 +11,7 @@
 #include "motiongraph/motion/flight_fall.h"
 #include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/motion/length_unit.h"
+#include "motiongraph/motion/walk_pace.h"
 
 namespace mg {
 
@@ -33,11 +34,11 @@ std::vector<std::string> ClipDoubts::phrases() const {
 
 namespace {
 
-// The clock's phrase for flights falling at `fall`. Captures' flights fall at 0.7-1.55 g (the
-// mean of the joints is not the centre of mass), so the factor is known to a fifth or so: the
-// phrase gives it, "about", and no rate of its own.
-std::string clock_phrase(const FlightFall& fall, const ClipClock& clock) {
-  const double k = fall.slowdown();
+// The clock's phrase: `evidence` (what was measured), then the pace its slowdown `k` gives and
+// what to change. Captures' flights fall at 0.7-1.55 g (the mean of the joints is not the centre
+// of mass), walks' ratios lie within 1.25x of kWalkRatio, so the factor is known to a fifth or
+// so: the phrase gives it, "about", and no rate of its own.
+std::string clock_phrase(const std::string& evidence, double k, const ClipClock& clock) {
   const std::string pace = k > 1.0 ? fmt::format("it plays about {:.1f}x slower than it was captured", k)
                                    : fmt::format("it plays about {:.1f}x faster than it was captured", 1.0 / k);
   const std::string times = k > 1.0 ? fmt::format("about {:.1f} times", k) : fmt::format("about 1/{:.1f} of", 1.0 / k);
@@ -50,14 +51,14 @@ std::string clock_phrase(const FlightFall& fall, const ClipClock& clock) {
                                                   : fmt::format("its frame rate is likely {} the one read", times);
     fix = rate + " (--input-fps; a manifest's input_fps for one clip)";
   }
-  return fmt::format("its flights fall at {:.2f} m/s^2, not {:.2f}: {}; {}", fall.fall_mps2, kGravityMps2, pace, fix);
+  return fmt::format("{}: {}; {}", evidence, pace, fix);
 }
 
 }  // namespace
 
 ClipDoubts clip_doubts(std::span<const Vec3> world_positions_m, int joint_count, double fps,
                        std::span<const ContactMask> contacts, const ClipDoubtSettings& settings,
-                       const ClipClock& clock) {
+                       const ClipClock& clock, const FootJoints& feet) {
   ClipDoubts out;
   if (joint_count <= 0 || world_positions_m.empty()) return out;
   const size_t frames = world_positions_m.size() / static_cast<size_t>(joint_count);
@@ -89,11 +90,15 @@ ClipDoubts clip_doubts(std::span<const Vec3> world_positions_m, int joint_count,
     out.floor.push_back("no foot rests on the floor in any frame");
   }
   if (out.floor.empty()) {
-    const FlightFall fall = measure_flight_fall(world_positions_m, joint_count, fps, contacts);
-    out.flight_fall = fall;
-    const double k = fall.slowdown();
-    if (fall.measured() && (k > settings.max_slowdown || k < 1.0 / settings.max_slowdown)) {
-      out.clock = clock_phrase(fall, clock);
+    const FlightFall& fall = out.flight_fall = measure_flight_fall(world_positions_m, joint_count, fps, contacts);
+    const WalkPace& walk = out.walk_pace = measure_walk_pace(world_positions_m, joint_count, fps, contacts, feet);
+    const double k = fall.measured() ? fall.slowdown() : walk.slowdown();
+    if (k > 0.0 && (k > settings.max_slowdown || k < 1.0 / settings.max_slowdown)) {
+      out.clock = clock_phrase(
+          fall.measured() ? fmt::format("its flights fall at {:.2f} m/s^2, not {:.2f}", fall.fall_mps2, kGravityMps2)
+                          : fmt::format("its walking strides of {:.2f} m take {:.2f} s, where a walk's take about {:.2f} s",
+                                        walk.stride_m, walk.stride_s, walk.stride_s / k),
+          k, clock);
     }
   }
   return out;
@@ -102,12 +107,15 @@ ClipDoubts clip_doubts(std::span<const Vec3> world_positions_m, int joint_count,
 ClipDoubts clip_doubts(const Skeleton& skeleton, const Motion& motion, const ClipDoubtSettings& settings) {
   const std::vector<Vec3> positions = world_positions(skeleton, motion);
   std::vector<ContactMask> masks;
+  FootJoints found;
   if (auto feet = find_foot_joints(skeleton, {})) {
     if (auto contacts = detect_foot_contacts(positions, skeleton.joint_count(), motion.fps, *feet, {})) {
       for (int f = 0; f < motion.frame_count; ++f) masks.push_back(contact_mask(*contacts, f));
+      found = *feet;
     }
   }
-  return clip_doubts(positions, skeleton.joint_count(), motion.fps, masks, settings, ClipClock{motion.fps, false});
+  return clip_doubts(positions, skeleton.joint_count(), motion.fps, masks, settings, ClipClock{motion.fps, false},
+                     found);
 }
 
 std::string clip_doubts_text(const ClipDoubts& doubts) {

@@ -5,7 +5,8 @@
 // joint 0.57-0.90 m below the floor, feet sliding 3 m/s), and the distance metric, which compares
 // heights as read, then joins such a clip to nothing. And a clock that is not the capture's: its
 // flights falling much slower or faster than gravity (flight_fall.h; a Frame Time of 30 fps on
-// 120 fps data, data/bvh/16_01.bvh). Loading reports them (one warning per clip) so that the user
+// 120 fps data, data/bvh/16_01.bvh), or, in a clip without flights, its walking strides taking
+// much longer or shorter than people's of their length (walk_pace.h). Loading reports them (one warning per clip) so that the user
 // checks the file before wondering about the graph.
 #pragma once
 
@@ -17,6 +18,7 @@
 #include "motiongraph/motion/flight_fall.h"
 #include "motiongraph/motion/foot_contacts.h"
 #include "motiongraph/motion/motion.h"
+#include "motiongraph/motion/walk_pace.h"
 
 namespace mg {
 
@@ -27,7 +29,8 @@ struct ClipDoubtSettings {
   double min_figure_m = 0.4;       // the figure's size (its largest extent, the median over the
   double max_figure_m = 4.0;       // frames) outside these: no person's size, its unit wrong
   double max_slowdown = 1.5;       // flights falling this many times slower than the capture's
-                                   // clock would (or faster, 1 / this): its clock wrong
+                                   // clock would (or faster, 1 / this), or walking strides taking
+                                   // this many times a walk's time (or 1 / this): its clock wrong
 
   Status validate() const;
 };
@@ -38,11 +41,15 @@ struct ClipDoubts {
   std::string size;
   // Phrases such as "its lowest joint is 0.57-0.90 m below the floor (y = 0)".
   std::vector<std::string> floor;
-  // "its flights fall at 0.62 m/s^2, not 9.81: it plays 4.0x slower than it was captured ...".
-  // Judged only where the size and the floor are right (its feet's contacts mean something).
+  // "its flights fall at 0.62 m/s^2, not 9.81: it plays 4.0x slower than it was captured ...",
+  // or "its walking strides of 1.30 m take 4.62 s, where a walk's take about 1.16 s: ...".
+  // Judged only where the size and the floor are right (its feet's contacts mean something): on
+  // its flights where they are measured, else on its walk.
   std::string clock;
-  // What the clock is judged on, doubt or not (not measured: size or floor doubts, too few flights).
+  // What the clock is judged on, doubt or not (not measured: size or floor doubts, too few
+  // flights, too few strides of a walk).
   FlightFall flight_fall;
+  WalkPace walk_pace;
 
   bool empty() const { return size.empty() && floor.empty() && clock.empty(); }
   // The size's phrase, or the floor's, or the clock's.
@@ -57,10 +64,11 @@ struct ClipClock {
 
 // What looks wrong with a clip; empty when nothing does. world_positions_m: frames x joint_count,
 // frame-major (world_positions()), at `fps`; contacts: one mask per frame (contact_mask()), empty
-// when the feet are unknown (not judged then).
+// when the feet are unknown (not judged then); feet: the joints the contacts are of (the walk is
+// not judged without them).
 ClipDoubts clip_doubts(std::span<const Vec3> world_positions_m, int joint_count, double fps,
                        std::span<const ContactMask> contacts, const ClipDoubtSettings& settings = {},
-                       const ClipClock& clock = {});
+                       const ClipClock& clock = {}, const FootJoints& feet = {});
 
 // The same for a clip on its own: forward kinematics, and the contacts of the feet found by their
 // usual names (skeleton/foot_joints.h; not judged when none are found).
