@@ -168,7 +168,8 @@ int run_info(const InfoOptions& options) {
                             {"stride_m", walk.measured() ? nlohmann::json(walk.stride_m) : nlohmann::json(nullptr)},
                             {"stride_s", walk.measured() ? nlohmann::json(walk.stride_s) : nlohmann::json(nullptr)},
                             {"walk_ratio", walk.measured() ? nlohmann::json(walk.walk_ratio) : nlohmann::json(nullptr)},
-                            {"slowdown", walk.measured() ? nlohmann::json(walk.slowdown()) : nlohmann::json(nullptr)}};
+                            {"slowdown", walk.measured() ? nlohmann::json(walk.slowdown()) : nlohmann::json(nullptr)},
+                            {"figure_m", walk.measured() ? nlohmann::json(walk.figure_m) : nlohmann::json(nullptr)}};
       entry["feet"] = *contacts ? feet_json(clip.skeleton, (*contacts)->feet, (*contacts)->masks, feet_source)
                                 : missing_feet_json(feet_missing);
       if (!loaded->skeleton_path.empty()) entry["asf"] = loaded->skeleton_path;

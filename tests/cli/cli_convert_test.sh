@@ -70,6 +70,8 @@ fall, walk = clip["flight_fall"], clip["walk_pace"]   # a walk: no flight, its s
 assert fall["flights"] == 0 and fall["fall_mps2"] is None and fall["slowdown"] is None, fall
 assert walk["strides"] >= 3 and 1.1 < walk["stride_m"] < 1.5 and 0.9 < walk["stride_s"] < 1.4, walk
 assert 0.8 < walk["slowdown"] < 1.25 and abs(walk["walk_ratio"] / walk["slowdown"] - 2.1) < 1e-9, walk
+h = walk["figure_m"]   # the walk ratio: (stride / h) * duration * sqrt(g / h), the median of the strides
+assert 1.4 < h < 1.8 and abs(walk["walk_ratio"] / (walk["stride_m"] / h * walk["stride_s"] * (9.81 / h) ** 0.5) - 1) < 0.1, walk
 assert clip["doubts"] == [], clip["doubts"]'
 "$bin" info --json "$data/bvh/16_01.bvh" | python3 -c '
 import json, sys
@@ -77,7 +79,7 @@ walk = json.load(sys.stdin)[0]["walk_pace"]   # a jump: no walk
 assert walk["strides"] == 0 and walk["walk_ratio"] is None and walk["slowdown"] is None, walk'
 # A walk without flights read 4x slow (its 120 fps frames at 30): its strides take 4x a walk's.
 "$bin" info --input-fps 30 "$data/cmu/16/16_15.amc" \
-  | grep -E "warning:  its walking strides of 1\.[0-9]{2} m take [45]\.[0-9]{2} s, where a walk's take about 1\.[0-9]{2} s: it plays about [345]\.[0-9]x slower than it was captured; its frame rate as read, 30 fps, is likely about [345]\.[0-9] times that \(--input-fps" >/dev/null \
+  | grep -E "warning:  its walking strides of 1\.[0-9]{2} m take [45]\.[0-9]{2} s, where people's of that length take about 1\.[0-9]{2} s: it plays about [345]\.[0-9]x slower than it was captured; its frame rate as read, 30 fps, is likely about [345]\.[0-9] times that \(--input-fps" >/dev/null \
   || { echo "FAIL: info on a walk read 4x slow"; "$bin" info --input-fps 30 "$data/cmu/16/16_15.amc"; exit 1; }
 
 # A library's options on plain files: said, not silently ignored.

@@ -375,6 +375,35 @@ TEST(ThresholdChoice, ATypeTheCeilingGivesNothingTakesTheGlobalThreshold) {
   }
 }
 
+TEST(ThresholdChoice, ATypeTheCeilingGivesASliverOfTakesTheGlobalThreshold) {
+  // A third type on the last 6 frames of each clip (no graph plays them) and on 1 frame amid the
+  // first walk (which the graph at a 10 cm ceiling plays): the ceiling serves it 1 of its 25
+  // frames, under kMinServedShare, so it wants nothing rather than take the threshold to the
+  // ceiling for more frames it cannot get.
+  const Fixture& x = fixture();
+  MotionDatabase db = x.db;
+  db.tag_names.push_back("jump");
+  for (const DatabaseClip& clip : db.clips) db.tag_ranges.push_back(TagRange{2, clip.first_frame + clip.frame_count - 6, 6});
+  db.tag_ranges.push_back(TagRange{2, db.clips[0].first_frame + db.clips[0].frame_count / 2, 1});
+  GraphFromCandidatesSettings settings = x.settings;
+  settings.connected_tags = 0b111;
+  ThresholdChoiceSettings choice = half_under_30cm();
+  choice.max_rms_cm = 10.0;
+  auto chosen = choose_threshold(db, x.features, x.search, settings, choice);
+  ASSERT_TRUE(chosen) << chosen.error().to_string();
+  ASSERT_TRUE(chosen->reached);
+  ASSERT_EQ(chosen->tags, (std::vector<int>{0, 1, 2}));
+  const double served = chosen->curve.back().tag_coverage[2];
+  ASSERT_GT(served, 0.0);
+  ASSERT_LT(served, 0.1);  // the sliver kMinServedShare names
+  EXPECT_DOUBLE_EQ(served, 1.0 / 25.0);
+  EXPECT_EQ(chosen->targets[2], 0.0);
+  ASSERT_EQ(chosen->tag_thresholds.size(), 3u);
+  EXPECT_EQ(chosen->threshold, std::min(chosen->tag_thresholds[0], chosen->tag_thresholds[1]));
+  EXPECT_EQ(chosen->tag_thresholds[2], chosen->threshold);
+  EXPECT_LT(chosen->rms_cm, choice.max_rms_cm);
+}
+
 TEST(ThresholdChoice, FramesOfNoTypeAmidTypedClipsAreNoClass) {
   // Frames of no motion type in typed clips: the last 6 of the second walk and of the second run
   // (no graph plays them) and two in the middle of the first walk (which graphs play, one of

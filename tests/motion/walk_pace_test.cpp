@@ -57,10 +57,12 @@ TEST(WalkPace, OnlyAWalksStridesAreJudged) {
   // A body surging 15 cm forward and back twice a stride stops in it: not steady. Surging 2 cm is.
   EXPECT_EQ(pace_of(test::walker({.surge_m = 0.15}), 30.0).strides, 0);
   EXPECT_EQ(pace_of(test::walker({.surge_m = 0.02}), 30.0).strides, 8);
-  // A body swaying 0.4 m side to side each stride goes 1.3 m in a path of over 1.6: not straight.
+  // A body swaying 0.4 m side to side each stride goes under 0.8 of its path in a straight line;
+  // swaying 5 cm, it goes straight enough.
   EXPECT_EQ(pace_of(test::walker({.sway_m = 0.4}), 30.0).strides, 0);
   EXPECT_EQ(pace_of(test::walker({.sway_m = 0.05}), 30.0).strides, 8);
-  // Two strides of walking leave one stride of each ankle inside the clip: too few to judge.
+  // Three seconds of walking leave two plants of each ankle inside the clip, one stride each: too
+  // few to judge.
   const WalkPace brief = pace_of(test::walker({.strides = 3}), 30.0);
   EXPECT_EQ(brief.strides, 2);
   EXPECT_FALSE(brief.measured());
@@ -75,14 +77,17 @@ TEST(WalkPace, AStrideUnlikeTheStridesEitherSideIsLeftOut) {
   EXPECT_EQ(long_step.strides, 5);
   EXPECT_NEAR(long_step.stride_m, 1.3, 1e-9);
   EXPECT_EQ(pace_of(test::walker({.long_plant_m = 0.1}), 30.0).strides, 8);  // within 20 %: kept
-  // The walker's fourth second (the left ankle's stride from 3 s to 4 s) played at half speed:
-  // that stride takes 2 s, the right ankle's either side of it 1.5 s, the rest 1 s. In the order
-  // they start (right 0.5 s, left 1 s, right 1.5 s, left 2 s, right 2.5 s, left 3 s, right 3.5 s,
-  // left 4 s), each from 2.5 s on agrees with neither neighbour (more than 20 % apart; the last
-  // has none after it, the right's next plant cut off by the clip's end): 4 strides are left.
-  const WalkPace stumbling = pace_of(test::walker({.slow_from_s = 3.0, .slow_to_s = 4.0}), 30.0);
-  EXPECT_EQ(stumbling.strides, 4);
-  EXPECT_NEAR(stumbling.stride_s, 1.0, 1e-9);  // the strides kept are the walk's
+  // The walker's fourth second (the left ankle's stride from 3 s to 4 s) played 1.6x slower: that
+  // stride takes 1.6 s, the right ankle's either side of it 1.3 s (the left ankle coming down 0.38
+  // and 0.62 of the way through them), the rest 1 s. In the order they start (right 0.5 s, left
+  // 1 s, right 1.5 s, left 2 s, right 2.5 s, left 3 s, right 3.5 s, left 4 s), each from 2.5 s on
+  // takes over 1.2x as long as its neighbours or under 1/1.2 (the last has none after it, the
+  // right's next plant cut off by the clip's end): 4 strides are left.
+  const WalkPace slowing = pace_of(test::walker({.slow_from_s = 3.0, .slow_to_s = 4.0, .slowdown = 1.6}), 30.0);
+  EXPECT_EQ(slowing.strides, 4);
+  EXPECT_NEAR(slowing.stride_s, 1.0, 1e-9);  // the strides kept are the walk's
+  // 1.1x slower: the neighbours agree, and all 8 are kept.
+  EXPECT_EQ(pace_of(test::walker({.slow_from_s = 3.0, .slow_to_s = 4.0, .slowdown = 1.1}), 30.0).strides, 8);
 }
 
 // The clip's own joints and contacts, at the rate it is read at: what info judges its clock on.

@@ -20,13 +20,15 @@ Walker walker(const WalkerSettings& settings) {
   out.feet.left.ankle = 0;
   out.feet.right.ankle = 1;
   const double speed = settings.stride_m / settings.stride_s;
-  // The walker's own time at frame f: the slowed stretch takes twice as many frames.
-  const double slowed = settings.slow_to_s - settings.slow_from_s;
+  // The walker's own time at frame f: the slowed stretch takes `slowdown` times as many frames.
+  const double slowed = settings.slow_to_s - settings.slow_from_s, stretch = settings.slowdown;
   const auto time_at = [&](int f) {
     const double clock = f / settings.fps;
     if (clock < settings.slow_from_s) return clock;
-    if (clock < settings.slow_from_s + 2.0 * slowed) return settings.slow_from_s + (clock - settings.slow_from_s) / 2.0;
-    return clock - slowed;
+    if (clock < settings.slow_from_s + stretch * slowed) {
+      return settings.slow_from_s + (clock - settings.slow_from_s) / stretch;
+    }
+    return clock - (stretch - 1.0) * slowed;
   };
   const double end = settings.strides * settings.stride_s;
   for (int f = 0; time_at(f) < end - 1e-9; ++f) {
@@ -52,8 +54,8 @@ Walker walker(const WalkerSettings& settings) {
       }
       out.positions.emplace_back(side == 0 ? -0.1 : 0.1, height, -along[side]);
     }
-    const double apart = std::abs(along[0] - along[1]) / settings.stride_m;  // 0 together .. 1 a stride apart
-    const double lift = 0.03 * settings.vault * (1.0 - apart);
+    const double apart = std::abs(along[0] - along[1]) / settings.stride_m;  // 0 together .. 0.5 at most
+    const double lift = 0.03 * settings.vault * (1.0 - 2.0 * apart);
     const double cycle = 2.0 * std::numbers::pi * t / settings.stride_s;
     const double forward = speed * t + 0.3 * settings.stride_m + settings.surge_m * std::sin(2.0 * cycle);
     const double side = settings.sway_m * std::sin(cycle);

@@ -1,12 +1,12 @@
 // A walker made for the tests: two ankles and eight joints of a body above them, striding along
 // -z. Each ankle is planted (its contact bit set) for 60 % of a stride and swings forward along an
 // arc 0.1 m high in the rest, the right one `right_phase` of a stride after the left. The body
-// stands 0.9-1.6 m up, 3 cm higher when the ankles are together than when they are a stride apart
-// (a walk vaults over a stiff leg: vault 1; a run sinks into a bent one: vault -1), travelling at
-// the walk's pace, surging forward and back `surge_m` and swaying side to side `sway_m` once a
-// stride. The left ankle's plant at 3 s lies `long_plant_m` further ahead than the others (a long
-// step and a short one). The walker's motion from `slow_from_s` to `slow_to_s` of its own time
-// plays at half speed.
+// stands 0.9-1.6 m up, 3 cm higher when the ankles are together than when they are half a stride
+// apart, as far apart as they get (a walk vaults over a stiff leg: vault 1; a run sinks into a
+// bent one: vault -1). It travels at the walk's pace, surging forward and back `surge_m` twice a
+// stride and swaying side to side `sway_m` once a stride. The left ankle's plant at 3 s lies
+// `long_plant_m` further ahead than the others (a long step and a short one). The walker's motion
+// from `slow_from_s` to `slow_to_s` of its own time plays `slowdown` times slower.
 #pragma once
 
 #include <vector>
@@ -37,6 +37,7 @@ struct WalkerSettings {
   double long_plant_m = 0.0;
   double slow_from_s = 0.0;
   double slow_to_s = 0.0;
+  double slowdown = 2.0;
 };
 
 Walker walker(const WalkerSettings& settings);

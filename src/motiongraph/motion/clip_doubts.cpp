@@ -96,8 +96,9 @@ ClipDoubts clip_doubts(std::span<const Vec3> world_positions_m, int joint_count,
     if (k > 0.0 && (k > settings.max_slowdown || k < 1.0 / settings.max_slowdown)) {
       out.clock = clock_phrase(
           fall.measured() ? fmt::format("its flights fall at {:.2f} m/s^2, not {:.2f}", fall.fall_mps2, kGravityMps2)
-                          : fmt::format("its walking strides of {:.2f} m take {:.2f} s, where a walk's take about {:.2f} s",
-                                        walk.stride_m, walk.stride_s, walk.stride_s / k),
+                          : fmt::format("its walking strides of {:.2f} m take {:.2f} s, where people's of that "
+                                        "length take about {:.2f} s",
+                                        walk.stride_m, walk.stride_s, walk.usual_stride_s()),
           k, clock);
     }
   }

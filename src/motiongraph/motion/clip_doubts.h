@@ -42,7 +42,8 @@ struct ClipDoubts {
   // Phrases such as "its lowest joint is 0.57-0.90 m below the floor (y = 0)".
   std::vector<std::string> floor;
   // "its flights fall at 0.62 m/s^2, not 9.81: it plays 4.0x slower than it was captured ...",
-  // or "its walking strides of 1.30 m take 4.62 s, where a walk's take about 1.16 s: ...".
+  // or "its walking strides of 1.31 m take 4.60 s, where people's of that length take about
+  // 1.03 s: ...".
   // Judged only where the size and the floor are right (its feet's contacts mean something): on
   // its flights where they are measured, else on its walk.
   std::string clock;

@@ -14,6 +14,10 @@ namespace mg {
 
 double WalkPace::slowdown() const { return measured() ? walk_ratio / kWalkRatio : 0.0; }
 
+double WalkPace::usual_stride_s() const {
+  return measured() ? kWalkRatio * figure_m / stride_m * std::sqrt(figure_m / kGravityMps2) : 0.0;
+}
+
 namespace {
 
 struct Plant {
@@ -70,7 +74,8 @@ double correlation(std::span<const double> a, std::span<const double> b) {
 WalkPace measure_walk_pace(std::span<const Vec3> world_positions_m, int joint_count, double fps,
                            std::span<const ContactMask> contacts, const FootJoints& feet) {
   WalkPace out;
-  if (joint_count <= 0 || !(fps > 0.0) || feet.left.ankle < 0 || feet.right.ankle < 0) return out;
+  const auto joint = [&](int j) { return j >= 0 && j < joint_count; };
+  if (joint_count <= 0 || !(fps > 0.0) || !joint(feet.left.ankle) || !joint(feet.right.ankle)) return out;
   const size_t frames = world_positions_m.size() / static_cast<size_t>(joint_count);
   if (frames == 0 || contacts.size() != frames) return out;
   const double figure = figure_size(world_positions_m, joint_count);

@@ -32,7 +32,7 @@
 // of subject 16), with walk ratios of 1.70-2.57 (uneven terrain the lowest), centred on
 // kWalkRatio; no other clip has three strides of a walk. Read 2x slow, 11 are judged, at
 // 3.45-5.15; 2x fast, 14, at 0.89-1.33; 4x slow, 8, at 7.1-10.3; 4x fast, 1 (the contacts, found
-// at the wrong speeds, keep fewer strides). Read at 30 fps, as a library is, none of the 8
+// at the wrong speeds, keep fewer strides). Resampled to 30 fps, as a library is, none of the 8
 // subjects' clips is doubted.
 #pragma once
 
@@ -64,11 +64,14 @@ struct WalkPace {
   // How many times slower than it was captured the clip plays: walk_ratio / kWalkRatio; 0 when
   // not measured.
   double slowdown() const;
+  // How long people take over a stride of stride_m, a figure of figure_m: the duration whose walk
+  // ratio is kWalkRatio; 0 when not measured.
+  double usual_stride_s() const;
 };
 
 // world_positions_m: frames x joint_count, frame-major, at `fps`; contacts: one mask per frame
 // (empty: not measured); feet: the joints whose ankle bits the contacts hold (not measured
-// without both ankles).
+// without both ankles among the joint_count).
 WalkPace measure_walk_pace(std::span<const Vec3> world_positions_m, int joint_count, double fps,
                            std::span<const ContactMask> contacts, const FootJoints& feet);
 
