@@ -84,6 +84,7 @@ struct PyMotion {
   Walk walk{-1, {}};
   std::vector<ContactMask> contacts;  // per frame, of `feet`
   std::optional<FootJoints> feet;     // the foot joints `contacts` follow; nullopt: not known
+  std::vector<std::string> doubts;    // a clip's: what looks wrong with it as read (clip_doubts.h)
 
   PyMotion(std::string motion_name, Skeleton motion_skeleton, Motion played);
   // A synthesis result's feet from its graph, with its contacts (the walk's own when none were

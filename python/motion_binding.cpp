@@ -7,6 +7,7 @@
 
 #include "binding.h"
 #include "motiongraph/export/motion_file.h"
+#include "motiongraph/motion/clip_doubts.h"
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/foot_contacts.h"
 #include "motiongraph/motion/forward_kinematics.h"
@@ -109,9 +110,11 @@ PyMotion load_clip(const std::filesystem::path& file, const std::optional<std::f
   }
   check(settings.validate());
   Result<LoadedClip> loaded = Error{};
+  double read_fps = 0.0;  // the rate the file was read at, before any resampling
   {
     py::gil_scoped_release release;
     loaded = ClipLoader(settings).load(path, animation);
+    if (loaded) read_fps = loaded->clip.motion.fps;
     if (loaded && fps) {
       auto resampled = resample(loaded->clip.motion, *fps);
       if (!resampled) {
@@ -122,6 +125,7 @@ PyMotion load_clip(const std::filesystem::path& file, const std::optional<std::f
     }
   }
   LoadedClip got = take(std::move(loaded));
+  const bool keyed = got.format == "gltf" || got.format == "fbx";  // keys timed in seconds
   PyMotion clip(got.clip.name, std::move(got.clip.skeleton), std::move(got.clip.motion));
   // Its feet's contacts (none when the feet are not found and none were named).
   Result<std::optional<ClipContacts>> contacts = Error{};
@@ -134,6 +138,10 @@ PyMotion load_clip(const std::filesystem::path& file, const std::optional<std::f
     clip.feet = found->feet;
     clip.contacts = std::move(found->masks);
   }
+  // What info says looks wrong with it (its unit, floor, feet or clock).
+  clip.doubts = clip_doubts(clip.positions, clip.skeleton.joint_count(), clip.motion.fps, clip.contacts, {},
+                            ClipClock{read_fps, keyed}, clip.feet.value_or(FootJoints{}))
+                    .phrases();
   return clip;
 }
 
@@ -206,6 +214,10 @@ void bind_motion(py::module_& m) {
           "convert's JSON writes it; None when the feet are not known. A copy.")
       .def_property_readonly("report", [](const PyMotion& self) { return to_python(self.report); },
                              "The CLI's --report of the synthesis (a dict), None for a clip.")
+      .def_readonly("doubts", &PyMotion::doubts,
+                    "What looks wrong with a clip as read, as info's warning says it (a list of phrases: a figure "
+                    "of no person's size, off the floor, feet that never rest, a clock that is not the capture's); "
+                    "empty for a clip that looks right and for synthesized motion.")
       .def(
           "save",
           [](const PyMotion& self, const std::filesystem::path& path, bool root_motion, double root_motion_smoothing,

@@ -1,4 +1,5 @@
 """load_clip() and Motion: the same clip as the CLI's convert, arrays without copies."""
+import json
 import os
 import subprocess
 
@@ -100,6 +101,24 @@ def offsets(bvh):
     """Every OFFSET of a BVH file, in its own units."""
     return np.array([[float(v) for v in line.split()[1:4]] for line in bvh.read_text().splitlines()
                      if line.strip().startswith("OFFSET")])
+
+
+@pytest.mark.parametrize("path, input_fps, fps", [("bvh/16_01.bvh", 0.0, None), ("cmu/16/16_15.amc", 30.0, None),
+                                                   ("cmu/16/16_15.amc", 30.0, 60.0), ("bvh/07_12.bvh", 0.0, None),
+                                                   ("cmu/16/16_15.amc", 0.0, None)])
+def test_doubts_are_the_cli_info_s(cli, data, path, input_fps, fps):
+    # A clock 4x slow (by its flights, by its walk), a floor offset, and a clip that looks right:
+    # info's doubts. Resampled after reading, the clip is judged at its new rate and the phrase
+    # names the rate it was read at.
+    args = ["--input-fps", input_fps] if input_fps else []
+    info = json.loads(cli("info", "--json", *args, data / path).stdout)[0]
+    clip = mg.load_clip(str(data / path), input_fps=input_fps, fps=fps)
+    if fps is None:
+        assert clip.doubts == info["doubts"]
+    if path != "cmu/16/16_15.amc" or input_fps:
+        assert clip.doubts, path
+    if input_fps:
+        assert "its frame rate as read, 30 fps, is likely about 4" in clip.doubts[0], clip.doubts
 
 
 def test_contacts_of_a_clip_and_feet_named(cli, data, tmp_path):
