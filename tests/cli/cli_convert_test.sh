@@ -81,6 +81,12 @@ assert walk["strides"] == 0 and walk["walk_ratio"] is None and walk["slowdown"] 
 "$bin" info --input-fps 30 "$data/cmu/16/16_15.amc" \
   | grep -E "warning:  its walking strides of 1\.[0-9]{2} m take [45]\.[0-9]{2} s, where people's of that length take about 1\.[0-9]{2} s: it plays about [345]\.[0-9]x slower than it was captured; its frame rate as read, 30 fps, is likely about [345]\.[0-9] times that \(--input-fps" >/dev/null \
   || { echo "FAIL: info on a walk read 4x slow"; "$bin" info --input-fps 30 "$data/cmu/16/16_15.amc"; exit 1; }
+# A library read 4x slow: the clips whose clock is all that is wrong, said in one line.
+"$bin" info --input-fps 30 "$data/cmu/16" 2>"$work/slow-library.err" >/dev/null
+test "$(grep -c "plays\? about" "$work/slow-library.err")" = 1 \
+  && grep -E "warning: 16_01, 16_05, 16_13 and [0-9]+ more: their flights and walking strides say they play about [34]\.[0-9]x slower than they were captured \([34]\.[0-9]-[345]\.[0-9]x\); their frame rate as read, 30 fps, is likely about [34]\.[0-9] times that" \
+    "$work/slow-library.err" >/dev/null \
+  || { echo "FAIL: a library read 4x slow"; cat "$work/slow-library.err"; exit 1; }
 
 # A library's options on plain files: said, not silently ignored.
 "$bin" info --fps 60 "$data/bvh/16_01.bvh" 2>&1 >/dev/null | grep "apply to folders and manifests" >/dev/null \

@@ -193,6 +193,7 @@ TEST(ClipDoubts, AWalkWhoseStridesTakeFourTimesTooLongNamesTheLikelyFrameRate) {
                                     "as read, 7.5 fps, is likely about {:.1f} times that (--input-fps; a manifest's "
                                     "input_fps for one clip)",
                                     4.0 / k, k, k));
+  EXPECT_NEAR(slow.slowdown, k, 1e-9);
   // The feet's joints unknown: the walk is not judged.
   EXPECT_TRUE(clip_doubts(w.positions, test::kWalkerJoints, 7.5, w.contacts).empty());
 }
@@ -220,6 +221,58 @@ TEST(ClipDoubts, FlightsJudgeTheClockBeforeTheWalk) {
   EXPECT_NEAR(doubts.flight_fall.slowdown(), 1.0, 0.05);
   EXPECT_GT(doubts.walk_pace.slowdown(), 3.0);
   EXPECT_TRUE(doubts.clock.empty()) << doubts.clock;
+}
+
+}  // namespace
+}  // namespace mg
+
+namespace mg {
+namespace {
+
+// A clip whose only doubt is its clock, judged by its flights (fall) or its walk.
+DoubtedClip clocked(const std::string& name, double k, bool by_flights, double read_fps = 30.0) {
+  DoubtedClip c{name, {}, ClipClock{read_fps, false}};
+  c.doubts.slowdown = k;
+  c.doubts.clock = name + "'s clock";
+  if (by_flights) c.doubts.flight_fall.fall_mps2 = kGravityMps2 / (k * k);
+  return c;
+}
+
+TEST(ClipDoubts, ClipsReadAtOneRateWhoseOnlyDoubtIsTheirClockAreSaidInOneLine) {
+  ClipDoubts floating;
+  floating.floor = {"its lowest joint stays 0.50-0.60 m above the floor (y = 0)"};
+  const std::vector<DoubtedClip> clips = {clocked("a", 4.4, true),      clocked("b", 3.6, false),
+                                          {"f", floating, {}},          clocked("fast", 0.5, false),
+                                          clocked("c", 4.0, false),     clocked("d", 3.9, true),
+                                          clocked("e", 4.2, true, 60.0), clocked("g", 3.8, true)};
+  const std::vector<std::string> lines = clip_doubt_lines(clips);
+  // a, b, c, d and g (read at 30 fps, slow) in one line at the first's place, at the median of
+  // their factors (3.6, 3.8, 3.9, 4.0, 4.4); the others their own.
+  ASSERT_EQ(lines.size(), 4u) << fmt::format("{}", fmt::join(lines, "\n"));
+  EXPECT_EQ(lines[0],
+            "a, b, c and 2 more: their flights and walking strides say they play about 3.9x slower than they were "
+            "captured (3.6-4.4x); their frame rate as read, 30 fps, is likely about 3.9 times that (--input-fps; a "
+            "manifest's input_fps for one clip)");
+  EXPECT_EQ(lines[1], clip_doubt_line("f", floating));
+  EXPECT_EQ(lines[2], "fast: fast's clock");
+  EXPECT_EQ(lines[3], "e: e's clock");
+  // Two alike are said one by one; three, whose factors all came from flights, in one line.
+  EXPECT_EQ(clip_doubt_lines(std::vector<DoubtedClip>{clocked("a", 4.0, true), clocked("b", 4.0, true)}),
+            (std::vector<std::string>{"a: a's clock", "b: b's clock"}));
+  const std::vector<std::string> fast = clip_doubt_lines(
+      std::vector<DoubtedClip>{clocked("a", 0.5, true), clocked("b", 0.4, true), clocked("c", 0.625, true)});
+  ASSERT_EQ(fast.size(), 1u);
+  EXPECT_EQ(fast[0],
+            "a, b, c: their flights say they play about 2.0x faster than they were captured (1.6-2.5x); their frame "
+            "rate as read, 30 fps, is likely about 1/2.0 of that (--input-fps; a manifest's input_fps for one clip)");
+  // Keys timed in seconds: export them again.
+  std::vector<DoubtedClip> keyed = {clocked("a", 4.0, false), clocked("b", 4.0, false), clocked("c", 4.0, false)};
+  for (DoubtedClip& c : keyed) c.clock.keys_in_seconds = true;
+  EXPECT_NE(clip_doubt_lines(keyed)[0].find("their walking strides say they play about 4.0x slower than they were "
+                                            "captured (4.0-4.0x); their keys' times look about 4.0 times what they "
+                                            "should (export them again at the capture's rate)"),
+            std::string::npos)
+      << clip_doubt_lines(keyed)[0];
 }
 
 }  // namespace

@@ -138,7 +138,9 @@ TEST(LibrarySummary, JsonCarriesTheClipsAndWhatLoadingChose) {
   notes.recovered_travels.push_back({"loop.bvh", TravelSource::kAuto, in_place});
   notes.matched_rigs.push_back({"max.bvh", {{"LeftHip", "lfemur"}}, RestPoseDifference{90.0, "lradius"}});
   notes.matched_rigs.push_back({"builder.bvh", {{"LeftUpLeg", "lfemur"}}, std::nullopt});
-  notes.clip_doubts.push_back("float: off the floor");
+  ClipDoubts floating;
+  floating.floor = {"its lowest joint stays 0.50-0.60 m above the floor (y = 0)"};
+  notes.clip_doubts.push_back({"float", floating, {}});
   const LibrarySummary s = summarize_library(db, notes, false);
   const nlohmann::json doc = library_summary_json(std::vector<std::string>{"a", "b"}, db, s);
 
@@ -154,7 +156,7 @@ TEST(LibrarySummary, JsonCarriesTheClipsAndWhatLoadingChose) {
   EXPECT_DOUBLE_EQ(doc["clips"][2]["root_path_m"].get<double>(), s.clip_travel_m[2]);
   EXPECT_EQ(doc["warnings"], nlohmann::json(load_warnings(notes)));
   ASSERT_EQ(doc["warnings"].size(), 4u);  // the file read in the library's axis, two rigs, the doubt
-  EXPECT_EQ(doc["warnings"][3], "float: off the floor");
+  EXPECT_EQ(doc["warnings"][3], clip_doubt_line("float", floating));
   const nlohmann::json& reading = doc["reading"];
   EXPECT_EQ(reading["units"], (nlohmann::json::array({{{"file", "walk.bvh"},
                                                          {"unit", "cm"},

@@ -873,10 +873,10 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
                                                                                               clip.frame_count);
       // Keys timed in seconds (glTF, FBX): --input-fps only samples them.
       const bool keyed = is_gltf_file(clip.source) || is_fbx_file(clip.source);
+      const ClipClock clock{clip.read_fps, keyed};
       const ClipDoubts doubts = clip_doubts(world_positions(skeleton, clip.motion), skeleton.joint_count(), db.fps,
-                                            contacts, {}, ClipClock{clip.read_fps, keyed},
-                                            feet[static_cast<size_t>(clip.skeleton)]);
-      if (!doubts.empty()) notes->clip_doubts.push_back(clip_doubt_line(clip.name, doubts));
+                                            contacts, {}, clock, feet[static_cast<size_t>(clip.skeleton)]);
+      if (!doubts.empty()) notes->clip_doubts.push_back({clip.name, doubts, clock});
     }
   }
   return db;
@@ -969,7 +969,7 @@ std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes) {
                                 v.clips.size() > 1 ? fmt::format(" and {} more", v.clips.size() - 1) : "",
                                 notes.standing_speed_mps));
   }
-  lines.insert(lines.end(), notes.clip_doubts.begin(), notes.clip_doubts.end());
+  for (std::string& line : clip_doubt_lines(notes.clip_doubts)) lines.push_back(std::move(line));
   lines.insert(lines.begin(), notes.name_clashes.begin(), notes.name_clashes.end());
   return lines;
 }

@@ -36,6 +36,7 @@
 #include "motiongraph/core/error.h"
 #include "motiongraph/database/motion_database.h"
 #include "motiongraph/database/travel_tags.h"
+#include "motiongraph/motion/clip_doubts.h"
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/in_place_choice.h"
 #include "motiongraph/motion/length_unit_choice.h"
@@ -172,7 +173,7 @@ struct DatabaseLoadNotes {
     int added_frames = 0;  // at the database's rate
   };
   std::vector<Loop> loops;
-  std::vector<std::string> clip_doubts;
+  std::vector<DoubtedClip> clip_doubts;  // in clip order (motion/clip_doubts.h)
   // Clips whose description's walk or run was left off some of their frames (the root stands
   // there: DatabaseSettings::travel_tags), in clip order.
   struct StandingTag {

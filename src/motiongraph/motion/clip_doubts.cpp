@@ -34,24 +34,30 @@ std::vector<std::string> ClipDoubts::phrases() const {
 
 namespace {
 
-// The clock's phrase: `evidence` (what was measured), then the pace its slowdown `k` gives and
-// what to change. Captures' flights fall at 0.7-1.55 g (the mean of the joints is not the centre
-// of mass), walks' ratios lie within 1.25x of kWalkRatio, so the factor is known to a fifth or
-// so: the phrase gives it, "about", and no rate of its own.
-std::string clock_phrase(const std::string& evidence, double k, const ClipClock& clock) {
-  const std::string pace = k > 1.0 ? fmt::format("it plays about {:.1f}x slower than it was captured", k)
-                                   : fmt::format("it plays about {:.1f}x faster than it was captured", 1.0 / k);
+// How the clock is off, "it plays about 4.0x slower than it was captured", and what to change,
+// "its frame rate as read, 30 fps, is likely about 4.0 times that (...)"; or of several clips
+// read at one rate ("they play ...", "their frame rate as read ..."). Captures' flights fall at
+// 0.7-1.55 g (the mean of the joints is not the centre of mass), walks' ratios lie within 1.25x
+// of kWalkRatio, so the factor is known to a fifth or so: the phrase gives it, "about", and no
+// rate of its own.
+std::string pace_phrase(double k, bool several) {
+  const char* it = several ? "they play" : "it plays";
+  const char* was = several ? "they were" : "it was";
+  return k > 1.0 ? fmt::format("{} about {:.1f}x slower than {} captured", it, k, was)
+                 : fmt::format("{} about {:.1f}x faster than {} captured", it, 1.0 / k, was);
+}
+
+std::string fix_phrase(double k, const ClipClock& clock, bool several) {
+  const char* its = several ? "their" : "its";
   const std::string times = k > 1.0 ? fmt::format("about {:.1f} times", k) : fmt::format("about 1/{:.1f} of", 1.0 / k);
-  std::string fix;
   if (clock.keys_in_seconds) {
-    fix = fmt::format("its keys' times look {} what they should (export it again at the capture's rate)", times);
-  } else {
-    const std::string rate = clock.read_fps > 0.0 ? fmt::format("its frame rate as read, {:g} fps, is likely {} that",
-                                                                clock.read_fps, times)
-                                                  : fmt::format("its frame rate is likely {} the one read", times);
-    fix = rate + " (--input-fps; a manifest's input_fps for one clip)";
+    return fmt::format("{} keys' times look {} what they should (export {} again at the capture's rate)", its, times,
+                       several ? "them" : "it");
   }
-  return fmt::format("{}: {}; {}", evidence, pace, fix);
+  const std::string rate = clock.read_fps > 0.0 ? fmt::format("{} frame rate as read, {:g} fps, is likely {} that", its,
+                                                              clock.read_fps, times)
+                                                : fmt::format("{} frame rate is likely {} the one read", its, times);
+  return rate + " (--input-fps; a manifest's input_fps for one clip)";
 }
 
 }  // namespace
@@ -92,14 +98,14 @@ ClipDoubts clip_doubts(std::span<const Vec3> world_positions_m, int joint_count,
   if (out.floor.empty()) {
     const FlightFall& fall = out.flight_fall = measure_flight_fall(world_positions_m, joint_count, fps, contacts);
     const WalkPace& walk = out.walk_pace = measure_walk_pace(world_positions_m, joint_count, fps, contacts, feet);
-    const double k = fall.measured() ? fall.slowdown() : walk.slowdown();
+    const double k = out.slowdown = fall.measured() ? fall.slowdown() : walk.slowdown();
     if (k > 0.0 && (k > settings.max_slowdown || k < 1.0 / settings.max_slowdown)) {
-      out.clock = clock_phrase(
+      const std::string evidence =
           fall.measured() ? fmt::format("its flights fall at {:.2f} m/s^2, not {:.2f}", fall.fall_mps2, kGravityMps2)
-                          : fmt::format("its walking strides of {:.2f} m take {:.2f} s, where people's of that "
-                                        "length take about {:.2f} s",
-                                        walk.stride_m, walk.stride_s, walk.usual_stride_s()),
-          k, clock);
+                          : fmt::format("its walking strides of {:.2f} m take {:.2f} s, where people's of that length "
+                                        "take about {:.2f} s",
+                                        walk.stride_m, walk.stride_s, walk.usual_stride_s());
+      out.clock = evidence + ": " + pace_phrase(k, false) + "; " + fix_phrase(k, clock, false);
     }
   }
   return out;
@@ -131,6 +137,51 @@ std::string clip_doubt_line(const std::string& name, const ClipDoubts& doubts) {
   const bool placed = !doubts.size.empty() || !doubts.floor.empty();
   return fmt::format("{}: {}{}", name, clip_doubts_text(doubts),
                      placed ? " (the distances compare clips as read, so the graph may join it to nothing)" : "");
+}
+
+std::vector<std::string> clip_doubt_lines(std::span<const DoubtedClip> clips) {
+  // Clips whose only doubt is their clock, by the rate read and whether they play slow or fast.
+  const auto clock_only = [](const ClipDoubts& d) { return d.size.empty() && d.floor.empty() && !d.clock.empty(); };
+  const auto same_group = [](const DoubtedClip& a, const DoubtedClip& b) {
+    return a.clock.read_fps == b.clock.read_fps && a.clock.keys_in_seconds == b.clock.keys_in_seconds &&
+           (a.doubts.slowdown > 1.0) == (b.doubts.slowdown > 1.0);
+  };
+  std::vector<std::string> lines;
+  std::vector<char> said(clips.size(), 0);
+  for (size_t i = 0; i < clips.size(); ++i) {
+    if (said[i] || clips[i].doubts.empty()) continue;
+    std::vector<size_t> group = {i};
+    if (clock_only(clips[i].doubts)) {
+      for (size_t j = i + 1; j < clips.size(); ++j) {
+        if (!said[j] && clock_only(clips[j].doubts) && same_group(clips[i], clips[j])) group.push_back(j);
+      }
+    }
+    if (group.size() < kGroupedClockDoubts) {
+      lines.push_back(clip_doubt_line(clips[i].name, clips[i].doubts));
+      said[i] = 1;
+      continue;
+    }
+    std::vector<std::string> names;
+    std::vector<double> factors;
+    int by_flights = 0;
+    for (const size_t j : group) {
+      said[j] = 1;
+      if (names.size() < 3) names.push_back(clips[j].name);
+      factors.push_back(clips[j].doubts.slowdown);
+      by_flights += clips[j].doubts.flight_fall.measured();
+    }
+    const auto [low, high] = std::minmax_element(factors.begin(), factors.end());
+    const double k = quantile(factors, 0.5);
+    const double shown_low = *low > 1.0 ? *low : 1.0 / *high, shown_high = *low > 1.0 ? *high : 1.0 / *low;
+    const int count = static_cast<int>(group.size());
+    const std::string evidence = by_flights == count ? "flights"
+                                 : by_flights == 0   ? "walking strides"
+                                                     : "flights and walking strides";
+    lines.push_back(fmt::format("{}{}: their {} say {} ({:.1f}-{:.1f}x); {}", fmt::join(names, ", "),
+                                count > 3 ? fmt::format(" and {} more", count - 3) : "", evidence,
+                                pace_phrase(k, true), shown_low, shown_high, fix_phrase(k, clips[i].clock, true)));
+  }
+  return lines;
 }
 
 }  // namespace mg

@@ -51,6 +51,9 @@ struct ClipDoubts {
   // flights, too few strides of a walk).
   FlightFall flight_fall;
   WalkPace walk_pace;
+  // How many times slower than captured the clip plays, as the clock was judged (the flights',
+  // else the walk's slowdown); 0 when not judged.
+  double slowdown = 0.0;
 
   bool empty() const { return size.empty() && floor.empty() && clock.empty(); }
   // The size's phrase, or the floor's, or the clock's.
@@ -82,5 +85,19 @@ std::string clip_doubts_text(const ClipDoubts& doubts);
 // "NAME: " + clip_doubts_text (+ " (...)", why a size or floor doubt matters): the one line
 // loading logs for a clip with doubts.
 std::string clip_doubt_line(const std::string& name, const ClipDoubts& doubts);
+
+// A library's clips with doubts, the lines loading logs for them: one per clip, but for clips
+// whose only doubt is their clock, read at one rate and playing slower (or faster) than captured:
+// kGroupedClockDoubts of them or more say it in one line ("16_01, 16_05, 16_13 and 12 more: their
+// flights and walking strides say they play about 4.0x slower than they were captured (3.5-4.6x);
+// their frame rate as read, 30 fps, is likely about 4.0 times that (...)"), as a folder a converter
+// wrote with one wrong Frame Time has them. The lines in the order of each group's first clip.
+inline constexpr size_t kGroupedClockDoubts = 3;
+struct DoubtedClip {
+  std::string name;
+  ClipDoubts doubts;
+  ClipClock clock;
+};
+std::vector<std::string> clip_doubt_lines(std::span<const DoubtedClip> clips);
 
 }  // namespace mg
