@@ -12,6 +12,7 @@
 
 #include "cli/commands.h"
 #include "cli/synthesis_options.h"
+#include "motiongraph/core/transition_rate.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/synthesis/control_script.h"
 #include "motiongraph/synthesis/controller.h"

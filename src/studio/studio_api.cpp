@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "motiongraph/core/json_text.h"
+#include "motiongraph/core/transition_rate.h"
 #include "motiongraph/evaluation/foot_slide_report.h"
 #include "motiongraph/evaluation/synthesis_run.h"
 #include "motiongraph/export/positions_json.h"

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "motiongraph/core/transition_rate.h"
 #include "motiongraph/evaluation/foot_slide_report.h"
 #include "motiongraph/export/motion_file.h"
 #include "motiongraph/synthesis/assembler.h"

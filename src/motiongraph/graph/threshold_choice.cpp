@@ -10,6 +10,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "motiongraph/core/transition_rate.h"
+
 namespace mg {
 
 double rms_cm_of_distance(double distance, double window_weight) {
@@ -212,9 +214,7 @@ Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFe
     }
   }
   const double fps = db.fps > 0.0 ? db.fps : 30.0;
-  auto rate = [&](const CoveragePoint& p) {
-    return p.kept_frames > 0 ? p.transitions / (static_cast<double>(p.kept_frames) / fps) : 0.0;
-  };
+  auto rate = [&](const CoveragePoint& p) { return transitions_per_second(p.transitions, p.kept_frames, fps); };
   out.target_rate = top->graph ? std::min(choice.min_transition_rate, rate(*top)) : choice.min_transition_rate;
   auto tag_short = [&](const CoveragePoint& p, size_t i) { return !p.graph || p.tag_coverage[i] < out.targets[i]; };
   auto reaches = [&](const CoveragePoint& p) {

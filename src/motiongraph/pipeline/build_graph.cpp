@@ -11,6 +11,7 @@
 
 #include "motiongraph/core/counted.h"
 #include "motiongraph/core/json_text.h"
+#include "motiongraph/core/transition_rate.h"
 #include "motiongraph/database/database_loader.h"
 #include "motiongraph/export/matrix_png.h"
 #include "motiongraph/export/npy.h"

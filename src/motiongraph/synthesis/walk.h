@@ -25,11 +25,6 @@ inline int count_bridges(const MotionGraph& graph, std::span<const int> edges) {
   return n;
 }
 
-// Transitions per second of motion: the rate at which blends come.
-inline double transitions_per_second(int transitions, long long frames, double fps) {
-  return frames > 0 && fps > 0.0 ? transitions / (static_cast<double>(frames) / fps) : 0.0;
-}
-
 struct Walk {
   int start_node = 0;
   std::vector<int> edges;  // indices into MotionGraph::edges
