@@ -22,8 +22,10 @@
 #include "motiongraph/export/motion_file.h"
 #include "motiongraph/export/positions_json.h"
 #include "motiongraph/io/file.h"
+#include "motiongraph/motion/clip_doubts.h"
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/foot_contacts.h"
+#include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/skeleton/foot_joints.h"
 #include "motiongraph/motion/resample.h"
 #include "motiongraph/synthesis/facing.h"
@@ -57,6 +59,19 @@ Result<Clip> read_clip(const ConvertOptions& options, ClipLoader& loader, const 
   if (clip.glitched_leading_frames > 0 || clip.glitched_trailing_frames > 0) {
     spdlog::info("{}: {} (--keep-rest-frames keeps them)", input,
                  glitched_ends_description(clip.glitched_leading_frames, clip.glitched_trailing_frames));
+  }
+  // What looks wrong with it as read (its unit, floor, feet or clock), as info says it: judged at
+  // the rate read, on the feet --feet names or found by name (none found: not judged by them).
+  {
+    std::string why;
+    auto contacts = clip_contacts(clip.skeleton, clip.motion, options.load.settings().foot_names, why);
+    const bool known = contacts && *contacts;
+    const ClipDoubts doubts = clip_doubts(
+        world_positions(clip.skeleton, clip.motion), clip.skeleton.joint_count(), clip.motion.fps,
+        known ? std::span<const ContactMask>((*contacts)->masks) : std::span<const ContactMask>(), {},
+        ClipClock{clip.motion.fps, loaded->format == "gltf" || loaded->format == "fbx"},
+        known ? (*contacts)->feet : FootJoints{});
+    if (!doubts.empty()) spdlog::warn("{}", clip_doubt_line(input, doubts));
   }
   if (options.fps > 0.0) {
     auto resampled = resample(clip.motion, options.fps);
