@@ -140,7 +140,7 @@ TEST(LibrarySummary, JsonCarriesTheClipsAndWhatLoadingChose) {
   notes.matched_rigs.push_back({"builder.bvh", {{"LeftUpLeg", "lfemur"}}, std::nullopt});
   ClipDoubts floating;
   floating.floor = {"its lowest joint stays 0.50-0.60 m above the floor (y = 0)"};
-  notes.clip_doubts.push_back({"float", floating, {}});
+  notes.clip_doubts.push_back({db.clips[2].name, floating, {}});
   const LibrarySummary s = summarize_library(db, notes, false);
   const nlohmann::json doc = library_summary_json(std::vector<std::string>{"a", "b"}, db, s);
 
@@ -156,7 +156,10 @@ TEST(LibrarySummary, JsonCarriesTheClipsAndWhatLoadingChose) {
   EXPECT_DOUBLE_EQ(doc["clips"][2]["root_path_m"].get<double>(), s.clip_travel_m[2]);
   EXPECT_EQ(doc["warnings"], nlohmann::json(load_warnings(notes)));
   ASSERT_EQ(doc["warnings"].size(), 4u);  // the file read in the library's axis, two rigs, the doubt
-  EXPECT_EQ(doc["warnings"][3], clip_doubt_line("float", floating));
+  EXPECT_EQ(doc["warnings"][3], clip_doubt_line(db.clips[2].name, floating));
+  // Each clip carries its own doubts: the third the floor's phrase, the others none.
+  EXPECT_EQ(doc["clips"][2]["doubts"], nlohmann::json(floating.phrases()));
+  EXPECT_EQ(doc["clips"][0]["doubts"], nlohmann::json::array());
   const nlohmann::json& reading = doc["reading"];
   EXPECT_EQ(reading["units"], (nlohmann::json::array({{{"file", "walk.bvh"},
                                                          {"unit", "cm"},

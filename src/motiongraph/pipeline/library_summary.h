@@ -50,7 +50,8 @@ std::string clip_tags_text(std::span<const ClipTagRun> runs, int clip_frames);
 
 // {inputs, fps, frames, duration_s, skeletons, tags: {TAG: {clips, frames, seconds}},
 // untagged: {clips, frames}, feet, foot_contacts, clips: [build report's clips with duration_s,
-// root_path_m, tag_ranges], reading: {units: [{file, unit, metres_per_unit, figure_m,
+// root_path_m, tag_ranges, doubts (what looks wrong with it as read: phrases, as info's of a
+// file)], reading: {units: [{file, unit, metres_per_unit, figure_m,
 // plausible}], up_axes: [{file, axis, own_axis, animation_ratio, rest_ratio}], travel_recovered:
 // [{file, in_place, recovered_m, slide_m_s, root_m_s}], rest_frames: [{file, frames}],
 // glitched_ends: [{file, leading, trailing}], rigs:
