@@ -254,6 +254,7 @@ class Router {
     json out = json::array();
     const std::vector<TagMask>& tags = service_.context().frame_tags;
     const std::vector<ClipCoverage> coverage = clip_coverage(graph(), db(), {});
+    const std::vector<std::vector<std::string>>& doubts = service_.clip_doubts();
     for (size_t i = 0; i < db().clips.size(); ++i) {
       const DatabaseClip& c = db().clips[i];
       TagMask mask = 0;
@@ -264,7 +265,8 @@ class Router {
                      {"frames", c.frame_count},
                      {"duration_s", c.frame_count / db().fps},
                      {"kept_frames", coverage[i].kept_frames},
-                     {"tags", db().tag_names_of(mask)}});
+                     {"tags", db().tag_names_of(mask)},
+                     {"doubts", doubts[i]}});
     }
     return json_response(out);
   }

@@ -9,6 +9,8 @@
 #include "motiongraph/motion/root_motion.h"
 #include "motiongraph/export/matrix_png.h"
 #include "motiongraph/graph/candidates.h"
+#include "motiongraph/motion/clip_doubts.h"
+#include "motiongraph/motion/forward_kinematics.h"
 
 namespace mg::studio {
 
@@ -225,6 +227,29 @@ Result<std::string> SynthesisService::distance_png() const {
     }();
   });
   return *picture_;
+}
+
+const std::vector<std::vector<std::string>>& SynthesisService::clip_doubts() const {
+  std::call_once(doubts_once_, [this] {
+    const MotionDatabase& db = file().database;
+    std::vector<FootJoints> feet;  // each skeleton's, as the contacts were found for them
+    for (const Skeleton& skeleton : db.skeletons) {
+      auto found = find_foot_joints(skeleton, db.foot_names);
+      feet.push_back(found ? *found : FootJoints{});
+    }
+    for (const DatabaseClip& clip : db.clips) {
+      const Skeleton& skeleton = db.skeletons[static_cast<size_t>(clip.skeleton)];
+      const std::span<const ContactMask> contacts =
+          db.frame_contacts.empty() ? std::span<const ContactMask>()
+                                    : std::span<const ContactMask>(db.frame_contacts).subspan(
+                                          static_cast<size_t>(clip.first_frame), static_cast<size_t>(clip.frame_count));
+      clip_doubts_.push_back(mg::clip_doubts(world_positions(skeleton, clip.motion), skeleton.joint_count(), db.fps,
+                                             contacts, {}, ClipClock{clip.read_fps, false},
+                                             feet[static_cast<size_t>(clip.skeleton)])
+                                 .phrases());
+    }
+  });
+  return clip_doubts_;
 }
 
 int SynthesisService::picture_block() const {

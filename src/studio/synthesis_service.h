@@ -109,6 +109,10 @@ class SynthesisService {
   // Frames per pixel of the picture along each axis (it is ceil(frames / block) pixels a side).
   int picture_block() const;
 
+  // What looks wrong with each database clip as read (motion/clip_doubts.h: its size, floor,
+  // feet or clock), the phrases info gives; worked out on first use and kept.
+  const std::vector<std::vector<std::string>>& clip_doubts() const;
+
  private:
   struct Recorded {
     mutable std::mutex mutex;
@@ -143,6 +147,8 @@ class SynthesisService {
   std::map<int, std::shared_ptr<Session>> sessions_;
   mutable std::once_flag picture_once_;
   mutable std::optional<Result<std::string>> picture_;
+  mutable std::once_flag doubts_once_;
+  mutable std::vector<std::vector<std::string>> clip_doubts_;
 };
 
 }  // namespace mg::studio

@@ -181,9 +181,17 @@ try {
   check(clipOptions.length === apiClips.length && keptShown === apiClips.length,
     `${keptShown} of ${apiClips.length} clips show the share the graph keeps (${clipOptions[0]})`);
 
+  // A clip that looks wrong as read (the API's doubts, info's phrases) is marked in the selector.
+  const marked = apiClips.filter((c, i) => clipOptions[i]
+    && clipOptions[i].startsWith('\u26a0') === (c.doubts.length > 0)).length;
+  check(marked === apiClips.length, `${marked} of ${apiClips.length} clips marked as their doubts say`);
+
   // 2. A clip plays: frames advance and the root moves.
   await page.selectOption('[data-testid=clip-select]', '1');
   await page.waitForFunction(() => window.studio.state.clipIndex === 1 && window.studio.state.playing);
+  const doubtsShown = await page.textContent('[data-testid=clip-doubts]');
+  const doubtsWanted = apiClips[1].doubts.length ? `Looks wrong as read: ${apiClips[1].doubts.join('; ')}.` : '';
+  check(doubtsShown === doubtsWanted, `the clip's doubts are shown as the API gives them ('${doubtsShown}')`);
   const f0 = await page.evaluate(() => window.studio.state.frameIndex);
   await page.waitForTimeout(1000);
   const f1 = await page.evaluate(() => window.studio.state.frameIndex);
@@ -388,13 +396,40 @@ try {
     await drawPath(page);
     const info = await synthesizePath(page);
     check(/run 0 %: not in the graph/.test(info), `a path asking it to run says running is not in the graph: ${info}`);
+    await page.close();
+    await stopServer(second, ' (the walking graph)');
+    second = null;
+
+    // A library with a clip whose converter offset its root (07_12.bvh, below the floor): the
+    // selector marks it, and choosing it shows what looks wrong, as the API (and info) say it.
+    const offset = join(work, 'offset.mgraph');
+    const builtOffset = spawn(motiongraph, ['build', join(dataDir, 'bvh/07_01.bvh'), join(dataDir, 'bvh/07_12.bvh'),
+      '--no-cache', '-q', '-o', offset], { stdio: 'ignore' });
+    const offsetCode = await new Promise((resolve) => builtOffset.on('exit', resolve));
+    check(offsetCode === 0, `the graph of 07_01 and 07_12 is built (exit ${offsetCode})`);
+    [second, address] = await serve(offset);
+    const doubted = await browser.newPage({ viewport: { width: 1100, height: 700 } });
+    doubted.setDefaultTimeout(180000);
+    await doubted.goto(address);
+    await doubted.waitForFunction(() => window.studio && (window.studio.state.ready || window.studio.state.error),
+      null, { timeout: 30000 });
+    const offsetClips = await doubted.evaluate(async () => (await fetch('/api/clips')).json());
+    const offsetOptions = await doubted.$$eval('[data-testid=clip-select] option', (os) => os.map((o) => o.textContent));
+    const index = offsetClips.findIndex((c) => c.name === '07_12');
+    check(index >= 0 && /below the floor/.test(offsetClips[index].doubts.join(' '))
+      && offsetOptions[index].startsWith('\u26a0 07_12') && !offsetOptions[1 - index].startsWith('\u26a0'),
+      `07_12 is marked as looking wrong: ${offsetOptions.join(' | ')}`);
+    await doubted.selectOption('[data-testid=clip-select]', String(index));
+    await doubted.waitForFunction((i) => window.studio.state.clipIndex === i, index);
+    const said = await doubted.textContent('[data-testid=clip-doubts]');
+    check(said === `Looks wrong as read: ${offsetClips[index].doubts.join('; ')}.`, `07_12's doubts are shown: '${said}'`);
   }
 } catch (err) {
   console.log(`FAIL ${err.message}`);
   failures += 1;
 } finally {
   await browser.close().catch(() => {});
-  if (second) await stopServer(second, ' (the walking graph)');
+  if (second) await stopServer(second, ' (the second graph)');
   if (work) rmSync(work, { recursive: true, force: true });
 }
 await stopServer(server, '');

@@ -1,6 +1,7 @@
 // The studio's distance picture comes from the block minima the graph stores: the same PNG as
 // the distance stage computed again from the graph's database and settings at the picture's
-// block (the brute-force reference the studio used to run on every start).
+// block (the brute-force reference the studio used to run on every start). Each clip's doubts
+// are info's.
 #include "studio/synthesis_service.h"
 
 #include <gtest/gtest.h>
@@ -8,14 +9,54 @@
 #include <cmath>
 #include <limits>
 
+#include <nlohmann/json.hpp>
+
 #include "motiongraph/evaluation/graph_rebuild.h"
 #include "motiongraph/export/matrix_png.h"
 #include "motiongraph/graph/candidates.h"
+#include "motiongraph/motion/clip_doubts.h"
+#include "motiongraph/motion/forward_kinematics.h"
+#include "studio/studio_api.h"
 #include "pipeline/subject16_build.h"
 #include "test_data.h"
 
 namespace mg {
 namespace {
+
+TEST(SynthesisService, EachClipsDoubtsAreInfosAndTheApiListsThem) {
+  // Subject 16's graph with its fourth clip raised 1 m (its lowest joint off the floor): that clip
+  // is doubted as info doubts it, the others not at all.
+  GraphFile file = test::subject16_graph_file();
+  DatabaseClip& raised = file.database.clips[3];
+  for (int f = 0; f < raised.motion.frame_count; ++f) raised.motion.translations(f)[0].y() += 1.0;
+  auto graph = LoadedGraph::create(std::move(file), "raised.mgraph");
+  ASSERT_TRUE(graph) << graph.error().to_string();
+  const auto service = studio::SynthesisService::create(std::move(*graph), "raised.mgraph");
+  const MotionDatabase& db = service->file().database;
+  const std::vector<std::vector<std::string>>& doubts = service->clip_doubts();
+  ASSERT_EQ(doubts.size(), db.clips.size());
+  for (size_t c = 0; c < db.clips.size(); ++c) {
+    if (c == 3) continue;
+    EXPECT_TRUE(doubts[c].empty()) << db.clips[c].name << ": " << doubts[c].front();
+  }
+  const Skeleton& skeleton = db.skeletons[static_cast<size_t>(db.clips[3].skeleton)];
+  const std::span<const ContactMask> contacts(db.frame_contacts.data() + db.clips[3].first_frame,
+                                              static_cast<size_t>(db.clips[3].frame_count));
+  const std::vector<std::string> expected =
+      mg::clip_doubts(world_positions(skeleton, db.clips[3].motion), skeleton.joint_count(), db.fps, contacts, {},
+                      ClipClock{}, *find_foot_joints(skeleton, db.foot_names))
+          .phrases();
+  ASSERT_FALSE(expected.empty());
+  EXPECT_NE(expected.front().find("above the floor"), std::string::npos) << expected.front();
+  EXPECT_EQ(doubts[3], expected);
+  // The API's clip list carries them.
+  const studio::StudioApi api(*service);
+  const studio::ApiResponse clips = api.handle({"GET", "/api/clips", {}, ""});
+  ASSERT_EQ(clips.status, 200);
+  const nlohmann::json listed = nlohmann::json::parse(clips.body);
+  EXPECT_EQ(listed[3]["doubts"], nlohmann::json(expected));
+  EXPECT_EQ(listed[0]["doubts"], nlohmann::json::array());
+}
 
 TEST(SynthesisService, DistancePictureIsTheStoredOneAsTheDistanceStageWouldDrawIt) {
   // Built in process: the database the distances were computed on, not one read back from a

@@ -113,6 +113,8 @@ function play(track, mode) {
 // --- clips -------------------------------------------------------------------------------
 async function loadClip(index) {
   const clip = state.clips[index];
+  // What looks wrong with the clip as read (its size, floor, feet or clock), as info says it.
+  $('clip-doubts').textContent = clip.doubts.length ? `Looks wrong as read: ${clip.doubts.join('; ')}.` : '';
   const frames = [];
   let joints = null;
   let contacts = null;
@@ -568,8 +570,9 @@ async function start() {
   $('summary').textContent = `${summary.graph}: ${summary.clips} clips, ${summary.frames} frames at ${summary.fps} fps; `
     + `${summary.statistics.nodes} nodes, ${summary.statistics.edges} edges, `
     + `${summary.statistics.transitions} transitions`;
-  $('clip-select').innerHTML = clips.map((c) => `<option value="${c.index}">${c.name} (${c.frames} frames, kept `
-    + `${Math.round((100 * c.kept_frames) / c.frames)} %; ${c.tags.join(', ') || 'no tag'})</option>`).join('');
+  $('clip-select').innerHTML = clips.map((c) => `<option value="${c.index}">${c.doubts.length ? '\u26a0 ' : ''}`
+    + `${c.name} (${c.frames} frames, kept ${Math.round((100 * c.kept_frames) / c.frames)} %; `
+    + `${c.tags.join(', ') || 'no tag'})</option>`).join('');
   // A type the graph plays in no frame (its frames pruned away) says so: a path asking for it
   // cannot follow it.
   const absent = new Set(summary.statistics.tags.filter((t) => t.frames === 0).map((t) => t.name));
