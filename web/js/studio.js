@@ -100,6 +100,8 @@ function setResultLink(id) {
 
 function play(track, mode) {
   stopSteering();
+  // The clip's doubts say what is wrong with a clip as read, not with a result.
+  if (mode !== 'clip') $('clip-doubts').textContent = '';
   state.track = track;
   state.mode = mode;
   state.time = 0;

@@ -161,25 +161,32 @@ std::vector<std::string> clip_doubt_lines(std::span<const DoubtedClip> clips) {
       said[i] = 1;
       continue;
     }
+    // Up to 4 named all; more, the first 3 "and N more".
+    const int count = static_cast<int>(group.size());
+    const int named = count <= 4 ? count : 3;
     std::vector<std::string> names;
-    std::vector<double> factors;
+    std::vector<double> factors;  // how many times slower, or faster: each at least 1
     int by_flights = 0;
     for (const size_t j : group) {
       said[j] = 1;
-      if (names.size() < 3) names.push_back(clips[j].name);
-      factors.push_back(clips[j].doubts.slowdown);
+      if (static_cast<int>(names.size()) < named) names.push_back(clips[j].name);
+      const double k = clips[j].doubts.slowdown;
+      factors.push_back(k > 1.0 ? k : 1.0 / k);
       by_flights += clips[j].doubts.flight_fall.measured();
     }
+    const bool slower = clips[i].doubts.slowdown > 1.0;
     const auto [low, high] = std::minmax_element(factors.begin(), factors.end());
-    const double k = quantile(factors, 0.5);
-    const double shown_low = *low > 1.0 ? *low : 1.0 / *high, shown_high = *low > 1.0 ? *high : 1.0 / *low;
-    const int count = static_cast<int>(group.size());
+    const double factor = quantile(factors, 0.5);
+    const std::string range = fmt::format("{:.1f}", *low) == fmt::format("{:.1f}", *high)
+                                  ? ""
+                                  : fmt::format(" ({:.1f}-{:.1f}x)", *low, *high);
     const std::string evidence = by_flights == count ? "flights"
                                  : by_flights == 0   ? "walking strides"
-                                                     : "flights and walking strides";
-    lines.push_back(fmt::format("{}{}: their {} say {} ({:.1f}-{:.1f}x); {}", fmt::join(names, ", "),
-                                count > 3 ? fmt::format(" and {} more", count - 3) : "", evidence,
-                                pace_phrase(k, true), shown_low, shown_high, fix_phrase(k, clips[i].clock, true)));
+                                                     : "flights or walking strides";
+    const double k = slower ? factor : 1.0 / factor;
+    lines.push_back(fmt::format("{}{}: their {} say {}{}; {}", fmt::join(names, ", "),
+                                count > named ? fmt::format(" and {} more", count - named) : "", evidence,
+                                pace_phrase(k, true), range, fix_phrase(k, clips[i].clock, true)));
   }
   return lines;
 }

@@ -6,8 +6,9 @@
 // heights as read, then joins such a clip to nothing. And a clock that is not the capture's: its
 // flights falling much slower or faster than gravity (flight_fall.h; a Frame Time of 30 fps on
 // 120 fps data, data/bvh/16_01.bvh), or, in a clip without flights, its walking strides taking
-// much longer or shorter than people's of their length (walk_pace.h). Loading reports them (one warning per clip) so that the user
-// checks the file before wondering about the graph.
+// much longer or shorter than people's of their length (walk_pace.h). Loading reports them (a
+// warning per clip, or one for clips whose clock alone is off alike: clip_doubt_lines) so that
+// the user checks the file before wondering about the graph.
 #pragma once
 
 #include <span>
@@ -89,9 +90,11 @@ std::string clip_doubt_line(const std::string& name, const ClipDoubts& doubts);
 // A library's clips with doubts, the lines loading logs for them: one per clip, but for clips
 // whose only doubt is their clock, read at one rate and playing slower (or faster) than captured:
 // kGroupedClockDoubts of them or more say it in one line ("16_01, 16_05, 16_13 and 12 more: their
-// flights and walking strides say they play about 4.0x slower than they were captured (3.5-4.6x);
-// their frame rate as read, 30 fps, is likely about 4.0 times that (...)"), as a folder a converter
-// wrote with one wrong Frame Time has them. The lines in the order of each group's first clip.
+// flights or walking strides say they play about 4.0x slower than they were captured (3.5-4.6x);
+// their frame rate as read, 30 fps, is likely about 4.0 times that (...)"; up to 4 clips named
+// all, the range left out when its ends agree), as a folder a converter wrote with one wrong
+// Frame Time has them. The factor is the median of the group's (of their speed-ups, for clips
+// playing fast). The lines in the order of each group's first clip.
 inline constexpr size_t kGroupedClockDoubts = 3;
 struct DoubtedClip {
   std::string name;
