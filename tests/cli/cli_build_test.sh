@@ -401,7 +401,7 @@ grep -E "^  walk_middle +[0-9]+ +[0-9.]+ +[0-9.]+ m  walk, start 0-[0-9]+, stead
 python3 - "$work/lib.json" "$work/r.json" "$work/lib120.json" "$work/manifest.json" "$work/file15.json" <<'PY'
 import json, sys
 lib, report, lib120, manifest = (json.load(open(p)) for p in sys.argv[1:5])
-added = ("duration_s", "root_path_m", "tag_ranges", "doubts")
+added = ("duration_s", "root_path_m", "tag_ranges")
 assert all(c["doubts"] == [] for c in lib["clips"]), lib["clips"]   # subject 16 looks right as read
 clips = [{k: v for k, v in c.items() if k not in added} for c in lib["clips"]]
 built = [{k: v for k, v in c.items() if k not in ("kept_frames", "best_join_rms_cm")} for c in report["clips"]]

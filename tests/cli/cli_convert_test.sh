@@ -50,7 +50,11 @@ PY
 "$bin" info "$data/bvh/16_01.bvh" \
   | grep -E "warning:  its flights fall at 0\.[56][0-9] m/s\^2, not 9\.81: it plays about [34]\.[0-9]x slower than it was captured; its frame rate as read, 30 fps, is likely about [34]\.[0-9] times that \(--input-fps" >/dev/null \
   || { echo "FAIL: info on a clock 4x slow"; "$bin" info "$data/bvh/16_01.bvh"; exit 1; }
-"$bin" build --no-cache "$data/bvh/16_01.bvh" -o "$work/clock.mgraph" 2>"$work/clock.err" >/dev/null
+"$bin" build --no-cache "$data/bvh/16_01.bvh" -o "$work/clock.mgraph" --report "$work/clock.json" 2>"$work/clock.err" >/dev/null
+python3 -c '
+import json, sys
+clips = json.load(open(sys.argv[1]))["clips"]   # the report says it of the clip too
+assert len(clips) == 1 and len(clips[0]["doubts"]) == 1 and clips[0]["doubts"][0].startswith("its flights fall at"), clips' "$work/clock.json"
 grep -E "warning: 16_01: its flights fall at .* its frame rate as read, 30 fps, is likely about [34]\.[0-9] times that" \
   "$work/clock.err" >/dev/null || { echo "FAIL: build on a clock 4x slow"; cat "$work/clock.err"; exit 1; }
 if "$bin" info --input-fps 120 "$data/bvh/16_01.bvh" | grep -q "flights fall"; then

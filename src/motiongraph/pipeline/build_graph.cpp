@@ -383,6 +383,7 @@ struct Prepared {
   MotionDatabase db;
   CloudLayout layout;
   FrameFeatures features;
+  std::vector<DoubtedClip> clip_doubts;  // loading's, for the report
 };
 
 Result<Prepared> prepare(std::span<const std::string> inputs, const BuildSettings& settings, const BuildLog& log,
@@ -417,7 +418,7 @@ Result<Prepared> prepare(std::span<const std::string> inputs, const BuildSetting
   if (!features) return features.error();
   if (features->window < 2) return Error{"", 0, "the window must be at least 2 frames (raise --fps or --window)"};
   timings["clouds"] = watch.lap();
-  return Prepared{std::move(*db), std::move(*layout), std::move(*features)};
+  return Prepared{std::move(*db), std::move(*layout), std::move(*features), std::move(load_notes.clip_doubts)};
 }
 
 // Where the threshold comes from, for a warning that a higher one would keep more.
@@ -631,6 +632,7 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
                                              candidates->share_seconds, candidates->restored_tiles});
   out.report["distance_stage"] = distance_stage_json(candidates->search, candidates->pruned, more ? &*more : nullptr,
                                                     candidates->cache, *features);
+  add_clip_doubts(out.report["clips"], *db, prepared->clip_doubts);
   if (auto s = make_exports(settings, *db, *layout, *features, candidates->search, selected->all_transitions, out);
       !s) {
     return s.error();

@@ -45,6 +45,15 @@ json clips_json(const MotionDatabase& db, std::span<const ClipCoverage> coverage
   return clips;
 }
 
+void add_clip_doubts(json& clips, const MotionDatabase& db, std::span<const DoubtedClip> doubts) {
+  for (size_t c = 0; c < db.clips.size() && c < clips.size(); ++c) {
+    clips[c]["doubts"] = json::array();
+    for (const DoubtedClip& d : doubts) {
+      if (d.name == db.clips[c].name) clips[c]["doubts"] = d.doubts.phrases();
+    }
+  }
+}
+
 json coverage_point_json(const CoveragePoint& p, const MotionDatabase& db, const std::vector<int>& tags) {
   json per_tag = json::object();
   for (size_t i = 0; i < tags.size() && i < p.tag_coverage.size(); ++i)

@@ -20,6 +20,7 @@
 #include "motiongraph/graph/graph_from_candidates.h"
 #include "motiongraph/graph/threshold_choice.h"
 #include "motiongraph/metric/point_cloud.h"
+#include "motiongraph/motion/clip_doubts.h"
 #include "motiongraph/synthesis/path_check.h"
 
 namespace mg {
@@ -29,6 +30,11 @@ namespace mg {
 // "best_join_rms_cm" (ClipCoverage::best_join as RMS; null when no candidates could join it).
 nlohmann::json clips_json(const MotionDatabase& db, std::span<const ClipCoverage> coverage = {},
                           const FrameFeatures* features = nullptr);
+
+// Gives each entry of `clips` (clips_json of `db`) "doubts": the phrases of what looks wrong with
+// that clip as read (loading's notes, motion/clip_doubts.h; matched by name, unique in a
+// database), [] for one that looks right.
+void add_clip_doubts(nlohmann::json& clips, const MotionDatabase& db, std::span<const DoubtedClip> doubts);
 
 // The feet found on each skeleton ({"feet": [{"skeleton", "left_ankle", "left_toe",
 // "right_ankle", "right_toe"}]}) and the share of frames each joint is planted

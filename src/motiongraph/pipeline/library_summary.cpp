@@ -174,12 +174,8 @@ nlohmann::json library_summary_json(std::span<const std::string> inputs, const M
     clips[c]["duration_s"] = std::max(0, db.clips[c].frame_count - 1) / db.fps;  // as a file's: first frame to last
     clips[c]["root_path_m"] = summary.clip_travel_m[c];
     clips[c]["tag_ranges"] = std::move(ranges);
-    // What looks wrong with it as read (motion/clip_doubts.h), as info says it of a file.
-    clips[c]["doubts"] = nlohmann::json::array();
-    for (const DoubtedClip& d : summary.notes.clip_doubts) {
-      if (d.name == db.clips[c].name) clips[c]["doubts"] = d.doubts.phrases();
-    }
   }
+  add_clip_doubts(clips, db, summary.notes.clip_doubts);  // as info says them of a file
   return {{"inputs", std::vector<std::string>(inputs.begin(), inputs.end())},
           {"fps", db.fps},
           {"frames", db.frame_count()},
