@@ -184,15 +184,16 @@ TEST(ClipDoubts, AWalkWhoseStridesTakeFourTimesTooLongNamesTheLikelyFrameRate) {
   EXPECT_TRUE(clip_doubts(w.positions, test::kWalkerJoints, 30.0, w.contacts, {}, {}, w.feet).empty());
   // Read at 7.5 fps its strides take 4 s; people's of 1.3 m take the time whose walk ratio is
   // kWalkRatio, 4 s / k.
-  const ClipDoubts slow = clip_doubts(w.positions, test::kWalkerJoints, 7.5, w.contacts, {}, ClipClock{7.5, false}, w.feet);
+  const ClipDoubts slow =
+      clip_doubts(w.positions, test::kWalkerJoints, 7.5, w.contacts, {}, ClipClock{7.5, false}, w.feet);
   const double figure = figure_size(w.positions, test::kWalkerJoints);
   const double k = 1.3 / figure * 4.0 * std::sqrt(kGravityMps2 / figure) / kWalkRatio;
   ASSERT_GT(k, 3.0);
-  EXPECT_EQ(slow.clock, fmt::format("its walking strides of 1.30 m take 4.00 s, where people's of that length take "
-                                    "about {:.2f} s: it plays about {:.1f}x slower than it was captured; its frame rate "
-                                    "as read, 7.5 fps, is likely about {:.1f} times that (--input-fps; a manifest's "
-                                    "input_fps for one clip)",
-                                    4.0 / k, k, k));
+  EXPECT_EQ(slow.clock,
+            fmt::format("its walking strides of 1.30 m take 4.00 s, where people's of that length take about {:.2f} "
+                        "s: it plays about {:.1f}x slower than it was captured; its frame rate as read, 7.5 fps, is "
+                        "likely about {:.1f} times that (--input-fps; a manifest's input_fps for one clip)",
+                        4.0 / k, k, k));
   EXPECT_NEAR(slow.slowdown, k, 1e-9);
   // The feet's joints unknown: the walk is not judged.
   EXPECT_TRUE(clip_doubts(w.positions, test::kWalkerJoints, 7.5, w.contacts).empty());

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numeric>
 #include <vector>
 
 #include "motiongraph/core/quantile.h"
@@ -91,21 +92,24 @@ WalkPace measure_walk_pace(std::span<const Vec3> world_positions_m, int joint_co
       plants(world_positions_m, joint_count, contacts, ankles[0], contact_bit(FootSide::kLeft, FootPart::kAnkle)),
       plants(world_positions_m, joint_count, contacts, ankles[1], contact_bit(FootSide::kRight, FootPart::kAnkle))};
 
+  // How far the body goes along the floor from frame a to frame b.
+  const auto travel = [&](int a, int b) {
+    return horizontal_distance(centre[static_cast<size_t>(b)], centre[static_cast<size_t>(a)]);
+  };
   // Whether the frames [first, end) walk (see the header), the stride's length given.
   const auto walks = [&](int first, int end, double length_m) {
     if (end - first < 8 || length_m < kMinStrideFigures * figure) return false;
     // Steady: the pace over each eighth against the mean pace, and the straight line against the path.
     std::array<double, 8> pace{};
-    double mean_pace = 0.0;
     for (int i = 0; i < 8; ++i) {
       const int a = first + (end - first) * i / 8, b = first + (end - first) * (i + 1) / 8;
-      pace[static_cast<size_t>(i)] = horizontal_distance(centre[static_cast<size_t>(b)], centre[static_cast<size_t>(a)]) / (b - a);
-      mean_pace += pace[static_cast<size_t>(i)] / 8.0;
+      pace[static_cast<size_t>(i)] = travel(a, b) / (b - a);
     }
+    const double mean_pace = std::accumulate(pace.begin(), pace.end(), 0.0) / 8.0;
     if (!(mean_pace > 0.0) || *std::min_element(pace.begin(), pace.end()) < kMinSteadiness * mean_pace) return false;
     double path = 0.0;
-    for (int f = first; f < end; ++f) path += horizontal_distance(centre[static_cast<size_t>(f + 1)], centre[static_cast<size_t>(f)]);
-    if (horizontal_distance(centre[static_cast<size_t>(end)], centre[static_cast<size_t>(first)]) < kMinStraightness * path) return false;
+    for (int f = first; f < end; ++f) path += travel(f, f + 1);
+    if (travel(first, end) < kMinStraightness * path) return false;
     // A walk's vault: the body highest where the feet are closest.
     std::vector<double> apart, height;
     for (int f = first; f < end; ++f) {
@@ -142,9 +146,9 @@ WalkPace measure_walk_pace(std::span<const Vec3> world_positions_m, int joint_co
   };
   std::vector<double> lengths, durations, ratios;
   for (size_t i = 0; i < strides.size(); ++i) {
-    if (!((i > 0 && agree(strides[i - 1], strides[i])) || (i + 1 < strides.size() && agree(strides[i], strides[i + 1])))) {
-      continue;
-    }
+    const bool before = i > 0 && agree(strides[i - 1], strides[i]);
+    const bool after = i + 1 < strides.size() && agree(strides[i], strides[i + 1]);
+    if (!before && !after) continue;
     const double length = strides[i].length_m, duration = (strides[i].end - strides[i].first) / fps;
     lengths.push_back(length);
     durations.push_back(duration);
