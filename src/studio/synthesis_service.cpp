@@ -4,14 +4,12 @@
 
 #include <fmt/format.h>
 
+#include "motiongraph/database/database_doubts.h"
 #include "motiongraph/export/bvh_writer.h"
 #include "motiongraph/export/motion_file.h"
 #include "motiongraph/motion/root_motion.h"
 #include "motiongraph/export/matrix_png.h"
 #include "motiongraph/graph/candidates.h"
-#include "motiongraph/motion/clip_doubts.h"
-#include "motiongraph/motion/clip_loader.h"
-#include "motiongraph/motion/forward_kinematics.h"
 
 namespace mg::studio {
 
@@ -232,25 +230,8 @@ Result<std::string> SynthesisService::distance_png() const {
 
 const std::vector<std::vector<std::string>>& SynthesisService::clip_doubts() const {
   std::call_once(doubts_once_, [this] {
-    const MotionDatabase& db = file().database;
-    std::vector<FootJoints> feet;  // each skeleton's, as the contacts were found for them
-    for (const Skeleton& skeleton : db.skeletons) {
-      auto found = find_foot_joints(skeleton, db.foot_names);
-      feet.push_back(found ? *found : FootJoints{});
-    }
     std::vector<std::vector<std::string>> doubts;  // assigned whole: an exception leaves none half made
-    for (const DatabaseClip& clip : db.clips) {
-      const Skeleton& skeleton = db.skeletons[static_cast<size_t>(clip.skeleton)];
-      const std::span<const ContactMask> contacts =
-          db.frame_contacts.empty() ? std::span<const ContactMask>()
-                                    : std::span<const ContactMask>(db.frame_contacts).subspan(
-                                          static_cast<size_t>(clip.first_frame), static_cast<size_t>(clip.frame_count));
-      // Keys timed in seconds (glTF, FBX): --input-fps only samples them.
-      const bool keyed = is_gltf_file(clip.source) || is_fbx_file(clip.source);
-      doubts.push_back(mg::clip_doubts(world_positions(skeleton, clip.motion), skeleton.joint_count(), db.fps, contacts,
-                                       {}, ClipClock{clip.read_fps, keyed}, feet[static_cast<size_t>(clip.skeleton)])
-                           .phrases());
-    }
+    for (const DoubtedClip& clip : database_clip_doubts(file().database)) doubts.push_back(clip.doubts.phrases());
     clip_doubts_ = std::move(doubts);
   });
   return clip_doubts_;

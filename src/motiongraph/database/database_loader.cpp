@@ -16,6 +16,7 @@
 #include "motiongraph/core/file_extension.h"
 #include "motiongraph/core/unique_name.h"
 #include "motiongraph/database/cmu_tags.h"
+#include "motiongraph/database/database_doubts.h"
 #include "motiongraph/database/travel_tags.h"
 #include "motiongraph/database/database_contacts.h"
 #include "motiongraph/database/manifest.h"
@@ -24,7 +25,6 @@
 #include "motiongraph/motion/clip_doubts.h"
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/common_joints.h"
-#include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/motion/resample.h"
 #include "motiongraph/motion/rig_matching.h"
 #include "motiongraph/motion/up_axis.h"
@@ -859,24 +859,8 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
 
   // 5. What looks wrong with a clip as read, for the caller to say.
   if (notes != nullptr) {
-    // The feet the contacts were found for (their ankles judge a walk's pace).
-    std::vector<FootJoints> feet;
-    for (const Skeleton& skeleton : db.skeletons) {
-      auto found = find_foot_joints(skeleton, db.foot_names);
-      feet.push_back(found ? *found : FootJoints{});
-    }
-    for (const DatabaseClip& clip : db.clips) {
-      const Skeleton& skeleton = db.skeletons[clip.skeleton];
-      const std::span<const ContactMask> contacts =
-          db.frame_contacts.empty() ? std::span<const ContactMask>()
-                                    : std::span<const ContactMask>(db.frame_contacts).subspan(clip.first_frame,
-                                                                                              clip.frame_count);
-      // Keys timed in seconds (glTF, FBX): --input-fps only samples them.
-      const bool keyed = is_gltf_file(clip.source) || is_fbx_file(clip.source);
-      const ClipClock clock{clip.read_fps, keyed};
-      const ClipDoubts doubts = clip_doubts(world_positions(skeleton, clip.motion), skeleton.joint_count(), db.fps,
-                                            contacts, {}, clock, feet[static_cast<size_t>(clip.skeleton)]);
-      if (!doubts.empty()) notes->clip_doubts.push_back({clip.name, doubts, clock});
+    for (DoubtedClip& clip : database_clip_doubts(db)) {
+      if (!clip.doubts.empty()) notes->clip_doubts.push_back(std::move(clip));
     }
   }
   return db;
