@@ -60,6 +60,12 @@ Result<Clip> read_clip(const ConvertOptions& options, ClipLoader& loader, const 
     spdlog::info("{}: {} (--keep-rest-frames keeps them)", input,
                  glitched_ends_description(clip.glitched_leading_frames, clip.glitched_trailing_frames));
   }
+  if (!options.load.settings().keep_rest_frames) {
+    const GlitchFreeParts found = glitch_free_parts(clip.skeleton, clip.motion);
+    if (const std::string glitches = clip_glitches_description(clip, found); !glitches.empty()) {
+      spdlog::warn("{}: {}; converted whole", input, glitches);
+    }
+  }
   // What looks wrong with it as read (its unit, floor, feet or clock), as info says it: judged at
   // the rate read, on the feet --feet names or found by name (none found: not judged by them).
   {

@@ -115,6 +115,10 @@ int run_info(const InfoOptions& options) {
                     *contacts ? (*contacts)->masks : std::vector<ContactMask>{}, {},
                     ClipClock{clip.motion.fps, loaded->format == "gltf" || loaded->format == "fbx"},
                     *contacts ? (*contacts)->feet : FootJoints{});
+    // Capture glitches within it, where a library cuts it (motion/capture_glitches.h).
+    const GlitchFreeParts glitch_parts =
+        settings.keep_rest_frames ? GlitchFreeParts{} : glitch_free_parts(clip.skeleton, clip.motion);
+    const std::string glitches = clip_glitches_description(clip, glitch_parts);
     const char* feet_source = settings.foot_names.empty() ? "found by name" : "--feet";
     if (clip.detected_unit && !clip.detected_unit->plausible) report_unit(file, *clip.detected_unit);
     std::string unit = fmt::format("{:g} m per unit (--scale)", options.load.scale.value_or(1.0));
@@ -156,6 +160,16 @@ int run_info(const InfoOptions& options) {
           {"root", clip.skeleton.joint(0).name}, {"static_joints_above_root", static_ancestor_names(clip.skeleton)},
           {"joints_dropped_above_root", clip.dropped_at_fold},
           {"doubts", doubts.phrases()}, {"skeleton", skeleton_json(clip.skeleton)}};
+      // Where a library cuts it: the glitches (the file's frames, 1-based, and seconds) and the
+      // frames it drops.
+      nlohmann::json glitch_list = nlohmann::json::array();
+      for (const auto& g : file_glitches(clip, glitch_parts)) {
+        glitch_list.push_back({{"frame", g.frame}, {"seconds", g.seconds}, {"joint", g.joint}, {"jump_m", g.jump_m}});
+      }
+      entry["capture_glitches"] = {
+          {"glitches", std::move(glitch_list)},
+          {"parts", glitch_parts.glitches.empty() ? 1 : glitch_parts.parts.size()},
+          {"dropped_frames", glitch_parts.glitches.empty() ? 0 : glitch_parts.dropped_frames(clip.motion.frame_count)}};
       // How fast its flights fall: the clock's evidence, doubted or not.
       const FlightFall& fall = doubts.flight_fall;
       entry["flight_fall"] = {{"flights", fall.flights},
@@ -237,6 +251,7 @@ int run_info(const InfoOptions& options) {
       fmt::print("  floor:    x {:.2f} .. {:.2f} m, z {:.2f} .. {:.2f} m; height {:.2f} .. {:.2f} m; root travels {:.2f} m\n",
                  s.floor_min_x_m, s.floor_max_x_m, s.floor_min_z_m, s.floor_max_z_m, s.min_height_m,
                  s.max_height_m, s.root_path_m);
+      if (!glitches.empty()) fmt::print("  glitches: {} (--keep-rest-frames keeps it whole)\n", glitches);
       if (!doubts.empty()) fmt::print("  warning:  {}\n", clip_doubts_text(doubts));
     }
   }

@@ -9,6 +9,7 @@
 #include <spdlog/spdlog.h>
 
 #include "motiongraph/core/counted.h"
+#include "motiongraph/motion/capture_glitches.h"
 #include "motiongraph/motion/glitched_ends.h"
 #include "motiongraph/motion/length_unit.h"
 
@@ -86,6 +87,50 @@ std::string glitched_ends_description(int leading, int trailing) {
                      ends, kGlitchSpeedMps);
 }
 
+std::string glitches_where(std::span<const DatabaseLoadNotes::GlitchSplit::Glitch> glitches) {
+  if (glitches.empty()) return "no glitch";
+  const auto largest = std::max_element(glitches.begin(), glitches.end(),
+                                        [](const auto& a, const auto& b) { return a.jump_m < b.jump_m; });
+  if (glitches.size() == 1) {
+    return fmt::format("a glitch at {:.2f} s ({} {:.2f} m)", largest->seconds, largest->joint, largest->jump_m);
+  }
+  return fmt::format("{} glitches at {:.2f}-{:.2f} s (the largest {} {:.2f} m at {:.2f} s)", glitches.size(),
+                     glitches.front().seconds, glitches.back().seconds, largest->joint, largest->jump_m,
+                     largest->seconds);
+}
+
+std::string glitch_split_description(const DatabaseLoadNotes::GlitchSplit& split) {
+  std::vector<std::string> parts;
+  for (const auto& part : split.parts) parts.push_back(part.clip);
+  return fmt::format("{} ({}): {} {}, {} dropped", split.clip, std::filesystem::path(split.file).filename().string(),
+                     glitches_where(split.glitches),
+                     parts.size() == 1 ? fmt::format("kept as {}", parts.front())
+                                       : fmt::format("cut into {}", fmt::join(parts, ", ")),
+                     counted(split.dropped_frames, "frame"));
+}
+
+std::vector<DatabaseLoadNotes::GlitchSplit::Glitch> file_glitches(const Clip& clip, const GlitchFreeParts& found) {
+  // Frames and seconds from the file's start: after the frames the reader dropped.
+  const int offset = clip.dropped_leading_frames + clip.glitched_leading_frames;
+  std::vector<DatabaseLoadNotes::GlitchSplit::Glitch> glitches;
+  for (const CaptureGlitch& g : found.glitches) {
+    glitches.push_back({offset + g.frame + 1, (offset + g.frame + 1) / clip.motion.fps, g.joint, g.jump_m});
+  }
+  return glitches;
+}
+
+std::string clip_glitches_description(const Clip& clip, const GlitchFreeParts& found) {
+  if (found.glitches.empty()) return "";
+  const std::string dropped = counted(found.dropped_frames(clip.motion.frame_count), "frame");
+  return fmt::format("{} within it (a joint jumping {:g} m or more at {:g} m/s or faster between two calm frames): {}",
+                     glitches_where(file_glitches(clip, found)), kGlitchJumpM, kGlitchSpeedMps,
+                     found.parts.size() == 1
+                         ? fmt::format("a library reads only its one part free of them lasting {:g} s or more, {} "
+                                       "dropped", kGlitchFreeSeconds, dropped)
+                         : fmt::format("a library cuts it there into {} parts, {} dropped (parts under {:g} s)",
+                                       found.parts.size(), dropped, kGlitchFreeSeconds));
+}
+
 void report_units(const DatabaseLoadNotes& notes, bool quiet) {
   struct Group {
     int files = 0;
@@ -127,6 +172,18 @@ void report_units(const DatabaseLoadNotes& notes, bool quiet) {
                  "frames), dropped: {}",
                  kGlitchSpeedMps,
                  dropped_from_files(frames, notes.glitched_ends.size(), notes.glitched_ends.front().file));
+  }
+  if (!notes.glitch_splits.empty() && !quiet) {
+    int frames = 0;
+    for (const auto& g : notes.glitch_splits) frames += g.dropped_frames;
+    spdlog::info("clips cut at capture glitches within them (a joint jumping {:g} m or more at {:g} m/s or faster "
+                 "between two calm frames; parts under {:g} s dropped): {}{}; {} dropped in all (--keep-rest-frames "
+                 "keeps them whole)",
+                 kGlitchJumpM, kGlitchSpeedMps, kGlitchFreeSeconds,
+                 glitch_split_description(notes.glitch_splits.front()),
+                 notes.glitch_splits.size() > 1 ? fmt::format(", and {} more clips", notes.glitch_splits.size() - 1)
+                                                : "",
+                 counted(frames, "frame"));
   }
   if (!notes.loops.empty() && !quiet) {
     int added = 0;

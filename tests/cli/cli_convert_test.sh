@@ -23,6 +23,59 @@ x0, x1 = info["floor_extent_m"]["x"]; z0, z1 = info["floor_extent_m"]["z"]
 assert 0.5 < max(x1 - x0, z1 - z0) < 20, info["floor_extent_m"]   # a 1.3 s jog, in metres
 PY
 
+# A capture glitch within a clip: 131_01 with its right shoulder turned 100 degrees for the
+# file's frames 301..310. info says where the glitches lie and that a library cuts the clip
+# there; a library reads it as two clips, 10 frames dropped; convert writes the file whole, and
+# says so; --keep-rest-frames keeps the library's clip whole.
+mkdir -p "$work/glitch"
+python3 - "$data/bvh/131_01.bvh" "$work/glitch/glitched.bvh" <<'PY'
+import sys
+lines = open(sys.argv[1]).read().split("\n")
+column, target = 0, None
+for line in lines:
+    words = line.split()
+    if words[:1] in (["ROOT"], ["JOINT"]):
+        joint = words[1]
+    if words[:1] == ["CHANNELS"]:
+        if joint == "RightShoulder":
+            target = column + int(words[1]) - 1   # its last channel, Xrotation
+        column += int(words[1])
+    if words[:1] == ["MOTION"]:
+        break
+assert target is not None
+first = next(i for i, line in enumerate(lines) if line.startswith("Frame Time")) + 1
+for f in range(300, 310):   # the file's frames 301..310
+    values = lines[first + f].split()
+    values[target] = str(float(values[target]) + 100.0)
+    lines[first + f] = " ".join(values)
+open(sys.argv[2], "w").write("\n".join(lines))
+PY
+"$bin" info "$work/glitch/glitched.bvh" | grep -E "glitches: 2 glitches at 2\.50-2\.58 s \(the largest .*\) within it .*: a library cuts it there into 2 parts, 10 frames dropped" >/dev/null \
+  || { echo "FAIL: info's glitches line"; "$bin" info "$work/glitch/glitched.bvh"; exit 1; }
+"$bin" info --json "$work/glitch" >"$work/glitch.json" 2>"$work/glitch.err"
+grep -E "info: clips cut at capture glitches within them .*: glitched \(glitched.bvh\): 2 glitches at .* cut into glitched, glitched_part2, 10 frames dropped" "$work/glitch.err" >/dev/null \
+  || { echo "FAIL: the library's glitch line"; cat "$work/glitch.err"; exit 1; }
+"$bin" info --keep-rest-frames --json "$work/glitch" >"$work/glitch-kept.json" 2>/dev/null
+"$bin" convert "$work/glitch/glitched.bvh" -o "$work/glitch-whole.bvh" 2>"$work/glitch-convert.err"
+grep -E "warning: .*glitched.bvh: 2 glitches at .*; converted whole" "$work/glitch-convert.err" >/dev/null \
+  || { echo "FAIL: convert's glitch warning"; cat "$work/glitch-convert.err"; exit 1; }
+python3 - "$work/glitch.json" "$work/glitch-kept.json" "$work/glitch-whole.bvh" "$data/bvh/131_01.bvh" <<'PY'
+import json, sys
+lib, kept = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+frames = lambda path: int(next(l for l in open(path) if l.startswith("Frames:")).split()[1])
+n = frames(sys.argv[4])
+assert frames(sys.argv[3]) == n   # convert writes it whole
+split, = lib["reading"]["glitch_splits"]
+assert split["clip"] == "glitched" and split["dropped_frames"] == 10, split
+assert [g["frame"] for g in split["glitches"]] == [300, 310], split["glitches"]
+assert [(p["clip"], p["first_frame"], p["last_frame"]) for p in split["parts"]] \
+    == [("glitched", 1, 300), ("glitched_part2", 311, n)], split["parts"]
+assert [c["name"] for c in lib["clips"]] == ["glitched", "glitched_part2"], lib["clips"]
+for clip, (first, last) in zip(lib["clips"], [(1, 300), (311, n)]):   # as long as their frames (within a frame at 30 fps)
+    assert abs(clip["duration_s"] - (last - first) / 120) < 0.04, (clip, first, last)
+assert kept["reading"]["glitch_splits"] == [] and [c["name"] for c in kept["clips"]] == ["glitched"], kept
+PY
+
 # info names the feet it found and how often each is planted; a rig whose feet it cannot find
 # by name (16_01 with its feet renamed) says so, and --feet names them: the same shares as the
 # original file's.
@@ -312,7 +365,7 @@ grep -q "jog-in.bvh: is also an input" "$work/same.err" && cmp -s "$work/jog.bvh
 # --keep-rest-frames keeps them (471 frames in the file).
 "$bin" convert "$data/cmu/16/16_15.amc" -o "$work/g15.json" 2>"$work/g15.err"
 "$bin" convert "$data/cmu/16/16_15.amc" --keep-rest-frames -o "$work/k15.json" 2>"$work/k15.err"
-grep -q "info: .*16_15.amc: the first 2 frames dropped, cut off by a capture glitch: a joint jumping 25 m/s or faster" \
+grep -q "info: .*16_15.amc: the first 2 frames dropped, cut off by a capture glitch: a joint jumping 20 m/s or faster" \
   "$work/g15.err" && ! grep -q "glitch" "$work/k15.err" \
   && "$bin" info "$data/cmu/16/16_15.amc" | grep -q "^  motion:   469 frames at 120 fps, 3.90 s (the first 2 frames dropped, cut" \
   && "$bin" info "$data/cmu/16/16_15.amc" --keep-rest-frames | grep -q "^  motion:   471 frames at 120 fps, 3.92 s$" \

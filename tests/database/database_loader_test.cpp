@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "motion/cycle_loop.h"
+#include "motion/glitched.h"
 #include "motion/max_apart.h"
 #include "motion/static_root_bvh.h"
 #include "motiongraph/database/database_contacts.h"
@@ -707,6 +708,103 @@ TEST(DatabaseLoader, OneRigUnderOtherNamesInGltfAndBvhIsMatched) {
   ASSERT_EQ(notes.matched_rigs.size(), 1u);
   EXPECT_EQ(notes.matched_rigs[0].file, bvh_file);
   EXPECT_EQ(db->skeletons[1].joint(0).name, "root");  // the first's names
+}
+
+TEST(DatabaseLoader, AClipIsCutAtCaptureGlitchesWithinIt) {
+  // 16_16 with its right upper arm turned by 100 degrees for frames 201..210 of the file (a
+  // twelfth of a second at 120 fps): read as two clips, the frames between the glitches
+  // dropped; a manifest's ranges cover what each part keeps of them, and one wholly in the
+  // dropped frames is an error at its line. CMU's description tags both parts.
+  TempFolder folder("within");
+  const Clip clean = test::load_whole_data_clip("cmu/16/16_16.amc");
+  const int n = clean.motion.frame_count;
+  const Clip glitched = test::with_turn(clean, "rhumerus", 200, 209, 1.745);
+  const std::string file = folder.write("16_16.bvh", write_bvh(glitched.skeleton, glitched.motion, BvhWriteSettings{}));
+  const std::string other =
+      folder.write("16_16_part2.bvh", write_bvh(clean.skeleton, clean.motion.slice(0, 100), BvhWriteSettings{}));
+  DatabaseSettings settings = cmu_settings();
+  settings.fps = 120.0;  // the file's rate: frames are frames
+  DatabaseLoadNotes notes;
+  auto db = load_database({file, other}, settings, &notes);
+  ASSERT_TRUE(db) << db.error().to_string();
+  ASSERT_EQ(db->clips.size(), 3u);
+  // The second part's name is taken by the other file's clip: it gets one of its own.
+  EXPECT_EQ(db->clips[0].name, "16_16");
+  EXPECT_EQ(db->clips[1].name, "16_16_part2_2");
+  EXPECT_EQ(db->clips[2].name, "16_16_part2");
+  EXPECT_EQ(db->clips[0].frame_count, 200);
+  EXPECT_EQ(db->clips[1].frame_count, n - 210);
+  EXPECT_EQ(db->clips[1].first_frame, 200);
+  EXPECT_EQ(db->clips[1].source, file);
+  for (int j = 0; j < clean.motion.joint_count; ++j) {  // the part is the file from frame 211 on
+    EXPECT_TRUE(db->clips[1].motion.rotations(0)[j].isApprox(clean.motion.rotations(210)[j], 1e-6)) << j;
+  }
+  ASSERT_EQ(notes.glitch_splits.size(), 1u);
+  const DatabaseLoadNotes::GlitchSplit& split = notes.glitch_splits[0];
+  EXPECT_EQ(split.file, file);
+  EXPECT_EQ(split.clip, "16_16");
+  ASSERT_EQ(split.glitches.size(), 2u);
+  EXPECT_EQ(split.glitches[0].frame, 200);  // from the file's frame 200 to 201
+  EXPECT_DOUBLE_EQ(split.glitches[0].seconds, 200.0 / 120.0);
+  EXPECT_EQ(split.glitches[1].frame, 210);
+  EXPECT_EQ(split.glitches[0].joint.front(), 'r') << split.glitches[0].joint;
+  ASSERT_EQ(split.parts.size(), 2u);
+  EXPECT_EQ(split.parts[0].clip, "16_16");
+  EXPECT_EQ(split.parts[0].first_frame, 1);
+  EXPECT_EQ(split.parts[0].last_frame, 200);
+  EXPECT_EQ(split.parts[1].clip, "16_16_part2_2");
+  EXPECT_EQ(split.parts[1].first_frame, 211);
+  EXPECT_EQ(split.parts[1].last_frame, n);
+  EXPECT_EQ(split.dropped_frames, 10);
+  // CMU's "walk" where each part's root travels: on both.
+  const int walk = db->tag_index("walk");
+  ASSERT_GE(walk, 0);
+  for (int c : {0, 1}) {
+    const DatabaseClip& part = db->clips[static_cast<size_t>(c)];
+    const bool tagged = std::any_of(db->tag_ranges.begin(), db->tag_ranges.end(), [&](const TagRange& r) {
+      return r.tag == walk && r.first_frame >= part.first_frame && r.first_frame < part.first_frame + part.frame_count;
+    });
+    EXPECT_TRUE(tagged) << part.name;
+  }
+
+  // A manifest's ranges, in the file's frames.
+  DatabaseSettings plain;
+  plain.fps = 120.0;
+  const std::string good = folder.write("good.toml", R"([[clip]]
+file = "16_16.bvh"
+ranges = [{ first_frame = 151, last_frame = 260, tags = ["turn"] }]
+)");
+  auto ranged = load_database({good}, plain);
+  ASSERT_TRUE(ranged) << ranged.error().to_string();
+  ASSERT_EQ(ranged->clips.size(), 2u);
+  ASSERT_EQ(ranged->tag_ranges.size(), 2u);
+  EXPECT_EQ(ranged->tag_ranges[0].first_frame, 150);  // file frames 151..200
+  EXPECT_EQ(ranged->tag_ranges[0].frame_count, 50);
+  EXPECT_EQ(ranged->tag_ranges[1].first_frame, 200);  // 211..260, the second part's first 50
+  EXPECT_EQ(ranged->tag_ranges[1].frame_count, 50);
+  const std::string bad = folder.write("bad.toml", R"([[clip]]
+file = "16_16.bvh"
+ranges = [
+  { first_frame = 1, last_frame = 10, tags = ["walk"] },
+  { first_frame = 202, last_frame = 209, tags = ["stop"] },
+]
+)");
+  auto refused = load_database({bad}, plain);
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().line, 5);
+  EXPECT_NE(refused.error().message.find(fmt::format("range 202..209 holds only frames the reader drops from {} "
+                                                     "(between capture glitches within it; --keep-rest-frames keeps "
+                                                     "them); the clip's frames are 1..200, 211..{}", file, n)),
+            std::string::npos)
+      << refused.error().to_string();
+  // Kept whole when asked.
+  plain.keep_rest_frames = true;
+  DatabaseLoadNotes kept_notes;
+  auto kept = load_database({file}, plain, &kept_notes);
+  ASSERT_TRUE(kept) << kept.error().to_string();
+  ASSERT_EQ(kept->clips.size(), 1u);
+  EXPECT_EQ(kept->clips[0].frame_count, n);
+  EXPECT_TRUE(kept_notes.glitch_splits.empty());
 }
 
 TEST(DatabaseLoader, RangesCoverTheFramesAGlitchLeavesAtAClipsEnd) {

@@ -22,6 +22,7 @@
 #include "motiongraph/database/manifest.h"
 #include "motiongraph/database/shipped_cmu_index.h"
 #include "motiongraph/io/file.h"
+#include "motiongraph/motion/capture_glitches.h"
 #include "motiongraph/motion/clip_doubts.h"
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/common_joints.h"
@@ -562,6 +563,8 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
       noted_glitches;  // files
   std::optional<Skeleton> first_skeleton;  // the first clip's, as read (all its joints)
   std::vector<DescribedClip> described;    // clips tagged by their CMU descriptions
+  std::set<std::string> clip_names;        // taken, for the parts a capture glitch cuts a clip into
+  for (const ClipSpec& spec : specs) clip_names.insert(spec.name);
   for (size_t spec_index = 0; spec_index < specs.size(); ++spec_index) {
     const ClipSpec& spec = specs[spec_index];
     auto loaded = loaders.for_settings(spec.load).load(spec.path, spec.animation);
@@ -643,12 +646,20 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     if (!whole) sliced = motion.slice(first - 1 - dropped, last - first + 1);
     const Motion& cut = whole ? motion : sliced;
     const double input_fps = cut.fps;
+    // Cut at the capture glitches within it (motion/capture_glitches.h), kept with the rest frames.
+    GlitchFreeParts glitch_parts;
+    if (spec.load.keep_rest_frames) {
+      glitch_parts.parts.emplace_back(0, cut.frame_count);
+    } else {
+      glitch_parts = glitch_free_parts(loaded->clip.skeleton, cut);
+    }
+    const bool split = !glitch_parts.glitches.empty();
     // A whole file that loops goes on past its end (motion/loop.h), as far as a window and a
     // frame at the database's rate, so that a transition can lead from its end back to its start.
     // A clip cut out of a longer file is not judged: its file holds what comes after it.
     Motion unrolled;
     std::optional<DatabaseLoadNotes::Loop> loop_note;
-    if (settings.loops && whole) {
+    if (settings.loops && whole && !split) {
       const LoopChoice loop = find_loop(loaded->clip.skeleton, cut);
       if (loop.loops) {
         const int extra = static_cast<int>(std::ceil(settings.loop_frames_at(db.fps) * input_fps / db.fps - 1e-9));
@@ -656,12 +667,28 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
         loop_note = DatabaseLoadNotes::Loop{spec.name, spec.path, loop, 0};
       }
     }
-    auto resampled = resample(loop_note ? unrolled : cut, db.fps);
-    if (!resampled) return spec.error(resampled.error().message);
-    if (resampled->frame_count < 2) {
-      return spec.error(fmt::format("{} frame{} at {} fps ({} frames at {} fps in the file{}): a clip needs at least 2",
-                                    resampled->frame_count, resampled->frame_count == 1 ? "" : "s", db.fps,
-                                    cut.frame_count, input_fps, whole ? "" : ", in its frame range"));
+    // The clip's parts at the database's rate, with their frames in the file's numbering.
+    struct Part {
+      Motion motion;
+      int first = 0, last = 0;  // file frames, 1-based
+    };
+    std::vector<Part> parts;
+    for (const auto& [part_first, part_count] : glitch_parts.parts) {
+      Motion piece;
+      if (split) piece = cut.slice(part_first, part_count);
+      auto resampled = resample(loop_note ? unrolled : split ? piece : cut, db.fps);
+      if (!resampled) return spec.error(resampled.error().message);
+      if (resampled->frame_count < 2) {
+        if (split) continue;  // a part too short at the library's rate; others may do
+        return spec.error(fmt::format("{} frame{} at {} fps ({} frames at {} fps in the file{}): a clip needs at "
+                                      "least 2", resampled->frame_count, resampled->frame_count == 1 ? "" : "s", db.fps,
+                                      cut.frame_count, input_fps, whole ? "" : ", in its frame range"));
+      }
+      parts.push_back({std::move(*resampled), first + part_first, first + part_first + part_count - 1});
+    }
+    if (parts.empty()) {
+      return spec.error(fmt::format("its capture glitches leave no part of 2 frames at {} fps (--keep-rest-frames "
+                                    "keeps them)", db.fps));
     }
 
     // Skeleton: one entry per skeleton file, all with the same joints.
@@ -703,28 +730,14 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     }
 
     if (loop_note && notes != nullptr) {
-      loop_note->added_frames = resampled->frame_count - static_cast<int>(resampled_frame_count(cut, db.fps));
+      loop_note->added_frames = parts.front().motion.frame_count - static_cast<int>(resampled_frame_count(cut, db.fps));
       notes->loops.push_back(std::move(*loop_note));
     }
 
-    DatabaseClip clip;
-    clip.name = spec.name;
-    clip.source = spec.path;
-    clip.skeleton = skeleton;
-    clip.first_frame = next_frame;
-    clip.frame_count = resampled->frame_count;
-    clip.motion = std::move(*resampled);
-    clip.read_fps = input_fps;
-    next_frame += clip.frame_count;
-
-    // Tags.
+    // Ranges are in the file's frames, as far as the clip's last asked (the file's end); they
+    // cover the frames the clip keeps of them.
     if (spec.gives_tags) {
-      for (const std::string& tag : spec.tags) {
-        if (auto s = add_tag_range(db, tag, clip.first_frame, clip.frame_count, spec); !s) return s.error();
-      }
       for (const ManifestRange& range : spec.ranges) {
-        // Ranges are in the file's frames, as far as the clip's last asked (the file's end);
-        // they cover the frames the clip keeps of them.
         if (range.last_frame > asked_last) {
           return Error{spec.manifest, range.line,
                        fmt::format("range last_frame {} is past the end of {} (frame {})", range.last_frame,
@@ -736,20 +749,72 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
                                    "are {}..{}", range.first_frame, range.last_frame, spec.path, dropped_why, first,
                                    last)};
         }
-        const double start_s = (std::max(range.first_frame, first) - first) / input_fps;
-        const double end_s = (std::min(range.last_frame, last) - first) / input_fps;
-        const auto [lo, hi] = output_frames(start_s, end_s, db.fps, clip.frame_count);
-        for (const std::string& tag : range.tags) {
-          if (auto s = add_tag_range(db, tag, clip.first_frame + lo, hi - lo + 1, spec); !s) return s.error();
-        }
-      }
-    } else if (cmu) {
-      // Tagged once the motion is settled (3e): walk and run only where the root travels.
-      if (const CmuMotion* motion_entry = cmu->find(spec.cmu_name)) {
-        described.push_back({spec_index, db.clips.size(), cmu_description_tags(motion_entry->description)});
       }
     }
-    db.clips.push_back(std::move(clip));
+    std::optional<DatabaseLoadNotes::GlitchSplit> split_note;
+    if (split && notes != nullptr) {
+      split_note = DatabaseLoadNotes::GlitchSplit{spec.path, spec.name, {}, {}, 0};
+      for (const CaptureGlitch& g : glitch_parts.glitches) {
+        split_note->glitches.push_back({first + g.frame, (first - 1 + g.frame + 1) / input_fps, g.joint, g.jump_m});
+      }
+      split_note->dropped_frames = glitch_parts.dropped_frames(cut.frame_count);
+    }
+    std::vector<char> range_kept(spec.ranges.size(), 0);  // a range covers some part's frames
+    for (size_t p = 0; p < parts.size(); ++p) {
+      Part& part = parts[p];
+      DatabaseClip clip;
+      // The first part keeps the clip's name, the others are its _part2, _part3...
+      clip.name = p == 0 ? spec.name : fmt::format("{}_part{}", spec.name, p + 1);
+      if (p > 0) {
+        if (clip_names.count(clip.name) > 0) {
+          clip.name = unique_name(clip.name, [&](const std::string& n) { return clip_names.count(n) > 0; });
+        }
+        clip_names.insert(clip.name);
+      }
+      clip.source = spec.path;
+      clip.skeleton = skeleton;
+      clip.first_frame = next_frame;
+      clip.frame_count = part.motion.frame_count;
+      clip.motion = std::move(part.motion);
+      clip.read_fps = input_fps;
+      next_frame += clip.frame_count;
+      if (split_note) split_note->parts.push_back({clip.name, part.first, part.last});
+
+      // Tags.
+      if (spec.gives_tags) {
+        for (const std::string& tag : spec.tags) {
+          if (auto s = add_tag_range(db, tag, clip.first_frame, clip.frame_count, spec); !s) return s.error();
+        }
+        for (size_t r = 0; r < spec.ranges.size(); ++r) {
+          const ManifestRange& range = spec.ranges[r];
+          if (range.last_frame < part.first || range.first_frame > part.last) continue;  // in another part
+          range_kept[r] = 1;
+          const double start_s = (std::max(range.first_frame, part.first) - part.first) / input_fps;
+          const double end_s = (std::min(range.last_frame, part.last) - part.first) / input_fps;
+          const auto [lo, hi] = output_frames(start_s, end_s, db.fps, clip.frame_count);
+          for (const std::string& tag : range.tags) {
+            if (auto s = add_tag_range(db, tag, clip.first_frame + lo, hi - lo + 1, spec); !s) return s.error();
+          }
+        }
+      } else if (cmu) {
+        // Tagged once the motion is settled (3e): walk and run only where the root travels.
+        if (const CmuMotion* motion_entry = cmu->find(spec.cmu_name)) {
+          described.push_back({spec_index, db.clips.size(), cmu_description_tags(motion_entry->description)});
+        }
+      }
+      db.clips.push_back(std::move(clip));
+    }
+    for (size_t r = 0; r < spec.ranges.size(); ++r) {
+      if (range_kept[r] || !spec.gives_tags) continue;
+      const ManifestRange& range = spec.ranges[r];
+      std::vector<std::string> kept;
+      for (const Part& part : parts) kept.push_back(fmt::format("{}..{}", part.first, part.last));
+      return Error{spec.manifest, range.line,
+                   fmt::format("range {}..{} holds only frames the reader drops from {} (between capture glitches "
+                               "within it; --keep-rest-frames keeps them); the clip's frames are {}",
+                               range.first_frame, range.last_frame, spec.path, fmt::join(kept, ", "))};
+    }
+    if (split_note) notes->glitch_splits.push_back(std::move(*split_note));
   }
 
   // 3b. Skeletons that differ in some joints: every clip on the joints all share, as read (a

@@ -58,8 +58,10 @@ struct DatabaseSettings {
   std::optional<UpAxis> up_axis;        // nullopt: chosen per file from its figure's shape
                                         // (up_axis.h)
   double input_fps = 0.0;               // > 0: the capture rate, overriding the files'
-  bool keep_rest_frames = false;        // keep leading rest/T-pose frames of BVH files, and the
-                                        // frames a capture glitch cuts off clips' ends
+  bool keep_rest_frames = false;        // keep leading rest/T-pose frames of BVH files, the
+                                        // frames a capture glitch cuts off clips' ends, and
+                                        // clips whole where glitches within them would cut
+                                        // them (motion/capture_glitches.h)
   TravelSource travel = TravelSource::kAuto;  // where each clip's travel over the floor comes
                                               // from (motion/in_place.h): kAuto recovers it
                                               // from the feet for clips animated in place
@@ -136,6 +138,27 @@ struct DatabaseLoadNotes {
     int trailing = 0;
   };
   std::vector<GlitchedEnds> glitched_ends;
+  // Clips cut at capture glitches within them (motion/capture_glitches.h), once a clip: the
+  // glitches, the parts kept (the first under the clip's name, the others its _part2, _part3...)
+  // and the frames in none.
+  struct GlitchSplit {
+    std::string file;
+    std::string clip;  // the clip's name
+    struct Glitch {
+      int frame = 0;          // the file's frame (1-based) after which a joint jumps
+      double seconds = 0.0;   // where it lands, from the file's start
+      std::string joint;
+      double jump_m = 0.0;
+    };
+    std::vector<Glitch> glitches;
+    struct Part {
+      std::string clip;
+      int first_frame = 0, last_frame = 0;  // the file's frames, 1-based
+    };
+    std::vector<Part> parts;
+    int dropped_frames = 0;  // at the file's rate
+  };
+  std::vector<GlitchSplit> glitch_splits;
   // When the skeletons differ in some joints (motion/common_joints.h): the joints every clip
   // was read on, and each skeleton's dropped ones (those of skeletons that lost any).
   std::vector<std::string> common_joints;

@@ -4,24 +4,18 @@
 // its start, or a transition landing there, pops; and the capture's own measure (the largest
 // step of any joint in a frame, evaluation/foot_slide.h) is that jump, not the motion's.
 //
-// The test, on world positions: a step of some joint between two frames is a glitch when it is
-// at least `kGlitchJumpM` (0.2 m) and over `kGlitchSpeedMps` (25 m/s: no limb of a person moves
-// so fast but a pitcher's hand at release), and when every joint's largest step in the frames
-// on either side of it (the frame step before, the one after; one at the clip's ends) is under a
-// fifth of it: motion speeds up and slows down over frames, a glitch in one. The frames before
-// the last such step among the first quarter second (at most) are dropped, and those after the
-// first such step among the last quarter second, as long as two frames are left. Glitches within
-// a clip are left: they are the capture's (03_02 moves both arms 0.9 m in a frame at 0.4 s).
+// The test is capture_glitches.h's. The frames before the last glitch among the first quarter
+// second (at most) are dropped, and those after the first glitch among the last quarter second,
+// as long as two frames are left. Glitches within a clip are capture_glitches.h's to cut.
 #pragma once
 
 #include <string>
 
+#include "motiongraph/motion/capture_glitches.h"
 #include "motiongraph/motion/motion.h"
 
 namespace mg {
 
-inline constexpr double kGlitchJumpM = 0.2;
-inline constexpr double kGlitchSpeedMps = 25.0;
 inline constexpr double kGlitchEndSeconds = 0.25;
 
 struct GlitchedEnds {

@@ -23,7 +23,8 @@ struct BuildOptions {
   std::string travel = "auto";  // "auto", "root" or "feet" (motion/in_place.h)
   double input_fps = 0.0;
   bool keep_rest_frames = false;  // keep a BVH converter's leading rest/T-pose frames (motion/rest_frame.h) and
-                                  // the frames a capture glitch cuts off clips' ends (motion/glitched_ends.h)
+                                  // the frames a capture glitch cuts off clips' ends (motion/glitched_ends.h), and
+                                  // clips whole where glitches within cut them (motion/capture_glitches.h)
   std::string cmu_index;
   bool no_cmu_tags = false;
   bool whole_clip_tags = false;  // walk and run from descriptions on whole clips (travel_tags.h)

@@ -75,6 +75,22 @@ nlohmann::json reading_json(const DatabaseLoadNotes& notes) {
   for (const auto& g : notes.glitched_ends) {
     glitched.push_back({{"file", g.file}, {"leading", g.leading}, {"trailing", g.trailing}});
   }
+  nlohmann::json splits = nlohmann::json::array();
+  for (const auto& g : notes.glitch_splits) {
+    nlohmann::json glitches = nlohmann::json::array(), parts = nlohmann::json::array();
+    for (const auto& glitch : g.glitches) {
+      glitches.push_back(
+          {{"frame", glitch.frame}, {"seconds", glitch.seconds}, {"joint", glitch.joint}, {"jump_m", glitch.jump_m}});
+    }
+    for (const auto& part : g.parts) {
+      parts.push_back({{"clip", part.clip}, {"first_frame", part.first_frame}, {"last_frame", part.last_frame}});
+    }
+    splits.push_back({{"file", g.file},
+                      {"clip", g.clip},
+                      {"glitches", std::move(glitches)},
+                      {"parts", std::move(parts)},
+                      {"dropped_frames", g.dropped_frames}});
+  }
   nlohmann::json rigs = nlohmann::json::array();
   for (const auto& rig : notes.matched_rigs) {
     nlohmann::json renamed = nlohmann::json::array();
@@ -103,6 +119,7 @@ nlohmann::json reading_json(const DatabaseLoadNotes& notes) {
           {"travel_recovered", std::move(travel)},
           {"rest_frames", std::move(rest)},
           {"glitched_ends", std::move(glitched)},
+          {"glitch_splits", std::move(splits)},
           {"rigs", std::move(rigs)},
           {"loops", std::move(loops)},
           {"standing_tags", std::move(standing)}};

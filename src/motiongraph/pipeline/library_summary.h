@@ -54,13 +54,15 @@ std::string clip_tags_text(std::span<const ClipTagRun> runs, int clip_frames);
 // file)], reading: {units: [{file, unit, metres_per_unit, figure_m,
 // plausible}], up_axes: [{file, axis, own_axis, animation_ratio, rest_ratio}], travel_recovered:
 // [{file, in_place, recovered_m, slide_m_s, root_m_s}], rest_frames: [{file, frames}],
-// glitched_ends: [{file, leading, trailing}], rigs:
+// glitched_ends: [{file, leading, trailing}], glitch_splits: [{file, clip, glitches: [{frame,
+// seconds, joint, jump_m}], parts: [{clip, first_frame, last_frame}], dropped_frames}], rigs:
 // [{file, renamed: [[its name, the library's], ...], rest_pose: {bone, angle_deg} or null}],
 // loops: [{clip, file, period_frames (the file's), last_repeats_first, seam_ratio, added_frames
 // (the library's)}], standing_tags: [{clip, tag, tagged_frames, frames}]} (files read without
 // --scale, without --up-axis, clips whose travel came from their feet, BVH files whose leading
 // rest/T-pose frames were dropped (at the file's rate), files whose ends a capture glitch cut
-// off (frames at the file's rate), files read as the first file's rig,
+// off (frames at the file's rate), clips cut at capture glitches within them (the file's frames,
+// 1-based, and seconds from its start), files read as the first file's rig,
 // clips that loop, clips whose description's walk or run was left off where they stand),
 // warnings}: `info --json` on a library.
 nlohmann::json library_summary_json(std::span<const std::string> inputs, const MotionDatabase& db,

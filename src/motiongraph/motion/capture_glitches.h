@@ -1,0 +1,75 @@
+// Capture glitches: a joint that jumps between two frames while the motion either side is calm.
+// Marker-based captures do it where the solver loses a limb for a frame, or settles a limb's
+// twist the other way: CMU 05's dances turn the right thigh about itself by 180 degrees in one
+// frame and back a few frames later, swinging the ankle 0.3 m at 35-45 m/s (05_05 nine times in
+// 0.56 s); 14_10 moves the right hand 0.27 m in a frame and back 17 frames later; 03_02 both
+// arms 0.9 m. A graph that plays such a frame pops, and a transition into the frames between
+// two of them plays a limb the capture lost.
+//
+// The test, on world positions: a step of some joint between two frames is a glitch when it is
+// at least `kGlitchJumpM` (0.2 m) and over `kGlitchSpeedMps` (20 m/s: faster than a fist or a
+// kicking foot, about as fast as a pitcher's hand at release; at 120 fps the 0.2 m says more),
+// and when every joint's largest step in the frames on either side of it (the step before, the
+// one after; none at the clip's ends) is under a third of it (`kGlitchCalmShare`): motion
+// speeds up and slows down over frames, a glitch in one. Fast but smooth motion (CMU 135's
+// karate kicks, 49's acrobatics) has none; CMU 05's thigh turns step 3.4-10 times as far as the
+// frames either side (a fifth, the share first used, missed 12 of them; 25 m/s, the speed first
+// used, three of 0.20-0.21 m at 120 fps). A file captured at 30 fps shows the same glitch as
+// four times slower: only jumps of 0.67 m or more are judged there.
+//
+// A clip read into a library is cut at its glitches into the parts between them; parts shorter
+// than `kGlitchFreeSeconds` are dropped (the frames between glitches a few frames apart are the
+// limb the capture lost), and when none is that long the longest is kept. The first and last
+// quarter second are glitched_ends.h's, which works on the file as read (it runs before a
+// manifest's frame range is cut out of it).
+#pragma once
+
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "motiongraph/motion/motion.h"
+
+namespace mg {
+
+inline constexpr double kGlitchJumpM = 0.2;
+inline constexpr double kGlitchSpeedMps = 20.0;
+inline constexpr double kGlitchCalmShare = 1.0 / 3.0;
+inline constexpr double kGlitchFreeSeconds = 0.25;
+
+// The largest step of any joint from one frame to the next.
+struct JointStep {
+  double largest_m = 0.0;
+  int joint = -1;  // the joint that steps it
+};
+
+// Fills steps[f] for f in [first, last) with the step from frame f to f + 1 (metres, world
+// positions); `steps` must hold motion.frame_count - 1 values. Forward kinematics on frames
+// first..last only.
+void measure_joint_steps(const Skeleton& skeleton, const Motion& motion, int first, int last,
+                         std::span<JointStep> steps);
+
+// Whether the step from frame f to f + 1 is a glitch (the test above); the steps either side
+// of it must have been measured.
+bool is_glitch_step(std::span<const JointStep> steps, int f, double fps);
+
+struct CaptureGlitch {
+  int frame = 0;        // the step from this frame to the next
+  double jump_m = 0.0;  // the largest joint step there
+  std::string joint;    // the joint that steps it
+};
+
+struct GlitchFreeParts {
+  std::vector<CaptureGlitch> glitches;   // in frame order
+  std::vector<std::pair<int, int>> parts;  // kept: (first frame, frame count), in order
+
+  // Frames in no part kept.
+  int dropped_frames(int frame_count) const;
+};
+
+// The glitches anywhere in `motion` and the parts kept (see above). No glitch: one part, the
+// whole motion. Motions shorter than 4 frames, or of no rate, have none.
+GlitchFreeParts glitch_free_parts(const Skeleton& skeleton, const Motion& motion);
+
+}  // namespace mg

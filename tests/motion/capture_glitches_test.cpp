@@ -1,0 +1,104 @@
+// Capture glitches anywhere in a clip and the parts kept between them: clean captures are one
+// part, a limb put elsewhere for a few frames is cut out, one put elsewhere for longer is a part
+// of its own, parts under a quarter second go, the longest stays when none is that long, and a
+// turn too small to jump 0.2 m in a frame is no glitch.
+#include "motiongraph/motion/capture_glitches.h"
+
+#include <gtest/gtest.h>
+
+#include <utility>
+#include <vector>
+
+#include "motion/glitched.h"
+#include "motiongraph/motion/glitched_ends.h"
+#include "test_data.h"
+
+namespace mg {
+namespace {
+
+using Parts = std::vector<std::pair<int, int>>;
+using test::largest_step;
+using test::with_turn;
+
+TEST(CaptureGlitches, CleanCapturesAreOnePart) {
+  // (Read whole: 111_36.bvh's converter rest frame would be a glitch; the reader drops it first.)
+  for (const char* file : {"cmu/16/16_16.amc", "cmu/16/16_35.amc", "cmu/16/16_57.amc", "bvh/131_01.bvh"}) {
+    const Clip clip = test::load_whole_data_clip(file);
+    const GlitchFreeParts found = glitch_free_parts(clip.skeleton, clip.motion);
+    EXPECT_TRUE(found.glitches.empty()) << file;
+    EXPECT_EQ(found.parts, (Parts{{0, clip.motion.frame_count}})) << file;
+    EXPECT_EQ(found.dropped_frames(clip.motion.frame_count), 0) << file;
+  }
+}
+
+TEST(CaptureGlitches, SixteenFifteensOpeningGlitchLeavesTheGlitchedEndsPart) {
+  // Read whole, 16_15 opens on two frames of its left arm elsewhere: the part before the glitch
+  // is under a quarter second, so the parts keep what glitched_ends.h keeps.
+  const Clip whole = test::load_whole_data_clip("cmu/16/16_15.amc");
+  const int n = whole.motion.frame_count;
+  const GlitchFreeParts found = glitch_free_parts(whole.skeleton, whole.motion);
+  ASSERT_EQ(found.glitches.size(), 1u);
+  EXPECT_EQ(found.glitches[0].frame, 1);
+  EXPECT_EQ(found.glitches[0].jump_m, largest_step(whole.skeleton, whole.motion, 1));
+  const GlitchedEnds ends = find_glitched_ends(whole.skeleton, whole.motion);
+  EXPECT_EQ(found.parts, (Parts{{ends.leading, n - ends.leading}}));
+  EXPECT_EQ(found.dropped_frames(n), 2);
+}
+
+TEST(CaptureGlitches, ALimbElsewhereForAFewFramesIsCutOut) {
+  // 16_16's right upper arm turned by 100 degrees for frames 200..209 (a twelfth of a second at
+  // 120 fps): glitches before and after them, the frames between dropped.
+  const Clip clean = test::load_whole_data_clip("cmu/16/16_16.amc");
+  const int n = clean.motion.frame_count;
+  ASSERT_EQ(clean.motion.fps, 120.0);
+  const Clip glitched = with_turn(clean, "rhumerus", 200, 209, 1.745);
+  const GlitchFreeParts found = glitch_free_parts(glitched.skeleton, glitched.motion);
+  ASSERT_EQ(found.glitches.size(), 2u);
+  EXPECT_EQ(found.glitches[0].frame, 199);
+  EXPECT_EQ(found.glitches[1].frame, 209);
+  for (const CaptureGlitch& g : found.glitches) {
+    EXPECT_EQ(g.jump_m, largest_step(glitched.skeleton, glitched.motion, g.frame));
+    EXPECT_GE(g.jump_m, kGlitchJumpM);
+    EXPECT_EQ(g.joint.front(), 'r') << g.joint;  // the right arm's
+  }
+  EXPECT_EQ(found.parts, (Parts{{0, 200}, {210, n - 210}}));
+  EXPECT_EQ(found.dropped_frames(n), 10);
+  // Half a second elsewhere is a part of its own (the capture's limb may be right there).
+  const Clip longer = with_turn(clean, "rhumerus", 200, 259, 1.745);
+  EXPECT_EQ(glitch_free_parts(longer.skeleton, longer.motion).parts, (Parts{{0, 200}, {200, 60}, {260, n - 260}}));
+  // A part of 29 frames goes, one of 30 (a quarter second) stays.
+  const Clip twenty_nine = with_turn(clean, "rhumerus", 200, 228, 1.745);
+  EXPECT_EQ(glitch_free_parts(twenty_nine.skeleton, twenty_nine.motion).parts, (Parts{{0, 200}, {229, n - 229}}));
+  const Clip thirty = with_turn(clean, "rhumerus", 200, 229, 1.745);
+  EXPECT_EQ(glitch_free_parts(thirty.skeleton, thirty.motion).parts, (Parts{{0, 200}, {200, 30}, {230, n - 230}}));
+}
+
+TEST(CaptureGlitches, ATurnThatJumpsLessThanTheRuleIsNoGlitch) {
+  // 20 degrees moves the hand under 0.2 m in a frame: no glitch, whatever the steps around it.
+  const Clip clean = test::load_whole_data_clip("cmu/16/16_16.amc");
+  const Clip turned = with_turn(clean, "rhumerus", 200, 209, 0.35);
+  ASSERT_LT(largest_step(turned.skeleton, turned.motion, 199), kGlitchJumpM);
+  EXPECT_TRUE(glitch_free_parts(turned.skeleton, turned.motion).glitches.empty());
+}
+
+TEST(CaptureGlitches, WhenNoPartLastsAQuarterSecondTheLongestStays) {
+  const Clip short_clip = test::first_frames(test::load_whole_data_clip("cmu/16/16_16.amc"), 50);
+  // Glitches after frames 15 and 32: parts of 16, 17 and 17 frames; the first longest stays.
+  const Clip glitched = with_turn(short_clip, "rhumerus", 16, 32, 1.745);
+  const GlitchFreeParts found = glitch_free_parts(glitched.skeleton, glitched.motion);
+  ASSERT_EQ(found.glitches.size(), 2u);
+  EXPECT_EQ(found.parts, (Parts{{16, 17}}));
+  EXPECT_EQ(found.dropped_frames(50), 33);
+}
+
+TEST(CaptureGlitches, MotionsTooShortToJudgeAreOnePart) {
+  const Clip clean = test::load_whole_data_clip("cmu/16/16_16.amc");
+  const Clip glitched = with_turn(clean, "rhumerus", 2, 2, 1.745);
+  const Motion three = glitched.motion.slice(0, 3);
+  const GlitchFreeParts found = glitch_free_parts(glitched.skeleton, three);
+  EXPECT_TRUE(found.glitches.empty());
+  EXPECT_EQ(found.parts, (Parts{{0, 3}}));
+}
+
+}  // namespace
+}  // namespace mg
