@@ -17,6 +17,7 @@
 #include <pybind11/stl/filesystem.h>  // paths as str or os.PathLike
 
 #include "motiongraph/core/error.h"
+#include "motiongraph/motion/capture_glitches.h"
 #include "motiongraph/motion/motion.h"
 #include "motiongraph/pipeline/build_options.h"
 #include "motiongraph/synthesis/loaded_graph.h"
@@ -85,6 +86,7 @@ struct PyMotion {
   std::vector<ContactMask> contacts;  // per frame, of `feet`
   std::optional<FootJoints> feet;     // the foot joints `contacts` follow; nullopt: not known
   std::vector<std::string> doubts;    // a clip's: what looks wrong with it as read (clip_doubts.h)
+  std::vector<FileGlitch> glitches;   // a clip's capture glitches within it (capture_glitches.h)
 
   PyMotion(std::string motion_name, Skeleton motion_skeleton, Motion played);
   // A synthesis result's feet from its graph, with its contacts (the walk's own when none were

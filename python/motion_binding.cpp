@@ -111,10 +111,16 @@ PyMotion load_clip(const std::filesystem::path& file, const std::optional<std::f
   check(settings.validate());
   Result<LoadedClip> loaded = Error{};
   double read_fps = 0.0;  // the rate the file was read at, before any resampling
+  std::vector<FileGlitch> glitches;  // as info finds them in the file (kept with the rest frames)
   {
     py::gil_scoped_release release;
     loaded = ClipLoader(settings).load(path, animation);
     if (loaded) read_fps = loaded->clip.motion.fps;
+    if (loaded && !keep_rest_frames) {
+      const Clip& read = loaded->clip;
+      glitches = in_file_frames(find_capture_glitches(read.skeleton, read.motion),
+                                read.dropped_leading_frames + read.glitched_leading_frames + 1, read_fps);
+    }
     if (loaded && fps) {
       auto resampled = resample(loaded->clip.motion, *fps);
       if (!resampled) {
@@ -127,6 +133,7 @@ PyMotion load_clip(const std::filesystem::path& file, const std::optional<std::f
   LoadedClip got = take(std::move(loaded));
   const bool keyed = got.format == "gltf" || got.format == "fbx";  // keys timed in seconds
   PyMotion clip(got.clip.name, std::move(got.clip.skeleton), std::move(got.clip.motion));
+  clip.glitches = std::move(glitches);
   // Its feet's contacts (none when the feet are not found and none were named).
   Result<std::optional<ClipContacts>> contacts = Error{};
   {
@@ -218,6 +225,24 @@ void bind_motion(py::module_& m) {
                     "What looks wrong with a clip as read, as info's warning says it (a list of phrases: a figure "
                     "of no person's size, off the floor, feet that never rest, a clock that is not the capture's); "
                     "empty for a clip that looks right and for synthesized motion.")
+      .def_property_readonly(
+          "glitches",
+          [](const PyMotion& self) {
+            py::list out;
+            for (const FileGlitch& g : self.glitches) {
+              py::dict d;
+              d["frame"] = g.frame;
+              d["seconds"] = g.seconds;
+              d["joint"] = g.joint;
+              d["jump_m"] = g.jump_m;
+              out.append(std::move(d));
+            }
+            return out;
+          },
+          "A clip's capture glitches within it, where a library cuts it (info's capture_glitches): a list of "
+          "dicts with the file's frame (1-based) after which a joint jumps, the seconds from the file's start "
+          "where it lands, the joint and its jump in metres; empty for a clean clip, one read with "
+          "keep_rest_frames=True, and synthesized motion.")
       .def(
           "save",
           [](const PyMotion& self, const std::filesystem::path& path, bool root_motion, double root_motion_smoothing,

@@ -24,7 +24,8 @@ inline constexpr const char* kInputFpsHelp =
     "whose keys are timed in seconds, the rate their animations are sampled at (default: their keys')";
 inline constexpr const char* kKeepRestFramesHelp =
     "Keep the frames read but not played by default: leading rest or T-pose frames that a BVH converter added, "
-    "first or last frames that a capture glitch cuts off (a joint jumping 20 m/s or faster between two frames), "
+    "first or last frames that a capture glitch cuts off (a joint jumping 0.2 m or more at 20 m/s or faster between "
+    "two calm frames), "
     "and clips whole where glitches within them would cut them into parts";
 
 struct LoadOptions {

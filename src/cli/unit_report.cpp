@@ -74,6 +74,11 @@ void report_travel(const std::string& file, const InPlaceChoice& choice) {
   spdlog::info("{}: travel {} (--travel overrides)", file, travel_description(choice));
 }
 
+std::string glitch_rule_phrase() {
+  return fmt::format("a joint jumping {:g} m or more at {:g} m/s or faster between two calm frames", kGlitchJumpM,
+                     kGlitchSpeedMps);
+}
+
 std::string glitched_ends_description(int leading, int trailing) {
   if (leading <= 0 && trailing <= 0) return "";
   auto frames = [](const char* which, int n) {
@@ -83,11 +88,10 @@ std::string glitched_ends_description(int leading, int trailing) {
                                ? fmt::format("{} and {}", frames("first", leading), frames("last", trailing))
                            : leading > 0 ? frames("first", leading)
                                          : frames("last", trailing);
-  return fmt::format("{} dropped, cut off by a capture glitch: a joint jumping {:g} m/s or faster between two frames",
-                     ends, kGlitchSpeedMps);
+  return fmt::format("{} dropped, cut off by a capture glitch: {}", ends, glitch_rule_phrase());
 }
 
-std::string glitches_where(std::span<const DatabaseLoadNotes::GlitchSplit::Glitch> glitches) {
+std::string glitches_where(std::span<const FileGlitch> glitches) {
   if (glitches.empty()) return "no glitch";
   const auto largest = std::max_element(glitches.begin(), glitches.end(),
                                         [](const auto& a, const auto& b) { return a.jump_m < b.jump_m; });
@@ -109,21 +113,16 @@ std::string glitch_split_description(const DatabaseLoadNotes::GlitchSplit& split
                      counted(split.dropped_frames, "frame"));
 }
 
-std::vector<DatabaseLoadNotes::GlitchSplit::Glitch> file_glitches(const Clip& clip, const GlitchFreeParts& found) {
-  // Frames and seconds from the file's start: after the frames the reader dropped.
-  const int offset = clip.dropped_leading_frames + clip.glitched_leading_frames;
-  std::vector<DatabaseLoadNotes::GlitchSplit::Glitch> glitches;
-  for (const CaptureGlitch& g : found.glitches) {
-    glitches.push_back({offset + g.frame + 1, (offset + g.frame + 1) / clip.motion.fps, g.joint, g.jump_m});
-  }
-  return glitches;
+std::vector<FileGlitch> file_glitches(const Clip& clip, const GlitchFreeParts& found) {
+  // The clip's first frame is the file's first after those the reader dropped.
+  return in_file_frames(found.glitches, clip.dropped_leading_frames + clip.glitched_leading_frames + 1,
+                        clip.motion.fps);
 }
 
 std::string clip_glitches_description(const Clip& clip, const GlitchFreeParts& found) {
   if (found.glitches.empty()) return "";
   const std::string dropped = counted(found.dropped_frames(clip.motion.frame_count), "frame");
-  return fmt::format("{} within it (a joint jumping {:g} m or more at {:g} m/s or faster between two calm frames): {}",
-                     glitches_where(file_glitches(clip, found)), kGlitchJumpM, kGlitchSpeedMps,
+  return fmt::format("{} within it ({}): {}", glitches_where(file_glitches(clip, found)), glitch_rule_phrase(),
                      found.parts.size() == 1
                          ? fmt::format("a library reads only its one part free of them lasting {:g} s or more, {} "
                                        "dropped", kGlitchFreeSeconds, dropped)
@@ -168,18 +167,15 @@ void report_units(const DatabaseLoadNotes& notes, bool quiet) {
   if (!notes.glitched_ends.empty() && !quiet) {
     int frames = 0;
     for (const auto& g : notes.glitched_ends) frames += g.leading + g.trailing;
-    spdlog::info("first or last frames a capture glitch cut off (a joint jumping {:g} m/s or faster between two "
-                 "frames), dropped: {}",
-                 kGlitchSpeedMps,
+    spdlog::info("first or last frames a capture glitch cut off ({}), dropped: {}", glitch_rule_phrase(),
                  dropped_from_files(frames, notes.glitched_ends.size(), notes.glitched_ends.front().file));
   }
   if (!notes.glitch_splits.empty() && !quiet) {
     int frames = 0;
     for (const auto& g : notes.glitch_splits) frames += g.dropped_frames;
-    spdlog::info("clips cut at capture glitches within them (a joint jumping {:g} m or more at {:g} m/s or faster "
-                 "between two calm frames; parts under {:g} s dropped): {}{}; {} dropped in all (--keep-rest-frames "
-                 "keeps them whole)",
-                 kGlitchJumpM, kGlitchSpeedMps, kGlitchFreeSeconds,
+    spdlog::info("clips cut at capture glitches within them ({}; parts under {:g} s dropped): {}{}; {} dropped in all "
+                 "(--keep-rest-frames keeps them whole)",
+                 glitch_rule_phrase(), kGlitchFreeSeconds,
                  glitch_split_description(notes.glitch_splits.front()),
                  notes.glitch_splits.size() > 1 ? fmt::format(", and {} more clips", notes.glitch_splits.size() - 1)
                                                 : "",

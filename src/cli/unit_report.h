@@ -30,22 +30,23 @@ std::string travel_description(const InPlaceChoice& choice);
 // An info line for a clip whose travel was recovered (nothing otherwise).
 void report_travel(const std::string& file, const InPlaceChoice& choice);
 // "the first 2 frames and the last frame dropped, cut off by a capture glitch: a joint jumping
-// 20 m/s or faster between two frames" (motion/glitched_ends.h); empty when neither.
+// 0.2 m or more at 20 m/s or faster between two calm frames" (motion/glitched_ends.h); empty when
+// neither.
 std::string glitched_ends_description(int leading, int trailing);
 // Also one info line for the files read z up, for the files whose leading rest frames were
 // dropped, for those whose ends a glitch cut off, one for the clips whose travel was recovered, one
 // for the clips that loop, and one for the clips whose description's walk or run was left off
 // the frames where they stand (database/travel_tags.h).
 // quiet: the warnings only.
-// A clip cut at capture glitches within it (motion/capture_glitches.h): "05_05 (05_05.amc): 10
+// A clip cut at capture glitches within it (motion/capture_glitches.h): "05_05 (05_05.amc): 11
 // glitches at 2.68-7.28 s (the largest rtoes_end 0.39 m at 3.17 s) cut into 05_05, 05_05_part2,
-// 05_05_part3, 104 frames dropped".
+// 05_05_part3, 67 frames dropped".
 std::string glitch_split_description(const DatabaseLoadNotes::GlitchSplit& split);
 
 // A file's capture glitches within it (`found`: glitch_free_parts of the clip as read), their
 // frames (1-based) and seconds from the file's start.
-std::vector<DatabaseLoadNotes::GlitchSplit::Glitch> file_glitches(const Clip& clip, const GlitchFreeParts& found);
-// They as a library would cut the file there: "9 glitches at 2.68-7.28 s (the largest ...)
+std::vector<FileGlitch> file_glitches(const Clip& clip, const GlitchFreeParts& found);
+// They as a library would cut the file there: "11 glitches at 2.68-7.28 s (the largest ...)
 // within it (...): a library cuts it there into 3 parts ..."; empty when it has none.
 std::string clip_glitches_description(const Clip& clip, const GlitchFreeParts& found);
 

@@ -728,7 +728,13 @@ TEST(DatabaseLoader, AClipIsCutAtCaptureGlitchesWithinIt) {
   auto db = load_database({file, other}, settings, &notes);
   ASSERT_TRUE(db) << db.error().to_string();
   ASSERT_EQ(db->clips.size(), 3u);
-  // The second part's name is taken by the other file's clip: it gets one of its own.
+  // The second part's name is taken by the other file's clip: it gets one of its own, with a
+  // warning.
+  EXPECT_NE(std::find(notes.name_clashes.begin(), notes.name_clashes.end(),
+                      file + ": a clip is named 16_16_part2 already; this clip's part 2, cut at capture glitches, is "
+                             "16_16_part2_2"),
+            notes.name_clashes.end())
+      << fmt::format("{}", fmt::join(notes.name_clashes, "\n"));
   EXPECT_EQ(db->clips[0].name, "16_16");
   EXPECT_EQ(db->clips[1].name, "16_16_part2_2");
   EXPECT_EQ(db->clips[2].name, "16_16_part2");
@@ -805,6 +811,78 @@ ranges = [
   ASSERT_EQ(kept->clips.size(), 1u);
   EXPECT_EQ(kept->clips[0].frame_count, n);
   EXPECT_TRUE(kept_notes.glitch_splits.empty());
+}
+
+TEST(DatabaseLoader, GlitchesWithinAClipAreNumberedInItsFile) {
+  // 16_16 opening on 10 frames of its arm elsewhere (cut off on reading: glitched_ends.h) and
+  // with the arm elsewhere again in the file's frames 201..210; a manifest keeps frames 51 on.
+  // The glitches and parts are the file's frames, the ranges land on each part's frames, and at
+  // 30 fps each part lasts as long as its frames.
+  TempFolder folder("numbered");
+  const Clip clean = test::load_whole_data_clip("cmu/16/16_16.amc");
+  const int n = clean.motion.frame_count;
+  const Clip glitched = test::with_turn(test::with_turn(clean, "rhumerus", 0, 9, 1.745), "rhumerus", 200, 209, 1.745);
+  folder.write("lead.bvh", write_bvh(glitched.skeleton, glitched.motion, BvhWriteSettings{}));
+  const std::string manifest = folder.write("lead.toml", R"([[clip]]
+file = "lead.bvh"
+first_frame = 51
+ranges = [{ first_frame = 181, last_frame = 230, tags = ["turn"] }]
+)");
+  auto read_at = [](const std::string& input, double fps, DatabaseLoadNotes& notes) {
+    DatabaseSettings settings;
+    settings.fps = fps;
+    return load_database({input}, settings, &notes);
+  };
+  for (const double fps : {120.0, 30.0}) {
+    DatabaseLoadNotes notes;
+    auto db = read_at(manifest, fps, notes);
+    ASSERT_TRUE(db) << db.error().to_string();
+    ASSERT_EQ(notes.glitched_ends.size(), 1u);
+    EXPECT_EQ(notes.glitched_ends[0].leading, 10);
+    ASSERT_EQ(notes.glitch_splits.size(), 1u);
+    const DatabaseLoadNotes::GlitchSplit& split = notes.glitch_splits[0];
+    ASSERT_EQ(split.glitches.size(), 2u);
+    EXPECT_EQ(split.glitches[0].frame, 200);
+    EXPECT_DOUBLE_EQ(split.glitches[0].seconds, 200.0 / 120.0);
+    EXPECT_EQ(split.glitches[1].frame, 210);
+    ASSERT_EQ(split.parts.size(), 2u);
+    EXPECT_EQ(split.parts[0].first_frame, 51);
+    EXPECT_EQ(split.parts[0].last_frame, 200);
+    EXPECT_EQ(split.parts[1].first_frame, 211);
+    EXPECT_EQ(split.parts[1].last_frame, n);
+    EXPECT_EQ(split.dropped_frames, 10);
+    ASSERT_EQ(db->clips.size(), 2u);
+    const double step = 120.0 / fps;  // file frames per database frame
+    EXPECT_NEAR(db->clips[0].frame_count, (200 - 51) / step + 1, 1.0);
+    EXPECT_NEAR(db->clips[1].frame_count, (n - 211) / step + 1, 1.0);
+    if (fps == 120.0) {  // frames are frames: the part is the file from frame 211 on
+      for (int j = 0; j < clean.motion.joint_count; ++j) {
+        EXPECT_TRUE(db->clips[1].motion.rotations(0)[j].isApprox(clean.motion.rotations(210)[j], 1e-6)) << j;
+      }
+    }
+    // The range 181..230: the first part's file frames 181..200, the second's 211..230.
+    ASSERT_EQ(db->tag_ranges.size(), 2u);
+    EXPECT_NEAR(db->tag_ranges[0].first_frame, (181 - 51) / step, 1.0);
+    EXPECT_EQ(db->tag_ranges[0].first_frame + db->tag_ranges[0].frame_count, db->clips[0].frame_count);
+    EXPECT_EQ(db->tag_ranges[1].first_frame, db->clips[1].first_frame);
+    EXPECT_NEAR(db->tag_ranges[1].frame_count, (230 - 211) / step + 1, 1.0);
+  }
+  // Frames 197..204 hold the step out after frame 200: parts of 4 frames, none a quarter second
+  // long, so the first (the clip's own end) stays at 120 fps; at 30 fps it is under 2 frames and
+  // the frames are read whole.
+  const std::string short_range = folder.write("short.toml", R"([[clip]]
+file = "lead.bvh"
+first_frame = 197
+last_frame = 204
+)");
+  for (const double fps : {120.0, 30.0}) {
+    DatabaseLoadNotes notes;
+    auto db = read_at(short_range, fps, notes);
+    ASSERT_TRUE(db) << db.error().to_string();
+    ASSERT_EQ(db->clips.size(), 1u);
+    EXPECT_EQ(db->clips[0].frame_count, fps == 120.0 ? 4 : 2);
+    EXPECT_EQ(notes.glitch_splits.size(), fps == 120.0 ? 1u : 0u);
+  }
 }
 
 TEST(DatabaseLoader, RangesCoverTheFramesAGlitchLeavesAtAClipsEnd) {

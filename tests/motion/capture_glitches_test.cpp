@@ -83,12 +83,59 @@ TEST(CaptureGlitches, ATurnThatJumpsLessThanTheRuleIsNoGlitch) {
 
 TEST(CaptureGlitches, WhenNoPartLastsAQuarterSecondTheLongestStays) {
   const Clip short_clip = test::first_frames(test::load_whole_data_clip("cmu/16/16_16.amc"), 50);
-  // Glitches after frames 15 and 32: parts of 16, 17 and 17 frames; the first longest stays.
+  // Glitches after frames 15 and 32: parts of 16, 17 and 17 frames; the longer of the clip's
+  // ends stays, not the arm elsewhere between the glitches.
   const Clip glitched = with_turn(short_clip, "rhumerus", 16, 32, 1.745);
   const GlitchFreeParts found = glitch_free_parts(glitched.skeleton, glitched.motion);
   ASSERT_EQ(found.glitches.size(), 2u);
-  EXPECT_EQ(found.parts, (Parts{{16, 17}}));
+  EXPECT_EQ(found.parts, (Parts{{33, 17}}));
   EXPECT_EQ(found.dropped_frames(50), 33);
+  // Glitches after frames 16 and 32: the ends are 17 frames each, the first stays.
+  const Clip even = with_turn(short_clip, "rhumerus", 17, 32, 1.745);
+  EXPECT_EQ(glitch_free_parts(even.skeleton, even.motion).parts, (Parts{{0, 17}}));
+}
+
+TEST(CaptureGlitches, ALimbElsewhereForOneFrameStepsOutAndBack) {
+  // Frame 200 alone turned: two glitch-sized steps in a row, out and back, the frame between them
+  // dropped. The rule for one step alone would see neither (each has a large neighbour).
+  const Clip clean = test::load_whole_data_clip("cmu/16/16_16.amc");
+  const int n = clean.motion.frame_count;
+  const Clip glitched = with_turn(clean, "rhumerus", 200, 200, 1.745);
+  const GlitchFreeParts found = glitch_free_parts(glitched.skeleton, glitched.motion);
+  ASSERT_EQ(found.glitches.size(), 2u);
+  EXPECT_EQ(found.glitches[0].frame, 199);
+  EXPECT_EQ(found.glitches[1].frame, 200);
+  EXPECT_EQ(found.glitches[1].jump_m, largest_step(glitched.skeleton, glitched.motion, 200));
+  EXPECT_EQ(found.parts, (Parts{{0, 200}, {201, n - 201}}));
+  // A limb that steps out twice and stays (frames 200 on turned by 100 degrees, 201 on by 100
+  // more) is no out and back: the second step has a large neighbour, the first too.
+  const Clip twice = with_turn(with_turn(clean, "rhumerus", 200, n - 1, 1.745), "rhumerus", 201, n - 1, 1.745);
+  EXPECT_TRUE(glitch_free_parts(twice.skeleton, twice.motion).glitches.empty());
+}
+
+TEST(CaptureGlitches, PartsOfARangeCountOnlyTheGlitchesWithinIt) {
+  // Glitches after frames 199 and 209 of the clip. Frames 100..299 hold both: cut there,
+  // numbered from frame 100. Frames 205..404 hold the second only; frames 0..199 and 210..409
+  // neither (a glitch's step must lie within the frames).
+  const Clip clean = test::load_whole_data_clip("cmu/16/16_16.amc");
+  const Clip glitched = with_turn(clean, "rhumerus", 200, 209, 1.745);
+  const std::vector<CaptureGlitch> glitches = find_capture_glitches(glitched.skeleton, glitched.motion);
+  ASSERT_EQ(glitches.size(), 2u);
+  const GlitchFreeParts both = glitch_free_parts(glitches, 100, 200, 120.0);
+  ASSERT_EQ(both.glitches.size(), 2u);
+  EXPECT_EQ(both.glitches[0].frame, 99);
+  EXPECT_EQ(both.parts, (Parts{{0, 100}, {110, 90}}));
+  const GlitchFreeParts second = glitch_free_parts(glitches, 205, 200, 120.0);
+  ASSERT_EQ(second.glitches.size(), 1u);
+  EXPECT_EQ(second.parts, (Parts{{5, 195}}));  // frames 205..209 (5) under a quarter second
+  EXPECT_EQ(glitch_free_parts(glitches, 0, 200, 120.0).parts, (Parts{{0, 200}}));
+  EXPECT_EQ(glitch_free_parts(glitches, 210, 200, 120.0).parts, (Parts{{0, 200}}));
+  // Placed in the file: the frame after which the arm jumps, and when it lands.
+  const std::vector<FileGlitch> placed = in_file_frames(both.glitches, 101, 120.0);
+  EXPECT_EQ(placed[0].frame, 200);  // the file's frame 200 (1-based) is the clip's 199
+  EXPECT_DOUBLE_EQ(placed[0].seconds, 200.0 / 120.0);
+  EXPECT_EQ(placed[1].frame, 210);
+  EXPECT_EQ(placed[1].joint, glitches[1].joint);
 }
 
 TEST(CaptureGlitches, MotionsTooShortToJudgeAreOnePart) {

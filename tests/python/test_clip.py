@@ -121,6 +121,36 @@ def test_doubts_are_the_cli_info_s(cli, data, path, input_fps, fps):
         assert "its frame rate as read, 30 fps, is likely about 4" in clip.doubts[0], clip.doubts
 
 
+def test_glitches_are_the_cli_info_s(cli, data, tmp_path):
+    # 131_01 with its right shoulder turned 100 degrees in the file's frame 301 alone: a limb out
+    # and back, two glitches (after frames 300 and 301), as info finds them; a library cuts the
+    # clip there, dropping that frame.
+    lines = (data / "bvh/131_01.bvh").read_text().split("\n")
+    channels, column = 0, None
+    for line in lines:
+        words = line.split()
+        if words[:1] == ["JOINT"] and words[1] == "RightShoulder":
+            column = channels + 2   # its third channel (Z Y X rotation order): X
+        if words[:1] == ["CHANNELS"]:
+            channels += int(words[1])
+    first = next(i for i, line in enumerate(lines) if line.startswith("Frame Time")) + 1
+    values = lines[first + 300].split()
+    values[column] = str(float(values[column]) + 100.0)
+    lines[first + 300] = " ".join(values)
+    bvh = tmp_path / "lost.bvh"
+    bvh.write_text("\n".join(lines))
+    info = json.loads(cli("info", "--json", bvh).stdout)[0]["capture_glitches"]
+    clip = mg.load_clip(str(bvh))
+    assert [g["frame"] for g in clip.glitches] == [300, 301], clip.glitches
+    assert clip.glitches == info["glitches"] and info["parts"] == 2 and info["dropped_frames"] == 1, info
+    assert abs(clip.glitches[0]["seconds"] - 300 / 120) < 1e-9 and clip.glitches[0]["jump_m"] >= 0.2   # lands on frame 301
+    assert mg.load_clip(str(bvh), keep_rest_frames=True).glitches == []
+    assert mg.load_clip(str(data / "bvh/131_01.bvh")).glitches == []
+    lib = mg.load_library(str(bvh), fps=120)
+    assert [c.name for c in lib.clips] == ["lost", "lost_part2"]
+    assert len(lib.clips[0]) + len(lib.clips[1]) == len(clip) - 1
+
+
 def test_contacts_of_a_clip_and_feet_named(cli, data, tmp_path):
     bvh = data / "bvh/16_01.bvh"
     cli("convert", bvh, "-o", tmp_path / "cli.json")

@@ -580,6 +580,11 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
       for (const StaticAncestor& a : loaded->clip.skeleton.static_ancestors()) fold.above.push_back(a.name);
       notes->folded_roots.push_back(std::move(fold));
     }
+    // Capture glitches within it (motion/capture_glitches.h), kept with the rest frames: found on
+    // the file as read, all its joints, before the library reroots or cuts it to shared joints.
+    const std::vector<CaptureGlitch> glitches = spec.load.keep_rest_frames
+                                                    ? std::vector<CaptureGlitch>{}
+                                                    : find_capture_glitches(loaded->clip.skeleton, loaded->clip.motion);
     // Another converter's names on the first skeleton's hierarchy: the first's names.
     if (!first_skeleton) first_skeleton = loaded->clip.skeleton;
     const auto renamed = rename_as_first(loaded->clip, *first_skeleton);
@@ -646,14 +651,9 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     if (!whole) sliced = motion.slice(first - 1 - dropped, last - first + 1);
     const Motion& cut = whole ? motion : sliced;
     const double input_fps = cut.fps;
-    // Cut at the capture glitches within it (motion/capture_glitches.h), kept with the rest frames.
-    GlitchFreeParts glitch_parts;
-    if (spec.load.keep_rest_frames) {
-      glitch_parts.parts.emplace_back(0, cut.frame_count);
-    } else {
-      glitch_parts = glitch_free_parts(loaded->clip.skeleton, cut);
-    }
-    const bool split = !glitch_parts.glitches.empty();
+    // Cut at the capture glitches within its frames.
+    GlitchFreeParts glitch_parts = glitch_free_parts(glitches, first - 1 - dropped, cut.frame_count, input_fps);
+    bool split = !glitch_parts.glitches.empty();
     // A whole file that loops goes on past its end (motion/loop.h), as far as a window and a
     // frame at the database's rate, so that a transition can lead from its end back to its start.
     // A clip cut out of a longer file is not judged: its file holds what comes after it.
@@ -674,21 +674,24 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     };
     std::vector<Part> parts;
     for (const auto& [part_first, part_count] : glitch_parts.parts) {
-      Motion piece;
-      if (split) piece = cut.slice(part_first, part_count);
-      auto resampled = resample(loop_note ? unrolled : split ? piece : cut, db.fps);
+      if (!split) break;
+      auto resampled = resample(cut.slice(part_first, part_count), db.fps);
+      if (!resampled) return spec.error(resampled.error().message);
+      // A part too short at the library's rate is dropped too.
+      if (resampled->frame_count >= 2) {
+        parts.push_back({std::move(*resampled), first + part_first, first + part_first + part_count - 1});
+      }
+    }
+    if (split && parts.empty()) split = false;  // no part of 2 frames at this rate: the frames whole
+    if (!split) {
+      auto resampled = resample(loop_note ? unrolled : cut, db.fps);
       if (!resampled) return spec.error(resampled.error().message);
       if (resampled->frame_count < 2) {
-        if (split) continue;  // a part too short at the library's rate; others may do
         return spec.error(fmt::format("{} frame{} at {} fps ({} frames at {} fps in the file{}): a clip needs at "
                                       "least 2", resampled->frame_count, resampled->frame_count == 1 ? "" : "s", db.fps,
                                       cut.frame_count, input_fps, whole ? "" : ", in its frame range"));
       }
-      parts.push_back({std::move(*resampled), first + part_first, first + part_first + part_count - 1});
-    }
-    if (parts.empty()) {
-      return spec.error(fmt::format("its capture glitches leave no part of 2 frames at {} fps (--keep-rest-frames "
-                                    "keeps them)", db.fps));
+      parts.push_back({std::move(*resampled), first, last});
     }
 
     // Skeleton: one entry per skeleton file, all with the same joints.
@@ -753,11 +756,10 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     }
     std::optional<DatabaseLoadNotes::GlitchSplit> split_note;
     if (split && notes != nullptr) {
-      split_note = DatabaseLoadNotes::GlitchSplit{spec.path, spec.name, {}, {}, 0};
-      for (const CaptureGlitch& g : glitch_parts.glitches) {
-        split_note->glitches.push_back({first + g.frame, (first - 1 + g.frame + 1) / input_fps, g.joint, g.jump_m});
-      }
-      split_note->dropped_frames = glitch_parts.dropped_frames(cut.frame_count);
+      split_note = DatabaseLoadNotes::GlitchSplit{spec.path, spec.name,
+                                                  in_file_frames(glitch_parts.glitches, first, input_fps), {},
+                                                  cut.frame_count};
+      for (const Part& part : parts) split_note->dropped_frames -= part.last - part.first + 1;
     }
     std::vector<char> range_kept(spec.ranges.size(), 0);  // a range covers some part's frames
     for (size_t p = 0; p < parts.size(); ++p) {
@@ -767,7 +769,12 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
       clip.name = p == 0 ? spec.name : fmt::format("{}_part{}", spec.name, p + 1);
       if (p > 0) {
         if (clip_names.count(clip.name) > 0) {
-          clip.name = unique_name(clip.name, [&](const std::string& n) { return clip_names.count(n) > 0; });
+          const std::string taken = clip.name;
+          clip.name = unique_name(taken, [&](const std::string& n) { return clip_names.count(n) > 0; });
+          if (notes != nullptr) {
+            notes->name_clashes.push_back(fmt::format("{}: a clip is named {} already; this clip's part {}, cut at "
+                                                      "capture glitches, is {}", spec.path, taken, p + 1, clip.name));
+          }
         }
         clip_names.insert(clip.name);
       }
@@ -1090,7 +1097,9 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
 
   if (notes != nullptr) *notes = DatabaseLoadNotes{};
   auto database = load_clips(std::move(specs), settings, wide, cmu, notes, {});
-  if (notes != nullptr) notes->name_clashes = std::move(name_clashes);
+  if (notes != nullptr) {  // the specs' clashes, then those of the parts clips were cut into
+    notes->name_clashes.insert(notes->name_clashes.begin(), name_clashes.begin(), name_clashes.end());
+  }
   return database;
 }
 

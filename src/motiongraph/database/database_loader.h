@@ -36,6 +36,7 @@
 #include "motiongraph/core/error.h"
 #include "motiongraph/database/motion_database.h"
 #include "motiongraph/database/travel_tags.h"
+#include "motiongraph/motion/capture_glitches.h"
 #include "motiongraph/motion/clip_doubts.h"
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/in_place_choice.h"
@@ -144,13 +145,7 @@ struct DatabaseLoadNotes {
   struct GlitchSplit {
     std::string file;
     std::string clip;  // the clip's name
-    struct Glitch {
-      int frame = 0;          // the file's frame (1-based) after which a joint jumps
-      double seconds = 0.0;   // where it lands, from the file's start
-      std::string joint;
-      double jump_m = 0.0;
-    };
-    std::vector<Glitch> glitches;
+    std::vector<FileGlitch> glitches;
     struct Part {
       std::string clip;
       int first_frame = 0, last_frame = 0;  // the file's frames, 1-based

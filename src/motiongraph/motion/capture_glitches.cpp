@@ -12,28 +12,79 @@ void measure_joint_steps(const Skeleton& skeleton, const Motion& motion, int fir
                          std::span<JointStep> steps) {
   const int joints = skeleton.joint_count();
   if (first >= last || joints == 0) return;
-  std::vector<Vec3> positions(static_cast<size_t>(joints)), previous(static_cast<size_t>(joints));
-  std::vector<Quat> rotations(static_cast<size_t>(joints));
+  const auto n = static_cast<size_t>(joints);
+  // Frames f - 1, f and f + 1 as the loop reaches step f.
+  std::vector<Vec3> positions(n), previous(n), before(n);
+  std::vector<Quat> rotations(n);
   forward_kinematics(skeleton, motion, first, previous, rotations);
   for (int f = first; f < last; ++f) {
     forward_kinematics(skeleton, motion, f + 1, positions, rotations);
     JointStep& s = steps[static_cast<size_t>(f)];
     s = JointStep{};
-    for (int j = 0; j < joints; ++j) {
-      const double d = (positions[static_cast<size_t>(j)] - previous[static_cast<size_t>(j)]).norm();
-      if (d > s.largest_m) s.largest_m = d, s.joint = j;
+    for (size_t j = 0; j < n; ++j) {
+      const double d = (positions[j] - previous[j]).norm();
+      if (d > s.largest_m) s.largest_m = d, s.joint = static_cast<int>(j);
     }
-    std::swap(positions, previous);
+    if (f > first) {  // from frame f - 1 to f + 1
+      double& over_two = steps[static_cast<size_t>(f - 1)].over_two_m;
+      over_two = 0.0;
+      for (size_t j = 0; j < n; ++j) over_two = std::max(over_two, (positions[j] - before[j]).norm());
+    }
+    std::swap(before, previous);
+    std::swap(previous, positions);
   }
 }
 
+namespace {
+
+// A step of `jump` metres fast enough to be a glitch.
+bool glitch_sized(double jump, double fps) { return jump >= kGlitchJumpM && jump * fps >= kGlitchSpeedMps; }
+
+// Steps f and f + 1 step a limb out and back: both glitch-sized, no joint a third as far from
+// frame f at f + 2, the steps before and after them calm.
+bool out_and_back(std::span<const JointStep> steps, int f, double fps) {
+  const int count = static_cast<int>(steps.size());
+  if (f < 0 || f + 1 >= count) return false;
+  const double jump = std::min(steps[static_cast<size_t>(f)].largest_m, steps[static_cast<size_t>(f + 1)].largest_m);
+  if (!glitch_sized(jump, fps)) return false;
+  const double calm = kGlitchCalmShare * jump;
+  return steps[static_cast<size_t>(f)].over_two_m < calm &&
+         (f == 0 || steps[static_cast<size_t>(f - 1)].largest_m < calm) &&
+         (f + 2 >= count || steps[static_cast<size_t>(f + 2)].largest_m < calm);
+}
+
+}  // namespace
+
 bool is_glitch_step(std::span<const JointStep> steps, int f, double fps) {
   const double jump = steps[static_cast<size_t>(f)].largest_m;
-  if (jump < kGlitchJumpM || jump * fps < kGlitchSpeedMps) return false;
+  if (!glitch_sized(jump, fps)) return false;
   const double calm = kGlitchCalmShare * jump;
   const bool calm_before = f == 0 || steps[static_cast<size_t>(f - 1)].largest_m < calm;
   const bool calm_after = f + 1 >= static_cast<int>(steps.size()) || steps[static_cast<size_t>(f + 1)].largest_m < calm;
-  return calm_before && calm_after;
+  return (calm_before && calm_after) || out_and_back(steps, f, fps) || out_and_back(steps, f - 1, fps);
+}
+
+std::vector<CaptureGlitch> find_capture_glitches(const Skeleton& skeleton, const Motion& motion) {
+  std::vector<CaptureGlitch> out;
+  const int frames = motion.frame_count;
+  if (frames < 4 || skeleton.joint_count() == 0 || !(motion.fps > 0.0)) return out;
+  std::vector<JointStep> steps(static_cast<size_t>(frames - 1));
+  measure_joint_steps(skeleton, motion, 0, frames - 1, steps);
+  for (int f = 0; f + 1 < frames; ++f) {
+    if (!is_glitch_step(steps, f, motion.fps)) continue;
+    const JointStep& s = steps[static_cast<size_t>(f)];
+    out.push_back({f, s.largest_m, skeleton.joint(s.joint).name});
+  }
+  return out;
+}
+
+std::vector<FileGlitch> in_file_frames(std::span<const CaptureGlitch> glitches, int first_file_frame, double fps) {
+  std::vector<FileGlitch> out;
+  for (const CaptureGlitch& g : glitches) {
+    const int before = first_file_frame + g.frame;  // 1-based, so also the 0-based frame it lands on
+    out.push_back({before, before / fps, g.joint, g.jump_m});
+  }
+  return out;
 }
 
 int GlitchFreeParts::dropped_frames(int frame_count) const {
@@ -42,42 +93,38 @@ int GlitchFreeParts::dropped_frames(int frame_count) const {
   return frame_count - kept;
 }
 
-GlitchFreeParts glitch_free_parts(const Skeleton& skeleton, const Motion& motion) {
+GlitchFreeParts glitch_free_parts(std::span<const CaptureGlitch> glitches, int first, int count, double fps) {
   GlitchFreeParts out;
-  const int frames = motion.frame_count;
-  if (frames < 4 || skeleton.joint_count() == 0 || !(motion.fps > 0.0)) {
-    if (frames > 0) out.parts.emplace_back(0, frames);
-    return out;
-  }
-  std::vector<JointStep> steps(static_cast<size_t>(frames - 1));
-  measure_joint_steps(skeleton, motion, 0, frames - 1, steps);
-  for (int f = 0; f + 1 < frames; ++f) {
-    if (!is_glitch_step(steps, f, motion.fps)) continue;
-    const JointStep& s = steps[static_cast<size_t>(f)];
-    out.glitches.push_back({f, s.largest_m, skeleton.joint(s.joint).name});
+  for (const CaptureGlitch& g : glitches) {  // the steps within frames first..first + count - 1
+    if (g.frame >= first && g.frame + 1 < first + count) out.glitches.push_back({g.frame - first, g.jump_m, g.joint});
   }
   if (out.glitches.empty()) {
-    out.parts.emplace_back(0, frames);
+    if (count > 0) out.parts.emplace_back(0, count);
     return out;
   }
-  // The parts between glitches: frames 0..g1, g1 + 1..g2, ..., gk + 1..frames - 1.
+  // The parts between glitches: frames 0..g1, g1 + 1..g2, ..., gk + 1..count - 1.
   std::vector<std::pair<int, int>> between;
   int start = 0;
   for (const CaptureGlitch& g : out.glitches) {
     between.emplace_back(start, g.frame + 1 - start);
     start = g.frame + 1;
   }
-  between.emplace_back(start, frames - start);
-  const int shortest = std::max(2, static_cast<int>(std::ceil(kGlitchFreeSeconds * motion.fps - 1e-9)));
+  between.emplace_back(start, count - start);
+  const int shortest = std::max(2, static_cast<int>(std::ceil(kGlitchFreeSeconds * fps - 1e-9)));
   for (const auto& part : between) {
     if (part.second >= shortest) out.parts.push_back(part);
   }
   if (out.parts.empty()) {
-    const auto longest = std::max_element(between.begin(), between.end(),
-                                          [](const auto& a, const auto& b) { return a.second < b.second; });
-    if (longest->second >= 2) out.parts.push_back(*longest);
+    // None lasts long enough: the longer of the clip's own ends (the first on a tie), not frames
+    // between two glitches.
+    const auto& end = between.back().second > between.front().second ? between.back() : between.front();
+    if (end.second >= 2) out.parts.push_back(end);
   }
   return out;
+}
+
+GlitchFreeParts glitch_free_parts(const Skeleton& skeleton, const Motion& motion) {
+  return glitch_free_parts(find_capture_glitches(skeleton, motion), 0, motion.frame_count, motion.fps);
 }
 
 }  // namespace mg

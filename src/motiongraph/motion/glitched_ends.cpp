@@ -14,9 +14,9 @@ GlitchedEnds find_glitched_ends(const Skeleton& skeleton, const Motion& motion) 
   const int joints = skeleton.joint_count();
   if (frames < 4 || joints == 0 || !(motion.fps > 0.0)) return out;
   const int window = std::max(1, static_cast<int>(std::floor(kGlitchEndSeconds * motion.fps)));
-  // The steps within a window of either end (each needs its neighbours), FK on those frames only:
-  // steps 0..head-2 and tail..frames-2, which meet or overlap in a short clip.
-  const int head = std::min(frames, window + 2), tail = std::max(head - 1, frames - window - 2);
+  // The steps within a window of either end (each needs the two either side), FK on those frames
+  // only: steps 0..head-2 and tail..frames-2, which meet or overlap in a short clip.
+  const int head = std::min(frames, window + 3), tail = std::max(head - 1, frames - window - 3);
   std::vector<JointStep> steps(static_cast<size_t>(frames - 1));
   measure_joint_steps(skeleton, motion, 0, head - 1, steps);
   if (tail < frames) measure_joint_steps(skeleton, motion, tail, frames - 1, steps);
