@@ -14,6 +14,7 @@
 #include "motiongraph/motion/resample.h"
 #include "motiongraph/motion/in_place.h"
 #include "motiongraph/motion/up_axis.h"
+#include "motiongraph/pipeline/clip_as_read.h"
 #include "motiongraph/synthesis/facing.h"
 
 namespace mg::python {
@@ -131,24 +132,21 @@ PyMotion load_clip(const std::filesystem::path& file, const std::optional<std::f
     }
   }
   LoadedClip got = take(std::move(loaded));
-  const bool keyed = got.format == "gltf" || got.format == "fbx";  // keys timed in seconds
   PyMotion clip(got.clip.name, std::move(got.clip.skeleton), std::move(got.clip.motion));
   clip.glitches = std::move(glitches);
-  // Its feet's contacts (none when the feet are not found and none were named).
-  Result<std::optional<ClipContacts>> contacts = Error{};
+  // Its feet's contacts (none when the feet are not found and none were named), and what info
+  // says looks wrong with it (its unit, floor, feet or clock).
+  Result<ClipAsRead> judged = Error{};
   {
     py::gil_scoped_release release;
-    std::string why;
-    contacts = clip_contacts(clip.skeleton, clip.motion, settings.foot_names, why);
+    judged = judge_clip_as_read(clip.skeleton, clip.motion, clip.positions, read_fps, got.format, settings.foot_names);
   }
-  if (std::optional<ClipContacts> found = take(std::move(contacts))) {
-    clip.feet = found->feet;
-    clip.contacts = std::move(found->masks);
+  ClipAsRead as_read = take(std::move(judged));
+  if (as_read.contacts) {
+    clip.feet = as_read.contacts->feet;
+    clip.contacts = std::move(as_read.contacts->masks);
   }
-  // What info says looks wrong with it (its unit, floor, feet or clock).
-  clip.doubts = clip_doubts(clip.positions, clip.skeleton.joint_count(), clip.motion.fps, clip.contacts, {},
-                            ClipClock{read_fps, keyed}, clip.feet.value_or(FootJoints{}))
-                    .phrases();
+  clip.doubts = as_read.doubts.phrases();
   return clip;
 }
 

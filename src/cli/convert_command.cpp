@@ -28,6 +28,7 @@
 #include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/skeleton/foot_joints.h"
 #include "motiongraph/motion/resample.h"
+#include "motiongraph/pipeline/clip_as_read.h"
 #include "motiongraph/synthesis/facing.h"
 
 namespace mg::cli {
@@ -68,17 +69,10 @@ Result<Clip> read_clip(const ConvertOptions& options, ClipLoader& loader, const 
   }
   // What looks wrong with it as read (its unit, floor, feet or clock), as info says it: judged at
   // the rate read, on the feet --feet names or found by name (none found: not judged by them).
-  {
-    std::string why;
-    auto contacts = clip_contacts(clip.skeleton, clip.motion, options.load.settings().foot_names, why);
-    const bool known = contacts && *contacts;
-    const ClipDoubts doubts = clip_doubts(
-        world_positions(clip.skeleton, clip.motion), clip.skeleton.joint_count(), clip.motion.fps,
-        known ? std::span<const ContactMask>((*contacts)->masks) : std::span<const ContactMask>(), {},
-        ClipClock{clip.motion.fps, loaded->format == "gltf" || loaded->format == "fbx"},
-        known ? (*contacts)->feet : FootJoints{});
-    if (!doubts.empty()) spdlog::warn("{}", clip_doubt_line(input, doubts));
-  }
+  auto judged = judge_clip_as_read(clip.skeleton, clip.motion, {}, clip.motion.fps, loaded->format,
+                                   options.load.settings().foot_names);
+  if (!judged) return Error{input, 0, "--feet: " + judged.error().message};
+  if (!judged->doubts.empty()) spdlog::warn("{}", clip_doubt_line(input, judged->doubts));
   if (options.fps > 0.0) {
     auto resampled = resample(clip.motion, options.fps);
     if (!resampled) return Error{input, 0, resampled.error().message};

@@ -21,6 +21,7 @@
 #include "motiongraph/motion/clip_summary.h"
 #include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/motion/up_axis.h"
+#include "motiongraph/pipeline/clip_as_read.h"
 #include "motiongraph/pipeline/feet_report.h"
 
 namespace mg::cli {
@@ -107,14 +108,12 @@ int run_info(const InfoOptions& options) {
     const ClipSummary s = summarize(clip.skeleton, clip.motion);
     // The feet (named by --feet or found by name) and their contacts: what the foot clean-up, the
     // in-place travel and the doubts below follow.
-    std::string feet_missing;
-    auto contacts = clip_contacts(clip.skeleton, clip.motion, settings.foot_names, feet_missing);
-    if (!contacts) return fail(Error{file, 0, "--feet: " + contacts.error().message});
-    const ClipDoubts doubts =
-        clip_doubts(world_positions(clip.skeleton, clip.motion), clip.skeleton.joint_count(), clip.motion.fps,
-                    *contacts ? (*contacts)->masks : std::vector<ContactMask>{}, {},
-                    ClipClock{clip.motion.fps, loaded->format == "gltf" || loaded->format == "fbx"},
-                    *contacts ? (*contacts)->feet : FootJoints{});
+    auto judged = judge_clip_as_read(clip.skeleton, clip.motion, {}, clip.motion.fps, loaded->format,
+                                     settings.foot_names);
+    if (!judged) return fail(Error{file, 0, "--feet: " + judged.error().message});
+    const std::optional<ClipContacts>& contacts = judged->contacts;
+    const std::string& feet_missing = judged->feet_missing;
+    const ClipDoubts& doubts = judged->doubts;
     // Capture glitches within it, where a library cuts it (motion/capture_glitches.h).
     const GlitchFreeParts glitch_parts =
         settings.keep_rest_frames ? GlitchFreeParts{} : glitch_free_parts(clip.skeleton, clip.motion);
@@ -184,7 +183,7 @@ int run_info(const InfoOptions& options) {
                             {"walk_ratio", walk.measured() ? nlohmann::json(walk.walk_ratio) : nlohmann::json(nullptr)},
                             {"slowdown", walk.measured() ? nlohmann::json(walk.slowdown()) : nlohmann::json(nullptr)},
                             {"figure_m", walk.measured() ? nlohmann::json(walk.figure_m) : nlohmann::json(nullptr)}};
-      entry["feet"] = *contacts ? feet_json(clip.skeleton, (*contacts)->feet, (*contacts)->masks, feet_source)
+      entry["feet"] = contacts ? feet_json(clip.skeleton, contacts->feet, contacts->masks, feet_source)
                                 : missing_feet_json(feet_missing);
       if (!loaded->skeleton_path.empty()) entry["asf"] = loaded->skeleton_path;
       if (!loaded->animations.empty()) entry["animations"] = loaded->animations;
@@ -235,8 +234,8 @@ int run_info(const InfoOptions& options) {
                  s.duration_s, dropped.empty() ? "" : fmt::format(" ({})", fmt::join(dropped, "; ")));
       fmt::print("  lengths:  {}\n", unit);
       fmt::print("  up:       {}\n", up);
-      fmt::print("  feet:     {}\n", *contacts ? feet_description(clip.skeleton, (*contacts)->feet,
-                                                                (*contacts)->masks, feet_source)
+      fmt::print("  feet:     {}\n", contacts ? feet_description(clip.skeleton, contacts->feet,
+                                                                contacts->masks, feet_source)
                                                : missing_feet_description(feet_missing));
       if (clip.in_place && clip.in_place->recovered) {
         fmt::print("  travel:   {} (--travel overrides)\n", travel_description(*clip.in_place));
