@@ -107,6 +107,16 @@ TEST(CaptureGlitches, ALimbElsewhereForOneFrameStepsOutAndBack) {
   EXPECT_EQ(found.glitches[1].frame, 200);
   EXPECT_EQ(found.glitches[1].jump_m, largest_step(glitched.skeleton, glitched.motion, 200));
   EXPECT_EQ(found.parts, (Parts{{0, 200}, {201, n - 201}}));
+  // At 30 fps (every 4th frame) the same arm out for one frame steps under 20 m/s: out and back,
+  // it is found at any rate.
+  Clip slow = clean;
+  slow.motion = test::every_nth_frame(clean, 4, 30.0);
+  const Clip slow_glitched = with_turn(slow, "rhumerus", 50, 50, 1.745);
+  ASSERT_LT(largest_step(slow_glitched.skeleton, slow_glitched.motion, 49) * 30.0, kGlitchSpeedMps);
+  EXPECT_TRUE(glitch_free_parts(slow.skeleton, slow.motion).glitches.empty());
+  const GlitchFreeParts slow_found = glitch_free_parts(slow_glitched.skeleton, slow_glitched.motion);
+  ASSERT_EQ(slow_found.glitches.size(), 2u);
+  EXPECT_EQ(slow_found.glitches[0].frame, 49);
   // A limb that steps out twice and stays (frames 200 on turned by 100 degrees, 201 on by 100
   // more) is no out and back: the second step has a large neighbour, the first too.
   const Clip twice = with_turn(with_turn(clean, "rhumerus", 200, n - 1, 1.745), "rhumerus", 201, n - 1, 1.745);

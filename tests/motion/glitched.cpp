@@ -18,6 +18,15 @@ double largest_step(const Skeleton& skeleton, const Motion& motion, int f) {
   return most;
 }
 
+Motion every_nth_frame(const Clip& clip, int n, double fps) {
+  Motion out(clip.skeleton, clip.motion.frame_count / n, fps);
+  for (int f = 0; f < out.frame_count; ++f) {
+    std::copy_n(clip.motion.rotations(n * f).begin(), out.joint_count, out.rotations(f).begin());
+    std::copy_n(clip.motion.translations(n * f).begin(), out.translated_count, out.translations(f).begin());
+  }
+  return out;
+}
+
 Clip first_frames(Clip clip, int frames) {
   clip.motion = clip.motion.slice(0, frames);
   return clip;

@@ -12,6 +12,9 @@ namespace mg::test {
 // the two frames).
 double largest_step(const Skeleton& skeleton, const Motion& motion, int f);
 
+// Every n-th frame of the clip's motion, played at `fps`.
+Motion every_nth_frame(const Clip& clip, int n, double fps);
+
 // The clip's first `frames` frames.
 Clip first_frames(Clip clip, int frames);
 

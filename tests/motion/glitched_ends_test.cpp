@@ -94,11 +94,7 @@ TEST(GlitchedEnds, FastSmoothMotionIsNoGlitch) {
   // The clip played 12 times as fast (every 12th frame at 120 fps): its hands move over 20 m/s
   // and 0.2 m a frame, but no faster in one frame than in the next.
   const Clip clean = test::load_whole_data_clip("cmu/16/16_35.amc");  // a run
-  Motion fast(clean.skeleton, clean.motion.frame_count / 12, 120.0);
-  for (int f = 0; f < fast.frame_count; ++f) {
-    std::copy_n(clean.motion.rotations(12 * f).begin(), fast.joint_count, fast.rotations(f).begin());
-    std::copy_n(clean.motion.translations(12 * f).begin(), fast.translated_count, fast.translations(f).begin());
-  }
+  const Motion fast = test::every_nth_frame(clean, 12, 120.0);
   double fastest = 0.0;
   for (int f = 0; f + 1 < fast.frame_count; ++f) fastest = std::max(fastest, largest_step(clean.skeleton, fast, f));
   ASSERT_GT(fastest, kGlitchJumpM);

@@ -40,15 +40,16 @@ namespace {
 // A step of `jump` metres fast enough to be a glitch.
 bool glitch_sized(double jump, double fps) { return jump >= kGlitchJumpM && jump * fps >= kGlitchSpeedMps; }
 
-// Steps f and f + 1 step a limb out and back: both glitch-sized, no joint a third as far from
-// frame f at f + 2, the steps before and after them calm.
-bool out_and_back(std::span<const JointStep> steps, int f, double fps) {
+// Steps f and f + 1 step a limb out and back: both at least kGlitchJumpM, whatever the rate (no
+// limb swings so far and back within a frame), the steps before and after them calm, and no
+// joint at f + 2 further from frame f than two calm steps take it.
+bool out_and_back(std::span<const JointStep> steps, int f) {
   const int count = static_cast<int>(steps.size());
   if (f < 0 || f + 1 >= count) return false;
   const double jump = std::min(steps[static_cast<size_t>(f)].largest_m, steps[static_cast<size_t>(f + 1)].largest_m);
-  if (!glitch_sized(jump, fps)) return false;
+  if (jump < kGlitchJumpM) return false;
   const double calm = kGlitchCalmShare * jump;
-  return steps[static_cast<size_t>(f)].over_two_m < calm &&
+  return steps[static_cast<size_t>(f)].over_two_m < 2.0 * calm &&
          (f == 0 || steps[static_cast<size_t>(f - 1)].largest_m < calm) &&
          (f + 2 >= count || steps[static_cast<size_t>(f + 2)].largest_m < calm);
 }
@@ -56,12 +57,13 @@ bool out_and_back(std::span<const JointStep> steps, int f, double fps) {
 }  // namespace
 
 bool is_glitch_step(std::span<const JointStep> steps, int f, double fps) {
+  if (out_and_back(steps, f) || out_and_back(steps, f - 1)) return true;
   const double jump = steps[static_cast<size_t>(f)].largest_m;
   if (!glitch_sized(jump, fps)) return false;
   const double calm = kGlitchCalmShare * jump;
   const bool calm_before = f == 0 || steps[static_cast<size_t>(f - 1)].largest_m < calm;
   const bool calm_after = f + 1 >= static_cast<int>(steps.size()) || steps[static_cast<size_t>(f + 1)].largest_m < calm;
-  return (calm_before && calm_after) || out_and_back(steps, f, fps) || out_and_back(steps, f - 1, fps);
+  return calm_before && calm_after;
 }
 
 std::vector<CaptureGlitch> find_capture_glitches(const Skeleton& skeleton, const Motion& motion) {
