@@ -71,7 +71,7 @@ Result<Clip> read_clip(const ConvertOptions& options, ClipLoader& loader, const 
   // the rate read, on the feet --feet names or found by name (none found: not judged by them).
   auto judged = judge_clip_as_read(clip.skeleton, clip.motion, {}, clip.motion.fps, loaded->format,
                                    options.load.settings().foot_names);
-  if (!judged) return Error{input, 0, "--feet: " + judged.error().message};
+  if (!judged) return Error{input, 0, judged.error().message};  // feet named but not there
   if (!judged->doubts.empty()) spdlog::warn("{}", clip_doubt_line(input, judged->doubts));
   if (options.fps > 0.0) {
     auto resampled = resample(clip.motion, options.fps);
@@ -140,13 +140,7 @@ int convert_animation_set(const ConvertOptions& options, const ClipLoadSettings&
   std::vector<Clip> clips;
   for (const std::string& input : options.inputs) {
     auto clip = read_clip(options, loader, input);
-    if (!clip) return fail(clip.error());
-    // Feet named must be there, as for one clip.
-    if (!load.foot_names.empty()) {
-      if (auto feet = find_foot_joints(clip->skeleton, load.foot_names); !feet) {
-        return fail(Error{input, 0, feet.error().message});
-      }
-    }
+    if (!clip) return fail(clip.error());  // feet named must be there (read_clip), as for one clip
     clips.push_back(std::move(*clip));
   }
   std::vector<NamedMotion> motions;

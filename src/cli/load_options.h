@@ -25,7 +25,7 @@ inline constexpr const char* kInputFpsHelp =
 inline constexpr const char* kKeepRestFramesHelp =
     "Keep the frames read but not played by default: leading rest or T-pose frames that a BVH converter added, "
     "first or last frames that a capture glitch cuts off (a joint jumping 0.2 m or more at 20 m/s or faster between "
-    "two calm frames), "
+    "two calm frames, or out and back within a frame), "
     "and clips whole where glitches within them would cut them into parts";
 
 struct LoadOptions {

@@ -75,8 +75,8 @@ void report_travel(const std::string& file, const InPlaceChoice& choice) {
 }
 
 std::string glitch_rule_phrase() {
-  return fmt::format("a joint jumping {:g} m or more at {:g} m/s or faster between two calm frames", kGlitchJumpM,
-                     kGlitchSpeedMps);
+  return fmt::format("a joint jumping {:g} m or more at {:g} m/s or faster between two calm frames, or out and back "
+                     "within a frame", kGlitchJumpM, kGlitchSpeedMps);
 }
 
 std::string glitched_ends_description(int leading, int trailing) {

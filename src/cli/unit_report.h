@@ -30,8 +30,8 @@ std::string travel_description(const InPlaceChoice& choice);
 // An info line for a clip whose travel was recovered (nothing otherwise).
 void report_travel(const std::string& file, const InPlaceChoice& choice);
 // "the first 2 frames and the last frame dropped, cut off by a capture glitch: a joint jumping
-// 0.2 m or more at 20 m/s or faster between two calm frames" (motion/glitched_ends.h); empty when
-// neither.
+// 0.2 m or more at 20 m/s or faster between two calm frames, or out and back within a frame"
+// (motion/glitched_ends.h); empty when neither.
 std::string glitched_ends_description(int leading, int trailing);
 // Also one info line for the files read z up, for the files whose leading rest frames were
 // dropped, for those whose ends a glitch cut off, one for the clips whose travel was recovered, one

@@ -140,6 +140,11 @@ TEST(CaptureGlitches, PartsOfARangeCountOnlyTheGlitchesWithinIt) {
   EXPECT_EQ(second.parts, (Parts{{5, 195}}));  // frames 205..209 (5) under a quarter second
   EXPECT_EQ(glitch_free_parts(glitches, 0, 200, 120.0).parts, (Parts{{0, 200}}));
   EXPECT_EQ(glitch_free_parts(glitches, 210, 200, 120.0).parts, (Parts{{0, 200}}));
+  // Frames 205..215: 205..209 (the arm elsewhere, a glitch before them) and 210..215, neither a
+  // quarter second long: the end with no glitch beyond it stays (6 frames).
+  EXPECT_EQ(glitch_free_parts(glitches, 205, 11, 120.0).parts, (Parts{{5, 6}}));
+  // Frames 195..204: 195..199 and 200..204 (the arm elsewhere, a glitch after them): the first.
+  EXPECT_EQ(glitch_free_parts(glitches, 195, 10, 120.0).parts, (Parts{{0, 5}}));
   // Placed in the file: the frame after which the arm jumps, and when it lands.
   const std::vector<FileGlitch> placed = in_file_frames(both.glitches, 101, 120.0);
   EXPECT_EQ(placed[0].frame, 200);  // the file's frame 200 (1-based) is the clip's 199

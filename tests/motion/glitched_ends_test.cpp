@@ -7,8 +7,10 @@
 
 #include <algorithm>
 #include <string>
+#include <vector>
 
 #include "motion/glitched.h"
+#include "motiongraph/motion/capture_glitches.h"
 #include "test_data.h"
 
 namespace mg {
@@ -88,6 +90,45 @@ TEST(GlitchedEnds, AShortClipsEndsAreMeasuredWhereTheyMeet) {
   EXPECT_EQ(found.trailing_jump_m, largest_step(glitched.skeleton, glitched.motion, 31));
   const GlitchedEnds none = find_glitched_ends(short_clip.skeleton, short_clip.motion);
   EXPECT_EQ(none.leading + none.trailing, 0);
+}
+
+TEST(GlitchedEnds, TheEndsAreTheGlitchesOfTheWholeClipThere) {
+  // Every length from 4 frames to past two windows (30 fps: 7 frames a window), a limb out and
+  // back (a glitch) or the root moved on twice (15 m/s each: none) at each frame: the ends found
+  // from the windows alone are those the glitches of the whole clip give (the last among the
+  // first window's steps, two frames left; the first among the last window's after it).
+  const Clip clean = test::load_whole_data_clip("cmu/16/16_16.amc");
+  Clip slow = clean;
+  slow.motion = test::every_nth_frame(clean, 4, 30.0);
+  const int window = 7;
+  const int root = slow.skeleton.translation_slot(0);
+  ASSERT_GE(root, 0);
+  for (int frames = 4; frames <= 2 * window + 8; ++frames) {
+    for (int at = 1; at + 1 < frames; ++at) {
+      for (const bool out_and_back : {true, false}) {
+        Clip clip = test::first_frames(slow, frames);
+        if (out_and_back) {
+          clip = with_turn(clip, "rhumerus", at, at, 1.745);
+        } else {
+          for (int f = at; f < frames; ++f) clip.motion.translations(f)[root].x() += f == at ? 0.5 : 1.0;
+        }
+        const std::vector<CaptureGlitch> all = find_capture_glitches(clip.skeleton, clip.motion);
+        int leading = 0, trailing = 0;
+        for (const CaptureGlitch& g : all) {
+          if (g.frame < std::min(window, frames - 3)) leading = g.frame + 1;
+        }
+        for (const CaptureGlitch& g : all) {
+          if (g.frame >= std::max(leading + 1, frames - 1 - window) && g.frame < frames - 1) {
+            trailing = frames - 1 - g.frame;
+            break;
+          }
+        }
+        const GlitchedEnds found = find_glitched_ends(clip.skeleton, clip.motion);
+        EXPECT_EQ(found.leading, leading) << frames << " frames, at " << at << (out_and_back ? " out and back" : "");
+        EXPECT_EQ(found.trailing, trailing) << frames << " frames, at " << at << (out_and_back ? " out and back" : "");
+      }
+    }
+  }
 }
 
 TEST(GlitchedEnds, FastSmoothMotionIsNoGlitch) {

@@ -70,5 +70,19 @@ TEST(ClipAsRead, AClockReadWrongIsToldWhereToSetIt) {
   }
 }
 
+TEST(ClipAsRead, AClipResampledIsJudgedAtItsRateItsClockAgainstTheRateRead) {
+  // 16_15 read at 30 fps (a quarter of its rate), then resampled to 60: still 4x slow, and the
+  // phrase names the rate it was read at, not the one judged.
+  Clip clip = test::load_data_clip("cmu/16/16_15.amc");
+  clip.motion.fps = 30.0;
+  auto resampled = resample(clip.motion, 60.0);
+  ASSERT_TRUE(resampled) << resampled.error().to_string();
+  auto judged = judge_clip_as_read(clip.skeleton, *resampled, {}, 30.0, "amc", {});
+  ASSERT_TRUE(judged) << judged.error().to_string();
+  const std::string text = clip_doubts_text(judged->doubts);
+  EXPECT_NE(text.find("its frame rate as read, 30 fps, is likely about 4"), std::string::npos) << text;
+  EXPECT_EQ(text.find("60 fps"), std::string::npos) << text;
+}
+
 }  // namespace
 }  // namespace mg

@@ -118,9 +118,21 @@ GlitchFreeParts glitch_free_parts(std::span<const CaptureGlitch> glitches, int f
   }
   if (out.parts.empty()) {
     // None lasts long enough: the longer of the clip's own ends (the first on a tie), not frames
-    // between two glitches.
-    const auto& end = between.back().second > between.front().second ? between.back() : between.front();
-    if (end.second >= 2) out.parts.push_back(end);
+    // between two glitches; a range's end with a glitch beyond it is between two. With no such
+    // end, the longest part.
+    const bool glitch_before =
+        std::any_of(glitches.begin(), glitches.end(), [&](const CaptureGlitch& g) { return g.frame < first; });
+    const bool glitch_after = std::any_of(glitches.begin(), glitches.end(),
+                                          [&](const CaptureGlitch& g) { return g.frame + 1 >= first + count; });
+    const std::pair<int, int> none{0, 0};
+    const auto& head = glitch_before ? none : between.front();
+    const auto& tail = glitch_after ? none : between.back();
+    auto kept = tail.second > head.second ? tail : head;
+    if (kept.second == 0) {
+      kept = *std::max_element(between.begin(), between.end(),
+                               [](const auto& a, const auto& b) { return a.second < b.second; });
+    }
+    if (kept.second >= 2) out.parts.push_back(kept);
   }
   return out;
 }

@@ -24,7 +24,8 @@
 // A clip read into a library is cut at its glitches into the parts between them; parts shorter
 // than `kGlitchFreeSeconds` are dropped (the frames between glitches a few frames apart are the
 // limb the capture lost), and when none is that long the longer of the first and the last part
-// is kept (the clip's own ends, not a limb lost between two glitches). The glitches are found on
+// is kept (the clip's own ends, not a limb lost between two glitches; in a manifest's range, an
+// end with a glitch beyond it is not one), else the longest. The glitches are found on
 // the file as read, all its joints; the first and last quarter second are glitched_ends.h's,
 // which works on the file before a manifest's frame range is cut out of it.
 #pragma once
@@ -58,7 +59,7 @@ void measure_joint_steps(const Skeleton& skeleton, const Motion& motion, int fir
                          std::span<JointStep> steps);
 
 // Whether the step from frame f to f + 1 is a glitch (the test above); the steps two either side
-// of it must have been measured.
+// of it, and over_two_m of f - 1 and f, must have been measured.
 bool is_glitch_step(std::span<const JointStep> steps, int f, double fps);
 
 struct CaptureGlitch {

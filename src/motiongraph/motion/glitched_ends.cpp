@@ -14,9 +14,11 @@ GlitchedEnds find_glitched_ends(const Skeleton& skeleton, const Motion& motion) 
   const int joints = skeleton.joint_count();
   if (frames < 4 || joints == 0 || !(motion.fps > 0.0)) return out;
   const int window = std::max(1, static_cast<int>(std::floor(kGlitchEndSeconds * motion.fps)));
-  // The steps within a window of either end (each needs the two either side), FK on those frames
-  // only: steps 0..head-2 and tail..frames-2, which meet or overlap in a short clip.
-  const int head = std::min(frames, window + 3), tail = std::max(head - 1, frames - window - 3);
+  // The steps within a window of either end (each needs the two either side, and the steps over
+  // two frames from the one before), FK on those frames only: steps 0..head-2 and tail..frames-2,
+  // which overlap by a step in a short clip (measure_joint_steps fills over_two_m from its first
+  // frame to its last but one).
+  const int head = std::min(frames, window + 3), tail = std::max(head - 2, frames - window - 3);
   std::vector<JointStep> steps(static_cast<size_t>(frames - 1));
   measure_joint_steps(skeleton, motion, 0, head - 1, steps);
   if (tail < frames) measure_joint_steps(skeleton, motion, tail, frames - 1, steps);
