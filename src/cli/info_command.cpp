@@ -263,8 +263,8 @@ int run_info(const InfoOptions& options) {
 Command add_info_command(CLI::App& app) {
   auto options = std::make_shared<InfoOptions>();
   CLI::App* sub = app.add_subcommand("info", "Summarise skeletons and clips: joints, dofs, frames, fps, "
-                                             "duration, floor extent (metres), up axis, feet, capture glitches; or a library "
-                                             "(folders, manifests) as build reads it: its clips, tags and feet.");
+                                             "duration, floor extent (metres), up axis, feet, capture glitches; or a "
+                                             "library (folders, manifests) as build reads it: its clips, tags and feet.");
   sub->add_option("FILE", options->files, "ASF, AMC, BVH, glTF (.glb, .gltf) or FBX files (an AMC uses the .asf given with it, --asf, "
                                           "or the only .asf in its folder); or clip folders and .toml "
                                           "manifests, summarised together as one library")
