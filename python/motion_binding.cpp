@@ -118,9 +118,7 @@ PyMotion load_clip(const std::filesystem::path& file, const std::optional<std::f
     loaded = ClipLoader(settings).load(path, animation);
     if (loaded) read_fps = loaded->clip.motion.fps;
     if (loaded && !keep_rest_frames) {
-      const Clip& read = loaded->clip;
-      glitches = in_file_frames(find_capture_glitches(read.skeleton, read.motion),
-                                read.dropped_leading_frames + read.glitched_leading_frames + 1, read_fps);
+      glitches = in_file_frames(loaded->clip, find_capture_glitches(loaded->clip.skeleton, loaded->clip.motion));
     }
     if (loaded && fps) {
       auto resampled = resample(loaded->clip.motion, *fps);

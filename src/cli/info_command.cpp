@@ -162,7 +162,7 @@ int run_info(const InfoOptions& options) {
       // Where a library cuts it: the glitches (the file's frames, 1-based, and seconds) and the
       // frames it drops.
       nlohmann::json glitch_list = nlohmann::json::array();
-      for (const auto& g : file_glitches(clip, glitch_parts)) {
+      for (const FileGlitch& g : in_file_frames(clip, glitch_parts.glitches)) {
         glitch_list.push_back({{"frame", g.frame}, {"seconds", g.seconds}, {"joint", g.joint}, {"jump_m", g.jump_m}});
       }
       entry["capture_glitches"] = {

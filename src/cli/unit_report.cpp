@@ -113,16 +113,10 @@ std::string glitch_split_description(const DatabaseLoadNotes::GlitchSplit& split
                      counted(split.dropped_frames, "frame"));
 }
 
-std::vector<FileGlitch> file_glitches(const Clip& clip, const GlitchFreeParts& found) {
-  // The clip's first frame is the file's first after those the reader dropped.
-  return in_file_frames(found.glitches, clip.dropped_leading_frames + clip.glitched_leading_frames + 1,
-                        clip.motion.fps);
-}
-
 std::string clip_glitches_description(const Clip& clip, const GlitchFreeParts& found) {
   if (found.glitches.empty()) return "";
   const std::string dropped = counted(found.dropped_frames(clip.motion.frame_count), "frame");
-  return fmt::format("{} within it ({}): {}", glitches_where(file_glitches(clip, found)), glitch_rule_phrase(),
+  return fmt::format("{} within it ({}): {}", glitches_where(in_file_frames(clip, found.glitches)), glitch_rule_phrase(),
                      found.parts.size() == 1
                          ? fmt::format("a library reads only its one part free of them lasting {:g} s or more, {} "
                                        "dropped", kGlitchFreeSeconds, dropped)

@@ -43,10 +43,8 @@ std::string glitched_ends_description(int leading, int trailing);
 // 05_05_part3, 67 frames dropped".
 std::string glitch_split_description(const DatabaseLoadNotes::GlitchSplit& split);
 
-// A file's capture glitches within it (`found`: glitch_free_parts of the clip as read), their
-// frames (1-based) and seconds from the file's start.
-std::vector<FileGlitch> file_glitches(const Clip& clip, const GlitchFreeParts& found);
-// They as a library would cut the file there: "11 glitches at 2.68-7.28 s (the largest ...)
+// A file's capture glitches within it (`found`: glitch_free_parts of the clip as read) as a
+// library would cut the file there: "11 glitches at 2.68-7.28 s (the largest ...)
 // within it (...): a library cuts it there into 3 parts ..."; empty when it has none.
 std::string clip_glitches_description(const Clip& clip, const GlitchFreeParts& found);
 

@@ -674,7 +674,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     };
     std::vector<Part> parts;
     for (const auto& [part_first, part_count] : glitch_parts.parts) {
-      if (!split) break;
+      if (!split) break;  // one part, the frames whole: resampled below
       auto resampled = resample(cut.slice(part_first, part_count), db.fps);
       if (!resampled) return spec.error(resampled.error().message);
       // A part too short at the library's rate is dropped too.

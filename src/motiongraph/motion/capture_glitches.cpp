@@ -89,6 +89,10 @@ std::vector<FileGlitch> in_file_frames(std::span<const CaptureGlitch> glitches, 
   return out;
 }
 
+std::vector<FileGlitch> in_file_frames(const Clip& clip, std::span<const CaptureGlitch> glitches) {
+  return in_file_frames(glitches, clip.dropped_leading_frames + clip.glitched_leading_frames + 1, clip.motion.fps);
+}
+
 int GlitchFreeParts::dropped_frames(int frame_count) const {
   int kept = 0;
   for (const auto& [first, count] : parts) kept += count;

@@ -81,6 +81,10 @@ struct FileGlitch {
 // (1-based: after the frames the reader dropped, and where a manifest's range starts).
 std::vector<FileGlitch> in_file_frames(std::span<const CaptureGlitch> glitches, int first_file_frame, double fps);
 
+// `glitches` of a clip as its reader gave it (of its motion, at its rate), placed in its file:
+// its first frame is the file's first after the rest and glitched frames the reader dropped.
+std::vector<FileGlitch> in_file_frames(const Clip& clip, std::span<const CaptureGlitch> glitches);
+
 // Every glitch in `motion`, in frame order (none in motions shorter than 4 frames or of no rate).
 std::vector<CaptureGlitch> find_capture_glitches(const Skeleton& skeleton, const Motion& motion);
 
