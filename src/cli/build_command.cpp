@@ -118,8 +118,8 @@ Command add_build_command(CLI::App& app) {
       "build", "Build a motion graph (Kovar et al. 2002): transitions at local minima of the windowed, floor-aligned "
                "point-cloud distance below a threshold; pruned to the largest strongly connected component per tag. "
                "Under mpirun (a build with MPI) the processes share the distance stage: docs/cluster.md.");
-  sub->add_option("INPUT", o->inputs, "Folders (an .asf and its .amc files, or .bvh, .glb, .gltf and .fbx files), clip files, or .toml "
-                                      "manifests (see docs/manifest.md)")
+  sub->add_option("INPUT", o->inputs, "Folders (an .asf and its .amc files, or .bvh, .glb, .gltf and .fbx files; "
+                                      "the folders in them too), clip files, or .toml manifests (see docs/manifest.md)")
       ->required();
   sub->add_option("-o,--output", o->output, "The graph file to write (.mgraph)")->required();
   sub->add_option("--fps", b.fps, "Database frame rate: every clip is resampled to it")

@@ -5,8 +5,6 @@
 #include <set>
 #include <sstream>
 
-#include <unistd.h>
-
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <gtest/gtest.h>
@@ -26,6 +24,7 @@
 #include "motiongraph/motion/root_motion.h"
 #include "motiongraph/motion/up_axis.h"
 #include "motiongraph/synthesis/facing.h"
+#include "temp_folder.h"
 #include "test_data.h"
 
 namespace mg {
@@ -42,33 +41,7 @@ DatabaseSettings cmu_settings() {
   return settings;
 }
 
-// A fresh folder under the system's temporary folder, removed at the end of the test.
-class TempFolder {
- public:
-  explicit TempFolder(const std::string& name)
-      : path_(fs::temp_directory_path() / fmt::format("motiongraph-db-{}-{}", name, ::getpid())) {
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempFolder() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-  std::string write(const std::string& name, const std::string& text) const {
-    const std::string file = (path_ / name).string();
-    auto s = write_file_atomic(file, text);
-    if (!s) throw std::runtime_error(s.error().to_string());
-    return file;
-  }
-  // A path to a bundled file, relative to this folder (manifests resolve against their folder).
-  std::string relative_data(const std::string& relative) const {
-    return fs::relative(test::data_path(relative), path_).generic_string();
-  }
-
- private:
-  fs::path path_;
-};
+using test::TempFolder;
 
 std::set<std::string> tags_of(const MotionDatabase& db, int clip) {
   std::set<std::string> tags;
@@ -1299,7 +1272,9 @@ TEST(DatabaseLoader, BadInputsAndSettings) {
   auto asf = load_database({test::data_path("cmu/16/16.asf")}, settings);
   ASSERT_FALSE(asf);
   EXPECT_NE(asf.error().message.find("skeleton only"), std::string::npos);
-  auto empty = load_database({test::data_path("cmu")}, settings);
+  TempFolder no_clips("no-clips");
+  no_clips.write("notes.txt", "none\n");
+  auto empty = load_database({no_clips.path().string()}, settings);
   ASSERT_FALSE(empty);
   EXPECT_NE(empty.error().message.find("no .amc, .bvh, .glb, .gltf or .fbx"), std::string::npos);
   auto tsv = load_database({test::data_path("cmu/cmu-mocap-index.tsv")}, settings);
@@ -1452,6 +1427,53 @@ TEST(DatabaseLoader, OneTakeInTwoFormatsIsReadOnceAndEveryClipHasANameOfItsOwn) 
   EXPECT_EQ(db->clips[1].name, "16_01_2");
   ASSERT_EQ(notes.name_clashes.size(), 1u);
   EXPECT_NE(notes.name_clashes[0].find("twice.toml:3)"), std::string::npos) << notes.name_clashes[0];
+}
+
+TEST(DatabaseLoader, AFolderOfFoldersIsReadAsOneLibraryEachAmcWithItsSubjectsSkeleton) {
+  TempFolder tree("tree");
+  const std::string asf = test::read_data("cmu/16/16.asf");
+  for (const char* subject : {"a", "b"}) {
+    fs::create_directories(tree.path() / subject);
+    tree.write(fmt::format("{}/16.asf", subject), asf);
+    tree.write(fmt::format("{}/16_15.amc", subject), test::read_data("cmu/16/16_15.amc"));
+  }
+  // Two subjects' skeletons in one folder: each AMC takes its subject's, as CMU names them.
+  fs::create_directories(tree.path() / "flat");
+  tree.write("flat/07.asf", test::read_data("cmu/16/16.asf"));
+  const std::string flat_asf = tree.write("flat/16.asf", asf);
+  tree.write("flat/16_16.amc", test::read_data("cmu/16/16_16.amc"));
+  // The BVH of a take read as AMC, in another folder: left out.
+  fs::create_directories(tree.path() / "bvh");
+  tree.write("bvh/16_16.bvh", test::read_data("bvh/16_01.bvh"));
+  DatabaseLoadNotes notes;
+  auto db = load_database({tree.path().string()}, cmu_settings(), &notes);
+  ASSERT_TRUE(db) << db.error().to_string();
+  ASSERT_EQ(db->clips.size(), 3u);
+  EXPECT_EQ(db->clips[0].name, "a/16_15");
+  EXPECT_EQ(db->clips[1].name, "b/16_15");
+  EXPECT_EQ(db->clips[2].name, "16_16");
+  EXPECT_EQ(db->clips[2].source, (tree.path() / "flat/16_16.amc").string());
+  EXPECT_EQ(db->skeleton_names[static_cast<size_t>(db->clips[2].skeleton)], flat_asf);
+  // CMU's tags come by the file's own name.
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(tags_of(*db, c), (std::set<std::string>{"walk"})) << c;
+  EXPECT_EQ(db->clips[0].frame_count, db->clips[1].frame_count);
+  ASSERT_EQ(notes.name_clashes.size(), 1u);
+  EXPECT_NE(notes.name_clashes[0].find("bvh/16_16.bvh left out: flat/16_16.amc holds the clip of that name"),
+            std::string::npos)
+      << notes.name_clashes[0];
+
+  // A folder of AMC files without its skeleton, or with skeletons named for no subject of them.
+  fs::remove(tree.path() / "b/16.asf");
+  db = load_database({tree.path().string()}, cmu_settings(), &notes);
+  ASSERT_FALSE(db);
+  EXPECT_EQ(db.error().file, fmt::format("{} (b)", tree.path().string()));
+  EXPECT_NE(db.error().message.find("AMC files but no .asf skeleton"), std::string::npos) << db.error().message;
+  fs::remove_all(tree.path() / "b");
+  fs::rename(tree.path() / "flat/16.asf", tree.path() / "flat/17.asf");
+  db = load_database({tree.path().string()}, cmu_settings(), &notes);
+  ASSERT_FALSE(db);
+  EXPECT_NE(db.error().message.find("2 .asf files and none is named as 16_16.amc's subject"), std::string::npos)
+      << db.error().message;
 }
 
 }  // namespace

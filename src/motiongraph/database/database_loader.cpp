@@ -17,6 +17,7 @@
 #include "motiongraph/core/unique_name.h"
 #include "motiongraph/database/cmu_tags.h"
 #include "motiongraph/database/database_doubts.h"
+#include "motiongraph/database/folder_tree.h"
 #include "motiongraph/database/travel_tags.h"
 #include "motiongraph/database/database_contacts.h"
 #include "motiongraph/database/manifest.h"
@@ -107,68 +108,41 @@ Status add_file_specs(const fs::path& path, const ClipLoadSettings& load, std::v
   return Ok{};
 }
 
-// A take saved in several formats in one folder (x.bvh and the x.glb or x.fbx converted from it,
-// CMU's x.amc beside its x.bvh) would be read twice: the same frames twice, joined by transitions
-// of distance 0. The folder reads one file of each name, the capture's own formats first.
-int format_preference(const fs::path& path) {
-  const std::string ext = lower_extension(path.string());
-  for (int i = 0; const char* preferred : {".amc", ".bvh", ".fbx", ".glb", ".gltf"}) {
-    if (ext == preferred) return i;
-    ++i;
+// The clips of a folder and the folders in it (database/folder_tree.h). An AMC file's skeleton
+// is the only .asf in its folder; of several, the one CMU's naming gives it (16_01.amc: 16.asf).
+Result<std::string> asf_in_folder(const TreeFolder& folder, const fs::path& amc, const std::string& top) {
+  const std::string where = folder.relative.empty() ? top : fmt::format("{} ({})", top, folder.relative);
+  if (folder.asfs.empty()) return Error{where, 0, "the folder holds AMC files but no .asf skeleton"};
+  if (folder.asfs.size() == 1) return folder.asfs.front().string();
+  const std::string stem = amc.stem().string();
+  for (const fs::path& asf : folder.asfs) {
+    if (stem.starts_with(asf.stem().string() + "_")) return asf.string();
   }
-  return 5;
+  return Error{where, 0, fmt::format("the folder holds {} .asf files and none is named as {}'s subject (as 16.asf "
+                                     "for 16_01.amc); name the clips and their skeletons in a manifest "
+                                     "(docs/manifest.md)", folder.asfs.size(), amc.filename().string())};
 }
 
 Status expand_folder(const std::string& input, const DatabaseSettings& settings, std::vector<ClipSpec>& specs,
                      std::vector<std::string>& remarks) {
-  std::vector<fs::path> clips;
-  std::vector<fs::path> asfs;
-  std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(input, ec)) {
-    if (!entry.is_regular_file(ec)) continue;
-    const std::string ext = lower_extension(entry.path().string());
-    if (is_clip_file(entry.path().string())) clips.push_back(entry.path());
-    if (ext == ".asf") asfs.push_back(entry.path());
-  }
-  if (ec) return Error{input, 0, fmt::format("cannot list the folder: {}", ec.message())};
-  // By name, so a database is the same on every machine and file system.
-  const auto by_name = [](const fs::path& a, const fs::path& b) {
-    return a.filename().string() < b.filename().string();
-  };
-  std::sort(clips.begin(), clips.end(), by_name);
-  std::sort(asfs.begin(), asfs.end(), by_name);
-  if (clips.empty()) return Error{input, 0, "the folder holds no .amc, .bvh, .glb, .gltf or .fbx files"};
-  std::map<std::string, fs::path> by_stem;  // the file read for each name
-  for (const fs::path& clip : clips) {
-    auto [it, added] = by_stem.emplace(clip.stem().string(), clip);
-    if (!added && format_preference(clip) < format_preference(it->second)) it->second = clip;
-  }
-  std::vector<fs::path> kept;
-  for (const fs::path& clip : clips) {
-    const fs::path& read = by_stem.at(clip.stem().string());
-    if (read == clip) {
-      kept.push_back(clip);
-    } else {
-      remarks.push_back(fmt::format("{}: {} left out: {} holds the clip of that name (one take in two formats?); "
-                                    "a manifest can read both under names of their own",
-                                    input, clip.filename().string(), read.filename().string()));
-    }
-  }
-  clips = std::move(kept);
-  const bool has_amc =
-      std::any_of(clips.begin(), clips.end(), [](const fs::path& p) { return lower_extension(p.string()) == ".amc"; });
-  ClipLoadSettings load = default_load_settings(settings);
-  if (has_amc) {
-    if (asfs.empty()) return Error{input, 0, "the folder holds AMC files but no .asf skeleton"};
-    if (asfs.size() > 1) {
-      return Error{input, 0, fmt::format("the folder holds {} .asf files; name the clips and their skeletons "
-                                         "in a manifest (docs/manifest.md)", asfs.size())};
-    }
-    load.asf_path = asfs.front().string();
-  }
+  auto tree = read_folder_tree(input);
+  if (!tree) return tree.error();
+  remarks.insert(remarks.end(), tree->left_out.begin(), tree->left_out.end());
   const size_t before = specs.size();
-  for (const fs::path& clip : clips) {
-    if (auto s = add_file_specs(clip, load, specs, true); !s) return s;
+  for (const TreeFolder& folder : tree->folders) {
+    for (const TreeClipFile& clip : folder.clips) {
+      ClipLoadSettings load = default_load_settings(settings);
+      if (lower_extension(clip.file.string()) == ".amc") {
+        auto asf = asf_in_folder(folder, clip.file, input);
+        if (!asf) return asf.error();
+        load.asf_path = *asf;
+      }
+      const size_t first = specs.size();
+      if (auto s = add_file_specs(clip.file, load, specs, true); !s) return s;
+      // A name taken by a file of another folder: this one's is the folder's and the file's.
+      const std::string stem = clip.file.stem().string();
+      for (size_t i = first; i < specs.size(); ++i) specs[i].name = clip.name + specs[i].name.substr(stem.size());
+    }
   }
   if (specs.size() == before) return Error{input, 0, "the folder holds no clip (its glTF and FBX files have no animation)"};
   return Ok{};

@@ -1,0 +1,136 @@
+#include "motiongraph/database/folder_tree.h"
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "motiongraph/core/file_extension.h"
+#include "motiongraph/motion/clip_loader.h"
+
+namespace mg {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The capture's own formats first: of one take in several formats, the file read.
+int format_preference(const fs::path& path) {
+  const std::string ext = lower_extension(path.string());
+  for (int i = 0; const char* preferred : {".amc", ".bvh", ".fbx", ".glb", ".gltf"}) {
+    if (ext == preferred) return i;
+    ++i;
+  }
+  return 5;
+}
+
+bool is_hidden(const fs::path& path) {
+  const std::string name = path.filename().string();
+  return !name.empty() && name.front() == '.';
+}
+
+struct ListedFolder {
+  fs::path path;
+  std::string relative;
+  std::vector<fs::path> clips;
+  std::vector<fs::path> asfs;
+};
+
+// Every folder of the tree once (a link back up it is not followed again), in no set order.
+Result<std::vector<ListedFolder>> list_tree(const fs::path& top) {
+  std::vector<ListedFolder> listed;
+  std::set<fs::path> seen;  // canonical paths
+  std::vector<fs::path> pending{top};
+  while (!pending.empty()) {
+    const fs::path folder = pending.back();
+    pending.pop_back();
+    std::error_code ec;
+    const fs::path canonical = fs::canonical(folder, ec);
+    if (ec) return Error{folder.string(), 0, fmt::format("cannot read the folder: {}", ec.message())};
+    if (!seen.insert(canonical).second) continue;
+    ListedFolder here{folder, path_below(folder, top), {}, {}};
+    fs::directory_iterator it(folder, ec);
+    for (; !ec && it != fs::directory_iterator(); it.increment(ec)) {
+      const fs::path& path = it->path();
+      if (is_hidden(path)) continue;
+      std::error_code kind_ec;  // a broken link, or one the user may not follow: neither file nor folder
+      if (it->is_directory(kind_ec)) {
+        pending.push_back(path);
+      } else if (it->is_regular_file(kind_ec)) {
+        if (is_clip_file(path.string())) here.clips.push_back(path);
+        if (lower_extension(path.string()) == ".asf") here.asfs.push_back(path);
+      }
+    }
+    if (ec) return Error{folder.string(), 0, fmt::format("cannot list the folder: {}", ec.message())};
+    listed.push_back(std::move(here));
+  }
+  return listed;
+}
+
+}  // namespace
+
+std::string path_below(const fs::path& file, const fs::path& top) {
+  const std::string below = file.lexically_relative(top).generic_string();
+  return below == "." ? "" : below;
+}
+
+Result<FolderTree> read_folder_tree(const std::string& top) {
+  auto listed = list_tree(fs::path(top));
+  if (!listed) return listed.error();
+  // By path, so a library is the same on every machine and file system.
+  const auto by_name = [](const fs::path& a, const fs::path& b) {
+    return a.filename().string() < b.filename().string();
+  };
+  for (ListedFolder& folder : *listed) {
+    std::sort(folder.clips.begin(), folder.clips.end(), by_name);
+    std::sort(folder.asfs.begin(), folder.asfs.end(), by_name);
+  }
+  std::sort(listed->begin(), listed->end(),
+            [](const ListedFolder& a, const ListedFolder& b) { return a.relative < b.relative; });
+
+  // The files of each name, in the tree's order: (folder, file).
+  std::map<std::string, std::vector<std::pair<size_t, fs::path>>> by_stem;
+  for (size_t f = 0; f < listed->size(); ++f) {
+    for (const fs::path& clip : (*listed)[f].clips) by_stem[clip.stem().string()].emplace_back(f, clip);
+  }
+  FolderTree tree;
+  std::map<fs::path, std::string> read;  // file -> clip name
+  for (const auto& [stem, files] : by_stem) {
+    int best = 5;
+    for (const auto& file : files) best = std::min(best, format_preference(file.second));
+    std::vector<std::pair<size_t, fs::path>> kept;
+    std::set<size_t> folders;
+    for (const auto& file : files) {
+      if (format_preference(file.second) == best && folders.insert(file.first).second) kept.push_back(file);
+    }
+    for (const auto& [f, path] : files) {
+      const bool is_kept = std::any_of(kept.begin(), kept.end(), [&](const auto& k) { return k.second == path; });
+      if (is_kept) {
+        const std::string& relative = (*listed)[f].relative;
+        read[path] = kept.size() > 1 && !relative.empty() ? fmt::format("{}/{}", relative, stem) : stem;
+        continue;
+      }
+      // Named against the file read in its own folder, else the first read.
+      const auto same_folder = std::find_if(kept.begin(), kept.end(), [&](const auto& k) { return k.first == f; });
+      const fs::path& instead = same_folder != kept.end() ? same_folder->second : kept.front().second;
+      tree.left_out.push_back(fmt::format("{}: {} left out: {} holds the clip of that name (one take in two "
+                                          "formats?); a manifest can read both under names of their own",
+                                          top, path_below(path, top), path_below(instead, top)));
+    }
+  }
+  for (ListedFolder& folder : *listed) {
+    TreeFolder out{folder.path, folder.relative, {}, folder.asfs};
+    for (const fs::path& clip : folder.clips) {
+      if (auto it = read.find(clip); it != read.end()) out.clips.push_back({clip, it->second});
+    }
+    if (!out.clips.empty()) tree.folders.push_back(std::move(out));
+  }
+  if (tree.folders.empty()) {
+    return Error{top, 0, "the folder holds no .amc, .bvh, .glb, .gltf or .fbx files, nor do the folders in it"};
+  }
+  return tree;
+}
+
+}  // namespace mg
