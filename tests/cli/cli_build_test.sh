@@ -375,6 +375,12 @@ PY
 grep "^$data/cmu/16: library of 15 clips, 1235 frames at 30 fps (41.2 s)" "$work/lib.txt" >/dev/null \
   && [[ $(grep -c "^  16_" "$work/lib.txt") -eq 15 ]] \
   || { echo "FAIL: info on a folder"; cat "$work/lib.txt"; exit 1; }
+# The folder above it (data/cmu, subject 16's folder and CMU's index) reads the folders in it: the
+# same library.
+"$bin" info "$data/cmu" >"$work/tree.txt"
+grep "^$data/cmu: library of 15 clips, 1235 frames at 30 fps (41.2 s)" "$work/tree.txt" >/dev/null \
+  && diff <(grep "^  16_" "$work/lib.txt") <(grep "^  16_" "$work/tree.txt") \
+  || { echo "FAIL: info on a folder of folders"; cat "$work/tree.txt"; exit 1; }
 "$bin" info --json "$data/cmu/16" >"$work/lib.json"
 "$bin" info --json --fps 120 "$data/cmu/16" >"$work/lib120.json"
 "$bin" info --json "$data/cmu/16/16.asf" "$data/cmu/16/16_15.amc" >"$work/file15.json"
