@@ -265,9 +265,10 @@ Command add_info_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("info", "Summarise skeletons and clips: joints, dofs, frames, fps, "
                                              "duration, floor extent (metres), up axis, feet, capture glitches; or a "
                                              "library (folders, manifests) as build reads it: its clips, tags and feet.");
-  sub->add_option("FILE", options->files, "ASF, AMC, BVH, glTF (.glb, .gltf) or FBX files (an AMC uses the .asf given with it, --asf, "
-                                          "or the only .asf in its folder); or clip folders (with the folders in "
-                                          "them) and .toml manifests, summarised together as one library")
+  sub->add_option("FILE", options->files,
+                  "ASF, AMC, BVH, glTF (.glb, .gltf) or FBX files (an AMC uses the .asf given with it, --asf, or its "
+                  "folder's .asf, of several its subject's); or clip folders (with the folders in them) and .toml "
+                  "manifests, summarised together as one library")
       ->required()
       ->check(CLI::ExistingPath);
   sub->add_option("--fps", options->fps, "A library's frame rate, as build's --fps (default 30; a manifest's own)")

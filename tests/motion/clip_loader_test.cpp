@@ -44,6 +44,36 @@ namespace {
 // An FBX file whose stated unit makes the figure no human size (exported with the wrong one:
 // the numbers are centimetres, the file says metres) is read in the unit that does, and says so;
 // --scale (metres per unit of the file's numbers) overrides; a file whose unit is right is read in it.
+TEST(ClipFiles, AnAmcTakesItsFoldersOnlyAsfOrOfSeveralItsSubjects) {
+  EXPECT_EQ(asf_of_amc({"x/skel.asf"}, "x/walk.amc"), "x/skel.asf");
+  EXPECT_EQ(asf_of_amc({"x/07.asf", "x/16.asf", "x/161.asf"}, "x/16_15.amc"), "x/16.asf");
+  EXPECT_EQ(asf_of_amc({"x/07.asf", "x/16.asf", "x/161.asf"}, "x/161_02.amc"), "x/161.asf");
+  EXPECT_EQ(asf_of_amc({"x/07.asf", "x/16.asf"}, "x/99_01.amc"), std::nullopt);
+  EXPECT_EQ(asf_of_amc({"x/07.asf", "x/16.asf"}, "x/1615.amc"), std::nullopt);
+  EXPECT_EQ(asf_of_amc({}, "x/16_15.amc"), std::nullopt);
+
+  // The loader of an AMC file given alone: the same rule, an error naming the file otherwise.
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() / "motiongraph-two-asf";
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  const std::string asf = test::read_data("cmu/16/16.asf");
+  ASSERT_TRUE(write_file_atomic((folder / "07.asf").string(), asf));
+  ASSERT_TRUE(write_file_atomic((folder / "16.asf").string(), asf));
+  const std::string amc = test::read_data("cmu/16/16_35.amc");
+  ASSERT_TRUE(write_file_atomic((folder / "16_35.amc").string(), amc));
+  ASSERT_TRUE(write_file_atomic((folder / "99_01.amc").string(), amc));
+  ClipLoader loader{ClipLoadSettings{}};
+  auto clip = loader.load((folder / "16_35.amc").string());
+  ASSERT_TRUE(clip) << clip.error().to_string();
+  EXPECT_EQ(clip->skeleton_path, (folder / "16.asf").string());
+  EXPECT_EQ(clip->clip.motion.frame_count, test::load_data_clip("cmu/16/16_35.amc").motion.frame_count);
+  clip = loader.load((folder / "99_01.amc").string());
+  ASSERT_FALSE(clip);
+  EXPECT_EQ(clip.error().file, (folder / "99_01.amc").string());
+  EXPECT_NE(clip.error().message.find("none named as its subject"), std::string::npos) << clip.error().message;
+  std::filesystem::remove_all(folder);
+}
+
 TEST(ClipLoader, AnFbxFilesUnitIsKeptUnlessItMakesNoHumanFigure) {
   Clip walk = test::load_data_clip("cmu/16/16_15.amc");
   auto at30 = resample(walk.motion, 30.0);

@@ -110,17 +110,15 @@ Status add_file_specs(const fs::path& path, const ClipLoadSettings& load, std::v
 
 // The clips of a folder and the folders in it (database/folder_tree.h). An AMC file's skeleton
 // is the only .asf in its folder; of several, the one CMU's naming gives it (16_01.amc: 16.asf).
-Result<std::string> asf_in_folder(const TreeFolder& folder, const fs::path& amc, const std::string& top) {
-  const std::string where = folder.relative.empty() ? top : fmt::format("{} ({})", top, folder.relative);
-  if (folder.asfs.empty()) return Error{where, 0, "the folder holds AMC files but no .asf skeleton"};
-  if (folder.asfs.size() == 1) return folder.asfs.front().string();
-  const std::string stem = amc.stem().string();
-  for (const fs::path& asf : folder.asfs) {
-    if (stem.starts_with(asf.stem().string() + "_")) return asf.string();
-  }
-  return Error{where, 0, fmt::format("the folder holds {} .asf files and none is named as {}'s subject (as 16.asf "
-                                     "for 16_01.amc); name the clips and their skeletons in a manifest "
-                                     "(docs/manifest.md)", folder.asfs.size(), amc.filename().string())};
+Result<std::string> asf_in_folder(const TreeFolder& folder, const fs::path& amc) {
+  std::vector<std::string> asfs;
+  for (const fs::path& asf : folder.asfs) asfs.push_back(asf.string());
+  if (auto asf = asf_of_amc(asfs, amc.string())) return *asf;
+  if (asfs.empty()) return Error{folder.path.string(), 0, "the folder holds AMC files but no .asf skeleton"};
+  return Error{folder.path.string(), 0,
+               fmt::format("the folder holds {} .asf files and none is named as {}'s subject (as 16.asf for "
+                           "16_01.amc); name the clips and their skeletons in a manifest (docs/manifest.md)",
+                           asfs.size(), amc.filename().string())};
 }
 
 Status expand_folder(const std::string& input, const DatabaseSettings& settings, std::vector<ClipSpec>& specs,
@@ -133,7 +131,7 @@ Status expand_folder(const std::string& input, const DatabaseSettings& settings,
     for (const TreeClipFile& clip : folder.clips) {
       ClipLoadSettings load = default_load_settings(settings);
       if (lower_extension(clip.file.string()) == ".amc") {
-        auto asf = asf_in_folder(folder, clip.file, input);
+        auto asf = asf_in_folder(folder, clip.file);
         if (!asf) return asf.error();
         load.asf_path = *asf;
       }

@@ -38,32 +38,54 @@ struct ListedFolder {
   std::vector<fs::path> asfs;
 };
 
-// Every folder of the tree once (a link back up it is not followed again), in no set order.
-Result<std::vector<ListedFolder>> list_tree(const fs::path& top) {
+// Is `folder` the top or a folder above it (a link to it would read the tree again, or leave it)?
+bool holds(const fs::path& folder, const fs::path& top) {
+  const fs::path below = top.lexically_relative(folder);
+  return !below.empty() && *below.begin() != "..";
+}
+
+// Every folder of the tree once, taken in order of their path below the top, so that of the
+// paths reaching one folder (through links) the first in that order names it on every machine.
+// A folder below the top that cannot be listed, and a link to the top or above it, are left out
+// with a line in `left_out`; the top that cannot be listed is an error.
+Result<std::vector<ListedFolder>> list_tree(const fs::path& top, std::vector<std::string>& left_out) {
+  std::error_code ec;
+  const fs::path top_canonical = fs::canonical(top, ec);
+  if (ec) return Error{top.string(), 0, fmt::format("cannot read the folder: {}", ec.message())};
   std::vector<ListedFolder> listed;
   std::set<fs::path> seen;  // canonical paths
-  std::vector<fs::path> pending{top};
+  std::map<fs::path, fs::path> pending{{fs::path(), top}};  // below the top -> path
   while (!pending.empty()) {
-    const fs::path folder = pending.back();
-    pending.pop_back();
-    std::error_code ec;
+    const auto [relative, folder] = *pending.begin();
+    pending.erase(pending.begin());
+    const std::string below = relative.generic_string();
     const fs::path canonical = fs::canonical(folder, ec);
-    if (ec) return Error{folder.string(), 0, fmt::format("cannot read the folder: {}", ec.message())};
-    if (!seen.insert(canonical).second) continue;
-    ListedFolder here{folder, path_below(folder, top), {}, {}};
-    fs::directory_iterator it(folder, ec);
+    if (!ec && !below.empty() && holds(canonical, top_canonical)) {
+      left_out.push_back(fmt::format("{}: {} not read: it is the folder itself or one above it (a link)",
+                                     top.string(), below));
+      continue;
+    }
+    if (!ec && !seen.insert(canonical).second) continue;
+    ListedFolder here{folder, below, {}, {}};
+    fs::directory_iterator it;
+    if (!ec) it = fs::directory_iterator(folder, ec);
     for (; !ec && it != fs::directory_iterator(); it.increment(ec)) {
       const fs::path& path = it->path();
       if (is_hidden(path)) continue;
       std::error_code kind_ec;  // a broken link, or one the user may not follow: neither file nor folder
       if (it->is_directory(kind_ec)) {
-        pending.push_back(path);
+        pending.emplace(relative / path.filename(), path);
       } else if (it->is_regular_file(kind_ec)) {
         if (is_clip_file(path.string())) here.clips.push_back(path);
         if (lower_extension(path.string()) == ".asf") here.asfs.push_back(path);
       }
     }
-    if (ec) return Error{folder.string(), 0, fmt::format("cannot list the folder: {}", ec.message())};
+    if (ec) {
+      if (below.empty()) return Error{top.string(), 0, fmt::format("cannot list the folder: {}", ec.message())};
+      left_out.push_back(fmt::format("{}: {} not read: {}", top.string(), below, ec.message()));
+      ec.clear();
+      continue;
+    }
     listed.push_back(std::move(here));
   }
   return listed;
@@ -77,7 +99,8 @@ std::string path_below(const fs::path& file, const fs::path& top) {
 }
 
 Result<FolderTree> read_folder_tree(const std::string& top) {
-  auto listed = list_tree(fs::path(top));
+  FolderTree tree;
+  auto listed = list_tree(fs::path(top), tree.left_out);
   if (!listed) return listed.error();
   // By path, so a library is the same on every machine and file system.
   const auto by_name = [](const fs::path& a, const fs::path& b) {
@@ -87,15 +110,12 @@ Result<FolderTree> read_folder_tree(const std::string& top) {
     std::sort(folder.clips.begin(), folder.clips.end(), by_name);
     std::sort(folder.asfs.begin(), folder.asfs.end(), by_name);
   }
-  std::sort(listed->begin(), listed->end(),
-            [](const ListedFolder& a, const ListedFolder& b) { return a.relative < b.relative; });
 
   // The files of each name, in the tree's order: (folder, file).
   std::map<std::string, std::vector<std::pair<size_t, fs::path>>> by_stem;
   for (size_t f = 0; f < listed->size(); ++f) {
     for (const fs::path& clip : (*listed)[f].clips) by_stem[clip.stem().string()].emplace_back(f, clip);
   }
-  FolderTree tree;
   std::map<fs::path, std::string> read;  // file -> clip name
   for (const auto& [stem, files] : by_stem) {
     int best = 5;

@@ -98,10 +98,21 @@ Result<std::string> ClipLoader::find_asf_for(const std::string& amc_path) const 
       found.push_back(entry.path().string());
     }
   }
-  if (found.size() == 1) return found.front();
+  std::sort(found.begin(), found.end());
+  if (auto asf = asf_of_amc(found, amc_path)) return *asf;
   return Error{amc_path, 0,
                found.empty() ? "no skeleton: give --asf (no .asf file beside the AMC)"
-                             : "several .asf files beside the AMC: choose one with --asf"};
+                             : "several .asf files beside the AMC and none named as its subject (16.asf for "
+                               "16_01.amc): choose one with --asf"};
+}
+
+std::optional<std::string> asf_of_amc(const std::vector<std::string>& asfs, std::string_view amc_path) {
+  if (asfs.size() == 1) return asfs.front();
+  const std::string amc_stem = fs::path(amc_path).stem().string();
+  for (const std::string& asf : asfs) {
+    if (amc_stem.starts_with(fs::path(asf).stem().string() + "_")) return asf;
+  }
+  return std::nullopt;
 }
 
 Result<std::shared_ptr<const AcclaimRig>> ClipLoader::load_asf(const std::string& path) {

@@ -80,6 +80,10 @@ bool is_scene_file(std::string_view path);
 bool is_gltf_file(std::string_view path);
 bool is_fbx_file(std::string_view path);
 
+// The skeleton of an AMC file among the .asf files of its folder: the only one, or of several the
+// one CMU's naming gives it (16.asf for 16_01.amc); none when there is none or none is so named.
+std::optional<std::string> asf_of_amc(const std::vector<std::string>& asfs, std::string_view amc_path);
+
 // A scene file's clip names (its animations that move a skeleton), without sampling them.
 Result<std::vector<std::string>> animation_names(const std::string& path);
 
