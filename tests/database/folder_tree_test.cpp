@@ -18,12 +18,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The tree reads names only: its files are empty.
+// The tree reads names, and the bytes of files of one size: each file holds its own path unless
+// told otherwise.
 class Tree {
  public:
   explicit Tree(const std::string& name) : folder_("tree-" + name) {}
   const fs::path& top() const { return folder_.path(); }
-  void add(const std::string& relative) const { folder_.write(relative, "\n"); }
+  void add(const std::string& relative) const { folder_.write(relative, relative + "\n"); }
+  void add(const std::string& relative, const std::string& text) const { folder_.write(relative, text); }
 
  private:
   test::TempFolder folder_;
@@ -91,6 +93,34 @@ TEST(FolderTree, OneTakeInSeveralFormatsIsReadInTheCapturesFormatWhereverItIs) {
   EXPECT_TRUE(said(*read, "glb/16_05.glb left out: fbx/16_05.fbx holds"));
   EXPECT_TRUE(said(*read, "glb/16_05.gltf left out: fbx/16_05.fbx holds"));
   for (const std::string& line : read->left_out) EXPECT_EQ(line.rfind(tree.top().string() + ": ", 0), 0u) << line;
+}
+
+TEST(FolderTree, ACopyOfAFileIsReadOnceWhateverItsName) {
+  Tree tree("copies");
+  tree.add("a/walk.bvh", "motion 1\n");
+  tree.add("a/walk (1).bvh", "motion 1\n");  // first by name: the shorter path is read
+  tree.add("b/walk.bvh", "motion 1\n");
+  tree.add("c/walk.bvh", "motion 2\n");  // the same size, another motion
+  // An AMC file is its skeleton's motion: the same bytes on another skeleton are another take.
+  tree.add("s1/16.asf", "skeleton A\n");
+  tree.add("s1/16_01.amc", "frames\n");
+  tree.add("s2/16.asf", "skeleton B\n");
+  tree.add("s2/16_01.amc", "frames\n");
+  tree.add("s3/16.asf", "skeleton A\n");
+  tree.add("s3/16_01.amc", "frames\n");
+  // A .gltf's buffers may be files beside it: not judged by its own bytes.
+  tree.add("g1/set.gltf", "{}\n");
+  tree.add("g2/set.gltf", "{}\n");
+  auto read = read_folder_tree(tree.top().string());
+  ASSERT_TRUE(read) << read.error().to_string();
+  const std::map<std::string, std::string> expected = {{"a/walk.bvh", "a/walk"},     {"c/walk.bvh", "c/walk"},
+                                                       {"s1/16_01.amc", "s1/16_01"}, {"s2/16_01.amc", "s2/16_01"},
+                                                       {"g1/set.gltf", "g1/set"},    {"g2/set.gltf", "g2/set"}};
+  EXPECT_EQ(names_by_file(*read, tree.top()), expected);
+  ASSERT_EQ(read->left_out.size(), 3u);
+  EXPECT_TRUE(said(*read, "a/walk (1).bvh left out: the same bytes as a/walk.bvh (a copy)"));
+  EXPECT_TRUE(said(*read, "b/walk.bvh left out: the same bytes as a/walk.bvh (a copy)"));
+  EXPECT_TRUE(said(*read, "s3/16_01.amc left out: the same bytes as s1/16_01.amc (a copy)"));
 }
 
 TEST(FolderTree, EveryVisibleClipFileIsReadOrLeftOutOnce) {

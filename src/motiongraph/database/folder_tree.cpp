@@ -1,18 +1,27 @@
 #include "motiongraph/database/folder_tree.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <map>
+#include <optional>
 #include <set>
+#include <tuple>
 #include <utility>
 
 #include <fmt/format.h>
 
 #include "motiongraph/core/file_extension.h"
+#include "motiongraph/io/file.h"
 #include "motiongraph/motion/clip_loader.h"
 
 namespace mg {
 
 namespace fs = std::filesystem;
+
+std::string path_below(const fs::path& file, const fs::path& top) {
+  const std::string below = file.lexically_relative(top).generic_string();
+  return below == "." ? "" : below;
+}
 
 namespace {
 
@@ -91,12 +100,63 @@ Result<std::vector<ListedFolder>> list_tree(const fs::path& top, std::vector<std
   return listed;
 }
 
-}  // namespace
-
-std::string path_below(const fs::path& file, const fs::path& top) {
-  const std::string below = file.lexically_relative(top).generic_string();
-  return below == "." ? "" : below;
+// A file's bytes, with the skeleton an AMC file is read on (its meaning); none when it cannot be
+// read, an AMC's skeleton is not settled, or the file may name others (a .gltf's buffers).
+std::optional<std::string> identity(const fs::path& file, const ListedFolder& folder) {
+  const std::string ext = lower_extension(file.string());
+  if (ext == ".gltf") return std::nullopt;
+  auto bytes = read_text_file(file.string());
+  if (!bytes) return std::nullopt;
+  if (ext != ".amc") return std::move(*bytes);
+  std::vector<std::string> asfs;
+  for (const fs::path& asf : folder.asfs) asfs.push_back(asf.string());
+  const auto asf = asf_of_amc(asfs, file.string());
+  if (!asf) return std::nullopt;
+  auto skeleton = read_text_file(*asf);
+  if (!skeleton) return std::nullopt;
+  return fmt::format("{}\n{}\n{}", skeleton->size(), *skeleton, *bytes);
 }
+
+// A copy of a file (the same bytes, in another folder or under another name: a backup, "walk
+// (1).bvh") is the same take: the one of the shortest path below the top is read (then the first
+// in the tree's order), the others left out.
+void leave_out_copies(std::vector<ListedFolder>& listed, const std::string& top, std::vector<std::string>& left_out) {
+  std::map<std::uintmax_t, std::vector<std::pair<size_t, fs::path>>> by_size;
+  for (size_t f = 0; f < listed.size(); ++f) {
+    for (const fs::path& clip : listed[f].clips) {
+      std::error_code ec;
+      const std::uintmax_t size = fs::file_size(clip, ec);
+      if (!ec) by_size[size].emplace_back(f, clip);
+    }
+  }
+  std::set<fs::path> copies;
+  for (auto& [size, files] : by_size) {
+    if (files.size() < 2) continue;
+    std::sort(files.begin(), files.end(), [&](const auto& a, const auto& b) {
+      return std::make_tuple(path_below(a.second, top).size(), a.first, a.second) <
+             std::make_tuple(path_below(b.second, top).size(), b.first, b.second);
+    });
+    std::vector<std::pair<fs::path, std::string>> firsts;  // a file of each content met, and its identity
+    for (const auto& [f, path] : files) {
+      auto id = identity(path, listed[f]);
+      if (!id) continue;
+      const auto same =
+          std::find_if(firsts.begin(), firsts.end(), [&](const auto& first) { return first.second == *id; });
+      if (same == firsts.end()) {
+        firsts.emplace_back(path, std::move(*id));
+        continue;
+      }
+      copies.insert(path);
+      left_out.push_back(fmt::format("{}: {} left out: the same bytes as {} (a copy)", top, path_below(path, top),
+                                     path_below(same->first, top)));
+    }
+  }
+  for (ListedFolder& folder : listed) {
+    std::erase_if(folder.clips, [&](const fs::path& clip) { return copies.count(clip) > 0; });
+  }
+}
+
+}  // namespace
 
 Result<FolderTree> read_folder_tree(const std::string& top) {
   FolderTree tree;
@@ -110,6 +170,8 @@ Result<FolderTree> read_folder_tree(const std::string& top) {
     std::sort(folder.clips.begin(), folder.clips.end(), by_name);
     std::sort(folder.asfs.begin(), folder.asfs.end(), by_name);
   }
+
+  leave_out_copies(*listed, top, tree.left_out);
 
   // The files of each name, in the tree's order: (folder, file).
   std::map<std::string, std::vector<std::pair<size_t, fs::path>>> by_stem;

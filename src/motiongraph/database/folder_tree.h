@@ -10,6 +10,10 @@
 // a remark. Folders come in order of their path below the top (folder by folder), the files of
 // each by name, so a library is the same on every machine.
 //
+// A copy of a file (the same bytes; an AMC file's with its skeleton's: a backup folder, "walk
+// (1).bvh") is the same take: the one of the shortest path below the top is read, then the first
+// in the tree's order, and the others left out with a remark.
+//
 // One take saved in several formats (x.bvh and the x.glb converted from it, CMU's x.amc beside
 // its x.bvh, in one folder or in two) would be the same frames twice, joined by transitions of
 // distance 0: of the files of one name, those of the capture's own format are read (.amc, .bvh,
