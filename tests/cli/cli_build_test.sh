@@ -381,6 +381,18 @@ grep "^$data/cmu/16: library of 15 clips, 1235 frames at 30 fps (41.2 s)" "$work
 grep "^$data/cmu: library of 15 clips, 1235 frames at 30 fps (41.2 s)" "$work/tree.txt" >/dev/null \
   && diff <(grep "^  16_" "$work/lib.txt") <(grep "^  16_" "$work/tree.txt") \
   || { echo "FAIL: info on a folder of folders"; cat "$work/tree.txt"; exit 1; }
+# data/bvh holds two converters' rigs that cannot be read together (Daz's of 07_01 and 07_12,
+# CMU's of the others): the folder is read on the rigs of the most frames, with a warning.
+"$bin" info --json "$data/bvh" >"$work/bvh.json" 2>"$work/bvh.err"
+python3 - "$work/bvh.json" "$data/bvh" <<'PY' || { echo "FAIL: a folder of two rigs"; cat "$work/bvh.err"; exit 1; }
+import json, sys
+lib = json.load(open(sys.argv[1]))
+assert [c["name"] for c in lib["clips"]] == ["111_36", "131_01", "16_01"], lib["clips"]
+left = lib["reading"]["other_rigs_left_out"]
+assert [l["files"] for l in left] == [[sys.argv[2] + "/07_01.bvh", sys.argv[2] + "/07_12.bvh"]], left
+assert "share no joint" in left[0]["reason"], left
+assert any(w.startswith("2 files left out, their rig cannot be read with the library's") for w in lib["warnings"]), lib
+PY
 "$bin" info --json "$data/cmu/16" >"$work/lib.json"
 "$bin" info --json --fps 120 "$data/cmu/16" >"$work/lib120.json"
 "$bin" info --json "$data/cmu/16/16.asf" "$data/cmu/16/16_15.amc" >"$work/file15.json"

@@ -1480,5 +1480,45 @@ TEST(DatabaseLoader, AFolderOfFoldersIsReadAsOneLibraryEachAmcWithItsSubjectsSke
       << db.error().message;
 }
 
+// A folder of two converters' rigs that share no joint (the Daz rig of 07_01, CMU's of 111_36
+// and, under other names, 16_01): the rigs of the most frames are read, the other's files left
+// out with a warning, though the other rig has the most frames of any one rig.
+TEST(DatabaseLoader, AFoldersFilesOfARigThatCannotJoinTheOthersAreLeftOut) {
+  TempFolder folder("other-rigs");
+  const std::string daz = test::read_data("bvh/07_01.bvh");
+  std::vector<std::string> daz_files;
+  for (int copy = 0; copy < 5; ++copy) {
+    // Copies but for trailing blank lines (the same bytes would be read once): 5 x 79 frames.
+    daz_files.push_back(folder.write(fmt::format("07_0{}.bvh", copy), daz + std::string(copy, '\n')));
+  }
+  folder.write("111_36.bvh", test::read_data("bvh/111_36.bvh"));  // 367 frames
+  folder.write("16_01.bvh", test::read_data("bvh/16_01.bvh"));    // 322
+  DatabaseLoadNotes notes;
+  auto db = load_database({folder.path().string()}, cmu_settings(), &notes);
+  ASSERT_TRUE(db) << db.error().to_string();
+  ASSERT_EQ(db->clips.size(), 2u);
+  EXPECT_EQ(db->clips[0].name, "111_36");
+  EXPECT_EQ(db->clips[1].name, "16_01");
+  ASSERT_EQ(notes.other_rigs.size(), 1u);
+  EXPECT_EQ(notes.other_rigs[0].files, daz_files);
+  EXPECT_NE(notes.other_rigs[0].reason.find("they share no joint"), std::string::npos) << notes.other_rigs[0].reason;
+  const std::vector<std::string> warnings = load_warnings(notes);
+  EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(), [](const std::string& line) {
+    return line.starts_with("5 files left out, their rig cannot be read with the library's");
+  })) << fmt::format("{}", fmt::join(warnings, "\n"));
+  // 16_01 is read on 111_36's names, as when the folder holds those two alone.
+  EXPECT_EQ(db->skeletons[static_cast<size_t>(db->clips[1].skeleton)].joint(0).name, "Hips");
+
+  // A file given itself is read or the library is not: an error, as for files of a manifest.
+  auto named = load_database({folder.path().string(), test::data_path("bvh/07_12.bvh")}, cmu_settings());
+  ASSERT_FALSE(named);
+  EXPECT_NE(named.error().message.find("they share no joint"), std::string::npos) << named.error().message;
+  std::string manifest_text;
+  for (const char* file : {"07_00.bvh", "111_36.bvh"}) manifest_text += fmt::format("[[clip]]\nfile = \"{}\"\n", file);
+  auto manifest = load_database({folder.write("lib.toml", manifest_text)}, cmu_settings());
+  ASSERT_FALSE(manifest);
+  EXPECT_NE(manifest.error().message.find("they share no joint"), std::string::npos) << manifest.error().message;
+}
+
 }  // namespace
 }  // namespace mg

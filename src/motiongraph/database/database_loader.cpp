@@ -51,6 +51,7 @@ struct ClipSpec {
   std::vector<std::string> tags;
   std::vector<ManifestRange> ranges;
   std::string manifest;            // empty when the clip was not named by a manifest
+  bool in_folder = false;          // found in a folder given (not named itself): left out when its rig cannot join
   int line = 0;                    // of its [[clip]]
   int frames_line = 0;
 
@@ -139,7 +140,10 @@ Status expand_folder(const std::string& input, const DatabaseSettings& settings,
       if (auto s = add_file_specs(clip.file, load, specs, true); !s) return s;
       // A name taken by a file of another folder: this one's is the folder's and the file's.
       const std::string stem = clip.file.stem().string();
-      for (size_t i = first; i < specs.size(); ++i) specs[i].name = clip.name + specs[i].name.substr(stem.size());
+      for (size_t i = first; i < specs.size(); ++i) {
+        specs[i].name = clip.name + specs[i].name.substr(stem.size());
+        specs[i].in_folder = true;
+      }
     }
   }
   if (specs.size() == before) return Error{input, 0, "the folder holds no clip (its glTF and FBX files have no animation)"};
@@ -479,37 +483,99 @@ Status reroot_database(MotionDatabase& db, const std::string& root, std::vector<
 }
 
 // The first root name that is not the first skeleton's.
-std::string other_root(const MotionDatabase& db) {
-  for (const Skeleton& skeleton : db.skeletons) {
-    if (skeleton.joint(0).name != db.skeletons.front().joint(0).name) return skeleton.joint(0).name;
+std::string other_root(std::span<const Skeleton> skeletons) {
+  for (const Skeleton& skeleton : skeletons) {
+    if (skeleton.joint(0).name != skeletons.front().joint(0).name) return skeleton.joint(0).name;
   }
-  return db.skeletons.front().joint(0).name;
+  return skeletons.front().joint(0).name;
 }
 
 // Why the joints every skeleton has cannot hold the library (nullopt when they can): they must
 // be at least two thirds of the smallest skeleton's joints, both ankles among them.
-std::optional<std::string> common_joints_fall_short(const MotionDatabase& db, const std::vector<std::string>& common) {
-  size_t smallest = static_cast<size_t>(db.skeletons.front().joint_count());
-  for (const Skeleton& skeleton : db.skeletons) smallest = std::min(smallest, static_cast<size_t>(skeleton.joint_count()));
+std::optional<std::string> common_joints_fall_short(std::span<const Skeleton> skeletons,
+                                                    const FootJointNames& foot_names,
+                                                    const std::vector<std::string>& common) {
+  size_t smallest = static_cast<size_t>(skeletons.front().joint_count());
+  for (const Skeleton& skeleton : skeletons) smallest = std::min(smallest, static_cast<size_t>(skeleton.joint_count()));
   if (common.empty()) {
     return fmt::format("they share no joint: joints match by name and their parent's name from the root down, and the "
                        "roots are '{}' and '{}'",
-                       db.skeletons.front().joint(0).name, other_root(db));
+                       skeletons.front().joint(0).name, other_root(skeletons));
   }
   if (3 * common.size() < 2 * smallest) {
     return fmt::format("they share {} joint{} (by name, with the same parent's name), fewer than two thirds of the "
                        "smallest skeleton's {}",
                        common.size(), common.size() == 1 ? "" : "s", smallest);
   }
-  auto feet = find_foot_joints(db.skeletons.front(), db.foot_names);
+  auto feet = find_foot_joints(skeletons.front(), foot_names);
   if (!feet) return std::nullopt;  // the feet are missing anyway (a warning later), not for want of joints
   for (const int ankle : {feet->left.ankle, feet->right.ankle}) {
-    const std::string& name = db.skeletons.front().joint(ankle).name;
+    const std::string& name = skeletons.front().joint(ankle).name;
     if (std::find(common.begin(), common.end(), name) == common.end()) {
       return fmt::format("the ankle '{}' is not among the {} joints they share", name, common.size());
     }
   }
   return std::nullopt;
+}
+
+// The rigs of the library that can be read together, of the most frames; one flag a skeleton.
+// Skeletons of the same joints (names and parents) are one rig. Each rig seeds a family, taking
+// the others by frames: one that is the seed's hierarchy under other names (renamed as it when
+// read first), or shares enough joints with those taken, or a root with them (rerooted later).
+std::vector<bool> largest_rig_family(const MotionDatabase& db) {
+  // The rigs: their skeleton's joint names and parents' names, their skeletons, their frames.
+  std::map<std::vector<std::pair<std::string, std::string>>, size_t> rig_of;
+  std::vector<size_t> rig_skeleton;  // a skeleton of each rig
+  std::vector<long> rig_frames;
+  std::vector<size_t> rig(db.skeletons.size());
+  for (size_t s = 0; s < db.skeletons.size(); ++s) {
+    std::vector<std::pair<std::string, std::string>> joints;
+    for (const JointDef& joint : db.skeletons[s].joints()) {
+      joints.emplace_back(joint.name, joint.parent < 0 ? "" : db.skeletons[s].joint(joint.parent).name);
+    }
+    const auto [it, added] = rig_of.emplace(std::move(joints), rig_skeleton.size());
+    if (added) {
+      rig_skeleton.push_back(s);
+      rig_frames.push_back(0);
+    }
+    rig[s] = it->second;
+  }
+  for (const DatabaseClip& clip : db.clips) rig_frames[rig[static_cast<size_t>(clip.skeleton)]] += clip.frame_count;
+  std::vector<size_t> order(rig_skeleton.size());
+  for (size_t r = 0; r < order.size(); ++r) order[r] = r;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return rig_frames[a] > rig_frames[b]; });
+
+  std::vector<bool> best;
+  long best_frames = -1;
+  for (const size_t seed : order) {
+    std::vector<bool> in(rig_skeleton.size(), false);
+    in[seed] = true;
+    long frames = rig_frames[seed];
+    std::vector<Skeleton> taken{db.skeletons[rig_skeleton[seed]]};
+    for (const size_t r : order) {
+      if (in[r]) continue;
+      const Skeleton& skeleton = db.skeletons[rig_skeleton[r]];
+      if (!hierarchy_mismatch(taken.front(), skeleton)) {
+        taken.push_back(taken.front());  // read on its names
+      } else {
+        taken.push_back(skeleton);
+        const std::vector<std::string> common = common_joints(taken);
+        if (common_joints_fall_short(taken, db.foot_names, common) && (!common.empty() || shared_root(taken).empty())) {
+          taken.pop_back();
+          continue;
+        }
+      }
+      in[r] = true;
+      frames += rig_frames[r];
+    }
+    if (frames > best_frames) {
+      best = std::move(in);
+      best_frames = frames;
+    }
+  }
+  std::vector<bool> out(db.skeletons.size());
+  for (size_t s = 0; s < out.size(); ++s) out[s] = best[rig[s]];
+  return out;
 }
 
 // Steps 3-5 of load_database: the clips read, back to back, on `joints` when given (else as
@@ -809,8 +875,46 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
       if (auto s = reroot_database(db, root, rerooted); !s) return s.error();
       common = common_joints(db.skeletons);
     }
-    if (auto short_by = common_joints_fall_short(db, common)) {
-      return Error{other_joints->file, other_joints->line, other_joints->message + " (" + *short_by + ")"};
+    if (auto short_by = common_joints_fall_short(db.skeletons, db.foot_names, common)) {
+      // Files a folder holds whose rig cannot join the others' (another converter's, another
+      // studio's): the library is the rigs that can, of the most frames; those left out.
+      const std::vector<bool> family = largest_rig_family(db);
+      std::set<std::string> out_files;
+      for (const DatabaseClip& clip : db.clips) {
+        if (!family[static_cast<size_t>(clip.skeleton)]) out_files.insert(clip.source);
+      }
+      const bool all_in_folders = std::all_of(specs.begin(), specs.end(), [&](const ClipSpec& spec) {
+        return spec.in_folder || out_files.count(spec.path) == 0;
+      });
+      if (out_files.empty() || !all_in_folders || !joints.empty()) {
+        return Error{other_joints->file, other_joints->line, other_joints->message + " (" + *short_by + ")"};
+      }
+      DatabaseLoadNotes::OtherRigs left_out;
+      // Why, of the first left out against the first kept.
+      const auto first_of = [&](bool kept) {
+        for (const DatabaseClip& clip : db.clips) {
+          if (family[static_cast<size_t>(clip.skeleton)] == kept) return static_cast<size_t>(clip.skeleton);
+        }
+        return size_t{0};
+      };
+      const Skeleton pair[] = {db.skeletons[first_of(true)], db.skeletons[first_of(false)]};
+      const auto pair_short = common_joints_fall_short(pair, db.foot_names, common_joints(pair));
+      left_out.reason = fmt::format("{} against {}: {}{}", db.skeleton_names[first_of(false)],
+                                    db.skeleton_names[first_of(true)],
+                                    topology_difference(pair[0], pair[1]).value_or("other joints"),
+                                    pair_short ? fmt::format(" ({})", *pair_short) : "");
+      std::vector<ClipSpec> kept;
+      for (ClipSpec& spec : specs) {
+        if (out_files.count(spec.path) == 0) {
+          kept.push_back(std::move(spec));
+        } else if (left_out.files.empty() || left_out.files.back() != spec.path) {
+          left_out.files.push_back(spec.path);
+        }
+      }
+      if (notes != nullptr) *notes = DatabaseLoadNotes{};
+      auto again = load_clips(std::move(kept), settings, wide, cmu, notes, joints);
+      if (again && notes != nullptr) notes->other_rigs.insert(notes->other_rigs.begin(), std::move(left_out));
+      return again;
     }
     std::vector<DatabaseLoadNotes::DroppedJoints> dropped;
     for (size_t s = 0; s < db.skeletons.size(); ++s) {
@@ -998,7 +1102,15 @@ std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes) {
                                 notes.standing_speed_mps));
   }
   for (std::string& line : clip_doubt_lines(notes.clip_doubts)) lines.push_back(std::move(line));
-  lines.insert(lines.begin(), notes.name_clashes.begin(), notes.name_clashes.end());
+  std::vector<std::string> first = notes.name_clashes;
+  for (const auto& o : notes.other_rigs) {
+    first.push_back(fmt::format("{} file{} left out, {} rig cannot be read with the library's (the rigs that can, of "
+                                "the most frames): {}; {}; a manifest, or the files given one by one, says which to "
+                                "read",
+                                o.files.size(), o.files.size() == 1 ? "" : "s", o.files.size() == 1 ? "its" : "their",
+                                listed(o.files, 4), o.reason));
+  }
+  lines.insert(lines.begin(), first.begin(), first.end());
   return lines;
 }
 

@@ -209,6 +209,13 @@ struct DatabaseLoadNotes {
     std::vector<std::string> clips;
   };
   std::vector<VanishedTag> vanished_tags;
+  // Files a folder holds whose rig cannot be read with the library's (the rigs that can, of the
+  // most frames): the files, in order, and why (the error a library of them all would give).
+  struct OtherRigs {
+    std::vector<std::string> files;
+    std::string reason;
+  };
+  std::vector<OtherRigs> other_rigs;
   // Files a folder left out (another file holds a clip of the same name: one take in two
   // formats), and clips renamed because their name was taken, one line each.
   std::vector<std::string> name_clashes;

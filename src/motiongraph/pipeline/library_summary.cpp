@@ -114,6 +114,8 @@ nlohmann::json reading_json(const DatabaseLoadNotes& notes) {
   for (const auto& t : notes.standing_tags) {
     standing.push_back({{"clip", t.clip}, {"tag", t.tag}, {"tagged_frames", t.tagged_frames}, {"frames", t.frames}});
   }
+  nlohmann::json other_rigs = nlohmann::json::array();
+  for (const auto& o : notes.other_rigs) other_rigs.push_back({{"files", o.files}, {"reason", o.reason}});
   return {{"units", std::move(units)},
           {"up_axes", std::move(up_axes)},
           {"travel_recovered", std::move(travel)},
@@ -121,6 +123,7 @@ nlohmann::json reading_json(const DatabaseLoadNotes& notes) {
           {"glitched_ends", std::move(glitched)},
           {"glitch_splits", std::move(splits)},
           {"rigs", std::move(rigs)},
+          {"other_rigs_left_out", std::move(other_rigs)},
           {"loops", std::move(loops)},
           {"standing_tags", std::move(standing)}};
 }
