@@ -1263,6 +1263,92 @@ TEST(DatabaseLoader, AClipWithoutFramesIsAnErrorNamingTheFile) {
   EXPECT_EQ(db.error().message, "the clip has no frames (a skeleton without motion)");
 }
 
+// The rigs kept are read as loading reads them, in the library's order: a variant of Daz's rig
+// first by name (an extra joint), Daz's own, Daz's under other names, and CMU's. Renamed as the
+// first file's rig only, Daz's under other names cannot join the first: of the rigs that read
+// together the Daz two are the most frames.
+TEST(DatabaseLoader, TheRigsKeptReadTogetherInTheLibrarysOrder) {
+  TempFolder folder("rig-order");
+  const std::string daz = test::read_data("bvh/07_01.bvh");
+  const size_t motion = daz.find("MOTION");
+  const size_t hierarchy_end = daz.rfind('}', motion);
+  std::string extra = daz.substr(0, hierarchy_end) +
+                      "  JOINT prop\n  {\n    OFFSET 0 0 10\n    CHANNELS 3 Zrotation Xrotation Yrotation\n"
+                      "    End Site\n    {\n      OFFSET 0 5 0\n    }\n  }\n" +
+                      daz.substr(hierarchy_end, daz.find('\n', daz.find("Frame Time:")) + 1 - hierarchy_end);
+  std::istringstream frames(daz.substr(daz.find('\n', daz.find("Frame Time:")) + 1));
+  for (std::string line; std::getline(frames, line);) {
+    if (!line.empty()) extra += line + " 0 0 0\n";
+  }
+  folder.write("a_extra.bvh", extra);
+  folder.write("b_daz.bvh", daz);
+  std::string renamed = daz;
+  for (const char* joint : {"hip", "abdomen", "chest", "neck", "head", "leftEye", "rightEye"}) {
+    renamed = test::replace_once(renamed, fmt::format("{}\n", joint), fmt::format("{}_z\n", joint));
+  }
+  folder.write("c_renamed.bvh", renamed);
+  // CMU's rig, 100 frames (fewer than the Daz two's 158).
+  const std::string cmu = test::read_data("bvh/16_01.bvh");
+  const size_t frames_at = cmu.find("Frames:");
+  size_t end = cmu.find('\n', cmu.find("Frame Time:")) + 1;
+  for (int f = 0; f < 100; ++f) end = cmu.find('\n', end) + 1;
+  folder.write("d_cmu.bvh", cmu.substr(0, frames_at) + "Frames: 100" +
+                                cmu.substr(cmu.find('\n', frames_at), end - cmu.find('\n', frames_at)));
+  DatabaseLoadNotes notes;
+  auto db = load_database({folder.path().string()}, cmu_settings(), &notes);
+  ASSERT_TRUE(db) << db.error().to_string();
+  std::vector<std::string> names;
+  for (const DatabaseClip& clip : db->clips) names.push_back(clip.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"a_extra", "b_daz"}));
+  ASSERT_EQ(notes.other_rigs.size(), 1u);
+  EXPECT_EQ(notes.other_rigs[0].files, (std::vector<std::string>{(folder.path() / "c_renamed.bvh").string(),
+                                                                   (folder.path() / "d_cmu.bvh").string()}));
+}
+
+// A folder's file of a pose (no frame, or one: a T-pose export) is passed over, noted; the
+// library is its other files, as without it.
+TEST(DatabaseLoader, AFoldersPoseFilesArePassedOver) {
+  TempFolder folder("poses");
+  const std::string text = test::read_data("bvh/07_01.bvh");
+  const std::string hierarchy = text.substr(0, text.find("MOTION"));
+  const size_t first_line = text.find('\n', text.find("Frame Time:")) + 1;
+  const std::string one_frame = text.substr(first_line, text.find('\n', first_line) + 1 - first_line);
+  const std::string still = folder.write("00_still.bvh", hierarchy + "MOTION\nFrames: 0\nFrame Time: 0.008333\n");
+  const std::string tpose =
+      folder.write("00_tpose.bvh", hierarchy + "MOTION\nFrames: 1\nFrame Time: 0.008333\n" + one_frame);
+  folder.write("07_01.bvh", text);
+  DatabaseLoadNotes notes;
+  auto db = load_database({folder.path().string()}, cmu_settings(), &notes);
+  ASSERT_TRUE(db) << db.error().to_string();
+  ASSERT_EQ(db->clips.size(), 1u);
+  EXPECT_EQ(db->clips[0].name, "07_01");
+  ASSERT_EQ(notes.poses.size(), 2u);
+  EXPECT_EQ(notes.poses[0].file, still);
+  EXPECT_EQ(notes.poses[0].frames, 0);
+  EXPECT_EQ(notes.poses[1].file, tpose);
+  EXPECT_EQ(notes.poses[1].frames, 1);
+  EXPECT_DOUBLE_EQ(notes.poses[1].fps, 120.0);
+  EXPECT_EQ(load_warnings(notes).front(),
+            fmt::format("2 files passed over, a pose rather than a motion (under 2 frames at the library's rate): {} "
+                        "(0 frames at 120 fps), {} (1 frame at 120 fps)",
+                        still, tpose));
+  const auto alone = load_database({test::data_path("bvh/07_01.bvh")}, cmu_settings());
+  ASSERT_TRUE(alone);
+  EXPECT_EQ(db->clips[0].frame_count, alone->clips[0].frame_count);
+  EXPECT_EQ(db->skeletons[0].joint_count(), alone->skeletons[0].joint_count());
+
+  // Given themselves, errors; a folder of poses only, an error naming its first file.
+  auto named = load_database({tpose, test::data_path("bvh/07_01.bvh")}, cmu_settings());
+  ASSERT_FALSE(named);
+  EXPECT_EQ(named.error().file, tpose);
+  fs::remove(folder.path() / "07_01.bvh");
+  auto poses = load_database({folder.path().string()}, cmu_settings());
+  ASSERT_FALSE(poses);
+  EXPECT_EQ(poses.error().file, still);
+  EXPECT_NE(poses.error().message.find("every clip file of the folder holds a pose"), std::string::npos)
+      << poses.error().message;
+}
+
 TEST(DatabaseLoader, BadInputsAndSettings) {
   DatabaseSettings settings = cmu_settings();
   EXPECT_FALSE(load_database({}, settings));

@@ -518,20 +518,38 @@ std::optional<std::string> common_joints_fall_short(std::span<const Skeleton> sk
   return std::nullopt;
 }
 
-// The rigs of the library that can be read together, of the most frames; one flag a skeleton.
+// Whether skeletons as read, in the library's order, are read together as loading reads them:
+// each of the first's hierarchy under other names on the first's names (rename_as_first), then
+// enough joints shared, or a root every one has (reroot_database).
+bool read_together(std::span<const Skeleton* const> in_order, const FootJointNames& foot_names) {
+  std::vector<Skeleton> as_library;
+  for (const Skeleton* skeleton : in_order) {
+    const Skeleton& first = *in_order.front();
+    bool all_known = true;
+    for (int j = 0; all_known && j < skeleton->joint_count(); ++j) {
+      all_known = first.find(skeleton->joint(j).name).has_value();
+    }
+    as_library.push_back(!all_known && !hierarchy_mismatch(first, *skeleton) ? first : *skeleton);
+  }
+  const std::vector<std::string> common = common_joints(as_library);
+  return !common_joints_fall_short(as_library, foot_names, common) ||
+         (common.empty() && !shared_root(as_library).empty());
+}
+
+// The rigs of the library that can be read together, of the most frames, given the skeletons as
+// read (before any took the first's names), in the library's order; one flag a skeleton.
 // Skeletons of the same joints (names and parents) are one rig. Each rig seeds a family, taking
-// the others by frames: one that is the seed's hierarchy under other names (renamed as it when
-// read first), or shares enough joints with those taken, or a root with them (rerooted later).
-std::vector<bool> largest_rig_family(const MotionDatabase& db) {
-  // The rigs: their skeleton's joint names and parents' names, their skeletons, their frames.
+// the others by frames when the family, read in the library's order, still reads together.
+std::vector<bool> largest_rig_family(const MotionDatabase& db, const std::vector<Skeleton>& read_skeletons) {
+  // The rigs: their joint names and parents' names, their first skeleton, their frames.
   std::map<std::vector<std::pair<std::string, std::string>>, size_t> rig_of;
-  std::vector<size_t> rig_skeleton;  // a skeleton of each rig
+  std::vector<size_t> rig_skeleton;  // the first skeleton of each rig, in the library's order
   std::vector<long> rig_frames;
-  std::vector<size_t> rig(db.skeletons.size());
-  for (size_t s = 0; s < db.skeletons.size(); ++s) {
+  std::vector<size_t> rig(read_skeletons.size());
+  for (size_t s = 0; s < read_skeletons.size(); ++s) {
     std::vector<std::pair<std::string, std::string>> joints;
-    for (const JointDef& joint : db.skeletons[s].joints()) {
-      joints.emplace_back(joint.name, joint.parent < 0 ? "" : db.skeletons[s].joint(joint.parent).name);
+    for (const JointDef& joint : read_skeletons[s].joints()) {
+      joints.emplace_back(joint.name, joint.parent < 0 ? "" : read_skeletons[s].joint(joint.parent).name);
     }
     const auto [it, added] = rig_of.emplace(std::move(joints), rig_skeleton.size());
     if (added) {
@@ -541,39 +559,36 @@ std::vector<bool> largest_rig_family(const MotionDatabase& db) {
     rig[s] = it->second;
   }
   for (const DatabaseClip& clip : db.clips) rig_frames[rig[static_cast<size_t>(clip.skeleton)]] += clip.frame_count;
-  std::vector<size_t> order(rig_skeleton.size());
-  for (size_t r = 0; r < order.size(); ++r) order[r] = r;
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return rig_frames[a] > rig_frames[b]; });
+  std::vector<size_t> by_frames(rig_skeleton.size());
+  for (size_t r = 0; r < by_frames.size(); ++r) by_frames[r] = r;
+  std::stable_sort(by_frames.begin(), by_frames.end(),
+                   [&](size_t a, size_t b) { return rig_frames[a] > rig_frames[b]; });
 
   std::vector<bool> best;
   long best_frames = -1;
-  for (const size_t seed : order) {
+  for (const size_t seed : by_frames) {
     std::vector<bool> in(rig_skeleton.size(), false);
     in[seed] = true;
     long frames = rig_frames[seed];
-    std::vector<Skeleton> taken{db.skeletons[rig_skeleton[seed]]};
-    for (const size_t r : order) {
+    for (const size_t r : by_frames) {
       if (in[r]) continue;
-      const Skeleton& skeleton = db.skeletons[rig_skeleton[r]];
-      if (!hierarchy_mismatch(taken.front(), skeleton)) {
-        taken.push_back(taken.front());  // read on its names
-      } else {
-        taken.push_back(skeleton);
-        const std::vector<std::string> common = common_joints(taken);
-        if (common_joints_fall_short(taken, db.foot_names, common) && (!common.empty() || shared_root(taken).empty())) {
-          taken.pop_back();
-          continue;
-        }
-      }
       in[r] = true;
-      frames += rig_frames[r];
+      std::vector<const Skeleton*> in_order;  // rigs are numbered in the library's order
+      for (size_t o = 0; o < in.size(); ++o) {
+        if (in[o]) in_order.push_back(&read_skeletons[rig_skeleton[o]]);
+      }
+      if (read_together(in_order, db.foot_names)) {
+        frames += rig_frames[r];
+      } else {
+        in[r] = false;
+      }
     }
     if (frames > best_frames) {
       best = std::move(in);
       best_frames = frames;
     }
   }
-  std::vector<bool> out(db.skeletons.size());
+  std::vector<bool> out(read_skeletons.size());
   for (size_t s = 0; s < out.size(); ++s) out[s] = best[rig[s]];
   return out;
 }
@@ -600,6 +615,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
   std::set<std::string> noted_units, noted_up_axes, noted_travels, noted_folds, noted_rests,
       noted_glitches;  // files
   std::optional<Skeleton> first_skeleton;  // the first clip's, as read (all its joints)
+  std::vector<Skeleton> read_skeletons;    // db.skeletons' as read, before any took the first's names
   std::vector<DescribedClip> described;    // clips tagged by their CMU descriptions
   std::set<std::string> clip_names;        // taken, for the parts a capture glitch cuts a clip into
   for (const ClipSpec& spec : specs) clip_names.insert(spec.name);
@@ -625,6 +641,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
                                                     : find_capture_glitches(loaded->clip.skeleton, loaded->clip.motion);
     // Another converter's names on the first skeleton's hierarchy: the first's names.
     if (!first_skeleton) first_skeleton = loaded->clip.skeleton;
+    Skeleton as_read = loaded->clip.skeleton;  // before it takes the first's names
     const auto renamed = rename_as_first(loaded->clip, *first_skeleton);
     if (!joints.empty()) {
       if (loaded->clip.skeleton.joint(0).name != joints.front()) {  // rerooted in 3b, as read before
@@ -659,7 +676,19 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     const int dropped = rest + glitched_leading;  // leading frames the reader dropped
     const int file_frames = dropped + motion.frame_count + trailing;
 
-    if (file_frames == 0) return Error{spec.path, 0, "the clip has no frames (a skeleton without motion)"};
+    // A file a folder holds with a pose, not a motion (no frame, or under 2 at the library's rate:
+    // a T-pose export, a character's skeleton), is passed over with a note; given itself, an error.
+    const auto pass_over = [&](int frames, double fps) {
+      if (notes != nullptr) notes->poses.push_back({spec.path, frames, fps});
+      if (db.skeletons.empty()) first_skeleton.reset();  // the library's first rig is a motion's
+    };
+    if (file_frames == 0) {
+      if (spec.in_folder) {
+        pass_over(0, motion.fps);
+        continue;
+      }
+      return Error{spec.path, 0, "the clip has no frames (a skeleton without motion)"};
+    }
     // Frame range, in the file's numbering; frames the reader dropped are not part of it.
     const int first = std::max(spec.first_frame.value_or(1), dropped + 1);
     const int asked_last = spec.last_frame.value_or(file_frames);
@@ -724,6 +753,10 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     if (!split) {
       auto resampled = resample(loop_note ? unrolled : cut, db.fps);
       if (!resampled) return spec.error(resampled.error().message);
+      if (resampled->frame_count < 2 && spec.in_folder && whole) {
+        pass_over(cut.frame_count, input_fps);
+        continue;
+      }
       if (resampled->frame_count < 2) {
         return spec.error(fmt::format("{} frame{} at {} fps ({} frames at {} fps in the file{}): a clip needs at "
                                       "least 2", resampled->frame_count, resampled->frame_count == 1 ? "" : "s", db.fps,
@@ -766,6 +799,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
       }
       skeleton = static_cast<int>(db.skeletons.size());
       db.skeletons.push_back(loaded->clip.skeleton);
+      read_skeletons.push_back(std::move(as_read));
       db.skeleton_names.push_back(skeleton_file);
       skeleton_of_file.emplace(key, skeleton);
     }
@@ -861,6 +895,11 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     }
     if (split_note) notes->glitch_splits.push_back(std::move(*split_note));
   }
+  if (db.clips.empty()) {
+    return Error{specs.front().path, 0,
+                 fmt::format("every clip file of the folder holds a pose, not a motion (under 2 frames at {} fps)",
+                             db.fps)};
+  }
 
   // 3b. Skeletons that differ in some joints: every clip on the joints all share, as read (a
   // joint's motion is resampled on its own, so dropping joints after resampling is the same).
@@ -878,7 +917,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     if (auto short_by = common_joints_fall_short(db.skeletons, db.foot_names, common)) {
       // Files a folder holds whose rig cannot join the others' (another converter's, another
       // studio's): the library is the rigs that can, of the most frames; those left out.
-      const std::vector<bool> family = largest_rig_family(db);
+      const std::vector<bool> family = largest_rig_family(db, read_skeletons);
       std::set<std::string> out_files;
       for (const DatabaseClip& clip : db.clips) {
         if (!family[static_cast<size_t>(clip.skeleton)]) out_files.insert(clip.source);
@@ -1103,6 +1142,15 @@ std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes) {
   }
   for (std::string& line : clip_doubt_lines(notes.clip_doubts)) lines.push_back(std::move(line));
   std::vector<std::string> first = notes.name_clashes;
+  if (!notes.poses.empty()) {
+    std::vector<std::string> files;
+    for (const auto& pose : notes.poses) {
+      files.push_back(fmt::format("{} ({} frame{} at {} fps)", pose.file, pose.frames, pose.frames == 1 ? "" : "s",
+                                  pose.fps));
+    }
+    first.push_back(fmt::format("{} file{} passed over, a pose rather than a motion (under 2 frames at the library's "
+                                "rate): {}", files.size(), files.size() == 1 ? "" : "s", listed(files, 4)));
+  }
   for (const auto& o : notes.other_rigs) {
     first.push_back(fmt::format("{} file{} left out, {} rig cannot be read with the library's (the rigs that can, of "
                                 "the most frames): {}; {}; a manifest, or the files given one by one, says which to "

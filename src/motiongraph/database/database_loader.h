@@ -216,6 +216,14 @@ struct DatabaseLoadNotes {
     std::string reason;
   };
   std::vector<OtherRigs> other_rigs;
+  // Files a folder holds with a pose rather than a motion (no frame, or under 2 at the library's
+  // rate), passed over: the frames in the file and its rate.
+  struct Pose {
+    std::string file;
+    int frames = 0;
+    double fps = 0.0;
+  };
+  std::vector<Pose> poses;
   // Files a folder left out (another file holds a clip of the same name: one take in two
   // formats), and clips renamed because their name was taken, one line each.
   std::vector<std::string> name_clashes;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <set>
@@ -136,19 +137,22 @@ void leave_out_copies(std::vector<ListedFolder>& listed, const std::string& top,
       return std::make_tuple(path_below(a.second, top).size(), a.first, a.second) <
              std::make_tuple(path_below(b.second, top).size(), b.first, b.second);
     });
-    std::vector<std::pair<fs::path, std::string>> firsts;  // a file of each content met, and its identity
+    // A file of each content met, by the hash of its identity: one file's bytes held at a time.
+    std::vector<std::tuple<size_t, size_t, fs::path>> firsts;  // (hash, folder, file)
     for (const auto& [f, path] : files) {
-      auto id = identity(path, listed[f]);
+      const auto id = identity(path, listed[f]);
       if (!id) continue;
-      const auto same =
-          std::find_if(firsts.begin(), firsts.end(), [&](const auto& first) { return first.second == *id; });
+      const size_t hash = std::hash<std::string>{}(*id);
+      const auto same = std::find_if(firsts.begin(), firsts.end(), [&](const auto& first) {
+        return std::get<0>(first) == hash && identity(std::get<2>(first), listed[std::get<1>(first)]) == id;
+      });
       if (same == firsts.end()) {
-        firsts.emplace_back(path, std::move(*id));
+        firsts.emplace_back(hash, f, path);
         continue;
       }
       copies.insert(path);
       left_out.push_back(fmt::format("{}: {} left out: the same bytes as {} (a copy)", top, path_below(path, top),
-                                     path_below(same->first, top)));
+                                     path_below(std::get<2>(*same), top)));
     }
   }
   for (ListedFolder& folder : listed) {

@@ -114,6 +114,8 @@ nlohmann::json reading_json(const DatabaseLoadNotes& notes) {
   for (const auto& t : notes.standing_tags) {
     standing.push_back({{"clip", t.clip}, {"tag", t.tag}, {"tagged_frames", t.tagged_frames}, {"frames", t.frames}});
   }
+  nlohmann::json poses = nlohmann::json::array();
+  for (const auto& p : notes.poses) poses.push_back({{"file", p.file}, {"frames", p.frames}, {"fps", p.fps}});
   nlohmann::json other_rigs = nlohmann::json::array();
   for (const auto& o : notes.other_rigs) other_rigs.push_back({{"files", o.files}, {"reason", o.reason}});
   return {{"units", std::move(units)},
@@ -124,6 +126,7 @@ nlohmann::json reading_json(const DatabaseLoadNotes& notes) {
           {"glitch_splits", std::move(splits)},
           {"rigs", std::move(rigs)},
           {"other_rigs_left_out", std::move(other_rigs)},
+          {"poses_passed_over", std::move(poses)},
           {"loops", std::move(loops)},
           {"standing_tags", std::move(standing)}};
 }
