@@ -191,7 +191,9 @@ Result<FolderTree> read_folder_tree(const std::string& top) {
     for (const auto& file : files) {
       if (format_preference(file.second) == best && folders.insert(file.first).second) kept.push_back(file);
     }
-    for (const auto& [f, path] : files) {
+    for (const auto& file : files) {
+      const size_t f = file.first;  // not bindings: a lambda may not capture them (clang 14)
+      const fs::path& path = file.second;
       const bool is_kept = std::any_of(kept.begin(), kept.end(), [&](const auto& k) { return k.second == path; });
       if (is_kept) {
         const std::string& relative = (*listed)[f].relative;
