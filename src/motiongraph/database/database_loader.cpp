@@ -519,8 +519,8 @@ std::optional<std::string> common_joints_fall_short(std::span<const Skeleton> sk
 }
 
 // Whether skeletons as read, in the library's order, are read together as loading reads them:
-// each of the first's hierarchy under other names on the first's names (rename_as_first), then
-// enough joints shared, or a root every one has (reroot_database).
+// each of the first's hierarchy under other names on the first's names (rename_as_first), read
+// from a root every one has when their roots differ (reroot_database), then enough joints shared.
 bool read_together(std::span<const Skeleton* const> in_order, const FootJointNames& foot_names) {
   std::vector<Skeleton> as_library;
   for (const Skeleton* skeleton : in_order) {
@@ -531,9 +531,22 @@ bool read_together(std::span<const Skeleton* const> in_order, const FootJointNam
     }
     as_library.push_back(!all_known && !hierarchy_mismatch(first, *skeleton) ? first : *skeleton);
   }
-  const std::vector<std::string> common = common_joints(as_library);
-  return !common_joints_fall_short(as_library, foot_names, common) ||
-         (common.empty() && !shared_root(as_library).empty());
+  std::vector<std::string> common = common_joints(as_library);
+  if (common.empty()) {  // roots that differ: read from one every skeleton has, as 3b does
+    const std::string root = shared_root(as_library);
+    if (root.empty()) return false;
+    for (Skeleton& skeleton : as_library) {
+      if (skeleton.joint(0).name == root) continue;
+      Clip pose;
+      pose.skeleton = skeleton;
+      pose.motion = Motion(skeleton, 0, 30.0);
+      auto rerooted = reroot_at(pose, root);
+      if (!rerooted) return false;
+      skeleton = std::move(rerooted->skeleton);
+    }
+    common = common_joints(as_library);
+  }
+  return !common_joints_fall_short(as_library, foot_names, common);
 }
 
 // The rigs of the library that can be read together, of the most frames, given the skeletons as
