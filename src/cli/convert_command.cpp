@@ -101,6 +101,7 @@ int convert_library(const ConvertOptions& options, const ClipLoadSettings& load)
   settings.prefer_manifest_fps = options.fps <= 0.0;
   settings.cmu_tags = false;  // no tags go into the file
   settings.loops = false;
+  settings.progress_bar = true;  // a terminal's stderr only
   DatabaseLoadNotes notes;
   auto loaded = load_database(options.inputs, settings, &notes);
   if (!loaded) return fail(loaded.error());

@@ -26,7 +26,9 @@ bool is_library(const std::vector<std::string>& inputs) {
 
 int run_library_info(const std::vector<std::string>& inputs, const LibraryInfoOptions& options) {
   DatabaseLoadNotes notes;
-  auto loaded = load_database(inputs, options.database, &notes);
+  DatabaseSettings database = options.database;
+  database.progress_bar = true;  // a terminal's stderr only
+  auto loaded = load_database(inputs, database, &notes);
   if (!loaded) return fail(loaded.error());
   const MotionDatabase& db = *loaded;
   report_units(notes, false);

@@ -14,6 +14,7 @@
 
 #include "motiongraph/core/default_window.h"
 #include "motiongraph/core/file_extension.h"
+#include "motiongraph/core/progress.h"
 #include "motiongraph/core/unique_name.h"
 #include "motiongraph/database/cmu_tags.h"
 #include "motiongraph/database/database_doubts.h"
@@ -632,8 +633,10 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
   std::vector<DescribedClip> described;    // clips tagged by their CMU descriptions
   std::set<std::string> clip_names;        // taken, for the parts a capture glitch cuts a clip into
   for (const ClipSpec& spec : specs) clip_names.insert(spec.name);
+  ProgressBar reading("reading", specs.size(), !settings.progress_bar);
   for (size_t spec_index = 0; spec_index < specs.size(); ++spec_index) {
     const ClipSpec& spec = specs[spec_index];
+    reading.advance();  // counted as it starts: every way on from here is past it
     auto loaded = loaders.for_settings(spec.load).load(spec.path, spec.animation);
     if (!loaded && loaded.error().kind == ErrorKind::kNoSuchAnimation && !spec.manifest.empty()) {
       // The manifest's line that asked for it is what to change.
@@ -908,6 +911,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     }
     if (split_note) notes->glitch_splits.push_back(std::move(*split_note));
   }
+  reading.finish();
   if (db.clips.empty()) {
     return Error{specs.front().path, 0,
                  fmt::format("every clip file of the folder holds a pose, not a motion (under 2 frames at {} fps)",

@@ -92,6 +92,10 @@ struct DatabaseSettings {
   int loop_overlap_frames = 0;
   int loop_frames_at(double database_fps) const;
 
+  // A bar on stderr while the files are read, one step a clip file (core/progress.h: drawn on a
+  // terminal only): a library of hours takes a minute to read.
+  bool progress_bar = false;
+
   Status validate() const;
 };
 

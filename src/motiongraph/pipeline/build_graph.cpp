@@ -392,7 +392,9 @@ Result<Prepared> prepare(std::span<const std::string> inputs, const BuildSetting
   // 1. The database.
   DatabaseLoadNotes load_notes;
   const std::vector<std::string> input_list(inputs.begin(), inputs.end());
-  auto db = load_database(input_list, settings.database, &load_notes);
+  DatabaseSettings database = settings.database;
+  database.progress_bar = log.progress_bar;
+  auto db = load_database(input_list, database, &load_notes);
   if (!db) return db.error();
   if (log.loaded) log.loaded(load_notes);
   for (const std::string& line : load_warnings(load_notes)) say.warning(line);

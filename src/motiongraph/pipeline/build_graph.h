@@ -36,7 +36,7 @@ struct BuildLog {
   std::function<void(const std::string&)> info;          // a stage done, what it found (may be empty)
   std::function<void(const std::string&)> warning;       // something the user should know (may be empty)
   std::function<void(const DatabaseLoadNotes&)> loaded;  // what loading chose by itself (units)
-  bool progress_bar = false;                             // the distance stage's bar (core/progress.h)
+  bool progress_bar = false;                             // the reading's and distance stage's bars (core/progress.h)
 };
 
 struct GraphBuild {
