@@ -1328,6 +1328,9 @@ TEST(DatabaseLoader, AFoldersPoseFilesArePassedOver) {
   EXPECT_EQ(notes.poses[1].file, tpose);
   EXPECT_EQ(notes.poses[1].frames, 1);
   EXPECT_DOUBLE_EQ(notes.poses[1].fps, 120.0);
+  // Nothing else of them is noted: the unit read is the motion's file's alone.
+  ASSERT_EQ(notes.detected_units.size(), 1u);
+  EXPECT_EQ(notes.detected_units[0].file, (folder.path() / "07_01.bvh").string());
   EXPECT_EQ(load_warnings(notes).front(),
             fmt::format("2 files passed over, a pose rather than a motion (under 2 frames at the library's rate): {} "
                         "(0 frames at 120 fps), {} (1 frame at 120 fps)",

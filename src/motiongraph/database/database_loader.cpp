@@ -643,6 +643,14 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
       return Error{spec.manifest, spec.animation_line, fmt::format("clip {}: {}", spec.path, loaded.error().message)};
     }
     if (!loaded) return loaded.error();
+    // A file a folder holds with a pose, not a motion (no frame, or under 2 at the library's rate:
+    // a T-pose export, a character's skeleton), is passed over with a note, before anything of it
+    // is noted or counted; given itself, an error below.
+    if (spec.in_folder && resampled_frame_count(loaded->clip.motion, db.fps) < 2) {
+      const Motion& pose = loaded->clip.motion;
+      if (notes != nullptr) notes->poses.push_back({spec.path, pose.frame_count, pose.fps});
+      continue;
+    }
     // Folded at import as read (before the library's own rerooting below, which it notes apart).
     if (notes && !loaded->clip.dropped_at_fold.empty() && noted_folds.insert(spec.path).second) {
       DatabaseLoadNotes::Rerooted fold{spec.path, loaded->clip.skeleton.joint(0).name, {},
@@ -692,19 +700,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     const int dropped = rest + glitched_leading;  // leading frames the reader dropped
     const int file_frames = dropped + motion.frame_count + trailing;
 
-    // A file a folder holds with a pose, not a motion (no frame, or under 2 at the library's rate:
-    // a T-pose export, a character's skeleton), is passed over with a note; given itself, an error.
-    const auto pass_over = [&](int frames, double fps) {
-      if (notes != nullptr) notes->poses.push_back({spec.path, frames, fps});
-      if (db.skeletons.empty()) first_skeleton.reset();  // the library's first rig is a motion's
-    };
-    if (file_frames == 0) {
-      if (spec.in_folder) {
-        pass_over(0, motion.fps);
-        continue;
-      }
-      return Error{spec.path, 0, "the clip has no frames (a skeleton without motion)"};
-    }
+    if (file_frames == 0) return Error{spec.path, 0, "the clip has no frames (a skeleton without motion)"};
     // Frame range, in the file's numbering; frames the reader dropped are not part of it.
     const int first = std::max(spec.first_frame.value_or(1), dropped + 1);
     const int asked_last = spec.last_frame.value_or(file_frames);
@@ -769,10 +765,6 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     if (!split) {
       auto resampled = resample(loop_note ? unrolled : cut, db.fps);
       if (!resampled) return spec.error(resampled.error().message);
-      if (resampled->frame_count < 2 && spec.in_folder && whole) {
-        pass_over(cut.frame_count, input_fps);
-        continue;
-      }
       if (resampled->frame_count < 2) {
         return spec.error(fmt::format("{} frame{} at {} fps ({} frames at {} fps in the file{}): a clip needs at "
                                       "least 2", resampled->frame_count, resampled->frame_count == 1 ? "" : "s", db.fps,
