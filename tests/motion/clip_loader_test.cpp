@@ -45,12 +45,13 @@ namespace {
 // the numbers are centimetres, the file says metres) is read in the unit that does, and says so;
 // --scale (metres per unit of the file's numbers) overrides; a file whose unit is right is read in it.
 TEST(ClipFiles, AnAmcTakesItsFoldersOnlyAsfOrOfSeveralItsSubjects) {
-  EXPECT_EQ(asf_of_amc({"x/skel.asf"}, "x/walk.amc"), "x/skel.asf");
-  EXPECT_EQ(asf_of_amc({"x/07.asf", "x/16.asf", "x/161.asf"}, "x/16_15.amc"), "x/16.asf");
-  EXPECT_EQ(asf_of_amc({"x/07.asf", "x/16.asf", "x/161.asf"}, "x/161_02.amc"), "x/161.asf");
-  EXPECT_EQ(asf_of_amc({"x/07.asf", "x/16.asf"}, "x/99_01.amc"), std::nullopt);
-  EXPECT_EQ(asf_of_amc({"x/07.asf", "x/16.asf"}, "x/1615.amc"), std::nullopt);
-  EXPECT_EQ(asf_of_amc({}, "x/16_15.amc"), std::nullopt);
+  using Paths = std::vector<std::filesystem::path>;
+  EXPECT_EQ(asf_of_amc(Paths{"x/skel.asf"}, "x/walk.amc"), "x/skel.asf");
+  EXPECT_EQ(asf_of_amc(Paths{"x/07.asf", "x/16.asf", "x/161.asf"}, "x/16_15.amc"), "x/16.asf");
+  EXPECT_EQ(asf_of_amc(Paths{"x/07.asf", "x/16.asf", "x/161.asf"}, "x/161_02.amc"), "x/161.asf");
+  EXPECT_EQ(asf_of_amc(Paths{"x/07.asf", "x/16.asf"}, "x/99_01.amc"), std::nullopt);
+  EXPECT_EQ(asf_of_amc(Paths{"x/07.asf", "x/16.asf"}, "x/1615.amc"), std::nullopt);
+  EXPECT_EQ(asf_of_amc(Paths{}, "x/16_15.amc"), std::nullopt);
 
   // The loader of an AMC file given alone: the same rule, an error naming the file otherwise.
   const std::filesystem::path folder = std::filesystem::temp_directory_path() / "motiongraph-two-asf";

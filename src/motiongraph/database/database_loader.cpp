@@ -113,9 +113,8 @@ Status add_file_specs(const fs::path& path, const ClipLoadSettings& load, std::v
 // The clips of a folder and the folders in it (database/folder_tree.h). An AMC file's skeleton
 // is the only .asf in its folder; of several, the one CMU's naming gives it (16_01.amc: 16.asf).
 Result<std::string> asf_in_folder(const TreeFolder& folder, const fs::path& amc) {
-  std::vector<std::string> asfs;
-  for (const fs::path& asf : folder.asfs) asfs.push_back(asf.string());
-  if (auto asf = asf_of_amc(asfs, amc.string())) return *asf;
+  const std::vector<fs::path>& asfs = folder.asfs;
+  if (auto asf = asf_of_amc(asfs, amc)) return asf->string();
   if (asfs.empty()) return Error{folder.path.string(), 0, "the folder holds AMC files but no .asf skeleton"};
   return Error{folder.path.string(), 0,
                fmt::format("the folder holds {} .asf files and none is named as {}'s subject (as 16.asf for "
@@ -385,18 +384,24 @@ std::string find_cmu_index(std::span<const std::string> inputs) {
   return "";
 }
 
-// The clip's joints renamed as the database's first skeleton's (read in full) when they are its
-// hierarchy under other names (motion/rig_matching.h): the pairs renamed (its name, the first's),
-// none when its joints are named as the first's, or differ otherwise (topology_difference tells
-// that), or all bear names the first has (in another order: matched by name, not by place).
-std::vector<std::pair<std::string, std::string>> rename_as_first(Clip& clip, const Skeleton& first) {
-  std::vector<std::pair<std::string, std::string>> renamed;
-  const Skeleton& skeleton = clip.skeleton;
+// Whether a skeleton takes the first's names: it is the first's hierarchy under other names
+// (motion/rig_matching.h), not all its joints bearing names the first has (in another order:
+// matched by name, not by place).
+bool takes_names_of(const Skeleton& skeleton, const Skeleton& first) {
   bool all_known = true;
   for (int j = 0; all_known && j < skeleton.joint_count(); ++j) {
     all_known = first.find(skeleton.joint(j).name).has_value();
   }
-  if (all_known || hierarchy_mismatch(first, skeleton)) return renamed;
+  return !all_known && !hierarchy_mismatch(first, skeleton);
+}
+
+// The clip's joints renamed as the database's first skeleton's (read in full) when it takes its
+// names: the pairs renamed (its name, the first's); none otherwise (named as the first's, or other
+// joints: topology_difference tells that).
+std::vector<std::pair<std::string, std::string>> rename_as_first(Clip& clip, const Skeleton& first) {
+  std::vector<std::pair<std::string, std::string>> renamed;
+  const Skeleton& skeleton = clip.skeleton;
+  if (!takes_names_of(skeleton, first)) return renamed;
   for (int j = 0; j < first.joint_count(); ++j) {
     if (skeleton.joint(j).name != first.joint(j).name && !first.joint(j).end_site) {
       renamed.emplace_back(skeleton.joint(j).name, first.joint(j).name);
@@ -524,14 +529,8 @@ std::optional<std::string> common_joints_fall_short(std::span<const Skeleton> sk
 // from a root every one has when their roots differ (reroot_database), then enough joints shared.
 bool read_together(std::span<const Skeleton* const> in_order, const FootJointNames& foot_names) {
   std::vector<Skeleton> as_library;
-  for (const Skeleton* skeleton : in_order) {
-    const Skeleton& first = *in_order.front();
-    bool all_known = true;
-    for (int j = 0; all_known && j < skeleton->joint_count(); ++j) {
-      all_known = first.find(skeleton->joint(j).name).has_value();
-    }
-    as_library.push_back(!all_known && !hierarchy_mismatch(first, *skeleton) ? first : *skeleton);
-  }
+  const Skeleton& first = *in_order.front();
+  for (const Skeleton* skeleton : in_order) as_library.push_back(takes_names_of(*skeleton, first) ? first : *skeleton);
   std::vector<std::string> common = common_joints(as_library);
   if (common.empty()) {  // roots that differ: read from one every skeleton has, as 3b does
     const std::string root = shared_root(as_library);

@@ -109,11 +109,9 @@ std::optional<std::string> identity(const fs::path& file, const ListedFolder& fo
   auto bytes = read_text_file(file.string());
   if (!bytes) return std::nullopt;
   if (ext != ".amc") return std::move(*bytes);
-  std::vector<std::string> asfs;
-  for (const fs::path& asf : folder.asfs) asfs.push_back(asf.string());
-  const auto asf = asf_of_amc(asfs, file.string());
+  const auto asf = asf_of_amc(folder.asfs, file);
   if (!asf) return std::nullopt;
-  auto skeleton = read_text_file(*asf);
+  auto skeleton = read_text_file(asf->string());
   if (!skeleton) return std::nullopt;
   return fmt::format("{}\n{}\n{}", skeleton->size(), *skeleton, *bytes);
 }

@@ -91,26 +91,24 @@ Result<std::string> ClipLoader::find_asf_for(const std::string& amc_path) const 
   if (settings_.asf_path) return *settings_.asf_path;
   fs::path folder = fs::path(amc_path).parent_path();
   if (folder.empty()) folder = ".";
-  std::vector<std::string> found;
+  std::vector<fs::path> found;
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(folder, ec)) {
-    if (entry.is_regular_file() && lower_extension(entry.path().string()) == ".asf") {
-      found.push_back(entry.path().string());
-    }
+    if (entry.is_regular_file() && lower_extension(entry.path().string()) == ".asf") found.push_back(entry.path());
   }
   std::sort(found.begin(), found.end());
-  if (auto asf = asf_of_amc(found, amc_path)) return *asf;
+  if (auto asf = asf_of_amc(found, amc_path)) return asf->string();
   return Error{amc_path, 0,
                found.empty() ? "no skeleton: give --asf (no .asf file beside the AMC)"
                              : "several .asf files beside the AMC and none named as its subject (16.asf for "
                                "16_01.amc): choose one with --asf"};
 }
 
-std::optional<std::string> asf_of_amc(const std::vector<std::string>& asfs, std::string_view amc_path) {
+std::optional<fs::path> asf_of_amc(std::span<const fs::path> asfs, const fs::path& amc_path) {
   if (asfs.size() == 1) return asfs.front();
-  const std::string amc_stem = fs::path(amc_path).stem().string();
-  for (const std::string& asf : asfs) {
-    if (amc_stem.starts_with(fs::path(asf).stem().string() + "_")) return asf;
+  const std::string amc_stem = amc_path.stem().string();
+  for (const fs::path& asf : asfs) {
+    if (amc_stem.starts_with(asf.stem().string() + "_")) return asf;
   }
   return std::nullopt;
 }

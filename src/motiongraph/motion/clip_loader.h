@@ -4,9 +4,11 @@
 // loading many AMC files of one subject reads its ASF once.
 #pragma once
 
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -82,7 +84,8 @@ bool is_fbx_file(std::string_view path);
 
 // The skeleton of an AMC file among the .asf files of its folder: the only one, or of several the
 // one CMU's naming gives it (16.asf for 16_01.amc); none when there is none or none is so named.
-std::optional<std::string> asf_of_amc(const std::vector<std::string>& asfs, std::string_view amc_path);
+std::optional<std::filesystem::path> asf_of_amc(std::span<const std::filesystem::path> asfs,
+                                                const std::filesystem::path& amc_path);
 
 // A scene file's clip names (its animations that move a skeleton), without sampling them.
 Result<std::vector<std::string>> animation_names(const std::string& path);
