@@ -65,15 +65,16 @@ void print_nodes(const GraphFile& file) {
   }
 }
 
-// One line per clip: its frames, how many the pruned graph plays, its tags, and for a clip the
-// graph keeps nothing of, the threshold from which the stored candidates could join it.
+// One line per clip: its frames, the rate its file was read at, how many the pruned graph plays,
+// its tags, and for a clip the graph keeps nothing of, the threshold from which the stored
+// candidates could join it.
 void print_clips(const GraphFile& file, const nlohmann::json& report) {
   const MotionDatabase& db = file.database;
   const std::vector<TagMask> tags = db.frame_tags();
   const double window_weight = report.is_object() ? report.value("window_weight", 0.0) : 0.0;
   const std::vector<ClipCoverage> coverage = clip_coverage(file.graph, db, file.candidates.minima);
-  fmt::print("{:<12} {:>7} {:>8} {:>7} {:>5}  {:<24} {}\n", "clip", "frames", "seconds", "kept", "%", "tags",
-             "joins from");
+  fmt::print("{:<12} {:>7} {:>8} {:>8} {:>7} {:>5}  {:<24} {}\n", "clip", "frames", "seconds", "read fps", "kept", "%",
+             "tags", "joins from");
   long long kept = 0;
   for (const ClipCoverage& c : coverage) {
     const DatabaseClip& clip = db.clips[c.clip];
@@ -85,13 +86,14 @@ void print_clips(const GraphFile& file, const nlohmann::json& report) {
                   ? std::string("no candidates")
                   : fmt::format("RMS {:.2f} cm", rms_cm_of_distance(c.best_join, window_weight));
     }
-    fmt::print("{:<12} {:>7} {:>8.1f} {:>7} {:>5.0f}  {:<24} {}\n", clip.name, c.frames, c.frames / db.fps,
-               c.kept_frames, 100.0 * c.kept_frames / std::max(1, c.frames), fmt::format("{}", fmt::join(
-               db.tag_names_of(mask), ",")), joins);
+    const std::string read_fps = clip.read_fps > 0.0 ? fmt::format("{:g}", clip.read_fps) : std::string("-");
+    fmt::print("{:<12} {:>7} {:>8.1f} {:>8} {:>7} {:>5.0f}  {:<24} {}\n", clip.name, c.frames, c.frames / db.fps,
+               read_fps, c.kept_frames, 100.0 * c.kept_frames / std::max(1, c.frames),
+               fmt::format("{}", fmt::join(db.tag_names_of(mask), ",")), joins);
     kept += c.kept_frames;
   }
-  fmt::print("{:<12} {:>7} {:>8.1f} {:>7} {:>5.0f}\n", "all", db.frame_count(), db.frame_count() / db.fps, kept,
-             100.0 * static_cast<double>(kept) / std::max(1, db.frame_count()));
+  fmt::print("{:<12} {:>7} {:>8.1f} {:>8} {:>7} {:>5.0f}\n", "all", db.frame_count(), db.frame_count() / db.fps, "-",
+             kept, 100.0 * static_cast<double>(kept) / std::max(1, db.frame_count()));
 }
 
 void print_statistics(const char* title, const nlohmann::json& s) {
@@ -197,7 +199,8 @@ Command add_inspect_command(CLI::App& app) {
                 "List the pruned graph's nodes (the numbers 'walk --from/--to' take): frame, clip, time in "
                 "the clip, edges out, transitions out, tags");
   sub->add_flag("--clips", o->clips,
-                "List the clips: frames, seconds, how many frames the pruned graph plays, tags, and for a clip it "
+                "List the clips: frames, seconds, the rate its file was read at, how many frames the pruned "
+                "graph plays, tags, and for a clip it "
                 "keeps nothing of, the threshold (RMS) from which its stored candidates could join it");
   return {sub, [o] { return run_inspect(*o); }};
 }

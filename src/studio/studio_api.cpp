@@ -264,6 +264,7 @@ class Router {
                      {"first_frame", c.first_frame},
                      {"frames", c.frame_count},
                      {"duration_s", c.frame_count / db().fps},
+                     {"read_fps", c.read_fps},
                      {"kept_frames", coverage[i].kept_frames},
                      {"tags", db().tag_names_of(mask)},
                      {"doubts", doubts[i]}});

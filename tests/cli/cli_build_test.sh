@@ -182,8 +182,10 @@ for name, report in (("g", "r.json"), ("b07", "b07.json")):
     assert sum(kept) == r["graph_after"]["clip_frames"] and all(0 <= k <= c["frames"] for k, c in zip(kept, r["clips"]))
     rows = {l.split()[0]: l.split() for l in open(f"{work}/{name}.clips").read().splitlines()[1:]}
     for c in r["clips"]:
-        assert int(rows[c["name"]][3]) == c["kept_frames"], (rows[c["name"]], c)
-    assert int(rows["all"][3]) == sum(kept) and int(rows["all"][1]) == r["frames"], rows["all"]
+        assert int(rows[c["name"]][4]) == c["kept_frames"], (rows[c["name"]], c)
+        # The rate each clip's file was read at (CMU's AMC and these BVH files: 120 fps).
+        assert float(rows[c["name"]][3]) == 120, rows[c["name"]]
+    assert int(rows["all"][4]) == sum(kept) and int(rows["all"][1]) == r["frames"], rows["all"]
     err = open(f"{work}/{name}.err").read()
     share = sum(kept) / r["frames"]
     warned = re.search(r"warning: the graph keeps (\d+) % of the frames \((\d+) of (\d+)\); it loses most of (\S+) "

@@ -25,6 +25,8 @@ GraphFile sample() {
   file.input_key = 0x0123456789abcdefULL;
   file.database = test::small_database({"cmu/16/16_35.amc", "cmu/16/16_39.amc"});
   file.database.skeleton_names = {"16.asf"};
+  file.database.clips[0].read_fps = 120.0;
+  file.database.clips[1].read_fps = 29.97;
   const int run = file.database.tag_index("run");
   file.database.tag_ranges.push_back({run, 0, file.database.frame_count()});
   file.database.foot_names = {"lfoot", "", "rfoot", ""};
@@ -60,6 +62,9 @@ TEST(GraphFile, RoundTripIsExact) {
   EXPECT_EQ(read->database.frame_count(), original.database.frame_count());
   EXPECT_EQ(read->database.tag_names, original.database.tag_names);
   EXPECT_EQ(read->database.skeletons[0].joint_count(), original.database.skeletons[0].joint_count());
+  // Each clip's rate as read, so that a clock's doubt can name it.
+  EXPECT_EQ(read->database.clips[0].read_fps, 120.0);
+  EXPECT_EQ(read->database.clips[1].read_fps, 29.97);
   const Motion& a = original.database.clips[1].motion;
   const Motion& b = read->database.clips[1].motion;
   ASSERT_EQ(a.frame_count, b.frame_count);
@@ -362,6 +367,9 @@ TEST(GraphFile, ValuesOutOfRangeAreRefused) {
   EXPECT_TRUE(refused([](GraphFile& f) { f.graph.edges[0].frame_count = 100'000'000; }));
   EXPECT_TRUE(refused([](GraphFile& f) { f.graph.nodes[1].clip = 0; }));  // frame 50 is in clip 1
   EXPECT_TRUE(refused([](GraphFile& f) { f.database.fps = INFINITY; }));
+  EXPECT_TRUE(refused([](GraphFile& f) { f.database.clips[1].read_fps = -30.0; }));
+  EXPECT_TRUE(refused([](GraphFile& f) { f.database.clips[1].read_fps = std::nan(""); }));
+  EXPECT_FALSE(refused([](GraphFile& f) { f.database.clips[1].read_fps = 0.0; }));  // not known
   // A clip edge plays its node's frames onward, within the motion.
   EXPECT_FALSE(refused([&](GraphFile& f) {
     f.graph.edges[0] = {0, 1, false, -1, frames - f.graph.nodes[0].frame};

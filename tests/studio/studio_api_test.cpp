@@ -45,6 +45,8 @@ TEST(StudioApi, ClipFramesAreWorldPositionsOfEveryJoint) {
   const auto& file = studio_service().file();
   long long kept = 0;
   for (const json& c : clips.json) {
+    // The rate its file was read at: CMU's AMC files are 120 fps, the graph's 30.
+    EXPECT_EQ(c["read_fps"].get<double>(), 120.0) << c;
     EXPECT_GE(c["kept_frames"].get<int>(), 0);
     EXPECT_LE(c["kept_frames"].get<int>(), c["frames"].get<int>());
     kept += c["kept_frames"].get<int>();

@@ -273,6 +273,7 @@ void put_database(BinaryWriter& out, const MotionDatabase& db) {
     out.put<std::int32_t>(clip.skeleton);
     out.put<std::int32_t>(clip.first_frame);
     out.put<std::int32_t>(clip.frame_count);
+    out.put(clip.read_fps);
     put_motion(out, clip.motion);
   }
   out.put<std::int32_t>(static_cast<std::int32_t>(db.tag_names.size()));
@@ -310,10 +311,11 @@ bool get_database(BinaryReader& in, MotionDatabase& db) {
   for (int c = 0; c < clips; ++c) {
     DatabaseClip clip;
     if (!in.get_string(clip.name) || !in.get_string(clip.source) || !in.get(clip.skeleton) ||
-        !in.get(clip.first_frame) || !in.get(clip.frame_count)) {
+        !in.get(clip.first_frame) || !in.get(clip.frame_count) || !in.get(clip.read_fps)) {
       return false;
     }
-    if (clip.skeleton < 0 || clip.skeleton >= skeletons || clip.first_frame != next_frame || clip.frame_count < 1) {
+    if (clip.skeleton < 0 || clip.skeleton >= skeletons || clip.first_frame != next_frame || clip.frame_count < 1 ||
+        !(clip.read_fps >= 0.0 && clip.read_fps <= kMaxStoredFps)) {
       return false;
     }
     const Skeleton& skeleton = db.skeletons[clip.skeleton];
@@ -335,7 +337,7 @@ bool get_database(BinaryReader& in, MotionDatabase& db) {
     const Skeleton& skeleton = db.skeletons[h.skeleton];
     db.clips.push_back(DatabaseClip{std::move(h.name), std::move(h.source), h.skeleton, h.first_frame, h.frame_count,
                                     Motion(skeleton, h.frame_count, stored[c].fps, db.motion_memory->resource()),
-                                    0.0});
+                                    h.read_fps});
   }
   parallel_for(clips, worker_threads(0), 1, [&](int, long long c) {
     decode_motion(stored[static_cast<size_t>(c)], db.clips[static_cast<size_t>(c)].motion);

@@ -3,7 +3,8 @@
 //   magic "MGRAPH\r\n\x1a", format version (u32), then the size (u64) and CRC-32 (u32) of
 //   each of its two sections, then the sections:
 //   1. the settings used (JSON text), the key of the inputs and distance settings, the motion
-//      database (skeletons, clips with their motion at the database rate, tags, foot joint
+//      database (skeletons, clips with their motion at the database rate and the rate each
+//      was read at, tags, foot joint
 //      names and every frame's foot contacts), the candidate search but its minima (distance
 //      histogram, picture), the selected transitions, the pruned graph, and the build report
 //      (JSON text);
@@ -35,7 +36,8 @@ namespace mg {
 // 6: transition edges say whether they are bridges (GraphEdge::bridge).
 // 7: a bridge's blend is centred on the window its D was measured on (GraphEdge::blend_lead).
 // 8: foot contacts measured from each joint's resting height (motion/foot_contacts.h's local floor).
-constexpr std::uint32_t kGraphFileVersion = 8;
+// 9: each clip's rate as read (DatabaseClip::read_fps), so that a clock's doubt names it.
+constexpr std::uint32_t kGraphFileVersion = 9;
 
 struct GraphFile {
   std::string settings_json;
