@@ -63,9 +63,9 @@ int run_build(BuildCommandOptions& o) {
   auto settings = build_settings_from(o.build);
   if (!settings) return fail(settings.error());
   if (auto s = check_graph_output(o.output); !s) return fail(s.error());
-  if (auto s = check_outputs({o.output, o.report, o.matrix_png, o.export_matrix, o.export_clouds}, o.inputs); !s) {
-    return fail(s.error());
-  }
+  const std::vector<std::string> outputs = {o.output, o.report, o.matrix_png, o.export_matrix, o.export_clouds};
+  if (auto s = check_outputs(outputs, o.inputs); !s) return fail(s.error());
+  settings->database.outputs = outputs;  // nor a file a folder or a manifest gives (checked as it is read)
   std::unique_ptr<DistanceCache> cache;
   if (!o.no_cache) {
     cache = std::make_unique<FileDistanceCache>(o.cache_dir.empty() ? default_distance_cache_folder() : o.cache_dir);

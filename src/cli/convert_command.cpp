@@ -82,32 +82,64 @@ Result<Clip> read_clip(const ConvertOptions& options, ClipLoader& loader, const 
 }
 
 // Fails unless every output is a .glb or .fbx (several clips make an animation set).
-Status check_set_outputs(const ConvertOptions& options) {
+// Outputs for `clips` clips: several go into a .glb or .fbx only.
+Status check_set_outputs(const ConvertOptions& options, size_t clips, const std::string& what) {
+  if (clips < 2) return Ok{};
   for (const std::string& output : options.outputs) {
     if (const std::string ext = lower_extension(output); ext != ".glb" && ext != ".fbx") {
-      return Error{output, 0, "several clips go into a .glb or .fbx only (an animation each); convert them one at a "
-                              "time for .bvh or .json"};
+      return Error{output, 0, fmt::format("{} {} clips, and several clips go into a .glb or .fbx only (an animation "
+                                          "each); convert them one at a time for .bvh or .json", what, clips)};
     }
   }
   return Ok{};
 }
 
+// One clip to every output, with its foot contacts for a JSON (none, with a warning, when its
+// feet are not found).
+int write_clip(const ConvertOptions& options, const std::string& source, const Skeleton& skeleton,
+               const Motion& motion, const FootJointNames& feet) {
+  std::optional<ClipContacts> contacts;
+  const bool any_json = std::any_of(options.outputs.begin(), options.outputs.end(), [](const std::string& path) {
+    return lower_extension(path) == ".json";
+  });
+  if (any_json || !feet.empty()) {
+    std::string why;
+    auto found = clip_contacts(skeleton, motion, feet, why);
+    if (!found) return fail(Error{source, 0, found.error().message});
+    contacts = std::move(*found);
+    if (!contacts) spdlog::warn("{}: no foot contacts in the JSON: {} (name the feet with --feet)", source, why);
+  }
+  const PositionsJsonContacts json_contacts{contacts ? contacts->feet : FootJoints{},
+                                            contacts ? std::span<const ContactMask>(contacts->masks)
+                                                     : std::span<const ContactMask>()};
+  // Where the clip's skeleton faces, for its root-motion joint.
+  const MotionFileSettings settings = options.output.settings(
+      options.output.root_motion ? learn_clip_forward_axis(skeleton, motion, feet) : Vec3::UnitZ());
+  for (const std::string& output : options.outputs) {
+    if (auto s = write_motion(output, skeleton, motion, settings, contacts ? &json_contacts : nullptr); !s) {
+      return fail(s.error());
+    }
+  }
+  return 0;
+}
+
 // A library: every clip as `build` reads it (whole, not played on past a loop's end), on one of
 // its skeletons as synthesis plays them, an animation each named as the clip.
 int convert_library(const ConvertOptions& options, const ClipLoadSettings& load) {
-  if (auto s = check_set_outputs(options); !s) return fail(s.error());
   DatabaseSettings settings = database_settings_reading_as(load);
   if (options.fps > 0.0) settings.fps = options.fps;
   settings.prefer_manifest_fps = options.fps <= 0.0;
   settings.cmu_tags = false;  // no tags go into the file
   settings.loops = false;
   settings.progress_bar = true;  // a terminal's stderr only
+  settings.outputs = options.outputs;
   DatabaseLoadNotes notes;
   auto loaded = load_database(options.inputs, settings, &notes);
   if (!loaded) return fail(loaded.error());
   const MotionDatabase& db = *loaded;
   report_units(notes, false);
   for (const std::string& line : load_warnings(notes)) spdlog::warn("{}", line);
+  if (auto s = check_set_outputs(options, db.clips.size(), "the library holds"); !s) return fail(s.error());
   const int target = options.skeleton >= 0 ? options.skeleton : db.clips.front().skeleton;
   if (target >= static_cast<int>(db.skeletons.size())) {
     return fail(Error{"", 0, fmt::format("--skeleton {}: the library has {} skeleton(s)", target, db.skeletons.size())});
@@ -117,6 +149,9 @@ int convert_library(const ConvertOptions& options, const ClipLoadSettings& load)
     auto motion = clip_on_skeleton(db, static_cast<int>(c), target);
     if (!motion) return fail(Error{db.clips[c].source, 0, motion.error().message});
     played.push_back(std::move(*motion));
+  }
+  if (db.clips.size() == 1) {  // a library of one clip (a manifest's frame range): any format
+    return write_clip(options, db.clips.front().source, db.skeletons[target], played.front(), db.foot_names);
   }
   const Vec3 forward_axis =
       options.output.root_motion ? learn_forward_axis(db, target, learn_travel_axes(db)[target]) : Vec3::UnitZ();
@@ -136,7 +171,7 @@ int convert_library(const ConvertOptions& options, const ClipLoadSettings& load)
 
 // Several clips of one rig: one .glb or .fbx, an animation each, named as its file.
 int convert_animation_set(const ConvertOptions& options, const ClipLoadSettings& load) {
-  if (auto s = check_set_outputs(options); !s) return fail(s.error());
+  if (auto s = check_set_outputs(options, options.inputs.size(), "the inputs are"); !s) return fail(s.error());
   ClipLoader loader(load);
   std::vector<Clip> clips;
   for (const std::string& input : options.inputs) {
@@ -175,31 +210,7 @@ int run_convert(const ConvertOptions& options) {
   ClipLoader loader(load);
   auto loaded = read_clip(options, loader, input);
   if (!loaded) return fail(loaded.error());
-  const Clip& clip = *loaded;
-  // The clip's foot contacts for its JSON (none, with a warning, when its feet are not found).
-  std::optional<ClipContacts> contacts;
-  const bool any_json = std::any_of(options.outputs.begin(), options.outputs.end(), [](const std::string& path) {
-    return lower_extension(path) == ".json";
-  });
-  if (any_json || !load.foot_names.empty()) {
-    std::string why;
-    auto found = clip_contacts(clip.skeleton, clip.motion, load.foot_names, why);
-    if (!found) return fail(Error{input, 0, found.error().message});
-    contacts = std::move(*found);
-    if (!contacts) spdlog::warn("{}: no foot contacts in the JSON: {} (name the feet with --feet)", input, why);
-  }
-  const PositionsJsonContacts json_contacts{contacts ? contacts->feet : FootJoints{},
-                                            contacts ? std::span<const ContactMask>(contacts->masks)
-                                                     : std::span<const ContactMask>()};
-  // Where the clip's skeleton faces, for its root-motion joint.
-  const MotionFileSettings settings = options.output.settings(
-      options.output.root_motion ? learn_clip_forward_axis(clip.skeleton, clip.motion, load.foot_names) : Vec3::UnitZ());
-  for (const std::string& output : options.outputs) {
-    if (auto s = write_motion(output, clip.skeleton, clip.motion, settings, contacts ? &json_contacts : nullptr); !s) {
-      return fail(s.error());
-    }
-  }
-  return 0;
+  return write_clip(options, input, loaded->skeleton, loaded->motion, load.foot_names);
 }
 
 }  // namespace
@@ -217,7 +228,8 @@ Command add_convert_command(CLI::App& app) {
                   "Input clip (.amc, .bvh, or .glb/.gltf/.fbx: an animation of it); several clips of one rig go into one .glb or .fbx, an animation each "
                   "named as its file (a character's animation set, as game engines import it); a library (folders, .toml "
                   "manifests) goes into one .glb or .fbx as build reads it (at 30 fps unless --fps or its manifest says), "
-                  "every clip on one of its skeletons")
+                  "every clip on one of its skeletons; a library of one clip (a manifest's frame range) into any "
+                  "format")
       ->required()
       ->check(CLI::ExistingPath);
   sub->add_option("--animation", options->animation,

@@ -558,4 +558,12 @@ grep -q "transitions a second" "$work/g.err" && { echo "FAIL: subject 16 warned 
 mkdir "$work/rigs" && cp "$data/bvh/111_36.bvh" "$data/bvh/131_01.bvh" "$work/rigs/"
 "$bin" info "$work/rigs" 2>/dev/null | grep -E "^  skeleton: 2 read on the first's joint names and rest pose \(.*111_36.bvh, \
 .*131_01.bvh\)$" >/dev/null || { echo "FAIL: info on two rigs"; "$bin" info "$work/rigs"; exit 1; }
+# Outputs are none of the files the folder gives: a report over a clip of it refused, before any work.
+cp "$work/rigs/131_01.bvh" "$work/131-before.bvh"
+if "$bin" build "$work/rigs" -o "$work/over.mgraph" --report "$work/rigs/131_01.bvh" -q 2>"$work/over.err"; then
+  echo "FAIL: a report over a clip read"; exit 1
+fi
+grep -q "rigs/131_01.bvh: is also an input ('.*rigs/131_01.bvh', a clip file of a folder given)" "$work/over.err" \
+  && cmp -s "$work/rigs/131_01.bvh" "$work/131-before.bvh" && [[ ! -e "$work/over.mgraph" ]] \
+  || { echo "FAIL: a report over a clip read"; cat "$work/over.err"; exit 1; }
 echo "cli build ok"

@@ -253,7 +253,7 @@ PY
 if "$bin" convert "$data/cmu/16/16_15.amc" "$data/cmu/16/16_35.amc" -o "$work/set.glb" -o "$work/set.bvh" 2>"$work/set.err"; then
   echo "FAIL: several clips into a BVH were accepted"; exit 1
 fi
-[[ $(wc -l <"$work/set.err") -eq 1 && ! -e "$work/set.bvh" ]] && grep -q "set.bvh: several clips go into a .glb or .fbx only" "$work/set.err" \
+[[ $(wc -l <"$work/set.err") -eq 1 && ! -e "$work/set.bvh" ]] && grep -q "set.bvh: the inputs are 2 clips, and several clips go into a .glb or .fbx only" "$work/set.err" \
   || { echo "FAIL: several clips into a BVH"; cat "$work/set.err"; exit 1; }
 if "$bin" convert "$data/cmu/16/16_15.amc" "$data/cmu/16/16_35.amc" --feet LeftAnkle,,, -o "$work/feet.glb" 2>"$work/feet.err"; then
   echo "FAIL: feet that are not there were accepted"; exit 1
@@ -298,6 +298,31 @@ for bad in "-o $work/lib.bvh" "--skeleton 3 -o $work/lib.glb"; do
     || { echo "FAIL: $bad"; cat "$work/lib.err"; exit 1; }
 done
 grep -q "skeleton 3: the library has 3 skeleton(s)" "$work/lib.err" || { echo "FAIL: --skeleton 3"; cat "$work/lib.err"; exit 1; }
+"$bin" convert "$work/rigs" -o "$work/lib.bvh" 2>"$work/lib.err" || true
+grep -q "lib.bvh: the library holds 3 clips, and several clips go into a .glb or .fbx only" "$work/lib.err" \
+  || { echo "FAIL: a library of 3 clips into a BVH"; cat "$work/lib.err"; exit 1; }
+# A library of one clip (a folder of one file, a manifest's frame range) goes into any format.
+mkdir "$work/one" && cp "$data/bvh/131_01.bvh" "$work/one/"
+printf '[[clip]]\nfile = "%s"\nfirst_frame = 41\nlast_frame = 240\n' "$data/cmu/16/16_15.amc" >"$work/range.toml"
+"$bin" convert "$work/one" -o "$work/one.bvh" -o "$work/one.json" 2>/dev/null \
+  && "$bin" convert "$work/range.toml" -o "$work/range.json" 2>/dev/null \
+  && "$bin" convert "$work/one/131_01.bvh" --fps 30 -o "$work/one-file.json" 2>/dev/null \
+  || { echo "FAIL: a library of one clip into a BVH or JSON"; exit 1; }
+python3 - "$work" <<'PY'
+import json, sys
+work = sys.argv[1]
+one, one_file, ranged = (json.load(open(f"{work}/{n}.json")) for n in ("one", "one-file", "range"))
+# The folder's one clip is the file's, as build reads it at 30 fps; the range 200 frames at 120 fps.
+assert len(one["positions"]) == len(one_file["positions"]) and one["contacts"]["joints"], len(one["positions"])
+assert len(ranged["positions"]) == 50 and ranged["fps"] == 30, (len(ranged["positions"]), ranged["fps"])
+PY
+"$bin" info "$work/one.bvh" | grep -q "at 30 fps" || { echo "FAIL: the one clip's BVH"; exit 1; }
+# An output is none of the files a folder gives, though no argument names it: refused, unchanged.
+cp "$work/rigs.glb" "$work/one/"
+cp "$work/one/rigs.glb" "$work/rigs-before.glb"
+if "$bin" convert "$work/one" -o "$work/one/rigs.glb" 2>"$work/over.err"; then echo "FAIL: wrote over a clip read"; exit 1; fi
+grep -q "one/rigs.glb: is also an input ('.*one/rigs.glb', a clip file of a folder given)" "$work/over.err" \
+  && cmp -s "$work/one/rigs.glb" "$work/rigs-before.glb" || { echo "FAIL: over a clip read"; cat "$work/over.err"; exit 1; }
 # glTF in: an animation of a set reads back to its clip's joints; a library of glTF files reads
 # every animation, named FILE:ANIMATION, tagged by CMU's index when named as CMU's clips are.
 "$bin" convert "$work/set.glb" --animation 16_35 -o "$work/set-jog.json"

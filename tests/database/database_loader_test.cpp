@@ -1569,6 +1569,39 @@ TEST(DatabaseLoader, AFolderOfFoldersIsReadAsOneLibraryEachAmcWithItsSubjectsSke
       << db.error().message;
 }
 
+// No file the command will write is read: a clip a folder holds or a manifest names, a manifest,
+// an AMC's skeleton (given or found beside it). Each refused before anything is written, naming
+// the output and how the file would be read; the library's other outputs are fine.
+TEST(DatabaseLoader, AFileReadIsNoneOfTheOutputs) {
+  TempFolder tree("outputs");
+  const std::string asf = tree.write("mocap/16.asf", test::read_data("cmu/16/16.asf"));
+  const std::string amc = tree.write("mocap/16_35.amc", test::read_data("cmu/16/16_35.amc"));
+  const std::string manifest = tree.write("m.toml", "[[clip]]\nfile = \"mocap/16_35.amc\"\n");
+  const auto refused = [&](const std::vector<std::string>& inputs, const std::string& output,
+                           std::optional<std::string> asf_path = std::nullopt) {
+    DatabaseSettings settings = cmu_settings();
+    settings.asf_path = asf_path;
+    settings.outputs = {(tree.path() / "g.mgraph").string(), output};
+    auto db = load_database(inputs, settings);
+    return db ? std::string() : db.error().file + ": " + db.error().message;
+  };
+  const std::string folder = (tree.path() / "mocap").string();
+  EXPECT_EQ(refused({folder}, (tree.path() / "mocap/report.json").string()), "");
+  EXPECT_EQ(refused({folder}, folder + "/./16_35.amc"),
+            fmt::format("{}/./16_35.amc: is also an input ('{}', a clip file of a folder given): give the output "
+                        "another name", folder, amc));
+  EXPECT_NE(refused({folder}, asf).find(fmt::format("is also an input ('{}', the skeleton of {})", asf, amc)),
+            std::string::npos);
+  const std::string named = (tree.path() / "mocap/16_35.amc").string();
+  EXPECT_NE(refused({manifest}, amc).find(fmt::format("('{}', a clip {} names)", named, manifest)), std::string::npos)
+      << refused({manifest}, amc);
+  EXPECT_NE(refused({manifest}, asf).find("the skeleton of"), std::string::npos);  // found beside the AMC
+  EXPECT_NE(refused({manifest}, manifest).find("a manifest given"), std::string::npos);
+  EXPECT_NE(refused({amc}, asf, asf).find("the skeleton of"), std::string::npos);  // given with --asf
+  // None of them was written over.
+  EXPECT_EQ(*read_text_file(amc), test::read_data("cmu/16/16_35.amc"));
+}
+
 // A folder of two converters' rigs that share no joint (the Daz rig of 07_01, CMU's of 111_36
 // and, under other names, 16_01): the rigs of the most frames are read, the other's files left
 // out with a warning, though the other rig has the most frames of any one rig.

@@ -36,6 +36,11 @@ TEST_F(OutputFolder, OutputsAreCheckedAsTheFilesTheyName) {
   auto folder = check_outputs({at("sub")}, {});
   ASSERT_FALSE(folder);
   EXPECT_NE(folder.error().message.find("it is a folder"), std::string::npos);
+  // Under a file: said so, not that no folder is there.
+  auto under_file = check_outputs({at("in.bvh/out.bvh")}, {});
+  ASSERT_FALSE(under_file);
+  EXPECT_NE(under_file.error().message.find("'" + at("in.bvh") + "' is a file, not a folder"), std::string::npos)
+      << under_file.error().message;
   // An input under another name (./, .., a link) is still the input.
   for (const std::string& same : {at("./in.bvh"), at("sub/../in.bvh")}) {
     auto input = check_outputs({same}, {at("in.bvh")});
@@ -60,6 +65,22 @@ TEST_F(OutputFolder, OutputsAreCheckedAsTheFilesTheyName) {
   EXPECT_NE(relative.error().message.find("is named for two outputs"), std::string::npos);
   EXPECT_FALSE(relative_input);
   EXPECT_TRUE(apart) << apart.error().message;
+}
+
+// A file read that no argument names (a folder's clip, an AMC's skeleton): refused as an output,
+// the error naming the output, the file and how it is read.
+TEST_F(OutputFolder, AFileReadThroughAFolderIsNoOutput) {
+  ASSERT_TRUE(write_file_atomic(at("sub/walk.bvh"), "HIERARCHY"));
+  EXPECT_TRUE(check_not_an_output(at("sub/walk.bvh"), {at("walk.bvh"), "", at("sub/report.json")}, "a clip"));
+  const Status same = check_not_an_output(at("sub/walk.bvh"), {at("g.mgraph"), at("sub/../sub/./walk.bvh")},
+                                          "a clip file of a folder given");
+  ASSERT_FALSE(same);
+  EXPECT_EQ(same.error().file, at("sub/../sub/./walk.bvh"));
+  EXPECT_NE(same.error().message.find("is also an input ('" + at("sub/walk.bvh") + "', a clip file of a folder given)"),
+            std::string::npos)
+      << same.error().message;
+  fs::create_symlink(at("sub/walk.bvh"), at("link.bvh"));
+  EXPECT_FALSE(check_not_an_output(at("sub/walk.bvh"), {at("link.bvh")}, "a clip"));
 }
 
 }  // namespace

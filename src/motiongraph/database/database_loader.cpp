@@ -642,6 +642,10 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
       return Error{spec.manifest, spec.animation_line, fmt::format("clip {}: {}", spec.path, loaded.error().message)};
     }
     if (!loaded) return loaded.error();
+    if (loaded->format == "amc") {  // its skeleton, when found beside it
+      const std::string how = fmt::format("the skeleton of {}", spec.path);
+      if (auto s = check_not_an_output(loaded->skeleton_path, settings.outputs, how); !s) return s.error();
+    }
     // A file a folder holds with a pose, not a motion (no frame, or under 2 at the library's rate:
     // a T-pose export, a character's skeleton), is passed over with a note, before anything of it
     // is noted or counted; given itself, an error below.
@@ -1189,6 +1193,7 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
     }
     const std::string ext = lower_extension(input);
     if (ext == ".toml") {
+      if (auto s = check_not_an_output(input, settings.outputs, "a manifest given"); !s) return s.error();
       if (auto s = expand_manifest(input, settings, specs, wide); !s) return s.error();
     } else if (is_clip_file(input)) {
       if (auto s = add_file_specs(input, default_load_settings(settings), specs, false); !s) return s.error();
@@ -1196,6 +1201,19 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
       return Error{input, 0, "an ASF file holds a skeleton only: give its folder, or its AMC files with --asf"};
     } else {
       return Error{input, 0, "unknown input: expected a folder, a .amc, .bvh, .glb, .gltf or .fbx clip, or a .toml manifest"};
+    }
+  }
+
+  // No file read is one the command will write: clips a folder holds or a manifest names, and
+  // skeletons given them (an AMC's found beside it: when it is read).
+  for (const ClipSpec& spec : specs) {
+    const std::string how = spec.in_folder           ? std::string("a clip file of a folder given")
+                            : !spec.manifest.empty() ? fmt::format("a clip {} names", spec.manifest)
+                                                     : std::string("a clip file given");
+    if (auto s = check_not_an_output(spec.path, settings.outputs, how); !s) return s.error();
+    if (spec.load.asf_path) {
+      const std::string skeleton_how = fmt::format("the skeleton of {}", spec.path);
+      if (auto s = check_not_an_output(*spec.load.asf_path, settings.outputs, skeleton_how); !s) return s.error();
     }
   }
 
@@ -1222,6 +1240,7 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
     std::string path = settings.cmu_index_path;
     if (text.empty() && path.empty() && settings.cmu_index_beside_inputs) path = find_cmu_index(inputs);
     if (text.empty() && !path.empty()) {
+      if (auto s = check_not_an_output(path, settings.outputs, "the CMU index"); !s) return s.error();
       auto read = read_text_file(path);
       if (!read) return read.error();
       text = std::move(*read);

@@ -4,8 +4,8 @@
 // one another in global frame order, in input order.
 //
 // Inputs, each one of:
-//   - a folder: its .amc files (with the folder's one .asf) and .bvh files, sorted by name;
-//     not recursive; other files are ignored;
+//   - a folder: its clip files and those of the folders in it (database/folder_tree.h), an AMC
+//     with its folder's .asf; other files are ignored;
 //   - a .amc file (its skeleton: DatabaseSettings::asf_path, or the only .asf beside it) or a
 //     .bvh file;
 //   - a .toml manifest.
@@ -95,6 +95,12 @@ struct DatabaseSettings {
   // A bar on stderr while the files are read, one step a clip file (core/progress.h: drawn on a
   // terminal only): a library of hours takes a minute to read.
   bool progress_bar = false;
+
+  // The files the command will write (its output, report, exports): loading fails, before any
+  // motion is read, on a clip file a folder holds or a manifest names, a manifest, an AMC's
+  // skeleton or the CMU index that is one of them (io/file.h check_not_an_output), so that no
+  // run writes over a file it read.
+  std::vector<std::string> outputs;
 
   Status validate() const;
 };

@@ -2,9 +2,10 @@
 // reading options (skeleton, BVH scale, capture rate), an optional frame range, and motion
 // tags for the whole clip or for frame ranges of it. Format for users: docs/manifest.md.
 //
-// Frame numbers are the file's own, counted from 1: frame 1 is the first frame stored in the
-// file (for CMU AMC files, the number written before it), counted before any rest frame a
-// BVH reader drops. Ranges are inclusive at both ends. Paths are kept as written; the loader
+// Frame numbers count the file's frames from 1: frame 1 is the first frame stored in the file
+// (for CMU's AMC files, numbered from 1, the number written before it; an AMC numbered from
+// elsewhere is counted by position too), counted before any rest frame a BVH reader drops.
+// Ranges are inclusive at both ends. Paths are kept as written; the loader
 // resolves them against the manifest's folder (database_loader.h).
 //
 // parse_manifest reads text only (it never touches the disk). Every error names the manifest

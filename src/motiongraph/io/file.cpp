@@ -145,6 +145,9 @@ Status check_outputs(const std::vector<std::string>& outputs, const std::vector<
     if (folder.empty()) folder = ".";
     std::error_code error;
     if (!std::filesystem::is_directory(folder, error)) {
+      if (std::filesystem::exists(folder, error)) {
+        return Error{output, 0, fmt::format("cannot write: '{}' is a file, not a folder", folder.string())};
+      }
       return Error{output, 0, fmt::format("cannot write: there is no folder '{}'", folder.string())};
     }
     if (std::filesystem::is_directory(output, error)) return Error{output, 0, "cannot write: it is a folder"};
@@ -155,6 +158,15 @@ Status check_outputs(const std::vector<std::string>& outputs, const std::vector<
     }
     for (size_t j = 0; j < i; ++j) {
       if (!outputs[j].empty() && same_file(output, outputs[j])) return Error{output, 0, "is named for two outputs"};
+    }
+  }
+  return Ok{};
+}
+
+Status check_not_an_output(const std::string& read, const std::vector<std::string>& outputs, const std::string& how) {
+  for (const std::string& output : outputs) {
+    if (!output.empty() && same_file(output, read)) {
+      return Error{output, 0, fmt::format("is also an input ('{}', {}): give the output another name", read, how)};
     }
   }
   return Ok{};

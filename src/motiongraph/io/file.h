@@ -41,6 +41,11 @@ Status write_file_atomic(const std::string& path, std::string_view content);
 // they name (links and "./" resolved).
 Status check_outputs(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs);
 
+// The same check for a file a command reads that is not one of its arguments (a clip a folder
+// holds, one a manifest names, an AMC's skeleton): refused when it is one of the `outputs`, the
+// error naming the output, the file and `how` it is read ("a clip of the folder data/").
+Status check_not_an_output(const std::string& read, const std::vector<std::string>& outputs, const std::string& how);
+
 // Creates the folder and its missing parents (nothing to do when it exists).
 Status create_folders(const std::string& path);
 
