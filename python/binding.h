@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -57,9 +58,19 @@ py::object to_python(const nlohmann::json& value);
 using OptionTable = std::map<std::string, std::function<void(py::handle)>>;
 void apply_options(const py::dict& options, const OptionTable& table, const char* function);
 // The table's usual entry: the value cast to the field's type (TypeError when it cannot be).
+// Text from a str, or a path from an os.PathLike (pathlib.Path) or bytes, as os.fsdecode gives it.
+std::string text_or_path(py::handle value);
 template <class T>
 std::function<void(py::handle)> set(T& field) {
-  return [&field](py::handle value) { field = value.cast<T>(); };
+  return [&field](py::handle value) {
+    if constexpr (std::is_same_v<T, std::string>) {
+      field = text_or_path(value);
+    } else if constexpr (std::is_same_v<T, std::optional<std::string>>) {
+      field = text_or_path(value);
+    } else {
+      field = value.cast<T>();
+    }
+  };
 }
 
 // build()'s keywords: the CLI's build options, snake_case ('--no-tag-thresholds' is
@@ -101,6 +112,7 @@ struct PyGraph {
   nlohmann::json report;        // the CLI's build --report
   std::string matrix_npy;       // when the build was asked for it
   std::string clouds_npy;
+  mutable py::object nodes;     // Graph.nodes, made on first use
 };
 
 void bind_motion(py::module_& m);

@@ -146,7 +146,7 @@ PyGraph build(const std::vector<std::string>& inputs, const py::dict& options, c
     built = build_graph(inputs, settings, cache.get(), log);
   }
   if (callback_error) throw std::move(*callback_error);
-  for (const std::string& line : warnings) warn(line);
+  for (const std::string& line : warnings) warn(line, 2);  // the caller of motiongraph.build, past its wrapper
   GraphBuild b = take(std::move(built));
   if (!b.graph_status) raise_error(b.graph_status.error(), b.report);
   PyGraph graph;
@@ -154,7 +154,14 @@ PyGraph build(const std::vector<std::string>& inputs, const py::dict& options, c
   graph.report = std::move(b.report);
   graph.matrix_npy = std::move(b.matrix_npy);
   graph.clouds_npy = std::move(b.clouds_npy);
-  graph.loaded = load_file(std::move(b.file), graph.name);
+  // The graph as its file holds it (the motion as the file stores it), so that it plays what the
+  // same graph saved and read back plays, and the CLI's from the file `build` writes.
+  Result<GraphFile> stored = Error{};
+  {
+    py::gil_scoped_release release;
+    stored = parse_graph_file(serialize_graph_file(b.file), graph.name);
+  }
+  graph.loaded = load_file(take(std::move(stored)), graph.name);
   return graph;
 }
 
@@ -193,19 +200,29 @@ void bind_graph(py::module_& m, py::class_<PyGraph>& graph) {
       .def_property_readonly(
           "nodes",
           [](const PyGraph& g) {
-            const GraphFile& file = g.loaded->file();
-            const std::vector<TagMask> tags = file.database.frame_tags();
-            py::list nodes;
-            for (const GraphNode& node : file.graph.nodes) {
-              const DatabaseClip& clip = file.database.clips[node.clip];
-              py::dict row;
-              row["frame"] = node.frame;
-              row["clip"] = clip.name;
-              row["clip_frame"] = node.frame - clip.first_frame;
-              row["tags"] = file.database.tag_names_of(tags.empty() ? 0 : tags[node.frame]);
-              nodes.append(row);
+            // Made once (the tags of every frame are the slow part), handed out as copies.
+            if (!g.nodes) {
+              const GraphFile& file = g.loaded->file();
+              const std::vector<TagMask> tags = file.database.frame_tags();
+              py::list nodes;
+              for (const GraphNode& node : file.graph.nodes) {
+                const DatabaseClip& clip = file.database.clips[node.clip];
+                py::dict row;
+                row["frame"] = node.frame;
+                row["clip"] = clip.name;
+                row["clip_frame"] = node.frame - clip.first_frame;
+                row["tags"] = file.database.tag_names_of(tags.empty() ? 0 : tags[node.frame]);
+                nodes.append(row);
+              }
+              g.nodes = nodes;
             }
-            return nodes;
+            py::list copy;
+            for (const py::handle row : g.nodes) {
+              auto own = py::reinterpret_steal<py::dict>(PyDict_Copy(row.ptr()));  // (py::dict(row) would be row)
+              own["tags"] = py::reinterpret_steal<py::list>(PySequence_List(py::object(own["tags"]).ptr()));
+              copy.append(own);
+            }
+            return copy;
           },
           "One dict per node, numbered as walk() and the CLI's 'inspect --nodes' number them: its database "
           "frame, clip, frame within the clip and tags.")

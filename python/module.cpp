@@ -40,6 +40,14 @@ py::object to_python(const nlohmann::json& value) {
   return (*loads)(json_text(value));
 }
 
+std::string text_or_path(py::handle value) {
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::isinstance<py::bytes>(value) || py::hasattr(value, "__fspath__")) {
+    return py::module_::import("os").attr("fsdecode")(value).cast<std::string>();
+  }
+  throw py::cast_error();  // TypeError, naming the keyword and the type given
+}
+
 void apply_options(const py::dict& options, const OptionTable& table, const char* function) {
   for (const auto& [key, value] : options) {
     const std::string name = py::str(key);

@@ -61,7 +61,7 @@ PyMotion walk(const PyGraph& graph, int from, int to, const py::kwargs& options)
 
 PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<double, 2>>>& points,
               const std::optional<std::string>& shape, const std::optional<std::vector<std::string>>& segments,
-              const std::optional<std::string>& file, const py::kwargs& options) {
+              const std::optional<std::filesystem::path>& file, const py::kwargs& options) {
   PathSynthesisSettings settings;
   SynthesisRunSettings run = run_settings(graph);
   apply_options(options,
@@ -86,7 +86,8 @@ PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<d
                  {"cleanup", set(run.cleanup)}},
                 "path");
   check(settings.validate());
-  FloorPathSource source{file.value_or(""), shape.value_or(""), {}, segments.value_or(std::vector<std::string>{})};
+  FloorPathSource source{file ? file->string() : std::string(), shape.value_or(""), {},
+                         segments.value_or(std::vector<std::string>{})};
   for (const auto& [x, z] : points.value_or(std::vector<std::array<double, 2>>{})) source.points.emplace_back(x, z);
   Result<SynthesizedMotion> made = Error{};
   {
@@ -175,6 +176,17 @@ class PyController {
     return frames(std::move(decided), std::move(contacts));
   }
 
+  std::string repr() const {
+    int frames = 0;
+    {
+      py::gil_scoped_release release;
+      const std::lock_guard<std::mutex> lock(mutex_);
+      frames = motion_.frame_count;
+    }
+    return fmt::format("<motiongraph.Controller on '{}': {} frames ({:.1f} s) so far>", name_, frames,
+                       frames / context().db->fps);
+  }
+
   PyMotion motion() const {
     Motion all;
     std::vector<ContactMask> contacts;
@@ -227,6 +239,13 @@ class PyController {
 }  // namespace
 
 void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
+  // Before the graph's controller(), so that its signature names the class.
+  py::class_<PyController>(m, "Controller", "Steers motion on a graph from a heading and a motion type.")
+      .def("step", &PyController::step, py::arg("heading_deg"), py::arg("tag") = py::none(),
+           "Decides the next frames towards heading_deg (degrees clockwise from north) with motion type `tag` "
+           "(None: any) and returns them as a Motion.")
+      .def_property_readonly("motion", &PyController::motion, "All frames so far, as a Motion.")
+      .def("__repr__", &PyController::repr);
   graph.def("walk", &walk, py::arg("from_node"), py::arg("to_node"),
             "The cheapest walk between two nodes (the CLI's walk): keywords cost ('constant', 'quality', "
             "'random', 'hybrid'), seed, min_frames, max_expansions, cleanup.")
@@ -250,11 +269,6 @@ void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
           "beam, time_budget, start_node, edit_max_turn (degrees per metre the heading edit may turn the motion "
           "toward the heading; 0: as the graph plays it), edit_turn_distance (m), edit_hold ('facing' or 'travel': "
           "what the heading edit holds on the heading), cleanup.");
-  py::class_<PyController>(m, "Controller", "Steers motion on a graph from a heading and a motion type.")
-      .def("step", &PyController::step, py::arg("heading_deg"), py::arg("tag") = py::none(),
-           "Decides the next frames towards heading_deg (degrees clockwise from north) with motion type `tag` "
-           "(None: any) and returns them as a Motion.")
-      .def_property_readonly("motion", &PyController::motion, "All frames so far, as a Motion.");
 }
 
 }  // namespace mg::python

@@ -20,9 +20,9 @@ __all__ = ["Controller", "EmptyGraphError", "Error", "Graph", "Library", "Motion
 
 
 def _paths(inputs):
-    if isinstance(inputs, (str, _os.PathLike)):
+    if isinstance(inputs, (str, bytes, _os.PathLike)):
         inputs = [inputs]
-    return [_os.fspath(i) for i in inputs]
+    return [_os.fsdecode(i) for i in inputs]
 
 
 def build(inputs, progress=None, **options):

@@ -273,8 +273,10 @@ def test_a_rate_past_what_a_clip_may_hold_raises(data):
 
 
 def test_missing_clip_raises(tmp_path):
-    with pytest.raises(mg.Error, match="missing.amc"):
-        mg.load_clip(str(tmp_path / "missing.amc"))
+    # Said as missing, not as a skeleton missing beside it.
+    for name in ("missing.amc", "missing.bvh"):
+        with pytest.raises(mg.Error, match=f"{name}: cannot open: No such file"):
+            mg.load_clip(str(tmp_path / name))
 
 
 def test_fbx_stacks_read_as_the_cli(cli, data, tmp_path):

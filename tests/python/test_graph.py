@@ -49,6 +49,19 @@ def test_build_equals_the_cli(cli, cli_build, built):
         built.node_count, built.edge_count, built.transition_count)
 
 
+def test_a_built_graph_plays_what_its_file_plays(cli_build, built, tmp_path):
+    """build()'s graph is the file's: the same motion to the bit as the CLI's graph and as itself
+    saved and read back."""
+    built.save(tmp_path / "g.mgraph")
+    graphs = [built, mg.load_graph(tmp_path / "g.mgraph"), mg.load_graph(cli_build / "g.mgraph")]
+    paths = [g.path(shape="figure8:4", segments=["walk:0-25", "run:25-51"]) for g in graphs]
+    walks = [g.walk(0, 7, min_frames=60) for g in graphs]
+    for made in (paths, walks):
+        assert made[0].report["expansions"] == made[1].report["expansions"] == made[2].report["expansions"]
+        assert np.array_equal(made[0].positions, made[1].positions)
+        assert np.array_equal(made[0].positions, made[2].positions)
+
+
 def test_exports_equal_the_cli(cli_build, built):
     matrix = built.distance_matrix()
     assert matrix.shape == (built.frame_count, built.frame_count) and matrix.dtype == np.float32
@@ -66,6 +79,14 @@ def test_saved_graph_reads_back(cli, built, tmp_path):
     assert without_timings(again.report) == without_timings(built.report)
     with pytest.raises(mg.Error, match="no distance_matrix"):
         again.distance_matrix()
+
+
+def test_nodes_are_made_once_and_handed_out_as_copies(graph):
+    nodes = graph.nodes
+    assert nodes == graph.nodes and nodes is not graph.nodes
+    nodes[0]["tags"].append("changed")
+    nodes[1]["clip"] = "changed"
+    assert "changed" not in graph.nodes[0]["tags"] and graph.nodes[1]["clip"] != "changed"
 
 
 def test_fixture_graph_equals_a_python_build(cli, data, graph_file, graph):
@@ -159,10 +180,26 @@ def test_progress_callback(data):
         mg.build(str(data / "cmu/16"), no_cache=True, progress=stop)
 
 
-def test_paths_may_be_path_objects(graph_file, tmp_path):
+def test_paths_may_be_path_objects(data, graph_file, tmp_path):
     graph = mg.load_graph(graph_file)
     graph.save(tmp_path / "g.mgraph")
     assert mg.load_graph(tmp_path / "g.mgraph").nodes == graph.nodes
+    # Path-valued keywords too, and bytes, as one path each.
+    cached = mg.build(data / "cmu/16", cache_dir=tmp_path / "cache")
+    assert any((tmp_path / "cache").iterdir()) and cached.nodes == graph.nodes
+    assert mg.build(bytes(data / "cmu/16"), cache_dir=tmp_path / "cache").nodes == graph.nodes
+    assert len(mg.load_library(bytes(data / "cmu/16"))) == len(mg.load_library(data / "cmu/16"))
+    (tmp_path / "line.json").write_text('{"points": [[0, 0], [0, -6]]}')
+    assert graph.path(file=tmp_path / "line.json").report["reached_end"]
+    with pytest.raises(TypeError, match="'cache_dir' cannot be a int"):
+        mg.build(data / "cmu/16", cache_dir=3)
+
+
+def test_build_warnings_point_at_the_caller(data):
+    clip = data / "cmu/16/16_15.amc"
+    with pytest.warns(UserWarning, match="a clip is named 16_15 already") as caught:
+        mg.build([clip, clip], no_cache=True, no_path_check=True, threshold_quantile=0.2)
+    assert caught[0].filename == __file__, caught[0].filename
 
 
 def test_build_releases_the_gil(data):

@@ -135,6 +135,8 @@ Result<LoadedClip> ClipLoader::load(const std::string& path, const std::optional
   LoadedClip loaded;
   loaded.clip.name = fs::path(path).stem().string();
   if (ext == ".amc") {
+    // A missing AMC is said as such, not as a skeleton missing beside it.
+    if (std::error_code ec; !fs::exists(path, ec)) return Error{path, 0, "cannot open: No such file or directory"};
     auto asf_path = find_asf_for(path);
     if (!asf_path) return asf_path.error();
     auto rig = load_asf(*asf_path);
