@@ -252,6 +252,11 @@ TEST(FloorPath, NearestArcIsTheNearestPointOfTheRange) {
       ASSERT_LE(s, to);
       const double found = (path->point_at(s) - p).norm();
       for (double t = from; t <= to; t += 0.001) EXPECT_GE((path->point_at(t) - p).norm(), found - 1e-9) << spec;
+      // Preferring an arc: within the range, and as near as the nearest but for 2 cm.
+      const double preferred = path->nearest_arc(p, from, to, from + (to - from) * unit(rng));
+      ASSERT_GE(preferred, from);
+      ASSERT_LE(preferred, to);
+      EXPECT_LE((path->point_at(preferred) - p).norm(), found + 0.02 + 1e-9) << spec;
     }
   }
 }
@@ -293,6 +298,31 @@ TEST(FloorPath, FollowedArcsGiveProgressNotDistanceTravelled) {
   const std::vector<Vec2> shuffle = {{0.0, 0.0}, {0.0, -0.5}, {0.4, -0.5}, {-0.4, -0.5}, {0.0, -0.5}, {0.0, -1.5}};
   EXPECT_EQ(line->followed_arcs(shuffle), (std::vector<double>{0.0, 0.5, 0.5, 0.5, 0.5, 1.5}));
   EXPECT_TRUE(line->followed_arcs({}).empty());
+}
+
+// A path out and back (a patrol): the legs lie on one another, or a centimetre apart. A track
+// swaying across them is followed out and back, each point on its own leg, not snapped to the
+// other (where the same point, or one as near, lies earlier along the path).
+TEST(FloorPath, FollowedArcsStayOnTheirLegOfAPathOutAndBack) {
+  for (const double apart : {0.0, 0.005, 0.01}) {
+    auto path = FloorPath::create({{0.0, 0.0}, {0.0, -10.0}, {apart, 0.0}});
+    ASSERT_TRUE(path.ok()) << path.error().to_string();
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> sway(-0.05, 0.05);
+    std::vector<Vec2> track;
+    std::vector<double> made_at;
+    for (double s = 0.0; s <= path->length_m(); s += 0.03) {
+      const double across = std::abs(s - 10.0) < 0.3 ? 0.0 : sway(rng);
+      track.push_back(path->point_at(s) + Vec2(across, 0.0));
+      made_at.push_back(s);
+    }
+    const std::vector<double> arcs = path->followed_arcs(track);
+    // (at the turn the two legs' points are one: either arc)
+    for (size_t i = 0; i < arcs.size(); ++i) {
+      const double tolerance = std::abs(made_at[i] - 10.0) < 0.05 ? 0.1 : 0.02;
+      ASSERT_NEAR(arcs[i], made_at[i], tolerance) << apart << " m apart, point " << i;
+    }
+  }
 }
 
 TEST(FloorPath, LongPathsStayUsableAndHugeOnesAreErrors) {

@@ -123,22 +123,43 @@ double FloorPath::distance_to(const Vec2& p) const {
   return best;
 }
 
-double FloorPath::nearest_arc(const Vec2& p, double from, double to) const {
+double FloorPath::nearest_arc(const Vec2& p, double from, double to, double prefer) const {
   from = std::clamp(from, 0.0, length_m());
   to = std::clamp(to, from, length_m());
-  double best_arc = from, best = (point_at(from) - p).squaredNorm();
+  const auto distance_at = [&](double s) { return (point_at(s) - p).norm(); };
+  double best_arc = from, best = distance_at(from);
+  // Each segment's nearest point in the range (the candidates), then the nearest of them.
+  struct Candidate {
+    double arc, distance;
+  };
+  std::vector<Candidate> candidates;
   for (int i = segment_index(from); i + 1 < static_cast<int>(points_.size()) && arc_[i] <= to; ++i) {
     const Vec2 d = points_[i + 1] - points_[i];
     const double length = arc_[i + 1] - arc_[i];
     const double s =
         std::clamp(arc_[i] + (p - points_[i]).dot(d) / length, std::max(from, arc_[i]), std::min(to, arc_[i + 1]));
-    const double distance = (point_on(i, s) - p).squaredNorm();
+    const double distance = (point_on(i, s) - p).norm();
+    if (!std::isnan(prefer)) candidates.push_back({s, distance});
     if (distance < best) {
       best = distance;
       best_arc = s;
     }
   }
-  return best_arc;
+  if (std::isnan(prefer)) return best_arc;
+  // Legs of the path that lie on or near one another (a path out and back): of the points where
+  // the distance has a minimum along the path nearly as near as the nearest, the one nearest
+  // `prefer`, so that a point followed along the path stays on its leg. A segment's end is such
+  // a minimum only where the path turns away from p on both sides of it (a corner cut inside
+  // is left for the next leg).
+  constexpr double kNearM = 0.02, kProbeM = 1e-4;
+  double chosen = best_arc;
+  for (const Candidate& c : candidates) {
+    if (c.distance > best + kNearM || std::abs(c.arc - prefer) >= std::abs(chosen - prefer)) continue;
+    const bool minimum = (c.arc - kProbeM < from || distance_at(c.arc - kProbeM) >= c.distance - 1e-12) &&
+                         (c.arc + kProbeM > to || distance_at(c.arc + kProbeM) >= c.distance - 1e-12);
+    if (minimum) chosen = c.arc;
+  }
+  return chosen;
 }
 
 std::vector<double> FloorPath::followed_arcs(std::span<const Vec2> track, double window_m, double from) const {
@@ -146,7 +167,9 @@ std::vector<double> FloorPath::followed_arcs(std::span<const Vec2> track, double
   arcs.reserve(track.size());
   double last = from;
   for (const Vec2& p : track) {
-    last = last < 0.0 ? nearest_arc(p, 0.0, window_m) : nearest_arc(p, last - window_m, last + window_m);
+    // (on legs that overlap, the one going on from the last point's arc: a little ahead of it)
+    last = last < 0.0 ? nearest_arc(p, 0.0, window_m)
+                      : nearest_arc(p, last - window_m, last + window_m, last + kFollowAheadM);
     arcs.push_back(last);
   }
   return arcs;

@@ -125,7 +125,7 @@ Result<PathEditStats> plan_path_edit(std::span<const Vec2> roots, double fps, co
   for (size_t k = 0; k < steps; ++k) {
     const double s = grid[k];
     const double step = grid[k + 1] - s;
-    along = path.nearest_arc(edited[k], along - kReachM, along + kReachM + step);
+    along = path.nearest_arc(edited[k], along - kReachM, along + kReachM + step, along + step);
     along_at[k] = along;
     const Vec2 own_chord = turned(own.at(std::min(end, s + h)) - own.at(std::max(0.0, s - h)), a[k]);
     const Vec2 path_chord = target_at(path, along + h) - target_at(path, along - h);
