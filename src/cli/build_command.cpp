@@ -61,7 +61,7 @@ Result<std::unique_ptr<ProcessTeam>> make_team() {
 int run_build(BuildCommandOptions& o) {
   o.build.exports = {!o.export_matrix.empty(), !o.matrix_png.empty(), !o.export_clouds.empty()};
   auto settings = build_settings_from(o.build);
-  if (!settings) return fail(settings.error());
+  if (!settings) return fail_usage(settings.error());
   if (auto s = check_graph_output(o.output); !s) return fail(s.error());
   const std::vector<std::string> outputs = {o.output, o.report, o.matrix_png, o.export_matrix, o.export_clouds};
   if (auto s = check_outputs(outputs, o.inputs); !s) return fail(s.error());
@@ -137,7 +137,7 @@ Command add_build_command(CLI::App& app) {
                   "planted feet), or auto: the feet for clips animated in place, their planted feet sliding")
       ->check(CLI::IsMember({"auto", "root", "feet"}))
       ->capture_default_str();
-  sub->add_option("--input-fps", b.input_fps, kInputFpsHelp);
+  sub->add_option("--input-fps", b.input_fps, kInputFpsHelp)->check(CLI::Range(0.01, 10000.0));
   sub->add_flag("--keep-rest-frames", b.keep_rest_frames, kKeepRestFramesHelp);
   sub->add_option("--cmu-index", b.cmu_index,
                   "CMU's motion index (cmu-mocap-index.tsv) for tags from descriptions; default: one beside or above the "

@@ -29,5 +29,9 @@ Command add_serve_command(CLI::App& app);
 
 // Prints "motiongraph: <error>" to stderr and returns the exit code for failed input (1).
 int fail(const Error& error);
+// The same for options whose values do not go together or are out of their range, found once
+// the settings they make are checked (validate()): the exit code of a command line that cannot
+// be used (2), as CLI11's own checks give.
+int fail_usage(const Error& error);
 
 }  // namespace mg::cli

@@ -198,7 +198,7 @@ int run_convert(const ConvertOptions& options) {
     if (auto s = check_motion_output(output); !s) return fail(s.error());
   }
   if (auto s = check_outputs(options.outputs, options.inputs); !s) return fail(s.error());
-  if (auto s = options.output.settings().validate(); !s) return fail(s.error());
+  if (auto s = options.output.settings().validate(); !s) return fail_usage(s.error());
   const ClipLoadSettings load = options.load.settings();
   if (is_library(options.inputs)) {
     if (options.animation) return fail(Error{"", 0, "--animation applies to glTF and FBX files, not to a library"});

@@ -58,7 +58,7 @@ struct LoadOptions {
               return parsed ? std::string() : parsed.error().message;
             },
             "", "FEET"));
-    app.add_option("--input-fps", input_fps, kInputFpsHelp);
+    app.add_option("--input-fps", input_fps, kInputFpsHelp)->check(CLI::Range(0.01, 10000.0));
     app.add_flag("--keep-rest-frames", keep_rest_frames, kKeepRestFramesHelp);
   }
 

@@ -25,6 +25,11 @@ int fail(const Error& error) {
   return 1;
 }
 
+int fail_usage(const Error& error) {
+  fail(error);
+  return 2;
+}
+
 namespace {
 
 // Every number option of `app` and its subcommands refuses nan and inf (CLI11 reads them, and

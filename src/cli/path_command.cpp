@@ -25,7 +25,7 @@ struct PathOptions {
 
 int run_path(const PathOptions& o) {
   const auto begin = std::chrono::steady_clock::now();
-  if (auto s = o.settings.validate(); !s) return fail(s.error());
+  if (auto s = o.settings.validate(); !s) return fail_usage(s.error());
   auto path = make_floor_path({o.path_file, o.shape, {}, o.segments});
   if (!path) return fail(path.error());
   auto loaded = load_for_synthesis(o.common, {o.path_file});
@@ -146,7 +146,8 @@ Command add_path_command(CLI::App& app) {
   sub->add_option("--behind-penalty", o->settings.behind_penalty_m, "Cost (m^2 per metre behind) of dawdling")
       ->capture_default_str();
   sub->add_option("--start-node", o->settings.start_node,
-                  "Start at this node (default: the best of about 16 spread over the graph and over its sets of tags)");
+                  "Start at this node (default: the best of about 16 spread over the graph and over its sets of tags)")
+      ->check(CLI::Range(0, 100000000));
   sub->add_option("--progress-retries", o->settings.progress_retries,
                   "When the motion does not reach the path's end, or takes longer over a segment (or over the "
                   "stretches no segment holds) than --min-speed (or the median speed of the type it asks for, where "

@@ -32,7 +32,8 @@ struct SynthesisOptions {
     app.add_option("-o,--output", output, "Output motion: .bvh (metres), .glb (binary glTF 2.0: skeleton, animation and a stick figure, for game engines, Blender, three.js), .fbx (binary FBX 7.4: the same in centimetres, for Maya, MotionBuilder, Unity, Unreal, Blender) or .json (world positions)")->required();
     app.add_option("--report", report, "Also write a JSON report of the result");
     app.add_option("--skeleton", skeleton,
-                   "Index of the database skeleton to play everything on (default: the first clip's)");
+                   "Index of the database skeleton to play everything on (default: the first clip's)")
+        ->check(CLI::Range(0, 1000000));
     app.add_flag("--no-cleanup", no_cleanup,
                  "Write the motion as played, without the foot clean-up (planted feet held on their plants by "
                  "two-bone leg IK, the root lowered where a leg cannot reach)");

@@ -26,12 +26,12 @@ int run_walk(const WalkOptions& o) {
   const auto begin = std::chrono::steady_clock::now();
   WalkSearchSettings settings;
   auto cost = parse_walk_cost(o.cost);
-  if (!cost) return fail(cost.error());
+  if (!cost) return fail_usage(cost.error());
   settings.cost = *cost;
   settings.seed = o.seed;
   settings.min_frames = o.min_frames;
   settings.max_expansions = o.max_expansions;
-  if (auto s = settings.validate(); !s) return fail(s.error());
+  if (auto s = settings.validate(); !s) return fail_usage(s.error());
   auto loaded = load_for_synthesis(o.common);
   if (!loaded) return fail(loaded.error());
   const SynthesisContext& context = (*loaded)->context();

@@ -115,6 +115,14 @@ exit_code out-of-range 2 "--fps" "$bin" convert "$good" -o "$work/x.bvh" --fps 0
 exit_code smoothing-alone 2 "--root-motion-smoothing requires --root-motion" \
   "$bin" convert "$good" -o "$work/x.bvh" --root-motion-smoothing 2
 exit_code missing-input 2 "nonexist.bvh" "$bin" info "$work/nonexist.bvh"
+# Values out of their range or that do not go together, found when the settings are checked: 2 too.
+exit_code input-fps-zero 2 "--input-fps" "$bin" info "$good" --input-fps 0
+exit_code coverage-over-1 2 "coverage" "$bin" build "$good" -o "$work/x.mgraph" --coverage 2
+exit_code negative-skeleton 2 "--skeleton" "$bin" walk "$work/x.mgraph" --from 0 --to 1 -o "$work/x.bvh" --skeleton -1
+exit_code walk-cost 2 "cost" "$bin" walk "$work/x.mgraph" --from 0 --to 1 -o "$work/x.bvh" --cost cheapest
+exit_code path-budget 2 "budgets must be positive" "$bin" path "$work/x.mgraph" --shape line:5 -o "$work/x.bvh" \
+  --max-expansions 0
+exit_code start-node 2 "--start-node" "$bin" path "$work/x.mgraph" --shape line:5 -o "$work/x.bvh" --start-node -2
 exit_code bad-file 1 "time.bvh:187: Frame Time '0' must be a positive number" "$bin" info "$work/in/time.bvh"
 set +e
 "$bin" --help >/dev/null 2>&1; help_code=$?
