@@ -1500,15 +1500,29 @@ TEST(DatabaseLoader, OneTakeInTwoFormatsIsReadOnceAndEveryClipHasANameOfItsOwn) 
       << notes.name_clashes[0];
   EXPECT_EQ(load_warnings(notes).front(), notes.name_clashes[0]);
 
-  // The folder and a file of it: the file's clip is 16_01_2; and so in a manifest that reads one
-  // file twice without names.
-  db = load_database({folder.path().string(), bvh}, cmu_settings(), &notes);
+  // Inputs that overlap (the folder, the folder under another name, a file of it): each file
+  // read once, said in one line.
+  const std::string again = (folder.path() / "." / "").string();
+  for (const std::vector<std::string>& inputs : {std::vector<std::string>{folder.path().string(), again, bvh},
+                                                 std::vector<std::string>{folder.path().string(), bvh}}) {
+    db = load_database(inputs, cmu_settings(), &notes);
+    ASSERT_TRUE(db) << db.error().to_string();
+    ASSERT_EQ(db->clips.size(), 2u);
+    ASSERT_EQ(notes.name_clashes.size(), inputs.size());  // the .glb left out by each folder, then this
+    EXPECT_EQ(notes.name_clashes.back(),
+              inputs.size() == 3 ? fmt::format("3 files read once, reached by inputs that overlap: {}16_01.bvh and 2 "
+                                               "more", again)
+                                 : fmt::format("1 file read once, reached by inputs that overlap: {}", bvh));
+  }
+  // A file given itself twice is read twice, the second clip 16_01_2; and so in a manifest that
+  // reads one file twice without names.
+  db = load_database({bvh, bvh}, cmu_settings(), &notes);
   ASSERT_TRUE(db) << db.error().to_string();
-  ASSERT_EQ(db->clips.size(), 3u);
-  EXPECT_EQ(db->clips[2].name, "16_01_2");
-  ASSERT_EQ(notes.name_clashes.size(), 2u);
-  EXPECT_NE(notes.name_clashes[1].find("a clip is named 16_01 already; this one is 16_01_2"), std::string::npos)
-      << notes.name_clashes[1];
+  ASSERT_EQ(db->clips.size(), 2u);
+  EXPECT_EQ(db->clips[1].name, "16_01_2");
+  ASSERT_EQ(notes.name_clashes.size(), 1u);
+  EXPECT_NE(notes.name_clashes[0].find("a clip is named 16_01 already; this one is 16_01_2"), std::string::npos)
+      << notes.name_clashes[0];
   const std::string manifest =
       folder.write("twice.toml", "[[clip]]\nfile = \"16_01.bvh\"\n[[clip]]\nfile = \"16_01.bvh\"\nlast_frame = 100\n");
   db = load_database({manifest}, cmu_settings(), &notes);

@@ -8,6 +8,7 @@
 #include <memory>
 #include <set>
 #include <tuple>
+#include <utility>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -1201,6 +1202,37 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
       return Error{input, 0, "an ASF file holds a skeleton only: give its folder, or its AMC files with --asf"};
     } else {
       return Error{input, 0, "unknown input: expected a folder, a .amc, .bvh, .glb, .gltf or .fbx clip, or a .toml manifest"};
+    }
+  }
+
+  // A file two inputs reach (a folder and a folder in it, one folder under two names: `data/cmu
+  // data/cmu/16`) is read once: a folder's file read already, or one given itself that a folder
+  // read already, is left out. A file given itself twice, or named by manifests, is read each
+  // time (named NAME_2 below).
+  {
+    std::set<std::pair<std::string, std::string>> read, read_in_folders;  // canonical path, animation
+    std::vector<ClipSpec> once;
+    std::vector<std::string> twice;
+    for (ClipSpec& spec : specs) {
+      std::error_code ec;
+      fs::path canonical = fs::weakly_canonical(fs::absolute(spec.path, ec), ec);
+      if (ec) canonical = fs::absolute(spec.path).lexically_normal();
+      const std::pair<std::string, std::string> key{canonical.string(), spec.animation.value_or("")};
+      const bool again = spec.in_folder ? read.count(key) > 0
+                                        : spec.manifest.empty() && read_in_folders.count(key) > 0;
+      if (again) {
+        if (twice.empty() || twice.back() != spec.path) twice.push_back(spec.path);
+        continue;
+      }
+      read.insert(key);
+      if (spec.in_folder) read_in_folders.insert(key);
+      once.push_back(std::move(spec));
+    }
+    specs = std::move(once);
+    if (!twice.empty()) {
+      name_clashes.push_back(fmt::format("{} file{} read once, reached by inputs that overlap: {}{}", twice.size(),
+                                         twice.size() == 1 ? "" : "s", twice.front(),
+                                         twice.size() == 1 ? "" : fmt::format(" and {} more", twice.size() - 1)));
     }
   }
 
