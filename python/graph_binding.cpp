@@ -76,6 +76,7 @@ OptionTable build_option_table(BuildCall& call) {
       {"taper", set(b.taper)},
       {"threshold",
        [&b](py::handle v) {
+         if (py::isinstance<py::bool_>(v)) throw py::cast_error();  // True is no distance
          b.threshold = py::isinstance<py::str>(v) ? v.cast<std::string>() : exact_text(v);
        }},
       {"threshold_quantile", set(b.quantile)},

@@ -94,6 +94,8 @@ PyMotion load_clip(const std::filesystem::path& file, const std::optional<std::f
   const std::string path = file.string();
   ClipLoadSettings settings;
   if (asf) settings.asf_path = asf->string();
+  // The least of the CLI's convert --fps: a rate that would leave a clip a frame or none is no rate.
+  if (fps && !(*fps >= 0.01)) throw py::value_error(fmt::format("fps must be at least 0.01, not {}", *fps));
   settings.bvh_metres_per_unit = scale;
   if (up_axis) {
     settings.up_axis = parse_up_axis(*up_axis);

@@ -270,6 +270,9 @@ def test_paths_may_be_path_objects(data, tmp_path):
 def test_a_rate_past_what_a_clip_may_hold_raises(data):
     with pytest.raises(mg.Error, match="over the 50 million joint poses a clip may hold"):
         mg.load_clip(data / "cmu/16/16_15.amc", fps=1e6)
+    # Below the CLI's least (0.01): no rate, not a clip of one frame.
+    with pytest.raises(ValueError, match="fps must be at least 0.01, not 1e-06"):
+        mg.load_clip(data / "cmu/16/16_15.amc", fps=1e-6)
 
 
 def test_missing_clip_raises(tmp_path):

@@ -195,6 +195,18 @@ def test_paths_may_be_path_objects(data, graph_file, tmp_path):
         mg.build(data / "cmu/16", cache_dir=3)
 
 
+def test_values_the_cli_refuses_are_refused(data, graph, tmp_path):
+    with pytest.raises(TypeError, match="'threshold' cannot be a bool"):
+        mg.build(data / "cmu/16", threshold=True)
+    # A skeleton given for AMC files must be there, as the CLI's --asf must, with a folder too.
+    with pytest.raises(mg.Error, match="none.asf: no such file"):
+        mg.build(data / "cmu/16", asf=tmp_path / "none.asf")
+    with pytest.raises(mg.Error, match="the start node must be >= 0, not -2"):
+        graph.path(shape="line:5", start_node=-2)
+    with pytest.raises(mg.Error, match="the beam width must be >= 0"):
+        graph.controller(beam=-1)
+
+
 def test_build_warnings_point_at_the_caller(data):
     clip = data / "cmu/16/16_15.amc"
     with pytest.warns(UserWarning, match="a clip is named 16_15 already") as caught:

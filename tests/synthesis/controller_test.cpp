@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <string>
+#include <utility>
 
 #include <Eigen/Eigenvalues>
 
@@ -317,12 +319,16 @@ TEST(Controller, AStarvedTimeBudgetStillAnswers) {
     EXPECT_FALSE(d.edges.empty());
   }
   EXPECT_GE(motion.frame_count, 50 * static_cast<int>(settings.commit_s * motion.fps));
-  for (auto spoil : {+[](ControllerSettings& c) { c.time_budget_s = -1.0; },
-                     +[](ControllerSettings& c) { c.beam_width = -1; },
-                     +[](ControllerSettings& c) { c.max_expansions = 0; }}) {
+  // Each setting out of range said by its name.
+  for (auto [spoil, named] : {std::pair{+[](ControllerSettings& c) { c.time_budget_s = -1.0; }, "time budget"},
+                              {+[](ControllerSettings& c) { c.beam_width = -1; }, "beam width"},
+                              {+[](ControllerSettings& c) { c.max_expansions = 0; }, "search budget"},
+                              {+[](ControllerSettings& c) { c.tag_penalty = -1.0; }, "tag penalty"},
+                              {+[](ControllerSettings& c) { c.start_node = -2; }, "start node must be >= 0, not -2"}}) {
     ControllerSettings bad;
     spoil(bad);
-    EXPECT_FALSE(bad.validate().ok());
+    ASSERT_FALSE(bad.validate().ok());
+    EXPECT_NE(bad.validate().error().message.find(named), std::string::npos) << bad.validate().error().message;
     EXPECT_FALSE(Controller::create(s.context(), bad, {bearing_direction(0.0), 0}).ok());
   }
 }

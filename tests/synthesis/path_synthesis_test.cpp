@@ -220,6 +220,11 @@ TEST(PathSynthesis, UnknownTagsAndBadSettingsAreErrors) {
   bad.progress_retries = 101;
   EXPECT_FALSE(bad.validate().ok());
   bad = {};
+  bad.start_node = -2;  // -1: the search's choice
+  EXPECT_FALSE(bad.validate().ok());
+  bad.start_node = -1;
+  EXPECT_TRUE(bad.validate().ok());
+  bad = {};
   bad.retry_horizon_s = -1.0;
   EXPECT_FALSE(bad.validate().ok());
   bad.retry_horizon_s = 0.5;  // shorter than the commit

@@ -1179,6 +1179,9 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
                                      DatabaseLoadNotes* notes) {
   if (auto s = settings.validate(); !s) return s.error();
   if (inputs.empty()) return Error{"", 0, "no inputs: give clip folders, clip files or a .toml manifest"};
+  if (std::error_code ec; settings.asf_path && !fs::is_regular_file(*settings.asf_path, ec)) {
+    return Error{*settings.asf_path, 0, "no such file (the skeleton given for AMC files)"};
+  }
 
   // 1. What to read, in order.
   std::vector<ClipSpec> specs;

@@ -23,9 +23,11 @@ Status ControllerSettings::validate() const {
   if (!(tag_lookahead >= 0.0 && tag_lookahead <= 1.0)) {
     return Error{"", 0, "controller: the tag lookahead must be from 0 to 1"};
   }
-  if (!(tag_penalty >= 0.0) || !(time_budget_s >= 0.0) || max_expansions < 1 || beam_width < 0) {
-    return Error{"", 0, "controller: penalties, budgets and the beam width must be >= 0 (expansions >= 1)"};
-  }
+  if (!(tag_penalty >= 0.0)) return Error{"", 0, "controller: the tag penalty must be >= 0"};
+  if (!(time_budget_s >= 0.0)) return Error{"", 0, "controller: the time budget must be >= 0"};
+  if (max_expansions < 1) return Error{"", 0, "controller: the search budget (expansions) must be at least 1"};
+  if (beam_width < 0) return Error{"", 0, "controller: the beam width must be >= 0"};
+  if (start_node < -1) return Error{"", 0, fmt::format("controller: the start node must be >= 0, not {}", start_node)};
   if (beam_width > kMaxBeamWidth) {
     return Error{"", 0, fmt::format("controller: the beam width must be at most {}", kMaxBeamWidth)};
   }

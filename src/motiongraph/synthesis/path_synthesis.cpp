@@ -47,6 +47,7 @@ Status PathSynthesisSettings::validate() const {
   if (!(tag_lookahead >= 0.0 && tag_lookahead <= 1.0)) {
     return Error{"", 0, "path search: the tag lookahead must be from 0 to 1"};
   }
+  if (start_node < -1) return Error{"", 0, fmt::format("path search: the start node must be >= 0, not {}", start_node)};
   return path_edit.validate();
 }
 
