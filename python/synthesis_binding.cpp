@@ -5,6 +5,7 @@
 #include <cmath>
 #include <memory>
 #include <mutex>
+#include <numbers>
 #include <optional>
 #include <set>
 #include <string>
@@ -13,6 +14,9 @@
 #include <pybind11/stl.h>
 
 #include "binding.h"
+#include "motiongraph/core/quantile.h"
+#include "motiongraph/core/transition_rate.h"
+#include "motiongraph/evaluation/foot_slide_report.h"
 #include "motiongraph/evaluation/synthesis_run.h"
 #include "motiongraph/synthesis/controller.h"
 
@@ -142,6 +146,8 @@ class PyController {
     if (hold != "travel" && hold != "facing") check(Error{"", 0, "--edit-hold must be 'travel' or 'facing', not '" + hold + "'"});
     settings.heading_edit.hold_travel = hold == "travel";
     check(settings.validate());
+    settings_ = settings;
+    run_ = run;
     std::string warning;
     cleanup_ = make_cleanup(context(), run, warning);
     if (!warning.empty()) warn(graph.name + ": " + warning);
@@ -163,6 +169,8 @@ class PyController {
       controller_->set_input(in);
       first = motion_.frame_count;
       const ControllerDecision decision = controller_->step(motion_);
+      decision_seconds_.push_back(decision.search_seconds);
+      exhausted_ += decision.budget_exhausted ? 1 : 0;
       contacts = context().edges_contacts(decision.edges);
       if (cleanup_) cleaned = cleanup_->clean(motion_, first, contacts);
       played_.edges.insert(played_.edges.end(), decision.edges.begin(), decision.edges.end());
@@ -187,20 +195,59 @@ class PyController {
                        frames / context().db->fps);
   }
 
+  // With the report the CLI's steer --report gives of the same decisions (but its controls, which
+  // a script gives): transitions, bridges, the decisions' times, the heading edit, the clean-up
+  // and the foot slide against the clips the motion was cut from.
   PyMotion motion() const {
     Motion all;
     std::vector<ContactMask> contacts;
+    nlohmann::json report;
     {
       py::gil_scoped_release release;
       const std::lock_guard<std::mutex> lock(mutex_);
       all = motion_;
       contacts = contacts_;
+      report = steering_report();
     }
-    return frames(std::move(all), std::move(contacts));
+    PyMotion out = frames(std::move(all), std::move(contacts));
+    out.report = std::move(report);
+    out.walk = played_;
+    return out;
   }
 
  private:
   const SynthesisContext& context() const { return loaded_->context(); }
+
+  // (the lock held)
+  nlohmann::json steering_report() const {
+    const double fps = context().db->fps;
+    int transitions = 0, bridges = 0;
+    for (int e : played_.edges) {
+      transitions += context().graph->edges[e].transition ? 1 : 0;
+      bridges += context().graph->edges[e].bridge ? 1 : 0;
+    }
+    const HeadingEditStats& edit = controller_->heading_edit_stats();
+    return {{"frames", motion_.frame_count},
+            {"fps", fps},
+            {"transitions", transitions},
+            {"transitions_per_second", transitions_per_second(transitions, motion_.frame_count, fps)},
+            {"bridges", bridges},
+            {"edges", played_.edges},
+            {"decisions", decision_seconds_.size()},
+            {"decision_ms_p50", 1e3 * quantile(decision_seconds_, 0.5)},
+            {"decision_ms_p99", 1e3 * quantile(decision_seconds_, 0.99)},
+            {"decision_ms_max", 1e3 * quantile(decision_seconds_, 1.0)},
+            {"budget_exhausted_decisions", exhausted_},
+            {"heading_edit",
+             {{"max_turn_deg_per_m", settings_.heading_edit.max_turn_deg_per_m},
+              {"turn_distance_m", settings_.heading_edit.turn_distance_m},
+              {"hold", settings_.heading_edit.hold_travel ? "travel" : "facing"},
+              {"travel_share", edit.frames > 0 ? edit.travel_share / static_cast<double>(edit.frames) : 0.0},
+              {"added_turn_deg", edit.added_turn_rad * 180.0 / std::numbers::pi},
+              {"max_rate_deg_per_m", edit.max_rate_deg_per_m}}},
+            {"cleanup", cleanup_report(context(), run_, cleanup_)},
+            {"foot_slide", foot_slide_report(context(), played_, motion_)}};
+  }
 
   // The first time a motion type the graph plays in no frame is asked for, a warning says so.
   ControlInput input(double heading_deg, const std::optional<std::string>& tag) {
@@ -234,6 +281,10 @@ class PyController {
   std::optional<Controller> controller_;
   Walk played_{-1, {}};
   std::vector<ContactMask> contacts_;
+  ControllerSettings settings_;
+  SynthesisRunSettings run_;
+  std::vector<double> decision_seconds_;  // each step's search
+  int exhausted_ = 0;                     // steps whose search ran out of budget
 };
 
 }  // namespace

@@ -332,6 +332,20 @@ TEST(GltfWriter, ARootWithoutPositionChannelsStaysAtItsOffset) {
   EXPECT_LT(max_world_error(written(fixed, motion), fixed, motion), 1e-5);
 }
 
+// A root further away than single precision holds is refused, not written as infinity (which no
+// reader takes); as far as it holds, written.
+TEST(GltfWriter, ATranslationPastSinglePrecisionIsAnError) {
+  const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
+  Motion far = clip.motion;
+  far.translations(40)[0].x() = 1e39;
+  auto refused = write_glb(clip.skeleton, far, "far");
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().message, "animation 'far': joint 'root' at frame 41 lies 1e+39 m away, past what glTF's "
+                                     "single-precision numbers hold");
+  far.translations(40)[0].x() = 1e37;
+  EXPECT_TRUE(write_glb(clip.skeleton, far, "far"));
+}
+
 TEST(GltfWriter, AMotionThatDoesNotFitItsSkeletonIsAnError) {
   const Clip clip = test::load_data_clip("cmu/16/16_15.amc");
   Motion fewer_joints = clip.motion;

@@ -156,7 +156,8 @@ def test_steering_equals_the_cli(cli, graph_file, graph, tmp_path):
     controls = [{"at_s": 0, "heading_deg": 0, "tag": "walk"}, {"at_s": 2, "heading_deg": 90, "tag": "any"},
                 {"at_s": 4, "heading_deg": 200, "tag": "run"}]
     (tmp_path / "controls.json").write_text(json.dumps({"duration_s": 6, "controls": controls}))
-    cli("steer", graph_file, "--script", tmp_path / "controls.json", "--bridge-penalty", 3, "-o", tmp_path / "cli.json")
+    cli("steer", graph_file, "--script", tmp_path / "controls.json", "--bridge-penalty", 3, "-o", tmp_path / "cli.json",
+        "--report", tmp_path / "cli-report.json")
     fps = graph.fps
     total = round(6 * fps)
 
@@ -178,6 +179,18 @@ def test_steering_equals_the_cli(cli, graph_file, graph, tmp_path):
     assert np.max(np.abs(motion.positions[:total] - np.asarray(want["positions"]))) <= 1e-6
     assert motion.foot_joints == want["contacts"]["joints"]
     np.testing.assert_array_equal(motion.contacts[:total], np.array(want["contacts"]["planted"], dtype=bool))
+    # The report, as the CLI's of the same decisions (the CLI's cut at the script's end).
+    report, cli_report = motion.report, read_json(tmp_path / "cli-report.json")
+    assert report["frames"] == frames and report["fps"] == fps
+    assert report["edges"] == cli_report["edges"] and report["decisions"] == cli_report["decisions"]
+    # (the CLI counts the transitions that start before the script's end; these, every one)
+    assert report["transitions"] >= cli_report["transitions"] and report["bridges"] >= cli_report["bridges"]
+    assert report["transitions"] > 0
+    assert report["transitions_per_second"] == pytest.approx(report["transitions"] / (frames / fps))
+    assert report["heading_edit"] == cli_report["heading_edit"] and report["cleanup"] == cli_report["cleanup"]
+    assert report["budget_exhausted_decisions"] == cli_report["budget_exhausted_decisions"]
+    assert report["foot_slide"]["source"]["clips"] and report["foot_slide"]["ratio"]["mean_mps"] >= 0
+    assert controller.motion.report == report  # the same, asked again
 
 
 def test_tag_lookahead_reaches_the_controller(cli, graph_file, graph, tmp_path):

@@ -248,6 +248,14 @@ Result<std::string> write_glb(const Skeleton& skeleton, std::span<const GltfAnim
       for (int f = 0; f < motion.frame_count; ++f) {
         const Vec3& t = motion.translations(f)[slot];
         push(translations, j == 0 ? below_static_ancestors(skeleton, t) : t);
+        // glTF's numbers are single precision: a value past them would be written as infinity,
+        // which no reader takes.
+        if (!std::isfinite(translations.back()) || !std::isfinite(translations[translations.size() - 2]) ||
+            !std::isfinite(translations[translations.size() - 3])) {
+          return Error{"", 0, fmt::format("animation '{}': joint '{}' at frame {} lies {:g} m away, past what glTF's "
+                                          "single-precision numbers hold", animation.name, skeleton.joint(j).name,
+                                          f + 1, t.cwiseAbs().maxCoeff())};
+        }
       }
       track(first_joint + j, "translation", buffer.floats(translations, TINYGLTF_TYPE_VEC3, 3));
     }
