@@ -226,7 +226,6 @@ class PyController {
       transitions += context().graph->edges[e].transition ? 1 : 0;
       bridges += context().graph->edges[e].bridge ? 1 : 0;
     }
-    const HeadingEditStats& edit = controller_->heading_edit_stats();
     return {{"frames", motion_.frame_count},
             {"fps", fps},
             {"transitions", transitions},
@@ -238,13 +237,7 @@ class PyController {
             {"decision_ms_p99", 1e3 * quantile(decision_seconds_, 0.99)},
             {"decision_ms_max", 1e3 * quantile(decision_seconds_, 1.0)},
             {"budget_exhausted_decisions", exhausted_},
-            {"heading_edit",
-             {{"max_turn_deg_per_m", settings_.heading_edit.max_turn_deg_per_m},
-              {"turn_distance_m", settings_.heading_edit.turn_distance_m},
-              {"hold", settings_.heading_edit.hold_travel ? "travel" : "facing"},
-              {"travel_share", edit.frames > 0 ? edit.travel_share / static_cast<double>(edit.frames) : 0.0},
-              {"added_turn_deg", edit.added_turn_rad * 180.0 / std::numbers::pi},
-              {"max_rate_deg_per_m", edit.max_rate_deg_per_m}}},
+            {"heading_edit", heading_edit_report(settings_.heading_edit, controller_->heading_edit_stats())},
             {"cleanup", cleanup_report(context(), run_, cleanup_)},
             {"foot_slide", foot_slide_report(context(), played_, motion_)}};
   }

@@ -168,15 +168,7 @@ int run_steer(const SteerOptions& o) {
                                  {"decision_ms_max", 1e3 * percentile(latencies, 1.0)},
                                  {"budget_exhausted_decisions", exhausted},
                                  {"tolerance_deg", o.tolerance_deg},
-                                 {"heading_edit",
-                                  {{"max_turn_deg_per_m", o.settings.heading_edit.max_turn_deg_per_m},
-                                   {"turn_distance_m", o.settings.heading_edit.turn_distance_m},
-                                   {"hold", o.settings.heading_edit.hold_travel ? "travel" : "facing"},
-                                   {"travel_share", edit_stats.frames > 0
-                                                        ? edit_stats.travel_share / static_cast<double>(edit_stats.frames)
-                                                        : 0.0},
-                                   {"added_turn_deg", edit_stats.added_turn_rad * 180.0 / std::numbers::pi},
-                                   {"max_rate_deg_per_m", edit_stats.max_rate_deg_per_m}}},
+                                 {"heading_edit", heading_edit_report(o.settings.heading_edit, edit_stats)},
                                  {"cleanup", cleanup_report(context, run, cleanup)},
                                  {"cleanup_ms_p99", cleanup ? nlohmann::json(1e3 * percentile(cleanup_seconds, 0.99))
                                                             : nlohmann::json(nullptr)},

@@ -4,6 +4,7 @@
 #include <cassert>
 #include <cmath>
 #include <ctime>
+#include <numbers>
 
 #include <fmt/format.h>
 
@@ -77,6 +78,15 @@ nlohmann::json cleanup_report(const SynthesisContext& context, const SynthesisRu
           {"replants", s.replants},
           {"stepping_leg_frames", s.stepping_leg_frames},
           {"both_stepping_frames", s.both_stepping_frames}};
+}
+
+nlohmann::json heading_edit_report(const HeadingEditSettings& settings, const HeadingEditStats& stats) {
+  return {{"max_turn_deg_per_m", settings.max_turn_deg_per_m},
+          {"turn_distance_m", settings.turn_distance_m},
+          {"hold", settings.hold_travel ? "travel" : "facing"},
+          {"travel_share", stats.frames > 0 ? stats.travel_share / static_cast<double>(stats.frames) : 0.0},
+          {"added_turn_deg", stats.added_turn_rad * 180.0 / std::numbers::pi},
+          {"max_rate_deg_per_m", stats.max_rate_deg_per_m}};
 }
 
 nlohmann::json path_edit_report(const PathSynthesisSettings& search, const PathSynthesisResult& result) {

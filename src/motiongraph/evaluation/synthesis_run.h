@@ -14,6 +14,7 @@
 #include "motiongraph/core/error.h"
 #include "motiongraph/export/motion_file.h"
 #include "motiongraph/synthesis/floor_path.h"
+#include "motiongraph/synthesis/heading_edit.h"
 #include "motiongraph/synthesis/path_synthesis.h"
 #include "motiongraph/synthesis/synthesis_context.h"
 #include "motiongraph/synthesis/walk_search.h"
@@ -44,6 +45,9 @@ std::optional<FootCleanup> make_cleanup(const SynthesisContext& context, const S
 // The report's "cleanup": {"enabled": false, "reason": ...} or the clean-up's figures.
 nlohmann::json cleanup_report(const SynthesisContext& context, const SynthesisRunSettings& settings,
                               const std::optional<FootCleanup>& cleanup);
+
+// A steering report's "heading_edit": the edit's settings and what it did (heading_edit.h).
+nlohmann::json heading_edit_report(const HeadingEditSettings& settings, const HeadingEditStats& stats);
 
 // The report's "path_edit": whether the motion was edited onto the path and what the edit did
 // (path_edit.h).
