@@ -112,6 +112,13 @@ Status evaluate_consistency(const GraphFile& file, const GraphRebuild& rebuild, 
                        r.transition.frames, num(r.transition.rms_deg()), captured.frames, num(captured.rms_deg()));
   }
   if (auto s = out.write_csv("consistency.csv", csv); !s) return s;
+  // No frame around any transition travels (a library that stands): no curve to draw.
+  if (std::none_of(rows->begin(), rows->end(),
+                   [](const ConsistencyRow& r) { return std::isfinite(r.transition.rms_deg()); })) {
+    spdlog::warn("consistency.png not drawn: no frame around a transition travels, so its facing and travel cannot "
+                 "be compared (consistency.csv has no angle)");
+    return Ok{};
+  }
   // The captured data's value as a line (none when no captured frame moves).
   const std::string captured_line =
       std::isfinite(captured.rms_deg())
@@ -202,6 +209,14 @@ Status evaluate_foot_slide(const GraphFile& file, const GraphRebuild& rebuild, s
                        g ? num(r.cleaned_same_ratio) : "");
   }
   if (auto s = out.write_csv("footslide.csv", csv); !s) return s;
+  // The clips' own feet never slide (a library that stands): no ratio to the capture to draw.
+  if (std::none_of(rows->begin(), rows->end(), [](const FootSlideSweepRow& r) {
+        return r.graph && (std::isfinite(r.played_same_ratio) || std::isfinite(r.cleaned_same_ratio));
+      })) {
+    spdlog::warn("footslide.png not drawn: the clips' feet do not slide on the frames played, so there is no ratio "
+                 "to the capture (footslide.csv has the slide in m/s)");
+    return Ok{};
+  }
   std::string plots;
   for (size_t i = 0; i < o.shapes.size(); ++i) {
     const std::string& shape = o.shapes[i];

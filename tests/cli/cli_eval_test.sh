@@ -140,4 +140,22 @@ fi
 grep -q "^--shapes: unknown shape 'bogus'" "$work/err.txt" && [ "$(wc -l <"$work/err.txt")" -eq 1 ] \
   || { cat "$work/err.txt"; exit 1; }
 [ ! -e "$work/bad" ] || { echo "FAIL: a failed eval left output"; exit 1; }
+# A library that stands (one pose held 10 s): every CSV, the plots that have points drawn, and
+# one warning for each that has none, not gnuplot's own error and a failed run.
+python3 - "$data/bvh/131_01.bvh" "$work/static.bvh" <<'PY'
+import sys
+lines = open(sys.argv[1]).read().split("\n")
+at = next(i for i, line in enumerate(lines) if line.startswith("Frame Time"))
+open(sys.argv[2], "w").write("\n".join(lines[:at - 1] + ["Frames: 300", lines[at]] + [lines[at + 10]] * 300) + "\n")
+PY
+"$bin" build "$work/static.bvh" -o "$work/static.mgraph" -q
+"$bin" eval "$work/static.mgraph" --out-dir "$work/static" --shapes line:5 -q 2>"$work/static.err" \
+  || { echo "FAIL: eval on a library that stands"; cat "$work/static.err"; exit 1; }
+for f in threshold.csv consistency.csv walks.csv paths.csv footslide.csv threshold.png walks.png paths.png; do
+  [ -s "$work/static/$f" ] || { echo "FAIL: no $f for a library that stands"; exit 1; }
+done
+[ ! -e "$work/static/consistency.png" ] && [ ! -e "$work/static/footslide.png" ] \
+  && grep -q "warning: consistency.png not drawn: no frame around a transition travels" "$work/static.err" \
+  && grep -q "warning: footslide.png not drawn: the clips' feet do not slide" "$work/static.err" \
+  && ! grep -q "gnuplot failed" "$work/static.err" || { echo "FAIL: plots of no points"; cat "$work/static.err"; exit 1; }
 echo "cli_eval: ok"
