@@ -160,7 +160,9 @@ PyGraph build(const std::vector<std::string>& inputs, const py::dict& options, c
   Result<GraphFile> stored = Error{};
   {
     py::gil_scoped_release release;
-    stored = parse_graph_file(serialize_graph_file(b.file), graph.name);
+    const std::string bytes = serialize_graph_file(b.file);
+    b.file = GraphFile{};  // (not held beside its bytes and their copy)
+    stored = parse_graph_file(bytes, graph.name);
   }
   graph.loaded = load_file(take(std::move(stored)), graph.name);
   return graph;

@@ -202,16 +202,18 @@ class PyController {
     Motion all;
     std::vector<ContactMask> contacts;
     nlohmann::json report;
+    Walk played{-1, {}};
     {
       py::gil_scoped_release release;
       const std::lock_guard<std::mutex> lock(mutex_);
       all = motion_;
       contacts = contacts_;
       report = steering_report();
+      played = played_;
     }
     PyMotion out = frames(std::move(all), std::move(contacts));
     out.report = std::move(report);
-    out.walk = played_;
+    out.walk = std::move(played);
     return out;
   }
 

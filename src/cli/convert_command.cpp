@@ -94,12 +94,12 @@ Status check_set_outputs(const ConvertOptions& options, size_t clips, const std:
   return Ok{};
 }
 
-// One clip to every output, with its foot contacts for a JSON (none, with a warning, when its
-// feet are not found).
-int write_clip(const ConvertOptions& options, const std::string& source, const Skeleton& skeleton,
-               const Motion& motion, const FootJointNames& feet) {
+// One clip to each of `outputs`, with its foot contacts for a JSON (none, with a warning, when
+// its feet are not found).
+int write_clip(const ConvertOptions& options, const std::vector<std::string>& outputs, const std::string& source,
+               const Skeleton& skeleton, const Motion& motion, const FootJointNames& feet) {
   std::optional<ClipContacts> contacts;
-  const bool any_json = std::any_of(options.outputs.begin(), options.outputs.end(), [](const std::string& path) {
+  const bool any_json = std::any_of(outputs.begin(), outputs.end(), [](const std::string& path) {
     return lower_extension(path) == ".json";
   });
   if (any_json || !feet.empty()) {
@@ -115,7 +115,7 @@ int write_clip(const ConvertOptions& options, const std::string& source, const S
   // Where the clip's skeleton faces, for its root-motion joint.
   const MotionFileSettings settings = options.output.settings(
       options.output.root_motion ? learn_clip_forward_axis(skeleton, motion, feet) : Vec3::UnitZ());
-  for (const std::string& output : options.outputs) {
+  for (const std::string& output : outputs) {
     if (auto s = write_motion(output, skeleton, motion, settings, contacts ? &json_contacts : nullptr); !s) {
       return fail(s.error());
     }
@@ -150,8 +150,17 @@ int convert_library(const ConvertOptions& options, const ClipLoadSettings& load)
     if (!motion) return fail(Error{db.clips[c].source, 0, motion.error().message});
     played.push_back(std::move(*motion));
   }
-  if (db.clips.size() == 1) {  // a library of one clip (a manifest's frame range): any format
-    return write_clip(options, db.clips.front().source, db.skeletons[target], played.front(), db.foot_names);
+  // A library of one clip (a manifest's frame range) goes into BVH and JSON too (a .glb or .fbx
+  // below, its animation named as the clip).
+  std::vector<std::string> clip_outputs, set_outputs;
+  for (const std::string& output : options.outputs) {
+    const std::string ext = lower_extension(output);
+    (ext == ".glb" || ext == ".fbx" ? set_outputs : clip_outputs).push_back(output);
+  }
+  if (!clip_outputs.empty()) {
+    const int written = write_clip(options, clip_outputs, db.clips.front().source, db.skeletons[target],
+                                   played.front(), db.foot_names);
+    if (written != 0) return written;
   }
   const Vec3 forward_axis =
       options.output.root_motion ? learn_forward_axis(db, target, learn_travel_axes(db)[target]) : Vec3::UnitZ();
@@ -159,7 +168,7 @@ int convert_library(const ConvertOptions& options, const ClipLoadSettings& load)
   for (size_t c = 0; c < db.clips.size(); ++c) {
     motions.push_back({db.clips[c].source, db.clips[c].name, &db.skeletons[target], &played[c], forward_axis});
   }
-  for (const std::string& output : options.outputs) {
+  for (const std::string& output : set_outputs) {
     if (auto s = write_animation_set(output, motions, options.output.settings()); !s) return fail(s.error());
   }
   if (db.skeletons.size() > 1) {
@@ -210,7 +219,7 @@ int run_convert(const ConvertOptions& options) {
   ClipLoader loader(load);
   auto loaded = read_clip(options, loader, input);
   if (!loaded) return fail(loaded.error());
-  return write_clip(options, input, loaded->skeleton, loaded->motion, load.foot_names);
+  return write_clip(options, options.outputs, input, loaded->skeleton, loaded->motion, load.foot_names);
 }
 
 }  // namespace

@@ -115,8 +115,10 @@ Status evaluate_consistency(const GraphFile& file, const GraphRebuild& rebuild, 
   // No frame around any transition travels (a library that stands): no curve to draw.
   if (std::none_of(rows->begin(), rows->end(),
                    [](const ConsistencyRow& r) { return std::isfinite(r.transition.rms_deg()); })) {
-    spdlog::warn("consistency.png not drawn: no frame around a transition travels, so its facing and travel cannot "
-                 "be compared (consistency.csv has no angle)");
+    if (out.plots) {
+      spdlog::warn("consistency.png not drawn: no frame around a transition travels, so its facing and travel "
+                   "cannot be compared (consistency.csv has no angle)");
+    }
     return Ok{};
   }
   // The captured data's value as a line (none when no captured frame moves).
@@ -213,8 +215,10 @@ Status evaluate_foot_slide(const GraphFile& file, const GraphRebuild& rebuild, s
   if (std::none_of(rows->begin(), rows->end(), [](const FootSlideSweepRow& r) {
         return r.graph && (std::isfinite(r.played_same_ratio) || std::isfinite(r.cleaned_same_ratio));
       })) {
-    spdlog::warn("footslide.png not drawn: the clips' feet do not slide on the frames played, so there is no ratio "
-                 "to the capture (footslide.csv has the slide in m/s)");
+    if (out.plots) {
+      spdlog::warn("footslide.png not drawn: the clips' feet do not slide on the frames played, so there is no "
+                   "ratio to the capture (footslide.csv has the slide in m/s)");
+    }
     return Ok{};
   }
   std::string plots;

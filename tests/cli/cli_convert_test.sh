@@ -305,7 +305,7 @@ grep -q "lib.bvh: the library holds 3 clips, and several clips go into a .glb or
 mkdir "$work/one" && cp "$data/bvh/131_01.bvh" "$work/one/"
 printf '[[clip]]\nfile = "%s"\nfirst_frame = 41\nlast_frame = 240\n' "$data/cmu/16/16_15.amc" >"$work/range.toml"
 "$bin" convert "$work/one" -o "$work/one.bvh" -o "$work/one.json" 2>/dev/null \
-  && "$bin" convert "$work/range.toml" -o "$work/range.json" 2>/dev/null \
+  && "$bin" convert "$work/range.toml" -o "$work/range.json" -o "$work/range.glb" 2>/dev/null \
   && "$bin" convert "$work/one/131_01.bvh" --fps 30 -o "$work/one-file.json" 2>/dev/null \
   || { echo "FAIL: a library of one clip into a BVH or JSON"; exit 1; }
 python3 - "$work" <<'PY'
@@ -315,6 +315,10 @@ one, one_file, ranged = (json.load(open(f"{work}/{n}.json")) for n in ("one", "o
 # The folder's one clip is the file's, as build reads it at 30 fps; the range 200 frames at 120 fps.
 assert len(one["positions"]) == len(one_file["positions"]) and one["contacts"]["joints"], len(one["positions"])
 assert len(ranged["positions"]) == 50 and ranged["fps"] == 30, (len(ranged["positions"]), ranged["fps"])
+# Its .glb's animation is named as the clip, as a library's are (not as the output file).
+data = open(f"{work}/range.glb", "rb").read()
+gltf = json.loads(data[20:20 + int.from_bytes(data[12:16], "little")])
+assert [a["name"] for a in gltf["animations"]] == ["16_15"], gltf["animations"]
 PY
 "$bin" info "$work/one.bvh" | grep -q "at 30 fps" || { echo "FAIL: the one clip's BVH"; exit 1; }
 # An output is none of the files a folder gives, though no argument names it: refused, unchanged.

@@ -1510,8 +1510,7 @@ TEST(DatabaseLoader, OneTakeInTwoFormatsIsReadOnceAndEveryClipHasANameOfItsOwn) 
     ASSERT_EQ(db->clips.size(), 2u);
     ASSERT_EQ(notes.name_clashes.size(), inputs.size());  // the .glb left out by each folder, then this
     EXPECT_EQ(notes.name_clashes.back(),
-              inputs.size() == 3 ? fmt::format("3 files read once, reached by inputs that overlap: {}16_01.bvh and 2 "
-                                               "more", again)
+              inputs.size() == 3 ? fmt::format("3 files read once, reached by inputs that overlap: {} and 2 more", bvh)
                                  : fmt::format("1 file read once, reached by inputs that overlap: {}", bvh));
   }
   // A file given itself twice is read twice, the second clip 16_01_2; and so in a manifest that

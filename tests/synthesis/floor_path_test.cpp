@@ -252,11 +252,9 @@ TEST(FloorPath, NearestArcIsTheNearestPointOfTheRange) {
       ASSERT_LE(s, to);
       const double found = (path->point_at(s) - p).norm();
       for (double t = from; t <= to; t += 0.001) EXPECT_GE((path->point_at(t) - p).norm(), found - 1e-9) << spec;
-      // Preferring an arc: within the range, and as near as the nearest but for 2 cm.
-      const double preferred = path->nearest_arc(p, from, to, from + (to - from) * unit(rng));
-      ASSERT_GE(preferred, from);
-      ASSERT_LE(preferred, to);
-      EXPECT_LE((path->point_at(preferred) - p).norm(), found + 0.02 + 1e-9) << spec;
+      // Preferring an arc changes nothing where no legs lie on one another heading against each
+      // other (the figure 8's loops cross heading the same way).
+      EXPECT_EQ(path->nearest_arc(p, from, to, from + (to - from) * unit(rng)), s) << spec;
     }
   }
 }
@@ -323,6 +321,36 @@ TEST(FloorPath, FollowedArcsStayOnTheirLegOfAPathOutAndBack) {
       ASSERT_NEAR(arcs[i], made_at[i], tolerance) << apart << " m apart, point " << i;
     }
   }
+  // Steps up to 0.3 m (9 m/s at 30 fps), from any point before the turn: every track ends on
+  // the way back (a run at 30 fps steps 0.12 m; a walk at 10 fps as far), every point more than
+  // two steps from the turn on its arc (a step straddling the turn may land on the other leg).
+  auto back = FloorPath::create({{0.0, 0.0}, {0.0, -10.0}, {0.0, 0.0}});
+  ASSERT_TRUE(back.ok());
+  for (const double step : {0.03, 0.12, 0.2, 0.3}) {
+    for (int offset = 0; offset < 50; ++offset) {
+      std::vector<Vec2> track;
+      std::vector<double> made_at;
+      for (double s = offset * step / 50.0; s <= 20.0; s += step) {
+        track.push_back(back->point_at(s));
+        made_at.push_back(s);
+      }
+      const std::vector<double> arcs = back->followed_arcs(track);
+      for (size_t i = 0; i < arcs.size(); ++i) {
+        if (std::abs(made_at[i] - 10.0) >= 2.0 * step) {
+          ASSERT_NEAR(arcs[i], made_at[i], 1e-9) << step << " " << offset;
+        }
+      }
+    }
+  }
+  // Standing just before the turn: its arc stays; and at a corner the nearest is taken, whatever
+  // is preferred (the corner cut inside, 3 cm off the way in and 4 cm off the way on).
+  std::vector<Vec2> stands{back->point_at(9.8), back->point_at(9.9)};
+  stands.insert(stands.end(), 5, back->point_at(9.97));
+  EXPECT_NEAR(back->followed_arcs(stands, 1.0, 9.7).back(), 9.97, 1e-9);
+  auto corner = FloorPath::create({{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}});
+  ASSERT_TRUE(corner.ok());
+  EXPECT_NEAR(corner->nearest_arc({0.96, 0.03}, 0.0, 2.0, 1.0), 0.96, 1e-9);
+  EXPECT_NEAR(corner->nearest_arc({0.96, 0.05}, 0.0, 2.0, 1.0), 1.05, 1e-9);
 }
 
 TEST(FloorPath, LongPathsStayUsableAndHugeOnesAreErrors) {

@@ -1209,26 +1209,32 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
   }
 
   // A file two inputs reach (a folder and a folder in it, one folder under two names: `data/cmu
-  // data/cmu/16`) is read once: a folder's file read already, or one given itself that a folder
-  // read already, is left out. A file given itself twice, or named by manifests, is read each
-  // time (named NAME_2 below).
+  // data/cmu/16`) is read once: a folder's file that a folder read already, or that is given
+  // itself, is left out (given itself it is read where it is given: a file named itself stops
+  // loading when it cannot be read with the others). A file given itself twice, or named by
+  // manifests, is read each time (named NAME_2 below).
   {
-    std::set<std::pair<std::string, std::string>> read, read_in_folders;  // canonical path, animation
+    const auto key_of = [](const ClipSpec& spec) {
+      std::error_code ec;
+      const fs::path absolute = fs::absolute(spec.path, ec);
+      fs::path canonical = ec ? fs::path(spec.path) : fs::weakly_canonical(absolute, ec);
+      if (ec) canonical = absolute.lexically_normal();
+      return std::pair{canonical.string(), spec.animation.value_or("")};
+    };
+    std::set<std::pair<std::string, std::string>> given, read_in_folders;
+    for (const ClipSpec& spec : specs) {
+      if (!spec.in_folder && spec.manifest.empty()) given.insert(key_of(spec));
+    }
     std::vector<ClipSpec> once;
     std::vector<std::string> twice;
     for (ClipSpec& spec : specs) {
-      std::error_code ec;
-      fs::path canonical = fs::weakly_canonical(fs::absolute(spec.path, ec), ec);
-      if (ec) canonical = fs::absolute(spec.path).lexically_normal();
-      const std::pair<std::string, std::string> key{canonical.string(), spec.animation.value_or("")};
-      const bool again = spec.in_folder ? read.count(key) > 0
-                                        : spec.manifest.empty() && read_in_folders.count(key) > 0;
-      if (again) {
-        if (twice.empty() || twice.back() != spec.path) twice.push_back(spec.path);
-        continue;
+      if (spec.in_folder) {
+        const auto key = key_of(spec);
+        if (given.count(key) > 0 || !read_in_folders.insert(key).second) {
+          if (twice.empty() || twice.back() != spec.path) twice.push_back(spec.path);
+          continue;
+        }
       }
-      read.insert(key);
-      if (spec.in_folder) read_in_folders.insert(key);
       once.push_back(std::move(spec));
     }
     specs = std::move(once);
@@ -1252,8 +1258,8 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
     }
   }
 
-  // Every clip under a name of its own: a name met again (a file given twice, a folder and a
-  // file of it, one file's ranges in a manifest) gets _2, _3..., with a warning.
+  // Every clip under a name of its own: a name met again (a file given itself twice, a manifest
+  // and a folder reading one file, one file's ranges in a manifest) gets _2, _3..., with a warning.
   std::set<std::string> names;
   for (ClipSpec& spec : specs) {
     if (names.insert(spec.name).second) continue;

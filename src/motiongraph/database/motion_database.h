@@ -24,7 +24,7 @@ struct DatabaseClip {
   int first_frame = 0;       // global index of its first frame
   int frame_count = 0;
   Motion motion;             // at the database's fps
-  double read_fps = 0.0;     // the rate its file was read at (its own, or --input-fps); 0: not kept (a graph file's)
+  double read_fps = 0.0;     // the rate its file was read at (its own, or --input-fps); 0: not known
 };
 
 // A tag on a range of global frames [first_frame, first_frame + frame_count).

@@ -127,38 +127,42 @@ double FloorPath::nearest_arc(const Vec2& p, double from, double to, double pref
   from = std::clamp(from, 0.0, length_m());
   to = std::clamp(to, from, length_m());
   const auto distance_at = [&](double s) { return (point_at(s) - p).norm(); };
-  double best_arc = from, best = distance_at(from);
-  // Each segment's nearest point in the range (the candidates), then the nearest of them.
-  struct Candidate {
-    double arc, distance;
+  // Each segment's nearest point in the range, visited in order.
+  const auto for_each_segment = [&](auto&& visit) {
+    for (int i = segment_index(from); i + 1 < static_cast<int>(points_.size()) && arc_[i] <= to; ++i) {
+      const Vec2 d = points_[i + 1] - points_[i];
+      const double length = arc_[i + 1] - arc_[i];
+      const double s =
+          std::clamp(arc_[i] + (p - points_[i]).dot(d) / length, std::max(from, arc_[i]), std::min(to, arc_[i + 1]));
+      visit(i, s, (point_on(i, s) - p).norm());
+    }
   };
-  std::vector<Candidate> candidates;
-  for (int i = segment_index(from); i + 1 < static_cast<int>(points_.size()) && arc_[i] <= to; ++i) {
-    const Vec2 d = points_[i + 1] - points_[i];
-    const double length = arc_[i + 1] - arc_[i];
-    const double s =
-        std::clamp(arc_[i] + (p - points_[i]).dot(d) / length, std::max(from, arc_[i]), std::min(to, arc_[i + 1]));
-    const double distance = (point_on(i, s) - p).norm();
-    if (!std::isnan(prefer)) candidates.push_back({s, distance});
+  double best_arc = from, best = distance_at(from);
+  int best_segment = segment_index(from);
+  for_each_segment([&](int i, double s, double distance) {
     if (distance < best) {
       best = distance;
       best_arc = s;
+      best_segment = i;
     }
-  }
+  });
   if (std::isnan(prefer)) return best_arc;
-  // Legs of the path that lie on or near one another (a path out and back): of the points where
-  // the distance has a minimum along the path nearly as near as the nearest, the one nearest
-  // `prefer`, so that a point followed along the path stays on its leg. A segment's end is such
-  // a minimum only where the path turns away from p on both sides of it (a corner cut inside
-  // is left for the next leg).
+  // Legs of the path that lie on one another, heading against each other (a path out and back):
+  // of the points of such a leg where the distance has a minimum along the path, within 2 cm of
+  // the nearest, the one nearest `prefer`, so that a point followed along the path stays on its
+  // leg. Legs that meet at a corner are not such legs: there the nearest is taken, as without
+  // `prefer`.
   constexpr double kNearM = 0.02, kProbeM = 1e-4;
+  const Vec2 best_direction = points_[best_segment + 1] - points_[best_segment];
   double chosen = best_arc;
-  for (const Candidate& c : candidates) {
-    if (c.distance > best + kNearM || std::abs(c.arc - prefer) >= std::abs(chosen - prefer)) continue;
-    const bool minimum = (c.arc - kProbeM < from || distance_at(c.arc - kProbeM) >= c.distance - 1e-12) &&
-                         (c.arc + kProbeM > to || distance_at(c.arc + kProbeM) >= c.distance - 1e-12);
-    if (minimum) chosen = c.arc;
-  }
+  for_each_segment([&](int i, double s, double distance) {
+    if (distance > best + kNearM || std::abs(s - prefer) >= std::abs(chosen - prefer)) return;
+    const Vec2 direction = points_[i + 1] - points_[i];
+    if (direction.dot(best_direction) > -0.5 * direction.norm() * best_direction.norm()) return;  // not against
+    const bool minimum = (s - kProbeM < from || distance_at(s - kProbeM) >= distance - 1e-12) &&
+                         (s + kProbeM > to || distance_at(s + kProbeM) >= distance - 1e-12);
+    if (minimum) chosen = s;
+  });
   return chosen;
 }
 
@@ -166,10 +170,20 @@ std::vector<double> FloorPath::followed_arcs(std::span<const Vec2> track, double
   std::vector<double> arcs;
   arcs.reserve(track.size());
   double last = from;
-  for (const Vec2& p : track) {
-    // (on legs that overlap, the one going on from the last point's arc: a little ahead of it)
-    last = last < 0.0 ? nearest_arc(p, 0.0, window_m)
-                      : nearest_arc(p, last - window_m, last + window_m, last + kFollowAheadM);
+  for (size_t i = 0; i < track.size(); ++i) {
+    const Vec2& p = track[i];
+    if (last < 0.0) {
+      last = nearest_arc(p, 0.0, window_m);
+    } else {
+      // On legs that lie on one another (a path out and back), the leg the point moves along:
+      // of the point as far ahead of the last one's arc as it moved and the one as far behind,
+      // the one whose leg heads the way it moved (a point that did not move stays put).
+      const Vec2 moved = i > 0 ? Vec2(p - track[i - 1]) : Vec2::Zero();
+      const double step = moved.norm();
+      const double ahead = nearest_arc(p, last - window_m, last + window_m, last + step);
+      const double behind = step > 0.0 ? nearest_arc(p, last - window_m, last + window_m, last - step) : ahead;
+      last = behind == ahead || direction_at(ahead).dot(moved) >= direction_at(behind).dot(moved) ? ahead : behind;
+    }
     arcs.push_back(last);
   }
   return arcs;

@@ -78,17 +78,16 @@ class FloorPath {
   // The arc length of the point nearest p among arc lengths [from, to] (clamped to the path):
   // from a point followed along the path, with a small range, a path that crosses itself is not
   // jumped across. Costs the segments in the range. Given `prefer` (the arc a point followed
-  // along the path is expected at), where legs of the path lie on or near one another (out and
-  // back: points of the range whose distance to p is least along the path, within 2 cm of the
-  // nearest), the one nearest `prefer`: the leg the point is on, not the one beside it.
+  // along the path is expected at), where legs of the path lie on one another heading against
+  // each other (out and back: points of the range whose distance to p is least along the path,
+  // within 2 cm of the nearest), the one nearest `prefer`: the leg the point is on, not the one
+  // beside it. Elsewhere (corners among them) the nearest, as without it.
   double nearest_arc(const Vec2& p, double from, double to,
                      double prefer = std::numeric_limits<double>::quiet_NaN()) const;
-  // How far ahead of the last point's arc followed_arcs expects the next (a step of a walk).
-  static constexpr double kFollowAheadM = 0.05;
   // How far along the path each point of a track is: track[0]'s nearest point within
   // [0, window_m] (or, given the arc `from` of the point before the track, within +-window_m of
-  // it), then each next point's within +-window_m of the last one's, preferring a little ahead of
-  // it where legs overlap (nearest_arc). A motion's
+  // it), then each next point's within +-window_m of the last one's, where legs lie on one
+  // another the one heading the way the point moved (nearest_arc). A motion's
   // progress: a root that sways, shuffles or steps aside does not add to it, as it adds to the
   // distance the root travels. Consecutive points must lie less than window_m apart.
   std::vector<double> followed_arcs(std::span<const Vec2> track, double window_m = 1.0, double from = -1.0) const;
