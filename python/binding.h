@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <stop_token>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -43,6 +44,14 @@ T take(Result<T>&& result) {
 inline void check(const Status& status) {
   if (!status) raise_error(status.error());
 }
+
+// Runs `work` (which leaves Python alone but through py::gil_scoped_acquire: the GIL is not
+// held) on a thread of its own while this thread waits, taking the GIL every 50 ms to run
+// Python's signal handlers. When one raises (Ctrl-C's KeyboardInterrupt), `stop` is asked
+// (core/stop.h: the work ends early with stopped_error()), the work awaited and the handler's
+// exception raised; otherwise the work's own C++ exception, if any, propagates. A progress
+// callback whose exception should stop the work asks `stop` itself.
+void run_stoppable(std::stop_source& stop, const std::function<void()>& work);
 
 // A UserWarning, `stack` frames up; raises its exception when the warning filter makes it one
 // (warnings.simplefilter("error")).

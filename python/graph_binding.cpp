@@ -124,11 +124,13 @@ PyGraph build(const std::vector<std::string>& inputs, const py::dict& options, c
     cache = std::make_unique<FileDistanceCache>(call.cache_dir.empty() ? default_distance_cache_folder()
                                                                        : call.cache_dir);
   }
-  // The progress callback runs with the GIL; its first exception stops further calls and is
-  // raised when the build returns.
+  // The progress callback runs with the GIL; its first exception stops the build (at its next
+  // step) and is raised. So does Ctrl-C (run_stoppable).
+  std::stop_source stop;
   std::optional<py::error_already_set> callback_error;
   std::vector<std::string> warnings;
   BuildLog log;
+  log.stop = stop.get_token();
   if (!progress.is_none()) {
     log.info = [&](const std::string& line) {
       py::gil_scoped_acquire acquire;
@@ -137,15 +139,13 @@ PyGraph build(const std::vector<std::string>& inputs, const py::dict& options, c
         progress(line);
       } catch (py::error_already_set& e) {
         callback_error = std::move(e);
+        stop.request_stop();
       }
     };
   }
   log.warning = [&warnings](const std::string& line) { warnings.push_back(line); };
   Result<GraphBuild> built = Error{};
-  {
-    py::gil_scoped_release release;
-    built = build_graph(inputs, settings, cache.get(), log);
-  }
+  run_stoppable(stop, [&] { built = build_graph(inputs, settings, cache.get(), log); });
   if (callback_error) throw std::move(*callback_error);
   for (const std::string& line : warnings) warn(line, 2);  // the caller of motiongraph.build, past its wrapper
   GraphBuild b = take(std::move(built));

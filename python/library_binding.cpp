@@ -24,14 +24,13 @@ py::tuple load_library(const std::vector<std::string>& inputs, const py::dict& o
   OptionTable load_table;
   for (const char* name : kLoadOptions) load_table.emplace(name, std::move(table.at(name)));
   apply_options(options, load_table, "load_library");
-  const DatabaseSettings settings = take(build_settings_from(call.options)).database;
+  DatabaseSettings settings = take(build_settings_from(call.options)).database;
+  std::stop_source stop;  // Ctrl-C (run_stoppable)
+  settings.stop = stop.get_token();
 
   DatabaseLoadNotes notes;
   Result<MotionDatabase> loaded = Error{};
-  {
-    py::gil_scoped_release release;
-    loaded = load_database(inputs, settings, &notes);
-  }
+  run_stoppable(stop, [&] { loaded = load_database(inputs, settings, &notes); });
   MotionDatabase db = take(std::move(loaded));
   const LibrarySummary summary = summarize_library(db, notes, !settings.foot_names.empty());
   py::object summary_dict = to_python(library_summary_json(inputs, db, summary));

@@ -55,11 +55,10 @@ PyMotion walk(const PyGraph& graph, int from, int to, const py::kwargs& options)
                  {"cleanup", set(run.cleanup)}},
                 "walk");
   settings.cost = take(parse_walk_cost(cost));
+  std::stop_source stop;  // Ctrl-C (run_stoppable)
+  settings.stop = stop.get_token();
   Result<SynthesizedMotion> made = Error{};
-  {
-    py::gil_scoped_release release;
-    made = run_walk_synthesis(graph.loaded->context(), from, to, settings, run);
-  }
+  run_stoppable(stop, [&] { made = run_walk_synthesis(graph.loaded->context(), from, to, settings, run); });
   return result_motion(graph, "walk", take(std::move(made)));
 }
 
@@ -93,9 +92,10 @@ PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<d
   FloorPathSource source{file ? file->string() : std::string(), shape.value_or(""), {},
                          segments.value_or(std::vector<std::string>{})};
   for (const auto& [x, z] : points.value_or(std::vector<std::array<double, 2>>{})) source.points.emplace_back(x, z);
+  std::stop_source stop;  // Ctrl-C (run_stoppable)
+  settings.stop = stop.get_token();
   Result<SynthesizedMotion> made = Error{};
-  {
-    py::gil_scoped_release release;
+  run_stoppable(stop, [&] {
     auto floor_path = make_floor_path(source);
     if (!floor_path) {
       made = floor_path.error();
@@ -104,7 +104,7 @@ PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<d
     } else {
       made = run_path_synthesis(graph.loaded->context(), *floor_path, settings, run);
     }
-  }
+  });
   if (made) {
     for (const nlohmann::json& segment : made->report["segments"]) {
       if (auto why = unplayable_tag(graph.loaded->context(), segment["tag"].get<std::string>())) {

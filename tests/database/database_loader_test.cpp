@@ -120,6 +120,16 @@ TEST(DatabaseLoader, LoadsTheBundledFolderAt30Fps) {
   EXPECT_EQ(db->tag_names.size(), 5u);  // walk, run, jump, turn, stop
 }
 
+TEST(DatabaseLoader, StopsWhenAsked) {
+  DatabaseSettings settings = cmu_settings();
+  std::stop_source stop;
+  stop.request_stop();
+  settings.stop = stop.get_token();
+  auto db = load_database({test::data_path("cmu/16")}, settings);
+  ASSERT_FALSE(db);
+  EXPECT_EQ(db.error().kind, ErrorKind::kStopped);
+}
+
 TEST(DatabaseLoader, CmuTagsOffOrFromText) {
   DatabaseSettings off = cmu_settings();
   off.cmu_tags = false;

@@ -105,6 +105,50 @@ TEST(Candidates, PictureHoldsBlockMinima) {
   }
 }
 
+// A stop asked for while the tiles run passes over the work items not begun and fails the search
+// with ErrorKind::kStopped; one asked for before any runs none.
+TEST(Candidates, StopsWhenAsked) {
+  const MotionDatabase db = test::small_database({"cmu/16/16_15.amc", "cmu/16/16_35.amc"});
+  DistanceSettings distance;
+  distance.tile_frames = 37;
+  distance.threads = 1;  // items one after another: the count below is exact
+  auto layout = make_cloud_layout(db.skeletons[0], {});
+  const FrameFeatures features = *make_frame_features(db, *layout, distance);
+  const long long all_tiles = [&] {
+    const TileItems grid = tile_items(features, distance);
+    return static_cast<long long>(grid.per_side) * grid.per_side;
+  }();
+  ASSERT_GT(all_tiles, 20);
+  std::stop_source stop;
+  long long visited = 0;
+  auto search = find_candidates(
+      features, distance, {},
+      [&](long long done, long long) {
+        visited = done;
+        if (done == 5) stop.request_stop();
+      },
+      {}, {}, stop.get_token());
+  ASSERT_FALSE(search);
+  EXPECT_EQ(search.error().kind, ErrorKind::kStopped);
+  // The item under way when asked finishes (its mirror tile, at most): none after it begins.
+  EXPECT_GE(visited, 5);
+  EXPECT_LE(visited, 6);
+
+  std::stop_source before;
+  before.request_stop();
+  visited = 0;
+  auto none = find_candidates(features, distance, {}, [&](long long done, long long) { visited = done; }, {}, {},
+                              before.get_token());
+  ASSERT_FALSE(none);
+  EXPECT_EQ(none.error().kind, ErrorKind::kStopped);
+  EXPECT_EQ(visited, 0);
+  // A token that never asks runs them all.
+  auto whole = find_candidates(features, distance, {}, [&](long long done, long long) { visited = done; }, {}, {},
+                               std::stop_source().get_token());
+  ASSERT_TRUE(whole) << whole.error().to_string();
+  EXPECT_EQ(visited, all_tiles);
+}
+
 TEST(TransitionSelection, ThresholdLocalityAndAlignment) {
   const Fixture x = run(128);
   TransitionSettings settings;

@@ -310,6 +310,38 @@ TEST(BuildGraph, TheCacheIsUsedAndChangesNothing) {
   EXPECT_EQ(cache.entries.size(), 2u);
 }
 
+// A stop asked for at a stage's log line ends the build at its next step with
+// ErrorKind::kStopped: after reading, before the distance stage (nothing cached); after the
+// distance stage, before the threshold is chosen; after the choice, within the path check's
+// searches (its line never comes).
+TEST(BuildGraph, StopsWhenAskedAtTheNextStep) {
+  struct Case {
+    const char* at;              // the line whose logging asks the stop
+    const char* never;           // a later line that must not come
+    int stores;                  // distance stages cached
+  };
+  for (const Case& c : {Case{" clips, ", "distance stage", 0}, Case{"distance stage:", "threshold auto", 1},
+                        Case{"threshold auto", "path check", 1}}) {
+    SCOPED_TRACE(c.at);
+    std::stop_source stop;
+    std::vector<std::string> lines;
+    BuildLog log;
+    log.stop = stop.get_token();
+    log.info = [&](const std::string& line) {
+      lines.push_back(line);
+      if (line.find(c.at) != std::string::npos) stop.request_stop();
+    };
+    MemoryCache cache;
+    auto built = build_graph(kInputs, BuildSettings{}, &cache, log);
+    ASSERT_FALSE(built);
+    EXPECT_EQ(built.error().kind, ErrorKind::kStopped);
+    EXPECT_TRUE(std::any_of(lines.begin(), lines.end(),
+                            [&](const std::string& l) { return l.find(c.at) != std::string::npos; }));
+    for (const std::string& line : lines) EXPECT_EQ(line.find(c.never), std::string::npos) << line;
+    EXPECT_EQ(cache.stores, c.stores);
+  }
+}
+
 TEST(BuildGraph, NothingLeftAfterPruningIsAnEmptyGraphWithItsReport) {
   BuildSettings settings;
   settings.threshold_mode = ThresholdMode::kRmsCm;

@@ -173,11 +173,43 @@ def test_progress_callback(data):
     mg.build(str(data / "cmu/16"), no_cache=True, progress=lines.append)
     assert lines and all(isinstance(line, str) and line for line in lines)
 
+
+def _cached(folder):
+    return folder.exists() and any(folder.iterdir())
+
+
+def test_an_exception_in_progress_stops_the_build(data, tmp_path):
+    # Its first line comes after reading: the build stops before the distance stage, which
+    # would otherwise be cached.
     def stop(line):
-        raise KeyboardInterrupt(line)
+        raise ValueError("enough: " + line)
+
+    with pytest.raises(ValueError, match="enough: 15 clips"):
+        mg.build(data / "cmu/16", cache_dir=tmp_path / "cache", progress=stop)
+    assert not _cached(tmp_path / "cache")
+    mg.build(data / "cmu/16", cache_dir=tmp_path / "cache")  # the next build is not stopped
+    assert _cached(tmp_path / "cache")
+
+
+def test_ctrl_c_stops_the_build(data, tmp_path):
+    import _thread
+
+    # As Ctrl-C does, at the first line: the signal's flag set, Python's handler left to run on the
+    # main thread (which looks every 50 ms: the callback gives it the time).
+    import time
+
+    lines = []
+
+    def interrupt(line):
+        lines.append(line)
+        if len(lines) == 1:
+            _thread.interrupt_main()
+            time.sleep(0.5)
 
     with pytest.raises(KeyboardInterrupt):
-        mg.build(str(data / "cmu/16"), no_cache=True, progress=stop)
+        mg.build(data / "cmu/16", cache_dir=tmp_path / "cache", progress=interrupt)
+    assert not _cached(tmp_path / "cache")
+    assert not any("distance stage" in line for line in lines), lines
 
 
 def test_paths_may_be_path_objects(data, graph_file, tmp_path):

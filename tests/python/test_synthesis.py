@@ -290,6 +290,24 @@ def test_path_releases_the_gil(graph):
     assert_releases_the_gil(lambda: graph.path(shape="figure8:4", segments=["walk:0-25", "run:25-51"]))
 
 
+@pytest.mark.parametrize("work", [lambda g: g.path(shape="line:100000"),
+                                  lambda g: g.walk(0, 5, min_frames=50000, max_expansions=10**12)],
+                         ids=["path", "walk"])
+def test_ctrl_c_stops_a_long_search(graph, work):
+    # A path of 100 km and a walk searched without end: stopped only by Ctrl-C (as it comes, the
+    # signal's flag set a moment after the search began, Python's handler left to the main thread).
+    import _thread
+    import threading
+
+    timer = threading.Timer(0.3, _thread.interrupt_main)
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            work(graph)
+    finally:
+        timer.cancel()
+
+
 def test_bridge_penalty_reaches_the_steering_search(cli, graph_file, graph, tmp_path):
     # Asked for no motion type, subject 16's steering turns through bridges when they cost as any
     # transition (--bridge-penalty 0) and without them by default. Which turns a graph takes

@@ -109,6 +109,20 @@ TEST(PathSynthesis, StartsAtThePathsStartHeadingAlongIt) {
   EXPECT_GT(heading.dot(Vec2(1.0, 0.0)), 0.999999);
 }
 
+TEST(PathSynthesis, StopsWhenAsked) {
+  const auto& s = test::subject16();
+  auto path = FloorPath::create({{0.0, 0.0}, {10.0, 0.0}});
+  ASSERT_TRUE(path.ok());
+  PathSynthesisSettings settings;
+  std::stop_source stop;
+  settings.stop = stop.get_token();
+  ASSERT_TRUE(synthesize_path(s.context(), *path, settings).ok());  // not asked: made
+  stop.request_stop();
+  auto result = synthesize_path(s.context(), *path, settings);
+  ASSERT_FALSE(result.ok());
+  EXPECT_EQ(result.error().kind, ErrorKind::kStopped);
+}
+
 TEST(PathSynthesis, WalksThenRunsWhereTheSegmentsAsk) {
   const auto& s = test::subject16();
   const FloorPath path = figure8_halves("walk", "run");

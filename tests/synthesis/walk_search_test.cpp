@@ -98,6 +98,19 @@ TEST(WalkSearch, BudgetAndBadNodesAreClearErrors) {
   EXPECT_FALSE(parse_walk_cost("cheap").ok());
 }
 
+TEST(WalkSearch, StopsWhenAsked) {
+  const auto& graph = test::subject16().file().graph;
+  WalkSearchSettings settings;
+  settings.min_frames = 600;
+  std::stop_source stop;
+  settings.stop = stop.get_token();
+  ASSERT_TRUE(find_walk(graph, 3, graph.node_count() - 4, settings).ok());  // not asked: found
+  stop.request_stop();
+  auto found = find_walk(graph, 3, graph.node_count() - 4, settings);
+  ASSERT_FALSE(found.ok());
+  EXPECT_EQ(found.error().kind, ErrorKind::kStopped);
+}
+
 TEST(WalkSearch, LongWalksOnTheBundledGraph) {
   const auto& graph = test::subject16().file().graph;
   WalkSearchSettings settings;

@@ -16,6 +16,7 @@ enum class ErrorKind {
   kEmptyGraph,  // pruning left nothing: the transitions form no cycle
   kOtherProcess,  // another process of a parallel job failed; rank 0 reports why
   kNoSuchAnimation,  // a glTF or FBX file has no animation of the name asked for
+  kStopped,  // the caller asked the work to stop before its end (core/stop.h)
 };
 
 struct Error {

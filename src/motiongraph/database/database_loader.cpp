@@ -16,6 +16,7 @@
 #include "motiongraph/core/default_window.h"
 #include "motiongraph/core/file_extension.h"
 #include "motiongraph/core/progress.h"
+#include "motiongraph/core/stop.h"
 #include "motiongraph/core/unique_name.h"
 #include "motiongraph/database/cmu_tags.h"
 #include "motiongraph/database/database_doubts.h"
@@ -636,6 +637,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
   ProgressBar reading("reading", specs.size(), !settings.progress_bar);
   for (size_t spec_index = 0; spec_index < specs.size(); ++spec_index) {
     const ClipSpec& spec = specs[spec_index];
+    if (auto s = check_stop(settings.stop); !s) return s.error();
     reading.advance();  // counted as it starts: every way on from here is past it
     auto loaded = loaders.for_settings(spec.load).load(spec.path, spec.animation);
     if (!loaded && loaded.error().kind == ErrorKind::kNoSuchAnimation && !spec.manifest.empty()) {

@@ -30,6 +30,7 @@
 #pragma once
 
 #include <optional>
+#include <stop_token>
 #include <string>
 #include <vector>
 
@@ -95,6 +96,9 @@ struct DatabaseSettings {
   // A bar on stderr while the files are read, one step a clip file (core/progress.h: drawn on a
   // terminal only): a library of hours takes a minute to read.
   bool progress_bar = false;
+  // Asks the reading to stop (core/stop.h): before each clip file, loading fails with
+  // stopped_error() once it does.
+  std::stop_token stop;
 
   // The files the command will write (its output, report, exports): loading fails, before any
   // motion is read, on a clip file a folder holds or a manifest names, a manifest, an AMC's

@@ -135,7 +135,7 @@ Result<SynthesizedMotion> run_walk_synthesis(const SynthesisContext& context, in
   if (auto s = walk.validate(); !s) return s.error();
   const MotionGraph& graph = *context.graph;
   auto found = find_walk(graph, from, to, walk);
-  if (!found) return Error{settings.graph_name, 0, found.error().message};
+  if (!found) return Error{settings.graph_name, 0, found.error().message, found.error().kind};
   const FloorTransform start = context.placement_facing(from, Vec2::Zero(), Vec2(0.0, -1.0));
   auto motion = assemble_walk(*context.db, graph, found->walk, start, context.assembler.target_skeleton());
   if (!motion) return motion.error();
@@ -169,7 +169,7 @@ Result<SynthesizedMotion> run_path_synthesis(const SynthesisContext& context, co
   auto result = synthesize_path(context, path, search);
   const double search_cpu_seconds = thread_cpu_seconds() - search_cpu_begin;
   const double search_seconds = seconds_since(search_begin);
-  if (!result) return Error{settings.graph_name, 0, result.error().message};
+  if (!result) return Error{settings.graph_name, 0, result.error().message, result.error().kind};
   SynthesizedMotion out{std::move(result->motion), result->walk, {}, {}, {}};
   const Motion& motion = out.motion;
   auto cleanup = clean_up(context, settings, out.walk, out.motion, out.warning);

@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "motiongraph/core/stop.h"
 #include "motiongraph/core/vector_clones.h"
 
 namespace mg {
@@ -95,7 +96,8 @@ Status merge_candidates(CandidateSearch& into, const CandidateSearch& part) {
 Result<CandidateSearch> find_candidates(const FrameFeatures& f, const DistanceSettings& distance,
                                         const CandidateSettings& settings,
                                         const std::function<void(long long, long long)>& on_tile_done,
-                                        std::span<const long long> items, std::span<const unsigned char> sides) {
+                                        std::span<const long long> items, std::span<const unsigned char> sides,
+                                        std::stop_token stop) {
   if (auto s = distance.validate(); !s) return s.error();
   if (!sides.empty() && sides.size() != items.size()) return Error{"", 0, "one side selection per work item is needed"};
   auto empty = empty_candidate_search(f, settings);
@@ -186,7 +188,8 @@ Result<CandidateSearch> find_candidates(const FrameFeatures& f, const DistanceSe
         if (value < std::numeric_limits<float>::infinity() && !(pixel <= value)) pixel = value;  // NaN or larger
       }
     }
-  }, on_tile_done, items, sides);
+  }, on_tile_done, items, sides, stop);
+  if (search.tiles.stopped) return stopped_error();
   std::sort(search.minima.begin(), search.minima.end(), minimum_order);
   return search;
 }

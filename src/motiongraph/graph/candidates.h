@@ -16,6 +16,7 @@
 
 #include <functional>
 #include <span>
+#include <stop_token>
 #include <vector>
 
 #include "motiongraph/core/error.h"
@@ -53,12 +54,13 @@ struct CandidateSearch {
 };
 
 // `items`: the work items to search (empty: all); the others' pixels stay NaN. `sides`: which
-// of each item's tiles (for_each_distance_tile).
+// of each item's tiles (for_each_distance_tile). Fails with stopped_error() (core/stop.h) when
+// `stop` asks before every tile is done.
 Result<CandidateSearch> find_candidates(const FrameFeatures& features, const DistanceSettings& distance,
                                         const CandidateSettings& settings,
                                         const std::function<void(long long, long long)>& on_tile_done = {},
                                         std::span<const long long> items = {},
-                                        std::span<const unsigned char> sides = {});
+                                        std::span<const unsigned char> sides = {}, std::stop_token stop = {});
 
 // A search of no tiles yet: nothing found, the picture all NaN (what merge_candidates starts
 // from). Fails as find_candidates does on invalid settings or a matrix too large.

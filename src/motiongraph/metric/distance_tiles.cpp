@@ -329,7 +329,8 @@ TileSelection items_of_flagged_tiles(const TileItems& grid, std::span<const char
 TileRunStatistics for_each_distance_tile(const FrameFeatures& features, const DistanceSettings& settings,
                                          const TileVisitor& visitor,
                                          const std::function<void(long long, long long)>& on_tile_done,
-                                         std::span<const long long> items, std::span<const unsigned char> sides) {
+                                         std::span<const long long> items, std::span<const unsigned char> sides,
+                                         std::stop_token stop) {
   const auto start = std::chrono::steady_clock::now();
   const TileItems grid = tile_items(features, settings);
   const int n = grid.frames;
@@ -351,7 +352,12 @@ TileRunStatistics for_each_distance_tile(const FrameFeatures& features, const Di
   std::vector<std::unique_ptr<Scratch>> scratch;
   for (int w = 0; w < workers; ++w) scratch.push_back(std::make_unique<Scratch>(features));
   std::atomic<long long> done{0};
+  std::atomic<bool> stopped{false};
   run_items(item_count, workers, [&](int w, long long i) {
+    if (stop.stop_requested()) {
+      stopped.store(true, std::memory_order_relaxed);
+      return;
+    }
     const auto [ti, tj] = grid.tiles_of(item_at(i));
     Scratch& s = *scratch[w];
     const int a0 = ti * grid.tile, a_count = std::min(grid.tile, n - a0);
@@ -372,6 +378,7 @@ TileRunStatistics for_each_distance_tile(const FrameFeatures& features, const Di
       if (on_tile_done) on_tile_done(++done, stats.tiles);
     }
   });
+  stats.stopped = stopped.load();
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
 }

@@ -14,6 +14,7 @@
 
 #include <functional>
 #include <span>
+#include <stop_token>
 #include <utility>
 #include <vector>
 
@@ -68,6 +69,7 @@ struct TileRunStatistics {
   double seconds = 0.0;
   long long tiles = 0;
   long long pairs = 0;
+  bool stopped = false;  // a stop was asked for: some tiles were not visited
 };
 
 // Progress is reported as tiles done through on_tile_done (may be empty). `items` are the work
@@ -75,12 +77,13 @@ struct TileRunStatistics {
 // one per item): which of an item's tiles to visit, 1 for (I, J), 2 for (J, I), 3 for both (an
 // item of one tile, I = J, has only the first); the products are the item's either way, so a
 // tile's values do not depend on whether its mirror is visited. The statistics count the tiles
-// and pairs visited.
+// and pairs visited. Once `stop` asks (core/stop.h), the items not yet begun are passed over
+// and the statistics say `stopped`.
 TileRunStatistics for_each_distance_tile(const FrameFeatures& features, const DistanceSettings& settings,
                                          const TileVisitor& visitor,
                                          const std::function<void(long long done, long long total)>& on_tile_done = {},
                                          std::span<const long long> items = {},
-                                         std::span<const unsigned char> sides = {});
+                                         std::span<const unsigned char> sides = {}, std::stop_token stop = {});
 
 // Times the three plain BLAS products the distance stage needs, over a whole N x N matrix in
 // tiles of the same size and on the same threads, without the diagonal sums: the ceiling

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "motiongraph/core/progress.h"
+#include "motiongraph/core/stop.h"
 #include "motiongraph/graph/graph_file.h"
 #include "motiongraph/parallel/tile_checkpoint.h"
 #include "motiongraph/parallel/tile_share.h"
@@ -38,7 +39,7 @@ Result<CandidatePart> run_share(const FrameFeatures& features, const DistanceSet
   const long long chunk_pairs = checkpoint != nullptr ? shared.checkpoint_pairs : items.frames * 1LL * items.frames;
   for (const std::vector<long long>& chunk : chunks_of(items, share, chunk_pairs)) {
     auto part = find_candidates(features, distance, settings, [&](long long, long long) { progress.advance(1); },
-                                chunk);
+                                chunk, {}, shared.stop);
     if (!part) return part.error();
     if (checkpoint != nullptr) {
       CandidatePart saved;
@@ -143,7 +144,8 @@ Result<SharedSearch> find_candidates_shared(const FrameFeatures& features, const
                                                               : std::span<const long long>(),
                                         only_items != nullptr && only_sides != nullptr
                                             ? std::span<const unsigned char>(*only_sides)
-                                            : std::span<const unsigned char>());
+                                            : std::span<const unsigned char>(),
+                                        shared.stop);
     progress.finish();
     if (!search) return search.error();
     out.search = std::move(*search);
@@ -171,7 +173,9 @@ Result<SharedSearch> find_candidates_shared(const FrameFeatures& features, const
       part_message(run_share(features, distance, settings, items, share, checkpoint ? &*checkpoint : nullptr, shared)));
 
   Status merged = Ok{};
-  if (team.rank() == 0) {
+  if (team.rank() == 0 && shared.stop.stop_requested()) {
+    merged = stopped_error();  // (its own part says so only as text)
+  } else if (team.rank() == 0) {
     merged = merge_parts(features, settings, restored, messages, out);
     out.search.tile_frames = distance.tile_frames;
     out.search.tiles.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

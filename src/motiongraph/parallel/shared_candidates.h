@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <stop_token>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,9 @@ struct SharedSearchSettings {
   std::string checkpoint_folder;          // empty: no checkpoint
   long long checkpoint_pairs = 1LL << 31; // frame pairs per chunk saved (about half a minute of 2 cores)
   bool progress_bar = false;              // rank 0's bar over its own tiles
+  // Asks this process to stop (core/stop.h): its tiles not yet begun are passed over and the
+  // search fails with stopped_error() (the team's other processes with ErrorKind::kOtherProcess).
+  std::stop_token stop;
 
   Status validate() const;
 };

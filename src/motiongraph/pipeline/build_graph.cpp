@@ -11,6 +11,7 @@
 
 #include "motiongraph/core/counted.h"
 #include "motiongraph/core/json_text.h"
+#include "motiongraph/core/stop.h"
 #include "motiongraph/core/transition_rate.h"
 #include "motiongraph/database/database_loader.h"
 #include "motiongraph/export/matrix_png.h"
@@ -116,8 +117,8 @@ json distance_key_json(const BuildSettings& settings, bool pruned, const FrameFe
 }
 
 Result<Candidates> distance_stage(bool pruned, const FrameFeatures& features, const BuildSettings& settings,
-                                  DistanceCache* cache,
-                                  std::uint64_t key, const Say& say, bool progress_bar, ProcessTeam& team) {
+                                  DistanceCache* cache, std::uint64_t key, const Say& say, bool progress_bar,
+                                  std::stop_token stop, ProcessTeam& team) {
   // The cache holds no matrix: with the matrix export the stage runs (and refreshes the cache).
   const bool keep_matrix = settings.exports.matrix_npy;
   std::optional<CandidateSearch> hit;
@@ -140,6 +141,7 @@ Result<Candidates> distance_stage(bool pruned, const FrameFeatures& features, co
   const CandidateSettings candidate_settings = candidate_settings_of(settings);
   SharedSearchSettings shared = settings.shared;
   shared.progress_bar = progress_bar;
+  shared.stop = stop;
   // The pruned stage: the plan (the same on every process), its items shared as the
   // exhaustive stage's are, then what lies above the ceiling set aside.
   const auto start = std::chrono::steady_clock::now();
@@ -151,6 +153,7 @@ Result<Candidates> distance_stage(bool pruned, const FrameFeatures& features, co
     if (!made) return made.error();
     plan = std::move(*made);
   }
+  if (auto s = team.agree(check_stop(stop)); !s) return s.error();
   auto found = find_candidates_shared(features, plan ? plan->distance : settings.distance_stage.distance,
                                       candidate_settings, key, team, shared, plan ? &plan->items : nullptr,
                                       plan ? &plan->sides : nullptr);
@@ -196,7 +199,8 @@ Result<Candidates> distance_stage(bool pruned, const FrameFeatures& features, co
 // data and path-checked (their report parts in choice_json and check_json).
 Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db, const FrameFeatures& features,
                                                        const CandidateSearch& candidates, const BuildSettings& settings,
-                                                       OnDemandCandidates* more, const Say& say, json& choice_json,
+                                                       OnDemandCandidates* more, const Say& say,
+                                                       const std::stop_token& stop, json& choice_json,
                                                        json& check_json) {
   auto connected = settings.connected_tags(db);
   if (!connected) return connected.error();
@@ -224,6 +228,7 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
   const ThresholdChoiceSettings& choice_settings = settings.choice;
   auto choice = choose_threshold(db, features, candidates, graph_settings, choice_settings, more);
   if (!choice) return choice.error();
+  if (auto s = check_stop(stop); !s) return s.error();
   graph_settings = with_chosen_thresholds(graph_settings, *choice);
   graph_settings.transitions.max_threshold = distance_of_rms_cm(choice_settings.max_rms_cm, features);
   choice_json = threshold_choice_json(*choice, db, choice_settings);
@@ -269,7 +274,8 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
                             choice_settings.max_rms_cm, short_tags_text(*choice, db)));
   }
   if (!settings.path_check) return graph_settings;
-  const PathCheckSettings& check_settings = settings.path_check_settings;
+  PathCheckSettings check_settings = settings.path_check_settings;
+  check_settings.synthesis.stop = stop;
   auto check = check_path_following(db, features, candidates, graph_settings, choice->threshold,
                                     graph_settings.transitions.max_threshold, check_settings, more);
   if (!check) return check.error();
@@ -394,6 +400,7 @@ Result<Prepared> prepare(std::span<const std::string> inputs, const BuildSetting
   const std::vector<std::string> input_list(inputs.begin(), inputs.end());
   DatabaseSettings database = settings.database;
   database.progress_bar = log.progress_bar;
+  database.stop = log.stop;
   auto db = load_database(input_list, database, &load_notes);
   if (!db) return db.error();
   if (log.loaded) log.loaded(load_notes);
@@ -418,6 +425,7 @@ Result<Prepared> prepare(std::span<const std::string> inputs, const BuildSetting
   }
   auto features = make_frame_features(*db, *layout, settings.distance_stage.distance);
   if (!features) return features.error();
+  if (auto s = check_stop(log.stop); !s) return s.error();
   if (features->window < 2) return Error{"", 0, "the window must be at least 2 frames (raise --fps or --window)"};
   timings["clouds"] = watch.lap();
   return Prepared{std::move(*db), std::move(*layout), std::move(*features), std::move(load_notes.clip_doubts)};
@@ -541,7 +549,7 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
       distance_cache_key(*db, json_text(distance_key_json(settings, pruned_stage, *features,
                                                           distance_json)));
   auto candidates = distance_stage(pruned_stage, *features, settings, cache, key, say,
-                                   processes.rank() == 0 && log.progress_bar, processes);
+                                   processes.rank() == 0 && log.progress_bar, log.stop, processes);
   if (!candidates) return candidates.error();
   timings["distance"] = watch.lap();
   if (processes.rank() != 0) {
@@ -560,9 +568,10 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
   OnDemandCandidates* on_demand = more ? &*more : nullptr;
   json choice_json = nullptr;
   json check_json = nullptr;
-  auto graph_settings =
-      threshold_settings(*db, *features, candidates->search, settings, on_demand, say, choice_json, check_json);
+  auto graph_settings = threshold_settings(*db, *features, candidates->search, settings, on_demand, say, log.stop,
+                                           choice_json, check_json);
   if (!graph_settings) return graph_settings.error();
+  if (auto s = check_stop(log.stop); !s) return s.error();
   auto selected = select_transitions_with_bridges(*db, *features, candidates->search, *graph_settings, on_demand);
   if (!selected) return selected.error();
   const TransitionSelection& selection = selected->selection;
@@ -576,6 +585,7 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
   // 5. The graph, pruned.
   auto built = build_spaced_graph(*db, *selected, *features, *graph_settings);
   if (!built && built.error().kind != ErrorKind::kEmptyGraph) return built.error();
+  if (auto s = check_stop(log.stop); !s) return s.error();
   timings["graph"] = watch.lap();
   std::vector<ClipCoverage> coverage;
   if (built) {
@@ -649,7 +659,8 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
     CandidateSearch exhaustive;
     if (every->ceiling >= 0.0) {
       say.info("no graph: the exhaustive distance stage runs to find the lowest threshold that makes one");
-      auto found = find_candidates(*features, settings.distance_stage.distance, candidate_settings_of(settings));
+      auto found = find_candidates(*features, settings.distance_stage.distance, candidate_settings_of(settings), {},
+                                   {}, {}, log.stop);
       if (!found) return found.error();
       exhaustive = std::move(*found);
       every = &exhaustive;

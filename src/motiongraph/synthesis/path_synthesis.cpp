@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include "motiongraph/core/stop.h"
 #include "motiongraph/graph/graph_from_candidates.h"
 #include "motiongraph/synthesis/path_cost.h"
 
@@ -210,6 +211,7 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
   HorizonResult first;
   cost.start_search(0.0);
   for (int node : candidates) {
+    if (auto s = check_stop(settings.stop); !s) return s.error();
     HorizonResult r = horizon_search(graph, context.tracks, start_state(node), cost,
                                      candidates.size() > 1 ? sample : search);
     tally(r);
@@ -316,6 +318,7 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
       if (auto status = play_and_plan(); !status) return status.error();
       cost.set_view(moves.back());
     }
+    if (auto s = check_stop(settings.stop); !s) return s.error();
     cost.start_search(state.arc_m);
     current = horizon_search(graph, context.tracks, state, cost, search, hint);
     tally(current);

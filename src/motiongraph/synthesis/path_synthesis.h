@@ -44,6 +44,8 @@
 // deviation of both, the walk as the graph played it and the motion edited.
 #pragma once
 
+#include <stop_token>
+
 #include "motiongraph/synthesis/floor_path.h"
 #include "motiongraph/synthesis/horizon_search.h"
 #include "motiongraph/synthesis/path_edit.h"
@@ -124,6 +126,9 @@ struct PathSynthesisSettings {
   // on (subject 16's figure 8 run: 0.04 m off becomes 1.0 m): the first retry's way, not the
   // default.
   bool anchor_arc = false;
+  // Asks the synthesis to stop (core/stop.h): before each search, synthesize_path fails with
+  // stopped_error() once it does.
+  std::stop_token stop;
 
   Status validate() const;
 };

@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "motiongraph/core/stop.h"
+
 namespace mg {
 
 Result<WalkCost> parse_walk_cost(std::string_view name) {
@@ -87,6 +89,11 @@ Result<WalkSearchResult> find_walk(const MotionGraph& graph, int from, int to, c
     const size_t state = state_of(entry.node, entry.frames);
     if (extended[state]) continue;
     extended[state] = true;
+    // (A stop is looked for every kStopCheckExpansions: an expansion takes well under a microsecond.)
+    constexpr long long kStopCheckExpansions = 1 << 14;
+    if (result.expansions % kStopCheckExpansions == 0) {
+      if (auto s = check_stop(settings.stop); !s) return s.error();
+    }
     if (++result.expansions > settings.max_expansions) {
       return Error{"", 0, fmt::format("the search budget of {} expansions ran out before reaching node {}; {}",
                                       settings.max_expansions, to, settings.budget_advice)};

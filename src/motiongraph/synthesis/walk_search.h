@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <stop_token>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -31,6 +32,8 @@ struct WalkSearchSettings {
   long long max_expansions = 2000000;   // partial walks extended
   // What the error says to do when the budget runs out, in the words of the caller's options.
   std::string budget_advice = "raise --max-expansions or lower --min-frames";
+  // Asks the search to stop (core/stop.h): find_walk fails with stopped_error() soon after.
+  std::stop_token stop;
 
   Status validate() const;
 };
