@@ -124,15 +124,16 @@ PyGraph build(const std::vector<std::string>& inputs, const py::dict& options, c
     cache = std::make_unique<FileDistanceCache>(call.cache_dir.empty() ? default_distance_cache_folder()
                                                                        : call.cache_dir);
   }
-  // The progress callback runs with the GIL; its first exception stops the build (at its next
-  // step) and is raised. So does Ctrl-C (run_stoppable).
+  // The progress callback gets the lines the build logs and, every 2 s of reading and of the
+  // distance stage, how far they got. It runs with the GIL; its first exception stops the build
+  // (at its next step) and is raised. So does Ctrl-C (run_stoppable).
   std::stop_source stop;
   std::optional<py::error_already_set> callback_error;
   std::vector<std::string> warnings;
   BuildLog log;
   log.stop = stop.get_token();
   if (!progress.is_none()) {
-    log.info = [&](const std::string& line) {
+    log.info = log.progress = [&](const std::string& line) {
       py::gil_scoped_acquire acquire;
       if (callback_error) return;
       try {

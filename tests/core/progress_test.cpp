@@ -1,8 +1,11 @@
-// Progress bar: the line it draws, counting from many threads, and silence off a terminal.
+// Progress bar: the line it draws, the lines it hands a caller's log, counting from many threads,
+// and silence off a terminal.
 #include "motiongraph/core/progress.h"
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -37,6 +40,26 @@ TEST(Progress, EveryLineFitsTheWidth) {
 TEST(Progress, UnknownTotalAndOvershoot) {
   EXPECT_EQ(format_progress_line("search", 7, 0, 1.25, 60), "search 7 1.2s");
   EXPECT_EQ(format_progress_line("x", 15, 10, 1.0, 20), "x 100% 10/10 1.0s");
+}
+
+TEST(Progress, TextForALog) {
+  EXPECT_EQ(progress_text("distance", 4, 10, 2.0), "distance: 40 % (4 of 10) in 2.0 s, about 3 s left");
+  EXPECT_EQ(progress_text("distance", 0, 10, 0.5), "distance: 0 % (0 of 10) in 0.5 s");
+  EXPECT_EQ(progress_text("reading", 7, 0, 1.5), "reading: 7 in 1.5 s");
+  EXPECT_EQ(progress_text("x", 15, 10, 1.0), "x: 100 % (10 of 10) in 1.0 s");
+}
+
+TEST(Progress, HandsItsCallerALineEveryTwoSeconds) {
+  std::vector<std::string> lines;
+  ProgressBar bar("stage", 10, /*quiet=*/true, [&lines](const std::string& line) { lines.push_back(line); });
+  bar.advance();
+  EXPECT_TRUE(lines.empty());  // not 2 s yet
+  std::this_thread::sleep_for(std::chrono::milliseconds(2100));
+  bar.advance();
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_EQ(lines[0].rfind("stage: 20 % (2 of 10) in 2.", 0), 0u) << lines[0];
+  bar.advance();
+  EXPECT_EQ(lines.size(), 1u);  // the next not before 2 s more
 }
 
 TEST(Progress, CountsAdvancesFromManyThreads) {

@@ -62,11 +62,27 @@ std::string format_progress_line(std::string_view label, std::uint64_t done, std
   return line;
 }
 
-ProgressBar::ProgressBar(std::string label, std::uint64_t total, bool quiet)
+std::string progress_text(std::string_view label, std::uint64_t done, std::uint64_t total, double elapsed_s) {
+  elapsed_s = std::max(0.0, elapsed_s);
+  if (total == 0) return fmt::format("{}: {} in {:.1f} s", label, done, elapsed_s);
+  done = std::min(done, total);
+  const double fraction = static_cast<double>(done) / static_cast<double>(total);
+  const int percent = static_cast<int>(std::floor(fraction * 100.0));
+  std::string text = fmt::format("{}: {} % ({} of {}) in {:.1f} s", label, percent, done, total, elapsed_s);
+  if (done > 0 && done < total) {
+    const double left_s = elapsed_s * static_cast<double>(total - done) / static_cast<double>(done);
+    text += fmt::format(", about {:.0f} s left", std::ceil(left_s));
+  }
+  return text;
+}
+
+ProgressBar::ProgressBar(std::string label, std::uint64_t total, bool quiet, ProgressLines lines)
     : label_(std::move(label)),
       total_(total),
       drawing_(!quiet && isatty(STDERR_FILENO) == 1),
-      start_(Clock::now()) {
+      start_(Clock::now()),
+      lines_(std::move(lines)),
+      next_line_ns_(static_cast<std::int64_t>(kProgressLineSeconds * 1e9)) {
   if (drawing_) draw(false);
 }
 
@@ -78,9 +94,21 @@ double ProgressBar::elapsed_s() const {
 
 void ProgressBar::advance(std::uint64_t n) {
   done_.fetch_add(n, std::memory_order_relaxed);
-  if (!drawing_ || finished_.load(std::memory_order_relaxed)) return;
+  if ((!drawing_ && !lines_) || finished_.load(std::memory_order_relaxed)) return;
   const std::int64_t now_ns =
       std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - start_).count();
+  if (lines_) {
+    std::int64_t next_line = next_line_ns_.load(std::memory_order_relaxed);
+    const auto interval = static_cast<std::int64_t>(kProgressLineSeconds * 1e9);
+    if (now_ns >= next_line &&
+        next_line_ns_.compare_exchange_strong(next_line, now_ns + interval, std::memory_order_relaxed)) {
+      // (A line still being handed out, by a slow caller, is not joined by another.)
+      if (std::unique_lock lock(lines_mutex_, std::try_to_lock); lock.owns_lock()) {
+        lines_(progress_text(label_, done(), total_, elapsed_s()));
+      }
+    }
+  }
+  if (!drawing_) return;
   std::int64_t next_ns = next_draw_ns_.load(std::memory_order_relaxed);
   if (now_ns < next_ns) return;
   // One thread wins the slot; the others go back to work.

@@ -2,13 +2,16 @@
 //   "distances [#########...........]  45% 4500/10000 12.3s eta 15s"
 // It draws only when stderr is a terminal and the bar is not quiet, at most ten times a
 // second, on one line rewritten with '\r'; finish() ends that line with the elapsed seconds.
-// Elsewhere (a pipe, a log file, CI) it prints nothing at all. advance() may be called from
-// any number of threads: the count is an atomic, and one thread at a time redraws.
+// Elsewhere (a pipe, a log file, CI) it prints nothing at all. Given `lines` (a caller's log: a
+// notebook, a GUI), it also hands them a line of text every kProgressLineSeconds, terminal or
+// not (progress_text), from the thread that advanced it, never two at once. advance() may be
+// called from any number of threads: the count is an atomic, and one thread at a time redraws.
 #pragma once
 
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <string_view>
@@ -22,9 +25,16 @@ namespace mg {
 std::string format_progress_line(std::string_view label, std::uint64_t done, std::uint64_t total,
                                  double elapsed_s, int width, bool final_line = false);
 
+// The same as a sentence, for a log: "distance: 45 % (4500 of 10000) in 12.3 s, about 15 s left";
+// total 0 means unknown: "reading: 4500 in 12.3 s".
+std::string progress_text(std::string_view label, std::uint64_t done, std::uint64_t total, double elapsed_s);
+
+using ProgressLines = std::function<void(const std::string&)>;
+constexpr double kProgressLineSeconds = 2.0;
+
 class ProgressBar {
  public:
-  ProgressBar(std::string label, std::uint64_t total, bool quiet = false);
+  ProgressBar(std::string label, std::uint64_t total, bool quiet = false, ProgressLines lines = {});
   ~ProgressBar();  // finish()es the line if still drawing
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;
@@ -51,6 +61,9 @@ class ProgressBar {
   Clock::time_point start_;
   std::atomic<std::uint64_t> done_{0};
   std::atomic<std::int64_t> next_draw_ns_{0};  // since start_
+  ProgressLines lines_;
+  std::atomic<std::int64_t> next_line_ns_{0};  // since start_
+  std::mutex lines_mutex_;
   std::atomic<bool> finished_{false};
   std::mutex draw_mutex_;
 };

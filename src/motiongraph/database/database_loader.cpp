@@ -634,7 +634,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
   std::vector<DescribedClip> described;    // clips tagged by their CMU descriptions
   std::set<std::string> clip_names;        // taken, for the parts a capture glitch cuts a clip into
   for (const ClipSpec& spec : specs) clip_names.insert(spec.name);
-  ProgressBar reading("reading", specs.size(), !settings.progress_bar);
+  ProgressBar reading("reading", specs.size(), !settings.progress_bar, settings.progress_lines);
   for (size_t spec_index = 0; spec_index < specs.size(); ++spec_index) {
     const ClipSpec& spec = specs[spec_index];
     if (auto s = check_stop(settings.stop); !s) return s.error();

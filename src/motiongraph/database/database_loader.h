@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "motiongraph/core/error.h"
+#include "motiongraph/core/progress.h"
 #include "motiongraph/database/motion_database.h"
 #include "motiongraph/database/travel_tags.h"
 #include "motiongraph/motion/capture_glitches.h"
@@ -96,6 +97,8 @@ struct DatabaseSettings {
   // A bar on stderr while the files are read, one step a clip file (core/progress.h: drawn on a
   // terminal only): a library of hours takes a minute to read.
   bool progress_bar = false;
+  // ... and, given, a line of how far it got every kProgressLineSeconds, terminal or not.
+  ProgressLines progress_lines;
   // Asks the reading to stop (core/stop.h): before each clip file, loading fails with
   // stopped_error() once it does.
   std::stop_token stop;

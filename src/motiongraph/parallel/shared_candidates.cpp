@@ -35,7 +35,7 @@ Result<CandidatePart> run_share(const FrameFeatures& features, const DistanceSet
   const auto start = std::chrono::steady_clock::now();
   long long my_tiles = 0;
   for (long long item : share) my_tiles += items.tile_count(item);
-  ProgressBar progress("distance", static_cast<std::uint64_t>(my_tiles), !shared.progress_bar);
+  ProgressBar progress("distance", static_cast<std::uint64_t>(my_tiles), !shared.progress_bar, shared.progress_lines);
   const long long chunk_pairs = checkpoint != nullptr ? shared.checkpoint_pairs : items.frames * 1LL * items.frames;
   for (const std::vector<long long>& chunk : chunks_of(items, share, chunk_pairs)) {
     auto part = find_candidates(features, distance, settings, [&](long long, long long) { progress.advance(1); },
@@ -135,7 +135,7 @@ Result<SharedSearch> find_candidates_shared(const FrameFeatures& features, const
                                        : items.tile_count((*only_items)[i]);
       }
     }
-    ProgressBar progress("distance", static_cast<std::uint64_t>(tiles), !shared.progress_bar);
+    ProgressBar progress("distance", static_cast<std::uint64_t>(tiles), !shared.progress_bar, shared.progress_lines);
     // An empty subset runs nothing (find_candidates reads no items as all of them).
     auto search = only_items != nullptr && only_items->empty()
                       ? empty_candidate_search(features, settings)

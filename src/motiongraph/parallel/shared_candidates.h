@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "motiongraph/core/error.h"
+#include "motiongraph/core/progress.h"
 #include "motiongraph/graph/candidates.h"
 #include "motiongraph/parallel/process_team.h"
 
@@ -25,6 +26,7 @@ struct SharedSearchSettings {
   std::string checkpoint_folder;          // empty: no checkpoint
   long long checkpoint_pairs = 1LL << 31; // frame pairs per chunk saved (about half a minute of 2 cores)
   bool progress_bar = false;              // rank 0's bar over its own tiles
+  ProgressLines progress_lines;           // and, given, a line of it every kProgressLineSeconds
   // Asks this process to stop (core/stop.h): its tiles not yet begun are passed over and the
   // search fails with stopped_error() (the team's other processes with ErrorKind::kOtherProcess).
   std::stop_token stop;

@@ -116,9 +116,10 @@ json distance_key_json(const BuildSettings& settings, bool pruned, const FrameFe
   return distance_json;
 }
 
+// `log`: this process's (rank 0's bars, progress lines and stop; the others' are silent).
 Result<Candidates> distance_stage(bool pruned, const FrameFeatures& features, const BuildSettings& settings,
-                                  DistanceCache* cache, std::uint64_t key, const Say& say, bool progress_bar,
-                                  std::stop_token stop, ProcessTeam& team) {
+                                  DistanceCache* cache, std::uint64_t key, const Say& say, const BuildLog& log,
+                                  ProcessTeam& team) {
   // The cache holds no matrix: with the matrix export the stage runs (and refreshes the cache).
   const bool keep_matrix = settings.exports.matrix_npy;
   std::optional<CandidateSearch> hit;
@@ -140,8 +141,9 @@ Result<Candidates> distance_stage(bool pruned, const FrameFeatures& features, co
   }
   const CandidateSettings candidate_settings = candidate_settings_of(settings);
   SharedSearchSettings shared = settings.shared;
-  shared.progress_bar = progress_bar;
-  shared.stop = stop;
+  shared.progress_bar = log.progress_bar;
+  shared.progress_lines = log.progress;
+  shared.stop = log.stop;
   // The pruned stage: the plan (the same on every process), its items shared as the
   // exhaustive stage's are, then what lies above the ceiling set aside.
   const auto start = std::chrono::steady_clock::now();
@@ -153,7 +155,7 @@ Result<Candidates> distance_stage(bool pruned, const FrameFeatures& features, co
     if (!made) return made.error();
     plan = std::move(*made);
   }
-  if (auto s = team.agree(check_stop(stop)); !s) return s.error();
+  if (auto s = team.agree(check_stop(log.stop)); !s) return s.error();
   auto found = find_candidates_shared(features, plan ? plan->distance : settings.distance_stage.distance,
                                       candidate_settings, key, team, shared, plan ? &plan->items : nullptr,
                                       plan ? &plan->sides : nullptr);
@@ -400,6 +402,7 @@ Result<Prepared> prepare(std::span<const std::string> inputs, const BuildSetting
   const std::vector<std::string> input_list(inputs.begin(), inputs.end());
   DatabaseSettings database = settings.database;
   database.progress_bar = log.progress_bar;
+  database.progress_lines = log.progress;
   database.stop = log.stop;
   auto db = load_database(input_list, database, &load_notes);
   if (!db) return db.error();
@@ -548,8 +551,8 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
   const std::uint64_t key =
       distance_cache_key(*db, json_text(distance_key_json(settings, pruned_stage, *features,
                                                           distance_json)));
-  auto candidates = distance_stage(pruned_stage, *features, settings, cache, key, say,
-                                   processes.rank() == 0 && log.progress_bar, log.stop, processes);
+  const BuildLog& own_log = processes.rank() == 0 ? log : silent;
+  auto candidates = distance_stage(pruned_stage, *features, settings, cache, key, say, own_log, processes);
   if (!candidates) return candidates.error();
   timings["distance"] = watch.lap();
   if (processes.rank() != 0) {

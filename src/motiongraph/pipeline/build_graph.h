@@ -38,6 +38,9 @@ struct BuildLog {
   std::function<void(const std::string&)> warning;       // something the user should know (may be empty)
   std::function<void(const DatabaseLoadNotes&)> loaded;  // what loading chose by itself (units)
   bool progress_bar = false;                             // the reading's and distance stage's bars (core/progress.h)
+  // How far the reading and the distance stage have got, a line every kProgressLineSeconds
+  // (core/progress.h progress_text), terminal or not (may be empty).
+  std::function<void(const std::string&)> progress;
   // Asks the build to stop (core/stop.h): between the clips it reads, the distance tiles, the
   // thresholds it tries and the path check's searches, it then fails with stopped_error() (a
   // distance stage stopped part-way is not cached). A team's other processes are not asked.
