@@ -33,8 +33,9 @@ def build(inputs, progress=None, **options):
     to keep those for Graph.distance_matrix() and Graph.clouds(). `progress`, when given, is called
     with each line the build logs, and every 2 s of reading and of the distance stage with how far
     they got ("distance: 45 % (4500 of 10000) in 12.3 s, about 15 s left"); an exception it raises
-    stops the build at its next step and is raised, as Ctrl-C's KeyboardInterrupt is. Raises motiongraph.Error with the CLI's message, or
-    EmptyGraphError (with .report) when pruning leaves nothing.
+    stops the build at its next step and is raised, as Ctrl-C's KeyboardInterrupt is. Raises
+    motiongraph.Error with the CLI's message, or EmptyGraphError (with .report) when pruning leaves
+    nothing.
     """
     return _build(_paths(inputs), options, progress)
 
