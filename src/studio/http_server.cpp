@@ -47,6 +47,13 @@ HttpServer::HttpServer(const StudioApi& api, std::string web_root)
   // A request with a body method but neither Content-Length nor Transfer-Encoding has an empty
   // body (HTTP/1.1); httplib would read one until its read timeout, holding a worker 10 s.
   s.set_pre_routing_handler([api_handler](const httplib::Request& req, httplib::Response& res) {
+    // A NUL byte (%00) in the path: the file opened would end there, its type read past it
+    // ("index.html%00.png" served index.html as a PNG).
+    if (req.path.find('\0') != std::string::npos) {
+      res.status = 400;
+      res.set_content(json_text(nlohmann::json({{"error", "the path holds a NUL byte (%00)"}})), "application/json");
+      return httplib::Server::HandlerResponse::Handled;
+    }
     const bool body_method = req.method == "POST" || req.method == "PUT" || req.method == "PATCH";
     if (!body_method || req.has_header("Content-Length") || req.has_header("Transfer-Encoding")) {
       return httplib::Server::HandlerResponse::Unhandled;

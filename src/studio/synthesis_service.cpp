@@ -30,14 +30,31 @@ int SynthesisService::store_recorded(std::shared_ptr<Recorded> recorded) {
   std::lock_guard lock(mutex_);
   const int id = next_id_++;
   results_[id] = std::move(recorded);
-  while (static_cast<int>(results_.size()) > kMaxResults) results_.erase(results_.begin());
+  long long frames = 0;
+  for (const auto& [key, kept] : results_) frames += kept->kept_frames;
+  // The oldest go first, but neither a live session's recording nor the one just stored.
+  for (auto it = results_.begin();
+       it != results_.end() && (static_cast<int>(results_.size()) > kMaxResults || frames > kMaxKeptFrames);) {
+    if (it->first == id || sessions_.contains(it->first)) {
+      ++it;
+      continue;
+    }
+    frames -= it->second->kept_frames;
+    it = results_.erase(it);
+  }
   return id;
 }
 
 int SynthesisService::store_result(Motion motion) {
   auto recorded = std::make_shared<Recorded>();
+  recorded->kept_frames = motion.frame_count;
   recorded->motion = std::move(motion);
   return store_recorded(std::move(recorded));
+}
+
+bool SynthesisService::has_result(int result) const {
+  std::lock_guard lock(mutex_);
+  return results_.contains(result);
 }
 
 std::optional<std::string> SynthesisService::result_file(int result, FileFormat format, bool root_motion,
@@ -148,6 +165,7 @@ Result<int> SynthesisService::create_session(const ControlInput& input, bool cle
   }
   session->recorded = std::make_shared<Recorded>();
   session->recorded->motion = context().assembler.empty_motion();
+  session->recorded->kept_frames = kMaxRecordedFrames;
   const int id = store_recorded(session->recorded);
   std::lock_guard lock(mutex_);
   session->last_used = ++clock_;
@@ -194,15 +212,18 @@ Result<SteerStepResult> SynthesisService::step_session(int id, const ControlInpu
   out.session_transitions = session->transitions;
   session->bridges += out.bridges;
   out.session_bridges = session->bridges;
+  // The recording: the session's first kMaxRecordedFrames frames, one after another (a step that
+  // does not fit whole gives what fits, and later steps nothing).
   std::lock_guard record(session->recorded->mutex);
   Motion& recorded = session->recorded->motion;
-  if (recorded.frame_count + out.motion.frame_count <= kMaxRecordedFrames) {
-    recorded.local_rotations.insert(recorded.local_rotations.end(), out.motion.local_rotations.begin(),
-                                    out.motion.local_rotations.end());
-    recorded.local_translations_m.insert(recorded.local_translations_m.end(),
-                                         out.motion.local_translations_m.begin(),
-                                         out.motion.local_translations_m.end());
-    recorded.frame_count += out.motion.frame_count;
+  const int fits = std::min(out.motion.frame_count, kMaxRecordedFrames - recorded.frame_count);
+  if (fits > 0) {
+    const Motion part = out.motion.slice(0, fits);
+    recorded.local_rotations.insert(recorded.local_rotations.end(), part.local_rotations.begin(),
+                                    part.local_rotations.end());
+    recorded.local_translations_m.insert(recorded.local_translations_m.end(), part.local_translations_m.begin(),
+                                         part.local_translations_m.end());
+    recorded.frame_count += fits;
   }
   return out;
 }

@@ -3,9 +3,11 @@
 // after loading; results kept for download and the steering sessions (each with its own
 // Controller) are guarded, so every member function may be called from any thread.
 //
-// Bounds: at most kMaxResults results are kept (the oldest go first), at most kMaxSessions
-// steering sessions live at once (the least recently used goes), and a session records at
-// most kMaxRecordedFrames frames for download (it keeps steering after that).
+// Bounds: at most kMaxResults results are kept, of at most kMaxKeptFrames frames in all (the
+// oldest go first, but not a live steering session's recording, which goes when its session
+// does), at most kMaxSessions steering sessions live at once (the least recently used goes), and
+// a session records its first kMaxRecordedFrames frames for download (it keeps steering after
+// that).
 #pragma once
 
 #include <map>
@@ -67,6 +69,9 @@ class SynthesisService {
   static constexpr int kMaxResults = 32;
   static constexpr int kMaxSessions = 16;
   static constexpr int kMaxRecordedFrames = 30 * 60 * 2;  // 2 minutes at 30 fps
+  // Results' frames kept in all (a session's recording counts as kMaxRecordedFrames): a path's
+  // may run to tens of thousands of frames, tens of MB each.
+  static constexpr long long kMaxKeptFrames = 150000;
   static constexpr long long kWalkExpansions = 500000;     // a walk's search budget (the CLI's is 4x)
 
   // Loads a .mgraph file and sets up synthesis on it.
@@ -99,6 +104,8 @@ class SynthesisService {
                                          bool figure = true) const;
   // Stores a motion for download and returns its id.
   int store_result(Motion motion);
+  // Whether result_file() can still give that result.
+  bool has_result(int result) const;
 
   // The distance picture (PNG bytes, at most kPictureSide pixels a side, picture_block()
   // frames per pixel): the block minima the graph file stores, made smaller to the block a
@@ -117,6 +124,7 @@ class SynthesisService {
   struct Recorded {
     mutable std::mutex mutex;
     Motion motion;
+    long long kept_frames = 0;  // what it counts against kMaxKeptFrames (set when stored)
   };
   struct Session {
     std::mutex mutex;

@@ -81,6 +81,12 @@ TEST_F(StudioServer, ServesTheFrontEndAndThreeJs) {
   auto missing = c.Get("/no-such-file.js");
   ASSERT_TRUE(missing);
   EXPECT_EQ(missing->status, 404);
+  // A NUL byte ends the file name opened, not the type read from it: refused (index.html was
+  // served as a PNG).
+  auto nul = c.Get("/index.html%00.png");
+  ASSERT_TRUE(nul);
+  EXPECT_EQ(nul->status, 400);
+  EXPECT_EQ(nul->get_header_value("Content-Type"), "application/json");
 }
 
 TEST_F(StudioServer, AnswersSeveralClientsAtOnce) {

@@ -14,6 +14,7 @@
 #include "motiongraph/evaluation/graph_rebuild.h"
 #include "motiongraph/export/matrix_png.h"
 #include "motiongraph/graph/candidates.h"
+#include "motiongraph/io/bvh_parser.h"
 #include "motiongraph/motion/clip_doubts.h"
 #include "motiongraph/motion/forward_kinematics.h"
 #include "studio/studio_api.h"
@@ -56,6 +57,91 @@ TEST(SynthesisService, EachClipsDoubtsAreInfosAndTheApiListsThem) {
   const nlohmann::json listed = nlohmann::json::parse(clips.body);
   EXPECT_EQ(listed[3]["doubts"], nlohmann::json(expected));
   EXPECT_EQ(listed[0]["doubts"], nlohmann::json::array());
+}
+
+// A motion of `frames` frames of one joint (the bounds count frames, not what they hold).
+Motion frames_of_one_joint(int frames) {
+  Motion motion;
+  motion.frame_count = frames;
+  motion.joint_count = 1;
+  motion.translated_count = 1;
+  motion.local_rotations.assign(static_cast<size_t>(frames), Quat::Identity());
+  motion.local_translations_m.assign(static_cast<size_t>(frames), Vec3::Zero());
+  return motion;
+}
+
+// Results kept: the oldest go first past kMaxResults, or past kMaxKeptFrames frames in all, but
+// not a live steering session's recording (it went with walks before: its download a 404 while
+// the session steered on).
+TEST(SynthesisService, KeepsResultsWithinItsBoundsButALiveSessionsRecording) {
+  using studio::SynthesisService;
+  auto graph = LoadedGraph::create(test::subject16_graph_file(), "s16.mgraph");
+  ASSERT_TRUE(graph) << graph.error().to_string();
+  const auto service = SynthesisService::create(std::move(*graph), "s16.mgraph");
+  ControlInput input;
+  auto session = service->create_session(input);
+  ASSERT_TRUE(session) << session.error().to_string();
+  ASSERT_TRUE(service->step_session(*session, input, 30));
+  std::vector<int> small;
+  for (int i = 0; i < SynthesisService::kMaxResults; ++i) {
+    small.push_back(service->store_result(frames_of_one_joint(10)));
+  }
+  EXPECT_TRUE(service->has_result(*session));
+  EXPECT_FALSE(service->has_result(small[0]));  // the oldest but the session's
+  EXPECT_TRUE(service->has_result(small[1]));
+  // Two results of more than half the frames kept (the session's counted at its most): the
+  // first goes, and everything older.
+  const int half = static_cast<int>((SynthesisService::kMaxKeptFrames - SynthesisService::kMaxRecordedFrames) / 2) + 1;
+  const int first = service->store_result(frames_of_one_joint(half));
+  EXPECT_TRUE(service->has_result(first));
+  EXPECT_TRUE(service->has_result(small.back()));
+  const int second = service->store_result(frames_of_one_joint(half));
+  EXPECT_FALSE(service->has_result(first));
+  EXPECT_FALSE(service->has_result(small.back()));
+  EXPECT_TRUE(service->has_result(second));
+  EXPECT_TRUE(service->has_result(*session));
+  // A session gone is a result as any other.
+  for (int i = 0; i < SynthesisService::kMaxSessions; ++i) ASSERT_TRUE(service->create_session(input));
+  for (int i = 0; i < SynthesisService::kMaxResults; ++i) service->store_result(frames_of_one_joint(10));
+  EXPECT_FALSE(service->has_result(*session));
+}
+
+// A session records its first kMaxRecordedFrames frames, one after another: a step that does
+// not fit whole gives what fits (it was left out whole, and a later one that fit made a jump).
+TEST(SynthesisService, ASessionRecordsItsFirstFramesWithoutAGap) {
+  using studio::SynthesisService;
+  auto graph = LoadedGraph::create(test::subject16_graph_file(), "s16.mgraph");
+  ASSERT_TRUE(graph) << graph.error().to_string();
+  const auto service = SynthesisService::create(std::move(*graph), "s16.mgraph");
+  ControlInput input;
+  auto session = service->create_session(input, /*cleanup=*/false);
+  ASSERT_TRUE(session) << session.error().to_string();
+  auto first = service->step_session(*session, input, SynthesisService::kMaxRecordedFrames - 20);
+  ASSERT_TRUE(first) << first.error().to_string();
+  ASSERT_LT(first->motion.frame_count, SynthesisService::kMaxRecordedFrames);
+  auto second = service->step_session(*session, input, 60);  // does not fit whole
+  ASSERT_TRUE(second) << second.error().to_string();
+  ASSERT_GT(first->motion.frame_count + second->motion.frame_count, SynthesisService::kMaxRecordedFrames);
+  auto third = service->step_session(*session, input, 1);
+  ASSERT_TRUE(third);
+  const auto bvh = service->result_file(*session);
+  ASSERT_TRUE(bvh);
+  auto read = parse_bvh(*bvh, "session.bvh");
+  ASSERT_TRUE(read) << read.error().to_string();
+  ASSERT_EQ(read->frame_count, SynthesisService::kMaxRecordedFrames);
+  const BvhJoint& root = read->joints.front();
+  ASSERT_GE(root.channels.size(), 3u);
+  ASSERT_EQ(root.channels[0], BvhChannel::kXposition);
+  ASSERT_EQ(root.channels[1], BvhChannel::kYposition);
+  ASSERT_EQ(root.channels[2], BvhChannel::kZposition);
+  // Frame by frame the root the steps gave, in order (the file in metres).
+  for (int f = 0; f < read->frame_count; ++f) {
+    const bool in_first = f < first->motion.frame_count;
+    const Motion& step = in_first ? first->motion : second->motion;
+    const int at = in_first ? f : f - first->motion.frame_count;
+    const double* values = &read->values[static_cast<size_t>(f) * read->channel_count + root.first_channel];
+    ASSERT_LT((Vec3(values[0], values[1], values[2]) - step.translations(at)[0]).norm(), 1e-5) << f;
+  }
 }
 
 TEST(SynthesisService, DistancePictureIsTheStoredOneAsTheDistanceStageWouldDrawIt) {
