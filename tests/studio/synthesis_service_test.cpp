@@ -70,14 +70,19 @@ Motion frames_of_one_joint(int frames) {
   return motion;
 }
 
+// A service of its own on subject 16's graph (the tests' shared one keeps others' results).
+std::unique_ptr<studio::SynthesisService> fresh_service() {
+  auto graph = LoadedGraph::create(test::subject16_graph_file(), "s16.mgraph");
+  EXPECT_TRUE(graph) << graph.error().to_string();
+  return studio::SynthesisService::create(std::move(*graph), "s16.mgraph");
+}
+
 // Results kept: the oldest go first past kMaxResults, or past kMaxKeptFrames frames in all, but
 // not a live steering session's recording (it went with walks before: its download a 404 while
 // the session steered on).
 TEST(SynthesisService, KeepsResultsWithinItsBoundsButALiveSessionsRecording) {
   using studio::SynthesisService;
-  auto graph = LoadedGraph::create(test::subject16_graph_file(), "s16.mgraph");
-  ASSERT_TRUE(graph) << graph.error().to_string();
-  const auto service = SynthesisService::create(std::move(*graph), "s16.mgraph");
+  const auto service = fresh_service();
   ControlInput input;
   auto session = service->create_session(input);
   ASSERT_TRUE(session) << session.error().to_string();
@@ -110,9 +115,7 @@ TEST(SynthesisService, KeepsResultsWithinItsBoundsButALiveSessionsRecording) {
 // not fit whole gives what fits (it was left out whole, and a later one that fit made a jump).
 TEST(SynthesisService, ASessionRecordsItsFirstFramesWithoutAGap) {
   using studio::SynthesisService;
-  auto graph = LoadedGraph::create(test::subject16_graph_file(), "s16.mgraph");
-  ASSERT_TRUE(graph) << graph.error().to_string();
-  const auto service = SynthesisService::create(std::move(*graph), "s16.mgraph");
+  const auto service = fresh_service();
   ControlInput input;
   auto session = service->create_session(input, /*cleanup=*/false);
   ASSERT_TRUE(session) << session.error().to_string();
