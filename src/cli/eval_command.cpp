@@ -348,7 +348,7 @@ Command add_eval_command(CLI::App& app) {
   sub->add_option("--walks", o->walks, "Walks per cost function")->check(CLI::Range(1, 100000))->capture_default_str();
   sub->add_option("--seed", o->seed, "Seed of the node pairs and random costs")->capture_default_str();
   sub->add_option("--max-expansions", o->max_expansions, "Search budget of each walk")->capture_default_str();
-  sub->add_option("--shapes", o->shapes, "Built-in paths to follow (line:L, circle:R, figure8:R, s-curve:L)")
+  sub->add_option("--shapes", o->shapes, "Built-in paths to follow (line:L, circle:R, figure8:R, s-curve:L, square:S, zigzag:L)")
       ->delimiter(',')
       ->capture_default_str();
   sub->add_flag("--no-plots", o->no_plots, "Write the CSV files only (no gnuplot needed)");

@@ -20,7 +20,8 @@ inline constexpr const char* kScaleHelp =
     "file, whichever makes the figure human-sized); for FBX, metres per unit of its numbers, instead of its own unit "
     "(which is kept unless it makes the figure no human size)";
 inline constexpr const char* kInputFpsHelp =
-    "Capture rate of ASF/AMC and BVH input, overriding the files' (AMC default 120, CMU's rate); for glTF and FBX, "
+    "Capture rate of ASF/AMC and BVH input, overriding the files' (AMC default 120, CMU's rate; a BVH Frame Time "
+    "giving under 1 or over 10000 fps is refused without it); for glTF and FBX, "
     "whose keys are timed in seconds, the rate their animations are sampled at (default: their keys')";
 inline constexpr const char* kKeepRestFramesHelp =
     "Keep the frames read but not played by default: leading rest or T-pose frames that a BVH converter added, "

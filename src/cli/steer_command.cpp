@@ -200,7 +200,8 @@ Command add_steer_command(CLI::App& app) {
       "steer", "Replay a timed control script through the interactive controller and write the motion.\n"
                "CONTROLS.json: {\"duration_s\": 12, \"controls\": [{\"at_s\": 0, \"heading\": \"north\", \"tag\":\n"
                "\"walk\"}, {\"at_s\": 4, \"heading_deg\": 90}, {\"at_s\": 8, \"tag\": \"run\"}]}; headings north (-z),\n"
-               "east (+x), south, west or a bearing in degrees clockwise from north.");
+               "east (+x), south, west or a bearing in degrees clockwise from north; without duration_s, the\n"
+               "motion ends 4 s after the last control.");
   o->common.add_to(*sub);
   sub->add_option("--script", o->script, "CONTROLS.json")->required()->check(CLI::ExistingFile);
   sub->add_option("--horizon", o->settings.horizon_s, "Seconds each decision looks ahead")->capture_default_str();

@@ -101,6 +101,41 @@ TEST(BvhParser, AByteOrderMarkAndCarriageReturnLinesReadTheSame) {
   }
 }
 
+// Keywords and channel names in any case, as some exporters write them ("End site",
+// "zrotation") and Blender reads them; joint names as written.
+TEST(BvhParser, KeywordsInAnyCaseReadTheSame) {
+  std::string text = kMiniBvh;
+  auto replace_all = [&text](const std::string& from, const std::string& to) {
+    for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) {
+      text.replace(at, from.size(), to);
+    }
+  };
+  for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+           {"HIERARCHY", "hierarchy"}, {"ROOT", "Root"}, {"OFFSET", "offset"}, {"CHANNELS", "Channels"},
+           {"Xposition", "XPOSITION"}, {"Yrotation", "yrotation"}, {"Zrotation", "zRotation"},
+           {"End Site", "End site"}, {"JOINT", "joint"}, {"MOTION", "Motion"}, {"Frames:", "FRAMES:"},
+           {"Frame Time:", "frame time:"}}) {
+    replace_all(from, to);
+  }
+  ASSERT_EQ(text.find("JOINT"), std::string::npos);
+  auto plain = parse_bvh(kMiniBvh, "mini.bvh");
+  auto any_case = parse_bvh(text, "any-case.bvh");
+  ASSERT_TRUE(plain) << plain.error().to_string();
+  ASSERT_TRUE(any_case) << any_case.error().to_string();
+  ASSERT_EQ(any_case->joints.size(), plain->joints.size());
+  for (size_t j = 0; j < plain->joints.size(); ++j) {
+    EXPECT_EQ(any_case->joints[j].name, plain->joints[j].name);
+    EXPECT_EQ(any_case->joints[j].channels, plain->joints[j].channels);
+    EXPECT_EQ(any_case->joints[j].offset, plain->joints[j].offset);
+    EXPECT_EQ(any_case->joints[j].end_site, plain->joints[j].end_site);
+  }
+  EXPECT_EQ(any_case->frame_time_s, plain->frame_time_s);
+  EXPECT_EQ(any_case->values, plain->values);
+  // A word that is no keyword in any case is still refused.
+  replace_all("offset", "offsets");
+  EXPECT_FALSE(parse_bvh(text, "t.bvh"));
+}
+
 TEST(BvhParser, HugeFrameCountAllocatesNothing) {
   auto doc = parse_bvh(test::replace_once(kMiniBvh, "Frames: 2", "Frames: 99999999999999"), "huge.bvh");
   ASSERT_FALSE(doc);

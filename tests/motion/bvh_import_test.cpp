@@ -65,6 +65,34 @@ TEST(BvhImport, ScaleAndFrameRateOverride) {
   EXPECT_FALSE(clip_from_bvh(*doc, settings));
 }
 
+// A Frame Time no capture has (milliseconds written for seconds) is refused naming its line,
+// unless the rate is given; a file of one frame (a pose) has no rate to doubt.
+TEST(BvhImport, AFrameTimeNoCaptureHasIsRefusedUnlessTheRateIsGiven) {
+  auto with_time = [](int frames, const std::string& time) {
+    std::string text = two_joint_bvh("3 Zrotation Xrotation Yrotation", "0 0 0 0 0 0 0 0 0");
+    text.replace(text.find("Frames: 1\nFrame Time: 0.04"), 26, "Frames: " + std::to_string(frames) + "\nFrame Time: " + time);
+    for (int f = 1; f < frames; ++f) text += "0 0 0 0 0 0 0 0 0\n";
+    return *parse_bvh(text, "t.bvh");
+  };
+  BvhImportSettings settings;
+  settings.metres_per_unit = 1.0;
+  auto ms = clip_from_bvh(with_time(3, "8.3333"), settings);
+  ASSERT_FALSE(ms);
+  EXPECT_EQ(ms.error().to_string(),
+            "t.bvh:18: Frame Time 8.3333 s is 0.12 frames a second, no capture's rate (read as milliseconds it would "
+            "be 120 fps): give the rate with --input-fps");
+  auto fast = clip_from_bvh(with_time(3, "1e-9"), settings);
+  ASSERT_FALSE(fast);
+  EXPECT_EQ(fast.error().to_string(),
+            "t.bvh:18: Frame Time 1e-09 s is 1e+09 frames a second, no capture's rate: give the rate with --input-fps");
+  EXPECT_TRUE(clip_from_bvh(with_time(1, "8.3333"), settings));  // a pose
+  EXPECT_TRUE(clip_from_bvh(with_time(3, "1"), settings));        // 1 fps: slow, but a rate
+  settings.fps_override = 120.0;
+  auto given = clip_from_bvh(with_time(3, "8.3333"), settings);
+  ASSERT_TRUE(given) << given.error().to_string();
+  EXPECT_EQ(given->motion.fps, 120.0);
+}
+
 TEST(BvhImport, EndSitesFollowTheJoints) {
   Clip clip = test::load_data_clip("bvh/131_01.bvh");
   bool seen_end = false;

@@ -1,6 +1,7 @@
 #include "motiongraph/io/bvh_parser.h"
 
 #include <algorithm>
+#include <cctype>
 #include <limits>
 #include <unordered_set>
 
@@ -22,6 +23,14 @@ Axis channel_axis(BvhChannel channel) { return static_cast<Axis>(static_cast<int
 
 namespace {
 
+// A keyword as written in any case ("End site", "zrotation": some exporters write them so, and
+// Blender reads them).
+bool is_keyword(std::string_view token, std::string_view keyword) {
+  return token.size() == keyword.size() && std::equal(token.begin(), token.end(), keyword.begin(), [](char a, char b) {
+           return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
+         });
+}
+
 // Deeper nesting than any real skeleton; bounds the parser's recursion.
 constexpr int kMaxDepth = 1000;
 
@@ -32,13 +41,13 @@ class BvhParser {
   Result<BvhDocument> run() {
     doc_.file_name = in_.file_name();
     auto first = next();
-    if (first.empty() || first[0] != "HIERARCHY") {
+    if (first.empty() || !is_keyword(first[0], "HIERARCHY")) {
       return in_.error(first.empty() ? "empty file: expected 'HIERARCHY'"
                                      : fmt::format("expected 'HIERARCHY', found {}", quoted(first[0])));
     }
     if (first.size() != 1) return in_.error(fmt::format("unexpected {} after 'HIERARCHY'", quoted(first[1])));
     auto root = next();
-    if (root.empty() || root[0] != "ROOT") {
+    if (root.empty() || !is_keyword(root[0], "ROOT")) {
       return in_.error(root.empty() ? "no 'ROOT' joint" : fmt::format("expected 'ROOT', found {}", quoted(root[0])));
     }
     if (auto s = joint(-1, 0); !s) return s.error();
@@ -47,8 +56,8 @@ class BvhParser {
     }
     auto extra = next();
     if (extra.empty()) return in_.error("no 'MOTION' section");
-    if (extra[0] == "ROOT") return in_.error("a second 'ROOT' (only one skeleton per file is supported)");
-    if (extra[0] != "MOTION" || extra.size() != 1) {
+    if (is_keyword(extra[0], "ROOT")) return in_.error("a second 'ROOT' (only one skeleton per file is supported)");
+    if (!is_keyword(extra[0], "MOTION") || extra.size() != 1) {
       return in_.error(fmt::format("expected 'MOTION', found {}", quoted(extra[0])));
     }
     if (auto s = motion(); !s) return s.error();
@@ -65,11 +74,11 @@ class BvhParser {
     BvhJoint j;
     j.line = in_.line_number();
     j.parent = parent;
-    const bool is_end = tokens_[0] == "End";
+    const bool is_end = is_keyword(tokens_[0], "End");
     bool brace_on_line = tokens_.size() > 1 && tokens_.back() == "{";
     const size_t name_end = tokens_.size() - (brace_on_line ? 1 : 0);
     if (is_end) {
-      if (name_end != 2 || tokens_[1] != "Site") return in_.error("expected 'End Site'");
+      if (name_end != 2 || !is_keyword(tokens_[1], "Site")) return in_.error("expected 'End Site'");
       j.end_site = true;  // named once all joint names are known
     } else {
       if (name_end < 2) return in_.error(fmt::format("{} has no name", tokens_[0]));
@@ -100,7 +109,7 @@ class BvhParser {
         if (tokens.size() != 1) return in_.error(fmt::format("unexpected {} after '}}'", quoted(tokens[1])));
         break;
       }
-      if (key == "OFFSET") {
+      if (is_keyword(key, "OFFSET")) {
         if (has_offset) return in_.error("OFFSET given twice");
         if (tokens.size() != 4) return in_.error(fmt::format("OFFSET needs 3 numbers, found {}", tokens.size() - 1));
         for (int i = 0; i < 3; ++i) {
@@ -109,15 +118,15 @@ class BvhParser {
           doc_.joints[index].offset[i] = *v;
         }
         has_offset = true;
-      } else if (key == "CHANNELS") {
+      } else if (is_keyword(key, "CHANNELS")) {
         if (is_end) return in_.error("an End Site has no CHANNELS");
         if (has_channels) return in_.error("CHANNELS given twice");
         if (auto s = channels(tokens, doc_.joints[index]); !s) return s;
         has_channels = true;
-      } else if (key == "JOINT" || key == "End") {
+      } else if (is_keyword(key, "JOINT") || is_keyword(key, "End")) {
         if (is_end) return in_.error("an End Site has no children");
         if (auto s = joint(index, depth + 1); !s) return s;
-      } else if (key == "MOTION" || key == "ROOT") {
+      } else if (is_keyword(key, "MOTION") || is_keyword(key, "ROOT")) {
         return in_.error(fmt::format("'{}' inside a joint: a '}}' is missing", key));
       } else {
         return in_.error(fmt::format("unexpected {} in a joint", quoted(key)));
@@ -140,7 +149,7 @@ class BvhParser {
     for (size_t i = 2; i < tokens.size(); ++i) {
       int found = -1;
       for (int c = 0; c < 6; ++c) {
-        if (tokens[i] == bvh_channel_name(static_cast<BvhChannel>(c))) found = c;
+        if (is_keyword(tokens[i], bvh_channel_name(static_cast<BvhChannel>(c)))) found = c;
       }
       if (found < 0) return in_.error(fmt::format("unknown channel {}", quoted(tokens[i])));
       const auto channel = static_cast<BvhChannel>(found);
@@ -155,14 +164,14 @@ class BvhParser {
 
   Status motion() {
     auto frames = next();
-    if (frames.size() != 2 || frames[0] != "Frames:") {
+    if (frames.size() != 2 || !is_keyword(frames[0], "Frames:")) {
       return in_.error("expected 'Frames: N'");
     }
     auto count = parse_integer(frames[1]);
     if (!count || *count < 0) return in_.error(fmt::format("frame count {} is not a whole number >= 0", quoted(frames[1])));
     const int frames_line = in_.line_number();
     auto time = next();
-    if (time.size() != 3 || time[0] != "Frame" || time[1] != "Time:") {
+    if (time.size() != 3 || !is_keyword(time[0], "Frame") || !is_keyword(time[1], "Time:")) {
       return in_.error("expected 'Frame Time: seconds'");
     }
     auto frame_time = parse_finite(time[2]);
@@ -170,6 +179,7 @@ class BvhParser {
       return in_.error(fmt::format("Frame Time {} must be a positive number", quoted(time[2])));
     }
     doc_.frame_time_s = *frame_time;
+    doc_.frame_time_line = in_.line_number();
     const size_t per_frame = static_cast<size_t>(doc_.channel_count);
     long long lines = 0;
     while (auto line = in_.next()) {

@@ -3,7 +3,8 @@
 // skeleton/bvh_skeleton.h.
 //
 // Accepts any rotation order per joint, any subset of the six channels per joint (position
-// channels give the joint's local translation in place of OFFSET), End Site, LF or CRLF, tabs.
+// channels give the joint's local translation in place of OFFSET), End Site, LF or CRLF, tabs,
+// keywords and channel names in any case ("End site", "zrotation").
 // Rejects: duplicate joint names, unbalanced braces, a 'Frames:' count that differs from the
 // motion lines, 'Frame Time' <= 0, a line with the wrong number of values, non-finite values.
 // A huge 'Frames:' value allocates nothing: storage grows with the lines actually present.
@@ -40,6 +41,7 @@ struct BvhDocument {
   int channel_count = 0;
   int frame_count = 0;
   double frame_time_s = 0.0;
+  int frame_time_line = 0;       // the line of 'Frame Time:'
   std::vector<double> values;    // frame_count x channel_count
 };
 

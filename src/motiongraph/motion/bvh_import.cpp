@@ -68,6 +68,16 @@ Result<Clip> clip_from_bvh(const BvhDocument& bvh, const BvhImportSettings& sett
   Clip clip;
   clip.skeleton = Skeleton(std::move(joints));
   const double fps = settings.fps_override > 0.0 ? settings.fps_override : fps_from_frame_time(bvh.frame_time_s);
+  if (settings.fps_override <= 0.0 && bvh.frame_count > 1 && !(fps >= kMinBvhFps && fps <= kMaxBvhFps)) {
+    const double as_milliseconds = fps_from_frame_time(bvh.frame_time_s / 1000.0);
+    const std::string hint = as_milliseconds >= kMinBvhFps && as_milliseconds <= kMaxBvhFps && fps < kMinBvhFps
+                                 ? fmt::format(" (read as milliseconds it would be {:g} fps)", as_milliseconds)
+                                 : "";
+    return Error{bvh.file_name, bvh.frame_time_line,
+                 fmt::format("Frame Time {:g} s is {:.3g} frames a second, no capture's rate{}: give the rate with "
+                             "--input-fps",
+                             bvh.frame_time_s, fps, hint)};
+  }
   Motion& motion = clip.motion;
   motion = Motion(clip.skeleton, bvh.frame_count, fps);
   constexpr double kRadiansPerDegree = std::numbers::pi / 180.0;

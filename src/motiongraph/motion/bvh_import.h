@@ -40,6 +40,12 @@ struct BvhImportSettings {
 // 1 / frame time, snapped to a whole number of frames per second when within 1e-4 of one.
 double fps_from_frame_time(double frame_time_s);
 
+// The rates a file of motion (two frames or more) may give by its Frame Time without
+// fps_override: under 1 frame a second or over 10 000 is no capture's (a frame time written in
+// milliseconds, 8.3333 for 120 fps, read 994 frames as 2.3 hours), refused naming the line.
+constexpr double kMinBvhFps = 1.0;
+constexpr double kMaxBvhFps = 10000.0;
+
 Result<Clip> clip_from_bvh(const BvhDocument& bvh, const BvhImportSettings& settings);
 
 }  // namespace mg

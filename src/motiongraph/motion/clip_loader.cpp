@@ -164,7 +164,7 @@ Result<LoadedClip> ClipLoader::load(const std::string& path, const std::optional
     import.fps_override = settings_.input_fps;
     import.drop_rest_frames = !settings_.keep_rest_frames;
     auto clip = clip_from_bvh(*bvh, import);
-    if (!clip) return Error{path, 0, clip.error().message};
+    if (!clip) return Error{path, clip.error().line, clip.error().message};
     std::string name = std::move(loaded.clip.name);
     loaded.clip = std::move(*clip);
     loaded.clip.name = std::move(name);

@@ -16,7 +16,7 @@ namespace mg {
 
 Status ControllerSettings::validate() const {
   if (!(horizon_s > 0.0) || !(commit_s > 0.0) || commit_s > horizon_s) {
-    return Error{"", 0, "controller: need 0 < commit_s <= horizon_s"};
+    return Error{"", 0, "controller: the horizon and the commit must be above 0 s, the commit at most the horizon"};
   }
   if (!(transition_penalty >= 0.0)) return Error{"", 0, "controller: the transition penalty must be >= 0"};
   if (!(bridge_penalty >= 0.0)) return Error{"", 0, "controller: the bridge penalty must be >= 0"};

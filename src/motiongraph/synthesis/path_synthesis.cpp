@@ -19,7 +19,7 @@ namespace mg {
 
 Status PathSynthesisSettings::validate() const {
   if (!(horizon_s > 0.0) || !(commit_s > 0.0) || commit_s > horizon_s) {
-    return Error{"", 0, "path search: need 0 < commit_s <= horizon_s"};
+    return Error{"", 0, "path search: the horizon and the commit must be above 0 s, the commit at most the horizon"};
   }
   if (!(tag_penalty_m2 >= 0.0) || !std::isfinite(tag_penalty_m2)) {
     return Error{"", 0, "path search: the tag penalty must be >= 0"};
@@ -40,7 +40,7 @@ Status PathSynthesisSettings::validate() const {
     return Error{"", 0, "path search: the tag match that asks for a retry must be from 0 to 1"};
   }
   if (!(retry_horizon_s >= 0.0) || (retry_horizon_s > 0.0 && retry_horizon_s < commit_s)) {
-    return Error{"", 0, "path search: the retries' horizon must be 0 (the first search's) or at least commit_s"};
+    return Error{"", 0, "path search: the retries' horizon must be 0 (the first search's) or at least the commit"};
   }
   if (beam_width < 0 || beam_width > kMaxBeamWidth) {
     return Error{"", 0, fmt::format("path search: the beam width must be from 0 to {}", kMaxBeamWidth)};
