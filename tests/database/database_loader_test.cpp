@@ -233,6 +233,33 @@ TEST(DatabaseLoader, ADescriptionsWalkStaysWhereTheRootTravels) {
   EXPECT_NE(refused.error().message.find("walk and run"), std::string::npos) << refused.error().message;
 }
 
+// A folder's copy of a clip in other bytes (CRLF endings) is left out with a note, as a copy of
+// the same bytes is; a clip one value apart is another clip, and a file given itself is read.
+TEST(DatabaseLoader, AFoldersCopyOfAMotionInOtherBytesIsLeftOut) {
+  TempFolder folder("motion-copies");
+  const std::string walk = test::read_data("cmu/16/16_15.amc");
+  folder.write("16.asf", test::read_data("cmu/16/16.asf"));
+  folder.write("16_15.amc", walk);
+  std::string crlf;
+  for (char c : walk) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  folder.write("walk_crlf.amc", crlf);
+  std::string changed = walk;
+  const size_t x = changed.find("\nroot ") + 6;  // the first frame's root x
+  ASSERT_TRUE(std::isdigit(static_cast<unsigned char>(changed.at(x))));
+  changed.insert(x, "1");  // 10 cm further (CMU's units: 1/0.45 inch) at its first frame
+  folder.write("walk_moved.amc", changed);
+  DatabaseLoadNotes notes;
+  auto db = load_database({folder.path().string()}, cmu_settings(), &notes);
+  ASSERT_TRUE(db) << db.error().to_string();
+  std::vector<std::string> names;
+  for (const DatabaseClip& clip : db->clips) names.push_back(clip.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"16_15", "walk_moved"}));
+  const std::string expected = fmt::format("{} left out: the same motion as {}, in other bytes (a copy)",
+                                           (folder.path() / "walk_crlf.amc").string(),
+                                           (folder.path() / "16_15.amc").string());
+  EXPECT_NE(std::find(notes.name_clashes.begin(), notes.name_clashes.end(), expected), notes.name_clashes.end());
+}
+
 TEST(DatabaseLoader, ClipsNamedLikeCmusGetTagsFromTheShippedIndexWhenNoneIsGiven) {
   // Copies in a folder with no index beside or above it; 16_15 is "walk" in CMU's index,
   // 16_57 "run/jog, sudden stop"; a clip under another name gets no tags.
@@ -365,7 +392,11 @@ TEST(DatabaseLoader, ManifestFpsWinsUnlessTheCallerSaysOtherwise) {
 TEST(DatabaseLoader, SkeletonFilesWithTheSameJointsShareADatabase) {
   TempFolder folder("copy");
   folder.write("16.asf", test::read_data("cmu/16/16.asf"));
-  folder.write("16_15.amc", test::read_data("cmu/16/16_15.amc"));
+  // A clip of its own (the same motion would be read once): its first root x further.
+  std::string walk = test::read_data("cmu/16/16_15.amc");
+  const size_t x = walk.find("\nroot ") + 6;
+  ASSERT_TRUE(std::isdigit(static_cast<unsigned char>(walk.at(x))));
+  folder.write("16_15.amc", walk.insert(x, "1"));
   auto db = load_database({test::data_path("cmu/16"), folder.path().string()}, cmu_settings());
   ASSERT_TRUE(db) << db.error().to_string();
   ASSERT_EQ(db->skeletons.size(), 2u);
@@ -1633,8 +1664,11 @@ TEST(DatabaseLoader, AFoldersFilesOfARigThatCannotJoinTheOthersAreLeftOut) {
   const std::string daz = test::read_data("bvh/07_01.bvh");
   std::vector<std::string> daz_files;
   for (int copy = 0; copy < 5; ++copy) {
-    // Copies but for trailing blank lines (the same bytes would be read once): 5 x 79 frames.
-    daz_files.push_back(folder.write(fmt::format("07_0{}.bvh", copy), daz + std::string(copy, '\n')));
+    // Copies but for a digit more in their last value (the same motion would be read once): 5 x
+    // 79 frames.
+    std::string text = daz;
+    while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+    daz_files.push_back(folder.write(fmt::format("07_0{}.bvh", copy), text + std::to_string(copy + 1) + "\n"));
   }
   folder.write("111_36.bvh", test::read_data("bvh/111_36.bvh"));  // 367 frames
   folder.write("16_01.bvh", test::read_data("bvh/16_01.bvh"));    // 322

@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <set>
+#include <unordered_map>
 #include <tuple>
 #include <utility>
 
@@ -608,6 +609,17 @@ std::vector<bool> largest_rig_family(const MotionDatabase& db, const std::vector
   return out;
 }
 
+// A hash of a clip as read: its rate, its joints' names and its motion's numbers.
+std::uint64_t motion_content_hash(const Clip& clip) {
+  std::string bytes = fmt::format("{} {} {}|", clip.motion.fps, clip.motion.frame_count, clip.motion.joint_count);
+  for (int j = 0; j < clip.skeleton.joint_count(); ++j) bytes += clip.skeleton.joint(j).name + '|';
+  const Motion& m = clip.motion;
+  bytes.append(reinterpret_cast<const char*>(m.local_rotations.data()), m.local_rotations.size() * sizeof(Quat));
+  bytes.append(reinterpret_cast<const char*>(m.local_translations_m.data()),
+               m.local_translations_m.size() * sizeof(Vec3));
+  return std::hash<std::string>{}(bytes);
+}
+
 // Steps 3-5 of load_database: the clips read, back to back, on `joints` when given (else as
 // read), the feet's contacts, the doubts. When the skeletons differ in some joints, every clip
 // is kept on those they share (motion/common_joints.h); a file whose own up axis is not settled
@@ -635,6 +647,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
   std::set<std::string> clip_names;        // taken, for the parts a capture glitch cuts a clip into
   for (const ClipSpec& spec : specs) clip_names.insert(spec.name);
   ProgressBar reading("reading", specs.size(), !settings.progress_bar, settings.progress_lines);
+  std::unordered_map<std::uint64_t, std::string> read_motions;  // a folder's clips: content hash -> file
   for (size_t spec_index = 0; spec_index < specs.size(); ++spec_index) {
     const ClipSpec& spec = specs[spec_index];
     if (auto s = check_stop(settings.stop); !s) return s.error();
@@ -656,6 +669,21 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
       const Motion& pose = loaded->clip.motion;
       if (notes != nullptr) notes->poses.push_back({spec.path, pose.frame_count, pose.fps});
       continue;
+    }
+    // A folder's file whose motion as read is another file's (a copy in other bytes: other line
+    // endings, numbers written otherwise) is left out as the folder leaves out a copy of the same
+    // bytes: it would add nothing but transitions between the copies, at distance 0.
+    if (spec.in_folder) {
+      const auto [first, fresh] = read_motions.try_emplace(motion_content_hash(loaded->clip), spec.path);
+      if (!fresh && first->second != spec.path) {
+        const std::string line =
+            fmt::format("{} left out: the same motion as {}, in other bytes (a copy)", spec.path, first->second);
+        if (notes != nullptr && std::find(notes->name_clashes.begin(), notes->name_clashes.end(), line) ==
+                                    notes->name_clashes.end()) {
+          notes->name_clashes.push_back(line);
+        }
+        continue;
+      }
     }
     // Folded at import as read (before the library's own rerooting below, which it notes apart).
     if (notes && !loaded->clip.dropped_at_fold.empty() && noted_folds.insert(spec.path).second) {
