@@ -399,10 +399,24 @@ class Router {
         body["segments"].size() > static_cast<size_t>(StudioApi::kMaxPathSegments)) {
       throw ApiError{400, fmt::format("at most {} segments", StudioApi::kMaxPathSegments)};
     }
+    // Points on the studio's floor (far from the origin the floor's doubles hold fewer digits of
+    // the motion: the same path 1e15 m out played other frames); the parser judges the rest.
+    if (body.contains("points") && body["points"].is_array()) {
+      for (size_t i = 0; i < body["points"].size(); ++i) {
+        const json& p = body["points"][i];
+        if (!p.is_array()) continue;
+        for (const json& v : p) {
+          if (v.is_number() && !(std::abs(v.get<double>()) <= StudioApi::kMaxPathCoordinateM)) {
+            throw ApiError{400, fmt::format("point {}: {:g} m is off the floor (at most {:g} m from the origin)", i,
+                                            v.get<double>(), StudioApi::kMaxPathCoordinateM)};
+          }
+        }
+      }
+    }
     auto floor_path = parse_path_document(body, "request body");
     if (!floor_path) throw ApiError{400, floor_path.error().to_string()};
     if (floor_path->length_m() > StudioApi::kMaxPathLengthM) {
-      throw ApiError{400, fmt::format("the path is {:.0f} m long; at most {:.0f} m", floor_path->length_m(),
+      throw ApiError{400, fmt::format("the path is {} m long, over the {:g} m a path may be", floor_path->length_m(),
                                       StudioApi::kMaxPathLengthM)};
     }
     for (const PathSegment& s : floor_path->segments()) {

@@ -53,6 +53,7 @@ class StudioApi {
  public:
   static constexpr int kMaxFramesPerRequest = 600;
   static constexpr double kMaxPathLengthM = 200.0;
+  static constexpr double kMaxPathCoordinateM = 10000.0;  // a point's x and z, either way
   static constexpr int kMaxPathPoints = 5000;
   static constexpr int kMaxPathSegments = 100;
 

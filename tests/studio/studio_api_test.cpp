@@ -413,8 +413,15 @@ TEST(StudioApi, PathFollowsTheLineDrawnWithItsDeviation) {
 TEST(StudioApi, BadPathsAre4xx) {
   expect_error(call_api("POST", "/api/path", R"({"points": [[0, 0]]})"), 400, "two");
   expect_error(call_api("POST", "/api/path", R"({"points": [[0, 0], [0, "a"]]})"), 400, "points[1]");
-  expect_error(call_api("POST", "/api/path", R"({"points": [[0, 0], [0, 1e300]]})"), 400, "at most");
-  expect_error(call_api("POST", "/api/path", R"({"points": [[0, 0], [0, 500]]})"), 400, "at most");
+  expect_error(call_api("POST", "/api/path", R"({"points": [[0, 0], [0, 1e300]]})"), 400,
+               "point 1: 1e+300 m is off the floor (at most 10000 m from the origin)");
+  expect_error(call_api("POST", "/api/path", R"({"points": [[1e15, 0], [1e15, 5]]})"), 400, "point 0: 1e+15 m");
+  expect_error(call_api("POST", "/api/path", R"({"points": [[0, 0], [0, 500]]})"), 400,
+               "the path is 500 m long, over the 200 m a path may be");
+  // Just over: the length as it is, not rounded to the bound.
+  expect_error(call_api("POST", "/api/path", R"({"points": [[0, 0], [0, 200.5]]})"), 400, "the path is 200.5 m long");
+  // Near the floor's edge, a path as any.
+  EXPECT_EQ(call_api("POST", "/api/path", R"({"points": [[9990, 0], [9990, -5]]})").response.status, 200);
   expect_error(call_api("POST", "/api/path", R"({"points": [[0, 0], [0, 5]], "segments": [{"from_m": 0, "to_m": 5, "tag": "fly"}]})"),
                400, "fly");
   expect_error(call_api("POST", "/api/path", std::string(2000, '[')), 400, "request body");
