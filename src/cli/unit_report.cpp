@@ -34,8 +34,13 @@ std::string dropped_from_files(int frames, size_t files, const std::string& firs
 }  // namespace
 
 std::string unit_description(const LengthUnitChoice& choice) {
-  return fmt::format("{} ({:.6g} m), figure {:.2f} m", choice.unit.name, choice.unit.metres_per_unit,
-                     choice.figure_size_m);
+  std::string text = fmt::format("{} ({:.6g} m), figure {:.2f} m", choice.unit.name, choice.unit.metres_per_unit,
+                                 choice.figure_size_m);
+  if (choice.plausible && choice.also) {
+    text += fmt::format(" (in {} it is {:.2f} m, a person's size too: --scale {:g} reads it so)", choice.also->name,
+                        choice.also_figure_size_m, choice.also->metres_per_unit);
+  }
+  return text;
 }
 
 void report_unit(const std::string& file, const LengthUnitChoice& choice) {

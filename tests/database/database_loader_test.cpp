@@ -19,6 +19,7 @@
 #include "motiongraph/io/file.h"
 #include "motiongraph/motion/common_joints.h"
 #include "motiongraph/motion/forward_kinematics.h"
+#include "motiongraph/motion/length_unit.h"
 #include "motiongraph/motion/resample.h"
 #include "motiongraph/motion/rig_matching.h"
 #include "motiongraph/motion/root_motion.h"
@@ -235,6 +236,32 @@ TEST(DatabaseLoader, ADescriptionsWalkStaysWhereTheRootTravels) {
 
 // A folder's copy of a clip in other bytes (CRLF endings) is left out with a note, as a copy of
 // the same bytes is; a clip one value apart is another clip, and a file given itself is read.
+// A figure that two units make a person's size (a child of 0.95 m written in centimetres is a
+// giant of 2.4 m in inches): read in the closer to a typical height, with a warning naming the
+// other and its --scale.
+TEST(DatabaseLoader, AUnitThatWasAGuessIsWarnedOf) {
+  TempFolder folder("child");
+  Clip clip = test::load_data_clip("bvh/16_01.bvh");
+  const double size_m = figure_size(clip.skeleton, clip.motion);
+  scale_lengths(clip, 0.95 / size_m);
+  BvhWriteSettings centimetres;
+  centimetres.units_per_metre = 100.0;
+  const std::string file = folder.write("child.bvh", write_bvh(clip.skeleton, clip.motion, centimetres));
+  DatabaseLoadNotes notes;
+  auto db = load_database({file}, cmu_settings(), &notes);
+  ASSERT_TRUE(db) << db.error().to_string();
+  const std::vector<std::string> warnings = load_warnings(notes);
+  const auto line = std::find_if(warnings.begin(), warnings.end(),
+                                 [](const std::string& w) { return w.find("a person's size too") != std::string::npos; });
+  ASSERT_NE(line, warnings.end()) << fmt::format("{}", fmt::join(warnings, "\n"));
+  EXPECT_EQ(*line, file + ": lengths read in inch (figure 2.41 m), but in cm the figure is 0.95 m, a person's size too: "
+                          "--scale 0.01 reads it so");
+  // The bundled subject read as it always was: no such warning.
+  DatabaseLoadNotes bundled;
+  ASSERT_TRUE(load_database({test::data_path("bvh")}, cmu_settings(), &bundled));
+  for (const std::string& w : load_warnings(bundled)) EXPECT_EQ(w.find("a person's size too"), std::string::npos) << w;
+}
+
 TEST(DatabaseLoader, AFoldersCopyOfAMotionInOtherBytesIsLeftOut) {
   TempFolder folder("motion-copies");
   const std::string walk = test::read_data("cmu/16/16_15.amc");

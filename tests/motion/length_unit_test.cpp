@@ -1,6 +1,10 @@
 #include "motiongraph/motion/length_unit.h"
 
+#include <algorithm>
 #include <cmath>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -21,6 +25,35 @@ TEST(LengthUnit, AHumanHeightInAnyCandidateUnitGivesThatUnit) {
       EXPECT_NEAR(choice.figure_size_m, height_m, 1e-9);
     }
   }
+}
+
+// `also` is the next closest unit to a typical height among those giving a person's size
+// (0.9-2.6 m), by brute force over the candidates; none when the choice is the only one.
+TEST(LengthUnit, AnotherUnitGivingAPersonsSizeIsNamed) {
+  for (double size = 10.0; size <= 3000.0; size *= 1.01) {
+    const LengthUnitChoice choice = choose_length_unit(size);
+    std::vector<std::pair<double, std::string_view>> plausible;  // (miss, name)
+    for (const LengthUnit& unit : length_unit_candidates()) {
+      const double m = size * unit.metres_per_unit;
+      if (m >= 0.9 && m <= 2.6) plausible.emplace_back(std::abs(std::log(m / 1.7)), unit.name);
+    }
+    std::sort(plausible.begin(), plausible.end());
+    ASSERT_EQ(choice.plausible, !plausible.empty()) << size;
+    if (plausible.size() < 2) {
+      EXPECT_FALSE(choice.also) << size;
+      continue;
+    }
+    EXPECT_EQ(choice.unit.name, plausible[0].second) << size;
+    ASSERT_TRUE(choice.also) << size;
+    EXPECT_EQ(choice.also->name, plausible[1].second) << size;
+    EXPECT_NEAR(choice.also_figure_size_m, size * choice.also->metres_per_unit, 1e-12) << size;
+  }
+  // The child of 0.95 m in centimetres: read in inches, with centimetres named.
+  const LengthUnitChoice child = choose_length_unit(95.0);
+  EXPECT_EQ(child.unit.name, "inch");
+  ASSERT_TRUE(child.also);
+  EXPECT_EQ(child.also->name, "cm");
+  EXPECT_NEAR(child.also_figure_size_m, 0.95, 1e-12);
 }
 
 TEST(LengthUnit, ASizeNoUnitMakesHumanIsReadInMetresAndFlagged) {

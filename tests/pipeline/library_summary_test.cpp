@@ -165,7 +165,8 @@ TEST(LibrarySummary, JsonCarriesTheClipsAndWhatLoadingChose) {
                                                          {"unit", "cm"},
                                                          {"metres_per_unit", 0.01},
                                                          {"figure_m", 1.71},
-                                                         {"plausible", true}}})));
+                                                         {"plausible", true},
+                                                         {"also", nullptr}}})));
   ASSERT_EQ(reading["up_axes"].size(), 1u);
   EXPECT_EQ(reading["up_axes"][0]["axis"], "z");  // read in the library's axis
   EXPECT_EQ(reading["up_axes"][0]["own_axis"], "y");

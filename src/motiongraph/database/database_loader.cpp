@@ -1106,6 +1106,13 @@ std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes) {
     return fmt::format("{}{}", fmt::join(first, ", "),
                        all.size() > shown ? fmt::format(" and {} more", all.size() - shown) : "");
   };
+  for (const auto& [file, choice] : notes.detected_units) {
+    if (!choice.plausible || !choice.also) continue;
+    lines.push_back(fmt::format("{}: lengths read in {} (figure {:.2f} m), but in {} the figure is {:.2f} m, a person's "
+                                "size too: --scale {:g} reads it so",
+                                file, choice.unit.name, choice.figure_size_m, choice.also->name,
+                                choice.also_figure_size_m, choice.also->metres_per_unit));
+  }
   for (const auto& d : notes.detected_up_axes) {
     if (!d.library_axis) continue;
     lines.push_back(fmt::format("{}: read {} up like the library's other files, though its own shape says {} (z over "

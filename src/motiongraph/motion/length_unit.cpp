@@ -85,19 +85,27 @@ LengthUnitChoice choose_length_unit(double figure_size_units) {
   LengthUnitChoice choice;
   choice.unit = kCandidates.front();
   choice.figure_size_units = figure_size_units;
-  double best = std::numeric_limits<double>::infinity();
+  double best = std::numeric_limits<double>::infinity(), second = best;
   if (figure_size_units > 0.0 && std::isfinite(figure_size_units)) {
     for (const LengthUnit& unit : kCandidates) {
       const double size_m = figure_size_units * unit.metres_per_unit;
       if (size_m < kPlausibleHeightMinM || size_m > kPlausibleHeightMaxM) continue;
       const double miss = std::abs(std::log(size_m / kTypicalHeightM));
       if (miss < best) {
+        if (choice.plausible) {
+          second = best;
+          choice.also = choice.unit;
+        }
         best = miss;
         choice.unit = unit;
         choice.plausible = true;
+      } else if (miss < second) {
+        second = miss;
+        choice.also = unit;
       }
     }
   }
+  if (choice.also) choice.also_figure_size_m = figure_size_units * choice.also->metres_per_unit;
   choice.figure_size_m = figure_size_units * choice.unit.metres_per_unit;
   return choice;
 }

@@ -1,6 +1,7 @@
 // A length unit chosen for a file that names none (BVH), and what it gave: see length_unit.h.
 #pragma once
 
+#include <optional>
 #include <string_view>
 
 namespace mg {
@@ -26,6 +27,10 @@ struct LengthUnitChoice {
   double figure_size_units = 0.0;  // the figure's measured size, in the file's units
   double figure_size_m = 0.0;      // the same in metres with the chosen unit
   bool plausible = false;          // some candidate gives a human size
+  // Another unit that gives a human size too, the next closest to a typical one (a child of
+  // 0.95 m in cm is a giant of 2.4 m in inches, which is chosen): the choice was a guess.
+  std::optional<LengthUnit> also;
+  double also_figure_size_m = 0.0;
 };
 
 }  // namespace mg

@@ -51,7 +51,11 @@ nlohmann::json reading_json(const DatabaseLoadNotes& notes) {
                      {"unit", choice.unit.name},
                      {"metres_per_unit", choice.unit.metres_per_unit},
                      {"figure_m", choice.figure_size_m},
-                     {"plausible", choice.plausible}});
+                     {"plausible", choice.plausible},
+                     {"also", choice.also ? nlohmann::json{{"unit", choice.also->name},
+                                                           {"metres_per_unit", choice.also->metres_per_unit},
+                                                           {"figure_m", choice.also_figure_size_m}}
+                                          : nlohmann::json(nullptr)}});
   }
   nlohmann::json up_axes = nlohmann::json::array();
   for (const auto& detected : notes.detected_up_axes) {
