@@ -251,11 +251,12 @@ TEST(DatabaseLoader, AUnitThatWasAGuessIsWarnedOf) {
   auto db = load_database({file}, cmu_settings(), &notes);
   ASSERT_TRUE(db) << db.error().to_string();
   const std::vector<std::string> warnings = load_warnings(notes);
-  const auto line = std::find_if(warnings.begin(), warnings.end(),
-                                 [](const std::string& w) { return w.find("a person's size too") != std::string::npos; });
+  const auto line = std::find_if(warnings.begin(), warnings.end(), [](const std::string& w) {
+    return w.find("a person's size too") != std::string::npos;
+  });
   ASSERT_NE(line, warnings.end()) << fmt::format("{}", fmt::join(warnings, "\n"));
-  EXPECT_EQ(*line, file + ": lengths read in inch (figure 2.41 m), but in cm the figure is 0.95 m, a person's size too: "
-                          "--scale 0.01 reads it so");
+  EXPECT_EQ(*line, file + ": lengths read in inch (figure 2.41 m), but in cm the figure is 0.95 m, a person's size "
+                          "too: --scale 0.01 reads it so");
   // The bundled subject read as it always was: no such warning.
   DatabaseLoadNotes bundled;
   ASSERT_TRUE(load_database({test::data_path("bvh")}, cmu_settings(), &bundled));

@@ -1108,8 +1108,8 @@ std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes) {
   };
   for (const auto& [file, choice] : notes.detected_units) {
     if (!choice.plausible || !choice.also) continue;
-    lines.push_back(fmt::format("{}: lengths read in {} (figure {:.2f} m), but in {} the figure is {:.2f} m, a person's "
-                                "size too: --scale {:g} reads it so",
+    lines.push_back(fmt::format("{}: lengths read in {} (figure {:.2f} m), but in {} the figure is {:.2f} m, a "
+                                "person's size too: --scale {:g} reads it so",
                                 file, choice.unit.name, choice.figure_size_m, choice.also->name,
                                 choice.also_figure_size_m, choice.also->metres_per_unit));
   }
