@@ -458,7 +458,11 @@ TEST(StudioApi, SteeringTurnsTheCharacterTheWayAsked) {
 }
 
 TEST(StudioApi, BadSteeringIs4xx) {
-  expect_error(call_api("POST", "/api/steer/sessions", R"({"tag": "fly"})"), 400, "fly");
+  expect_error(call_api("POST", "/api/steer/sessions", R"({"tag": "fly"})"), 400, "'fly' is not a motion tag");
+  // A tag of 100 KB is named by its first 40 characters, not echoed whole.
+  const ApiCall huge = call_api("POST", "/api/steer/sessions", R"({"tag": ")" + std::string(100000, 'x') + "\"}");
+  expect_error(huge, 400, "'" + std::string(40, 'x') + "...' is not a motion tag");
+  EXPECT_LT(huge.response.body.size(), 400u);
   expect_error(call_api("POST", "/api/steer/sessions", R"({"heading_deg": 1e9})"), 400, "heading_deg");
   expect_error(call_api("POST", "/api/steer/sessions/77777/step", "{}"), 404, "no steering session");
   expect_error(call_api("POST", "/api/steer/sessions/x/step", "{}"), 404, "no steering session");

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "motiongraph/core/text.h"
 #include "motiongraph/database/database_contacts.h"
 #include "motiongraph/synthesis/travel_heading.h"
 
@@ -114,7 +115,8 @@ Result<TagMask> SynthesisContext::tag_mask(const std::string& name) const {
   for (size_t t = 0; t < db->tag_names.size(); ++t) {
     if (db->tag_names[t] == name) return TagMask{1} << t;
   }
-  return Error{"", 0, fmt::format("'{}' is not a motion tag of this graph (its tags: {})", name,
+  // (quoted: at most 40 characters of it, control bytes escaped; a request could hold 100 KB)
+  return Error{"", 0, fmt::format("{} is not a motion tag of this graph (its tags: {})", quoted(name),
                                   db->tag_names.empty() ? "none" : fmt::format("{}", fmt::join(db->tag_names, ", ")))};
 }
 
