@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <utility>
 
 #include <fmt/format.h>
@@ -25,6 +26,26 @@ int terminal_width() {
   return kDefaultWidth - 1;
 }
 
+// What the bar and the log's sentence both say of a known total: the share done (at most all of
+// it), its whole percent, the count shown, and the seconds left while under way.
+struct Figures {
+  double fraction = 0.0;
+  int percent = 0;
+  std::uint64_t done = 0;
+  std::optional<double> left_s;
+};
+
+Figures figures_of(std::uint64_t done, std::uint64_t total, double elapsed_s) {
+  Figures f;
+  f.fraction = std::min(1.0, static_cast<double>(done) / static_cast<double>(total));
+  f.percent = static_cast<int>(std::floor(f.fraction * 100.0));
+  f.done = std::min(done, total);
+  if (done > 0 && done < total) {
+    f.left_s = std::ceil(elapsed_s * static_cast<double>(total - done) / static_cast<double>(done));
+  }
+  return f;
+}
+
 }  // namespace
 
 std::string format_progress_line(std::string_view label, std::uint64_t done, std::uint64_t total,
@@ -34,13 +55,10 @@ std::string format_progress_line(std::string_view label, std::uint64_t done, std
   std::string stats;
   double fraction = 0.0;
   if (total > 0) {
-    fraction = std::min(1.0, static_cast<double>(done) / static_cast<double>(total));
-    stats = fmt::format("{:3d}% {}/{} {:.1f}s", static_cast<int>(std::floor(fraction * 100.0)),
-                        std::min(done, total), total, elapsed_s);
-    if (!final_line && done > 0 && done < total) {
-      const double eta_s = elapsed_s * static_cast<double>(total - done) / static_cast<double>(done);
-      stats += fmt::format(" eta {:.0f}s", std::ceil(eta_s));
-    }
+    const Figures f = figures_of(done, total, elapsed_s);
+    fraction = f.fraction;
+    stats = fmt::format("{:3d}% {}/{} {:.1f}s", f.percent, f.done, total, elapsed_s);
+    if (!final_line && f.left_s) stats += fmt::format(" eta {:.0f}s", *f.left_s);
   } else {
     stats = fmt::format("{} {:.1f}s", done, elapsed_s);
   }
@@ -65,14 +83,9 @@ std::string format_progress_line(std::string_view label, std::uint64_t done, std
 std::string progress_text(std::string_view label, std::uint64_t done, std::uint64_t total, double elapsed_s) {
   elapsed_s = std::max(0.0, elapsed_s);
   if (total == 0) return fmt::format("{}: {} in {:.1f} s", label, done, elapsed_s);
-  done = std::min(done, total);
-  const double fraction = static_cast<double>(done) / static_cast<double>(total);
-  const int percent = static_cast<int>(std::floor(fraction * 100.0));
-  std::string text = fmt::format("{}: {} % ({} of {}) in {:.1f} s", label, percent, done, total, elapsed_s);
-  if (done > 0 && done < total) {
-    const double left_s = elapsed_s * static_cast<double>(total - done) / static_cast<double>(done);
-    text += fmt::format(", about {:.0f} s left", std::ceil(left_s));
-  }
+  const Figures f = figures_of(done, total, elapsed_s);
+  std::string text = fmt::format("{}: {} % ({} of {}) in {:.1f} s", label, f.percent, f.done, total, elapsed_s);
+  if (f.left_s) text += fmt::format(", about {:.0f} s left", *f.left_s);
   return text;
 }
 
