@@ -49,7 +49,8 @@ int run_path(const PathOptions& o) {
                         "over {:.0f} % of it)",
                         r["graph_mean_deviation_m"].get<double>(), r["graph_max_deviation_m"].get<double>(),
                         100.0 * edit["limited_share"].get<double>())
-          : std::string();
+      : edit.value("undone", false) ? std::string(" (as the graph played it: bent onto the path, it went further off)")
+                                    : std::string();
   const int attempts = r["attempts"].get<int>();
   const std::string pushed =
       attempts > 1 ? fmt::format(" after {} searches of the whole path (kept: {:g} s ahead, behind penalty {:g}, tag "
@@ -70,8 +71,11 @@ int run_path(const PathOptions& o) {
     // Said apart from the summary: the motion is written, but it is not what was asked.
     const PathCheckSettings check;
     const double share = travelling_share(context, check.travel_speed_mps);
+    const bool along = r["arc_covered_m"].get<double>() >= r["path_length_m"].get<double>() - kEndReachedM;
     const std::string why =
-        share < check.min_travel_share
+        along ? "its way along the path reaches the end, but not where the end is: the path turns back on itself "
+                "more tightly than the motion can follow"
+        : share < check.min_travel_share
             ? fmt::format("the graph's clips hardly travel ({:.0f} % of its clip frames move {:g} m/s or faster): "
                           "a path wants clips that walk or run",
                           100.0 * share, check.travel_speed_mps)

@@ -11,6 +11,8 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include "motiongraph/graph/threshold_choice.h"
 #include "test_data.h"
@@ -71,9 +73,10 @@ struct Fixture {
   double from = 0.0, ceiling = 0.0;
 };
 
-Fixture make_fixture(bool stay_put) {
+Fixture make_fixture(bool stay_put, const std::vector<std::string>& clips = {"cmu/16/16_15.amc", "cmu/16/16_16.amc",
+                                                                            "cmu/16/16_35.amc", "cmu/16/16_37.amc"}) {
   Fixture f;
-  f.db = test::small_database({"cmu/16/16_15.amc", "cmu/16/16_16.amc", "cmu/16/16_35.amc", "cmu/16/16_37.amc"});
+  f.db = test::small_database(clips);
   if (stay_put) {
     // The same clips with the root held over its first floor position: walking on the spot.
     for (DatabaseClip& clip : f.db.clips) {
@@ -98,6 +101,13 @@ Fixture make_fixture(bool stay_put) {
 
 const Fixture& walking() {
   static const Fixture x = make_fixture(false);
+  return x;
+}
+
+// Walks that veer left and right besides the straight ones: graphs that follow the probe.
+const Fixture& turning() {
+  static const Fixture x =
+      make_fixture(false, {"cmu/16/16_11.amc", "cmu/16/16_13.amc", "cmu/16/16_15.amc", "cmu/16/16_16.amc"});
   return x;
 }
 
@@ -247,7 +257,7 @@ TEST(PathCheck, UnreachableToleranceTriesEveryStepToTheCeilingAndKeepsTheBest) {
 }
 
 TEST(PathCheck, ChoosesTheFirstThresholdWithinTheToleranceAndMeasuresAsPathSynthesisDoes) {
-  const Fixture& x = walking();
+  const Fixture& x = turning();
   PathCheckSettings s;
   s.steps = 3;
   s.tolerance_m = 1e-6;

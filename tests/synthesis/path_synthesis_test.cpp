@@ -410,6 +410,48 @@ TEST(PathSynthesis, AWalkIsDoneWhereItsMotionReachesTheEndNotWhereItsRootTravell
   }
 }
 
+// A path that turns back on itself within a step (a scribble 4 cm wide, 40 m long) or a
+// zigzag far sharper than a walk turns: the way along it a frame is given may lie tens of metres
+// from where the frame stands, so reaching the end asks for the end's place too; and where the
+// edit would take the motion further from the path than the graph played it, it is taken back.
+TEST(PathSynthesis, ThePathsEndIsReachedWhereTheCharacterStandsAndTheEditNeverTakesItFurtherOff) {
+  const auto& s = test::subject16();
+  std::vector<Vec2> scribble, zigzag;
+  for (int i = 0; i < 1000; ++i) scribble.emplace_back(0.04 * (i % 2), 0.0);
+  for (int i = 0; i < 30; ++i) zigzag.emplace_back(0.5 * i, 2.0 * (i % 2));
+  int undone = 0;
+  for (const auto& points : {scribble, zigzag}) {
+    auto path = FloorPath::create(points);
+    ASSERT_TRUE(path.ok()) << path.error().to_string();
+    auto result = synthesize_path(s.context(), *path);
+    ASSERT_TRUE(result.ok()) << result.error().to_string();
+    const std::vector<double> arcs = path->followed_arcs(result->roots);
+    const double near = std::max(kEndReachedDistanceM, kEndReachedShare * path->length_m());
+    auto reaches = [&](size_t f) {
+      return arcs[f] >= path->length_m() - kEndReachedM && (result->roots[f] - path->points().back()).norm() <= near;
+    };
+    if (result->reached_end) {
+      EXPECT_TRUE(reaches(arcs.size() - 1)) << points.size();
+      EXPECT_LE(result->end_distance_m, near) << points.size();
+    } else {
+      // Nothing trimmed: the deviations are of the whole motion, edited or as played.
+      EXPECT_EQ(result->roots.size(), static_cast<size_t>(result->motion.frame_count));
+      EXPECT_LE(result->mean_deviation_m, result->graph_mean_deviation_m) << points.size();
+      for (size_t f = 0; f < arcs.size(); ++f) ASSERT_FALSE(reaches(f)) << points.size() << " frame " << f;
+    }
+    if (result->edit_undone) {
+      ++undone;
+      EXPECT_FALSE(result->edit.edited);
+      EXPECT_EQ(result->mean_deviation_m, result->graph_mean_deviation_m);
+      EXPECT_EQ(result->max_deviation_m, result->graph_max_deviation_m);
+    }
+    if (points.size() == scribble.size()) {
+      EXPECT_FALSE(result->reached_end);  // its walk heads off, 36 m from the end
+    }
+  }
+  EXPECT_GE(undone, 1);  // subject 16: both
+}
+
 // The cost of falling behind a slowest speed acts: asking for more than walking pace (2 m/s)
 // on a straight line makes the character run most of the way, and arrive much sooner, where
 // the default (0.5 m/s, which every clip of subject 16 exceeds) lets it walk.

@@ -323,7 +323,8 @@ $('synthesize').addEventListener('click', async () => {
       + `max ${result.max_deviation_m.toFixed(2)} m${result.reached_end ? ''
         : ` (end not reached: ${result.arc_covered_m.toFixed(1)} m along it, ${result.end_distance_m.toFixed(1)} m from its end)`}`
       + (result.path_edit.edited ? ` (bent onto the path; as the graph played it `
-        + `${result.graph_mean_deviation_m.toFixed(2)} m, max ${result.graph_max_deviation_m.toFixed(2)} m)` : '')
+        + `${result.graph_mean_deviation_m.toFixed(2)} m, max ${result.graph_max_deviation_m.toFixed(2)} m)`
+        : result.path_edit.undone ? ' (as the graph played it: bent onto the path, it went further off)' : '')
       + `, tags matched ${(100 * result.tag_match).toFixed(0)} %${segmentMatches(result)}; ${result.transitions} transitions `
       + `(${result.transitions_per_second.toFixed(2)}/s${result.bridges ? `, ${result.bridges} bridge${result.bridges === 1 ? '' : 's'}` : ''}); `
       + footSlideText(result);

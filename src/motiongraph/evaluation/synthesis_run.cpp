@@ -95,6 +95,7 @@ nlohmann::json path_edit_report(const PathSynthesisSettings& search, const PathS
   if (!search.edit_path) return report;
   report["max_turn_deg_per_m"] = search.path_edit.max_turn_deg_per_m;
   report["round_corners_m"] = search.path_edit.round_corners_m;
+  report["undone"] = result.edit_undone;
   report["limited_share"] = e.limited_share;
   report["max_added_turn_deg"] = e.max_added_turn_deg;
   report["max_shift_m"] = e.max_shift_m;

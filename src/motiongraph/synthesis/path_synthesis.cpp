@@ -142,6 +142,19 @@ Result<std::vector<TagMask>> asked_masks(const SynthesisContext& context, const 
   return masks;
 }
 
+// Of the frames within kEndReachedM of the path's length along it (`arcs`: followed_arcs of
+// `roots`) and near its last point (within kEndReachedDistanceM, or kEndReachedShare of its
+// length), the first furthest along; -1 when no frame is both.
+int end_frame(const FloorPath& path, std::span<const Vec2> roots, std::span<const double> arcs) {
+  const double near = std::max(kEndReachedDistanceM, kEndReachedShare * path.length_m());
+  int best = -1;
+  for (size_t f = 0; f < arcs.size(); ++f) {
+    if (arcs[f] < path.length_m() - kEndReachedM || (roots[f] - path.points().back()).norm() > near) continue;
+    if (best < 0 || arcs[f] > arcs[static_cast<size_t>(best)]) best = static_cast<int>(f);
+  }
+  return best;
+}
+
 // One search of the whole path with these settings, its motion assembled (and edited); `masks`:
 // asked_masks().
 Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, const FloorPath& path,
@@ -333,18 +346,29 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
     return roots;
   };
   const std::vector<Vec2> graph_roots = roots_of(*motion);
+  auto mean_distance = [&](std::span<const Vec2> roots) {
+    double sum = 0.0;
+    for (const Vec2& p : roots) sum += path.distance_to(p);
+    return roots.empty() ? 0.0 : sum / static_cast<double>(roots.size());
+  };
   if (settings.edit_path) {
+    Motion as_played = *motion;
     auto edited = edit_onto_path(*motion, path, settings.path_edit);
     if (!edited) return edited.error();
     result.edit = *edited;
+    if (result.edit.edited && mean_distance(roots_of(*motion)) > mean_distance(graph_roots)) {
+      *motion = std::move(as_played);
+      result.edit = PathEditStats{};
+      result.edit_undone = true;
+    }
   }
   result.roots = result.edit.edited ? roots_of(*motion) : graph_roots;
-  // Up to the first frame furthest along the path, when that reaches its end; all of it when
-  // the walk gave up short of the end (what it did is shown, however little it got along).
+  // Up to the frame that reaches the end, when one does; all of it when the walk gave up short
+  // of the end (what it did is shown, however little it got along).
   std::vector<double> arcs = path.followed_arcs(result.roots);
-  const auto furthest = std::max_element(arcs.begin(), arcs.end());
-  result.reached_end = !arcs.empty() && *furthest >= path.length_m() - kEndReachedM;
-  const int end = result.reached_end ? static_cast<int>(furthest - arcs.begin()) + 1 : motion->frame_count;
+  const int reaching = end_frame(path, result.roots, arcs);
+  result.reached_end = reaching >= 0;
+  const int end = result.reached_end ? reaching + 1 : motion->frame_count;
   result.motion = motion->slice(0, end);
   // The walk: the edges that play those frames (the search may have gone on past them).
   long long played_frames = 1;

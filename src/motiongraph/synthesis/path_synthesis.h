@@ -138,13 +138,20 @@ constexpr double kProgressRetryFactor = 4.0;  // the behind and tag penalties' s
 // type takes a blend and a step or two.
 constexpr double kTagMissMinSeconds = 2.0;
 // The motion has reached the path's end when it gets this close to it along the path (a step:
-// the walk is made of whole edges, and the edit moves its end as the walk grows).
+// the walk is made of whole edges, and the edit moves its end as the walk grows), and a frame
+// that far along stands within kEndReachedDistanceM of the path's last point or, further, within
+// kEndReachedShare of the path's length of it: a walk that only goes straight may end metres to
+// the side of a curve it followed as well as it could (its deviation says how far), but on a
+// path that turns back on itself more tightly than the motion can follow, the way along it a
+// frame is given may lie tens of metres from where the frame stands.
 constexpr double kEndReachedM = 0.5;
+constexpr double kEndReachedDistanceM = 1.0;
+constexpr double kEndReachedShare = 0.25;
 
 struct PathSynthesisResult {
   Walk walk;
   FloorTransform start;
-  Motion motion;                      // edited; trimmed at the first frame furthest along the path when reached_end
+  Motion motion;                      // edited; trimmed at the frame that reaches the end when reached_end
   std::vector<Vec2> roots;            // the motion's root floor positions
   std::vector<TagMask> frame_tags;    // tags of each frame of motion
   double path_length_m = 0.0;
@@ -156,6 +163,10 @@ struct PathSynthesisResult {
   double graph_mean_deviation_m = 0.0;
   double graph_max_deviation_m = 0.0;
   PathEditStats edit;                 // edit.edited false: not edited
+  // The edit was made and taken back: it left the motion further from the path, on average, than
+  // the graph played it (a path that turns back on itself within a step or two); edit is then
+  // that of no edit.
+  bool edit_undone = false;
   double tag_match = 1.0;             // fraction of frames inside a segment that carry its tag
   // Per segment of the path, in order: the frames of the motion whose arc along the path it asks
   // for (the last segment given that holds the arc; none for one the motion did not reach or
@@ -165,7 +176,9 @@ struct PathSynthesisResult {
     int matched = 0;
   };
   std::vector<SegmentTagMatch> segment_tag_matches;
-  bool reached_end = false;           // arc_covered_m is within kEndReachedM of the path's length
+  // A frame gets within kEndReachedM of the path's length along it and near its last point (see
+  // kEndReachedShare); the motion ends at the first such frame furthest along.
+  bool reached_end = false;
   int searches = 0;
   long long expansions = 0;
   int budget_exhausted = 0;           // searches that ran out of budget
