@@ -106,6 +106,8 @@ PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<d
     }
   });
   if (made) {
+    // What the motion falls short of, as the CLI's warnings (the report's "shortfalls").
+    for (const std::string& shortfall : made->shortfalls) warn(graph.name + ": " + shortfall);
     for (const nlohmann::json& segment : made->report["segments"]) {
       if (auto why = unplayable_tag(graph.loaded->context(), segment["tag"].get<std::string>())) {
         const std::string line = fmt::format("{}: the segment {:g}-{:g} m asks for {}", graph.name,

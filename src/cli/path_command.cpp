@@ -67,26 +67,8 @@ int run_path(const PathOptions& o) {
              r["reached_end"].get<bool>() ? "" : " (end not reached)", pushed,
              r["mean_deviation_m"].get<double>(), r["max_deviation_m"].get<double>(), edited,
              r["seconds"].get<double>(), r["search_seconds"].get<double>());
-  if (!r["reached_end"].get<bool>()) {
-    // Said apart from the summary: the motion is written, but it is not what was asked.
-    const PathCheckSettings check;
-    const double share = travelling_share(context, check.travel_speed_mps);
-    const bool along = r["arc_covered_m"].get<double>() >= r["path_length_m"].get<double>() - kEndReachedM;
-    const std::string why =
-        along ? "its way along the path reaches the end, but not where the end is: the path turns back on itself "
-                "more tightly than the motion can follow"
-        : share < check.min_travel_share
-            ? fmt::format("the graph's clips hardly travel ({:.0f} % of its clip frames move {:g} m/s or faster): "
-                          "a path wants clips that walk or run",
-                          100.0 * share, check.travel_speed_mps)
-            : fmt::format("the search gave up after {} search{} of the whole path (--max-expansions, --horizon and "
-                          "--progress-retries search further)",
-                          attempts, attempts == 1 ? "" : "es");
-    spdlog::warn("the motion did not reach the path's end: it went {:.1f} m of {:.1f} m and stops {:.2f} m from the "
-                 "end; {}",
-                 r["arc_covered_m"].get<double>(), r["path_length_m"].get<double>(), r["end_distance_m"].get<double>(),
-                 why);
-  }
+  // Said apart from the summary: the motion is written, but it is not all that was asked.
+  for (const std::string& shortfall : result->shortfalls) spdlog::warn("{}", shortfall);
   // Each segment's motion type: how much of the motion in it carries it.
   std::string segments;
   for (const nlohmann::json& s : r["segments"]) {

@@ -14,6 +14,7 @@
 #include "motiongraph/core/json_text.h"
 #include "motiongraph/core/transition_rate.h"
 #include "motiongraph/evaluation/foot_slide_report.h"
+#include "motiongraph/evaluation/path_shortfalls.h"
 #include "motiongraph/evaluation/synthesis_run.h"
 #include "motiongraph/export/positions_json.h"
 #include "motiongraph/graph/clip_coverage.h"
@@ -441,6 +442,7 @@ class Router {
     out["graph_mean_deviation_m"] = result->graph_mean_deviation_m;
     out["graph_max_deviation_m"] = result->graph_max_deviation_m;
     out["path_edit"] = path_edit_report(settings, *result);
+    out["shortfalls"] = path_shortfalls(service_.context(), *floor_path, settings, *result);
     out["tag_match"] = result->tag_match;
     out["segments"] = path_segments_report(service_.context(), *floor_path, *result);
     const int transitions = result->walk.transition_count(graph());

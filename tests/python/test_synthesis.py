@@ -1,6 +1,7 @@
 """Graph.walk(), Graph.path() and the controller: the same motion and reports as the CLI's
 walk, path and steer on the subject-16 graph."""
 import json
+import warnings
 
 import numpy as np
 import pytest
@@ -95,6 +96,24 @@ def test_retry_tag_match_reaches_the_path(cli, graph_file, graph, tmp_path):
     assert again.report["tag_penalty_m2"] > 0.01
     with pytest.raises(mg.Error, match="tag match"):
         graph.path(shape="figure8:4", retry_tag_match=2)
+
+
+def test_what_a_path_falls_short_of_is_warned_of_as_the_cli_does(cli, graph_file, graph, tmp_path):
+    """A circle of half a metre is followed further off than the retries look for, and a search
+    of one edge does not reach the end: each says so as a UserWarning with the CLI's warning, and
+    the report carries it ("shortfalls"); a path followed well says nothing."""
+    with pytest.warns(UserWarning, match=r"follows the path [\d.]+ m off on average") as caught:
+        circle = graph.path(shape="circle:0.5")
+    assert [str(w.message) for w in caught] == [f"{graph.name}: {s}" for s in circle.report["shortfalls"]]
+    cli("path", graph_file, "--shape", "circle:0.5", "-o", tmp_path / "c.json", "--report", tmp_path / "c-report.json")
+    assert read_json(tmp_path / "c-report.json")["shortfalls"] == circle.report["shortfalls"]
+    with pytest.warns(UserWarning, match="did not reach the path's end: it went [\\d.]+ m of 20.0 m"):
+        stuck = graph.path(shape="line:20", max_expansions=1, beam=0, progress_retries=0)
+    assert not stuck.report["reached_end"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        followed = graph.path(shape="line:20")
+    assert followed.report["shortfalls"] == []
 
 
 def test_a_type_the_graph_does_not_play_is_warned_of(data):

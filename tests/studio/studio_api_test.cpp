@@ -408,6 +408,16 @@ TEST(StudioApi, PathFollowsTheLineDrawnWithItsDeviation) {
   // The graph plays walking (some of its clips' walking frames).
   EXPECT_GT(segment["graph_frames"].get<int>(), 0);
   EXPECT_LE(segment["graph_frames"].get<int>(), segment["clip_frames"].get<int>());
+  EXPECT_EQ(call.json["shortfalls"], json::array());  // followed as asked: nothing to say
+  // A circle of half a metre, which walks cannot turn: what the motion falls short of, said.
+  const ApiCall tight =
+      call_api("POST", "/api/path", R"({"points": [[0, 0], [0.5, -0.5], [1, 0], [0.5, 0.5], [0, 0]]})");
+  ASSERT_EQ(tight.response.status, 200) << tight.response.body;
+  ASSERT_TRUE(tight.json["shortfalls"].is_array());
+  ASSERT_FALSE(tight.json["shortfalls"].empty());
+  const char* said = tight.json["reached_end"].get<bool>() ? "off on average" : "did not reach";
+  EXPECT_NE(tight.json["shortfalls"].dump().find(said), std::string::npos)
+      << tight.json["shortfalls"].dump();
 }
 
 TEST(StudioApi, BadPathsAre4xx) {

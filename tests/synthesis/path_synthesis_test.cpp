@@ -9,6 +9,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "motiongraph/graph/graph_from_candidates.h"
 #include "motiongraph/motion/forward_kinematics.h"
@@ -275,6 +276,7 @@ TEST(PathSynthesis, AWalkThatMissesTheTypeAskedIsSearchedAgainPricingItHigher) {
   ASSERT_GE(run.frames, kTagMissMinSeconds * s.context().db->fps);
   ASSERT_LT(run.matched, once.retry_tag_match * run.frames);  // walked on
   EXPECT_EQ(missed->tag_penalty_m2, once.tag_penalty_m2);
+  EXPECT_EQ(missed->missed_segments, std::vector<int>{1});  // the kept attempt's shortfall, said to the user
 
   PathSynthesisSettings pushing = once;
   pushing.progress_retries = 4;
@@ -284,6 +286,7 @@ TEST(PathSynthesis, AWalkThatMissesTheTypeAskedIsSearchedAgainPricingItHigher) {
   EXPECT_TRUE(ran->reached_end);
   const auto& running = ran->segment_tag_matches[1];
   EXPECT_GE(running.matched, pushing.retry_tag_match * running.frames) << running.matched << " of " << running.frames;
+  EXPECT_TRUE(ran->missed_segments.empty());
   // The kept attempt's penalty: 4x per retry made while the best missed the run.
   bool stepped = false;
   for (double p = 4.0 * once.tag_penalty_m2; p <= std::pow(4.0, pushing.progress_retries) * once.tag_penalty_m2;

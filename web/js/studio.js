@@ -301,11 +301,13 @@ $('clear-path').addEventListener('click', () => {
   state.pathResult = null;
   drawPath();
   $('path-info').textContent = '';
+  $('path-shortfalls').textContent = '';
 });
 $('synthesize').addEventListener('click', async () => {
   if (state.path.points.length < 2) { $('path-info').textContent = 'draw a path first'; return; }
   setDrawing(false);
   $('path-info').textContent = 'synthesizing...';
+  $('path-shortfalls').textContent = '';
   try {
     const result = await post('/api/path',
       { points: state.path.points, segments: pathSegments(), cleanup: $('cleanup').checked,
@@ -328,6 +330,9 @@ $('synthesize').addEventListener('click', async () => {
       + `, tags matched ${(100 * result.tag_match).toFixed(0)} %${segmentMatches(result)}; ${result.transitions} transitions `
       + `(${result.transitions_per_second.toFixed(2)}/s${result.bridges ? `, ${result.bridges} bridge${result.bridges === 1 ? '' : 's'}` : ''}); `
       + footSlideText(result);
+    // What the motion falls short of (the CLI's warnings): the end not reached, dawdling, further
+    // off the path than the retries look for, a motion type missed.
+    $('path-shortfalls').textContent = result.shortfalls.map((s) => `\u26a0 ${s}.`).join(' ');
   } catch (err) {
     $('path-info').textContent = `error: ${err.message}`;
   }

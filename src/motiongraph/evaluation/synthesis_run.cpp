@@ -10,6 +10,7 @@
 
 #include "motiongraph/core/transition_rate.h"
 #include "motiongraph/evaluation/foot_slide_report.h"
+#include "motiongraph/evaluation/path_shortfalls.h"
 #include "motiongraph/export/motion_file.h"
 #include "motiongraph/synthesis/assembler.h"
 
@@ -140,7 +141,7 @@ Result<SynthesizedMotion> run_walk_synthesis(const SynthesisContext& context, in
   const FloorTransform start = context.placement_facing(from, Vec2::Zero(), Vec2(0.0, -1.0));
   auto motion = assemble_walk(*context.db, graph, found->walk, start, context.assembler.target_skeleton());
   if (!motion) return motion.error();
-  SynthesizedMotion out{std::move(*motion), found->walk, {}, {}, {}};
+  SynthesizedMotion out{std::move(*motion), found->walk, {}, {}, {}, {}};
   auto cleanup = clean_up(context, settings, out.walk, out.motion, out.warning);
   if (!cleanup) return cleanup.error();
   const int transitions = out.walk.transition_count(graph);
@@ -171,7 +172,8 @@ Result<SynthesizedMotion> run_path_synthesis(const SynthesisContext& context, co
   const double search_cpu_seconds = thread_cpu_seconds() - search_cpu_begin;
   const double search_seconds = seconds_since(search_begin);
   if (!result) return Error{settings.graph_name, 0, result.error().message, result.error().kind};
-  SynthesizedMotion out{std::move(result->motion), result->walk, {}, {}, {}};
+  std::vector<std::string> shortfalls = path_shortfalls(context, path, search, *result);
+  SynthesizedMotion out{std::move(result->motion), result->walk, {}, {}, {}, std::move(shortfalls)};
   const Motion& motion = out.motion;
   auto cleanup = clean_up(context, settings, out.walk, out.motion, out.warning);
   if (!cleanup) return cleanup.error();
@@ -190,6 +192,7 @@ Result<SynthesizedMotion> run_path_synthesis(const SynthesisContext& context, co
                 {"graph_mean_deviation_m", result->graph_mean_deviation_m},
                 {"graph_max_deviation_m", result->graph_max_deviation_m},
                 {"path_edit", path_edit_report(search, *result)},
+                {"shortfalls", out.shortfalls},
                 {"tag_match", result->tag_match},
                 {"frames", motion.frame_count},
                 {"fps", motion.fps},

@@ -36,6 +36,8 @@ struct SynthesizedMotion {
   std::vector<ContactMask> contacts;  // per frame, when the walk's own are not the motion's
   nlohmann::json report;
   std::string warning;                // why no clean-up was made when one was asked for, else empty
+  // A path's: what it falls short of (path_shortfalls.h), also the report's "shortfalls".
+  std::vector<std::string> shortfalls;
 };
 
 // The clean-up asked for: none when `settings.cleanup` is false, nor when the feet cannot be

@@ -466,16 +466,22 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
   // not dawdling, then the least deviation; short of the end, the furthest along.
   const std::vector<double> slowest =
       settings.min_speed_mps > 0.0 ? slowest_seconds(context, path, settings.min_speed_mps) : std::vector<double>{};
-  auto dawdled = [&](const PathSynthesisResult& r) {
-    if (slowest.empty()) return false;
+  // The first span the walk dawdled in (a segment's index; segments().size(): where none is) and
+  // the seconds it took there; -1 when it did not dawdle.
+  auto dawdling = [&](const PathSynthesisResult& r) -> std::pair<int, double> {
+    if (slowest.empty()) return {-1, 0.0};
     const double fps = context.db->fps;
     int in_segments = 0;
     for (size_t i = 0; i < r.segment_tag_matches.size(); ++i) {
       in_segments += r.segment_tag_matches[i].frames;
-      if (r.segment_tag_matches[i].frames / fps > slowest[i]) return true;
+      const double seconds = r.segment_tag_matches[i].frames / fps;
+      if (seconds > slowest[i]) return {static_cast<int>(i), seconds};
     }
-    return (r.motion.frame_count - in_segments) / fps > slowest.back();
+    const double seconds = (r.motion.frame_count - in_segments) / fps;
+    if (seconds > slowest.back()) return {static_cast<int>(r.segment_tag_matches.size()), seconds};
+    return {-1, 0.0};
   };
+  auto dawdled = [&](const PathSynthesisResult& r) { return dawdling(r).first >= 0; };
   // Missed: segments of kTagMissMinSeconds or more asking for a motion type (not a modifier:
   // a stop or a turn is how a motion goes) the graph plays, whose frames carry it less than
   // retry_tag_match of the time; never with no tag penalty to raise.
@@ -528,6 +534,11 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
     exhausted += next->budget_exhausted;
     expansions += next->expansions;
     if (better(*next, *best)) best = std::move(next);
+  }
+  std::tie(best->dawdled_in, best->dawdled_s) = dawdling(*best);
+  if (best->dawdled_in >= 0) best->dawdle_limit_s = slowest[static_cast<size_t>(best->dawdled_in)];
+  for (size_t i = 0; i < best->segment_tag_matches.size() && i < judged.size(); ++i) {
+    if (misses(*best, i)) best->missed_segments.push_back(static_cast<int>(i));
   }
   best->attempts = attempts;
   best->searches = searches;

@@ -179,6 +179,15 @@ struct PathSynthesisResult {
   // A frame gets within kEndReachedM of the path's length along it and near its last point (see
   // kEndReachedShare); the motion ends at the first such frame furthest along.
   bool reached_end = false;
+  // How the attempt kept falls short of what the retries look for (beside reached_end and
+  // mean_deviation_m against retry_deviation_m): the first span it dawdled in (a segment's index;
+  // segments().size(): the stretches no segment holds; -1: it did not), the seconds it took there
+  // and the most it could take (slowest_seconds); and the segments whose motion type it missed
+  // (their frames carry it less than retry_tag_match of the time).
+  int dawdled_in = -1;
+  double dawdled_s = 0.0;
+  double dawdle_limit_s = 0.0;
+  std::vector<int> missed_segments;
   int searches = 0;
   long long expansions = 0;
   int budget_exhausted = 0;           // searches that ran out of budget

@@ -1,0 +1,76 @@
+#include "motiongraph/evaluation/path_shortfalls.h"
+
+#include <fmt/format.h>
+
+#include "motiongraph/synthesis/path_check.h"
+
+namespace mg {
+
+namespace {
+
+std::string searches_made(int attempts) {
+  return fmt::format("{} search{} of the whole path", attempts, attempts == 1 ? "" : "es");
+}
+
+std::string segment_name(const PathSegment& segment) {
+  return fmt::format("the segment {} {:g}-{:g} m", segment.tag, segment.from_m, segment.to_m);
+}
+
+}  // namespace
+
+std::vector<std::string> path_shortfalls(const SynthesisContext& context, const FloorPath& path,
+                                         const PathSynthesisSettings& settings, const PathSynthesisResult& result) {
+  std::vector<std::string> said;
+  const auto& segments = path.segments();
+  if (!result.reached_end) {
+    const PathCheckSettings check;
+    const double share = travelling_share(context, check.travel_speed_mps);
+    std::string why;
+    if (result.arc_covered_m >= path.length_m() - kEndReachedM) {
+      why = "its way along the path reaches the end, but not where the end is: the path turns back on itself more "
+            "tightly than the motion can follow";
+    } else if (share < check.min_travel_share) {
+      why = fmt::format("the graph's clips hardly travel ({:.0f} % of its clip frames move {:g} m/s or faster): a "
+                        "path wants clips that walk or run",
+                        100.0 * share, check.travel_speed_mps);
+    } else {
+      why = fmt::format("the search gave up after {} (a larger search budget, a longer horizon or more retries "
+                        "search further)",
+                        searches_made(result.attempts));
+    }
+    said.push_back(fmt::format("the motion did not reach the path's end: it went {:.1f} m of {:.1f} m and stops "
+                               "{:.2f} m from the end; {}",
+                               result.arc_covered_m, path.length_m(), result.end_distance_m, why));
+    return said;  // what it did on the way is all of it: the rest says little more
+  }
+  if (result.dawdled_in >= 0) {
+    const size_t in = static_cast<size_t>(result.dawdled_in);
+    const std::string where = in < segments.size() ? segment_name(segments[in])
+                              : segments.empty()   ? fmt::format("the path's {:.1f} m", path.length_m())
+                                                   : std::string("the stretches no segment holds");
+    said.push_back(fmt::format("the motion dawdles: it takes {:.1f} s over {}, where {:.1f} s would do at the slowest "
+                               "speed asked ({:g} m/s, or the motion type's own where slower); {} found none "
+                               "quicker",
+                               result.dawdled_s, where, result.dawdle_limit_s, settings.min_speed_mps,
+                               searches_made(result.attempts)));
+  }
+  if (settings.retry_deviation_m > 0.0 && result.mean_deviation_m > settings.retry_deviation_m) {
+    said.push_back(fmt::format("the motion follows the path {:.2f} m off on average (at most {:.2f} m), more than "
+                               "the {:g} m the retries look for: the path may turn more tightly, or lead where, the "
+                               "graph's motion does not go; {} found none closer",
+                               result.mean_deviation_m, result.max_deviation_m, settings.retry_deviation_m,
+                               searches_made(result.attempts)));
+  }
+  for (int i : result.missed_segments) {
+    const size_t at = static_cast<size_t>(i);
+    if (at >= segments.size() || at >= result.segment_tag_matches.size()) continue;
+    const auto& m = result.segment_tag_matches[at];
+    said.push_back(fmt::format("{} misses its motion type: {:.0f} % of its {} frames carry {} (the retries look for "
+                               "{:.0f} %)",
+                               segment_name(segments[at]), m.frames > 0 ? 100.0 * m.matched / m.frames : 0.0,
+                               m.frames, segments[at].tag, 100.0 * settings.retry_tag_match));
+  }
+  return said;
+}
+
+}  // namespace mg

@@ -1,0 +1,21 @@
+// What a path synthesized falls short of, in sentences for the user: the end not reached (and
+// why, as far as can be told), dawdling, following the path further off than the retries look
+// for, a motion type asked for and missed. The CLI's `path` prints them as warnings, the Python
+// package raises them as UserWarning, the studio shows them; the report carries them
+// ("shortfalls"). Each is what synthesize_path's retries judged the kept attempt by.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "motiongraph/synthesis/floor_path.h"
+#include "motiongraph/synthesis/path_synthesis.h"
+#include "motiongraph/synthesis/synthesis_context.h"
+
+namespace mg {
+
+// One sentence per shortfall, in the order above; none for a result the retries would keep.
+std::vector<std::string> path_shortfalls(const SynthesisContext& context, const FloorPath& path,
+                                         const PathSynthesisSettings& settings, const PathSynthesisResult& result);
+
+}  // namespace mg
