@@ -3,8 +3,10 @@
 // keyword options, and the motion object that clips and synthesis results are.
 #pragma once
 
+#include <cmath>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -13,6 +15,7 @@
 #include <type_traits>
 #include <vector>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -69,6 +72,11 @@ void apply_options(const py::dict& options, const OptionTable& table, const char
 // The table's usual entry: the value cast to the field's type (TypeError when it cannot be).
 // Text from a str, or a path from an os.PathLike (pathlib.Path) or bytes, as os.fsdecode gives it.
 std::string text_or_path(py::handle value);
+// A value of the right type that the keyword cannot take: apply_options raises ValueError,
+// "f() keyword argument 'name' " followed by `what`.
+struct BadKeywordValue {
+  std::string what;
+};
 template <class T>
 std::function<void(py::handle)> set(T& field) {
   return [&field](py::handle value) {
@@ -76,6 +84,25 @@ std::function<void(py::handle)> set(T& field) {
       field = text_or_path(value);
     } else if constexpr (std::is_same_v<T, std::optional<std::string>>) {
       field = text_or_path(value);
+    } else if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
+      // A number, as the CLI's options take one: not True or False (horizon=True was a 1 s
+      // horizon), finite, and an integer within its field's range.
+      if (PyBool_Check(value.ptr())) throw py::cast_error();
+      if constexpr (std::is_integral_v<T>) {
+        if (PyLong_Check(value.ptr())) {
+          int overflow = 0;
+          const long long n = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
+          if (overflow != 0 || n < static_cast<long long>(std::numeric_limits<T>::min()) ||
+              (n > 0 && static_cast<unsigned long long>(n) > std::numeric_limits<T>::max())) {
+            throw BadKeywordValue{fmt::format("must be an integer from {} to {}, not {}", std::numeric_limits<T>::min(),
+                                              std::numeric_limits<T>::max(), py::str(value).cast<std::string>())};
+          }
+        }
+      }
+      field = value.cast<T>();
+      if constexpr (std::is_floating_point_v<T>) {
+        if (!std::isfinite(field)) throw BadKeywordValue{fmt::format("must be a finite number, not {}", field)};
+      }
     } else {
       field = value.cast<T>();
     }

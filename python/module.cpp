@@ -61,6 +61,8 @@ void apply_options(const py::dict& options, const OptionTable& table, const char
     } catch (const py::cast_error&) {
       throw py::type_error(std::string(function) + "() keyword argument '" + name + "' cannot be a " +
                            py::str(py::type::of(value).attr("__name__")).cast<std::string>());
+    } catch (const BadKeywordValue& bad) {
+      throw py::value_error(std::string(function) + "() keyword argument '" + name + "' " + bad.what);
     }
   }
 }

@@ -89,6 +89,12 @@ PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<d
                  {"cleanup", set(run.cleanup)}},
                 "path");
   check(settings.validate());
+  if (points.has_value() + shape.has_value() + file.has_value() != 1) {
+    throw py::value_error("path() takes exactly one of points, shape and file");
+  }
+  if (points && points->size() < 2) {
+    throw py::value_error(fmt::format("path(): a path needs at least two points, not {}", points->size()));
+  }
   FloorPathSource source{file ? file->string() : std::string(), shape.value_or(""), {},
                          segments.value_or(std::vector<std::string>{})};
   for (const auto& [x, z] : points.value_or(std::vector<std::array<double, 2>>{})) source.points.emplace_back(x, z);

@@ -248,7 +248,7 @@ int run_eval(const EvalOptions& o) {
     }
   }
   if (!(o.lowest_quantile > 0.0 && o.lowest_quantile < o.highest_quantile && o.highest_quantile <= 1.0)) {
-    return fail(Error{"", 0, "the threshold quantiles must satisfy 0 < --lowest < --highest <= 1"});
+    return fail_usage(Error{"", 0, "the threshold quantiles must satisfy 0 < --lowest < --highest <= 1"});
   }
   // The shapes before any evaluation runs: a bad one would fail after others were written.
   for (const std::string& shape : o.shapes) {

@@ -26,8 +26,10 @@ struct PathOptions {
 int run_path(const PathOptions& o) {
   const auto begin = std::chrono::steady_clock::now();
   if (auto s = o.settings.validate(); !s) return fail_usage(s.error());
+  if (auto s = check_output_options(o.common); !s) return fail_usage(s.error());
   auto path = make_floor_path({o.path_file, o.shape, {}, o.segments});
-  if (!path) return fail(path.error());
+  // The command line's --shape and --segment (and giving one path): usage; the file's, its own.
+  if (!path) return path.error().file.empty() ? fail_usage(path.error()) : fail(path.error());
   auto loaded = load_for_synthesis(o.common, {o.path_file});
   if (!loaded) return fail(loaded.error());
   const SynthesisContext& context = (*loaded)->context();

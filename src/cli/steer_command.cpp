@@ -38,6 +38,7 @@ double percentile(std::vector<double> values, double q) {
 
 int run_steer(const SteerOptions& o) {
   if (auto s = o.settings.validate(); !s) return fail_usage(s.error());
+  if (auto s = check_output_options(o.common); !s) return fail_usage(s.error());
   auto text = read_text_file(o.script);
   if (!text) return fail(text.error());
   auto script = parse_control_script(*text, o.script);

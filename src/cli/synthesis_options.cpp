@@ -8,13 +8,17 @@
 
 namespace mg::cli {
 
+Status check_output_options(const SynthesisOptions& options) {
+  if (auto s = check_motion_output(options.output); !s) return s;
+  return options.motion_output.settings().validate();
+}
+
 Result<std::unique_ptr<LoadedGraph>> load_for_synthesis(const SynthesisOptions& options,
                                                         const std::vector<std::string>& inputs) {
-  if (auto s = check_motion_output(options.output); !s) return s.error();
+  if (auto s = check_output_options(options); !s) return s.error();
   std::vector<std::string> read = inputs;
   read.push_back(options.graph);
   if (auto s = check_outputs({options.output, options.report}, read); !s) return s.error();
-  if (auto s = options.motion_output.settings().validate(); !s) return s.error();
   // Synthesis reads no candidate minima: the file opens faster without them.
   return LoadedGraph::load(options.graph, options.skeleton, GraphReadOptions{.candidate_minima = false});
 }

@@ -44,6 +44,10 @@ struct SynthesisOptions {
 // Loads GRAPH and sets up synthesis on --skeleton (synthesis/loaded_graph.h); checks the
 // outputs first: the motion's extension, and that the motion and the report can be written and
 // are neither GRAPH nor one of the command's other `inputs` (io/file.h check_outputs).
+// The command line's own choices for the output (its format, by its extension, and the output
+// settings): a usage error (exit 2) when they do not go, checked before anything is read.
+Status check_output_options(const SynthesisOptions& options);
+
 Result<std::unique_ptr<LoadedGraph>> load_for_synthesis(const SynthesisOptions& options,
                                                         const std::vector<std::string>& inputs = {});
 

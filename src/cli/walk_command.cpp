@@ -32,6 +32,7 @@ int run_walk(const WalkOptions& o) {
   settings.min_frames = o.min_frames;
   settings.max_expansions = o.max_expansions;
   if (auto s = settings.validate(); !s) return fail_usage(s.error());
+  if (auto s = check_output_options(o.common); !s) return fail_usage(s.error());
   auto loaded = load_for_synthesis(o.common);
   if (!loaded) return fail(loaded.error());
   const SynthesisContext& context = (*loaded)->context();

@@ -32,6 +32,19 @@ TEST_F(OutputFolder, OutputsAreCheckedAsTheFilesTheyName) {
   ASSERT_FALSE(no_folder);
   EXPECT_EQ(no_folder.error().file, at("nodir/report.json"));
   EXPECT_NE(no_folder.error().message.find("there is no folder '" + at("nodir") + "'"), std::string::npos);
+  // The check leaves nothing behind: the folders hold what they held.
+  size_t files = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(root_)) files += entry.is_regular_file() ? 1 : 0;
+  EXPECT_EQ(files, 1u);  // in.bvh
+  // A folder that takes no new file (even root may not make one in /proc): refused before any
+  // work, naming the folder and why.
+  if (fs::is_directory("/proc/self")) {
+    auto proc = check_outputs({at("out.bvh"), "/proc/motiongraph-report.json"}, {});
+    ASSERT_FALSE(proc);
+    EXPECT_EQ(proc.error().file, "/proc/motiongraph-report.json");
+    EXPECT_NE(proc.error().message.find("cannot write in the folder '/proc': "), std::string::npos)
+        << proc.error().message;
+  }
   // A folder is no output.
   auto folder = check_outputs({at("sub")}, {});
   ASSERT_FALSE(folder);

@@ -235,8 +235,27 @@ def test_values_the_cli_refuses_are_refused(data, graph, tmp_path):
         mg.build(data / "cmu/16", asf=tmp_path / "none.asf")
     with pytest.raises(mg.Error, match="the start node must be >= 0, not -2"):
         graph.path(shape="line:5", start_node=-2)
-    with pytest.raises(mg.Error, match="the beam width must be >= 0"):
+    with pytest.raises(mg.Error, match="the beam width must be from 0 to 1000000, not -1"):
         graph.controller(beam=-1)
+    # Numbers as the CLI's options take them: finite (horizon=inf ran, its report saying 5 s), not
+    # True (a 1 s horizon), integers in their range, and a horizon of at most a minute (1e5 s ran
+    # out of memory).
+    for keyword in ("min_speed", "behind_penalty", "horizon", "retry_deviation", "edit_max_turn"):
+        for value in (float("inf"), float("nan")):
+            with pytest.raises(ValueError, match=f"path\\(\\) keyword argument '{keyword}' must be a finite number"):
+                graph.path(shape="line:5", **{keyword: value})
+    with pytest.raises(ValueError, match="controller\\(\\) keyword argument 'bridge_penalty' must be a finite number"):
+        graph.controller(bridge_penalty=float("inf"))
+    with pytest.raises(TypeError, match="'horizon' cannot be a bool"):
+        graph.path(shape="line:5", horizon=True)
+    with pytest.raises(TypeError, match="'start_node' cannot be a bool"):
+        graph.path(shape="line:5", start_node=True)
+    with pytest.raises(ValueError, match="'seed' must be an integer from 0 to [0-9]+, not -1"):
+        graph.walk(0, 1, cost="random", seed=-1)
+    with pytest.raises(mg.Error, match="path search: the horizon must be above 0 s and at most 60 s, not 100000 s"):
+        graph.path(shape="line:5", horizon=1e5)
+    with pytest.raises(mg.Error, match="controller: the horizon must be above 0 s and at most 60 s"):
+        graph.controller(horizon=61)
 
 
 def test_build_warnings_point_at_the_caller(data):

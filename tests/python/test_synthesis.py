@@ -275,13 +275,23 @@ def test_heading_edit_options_reach_the_controller(cli, graph_file, graph, tmp_p
     (["--shape", "wiggle:5"], lambda g: g.path(shape="wiggle:5")),
     (["--shape", "line:5", "--horizon", "-1"], lambda g: g.path(shape="line:5", horizon=-1)),
     (["--shape", "line:5", "--tag-lookahead", "1.5"], lambda g: g.path(shape="line:5", tag_lookahead=1.5)),
-    ([], lambda g: g.path()),
 ])
 def test_path_errors_raise_the_cli_message(cli, graph_file, graph, tmp_path, cli_args, call):
     want = cli_error(cli("path", graph_file, *cli_args, "-o", tmp_path / "o.json", check=False))
     with pytest.raises(mg.Error) as raised:
         call(graph)
     assert str(raised.value) == want
+
+
+def test_a_path_is_one_of_points_shape_and_file(graph, tmp_path):
+    """Said in the keywords Python takes (the CLI says "--path and --shape")."""
+    line = [(0, 0), (0, -5)]
+    for kwargs in ({}, {"shape": "line:5", "points": line}, {"shape": "line:5", "file": tmp_path / "p.json"}):
+        with pytest.raises(ValueError, match=r"path\(\) takes exactly one of points, shape and file"):
+            graph.path(**kwargs)
+    for points in ([], [(0, 0)]):
+        with pytest.raises(ValueError, match=f"a path needs at least two points, not {len(points)}"):
+            graph.path(points=points)
 
 
 def test_errors_name_the_graph_file_as_the_cli_does(cli, graph_file, graph, tmp_path):

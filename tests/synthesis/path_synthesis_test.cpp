@@ -251,11 +251,29 @@ TEST(PathSynthesis, UnknownTagsAndBadSettingsAreErrors) {
     EXPECT_FALSE(bad.validate().ok()) << share;
   }
   for (auto penalty : {&PathSynthesisSettings::tag_penalty_m2, &PathSynthesisSettings::transition_penalty_m2,
-                       &PathSynthesisSettings::bridge_penalty_m2}) {
+                       &PathSynthesisSettings::bridge_penalty_m2, &PathSynthesisSettings::min_speed_mps,
+                       &PathSynthesisSettings::behind_penalty_m, &PathSynthesisSettings::retry_deviation_m,
+                       &PathSynthesisSettings::retry_horizon_s, &PathSynthesisSettings::horizon_s}) {
     bad = {};
-    bad.*penalty = std::numeric_limits<double>::infinity();
-    EXPECT_FALSE(bad.validate().ok());
+    bad.*penalty = std::numeric_limits<double>::infinity();  // a motion of one frame, with min_speed
+    auto refused = bad.validate();
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.error().message.find("not inf"), std::string::npos) << refused.error().message;
   }
+  // Horizons of at most a minute (1e5 s ran out of memory).
+  bad = {};
+  bad.horizon_s = kMaxHorizonS;
+  EXPECT_TRUE(bad.validate().ok());
+  bad.horizon_s = 61.0;
+  EXPECT_EQ(bad.validate().error().message, "path search: the horizon must be above 0 s and at most 60 s, not 61 s");
+  bad = {};
+  bad.retry_horizon_s = 61.0;
+  EXPECT_FALSE(bad.validate().ok());
+  // Said of what is wrong (an infinite turn was called a smoothing).
+  bad = {};
+  bad.path_edit.max_turn_deg_per_m = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(bad.validate().error().message,
+            "path edit: the turning it may add must be finite and >= 0 degrees per metre, not inf");
 }
 
 // A walk that misses the motion type a segment asks for is searched again, the tag priced 4x

@@ -151,6 +151,20 @@ Status check_outputs(const std::vector<std::string>& outputs, const std::vector<
       return Error{output, 0, fmt::format("cannot write: there is no folder '{}'", folder.string())};
     }
     if (std::filesystem::is_directory(output, error)) return Error{output, 0, "cannot write: it is a folder"};
+    // The folder takes a new file (the temporary one write_file_atomic renames into place): a
+    // folder one may not write in fails here, not after the work and the other outputs.
+    {
+      std::random_device random;
+      const std::filesystem::path probe =
+          folder / fmt::format(".{}.tmp-{:08x}", std::filesystem::path(output).filename().string(), random());
+      const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+      if (fd < 0) {
+        return Error{output, 0,
+                     fmt::format("cannot write in the folder '{}': {}", folder.string(), std::strerror(errno))};
+      }
+      ::close(fd);
+      std::filesystem::remove(probe, error);
+    }
     for (const std::string& input : inputs) {
       if (!input.empty() && same_file(output, input)) {
         return Error{output, 0, fmt::format("is also an input ('{}'): give the output another name", input)};

@@ -35,10 +35,11 @@ class FileBytes {
 
 Status write_file_atomic(const std::string& path, std::string_view content);
 
-// Before any work is done: each output (empty names skipped) lies in a folder that exists, is no
-// folder itself, and is none of the inputs nor another output, so that a run never fails after
-// writing some of its outputs, nor writes over a file it reads. Paths are compared as the files
-// they name (links and "./" resolved).
+// Before any work is done: each output (empty names skipped) lies in a folder that exists and
+// takes a new file (one is made there and removed), is no folder itself, and is none of the
+// inputs nor another output, so that a run never fails after writing some of its outputs, nor
+// writes over a file it reads. Paths are compared as the files they name (links and "./"
+// resolved).
 Status check_outputs(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs);
 
 // The same check for a file a command reads that is not one of its arguments (a clip a folder

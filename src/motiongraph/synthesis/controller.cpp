@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <string>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -15,22 +17,26 @@
 namespace mg {
 
 Status ControllerSettings::validate() const {
-  if (!(horizon_s > 0.0) || !(commit_s > 0.0) || commit_s > horizon_s) {
-    return Error{"", 0, "controller: the horizon and the commit must be above 0 s, the commit at most the horizon"};
+  auto refused = [](const std::string& what) { return Error{"", 0, "controller: " + what}; };
+  if (auto s = check_horizon_and_commit(horizon_s, commit_s, "controller"); !s) return s;
+  for (const auto& [value, what] : {std::pair{transition_penalty, "the transition penalty"},
+                                    std::pair{bridge_penalty, "the bridge penalty"},
+                                    std::pair{tag_penalty, "the tag penalty"},
+                                    std::pair{time_budget_s, "the time budget"}}) {
+    if (!(value >= 0.0) || !std::isfinite(value)) {
+      return refused(fmt::format("{} must be finite and >= 0, not {:g}", what, value));
+    }
   }
-  if (!(transition_penalty >= 0.0)) return Error{"", 0, "controller: the transition penalty must be >= 0"};
-  if (!(bridge_penalty >= 0.0)) return Error{"", 0, "controller: the bridge penalty must be >= 0"};
   if (!(tag_lookahead >= 0.0 && tag_lookahead <= 1.0)) {
-    return Error{"", 0, "controller: the tag lookahead must be from 0 to 1"};
+    return refused(fmt::format("the tag lookahead must be from 0 to 1, not {:g}", tag_lookahead));
   }
-  if (!(tag_penalty >= 0.0)) return Error{"", 0, "controller: the tag penalty must be >= 0"};
-  if (!(time_budget_s >= 0.0)) return Error{"", 0, "controller: the time budget must be >= 0"};
-  if (max_expansions < 1) return Error{"", 0, "controller: the search budget (expansions) must be at least 1"};
-  if (beam_width < 0) return Error{"", 0, "controller: the beam width must be >= 0"};
-  if (start_node < -1) return Error{"", 0, fmt::format("controller: the start node must be >= 0, not {}", start_node)};
-  if (beam_width > kMaxBeamWidth) {
-    return Error{"", 0, fmt::format("controller: the beam width must be at most {}", kMaxBeamWidth)};
+  if (max_expansions < 1) {
+    return refused(fmt::format("the search budget (expansions) must be at least 1, not {}", max_expansions));
   }
+  if (beam_width < 0 || beam_width > kMaxBeamWidth) {
+    return refused(fmt::format("the beam width must be from 0 to {}, not {}", kMaxBeamWidth, beam_width));
+  }
+  if (start_node < -1) return refused(fmt::format("the start node must be >= 0, not {}", start_node));
   return heading_edit.validate();
 }
 

@@ -8,6 +8,18 @@
 
 namespace mg {
 
+Status check_horizon_and_commit(double horizon_s, double commit_s, const char* who) {
+  if (!(horizon_s > 0.0 && horizon_s <= kMaxHorizonS)) {
+    return Error{"", 0, fmt::format("{}: the horizon must be above 0 s and at most {:g} s, not {:g} s", who,
+                                    kMaxHorizonS, horizon_s)};
+  }
+  if (!(commit_s > 0.0 && commit_s <= horizon_s)) {
+    return Error{"", 0, fmt::format("{}: the commit must be above 0 s and at most the horizon ({:g} s), not {:g} s",
+                                    who, horizon_s, commit_s)};
+  }
+  return Ok{};
+}
+
 Status HorizonSettings::validate() const {
   if (horizon_frames < 1) return Error{"", 0, "the search horizon must be at least one frame"};
   if (max_expansions < 1) return Error{"", 0, "the search needs an expansion budget of at least 1"};

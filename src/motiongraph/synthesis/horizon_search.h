@@ -9,6 +9,7 @@
 #pragma once
 
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "motiongraph/core/error.h"
@@ -109,6 +110,12 @@ bool add_frame_costs(size_t count, double bound, double* total, bool* goal, PerF
 
 // The widest beam a search takes (each partial walk is kept in memory).
 inline constexpr int kMaxBeamWidth = 1'000'000;
+// The furthest a path or steering search looks ahead: a minute of motion (each partial walk of
+// the beam holds its frames; 1e5 s ran out of memory, where 3-5 s is what searches want).
+inline constexpr double kMaxHorizonS = 60.0;
+// A search's horizon (above 0, at most kMaxHorizonS) and the commit kept of each (above 0, at
+// most the horizon); the error's message starts with `who` ("path search").
+Status check_horizon_and_commit(double horizon_s, double commit_s, const char* who);
 
 struct HorizonSettings {
   int horizon_frames = 90;

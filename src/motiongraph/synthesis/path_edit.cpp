@@ -4,22 +4,30 @@
 #include <cmath>
 #include <numbers>
 #include <span>
+#include <string>
 #include <vector>
+
+#include <fmt/format.h>
 
 #include "motiongraph/synthesis/floor_transform.h"
 
 namespace mg {
 
 Status PathEditSettings::validate() const {
-  const bool finite = std::isfinite(smooth_s) && std::isfinite(tangent_m) && std::isfinite(max_turn_deg_per_m) &&
-                      std::isfinite(lookahead_m);
-  if (!finite || smooth_s < 0.0) return Error{"", 0, "path edit: the smoothing must be finite and >= 0 seconds"};
-  if (!(tangent_m > 0.0) || !(lookahead_m > 0.0)) {
-    return Error{"", 0, "path edit: the tangent's chord and the look-ahead must be > 0 metres"};
+  auto refused = [](const std::string& what) { return Error{"", 0, "path edit: " + what}; };
+  if (!(smooth_s >= 0.0) || !std::isfinite(smooth_s)) {
+    return refused(fmt::format("the smoothing must be finite and >= 0 s, not {:g}", smooth_s));
   }
-  if (max_turn_deg_per_m < 0.0) return Error{"", 0, "path edit: the turning it may add must be >= 0 degrees per metre"};
-  if (!std::isfinite(round_corners_m) || round_corners_m < 0.0) {
-    return Error{"", 0, "path edit: the corners' rounding must be finite and >= 0 metres"};
+  if (!(tangent_m > 0.0 && std::isfinite(tangent_m)) || !(lookahead_m > 0.0 && std::isfinite(lookahead_m))) {
+    return refused(fmt::format("the tangent's chord and the look-ahead must be finite and > 0 m, not {:g} and {:g}",
+                               tangent_m, lookahead_m));
+  }
+  if (!(max_turn_deg_per_m >= 0.0) || !std::isfinite(max_turn_deg_per_m)) {
+    return refused(fmt::format("the turning it may add must be finite and >= 0 degrees per metre, not {:g}",
+                               max_turn_deg_per_m));
+  }
+  if (!(round_corners_m >= 0.0) || !std::isfinite(round_corners_m)) {
+    return refused(fmt::format("the corners' rounding must be finite and >= 0 m, not {:g}", round_corners_m));
   }
   return Ok{};
 }

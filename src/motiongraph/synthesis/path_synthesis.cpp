@@ -18,37 +18,44 @@
 namespace mg {
 
 Status PathSynthesisSettings::validate() const {
-  if (!(horizon_s > 0.0) || !(commit_s > 0.0) || commit_s > horizon_s) {
-    return Error{"", 0, "path search: the horizon and the commit must be above 0 s, the commit at most the horizon"};
+  auto refused = [](const std::string& what) { return Error{"", 0, "path search: " + what}; };
+  if (auto s = check_horizon_and_commit(horizon_s, commit_s, "path search"); !s) return s;
+  auto at_least_zero = [&](double value, const char* what, const char* unit) -> Status {
+    if (value >= 0.0 && std::isfinite(value)) return Ok{};
+    return refused(fmt::format("{} must be finite and >= 0{}, not {:g}", what, unit, value));
+  };
+  for (const auto& [value, what, unit] : {std::tuple{tag_penalty_m2, "the tag penalty", " m^2"},
+                                          std::tuple{transition_penalty_m2, "the transition penalty", " m^2"},
+                                          std::tuple{bridge_penalty_m2, "the bridge penalty", " m^2"},
+                                          std::tuple{min_speed_mps, "the slowest speed", " m/s"},
+                                          std::tuple{behind_penalty_m, "the behind penalty", " m^2 per metre"},
+                                          std::tuple{retry_deviation_m, "the deviation that asks for a retry", " m"}}) {
+    if (auto s = at_least_zero(value, what, unit); !s) return s;
   }
-  if (!(tag_penalty_m2 >= 0.0) || !std::isfinite(tag_penalty_m2)) {
-    return Error{"", 0, "path search: the tag penalty must be >= 0"};
+  if (max_expansions < 1) {
+    return refused(fmt::format("the search budget (expansions) must be at least 1, not {}", max_expansions));
   }
-  if (!(transition_penalty_m2 >= 0.0) || !std::isfinite(transition_penalty_m2)) {
-    return Error{"", 0, "path search: the transition penalty must be >= 0"};
+  if (start_candidates < 1) {
+    return refused(fmt::format("the start candidates must be at least 1, not {}", start_candidates));
   }
-  if (!(bridge_penalty_m2 >= 0.0) || !std::isfinite(bridge_penalty_m2)) {
-    return Error{"", 0, "path search: the bridge penalty must be >= 0"};
+  if (progress_retries < 0 || progress_retries > 100) {
+    return refused(fmt::format("the retries must be from 0 to 100, not {}", progress_retries));
   }
-  if (!(min_speed_mps >= 0.0) || !(behind_penalty_m >= 0.0)) {
-    return Error{"", 0, "path search: the slowest speed and its penalty must be >= 0"};
-  }
-  if (max_expansions < 1 || start_candidates < 1) return Error{"", 0, "path search: budgets must be positive"};
-  if (progress_retries < 0 || progress_retries > 100) return Error{"", 0, "path search: the retries must be from 0 to 100"};
-  if (!(retry_deviation_m >= 0.0)) return Error{"", 0, "path search: the deviation that asks for a retry must be >= 0"};
   if (!(retry_tag_match >= 0.0 && retry_tag_match <= 1.0)) {
-    return Error{"", 0, "path search: the tag match that asks for a retry must be from 0 to 1"};
+    return refused(fmt::format("the tag match that asks for a retry must be from 0 to 1, not {:g}", retry_tag_match));
   }
-  if (!(retry_horizon_s >= 0.0) || (retry_horizon_s > 0.0 && retry_horizon_s < commit_s)) {
-    return Error{"", 0, "path search: the retries' horizon must be 0 (the first search's) or at least the commit"};
+  if (!(retry_horizon_s == 0.0 || (retry_horizon_s >= commit_s && retry_horizon_s <= kMaxHorizonS))) {
+    return refused(fmt::format("the retries' horizon must be 0 (the first search's) or from the commit ({:g} s) to "
+                               "{:g} s, not {:g} s",
+                               commit_s, kMaxHorizonS, retry_horizon_s));
   }
   if (beam_width < 0 || beam_width > kMaxBeamWidth) {
-    return Error{"", 0, fmt::format("path search: the beam width must be from 0 to {}", kMaxBeamWidth)};
+    return refused(fmt::format("the beam width must be from 0 to {}, not {}", kMaxBeamWidth, beam_width));
   }
   if (!(tag_lookahead >= 0.0 && tag_lookahead <= 1.0)) {
-    return Error{"", 0, "path search: the tag lookahead must be from 0 to 1"};
+    return refused(fmt::format("the tag lookahead must be from 0 to 1, not {:g}", tag_lookahead));
   }
-  if (start_node < -1) return Error{"", 0, fmt::format("path search: the start node must be >= 0, not {}", start_node)};
+  if (start_node < -1) return refused(fmt::format("the start node must be >= 0, not {}", start_node));
   return path_edit.validate();
 }
 
