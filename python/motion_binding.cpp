@@ -81,6 +81,7 @@ MotionFileSettings file_settings(bool root_motion, double root_motion_smoothing,
 // commands write it.
 Status save_motion(const PyMotion& m, const std::string& path, MotionFileSettings settings) {
   if (settings.root_motion) settings.root_motion->forward_axis = forward_axis_of(m);
+  settings.keep_root_order = !m.graph;  // a clip as it was read, as the CLI's convert writes it
   if (!m.feet) return write_motion(path, m.skeleton, m.motion, settings);
   const PositionsJsonContacts json_contacts{*m.feet, m.contacts};
   return write_motion(path, m.skeleton, m.motion, settings, &json_contacts);

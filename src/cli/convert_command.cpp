@@ -113,8 +113,9 @@ int write_clip(const ConvertOptions& options, const std::vector<std::string>& ou
                                             contacts ? std::span<const ContactMask>(contacts->masks)
                                                      : std::span<const ContactMask>()};
   // Where the clip's skeleton faces, for its root-motion joint.
-  const MotionFileSettings settings = options.output.settings(
+  MotionFileSettings settings = options.output.settings(
       options.output.root_motion ? learn_clip_forward_axis(skeleton, motion, feet) : Vec3::UnitZ());
+  settings.keep_root_order = true;  // a clip written back as it was read, its root's rotation order too
   for (const std::string& output : outputs) {
     if (auto s = write_motion(output, skeleton, motion, settings, contacts ? &json_contacts : nullptr); !s) {
       return fail(s.error());

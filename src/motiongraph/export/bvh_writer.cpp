@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "motiongraph/export/root_rotation_order.h"
 #include "motiongraph/motion/length_unit_choice.h"
 #include "motiongraph/motion/trajectory_joint.h"
 
@@ -58,6 +59,15 @@ std::string write_bvh(const Skeleton& folded_skeleton, const Motion& folded_moti
   const Skeleton& skeleton = unfold ? unfolded.skeleton : folded_skeleton;
   const Motion& motion = unfold ? unfolded.motion : folded_motion;
   const int joints = skeleton.joint_count();
+  // Each joint's rotation order: the file's, but the heading's joint (joint 0 of the folded
+  // skeleton: the hips below a static root) with the vertical outermost (root_rotation_order)
+  // unless keep_root_order.
+  std::vector<ComposeOrder> orders;
+  for (int j = 0; j < joints; ++j) {
+    const JointDef& joint = skeleton.joint(j);
+    const bool heading = joint.name == folded_skeleton.joint(0).name && !joint.end_site;
+    orders.push_back(heading && !settings.keep_root_order ? root_rotation_order(folded_skeleton) : joint.euler_order);
+  }
   const double scale = settings.units_per_metre;
   const int decimals = settings.decimals;
 
@@ -123,7 +133,7 @@ std::string write_bvh(const Skeleton& folded_skeleton, const Motion& folded_moti
       const int count = (layout[j].write_positions ? 3 : 0) + 3;
       out += fmt::format("{}  CHANNELS {}", indent, count);
       if (layout[j].write_positions) out += " Xposition Yposition Zposition";
-      for (Axis axis : joint.euler_order) out += fmt::format(" {}rotation", axis_letter(axis));
+      for (Axis axis : orders[j]) out += fmt::format(" {}rotation", axis_letter(axis));
       out += '\n';
     }
     stack.push_back({j, true});
@@ -157,7 +167,7 @@ std::string write_bvh(const Skeleton& folded_skeleton, const Motion& folded_moti
         const Vec3 t = slot >= 0 ? translations[slot] : joint.rest_offset_m;
         for (int i = 0; i < 3; ++i) put(t[i] * scale);
       }
-      const Vec3 angles = decompose_euler(joint.euler_order, rotations[j], previous[j]);
+      const Vec3 angles = decompose_euler(orders[j], rotations[j], previous[j]);
       previous[j] = angles;
       for (int i = 0; i < 3; ++i) put(angles[i] * kDegrees);
     }

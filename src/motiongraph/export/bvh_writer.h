@@ -22,6 +22,10 @@ namespace mg {
 struct BvhWriteSettings {
   double units_per_metre = 1.0;
   int decimals = 6;  // fixed decimals for lengths and angles (6: 1 micrometre at 1 unit = 1 m)
+  // The heading's joint (joint 0; the hips below a static root) in the file's own rotation
+  // order (a clip written back as it was read) rather than with the vertical outermost
+  // (root_rotation_order.h: a figure turning through east or west made spikes in curve editors).
+  bool keep_root_order = false;
 
   Status validate() const;
 };

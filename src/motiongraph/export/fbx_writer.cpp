@@ -16,6 +16,7 @@
 #include "motiongraph/core/unique_name.h"
 #include "motiongraph/export/fbx_binary.h"
 #include "motiongraph/export/keyed_joints.h"
+#include "motiongraph/export/root_rotation_order.h"
 #include "motiongraph/export/stick_figure.h"
 
 namespace mg {
@@ -58,17 +59,6 @@ std::string fbx_name(const std::string& name) {
 
 // An object's name as FBX stores it: "name\0\1Class" (`name` already an fbx_name).
 std::string object_name(const std::string& name, const char* type) { return name + std::string("\0\1", 2) + type; }
-
-// The order joint 0's rotation is written in: the axis nearest the vertical (y, in the frame of
-// the static ancestors above it) outermost, so that the middle angle, where Euler angles lock,
-// is a lean rather than the heading a travelling figure turns through freely (CMU's root, in
-// Acclaim's XYZ, has the heading in the middle: its keys jumped at every quarter turn).
-ComposeOrder root_order(const Skeleton& skeleton) {
-  const Vec3 up = skeleton.static_ancestor_rotation().conjugate() * Vec3::UnitY();
-  int a = 0;
-  up.cwiseAbs().maxCoeff(&a);
-  return {static_cast<Axis>(a), static_cast<Axis>((a + 2) % 3), static_cast<Axis>((a + 1) % 3)};
-}
 
 // FBX's RotationOrder enum, named by the axis applied first: eEulerXYZ (0) is R = Rz Ry Rx.
 std::int32_t rotation_order(const ComposeOrder& order) {
@@ -244,7 +234,7 @@ Models add_models(Document& doc, const Skeleton& skeleton, const Motion* first) 
   m.first_joint = m.ids.size();
   for (int j = 0; j < skeleton.joint_count(); ++j) {
     const JointDef& joint = skeleton.joint(j);
-    m.orders.push_back(j == 0 ? root_order(skeleton) : joint.euler_order);
+    m.orders.push_back(j == 0 ? root_rotation_order(skeleton) : joint.euler_order);
     const std::int64_t parent = j > 0 ? m.joint(joint.parent) : m.first_joint > 0 ? m.ids[m.first_joint - 1] : 0;
     add(joint.name, rest_node_translation(skeleton, first, j), Vec3::Zero(), m.orders.back(), parent);
   }

@@ -59,6 +59,7 @@ Status write_motion(const std::string& path, const Skeleton& skeleton, const Mot
   }
   BvhWriteSettings write;
   write.units_per_metre = settings.units_per_metre;
+  write.keep_root_order = settings.keep_root_order;
   const std::string ext = lower_extension(path);
   if (ext == ".glb" || ext == ".fbx") {
     // The animation is named as the file (an engine lists every imported file's as its name).

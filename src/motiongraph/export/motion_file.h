@@ -35,6 +35,7 @@ struct MotionFileSettings {
   double units_per_metre = 1.0;  // BVH length units per metre (glTF and JSON are in metres, FBX in centimetres)
   bool figure = true;            // glTF, FBX: a stick figure skinned to the joints (false: the skeleton and its animation only)
   std::optional<RootMotionOutput> root_motion;  // a root-motion joint added above the root first
+  bool keep_root_order = false;  // BVH: the root's rotation in the file's order (bvh_writer.h)
 
   Status validate() const;
 };
