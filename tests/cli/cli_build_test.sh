@@ -432,7 +432,8 @@ for tag, total in lib["tags"].items():
     assert total["frames"] == sum(r["frames"] for c in lib["clips"] for r in c["tag_ranges"] if r["tag"] == tag), (tag, total)
 assert lib["untagged"] == {"clips": 0, "frames": 0}, lib["untagged"]
 # CMU's tags are on whole clips but walk and run, which keep only the frames where the root
-# travels: the stops at the end of 16_33 ("walk, stop") and 16_57 ("run/jog, sudden stop").
+# travels: the stops at the end of 16_33 ("walk, stop") and 16_57 ("run/jog, sudden stop"); and
+# stop, which keeps those and the second (30 frames) of travel into them.
 standing = {(t["clip"], t["tag"]): t for t in lib["reading"]["standing_tags"]}
 assert set(standing) == {("16_33", "walk"), ("16_57", "run")}, standing
 for c in lib["clips"]:   # the walks travel metres, the jumps less
@@ -441,6 +442,9 @@ for c in lib["clips"]:   # the walks travel metres, the jumps less
         if (c["name"], r["tag"]) in standing:
             assert r["first_frame"] == 0 and 0.5 * c["frames"] < r["frames"] < c["frames"], (c, r)
             assert r["frames"] == standing[(c["name"], r["tag"])]["tagged_frames"], (c, standing)
+        elif r["tag"] == "stop":
+            travel = [t for t in c["tag_ranges"] if (c["name"], t["tag"]) in standing][0]
+            assert r["first_frame"] == travel["frames"] - 30 and r["first_frame"] + r["frames"] == c["frames"], (c, r)
         else:
             assert whole, (c, r)
     assert ("walk" in c["tags"]) <= (c["root_path_m"] > 1.0), c

@@ -87,10 +87,10 @@ TEST(DatabaseLoader, LoadsTheBundledFolderAt30Fps) {
   EXPECT_EQ(tags_named("16_05"), Set{"jump"});
   EXPECT_EQ(tags_named("16_15"), Set{"walk"});
   EXPECT_EQ(tags_named("16_17"), (Set{"walk", "turn"}));
-  EXPECT_EQ(tags_named("16_33"), Set{"stop"});  // "walk, stop": walking until it stops
+  EXPECT_EQ(tags_named("16_33"), Set{});  // "walk, stop": walk where it walks, stop where it stops
   EXPECT_EQ(tags_named("16_35"), Set{"run"});
   EXPECT_EQ(tags_named("16_37"), Set{"run"});  // veer is no turn
-  EXPECT_EQ(tags_named("16_57"), Set{"stop"});  // "run/jog, sudden stop"
+  EXPECT_EQ(tags_named("16_57"), Set{});  // "run/jog, sudden stop"
   // Every frame has a tag, and the walk/run/jump frames are those of the right clips but for
   // the stops of 16_33 and 16_57, where the root stands: their last frames.
   const std::vector<TagMask> frame_tags = db->frame_tags();
@@ -117,6 +117,21 @@ TEST(DatabaseLoader, LoadsTheBundledFolderAt30Fps) {
     // A run of frames up to the clip's end.
     EXPECT_EQ((frame_tags[static_cast<size_t>(end - 1)] & locomotion), 0u) << name;
     EXPECT_EQ((frame_tags[static_cast<size_t>(end - in_clip - 1)] & locomotion) != 0, true) << name;
+    // Stop: on those frames and the second (30 frames) of walking or running into them, not on
+    // the walk or run before (the controller asked to stop played 16_33's walk).
+    int stop_frames = 0, leading = 0;
+    for (int f = clip.first_frame; f < end; ++f) {
+      const bool stop = (frame_tags[static_cast<size_t>(f)] & bit("stop")) != 0;
+      stop_frames += stop ? 1 : 0;
+      if ((frame_tags[static_cast<size_t>(f)] & locomotion) == 0) {
+        EXPECT_TRUE(stop) << name << " frame " << f - clip.first_frame;
+      } else if (stop) {
+        ++leading;
+        EXPECT_GE(f, end - in_clip - 30) << name << " frame " << f - clip.first_frame;
+      }
+    }
+    EXPECT_EQ(leading, std::min(30, clip.frame_count - static_cast<int>(in_clip))) << name;
+    EXPECT_LT(stop_frames, clip.frame_count) << name;  // the walk or run before it is none
   }
   EXPECT_EQ(db->tag_names.size(), 5u);  // walk, run, jump, turn, stop
 }
@@ -193,7 +208,7 @@ TEST(DatabaseLoader, ADescriptionsWalkStaysWhereTheRootTravels) {
   EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(), [](const std::string& w) {
     return w.find("the library has no run") != std::string::npos && w.find("--whole-clip-tags") != std::string::npos;
   })) << fmt::format("{}", fmt::join(warnings, "\n"));
-  EXPECT_EQ(tags_of(*db, 0), std::set<std::string>{"stop"});
+  EXPECT_TRUE(tags_of(*db, 0).empty());  // walk where it walks, stop where it stands
   EXPECT_EQ(tags_of(*db, 1), std::set<std::string>{"walk"});
   const auto walk = std::find(db->tag_names.begin(), db->tag_names.end(), "walk") - db->tag_names.begin();
   std::vector<TagRange> walks;
@@ -212,6 +227,15 @@ TEST(DatabaseLoader, ADescriptionsWalkStaysWhereTheRootTravels) {
   EXPECT_EQ(notes.standing_tags[0].tag, "walk");
   EXPECT_EQ(notes.standing_tags[0].tagged_frames, walks[0].frame_count);
   EXPECT_EQ(notes.standing_tags[0].frames, db->clips[0].frame_count);
+  // Its stop: the second of walking into the stand, and the stand to the clip's end.
+  const auto stop = std::find(db->tag_names.begin(), db->tag_names.end(), "stop") - db->tag_names.begin();
+  std::vector<TagRange> stops;
+  for (const TagRange& r : db->tag_ranges) {
+    if (r.tag == stop && r.first_frame < db->clips[1].first_frame) stops.push_back(r);
+  }
+  ASSERT_EQ(stops.size(), 1u);
+  EXPECT_EQ(stops[0].first_frame, walks[0].frame_count - 30);
+  EXPECT_EQ(stops[0].first_frame + stops[0].frame_count, db->clips[0].frame_count);
 
   settings.travel_tags.min_speed_mps = 0.0;
   auto whole = load_database({folder.path().string()}, settings, &notes);
@@ -302,7 +326,7 @@ TEST(DatabaseLoader, ClipsNamedLikeCmusGetTagsFromTheShippedIndexWhenNoneIsGiven
   ASSERT_TRUE(db) << db.error().to_string();
   ASSERT_EQ(db->clips.size(), 3u);
   EXPECT_EQ(tags_of(*db, 0), std::set<std::string>{"walk"});
-  EXPECT_EQ(tags_of(*db, 1), std::set<std::string>{"stop"});  // its run only where it runs
+  EXPECT_TRUE(tags_of(*db, 1).empty());  // its run only where it runs, its stop where it stops
   EXPECT_TRUE(tags_of(*db, 2).empty());
   DatabaseSettings whole;
   whole.travel_tags.min_speed_mps = 0.0;

@@ -1,6 +1,8 @@
 #include "motiongraph/database/travel_tags.h"
 
+#include <algorithm>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -21,6 +23,16 @@ std::vector<Vec3> roots_at(const std::vector<double>& speeds, double fps) {
 std::vector<double> pieces(std::initializer_list<std::pair<int, double>> frames_at_speed) {
   std::vector<double> speeds;
   for (const auto& [frames, speed] : frames_at_speed) speeds.insert(speeds.end(), frames, speed);
+  return speeds;
+}
+
+// A clip of 1 to 6 pieces of 5 to 84 frames, each standing or at 0.2 to 2.1 m/s.
+std::vector<double> random_speeds(std::mt19937& random) {
+  std::vector<double> speeds;
+  const int pieces_count = 1 + static_cast<int>(random() % 6);
+  for (int p = 0; p < pieces_count; ++p) {
+    speeds.insert(speeds.end(), 5 + random() % 80, (random() % 2) != 0 ? 0.0 : 0.2 + 0.1 * (random() % 20));
+  }
   return speeds;
 }
 
@@ -114,11 +126,7 @@ TEST(TravelTags, SpansAreOrderedLongEnoughAndApart) {
   const TravelTagSettings settings;
   std::mt19937 random(7);
   for (int trial = 0; trial < 200; ++trial) {
-    std::vector<double> speeds;
-    const int pieces_count = 1 + static_cast<int>(random() % 6);
-    for (int p = 0; p < pieces_count; ++p) {
-      speeds.insert(speeds.end(), 5 + random() % 80, (random() % 2) != 0 ? 0.0 : 0.2 + 0.1 * (random() % 20));
-    }
+    const std::vector<double> speeds = random_speeds(random);
     const auto roots = roots_at(speeds, fps);
     const auto spans = travelling_spans(roots, fps, settings);
     const int n = static_cast<int>(roots.size());
@@ -147,6 +155,74 @@ TEST(TravelTags, SpansAreOrderedLongEnoughAndApart) {
   }
 }
 
+// Stop stays where the root halts and over the second that slows into each halt after travel.
+TEST(TravelTags, AStopIsWhereTheRootHaltsAndTheSecondBefore) {
+  const double fps = 30.0;
+  const TravelTagSettings settings;
+  EXPECT_TRUE(is_stop_tag("stop"));
+  EXPECT_FALSE(is_stop_tag("walk"));
+  // Standing, walking, standing, walking: the first stand whole (the clip starts there), the
+  // second with the 30 frames of walking before it.
+  const auto roots = roots_at(pieces({{40, 0.0}, {90, 1.0}, {60, 0.0}, {90, 1.0}}), fps);
+  const auto travel = travelling_spans(roots, fps, settings);
+  ASSERT_EQ(travel.size(), 2u);
+  const auto stops = stopping_spans(roots, fps, settings);
+  ASSERT_EQ(stops.size(), 2u);
+  EXPECT_EQ(stops[0], (FrameSpan{0, travel[0].first}));
+  const int halt = travel[0].first + travel[0].count;
+  EXPECT_EQ(stops[1], (FrameSpan{halt - 30, travel[1].first - (halt - 30)}));
+  // A walk that never halts: its description is trusted, all of it; so with the refinement off.
+  const auto walk = roots_at(pieces({{150, 1.0}}), fps);
+  EXPECT_EQ(stopping_spans(walk, fps, settings), (std::vector<FrameSpan>{{0, 150}}));
+  TravelTagSettings whole;
+  whole.min_speed_mps = 0.0;
+  EXPECT_EQ(stopping_spans(roots, fps, whole), (std::vector<FrameSpan>{{0, static_cast<int>(roots.size())}}));
+  EXPECT_TRUE(stopping_spans({}, fps, settings).empty());
+}
+
+// Against the travelling spans, on random clips: the stop spans hold every frame outside them,
+// and of the frames inside them only the lead before a halt, in order and apart.
+TEST(TravelTags, StopSpansAreTheHaltsAndTheirLeadsOnRandomClips) {
+  const double fps = 30.0;
+  TravelTagSettings settings;
+  settings.stop_lead_s = 0.5;
+  const int lead = 15;
+  std::mt19937 random(11);
+  for (int trial = 0; trial < 200; ++trial) {
+    const std::vector<double> speeds = random_speeds(random);
+    const auto roots = roots_at(speeds, fps);
+    const int n = static_cast<int>(roots.size());
+    const auto travel = travelling_spans(roots, fps, settings);
+    const auto stops = stopping_spans(roots, fps, settings);
+    std::vector<int> travelling(static_cast<size_t>(n), 0), stopping(static_cast<size_t>(n), 0);
+    for (const FrameSpan& t : travel) std::fill_n(travelling.begin() + t.first, t.count, 1);
+    for (size_t i = 0; i < stops.size(); ++i) {
+      ASSERT_GT(stops[i].count, 0);
+      if (i > 0) {
+        ASSERT_GE(stops[i].first, stops[i - 1].first + stops[i - 1].count) << trial;
+      }
+      std::fill_n(stopping.begin() + stops[i].first, stops[i].count, 1);
+    }
+    if (travel.size() == 1 && travel[0] == FrameSpan{0, n}) {
+      EXPECT_EQ(stops, (std::vector<FrameSpan>{{0, n}})) << trial;
+      continue;
+    }
+    for (int f = 0; f < n; ++f) {
+      if (!travelling[static_cast<size_t>(f)]) {
+        EXPECT_TRUE(stopping[static_cast<size_t>(f)]) << trial << " frame " << f;
+        continue;
+      }
+      // A travelling frame is a stop's exactly when a halt begins within `lead` frames after it
+      // with no other travel between: the frame lies in the last `lead` of its span, a halt after.
+      const auto span = std::find_if(travel.begin(), travel.end(), [&](const FrameSpan& t) {
+        return f >= t.first && f < t.first + t.count;
+      });
+      const int end = span->first + span->count;
+      EXPECT_EQ(stopping[static_cast<size_t>(f)] != 0, end < n && end - f <= lead) << trial << " frame " << f;
+    }
+  }
+}
+
 TEST(TravelTags, SettingsAreChecked) {
   EXPECT_TRUE(TravelTagSettings{}.validate());
   TravelTagSettings s;
@@ -160,6 +236,9 @@ TEST(TravelTags, SettingsAreChecked) {
   EXPECT_FALSE(s.validate());
   s = {};
   s.min_run_s = std::nan("");
+  EXPECT_FALSE(s.validate());
+  s = {};
+  s.stop_lead_s = -1.0;
   EXPECT_FALSE(s.validate());
 }
 

@@ -61,14 +61,17 @@ def test_tags_per_clip_add_up_to_the_totals(data):
     assert {tag: (total["clips"], total["frames"]) for tag, total in library.tags.items()} == \
         {tag: (clips[tag], frames[tag]) for tag in frames}
     assert library.clip_tags("16_15") == [("walk", 0, len(library["16_15"]))]
-    # "walk, stop": its walk stays where the root travels, unless asked to keep it whole.
+    # "walk, stop": its walk stays where the root travels, its stop where it stands and the second
+    # before, unless asked to keep them whole.
     stops = dict((tag, (first, count)) for tag, first, count in library.clip_tags("16_33"))
-    assert stops["stop"] == (0, len(library["16_33"])) and stops["walk"][0] == 0
+    assert stops["stop"] == (stops["walk"][1] - 30, len(library["16_33"]) - stops["walk"][1] + 30)
+    assert stops["walk"][0] == 0
     assert len(library["16_33"]) // 2 < stops["walk"][1] < len(library["16_33"])
     standing = library.summary["reading"]["standing_tags"]
     assert {(t["clip"], t["tag"]) for t in standing} == {("16_33", "walk"), ("16_57", "run")}
     whole = mg.load_library(data / "cmu/16", whole_clip_tags=True)
     assert ("walk", 0, len(whole["16_33"])) in whole.clip_tags("16_33")
+    assert ("stop", 0, len(whole["16_33"])) in whole.clip_tags("16_33")
     assert whole.summary["reading"]["standing_tags"] == []
     assert library[-1] is library.clips[-1] and len(library) == 15
     assert library[1:3] == library.clips[1:3] and len(library[1:3]) == 2

@@ -303,26 +303,33 @@ struct DescribedClip {
   std::vector<std::string> tags;
 };
 
-// Its tags on the database: walk and run on the frames where its root travels (travel_tags.h),
-// the others on all its frames.
+// Its tags on the database: walk and run on the frames where its root travels, stop where it
+// halts and slows into a halt (travel_tags.h), the others on all its frames.
 Status tag_described_clip(MotionDatabase& db, const DescribedClip& d, const ClipSpec& spec,
                           const TravelTagSettings& settings, DatabaseLoadNotes* notes) {
   const DatabaseClip& clip = db.clips[d.clip];
   std::optional<std::vector<FrameSpan>> spans;  // the clip's travelling spans, found once
+  // The root's translation (a root without one stays where it is: it travels nowhere).
+  auto roots = [&] {
+    const int slot = db.skeletons[static_cast<size_t>(clip.skeleton)].translation_slot(0);
+    std::vector<Vec3> at(static_cast<size_t>(clip.frame_count), Vec3::Zero());
+    for (int f = 0; slot >= 0 && f < clip.frame_count; ++f) {
+      at[static_cast<size_t>(f)] = clip.motion.translations(f)[static_cast<size_t>(slot)];
+    }
+    return at;
+  };
   for (const std::string& tag : d.tags) {
+    if (is_stop_tag(tag)) {
+      for (const FrameSpan& span : stopping_spans(roots(), db.fps, settings)) {
+        if (auto s = add_tag_range(db, tag, clip.first_frame + span.first, span.count, spec); !s) return s;
+      }
+      continue;
+    }
     if (!is_locomotion_tag(tag)) {
       if (auto s = add_tag_range(db, tag, clip.first_frame, clip.frame_count, spec); !s) return s;
       continue;
     }
-    if (!spans) {
-      // The root's translation (a root without one stays where it is: it travels nowhere).
-      const int slot = db.skeletons[static_cast<size_t>(clip.skeleton)].translation_slot(0);
-      std::vector<Vec3> roots(static_cast<size_t>(clip.frame_count), Vec3::Zero());
-      for (int f = 0; slot >= 0 && f < clip.frame_count; ++f) {
-        roots[static_cast<size_t>(f)] = clip.motion.translations(f)[static_cast<size_t>(slot)];
-      }
-      spans = travelling_spans(roots, db.fps, settings);
-    }
+    if (!spans) spans = travelling_spans(roots(), db.fps, settings);
     int tagged = 0;
     for (const FrameSpan& span : *spans) {
       if (auto s = add_tag_range(db, tag, clip.first_frame + span.first, span.count, spec); !s) return s;

@@ -19,6 +19,10 @@ Status TravelTagSettings::validate() const {
   if (!(min_gap_s >= 0.0) || !(min_run_s >= 0.0) || !std::isfinite(min_gap_s) || !std::isfinite(min_run_s)) {
     return Error{"", 0, "the shortest pause and the shortest travel must be >= 0"};
   }
+  if (!(stop_lead_s >= 0.0) || !std::isfinite(stop_lead_s)) {
+    return Error{"", 0,
+                 fmt::format("the travel that slows into a stop must be finite and >= 0 s, not {}", stop_lead_s)};
+  }
   return Ok{};
 }
 
@@ -26,6 +30,8 @@ bool is_locomotion_tag(std::string_view tag) {
   constexpr std::array<std::string_view, 2> kLocomotion = {"walk", "run"};
   return std::find(kLocomotion.begin(), kLocomotion.end(), tag) != kLocomotion.end();
 }
+
+bool is_stop_tag(std::string_view tag) { return tag == "stop"; }
 
 std::vector<FrameSpan> travelling_spans(std::span<const Vec3> roots, double fps, const TravelTagSettings& settings) {
   const int n = static_cast<int>(roots.size());
@@ -64,6 +70,24 @@ std::vector<FrameSpan> travelling_spans(std::span<const Vec3> roots, double fps,
   // A clip shorter than min_run_s that travels throughout keeps its tag.
   std::erase_if(joined, [&](const FrameSpan& span) { return span.count < min_run && span.count < n; });
   return joined;
+}
+
+std::vector<FrameSpan> stopping_spans(std::span<const Vec3> roots, double fps, const TravelTagSettings& settings) {
+  const int n = static_cast<int>(roots.size());
+  if (n == 0) return {};
+  const std::vector<FrameSpan> travel = travelling_spans(roots, fps, settings);
+  if (settings.min_speed_mps <= 0.0 || (travel.size() == 1 && travel[0] == FrameSpan{0, n})) return {{0, n}};
+  const int lead = static_cast<int>(std::lround(settings.stop_lead_s * fps));
+  std::vector<FrameSpan> spans;
+  // Halt i lies between travel i - 1 and travel i (the clip's ends around them).
+  for (size_t i = 0; i <= travel.size(); ++i) {
+    const int halt = i == 0 ? 0 : travel[i - 1].first + travel[i - 1].count;
+    const int moves = i < travel.size() ? travel[i].first : n;
+    if (moves <= halt) continue;
+    const int from = i == 0 ? halt : std::max(travel[i - 1].first, halt - lead);
+    spans.push_back({from, moves - from});
+  }
+  return spans;
 }
 
 }  // namespace mg

@@ -7,7 +7,10 @@
 // is_locomotion_tag) stay only where the root travels at least min_speed_mps: the root's floor
 // displacement over window_s centred on the frame (cut at the clip's ends) by the time it spans.
 // Pauses shorter than min_gap_s keep the tag, and what travels for less than min_run_s loses it
-// (unless it is the whole clip).
+// (unless it is the whole clip). Likewise stop: "slow walk, stop" walks for most of its frames,
+// and the steering controller asked to stop played them (10 m in 10 s, "stop after 0.00 s"); it
+// stays on the frames where the root does not travel and on the stop_lead_s of travel that
+// slows into each halt (the whole clip when the root never halts: the description is trusted).
 // A manifest's tags are the user's word and stay as given (database_loader.h).
 #pragma once
 
@@ -25,12 +28,15 @@ struct TravelTagSettings {
   double window_s = 1.0;
   double min_gap_s = 0.5;
   double min_run_s = 0.5;
+  double stop_lead_s = 1.0;  // of a clip tagged stop, the travel before a halt that keeps the tag
 
   Status validate() const;
 };
 
 // walk and run: the tags that ask the character to go somewhere (cmu_tags.h's families).
 bool is_locomotion_tag(std::string_view tag);
+// stop: the tag that asks it to come to a halt.
+bool is_stop_tag(std::string_view tag);
 
 // Frames [first, first + count) of a clip.
 struct FrameSpan {
@@ -44,5 +50,10 @@ struct FrameSpan {
 // travels on the floor as above, in order; all its frames when settings.min_speed_mps is 0.
 std::vector<FrameSpan> travelling_spans(std::span<const Vec3> roots, double fps,
                                         const TravelTagSettings& settings);
+
+// The spans of a clip that keep a stop tag: its frames outside travelling_spans(), each halt
+// after travel with the stop_lead_s before it, in order; all its frames when the root never
+// halts or settings.min_speed_mps is 0.
+std::vector<FrameSpan> stopping_spans(std::span<const Vec3> roots, double fps, const TravelTagSettings& settings);
 
 }  // namespace mg

@@ -126,10 +126,18 @@ nlohmann::json path_segments_report(const SynthesisContext& context, const Floor
 
 std::optional<std::string> unplayable_tag(const SynthesisContext& context, const std::string& tag) {
   const auto mask = context.tag_mask(tag);
-  if (!mask || graph_frames_with(context, *mask) > 0) return std::nullopt;
-  return fmt::format("'{}', which the graph plays in no frame ({} of its clips' frames carry it; the build kept none: "
-                     "`inspect` gives each type's frames before and after pruning)",
-                     tag, clip_frames_with(*context.db, *mask));
+  if (!mask) return std::nullopt;
+  const int graph_frames = graph_frames_with(context, *mask);
+  if (graph_frames >= context.db->fps) return std::nullopt;
+  const int clip_frames = clip_frames_with(*context.db, *mask);
+  if (graph_frames == 0) {
+    return fmt::format("'{}', which the graph plays in no frame ({} of its clips' frames carry it; the build kept "
+                       "none: `inspect` gives each type's frames before and after pruning)",
+                       tag, clip_frames);
+  }
+  return fmt::format("'{}', which the graph plays in only {} frame{} ({:.1f} s; {} of its clips' frames carry it): "
+                     "the motion can hardly carry it (`inspect` gives each type's frames before and after pruning)",
+                     tag, graph_frames, graph_frames == 1 ? "" : "s", graph_frames / context.db->fps, clip_frames);
 }
 
 Result<SynthesizedMotion> run_walk_synthesis(const SynthesisContext& context, int from, int to,

@@ -61,9 +61,10 @@ nlohmann::json path_edit_report(const PathSynthesisSettings& search, const PathS
 nlohmann::json path_segments_report(const SynthesisContext& context, const FloorPath& path,
                                     const PathSynthesisResult& result);
 // When the graph plays `tag` in no frame (graph_frames_with: the pruning kept none of its
-// clips' frames, or none carry it), what to tell a user asking for it: "'run', which the graph
-// plays in no frame (104 of its clips' frames carry it; ...)"; nullopt when it plays it or the
-// tag is unknown (an error elsewhere).
+// clips' frames, or none carry it), or in less than a second of frames (subject 16's stop: 9 of
+// its clips' 88, the ends of clips where nothing leads on), what to tell a user asking for it:
+// "'run', which the graph plays in no frame (104 of its clips' frames carry it; ...)"; nullopt
+// when it plays it or the tag is unknown (an error elsewhere).
 std::optional<std::string> unplayable_tag(const SynthesisContext& context, const std::string& tag);
 
 // The cheapest walk from node `from` to node `to` (walk_search.h), starting at the origin
