@@ -45,7 +45,7 @@ class Library:
     contacts) and its summary (the dict `motiongraph info --json` prints for the same inputs).
 
     len(library) is its clip count; library[i] or library["16_15"] a clip, library[i:j] a list of
-    clips; iterating gives the clips.
+    clips; iterating gives the clips; "16_15" in library asks for a clip by name.
     """
 
     def __init__(self, summary, clips):
@@ -98,6 +98,12 @@ class Library:
 
     def __iter__(self):
         return iter(self.clips)
+
+    def __contains__(self, clip):
+        """A clip's name ("16_15" in library), or a Motion of the library."""
+        if isinstance(clip, str):
+            return any(row["name"] == clip for row in self.summary["clips"])
+        return any(clip is c for c in self.clips)
 
     def __repr__(self):
         return (f"<motiongraph.Library: {len(self.clips)} clips, {self.frame_count} frames at {self.fps:g} fps, "

@@ -122,6 +122,14 @@ TEST(PathShortfalls, AMissedTypeIsSaidWithItsShare) {
   EXPECT_TRUE(holds(said, "(the retries look for 50 %)")) << said[0];
 }
 
+TEST(PathShortfalls, ASegmentPastThePathsEndIsSaid) {
+  const auto& context = test::subject16().context();
+  const FloorPath path = line_with({{0.0, 10.0, "walk"}, {20.0, 30.0, "run"}, {15.0, 25.0, "jump"}});
+  auto said = path_shortfalls(context, path, {}, kept(path));
+  ASSERT_EQ(said.size(), 1u);  // the jump from 15 m is reached, and cut at the end
+  EXPECT_EQ(said[0], "the segment run 20-30 m lies past the path's end (20.0 m): no frame can carry its motion type");
+}
+
 // Synthesized on subject 16: what is said is what the result shows.
 TEST(PathShortfalls, PathsAWalkCannotFollowFallShortAsTheirResultsShow) {
   const auto& context = test::subject16().context();

@@ -77,6 +77,8 @@ def test_tags_per_clip_add_up_to_the_totals(data):
     assert library[1:3] == library.clips[1:3] and len(library[1:3]) == 2
     with pytest.raises(KeyError):
         library["16_99"]
+    assert "16_15" in library and "16_99" not in library and library[3] in library
+    assert 3 not in library and mg.load_clip(data / "cmu/16/16_15.amc") not in library
     with pytest.raises(IndexError, match="^clip 15 out of range: the library has 15 clips$"):
         library[15]
     with pytest.raises(IndexError, match="^clip -16 out of range"):

@@ -22,6 +22,13 @@ std::vector<std::string> path_shortfalls(const SynthesisContext& context, const 
                                          const PathSynthesisSettings& settings, const PathSynthesisResult& result) {
   std::vector<std::string> said;
   const auto& segments = path.segments();
+  // Asked of the path, not of the motion: a segment no way along it reaches.
+  for (const PathSegment& segment : segments) {
+    if (segment.from_m >= path.length_m()) {
+      said.push_back(fmt::format("{} lies past the path's end ({:.1f} m): no frame can carry its motion type",
+                                 segment_name(segment), path.length_m()));
+    }
+  }
   if (!result.reached_end) {
     const PathCheckSettings check;
     const double share = travelling_share(context, check.travel_speed_mps);

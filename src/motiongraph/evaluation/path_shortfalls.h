@@ -1,5 +1,6 @@
-// What a path synthesized falls short of, in sentences for the user: the end not reached (and
-// why, as far as can be told), dawdling, following the path further off than the retries look
+// What a path synthesized falls short of, in sentences for the user: a segment past the path's
+// end (asked for, but no frame can carry it), the end not reached (and why, as far as can be
+// told), dawdling, following the path further off than the retries look
 // for, a motion type asked for and missed. The CLI's `path` prints them as warnings, the Python
 // package raises them as UserWarning, the studio shows them; the report carries them
 // ("shortfalls"). Each is what synthesize_path's retries judged the kept attempt by.
@@ -14,7 +15,8 @@
 
 namespace mg {
 
-// One sentence per shortfall, in the order above; none for a result the retries would keep.
+// One sentence per shortfall, in the order above; none for a result the retries would keep
+// of a path whose segments it reaches.
 std::vector<std::string> path_shortfalls(const SynthesisContext& context, const FloorPath& path,
                                          const PathSynthesisSettings& settings, const PathSynthesisResult& result);
 
