@@ -149,6 +149,7 @@ struct PyGraph {
   std::string matrix_npy;       // when the build was asked for it
   std::string clouds_npy;
   mutable py::object nodes;     // Graph.nodes, made on first use
+  mutable py::object edges;     // Graph.edges, made on first use
 };
 
 void bind_motion(py::module_& m);

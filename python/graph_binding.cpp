@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include "binding.h"
+#include "motiongraph/graph/threshold_choice.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/pipeline/build_graph.h"
 #include "motiongraph/pipeline/build_options.h"
@@ -185,6 +186,40 @@ PyGraph load_graph(const std::filesystem::path& file, int skeleton) {
   return graph;
 }
 
+// Graph.edges' rows: each edge of the pruned graph as a dict (see its docstring).
+py::list edge_rows(const PyGraph& g) {
+  const MotionGraph& graph = g.loaded->file().graph;
+  // D to RMS cm as the build reports its threshold (threshold_choice.h rms_cm_of_distance): the
+  // window's weight from the report's pair of them.
+  auto reported = [&](const char* key) { return g.report.is_object() ? g.report.value(key, 0.0) : 0.0; };
+  const double threshold = reported("threshold"), threshold_rms_cm = reported("threshold_rms_cm");
+  const double window_weight =
+      threshold > 0.0 && threshold_rms_cm > 0.0 ? threshold / (threshold_rms_cm * threshold_rms_cm * 1e-4) : 0.0;
+  py::list rows;
+  for (const GraphEdge& edge : graph.edges) {
+    py::dict row;
+    row["from"] = edge.from_node;
+    row["to"] = edge.to_node;
+    row["kind"] = !edge.transition ? "clip" : edge.bridge ? "bridge" : "transition";
+    row["frames"] = edge.frame_count;
+    if (edge.transition) {
+      const Transition& t = graph.transitions[static_cast<size_t>(edge.transition_index)];
+      row["from_frame"] = t.from_frame;
+      row["to_frame"] = t.to_frame;
+      row["distance"] = static_cast<double>(t.distance);
+      row["rms_cm"] = window_weight > 0.0 ? py::object(py::float_(rms_cm_of_distance(t.distance, window_weight)))
+                                          : py::object(py::none());
+    } else {
+      row["from_frame"] = graph.nodes[static_cast<size_t>(edge.from_node)].frame;
+      row["to_frame"] = graph.nodes[static_cast<size_t>(edge.to_node)].frame;
+      row["distance"] = py::none();
+      row["rms_cm"] = py::none();
+    }
+    rows.append(row);
+  }
+  return rows;
+}
+
 }  // namespace
 
 void bind_graph(py::module_& m, py::class_<PyGraph>& graph) {
@@ -222,14 +257,36 @@ void bind_graph(py::module_& m, py::class_<PyGraph>& graph) {
             }
             py::list copy;
             for (const py::handle row : g.nodes) {
-              auto own = py::reinterpret_steal<py::dict>(PyDict_Copy(row.ptr()));  // (py::dict(row) would be row)
-              own["tags"] = py::reinterpret_steal<py::list>(PySequence_List(py::object(own["tags"]).ptr()));
+              PyObject* copied = PyDict_Copy(row.ptr());  // (py::dict(row) would be row)
+              if (copied == nullptr) throw py::error_already_set();
+              auto own = py::reinterpret_steal<py::dict>(copied);
+              PyObject* tags = PySequence_List(py::object(own["tags"]).ptr());
+              if (tags == nullptr) throw py::error_already_set();
+              own["tags"] = py::reinterpret_steal<py::list>(tags);
               copy.append(own);
             }
             return copy;
           },
           "One dict per node, numbered as walk() and the CLI's 'inspect --nodes' number them: its database "
           "frame, clip, frame within the clip and tags.")
+      .def_property_readonly(
+          "edges",
+          [](const PyGraph& g) {
+            if (!g.edges) g.edges = edge_rows(g);
+            py::list copy;
+            for (const py::handle row : g.edges) {
+              PyObject* own = PyDict_Copy(row.ptr());  // its values are numbers, text and None
+              if (own == nullptr) throw py::error_already_set();
+              copy.append(py::reinterpret_steal<py::dict>(own));
+            }
+            return copy;
+          },
+          "One dict per edge, numbered as the reports' 'edges' number them (per node its clip piece first, then its "
+          "transitions): 'from' and 'to' (nodes), 'kind' ('clip', 'transition' or 'bridge': a blend between motion "
+          "types above the threshold), 'frames' played, 'from_frame' and 'to_frame' (the database frames it leaves "
+          "from and arrives at: a clip piece's nodes' frames, a transition's window pair), and 'distance' (D of a "
+          "transition or bridge) and 'rms_cm' (the same as the RMS point distance over the window), None for a clip "
+          "piece.")
       .def_property_readonly("report", [](const PyGraph& g) { return to_python(g.report); },
                              "The build's report (the CLI's build --report), as a dict.")
       .def("_matrix_npy", [](const PyGraph& g) { return py::bytes(g.matrix_npy); })

@@ -89,6 +89,32 @@ def test_nodes_are_made_once_and_handed_out_as_copies(graph):
     assert "changed" not in graph.nodes[0]["tags"] and graph.nodes[1]["clip"] != "changed"
 
 
+def test_edges_are_the_graph_as_the_reports_number_it(graph):
+    """Graph.edges: numbered as a walk's report numbers its edges (each follows the one before it),
+    clip pieces between their nodes' frames, transitions with their D and its RMS as the build
+    reports its threshold; handed out as copies."""
+    edges, nodes = graph.edges, graph.nodes
+    weight = graph.report["threshold"] / (graph.report["threshold_rms_cm"] / 100) ** 2
+    assert len(edges) == graph.edge_count
+    assert sum(e["kind"] != "clip" for e in edges) == graph.transition_count
+    assert {e["kind"] for e in edges} == {"clip", "transition", "bridge"}
+    for e in edges:
+        assert e["from_frame"] == nodes[e["from"]]["frame"] or e["kind"] != "clip", e
+        if e["kind"] == "clip":
+            assert (e["to_frame"], e["distance"], e["rms_cm"]) == (nodes[e["to"]]["frame"], None, None), e
+            assert e["frames"] == e["to_frame"] - e["from_frame"] and nodes[e["from"]]["clip"] == nodes[e["to"]]["clip"]
+        else:
+            assert e["distance"] > 0 and e["rms_cm"] == pytest.approx(100 * np.sqrt(e["distance"] / weight), rel=1e-6)
+    motion = graph.path(shape="figure8:4")
+    walk = motion.report["edges"]
+    assert all(edges[a]["to"] == edges[b]["from"] for a, b in zip(walk, walk[1:]))
+    assert edges[walk[0]]["from"] == motion.report["start_node"]
+    assert sum(edges[e]["kind"] != "clip" for e in walk) == motion.report["transitions"]
+    assert sum(edges[e]["kind"] == "bridge" for e in walk) == motion.report["bridges"]
+    edges[0]["kind"] = "changed"
+    assert graph.edges[0]["kind"] == "clip"
+
+
 def test_fixture_graph_equals_a_python_build(cli, data, graph_file, graph):
     """The library-made test graph (the CLI's defaults) is what build() makes with no options."""
     assert python_nodes(graph) == inspect_nodes(cli, graph_file)
