@@ -34,4 +34,7 @@ int fail(const Error& error);
 // be used (2), as CLI11's own checks give.
 int fail_usage(const Error& error);
 
+// For an unsigned option (a seed): CLI11 reads "-1" as 2^64 - 1; this refuses a minus sign.
+const CLI::Validator& not_negative();
+
 }  // namespace mg::cli

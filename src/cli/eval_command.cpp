@@ -346,7 +346,9 @@ Command add_eval_command(CLI::App& app) {
   sub->add_option("--lowest", o->lowest_quantile, "Lowest threshold quantile")->capture_default_str();
   sub->add_option("--highest", o->highest_quantile, "Highest threshold quantile")->capture_default_str();
   sub->add_option("--walks", o->walks, "Walks per cost function")->check(CLI::Range(1, 100000))->capture_default_str();
-  sub->add_option("--seed", o->seed, "Seed of the node pairs and random costs")->capture_default_str();
+  sub->add_option("--seed", o->seed, "Seed of the node pairs and random costs")
+      ->check(not_negative())
+      ->capture_default_str();
   sub->add_option("--max-expansions", o->max_expansions, "Search budget of each walk")->capture_default_str();
   sub->add_option("--shapes", o->shapes, "Built-in paths to follow (line:L, circle:R, figure8:R, s-curve:L, square:S, zigzag:L)")
       ->delimiter(',')

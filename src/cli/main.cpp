@@ -30,6 +30,17 @@ int fail_usage(const Error& error) {
   return 2;
 }
 
+const CLI::Validator& not_negative() {
+  static const CLI::Validator validator(
+      [](std::string& text) -> std::string {
+        return text.find_first_not_of(" \t") != std::string::npos && text[text.find_first_not_of(" \t")] == '-'
+                   ? "must be 0 or more, not " + text
+                   : "";
+      },
+      "");
+  return validator;
+}
+
 namespace {
 
 // Every number option of `app` and its subcommands refuses nan and inf (CLI11 reads them, and

@@ -60,7 +60,7 @@ Command add_walk_command(CLI::App& app) {
   sub->add_option("--from", o->from, "Start node")->required();
   sub->add_option("--to", o->to, "End node")->required();
   sub->add_option("--cost", o->cost, "constant, quality, random or hybrid")->capture_default_str();
-  sub->add_option("--seed", o->seed, "Seed of the random costs")->capture_default_str();
+  sub->add_option("--seed", o->seed, "Seed of the random costs")->check(not_negative())->capture_default_str();
   sub->add_option("--min-frames", o->min_frames, "The walk plays at least this many frames")->capture_default_str();
   sub->add_option("--max-expansions", o->max_expansions, "Search budget: partial walks extended")
       ->capture_default_str();

@@ -120,6 +120,8 @@ exit_code input-fps-zero 2 "--input-fps" "$bin" info "$good" --input-fps 0
 exit_code coverage-over-1 2 "coverage" "$bin" build "$good" -o "$work/x.mgraph" --coverage 2
 exit_code negative-skeleton 2 "--skeleton" "$bin" walk "$work/x.mgraph" --from 0 --to 1 -o "$work/x.bvh" --skeleton -1
 exit_code walk-cost 2 "cost" "$bin" walk "$work/x.mgraph" --from 0 --to 1 -o "$work/x.bvh" --cost cheapest
+exit_code walk-seed 2 "--seed: must be 0 or more, not -1" "$bin" walk "$work/x.mgraph" --from 0 --to 1 \
+  -o "$work/x.bvh" --cost random --seed -1
 exit_code path-budget 2 "the search budget (expansions) must be at least 1, not 0" "$bin" path "$work/x.mgraph" \
   --shape line:5 -o "$work/x.bvh" --max-expansions 0
 exit_code start-node 2 "--start-node" "$bin" path "$work/x.mgraph" --shape line:5 -o "$work/x.bvh" --start-node -2

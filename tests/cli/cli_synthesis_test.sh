@@ -339,9 +339,9 @@ expect_error "BVH output scale must lie between 1e-06 and 1e+06 units per metre,
 expect_error "must end in .bvh, .glb, .fbx or .json" "$work/o.txt" "$bin" path "$work/g.mgraph" --shape line:5 -o "$work/o.txt"
 expect_error "node 99999 does not exist" "$work/o.bvh" "$bin" walk "$work/g.mgraph" --from 0 --to 99999 -o "$work/o.bvh"
 expect_error "unknown cost 'cheap'" "$work/o.bvh" "$bin" walk "$work/g.mgraph" --from 0 --to 1 --cost cheap -o "$work/o.bvh"
-echo '{"controls": [{"at_s": 1}]}' >"$work/bad-controls.json"
-expect_error "bad-controls.json: controls[0]: at_s must start at 0" "$work/o.bvh" "$bin" steer "$work/g.mgraph" --script "$work/bad-controls.json" -o "$work/o.bvh"
-echo '{"duration_s": 1e-9, "controls": [{"at_s": 0}]}' >"$work/short-controls.json"
+echo '{"controls": [{"at_s": 1, "tag": "walk"}]}' >"$work/bad-controls.json"
+expect_error "bad-controls.json: controls[0]: the first control is at 0 s" "$work/o.bvh" "$bin" steer "$work/g.mgraph" --script "$work/bad-controls.json" -o "$work/o.bvh"
+echo '{"duration_s": 1e-9, "controls": [{"at_s": 0, "tag": "walk"}]}' >"$work/short-controls.json"
 expect_error "short-controls.json: duration_s 1e-09 is shorter than a frame at 30 fps" "$work/o.bvh" "$bin" steer "$work/g.mgraph" --script "$work/short-controls.json" -o "$work/o.bvh"
 # Outputs checked before any work: a report that cannot be written leaves no motion behind; an
 # output that is an input, or two outputs of one name, are refused with the input untouched.

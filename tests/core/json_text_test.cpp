@@ -26,6 +26,24 @@ TEST(JsonText, NumberTooLargeIsAnErrorNotAnException) {
   EXPECT_TRUE(parse_json_text("[1e308, -1e308, 5e-324]", "x.json"));
 }
 
+// A key twice in one object (nlohmann keeps the last: the first went unread) is an error naming
+// the key and the line of its second appearance; the same key in two objects, or as a value, is
+// fine.
+TEST(JsonText, AKeyTwiceInOneObjectIsAnErrorAtItsSecondLine) {
+  auto twice = parse_json_text("{\"duration_s\": 10,\n \"controls\": [],\n \"duration_s\": 20}", "s.json");
+  ASSERT_FALSE(twice);
+  EXPECT_EQ(twice.error().to_string(), "s.json:3: the key \"duration_s\" appears twice in one object");
+  // Nested: the inner object's repeat, counted past the keys of that name elsewhere and the
+  // values that are the same text.
+  auto nested =
+      parse_json_text("{\"tag\": \"at_s\", \"c\": [{\"at_s\": 0},\n{\"at_s\": 1,\n \"at_s\" : 2}]}", "s.json");
+  ASSERT_FALSE(nested);
+  EXPECT_EQ(nested.error().line, 3);
+  EXPECT_TRUE(parse_json_text("[{\"a\": 1, \"b\": {\"a\": 2}}, {\"a\": 3}]", "x.json"));
+  EXPECT_FALSE(parse_control_script("{\"controls\": [{\"at_s\": 0, \"tag\": \"walk\", \"tag\": \"run\"}]}", "c.json"));
+  EXPECT_FALSE(parse_path_json("{\"points\": [[0, 0], [0, 5]], \"points\": [[0, 0], [5, 0]]}", "p.json"));
+}
+
 TEST(JsonText, PathAndControlScriptRejectHugeNumbers) {
   EXPECT_FALSE(parse_path_json("{\"points\": [[0, 0], [0, 3E33333331]]}", "path.json"));
   EXPECT_FALSE(parse_path_json("                   3E33333331   ", "path.json"));

@@ -36,20 +36,33 @@ TEST(ControlScript, BadInputIsOneClearError) {
   const std::vector<test::ErrorCase> cases = {
       {"JSON syntax", "{\"controls\": [\n{\"at_s\": 0,}\n]}", 2, "not valid JSON"},
       {"no controls", "{\"controls\": []}", 0, "non-empty \"controls\""},
-      {"first not at 0", "{\"controls\": [{\"at_s\": 1}]}", 0, "start at 0"},
-      {"time going back", "{\"controls\": [{\"at_s\": 0}, {\"at_s\": 3}, {\"at_s\": 2}]}", 0, "controls[2]"},
+      {"first not at 0", "{\"controls\": [{\"at_s\": 1, \"tag\": \"walk\"}]}", 0,
+       "controls[0]: the first control is at 0 s (the script's start), not 1 s"},
+      {"time going back",
+       "{\"controls\": [{\"at_s\": 0, \"tag\": \"walk\"}, {\"at_s\": 3, \"tag\": \"run\"}, "
+       "{\"at_s\": 2, \"tag\": \"walk\"}]}",
+       0, "controls[2]: at_s 2 must come after the control before it (3 s)"},
       {"bad heading", "{\"controls\": [{\"at_s\": 0, \"heading\": \"up\"}]}", 0, "north, east, south or west"},
-      {"bad duration", "{\"duration_s\": -1, \"controls\": [{\"at_s\": 0}]}", 0, "duration_s"},
+      {"bad duration", "{\"duration_s\": -1, \"controls\": [{\"at_s\": 0, \"tag\": \"walk\"}]}", 0, "duration_s"},
       // Frame counts past an int's range (a control at 1e9 s crashed steer).
-      {"control past a day", "{\"controls\": [{\"at_s\": 0}, {\"at_s\": 1e9}]}", 0, "controls[1]: at_s 1e+09 is past a day"},
-      {"duration past a day", "{\"duration_s\": 1e300, \"controls\": [{\"at_s\": 0}]}", 0, "longer than a day"},
+      {"control past a day", "{\"controls\": [{\"at_s\": 0, \"tag\": \"walk\"}, {\"at_s\": 1e9, \"tag\": \"run\"}]}",
+       0, "controls[1]: at_s 1e+09 is past a day"},
+      {"duration past a day", "{\"duration_s\": 1e300, \"controls\": [{\"at_s\": 0, \"tag\": \"walk\"}]}", 0,
+       "longer than a day"},
       // Mistakes that were read silently: a misspelt or unknown key (ignored), both headings (the
       // degrees won), a control after the end (never played).
       {"unknown key", "{\"controls\": [{\"at_s\": 0, \"speed\": 2}]}", 0, "controls[0]: unknown key \"speed\""},
-      {"misspelt top key", "{\"duration\": 10, \"controls\": [{\"at_s\": 0}]}", 0, "unknown key \"duration\""},
+      {"misspelt top key", "{\"duration\": 10, \"controls\": [{\"at_s\": 0, \"tag\": \"walk\"}]}", 0,
+       "unknown key \"duration\""},
       {"two headings", "{\"controls\": [{\"at_s\": 0, \"heading\": \"north\", \"heading_deg\": 45}]}", 0,
        "controls[0] gives both \"heading\" and \"heading_deg\""},
-      {"control after the end", "{\"duration_s\": 5, \"controls\": [{\"at_s\": 0}, {\"at_s\": 7}]}", 0,
+      // A control that says nothing, a heading no compass gives.
+      {"empty control", "{\"controls\": [{\"at_s\": 0, \"tag\": \"walk\"}, {\"at_s\": 2}]}", 0,
+       "controls[1] gives no \"heading\", \"heading_deg\" or \"tag\": it changes nothing"},
+      {"huge heading", "{\"controls\": [{\"at_s\": 0, \"heading_deg\": 1e300}]}", 0,
+       "controls[0]: heading_deg 1e+300 is past +-36000 degrees"},
+      {"control after the end",
+       "{\"duration_s\": 5, \"controls\": [{\"at_s\": 0, \"tag\": \"walk\"}, {\"at_s\": 7, \"tag\": \"run\"}]}", 0,
        "controls[1] at 7 s comes at or after the script's end (\"duration_s\" 5)"},
   };
   for (const auto& c : cases) {

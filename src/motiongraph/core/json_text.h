@@ -1,5 +1,6 @@
 // JSON documents as text. Parsing (path files, control scripts, API bodies) gives the document
-// or an error naming the file and the line where the syntax went wrong. Writing never throws:
+// or an error naming the file and the line where the syntax went wrong, or where a key appears
+// a second time in one object (its first value would go unread). Writing never throws:
 // names from the input files (joints, clips) may hold bytes that are not UTF-8, such as a
 // Latin-1 joint name in a BVH file; they are written as U+FFFD.
 #pragma once

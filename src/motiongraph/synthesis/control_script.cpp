@@ -43,8 +43,12 @@ Result<ControlScript> parse_control_script(std::string_view text, const std::str
       return fail(fmt::format("controls[{}] gives both \"heading\" and \"heading_deg\": give one", i));
     }
     const double at = c["at_s"].get<double>();
-    if (!std::isfinite(at) || at < 0.0 || (i == 0 && at != 0.0) || (i > 0 && at <= current.at_s)) {
-      return fail(fmt::format("controls[{}]: at_s must start at 0 and increase", i));
+    if (i == 0 && at != 0.0) {
+      return fail(fmt::format("controls[0]: the first control is at 0 s (the script's start), not {:g} s", at));
+    }
+    if (!std::isfinite(at) || at < 0.0 || (i > 0 && at <= current.at_s)) {
+      return fail(fmt::format("controls[{}]: at_s {:g} must come after the control before it ({:g} s)", i, at,
+                              current.at_s));
     }
     if (at > ControlScript::kMaxSeconds) {
       return fail(fmt::format("controls[{}]: at_s {:g} is past a day ({:g} s)", i, at, ControlScript::kMaxSeconds));
@@ -62,12 +66,19 @@ Result<ControlScript> parse_control_script(std::string_view text, const std::str
       if (!c["heading_deg"].is_number() || !std::isfinite(c["heading_deg"].get<double>())) {
         return fail(fmt::format("controls[{}]: heading_deg must be a number", i));
       }
+      if (std::abs(c["heading_deg"].get<double>()) > ControlScript::kMaxHeadingDeg) {
+        return fail(fmt::format("controls[{}]: heading_deg {:g} is past +-{:g} degrees", i,
+                                c["heading_deg"].get<double>(), ControlScript::kMaxHeadingDeg));
+      }
       current.bearing_deg = c["heading_deg"].get<double>();
     }
     if (c.contains("tag")) {
       if (!c["tag"].is_string()) return fail(fmt::format("controls[{}]: tag must be a string", i));
       current.tag = c["tag"].get<std::string>();
       if (current.tag == "any") current.tag.clear();
+    }
+    if (!c.contains("heading") && !c.contains("heading_deg") && !c.contains("tag")) {
+      return fail(fmt::format("controls[{}] gives no \"heading\", \"heading_deg\" or \"tag\": it changes nothing", i));
     }
     script.controls.push_back(current);
   }

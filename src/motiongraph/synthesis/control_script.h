@@ -5,8 +5,9 @@
 //                 {"at_s": 8, "tag": "run"}]}
 // heading: north, east, south, west (north = -z, east = +x) or heading_deg, a bearing in
 // degrees clockwise from north. A control keeps what it does not say from the one before
-// (the first starts from north and any tag); tag "" or "any" clears the tag. Controls must be
-// in increasing time from 0, and end within a day (kMaxSeconds).
+// (the first starts from north and any tag), and says something (a heading or a tag); tag ""
+// or "any" clears the tag. Controls must be in increasing time from 0, and end within a day
+// (kMaxSeconds); headings lie within +-kMaxHeadingDeg.
 #pragma once
 
 #include <string>
@@ -25,6 +26,7 @@ struct ScriptedControl {
 
 struct ControlScript {
   static constexpr double kMaxSeconds = 86400.0;  // a day: the latest control and the longest duration
+  static constexpr double kMaxHeadingDeg = 36000.0;  // a hundred turns: past it no heading is meant
 
   double duration_s = 0.0;
   std::vector<ScriptedControl> controls;  // each complete (earlier values carried over)
