@@ -302,6 +302,7 @@ void bind_graph(py::module_& m, py::class_<PyGraph>& graph) {
               saved = write_file_atomic(path, serialize_graph_file(g.loaded->file()));
             }
             check(saved);
+            g.name = path;  // the file it now is: messages name it
           },
           py::arg("path"), "Writes the graph file (.mgraph), as the CLI's build -o does.")
       .def("__repr__", [](const PyGraph& g) {

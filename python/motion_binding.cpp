@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include "binding.h"
+#include "motiongraph/core/file_extension.h"
 #include "motiongraph/export/motion_file.h"
 #include "motiongraph/motion/clip_doubts.h"
 #include "motiongraph/motion/clip_loader.h"
@@ -244,9 +245,26 @@ void bind_motion(py::module_& m) {
           "keep_rest_frames=True, and synthesized motion.")
       .def(
           "save",
-          [](const PyMotion& self, const std::filesystem::path& path, bool root_motion, double root_motion_smoothing,
-             double output_scale, bool figure) {
-            const MotionFileSettings settings = file_settings(root_motion, root_motion_smoothing, output_scale, figure);
+          [](const PyMotion& self, const std::filesystem::path& path, bool root_motion,
+             std::optional<double> root_motion_smoothing, std::optional<double> output_scale, bool figure) {
+            // What the CLI refuses (--root-motion-smoothing needs --root-motion), and options the
+            // format does not take, said rather than dropped.
+            if (root_motion_smoothing && !root_motion) {
+              throw py::value_error("save(): root_motion_smoothing needs root_motion=True");
+            }
+            if (self.motion.frame_count == 0) {
+              throw py::value_error("save(): the motion has no frames (a controller before its first step)");
+            }
+            const std::string ext = lower_extension(path.string());
+            if (output_scale && *output_scale != 1.0 && ext != ".bvh") {
+              warn(fmt::format("save(): output_scale is for .bvh; {} is written in {}", ext,
+                               ext == ".fbx" ? "centimetres" : "metres"));
+            }
+            if (!figure && ext != ".glb" && ext != ".fbx") {
+              warn(fmt::format("save(): figure=False is for .glb and .fbx; {} has no stick figure", ext));
+            }
+            const MotionFileSettings settings =
+                file_settings(root_motion, root_motion_smoothing.value_or(0.5), output_scale.value_or(1.0), figure);
             Status saved = Ok{};
             {
               py::gil_scoped_release release;
@@ -254,12 +272,14 @@ void bind_motion(py::module_& m) {
             }
             check(saved);
           },
-          py::arg("path"), py::arg("root_motion") = false, py::arg("root_motion_smoothing") = 0.5,
-          py::arg("output_scale") = 1.0, py::arg("figure") = true,
+          py::arg("path"), py::arg("root_motion") = false, py::arg("root_motion_smoothing") = py::none(),
+          py::arg("output_scale") = py::none(), py::arg("figure") = true,
           "Writes the motion: .bvh (metres times output_scale), .glb (binary glTF 2.0, metres), .fbx (binary FBX "
           "7.4, centimetres; figure=False leaves either's stick figure out) or .json (world positions, with the feet's contacts), as the CLI does (its "
           "--output-scale and --no-figure); root_motion adds a root-motion joint above the root (the CLI's "
-          "--root-motion, averaged over root_motion_smoothing seconds).")
+          "--root-motion, averaged over root_motion_smoothing seconds, 0.5 when not given). An option the format "
+          "does not take (output_scale but for .bvh, figure=False but for .glb and .fbx) gives a UserWarning; a "
+          "motion of no frames raises ValueError.")
       .def("__repr__", [](const PyMotion& self) {
         return fmt::format("<motiongraph.Motion '{}': {} frames at {:g} fps, {} joints>", self.name,
                            self.motion.frame_count, self.motion.fps, self.skeleton.joint_count());

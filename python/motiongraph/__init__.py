@@ -124,7 +124,7 @@ def load_library(inputs, **options):
 
 def _npy(data, what):
     if not data:
-        raise Error(f"no {what}: build the graph with {what}=True")
+        raise Error(f"no {what}: only a graph built with {what}=True holds it (a .mgraph file keeps none)")
     import numpy
     return numpy.load(_io.BytesIO(data))
 

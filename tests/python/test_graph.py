@@ -77,8 +77,10 @@ def test_saved_graph_reads_back(cli, built, tmp_path):
     assert python_nodes(again) == python_nodes(built)
     assert inspect_nodes(cli, tmp_path / "g.mgraph") == python_nodes(built)
     assert without_timings(again.report) == without_timings(built.report)
-    with pytest.raises(mg.Error, match="no distance_matrix"):
+    with pytest.raises(mg.Error, match=r"no distance_matrix: only a graph built with distance_matrix=True holds it \(a "
+                       r"\.mgraph file keeps none\)"):
         again.distance_matrix()
+    assert built.name == str(tmp_path / "g.mgraph")  # messages name the file it now is
 
 
 def test_nodes_are_made_once_and_handed_out_as_copies(graph):

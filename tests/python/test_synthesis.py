@@ -283,6 +283,25 @@ def test_path_errors_raise_the_cli_message(cli, graph_file, graph, tmp_path, cli
     assert str(raised.value) == want
 
 
+def test_save_says_what_it_cannot_do(graph, tmp_path):
+    """Options the format does not take warn (they were dropped silently); the CLI's pairing of
+    --root-motion-smoothing with --root-motion holds; a motion of no frames is refused."""
+    motion = graph.path(shape="line:5")
+    with pytest.warns(UserWarning, match=r"output_scale is for \.bvh; \.glb is written in metres"):
+        motion.save(tmp_path / "m.glb", output_scale=100)
+    with pytest.warns(UserWarning, match=r"figure=False is for \.glb and \.fbx; \.bvh has no stick figure"):
+        motion.save(tmp_path / "m.bvh", figure=False)
+    with pytest.raises(ValueError, match="root_motion_smoothing needs root_motion=True"):
+        motion.save(tmp_path / "m2.bvh", root_motion_smoothing=1.0)
+    assert not (tmp_path / "m2.bvh").exists()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        motion.save(tmp_path / "m3.bvh", output_scale=100)
+        motion.save(tmp_path / "m3.glb", root_motion=True, root_motion_smoothing=0.25, figure=False)
+    with pytest.raises(ValueError, match="the motion has no frames"):
+        graph.controller().motion.save(tmp_path / "empty.bvh")
+
+
 def test_a_path_is_one_of_points_shape_and_file(graph, tmp_path):
     """Said in the keywords Python takes (the CLI says "--path and --shape")."""
     line = [(0, 0), (0, -5)]
