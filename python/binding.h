@@ -22,6 +22,7 @@
 #include <pybind11/stl/filesystem.h>  // paths as str or os.PathLike
 
 #include "motiongraph/core/error.h"
+#include "motiongraph/core/json_text.h"
 #include "motiongraph/motion/capture_glitches.h"
 #include "motiongraph/motion/motion.h"
 #include "motiongraph/pipeline/build_options.h"
@@ -59,8 +60,13 @@ void run_stoppable(std::stop_source& stop, const std::function<void()>& work);
 // A UserWarning, `stack` frames up; raises its exception when the warning filter makes it one
 // (warnings.simplefilter("error")).
 inline void warn(const std::string& line, int stack = 1) {
-  if (PyErr_WarnEx(PyExc_UserWarning, line.c_str(), stack) < 0) throw py::error_already_set();
+  // As UTF-8 (a file or joint name that is not is shown with U+FFFD, as the JSON reports show it).
+  if (PyErr_WarnEx(PyExc_UserWarning, valid_utf8(line).c_str(), stack) < 0) throw py::error_already_set();
 }
+
+// Text from the files (a clip's name from its file, a joint's from its rig) as a str, bytes that
+// are not UTF-8 shown as U+FFFD, as the JSON reports show them.
+py::str display_text(const std::string& text);
 
 // A JSON value as the Python object json.loads makes of the same text.
 py::object to_python(const nlohmann::json& value);
@@ -70,7 +76,8 @@ py::object to_python(const nlohmann::json& value);
 using OptionTable = std::map<std::string, std::function<void(py::handle)>>;
 void apply_options(const py::dict& options, const OptionTable& table, const char* function);
 // The table's usual entry: the value cast to the field's type (TypeError when it cannot be).
-// Text from a str, or a path from an os.PathLike (pathlib.Path) or bytes, as os.fsdecode gives it.
+// Text from a str, or a path from an os.PathLike (pathlib.Path) or bytes, as the file system's
+// bytes (os.fsencode: a name that is not UTF-8 too).
 std::string text_or_path(py::handle value);
 // A value of the right type that the keyword cannot take: apply_options raises ValueError,
 // "f() keyword argument 'name' " followed by `what`.

@@ -223,7 +223,7 @@ py::list edge_rows(const PyGraph& g) {
 }  // namespace
 
 void bind_graph(py::module_& m, py::class_<PyGraph>& graph) {
-  graph.def_property_readonly("name", [](const PyGraph& g) { return g.name; })
+  graph.def_property_readonly("name", [](const PyGraph& g) { return display_text(g.name); })
       .def_property_readonly("node_count", [](const PyGraph& g) { return g.loaded->file().graph.node_count(); })
       .def_property_readonly("edge_count", [](const PyGraph& g) { return g.loaded->file().graph.edge_count(); })
       .def_property_readonly("transition_count",
@@ -248,7 +248,7 @@ void bind_graph(py::module_& m, py::class_<PyGraph>& graph) {
                 const DatabaseClip& clip = file.database.clips[node.clip];
                 py::dict row;
                 row["frame"] = node.frame;
-                row["clip"] = clip.name;
+                row["clip"] = display_text(clip.name);
                 row["clip_frame"] = node.frame - clip.first_frame;
                 row["tags"] = file.database.tag_names_of(tags.empty() ? 0 : tags[node.frame]);
                 nodes.append(row);
@@ -306,8 +306,9 @@ void bind_graph(py::module_& m, py::class_<PyGraph>& graph) {
           },
           py::arg("path"), "Writes the graph file (.mgraph), as the CLI's build -o does.")
       .def("__repr__", [](const PyGraph& g) {
-        return "<motiongraph.Graph '" + g.name + "': " + std::to_string(g.loaded->file().graph.node_count()) +
-               " nodes, " + std::to_string(g.loaded->file().graph.edge_count()) + " edges>";
+        return display_text("<motiongraph.Graph '" + g.name + "': " +
+                            std::to_string(g.loaded->file().graph.node_count()) + " nodes, " +
+                            std::to_string(g.loaded->file().graph.edge_count()) + " edges>");
       });
   m.def("_build", &build, py::arg("inputs"), py::arg("options"), py::arg("progress"));
   m.def("load_graph", &load_graph, py::arg("path"), py::arg("skeleton") = -1,

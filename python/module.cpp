@@ -41,11 +41,17 @@ py::object to_python(const nlohmann::json& value) {
 }
 
 std::string text_or_path(py::handle value) {
-  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
-  if (py::isinstance<py::bytes>(value) || py::hasattr(value, "__fspath__")) {
-    return py::module_::import("os").attr("fsdecode")(value).cast<std::string>();
+  // A path as the file system's bytes (os.fsencode): a name that is not UTF-8 too.
+  if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value) || py::hasattr(value, "__fspath__")) {
+    return py::module_::import("os").attr("fsencode")(value).cast<std::string>();
   }
   throw py::cast_error();  // TypeError, naming the keyword and the type given
+}
+
+py::str display_text(const std::string& text) {
+  PyObject* decoded = PyUnicode_DecodeUTF8(text.data(), static_cast<Py_ssize_t>(text.size()), "replace");
+  if (decoded == nullptr) throw py::error_already_set();
+  return py::reinterpret_steal<py::str>(decoded);
 }
 
 void apply_options(const py::dict& options, const OptionTable& table, const char* function) {

@@ -158,7 +158,7 @@ void bind_motion(py::module_& m) {
   py::class_<PyMotion>(m, "Motion",
                        "Motion on a skeleton: a clip read from a file (load_clip) or motion synthesized on a graph "
                        "(Graph.walk, Graph.path, Controller.step). Arrays are read-only views, not copies.")
-      .def_readonly("name", &PyMotion::name)
+      .def_property_readonly("name", [](const PyMotion& self) { return display_text(self.name); })
       .def_property_readonly("fps", [](const PyMotion& self) { return self.motion.fps; })
       .def_property_readonly("frame_count", [](const PyMotion& self) { return self.motion.frame_count; })
       .def("__len__", [](const PyMotion& self) { return self.motion.frame_count; })
@@ -180,8 +180,10 @@ void bind_motion(py::module_& m) {
           "array frames x joints x 4.")
       .def_property_readonly("joint_names",
                              [](const PyMotion& self) {
-                               std::vector<std::string> names;
-                               for (const JointDef& joint : self.skeleton.joints()) names.push_back(joint.name);
+                               py::list names;
+                               for (const JointDef& joint : self.skeleton.joints()) {
+                                 names.append(display_text(joint.name));
+                               }
                                return names;
                              })
       .def_property_readonly("parents",
@@ -197,7 +199,7 @@ void bind_motion(py::module_& m) {
             if (!self.feet) return py::none();
             py::list names;
             for (const ContactColumn& column : contact_columns(*self.feet)) {
-              names.append(self.skeleton.joint(column.joint).name);
+              names.append(display_text(self.skeleton.joint(column.joint).name));
             }
             return names;
           },
@@ -281,8 +283,8 @@ void bind_motion(py::module_& m) {
           "does not take (output_scale but for .bvh, figure=False but for .glb and .fbx) gives a UserWarning; a "
           "motion of no frames raises ValueError.")
       .def("__repr__", [](const PyMotion& self) {
-        return fmt::format("<motiongraph.Motion '{}': {} frames at {:g} fps, {} joints>", self.name,
-                           self.motion.frame_count, self.motion.fps, self.skeleton.joint_count());
+        return display_text(fmt::format("<motiongraph.Motion '{}': {} frames at {:g} fps, {} joints>", self.name,
+                                        self.motion.frame_count, self.motion.fps, self.skeleton.joint_count()));
       });
   m.def(
       "save_animations",

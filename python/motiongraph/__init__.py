@@ -20,9 +20,10 @@ __all__ = ["Controller", "EmptyGraphError", "Error", "Graph", "Library", "Motion
 
 
 def _paths(inputs):
+    # As the file system's bytes: a name that is not UTF-8 (b"libl\xe9", or its os.fsdecode) too.
     if isinstance(inputs, (str, bytes, _os.PathLike)):
         inputs = [inputs]
-    return [_os.fsdecode(i) for i in inputs]
+    return [_os.fsencode(i) for i in inputs]
 
 
 def build(inputs, progress=None, **options):

@@ -300,3 +300,29 @@ def test_fbx_stacks_read_as_the_cli(cli, data, tmp_path):
     np.testing.assert_allclose(clip.positions[:, order], amc.positions, atol=1e-4)
     with pytest.raises(mg.Error, match="no animation 'swim' \\(the file has 16_15, 16_35\\)"):
         mg.load_clip(str(fbx), animation="swim")
+
+
+def test_names_that_are_not_utf8(data, tmp_path):
+    """A file or folder named in Latin-1 (b"lat\\xe9n"), as bytes or os.fsdecode's str, is read,
+    built and written; names from such files (the clip's, a joint's) show the byte as U+FFFD, as
+    the JSON reports do, instead of raising UnicodeDecodeError."""
+    root = os.fsencode(tmp_path)
+    bvh = (data / "bvh/16_01.bvh").read_bytes().replace(b"JOINT lfemur", b"JOINT lf\xe9mur")
+    with open(root + b"/lat\xe9n.bvh", "wb") as f:
+        f.write(bvh)
+    for path in (root + b"/lat\xe9n.bvh", os.fsdecode(root + b"/lat\xe9n.bvh")):
+        clip = mg.load_clip(path)
+        assert clip.name == "lat\ufffdn" and "lf\ufffdmur" in clip.joint_names and "lat\ufffdn" in repr(clip)
+    folder = root + b"/libl\xe9"
+    os.mkdir(folder)
+    for name in ("16.asf", "16_15.amc", "16_16.amc"):
+        with open(folder + b"/" + name.encode(), "wb") as f:
+            f.write((data / "cmu/16" / name).read_bytes())
+    for given in (folder, os.fsdecode(folder)):
+        assert [c.name for c in mg.load_library(given)] == ["16_15", "16_16"]
+    graph = mg.build(folder, no_cache=True, no_path_check=True, threshold_quantile=0.2)
+    graph.save(folder + b"/g\xe9.mgraph")
+    assert graph.name == os.fsdecode(folder + b"/g\xe9.mgraph").encode("utf-8", "surrogateescape").decode(
+        "utf-8", "replace")
+    clip.save(folder + b"/out\xe9.bvh")
+    assert os.path.exists(folder + b"/out\xe9.bvh")
