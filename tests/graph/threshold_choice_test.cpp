@@ -8,6 +8,9 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <stop_token>
+#include <utility>
+#include <vector>
 
 #include "motiongraph/metric/reference_distance.h"
 #include "test_data.h"
@@ -131,6 +134,40 @@ TEST(ThresholdChoice, ChoosesTheLowestThresholdTriedThatReachesTheTarget) {
   EXPECT_DOUBLE_EQ(again->coverage, point.coverage);
   ASSERT_EQ(point.tag_coverage.size(), 2u);
   EXPECT_DOUBLE_EQ(point.coverage, std::min(point.tag_coverage[0], point.tag_coverage[1]));
+}
+
+// Each point tried is told as it is tried (the build's progress lines), counted as it comes;
+// a stop asked for from there ends the choice before the next point (Ctrl-C in Python).
+TEST(ThresholdChoice, EachPointTriedIsToldAndAStopEndsTheChoice) {
+  const Fixture& x = fixture();
+  ThresholdChoiceSettings choice = half_under_30cm();
+  std::vector<std::pair<double, int>> told;
+  choice.tried = [&](const CoveragePoint& point, int tried) { told.emplace_back(point.threshold, tried); };
+  auto chosen = choose_threshold(x.db, x.features, x.search, x.settings, choice);
+  ASSERT_TRUE(chosen) << chosen.error().to_string();
+  // The curve's points (sorted by threshold at the end; tried the ceiling first), counted 1, 2, ...
+  ASSERT_EQ(told.size(), chosen->curve.size());
+  std::vector<double> told_thresholds, curve;
+  for (size_t i = 0; i < told.size(); ++i) {
+    EXPECT_EQ(told[i].second, static_cast<int>(i) + 1);
+    told_thresholds.push_back(told[i].first);
+    curve.push_back(chosen->curve[i].threshold);
+  }
+  std::sort(told_thresholds.begin(), told_thresholds.end());
+  std::sort(curve.begin(), curve.end());
+  EXPECT_EQ(told_thresholds, curve);
+  ASSERT_GE(told.size(), 3u);
+  std::stop_source source;
+  choice.stop = source.get_token();
+  int seen = 0;
+  choice.tried = [&](const CoveragePoint&, int tried) {
+    seen = tried;
+    if (tried == 2) source.request_stop();
+  };
+  auto stopped = choose_threshold(x.db, x.features, x.search, x.settings, choice);
+  ASSERT_FALSE(stopped);
+  EXPECT_EQ(stopped.error().kind, ErrorKind::kStopped);
+  EXPECT_EQ(seen, 2);
 }
 
 TEST(ThresholdChoice, EachMotionTypeGetsTheLowestThresholdTriedThatReachesItsTarget) {

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "motiongraph/core/stop.h"
 #include "motiongraph/core/transition_rate.h"
 
 namespace mg {
@@ -181,6 +182,7 @@ Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFe
     return levels;
   };
   auto evaluate = [&](const std::vector<double>& asked) -> Result<CoveragePoint> {
+    if (auto s = check_stop(choice.stop); !s) return s.error();
     GraphFromCandidatesSettings at = capped;
     const std::vector<double> levels = applied(asked);
     const double global = *std::min_element(levels.begin(), levels.end());
@@ -192,6 +194,7 @@ Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFe
       for (const double level : levels) point->tag_rms_cm.push_back(rms_cm_of_distance(level, features));
     }
     out.curve.push_back(*point);
+    if (choice.tried) choice.tried(*point, static_cast<int>(out.curve.size()));
     return point;
   };
 

@@ -48,7 +48,9 @@
 // pruned distance stage gives the exhaustive stage's choice.
 #pragma once
 
+#include <functional>
 #include <optional>
+#include <stop_token>
 #include <string>
 #include <vector>
 
@@ -69,6 +71,8 @@ double distance_of_rms_cm(double rms_cm, const FrameFeatures& features);
 // A motion type the ceiling keeps less of than this share of its frames wants nothing (above).
 inline constexpr double kMinServedShare = 0.1;
 
+struct CoveragePoint;
+
 struct ThresholdChoiceSettings {
   double coverage = 0.7;        // share of each motion type's frames the pruned graph keeps
   double max_rms_cm = 10.0;     // quality ceiling (RMS point distance over the window)
@@ -80,6 +84,10 @@ struct ThresholdChoiceSettings {
   double lowest_rms_cm = 0.5;   // where the grid starts
   int grid = 16;                // log-spaced thresholds of the first pass (>= 2)
   int refine = 6;               // bisection steps after it
+  // Not settings of the choice (not in its JSON): told of each point as it is tried (the build's
+  // progress lines), and asked to stop (core/stop.h) before each, failing with stopped_error().
+  std::function<void(const CoveragePoint& point, int tried)> tried;
+  std::stop_token stop;
 
   Status validate() const;
 };

@@ -227,7 +227,22 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
     case ThresholdMode::kAuto:
       break;
   }
-  const ThresholdChoiceSettings& choice_settings = settings.choice;
+  ThresholdChoiceSettings choice_settings = settings.choice;
+  choice_settings.stop = stop;
+  if (say.log.progress) {
+    // Every 2 s, as the distance stage's lines: the thresholds tried so far and the last.
+    const auto begin = std::chrono::steady_clock::now();
+    auto last = begin;
+    choice_settings.tried = [&say, begin, last](const CoveragePoint& point, int tried) mutable {
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last < std::chrono::seconds(2)) return;
+      last = now;
+      say.log.progress(fmt::format("threshold choice: {} tried in {:.1f} s (RMS {:.2f} cm keeps {:.0f} % of the "
+                                   "worst type's frames)",
+                                   counted(tried, "threshold"), std::chrono::duration<double>(now - begin).count(),
+                                   point.rms_cm, 100.0 * point.coverage));
+    };
+  }
   auto choice = choose_threshold(db, features, candidates, graph_settings, choice_settings, more);
   if (!choice) return choice.error();
   if (auto s = check_stop(stop); !s) return s.error();
