@@ -32,8 +32,9 @@ def build(inputs, progress=None, **options):
     Keywords are the CLI's build options in snake_case (fps=30, threshold="4cm", cloud="joints",
     no_path_check=True, cache_dir=..., no_cache=True, ...), plus distance_matrix=True and clouds=True
     to keep those for Graph.distance_matrix() and Graph.clouds(). `progress`, when given, is called
-    with each line the build logs, and every 2 s of reading, of the distance stage and of the threshold
-    choice with how far they got ("distance: 45 % (4500 of 10000) in 12.3 s, about 15 s left"); an exception it raises
+    with each line the build logs, and every 2 s of reading, of the distance stage, of the threshold
+    choice and of the path check with how far they got ("distance: 45 % (4500 of 10000) in 12.3 s,
+    about 15 s left"); an exception it raises
     stops the build at its next step and is raised, as Ctrl-C's KeyboardInterrupt is. Raises
     motiongraph.Error with the CLI's message, or EmptyGraphError (with .report) when pruning leaves
     nothing.

@@ -12,6 +12,7 @@
 #include <memory>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "motiongraph/graph/threshold_choice.h"
@@ -269,9 +270,15 @@ TEST(PathCheck, ChoosesTheFirstThresholdWithinTheToleranceAndMeasuresAsPathSynth
   const PathCheckPoint& last = all->points.back();
   ASSERT_TRUE(last.graph && last.reached_end);
   s.tolerance_m = last.mean_deviation_m;
+  std::vector<std::pair<double, int>> told;  // each point as it is made (the build's progress lines)
+  s.tried = [&](const PathCheckPoint& point, int tried) { told.emplace_back(point.threshold, tried); };
   auto check = check_path_following(x.db, x.features, x.search, x.settings, x.from, x.ceiling, s);
   ASSERT_TRUE(check);
   EXPECT_TRUE(check->passed);
+  ASSERT_EQ(told.size(), check->points.size());
+  for (size_t i = 0; i < told.size(); ++i) {
+    EXPECT_EQ(told[i], std::make_pair(check->points[i].threshold, static_cast<int>(i) + 1)) << i;
+  }
   size_t first = 0;
   while (!passes(all->points[first], s.tolerance_m)) ++first;
   EXPECT_EQ(check->threshold, all->points[first].threshold);

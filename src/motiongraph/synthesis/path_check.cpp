@@ -157,6 +157,7 @@ Result<PathCheck> check_path_following(const MotionDatabase& db, const FrameFeat
   auto first = probe_at(db, features, candidates, settings, from_threshold, check, probe, &out.travel_share, more);
   if (!first) return first.error();
   out.points.push_back(*first);
+  if (check.tried) check.tried(out.points.back(), 1);
   if (first->graph && out.travel_share < check.min_travel_share) {
     out.skipped = true;
     return out;
@@ -174,6 +175,7 @@ Result<PathCheck> check_path_following(const MotionDatabase& db, const FrameFeat
       auto point = probe_at(db, features, candidates, settings, threshold, check, probe, nullptr, more);
       if (!point) return point.error();
       out.points.push_back(*point);
+      if (check.tried) check.tried(out.points.back(), static_cast<int>(out.points.size()));
       if (passes(*point, check.tolerance_m)) {
         out.passed = true;
         out.threshold = point->threshold;

@@ -26,6 +26,7 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,6 +38,8 @@
 #include "motiongraph/synthesis/path_synthesis.h"
 
 namespace mg {
+
+struct PathCheckPoint;
 
 struct PathCheckSettings {
   double tolerance_m = 0.1;         // mean deviation the probe must be followed within
@@ -50,6 +53,9 @@ struct PathCheckSettings {
   // asks whether the graph can turn, and `path`'s default (0.8) trades some of the walk's
   // deviation for fewer blends, which the edit then takes back. The tolerance was set with 0.2.
   double transition_penalty_m2 = 0.2;
+  // Not settings of the check (not in its JSON): told of each threshold's point as it is made
+  // (the build's progress lines); the search's `synthesis.stop` stops it.
+  std::function<void(const PathCheckPoint& point, int tried)> tried;
 
   Status validate() const;
 };
