@@ -97,10 +97,21 @@ std::function<void(py::handle)> set(T& field) {
       if (PyBool_Check(value.ptr())) throw py::cast_error();
       if constexpr (std::is_integral_v<T>) {
         if (PyLong_Check(value.ptr())) {
-          int overflow = 0;
-          const long long n = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
-          if (overflow != 0 || n < static_cast<long long>(std::numeric_limits<T>::min()) ||
-              (n > 0 && static_cast<unsigned long long>(n) > std::numeric_limits<T>::max())) {
+          bool within = true;
+          if constexpr (std::is_unsigned_v<T>) {
+            const unsigned long long n = PyLong_AsUnsignedLongLong(value.ptr());  // fails below 0 or past 2^64
+            if (n == static_cast<unsigned long long>(-1) && PyErr_Occurred() != nullptr) {
+              PyErr_Clear();
+              within = false;
+            } else {
+              within = n <= std::numeric_limits<T>::max();
+            }
+          } else {
+            int overflow = 0;
+            const long long n = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
+            within = overflow == 0 && n >= std::numeric_limits<T>::min() && n <= std::numeric_limits<T>::max();
+          }
+          if (!within) {
             throw BadKeywordValue{fmt::format("must be an integer from {} to {}, not {}", std::numeric_limits<T>::min(),
                                               std::numeric_limits<T>::max(), py::str(value).cast<std::string>())};
           }

@@ -280,6 +280,11 @@ def test_values_the_cli_refuses_are_refused(data, graph, tmp_path):
         graph.path(shape="line:5", start_node=True)
     with pytest.raises(ValueError, match="'seed' must be an integer from 0 to [0-9]+, not -1"):
         graph.walk(0, 1, cost="random", seed=-1)
+    assert graph.walk(0, 1, cost="random", seed=2**64 - 1).report["seed"] == 2**64 - 1  # the whole range
+    with pytest.raises(ValueError, match=f"'seed' must be an integer from 0 to {2**64 - 1}, not {2**64}"):
+        graph.walk(0, 1, cost="random", seed=2**64)
+    with pytest.raises(ValueError, match="'beam' must be an integer from -2147483648 to 2147483647"):
+        graph.path(shape="line:5", beam=2**31)
     with pytest.raises(mg.Error, match="path search: the horizon must be above 0 s and at most 60 s, not 100000 s"):
         graph.path(shape="line:5", horizon=1e5)
     with pytest.raises(mg.Error, match="controller: the horizon must be above 0 s and at most 60 s"):
