@@ -79,26 +79,29 @@ struct Outputs {
 };
 
 constexpr const char* kCsvSettings = "set datafile separator ','\nset grid\n";
+// Every plot against the threshold has it in the units the build reports it in.
+constexpr const char* kThresholdAxis = "transition threshold, RMS point distance (cm, log scale)";
 
 Status evaluate_thresholds(const GraphFile& file, const GraphRebuild& rebuild, std::span<const double> quantiles,
                            OnDemandCandidates* more, Outputs& out) {
   auto rows = sweep_thresholds(file.database, rebuild.features, file.candidates, rebuild.settings, quantiles, more);
   if (!rows) return rows.error();
   std::string csv =
-      "quantile,threshold,transitions,bridges,nodes,largest_component_nodes,kept_nodes,kept_transitions,"
+      "quantile,threshold,rms_cm,transitions,bridges,nodes,largest_component_nodes,kept_nodes,kept_transitions,"
       "kept_clip_frames\n";
   for (const ThresholdSweepRow& r : *rows) {
-    csv += fmt::format("{},{},{},{},{},{},{},{},{}\n", num(r.quantile), num(r.threshold), r.transitions, r.bridges,
-                       r.nodes, r.largest_component_nodes, r.kept_nodes, r.kept_transitions, r.kept_clip_frames);
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", num(r.quantile), num(r.threshold),
+                       num(rms_cm_of_distance(r.threshold, rebuild.features)), r.transitions, r.bridges, r.nodes,
+                       r.largest_component_nodes, r.kept_nodes, r.kept_transitions, r.kept_clip_frames);
   }
   if (auto s = out.write_csv("threshold.csv", csv); !s) return s;
   return out.plot("threshold.png",
-                  fmt::format("{}set logscale x\nset xlabel 'transition threshold D (log scale)'\nset ylabel 'nodes'\n"
+                  fmt::format("{}set logscale x\nset xlabel '{}'\nset ylabel 'nodes'\n"
                               "set key top left\nset title 'Graph size against the threshold'\n"
-                              "plot {} skip 1 using 2:5 with linespoints title 'graph nodes', "
-                              "'' skip 1 using 2:6 with linespoints title 'largest strongly connected component', "
-                              "'' skip 1 using 2:7 with linespoints title 'nodes after pruning per tag'",
-                              kCsvSettings, out.csv("threshold.csv")));
+                              "plot {} skip 1 using 3:6 with linespoints title 'graph nodes', "
+                              "'' skip 1 using 3:7 with linespoints title 'largest strongly connected component', "
+                              "'' skip 1 using 3:8 with linespoints title 'nodes after pruning per tag'",
+                              kCsvSettings, kThresholdAxis, out.csv("threshold.csv")));
 }
 
 Status evaluate_consistency(const GraphFile& file, const GraphRebuild& rebuild, std::span<const double> quantiles,
@@ -106,10 +109,11 @@ Status evaluate_consistency(const GraphFile& file, const GraphRebuild& rebuild, 
   const ConsistencySum captured = database_consistency(file.database, learn_travel_axes(file.database));
   auto rows = sweep_consistency(file.database, rebuild.features, file.candidates, rebuild.settings, quantiles, more);
   if (!rows) return rows.error();
-  std::string csv = "quantile,threshold,transitions,frames,rms_deg,database_frames,database_rms_deg\n";
+  std::string csv = "quantile,threshold,rms_cm,transitions,frames,rms_deg,database_frames,database_rms_deg\n";
   for (const ConsistencyRow& r : *rows) {
-    csv += fmt::format("{},{},{},{},{},{},{}\n", num(r.quantile), num(r.threshold), r.transitions,
-                       r.transition.frames, num(r.transition.rms_deg()), captured.frames, num(captured.rms_deg()));
+    csv += fmt::format("{},{},{},{},{},{},{},{}\n", num(r.quantile), num(r.threshold),
+                       num(rms_cm_of_distance(r.threshold, rebuild.features)), r.transitions, r.transition.frames,
+                       num(r.transition.rms_deg()), captured.frames, num(captured.rms_deg()));
   }
   if (auto s = out.write_csv("consistency.csv", csv); !s) return s;
   // No frame around any transition travels (a library that stands): no curve to draw.
@@ -127,11 +131,11 @@ Status evaluate_consistency(const GraphFile& file, const GraphRebuild& rebuild, 
           ? fmt::format(", {} with lines dashtype 2 title 'captured data'", num(captured.rms_deg()))
           : "";
   return out.plot("consistency.png",
-                  fmt::format("{}set logscale x\nset xlabel 'transition threshold D (log scale)'\n"
+                  fmt::format("{}set logscale x\nset xlabel '{}'\n"
                               "set ylabel 'RMS angle, facing vs. travel (degrees)'\nset yrange [0:*]\n"
                               "set key bottom right\nset title 'Self-consistency around transitions'\n"
-                              "plot {} skip 1 using 2:5 with linespoints title 'around transitions'{}",
-                              kCsvSettings, out.csv("consistency.csv"), captured_line));
+                              "plot {} skip 1 using 3:6 with linespoints title 'around transitions'{}",
+                              kCsvSettings, kThresholdAxis, out.csv("consistency.csv"), captured_line));
 }
 
 Status evaluate_walks(const GraphFile& file, const EvalOptions& o, Outputs& out) {
@@ -231,12 +235,13 @@ Status evaluate_foot_slide(const GraphFile& file, const GraphRebuild& rebuild, s
                          fmt::format(fmt::runtime(pick), 17), i + 1, shape);
   }
   return out.plot("footslide.png",
-                  fmt::format("{}set logscale x\nset xlabel 'transition threshold, RMS point distance (cm, log scale)'\n"
+                  fmt::format("{}set logscale x\nset xlabel '{}'\n"
                               "set ylabel 'foot slide in contact, x the capture on the frames played'\n"
                               "set yrange [0:*]\n"
-                              "set key top left\nset title 'Foot slide of path synthesis against the threshold'\n"
+                              "set key outside right top\n"
+                              "set title 'Foot slide of path synthesis against the threshold'\n"
                               "set arrow from graph 0, first 1 to graph 1, first 1 nohead dt 3\nplot {}",
-                              kCsvSettings, plots));
+                              kCsvSettings, kThresholdAxis, plots));
 }
 
 int run_eval(const EvalOptions& o) {

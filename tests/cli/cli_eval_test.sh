@@ -35,7 +35,7 @@ def rows(name, header):
     assert r[0] == header, (name, r[0])
     return [dict(zip(header, row)) for row in r[1:]]
 
-t = rows("eval/threshold.csv", ["quantile", "threshold", "transitions", "bridges", "nodes",
+t = rows("eval/threshold.csv", ["quantile", "threshold", "rms_cm", "transitions", "bridges", "nodes",
      "largest_component_nodes", "kept_nodes", "kept_transitions", "kept_clip_frames"])
 assert len(t) == 12
 for a, b in zip(t, t[1:]):
@@ -50,8 +50,15 @@ g = json.load(open(f"{work}/inspect.json"))["graph_after"]
 at = rows("at-build/threshold.csv", list(t[0].keys()))[0]
 assert int(at["kept_nodes"]) == g["nodes"] and int(at["kept_transitions"]) == g["transitions"], (at, g)
 
-c = rows("eval/consistency.csv", ["quantile", "threshold", "transitions", "frames", "rms_deg",
+c = rows("eval/consistency.csv", ["quantile", "threshold", "rms_cm", "transitions", "frames", "rms_deg",
      "database_frames", "database_rms_deg"])
+# Every sweep has the threshold in RMS cm too (the plots' axis), as the build reports it: the
+# same D to cm everywhere, rising with D.
+scale = {float(r["threshold"]): float(r["rms_cm"]) for r in c}
+per_d = float(c[0]["rms_cm"]) ** 2 / float(c[0]["threshold"])  # cm^2 per unit of D
+for r in t + c:
+    assert float(r["rms_cm"]) == scale[float(r["threshold"])], r
+    assert abs(float(r["rms_cm"]) ** 2 / float(r["threshold"]) - per_d) < 1e-4 * per_d, r
 assert len(c) == 12
 for r in c:
     assert 0 <= float(r["database_rms_deg"]) <= 180 and int(r["database_frames"]) > 0, r
