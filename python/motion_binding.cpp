@@ -154,6 +154,64 @@ PyMotion load_clip(const std::filesystem::path& file, const std::optional<std::f
 
 }  // namespace
 
+// Motion.with_frames: a new motion on m's skeleton from numpy arrays.
+PyMotion motion_with_frames(const PyMotion& m, const py::array_t<double>& rotations,
+                            const std::optional<py::array_t<double>>& translations, std::optional<double> fps,
+                            const std::optional<std::string>& name) {
+  const int joints = m.skeleton.joint_count(), slots = m.motion.translated_count;
+  auto shape_of = [](const py::array& a) {
+    std::string text = "(";
+    for (py::ssize_t i = 0; i < a.ndim(); ++i) text += (i ? ", " : "") + std::to_string(a.shape(i));
+    return text + (a.ndim() == 1 ? ",)" : ")");
+  };
+  if (rotations.ndim() != 3 || rotations.shape(1) != joints || rotations.shape(2) != 4 || rotations.shape(0) < 1) {
+    throw py::value_error(fmt::format("with_frames(): rotations must be frames x {} joints x 4, not {}", joints,
+                                      shape_of(rotations)));
+  }
+  const int frames = static_cast<int>(rotations.shape(0));
+  if (!translations && frames != m.motion.frame_count) {
+    throw py::value_error(fmt::format("with_frames(): {} frames of rotations need their translations (this motion has "
+                                      "{} frames)", frames, m.motion.frame_count));
+  }
+  if (translations && (translations->ndim() != 3 || translations->shape(0) != frames ||
+                       translations->shape(1) != slots || translations->shape(2) != 3)) {
+    throw py::value_error(fmt::format("with_frames(): translations must be {} frames x {} translated joints x 3, "
+                                      "not {}", frames, slots, shape_of(*translations)));
+  }
+  const double rate = fps.value_or(m.motion.fps);
+  if (!(rate > 0.0) || !std::isfinite(rate)) {
+    throw py::value_error(fmt::format("with_frames(): fps must be a positive number, not {}", rate));
+  }
+  Motion motion(m.skeleton, frames, rate);
+  const double* q = rotations.data();
+  for (int f = 0; f < frames; ++f) {
+    for (int j = 0; j < joints; ++j, q += 4) {
+      const Quat rotation(q[3], q[0], q[1], q[2]);  // w, x, y, z
+      const double norm = rotation.norm();
+      if (!std::isfinite(norm) || !(norm > 1e-12)) {
+        throw py::value_error(fmt::format("with_frames(): rotations[{}, {}] is not a rotation ({}, {}, {}, {})", f, j,
+                                          q[0], q[1], q[2], q[3]));
+      }
+      motion.rotations(f)[static_cast<size_t>(j)] = rotation.normalized();
+    }
+  }
+  if (translations) {
+    const double* t = translations->data();
+    for (int f = 0; f < frames; ++f) {
+      for (int i = 0; i < slots; ++i, t += 3) {
+        if (!std::isfinite(t[0]) || !std::isfinite(t[1]) || !std::isfinite(t[2])) {
+          throw py::value_error(fmt::format("with_frames(): translations[{}, {}] is not finite", f, i));
+        }
+        motion.translations(f)[static_cast<size_t>(i)] = Vec3(t[0], t[1], t[2]);
+      }
+    }
+  } else {
+    motion.local_translations_m.assign(m.motion.local_translations_m.begin(), m.motion.local_translations_m.end());
+  }
+  // A clip of its own: no graph, report or contacts (not known for new frames).
+  return PyMotion(name.value_or(m.name), m.skeleton, std::move(motion));
+}
+
 void bind_motion(py::module_& m) {
   py::class_<PyMotion>(m, "Motion",
                        "Motion on a skeleton: a clip read from a file (load_clip) or motion synthesized on a graph "
@@ -178,6 +236,41 @@ void bind_motion(py::module_& m) {
           },
           "Local rotation of every joint relative to its parent, unit quaternions (x, y, z, w): float64 "
           "array frames x joints x 4.")
+      .def_property_readonly(
+          "translations",
+          [](py::object self) {
+            const auto& motion = self.cast<const PyMotion&>();
+            const py::ssize_t frames = motion.motion.frame_count, slots = motion.motion.translated_count;
+            constexpr py::ssize_t d = sizeof(double);
+            const auto& t = motion.motion.local_translations_m;
+            py::array_t<double> view({frames, slots, py::ssize_t{3}}, {slots * 3 * d, 3 * d, d},
+                                     t.empty() ? nullptr : t.front().data(), self);
+            py::detail::array_proxy(view.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+            return view;
+          },
+          "Local translation (metres) of each joint whose translation is animated (translated_joints: the "
+          "root, and any other the file animates), relative to its parent: float64 array frames x "
+          "len(translated_joints) x 3. For a root with no parent, its world position.")
+      .def_property_readonly(
+          "translated_joints",
+          [](const PyMotion& self) {
+            const auto joints = self.skeleton.translated_joints();
+            return std::vector<int>(joints.begin(), joints.end());
+          },
+          "The joints whose translation is animated (translations' columns), the root first.")
+      .def(
+          "with_frames",
+          [](const PyMotion& self, const py::array_t<double, py::array::c_style | py::array::forcecast>& rotations,
+             const std::optional<py::array_t<double, py::array::c_style | py::array::forcecast>>& translations,
+             std::optional<double> fps, const std::optional<std::string>& name) {
+            return motion_with_frames(self, rotations, translations, fps, name);
+          },
+          py::arg("rotations"), py::arg("translations") = py::none(), py::arg("fps") = py::none(),
+          py::arg("name") = py::none(),
+          "A new motion on this one's skeleton from arrays, as its own rotations and translations give them: "
+          "rotations frames x joints x 4 (x, y, z, w; normalized), translations frames x len(translated_joints) x "
+          "3 in metres (None: this motion's, when the frame counts agree), at fps (None: this one's). Edit a clip "
+          "in numpy and save() it. Raises ValueError for a wrong shape, a value not finite or a zero quaternion.")
       .def_property_readonly("joint_names",
                              [](const PyMotion& self) {
                                py::list names;

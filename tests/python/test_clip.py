@@ -326,3 +326,46 @@ def test_names_that_are_not_utf8(data, tmp_path):
         "utf-8", "replace")
     clip.save(folder + b"/out\xe9.bvh")
     assert os.path.exists(folder + b"/out\xe9.bvh")
+
+
+def test_a_motion_made_from_arrays(data, tmp_path):
+    """with_frames: a new motion on a clip's skeleton from its arrays as rotations and translations
+    give them; the same arrays give the same positions, a turn of the root turns every joint, and
+    what it makes saves and reads back as any clip."""
+    clip = mg.load_clip(data / "cmu/16/16_15.amc", fps=30)
+    assert clip.translated_joints == [0] and clip.translations.shape == (len(clip), 1, 3)
+    same = clip.with_frames(clip.rotations, clip.translations)
+    assert np.max(np.abs(same.positions - clip.positions)) < 1e-12 and same.name == clip.name
+    # A quarter turn about the vertical, of the root's rotation and its place.
+    c, s = np.cos(np.pi / 4), np.sin(np.pi / 4)   # half angle
+    turn = np.array([0.0, s, 0.0, c])              # (x, y, z, w)
+
+    def times(a, b):  # Hamilton products of (x, y, z, w) quaternions
+        ax, ay, az, aw = np.moveaxis(a, -1, 0)
+        bx, by, bz, bw = np.moveaxis(b, -1, 0)
+        return np.stack([aw * bx + ax * bw + ay * bz - az * by, aw * by - ax * bz + ay * bw + az * bx,
+                         aw * bz + ax * by - ay * bx + az * bw, aw * bw - ax * bx - ay * by - az * bz], axis=-1)
+    rotations = np.array(clip.rotations)
+    rotations[:, 0] = times(turn, rotations[:, 0])
+    quarter = np.array([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]])  # +90 degrees about y
+    turned = clip.with_frames(rotations, clip.translations @ quarter.T, name="turned")
+    assert turned.name == "turned" and turned.contacts is None
+    assert np.max(np.abs(turned.positions - clip.positions @ quarter.T)) < 1e-9
+    # Every other frame at half the rate, written and read back.
+    half = clip.with_frames(clip.rotations[::2], clip.translations[::2], fps=15)
+    assert len(half) == (len(clip) + 1) // 2 and half.fps == 15
+    half.save(tmp_path / "half.bvh")
+    back = mg.load_clip(tmp_path / "half.bvh", keep_rest_frames=True)
+    assert len(back) == len(half) and abs(back.fps - 15) < 1e-6
+    assert np.max(np.abs(back.positions - half.positions)) < 1e-5
+    joints = clip.rotations.shape[1]
+    with pytest.raises(ValueError, match=rf"rotations must be frames x {joints} joints x 4, not \(10, {joints}, 3\)"):
+        clip.with_frames(np.zeros((10, joints, 3)))
+    with pytest.raises(ValueError, match="10 frames of rotations need their translations"):
+        clip.with_frames(clip.rotations[:10])
+    with pytest.raises(ValueError, match=r"rotations\[0, 0\] is not a rotation"):
+        clip.with_frames(np.zeros_like(clip.rotations))
+    bad = np.array(clip.translations)
+    bad[3, 0, 1] = np.nan
+    with pytest.raises(ValueError, match=r"translations\[3, 0\] is not finite"):
+        clip.with_frames(clip.rotations, bad)
