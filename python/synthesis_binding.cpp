@@ -2,6 +2,7 @@
 // in memory, through the same library calls (evaluation/synthesis_run.h, synthesis/controller.h)
 // and with the same options as keywords.
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <memory>
 #include <mutex>
@@ -67,6 +68,7 @@ PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<d
               const std::optional<std::filesystem::path>& file, const py::kwargs& options) {
   PathSynthesisSettings settings;
   SynthesisRunSettings run = run_settings(graph);
+  py::object progress = py::none();
   apply_options(options,
                 {{"horizon", set(settings.horizon_s)},
                  {"commit", set(settings.commit_s)},
@@ -86,7 +88,8 @@ PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<d
                  {"path_edit", set(settings.edit_path)},
                  {"edit_max_turn", set(settings.path_edit.max_turn_deg_per_m)},
                  {"edit_round_corners", set(settings.path_edit.round_corners_m)},
-                 {"cleanup", set(run.cleanup)}},
+                 {"cleanup", set(run.cleanup)},
+                 {"progress", [&progress](py::handle value) { progress = py::reinterpret_borrow<py::object>(value); }}},
                 "path");
   check(settings.validate());
   if (points.has_value() + shape.has_value() + file.has_value() != 1) {
@@ -100,9 +103,32 @@ PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<d
   for (const auto& [x, z] : points.value_or(std::vector<std::array<double, 2>>{})) source.points.emplace_back(x, z);
   std::stop_source stop;  // Ctrl-C (run_stoppable)
   settings.stop = stop.get_token();
+  // progress: every 2 s, how far along the path the searches have come; it runs with the GIL,
+  // and its first exception stops the search and is raised (as build's progress).
+  std::optional<py::error_already_set> callback_error;
+  const auto begin = std::chrono::steady_clock::now();
+  auto last = begin;
+  double length_m = 0.0;
+  if (!progress.is_none()) {
+    settings.searched = [&](double arc_m, int attempt) {
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last < std::chrono::seconds(2)) return;
+      last = now;
+      py::gil_scoped_acquire acquire;
+      if (callback_error) return;
+      try {
+        progress(fmt::format("path: {:.1f} m of {:.1f} m along it (search {} of the whole path) in {:.1f} s", arc_m,
+                             length_m, attempt, std::chrono::duration<double>(now - begin).count()));
+      } catch (py::error_already_set& e) {
+        callback_error = std::move(e);
+        stop.request_stop();
+      }
+    };
+  }
   Result<SynthesizedMotion> made = Error{};
   run_stoppable(stop, [&] {
     auto floor_path = make_floor_path(source);
+    if (floor_path) length_m = floor_path->length_m();
     if (!floor_path) {
       made = floor_path.error();
     } else if (auto known = check_segment_tags(graph.loaded->context(), *floor_path, source.file); !known) {
@@ -111,6 +137,7 @@ PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<d
       made = run_path_synthesis(graph.loaded->context(), *floor_path, settings, run);
     }
   });
+  if (callback_error) throw std::move(*callback_error);
   if (made) {
     // What the motion falls short of, as the CLI's warnings (the report's "shortfalls").
     for (const std::string& shortfall : made->shortfalls) warn(graph.name + ": " + shortfall);
@@ -311,7 +338,8 @@ void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
            "beam, min_speed, transition_penalty, bridge_penalty, behind_penalty, progress_retries, retry_deviation (m), "
            "retry_horizon (s), retry_tag_match (0 to 1), "
            "start_node, path_edit (bend the motion onto the path, default True), edit_max_turn (degrees per "
-           "metre it may add), edit_round_corners (m), cleanup.")
+           "metre it may add), edit_round_corners (m), cleanup, progress (called every 2 s of searching with how far "
+           "along the path it has come; an exception it raises stops the search and is raised).")
       .def(
           "controller",
           [](const PyGraph& g, double heading_deg, const std::optional<std::string>& tag, std::array<double, 2> at,

@@ -1,6 +1,7 @@
 """Graph.walk(), Graph.path() and the controller: the same motion and reports as the CLI's
 walk, path and steer on the subject-16 graph."""
 import json
+import re
 import warnings
 
 import numpy as np
@@ -300,6 +301,26 @@ def test_save_says_what_it_cannot_do(graph, tmp_path):
         motion.save(tmp_path / "m3.glb", root_motion=True, root_motion_smoothing=0.25, figure=False)
     with pytest.raises(ValueError, match="the motion has no frames"):
         graph.controller().motion.save(tmp_path / "empty.bvh")
+
+
+def test_path_progress_every_two_seconds_and_its_exception_stops_the_search(graph):
+    """progress= hears how far along a long path the searches have come, every 2 s, further each
+    time; an exception it raises stops the search and is raised (as build's progress)."""
+    lines = []
+
+    def heard(line):
+        lines.append(line)
+        if len(lines) == 2:
+            raise RuntimeError("enough")
+    with pytest.raises(RuntimeError, match="enough"):
+        graph.path(shape="line:100000", progress=heard)
+    assert len(lines) == 2
+    got = [re.fullmatch(r"path: ([\d.]+) m of 100000\.0 m along it \(search 1 of the whole path\) in ([\d.]+) s", l)
+           for l in lines]
+    assert all(got), lines
+    assert float(got[0][1]) < float(got[1][1]) and 2 <= float(got[0][2]) < float(got[1][2]), lines
+    assert graph.path(shape="line:5", progress=lines.append).report["reached_end"]
+    assert len(lines) == 2  # done within 2 s: not a word
 
 
 def test_a_path_is_one_of_points_shape_and_file(graph, tmp_path):

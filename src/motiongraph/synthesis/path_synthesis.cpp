@@ -165,7 +165,8 @@ int end_frame(const FloorPath& path, std::span<const Vec2> roots, std::span<cons
 // One search of the whole path with these settings, its motion assembled (and edited); `masks`:
 // asked_masks().
 Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, const FloorPath& path,
-                                            const std::vector<TagMask>& masks, const PathSynthesisSettings& settings) {
+                                            const std::vector<TagMask>& masks, const PathSynthesisSettings& settings,
+                                            int attempt) {
   const MotionGraph& graph = *context.graph;
   const double fps = context.db->fps;
   if (settings.start_node >= graph.node_count()) {
@@ -342,6 +343,7 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
     cost.start_search(state.arc_m);
     current = horizon_search(graph, context.tracks, state, cost, search, hint);
     tally(current);
+    if (settings.searched) settings.searched(std::min(state.arc_m, path.length_m()), attempt);
   }
 
   // The motion (edited), cut at the frame that reaches the path's end.
@@ -440,7 +442,7 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
   if (auto status = settings.validate(); !status) return status.error();
   auto masks = asked_masks(context, path);
   if (!masks) return masks.error();
-  auto best = synthesize_once(context, path, *masks, settings);
+  auto best = synthesize_once(context, path, *masks, settings, 1);
   if (!best) return best.error();
   int attempts = 1, searches = best->searches, exhausted = best->budget_exhausted;
   long long expansions = best->expansions;
@@ -534,7 +536,7 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
     harder.behind_penalty_m = settings.behind_penalty_m * ladder[retry].factor;
     harder.tag_penalty_m2 = settings.tag_penalty_m2 * (for_tags ? tag_factor : 1.0);
     harder.horizon_s = retry_horizon_s;
-    auto next = synthesize_once(context, path, *masks, harder);
+    auto next = synthesize_once(context, path, *masks, harder, attempts + 1);
     if (!next) return next.error();
     ++attempts;
     searches += next->searches;

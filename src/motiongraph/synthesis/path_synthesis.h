@@ -44,6 +44,7 @@
 // deviation of both, the walk as the graph played it and the motion edited.
 #pragma once
 
+#include <functional>
 #include <stop_token>
 
 #include "motiongraph/synthesis/floor_path.h"
@@ -129,6 +130,9 @@ struct PathSynthesisSettings {
   // Asks the synthesis to stop (core/stop.h): before each search, synthesize_path fails with
   // stopped_error() once it does.
   std::stop_token stop;
+  // Told after each search how far along the path the walk has come (metres) and which search
+  // of the whole path it is (1, then each retry), for progress (Python's path(progress=)).
+  std::function<void(double arc_m, int attempt)> searched;
 
   Status validate() const;
 };
