@@ -1,6 +1,7 @@
 #include "motiongraph/motion/bvh_import.h"
 
 #include <numbers>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -87,6 +88,14 @@ TEST(BvhImport, AFrameTimeNoCaptureHasIsRefusedUnlessTheRateIsGiven) {
             "t.bvh:18: Frame Time 1e-09 s is 1e+09 frames a second, no capture's rate: give the rate with --input-fps");
   EXPECT_TRUE(clip_from_bvh(with_time(1, "8.3333"), settings));  // a pose
   EXPECT_TRUE(clip_from_bvh(with_time(3, "1"), settings));        // 1 fps: slow, but a rate
+  // Rates as their frame times are written rounded: whole numbers, and numbers of hundredths
+  // within 1e-6 (7.5 fps as 9 digits, NTSC's 29.97 as 7), not NTSC film's 23.976.
+  for (const auto& [time, fps] : {std::pair{"0.0083333", 120.0}, std::pair{"0.133333333", 7.5},
+                                  std::pair{"0.0333667", 29.97}, std::pair{"0.0417083", 1.0 / 0.0417083}}) {
+    auto clip = clip_from_bvh(with_time(3, time), settings);
+    ASSERT_TRUE(clip) << time;
+    EXPECT_EQ(clip->motion.fps, fps) << time;
+  }
   settings.fps_override = 120.0;
   auto given = clip_from_bvh(with_time(3, "8.3333"), settings);
   ASSERT_TRUE(given) << given.error().to_string();

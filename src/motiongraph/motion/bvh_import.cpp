@@ -26,10 +26,14 @@ Status BvhImportSettings::validate() const {
 
 double fps_from_frame_time(double frame_time_s) {
   // Frame times are written rounded (".0083333"); a rate within 1e-4 of a whole number is
-  // that number (120.0005 -> 120), while 29.97 stays 29.97.
+  // that number (120.0005 -> 120), while 29.97 stays 29.97; and one within 1e-6 of a number of
+  // hundredths is that number (0.133333333, 7.5 fps written to 9 digits, read back as
+  // 7.50000001875 fps; ".0333667" as 29.96999 fps), while 23.976 stays 23.976.
   const double fps = 1.0 / frame_time_s;
   const double whole = std::round(fps);
-  return whole > 0.0 && std::abs(fps - whole) <= 1e-4 * fps ? whole : fps;
+  if (whole > 0.0 && std::abs(fps - whole) <= 1e-4 * fps) return whole;
+  const double hundredths = std::round(fps * 100.0) / 100.0;
+  return hundredths > 0.0 && std::abs(fps - hundredths) <= 1e-6 * fps ? hundredths : fps;
 }
 
 Result<Clip> clip_from_bvh(const BvhDocument& bvh, const BvhImportSettings& settings) {
