@@ -2,7 +2,6 @@
 // in memory, through the same library calls (evaluation/synthesis_run.h, synthesis/controller.h)
 // and with the same options as keywords.
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <memory>
 #include <mutex>
@@ -15,6 +14,7 @@
 #include <pybind11/stl.h>
 
 #include "binding.h"
+#include "motiongraph/core/progress.h"
 #include "motiongraph/core/quantile.h"
 #include "motiongraph/core/transition_rate.h"
 #include "motiongraph/evaluation/foot_slide_report.h"
@@ -106,19 +106,16 @@ PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<d
   // progress: every 2 s, how far along the path the searches have come; it runs with the GIL,
   // and its first exception stops the search and is raised (as build's progress).
   std::optional<py::error_already_set> callback_error;
-  const auto begin = std::chrono::steady_clock::now();
-  auto last = begin;
+  ProgressLineClock clock;
   double length_m = 0.0;
   if (!progress.is_none()) {
     settings.searched = [&](double arc_m, int attempt) {
-      const auto now = std::chrono::steady_clock::now();
-      if (now - last < std::chrono::seconds(2)) return;
-      last = now;
+      if (!clock.due()) return;
       py::gil_scoped_acquire acquire;
       if (callback_error) return;
       try {
         progress(fmt::format("path: {:.1f} m of {:.1f} m along it (search {} of the whole path) in {:.1f} s", arc_m,
-                             length_m, attempt, std::chrono::duration<double>(now - begin).count()));
+                             length_m, attempt, clock.elapsed_s()));
       } catch (py::error_already_set& e) {
         callback_error = std::move(e);
         stop.request_stop();

@@ -32,6 +32,26 @@ std::string progress_text(std::string_view label, std::uint64_t done, std::uint6
 using ProgressLines = std::function<void(const std::string&)>;
 constexpr double kProgressLineSeconds = 2.0;
 
+// The clock of a stage made of steps that tells its caller how far it got (a log's lines, as a
+// bar's `lines`): due() is true at most once every kProgressLineSeconds, elapsed_s() counts from
+// when it was made. One thread's: the caller's steps come one after another.
+class ProgressLineClock {
+ public:
+  bool due() {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_ < std::chrono::duration<double>(kProgressLineSeconds)) return false;
+    last_ = now;
+    return true;
+  }
+  double elapsed_s() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point last_ = start_;
+};
+
 class ProgressBar {
  public:
   ProgressBar(std::string label, std::uint64_t total, bool quiet = false, ProgressLines lines = {});

@@ -11,6 +11,7 @@
 
 #include "motiongraph/core/counted.h"
 #include "motiongraph/core/json_text.h"
+#include "motiongraph/core/progress.h"
 #include "motiongraph/core/stop.h"
 #include "motiongraph/core/transition_rate.h"
 #include "motiongraph/database/database_loader.h"
@@ -58,25 +59,6 @@ std::string short_tags_text(const ThresholdChoice& choice, const MotionDatabase&
 }
 
 // The log's two voices, silent where the caller gave none.
-// The log's progress lines of a stage made of steps (thresholds tried): at most one every 2 s,
-// as the distance stage's, with the seconds since the stage began.
-class ProgressEveryTwoSeconds {
- public:
-  explicit ProgressEveryTwoSeconds(const BuildLog& log) : log_(&log) {}
-  template <class Line>
-  void say(const Line& line) {
-    const auto now = std::chrono::steady_clock::now();
-    if (now - last_ < std::chrono::seconds(2)) return;
-    last_ = now;
-    log_->progress(line(std::chrono::duration<double>(now - begin_).count()));
-  }
-
- private:
-  const BuildLog* log_;
-  std::chrono::steady_clock::time_point begin_ = std::chrono::steady_clock::now();
-  std::chrono::steady_clock::time_point last_ = begin_;
-};
-
 struct Say {
   const BuildLog& log;
   void info(const std::string& line) const {
@@ -249,12 +231,12 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
   ThresholdChoiceSettings choice_settings = settings.choice;
   choice_settings.stop = stop;
   if (say.log.progress) {
-    choice_settings.tried = [lines = ProgressEveryTwoSeconds(say.log)](const CoveragePoint& point, int tried) mutable {
-      lines.say([&](double seconds) {
-        return fmt::format("threshold choice: {} tried in {:.1f} s (RMS {:.2f} cm keeps {:.0f} % of the worst type's "
-                           "frames)",
-                           counted(tried, "threshold"), seconds, point.rms_cm, 100.0 * point.coverage);
-      });
+    choice_settings.tried = [&say, clock = ProgressLineClock()](const CoveragePoint& point, int tried) mutable {
+      if (!clock.due()) return;
+      say.log.progress(fmt::format("threshold choice: {} tried in {:.1f} s (RMS {:.2f} cm keeps {:.0f} % of the worst "
+                                   "type's frames)",
+                                   counted(tried, "threshold"), clock.elapsed_s(), point.rms_cm,
+                                   100.0 * point.coverage));
     };
   }
   auto choice = choose_threshold(db, features, candidates, graph_settings, choice_settings, more);
@@ -308,13 +290,12 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
   PathCheckSettings check_settings = settings.path_check_settings;
   check_settings.synthesis.stop = stop;
   if (say.log.progress) {
-    check_settings.tried = [lines = ProgressEveryTwoSeconds(say.log)](const PathCheckPoint& point, int tried) mutable {
-      lines.say([&](double seconds) {
-        return fmt::format("path check: {} tried in {:.1f} s (at RMS {:.2f} cm the probe {})",
-                           counted(tried, "threshold"), seconds, point.rms_cm,
-                           point.graph ? fmt::format("followed {:.3f} m off", point.mean_deviation_m)
-                                       : std::string("has no graph"));
-      });
+    check_settings.tried = [&say, clock = ProgressLineClock()](const PathCheckPoint& point, int tried) mutable {
+      if (!clock.due()) return;
+      say.log.progress(fmt::format("path check: {} tried in {:.1f} s (at RMS {:.2f} cm the probe {})",
+                                   counted(tried, "threshold"), clock.elapsed_s(), point.rms_cm,
+                                   point.graph ? fmt::format("followed {:.3f} m off", point.mean_deviation_m)
+                                               : std::string("has no graph")));
     };
   }
   auto check = check_path_following(db, features, candidates, graph_settings, choice->threshold,

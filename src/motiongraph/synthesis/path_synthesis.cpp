@@ -355,23 +355,37 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
     return roots;
   };
   const std::vector<Vec2> graph_roots = roots_of(*motion);
-  auto mean_distance = [&](std::span<const Vec2> roots) {
-    double sum = 0.0;
-    for (const Vec2& p : roots) sum += path.distance_to(p);
-    return roots.empty() ? 0.0 : sum / static_cast<double>(roots.size());
+  // Each root's distance from the path, found once: for the edit's undoing and the deviations.
+  auto distances_of = [&](std::span<const Vec2> roots) {
+    std::vector<double> distances;
+    distances.reserve(roots.size());
+    for (const Vec2& p : roots) distances.push_back(path.distance_to(p));
+    return distances;
   };
+  auto mean_of = [](std::span<const double> values) {
+    double sum = 0.0;
+    for (double v : values) sum += v;
+    return values.empty() ? 0.0 : sum / static_cast<double>(values.size());
+  };
+  const std::vector<double> graph_distances = distances_of(graph_roots);
+  std::vector<Vec2> edited_roots;
+  std::vector<double> edited_distances;
   if (settings.edit_path) {
     Motion as_played = *motion;
     auto edited = edit_onto_path(*motion, path, settings.path_edit);
     if (!edited) return edited.error();
     result.edit = *edited;
-    if (result.edit.edited && mean_distance(roots_of(*motion)) > mean_distance(graph_roots)) {
-      *motion = std::move(as_played);
-      result.edit = PathEditStats{};
-      result.edit_undone = true;
+    if (result.edit.edited) {
+      edited_roots = roots_of(*motion);
+      edited_distances = distances_of(edited_roots);
+      if (mean_of(edited_distances) > mean_of(graph_distances)) {
+        *motion = std::move(as_played);
+        result.edit = PathEditStats{};
+        result.edit_undone = true;
+      }
     }
   }
-  result.roots = result.edit.edited ? roots_of(*motion) : graph_roots;
+  result.roots = result.edit.edited ? std::move(edited_roots) : graph_roots;
   // Up to the frame that reaches the end, when one does; all of it when the walk gave up short
   // of the end (what it did is shown, however little it got along).
   std::vector<double> arcs = path.followed_arcs(result.roots);
@@ -398,18 +412,13 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
   result.frame_tags.resize(static_cast<size_t>(end));
   // The roots' mean and largest distance from the path: as the graph played the walk, then
   // (when the edit moved them) edited.
-  auto deviation = [&](std::span<const Vec2> roots) {
-    double sum = 0.0, most = 0.0;
-    for (int f = 0; f < end; ++f) {
-      const double d = path.distance_to(roots[f]);
-      sum += d;
-      most = std::max(most, d);
-    }
-    return std::pair{end > 0 ? sum / end : 0.0, most};
+  auto deviation = [&](std::span<const double> distances) {
+    const auto kept = distances.first(static_cast<size_t>(end));
+    return std::pair{mean_of(kept), kept.empty() ? 0.0 : *std::max_element(kept.begin(), kept.end())};
   };
-  std::tie(result.graph_mean_deviation_m, result.graph_max_deviation_m) = deviation(graph_roots);
+  std::tie(result.graph_mean_deviation_m, result.graph_max_deviation_m) = deviation(graph_distances);
   if (result.edit.edited) {
-    std::tie(result.mean_deviation_m, result.max_deviation_m) = deviation(result.roots);
+    std::tie(result.mean_deviation_m, result.max_deviation_m) = deviation(edited_distances);
   } else {
     result.mean_deviation_m = result.graph_mean_deviation_m;
     result.max_deviation_m = result.graph_max_deviation_m;
