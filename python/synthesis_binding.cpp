@@ -183,13 +183,13 @@ class PyController {
     std::string warning;
     cleanup_ = make_cleanup(context(), run, warning);
     if (!warning.empty()) warn(graph.name + ": " + warning);
-    controller_ = take(Controller::create(context(), settings, input(heading_deg, tag), Vec2(at[0], at[1])));
+    controller_ = take(Controller::create(context(), settings, input(heading_deg, tag, false), Vec2(at[0], at[1])));
   }
 
   // Threads may share a controller: its steps take turns (the lock taken without the GIL, which a
   // step gives up while it searches).
-  PyMotion step(double heading_deg, const std::optional<std::string>& tag) {
-    const ControlInput in = input(heading_deg, tag);
+  PyMotion step(double heading_deg, const std::optional<std::string>& tag, bool rest) {
+    const ControlInput in = input(heading_deg, tag, rest);
     std::unique_lock<std::mutex> lock(mutex_, std::defer_lock);
     int first = 0;
     std::vector<ContactMask> contacts;
@@ -204,8 +204,11 @@ class PyController {
       decision_seconds_.push_back(decision.search_seconds);
       exhausted_ += decision.budget_exhausted ? 1 : 0;
       contacts = context().edges_contacts(decision.edges);
+      const std::vector<ContactMask> resting = context().frames_contacts(decision.rest_frames);
+      contacts.insert(contacts.end(), resting.begin(), resting.end());
       if (cleanup_) cleaned = cleanup_->clean(motion_, first, contacts);
       played_.edges.insert(played_.edges.end(), decision.edges.begin(), decision.edges.end());
+      played_.rest_frames.insert(played_.rest_frames.end(), decision.rest_frames.begin(), decision.rest_frames.end());
       if (cleaned) {
         contacts_.insert(contacts_.end(), contacts.begin(), contacts.end());
         decided = motion_.slice(first, motion_.frame_count - first);
@@ -214,6 +217,14 @@ class PyController {
     lock.unlock();
     check(cleaned);
     return frames(std::move(decided), std::move(contacts));
+  }
+
+  // The second from which the character stands still, once it has come to rest; None before.
+  std::optional<double> rest_s() const {
+    py::gil_scoped_release release;
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (controller_->rest_frame() < 0) return std::nullopt;
+    return static_cast<double>(controller_->rest_frame()) / context().db->fps;
   }
 
   std::string repr() const {
@@ -273,20 +284,47 @@ class PyController {
             {"budget_exhausted_decisions", exhausted_},
             {"heading_edit", heading_edit_report(settings_.heading_edit, controller_->heading_edit_stats())},
             {"cleanup", cleanup_report(context(), run_, cleanup_)},
-            {"foot_slide", foot_slide_report(context(), played_, motion_)}};
+            {"foot_slide", foot_slide_report(context(), played_, motion_)},
+            {"rest", rest_report()}};
   }
 
-  // The first time a motion type the graph plays in no frame is asked for, a warning says so.
-  ControlInput input(double heading_deg, const std::optional<std::string>& tag) {
+  // (the lock held) Where the character came to rest: when, and the clip whose end it stands at.
+  nlohmann::json rest_report() const {
+    const RestEnding* ending = controller_->rest_ending();
+    if (ending == nullptr) return nullptr;
+    const MotionDatabase& db = *context().db;
+    const DatabaseClip& clip = db.clips[static_cast<size_t>(db.clip_of(ending->last_frame))];
+    return {{"at_s", static_cast<double>(controller_->rest_frame()) / db.fps},
+            {"clip", clip.name},
+            {"clip_frame", ending->rest_frame - clip.first_frame},
+            {"held_frame", ending->last_frame - clip.first_frame}};
+  }
+
+  // The first time a motion type the graph plays in no frame is asked for, a warning says so; stop
+  // the graph can hardly play is rest (stop_means_rest), and rest a graph cannot come to is warned
+  // of.
+  ControlInput input(double heading_deg, const std::optional<std::string>& tag, bool rest) {
     if (!std::isfinite(heading_deg)) throw py::value_error(fmt::format("heading_deg must be finite, not {}", heading_deg));
     ControlInput in;
     in.direction = bearing_direction(heading_deg);
+    in.rest = rest;
     if (tag && !tag->empty()) {
-      in.tag = take(context().tag_mask(*tag));
+      const TagMask mask = take(context().tag_mask(*tag));
+      const bool stop_rests = stop_means_rest(context(), *tag);
       if (auto why = unplayable_tag(context(), *tag); why && warned_.insert(*tag).second) {
-        const std::string line = fmt::format("{}: the controller is asked for {}", name_, *why);
-        warn(line);
+        warn(fmt::format("{}: the controller is asked for {}{}", name_, *why,
+                         stop_rests ? "; the character comes to rest instead, at the end of a clip that ends standing "
+                                      "still"
+                                    : ""));
       }
+      in.rest = in.rest || stop_rests;
+      if (!in.rest) in.tag = mask;
+    }
+    if (in.rest && context().rest.empty() && !warned_rest_) {
+      warned_rest_ = true;
+      warn(fmt::format("{}: the controller is asked to rest, but no clip of the graph ends standing still: the "
+                       "character goes on",
+                       name_));
     }
     return in;
   }
@@ -302,6 +340,7 @@ class PyController {
   std::shared_ptr<const LoadedGraph> loaded_;
   std::string name_;
   std::set<std::string> warned_;  // tags the graph does not play, warned of once (with the GIL held)
+  bool warned_rest_ = false;      // rest asked of a graph that has nowhere to rest, warned of once
   mutable std::mutex mutex_;       // held by a step, and while the motion so far is copied
   Motion motion_;
   std::optional<FootCleanup> cleanup_;
@@ -319,9 +358,13 @@ class PyController {
 void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
   // Before the graph's controller(), so that its signature names the class.
   py::class_<PyController>(m, "Controller", "Steers motion on a graph from a heading and a motion type.")
-      .def("step", &PyController::step, py::arg("heading_deg"), py::arg("tag") = py::none(),
+      .def("step", &PyController::step, py::arg("heading_deg"), py::arg("tag") = py::none(), py::arg("rest") = false,
            "Decides the next frames towards heading_deg (degrees clockwise from north) with motion type `tag` "
-           "(None: any) and returns them as a Motion.")
+           "(None: any) and returns them as a Motion. rest=True comes to rest at the end of a clip that ends standing "
+           "still and holds its last frame from then on, for good (so does tag 'stop' where the graph can hardly "
+           "play it); rest_s says when it stands still.")
+      .def_property_readonly("rest_s", &PyController::rest_s,
+                             "The second from which the character stands still, once it has come to rest; None before.")
       .def_property_readonly("motion", &PyController::motion, "All frames so far, as a Motion.")
       .def("__repr__", &PyController::repr);
   graph.def("walk", &walk, py::arg("from_node"), py::arg("to_node"),

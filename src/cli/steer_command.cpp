@@ -8,6 +8,7 @@
 #include <string>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include "cli/commands.h"
@@ -50,7 +51,8 @@ int run_steer(const SteerOptions& o) {
     const ScriptedControl& c = script->at(t);
     ControlInput input;
     input.direction = bearing_direction(c.bearing_deg);
-    if (!c.tag.empty()) {
+    input.rest = c.rest || stop_means_rest(context, c.tag);
+    if (!c.tag.empty() && !input.rest) {
       auto mask = context.tag_mask(c.tag);
       if (!mask) return Error{o.script, 0, mask.error().message};
       input.tag = *mask;
@@ -58,10 +60,20 @@ int run_steer(const SteerOptions& o) {
     return input;
   };
   std::set<std::string> warned;  // a control carries the last tag on: each type is warned of once
+  bool warned_rest = false;
   for (const ScriptedControl& c : script->controls) {
     if (auto input = input_at(c.at_s); !input) return fail(input.error());
     if (auto why = unplayable_tag(context, c.tag); why && warned.insert(c.tag).second) {
-      spdlog::warn("the control at {:g} s asks for {}", c.at_s, *why);
+      spdlog::warn("the control at {:g} s asks for {}{}", c.at_s, *why,
+                   stop_means_rest(context, c.tag)
+                       ? "; the character comes to rest instead, at the end of a clip that ends standing still"
+                       : "");
+    }
+    if (c.rest && context.rest.empty() && !warned_rest) {
+      warned_rest = true;
+      spdlog::warn("the control at {:g} s asks to rest, but no clip of the graph ends standing still: the character "
+                   "goes on",
+                   c.at_s);
     }
   }
   auto controller = Controller::create(context, o.settings, *input_at(0.0));
@@ -83,13 +95,16 @@ int run_steer(const SteerOptions& o) {
   auto cleanup = make_cleanup(context, run, cleanup_warning);
   print_cleanup_warning(o.common, cleanup_warning);
   std::vector<ContactMask> all_contacts;
+  std::vector<TagMask> played_tags;  // each frame's, from the edges played (their tracks') and the rest frames
   std::vector<double> cleanup_seconds;
   while (motion.frame_count < total) {
     controller->set_input(*input_at(motion.frame_count / fps));
     long long edge_start = motion.frame_count;
     const int first_new = motion.frame_count;
     const ControllerDecision d = controller->step(motion);
-    const std::vector<ContactMask> contacts = context.edges_contacts(d.edges);
+    std::vector<ContactMask> contacts = context.edges_contacts(d.edges);
+    const std::vector<ContactMask> resting = context.frames_contacts(d.rest_frames);
+    contacts.insert(contacts.end(), resting.begin(), resting.end());
     all_contacts.insert(all_contacts.end(), contacts.begin(), contacts.end());
     if (cleanup) {
       // The decision's frames, cleaned as a game would before showing them.
@@ -101,6 +116,14 @@ int run_steer(const SteerOptions& o) {
     latencies.push_back(d.search_seconds);
     exhausted += d.budget_exhausted ? 1 : 0;
     played.edges.insert(played.edges.end(), d.edges.begin(), d.edges.end());
+    played.rest_frames.insert(played.rest_frames.end(), d.rest_frames.begin(), d.rest_frames.end());
+    for (int e : d.edges) {
+      const auto tags = context.tracks.tags_of(e);
+      played_tags.insert(played_tags.end(), tags.begin(), tags.end());
+    }
+    for (int f : d.rest_frames) {
+      played_tags.push_back(static_cast<size_t>(f) < context.frame_tags.size() ? context.frame_tags[f] : TagMask{0});
+    }
     for (int e : d.edges) {
       const GraphEdge& edge = context.graph->edges[e];
       if (edge.transition && edge_start < total) ++transitions;
@@ -109,18 +132,19 @@ int run_steer(const SteerOptions& o) {
     }
   }
   motion = motion.slice(0, total);
-  // Each frame's tags, from the edges played (each plays its track's frames, in order).
-  std::vector<TagMask> played_tags;
-  for (int e : played.edges) {
-    const auto tags = context.tracks.tags_of(e);
-    played_tags.insert(played_tags.end(), tags.begin(), tags.end());
-  }
   // Response: the first frame after a control whose facing is within the tolerance of it; for a
   // control that changes the tag, the first that carries it.
   nlohmann::json controls = nlohmann::json::array();
   std::string tag_before;
+  bool rest_before = false;
+  // Where the character stands still, when it came to rest within the script.
+  const double rest_s = controller->rest_frame() >= 0 && controller->rest_frame() < motion.frame_count
+                            ? static_cast<double>(controller->rest_frame()) / fps
+                            : -1.0;
+  std::vector<double> unheard_s;  // controls after the rest: nothing moves it
   for (size_t i = 0; i < script->controls.size(); ++i) {
     const ScriptedControl& c = script->controls[i];
+    const bool rest = c.rest || stop_means_rest(context, c.tag);
     nlohmann::json tag_response = nullptr;
     const bool changes_tag = !c.tag.empty() && c.tag != tag_before;
     if (changes_tag) {
@@ -154,7 +178,28 @@ int run_steer(const SteerOptions& o) {
     }
     nlohmann::json control = {{"at_s", c.at_s}, {"heading_deg", c.bearing_deg}, {"tag", c.tag}, {"response_s", response}};
     if (changes_tag) control["tag_response_s"] = tag_response;
+    control["rest"] = rest;
+    if (rest && !rest_before && !context.rest.empty()) {
+      control["rest_response_s"] =
+          rest_s >= 0.0 ? nlohmann::json(std::max(0.0, rest_s - c.at_s)) : nlohmann::json(nullptr);
+    }
+    if (rest_s >= 0.0 && c.at_s >= rest_s) unheard_s.push_back(c.at_s);
+    rest_before = rest;
     controls.push_back(std::move(control));
+  }
+  nlohmann::json rest_report = nullptr;
+  if (const RestEnding* ending = controller->resting() ? controller->rest_ending() : nullptr; ending != nullptr) {
+    const DatabaseClip& clip = context.db->clips[static_cast<size_t>(context.db->clip_of(ending->last_frame))];
+    rest_report = {{"at_s", rest_s >= 0.0 ? nlohmann::json(rest_s) : nlohmann::json(nullptr)},
+                   {"clip", clip.name},
+                   {"clip_frame", ending->rest_frame - clip.first_frame},
+                   {"held_frame", ending->last_frame - clip.first_frame}};
+  }
+  if (!unheard_s.empty()) {
+    spdlog::warn("the character came to rest at {:.2f} s, at the end of {}, and stays there: the control{} at {} s "
+                 "cannot turn or move it (rest is for good: no clip of this graph starts from standing)",
+                 rest_s, rest_report["clip"].get<std::string>(), unheard_s.size() == 1 ? "" : "s",
+                 fmt::join(unheard_s, ", "));
   }
   const HeadingEditStats& edit_stats = controller->heading_edit_stats();
   const nlohmann::json report = {{"frames", motion.frame_count},
@@ -173,7 +218,8 @@ int run_steer(const SteerOptions& o) {
                                  {"cleanup", cleanup_report(context, run, cleanup)},
                                  {"cleanup_ms_p99", cleanup ? nlohmann::json(1e3 * percentile(cleanup_seconds, 0.99))
                                                             : nlohmann::json(nullptr)},
-                                 {"controls", controls}};
+                                 {"controls", controls},
+                                 {"rest", rest_report}};
   if (auto s = write_synthesis_outputs(o.common, **loaded, motion, played, report, all_contacts); !s) return fail(s.error());
   fmt::print("steer: {} frames ({:.1f} s), {} decisions, decision p99 {:.3f} ms\n", motion.frame_count,
              motion.frame_count / fps, latencies.size(), 1e3 * percentile(latencies, 0.99));
@@ -184,8 +230,15 @@ int run_steer(const SteerOptions& o) {
                         ? fmt::format(", no {}", c["tag"].get<std::string>())
                         : fmt::format(", {} after {:.2f} s", c["tag"].get<std::string>(), c["tag_response_s"].get<double>());
     }
+    if (c.contains("rest_response_s")) {
+      tag_reached += c["rest_response_s"].is_null()
+                         ? std::string(", not at rest")
+                         : fmt::format(", at rest after {:.2f} s", c["rest_response_s"].get<double>());
+    }
     fmt::print("  at {:5.1f} s heading {:5.1f} deg {:<6} -> {}{}\n", c["at_s"].get<double>(), c["heading_deg"].get<double>(),
-               c["tag"].get<std::string>().empty() ? "any" : c["tag"].get<std::string>(),
+               c["rest"].get<bool>()                  ? "rest"
+               : c["tag"].get<std::string>().empty() ? "any"
+                                                     : c["tag"].get<std::string>(),
                c["response_s"].is_null() ? std::string("not reached")
                                          : fmt::format("facing it after {:.2f} s", c["response_s"].get<double>()),
                tag_reached);
@@ -202,7 +255,8 @@ Command add_steer_command(CLI::App& app) {
                "CONTROLS.json: {\"duration_s\": 12, \"controls\": [{\"at_s\": 0, \"heading\": \"north\", \"tag\":\n"
                "\"walk\"}, {\"at_s\": 4, \"heading_deg\": 90}, {\"at_s\": 8, \"tag\": \"run\"}]}; headings north (-z),\n"
                "east (+x), south, west or a bearing in degrees clockwise from north; without duration_s, the\n"
-               "motion ends 4 s after the last control.");
+               "motion ends 4 s after the last control. {\"at_s\": 10, \"rest\": true} comes to rest at the end of a\n"
+               "clip that ends standing still and stays there (as does a stop the graph can hardly play).");
   o->common.add_to(*sub);
   sub->add_option("--script", o->script, "CONTROLS.json")->required()->check(CLI::ExistingFile);
   sub->add_option("--horizon", o->settings.horizon_s, "Seconds each decision looks ahead")->capture_default_str();

@@ -226,10 +226,16 @@ class Router {
     return *mask;
   }
 
+  // rest: true comes to rest (controller.h), as does a tag 'stop' the graph can hardly play.
   ControlInput control_of(const json& body) const {
     ControlInput input;
     input.direction = bearing_direction(number_field(body, "heading_deg", 0.0, -720.0, 720.0));
     input.tag = tag_of(body);
+    input.rest = boolean_field(body, "rest", false);
+    if (input.tag != 0 && stop_means_rest(service_.context(), string_field(body, "tag", ""))) {
+      input.rest = true;
+      input.tag = 0;
+    }
     return input;
   }
 
@@ -466,14 +472,15 @@ class Router {
                           {"cleanup", cleanup && !service_.context().frame_contacts.empty()},
                           {"fps", db().fps},
                           {"joints", joints_json(skeleton())},
-                          {"tags", db().tag_names}});
+                          {"tags", db().tag_names},
+                          {"can_rest", !service_.context().rest.empty()}});
   }
 
   ApiResponse step_session() {
     auto id = parse_integer(parts_[3], 0, 1LL << 30);
     if (!id) throw ApiError{404, fmt::format("no steering session '{}'", parts_[3])};
     const json body = body_object(request_);
-    check_keys(body, {"heading_deg", "tag", "min_frames"});
+    check_keys(body, {"heading_deg", "tag", "rest", "min_frames"});
     const ControlInput input = control_of(body);
     const int min_frames = static_cast<int>(integer_field(body, "min_frames", 1, 1, 90));
     auto step = service_.step_session(static_cast<int>(*id), input, min_frames);
@@ -490,7 +497,9 @@ class Router {
                            transitions_per_second(step->session_transitions, step->first_frame + step->motion.frame_count,
                                                   db().fps)},
                           {"positions", positions_json(skeleton(), step->motion)},
-                          {"contacts", played_contacts_json(step->contacts, step->motion.frame_count)}});
+                          {"contacts", played_contacts_json(step->contacts, step->motion.frame_count)},
+                          {"rest_s", step->rest_s >= 0.0 ? json(step->rest_s) : json(nullptr)},
+                          {"rest_clip", step->rest_clip.empty() ? json(nullptr) : json(step->rest_clip)}});
   }
 
   // ID.bvh, ID.glb or ID.fbx.

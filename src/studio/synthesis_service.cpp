@@ -197,7 +197,9 @@ Result<SteerStepResult> SynthesisService::step_session(int id, const ControlInpu
   do {
     const int first_new = out.motion.frame_count;
     const ControllerDecision decision = session->controller->step(out.motion);
-    const std::vector<ContactMask> contacts = context().edges_contacts(decision.edges);
+    std::vector<ContactMask> contacts = context().edges_contacts(decision.edges);
+    const std::vector<ContactMask> resting = context().frames_contacts(decision.rest_frames);
+    contacts.insert(contacts.end(), resting.begin(), resting.end());
     if (session->cleanup) {
       if (auto s = session->cleanup->clean(out.motion, first_new, contacts); !s) return s.error();
     }
@@ -208,6 +210,10 @@ Result<SteerStepResult> SynthesisService::step_session(int id, const ControlInpu
     if (decision.frames == 0) break;
   } while (out.motion.frame_count < min_frames);
   session->frames += out.motion.frame_count;
+  if (const RestEnding* ending = session->controller->rest_ending(); ending != nullptr) {
+    out.rest_s = static_cast<double>(session->controller->rest_frame()) / context().db->fps;
+    out.rest_clip = file().database.clips[static_cast<size_t>(file().database.clip_of(ending->last_frame))].name;
+  }
   session->transitions += out.transitions;
   out.session_transitions = session->transitions;
   session->bridges += out.bridges;

@@ -62,6 +62,10 @@ struct SteerStepResult {
   int bridges = 0;               // of this step's transitions, the bridges (GraphEdge::bridge)
   int session_bridges = 0;       // and the session's
   std::vector<ContactMask> contacts;  // per frame of motion, as above
+  // Once the character has come to rest (controller.h): the session's second from which it stands
+  // still and the clip whose end it stands at; -1 and "" before.
+  double rest_s = -1.0;
+  std::string rest_clip;
 };
 
 class SynthesisService {

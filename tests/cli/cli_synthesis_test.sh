@@ -112,6 +112,35 @@ cat >"$work/controls.json" <<'JSON'
 JSON
 "$bin" steer "$work/g.mgraph" --script "$work/controls.json" -o "$work/steer.json" \
   --report "$work/steer-report.json" >/dev/null
+# Asked to stop, which subject 16's graph plays in 9 frames (its stops are dead ends the pruning
+# leaves out), the character comes to rest at the end of a clip that stops, and stays there: the
+# turn asked later is said not to move it.
+cat >"$work/stop.json" <<'JSON'
+{"duration_s": 12, "controls": [{"at_s": 0, "heading": "north", "tag": "walk"}, {"at_s": 3, "tag": "stop"},
+                                {"at_s": 9, "heading": "east"}]}
+JSON
+"$bin" steer "$work/g.mgraph" --script "$work/stop.json" -o "$work/stop-steer.json" \
+  --report "$work/stop-report.json" >"$work/stop.out" 2>"$work/stop.err"
+grep -q "comes to rest instead" "$work/stop.err" || { cat "$work/stop.err"; exit 1; }
+grep -q "and stays there: the control at 9 s cannot turn or move it" "$work/stop.err" || { cat "$work/stop.err"; exit 1; }
+grep -q "at rest after" "$work/stop.out" || { cat "$work/stop.out"; exit 1; }
+python3 - "$work/stop-report.json" "$work/stop-steer.json" <<'PY'
+import json, math, sys
+r, m = (json.load(open(p)) for p in sys.argv[1:])
+rest, c = r["rest"], r["controls"]
+assert rest is not None and rest["clip"] in ("16_33", "16_57"), rest
+assert c[1]["rest"] and c[2]["rest"] and not c[0]["rest"], c
+assert abs(rest["at_s"] - 3 - c[1]["rest_response_s"]) < 1e-9 and 0 < c[1]["rest_response_s"] < 6, (rest, c)
+assert c[2]["response_s"] is None, c  # it cannot turn east at rest
+root = [p[0] for p in m["positions"]]
+at = math.ceil(rest["at_s"] * r["fps"])
+# Walking before it was asked, standing still from rest on (the held frame: not a millimetre).
+assert math.dist(root[0][::2], root[int(2.5 * r["fps"])][::2]) > 1.5, root[:3]
+assert max(math.dist(root[at][::2], p[::2]) for p in root[at:]) < 0.1, rest
+assert root[-1] == root[-2] == root[-int(r["fps"])], root[-3:]
+# The foot slide is judged against the clips played, the stopping one among them.
+assert rest["clip"] in r["foot_slide"]["source"]["clips"], r["foot_slide"]["source"]
+PY
 # A tag asked for a moment, then any, then again: each asking is answered on its own.
 cat >"$work/again.json" <<'JSON'
 {"duration_s": 9, "controls": [{"at_s": 0, "tag": "walk"}, {"at_s": 3, "tag": "run"}, {"at_s": 3.2, "tag": "any"},

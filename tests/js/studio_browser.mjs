@@ -360,6 +360,25 @@ try {
   const steerWhole = steerMarks.every((m) => m.marks.every((k) => k.disc === (k.sphereColour === m.plantedColour)));
   check(steerPlanted > 0 && steerWhole,
     `steering marks planted feet (${steerPlanted} of ${steerMarks.length} samples)`);
+  // X: the character comes to rest (subject 16's "slow walk, stop" ends standing) and stands still.
+  await page.keyboard.press('KeyX');
+  const restPressed = Date.now();
+  let still = null;
+  let before = await page.evaluate(() => window.studio.state.root);
+  while (Date.now() - restPressed < 20000) {
+    await page.waitForTimeout(1000);
+    const now = await page.evaluate(() => window.studio.state.root);
+    const rested = await page.evaluate(() => window.studio.state.steer.restS);
+    if (rested != null && Math.hypot(now[0] - before[0], now[2] - before[2]) < 0.02) {
+      still = { rested, seconds: (Date.now() - restPressed) / 1000 };
+      break;
+    }
+    before = now;
+  }
+  const restInfo = await page.textContent('[data-testid=steer-info]');
+  check(still !== null && /at rest since/.test(restInfo),
+    still ? `X brings the character to rest: standing still ${still.seconds.toFixed(1)} s after the key ("${restInfo}")`
+      : `X did not bring the character to rest within 20 s ("${restInfo}")`);
   check(errors.length === 0, `no errors in the page${errors.length ? `: ${errors.join('; ')}` : ''}`);
   const tagOptions = await page.$$eval('[data-testid=path-tag] option', (os) => os.map((o) => o.textContent));
   check(tagOptions.length > 1 && !tagOptions.some((t) => /not in the graph/.test(t)),

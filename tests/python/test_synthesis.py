@@ -229,6 +229,39 @@ def test_tag_lookahead_reaches_the_controller(cli, graph_file, graph, tmp_path):
         graph.controller(tag_lookahead=1.5)
 
 
+def test_rest_equals_the_cli_and_stands_still(cli, graph_file, graph, tmp_path):
+    controls = [{"at_s": 0, "heading_deg": 0, "tag": "walk"}, {"at_s": 2, "rest": True}]
+    (tmp_path / "controls.json").write_text(json.dumps({"duration_s": 9, "controls": controls}))
+    cli("steer", graph_file, "--script", tmp_path / "controls.json", "-o", tmp_path / "cli.json",
+        "--report", tmp_path / "cli-report.json")
+    fps = graph.fps
+    controller = graph.controller(heading_deg=0, tag="walk")
+    while len(controller.motion) < 9 * fps:
+        rest = len(controller.motion) >= 2 * fps
+        controller.step(0, "walk", rest=rest)
+        if not rest:
+            assert controller.rest_s is None
+    motion, want = controller.motion, read_json(tmp_path / "cli.json")
+    total = len(want["positions"])
+    assert np.max(np.abs(motion.positions[:total] - np.asarray(want["positions"]))) <= 1e-6
+    np.testing.assert_array_equal(motion.contacts[:total], np.array(want["contacts"]["planted"], dtype=bool))
+    rest = read_json(tmp_path / "cli-report.json")["rest"]
+    assert motion.report["rest"] == rest and controller.rest_s == rest["at_s"] > 2
+    # Standing still from then on, whatever it is asked: the last frame held.
+    root = motion.positions[:, 0, :]
+    still = int(np.ceil(rest["at_s"] * fps))
+    assert np.max(np.linalg.norm((root[still:] - root[still])[:, [0, 2]], axis=1)) < 0.1
+    step = controller.step(90, "run")
+    np.testing.assert_array_equal(step.positions, np.repeat(motion.positions[-1:], len(step), axis=0))
+    # A stop the graph can hardly play is rest too, said once.
+    other = graph.controller(heading_deg=0, tag="walk")
+    with pytest.warns(UserWarning, match="comes to rest instead"):
+        other.step(0, "stop")
+    while other.rest_s is None and len(other.motion) < 10 * fps:
+        other.step(0, "stop")
+    assert other.rest_s is not None
+
+
 def test_steering_goes_where_it_is_told(graph):
     controller = graph.controller(heading_deg=90, tag="walk")
     while len(controller.motion) < 5 * graph.fps:

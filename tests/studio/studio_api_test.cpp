@@ -467,6 +467,33 @@ TEST(StudioApi, SteeringTurnsTheCharacterTheWayAsked) {
   ASSERT_EQ(bvh.response.status, 200);
 }
 
+// rest: true brings the character to rest at the end of a clip that stops; the step says from when
+// it stands and at which clip, and every step after holds that frame.
+TEST(StudioApi, SteeringComesToRestWhenAsked) {
+  const ApiCall session = call_api("POST", "/api/steer/sessions", R"({"heading_deg": 0, "tag": "walk"})");
+  ASSERT_EQ(session.response.status, 200) << session.response.body;
+  EXPECT_TRUE(session.json["can_rest"].get<bool>());
+  const std::string step = "/api/steer/sessions/" + std::to_string(session.json["session"].get<int>()) + "/step";
+  ApiCall call = call_api("POST", step, R"({"heading_deg": 0, "tag": "walk", "min_frames": 30})");
+  ASSERT_EQ(call.response.status, 200) << call.response.body;
+  EXPECT_TRUE(call.json["rest_s"].is_null() && call.json["rest_clip"].is_null());
+  for (int i = 0; i < 20 && call.json["rest_s"].is_null(); ++i) {
+    call = call_api("POST", step, R"({"heading_deg": 0, "tag": "walk", "rest": true, "min_frames": 30})");
+    ASSERT_EQ(call.response.status, 200) << call.response.body;
+  }
+  ASSERT_FALSE(call.json["rest_s"].is_null()) << "not at rest after 20 steps";
+  const double rest_s = call.json["rest_s"].get<double>();
+  EXPECT_GT(rest_s, 1.0);
+  EXPECT_EQ(call.json["rest_clip"].get<std::string>().substr(0, 3), "16_");
+  // Asked to run east now, it holds its last frame.
+  const json held = call.json["positions"].back();
+  const ApiCall after = call_api("POST", step, R"({"heading_deg": 90, "tag": "run", "min_frames": 10})");
+  ASSERT_EQ(after.response.status, 200) << after.response.body;
+  EXPECT_EQ(after.json["rest_s"].get<double>(), rest_s);
+  for (const json& frame : after.json["positions"]) EXPECT_EQ(frame, held);
+  expect_error(call_api("POST", step, R"({"rest": 1})"), 400, "'rest' must be true or false");
+}
+
 TEST(StudioApi, BadSteeringIs4xx) {
   expect_error(call_api("POST", "/api/steer/sessions", R"({"tag": "fly"})"), 400, "'fly' is not a motion tag");
   // A tag of 100 KB is named by its first 40 characters, not echoed whole.

@@ -189,6 +189,46 @@ TEST(Assembler, RejectsAWalkThatDoesNotFollowTheGraph) {
   EXPECT_FALSE(assemble_walk(s.file().database, graph, Walk{graph.node_count(), {}}).ok());
 }
 
+// A walk that comes to rest plays its rest frames as captured where the end node's frame would
+// be, placed as the walk's last frame; its sources and contacts are those frames'.
+TEST(Assembler, AWalkThatComesToRestPlaysItsRestFramesAsCaptured) {
+  const auto& s = test::subject16();
+  const SynthesisContext& context = s.context();
+  const MotionGraph& graph = *context.graph;
+  ASSERT_FALSE(context.rest.empty());
+  // An edge into a node that can rest, and that ending.
+  int edge = 0;
+  while (context.rest.at(graph.edges[static_cast<size_t>(edge)].to_node) == nullptr) ++edge;
+  const RestEnding& ending = *context.rest.at(graph.edges[static_cast<size_t>(edge)].to_node);
+  Walk walk{graph.edges[static_cast<size_t>(edge)].from_node, {edge}};
+  walk.rest_frames = ending.frames(graph);
+  walk.rest_frames.push_back(ending.last_frame);  // held a frame
+  const FloorTransform start{0.7, 2.0, -1.0};
+  auto motion = assemble_walk(*context.db, graph, walk, start);
+  ASSERT_TRUE(motion.ok()) << motion.error().to_string();
+  ASSERT_EQ(motion->frame_count, walk.frame_count(graph) + static_cast<long long>(walk.rest_frames.size()));
+  const int first = static_cast<int>(walk.frame_count(graph));
+  FloorTransform placement = start;
+  Motion scratch = context.assembler.empty_motion();
+  context.assembler.append_edge(edge, placement, scratch);
+  for (size_t i = 0; i < walk.rest_frames.size(); ++i) {
+    const RootPose want = context.assembler.root_pose(walk.rest_frames[i], placement);
+    EXPECT_LT((motion->translations(first + static_cast<int>(i))[0] - want.position).norm(), 1e-9) << i;
+  }
+  const std::vector<FrameSource> sources = context.walk_sources(walk);
+  ASSERT_EQ(sources.size(), static_cast<size_t>(motion->frame_count));
+  for (size_t i = 0; i < walk.rest_frames.size(); ++i) {
+    EXPECT_EQ(sources[static_cast<size_t>(first) + i], (FrameSource{walk.rest_frames[i], walk.rest_frames[i], 1.0}));
+  }
+  EXPECT_EQ(context.walk_contacts(walk).size(), sources.size());
+  // Rest frames that do not start where the walk ends are refused.
+  Walk astray = walk;
+  astray.rest_frames.front() += 1;
+  auto refused = assemble_walk(*context.db, graph, astray, start);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().message.find("comes to rest from frame"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace mg
 

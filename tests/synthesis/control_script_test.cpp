@@ -26,6 +26,23 @@ TEST(ControlScript, LaterControlsKeepWhatTheyDoNotSay) {
   EXPECT_DOUBLE_EQ(script->at(11.0).bearing_deg, 270.0);
 }
 
+// rest is carried on as the rest is, and a control may say only it.
+TEST(ControlScript, RestIsCarriedOnUntilTakenBack) {
+  auto script = parse_control_script(R"({"controls": [
+      {"at_s": 0, "tag": "walk"},
+      {"at_s": 3, "rest": true},
+      {"at_s": 5, "heading": "east"},
+      {"at_s": 7, "rest": false}]})", "c.json");
+  ASSERT_TRUE(script.ok()) << script.error().to_string();
+  EXPECT_FALSE(script->at(2.9).rest);
+  EXPECT_TRUE(script->at(3.0).rest);
+  EXPECT_EQ(script->at(3.0).tag, "walk");
+  EXPECT_TRUE(script->at(6.0).rest);
+  EXPECT_DOUBLE_EQ(script->at(6.0).bearing_deg, 90.0);
+  EXPECT_FALSE(script->at(7.0).rest);
+  EXPECT_DOUBLE_EQ(script->duration_s, 11.0);
+}
+
 TEST(ControlScript, BearingsAreCompassBearings) {
   EXPECT_LT((bearing_direction(0.0) - Vec2(0.0, -1.0)).norm(), 1e-12);   // north: -z
   EXPECT_LT((bearing_direction(90.0) - Vec2(1.0, 0.0)).norm(), 1e-12);   // east: +x
@@ -58,7 +75,9 @@ TEST(ControlScript, BadInputIsOneClearError) {
        "controls[0] gives both \"heading\" and \"heading_deg\""},
       // A control that says nothing, a heading no compass gives.
       {"empty control", "{\"controls\": [{\"at_s\": 0, \"tag\": \"walk\"}, {\"at_s\": 2}]}", 0,
-       "controls[1] gives no \"heading\", \"heading_deg\" or \"tag\": it changes nothing"},
+       "controls[1] gives no \"heading\", \"heading_deg\", \"tag\" or \"rest\": it changes nothing"},
+      {"rest not a boolean", "{\"controls\": [{\"at_s\": 0, \"tag\": \"walk\"}, {\"at_s\": 2, \"rest\": \"yes\"}]}", 0,
+       "controls[1]: rest must be true or false"},
       {"huge heading", "{\"controls\": [{\"at_s\": 0, \"heading_deg\": 1e300}]}", 0,
        "controls[0]: heading_deg 1e+300 is past +-36000 degrees"},
       {"control after the end",

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <string>
 #include <utility>
@@ -302,6 +304,100 @@ TEST(Controller, SameInputsGiveTheSameMotion) {
   ASSERT_EQ(motion_a.frame_count, motion_b.frame_count);
   for (int f = 0; f < motion_a.frame_count; ++f) {
     ASSERT_EQ(motion_a.translations(f)[0], motion_b.translations(f)[0]) << f;
+  }
+}
+
+// The root's floor distance between two frames of a motion.
+double floor_distance(const Motion& motion, int a, int b) {
+  const Vec3 d = motion.translations(b)[0] - motion.translations(a)[0];
+  return std::hypot(d.x(), d.z());
+}
+
+// Asked to rest, the character walks on to the end of a clip that ends standing (subject 16's
+// stop is a dead end its pruning leaves out), plays it as captured, stands still and stays so
+// whatever it is asked next.
+TEST(Controller, ComesToRestWhenAskedAndStaysThere) {
+  const auto& s = test::subject16();
+  const SynthesisContext& context = s.context();
+  const MotionGraph& graph = *context.graph;
+  auto walk = context.tag_mask("walk");
+  ASSERT_TRUE(walk.ok());
+  auto controller = Controller::create(context, {}, {bearing_direction(0.0), *walk});
+  ASSERT_TRUE(controller.ok());
+  Motion motion = context.assembler.empty_motion();
+  const double fps = motion.fps;
+  while (motion.frame_count < 3 * fps) EXPECT_TRUE(controller->step(motion).rest_frames.empty());
+  EXPECT_FALSE(controller->resting());
+  EXPECT_EQ(controller->rest_frame(), -1);
+  const int asked = motion.frame_count;
+  controller->set_input({bearing_direction(0.0), *walk, true});
+  std::vector<int> rest_frames;  // every frame played at rest, as the decisions say
+  int ending_decision_first = -1;
+  while (motion.frame_count < 12 * fps) {
+    const int first = motion.frame_count;
+    const bool was_resting = controller->resting();
+    const ControllerDecision d = controller->step(motion);
+    ASSERT_EQ(motion.frame_count - first, d.frames);
+    int edge_frames = 0;
+    for (int e : d.edges) edge_frames += graph.edges[e].frame_count;
+    EXPECT_EQ(d.frames, edge_frames + static_cast<int>(d.rest_frames.size()));
+    if (was_resting) {
+      EXPECT_TRUE(d.edges.empty());
+    }
+    if (!was_resting && controller->resting()) ending_decision_first = first + edge_frames;
+    rest_frames.insert(rest_frames.end(), d.rest_frames.begin(), d.rest_frames.end());
+    if (motion.frame_count > 9 * fps) controller->set_input({bearing_direction(90.0), *walk});  // no way back
+  }
+  ASSERT_TRUE(controller->resting());
+  const RestEnding* ending = controller->rest_ending();
+  ASSERT_NE(ending, nullptr);
+  // The ending as captured: its node's frame to the clip's last, then that last frame held.
+  const std::vector<int> played = ending->frames(graph);
+  ASSERT_GT(rest_frames.size(), played.size());
+  EXPECT_TRUE(std::equal(played.begin(), played.end(), rest_frames.begin()));
+  for (size_t i = played.size(); i < rest_frames.size(); ++i) ASSERT_EQ(rest_frames[i], ending->last_frame);
+  // Standing from rest_frame: within a few seconds of asking, and still from there on.
+  const long long still = controller->rest_frame();
+  EXPECT_EQ(still, ending_decision_first + ending->frames_to_rest(graph));
+  EXPECT_GT(still, asked);
+  EXPECT_LT(still, asked + 6 * fps);
+  EXPECT_GT(floor_distance(motion, asked, static_cast<int>(still)), 0.5);  // it walked there
+  EXPECT_LT(floor_distance(motion, static_cast<int>(still), motion.frame_count - 1), 0.1);
+  const int held = ending_decision_first + static_cast<int>(played.size()) - 1;
+  for (int f = held + 1; f < motion.frame_count; ++f) {
+    ASSERT_EQ(motion.translations(f)[0], motion.translations(held)[0]) << f;
+    ASSERT_TRUE(motion.rotations(f)[0].isApprox(motion.rotations(held)[0], 0.0)) << f;
+  }
+}
+
+// Asked to rest and then to walk before it stands, the character walks on; a graph with nowhere
+// to rest does not hear rest at all.
+TEST(Controller, RestTakenBackInTimeOrWithNowhereToRestWalksOn) {
+  const auto& s = test::subject16();
+  auto walk = s.context().tag_mask("walk");
+  ASSERT_TRUE(walk.ok());
+  for (const bool nowhere : {false, true}) {
+    SynthesisContext context = s.context();
+    if (nowhere) context.rest = {};
+    auto controller = Controller::create(context, {}, {bearing_direction(0.0), *walk});
+    ASSERT_TRUE(controller.ok());
+    Motion motion = context.assembler.empty_motion();
+    while (motion.frame_count < 2 * motion.fps) controller->step(motion);
+    controller->set_input({bearing_direction(0.0), *walk, true});
+    const ControllerDecision first = controller->step(motion);
+    if (nowhere) {
+      EXPECT_TRUE(first.rest_frames.empty());
+      EXPECT_FALSE(controller->resting());
+    }
+    if (controller->resting()) continue;  // (its first decision took an ending: nothing to take back)
+    const int from = motion.frame_count;
+    if (!nowhere) controller->set_input({bearing_direction(0.0), *walk});
+    while (motion.frame_count < from + 4 * motion.fps) {
+      EXPECT_TRUE(controller->step(motion).rest_frames.empty());
+    }
+    EXPECT_FALSE(controller->resting());
+    EXPECT_GT(floor_distance(motion, from, motion.frame_count - 1), 3.0)
+        << (nowhere ? "nowhere to rest" : "taken back");
   }
 }
 

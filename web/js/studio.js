@@ -361,7 +361,8 @@ function footSlideText(result) {
 
 // --- steering ------------------------------------------------------------------------------
 const keys = new Set();
-const STEER_KEYS = ['KeyW', 'KeyA', 'KeyS', 'KeyD', 'ArrowUp', 'ArrowDown', 'ArrowLeft', 'ArrowRight', 'KeyJ'];
+const STEER_KEYS = ['KeyW', 'KeyA', 'KeyS', 'KeyD', 'ArrowUp', 'ArrowDown', 'ArrowLeft', 'ArrowRight', 'KeyJ', 'KeyX'];
+const MOVE_KEYS = STEER_KEYS.filter((k) => k !== 'KeyX');
 window.addEventListener('keydown', (e) => {
   if (e.target instanceof HTMLSelectElement || e.target instanceof HTMLInputElement) return;
   keys.add(e.code);
@@ -369,6 +370,9 @@ window.addEventListener('keydown', (e) => {
     const d = Number(e.code.slice(5));
     state.steer.chosenTag = d === 0 ? '' : (state.tags[d - 1] || state.steer.chosenTag);
   }
+  // X: come to rest; moving again takes it back, until the character stands (then rest is for good).
+  if (state.steer && e.code === 'KeyX') state.steer.rest = true;
+  else if (state.steer && MOVE_KEYS.includes(e.code) && state.steer.restS == null) state.steer.rest = false;
   if (state.steer && STEER_KEYS.includes(e.code)) e.preventDefault();
 });
 window.addEventListener('keyup', (e) => keys.delete(e.code));
@@ -387,6 +391,7 @@ function steerInput() {
     if (pad.axes.length >= 2 && Math.hypot(pad.axes[0], pad.axes[1]) > 0.3) { dx = pad.axes[0]; dz = pad.axes[1]; }
     jump ||= Boolean(pad.buttons[0]?.pressed);
     run ||= (pad.buttons[7]?.value ?? 0) > 0.5;
+    if (pad.buttons[1]?.pressed) s.rest = true;
     s.gamepad = pad.id;
   }
   if (dx !== 0 || dz !== 0) {  // relative to where the camera looks: W is away from it
@@ -400,7 +405,7 @@ function steerInput() {
   if (run && has('run')) tag = 'run';
   if (jump && has('jump')) tag = 'jump';
   s.tag = tag;
-  return { heading_deg: s.heading, tag };
+  return { heading_deg: s.heading, tag, rest: Boolean(s.rest) };
 }
 
 async function startSteering() {
@@ -415,7 +420,7 @@ async function startSteering() {
   overlays.clear();
   // buffer: the frames received and not yet shown; planted: their rows of the contacts.
   state.steer = { session: session.session, buffer: [], planted: [], contacts: null, inFlight: false, heading: 0,
-    tag, chosenTag: tag,
+    tag, chosenTag: tag, rest: false, restS: null, restClip: null, canRest: session.can_rest,
     received: 0, played: 0, clock: 0, fps: session.fps, lastStepMs: 0, trailEnd: null };
   setResultLink(session.result);
   setDrawing(false);
@@ -447,6 +452,8 @@ async function requestSteps() {
     s.received += step.frames;
     s.transitionsPerSecond = step.session_transitions_per_second;
     s.bridges = step.session_bridges;
+    s.restS = step.rest_s;
+    s.restClip = step.rest_clip;
   } catch (err) {
     $('steer-info').textContent = `error: ${err.message}`;
     stopSteering();
@@ -545,7 +552,16 @@ function tick() {
       }
     }
     requestSteps();
-    $('steer-info').textContent = `heading ${s.heading.toFixed(0)} deg, ${s.tag || 'any'}; `
+    let rest = '';
+    if (s.restS != null && s.played / s.fps < s.restS) {
+      rest = `coming to rest at the end of ${s.restClip}, standing from ${s.restS.toFixed(1)} s; `;
+    } else if (s.restS != null) {
+      rest = `at rest since ${s.restS.toFixed(1)} s, at the end of ${s.restClip}, for good (no clip of this graph `
+        + 'starts from standing: Stop steering and start again); ';
+    } else if (s.rest) {
+      rest = s.canRest ? 'coming to rest; ' : 'asked to rest, but no clip of this graph ends standing still; ';
+    }
+    $('steer-info').textContent = `${rest}heading ${s.heading.toFixed(0)} deg, ${s.tag || 'any'}; `
       + `${s.received} frames received, step ${s.lastStepMs.toFixed(0)} ms, `
       + `${(s.transitionsPerSecond || 0).toFixed(2)} transitions/s${s.bridges ? ` (${s.bridges} bridge${s.bridges === 1 ? '' : 's'})` : ''}`
       + `${s.gamepad ? `; gamepad ${s.gamepad}` : ''}`;

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "motiongraph/core/transition_rate.h"
+#include "motiongraph/database/travel_tags.h"
 #include "motiongraph/evaluation/foot_slide_report.h"
 #include "motiongraph/evaluation/path_shortfalls.h"
 #include "motiongraph/export/motion_file.h"
@@ -138,6 +139,10 @@ std::optional<std::string> unplayable_tag(const SynthesisContext& context, const
   return fmt::format("'{}', which the graph plays in only {} frame{} ({:.1f} s; {} of its clips' frames carry it): "
                      "the motion can hardly carry it (`inspect` gives each type's frames before and after pruning)",
                      tag, graph_frames, graph_frames == 1 ? "" : "s", graph_frames / context.db->fps, clip_frames);
+}
+
+bool stop_means_rest(const SynthesisContext& context, const std::string& tag) {
+  return is_stop_tag(tag) && !context.rest.empty() && unplayable_tag(context, tag).has_value();
 }
 
 Result<SynthesizedMotion> run_walk_synthesis(const SynthesisContext& context, int from, int to,

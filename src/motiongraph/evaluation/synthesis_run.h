@@ -66,6 +66,9 @@ nlohmann::json path_segments_report(const SynthesisContext& context, const Floor
 // "'run', which the graph plays in no frame (104 of its clips' frames carry it; ...)"; nullopt
 // when it plays it or the tag is unknown (an error elsewhere).
 std::optional<std::string> unplayable_tag(const SynthesisContext& context, const std::string& tag);
+// Whether asking for `tag` asks the controller to rest (controller.h): it is stop, the graph plays
+// it in less than a second (unplayable_tag) and has clips that end standing still to rest at.
+bool stop_means_rest(const SynthesisContext& context, const std::string& tag);
 
 // The cheapest walk from node `from` to node `to` (walk_search.h), starting at the origin
 // facing north.

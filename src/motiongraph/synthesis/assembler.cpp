@@ -170,13 +170,14 @@ Result<Motion> assemble_walk(const MotionDatabase& db, const MotionGraph& graph,
   auto assembler = MotionAssembler::create(db, graph, target_skeleton);
   if (!assembler) return assembler.error();
   Motion out = assembler->empty_motion();
-  size_t frames = 1;
+  size_t frames = walk.rest_frames.empty() ? 1 : walk.rest_frames.size();
   for (int e : walk.edges) frames += static_cast<size_t>(graph.edges[e].frame_count);
   out.local_rotations.reserve(frames * static_cast<size_t>(out.joint_count));
   out.local_translations_m.reserve(frames * static_cast<size_t>(out.translated_count));
   FloorTransform placement = start;
   for (int e : walk.edges) assembler->append_edge(e, placement, out);
-  assembler->append_frame(graph.nodes[walk.end_node(graph)].frame, placement, out);
+  if (walk.rest_frames.empty()) assembler->append_frame(graph.nodes[walk.end_node(graph)].frame, placement, out);
+  for (int f : walk.rest_frames) assembler->append_frame(f, placement, out);
   return out;
 }
 

@@ -116,7 +116,8 @@ class MotionAssembler {
 
 // The walk played from `start` (applied to the database pose of its first frame): the walk's
 // frames followed by the frame of its end node, so that a walk of one clip edge from f1 to
-// f2 gives frames f1..f2. The target skeleton is target_skeleton, or when it is -1 the
+// f2 gives frames f1..f2; a walk that comes to rest plays its rest frames instead of the end
+// node's frame (the first of them is it). The target skeleton is target_skeleton, or when it is -1 the
 // skeleton of the start node's clip.
 Result<Motion> assemble_walk(const MotionDatabase& db, const MotionGraph& graph, const Walk& walk,
                              const FloorTransform& start = {}, int target_skeleton = -1);

@@ -34,9 +34,9 @@ Result<ControlScript> parse_control_script(std::string_view text, const std::str
     if (!c.is_object() || !c.contains("at_s") || !c["at_s"].is_number()) {
       return fail(fmt::format("controls[{}] needs \"at_s\" (seconds)", i));
     }
-    if (const std::string key = unknown_key(c, {"at_s", "heading", "heading_deg", "tag"}); !key.empty()) {
+    if (const std::string key = unknown_key(c, {"at_s", "heading", "heading_deg", "tag", "rest"}); !key.empty()) {
       return fail(fmt::format("controls[{}]: unknown key \"{}\" (a control has \"at_s\", \"heading\" or "
-                              "\"heading_deg\", and \"tag\")",
+                              "\"heading_deg\", \"tag\" and \"rest\")",
                               i, key));
     }
     if (c.contains("heading") && c.contains("heading_deg")) {
@@ -77,8 +77,14 @@ Result<ControlScript> parse_control_script(std::string_view text, const std::str
       current.tag = c["tag"].get<std::string>();
       if (current.tag == "any") current.tag.clear();
     }
-    if (!c.contains("heading") && !c.contains("heading_deg") && !c.contains("tag")) {
-      return fail(fmt::format("controls[{}] gives no \"heading\", \"heading_deg\" or \"tag\": it changes nothing", i));
+    if (c.contains("rest")) {
+      if (!c["rest"].is_boolean()) return fail(fmt::format("controls[{}]: rest must be true or false", i));
+      current.rest = c["rest"].get<bool>();
+    }
+    if (!c.contains("heading") && !c.contains("heading_deg") && !c.contains("tag") && !c.contains("rest")) {
+      return fail(fmt::format("controls[{}] gives no \"heading\", \"heading_deg\", \"tag\" or \"rest\": it changes "
+                              "nothing",
+                              i));
     }
     script.controls.push_back(current);
   }

@@ -4,9 +4,10 @@
 //                 {"at_s": 4, "heading_deg": 90},
 //                 {"at_s": 8, "tag": "run"}]}
 // heading: north, east, south, west (north = -z, east = +x) or heading_deg, a bearing in
-// degrees clockwise from north. A control keeps what it does not say from the one before
-// (the first starts from north and any tag), and says something (a heading or a tag); tag ""
-// or "any" clears the tag. Controls must be in increasing time from 0, and end within a day
+// degrees clockwise from north; "rest": true comes to rest (controller.h) and false takes it
+// back. A control keeps what it does not say from the one before (the first starts from north,
+// any tag and no rest), and says something (a heading, a tag or rest); tag "" or "any" clears
+// the tag. Controls must be in increasing time from 0, and end within a day
 // (kMaxSeconds); headings lie within +-kMaxHeadingDeg.
 #pragma once
 
@@ -22,6 +23,7 @@ struct ScriptedControl {
   double at_s = 0.0;
   double bearing_deg = 0.0;
   std::string tag;  // "" = any
+  bool rest = false;
 };
 
 struct ControlScript {

@@ -91,6 +91,12 @@ Result<Controller> Controller::create(const SynthesisContext& context, const Con
 ControllerDecision Controller::step(Motion& out) {
   using Clock = std::chrono::steady_clock;
   const auto begin = Clock::now();
+  ControllerDecision decision;
+  if (resting() || (input_.rest && !context_->rest.empty())) {
+    step_to_rest(out, decision);
+    decision.search_seconds = std::chrono::duration<double>(Clock::now() - begin).count();
+    return decision;
+  }
   const MotionGraph& graph = *context_->graph;
   const double fps = context_->db->fps;
   HorizonSettings search;
@@ -100,40 +106,113 @@ ControllerDecision Controller::step(Motion& out) {
   search.beam_width = settings_.beam_width;
   const SteerCost cost(*context_, input_, settings_);
   const HorizonResult best = horizon_search(graph, context_->tracks, state_, cost, search);
-  ControllerDecision decision;
   decision.expansions = best.expansions;
   decision.budget_exhausted = best.budget_exhausted;
   const int commit_frames = std::max(1, static_cast<int>(std::lround(settings_.commit_s * fps)));
   std::vector<int> edges = best.edges;
   if (edges.empty()) edges.push_back(graph.edge_offsets[state_.node]);  // the clip piece onwards
-  for (int e : edges) {
-    decision.edges.push_back(e);
-    decision.frames += graph.edges[e].frame_count;
-    if (decision.frames >= commit_frames) break;
-  }
-  // The facings and roots the decision's walk plans from the first frame committed, unedited, as
-  // far as the heading edit looks past the last committed (or as far as the walk goes).
-  std::vector<Vec2> planned, planned_roots;
-  if (settings_.heading_edit.max_turn_deg_per_m > 0.0) {
-    const auto count = static_cast<size_t>(decision.frames + edit_.half_window_frames());
-    planned = walk_facings(graph, context_->tracks, state_, edges, count);
-    if (settings_.heading_edit.hold_travel) planned_roots = walk_roots(graph, context_->tracks, state_, edges, count);
+  size_t committed = 0;
+  for (int frames = 0; committed < edges.size() && frames < commit_frames; ++committed) {
+    frames += graph.edges[edges[committed]].frame_count;
   }
   decision.search_seconds = std::chrono::duration<double>(Clock::now() - begin).count();
+  play(std::span<const int>(edges).first(committed), edges, out, decision);
+  return decision;
+}
+
+void Controller::play(std::span<const int> committed, std::span<const int> planned, Motion& out,
+                      ControllerDecision& decision) {
+  const MotionGraph& graph = *context_->graph;
+  int frames = 0;
+  for (int e : committed) frames += graph.edges[e].frame_count;
+  // The facings and roots the decision's walk plans from the first frame committed, unedited, as
+  // far as the heading edit looks past the last committed (or as far as the walk goes).
+  std::vector<Vec2> planned_facings, planned_roots;
+  if (settings_.heading_edit.max_turn_deg_per_m > 0.0) {
+    const std::vector<int> walk(planned.begin(), planned.end());
+    const auto count = static_cast<size_t>(frames + edit_.half_window_frames());
+    planned_facings = walk_facings(graph, context_->tracks, state_, walk, count);
+    if (settings_.heading_edit.hold_travel) planned_roots = walk_roots(graph, context_->tracks, state_, walk, count);
+  }
   const int first = out.frame_count;
   const SearchState before = state_;
-  for (int e : decision.edges) {
+  for (int e : committed) {
     FloorTransform placement = state_.placement;
     context_->assembler.append_edge(e, placement, out);
     state_ = advance(graph, context_->tracks, state_, e);
+    decision.edges.push_back(e);
   }
-  if (settings_.heading_edit.max_turn_deg_per_m > 0.0) {
-    const FloorTransform move =
-        edit_.apply(out, first, before.has_last ? &before.last_root : nullptr, planned, planned_roots, input_.direction);
+  decision.frames += frames;
+  if (settings_.heading_edit.max_turn_deg_per_m > 0.0 && frames > 0) {
+    const FloorTransform move = edit_.apply(out, first, before.has_last ? &before.last_root : nullptr, planned_facings,
+                                            planned_roots, input_.direction);
     state_.placement = move * state_.placement;
     state_.last_root = place(move, state_.last_root);
   }
-  return decision;
+}
+
+void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
+  const MotionGraph& graph = *context_->graph;
+  const int commit_frames = std::max(1, static_cast<int>(std::lround(settings_.commit_s * context_->db->fps)));
+  auto hold = [&](int frames, int frame) {
+    const PreparedFloorTransform placement(rest_placement_);
+    for (int i = 0; i < frames; ++i) {
+      context_->assembler.append_frame(frame, placement, out);
+      decision.rest_frames.push_back(frame);
+    }
+    decision.frames += frames;
+    state_.frames += frames;
+  };
+  if (resting()) {
+    hold(commit_frames, rest_->last_frame);
+    return;
+  }
+  if (rest_cost_.empty()) {
+    rest_cost_ = cost_to_rest(graph, context_->rest, settings_.transition_penalty, settings_.bridge_penalty);
+  }
+  // Down the costs to rest: at each node the ending there, or the edge that leads closest to one,
+  // for as long as a decision commits.
+  std::vector<int> route;
+  const RestEnding* ending = nullptr;
+  int node = state_.node, frames = 0;
+  while (rest_cost_[static_cast<size_t>(node)] >= 0.0) {
+    const RestEnding* here = context_->rest.at(node);
+    const double target = rest_cost_[static_cast<size_t>(node)];
+    if (here != nullptr && here->frames_to_rest(graph) <= target + 1e-9) {
+      ending = here;
+      break;
+    }
+    if (frames >= commit_frames) break;
+    int best = -1;
+    for (int e = graph.edge_offsets[node]; e < graph.edge_offsets[node + 1]; ++e) {
+      const GraphEdge& edge = graph.edges[e];
+      const double to = rest_cost_[static_cast<size_t>(edge.to_node)];
+      const double via = rest_edge_cost(edge, settings_.transition_penalty, settings_.bridge_penalty) + to;
+      if (to >= 0.0 && via <= target + 1e-9) {
+        best = e;
+        break;
+      }
+    }
+    if (best < 0) break;  // (cannot happen: the node's cost came from one of its edges)
+    route.push_back(best);
+    frames += graph.edges[best].frame_count;
+    node = graph.edges[best].to_node;
+  }
+  if (route.empty() && ending == nullptr) {  // no way to rest from here: play on as the graph does
+    route.push_back(graph.edge_offsets[state_.node]);
+  }
+  play(route, route, out, decision);
+  if (ending == nullptr) return;
+  rest_ = ending;
+  rest_placement_ = state_.placement;
+  rest_at_frame_ = state_.frames + ending->frames_to_rest(graph);
+  const PreparedFloorTransform placement(rest_placement_);
+  for (int f : ending->frames(graph)) {
+    context_->assembler.append_frame(f, placement, out);
+    decision.rest_frames.push_back(f);
+    ++decision.frames;
+    ++state_.frames;
+  }
 }
 
 }  // namespace mg

@@ -12,8 +12,16 @@
 // (greedy) walk is always there, so a decision always answers in bounded time. The frames
 // committed are turned toward the direction asked for by the heading edit (heading_edit.h), and
 // the next decision starts where it left the character.
+//
+// Asked to rest (ControlInput::rest), the character comes to rest at the end of a clip that ends
+// standing still (rest_endings.h) by the cheapest way there (cost_to_rest: frames until it
+// stands, the transition and bridge penalties on the way), turned by the heading edit on the
+// way, and then holds that clip's last frame: a library whose clips never start from standing
+// has no way back into motion, so rest is for good (resting()). Where the graph has no such clip
+// (RestEndings::empty), rest is not heard: the search goes on with the tag.
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "motiongraph/synthesis/heading_edit.h"
@@ -25,6 +33,7 @@ namespace mg {
 struct ControlInput {
   Vec2 direction = Vec2(0.0, -1.0);  // unit, on the floor (default north, -z)
   TagMask tag = 0;                   // 0: any motion
+  bool rest = false;                 // come to rest (and stay there; see above)
 };
 
 struct ControllerSettings {
@@ -62,7 +71,10 @@ struct ControllerSettings {
 
 struct ControllerDecision {
   std::vector<int> edges;            // committed
-  int frames = 0;                    // appended to the motion
+  // Database frames played after the edges, as captured (Walk::rest_frames): the clip on to its
+  // end as the character comes to rest, then its last frame held.
+  std::vector<int> rest_frames;
+  int frames = 0;                    // appended to the motion: the edges' and the rest frames
   double search_seconds = 0.0;       // wall time of the decision
   long long expansions = 0;
   bool budget_exhausted = false;
@@ -85,6 +97,12 @@ class Controller {
   const ControlInput& input() const { return input_; }
   const SearchState& state() const { return state_; }
   const HeadingEditStats& heading_edit_stats() const { return edit_.stats(); }
+  // Whether the character has taken its way to rest: every later decision holds its last frame.
+  bool resting() const { return rest_ != nullptr; }
+  // The frame (counted from the controller's first) from which it stands still; -1 before.
+  long long rest_frame() const { return rest_at_frame_; }
+  // The ending it came to rest on (null before).
+  const RestEnding* rest_ending() const { return rest_; }
   // Decides and appends the next frames to `out` (a motion on the context's target skeleton,
   // e.g. from MotionAssembler::empty_motion()).
   ControllerDecision step(Motion& out);
@@ -94,11 +112,20 @@ class Controller {
       : context_(&context),
         settings_(settings),
         edit_(settings.heading_edit, context.db->fps, context.tracks.forward_axis) {}
+  // Plays `committed` (the first edges of `planned`, the walk the decision chose) into `out`,
+  // turned by the heading edit.
+  void play(std::span<const int> committed, std::span<const int> planned, Motion& out, ControllerDecision& decision);
+  // A decision on the way to rest, or at it.
+  void step_to_rest(Motion& out, ControllerDecision& decision);
   const SynthesisContext* context_;
   ControllerSettings settings_;
   HeadingEdit edit_;
   ControlInput input_;
   SearchState state_;
+  std::vector<double> rest_cost_;  // cost_to_rest, found the first time rest is asked for
+  const RestEnding* rest_ = nullptr;
+  FloorTransform rest_placement_;
+  long long rest_at_frame_ = -1;
 };
 
 // Bearing in degrees (0 north = -z, 90 east = +x) as a unit floor direction, and back.

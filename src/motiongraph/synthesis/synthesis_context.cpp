@@ -28,6 +28,7 @@ Result<SynthesisContext> make_synthesis_context(const MotionDatabase& db, const 
   travel_hold.hold_travel = true;
   context.tracks = compute_edge_tracks(context.assembler, graph, context.frame_tags, forward_axis, travel_axis,
                                        travel_turns(db, context.assembler, forward_axis, travel_hold));
+  context.rest = find_rest_endings(db, graph, context.assembler);
   auto feet = find_foot_joints(db.skeletons[target_skeleton], db.foot_names);
   auto contacts = feet ? contacts_of(db) : Result<std::vector<ContactMask>>(feet.error());
   if (feet && contacts) {
@@ -80,6 +81,13 @@ std::vector<ContactMask> SynthesisContext::edges_contacts(std::span<const int> e
   return out;
 }
 
+std::vector<ContactMask> SynthesisContext::frames_contacts(std::span<const int> frames) const {
+  std::vector<ContactMask> out;
+  if (frame_contacts.empty()) return out;
+  for (int f : frames) out.push_back(frame_contacts[static_cast<size_t>(f)]);
+  return out;
+}
+
 std::vector<ContactMask> SynthesisContext::walk_contacts(const Walk& walk) const {
   std::vector<ContactMask> out;
   if (frame_contacts.empty()) return out;
@@ -90,7 +98,8 @@ std::vector<ContactMask> SynthesisContext::walk_contacts(const Walk& walk) const
 std::vector<FrameSource> SynthesisContext::walk_sources(const Walk& walk) const {
   std::vector<FrameSource> out;
   for (int e : walk.edges) assembler.append_edge_sources(e, out);
-  if (walk.start_node >= 0) {
+  for (int f : walk.rest_frames) out.push_back({f, f, 1.0});
+  if (walk.rest_frames.empty() && walk.start_node >= 0) {
     const int end = graph->nodes[walk.end_node(*graph)].frame;
     out.push_back({end, end, 1.0});
   }

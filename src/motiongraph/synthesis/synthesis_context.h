@@ -12,6 +12,7 @@
 
 #include "motiongraph/synthesis/edge_tracks.h"
 #include "motiongraph/synthesis/foot_cleanup.h"
+#include "motiongraph/synthesis/rest_endings.h"
 #include "motiongraph/synthesis/walk.h"
 
 namespace mg {
@@ -60,6 +61,8 @@ struct SynthesisContext {
   std::string feet_error;
   // Shared by copies of the context (they hold the same graph).
   std::shared_ptr<TagCostCache> tag_costs = std::make_shared<TagCostCache>();
+  // Where the character can come to rest: the graph's nodes in clips that end standing still.
+  RestEndings rest = {};
 
   // The placement that puts node `node`'s frame with its root at `at` facing `direction`
   // (unit, on the floor).
@@ -74,11 +77,15 @@ struct SynthesisContext {
   // The contact masks of the frames `edges` play, in order (none without feet): what a
   // steering decision's frames carry.
   std::vector<ContactMask> edges_contacts(std::span<const int> edges) const;
+  // The contact masks of database frames `frames`, in order (none without feet): what the frames
+  // played at rest carry (Walk::rest_frames).
+  std::vector<ContactMask> frames_contacts(std::span<const int> frames) const;
   // The contact masks of the frames assemble_walk() plays for `walk` (walk_sources: its edges'
   // frames and the end node's frame), each its dominant source frame's.
   std::vector<ContactMask> walk_contacts(const Walk& walk) const;
-  // The database frames of the frames a walk plays: its edges' frames, and when it has a start
-  // node (assemble_walk's walks; steering's record of edges has none) its end node's frame.
+  // The database frames of the frames a walk plays: its edges' frames, then its rest frames, or
+  // without them, when it has a start node (assemble_walk's walks; steering's record of edges has
+  // none), its end node's frame.
   std::vector<FrameSource> walk_sources(const Walk& walk) const;
   // A clean-up for motion on the target skeleton; fails with feet_error without feet.
   Result<FootCleanup> foot_cleanup(const FootCleanupSettings& settings) const;

@@ -22,6 +22,10 @@ Status check_walk(const MotionGraph& graph, const Walk& walk) {
     }
     at = graph.edges[e].to_node;
   }
+  if (!walk.rest_frames.empty() && walk.rest_frames.front() != graph.nodes[at].frame) {
+    return Error{"", 0, fmt::format("the walk comes to rest from frame {}, but it ends at node {} (frame {})",
+                                    walk.rest_frames.front(), at, graph.nodes[at].frame)};
+  }
   return Ok{};
 }
 

@@ -28,6 +28,10 @@ inline int count_bridges(const MotionGraph& graph, std::span<const int> edges) {
 struct Walk {
   int start_node = 0;
   std::vector<int> edges;  // indices into MotionGraph::edges
+  // A walk that comes to rest (rest_endings.h): the database frames played after its edges, as
+  // captured under the last edge's placement: its end node's clip on from the node's frame to the
+  // clip's end, then that last frame held. Empty for every other walk.
+  std::vector<int> rest_frames = {};
 
   // The node the walk ends at (start_node when it has no edges).
   int end_node(const MotionGraph& graph) const {
@@ -43,7 +47,8 @@ struct Walk {
   int transition_count(const MotionGraph& graph) const { return count_transitions(graph, edges); }
 };
 
-// Fails unless start_node is a node and every edge exists and leaves the node the walk is at.
+// Fails unless start_node is a node and every edge exists and leaves the node the walk is at,
+// and its rest frames, if any, start at the frame of the node it ends at.
 Status check_walk(const MotionGraph& graph, const Walk& walk);
 
 }  // namespace mg

@@ -1,0 +1,62 @@
+// Coming to rest. A pruned graph keeps what a walk can play forever (motion_graph.h), so where a
+// library's clips stop ("slow walk, stop") but none starts from standing, the pruning leaves
+// their halts as dead ends: subject 16's graph keeps 9 of its 88 stop frames, and a character
+// asked to stop walked on. A clip that ends standing still is a way to rest all the same, one
+// with no way back: from any graph node of such a clip, play the clip on as captured to its end,
+// then hold its last frame.
+//
+// A clip ends at rest when its root does not travel over its last frames (travel_tags.h's
+// travelling_spans, the root's floor speed over a second below 0.25 m/s): it rests from the
+// frame after its last travel (its first frame when it never travels: a clip that stands
+// throughout).
+#pragma once
+
+#include <vector>
+
+#include "motiongraph/database/motion_database.h"
+#include "motiongraph/graph/motion_graph.h"
+#include "motiongraph/synthesis/assembler.h"
+
+namespace mg {
+
+struct RestEnding {
+  int node = 0;        // the graph node it leaves from (its frame is the first it plays)
+  int rest_frame = 0;  // global frame from which the root stands still to the clip's end
+  int last_frame = 0;  // the clip's last frame (global): the frame held at rest
+
+  // Frames played from the node's frame until the character stands still (0 from a node at rest).
+  int frames_to_rest(const MotionGraph& graph) const {
+    return rest_frame > graph.nodes[node].frame ? rest_frame - graph.nodes[node].frame : 0;
+  }
+  // The database frames the ending plays: the node's frame to the clip's last, in order.
+  std::vector<int> frames(const MotionGraph& graph) const;
+};
+
+struct RestEndings {
+  std::vector<RestEnding> endings;  // by node, one per node of a clip that ends at rest
+  std::vector<int> of_node;         // per graph node: its ending's index, or -1
+
+  bool empty() const { return endings.empty(); }
+  const RestEnding* at(int node) const {
+    const int i = of_node[static_cast<size_t>(node)];
+    return i < 0 ? nullptr : &endings[static_cast<size_t>(i)];
+  }
+};
+
+// The endings of `graph`'s nodes, the clips' roots read as `assembler` places them (a trajectory
+// joint's where the file's root stands still).
+RestEndings find_rest_endings(const MotionDatabase& db, const MotionGraph& graph, const MotionAssembler& assembler);
+
+// What taking `edge` costs on the way to rest: its frames, and the transition's and bridge's costs.
+inline double rest_edge_cost(const GraphEdge& edge, double transition_cost, double bridge_cost) {
+  return edge.frame_count + (edge.transition ? transition_cost : 0.0) + (edge.bridge ? bridge_cost : 0.0);
+}
+
+// Per node, the least cost of coming to rest from it: frames played until the character stands
+// still (1 each), plus `transition_cost` per transition and `bridge_cost` more per bridge taken on
+// the way; -1 where no walk reaches an ending (every node or none in a pruned graph). Dijkstra over
+// the reversed edges from each ending's node.
+std::vector<double> cost_to_rest(const MotionGraph& graph, const RestEndings& endings, double transition_cost,
+                                 double bridge_cost);
+
+}  // namespace mg

@@ -1,0 +1,144 @@
+#include "motiongraph/synthesis/rest_endings.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "synthesis/search_test_graphs.h"
+#include "synthesis/subject16_graph.h"
+#include "test_data.h"
+
+namespace mg {
+namespace {
+
+// Clips as a database and their graph without transitions (nodes at each clip's first and last
+// frame), with its endings.
+struct Clips {
+  explicit Clips(const std::vector<std::string>& files) : db(test::small_database(files)) {}
+  RestEndings endings() {
+    graph = build_motion_graph(db, std::vector<Transition>{}, 10);
+    EXPECT_TRUE(graph.ok());
+    auto assembler = MotionAssembler::create(db, *graph, 0);
+    EXPECT_TRUE(assembler.ok());
+    return find_rest_endings(db, *graph, *assembler);
+  }
+  // The root's floor distance between two global frames.
+  double floor_distance(int a, int b) const {
+    const DatabaseClip& clip = db.clips[static_cast<size_t>(db.clip_of(a))];
+    const Vec3 d =
+        clip.motion.translations(b - clip.first_frame)[0] - clip.motion.translations(a - clip.first_frame)[0];
+    return std::hypot(d.x(), d.z());
+  }
+  MotionDatabase db;
+  Result<MotionGraph> graph = Error{"", 0, "not built"};
+};
+
+TEST(RestEndings, AClipThatWalksToItsEndHasNoneAndOneThatStopsHasOneAtEachNode) {
+  Clips clips({"cmu/16/16_15.amc", "cmu/16/16_33.amc"});  // walk; slow walk, stop
+  const RestEndings endings = clips.endings();
+  const MotionGraph& graph = *clips.graph;
+  const DatabaseClip& stops = clips.db.clips[1];
+  ASSERT_EQ(endings.endings.size(), 2u);  // 16_33's first and last frame
+  for (int n = 0; n < graph.node_count(); ++n) {
+    const RestEnding* ending = endings.at(n);
+    ASSERT_EQ(ending != nullptr, graph.nodes[n].clip == 1) << "node " << n;
+    if (ending == nullptr) continue;
+    EXPECT_EQ(ending->node, n);
+    EXPECT_EQ(ending->last_frame, stops.first_frame + stops.frame_count - 1);
+    // It stands from rest_frame on (a few centimetres of sway), and travelled in the second before.
+    EXPECT_LT(clips.floor_distance(ending->rest_frame, ending->last_frame), 0.1);
+    EXPECT_GT(clips.floor_distance(ending->rest_frame - static_cast<int>(clips.db.fps), ending->rest_frame), 0.15);
+    const std::vector<int> frames = ending->frames(graph);
+    ASSERT_FALSE(frames.empty());
+    EXPECT_EQ(frames.front(), graph.nodes[n].frame);
+    EXPECT_EQ(frames.back(), ending->last_frame);
+    EXPECT_EQ(static_cast<int>(frames.size()), ending->last_frame - graph.nodes[n].frame + 1);
+  }
+  // From the clip's last frame it is already at rest.
+  EXPECT_EQ(endings.at(graph.node_at_frame(stops.first_frame + stops.frame_count - 1))->frames_to_rest(graph), 0);
+}
+
+TEST(RestEndings, AWalkWhoseRootIsHeldFromAFrameOnRestsFromAboutThere) {
+  Clips clips({"cmu/16/16_15.amc"});
+  const int held = 60;
+  DatabaseClip& clip = clips.db.clips[0];
+  ASSERT_GT(clip.frame_count, held + 30);
+  EXPECT_TRUE(clips.endings().empty());  // as captured, it walks to its end
+  const Vec3 at = clip.motion.translations(held)[0];
+  for (int f = held; f < clip.frame_count; ++f) clip.motion.translations(f)[0] = at;
+  const RestEndings endings = clips.endings();
+  ASSERT_EQ(endings.endings.size(), 2u);
+  // The travel is judged over a second centred on each frame: it ends within half a second of the hold.
+  EXPECT_NEAR(endings.endings[0].rest_frame, held, clips.db.fps / 2 + 1);
+  EXPECT_EQ(endings.endings[0].frames_to_rest(*clips.graph), endings.endings[0].rest_frame);
+}
+
+// The definition, solved by relaxing every edge until nothing changes (Bellman-Ford).
+std::vector<double> by_relaxation(const MotionGraph& graph, const RestEndings& endings, double transition,
+                                  double bridge) {
+  const double far = std::numeric_limits<double>::infinity();
+  std::vector<double> d(static_cast<size_t>(graph.node_count()), far);
+  for (const RestEnding& e : endings.endings) {
+    d[static_cast<size_t>(e.node)] = std::min(d[static_cast<size_t>(e.node)], double(e.frames_to_rest(graph)));
+  }
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (const GraphEdge& edge : graph.edges) {
+      const double via = d[static_cast<size_t>(edge.to_node)] + edge.frame_count +
+                         (edge.transition ? transition : 0.0) + (edge.bridge ? bridge : 0.0);
+      if (via < d[static_cast<size_t>(edge.from_node)] - 1e-12) {
+        d[static_cast<size_t>(edge.from_node)] = via;
+        changed = true;
+      }
+    }
+  }
+  for (double& v : d) v = v == far ? -1.0 : v;
+  return d;
+}
+
+TEST(RestEndings, CostToRestIsTheCheapestWayToAnEndingOnRandomGraphs) {
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 40; ++trial) {
+    MotionGraph graph = test::random_search_graph(rng, 30, 40, 12);
+    for (GraphEdge& edge : graph.edges) edge.bridge = edge.transition && rng() % 3 == 0;
+    RestEndings endings;
+    endings.of_node.assign(static_cast<size_t>(graph.node_count()), -1);
+    for (int n = 0; n < graph.node_count(); ++n) {
+      if (trial % 10 == 0 || rng() % 6 != 0) continue;  // every tenth graph has none
+      endings.of_node[static_cast<size_t>(n)] = static_cast<int>(endings.endings.size());
+      const int frame = graph.nodes[static_cast<size_t>(n)].frame;
+      endings.endings.push_back({n, frame + static_cast<int>(rng() % 40), frame + 50});
+    }
+    const double transition = (trial % 4) * 0.7, bridge = (trial % 3) * 10.0;
+    const std::vector<double> fast = cost_to_rest(graph, endings, transition, bridge);
+    const std::vector<double> slow = by_relaxation(graph, endings, transition, bridge);
+    ASSERT_EQ(fast.size(), slow.size());
+    for (size_t n = 0; n < fast.size(); ++n) EXPECT_NEAR(fast[n], slow[n], 1e-9) << "trial " << trial << " node " << n;
+    if (endings.empty()) {
+      EXPECT_EQ(fast, std::vector<double>(fast.size(), -1.0));
+    }
+  }
+}
+
+TEST(RestEndings, Subject16ComesToRestOnlyAtTheEndsOfItsStoppingClips) {
+  const auto& s = test::subject16();
+  const SynthesisContext& context = s.context();
+  ASSERT_FALSE(context.rest.empty());  // "slow walk, stop" and "run/jog, sudden stop" end standing
+  for (const RestEnding& ending : context.rest.endings) {
+    const DatabaseClip& clip = context.db->clips[static_cast<size_t>(context.db->clip_of(ending.last_frame))];
+    EXPECT_EQ(ending.last_frame, clip.first_frame + clip.frame_count - 1);
+    EXPECT_EQ(context.graph->nodes[static_cast<size_t>(ending.node)].clip, context.db->clip_of(ending.last_frame));
+    // Over its last half second the root travels less than 0.25 m/s would.
+    const Vec3 a = context.assembler.root_position(ending.last_frame - static_cast<int>(context.db->fps / 2), {});
+    const Vec3 b = context.assembler.root_position(ending.last_frame, {});
+    EXPECT_LT(std::hypot(b.x() - a.x(), b.z() - a.z()), 0.125) << clip.name;
+  }
+  // A pruned graph is strongly connected: rest is reached from every node.
+  for (double c : cost_to_rest(*context.graph, context.rest, 1.0, 30.0)) EXPECT_GE(c, 0.0);
+}
+
+}  // namespace
+}  // namespace mg
