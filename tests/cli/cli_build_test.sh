@@ -383,6 +383,33 @@ grep "^$data/cmu/16: library of 15 clips, 1235 frames at 30 fps (41.2 s)" "$work
 grep "^$data/cmu: library of 15 clips, 1235 frames at 30 fps (41.2 s)" "$work/tree.txt" >/dev/null \
   && diff <(grep "^  16_" "$work/lib.txt") <(grep "^  16_" "$work/tree.txt") \
   || { echo "FAIL: info on a folder of folders"; cat "$work/tree.txt"; exit 1; }
+# A folder with a file cut short (a failed copy): the file is passed over with its error, one
+# warning line, and the library is built of the others; named itself it stops the build.
+mkdir -p "$work/cut"
+cp "$data/cmu/16/16.asf" "$data/cmu/16/16_15.amc" "$data/cmu/16/16_16.amc" "$work/cut/"
+head -c 20000 "$data/cmu/16/16_17.amc" >"$work/cut/16_17.amc"
+"$bin" info "$work/cut" >/dev/null 2>"$work/cut.err"
+[[ $(grep -c "16_17.amc:[0-9]*: .*(passed over: the library is read without it)" "$work/cut.err") -eq 1 ]] \
+  || { echo "FAIL: a folder's unreadable file is passed over, said once"; cat "$work/cut.err"; exit 1; }
+"$bin" info --json "$work/cut" >"$work/cut.json" 2>/dev/null
+python3 - "$work/cut.json" "$work/cut/16_17.amc" <<'PY' || { echo "FAIL: unreadable_passed_over"; exit 1; }
+import json, sys
+lib = json.load(open(sys.argv[1]))
+assert [c["name"] for c in lib["clips"]] == ["16_15", "16_16"], lib["clips"]
+[bad] = lib["reading"]["unreadable_passed_over"]
+assert bad["file"] == sys.argv[2] and bad["line"] > 0 and bad["error"], bad
+assert sum("(passed over: the library is read without it)" in w for w in lib["warnings"]) == 1, lib["warnings"]
+PY
+"$bin" build "$work/cut" -o "$work/cut.mgraph" -q 2>"$work/cut-build.err" \
+  && grep -q "16_17.amc:[0-9]*: .*(passed over" "$work/cut-build.err" && [[ -s "$work/cut.mgraph" ]] \
+  || { echo "FAIL: build of a folder with an unreadable file"; cat "$work/cut-build.err"; exit 1; }
+if "$bin" build "$work/cut/16_15.amc" "$work/cut/16_17.amc" --asf "$work/cut/16.asf" -o "$work/cut2.mgraph" -q \
+  2>"$work/cut-named.err"; then
+  echo "FAIL: an unreadable file named itself builds"; exit 1
+fi
+[[ $(wc -l <"$work/cut-named.err") -eq 1 ]] && grep -q "16_17.amc:[0-9]*: " "$work/cut-named.err" \
+  && [[ ! -e "$work/cut2.mgraph" ]] \
+  || { echo "FAIL: an unreadable file named itself: one line naming it, no output"; cat "$work/cut-named.err"; exit 1; }
 # data/bvh holds two converters' rigs that cannot be read together (Daz's of 07_01 and 07_12,
 # CMU's of the others): the folder is read on the rigs of the most frames, with a warning.
 "$bin" info --json "$data/bvh" >"$work/bvh.json" 2>"$work/bvh.err"

@@ -1445,6 +1445,50 @@ TEST(DatabaseLoader, AFoldersPoseFilesArePassedOver) {
       << poses.error().message;
 }
 
+// A folder's file that cannot be read (cut short; another format under the extension) is passed
+// over with the error reading it gives, once, however often the clips are read; the library is its
+// other files, as without it. Named itself, the file is an error; a folder of such files only
+// stops with the first one's error.
+TEST(DatabaseLoader, AFoldersUnreadableFilesArePassedOver) {
+  TempFolder folder("unreadable");
+  const std::string text = test::read_data("bvh/07_01.bvh");
+  const std::string cut = folder.write("00_cut.bvh", text.substr(0, text.find("MOTION") / 2));
+  const std::string other = folder.write("01_other.bvh", "{\"not\": \"a bvh\"}\n");
+  folder.write("07_01.bvh", text);
+  folder.write("07_12.bvh", test::read_data("bvh/07_12.bvh"));
+  const auto alone = load_database({test::data_path("bvh/07_01.bvh"), test::data_path("bvh/07_12.bvh")},
+                                   cmu_settings());
+  ASSERT_TRUE(alone) << alone.error().to_string();
+  const auto cut_alone = load_database({cut}, cmu_settings());
+  ASSERT_FALSE(cut_alone);
+  EXPECT_EQ(cut_alone.error().file, cut);
+  EXPECT_GT(cut_alone.error().line, 0);
+  DatabaseLoadNotes notes;
+  auto db = load_database({folder.path().string()}, cmu_settings(), &notes);
+  ASSERT_TRUE(db) << db.error().to_string();
+  ASSERT_EQ(db->clips.size(), 2u);
+  EXPECT_EQ(db->frame_count(), alone->frame_count());
+  ASSERT_EQ(notes.unreadable.size(), 2u);
+  EXPECT_EQ(notes.unreadable[0].to_string(), cut_alone.error().to_string());
+  EXPECT_EQ(notes.unreadable[1].file, other);
+  const std::vector<std::string> warnings = load_warnings(notes);
+  EXPECT_NE(std::find(warnings.begin(), warnings.end(),
+                      cut_alone.error().to_string() + " (passed over: the library is read without it)"),
+            warnings.end());
+  // Named itself, an error; a folder of them only, the first one's error.
+  auto named = load_database({cut, test::data_path("bvh/07_01.bvh")}, cmu_settings());
+  ASSERT_FALSE(named);
+  EXPECT_EQ(named.error().to_string(), cut_alone.error().to_string());
+  fs::remove(folder.path() / "07_01.bvh");
+  fs::remove(folder.path() / "07_12.bvh");
+  auto none = load_database({folder.path().string()}, cmu_settings());
+  ASSERT_FALSE(none);
+  EXPECT_EQ(none.error().file, cut);
+  EXPECT_EQ(none.error().line, cut_alone.error().line);
+  EXPECT_NE(none.error().message.find("and 1 other file of the folder could not be read either"), std::string::npos)
+      << none.error().message;
+}
+
 TEST(DatabaseLoader, BadInputsAndSettings) {
   DatabaseSettings settings = cmu_settings();
   EXPECT_FALSE(load_database({}, settings));

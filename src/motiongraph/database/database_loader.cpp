@@ -655,6 +655,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
   for (const ClipSpec& spec : specs) clip_names.insert(spec.name);
   ProgressBar reading("reading", specs.size(), !settings.progress_bar, settings.progress_lines);
   std::unordered_map<std::uint64_t, std::string> read_motions;  // a folder's clips: content hash -> file
+  std::vector<Error> unreadable;  // a folder's files passed over
   for (size_t spec_index = 0; spec_index < specs.size(); ++spec_index) {
     const ClipSpec& spec = specs[spec_index];
     if (auto s = check_stop(settings.stop); !s) return s.error();
@@ -663,6 +664,16 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     if (!loaded && loaded.error().kind == ErrorKind::kNoSuchAnimation && !spec.manifest.empty()) {
       // The manifest's line that asked for it is what to change.
       return Error{spec.manifest, spec.animation_line, fmt::format("clip {}: {}", spec.path, loaded.error().message)};
+    }
+    // A folder's file that cannot be read is passed over, its error noted (once: the clips may be
+    // read again below); a library of hundreds is not stopped by one file cut short.
+    if (!loaded && spec.in_folder && loaded.error().kind == ErrorKind::kGeneral) {
+      unreadable.push_back(loaded.error());
+      if (notes != nullptr && std::none_of(notes->unreadable.begin(), notes->unreadable.end(),
+                                           [&](const Error& e) { return e.file == loaded.error().file; })) {
+        notes->unreadable.push_back(loaded.error());
+      }
+      continue;
     }
     if (!loaded) return loaded.error();
     if (loaded->format == "amc") {  // its skeleton, when found beside it
@@ -945,6 +956,14 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     if (split_note) notes->glitch_splits.push_back(std::move(*split_note));
   }
   reading.finish();
+  if (db.clips.empty() && !unreadable.empty()) {  // nothing read: the first file's error says why
+    Error first = unreadable.front();
+    if (unreadable.size() > 1) {
+      first.message += fmt::format(" (and {} other file{} of the folder could not be read either)",
+                                   unreadable.size() - 1, unreadable.size() == 2 ? "" : "s");
+    }
+    return first;
+  }
   if (db.clips.empty()) {
     return Error{specs.front().path, 0,
                  fmt::format("every clip file of the folder holds a pose, not a motion (under 2 frames at {} fps)",
@@ -1199,6 +1218,9 @@ std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes) {
   }
   for (std::string& line : clip_doubt_lines(notes.clip_doubts)) lines.push_back(std::move(line));
   std::vector<std::string> first = notes.name_clashes;
+  for (const Error& e : notes.unreadable) {
+    first.push_back(fmt::format("{} (passed over: the library is read without it)", e.to_string()));
+  }
   if (!notes.poses.empty()) {
     std::vector<std::string> files;
     for (const auto& pose : notes.poses) {

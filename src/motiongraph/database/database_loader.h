@@ -24,9 +24,11 @@
 // clip), for all its frames, but walk and run only where its root travels (travel_tags.h;
 // settings.travel_tags).
 //
-// Errors: a missing input or clip file, a clip with fewer than 2 frames after resampling (it
-// holds no motion), a frame range past the end of its file, skeletons too unlike to share,
-// more than 64 tags; each names the file (and the manifest line when a manifest gave it).
+// Errors: a missing input or clip file, a clip file that cannot be read (but for a folder's,
+// which is passed over: DatabaseLoadNotes::unreadable, unless the folder holds no other), a clip
+// with fewer than 2 frames after resampling (it holds no motion), a frame range past the end of
+// its file, skeletons too unlike to share, more than 64 tags; each names the file (and the
+// manifest line when a manifest gave it).
 #pragma once
 
 #include <optional>
@@ -233,6 +235,10 @@ struct DatabaseLoadNotes {
     std::string reason;
   };
   std::vector<OtherRigs> other_rigs;
+  // Files a folder holds that cannot be read (cut short, another format under the extension, a
+  // converter's mistake), passed over with the error that reading gave: one bad file in a library
+  // of hundreds does not stop it. Given itself, or named by a manifest, such a file is an error.
+  std::vector<Error> unreadable;
   // Files a folder holds with a pose rather than a motion (no frame, or under 2 at the library's
   // rate), passed over: the frames in the file and its rate.
   struct Pose {

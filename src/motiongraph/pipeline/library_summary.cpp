@@ -120,6 +120,10 @@ nlohmann::json reading_json(const DatabaseLoadNotes& notes) {
   }
   nlohmann::json poses = nlohmann::json::array();
   for (const auto& p : notes.poses) poses.push_back({{"file", p.file}, {"frames", p.frames}, {"fps", p.fps}});
+  nlohmann::json unreadable = nlohmann::json::array();
+  for (const Error& e : notes.unreadable) {
+    unreadable.push_back({{"file", e.file}, {"line", e.line}, {"error", e.message}});
+  }
   nlohmann::json other_rigs = nlohmann::json::array();
   for (const auto& o : notes.other_rigs) other_rigs.push_back({{"files", o.files}, {"reason", o.reason}});
   return {{"units", std::move(units)},
@@ -131,6 +135,7 @@ nlohmann::json reading_json(const DatabaseLoadNotes& notes) {
           {"rigs", std::move(rigs)},
           {"other_rigs_left_out", std::move(other_rigs)},
           {"poses_passed_over", std::move(poses)},
+          {"unreadable_passed_over", std::move(unreadable)},
           {"loops", std::move(loops)},
           {"standing_tags", std::move(standing)}};
 }
