@@ -86,6 +86,7 @@ PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<d
                  {"retry_horizon", set(settings.retry_horizon_s)},
                  {"retry_tag_match", set(settings.retry_tag_match)},
                  {"path_edit", set(settings.edit_path)},
+                 {"rest_at_end", set(settings.rest_at_end)},
                  {"edit_max_turn", set(settings.path_edit.max_turn_deg_per_m)},
                  {"edit_round_corners", set(settings.path_edit.round_corners_m)},
                  {"cleanup", set(run.cleanup)},
@@ -285,20 +286,11 @@ class PyController {
             {"heading_edit", heading_edit_report(settings_.heading_edit, controller_->heading_edit_stats())},
             {"cleanup", cleanup_report(context(), run_, cleanup_)},
             {"foot_slide", foot_slide_report(context(), played_, motion_)},
-            {"rest", rest_report()}};
+            {"rest", rest_report(context(), controller_->rest_ending(),
+                                 static_cast<double>(controller_->rest_frame()) / context().db->fps)}};
   }
 
-  // (the lock held) Where the character came to rest: when, and the clip whose end it stands at.
-  nlohmann::json rest_report() const {
-    const RestEnding* ending = controller_->rest_ending();
-    if (ending == nullptr) return nullptr;
-    const MotionDatabase& db = *context().db;
-    const DatabaseClip& clip = db.clips[static_cast<size_t>(db.clip_of(ending->last_frame))];
-    return {{"at_s", static_cast<double>(controller_->rest_frame()) / db.fps},
-            {"clip", clip.name},
-            {"clip_frame", ending->rest_frame - clip.first_frame},
-            {"held_frame", ending->last_frame - clip.first_frame}};
-  }
+
 
   // The first time a motion type the graph plays in no frame is asked for, a warning says so; stop
   // the graph can hardly play is rest (stop_means_rest), and rest a graph cannot come to is warned

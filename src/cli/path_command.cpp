@@ -81,6 +81,10 @@ int run_path(const PathOptions& o) {
                     : fmt::format("{:.0f} % of {} frames", 100.0 * s["tag_match"].get<double>(), s["frames"].get<int>());
   }
   if (!segments.empty()) fmt::print("segments (frames carrying the type asked): {}\n", segments);
+  if (const nlohmann::json& rest = r["rest"]; !rest.is_null()) {
+    fmt::print("at rest from {:.2f} s at the end of {}, {:.2f} m from the path's end\n", rest["at_s"].get<double>(),
+               rest["clip"].get<std::string>(), r["end_distance_m"].get<double>());
+  }
   return 0;
 }
 
@@ -164,6 +168,10 @@ Command add_path_command(CLI::App& app) {
                   "--progress-retries searches again (0, or --tag-penalty 0: never for that)")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  sub->add_flag("--rest-at-end", o->settings.rest_at_end,
+                "Come to rest at the path's end: from the walk's nodes near the end, the way on that stands nearest "
+                "it, to the end of a clip that ends standing still; the whole motion bent onto the path (the graph "
+                "needs such a clip)");
   sub->add_flag_callback(
       "--no-path-edit", [o] { o->settings.edit_path = false; },
       "Keep the motion as the graph plays it; by default it is bent onto the path (Gleicher's motion path editing), "

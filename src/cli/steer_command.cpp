@@ -187,18 +187,13 @@ int run_steer(const SteerOptions& o) {
     rest_before = rest;
     controls.push_back(std::move(control));
   }
-  nlohmann::json rest_report = nullptr;
-  if (const RestEnding* ending = controller->resting() ? controller->rest_ending() : nullptr; ending != nullptr) {
-    const DatabaseClip& clip = context.db->clips[static_cast<size_t>(context.db->clip_of(ending->last_frame))];
-    rest_report = {{"at_s", rest_s >= 0.0 ? nlohmann::json(rest_s) : nlohmann::json(nullptr)},
-                   {"clip", clip.name},
-                   {"clip_frame", ending->rest_frame - clip.first_frame},
-                   {"held_frame", ending->last_frame - clip.first_frame}};
-  }
+  nlohmann::json rested = rest_report(context, controller->rest_ending(),
+                                      static_cast<double>(controller->rest_frame()) / fps);
+  if (!rested.is_null() && rest_s < 0.0) rested["at_s"] = nullptr;  // it stands only after the script's end
   if (!unheard_s.empty()) {
     spdlog::warn("the character came to rest at {:.2f} s, at the end of {}, and stays there: the control{} at {} s "
                  "cannot turn or move it (rest is for good: no clip of this graph starts from standing)",
-                 rest_s, rest_report["clip"].get<std::string>(), unheard_s.size() == 1 ? "" : "s",
+                 rest_s, rested["clip"].get<std::string>(), unheard_s.size() == 1 ? "" : "s",
                  fmt::join(unheard_s, ", "));
   }
   const HeadingEditStats& edit_stats = controller->heading_edit_stats();
@@ -219,7 +214,7 @@ int run_steer(const SteerOptions& o) {
                                  {"cleanup_ms_p99", cleanup ? nlohmann::json(1e3 * percentile(cleanup_seconds, 0.99))
                                                             : nlohmann::json(nullptr)},
                                  {"controls", controls},
-                                 {"rest", rest_report}};
+                                 {"rest", rested}};
   if (auto s = write_synthesis_outputs(o.common, **loaded, motion, played, report, all_contacts); !s) return fail(s.error());
   fmt::print("steer: {} frames ({:.1f} s), {} decisions, decision p99 {:.3f} ms\n", motion.frame_count,
              motion.frame_count / fps, latencies.size(), 1e3 * percentile(latencies, 0.99));

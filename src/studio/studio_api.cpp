@@ -397,7 +397,7 @@ class Router {
 
   ApiResponse path() {
     const json body = body_object(request_);
-    check_keys(body, {"points", "segments", "edit_path", "cleanup"});
+    check_keys(body, {"points", "segments", "edit_path", "rest_at_end", "cleanup"});
     if (body.contains("points") && body["points"].is_array() &&
         body["points"].size() > static_cast<size_t>(StudioApi::kMaxPathPoints)) {
       throw ApiError{400, fmt::format("at most {} points", StudioApi::kMaxPathPoints)};
@@ -431,6 +431,7 @@ class Router {
     }
     PathSynthesisSettings settings;
     settings.edit_path = boolean_field(body, "edit_path", true);
+    settings.rest_at_end = boolean_field(body, "rest_at_end", false);
     auto synthesized = service_.path(*floor_path, settings, boolean_field(body, "cleanup", true));
     if (!synthesized) throw ApiError{422, synthesized.error().to_string()};
     const PathSynthesisResult* result = &synthesized->synthesis;
@@ -450,6 +451,7 @@ class Router {
     out["path_edit"] = path_edit_report(settings, *result);
     out["shortfalls"] = path_shortfalls(service_.context(), *floor_path, settings, *result);
     out["tag_match"] = result->tag_match;
+    out["rest"] = rest_report(service_.context(), result->rest, result->rest_frame / db().fps);
     out["segments"] = path_segments_report(service_.context(), *floor_path, *result);
     const int transitions = result->walk.transition_count(graph());
     out["transitions"] = transitions;

@@ -141,6 +141,22 @@ assert root[-1] == root[-2] == root[-int(r["fps"])], root[-3:]
 # The foot slide is judged against the clips played, the stopping one among them.
 assert rest["clip"] in r["foot_slide"]["source"]["clips"], r["foot_slide"]["source"]
 PY
+# A path asked to end at rest: the character stands at its end, still to the last frame.
+"$bin" path "$work/g.mgraph" --shape square:6 --rest-at-end -o "$work/rest-path.json" \
+  --report "$work/rest-path-report.json" >"$work/rest-path.out"
+grep -q "^at rest from .* s at the end of 16_" "$work/rest-path.out" || { cat "$work/rest-path.out"; exit 1; }
+python3 - "$work/rest-path-report.json" "$work/rest-path.json" <<'PY'
+import json, math, sys
+r, m = (json.load(open(p)) for p in sys.argv[1:])
+rest = r["rest"]
+assert rest is not None and rest["clip"] in ("16_33", "16_57") and r["reached_end"], (rest, r["reached_end"])
+root = [p[0] for p in m["positions"]]
+at = math.ceil(rest["at_s"] * r["fps"])
+assert 0 < at < len(root) == r["frames"], (at, len(root))
+assert max(math.dist(root[at][::2], p[::2]) for p in root[at:]) < 0.1, rest
+assert math.dist(root[-1][::2], r["path"][-1]) < 0.5, (root[-1], r["path"][-1])
+assert rest["clip"] in r["foot_slide"]["source"]["clips"], r["foot_slide"]["source"]
+PY
 # A tag asked for a moment, then any, then again: each asking is answered on its own.
 cat >"$work/again.json" <<'JSON'
 {"duration_s": 9, "controls": [{"at_s": 0, "tag": "walk"}, {"at_s": 3, "tag": "run"}, {"at_s": 3.2, "tag": "any"},

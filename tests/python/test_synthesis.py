@@ -262,6 +262,16 @@ def test_rest_equals_the_cli_and_stands_still(cli, graph_file, graph, tmp_path):
     assert other.rest_s is not None
 
 
+def test_path_to_rest_equals_the_cli(cli, graph_file, graph, tmp_path):
+    cli("path", graph_file, "--shape", "circle:4", "--rest-at-end", "-o", tmp_path / "cli.json",
+        "--report", tmp_path / "cli-report.json")
+    motion = graph.path(shape="circle:4", rest_at_end=True)
+    assert_positions_equal(motion, read_json(tmp_path / "cli.json"))
+    rest = motion.report["rest"]
+    assert rest == read_json(tmp_path / "cli-report.json")["rest"] and rest["clip"].startswith("16_")
+    assert graph.path(shape="circle:4").report["rest"] is None
+
+
 def test_steering_goes_where_it_is_told(graph):
     controller = graph.controller(heading_deg=90, tag="walk")
     while len(controller.motion) < 5 * graph.fps:

@@ -494,6 +494,26 @@ TEST(StudioApi, SteeringComesToRestWhenAsked) {
   expect_error(call_api("POST", step, R"({"rest": 1})"), 400, "'rest' must be true or false");
 }
 
+// A path asked to end at rest says where the character stands, as the CLI's report does.
+TEST(StudioApi, APathComesToRestWhenAsked) {
+  const std::string points = R"("points": [[0, 0], [0, -6], [4, -6]])";
+  const ApiCall plain = call_api("POST", "/api/path", "{" + points + "}");
+  ASSERT_EQ(plain.response.status, 200) << plain.response.body;
+  EXPECT_TRUE(plain.json["rest"].is_null());
+  const ApiCall rested = call_api("POST", "/api/path", "{" + points + R"(, "rest_at_end": true})");
+  ASSERT_EQ(rested.response.status, 200) << rested.response.body;
+  ASSERT_TRUE(rested.json["rest"].is_object()) << rested.json.dump();
+  EXPECT_EQ(rested.json["rest"]["clip"].get<std::string>().substr(0, 3), "16_");
+  EXPECT_LT(rested.json["end_distance_m"].get<double>(), 0.5);
+  const json& last = rested.json["positions"].back();
+  const json& before = rested.json["positions"][rested.json["positions"].size() - 10];
+  const double dx = last[0].get<double>() - before[0].get<double>();
+  const double dz = last[2].get<double>() - before[2].get<double>();
+  EXPECT_LT(std::hypot(dx, dz), 0.05);
+  expect_error(call_api("POST", "/api/path", "{" + points + R"(, "rest_at_end": "yes"})"), 400,
+               "'rest_at_end' must be true or false");
+}
+
 TEST(StudioApi, BadSteeringIs4xx) {
   expect_error(call_api("POST", "/api/steer/sessions", R"({"tag": "fly"})"), 400, "'fly' is not a motion tag");
   // A tag of 100 KB is named by its first 40 characters, not echoed whole.

@@ -98,6 +98,52 @@ TEST(PathSynthesis, FollowsTheBuiltInShapes) {
 }
 
 // The root's mean direction of travel (the travel axis), not the hips' facing, goes along the path.
+// Asked to come to rest at the end, the character walks the path and stands at its end: the walk
+// goes on to the end of a clip that ends standing still, played as captured, and its root stands
+// still from the frame the result gives to the last; the motion is the walk's edges and that clip's
+// frames, edited onto the path.
+TEST(PathSynthesis, ComesToRestAtThePathsEndWhenAsked) {
+  const auto& s = test::subject16();
+  const MotionGraph& graph = *s.context().graph;
+  PathSynthesisSettings settings;
+  settings.rest_at_end = true;
+  for (const char* spec : {"line:12", "circle:4", "square:6"}) {
+    auto path = make_shape(spec);
+    ASSERT_TRUE(path.ok());
+    auto plain = synthesize_path(s.context(), *path);
+    ASSERT_TRUE(plain.ok());
+    EXPECT_EQ(plain->rest, nullptr);
+    EXPECT_TRUE(plain->walk.rest_frames.empty());
+    auto result = synthesize_path(s.context(), *path, settings);
+    ASSERT_TRUE(result.ok()) << spec << ": " << result.error().to_string();
+    ASSERT_NE(result->rest, nullptr) << spec;
+    const RestEnding& ending = *result->rest;
+    EXPECT_EQ(result->walk.rest_frames, ending.frames(graph)) << spec;
+    EXPECT_TRUE(check_walk(graph, result->walk).ok()) << spec;
+    EXPECT_EQ(result->motion.frame_count,
+              result->walk.frame_count(graph) + static_cast<long long>(result->walk.rest_frames.size()));
+    EXPECT_EQ(result->rest_frame, result->motion.frame_count - 1 - (ending.last_frame - ending.rest_frame)) << spec;
+    // Standing at the path's end: within half a metre of it, still from the rest frame on.
+    EXPECT_LT(result->end_distance_m, 0.5) << spec;
+    EXPECT_TRUE(result->reached_end) << spec;
+    const Vec2 still = result->roots[static_cast<size_t>(result->rest_frame)];
+    for (size_t f = static_cast<size_t>(result->rest_frame); f < result->roots.size(); ++f) {
+      EXPECT_LT((result->roots[f] - still).norm(), 0.1) << spec << " frame " << f;
+    }
+    // Walking before it (two seconds before, more than half a metre from where it stands); the frames
+    // carry the tags of the frames they play (the clip's own at rest).
+    EXPECT_GT((result->roots[static_cast<size_t>(result->rest_frame) - 60] - still).norm(), 0.5) << spec;
+    ASSERT_EQ(result->frame_tags.size(), static_cast<size_t>(result->motion.frame_count));
+    EXPECT_EQ(result->frame_tags.back(), s.context().frame_tags[static_cast<size_t>(ending.last_frame)]);
+  }
+  // A graph with no clip that ends standing still: an error saying so.
+  SynthesisContext nowhere = s.context();
+  nowhere.rest = {};
+  auto refused = synthesize_path(nowhere, *make_shape("line:12"), settings);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().message.find("no clip of the graph ends standing still"), std::string::npos);
+}
+
 TEST(PathSynthesis, StartsAtThePathsStartHeadingAlongIt) {
   const auto& s = test::subject16();
   auto path = FloorPath::create({{3.0, 4.0}, {13.0, 4.0}});  // heading east (+x)

@@ -311,7 +311,7 @@ $('synthesize').addEventListener('click', async () => {
   try {
     const result = await post('/api/path',
       { points: state.path.points, segments: pathSegments(), cleanup: $('cleanup').checked,
-        edit_path: $('edit-path').checked });
+        edit_path: $('edit-path').checked, rest_at_end: $('rest-at-end').checked });
     result.roots = result.positions.map((f) => [f[0], f[2]]);
     state.pathResult = result;
     drawPath();
@@ -329,7 +329,9 @@ $('synthesize').addEventListener('click', async () => {
         : result.path_edit.undone ? ' (as the graph played it: bent onto the path, it went further off)' : '')
       + `, tags matched ${(100 * result.tag_match).toFixed(0)} %${segmentMatches(result)}; ${result.transitions} transitions `
       + `(${result.transitions_per_second.toFixed(2)}/s${result.bridges ? `, ${result.bridges} bridge${result.bridges === 1 ? '' : 's'}` : ''}); `
-      + footSlideText(result);
+      + footSlideText(result)
+      + (result.rest ? `; at rest from ${result.rest.at_s.toFixed(1)} s at the end of ${result.rest.clip}, `
+        + `${result.end_distance_m.toFixed(2)} m from the path's end` : '');
     // What the motion falls short of (the CLI's warnings): the end not reached, dawdling, further
     // off the path than the retries look for, a motion type missed.
     $('path-shortfalls').textContent = result.shortfalls.map((s) => `\u26a0 ${s}.`).join(' ');

@@ -141,6 +141,15 @@ std::optional<std::string> unplayable_tag(const SynthesisContext& context, const
                      tag, graph_frames, graph_frames == 1 ? "" : "s", graph_frames / context.db->fps, clip_frames);
 }
 
+nlohmann::json rest_report(const SynthesisContext& context, const RestEnding* ending, double at_s) {
+  if (ending == nullptr) return nullptr;
+  const DatabaseClip& clip = context.db->clips[static_cast<size_t>(context.db->clip_of(ending->last_frame))];
+  return {{"at_s", at_s},
+          {"clip", clip.name},
+          {"clip_frame", ending->rest_frame - clip.first_frame},
+          {"held_frame", ending->last_frame - clip.first_frame}};
+}
+
 bool stop_means_rest(const SynthesisContext& context, const std::string& tag) {
   return is_stop_tag(tag) && !context.rest.empty() && unplayable_tag(context, tag).has_value();
 }
@@ -236,6 +245,7 @@ Result<SynthesizedMotion> run_path_synthesis(const SynthesisContext& context, co
                 {"path", points},
                 {"roots", roots},
                 {"cleanup", *cleanup}};
+  out.report["rest"] = rest_report(context, result->rest, result->rest_frame / motion.fps);
   out.report["foot_slide"] = foot_slide_report(context, out.walk, out.motion);
   return out;
 }

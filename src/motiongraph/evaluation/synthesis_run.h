@@ -66,6 +66,10 @@ nlohmann::json path_segments_report(const SynthesisContext& context, const Floor
 // "'run', which the graph plays in no frame (104 of its clips' frames carry it; ...)"; nullopt
 // when it plays it or the tag is unknown (an error elsewhere).
 std::optional<std::string> unplayable_tag(const SynthesisContext& context, const std::string& tag);
+// Where a motion came to rest (rest_endings.h), as reports give it: {"at_s", the "clip" at whose end
+// it stands, "clip_frame" from which it stands, "held_frame"}; null without an ending.
+nlohmann::json rest_report(const SynthesisContext& context, const RestEnding* ending, double at_s);
+
 // Whether asking for `tag` asks the controller to rest (controller.h): it is stop, the graph plays
 // it in less than a second (unplayable_tag) and has clips that end standing still to rest at.
 bool stop_means_rest(const SynthesisContext& context, const std::string& tag);

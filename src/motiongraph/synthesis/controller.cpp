@@ -170,34 +170,11 @@ void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
   if (rest_cost_.empty()) {
     rest_cost_ = cost_to_rest(graph, context_->rest, settings_.transition_penalty, settings_.bridge_penalty);
   }
-  // Down the costs to rest: at each node the ending there, or the edge that leads closest to one,
-  // for as long as a decision commits.
-  std::vector<int> route;
-  const RestEnding* ending = nullptr;
-  int node = state_.node, frames = 0;
-  while (rest_cost_[static_cast<size_t>(node)] >= 0.0) {
-    const RestEnding* here = context_->rest.at(node);
-    const double target = rest_cost_[static_cast<size_t>(node)];
-    if (here != nullptr && here->frames_to_rest(graph) <= target + 1e-9) {
-      ending = here;
-      break;
-    }
-    if (frames >= commit_frames) break;
-    int best = -1;
-    for (int e = graph.edge_offsets[node]; e < graph.edge_offsets[node + 1]; ++e) {
-      const GraphEdge& edge = graph.edges[e];
-      const double to = rest_cost_[static_cast<size_t>(edge.to_node)];
-      const double via = rest_edge_cost(edge, settings_.transition_penalty, settings_.bridge_penalty) + to;
-      if (to >= 0.0 && via <= target + 1e-9) {
-        best = e;
-        break;
-      }
-    }
-    if (best < 0) break;  // (cannot happen: the node's cost came from one of its edges)
-    route.push_back(best);
-    frames += graph.edges[best].frame_count;
-    node = graph.edges[best].to_node;
-  }
+  // Down the costs to rest, for as long as a decision commits.
+  RestRoute way = rest_route(graph, context_->rest, rest_cost_, state_.node, settings_.transition_penalty,
+                             settings_.bridge_penalty, commit_frames);
+  std::vector<int>& route = way.edges;
+  const RestEnding* ending = way.ending;
   if (route.empty() && ending == nullptr) {  // no way to rest from here: play on as the graph does
     route.push_back(graph.edge_offsets[state_.node]);
   }

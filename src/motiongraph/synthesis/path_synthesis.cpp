@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <optional>
 #include <span>
 #include <string>
 #include <tuple>
@@ -160,6 +162,115 @@ int end_frame(const FloorPath& path, std::span<const Vec2> roots, std::span<cons
     if (best < 0 || arcs[f] > arcs[static_cast<size_t>(best)]) best = static_cast<int>(f);
   }
   return best;
+}
+
+// The motion of a searched walk (result.walk from result.start): assembled, edited onto the path
+// (or left as played where the edit takes it further off), cut at the frame that reaches the end
+// when `cut_at_end` (the walk then keeps the edges that play the frames kept), and judged: roots,
+// deviations, how far along it got, its frames' tags and the segments' matches.
+Status finish_walk(const SynthesisContext& context, const FloorPath& path, const std::vector<TagMask>& masks,
+                   const PathSynthesisSettings& settings, bool cut_at_end, PathSynthesisResult& result) {
+  // The motion (edited), cut at the frame that reaches the path's end.
+  const MotionGraph& graph = *context.graph;
+  auto motion = assemble_walk(*context.db, graph, result.walk, result.start, context.assembler.target_skeleton());
+  if (!motion) return motion.error();
+  auto roots_of = [](const Motion& m) {
+    std::vector<Vec2> roots;
+    for (int f = 0; f < m.frame_count; ++f) roots.emplace_back(m.translations(f)[0].x(), m.translations(f)[0].z());
+    return roots;
+  };
+  const std::vector<Vec2> graph_roots = roots_of(*motion);
+  // Each root's distance from the path, found once: for the edit's undoing and the deviations.
+  auto distances_of = [&](std::span<const Vec2> roots) {
+    std::vector<double> distances;
+    distances.reserve(roots.size());
+    for (const Vec2& p : roots) distances.push_back(path.distance_to(p));
+    return distances;
+  };
+  auto mean_of = [](std::span<const double> values) {
+    double sum = 0.0;
+    for (double v : values) sum += v;
+    return values.empty() ? 0.0 : sum / static_cast<double>(values.size());
+  };
+  const std::vector<double> graph_distances = distances_of(graph_roots);
+  std::vector<Vec2> edited_roots;
+  std::vector<double> edited_distances;
+  if (settings.edit_path) {
+    Motion as_played = *motion;
+    auto edited = edit_onto_path(*motion, path, settings.path_edit);
+    if (!edited) return edited.error();
+    result.edit = *edited;
+    if (result.edit.edited) {
+      edited_roots = roots_of(*motion);
+      edited_distances = distances_of(edited_roots);
+      if (mean_of(edited_distances) > mean_of(graph_distances)) {
+        *motion = std::move(as_played);
+        result.edit = PathEditStats{};
+        result.edit_undone = true;
+      }
+    }
+  }
+  result.roots = result.edit.edited ? std::move(edited_roots) : graph_roots;
+  // Up to the frame that reaches the end, when one does; all of it when the walk gave up short
+  // of the end (what it did is shown, however little it got along).
+  std::vector<double> arcs = path.followed_arcs(result.roots);
+  const int reaching = end_frame(path, result.roots, arcs);
+  result.reached_end = reaching >= 0;
+  const int end = result.reached_end && cut_at_end ? reaching + 1 : motion->frame_count;
+  result.motion = motion->slice(0, end);
+  // The walk: the edges that play those frames (the search may have gone on past them).
+  if (result.walk.rest_frames.empty()) {
+    long long played_frames = 1;
+    size_t kept_edges = 0;
+    while (kept_edges < result.walk.edges.size() && played_frames < end) {
+      played_frames += graph.edges[result.walk.edges[kept_edges++]].frame_count;
+    }
+    result.walk.edges.resize(kept_edges);
+  }
+  result.roots.resize(static_cast<size_t>(end));
+  arcs.resize(static_cast<size_t>(end));
+  result.arc_covered_m = arcs.empty() ? 0.0 : *std::max_element(arcs.begin(), arcs.end());
+  result.end_distance_m = end > 0 ? (result.roots.back() - path.points().back()).norm() : path.length_m();
+  // Tags of the output frames, from the tracks of the edges played (and the frames played at rest).
+  auto tags_of_frame = [&](int frame) {
+    return static_cast<size_t>(frame) < context.frame_tags.size() ? context.frame_tags[frame] : TagMask{0};
+  };
+  result.frame_tags.clear();
+  for (int e : result.walk.edges) {
+    for (TagMask t : context.tracks.tags_of(e)) result.frame_tags.push_back(t);
+  }
+  for (int f : result.walk.rest_frames) result.frame_tags.push_back(tags_of_frame(f));
+  if (result.walk.rest_frames.empty()) {
+    result.frame_tags.push_back(tags_of_frame(graph.nodes[result.walk.end_node(graph)].frame));
+  }
+  result.frame_tags.resize(static_cast<size_t>(end));
+  // The roots' mean and largest distance from the path: as the graph played the walk, then
+  // (when the edit moved them) edited.
+  auto deviation = [&](std::span<const double> distances) {
+    const auto kept = distances.first(static_cast<size_t>(end));
+    return std::pair{mean_of(kept), kept.empty() ? 0.0 : *std::max_element(kept.begin(), kept.end())};
+  };
+  std::tie(result.graph_mean_deviation_m, result.graph_max_deviation_m) = deviation(graph_distances);
+  if (result.edit.edited) {
+    std::tie(result.mean_deviation_m, result.max_deviation_m) = deviation(edited_distances);
+  } else {
+    result.mean_deviation_m = result.graph_mean_deviation_m;
+    result.max_deviation_m = result.graph_max_deviation_m;
+  }
+  const auto& segments = path.segments();
+  result.segment_tag_matches.assign(segments.size(), {});
+  int in_segments = 0, matched = 0;
+  for (int f = 0; f < end; ++f) {
+    const int i = path.segment_at(arcs[f]);  // as the search asks (PathCost::wanted_at)
+    if (i < 0) continue;
+    const bool carries = (result.frame_tags[f] & masks[static_cast<size_t>(i)]) != 0;
+    ++result.segment_tag_matches[static_cast<size_t>(i)].frames;
+    result.segment_tag_matches[static_cast<size_t>(i)].matched += carries ? 1 : 0;
+    ++in_segments;
+    matched += carries ? 1 : 0;
+  }
+  result.tag_match = in_segments > 0 ? static_cast<double>(matched) / in_segments : 1.0;
+  return Ok{};
 }
 
 // One search of the whole path with these settings, its motion assembled (and edited); `masks`:
@@ -346,96 +457,7 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
     if (settings.searched) settings.searched(std::min(state.arc_m, path.length_m()), attempt);
   }
 
-  // The motion (edited), cut at the frame that reaches the path's end.
-  auto motion = assemble_walk(*context.db, graph, result.walk, result.start, context.assembler.target_skeleton());
-  if (!motion) return motion.error();
-  auto roots_of = [](const Motion& m) {
-    std::vector<Vec2> roots;
-    for (int f = 0; f < m.frame_count; ++f) roots.emplace_back(m.translations(f)[0].x(), m.translations(f)[0].z());
-    return roots;
-  };
-  const std::vector<Vec2> graph_roots = roots_of(*motion);
-  // Each root's distance from the path, found once: for the edit's undoing and the deviations.
-  auto distances_of = [&](std::span<const Vec2> roots) {
-    std::vector<double> distances;
-    distances.reserve(roots.size());
-    for (const Vec2& p : roots) distances.push_back(path.distance_to(p));
-    return distances;
-  };
-  auto mean_of = [](std::span<const double> values) {
-    double sum = 0.0;
-    for (double v : values) sum += v;
-    return values.empty() ? 0.0 : sum / static_cast<double>(values.size());
-  };
-  const std::vector<double> graph_distances = distances_of(graph_roots);
-  std::vector<Vec2> edited_roots;
-  std::vector<double> edited_distances;
-  if (settings.edit_path) {
-    Motion as_played = *motion;
-    auto edited = edit_onto_path(*motion, path, settings.path_edit);
-    if (!edited) return edited.error();
-    result.edit = *edited;
-    if (result.edit.edited) {
-      edited_roots = roots_of(*motion);
-      edited_distances = distances_of(edited_roots);
-      if (mean_of(edited_distances) > mean_of(graph_distances)) {
-        *motion = std::move(as_played);
-        result.edit = PathEditStats{};
-        result.edit_undone = true;
-      }
-    }
-  }
-  result.roots = result.edit.edited ? std::move(edited_roots) : graph_roots;
-  // Up to the frame that reaches the end, when one does; all of it when the walk gave up short
-  // of the end (what it did is shown, however little it got along).
-  std::vector<double> arcs = path.followed_arcs(result.roots);
-  const int reaching = end_frame(path, result.roots, arcs);
-  result.reached_end = reaching >= 0;
-  const int end = result.reached_end ? reaching + 1 : motion->frame_count;
-  result.motion = motion->slice(0, end);
-  // The walk: the edges that play those frames (the search may have gone on past them).
-  long long played_frames = 1;
-  size_t kept_edges = 0;
-  while (kept_edges < result.walk.edges.size() && played_frames < end) {
-    played_frames += graph.edges[result.walk.edges[kept_edges++]].frame_count;
-  }
-  result.walk.edges.resize(kept_edges);
-  result.roots.resize(static_cast<size_t>(end));
-  arcs.resize(static_cast<size_t>(end));
-  result.arc_covered_m = arcs.empty() ? 0.0 : *std::max_element(arcs.begin(), arcs.end());
-  result.end_distance_m = end > 0 ? (result.roots.back() - path.points().back()).norm() : path.length_m();
-  // Tags of the output frames, from the tracks of the edges played.
-  for (int e : result.walk.edges) {
-    for (TagMask t : context.tracks.tags_of(e)) result.frame_tags.push_back(t);
-  }
-  result.frame_tags.push_back(context.frame_tags.empty() ? 0 : context.frame_tags[graph.nodes[result.walk.end_node(graph)].frame]);
-  result.frame_tags.resize(static_cast<size_t>(end));
-  // The roots' mean and largest distance from the path: as the graph played the walk, then
-  // (when the edit moved them) edited.
-  auto deviation = [&](std::span<const double> distances) {
-    const auto kept = distances.first(static_cast<size_t>(end));
-    return std::pair{mean_of(kept), kept.empty() ? 0.0 : *std::max_element(kept.begin(), kept.end())};
-  };
-  std::tie(result.graph_mean_deviation_m, result.graph_max_deviation_m) = deviation(graph_distances);
-  if (result.edit.edited) {
-    std::tie(result.mean_deviation_m, result.max_deviation_m) = deviation(edited_distances);
-  } else {
-    result.mean_deviation_m = result.graph_mean_deviation_m;
-    result.max_deviation_m = result.graph_max_deviation_m;
-  }
-  const auto& segments = path.segments();
-  result.segment_tag_matches.assign(segments.size(), {});
-  int in_segments = 0, matched = 0;
-  for (int f = 0; f < end; ++f) {
-    const int i = path.segment_at(arcs[f]);  // as the search asks (PathCost::wanted_at)
-    if (i < 0) continue;
-    const bool carries = (result.frame_tags[f] & masks[static_cast<size_t>(i)]) != 0;
-    ++result.segment_tag_matches[static_cast<size_t>(i)].frames;
-    result.segment_tag_matches[static_cast<size_t>(i)].matched += carries ? 1 : 0;
-    ++in_segments;
-    matched += carries ? 1 : 0;
-  }
-  result.tag_match = in_segments > 0 ? static_cast<double>(matched) / in_segments : 1.0;
+  if (auto finished = finish_walk(context, path, masks, settings, true, result); !finished) return finished.error();
   result.behind_penalty_m = settings.behind_penalty_m;
   result.tag_penalty_m2 = settings.tag_penalty_m2;
   result.horizon_s = settings.horizon_s;
@@ -444,11 +466,9 @@ Result<PathSynthesisResult> synthesize_once(const SynthesisContext& context, con
   return result;
 }
 
-}  // namespace
-
-Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, const FloorPath& path,
-                                            const PathSynthesisSettings& settings) {
-  if (auto status = settings.validate(); !status) return status.error();
+// synthesize_path without rest at the end: the search, and its retries.
+Result<PathSynthesisResult> search_path(const SynthesisContext& context, const FloorPath& path,
+                                        const PathSynthesisSettings& settings) {
   auto masks = asked_masks(context, path);
   if (!masks) return masks.error();
   auto best = synthesize_once(context, path, *masks, settings, 1);
@@ -563,6 +583,158 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
   best->budget_exhausted = exhausted;
   best->expansions = expansions;
   return best;
+}
+
+}  // namespace
+
+Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, const FloorPath& path,
+                                            const PathSynthesisSettings& settings) {
+  if (auto status = settings.validate(); !status) return status.error();
+  if (!settings.rest_at_end) return search_path(context, path, settings);
+  if (context.rest.empty()) {
+    return Error{"", 0, "the path cannot end at rest: no clip of the graph ends standing still (its root travelling "
+                        "under 0.25 m/s over its last second)"};
+  }
+  const MotionGraph& graph = *context.graph;
+  // The cheapest way to rest (where no other is near the end) costs frames until the character
+  // stands, and a frame's worth per transition (a bridge 30): as steering's defaults price it
+  // (controller.h).
+  constexpr double kTransitionFrames = 1.0, kBridgeFrames = 30.0;
+  const std::vector<double> costs = cost_to_rest(graph, context.rest, kTransitionFrames, kBridgeFrames);
+  auto masks = asked_masks(context, path);
+  if (!masks) return masks.error();
+  auto searched = search_path(context, path, settings);
+  if (!searched) return searched.error();
+  Walk& walk = searched->walk;
+  // The walk's roots as played, each node's frame among them and its placement.
+  FloorTransform at = searched->start;
+  std::vector<RootPose> played;
+  std::vector<size_t> node_frame{0};
+  std::vector<FloorTransform> node_placement{at};
+  for (int e : walk.edges) {
+    context.assembler.append_edge_roots(e, at, played);
+    node_frame.push_back(played.size());
+    node_placement.push_back(at);
+  }
+  std::vector<Vec2> roots;
+  for (const RootPose& r : played) roots.emplace_back(r.position.x(), r.position.z());
+  const Vec3 last = context.assembler.root_position(graph.nodes[walk.end_node(graph)].frame, at);
+  roots.emplace_back(last.x(), last.z());
+  const std::vector<double> arcs = path.followed_arcs(roots);  // how far along the path each frame is
+  // How far along the path each node of the walk stands in the motion as edited (the search's
+  // result: its roots, edited, up to the frame that reached the end; past it, as played on from there).
+  const std::vector<double> edited_arcs = path.followed_arcs(searched->roots);
+  auto progress_at = [&](size_t frame) {
+    if (edited_arcs.empty()) return arcs[frame];
+    const size_t last_edited = edited_arcs.size() - 1;
+    return frame <= last_edited ? edited_arcs[frame] : edited_arcs[last_edited] + arcs[frame] - arcs[last_edited];
+  };
+  // The edit bends the way to rest onto the path keeping its own length: the way's travel is its
+  // root's track measured in chords of kRestChordS (a stride's sway left out).
+  const double length = path.length_m();
+  const int chord_frames = std::max(1, static_cast<int>(std::lround(kRestChordS * context.db->fps)));
+  auto track_length = [&](std::span<const RootPose> track, Vec2& sample, int& since) {
+    double metres = 0.0;
+    for (const RootPose& r : track) {
+      if (++since < chord_frames) continue;
+      const Vec2 p(r.position.x(), r.position.z());
+      metres += (p - sample).norm();
+      sample = p;
+      since = 0;
+    }
+    return metres;
+  };
+  // Each ending's travel from its node's frame to the frame it stands at (the same wherever it is placed).
+  std::vector<double> ending_travel(context.rest.endings.size());
+  for (size_t i = 0; i < ending_travel.size(); ++i) {
+    const RestEnding& ending = context.rest.endings[i];
+    std::vector<RootPose> track;
+    for (int f = graph.nodes[static_cast<size_t>(ending.node)].frame; f <= ending.rest_frame; ++f) {
+      track.push_back(context.assembler.root_pose(f, FloorTransform{}));
+    }
+    if (track.empty()) continue;  // (its node stands already)
+    Vec2 sample(track.front().position.x(), track.front().position.z());
+    int since = 0;
+    ending_travel[i] = track_length(track, sample, since);
+    const Vec2 still(track.back().position.x(), track.back().position.z());
+    if (since > 0) ending_travel[i] += (still - sample).norm();
+  }
+  // From each node the walk reaches within kRestSearchM of the end, last first, every way on that
+  // stands within kRestSearchS seconds (kRestExpansions edges tried from each) through the graph to
+  // a node of a clip that ends at rest, and that clip on: the one whose character stands nearest the
+  // end, a transition on the way counting kRestTransitionM more.
+  struct Choice {
+    size_t kept = 0;                   // edges of the walk kept
+    std::vector<int> edges;            // then these
+    const RestEnding* ending = nullptr;
+    double score = std::numeric_limits<double>::infinity();
+  } best;
+  const int max_frames = static_cast<int>(std::lround(kRestSearchS * context.db->fps));
+  // The fewest frames from each node until the character stands: a way that cannot stand within
+  // max_frames is not followed.
+  const std::vector<double> fewest = cost_to_rest(graph, context.rest, 0.0, 0.0);
+  long long expansions = 0;
+  std::vector<int> way;
+  std::vector<RootPose> scratch;
+  struct At {
+    int node = 0;
+    FloorTransform placement;
+    int frames = 0, transitions = 0;
+    double along = 0.0;  // how far along the path, as the edit will put it
+    Vec2 sample = Vec2::Zero();
+    int since = 0;
+  };
+  std::function<void(size_t, const At&)> visit = [&](size_t kept, const At& at_node) {
+    if (const RestEnding* ending = context.rest.at(at_node.node); ending != nullptr) {
+      const Vec3 first = context.assembler.root_position(graph.nodes[static_cast<size_t>(at_node.node)].frame,
+                                                         at_node.placement);
+      const double along = at_node.along + (Vec2(first.x(), first.z()) - at_node.sample).norm() +
+                           ending_travel[static_cast<size_t>(context.rest.of_node[static_cast<size_t>(at_node.node)])];
+      const double score = std::abs(along - length) + kRestTransitionM * at_node.transitions;
+      if (score < best.score) best = {kept, way, ending, score};
+    }
+    for (int e = graph.edge_offsets[at_node.node]; e < graph.edge_offsets[at_node.node + 1]; ++e) {
+      const GraphEdge& edge = graph.edges[static_cast<size_t>(e)];
+      const double to = fewest[static_cast<size_t>(edge.to_node)];
+      if (edge.bridge || to < 0.0 || at_node.frames + edge.frame_count + to > max_frames) continue;
+      if (++expansions > kRestExpansions) return;
+      At next = at_node;
+      next.node = edge.to_node;
+      next.frames += edge.frame_count;
+      next.transitions += edge.transition ? 1 : 0;
+      scratch.clear();
+      context.assembler.append_edge_roots(e, next.placement, scratch);
+      next.along += track_length(scratch, next.sample, next.since);
+      if (next.along - length > kRestOvershootM) continue;  // gone well past the end
+      way.push_back(e);
+      visit(kept, next);
+      way.pop_back();
+    }
+  };
+  for (size_t k = walk.edges.size() + 1; k-- > 0 && progress_at(node_frame[k]) >= length - kRestSearchM;) {
+    expansions = 0;  // each node its own budget
+    const int node = k == 0 ? walk.start_node : graph.edges[static_cast<size_t>(walk.edges[k - 1])].to_node;
+    const Vec3 here = context.assembler.root_position(graph.nodes[static_cast<size_t>(node)].frame, node_placement[k]);
+    visit(k, At{node, node_placement[k], 0, 0, progress_at(node_frame[k]), Vec2(here.x(), here.z()), 0});
+  }
+  if (best.ending == nullptr) {  // none near the end: the cheapest way to rest from where the walk ends
+    const RestRoute cheapest = rest_route(graph, context.rest, costs, walk.end_node(graph), kTransitionFrames,
+                                          kBridgeFrames, std::numeric_limits<int>::max());
+    if (cheapest.ending == nullptr) return Error{"", 0, "the path cannot end at rest: no way to rest from its end"};
+    best = {walk.edges.size(), cheapest.edges, cheapest.ending, 0.0};
+  }
+  PathSynthesisResult result = std::move(*searched);
+  result.walk.edges.resize(best.kept);
+  result.walk.edges.insert(result.walk.edges.end(), best.edges.begin(), best.edges.end());
+  const long long before_ending = result.walk.frame_count(graph);
+  result.walk.rest_frames = best.ending->frames(graph);
+  result.edit = {};
+  result.edit_undone = false;
+  if (auto finished = finish_walk(context, path, *masks, settings, false, result); !finished) return finished.error();
+  result.path_length_m = length;
+  result.rest = best.ending;
+  result.rest_frame = static_cast<int>(before_ending + best.ending->frames_to_rest(graph));
+  return result;
 }
 
 }  // namespace mg

@@ -42,6 +42,12 @@
 // The walk's motion is then edited onto the path (path_edit.h: Gleicher's motion path editing,
 // within a limit on the turning it adds) unless edit_path is false; the result gives the
 // deviation of both, the walk as the graph played it and the motion edited.
+//
+// Asked to come to rest at the end (rest_at_end), the character stands still there: the walk is
+// searched as above, then from each of its nodes near the end every short way on through the graph
+// to a clip that ends standing still (rest_endings.h), played on to that clip's end, is tried
+// (kRestSearchM ...): the walk is cut at the node whose way stands nearest the end, that way and
+// clip played on, and the whole motion edited onto the path.
 #pragma once
 
 #include <functional>
@@ -111,6 +117,9 @@ struct PathSynthesisSettings {
   // bound (benchmarks compare the two).
   bool lower_bound = true;             // bound the frames still to come (PathCost)
   bool warm_start = true;              // try the rest of the previous search's walk first
+  // Come to rest at the path's end (see above): the graph must have a clip that ends standing
+  // still (SynthesisContext::rest), else synthesize_path fails.
+  bool rest_at_end = false;
   // Bend the walk's motion onto the path (path_edit.h). The build's path check judges the
   // graph, and turns it off.
   bool edit_path = true;
@@ -148,6 +157,16 @@ constexpr double kTagMissMinSeconds = 2.0;
 // the side of a curve it followed as well as it could (its deviation says how far), but on a
 // path that turns back on itself more tightly than the motion can follow, the way along it a
 // frame is given may lie tens of metres from where the frame stands.
+// Coming to rest at the end (rest_at_end): the ways on searched from the walk's nodes within
+// kRestSearchM of the end, each standing within kRestSearchS seconds and not past the end by more
+// than kRestOvershootM, kRestExpansions edges from each node, a transition counting kRestTransitionM
+// of standing off the end.
+constexpr double kRestSearchM = 4.0;
+constexpr double kRestSearchS = 3.0;
+constexpr double kRestOvershootM = 1.0;
+constexpr long long kRestExpansions = 2000;
+constexpr double kRestTransitionM = 0.05;
+constexpr double kRestChordS = 0.5;  // the way's travel measured in chords of this long (its sway left out)
 constexpr double kEndReachedM = 0.5;
 constexpr double kEndReachedDistanceM = 1.0;
 constexpr double kEndReachedShare = 0.25;
@@ -204,6 +223,10 @@ struct PathSynthesisResult {
   double horizon_s = 0.0;             // the kept attempt's horizon
   bool edit_in_search = false;
   bool anchor_arc = false;            // the kept attempt's PathSynthesisSettings::anchor_arc
+  // With rest_at_end: the ending the motion comes to rest on (its clip played from its node's
+  // frame to its last; null without) and the frame of the motion from which the character stands.
+  const RestEnding* rest = nullptr;
+  int rest_frame = -1;
 };
 
 // How many frames of the graph's clip pieces carry one of `mask`'s tags (0: a segment asking for

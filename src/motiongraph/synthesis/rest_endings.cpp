@@ -52,4 +52,29 @@ std::vector<double> cost_to_rest(const MotionGraph& graph, const RestEndings& en
   });
 }
 
+RestRoute rest_route(const MotionGraph& graph, const RestEndings& endings, const std::vector<double>& costs, int node,
+                     double transition_cost, double bridge_cost, int max_frames) {
+  RestRoute route;
+  for (int frames = 0; costs[static_cast<size_t>(node)] >= 0.0;) {
+    const double target = costs[static_cast<size_t>(node)];
+    const RestEnding* here = endings.at(node);
+    if (here != nullptr && here->frames_to_rest(graph) <= target + 1e-9) {
+      route.ending = here;
+      break;
+    }
+    if (frames >= max_frames) break;
+    int best = -1;
+    for (int e = graph.edge_offsets[node]; e < graph.edge_offsets[node + 1] && best < 0; ++e) {
+      const GraphEdge& edge = graph.edges[static_cast<size_t>(e)];
+      const double to = costs[static_cast<size_t>(edge.to_node)];
+      if (to >= 0.0 && rest_edge_cost(edge, transition_cost, bridge_cost) + to <= target + 1e-9) best = e;
+    }
+    if (best < 0) break;  // (cannot happen: the node's cost came from one of its edges)
+    route.edges.push_back(best);
+    frames += graph.edges[static_cast<size_t>(best)].frame_count;
+    node = graph.edges[static_cast<size_t>(best)].to_node;
+  }
+  return route;
+}
+
 }  // namespace mg

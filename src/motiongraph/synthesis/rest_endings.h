@@ -59,4 +59,15 @@ inline double rest_edge_cost(const GraphEdge& edge, double transition_cost, doub
 std::vector<double> cost_to_rest(const MotionGraph& graph, const RestEndings& endings, double transition_cost,
                                  double bridge_cost);
 
+// The way to rest from `node` down `costs` (cost_to_rest's, with the same edge costs): at each node
+// its ending when that costs what the node does, else the first edge that leads as cheaply, until
+// an ending or `max_frames` played (the rest of the way for a later call). No edge and no ending
+// where no way to rest is (costs -1).
+struct RestRoute {
+  std::vector<int> edges;
+  const RestEnding* ending = nullptr;  // reached at the end of `edges`; null when not (yet)
+};
+RestRoute rest_route(const MotionGraph& graph, const RestEndings& endings, const std::vector<double>& costs, int node,
+                     double transition_cost, double bridge_cost, int max_frames);
+
 }  // namespace mg
