@@ -228,6 +228,12 @@ class PyController {
     return static_cast<double>(controller_->rest_frame()) / context().db->fps;
   }
 
+  bool resting() const {
+    py::gil_scoped_release release;
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return controller_->resting();
+  }
+
   std::string repr() const {
     int frames = 0;
     {
@@ -353,10 +359,14 @@ void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
       .def("step", &PyController::step, py::arg("heading_deg"), py::arg("tag") = py::none(), py::arg("rest") = false,
            "Decides the next frames towards heading_deg (degrees clockwise from north) with motion type `tag` "
            "(None: any) and returns them as a Motion. rest=True comes to rest at the end of a clip that ends standing "
-           "still and holds its last frame from then on, for good (so does tag 'stop' where the graph can hardly "
-           "play it); rest_s says when it stands still.")
+           "still and holds its last frame (so does tag 'stop' where the graph can hardly play it), until asked to "
+           "move where the graph has a way on from there; rest_s says when it stands still.")
       .def_property_readonly("rest_s", &PyController::rest_s,
-                             "The second from which the character stands still, once it has come to rest; None before.")
+                             "The second from which the character last stood still, once it has come to rest; None "
+                             "before.")
+      .def_property_readonly("resting", &PyController::resting,
+                             "Whether it holds the last frame of the clip it came to rest at (until asked to move, "
+                             "where the graph has a way on from there).")
       .def_property_readonly("motion", &PyController::motion, "All frames so far, as a Motion.")
       .def("__repr__", &PyController::repr);
   graph.def("walk", &walk, py::arg("from_node"), py::arg("to_node"),

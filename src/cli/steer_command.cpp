@@ -137,11 +137,16 @@ int run_steer(const SteerOptions& o) {
   nlohmann::json controls = nlohmann::json::array();
   std::string tag_before;
   bool rest_before = false;
-  // Where the character stands still, when it came to rest within the script.
-  const double rest_s = controller->rest_frame() >= 0 && controller->rest_frame() < motion.frame_count
-                            ? static_cast<double>(controller->rest_frame()) / fps
-                            : -1.0;
-  std::vector<double> unheard_s;  // controls after the rest: nothing moves it
+  // The seconds from which the character stood still each time it came to rest within the script;
+  // the last one's (-1: none).
+  std::vector<double> rests_s;
+  for (long long f : controller->rest_frames()) {
+    if (f < motion.frame_count) rests_s.push_back(static_cast<double>(f) / fps);
+  }
+  const double rest_s = rests_s.empty() ? -1.0 : rests_s.back();
+  // Controls after a rest for good: nothing moves the character.
+  const bool for_good = controller->rest_is_for_good() && rest_s >= 0.0;
+  std::vector<double> unheard_s;
   for (size_t i = 0; i < script->controls.size(); ++i) {
     const ScriptedControl& c = script->controls[i];
     const bool rest = c.rest || stop_means_rest(context, c.tag);
@@ -180,10 +185,13 @@ int run_steer(const SteerOptions& o) {
     if (changes_tag) control["tag_response_s"] = tag_response;
     control["rest"] = rest;
     if (rest && !rest_before && !context.rest.empty()) {
-      control["rest_response_s"] =
-          rest_s >= 0.0 ? nlohmann::json(std::max(0.0, rest_s - c.at_s)) : nlohmann::json(nullptr);
+      // The first time it stands from the control on (a rest that came before it: it stood already).
+      const auto first = std::find_if(rests_s.begin(), rests_s.end(), [&](double r) { return r >= c.at_s; });
+      control["rest_response_s"] = first != rests_s.end() ? nlohmann::json(*first - c.at_s)
+                                   : !rests_s.empty() && controller->resting() ? nlohmann::json(0.0)
+                                                                               : nlohmann::json(nullptr);
     }
-    if (rest_s >= 0.0 && c.at_s >= rest_s) unheard_s.push_back(c.at_s);
+    if (for_good && c.at_s >= rest_s) unheard_s.push_back(c.at_s);
     rest_before = rest;
     controls.push_back(std::move(control));
   }
@@ -192,7 +200,7 @@ int run_steer(const SteerOptions& o) {
   if (!rested.is_null() && rest_s < 0.0) rested["at_s"] = nullptr;  // it stands only after the script's end
   if (!unheard_s.empty()) {
     spdlog::warn("the character came to rest at {:.2f} s, at the end of {}, and stays there: the control{} at {} s "
-                 "cannot turn or move it (rest is for good: no clip of this graph starts from standing)",
+                 "cannot turn or move it (the graph has no way on from that clip's last frame)",
                  rest_s, rested["clip"].get<std::string>(), unheard_s.size() == 1 ? "" : "s",
                  fmt::join(unheard_s, ", "));
   }

@@ -501,7 +501,9 @@ class Router {
                           {"positions", positions_json(skeleton(), step->motion)},
                           {"contacts", played_contacts_json(step->contacts, step->motion.frame_count)},
                           {"rest_s", step->rest_s >= 0.0 ? json(step->rest_s) : json(nullptr)},
-                          {"rest_clip", step->rest_clip.empty() ? json(nullptr) : json(step->rest_clip)}});
+                          {"rest_clip", step->rest_clip.empty() ? json(nullptr) : json(step->rest_clip)},
+                          {"resting", step->resting},
+                          {"rest_for_good", step->rest_for_good}});
   }
 
   // ID.bvh, ID.glb or ID.fbx.

@@ -213,6 +213,8 @@ Result<SteerStepResult> SynthesisService::step_session(int id, const ControlInpu
   if (const RestEnding* ending = session->controller->rest_ending(); ending != nullptr) {
     out.rest_s = static_cast<double>(session->controller->rest_frame()) / context().db->fps;
     out.rest_clip = file().database.clips[static_cast<size_t>(file().database.clip_of(ending->last_frame))].name;
+    out.resting = session->controller->resting();
+    out.rest_for_good = session->controller->rest_is_for_good();
   }
   session->transitions += out.transitions;
   out.session_transitions = session->transitions;

@@ -62,10 +62,12 @@ struct SteerStepResult {
   int bridges = 0;               // of this step's transitions, the bridges (GraphEdge::bridge)
   int session_bridges = 0;       // and the session's
   std::vector<ContactMask> contacts;  // per frame of motion, as above
-  // Once the character has come to rest (controller.h): the session's second from which it stands
-  // still and the clip whose end it stands at; -1 and "" before.
+  // Once the character has come to rest (controller.h): the session's second from which it last
+  // stood still and the clip whose end it stood at; -1 and "" before.
   double rest_s = -1.0;
   std::string rest_clip;
+  bool resting = false;        // holding that clip's last frame now
+  bool rest_for_good = false;  // with no way on from it (Controller::rest_is_for_good)
 };
 
 class SynthesisService {

@@ -349,6 +349,7 @@ TEST(Controller, ComesToRestWhenAskedAndStaysThere) {
     if (motion.frame_count > 9 * fps) controller->set_input({bearing_direction(90.0), *walk});  // no way back
   }
   ASSERT_TRUE(controller->resting());
+  EXPECT_TRUE(controller->rest_is_for_good());  // subject 16's stopping clips end where its graph does not go on
   const RestEnding* ending = controller->rest_ending();
   ASSERT_NE(ending, nullptr);
   // The ending as captured: its node's frame to the clip's last, then that last frame held.
@@ -368,6 +369,50 @@ TEST(Controller, ComesToRestWhenAskedAndStaysThere) {
     ASSERT_EQ(motion.translations(f)[0], motion.translations(held)[0]) << f;
     ASSERT_TRUE(motion.rotations(f)[0].isApprox(motion.rotations(held)[0], 0.0)) << f;
   }
+}
+
+// Where the frame held at rest is a node of the graph (a clip that stands and then starts off
+// again), asked to move the character goes on from there: the frame it held, placed where it held
+// it, then the graph's edges. Subject 16 has no such ending; one is made of two nodes of a clip.
+TEST(Controller, GoesOnFromRestWhereTheGraphHasAWayOn) {
+  const auto& s = test::subject16();
+  SynthesisContext context = s.context();
+  const MotionGraph& graph = *context.graph;
+  auto walk = context.tag_mask("walk");
+  ASSERT_TRUE(walk.ok());
+  int held = 1;  // a node whose node before is of the same clip, a few frames back
+  while (graph.nodes[held - 1].clip != graph.nodes[held].clip ||
+         graph.nodes[held].frame - graph.nodes[held - 1].frame < 5) {
+    ++held;
+  }
+  context.rest = {};
+  context.rest.of_node.assign(static_cast<size_t>(graph.node_count()), -1);
+  context.rest.of_node[static_cast<size_t>(held - 1)] = 0;
+  context.rest.endings.push_back({held - 1, graph.nodes[held].frame - 2, graph.nodes[held].frame});
+  auto controller = Controller::create(context, {}, {bearing_direction(0.0), *walk});
+  ASSERT_TRUE(controller.ok());
+  Motion motion = context.assembler.empty_motion();
+  while (motion.frame_count < 2 * motion.fps) controller->step(motion);
+  controller->set_input({bearing_direction(0.0), *walk, true});
+  while (!controller->resting()) {
+    ASSERT_LT(motion.frame_count, 20 * motion.fps) << "not at rest";
+    controller->step(motion);
+  }
+  EXPECT_FALSE(controller->rest_is_for_good());
+  controller->step(motion);  // holding
+  const int last_held = motion.frame_count - 1;
+  controller->set_input({bearing_direction(0.0), *walk});
+  const ControllerDecision on = controller->step(motion);
+  EXPECT_FALSE(controller->resting());
+  ASSERT_FALSE(on.edges.empty());
+  EXPECT_TRUE(on.rest_frames.empty());
+  EXPECT_EQ(graph.edges[on.edges.front()].from_node, held);
+  // Its first frame is the frame held, where it was held (the heading edit turns it about its own
+  // root by a little at most).
+  EXPECT_LT(floor_distance(motion, last_held, last_held + 1), 0.01);
+  while (motion.frame_count < last_held + 4 * motion.fps) controller->step(motion);
+  EXPECT_GT(floor_distance(motion, last_held, motion.frame_count - 1), 2.0);
+  EXPECT_EQ(controller->rest_frames().size(), 1u);
 }
 
 // Asked to rest and then to walk before it stands, the character walks on; a graph with nowhere

@@ -372,9 +372,9 @@ window.addEventListener('keydown', (e) => {
     const d = Number(e.code.slice(5));
     state.steer.chosenTag = d === 0 ? '' : (state.tags[d - 1] || state.steer.chosenTag);
   }
-  // X: come to rest; moving again takes it back, until the character stands (then rest is for good).
+  // X: come to rest; moving again takes it back (once it stands, where the graph has a way on).
   if (state.steer && e.code === 'KeyX') state.steer.rest = true;
-  else if (state.steer && MOVE_KEYS.includes(e.code) && state.steer.restS == null) state.steer.rest = false;
+  else if (state.steer && MOVE_KEYS.includes(e.code) && !state.steer.restForGood) state.steer.rest = false;
   if (state.steer && STEER_KEYS.includes(e.code)) e.preventDefault();
 });
 window.addEventListener('keyup', (e) => keys.delete(e.code));
@@ -422,7 +422,8 @@ async function startSteering() {
   overlays.clear();
   // buffer: the frames received and not yet shown; planted: their rows of the contacts.
   state.steer = { session: session.session, buffer: [], planted: [], contacts: null, inFlight: false, heading: 0,
-    tag, chosenTag: tag, rest: false, restS: null, restClip: null, canRest: session.can_rest,
+    tag, chosenTag: tag, rest: false, restS: null, restClip: null, resting: false, restForGood: false,
+    canRest: session.can_rest,
     received: 0, played: 0, clock: 0, fps: session.fps, lastStepMs: 0, trailEnd: null };
   setResultLink(session.result);
   setDrawing(false);
@@ -456,6 +457,8 @@ async function requestSteps() {
     s.bridges = step.session_bridges;
     s.restS = step.rest_s;
     s.restClip = step.rest_clip;
+    s.resting = step.resting;
+    s.restForGood = step.rest_for_good;
   } catch (err) {
     $('steer-info').textContent = `error: ${err.message}`;
     stopSteering();
@@ -555,11 +558,12 @@ function tick() {
     }
     requestSteps();
     let rest = '';
-    if (s.restS != null && s.played / s.fps < s.restS) {
+    if (s.resting && s.played / s.fps < s.restS) {
       rest = `coming to rest at the end of ${s.restClip}, standing from ${s.restS.toFixed(1)} s; `;
-    } else if (s.restS != null) {
-      rest = `at rest since ${s.restS.toFixed(1)} s, at the end of ${s.restClip}, for good (no clip of this graph `
-        + 'starts from standing: Stop steering and start again); ';
+    } else if (s.resting) {
+      rest = `at rest since ${s.restS.toFixed(1)} s, at the end of ${s.restClip}`
+        + (s.restForGood ? ', for good (the graph has no way on from there: Stop steering and start again); '
+          : ' (move to walk on); ');
     } else if (s.rest) {
       rest = s.canRest ? 'coming to rest; ' : 'asked to rest, but no clip of this graph ends standing still; ';
     }

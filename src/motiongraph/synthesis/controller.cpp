@@ -88,11 +88,25 @@ Result<Controller> Controller::create(const SynthesisContext& context, const Con
   return controller;
 }
 
+bool Controller::rest_is_for_good() const {
+  return resting_ && context_->graph->node_at_frame(rest_->last_frame) < 0;
+}
+
 ControllerDecision Controller::step(Motion& out) {
   using Clock = std::chrono::steady_clock;
   const auto begin = Clock::now();
   ControllerDecision decision;
-  if (resting() || (input_.rest && !context_->rest.empty())) {
+  if (resting_ && !input_.rest && !rest_is_for_good()) {
+    // On from the frame it holds: the graph's node there, placed as the frame is.
+    const int node = context_->graph->node_at_frame(rest_->last_frame);
+    state_.node = node;
+    state_.placement = rest_placement_;
+    const Vec3 held = context_->assembler.root_position(rest_->last_frame, rest_placement_);
+    state_.last_root = Vec2(held.x(), held.z());
+    state_.has_last = true;
+    resting_ = false;
+  }
+  if (resting_ || (input_.rest && !context_->rest.empty())) {
     step_to_rest(out, decision);
     decision.search_seconds = std::chrono::duration<double>(Clock::now() - begin).count();
     return decision;
@@ -163,7 +177,7 @@ void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
     decision.frames += frames;
     state_.frames += frames;
   };
-  if (resting()) {
+  if (resting_) {
     hold(commit_frames, rest_->last_frame);
     return;
   }
@@ -180,9 +194,10 @@ void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
   }
   play(route, route, out, decision);
   if (ending == nullptr) return;
+  resting_ = true;
   rest_ = ending;
   rest_placement_ = state_.placement;
-  rest_at_frame_ = state_.frames + ending->frames_to_rest(graph);
+  rest_frames_.push_back(state_.frames + ending->frames_to_rest(graph));
   const PreparedFloorTransform placement(rest_placement_);
   for (int f : ending->frames(graph)) {
     context_->assembler.append_frame(f, placement, out);

@@ -16,9 +16,11 @@
 // Asked to rest (ControlInput::rest), the character comes to rest at the end of a clip that ends
 // standing still (rest_endings.h) by the cheapest way there (cost_to_rest: frames until it
 // stands, the transition and bridge penalties on the way), turned by the heading edit on the
-// way, and then holds that clip's last frame: a library whose clips never start from standing
-// has no way back into motion, so rest is for good (resting()). Where the graph has no such clip
-// (RestEndings::empty), rest is not heard: the search goes on with the tag.
+// way, and then holds that clip's last frame (resting()). Asked to move again, it goes on from
+// that frame where the graph has a node there (a library with clips that start from standing);
+// where it has none (the pruning left the clip's end out as a dead end: subject 16), rest is for
+// good (rest_is_for_good()). Where the graph has no such clip (RestEndings::empty), rest is not
+// heard: the search goes on with the tag.
 #pragma once
 
 #include <span>
@@ -97,11 +99,16 @@ class Controller {
   const ControlInput& input() const { return input_; }
   const SearchState& state() const { return state_; }
   const HeadingEditStats& heading_edit_stats() const { return edit_.stats(); }
-  // Whether the character has taken its way to rest: every later decision holds its last frame.
-  bool resting() const { return rest_ != nullptr; }
-  // The frame (counted from the controller's first) from which it stands still; -1 before.
-  long long rest_frame() const { return rest_at_frame_; }
-  // The ending it came to rest on (null before).
+  // Whether the character has taken its way to rest: the decisions hold its last frame until it
+  // is asked to move and can (rest_is_for_good()).
+  bool resting() const { return resting_; }
+  // Resting where the graph has no way on from the frame it holds.
+  bool rest_is_for_good() const;
+  // The frame (counted from the controller's first) from which it stood still each time it came to
+  // rest, in order; the last one's (-1 before any).
+  const std::vector<long long>& rest_frames() const { return rest_frames_; }
+  long long rest_frame() const { return rest_frames_.empty() ? -1 : rest_frames_.back(); }
+  // The ending it last came to rest on (null before).
   const RestEnding* rest_ending() const { return rest_; }
   // Decides and appends the next frames to `out` (a motion on the context's target skeleton,
   // e.g. from MotionAssembler::empty_motion()).
@@ -123,9 +130,10 @@ class Controller {
   ControlInput input_;
   SearchState state_;
   std::vector<double> rest_cost_;  // cost_to_rest, found the first time rest is asked for
+  bool resting_ = false;
   const RestEnding* rest_ = nullptr;
   FloorTransform rest_placement_;
-  long long rest_at_frame_ = -1;
+  std::vector<long long> rest_frames_;
 };
 
 // Bearing in degrees (0 north = -z, 90 east = +x) as a unit floor direction, and back.
