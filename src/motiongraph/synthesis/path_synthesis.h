@@ -44,10 +44,8 @@
 // deviation of both, the walk as the graph played it and the motion edited.
 //
 // Asked to come to rest at the end (rest_at_end), the character stands still there: the walk is
-// searched as above, then from each of its nodes near the end every short way on through the graph
-// to a clip that ends standing still (rest_endings.h), played on to that clip's end, is tried
-// (kRestSearchM ...): the walk is cut at the node whose way stands nearest the end, that way and
-// clip played on, and the whole motion edited onto the path.
+// searched as above, cut where its way to rest stands nearest the end (path_rest.h), that way and
+// the clip that ends standing still played on, and the whole motion edited onto the path.
 #pragma once
 
 #include <functional>
@@ -157,16 +155,6 @@ constexpr double kTagMissMinSeconds = 2.0;
 // the side of a curve it followed as well as it could (its deviation says how far), but on a
 // path that turns back on itself more tightly than the motion can follow, the way along it a
 // frame is given may lie tens of metres from where the frame stands.
-// Coming to rest at the end (rest_at_end): the ways on searched from the walk's nodes within
-// kRestSearchM of the end, each standing within kRestSearchS seconds and not past the end by more
-// than kRestOvershootM, kRestExpansions edges from each node, a transition counting kRestTransitionM
-// of standing off the end.
-constexpr double kRestSearchM = 4.0;
-constexpr double kRestSearchS = 3.0;
-constexpr double kRestOvershootM = 1.0;
-constexpr long long kRestExpansions = 2000;
-constexpr double kRestTransitionM = 0.05;
-constexpr double kRestChordS = 0.5;  // the way's travel measured in chords of this long (its sway left out)
 constexpr double kEndReachedM = 0.5;
 constexpr double kEndReachedDistanceM = 1.0;
 constexpr double kEndReachedShare = 0.25;

@@ -37,7 +37,9 @@ struct RestEndings {
   std::vector<int> of_node;         // per graph node: its ending's index, or -1
 
   bool empty() const { return endings.empty(); }
+  // The ending of `node`, or null (none; no ending found at all: of_node empty).
   const RestEnding* at(int node) const {
+    if (static_cast<size_t>(node) >= of_node.size()) return nullptr;
     const int i = of_node[static_cast<size_t>(node)];
     return i < 0 ? nullptr : &endings[static_cast<size_t>(i)];
   }

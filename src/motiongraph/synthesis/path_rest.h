@@ -1,0 +1,40 @@
+// Coming to rest at a path's end (PathSynthesisSettings::rest_at_end, path_synthesis.h): where a
+// walk that follows the path stops and how it comes to rest. A walk can stand still only at the
+// end of a clip that ends so (rest_endings.h), and the way there runs on for a metre or two past
+// where it leaves the walk, so the walk is cut where its way to rest stands nearest the path's end:
+// from each of its nodes within kRestSearchM of the end (along the path, where its motion as
+// edited stands), every way on through the graph that stands within kRestSearchS seconds (not
+// through a bridge; not more than kRestOvershootM past the end; kRestExpansions edges tried from
+// each node) to a node of such a clip, and that clip on, is measured as the path edit will lay it:
+// its root's track in chords of kRestChordS (a stride's sway left out) added to where the node
+// stands. The one standing nearest the end is kept, a transition on the way counting
+// kRestTransitionM more; where none is near, the cheapest way to rest from where the walk ends.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "motiongraph/synthesis/floor_path.h"
+#include "motiongraph/synthesis/synthesis_context.h"
+
+namespace mg {
+
+constexpr double kRestSearchM = 4.0;
+constexpr double kRestSearchS = 3.0;
+constexpr double kRestOvershootM = 1.0;
+constexpr long long kRestExpansions = 2000;
+constexpr double kRestTransitionM = 0.05;
+constexpr double kRestChordS = 0.5;
+
+struct PathRestWay {
+  size_t kept_edges = 0;               // of the walk's edges, those kept
+  std::vector<int> edges;              // then these
+  const RestEnding* ending = nullptr;  // then this clip on to its end; null: no way to rest
+};
+
+// The way to rest for `walk` (played from `start`) along `path`; `edited_roots`, the floor roots of
+// its first frames as the path edit put them (PathSynthesisResult::roots).
+PathRestWay nearest_rest_way(const SynthesisContext& context, const FloorPath& path, const Walk& walk,
+                             const FloorTransform& start, std::span<const Vec2> edited_roots);
+
+}  // namespace mg
