@@ -324,6 +324,15 @@ try {
   await page.uncheck('[data-testid=root-motion]');
   await page.waitForTimeout(800);
   await page.screenshot({ path: join(shots, '4-path.png') });
+  // The same path asked to end at rest: the character stands at its end.
+  await page.check('[data-testid=rest-at-end]');
+  await page.evaluate(() => { window.studio.state.pathResult = null; });
+  const restPathInfo = await synthesizePath(page);
+  const restResult = await page.evaluate(() => window.studio.state.pathResult);
+  check(/at rest from [\d.]+ s at the end of 16_\d+, [\d.]+ m from the path's end/.test(restPathInfo)
+    && restResult && restResult.rest && restResult.end_distance_m < 0.5,
+    `the path asked to end at rest stands at its end: ${restPathInfo}`);
+  await page.uncheck('[data-testid=rest-at-end]');
 
   // 5. Steer with the keyboard: east (D) for a few seconds moves the root east (+x).
   await page.click('[data-testid=steer]');
