@@ -247,12 +247,14 @@ def test_rest_equals_the_cli_and_stands_still(cli, graph_file, graph, tmp_path):
     np.testing.assert_array_equal(motion.contacts[:total], np.array(want["contacts"]["planted"], dtype=bool))
     rest = read_json(tmp_path / "cli-report.json")["rest"]
     assert motion.report["rest"] == rest and controller.rest_s == rest["at_s"] > 2
+    assert controller.resting
     # Standing still from then on, whatever it is asked: the last frame held.
     root = motion.positions[:, 0, :]
     still = int(np.ceil(rest["at_s"] * fps))
     assert np.max(np.linalg.norm((root[still:] - root[still])[:, [0, 2]], axis=1)) < 0.1
     step = controller.step(90, "run")
     np.testing.assert_array_equal(step.positions, np.repeat(motion.positions[-1:], len(step), axis=0))
+    assert controller.resting  # subject 16 has no way on from its stopping clips' ends
     # A stop the graph can hardly play is rest too, said once.
     other = graph.controller(heading_deg=0, tag="walk")
     with pytest.warns(UserWarning, match="comes to rest instead"):
