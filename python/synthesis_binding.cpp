@@ -356,7 +356,8 @@ class PyController {
 void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
   // Before the graph's controller(), so that its signature names the class.
   py::class_<PyController>(m, "Controller", "Steers motion on a graph from a heading and a motion type.")
-      .def("step", &PyController::step, py::arg("heading_deg"), py::arg("tag") = py::none(), py::arg("rest") = false,
+      .def("step", &PyController::step, py::arg("heading_deg"), py::arg("tag") = py::none(),
+           py::arg("rest").noconvert() = false,
            "Decides the next frames towards heading_deg (degrees clockwise from north) with motion type `tag` "
            "(None: any) and returns them as a Motion. rest=True comes to rest at the end of a clip that ends standing "
            "still and holds its last frame (so does tag 'stop' where the graph can hardly play it), until asked to "
@@ -380,7 +381,8 @@ void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
            "beam, min_speed, transition_penalty, bridge_penalty, behind_penalty, progress_retries, retry_deviation (m), "
            "retry_horizon (s), retry_tag_match (0 to 1), "
            "start_node, path_edit (bend the motion onto the path, default True), edit_max_turn (degrees per "
-           "metre it may add), edit_round_corners (m), cleanup, progress (called every 2 s of searching with how far "
+           "metre it may add), edit_round_corners (m), rest_at_end (come to rest at the path's end, default False), "
+           "cleanup, progress (called every 2 s of searching with how far "
            "along the path it has come; an exception it raises stops the search and is raised).")
       .def(
           "controller",

@@ -191,7 +191,9 @@ int run_steer(const SteerOptions& o) {
                                    : !rests_s.empty() && controller->resting() ? nlohmann::json(0.0)
                                                                                : nlohmann::json(nullptr);
     }
-    if (for_good && c.at_s >= rest_s) unheard_s.push_back(c.at_s);
+    // (asking only to rest on is heard: a turn or a move is not)
+    const bool turns = i > 0 && c.bearing_deg != script->controls[i - 1].bearing_deg;
+    if (for_good && c.at_s >= rest_s && (!rest || turns)) unheard_s.push_back(c.at_s);
     rest_before = rest;
     controls.push_back(std::move(control));
   }

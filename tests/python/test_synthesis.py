@@ -255,6 +255,8 @@ def test_rest_equals_the_cli_and_stands_still(cli, graph_file, graph, tmp_path):
     step = controller.step(90, "run")
     np.testing.assert_array_equal(step.positions, np.repeat(motion.positions[-1:], len(step), axis=0))
     assert controller.resting  # subject 16 has no way on from its stopping clips' ends
+    with pytest.raises(TypeError):
+        controller.step(0, "walk", rest=1)  # True or False, as the CLI and the studio take it
     # A stop the graph can hardly play is rest too, said once.
     other = graph.controller(heading_deg=0, tag="walk")
     with pytest.warns(UserWarning, match="comes to rest instead"):

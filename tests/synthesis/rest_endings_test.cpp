@@ -23,7 +23,7 @@ struct Clips {
     EXPECT_TRUE(graph.ok());
     auto assembler = MotionAssembler::create(db, *graph, 0);
     EXPECT_TRUE(assembler.ok());
-    return find_rest_endings(db, *graph, *assembler);
+    return find_rest_endings(db, *graph, *assembler, {});
   }
   // The root's floor distance between two global frames.
   double floor_distance(int a, int b) const {
@@ -61,7 +61,9 @@ TEST(RestEndings, AClipThatWalksToItsEndHasNoneAndOneThatStopsHasOneAtEachNode) 
   EXPECT_EQ(endings.at(graph.node_at_frame(stops.first_frame + stops.frame_count - 1))->frames_to_rest(graph), 0);
 }
 
-TEST(RestEndings, AWalkWhoseRootIsHeldFromAFrameOnRestsFromAboutThere) {
+// A walk whose whole pose is held from a frame on stands from about there (the joints' speeds are
+// averaged over a few frames); one whose root alone is held (a walk on the spot) does not stand.
+TEST(RestEndings, AWalkWhosePoseIsHeldFromAFrameOnRestsFromThere) {
   Clips clips({"cmu/16/16_15.amc"});
   const int held = 60;
   DatabaseClip& clip = clips.db.clips[0];
@@ -69,11 +71,15 @@ TEST(RestEndings, AWalkWhoseRootIsHeldFromAFrameOnRestsFromAboutThere) {
   EXPECT_TRUE(clips.endings().empty());  // as captured, it walks to its end
   const Vec3 at = clip.motion.translations(held)[0];
   for (int f = held; f < clip.frame_count; ++f) clip.motion.translations(f)[0] = at;
+  EXPECT_TRUE(clips.endings().empty()) << "the root held, the legs still step";
+  const std::vector<Quat> pose(clip.motion.rotations(held).begin(), clip.motion.rotations(held).end());
+  for (int f = held; f < clip.frame_count; ++f) std::copy(pose.begin(), pose.end(), clip.motion.rotations(f).begin());
   const RestEndings endings = clips.endings();
-  ASSERT_EQ(endings.endings.size(), 2u);
-  // The travel is judged over a second centred on each frame: it ends within half a second of the hold.
-  EXPECT_NEAR(endings.endings[0].rest_frame, held, clips.db.fps / 2 + 1);
-  EXPECT_EQ(endings.endings[0].frames_to_rest(*clips.graph), endings.endings[0].rest_frame);
+  ASSERT_EQ(endings.endings.size(), 2u);  // its first and last frame's nodes
+  for (const RestEnding& ending : endings.endings) {
+    EXPECT_NEAR(ending.rest_frame, held, kStillWindowFrames / 2 + 1);
+    EXPECT_EQ(still_from(clips.db.skeletons[0], clip.motion, clips.db.fps), ending.rest_frame);
+  }
 }
 
 // The definition, solved by relaxing every edge until nothing changes (Bellman-Ford).
@@ -136,8 +142,21 @@ TEST(RestEndings, Subject16ComesToRestOnlyAtTheEndsOfItsStoppingClips) {
     const Vec3 b = context.assembler.root_position(ending.last_frame, {});
     EXPECT_LT(std::hypot(b.x() - a.x(), b.z() - a.z()), 0.125) << clip.name;
   }
-  // A pruned graph is strongly connected: rest is reached from every node.
-  for (double c : cost_to_rest(*context.graph, context.rest, 1.0, 30.0)) EXPECT_GE(c, 0.0);
+  // Rest is reached from every node of a walk or a run (a pruned graph is strongly connected), but
+  // not by a leap: from within a jump, only once it lands.
+  const std::vector<double> costs = cost_to_rest(*context.graph, context.rest, 1.0, 30.0);
+  int reached = 0;
+  for (int n = 0; n < context.graph->node_count(); ++n) {
+    const std::string& clip = context.db->clips[static_cast<size_t>(context.graph->nodes[n].clip)].name;
+    if (clip != "16_01" && clip != "16_05") {
+      EXPECT_GE(costs[static_cast<size_t>(n)], 0.0) << clip;
+    }
+    reached += costs[static_cast<size_t>(n)] >= 0.0 ? 1 : 0;
+  }
+  EXPECT_LT(reached, context.graph->node_count());  // some nodes of the jumps cannot rest but by leaping
+  int leaps = 0;
+  for (int e = 0; e < context.graph->edge_count(); ++e) leaps += context.rest.leap(e) ? 1 : 0;
+  EXPECT_GT(leaps, 0);
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // What a path synthesized falls short of, in sentences for the user: a segment past the path's
-// end (asked for, but no frame can carry it), the end not reached (and why, as far as can be
-// told), dawdling, following the path further off than the retries look
-// for, a motion type asked for and missed. The CLI's `path` prints them as warnings, the Python
+// end (asked for, but no frame can carry it), a rest asked for at the end standing more than
+// kEndReachedM from it, the end not reached (and why, as far as can be told), dawdling,
+// following the path further off than the retries look for, a motion type asked for and missed. The CLI's `path` prints them as warnings, the Python
 // package raises them as UserWarning, the studio shows them; the report carries them
 // ("shortfalls"). Each is what synthesize_path's retries judged the kept attempt by.
 #pragma once

@@ -64,7 +64,7 @@ PathRestWay nearest_rest_way(const SynthesisContext& context, const FloorPath& p
     if (since > 0) ending_travel[i] += (still - sample).norm();
   }
   // From each node the walk reaches within kRestSearchM of the end, last first, every way on that
-  // stands within kRestSearchS seconds (kRestExpansions edges tried from each) through the graph to
+  // stands within kRestSearchS seconds (kRestExpansions edges tried from each; no bridge, no leap) to
   // a node of a clip that ends at rest, and that clip on: the one whose character stands nearest the
   // end, a transition on the way counting kRestTransitionM more.
   PathRestWay best;
@@ -99,7 +99,9 @@ PathRestWay nearest_rest_way(const SynthesisContext& context, const FloorPath& p
     for (int e = graph.edge_offsets[at_node.node]; e < graph.edge_offsets[at_node.node + 1]; ++e) {
       const GraphEdge& edge = graph.edges[static_cast<size_t>(e)];
       const double to = fewest[static_cast<size_t>(edge.to_node)];
-      if (edge.bridge || to < 0.0 || at_node.frames + edge.frame_count + to > max_frames) continue;
+      if (edge.bridge || context.rest.leap(e) || to < 0.0 || at_node.frames + edge.frame_count + to > max_frames) {
+        continue;
+      }
       if (++expansions > kRestExpansions) return;
       At next = at_node;
       next.node = edge.to_node;

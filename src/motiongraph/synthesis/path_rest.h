@@ -4,7 +4,7 @@
 // where it leaves the walk, so the walk is cut where its way to rest stands nearest the path's end:
 // from each of its nodes within kRestSearchM of the end (along the path, where its motion as
 // edited stands), every way on through the graph that stands within kRestSearchS seconds (not
-// through a bridge; not more than kRestOvershootM past the end; kRestExpansions edges tried from
+// through a bridge or a leap; not more than kRestOvershootM past the end; kRestExpansions edges tried from
 // each node) to a node of such a clip, and that clip on, is measured as the path edit will lay it:
 // its root's track in chords of kRestChordS (a stride's sway left out) added to where the node
 // stands. The one standing nearest the end is kept, a transition on the way counting

@@ -593,8 +593,8 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
   if (auto status = settings.validate(); !status) return status.error();
   if (!settings.rest_at_end) return search_path(context, path, settings);
   if (context.rest.empty()) {
-    return Error{"", 0, "the path cannot end at rest: no clip of the graph ends standing still (its root travelling "
-                        "under 0.25 m/s over its last second)"};
+    return Error{"", 0, "the path cannot end at rest: no clip of the graph ends standing still (every joint slower "
+                        "than 0.5 m/s to its end)"};
   }
   const MotionGraph& graph = *context.graph;
   auto masks = asked_masks(context, path);

@@ -5,19 +5,31 @@
 // with no way back: from any graph node of such a clip, play the clip on as captured to its end,
 // then hold its last frame.
 //
-// A clip ends at rest when its root does not travel over its last frames (travel_tags.h's
-// travelling_spans, the root's floor speed over a second below 0.25 m/s): it rests from the
-// frame after its last travel (its first frame when it never travels: a clip that stands
-// throughout).
+// A clip ends at rest when its whole body stands still over its last frames: every joint slower
+// than kStillJointMps (each step's fastest joint averaged over kStillWindowFrames) for at least
+// kMinStillS to its end (a root that stops travelling is not enough: a jump on the spot, a dance,
+// a hop stand nowhere). It rests from the first frame of that stillness. Its nodes come to rest by
+// slowing down, not by a leap: a node counts when no foot is down for more than kMaxFlightS (a
+// running stride's flight: subject 16 runs up to 0.29 s off the ground, jumps 0.43-0.48 s)
+// between it and the rest frame, and when it is at most kMaxRestLeadS
+// before it (a long dance is no way to stop); nor does the way to it leap (RestEndings::leaps).
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "motiongraph/database/motion_database.h"
 #include "motiongraph/graph/motion_graph.h"
+#include "motiongraph/motion/foot_contacts.h"
 #include "motiongraph/synthesis/assembler.h"
 
 namespace mg {
+
+constexpr double kStillJointMps = 0.5;
+constexpr int kStillWindowFrames = 5;
+constexpr double kMinStillS = 0.1;
+constexpr double kMaxFlightS = 0.35;
+constexpr double kMaxRestLeadS = 4.0;
 
 struct RestEnding {
   int node = 0;        // the graph node it leaves from (its frame is the first it plays)
@@ -35,6 +47,13 @@ struct RestEnding {
 struct RestEndings {
   std::vector<RestEnding> endings;  // by node, one per node of a clip that ends at rest
   std::vector<int> of_node;         // per graph node: its ending's index, or -1
+  // Per graph edge: it plays a leap (a flight longer than kMaxFlightS: a jump, a hop), which the
+  // way to rest does not take. Empty: none known.
+  std::vector<char> leaps;
+
+  bool leap(int edge) const {
+    return static_cast<size_t>(edge) < leaps.size() && leaps[static_cast<size_t>(edge)] != 0;
+  }
 
   bool empty() const { return endings.empty(); }
   // The ending of `node`, or null (none; no ending found at all: of_node empty).
@@ -45,9 +64,14 @@ struct RestEndings {
   }
 };
 
-// The endings of `graph`'s nodes, the clips' roots read as `assembler` places them (a trajectory
-// joint's where the file's root stands still).
-RestEndings find_rest_endings(const MotionDatabase& db, const MotionGraph& graph, const MotionAssembler& assembler);
+// The frame of a clip's motion (on its skeleton, at `fps`) from which its whole body stands still
+// to its end, as above; motion.frame_count when it does not.
+int still_from(const Skeleton& skeleton, const Motion& motion, double fps);
+
+// The endings of `graph`'s nodes and its edges that leap, the edges' frames as `assembler` plays
+// them; `frame_contacts`, every database frame's foot contacts (empty: none known, no flight judged).
+RestEndings find_rest_endings(const MotionDatabase& db, const MotionGraph& graph, const MotionAssembler& assembler,
+                              std::span<const ContactMask> frame_contacts);
 
 // What taking `edge` costs on the way to rest: its frames, and the transition's and bridge's costs.
 inline double rest_edge_cost(const GraphEdge& edge, double transition_cost, double bridge_cost) {

@@ -28,7 +28,6 @@ Result<SynthesisContext> make_synthesis_context(const MotionDatabase& db, const 
   travel_hold.hold_travel = true;
   context.tracks = compute_edge_tracks(context.assembler, graph, context.frame_tags, forward_axis, travel_axis,
                                        travel_turns(db, context.assembler, forward_axis, travel_hold));
-  context.rest = find_rest_endings(db, graph, context.assembler);
   auto feet = find_foot_joints(db.skeletons[target_skeleton], db.foot_names);
   auto contacts = feet ? contacts_of(db) : Result<std::vector<ContactMask>>(feet.error());
   if (feet && contacts) {
@@ -37,6 +36,7 @@ Result<SynthesisContext> make_synthesis_context(const MotionDatabase& db, const 
   } else {
     context.feet_error = contacts.error().message;
   }
+  context.rest = find_rest_endings(db, graph, context.assembler, context.frame_contacts);
   return context;
 }
 
