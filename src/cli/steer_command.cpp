@@ -190,6 +190,11 @@ int run_steer(const SteerOptions& o) {
       control["rest_response_s"] = first != rests_s.end() ? nlohmann::json(*first - c.at_s)
                                    : !rests_s.empty() && controller->resting() ? nlohmann::json(0.0)
                                                                                : nlohmann::json(nullptr);
+      if (control["rest_response_s"].is_null()) {
+        spdlog::warn("the control at {:g} s asks to rest, but the character does not stand before the script ends "
+                     "at {:g} s (a later control took it back, or duration_s is too short for the way to rest)",
+                     c.at_s, script->duration_s);
+      }
     }
     // (asking only to rest on is heard: a turn or a move is not)
     const bool turns = i > 0 && c.bearing_deg != script->controls[i - 1].bearing_deg;

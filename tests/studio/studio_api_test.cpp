@@ -485,6 +485,11 @@ TEST(StudioApi, SteeringComesToRestWhenAsked) {
   const double rest_s = call.json["rest_s"].get<double>();
   EXPECT_GT(rest_s, 1.0);
   EXPECT_EQ(call.json["rest_clip"].get<std::string>().substr(0, 3), "16_");
+  // The stopping clip plays on a step's worth at a time, then its last frame is held.
+  for (int i = 0; i < 10 && call.json["positions"].front() != call.json["positions"].back(); ++i) {
+    call = call_api("POST", step, R"({"heading_deg": 0, "tag": "walk", "rest": true, "min_frames": 30})");
+    ASSERT_EQ(call.response.status, 200) << call.response.body;
+  }
   // Asked to run east now, it holds its last frame.
   const json held = call.json["positions"].back();
   const ApiCall after = call_api("POST", step, R"({"heading_deg": 90, "tag": "run", "min_frames": 10})");

@@ -344,6 +344,9 @@ TEST(Controller, ComesToRestWhenAskedAndStaysThere) {
     if (was_resting) {
       EXPECT_TRUE(d.edges.empty());
     }
+    // A decision's worth of frames at a time, the stopping clip's too (a game shows each as it comes).
+    EXPECT_LE(static_cast<long>(d.rest_frames.size()), std::lround(ControllerSettings{}.commit_s * motion.fps))
+        << first;
     if (!was_resting && controller->resting()) ending_decision_first = first + edge_frames;
     rest_frames.insert(rest_frames.end(), d.rest_frames.begin(), d.rest_frames.end());
     if (motion.frame_count > 9 * fps) controller->set_input({bearing_direction(90.0), *walk});  // no way back
@@ -394,10 +397,11 @@ TEST(Controller, GoesOnFromRestWhereTheGraphHasAWayOn) {
   Motion motion = context.assembler.empty_motion();
   while (motion.frame_count < 2 * motion.fps) controller->step(motion);
   controller->set_input({bearing_direction(0.0), *walk, true});
-  while (!controller->resting()) {
+  while (!controller->standing()) {  // on its way, then playing the clip it rests at a decision at a time
     ASSERT_LT(motion.frame_count, 20 * motion.fps) << "not at rest";
     controller->step(motion);
   }
+  EXPECT_TRUE(controller->resting());
   EXPECT_FALSE(controller->rest_is_for_good());
   controller->step(motion);  // holding
   const int last_held = motion.frame_count - 1;

@@ -92,11 +92,13 @@ bool Controller::rest_is_for_good() const {
   return resting_ && context_->graph->node_at_frame(rest_->last_frame) < 0;
 }
 
+bool Controller::standing() const { return resting_ && ending_next_ >= ending_frames_.size(); }
+
 ControllerDecision Controller::step(Motion& out) {
   using Clock = std::chrono::steady_clock;
   const auto begin = Clock::now();
   ControllerDecision decision;
-  if (resting_ && !input_.rest && !rest_is_for_good()) {
+  if (standing() && !input_.rest && !rest_is_for_good()) {
     // On from the frame it holds: the graph's node there, placed as the frame is.
     const int node = context_->graph->node_at_frame(rest_->last_frame);
     state_.node = node;
@@ -177,8 +179,23 @@ void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
     decision.frames += frames;
     state_.frames += frames;
   };
+  // The ending's frames still to play, a decision's worth at a time (a game shows each decision's
+  // frames as they come), then its last frame held.
+  auto play_ending = [&](int frames) {
+    const PreparedFloorTransform placement(rest_placement_);
+    for (; frames > 0 && ending_next_ < ending_frames_.size(); --frames, ++ending_next_) {
+      context_->assembler.append_frame(ending_frames_[ending_next_], placement, out);
+      decision.rest_frames.push_back(ending_frames_[ending_next_]);
+      ++decision.frames;
+      ++state_.frames;
+    }
+  };
   if (resting_) {
-    hold(commit_frames, rest_->last_frame);
+    if (ending_next_ < ending_frames_.size()) {
+      play_ending(commit_frames);
+    } else {
+      hold(commit_frames, rest_->last_frame);
+    }
     return;
   }
   if (rest_cost_.empty()) {
@@ -198,13 +215,9 @@ void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
   rest_ = ending;
   rest_placement_ = state_.placement;
   rest_frames_.push_back(state_.frames + ending->frames_to_rest(graph));
-  const PreparedFloorTransform placement(rest_placement_);
-  for (int f : ending->frames(graph)) {
-    context_->assembler.append_frame(f, placement, out);
-    decision.rest_frames.push_back(f);
-    ++decision.frames;
-    ++state_.frames;
-  }
+  ending_frames_ = ending->frames(graph);
+  ending_next_ = 0;
+  play_ending(std::max(0, commit_frames - decision.frames));
 }
 
 }  // namespace mg

@@ -16,7 +16,8 @@
 // Asked to rest (ControlInput::rest), the character comes to rest at the end of a clip that ends
 // standing still (rest_endings.h) by the cheapest way there (cost_to_rest: frames until it
 // stands, the transition and bridge penalties on the way), turned by the heading edit on the
-// way, and then holds that clip's last frame (resting()). Asked to move again, it goes on from
+// way, plays that clip a decision's worth of frames at a time, and then holds its last frame
+// (resting(), standing()). Asked to move again, it goes on from
 // that frame where the graph has a node there (a library with clips that start from standing);
 // where it has none (the pruning left the clip's end out as a dead end: subject 16), rest is for
 // good (rest_is_for_good()). Where the graph has no such clip (RestEndings::empty), rest is not
@@ -104,6 +105,8 @@ class Controller {
   bool resting() const { return resting_; }
   // Resting where the graph has no way on from the frame it holds.
   bool rest_is_for_good() const;
+  // Resting with the clip it rests at played to its end: holding its last frame.
+  bool standing() const;
   // The frame (counted from the controller's first) from which it stood still each time it came to
   // rest, in order; the last one's (-1 before any).
   const std::vector<long long>& rest_frames() const { return rest_frames_; }
@@ -134,6 +137,8 @@ class Controller {
   const RestEnding* rest_ = nullptr;
   FloorTransform rest_placement_;
   std::vector<long long> rest_frames_;
+  std::vector<int> ending_frames_;  // the ending's database frames, played a decision's worth at a time
+  size_t ending_next_ = 0;
 };
 
 // Bearing in degrees (0 north = -z, 90 east = +x) as a unit floor direction, and back.
