@@ -146,7 +146,8 @@ PY
 cat >"$work/late-rest.json" <<'JSON'
 {"duration_s": 3.5, "controls": [{"at_s": 0, "heading": "north", "tag": "walk"}, {"at_s": 3, "rest": true}]}
 JSON
-"$bin" steer "$work/g.mgraph" --script "$work/late-rest.json" -o "$work/late-rest.bvh" >/dev/null 2>"$work/late-rest.err"
+"$bin" steer "$work/g.mgraph" --script "$work/late-rest.json" -o "$work/late-rest.bvh" >/dev/null \
+  2>"$work/late-rest.err"
 grep -q "the control at 3 s asks to rest, but the character does not stand before the script ends at 3.5 s" \
   "$work/late-rest.err" || { cat "$work/late-rest.err"; exit 1; }
 # A path asked to end at rest: the character stands at its end, still to the last frame.
