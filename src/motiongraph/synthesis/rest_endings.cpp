@@ -80,8 +80,13 @@ RestEndings find_rest_endings(const MotionDatabase& db, const MotionGraph& graph
     const int first = node;
     while (node < graph.node_count() && graph.nodes[static_cast<size_t>(node)].clip == c) ++node;
     if (first == node || clip.frame_count < 2) continue;  // no node in it, or nothing to play
-    const int rests_from = still_from(db.skeletons[static_cast<size_t>(clip.skeleton)], clip.motion, db.fps);
-    if (rests_from >= clip.frame_count) continue;  // it moves to its end
+    // Judged over the clip's last kMaxRestLeadS and two seconds (no node further back can rest, and
+    // a long clip's every frame would cost forward kinematics at every start of a synthesis).
+    const int tail = std::min(clip.frame_count, static_cast<int>(std::lround((kMaxRestLeadS + 2.0) * db.fps)));
+    const int still = still_from(db.skeletons[static_cast<size_t>(clip.skeleton)],
+                                 clip.motion.slice(clip.frame_count - tail, tail), db.fps);
+    if (still >= tail) continue;  // it moves to its end
+    const int rests_from = clip.frame_count - tail + still;
     const int rest_frame = clip.first_frame + rests_from;
     // The last frame of a leap before rest_frame: only nodes after it come to rest by slowing down.
     int after_flight = clip.first_frame - 1;
