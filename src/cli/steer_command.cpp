@@ -190,9 +190,13 @@ int run_steer(const SteerOptions& o) {
       control["rest_response_s"] = first != rests_s.end() ? nlohmann::json(*first - c.at_s)
                                    : !rests_s.empty() && controller->resting() ? nlohmann::json(0.0)
                                                                                : nlohmann::json(nullptr);
-      if (control["rest_response_s"].is_null()) {
+      const bool taken_back = std::any_of(script->controls.begin() + static_cast<long>(i) + 1, script->controls.end(),
+                                          [&](const ScriptedControl& later) {
+                                            return !later.rest && !stop_means_rest(context, later.tag);
+                                          });
+      if (control["rest_response_s"].is_null() && !taken_back) {
         spdlog::warn("the control at {:g} s asks to rest, but the character does not stand before the script ends "
-                     "at {:g} s (a later control took it back, or duration_s is too short for the way to rest)",
+                     "at {:g} s (duration_s is too short for the way to rest)",
                      c.at_s, script->duration_s);
       }
     }
@@ -266,7 +270,7 @@ Command add_steer_command(CLI::App& app) {
                "\"walk\"}, {\"at_s\": 4, \"heading_deg\": 90}, {\"at_s\": 8, \"tag\": \"run\"}]}; headings north (-z),\n"
                "east (+x), south, west or a bearing in degrees clockwise from north; without duration_s, the\n"
                "motion ends 4 s after the last control. {\"at_s\": 10, \"rest\": true} comes to rest at the end of a\n"
-               "clip that ends standing still and stays there (as does a stop the graph can hardly play).");
+               "clip that ends standing still (as does a stop the graph can hardly play).");
   o->common.add_to(*sub);
   sub->add_option("--script", o->script, "CONTROLS.json")->required()->check(CLI::ExistingFile);
   sub->add_option("--horizon", o->settings.horizon_s, "Seconds each decision looks ahead")->capture_default_str();
