@@ -318,7 +318,7 @@ class PyController {
       in.rest = in.rest || stop_rests;
       if (!in.rest) in.tag = mask;
     }
-    if (in.rest && context().rest.empty() && !warned_rest_) {
+    if (in.rest && context().rest().empty() && !warned_rest_) {
       warned_rest_ = true;
       warn(fmt::format("{}: the controller is asked to rest, but no clip of the graph ends standing still: the "
                        "character goes on",

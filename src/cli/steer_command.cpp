@@ -47,8 +47,7 @@ int run_steer(const SteerOptions& o) {
   auto loaded = load_for_synthesis(o.common, {o.script});
   if (!loaded) return fail(loaded.error());
   const SynthesisContext& context = (*loaded)->context();
-  auto input_at = [&](double t) -> Result<ControlInput> {
-    const ScriptedControl& c = script->at(t);
+  auto input_of = [&](const ScriptedControl& c) -> Result<ControlInput> {
     ControlInput input;
     input.direction = bearing_direction(c.bearing_deg);
     input.rest = c.rest || stop_means_rest(context, c.tag);
@@ -59,24 +58,28 @@ int run_steer(const SteerOptions& o) {
     }
     return input;
   };
-  std::set<std::string> warned;  // a control carries the last tag on: each type is warned of once
+  std::vector<ControlInput> inputs;  // each control's, in order (found once: a stop's costs the graph's edges)
+  std::set<std::string> warned;     // a control carries the last tag on: each type is warned of once
   bool warned_rest = false;
   for (const ScriptedControl& c : script->controls) {
-    if (auto input = input_at(c.at_s); !input) return fail(input.error());
+    auto input = input_of(c);
+    if (!input) return fail(input.error());
+    inputs.push_back(*input);
     if (auto why = unplayable_tag(context, c.tag); why && warned.insert(c.tag).second) {
       spdlog::warn("the control at {:g} s asks for {}{}", c.at_s, *why,
                    stop_means_rest(context, c.tag)
                        ? "; the character comes to rest instead, at the end of a clip that ends standing still"
                        : "");
     }
-    if (c.rest && context.rest.empty() && !warned_rest) {
+    if (c.rest && context.rest().empty() && !warned_rest) {
       warned_rest = true;
       spdlog::warn("the control at {:g} s asks to rest, but no clip of the graph ends standing still: the character "
                    "goes on",
                    c.at_s);
     }
   }
-  auto controller = Controller::create(context, o.settings, *input_at(0.0));
+  auto input_at = [&](double t) { return inputs[static_cast<size_t>(&script->at(t) - script->controls.data())]; };
+  auto controller = Controller::create(context, o.settings, input_at(0.0));
   if (!controller) return fail(controller.error());
   Motion motion = context.assembler.empty_motion();
   const double fps = context.db->fps;
@@ -98,7 +101,7 @@ int run_steer(const SteerOptions& o) {
   std::vector<TagMask> played_tags;  // each frame's, from the edges played (their tracks') and the rest frames
   std::vector<double> cleanup_seconds;
   while (motion.frame_count < total) {
-    controller->set_input(*input_at(motion.frame_count / fps));
+    controller->set_input(input_at(motion.frame_count / fps));
     long long edge_start = motion.frame_count;
     const int first_new = motion.frame_count;
     const ControllerDecision d = controller->step(motion);
@@ -117,13 +120,8 @@ int run_steer(const SteerOptions& o) {
     exhausted += d.budget_exhausted ? 1 : 0;
     played.edges.insert(played.edges.end(), d.edges.begin(), d.edges.end());
     played.rest_frames.insert(played.rest_frames.end(), d.rest_frames.begin(), d.rest_frames.end());
-    for (int e : d.edges) {
-      const auto tags = context.tracks.tags_of(e);
-      played_tags.insert(played_tags.end(), tags.begin(), tags.end());
-    }
-    for (int f : d.rest_frames) {
-      played_tags.push_back(static_cast<size_t>(f) < context.frame_tags.size() ? context.frame_tags[f] : TagMask{0});
-    }
+    const std::vector<TagMask> tags = context.walk_tags(Walk{-1, d.edges, d.rest_frames});
+    played_tags.insert(played_tags.end(), tags.begin(), tags.end());
     for (int e : d.edges) {
       const GraphEdge& edge = context.graph->edges[e];
       if (edge.transition && edge_start < total) ++transitions;
@@ -149,7 +147,7 @@ int run_steer(const SteerOptions& o) {
   std::vector<double> unheard_s;
   for (size_t i = 0; i < script->controls.size(); ++i) {
     const ScriptedControl& c = script->controls[i];
-    const bool rest = c.rest || stop_means_rest(context, c.tag);
+    const bool rest = inputs[i].rest;
     nlohmann::json tag_response = nullptr;
     const bool changes_tag = !c.tag.empty() && c.tag != tag_before;
     if (changes_tag) {
@@ -184,16 +182,14 @@ int run_steer(const SteerOptions& o) {
     nlohmann::json control = {{"at_s", c.at_s}, {"heading_deg", c.bearing_deg}, {"tag", c.tag}, {"response_s", response}};
     if (changes_tag) control["tag_response_s"] = tag_response;
     control["rest"] = rest;
-    if (rest && !rest_before && !context.rest.empty()) {
+    if (rest && !rest_before && !context.rest().empty()) {
       // The first time it stands from the control on (a rest that came before it: it stood already).
       const auto first = std::find_if(rests_s.begin(), rests_s.end(), [&](double r) { return r >= c.at_s; });
       control["rest_response_s"] = first != rests_s.end() ? nlohmann::json(*first - c.at_s)
                                    : !rests_s.empty() && controller->resting() ? nlohmann::json(0.0)
                                                                                : nlohmann::json(nullptr);
-      const bool taken_back = std::any_of(script->controls.begin() + static_cast<long>(i) + 1, script->controls.end(),
-                                          [&](const ScriptedControl& later) {
-                                            return !later.rest && !stop_means_rest(context, later.tag);
-                                          });
+      const bool taken_back = std::any_of(inputs.begin() + static_cast<long>(i) + 1, inputs.end(),
+                                          [](const ControlInput& later) { return !later.rest; });
       if (control["rest_response_s"].is_null() && !taken_back) {
         spdlog::warn("the control at {:g} s asks to rest, but the character does not stand before the script ends "
                      "at {:g} s (duration_s is too short for the way to rest)",

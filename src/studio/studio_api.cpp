@@ -475,7 +475,7 @@ class Router {
                           {"fps", db().fps},
                           {"joints", joints_json(skeleton())},
                           {"tags", db().tag_names},
-                          {"can_rest", !service_.context().rest.empty()}});
+                          {"can_rest", !service_.context().rest().empty()}});
   }
 
   ApiResponse step_session() {

@@ -195,11 +195,11 @@ TEST(Assembler, AWalkThatComesToRestPlaysItsRestFramesAsCaptured) {
   const auto& s = test::subject16();
   const SynthesisContext& context = s.context();
   const MotionGraph& graph = *context.graph;
-  ASSERT_FALSE(context.rest.empty());
+  ASSERT_FALSE(context.rest().empty());
   // An edge into a node that can rest, and that ending.
   int edge = 0;
-  while (context.rest.at(graph.edges[static_cast<size_t>(edge)].to_node) == nullptr) ++edge;
-  const RestEnding& ending = *context.rest.at(graph.edges[static_cast<size_t>(edge)].to_node);
+  while (context.rest().at(graph.edges[static_cast<size_t>(edge)].to_node) == nullptr) ++edge;
+  const RestEnding& ending = *context.rest().at(graph.edges[static_cast<size_t>(edge)].to_node);
   Walk walk{graph.edges[static_cast<size_t>(edge)].from_node, {edge}};
   walk.rest_frames = ending.frames(graph);
   walk.rest_frames.push_back(ending.last_frame);  // held a frame

@@ -388,10 +388,11 @@ TEST(Controller, GoesOnFromRestWhereTheGraphHasAWayOn) {
          graph.nodes[held].frame - graph.nodes[held - 1].frame < 5) {
     ++held;
   }
-  context.rest = {};
-  context.rest.of_node.assign(static_cast<size_t>(graph.node_count()), -1);
-  context.rest.of_node[static_cast<size_t>(held - 1)] = 0;
-  context.rest.endings.push_back({held - 1, graph.nodes[held].frame - 2, graph.nodes[held].frame});
+  RestEndings made;
+  made.of_node.assign(static_cast<size_t>(graph.node_count()), -1);
+  made.of_node[static_cast<size_t>(held - 1)] = 0;
+  made.endings.push_back({held - 1, graph.nodes[held].frame - 2, graph.nodes[held].frame});
+  context.set_rest(std::move(made));
   auto controller = Controller::create(context, {}, {bearing_direction(0.0), *walk});
   ASSERT_TRUE(controller.ok());
   Motion motion = context.assembler.empty_motion();
@@ -427,7 +428,7 @@ TEST(Controller, RestTakenBackInTimeOrWithNowhereToRestWalksOn) {
   ASSERT_TRUE(walk.ok());
   for (const bool nowhere : {false, true}) {
     SynthesisContext context = s.context();
-    if (nowhere) context.rest = {};
+    if (nowhere) context.set_rest({});
     auto controller = Controller::create(context, {}, {bearing_direction(0.0), *walk});
     ASSERT_TRUE(controller.ok());
     Motion motion = context.assembler.empty_motion();

@@ -27,11 +27,11 @@ TEST(PathRest, TheWayGoesOnFromTheWalkThroughTheGraphToAnEnding) {
     walk.edges.insert(walk.edges.end(), way.edges.begin(), way.edges.end());
     EXPECT_TRUE(check_walk(graph, walk).ok()) << spec;
     EXPECT_EQ(walk.end_node(graph), way.ending->node) << spec;
-    EXPECT_EQ(s.context().rest.at(way.ending->node), way.ending);
+    EXPECT_EQ(s.context().rest().at(way.ending->node), way.ending);
     for (int e : way.edges) EXPECT_FALSE(graph.edges[e].bridge);
     // Nowhere to rest: no way.
     SynthesisContext nowhere = s.context();
-    nowhere.rest = {};
+    nowhere.set_rest({});
     EXPECT_EQ(nearest_rest_way(nowhere, *path, searched->walk, searched->start, searched->roots).ending, nullptr);
   }
 }

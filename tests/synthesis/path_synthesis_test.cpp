@@ -138,7 +138,7 @@ TEST(PathSynthesis, ComesToRestAtThePathsEndWhenAsked) {
   }
   // A graph with no clip that ends standing still: an error saying so.
   SynthesisContext nowhere = s.context();
-  nowhere.rest = {};
+  nowhere.set_rest({});
   auto refused = synthesize_path(nowhere, *make_shape("line:12"), settings);
   ASSERT_FALSE(refused.ok());
   EXPECT_NE(refused.error().message.find("no clip of the graph ends standing still"), std::string::npos);

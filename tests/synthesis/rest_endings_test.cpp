@@ -132,8 +132,8 @@ TEST(RestEndings, CostToRestIsTheCheapestWayToAnEndingOnRandomGraphs) {
 TEST(RestEndings, Subject16ComesToRestOnlyAtTheEndsOfItsStoppingClips) {
   const auto& s = test::subject16();
   const SynthesisContext& context = s.context();
-  ASSERT_FALSE(context.rest.empty());  // "slow walk, stop" and "run/jog, sudden stop" end standing
-  for (const RestEnding& ending : context.rest.endings) {
+  ASSERT_FALSE(context.rest().empty());  // "slow walk, stop" and "run/jog, sudden stop" end standing
+  for (const RestEnding& ending : context.rest().endings) {
     const DatabaseClip& clip = context.db->clips[static_cast<size_t>(context.db->clip_of(ending.last_frame))];
     EXPECT_EQ(ending.last_frame, clip.first_frame + clip.frame_count - 1);
     EXPECT_EQ(context.graph->nodes[static_cast<size_t>(ending.node)].clip, context.db->clip_of(ending.last_frame));
@@ -144,7 +144,7 @@ TEST(RestEndings, Subject16ComesToRestOnlyAtTheEndsOfItsStoppingClips) {
   }
   // Rest is reached from every node of a walk or a run (a pruned graph is strongly connected), but
   // not by a leap: from within a jump, only once it lands.
-  const std::vector<double> costs = cost_to_rest(*context.graph, context.rest, 1.0, 30.0);
+  const std::vector<double> costs = cost_to_rest(*context.graph, context.rest(), 1.0, 30.0);
   int reached = 0;
   for (int n = 0; n < context.graph->node_count(); ++n) {
     const std::string& clip = context.db->clips[static_cast<size_t>(context.graph->nodes[n].clip)].name;
@@ -155,7 +155,7 @@ TEST(RestEndings, Subject16ComesToRestOnlyAtTheEndsOfItsStoppingClips) {
   }
   EXPECT_LT(reached, context.graph->node_count());  // some nodes of the jumps cannot rest but by leaping
   int leaps = 0;
-  for (int e = 0; e < context.graph->edge_count(); ++e) leaps += context.rest.leap(e) ? 1 : 0;
+  for (int e = 0; e < context.graph->edge_count(); ++e) leaps += context.rest().leap(e) ? 1 : 0;
   EXPECT_GT(leaps, 0);
 }
 

@@ -151,7 +151,7 @@ nlohmann::json rest_report(const SynthesisContext& context, const RestEnding* en
 }
 
 bool stop_means_rest(const SynthesisContext& context, const std::string& tag) {
-  return is_stop_tag(tag) && !context.rest.empty() && unplayable_tag(context, tag).has_value();
+  return is_stop_tag(tag) && !context.rest().empty() && unplayable_tag(context, tag).has_value();
 }
 
 Result<SynthesizedMotion> run_walk_synthesis(const SynthesisContext& context, int from, int to,

@@ -108,7 +108,7 @@ ControllerDecision Controller::step(Motion& out) {
     state_.has_last = true;
     resting_ = false;
   }
-  if (resting_ || (input_.rest && !context_->rest.empty())) {
+  if (resting_ || (input_.rest && !context_->rest().empty())) {
     step_to_rest(out, decision);
     decision.search_seconds = std::chrono::duration<double>(Clock::now() - begin).count();
     return decision;
@@ -170,39 +170,27 @@ void Controller::play(std::span<const int> committed, std::span<const int> plann
 void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
   const MotionGraph& graph = *context_->graph;
   const int commit_frames = std::max(1, static_cast<int>(std::lround(settings_.commit_s * context_->db->fps)));
-  auto hold = [&](int frames, int frame) {
+  // Up to `frames` frames at rest: the ending's still to play, a decision's worth at a time (a game
+  // shows each decision's frames as they come), and once they are played its last frame held.
+  auto play_rest = [&](int frames, bool hold) {
     const PreparedFloorTransform placement(rest_placement_);
-    for (int i = 0; i < frames; ++i) {
+    for (; frames > 0 && (hold || ending_next_ < ending_frames_.size()); --frames) {
+      const int frame = ending_next_ < ending_frames_.size() ? ending_frames_[ending_next_++] : rest_->last_frame;
       context_->assembler.append_frame(frame, placement, out);
       decision.rest_frames.push_back(frame);
-    }
-    decision.frames += frames;
-    state_.frames += frames;
-  };
-  // The ending's frames still to play, a decision's worth at a time (a game shows each decision's
-  // frames as they come), then its last frame held.
-  auto play_ending = [&](int frames) {
-    const PreparedFloorTransform placement(rest_placement_);
-    for (; frames > 0 && ending_next_ < ending_frames_.size(); --frames, ++ending_next_) {
-      context_->assembler.append_frame(ending_frames_[ending_next_], placement, out);
-      decision.rest_frames.push_back(ending_frames_[ending_next_]);
       ++decision.frames;
       ++state_.frames;
     }
   };
   if (resting_) {
-    if (ending_next_ < ending_frames_.size()) {
-      play_ending(commit_frames);
-    } else {
-      hold(commit_frames, rest_->last_frame);
-    }
+    play_rest(commit_frames, ending_next_ >= ending_frames_.size());
     return;
   }
   if (rest_cost_.empty()) {
-    rest_cost_ = cost_to_rest(graph, context_->rest, settings_.transition_penalty, settings_.bridge_penalty);
+    rest_cost_ = cost_to_rest(graph, context_->rest(), settings_.transition_penalty, settings_.bridge_penalty);
   }
   // Down the costs to rest, for as long as a decision commits.
-  RestRoute way = rest_route(graph, context_->rest, rest_cost_, state_.node, settings_.transition_penalty,
+  RestRoute way = rest_route(graph, context_->rest(), rest_cost_, state_.node, settings_.transition_penalty,
                              settings_.bridge_penalty, commit_frames);
   std::vector<int>& route = way.edges;
   const RestEnding* ending = way.ending;
@@ -217,7 +205,7 @@ void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
   rest_frames_.push_back(state_.frames + ending->frames_to_rest(graph));
   ending_frames_ = ending->frames(graph);
   ending_next_ = 0;
-  play_ending(std::max(0, commit_frames - decision.frames));
+  play_rest(std::max(0, commit_frames - decision.frames), false);
 }
 
 }  // namespace mg

@@ -10,6 +10,7 @@ namespace mg {
 PathRestWay nearest_rest_way(const SynthesisContext& context, const FloorPath& path, const Walk& walk,
                              const FloorTransform& start, std::span<const Vec2> edited_roots) {
   const MotionGraph& graph = *context.graph;
+  const RestEndings& rest = context.rest();
   // The walk's roots as played, each node's frame among them and its placement.
   FloorTransform at = start;
   std::vector<RootPose> played;
@@ -49,9 +50,9 @@ PathRestWay nearest_rest_way(const SynthesisContext& context, const FloorPath& p
     return metres;
   };
   // Each ending's travel from its node's frame to the frame it stands at (the same wherever it is placed).
-  std::vector<double> ending_travel(context.rest.endings.size());
+  std::vector<double> ending_travel(rest.endings.size());
   for (size_t i = 0; i < ending_travel.size(); ++i) {
-    const RestEnding& ending = context.rest.endings[i];
+    const RestEnding& ending = rest.endings[i];
     std::vector<RootPose> track;
     for (int f = graph.nodes[static_cast<size_t>(ending.node)].frame; f <= ending.rest_frame; ++f) {
       track.push_back(context.assembler.root_pose(f, FloorTransform{}));
@@ -72,7 +73,7 @@ PathRestWay nearest_rest_way(const SynthesisContext& context, const FloorPath& p
   const int max_frames = static_cast<int>(std::lround(kRestSearchS * context.db->fps));
   // The fewest frames from each node until the character stands: a way that cannot stand within
   // max_frames is not followed.
-  const std::vector<double> fewest = cost_to_rest(graph, context.rest, 0.0, 0.0);
+  const std::vector<double> fewest = cost_to_rest(graph, rest, 0.0, 0.0);
   long long expansions = 0;
   std::vector<int> way;
   std::vector<RootPose> scratch;
@@ -85,11 +86,11 @@ PathRestWay nearest_rest_way(const SynthesisContext& context, const FloorPath& p
     int since = 0;
   };
   std::function<void(size_t, const At&)> visit = [&](size_t kept, const At& at_node) {
-    if (const RestEnding* ending = context.rest.at(at_node.node); ending != nullptr) {
+    if (const RestEnding* ending = rest.at(at_node.node); ending != nullptr) {
       const Vec3 first = context.assembler.root_position(graph.nodes[static_cast<size_t>(at_node.node)].frame,
                                                          at_node.placement);
       const double along = at_node.along + (Vec2(first.x(), first.z()) - at_node.sample).norm() +
-                           ending_travel[static_cast<size_t>(context.rest.of_node[static_cast<size_t>(at_node.node)])];
+                           ending_travel[static_cast<size_t>(ending - rest.endings.data())];
       const double score = std::abs(along - length) + kRestTransitionM * at_node.transitions;
       if (score < best_score) {
         best = {kept, way, ending};
@@ -99,7 +100,7 @@ PathRestWay nearest_rest_way(const SynthesisContext& context, const FloorPath& p
     for (int e = graph.edge_offsets[at_node.node]; e < graph.edge_offsets[at_node.node + 1]; ++e) {
       const GraphEdge& edge = graph.edges[static_cast<size_t>(e)];
       const double to = fewest[static_cast<size_t>(edge.to_node)];
-      if (edge.bridge || context.rest.leap(e) || to < 0.0 || at_node.frames + edge.frame_count + to > max_frames) {
+      if (edge.bridge || rest.leap(e) || to < 0.0 || at_node.frames + edge.frame_count + to > max_frames) {
         continue;
       }
       if (++expansions > kRestExpansions) return;
@@ -126,8 +127,8 @@ PathRestWay nearest_rest_way(const SynthesisContext& context, const FloorPath& p
     // (frames until the character stands, a frame's worth per transition, a bridge 30: as steering's
     // defaults price it, controller.h).
     constexpr double kTransitionFrames = 1.0, kBridgeFrames = 30.0;
-    const std::vector<double> costs = cost_to_rest(graph, context.rest, kTransitionFrames, kBridgeFrames);
-    const RestRoute cheapest = rest_route(graph, context.rest, costs, walk.end_node(graph), kTransitionFrames,
+    const std::vector<double> costs = cost_to_rest(graph, rest, kTransitionFrames, kBridgeFrames);
+    const RestRoute cheapest = rest_route(graph, rest, costs, walk.end_node(graph), kTransitionFrames,
                                           kBridgeFrames, std::numeric_limits<int>::max());
     best = {walk.edges.size(), cheapest.edges, cheapest.ending};
   }

@@ -233,17 +233,7 @@ Status finish_walk(const SynthesisContext& context, const FloorPath& path, const
   result.arc_covered_m = arcs.empty() ? 0.0 : *std::max_element(arcs.begin(), arcs.end());
   result.end_distance_m = end > 0 ? (result.roots.back() - path.points().back()).norm() : path.length_m();
   // Tags of the output frames, from the tracks of the edges played (and the frames played at rest).
-  auto tags_of_frame = [&](int frame) {
-    return static_cast<size_t>(frame) < context.frame_tags.size() ? context.frame_tags[frame] : TagMask{0};
-  };
-  result.frame_tags.clear();
-  for (int e : result.walk.edges) {
-    for (TagMask t : context.tracks.tags_of(e)) result.frame_tags.push_back(t);
-  }
-  for (int f : result.walk.rest_frames) result.frame_tags.push_back(tags_of_frame(f));
-  if (result.walk.rest_frames.empty()) {
-    result.frame_tags.push_back(tags_of_frame(graph.nodes[result.walk.end_node(graph)].frame));
-  }
+  result.frame_tags = context.walk_tags(result.walk);
   result.frame_tags.resize(static_cast<size_t>(end));
   // The roots' mean and largest distance from the path: as the graph played the walk, then
   // (when the edit moved them) edited.
@@ -592,7 +582,7 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
                                             const PathSynthesisSettings& settings) {
   if (auto status = settings.validate(); !status) return status.error();
   if (!settings.rest_at_end) return search_path(context, path, settings);
-  if (context.rest.empty()) {
+  if (context.rest().empty()) {
     return Error{"", 0, "the path cannot end at rest: no clip of the graph ends standing still (every joint slower "
                         "than 0.5 m/s to its end)"};
   }

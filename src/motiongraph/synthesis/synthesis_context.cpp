@@ -36,7 +36,6 @@ Result<SynthesisContext> make_synthesis_context(const MotionDatabase& db, const 
   } else {
     context.feet_error = contacts.error().message;
   }
-  context.rest = find_rest_endings(db, graph, context.assembler, context.frame_contacts);
   return context;
 }
 
@@ -81,6 +80,17 @@ std::vector<ContactMask> SynthesisContext::edges_contacts(std::span<const int> e
   return out;
 }
 
+const RestEndings& SynthesisContext::rest() const {
+  std::call_once(rest_cache->found,
+                 [&] { rest_cache->endings = find_rest_endings(*db, *graph, assembler, frame_contacts); });
+  return rest_cache->endings;
+}
+
+void SynthesisContext::set_rest(RestEndings endings) {
+  rest_cache = std::make_shared<RestCache>();
+  std::call_once(rest_cache->found, [&] { rest_cache->endings = std::move(endings); });
+}
+
 std::vector<ContactMask> SynthesisContext::frames_contacts(std::span<const int> frames) const {
   std::vector<ContactMask> out;
   if (frame_contacts.empty()) return out;
@@ -102,6 +112,19 @@ std::vector<FrameSource> SynthesisContext::walk_sources(const Walk& walk) const 
   if (walk.rest_frames.empty() && walk.start_node >= 0) {
     const int end = graph->nodes[walk.end_node(*graph)].frame;
     out.push_back({end, end, 1.0});
+  }
+  return out;
+}
+
+std::vector<TagMask> SynthesisContext::walk_tags(const Walk& walk) const {
+  std::vector<TagMask> out;
+  for (int e : walk.edges) {
+    const auto tags = tracks.tags_of(e);
+    out.insert(out.end(), tags.begin(), tags.end());
+  }
+  for (int f : walk.rest_frames) out.push_back(frame_tag(f));
+  if (walk.rest_frames.empty() && walk.start_node >= 0) {
+    out.push_back(frame_tag(graph->nodes[walk.end_node(*graph)].frame));
   }
   return out;
 }

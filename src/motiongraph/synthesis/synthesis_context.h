@@ -61,8 +61,17 @@ struct SynthesisContext {
   std::string feet_error;
   // Shared by copies of the context (they hold the same graph).
   std::shared_ptr<TagCostCache> tag_costs = std::make_shared<TagCostCache>();
-  // Where the character can come to rest: the graph's nodes in clips that end standing still.
-  RestEndings rest = {};
+  // Where the character can come to rest (rest_endings.h), found the first time they are asked for
+  // (forward kinematics of every clip's end and every edge's frames: a large library's synthesis
+  // that never rests need not pay for them); shared by copies of the context.
+  struct RestCache {
+    std::once_flag found;
+    RestEndings endings;
+  };
+  std::shared_ptr<RestCache> rest_cache = std::make_shared<RestCache>();
+  const RestEndings& rest() const;
+  // These endings instead, for this context alone (a test's own, or none).
+  void set_rest(RestEndings endings);
 
   // The placement that puts node `node`'s frame with its root at `at` facing `direction`
   // (unit, on the floor).
@@ -83,6 +92,15 @@ struct SynthesisContext {
   // The contact masks of the frames assemble_walk() plays for `walk` (walk_sources: its edges'
   // frames and the end node's frame), each its dominant source frame's.
   std::vector<ContactMask> walk_contacts(const Walk& walk) const;
+  // The tags of database frame `frame` (0 past the tags' span: no tags).
+  TagMask frame_tag(int frame) const {
+    return frame >= 0 && static_cast<size_t>(frame) < frame_tags.size() ? frame_tags[static_cast<size_t>(frame)]
+                                                                         : TagMask{0};
+  }
+  // The tags of the frames a walk plays, as walk_sources gives the frames: each edge's track's
+  // (a blended frame carries those of the side that weighs more), then its rest frames' or, with a
+  // start node, its end node frame's.
+  std::vector<TagMask> walk_tags(const Walk& walk) const;
   // The database frames of the frames a walk plays: its edges' frames, then its rest frames, or
   // without them, when it has a start node (assemble_walk's walks; steering's record of edges has
   // none), its end node's frame.
@@ -99,8 +117,7 @@ struct SynthesisContext {
 // The tags of the frame a transition edge lands on (its target node's): for a bridge, the motion
 // type it leads into. 0 without tags.
 inline TagMask bridge_landing_tags(const SynthesisContext& context, const GraphEdge& edge) {
-  const int frame = context.graph->nodes[edge.to_node].frame;
-  return frame < static_cast<int>(context.frame_tags.size()) ? context.frame_tags[frame] : TagMask{0};
+  return context.frame_tag(context.graph->nodes[edge.to_node].frame);
 }
 
 // Whether a transition edge is a bridge that does not lead into the motion type `asked` (0: none
