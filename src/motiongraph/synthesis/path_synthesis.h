@@ -116,7 +116,7 @@ struct PathSynthesisSettings {
   bool lower_bound = true;             // bound the frames still to come (PathCost)
   bool warm_start = true;              // try the rest of the previous search's walk first
   // Come to rest at the path's end (see above): the graph must have a clip that ends standing
-  // still (SynthesisContext::rest), else synthesize_path fails.
+  // still (SynthesisContext::rest()), else synthesize_path fails.
   bool rest_at_end = false;
   // Bend the walk's motion onto the path (path_edit.h). The build's path check judges the
   // graph, and turns it off.
