@@ -7,8 +7,8 @@
 #include <mutex>
 #include <numbers>
 #include <optional>
-#include <set>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 #include <pybind11/stl.h>
@@ -18,6 +18,7 @@
 #include "motiongraph/core/quantile.h"
 #include "motiongraph/core/transition_rate.h"
 #include "motiongraph/evaluation/foot_slide_report.h"
+#include "motiongraph/evaluation/steering_controls.h"
 #include "motiongraph/evaluation/synthesis_run.h"
 #include "motiongraph/synthesis/controller.h"
 
@@ -34,7 +35,8 @@ SynthesisRunSettings run_settings(const PyGraph& graph) {
 
 // The synthesized motion as a Python Motion that keeps its graph.
 PyMotion result_motion(const PyGraph& graph, const char* name, SynthesizedMotion&& made) {
-  if (!made.warning.empty()) warn(graph.name + ": " + made.warning);
+  // What the user should be told of it, as the CLI's warnings (the report's "warnings").
+  for (const std::string& line : made.warnings) warn(graph.name + ": " + line);
   PyMotion motion(name, graph.loaded->context().assembler.skeleton(), std::move(made.motion));
   motion.report = std::move(made.report);
   motion.graph = graph.loaded;
@@ -136,17 +138,6 @@ PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<d
     }
   });
   if (callback_error) throw std::move(*callback_error);
-  if (made) {
-    // What the motion falls short of, as the CLI's warnings (the report's "shortfalls").
-    for (const std::string& shortfall : made->shortfalls) warn(graph.name + ": " + shortfall);
-    for (const nlohmann::json& segment : made->report["segments"]) {
-      if (auto why = unplayable_tag(graph.loaded->context(), segment["tag"].get<std::string>())) {
-        const std::string line = fmt::format("{}: the segment {:g}-{:g} m asks for {}", graph.name,
-                                             segment["from_m"].get<double>(), segment["to_m"].get<double>(), *why);
-        warn(line);
-      }
-    }
-  }
   return result_motion(graph, "path", take(std::move(made)));
 }
 
@@ -156,7 +147,10 @@ class PyController {
  public:
   PyController(const PyGraph& graph, double heading_deg, const std::optional<std::string>& tag,
                std::array<double, 2> at, const py::kwargs& options)
-      : loaded_(graph.loaded), name_(graph.name), motion_(graph.loaded->context().assembler.empty_motion()) {
+      : loaded_(graph.loaded),
+        name_(graph.name),
+        controls_(graph.loaded->context()),
+        motion_(graph.loaded->context().assembler.empty_motion()) {
     ControllerSettings settings;
     SynthesisRunSettings run = run_settings(graph);
     std::string hold = "facing";
@@ -181,9 +175,8 @@ class PyController {
     check(settings.validate());
     settings_ = settings;
     run_ = run;
-    std::string warning;
-    cleanup_ = make_cleanup(context(), run, warning);
-    if (!warning.empty()) warn(graph.name + ": " + warning);
+    cleanup_ = make_cleanup(context(), run, cleanup_warning_);
+    if (!cleanup_warning_.empty()) warn(graph.name + ": " + cleanup_warning_);
     controller_ = take(Controller::create(context(), settings, input(heading_deg, tag, false), Vec2(at[0], at[1])));
   }
 
@@ -247,12 +240,15 @@ class PyController {
 
   // With the report the CLI's steer --report gives of the same decisions (but its controls, which
   // a script gives): transitions, bridges, the decisions' times, the heading edit, the clean-up
-  // and the foot slide against the clips the motion was cut from.
+  // and the foot slide against the clips the motion was cut from, and the warnings said.
   PyMotion motion() const {
     Motion all;
     std::vector<ContactMask> contacts;
     nlohmann::json report;
     Walk played{-1, {}};
+    // (with the GIL: the inputs' warnings change under it)
+    std::vector<std::string> warnings = controls_.warnings();
+    if (!cleanup_warning_.empty()) warnings.insert(warnings.begin(), cleanup_warning_);
     {
       py::gil_scoped_release release;
       const std::lock_guard<std::mutex> lock(mutex_);
@@ -263,6 +259,7 @@ class PyController {
     }
     PyMotion out = frames(std::move(all), std::move(contacts));
     out.report = std::move(report);
+    out.report["warnings"] = std::move(warnings);
     out.walk = std::move(played);
     return out;
   }
@@ -298,32 +295,14 @@ class PyController {
 
 
 
-  // The first time a motion type the graph plays in no frame is asked for, a warning says so; stop
-  // the graph can hardly play is rest (stop_means_rest), and rest a graph cannot come to is warned
-  // of.
+  // The input for a step (evaluation/steering_controls.h): the first time a motion type the graph
+  // can hardly play is asked for, a warning says so; a stop the graph can hardly play is rest, and
+  // rest a graph cannot come to is warned of. (With the GIL held, before the step takes the lock.)
   ControlInput input(double heading_deg, const std::optional<std::string>& tag, bool rest) {
     if (!std::isfinite(heading_deg)) throw py::value_error(fmt::format("heading_deg must be finite, not {}", heading_deg));
-    ControlInput in;
-    in.direction = bearing_direction(heading_deg);
-    in.rest = rest;
-    if (tag && !tag->empty()) {
-      const TagMask mask = take(context().tag_mask(*tag));
-      const bool stop_rests = stop_means_rest(context(), *tag);
-      if (auto why = unplayable_tag(context(), *tag); why && warned_.insert(*tag).second) {
-        warn(fmt::format("{}: the controller is asked for {}{}", name_, *why,
-                         stop_rests ? "; the character comes to rest instead, at the end of a clip that ends standing "
-                                      "still"
-                                    : ""));
-      }
-      in.rest = in.rest || stop_rests;
-      if (!in.rest) in.tag = mask;
-    }
-    if (in.rest && context().rest().empty() && !warned_rest_) {
-      warned_rest_ = true;
-      warn(fmt::format("{}: the controller is asked to rest, but no clip of the graph ends standing still: the "
-                       "character goes on",
-                       name_));
-    }
+    const size_t said = controls_.warnings().size();
+    const ControlInput in = take(controls_.input({heading_deg, tag.value_or(""), rest}, "the controller"));
+    for (size_t i = said; i < controls_.warnings().size(); ++i) warn(name_ + ": " + controls_.warnings()[i]);
     return in;
   }
 
@@ -337,8 +316,8 @@ class PyController {
 
   std::shared_ptr<const LoadedGraph> loaded_;
   std::string name_;
-  std::set<std::string> warned_;  // tags the graph does not play, warned of once (with the GIL held)
-  bool warned_rest_ = false;      // rest asked of a graph that has nowhere to rest, warned of once
+  SteeringControls controls_;       // the inputs' warnings, said once (with the GIL held)
+  std::string cleanup_warning_;     // why no clean-up was made, when one was asked for
   mutable std::mutex mutex_;       // held by a step, and while the motion so far is copied
   Motion motion_;
   std::optional<FootCleanup> cleanup_;

@@ -249,7 +249,8 @@ Command add_build_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--cache-dir", o->cache_dir, "Where the distance stage is cached (default: $XDG_CACHE_HOME/motiongraph)");
   sub->add_flag("--no-cache", o->no_cache, "Neither read nor write the distance cache");
-  sub->add_option("--report", o->report, "Write a JSON report (clips, settings, counts, graph statistics, timings)");
+  sub->add_option("--report", o->report,
+                  "Write a JSON report (clips, settings, counts, graph statistics, timings, the warnings printed)");
   sub->add_option("--export-matrix", o->export_matrix, "Write the N x N distance matrix (.npy float32, NaN undefined; "
                                                        "row = frame we leave, column = frame we arrive at)");
   sub->add_option("--export-clouds", o->export_clouds, "Write the point clouds (.npy float32, N x P x 3, metres)");

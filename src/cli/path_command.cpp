@@ -3,7 +3,6 @@
 #include <chrono>
 
 #include <fmt/format.h>
-#include <spdlog/spdlog.h>
 
 #include "cli/commands.h"
 #include "cli/synthesis_options.h"
@@ -34,14 +33,8 @@ int run_path(const PathOptions& o) {
   if (!loaded) return fail(loaded.error());
   const SynthesisContext& context = (*loaded)->context();
   if (auto s = check_segment_tags(context, *path, o.path_file); !s) return fail(s.error());
-  for (const PathSegment& segment : path->segments()) {
-    if (auto why = unplayable_tag(context, segment.tag)) {
-      spdlog::warn("the segment {:g}-{:g} m asks for {}", segment.from_m, segment.to_m, *why);
-    }
-  }
   auto result = run_path_synthesis(context, *path, o.settings, run_settings(o.common, begin));
   if (!result) return fail(result.error());
-  print_cleanup_warning(o.common, result->warning);
   const nlohmann::json& r = result->report;
   if (auto s = write_synthesis_outputs(o.common, **loaded, result->motion, result->walk, r); !s) return fail(s.error());
   const nlohmann::json& edit = r["path_edit"];
@@ -69,8 +62,9 @@ int run_path(const PathOptions& o) {
              r["reached_end"].get<bool>() ? "" : " (end not reached)", pushed,
              r["mean_deviation_m"].get<double>(), r["max_deviation_m"].get<double>(), edited,
              r["seconds"].get<double>(), r["search_seconds"].get<double>());
-  // Said apart from the summary: the motion is written, but it is not all that was asked.
-  for (const std::string& shortfall : result->shortfalls) spdlog::warn("{}", shortfall);
+  // Said apart from the summary: the motion is written, but it is not all that was asked (the
+  // segments' types the graph can hardly play, the clean-up not made, the shortfalls).
+  print_warnings(result->warnings);
   // Each segment's motion type: how much of the motion in it carries it.
   std::string segments;
   for (const nlohmann::json& s : r["segments"]) {

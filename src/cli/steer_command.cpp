@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
-#include <set>
 #include <string>
 
 #include <fmt/format.h>
@@ -14,6 +13,7 @@
 #include "cli/commands.h"
 #include "cli/synthesis_options.h"
 #include "motiongraph/core/transition_rate.h"
+#include "motiongraph/evaluation/steering_controls.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/synthesis/control_script.h"
 #include "motiongraph/synthesis/controller.h"
@@ -47,37 +47,21 @@ int run_steer(const SteerOptions& o) {
   auto loaded = load_for_synthesis(o.common, {o.script});
   if (!loaded) return fail(loaded.error());
   const SynthesisContext& context = (*loaded)->context();
-  auto input_of = [&](const ScriptedControl& c) -> Result<ControlInput> {
-    ControlInput input;
-    input.direction = bearing_direction(c.bearing_deg);
-    input.rest = c.rest || stop_means_rest(context, c.tag);
-    if (!c.tag.empty() && !input.rest) {
-      auto mask = context.tag_mask(c.tag);
-      if (!mask) return Error{o.script, 0, mask.error().message};
-      input.tag = *mask;
-    }
-    return input;
+  // Each control's input, in order (found once: a stop's costs run over the graph's edges); what
+  // the graph cannot give is warned of once, and every warning goes into the report too.
+  SteeringControls reader(context);
+  std::vector<std::string> warnings;
+  auto warn = [&warnings](std::string line) {
+    spdlog::warn("{}", line);
+    warnings.push_back(std::move(line));
   };
-  std::vector<ControlInput> inputs;  // each control's, in order (found once: a stop's costs the graph's edges)
-  std::set<std::string> warned;     // a control carries the last tag on: each type is warned of once
-  bool warned_rest = false;
+  std::vector<ControlInput> inputs;
   for (const ScriptedControl& c : script->controls) {
-    auto input = input_of(c);
-    if (!input) return fail(input.error());
+    auto input = reader.input({c.bearing_deg, c.tag, c.rest}, fmt::format("the control at {:g} s", c.at_s));
+    if (!input) return fail(Error{o.script, 0, input.error().message});
     inputs.push_back(*input);
-    if (auto why = unplayable_tag(context, c.tag); why && warned.insert(c.tag).second) {
-      spdlog::warn("the control at {:g} s asks for {}{}", c.at_s, *why,
-                   stop_means_rest(context, c.tag)
-                       ? "; the character comes to rest instead, at the end of a clip that ends standing still"
-                       : "");
-    }
-    if (c.rest && context.rest().empty() && !warned_rest) {
-      warned_rest = true;
-      spdlog::warn("the control at {:g} s asks to rest, but no clip of the graph ends standing still: the character "
-                   "goes on",
-                   c.at_s);
-    }
   }
+  for (const std::string& line : reader.warnings()) warn(line);
   auto input_at = [&](double t) { return inputs[static_cast<size_t>(&script->at(t) - script->controls.data())]; };
   auto controller = Controller::create(context, o.settings, input_at(0.0));
   if (!controller) return fail(controller.error());
@@ -96,7 +80,7 @@ int run_steer(const SteerOptions& o) {
   const SynthesisRunSettings run = run_settings(o.common, std::chrono::steady_clock::now());
   std::string cleanup_warning;
   auto cleanup = make_cleanup(context, run, cleanup_warning);
-  print_cleanup_warning(o.common, cleanup_warning);
+  if (!cleanup_warning.empty()) warn(cleanup_warning);
   std::vector<ContactMask> all_contacts;
   std::vector<TagMask> played_tags;  // each frame's, from the edges played (their tracks') and the rest frames
   std::vector<double> cleanup_seconds;
@@ -191,9 +175,9 @@ int run_steer(const SteerOptions& o) {
       const bool taken_back = std::any_of(inputs.begin() + static_cast<long>(i) + 1, inputs.end(),
                                           [](const ControlInput& later) { return !later.rest; });
       if (control["rest_response_s"].is_null() && !taken_back) {
-        spdlog::warn("the control at {:g} s asks to rest, but the character does not stand before the script ends "
-                     "at {:g} s (duration_s is too short for the way to rest)",
-                     c.at_s, script->duration_s);
+        warn(fmt::format("the control at {:g} s asks to rest, but the character does not stand before the script "
+                         "ends at {:g} s (duration_s is too short for the way to rest)",
+                         c.at_s, script->duration_s));
       }
     }
     // (asking only to rest on is heard: a turn or a move is not)
@@ -206,10 +190,10 @@ int run_steer(const SteerOptions& o) {
                                       static_cast<double>(controller->rest_frame()) / fps);
   if (!rested.is_null() && rest_s < 0.0) rested["at_s"] = nullptr;  // it stands only after the script's end
   if (!unheard_s.empty()) {
-    spdlog::warn("the character came to rest at {:.2f} s, at the end of {}, and stays there: the control{} at {} s "
-                 "cannot turn or move it (the graph has no way on from that clip's last frame)",
-                 rest_s, rested["clip"].get<std::string>(), unheard_s.size() == 1 ? "" : "s",
-                 fmt::join(unheard_s, ", "));
+    warn(fmt::format("the character came to rest at {:.2f} s, at the end of {}, and stays there: the control{} at {} "
+                     "s cannot turn or move it (the graph has no way on from that clip's last frame)",
+                     rest_s, rested["clip"].get<std::string>(), unheard_s.size() == 1 ? "" : "s",
+                     fmt::join(unheard_s, ", ")));
   }
   const HeadingEditStats& edit_stats = controller->heading_edit_stats();
   const nlohmann::json report = {{"frames", motion.frame_count},
@@ -229,7 +213,8 @@ int run_steer(const SteerOptions& o) {
                                  {"cleanup_ms_p99", cleanup ? nlohmann::json(1e3 * percentile(cleanup_seconds, 0.99))
                                                             : nlohmann::json(nullptr)},
                                  {"controls", controls},
-                                 {"rest", rested}};
+                                 {"rest", rested},
+                                 {"warnings", warnings}};
   if (auto s = write_synthesis_outputs(o.common, **loaded, motion, played, report, all_contacts); !s) return fail(s.error());
   fmt::print("steer: {} frames ({:.1f} s), {} decisions, decision p99 {:.3f} ms\n", motion.frame_count,
              motion.frame_count / fps, latencies.size(), 1e3 * percentile(latencies, 0.99));

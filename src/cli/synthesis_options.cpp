@@ -1,6 +1,7 @@
 #include "cli/synthesis_options.h"
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "motiongraph/core/json_text.h"
 #include "motiongraph/evaluation/foot_slide_report.h"
@@ -31,8 +32,8 @@ SynthesisRunSettings run_settings(const SynthesisOptions& options, std::chrono::
   return settings;
 }
 
-void print_cleanup_warning(const SynthesisOptions& options, const std::string& warning) {
-  if (!warning.empty()) fmt::print(stderr, "warning: {}: {}\n", options.graph, warning);
+void print_warnings(const std::vector<std::string>& warnings) {
+  for (const std::string& line : warnings) spdlog::warn("{}", line);
 }
 
 Status write_synthesis_outputs(const SynthesisOptions& options, const LoadedGraph& loaded, const Motion& motion,

@@ -30,7 +30,9 @@ struct SynthesisOptions {
   void add_to(CLI::App& app) {
     app.add_option("GRAPH", graph, "A .mgraph file written by 'motiongraph build'")->required();
     app.add_option("-o,--output", output, "Output motion: .bvh (metres), .glb (binary glTF 2.0: skeleton, animation and a stick figure, for game engines, Blender, three.js), .fbx (binary FBX 7.4: the same in centimetres, for Maya, MotionBuilder, Unity, Unreal, Blender) or .json (world positions)")->required();
-    app.add_option("--report", report, "Also write a JSON report of the result");
+    app.add_option("--report", report,
+                   "Also write a JSON report of the result (its figures, foot slide against the clips, the warnings "
+                   "printed)");
     app.add_option("--skeleton", skeleton,
                    "Index of the database skeleton to play everything on (default: the first clip's)")
         ->check(CLI::Range(0, 1000000));
@@ -55,9 +57,8 @@ Result<std::unique_ptr<LoadedGraph>> load_for_synthesis(const SynthesisOptions& 
 // from `begin`.
 SynthesisRunSettings run_settings(const SynthesisOptions& options, std::chrono::steady_clock::time_point begin);
 
-// Prints why no foot clean-up was made, when it was asked for but the graph's feet cannot be
-// found.
-void print_cleanup_warning(const SynthesisOptions& options, const std::string& warning);
+// Prints a result's warnings (SynthesizedMotion::warnings), one line each.
+void print_warnings(const std::vector<std::string>& warnings);
 
 // Writes the motion and, when asked, the report (both atomically). The report gets
 // "foot_slide" (evaluation/foot_slide_report.h) when it has none. JSON motion gets the feet's

@@ -38,7 +38,7 @@ int run_walk(const WalkOptions& o) {
   const SynthesisContext& context = (*loaded)->context();
   auto result = run_walk_synthesis(context, o.from, o.to, settings, run_settings(o.common, begin));
   if (!result) return fail(result.error());
-  print_cleanup_warning(o.common, result->warning);
+  print_warnings(result->warnings);
   const nlohmann::json& r = result->report;
   if (auto s = write_synthesis_outputs(o.common, **loaded, result->motion, result->walk, r); !s) return fail(s.error());
   fmt::print("walk {} -> {} ({} cost): {} edges, {} transitions, {} frames ({:.1f} s), cost {:.6g}, {} expansions\n",

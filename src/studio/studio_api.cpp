@@ -218,25 +218,18 @@ class Router {
     return static_cast<int>(*value);
   }
 
-  TagMask tag_of(const json& body) const {
-    const std::string name = string_field(body, "tag", "");
-    if (name.empty() || name == "any") return 0;
-    auto mask = service_.context().tag_mask(name);
-    if (!mask) throw ApiError{400, mask.error().message};
-    return *mask;
-  }
-
-  // rest: true comes to rest (controller.h), as does a tag 'stop' the graph can hardly play.
-  ControlInput control_of(const json& body) const {
-    ControlInput input;
-    input.direction = bearing_direction(number_field(body, "heading_deg", 0.0, -720.0, 720.0));
-    input.tag = tag_of(body);
-    input.rest = boolean_field(body, "rest", false);
-    if (input.tag != 0 && stop_means_rest(service_.context(), string_field(body, "tag", ""))) {
-      input.rest = true;
-      input.tag = 0;
+  // A steering control: heading_deg, tag (a tag of the graph; none or 'any': any motion) and
+  // rest: true, which comes to rest (controller.h), as does a tag 'stop' the graph can hardly play.
+  SteeringControl control_of(const json& body) const {
+    SteeringControl control;
+    control.heading_deg = number_field(body, "heading_deg", 0.0, -720.0, 720.0);
+    control.tag = string_field(body, "tag", "");
+    if (control.tag == "any") control.tag.clear();
+    if (!control.tag.empty()) {
+      if (auto mask = service_.context().tag_mask(control.tag); !mask) throw ApiError{400, mask.error().message};
     }
-    return input;
+    control.rest = boolean_field(body, "rest", false);
+    return control;
   }
 
   ApiResponse summary() {
@@ -450,6 +443,11 @@ class Router {
     out["graph_max_deviation_m"] = result->graph_max_deviation_m;
     out["path_edit"] = path_edit_report(settings, *result);
     out["shortfalls"] = path_shortfalls(service_.context(), *floor_path, settings, *result);
+    // What the user should be told, as the CLI's path warns it: the segments' types the graph can
+    // hardly play, then the shortfalls (the clean-up's absence is "cleanup": false).
+    std::vector<std::string> warnings = segment_warnings(service_.context(), *floor_path);
+    for (const json& shortfall : out["shortfalls"]) warnings.push_back(shortfall.get<std::string>());
+    out["warnings"] = warnings;
     out["tag_match"] = result->tag_match;
     out["rest"] = rest_report(service_.context(), result->rest, result->rest_frame / db().fps);
     out["segments"] = path_segments_report(service_.context(), *floor_path, *result);
@@ -467,15 +465,16 @@ class Router {
     const json body = body_object(request_);
     check_keys(body, {"heading_deg", "tag", "cleanup"});
     const bool cleanup = boolean_field(body, "cleanup", true);
-    auto id = service_.create_session(control_of(body), cleanup);
-    if (!id) throw ApiError{422, id.error().to_string()};
-    return json_response({{"session", *id},
-                          {"result", *id},
+    auto started = service_.create_session(control_of(body), cleanup);
+    if (!started) throw ApiError{422, started.error().to_string()};
+    return json_response({{"session", started->id},
+                          {"result", started->id},
                           {"cleanup", cleanup && !service_.context().frame_contacts.empty()},
                           {"fps", db().fps},
                           {"joints", joints_json(skeleton())},
                           {"tags", db().tag_names},
-                          {"can_rest", !service_.context().rest().empty()}});
+                          {"can_rest", !service_.context().rest().empty()},
+                          {"warnings", started->warnings}});
   }
 
   ApiResponse step_session() {
@@ -483,9 +482,9 @@ class Router {
     if (!id) throw ApiError{404, fmt::format("no steering session '{}'", parts_[3])};
     const json body = body_object(request_);
     check_keys(body, {"heading_deg", "tag", "rest", "min_frames"});
-    const ControlInput input = control_of(body);
+    const SteeringControl control = control_of(body);
     const int min_frames = static_cast<int>(integer_field(body, "min_frames", 1, 1, 90));
-    auto step = service_.step_session(static_cast<int>(*id), input, min_frames);
+    auto step = service_.step_session(static_cast<int>(*id), control, min_frames);
     if (!step) throw ApiError{404, step.error().to_string()};
     return json_response({{"session", *id},
                           {"first_frame", step->first_frame},
@@ -503,7 +502,8 @@ class Router {
                           {"rest_s", step->rest_s >= 0.0 ? json(step->rest_s) : json(nullptr)},
                           {"rest_clip", step->rest_clip.empty() ? json(nullptr) : json(step->rest_clip)},
                           {"resting", step->resting},
-                          {"rest_for_good", step->rest_for_good}});
+                          {"rest_for_good", step->rest_for_good},
+                          {"warnings", step->warnings}});
   }
 
   // ID.bvh, ID.glb or ID.fbx.

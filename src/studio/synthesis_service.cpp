@@ -151,14 +151,16 @@ Result<bool> SynthesisService::clean_up(bool asked, std::span<const ContactMask>
   return true;
 }
 
-Result<int> SynthesisService::create_session(const ControlInput& input, bool cleanup) {
+Result<SteerSessionStart> SynthesisService::create_session(const SteeringControl& control, bool cleanup) {
+  auto session = std::make_shared<Session>(context());
+  auto input = session->controls.input(control, "the control");
+  if (!input) return input.error();
   // The controller's defaults: an expansion budget (well under a millisecond a decision, but
   // for the first asking for each tag, which prices the way to it: a few milliseconds on an
   // 8-subject graph) and no wall-clock budget, so that a loaded machine or a slow build steers
   // the same way.
-  auto controller = Controller::create(context(), ControllerSettings{}, input);
+  auto controller = Controller::create(context(), ControllerSettings{}, *input);
   if (!controller) return controller.error();
-  auto session = std::make_shared<Session>();
   session->controller = std::make_unique<Controller>(std::move(*controller));
   if (cleanup) {
     if (auto foot_cleanup = context().foot_cleanup({}); foot_cleanup) session->cleanup = std::move(*foot_cleanup);
@@ -167,6 +169,7 @@ Result<int> SynthesisService::create_session(const ControlInput& input, bool cle
   session->recorded->motion = context().assembler.empty_motion();
   session->recorded->kept_frames = kMaxRecordedFrames;
   const int id = store_recorded(session->recorded);
+  const std::vector<std::string> session_warnings = session->controls.warnings();
   std::lock_guard lock(mutex_);
   session->last_used = ++clock_;
   sessions_[id] = std::move(session);
@@ -177,10 +180,10 @@ Result<int> SynthesisService::create_session(const ControlInput& input, bool cle
     }
     sessions_.erase(oldest);
   }
-  return id;
+  return SteerSessionStart{id, session_warnings};
 }
 
-Result<SteerStepResult> SynthesisService::step_session(int id, const ControlInput& input, int min_frames) {
+Result<SteerStepResult> SynthesisService::step_session(int id, const SteeringControl& control, int min_frames) {
   std::shared_ptr<Session> session;
   {
     std::lock_guard lock(mutex_);
@@ -190,8 +193,13 @@ Result<SteerStepResult> SynthesisService::step_session(int id, const ControlInpu
     session->last_used = ++clock_;
   }
   std::lock_guard lock(session->mutex);
-  session->controller->set_input(input);
+  const size_t said = session->controls.warnings().size();
+  auto input = session->controls.input(control, "the control");
+  if (!input) return input.error();
+  session->controller->set_input(*input);
   SteerStepResult out;
+  const std::vector<std::string>& said_all = session->controls.warnings();
+  out.warnings.assign(said_all.begin() + static_cast<long>(said), said_all.end());
   out.motion = context().assembler.empty_motion();
   out.first_frame = session->frames;
   do {

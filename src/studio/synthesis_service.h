@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "motiongraph/evaluation/steering_controls.h"
 #include "motiongraph/graph/graph_file.h"
 #include "motiongraph/synthesis/controller.h"
 #include "motiongraph/synthesis/loaded_graph.h"
@@ -68,6 +69,14 @@ struct SteerStepResult {
   std::string rest_clip;
   bool resting = false;        // holding that clip's last frame now
   bool rest_for_good = false;  // with no way on from it (Controller::rest_is_for_good)
+  // What this step's control asks that the graph cannot give, said once a session
+  // (evaluation/steering_controls.h).
+  std::vector<std::string> warnings;
+};
+
+struct SteerSessionStart {
+  int id = 0;  // the session's, also the id of the result recording its motion
+  std::vector<std::string> warnings;  // as SteerStepResult's, of the first control
 };
 
 class SynthesisService {
@@ -95,12 +104,11 @@ class SynthesisService {
   Result<SynthesizedPath> path(const FloorPath& path, const PathSynthesisSettings& settings = {},
                                bool cleanup = true) const;
 
-  // A steering session starting at the origin facing input.direction, its frames cleaned as
-  // they are committed when `cleanup` and the graph has feet; returns its id, which is also
-  // the id of the result recording its motion.
-  Result<int> create_session(const ControlInput& input, bool cleanup = true);
-  // Sets the input and appends at least min_frames frames (one decision or more).
-  Result<SteerStepResult> step_session(int session, const ControlInput& input, int min_frames);
+  // A steering session starting at the origin facing the control's heading, its frames cleaned as
+  // they are committed when `cleanup` and the graph has feet.
+  Result<SteerSessionStart> create_session(const SteeringControl& control, bool cleanup = true);
+  // Sets the control and appends at least min_frames frames (one decision or more).
+  Result<SteerStepResult> step_session(int session, const SteeringControl& control, int min_frames);
 
   // A result as a file: BVH text, binary glTF or binary FBX (with its stick figure unless
   // `figure` is false), with a root-motion joint above the root when asked (motion/root_motion.h,
@@ -133,7 +141,9 @@ class SynthesisService {
     long long kept_frames = 0;  // what it counts against kMaxKeptFrames (set when stored)
   };
   struct Session {
+    explicit Session(const SynthesisContext& context) : controls(context) {}
     std::mutex mutex;
+    SteeringControls controls;  // its controls' inputs, and what they asked that the graph cannot give
     std::unique_ptr<Controller> controller;
     std::optional<FootCleanup> cleanup;
     std::shared_ptr<Recorded> recorded;

@@ -583,6 +583,9 @@ rate = after["transitions"] / (after["clip_frames"] / r["fps"])
 m = re.search(r"warning: the graph offers ([0-9.]+) transitions a second of the motion it plays \((\d+) transitions? "
               r"in ([0-9.]+) s\), under 1: walks, paths and steering can seldom turn", err)
 assert rate < 1 and m and float(m[1]) == round(rate, 2) and int(m[2]) == after["transitions"], (rate, err)
+# The report carries every warning printed, as printed.
+said = [l.split(": warning: ", 1)[1] for l in err.splitlines() if ": warning: " in l]
+assert said and r["warnings"] == said, (said, r["warnings"])
 PY
 grep -q "transitions a second" "$work/g.err" && { echo "FAIL: subject 16 warned of few transitions"; exit 1; }
 # info on them as a folder says how the two rigs became one (not "with the same joints").

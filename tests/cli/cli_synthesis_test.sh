@@ -78,6 +78,9 @@ why = f"'run', which the graph plays in no frame ({kept['run'][1]} of its clips'
 for name, where in (("no-run.err", "the segment 5-10 m asks for "), ("no-run-steer.err", "the control at 2 s asks for ")):
     lines = [l for l in open(f"{work}/{name}").read().splitlines() if "plays in no frame" in l]
     assert len(lines) == 1 and where + why in lines[0], (name, lines)
+# The report carries every warning printed, as printed.
+said = [l.split(": warning: ", 1)[1] for l in open(f"{work}/no-run.err").read().splitlines() if ": warning: " in l]
+assert said and json.load(open(f"{work}/no-run-report.json"))["warnings"] == said, said
 PY
 "$bin" inspect "$work/g.mgraph" --nodes >"$work/nodes.txt"
 python3 - "$work/nodes.txt" <<'PY'
@@ -125,9 +128,12 @@ grep -q "comes to rest instead" "$work/stop.err" || { cat "$work/stop.err"; exit
 # (the control at 8 s, asking only to rest on, is heard)
 grep -q "and stays there: the control at 9 s cannot turn or move it" "$work/stop.err" || { cat "$work/stop.err"; exit 1; }
 grep -q "at rest after" "$work/stop.out" || { cat "$work/stop.out"; exit 1; }
-python3 - "$work/stop-report.json" "$work/stop-steer.json" <<'PY'
+python3 - "$work/stop-report.json" "$work/stop-steer.json" "$work/stop.err" <<'PY'
 import json, math, sys
-r, m = (json.load(open(p)) for p in sys.argv[1:])
+r, m = (json.load(open(p)) for p in sys.argv[1:3])
+# Its warnings, the stop's and the turn's at 9 s, in its report as printed.
+said = [l.split(": warning: ", 1)[1] for l in open(sys.argv[3]).read().splitlines() if ": warning: " in l]
+assert len(said) == 2 and r["warnings"] == said, (said, r["warnings"])
 rest, c = r["rest"], r["controls"]
 assert rest is not None and rest["clip"] in ("16_33", "16_57"), rest
 assert c[1]["rest"] and c[2]["rest"] and c[3]["rest"] and not c[0]["rest"], c

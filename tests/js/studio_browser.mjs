@@ -424,6 +424,22 @@ try {
     await drawPath(page);
     const info = await synthesizePath(page);
     check(/run 0 %: not in the graph/.test(info), `a path asking it to run says running is not in the graph: ${info}`);
+    const pathWarned = await page.textContent('[data-testid=path-warnings]');
+    check(/the segment [\d.]+-[\d.]+ m asks for 'run', which the graph plays in no frame/.test(pathWarned),
+      `and warns of it as the CLI does: '${pathWarned}'`);
+    // Steered with Shift held (run), the session says once that the graph plays no running.
+    await page.click('[data-testid=steer]');
+    await page.locator('[data-testid=canvas]').focus();
+    await page.keyboard.down('Shift');
+    await page.waitForFunction(() => /asks for 'run'/.test(
+      document.querySelector('[data-testid=steer-warnings]').textContent), null, { timeout: 60000 });
+    await page.waitForTimeout(1500);  // steps asking it again
+    await page.keyboard.up('Shift');
+    const steerWarned = await page.textContent('[data-testid=steer-warnings]');
+    check((steerWarned.match(/asks for 'run'/g) || []).length === 1
+      && /which the graph plays in no frame/.test(steerWarned),
+      `steering it to run says so once under the steering line: '${steerWarned}'`);
+    await page.click('[data-testid=steer]');
     await page.close();
     await stopServer(second, ' (the walking graph)');
     second = null;

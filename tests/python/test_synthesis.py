@@ -127,11 +127,15 @@ def test_a_type_the_graph_does_not_play_is_warned_of(data):
     assert len([w for w in caught if "plays in no frame" in str(w.message)]) == 1
     run = motion.report["segments"][1]
     assert run["graph_frames"] == 0 and run["clip_frames"] > 0 and run["tag_match"] == 0, run
-    with pytest.warns(UserWarning, match="the controller is asked for 'run'") as caught:
+    assert [str(w.message) for w in caught] == [f"{walking.name}: {w}" for w in motion.report["warnings"]]
+    with pytest.warns(UserWarning, match="the controller asks for 'run'") as caught:
         controller = walking.controller(heading_deg=0, tag="walk")
         controller.step(0, "run")
         controller.step(90, "run")
     assert len([w for w in caught if "plays in no frame" in str(w.message)]) == 1
+    # The controller's report carries what it said (once), as the CLI's steer report does.
+    said = [str(w.message) for w in caught]
+    assert [f"{walking.name}: {w}" for w in controller.motion.report["warnings"]] == said, said
 
 
 def test_walk_equals_the_cli(cli, graph_file, graph, tmp_path):

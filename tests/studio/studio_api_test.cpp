@@ -6,10 +6,12 @@
 #include <algorithm>
 #include <cmath>
 #include <mutex>
+#include <numbers>
 #include <span>
 #include <thread>
 #include <vector>
 
+#include "motiongraph/evaluation/synthesis_run.h"
 #include "motiongraph/skeleton/foot_joints.h"
 #include "studio/studio_test_service.h"
 
@@ -517,6 +519,53 @@ TEST(StudioApi, APathComesToRestWhenAsked) {
   EXPECT_LT(std::hypot(dx, dz), 0.05);
   expect_error(call_api("POST", "/api/path", "{" + points + R"(, "rest_at_end": "yes"})"), 400,
                "'rest_at_end' must be true or false");
+}
+
+// What a control asks that the graph cannot give is said once a session, in the response of the
+// call that first asked it, as the CLI's steer warns it; a path's warnings are the segments' and
+// its shortfalls, as the CLI's path warns them.
+TEST(StudioApi, SteeringAndPathsSayWhatTheGraphCannotGive) {
+  const auto stop = unplayable_tag(studio_service().context(), "stop");
+  ASSERT_TRUE(stop.has_value());
+  const ApiCall session = call_api("POST", "/api/steer/sessions", R"({"heading_deg": 0, "tag": "stop"})");
+  ASSERT_EQ(session.response.status, 200) << session.response.body;
+  EXPECT_EQ(session.json["warnings"],
+            json::array({"the control asks for " + *stop +
+                         "; the character comes to rest instead, at the end of a clip that ends standing still"}));
+  const std::string step = "/api/steer/sessions/" + std::to_string(session.json["session"].get<int>()) + "/step";
+  for (const char* body : {R"({"tag": "stop"})", R"({"tag": "walk"})", R"({"tag": "stop", "heading_deg": 90})"}) {
+    const ApiCall call = call_api("POST", step, body);
+    ASSERT_EQ(call.response.status, 200) << call.response.body;
+    EXPECT_EQ(call.json["warnings"], json::array()) << body;
+  }
+  // A session of its own says it again.
+  const ApiCall other = call_api("POST", "/api/steer/sessions", R"({"tag": "walk"})");
+  ASSERT_EQ(other.response.status, 200) << other.response.body;
+  EXPECT_EQ(other.json["warnings"], json::array());
+  const ApiCall first = call_api(
+      "POST", "/api/steer/sessions/" + std::to_string(other.json["session"].get<int>()) + "/step",
+      R"({"tag": "stop"})");
+  ASSERT_EQ(first.response.status, 200) << first.response.body;
+  EXPECT_EQ(first.json["warnings"].size(), 1u);
+
+  const ApiCall path = call_api(
+      "POST", "/api/path",
+      R"({"points": [[0, 0], [0, -10]], "segments": [{"from_m": 0, "to_m": 5, "tag": "walk"},
+                                                     {"from_m": 5, "to_m": 10, "tag": "stop"}]})");
+  ASSERT_EQ(path.response.status, 200) << path.response.body;
+  json want = json::array({"the segment 5-10 m asks for " + *stop});
+  for (const json& shortfall : path.json["shortfalls"]) want.push_back(shortfall);
+  EXPECT_EQ(path.json["warnings"], want);
+  // A circle of half a metre, followed further off than the retries look for: its shortfalls.
+  std::string circle = R"({"points": [)";
+  for (int i = 0; i <= 48; ++i) {
+    const double a = 2.0 * std::numbers::pi * i / 24.0;
+    circle += fmt::format("{}[{:.4f}, {:.4f}]", i ? ", " : "", 0.5 * std::sin(a), -0.5 * std::cos(a) + 0.5);
+  }
+  const ApiCall tight = call_api("POST", "/api/path", circle + "]}");
+  ASSERT_EQ(tight.response.status, 200) << tight.response.body;
+  ASSERT_GE(tight.json["shortfalls"].size(), 1u) << tight.response.body.substr(0, 300);
+  EXPECT_EQ(tight.json["warnings"], tight.json["shortfalls"]);
 }
 
 TEST(StudioApi, BadSteeringIs4xx) {

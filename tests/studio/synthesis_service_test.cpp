@@ -83,9 +83,10 @@ std::unique_ptr<studio::SynthesisService> fresh_service() {
 TEST(SynthesisService, KeepsResultsWithinItsBoundsButALiveSessionsRecording) {
   using studio::SynthesisService;
   const auto service = fresh_service();
-  ControlInput input;
-  auto session = service->create_session(input);
-  ASSERT_TRUE(session) << session.error().to_string();
+  const SteeringControl input;
+  auto started = service->create_session(input);
+  ASSERT_TRUE(started) << started.error().to_string();
+  const int* session = &started->id;
   ASSERT_TRUE(service->step_session(*session, input, 30));
   std::vector<int> small;
   for (int i = 0; i < SynthesisService::kMaxResults; ++i) {
@@ -116,9 +117,10 @@ TEST(SynthesisService, KeepsResultsWithinItsBoundsButALiveSessionsRecording) {
 TEST(SynthesisService, ASessionRecordsItsFirstFramesWithoutAGap) {
   using studio::SynthesisService;
   const auto service = fresh_service();
-  ControlInput input;
-  auto session = service->create_session(input, /*cleanup=*/false);
-  ASSERT_TRUE(session) << session.error().to_string();
+  const SteeringControl input;
+  auto started = service->create_session(input, /*cleanup=*/false);
+  ASSERT_TRUE(started) << started.error().to_string();
+  const int* session = &started->id;
   auto first = service->step_session(*session, input, SynthesisService::kMaxRecordedFrames - 20);
   ASSERT_TRUE(first) << first.error().to_string();
   ASSERT_LT(first->motion.frame_count, SynthesisService::kMaxRecordedFrames);

@@ -301,13 +301,13 @@ $('clear-path').addEventListener('click', () => {
   state.pathResult = null;
   drawPath();
   $('path-info').textContent = '';
-  $('path-shortfalls').textContent = '';
+  $('path-warnings').textContent = '';
 });
 $('synthesize').addEventListener('click', async () => {
   if (state.path.points.length < 2) { $('path-info').textContent = 'draw a path first'; return; }
   setDrawing(false);
   $('path-info').textContent = 'synthesizing...';
-  $('path-shortfalls').textContent = '';
+  $('path-warnings').textContent = '';
   try {
     const result = await post('/api/path',
       { points: state.path.points, segments: pathSegments(), cleanup: $('cleanup').checked,
@@ -332,9 +332,10 @@ $('synthesize').addEventListener('click', async () => {
       + footSlideText(result)
       + (result.rest ? `; at rest from ${result.rest.at_s.toFixed(1)} s at the end of ${result.rest.clip}, `
         + `${result.end_distance_m.toFixed(2)} m from the path's end` : '');
-    // What the motion falls short of (the CLI's warnings): the end not reached, dawdling, further
-    // off the path than the retries look for, a motion type missed.
-    $('path-shortfalls').textContent = result.shortfalls.map((s) => `\u26a0 ${s}.`).join(' ');
+    // What the CLI's path warns of: a segment's type the graph can hardly play, what the motion
+    // falls short of (the end not reached, dawdling, further off the path than the retries look
+    // for, a motion type missed).
+    $('path-warnings').textContent = result.warnings.map((s) => `\u26a0 ${s}.`).join(' ');
   } catch (err) {
     $('path-info').textContent = `error: ${err.message}`;
   }
@@ -427,6 +428,8 @@ async function startSteering() {
     received: 0, played: 0, clock: 0, fps: session.fps, lastStepMs: 0, trailEnd: null };
   setResultLink(session.result);
   setDrawing(false);
+  $('steer-warnings').textContent = '';
+  showSteerWarnings(session.warnings);
   chaseCamera([0, 1.6, 5]);  // from the south, looking north
   $('steer').textContent = 'Stop steering';
   canvas.focus();
@@ -438,6 +441,15 @@ function stopSteering() {
   $('steer').textContent = 'Start steering';
 }
 $('steer').addEventListener('click', () => (state.steer ? stopSteering() : startSteering()));
+
+// What the session's controls asked that the graph cannot give (a motion type it can hardly
+// play, rest where no clip ends standing still), each said once by the server: kept under the
+// steering line until steering starts again.
+function showSteerWarnings(warnings) {
+  if (!warnings.length) return;
+  const shown = $('steer-warnings').textContent;
+  $('steer-warnings').textContent = [shown, ...warnings.map((w) => `\u26a0 ${w}.`)].filter(Boolean).join(' ');
+}
 
 // Keeps about 0.4 s of motion ahead of playback, so input shows within a fraction of a second.
 async function requestSteps() {
@@ -459,6 +471,7 @@ async function requestSteps() {
     s.restClip = step.rest_clip;
     s.resting = step.resting;
     s.restForGood = step.rest_for_good;
+    showSteerWarnings(step.warnings);
   } catch (err) {
     $('steer-info').textContent = `error: ${err.message}`;
     stopSteering();

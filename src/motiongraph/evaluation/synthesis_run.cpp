@@ -36,10 +36,13 @@ double seconds_since(std::chrono::steady_clock::time_point begin) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
 }
 
-// Cleans `motion` as played for `walk`; the report's "cleanup".
+// Cleans `motion` as played for `walk`; the report's "cleanup". Why none was made when one was
+// asked for is appended to `warnings`.
 Result<nlohmann::json> clean_up(const SynthesisContext& context, const SynthesisRunSettings& settings,
-                                const Walk& walk, Motion& motion, std::string& warning) {
+                                const Walk& walk, Motion& motion, std::vector<std::string>& warnings) {
+  std::string warning;
   auto cleanup = make_cleanup(context, settings, warning);
+  if (!warning.empty()) warnings.push_back(std::move(warning));
   if (cleanup) {
     if (auto s = context.clean_up_walk(walk, *cleanup, motion); !s) return s.error();
   }
@@ -141,6 +144,16 @@ std::optional<std::string> unplayable_tag(const SynthesisContext& context, const
                      tag, graph_frames, graph_frames == 1 ? "" : "s", graph_frames / context.db->fps, clip_frames);
 }
 
+std::vector<std::string> segment_warnings(const SynthesisContext& context, const FloorPath& path) {
+  std::vector<std::string> out;
+  for (const PathSegment& segment : path.segments()) {
+    if (auto why = unplayable_tag(context, segment.tag)) {
+      out.push_back(fmt::format("the segment {:g}-{:g} m asks for {}", segment.from_m, segment.to_m, *why));
+    }
+  }
+  return out;
+}
+
 nlohmann::json rest_report(const SynthesisContext& context, const RestEnding* ending, double at_s) {
   if (ending == nullptr) return nullptr;
   const DatabaseClip& clip = context.db->clips[static_cast<size_t>(context.db->clip_of(ending->last_frame))];
@@ -164,7 +177,7 @@ Result<SynthesizedMotion> run_walk_synthesis(const SynthesisContext& context, in
   auto motion = assemble_walk(*context.db, graph, found->walk, start, context.assembler.target_skeleton());
   if (!motion) return motion.error();
   SynthesizedMotion out{std::move(*motion), found->walk, {}, {}, {}, {}};
-  auto cleanup = clean_up(context, settings, out.walk, out.motion, out.warning);
+  auto cleanup = clean_up(context, settings, out.walk, out.motion, out.warnings);
   if (!cleanup) return cleanup.error();
   const int transitions = out.walk.transition_count(graph);
   out.report = {{"from", from},
@@ -180,7 +193,8 @@ Result<SynthesizedMotion> run_walk_synthesis(const SynthesisContext& context, in
                 {"fps", out.motion.fps},
                 {"expansions", found->expansions},
                 {"seconds", seconds_since(settings.begin)},
-                {"cleanup", *cleanup}};
+                {"cleanup", *cleanup},
+                {"warnings", out.warnings}};
   out.report["foot_slide"] = foot_slide_report(context, out.walk, out.motion);
   return out;
 }
@@ -197,8 +211,10 @@ Result<SynthesizedMotion> run_path_synthesis(const SynthesisContext& context, co
   std::vector<std::string> shortfalls = path_shortfalls(context, path, search, *result);
   SynthesizedMotion out{std::move(result->motion), result->walk, {}, {}, {}, std::move(shortfalls)};
   const Motion& motion = out.motion;
-  auto cleanup = clean_up(context, settings, out.walk, out.motion, out.warning);
+  out.warnings = segment_warnings(context, path);
+  auto cleanup = clean_up(context, settings, out.walk, out.motion, out.warnings);
   if (!cleanup) return cleanup.error();
+  out.warnings.insert(out.warnings.end(), out.shortfalls.begin(), out.shortfalls.end());
   const double seconds = seconds_since(settings.begin);
   nlohmann::json points = nlohmann::json::array();
   for (const Vec2& p : path.points()) points.push_back({p.x(), p.y()});
@@ -215,6 +231,7 @@ Result<SynthesizedMotion> run_path_synthesis(const SynthesisContext& context, co
                 {"graph_max_deviation_m", result->graph_max_deviation_m},
                 {"path_edit", path_edit_report(search, *result)},
                 {"shortfalls", out.shortfalls},
+                {"warnings", out.warnings},
                 {"tag_match", result->tag_match},
                 {"frames", motion.frame_count},
                 {"fps", motion.fps},

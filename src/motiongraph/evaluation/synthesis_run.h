@@ -35,7 +35,10 @@ struct SynthesizedMotion {
   Walk walk;                          // the edges the motion plays
   std::vector<ContactMask> contacts;  // per frame, when the walk's own are not the motion's
   nlohmann::json report;
-  std::string warning;                // why no clean-up was made when one was asked for, else empty
+  // What the user should be told of the result, one line each, also the report's "warnings": a
+  // path's segments asking for a motion type the graph can hardly play (unplayable_tag), why no
+  // clean-up was made when one was asked for, a path's shortfalls.
+  std::vector<std::string> warnings;
   // A path's: what it falls short of (path_shortfalls.h), also the report's "shortfalls".
   std::vector<std::string> shortfalls;
 };
@@ -66,6 +69,9 @@ nlohmann::json path_segments_report(const SynthesisContext& context, const Floor
 // "'run', which the graph plays in no frame (104 of its clips' frames carry it; ...)"; nullopt
 // when it plays it or the tag is unknown (an error elsewhere).
 std::optional<std::string> unplayable_tag(const SynthesisContext& context, const std::string& tag);
+// For each of the path's segments asking for a motion type the graph can hardly play (above),
+// what to tell the user: "the segment 0-20 m asks for 'run', which ...".
+std::vector<std::string> segment_warnings(const SynthesisContext& context, const FloorPath& path);
 // Where a motion came to rest (rest_endings.h), as reports give it: {"at_s", the "clip" at whose end
 // it stands, "clip_frame" from which it stands, "held_frame"}; null without an ending.
 nlohmann::json rest_report(const SynthesisContext& context, const RestEnding* ending, double at_s);

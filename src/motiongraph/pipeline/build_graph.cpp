@@ -58,13 +58,16 @@ std::string short_tags_text(const ThresholdChoice& choice, const MotionDatabase&
   return parts.empty() ? std::string() : ": " + fmt::format("{}", fmt::join(parts, ", "));
 }
 
-// The log's two voices, silent where the caller gave none.
+// The log's two voices, silent where the caller gave none; the warnings are also kept for the
+// report's "warnings".
 struct Say {
   const BuildLog& log;
+  std::vector<std::string>* warnings = nullptr;
   void info(const std::string& line) const {
     if (log.info) log.info(line);
   }
   void warning(const std::string& line) const {
+    if (warnings != nullptr) warnings->push_back(line);
     if (log.warning) log.warning(line);
   }
 };
@@ -556,7 +559,8 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
   ProcessTeam& processes = team != nullptr ? *team : alone;
   // Only rank 0 speaks: the others load the same clips and would say the same.
   const BuildLog silent{};
-  const Say say{processes.rank() == 0 ? log : silent};
+  std::vector<std::string> warnings;
+  const Say say{processes.rank() == 0 ? log : silent, &warnings};
   Stopwatch watch;
   json timings = json::object();
   auto prepared = prepare(inputs, settings, processes.rank() == 0 ? log : silent, say, watch, timings);
@@ -668,6 +672,7 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
   out.report["distance_stage"] = distance_stage_json(candidates->search, candidates->pruned, more ? &*more : nullptr,
                                                     candidates->cache, *features);
   add_clip_doubts(out.report["clips"], *db, prepared->clip_doubts);
+  out.report["warnings"] = warnings;  // every warning said up to here (none is said after)
   if (auto s = make_exports(settings, *db, *layout, *features, candidates->search, selected->all_transitions, out);
       !s) {
     return s.error();

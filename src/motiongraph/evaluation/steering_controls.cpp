@@ -1,0 +1,44 @@
+#include "motiongraph/evaluation/steering_controls.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "motiongraph/evaluation/synthesis_run.h"
+
+namespace mg {
+
+Result<ControlInput> SteeringControls::input(const SteeringControl& control, std::string_view who) {
+  if (!std::isfinite(control.heading_deg)) {
+    return Error{"", 0, fmt::format("{}: the heading must be finite, not {}", who, control.heading_deg)};
+  }
+  ControlInput in;
+  in.direction = bearing_direction(control.heading_deg);
+  in.rest = control.rest;
+  if (!control.tag.empty()) {
+    auto mask = context_->tag_mask(control.tag);
+    if (!mask) return mask.error();
+    auto [note, inserted] = tags_.try_emplace(control.tag);
+    if (inserted) {
+      note->second.unplayable = unplayable_tag(*context_, control.tag);
+      note->second.rest = stop_means_rest(*context_, control.tag);
+    }
+    TagNote& tag = note->second;
+    if (tag.unplayable && !tag.warned) {
+      tag.warned = true;
+      warnings_.push_back(fmt::format(
+          "{} asks for {}{}", who, *tag.unplayable,
+          tag.rest ? "; the character comes to rest instead, at the end of a clip that ends standing still" : ""));
+    }
+    in.rest = in.rest || tag.rest;
+    if (!in.rest) in.tag = *mask;
+  }
+  if (in.rest && context_->rest().empty() && !warned_rest_) {
+    warned_rest_ = true;
+    warnings_.push_back(
+        fmt::format("{} asks to rest, but no clip of the graph ends standing still: the character goes on", who));
+  }
+  return in;
+}
+
+}  // namespace mg
