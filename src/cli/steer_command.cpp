@@ -230,10 +230,13 @@ int run_steer(const SteerOptions& o) {
                          ? std::string(", not at rest")
                          : fmt::format(", at rest after {:.2f} s", c["rest_response_s"].get<double>());
     }
+    // What it asked: the tag (any), and rest when it means rest ("stop, rest": a stop heard as rest).
+    const std::string tag = c["tag"].get<std::string>();
+    const std::string asked = !c["rest"].get<bool>() ? (tag.empty() ? "any" : tag)
+                              : tag.empty()          ? "rest"
+                                                     : tag + ", rest";
     fmt::print("  at {:5.1f} s heading {:5.1f} deg {:<6} -> {}{}\n", c["at_s"].get<double>(), c["heading_deg"].get<double>(),
-               c["rest"].get<bool>()                  ? "rest"
-               : c["tag"].get<std::string>().empty() ? "any"
-                                                     : c["tag"].get<std::string>(),
+               asked,
                c["response_s"].is_null() ? std::string("not reached")
                                          : fmt::format("facing it after {:.2f} s", c["response_s"].get<double>()),
                tag_reached);

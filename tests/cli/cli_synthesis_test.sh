@@ -128,6 +128,10 @@ grep -q "comes to rest instead" "$work/stop.err" || { cat "$work/stop.err"; exit
 # (the control at 8 s, asking only to rest on, is heard)
 grep -q "and stays there: the control at 9 s cannot turn or move it" "$work/stop.err" || { cat "$work/stop.err"; exit 1; }
 grep -q "at rest after" "$work/stop.out" || { cat "$work/stop.out"; exit 1; }
+# The summary says what each control asked and that the stop is heard as rest (the walk before it
+# as asked).
+grep -Eq "^  at +3\.0 s heading +0\.0 deg stop, rest -> " "$work/stop.out" \
+  && grep -Eq "^  at +0\.0 s heading +0\.0 deg walk +-> " "$work/stop.out" || { cat "$work/stop.out"; exit 1; }
 python3 - "$work/stop-report.json" "$work/stop-steer.json" "$work/stop.err" <<'PY'
 import json, math, sys
 r, m = (json.load(open(p)) for p in sys.argv[1:3])
