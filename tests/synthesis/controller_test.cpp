@@ -451,6 +451,72 @@ TEST(Controller, RestTakenBackInTimeOrWithNowhereToRestWalksOn) {
   }
 }
 
+// A turn asked with rest: the way to rest is the same whatever the heading (the cheapest), but the
+// heading edit turns it toward the heading asked, the stopping clip too as far as it travels, so
+// that the character stands facing nearer the way asked than it would have.
+TEST(Controller, ATurnAskedWithRestTurnsTheStoppingClipToo) {
+  const auto& s = test::subject16();
+  const SynthesisContext& context = s.context();
+  auto walk = context.tag_mask("walk");
+  ASSERT_TRUE(walk.ok());
+  const Vec3& axis = context.tracks.forward_axis;
+  struct Run {
+    Motion motion;
+    std::vector<int> edges, rest_frames;
+    int ending_first = -1;  // the motion's frame where the stopping clip starts
+    double ending_travel_m = 0.0;
+  };
+  auto run = [&](double rest_heading_deg) {
+    Run r{context.assembler.empty_motion(), {}, {}};
+    auto controller = Controller::create(context, {}, {bearing_direction(0.0), *walk});
+    EXPECT_TRUE(controller.ok());
+    while (r.motion.frame_count < 2 * r.motion.fps) controller->step(r.motion);
+    controller->set_input({bearing_direction(rest_heading_deg), *walk, true});
+    while (!controller->standing() || r.motion.frame_count < 8 * r.motion.fps) {
+      const int first = r.motion.frame_count;
+      const ControllerDecision d = controller->step(r.motion);
+      int edge_frames = 0;
+      for (int e : d.edges) edge_frames += context.graph->edges[e].frame_count;
+      if (r.ending_first < 0 && !d.rest_frames.empty()) r.ending_first = first + edge_frames;
+      r.edges.insert(r.edges.end(), d.edges.begin(), d.edges.end());
+      r.rest_frames.insert(r.rest_frames.end(), d.rest_frames.begin(), d.rest_frames.end());
+      if (r.motion.frame_count > 20 * r.motion.fps) break;
+    }
+    EXPECT_TRUE(controller->standing());
+    return r;
+  };
+  const Run north = run(0.0);
+  const Run east = run(90.0);
+  // The same way to rest and the same stopping clip.
+  ASSERT_EQ(north.edges, east.edges);
+  ASSERT_EQ(north.rest_frames, east.rest_frames);
+  ASSERT_EQ(north.ending_first, east.ending_first);
+  ASSERT_GT(north.ending_first, 0);
+  // How much further clockwise (toward east) the east run faces, frame by frame.
+  auto turned = [&](int f) {
+    return yaw_between(facing_on_floor(north.motion.rotations(f)[0], axis),
+                       facing_on_floor(east.motion.rotations(f)[0], axis));
+  };
+  const int last = east.motion.frame_count - 1;
+  double travel = 0.0;
+  for (int f = east.ending_first + 1; f <= last; ++f) {
+    const Vec3 a = east.motion.translations(f - 1)[0], b = east.motion.translations(f)[0];
+    travel += std::hypot(b.x() - a.x(), b.z() - a.z());
+  }
+  const double before = turned(east.ending_first), after = turned(last);
+  const double sign = yaw_between(Vec2(0.0, -1.0), Vec2(1.0, 0.0)) > 0.0 ? 1.0 : -1.0;  // north to east
+  EXPECT_GT(sign * before, 0.0) << "the way there turns toward east";
+  // The stopping clip turns on by 5 degrees or more, within what the edit may add over its travel
+  // (each of the two runs at most 45 degrees a metre, the one turning one way, the other the other).
+  const double limit = 2.0 * ControllerSettings{}.heading_edit.max_turn_deg_per_m * travel;
+  EXPECT_GT(sign * (after - before) * 180.0 / std::numbers::pi, 5.0) << "travel " << travel << " m";
+  EXPECT_LE(std::abs(after - before) * 180.0 / std::numbers::pi, limit + 1e-6);
+  // It stands facing nearer east than north does (closer to the way asked).
+  const Vec2 held_east = facing_on_floor(east.motion.rotations(last)[0], axis);
+  const Vec2 held_north = facing_on_floor(north.motion.rotations(last)[0], axis);
+  EXPECT_GT(held_east.dot(Vec2(1.0, 0.0)), held_north.dot(Vec2(1.0, 0.0)));
+}
+
 // A wall-clock budget far too small for any search still gets frames from every decision.
 TEST(Controller, AStarvedTimeBudgetStillAnswers) {
   const auto& s = test::subject16();

@@ -172,12 +172,31 @@ void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
   const int commit_frames = std::max(1, static_cast<int>(std::lround(settings_.commit_s * context_->db->fps)));
   // Up to `frames` frames at rest: the ending's still to play, a decision's worth at a time (a game
   // shows each decision's frames as they come), and once they are played its last frame held.
+  // The held frame is the ending's last as played (edited), copied.
   auto play_rest = [&](int frames, bool hold) {
-    const PreparedFloorTransform placement(rest_placement_);
-    for (; frames > 0 && (hold || ending_next_ < ending_frames_.size()); --frames) {
-      const int frame = ending_next_ < ending_frames_.size() ? ending_frames_[ending_next_++] : rest_->last_frame;
-      context_->assembler.append_frame(frame, placement, out);
-      decision.rest_frames.push_back(frame);
+    const int first = out.frame_count;
+    const size_t from = ending_next_;
+    {
+      const PreparedFloorTransform placement(rest_placement_);
+      for (; frames > 0 && ending_next_ < ending_frames_.size(); --frames) {
+        const int frame = ending_frames_[ending_next_++];
+        context_->assembler.append_frame(frame, placement, out);
+        decision.rest_frames.push_back(frame);
+        ++decision.frames;
+        ++state_.frames;
+      }
+    }
+    if (ending_next_ > from) {
+      edit_ending(out, first, from);
+      if (ending_next_ == ending_frames_.size()) held_pose_ = out.slice(out.frame_count - 1, 1);
+    }
+    for (; frames > 0 && hold; --frames) {
+      out.local_rotations.insert(out.local_rotations.end(), held_pose_.local_rotations.begin(),
+                                 held_pose_.local_rotations.end());
+      out.local_translations_m.insert(out.local_translations_m.end(), held_pose_.local_translations_m.begin(),
+                                      held_pose_.local_translations_m.end());
+      ++out.frame_count;
+      decision.rest_frames.push_back(rest_->last_frame);
       ++decision.frames;
       ++state_.frames;
     }
@@ -206,6 +225,34 @@ void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
   ending_frames_ = ending->frames(graph);
   ending_next_ = 0;
   play_rest(std::max(0, commit_frames - decision.frames), false);
+}
+
+// The stopping clip's frames played [from, ending_next_) turned by the heading edit as the way
+// there was: a turn asked just before rest is carried on while the character still travels (the
+// edit turns with the root's travel, so it ends as the clip slows), and it stands facing the way
+// asked as far as the last metres allow.
+void Controller::edit_ending(Motion& out, int first, size_t from) {
+  if (settings_.heading_edit.max_turn_deg_per_m <= 0.0) return;
+  const MotionAssembler& assembler = context_->assembler;
+  // The plan: the clip's frames from `from` on as far as the edit looks, then its last frame held.
+  const size_t count = (ending_next_ - from) + static_cast<size_t>(edit_.half_window_frames());
+  std::vector<Vec2> facings, roots;
+  facings.reserve(count);
+  for (size_t i = from; i < from + count; ++i) {
+    const int frame = i < ending_frames_.size() ? ending_frames_[i] : rest_->last_frame;
+    facings.push_back(facing_on_floor(assembler.root_rotation(frame, rest_placement_), context_->tracks.forward_axis));
+    if (settings_.heading_edit.hold_travel) {
+      const Vec3 root = assembler.root_position(frame, rest_placement_);
+      roots.emplace_back(root.x(), root.z());
+    }
+  }
+  const FloorTransform move = edit_.apply(out, first, state_.has_last ? &state_.last_root : nullptr, facings, roots,
+                                          input_.direction);
+  rest_placement_ = move * rest_placement_;
+  state_.placement = rest_placement_;
+  const Vec3& last = out.translations(out.frame_count - 1)[0];
+  state_.last_root = Vec2(last.x(), last.z());
+  state_.has_last = true;
 }
 
 }  // namespace mg

@@ -16,7 +16,9 @@
 // Asked to rest (ControlInput::rest), the character comes to rest at the end of a clip that ends
 // standing still (rest_endings.h) by the cheapest way there (cost_to_rest: frames until it
 // stands, the transition and bridge penalties on the way), turned by the heading edit on the
-// way, plays that clip a decision's worth of frames at a time, and then holds its last frame
+// way and in the stopping clip as far as it travels (a turn asked with rest: it stands facing
+// the way asked as far as its last metres allow), plays that clip a decision's worth of frames at
+// a time, and then holds its last frame
 // (resting(), standing()). Asked to move again, it goes on from
 // that frame where the graph has a node there (a library with clips that start from standing);
 // where it has none (the pruning left the clip's end out as a dead end: subject 16), rest is for
@@ -127,6 +129,9 @@ class Controller {
   void play(std::span<const int> committed, std::span<const int> planned, Motion& out, ControllerDecision& decision);
   // A decision on the way to rest, or at it.
   void step_to_rest(Motion& out, ControllerDecision& decision);
+  // The heading edit of the stopping clip's frames [from, ending_next_), appended to `out` from
+  // frame `first`.
+  void edit_ending(Motion& out, int first, size_t from);
   const SynthesisContext* context_;
   ControllerSettings settings_;
   HeadingEdit edit_;
@@ -139,6 +144,7 @@ class Controller {
   std::vector<long long> rest_frames_;
   std::vector<int> ending_frames_;  // the ending's database frames, played a decision's worth at a time
   size_t ending_next_ = 0;
+  Motion held_pose_;  // the ending's last frame as played (the heading edit turned it): the frame held
 };
 
 // Bearing in degrees (0 north = -z, 90 east = +x) as a unit floor direction, and back.
