@@ -355,8 +355,8 @@ void bind_motion(py::module_& m) {
               warn(fmt::format("save(): output_scale is for .bvh; {} is written in {}", ext,
                                ext == ".fbx" ? "centimetres" : "metres"));
             }
-            if (!figure && ext != ".glb" && ext != ".fbx") {
-              warn(fmt::format("save(): figure=False is for .glb and .fbx; {} has no stick figure", ext));
+            if (!figure && !is_scene_extension(ext)) {
+              warn(fmt::format("save(): figure=False is for {}; {} has no stick figure", kSceneFormats, ext));
             }
             const MotionFileSettings settings =
                 file_settings(root_motion, root_motion_smoothing.value_or(0.5), output_scale.value_or(1.0), figure);
@@ -369,11 +369,11 @@ void bind_motion(py::module_& m) {
           },
           py::arg("path"), py::arg("root_motion") = false, py::arg("root_motion_smoothing") = py::none(),
           py::arg("output_scale") = py::none(), py::arg("figure") = true,
-          "Writes the motion: .bvh (metres times output_scale), .glb (binary glTF 2.0, metres), .fbx (binary FBX "
-          "7.4, centimetres; figure=False leaves either's stick figure out) or .json (world positions, with the feet's contacts), as the CLI does (its "
+          "Writes the motion: .bvh (metres times output_scale), .glb (binary glTF 2.0, metres; .gltf the same as "
+          "JSON, one file), .fbx (binary FBX 7.4, centimetres; figure=False leaves their stick figure out) or .json (world positions, with the feet's contacts), as the CLI does (its "
           "--output-scale and --no-figure); root_motion adds a root-motion joint above the root (the CLI's "
           "--root-motion, averaged over root_motion_smoothing seconds, 0.5 when not given). An option the format "
-          "does not take (output_scale but for .bvh, figure=False but for .glb and .fbx) gives a UserWarning; a "
+          "does not take (output_scale but for .bvh, figure=False but for .glb, .gltf and .fbx) gives a UserWarning; a "
           "motion of no frames raises ValueError.")
       .def("__repr__", [](const PyMotion& self) {
         return display_text(fmt::format("<motiongraph.Motion '{}': {} frames at {:g} fps, {} joints>", self.name,
@@ -404,8 +404,8 @@ void bind_motion(py::module_& m) {
       },
       py::arg("path"), py::arg("motions"), py::arg("names") = py::none(), py::arg("root_motion") = false,
       py::arg("root_motion_smoothing") = 0.5, py::arg("figure") = true,
-      "Writes several motions of one rig (clips of one skeleton, or results of one graph) into one .glb or .fbx, an "
-      "animation each, as the CLI's convert does with several clips: names the animations' (default: each "
+      "Writes several motions of one rig (clips of one skeleton, or results of one graph) into one .glb, .gltf or .fbx, "
+      "an animation each, as the CLI's convert does with several clips: names the animations' (default: each "
       "motion's name; a name repeated gets _2, _3...), root_motion, root_motion_smoothing and figure as save() "
       "takes them.");
   m.def("load_clip", &load_clip, py::arg("path"), py::arg("asf") = py::none(), py::arg("fps") = py::none(),

@@ -81,14 +81,15 @@ Result<Clip> read_clip(const ConvertOptions& options, ClipLoader& loader, const 
   return std::move(clip);
 }
 
-// Fails unless every output is a .glb or .fbx (several clips make an animation set).
-// Outputs for `clips` clips: several go into a .glb or .fbx only.
+// Fails unless every output is a scene file, .glb, .gltf or .fbx (several clips make an animation
+// set).
 Status check_set_outputs(const ConvertOptions& options, size_t clips, const std::string& what) {
   if (clips < 2) return Ok{};
   for (const std::string& output : options.outputs) {
-    if (const std::string ext = lower_extension(output); ext != ".glb" && ext != ".fbx") {
-      return Error{output, 0, fmt::format("{} {} clips, and several clips go into a .glb or .fbx only (an animation "
-                                          "each); convert them one at a time for .bvh or .json", what, clips)};
+    if (!is_scene_extension(lower_extension(output))) {
+      return Error{output, 0, fmt::format("{} {} clips, and several clips go into a {} only (an animation each); "
+                                          "convert them one at a time for .bvh or .json",
+                                          what, clips, kSceneFormats)};
     }
   }
   return Ok{};
@@ -151,12 +152,12 @@ int convert_library(const ConvertOptions& options, const ClipLoadSettings& load)
     if (!motion) return fail(Error{db.clips[c].source, 0, motion.error().message});
     played.push_back(std::move(*motion));
   }
-  // A library of one clip (a manifest's frame range) goes into BVH and JSON too (a .glb or .fbx
+  // A library of one clip (a manifest's frame range) goes into BVH and JSON too (a scene file
   // below, its animation named as the clip).
   std::vector<std::string> clip_outputs, set_outputs;
   for (const std::string& output : options.outputs) {
     const std::string ext = lower_extension(output);
-    (ext == ".glb" || ext == ".fbx" ? set_outputs : clip_outputs).push_back(output);
+    (is_scene_extension(ext) ? set_outputs : clip_outputs).push_back(output);
   }
   if (!clip_outputs.empty()) {
     const int written = write_clip(options, clip_outputs, db.clips.front().source, db.skeletons[target],
@@ -179,7 +180,7 @@ int convert_library(const ConvertOptions& options, const ClipLoadSettings& load)
   return 0;
 }
 
-// Several clips of one rig: one .glb or .fbx, an animation each, named as its file.
+// Several clips of one rig: one .glb, .gltf or .fbx, an animation each, named as its file.
 int convert_animation_set(const ConvertOptions& options, const ClipLoadSettings& load) {
   if (auto s = check_set_outputs(options, options.inputs.size(), "the inputs are"); !s) return fail(s.error());
   ClipLoader loader(load);
@@ -229,15 +230,15 @@ Command add_convert_command(CLI::App& app) {
   auto options = std::make_shared<ConvertOptions>();
   CLI::App* sub = app.add_subcommand(
       "convert", "Convert an AMC, BVH, glTF or FBX clip to BVH (metres), to binary glTF (.glb: the skeleton, its animation and "
-                 "a stick figure skinned to it, in metres), to binary FBX (.fbx: the same, in "
+                 "a stick figure skinned to it, in metres; .gltf: the same as one JSON file), to binary FBX (.fbx: the same, in "
                  "centimetres, for Maya, MotionBuilder, Unity, Unreal, Blender) or to JSON world positions "
                  "({\"fps\", \"joints\": [{\"name\", \"parent\"}], \"positions\": [frame][joint][x,y,z], "
                  "\"contacts\": {\"joints\": [the foot joints], \"planted\": [frame][foot joint] 0 or 1}}). Several "
-                 "clips of one rig make one .glb or .fbx, an animation each.");
+                 "clips of one rig make one .glb, .gltf or .fbx, an animation each.");
   sub->add_option("IN", options->inputs,
-                  "Input clip (.amc, .bvh, or .glb/.gltf/.fbx: an animation of it); several clips of one rig go into one .glb or .fbx, an animation each "
+                  "Input clip (.amc, .bvh, or .glb/.gltf/.fbx: an animation of it); several clips of one rig go into one .glb, .gltf or .fbx, an animation each "
                   "named as its file (a character's animation set, as game engines import it); a library (folders, .toml "
-                  "manifests) goes into one .glb or .fbx as build reads it (at 30 fps unless --fps or its manifest says), "
+                  "manifests) goes into one .glb, .gltf or .fbx as build reads it (at 30 fps unless --fps or its manifest says), "
                   "every clip on one of its skeletons; a library of one clip (a manifest's frame range) into any "
                   "format")
       ->required()
@@ -249,7 +250,8 @@ Command add_convert_command(CLI::App& app) {
                   "scaled by the legs' lengths (default: the first clip's)")
       ->check(CLI::NonNegativeNumber);
   sub->add_option("-o,--output", options->outputs,
-                  "Output file, .bvh, .glb (binary glTF 2.0), .fbx (binary FBX 7.4) or .json; repeat -o for several (read once)")
+                  "Output file, .bvh, .glb (binary glTF 2.0), .gltf (the same as JSON, one file), .fbx (binary FBX 7.4) or "
+                  ".json; repeat -o for several (read once)")
       ->required()
       ->allow_extra_args(false);  // one file each: inputs may follow it
   sub->add_option("--fps", options->fps, "Resample to this frame rate (slerp rotations, lerp translations)")

@@ -29,7 +29,7 @@ struct SynthesisOptions {
 
   void add_to(CLI::App& app) {
     app.add_option("GRAPH", graph, "A .mgraph file written by 'motiongraph build'")->required();
-    app.add_option("-o,--output", output, "Output motion: .bvh (metres), .glb (binary glTF 2.0: skeleton, animation and a stick figure, for game engines, Blender, three.js), .fbx (binary FBX 7.4: the same in centimetres, for Maya, MotionBuilder, Unity, Unreal, Blender) or .json (world positions)")->required();
+    app.add_option("-o,--output", output, "Output motion: .bvh (metres), .glb (binary glTF 2.0: skeleton, animation and a stick figure, for game engines, Blender, three.js), .gltf (the same as JSON, one file), .fbx (binary FBX 7.4: the same in centimetres, for Maya, MotionBuilder, Unity, Unreal, Blender) or .json (world positions)")->required();
     app.add_option("--report", report,
                    "Also write a JSON report of the result (its figures, foot slide against the clips, the warnings "
                    "printed)");

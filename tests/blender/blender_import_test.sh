@@ -6,7 +6,7 @@
 # fps and joints, the same world joint positions as our own forward kinematics, and no pop: no
 # joint moves further in one frame than joints move in the source clips the graph was built
 # from, read by Blender the same way; and each planted toe (the foot clean-up) within 1 cm of its
-# plant on the floor over its contact. The same figure 8 written as glTF (.glb) and as FBX:
+# plant on the floor over its contact. The same figure 8 written as glTF (.glb, and .gltf) and as FBX:
 # check_scene.py imports each with Blender's glTF or FBX importer and checks its armature, keys,
 # frame rate (FBX) and joint positions.
 # And glTF and FBX that Blender writes (export_gltf.py, export_fbx.py, from its BVH import of
@@ -32,8 +32,9 @@ fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-# The same synthesis four times: BVH, glTF and FBX for Blender, JSON world positions for the comparison.
-for ext in bvh glb fbx json; do
+# The same synthesis five times: BVH, glTF (.glb and .gltf) and FBX for Blender, JSON world positions
+# for the comparison.
+for ext in bvh glb gltf fbx json; do
   "$motiongraph" path "$graph" --shape figure8:4 --segment walk:0-25 --segment run:25-51 -o "$tmp/figure8.$ext" >/dev/null
 done
 sources=()
@@ -64,6 +65,7 @@ check() {
 }
 check check_bvh "$tmp/figure8.bvh" "$tmp/figure8.json" "${sources[@]}"
 check check_scene "$tmp/figure8.glb" "$tmp/figure8.json"
+check check_scene "$tmp/figure8.gltf" "$tmp/figure8.json"
 check check_scene "$tmp/figure8.fbx" "$tmp/figure8.json"
 
 # And the other way: glTF written by Blender (its armature from a BVH import, bones resting along

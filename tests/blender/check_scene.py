@@ -1,5 +1,5 @@
-# Run inside Blender: blender --background --python check_scene.py -- SYNTH.glb|SYNTH.fbx SYNTH.json
-# Imports SYNTH.glb with Blender's own glTF importer, or SYNTH.fbx with its FBX importer, and
+# Run inside Blender: blender --background --python check_scene.py -- SYNTH.glb|SYNTH.gltf|SYNTH.fbx SYNTH.json
+# Imports SYNTH.glb (or .gltf) with Blender's own glTF importer, or SYNTH.fbx with its FBX importer, and
 # checks it against SYNTH.json (our world joint positions, y up, metres): one armature with a bone
 # per joint, one key per frame, every bone's head where our forward kinematics puts its joint in
 # every frame; the stick figure deformed by that armature, its bones on their joints at the

@@ -253,7 +253,7 @@ PY
 if "$bin" convert "$data/cmu/16/16_15.amc" "$data/cmu/16/16_35.amc" -o "$work/set.glb" -o "$work/set.bvh" 2>"$work/set.err"; then
   echo "FAIL: several clips into a BVH were accepted"; exit 1
 fi
-[[ $(wc -l <"$work/set.err") -eq 1 && ! -e "$work/set.bvh" ]] && grep -q "set.bvh: the inputs are 2 clips, and several clips go into a .glb or .fbx only" "$work/set.err" \
+[[ $(wc -l <"$work/set.err") -eq 1 && ! -e "$work/set.bvh" ]] && grep -q "set.bvh: the inputs are 2 clips, and several clips go into a .glb, .gltf or .fbx only" "$work/set.err" \
   || { echo "FAIL: several clips into a BVH"; cat "$work/set.err"; exit 1; }
 if "$bin" convert "$data/cmu/16/16_15.amc" "$data/cmu/16/16_35.amc" --feet LeftAnkle,,, -o "$work/feet.glb" 2>"$work/feet.err"; then
   echo "FAIL: feet that are not there were accepted"; exit 1
@@ -299,7 +299,7 @@ for bad in "-o $work/lib.bvh" "--skeleton 3 -o $work/lib.glb"; do
 done
 grep -q "skeleton 3: the library has 3 skeleton(s)" "$work/lib.err" || { echo "FAIL: --skeleton 3"; cat "$work/lib.err"; exit 1; }
 "$bin" convert "$work/rigs" -o "$work/lib.bvh" 2>"$work/lib.err" || true
-grep -q "lib.bvh: the library holds 3 clips, and several clips go into a .glb or .fbx only" "$work/lib.err" \
+grep -q "lib.bvh: the library holds 3 clips, and several clips go into a .glb, .gltf or .fbx only" "$work/lib.err" \
   || { echo "FAIL: a library of 3 clips into a BVH"; cat "$work/lib.err"; exit 1; }
 # A library of one clip (a folder of one file, a manifest's frame range) goes into any format.
 mkdir "$work/one" && cp "$data/bvh/131_01.bvh" "$work/one/"

@@ -73,7 +73,7 @@ sed 's/^:hierarchy/:hierarchy\n  begin\n    root nosuchbone\n  end\n:ignored/' "
 expect_error unknown-in-hierarchy "bad\.asf:[0-9]+: unknown bone 'nosuchbone'" "$data/cmu/16/16_35.amc" --asf "$work/in/bad.asf"
 
 # Usage errors from the command line itself.
-EXT=.txt expect_error wrong-extension "out-wrong-extension\.txt: output must end in \.bvh, \.glb, \.fbx or \.json" "$good"
+EXT=.txt expect_error wrong-extension "out-wrong-extension\.txt: output must end in \.bvh, \.glb, \.gltf, \.fbx or \.json" "$good"
 expect_error bad-scale "--scale must lie between 1e-06 and 1e\+06 metres per unit, not -1" "$good" --scale -1
 expect_error huge-scale "--scale must lie between 1e-06 and 1e\+06 metres per unit, not 1e\+300" "$good" --scale 1e300
 # Every number option refuses nan and inf (a range check let --fps nan through: nothing resampled).

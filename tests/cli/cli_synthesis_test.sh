@@ -400,7 +400,7 @@ printf '{"points": [[0, 0], [0, -5]], "segments": [{"from_m": 0, "to_m": 5, "tag
 expect_error "swim-path.json: 'swim' is not a motion tag" "$work/o.bvh" "$bin" path "$work/g.mgraph" --path "$work/swim-path.json" -o "$work/o.bvh"
 expect_error "BVH output scale must lie between 1e-06 and 1e+06 units per metre, not 0" "$work/o.bvh" "$bin" walk "$work/g.mgraph" --from 0 --to 10 --output-scale 0 -o "$work/o.bvh"
 expect_error "BVH output scale must lie between 1e-06 and 1e+06 units per metre, not 1e+60" "$work/o.bvh" "$bin" walk "$work/g.mgraph" --from 0 --to 10 --output-scale 1e60 -o "$work/o.bvh"
-expect_error "must end in .bvh, .glb, .fbx or .json" "$work/o.txt" "$bin" path "$work/g.mgraph" --shape line:5 -o "$work/o.txt"
+expect_error "must end in .bvh, .glb, .gltf, .fbx or .json" "$work/o.txt" "$bin" path "$work/g.mgraph" --shape line:5 -o "$work/o.txt"
 expect_error "node 99999 does not exist" "$work/o.bvh" "$bin" walk "$work/g.mgraph" --from 0 --to 99999 -o "$work/o.bvh"
 expect_error "unknown cost 'cheap'" "$work/o.bvh" "$bin" walk "$work/g.mgraph" --from 0 --to 1 --cost cheap -o "$work/o.bvh"
 echo '{"controls": [{"at_s": 1, "tag": "walk"}]}' >"$work/bad-controls.json"

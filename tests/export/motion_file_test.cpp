@@ -108,7 +108,7 @@ TEST(AnimationSet, NoFramesAnotherRigOrFormatIsAnErrorAndNoFile) {
                 .find("b.bvh: its rig is not a.amc's"),
             std::string::npos);
   EXPECT_NE(message((dir.path / "set.bvh").string(), {{"a.amc", "a", &walk.skeleton, &walk.motion}})
-                .find("several motions go into a .glb or .fbx only"),
+                .find("several motions go into a .glb, .gltf or .fbx only"),
             std::string::npos);
   EXPECT_NE(message(out, {}).find("no motion to write"), std::string::npos);
 }

@@ -1,10 +1,10 @@
-// Usage: node gltf_world_positions.mjs FILE.glb OUT.json [ANIMATION]
+// Usage: node gltf_world_positions.mjs FILE.glb|FILE.gltf OUT.json [ANIMATION]
 //
 // Without ANIMATION the file must hold one animation, named as the file; with it, that one of
 // the file's animations is played (an animation set: every animation must key the same
 // tracks, so that each poses the whole figure whichever played before it).
 //
-// Reads FILE.glb as a viewer or an engine would: first the Khronos glTF validator
+// Reads FILE.glb (or a .gltf, its buffer embedded) as a viewer or an engine would: first the Khronos glTF validator
 // (npm "gltf-validator", the reference implementation of the spec's rules), which
 // must report no error, warning, info or hint; then three.js's GLTFLoader, whose
 // animation is played on the loaded scene with an AnimationMixer, every frame in
@@ -32,6 +32,15 @@ import { readFileSync, writeFileSync } from 'node:fs';
 import validator from 'gltf-validator';
 import { AnimationMixer, LoopOnce, Vector3 } from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+
+// Node has no ProgressEvent, which three's FileLoader sends as it reads a .gltf's buffer from its
+// data URI (a browser has one): the loader needs only its fields.
+globalThis.ProgressEvent ??= class ProgressEvent extends Event {
+	constructor(type, init = {}) {
+		super(type);
+		Object.assign(this, init);
+	}
+};
 
 function fail(message) {
 	console.error(`gltf_world_positions: ${message}`);
@@ -68,7 +77,7 @@ let clip;
 if (animationName === undefined) {
 	if (gltf.animations.length !== 1) fail(`expected one animation, found ${gltf.animations.length}`);
 	// Named as the file, without its extension.
-	const stem = inPath.replace(/^.*\//, '').replace(/\.glb$/, '');
+	const stem = inPath.replace(/^.*\//, '').replace(/\.(glb|gltf)$/, '');
 	if (json.animations[0].name !== stem) fail(`the animation is named '${json.animations[0].name}', not '${stem}'`);
 	clip = gltf.animations[0];
 } else {

@@ -59,7 +59,7 @@ check_synthesized() {
   echo "== synthesized: figure8:4, walk then run"
   "$motiongraph" build "$data/cmu/16" -o "$tmp/s16.mgraph" --no-cache -q || return 1
   local out
-  for out in bvh json glb; do
+  for out in bvh json glb gltf; do
     "$motiongraph" path "$tmp/s16.mgraph" --shape figure8:4 --segment walk:0-25 --segment run:25-51 \
       -o "$tmp/figure8.$out" >/dev/null || return 1
   done
@@ -67,18 +67,24 @@ check_synthesized() {
   "$node" "$here/compare_positions.mjs" "$tmp/figure8.json" "$tmp/figure8.three.json" "$tolerance" || return 1
   "$node" "$here/gltf_world_positions.mjs" "$tmp/figure8.glb" "$tmp/figure8.gltf.json" || return 1
   "$node" "$here/compare_positions.mjs" "$tmp/figure8.json" "$tmp/figure8.gltf.json" "$tolerance" || return 1
+  # The same as .gltf (JSON, its buffer a base64 data URI): the validator and three.js alike.
+  "$node" "$here/gltf_world_positions.mjs" "$tmp/figure8.gltf" "$tmp/figure8.text.json" || return 1
+  "$node" "$here/compare_positions.mjs" "$tmp/figure8.json" "$tmp/figure8.text.json" "$tolerance" || return 1
 }
 
 # An animation set: two clips of one rig in one .glb, and a library (a folder), each animation
 # where its clip's JSON puts the joints.
 check_set() {
   echo "== animation set: 16_15 and 16_35 with root motion"
-  "$motiongraph" convert "$data/cmu/16/16_15.amc" "$data/cmu/16/16_35.amc" --root-motion -o "$tmp/set.glb" || return 1
+  "$motiongraph" convert "$data/cmu/16/16_15.amc" "$data/cmu/16/16_35.amc" --root-motion -o "$tmp/set.glb" \
+    -o "$tmp/set.gltf" || return 1
   local clip
   for clip in 16_15 16_35; do
     "$motiongraph" convert "$data/cmu/16/$clip.amc" --root-motion -o "$tmp/set-$clip.json" || return 1
     "$node" "$here/gltf_world_positions.mjs" "$tmp/set.glb" "$tmp/set-$clip.gltf.json" "$clip" || return 1
     "$node" "$here/compare_positions.mjs" "$tmp/set-$clip.json" "$tmp/set-$clip.gltf.json" "$tolerance" || return 1
+    "$node" "$here/gltf_world_positions.mjs" "$tmp/set.gltf" "$tmp/set-$clip.text.json" "$clip" || return 1
+    "$node" "$here/compare_positions.mjs" "$tmp/set-$clip.json" "$tmp/set-$clip.text.json" "$tolerance" || return 1
   done
   echo "== animation set: the subject-16 library, as build reads it (30 fps)"
   "$motiongraph" convert "$data/cmu/16" -o "$tmp/library.glb" 2>/dev/null || return 1

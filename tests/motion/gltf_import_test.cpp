@@ -56,6 +56,29 @@ TEST(GltfImport, OurOwnFileReadsBackToTheSameJointsAndRate) {
   EXPECT_EQ(bvh.skeleton.joint_count(), clip.skeleton.joint_count());
 }
 
+// The same model as .gltf text: one JSON file, its buffer a base64 data URI, read back to the
+// very clips the .glb gives.
+TEST(GltfImport, OurGltfTextReadsBackAsOurGlbDoes) {
+  const Clip walk = test::load_data_clip("cmu/16/16_15.amc");
+  const Clip run = test::load_data_clip("cmu/16/16_35.amc");
+  const std::vector<GltfAnimation> set = {{"walk", &walk.motion}, {"run", &run.motion}};
+  auto glb = write_glb(walk.skeleton, set);
+  auto text = write_gltf(walk.skeleton, set);
+  ASSERT_TRUE(glb && text);
+  ASSERT_EQ(text->rfind("{", 0), 0u);  // JSON, not the binary container
+  EXPECT_NE(text->find("\"uri\":\"data:application/octet-stream;base64,"), std::string::npos);
+  const std::vector<Clip> from_glb = read_back(*glb), from_text = read_back(*text);
+  ASSERT_EQ(from_text.size(), 2u);
+  ASSERT_EQ(from_glb.size(), 2u);
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(from_text[i].name, from_glb[i].name);
+    EXPECT_EQ(from_text[i].motion.fps, from_glb[i].motion.fps);
+    EXPECT_EQ(from_text[i].motion.local_rotations, from_glb[i].motion.local_rotations);  // the same float32 keys
+    EXPECT_EQ(from_text[i].motion.local_translations_m, from_glb[i].motion.local_translations_m);
+  }
+  EXPECT_LT(test::max_apart(walk, from_text[0]), 2e-5);
+}
+
 TEST(GltfImport, AStaticRootAboveTheHipsIsFoldedAsForBvh) {
   const Clip plain = test::load_data_clip("cmu/16/16_15.amc");
   const Clip clip = test::import_bvh(test::static_root_bvh(plain, Vec3(0.3, 0.0, -0.2)));

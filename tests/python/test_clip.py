@@ -22,13 +22,20 @@ def test_positions_equal_the_cli(cli, data, tmp_path, fps):
     (tmp_path / "cli").mkdir()
     (tmp_path / "py").mkdir()
     cli("convert", amc, "-o", tmp_path / "cli.bvh", "-o", tmp_path / "cli" / "walk.glb", "-o",
-        tmp_path / "cli" / "walk.fbx", *args)
+        tmp_path / "cli" / "walk.fbx", "-o", tmp_path / "cli" / "walk.gltf", *args)
     for ext in ("json", "bvh"):
         clip.save(str(tmp_path / f"py.{ext}"))
         assert (tmp_path / f"py.{ext}").read_bytes() == (tmp_path / f"cli.{ext}").read_bytes()
     clip.save(str(tmp_path / "py" / "walk.glb"))
     assert (tmp_path / "py" / "walk.glb").read_bytes() == (tmp_path / "cli" / "walk.glb").read_bytes()
     assert (tmp_path / "py" / "walk.glb").read_bytes()[:4] == b"glTF"
+    # .gltf: the same model as one JSON file, its buffer a base64 data URI.
+    clip.save(str(tmp_path / "py" / "walk.gltf"))
+    assert (tmp_path / "py" / "walk.gltf").read_bytes() == (tmp_path / "cli" / "walk.gltf").read_bytes()
+    text = json.loads((tmp_path / "py" / "walk.gltf").read_text())
+    assert text["asset"]["version"] == "2.0"
+    assert text["buffers"][0]["uri"].startswith("data:application/octet-stream;base64,")
+    assert text["animations"][0]["name"] == "walk"
     clip.save(str(tmp_path / "py" / "walk.fbx"))
     assert (tmp_path / "py" / "walk.fbx").read_bytes() == (tmp_path / "cli" / "walk.fbx").read_bytes()
     assert (tmp_path / "py" / "walk.fbx").read_bytes()[:21] == b"Kaydara FBX Binary  \0"
@@ -92,7 +99,7 @@ def test_animation_set_equals_the_cli(cli, data, tmp_path):
                                                          mg.load_clip(str(latin1))])
     with pytest.raises(ValueError, match="names: 1 given for 2 motions"):
         mg.save_animations(str(tmp_path / "mixed.glb"), motions, names=["walk"])
-    with pytest.raises(mg.Error, match="several motions go into a .glb or .fbx only"):
+    with pytest.raises(mg.Error, match="several motions go into a .glb, .gltf or .fbx only"):
         mg.save_animations(str(tmp_path / "set.bvh"), motions)
     assert not (tmp_path / "mixed.glb").exists() and not (tmp_path / "set.bvh").exists()
 

@@ -341,7 +341,7 @@ def test_save_says_what_it_cannot_do(graph, tmp_path):
     motion = graph.path(shape="line:5")
     with pytest.warns(UserWarning, match=r"output_scale is for \.bvh; \.glb is written in metres"):
         motion.save(tmp_path / "m.glb", output_scale=100)
-    with pytest.warns(UserWarning, match=r"figure=False is for \.glb and \.fbx; \.bvh has no stick figure"):
+    with pytest.warns(UserWarning, match=r"figure=False is for \.glb, \.gltf or \.fbx; \.bvh has no stick figure"):
         motion.save(tmp_path / "m.bvh", figure=False)
     with pytest.raises(ValueError, match="root_motion_smoothing needs root_motion=True"):
         motion.save(tmp_path / "m2.bvh", root_motion_smoothing=1.0)

@@ -88,7 +88,7 @@ Result<SynthesizedMotion> run_walk_synthesis(const SynthesisContext& context, in
 Result<SynthesizedMotion> run_path_synthesis(const SynthesisContext& context, const FloorPath& path,
                                              const PathSynthesisSettings& search, const SynthesisRunSettings& settings);
 
-// Writes the motion (.bvh, .glb or .json, export/motion_file.h); JSON gets the feet's contacts per
+// Writes the motion (.bvh, .glb, .gltf, .fbx or .json, export/motion_file.h); JSON gets the feet's contacts per
 // frame: `contacts`, or when empty those of the frames `walk` plays.
 // A root-motion joint asked for in `settings` faces the way the target skeleton faces (the
 // context's forward axis, whatever the settings' own).

@@ -102,6 +102,16 @@ Result<std::string> write_glb(const Skeleton& skeleton, const Motion& motion, co
 
 Result<std::string> write_glb(const Skeleton& skeleton, std::span<const GltfAnimation> animations,
                               const GltfWriteSettings& settings) {
+  return write_gltf_file(skeleton, animations, settings, true);
+}
+
+Result<std::string> write_gltf(const Skeleton& skeleton, std::span<const GltfAnimation> animations,
+                               const GltfWriteSettings& settings) {
+  return write_gltf_file(skeleton, animations, settings, false);
+}
+
+Result<std::string> write_gltf_file(const Skeleton& skeleton, std::span<const GltfAnimation> animations,
+                                    const GltfWriteSettings& settings, bool binary) {
   auto checked = played_animations(skeleton, animations, "glTF");
   if (!checked) return checked.error();
   const std::vector<const ExportAnimation*>& played = *checked;
@@ -266,7 +276,8 @@ Result<std::string> write_glb(const Skeleton& skeleton, std::span<const GltfAnim
   tinygltf::TinyGLTF writer;
   std::ostringstream out;
   try {
-    if (!writer.WriteGltfSceneToStream(&model, out, false, true)) return Error{"", 0, "glTF serialisation failed"};
+    // (as text, the buffer goes in as a base64 data URI: one file)
+    if (!writer.WriteGltfSceneToStream(&model, out, false, binary)) return Error{"", 0, "glTF serialisation failed"};
   } catch (const std::exception& e) {
     return Error{"", 0, fmt::format("glTF serialisation failed: {}", e.what())};
   }

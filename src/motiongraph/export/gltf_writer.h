@@ -1,4 +1,5 @@
-// Motion -> binary glTF 2.0 (.glb), the format game engines, Blender and three.js all import:
+// Motion -> binary glTF 2.0 (.glb), the format game engines, Blender and three.js all import, or
+// the same as a .gltf (JSON with its buffer in it as a base64 data URI: one file, a third larger):
 // one node per joint (the skeleton's hierarchy, the static joints a trajectory joint was found
 // below put back above it, as the BVH writer does), a skin over them, and one animation with a
 // rotation track per joint that rotates and a translation track per joint whose translation is
@@ -47,5 +48,11 @@ Result<std::string> write_glb(const Skeleton& skeleton, std::span<const GltfAnim
 // One animation.
 Result<std::string> write_glb(const Skeleton& skeleton, const Motion& motion, const std::string& animation_name,
                               const GltfWriteSettings& settings = {});
+// The same model as .gltf text (its buffer embedded).
+Result<std::string> write_gltf(const Skeleton& skeleton, std::span<const GltfAnimation> animations,
+                               const GltfWriteSettings& settings = {});
+// Either: binary (.glb) or text (.gltf).
+Result<std::string> write_gltf_file(const Skeleton& skeleton, std::span<const GltfAnimation> animations,
+                                    const GltfWriteSettings& settings, bool binary);
 
 }  // namespace mg

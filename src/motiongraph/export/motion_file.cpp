@@ -16,17 +16,21 @@ namespace mg {
 
 Status check_motion_output(const std::string& path) {
   const std::string ext = lower_extension(path);
-  if (ext != ".bvh" && ext != ".json" && ext != ".glb" && ext != ".fbx") {
-    return Error{path, 0, "output must end in .bvh, .glb, .fbx or .json"};
+  if (ext != ".bvh" && ext != ".json" && !is_scene_extension(ext)) {
+    return Error{path, 0, "output must end in .bvh, .glb, .gltf, .fbx or .json"};
   }
   return Ok{};
 }
 
+bool is_scene_extension(const std::string& ext) { return ext == ".glb" || ext == ".gltf" || ext == ".fbx"; }
+
 Result<std::string> scene_bytes(const std::string& ext, const Skeleton& skeleton,
                                 std::span<const ExportAnimation> animations, bool figure) {
-  if (ext == ".glb") return write_glb(skeleton, animations, GltfWriteSettings{figure});
+  if (ext == ".glb" || ext == ".gltf") {
+    return write_gltf_file(skeleton, animations, GltfWriteSettings{figure}, ext == ".glb");
+  }
   if (ext == ".fbx") return write_fbx(skeleton, animations, FbxWriteSettings{figure});
-  return Error{"", 0, fmt::format("'{}' is no scene format (.glb, .fbx)", ext)};
+  return Error{"", 0, fmt::format("'{}' is no scene format ({})", ext, kSceneFormats)};
 }
 
 Status MotionFileSettings::validate() const {
@@ -61,7 +65,7 @@ Status write_motion(const std::string& path, const Skeleton& skeleton, const Mot
   write.units_per_metre = settings.units_per_metre;
   write.keep_root_order = settings.keep_root_order;
   const std::string ext = lower_extension(path);
-  if (ext == ".glb" || ext == ".fbx") {
+  if (is_scene_extension(ext)) {
     // The animation is named as the file (an engine lists every imported file's as its name).
     const std::string stem = std::filesystem::path(path).stem().string();
     const ExportAnimation animation{stem.empty() ? "motion" : stem, &motion};
@@ -76,8 +80,8 @@ Status write_motion(const std::string& path, const Skeleton& skeleton, const Mot
 Status write_animation_set(const std::string& path, std::span<const NamedMotion> motions,
                            const MotionFileSettings& settings) {
   const std::string ext = lower_extension(path);
-  if (ext != ".glb" && ext != ".fbx") {
-    return Error{path, 0, "several motions go into a .glb or .fbx only (an animation each)"};
+  if (!is_scene_extension(ext)) {
+    return Error{path, 0, fmt::format("several motions go into a {} only (an animation each)", kSceneFormats)};
   }
   if (auto s = settings.validate(); !s) return Error{path, 0, s.error().message};
   if (motions.empty()) return Error{path, 0, "no motion to write"};

@@ -1,5 +1,6 @@
 // Motion written to a file, the format by extension: .bvh in metres (times units_per_metre),
-// .glb binary glTF in metres (gltf_writer.h), .fbx binary FBX in centimetres (fbx_writer.h) or
+// .glb binary glTF in metres (gltf_writer.h; .gltf the same as JSON with its buffer embedded), .fbx
+// binary FBX in centimetres (fbx_writer.h) or
 // .json world positions (positions_json.h), checked before any work.
 #pragma once
 
@@ -16,11 +17,17 @@
 
 namespace mg {
 
-// Fails unless the path ends in .bvh, .glb, .fbx or .json.
+// Fails unless the path ends in .bvh, .glb, .gltf, .fbx or .json.
 Status check_motion_output(const std::string& path);
 
-// The bytes of a scene file, `ext` ".glb" (gltf_writer.h) or ".fbx" (fbx_writer.h), holding the
-// animations, with the stick figure when `figure`.
+// Whether `ext` (lower_extension) names a scene file, which holds a skeleton and animations: .glb,
+// .gltf or .fbx (the formats an animation set goes into).
+bool is_scene_extension(const std::string& ext);
+// The formats it names, for messages: ".glb, .gltf or .fbx".
+inline constexpr const char* kSceneFormats = ".glb, .gltf or .fbx";
+
+// The bytes of a scene file, `ext` ".glb" or ".gltf" (gltf_writer.h) or ".fbx" (fbx_writer.h),
+// holding the animations, with the stick figure when `figure`.
 Result<std::string> scene_bytes(const std::string& ext, const Skeleton& skeleton,
                                 std::span<const ExportAnimation> animations, bool figure);
 // A root-motion joint to add before writing (motion/root_motion.h), and where the skeleton faces
@@ -55,11 +62,12 @@ struct NamedMotion {
   Vec3 forward_axis = Vec3::UnitZ();  // where its skeleton faces, for a root-motion joint
 };
 
-// Several motions of one rig into one .glb or .fbx, an animation each (gltf_writer.h, fbx_writer.h), written
-// atomically: a character's animation set as game engines import it. Each gets the root-motion
-// joint asked for in `settings` facing its own forward axis (settings.root_motion's is not
-// used); a held pose folded as the set's static-root clips (trajectory_joint.h: fold_as) faces
-// theirs, its own having been learnt on the root it had. Fails unless the path ends in .glb or .fbx, and when a motion's rig is not the first's
+// Several motions of one rig into one .glb, .gltf or .fbx, an animation each (gltf_writer.h,
+// fbx_writer.h), written atomically: a character's animation set as game engines import it. Each
+// gets the root-motion joint asked for in `settings` facing its own forward axis
+// (settings.root_motion's is not used); a held pose folded as the set's static-root clips
+// (trajectory_joint.h: fold_as) faces theirs, its own having been learnt on the root it had. Fails
+// unless the path ends in .glb, .gltf or .fbx, and when a motion's rig is not the first's
 // (motion/rig_matching.h: rig_difference), naming its source.
 Status write_animation_set(const std::string& path, std::span<const NamedMotion> motions,
                            const MotionFileSettings& settings = {});
