@@ -1,10 +1,12 @@
 // motiongraph serve GRAPH [--host H] [--port P] [--web-root DIR]: the web studio (src/studio/)
 // on one graph. Prints "studio: http://HOST:PORT/" once it listens; SIGINT and SIGTERM stop
-// it cleanly (exit 0).
+// it (exit 0): the requests being answered are finished, clients still connected after 2 s (or
+// at a second signal) are not waited for.
 #include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <thread>
 
 #include <unistd.h>
@@ -25,11 +27,16 @@ struct ServeOptions {
   std::string web_root = MOTIONGRAPH_WEB_ROOT;
 };
 
-// Set by SIGINT / SIGTERM, whichever thread takes them (libraries start threads of their own
+// Counted by SIGINT / SIGTERM, whichever thread takes them (libraries start threads of their own
 // before main, so blocking the signals everywhere is not possible); a watcher polls it.
-std::atomic<int> stop_signal = 0;
+std::atomic<int> stop_signals = 0;
 
-extern "C" void on_stop_signal(int signal) { stop_signal = signal; }
+extern "C" void on_stop_signal(int) { stop_signals.fetch_add(1); }
+
+// How long a stop waits for the clients still connected (an open tab's idle connection, a client
+// reading slowly: the server's workers finish each one's request first) before it ends anyway;
+// a second signal ends it at once.
+constexpr auto kStopWait = std::chrono::seconds(2);
 
 int run_serve(const ServeOptions& o) {
   struct sigaction action = {};
@@ -49,9 +56,18 @@ int run_serve(const ServeOptions& o) {
   std::atomic<bool> done = false;
   std::thread signal_thread([&] {
     while (!done) {
-      if (stop_signal != 0) {
+      if (stop_signals != 0) {
         std::fprintf(stderr, "motiongraph: stopping the studio\n");
         server.stop();
+        const auto asked = std::chrono::steady_clock::now();
+        while (!done) {
+          if (stop_signals > 1 || std::chrono::steady_clock::now() - asked > kStopWait) {
+            // (the studio writes no file: nothing is left half-written)
+            std::fprintf(stderr, "motiongraph: stopped without waiting for the clients still connected\n");
+            std::_Exit(0);
+          }
+          std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        }
         return;
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(100));

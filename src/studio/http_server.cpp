@@ -1,5 +1,6 @@
 #include "studio/http_server.h"
 
+#include <cctype>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -16,18 +17,38 @@ ApiRequest to_api_request(const httplib::Request& req) {
   ApiRequest r;
   r.method = req.method;
   r.path = req.path;
-  for (const auto& [key, value] : req.params) r.query.emplace(key, value);
+  r.query.insert(req.params.begin(), req.params.end());
   r.body = req.body;
   return r;
 }
 
-void send(const ApiResponse& response, httplib::Response& res) {
-  res.status = response.status;
+void send_error(httplib::Response& res, int status, const std::string& message) {
+  res.status = status;
+  res.set_content(json_text(nlohmann::json({{"error", message}})), "application/json");
+}
+
+// A Range header is heard on a download (GET of a result that is there: 206 Partial Content, a
+// download resumed) and nowhere else: httplib cut every answer to the range asked, with the
+// status 200 of a whole one (a truncated JSON answer, an error's first bytes).
+void send(const httplib::Request& req, const ApiResponse& response, httplib::Response& res) {
+  const bool ranged = response.status == 200 && !response.file_name.empty() && req.method == "GET";
+  if (!ranged) const_cast<httplib::Request&>(req).ranges.clear();  // (the server's own request object)
+  if (!ranged || req.ranges.empty()) res.status = response.status;  // else httplib's 206
   if (!response.file_name.empty()) {
     res.set_header("Content-Disposition", fmt::format("attachment; filename=\"{}\"", response.file_name));
   }
+  if (!response.allow.empty()) res.set_header("Allow", response.allow);
   res.set_header("Cache-Control", "no-store");
-  res.set_content(response.body, response.content_type.c_str());
+  if (response.status != 204) res.set_content(response.body, response.content_type.c_str());
+}
+
+// "host:port" of an Origin header ("http://host:port"), lower case; empty when it has no scheme.
+std::string origin_authority(const std::string& origin) {
+  const size_t scheme = origin.find("://");
+  if (scheme == std::string::npos) return "";
+  std::string authority = origin.substr(scheme + 3);
+  for (char& c : authority) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return authority;
 }
 
 }  // namespace
@@ -42,7 +63,7 @@ HttpServer::HttpServer(const StudioApi& api, std::string web_root)
   // stop() from another thread is seen within 0.1 s whatever the accept() is doing.
   s.set_idle_interval(0, 100000);
   auto api_handler = [this](const httplib::Request& req, httplib::Response& res) {
-    send(api_->handle(to_api_request(req)), res);
+    send(req, api_->handle(to_api_request(req)), res);
   };
   // A request with a body method but neither Content-Length nor Transfer-Encoding has an empty
   // body (HTTP/1.1); httplib would read one until its read timeout, holding a worker 10 s.
@@ -50,20 +71,39 @@ HttpServer::HttpServer(const StudioApi& api, std::string web_root)
     // A NUL byte (%00) in the path: the file opened would end there, its type read past it
     // ("index.html%00.png" served index.html as a PNG).
     if (req.path.find('\0') != std::string::npos) {
-      res.status = 400;
-      res.set_content(json_text(nlohmann::json({{"error", "the path holds a NUL byte (%00)"}})), "application/json");
+      send_error(res, 400, "the path holds a NUL byte (%00)");
       return httplib::Server::HandlerResponse::Handled;
     }
+    // A chunked body has no length to check before it is read (httplib read 800 MB of one whole,
+    // past the limit on bodies); a client sends JSON with its length.
+    if (req.has_header("Transfer-Encoding")) {
+      send_error(res, 411,
+                 fmt::format("send the body with a Content-Length (Transfer-Encoding '{}' is not taken; a body "
+                             "holds at most {} bytes)",
+                             req.get_header_value("Transfer-Encoding"), kMaxBodyBytes));
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    // A page of another site may send the API requests a browser sends without asking (a form's
+    // POST: a 200 m path, sessions that push the user's out); an Origin that is not this server's
+    // own is refused. Tools that send no Origin (curl, scripts) are not concerned.
+    if (req.path.rfind("/api/", 0) == 0 && req.has_header("Origin")) {
+      std::string host = req.get_header_value("Host");
+      for (char& c : host) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      if (origin_authority(req.get_header_value("Origin")) != host) {
+        send_error(res, 403,
+                   fmt::format("a page of another origin ({}) may not use the studio's API",
+                               req.get_header_value("Origin").substr(0, 100)));
+        return httplib::Server::HandlerResponse::Handled;
+      }
+    }
     const bool body_method = req.method == "POST" || req.method == "PUT" || req.method == "PATCH";
-    if (!body_method || req.has_header("Content-Length") || req.has_header("Transfer-Encoding")) {
+    if (!body_method || req.has_header("Content-Length")) {
       return httplib::Server::HandlerResponse::Unhandled;
     }
     if (req.path.rfind("/api/", 0) == 0) {
       api_handler(req, res);
     } else {
-      res.status = 405;
-      res.set_content(json_text(nlohmann::json({{"error", fmt::format("{} {}: HTTP 405", req.method, req.path)}})),
-                      "application/json");
+      send_error(res, 405, fmt::format("{} {}: HTTP 405", req.method, req.path));
     }
     return httplib::Server::HandlerResponse::Handled;
   });
@@ -72,14 +112,23 @@ HttpServer::HttpServer(const StudioApi& api, std::string web_root)
   s.Put(R"(/api/.*)", api_handler);
   s.Patch(R"(/api/.*)", api_handler);
   s.Delete(R"(/api/.*)", api_handler);
+  s.Options(R"(/api/.*)", api_handler);
   // Workers enough that a browser's idle keep-alive connections (each holds one for up to 5 s)
   // leave others free.
   s.new_task_queue = [] { return new httplib::ThreadPool(32); };
   s.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
     if (!res.body.empty()) return;
+    // A body sent as a form (curl -d, urllib without a Content-Type) is held to httplib's 8192
+    // bytes for forms, whatever its length is below kMaxBodyBytes.
+    const bool form = req.get_header_value("Content-Type").rfind("application/x-www-form-urlencoded", 0) == 0;
     const std::string message =
-        res.status == 413 ? fmt::format("the request body is larger than {} bytes", kMaxBodyBytes)
-                          : fmt::format("{} {}: HTTP {}", req.method, req.path, res.status);
+        res.status == 413 && form
+            ? fmt::format("a body sent as a form (Content-Type application/x-www-form-urlencoded, which curl -d "
+                          "sends) holds at most 8192 bytes: send JSON as application/json (curl -H 'Content-Type: "
+                          "application/json'), up to {} bytes",
+                          kMaxBodyBytes)
+        : res.status == 413 ? fmt::format("the request body is larger than {} bytes", kMaxBodyBytes)
+                            : fmt::format("{} {}: HTTP {}", req.method, req.path, res.status);
     res.set_content(json_text(nlohmann::json({{"error", message}})), "application/json");
   });
   s.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr) {

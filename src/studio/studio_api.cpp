@@ -5,13 +5,16 @@
 #include <cmath>
 #include <exception>
 #include <initializer_list>
+#include <optional>
 #include <span>
 #include <string_view>
+#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "motiongraph/core/json_text.h"
+#include "motiongraph/core/text.h"
 #include "motiongraph/core/transition_rate.h"
 #include "motiongraph/evaluation/foot_slide_report.h"
 #include "motiongraph/evaluation/path_shortfalls.h"
@@ -32,6 +35,7 @@ using nlohmann::json;
 struct ApiError {
   int status = 400;
   std::string message;
+  std::string allow = {};  // a 405's: the methods the path takes
 };
 
 ApiResponse json_response(const json& body, int status = 200) {
@@ -41,14 +45,19 @@ ApiResponse json_response(const json& body, int status = 200) {
   return r;
 }
 
-ApiResponse error_response(const ApiError& e) { return json_response({{"error", e.message}}, e.status); }
+ApiResponse error_response(const ApiError& e) {
+  ApiResponse r = json_response({{"error", e.message}}, e.status);
+  r.allow = e.allow;
+  return r;
+}
 
-// A whole decimal integer in [lo, hi].
+// A whole decimal integer in [lo, hi], written as it is written back: no '+', no leading zero,
+// no "-0" (/api/clips/01 and /api/clips/-0 named clip 1 and clip 0).
 std::optional<long long> parse_integer(const std::string& text, long long lo, long long hi) {
   long long value = 0;
   const char* end = text.data() + text.size();
   auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  if (ec != std::errc() || ptr != end || value < lo || value > hi) return std::nullopt;
+  if (ec != std::errc() || ptr != end || value < lo || value > hi || text != std::to_string(value)) return std::nullopt;
   return value;
 }
 
@@ -158,31 +167,67 @@ class Router {
   }
 
   ApiResponse route() {
+    using Handler = ApiResponse (Router::*)();
+    struct Endpoint {
+      const char* method;  // "GET" (HEAD too) or "POST"
+      Handler handler;
+      std::vector<std::string_view> query;  // the query keys it takes
+    };
     const auto& p = parts_;
-    if (p.empty() || p[0] != "api") throw ApiError{404, fmt::format("no such endpoint: {}", request_.path)};
     const size_t n = p.size();
-    if (n == 2 && p[1] == "summary") return get(&Router::summary);
-    if (n == 2 && p[1] == "clips") return get(&Router::clips);
-    if (n == 4 && p[1] == "clips" && p[3] == "frames") return get(&Router::clip_frames);
-    if (n == 2 && p[1] == "matrix.png") return get(&Router::matrix);
-    if (n == 2 && p[1] == "transitions") return get(&Router::transitions);
-    if (n == 4 && p[1] == "transitions" && p[3] == "poses") return get(&Router::transition_poses);
-    if (n == 2 && p[1] == "walk") return post(&Router::walk);
-    if (n == 2 && p[1] == "path") return post(&Router::path);
-    if (n == 3 && p[1] == "steer" && p[2] == "sessions") return post(&Router::create_session);
-    if (n == 5 && p[1] == "steer" && p[2] == "sessions" && p[4] == "step") return post(&Router::step_session);
-    if (n == 3 && p[1] == "results") return get(&Router::result_file);
-    throw ApiError{404, fmt::format("no such endpoint: {}", request_.path)};
+    std::optional<Endpoint> endpoint;
+    if (n >= 2 && p[0] == "api") {
+      const std::string& what = p[1];
+      if (n == 2 && what == "summary") endpoint = Endpoint{"GET", &Router::summary, {}};
+      if (n == 2 && what == "clips") endpoint = Endpoint{"GET", &Router::clips, {}};
+      if (n == 4 && what == "clips" && p[3] == "frames") {
+        endpoint = Endpoint{"GET", &Router::clip_frames, {"from", "count"}};
+      }
+      if (n == 2 && what == "matrix.png") endpoint = Endpoint{"GET", &Router::matrix, {}};
+      if (n == 2 && what == "transitions") endpoint = Endpoint{"GET", &Router::transitions, {}};
+      if (n == 4 && what == "transitions" && p[3] == "poses") {
+        endpoint = Endpoint{"GET", &Router::transition_poses, {}};
+      }
+      if (n == 2 && what == "walk") endpoint = Endpoint{"POST", &Router::walk, {}};
+      if (n == 2 && what == "path") endpoint = Endpoint{"POST", &Router::path, {}};
+      if (n == 3 && what == "steer" && p[2] == "sessions") endpoint = Endpoint{"POST", &Router::create_session, {}};
+      if (n == 5 && what == "steer" && p[2] == "sessions" && p[4] == "step") {
+        endpoint = Endpoint{"POST", &Router::step_session, {}};
+      }
+      if (n == 3 && what == "results") endpoint = Endpoint{"GET", &Router::result_file, {"root_motion", "figure"}};
+    }
+    if (!endpoint) throw ApiError{404, fmt::format("no such endpoint: {}", request_.path)};
+    const bool get = std::string_view(endpoint->method) == "GET";
+    const std::string allow = get ? "GET, HEAD, OPTIONS" : "POST, OPTIONS";
+    if (request_.method == "OPTIONS") {
+      ApiResponse r;
+      r.status = 204;
+      r.allow = allow;
+      return r;
+    }
+    if (request_.method != endpoint->method && !(get && request_.method == "HEAD")) {
+      throw ApiError{405, fmt::format("{} takes {}, not {}", request_.path, endpoint->method, request_.method), allow};
+    }
+    check_query(endpoint->query);
+    return (this->*endpoint->handler)();
   }
 
  private:
-  ApiResponse get(ApiResponse (Router::*handler)()) { return method("GET", handler); }
-  ApiResponse post(ApiResponse (Router::*handler)()) { return method("POST", handler); }
-  ApiResponse method(const char* expected, ApiResponse (Router::*handler)()) {
-    if (request_.method != expected) {
-      throw ApiError{405, fmt::format("{} takes {}, not {}", request_.path, expected, request_.method)};
+  // The query's keys are the endpoint's, each given once: a misspelt "?rootmotion=1" was
+  // ignored (the download came without it), and of "?from=5&from=7" the first was taken.
+  void check_query(const std::vector<std::string_view>& known) const {
+    for (auto it = request_.query.begin(); it != request_.query.end(); it = request_.query.upper_bound(it->first)) {
+      const std::string& key = it->first;
+      if (std::find(known.begin(), known.end(), key) == known.end()) {
+        std::string names;
+        for (std::string_view name : known) names += fmt::format("{}'{}'", names.empty() ? "" : ", ", name);
+        throw ApiError{400, fmt::format("unknown query parameter {} ({})", mg::quoted(key),
+                                        names.empty() ? "this request takes none" : "this request takes " + names)};
+      }
+      if (request_.query.count(key) > 1) {
+        throw ApiError{400, fmt::format("query parameter {} is given twice", mg::quoted(key))};
+      }
     }
-    return (this->*handler)();
   }
 
   const MotionDatabase& db() const { return service_.file().database; }

@@ -1,7 +1,10 @@
 // The studio's JSON API as a function from a request (method, path, query, body) to a
 // response (status, content type, body), so it is tested without sockets; http_server.h
 // puts it on the network. Errors are 4xx with {"error": "one line"}; every number is
-// checked (type, finite, range) and every answer is bounded in size.
+// checked (type, finite, range) and every answer is bounded in size. A body or query key a
+// request does not take is refused, as is a query key given twice; a path index is plain decimal
+// digits (no sign, no leading zero). HEAD is answered as GET; OPTIONS says (Allow) which methods
+// a path takes, and a method it does not take is 405 saying the same.
 //
 //   GET  /api/summary                       the graph, database and per-tag statistics
 //   GET  /api/clips                         the clips
@@ -36,9 +39,9 @@
 namespace mg::studio {
 
 struct ApiRequest {
-  std::string method;  // "GET", "POST", ...
+  std::string method;  // "GET", "HEAD" (answered as GET), "POST", "OPTIONS", ...
   std::string path;    // "/api/..." without the query
-  std::map<std::string, std::string> query;
+  std::multimap<std::string, std::string> query;  // a key given twice is refused
   std::string body;
 };
 
@@ -47,6 +50,7 @@ struct ApiResponse {
   std::string content_type = "application/json";
   std::string body;
   std::string file_name;  // when set, the body is a download of that name
+  std::string allow;      // the methods the path takes ("GET, HEAD"): OPTIONS answers and 405s carry it
 };
 
 class StudioApi {

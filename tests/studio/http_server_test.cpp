@@ -160,5 +160,81 @@ TEST_F(StudioServer, ABodyWithoutALengthIsEmpty) {
   EXPECT_TRUE(nlohmann::json::parse(patch->body).contains("error"));
 }
 
+// What a scripting client or a download manager sends: HEAD and OPTIONS are answered, a 405
+// says which methods the path takes, a Range is heard on a download only (206 with the bytes
+// asked; elsewhere the whole answer: it got 200 with a cut JSON), a chunked body is refused
+// before it is read, a form body past httplib's 8192 bytes says to send JSON, and a page of
+// another origin may not use the API.
+TEST_F(StudioServer, AnswersHttpAsClientsUseIt) {
+  auto c = client();
+  auto head = c.Head("/api/summary");
+  ASSERT_TRUE(head);
+  EXPECT_EQ(head->status, 200);
+  EXPECT_TRUE(head->body.empty());
+  for (const auto& [path, allow] :
+       {std::pair{"/api/summary", "GET, HEAD, OPTIONS"}, std::pair{"/api/walk", "POST, OPTIONS"}}) {
+    auto options = c.Options(path);
+    ASSERT_TRUE(options);
+    EXPECT_EQ(options->status, 204) << path;
+    EXPECT_EQ(options->get_header_value("Allow"), allow) << path;
+  }
+  auto patch = c.Patch("/api/summary", "{}", "application/json");
+  ASSERT_TRUE(patch);
+  EXPECT_EQ(patch->status, 405);
+  EXPECT_EQ(patch->get_header_value("Allow"), "GET, HEAD, OPTIONS");
+
+  // Range: the whole JSON answer (and the whole error), but a download's bytes asked.
+  auto walk = c.Post("/api/walk", R"({"min_frames": 30})", "application/json");
+  ASSERT_TRUE(walk);
+  ASSERT_EQ(walk->status, 200) << walk->body;
+  const int result = nlohmann::json::parse(walk->body)["result"].get<int>();
+  const std::string download = "/api/results/" + std::to_string(result) + ".bvh";
+  auto whole = c.Get(download);
+  ASSERT_TRUE(whole);
+  ASSERT_EQ(whole->status, 200);
+  ASSERT_GT(whole->body.size(), 100u);
+  const httplib::Headers range = {{"Range", "bytes=10-59"}};
+  auto part = c.Get(download, range);
+  ASSERT_TRUE(part);
+  EXPECT_EQ(part->status, 206);
+  EXPECT_EQ(part->body, whole->body.substr(10, 50));
+  EXPECT_EQ(part->get_header_value("Content-Range"), "bytes 10-59/" + std::to_string(whole->body.size()));
+  for (const char* path : {"/api/summary", "/api/clips/999/frames", "/api/results/77777.bvh"}) {
+    auto ranged = c.Get(path, range);
+    ASSERT_TRUE(ranged);
+    EXPECT_NE(ranged->status, 206) << path;
+    EXPECT_TRUE(nlohmann::json::accept(ranged->body)) << path << ": " << ranged->body;
+  }
+
+  // A chunked body: refused before it is read.
+  const std::string chunked = raw_request(
+      port_,
+      "POST /api/walk HTTP/1.1\r\nHost: studio\r\nTransfer-Encoding: chunked\r\nConnection: close\r\n\r\n"
+      "2\r\n{}\r\n0\r\n\r\n",
+      8);
+  EXPECT_EQ(chunked.rfind("HTTP/1.1 411", 0), 0u) << chunked;
+  EXPECT_NE(chunked.find("send the body with a Content-Length"), std::string::npos) << chunked;
+  // A form body past 8192 bytes: what to send instead, not that it passes the 1 MiB limit.
+  std::string padded = R"({"min_frames": 10})";
+  padded.resize(8193, ' ');
+  auto form = c.Post("/api/walk", padded, "application/x-www-form-urlencoded");
+  ASSERT_TRUE(form);
+  EXPECT_EQ(form->status, 413);
+  EXPECT_NE(form->body.find("send JSON as application/json"), std::string::npos) << form->body;
+  auto as_json = c.Post("/api/walk", padded, "application/json");
+  ASSERT_TRUE(as_json);
+  EXPECT_EQ(as_json->status, 200) << as_json->body;
+
+  // Origin: this server's own (the studio's page) or none (curl, scripts), not another's.
+  const std::string own = "http://127.0.0.1:" + std::to_string(port_);
+  auto same = c.Post("/api/steer/sessions", httplib::Headers{{"Origin", own}}, "{}", "application/json");
+  ASSERT_TRUE(same);
+  EXPECT_EQ(same->status, 200) << same->body;
+  auto other = c.Post("/api/steer/sessions", httplib::Headers{{"Origin", "http://evil.example"}}, "{}", "text/plain");
+  ASSERT_TRUE(other);
+  EXPECT_EQ(other->status, 403);
+  EXPECT_NE(other->body.find("another origin (http://evil.example)"), std::string::npos) << other->body;
+}
+
 }  // namespace
 }  // namespace mg::test

@@ -568,6 +568,32 @@ TEST(StudioApi, SteeringAndPathsSayWhatTheGraphCannotGive) {
   EXPECT_EQ(tight.json["warnings"], tight.json["shortfalls"]);
 }
 
+// A query key a request does not take, or one given twice, is refused (a misspelt "rootmotion"
+// downloaded without root motion); a path index is written as it is read back ("01", "-0" named
+// clips 1 and 0).
+TEST(StudioApi, QueriesAndPathIndicesAreTakenAsWritten) {
+  expect_error(call_api("GET", "/api/summary", "", {{"t", "1"}}), 400,
+               "unknown query parameter 't' (this request takes none)");
+  expect_error(call_api("GET", "/api/clips/0/frames", "", {{"form", "10"}}), 400,
+               "unknown query parameter 'form' (this request takes 'from', 'count')");
+  expect_error(call_api("GET", "/api/clips/0/frames", "", {{"from", "5"}, {"from", "7"}}), 400,
+               "query parameter 'from' is given twice");
+  EXPECT_EQ(call_api("GET", "/api/clips/0/frames", "", {{"from", "5"}}).response.status, 200);
+  for (const char* index : {"01", "-0", "+1", " 1", "1 "}) {
+    expect_error(call_api("GET", std::string("/api/clips/") + index + "/frames"), 404, "no clip");
+  }
+  EXPECT_EQ(call_api("GET", "/api/clips/1/frames").response.status, 200);
+  expect_error(call_api("GET", "/api/clips/0/frames", "", {{"from", "05"}}), 400, "'from' must be an integer");
+  // OPTIONS says what a path takes; another method is 405 saying the same.
+  const ApiCall options = call_api("OPTIONS", "/api/path");
+  EXPECT_EQ(options.response.status, 204);
+  EXPECT_EQ(options.response.allow, "POST, OPTIONS");
+  const ApiCall wrong = call_api("GET", "/api/path");
+  expect_error(wrong, 405, "/api/path takes POST, not GET");
+  EXPECT_EQ(wrong.response.allow, "POST, OPTIONS");
+  EXPECT_EQ(call_api("HEAD", "/api/summary").response.status, 200);
+}
+
 TEST(StudioApi, BadSteeringIs4xx) {
   expect_error(call_api("POST", "/api/steer/sessions", R"({"tag": "fly"})"), 400, "'fly' is not a motion tag");
   // A tag of 100 KB is named by its first 40 characters, not echoed whole.

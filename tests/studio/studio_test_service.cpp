@@ -17,11 +17,13 @@ studio::SynthesisService& studio_service() {
 }
 
 ApiCall call_api(const std::string& method, const std::string& path, const std::string& body,
-                 const std::map<std::string, std::string>& query) {
+                 const std::multimap<std::string, std::string>& query) {
   const studio::StudioApi api(studio_service());
   ApiCall call;
   call.response = api.handle({method, path, query, body});
-  if (call.response.content_type == "application/json") call.json = nlohmann::json::parse(call.response.body);
+  if (call.response.content_type == "application/json" && !call.response.body.empty()) {
+    call.json = nlohmann::json::parse(call.response.body);
+  }
   return call;
 }
 

@@ -20,6 +20,6 @@ struct ApiCall {
 };
 
 ApiCall call_api(const std::string& method, const std::string& path, const std::string& body = "",
-                 const std::map<std::string, std::string>& query = {});
+                 const std::multimap<std::string, std::string>& query = {});
 
 }  // namespace mg::test
