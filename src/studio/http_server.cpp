@@ -58,6 +58,9 @@ HttpServer::HttpServer(const StudioApi& api, std::string web_root)
   httplib::Server& s = *server_;
   s.set_payload_max_length(kMaxBodyBytes);
   s.set_read_timeout(10, 0);
+  // A steering client asks about 5 times a second: a connection kept for 100 requests, not 5
+  // (it reconnected every second).
+  s.set_keep_alive_max_count(100);
   s.set_write_timeout(10, 0);
   // Wait for connections with poll() and a timeout rather than in a bare accept(), so that
   // stop() from another thread is seen within 0.1 s whatever the accept() is doing.
@@ -81,6 +84,12 @@ HttpServer::HttpServer(const StudioApi& api, std::string web_root)
                  fmt::format("send the body with a Content-Length (Transfer-Encoding '{}' is not taken; a body "
                              "holds at most {} bytes)",
                              req.get_header_value("Transfer-Encoding"), kMaxBodyBytes));
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    // A multipart form's fields are not a body httplib passes on (the API saw none, and a walk ran
+    // with its defaults): the API takes JSON.
+    if (req.path.rfind("/api/", 0) == 0 && req.get_header_value("Content-Type").rfind("multipart/", 0) == 0) {
+      send_error(res, 415, "the API takes a JSON body (Content-Type application/json), not a multipart form");
       return httplib::Server::HandlerResponse::Handled;
     }
     // A page of another site may send the API requests a browser sends without asking (a form's

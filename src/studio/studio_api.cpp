@@ -574,7 +574,7 @@ class Router {
     ApiResponse r;
     r.content_type = format == Format::kGlb ? "model/gltf-binary" : "application/octet-stream";
     r.body = std::move(*bytes);
-    r.file_name = fmt::format("motiongraph-{}{}", *id, suffix);
+    r.file_name = fmt::format("motiongraph-{}{}{}", *id, root_motion ? "-root-motion" : "", suffix);
     return r;
   }
 

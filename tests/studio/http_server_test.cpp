@@ -225,6 +225,12 @@ TEST_F(StudioServer, AnswersHttpAsClientsUseIt) {
   ASSERT_TRUE(as_json);
   EXPECT_EQ(as_json->status, 200) << as_json->body;
 
+  // A multipart form: the API takes JSON (its fields were dropped and a walk ran with defaults).
+  auto multipart = c.Post("/api/walk", httplib::MultipartFormDataItems{{"min_frames", "10", "", ""}});
+  ASSERT_TRUE(multipart);
+  EXPECT_EQ(multipart->status, 415);
+  EXPECT_NE(multipart->body.find("not a multipart form"), std::string::npos) << multipart->body;
+
   // Origin: this server's own (the studio's page) or none (curl, scripts), not another's.
   const std::string own = "http://127.0.0.1:" + std::to_string(port_);
   auto same = c.Post("/api/steer/sessions", httplib::Headers{{"Origin", own}}, "{}", "application/json");

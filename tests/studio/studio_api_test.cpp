@@ -296,6 +296,10 @@ TEST(StudioApi, WalkReturnsMotionAndABvhDownload) {
       call_api("GET", "/api/results/" + std::to_string(walk.json["result"].get<int>()) + ".bvh", "", {{"root_motion", "1"}});
   ASSERT_EQ(root_motion.response.status, 200);
   EXPECT_EQ(root_motion.response.body.rfind("HIERARCHY\nROOT root_motion", 0), 0u);
+  // Named apart from the download without it (both were motiongraph-ID.bvh).
+  EXPECT_EQ(root_motion.response.file_name,
+            fmt::format("motiongraph-{}-root-motion.bvh", walk.json["result"].get<int>()));
+  EXPECT_EQ(bvh.response.file_name, fmt::format("motiongraph-{}.bvh", walk.json["result"].get<int>()));
   const ApiCall fbx = call_api("GET", "/api/results/" + std::to_string(walk.json["result"].get<int>()) + ".fbx");
   ASSERT_EQ(fbx.response.status, 200);
   EXPECT_EQ(fbx.response.body.rfind(std::string("Kaydara FBX Binary  \0", 21), 0), 0u);
