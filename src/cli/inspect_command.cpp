@@ -183,6 +183,14 @@ int run_inspect(const InspectOptions& o) {
       }
       fmt::print("timings:{}\n", timings);
     }
+    // What the build warned of, kept in the file (graphs built before it was kept have none).
+    if (const auto warnings = report.find("warnings"); warnings != report.end() && warnings->is_array() &&
+                                                       !warnings->empty()) {
+      fmt::print("the build warned:\n");
+      for (const nlohmann::json& line : *warnings) {
+        if (line.is_string()) fmt::print("  {}\n", line.get<std::string>());
+      }
+    }
   }
   return 0;
 }
@@ -192,7 +200,8 @@ int run_inspect(const InspectOptions& o) {
 Command add_inspect_command(CLI::App& app) {
   auto o = std::make_shared<InspectOptions>();
   CLI::App* sub = app.add_subcommand("inspect", "Print the statistics of a graph file: database, threshold, graph "
-                                                "before and after pruning, per tag, and timings.");
+                                                "before and after pruning, per tag, timings, and what the build "
+                                                "warned of.");
   sub->add_option("GRAPH", o->graph, "A .mgraph file written by 'motiongraph build'")->required();
   sub->add_flag("--json", o->json, "Print the stored build report as JSON");
   sub->add_flag("--nodes", o->nodes,

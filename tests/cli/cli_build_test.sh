@@ -587,6 +587,14 @@ assert rate < 1 and m and float(m[1]) == round(rate, 2) and int(m[2]) == after["
 said = [l.split(": warning: ", 1)[1] for l in err.splitlines() if ": warning: " in l]
 assert said and r["warnings"] == said, (said, r["warnings"])
 PY
+# And the graph file keeps them: inspect says what the build warned of.
+"$bin" inspect "$work/one131.mgraph" >"$work/one131-inspect.txt"
+python3 - "$work/one131.json" "$work/one131-inspect.txt" <<'PY'
+import json, sys
+r, text = json.load(open(sys.argv[1])), open(sys.argv[2]).read()
+shown = text.split("the build warned:\n")[1].splitlines()
+assert shown == ["  " + w for w in r["warnings"]], (shown, r["warnings"])
+PY
 grep -q "transitions a second" "$work/g.err" && { echo "FAIL: subject 16 warned of few transitions"; exit 1; }
 # info on them as a folder says how the two rigs became one (not "with the same joints").
 mkdir "$work/rigs" && cp "$data/bvh/111_36.bvh" "$data/bvh/131_01.bvh" "$work/rigs/"
