@@ -88,7 +88,8 @@ std::vector<double> by_relaxation(const MotionGraph& graph, const RestEndings& e
   const double far = std::numeric_limits<double>::infinity();
   std::vector<double> d(static_cast<size_t>(graph.node_count()), far);
   for (const RestEnding& e : endings.endings) {
-    d[static_cast<size_t>(e.node)] = std::min(d[static_cast<size_t>(e.node)], double(e.frames_to_rest(graph)));
+    d[static_cast<size_t>(e.node)] =
+        std::min(d[static_cast<size_t>(e.node)], double(e.frames_to_rest(graph) + e.penalty_frames));
   }
   for (bool changed = true; changed;) {
     changed = false;
@@ -116,7 +117,8 @@ TEST(RestEndings, CostToRestIsTheCheapestWayToAnEndingOnRandomGraphs) {
       if (trial % 10 == 0 || rng() % 6 != 0) continue;  // every tenth graph has none
       endings.of_node[static_cast<size_t>(n)] = static_cast<int>(endings.endings.size());
       const int frame = graph.nodes[static_cast<size_t>(n)].frame;
-      endings.endings.push_back({n, frame + static_cast<int>(rng() % 40), frame + 50});
+      const int penalty = rng() % 3 == 0 ? 60 : 0;  // a rest from a landing
+      endings.endings.push_back({n, frame + static_cast<int>(rng() % 40), frame + 50, penalty});
     }
     const double transition = (trial % 4) * 0.7, bridge = (trial % 3) * 10.0;
     const std::vector<double> fast = cost_to_rest(graph, endings, transition, bridge);
@@ -157,6 +159,34 @@ TEST(RestEndings, Subject16ComesToRestOnlyAtTheEndsOfItsStoppingClips) {
   int leaps = 0;
   for (int e = 0; e < context.graph->edge_count(); ++e) leaps += context.rest().leap(e) ? 1 : 0;
   EXPECT_GT(leaps, 0);
+}
+
+// An ending of a clip that leaps (no foot down for longer than kMaxFlightS) within kMaxRestLeadS
+// before it stands rests from a landing, and costs kLandingRestPenaltyS more; the stopping clips'
+// endings cost their frames alone. Judged here from the contacts, frame by frame.
+TEST(RestEndings, ARestFromALandingCostsMore) {
+  const auto& s = test::subject16();
+  const SynthesisContext& context = s.context();
+  const double fps = context.db->fps;
+  int landings = 0, stops = 0;
+  for (const RestEnding& ending : context.rest().endings) {
+    const DatabaseClip& clip = context.db->clips[static_cast<size_t>(context.db->clip_of(ending.last_frame))];
+    bool leapt = false;
+    int off = 0;  // frames in a row with no foot down
+    for (int f = std::max(clip.first_frame, ending.rest_frame - static_cast<int>(std::lround(kMaxRestLeadS * fps)));
+         f < ending.rest_frame; ++f) {
+      off = context.frame_contacts[static_cast<size_t>(f)] == 0 ? off + 1 : 0;
+      leapt = leapt || off > std::lround(kMaxFlightS * fps);
+    }
+    EXPECT_EQ(ending.penalty_frames, leapt ? std::lround(kLandingRestPenaltyS * fps) : 0) << clip.name;
+    EXPECT_EQ(ending.cost(*context.graph), ending.frames_to_rest(*context.graph) + ending.penalty_frames);
+    (leapt ? landings : stops) += 1;
+    if (clip.name == "16_33") {
+      EXPECT_FALSE(leapt);  // slow walk, stop
+    }
+  }
+  EXPECT_GT(landings, 0);  // 16_01 and 16_05, jumps that land and stand
+  EXPECT_GT(stops, 0);
 }
 
 }  // namespace

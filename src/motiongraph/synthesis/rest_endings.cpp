@@ -50,6 +50,7 @@ RestEndings find_rest_endings(const MotionDatabase& db, const MotionGraph& graph
   const int max_lead = static_cast<int>(std::lround(kMaxRestLeadS * db.fps));
   // The frames of a flight longer than a running stride's, each clip's on its own.
   const int max_flight = static_cast<int>(std::lround(kMaxFlightS * db.fps));
+  const int landing_penalty = static_cast<int>(std::lround(kLandingRestPenaltyS * db.fps));
   std::vector<char> leaping(frame_contacts.size(), 0);
   for (const DatabaseClip& clip : db.clips) {
     for (int f = clip.first_frame, end = clip.first_frame + clip.frame_count;
@@ -93,11 +94,14 @@ RestEndings find_rest_endings(const MotionDatabase& db, const MotionGraph& graph
     for (int f = clip.first_frame; f < rest_frame && static_cast<size_t>(f) < leaping.size(); ++f) {
       if (leaping[static_cast<size_t>(f)] != 0) after_flight = f;
     }
+    // A leap within kMaxRestLeadS before it stands: it stands from a landing.
+    const bool landing = after_flight >= clip.first_frame && rest_frame - after_flight <= max_lead;
+    const int penalty = landing ? landing_penalty : 0;
     for (int n = first; n < node; ++n) {
       const int frame = graph.nodes[static_cast<size_t>(n)].frame;
       if (frame <= after_flight || rest_frame - frame > max_lead) continue;
       out.of_node[static_cast<size_t>(n)] = static_cast<int>(out.endings.size());
-      out.endings.push_back({n, rest_frame, clip.first_frame + clip.frame_count - 1});
+      out.endings.push_back({n, rest_frame, clip.first_frame + clip.frame_count - 1, penalty});
     }
   }
   return out;
@@ -108,7 +112,7 @@ std::vector<double> cost_to_rest(const MotionGraph& graph, const RestEndings& en
   std::vector<double> at_rest(static_cast<size_t>(graph.node_count()), std::numeric_limits<double>::infinity());
   for (const RestEnding& ending : endings.endings) {
     double& c = at_rest[static_cast<size_t>(ending.node)];
-    c = std::min(c, static_cast<double>(ending.frames_to_rest(graph)));
+    c = std::min(c, ending.cost(graph));
   }
   return backward_costs(graph, std::move(at_rest), [&](int e) {
     return endings.leap(e) ? -1.0 : rest_edge_cost(graph.edges[static_cast<size_t>(e)], transition_cost, bridge_cost);
@@ -121,7 +125,7 @@ RestRoute rest_route(const MotionGraph& graph, const RestEndings& endings, const
   for (int frames = 0; costs[static_cast<size_t>(node)] >= 0.0;) {
     const double target = costs[static_cast<size_t>(node)];
     const RestEnding* here = endings.at(node);
-    if (here != nullptr && here->frames_to_rest(graph) <= target + 1e-9) {
+    if (here != nullptr && here->cost(graph) <= target + 1e-9) {
       route.ending = here;
       break;
     }

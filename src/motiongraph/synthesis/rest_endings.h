@@ -13,6 +13,10 @@
 // running stride's flight: subject 16 runs up to 0.29 s off the ground, jumps 0.43-0.48 s)
 // between it and the rest frame, and when it is at most kMaxRestLeadS
 // before it (a long dance is no way to stop); nor does the way to it leap (RestEndings::leaps).
+// A clip that leaps within kMaxRestLeadS before it stands comes to rest from a landing (a high
+// jump's crouch): its endings cost kLandingRestPenaltyS more, so that the way to rest takes a stop
+// by slowing down where one is near (running into rest on the complete subject 16 stood in 16_04's
+// landing crouch), and a landing where nothing else is.
 #pragma once
 
 #include <span>
@@ -30,16 +34,20 @@ constexpr int kStillWindowFrames = 5;
 constexpr double kMinStillS = 0.1;
 constexpr double kMaxFlightS = 0.35;
 constexpr double kMaxRestLeadS = 4.0;
+constexpr double kLandingRestPenaltyS = 2.0;
 
 struct RestEnding {
   int node = 0;        // the graph node it leaves from (its frame is the first it plays)
   int rest_frame = 0;  // global frame from which the root stands still to the clip's end
   int last_frame = 0;  // the clip's last frame (global): the frame held at rest
+  int penalty_frames = 0;  // added to its cost: kLandingRestPenaltyS's frames for a rest from a landing
 
   // Frames played from the node's frame until the character stands still (0 from a node at rest).
   int frames_to_rest(const MotionGraph& graph) const {
     return rest_frame > graph.nodes[node].frame ? rest_frame - graph.nodes[node].frame : 0;
   }
+  // What the way to rest pays for it: its frames to rest and its penalty.
+  double cost(const MotionGraph& graph) const { return frames_to_rest(graph) + penalty_frames; }
   // The database frames the ending plays: the node's frame to the clip's last, in order.
   std::vector<int> frames(const MotionGraph& graph) const;
 };
