@@ -144,6 +144,41 @@ TEST(PathSynthesis, ComesToRestAtThePathsEndWhenAsked) {
   EXPECT_NE(refused.error().message.find("no clip of the graph ends standing still"), std::string::npos);
 }
 
+// A path shorter than the way to rest from where its walk starts (the 1 m line's walk started
+// running, and stood 5.3 m past the end) starts at a node of a clip that stops instead, the
+// ending whose travel to standing is nearest the path's length; a start node given is kept.
+TEST(PathSynthesis, AShortPathEndingAtRestStartsAtAClipThatStops) {
+  const auto& s = test::subject16();
+  const MotionGraph& graph = *s.context().graph;
+  PathSynthesisSettings settings;
+  settings.rest_at_end = true;
+  for (const char* spec : {"line:1", "line:1.5"}) {
+    auto path = make_shape(spec);
+    ASSERT_TRUE(path.ok());
+    auto result = synthesize_path(s.context(), *path, settings);
+    ASSERT_TRUE(result.ok()) << spec << ": " << result.error().to_string();
+    ASSERT_NE(result->rest, nullptr) << spec;
+    EXPECT_LT(result->end_distance_m, kEndReachedM) << spec;
+    if (std::string(spec) == "line:1") {  // (its walk's own way stood 5.3 m past the end)
+      EXPECT_NE(s.context().rest().at(result->walk.start_node), nullptr) << spec << ": started at a clip that stops";
+    }
+    EXPECT_TRUE(check_walk(graph, result->walk).ok()) << spec;
+    const Vec2 still = result->roots[static_cast<size_t>(result->rest_frame)];
+    for (size_t f = static_cast<size_t>(result->rest_frame); f < result->roots.size(); ++f) {
+      EXPECT_LT((result->roots[f] - still).norm(), 0.1) << spec << " frame " << f;
+    }
+  }
+  // Its start node given: kept, and the way to rest stands where it can.
+  auto line = make_shape("line:1");
+  ASSERT_TRUE(line.ok());
+  auto walked = synthesize_path(s.context(), *line);
+  ASSERT_TRUE(walked.ok());
+  settings.start_node = walked->walk.start_node;
+  auto kept = synthesize_path(s.context(), *line, settings);
+  ASSERT_TRUE(kept.ok()) << kept.error().to_string();
+  EXPECT_EQ(kept->walk.start_node, walked->walk.start_node);
+}
+
 TEST(PathSynthesis, StartsAtThePathsStartHeadingAlongIt) {
   const auto& s = test::subject16();
   auto path = FloorPath::create({{3.0, 4.0}, {13.0, 4.0}});  // heading east (+x)

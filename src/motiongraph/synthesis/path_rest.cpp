@@ -7,6 +7,48 @@
 
 namespace mg {
 
+namespace {
+
+// The length of a root track in chords of `chord_frames` frames, carried on from `sample` (the last
+// chord's end) and `since` (frames since it).
+double track_length(std::span<const RootPose> track, int chord_frames, Vec2& sample, int& since) {
+  double metres = 0.0;
+  for (const RootPose& r : track) {
+    if (++since < chord_frames) continue;
+    const Vec2 p(r.position.x(), r.position.z());
+    metres += (p - sample).norm();
+    sample = p;
+    since = 0;
+  }
+  return metres;
+}
+
+int chord_frames(const SynthesisContext& context) {
+  return std::max(1, static_cast<int>(std::lround(kRestChordS * context.db->fps)));
+}
+
+}  // namespace
+
+std::vector<double> rest_ending_travel(const SynthesisContext& context) {
+  const MotionGraph& graph = *context.graph;
+  const RestEndings& rest = context.rest();
+  std::vector<double> travel(rest.endings.size(), 0.0);
+  for (size_t i = 0; i < travel.size(); ++i) {
+    const RestEnding& ending = rest.endings[i];
+    std::vector<RootPose> track;
+    for (int f = graph.nodes[static_cast<size_t>(ending.node)].frame; f <= ending.rest_frame; ++f) {
+      track.push_back(context.assembler.root_pose(f, FloorTransform{}));
+    }
+    if (track.empty()) continue;  // (its node stands already)
+    Vec2 sample(track.front().position.x(), track.front().position.z());
+    int since = 0;
+    travel[i] = track_length(track, chord_frames(context), sample, since);
+    const Vec2 still(track.back().position.x(), track.back().position.z());
+    if (since > 0) travel[i] += (still - sample).norm();
+  }
+  return travel;
+}
+
 PathRestWay nearest_rest_way(const SynthesisContext& context, const FloorPath& path, const Walk& walk,
                              const FloorTransform& start, std::span<const Vec2> edited_roots) {
   const MotionGraph& graph = *context.graph;
@@ -37,33 +79,8 @@ PathRestWay nearest_rest_way(const SynthesisContext& context, const FloorPath& p
   // The edit bends the way to rest onto the path keeping its own length: the way's travel is its
   // root's track measured in chords of kRestChordS (a stride's sway left out).
   const double length = path.length_m();
-  const int chord_frames = std::max(1, static_cast<int>(std::lround(kRestChordS * context.db->fps)));
-  auto track_length = [&](std::span<const RootPose> track, Vec2& sample, int& since) {
-    double metres = 0.0;
-    for (const RootPose& r : track) {
-      if (++since < chord_frames) continue;
-      const Vec2 p(r.position.x(), r.position.z());
-      metres += (p - sample).norm();
-      sample = p;
-      since = 0;
-    }
-    return metres;
-  };
-  // Each ending's travel from its node's frame to the frame it stands at (the same wherever it is placed).
-  std::vector<double> ending_travel(rest.endings.size());
-  for (size_t i = 0; i < ending_travel.size(); ++i) {
-    const RestEnding& ending = rest.endings[i];
-    std::vector<RootPose> track;
-    for (int f = graph.nodes[static_cast<size_t>(ending.node)].frame; f <= ending.rest_frame; ++f) {
-      track.push_back(context.assembler.root_pose(f, FloorTransform{}));
-    }
-    if (track.empty()) continue;  // (its node stands already)
-    Vec2 sample(track.front().position.x(), track.front().position.z());
-    int since = 0;
-    ending_travel[i] = track_length(track, sample, since);
-    const Vec2 still(track.back().position.x(), track.back().position.z());
-    if (since > 0) ending_travel[i] += (still - sample).norm();
-  }
+  const int chords = chord_frames(context);
+  const std::vector<double> ending_travel = rest_ending_travel(context);
   // From each node the walk reaches within kRestSearchM of the end, last first, every way on that
   // stands within kRestSearchS seconds (kRestExpansions edges tried from each; no bridge, no leap) to
   // a node of a clip that ends at rest, and that clip on: the one whose character stands nearest the
@@ -73,7 +90,7 @@ PathRestWay nearest_rest_way(const SynthesisContext& context, const FloorPath& p
   const int max_frames = static_cast<int>(std::lround(kRestSearchS * context.db->fps));
   // The fewest frames from each node until the character stands: a way that cannot stand within
   // max_frames is not followed.
-  const std::vector<double> fewest = cost_to_rest(graph, rest, 0.0, 0.0);
+  const std::vector<double> fewest = cost_to_rest(graph, rest, 0.0, 0.0, /*penalties=*/false);
   long long expansions = 0;
   std::vector<int> way;
   std::vector<RootPose> scratch;
@@ -91,7 +108,8 @@ PathRestWay nearest_rest_way(const SynthesisContext& context, const FloorPath& p
                                                          at_node.placement);
       const double along = at_node.along + (Vec2(first.x(), first.z()) - at_node.sample).norm() +
                            ending_travel[static_cast<size_t>(ending - rest.endings.data())];
-      const double score = std::abs(along - length) + kRestTransitionM * at_node.transitions;
+      const double score = std::abs(along - length) + kRestTransitionM * at_node.transitions +
+                           (ending->penalty_frames > 0 ? kRestLandingM : 0.0);
       if (score < best_score) {
         best = {kept, way, ending};
         best_score = score;
@@ -110,7 +128,7 @@ PathRestWay nearest_rest_way(const SynthesisContext& context, const FloorPath& p
       next.transitions += edge.transition ? 1 : 0;
       scratch.clear();
       context.assembler.append_edge_roots(e, next.placement, scratch);
-      next.along += track_length(scratch, next.sample, next.since);
+      next.along += track_length(scratch, chords, next.sample, next.since);
       if (next.along - length > kRestOvershootM) continue;  // gone well past the end
       way.push_back(e);
       visit(kept, next);

@@ -8,7 +8,13 @@
 // each node) to a node of such a clip, and that clip on, is measured as the path edit will lay it:
 // its root's track in chords of kRestChordS (a stride's sway left out) added to where the node
 // stands. The one standing nearest the end is kept, a transition on the way counting
-// kRestTransitionM more; where none is near, the cheapest way to rest from where the walk ends.
+// kRestTransitionM more and a rest from a landing (rest_endings.h) kRestLandingM more; where none is
+// near, the cheapest way to rest from where the walk ends.
+//
+// A path shorter than the way to rest from where its walk starts (a walk that starts running
+// stands metres past a 1 m path's end) is started instead at a node of a clip that stops: path
+// synthesis tries the kRestStarts endings whose travel to standing (rest_ending_travel) lies
+// nearest the path's length when the walk's way stands further than kEndReachedM from the end.
 #pragma once
 
 #include <span>
@@ -25,12 +31,18 @@ constexpr double kRestOvershootM = 1.0;
 constexpr long long kRestExpansions = 2000;
 constexpr double kRestTransitionM = 0.05;
 constexpr double kRestChordS = 0.5;
+constexpr double kRestLandingM = 0.5;
+constexpr int kRestStarts = 3;
 
 struct PathRestWay {
   size_t kept_edges = 0;               // of the walk's edges, those kept
   std::vector<int> edges;              // then these
   const RestEnding* ending = nullptr;  // then this clip on to its end; null: no way to rest
 };
+
+// Each ending's travel (rest_endings.h, by index) from its node's frame to the frame it stands at,
+// its root's track in chords of kRestChordS: how far it goes wherever it is placed.
+std::vector<double> rest_ending_travel(const SynthesisContext& context);
 
 // The way to rest for `walk` (played from `start`) along `path`; `edited_roots`, the floor roots of
 // its first frames as the path edit put them (PathSynthesisResult::roots).

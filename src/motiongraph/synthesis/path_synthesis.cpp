@@ -589,22 +589,48 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
   const MotionGraph& graph = *context.graph;
   auto masks = asked_masks(context, path);
   if (!masks) return masks.error();
-  auto searched = search_path(context, path, settings);
-  if (!searched) return searched.error();
-  const PathRestWay way = nearest_rest_way(context, path, searched->walk, searched->start, searched->roots);
-  if (way.ending == nullptr) return Error{"", 0, "the path cannot end at rest: no way to rest from its end"};
-  PathSynthesisResult result = std::move(*searched);
-  result.walk.edges.resize(way.kept_edges);
-  result.walk.edges.insert(result.walk.edges.end(), way.edges.begin(), way.edges.end());
-  const long long before_ending = result.walk.frame_count(graph);
-  result.walk.rest_frames = way.ending->frames(graph);
-  result.edit = {};
-  result.edit_undone = false;
-  if (auto finished = finish_walk(context, path, *masks, settings, false, result); !finished) return finished.error();
-  result.path_length_m = path.length_m();
-  result.rest = way.ending;
-  result.rest_frame = static_cast<int>(before_ending + way.ending->frames_to_rest(graph));
-  return result;
+  // The path searched from `start_settings`, then cut where its way to rest stands nearest the end.
+  auto at_rest = [&](const PathSynthesisSettings& start_settings) -> Result<PathSynthesisResult> {
+    auto searched = search_path(context, path, start_settings);
+    if (!searched) return searched.error();
+    const PathRestWay way = nearest_rest_way(context, path, searched->walk, searched->start, searched->roots);
+    if (way.ending == nullptr) return Error{"", 0, "the path cannot end at rest: no way to rest from its end"};
+    PathSynthesisResult result = std::move(*searched);
+    result.walk.edges.resize(way.kept_edges);
+    result.walk.edges.insert(result.walk.edges.end(), way.edges.begin(), way.edges.end());
+    const long long before_ending = result.walk.frame_count(graph);
+    result.walk.rest_frames = way.ending->frames(graph);
+    result.edit = {};
+    result.edit_undone = false;
+    if (auto finished = finish_walk(context, path, *masks, start_settings, false, result); !finished) {
+      return finished.error();
+    }
+    result.path_length_m = path.length_m();
+    result.rest = way.ending;
+    result.rest_frame = static_cast<int>(before_ending + way.ending->frames_to_rest(graph));
+    return result;
+  };
+  auto best = at_rest(settings);
+  if (!best || best->end_distance_m <= kEndReachedM || settings.start_node >= 0) return best;
+  // Standing far from the end: a path shorter than the way to rest from where its walk starts.
+  // Started at the node of a clip that stops whose travel to standing is nearest the path's length
+  // (a landing's counting kRestLandingM more), the kRestStarts nearest tried.
+  const std::vector<double> travel = rest_ending_travel(context);
+  const RestEndings& rest = context.rest();
+  std::vector<size_t> order(travel.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  auto miss = [&](size_t i) {
+    return std::abs(travel[i] - path.length_m()) + (rest.endings[i].penalty_frames > 0 ? kRestLandingM : 0.0);
+  };
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return miss(a) < miss(b); });
+  for (size_t k = 0; k < std::min<size_t>(order.size(), kRestStarts); ++k) {
+    PathSynthesisSettings started = settings;
+    started.start_node = rest.endings[order[k]].node;
+    auto tried = at_rest(started);
+    if (!tried) return tried.error();
+    if (tried->end_distance_m < best->end_distance_m) best = std::move(tried);
+  }
+  return best;
 }
 
 }  // namespace mg

@@ -108,11 +108,11 @@ RestEndings find_rest_endings(const MotionDatabase& db, const MotionGraph& graph
 }
 
 std::vector<double> cost_to_rest(const MotionGraph& graph, const RestEndings& endings, double transition_cost,
-                                 double bridge_cost) {
+                                 double bridge_cost, bool penalties) {
   std::vector<double> at_rest(static_cast<size_t>(graph.node_count()), std::numeric_limits<double>::infinity());
   for (const RestEnding& ending : endings.endings) {
     double& c = at_rest[static_cast<size_t>(ending.node)];
-    c = std::min(c, ending.cost(graph));
+    c = std::min(c, penalties ? ending.cost(graph) : static_cast<double>(ending.frames_to_rest(graph)));
   }
   return backward_costs(graph, std::move(at_rest), [&](int e) {
     return endings.leap(e) ? -1.0 : rest_edge_cost(graph.edges[static_cast<size_t>(e)], transition_cost, bridge_cost);

@@ -88,10 +88,11 @@ inline double rest_edge_cost(const GraphEdge& edge, double transition_cost, doub
 
 // Per node, the least cost of coming to rest from it: frames played until the character stands
 // still (1 each), plus `transition_cost` per transition and `bridge_cost` more per bridge taken on
-// the way; -1 where no walk reaches an ending (every node or none in a pruned graph). Dijkstra over
-// the reversed edges from each ending's node.
+// the way, and a landing's penalty_frames unless `penalties` is false (then: the fewest frames); -1
+// where no walk reaches an ending (every node or none in a pruned graph). Dijkstra over the
+// reversed edges from each ending's node.
 std::vector<double> cost_to_rest(const MotionGraph& graph, const RestEndings& endings, double transition_cost,
-                                 double bridge_cost);
+                                 double bridge_cost, bool penalties = true);
 
 // The way to rest from `node` down `costs` (cost_to_rest's, with the same edge costs): at each node
 // its ending when that costs what the node does, else the first edge that leads as cheaply, until
