@@ -16,8 +16,8 @@
 // Asked to rest (ControlInput::rest), the character comes to rest at the end of a clip that ends
 // standing still (rest_endings.h) by the cheapest way there (cost_to_rest: frames until it
 // stands, the transition and bridge penalties on the way), turned by the heading edit on the
-// way and in the stopping clip as far as it travels (a turn asked with rest: it stands facing
-// the way asked as far as its last metres allow), plays that clip a decision's worth of frames at
+// way and in the stopping clip as far as it travels until a foot makes its last plant (a turn
+// asked with rest: it stands facing the way asked as far as its last steps allow), plays that clip a decision's worth of frames at
 // a time, and then holds its last frame
 // (resting(), standing()). Asked to move again, it goes on from
 // that frame where the graph has a node there (a library with clips that start from standing);
@@ -144,6 +144,7 @@ class Controller {
   std::vector<long long> rest_frames_;
   std::vector<int> ending_frames_;  // the ending's database frames, played a decision's worth at a time
   size_t ending_next_ = 0;
+  size_t ending_turned_ = 0;  // the ending's frames before this index are turned by the heading edit
   Motion held_pose_;  // the ending's last frame as played (the heading edit turned it): the frame held
 };
 
