@@ -16,10 +16,10 @@
 // Asked to rest (ControlInput::rest), the character comes to rest at the end of a clip that ends
 // standing still (rest_endings.h) by the cheapest way there (cost_to_rest: frames until it
 // stands, the transition and bridge penalties on the way), turned by the heading edit on the
-// way and in the stopping clip as far as it travels until a foot makes its last plant (a turn
-// asked with rest: it stands facing the way asked as far as its last steps allow), plays that clip a decision's worth of frames at
-// a time, and then holds its last frame
-// (resting(), standing()). Asked to move again, it goes on from
+// way and in the stopping clip until a foot makes its last plant (a turn asked with rest: it
+// stands facing the way asked as far as its last steps allow, in the clip's own stance), plays
+// that clip a decision's worth of frames at a time, and then holds its last frame (resting(),
+// standing()). Asked to move again, it goes on from
 // that frame where the graph has a node there (a library with clips that start from standing);
 // where it has none (the pruning left the clip's end out as a dead end: subject 16), rest is for
 // good (rest_is_for_good()). Where the graph has no such clip (RestEndings::empty), rest is not
