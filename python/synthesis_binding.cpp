@@ -175,15 +175,24 @@ class PyController {
     check(settings.validate());
     settings_ = settings;
     run_ = run;
-    cleanup_ = make_cleanup(context(), run, cleanup_warning_);
-    if (!cleanup_warning_.empty()) warn(graph.name + ": " + cleanup_warning_);
-    controller_ = take(Controller::create(context(), settings, input(heading_deg, tag, false), Vec2(at[0], at[1])));
+    std::string cleanup_warning;
+    cleanup_ = make_cleanup(context(), run, cleanup_warning);
+    if (!cleanup_warning.empty()) say(cleanup_warning);
+    // The first input picks where it starts, and says nothing: each step gives its own (a stop
+    // asked here is not a rest to come: a step without it asks for any motion).
+    if (!std::isfinite(heading_deg)) throw py::value_error(fmt::format("heading_deg must be finite, not {}", heading_deg));
+    SteeringControls starting(context());
+    const ControlInput first = take(starting.input({heading_deg, tag.value_or(""), false}, "the controller"));
+    controller_ = take(Controller::create(context(), settings, first, Vec2(at[0], at[1])));
   }
 
   // Threads may share a controller: its steps take turns (the lock taken without the GIL, which a
   // step gives up while it searches).
   PyMotion step(double heading_deg, const std::optional<std::string>& tag, bool rest) {
     const ControlInput in = input(heading_deg, tag, rest);
+    bool stays = false;  // at rest for good, asked to move
+    double rest_s = 0.0;
+    std::string rest_clip;
     std::unique_lock<std::mutex> lock(mutex_, std::defer_lock);
     int first = 0;
     std::vector<ContactMask> contacts;
@@ -201,6 +210,12 @@ class PyController {
       const std::vector<ContactMask> resting = context().frames_contacts(decision.rest_frames);
       contacts.insert(contacts.end(), resting.begin(), resting.end());
       if (cleanup_) cleaned = cleanup_->clean(motion_, first, contacts);
+      if (!in.rest && controller_->standing() && controller_->rest_is_for_good()) {
+        stays = true;
+        rest_s = static_cast<double>(controller_->rest_frame()) / context().db->fps;
+        const RestEnding* ending = controller_->rest_ending();
+        rest_clip = context().db->clips[static_cast<size_t>(context().db->clip_of(ending->last_frame))].name;
+      }
       played_.edges.insert(played_.edges.end(), decision.edges.begin(), decision.edges.end());
       played_.rest_frames.insert(played_.rest_frames.end(), decision.rest_frames.begin(), decision.rest_frames.end());
       if (cleaned) {
@@ -209,6 +224,12 @@ class PyController {
       }
     }
     lock.unlock();
+    if (stays && !warned_stays_) {
+      warned_stays_ = true;
+      say(fmt::format("the character came to rest at {:.2f} s, at the end of {}, and stays there: the steps asking "
+                      "it to move cannot (the graph has no way on from that clip's last frame)",
+                      rest_s, rest_clip));
+    }
     check(cleaned);
     return frames(std::move(decided), std::move(contacts));
   }
@@ -246,9 +267,7 @@ class PyController {
     std::vector<ContactMask> contacts;
     nlohmann::json report;
     Walk played{-1, {}};
-    // (with the GIL: the inputs' warnings change under it)
-    std::vector<std::string> warnings = controls_.warnings();
-    if (!cleanup_warning_.empty()) warnings.insert(warnings.begin(), cleanup_warning_);
+    std::vector<std::string> warnings = said_;  // (with the GIL, under which they are said)
     {
       py::gil_scoped_release release;
       const std::lock_guard<std::mutex> lock(mutex_);
@@ -302,8 +321,14 @@ class PyController {
     if (!std::isfinite(heading_deg)) throw py::value_error(fmt::format("heading_deg must be finite, not {}", heading_deg));
     const size_t said = controls_.warnings().size();
     const ControlInput in = take(controls_.input({heading_deg, tag.value_or(""), rest}, "the controller"));
-    for (size_t i = said; i < controls_.warnings().size(); ++i) warn(name_ + ": " + controls_.warnings()[i]);
+    for (size_t i = said; i < controls_.warnings().size(); ++i) say(controls_.warnings()[i]);
     return in;
+  }
+
+  // A warning: given now (with the graph's name) and kept for the report (with the GIL held).
+  void say(const std::string& line) {
+    said_.push_back(line);
+    warn(name_ + ": " + line);
   }
 
   PyMotion frames(Motion motion, std::vector<ContactMask> contacts) const {
@@ -316,8 +341,9 @@ class PyController {
 
   std::shared_ptr<const LoadedGraph> loaded_;
   std::string name_;
-  SteeringControls controls_;       // the inputs' warnings, said once (with the GIL held)
-  std::string cleanup_warning_;     // why no clean-up was made, when one was asked for
+  SteeringControls controls_;       // the steps' inputs, their warnings said once (with the GIL held)
+  std::vector<std::string> said_;   // every warning given, in order, for the report (with the GIL held)
+  bool warned_stays_ = false;       // steps asking to move after a rest for good, warned of once
   mutable std::mutex mutex_;       // held by a step, and while the motion so far is copied
   Motion motion_;
   std::optional<FootCleanup> cleanup_;

@@ -133,7 +133,8 @@ int run_steer(const SteerOptions& o) {
     const ScriptedControl& c = script->controls[i];
     const bool rest = inputs[i].rest;
     nlohmann::json tag_response = nullptr;
-    const bool changes_tag = !c.tag.empty() && c.tag != tag_before;
+    // (a stop the graph has no tag for was rest: no tag to reach)
+    const bool changes_tag = !c.tag.empty() && c.tag != tag_before && context.tag_mask(c.tag).ok();
     if (changes_tag) {
       // Until the next control asks for another tag (or none): a tag reached after that was asked
       // again.
@@ -254,7 +255,7 @@ Command add_steer_command(CLI::App& app) {
                "\"walk\"}, {\"at_s\": 4, \"heading_deg\": 90}, {\"at_s\": 8, \"tag\": \"run\"}]}; headings north (-z),\n"
                "east (+x), south, west or a bearing in degrees clockwise from north; without duration_s, the\n"
                "motion ends 4 s after the last control. {\"at_s\": 10, \"rest\": true} comes to rest at the end of a\n"
-               "clip that ends standing still (as does a stop the graph can hardly play).");
+               "clip that ends standing still (as does a stop the graph can hardly play or has no tag for).");
   o->common.add_to(*sub);
   sub->add_option("--script", o->script, "CONTROLS.json")->required()->check(CLI::ExistingFile);
   sub->add_option("--horizon", o->settings.horizon_s, "Seconds each decision looks ahead")->capture_default_str();

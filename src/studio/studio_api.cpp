@@ -16,6 +16,7 @@
 #include "motiongraph/core/json_text.h"
 #include "motiongraph/core/text.h"
 #include "motiongraph/core/transition_rate.h"
+#include "motiongraph/database/travel_tags.h"
 #include "motiongraph/evaluation/foot_slide_report.h"
 #include "motiongraph/evaluation/path_shortfalls.h"
 #include "motiongraph/evaluation/synthesis_run.h"
@@ -270,7 +271,8 @@ class Router {
     control.heading_deg = number_field(body, "heading_deg", 0.0, -720.0, 720.0);
     control.tag = string_field(body, "tag", "");
     if (control.tag == "any") control.tag.clear();
-    if (!control.tag.empty()) {
+    // (a stop the graph has no tag for is rest where it can: steering_controls.h)
+    if (!control.tag.empty() && !(is_stop_tag(control.tag) && !service_.context().rest().empty())) {
       if (auto mask = service_.context().tag_mask(control.tag); !mask) throw ApiError{400, mask.error().message};
     }
     control.rest = boolean_field(body, "rest", false);

@@ -160,6 +160,26 @@ JSON
   2>"$work/late-rest.err"
 grep -q "the control at 3 s asks to rest, but the character does not stand before the script ends at 3.5 s" \
   "$work/late-rest.err" || { cat "$work/late-rest.err"; exit 1; }
+# A library with no stop tag (most are; subject 16 read without CMU's index): a control asking
+# for stop comes to rest all the same, said once; another tag it does not have is an error.
+"$bin" build "$data/cmu/16" --no-cmu-tags --no-cache -q -o "$work/untagged.mgraph"
+printf '%s\n' '{"duration_s": 9, "controls": [{"at_s": 0, "heading": "north"}, {"at_s": 2, "tag": "stop"},
+  {"at_s": 3, "tag": "stop"}]}' >"$work/untagged-stop.json"
+"$bin" steer "$work/untagged.mgraph" --script "$work/untagged-stop.json" -o "$work/untagged-stop.json.out.json" \
+  --report "$work/untagged-stop-report.json" >/dev/null 2>"$work/untagged-stop.err"
+python3 - "$work/untagged-stop-report.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["rest"] is not None and r["rest"]["at_s"] is not None, r["rest"]
+assert [c["rest"] for c in r["controls"]] == [False, True, True], r["controls"]
+assert r["warnings"] == ["the control at 2 s asks for 'stop', which is not a motion tag of this graph; the character "
+                         "comes to rest instead, at the end of a clip that ends standing still"], r["warnings"]
+PY
+printf '%s\n' '{"controls": [{"at_s": 0, "tag": "run"}]}' >"$work/untagged-run.json"
+if "$bin" steer "$work/untagged.mgraph" --script "$work/untagged-run.json" -o "$work/x.bvh" 2>"$work/untagged-run.err"; then
+  echo "FAIL: an unknown tag steered"; exit 1
+fi
+grep -q "'run' is not a motion tag of this graph" "$work/untagged-run.err" || { cat "$work/untagged-run.err"; exit 1; }
 # A path asked to end at rest: the character stands at its end, still to the last frame.
 "$bin" path "$work/g.mgraph" --shape square:6 --rest-at-end -o "$work/rest-path.json" \
   --report "$work/rest-path-report.json" >"$work/rest-path.out"

@@ -256,12 +256,21 @@ def test_rest_equals_the_cli_and_stands_still(cli, graph_file, graph, tmp_path):
     root = motion.positions[:, 0, :]
     still = int(np.ceil(rest["at_s"] * fps))
     assert np.max(np.linalg.norm((root[still:] - root[still])[:, [0, 2]], axis=1)) < 0.1
-    step = controller.step(90, "run")
+    # Asked to move, it cannot, and says so once (as the CLI's steer does), in the report too.
+    with pytest.warns(UserWarning, match="and stays there: the steps asking it to move cannot") as caught:
+        step = controller.step(90, "run")
+        controller.step(0, "walk")
+    assert len([w for w in caught if "stays there" in str(w.message)]) == 1
+    assert sum("stays there" in w for w in controller.motion.report["warnings"]) == 1
     np.testing.assert_array_equal(step.positions, np.repeat(motion.positions[-1:], len(step), axis=0))
     assert controller.resting  # subject 16 has no way on from its stopping clips' ends
     with pytest.raises(TypeError):
         controller.step(0, "walk", rest=1)  # True or False, as the CLI and the studio take it
-    # A stop the graph can hardly play is rest too, said once.
+    # A stop the graph can hardly play is rest too, said once; asked of the controller itself it only
+    # picks where it starts (a step's own tag is what it plays), and says nothing.
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        graph.controller(heading_deg=0, tag="stop")
     other = graph.controller(heading_deg=0, tag="walk")
     with pytest.warns(UserWarning, match="comes to rest instead"):
         other.step(0, "stop")

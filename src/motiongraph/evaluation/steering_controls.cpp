@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "motiongraph/database/travel_tags.h"
 #include "motiongraph/evaluation/synthesis_run.h"
 
 namespace mg {
@@ -17,6 +18,17 @@ Result<ControlInput> SteeringControls::input(const SteeringControl& control, std
   in.rest = control.rest;
   if (!control.tag.empty()) {
     auto mask = context_->tag_mask(control.tag);
+    // A stop asked of a graph with no such tag (most libraries tag none): rest, where it can.
+    if (!mask && is_stop_tag(control.tag) && !context_->rest().empty()) {
+      if (!warned_stop_) {
+        warned_stop_ = true;
+        warnings_.push_back(fmt::format("{} asks for 'stop', which is not a motion tag of this graph; the character "
+                                        "comes to rest instead, at the end of a clip that ends standing still",
+                                        who));
+      }
+      in.rest = true;
+      return in;
+    }
     if (!mask) return mask.error();
     auto [note, inserted] = tags_.try_emplace(control.tag);
     if (inserted) {

@@ -1,7 +1,8 @@
 // Steering controls as a user gives them (a heading, a motion type, rest) turned into the
 // controller's input (synthesis/controller.h), telling once what the graph cannot give: a motion
 // type it plays in no frame or hardly (unplayable_tag), and rest where no clip of the graph ends
-// standing still. A stop the graph can hardly play is rest (stop_means_rest). The CLI's steer, the
+// standing still. A stop the graph can hardly play, or has no tag for, is rest (stop_means_rest)
+// where the graph has a clip to rest at. The CLI's steer, the
 // Python Controller and the studio's steering sessions read their controls with it, so that they
 // treat a stop alike and warn alike; what it said is also their reports' "warnings".
 #pragma once
@@ -48,6 +49,7 @@ class SteeringControls {
   };
   std::map<std::string, TagNote> tags_;
   bool warned_rest_ = false;
+  bool warned_stop_ = false;  // 'stop' asked of a graph without the tag
   std::vector<std::string> warnings_;
 };
 
