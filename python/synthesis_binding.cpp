@@ -206,9 +206,7 @@ class PyController {
       const ControllerDecision decision = controller_->step(motion_);
       decision_seconds_.push_back(decision.search_seconds);
       exhausted_ += decision.budget_exhausted ? 1 : 0;
-      contacts = context().edges_contacts(decision.edges);
-      const std::vector<ContactMask> resting = context().frames_contacts(decision.rest_frames);
-      contacts.insert(contacts.end(), resting.begin(), resting.end());
+      contacts = decision.contacts;
       if (cleanup_) cleaned = cleanup_->clean(motion_, first, contacts);
       if (!in.rest && controller_->standing() && controller_->rest_is_for_good()) {
         stays = true;

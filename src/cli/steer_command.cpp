@@ -89,9 +89,7 @@ int run_steer(const SteerOptions& o) {
     long long edge_start = motion.frame_count;
     const int first_new = motion.frame_count;
     const ControllerDecision d = controller->step(motion);
-    std::vector<ContactMask> contacts = context.edges_contacts(d.edges);
-    const std::vector<ContactMask> resting = context.frames_contacts(d.rest_frames);
-    contacts.insert(contacts.end(), resting.begin(), resting.end());
+    const std::vector<ContactMask>& contacts = d.contacts;
     all_contacts.insert(all_contacts.end(), contacts.begin(), contacts.end());
     if (cleanup) {
       // The decision's frames, cleaned as a game would before showing them.

@@ -205,9 +205,7 @@ Result<SteerStepResult> SynthesisService::step_session(int id, const SteeringCon
   do {
     const int first_new = out.motion.frame_count;
     const ControllerDecision decision = session->controller->step(out.motion);
-    std::vector<ContactMask> contacts = context().edges_contacts(decision.edges);
-    const std::vector<ContactMask> resting = context().frames_contacts(decision.rest_frames);
-    contacts.insert(contacts.end(), resting.begin(), resting.end());
+    const std::vector<ContactMask>& contacts = decision.contacts;
     if (session->cleanup) {
       if (auto s = session->cleanup->clean(out.motion, first_new, contacts); !s) return s.error();
     }

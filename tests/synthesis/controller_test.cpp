@@ -544,10 +544,8 @@ TEST(Controller, ATurnAskedWithRestKeepsTheStanceItStopsIn) {
       if (motion.frame_count >= 3 * motion.fps) controller->set_input({bearing_direction(heading), *walk, true});
       const int first = motion.frame_count;
       const ControllerDecision d = controller->step(motion);
-      std::vector<ContactMask> contacts = context.edges_contacts(d.edges);
-      const std::vector<ContactMask> resting = context.frames_contacts(d.rest_frames);
-      contacts.insert(contacts.end(), resting.begin(), resting.end());
-      ASSERT_TRUE(cleanup->clean(motion, first, contacts).ok());
+      ASSERT_EQ(d.contacts.size(), static_cast<size_t>(d.frames));
+      ASSERT_TRUE(cleanup->clean(motion, first, d.contacts).ok());
       ASSERT_LT(motion.frame_count, 30 * motion.fps) << "not at rest";
     }
     const RestEnding* ending = controller->rest_ending();

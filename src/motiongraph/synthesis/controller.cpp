@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "motiongraph/graph/graph_from_candidates.h"
+#include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/synthesis/steer_cost.h"
 
 namespace mg {
@@ -133,6 +134,7 @@ ControllerDecision Controller::step(Motion& out) {
   }
   decision.search_seconds = std::chrono::duration<double>(Clock::now() - begin).count();
   play(std::span<const int>(edges).first(committed), edges, out, decision);
+  decision.contacts = context_->edges_contacts(decision.edges);
   return decision;
 }
 
@@ -176,9 +178,12 @@ void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
   auto play_ending = [&](int& frames, size_t until) {
     const PreparedFloorTransform placement(rest_placement_);
     for (; frames > 0 && ending_next_ < until; --frames) {
+      const bool pivoting = ending_next_ >= ending_pivot_ && ending_next_ < ending_turned_;
       const int frame = ending_frames_[ending_next_++];
       context_->assembler.append_frame(frame, placement, out);
       decision.rest_frames.push_back(frame);
+      decision.contacts.push_back(context_->frames_contacts(std::span(&frame, 1)).front() &
+                                  static_cast<ContactMask>(pivoting ? ~pivot_bits_ : 0xff));
       ++decision.frames;
       ++state_.frames;
     }
@@ -199,6 +204,7 @@ void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
                                       held_pose_.local_translations_m.end());
       ++out.frame_count;
       decision.rest_frames.push_back(rest_->last_frame);
+      decision.contacts.push_back(context_->frames_contacts(std::span(&rest_->last_frame, 1)).front());
       ++decision.frames;
       ++state_.frames;
     }
@@ -219,6 +225,7 @@ void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
     route.push_back(graph.edge_offsets[state_.node]);
   }
   play(route, route, out, decision);
+  decision.contacts = context_->edges_contacts(decision.edges);
   if (ending == nullptr) return;
   resting_ = true;
   rest_ = ending;
@@ -226,21 +233,40 @@ void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
   rest_frames_.push_back(state_.frames + ending->frames_to_rest(graph));
   ending_frames_ = ending->frames(graph);
   ending_next_ = 0;
-  // The turning stops where a foot makes its last plant: turned on, the clean-up would hold it
-  // where it planted while the body turned above it, and the stance held for good would twist
-  // (feet 3 cm apart for 8 on subject 16 asked to turn 90 degrees right as it stopped).
+  // Where each foot makes its last plant. Turning about the root on from the first, the clean-up
+  // would hold that foot where it planted while the body turned above it, and the stance held for
+  // good would twist (ankles 3 cm apart for 8 on subject 16 asked to turn 90 degrees right as it
+  // stopped): from there the body turns about that foot's ankle (a pivot), the clean-up letting it
+  // turn (its contacts cleared), until the other plants too; then it turns no more.
   ending_turned_ = ending_frames_.size();
+  ending_pivot_ = ending_frames_.size();
+  pivot_ankle_ = -1;
+  pivot_bits_ = 0;
+  pivot_pinned_ = false;
   if (!context_->frame_contacts.empty()) {
     const ContactMask standing = context_->frame_contacts[static_cast<size_t>(ending_frames_.back())];
-    for (int bit = 0; bit < 8; ++bit) {
-      const auto mask = static_cast<ContactMask>(1u << bit);
-      if ((standing & mask) == 0) continue;
-      size_t start = ending_frames_.size() - 1;
-      while (start > 0 && (context_->frame_contacts[static_cast<size_t>(ending_frames_[start - 1])] & mask) != 0) {
-        --start;
+    size_t planted[2] = {ending_frames_.size(), ending_frames_.size()};  // per foot: left, right
+    for (const FootSide side : {FootSide::kLeft, FootSide::kRight}) {
+      for (const FootPart part : {FootPart::kAnkle, FootPart::kToe}) {
+        const ContactMask mask = contact_bit(side, part);
+        if ((standing & mask) == 0) continue;
+        size_t start = ending_frames_.size() - 1;
+        while (start > 0 && (context_->frame_contacts[static_cast<size_t>(ending_frames_[start - 1])] & mask) != 0) {
+          --start;
+        }
+        size_t& foot = planted[side == FootSide::kLeft ? 0 : 1];
+        foot = std::min(foot, start);
       }
-      ending_turned_ = std::min(ending_turned_, start);
     }
+    const int first_foot = planted[0] <= planted[1] ? 0 : 1;
+    ending_pivot_ = planted[first_foot];
+    ending_turned_ = std::max(planted[0], planted[1]);
+    const Foot& pivot = first_foot == 0 ? context_->feet.left : context_->feet.right;
+    pivot_ankle_ = pivot.ankle;
+    const FootSide side = first_foot == 0 ? FootSide::kLeft : FootSide::kRight;
+    pivot_bits_ = static_cast<ContactMask>(contact_bit(side, FootPart::kAnkle) | contact_bit(side, FootPart::kToe));
+    // Both feet down together, or a foot not known: no pivot, the turning stops there.
+    if (pivot_ankle_ < 0 || ending_turned_ == ending_pivot_) ending_turned_ = ending_pivot_;
   }
   play_rest(std::max(0, commit_frames - decision.frames), false);
 }
@@ -264,8 +290,29 @@ void Controller::edit_ending(Motion& out, int first, size_t from) {
       roots.emplace_back(root.x(), root.z());
     }
   }
-  const FloorTransform move = edit_.apply(out, first, state_.has_last ? &state_.last_root : nullptr, facings, roots,
-                                          input_.direction);
+  FloorTransform move = edit_.apply(out, first, state_.has_last ? &state_.last_root : nullptr, facings, roots,
+                                    input_.direction);
+  // From the first foot's last plant on, the frames are moved on the floor so that its ankle stays
+  // where it planted: the turn pivots on it.
+  if (pivot_ankle_ >= 0) {
+    const Skeleton& skeleton = assembler.skeleton();
+    for (int f = std::max(first, first + static_cast<int>(ending_pivot_) - static_cast<int>(from));
+         f < out.frame_count; ++f) {
+      const Vec3 ankle = world_positions(skeleton, out.slice(f, 1))[static_cast<size_t>(pivot_ankle_)];
+      if (!pivot_pinned_) {
+        pivot_at_ = Vec2(ankle.x(), ankle.z());
+        pivot_pinned_ = true;
+      }
+      const Vec2 shift = pivot_at_ - Vec2(ankle.x(), ankle.z());
+      Vec3& root = out.translations(f)[0];
+      root.x() += shift.x();
+      root.z() += shift.y();
+      if (f == out.frame_count - 1) {
+        move.x_m += shift.x();
+        move.z_m += shift.y();
+      }
+    }
+  }
   rest_placement_ = move * rest_placement_;
   state_.placement = rest_placement_;
   const Vec3& last = out.translations(out.frame_count - 1)[0];

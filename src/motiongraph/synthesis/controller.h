@@ -16,8 +16,10 @@
 // Asked to rest (ControlInput::rest), the character comes to rest at the end of a clip that ends
 // standing still (rest_endings.h) by the cheapest way there (cost_to_rest: frames until it
 // stands, the transition and bridge penalties on the way), turned by the heading edit on the
-// way and in the stopping clip until a foot makes its last plant (a turn asked with rest: it
-// stands facing the way asked as far as its last steps allow, in the clip's own stance), plays
+// way and in the stopping clip, about the ankle of the foot that plants first for good once it
+// plants (a pivot; ControllerDecision::contacts free it for the clean-up) and no more once the
+// other plants (a turn asked with rest: it stands facing the way asked as far as its last steps
+// allow, in the clip's own stance), plays
 // that clip a decision's worth of frames at a time, and then holds its last frame (resting(),
 // standing()). Asked to move again, it goes on from
 // that frame where the graph has a node there (a library with clips that start from standing);
@@ -80,6 +82,10 @@ struct ControllerDecision {
   // end as the character comes to rest, then its last frame held.
   std::vector<int> rest_frames;
   int frames = 0;                    // appended to the motion: the edges' and the rest frames
+  // Per frame appended, the foot contacts the clean-up should hold: each frame's own
+  // (SynthesisContext::edges_contacts, frames_contacts), but for the foot the stopping clip
+  // pivots on while it turns (free there, then planted where it pivoted).
+  std::vector<ContactMask> contacts;
   double search_seconds = 0.0;       // wall time of the decision
   long long expansions = 0;
   bool budget_exhausted = false;
@@ -144,7 +150,12 @@ class Controller {
   std::vector<long long> rest_frames_;
   std::vector<int> ending_frames_;  // the ending's database frames, played a decision's worth at a time
   size_t ending_next_ = 0;
-  size_t ending_turned_ = 0;  // the ending's frames before this index are turned by the heading edit
+  size_t ending_turned_ = 0;  // the ending's frames before this index are turned by the heading edit,
+  size_t ending_pivot_ = 0;   // those from this one about the ankle of the foot planted there for good
+  int pivot_ankle_ = -1;      // that ankle (-1: no pivot)
+  ContactMask pivot_bits_ = 0;  // its foot's contact bits, cleared while it pivots
+  bool pivot_pinned_ = false;
+  Vec2 pivot_at_ = Vec2::Zero();  // where it stands, once pinned
   Motion held_pose_;  // the ending's last frame as played (the heading edit turned it): the frame held
 };
 
