@@ -391,6 +391,10 @@ void bind_motion(py::module_& m) {
         for (size_t i = 0; i < motions.size(); ++i) {
           if (!motions[i]) throw py::value_error(fmt::format("motions[{}] is None", i));
           const PyMotion& motion = *motions[i];
+          if (motion.motion.frame_count == 0) {  // as save() says it
+            throw py::value_error(fmt::format(
+                "save_animations(): motions[{}] has no frames (a controller before its first step)", i));
+          }
           set.push_back({motion.name, names ? (*names)[i] : motion.name, &motion.skeleton, &motion.motion,
                          root_motion ? forward_axis_of(motion) : Vec3::UnitZ()});
         }

@@ -361,6 +361,10 @@ def test_save_says_what_it_cannot_do(graph, tmp_path):
         motion.save(tmp_path / "m3.glb", root_motion=True, root_motion_smoothing=0.25, figure=False)
     with pytest.raises(ValueError, match="the motion has no frames"):
         graph.controller().motion.save(tmp_path / "empty.bvh")
+    # As save_animations says it (it was a motiongraph.Error), and no file.
+    with pytest.raises(ValueError, match=r"motions\[1\] has no frames"):
+        mg.save_animations(tmp_path / "set.glb", [motion, graph.controller().motion])
+    assert not (tmp_path / "set.glb").exists()
 
 
 def test_path_progress_every_two_seconds_and_its_exception_stops_the_search(graph):
