@@ -13,6 +13,7 @@
 #include "cli/commands.h"
 #include "cli/synthesis_options.h"
 #include "motiongraph/core/transition_rate.h"
+#include "motiongraph/evaluation/path_shortfalls.h"
 #include "motiongraph/evaluation/steering_controls.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/synthesis/control_script.h"
@@ -173,6 +174,18 @@ int run_steer(const SteerOptions& o) {
                                                                                : nlohmann::json(nullptr);
       const bool taken_back = std::any_of(inputs.begin() + static_cast<long>(i) + 1, inputs.end(),
                                           [](const ControlInput& later) { return !later.rest; });
+      // Standing: which way, against the heading the control asked.
+      if (first != rests_s.end()) {
+        const int still = std::min(motion.frame_count - 1, static_cast<int>(std::lround(*first * fps)));
+        const Vec2 facing = facing_on_floor(motion.rotations(still)[0], context.tracks.forward_axis);
+        const double off_deg = std::abs(yaw_between(want, facing)) * 180.0 / std::numbers::pi;
+        if (off_deg > kRestFacingWarnDeg) {
+          warn(fmt::format("the control at {:g} s asks to rest facing {:g} degrees; the character stands {:.0f} "
+                           "degrees off it (the stopping clip's last steps turn only so far, and the way to rest is "
+                           "the cheapest, whichever way it faces)",
+                           c.at_s, c.bearing_deg, off_deg));
+        }
+      }
       if (control["rest_response_s"].is_null() && !taken_back) {
         warn(fmt::format("the control at {:g} s asks to rest, but the character does not stand before the script "
                          "ends at {:g} s (duration_s is too short for the way to rest)",

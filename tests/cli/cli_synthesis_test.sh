@@ -160,6 +160,27 @@ JSON
   2>"$work/late-rest.err"
 grep -q "the control at 3 s asks to rest, but the character does not stand before the script ends at 3.5 s" \
   "$work/late-rest.err" || { cat "$work/late-rest.err"; exit 1; }
+# Asked to rest facing back the way it walks: the stop's last steps turn only so far, and the
+# report says how far off it stands.
+printf '%s\n' '{"duration_s": 10, "controls": [{"at_s": 0, "heading": "north", "tag": "walk"},
+  {"at_s": 4, "heading_deg": 180, "rest": true}]}' >"$work/rest-back.json"
+"$bin" steer "$work/g.mgraph" --script "$work/rest-back.json" -o "$work/rest-back.json.out.json" \
+  --report "$work/rest-back-report.json" >/dev/null 2>"$work/rest-back.err"
+python3 - "$work/rest-back-report.json" "$work/rest-back.json.out.json" <<'PY'
+import json, math, re, sys
+r, m = (json.load(open(p)) for p in sys.argv[1:])
+said = [w for w in r["warnings"] if "asks to rest facing 180 degrees" in w]
+assert len(said) == 1, r["warnings"]
+off = int(re.search(r"the character stands (\d+) degrees off it", said[0])[1])
+# Its hips' facing where it stands, measured here: square to the left hip to the right one.
+names = [j["name"] for j in m["joints"]]
+still = math.ceil(r["rest"]["at_s"] * r["fps"])
+p = m["positions"][min(still, len(m["positions"]) - 1)]
+dx, dz = (p[names.index("rfemur")][i] - p[names.index("lfemur")][i] for i in (0, 2))
+bearing = math.degrees(math.atan2(dz, dx)) % 360  # facing (dz, -dx): its bearing from north
+off_measured = abs((bearing - 180 + 180) % 360 - 180)
+assert off > 45 and abs(off - off_measured) < 10, (off, off_measured)
+PY
 # A library with no stop tag (most are; subject 16 read without CMU's index): a control asking
 # for stop comes to rest all the same, said once; another tag it does not have is an error.
 "$bin" build "$data/cmu/16" --no-cmu-tags --no-cache -q -o "$work/untagged.mgraph"

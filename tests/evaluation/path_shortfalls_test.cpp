@@ -5,9 +5,14 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
+#include "motiongraph/synthesis/facing.h"
 #include "synthesis/subject16_graph.h"
 
 namespace mg {
@@ -43,6 +48,34 @@ TEST(PathShortfalls, NoneForAResultTheRetriesWouldKeep) {
   const auto& context = test::subject16().context();
   const FloorPath path = line_with({{0.0, 10.0, "walk"}});
   EXPECT_TRUE(path_shortfalls(context, path, {}, kept(path)).empty());
+}
+
+// A rest facing more than kRestFacingWarnDeg off the path's last direction is said, with the clip
+// it stops in (CMU 29's and 135's stopping clips turn 55-60 degrees off a straight line's end).
+TEST(PathShortfalls, ARestFacingAwayFromThePathsEndIsSaid) {
+  const auto& context = test::subject16().context();
+  const FloorPath path = line_with({});  // north, -z
+  const RestEnding& ending = context.rest().endings.front();
+  const std::string clip = context.db->clips[static_cast<size_t>(context.db->clip_of(ending.last_frame))].name;
+  const Vec2 captured =
+      facing_on_floor(context.assembler.root_rotation(ending.last_frame, {}), context.tracks.forward_axis);
+  for (const double deg : {0.0, 30.0, -40.0, 60.0, -90.0, 170.0}) {
+    PathSynthesisResult r = kept(path);
+    r.rest = &ending;
+    const double a = deg * std::numbers::pi / 180.0;
+    const Vec2 want(std::sin(a), -std::cos(a));  // `deg` clockwise from north
+    r.motion = context.assembler.empty_motion();
+    context.assembler.append_frame(ending.last_frame, FloorTransform{yaw_between(captured, want), 0.0, 0.0}, r.motion);
+    const std::vector<std::string> said = path_shortfalls(context, path, {}, r);
+    const bool warned = holds(said, "degrees off the path's last direction");
+    EXPECT_EQ(warned, std::abs(deg) > kRestFacingWarnDeg) << deg;
+    if (warned) {
+      EXPECT_TRUE(holds(said, fmt::format("stands facing {:.0f} degrees off the path's last direction: {}, the clip it "
+                                          "stops in",
+                                          std::abs(deg), clip)))
+          << said.front();
+    }
+  }
 }
 
 TEST(PathShortfalls, TheEndNotReachedSaysHowFarAndWhy) {

@@ -1,7 +1,12 @@
 #include "motiongraph/evaluation/path_shortfalls.h"
 
+#include <cmath>
+#include <numbers>
+
 #include <fmt/format.h>
 
+#include "motiongraph/synthesis/facing.h"
+#include "motiongraph/synthesis/floor_transform.h"
 #include "motiongraph/synthesis/path_check.h"
 
 namespace mg {
@@ -36,6 +41,21 @@ std::vector<std::string> path_shortfalls(const SynthesisContext& context, const 
                                "graph stands nearer (its clips that stop take a metre or two to slow down; a longer "
                                "path, or walking rather than running into the end, leaves room)",
                                result.end_distance_m, ahead > 0.0 ? "past" : "short of"));
+  }
+  // Asked to end at rest: which way it stands. The way to rest is chosen by where it stands; the
+  // clip it stops in may turn on the spot as it stops (CMU 29's and 135's by 90 degrees and more).
+  if (result.rest != nullptr && result.motion.frame_count > 0) {
+    const Vec2 facing =
+        facing_on_floor(result.motion.rotations(result.motion.frame_count - 1)[0], context.tracks.forward_axis);
+    const double off_deg =
+        std::abs(yaw_between(path.direction_at(path.length_m()), facing)) * 180.0 / std::numbers::pi;
+    if (off_deg > kRestFacingWarnDeg) {
+      const DatabaseClip& clip = context.db->clips[static_cast<size_t>(context.db->clip_of(result.rest->last_frame))];
+      said.push_back(fmt::format("the character stands facing {:.0f} degrees off the path's last direction: {}, the "
+                                 "clip it stops in, turns as it stops (the way to rest is chosen by where it stands, "
+                                 "not by which way it faces)",
+                                 off_deg, clip.name));
+    }
   }
   if (!result.reached_end) {
     const PathCheckSettings check;
