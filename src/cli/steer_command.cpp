@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 
@@ -167,25 +168,20 @@ int run_steer(const SteerOptions& o) {
     if (changes_tag) control["tag_response_s"] = tag_response;
     control["rest"] = rest;
     if (rest && !rest_before && !context.rest().empty()) {
-      // The first time it stands from the control on (a rest that came before it: it stood already).
-      const auto first = std::find_if(rests_s.begin(), rests_s.end(), [&](double r) { return r >= c.at_s; });
+      // The first time it stands from the control on, before a later control takes the rest back
+      // (a rest asked again after that is that control's; a rest that came before it: it stood
+      // already).
+      const auto back = std::find_if(inputs.begin() + static_cast<long>(i) + 1, inputs.end(),
+                                     [](const ControlInput& later) { return !later.rest; });
+      const bool taken_back = back != inputs.end();
+      const double until_s =
+          taken_back ? script->controls[static_cast<size_t>(back - inputs.begin())].at_s
+                     : std::numeric_limits<double>::infinity();
+      const auto first =
+          std::find_if(rests_s.begin(), rests_s.end(), [&](double r) { return r >= c.at_s && r < until_s; });
       control["rest_response_s"] = first != rests_s.end() ? nlohmann::json(*first - c.at_s)
-                                   : !rests_s.empty() && controller->resting() ? nlohmann::json(0.0)
-                                                                               : nlohmann::json(nullptr);
-      const bool taken_back = std::any_of(inputs.begin() + static_cast<long>(i) + 1, inputs.end(),
-                                          [](const ControlInput& later) { return !later.rest; });
-      // Standing: which way, against the heading the control asked.
-      if (first != rests_s.end()) {
-        const int still = std::min(motion.frame_count - 1, static_cast<int>(std::lround(*first * fps)));
-        const Vec2 facing = facing_on_floor(motion.rotations(still)[0], context.tracks.forward_axis);
-        const double off_deg = std::abs(yaw_between(want, facing)) * 180.0 / std::numbers::pi;
-        if (off_deg > kRestFacingWarnDeg) {
-          warn(fmt::format("the control at {:g} s asks to rest facing {:g} degrees; the character stands {:.0f} "
-                           "degrees off it (the stopping clip's last steps turn only so far, and the way to rest is "
-                           "the cheapest, whichever way it faces)",
-                           c.at_s, c.bearing_deg, off_deg));
-        }
-      }
+                                   : !taken_back && !rests_s.empty() && controller->resting() ? nlohmann::json(0.0)
+                                                                                              : nlohmann::json(nullptr);
       if (control["rest_response_s"].is_null() && !taken_back) {
         warn(fmt::format("the control at {:g} s asks to rest, but the character does not stand before the script "
                          "ends at {:g} s (duration_s is too short for the way to rest)",
@@ -197,6 +193,22 @@ int run_steer(const SteerOptions& o) {
     if (for_good && c.at_s >= rest_s && (!rest || turns)) unheard_s.push_back(c.at_s);
     rest_before = rest;
     controls.push_back(std::move(control));
+  }
+  // Each time it stood: which way, against the heading of the control in force then (a rest taken
+  // back, or asked again facing elsewhere, is not judged by its first asking).
+  for (const double r : rests_s) {
+    const auto in_force = static_cast<size_t>(&script->at(r) - script->controls.data());
+    if (!inputs[in_force].rest) continue;
+    const ScriptedControl& c = script->controls[in_force];
+    const int still = std::min(motion.frame_count - 1, static_cast<int>(std::lround(r * fps)));
+    const Vec2 facing = facing_on_floor(motion.rotations(still)[0], context.tracks.forward_axis);
+    const double off_deg = std::abs(yaw_between(bearing_direction(c.bearing_deg), facing)) * 180.0 / std::numbers::pi;
+    if (off_deg > kRestFacingWarnDeg) {
+      warn(fmt::format("the control at {:g} s asks to rest facing {:g} degrees; the character stands {:.0f} degrees "
+                       "off it (the stopping clip's last steps turn only so far, and the way to rest is the cheapest, "
+                       "whichever way it faces)",
+                       c.at_s, c.bearing_deg, off_deg));
+    }
   }
   nlohmann::json rested = rest_report(context, controller->rest_ending(),
                                       static_cast<double>(controller->rest_frame()) / fps);

@@ -272,7 +272,7 @@ class Router {
     control.tag = string_field(body, "tag", "");
     if (control.tag == "any") control.tag.clear();
     // (a stop the graph has no tag for is rest where it can: steering_controls.h)
-    if (!control.tag.empty() && !(is_stop_tag(control.tag) && !service_.context().rest().empty())) {
+    if (!control.tag.empty() && !is_stop_tag(control.tag)) {
       if (auto mask = service_.context().tag_mask(control.tag); !mask) throw ApiError{400, mask.error().message};
     }
     control.rest = boolean_field(body, "rest", false);

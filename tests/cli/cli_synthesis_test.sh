@@ -181,6 +181,21 @@ bearing = math.degrees(math.atan2(dz, dx)) % 360  # facing (dz, -dx): its bearin
 off_measured = abs((bearing - 180 + 180) % 360 - 180)
 assert off > 45 and abs(off - off_measured) < 10, (off, off_measured)
 PY
+# A rest taken back before it stands, then asked again facing south: the first control gets no
+# rest_response_s (the stand is the later one's), and the facing is judged by the control in force.
+printf '%s\n' '{"duration_s": 14, "controls": [{"at_s": 0, "heading": "north", "tag": "walk"},
+  {"at_s": 3, "heading_deg": 90, "rest": true}, {"at_s": 3.5, "rest": false},
+  {"at_s": 6, "heading_deg": 180, "rest": true}]}' >"$work/takeback.json"
+"$bin" steer "$work/g.mgraph" --script "$work/takeback.json" -o "$work/takeback.json.out.json" \
+  --report "$work/takeback-report.json" >/dev/null 2>/dev/null
+python3 - "$work/takeback-report.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+c = r["controls"]
+assert c[1]["rest_response_s"] is None and c[3]["rest_response_s"] is not None, c
+assert abs(6 + c[3]["rest_response_s"] - r["rest"]["at_s"]) < 1e-9, (c[3], r["rest"])
+assert not any("the control at 3 s asks to rest facing" in w for w in r["warnings"]), r["warnings"]
+PY
 # A library with no stop tag (most are; subject 16 read without CMU's index): a control asking
 # for stop comes to rest all the same, said once; another tag it does not have is an error.
 "$bin" build "$data/cmu/16" --no-cmu-tags --no-cache -q -o "$work/untagged.mgraph"
@@ -195,6 +210,17 @@ assert r["rest"] is not None and r["rest"]["at_s"] is not None, r["rest"]
 assert [c["rest"] for c in r["controls"]] == [False, True, True], r["controls"]
 assert r["warnings"] == ["the control at 2 s asks for 'stop', which is not a motion tag of this graph; the character "
                          "comes to rest instead, at the end of a clip that ends standing still"], r["warnings"]
+PY
+# Nor any clip that ends standing (the graph at 1 cm keeps a walk alone): said, and it goes on.
+"$bin" build "$data/cmu/16" --no-cmu-tags --threshold 1cm --no-cache -q -o "$work/untagged-walk.mgraph" 2>/dev/null
+"$bin" steer "$work/untagged-walk.mgraph" --script "$work/untagged-stop.json" -o "$work/untagged-walk.json" \
+  --report "$work/untagged-walk-report.json" >/dev/null 2>/dev/null
+python3 - "$work/untagged-walk-report.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["rest"] is None and not any(c["rest"] for c in r["controls"]), r
+assert r["warnings"] == ["the control at 2 s asks for 'stop', which is not a motion tag of this graph; nor does any "
+                         "clip of the graph end standing still to rest at: the character goes on"], r["warnings"]
 PY
 printf '%s\n' '{"controls": [{"at_s": 0, "tag": "run"}]}' >"$work/untagged-run.json"
 if "$bin" steer "$work/untagged.mgraph" --script "$work/untagged-run.json" -o "$work/x.bvh" 2>"$work/untagged-run.err"; then

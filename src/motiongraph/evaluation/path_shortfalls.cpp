@@ -37,8 +37,8 @@ std::vector<std::string> path_shortfalls(const SynthesisContext& context, const 
   // Asked to end at rest: where it stands.
   if (result.rest != nullptr && result.end_distance_m > kEndReachedM && !result.roots.empty()) {
     const double ahead = (result.roots.back() - path.points().back()).dot(path.direction_at(path.length_m()));
-    said.push_back(fmt::format("the character comes to rest {:.2f} m {} the path's end: no way to rest through the "
-                               "graph stands nearer (its clips that stop take a metre or two to slow down; a longer "
+    said.push_back(fmt::format("the character comes to rest {:.2f} m {} the path's end: no way to rest the search "
+                               "tried stands nearer (its clips that stop take a metre or two to slow down; a longer "
                                "path, or walking rather than running into the end, leaves room)",
                                result.end_distance_m, ahead > 0.0 ? "past" : "short of"));
   }

@@ -18,15 +18,18 @@ Result<ControlInput> SteeringControls::input(const SteeringControl& control, std
   in.rest = control.rest;
   if (!control.tag.empty()) {
     auto mask = context_->tag_mask(control.tag);
-    // A stop asked of a graph with no such tag (most libraries tag none): rest, where it can.
-    if (!mask && is_stop_tag(control.tag) && !context_->rest().empty()) {
+    // A stop asked of a graph with no such tag (most libraries tag none): rest where it can; where
+    // no clip ends standing still, any motion, as rest is not heard there.
+    if (!mask && is_stop_tag(control.tag)) {
+      const bool can_rest = !context_->rest().empty();
       if (!warned_stop_) {
         warned_stop_ = true;
-        warnings_.push_back(fmt::format("{} asks for 'stop', which is not a motion tag of this graph; the character "
-                                        "comes to rest instead, at the end of a clip that ends standing still",
-                                        who));
+        warnings_.push_back(fmt::format(
+            "{} asks for 'stop', which is not a motion tag of this graph; {}", who,
+            can_rest ? "the character comes to rest instead, at the end of a clip that ends standing still"
+                     : "nor does any clip of the graph end standing still to rest at: the character goes on"));
       }
-      in.rest = true;
+      in.rest = can_rest;
       return in;
     }
     if (!mask) return mask.error();
