@@ -341,7 +341,8 @@ void bind_motion(py::module_& m) {
       .def(
           "save",
           [](const PyMotion& self, const std::filesystem::path& path, bool root_motion,
-             std::optional<double> root_motion_smoothing, std::optional<double> output_scale, bool figure) {
+             std::optional<double> root_motion_smoothing, std::optional<double> output_scale, bool figure,
+             const std::optional<std::string>& name) {
             // What the CLI refuses (--root-motion-smoothing needs --root-motion), and options the
             // format does not take, said rather than dropped.
             if (root_motion_smoothing && !root_motion) {
@@ -358,8 +359,13 @@ void bind_motion(py::module_& m) {
             if (!figure && !is_scene_extension(ext)) {
               warn(fmt::format("save(): figure=False is for {}; {} has no stick figure", kSceneFormats, ext));
             }
-            const MotionFileSettings settings =
+            if (name && !is_scene_extension(ext)) {
+              warn(fmt::format("save(): name is for {}; {} has no animation name", kSceneFormats, ext));
+            }
+            if (name && name->empty()) throw py::value_error("save(): name must not be empty");
+            MotionFileSettings settings =
                 file_settings(root_motion, root_motion_smoothing.value_or(0.5), output_scale.value_or(1.0), figure);
+            settings.animation_name = name.value_or("");
             Status saved = Ok{};
             {
               py::gil_scoped_release release;
@@ -368,12 +374,14 @@ void bind_motion(py::module_& m) {
             check(saved);
           },
           py::arg("path"), py::arg("root_motion") = false, py::arg("root_motion_smoothing") = py::none(),
-          py::arg("output_scale") = py::none(), py::arg("figure") = true,
+          py::arg("output_scale") = py::none(), py::arg("figure") = true, py::arg("name") = py::none(),
           "Writes the motion: .bvh (metres times output_scale), .glb (binary glTF 2.0, metres; .gltf the same as "
           "JSON, one file), .fbx (binary FBX 7.4, centimetres; figure=False leaves their stick figure out) or .json (world positions, with the feet's contacts), as the CLI does (its "
           "--output-scale and --no-figure); root_motion adds a root-motion joint above the root (the CLI's "
           "--root-motion, averaged over root_motion_smoothing seconds, 0.5 when not given). An option the format "
-          "does not take (output_scale but for .bvh, figure=False but for .glb, .gltf and .fbx) gives a UserWarning; a "
+          "does not take (output_scale but for .bvh, figure=False and name but for .glb, .gltf and .fbx) gives a "
+          "UserWarning; name names the animation (default: the file's name, as the CLI names it; e.g. "
+          "name=motion.name); a "
           "motion of no frames raises ValueError.")
       .def("__repr__", [](const PyMotion& self) {
         return display_text(fmt::format("<motiongraph.Motion '{}': {} frames at {:g} fps, {} joints>", self.name,

@@ -29,6 +29,14 @@ def test_positions_equal_the_cli(cli, data, tmp_path, fps):
     clip.save(str(tmp_path / "py" / "walk.glb"))
     assert (tmp_path / "py" / "walk.glb").read_bytes() == (tmp_path / "cli" / "walk.glb").read_bytes()
     assert (tmp_path / "py" / "walk.glb").read_bytes()[:4] == b"glTF"
+    # name= names the animation (the CLI's is the file's: a motion renamed keeps its name so); on a
+    # format with no animation name it is said.
+    clip.save(str(tmp_path / "py" / "named.gltf"), name="Gehen nach Osten")
+    assert json.loads((tmp_path / "py" / "named.gltf").read_text())["animations"][0]["name"] == "Gehen nach Osten"
+    with pytest.warns(UserWarning, match="name is for .glb, .gltf or .fbx; .bvh has no animation name"):
+        clip.save(str(tmp_path / "named.bvh"), name="walk")
+    with pytest.raises(ValueError, match="name must not be empty"):
+        clip.save(str(tmp_path / "py" / "empty-name.glb"), name="")
     # .gltf: the same model as one JSON file, its buffer a base64 data URI.
     clip.save(str(tmp_path / "py" / "walk.gltf"))
     assert (tmp_path / "py" / "walk.gltf").read_bytes() == (tmp_path / "cli" / "walk.gltf").read_bytes()

@@ -68,7 +68,10 @@ Status write_motion(const std::string& path, const Skeleton& skeleton, const Mot
   if (is_scene_extension(ext)) {
     // The animation is named as the file (an engine lists every imported file's as its name).
     const std::string stem = std::filesystem::path(path).stem().string();
-    const ExportAnimation animation{stem.empty() ? "motion" : stem, &motion};
+    const std::string name = !settings.animation_name.empty() ? settings.animation_name
+                             : stem.empty()                   ? std::string("motion")
+                                                              : stem;
+    const ExportAnimation animation{name, &motion};
     auto bytes = scene_bytes(ext, skeleton, std::span(&animation, 1), settings.figure);
     if (!bytes) return Error{path, 0, bytes.error().message};
     return write_file_atomic(path, *bytes);

@@ -43,12 +43,13 @@ struct MotionFileSettings {
   bool figure = true;            // glTF, FBX: a stick figure skinned to the joints (false: the skeleton and its animation only)
   std::optional<RootMotionOutput> root_motion;  // a root-motion joint added above the root first
   bool keep_root_order = false;  // BVH: the root's rotation in the file's order (bvh_writer.h)
+  std::string animation_name;    // glTF, FBX: the animation's name (empty: the file's, without its extension)
 
   Status validate() const;
 };
 
 // Writes the motion atomically as BVH (metres * units_per_metre), glTF or FBX (its animation named
-// as the file without its extension) or JSON positions.
+// settings.animation_name, or as the file without its extension) or JSON positions.
 // JSON gets the feet's contacts too when `contacts` is given (positions_json.h).
 Status write_motion(const std::string& path, const Skeleton& skeleton, const Motion& motion,
                     const MotionFileSettings& settings = {}, const PositionsJsonContacts* contacts = nullptr);
