@@ -556,6 +556,41 @@ TEST(Controller, ATurnAskedWithRestKeepsTheStanceItStopsIn) {
   }
 }
 
+// A decision's contacts are its frames' own (the edges', then the rest frames'), but for the foot a
+// stopping clip pivots on while the heading edit turns it; with no heading edit, all its own.
+TEST(Controller, ADecisionsContactsAreItsFramesButThePivotingFoot) {
+  const auto& s = test::subject16();
+  const SynthesisContext& context = s.context();
+  auto walk = context.tag_mask("walk");
+  ASSERT_TRUE(walk.ok());
+  for (const double max_turn : {45.0, 0.0}) {
+    ControllerSettings settings;
+    settings.heading_edit.max_turn_deg_per_m = max_turn;
+    auto controller = Controller::create(context, settings, {bearing_direction(0.0), *walk});
+    ASSERT_TRUE(controller.ok());
+    Motion motion = context.assembler.empty_motion();
+    int freed = 0;
+    while (!controller->standing() || motion.frame_count < 10 * motion.fps) {
+      if (motion.frame_count >= 3 * motion.fps) controller->set_input({bearing_direction(90.0), *walk, true});
+      const ControllerDecision d = controller->step(motion);
+      std::vector<ContactMask> own = context.edges_contacts(d.edges);
+      const std::vector<ContactMask> resting = context.frames_contacts(d.rest_frames);
+      own.insert(own.end(), resting.begin(), resting.end());
+      ASSERT_EQ(d.contacts.size(), own.size());
+      for (size_t i = 0; i < own.size(); ++i) {
+        ASSERT_EQ(d.contacts[i] & ~own[i], 0) << "a contact the frame has not";
+        freed += d.contacts[i] != own[i] ? 1 : 0;
+      }
+      ASSERT_LT(motion.frame_count, 30 * motion.fps) << "not at rest";
+    }
+    if (max_turn > 0.0) {
+      EXPECT_GT(freed, 0);
+    } else {
+      EXPECT_EQ(freed, 0);
+    }
+  }
+}
+
 // A wall-clock budget far too small for any search still gets frames from every decision.
 TEST(Controller, AStarvedTimeBudgetStillAnswers) {
   const auto& s = test::subject16();

@@ -265,8 +265,9 @@ void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
     pivot_ankle_ = pivot.ankle;
     const FootSide side = first_foot == 0 ? FootSide::kLeft : FootSide::kRight;
     pivot_bits_ = static_cast<ContactMask>(contact_bit(side, FootPart::kAnkle) | contact_bit(side, FootPart::kToe));
-    // Both feet down together, or a foot not known: no pivot, the turning stops there.
-    if (pivot_ankle_ < 0 || ending_turned_ == ending_pivot_) ending_turned_ = ending_pivot_;
+    // Both feet down together, a foot not known, or no heading edit: no pivot (the contacts as
+    // captured), the turning stops there.
+    if (pivot_ankle_ < 0 || settings_.heading_edit.max_turn_deg_per_m <= 0.0) ending_turned_ = ending_pivot_;
   }
   play_rest(std::max(0, commit_frames - decision.frames), false);
 }
