@@ -188,8 +188,9 @@ void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
       ++state_.frames;
     }
   };
-  // Turned by the heading edit until a foot makes its last plant, then as the edit left them (the
-  // held frame is the ending's last as played, copied).
+  // Turned by the heading edit until both feet have made their last plant (about the first one's
+  // ankle once it has: edit_ending), then as the edit left them (the held frame is the ending's
+  // last as played, copied).
   auto play_rest = [&](int frames, bool hold) {
     const int first = out.frame_count;
     const size_t from = ending_next_;
@@ -275,7 +276,7 @@ void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
 // The stopping clip's frames played [from, ending_next_) turned by the heading edit as the way
 // there was: a turn asked just before rest is carried on while the character still travels (the
 // edit turns with the root's travel, so it ends as the clip slows), and it stands facing the way
-// asked as far as the last metres allow.
+// asked as far as the last steps allow; from the first foot's last plant on, about its ankle.
 void Controller::edit_ending(Motion& out, int first, size_t from) {
   if (settings_.heading_edit.max_turn_deg_per_m <= 0.0) return;
   const MotionAssembler& assembler = context_->assembler;
