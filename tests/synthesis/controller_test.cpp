@@ -589,6 +589,17 @@ TEST(Controller, ADecisionsContactsAreItsFramesButThePivotingFoot) {
       EXPECT_EQ(freed, 0);
     }
   }
+  // A graph whose feet are not known: no contacts, on the way to rest and at it too.
+  SynthesisContext footless = context;
+  footless.frame_contacts.clear();
+  auto controller = Controller::create(footless, {}, {bearing_direction(0.0), *walk, true});
+  ASSERT_TRUE(controller.ok());
+  Motion motion = footless.assembler.empty_motion();
+  while (!controller->standing() || motion.frame_count < 8 * motion.fps) {
+    const ControllerDecision d = controller->step(motion);
+    EXPECT_TRUE(d.contacts.empty()) << motion.frame_count;
+    ASSERT_LT(motion.frame_count, 30 * motion.fps) << "not at rest";
+  }
 }
 
 // A wall-clock budget far too small for any search still gets frames from every decision.

@@ -174,6 +174,7 @@ void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
   const int commit_frames = std::max(1, static_cast<int>(std::lround(settings_.commit_s * context_->db->fps)));
   // Up to `frames` frames at rest: the ending's still to play, a decision's worth at a time (a game
   // shows each decision's frames as they come), and once they are played its last frame held.
+  const std::vector<ContactMask>& contacts = context_->frame_contacts;  // (empty: the feet not known)
   // The ending's frames up to index `until`, as the placement stands.
   auto play_ending = [&](int& frames, size_t until) {
     const PreparedFloorTransform placement(rest_placement_);
@@ -182,8 +183,10 @@ void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
       const int frame = ending_frames_[ending_next_++];
       context_->assembler.append_frame(frame, placement, out);
       decision.rest_frames.push_back(frame);
-      decision.contacts.push_back(context_->frames_contacts(std::span(&frame, 1)).front() &
-                                  static_cast<ContactMask>(pivoting ? ~pivot_bits_ : 0xff));
+      if (!contacts.empty()) {
+        decision.contacts.push_back(contacts[static_cast<size_t>(frame)] &
+                                    static_cast<ContactMask>(pivoting ? ~pivot_bits_ : 0xff));
+      }
       ++decision.frames;
       ++state_.frames;
     }
@@ -205,7 +208,7 @@ void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
                                       held_pose_.local_translations_m.end());
       ++out.frame_count;
       decision.rest_frames.push_back(rest_->last_frame);
-      decision.contacts.push_back(context_->frames_contacts(std::span(&rest_->last_frame, 1)).front());
+      if (!contacts.empty()) decision.contacts.push_back(contacts[static_cast<size_t>(rest_->last_frame)]);
       ++decision.frames;
       ++state_.frames;
     }

@@ -84,7 +84,8 @@ struct ControllerDecision {
   int frames = 0;                    // appended to the motion: the edges' and the rest frames
   // Per frame appended, the foot contacts the clean-up should hold: each frame's own
   // (SynthesisContext::edges_contacts, frames_contacts), but for the foot the stopping clip
-  // pivots on while it turns (free there, then planted where it pivoted).
+  // pivots on while it turns (free there, then planted where it pivoted); empty when the graph's
+  // feet are not known (SynthesisContext::frame_contacts).
   std::vector<ContactMask> contacts;
   double search_seconds = 0.0;       // wall time of the decision
   long long expansions = 0;
