@@ -201,8 +201,8 @@ int run_steer(const SteerOptions& o) {
     if (!inputs[in_force].rest) continue;
     const ScriptedControl& c = script->controls[in_force];
     const int still = std::min(motion.frame_count - 1, static_cast<int>(std::lround(r * fps)));
-    const Vec2 facing = facing_on_floor(motion.rotations(still)[0], context.tracks.forward_axis);
-    const double off_deg = std::abs(yaw_between(bearing_direction(c.bearing_deg), facing)) * 180.0 / std::numbers::pi;
+    const double off_deg =
+        facing_off_deg(motion.rotations(still)[0], context.tracks.forward_axis, bearing_direction(c.bearing_deg));
     if (off_deg > kRestFacingWarnDeg) {
       warn(fmt::format("the control at {:g} s asks to rest facing {:g} degrees; the character stands {:.0f} degrees "
                        "off it (the stopping clip's last steps turn only so far, and the way to rest is the cheapest, "

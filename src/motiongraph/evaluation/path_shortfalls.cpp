@@ -1,12 +1,8 @@
 #include "motiongraph/evaluation/path_shortfalls.h"
 
-#include <cmath>
-#include <numbers>
-
 #include <fmt/format.h>
 
 #include "motiongraph/synthesis/facing.h"
-#include "motiongraph/synthesis/floor_transform.h"
 #include "motiongraph/synthesis/path_check.h"
 
 namespace mg {
@@ -45,10 +41,8 @@ std::vector<std::string> path_shortfalls(const SynthesisContext& context, const 
   // Asked to end at rest: which way it stands. The way to rest is chosen by where it stands; the
   // clip it stops in may turn on the spot as it stops (CMU 29's and 135's by 90 degrees and more).
   if (result.rest != nullptr && result.motion.frame_count > 0) {
-    const Vec2 facing =
-        facing_on_floor(result.motion.rotations(result.motion.frame_count - 1)[0], context.tracks.forward_axis);
-    const double off_deg =
-        std::abs(yaw_between(path.direction_at(path.length_m()), facing)) * 180.0 / std::numbers::pi;
+    const double off_deg = facing_off_deg(result.motion.rotations(result.motion.frame_count - 1)[0],
+                                          context.tracks.forward_axis, path.direction_at(path.length_m()));
     if (off_deg > kRestFacingWarnDeg) {
       const DatabaseClip& clip = context.db->clips[static_cast<size_t>(context.db->clip_of(result.rest->last_frame))];
       said.push_back(fmt::format("the character stands facing {:.0f} degrees off the path's last direction: {}, the "

@@ -1,9 +1,12 @@
 #include "motiongraph/synthesis/facing.h"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <optional>
 
 #include "motiongraph/skeleton/foot_joints.h"
+#include "motiongraph/synthesis/floor_transform.h"
 
 namespace mg {
 
@@ -185,6 +188,11 @@ Vec2 facing_on_floor(const Quat& root_world_rotation, const Vec3& forward_axis) 
   const Vec2 d(f.x(), f.z());
   const double n = d.norm();
   return n > 1e-9 ? Vec2(d / n) : Vec2(Vec2::Zero());
+}
+
+double facing_off_deg(const Quat& root_world_rotation, const Vec3& forward_axis, const Vec2& direction) {
+  return std::abs(yaw_between(direction, facing_on_floor(root_world_rotation, forward_axis))) * 180.0 /
+         std::numbers::pi;
 }
 
 }  // namespace mg

@@ -69,6 +69,9 @@ Vec3 learn_clip_forward_axis(const Skeleton& skeleton, const Motion& motion, con
 // The unit facing direction on the floor of a root world rotation; (0, 0) when the axis is
 // vertical.
 Vec2 facing_on_floor(const Quat& root_world_rotation, const Vec3& forward_axis);
+// Degrees (0 to 180) between that facing and a unit floor `direction`: how far off it a character
+// stands.
+double facing_off_deg(const Quat& root_world_rotation, const Vec3& forward_axis, const Vec2& direction);
 
 // Direction of travel over the next `lookahead` frames: the unit floor direction from the
 // root at frame i to the root at frame i + lookahead, or (0, 0) when it moves less than
