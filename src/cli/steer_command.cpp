@@ -134,7 +134,8 @@ int run_steer(const SteerOptions& o) {
     const bool rest = inputs[i].rest;
     nlohmann::json tag_response = nullptr;
     // (a stop the graph has no tag for was rest: no tag to reach)
-    const bool changes_tag = !c.tag.empty() && c.tag != tag_before && context.tag_mask(c.tag).ok();
+    const Result<TagMask> asked = context.tag_mask(c.tag);
+    const bool changes_tag = !c.tag.empty() && c.tag != tag_before && asked.ok();
     if (changes_tag) {
       // Until the next control asks for another tag (or none): a tag reached after that was asked
       // again.
@@ -146,7 +147,7 @@ int run_steer(const SteerOptions& o) {
         }
       }
       const int until = std::min(motion.frame_count, static_cast<int>(std::ceil(until_s * fps)));
-      const TagMask mask = *context.tag_mask(c.tag);
+      const TagMask mask = *asked;
       for (int f = static_cast<int>(std::ceil(c.at_s * fps)); f < until; ++f) {
         if ((played_tags[static_cast<size_t>(f)] & mask) != 0) {
           tag_response = f / fps - c.at_s;

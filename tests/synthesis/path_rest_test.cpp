@@ -18,7 +18,8 @@ TEST(PathRest, TheWayGoesOnFromTheWalkThroughTheGraphToAnEnding) {
     ASSERT_TRUE(path.ok());
     auto searched = synthesize_path(s.context(), *path);
     ASSERT_TRUE(searched.ok());
-    const PathRestWay way = nearest_rest_way(s.context(), *path, searched->walk, searched->start, searched->roots);
+    const PathRestWay way = nearest_rest_way(s.context(), *path, searched->walk, searched->start, searched->roots,
+                                             rest_ending_travel(s.context()));
     ASSERT_NE(way.ending, nullptr) << spec;
     ASSERT_LE(way.kept_edges, searched->walk.edges.size());
     Walk walk{searched->walk.start_node,
@@ -32,7 +33,10 @@ TEST(PathRest, TheWayGoesOnFromTheWalkThroughTheGraphToAnEnding) {
     // Nowhere to rest: no way.
     SynthesisContext nowhere = s.context();
     nowhere.set_rest({});
-    EXPECT_EQ(nearest_rest_way(nowhere, *path, searched->walk, searched->start, searched->roots).ending, nullptr);
+    EXPECT_EQ(nearest_rest_way(nowhere, *path, searched->walk, searched->start, searched->roots,
+                               rest_ending_travel(nowhere))
+                  .ending,
+              nullptr);
   }
 }
 

@@ -50,7 +50,8 @@ std::vector<double> rest_ending_travel(const SynthesisContext& context) {
 }
 
 PathRestWay nearest_rest_way(const SynthesisContext& context, const FloorPath& path, const Walk& walk,
-                             const FloorTransform& start, std::span<const Vec2> edited_roots) {
+                             const FloorTransform& start, std::span<const Vec2> edited_roots,
+                             std::span<const double> ending_travel) {
   const MotionGraph& graph = *context.graph;
   const RestEndings& rest = context.rest();
   // The walk's roots as played, each node's frame among them and its placement.
@@ -80,7 +81,6 @@ PathRestWay nearest_rest_way(const SynthesisContext& context, const FloorPath& p
   // root's track measured in chords of kRestChordS (a stride's sway left out).
   const double length = path.length_m();
   const int chords = chord_frames(context);
-  const std::vector<double> ending_travel = rest_ending_travel(context);
   // From each node the walk reaches within kRestSearchM of the end, last first, every way on that
   // stands within kRestSearchS seconds (kRestExpansions edges tried from each; no bridge, no leap) to
   // a node of a clip that ends at rest, and that clip on: the one whose character stands nearest the

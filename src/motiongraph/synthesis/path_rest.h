@@ -45,8 +45,10 @@ struct PathRestWay {
 std::vector<double> rest_ending_travel(const SynthesisContext& context);
 
 // The way to rest for `walk` (played from `start`) along `path`; `edited_roots`, the floor roots of
-// its first frames as the path edit put them (PathSynthesisResult::roots).
+// its first frames as the path edit put them (PathSynthesisResult::roots); `ending_travel`,
+// rest_ending_travel's (found once for the searches of one path).
 PathRestWay nearest_rest_way(const SynthesisContext& context, const FloorPath& path, const Walk& walk,
-                             const FloorTransform& start, std::span<const Vec2> edited_roots);
+                             const FloorTransform& start, std::span<const Vec2> edited_roots,
+                             std::span<const double> ending_travel);
 
 }  // namespace mg

@@ -589,11 +589,14 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
   const MotionGraph& graph = *context.graph;
   auto masks = asked_masks(context, path);
   if (!masks) return masks.error();
+  // Each ending's travel to standing, for every way to rest measured below.
+  const std::vector<double> travel = rest_ending_travel(context);
   // The path searched from `start_settings`, then cut where its way to rest stands nearest the end.
   auto at_rest = [&](const PathSynthesisSettings& start_settings) -> Result<PathSynthesisResult> {
     auto searched = search_path(context, path, start_settings);
     if (!searched) return searched.error();
-    const PathRestWay way = nearest_rest_way(context, path, searched->walk, searched->start, searched->roots);
+    const PathRestWay way =
+        nearest_rest_way(context, path, searched->walk, searched->start, searched->roots, travel);
     if (way.ending == nullptr) return Error{"", 0, "the path cannot end at rest: no way to rest from its end"};
     PathSynthesisResult result = std::move(*searched);
     result.walk.edges.resize(way.kept_edges);
@@ -615,7 +618,6 @@ Result<PathSynthesisResult> synthesize_path(const SynthesisContext& context, con
   // Standing far from the end: a path shorter than the way to rest from where its walk starts.
   // Started at the node of a clip that stops whose travel to standing is nearest the path's length
   // (a landing's counting kRestLandingM more), the kRestStarts nearest tried.
-  const std::vector<double> travel = rest_ending_travel(context);
   const RestEndings& rest = context.rest();
   std::vector<size_t> order(travel.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = i;
