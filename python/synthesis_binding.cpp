@@ -180,9 +180,8 @@ class PyController {
     if (!cleanup_warning.empty()) say(cleanup_warning);
     // The first input picks where it starts, and says nothing: each step gives its own (a stop
     // asked here is not a rest to come: a step without it asks for any motion).
-    if (!std::isfinite(heading_deg)) throw py::value_error(fmt::format("heading_deg must be finite, not {}", heading_deg));
     SteeringControls starting(context());
-    const ControlInput first = take(starting.input({heading_deg, tag.value_or(""), false}, "the controller"));
+    const ControlInput first = resolve(starting, heading_deg, tag, false);
     controller_ = take(Controller::create(context(), settings, first, Vec2(at[0], at[1])));
   }
 
@@ -316,11 +315,17 @@ class PyController {
   // can hardly play is asked for, a warning says so; a stop the graph can hardly play is rest, and
   // rest a graph cannot come to is warned of. (With the GIL held, before the step takes the lock.)
   ControlInput input(double heading_deg, const std::optional<std::string>& tag, bool rest) {
-    if (!std::isfinite(heading_deg)) throw py::value_error(fmt::format("heading_deg must be finite, not {}", heading_deg));
     const size_t said = controls_.warnings().size();
-    const ControlInput in = take(controls_.input({heading_deg, tag.value_or(""), rest}, "the controller"));
+    const ControlInput in = resolve(controls_, heading_deg, tag, rest);
     for (size_t i = said; i < controls_.warnings().size(); ++i) say(controls_.warnings()[i]);
     return in;
+  }
+
+  // The input `controls` reads for a heading (finite: ValueError otherwise), a tag and rest.
+  static ControlInput resolve(SteeringControls& controls, double heading_deg, const std::optional<std::string>& tag,
+                              bool rest) {
+    if (!std::isfinite(heading_deg)) throw py::value_error(fmt::format("heading_deg must be finite, not {}", heading_deg));
+    return take(controls.input({heading_deg, tag.value_or(""), rest}, "the controller"));
   }
 
   // A warning: given now (with the graph's name) and kept for the report (with the GIL held).
