@@ -80,14 +80,20 @@ json body_object(const ApiRequest& request) {
   return std::move(*parsed);
 }
 
+// The names a request takes, for a message: "'from', 'count'".
+template <class Names>
+std::string quoted_names(const Names& known) {
+  std::string names;
+  for (std::string_view name : known) names += fmt::format("{}'{}'", names.empty() ? "" : ", ", name);
+  return names;
+}
+
 // A body's keys are the request's: one it does not take (a misspelt "min_frame", an option of the
 // CLI's) is an error rather than ignored.
 void check_keys(const json& body, std::initializer_list<std::string_view> known) {
   const std::string key = unknown_key(body, known);
   if (key.empty()) return;
-  std::string names;
-  for (std::string_view name : known) names += fmt::format("{}'{}'", names.empty() ? "" : ", ", name);
-  throw ApiError{400, fmt::format("unknown key '{}' (this request takes {})", key, names)};
+  throw ApiError{400, fmt::format("unknown key '{}' (this request takes {})", key, quoted_names(known))};
 }
 
 double number_field(const json& body, const std::string& name, double fallback, double lo, double hi) {
@@ -220,10 +226,9 @@ class Router {
     for (auto it = request_.query.begin(); it != request_.query.end(); it = request_.query.upper_bound(it->first)) {
       const std::string& key = it->first;
       if (std::find(known.begin(), known.end(), key) == known.end()) {
-        std::string names;
-        for (std::string_view name : known) names += fmt::format("{}'{}'", names.empty() ? "" : ", ", name);
         throw ApiError{400, fmt::format("unknown query parameter {} ({})", mg::quoted(key),
-                                        names.empty() ? "this request takes none" : "this request takes " + names)};
+                                        known.empty() ? "this request takes none"
+                                                      : "this request takes " + quoted_names(known))};
       }
       if (request_.query.count(key) > 1) {
         throw ApiError{400, fmt::format("query parameter {} is given twice", mg::quoted(key))};
