@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "motiongraph/core/json_text.h"
+#include "motiongraph/core/text.h"
 
 namespace mg::studio {
 
@@ -46,9 +47,7 @@ void send(const httplib::Request& req, const ApiResponse& response, httplib::Res
 std::string origin_authority(const std::string& origin) {
   const size_t scheme = origin.find("://");
   if (scheme == std::string::npos) return "";
-  std::string authority = origin.substr(scheme + 3);
-  for (char& c : authority) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return authority;
+  return ascii_lower(origin.substr(scheme + 3));
 }
 
 }  // namespace
@@ -96,9 +95,7 @@ HttpServer::HttpServer(const StudioApi& api, std::string web_root)
     // POST: a 200 m path, sessions that push the user's out); an Origin that is not this server's
     // own is refused. Tools that send no Origin (curl, scripts) are not concerned.
     if (req.path.rfind("/api/", 0) == 0 && req.has_header("Origin")) {
-      std::string host = req.get_header_value("Host");
-      for (char& c : host) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-      if (origin_authority(req.get_header_value("Origin")) != host) {
+      if (origin_authority(req.get_header_value("Origin")) != ascii_lower(req.get_header_value("Host"))) {
         send_error(res, 403,
                    fmt::format("a page of another origin ({}) may not use the studio's API",
                                req.get_header_value("Origin").substr(0, 100)));

@@ -1,5 +1,6 @@
 #include "motiongraph/core/text.h"
 
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -105,6 +106,12 @@ size_t utf8_sequence_length(std::string_view text, size_t i) {
 }
 
 }  // namespace
+
+std::string ascii_lower(std::string_view text) {
+  std::string out(text);
+  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
 
 std::string quoted(std::string_view token) {
   // At most this many characters of the token are shown; a binary file's first "token" can be

@@ -60,4 +60,8 @@ class LineReader {
 // reach the terminal raw.
 std::string quoted(std::string_view token);
 
+// `text` with its ASCII letters in lower case (other bytes as they are): names and keywords
+// compared whatever their case.
+std::string ascii_lower(std::string_view text);
+
 }  // namespace mg

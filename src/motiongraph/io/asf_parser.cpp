@@ -25,12 +25,6 @@ const char* acclaim_dof_name(AcclaimDof dof) {
 
 namespace {
 
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
-
 bool is_section(const std::vector<std::string_view>& tokens) {
   return !tokens.empty() && tokens[0].front() == ':';
 }
@@ -55,7 +49,7 @@ class AsfParser {
         return in_.error(fmt::format("expected a section such as ':bonedata', found {}",
                                      quoted(tokens[0])));
       }
-      const std::string key = lower(tokens[0]);
+      const std::string key = ascii_lower(tokens[0]);
       Status status = Ok{};
       if (key == ":units") {
         if (has_units) return in_.error("':units' appears twice");
@@ -141,7 +135,7 @@ class AsfParser {
   }
 
   Result<AcclaimDof> dof(std::string_view token) {
-    const std::string t = lower(token);
+    const std::string t = ascii_lower(token);
     if (t == "rx") return AcclaimDof::kRx;
     if (t == "ry") return AcclaimDof::kRy;
     if (t == "rz") return AcclaimDof::kRz;
@@ -169,7 +163,7 @@ class AsfParser {
   Status units() {
     while (!section_ends()) {
       auto tokens = next();
-      const std::string key = lower(tokens[0]);
+      const std::string key = ascii_lower(tokens[0]);
       if (key == "mass" || key == "length") {
         if (auto s = expect_count(tokens, 2, key.c_str()); !s) return s;
         auto value = number(tokens[1], key.c_str());
@@ -178,7 +172,7 @@ class AsfParser {
         (key == "mass" ? doc_.mass : doc_.length) = *value;
       } else if (key == "angle") {
         if (auto s = expect_count(tokens, 2, "angle"); !s) return s;
-        const std::string unit = lower(tokens[1]);
+        const std::string unit = ascii_lower(tokens[1]);
         if (unit == "deg" || unit == "degrees") {
           doc_.angles_in_degrees = true;
         } else if (unit == "rad" || unit == "radians") {
@@ -197,7 +191,7 @@ class AsfParser {
     bool has_order = false;
     while (!section_ends()) {
       auto tokens = next();
-      const std::string key = lower(tokens[0]);
+      const std::string key = ascii_lower(tokens[0]);
       if (key == "order") {
         auto dofs = dof_list(tokens);
         if (!dofs) return dofs.error();
@@ -227,7 +221,7 @@ class AsfParser {
   Status bonedata() {
     while (!section_ends()) {
       auto tokens = next();
-      if (lower(tokens[0]) != "begin" || tokens.size() != 1) {
+      if (ascii_lower(tokens[0]) != "begin" || tokens.size() != 1) {
         return in_.error(fmt::format("expected 'begin' of a bone, found {}", quoted(tokens[0])));
       }
       AsfBone bone;
@@ -245,7 +239,7 @@ class AsfParser {
     while (true) {
       if (section_ends()) return in_.error_at(bone.line, "bone has no 'end'");
       auto tokens = next();
-      const std::string key = lower(tokens[0]);
+      const std::string key = ascii_lower(tokens[0]);
       if (key == "end") {
         if (tokens.size() != 1) return in_.error("'end' takes no value");
         break;
@@ -318,7 +312,7 @@ class AsfParser {
       for (char& c : flat) {
         if (c == '(' || c == ')') c = ' ';
       }
-      for (auto t : split_tokens(flat)) numbers.emplace_back(lower(t), in_.line_number());
+      for (auto t : split_tokens(flat)) numbers.emplace_back(ascii_lower(t), in_.line_number());
     };
     collect(first_line, 1);
     while (true) {
@@ -350,7 +344,7 @@ class AsfParser {
 
   Status hierarchy() {
     auto tokens = next();
-    if (tokens.empty() || lower(tokens[0]) != "begin") {
+    if (tokens.empty() || ascii_lower(tokens[0]) != "begin") {
       return in_.error("':hierarchy' must start with 'begin'");
     }
     while (true) {
@@ -358,7 +352,7 @@ class AsfParser {
       if (tokens.empty() || is_section(tokens)) {
         return in_.error("':hierarchy' has no 'end'");
       }
-      if (lower(tokens[0]) == "end" && tokens.size() == 1) break;
+      if (ascii_lower(tokens[0]) == "end" && tokens.size() == 1) break;
       if (tokens.size() < 2) {
         return in_.error(fmt::format("hierarchy line for {} names no children", quoted(tokens[0])));
       }

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "motiongraph/core/quantile.h"
+#include "motiongraph/core/text.h"
 #include "motiongraph/motion/forward_kinematics.h"
 
 namespace mg {
@@ -133,8 +134,7 @@ std::string_view travel_source_name(TravelSource source) {
 }
 
 std::optional<TravelSource> parse_travel_source(std::string_view text) {
-  std::string lower(text);
-  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string lower = ascii_lower(text);
   for (TravelSource s : {TravelSource::kAuto, TravelSource::kRoot, TravelSource::kFeet}) {
     if (lower == travel_source_name(s)) return s;
   }

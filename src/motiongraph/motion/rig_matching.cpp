@@ -8,6 +8,8 @@
 
 #include <fmt/format.h>
 
+#include "motiongraph/core/text.h"
+
 namespace mg {
 
 namespace {
@@ -20,18 +22,12 @@ constexpr std::array<std::string_view, 26> kLimbWords = {
     "hand",   "finger", "thumb", "knee",    "ankle", "shoulder", "elbow",   "collar", "shldr",
     "forearm", "shin",  "thigh", "buttock", "arm",   "leg",      "upleg",   "eye"};
 
-std::string lower(std::string_view text) {
-  std::string out(text);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
-
 std::string_view side_name(JointSide side) { return side == JointSide::kLeft ? "left" : "right"; }
 
 }  // namespace
 
 JointSide joint_side(std::string_view name) {
-  const std::string folded = lower(name);
+  const std::string folded = ascii_lower(name);
   const bool left = folded.find("left") != std::string::npos;
   const bool right = folded.find("right") != std::string::npos;
   if (left != right) return left ? JointSide::kLeft : JointSide::kRight;

@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 #include <fmt/format.h>
 
+#include "motiongraph/core/text.h"
 #include "motiongraph/core/unique_name.h"
 #include "motiongraph/motion/bvh_import.h"
 #include "motiongraph/motion/length_unit.h"
@@ -222,8 +223,7 @@ bool moves(const NodeScene& scene, const SceneAnimation& animation, int node) {
 
 // Whether a joint's name marks the end of a chain: it ends in "end" or "nub", in any case.
 bool names_an_end(const std::string& name) {
-  std::string lower = name;
-  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string lower = ascii_lower(name);
   return lower.ends_with("end") || lower.ends_with("nub");
 }
 

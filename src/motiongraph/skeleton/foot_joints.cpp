@@ -9,6 +9,8 @@
 
 #include <fmt/format.h>
 
+#include "motiongraph/core/text.h"
+
 namespace mg {
 
 namespace {
@@ -22,12 +24,6 @@ struct Side {
 };
 constexpr Side kLeft{"left", {"left", "l"}};
 constexpr Side kRight{"right", {"right", "r"}};
-
-std::string lower(std::string_view text) {
-  std::string out(text);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
 
 // side + part or part + side, for every side word.
 bool is_named(std::string_view folded, const Side& side, std::string_view part) {
@@ -87,9 +83,9 @@ std::string looked_for(const Side& side) {
 }
 
 Result<int> joint_named(const Skeleton& skeleton, const std::string& name, std::string_view role) {
-  const std::string wanted = lower(name);
+  const std::string wanted = ascii_lower(name);
   for (int j = 0; j < skeleton.joint_count(); ++j) {
-    if (lower(skeleton.joint(j).name) == wanted) return j;
+    if (ascii_lower(skeleton.joint(j).name) == wanted) return j;
   }
   return Error{"", 0, fmt::format("the skeleton has no joint named '{}' (given as the {})", name, role)};
 }
@@ -172,16 +168,16 @@ Result<FootJointNames> parse_foot_joint_names(std::string_view text) {
 }
 
 Status FootJointNames::validate() const {
-  if (!left_ankle.empty() && lower(left_ankle) == lower(right_ankle)) {
+  if (!left_ankle.empty() && ascii_lower(left_ankle) == ascii_lower(right_ankle)) {
     return Error{"", 0, fmt::format("the left and right ankles are both named '{}'", left_ankle)};
   }
-  if (!left_toe.empty() && lower(left_toe) == lower(right_toe)) {
+  if (!left_toe.empty() && ascii_lower(left_toe) == ascii_lower(right_toe)) {
     return Error{"", 0, fmt::format("the left and right toes are both named '{}'", left_toe)};
   }
-  if (!left_toe.empty() && lower(left_toe) == lower(left_ankle)) {
+  if (!left_toe.empty() && ascii_lower(left_toe) == ascii_lower(left_ankle)) {
     return Error{"", 0, fmt::format("the left toe and ankle are both named '{}'", left_toe)};
   }
-  if (!right_toe.empty() && lower(right_toe) == lower(right_ankle)) {
+  if (!right_toe.empty() && ascii_lower(right_toe) == ascii_lower(right_ankle)) {
     return Error{"", 0, fmt::format("the right toe and ankle are both named '{}'", right_toe)};
   }
   return Ok{};
