@@ -215,6 +215,9 @@ class PyController {
       }
       played_.edges.insert(played_.edges.end(), decision.edges.begin(), decision.edges.end());
       played_.rest_frames.insert(played_.rest_frames.end(), decision.rest_frames.begin(), decision.rest_frames.end());
+      const std::vector<FrameSource> sources = decision_sources(context(), decision);
+      played_sources_.insert(played_sources_.end(), sources.begin(), sources.end());
+      transitions_ += decision_transitions(*context().graph, decision);
       if (cleaned) {
         contacts_.insert(contacts_.end(), contacts.begin(), contacts.end());
         decided = motion_.slice(first, motion_.frame_count - first);
@@ -224,7 +227,8 @@ class PyController {
     if (stays && !warned_stays_) {
       warned_stays_ = true;
       say(fmt::format("the character came to rest at {:.2f} s, at the end of {}, and stays there: the steps asking "
-                      "it to move cannot (the graph has no way on from that clip's last frame)",
+                      "it to move cannot (the graph has no way on from that clip's last frame, and no clip the "
+                      "graph goes on from has the half second to start off from it)",
                       rest_s, rest_clip));
     }
     check(cleaned);
@@ -286,11 +290,7 @@ class PyController {
   // (the lock held)
   nlohmann::json steering_report() const {
     const double fps = context().db->fps;
-    int transitions = 0, bridges = 0;
-    for (int e : played_.edges) {
-      transitions += context().graph->edges[e].transition ? 1 : 0;
-      bridges += context().graph->edges[e].bridge ? 1 : 0;
-    }
+    const int transitions = transitions_, bridges = count_bridges(*context().graph, played_.edges);
     return {{"frames", motion_.frame_count},
             {"fps", fps},
             {"transitions", transitions},
@@ -304,7 +304,8 @@ class PyController {
             {"budget_exhausted_decisions", exhausted_},
             {"heading_edit", heading_edit_report(settings_.heading_edit, controller_->heading_edit_stats())},
             {"cleanup", cleanup_report(context(), run_, cleanup_)},
-            {"foot_slide", foot_slide_report(context(), played_, motion_)},
+            {"foot_slide", foot_slide_report(context(), played_, motion_, played_sources_)},
+            {"starts", starts_report(context(), controller_->starts(), motion_.frame_count)},
             {"rest", rest_report(context(), controller_->rest_ending(),
                                  static_cast<double>(controller_->rest_frame()) / context().db->fps)}};
   }
@@ -352,6 +353,8 @@ class PyController {
   std::optional<FootCleanup> cleanup_;
   std::optional<Controller> controller_;
   Walk played_{-1, {}};
+  std::vector<FrameSource> played_sources_;  // each frame's, in order (decision_sources)
+  int transitions_ = 0;  // the blends played (decision_transitions)
   std::vector<ContactMask> contacts_;
   ControllerSettings settings_;
   SynthesisRunSettings run_;
@@ -369,13 +372,13 @@ void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
            "Decides the next frames towards heading_deg (degrees clockwise from north) with motion type `tag` "
            "(None: any) and returns them as a Motion. rest=True comes to rest at the end of a clip that ends standing "
            "still and holds its last frame (so does tag 'stop' where the graph can hardly play it), until asked to "
-           "move where the graph has a way on from there; rest_s says when it stands still.")
+           "move: it goes on where the graph has a way on from there, and elsewhere starts off, the frame held "
+           "blended into a clip that walks off (the report's 'starts'); rest_s says when it stands still.")
       .def_property_readonly("rest_s", &PyController::rest_s,
                              "The second from which the character last stood still, once it has come to rest; None "
                              "before.")
       .def_property_readonly("resting", &PyController::resting,
-                             "Whether it holds the last frame of the clip it came to rest at (until asked to move, "
-                             "where the graph has a way on from there).")
+                             "Whether it holds the last frame of the clip it came to rest at (until asked to move).")
       .def_property_readonly("motion", &PyController::motion, "All frames so far, as a Motion.")
       .def("__repr__", &PyController::repr);
   graph.def("walk", &walk, py::arg("from_node"), py::arg("to_node"),

@@ -14,8 +14,10 @@
 #include "cli/commands.h"
 #include "cli/synthesis_options.h"
 #include "motiongraph/core/transition_rate.h"
+#include "motiongraph/evaluation/foot_slide_report.h"
 #include "motiongraph/evaluation/path_shortfalls.h"
 #include "motiongraph/evaluation/steering_controls.h"
+#include "motiongraph/evaluation/synthesis_run.h"
 #include "motiongraph/io/file.h"
 #include "motiongraph/synthesis/control_script.h"
 #include "motiongraph/synthesis/controller.h"
@@ -84,7 +86,7 @@ int run_steer(const SteerOptions& o) {
   auto cleanup = make_cleanup(context, run, cleanup_warning);
   if (!cleanup_warning.empty()) warn(cleanup_warning);
   std::vector<ContactMask> all_contacts;
-  std::vector<TagMask> played_tags;  // each frame's, from the edges played (their tracks') and the rest frames
+  std::vector<FrameSource> played_sources;  // each frame's, in order (decision_sources)
   std::vector<double> cleanup_seconds;
   while (motion.frame_count < total) {
     controller->set_input(input_at(motion.frame_count / fps));
@@ -104,8 +106,11 @@ int run_steer(const SteerOptions& o) {
     exhausted += d.budget_exhausted ? 1 : 0;
     played.edges.insert(played.edges.end(), d.edges.begin(), d.edges.end());
     played.rest_frames.insert(played.rest_frames.end(), d.rest_frames.begin(), d.rest_frames.end());
-    const std::vector<TagMask> tags = context.walk_tags(Walk{-1, d.edges, d.rest_frames});
-    played_tags.insert(played_tags.end(), tags.begin(), tags.end());
+    const std::vector<FrameSource> sources = decision_sources(context, d);
+    played_sources.insert(played_sources.end(), sources.begin(), sources.end());
+    // (a start from rest is a blend too)
+    if (!d.start_frames.empty() && edge_start < total) ++transitions;
+    edge_start += static_cast<long long>(d.start_frames.size());
     for (int e : d.edges) {
       const GraphEdge& edge = context.graph->edges[e];
       if (edge.transition && edge_start < total) ++transitions;
@@ -126,9 +131,19 @@ int run_steer(const SteerOptions& o) {
     if (f < motion.frame_count) rests_s.push_back(static_cast<double>(f) / fps);
   }
   const double rest_s = rests_s.empty() ? -1.0 : rests_s.back();
-  // Controls after a rest for good: nothing moves the character.
+  // Controls after a rest for good: nothing moves the character. Otherwise a turn asked with rest
+  // while it stands is not heard (a move starts it off).
   const bool for_good = controller->rest_is_for_good() && rest_s >= 0.0;
-  std::vector<double> unheard_s;
+  std::vector<double> starts_s;
+  for (const StartTaken& start : controller->starts()) {
+    if (start.frame < motion.frame_count) starts_s.push_back(static_cast<double>(start.frame) / fps);
+  }
+  auto standing_at = [&](double t) {
+    double stood = -1.0;
+    for (const double r : rests_s) stood = r <= t ? r : stood;
+    return stood >= 0.0 && std::none_of(starts_s.begin(), starts_s.end(), [&](double s) { return s >= stood && s <= t; });
+  };
+  std::vector<double> unheard_s, turns_at_rest_s;
   for (size_t i = 0; i < script->controls.size(); ++i) {
     const ScriptedControl& c = script->controls[i];
     const bool rest = inputs[i].rest;
@@ -149,7 +164,7 @@ int run_steer(const SteerOptions& o) {
       const int until = std::min(motion.frame_count, static_cast<int>(std::ceil(until_s * fps)));
       const TagMask mask = *asked;
       for (int f = static_cast<int>(std::ceil(c.at_s * fps)); f < until; ++f) {
-        if ((played_tags[static_cast<size_t>(f)] & mask) != 0) {
+        if ((context.frame_tag(played_sources[static_cast<size_t>(f)].dominant()) & mask) != 0) {
           tag_response = f / fps - c.at_s;
           break;
         }
@@ -191,7 +206,11 @@ int run_steer(const SteerOptions& o) {
     }
     // (asking only to rest on is heard: a turn or a move is not)
     const bool turns = i > 0 && c.bearing_deg != script->controls[i - 1].bearing_deg;
-    if (for_good && c.at_s >= rest_s && (!rest || turns)) unheard_s.push_back(c.at_s);
+    if (for_good && c.at_s >= rest_s && (!rest || turns)) {
+      unheard_s.push_back(c.at_s);
+    } else if (rest && turns && standing_at(c.at_s)) {
+      turns_at_rest_s.push_back(c.at_s);
+    }
     rest_before = rest;
     controls.push_back(std::move(control));
   }
@@ -216,9 +235,16 @@ int run_steer(const SteerOptions& o) {
   if (!rested.is_null() && rest_s < 0.0) rested["at_s"] = nullptr;  // it stands only after the script's end
   if (!unheard_s.empty()) {
     warn(fmt::format("the character came to rest at {:.2f} s, at the end of {}, and stays there: the control{} at {} "
-                     "s cannot turn or move it (the graph has no way on from that clip's last frame)",
+                     "s cannot turn or move it (the graph has no way on from that clip's last frame, and no clip "
+                     "the graph goes on from has the half second to start off from it)",
                      rest_s, rested["clip"].get<std::string>(), unheard_s.size() == 1 ? "" : "s",
                      fmt::join(unheard_s, ", ")));
+  }
+  if (!turns_at_rest_s.empty()) {
+    warn(fmt::format("the control{} at {} s ask{} to turn while the character stands at rest, which it does not: it "
+                     "turns on its way to rest and as it starts off (a control that asks it to move)",
+                     turns_at_rest_s.size() == 1 ? "" : "s", fmt::join(turns_at_rest_s, ", "),
+                     turns_at_rest_s.size() == 1 ? "s" : ""));
   }
   const HeadingEditStats& edit_stats = controller->heading_edit_stats();
   const nlohmann::json report = {{"frames", motion.frame_count},
@@ -239,6 +265,8 @@ int run_steer(const SteerOptions& o) {
                                                             : nlohmann::json(nullptr)},
                                  {"controls", controls},
                                  {"rest", rested},
+                                 {"starts", starts_report(context, controller->starts(), motion.frame_count)},
+                                 {"foot_slide", foot_slide_report(context, played, motion, played_sources)},
                                  {"warnings", warnings}};
   if (auto s = write_synthesis_outputs(o.common, **loaded, motion, played, report, all_contacts); !s) return fail(s.error());
   fmt::print("steer: {} frames ({:.1f} s), {} decisions, decision p99 {:.3f} ms\n", motion.frame_count,
@@ -266,6 +294,10 @@ int run_steer(const SteerOptions& o) {
                                          : fmt::format("facing it after {:.2f} s", c["response_s"].get<double>()),
                tag_reached);
   }
+  for (const auto& start : report["starts"]) {
+    fmt::print("  started off from rest at {:.2f} s into {} (its first frames {:.1f} cm from the pose held)\n",
+               start["at_s"].get<double>(), start["clip"].get<std::string>(), start["rms_cm"].get<double>());
+  }
   return 0;
 }
 
@@ -279,7 +311,8 @@ Command add_steer_command(CLI::App& app) {
                "\"walk\"}, {\"at_s\": 4, \"heading_deg\": 90}, {\"at_s\": 8, \"tag\": \"run\"}]}; headings north (-z),\n"
                "east (+x), south, west or a bearing in degrees clockwise from north; without duration_s, the\n"
                "motion ends 4 s after the last control. {\"at_s\": 10, \"rest\": true} comes to rest at the end of a\n"
-               "clip that ends standing still (as does a stop the graph can hardly play or has no tag for).");
+               "clip that ends standing still (as does a stop the graph can hardly play or has no tag for); a later\n"
+               "\"rest\": false starts it off again (the report's \"starts\").");
   o->common.add_to(*sub);
   sub->add_option("--script", o->script, "CONTROLS.json")->required()->check(CLI::ExistingFile);
   sub->add_option("--horizon", o->settings.horizon_s, "Seconds each decision looks ahead")->capture_default_str();

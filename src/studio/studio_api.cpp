@@ -5,6 +5,7 @@
 #include <cmath>
 #include <exception>
 #include <initializer_list>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -555,6 +556,8 @@ class Router {
                           {"rest_clip", step->rest_clip.empty() ? json(nullptr) : json(step->rest_clip)},
                           {"resting", step->resting},
                           {"rest_for_good", step->rest_for_good},
+                          {"starts", starts_report(service_.context(), step->starts,
+                                                   std::numeric_limits<long long>::max())},
                           {"warnings", step->warnings}});
   }
 

@@ -202,6 +202,7 @@ Result<SteerStepResult> SynthesisService::step_session(int id, const SteeringCon
   out.warnings.assign(said_all.begin() + static_cast<long>(said), said_all.end());
   out.motion = context().assembler.empty_motion();
   out.first_frame = session->frames;
+  const size_t starts_before = session->controller->starts().size();
   do {
     const int first_new = out.motion.frame_count;
     const ControllerDecision decision = session->controller->step(out.motion);
@@ -211,11 +212,13 @@ Result<SteerStepResult> SynthesisService::step_session(int id, const SteeringCon
     }
     out.contacts.insert(out.contacts.end(), contacts.begin(), contacts.end());
     out.search_seconds += decision.search_seconds;
-    out.transitions += count_transitions(file().graph, decision.edges);
+    out.transitions += decision_transitions(file().graph, decision);
     out.bridges += count_bridges(file().graph, decision.edges);
     if (decision.frames == 0) break;
   } while (out.motion.frame_count < min_frames);
   session->frames += out.motion.frame_count;
+  const std::vector<StartTaken>& starts = session->controller->starts();
+  out.starts.assign(starts.begin() + static_cast<long>(starts_before), starts.end());
   if (const RestEnding* ending = session->controller->rest_ending(); ending != nullptr) {
     out.rest_s = static_cast<double>(session->controller->rest_frame()) / context().db->fps;
     out.rest_clip = file().database.clips[static_cast<size_t>(file().database.clip_of(ending->last_frame))].name;

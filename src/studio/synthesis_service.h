@@ -58,7 +58,7 @@ struct SteerStepResult {
   Motion motion;    // the frames this step appended
   long long first_frame = 0;  // index of its first frame in the session's motion
   double search_seconds = 0.0;
-  int transitions = 0;           // transition edges this step committed
+  int transitions = 0;           // transition edges this step committed, and its start from rest (a blend)
   int session_transitions = 0;   // and the session so far
   int bridges = 0;               // of this step's transitions, the bridges (GraphEdge::bridge)
   int session_bridges = 0;       // and the session's
@@ -69,6 +69,7 @@ struct SteerStepResult {
   std::string rest_clip;
   bool resting = false;        // holding that clip's last frame now
   bool rest_for_good = false;  // with no way on from it (Controller::rest_is_for_good)
+  std::vector<StartTaken> starts;  // the starts from rest this step took (Controller::starts)
   // What this step's control asks that the graph cannot give, said once a session
   // (evaluation/steering_controls.h).
   std::vector<std::string> warnings;

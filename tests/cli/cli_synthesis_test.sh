@@ -116,18 +116,21 @@ JSON
 "$bin" steer "$work/g.mgraph" --script "$work/controls.json" -o "$work/steer.json" \
   --report "$work/steer-report.json" >/dev/null
 # Asked to stop, which subject 16's graph plays in 9 frames (its stops are dead ends the pruning
-# leaves out), the character comes to rest at the end of a clip that stops, and stays there: the
-# turn asked later is said not to move it.
+# leaves out), the character comes to rest at the end of a clip that stops; a turn asked while it
+# stands there is said not to turn it, and asked to move it starts off from rest (rest_starts.h).
 cat >"$work/stop.json" <<'JSON'
-{"duration_s": 12, "controls": [{"at_s": 0, "heading": "north", "tag": "walk"}, {"at_s": 3, "tag": "stop"},
-                                {"at_s": 8, "rest": true}, {"at_s": 9, "heading": "east"}]}
+{"duration_s": 16, "controls": [{"at_s": 0, "heading": "north", "tag": "walk"}, {"at_s": 3, "tag": "stop"},
+                                {"at_s": 8, "rest": true}, {"at_s": 9, "heading": "east"},
+                                {"at_s": 10, "tag": "walk", "rest": false}]}
 JSON
 "$bin" steer "$work/g.mgraph" --script "$work/stop.json" -o "$work/stop-steer.json" \
   --report "$work/stop-report.json" >"$work/stop.out" 2>"$work/stop.err"
 grep -q "comes to rest instead" "$work/stop.err" || { cat "$work/stop.err"; exit 1; }
 # (the control at 8 s, asking only to rest on, is heard)
-grep -q "and stays there: the control at 9 s cannot turn or move it" "$work/stop.err" || { cat "$work/stop.err"; exit 1; }
-grep -q "at rest after" "$work/stop.out" || { cat "$work/stop.out"; exit 1; }
+grep -q "the control at 9 s asks to turn while the character stands at rest" "$work/stop.err" \
+  || { cat "$work/stop.err"; exit 1; }
+grep -q "at rest after" "$work/stop.out" && grep -q "started off from rest at 10" "$work/stop.out" \
+  || { cat "$work/stop.out"; exit 1; }
 # The summary says what each control asked and that the stop is heard as rest (the walk before it
 # as asked).
 grep -Eq "^  at +3\.0 s heading +0\.0 deg stop, rest -> " "$work/stop.out" \
@@ -140,17 +143,27 @@ said = [l.split(": warning: ", 1)[1] for l in open(sys.argv[3]).read().splitline
 assert len(said) == 2 and r["warnings"] == said, (said, r["warnings"])
 rest, c = r["rest"], r["controls"]
 assert rest is not None and rest["clip"] in ("16_33", "16_57"), rest
-assert c[1]["rest"] and c[2]["rest"] and c[3]["rest"] and not c[0]["rest"], c
+assert c[1]["rest"] and c[2]["rest"] and c[3]["rest"] and not c[0]["rest"] and not c[4]["rest"], c
 assert abs(rest["at_s"] - 3 - c[1]["rest_response_s"]) < 1e-9 and 0 < c[1]["rest_response_s"] < 5, (rest, c)
-assert c[3]["response_s"] is None, c  # it cannot turn east at rest
+# One start, when asked to move; it faces east (asked at 9 s) only once it has started off.
+starts = r["starts"]
+assert len(starts) == 1 and 10 <= starts[0]["at_s"] < 10.3 and 0 < starts[0]["rms_cm"] < 20, starts
+assert c[3]["response_s"] is not None and c[3]["response_s"] > 10 - 9, c
+assert c[4]["response_s"] is not None and c[4]["response_s"] < 4, c
+assert r["transitions"] >= 1, r  # the start is a blend too
 root = [p[0] for p in m["positions"]]
 at = math.ceil(rest["at_s"] * r["fps"])
-# Walking before it was asked, standing still from rest on (the held frame: not a millimetre).
+go = math.ceil(starts[0]["at_s"] * r["fps"])
+# Walking before it was asked, standing still from rest on until it starts off (the held frame),
+# then walking off east.
 assert math.dist(root[0][::2], root[int(2.5 * r["fps"])][::2]) > 1.5, root[:3]
-assert max(math.dist(root[at][::2], p[::2]) for p in root[at:]) < 0.1, rest
-assert root[-1] == root[-2] == root[-int(r["fps"])], root[-3:]
-# The foot slide is judged against the clips played, the stopping one among them.
+assert max(math.dist(root[at][::2], p[::2]) for p in root[at:go]) < 0.1, rest
+assert root[go - 1] == root[go - 2] == root[go - 4], root[go - 4: go]
+assert root[-1][0] - root[go][0] > 2.0, (root[go], root[-1])
+# The foot slide is judged against the clips played, the stopping one among them, frame by frame
+# against each frame's own sources (the start's blend among them).
 assert rest["clip"] in r["foot_slide"]["source"]["clips"], r["foot_slide"]["source"]
+assert r["foot_slide"]["same_frames"]["steps"] > 0, r["foot_slide"]
 PY
 # Rest asked too late in a script to stand before its end: said.
 cat >"$work/late-rest.json" <<'JSON'

@@ -388,6 +388,24 @@ try {
   check(still !== null && /at rest since/.test(restInfo),
     still ? `X brings the character to rest: standing still ${still.seconds.toFixed(1)} s after the key ("${restInfo}")`
       : `X did not bring the character to rest within 20 s ("${restInfo}")`);
+  // A move key then starts it off from rest (subject 16's graph has no way on from the frame it
+  // holds: a start blends it into a clip that walks off), the panel says so, and it walks away.
+  const stood = await page.evaluate(() => window.studio.state.root);
+  await page.keyboard.down('KeyD');
+  const movePressed = Date.now();
+  let startInfo = '';
+  let moved = 0;
+  while (Date.now() - movePressed < 15000) {
+    await page.waitForTimeout(250);
+    const info = await page.textContent('[data-testid=steer-info]');
+    if (/starting off from rest into 16_/.test(info)) startInfo = info;
+    const now = await page.evaluate(() => window.studio.state.root);
+    moved = Math.hypot(now[0] - stood[0], now[2] - stood[2]);
+    if (startInfo && moved > 1.0) break;
+  }
+  await page.keyboard.up('KeyD');
+  check(startInfo !== '' && moved > 1.0,
+    `a move key after rest starts the character off ("${startInfo}"; ${moved.toFixed(2)} m from where it stood)`);
   check(errors.length === 0, `no errors in the page${errors.length ? `: ${errors.join('; ')}` : ''}`);
   const tagOptions = await page.$$eval('[data-testid=path-tag] option', (os) => os.map((o) => o.textContent));
   check(tagOptions.length > 1 && !tagOptions.some((t) => /not in the graph/.test(t)),

@@ -474,7 +474,8 @@ TEST(StudioApi, SteeringTurnsTheCharacterTheWayAsked) {
 }
 
 // rest: true brings the character to rest at the end of a clip that stops; the step says from when
-// it stands and at which clip, and every step after holds that frame.
+// it stands and at which clip, and every step after holds that frame until one asks it to move: that
+// step starts it off (synthesis/rest_starts.h) and says so.
 TEST(StudioApi, SteeringComesToRestWhenAsked) {
   const ApiCall session = call_api("POST", "/api/steer/sessions", R"({"heading_deg": 0, "tag": "walk"})");
   ASSERT_EQ(session.response.status, 200) << session.response.body;
@@ -496,12 +497,36 @@ TEST(StudioApi, SteeringComesToRestWhenAsked) {
     call = call_api("POST", step, R"({"heading_deg": 0, "tag": "walk", "rest": true, "min_frames": 30})");
     ASSERT_EQ(call.response.status, 200) << call.response.body;
   }
-  // Asked to run east now, it holds its last frame.
+  // Asked to rest on, it holds its last frame.
   const json held = call.json["positions"].back();
-  const ApiCall after = call_api("POST", step, R"({"heading_deg": 90, "tag": "run", "min_frames": 10})");
+  const ApiCall after = call_api("POST", step, R"({"heading_deg": 0, "tag": "walk", "rest": true, "min_frames": 10})");
   ASSERT_EQ(after.response.status, 200) << after.response.body;
   EXPECT_EQ(after.json["rest_s"].get<double>(), rest_s);
+  EXPECT_TRUE(after.json["resting"].get<bool>());
+  EXPECT_FALSE(after.json["rest_for_good"].get<bool>());  // there is a start from it
+  EXPECT_EQ(after.json["starts"], json::array());
   for (const json& frame : after.json["positions"]) EXPECT_EQ(frame, held);
+  // Asked to walk east, it starts off: from where it stood, its start a blend (a transition).
+  const ApiCall off = call_api("POST", step, R"({"heading_deg": 90, "tag": "walk", "min_frames": 10})");
+  ASSERT_EQ(off.response.status, 200) << off.response.body;
+  EXPECT_FALSE(off.json["resting"].get<bool>());
+  ASSERT_EQ(off.json["starts"].size(), 1u) << off.json.dump();
+  const json& start = off.json["starts"][0];
+  EXPECT_DOUBLE_EQ(start["at_s"].get<double>(), off.json["first_frame"].get<double>() / session.json["fps"].get<double>());
+  EXPECT_GT(start["rms_cm"].get<double>(), 0.0);
+  EXPECT_GE(off.json["transitions"].get<int>(), 1);
+  // (each frame the joints' x, y, z in turn, the root's first)
+  auto floor_apart = [](const json& a, const json& b) {
+    return std::hypot(a[0].get<double>() - b[0].get<double>(), a[2].get<double>() - b[2].get<double>());
+  };
+  EXPECT_LT(floor_apart(off.json["positions"].front(), held), 0.01);
+  ApiCall on = off;
+  for (int i = 0; i < 6; ++i) {
+    on = call_api("POST", step, R"({"heading_deg": 90, "tag": "walk", "min_frames": 30})");
+    ASSERT_EQ(on.response.status, 200) << on.response.body;
+    EXPECT_EQ(on.json["starts"], json::array());
+  }
+  EXPECT_GT(floor_apart(on.json["positions"].back(), held), 2.0);
   expect_error(call_api("POST", step, R"({"rest": 1})"), 400, "'rest' must be true or false");
 }
 

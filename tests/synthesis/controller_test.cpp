@@ -314,12 +314,20 @@ double floor_distance(const Motion& motion, int a, int b) {
   return std::hypot(d.x(), d.z());
 }
 
+// The context with no start from rest (rest_starts.h) from any frame its endings hold.
+SynthesisContext without_starts(const SynthesisContext& context) {
+  SynthesisContext out = context;
+  out.start_cache = std::make_shared<SynthesisContext::StartCache>();
+  for (const RestEnding& ending : context.rest().endings) out.start_cache->starts[ending.last_frame] = {};
+  return out;
+}
+
 // Asked to rest, the character walks on to the end of a clip that ends standing (subject 16's
-// stop is a dead end its pruning leaves out), plays it as captured, stands still and stays so
-// whatever it is asked next.
+// stop is a dead end its pruning leaves out), plays it as captured, stands still, and where there
+// is no start from the frame it holds, stays so whatever it is asked next.
 TEST(Controller, ComesToRestWhenAskedAndStaysThere) {
   const auto& s = test::subject16();
-  const SynthesisContext& context = s.context();
+  const SynthesisContext context = without_starts(s.context());
   const MotionGraph& graph = *context.graph;
   auto walk = context.tag_mask("walk");
   ASSERT_TRUE(walk.ok());
@@ -354,6 +362,7 @@ TEST(Controller, ComesToRestWhenAskedAndStaysThere) {
   }
   ASSERT_TRUE(controller->resting());
   EXPECT_TRUE(controller->rest_is_for_good());  // subject 16's stopping clips end where its graph does not go on
+  EXPECT_TRUE(controller->starts().empty());
   const RestEnding* ending = controller->rest_ending();
   ASSERT_NE(ending, nullptr);
   // The ending as captured: its node's frame to the clip's last, then that last frame held.
@@ -419,6 +428,125 @@ TEST(Controller, GoesOnFromRestWhereTheGraphHasAWayOn) {
   while (motion.frame_count < last_held + 4 * motion.fps) controller->step(motion);
   EXPECT_GT(floor_distance(motion, last_held, motion.frame_count - 1), 2.0);
   EXPECT_EQ(controller->rest_frames().size(), 1u);
+}
+
+// Standing at the end of a stopping clip where the graph does not go on, asked to move, the
+// character starts off (rest_starts.h): one decision blends the frame it holds into a lead-in and
+// plays the lead-in on to its node, into the motion type it came to rest from when none is asked,
+// and it then walks the way asked.
+TEST(Controller, StartsOffFromRestWhenAskedToMove) {
+  const auto& s = test::subject16();
+  const SynthesisContext& context = s.context();
+  const MotionGraph& graph = *context.graph;
+  const Vec3& axis = context.tracks.forward_axis;
+  auto walk = context.tag_mask("walk");
+  ASSERT_TRUE(walk.ok());
+  for (const double heading : {90.0, 180.0}) {
+    auto controller = Controller::create(context, {}, {bearing_direction(0.0), *walk});
+    ASSERT_TRUE(controller.ok());
+    Motion motion = context.assembler.empty_motion();
+    const double fps = motion.fps;
+    while (motion.frame_count < 2 * fps) controller->step(motion);
+    controller->set_input({bearing_direction(0.0), *walk, true});
+    while (!controller->standing() || motion.frame_count < 9 * fps) {
+      controller->step(motion);
+      ASSERT_LT(motion.frame_count, 30 * fps) << "not at rest";
+    }
+    const int held = motion.frame_count - 1;
+    const RestEnding* ending = controller->rest_ending();
+    ASSERT_NE(ending, nullptr);
+    ASSERT_LT(graph.node_at_frame(ending->last_frame), 0) << "(a graph that goes on from the frame held)";
+    EXPECT_FALSE(controller->rest_is_for_good());
+    controller->set_input({bearing_direction(heading), 0});  // no motion type asked
+    const ControllerDecision d = controller->step(motion);
+    EXPECT_FALSE(controller->resting());
+    ASSERT_EQ(controller->starts().size(), 1u);
+    EXPECT_EQ(controller->starts()[0].frame, held + 1);
+    const RestStart& start = *controller->starts()[0].start;
+    EXPECT_TRUE(d.edges.empty());
+    EXPECT_TRUE(d.rest_frames.empty());
+    ASSERT_EQ(d.frames, start.frames(graph));
+    ASSERT_EQ(motion.frame_count, held + 1 + d.frames);
+    ASSERT_EQ(d.start_frames.size(), static_cast<size_t>(d.frames));
+    ASSERT_EQ(decision_transitions(graph, d), 1);
+    // The frame held blended into the lead-in, then the lead-in as captured up to the node.
+    for (int i = 0; i < d.frames; ++i) {
+      const FrameSource& source = d.start_frames[static_cast<size_t>(i)];
+      EXPECT_EQ(source.arrival, start.first_frame + i);
+      if (i < start.blend_frames) {
+        EXPECT_EQ(source.departure, ending->last_frame);
+        EXPECT_EQ(source.alpha, blend_weight(i, start.blend_frames));
+      } else {
+        EXPECT_EQ(source, (FrameSource{start.first_frame + i, start.first_frame + i, 1.0}));
+      }
+      ASSERT_EQ(d.contacts[static_cast<size_t>(i)], context.frame_contacts[static_cast<size_t>(source.dominant())]);
+    }
+    EXPECT_EQ(decision_sources(context, d), d.start_frames);
+    // Into the motion type it came to rest from (subject 16 walked there).
+    EXPECT_NE(context.frame_tag(graph.nodes[static_cast<size_t>(start.node)].frame) & *walk, 0u);
+    // From where it stood: the first frame a blend weighing the frame held 0.98 or more, a few
+    // millimetres off it; no joint steps from frame to frame across the start more than in the
+    // lead-in as captured (the blend eases it in).
+    EXPECT_LT(floor_distance(motion, held, held + 1), 0.01);
+    auto largest_step = [&](const Motion& m, int from) {
+      const std::vector<Vec3> world = world_positions(context.assembler.skeleton(), m);
+      const size_t joints = static_cast<size_t>(m.joint_count);
+      double largest = 0.0;
+      for (int f = from + 1; f < m.frame_count; ++f) {
+        for (size_t j = 0; j < joints; ++j) {
+          largest = std::max(largest, (world[static_cast<size_t>(f) * joints + j] -
+                                       world[static_cast<size_t>(f - 1) * joints + j]).norm());
+        }
+      }
+      return largest;
+    };
+    Motion captured = context.assembler.empty_motion();
+    for (int f = start.first_frame; f <= graph.nodes[static_cast<size_t>(start.node)].frame; ++f) {
+      context.assembler.append_frame(f, FloorTransform{}, captured);
+    }
+    EXPECT_LE(largest_step(motion, held), largest_step(captured, 0) + 0.005) << "heading " << heading;
+    // Then on through the graph, walking the way asked.
+    while (motion.frame_count < held + 8 * fps) {
+      EXPECT_TRUE(controller->step(motion).start_frames.empty());
+    }
+    EXPECT_GT(floor_distance(motion, held, motion.frame_count - 1), 3.0) << "heading " << heading;
+    EXPECT_GT(facing_on_floor(motion.rotations(motion.frame_count - 1)[0], axis).dot(bearing_direction(heading)),
+              std::cos(30.0 * std::numbers::pi / 180.0))
+        << "heading " << heading;
+    EXPECT_EQ(controller->starts().size(), 1u);
+  }
+}
+
+// Asked for a motion type as it starts off, the start leads into it where one of the starts does.
+TEST(Controller, StartsOffIntoTheMotionTypeAsked) {
+  const auto& s = test::subject16();
+  const SynthesisContext& context = s.context();
+  const MotionGraph& graph = *context.graph;
+  auto walk = context.tag_mask("walk");
+  ASSERT_TRUE(walk.ok());
+  int tested = 0;
+  for (const std::string& name : context.db->tag_names) {
+    const TagMask tag = *context.tag_mask(name);
+    auto controller = Controller::create(context, {}, {bearing_direction(0.0), *walk});
+    ASSERT_TRUE(controller.ok());
+    Motion motion = context.assembler.empty_motion();
+    controller->set_input({bearing_direction(0.0), *walk, true});
+    while (!controller->standing()) {
+      controller->step(motion);
+      ASSERT_LT(motion.frame_count, 30 * motion.fps) << "not at rest";
+    }
+    const std::vector<RestStart>& starts = context.rest_starts(controller->rest_ending()->last_frame);
+    const bool any = std::any_of(starts.begin(), starts.end(), [&](const RestStart& start) {
+      return (context.frame_tag(graph.nodes[static_cast<size_t>(start.node)].frame) & tag) != 0;
+    });
+    controller->set_input({bearing_direction(0.0), tag});
+    controller->step(motion);
+    ASSERT_EQ(controller->starts().size(), 1u);
+    const int node_frame = graph.nodes[static_cast<size_t>(controller->starts()[0].start->node)].frame;
+    EXPECT_EQ((context.frame_tag(node_frame) & tag) != 0, any) << name;
+    tested += any ? 1 : 0;
+  }
+  EXPECT_GE(tested, 2);  // walk, and another
 }
 
 // Asked to rest and then to walk before it stands, the character walks on; a graph with nowhere

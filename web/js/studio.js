@@ -373,7 +373,7 @@ window.addEventListener('keydown', (e) => {
     const d = Number(e.code.slice(5));
     state.steer.chosenTag = d === 0 ? '' : (state.tags[d - 1] || state.steer.chosenTag);
   }
-  // X: come to rest; moving again takes it back (once it stands, where the graph has a way on).
+  // X: come to rest; moving again takes it back (once it stands, it starts off, unless for good).
   if (state.steer && e.code === 'KeyX') state.steer.rest = true;
   else if (state.steer && MOVE_KEYS.includes(e.code) && !state.steer.restForGood) state.steer.rest = false;
   if (state.steer && STEER_KEYS.includes(e.code)) e.preventDefault();
@@ -423,7 +423,7 @@ async function startSteering() {
   overlays.clear();
   // buffer: the frames received and not yet shown; planted: their rows of the contacts.
   state.steer = { session: session.session, buffer: [], planted: [], contacts: null, inFlight: false, heading: 0,
-    tag, chosenTag: tag, rest: false, restS: null, restClip: null, resting: false, restForGood: false,
+    tag, chosenTag: tag, rest: false, restS: null, restClip: null, resting: false, restForGood: false, lastStart: null,
     canRest: session.can_rest,
     received: 0, played: 0, clock: 0, fps: session.fps, lastStepMs: 0, trailEnd: null };
   setResultLink(session.result);
@@ -471,6 +471,7 @@ async function requestSteps() {
     s.restClip = step.rest_clip;
     s.resting = step.resting;
     s.restForGood = step.rest_for_good;
+    if (step.starts && step.starts.length) s.lastStart = step.starts[step.starts.length - 1];
     showSteerWarnings(step.warnings);
   } catch (err) {
     $('steer-info').textContent = `error: ${err.message}`;
@@ -576,9 +577,11 @@ function tick() {
     } else if (s.resting) {
       rest = `at rest since ${s.restS.toFixed(1)} s, at the end of ${s.restClip}`
         + (s.restForGood ? ', for good (the graph has no way on from there: Stop steering and start again); '
-          : ' (move to walk on); ');
+          : ' (move to start off); ');
     } else if (s.rest) {
       rest = s.canRest ? 'coming to rest; ' : 'asked to rest, but no clip of this graph ends standing still; ';
+    } else if (s.lastStart && s.played / s.fps < s.lastStart.at_s + 3) {
+      rest = `starting off from rest into ${s.lastStart.clip}; `;
     }
     $('steer-info').textContent = `${rest}heading ${s.heading.toFixed(0)} deg, ${s.tag || 'any'}; `
       + `${s.received} frames received, step ${s.lastStepMs.toFixed(0)} ms, `

@@ -25,6 +25,11 @@ nlohmann::json ratio_json(double output, double source) {
 }  // namespace
 
 nlohmann::json foot_slide_report(const SynthesisContext& context, const Walk& walk, const Motion& motion) {
+  return foot_slide_report(context, walk, motion, context.walk_sources(walk));
+}
+
+nlohmann::json foot_slide_report(const SynthesisContext& context, const Walk& walk, const Motion& motion,
+                                 std::span<const FrameSource> sources) {
   const std::vector<int> clips = walk_source_clips(*context.graph, walk.start_node, walk.edges);
   const FootSlideSettings settings = database_foot_slide_settings(*context.db);
   auto comparison = compare_foot_slide(context.assembler.skeleton(), motion, *context.db, clips, settings);
@@ -40,7 +45,6 @@ nlohmann::json foot_slide_report(const SynthesisContext& context, const Walk& wa
                      {"p95_mps", ratio_json(output.p95_mps, source.p95_mps)},
                      {"max_joint_step_m", ratio_json(output.max_joint_step_m, source.max_joint_step_m)},
                      {"max_joint_step_over_source_p999", ratio_json(output.max_joint_step_m, source.p999_joint_step_m)}};
-  const std::vector<FrameSource> sources = context.walk_sources(walk);
   auto same = same_frames_foot_slide(*context.db, context.assembler, motion, sources, settings);
   if (!same) {
     report["same_frames"] = {{"error", same.error().message}};

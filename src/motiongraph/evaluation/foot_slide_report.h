@@ -13,6 +13,8 @@
 // capture it played. {"error": "..."} when a skeleton's feet cannot be found by name.
 #pragma once
 
+#include <span>
+
 #include <nlohmann/json.hpp>
 
 #include "motiongraph/synthesis/synthesis_context.h"
@@ -20,5 +22,9 @@
 namespace mg {
 
 nlohmann::json foot_slide_report(const SynthesisContext& context, const Walk& walk, const Motion& motion);
+// The same for motion whose frames' sources are `sources`, in order (a steering session's: its
+// decisions', decision_sources), not the walk's; the walk says the clips it was cut from.
+nlohmann::json foot_slide_report(const SynthesisContext& context, const Walk& walk, const Motion& motion,
+                                 std::span<const FrameSource> sources);
 
 }  // namespace mg

@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 
 #include "motiongraph/core/error.h"
 #include "motiongraph/export/motion_file.h"
+#include "motiongraph/synthesis/controller.h"
 #include "motiongraph/synthesis/floor_path.h"
 #include "motiongraph/synthesis/heading_edit.h"
 #include "motiongraph/synthesis/path_synthesis.h"
@@ -75,6 +77,10 @@ std::vector<std::string> segment_warnings(const SynthesisContext& context, const
 // Where a motion came to rest (rest_endings.h), as reports give it: {"at_s", the "clip" at whose end
 // it stands, "clip_frame" from which it stands, "held_frame"}; null without an ending.
 nlohmann::json rest_report(const SynthesisContext& context, const RestEnding* ending, double at_s);
+// The starts from rest a steering session took (synthesis/rest_starts.h) before frame `frames`, as
+// reports give them: [{"at_s", the "clip" it started off into, "clip_frame" of the lead-in's first
+// frame, "node_frame" the graph went on from, "rms_cm" from the pose held}].
+nlohmann::json starts_report(const SynthesisContext& context, std::span<const StartTaken> starts, long long frames);
 
 // Whether asking for `tag` asks the controller to rest (controller.h): it is stop, the graph plays
 // it in less than a second (unplayable_tag) and has clips that end standing still to rest at.

@@ -76,6 +76,10 @@ class MotionAssembler {
     append_frame(frame, PreparedFloorTransform(placement), out);
   }
   void append_frame(int frame, const PreparedFloorTransform& placement, Motion& out) const;
+  // Appends the blend of database frame `departure` placed by `w_departure`, weighing `alpha`, with
+  // `arrival` placed by `w_arrival` (FrameSource's; a transition's frames, a start from rest's).
+  void append_blend(int departure, const PreparedFloorTransform& w_departure, int arrival,
+                    const PreparedFloorTransform& w_arrival, double alpha, Motion& out) const;
 
   // The root of database frame `frame` under `placement` (scaled to the target), without
   // building the pose.
@@ -103,8 +107,6 @@ class MotionAssembler {
   void visit_edge(int edge, FloorTransform& placement, OnFrame on_frame, OnBlend on_blend) const;
   RootPose blend_root(int departure, const PreparedFloorTransform& w_departure, int arrival,
                       const PreparedFloorTransform& w_arrival, double alpha) const;
-  void append_blend(int departure, const PreparedFloorTransform& w_departure, int arrival,
-                    const PreparedFloorTransform& w_arrival, double alpha, Motion& out) const;
   const DatabaseClip& clip_of(int frame, int* local) const;
 
   const MotionDatabase* db_ = nullptr;

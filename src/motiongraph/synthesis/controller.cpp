@@ -4,6 +4,7 @@
 #include <array>
 #include <bit>
 #include <chrono>
+#include <limits>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -90,7 +91,15 @@ Result<Controller> Controller::create(const SynthesisContext& context, const Con
 }
 
 bool Controller::rest_is_for_good() const {
-  return resting_ && context_->graph->node_at_frame(rest_->last_frame) < 0;
+  return resting_ && context_->graph->node_at_frame(rest_->last_frame) < 0 &&
+         context_->rest_starts(rest_->last_frame).empty();
+}
+
+std::vector<FrameSource> decision_sources(const SynthesisContext& context, const ControllerDecision& decision) {
+  std::vector<FrameSource> out = decision.start_frames;
+  for (int e : decision.edges) context.assembler.append_edge_sources(e, out);
+  for (int f : decision.rest_frames) out.push_back({f, f, 1.0});
+  return out;
 }
 
 bool Controller::standing() const { return resting_ && ending_next_ >= ending_frames_.size(); }
@@ -99,15 +108,19 @@ ControllerDecision Controller::step(Motion& out) {
   using Clock = std::chrono::steady_clock;
   const auto begin = Clock::now();
   ControllerDecision decision;
-  if (standing() && !input_.rest && !rest_is_for_good()) {
-    // On from the frame it holds: the graph's node there, placed as the frame is.
-    const int node = context_->graph->node_at_frame(rest_->last_frame);
-    state_.node = node;
-    state_.placement = rest_placement_;
-    const Vec3 held = context_->assembler.root_position(rest_->last_frame, rest_placement_);
-    state_.last_root = Vec2(held.x(), held.z());
-    state_.has_last = true;
-    resting_ = false;
+  if (standing() && !input_.rest) {
+    if (const int node = context_->graph->node_at_frame(rest_->last_frame); node >= 0) {
+      // On from the frame it holds: the graph's node there, placed as the frame is.
+      state_.node = node;
+      state_.placement = rest_placement_;
+      const Vec3 held = context_->assembler.root_position(rest_->last_frame, rest_placement_);
+      state_.last_root = Vec2(held.x(), held.z());
+      state_.has_last = true;
+      resting_ = false;
+    } else if (start_off(out, decision)) {
+      decision.search_seconds = std::chrono::duration<double>(Clock::now() - begin).count();
+      return decision;
+    }
   }
   if (resting_ || (input_.rest && !context_->rest().empty())) {
     step_to_rest(out, decision);
@@ -167,6 +180,89 @@ void Controller::play(std::span<const int> committed, std::span<const int> plann
     state_.placement = move * state_.placement;
     state_.last_root = place(move, state_.last_root);
   }
+}
+
+bool Controller::start_off(Motion& out, ControllerDecision& decision) {
+  const std::vector<RestStart>& starts = context_->rest_starts(rest_->last_frame);
+  if (starts.empty()) return false;
+  const MotionGraph& graph = *context_->graph;
+  const MotionAssembler& assembler = context_->assembler;
+  const Vec3& axis = context_->tracks.forward_axis;
+  // The choice (see the header): near enough the nearest, into the motion type asked for where any
+  // is, and facing the heading asked at its node.
+  const TagMask wanted = input_.tag != 0 ? input_.tag : moving_types_;
+  auto into_tag = [&](const RestStart& start) {
+    return (context_->frame_tag(graph.nodes[start.node].frame) & wanted) != 0;
+  };
+  const bool by_tag = wanted != 0 && std::any_of(starts.begin(), starts.end(), into_tag);
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const RestStart& start : starts) {
+    if (!by_tag || into_tag(start)) nearest = std::min(nearest, start.rank_m);
+  }
+  const RestStart* chosen = nullptr;
+  double best = std::numeric_limits<double>::infinity();
+  for (const RestStart& start : starts) {
+    if ((by_tag && !into_tag(start)) || start.rank_m > kStartSlack * nearest) continue;
+    const FloorTransform lead = rest_placement_ * start.alignment;
+    const Vec2 facing = facing_on_floor(assembler.root_rotation(graph.nodes[start.node].frame, lead), axis);
+    const double score = (nearest > 0.0 ? start.rank_m / nearest - 1.0 : 0.0) + (1.0 - facing.dot(input_.direction));
+    if (score < best) {
+      best = score;
+      chosen = &start;
+    }
+  }
+  // The frame held blended into the lead-in, then the lead-in on as captured to the node.
+  const int held = rest_->last_frame;
+  const int node_frame = graph.nodes[chosen->node].frame;
+  const FloorTransform lead = rest_placement_ * chosen->alignment;
+  const PreparedFloorTransform w_held(rest_placement_), w_lead(lead);
+  const int first = out.frame_count;
+  for (int p = 0; p < chosen->blend_frames; ++p) {
+    const double alpha = blend_weight(p, chosen->blend_frames);
+    assembler.append_blend(held, w_held, chosen->first_frame + p, w_lead, alpha, out);
+    decision.start_frames.push_back({held, chosen->first_frame + p, alpha});
+  }
+  for (int f = chosen->first_frame + chosen->blend_frames; f < node_frame; ++f) {
+    assembler.append_frame(f, w_lead, out);
+    decision.start_frames.push_back({f, f, 1.0});
+  }
+  const Vec3 held_root = assembler.root_pose(held, w_held).position;
+  const Vec2 from(held_root.x(), held_root.z());
+  state_.placement = lead;
+  if (settings_.heading_edit.max_turn_deg_per_m > 0.0) {
+    // The plan: the start's frames as played, then its clip on from the node as far as the edit looks.
+    std::vector<Vec2> facings, roots;
+    auto plan = [&](const Quat& rotation, const Vec3& root) {
+      facings.push_back(facing_on_floor(rotation, axis));
+      if (settings_.heading_edit.hold_travel) roots.emplace_back(root.x(), root.z());
+    };
+    for (int f = first; f < out.frame_count; ++f) plan(out.rotations(f)[0], out.translations(f)[0]);
+    const DatabaseClip& clip = context_->db->clips[graph.nodes[chosen->node].clip];
+    for (int i = 0; i < edit_.half_window_frames(); ++i) {
+      const RootPose root = assembler.root_pose(std::min(node_frame + i, clip.first_frame + clip.frame_count - 1), lead);
+      plan(root.rotation, root.position);
+    }
+    state_.placement = edit_.apply(out, first, &from, facings, roots, input_.direction) * lead;
+  }
+  if (!context_->frame_contacts.empty()) {
+    for (const FrameSource& source : decision.start_frames) {
+      decision.contacts.push_back(context_->frame_contacts[static_cast<size_t>(source.dominant())]);
+    }
+  }
+  Vec2 at = from;
+  for (int f = first; f < out.frame_count; ++f) {
+    const Vec2 root(out.translations(f)[0].x(), out.translations(f)[0].z());
+    state_.arc_m += (root - at).norm();
+    at = root;
+  }
+  starts_.push_back({state_.frames, chosen});
+  state_.node = chosen->node;
+  state_.last_root = at;
+  state_.has_last = true;
+  state_.frames += out.frame_count - first;
+  decision.frames += out.frame_count - first;
+  resting_ = false;
+  return true;
 }
 
 void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
@@ -233,6 +329,7 @@ void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
   if (ending == nullptr) return;
   resting_ = true;
   rest_ = ending;
+  moving_types_ = context_->frame_tag(graph.nodes[ending->node].frame) & motion_type_tags(*context_->db);
   rest_placement_ = state_.placement;
   rest_frames_.push_back(state_.frames + ending->frames_to_rest(graph));
   ending_frames_ = ending->frames(graph);

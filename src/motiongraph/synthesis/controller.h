@@ -21,11 +21,17 @@
 // other plants (a turn asked with rest: it stands facing the way asked as far as its last steps
 // allow, in the clip's own stance), plays
 // that clip a decision's worth of frames at a time, and then holds its last frame (resting(),
-// standing()). Asked to move again, it goes on from
-// that frame where the graph has a node there (a library with clips that start from standing);
-// where it has none (the pruning left the clip's end out as a dead end: subject 16), rest is for
-// good (rest_is_for_good()). Where the graph has no such clip (RestEndings::empty), rest is not
-// heard: the search goes on with the tag.
+// standing()). Asked to move again, it goes on from that frame where the graph has a node there (a
+// library with clips that start from standing); where it has none (the pruning left the clip's end
+// out as a dead end: every library tried), it starts off (rest_starts.h): one decision plays the
+// start, the frame held blended into a lead-in and the lead-in on to its node, turned by the heading
+// edit, and the next searches on from the node. Of the starts from the frame held, those into the
+// motion type asked for where any are (with none asked, the type it came to rest from: a walk that
+// stopped walks on, not off into a jump that starts from standing), of those the ones within
+// kStartSlack of the nearest, and of those the one that ranks best on the distance and the facing
+// at its node against the heading asked ((rank / nearest - 1) + (1 - cos), RestStart::rank_m). With no start either,
+// rest is for good (rest_is_for_good()). Where the graph has no clip that ends at rest
+// (RestEndings::empty), rest is not heard: the search goes on with the tag.
 #pragma once
 
 #include <span>
@@ -36,6 +42,9 @@
 #include "motiongraph/synthesis/synthesis_context.h"
 
 namespace mg {
+
+// A start's distance within this many times the nearest's is as good a start (rest_starts.h).
+constexpr double kStartSlack = 1.5;
 
 struct ControlInput {
   Vec2 direction = Vec2(0.0, -1.0);  // unit, on the floor (default north, -z)
@@ -81,7 +90,10 @@ struct ControllerDecision {
   // Database frames played after the edges, as captured (Walk::rest_frames): the clip on to its
   // end as the character comes to rest, then its last frame held.
   std::vector<int> rest_frames;
-  int frames = 0;                    // appended to the motion: the edges' and the rest frames
+  // A start from rest (rest_starts.h): the frames it plays, before any edge (the frame held blended
+  // into the lead-in, then the lead-in as captured).
+  std::vector<FrameSource> start_frames;
+  int frames = 0;                    // appended to the motion: the start's, the edges' and the rest frames
   // Per frame appended, the foot contacts the clean-up should hold: each frame's own
   // (SynthesisContext::edges_contacts, frames_contacts), but for the foot the stopping clip
   // pivots on while it turns (free there, then planted where it pivoted); empty when the graph's
@@ -90,6 +102,22 @@ struct ControllerDecision {
   double search_seconds = 0.0;       // wall time of the decision
   long long expansions = 0;
   bool budget_exhausted = false;
+};
+
+// The database frames a decision's frames are made of, in order: its start's, its edges', its
+// rest frames'.
+std::vector<FrameSource> decision_sources(const SynthesisContext& context, const ControllerDecision& decision);
+
+// The blends a decision plays: its transition edges, and its start from rest (one blend).
+inline int decision_transitions(const MotionGraph& graph, const ControllerDecision& decision) {
+  return count_transitions(graph, decision.edges) + (decision.start_frames.empty() ? 0 : 1);
+}
+
+// A start from rest a controller took: from the frame (counted from its first) its first frame
+// is, and which.
+struct StartTaken {
+  long long frame = 0;
+  const RestStart* start = nullptr;  // (the context's: SynthesisContext::rest_starts)
 };
 
 // Where a controller starts without a start node: the first node carrying `tag`, or with no tag
@@ -112,8 +140,11 @@ class Controller {
   // Whether the character has taken its way to rest: the decisions hold its last frame until it
   // is asked to move and can (rest_is_for_good()).
   bool resting() const { return resting_; }
-  // Resting where the graph has no way on from the frame it holds.
+  // Resting where the graph has no way on from the frame it holds and no start from it
+  // (rest_starts.h; the first call finds the starts from the frame held).
   bool rest_is_for_good() const;
+  // The starts from rest it took, in order.
+  const std::vector<StartTaken>& starts() const { return starts_; }
   // Resting with the clip it rests at played to its end: holding its last frame.
   bool standing() const;
   // The frame (counted from the controller's first) from which it stood still each time it came to
@@ -136,6 +167,8 @@ class Controller {
   void play(std::span<const int> committed, std::span<const int> planned, Motion& out, ControllerDecision& decision);
   // A decision on the way to rest, or at it.
   void step_to_rest(Motion& out, ControllerDecision& decision);
+  // Off from rest by a start (rest_starts.h); false when there is none from the frame held.
+  bool start_off(Motion& out, ControllerDecision& decision);
   // The heading edit of the stopping clip's frames [from, ending_next_), appended to `out` from
   // frame `first`.
   void edit_ending(Motion& out, int first, size_t from);
@@ -158,6 +191,8 @@ class Controller {
   bool pivot_pinned_ = false;
   Vec2 pivot_at_ = Vec2::Zero();  // where it stands, once pinned
   Motion held_pose_;  // the ending's last frame as played (the heading edit turned it): the frame held
+  TagMask moving_types_ = 0;  // the motion types of the ending's first frame: those a start with no tag asked goes on in
+  std::vector<StartTaken> starts_;
 };
 
 // Bearing in degrees (0 north = -z, 90 east = +x) as a unit floor direction, and back.

@@ -91,6 +91,15 @@ void SynthesisContext::set_rest(RestEndings endings) {
   std::call_once(rest_cache->found, [&] { rest_cache->endings = std::move(endings); });
 }
 
+const std::vector<RestStart>& SynthesisContext::rest_starts(int held_frame) const {
+  std::lock_guard<std::mutex> lock(start_cache->mutex);
+  auto found = start_cache->starts.find(held_frame);
+  if (found == start_cache->starts.end()) {
+    found = start_cache->starts.emplace(held_frame, find_rest_starts(*db, *graph, assembler, held_frame)).first;
+  }
+  return found->second;
+}
+
 std::vector<ContactMask> SynthesisContext::frames_contacts(std::span<const int> frames) const {
   std::vector<ContactMask> out;
   if (frame_contacts.empty()) return out;

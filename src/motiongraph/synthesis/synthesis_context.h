@@ -4,6 +4,7 @@
 #pragma once
 
 #include <deque>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <span>
@@ -13,6 +14,7 @@
 #include "motiongraph/synthesis/edge_tracks.h"
 #include "motiongraph/synthesis/foot_cleanup.h"
 #include "motiongraph/synthesis/rest_endings.h"
+#include "motiongraph/synthesis/rest_starts.h"
 #include "motiongraph/synthesis/walk.h"
 
 namespace mg {
@@ -72,6 +74,15 @@ struct SynthesisContext {
   const RestEndings& rest() const;
   // These endings instead, for this context alone (a test's own, or none).
   void set_rest(RestEndings endings);
+  // The ways to start off from each frame held at rest (rest_starts.h), found the first time each
+  // is asked for (forward kinematics of the clips the graph goes on from); shared by copies.
+  struct StartCache {
+    std::mutex mutex;
+    std::map<int, std::vector<RestStart>> starts;  // by frame held
+  };
+  std::shared_ptr<StartCache> start_cache = std::make_shared<StartCache>();
+  // The reference stays valid as long as the cache.
+  const std::vector<RestStart>& rest_starts(int held_frame) const;
 
   // The placement that puts node `node`'s frame with its root at `at` facing `direction`
   // (unit, on the floor).

@@ -1,0 +1,79 @@
+#include "motiongraph/synthesis/rest_starts.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "motiongraph/metric/reference_distance.h"
+#include "motiongraph/motion/forward_kinematics.h"
+
+namespace mg {
+
+namespace {
+
+// The joints' positions of database frames [first, first + count) as the assembler plays them with
+// no placement: frame-major, joint_count each.
+std::vector<Vec3> played_joints(const MotionAssembler& assembler, int first, int count) {
+  Motion motion = assembler.empty_motion();
+  const PreparedFloorTransform none{FloorTransform{}};
+  for (int f = first; f < first + count; ++f) assembler.append_frame(f, none, motion);
+  return world_positions(assembler.skeleton(), motion);
+}
+
+}  // namespace
+
+std::vector<RestStart> find_rest_starts(const MotionDatabase& db, const MotionGraph& graph,
+                                        const MotionAssembler& assembler, int held_frame) {
+  const double fps = db.fps;
+  const int stride = std::max(1, static_cast<int>(std::lround(fps / 30.0)));
+  const int blend = std::max(2, static_cast<int>(std::lround(kStartBlendS * fps)));
+  const int max_lead = std::max(blend, static_cast<int>(std::lround(kMaxStartLeadS * fps)));
+  const int samples = std::max(2, (blend + stride - 1) / stride);  // the window's frames: f, f + stride, ...
+  const int joints = assembler.skeleton().joint_count();
+  const std::vector<double> weights(static_cast<size_t>(joints), 1.0), taper(static_cast<size_t>(samples), 1.0);
+  // The clouds the reference compares: the held frame's joints `samples` times (standing still),
+  // then the lead-in's sampled frames.
+  std::vector<Vec3> clouds(static_cast<size_t>(2 * samples * joints));
+  const std::vector<Vec3> held = played_joints(assembler, held_frame, 1);
+  for (int t = 0; t < samples; ++t) std::copy(held.begin(), held.end(), clouds.begin() + t * joints);
+  const double norm = static_cast<double>(samples) * joints;
+  std::vector<RestStart> best;  // per clip the graph goes on from, its best start
+  for (int first_node = 0; first_node < graph.node_count();) {
+    const int c = graph.nodes[first_node].clip;
+    int end_node = first_node;
+    while (end_node < graph.node_count() && graph.nodes[end_node].clip == c) ++end_node;
+    const DatabaseClip& clip = db.clips[c];
+    // The clip's frames up to its last node, once.
+    const int last = graph.nodes[end_node - 1].frame;
+    const std::vector<Vec3> positions = played_joints(assembler, clip.first_frame, last - clip.first_frame + 1);
+    int node = first_node;
+    RestStart kept;
+    kept.node = -1;
+    for (int f = clip.first_frame; f + blend <= last; f += stride) {
+      // The first node after the blend's last frame (f + blend - 1).
+      while (graph.nodes[node].frame < f + blend) ++node;
+      if (graph.nodes[node].frame - f > max_lead) continue;
+      for (int t = 0; t < samples; ++t) {
+        const int frame = std::min(f + t * stride, last);
+        const auto from = positions.begin() + static_cast<long>(frame - clip.first_frame) * joints;
+        std::copy(from, from + joints, clouds.begin() + (samples + t) * joints);
+      }
+      const ReferenceDistance d = reference_distance(clouds, joints, weights, taper, 0, 2 * samples - 1);
+      const double rms = std::sqrt(d.distance / norm);
+      const double rank = rms + kStartWaitMps * (graph.nodes[node].frame - f) / fps;
+      if (kept.node < 0 || rank < kept.rank_m) {
+        kept = {f, node, blend, {d.alignment.yaw_rad, d.alignment.x_m, d.alignment.z_m}, rms, rank};
+      }
+    }
+    if (kept.node >= 0) best.push_back(kept);
+    first_node = end_node;
+  }
+  const size_t keep = std::min(best.size(), static_cast<size_t>(kStartChoices));
+  std::partial_sort(best.begin(), best.begin() + static_cast<long>(keep), best.end(),
+                    [](const RestStart& a, const RestStart& b) {
+                      return a.rank_m != b.rank_m ? a.rank_m < b.rank_m : a.first_frame < b.first_frame;
+                    });
+  best.resize(keep);
+  return best;
+}
+
+}  // namespace mg
