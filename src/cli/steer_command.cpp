@@ -141,7 +141,8 @@ int run_steer(const SteerOptions& o) {
   auto standing_at = [&](double t) {
     double stood = -1.0;
     for (const double r : rests_s) stood = r <= t ? r : stood;
-    return stood >= 0.0 && std::none_of(starts_s.begin(), starts_s.end(), [&](double s) { return s >= stood && s <= t; });
+    return stood >= 0.0 &&
+           std::none_of(starts_s.begin(), starts_s.end(), [&](double s) { return s >= stood && s <= t; });
   };
   std::vector<double> unheard_s, turns_at_rest_s;
   for (size_t i = 0; i < script->controls.size(); ++i) {

@@ -512,7 +512,8 @@ TEST(StudioApi, SteeringComesToRestWhenAsked) {
   EXPECT_FALSE(off.json["resting"].get<bool>());
   ASSERT_EQ(off.json["starts"].size(), 1u) << off.json.dump();
   const json& start = off.json["starts"][0];
-  EXPECT_DOUBLE_EQ(start["at_s"].get<double>(), off.json["first_frame"].get<double>() / session.json["fps"].get<double>());
+  EXPECT_DOUBLE_EQ(start["at_s"].get<double>(),
+                   off.json["first_frame"].get<double>() / session.json["fps"].get<double>());
   EXPECT_GT(start["rms_cm"].get<double>(), 0.0);
   EXPECT_GE(off.json["transitions"].get<int>(), 1);
   // (each frame the joints' x, y, z in turn, the root's first)

@@ -547,6 +547,8 @@ TEST(Controller, StartsOffIntoTheMotionTypeAsked) {
     tested += any ? 1 : 0;
   }
   EXPECT_GE(tested, 2);  // walk, and another
+  // (asking none, the type it came to rest from, or else the one the graph holds most of: walk)
+  EXPECT_EQ(most_played_type(context), *walk);
 }
 
 // Asked to rest and then to walk before it stands, the character walks on; a graph with nowhere

@@ -35,6 +35,18 @@ double placed_rms(const MotionAssembler& assembler, int held, int first, int ble
   return std::sqrt(sum / (samples * static_cast<double>(h.size())));
 }
 
+// Whether the motion at graph node `node` travels kStartTravelMps or faster over the kStartTravelS
+// after it, as far as its clip goes.
+bool node_travels(const SynthesisContext& context, int node) {
+  const MotionDatabase& db = *context.db;
+  const int from = context.graph->nodes[static_cast<size_t>(node)].frame;
+  const DatabaseClip& clip = db.clips[static_cast<size_t>(db.clip_of(from))];
+  const int to = std::min(clip.first_frame + clip.frame_count - 1,
+                          from + static_cast<int>(std::lround(kStartTravelS * db.fps)));
+  const Vec3 a = context.assembler.root_position(from, {}), b = context.assembler.root_position(to, {});
+  return to > from && std::hypot(b.x() - a.x(), b.z() - a.z()) / ((to - from) / db.fps) >= kStartTravelMps;
+}
+
 // The frames subject 16's graph holds at rest: its endings' last frames.
 std::vector<int> held_frames(const SynthesisContext& context) {
   std::vector<int> held;
@@ -44,7 +56,7 @@ std::vector<int> held_frames(const SynthesisContext& context) {
   return held;
 }
 
-TEST(RestStarts, EachLeadsIntoTheFirstNodeAfterItsBlendWithinTheLongestLeadIn) {
+TEST(RestStarts, EachLeadsIntoTheFirstNodeAfterItsBlendWithinTheLongestLeadInWhereTheMotionTravels) {
   const SynthesisContext& context = test::subject16().context();
   const MotionGraph& graph = *context.graph;
   const MotionDatabase& db = *context.db;
@@ -71,6 +83,7 @@ TEST(RestStarts, EachLeadsIntoTheFirstNodeAfterItsBlendWithinTheLongestLeadIn) {
         }
       }
       EXPECT_NEAR(s.rank_m, s.rms_m + kStartWaitMps * s.frames(graph) / db.fps, 1e-12);
+      EXPECT_TRUE(node_travels(context, s.node)) << "a start into standing on";
       if (i > 0) {
         EXPECT_GE(s.rank_m, starts[i - 1].rank_m) << "best first";
       }
@@ -111,8 +124,9 @@ TEST(RestStarts, TheAlignmentIsTheBestAndPlacesTheLeadInOnTheFrameHeld) {
 }
 
 // The starts kept are the best by rank of every clip's, found by brute force: every frame of every
-// clip, its first node after the blend found by scanning the nodes, the floor alignment solved here
-// (the 2D Procrustes problem: centroids and the angle of the cross-covariance).
+// clip, its first node after the blend found by scanning the nodes (one where the motion travels),
+// the floor alignment solved here (the 2D Procrustes problem: centroids and the angle of the
+// cross-covariance).
 TEST(RestStarts, AreTheBestClipsOfABruteForceSearch) {
   const SynthesisContext& context = test::subject16().context();
   const MotionGraph& graph = *context.graph;
@@ -139,6 +153,7 @@ TEST(RestStarts, AreTheBestClipsOfABruteForceSearch) {
         if (candidate.clip == static_cast<int>(c) && candidate.frame >= f + blend) node = n;
       }
       if (node < 0 || graph.nodes[static_cast<size_t>(node)].frame - f > max_lead) continue;
+      if (!node_travels(context, node)) continue;
       const int last = graph.nodes[static_cast<size_t>(node)].frame;
       // Held points p, lead-in points q: centroids, then the yaw that turns q's spread onto p's.
       std::vector<Vec2> p, q;

@@ -52,22 +52,23 @@ double direction_bearing(const Vec2& d) {
   return b < 0.0 ? b + 360.0 : b;
 }
 
+TagMask most_played_type(const SynthesisContext& context) {
+  const MotionGraph& graph = *context.graph;
+  const TagMask types = motion_type_tags(*context.db);
+  std::array<int, 64> nodes{};
+  for (int n = 0; n < graph.node_count(); ++n) {
+    for (TagMask m = context.tracks.tags_of(graph.edge_offsets[n]).front() & types; m != 0; m &= m - 1) {
+      ++nodes[static_cast<size_t>(std::countr_zero(m))];
+    }
+  }
+  const auto most = std::max_element(nodes.begin(), nodes.end());
+  return *most == 0 ? TagMask{0} : TagMask{1} << (most - nodes.begin());
+}
+
 int controller_start_node(const SynthesisContext& context, TagMask tag) {
   const MotionGraph& graph = *context.graph;
-  // The motion type whose frames start most nodes when none is asked for (modifiers such as
-  // turn ride on the types; nodes of no type: node 0).
-  if (tag == 0) {
-    const TagMask types = motion_type_tags(*context.db);
-    std::array<int, 64> nodes{};
-    for (int n = 0; n < graph.node_count(); ++n) {
-      for (TagMask m = context.tracks.tags_of(graph.edge_offsets[n]).front() & types; m != 0; m &= m - 1) {
-        ++nodes[static_cast<size_t>(std::countr_zero(m))];
-      }
-    }
-    const auto most = std::max_element(nodes.begin(), nodes.end());
-    if (*most == 0) return 0;
-    tag = TagMask{1} << (most - nodes.begin());
-  }
+  if (tag == 0) tag = most_played_type(context);
+  if (tag == 0) return 0;
   for (int n = 0; n < graph.node_count(); ++n) {
     if ((context.tracks.tags_of(graph.edge_offsets[n]).front() & tag) != 0) return n;
   }
@@ -239,7 +240,8 @@ bool Controller::start_off(Motion& out, ControllerDecision& decision) {
     for (int f = first; f < out.frame_count; ++f) plan(out.rotations(f)[0], out.translations(f)[0]);
     const DatabaseClip& clip = context_->db->clips[graph.nodes[chosen->node].clip];
     for (int i = 0; i < edit_.half_window_frames(); ++i) {
-      const RootPose root = assembler.root_pose(std::min(node_frame + i, clip.first_frame + clip.frame_count - 1), lead);
+      const int frame = std::min(node_frame + i, clip.first_frame + clip.frame_count - 1);
+      const RootPose root = assembler.root_pose(frame, lead);
       plan(root.rotation, root.position);
     }
     state_.placement = edit_.apply(out, first, &from, facings, roots, input_.direction) * lead;
@@ -330,6 +332,7 @@ void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
   resting_ = true;
   rest_ = ending;
   moving_types_ = context_->frame_tag(graph.nodes[ending->node].frame) & motion_type_tags(*context_->db);
+  if (moving_types_ == 0) moving_types_ = most_played_type(*context_);
   rest_placement_ = state_.placement;
   rest_frames_.push_back(state_.frames + ending->frames_to_rest(graph));
   ending_frames_ = ending->frames(graph);

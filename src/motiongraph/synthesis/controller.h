@@ -26,12 +26,13 @@
 // out as a dead end: every library tried), it starts off (rest_starts.h): one decision plays the
 // start, the frame held blended into a lead-in and the lead-in on to its node, turned by the heading
 // edit, and the next searches on from the node. Of the starts from the frame held, those into the
-// motion type asked for where any are (with none asked, the type it came to rest from: a walk that
-// stopped walks on, not off into a jump that starts from standing), of those the ones within
+// motion type asked for where any are (with none asked, the type it came to rest from, or the one
+// the graph holds most of: a walk that stopped walks on, not off into a jump that starts from
+// standing), of those the ones within
 // kStartSlack of the nearest, and of those the one that ranks best on the distance and the facing
-// at its node against the heading asked ((rank / nearest - 1) + (1 - cos), RestStart::rank_m). With no start either,
-// rest is for good (rest_is_for_good()). Where the graph has no clip that ends at rest
-// (RestEndings::empty), rest is not heard: the search goes on with the tag.
+// at its node against the heading asked ((rank / nearest - 1) + (1 - cos), RestStart::rank_m).
+// With no start either, rest is for good (rest_is_for_good()). Where the graph has no clip that
+// ends at rest (RestEndings::empty), rest is not heard: the search goes on with the tag.
 #pragma once
 
 #include <span>
@@ -120,11 +121,14 @@ struct StartTaken {
   const RestStart* start = nullptr;  // (the context's: SynthesisContext::rest_starts)
 };
 
+// The motion type (graph_from_candidates.h: not a modifier such as turn) most nodes carry, the
+// type the graph holds most of; 0 when no node carries a type.
+TagMask most_played_type(const SynthesisContext& context);
+
 // Where a controller starts without a start node: the first node carrying `tag`, or with no tag
-// (0) the first carrying the motion type (graph_from_candidates.h: not a modifier such as turn)
-// most nodes carry, the type the graph holds most of (a
-// steering session that asks for no motion type walks, rather than start among jumps it could
-// leave only through a bridge); node 0 when no node carries it.
+// (0) the first carrying most_played_type() (a steering session that asks for no motion type
+// walks, rather than start among jumps it could leave only through a bridge); node 0 when no node
+// carries it.
 int controller_start_node(const SynthesisContext& context, TagMask tag);
 
 class Controller {
@@ -191,7 +195,9 @@ class Controller {
   bool pivot_pinned_ = false;
   Vec2 pivot_at_ = Vec2::Zero();  // where it stands, once pinned
   Motion held_pose_;  // the ending's last frame as played (the heading edit turned it): the frame held
-  TagMask moving_types_ = 0;  // the motion types of the ending's first frame: those a start with no tag asked goes on in
+  // The motion types of the ending's first frame (where it has none, most_played_type()): those a
+  // start with no tag asked goes on in.
+  TagMask moving_types_ = 0;
   std::vector<StartTaken> starts_;
 };
 

@@ -28,6 +28,7 @@ std::vector<RestStart> find_rest_starts(const MotionDatabase& db, const MotionGr
   const int blend = std::max(2, static_cast<int>(std::lround(kStartBlendS * fps)));
   const int max_lead = std::max(blend, static_cast<int>(std::lround(kMaxStartLeadS * fps)));
   const int samples = std::max(2, (blend + stride - 1) / stride);  // the window's frames: f, f + stride, ...
+  const int travel_frames = std::max(1, static_cast<int>(std::lround(kStartTravelS * fps)));
   const int joints = assembler.skeleton().joint_count();
   const std::vector<double> weights(static_cast<size_t>(joints), 1.0), taper(static_cast<size_t>(samples), 1.0);
   // The clouds the reference compares: the held frame's joints `samples` times (standing still),
@@ -45,13 +46,28 @@ std::vector<RestStart> find_rest_starts(const MotionDatabase& db, const MotionGr
     // The clip's frames up to its last node, once.
     const int last = graph.nodes[end_node - 1].frame;
     const std::vector<Vec3> positions = played_joints(assembler, clip.first_frame, last - clip.first_frame + 1);
+    // Whether the motion at a node travels: its root's floor speed over the kStartTravelS after it
+    // (as far as the clip goes).
+    const int clip_last = clip.first_frame + clip.frame_count - 1;
+    auto travels = [&](int n) {
+      const int from = graph.nodes[n].frame, to = std::min(clip_last, from + travel_frames);
+      const Vec3 a = assembler.root_position(from, {}), b = assembler.root_position(to, {});
+      return to > from && std::hypot(b.x() - a.x(), b.z() - a.z()) >= kStartTravelMps * (to - from) / fps;
+    };
     int node = first_node;
+    int judged = -1;  // the node whether it travels was last judged for
+    bool moving = false;
     RestStart kept;
     kept.node = -1;
     for (int f = clip.first_frame; f + blend <= last; f += stride) {
       // The first node after the blend's last frame (f + blend - 1).
       while (graph.nodes[node].frame < f + blend) ++node;
       if (graph.nodes[node].frame - f > max_lead) continue;
+      if (judged != node) {
+        judged = node;
+        moving = travels(node);
+      }
+      if (!moving) continue;
       for (int t = 0; t < samples; ++t) {
         const int frame = std::min(f + t * stride, last);
         const auto from = positions.begin() + static_cast<long>(frame - clip.first_frame) * joints;

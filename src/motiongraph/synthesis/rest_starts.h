@@ -13,10 +13,14 @@
 // lead-in. A slow first step from a stance like the one held ranks before a stride under way. Each
 // second of lead-in adds kStartWaitMps to the distance ranked by: a lead-in is often the capture's
 // standing before it walks off, played on as captured, and a start that waits there answers a
-// steering control late (subject 16's nearest stood 2 s before its node). A lead-in leads into the first node after its blend (the graph plays the clip on from there) and
-// is at most kMaxStartLeadS long; each clip has its best one, and the kStartChoices best clips' are
-// kept (one clip's standing frames would fill the list with the same start a frame apart), among
-// which the controller chooses by the motion type and the heading asked (controller.h).
+// steering control late (subject 16's nearest stood 2 s before its node). A lead-in leads into the
+// first node after its blend (the graph plays the clip on from there) and is at most
+// kMaxStartLeadS long, and only into a node where the motion goes somewhere: its root travels at
+// kStartTravelMps or faster over the kStartTravelS after it (a start into more standing is none:
+// on libraries without motion types, CMU 29's and 49's nearest lead-ins stood on, and so did the
+// character asked to move); each clip has its best one, and the kStartChoices best clips' are kept (one
+// clip's standing frames would fill the list with the same start a frame apart), among which the
+// controller chooses by the motion type and the heading asked (controller.h).
 #pragma once
 
 #include <vector>
@@ -32,6 +36,8 @@ constexpr double kStartBlendS = 0.5;
 constexpr double kMaxStartLeadS = 2.0;
 constexpr int kStartChoices = 16;
 constexpr double kStartWaitMps = 0.02;
+constexpr double kStartTravelMps = 0.3;
+constexpr double kStartTravelS = 1.0;
 
 struct RestStart {
   int first_frame = 0;   // the lead-in's first database frame: the blend's first arrival frame
@@ -51,7 +57,8 @@ struct RestStart {
 };
 
 // The starts from database frame `held_frame`, best first, at most kStartChoices, at most one from
-// each clip; empty when no clip has kStartBlendS of frames before a node of the graph.
+// each clip; empty when no clip has kStartBlendS of frames before a node of the graph where its
+// motion travels.
 std::vector<RestStart> find_rest_starts(const MotionDatabase& db, const MotionGraph& graph,
                                         const MotionAssembler& assembler, int held_frame);
 
