@@ -517,6 +517,34 @@ TEST(Controller, StartsOffFromRestWhenAskedToMove) {
   }
 }
 
+// Asked to move once it stands still, before the stopping clip has played to its last frame, it
+// starts off at once, from the frame it stands in (the still tail is no wait).
+TEST(Controller, StartsOffAsSoonAsItStandsStill) {
+  const auto& s = test::subject16();
+  const SynthesisContext& context = s.context();
+  auto walk = context.tag_mask("walk");
+  ASSERT_TRUE(walk.ok());
+  auto controller = Controller::create(context, {}, {bearing_direction(0.0), *walk});
+  ASSERT_TRUE(controller.ok());
+  Motion motion = context.assembler.empty_motion();
+  while (motion.frame_count < 2 * motion.fps) controller->step(motion);
+  controller->set_input({bearing_direction(0.0), *walk, true});
+  int last_played = -1;
+  while (!controller->resting() || controller->rest_frame() < 0 || motion.frame_count <= controller->rest_frame()) {
+    const ControllerDecision d = controller->step(motion);
+    if (!d.rest_frames.empty()) last_played = d.rest_frames.back();
+    ASSERT_LT(motion.frame_count, 30 * motion.fps) << "not at rest";
+  }
+  ASSERT_FALSE(controller->standing()) << "(the still tail played in one decision: nothing to show)";
+  ASSERT_NE(last_played, controller->rest_ending()->last_frame);
+  controller->set_input({bearing_direction(0.0), *walk});
+  const ControllerDecision d = controller->step(motion);
+  ASSERT_EQ(controller->starts().size(), 1u);
+  ASSERT_FALSE(d.start_frames.empty());
+  EXPECT_EQ(d.start_frames.front().departure, last_played);
+  EXPECT_FALSE(controller->resting());
+}
+
 // Asked for a motion type as it starts off, the start leads into it where one of the starts does.
 TEST(Controller, StartsOffIntoTheMotionTypeAsked) {
   const auto& s = test::subject16();

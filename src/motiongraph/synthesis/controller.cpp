@@ -109,19 +109,22 @@ ControllerDecision Controller::step(Motion& out) {
   using Clock = std::chrono::steady_clock;
   const auto begin = Clock::now();
   ControllerDecision decision;
-  if (standing() && !input_.rest) {
-    if (const int node = context_->graph->node_at_frame(rest_->last_frame); node >= 0) {
-      // On from the frame it holds: the graph's node there, placed as the frame is.
-      state_.node = node;
-      state_.placement = rest_placement_;
-      const Vec3 held = context_->assembler.root_position(rest_->last_frame, rest_placement_);
-      state_.last_root = Vec2(held.x(), held.z());
-      state_.has_last = true;
-      resting_ = false;
-    } else if (start_off(out, decision)) {
-      decision.search_seconds = std::chrono::duration<double>(Clock::now() - begin).count();
-      return decision;
-    }
+  // Asked to move at rest: on from the node at the frame held once it holds it, or where there is
+  // none, a start as soon as it stands still (the stopping clip's still tail is no wait: CMU 29's
+  // lasts 1.7 s).
+  const int on_node = resting_ ? context_->graph->node_at_frame(rest_->last_frame) : -1;
+  const bool still = resting_ && ending_next_ > 0 && ending_frames_[ending_next_ - 1] >= rest_->rest_frame;
+  if (!input_.rest && standing() && on_node >= 0) {
+    // On from the frame it holds: the graph's node there, placed as the frame is.
+    state_.node = on_node;
+    state_.placement = rest_placement_;
+    const Vec3 held = context_->assembler.root_position(rest_->last_frame, rest_placement_);
+    state_.last_root = Vec2(held.x(), held.z());
+    state_.has_last = true;
+    resting_ = false;
+  } else if (!input_.rest && still && on_node < 0 && start_off(out, decision)) {
+    decision.search_seconds = std::chrono::duration<double>(Clock::now() - begin).count();
+    return decision;
   }
   if (resting_ || (input_.rest && !context_->rest().empty())) {
     step_to_rest(out, decision);
@@ -212,8 +215,9 @@ bool Controller::start_off(Motion& out, ControllerDecision& decision) {
       chosen = &start;
     }
   }
+  if (chosen == nullptr) return false;  // (none within the slack of the nearest: not for finite ranks)
   // The frame held blended into the lead-in, then the lead-in on as captured to the node.
-  const int held = rest_->last_frame;
+  const int held = ending_frames_[ending_next_ - 1];  // the frame it stands in: the last played
   const int node_frame = graph.nodes[chosen->node].frame;
   const FloorTransform lead = rest_placement_ * chosen->alignment;
   const PreparedFloorTransform w_held(rest_placement_), w_lead(lead);
