@@ -174,7 +174,16 @@ int run_steer(const SteerOptions& o) {
     tag_before = c.tag;
     const Vec2 want = bearing_direction(c.bearing_deg);
     nlohmann::json response = nullptr;
-    for (int f = static_cast<int>(std::ceil(c.at_s * fps)); f < motion.frame_count; ++f) {
+    // Until a later control asks for another heading: a facing reached after that was asked again.
+    double heading_until_s = script->duration_s;
+    for (size_t j = i + 1; j < script->controls.size(); ++j) {
+      if (script->controls[j].bearing_deg != c.bearing_deg) {
+        heading_until_s = script->controls[j].at_s;
+        break;
+      }
+    }
+    const int heading_until = std::min(motion.frame_count, static_cast<int>(std::ceil(heading_until_s * fps)));
+    for (int f = static_cast<int>(std::ceil(c.at_s * fps)); f < heading_until; ++f) {
       const Vec2 facing = facing_on_floor(motion.rotations(f)[0], context.tracks.forward_axis);
       if (facing.dot(want) >= std::cos(o.tolerance_deg * std::numbers::pi / 180.0)) {
         response = f / fps - c.at_s;
@@ -185,15 +194,18 @@ int run_steer(const SteerOptions& o) {
     if (changes_tag) control["tag_response_s"] = tag_response;
     control["rest"] = rest;
     if (rest && !rest_before && !context.rest().empty()) {
-      // The first time it stands from the control on, before a later control takes the rest back
-      // (a rest asked again after that is that control's; a rest that came before it: it stood
+      // The first time it stands from the control on, before a later control asks for rest again
+      // after one took it back (that rest is that control's; a rest taken back once the stopping
+      // clip is under way still stands, and is this one's; a rest that came before it: it stood
       // already).
       const auto back = std::find_if(inputs.begin() + static_cast<long>(i) + 1, inputs.end(),
                                      [](const ControlInput& later) { return !later.rest; });
       const bool taken_back = back != inputs.end();
-      const double until_s =
-          taken_back ? script->controls[static_cast<size_t>(back - inputs.begin())].at_s
-                     : std::numeric_limits<double>::infinity();
+      const auto again =
+          taken_back ? std::find_if(back + 1, inputs.end(), [](const ControlInput& later) { return later.rest; })
+                     : inputs.end();
+      const double until_s = again != inputs.end() ? script->controls[static_cast<size_t>(again - inputs.begin())].at_s
+                                                   : std::numeric_limits<double>::infinity();
       const auto first =
           std::find_if(rests_s.begin(), rests_s.end(), [&](double r) { return r >= c.at_s && r < until_s; });
       control["rest_response_s"] = first != rests_s.end() ? nlohmann::json(*first - c.at_s)

@@ -165,6 +165,34 @@ assert root[-1][0] - root[go][0] > 2.0, (root[go], root[-1])
 assert rest["clip"] in r["foot_slide"]["source"]["clips"], r["foot_slide"]["source"]
 assert r["foot_slide"]["same_frames"]["steps"] > 0, r["foot_slide"]
 PY
+# Rest taken back once the stopping clip is under way: it stands all the same (said as that rest's
+# response), then starts off; a heading's response is judged only while it is asked (east, asked
+# while it stops, is passed only as it turns to the south-east asked next: not east's response).
+cat >"$work/back.json" <<'JSON'
+{"duration_s": 16, "controls": [{"at_s": 0, "heading": "north", "tag": "walk"}, {"at_s": 3, "rest": true},
+                                {"at_s": 4.5, "heading": "east", "rest": false}, {"at_s": 5, "heading_deg": 135},
+                                {"at_s": 9, "rest": true},
+                                {"at_s": 12, "heading": "south", "rest": false}]}
+JSON
+"$bin" steer "$work/g.mgraph" --script "$work/back.json" -o "$work/back.json.out.json" \
+  --report "$work/back-report.json" >"$work/back.out"
+python3 - "$work/back-report.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+c, starts = r["controls"], r["starts"]
+rests = [s["at_s"] for s in starts]
+assert len(starts) == 2 and 4.5 < starts[0]["at_s"] < 9 and starts[1]["at_s"] >= 12, starts
+# The rest asked at 3 and taken back at 4.5 stood after 4.5 (its clip under way): its response.
+assert c[1]["rest_response_s"] is not None and 3 + c[1]["rest_response_s"] > 4.5, c[1]
+assert 3 + c[1]["rest_response_s"] <= starts[0]["at_s"], (c[1], starts)
+# Each heading's response falls before a later control asks for another heading.
+assert c[2]["response_s"] is None, c[2]
+for i, ci in enumerate(c):
+    later = [cj["at_s"] for cj in c[i + 1:] if cj["heading_deg"] != ci["heading_deg"]]
+    if ci["response_s"] is not None:
+        assert ci["at_s"] + ci["response_s"] < (later[0] if later else r["frames"] / r["fps"]), (i, ci)
+PY
+grep -q "at rest after" "$work/back.out" || { cat "$work/back.out"; exit 1; }
 # Rest asked too late in a script to stand before its end: said.
 cat >"$work/late-rest.json" <<'JSON'
 {"duration_s": 3.5, "controls": [{"at_s": 0, "heading": "north", "tag": "walk"}, {"at_s": 3, "rest": true}]}
