@@ -152,17 +152,20 @@ int run_steer(const SteerOptions& o) {
     // (a stop the graph has no tag for was rest: no tag to reach)
     const Result<TagMask> asked = context.tag_mask(c.tag);
     const bool changes_tag = !c.tag.empty() && c.tag != tag_before && asked.ok();
-    if (changes_tag) {
-      // Until the next control asks for another tag (or none): a tag reached after that was asked
-      // again.
+    // The first motion frame from which a later control asks for something else than control i
+    // (`same` says whether it asks the same): what is reached after that was asked again.
+    auto asked_until = [&](auto same) {
       double until_s = script->duration_s;
       for (size_t j = i + 1; j < script->controls.size(); ++j) {
-        if (script->controls[j].tag != c.tag) {
+        if (!same(script->controls[j])) {
           until_s = script->controls[j].at_s;
           break;
         }
       }
-      const int until = std::min(motion.frame_count, static_cast<int>(std::ceil(until_s * fps)));
+      return std::min(motion.frame_count, static_cast<int>(std::ceil(until_s * fps)));
+    };
+    if (changes_tag) {
+      const int until = asked_until([&](const ScriptedControl& later) { return later.tag == c.tag; });
       const TagMask mask = *asked;
       for (int f = static_cast<int>(std::ceil(c.at_s * fps)); f < until; ++f) {
         if ((context.frame_tag(played_sources[static_cast<size_t>(f)].dominant()) & mask) != 0) {
@@ -174,15 +177,8 @@ int run_steer(const SteerOptions& o) {
     tag_before = c.tag;
     const Vec2 want = bearing_direction(c.bearing_deg);
     nlohmann::json response = nullptr;
-    // Until a later control asks for another heading: a facing reached after that was asked again.
-    double heading_until_s = script->duration_s;
-    for (size_t j = i + 1; j < script->controls.size(); ++j) {
-      if (script->controls[j].bearing_deg != c.bearing_deg) {
-        heading_until_s = script->controls[j].at_s;
-        break;
-      }
-    }
-    const int heading_until = std::min(motion.frame_count, static_cast<int>(std::ceil(heading_until_s * fps)));
+    const int heading_until =
+        asked_until([&](const ScriptedControl& later) { return later.bearing_deg == c.bearing_deg; });
     for (int f = static_cast<int>(std::ceil(c.at_s * fps)); f < heading_until; ++f) {
       const Vec2 facing = facing_on_floor(motion.rotations(f)[0], context.tracks.forward_axis);
       if (facing.dot(want) >= std::cos(o.tolerance_deg * std::numbers::pi / 180.0)) {
