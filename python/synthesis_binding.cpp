@@ -305,6 +305,7 @@ class PyController {
             {"heading_edit", heading_edit_report(settings_.heading_edit, controller_->heading_edit_stats())},
             {"cleanup", cleanup_report(context(), run_, cleanup_)},
             {"foot_slide", foot_slide_report(context(), played_, motion_, played_sources_)},
+            {"rests", rests_report(context(), *controller_, motion_.frame_count)},
             {"starts", starts_report(context(), controller_->starts(), motion_.frame_count)},
             {"rest", rest_report(context(), controller_->rest_ending(),
                                  static_cast<double>(controller_->rest_frame()) / context().db->fps)}};

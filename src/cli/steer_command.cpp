@@ -274,6 +274,7 @@ int run_steer(const SteerOptions& o) {
                                                             : nlohmann::json(nullptr)},
                                  {"controls", controls},
                                  {"rest", rested},
+                                 {"rests", rests_report(context, *controller, motion.frame_count)},
                                  {"starts", starts_report(context, controller->starts(), motion.frame_count)},
                                  {"foot_slide", foot_slide_report(context, played, motion, played_sources)},
                                  {"warnings", warnings}};
@@ -317,11 +318,12 @@ Command add_steer_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "steer", "Replay a timed control script through the interactive controller and write the motion.\n"
                "CONTROLS.json: {\"duration_s\": 12, \"controls\": [{\"at_s\": 0, \"heading\": \"north\", \"tag\":\n"
-               "\"walk\"}, {\"at_s\": 4, \"heading_deg\": 90}, {\"at_s\": 8, \"tag\": \"run\"}]}; headings north (-z),\n"
-               "east (+x), south, west or a bearing in degrees clockwise from north; without duration_s, the\n"
-               "motion ends 4 s after the last control. {\"at_s\": 10, \"rest\": true} comes to rest at the end of a\n"
-               "clip that ends standing still (as does a stop the graph can hardly play or has no tag for); a later\n"
-               "\"rest\": false starts it off again (the report's \"starts\").");
+               "\"walk\"}, {\"at_s\": 4, \"heading_deg\": 90}, {\"at_s\": 8, \"tag\": \"run\"}]};\n"
+               "\"heading\": north (-z), east (+x), south or west, or \"heading_deg\": degrees clockwise from\n"
+               "north; a key left out keeps the control before's; without duration_s, the motion ends 4 s after\n"
+               "the last control. {\"at_s\": 10, \"rest\": true} comes to rest at the end of a clip that ends\n"
+               "standing still (as does a stop the graph can hardly play or has no tag for); a later \"rest\":\n"
+               "false starts it off again (the report's \"starts\").");
   o->common.add_to(*sub);
   sub->add_option("--script", o->script, "CONTROLS.json")->required()->check(CLI::ExistingFile);
   sub->add_option("--horizon", o->settings.horizon_s, "Seconds each decision looks ahead")->capture_default_str();

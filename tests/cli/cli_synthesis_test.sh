@@ -182,6 +182,10 @@ r = json.load(open(sys.argv[1]))
 c, starts = r["controls"], r["starts"]
 rests = [s["at_s"] for s in starts]
 assert len(starts) == 2 and 4.5 < starts[0]["at_s"] < 9 and starts[1]["at_s"] >= 12, starts
+# Each rest in turn (the report's "rest" the last), each before the start that left it.
+rs = r["rests"]
+assert len(rs) == 2 and rs[-1] == r["rest"], (rs, r["rest"])
+assert rs[0]["at_s"] <= starts[0]["at_s"] <= rs[1]["at_s"] <= starts[1]["at_s"], (rs, starts)
 # The rest asked at 3 and taken back at 4.5 stood after 4.5 (its clip under way): its response.
 assert c[1]["rest_response_s"] is not None and 3 + c[1]["rest_response_s"] > 4.5, c[1]
 assert 3 + c[1]["rest_response_s"] <= starts[0]["at_s"], (c[1], starts)

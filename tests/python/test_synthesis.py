@@ -269,6 +269,7 @@ def test_rest_equals_the_cli_and_stands_still(cli, graph_file, graph, tmp_path):
     assert np.linalg.norm(after.positions[-1, 0, [0, 2]] - motion.positions[-1, 0, [0, 2]]) > 2
     starts = after.report["starts"]
     assert len(starts) == 1 and starts[0]["at_s"] == len(motion) / fps and starts[0]["rms_cm"] > 0, starts
+    assert after.report["rests"] == [rest] and after.report["rest"] == rest
     assert after.report["transitions"] >= motion.report["transitions"] + 1
     assert after.report["foot_slide"]["same_frames"]["steps"] > 0
     with pytest.raises(TypeError):

@@ -60,6 +60,9 @@ TEST(ControlScript, BadInputIsOneClearError) {
        "{\"at_s\": 2, \"tag\": \"walk\"}]}",
        0, "controls[2]: at_s 2 must come after the control before it (3 s)"},
       {"bad heading", "{\"controls\": [{\"at_s\": 0, \"heading\": \"up\"}]}", 0, "north, east, south or west"},
+      // A bearing given as "heading": told the key that takes it.
+      {"numeric heading", "{\"controls\": [{\"at_s\": 0, \"heading\": 135}]}", 0,
+       "north, east, south or west (a bearing in degrees is \"heading_deg\": 135)"},
       {"bad duration", "{\"duration_s\": -1, \"controls\": [{\"at_s\": 0, \"tag\": \"walk\"}]}", 0, "duration_s"},
       // Frame counts past an int's range (a control at 1e9 s crashed steer).
       {"control past a day", "{\"controls\": [{\"at_s\": 0, \"tag\": \"walk\"}, {\"at_s\": 1e9, \"tag\": \"run\"}]}",

@@ -163,6 +163,15 @@ nlohmann::json rest_report(const SynthesisContext& context, const RestEnding* en
           {"held_frame", ending->last_frame - clip.first_frame}};
 }
 
+nlohmann::json rests_report(const SynthesisContext& context, const Controller& controller, long long frames) {
+  nlohmann::json out = nlohmann::json::array();
+  for (size_t i = 0; i < controller.rest_frames().size() && controller.rest_frames()[i] < frames; ++i) {
+    out.push_back(rest_report(context, controller.rest_endings()[i],
+                              static_cast<double>(controller.rest_frames()[i]) / context.db->fps));
+  }
+  return out;
+}
+
 nlohmann::json starts_report(const SynthesisContext& context, std::span<const StartTaken> starts, long long frames) {
   nlohmann::json out = nlohmann::json::array();
   for (const StartTaken& taken : starts) {

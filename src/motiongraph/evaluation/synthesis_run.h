@@ -77,6 +77,8 @@ std::vector<std::string> segment_warnings(const SynthesisContext& context, const
 // Where a motion came to rest (rest_endings.h), as reports give it: {"at_s", the "clip" at whose end
 // it stands, "clip_frame" from which it stands, "held_frame"}; null without an ending.
 nlohmann::json rest_report(const SynthesisContext& context, const RestEnding* ending, double at_s);
+// Each time a steering session came to rest before frame `frames`, as rest_report gives it.
+nlohmann::json rests_report(const SynthesisContext& context, const Controller& controller, long long frames);
 // The starts from rest a steering session took (synthesis/rest_starts.h) before frame `frames`, as
 // reports give them: [{"at_s", the "clip" it started off into, "clip_frame" of the lead-in's first
 // frame, "node_frame" the graph went on from, "rms_cm" from the pose held}].

@@ -60,7 +60,11 @@ Result<ControlScript> parse_control_script(std::string_view text, const std::str
       else if (h == "east") current.bearing_deg = 90.0;
       else if (h == "south") current.bearing_deg = 180.0;
       else if (h == "west") current.bearing_deg = 270.0;
-      else return fail(fmt::format("controls[{}]: heading must be north, east, south or west", i));
+      else {
+        return fail(fmt::format("controls[{}]: heading must be north, east, south or west (a bearing in degrees is "
+                                "\"heading_deg\": {})",
+                                i, c["heading"].is_number() ? c["heading"].dump() : "90"));
+      }
     }
     if (c.contains("heading_deg")) {
       if (!c["heading_deg"].is_number() || !std::isfinite(c["heading_deg"].get<double>())) {

@@ -339,6 +339,7 @@ void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
   if (moving_types_ == 0) moving_types_ = most_played_type(*context_);
   rest_placement_ = state_.placement;
   rest_frames_.push_back(state_.frames + ending->frames_to_rest(graph));
+  rest_endings_.push_back(ending);
   ending_frames_ = ending->frames(graph);
   ending_next_ = 0;
   // Where each foot makes its last plant. Turning about the root on from the first, the clean-up

@@ -156,6 +156,8 @@ class Controller {
   // rest, in order; the last one's (-1 before any).
   const std::vector<long long>& rest_frames() const { return rest_frames_; }
   long long rest_frame() const { return rest_frames_.empty() ? -1 : rest_frames_.back(); }
+  // The ending it came to rest on each time, in the same order.
+  const std::vector<const RestEnding*>& rest_endings() const { return rest_endings_; }
   // The ending it last came to rest on (null before).
   const RestEnding* rest_ending() const { return rest_; }
   // Decides and appends the next frames to `out` (a motion on the context's target skeleton,
@@ -187,6 +189,7 @@ class Controller {
   const RestEnding* rest_ = nullptr;
   FloorTransform rest_placement_;
   std::vector<long long> rest_frames_;
+  std::vector<const RestEnding*> rest_endings_;
   std::vector<int> ending_frames_;  // the ending's database frames, played a decision's worth at a time
   size_t ending_next_ = 0;
   size_t ending_turned_ = 0;  // the ending's frames before this index are turned by the heading edit,
