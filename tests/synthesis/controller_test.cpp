@@ -322,6 +322,18 @@ SynthesisContext without_starts(const SynthesisContext& context) {
   return out;
 }
 
+// A controller on `context` that walked north from its start asked to rest, played until it
+// stands; its frames in `motion`.
+Controller rested(const SynthesisContext& context, TagMask walk, Motion& motion) {
+  auto controller = Controller::create(context, {}, {bearing_direction(0.0), walk});
+  EXPECT_TRUE(controller.ok());
+  motion = context.assembler.empty_motion();
+  controller->set_input({bearing_direction(0.0), walk, true});
+  while (!controller->standing() && motion.frame_count < 30 * motion.fps) controller->step(motion);
+  EXPECT_TRUE(controller->standing()) << "not at rest";
+  return std::move(*controller);
+}
+
 // Asked to rest, the character walks on to the end of a clip that ends standing (subject 16's
 // stop is a dead end its pruning leaves out), plays it as captured, stands still, and where there
 // is no start from the frame it holds, stays so whatever it is asked next.
@@ -545,6 +557,48 @@ TEST(Controller, StartsOffAsSoonAsItStandsStill) {
   EXPECT_FALSE(controller->resting());
 }
 
+// A start turns toward the heading asked, about where the character stands, by at most
+// kStartMaxTurnDeg (its lead-ins go the way the pose held faces): asked east it turns clockwise,
+// asked west the other way, from the same rest; the heading edit adds no more than its rate over
+// the start's travel.
+TEST(Controller, AStartTurnsTowardTheHeadingAskedByAtMostItsLimit) {
+  const auto& s = test::subject16();
+  const SynthesisContext& context = s.context();
+  const Vec3& axis = context.tracks.forward_axis;
+  auto walk = context.tag_mask("walk");
+  ASSERT_TRUE(walk.ok());
+  Motion motion;
+  const Controller controller = rested(context, *walk, motion);
+  const int held = motion.frame_count - 1;
+  const Vec2 stood = facing_on_floor(motion.rotations(held)[0], axis);
+  const double clockwise = yaw_between(Vec2(0.0, -1.0), Vec2(1.0, 0.0)) > 0.0 ? 1.0 : -1.0;  // north to east
+  std::vector<double> turned;
+  for (const double heading : {90.0, 270.0}) {
+    Controller off = controller;
+    Motion m = motion;
+    off.set_input({bearing_direction(heading), *walk});
+    const ControllerDecision d = off.step(m);
+    ASSERT_FALSE(d.start_frames.empty());
+    double travel = 0.0;
+    for (int f = held + 1; f < m.frame_count; ++f) {
+      travel += std::hypot(m.translations(f)[0].x() - m.translations(f - 1)[0].x(),
+                           m.translations(f)[0].z() - m.translations(f - 1)[0].z());
+    }
+    // The captured lead-in's own turn over the start, as aligned on the pose held.
+    const RestStart& start = *off.starts().front().start;
+    const double own = yaw_between(
+        facing_on_floor(context.assembler.root_rotation(start.first_frame, start.alignment), axis),
+        facing_on_floor(context.assembler.root_rotation(start.first_frame + d.frames - 1, start.alignment), axis));
+    const double after = yaw_between(stood, facing_on_floor(m.rotations(m.frame_count - 1)[0], axis));
+    const double deg = clockwise * (after - own) * 180.0 / std::numbers::pi;
+    const double edit = ControllerSettings{}.heading_edit.max_turn_deg_per_m * travel;
+    EXPECT_LE(std::abs(deg), kStartMaxTurnDeg + edit + 5.0) << "heading " << heading;
+    turned.push_back(deg);
+  }
+  EXPECT_GT(turned[0], 20.0) << "east: clockwise";
+  EXPECT_LT(turned[1], -20.0) << "west: the other way";
+}
+
 // Asked for a motion type as it starts off, the start leads into it where one of the starts does.
 TEST(Controller, StartsOffIntoTheMotionTypeAsked) {
   const auto& s = test::subject16();
@@ -555,22 +609,16 @@ TEST(Controller, StartsOffIntoTheMotionTypeAsked) {
   int tested = 0;
   for (const std::string& name : context.db->tag_names) {
     const TagMask tag = *context.tag_mask(name);
-    auto controller = Controller::create(context, {}, {bearing_direction(0.0), *walk});
-    ASSERT_TRUE(controller.ok());
-    Motion motion = context.assembler.empty_motion();
-    controller->set_input({bearing_direction(0.0), *walk, true});
-    while (!controller->standing()) {
-      controller->step(motion);
-      ASSERT_LT(motion.frame_count, 30 * motion.fps) << "not at rest";
-    }
-    const std::vector<RestStart>& starts = context.rest_starts(controller->rest_ending()->last_frame);
+    Motion motion;
+    Controller controller = rested(context, *walk, motion);
+    const std::vector<RestStart>& starts = context.rest_starts(controller.rest_ending()->last_frame);
     const bool any = std::any_of(starts.begin(), starts.end(), [&](const RestStart& start) {
       return (context.frame_tag(graph.nodes[static_cast<size_t>(start.node)].frame) & tag) != 0;
     });
-    controller->set_input({bearing_direction(0.0), tag});
-    controller->step(motion);
-    ASSERT_EQ(controller->starts().size(), 1u);
-    const int node_frame = graph.nodes[static_cast<size_t>(controller->starts()[0].start->node)].frame;
+    controller.set_input({bearing_direction(0.0), tag});
+    controller.step(motion);
+    ASSERT_EQ(controller.starts().size(), 1u);
+    const int node_frame = graph.nodes[static_cast<size_t>(controller.starts()[0].start->node)].frame;
     EXPECT_EQ((context.frame_tag(node_frame) & tag) != 0, any) << name;
     tested += any ? 1 : 0;
   }

@@ -186,6 +186,28 @@ void Controller::play(std::span<const int> committed, std::span<const int> plann
   }
 }
 
+FloorTransform Controller::start_turn(const RestStart& start, int held) const {
+  if (settings_.heading_edit.max_turn_deg_per_m <= 0.0) return {};
+  const MotionGraph& graph = *context_->graph;
+  const MotionAssembler& assembler = context_->assembler;
+  // Where the start heads as captured: its root's way from the lead-in's first frame to
+  // kStartHeadingS past its node (as far as the clip goes), placed where it starts.
+  const FloorTransform lead = rest_placement_ * start.alignment;
+  const int node_frame = graph.nodes[start.node].frame;
+  const DatabaseClip& clip = context_->db->clips[graph.nodes[start.node].clip];
+  const int ahead = std::min(clip.first_frame + clip.frame_count - 1,
+                             node_frame + static_cast<int>(std::lround(kStartHeadingS * context_->db->fps)));
+  const Vec3 from = assembler.root_position(start.first_frame, lead), to = assembler.root_position(ahead, lead);
+  const Vec2 way(to.x() - from.x(), to.z() - from.z());
+  if (way.norm() < 1e-6) return {};
+  const double limit = kStartMaxTurnDeg * std::numbers::pi / 180.0;
+  const double turn = std::clamp(yaw_between(way, input_.direction), -limit, limit);
+  // About the root of the frame it stands in.
+  const Vec3 pivot = assembler.root_position(held, rest_placement_);
+  const Vec3 turned = FloorTransform{turn, 0.0, 0.0}.apply(Vec3(pivot.x(), 0.0, pivot.z()));
+  return {turn, pivot.x() - turned.x(), pivot.z() - turned.z()};
+}
+
 bool Controller::start_off(Motion& out, ControllerDecision& decision) {
   const std::vector<RestStart>& starts = context_->rest_starts(rest_->last_frame);
   if (starts.empty()) return false;
@@ -219,7 +241,7 @@ bool Controller::start_off(Motion& out, ControllerDecision& decision) {
   // The frame held blended into the lead-in, then the lead-in on as captured to the node.
   const int held = ending_frames_[ending_next_ - 1];  // the frame it stands in: the last played
   const int node_frame = graph.nodes[chosen->node].frame;
-  const FloorTransform lead = rest_placement_ * chosen->alignment;
+  const FloorTransform lead = start_turn(*chosen, held) * rest_placement_ * chosen->alignment;
   const PreparedFloorTransform w_held(rest_placement_), w_lead(lead);
   const int first = out.frame_count;
   for (int p = 0; p < chosen->blend_frames; ++p) {

@@ -47,6 +47,11 @@ namespace mg {
 
 // A start's distance within this many times the nearest's is as good a start (rest_starts.h).
 constexpr double kStartSlack = 1.5;
+// A start turns toward the heading asked by up to this much, about where it stands (rest_starts.h:
+// its lead-ins go the way the pose held faces), the blend turning it as it steps off; where it
+// heads is its root's way over the lead-in and kStartHeadingS past its node.
+constexpr double kStartMaxTurnDeg = 45.0;
+constexpr double kStartHeadingS = 1.0;
 
 struct ControlInput {
   Vec2 direction = Vec2(0.0, -1.0);  // unit, on the floor (default north, -z)
@@ -176,6 +181,9 @@ class Controller {
   void step_to_rest(Motion& out, ControllerDecision& decision);
   // Off from rest by a start (rest_starts.h); false when there is none from the frame held.
   bool start_off(Motion& out, ControllerDecision& decision);
+  // The turn about the root of database frame `held` (the frame it stands in) that turns `start` toward the
+  // heading asked, by at most kStartMaxTurnDeg (none without the heading edit).
+  FloorTransform start_turn(const RestStart& start, int held) const;
   // The heading edit of the stopping clip's frames [from, ending_next_), appended to `out` from
   // frame `first`.
   void edit_ending(Motion& out, int first, size_t from);
