@@ -795,7 +795,7 @@ TEST(Controller, ADecisionsContactsAreItsFramesButThePivotingFoot) {
       EXPECT_EQ(freed, 0);
     }
   }
-  // A graph whose feet are not known: no contacts, on the way to rest and at it too.
+  // A graph whose feet are not known: no contacts, on the way to rest, at it and starting off.
   SynthesisContext footless = context;
   footless.frame_contacts.clear();
   auto controller = Controller::create(footless, {}, {bearing_direction(0.0), *walk, true});
@@ -806,6 +806,10 @@ TEST(Controller, ADecisionsContactsAreItsFramesButThePivotingFoot) {
     EXPECT_TRUE(d.contacts.empty()) << motion.frame_count;
     ASSERT_LT(motion.frame_count, 30 * motion.fps) << "not at rest";
   }
+  controller->set_input({bearing_direction(90.0), *walk});
+  const ControllerDecision off = controller->step(motion);
+  EXPECT_FALSE(off.start_frames.empty());
+  EXPECT_TRUE(off.contacts.empty());
 }
 
 // A wall-clock budget far too small for any search still gets frames from every decision.
