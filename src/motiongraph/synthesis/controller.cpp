@@ -186,20 +186,24 @@ void Controller::play(std::span<const int> committed, std::span<const int> plann
   }
 }
 
-FloorTransform Controller::start_turn(const RestStart& start, int held) const {
-  if (settings_.heading_edit.max_turn_deg_per_m <= 0.0) return {};
+Vec2 Controller::start_way(const RestStart& start) const {
   const MotionGraph& graph = *context_->graph;
-  const MotionAssembler& assembler = context_->assembler;
-  // Where the start heads as captured: its root's way from the lead-in's first frame to
-  // kStartHeadingS past its node (as far as the clip goes), placed where it starts.
   const FloorTransform lead = rest_placement_ * start.alignment;
   const int node_frame = graph.nodes[start.node].frame;
   const DatabaseClip& clip = context_->db->clips[graph.nodes[start.node].clip];
   const int ahead = std::min(clip.first_frame + clip.frame_count - 1,
                              node_frame + static_cast<int>(std::lround(kStartHeadingS * context_->db->fps)));
-  const Vec3 from = assembler.root_position(start.first_frame, lead), to = assembler.root_position(ahead, lead);
+  const Vec3 from = context_->assembler.root_position(start.first_frame, lead);
+  const Vec3 to = context_->assembler.root_position(ahead, lead);
   const Vec2 way(to.x() - from.x(), to.z() - from.z());
-  if (way.norm() < 1e-6) return {};
+  return way.norm() > 1e-6 ? Vec2(way / way.norm()) : Vec2::Zero();
+}
+
+FloorTransform Controller::start_turn(const RestStart& start, int held) const {
+  if (settings_.heading_edit.max_turn_deg_per_m <= 0.0) return {};
+  const MotionAssembler& assembler = context_->assembler;
+  const Vec2 way = start_way(start);
+  if (way.isZero()) return {};
   const double limit = kStartMaxTurnDeg * std::numbers::pi / 180.0;
   const double turn = std::clamp(yaw_between(way, input_.direction), -limit, limit);
   // About the root of the frame it stands in.
@@ -214,8 +218,8 @@ bool Controller::start_off(Motion& out, ControllerDecision& decision) {
   const MotionGraph& graph = *context_->graph;
   const MotionAssembler& assembler = context_->assembler;
   const Vec3& axis = context_->tracks.forward_axis;
-  // The choice (see the header): near enough the nearest, into the motion type asked for where any
-  // is, and facing the heading asked at its node.
+  // The choice (see the header): into the motion type asked for where any start is, near enough
+  // the nearest, and heading the way asked.
   const TagMask wanted = input_.tag != 0 ? input_.tag : moving_types_;
   auto into_tag = [&](const RestStart& start) {
     return (context_->frame_tag(graph.nodes[start.node].frame) & wanted) != 0;
@@ -229,9 +233,8 @@ bool Controller::start_off(Motion& out, ControllerDecision& decision) {
   double best = std::numeric_limits<double>::infinity();
   for (const RestStart& start : starts) {
     if ((by_tag && !into_tag(start)) || start.rank_m > kStartSlack * nearest) continue;
-    const FloorTransform lead = rest_placement_ * start.alignment;
-    const Vec2 facing = facing_on_floor(assembler.root_rotation(graph.nodes[start.node].frame, lead), axis);
-    const double score = (nearest > 0.0 ? start.rank_m / nearest - 1.0 : 0.0) + (1.0 - facing.dot(input_.direction));
+    const double near = nearest > 0.0 ? start.rank_m / nearest - 1.0 : 0.0;
+    const double score = near + (1.0 - start_way(start).dot(input_.direction));
     if (score < best) {
       best = score;
       chosen = &start;

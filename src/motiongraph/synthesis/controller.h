@@ -30,8 +30,9 @@
 // motion type asked for where any are (with none asked, the type it came to rest from, or the one
 // the graph holds most of: a walk that stopped walks on, not off into a jump that starts from
 // standing), of those the ones within kStartSlack of the nearest, and of those the one that ranks
-// best on the distance and the facing at its node against the heading asked ((rank / nearest - 1)
-// + (1 - cos), RestStart::rank_m). With no start either, rest is for good (rest_is_for_good()).
+// best on the distance and where it heads against the heading asked ((rank / nearest - 1) +
+// (1 - cos), RestStart::rank_m, start_way()), turned toward it by up to kStartMaxTurnDeg. With no
+// start either, rest is for good (rest_is_for_good()).
 // Where the graph has no clip that ends at rest (RestEndings::empty), rest is not heard: the search
 // goes on with the tag.
 #pragma once
@@ -181,8 +182,11 @@ class Controller {
   void step_to_rest(Motion& out, ControllerDecision& decision);
   // Off from rest by a start (rest_starts.h); false when there is none from the frame held.
   bool start_off(Motion& out, ControllerDecision& decision);
-  // The turn about the root of database frame `held` (the frame it stands in) that turns `start` toward the
-  // heading asked, by at most kStartMaxTurnDeg (none without the heading edit).
+  // Where `start` heads as captured, placed where it starts (unit; zero where it goes nowhere): its
+  // root's way from the lead-in's first frame to kStartHeadingS past its node, as far as the clip goes.
+  Vec2 start_way(const RestStart& start) const;
+  // The turn about the root of database frame `held` (the frame it stands in) that turns `start`
+  // toward the heading asked, by at most kStartMaxTurnDeg (none without the heading edit).
   FloorTransform start_turn(const RestStart& start, int held) const;
   // The heading edit of the stopping clip's frames [from, ending_next_), appended to `out` from
   // frame `first`.
