@@ -190,6 +190,7 @@ class PyController {
   PyMotion step(double heading_deg, const std::optional<std::string>& tag, bool rest) {
     const ControlInput in = input(heading_deg, tag, rest);
     bool stays = false;  // at rest for good, asked to move
+    bool turns = false;  // asked to turn standing at rest
     double rest_s = 0.0;
     std::string rest_clip;
     std::unique_lock<std::mutex> lock(mutex_, std::defer_lock);
@@ -200,6 +201,7 @@ class PyController {
     {
       py::gil_scoped_release release;
       lock.lock();
+      turns = turns_at_rest(in, *controller_);
       controller_->set_input(in);
       first = motion_.frame_count;
       const ControllerDecision decision = controller_->step(motion_);
@@ -224,6 +226,7 @@ class PyController {
       }
     }
     lock.unlock();
+    if (turns && controls_.turn_at_rest("a step")) say(controls_.warnings().back());
     if (stays && !warned_stays_) {
       warned_stays_ = true;
       say(fmt::format("the character came to rest at {:.2f} s, at the end of {}, and stays there: the steps asking "
@@ -247,6 +250,12 @@ class PyController {
     py::gil_scoped_release release;
     const std::lock_guard<std::mutex> lock(mutex_);
     return controller_->resting();
+  }
+
+  bool standing() const {
+    py::gil_scoped_release release;
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return controller_->still();
   }
 
   std::string repr() const {
@@ -379,7 +388,10 @@ void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
                              "The second from which the character last stood still, once it has come to rest; None "
                              "before.")
       .def_property_readonly("resting", &PyController::resting,
-                             "Whether it holds the last frame of the clip it came to rest at (until asked to move).")
+                             "Whether it has taken its way to rest: on it to the clip that stops, playing it, or "
+                             "standing (until asked to move).")
+      .def_property_readonly("standing", &PyController::standing,
+                             "Whether it stands still at rest now (from rest_s on, until asked to move).")
       .def_property_readonly("motion", &PyController::motion, "All frames so far, as a Motion.")
       .def("__repr__", &PyController::repr);
   graph.def("walk", &walk, py::arg("from_node"), py::arg("to_node"),

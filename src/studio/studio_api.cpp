@@ -555,6 +555,7 @@ class Router {
                           {"rest_s", step->rest_s >= 0.0 ? json(step->rest_s) : json(nullptr)},
                           {"rest_clip", step->rest_clip.empty() ? json(nullptr) : json(step->rest_clip)},
                           {"resting", step->resting},
+                          {"standing", step->standing},
                           {"rest_for_good", step->rest_for_good},
                           {"starts", starts_report(service_.context(), step->starts,
                                                    std::numeric_limits<long long>::max())},

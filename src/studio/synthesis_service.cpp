@@ -196,6 +196,7 @@ Result<SteerStepResult> SynthesisService::step_session(int id, const SteeringCon
   const size_t said = session->controls.warnings().size();
   auto input = session->controls.input(control, "the control");
   if (!input) return input.error();
+  if (turns_at_rest(*input, *session->controller)) session->controls.turn_at_rest("the control");
   session->controller->set_input(*input);
   SteerStepResult out;
   const std::vector<std::string>& said_all = session->controls.warnings();
@@ -223,6 +224,7 @@ Result<SteerStepResult> SynthesisService::step_session(int id, const SteeringCon
     out.rest_s = static_cast<double>(session->controller->rest_frame()) / context().db->fps;
     out.rest_clip = file().database.clips[static_cast<size_t>(file().database.clip_of(ending->last_frame))].name;
     out.resting = session->controller->resting();
+    out.standing = session->controller->still();
     out.rest_for_good = session->controller->rest_is_for_good();
   }
   session->transitions += out.transitions;

@@ -67,7 +67,8 @@ struct SteerStepResult {
   // stood still and the clip whose end it stood at; -1 and "" before.
   double rest_s = -1.0;
   std::string rest_clip;
-  bool resting = false;        // holding that clip's last frame now
+  bool resting = false;        // on its way to rest, or at it (Controller::resting)
+  bool standing = false;       // standing still at rest now (Controller::still)
   bool rest_for_good = false;  // with no way on from it (Controller::rest_is_for_good)
   std::vector<StartTaken> starts;  // the starts from rest this step took (Controller::starts)
   // What this step's control asks that the graph cannot give, said once a session

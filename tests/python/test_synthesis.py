@@ -245,6 +245,9 @@ def test_rest_equals_the_cli_and_stands_still(cli, graph_file, graph, tmp_path):
         controller.step(0, "walk", rest=rest)
         if not rest:
             assert controller.rest_s is None
+        # Standing once the frame from which it stands still is played (resting from the way there on).
+        still = controller.rest_s is not None and len(controller.motion) > round(controller.rest_s * fps)
+        assert controller.standing == still and (controller.resting or not still)
     motion, want = controller.motion, read_json(tmp_path / "cli.json")
     total = len(want["positions"])
     assert np.max(np.abs(motion.positions[:total] - np.asarray(want["positions"]))) <= 1e-6
@@ -256,19 +259,27 @@ def test_rest_equals_the_cli_and_stands_still(cli, graph_file, graph, tmp_path):
     root = motion.positions[:, 0, :]
     still = int(np.ceil(rest["at_s"] * fps))
     assert np.max(np.linalg.norm((root[still:] - root[still])[:, [0, 2]], axis=1)) < 0.1
+    assert controller.standing
+    # Asked to turn while it stands: not heard, said once (as the CLI's steer warns).
+    with pytest.warns(UserWarning, match="asks to turn while the character stands at rest") as caught:
+        controller.step(90, "walk", rest=True)
+        controller.step(180, "walk", rest=True)
+    assert len([w for w in caught if "stands at rest" in str(w.message)]) == 1
+    assert sum("stands at rest" in w for w in controller.motion.report["warnings"]) == 1
+    stood = len(controller.motion)
     # Asked to move, it starts off from rest (the graph has no way on from the frame it holds): one
     # step blends that frame into a lead-in that walks off, without a word; the report says when.
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         step = controller.step(90, "walk")
-    assert not controller.resting
+    assert not controller.resting and not controller.standing
     assert np.linalg.norm(step.positions[0, 0, [0, 2]] - motion.positions[-1, 0, [0, 2]]) < 0.01
     while len(controller.motion) < len(motion) + 6 * fps:
         controller.step(90, "walk")
     after = controller.motion
     assert np.linalg.norm(after.positions[-1, 0, [0, 2]] - motion.positions[-1, 0, [0, 2]]) > 2
     starts = after.report["starts"]
-    assert len(starts) == 1 and starts[0]["at_s"] == len(motion) / fps and starts[0]["rms_cm"] > 0, starts
+    assert len(starts) == 1 and starts[0]["at_s"] == stood / fps and starts[0]["rms_cm"] > 0, starts
     assert after.report["rests"] == [rest] and after.report["rest"] == rest
     assert after.report["transitions"] >= motion.report["transitions"] + 1
     assert after.report["foot_slide"]["same_frames"]["steps"] > 0

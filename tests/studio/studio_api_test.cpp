@@ -505,7 +505,23 @@ TEST(StudioApi, SteeringComesToRestWhenAsked) {
   EXPECT_TRUE(after.json["resting"].get<bool>());
   EXPECT_FALSE(after.json["rest_for_good"].get<bool>());  // there is a start from it
   EXPECT_EQ(after.json["starts"], json::array());
+  EXPECT_TRUE(after.json["standing"].get<bool>());
+  EXPECT_EQ(after.json["warnings"], json::array());
   for (const json& frame : after.json["positions"]) EXPECT_EQ(frame, held);
+  // Asked to turn as it stands: not heard, said once.
+  for (const char* heading : {"90", "180"}) {
+    const ApiCall turn = call_api(
+        "POST", step, fmt::format(R"({{"heading_deg": {}, "tag": "walk", "rest": true, "min_frames": 5}})", heading));
+    ASSERT_EQ(turn.response.status, 200) << turn.response.body;
+    for (const json& frame : turn.json["positions"]) EXPECT_EQ(frame, held);
+    const json said = turn.json["warnings"];
+    if (std::string(heading) == "90") {
+      ASSERT_EQ(said.size(), 1u) << said.dump();
+      EXPECT_NE(said[0].get<std::string>().find("asks to turn while the character stands at rest"), std::string::npos);
+    } else {
+      EXPECT_EQ(said, json::array());
+    }
+  }
   // Asked to walk east, it starts off: from where it stood, its start a blend (a transition).
   const ApiCall off = call_api("POST", step, R"({"heading_deg": 90, "tag": "walk", "min_frames": 10})");
   ASSERT_EQ(off.response.status, 200) << off.response.body;

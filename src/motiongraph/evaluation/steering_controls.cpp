@@ -1,6 +1,7 @@
 #include "motiongraph/evaluation/steering_controls.h"
 
 #include <cmath>
+#include <numbers>
 
 #include <fmt/format.h>
 
@@ -54,6 +55,20 @@ Result<ControlInput> SteeringControls::input(const SteeringControl& control, std
         fmt::format("{} asks to rest, but no clip of the graph ends standing still: the character goes on", who));
   }
   return in;
+}
+
+bool turns_at_rest(const ControlInput& next, const Controller& controller) {
+  return next.rest && controller.input().rest && controller.still() &&
+         next.direction.dot(controller.input().direction) < std::cos(std::numbers::pi / 180.0);
+}
+
+bool SteeringControls::turn_at_rest(std::string_view who) {
+  if (warned_turn_) return false;
+  warned_turn_ = true;
+  warnings_.push_back(fmt::format("{} asks to turn while the character stands at rest, which it does not: it turns "
+                                  "on its way to rest and as it starts off (when asked to move)",
+                                  who));
+  return true;
 }
 
 }  // namespace mg

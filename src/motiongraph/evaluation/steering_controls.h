@@ -25,6 +25,11 @@ struct SteeringControl {
   bool rest = false;         // come to rest
 };
 
+// Whether `next`, set on `controller`, asks to turn while the character stands still at rest (more
+// than a degree from the heading in force, rest asked of both): not heard, as it turns only on its
+// way to rest and as it starts off.
+bool turns_at_rest(const ControlInput& next, const Controller& controller);
+
 class SteeringControls {
  public:
   // `context` must outlive this.
@@ -34,6 +39,10 @@ class SteeringControls {
   // rest) is appended to warnings(), starting with `who` ("the control at 4 s"). An unknown tag
   // or a heading that is not finite is an error.
   Result<ControlInput> input(const SteeringControl& control, std::string_view who);
+
+  // Says once (appended to warnings(); true when said now) that a turn asked with rest while the
+  // character stands still (turns_at_rest) is not heard, starting with `who`.
+  bool turn_at_rest(std::string_view who);
 
   // Every warning said so far, in order.
   const std::vector<std::string>& warnings() const { return warnings_; }
@@ -50,6 +59,7 @@ class SteeringControls {
   std::map<std::string, TagNote> tags_;
   bool warned_rest_ = false;
   bool warned_stop_ = false;  // 'stop' asked of a graph without the tag
+  bool warned_turn_ = false;  // a turn asked at rest
   std::vector<std::string> warnings_;
 };
 

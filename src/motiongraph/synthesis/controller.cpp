@@ -113,7 +113,6 @@ ControllerDecision Controller::step(Motion& out) {
   // none, a start as soon as it stands still (the stopping clip's still tail is no wait: CMU 29's
   // lasts 1.7 s).
   const int on_node = resting_ ? context_->graph->node_at_frame(rest_->last_frame) : -1;
-  const bool still = resting_ && ending_next_ > 0 && ending_frames_[ending_next_ - 1] >= rest_->rest_frame;
   if (!input_.rest && standing() && on_node >= 0) {
     // On from the frame it holds: the graph's node there, placed as the frame is.
     state_.node = on_node;
@@ -122,7 +121,7 @@ ControllerDecision Controller::step(Motion& out) {
     state_.last_root = Vec2(held.x(), held.z());
     state_.has_last = true;
     resting_ = false;
-  } else if (!input_.rest && still && on_node < 0 && start_off(out, decision)) {
+  } else if (!input_.rest && still() && on_node < 0 && start_off(out, decision)) {
     decision.search_seconds = std::chrono::duration<double>(Clock::now() - begin).count();
     return decision;
   }

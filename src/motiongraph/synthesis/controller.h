@@ -158,6 +158,11 @@ class Controller {
   const std::vector<StartTaken>& starts() const { return starts_; }
   // Resting with the clip it rests at played to its end: holding its last frame.
   bool standing() const;
+  // Resting and standing still: from the frame from which the clip it rests at stands still
+  // (rest_frame()) on, holding its last frame too. Asked to move now, it starts off at once.
+  bool still() const {
+    return resting_ && ending_next_ > 0 && ending_frames_[ending_next_ - 1] >= rest_->rest_frame;
+  }
   // The frame (counted from the controller's first) from which it stood still each time it came to
   // rest, in order; the last one's (-1 before any).
   const std::vector<long long>& rest_frames() const { return rest_frames_; }
