@@ -599,6 +599,27 @@ TEST(Controller, AStartTurnsTowardTheHeadingAskedByAtMostItsLimit) {
   EXPECT_LT(turned[1], -20.0) << "west: the other way";
 }
 
+// The starts from the frame it will hold are found while it stops, before anything asks it to move
+// (in the background: a large library's take a few hundred milliseconds); the controller waits
+// for them when it goes.
+TEST(Controller, FindsTheStartsWhileItStops) {
+  const auto& s = test::subject16();
+  SynthesisContext context = s.context();
+  context.start_cache = std::make_shared<SynthesisContext::StartCache>();  // (none found yet)
+  auto walk = context.tag_mask("walk");
+  ASSERT_TRUE(walk.ok());
+  int held = -1;
+  {
+    Motion motion;
+    const Controller controller = rested(context, *walk, motion);
+    held = controller.rest_ending()->last_frame;
+  }
+  const std::lock_guard<std::mutex> lock(context.start_cache->mutex);
+  const auto found = context.start_cache->starts.find(held);
+  ASSERT_NE(found, context.start_cache->starts.end());
+  EXPECT_EQ(found->second.size(), find_rest_starts(*context.db, *context.graph, context.assembler, held).size());
+}
+
 // Asked for a motion type as it starts off, the start leads into it where one of the starts does.
 TEST(Controller, StartsOffIntoTheMotionTypeAsked) {
   const auto& s = test::subject16();

@@ -4,6 +4,8 @@
 #include <array>
 #include <bit>
 #include <chrono>
+#include <future>
+#include <system_error>
 #include <limits>
 #include <cmath>
 #include <numbers>
@@ -364,6 +366,17 @@ void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
   rest_placement_ = state_.placement;
   rest_frames_.push_back(state_.frames + ending->frames_to_rest(graph));
   rest_endings_.push_back(ending);
+  // The starts from the frame it will hold, found in the background while it stops (a second or
+  // more), not in the decision that first starts off (a large library's take a few hundred ms).
+  if (graph.node_at_frame(ending->last_frame) < 0) {
+    try {
+      starts_found_ = std::async(std::launch::async, [context = context_, frame = ending->last_frame] {
+                        context->rest_starts(frame);
+                      }).share();
+    } catch (const std::system_error&) {
+      // (no thread to spare: found when first asked for)
+    }
+  }
   ending_frames_ = ending->frames(graph);
   ending_next_ = 0;
   // Where each foot makes its last plant. Turning about the root on from the first, the clean-up

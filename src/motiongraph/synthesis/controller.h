@@ -37,6 +37,7 @@
 // goes on with the tag.
 #pragma once
 
+#include <future>
 #include <span>
 #include <vector>
 
@@ -220,6 +221,9 @@ class Controller {
   // start with no tag asked goes on in.
   TagMask moving_types_ = 0;
   std::vector<StartTaken> starts_;
+  // Finding the starts from the ending's last frame, begun as it takes its way to rest (the
+  // context's cache holds them; the last copy of the future waits for the thread).
+  std::shared_future<void> starts_found_;
 };
 
 // Bearing in degrees (0 north = -z, 90 east = +x) as a unit floor direction, and back.
