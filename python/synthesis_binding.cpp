@@ -145,6 +145,8 @@ PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<d
 // frames it decided on, cleaned as the CLI's steer cleans them.
 class PyController {
  public:
+  static constexpr int kMaxStepFrames = 3600;  // a step's min_frames: two minutes at 30 fps
+
   PyController(const PyGraph& graph, double heading_deg, const std::optional<std::string>& tag,
                std::array<double, 2> at, const py::kwargs& options)
       : loaded_(graph.loaded),
@@ -187,7 +189,10 @@ class PyController {
 
   // Threads may share a controller: its steps take turns (the lock taken without the GIL, which a
   // step gives up while it searches).
-  PyMotion step(double heading_deg, const std::optional<std::string>& tag, bool rest) {
+  PyMotion step(double heading_deg, const std::optional<std::string>& tag, bool rest, int min_frames) {
+    if (min_frames < 1 || min_frames > kMaxStepFrames) {
+      throw py::value_error(fmt::format("min_frames must be from 1 to {}, not {}", kMaxStepFrames, min_frames));
+    }
     const ControlInput in = input(heading_deg, tag, rest);
     bool stays = false;  // at rest for good, asked to move
     bool turns = false;  // asked to turn standing at rest
@@ -204,22 +209,28 @@ class PyController {
       turns = turns_at_rest(in, *controller_);
       controller_->set_input(in);
       first = motion_.frame_count;
-      const ControllerDecision decision = controller_->step(motion_);
-      decision_seconds_.push_back(decision.search_seconds);
-      exhausted_ += decision.budget_exhausted ? 1 : 0;
-      contacts = decision.contacts;
-      if (cleanup_) cleaned = cleanup_->clean(motion_, first, contacts);
+      // Decisions until min_frames are played (each commits whole edges: a few frames more).
+      do {
+        const int from = motion_.frame_count;
+        const ControllerDecision decision = controller_->step(motion_);
+        decision_seconds_.push_back(decision.search_seconds);
+        exhausted_ += decision.budget_exhausted ? 1 : 0;
+        if (cleanup_ && cleaned) cleaned = cleanup_->clean(motion_, from, decision.contacts);
+        contacts.insert(contacts.end(), decision.contacts.begin(), decision.contacts.end());
+        played_.edges.insert(played_.edges.end(), decision.edges.begin(), decision.edges.end());
+        played_.rest_frames.insert(played_.rest_frames.end(), decision.rest_frames.begin(),
+                                   decision.rest_frames.end());
+        const std::vector<FrameSource> sources = decision_sources(context(), decision);
+        played_sources_.insert(played_sources_.end(), sources.begin(), sources.end());
+        transitions_ += decision_transitions(*context().graph, decision);
+        if (decision.frames == 0) break;
+      } while (cleaned && motion_.frame_count - first < min_frames);
       if (!in.rest && controller_->standing() && controller_->rest_is_for_good()) {
         stays = true;
         rest_s = static_cast<double>(controller_->rest_frame()) / context().db->fps;
         const RestEnding* ending = controller_->rest_ending();
         rest_clip = context().db->clips[static_cast<size_t>(context().db->clip_of(ending->last_frame))].name;
       }
-      played_.edges.insert(played_.edges.end(), decision.edges.begin(), decision.edges.end());
-      played_.rest_frames.insert(played_.rest_frames.end(), decision.rest_frames.begin(), decision.rest_frames.end());
-      const std::vector<FrameSource> sources = decision_sources(context(), decision);
-      played_sources_.insert(played_sources_.end(), sources.begin(), sources.end());
-      transitions_ += decision_transitions(*context().graph, decision);
       if (cleaned) {
         contacts_.insert(contacts_.end(), contacts.begin(), contacts.end());
         decided = motion_.slice(first, motion_.frame_count - first);
@@ -378,10 +389,11 @@ void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
   // Before the graph's controller(), so that its signature names the class.
   py::class_<PyController>(m, "Controller", "Steers motion on a graph from a heading and a motion type.")
       .def("step", &PyController::step, py::arg("heading_deg"), py::arg("tag") = py::none(),
-           py::arg("rest").noconvert() = false,
+           py::arg("rest").noconvert() = false, py::arg("min_frames") = 1,
            "Decides the next frames towards heading_deg (degrees clockwise from north) with motion type `tag` "
-           "(None: any) and returns them as a Motion. rest=True comes to rest at the end of a clip that ends standing "
-           "still and holds its last frame (so does tag 'stop' where the graph can hardly play it), until asked to "
+           "(None: any) and returns them as a Motion: one decision's (a fifth of a second or so), or as many "
+           "decisions' as make min_frames (1 to 3600; each ends with a whole edge). rest=True comes to rest at the "
+           "end of a clip that ends standing still and holds its last frame (so does tag 'stop' where the graph can hardly play it), until asked to "
            "move: it goes on where the graph has a way on from there, and elsewhere starts off, the frame held "
            "blended into a clip that walks off (the report's 'starts'); rest_s says when it stands still.")
       .def_property_readonly("rest_s", &PyController::rest_s,

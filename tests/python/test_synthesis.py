@@ -308,6 +308,24 @@ def test_path_to_rest_equals_the_cli(cli, graph_file, graph, tmp_path):
     assert graph.path(shape="circle:4").report["rest"] is None
 
 
+def test_a_step_plays_decisions_until_min_frames(graph):
+    # One step of min_frames plays what single steps with the same controls play, decision by
+    # decision, until it has that many frames (each decision ends with a whole edge).
+    many, one = graph.controller(heading_deg=90, tag="walk"), graph.controller(heading_deg=90, tag="walk")
+    got = many.step(90, "walk", min_frames=60)
+    assert len(got) >= 60
+    while len(one.motion) < len(got):
+        one.step(90, "walk")
+    assert len(one.motion) == len(got)
+    np.testing.assert_array_equal(got.positions, one.motion.positions)
+    np.testing.assert_array_equal(got.contacts, one.motion.contacts)
+    assert many.motion.report["decisions"] == one.motion.report["decisions"] > 1
+    assert len(many.step(90, "walk")) < 60  # (one decision by default)
+    for bad in (0, 3601):
+        with pytest.raises(ValueError, match="min_frames must be from 1 to 3600"):
+            many.step(90, "walk", min_frames=bad)
+
+
 def test_steering_goes_where_it_is_told(graph):
     controller = graph.controller(heading_deg=90, tag="walk")
     while len(controller.motion) < 5 * graph.fps:
