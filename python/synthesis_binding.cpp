@@ -393,9 +393,10 @@ void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
            "Decides the next frames towards heading_deg (degrees clockwise from north) with motion type `tag` "
            "(None: any) and returns them as a Motion: one decision's (a fifth of a second or so), or as many "
            "decisions' as make min_frames (1 to 3600; each ends with a whole edge). rest=True comes to rest at the "
-           "end of a clip that ends standing still and holds its last frame (so does tag 'stop' where the graph can hardly play it), until asked to "
-           "move: it goes on where the graph has a way on from there, and elsewhere starts off, the frame held "
-           "blended into a clip that walks off (the report's 'starts'); rest_s says when it stands still.")
+           "end of a clip that ends standing still and holds its last frame (so does tag 'stop' where the graph can "
+           "hardly play it), until asked to move: it goes on where the graph has a way on from there, and elsewhere "
+           "starts off, the frame held blended into a clip that walks off (the report's 'starts'); rest_s says when "
+           "it stands still.")
       .def_property_readonly("rest_s", &PyController::rest_s,
                              "The second from which the character last stood still, once it has come to rest; None "
                              "before.")
