@@ -218,8 +218,6 @@ class PyController {
         if (cleanup_ && cleaned) cleaned = cleanup_->clean(motion_, from, decision.contacts);
         contacts.insert(contacts.end(), decision.contacts.begin(), decision.contacts.end());
         played_.edges.insert(played_.edges.end(), decision.edges.begin(), decision.edges.end());
-        played_.rest_frames.insert(played_.rest_frames.end(), decision.rest_frames.begin(),
-                                   decision.rest_frames.end());
         const std::vector<FrameSource> sources = decision_sources(context(), decision);
         played_sources_.insert(played_sources_.end(), sources.begin(), sources.end());
         transitions_ += decision_transitions(*context().graph, decision);
@@ -373,7 +371,7 @@ class PyController {
   Motion motion_;
   std::optional<FootCleanup> cleanup_;
   std::optional<Controller> controller_;
-  Walk played_{-1, {}};
+  Walk played_{-1, {}};  // every edge chosen: the report's edges and the clips the motion is cut from
   std::vector<FrameSource> played_sources_;  // each frame's, in order (decision_sources)
   int transitions_ = 0;  // the blends played (decision_transitions)
   std::vector<ContactMask> contacts_;

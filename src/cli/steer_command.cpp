@@ -105,7 +105,6 @@ int run_steer(const SteerOptions& o) {
     latencies.push_back(d.search_seconds);
     exhausted += d.budget_exhausted ? 1 : 0;
     played.edges.insert(played.edges.end(), d.edges.begin(), d.edges.end());
-    played.rest_frames.insert(played.rest_frames.end(), d.rest_frames.begin(), d.rest_frames.end());
     const std::vector<FrameSource> sources = decision_sources(context, d);
     played_sources.insert(played_sources.end(), sources.begin(), sources.end());
     // (a start from rest is a blend too)

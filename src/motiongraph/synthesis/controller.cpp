@@ -100,8 +100,8 @@ bool Controller::rest_is_for_good() const {
 
 std::vector<FrameSource> decision_sources(const SynthesisContext& context, const ControllerDecision& decision) {
   std::vector<FrameSource> out = decision.start_frames;
-  for (int e : decision.edges) context.assembler.append_edge_sources(e, out);
-  for (int f : decision.rest_frames) out.push_back({f, f, 1.0});
+  const std::vector<FrameSource> played = context.walk_sources(Walk{-1, decision.edges, decision.rest_frames});
+  out.insert(out.end(), played.begin(), played.end());
   return out;
 }
 
@@ -276,11 +276,7 @@ bool Controller::start_off(Motion& out, ControllerDecision& decision) {
     }
     state_.placement = edit_.apply(out, first, &from, facings, roots, input_.direction) * lead;
   }
-  if (!context_->frame_contacts.empty()) {
-    for (const FrameSource& source : decision.start_frames) {
-      decision.contacts.push_back(context_->frame_contacts[static_cast<size_t>(source.dominant())]);
-    }
-  }
+  decision.contacts = context_->sources_contacts(decision.start_frames);
   Vec2 at = from;
   for (int f = first; f < out.frame_count; ++f) {
     const Vec2 root(out.translations(f)[0].x(), out.translations(f)[0].z());

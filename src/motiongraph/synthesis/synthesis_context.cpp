@@ -107,11 +107,15 @@ std::vector<ContactMask> SynthesisContext::frames_contacts(std::span<const int> 
   return out;
 }
 
-std::vector<ContactMask> SynthesisContext::walk_contacts(const Walk& walk) const {
+std::vector<ContactMask> SynthesisContext::sources_contacts(std::span<const FrameSource> sources) const {
   std::vector<ContactMask> out;
   if (frame_contacts.empty()) return out;
-  for (const FrameSource& source : walk_sources(walk)) out.push_back(frame_contacts[source.dominant()]);
+  for (const FrameSource& source : sources) out.push_back(frame_contacts[static_cast<size_t>(source.dominant())]);
   return out;
+}
+
+std::vector<ContactMask> SynthesisContext::walk_contacts(const Walk& walk) const {
+  return frame_contacts.empty() ? std::vector<ContactMask>{} : sources_contacts(walk_sources(walk));
 }
 
 std::vector<FrameSource> SynthesisContext::walk_sources(const Walk& walk) const {

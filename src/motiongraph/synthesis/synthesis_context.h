@@ -100,6 +100,9 @@ struct SynthesisContext {
   // The contact masks of database frames `frames`, in order (none without feet): what the frames
   // played at rest carry (Walk::rest_frames).
   std::vector<ContactMask> frames_contacts(std::span<const int> frames) const;
+  // The contact masks of frames made of `sources`, in order: each its dominant source frame's (none
+  // without feet).
+  std::vector<ContactMask> sources_contacts(std::span<const FrameSource> sources) const;
   // The contact masks of the frames assemble_walk() plays for `walk` (walk_sources: its edges'
   // frames and the end node's frame), each its dominant source frame's.
   std::vector<ContactMask> walk_contacts(const Walk& walk) const;
