@@ -1,5 +1,5 @@
-// motiongraph serve GRAPH [--host H] [--port P] [--web-root DIR]: the web studio (src/studio/)
-// on one graph. Prints "studio: http://HOST:PORT/" once it listens; SIGINT and SIGTERM stop
+// motiongraph serve GRAPH [--host H] [--port P] [--web-root DIR] [--allow-host NAME...]: the web
+// studio (src/studio/) on one graph. Prints "studio: http://HOST:PORT/" once it listens; SIGINT and SIGTERM stop
 // it (exit 0): the requests being answered are finished, clients still connected after 2 s (or
 // at a second signal) are not waited for.
 #include <atomic>
@@ -7,13 +7,16 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include <unistd.h>
 
 #include <fmt/format.h>
 
 #include "cli/commands.h"
+#include "studio/host_check.h"
 #include "studio/http_server.h"
 
 namespace mg::cli {
@@ -25,6 +28,7 @@ struct ServeOptions {
   std::string host = "127.0.0.1";
   int port = 8080;
   std::string web_root = MOTIONGRAPH_WEB_ROOT;
+  std::vector<std::string> allow_hosts;
 };
 
 // Counted by SIGINT / SIGTERM, whichever thread takes them (libraries start threads of their own
@@ -52,6 +56,15 @@ int run_serve(const ServeOptions& o) {
   studio::HttpServer server(api, o.web_root);
   auto port = server.bind(o.host, o.port);
   if (!port) return fail(port.error());
+  if (Status allowed = server.allow_hosts(o.allow_hosts); !allowed) return fail(allowed.error());
+  const bool every_interface = o.host == "0.0.0.0" || o.host == "::";
+  char name[256] = {};
+  const bool named = gethostname(name, sizeof name - 1) == 0 && name[0] != '\0';
+  // Served to the network: the machine's own name (as printed below, and as .local by mDNS)
+  // is one a browser opens it under.
+  if (every_interface && named && studio::check_allowed_host(name)) {
+    (void)server.allow_hosts({name, std::string(name) + ".local"});
+  }
 
   std::atomic<bool> done = false;
   std::thread signal_thread([&] {
@@ -75,10 +88,8 @@ int run_serve(const ServeOptions& o) {
   });
   const std::string shown_host = o.host.find(':') != std::string::npos ? "[" + o.host + "]" : o.host;
   fmt::print("studio: http://{}:{}/\n", shown_host, *port);
-  if (o.host == "0.0.0.0" || o.host == "::") {
+  if (every_interface) {
     // Every interface: the printed address is not one a browser opens; say what to open.
-    char name[256] = {};
-    const bool named = gethostname(name, sizeof name - 1) == 0 && name[0] != '\0';
     fmt::print("  listening on every network interface: open http://{}:{}/ from another machine "
                "(anyone who can reach it can use the studio)\n",
                named ? std::string(name) : std::string("THIS-MACHINE"), *port);
@@ -105,6 +116,15 @@ Command add_serve_command(CLI::App& app) {
   sub->add_option("--port", o->port, "Port (0: pick a free one)")->capture_default_str()->check(CLI::Range(0, 65535));
   sub->add_option("--web-root", o->web_root, "The studio's front-end folder (web/ of the source tree)")
       ->capture_default_str();
+  sub->add_option("--allow-host", o->allow_hosts,
+                  "A name the studio may be opened under besides IP addresses and localhost (repeatable; "
+                  "'.lan' allows every name under lan). Requests addressed to other names are refused: a page of "
+                  "another site could reach the studio under a name of its own. Served on every interface, the "
+                  "machine's name (and NAME.local) is allowed too")
+      ->check([](const std::string& entry) {
+        const Status checked = studio::check_allowed_host(entry);
+        return checked ? std::string() : checked.error().message;
+      });
   return {sub, [o] { return run_serve(*o); }};
 }
 

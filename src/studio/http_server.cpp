@@ -4,11 +4,13 @@
 #include <filesystem>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <httplib.h>
 #include <nlohmann/json.hpp>
 
 #include "motiongraph/core/json_text.h"
 #include "motiongraph/core/text.h"
+#include "studio/host_check.h"
 
 namespace mg::studio {
 
@@ -69,7 +71,21 @@ HttpServer::HttpServer(const StudioApi& api, std::string web_root)
   };
   // A request with a body method but neither Content-Length nor Transfer-Encoding has an empty
   // body (HTTP/1.1); httplib would read one until its read timeout, holding a worker 10 s.
-  s.set_pre_routing_handler([api_handler](const httplib::Request& req, httplib::Response& res) {
+  s.set_pre_routing_handler([this, api_handler](const httplib::Request& req, httplib::Response& res) {
+    // A request addressed to a name the studio does not answer to (studio/host_check.h): a page
+    // of another site that rebound its name to this machine. A client that sends no Host
+    // (HTTP/1.0) is not a browser.
+    if (req.has_header("Host") && !host_allowed(req.get_header_value("Host"), allowed_hosts_)) {
+      const std::string header = req.get_header_value("Host");
+      const std::string name = host_of_header(header);
+      send_error(res, 403,
+                 fmt::format("the studio answers requests addressed to an IP address or localhost{}, not to {} (a "
+                             "page of another site may reach this machine under a name of its own): to open it "
+                             "under that name, start it with --allow-host {}",
+                             allowed_hosts_.empty() ? "" : fmt::format(" or {}", fmt::join(allowed_hosts_, ", ")),
+                             mg::quoted(header.substr(0, 100)), name.empty() ? "NAME" : name));
+      return httplib::Server::HandlerResponse::Handled;
+    }
     // A NUL byte (%00) in the path: the file opened would end there, its type read past it
     // ("index.html%00.png" served index.html as a PNG).
     if (req.path.find('\0') != std::string::npos) {
@@ -155,6 +171,7 @@ Result<int> HttpServer::bind(const std::string& host, int port) {
     return Error{web_root_, 0, "three.js is not installed here: run 'npm ci' in this folder (scripts/install-deps.sh does)"};
   }
   if (port < 0 || port > 65535) return Error{"", 0, fmt::format("port {} is not in 0..65535", port)};
+  if (!host.empty() && check_allowed_host(host) && !host_allowed(host, {})) allowed_hosts_.push_back(ascii_lower(host));
   const int bound =
       port == 0 ? server_->bind_to_any_port(host.c_str()) : (server_->bind_to_port(host.c_str(), port) ? port : -1);
   if (bound < 0) {
@@ -165,6 +182,16 @@ Result<int> HttpServer::bind(const std::string& host, int port) {
 
 Status HttpServer::run() {
   if (!server_->listen_after_bind()) return Error{"", 0, "the server stopped listening unexpectedly"};
+  return Ok{};
+}
+
+Status HttpServer::allow_hosts(const std::vector<std::string>& names) {
+  for (const std::string& name : names) {
+    if (Status checked = check_allowed_host(name); !checked) {
+      return Error{"", 0, "allowed host " + checked.error().message};
+    }
+    allowed_hosts_.push_back(ascii_lower(name));
+  }
   return Ok{};
 }
 

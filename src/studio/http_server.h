@@ -6,6 +6,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "motiongraph/core/error.h"
 #include "studio/studio_api.h"
@@ -27,8 +28,13 @@ class HttpServer {
   HttpServer& operator=(const HttpServer&) = delete;
 
   // Binds host:port (port 0: a free one) and returns the port bound. Fails when the web root
-  // has no index.html or no three.js (web/node_modules, from npm ci).
+  // has no index.html or no three.js (web/node_modules, from npm ci). A host given by name is
+  // one the server answers to (allow_hosts).
   Result<int> bind(const std::string& host, int port);
+  // Names besides IP addresses and localhost that requests may be addressed to (the Host
+  // header; studio/host_check.h says why others are refused), each checked by
+  // check_allowed_host; before run().
+  Status allow_hosts(const std::vector<std::string>& names);
   // Serves until stop(); call after bind().
   Status run();
   void stop();
@@ -36,6 +42,7 @@ class HttpServer {
  private:
   const StudioApi* api_;
   std::string web_root_;
+  std::vector<std::string> allowed_hosts_;  // lower case
   std::unique_ptr<httplib::Server> server_;
 };
 

@@ -91,10 +91,54 @@ grep -q "listening on every network interface: open http://.*:$port/ from anothe
   || fail "no line saying what to open: $(cat "$tmp/out")"
 curl -sf -m 30 "http://127.0.0.1:$port/api/summary" -o "$tmp/summary" && grep -q '"frames"' "$tmp/summary" \
   || fail "GET /api/summary on every interface"
+# The machine's name, which the line says to open, is answered; a name a page of another site
+# could rebind to this machine is not, and the refusal says how to allow one.
+# status_for HOST PATH: the status of GET PATH addressed to HOST (the body in $tmp/answer).
+status_for() {
+  curl -s -m 30 -o "$tmp/answer" -w '%{http_code}' -H "Host: $1:$port" "http://127.0.0.1:$port$2"
+}
+name=$(hostname)
+[[ $(status_for "$name" /api/summary) == 200 ]] || fail "the machine's name $name is refused on every interface"
+[[ $(status_for evil.example /) == 403 ]] || fail "a request addressed to evil.example is answered"
+grep -q -- "--allow-host evil.example" "$tmp/answer" \
+  || fail "the refusal does not say how to allow: $(cat "$tmp/answer")"
 kill -INT "$pid"
 wait "$pid" || fail "serve --host 0.0.0.0 did not stop cleanly"
 pid=
-echo "serve: every interface, said so, exit 0"
+echo "serve: every interface, said so, exit 0; its name answered, another refused"
+
+# --allow-host: the names given are answered (and the name given to --host, where it resolves
+# on this machine); a URL is refused as one line.
+: >"$tmp/out"
+"$mg" serve "$graph" --port 0 --allow-host studio.test --allow-host .lan >"$tmp/out" 2>"$tmp/err" &
+pid=$!
+port=
+for _ in $(seq 100); do
+  port=$(sed -n 's|^studio: http://127.0.0.1:\([0-9]*\)/$|\1|p' "$tmp/out")
+  [[ -n $port ]] && break
+  sleep 0.1
+done
+[[ -n $port ]] || fail "serve --allow-host did not start: $(cat "$tmp/err")"
+for host in studio.test box.lan; do
+  [[ $(status_for "$host" /api/summary) == 200 ]] || fail "--allow-host: $host is refused"
+done
+kill -INT "$pid"
+wait "$pid" || fail "serve --allow-host did not stop cleanly"
+pid=
+if getent hosts "$name" >/dev/null; then
+  start_serve "$name"
+  curl -sf -m 30 "http://$name:$port/api/summary" -o "$tmp/summary" || fail "serve --host $name: refused under its name"
+  kill -INT "$pid"
+  wait "$pid" || fail "serve --host $name did not stop cleanly"
+  pid=
+else
+  echo "serve: $name does not resolve here: the name given to --host not tried"
+fi
+status=0
+timeout 60 "$mg" serve "$graph" --allow-host http://studio.test/ --port 0 >/dev/null 2>"$tmp/err" || status=$?
+[[ $status -ne 0 && $(wc -l <"$tmp/err") -eq 1 ]] && grep -q "not a URL" "$tmp/err" \
+  || fail "--allow-host with a URL: exit $status, $(cat "$tmp/err")"
+echo "serve: --allow-host answered, a URL refused"
 
 # Bad input: one line, exit 1 (under a timeout: a server that starts anyway fails, not hangs).
 status=0

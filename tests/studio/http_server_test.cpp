@@ -139,19 +139,55 @@ TEST(StudioServerSetup, RefusesAWebRootWithoutTheStudio) {
   EXPECT_NE(bound.error().message.find("index.html"), std::string::npos);
 }
 
+// DNS rebinding: a page of another site whose name now resolves to this machine sends the
+// studio requests addressed to that name. They are refused, pages and API alike, saying how to
+// allow a name; addresses, localhost and the names allowed are answered (the name bound:
+// cli_serve_test.sh).
+TEST(StudioServerSetup, AnswersOnlyTheNamesItIsOpenedUnder) {
+  const studio::StudioApi api(studio_service());
+  studio::HttpServer server(api, MOTIONGRAPH_WEB_ROOT);
+  ASSERT_TRUE(server.allow_hosts({"Studio.Test", ".lan"}));
+  EXPECT_FALSE(server.allow_hosts({"http://studio.test/"}));
+  auto bound = server.bind("127.0.0.1", 0);
+  ASSERT_TRUE(bound) << bound.error().to_string();
+  const int port = *bound;
+  std::thread thread([&] { (void)server.run(); });
+  const auto status_for = [&](const std::string& path, const std::string& host) {
+    const std::string answer =
+        raw_request(port, "GET " + path + " HTTP/1.1\r\nHost: " + host + "\r\nConnection: close\r\n\r\n", 8);
+    return answer.substr(0, answer.find("\r\n"));
+  };
+  const std::string p = ":" + std::to_string(port);
+  for (const std::string& host : {"127.0.0.1" + p, "localhost" + p, "[::1]" + p, "studio.test" + p, "a.lan" + p}) {
+    EXPECT_EQ(status_for("/api/summary", host), "HTTP/1.1 200 OK") << host;
+  }
+  for (const char* path : {"/api/summary", "/", "/index.html"}) {
+    EXPECT_EQ(status_for(path, "evil.example" + p), "HTTP/1.1 403 Forbidden") << path;
+  }
+  const std::string refused =
+      raw_request(port, "GET /api/summary HTTP/1.1\r\nHost: evil.example" + p + "\r\nConnection: close\r\n\r\n", 8);
+  EXPECT_NE(refused.find("start it with --allow-host evil.example"), std::string::npos) << refused;
+  EXPECT_NE(refused.find("or studio.test, .lan"), std::string::npos) << refused;
+  // No Host at all (HTTP/1.0): not a browser's request.
+  const std::string old = raw_request(port, "GET /api/summary HTTP/1.0\r\n\r\n", 8);
+  EXPECT_EQ(old.substr(0, old.find("\r\n")), "HTTP/1.1 200 OK") << old;
+  server.stop();
+  thread.join();
+}
+
 // A POST with neither Content-Length nor Transfer-Encoding has an empty body (HTTP/1.1): it is
 // answered at once, not after the server's 10 s read timeout (the socket here gives up at 8 s);
 // outside the API, 405. PATCH, which no route takes, is 405 as any wrong method.
 TEST_F(StudioServer, ABodyWithoutALengthIsEmpty) {
   const std::string session =
-      raw_request(port_, "POST /api/steer/sessions HTTP/1.1\r\nHost: studio\r\nConnection: close\r\n\r\n", 8);
+      raw_request(port_, "POST /api/steer/sessions HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n", 8);
   EXPECT_EQ(session.rfind("HTTP/1.1 200", 0), 0u) << session;
   EXPECT_NE(session.find("\"session\""), std::string::npos) << session;
   const std::string summary =
-      raw_request(port_, "POST /api/summary HTTP/1.1\r\nHost: studio\r\nConnection: close\r\n\r\n", 8);
+      raw_request(port_, "POST /api/summary HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n", 8);
   EXPECT_EQ(summary.rfind("HTTP/1.1 405", 0), 0u) << summary;
   const std::string page =
-      raw_request(port_, "POST /index.html HTTP/1.1\r\nHost: studio\r\nConnection: close\r\n\r\n", 8);
+      raw_request(port_, "POST /index.html HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n", 8);
   EXPECT_EQ(page.rfind("HTTP/1.1 405", 0), 0u) << page;
   auto c = client();
   auto patch = c.Patch("/api/summary", "{}", "application/json");
@@ -209,7 +245,7 @@ TEST_F(StudioServer, AnswersHttpAsClientsUseIt) {
   // A chunked body: refused before it is read.
   const std::string chunked = raw_request(
       port_,
-      "POST /api/walk HTTP/1.1\r\nHost: studio\r\nTransfer-Encoding: chunked\r\nConnection: close\r\n\r\n"
+      "POST /api/walk HTTP/1.1\r\nHost: 127.0.0.1\r\nTransfer-Encoding: chunked\r\nConnection: close\r\n\r\n"
       "2\r\n{}\r\n0\r\n\r\n",
       8);
   EXPECT_EQ(chunked.rfind("HTTP/1.1 411", 0), 0u) << chunked;

@@ -1,0 +1,87 @@
+#include "studio/host_check.h"
+
+#include <algorithm>
+
+#include <arpa/inet.h>
+#include <fmt/format.h>
+
+#include "motiongraph/core/text.h"
+
+namespace mg::studio {
+
+namespace {
+
+bool is_address(const std::string& host, int family) {
+  unsigned char bytes[16];
+  return inet_pton(family, host.c_str(), bytes) == 1;
+}
+
+bool name_char(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' || c == '.' ||
+         c == '_';
+}
+
+bool ends_with(std::string_view text, std::string_view end) {
+  return text.size() >= end.size() && text.substr(text.size() - end.size()) == end;
+}
+
+}  // namespace
+
+std::string host_of_header(std::string_view header) {
+  std::string_view host = header;
+  std::string_view port;
+  if (host.starts_with('[')) {
+    const size_t close = host.find(']');
+    if (close == std::string_view::npos) return "";
+    const std::string inside(host.substr(1, close - 1));
+    if (!is_address(inside, AF_INET6)) return "";
+    port = host.substr(close + 1);
+    if (!port.empty() && !port.starts_with(':')) return "";
+    host = host.substr(0, close + 1);
+  } else {
+    const size_t colon = host.find(':');
+    if (colon != std::string_view::npos) {
+      port = host.substr(colon);
+      host = host.substr(0, colon);
+    }
+    if (host.ends_with('.')) host.remove_suffix(1);
+    if (host.empty() || !std::all_of(host.begin(), host.end(), name_char)) return "";
+  }
+  if (!port.empty()) {
+    port.remove_prefix(1);
+    if (port.empty() || port.size() > 5 || !std::all_of(port.begin(), port.end(), [](char c) {
+          return c >= '0' && c <= '9';
+        })) {
+      return "";
+    }
+  }
+  return ascii_lower(host);
+}
+
+bool host_allowed(std::string_view header, const std::vector<std::string>& allowed) {
+  const std::string host = host_of_header(header);
+  if (host.empty()) return false;
+  if (host.starts_with('[') || is_address(host, AF_INET)) return true;
+  if (host == "localhost" || ends_with(host, ".localhost")) return true;
+  return std::any_of(allowed.begin(), allowed.end(), [&](const std::string& entry) {
+    if (entry.starts_with('.')) return host == entry.substr(1) || ends_with(host, entry);
+    return host == entry;
+  });
+}
+
+Status check_allowed_host(std::string_view entry) {
+  if (entry.empty()) return Error{"", 0, "an empty host name"};
+  if (entry.find("://") != std::string_view::npos || entry.find('/') != std::string_view::npos) {
+    return Error{"", 0, fmt::format("{}: give the host name alone, not a URL", quoted(entry))};
+  }
+  if (entry.find(':') != std::string_view::npos) {
+    return Error{"", 0, fmt::format("{}: give the host name alone, without a port", quoted(entry))};
+  }
+  if (!std::all_of(entry.begin(), entry.end(), name_char) || entry == ".") {
+    return Error{"", 0,
+                 fmt::format("{}: not a host name (letters, digits, '-', '_' and dots)", quoted(entry))};
+  }
+  return Ok{};
+}
+
+}  // namespace mg::studio
