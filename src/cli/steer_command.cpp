@@ -190,9 +190,8 @@ int run_steer(const SteerOptions& o) {
     control["rest"] = rest;
     if (rest && !rest_before && !context.rest().empty()) {
       // The first time it stands from the control on, before a later control asks for rest again
-      // after one took it back (that rest is that control's; a rest taken back once the stopping
-      // clip is under way still stands, and is this one's; a rest that came before it: it stood
-      // already).
+      // after one took it back (that rest is that control's; a rest taken back before it stood,
+      // its stopping clip under way too, is none; a rest that came before it: it stood already).
       const auto back = std::find_if(inputs.begin() + static_cast<long>(i) + 1, inputs.end(),
                                      [](const ControlInput& later) { return !later.rest; });
       const bool taken_back = back != inputs.end();
@@ -206,6 +205,8 @@ int run_steer(const SteerOptions& o) {
       control["rest_response_s"] = first != rests_s.end() ? nlohmann::json(*first - c.at_s)
                                    : !taken_back && !rests_s.empty() && controller->resting() ? nlohmann::json(0.0)
                                                                                               : nlohmann::json(nullptr);
+      // (taken back before it stood: said in the summary)
+      control["rest_taken_back"] = control["rest_response_s"].is_null() && taken_back;
       if (control["rest_response_s"].is_null() && !taken_back) {
         warn(fmt::format("the control at {:g} s asks to rest, but the character does not stand before the script "
                          "ends at {:g} s (duration_s is too short for the way to rest)",
@@ -288,9 +289,10 @@ int run_steer(const SteerOptions& o) {
                         : fmt::format(", {} after {:.2f} s", c["tag"].get<std::string>(), c["tag_response_s"].get<double>());
     }
     if (c.contains("rest_response_s")) {
-      tag_reached += c["rest_response_s"].is_null()
-                         ? std::string(", not at rest")
-                         : fmt::format(", at rest after {:.2f} s", c["rest_response_s"].get<double>());
+      tag_reached += !c["rest_response_s"].is_null()
+                         ? fmt::format(", at rest after {:.2f} s", c["rest_response_s"].get<double>())
+                     : c["rest_taken_back"].get<bool>() ? std::string(", rest taken back before it stood")
+                                                        : std::string(", not at rest");
     }
     // What it asked: the tag (any), and rest when it means rest ("stop, rest": a stop heard as rest).
     const std::string tag = c["tag"].get<std::string>();
@@ -304,8 +306,13 @@ int run_steer(const SteerOptions& o) {
                tag_reached);
   }
   for (const auto& start : report["starts"]) {
-    fmt::print("  started off from rest at {:.2f} s into {} (its first frames {:.1f} cm from the pose held)\n",
-               start["at_s"].get<double>(), start["clip"].get<std::string>(), start["rms_cm"].get<double>());
+    if (start["under_way"].get<bool>()) {
+      fmt::print("  went on from its way to rest at {:.2f} s into {} (its first frames {:.1f} cm from the stop's)\n",
+                 start["at_s"].get<double>(), start["clip"].get<std::string>(), start["rms_cm"].get<double>());
+    } else {
+      fmt::print("  started off from rest at {:.2f} s into {} (its first frames {:.1f} cm from the pose held)\n",
+                 start["at_s"].get<double>(), start["clip"].get<std::string>(), start["rms_cm"].get<double>());
+    }
   }
   return 0;
 }
@@ -322,7 +329,7 @@ Command add_steer_command(CLI::App& app) {
                "north; a key left out keeps the control before's; without duration_s, the motion ends 4 s after\n"
                "the last control. {\"at_s\": 10, \"rest\": true} comes to rest at the end of a clip that ends\n"
                "standing still (as does a stop the graph can hardly play or has no tag for); a later \"rest\":\n"
-               "false starts it off again (the report's \"starts\").");
+               "false starts it off again, or takes the rest back on its way there (the report's \"starts\").");
   o->common.add_to(*sub);
   sub->add_option("--script", o->script, "CONTROLS.json")->required()->check(CLI::ExistingFile);
   sub->add_option("--horizon", o->settings.horizon_s, "Seconds each decision looks ahead")->capture_default_str();

@@ -298,6 +298,36 @@ def test_rest_equals_the_cli_and_stands_still(cli, graph_file, graph, tmp_path):
     assert other.rest_s is not None
 
 
+def test_rest_taken_back_on_the_way_equals_the_cli(cli, graph_file, graph, tmp_path):
+    # Asked to rest at 2 s and to walk on at 3.5 s, before it stands: it goes on at once (the rest
+    # is none), frame for frame as the CLI's steer plays the same controls.
+    controls = [{"at_s": 0, "heading_deg": 0, "tag": "walk"}, {"at_s": 2, "rest": True},
+                {"at_s": 3.5, "rest": False}]
+    (tmp_path / "controls.json").write_text(json.dumps({"duration_s": 6, "controls": controls}))
+    cli("steer", graph_file, "--script", tmp_path / "controls.json", "-o", tmp_path / "cli.json",
+        "--report", tmp_path / "cli-report.json")
+    fps = graph.fps
+    controller = graph.controller(heading_deg=0, tag="walk")
+    resting = []
+    while len(controller.motion) < 6 * fps:
+        t = len(controller.motion) / fps
+        controller.step(0, "walk", rest=2 <= t < 3.5)
+        resting.append(controller.resting)
+    assert any(resting) and not controller.resting and controller.rest_s is None
+    motion, want = controller.motion, read_json(tmp_path / "cli.json")
+    total = len(want["positions"])
+    assert np.max(np.abs(motion.positions[:total] - np.asarray(want["positions"]))) <= 1e-6
+    report = read_json(tmp_path / "cli-report.json")
+    assert motion.report["rests"] == report["rests"] == [] and motion.report["rest"] is None
+    assert motion.report["starts"] == report["starts"]
+    assert all(start["under_way"] for start in report["starts"]), report["starts"]
+    assert report["controls"][1]["rest_taken_back"], report["controls"]
+    # Walking on: 0.8 m or more in the 1.5 s after it was asked.
+    root = motion.positions[:, 0, [0, 2]]
+    asked = int(np.ceil(3.5 * fps))
+    assert np.linalg.norm(root[asked + int(1.5 * fps)] - root[asked]) > 0.8
+
+
 def test_path_to_rest_equals_the_cli(cli, graph_file, graph, tmp_path):
     cli("path", graph_file, "--shape", "circle:4", "--rest-at-end", "-o", tmp_path / "cli.json",
         "--report", tmp_path / "cli-report.json")

@@ -474,7 +474,7 @@ TEST(Controller, StartsOffFromRestWhenAskedToMove) {
     EXPECT_FALSE(controller->resting());
     ASSERT_EQ(controller->starts().size(), 1u);
     EXPECT_EQ(controller->starts()[0].frame, held + 1);
-    const RestStart& start = *controller->starts()[0].start;
+    const RestStart& start = controller->starts()[0].start;
     EXPECT_TRUE(d.edges.empty());
     EXPECT_TRUE(d.rest_frames.empty());
     ASSERT_EQ(d.frames, start.frames(graph));
@@ -585,7 +585,7 @@ TEST(Controller, AStartTurnsTowardTheHeadingAskedByAtMostItsLimit) {
                            m.translations(f)[0].z() - m.translations(f - 1)[0].z());
     }
     // The captured lead-in's own turn over the start, as aligned on the pose held.
-    const RestStart& start = *off.starts().front().start;
+    const RestStart& start = off.starts().front().start;
     const double own = yaw_between(
         facing_on_floor(context.assembler.root_rotation(start.first_frame, start.alignment), axis),
         facing_on_floor(context.assembler.root_rotation(start.first_frame + d.frames - 1, start.alignment), axis));
@@ -639,7 +639,7 @@ TEST(Controller, StartsOffIntoTheMotionTypeAsked) {
     controller.set_input({bearing_direction(0.0), tag});
     controller.step(motion);
     ASSERT_EQ(controller.starts().size(), 1u);
-    const int node_frame = graph.nodes[static_cast<size_t>(controller.starts()[0].start->node)].frame;
+    const int node_frame = graph.nodes[static_cast<size_t>(controller.starts()[0].start.node)].frame;
     EXPECT_EQ((context.frame_tag(node_frame) & tag) != 0, any) << name;
     tested += any ? 1 : 0;
   }
@@ -677,6 +677,111 @@ TEST(Controller, RestTakenBackInTimeOrWithNowhereToRestWalksOn) {
     EXPECT_GT(floor_distance(motion, from, motion.frame_count - 1), 3.0)
         << (nowhere ? "nowhere to rest" : "taken back");
   }
+}
+
+// Asked to move on its way to rest, at each decision of its stopping clip before it stands still,
+// the character takes the rest back: the rest it was coming to is none, and it goes on at once,
+// on from a node of the graph the clip reaches (searching from it, or playing the clip on to it)
+// or by a start from the frames it is playing (blended from them as they come), with no joint
+// stepping more than in the captured clips; it travels farther in the next 1.5 s than by coming to
+// rest first and starting off from there.
+TEST(Controller, TakesARestBackOnItsWayThere) {
+  const auto& s = test::subject16();
+  const SynthesisContext& context = s.context();
+  const MotionGraph& graph = *context.graph;
+  const MotionAssembler& assembler = context.assembler;
+  auto walk = context.tag_mask("walk");
+  ASSERT_TRUE(walk.ok());
+  auto controller = Controller::create(context, {}, {bearing_direction(0.0), *walk});
+  ASSERT_TRUE(controller.ok());
+  Motion motion = context.assembler.empty_motion();
+  const double fps = motion.fps;
+  while (motion.frame_count < 2 * fps) controller->step(motion);
+  controller->set_input({bearing_direction(0.0), *walk, true});
+  std::vector<int> played;  // the stopping clip's frames played
+  while (!controller->resting()) {
+    const ControllerDecision d = controller->step(motion);
+    played.insert(played.end(), d.rest_frames.begin(), d.rest_frames.end());
+    ASSERT_LT(motion.frame_count, 30 * fps) << "not on its way to rest";
+  }
+  const RestEnding ending = *controller->rest_ending();
+  const std::vector<int> ending_frames = ending.frames(graph);
+  // The largest step of any joint from frame to frame in `m` over [from, to).
+  auto largest_step = [&](const Motion& m, int from, int to) {
+    const std::vector<Vec3> world = world_positions(assembler.skeleton(), m);
+    const size_t joints = static_cast<size_t>(m.joint_count);
+    double largest = 0.0;
+    for (int f = std::max(1, from); f < std::min(to, m.frame_count); ++f) {
+      for (size_t j = 0; j < joints; ++j) {
+        largest = std::max(largest, (world[static_cast<size_t>(f) * joints + j] -
+                                     world[static_cast<size_t>(f - 1) * joints + j]).norm());
+      }
+    }
+    return largest;
+  };
+  // (the captured stopping clip, and the walk before it)
+  Motion captured = assembler.empty_motion();
+  for (const int f : ending_frames) assembler.append_frame(f, FloorTransform{}, captured);
+  const double captured_step =
+      std::max(largest_step(captured, 0, captured.frame_count), largest_step(motion, 0, motion.frame_count));
+  int starts = 0, early = 0;
+  while (!controller->still()) {
+    Controller back = *controller;
+    Motion m = motion;
+    const int asked = m.frame_count;
+    back.set_input({bearing_direction(90.0), *walk});
+    const ControllerDecision d = back.step(m);
+    EXPECT_FALSE(back.resting());
+    EXPECT_TRUE(back.rest_frames().empty());
+    EXPECT_EQ(back.rest_ending(), nullptr);
+    if (!d.start_frames.empty()) {
+      // Blended from the frames the stopping clip plays next (its last repeated) into the lead-in.
+      ++starts;
+      ASSERT_EQ(back.starts().size(), 1u);
+      EXPECT_TRUE(back.starts()[0].under_way);
+      const RestStart& start = back.starts()[0].start;
+      for (int p = 0; p < start.blend_frames; ++p) {
+        const size_t next = std::min(played.size() + static_cast<size_t>(p), ending_frames.size() - 1);
+        EXPECT_EQ(d.start_frames[static_cast<size_t>(p)],
+                  (FrameSource{ending_frames[next], start.first_frame + p, blend_weight(p, start.blend_frames)}));
+      }
+      EXPECT_EQ(d.contacts, context.sources_contacts(d.start_frames));
+    } else if (!d.rest_frames.empty()) {
+      // On to a node the clip reaches, as captured.
+      EXPECT_TRUE(d.edges.empty());
+      const size_t next = played.size() + d.rest_frames.size();
+      ASSERT_LT(next, ending_frames.size());
+      EXPECT_EQ(back.state().node, graph.node_at_frame(ending_frames[next]));
+      EXPECT_LE(d.rest_frames.size(), static_cast<size_t>(std::lround(kStartBlendS * fps)));
+    } else {
+      // On from the clip's node where it has played nothing of the clip.
+      EXPECT_TRUE(played.empty());
+      EXPECT_FALSE(d.edges.empty());
+      EXPECT_EQ(graph.edges[static_cast<size_t>(d.edges.front())].from_node, ending.node);
+    }
+    while (m.frame_count < asked + 1.5 * fps) back.step(m);
+    EXPECT_LE(largest_step(m, asked, m.frame_count), captured_step + 0.01) << "asked at " << asked;
+    // Coming to rest first, and asked to move once it stands still.
+    Controller stopped = *controller;
+    Motion n = motion;
+    while (!stopped.still()) stopped.step(n);
+    stopped.set_input({bearing_direction(90.0), *walk});
+    while (n.frame_count < asked + 1.5 * fps) stopped.step(n);
+    // (asked with less than a blend's time before it would stand still, about as far)
+    const double went = floor_distance(m, asked - 1, asked + static_cast<int>(1.5 * fps) - 1);
+    const double stopped_went = floor_distance(n, asked - 1, asked + static_cast<int>(1.5 * fps) - 1);
+    const int before_still = ending.rest_frame - ending_frames[played.size()];
+    if (before_still > std::lround(kStartBlendS * fps)) {
+      EXPECT_GT(went, stopped_went + 0.2) << "asked at " << asked;
+      ++early;
+    } else {
+      EXPECT_GT(went, stopped_went - 0.1) << "asked at " << asked;
+    }
+    const ControllerDecision d2 = controller->step(motion);
+    played.insert(played.end(), d2.rest_frames.begin(), d2.rest_frames.end());
+  }
+  EXPECT_GE(early, 2);
+  EXPECT_GE(starts, 1);
 }
 
 // A turn asked with rest: the way to rest is the same whatever the heading (the cheapest), but the

@@ -581,7 +581,8 @@ function tick() {
     } else if (s.rest) {
       rest = s.canRest ? 'coming to rest; ' : 'asked to rest, but no clip of this graph ends standing still; ';
     } else if (s.lastStart && s.played / s.fps < s.lastStart.at_s + 3) {
-      rest = `starting off from rest into ${s.lastStart.clip}; `;
+      rest = s.lastStart.under_way ? `rest taken back: going on into ${s.lastStart.clip}; `
+        : `starting off from rest into ${s.lastStart.clip}; `;
     }
     $('steer-info').textContent = `${rest}heading ${s.heading.toFixed(0)} deg, ${s.tag || 'any'}; `
       + `${s.received} frames received, step ${s.lastStepMs.toFixed(0)} ms, `

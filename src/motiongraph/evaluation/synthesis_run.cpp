@@ -176,13 +176,14 @@ nlohmann::json starts_report(const SynthesisContext& context, std::span<const St
   nlohmann::json out = nlohmann::json::array();
   for (const StartTaken& taken : starts) {
     if (taken.frame >= frames) break;
-    const RestStart& start = *taken.start;
+    const RestStart& start = taken.start;
     const DatabaseClip& clip = context.db->clips[static_cast<size_t>(context.db->clip_of(start.first_frame))];
     out.push_back({{"at_s", static_cast<double>(taken.frame) / context.db->fps},
                    {"clip", clip.name},
                    {"clip_frame", start.first_frame - clip.first_frame},
                    {"node_frame", context.graph->nodes[start.node].frame - clip.first_frame},
-                   {"rms_cm", 100.0 * start.rms_m}});
+                   {"rms_cm", 100.0 * start.rms_m},
+                   {"under_way", taken.under_way}});
   }
   return out;
 }

@@ -81,7 +81,8 @@ nlohmann::json rest_report(const SynthesisContext& context, const RestEnding* en
 nlohmann::json rests_report(const SynthesisContext& context, const Controller& controller, long long frames);
 // The starts from rest a steering session took (synthesis/rest_starts.h) before frame `frames`, as
 // reports give them: [{"at_s", the "clip" it started off into, "clip_frame" of the lead-in's first
-// frame, "node_frame" the graph went on from, "rms_cm" from the pose held}].
+// frame, "node_frame" the graph went on from, "rms_cm" from the pose held (or the frames it was
+// playing), "under_way": from its way to rest, the rest taken back before it stood}].
 nlohmann::json starts_report(const SynthesisContext& context, std::span<const StartTaken> starts, long long frames);
 
 // Whether asking for `tag` asks the controller to rest (controller.h): it is stop, the graph plays

@@ -115,6 +115,10 @@ ControllerDecision Controller::step(Motion& out) {
   // none, a start as soon as it stands still (the stopping clip's still tail is no wait: CMU 29's
   // lasts 1.7 s).
   const int on_node = resting_ ? context_->graph->node_at_frame(rest_->last_frame) : -1;
+  if (!input_.rest && resting_ && !still() && take_back(out, decision)) {
+    decision.search_seconds = std::chrono::duration<double>(Clock::now() - begin).count();
+    return decision;
+  }
   if (!input_.rest && standing() && on_node >= 0) {
     // On from the frame it holds: the graph's node there, placed as the frame is.
     state_.node = on_node;
@@ -200,25 +204,18 @@ Vec2 Controller::start_way(const RestStart& start) const {
   return way.norm() > 1e-6 ? Vec2(way / way.norm()) : Vec2::Zero();
 }
 
-FloorTransform Controller::start_turn(const RestStart& start, int held) const {
+FloorTransform Controller::start_turn(const RestStart& start, const Vec2& pivot) const {
   if (settings_.heading_edit.max_turn_deg_per_m <= 0.0) return {};
-  const MotionAssembler& assembler = context_->assembler;
   const Vec2 way = start_way(start);
   if (way.isZero()) return {};
   const double limit = kStartMaxTurnDeg * std::numbers::pi / 180.0;
   const double turn = std::clamp(yaw_between(way, input_.direction), -limit, limit);
-  // About the root of the frame it stands in.
-  const Vec3 pivot = assembler.root_position(held, rest_placement_);
-  const Vec3 turned = FloorTransform{turn, 0.0, 0.0}.apply(Vec3(pivot.x(), 0.0, pivot.z()));
-  return {turn, pivot.x() - turned.x(), pivot.z() - turned.z()};
+  const Vec3 turned = FloorTransform{turn, 0.0, 0.0}.apply(Vec3(pivot.x(), 0.0, pivot.y()));
+  return {turn, pivot.x() - turned.x(), pivot.y() - turned.z()};
 }
 
-bool Controller::start_off(Motion& out, ControllerDecision& decision) {
-  const std::vector<RestStart>& starts = context_->rest_starts(rest_->last_frame);
-  if (starts.empty()) return false;
+const RestStart* Controller::choose_start(const std::vector<RestStart>& starts) const {
   const MotionGraph& graph = *context_->graph;
-  const MotionAssembler& assembler = context_->assembler;
-  const Vec3& axis = context_->tracks.forward_axis;
   // The choice (see the header): into the motion type asked for where any start is, near enough
   // the nearest, and heading the way asked.
   const TagMask wanted = input_.tag != 0 ? input_.tag : moving_types_;
@@ -241,24 +238,91 @@ bool Controller::start_off(Motion& out, ControllerDecision& decision) {
       chosen = &start;
     }
   }
-  if (chosen == nullptr) return false;  // (none within the slack of the nearest: not for finite ranks)
-  // The frame held blended into the lead-in, then the lead-in on as captured to the node.
+  return chosen;  // (null: none within the slack of the nearest, not for finite ranks)
+}
+
+bool Controller::start_off(Motion& out, ControllerDecision& decision) {
+  const std::vector<RestStart>& starts = context_->rest_starts(rest_->last_frame);
+  const RestStart* chosen = choose_start(starts);
+  if (chosen == nullptr) return false;
   const int held = ending_frames_[ending_next_ - 1];  // the frame it stands in: the last played
-  const int node_frame = graph.nodes[chosen->node].frame;
-  const FloorTransform lead = start_turn(*chosen, held) * rest_placement_ * chosen->alignment;
-  const PreparedFloorTransform w_held(rest_placement_), w_lead(lead);
-  const int first = out.frame_count;
-  for (int p = 0; p < chosen->blend_frames; ++p) {
-    const double alpha = blend_weight(p, chosen->blend_frames);
-    assembler.append_blend(held, w_held, chosen->first_frame + p, w_lead, alpha, out);
-    decision.start_frames.push_back({held, chosen->first_frame + p, alpha});
+  const std::vector<int> departures(static_cast<size_t>(chosen->blend_frames), held);
+  const Vec3 root = context_->assembler.root_position(held, rest_placement_);
+  play_start(*chosen, departures, Vec2(root.x(), root.z()), false, out, decision);
+  return true;
+}
+
+void Controller::forget_rest() {
+  resting_ = false;
+  rest_frames_.pop_back();
+  rest_endings_.pop_back();
+  rest_ = rest_endings_.empty() ? nullptr : rest_endings_.back();
+}
+
+bool Controller::take_back(Motion& out, ControllerDecision& decision) {
+  const MotionGraph& graph = *context_->graph;
+  const int blend = std::max(2, static_cast<int>(std::lround(kStartBlendS * context_->db->fps)));
+  // A node of the graph the stopping clip reaches within the blend's time, of the motion type asked
+  // (or moving_types_): on to it, as captured. Not on a library without motion types, where nothing
+  // makes the search from a node of a stop go anywhere (CMU 29 stood on at its node): a start leads
+  // into motion that travels.
+  const TagMask wanted = input_.tag != 0 ? input_.tag : moving_types_;
+  for (size_t k = ending_next_; k < ending_frames_.size() && k <= ending_next_ + static_cast<size_t>(blend); ++k) {
+    const int node = graph.node_at_frame(ending_frames_[k]);
+    if (node < 0 || (context_->frame_tag(ending_frames_[k]) & wanted) == 0) continue;
+    if (ending_frames_[k] >= rest_->rest_frame) break;  // (standing there: a start)
+    play_rest(out, decision, static_cast<int>(k - ending_next_), false);
+    state_.node = node;
+    state_.placement = rest_placement_;
+    if (ending_next_ > 0) {
+      const Vec3 last = context_->assembler.root_position(ending_frames_[ending_next_ - 1], rest_placement_);
+      state_.last_root = Vec2(last.x(), last.z());
+      state_.has_last = true;
+    }
+    forget_rest();
+    return decision.frames > 0;
   }
-  for (int f = chosen->first_frame + chosen->blend_frames; f < node_frame; ++f) {
+  // Else a start from the frames it is playing on.
+  std::vector<int> coming;
+  for (size_t k = ending_next_; k < ending_frames_.size() && coming.size() < static_cast<size_t>(blend); ++k) {
+    coming.push_back(ending_frames_[k]);
+  }
+  if (coming.empty()) return false;
+  coming.resize(static_cast<size_t>(blend), coming.back());
+  const std::vector<RestStart> starts = find_starts_from(*context_->db, graph, context_->assembler, coming);
+  const RestStart* chosen = choose_start(starts);
+  if (chosen == nullptr) return false;
+  // Where it stands now: the last frame of the clip played, or where the way there left it.
+  Vec2 last = state_.last_root;
+  if (ending_next_ > 0) {
+    const Vec3 root = context_->assembler.root_position(ending_frames_[ending_next_ - 1], rest_placement_);
+    last = Vec2(root.x(), root.z());
+  }
+  forget_rest();
+  play_start(*chosen, coming, last, true, out, decision);
+  return true;
+}
+
+void Controller::play_start(const RestStart& chosen, std::span<const int> departures, const Vec2& from,
+                            bool under_way, Motion& out, ControllerDecision& decision) {
+  const MotionGraph& graph = *context_->graph;
+  const MotionAssembler& assembler = context_->assembler;
+  const Vec3& axis = context_->tracks.forward_axis;
+  // The frames blended from into the lead-in, then the lead-in on as captured to the node.
+  const int node_frame = graph.nodes[chosen.node].frame;
+  const FloorTransform lead = start_turn(chosen, from) * rest_placement_ * chosen.alignment;
+  const PreparedFloorTransform w_from(rest_placement_), w_lead(lead);
+  const int first = out.frame_count;
+  for (int p = 0; p < chosen.blend_frames; ++p) {
+    const double alpha = blend_weight(p, chosen.blend_frames);
+    const int departure = departures[static_cast<size_t>(p)];
+    assembler.append_blend(departure, w_from, chosen.first_frame + p, w_lead, alpha, out);
+    decision.start_frames.push_back({departure, chosen.first_frame + p, alpha});
+  }
+  for (int f = chosen.first_frame + chosen.blend_frames; f < node_frame; ++f) {
     assembler.append_frame(f, w_lead, out);
     decision.start_frames.push_back({f, f, 1.0});
   }
-  const Vec3 held_root = assembler.root_pose(held, w_held).position;
-  const Vec2 from(held_root.x(), held_root.z());
   state_.placement = lead;
   if (settings_.heading_edit.max_turn_deg_per_m > 0.0) {
     // The plan: the start's frames as played, then its clip on from the node as far as the edit looks.
@@ -268,7 +332,7 @@ bool Controller::start_off(Motion& out, ControllerDecision& decision) {
       if (settings_.heading_edit.hold_travel) roots.emplace_back(root.x(), root.z());
     };
     for (int f = first; f < out.frame_count; ++f) plan(out.rotations(f)[0], out.translations(f)[0]);
-    const DatabaseClip& clip = context_->db->clips[graph.nodes[chosen->node].clip];
+    const DatabaseClip& clip = context_->db->clips[graph.nodes[chosen.node].clip];
     for (int i = 0; i < edit_.half_window_frames(); ++i) {
       const int frame = std::min(node_frame + i, clip.first_frame + clip.frame_count - 1);
       const RootPose root = assembler.root_pose(frame, lead);
@@ -283,62 +347,59 @@ bool Controller::start_off(Motion& out, ControllerDecision& decision) {
     state_.arc_m += (root - at).norm();
     at = root;
   }
-  starts_.push_back({state_.frames, chosen});
-  state_.node = chosen->node;
+  starts_.push_back({state_.frames, chosen, under_way});
+  state_.node = chosen.node;
   state_.last_root = at;
   state_.has_last = true;
   state_.frames += out.frame_count - first;
   decision.frames += out.frame_count - first;
   resting_ = false;
-  return true;
+}
+
+void Controller::play_ending(Motion& out, ControllerDecision& decision, int& frames, size_t until) {
+  const std::vector<ContactMask>& contacts = context_->frame_contacts;  // (empty: the feet not known)
+  const PreparedFloorTransform placement(rest_placement_);
+  for (; frames > 0 && ending_next_ < until; --frames) {
+    const bool pivoting = ending_next_ >= ending_pivot_ && ending_next_ < ending_turned_;
+    const int frame = ending_frames_[ending_next_++];
+    context_->assembler.append_frame(frame, placement, out);
+    decision.rest_frames.push_back(frame);
+    if (!contacts.empty()) {
+      decision.contacts.push_back(contacts[static_cast<size_t>(frame)] &
+                                  static_cast<ContactMask>(pivoting ? ~pivot_bits_ : 0xff));
+    }
+    ++decision.frames;
+    ++state_.frames;
+  }
+}
+
+void Controller::play_rest(Motion& out, ControllerDecision& decision, int frames, bool hold) {
+  const std::vector<ContactMask>& contacts = context_->frame_contacts;
+  const int first = out.frame_count;
+  const size_t from = ending_next_;
+  play_ending(out, decision, frames, ending_turned_);
+  if (ending_next_ > from) edit_ending(out, first, from);
+  play_ending(out, decision, frames, ending_frames_.size());
+  if (ending_next_ > from && ending_next_ == ending_frames_.size()) held_pose_ = out.slice(out.frame_count - 1, 1);
+  for (; frames > 0 && hold; --frames) {
+    out.local_rotations.insert(out.local_rotations.end(), held_pose_.local_rotations.begin(),
+                               held_pose_.local_rotations.end());
+    out.local_translations_m.insert(out.local_translations_m.end(), held_pose_.local_translations_m.begin(),
+                                    held_pose_.local_translations_m.end());
+    ++out.frame_count;
+    decision.rest_frames.push_back(rest_->last_frame);
+    if (!contacts.empty()) decision.contacts.push_back(contacts[static_cast<size_t>(rest_->last_frame)]);
+    ++decision.frames;
+    ++state_.frames;
+  }
 }
 
 void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
   const MotionGraph& graph = *context_->graph;
   const int commit_frames = std::max(1, static_cast<int>(std::lround(settings_.commit_s * context_->db->fps)));
-  // Up to `frames` frames at rest: the ending's still to play, a decision's worth at a time (a game
-  // shows each decision's frames as they come), and once they are played its last frame held.
-  const std::vector<ContactMask>& contacts = context_->frame_contacts;  // (empty: the feet not known)
-  // The ending's frames up to index `until`, as the placement stands.
-  auto play_ending = [&](int& frames, size_t until) {
-    const PreparedFloorTransform placement(rest_placement_);
-    for (; frames > 0 && ending_next_ < until; --frames) {
-      const bool pivoting = ending_next_ >= ending_pivot_ && ending_next_ < ending_turned_;
-      const int frame = ending_frames_[ending_next_++];
-      context_->assembler.append_frame(frame, placement, out);
-      decision.rest_frames.push_back(frame);
-      if (!contacts.empty()) {
-        decision.contacts.push_back(contacts[static_cast<size_t>(frame)] &
-                                    static_cast<ContactMask>(pivoting ? ~pivot_bits_ : 0xff));
-      }
-      ++decision.frames;
-      ++state_.frames;
-    }
-  };
-  // Turned by the heading edit until both feet have made their last plant (about the first one's
-  // ankle once it has: edit_ending), then as the edit left them (the held frame is the ending's
-  // last as played, copied).
-  auto play_rest = [&](int frames, bool hold) {
-    const int first = out.frame_count;
-    const size_t from = ending_next_;
-    play_ending(frames, ending_turned_);
-    if (ending_next_ > from) edit_ending(out, first, from);
-    play_ending(frames, ending_frames_.size());
-    if (ending_next_ > from && ending_next_ == ending_frames_.size()) held_pose_ = out.slice(out.frame_count - 1, 1);
-    for (; frames > 0 && hold; --frames) {
-      out.local_rotations.insert(out.local_rotations.end(), held_pose_.local_rotations.begin(),
-                                 held_pose_.local_rotations.end());
-      out.local_translations_m.insert(out.local_translations_m.end(), held_pose_.local_translations_m.begin(),
-                                      held_pose_.local_translations_m.end());
-      ++out.frame_count;
-      decision.rest_frames.push_back(rest_->last_frame);
-      if (!contacts.empty()) decision.contacts.push_back(contacts[static_cast<size_t>(rest_->last_frame)]);
-      ++decision.frames;
-      ++state_.frames;
-    }
-  };
+  // Up to a decision's worth of frames at rest (a game shows each decision's frames as they come).
   if (resting_) {
-    play_rest(commit_frames, ending_next_ >= ending_frames_.size());
+    play_rest(out, decision, commit_frames, ending_next_ >= ending_frames_.size());
     return;
   }
   if (rest_cost_.empty()) {
@@ -411,7 +472,7 @@ void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
     // captured), the turning stops there.
     if (pivot_ankle_ < 0 || settings_.heading_edit.max_turn_deg_per_m <= 0.0) ending_turned_ = ending_pivot_;
   }
-  play_rest(std::max(0, commit_frames - decision.frames), false);
+  play_rest(out, decision, std::max(0, commit_frames - decision.frames), false);
 }
 
 // The stopping clip's frames played [from, ending_next_) turned by the heading edit as the way

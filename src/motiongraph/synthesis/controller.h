@@ -33,6 +33,13 @@
 // best on the distance and where it heads against the heading asked ((rank / nearest - 1) +
 // (1 - cos), RestStart::rank_m, start_way()), turned toward it by up to kStartMaxTurnDeg. With no
 // start either, rest is for good (rest_is_for_good()).
+// Asked to move on its way to rest, before it stands still, the rest is taken back (take_back()):
+// where it has played nothing of the stopping clip yet, it goes on from the clip's node; where the
+// clip reaches a node of the graph within kStartBlendS, it plays on to it and goes on from there;
+// else it starts off from the frames it is playing (find_starts_from: the stopping clip's frames
+// to come blended into a lead-in, chosen as a start from rest is). The rest it was coming to is
+// then none (rest_frames(), rest_endings()). Where no start is found, it comes to rest and starts
+// off from there.
 // Where the graph has no clip that ends at rest (RestEndings::empty), rest is not heard: the search
 // goes on with the tag.
 #pragma once
@@ -123,10 +130,12 @@ inline int decision_transitions(const MotionGraph& graph, const ControllerDecisi
 }
 
 // A start from rest a controller took: from the frame (counted from its first) its first frame
-// is, and which.
+// is, and which; `under_way`: from the stopping clip under way, the rest taken back before it
+// stood still.
 struct StartTaken {
   long long frame = 0;
-  const RestStart* start = nullptr;  // (the context's: SynthesisContext::rest_starts)
+  RestStart start;
+  bool under_way = false;
 };
 
 // The motion type (graph_from_candidates.h: not a modifier such as turn) most nodes carry, the
@@ -188,12 +197,31 @@ class Controller {
   void step_to_rest(Motion& out, ControllerDecision& decision);
   // Off from rest by a start (rest_starts.h); false when there is none from the frame held.
   bool start_off(Motion& out, ControllerDecision& decision);
+  // Asked to move on its way to rest (see the header): true when the decision played frames; false
+  // when it did not, resting() telling whether the rest was taken back (the search goes on from
+  // the node it stands at) or not (no way on found: it comes to rest).
+  bool take_back(Motion& out, ControllerDecision& decision);
+  // The rest it was coming to is none: it goes on.
+  void forget_rest();
+  // Of `starts`, the one the choice in the header takes (null: none).
+  const RestStart* choose_start(const std::vector<RestStart>& starts) const;
+  // Plays `start` from `departures` (the frames blended from, one per blend frame, placed as the
+  // stopping clip is; `from`: where the root of the last frame played stands), its frames turned by
+  // start_turn and the heading edit, and the state on from its node.
+  void play_start(const RestStart& start, std::span<const int> departures, const Vec2& from, bool under_way,
+                  Motion& out, ControllerDecision& decision);
+  // Of the stopping clip, up to `frames` frames from ending_next_ up to index `until`, as the
+  // placement stands (the contacts freed where it pivots); `frames` is what is left.
+  void play_ending(Motion& out, ControllerDecision& decision, int& frames, size_t until);
+  // Up to `frames` frames at rest: the stopping clip's still to play, turned by the heading edit
+  // until both feet have made their last plant, then (`hold`) its last frame held.
+  void play_rest(Motion& out, ControllerDecision& decision, int frames, bool hold);
   // Where `start` heads as captured, placed where it starts (unit; zero where it goes nowhere): its
   // root's way from the lead-in's first frame to kStartHeadingS past its node, as far as the clip goes.
   Vec2 start_way(const RestStart& start) const;
-  // The turn about the root of database frame `held` (the frame it stands in) that turns `start`
-  // toward the heading asked, by at most kStartMaxTurnDeg (none without the heading edit).
-  FloorTransform start_turn(const RestStart& start, int held) const;
+  // The turn about `pivot` on the floor (where its root stands) that turns `start` toward the
+  // heading asked, by at most kStartMaxTurnDeg (none without the heading edit).
+  FloorTransform start_turn(const RestStart& start, const Vec2& pivot) const;
   // The heading edit of the stopping clip's frames [from, ending_next_), appended to `out` from
   // frame `first`.
   void edit_ending(Motion& out, int first, size_t from);

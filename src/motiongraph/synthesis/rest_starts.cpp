@@ -23,6 +23,12 @@ std::vector<Vec3> played_joints(const MotionAssembler& assembler, int first, int
 
 std::vector<RestStart> find_rest_starts(const MotionDatabase& db, const MotionGraph& graph,
                                         const MotionAssembler& assembler, int held_frame) {
+  return find_starts_from(db, graph, assembler, std::span<const int>(&held_frame, 1));
+}
+
+std::vector<RestStart> find_starts_from(const MotionDatabase& db, const MotionGraph& graph,
+                                        const MotionAssembler& assembler, std::span<const int> coming) {
+  if (coming.empty()) return {};
   const double fps = db.fps;
   const int stride = std::max(1, static_cast<int>(std::lround(fps / 30.0)));
   const int blend = std::max(2, static_cast<int>(std::lround(kStartBlendS * fps)));
@@ -31,11 +37,14 @@ std::vector<RestStart> find_rest_starts(const MotionDatabase& db, const MotionGr
   const int travel_frames = std::max(1, static_cast<int>(std::lround(kStartTravelS * fps)));
   const int joints = assembler.skeleton().joint_count();
   const std::vector<double> weights(static_cast<size_t>(joints), 1.0), taper(static_cast<size_t>(samples), 1.0);
-  // The clouds the reference compares: the held frame's joints `samples` times (standing still),
-  // then the lead-in's sampled frames.
+  // The clouds the reference compares: the coming frames' joints sampled as the lead-ins' are (one
+  // frame held: `samples` times, standing still), then the lead-in's sampled frames.
   std::vector<Vec3> clouds(static_cast<size_t>(2 * samples * joints));
-  const std::vector<Vec3> held = played_joints(assembler, held_frame, 1);
-  for (int t = 0; t < samples; ++t) std::copy(held.begin(), held.end(), clouds.begin() + t * joints);
+  for (int t = 0; t < samples; ++t) {
+    const size_t i = std::min(static_cast<size_t>(t * stride), coming.size() - 1);
+    const std::vector<Vec3> frame = played_joints(assembler, coming[i], 1);
+    std::copy(frame.begin(), frame.end(), clouds.begin() + t * joints);
+  }
   const double norm = static_cast<double>(samples) * joints;
   std::vector<RestStart> best;  // per clip the graph goes on from, its best start
   for (int first_node = 0; first_node < graph.node_count();) {

@@ -23,6 +23,7 @@
 // controller chooses by the motion type and the heading asked (controller.h).
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "motiongraph/database/motion_database.h"
@@ -61,5 +62,12 @@ struct RestStart {
 // motion travels.
 std::vector<RestStart> find_rest_starts(const MotionDatabase& db, const MotionGraph& graph,
                                         const MotionAssembler& assembler, int held_frame);
+
+// The starts as above from motion under way (a rest taken back while the stopping clip plays): the
+// window compared with the lead-ins' first frames is `coming`, the database frames the character
+// would play next (its last repeated where it has fewer than the blend's frames; one frame: held),
+// and the blend's departure frames are those.
+std::vector<RestStart> find_starts_from(const MotionDatabase& db, const MotionGraph& graph,
+                                        const MotionAssembler& assembler, std::span<const int> coming);
 
 }  // namespace mg
