@@ -1,7 +1,7 @@
-// motiongraph serve GRAPH [--host H] [--port P] [--web-root DIR] [--allow-host NAME...]: the web
-// studio (src/studio/) on one graph. Prints "studio: http://HOST:PORT/" once it listens; SIGINT and SIGTERM stop
-// it (exit 0): the requests being answered are finished, clients still connected after 2 s (or
-// at a second signal) are not waited for.
+// motiongraph serve GRAPH [--host H] [--port P] [--web-root DIR] [--allow-host NAME...]
+// [--max-sessions N]: the web studio (src/studio/) on one graph. Prints "studio: http://HOST:PORT/"
+// once it listens; SIGINT and SIGTERM stop it (exit 0): the requests being answered are finished,
+// clients still connected after 2 s (or at a second signal) are not waited for.
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -17,6 +17,7 @@
 
 #include "cli/commands.h"
 #include "studio/host_check.h"
+#include "studio/synthesis_service.h"
 #include "studio/http_server.h"
 
 namespace mg::cli {
@@ -29,6 +30,7 @@ struct ServeOptions {
   int port = 8080;
   std::string web_root = MOTIONGRAPH_WEB_ROOT;
   std::vector<std::string> allow_hosts;
+  int max_sessions = studio::SessionLimits{}.max_sessions;
 };
 
 // Counted by SIGINT / SIGTERM, whichever thread takes them (libraries start threads of their own
@@ -52,6 +54,9 @@ int run_serve(const ServeOptions& o) {
 
   auto service = studio::SynthesisService::load(o.graph);
   if (!service) return fail(service.error());
+  studio::SessionLimits limits;
+  limits.max_sessions = o.max_sessions;
+  if (Status set = (*service)->set_session_limits(limits); !set) return fail(set.error());
   const studio::StudioApi api(**service);
   studio::HttpServer server(api, o.web_root);
   auto port = server.bind(o.host, o.port);
@@ -125,6 +130,13 @@ Command add_serve_command(CLI::App& app) {
         const Status checked = studio::check_allowed_host(entry);
         return checked ? std::string() : checked.error().message;
       });
+  sub->add_option("--max-sessions", o->max_sessions,
+                  fmt::format("Steering sessions at once (browser tabs steering). A new one takes the place of the "
+                              "least recently stepped once that has not been stepped for {:g} s; while all are in "
+                              "use, it is refused (503)",
+                              studio::SessionLimits{}.busy_s))
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
   return {sub, [o] { return run_serve(*o); }};
 }
 

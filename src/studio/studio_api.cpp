@@ -519,7 +519,7 @@ class Router {
     check_keys(body, {"heading_deg", "tag", "cleanup"});
     const bool cleanup = boolean_field(body, "cleanup", true);
     auto started = service_.create_session(control_of(body), cleanup);
-    if (!started) throw ApiError{422, started.error().to_string()};
+    if (!started) throw ApiError{started.error().kind == ErrorKind::kBusy ? 503 : 422, started.error().to_string()};
     return json_response({{"session", started->id},
                           {"result", started->id},
                           {"cleanup", cleanup && !service_.context().frame_contacts.empty()},

@@ -151,7 +151,49 @@ Result<bool> SynthesisService::clean_up(bool asked, std::span<const ContactMask>
   return true;
 }
 
+Status SessionLimits::validate() const {
+  if (max_sessions < 1 || max_sessions > 1000) {
+    return Error{"", 0, fmt::format("the sessions at most must be from 1 to 1000, not {}", max_sessions)};
+  }
+  if (!(busy_s >= 0.0 && busy_s <= 3600.0)) {
+    return Error{"", 0, fmt::format("a session's time in use must be from 0 to 3600 s, not {:g}", busy_s)};
+  }
+  return Ok{};
+}
+
+Status SynthesisService::set_session_limits(const SessionLimits& limits) {
+  if (Status valid = limits.validate(); !valid) return valid;
+  std::lock_guard lock(mutex_);
+  limits_ = limits;
+  return Ok{};
+}
+
+SessionLimits SynthesisService::session_limits() const {
+  std::lock_guard lock(mutex_);
+  return limits_;
+}
+
 Result<SteerSessionStart> SynthesisService::create_session(const SteeringControl& control, bool cleanup) {
+  {
+    // At the limit with the least recently stepped in use: refused, before any work.
+    std::lock_guard lock(mutex_);
+    if (static_cast<int>(sessions_.size()) >= limits_.max_sessions) {
+      auto oldest = sessions_.begin();
+      for (auto it = sessions_.begin(); it != sessions_.end(); ++it) {
+        if (it->second->last_used < oldest->second->last_used) oldest = it;
+      }
+      const double idle_s =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - oldest->second->stepped_at).count();
+      if (idle_s < limits_.busy_s) {
+        return Error{"", 0,
+                     fmt::format("the studio steers at most {} sessions at once, and all were stepped within the "
+                                 "last {:g} s: stop steering in another tab, or try again (serve --max-sessions "
+                                 "raises the limit)",
+                                 limits_.max_sessions, limits_.busy_s),
+                     ErrorKind::kBusy};
+      }
+    }
+  }
   auto session = std::make_shared<Session>(context());
   auto input = session->controls.input(control, "the control");
   if (!input) return input.error();
@@ -172,8 +214,9 @@ Result<SteerSessionStart> SynthesisService::create_session(const SteeringControl
   const std::vector<std::string> session_warnings = session->controls.warnings();
   std::lock_guard lock(mutex_);
   session->last_used = ++clock_;
+  session->stepped_at = std::chrono::steady_clock::now();
   sessions_[id] = std::move(session);
-  while (static_cast<int>(sessions_.size()) > kMaxSessions) {
+  while (static_cast<int>(sessions_.size()) > limits_.max_sessions) {
     auto oldest = sessions_.begin();
     for (auto it = sessions_.begin(); it != sessions_.end(); ++it) {
       if (it->second->last_used < oldest->second->last_used) oldest = it;
@@ -191,6 +234,7 @@ Result<SteerStepResult> SynthesisService::step_session(int id, const SteeringCon
     if (it == sessions_.end()) return Error{"", 0, fmt::format("no steering session {} (it may have expired)", id)};
     session = it->second;
     session->last_used = ++clock_;
+    session->stepped_at = std::chrono::steady_clock::now();
   }
   std::lock_guard lock(session->mutex);
   const size_t said = session->controls.warnings().size();

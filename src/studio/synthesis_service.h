@@ -5,11 +5,14 @@
 //
 // Bounds: at most kMaxResults results are kept, of at most kMaxKeptFrames frames in all (the
 // oldest go first, but not a live steering session's recording, which goes when its session
-// does), at most kMaxSessions steering sessions live at once (the least recently used goes), and
-// a session records its first kMaxRecordedFrames frames for download (it keeps steering after
-// that).
+// does), at most SessionLimits::max_sessions steering sessions live at once (a new one takes the
+// place of the least recently stepped, unless that was stepped within SessionLimits::busy_s: the
+// new one is refused, ErrorKind::kBusy, rather than a client steering now losing its session),
+// and a session records its first kMaxRecordedFrames frames for download (it keeps steering
+// after that).
 #pragma once
 
+#include <chrono>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -76,6 +79,15 @@ struct SteerStepResult {
   std::vector<std::string> warnings;
 };
 
+struct SessionLimits {
+  int max_sessions = 16;
+  // A session stepped within this many seconds is in use: a new session does not take its place
+  // (a steering client steps about 5 times a second; 0: the least recently stepped always goes).
+  double busy_s = 10.0;
+
+  Status validate() const;
+};
+
 struct SteerSessionStart {
   int id = 0;  // the session's, also the id of the result recording its motion
   std::vector<std::string> warnings;  // as SteerStepResult's, of the first control
@@ -84,7 +96,6 @@ struct SteerSessionStart {
 class SynthesisService {
  public:
   static constexpr int kMaxResults = 32;
-  static constexpr int kMaxSessions = 16;
   static constexpr int kMaxRecordedFrames = 30 * 60 * 2;  // 2 minutes at 30 fps
   // Results' frames kept in all (a session's recording counts as kMaxRecordedFrames): a path's
   // may run to tens of thousands of frames, tens of MB each.
@@ -107,8 +118,12 @@ class SynthesisService {
                                bool cleanup = true) const;
 
   // A steering session starting at the origin facing the control's heading, its frames cleaned as
-  // they are committed when `cleanup` and the graph has feet.
+  // they are committed when `cleanup` and the graph has feet; ErrorKind::kBusy when the sessions
+  // are at their limit and all in use (SessionLimits).
   Result<SteerSessionStart> create_session(const SteeringControl& control, bool cleanup = true);
+  // The bounds on steering sessions (default SessionLimits{}); checked by validate().
+  Status set_session_limits(const SessionLimits& limits);
+  SessionLimits session_limits() const;
   // Sets the control and appends at least min_frames frames (one decision or more).
   Result<SteerStepResult> step_session(int session, const SteeringControl& control, int min_frames);
 
@@ -153,6 +168,7 @@ class SynthesisService {
     int transitions = 0;
     int bridges = 0;
     long long last_used = 0;
+    std::chrono::steady_clock::time_point stepped_at;  // created, or last stepped
   };
   SynthesisService() = default;
   // The contacts of the first `frames` frames assemble_walk() plays for `walk` (none without
@@ -171,6 +187,7 @@ class SynthesisService {
   long long clock_ = 0;
   std::map<int, std::shared_ptr<Recorded>> results_;
   std::map<int, std::shared_ptr<Session>> sessions_;
+  SessionLimits limits_;
   mutable std::once_flag picture_once_;
   mutable std::optional<Result<std::string>> picture_;
   mutable std::once_flag doubts_once_;

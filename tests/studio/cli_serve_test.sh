@@ -110,7 +110,7 @@ echo "serve: every interface, said so, exit 0; its name answered, another refuse
 # --allow-host: the names given are answered (and the name given to --host, where it resolves
 # on this machine); a URL is refused as one line.
 : >"$tmp/out"
-"$mg" serve "$graph" --port 0 --allow-host studio.test --allow-host .lan >"$tmp/out" 2>"$tmp/err" &
+"$mg" serve "$graph" --port 0 --allow-host studio.test --allow-host .lan --max-sessions 1 >"$tmp/out" 2>"$tmp/err" &
 pid=$!
 port=
 for _ in $(seq 100); do
@@ -122,6 +122,14 @@ done
 for host in studio.test box.lan; do
   [[ $(status_for "$host" /api/summary) == 200 ]] || fail "--allow-host: $host is refused"
 done
+# --max-sessions 1: a second session while the first is in use is refused as busy.
+session_status() {
+  curl -s -m 30 -o "$tmp/answer" -w '%{http_code}' -H 'Content-Type: application/json' -d '{}' \
+    "http://127.0.0.1:$port/api/steer/sessions"
+}
+[[ $(session_status) == 200 ]] || fail "--max-sessions 1: the first session is refused: $(cat "$tmp/answer")"
+[[ $(session_status) == 503 ]] && grep -q -- "--max-sessions" "$tmp/answer" \
+  || fail "--max-sessions 1: a second session is not refused as busy: $(cat "$tmp/answer")"
 kill -INT "$pid"
 wait "$pid" || fail "serve --allow-host did not stop cleanly"
 pid=
@@ -138,7 +146,10 @@ status=0
 timeout 60 "$mg" serve "$graph" --allow-host http://studio.test/ --port 0 >/dev/null 2>"$tmp/err" || status=$?
 [[ $status -ne 0 && $(wc -l <"$tmp/err") -eq 1 ]] && grep -q "not a URL" "$tmp/err" \
   || fail "--allow-host with a URL: exit $status, $(cat "$tmp/err")"
-echo "serve: --allow-host answered, a URL refused"
+status=0
+timeout 60 "$mg" serve "$graph" --max-sessions 0 --port 0 >/dev/null 2>"$tmp/err" || status=$?
+[[ $status -ne 0 && $(wc -l <"$tmp/err") -eq 1 ]] || fail "--max-sessions 0: exit $status, $(cat "$tmp/err")"
+echo "serve: --allow-host answered, a URL refused; --max-sessions held"
 
 # Bad input: one line, exit 1 (under a timeout: a server that starts anyway fails, not hangs).
 status=0

@@ -13,6 +13,7 @@
 
 #include "motiongraph/evaluation/synthesis_run.h"
 #include "motiongraph/skeleton/foot_joints.h"
+#include "pipeline/subject16_build.h"
 #include "studio/studio_test_service.h"
 
 namespace mg::test {
@@ -663,7 +664,7 @@ TEST(StudioApi, SessionsAndResultsAreBounded) {
   ASSERT_EQ(first.response.status, 200);
   const std::string step = "/api/steer/sessions/" + std::to_string(first.json["session"].get<int>()) + "/step";
   ASSERT_EQ(call_api("POST", step, "{}").response.status, 200);
-  for (int i = 0; i < studio::SynthesisService::kMaxSessions; ++i) {
+  for (int i = 0; i < studio::SessionLimits{}.max_sessions; ++i) {
     ASSERT_EQ(call_api("POST", "/api/steer/sessions", "{}").response.status, 200);
   }
   // The least recently used session went; so did the oldest results.
@@ -673,6 +674,20 @@ TEST(StudioApi, SessionsAndResultsAreBounded) {
   }
   expect_error(call_api("GET", "/api/results/" + std::to_string(first.json["result"].get<int>()) + ".bvh"), 404,
                "no result");
+}
+
+// At its limit of sessions, all in use: a new session is refused as the server being busy (503,
+// saying how to raise the limit), not as a bad request.
+TEST(StudioApi, ANewSessionWhileAllAreInUseIsRefusedAsBusy) {
+  auto graph = LoadedGraph::create(test::subject16_graph_file(), "s16.mgraph");
+  ASSERT_TRUE(graph) << graph.error().to_string();
+  const auto service = studio::SynthesisService::create(std::move(*graph), "s16.mgraph");
+  ASSERT_TRUE(service->set_session_limits({1, 60.0}));
+  const studio::StudioApi api(*service);
+  EXPECT_EQ(api.handle({"POST", "/api/steer/sessions", {}, "{}"}).status, 200);
+  const studio::ApiResponse refused = api.handle({"POST", "/api/steer/sessions", {}, "{}"});
+  EXPECT_EQ(refused.status, 503);
+  EXPECT_NE(refused.body.find("--max-sessions"), std::string::npos) << refused.body;
 }
 
 TEST(StudioApi, OneSessionSteppedFromSeveralThreadsHandsOutEachFrameOnce) {

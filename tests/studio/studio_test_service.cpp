@@ -11,7 +11,13 @@ studio::SynthesisService& studio_service() {
   static const std::unique_ptr<studio::SynthesisService> service = [] {
     auto graph = LoadedGraph::create(subject16_graph_file(), "subject16.mgraph");
     if (!graph) throw std::runtime_error(graph.error().to_string());
-    return studio::SynthesisService::create(std::move(*graph), "subject16.mgraph");
+    auto created = studio::SynthesisService::create(std::move(*graph), "subject16.mgraph");
+    // Shared by every test of a process, however fast they create sessions: the least recently
+    // stepped always goes.
+    studio::SessionLimits limits;
+    limits.busy_s = 0.0;
+    if (!created->set_session_limits(limits)) throw std::runtime_error("session limits");
+    return created;
   }();
   return *service;
 }

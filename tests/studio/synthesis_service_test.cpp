@@ -6,6 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
+
 #include <cmath>
 #include <limits>
 
@@ -71,10 +74,14 @@ Motion frames_of_one_joint(int frames) {
 }
 
 // A service of its own on subject 16's graph (the tests' shared one keeps others' results).
-std::unique_ptr<studio::SynthesisService> fresh_service() {
+// A service of its own, whose sessions are taken over whenever the limit is reached (busy_s 0)
+// unless `limits` says otherwise.
+std::unique_ptr<studio::SynthesisService> fresh_service(studio::SessionLimits limits = {16, 0.0}) {
   auto graph = LoadedGraph::create(test::subject16_graph_file(), "s16.mgraph");
   EXPECT_TRUE(graph) << graph.error().to_string();
-  return studio::SynthesisService::create(std::move(*graph), "s16.mgraph");
+  auto service = studio::SynthesisService::create(std::move(*graph), "s16.mgraph");
+  EXPECT_TRUE(service->set_session_limits(limits));
+  return service;
 }
 
 // Results kept: the oldest go first past kMaxResults, or past kMaxKeptFrames frames in all, but
@@ -107,9 +114,35 @@ TEST(SynthesisService, KeepsResultsWithinItsBoundsButALiveSessionsRecording) {
   EXPECT_TRUE(service->has_result(second));
   EXPECT_TRUE(service->has_result(*session));
   // A session gone is a result as any other.
-  for (int i = 0; i < SynthesisService::kMaxSessions; ++i) ASSERT_TRUE(service->create_session(input));
+  for (int i = 0; i < studio::SessionLimits{}.max_sessions; ++i) ASSERT_TRUE(service->create_session(input));
   for (int i = 0; i < SynthesisService::kMaxResults; ++i) service->store_result(frames_of_one_joint(10));
   EXPECT_FALSE(service->has_result(*session));
+}
+
+// At its limit of sessions, a new one takes the place of the least recently stepped only when
+// that one has not been stepped for SessionLimits::busy_s: a client steering now keeps its
+// session, and the new one is refused (kBusy: try again) rather than taking it.
+TEST(SynthesisService, ANewSessionTakesTheLeastRecentlySteppedOnlyOnceItIsIdle) {
+  const SteeringControl input;
+  const auto service = fresh_service({2, 0.3});
+  auto a = service->create_session(input, false);
+  auto b = service->create_session(input, false);
+  ASSERT_TRUE(a && b);
+  auto refused = service->create_session(input, false);
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().kind, ErrorKind::kBusy);
+  EXPECT_NE(refused.error().message.find("at most 2 sessions"), std::string::npos) << refused.error().message;
+  std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  ASSERT_TRUE(service->step_session(a->id, input, 1));  // a in use again; b idle
+  auto c = service->create_session(input, false);
+  ASSERT_TRUE(c) << c.error().to_string();
+  EXPECT_FALSE(service->step_session(b->id, input, 1));
+  EXPECT_TRUE(service->step_session(a->id, input, 1));
+  EXPECT_TRUE(service->step_session(c->id, input, 1));
+  // (limits checked)
+  EXPECT_FALSE(service->set_session_limits({0, 1.0}));
+  EXPECT_FALSE(service->set_session_limits({4, -1.0}));
+  EXPECT_EQ(service->session_limits().max_sessions, 2);
 }
 
 // A session records its first kMaxRecordedFrames frames, one after another: a step that does

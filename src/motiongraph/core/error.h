@@ -17,6 +17,7 @@ enum class ErrorKind {
   kOtherProcess,  // another process of a parallel job failed; rank 0 reports why
   kNoSuchAnimation,  // a glTF or FBX file has no animation of the name asked for
   kStopped,  // the caller asked the work to stop before its end (core/stop.h)
+  kBusy,  // a service is at its limit of work in hand; asking again later may succeed
 };
 
 struct Error {
