@@ -182,9 +182,21 @@ TEST(RestStarts, AreTheBestClipsOfABruteForceSearch) {
     if (it == joints.end()) it = joints.emplace(f, joints_of(context.assembler, f)).first;
     return it->second;
   };
-  // From the frame held at rest, and from a stopping clip under way.
-  const std::vector<std::vector<int>> windows = {{held_frames(context).back()}, coming_windows(context).front()};
-  for (const std::vector<int>& coming : windows) {
+  // Whether the root of frame f travels slower than kStartTravelMps over kGoingS (to its clip's end).
+  const int going_window = std::max(1, static_cast<int>(std::lround(kGoingS * db.fps)));
+  auto slow = [&](int f) {
+    const DatabaseClip& clip = db.clips[static_cast<size_t>(db.clip_of(f))];
+    const int to = std::min(f + going_window, clip.first_frame + clip.frame_count - 1);
+    const Vec3 a = context.assembler.root_position(f, {}), b = context.assembler.root_position(to, {});
+    return std::hypot(b.x() - a.x(), b.z() - a.z()) < kStartTravelMps * going_window / db.fps;
+  };
+  // From the frame held at rest, and from a stopping clip under way (ranked by when it gets going
+  // too, and not).
+  ASSERT_FALSE(coming_windows(context).empty());
+  const std::vector<int> under_way = coming_windows(context).front();
+  const std::vector<std::pair<std::vector<int>, double>> windows = {
+      {{held_frames(context).back()}, 0.0}, {under_way, 0.0}, {under_way, kGoingMps}};
+  for (const auto& [coming, going_mps] : windows) {
     std::map<int, double> best;  // per clip with a lead-in, its best rank
     for (size_t c = 0; c < db.clips.size(); ++c) {
       const DatabaseClip& clip = db.clips[c];
@@ -224,7 +236,9 @@ TEST(RestStarts, AreTheBestClipsOfABruteForceSearch) {
         const Vec3 turned = turn.rotate(Vec3(qc.x(), 0.0, qc.y()));
         const FloorTransform alignment{yaw, pc.x() - turned.x(), pc.y() - turned.z()};
         const double rms = placed_rms(context.assembler, coming, f, blend, stride, alignment);
-        const double rank = rms + kStartWaitMps * (last - f) / db.fps;
+        int going = f;  // after the last slow frame before the node
+        for (int g = f; g < last; ++g) going = slow(g) ? g + 1 : going;
+        const double rank = rms + kStartWaitMps * (last - f) / db.fps + going_mps * (going - f) / db.fps;
         auto [it, added] = best.emplace(static_cast<int>(c), rank);
         if (!added) it->second = std::min(it->second, rank);
       }
@@ -232,7 +246,7 @@ TEST(RestStarts, AreTheBestClipsOfABruteForceSearch) {
     std::vector<double> ranks;
     for (const auto& [clip, rank] : best) ranks.push_back(rank);
     std::sort(ranks.begin(), ranks.end());
-    const std::vector<RestStart> starts = find_starts_from(db, graph, context.assembler, coming);
+    const std::vector<RestStart> starts = find_starts_from(db, graph, context.assembler, coming, going_mps);
     ASSERT_EQ(starts.size(), std::min(ranks.size(), static_cast<size_t>(kStartChoices)));
     for (size_t i = 0; i < starts.size(); ++i) {
       EXPECT_NEAR(starts[i].rank_m, ranks[i], 1e-7) << i;

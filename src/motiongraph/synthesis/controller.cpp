@@ -289,7 +289,8 @@ bool Controller::take_back(Motion& out, ControllerDecision& decision) {
   }
   if (coming.empty()) return false;
   coming.resize(static_cast<size_t>(blend), coming.back());
-  const std::vector<RestStart> starts = find_starts_from(*context_->db, graph, context_->assembler, coming);
+  const std::vector<RestStart> starts =
+      find_starts_from(*context_->db, graph, context_->assembler, coming, kGoingMps);
   const RestStart* chosen = choose_start(starts);
   if (chosen == nullptr) return false;
   // Where it stands now: the last frame of the clip played, or where the way there left it.

@@ -37,7 +37,8 @@
 // where it has played nothing of the stopping clip yet, it goes on from the clip's node; where the
 // clip reaches a node of the graph within kStartBlendS, it plays on to it and goes on from there;
 // else it starts off from the frames it is playing (find_starts_from: the stopping clip's frames
-// to come blended into a lead-in, chosen as a start from rest is). The rest it was coming to is
+// to come blended into a lead-in, ranked by how soon it gets going too, kGoingMps, and chosen as a
+// start from rest is). The rest it was coming to is
 // then none (rest_frames(), rest_endings()). Where no start is found, it comes to rest and starts
 // off from there.
 // Where the graph has no clip that ends at rest (RestEndings::empty), rest is not heard: the search

@@ -27,7 +27,8 @@ std::vector<RestStart> find_rest_starts(const MotionDatabase& db, const MotionGr
 }
 
 std::vector<RestStart> find_starts_from(const MotionDatabase& db, const MotionGraph& graph,
-                                        const MotionAssembler& assembler, std::span<const int> coming) {
+                                        const MotionAssembler& assembler, std::span<const int> coming,
+                                        double going_mps) {
   if (coming.empty()) return {};
   const double fps = db.fps;
   const int stride = std::max(1, static_cast<int>(std::lround(fps / 30.0)));
@@ -63,6 +64,19 @@ std::vector<RestStart> find_starts_from(const MotionDatabase& db, const MotionGr
       const Vec3 a = assembler.root_position(from, {}), b = assembler.root_position(to, {});
       return to > from && std::hypot(b.x() - a.x(), b.z() - a.z()) >= kStartTravelMps * (to - from) / fps;
     };
+    // Per frame of the clip, the last frame up to it from which its root travels slower than
+    // kStartTravelMps over kGoingS (clip.first_frame - 1: none): a lead-in gets going after the
+    // last such frame before its node.
+    std::vector<int> slow_until(static_cast<size_t>(clip.frame_count), clip.first_frame - 1);
+    if (going_mps > 0.0) {
+      const int window = std::max(1, static_cast<int>(std::lround(kGoingS * fps)));
+      for (int f = clip.first_frame; f <= clip_last; ++f) {
+        const Vec3 a = assembler.root_position(f, {}), b = assembler.root_position(std::min(f + window, clip_last), {});
+        const bool slow = std::hypot(b.x() - a.x(), b.z() - a.z()) < kStartTravelMps * window / fps;
+        slow_until[static_cast<size_t>(f - clip.first_frame)] =
+            slow ? f : f > clip.first_frame ? slow_until[static_cast<size_t>(f - 1 - clip.first_frame)] : f - 1;
+      }
+    }
     int node = first_node;
     int judged = -1;  // the node whether it travels was last judged for
     bool moving = false;
@@ -84,7 +98,9 @@ std::vector<RestStart> find_starts_from(const MotionDatabase& db, const MotionGr
       }
       const ReferenceDistance d = reference_distance(clouds, joints, weights, taper, 0, 2 * samples - 1);
       const double rms = std::sqrt(d.distance / norm);
-      const double rank = rms + kStartWaitMps * (graph.nodes[node].frame - f) / fps;
+      const int slow = slow_until[static_cast<size_t>(graph.nodes[node].frame - 1 - clip.first_frame)];
+      const double rank = rms + kStartWaitMps * (graph.nodes[node].frame - f) / fps +
+                          going_mps * std::max(0, slow + 1 - f) / fps;
       if (kept.node < 0 || rank < kept.rank_m) {
         kept = {f, node, blend, {d.alignment.yaw_rad, d.alignment.x_m, d.alignment.z_m}, rms, rank};
       }

@@ -39,6 +39,11 @@ constexpr int kStartChoices = 16;
 constexpr double kStartWaitMps = 0.02;
 constexpr double kStartTravelMps = 0.3;
 constexpr double kStartTravelS = 1.0;
+// A start from motion under way (find_starts_from) is ranked by how soon it gets going too: each
+// second of its lead-in up to the last frame from which its root travels slower than
+// kStartTravelMps over kGoingS adds kGoingMps.
+constexpr double kGoingMps = 0.1;
+constexpr double kGoingS = 0.25;
 
 struct RestStart {
   int first_frame = 0;   // the lead-in's first database frame: the blend's first arrival frame
@@ -66,8 +71,13 @@ std::vector<RestStart> find_rest_starts(const MotionDatabase& db, const MotionGr
 // The starts as above from motion under way (a rest taken back while the stopping clip plays): the
 // window compared with the lead-ins' first frames is `coming`, the database frames the character
 // would play next (its last repeated where it has fewer than the blend's frames; one frame: held),
-// and the blend's departure frames are those.
+// and the blend's departure frames are those. `going_mps` (kGoingMps for motion under way; 0 for a
+// frame held, as find_rest_starts) is added to the rank per second of a lead-in before it gets
+// going: asked to go on as it slows, the nearest lead-ins slow to a standstill too, and waited there
+// (on the 8-subject library, 29_01's standing start: 0.5 m covered in 1.5 s, no more than by
+// standing first).
 std::vector<RestStart> find_starts_from(const MotionDatabase& db, const MotionGraph& graph,
-                                        const MotionAssembler& assembler, std::span<const int> coming);
+                                        const MotionAssembler& assembler, std::span<const int> coming,
+                                        double going_mps = 0.0);
 
 }  // namespace mg
