@@ -348,6 +348,13 @@ Command add_steer_command(CLI::App& app) {
                   "frames without it, the transitions and bridges on the way), so that a tag beyond the horizon is "
                   "headed for (0: the horizon only)")
       ->capture_default_str();
+  sub->add_option("--travel-pace", o->settings.travel_mps,
+                  "With no tag asked, metres a second along the heading each decision asks of a walk (0: none; a "
+                  "walk that faces the way asked but stands in place is then as good as one that goes)")
+      ->capture_default_str();
+  sub->add_option("--travel-penalty", o->settings.travel_penalty,
+                  "Cost per frame of each metre a walk is behind --travel-pace, in frames facing 90 degrees off")
+      ->capture_default_str();
   sub->add_option("--beam", o->settings.beam_width,
                   "Beam width of each decision's first pass (0: depth-first branch and bound alone)")
       ->capture_default_str();

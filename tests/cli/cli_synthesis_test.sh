@@ -261,6 +261,18 @@ assert [c["rest"] for c in r["controls"]] == [False, True, True], r["controls"]
 assert r["warnings"] == ["the control at 2 s asks for 'stop', which is not a motion tag of this graph; the character "
                          "comes to rest instead, at the end of a clip that ends standing still"], r["warnings"]
 PY
+# Asked north with no motion type on that graph, a walk goes the way asked at the pace asked
+# (--travel-pace); with none, facing north while standing about cost nothing and it stood.
+printf '%s\n' '{"duration_s": 12, "controls": [{"at_s": 0, "heading": "north"}]}' >"$work/north.json"
+"$bin" steer "$work/untagged.mgraph" --script "$work/north.json" -o "$work/north-pace.json" >/dev/null
+"$bin" steer "$work/untagged.mgraph" --script "$work/north.json" -o "$work/north-still.json" --travel-pace 0 \
+  >/dev/null
+python3 - "$work/north-pace.json" "$work/north-still.json" <<'PY'
+import json, sys
+pace, still = ([p[0] for p in json.load(open(f))["positions"]] for f in sys.argv[1:])
+north = lambda root: root[0][2] - root[-1][2]  # north is -z
+assert north(pace) > 3.0 and north(pace) > north(still) + 2.0, (north(pace), north(still))
+PY
 # Nor any clip that ends standing (the graph at 1 cm keeps a walk alone): said, and it goes on.
 "$bin" build "$data/cmu/16" --no-cmu-tags --threshold 1cm --no-cache -q -o "$work/untagged-walk.mgraph" 2>/dev/null
 "$bin" steer "$work/untagged-walk.mgraph" --script "$work/untagged-stop.json" -o "$work/untagged-walk.json" \

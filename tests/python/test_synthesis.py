@@ -233,6 +233,26 @@ def test_tag_lookahead_reaches_the_controller(cli, graph_file, graph, tmp_path):
         graph.controller(tag_lookahead=1.5)
 
 
+def test_travel_pace_reaches_the_controller(cli, graph_file, graph, tmp_path):
+    """travel_pace and travel_penalty are the CLI's --travel-pace and --travel-penalty: the same
+    motion asked for no tag from both; a negative pace is refused."""
+    controls = [{"at_s": 0, "heading_deg": 0}, {"at_s": 1.5, "heading_deg": 120}]
+    (tmp_path / "controls.json").write_text(json.dumps({"duration_s": 4, "controls": controls}))
+    cli("steer", graph_file, "--script", tmp_path / "controls.json", "--travel-pace", 1.5, "--travel-penalty", 4,
+        "-o", tmp_path / "cli.json")
+    want = np.asarray(read_json(tmp_path / "cli.json")["positions"])
+    controller = graph.controller(heading_deg=0, travel_pace=1.5, travel_penalty=4)
+    while len(controller.motion) < len(want):
+        controller.step(0 if len(controller.motion) < 1.5 * graph.fps else 120)
+    assert np.max(np.abs(controller.motion.positions[:len(want)] - want)) <= 1e-6
+    default = graph.controller(heading_deg=0)
+    while len(default.motion) < len(want):
+        default.step(0 if len(default.motion) < 1.5 * graph.fps else 120)
+    assert np.max(np.abs(default.motion.positions[:len(want)] - want)) > 0.01  # (the keywords were heard)
+    with pytest.raises(mg.Error, match="travel pace"):
+        graph.controller(travel_pace=-1)
+
+
 def test_rest_equals_the_cli_and_stands_still(cli, graph_file, graph, tmp_path):
     controls = [{"at_s": 0, "heading_deg": 0, "tag": "walk"}, {"at_s": 2, "rest": True}]
     (tmp_path / "controls.json").write_text(json.dumps({"duration_s": 9, "controls": controls}))

@@ -35,17 +35,26 @@ TEST(SteerCost, TheSearchWithTheTagsCostToGoIsExact) {
     ControllerSettings settings;
     settings.tag_lookahead = trial % 3 == 0 ? 1.0 : 0.5;
     settings.heading_edit.hold_travel = trial % 2 == 1;
+    SearchState start;
+    start.node = std::uniform_int_distribution<int>(0, graph.node_count() - 1)(rng);
+    start.placement = context.placement_facing(start.node, Vec2(0.3 * trial, -0.2 * trial),
+                                               bearing_direction(std::uniform_real_distribution<double>(0, 360)(rng)));
+    const Vec3 root = context.assembler.root_position(graph.nodes[static_cast<size_t>(start.node)].frame,
+                                                      start.placement);
+    start.last_root = Vec2(root.x(), root.z());
+    start.has_last = true;
     const SteerCost cost(context, input, settings);
     ControllerSettings blind = settings;
     blind.tag_lookahead = 0.0;
     const SteerCost horizon_only(context, input, blind);
     EXPECT_EQ(cost.uses_heading(), settings.heading_edit.hold_travel);
-
-    SearchState start;
-    start.node = std::uniform_int_distribution<int>(0, graph.node_count() - 1)(rng);
-    start.placement = context.placement_facing(start.node, Vec2(0.3 * trial, -0.2 * trial),
-                                               bearing_direction(std::uniform_real_distribution<double>(0, 360)(rng)));
     const std::string what = "trial " + std::to_string(trial);
+    // With no tag, the pace asked along the heading too (a cost of every frame's root).
+    if (input.tag == 0) {
+      const SteerCost travelling(context, input, settings, &start);
+      const double with_travel = test::expect_search_exact(graph, context.tracks, start, travelling, 14, tally, what);
+      EXPECT_GE(with_travel, test::expect_search_exact(graph, context.tracks, start, cost, 14, tally, what) - 1e-12);
+    }
     const double best = test::expect_search_exact(graph, context.tracks, start, cost, 14, tally, what);
     const double blind_best =
         test::expect_search_exact(graph, context.tracks, start, horizon_only, 14, blind_tally, what);
@@ -57,6 +66,40 @@ TEST(SteerCost, TheSearchWithTheTagsCostToGoIsExact) {
   EXPECT_GT(tally.node_bounded, 150) << tally.partial_walks;
   EXPECT_LT(tally.with_bound, tally.without_bound) << tally.with_bound << " " << tally.without_bound;
   EXPECT_GT(took_terminal, 6) << took_terminal;
+}
+
+// With no motion type asked, a frame also pays travel_penalty per metre its root is behind a
+// point that leaves the decision's start at travel_mps along the heading; ahead of it, nothing.
+// Not with a tag asked, nor without a start, nor with travel_mps 0.
+TEST(SteerCost, WithNoTagAFrameBehindThePaceAskedPaysPerMetreBehind) {
+  const SynthesisContext& context = test::subject16().context();
+  const double fps = context.db->fps;
+  ControlInput input;
+  input.direction = bearing_direction(90.0);  // east, +x
+  ControllerSettings settings;
+  SearchState from;
+  from.last_root = Vec2(2.0, 3.0);
+  from.has_last = true;
+  const SteerCost cost(context, input, settings, &from);
+  const Vec2 facing = input.direction;
+  auto frame_cost = [&](const SteerCost& c, int frame, double east_m) {
+    return c.cost(frame, from.last_root + Vec2(east_m, 0.7), facing, 0.0, 0, nullptr);
+  };
+  const int frame = 29;  // its 30th frame: the pace has gone travel_mps * 1 s
+  const double pace_m = settings.travel_mps * (frame + 1) / fps;
+  EXPECT_NEAR(frame_cost(cost, frame, pace_m), 0.0, 1e-12);
+  EXPECT_NEAR(frame_cost(cost, frame, pace_m + 0.4), 0.0, 1e-12);
+  EXPECT_NEAR(frame_cost(cost, frame, pace_m - 0.25), settings.travel_penalty * 0.25, 1e-12);
+  EXPECT_NEAR(frame_cost(cost, frame, -1.0), settings.travel_penalty * (pace_m + 1.0), 1e-12);
+  const SteerCost no_start(context, input, settings);
+  EXPECT_EQ(frame_cost(no_start, frame, -1.0), 0.0);
+  ControllerSettings still = settings;
+  still.travel_mps = 0.0;
+  EXPECT_EQ(frame_cost(SteerCost(context, input, still, &from), frame, -1.0), 0.0);
+  ControlInput walk = input;
+  walk.tag = *context.tag_mask("walk");
+  const SteerCost tagged(context, walk, settings, &from);
+  EXPECT_EQ(tagged.cost(frame, from.last_root - Vec2(1.0, 0.0), facing, 0.0, walk.tag, nullptr), 0.0);
 }
 
 }  // namespace

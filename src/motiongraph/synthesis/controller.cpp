@@ -26,7 +26,9 @@ Status ControllerSettings::validate() const {
   for (const auto& [value, what] : {std::pair{transition_penalty, "the transition penalty"},
                                     std::pair{bridge_penalty, "the bridge penalty"},
                                     std::pair{tag_penalty, "the tag penalty"},
-                                    std::pair{time_budget_s, "the time budget"}}) {
+                                    std::pair{time_budget_s, "the time budget"},
+                                    std::pair{travel_mps, "the travel pace"},
+                                    std::pair{travel_penalty, "the travel penalty"}}) {
     if (!(value >= 0.0) || !std::isfinite(value)) {
       return refused(fmt::format("{} must be finite and >= 0, not {:g}", what, value));
     }
@@ -143,7 +145,7 @@ ControllerDecision Controller::step(Motion& out) {
   search.max_expansions = settings_.max_expansions;
   search.time_budget_s = settings_.time_budget_s;
   search.beam_width = settings_.beam_width;
-  const SteerCost cost(*context_, input_, settings_);
+  const SteerCost cost(*context_, input_, settings_, &state_);
   const HorizonResult best = horizon_search(graph, context_->tracks, state_, cost, search);
   decision.expansions = best.expansions;
   decision.budget_exhausted = best.budget_exhausted;

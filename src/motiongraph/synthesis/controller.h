@@ -94,6 +94,12 @@ struct ControllerSettings {
   // A wall-clock budget cuts the search short when the machine is busy, and a search cut short
   // follows its first (greedy) walk: use it only where a late answer is worse than a poor one.
   double time_budget_s = 0.0;
+  // With no motion type asked, the pace asked of a walk along the heading: each frame costs
+  // travel_penalty per metre its root is behind a point that leaves where the decision starts at
+  // travel_mps along the heading (0: none; a walk facing the way asked while standing in place
+  // costs nothing else, and on libraries without motion types the character stood about).
+  double travel_mps = 0.5;
+  double travel_penalty = 2.0;
   int start_node = -1;               // -1: controller_start_node()
   // The committed frames turned toward the direction asked for (max_turn_deg_per_m 0: as the
   // graph plays them).

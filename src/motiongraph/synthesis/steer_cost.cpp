@@ -4,7 +4,8 @@
 
 namespace mg {
 
-SteerCost::SteerCost(const SynthesisContext& context, const ControlInput& input, const ControllerSettings& settings)
+SteerCost::SteerCost(const SynthesisContext& context, const ControlInput& input, const ControllerSettings& settings,
+                     const SearchState* from)
     : context_(context),
       input_(input),
       penalty_(settings.tag_penalty),
@@ -12,14 +13,23 @@ SteerCost::SteerCost(const SynthesisContext& context, const ControlInput& input,
       bridge_penalty_(settings.bridge_penalty),
       judge_travel_(settings.heading_edit.hold_travel),
       lookahead_(settings.tag_lookahead) {
+  if (input.tag == 0 && from != nullptr && from->has_last && settings.travel_mps > 0.0) {
+    travel_penalty_ = settings.travel_penalty;
+    travel_m_per_frame_ = settings.travel_mps / context.db->fps;
+    start_root_ = from->last_root;
+  }
   if (lookahead_ > 0.0 && input.tag != 0) {
     cost_to_tag_ = searched_costs_to_tag(context, {input.tag, penalty_, transition_penalty_, bridge_penalty_});
   }
 }
 
-double SteerCost::cost(int, const Vec2&, const Vec2& facing, double, TagMask tags, bool*) const {
+double SteerCost::cost(int frame, const Vec2& root, const Vec2& facing, double, TagMask tags, bool*) const {
   double c = 1.0 - facing.dot(input_.direction);
   if (input_.tag != 0 && (tags & input_.tag) == 0) c += penalty_;
+  if (travel_penalty_ > 0.0) {
+    const double behind = travel_m_per_frame_ * (frame + 1) - (root - start_root_).dot(input_.direction);
+    if (behind > 0.0) c += travel_penalty_ * behind;
+  }
   return c;
 }
 

@@ -20,7 +20,10 @@ class SteerCost final : public FrameCost {
  public:
   // With a tag asked for and settings.tag_lookahead > 0, the context's costs to it are made (or
   // found in its cache). `context` and `input` must outlive the cost.
-  SteerCost(const SynthesisContext& context, const ControlInput& input, const ControllerSettings& settings);
+  // `from`: where the decision starts (the travel asked of a walk with no tag is counted from its
+  // root; null: none asked).
+  SteerCost(const SynthesisContext& context, const ControlInput& input, const ControllerSettings& settings,
+            const SearchState* from = nullptr);
 
   double cost(int frame, const Vec2& root, const Vec2& facing, double arc_m, TagMask tags, bool* goal) const override;
   // Holding the travel, the search judges the direction the edit holds: each frame's heading.
@@ -43,6 +46,9 @@ class SteerCost final : public FrameCost {
   double bridge_penalty_;
   bool judge_travel_;
   double lookahead_;
+  double travel_penalty_ = 0.0;  // per metre behind, per frame (0: no travel asked)
+  double travel_m_per_frame_ = 0.0;
+  Vec2 start_root_ = Vec2::Zero();
   const std::vector<double>* cost_to_tag_ = nullptr;  // for input_.tag; null: the horizon only
 };
 
