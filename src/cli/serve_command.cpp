@@ -123,9 +123,9 @@ Command add_serve_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--allow-host", o->allow_hosts,
                   "A name the studio may be opened under besides IP addresses and localhost (repeatable; "
-                  "'.lan' allows every name under lan). Requests addressed to other names are refused: a page of "
-                  "another site could reach the studio under a name of its own. Served on every interface, the "
-                  "machine's name (and NAME.local) is allowed too")
+                  "'.lan' allows lan and every name under it). Requests addressed to other names are refused: a "
+                  "page of another site could reach the studio under a name of its own. Served on every interface, "
+                  "the machine's name (and NAME.local) is allowed too")
       ->check([](const std::string& entry) {
         const Status checked = studio::check_allowed_host(entry);
         return checked ? std::string() : checked.error().message;

@@ -88,11 +88,14 @@ int run_steer(const SteerOptions& o) {
   std::vector<ContactMask> all_contacts;
   std::vector<FrameSource> played_sources;  // each frame's, in order (decision_sources)
   std::vector<double> cleanup_seconds;
+  std::vector<double> took_way_s;  // the seconds at which decisions took the way to rest
   while (motion.frame_count < total) {
     controller->set_input(input_at(motion.frame_count / fps));
     long long edge_start = motion.frame_count;
     const int first_new = motion.frame_count;
+    const bool was_resting = controller->resting();
     const ControllerDecision d = controller->step(motion);
+    if (!was_resting && controller->resting()) took_way_s.push_back(first_new / fps);
     const std::vector<ContactMask>& contacts = d.contacts;
     all_contacts.insert(all_contacts.end(), contacts.begin(), contacts.end());
     if (cleanup) {
@@ -205,8 +208,14 @@ int run_steer(const SteerOptions& o) {
       control["rest_response_s"] = first != rests_s.end() ? nlohmann::json(*first - c.at_s)
                                    : !taken_back && !rests_s.empty() && controller->resting() ? nlohmann::json(0.0)
                                                                                               : nlohmann::json(nullptr);
-      // (taken back before it stood: said in the summary)
+      // Taken back before it stood: said in the summary, and whether it was heard at all (a
+      // decision whose frames ran past both the asking and the taking back never saw it).
+      const double back_s =
+          taken_back ? script->controls[static_cast<size_t>(back - inputs.begin())].at_s : script->duration_s;
       control["rest_taken_back"] = control["rest_response_s"].is_null() && taken_back;
+      control["rest_heard"] =
+          !control["rest_response_s"].is_null() || (!taken_back && controller->resting()) ||
+          std::any_of(took_way_s.begin(), took_way_s.end(), [&](double t) { return t >= c.at_s - 1e-9 && t < back_s; });
       if (control["rest_response_s"].is_null() && !taken_back) {
         warn(fmt::format("the control at {:g} s asks to rest, but the character does not stand before the script "
                          "ends at {:g} s (duration_s is too short for the way to rest)",
@@ -291,8 +300,10 @@ int run_steer(const SteerOptions& o) {
     if (c.contains("rest_response_s")) {
       tag_reached += !c["rest_response_s"].is_null()
                          ? fmt::format(", at rest after {:.2f} s", c["rest_response_s"].get<double>())
-                     : c["rest_taken_back"].get<bool>() ? std::string(", rest taken back before it stood")
-                                                        : std::string(", not at rest");
+                     : c["rest_taken_back"].get<bool>()
+                         ? std::string(c["rest_heard"].get<bool>() ? ", rest taken back before it stood"
+                                                                   : ", rest taken back before a decision heard it")
+                         : std::string(", not at rest");
     }
     // What it asked: the tag (any), and rest when it means rest ("stop, rest": a stop heard as rest).
     const std::string tag = c["tag"].get<std::string>();
@@ -351,10 +362,12 @@ Command add_steer_command(CLI::App& app) {
   sub->add_option("--travel-pace", o->settings.travel_mps,
                   "With no tag asked, metres a second along the heading each decision asks of a walk (0: none; a "
                   "walk that faces the way asked but stands in place is then as good as one that goes)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 20.0));
   sub->add_option("--travel-penalty", o->settings.travel_penalty,
                   "Cost per frame of each metre a walk is behind --travel-pace, in frames facing 90 degrees off")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1000.0));
   sub->add_option("--beam", o->settings.beam_width,
                   "Beam width of each decision's first pass (0: depth-first branch and bound alone)")
       ->capture_default_str();

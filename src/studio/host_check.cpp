@@ -74,12 +74,29 @@ Status check_allowed_host(std::string_view entry) {
   if (entry.find("://") != std::string_view::npos || entry.find('/') != std::string_view::npos) {
     return Error{"", 0, fmt::format("{}: give the host name alone, not a URL", quoted(entry))};
   }
+  const std::string text(entry);
+  if (entry.starts_with('[') || is_address(text, AF_INET6) || is_address(text, AF_INET)) {
+    return Error{"", 0, fmt::format("{}: an IP address needs no --allow-host (addresses are always answered)",
+                                    quoted(entry))};
+  }
   if (entry.find(':') != std::string_view::npos) {
     return Error{"", 0, fmt::format("{}: give the host name alone, without a port", quoted(entry))};
   }
-  if (!std::all_of(entry.begin(), entry.end(), name_char) || entry == ".") {
+  // Labels of letters, digits, '-' and '_', not starting or ending with '-', between single dots;
+  // one dot before the first: every name under the rest.
+  const std::string_view name = entry.starts_with('.') ? entry.substr(1) : entry;
+  bool labels_ok = !name.empty();
+  for (size_t from = 0; labels_ok && from <= name.size();) {
+    const size_t dot = std::min(name.find('.', from), name.size());
+    const std::string_view label = name.substr(from, dot - from);
+    labels_ok = !label.empty() && label.front() != '-' && label.back() != '-' &&
+                std::all_of(label.begin(), label.end(), [](char c) { return name_char(c) && c != '.'; });
+    from = dot + 1;
+  }
+  if (!labels_ok) {
     return Error{"", 0,
-                 fmt::format("{}: not a host name (letters, digits, '-', '_' and dots)", quoted(entry))};
+                 fmt::format("{}: not a host name (labels of letters, digits, '-' and '_' between single dots)",
+                             quoted(entry))};
   }
   return Ok{};
 }

@@ -186,9 +186,9 @@ Result<SteerSessionStart> SynthesisService::create_session(const SteeringControl
           std::chrono::duration<double>(std::chrono::steady_clock::now() - oldest->second->stepped_at).count();
       if (idle_s < limits_.busy_s) {
         return Error{"", 0,
-                     fmt::format("the studio steers at most {} sessions at once, and all were stepped within the "
-                                 "last {:g} s: stop steering in another tab, or try again (serve --max-sessions "
-                                 "raises the limit)",
+                     fmt::format("the studio steers at most {} sessions at once, and all were created or stepped "
+                                 "within the last {:g} s: stop steering in another tab, or try again (serve "
+                                 "--max-sessions raises the limit)",
                                  limits_.max_sessions, limits_.busy_s),
                      ErrorKind::kBusy};
       }

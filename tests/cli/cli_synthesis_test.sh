@@ -182,7 +182,7 @@ import json, math, sys
 r, m = (json.load(open(p)) for p in sys.argv[1:])
 c, starts, rs = r["controls"], r["starts"], r["rests"]
 # The rest asked at 3 and taken back at 4.5: none, and said so; the one asked at 9 stood.
-assert c[1]["rest_response_s"] is None and c[1]["rest_taken_back"], c[1]
+assert c[1]["rest_response_s"] is None and c[1]["rest_taken_back"] and c[1]["rest_heard"], c[1]
 assert c[4]["rest_response_s"] is not None and not c[4]["rest_taken_back"], c[4]
 assert len(rs) == 1 and rs[0] == r["rest"] and 9 < rs[0]["at_s"] < 12, rs
 # Went on from its way to rest within a decision of being asked, walking before it stood; started
@@ -202,6 +202,21 @@ for i, ci in enumerate(c):
 PY
 grep -q "rest taken back before it stood" "$work/back.out" && grep -q "at rest after" "$work/back.out" \
   || { cat "$work/back.out"; exit 1; }
+# A rest asked and taken back within one frame, between decisions (one commits 0.2 s or more): no
+# decision heard it, the motion is the same as with no rest asked, and the report says so.
+printf '%s\n' '{"duration_s": 6, "controls": [{"at_s": 0, "heading": "north", "tag": "walk"},
+  {"at_s": 3.0, "rest": true}, {"at_s": 3.034, "rest": false}]}' >"$work/blink.json"
+"$bin" steer "$work/g.mgraph" --script "$work/blink.json" -o "$work/blink.json.out.json" \
+  --report "$work/blink-report.json" >"$work/blink.out"
+printf '%s\n' '{"duration_s": 6, "controls": [{"at_s": 0, "heading": "north", "tag": "walk"}]}' >"$work/plain.json"
+"$bin" steer "$work/g.mgraph" --script "$work/plain.json" -o "$work/plain.json.out.json" >/dev/null
+python3 - "$work/blink-report.json" "$work/blink.json.out.json" "$work/plain.json.out.json" <<'PY'
+import json, sys
+r, blink, plain = (json.load(open(p)) for p in sys.argv[1:])
+c = r["controls"][1]
+assert c["rest_taken_back"] and c["rest_heard"] == (blink["positions"] != plain["positions"]), c
+PY
+grep -q "rest taken back before a decision heard it" "$work/blink.out" || { cat "$work/blink.out"; exit 1; }
 # Rest asked too late in a script to stand before its end: said.
 cat >"$work/late-rest.json" <<'JSON'
 {"duration_s": 3.5, "controls": [{"at_s": 0, "heading": "north", "tag": "walk"}, {"at_s": 3, "rest": true}]}

@@ -66,6 +66,12 @@ TEST(HostCheck, AnAllowedHostIsANameAlone) {
   EXPECT_NE(message("my box").find("not a host name"), std::string::npos);
   EXPECT_NE(message("").find("empty"), std::string::npos);
   EXPECT_NE(message(".").find("not a host name"), std::string::npos);
+  for (const char* bad : {"-x", "x-", "..lan", "a..b", ".lan.", "a.-b"}) {
+    EXPECT_NE(message(bad).find("not a host name"), std::string::npos) << bad;
+  }
+  for (const char* address : {"[::1]", "::1", "192.168.1.20"}) {
+    EXPECT_NE(message(address).find("an IP address needs no --allow-host"), std::string::npos) << address;
+  }
 }
 
 }  // namespace

@@ -600,7 +600,7 @@ TEST(Controller, AStartTurnsTowardTheHeadingAskedByAtMostItsLimit) {
 }
 
 // The starts from the frame it will hold are found while it stops, before anything asks it to move
-// (in the background: a large library's take a few hundred milliseconds); the controller waits
+// (in the background: the 8-subject library's take 0.1 s); the controller waits
 // for them when it goes.
 TEST(Controller, FindsTheStartsWhileItStops) {
   const auto& s = test::subject16();
@@ -957,6 +957,9 @@ TEST(Controller, AStarvedTimeBudgetStillAnswers) {
                               {+[](ControllerSettings& c) { c.beam_width = -1; }, "beam width"},
                               {+[](ControllerSettings& c) { c.max_expansions = 0; }, "search budget"},
                               {+[](ControllerSettings& c) { c.tag_penalty = -1.0; }, "tag penalty"},
+                              {+[](ControllerSettings& c) { c.travel_mps = -1.0; }, "travel pace"},
+                              {+[](ControllerSettings& c) { c.travel_mps = 1e16; }, "travel pace must be at most"},
+                              {+[](ControllerSettings& c) { c.travel_penalty = 1e308; }, "its penalty at most"},
                               {+[](ControllerSettings& c) { c.start_node = -2; }, "start node must be >= 0, not -2"}}) {
     ControllerSettings bad;
     spoil(bad);

@@ -36,6 +36,11 @@ Status ControllerSettings::validate() const {
   if (!(tag_lookahead >= 0.0 && tag_lookahead <= 1.0)) {
     return refused(fmt::format("the tag lookahead must be from 0 to 1, not {:g}", tag_lookahead));
   }
+  if (travel_mps > kMaxTravelMps || travel_penalty > kMaxTravelPenalty) {
+    return refused(fmt::format("the travel pace must be at most {:g} m/s and its penalty at most {:g}, not {:g} "
+                               "and {:g}",
+                               kMaxTravelMps, kMaxTravelPenalty, travel_mps, travel_penalty));
+  }
   if (max_expansions < 1) {
     return refused(fmt::format("the search budget (expansions) must be at least 1, not {}", max_expansions));
   }
@@ -427,7 +432,7 @@ void Controller::step_to_rest(Motion& out, ControllerDecision& decision) {
   rest_frames_.push_back(state_.frames + ending->frames_to_rest(graph));
   rest_endings_.push_back(ending);
   // The starts from the frame it will hold, found in the background while it stops (a second or
-  // more), not in the decision that first starts off (a large library's take a few hundred ms).
+  // more), not in the decision that first starts off (the 8-subject library's take 0.1 s).
   if (graph.node_at_frame(ending->last_frame) < 0) {
     try {
       starts_found_ = std::async(std::launch::async, [context = context_, frame = ending->last_frame] {

@@ -63,6 +63,11 @@ constexpr double kStartSlack = 1.5;
 constexpr double kStartMaxTurnDeg = 45.0;
 constexpr double kStartHeadingS = 1.0;
 
+// Bounds of ControllerSettings::travel_mps (a sprint) and travel_penalty: past them the pace
+// asked swamps every other cost (at 1e16 m/s the character stood still).
+constexpr double kMaxTravelMps = 20.0;
+constexpr double kMaxTravelPenalty = 1000.0;
+
 struct ControlInput {
   Vec2 direction = Vec2(0.0, -1.0);  // unit, on the floor (default north, -z)
   TagMask tag = 0;                   // 0: any motion
@@ -98,8 +103,8 @@ struct ControllerSettings {
   // travel_penalty per metre its root is behind a point that leaves where the decision starts at
   // travel_mps along the heading (0: none; a walk facing the way asked while standing in place
   // costs nothing else, and on libraries without motion types the character stood about).
-  double travel_mps = 0.5;
-  double travel_penalty = 2.0;
+  double travel_mps = 0.5;            // at most kMaxTravelMps
+  double travel_penalty = 2.0;        // at most kMaxTravelPenalty
   int start_node = -1;               // -1: controller_start_node()
   // The committed frames turned toward the direction asked for (max_turn_deg_per_m 0: as the
   // graph plays them).
