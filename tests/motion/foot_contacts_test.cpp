@@ -4,6 +4,8 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <random>
+#include <vector>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -660,6 +662,37 @@ TEST(FootContacts, ContactColumnsAreEachFootsAnkleThenToeLeftFirstAndSkipAMissin
   EXPECT_EQ(three[1].joint, feet.right.ankle);
   EXPECT_EQ(three[1].bit, contact_bit(FootSide::kRight, FootPart::kAnkle));
   EXPECT_EQ(three[2].bit, contact_bit(FootSide::kRight, FootPart::kToe));
+}
+
+// Gaps filled in played contacts: against a plain reference per bit, on random masks; a gap of
+// at most max_gap frames between two planted frames is planted, a longer one and the unplanted
+// runs at either end are not, and filling twice changes nothing.
+TEST(FootContacts, FillContactGapsPlantsTheShortGapsBetweenContactsOfEachBit) {
+  std::mt19937 rng(53);
+  for (int trial = 0; trial < 200; ++trial) {
+    const int max_gap = trial % 4;
+    std::vector<ContactMask> masks(static_cast<size_t>(1 + trial % 40));
+    for (ContactMask& m : masks) m = static_cast<ContactMask>(std::uniform_int_distribution<int>(0, 15)(rng));
+    std::vector<ContactMask> filled = masks;
+    fill_contact_gaps(filled, max_gap);
+    for (int bit = 0; bit < 4; ++bit) {
+      const auto mask = static_cast<ContactMask>(1 << bit);
+      for (size_t f = 0; f < masks.size(); ++f) {
+        bool before = false, after = false;  // planted within max_gap + 1 frames either side, gap between
+        size_t gap_start = f, gap_end = f;
+        while (gap_start > 0 && (masks[gap_start - 1] & mask) == 0) --gap_start;
+        while (gap_end + 1 < masks.size() && (masks[gap_end + 1] & mask) == 0) ++gap_end;
+        before = gap_start > 0;
+        after = gap_end + 1 < masks.size();
+        const bool want = (masks[f] & mask) != 0 ||
+                          (before && after && static_cast<int>(gap_end - gap_start + 1) <= max_gap);
+        ASSERT_EQ((filled[f] & mask) != 0, want) << "trial " << trial << " frame " << f << " bit " << bit;
+      }
+    }
+    std::vector<ContactMask> twice = filled;
+    fill_contact_gaps(twice, max_gap);
+    EXPECT_EQ(twice, filled);
+  }
 }
 
 }  // namespace

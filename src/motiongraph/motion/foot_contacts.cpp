@@ -134,6 +134,21 @@ bool FootContacts::foot_planted(FootSide side, int frame) const {
   return false;
 }
 
+void fill_contact_gaps(std::span<ContactMask> contacts, int max_gap) {
+  for (int bit = 0; bit < 8; ++bit) {
+    const auto mask = static_cast<ContactMask>(1u << bit);
+    long long last_planted = -1;
+    for (size_t f = 0; f < contacts.size(); ++f) {
+      if ((contacts[f] & mask) == 0) continue;
+      const long long gap = static_cast<long long>(f) - last_planted - 1;
+      if (last_planted >= 0 && gap > 0 && gap <= max_gap) {
+        for (size_t g = static_cast<size_t>(last_planted) + 1; g < f; ++g) contacts[g] |= mask;
+      }
+      last_planted = static_cast<long long>(f);
+    }
+  }
+}
+
 ContactMask contact_mask(const FootContacts& contacts, int frame) {
   ContactMask mask = 0;
   for (const FootContactTrack& track : contacts.tracks) {

@@ -110,6 +110,11 @@ constexpr ContactMask contact_bit(FootSide side, FootPart part) {
 }
 // The bits of the tracks planted at `frame`.
 ContactMask contact_mask(const FootContacts& contacts, int frame);
+// Per bit, each run of at most `max_gap` unplanted frames between two planted ones planted, as the
+// captured contacts' gaps are (FootContactSettings::max_gap_s): where frames blended from two
+// clips take the contacts of the one weighing most, a foot planted in both can lose its contact
+// for the frame the weights cross, and the clean-up plants it again a step away.
+void fill_contact_gaps(std::span<ContactMask> contacts, int max_gap);
 
 // The feet's joints with their bits, in the order left ankle, left toe, right ankle, right toe,
 // a foot without a toe joint giving its ankle only: the columns of a contact table (the positions

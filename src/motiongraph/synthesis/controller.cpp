@@ -348,7 +348,9 @@ void Controller::play_start(const RestStart& chosen, std::span<const int> depart
     }
     state_.placement = edit_.apply(out, first, &from, facings, roots, input_.direction) * lead;
   }
+  // Each frame's dominant source's contacts, a foot's gap where the weights cross filled.
   decision.contacts = context_->sources_contacts(decision.start_frames);
+  fill_contact_gaps(decision.contacts, FootContactSettings{}.max_gap_frames(context_->db->fps));
   Vec2 at = from;
   for (int f = first; f < out.frame_count; ++f) {
     const Vec2 root(out.translations(f)[0].x(), out.translations(f)[0].z());
