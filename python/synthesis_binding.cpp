@@ -327,6 +327,7 @@ class PyController {
             {"foot_slide", foot_slide_report(context(), played_, motion_, played_sources_)},
             {"rests", rests_report(context(), *controller_, motion_.frame_count)},
             {"starts", starts_report(context(), controller_->starts(), motion_.frame_count)},
+            {"rests_taken_back_s", rests_taken_back_report(context(), *controller_, motion_.frame_count)},
             {"rest", rest_report(context(), controller_->rest_ending(),
                                  static_cast<double>(controller_->rest_frame()) / context().db->fps)}};
   }

@@ -264,6 +264,8 @@ int run_steer(const SteerOptions& o) {
                      turns_at_rest_s.size() == 1 ? "" : "s", fmt::join(turns_at_rest_s, ", "),
                      turns_at_rest_s.size() == 1 ? "s" : ""));
   }
+  // The seconds from which it went on each time it took a rest back on its way there.
+  const nlohmann::json taken_back_s = rests_taken_back_report(context, *controller, motion.frame_count);
   const HeadingEditStats& edit_stats = controller->heading_edit_stats();
   const nlohmann::json report = {{"frames", motion.frame_count},
                                  {"fps", fps},
@@ -285,6 +287,7 @@ int run_steer(const SteerOptions& o) {
                                  {"rest", rested},
                                  {"rests", rests_report(context, *controller, motion.frame_count)},
                                  {"starts", starts_report(context, controller->starts(), motion.frame_count)},
+                                 {"rests_taken_back_s", taken_back_s},
                                  {"foot_slide", foot_slide_report(context, played, motion, played_sources)},
                                  {"warnings", warnings}};
   if (auto s = write_synthesis_outputs(o.common, **loaded, motion, played, report, all_contacts); !s) return fail(s.error());
@@ -315,6 +318,13 @@ int run_steer(const SteerOptions& o) {
                c["response_s"].is_null() ? std::string("not reached")
                                          : fmt::format("facing it after {:.2f} s", c["response_s"].get<double>()),
                tag_reached);
+  }
+  for (const nlohmann::json& back : taken_back_s) {
+    const double t = back.get<double>();
+    const bool by_start = std::any_of(report["starts"].begin(), report["starts"].end(), [&](const nlohmann::json& s) {
+      return s["under_way"].get<bool>() && std::abs(s["at_s"].get<double>() - t) < 1e-9;
+    });
+    if (!by_start) fmt::print("  went on from its way to rest at {:.2f} s, on through the graph from the stop\n", t);
   }
   for (const auto& start : report["starts"]) {
     if (start["under_way"].get<bool>()) {

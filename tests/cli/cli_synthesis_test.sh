@@ -190,6 +190,9 @@ assert len(rs) == 1 and rs[0] == r["rest"] and 9 < rs[0]["at_s"] < 12, rs
 assert starts[-1]["at_s"] >= 12 and not starts[-1]["under_way"], starts
 went = [s for s in starts if s["at_s"] < 9]
 assert all(s["under_way"] and 4.5 <= s["at_s"] < 4.8 for s in went), starts
+# Went on once from its way to rest (by that start, or through the graph).
+back = r["rests_taken_back_s"]
+assert len(back) == 1 and 4.5 <= back[0] < 4.8 and all(s["at_s"] in back for s in went), (back, starts)
 root = [p[0] for p in m["positions"]]
 fps = r["fps"]
 assert math.dist(root[int(4.5 * fps)][::2], root[int(6 * fps)][::2]) > 0.8, (root[int(4.5 * fps)], root[int(6 * fps)])

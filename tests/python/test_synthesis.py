@@ -340,6 +340,8 @@ def test_rest_taken_back_on_the_way_equals_the_cli(cli, graph_file, graph, tmp_p
     report = read_json(tmp_path / "cli-report.json")
     assert motion.report["rests"] == report["rests"] == [] and motion.report["rest"] is None
     assert motion.report["starts"] == report["starts"]
+    back = report["rests_taken_back_s"]
+    assert motion.report["rests_taken_back_s"] == back and len(back) == 1 and 3.5 <= back[0] < 4, back
     assert all(start["under_way"] for start in report["starts"]), report["starts"]
     assert report["controls"][1]["rest_taken_back"], report["controls"]
     # Walking on: 0.8 m or more in the 1.5 s after it was asked.

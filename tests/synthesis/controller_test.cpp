@@ -737,6 +737,9 @@ TEST(Controller, TakesARestBackOnItsWayThere) {
     EXPECT_FALSE(back.resting());
     EXPECT_TRUE(back.rest_frames().empty());
     EXPECT_EQ(back.rest_ending(), nullptr);
+    // Going on from the frame asked, or from the node the stop played on to.
+    const long long went_on = asked + (d.start_frames.empty() ? std::ssize(d.rest_frames) : 0);
+    EXPECT_EQ(back.rests_taken_back(), std::vector<long long>{went_on});
     if (!d.start_frames.empty()) {
       // Blended from the frames the stopping clip plays next (its last repeated) into the lead-in.
       ++starts;

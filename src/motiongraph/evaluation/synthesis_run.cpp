@@ -188,6 +188,15 @@ nlohmann::json starts_report(const SynthesisContext& context, std::span<const St
   return out;
 }
 
+nlohmann::json rests_taken_back_report(const SynthesisContext& context, const Controller& controller,
+                                       long long frames) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const long long f : controller.rests_taken_back()) {
+    if (f < frames) out.push_back(static_cast<double>(f) / context.db->fps);
+  }
+  return out;
+}
+
 bool stop_means_rest(const SynthesisContext& context, const std::string& tag) {
   return is_stop_tag(tag) && !context.rest().empty() && unplayable_tag(context, tag).has_value();
 }

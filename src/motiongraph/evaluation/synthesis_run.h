@@ -84,6 +84,10 @@ nlohmann::json rests_report(const SynthesisContext& context, const Controller& c
 // frame, "node_frame" the graph went on from, "rms_cm" from the pose held (or the frames it was
 // playing), "under_way": from its way to rest, the rest taken back before it stood}].
 nlohmann::json starts_report(const SynthesisContext& context, std::span<const StartTaken> starts, long long frames);
+// The seconds from which a steering session went on each time it took a rest back on its way
+// there (Controller::rests_taken_back), before frame `frames`.
+nlohmann::json rests_taken_back_report(const SynthesisContext& context, const Controller& controller,
+                                       long long frames);
 
 // Whether asking for `tag` asks the controller to rest (controller.h): it is stop, the graph plays
 // it in less than a second (unplayable_tag) and has clips that end standing still to rest at.

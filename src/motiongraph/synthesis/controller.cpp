@@ -260,6 +260,7 @@ bool Controller::start_off(Motion& out, ControllerDecision& decision) {
 }
 
 void Controller::forget_rest() {
+  taken_back_.push_back(state_.frames);
   resting_ = false;
   rest_frames_.pop_back();
   rest_endings_.pop_back();

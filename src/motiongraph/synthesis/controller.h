@@ -178,6 +178,10 @@ class Controller {
   bool rest_is_for_good() const;
   // The starts from rest it took, in order.
   const std::vector<StartTaken>& starts() const { return starts_; }
+  // The frames (counted from its first) from which it went on each time it took a rest back on
+  // its way there (take_back()), in order: by a start (under_way, in starts() too) or through the
+  // graph.
+  const std::vector<long long>& rests_taken_back() const { return taken_back_; }
   // Resting with the clip it rests at played to its end: holding its last frame.
   bool standing() const;
   // Resting and standing still: from the frame from which the clip it rests at stands still
@@ -261,6 +265,7 @@ class Controller {
   // start with no tag asked goes on in.
   TagMask moving_types_ = 0;
   std::vector<StartTaken> starts_;
+  std::vector<long long> taken_back_;
   // Finding the starts from the ending's last frame, begun as it takes its way to rest (the
   // context's cache holds them; the last copy of the future waits for the thread).
   std::shared_future<void> starts_found_;
