@@ -562,28 +562,34 @@ class Router {
                           {"warnings", step->warnings}});
   }
 
-  // ID.bvh, ID.glb or ID.fbx.
+  // ID.bvh, ID.glb, ID.gltf or ID.fbx.
   ApiResponse result_file() {
     using Format = SynthesisService::FileFormat;
     const std::string& name = parts_[2];
     std::optional<long long> id;
     std::string suffix;
     Format format = Format::kBvh;
-    for (const auto& [s, f] : {std::pair{".bvh", Format::kBvh}, std::pair{".glb", Format::kGlb}, std::pair{".fbx", Format::kFbx}}) {
-      if (name.size() > 4 && name.ends_with(s)) {
+    using Suffix = std::pair<std::string_view, Format>;
+    for (const auto& [s, f] : {Suffix{".bvh", Format::kBvh}, Suffix{".glb", Format::kGlb},
+                               Suffix{".gltf", Format::kGltf}, Suffix{".fbx", Format::kFbx}}) {
+      if (name.size() > s.size() && name.ends_with(s)) {
         suffix = s;
         format = f;
-        id = parse_integer(name.substr(0, name.size() - 4), 0, 1LL << 30);
+        id = parse_integer(name.substr(0, name.size() - s.size()), 0, 1LL << 30);
       }
     }
-    if (!id) throw ApiError{404, fmt::format("no result '{}': expected /api/results/ID.bvh, ID.glb or ID.fbx", name)};
+    if (!id) {
+      throw ApiError{404, fmt::format("no result '{}': expected /api/results/ID.bvh, ID.glb, ID.gltf or ID.fbx", name)};
+    }
     const bool root_motion = query_integer(request_, "root_motion", 0, 0, 1) == 1;
     const bool figure = query_integer(request_, "figure", 1, 0, 1) == 1;
     auto bytes = service_.result_file(static_cast<int>(*id), format, root_motion, figure);
     if (!bytes) throw ApiError{404, fmt::format("no result {} (results are kept for the latest {})", *id,
                                                 SynthesisService::kMaxResults)};
     ApiResponse r;
-    r.content_type = format == Format::kGlb ? "model/gltf-binary" : "application/octet-stream";
+    r.content_type = format == Format::kGlb    ? "model/gltf-binary"
+                     : format == Format::kGltf ? "model/gltf+json"
+                                               : "application/octet-stream";
     r.body = std::move(*bytes);
     r.file_name = fmt::format("motiongraph-{}{}{}", *id, root_motion ? "-root-motion" : "", suffix);
     return r;

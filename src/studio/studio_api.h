@@ -21,9 +21,10 @@
 //   POST /api/steer/sessions/{id}/step      {"heading_deg", "tag", "min_frames"}
 //   GET  /api/results/{id}.bvh              a synthesized motion as BVH (metres)
 //   GET  /api/results/{id}.glb              the same as binary glTF 2.0 (metres; export/gltf_writer.h)
+//   GET  /api/results/{id}.gltf             the same as glTF JSON, its buffer embedded (base64)
 //   GET  /api/results/{id}.fbx              the same as binary FBX 7.4 (centimetres; export/fbx_writer.h)
 //        ?root_motion=1 (any)               with a root-motion joint above the root (motion/root_motion.h)
-//        ?figure=0 (.glb, .fbx)             without the stick figure (the skeleton and its animation)
+//        ?figure=0 (.glb, .gltf, .fbx)      without the stick figure (the skeleton and its animation)
 // Every answer with frames to play (clip frames, both windows of a transition, walk, path,
 // steering step) carries their foot contacts as the CLI writes them (export/positions_json.h):
 // "contacts": {"joints": [foot joint names], "joint_indices": [...], "planted": [frame][joint]

@@ -81,7 +81,8 @@ std::optional<std::string> SynthesisService::result_file(int result, FileFormat 
   if (format == FileFormat::kBvh) return write_bvh(skeleton, motion, BvhWriteSettings{});
   // The animation is named as the file downloads.
   const ExportAnimation animation{fmt::format("motiongraph-{}", result), &motion};
-  auto bytes = scene_bytes(format == FileFormat::kGlb ? ".glb" : ".fbx", skeleton, std::span(&animation, 1), figure);
+  const char* ext = format == FileFormat::kGlb ? ".glb" : format == FileFormat::kGltf ? ".gltf" : ".fbx";
+  auto bytes = scene_bytes(ext, skeleton, std::span(&animation, 1), figure);
   if (!bytes) return std::nullopt;  // a recorded motion always fits the skeleton it was played on
   return std::move(*bytes);
 }

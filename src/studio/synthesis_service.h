@@ -127,10 +127,10 @@ class SynthesisService {
   // Sets the control and appends at least min_frames frames (one decision or more).
   Result<SteerStepResult> step_session(int session, const SteeringControl& control, int min_frames);
 
-  // A result as a file: BVH text, binary glTF or binary FBX (with its stick figure unless
-  // `figure` is false), with a root-motion joint above the root when asked (motion/root_motion.h,
-  // default settings); nothing when there is no such result (any more).
-  enum class FileFormat { kBvh, kGlb, kFbx };
+  // A result as a file: BVH text, binary glTF, glTF as JSON (its buffer embedded) or binary FBX
+  // (with its stick figure unless `figure` is false), with a root-motion joint above the root when
+  // asked (motion/root_motion.h, default settings); nothing when there is no such result (any more).
+  enum class FileFormat { kBvh, kGlb, kGltf, kFbx };
   std::optional<std::string> result_file(int result, FileFormat format = FileFormat::kBvh, bool root_motion = false,
                                          bool figure = true) const;
   // Stores a motion for download and returns its id.

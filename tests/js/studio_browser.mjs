@@ -303,6 +303,8 @@ try {
   };
   const [glbMagic, glbHref] = await downloadMagic('download-glb', 4);
   check(glbMagic === 'glTF', `the result downloads as binary glTF (${glbHref})`);
+  const [gltfMagic, gltfHref] = await downloadMagic('download-gltf', 1);
+  check(gltfMagic === '{' && gltfHref.endsWith('.gltf'), `the result downloads as glTF JSON (${gltfHref})`);
   const [fbxMagic, fbxHref] = await downloadMagic('download-fbx', 18);
   check(fbxMagic === 'Kaydara FBX Binary', `the result downloads as binary FBX (${fbxHref})`);
   await page.check('[data-testid=no-figure]');

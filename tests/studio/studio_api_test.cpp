@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <mutex>
 #include <numbers>
 #include <span>
@@ -317,7 +318,25 @@ TEST(StudioApi, WalkReturnsMotionAndABvhDownload) {
   EXPECT_EQ(bare_glb.response.body.find("\"meshes\""), std::string::npos);
   expect_error(call_api("GET", "/api/results/" + id + ".glb", "", {{"figure", "2"}}), 400, "figure");
   expect_error(call_api("GET", "/api/results/" + std::to_string(walk.json["result"].get<int>()) + ".dae"), 404,
-               "expected /api/results/ID.bvh, ID.glb or ID.fbx");
+               "expected /api/results/ID.bvh, ID.glb, ID.gltf or ID.fbx");
+  // glTF as JSON: the same scene as the .glb's JSON chunk, its buffer embedded as base64.
+  const ApiCall gltf = call_api("GET", "/api/results/" + id + ".gltf");
+  ASSERT_EQ(gltf.response.status, 200);
+  EXPECT_EQ(gltf.response.content_type, "model/gltf+json");
+  EXPECT_EQ(gltf.response.file_name, "motiongraph-" + id + ".gltf");
+  const nlohmann::json scene = nlohmann::json::parse(gltf.response.body);
+  EXPECT_EQ(scene["asset"]["version"], "2.0");
+  ASSERT_EQ(scene["animations"].size(), 1u);
+  EXPECT_EQ(scene["animations"][0]["name"], "motiongraph-" + id);
+  ASSERT_EQ(scene["buffers"].size(), 1u);
+  EXPECT_EQ(scene["buffers"][0]["uri"].get<std::string>().rfind("data:application/octet-stream;base64,", 0), 0u);
+  uint32_t json_length = 0;  // the .glb's JSON chunk: its length at byte 12, its text from byte 20
+  std::memcpy(&json_length, glb.response.body.data() + 12, 4);
+  nlohmann::json glb_scene = nlohmann::json::parse(glb.response.body.substr(20, json_length));
+  EXPECT_EQ(glb_scene["nodes"], scene["nodes"]);
+  EXPECT_EQ(glb_scene["accessors"], scene["accessors"]);
+  EXPECT_EQ(call_api("GET", "/api/results/" + id + ".gltf", "", {{"figure", "0"}}).response.body.find("\"meshes\""),
+            std::string::npos);
 }
 
 TEST(StudioApi, ResultsAreCleanedUnlessAskedNotToAndMeasuredAgainstTheirSource) {

@@ -88,7 +88,8 @@ function setResultLink(id) {
   if ($('root-motion').checked) params.set('root_motion', '1');
   if ($('no-figure').checked) params.set('figure', '0');
   const query = params.toString() ? `?${params}` : '';
-  for (const [link, ext] of [['download', 'bvh'], ['download-glb', 'glb'], ['download-fbx', 'fbx']]) {
+  for (const [link, ext] of [['download', 'bvh'], ['download-glb', 'glb'], ['download-gltf', 'gltf'],
+    ['download-fbx', 'fbx']]) {
     const a = $(link);
     a.href = `/api/results/${id}.${ext}${query}`;
     a.download = `motiongraph-${id}.${ext}`;
