@@ -17,8 +17,8 @@
 
 #include "cli/commands.h"
 #include "studio/host_check.h"
-#include "studio/synthesis_service.h"
 #include "studio/http_server.h"
+#include "studio/synthesis_service.h"
 
 namespace mg::cli {
 
