@@ -21,10 +21,6 @@ bool name_char(char c) {
          c == '_';
 }
 
-bool ends_with(std::string_view text, std::string_view end) {
-  return text.size() >= end.size() && text.substr(text.size() - end.size()) == end;
-}
-
 }  // namespace
 
 std::string host_of_header(std::string_view header) {
@@ -62,9 +58,9 @@ bool host_allowed(std::string_view header, const std::vector<std::string>& allow
   const std::string host = host_of_header(header);
   if (host.empty()) return false;
   if (host.starts_with('[') || is_address(host, AF_INET)) return true;
-  if (host == "localhost" || ends_with(host, ".localhost")) return true;
+  if (host == "localhost" || host.ends_with(".localhost")) return true;
   return std::any_of(allowed.begin(), allowed.end(), [&](const std::string& entry) {
-    if (entry.starts_with('.')) return host == entry.substr(1) || ends_with(host, entry);
+    if (entry.starts_with('.')) return host == entry.substr(1) || host.ends_with(entry);
     return host == entry;
   });
 }

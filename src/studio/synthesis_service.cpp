@@ -152,6 +152,18 @@ Result<bool> SynthesisService::clean_up(bool asked, std::span<const ContactMask>
   return true;
 }
 
+namespace {
+
+// The session stepped (or created) least recently; `sessions` is not empty.
+template <class Sessions>
+auto least_recently_used(Sessions& sessions) {
+  return std::min_element(sessions.begin(), sessions.end(), [](const auto& a, const auto& b) {
+    return a.second->last_used < b.second->last_used;
+  });
+}
+
+}  // namespace
+
 Status SessionLimits::validate() const {
   if (max_sessions < 1 || max_sessions > 1000) {
     return Error{"", 0, fmt::format("the sessions at most must be from 1 to 1000, not {}", max_sessions)};
@@ -179,10 +191,7 @@ Result<SteerSessionStart> SynthesisService::create_session(const SteeringControl
     // At the limit with the least recently stepped in use: refused, before any work.
     std::lock_guard lock(mutex_);
     if (static_cast<int>(sessions_.size()) >= limits_.max_sessions) {
-      auto oldest = sessions_.begin();
-      for (auto it = sessions_.begin(); it != sessions_.end(); ++it) {
-        if (it->second->last_used < oldest->second->last_used) oldest = it;
-      }
+      const auto oldest = least_recently_used(sessions_);
       const double idle_s =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - oldest->second->stepped_at).count();
       if (idle_s < limits_.busy_s) {
@@ -217,13 +226,7 @@ Result<SteerSessionStart> SynthesisService::create_session(const SteeringControl
   session->last_used = ++clock_;
   session->stepped_at = std::chrono::steady_clock::now();
   sessions_[id] = std::move(session);
-  while (static_cast<int>(sessions_.size()) > limits_.max_sessions) {
-    auto oldest = sessions_.begin();
-    for (auto it = sessions_.begin(); it != sessions_.end(); ++it) {
-      if (it->second->last_used < oldest->second->last_used) oldest = it;
-    }
-    sessions_.erase(oldest);
-  }
+  while (static_cast<int>(sessions_.size()) > limits_.max_sessions) sessions_.erase(least_recently_used(sessions_));
   return SteerSessionStart{id, session_warnings};
 }
 

@@ -254,9 +254,14 @@ bool Controller::start_off(Motion& out, ControllerDecision& decision) {
   if (chosen == nullptr) return false;
   const int held = ending_frames_[ending_next_ - 1];  // the frame it stands in: the last played
   const std::vector<int> departures(static_cast<size_t>(chosen->blend_frames), held);
-  const Vec3 root = context_->assembler.root_position(held, rest_placement_);
-  play_start(*chosen, departures, Vec2(root.x(), root.z()), false, out, decision);
+  play_start(*chosen, departures, last_played_root(), false, out, decision);
   return true;
+}
+
+Vec2 Controller::last_played_root() const {
+  if (ending_next_ == 0) return state_.last_root;
+  const Vec3 root = context_->assembler.root_position(ending_frames_[ending_next_ - 1], rest_placement_);
+  return {root.x(), root.z()};
 }
 
 void Controller::forget_rest() {
@@ -282,11 +287,8 @@ bool Controller::take_back(Motion& out, ControllerDecision& decision) {
     play_rest(out, decision, static_cast<int>(k - ending_next_), false);
     state_.node = node;
     state_.placement = rest_placement_;
-    if (ending_next_ > 0) {
-      const Vec3 last = context_->assembler.root_position(ending_frames_[ending_next_ - 1], rest_placement_);
-      state_.last_root = Vec2(last.x(), last.z());
-      state_.has_last = true;
-    }
+    state_.last_root = last_played_root();
+    state_.has_last = state_.has_last || ending_next_ > 0;
     forget_rest();
     return decision.frames > 0;
   }
@@ -301,12 +303,7 @@ bool Controller::take_back(Motion& out, ControllerDecision& decision) {
       find_starts_from(*context_->db, graph, context_->assembler, coming, kGoingMps);
   const RestStart* chosen = choose_start(starts);
   if (chosen == nullptr) return false;
-  // Where it stands now: the last frame of the clip played, or where the way there left it.
-  Vec2 last = state_.last_root;
-  if (ending_next_ > 0) {
-    const Vec3 root = context_->assembler.root_position(ending_frames_[ending_next_ - 1], rest_placement_);
-    last = Vec2(root.x(), root.z());
-  }
+  const Vec2 last = last_played_root();
   forget_rest();
   play_start(*chosen, coming, last, true, out, decision);
   return true;

@@ -219,6 +219,9 @@ class Controller {
   bool take_back(Motion& out, ControllerDecision& decision);
   // The rest it was coming to is none: it goes on.
   void forget_rest();
+  // Where it stands on the floor: the root of the stopping clip's last frame played, as placed, or
+  // where the way there left it before the clip's first.
+  Vec2 last_played_root() const;
   // Of `starts`, the one the choice in the header takes (null: none).
   const RestStart* choose_start(const std::vector<RestStart>& starts) const;
   // Plays `start` from `departures` (the frames blended from, one per blend frame, placed as the
