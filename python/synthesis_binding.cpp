@@ -396,11 +396,11 @@ void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
            "decisions' as make min_frames (1 to 3600; each ends with a whole edge). rest=True comes to rest at the "
            "end of a clip that ends standing still and holds its last frame (so does tag 'stop' where the graph can "
            "hardly play it), until asked to move: it goes on where the graph has a way on from there, and elsewhere "
-           "starts off, the frame held blended into a clip that walks off (the report's 'starts'); rest_s says when "
-           "it stands still.")
+           "starts off, the frame held blended into a clip that walks off (the report's 'starts'); asked to move "
+           "before it stands, it takes the rest back and goes on; rest_s says when it stands still.")
       .def_property_readonly("rest_s", &PyController::rest_s,
-                             "The second from which the character last stood still, once it has come to rest; None "
-                             "before.")
+                             "The second from which the character last stood still, once it has come to rest (on its "
+                             "way there, will stand); None before.")
       .def_property_readonly("resting", &PyController::resting,
                              "Whether it has taken its way to rest: on it to the clip that stops, playing it, or "
                              "standing (until asked to move).")
