@@ -49,6 +49,7 @@ OptionTable build_option_table(BuildCall& call) {
       {"keep_rest_frames", set(b.keep_rest_frames)},
       {"cmu_index", set(b.cmu_index)},
       {"no_cmu_tags", set(b.no_cmu_tags)},
+      {"no_name_tags", set(b.no_name_tags)},
       {"whole_clip_tags", set(b.whole_clip_tags)},
       {"no_loops", set(b.no_loops)},
       {"feet", set(b.feet)},

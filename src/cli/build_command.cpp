@@ -143,6 +143,9 @@ Command add_build_command(CLI::App& app) {
                   "CMU's motion index (cmu-mocap-index.tsv) for tags from descriptions; default: one beside or above the "
                   "inputs, else the index the project ships (built in)");
   sub->add_flag("--no-cmu-tags", b.no_cmu_tags, "Do not tag clips from CMU's descriptions");
+  sub->add_flag("--no-name-tags", b.no_name_tags,
+                "Do not tag clips from the words of their names (Walk_Forward_01.bvh: walk; for clips that neither a "
+                "manifest nor CMU's index tags)");
   sub->add_flag("--whole-clip-tags", b.whole_clip_tags,
                 "Tag whole clips with the walk or run of their CMU description (by default only the frames where the "
                 "root travels 0.25 m/s or more over a second keep them)");

@@ -37,6 +37,7 @@ struct InfoOptions {
   bool fps_given = false;
   std::string cmu_index;
   bool no_cmu_tags = false;
+  bool no_name_tags = false;
   bool whole_clip_tags = false;
   bool no_loops = false;
 };
@@ -49,6 +50,7 @@ int run_library(const InfoOptions& options) {
   db.fps = options.fps;
   db.prefer_manifest_fps = !options.fps_given;
   db.cmu_tags = !options.no_cmu_tags;
+  db.name_tags = !options.no_name_tags;
   if (options.whole_clip_tags) db.travel_tags.min_speed_mps = 0.0;
   db.loops = !options.no_loops;
   db.cmu_index_path = options.cmu_index;
@@ -71,10 +73,10 @@ nlohmann::json skeleton_json(const Skeleton& skeleton) {
 
 int run_info(const InfoOptions& options) {
   if (is_library(options.files)) return run_library(options);
-  if (options.fps_given || !options.cmu_index.empty() || options.no_cmu_tags || options.whole_clip_tags ||
-      options.no_loops) {
-    spdlog::warn("--fps, --cmu-index, --no-cmu-tags, --whole-clip-tags and --no-loops apply to folders and manifests (a library); these "
-                 "files are summarised as read");
+  if (options.fps_given || !options.cmu_index.empty() || options.no_cmu_tags || options.no_name_tags ||
+      options.whole_clip_tags || options.no_loops) {
+    spdlog::warn("--fps, --cmu-index, --no-cmu-tags, --no-name-tags, --whole-clip-tags and --no-loops apply to folders "
+                 "and manifests (a library); these files are summarised as read");
   }
   ClipLoadSettings settings = options.load.settings();
   // An .asf among the files is the skeleton of the .amc files given with it.
@@ -279,6 +281,7 @@ Command add_info_command(CLI::App& app) {
                   "inputs, else the one the program ships)")
       ->check(CLI::ExistingFile);
   sub->add_flag("--no-cmu-tags", options->no_cmu_tags, "For a library: no tags from CMU's descriptions");
+  sub->add_flag("--no-name-tags", options->no_name_tags, "For a library: no tags from the words of clip names");
   sub->add_flag("--whole-clip-tags", options->whole_clip_tags,
                 "For a library: a CMU description's walk or run on the whole clip (by default only where the root "
                 "travels 0.25 m/s or more over a second)");

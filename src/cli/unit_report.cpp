@@ -188,6 +188,26 @@ void report_units(const DatabaseLoadNotes& notes, bool quiet) {
                  notes.loops.size(), notes.loops.size() == 1 ? "" : "s", notes.loops.front().clip,
                  notes.loops.size() > 1 ? fmt::format(" and {} more", notes.loops.size() - 1) : "", added);
   }
+  if (!notes.name_tagged.empty() && !quiet) {
+    // Per tag, in the order the names first give it: the clips.
+    std::vector<std::string> tags;
+    std::map<std::string, std::vector<std::string>> of_tag;
+    for (const auto& named : notes.name_tagged) {
+      for (const std::string& tag : named.tags) {
+        if (!of_tag.contains(tag)) tags.push_back(tag);
+        of_tag[tag].push_back(named.clip);
+      }
+    }
+    std::vector<std::string> parts;
+    for (const std::string& tag : tags) {
+      const auto& clips = of_tag.at(tag);
+      parts.push_back(fmt::format("{} {} clip{} ({}{})", tag, clips.size(), clips.size() == 1 ? "" : "s",
+                                  clips.front(),
+                                  clips.size() > 1 ? fmt::format(" and {} more", clips.size() - 1) : ""));
+    }
+    spdlog::info("tags from clip names: {} (--no-name-tags turns them off; a manifest's tags = [...] sets a clip's)",
+                 fmt::join(parts, ", "));
+  }
   if (!notes.standing_tags.empty() && !quiet) {
     // Per tag: the frames left off and the clips they are in, in clip order.
     std::vector<std::string> tags;
@@ -205,7 +225,8 @@ void report_units(const DatabaseLoadNotes& notes, bool quiet) {
                                   clips.size() == 1 ? "" : "s", clips.front(),
                                   clips.size() > 1 ? fmt::format(" and {} more", clips.size() - 1) : ""));
     }
-    spdlog::info("walk and run from CMU's descriptions left off where the root stands (under {} m/s over a second, "
+    spdlog::info("walk and run from CMU's descriptions and clip names left off where the root stands (under {} m/s "
+                 "over a second, "
                  "or travels less than half a second): {}; --whole-clip-tags keeps them",
                  notes.standing_speed_mps, fmt::join(parts, ", "));
   }

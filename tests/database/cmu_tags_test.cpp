@@ -37,6 +37,27 @@ TEST(CmuTags, DescriptionsToTags) {
   EXPECT_EQ(cmu_description_tags(""), Tags{});
 }
 
+// A studio's or a user's file names say what their clips hold, in words of any case, joined by
+// anything, CamelCase or not; names of digits (CMU's own, takes) and words outside the
+// vocabulary say nothing.
+TEST(CmuTags, ClipNamesToTags) {
+  EXPECT_EQ(clip_name_tags("Walk_Forward_01"), Tags{"walk"});
+  EXPECT_EQ(clip_name_tags("WALK_FWD"), Tags{"walk"});
+  EXPECT_EQ(clip_name_tags("walk-turn-left"), (Tags{"walk", "turn"}));
+  EXPECT_EQ(clip_name_tags("run-stop"), (Tags{"run", "stop"}));
+  EXPECT_EQ(clip_name_tags("RunLoop"), Tags{"run"});
+  EXPECT_EQ(clip_name_tags("jog02"), Tags{"run"});
+  EXPECT_EQ(clip_name_tags("JumpInPlace"), Tags{"jump"});
+  EXPECT_EQ(clip_name_tags("locomotion/Sprint_Fwd"), Tags{"run"});
+  EXPECT_EQ(clip_name_tags("Strafe_Left"), Tags{"sidestep"});
+  EXPECT_EQ(clip_name_tags("actor2/walk"), Tags{"walk"});
+  EXPECT_EQ(clip_name_tags("take_07"), Tags{});
+  EXPECT_EQ(clip_name_tags("16_15"), Tags{});
+  EXPECT_EQ(clip_name_tags("Idle"), Tags{});
+  EXPECT_EQ(clip_name_tags("walkforward"), Tags{});  // one word the vocabulary does not hold
+  EXPECT_EQ(clip_name_tags("return_to_start"), Tags{"start"});
+}
+
 TEST(CmuTags, VocabularyIsWhatDescriptionsGive) {
   const auto vocabulary = cmu_tag_vocabulary();
   EXPECT_EQ(vocabulary.size(), 11u);

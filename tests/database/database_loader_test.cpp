@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -144,6 +145,63 @@ TEST(DatabaseLoader, StopsWhenAsked) {
   auto db = load_database({test::data_path("cmu/16")}, settings);
   ASSERT_FALSE(db);
   EXPECT_EQ(db.error().kind, ErrorKind::kStopped);
+}
+
+// A library of a studio's own files, named for what they hold: each clip not in CMU's index is
+// tagged by the words of its name, walk only where its root travels; a name without such words
+// (a take) is left untagged, and CMU's description wins over a manifest's name for a clip it
+// lists. The notes say which clips their names tagged; name_tags off, none is.
+TEST(DatabaseLoader, ClipsAreTaggedByTheWordsOfTheirNames) {
+  const auto bvh = [](const Clip& clip) { return write_bvh(clip.skeleton, clip.motion, BvhWriteSettings{}); };
+  const Clip walk = test::load_data_clip("cmu/16/16_15.amc");
+  TempFolder folder("name-tags");
+  folder.write("Walk_Forward_01.bvh", bvh(walk));
+  folder.write("locomotion/RunStop.bvh", bvh(test::held_pose(walk, 0, 60)));
+  folder.write("take_07.bvh", bvh(test::load_data_clip("cmu/16/16_16.amc")));
+  folder.write("16_15.bvh", bvh(test::load_data_clip("cmu/16/16_11.amc")));
+  DatabaseSettings settings;
+  settings.cmu_index_text = "16_15\tjump\n";
+  DatabaseLoadNotes notes;
+  auto db = load_database({folder.path().string()}, settings, &notes);
+  ASSERT_TRUE(db) << db.error().to_string();
+  std::map<std::string, std::set<std::string>> tags;
+  for (int c = 0; c < static_cast<int>(db->clips.size()); ++c) tags[db->clips[c].name] = tags_of(*db, c);
+  ASSERT_EQ(tags.size(), 4u) << fmt::format("{}", fmt::join(load_warnings(notes), "\n"));
+  EXPECT_EQ(tags.at("Walk_Forward_01"), std::set<std::string>{"walk"});
+  EXPECT_EQ(tags.at("16_15"), std::set<std::string>{"jump"});  // the index's description
+  EXPECT_TRUE(tags.at("take_07").empty());
+  // The pose held still never runs; it stops throughout.
+  EXPECT_EQ(tags.at("RunStop"), std::set<std::string>{"stop"});
+  ASSERT_EQ(notes.name_tagged.size(), 2u);
+  std::map<std::string, std::vector<std::string>> named;
+  for (const auto& n : notes.name_tagged) named[n.clip] = n.tags;
+  EXPECT_EQ(named.at("Walk_Forward_01"), std::vector<std::string>{"walk"});
+  EXPECT_EQ(named.at("RunStop"), (std::vector<std::string>{"run", "stop"}));
+  const std::vector<std::string> warnings = load_warnings(notes);
+  EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(), [](const std::string& w) {
+    return w.find("the library has no run") != std::string::npos && w.find("its name") != std::string::npos;
+  })) << fmt::format("{}", fmt::join(warnings, "\n"));
+
+  // A manifest's name tags a clip, unless it gives tags (none, here) or CMU's index lists the file.
+  const std::string manifest = folder.write(
+      "db.toml", "[[clip]]\nfile = \"take_07.bvh\"\nname = \"slow_walk\"\n[[clip]]\nfile = \"take_07.bvh\"\n"
+                 "name = \"walk_given_none\"\ntags = []\n[[clip]]\nfile = \"16_15.bvh\"\nname = \"run\"\n");
+  auto renamed = load_database({manifest}, settings);
+  ASSERT_TRUE(renamed) << renamed.error().to_string();
+  ASSERT_EQ(renamed->clips.size(), 3u);
+  EXPECT_EQ(tags_of(*renamed, 0), std::set<std::string>{"walk"});
+  EXPECT_TRUE(tags_of(*renamed, 1).empty());
+  EXPECT_EQ(tags_of(*renamed, 2), std::set<std::string>{"jump"});
+
+  settings.name_tags = false;
+  DatabaseLoadNotes off_notes;
+  auto off = load_database({folder.path().string()}, settings, &off_notes);
+  ASSERT_TRUE(off) << off.error().to_string();
+  for (int c = 0; c < static_cast<int>(off->clips.size()); ++c) {
+    EXPECT_EQ(tags_of(*off, c), off->clips[c].name == "16_15" ? std::set<std::string>{"jump"} : std::set<std::string>{})
+        << off->clips[c].name;
+  }
+  EXPECT_TRUE(off_notes.name_tagged.empty());
 }
 
 TEST(DatabaseLoader, CmuTagsOffOrFromText) {
@@ -314,12 +372,12 @@ TEST(DatabaseLoader, AFoldersCopyOfAMotionInOtherBytesIsLeftOut) {
 
 TEST(DatabaseLoader, ClipsNamedLikeCmusGetTagsFromTheShippedIndexWhenNoneIsGiven) {
   // Copies in a folder with no index beside or above it; 16_15 is "walk" in CMU's index,
-  // 16_57 "run/jog, sudden stop"; a clip under another name gets no tags.
+  // 16_57 "run/jog, sudden stop"; a clip under another name, which says no motion, gets no tags.
   TempFolder folder("shipped-index");
   folder.write("16.asf", test::read_data("cmu/16/16.asf"));
   folder.write("16_15.amc", test::read_data("cmu/16/16_15.amc"));
   folder.write("16_57.amc", test::read_data("cmu/16/16_57.amc"));
-  folder.write("my_walk.amc", test::read_data("cmu/16/16_16.amc"));
+  folder.write("take_3.amc", test::read_data("cmu/16/16_16.amc"));
   DatabaseSettings none;
   ASSERT_TRUE(none.cmu_index_path.empty() && none.cmu_index_text.empty());
   auto db = load_database({folder.path().string()}, none);

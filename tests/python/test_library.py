@@ -114,6 +114,24 @@ def test_units_chosen_and_doubts_warned(cli, data, tmp_path):
     assert mg.load_library(folder / "walk.bvh", scale=0.01).summary["reading"]["units"] == []
 
 
+def test_clips_named_for_their_motion_are_tagged_by_their_names(cli, data, tmp_path):
+    """A studio's files, not named like CMU's: tagged by the words of their names, as info says;
+    no_name_tags (--no-name-tags) leaves them untagged."""
+    folder = tmp_path / "studio"
+    folder.mkdir()
+    cli("convert", data / "cmu/16/16_15.amc", "-o", folder / "Walk_Forward.bvh")
+    cli("convert", data / "cmu/16/16_16.amc", "-o", folder / "take_07.bvh")
+    library = mg.load_library(folder)
+    assert library.summary == cli_info(cli, folder)
+    assert library.summary["reading"]["name_tags"] == [{"clip": "Walk_Forward", "tags": ["walk"]}]
+    walk = library.clip_tags("Walk_Forward")
+    assert [tag for tag, _, _ in walk] == ["walk"] and walk[0][2] > len(library["Walk_Forward"]) // 2
+    assert library.clip_tags("take_07") == []
+    plain = mg.load_library(folder, no_name_tags=True)
+    assert plain.summary == cli_info(cli, folder, "--no-name-tags")
+    assert plain.summary["reading"]["name_tags"] == [] and plain.tags == {}
+
+
 def test_feet_named_and_options_refused(cli, data, tmp_path):
     bvh = data / "bvh/16_01.bvh"
     renamed = tmp_path / "pes.bvh"

@@ -26,7 +26,7 @@ const std::array<TagWords, 11> kTagWords = {{
     {"turn", {"turn", "turns", "turning", "spin", "spins", "spinning", "pivot", "pivoting"}},
     {"stop", {"stop", "stops", "stopping", "halt"}},
     {"start", {"start", "starts", "starting"}},
-    {"sidestep", {"sidestep", "sidesteps", "sidestepping", "sideways", "sideway"}},
+    {"sidestep", {"sidestep", "sidesteps", "sidestepping", "sideways", "sideway", "strafe", "strafes", "strafing"}},
     {"backward", {"backward", "backwards"}},
     {"sit", {"sit", "sits", "sitting", "seated"}},
     {"climb", {"climb", "climbs", "climbing"}},
@@ -169,6 +169,8 @@ std::vector<std::string> cmu_description_tags(std::string_view description) {
   }
   return tags;
 }
+
+std::vector<std::string> clip_name_tags(std::string_view name) { return cmu_description_tags(name); }
 
 std::span<const std::string_view> cmu_tag_vocabulary() { return kVocabulary; }
 

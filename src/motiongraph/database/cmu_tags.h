@@ -15,7 +15,7 @@
 //   turn      turn, turns, turning, spin, spins, spinning, pivot, pivoting
 //   stop      stop, stops, stopping, halt
 //   start     start, starts, starting
-//   sidestep  sidestep, sidesteps, sidestepping, sideways, sideway
+//   sidestep  sidestep, sidesteps, sidestepping, sideways, sideway, strafe, strafes, strafing
 //   backward  backward, backwards
 //   sit       sit, sits, sitting, seated
 //   climb     climb, climbs, climbing
@@ -64,6 +64,12 @@ std::optional<std::string> cmu_motion_id(std::string_view clip_name);
 
 // Tags of a description, in vocabulary order, each at most once.
 std::vector<std::string> cmu_description_tags(std::string_view description);
+
+// Tags of a clip's name, read as a description is: a studio's or a user's own library says in
+// its file names what each clip holds ("Walk_Forward_01" -> walk, "run-stop" -> run, stop,
+// "JumpInPlace" -> jump, "take_07" and "16_15" -> none; database_loader.h: for the clips that
+// neither a manifest nor CMU's index tags).
+std::vector<std::string> clip_name_tags(std::string_view name);
 
 // The tag names the keyword mapping can produce, in order.
 std::span<const std::string_view> cmu_tag_vocabulary();

@@ -296,11 +296,12 @@ Status add_tag_range(MotionDatabase& db, const std::string& tag, int first_frame
   return Ok{};
 }
 
-// A clip tagged by its CMU description: the tags it gives.
+// A clip tagged by its CMU description, or by its name: the tags it gives.
 struct DescribedClip {
   size_t spec_index = 0;
   size_t clip = 0;
   std::vector<std::string> tags;
+  bool named = false;  // by its name (clip_name_tags)
 };
 
 // Its tags on the database: walk and run on the frames where its root travels, stop where it
@@ -935,10 +936,18 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
             if (auto s = add_tag_range(db, tag, clip.first_frame + lo, hi - lo + 1, spec); !s) return s.error();
           }
         }
-      } else if (cmu) {
-        // Tagged once the motion is settled (3e): walk and run only where the root travels.
-        if (const CmuMotion* motion_entry = cmu->find(spec.cmu_name)) {
+      } else {
+        // Tagged once the motion is settled (3e): walk and run only where the root travels. CMU's
+        // description wins; a clip it does not list is tagged by its name's words and its file's.
+        const CmuMotion* motion_entry = cmu ? cmu->find(spec.cmu_name) : nullptr;
+        if (motion_entry != nullptr) {
           described.push_back({spec_index, db.clips.size(), cmu_description_tags(motion_entry->description)});
+        } else if (settings.name_tags) {
+          auto tags = clip_name_tags(spec.name == spec.cmu_name ? spec.name : spec.name + " " + spec.cmu_name);
+          if (!tags.empty()) {
+            if (notes != nullptr) notes->name_tagged.push_back({clip.name, tags});
+            described.push_back({spec_index, db.clips.size(), std::move(tags), true});
+          }
         }
       }
       db.clips.push_back(std::move(clip));
@@ -1091,7 +1100,8 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
   // 3d. Rest poses, with the joints settled (after 3c, which reads everything again when it must).
   rest_as_first(db, notes);
 
-  // 3e. The tags of CMU's descriptions, in clip order: walk and run where the root travels.
+  // 3e. The tags of CMU's descriptions and of clip names, in clip order: walk and run where the
+  // root travels.
   for (const DescribedClip& d : described) {
     if (auto s = tag_described_clip(db, d, specs[d.spec_index], settings.travel_tags, notes); !s) return s.error();
   }
@@ -1210,8 +1220,8 @@ std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes) {
     lines.push_back(fmt::format("{}: {}", rig.file, fmt::join(parts, "; ")));
   }
   for (const auto& v : notes.vanished_tags) {
-    lines.push_back(fmt::format("the library has no {0}: every clip CMU's descriptions call {0} stands where it is "
-                                "({1}{2}; under {3} m/s over a second); --whole-clip-tags keeps their {0}",
+    lines.push_back(fmt::format("the library has no {0}: every clip CMU's descriptions or its name call {0} stands "
+                                "where it is ({1}{2}; under {3} m/s over a second); --whole-clip-tags keeps their {0}",
                                 v.tag, v.clips.front(),
                                 v.clips.size() > 1 ? fmt::format(" and {} more", v.clips.size() - 1) : "",
                                 notes.standing_speed_mps));

@@ -21,7 +21,9 @@
 // Tags: a manifest clip that mentions tags (tags = [...] or ranges) gets exactly those; any
 // other clip, when settings.cmu_tags is on, gets the tags of its CMU description
 // (cmu_tags.h), looked up by its file's stem ("16_15"; also when a manifest renames the
-// clip), for all its frames, but walk and run only where its root travels (travel_tags.h;
+// clip), and one CMU's index does not list, when settings.name_tags is on, those of the words of
+// its name and its file's stem (clip_name_tags: "Walk_Forward_01" -> walk); for all its
+// frames, but walk and run only where its root travels and stop where it halts (travel_tags.h;
 // settings.travel_tags).
 //
 // Errors: a missing input or clip file, a clip file that cannot be read (but for a folder's,
@@ -84,8 +86,11 @@ struct DatabaseSettings {
   std::string cmu_index_text;
   std::string cmu_index_path;
   bool cmu_index_beside_inputs = true;
-  // Walk and run from a description only on the frames where the root travels (min_speed_mps
-  // 0: on the whole clip).
+  // Tags from the words of clip names (cmu_tags.h clip_name_tags) for clips a manifest gives no
+  // tags and CMU's index does not list: a studio's "Walk_Forward_01.bvh" walks.
+  bool name_tags = true;
+  // Walk and run from a description or a name only on the frames where the root travels
+  // (min_speed_mps 0: on the whole clip).
   TravelTagSettings travel_tags;
 
   // Clips that loop (motion/loop.h: a game's cycle, its end meeting its start) go on past their
@@ -220,6 +225,13 @@ struct DatabaseLoadNotes {
     int frames = 0;         // the clip's
   };
   std::vector<StandingTag> standing_tags;
+  // Clips tagged by the words of their names (DatabaseSettings::name_tags), in clip order, with
+  // the tags their names gave (before the travel rule).
+  struct NameTagged {
+    std::string clip;
+    std::vector<std::string> tags;
+  };
+  std::vector<NameTagged> name_tagged;
   double standing_speed_mps = 0.0;  // the speed under which they were left off
   // Tags a description gave that no frame keeps (every clip it named stands: CMU 14's "jog" on
   // the spot), with the clips that asked for them: the library has none of them.

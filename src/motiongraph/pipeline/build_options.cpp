@@ -84,6 +84,7 @@ Result<BuildSettings> build_settings_from(const BuildOptions& o) {
   db.input_fps = o.input_fps;
   db.keep_rest_frames = o.keep_rest_frames;
   db.cmu_tags = !o.no_cmu_tags;
+  db.name_tags = !o.no_name_tags;
   if (o.whole_clip_tags) db.travel_tags.min_speed_mps = 0.0;
   db.loops = !o.no_loops;
   // A loop goes on past its end as far as a transition's window reaches, and a frame.

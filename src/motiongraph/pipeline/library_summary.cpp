@@ -118,6 +118,8 @@ nlohmann::json reading_json(const DatabaseLoadNotes& notes) {
   for (const auto& t : notes.standing_tags) {
     standing.push_back({{"clip", t.clip}, {"tag", t.tag}, {"tagged_frames", t.tagged_frames}, {"frames", t.frames}});
   }
+  nlohmann::json named = nlohmann::json::array();
+  for (const auto& n : notes.name_tagged) named.push_back({{"clip", n.clip}, {"tags", n.tags}});
   nlohmann::json poses = nlohmann::json::array();
   for (const auto& p : notes.poses) poses.push_back({{"file", p.file}, {"frames", p.frames}, {"fps", p.fps}});
   nlohmann::json unreadable = nlohmann::json::array();
@@ -137,7 +139,8 @@ nlohmann::json reading_json(const DatabaseLoadNotes& notes) {
           {"poses_passed_over", std::move(poses)},
           {"unreadable_passed_over", std::move(unreadable)},
           {"loops", std::move(loops)},
-          {"standing_tags", std::move(standing)}};
+          {"standing_tags", std::move(standing)},
+          {"name_tags", std::move(named)}};
 }
 
 }  // namespace
