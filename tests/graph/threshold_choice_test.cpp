@@ -4,6 +4,7 @@
 // the lowest threshold that makes a graph makes one.
 #include "motiongraph/graph/threshold_choice.h"
 
+#include <fmt/ranges.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -13,6 +14,8 @@
 #include <vector>
 
 #include "motiongraph/metric/reference_distance.h"
+#include "motiongraph/database/database_loader.h"
+#include "temp_folder.h"
 #include "test_data.h"
 
 namespace mg {
@@ -64,20 +67,27 @@ struct Fixture {
   GraphFromCandidatesSettings settings;
 };
 
+// `db`'s features and candidates, its walk and run (tags 0 and 1) connected.
+Fixture fixture_of(MotionDatabase db) {
+  Fixture f;
+  f.db = std::move(db);
+  DistanceSettings distance;
+  distance.threads = 2;
+  auto layout = make_cloud_layout(f.db.skeletons[0], {});
+  f.features = *make_frame_features(f.db, *layout, distance);
+  f.search = *find_candidates(f.features, distance, {});
+  f.settings.connected_tags = 0b11;
+  return f;
+}
+
 const Fixture& fixture() {
   static const Fixture x = [] {
-    Fixture f;
-    f.db = test::small_database({"cmu/16/16_15.amc", "cmu/16/16_16.amc", "cmu/16/16_35.amc", "cmu/16/16_37.amc"});
-    f.db.tag_names = {"walk", "run"};
-    f.db.tag_ranges = {TagRange{0, 0, f.db.clips[2].first_frame},
-                       TagRange{1, f.db.clips[2].first_frame, f.db.frame_count() - f.db.clips[2].first_frame}};
-    DistanceSettings distance;
-    distance.threads = 2;
-    auto layout = make_cloud_layout(f.db.skeletons[0], {});
-    f.features = *make_frame_features(f.db, *layout, distance);
-    f.search = *find_candidates(f.features, distance, {});
-    f.settings.connected_tags = 0b11;
-    return f;
+    MotionDatabase db =
+        test::small_database({"cmu/16/16_15.amc", "cmu/16/16_16.amc", "cmu/16/16_35.amc", "cmu/16/16_37.amc"});
+    db.tag_names = {"walk", "run"};
+    db.tag_ranges = {TagRange{0, 0, db.clips[2].first_frame},
+                     TagRange{1, db.clips[2].first_frame, db.frame_count() - db.clips[2].first_frame}};
+    return fixture_of(std::move(db));
   }();
   return x;
 }
@@ -528,6 +538,50 @@ TEST(ThresholdChoice, SettingsJsonRoundTripAndMissingKeysKeepDefaults) {
   EXPECT_EQ(json.at("coverage_target"), 0.55);  // the report's name for it
   const auto defaults = nlohmann::json::object().get<ThresholdChoiceSettings>();
   EXPECT_EQ(nlohmann::json(defaults), nlohmann::json(ThresholdChoiceSettings{}));
+}
+
+// Walks and runs, typed, and a copy of the first walk raised 6 cm, of no type: the copy joins the
+// graph only through windows into the walks (its own, the walk's shape, lead nowhere else), which
+// pass the lower of the two classes' thresholds, about 6 cm. As a fifth of the frames it wants
+// nothing (kMinorUntaggedShare), and walking keeps its own low threshold; as over a quarter
+// (without the third walk), every type rises to take it in, as before.
+TEST(ThresholdChoice, AMinorClassOfNoTypeThatJoinsOnlyThroughRaisedTypesIsLeftOut) {
+  struct Case {
+    std::vector<std::string> walks;
+    bool left;
+  };
+  for (const Case& c : {Case{{"cmu/16/16_15.amc", "cmu/16/16_16.amc", "cmu/16/16_17.amc"}, true},
+                        Case{{"cmu/16/16_15.amc", "cmu/16/16_16.amc"}, false}}) {
+    std::vector<std::string> files = c.walks;
+    files.insert(files.end(), {"cmu/16/16_35.amc", "cmu/16/16_37.amc"});
+    MotionDatabase db = test::small_database(files, true, 0.0, Vec3(0.0, 0.06, 0.0));
+    const int runs = db.clips[c.walks.size()].first_frame;
+    const int copy = db.clips.back().first_frame;
+    db.tag_names = {"walk", "run"};
+    db.tag_ranges = {TagRange{0, 0, runs}, TagRange{1, runs, copy - runs}};
+    const double share = static_cast<double>(db.frame_count() - copy) / db.frame_count();
+    ASSERT_EQ(share <= kMinorUntaggedShare, c.left) << share;
+    const Fixture x = fixture_of(std::move(db));
+    auto chosen = choose_threshold(x.db, x.features, x.search, x.settings, ThresholdChoiceSettings{});
+    ASSERT_TRUE(chosen) << chosen.error().to_string();
+    ASSERT_TRUE(chosen->reached);
+    ASSERT_EQ(chosen->tags, (std::vector<int>{0, 1, kUntaggedClass}));
+    EXPECT_EQ(chosen->untagged_left, c.left) << share;
+    const CoveragePoint& point = chosen->chosen();
+    const double walk_cm = rms_cm_of_distance(chosen->tag_thresholds[0], x.features);
+    if (c.left) {
+      EXPECT_EQ(chosen->targets[2], 0.0);
+      EXPECT_LT(point.tag_coverage[2], 0.1);
+      EXPECT_LT(walk_cm, 3.0);
+      // Followed as a type the ceiling gives nothing: the global threshold.
+      EXPECT_EQ(chosen->tag_thresholds[2], chosen->threshold);
+    } else {
+      EXPECT_GE(point.tag_coverage[2], chosen->targets[2]);
+      EXPECT_GT(chosen->targets[2], 0.5);
+      EXPECT_GT(walk_cm, 4.0);
+    }
+    EXPECT_GE(point.tag_coverage[0], chosen->targets[0]);
+  }
 }
 
 }  // namespace

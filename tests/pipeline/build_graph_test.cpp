@@ -15,6 +15,8 @@
 #include "motiongraph/evaluation/graph_rebuild.h"
 #include "motiongraph/graph/graph_from_candidates.h"
 #include "motiongraph/graph/on_demand_candidates.h"
+#include "motiongraph/export/bvh_writer.h"
+#include "temp_folder.h"
 #include "test_data.h"
 
 namespace mg {
@@ -261,6 +263,37 @@ TEST(BuildGraph, ABridgeCapLeavesPairsUnjoinedAndSaysWhatWouldJoinThem) {
 
   settings.max_bridge_rms_cm = -1.0;
   EXPECT_FALSE(settings.validate());
+}
+
+// Walks and runs, and a clip of no motion type: the first walk raised 6 cm, which joins the graph
+// only where walking's threshold rises to it (ThresholdChoice's own test). It is a fifth of the
+// frames: the thresholds do not rise for it, and the warning names it and says how to give it a
+// type; the report says it was left out of the search.
+TEST(BuildGraph, AMinorClipOfNoTypeLeftOutIsNamedWithHowToTagIt) {
+  test::TempFolder folder("minor-untagged");
+  Clip raised = test::load_data_clip("cmu/16/16_15.amc");
+  const int slot = raised.skeleton.translation_slot(0);
+  for (int f = 0; f < raised.motion.frame_count; ++f) raised.motion.translations(f)[slot].y() += 0.06;
+  folder.write("take_07.bvh", write_bvh(raised.skeleton, raised.motion, BvhWriteSettings{}));
+  std::string manifest = fmt::format("skeleton = \"{}/16.asf\"\n", test::data_path("cmu/16"));
+  for (const char* walk : {"16_15", "16_16", "16_17"}) {
+    manifest += fmt::format("[[clip]]\nfile = \"{}/{}.amc\"\ntags = [\"walk\"]\n", test::data_path("cmu/16"), walk);
+  }
+  for (const char* run : {"16_35", "16_37"}) {
+    manifest += fmt::format("[[clip]]\nfile = \"{}/{}.amc\"\ntags = [\"run\"]\n", test::data_path("cmu/16"), run);
+  }
+  manifest += "[[clip]]\nfile = \"take_07.bvh\"\n";
+  const std::vector<std::string> inputs = {folder.write("db.toml", manifest)};
+  auto built = build_graph(inputs, BuildSettings{});
+  ASSERT_TRUE(built) << built.error().to_string();
+  ASSERT_TRUE(built->graph_status) << built->graph_status.error().to_string();
+  EXPECT_TRUE(built->report.at("threshold_choice").at("untagged_left").get<bool>());
+  const auto& warnings = built->report.at("warnings");
+  EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(), [](const nlohmann::json& w) {
+    const std::string text = w.get<std::string>();
+    return text.starts_with("1 clip of no motion type (take_07; ") &&
+           text.find("a name that says its motion (walk_07.bvh)") != std::string::npos;
+  })) << warnings.dump(1);
 }
 
 TEST(BuildGraph, TheCacheIsUsedAndChangesNothing) {

@@ -228,6 +228,23 @@ Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFe
     }
     return true;
   };
+  // Whether p reaches every target but i's.
+  auto reaches_but = [&](const CoveragePoint& p, size_t i) {
+    if (!p.graph || rate(p) < out.target_rate) return false;
+    for (size_t j = 0; j < out.tags.size(); ++j) {
+      if (j != i && tag_short(p, j)) return false;
+    }
+    return true;
+  };
+  // The untagged class, when it takes part and holds at most kMinorUntaggedShare of the frames.
+  int minor_untagged = -1;
+  if (per_type && out.tags.back() == kUntaggedClass && takes_part[n - 1]) {
+    const std::vector<char> in_class = untagged_class_frames(db, settings.connected_tags);
+    const auto frames = std::count(in_class.begin(), in_class.end(), 1);
+    if (static_cast<double>(frames) <= kMinorUntaggedShare * static_cast<double>(db.frame_count())) {
+      minor_untagged = static_cast<int>(n - 1);
+    }
+  }
   // Whether threshold i is short at p: its own type's coverage, per type; the whole target else.
   auto short_at = [&](const CoveragePoint& p, size_t i) { return per_type ? tag_short(p, i) : !reaches(p); };
 
@@ -277,7 +294,20 @@ Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFe
     if (n > 1) {
       auto point = evaluate(levels);
       if (!point) return point.error();
-      if (!reaches(*point)) {
+      bool reached = reaches(*point);
+      if (!reached && minor_untagged >= 0 && reaches_but(*point, static_cast<size_t>(minor_untagged))) {
+        // Clips of no type, a minor share of the library, that join it only with the types' own
+        // thresholds raised: left to what the types' thresholds give them.
+        const auto u = static_cast<size_t>(minor_untagged);
+        out.targets[u] = 0.0;
+        takes_part[u] = false;
+        below[u] = -1.0;
+        out.untagged_left = true;
+        auto without = evaluate(levels);
+        if (!without) return without.error();
+        reached = reaches(*without);
+      }
+      if (!reached) {
         for (size_t i = 0; i < n; ++i) {
           if (levels[i] < ceiling) below[i] = levels[i], levels[i] = ceiling;
         }

@@ -58,6 +58,30 @@ std::string short_tags_text(const ThresholdChoice& choice, const MotionDatabase&
   return parts.empty() ? std::string() : ": " + fmt::format("{}", fmt::join(parts, ", "));
 }
 
+// The warning for the clips of no motion type that the threshold choice left out of its search
+// (ThresholdChoice::untagged_left): which they are, and how to make them a type's.
+std::string untagged_left_text(const MotionDatabase& db, TagMask connected, double at_ceiling, double kept) {
+  const std::vector<char> in_class = untagged_class_frames(db, connected);
+  std::vector<std::string> clips;
+  long long frames = 0;
+  for (const DatabaseClip& clip : db.clips) {
+    if (clip.frame_count > 0 && in_class[static_cast<size_t>(clip.first_frame)] != 0) {
+      clips.push_back(clip.name);
+      frames += clip.frame_count;
+    }
+  }
+  const bool one = clips.size() == 1;
+  return fmt::format("{} of no motion type ({}{}; {:.0f} % of the frames) {} the graph only where the types' "
+                     "thresholds rise to let {} in (the ceiling keeps {:.0f} %); they do not rise for {}, and the "
+                     "graph keeps {:.0f} %: tags in a manifest, or {} that {} {} motion (walk_07.bvh), make {} a "
+                     "type's",
+                     counted(static_cast<long long>(clips.size()), "clip"), clips.empty() ? "" : clips.front(),
+                     clips.size() > 1 ? fmt::format(" and {} more", clips.size() - 1) : "",
+                     100.0 * static_cast<double>(frames) / std::max(1, db.frame_count()), one ? "joins" : "join",
+                     one ? "it" : "them", 100.0 * at_ceiling, one ? "it" : "them", 100.0 * kept,
+                     one ? "a name" : "names", one ? "says" : "say", one ? "its" : "their", one ? "it" : "them");
+}
+
 // The log's two voices, silent where the caller gave none; the warnings are also kept for the
 // report's "warnings".
 struct Say {
@@ -263,7 +287,9 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
       } else {
         kept.push_back(fmt::format("{} {:.0f} % (the ceiling keeps {:.0f} %: not chased)", name,
                                    100.0 * chosen.tag_coverage[i], 100.0 * top));
-        if (choice->tags[i] != kUntaggedClass) {
+        if (choice->tags[i] == kUntaggedClass && choice->untagged_left) {
+          say.warning(untagged_left_text(db, graph_settings.connected_tags, top, chosen.tag_coverage[i]));
+        } else if (choice->tags[i] != kUntaggedClass) {
           say.warning(fmt::format("motion type '{}': even the ceiling (--max-threshold {:g} cm) keeps only {:.0f} % of "
                                   "its frames, under {:.0f} %, so the threshold does not rise for it; the graph keeps "
                                   "{:.0f} %",
