@@ -195,7 +195,9 @@ void report_units(const DatabaseLoadNotes& notes, bool quiet) {
     for (const auto& named : notes.name_tagged) {
       for (const std::string& tag : named.tags) {
         if (!of_tag.contains(tag)) tags.push_back(tag);
-        of_tag[tag].push_back(named.clip);
+        of_tag[tag].push_back(named.source == "name"
+                                  ? named.clip
+                                  : fmt::format("{} by its {} {}", named.clip, named.source, named.words));
       }
     }
     std::vector<std::string> parts;
@@ -205,7 +207,8 @@ void report_units(const DatabaseLoadNotes& notes, bool quiet) {
                                   clips.front(),
                                   clips.size() > 1 ? fmt::format(" and {} more", clips.size() - 1) : ""));
     }
-    spdlog::info("tags from clip names: {} (--no-name-tags turns them off; a manifest's tags = [...] sets a clip's)",
+    spdlog::info("tags from clip names (or their folders'): {} (--no-name-tags turns them off; a manifest's tags = "
+                 "[...] sets a clip's)",
                  fmt::join(parts, ", "));
   }
   if (!notes.standing_tags.empty() && !quiet) {

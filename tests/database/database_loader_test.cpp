@@ -149,8 +149,9 @@ TEST(DatabaseLoader, StopsWhenAsked) {
 
 // A library of a studio's own files, named for what they hold: each clip not in CMU's index is
 // tagged by the words of its name, walk only where its root travels; a name without such words
-// (a take) is left untagged, and CMU's description wins over a manifest's name for a clip it
-// lists. The notes say which clips their names tagged; name_tags off, none is.
+// is tagged by its folder's (below the one given), and a take with neither is left untagged;
+// CMU's description wins over a manifest's name for a clip it lists, and a manifest's name over
+// its file's. The notes say which clips were tagged so, and by what words; name_tags off, none is.
 TEST(DatabaseLoader, ClipsAreTaggedByTheWordsOfTheirNames) {
   const auto bvh = [](const Clip& clip) { return write_bvh(clip.skeleton, clip.motion, BvhWriteSettings{}); };
   const Clip walk = test::load_data_clip("cmu/16/16_15.amc");
@@ -159,6 +160,7 @@ TEST(DatabaseLoader, ClipsAreTaggedByTheWordsOfTheirNames) {
   folder.write("locomotion/RunStop.bvh", bvh(test::held_pose(walk, 0, 60)));
   folder.write("take_07.bvh", bvh(test::load_data_clip("cmu/16/16_16.amc")));
   folder.write("16_15.bvh", bvh(test::load_data_clip("cmu/16/16_11.amc")));
+  folder.write("walking/w01.bvh", bvh(test::load_data_clip("cmu/16/16_13.amc")));
   DatabaseSettings settings;
   settings.cmu_index_text = "16_15\tjump\n";
   DatabaseLoadNotes notes;
@@ -166,32 +168,46 @@ TEST(DatabaseLoader, ClipsAreTaggedByTheWordsOfTheirNames) {
   ASSERT_TRUE(db) << db.error().to_string();
   std::map<std::string, std::set<std::string>> tags;
   for (int c = 0; c < static_cast<int>(db->clips.size()); ++c) tags[db->clips[c].name] = tags_of(*db, c);
-  ASSERT_EQ(tags.size(), 4u) << fmt::format("{}", fmt::join(load_warnings(notes), "\n"));
+  ASSERT_EQ(tags.size(), 5u) << fmt::format("{}", fmt::join(load_warnings(notes), "\n"));
   EXPECT_EQ(tags.at("Walk_Forward_01"), std::set<std::string>{"walk"});
   EXPECT_EQ(tags.at("16_15"), std::set<std::string>{"jump"});  // the index's description
   EXPECT_TRUE(tags.at("take_07").empty());
+  EXPECT_EQ(tags.at("w01"), std::set<std::string>{"walk"});
   // The pose held still never runs; it stops throughout.
   EXPECT_EQ(tags.at("RunStop"), std::set<std::string>{"stop"});
-  ASSERT_EQ(notes.name_tagged.size(), 2u);
-  std::map<std::string, std::vector<std::string>> named;
-  for (const auto& n : notes.name_tagged) named[n.clip] = n.tags;
-  EXPECT_EQ(named.at("Walk_Forward_01"), std::vector<std::string>{"walk"});
-  EXPECT_EQ(named.at("RunStop"), (std::vector<std::string>{"run", "stop"}));
+  ASSERT_EQ(notes.name_tagged.size(), 3u);
+  std::map<std::string, DatabaseLoadNotes::NameTagged> named;
+  for (const auto& n : notes.name_tagged) named[n.clip] = n;
+  EXPECT_EQ(named.at("Walk_Forward_01").tags, std::vector<std::string>{"walk"});
+  EXPECT_EQ(named.at("Walk_Forward_01").source, "name");
+  EXPECT_EQ(named.at("RunStop").tags, (std::vector<std::string>{"run", "stop"}));
+  EXPECT_EQ(named.at("w01").tags, std::vector<std::string>{"walk"});
+  EXPECT_EQ(named.at("w01").source, "folder");
+  EXPECT_EQ(named.at("w01").words, "walking");
   const std::vector<std::string> warnings = load_warnings(notes);
   EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(), [](const std::string& w) {
     return w.find("the library has no run") != std::string::npos && w.find("its name") != std::string::npos;
   })) << fmt::format("{}", fmt::join(warnings, "\n"));
 
-  // A manifest's name tags a clip, unless it gives tags (none, here) or CMU's index lists the file.
+  // A manifest's name tags a clip, unless it gives tags (none, here) or CMU's index lists the file;
+  // where it says nothing, the file's name does.
   const std::string manifest = folder.write(
       "db.toml", "[[clip]]\nfile = \"take_07.bvh\"\nname = \"slow_walk\"\n[[clip]]\nfile = \"take_07.bvh\"\n"
-                 "name = \"walk_given_none\"\ntags = []\n[[clip]]\nfile = \"16_15.bvh\"\nname = \"run\"\n");
-  auto renamed = load_database({manifest}, settings);
+                 "name = \"walk_given_none\"\ntags = []\n[[clip]]\nfile = \"16_15.bvh\"\nname = \"run\"\n"
+                 "[[clip]]\nfile = \"Walk_Forward_01.bvh\"\nname = \"Run_Fast\"\n"
+                 "[[clip]]\nfile = \"Walk_Forward_01.bvh\"\nname = \"hero\"\n");
+  DatabaseLoadNotes renamed_notes;
+  auto renamed = load_database({manifest}, settings, &renamed_notes);
   ASSERT_TRUE(renamed) << renamed.error().to_string();
-  ASSERT_EQ(renamed->clips.size(), 3u);
+  ASSERT_EQ(renamed->clips.size(), 5u);
   EXPECT_EQ(tags_of(*renamed, 0), std::set<std::string>{"walk"});
   EXPECT_TRUE(tags_of(*renamed, 1).empty());
   EXPECT_EQ(tags_of(*renamed, 2), std::set<std::string>{"jump"});
+  EXPECT_EQ(tags_of(*renamed, 3), std::set<std::string>{"run"});
+  EXPECT_EQ(tags_of(*renamed, 4), std::set<std::string>{"walk"});
+  ASSERT_EQ(renamed_notes.name_tagged.size(), 3u);
+  EXPECT_EQ(renamed_notes.name_tagged[2].source, "file");
+  EXPECT_EQ(renamed_notes.name_tagged[2].words, "Walk_Forward_01");
 
   settings.name_tags = false;
   DatabaseLoadNotes off_notes;

@@ -123,7 +123,8 @@ def test_clips_named_for_their_motion_are_tagged_by_their_names(cli, data, tmp_p
     cli("convert", data / "cmu/16/16_16.amc", "-o", folder / "take_07.bvh")
     library = mg.load_library(folder)
     assert library.summary == cli_info(cli, folder)
-    assert library.summary["reading"]["name_tags"] == [{"clip": "Walk_Forward", "tags": ["walk"]}]
+    assert library.summary["reading"]["name_tags"] == [
+        {"clip": "Walk_Forward", "tags": ["walk"], "source": "name", "words": "Walk_Forward"}]
     walk = library.clip_tags("Walk_Forward")
     assert [tag for tag, _, _ in walk] == ["walk"] and walk[0][2] > len(library["Walk_Forward"]) // 2
     assert library.clip_tags("take_07") == []

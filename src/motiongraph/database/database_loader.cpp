@@ -56,6 +56,7 @@ struct ClipSpec {
   std::vector<ManifestRange> ranges;
   std::string manifest;            // empty when the clip was not named by a manifest
   bool in_folder = false;          // found in a folder given (not named itself): left out when its rig cannot join
+  std::string folder;              // its folder below the one given ('/' between; "" at its top)
   int line = 0;                    // of its [[clip]]
   int frames_line = 0;
 
@@ -146,6 +147,7 @@ Status expand_folder(const std::string& input, const DatabaseSettings& settings,
       for (size_t i = first; i < specs.size(); ++i) {
         specs[i].name = clip.name + specs[i].name.substr(stem.size());
         specs[i].in_folder = true;
+        specs[i].folder = folder.relative;
       }
     }
   }
@@ -943,10 +945,16 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
         if (motion_entry != nullptr) {
           described.push_back({spec_index, db.clips.size(), cmu_description_tags(motion_entry->description)});
         } else if (settings.name_tags) {
-          auto tags = clip_name_tags(spec.name == spec.cmu_name ? spec.name : spec.name + " " + spec.cmu_name);
-          if (!tags.empty()) {
-            if (notes != nullptr) notes->name_tagged.push_back({clip.name, tags});
+          // The clip's name; where it says nothing, its file's (a manifest's name for it), then its
+          // folder's below the one given ("walk/w01").
+          const std::pair<const char*, const std::string*> sources[] = {
+              {"name", &spec.name}, {"file", &spec.cmu_name}, {"folder", &spec.folder}};
+          for (const auto& [source, text] : sources) {
+            auto tags = clip_name_tags(*text);
+            if (tags.empty()) continue;
+            if (notes != nullptr) notes->name_tagged.push_back({clip.name, tags, source, *text});
             described.push_back({spec_index, db.clips.size(), std::move(tags), true});
+            break;
           }
         }
       }

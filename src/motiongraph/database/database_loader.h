@@ -22,7 +22,9 @@
 // other clip, when settings.cmu_tags is on, gets the tags of its CMU description
 // (cmu_tags.h), looked up by its file's stem ("16_15"; also when a manifest renames the
 // clip), and one CMU's index does not list, when settings.name_tags is on, those of the words of
-// its name and its file's stem (clip_name_tags: "Walk_Forward_01" -> walk); for all its
+// its name (clip_name_tags: "Walk_Forward_01" -> walk), or where it gives none, of its file's
+// stem (a manifest naming it "hero") or, then, of its folder below the folder given
+// ("locomotion/run/r01" -> run); for all its
 // frames, but walk and run only where its root travels and stop where it halts (travel_tags.h;
 // settings.travel_tags).
 //
@@ -86,8 +88,9 @@ struct DatabaseSettings {
   std::string cmu_index_text;
   std::string cmu_index_path;
   bool cmu_index_beside_inputs = true;
-  // Tags from the words of clip names (cmu_tags.h clip_name_tags) for clips a manifest gives no
-  // tags and CMU's index does not list: a studio's "Walk_Forward_01.bvh" walks.
+  // Tags from the words of clip names (cmu_tags.h clip_name_tags), or of their folders' below the
+  // one given, for clips a manifest gives no tags and CMU's index does not list: a studio's
+  // "Walk_Forward_01.bvh" walks, and so does its "walk/w01.bvh".
   bool name_tags = true;
   // Walk and run from a description or a name only on the frames where the root travels
   // (min_speed_mps 0: on the whole clip).
@@ -226,10 +229,13 @@ struct DatabaseLoadNotes {
   };
   std::vector<StandingTag> standing_tags;
   // Clips tagged by the words of their names (DatabaseSettings::name_tags), in clip order, with
-  // the tags their names gave (before the travel rule).
+  // the tags the words gave (before the travel rule) and whose words they were.
   struct NameTagged {
     std::string clip;
     std::vector<std::string> tags;
+    std::string source;  // "name" (the clip's), "file" (its file's stem, or animation, a manifest
+                         // naming it otherwise) or "folder" (below the one given)
+    std::string words;   // the name, stem or folder that gave them
   };
   std::vector<NameTagged> name_tagged;
   double standing_speed_mps = 0.0;  // the speed under which they were left off

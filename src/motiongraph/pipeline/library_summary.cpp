@@ -119,7 +119,9 @@ nlohmann::json reading_json(const DatabaseLoadNotes& notes) {
     standing.push_back({{"clip", t.clip}, {"tag", t.tag}, {"tagged_frames", t.tagged_frames}, {"frames", t.frames}});
   }
   nlohmann::json named = nlohmann::json::array();
-  for (const auto& n : notes.name_tagged) named.push_back({{"clip", n.clip}, {"tags", n.tags}});
+  for (const auto& n : notes.name_tagged) {
+    named.push_back({{"clip", n.clip}, {"tags", n.tags}, {"source", n.source}, {"words", n.words}});
+  }
   nlohmann::json poses = nlohmann::json::array();
   for (const auto& p : notes.poses) poses.push_back({{"file", p.file}, {"frames", p.frames}, {"fps", p.fps}});
   nlohmann::json unreadable = nlohmann::json::array();
