@@ -267,9 +267,9 @@ TEST(BuildGraph, ABridgeCapLeavesPairsUnjoinedAndSaysWhatWouldJoinThem) {
 
 // Walks and runs, and a clip of no motion type: the first walk raised 6 cm, which joins the graph
 // only where walking's threshold rises to it (ThresholdChoice's own test). It is a fifth of the
-// frames: the thresholds do not rise for it, and the warning names it and says how to give it a
-// type; the report says it was left out of the search.
-TEST(BuildGraph, AMinorClipOfNoTypeLeftOutIsNamedWithHowToTagIt) {
+// frames: the warning names it as holding the types up and says how to give it a type, and the
+// report says so.
+TEST(BuildGraph, AMinorClipOfNoTypeHoldingTheTypesUpIsNamedWithHowToTagIt) {
   test::TempFolder folder("minor-untagged");
   Clip raised = test::load_data_clip("cmu/16/16_15.amc");
   const int slot = raised.skeleton.translation_slot(0);
@@ -287,12 +287,13 @@ TEST(BuildGraph, AMinorClipOfNoTypeLeftOutIsNamedWithHowToTagIt) {
   auto built = build_graph(inputs, BuildSettings{});
   ASSERT_TRUE(built) << built.error().to_string();
   ASSERT_TRUE(built->graph_status) << built->graph_status.error().to_string();
-  EXPECT_TRUE(built->report.at("threshold_choice").at("untagged_left").get<bool>());
+  EXPECT_TRUE(built->report.at("threshold_choice").at("untagged_holds").get<bool>());
   const auto& warnings = built->report.at("warnings");
   EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(), [](const nlohmann::json& w) {
     const std::string text = w.get<std::string>();
     return text.starts_with("1 clip of no motion type (take_07; ") &&
-           text.find("a name that says its motion (walk_07.bvh)") != std::string::npos;
+           text.find("holds them there") != std::string::npos &&
+           text.find("a name that says its motion (walk_07.bvh), would let them fall") != std::string::npos;
   })) << warnings.dump(1);
 }
 

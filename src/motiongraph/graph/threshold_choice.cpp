@@ -236,7 +236,8 @@ Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFe
     }
     return true;
   };
-  // The untagged class, when it takes part and holds at most kMinorUntaggedShare of the frames.
+  // The untagged class, when it takes part and holds at most kMinorUntaggedShare of the frames
+  // (ThresholdChoice::untagged_holds).
   int minor_untagged = -1;
   if (per_type && out.tags.back() == kUntaggedClass && takes_part[n - 1]) {
     const std::vector<char> in_class = untagged_class_frames(db, settings.connected_tags);
@@ -294,20 +295,10 @@ Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFe
     if (n > 1) {
       auto point = evaluate(levels);
       if (!point) return point.error();
-      bool reached = reaches(*point);
-      if (!reached && minor_untagged >= 0 && reaches_but(*point, static_cast<size_t>(minor_untagged))) {
+      if (!reaches(*point)) {
         // Clips of no type, a minor share of the library, that join it only with the types' own
-        // thresholds raised: left to what the types' thresholds give them.
-        const auto u = static_cast<size_t>(minor_untagged);
-        out.targets[u] = 0.0;
-        takes_part[u] = false;
-        below[u] = -1.0;
-        out.untagged_left = true;
-        auto without = evaluate(levels);
-        if (!without) return without.error();
-        reached = reaches(*without);
-      }
-      if (!reached) {
+        // thresholds raised: said, for the user to give them a type.
+        out.untagged_holds = minor_untagged >= 0 && reaches_but(*point, static_cast<size_t>(minor_untagged));
         for (size_t i = 0; i < n; ++i) {
           if (levels[i] < ceiling) below[i] = levels[i], levels[i] = ceiling;
         }

@@ -58,9 +58,9 @@ std::string short_tags_text(const ThresholdChoice& choice, const MotionDatabase&
   return parts.empty() ? std::string() : ": " + fmt::format("{}", fmt::join(parts, ", "));
 }
 
-// The warning for the clips of no motion type that the threshold choice left out of its search
-// (ThresholdChoice::untagged_left): which they are, and how to make them a type's.
-std::string untagged_left_text(const MotionDatabase& db, TagMask connected, double at_ceiling, double kept) {
+// The warning for the clips of no motion type that hold every type's threshold up
+// (ThresholdChoice::untagged_holds): which they are, and how to make them a type's.
+std::string untagged_holds_text(const MotionDatabase& db, TagMask connected, double rest_rms_cm) {
   const std::vector<char> in_class = untagged_class_frames(db, connected);
   std::vector<std::string> clips;
   long long frames = 0;
@@ -71,15 +71,14 @@ std::string untagged_left_text(const MotionDatabase& db, TagMask connected, doub
     }
   }
   const bool one = clips.size() == 1;
-  return fmt::format("{} of no motion type ({}{}; {:.0f} % of the frames) {} the graph only where the types' "
-                     "thresholds rise to let {} in (the ceiling keeps {:.0f} %); they do not rise for {}, and the "
-                     "graph keeps {:.0f} %: tags in a manifest, or {} that {} {} motion (walk_07.bvh), make {} a "
-                     "type's",
+  return fmt::format("{} of no motion type ({}{}; {:.0f} % of the frames) {} the graph only where every type's "
+                     "threshold rises to let {} in, and {} them there (RMS {:.2f} cm for the rest): tags in a "
+                     "manifest, or {} that {} {} motion (walk_07.bvh), would let them fall",
                      counted(static_cast<long long>(clips.size()), "clip"), clips.empty() ? "" : clips.front(),
                      clips.size() > 1 ? fmt::format(" and {} more", clips.size() - 1) : "",
                      100.0 * static_cast<double>(frames) / std::max(1, db.frame_count()), one ? "joins" : "join",
-                     one ? "it" : "them", 100.0 * at_ceiling, one ? "it" : "them", 100.0 * kept,
-                     one ? "a name" : "names", one ? "says" : "say", one ? "its" : "their", one ? "it" : "them");
+                     one ? "it" : "them", one ? "holds" : "hold", rest_rms_cm, one ? "a name" : "names",
+                     one ? "says" : "say", one ? "its" : "their");
 }
 
 // The log's two voices, silent where the caller gave none; the warnings are also kept for the
@@ -287,9 +286,7 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
       } else {
         kept.push_back(fmt::format("{} {:.0f} % (the ceiling keeps {:.0f} %: not chased)", name,
                                    100.0 * chosen.tag_coverage[i], 100.0 * top));
-        if (choice->tags[i] == kUntaggedClass && choice->untagged_left) {
-          say.warning(untagged_left_text(db, graph_settings.connected_tags, top, chosen.tag_coverage[i]));
-        } else if (choice->tags[i] != kUntaggedClass) {
+        if (choice->tags[i] != kUntaggedClass) {
           say.warning(fmt::format("motion type '{}': even the ceiling (--max-threshold {:g} cm) keeps only {:.0f} % of "
                                   "its frames, under {:.0f} %, so the threshold does not rise for it; the graph keeps "
                                   "{:.0f} %",
@@ -311,6 +308,7 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
     say.info(fmt::format("threshold auto, one per motion type: {}; RMS {:.2f} cm for the rest ({} points tried)",
                          fmt::join(kept, ", "), choice->rms_cm, choice->curve.size()));
   }
+  if (choice->untagged_holds) say.warning(untagged_holds_text(db, graph_settings.connected_tags, choice->rms_cm));
   if (!choice->reached) {
     say.warning(fmt::format("no threshold up to --max-threshold {:g} cm reaches the coverage wanted{}",
                             choice_settings.max_rms_cm, short_tags_text(*choice, db)));

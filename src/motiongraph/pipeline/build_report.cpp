@@ -93,7 +93,7 @@ json threshold_choice_json(const ThresholdChoice& choice, const MotionDatabase& 
   out.update({{"target_rate", choice.target_rate},
               {"targets", targets},
               {"reached", choice.reached},
-              {"untagged_left", choice.untagged_left},
+              {"untagged_holds", choice.untagged_holds},
               {"threshold", choice.threshold},
               {"rms_cm", choice.rms_cm},
               {"per_type", !choice.tag_thresholds.empty()},
