@@ -160,7 +160,9 @@ TEST(TravelTags, AStopIsWhereTheRootHaltsAndTheSecondBefore) {
   const double fps = 30.0;
   const TravelTagSettings settings;
   EXPECT_TRUE(is_stop_tag("stop"));
+  EXPECT_TRUE(is_stop_tag("Stop"));  // as a user asks for it
   EXPECT_FALSE(is_stop_tag("walk"));
+  EXPECT_FALSE(is_stop_tag("stops"));
   // Standing, walking, standing, walking: the first stand whole (the clip starts there), the
   // second with the 30 frames of walking before it.
   const auto roots = roots_at(pieces({{40, 0.0}, {90, 1.0}, {60, 0.0}, {90, 1.0}}), fps);

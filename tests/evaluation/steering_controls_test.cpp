@@ -76,5 +76,25 @@ TEST(SteeringControls, AnUnknownTagOrAHeadingNotFiniteIsAnError) {
   EXPECT_TRUE(controls.warnings().empty());
 }
 
+// A tag asked in another case is the graph's tag of that name; a word of the clips' vocabulary
+// that is not a tag of the graph is an error that says which tag it stands for.
+TEST(SteeringControls, ATagInAnyCaseIsTheGraphsAndAWordForOneSaysWhich) {
+  SteeringControls controls(test::subject16().context());
+  const auto walk = controls.input({0.0, "walk", false}, "the control at 0 s");
+  ASSERT_TRUE(walk) << walk.error().message;
+  for (const char* asked : {"WALK", "Walk"}) {
+    const auto any_case = controls.input({0.0, asked, false}, "the control at 1 s");
+    ASSERT_TRUE(any_case) << any_case.error().message;
+    EXPECT_EQ(any_case->tag, walk->tag) << asked;
+  }
+  const auto sprint = controls.input({0.0, "sprint", false}, "the control at 2 s");
+  ASSERT_FALSE(sprint);
+  EXPECT_NE(sprint.error().message.find("'sprint' is not a motion tag of this graph"), std::string::npos);
+  EXPECT_NE(sprint.error().message.find("; 'sprint' is a word for 'run'"), std::string::npos) << sprint.error().message;
+  const auto fly = controls.input({0.0, "fly", false}, "the control at 3 s");
+  ASSERT_FALSE(fly);
+  EXPECT_EQ(fly.error().message.find("is a word for"), std::string::npos) << fly.error().message;
+}
+
 }  // namespace
 }  // namespace mg

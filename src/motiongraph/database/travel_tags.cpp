@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -31,7 +32,12 @@ bool is_locomotion_tag(std::string_view tag) {
   return std::find(kLocomotion.begin(), kLocomotion.end(), tag) != kLocomotion.end();
 }
 
-bool is_stop_tag(std::string_view tag) { return tag == "stop"; }
+bool is_stop_tag(std::string_view tag) {
+  constexpr std::string_view kStop = "stop";
+  return std::equal(tag.begin(), tag.end(), kStop.begin(), kStop.end(), [](char a, char b) {
+    return std::tolower(static_cast<unsigned char>(a)) == b;
+  });
+}
 
 std::vector<FrameSpan> travelling_spans(std::span<const Vec3> roots, double fps, const TravelTagSettings& settings) {
   const int n = static_cast<int>(roots.size());

@@ -35,7 +35,7 @@ struct TravelTagSettings {
 
 // walk and run: the tags that ask the character to go somewhere (cmu_tags.h's families).
 bool is_locomotion_tag(std::string_view tag);
-// stop: the tag that asks it to come to a halt.
+// stop (in any case, as asked: "Stop"): the tag that asks it to come to a halt.
 bool is_stop_tag(std::string_view tag);
 
 // Frames [first, first + count) of a clip.

@@ -1,11 +1,15 @@
 #include "motiongraph/synthesis/synthesis_context.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <optional>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
 #include "motiongraph/core/text.h"
+#include "motiongraph/database/cmu_tags.h"
 #include "motiongraph/database/database_contacts.h"
 #include "motiongraph/synthesis/travel_heading.h"
 
@@ -157,12 +161,32 @@ Status SynthesisContext::clean_up_walk(const Walk& walk, FootCleanup& cleanup, M
 }
 
 Result<TagMask> SynthesisContext::tag_mask(const std::string& name) const {
+  const auto lower = [](std::string_view text) {
+    std::string out(text);
+    for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return out;
+  };
+  std::optional<size_t> any_case;  // the one tag of that name in another case
+  bool several = false;
   for (size_t t = 0; t < db->tag_names.size(); ++t) {
     if (db->tag_names[t] == name) return TagMask{1} << t;
+    if (lower(db->tag_names[t]) == lower(name)) {
+      several = any_case.has_value();
+      any_case = t;
+    }
+  }
+  if (any_case && !several) return TagMask{1} << *any_case;
+  // A word the clips' names and descriptions read as a tag the graph has ("sprint": run).
+  std::string means;
+  const std::vector<std::string> read_as = clip_name_tags(name);
+  if (read_as.size() == 1 && lower(read_as.front()) != lower(name) &&
+      std::find(db->tag_names.begin(), db->tag_names.end(), read_as.front()) != db->tag_names.end()) {
+    means = fmt::format("; {} is a word for '{}'", quoted(name), read_as.front());
   }
   // (quoted: at most 40 characters of it, control bytes escaped; a request could hold 100 KB)
-  return Error{"", 0, fmt::format("{} is not a motion tag of this graph (its tags: {})", quoted(name),
-                                  db->tag_names.empty() ? "none" : fmt::format("{}", fmt::join(db->tag_names, ", ")))};
+  return Error{"", 0, fmt::format("{} is not a motion tag of this graph (its tags: {}){}", quoted(name),
+                                  db->tag_names.empty() ? "none" : fmt::format("{}", fmt::join(db->tag_names, ", ")),
+                                  means)};
 }
 
 }  // namespace mg

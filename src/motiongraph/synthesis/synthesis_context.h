@@ -124,7 +124,9 @@ struct SynthesisContext {
   // Cleans the motion assemble_walk() played for `walk` (or its first motion.frame_count frames,
   // a path's motion cut where the path ends) from its first frame.
   Status clean_up_walk(const Walk& walk, FootCleanup& cleanup, Motion& motion) const;
-  // The tag bit of a name, or an error listing the graph's tags.
+  // The tag bit of a name (in any case, where only one tag is so named: "Walk" is walk), or an
+  // error listing the graph's tags, and the tag a word of the clips' vocabulary stands for
+  // (cmu_tags.h: "sprint" is a word for 'run').
   Result<TagMask> tag_mask(const std::string& name) const;
 };
 
