@@ -287,9 +287,10 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
         kept.push_back(fmt::format("{} {:.0f} % (the ceiling keeps {:.0f} %: not chased)", name,
                                    100.0 * chosen.tag_coverage[i], 100.0 * top));
         if (choice->tags[i] != kUntaggedClass) {
-          say.warning(fmt::format("motion type '{}': even the ceiling (--max-threshold {:g} cm) keeps only {:.0f} % of "
+          // (to a tenth of a per cent: 9.6 % is under 10 %, as "10 %" would not say)
+          say.warning(fmt::format("motion type '{}': even the ceiling (--max-threshold {:g} cm) keeps only {:.1f} % of "
                                   "its frames, under {:.0f} %, so the threshold does not rise for it; the graph keeps "
-                                  "{:.0f} %",
+                                  "{:.1f} %",
                                   name, choice_settings.max_rms_cm, 100.0 * top, 100.0 * kMinServedShare,
                                   100.0 * chosen.tag_coverage[i]));
         }
