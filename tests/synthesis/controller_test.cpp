@@ -837,7 +837,7 @@ TEST(Controller, ATurnAskedWithRestTurnsTheStoppingClipToo) {
   const double sign = yaw_between(Vec2(0.0, -1.0), Vec2(1.0, 0.0)) > 0.0 ? 1.0 : -1.0;  // north to east
   EXPECT_GT(sign * before, 0.0) << "the way there turns toward east";
   // The stopping clip turns on by 5 degrees or more, within what the edit may add over its travel
-  // (each of the two runs at most 45 degrees a metre, the one turning one way, the other the other).
+  // (each of the two runs at most max_turn_deg_per_m, the one turning one way, the other the other).
   const double limit = 2.0 * ControllerSettings{}.heading_edit.max_turn_deg_per_m * travel;
   EXPECT_GT(sign * (after - before) * 180.0 / std::numbers::pi, 5.0) << "travel " << travel << " m";
   EXPECT_LE(std::abs(after - before) * 180.0 / std::numbers::pi, limit + 1e-6);
