@@ -303,7 +303,6 @@ struct DescribedClip {
   size_t spec_index = 0;
   size_t clip = 0;
   std::vector<std::string> tags;
-  bool named = false;  // by its name (clip_name_tags)
 };
 
 // Its tags on the database: walk and run on the frames where its root travels, stop where it
@@ -940,7 +939,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
         }
       } else {
         // Tagged once the motion is settled (3e): walk and run only where the root travels. CMU's
-        // description wins; a clip it does not list is tagged by its name's words and its file's.
+        // description wins; a clip it does not list is tagged by the words of its name.
         const CmuMotion* motion_entry = cmu ? cmu->find(spec.cmu_name) : nullptr;
         if (motion_entry != nullptr) {
           described.push_back({spec_index, db.clips.size(), cmu_description_tags(motion_entry->description)});
@@ -953,7 +952,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
             auto tags = clip_name_tags(*text);
             if (tags.empty()) continue;
             if (notes != nullptr) notes->name_tagged.push_back({clip.name, tags, source, *text});
-            described.push_back({spec_index, db.clips.size(), std::move(tags), true});
+            described.push_back({spec_index, db.clips.size(), std::move(tags)});
             break;
           }
         }
