@@ -7,6 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include "motiongraph/graph/bridges.h"
+#include "motiongraph/graph/threshold_choice.h"
+#include "motiongraph/graph/window_membership.h"
 #include "motiongraph/metric/pair_alignment.h"
 #include "test_data.h"
 
@@ -209,6 +212,54 @@ TEST(GraphFromCandidates, PrunedGraphUsesTheSelectionAndAlignedBridges) {
   ASSERT_TRUE(pruned);
   EXPECT_EQ(pruned->graph.node_count(), plain->pruned.graph.node_count());
   EXPECT_EQ(pruned->graph.edge_count(), plain->pruned.graph.edge_count());
+}
+
+// Clips of no motion type amid typed ones (the untagged class) are bridged to the types as a type
+// is: three walks typed and a copy of the first raised 6 cm, of no type, which no transition under
+// 3 cm joins to them. The graph plays both the walks and the copy through bridges each way; with
+// no bridges it keeps one side only. The class's own pairs are not reported unjoined.
+TEST(GraphFromCandidates, ClipsOfNoTypeAreBridgedAsATypeIs) {
+  Fixture x;
+  x.db = test::small_database({"cmu/16/16_15.amc", "cmu/16/16_16.amc", "cmu/16/16_17.amc"}, true, 0.0,
+                              Vec3(0.0, 0.06, 0.0));
+  const int copy = x.db.clips.back().first_frame;
+  x.db.tag_names = {"walk"};
+  x.db.tag_ranges = {TagRange{0, 0, copy}};
+  DistanceSettings distance;
+  distance.threads = 2;
+  auto layout = make_cloud_layout(x.db.skeletons[0], {});
+  x.features = *make_frame_features(x.db, *layout, distance);
+  x.search = *find_candidates(x.features, distance, {});
+  const std::vector<char> in_class = untagged_class_frames(x.db, 0b1);
+  ASSERT_EQ(untagged_bridge_tag(x.db, in_class), 1);
+  ASSERT_EQ(untagged_bridge_tag(x.db, std::vector<char>(in_class.size(), 0)), -1);
+  GraphFromCandidatesSettings settings;
+  settings.transitions.threshold = distance_of_rms_cm(3.0, x.features);
+  settings.connected_tags = 0b1;
+  // Per side, whether the pruned graph's clip edges play a frame of it.
+  const auto sides = [&](const MotionGraph& graph) {
+    std::pair<bool, bool> played{false, false};
+    for (const GraphEdge& e : graph.edges) {
+      if (e.transition) continue;
+      (graph.nodes[e.from_node].frame < copy ? played.first : played.second) = true;
+    }
+    return played;
+  };
+  auto built = graph_from_candidates(x.db, x.features, x.search, settings);
+  ASSERT_TRUE(built) << built.error().to_string();
+  const auto& bridges = built->transitions.bridges;
+  const auto leaves = [&](const Transition& t) { return t.from_frame < copy && t.to_frame >= copy; };
+  const auto arrives = [&](const Transition& t) { return t.from_frame >= copy && t.to_frame < copy; };
+  EXPECT_TRUE(std::any_of(bridges.begin(), bridges.end(), leaves));
+  EXPECT_TRUE(std::any_of(bridges.begin(), bridges.end(), arrives));
+  for (const Transition& t : bridges) EXPECT_TRUE(leaves(t) || arrives(t)) << t.from_frame << " " << t.to_frame;
+  EXPECT_TRUE(built->transitions.unjoined.empty());
+  EXPECT_EQ(sides(built->pruned.graph), std::make_pair(true, true));
+  settings.bridges.per_tag_pair = 0;
+  auto alone = graph_from_candidates(x.db, x.features, x.search, settings);
+  ASSERT_TRUE(alone) << alone.error().to_string();
+  const auto [walks, raised] = sides(alone->pruned.graph);
+  EXPECT_NE(walks, raised);
 }
 
 TEST(GraphFromCandidates, NoCycleIsAnError) {

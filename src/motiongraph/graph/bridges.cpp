@@ -13,6 +13,14 @@
 
 namespace mg {
 
+int untagged_bridge_tag(const MotionDatabase& db, std::span<const char> untagged_class) {
+  const auto tags = static_cast<int>(db.tag_names.size());
+  if (tags >= kBridgeTags || std::find(untagged_class.begin(), untagged_class.end(), 1) == untagged_class.end()) {
+    return -1;
+  }
+  return tags;
+}
+
 Status BridgeSettings::validate() const {
   if (per_tag_pair < 0 || per_tag_pair > 1000) return Error{"", 0, "bridges per tag pair must be 0 to 1000"};
   if (locality_radius < 0) return Error{"", 0, "bridge locality radius must be >= 0"};

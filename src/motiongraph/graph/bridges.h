@@ -1,5 +1,6 @@
-// Bridges between motion types. Transitions below the threshold connect frames of one kind
-// of motion with each other; between kinds (walking and running of one subject, say) every
+// Bridges between motion types, and between them and the clips of none (the untagged class,
+// bridged as one more tag: untagged_bridge_tag). Transitions below the threshold connect frames
+// of one kind of motion with each other; between kinds (walking and running of one subject, say) every
 // candidate may lie above it, and the pruned graph then keeps one kind only. A bridge is one of
 // the best candidates (lowest D, a local minimum like any other) from frames that all carry tag
 // s to frames that all carry tag t, added for each ordered pair of tags (s, t) that no selected
@@ -74,6 +75,14 @@ struct BridgeSelection {
 
 // Levels are kept per ordered pair of tags, at from_tag * kBridgeTags + to_tag.
 inline constexpr int kBridgeTags = 64;
+
+// The tag the untagged class (window_membership.h's untagged_class_frames: clips of no motion
+// type in a library with types) bridges as: the one after the database's, so that clips no
+// transition below the threshold joins to the typed ones are bridged to them as a type is (a
+// library of walks and of exercises on the spot, the exercises of no type, joined only with
+// every type at the 10 cm ceiling). -1 when the class holds no frame, or the database has every
+// tag there is.
+int untagged_bridge_tag(const MotionDatabase& db, std::span<const char> untagged_class);
 
 // The frames a bridge of distance D asks to blend over: k sqrt(D / threshold) rounded (the
 // distance an RMS point error of D spreads over as many frames as a threshold one over k), at

@@ -68,15 +68,24 @@ Result<TransitionsWithBridges> select_transitions_with_bridges(const MotionDatab
   if (!selection) return selection.error();
   out.selection = std::move(*selection);
 
-  // Bridges between motion types that no transition below the threshold joins.
+  // Bridges between motion types that no transition below the threshold joins, the untagged
+  // class one more (the tag after the database's: untagged_bridge_tag).
   BridgeSettings bridge_settings = settings.bridges;
   bridge_settings.locality_radius = out.selection.locality_radius;
   bridge_settings.tags = connected;
   if (connected_bridges(settings)) {
-    std::vector<std::vector<char>> cores(db.tag_names.size());
+    std::vector<TagMask> bridge_tags = frame_tags;
+    const int untagged = untagged_bridge_tag(db, untagged_class);
+    if (untagged >= 0) {
+      for (size_t f = 0; f < bridge_tags.size(); ++f) {
+        if (untagged_class[f] != 0) bridge_tags[f] |= TagMask{1} << untagged;
+      }
+      bridge_settings.tags |= TagMask{1} << untagged;
+    }
+    std::vector<std::vector<char>> cores(db.tag_names.size() + (untagged >= 0 ? 1 : 0));
     for (size_t t = 0; t < cores.size(); ++t) {
-      if (connected >> t & 1) {
-        auto core = tag_core_frames(db, out.selection.transitions, frame_tags, features.window, static_cast<int>(t));
+      if (bridge_settings.tags >> t & 1) {
+        auto core = tag_core_frames(db, out.selection.transitions, bridge_tags, features.window, static_cast<int>(t));
         if (!core) return core.error();
         cores[t] = std::move(*core);
       }
@@ -87,14 +96,18 @@ Result<TransitionsWithBridges> select_transitions_with_bridges(const MotionDatab
     BridgeSelection bridges;
     while (true) {
       const std::vector<double> levels = pruned ? more->levels(cores) : std::vector<double>{};
-      bridges = select_bridges(candidates.minima, out.selection.transitions, frame_tags, features.clip_of_frame, cores,
+      bridges = select_bridges(candidates.minima, out.selection.transitions, bridge_tags, features.clip_of_frame, cores,
                                features.window,
                                bridge_settings, pruned ? more->above() : std::span<const Transition>{}, levels);
       if (bridges.incomplete.empty()) break;
       if (auto s = more->raise(bridges.incomplete, cores); !s) return s.error();
     }
     out.bridges = std::move(bridges.bridges);
-    out.unjoined = std::move(bridges.unjoined);
+    // The untagged class's pairs are not reported: it is no type the user named (the coverage
+    // warnings say what the graph loses of its clips).
+    for (const UnjoinedPair& pair : bridges.unjoined) {
+      if (pair.from_tag != untagged && pair.to_tag != untagged) out.unjoined.push_back(pair);
+    }
   }
   for (Transition& t : out.bridges) {
     if (settings.aligned) {

@@ -67,7 +67,9 @@ struct TransitionsWithBridges {
   std::vector<char> bridge_flags(std::span<const Transition> transitions) const;
 };
 
-// Whether the settings make bridges (motion types kept connected, bridges per pair > 0).
+// Whether the settings make bridges (motion types kept connected, bridges per pair > 0). The
+// untagged class (window_membership.h) is bridged as one more type (bridges.h
+// untagged_bridge_tag); its pairs are not listed in `unjoined`.
 bool connected_bridges(const GraphFromCandidatesSettings& settings);
 
 // The first two steps: selection and bridges. The pruned stage's candidates (ceiling >= 0)

@@ -43,11 +43,12 @@
 // clip of no type too short to leave and come back to; a type on a few frames amid other
 // motion): no threshold serves them, so they want nothing (in either mode: chasing one frame of
 // 26 took a library's every type to the ceiling), and take the global threshold rather than pull
-// it down to the grid's first level. Clips of no type that hold at most kMinorUntaggedShare of
-// the frames and that the types' thresholds at their grid levels, the short ones' at the ceiling,
-// still leave out, raise every type's (ThresholdChoice::untagged_holds says so, for the user to
-// give them a type): left out instead, a library's walks stayed at 2.36 cm and could no longer
-// turn right (docs/performance.md). Running's larger distances then buy
+// it down to the grid's first level. Clips of no type are bridged to the types (bridges.h); those
+// that hold at most kMinorUntaggedShare of the frames and that the types' thresholds at their
+// grid levels, the short ones' at the ceiling, still leave out (too short to loop, so no bridge
+// joins them) raise every type's, and ThresholdChoice::untagged_holds says so, for the user to
+// give them a type (left out of the search instead, a library's walks stayed where they could no
+// longer turn right: docs/performance.md). Running's larger distances then buy
 // running what it needs, and no more: the threshold of a type depends only on the candidates at
 // or below it, so the pruned distance stage gives the exhaustive stage's choice.
 #pragma once
@@ -76,9 +77,8 @@ double distance_of_rms_cm(double rms_cm, const FrameFeatures& features);
 inline constexpr double kMinServedShare = 0.1;
 // Clips of no type that hold at most this share of the library's frames, and that the graph
 // takes in only with the types' own thresholds raised (their windows into the typed clips pass
-// the lower of the two classes' thresholds), are said to hold the types up: one walk named
-// take_07 among nine named clips (12 % of the frames) took every type to the ceiling, 10 cm,
-// where with it named walk_07 the types asked 5-6 cm. Over a quarter, they are the library.
+// the lower of the two classes' thresholds; too short to loop, no bridge joins them), are said
+// to hold the types up, for the user to give them a type. Over a quarter, they are the library.
 inline constexpr double kMinorUntaggedShare = 0.25;
 
 struct CoveragePoint;
