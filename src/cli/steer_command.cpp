@@ -59,6 +59,10 @@ int run_steer(const SteerOptions& o) {
     spdlog::warn("{}", line);
     warnings.push_back(std::move(line));
   };
+  // Tags as the graph spells them ("Walk" is walk), so that the report compares and names them so.
+  for (ScriptedControl& c : script->controls) {
+    if (auto name = context.tag_name(c.tag); !c.tag.empty() && name) c.tag = *name;
+  }
   std::vector<ControlInput> inputs;
   for (const ScriptedControl& c : script->controls) {
     auto input = reader.input({c.bearing_deg, c.tag, c.rest}, fmt::format("the control at {:g} s", c.at_s));

@@ -276,7 +276,7 @@ class Router {
     SteeringControl control;
     control.heading_deg = number_field(body, "heading_deg", 0.0, -720.0, 720.0);
     control.tag = string_field(body, "tag", "");
-    if (control.tag == "any") control.tag.clear();
+    if (ascii_lower(control.tag) == "any") control.tag.clear();
     // (a stop the graph has no tag for is rest where it can: steering_controls.h)
     if (!control.tag.empty() && !is_stop_tag(control.tag)) {
       if (auto mask = service_.context().tag_mask(control.tag); !mask) throw ApiError{400, mask.error().message};

@@ -554,7 +554,7 @@ EOF
 "$bin" build "$work/sliver.toml" -o "$work/sliver.mgraph" --cache-dir "$cache" 2>"$work/sliver.err"
 grep -E "warning: motion type 'jump': even the ceiling \(--max-threshold 10 cm\) keeps only [1-9]\.[0-9] % of its \
 frames, under 10 %, so the threshold does not rise for it" "$work/sliver.err" >/dev/null \
-  && grep -E "jump [0-9]+ % \(the ceiling keeps [1-9] %: not chased\)" "$work/sliver.err" >/dev/null \
+  && grep -E "jump [0-9.]+ % \(the ceiling keeps [1-9]\.[0-9] %: not chased\)" "$work/sliver.err" >/dev/null \
   || { echo "FAIL: a motion type served a sliver"; cat "$work/sliver.err"; exit 1; }
 # A short run alone keeps a third of its frames, its ends: the warning says so, without
 # promising that a higher threshold keeps more (the ceiling keeps no more). 131_01 alone makes a

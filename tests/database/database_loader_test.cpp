@@ -209,6 +209,19 @@ TEST(DatabaseLoader, ClipsAreTaggedByTheWordsOfTheirNames) {
   EXPECT_EQ(renamed_notes.name_tagged[2].source, "file");
   EXPECT_EQ(renamed_notes.name_tagged[2].words, "Walk_Forward_01");
 
+  // A glTF clip named by its animation ("Take 001") and renamed: the file's own name tags it.
+  auto glb = write_glb(walk.skeleton, walk.motion, "Take 001");
+  ASSERT_TRUE(glb) << glb.error().to_string();
+  folder.write("gl/Walk.glb", *glb);
+  const std::string animated = folder.write(
+      "gl.toml", "[[clip]]\nfile = \"gl/Walk.glb\"\nanimation = \"Take 001\"\nname = \"hero\"\n");
+  DatabaseLoadNotes animated_notes;
+  auto from_glb = load_database({animated}, settings, &animated_notes);
+  ASSERT_TRUE(from_glb) << from_glb.error().to_string();
+  EXPECT_EQ(tags_of(*from_glb, 0), std::set<std::string>{"walk"});
+  ASSERT_EQ(animated_notes.name_tagged.size(), 1u);
+  EXPECT_EQ(animated_notes.name_tagged[0].words, "Walk");
+
   settings.name_tags = false;
   DatabaseLoadNotes off_notes;
   auto off = load_database({folder.path().string()}, settings, &off_notes);

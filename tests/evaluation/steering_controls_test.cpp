@@ -86,6 +86,9 @@ TEST(SteeringControls, ATagInAnyCaseIsTheGraphsAndAWordForOneSaysWhich) {
     const auto any_case = controls.input({0.0, asked, false}, "the control at 1 s");
     ASSERT_TRUE(any_case) << any_case.error().message;
     EXPECT_EQ(any_case->tag, walk->tag) << asked;
+    const auto name = test::subject16().context().tag_name(asked);
+    ASSERT_TRUE(name);
+    EXPECT_EQ(*name, "walk");
   }
   const auto sprint = controls.input({0.0, "sprint", false}, "the control at 2 s");
   ASSERT_FALSE(sprint);

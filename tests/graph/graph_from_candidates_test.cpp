@@ -255,6 +255,14 @@ TEST(GraphFromCandidates, ClipsOfNoTypeAreBridgedAsATypeIs) {
   for (const Transition& t : bridges) EXPECT_TRUE(leaves(t) || arrives(t)) << t.from_frame << " " << t.to_frame;
   EXPECT_TRUE(built->transitions.unjoined.empty());
   EXPECT_EQ(sides(built->pruned.graph), std::make_pair(true, true));
+  // Capped under every candidate between them: no bridge, and no pair reported unjoined (the
+  // only pairs there are are the class's).
+  GraphFromCandidatesSettings capped = settings;
+  capped.bridges.max_distance = settings.transitions.threshold;
+  auto unbridged = select_transitions_with_bridges(x.db, x.features, x.search, capped);
+  ASSERT_TRUE(unbridged) << unbridged.error().to_string();
+  EXPECT_TRUE(unbridged->bridges.empty());
+  EXPECT_TRUE(unbridged->unjoined.empty());
   settings.bridges.per_tag_pair = 0;
   auto alone = graph_from_candidates(x.db, x.features, x.search, settings);
   ASSERT_TRUE(alone) << alone.error().to_string();

@@ -27,25 +27,30 @@ struct Library {
   PrunedSearchSettings pruned;
 };
 
-// Subject 16's two walks and two runs, tagged: walk to run bridges lie near 20 cm RMS.
+// Subject 16's two walks and five runs, tagged (or the runs of no type): walk to run bridges lie
+// near 20 cm RMS.
+Library make_library(bool runs_typed) {
+  Library l;
+  l.db = test::small_database({"cmu/16/16_15.amc", "cmu/16/16_16.amc", "cmu/16/16_35.amc", "cmu/16/16_37.amc",
+                               "cmu/16/16_39.amc", "cmu/16/16_41.amc", "cmu/16/16_43.amc"});
+  l.db.tag_names = {"walk", "run"};
+  const int runs = l.db.clips[2].first_frame;
+  l.db.tag_ranges = {TagRange{0, 0, runs}};
+  if (runs_typed) l.db.tag_ranges.push_back(TagRange{1, runs, l.db.frame_count() - runs});
+  else l.db.tag_names.pop_back();
+  DistanceSettings distance;
+  distance.tile_frames = kTile;
+  distance.threads = 2;
+  auto layout = make_cloud_layout(l.db.skeletons[0], {});
+  l.features = *make_frame_features(l.db, *layout, distance);
+  l.exhaustive = *find_candidates(l.features, distance, {});
+  l.pruned.tile_frames = kTile;
+  l.pruned.threads = 2;
+  return l;
+}
+
 const Library& library() {
-  static const Library x = [] {
-    Library l;
-    l.db = test::small_database({"cmu/16/16_15.amc", "cmu/16/16_16.amc", "cmu/16/16_35.amc", "cmu/16/16_37.amc",
-                                 "cmu/16/16_39.amc", "cmu/16/16_41.amc", "cmu/16/16_43.amc"});
-    l.db.tag_names = {"walk", "run"};
-    const int runs = l.db.clips[2].first_frame;
-    l.db.tag_ranges = {TagRange{0, 0, runs}, TagRange{1, runs, l.db.frame_count() - runs}};
-    DistanceSettings distance;
-    distance.tile_frames = kTile;
-    distance.threads = 2;
-    auto layout = make_cloud_layout(l.db.skeletons[0], {});
-    l.features = *make_frame_features(l.db, *layout, distance);
-    l.exhaustive = *find_candidates(l.features, distance, {});
-    l.pruned.tile_frames = kTile;
-    l.pruned.threads = 2;
-    return l;
-  }();
+  static const Library x = make_library(true);
   return x;
 }
 
@@ -229,6 +234,37 @@ TEST(OnDemandCandidates, PrunedCandidatesGiveTheExhaustiveTransitionsAndBridges)
     EXPECT_FALSE(more.above().empty());
     EXPECT_LT(reusing.statistics().tiles, more.statistics().tiles);
   }
+}
+
+// The runs of no motion type: the untagged class, bridged to the walks as a type is (bridges.h),
+// gets from the pruned stage's candidates, its windows tagged for the search on demand, the
+// bridges the exhaustive stage's give, far above the ceiling.
+TEST(OnDemandCandidates, PrunedCandidatesBridgeTheUntaggedClassAsTheExhaustiveDo) {
+  const Library l = make_library(false);
+  const double ceiling = distance_of_rms_cm(6.0, l.features);
+  auto search = find_candidates_pruned(l.features, ceiling, {}, l.pruned);
+  ASSERT_TRUE(search) << search.error().to_string();
+  OnDemandCandidates more(l.features, *search, l.pruned.embedding, l.pruned.threads);
+  const int runs = l.db.clips[2].first_frame;
+  for (const double rms : {4.0, 5.0}) {  // (at 2 cm the runs form no loop of their own to bridge)
+    SCOPED_TRACE(testing::Message() << "threshold " << rms << " cm");
+    GraphFromCandidatesSettings settings;
+    settings.connected_tags = 0b1;
+    settings.transitions.per_tag_thresholds = false;
+    settings.transitions.threshold = distance_of_rms_cm(rms, l.features);
+    settings.transitions.max_threshold = ceiling;
+    auto want = select_transitions_with_bridges(l.db, l.features, l.exhaustive, settings);
+    auto got = select_transitions_with_bridges(l.db, l.features, *search, settings, &more);
+    ASSERT_TRUE(want) << want.error().to_string();
+    ASSERT_TRUE(got) << got.error().to_string();
+    expect_same(want->selection.transitions, got->selection.transitions, "transitions");
+    expect_same(want->bridges, got->bridges, "bridges");
+    const auto crosses = [&](const Transition& t) { return (t.from_frame < runs) != (t.to_frame < runs); };
+    EXPECT_GE(std::count_if(want->bridges.begin(), want->bridges.end(), crosses), 2);
+    EXPECT_TRUE(std::any_of(want->bridges.begin(), want->bridges.end(),
+                            [&](const Transition& t) { return crosses(t) && t.distance > ceiling; }));
+  }
+  EXPECT_GT(more.statistics().raises, 0);
 }
 
 TEST(OnDemandCandidates, PrunedCandidatesGiveTheExhaustiveThresholdChoice) {

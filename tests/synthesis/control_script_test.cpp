@@ -13,7 +13,7 @@ TEST(ControlScript, LaterControlsKeepWhatTheyDoNotSay) {
       {"at_s": 0, "heading": "north", "tag": "walk"},
       {"at_s": 4, "heading_deg": 90},
       {"at_s": 8, "tag": "run"},
-      {"at_s": 10, "heading": "west", "tag": "any"}]})", "c.json");
+      {"at_s": 10, "heading": "west", "tag": "Any"}]})", "c.json");
   ASSERT_TRUE(script.ok()) << script.error().to_string();
   EXPECT_DOUBLE_EQ(script->duration_s, 12.0);
   EXPECT_EQ(script->at(3.9).tag, "walk");

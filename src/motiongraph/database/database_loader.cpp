@@ -944,10 +944,11 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
         if (motion_entry != nullptr) {
           described.push_back({spec_index, db.clips.size(), cmu_description_tags(motion_entry->description)});
         } else if (settings.name_tags) {
-          // The clip's name; where it says nothing, its file's (a manifest's name for it), then its
-          // folder's below the one given ("walk/w01").
+          // The clip's name; where it says nothing, its file's or animation's (a manifest's name
+          // for it), then its folder's below the one given ("walk/w01").
+          const std::string stem = fs::path(spec.path).stem().string();
           const std::pair<const char*, const std::string*> sources[] = {
-              {"name", &spec.name}, {"file", &spec.cmu_name}, {"folder", &spec.folder}};
+              {"name", &spec.name}, {"file", &spec.cmu_name}, {"file", &stem}, {"folder", &spec.folder}};
           for (const auto& [source, text] : sources) {
             auto tags = clip_name_tags(*text);
             if (tags.empty()) continue;

@@ -34,10 +34,11 @@ Result<ControlInput> SteeringControls::input(const SteeringControl& control, std
       return in;
     }
     if (!mask) return mask.error();
-    auto [note, inserted] = tags_.try_emplace(control.tag);
+    const std::string name = *context_->tag_name(control.tag);  // the graph's spelling
+    auto [note, inserted] = tags_.try_emplace(name);
     if (inserted) {
-      note->second.unplayable = unplayable_tag(*context_, control.tag);
-      note->second.rest = stop_means_rest(*context_, control.tag);
+      note->second.unplayable = unplayable_tag(*context_, name);
+      note->second.rest = stop_means_rest(*context_, name);
     }
     TagNote& tag = note->second;
     if (tag.unplayable && !tag.warned) {

@@ -93,6 +93,7 @@ Result<TransitionsWithBridges> select_transitions_with_bridges(const MotionDatab
     // With the pruned stage's candidates: raise the levels of the pairs still short of bridges
     // until none is.
     const bool pruned = candidates.ceiling >= 0.0 && more != nullptr;
+    if (pruned && untagged >= 0) more->tag_windows(untagged, untagged_class);
     BridgeSelection bridges;
     while (true) {
       const std::vector<double> levels = pruned ? more->levels(cores) : std::vector<double>{};

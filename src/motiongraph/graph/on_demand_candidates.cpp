@@ -23,7 +23,11 @@ bool by_frames(const Transition& x, const Transition& y) {
 
 OnDemandCandidates::OnDemandCandidates(const FrameFeatures& features, const CandidateSearch& search,
                                        const WindowEmbeddingSettings& embedding, int threads, PrunedStageWork done)
-    : features_(features), ceiling_(search.ceiling), embedding_(std::move(done.embedding)) {
+    : features_(features),
+      leave_tags_(features.leave_tags),
+      arrive_tags_(features.arrive_tags),
+      ceiling_(search.ceiling),
+      embedding_(std::move(done.embedding)) {
   pruned_.embedding = embedding;
   pruned_.tile_frames = search.tile_frames;
   pruned_.threads = threads;
@@ -55,13 +59,27 @@ OnDemandCandidates::Regions OnDemandCandidates::regions(std::span<const std::vec
     for (int f = 0; f < frames; ++f) {
       if (!core[f]) continue;
       const size_t at = static_cast<size_t>(f / tile_) * out.tags + t;
-      const TagMask leaving = features_.leave_tags[static_cast<size_t>(f)];
-      const TagMask arriving = features_.arrive_tags[static_cast<size_t>(f)];
+      const TagMask leaving = leave_tags_[static_cast<size_t>(f)];
+      const TagMask arriving = arrive_tags_[static_cast<size_t>(f)];
       if (leaving & mt) out.rows[at] |= ~leaving;
       if (arriving & mt) out.columns[at] |= ~arriving;
     }
   }
   return out;
+}
+
+void OnDemandCandidates::tag_windows(int tag, std::span<const char> in_class) {
+  if (tag < 0 || tag >= kBridgeTags) return;
+  const TagMask bit = TagMask{1} << tag;
+  const int k = features_.window;
+  const auto frames = static_cast<int>(std::min(in_class.size(), leave_tags_.size()));
+  for (int a = 0; a + k <= frames; ++a) {
+    if (!features_.can_leave[static_cast<size_t>(a)]) continue;
+    const auto first = in_class.begin() + a;
+    if (std::find(first, first + k, 0) != first + k) continue;
+    leave_tags_[static_cast<size_t>(a)] |= bit;
+    arrive_tags_[static_cast<size_t>(a + k - 1)] |= bit;  // the window arriving at its last frame
+  }
 }
 
 template <class Visit>

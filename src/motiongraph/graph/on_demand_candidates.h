@@ -73,6 +73,11 @@ class OnDemandCandidates {
   // that needs.
   Status raise(std::span<const TagPair> pairs, std::span<const std::vector<char>> cores);
 
+  // The windows whose every frame `in_class` holds (a byte per frame) carry `tag` too, beside the
+  // features' tags: the untagged class bridged as one more tag (bridges.h untagged_bridge_tag).
+  // Again with the same arguments, nothing changes.
+  void tag_windows(int tag, std::span<const char> in_class);
+
  private:
   // The regions of every pair for some cores, worked out in one pass over the frames: per tile
   // row i and tag s (rows[i * tags + s]), the tags that the leaving windows of s's core frames
@@ -91,6 +96,8 @@ class OnDemandCandidates {
   double lowest_known(const Regions& regions, int s, int u, double floor) const;
 
   const FrameFeatures& features_;
+  // The tags of each frame's leaving and arriving windows: the features', and tag_windows'.
+  std::vector<TagMask> leave_tags_, arrive_tags_;
   double ceiling_;
   PrunedSearchSettings pruned_;
   CandidateSettings candidate_settings_;

@@ -46,9 +46,9 @@
 // it down to the grid's first level. Clips of no type are bridged to the types (bridges.h); those
 // that hold at most kMinorUntaggedShare of the frames and that the types' thresholds at their
 // grid levels, the short ones' at the ceiling, still leave out (too short to loop, so no bridge
-// joins them) raise every type's, and ThresholdChoice::untagged_holds says so, for the user to
-// give them a type (left out of the search instead, a library's walks stayed where they could no
-// longer turn right: docs/performance.md). Running's larger distances then buy
+// joins them) raise every type's, as the only way the graph takes them in, and
+// ThresholdChoice::untagged_holds says so, for the user to give them a type. Running's larger
+// distances then buy
 // running what it needs, and no more: the threshold of a type depends only on the candidates at
 // or below it, so the pruned distance stage gives the exhaustive stage's choice.
 #pragma once

@@ -60,7 +60,8 @@ std::string short_tags_text(const ThresholdChoice& choice, const MotionDatabase&
 
 // The warning for the clips of no motion type that hold every type's threshold up
 // (ThresholdChoice::untagged_holds): which they are, and how to make them a type's.
-std::string untagged_holds_text(const MotionDatabase& db, TagMask connected, double rest_rms_cm) {
+// name_tags: whether clips are tagged by their names (DatabaseSettings::name_tags).
+std::string untagged_holds_text(const MotionDatabase& db, TagMask connected, double rest_rms_cm, bool name_tags) {
   const std::vector<char> in_class = untagged_class_frames(db, connected);
   std::vector<std::string> clips;
   long long frames = 0;
@@ -71,14 +72,17 @@ std::string untagged_holds_text(const MotionDatabase& db, TagMask connected, dou
     }
   }
   const bool one = clips.size() == 1;
+  const std::string named =
+      name_tags ? fmt::format(", or {} that {} {} motion (walk_07.bvh),", one ? "a name" : "names", one ? "says" : "say",
+                              one ? "its" : "their")
+                : std::string(",");
   return fmt::format("{} of no motion type ({}{}; {:.0f} % of the frames) {} the graph only where every type's "
                      "threshold rises to let {} in, and {} them there (RMS {:.2f} cm for the rest): tags in a "
-                     "manifest, or {} that {} {} motion (walk_07.bvh), would let them fall",
+                     "manifest{} would let them fall",
                      counted(static_cast<long long>(clips.size()), "clip"), clips.empty() ? "" : clips.front(),
                      clips.size() > 1 ? fmt::format(" and {} more", clips.size() - 1) : "",
                      100.0 * static_cast<double>(frames) / std::max(1, db.frame_count()), one ? "joins" : "join",
-                     one ? "it" : "them", one ? "holds" : "hold", rest_rms_cm, one ? "a name" : "names",
-                     one ? "says" : "say", one ? "its" : "their");
+                     one ? "it" : "them", one ? "holds" : "hold", rest_rms_cm, named);
 }
 
 // The log's two voices, silent where the caller gave none; the warnings are also kept for the
@@ -284,7 +288,7 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
       if (top <= 0.0) {
         kept.push_back(fmt::format("{} none at any threshold", name));
       } else {
-        kept.push_back(fmt::format("{} {:.0f} % (the ceiling keeps {:.0f} %: not chased)", name,
+        kept.push_back(fmt::format("{} {:.1f} % (the ceiling keeps {:.1f} %: not chased)", name,
                                    100.0 * chosen.tag_coverage[i], 100.0 * top));
         if (choice->tags[i] != kUntaggedClass) {
           // (to a tenth of a per cent: 9.6 % is under 10 %, as "10 %" would not say)
@@ -309,7 +313,10 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
     say.info(fmt::format("threshold auto, one per motion type: {}; RMS {:.2f} cm for the rest ({} points tried)",
                          fmt::join(kept, ", "), choice->rms_cm, choice->curve.size()));
   }
-  if (choice->untagged_holds) say.warning(untagged_holds_text(db, graph_settings.connected_tags, choice->rms_cm));
+  if (choice->untagged_holds) {
+    say.warning(
+        untagged_holds_text(db, graph_settings.connected_tags, choice->rms_cm, settings.database.name_tags));
+  }
   if (!choice->reached) {
     say.warning(fmt::format("no threshold up to --max-threshold {:g} cm reaches the coverage wanted{}",
                             choice_settings.max_rms_cm, short_tags_text(*choice, db)));

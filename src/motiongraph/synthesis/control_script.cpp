@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "motiongraph/core/json_text.h"
+#include "motiongraph/core/text.h"
 
 namespace mg {
 
@@ -79,7 +80,7 @@ Result<ControlScript> parse_control_script(std::string_view text, const std::str
     if (c.contains("tag")) {
       if (!c["tag"].is_string()) return fail(fmt::format("controls[{}]: tag must be a string", i));
       current.tag = c["tag"].get<std::string>();
-      if (current.tag == "any") current.tag.clear();
+      if (ascii_lower(current.tag) == "any") current.tag.clear();
     }
     if (c.contains("rest")) {
       if (!c["rest"].is_boolean()) return fail(fmt::format("controls[{}]: rest must be true or false", i));

@@ -1,9 +1,8 @@
 #include "motiongraph/synthesis/synthesis_context.h"
 
 #include <algorithm>
-#include <cctype>
+#include <bit>
 #include <cmath>
-#include <optional>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -161,32 +160,37 @@ Status SynthesisContext::clean_up_walk(const Walk& walk, FootCleanup& cleanup, M
 }
 
 Result<TagMask> SynthesisContext::tag_mask(const std::string& name) const {
-  const auto lower = [](std::string_view text) {
-    std::string out(text);
-    for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return out;
-  };
-  std::optional<size_t> any_case;  // the one tag of that name in another case
-  bool several = false;
+  const std::string lower = ascii_lower(name);
+  std::vector<size_t> any_case;  // the tags of that name in another case
   for (size_t t = 0; t < db->tag_names.size(); ++t) {
     if (db->tag_names[t] == name) return TagMask{1} << t;
-    if (lower(db->tag_names[t]) == lower(name)) {
-      several = any_case.has_value();
-      any_case = t;
-    }
+    if (ascii_lower(db->tag_names[t]) == lower) any_case.push_back(t);
   }
-  if (any_case && !several) return TagMask{1} << *any_case;
-  // A word the clips' names and descriptions read as a tag the graph has ("sprint": run).
+  if (any_case.size() == 1) return TagMask{1} << any_case.front();
   std::string means;
-  const std::vector<std::string> read_as = clip_name_tags(name);
-  if (read_as.size() == 1 && lower(read_as.front()) != lower(name) &&
-      std::find(db->tag_names.begin(), db->tag_names.end(), read_as.front()) != db->tag_names.end()) {
-    means = fmt::format("; {} is a word for '{}'", quoted(name), read_as.front());
+  if (any_case.size() > 1) {
+    means = fmt::format("; in another case it names {} of them: give it as written", any_case.size());
+  } else {
+    // A word the clips' names and descriptions read as a tag the graph has ("sprint": run).
+    const std::vector<std::string> read_as = clip_name_tags(name);
+    const auto has = [&](const std::string& tag) {
+      return std::any_of(db->tag_names.begin(), db->tag_names.end(),
+                         [&](const std::string& t) { return ascii_lower(t) == tag; });
+    };
+    if (read_as.size() == 1 && read_as.front() != lower && has(read_as.front())) {
+      means = fmt::format("; {} is a word for '{}'", quoted(name), read_as.front());
+    }
   }
   // (quoted: at most 40 characters of it, control bytes escaped; a request could hold 100 KB)
   return Error{"", 0, fmt::format("{} is not a motion tag of this graph (its tags: {}){}", quoted(name),
                                   db->tag_names.empty() ? "none" : fmt::format("{}", fmt::join(db->tag_names, ", ")),
                                   means)};
+}
+
+Result<std::string> SynthesisContext::tag_name(const std::string& name) const {
+  auto mask = tag_mask(name);
+  if (!mask) return mask.error();
+  return db->tag_names[static_cast<size_t>(std::countr_zero(*mask))];
 }
 
 }  // namespace mg

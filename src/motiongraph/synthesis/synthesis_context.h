@@ -128,6 +128,8 @@ struct SynthesisContext {
   // error listing the graph's tags, and the tag a word of the clips' vocabulary stands for
   // (cmu_tags.h: "sprint" is a word for 'run').
   Result<TagMask> tag_mask(const std::string& name) const;
+  // The graph's own spelling of the tag `name` asks for (tag_mask's: "Walk" -> "walk").
+  Result<std::string> tag_name(const std::string& name) const;
 };
 
 // The tags of the frame a transition edge lands on (its target node's): for a bridge, the motion
