@@ -72,10 +72,10 @@ std::string untagged_holds_text(const MotionDatabase& db, TagMask connected, dou
     }
   }
   const bool one = clips.size() == 1;
-  const std::string named =
-      name_tags ? fmt::format(", or {} that {} {} motion (walk_07.bvh),", one ? "a name" : "names", one ? "says" : "say",
-                              one ? "its" : "their")
-                : std::string(",");
+  const std::string named = name_tags ? fmt::format(", or {} that {} {} motion (walk_07.bvh),",
+                                                    one ? "a name" : "names", one ? "says" : "say",
+                                                    one ? "its" : "their")
+                                      : std::string(",");
   return fmt::format("{} of no motion type ({}{}; {:.0f} % of the frames) {} the graph only where every type's "
                      "threshold rises to let {} in, and {} them there (RMS {:.2f} cm for the rest): tags in a "
                      "manifest{} would let them fall",

@@ -17,6 +17,7 @@
 #include "motiongraph/graph/graph_from_candidates.h"
 #include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/synthesis/steer_cost.h"
+#include "motiongraph/synthesis/travelling_type.h"
 
 namespace mg {
 
@@ -76,6 +77,7 @@ TagMask most_played_type(const SynthesisContext& context) {
 
 int controller_start_node(const SynthesisContext& context, TagMask tag) {
   const MotionGraph& graph = *context.graph;
+  if (tag == 0) tag = travelling_type(context);
   if (tag == 0) tag = most_played_type(context);
   if (tag == 0) return 0;
   for (int n = 0; n < graph.node_count(); ++n) {

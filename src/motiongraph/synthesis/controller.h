@@ -155,9 +155,9 @@ struct StartTaken {
 TagMask most_played_type(const SynthesisContext& context);
 
 // Where a controller starts without a start node: the first node carrying `tag`, or with no tag
-// (0) the first carrying most_played_type() (a steering session that asks for no motion type
-// walks, rather than start among jumps it could leave only through a bridge); node 0 when no node
-// carries it.
+// (0) the first carrying travelling_type(), else most_played_type() (a steering session that asks
+// for no motion type walks, rather than start among jumps or dance it could leave only through a
+// bridge); node 0 when no node carries it.
 int controller_start_node(const SynthesisContext& context, TagMask tag);
 
 class Controller {

@@ -1,0 +1,69 @@
+// The type a steering session asked for none starts in: the one that travels, not the one most
+// nodes carry.
+#include "motiongraph/synthesis/travelling_type.h"
+
+#include <algorithm>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "motiongraph/graph/motion_graph.h"
+#include "motiongraph/motion/resample.h"
+#include "motiongraph/synthesis/controller.h"
+#include "test_data.h"
+
+namespace mg {
+namespace {
+
+// A walk (16_15), looping back from near its end, and a pose held for 4 s, "dance", looping on
+// itself at six places (so most nodes are the pose's), the two joined each way.
+TEST(TravellingType, TheTypeThatTravelsNotTheOneMostNodesCarry) {
+  MotionDatabase db = test::small_database({"cmu/16/16_15.amc"});
+  const Clip walk = test::load_data_clip("cmu/16/16_15.amc");
+  const Clip pose = test::held_pose(walk, 0, 480);  // 4 s at 120 fps: 120 frames at 30
+  DatabaseClip held;
+  held.name = "pose";
+  held.first_frame = db.frame_count();
+  held.motion = *resample(pose.motion, db.fps);
+  held.frame_count = held.motion.frame_count;
+  db.clips.push_back(std::move(held));
+  const int walk_frames = db.clips[0].frame_count;
+  const int b = db.clips[1].first_frame;
+  db.tag_names = {"walk", "dance"};
+  db.tag_ranges = {TagRange{0, 0, walk_frames}, TagRange{1, b, db.clips[1].frame_count}};
+  const int k = 10;
+  std::vector<Transition> transitions;
+  auto add = [&](int from, int to) {
+    Transition t;
+    t.from_frame = from;
+    t.to_frame = to;
+    transitions.push_back(t);
+  };
+  add(walk_frames - 2 * k, 2 * k - 1);                            // the walk loops
+  for (int i = 0; i < 6; ++i) add(b + 40 + 10 * i, b + 15 + 10 * i);  // the pose loops
+  add(40, b + 12);                                                  // walk -> pose
+  add(b + 100, 60);                                                 // pose -> walk
+  std::sort(transitions.begin(), transitions.end(), [](const Transition& x, const Transition& y) {
+    return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
+  });
+  auto graph = build_motion_graph(db, transitions, k);
+  ASSERT_TRUE(graph) << graph.error().to_string();
+  ASSERT_TRUE(prune_motion_graph(*graph, {}));
+  auto context = make_synthesis_context(db, *graph);
+  ASSERT_TRUE(context) << context.error().to_string();
+  ASSERT_EQ(most_played_type(*context), TagMask{0b10});  // the pose's nodes outnumber the walk's
+  EXPECT_EQ(travelling_type(*context), TagMask{0b01});
+  const int start = controller_start_node(*context, 0);
+  EXPECT_LT(graph->nodes[static_cast<size_t>(start)].frame, b) << "starts in the walk";
+  // Asked for a type, that type's.
+  EXPECT_GE(graph->nodes[static_cast<size_t>(controller_start_node(*context, 0b10))].frame, b);
+  // The walk held still too: no type travels.
+  MotionDatabase still = db;
+  still.clips[0].motion = *resample(test::held_pose(walk, 0, walk.motion.frame_count).motion, db.fps);
+  auto still_context = make_synthesis_context(still, *graph);
+  ASSERT_TRUE(still_context) << still_context.error().to_string();
+  EXPECT_EQ(travelling_type(*still_context), TagMask{0});
+}
+
+}  // namespace
+}  // namespace mg
