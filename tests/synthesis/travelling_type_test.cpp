@@ -15,12 +15,12 @@
 namespace mg {
 namespace {
 
-// A walk (16_15), looping back from near its end, and a pose held for 4 s, "dance", looping on
+// A walk (16_15), looping back from near its end, and a pose held as long, "dance", looping on
 // itself at six places (so most nodes are the pose's), the two joined each way.
 TEST(TravellingType, TheTypeThatTravelsNotTheOneMostNodesCarry) {
   MotionDatabase db = test::small_database({"cmu/16/16_15.amc"});
   const Clip walk = test::load_data_clip("cmu/16/16_15.amc");
-  const Clip pose = test::held_pose(walk, 0, 480);  // 4 s at 120 fps: 120 frames at 30
+  const Clip pose = test::held_pose(walk, 0, walk.motion.frame_count);  // 3.9 s: 118 frames at 30 fps
   DatabaseClip held;
   held.name = "pose";
   held.first_frame = db.frame_count();
