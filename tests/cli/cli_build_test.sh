@@ -608,4 +608,29 @@ fi
 grep -q "rigs/131_01.bvh: is also an input ('.*rigs/131_01.bvh', a clip file of a folder given)" "$work/over.err" \
   && cmp -s "$work/rigs/131_01.bvh" "$work/131-before.bvh" && [[ ! -e "$work/over.mgraph" ]] \
   || { echo "FAIL: a report over a clip read"; cat "$work/over.err"; exit 1; }
+# A studio's library, named for what its clips hold and not like CMU's: tagged by the names (and
+# a folder's where a name says nothing), so that a path can ask for walking; not so with
+# --no-name-tags.
+mkdir -p "$work/studio/walking"
+"$bin" convert "$data/cmu/16/16_15.amc" -o "$work/studio/Walk_Forward.bvh" >/dev/null
+"$bin" convert "$data/cmu/16/16_16.amc" -o "$work/studio/walking/take_02.bvh" >/dev/null
+"$bin" convert "$data/cmu/16/16_35.amc" -o "$work/studio/RunLoop.bvh" >/dev/null
+"$bin" convert "$data/cmu/16/16_37.amc" -o "$work/studio/run-veer-left.bvh" >/dev/null
+"$bin" build "$work/studio" -o "$work/studio.mgraph" --cache-dir "$cache" 2>"$work/studio.err"
+grep -q "info: tags from clip names (or their folders'): run 2 clips (RunLoop and 1 more), walk 2 clips \
+(Walk_Forward and 1 more)" "$work/studio.err" \
+  || { echo "FAIL: a studio's names tagged"; cat "$work/studio.err"; exit 1; }
+"$bin" path "$work/studio.mgraph" --shape line:8 --segment Walk:0-8 -o "$work/studio-path.json" \
+  --report "$work/studio-path-report.json" >/dev/null 2>&1
+python3 - "$work/studio-path-report.json" <<'PY2'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["segments"][0]["tag"] == "Walk" and r["segments"][0]["tag_match"] > 0.9, r["segments"]
+PY2
+"$bin" build "$work/studio" -o "$work/plain.mgraph" --cache-dir "$cache" --no-name-tags -q
+if "$bin" path "$work/plain.mgraph" --shape line:8 --segment walk:0-8 -o "$work/plain.json" 2>"$work/plain.err"; then
+  echo "FAIL: walk asked of a graph with no tags"; exit 1
+fi
+grep -q "'walk' is not a motion tag of this graph (its tags: none)" "$work/plain.err" \
+  || { echo "FAIL: no tags without name tags"; cat "$work/plain.err"; exit 1; }
 echo "cli build ok"
