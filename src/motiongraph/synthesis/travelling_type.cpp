@@ -1,5 +1,6 @@
 #include "motiongraph/synthesis/travelling_type.h"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 
@@ -25,9 +26,14 @@ TagMask travelling_type(const SynthesisContext& context) {
   }
   const double fps = context.db->fps > 0.0 ? context.db->fps : 30.0;
   int best = -1;
+  double best_weight = 0.0;
   for (size_t t = 0; t < frames.size(); ++t) {
-    if (frames[t] == 0 || metres[t] * fps / static_cast<double>(frames[t]) < kTravellingMps) continue;
-    if (best < 0 || frames[t] > frames[static_cast<size_t>(best)]) best = static_cast<int>(t);
+    if (frames[t] == 0) continue;
+    const double speed = metres[t] * fps / static_cast<double>(frames[t]);
+    if (speed < kTravellingMps) continue;
+    const double pace = std::min(1.0, speed / kWalkingMps);
+    const double weight = static_cast<double>(frames[t]) * pace * pace;
+    if (best < 0 || weight > best_weight) best = static_cast<int>(t), best_weight = weight;
   }
   return best < 0 ? TagMask{0} : TagMask{1} << best;
 }
