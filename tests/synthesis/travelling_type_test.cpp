@@ -65,5 +65,46 @@ TEST(TravellingType, TheTypeThatTravelsNotTheOneMostNodesCarry) {
   EXPECT_EQ(travelling_type(*still_context), TagMask{0});
 }
 
+// Walks slowed to half their pace (0.6 m/s, as the 8-subject library's walks with their stops)
+// beside a run of fewer frames: the walk, not the run, though the run is faster.
+TEST(TravellingType, WalkingBeforeRunning) {
+  MotionDatabase db = test::small_database({"cmu/16/16_15.amc", "cmu/16/16_16.amc", "cmu/16/16_35.amc"});
+  const int slot = 0;
+  for (int c = 0; c < 2; ++c) {
+    Motion& walk = db.clips[static_cast<size_t>(c)].motion;
+    const Vec3 first = walk.translations(0)[slot];
+    for (int f = 0; f < walk.frame_count; ++f) {
+      Vec3& root = walk.translations(f)[slot];
+      root.x() = first.x() + 0.5 * (root.x() - first.x());
+      root.z() = first.z() + 0.5 * (root.z() - first.z());
+    }
+  }
+  const int run = db.clips[2].first_frame;
+  db.tag_names = {"walk", "run"};
+  db.tag_ranges = {TagRange{0, 0, run}, TagRange{1, run, db.frame_count() - run}};
+  const int k = 10;
+  std::vector<Transition> transitions;
+  auto add = [&](int from, int to) {
+    Transition t;
+    t.from_frame = from;
+    t.to_frame = to;
+    transitions.push_back(t);
+  };
+  const int second = db.clips[1].first_frame;
+  add(second - 2 * k, second + 2 * k);         // walk 1 -> walk 2
+  add(run - 2 * k, 2 * k - 1);                 // walk 2 -> walk 1
+  add(second + 40, run + k);                   // walk 2 -> run
+  add(db.frame_count() - 2 * k, second + 60);  // run -> walk 2
+  std::sort(transitions.begin(), transitions.end(), [](const Transition& x, const Transition& y) {
+    return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
+  });
+  auto graph = build_motion_graph(db, transitions, k);
+  ASSERT_TRUE(graph) << graph.error().to_string();
+  ASSERT_TRUE(prune_motion_graph(*graph, {}));
+  auto context = make_synthesis_context(db, *graph);
+  ASSERT_TRUE(context) << context.error().to_string();
+  EXPECT_EQ(travelling_type(*context), TagMask{0b01});
+}
+
 }  // namespace
 }  // namespace mg
