@@ -3,6 +3,7 @@
 #include "motiongraph/synthesis/travelling_type.h"
 
 #include <algorithm>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -14,6 +15,25 @@
 
 namespace mg {
 namespace {
+
+constexpr int kWindow = 10;
+
+// The pruned graph of `db` with transitions between these (from, to) frames, unaligned.
+MotionGraph graph_of(const MotionDatabase& db, std::vector<std::pair<int, int>> pairs) {
+  std::sort(pairs.begin(), pairs.end());  // by (from_frame, to_frame), as the graph wants them
+  std::vector<Transition> transitions;
+  for (const auto& [from, to] : pairs) {
+    Transition t;
+    t.from_frame = from;
+    t.to_frame = to;
+    transitions.push_back(t);
+  }
+  auto graph = build_motion_graph(db, transitions, kWindow);
+  EXPECT_TRUE(graph) << graph.error().to_string();
+  if (!graph) return {};
+  EXPECT_TRUE(prune_motion_graph(*graph, {}));
+  return std::move(*graph);
+}
 
 // A walk (16_15), looping back from near its end, and a pose held as long, "dance", looping on
 // itself at six places (so most nodes are the pose's), the two joined each way.
@@ -31,36 +51,27 @@ TEST(TravellingType, TheTypeThatTravelsNotTheOneMostNodesCarry) {
   const int b = db.clips[1].first_frame;
   db.tag_names = {"walk", "dance"};
   db.tag_ranges = {TagRange{0, 0, walk_frames}, TagRange{1, b, db.clips[1].frame_count}};
-  const int k = 10;
-  std::vector<Transition> transitions;
-  auto add = [&](int from, int to) {
-    Transition t;
-    t.from_frame = from;
-    t.to_frame = to;
-    transitions.push_back(t);
+  const int k = kWindow;
+  std::vector<std::pair<int, int>> pairs = {
+      {walk_frames - 2 * k, 2 * k - 1},  // the walk loops
+      {40, b + 12},                      // walk -> pose
+      {b + 100, 60},                     // pose -> walk
   };
-  add(walk_frames - 2 * k, 2 * k - 1);                            // the walk loops
-  for (int i = 0; i < 6; ++i) add(b + 40 + 10 * i, b + 15 + 10 * i);  // the pose loops
-  add(40, b + 12);                                                  // walk -> pose
-  add(b + 100, 60);                                                 // pose -> walk
-  std::sort(transitions.begin(), transitions.end(), [](const Transition& x, const Transition& y) {
-    return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
-  });
-  auto graph = build_motion_graph(db, transitions, k);
-  ASSERT_TRUE(graph) << graph.error().to_string();
-  ASSERT_TRUE(prune_motion_graph(*graph, {}));
-  auto context = make_synthesis_context(db, *graph);
+  for (int i = 0; i < 6; ++i) pairs.emplace_back(b + 40 + 10 * i, b + 15 + 10 * i);  // the pose loops
+  const MotionGraph graph = graph_of(db, pairs);
+  ASSERT_GT(graph.node_count(), 0);
+  auto context = make_synthesis_context(db, graph);
   ASSERT_TRUE(context) << context.error().to_string();
   ASSERT_EQ(most_played_type(*context), TagMask{0b10});  // the pose's nodes outnumber the walk's
   EXPECT_EQ(travelling_type(*context), TagMask{0b01});
   const int start = controller_start_node(*context, 0);
-  EXPECT_LT(graph->nodes[static_cast<size_t>(start)].frame, b) << "starts in the walk";
+  EXPECT_LT(graph.nodes[static_cast<size_t>(start)].frame, b) << "starts in the walk";
   // Asked for a type, that type's.
-  EXPECT_GE(graph->nodes[static_cast<size_t>(controller_start_node(*context, 0b10))].frame, b);
+  EXPECT_GE(graph.nodes[static_cast<size_t>(controller_start_node(*context, 0b10))].frame, b);
   // The walk held still too: no type travels.
   MotionDatabase still = db;
   still.clips[0].motion = *resample(test::held_pose(walk, 0, walk.motion.frame_count).motion, db.fps);
-  auto still_context = make_synthesis_context(still, *graph);
+  auto still_context = make_synthesis_context(still, graph);
   ASSERT_TRUE(still_context) << still_context.error().to_string();
   EXPECT_EQ(travelling_type(*still_context), TagMask{0});
 }
@@ -82,26 +93,14 @@ TEST(TravellingType, WalkingBeforeRunning) {
   const int run = db.clips[2].first_frame;
   db.tag_names = {"walk", "run"};
   db.tag_ranges = {TagRange{0, 0, run}, TagRange{1, run, db.frame_count() - run}};
-  const int k = 10;
-  std::vector<Transition> transitions;
-  auto add = [&](int from, int to) {
-    Transition t;
-    t.from_frame = from;
-    t.to_frame = to;
-    transitions.push_back(t);
-  };
+  const int k = kWindow;
   const int second = db.clips[1].first_frame;
-  add(second - 2 * k, second + 2 * k);         // walk 1 -> walk 2
-  add(run - 2 * k, 2 * k - 1);                 // walk 2 -> walk 1
-  add(second + 40, run + k);                   // walk 2 -> run
-  add(db.frame_count() - 2 * k, second + 60);  // run -> walk 2
-  std::sort(transitions.begin(), transitions.end(), [](const Transition& x, const Transition& y) {
-    return x.from_frame != y.from_frame ? x.from_frame < y.from_frame : x.to_frame < y.to_frame;
-  });
-  auto graph = build_motion_graph(db, transitions, k);
-  ASSERT_TRUE(graph) << graph.error().to_string();
-  ASSERT_TRUE(prune_motion_graph(*graph, {}));
-  auto context = make_synthesis_context(db, *graph);
+  const MotionGraph graph = graph_of(db, {{second - 2 * k, second + 2 * k},           // walk 1 -> walk 2
+                                          {run - 2 * k, 2 * k - 1},                   // walk 2 -> walk 1
+                                          {second + 40, run + k},                     // walk 2 -> run
+                                          {db.frame_count() - 2 * k, second + 60}});  // run -> walk 2
+  ASSERT_GT(graph.node_count(), 0);
+  auto context = make_synthesis_context(db, graph);
   ASSERT_TRUE(context) << context.error().to_string();
   EXPECT_EQ(travelling_type(*context), TagMask{0b01});
 }

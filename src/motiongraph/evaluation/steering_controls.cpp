@@ -34,7 +34,7 @@ Result<ControlInput> SteeringControls::input(const SteeringControl& control, std
       return in;
     }
     if (!mask) return mask.error();
-    const std::string name = *context_->tag_name(control.tag);  // the graph's spelling
+    const std::string name = context_->db->tag_names_of(*mask).front();  // the graph's spelling
     auto [note, inserted] = tags_.try_emplace(name);
     if (inserted) {
       note->second.unplayable = unplayable_tag(*context_, name);

@@ -154,7 +154,8 @@ Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFe
                                          const ThresholdChoiceSettings& choice, OnDemandCandidates* more) {
   if (auto s = choice.validate(); !s) return s.error();
   ThresholdChoice out;
-  out.tags = coverage_tags(db, settings);
+  const std::vector<char> in_class = untagged_class_frames(db, settings.connected_tags);
+  out.tags = coverage_tags(settings.connected_tags, in_class);
   // Tag thresholds never pass the ceiling either.
   GraphFromCandidatesSettings capped = settings;
   const double ceiling = distance_of_rms_cm(choice.max_rms_cm, features);
@@ -240,7 +241,6 @@ Result<ThresholdChoice> choose_threshold(const MotionDatabase& db, const FrameFe
   // (ThresholdChoice::untagged_holds).
   int minor_untagged = -1;
   if (per_type && out.tags.back() == kUntaggedClass && takes_part[n - 1]) {
-    const std::vector<char> in_class = untagged_class_frames(db, settings.connected_tags);
     const auto frames = std::count(in_class.begin(), in_class.end(), 1);
     if (static_cast<double>(frames) <= kMinorUntaggedShare * static_cast<double>(db.frame_count())) {
       minor_untagged = static_cast<int>(n - 1);

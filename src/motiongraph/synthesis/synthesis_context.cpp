@@ -1,7 +1,6 @@
 #include "motiongraph/synthesis/synthesis_context.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -190,7 +189,7 @@ Result<TagMask> SynthesisContext::tag_mask(const std::string& name) const {
 Result<std::string> SynthesisContext::tag_name(const std::string& name) const {
   auto mask = tag_mask(name);
   if (!mask) return mask.error();
-  return db->tag_names[static_cast<size_t>(std::countr_zero(*mask))];
+  return db->tag_names_of(*mask).front();
 }
 
 }  // namespace mg
