@@ -52,6 +52,11 @@ OptionTable build_option_table(BuildCall& call) {
       {"no_name_tags", set(b.no_name_tags)},
       {"whole_clip_tags", set(b.whole_clip_tags)},
       {"no_loops", set(b.no_loops)},
+      {"mirror",
+       [&b](py::handle v) {
+         // True and False as "on" and "off"; otherwise "auto", "on" or "off".
+         b.mirror = py::isinstance<py::bool_>(v) ? std::string(v.cast<bool>() ? "on" : "off") : v.cast<std::string>();
+       }},
       {"feet", set(b.feet)},
       {"ignore_tags", set(b.ignore_tags)},
       {"bridges", set(b.bridges.per_tag_pair)},

@@ -15,7 +15,7 @@ namespace {
 // The keywords of build() that say how clips are read; the others are refused, as unknown.
 constexpr const char* kLoadOptions[] = {"fps",       "asf",  "scale",    "up_axis",         "travel",     "input_fps",
                                         "keep_rest_frames", "cmu_index", "feet", "no_loops", "whole_clip_tags",
-                                        "no_cmu_tags", "no_name_tags"};
+                                        "no_cmu_tags", "no_name_tags", "mirror"};
 
 // (summary, clips): the summary a dict, the clips a list of Motion with their feet's contacts.
 py::tuple load_library(const std::vector<std::string>& inputs, const py::dict& options) {

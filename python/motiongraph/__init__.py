@@ -117,7 +117,8 @@ def load_library(inputs, **options):
     manifests), each clip resampled to the library's rate, tagged, on the joints all share.
 
     Keywords are build's options for reading: fps, asf, scale, up_axis, travel, input_fps, cmu_index,
-    no_cmu_tags, no_name_tags, whole_clip_tags, feet, no_loops. Loading's doubts (files read in the library's up axis,
+    no_cmu_tags, no_name_tags, whole_clip_tags, feet, no_loops, mirror ("auto", "on" or True, "off" or False).
+    Loading's doubts (files read in the library's up axis,
     joints dropped, other converters' rigs, clips that look wrong) are given as UserWarning. Returns a Library; raises
     motiongraph.Error with the CLI's message.
     """

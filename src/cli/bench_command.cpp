@@ -63,6 +63,7 @@ int run_bench(const BenchOptions& o) {
   settings.fps = o.fps;
   settings.prefer_manifest_fps = false;
   settings.cmu_tags = false;
+  settings.mirror = DatabaseSettings::Mirroring::kOff;  // the library's frames as given
   auto db = load_database(o.inputs, settings);
   if (!db) return fail(db.error());
   if (o.max_frames > 0) {

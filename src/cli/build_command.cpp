@@ -152,6 +152,13 @@ Command add_build_command(CLI::App& app) {
   sub->add_flag("--no-loops", b.no_loops,
                 "Do not play clips that loop (a game's cycle: their end meets their start) on past their end; by "
                 "default they go on a window further, so that the graph can play them round");
+  sub->add_option("--mirror", b.mirror,
+                  "auto, on or off: also play every clip mirrored left to right (NAME_mirrored, after the clips read, "
+                  "with its tags), so that walks turning one way turn both; auto mirrors a library under 30 minutes "
+                  "whose travel turns 60 degrees or more one way and less than a third of that the other (a studio's "
+                  "walk_turn_left without its right turn). Joints pair by their names (lfemur and rfemur, "
+                  "LeftUpLeg and RightUpLeg, Hip_L and Hip_R); the distance stage then has four times the pairs")
+      ->capture_default_str();
   sub->add_option("--feet", b.feet,
                   "Foot joints as LEFT_ANKLE,LEFT_TOE,RIGHT_ANKLE,RIGHT_TOE, any left empty to find it by name "
                   "(default: found by name; a manifest's [feet] otherwise)");

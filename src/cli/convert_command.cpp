@@ -26,6 +26,7 @@
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/foot_contacts.h"
 #include "motiongraph/motion/forward_kinematics.h"
+#include "motiongraph/motion/mirror.h"
 #include "motiongraph/skeleton/foot_joints.h"
 #include "motiongraph/motion/resample.h"
 #include "motiongraph/pipeline/clip_as_read.h"
@@ -42,6 +43,7 @@ struct ConvertOptions {
   double fps = 0.0;
   int skeleton = -1;
   std::optional<std::string> animation;
+  bool mirror = false;  // each clip's mirror image (motion/mirror.h)
   MotionOutputOptions output;
 };
 
@@ -77,6 +79,11 @@ Result<Clip> read_clip(const ConvertOptions& options, ClipLoader& loader, const 
     auto resampled = resample(clip.motion, options.fps);
     if (!resampled) return Error{input, 0, resampled.error().message};
     clip.motion = std::move(*resampled);
+  }
+  if (options.mirror) {
+    auto map = mirror_map(clip.skeleton);
+    if (!map) return Error{input, 0, "cannot be mirrored: " + map.error().message};
+    clip.motion = mirror_motion(clip.skeleton, *map, clip.motion);
   }
   return std::move(clip);
 }
@@ -133,6 +140,8 @@ int convert_library(const ConvertOptions& options, const ClipLoadSettings& load)
   settings.prefer_manifest_fps = options.fps <= 0.0;
   settings.cmu_tags = false;  // no tags go into the file
   settings.loops = false;
+  // The clips as they are, or each followed by its mirror image.
+  settings.mirror = options.mirror ? DatabaseSettings::Mirroring::kAlways : DatabaseSettings::Mirroring::kOff;
   settings.progress_bar = true;  // a terminal's stderr only
   settings.outputs = options.outputs;
   DatabaseLoadNotes notes;
@@ -256,6 +265,10 @@ Command add_convert_command(CLI::App& app) {
       ->allow_extra_args(false);  // one file each: inputs may follow it
   sub->add_option("--fps", options->fps, "Resample to this frame rate (slerp rotations, lerp translations)")
       ->check(CLI::Range(0.01, 10000.0));
+  sub->add_flag("--mirror", options->mirror,
+                "Mirror left to right: a clip is written as its mirror image (a walk turning left turns right); a "
+                "library's clips are each followed by theirs (NAME_mirrored). Joints pair by their names (lfemur and "
+                "rfemur, LeftUpLeg and RightUpLeg, Hip_L and Hip_R)");
   options->output.add_to(*sub);
   options->load.add_to(*sub);
   return {sub, [options] { return run_convert(*options); }};

@@ -40,6 +40,7 @@ struct InfoOptions {
   bool no_name_tags = false;
   bool whole_clip_tags = false;
   bool no_loops = false;
+  std::string mirror = "auto";
 };
 
 int run_library(const InfoOptions& options) {
@@ -54,6 +55,9 @@ int run_library(const InfoOptions& options) {
   if (options.whole_clip_tags) db.travel_tags.min_speed_mps = 0.0;
   db.loops = !options.no_loops;
   db.cmu_index_path = options.cmu_index;
+  auto mirror = parse_mirroring(options.mirror);
+  if (!mirror) return fail(Error{"", 0, "--mirror must be auto, on or off, not " + options.mirror});
+  db.mirror = *mirror;
   return run_library_info(options.files, library);
 }
 
@@ -74,9 +78,9 @@ nlohmann::json skeleton_json(const Skeleton& skeleton) {
 int run_info(const InfoOptions& options) {
   if (is_library(options.files)) return run_library(options);
   if (options.fps_given || !options.cmu_index.empty() || options.no_cmu_tags || options.no_name_tags ||
-      options.whole_clip_tags || options.no_loops) {
-    spdlog::warn("--fps, --cmu-index, --no-cmu-tags, --no-name-tags, --whole-clip-tags and --no-loops apply to folders "
-                 "and manifests (a library); these files are summarised as read");
+      options.whole_clip_tags || options.no_loops || options.mirror != "auto") {
+    spdlog::warn("--fps, --cmu-index, --no-cmu-tags, --no-name-tags, --whole-clip-tags, --no-loops and --mirror apply "
+                 "to folders and manifests (a library); these files are summarised as read");
   }
   ClipLoadSettings settings = options.load.settings();
   // An .asf among the files is the skeleton of the .amc files given with it.
@@ -286,6 +290,10 @@ Command add_info_command(CLI::App& app) {
                 "For a library: a CMU description's walk or run on the whole clip (by default only where the root "
                 "travels 0.25 m/s or more over a second)");
   sub->add_flag("--no-loops", options->no_loops, "For a library: clips that loop are not played on past their end");
+  sub->add_option("--mirror", options->mirror,
+                  "For a library: auto, on or off: every clip mirrored left to right too, as build reads it (auto: a "
+                  "library whose travel turns one way)")
+      ->capture_default_str();
   sub->add_flag("--json", options->json, "Print the summary as JSON");
   options->load.add_to(*sub);
   return {sub, [options] { return run_info(*options); }};

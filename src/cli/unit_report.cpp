@@ -211,6 +211,17 @@ void report_units(const DatabaseLoadNotes& notes, bool quiet) {
                  "[...] sets a clip's)",
                  fmt::join(parts, ", "));
   }
+  if (!notes.mirrored.empty() && !quiet) {
+    const TurningBalance& t = notes.turning;
+    spdlog::info("{} clip{} mirrored left to right ({}{}), after the clips read, so that their turns go both ways{}",
+                 notes.mirrored.size(), notes.mirrored.size() == 1 ? "" : "s", notes.mirrored.front(),
+                 notes.mirrored.size() > 1 ? fmt::format(" and {} more", notes.mirrored.size() - 1) : "",
+                 notes.mirrored_for_turning
+                     ? fmt::format(": travelling {:.0f} s, they turn {:.0f} degrees left and {:.0f} right "
+                                   "(--mirror off keeps them as they are)",
+                                   t.travel_s, t.left_deg, t.right_deg)
+                     : "");
+  }
   if (!notes.standing_tags.empty() && !quiet) {
     // Per tag: the frames left off and the clips they are in, in clip order.
     std::vector<std::string> tags;

@@ -633,4 +633,29 @@ if "$bin" path "$work/plain.mgraph" --shape line:8 --segment walk:0-8 -o "$work/
 fi
 grep -q "'walk' is not a motion tag of this graph (its tags: none)" "$work/plain.err" \
   || { echo "FAIL: no tags without name tags"; cat "$work/plain.err"; exit 1; }
+# A studio's library whose one turning walk turns left: mirrored by default, so that the graph's
+# own walk (the path edit off) follows a circle turning right; with --mirror off it cannot.
+mkdir -p "$work/left-only"
+"$bin" convert "$data/cmu/16/16_15.amc" -o "$work/left-only/Walk_Forward.bvh" >/dev/null 2>&1
+"$bin" convert "$data/cmu/16/16_17.amc" -o "$work/left-only/walk_turn_left.bvh" >/dev/null 2>&1
+"$bin" build "$work/left-only" -o "$work/left-only.mgraph" --cache-dir "$cache" 2>"$work/left-only.err"
+grep -qE "info: 2 clips mirrored left to right \(Walk_Forward_mirrored and 1 more\), .*they turn [0-9]+ degrees left \
+and 0 right \(--mirror off keeps them as they are\)" "$work/left-only.err" \
+  || { echo "FAIL: a library turning left mirrored"; cat "$work/left-only.err"; exit 1; }
+"$bin" build "$work/left-only" -o "$work/left-only-off.mgraph" --cache-dir "$cache" --mirror off -q
+for g in left-only left-only-off; do
+  "$bin" path "$work/$g.mgraph" --shape circle:4 --no-path-edit -o "$work/$g-path.json" \
+    --report "$work/$g-path-report.json" >/dev/null 2>&1
+done
+python3 - "$work/left-only-path-report.json" "$work/left-only-off-path-report.json" <<'PY2'
+import json, sys
+mirrored, off = (json.load(open(p)) for p in sys.argv[1:3])
+assert mirrored["reached_end"] and mirrored["mean_deviation_m"] < 0.3, mirrored["mean_deviation_m"]
+assert off["mean_deviation_m"] > 1.0, off["mean_deviation_m"]
+PY2
+if "$bin" build "$work/left-only" -o "$work/bad.mgraph" --mirror sometimes 2>"$work/bad-mirror.err"; then
+  echo "FAIL: --mirror sometimes accepted"; exit 1
+fi
+grep -q "mirror" "$work/bad-mirror.err" && [[ ! -e "$work/bad.mgraph" ]] \
+  || { echo "FAIL: --mirror sometimes"; cat "$work/bad-mirror.err"; exit 1; }
 echo "cli build ok"

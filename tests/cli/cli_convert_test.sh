@@ -52,10 +52,10 @@ open(sys.argv[2], "w").write("\n".join(lines))
 PY
 "$bin" info "$work/glitch/glitched.bvh" | grep -E "glitches: 2 glitches at 2\.50-2\.58 s \(the largest .*\) within it .*: a library cuts it there into 2 parts, 10 frames dropped" >/dev/null \
   || { echo "FAIL: info's glitches line"; "$bin" info "$work/glitch/glitched.bvh"; exit 1; }
-"$bin" info --json "$work/glitch" >"$work/glitch.json" 2>"$work/glitch.err"
+"$bin" info --json --mirror off "$work/glitch" >"$work/glitch.json" 2>"$work/glitch.err"
 grep -E "info: clips cut at capture glitches within them .*: glitched \(glitched.bvh\): 2 glitches at .* cut into glitched, glitched_part2, 10 frames dropped" "$work/glitch.err" >/dev/null \
   || { echo "FAIL: the library's glitch line"; cat "$work/glitch.err"; exit 1; }
-"$bin" info --keep-rest-frames --json "$work/glitch" >"$work/glitch-kept.json" 2>/dev/null
+"$bin" info --keep-rest-frames --json --mirror off "$work/glitch" >"$work/glitch-kept.json" 2>/dev/null
 "$bin" convert "$work/glitch/glitched.bvh" -o "$work/glitch-whole.bvh" 2>"$work/glitch-convert.err"
 grep -E "warning: .*glitched.bvh: 2 glitches at .*; converted whole" "$work/glitch-convert.err" >/dev/null \
   || { echo "FAIL: convert's glitch warning"; cat "$work/glitch-convert.err"; exit 1; }
@@ -405,4 +405,40 @@ dropped, kept = (json.load(open(p))["positions"] for p in sys.argv[1:3])
 assert len(kept) == len(dropped) + 2 and kept[2:] == dropped, (len(kept), len(dropped))
 PY
 ls -A "$work" | grep -q "tmp-" && { echo "FAIL: temporary files left"; exit 1; }
+# --mirror: a walk turning left written as its mirror image turns right, each joint where its
+# partner's mirror image is (within the subject's own left-right differences), and mirrored
+# again it is the walk as read (to the BVH's precision); a library's clips are each followed by
+# theirs.
+"$bin" convert "$data/cmu/16/16_17.amc" -o "$work/left.json" 2>/dev/null
+"$bin" convert "$data/cmu/16/16_17.amc" --mirror -o "$work/right.bvh" -o "$work/right.json" 2>/dev/null
+"$bin" convert "$work/right.bvh" --mirror -o "$work/left-again.json" 2>/dev/null
+python3 - "$work/left.json" "$work/right.json" "$work/left-again.json" <<'PY'
+import json, math, sys
+left, right, again = (json.load(open(p)) for p in sys.argv[1:4])
+names = [j["name"] for j in left["joints"]]
+partner = lambda n: ("r" + n[1:]) if n[0] == "l" and "r" + n[1:] in names else \
+                    ("l" + n[1:]) if n[0] == "r" and "l" + n[1:] in names else n
+at = {n: i for i, n in enumerate(names)}
+# The mirror's plane: across the hips in the first frame's rest, x here (CMU's left is +x).
+worst = max(math.dist((-a[at[n]][0], a[at[n]][1], a[at[n]][2]), b[at[partner(n)]])
+            for a, b in zip(left["positions"], right["positions"]) for n in names)
+assert worst < 0.06, worst
+def turn(pos):   # the root's heading of travel, first second against last, radians (left +)
+    r = [f[0] for f in pos]
+    a = (r[30][0] - r[0][0], r[30][2] - r[0][2]); b = (r[-1][0] - r[-31][0], r[-1][2] - r[-31][2])
+    return math.atan2(a[1] * b[0] - a[0] * b[1], a[0] * b[0] + a[1] * b[1])
+assert turn(left["positions"]) > 1.0 and abs(turn(right["positions"]) + turn(left["positions"])) < 0.01, \
+    (turn(left["positions"]), turn(right["positions"]))
+twice = max(abs(x - y) for fa, fb in zip(left["positions"], again["positions"])
+            for ja, jb in zip(fa, fb) for x, y in zip(ja, jb))
+assert twice < 1e-4, twice
+PY
+mkdir "$work/mirror-lib" && cp "$data/bvh/131_01.bvh" "$work/mirror-lib/"
+"$bin" convert "$work/mirror-lib" --mirror -o "$work/mirror-lib.glb" 2>/dev/null
+python3 - "$work/mirror-lib.glb" <<'PY'
+import json, sys
+data = open(sys.argv[1], "rb").read()
+gltf = json.loads(data[20:20 + int.from_bytes(data[12:16], "little")])
+assert [a["name"] for a in gltf["animations"]] == ["131_01", "131_01_mirrored"], gltf["animations"]
+PY
 echo "cli convert ok"

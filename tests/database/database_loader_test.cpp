@@ -21,6 +21,7 @@
 #include "motiongraph/motion/common_joints.h"
 #include "motiongraph/motion/forward_kinematics.h"
 #include "motiongraph/motion/length_unit.h"
+#include "motiongraph/motion/mirror.h"
 #include "motiongraph/motion/resample.h"
 #include "motiongraph/motion/rig_matching.h"
 #include "motiongraph/motion/root_motion.h"
@@ -163,6 +164,7 @@ TEST(DatabaseLoader, ClipsAreTaggedByTheWordsOfTheirNames) {
   folder.write("walking/w01.bvh", bvh(test::load_data_clip("cmu/16/16_13.amc")));
   DatabaseSettings settings;
   settings.cmu_index_text = "16_15\tjump\n";
+  settings.mirror = DatabaseSettings::Mirroring::kOff;  // its walks turn one way: as read
   DatabaseLoadNotes notes;
   auto db = load_database({folder.path().string()}, settings, &notes);
   ASSERT_TRUE(db) << db.error().to_string();
@@ -231,6 +233,93 @@ TEST(DatabaseLoader, ClipsAreTaggedByTheWordsOfTheirNames) {
         << off->clips[c].name;
   }
   EXPECT_TRUE(off_notes.name_tagged.empty());
+}
+
+// A studio's library whose one turning walk turns left: each clip is mirrored, after them all,
+// under NAME_mirrored (NAME_mirrored_2 where a clip has that name), with its tags on the same
+// frames; the mirrored library turns as far right as left. Off, nothing is mirrored; always, a
+// library that turns both ways is mirrored too.
+TEST(DatabaseLoader, ALibraryTurningOneWayIsMirrored) {
+  const auto bvh = [](const Clip& clip) { return write_bvh(clip.skeleton, clip.motion, BvhWriteSettings{}); };
+  TempFolder folder("mirror");
+  folder.write("Walk_Forward.bvh", bvh(test::load_data_clip("cmu/16/16_15.amc")));
+  folder.write("walk_turn_left.bvh", bvh(test::load_data_clip("cmu/16/16_17.amc")));
+  folder.write("Walk_Forward_mirrored.bvh", bvh(test::load_data_clip("cmu/16/16_16.amc")));
+  DatabaseSettings settings;
+  DatabaseLoadNotes notes;
+  auto db = load_database({folder.path().string()}, settings, &notes);
+  ASSERT_TRUE(db) << db.error().to_string();
+  EXPECT_TRUE(notes.turning.lopsided());
+  EXPECT_GT(notes.turning.left_deg, 45.0);
+  EXPECT_LT(notes.turning.right_deg, notes.turning.left_deg / 3.0);
+  EXPECT_TRUE(notes.mirrored_for_turning);
+  ASSERT_EQ(db->clips.size(), 6u);
+  std::map<std::string, int> clip_of;
+  for (int c = 0; c < 6; ++c) clip_of[db->clips[c].name] = c;
+  const std::vector<std::pair<std::string, std::string>> pairs = {
+      {"Walk_Forward", "Walk_Forward_mirrored_2"},
+      {"walk_turn_left", "walk_turn_left_mirrored"},
+      {"Walk_Forward_mirrored", "Walk_Forward_mirrored_mirrored"}};
+  std::vector<std::string> mirrored_names;
+  const std::vector<TagMask> tags = db->frame_tags();
+  for (const auto& [name, image] : pairs) {
+    SCOPED_TRACE(name);
+    ASSERT_TRUE(clip_of.contains(name) && clip_of.contains(image));
+    const DatabaseClip& clip = db->clips[clip_of.at(name)];
+    const DatabaseClip& mirrored = db->clips[clip_of.at(image)];
+    EXPECT_LT(clip_of.at(name), 3);
+    EXPECT_GE(clip_of.at(image), 3);
+    mirrored_names.push_back(image);
+    EXPECT_EQ(mirrored.source, clip.source);
+    ASSERT_EQ(mirrored.frame_count, clip.frame_count);
+    const Skeleton& skeleton = db->skeletons[static_cast<size_t>(clip.skeleton)];
+    auto map = mirror_map(skeleton);
+    ASSERT_TRUE(map) << map.error().message;
+    const Motion expected = mirror_motion(skeleton, *map, clip.motion);
+    EXPECT_EQ(mirrored.motion.local_rotations, expected.local_rotations);
+    EXPECT_EQ(mirrored.motion.local_translations_m, expected.local_translations_m);
+    for (int f = 0; f < clip.frame_count; ++f) {
+      ASSERT_EQ(tags[static_cast<size_t>(mirrored.first_frame + f)], tags[static_cast<size_t>(clip.first_frame + f)])
+          << "frame " << f;
+    }
+  }
+  EXPECT_NE(tags_of(*db, clip_of.at("walk_turn_left_mirrored")).count("turn"), 0u);
+  std::sort(mirrored_names.begin(), mirrored_names.end());
+  std::vector<std::string> noted = notes.mirrored;
+  std::sort(noted.begin(), noted.end());
+  EXPECT_EQ(noted, mirrored_names);
+  EXPECT_EQ(db->frame_contacts.size(), static_cast<size_t>(db->frame_count()));
+  const TurningBalance after = turning_balance(*db);
+  EXPECT_NEAR(after.right_deg, after.left_deg, 1e-6 * after.left_deg);
+  EXPECT_FALSE(after.lopsided());
+
+  settings.mirror = DatabaseSettings::Mirroring::kOff;
+  DatabaseLoadNotes off_notes;
+  auto off = load_database({folder.path().string()}, settings, &off_notes);
+  ASSERT_TRUE(off) << off.error().to_string();
+  EXPECT_EQ(off->clips.size(), 3u);
+  EXPECT_TRUE(off_notes.mirrored.empty());
+  EXPECT_TRUE(off_notes.turning.lopsided());  // said, though not acted on
+
+  // Walks that turn both ways: not by default, always when asked.
+  TempFolder both("mirror-both");
+  both.write("a.bvh", bvh(test::load_data_clip("cmu/16/16_15.amc")));
+  both.write("b.bvh", bvh(test::load_data_clip("cmu/16/16_17.amc")));
+  Clip right = test::load_data_clip("cmu/16/16_17.amc");
+  auto right_map = mirror_map(right.skeleton);
+  ASSERT_TRUE(right_map) << right_map.error().message;
+  right.motion = mirror_motion(right.skeleton, *right_map, right.motion);
+  both.write("c.bvh", bvh(right));
+  DatabaseLoadNotes balanced_notes;
+  auto balanced = load_database({both.path().string()}, DatabaseSettings{}, &balanced_notes);
+  ASSERT_TRUE(balanced) << balanced.error().to_string();
+  EXPECT_EQ(balanced->clips.size(), 3u);
+  EXPECT_FALSE(balanced_notes.turning.lopsided());
+  DatabaseSettings always;
+  always.mirror = DatabaseSettings::Mirroring::kAlways;
+  auto all = load_database({both.path().string()}, always);
+  ASSERT_TRUE(all) << all.error().to_string();
+  EXPECT_EQ(all->clips.size(), 6u);
 }
 
 TEST(DatabaseLoader, CmuTagsOffOrFromText) {
@@ -603,6 +692,7 @@ TEST(DatabaseLoader, AFileWhoseOwnUpAxisIsNotSettledIsReadInTheLibrarys) {
   EXPECT_FALSE(up_axis_settled(alone_notes.detected_up_axes[0].choice));
 
   files.push_back(crawl);
+  settings.mirror = DatabaseSettings::Mirroring::kOff;  // its walks turn one way: as read
   DatabaseLoadNotes notes;
   auto library = load_database(files, settings, &notes);
   ASSERT_TRUE(library) << library.error().to_string();
@@ -1771,8 +1861,10 @@ TEST(DatabaseLoader, AFolderOfFoldersIsReadAsOneLibraryEachAmcWithItsSubjectsSke
   tree.write("flat/16_16.amc", test::read_data("cmu/16/16_16.amc"));
   // The BVH of a take read as AMC, in another folder: left out.
   tree.write("bvh/16_16.bvh", test::read_data("bvh/16_01.bvh"));
+  DatabaseSettings settings = cmu_settings();
+  settings.mirror = DatabaseSettings::Mirroring::kOff;  // its walks turn one way: as read
   DatabaseLoadNotes notes;
-  auto db = load_database({tree.path().string()}, cmu_settings(), &notes);
+  auto db = load_database({tree.path().string()}, settings, &notes);
   ASSERT_TRUE(db) << db.error().to_string();
   ASSERT_EQ(db->clips.size(), 3u);
   EXPECT_EQ(db->clips[0].name, "a/16_15");
@@ -1855,8 +1947,10 @@ TEST(DatabaseLoader, AFoldersFilesOfARigThatCannotJoinTheOthersAreLeftOut) {
   }
   folder.write("111_36.bvh", test::read_data("bvh/111_36.bvh"));  // 367 frames
   folder.write("16_01.bvh", test::read_data("bvh/16_01.bvh"));    // 322
+  DatabaseSettings settings = cmu_settings();
+  settings.mirror = DatabaseSettings::Mirroring::kOff;  // its walks turn one way: as read
   DatabaseLoadNotes notes;
-  auto db = load_database({folder.path().string()}, cmu_settings(), &notes);
+  auto db = load_database({folder.path().string()}, settings, &notes);
   ASSERT_TRUE(db) << db.error().to_string();
   ASSERT_EQ(db->clips.size(), 2u);
   EXPECT_EQ(db->clips[0].name, "111_36");

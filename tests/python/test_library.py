@@ -204,3 +204,41 @@ def test_bad_library_raises_the_cli_message(cli, data, tmp_path):
     with pytest.raises(mg.Error, match="broken.toml:4: last_frame 5 comes before first_frame 10") as raised:
         mg.load_library(broken)
     assert str(raised.value) == cli_error(cli("info", broken, check=False))
+
+
+def test_a_library_turning_one_way_is_mirrored_as_info_reads_it(cli, data, tmp_path):
+    # 16_15 walks straight and 16_17 turns 90 degrees left: each is also read mirrored, after
+    # them, as info (and build) reads the library; mirror=False or "off" reads them as they are,
+    # True or "on" mirrors any library.
+    folder = tmp_path / "left"
+    folder.mkdir()
+    for name in ("16.asf", "16_15.amc", "16_17.amc"):
+        (folder / name).write_bytes((data / "cmu/16" / name).read_bytes())
+    library = mg.load_library(folder)
+    assert [c.name for c in library] == ["16_15", "16_17", "16_15_mirrored", "16_17_mirrored"]
+    assert library.summary == cli_info(cli, folder)
+    turning = library.summary["reading"]["turning"]
+    assert turning["lopsided"] and turning["left_deg"] > 60 and turning["right_deg"] < turning["left_deg"] / 3
+    assert library.summary["reading"]["mirrored"] == ["16_15_mirrored", "16_17_mirrored"]
+    assert library.clip_tags("16_17_mirrored") == library.clip_tags("16_17")
+    # The mirror image's root goes the clip's way mirrored (across the rest pose's plane, upright):
+    # as high, as far from where it started, turning as far the other way.
+    a, b = np.asarray(library["16_17"].positions)[:, 0], np.asarray(library["16_17_mirrored"].positions)[:, 0]
+    np.testing.assert_allclose(b[:, 1], a[:, 1], atol=1e-9)
+    np.testing.assert_allclose(np.linalg.norm(b - b[0], axis=1), np.linalg.norm(a - a[0], axis=1), atol=1e-9)
+
+    def turn(root):  # radians, left positive: the travel's heading over the first second against the last
+        u, v = root[30] - root[0], root[-1] - root[-31]
+        return np.arctan2(u[2] * v[0] - u[0] * v[2], u[0] * v[0] + u[2] * v[2])
+    assert turn(a) > 1.0 and abs(turn(b) + turn(a)) < 1e-9
+    for off in (False, "off"):
+        assert [c.name for c in mg.load_library(folder, mirror=off)] == ["16_15", "16_17"]
+    assert mg.load_library(folder, mirror="off").summary == cli_info(cli, folder, "--mirror", "off")
+    straight = tmp_path / "straight"
+    straight.mkdir()
+    for name in ("16.asf", "16_15.amc"):
+        (straight / name).write_bytes((data / "cmu/16" / name).read_bytes())
+    assert [c.name for c in mg.load_library(straight)] == ["16_15"]
+    assert [c.name for c in mg.load_library(straight, mirror=True)] == ["16_15", "16_15_mirrored"]
+    with pytest.raises(mg.Error, match="--mirror must be auto, on or off, not sometimes"):
+        mg.load_library(folder, mirror="sometimes")

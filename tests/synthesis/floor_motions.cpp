@@ -36,6 +36,24 @@ std::vector<Vec2> straight_walk(double seconds, double speed, double sway) {
   return roots;
 }
 
+MotionDatabase floor_motion_database(const std::vector<Motion>& motions) {
+  MotionDatabase db;
+  db.fps = kFloorMotionFps;
+  JointDef root{.name = "root", .animated_translation = true};
+  JointDef chest{.name = "chest", .parent = 0, .rest_offset_m = Vec3(0.0, 0.4, 0.0)};
+  db.skeletons.emplace_back(std::vector<JointDef>{root, chest});
+  db.skeleton_names.push_back("figure");
+  for (const Motion& motion : motions) {
+    DatabaseClip clip;
+    clip.name = "clip" + std::to_string(db.clips.size());
+    clip.first_frame = db.frame_count();
+    clip.frame_count = motion.frame_count;
+    clip.motion = motion;
+    db.clips.push_back(std::move(clip));
+  }
+  return db;
+}
+
 Vec2 root_of(const Motion& m, int f) {
   const Vec3& p = m.translations(f)[0];
   return {p.x(), p.z()};

@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "motiongraph/database/motion_database.h"
 #include "motiongraph/motion/motion.h"
 #include "motiongraph/synthesis/facing.h"
 
@@ -21,6 +22,10 @@ Motion motion_along(const std::vector<Vec2>& roots);
 // A straight walk north from the origin at `speed`, swaying `sway` metres either side with each
 // stride (1 s).
 std::vector<Vec2> straight_walk(double seconds, double speed, double sway);
+
+// A database of the motions (motion_along's), one clip each named clip0, clip1..., on their
+// two-joint figure.
+MotionDatabase floor_motion_database(const std::vector<Motion>& motions);
 
 Vec2 root_of(const Motion& m, int f);
 

@@ -49,25 +49,6 @@ TEST(TravelHeading, TheTravelsShareBySpeedAngleAndWindow) {
   EXPECT_EQ(travel_share(on, north, along(0.0, 1.0), 0.0, 1.0), 0.0);
 }
 
-// A database of the motions, one clip each, on the two-joint figure of floor_motions.h.
-MotionDatabase database_of(const std::vector<Motion>& motions) {
-  MotionDatabase db;
-  db.fps = test::kFloorMotionFps;
-  JointDef root{.name = "root", .animated_translation = true};
-  JointDef chest{.name = "chest", .parent = 0, .rest_offset_m = Vec3(0.0, 0.4, 0.0)};
-  db.skeletons.emplace_back(std::vector<JointDef>{root, chest});
-  db.skeleton_names.push_back("figure");
-  for (const Motion& motion : motions) {
-    DatabaseClip clip;
-    clip.name = "clip" + std::to_string(db.clips.size());
-    clip.first_frame = db.frame_count();
-    clip.frame_count = motion.frame_count;
-    clip.motion = motion;
-    db.clips.push_back(std::move(clip));
-  }
-  return db;
-}
-
 Motion facing_off(Motion m, double degrees) {
   const Quat yaw = axis_rotation(Axis::kY, degrees * kDeg);
   for (int f = 0; f < m.frame_count; ++f) m.rotations(f)[0] = (yaw * m.rotations(f)[0]).normalized();
@@ -100,7 +81,7 @@ TEST(TravelHeading, EachFrameTurnedOntoItsClipsTravelWhereItWalks) {
   const Motion sidestep = facing_off(walk, 90.0 - 8.0);
   const Motion standing = test::motion_along(std::vector<Vec2>(120, Vec2(0.5, -0.2)));
   // The walk after the sidestep: a window crossing into the clip before would judge its travel.
-  const MotionDatabase db = database_of({sidestep, walk, standing});
+  const MotionDatabase db = test::floor_motion_database({sidestep, walk, standing});
   const MotionGraph graph;
   auto assembler = MotionAssembler::create(db, graph, 0);
   ASSERT_TRUE(assembler.ok()) << assembler.error().to_string();

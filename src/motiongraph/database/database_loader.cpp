@@ -31,6 +31,7 @@
 #include "motiongraph/motion/clip_doubts.h"
 #include "motiongraph/motion/clip_loader.h"
 #include "motiongraph/motion/common_joints.h"
+#include "motiongraph/motion/mirror.h"
 #include "motiongraph/motion/resample.h"
 #include "motiongraph/motion/rig_matching.h"
 #include "motiongraph/motion/up_axis.h"
@@ -346,6 +347,13 @@ Status tag_described_clip(MotionDatabase& db, const DescribedClip& d, const Clip
 
 }  // namespace
 
+std::optional<DatabaseSettings::Mirroring> parse_mirroring(std::string_view text) {
+  if (text == "auto") return DatabaseSettings::Mirroring::kWhenLopsided;
+  if (text == "on") return DatabaseSettings::Mirroring::kAlways;
+  if (text == "off") return DatabaseSettings::Mirroring::kOff;
+  return std::nullopt;
+}
+
 DatabaseSettings database_settings_reading_as(const ClipLoadSettings& load) {
   DatabaseSettings settings;
   settings.asf_path = load.asf_path;
@@ -634,6 +642,52 @@ std::uint64_t motion_content_hash(const Clip& clip) {
 // is kept on those they share (motion/common_joints.h); a file whose own up axis is not settled
 // and differs from the library's (motion/up_axis.h) is read again in the library's: the
 // database is made once more, with every file.
+// DatabaseSettings::mirror: every clip of a skeleton that can be mirrored, mirrored (motion/mirror.h)
+// after them all, under NAME_mirrored (or NAME_mirrored_2... when taken), with the tag ranges of
+// its own moved along.
+void mirror_clips(MotionDatabase& db, DatabaseLoadNotes* notes) {
+  std::vector<Result<MirrorMap>> maps;
+  for (const Skeleton& skeleton : db.skeletons) maps.push_back(mirror_map(skeleton));
+  std::set<std::string> names;
+  for (const DatabaseClip& clip : db.clips) names.insert(clip.name);
+  const size_t read = db.clips.size();
+  const size_t ranges = db.tag_ranges.size();
+  std::vector<int> unmirrored_clips(db.skeletons.size(), 0);
+  for (size_t c = 0; c < read; ++c) {
+    const int skeleton = db.clips[c].skeleton;
+    const Result<MirrorMap>& map = maps[static_cast<size_t>(skeleton)];
+    if (!map) {
+      ++unmirrored_clips[static_cast<size_t>(skeleton)];
+      continue;
+    }
+    DatabaseClip mirrored;
+    mirrored.name =
+        unique_name(db.clips[c].name + "_mirrored", [&](const std::string& n) { return names.count(n) > 0; });
+    names.insert(mirrored.name);
+    mirrored.source = db.clips[c].source;
+    mirrored.skeleton = skeleton;
+    mirrored.first_frame = db.frame_count();
+    mirrored.frame_count = db.clips[c].frame_count;
+    mirrored.motion = mirror_motion(db.skeletons[static_cast<size_t>(skeleton)], *map, db.clips[c].motion);
+    mirrored.read_fps = db.clips[c].read_fps;
+    const int from = db.clips[c].first_frame, to = from + db.clips[c].frame_count;
+    for (size_t r = 0; r < ranges; ++r) {
+      const TagRange range = db.tag_ranges[r];
+      const int first = std::max(range.first_frame, from), last = std::min(range.first_frame + range.frame_count, to);
+      if (first < last) db.tag_ranges.push_back(TagRange{range.tag, mirrored.first_frame + first - from, last - first});
+    }
+    if (notes != nullptr) notes->mirrored.push_back(mirrored.name);
+    db.clips.push_back(std::move(mirrored));
+  }
+  if (notes != nullptr) {
+    for (size_t s = 0; s < maps.size(); ++s) {
+      if (unmirrored_clips[s] > 0) {
+        notes->unmirrored.push_back({db.skeleton_names[s], maps[s].error().message, unmirrored_clips[s]});
+      }
+    }
+  }
+}
+
 Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSettings& settings,
                                   const ManifestWide& wide, const std::optional<CmuIndex>& cmu,
                                   DatabaseLoadNotes* notes, const std::vector<std::string>& joints) {
@@ -1125,6 +1179,17 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     }
   }
 
+  // 3f. Each clip mirrored, after them all, with its own tags: always, or when the library turns
+  // one way.
+  const TurningBalance turning = turning_balance(db);
+  const bool lopsided = settings.mirror == DatabaseSettings::Mirroring::kWhenLopsided && turning.lopsided() &&
+                        db.frame_count() < DatabaseSettings::kMaxLopsidedMirrorS * db.fps;
+  if (notes != nullptr) {
+    notes->turning = turning;
+    notes->mirrored_for_turning = lopsided;
+  }
+  if (settings.mirror == DatabaseSettings::Mirroring::kAlways || lopsided) mirror_clips(db, notes);
+
   // 4. The feet's contacts (a rig whose feet are not found keeps the reason instead).
   if (auto s = find_database_contacts(db); !s) {
     if (!settings.foot_names.empty()) return Error{"", 0, "the foot joints named: " + s.error().message};
@@ -1156,6 +1221,11 @@ std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes) {
                                 "person's size too: --scale {:g} reads it so",
                                 file, choice.unit.name, choice.figure_size_m, choice.also->name,
                                 choice.also_figure_size_m, choice.also->metres_per_unit));
+  }
+  for (const auto& u : notes.unmirrored) {
+    lines.push_back(fmt::format("{}: its {} not mirrored: {}", u.skeleton,
+                                u.clips == 1 ? std::string("clip is") : fmt::format("{} clips are", u.clips),
+                                u.reason));
   }
   for (const auto& d : notes.detected_up_axes) {
     if (!d.library_axis) continue;

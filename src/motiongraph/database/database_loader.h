@@ -38,12 +38,14 @@
 #include <optional>
 #include <stop_token>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "motiongraph/core/error.h"
 #include "motiongraph/core/progress.h"
 #include "motiongraph/database/motion_database.h"
 #include "motiongraph/database/travel_tags.h"
+#include "motiongraph/database/turning_balance.h"
 #include "motiongraph/motion/capture_glitches.h"
 #include "motiongraph/motion/clip_doubts.h"
 #include "motiongraph/motion/clip_loader.h"
@@ -96,6 +98,16 @@ struct DatabaseSettings {
   // (min_speed_mps 0: on the whole clip).
   TravelTagSettings travel_tags;
 
+  // Each clip also mirrored left to right (motion/mirror.h), as one more clip after all of them,
+  // named NAME_mirrored, with the tags of its own: a library whose walks turn one way turns both.
+  // kWhenLopsided mirrors a library whose clips turn one way much more than the other
+  // (database/turning_balance.h) and that holds less than kMaxLopsidedMirrorS of motion (the
+  // distance stage has four times the pairs). A skeleton that cannot be mirrored keeps its clips
+  // as they are (DatabaseLoadNotes::unmirrored says why).
+  enum class Mirroring { kOff, kWhenLopsided, kAlways };
+  static constexpr double kMaxLopsidedMirrorS = 1800.0;
+  Mirroring mirror = Mirroring::kWhenLopsided;
+
   // Clips that loop (motion/loop.h: a game's cycle, its end meeting its start) go on past their
   // end for loop_overlap_frames frames at the database's rate (0: a third of a second and one,
   // the default window's and one), so a transition's window can lead from the end back to the
@@ -121,6 +133,9 @@ struct DatabaseSettings {
 
   Status validate() const;
 };
+
+// "auto", "on" or "off" (--mirror) as DatabaseSettings::Mirroring; nullopt for anything else.
+std::optional<DatabaseSettings::Mirroring> parse_mirroring(std::string_view text);
 
 // Settings that read every clip as `load` does (and find its feet with load.foot_names); the
 // rate and the CMU tags at their defaults. `info` on a library reads it so.
@@ -268,6 +283,18 @@ struct DatabaseLoadNotes {
   // Files a folder left out (another file holds a clip of the same name: one take in two
   // formats), and clips renamed because their name was taken, one line each.
   std::vector<std::string> name_clashes;
+  // DatabaseSettings::mirror: which way the clips read turn (before any is mirrored), the clips
+  // mirrored (their names, NAME_mirrored unless taken, after all the clips read), and the
+  // skeletons that could not be, with why.
+  TurningBalance turning;
+  bool mirrored_for_turning = false;  // by kWhenLopsided
+  std::vector<std::string> mirrored;
+  struct Unmirrored {
+    std::string skeleton;
+    std::string reason;
+    int clips = 0;
+  };
+  std::vector<Unmirrored> unmirrored;
 };
 
 // The warnings loading gives the user, one line each: files left out and clips renamed for

@@ -87,6 +87,9 @@ Result<BuildSettings> build_settings_from(const BuildOptions& o) {
   db.name_tags = !o.no_name_tags;
   if (o.whole_clip_tags) db.travel_tags.min_speed_mps = 0.0;
   db.loops = !o.no_loops;
+  auto mirror = parse_mirroring(o.mirror);
+  if (!mirror) return Error{"", 0, "--mirror must be auto, on or off, not " + o.mirror};
+  db.mirror = *mirror;
   // A loop goes on past its end as far as a transition's window reaches, and a frame.
   if (o.distance.window_frames > 0) db.loop_overlap_frames = o.distance.window_frames + 1;
   db.cmu_index_path = o.cmu_index;

@@ -30,6 +30,7 @@ struct BuildOptions {
   bool no_name_tags = false;  // no tags from clip names (cmu_tags.h clip_name_tags)
   bool whole_clip_tags = false;  // walk and run from descriptions on whole clips (travel_tags.h)
   bool no_loops = false;  // clips that loop are not played on past their end (motion/loop.h)
+  std::string mirror = "auto";  // "auto", "on" or "off": each clip mirrored left to right too (motion/mirror.h)
   std::string feet;  // LEFT_ANKLE,LEFT_TOE,RIGHT_ANKLE,RIGHT_TOE (skeleton/foot_joints.h)
   std::string cloud = "rings";
   PointCloudSettings cloud_settings;

@@ -122,6 +122,10 @@ nlohmann::json reading_json(const DatabaseLoadNotes& notes) {
   for (const auto& n : notes.name_tagged) {
     named.push_back({{"clip", n.clip}, {"tags", n.tags}, {"source", n.source}, {"words", n.words}});
   }
+  nlohmann::json unmirrored = nlohmann::json::array();
+  for (const auto& u : notes.unmirrored) {
+    unmirrored.push_back({{"skeleton", u.skeleton}, {"reason", u.reason}, {"clips", u.clips}});
+  }
   nlohmann::json poses = nlohmann::json::array();
   for (const auto& p : notes.poses) poses.push_back({{"file", p.file}, {"frames", p.frames}, {"fps", p.fps}});
   nlohmann::json unreadable = nlohmann::json::array();
@@ -142,7 +146,14 @@ nlohmann::json reading_json(const DatabaseLoadNotes& notes) {
           {"unreadable_passed_over", std::move(unreadable)},
           {"loops", std::move(loops)},
           {"standing_tags", std::move(standing)},
-          {"name_tags", std::move(named)}};
+          {"name_tags", std::move(named)},
+          {"turning",
+           {{"travel_s", notes.turning.travel_s},
+            {"left_deg", notes.turning.left_deg},
+            {"right_deg", notes.turning.right_deg},
+            {"lopsided", notes.turning.lopsided()}}},
+          {"mirrored", notes.mirrored},
+          {"unmirrored", std::move(unmirrored)}};
 }
 
 }  // namespace
