@@ -56,6 +56,11 @@ TEST(CmuTags, ClipNamesToTags) {
   EXPECT_EQ(clip_name_tags("Idle"), Tags{});
   EXPECT_EQ(clip_name_tags("walkforward"), Tags{});  // one word the vocabulary does not hold
   EXPECT_EQ(clip_name_tags("return_to_start"), Tags{"start"});
+  // Past tenses, as takes are often named after the fact.
+  EXPECT_EQ(clip_name_tags("Walked_In"), Tags{"walk"});
+  EXPECT_EQ(clip_name_tags("ran_and_stopped"), (Tags{"run", "stop"}));
+  EXPECT_EQ(clip_name_tags("JumpedOverGap"), Tags{"jump"});
+  EXPECT_EQ(clip_name_tags("strafed-left"), Tags{"sidestep"});
 }
 
 TEST(CmuTags, VocabularyIsWhatDescriptionsGive) {

@@ -20,17 +20,22 @@ struct TagWords {
 // The vocabulary documented in cmu_tags.h; keep the two in step.
 const std::array<TagWords, 11> kTagWords = {{
     {"walk", {"walk", "walks", "walking", "march", "marching", "stride", "stroll", "strolling", "wander",
-              "wandering", "sneak", "sneaking", "tiptoe", "tiptoeing", "creep", "creeping", "limp", "limping"}},
-    {"run", {"run", "runs", "running", "jog", "jogs", "jogging", "sprint", "sprinting"}},
-    {"jump", {"jump", "jumps", "jumping", "hop", "hops", "hopping", "leap", "leaps", "leaping"}},
-    {"turn", {"turn", "turns", "turning", "spin", "spins", "spinning", "pivot", "pivoting"}},
-    {"stop", {"stop", "stops", "stopping", "halt"}},
-    {"start", {"start", "starts", "starting"}},
-    {"sidestep", {"sidestep", "sidesteps", "sidestepping", "sideways", "sideway", "strafe", "strafes", "strafing"}},
+              "wandering", "sneak", "sneaking", "tiptoe", "tiptoeing", "creep", "creeping", "limp", "limping", "walked",
+              "marched", "strolled", "wandered", "sneaked", "snuck", "tiptoed", "crept", "limped"}},
+    {"run", {"run", "runs", "running", "jog", "jogs", "jogging", "sprint", "sprinting", "ran", "jogged", "sprinted"}},
+    {"jump",
+     {"jump", "jumps", "jumping", "hop", "hops", "hopping", "leap", "leaps", "leaping", "jumped", "hopped", "leaped",
+      "leapt"}},
+    {"turn",
+     {"turn", "turns", "turning", "spin", "spins", "spinning", "pivot", "pivoting", "turned", "spun", "pivoted"}},
+    {"stop", {"stop", "stops", "stopping", "halt", "stopped", "halted"}},
+    {"start", {"start", "starts", "starting", "started"}},
+    {"sidestep", {"sidestep", "sidesteps", "sidestepping", "sideways", "sideway", "strafe", "strafes", "strafing",
+                  "sidestepped", "strafed"}},
     {"backward", {"backward", "backwards"}},
-    {"sit", {"sit", "sits", "sitting", "seated"}},
-    {"climb", {"climb", "climbs", "climbing"}},
-    {"dance", {"dance", "dances", "dancing", "salsa"}},
+    {"sit", {"sit", "sits", "sitting", "seated", "sat"}},
+    {"climb", {"climb", "climbs", "climbing", "climbed"}},
+    {"dance", {"dance", "dances", "dancing", "salsa", "danced"}},
 }};
 
 const std::array<std::string_view, kTagWords.size()> kVocabulary = [] {

@@ -9,18 +9,22 @@
 // a letter and at CamelCase humps, so "run/jog" gives run and jog, "RunStop" gives run and
 // stop). A small locomotion-centred vocabulary, one tag per word family:
 //
-//   walk      walk, walks, walking, march, stride, stroll, wander, sneak, tiptoe, creep, limp
-//   run       run, runs, running, jog, jogs, jogging, sprint
-//   jump      jump, jumps, jumping, hop, hops, hopping, leap, leaps, leaping
-//   turn      turn, turns, turning, spin, spins, spinning, pivot, pivoting
-//   stop      stop, stops, stopping, halt
-//   start     start, starts, starting
-//   sidestep  sidestep, sidesteps, sidestepping, sideways, sideway, strafe, strafes, strafing
+//   walk      walk, walks, walking, walked, march, stride, stroll, wander, sneak, snuck, tiptoe,
+//             creep, crept, limp
+//   run       run, runs, running, ran, jog, jogs, jogging, jogged, sprint, sprinted
+//   jump      jump, jumps, jumping, jumped, hop, hops, hopping, hopped, leap, leaps, leaping, leaped,
+//             leapt
+//   turn      turn, turns, turning, turned, spin, spins, spinning, spun, pivot, pivoting, pivoted
+//   stop      stop, stops, stopping, stopped, halt, halted
+//   start     start, starts, starting, started
+//   sidestep  sidestep, sidesteps, sidestepping, sidestepped, sideways, sideway, strafe, strafes,
+//             strafing, strafed
 //   backward  backward, backwards
-//   sit       sit, sits, sitting, seated
-//   climb     climb, climbs, climbing
-//   dance     dance, dances, dancing, salsa
+//   sit       sit, sits, sitting, sat, seated
+//   climb     climb, climbs, climbing, climbed
+//   dance     dance, dances, dancing, danced, salsa
 //
+// (and the other forms of march, stroll, wander, sneak, tiptoe, creep and limp in -ing and -ed).
 // "veer" gives no tag: CMU uses it for a gradual curve of a walk or run, which stays a walk
 // or a run ("run/jog, veer left" -> run; "walk, 90-degree left turn" -> walk, turn).
 // "Unknown" and anything outside the vocabulary give no tag. Tags apply to whole clips.
