@@ -148,6 +148,10 @@ int convert_library(const ConvertOptions& options, const ClipLoadSettings& load)
   auto loaded = load_database(options.inputs, settings, &notes);
   if (!loaded) return fail(loaded.error());
   const MotionDatabase& db = *loaded;
+  if (options.mirror && !notes.unmirrored.empty()) {
+    const auto& u = notes.unmirrored.front();
+    return fail(Error{u.skeleton, 0, "cannot be mirrored: " + u.reason});
+  }
   report_units(notes, false);
   for (const std::string& line : load_warnings(notes)) spdlog::warn("{}", line);
   if (auto s = check_set_outputs(options, db.clips.size(), "the library holds"); !s) return fail(s.error());
@@ -202,7 +206,8 @@ int convert_animation_set(const ConvertOptions& options, const ClipLoadSettings&
   std::vector<NamedMotion> motions;
   for (size_t i = 0; i < clips.size(); ++i) {
     const Clip& clip = clips[i];
-    motions.push_back({options.inputs[i], std::filesystem::path(options.inputs[i]).stem().string(), &clip.skeleton,
+    const std::string stem = std::filesystem::path(options.inputs[i]).stem().string();
+    motions.push_back({options.inputs[i], options.mirror ? stem + "_mirrored" : stem, &clip.skeleton,
                        &clip.motion,
                        options.output.root_motion ? learn_clip_forward_axis(clip.skeleton, clip.motion, load.foot_names)
                                                   : Vec3::UnitZ()});
@@ -266,9 +271,10 @@ Command add_convert_command(CLI::App& app) {
   sub->add_option("--fps", options->fps, "Resample to this frame rate (slerp rotations, lerp translations)")
       ->check(CLI::Range(0.01, 10000.0));
   sub->add_flag("--mirror", options->mirror,
-                "Mirror left to right: a clip is written as its mirror image (a walk turning left turns right); a "
-                "library's clips are each followed by theirs (NAME_mirrored). Joints pair by their names (lfemur and "
-                "rfemur, LeftUpLeg and RightUpLeg, Hip_L and Hip_R)");
+                "Mirror left to right: a clip is written as its mirror image (a walk turning left turns right; "
+                "several clips' animations are named NAME_mirrored); a library's clips are followed, after them all, "
+                "by their mirror images (NAME_mirrored). Joints pair by their names (lfemur and rfemur, LeftUpLeg and "
+                "RightUpLeg, Hip_L and Hip_R); a rig that cannot be mirrored stops it");
   options->output.add_to(*sub);
   options->load.add_to(*sub);
   return {sub, [options] { return run_convert(*options); }};

@@ -55,9 +55,7 @@ int run_library(const InfoOptions& options) {
   if (options.whole_clip_tags) db.travel_tags.min_speed_mps = 0.0;
   db.loops = !options.no_loops;
   db.cmu_index_path = options.cmu_index;
-  auto mirror = parse_mirroring(options.mirror);
-  if (!mirror) return fail(Error{"", 0, "--mirror must be auto, on or off, not " + options.mirror});
-  db.mirror = *mirror;
+  db.mirror = *parse_mirroring(options.mirror);  // checked by run_info
   return run_library_info(options.files, library);
 }
 
@@ -76,6 +74,9 @@ nlohmann::json skeleton_json(const Skeleton& skeleton) {
 }
 
 int run_info(const InfoOptions& options) {
+  if (!parse_mirroring(options.mirror)) {
+    return fail_usage(Error{"", 0, "--mirror must be auto, on or off, not " + options.mirror});
+  }
   if (is_library(options.files)) return run_library(options);
   if (options.fps_given || !options.cmu_index.empty() || options.no_cmu_tags || options.no_name_tags ||
       options.whole_clip_tags || options.no_loops || options.mirror != "auto") {

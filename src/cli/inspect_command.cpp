@@ -48,19 +48,28 @@ void print_facings(const MotionDatabase& db) {
   }
 }
 
+// The clip column's width: the longest clip name, at least `least`.
+size_t clip_column_width(const MotionDatabase& db, size_t least) {
+  size_t width = least;
+  for (const DatabaseClip& clip : db.clips) width = std::max(width, clip.name.size());
+  return width;
+}
+
 // One line per node: its index (what `walk --from/--to` take), frame, clip, tags, edges out.
 void print_nodes(const GraphFile& file) {
   const MotionDatabase& db = file.database;
   const MotionGraph& graph = file.graph;
   const std::vector<TagMask> tags = db.frame_tags();
-  fmt::print("{:>6} {:>7} {:<10} {:>6} {:>4} {:>11}  {}\n", "node", "frame", "clip", "at", "out", "transitions", "tags");
+  const size_t width = clip_column_width(db, 10);
+  fmt::print("{:>6} {:>7} {:<{}} {:>6} {:>4} {:>11}  {}\n", "node", "frame", "clip", width, "at", "out", "transitions",
+             "tags");
   for (int n = 0; n < graph.node_count(); ++n) {
     const GraphNode& node = graph.nodes[n];
     const DatabaseClip& clip = db.clips[node.clip];
     int transitions = 0;
     for (const GraphEdge& e : graph.out_edges(n)) transitions += e.transition ? 1 : 0;
     const std::vector<std::string> names = db.tag_names_of(tags.empty() ? 0 : tags[node.frame]);
-    fmt::print("{:>6} {:>7} {:<10} {:>5.2f}s {:>4} {:>11}  {}\n", n, node.frame, clip.name,
+    fmt::print("{:>6} {:>7} {:<{}} {:>5.2f}s {:>4} {:>11}  {}\n", n, node.frame, clip.name, width,
                (node.frame - clip.first_frame) / db.fps, graph.out_edges(n).size(), transitions, fmt::join(names, ","));
   }
 }
@@ -73,8 +82,9 @@ void print_clips(const GraphFile& file, const nlohmann::json& report) {
   const std::vector<TagMask> tags = db.frame_tags();
   const double window_weight = report.is_object() ? report.value("window_weight", 0.0) : 0.0;
   const std::vector<ClipCoverage> coverage = clip_coverage(file.graph, db, file.candidates.minima);
-  fmt::print("{:<12} {:>7} {:>8} {:>8} {:>7} {:>5}  {:<24} {}\n", "clip", "frames", "seconds", "read fps", "kept", "%",
-             "tags", "joins from");
+  const size_t width = clip_column_width(db, 12);
+  fmt::print("{:<{}} {:>7} {:>8} {:>8} {:>7} {:>5}  {:<24} {}\n", "clip", width, "frames", "seconds", "read fps",
+             "kept", "%", "tags", "joins from");
   long long kept = 0;
   for (const ClipCoverage& c : coverage) {
     const DatabaseClip& clip = db.clips[c.clip];
@@ -87,12 +97,14 @@ void print_clips(const GraphFile& file, const nlohmann::json& report) {
                   : fmt::format("RMS {:.2f} cm", rms_cm_of_distance(c.best_join, window_weight));
     }
     const std::string read_fps = clip.read_fps > 0.0 ? fmt::format("{:g}", clip.read_fps) : std::string("-");
-    fmt::print("{:<12} {:>7} {:>8.1f} {:>8} {:>7} {:>5.0f}  {:<24} {}\n", clip.name, c.frames, c.frames / db.fps,
+    fmt::print("{:<{}} {:>7} {:>8.1f} {:>8} {:>7} {:>5.0f}  {:<24} {}\n", clip.name, width, c.frames,
+               c.frames / db.fps,
                read_fps, c.kept_frames, 100.0 * c.kept_frames / std::max(1, c.frames),
                fmt::format("{}", fmt::join(db.tag_names_of(mask), ",")), joins);
     kept += c.kept_frames;
   }
-  fmt::print("{:<12} {:>7} {:>8.1f} {:>8} {:>7} {:>5.0f}\n", "all", db.frame_count(), db.frame_count() / db.fps, "-",
+  fmt::print("{:<{}} {:>7} {:>8.1f} {:>8} {:>7} {:>5.0f}\n", "all", width, db.frame_count(),
+             db.frame_count() / db.fps, "-",
              kept, 100.0 * static_cast<double>(kept) / std::max(1, db.frame_count()));
 }
 

@@ -211,6 +211,12 @@ void report_units(const DatabaseLoadNotes& notes, bool quiet) {
                  "[...] sets a clip's)",
                  fmt::join(parts, ", "));
   }
+  if (notes.too_long_to_mirror && !quiet) {
+    spdlog::info("the clips turn {:.0f} degrees left and {:.0f} right as they travel, but the library holds {:.0f} "
+                 "minutes or more, so they are not mirrored (--mirror on mirrors them, for four times the distance "
+                 "stage's pairs)",
+                 notes.turning.left_deg, notes.turning.right_deg, notes.max_lopsided_mirror_s / 60.0);
+  }
   if (!notes.mirrored.empty() && !quiet) {
     const TurningBalance& t = notes.turning;
     spdlog::info("{} clip{} mirrored left to right ({}{}), after the clips read, so that their turns go both ways{}",

@@ -441,4 +441,44 @@ data = open(sys.argv[1], "rb").read()
 gltf = json.loads(data[20:20 + int.from_bytes(data[12:16], "little")])
 assert [a["name"] for a in gltf["animations"]] == ["131_01", "131_01_mirrored"], gltf["animations"]
 PY
+# Several clips mirrored into one file: their animations named so. A rig whose rest pose is not its
+# own mirror image (an arm held 30 units higher) stops convert --mirror, a file or a library, and
+# writes nothing; build keeps its clips as they are, with a warning.
+"$bin" convert --mirror "$data/cmu/16/16_15.amc" "$data/cmu/16/16_17.amc" -o "$work/mirror-set.glb" 2>/dev/null
+python3 - "$work/mirror-set.glb" <<'PY'
+import json, sys
+data = open(sys.argv[1], "rb").read()
+gltf = json.loads(data[20:20 + int.from_bytes(data[12:16], "little")])
+assert [a["name"] for a in gltf["animations"]] == ["16_15_mirrored", "16_17_mirrored"], gltf["animations"]
+PY
+mkdir "$work/lopsided"
+python3 - "$data/bvh/131_01.bvh" "$work/lopsided/raised.bvh" <<'PY'
+import sys
+lines = open(sys.argv[1]).read().split("\n")
+at = next(i for i, l in enumerate(lines) if l.split()[:2] == ["JOINT", "LeftShoulder"])
+o = next(i for i in range(at, len(lines)) if lines[i].split()[:1] == ["OFFSET"])
+x, y, z = (float(v) for v in lines[o].split()[1:4])
+lines[o] = lines[o][:len(lines[o]) - len(lines[o].lstrip())] + f"OFFSET {x} {y + 30} {z}"
+open(sys.argv[2], "w").write("\n".join(lines))
+PY
+for input in "$work/lopsided" "$work/lopsided/raised.bvh"; do
+  if "$bin" convert --mirror "$input" -o "$work/raised.glb" 2>"$work/raised.err"; then
+    echo "FAIL: convert --mirror of a lopsided rig ($input)"; exit 1
+  fi
+  grep -q "raised.bvh: cannot be mirrored: its rest pose is not its own mirror image: its LeftShoulder and \
+RightShoulder stand" "$work/raised.err" && [[ ! -e "$work/raised.glb" ]] \
+    || { echo "FAIL: convert --mirror of a lopsided rig ($input)"; cat "$work/raised.err"; exit 1; }
+done
+"$bin" info --mirror on "$work/lopsided" 2>&1 >/dev/null | grep -q "warning: .*raised.bvh: its clip is not mirrored: \
+its rest pose is not its own mirror image" || { echo "FAIL: info --mirror on of a lopsided rig"; exit 1; }
+# The same rig in a second file (another take: its last value changed): one warning for both.
+python3 -c 'import sys; t = open(sys.argv[1]).read().rstrip(); open(sys.argv[2], "w").write(t + "1\n")' \
+  "$work/lopsided/raised.bvh" "$work/lopsided/raised2.bvh"
+"$bin" info --mirror on "$work/lopsided" 2>"$work/lopsided.err" >/dev/null
+[[ $(grep -c "not mirrored" "$work/lopsided.err") -eq 1 ]] \
+  && grep -q "raised.bvh, .*raised2.bvh: their 2 clips are not mirrored: its rest pose" "$work/lopsided.err" \
+  || { echo "FAIL: one warning for a rig in two files"; cat "$work/lopsided.err"; exit 1; }
+if "$bin" info --mirror sometimes "$data/bvh/131_01.bvh" >/dev/null 2>&1; then
+  echo "FAIL: info --mirror sometimes on a file"; exit 1
+fi
 echo "cli convert ok"

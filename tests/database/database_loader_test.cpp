@@ -293,6 +293,15 @@ TEST(DatabaseLoader, ALibraryTurningOneWayIsMirrored) {
   EXPECT_NEAR(after.right_deg, after.left_deg, 1e-6 * after.left_deg);
   EXPECT_FALSE(after.lopsided());
 
+  // A library of more motion than the automatic mirroring takes: said, not mirrored.
+  settings.max_lopsided_mirror_s = 10.0;
+  DatabaseLoadNotes long_notes;
+  auto too_long = load_database({folder.path().string()}, settings, &long_notes);
+  ASSERT_TRUE(too_long) << too_long.error().to_string();
+  EXPECT_EQ(too_long->clips.size(), 3u);
+  EXPECT_TRUE(long_notes.too_long_to_mirror && long_notes.turning.lopsided() && !long_notes.mirrored_for_turning);
+  settings.max_lopsided_mirror_s = DatabaseSettings{}.max_lopsided_mirror_s;
+
   settings.mirror = DatabaseSettings::Mirroring::kOff;
   DatabaseLoadNotes off_notes;
   auto off = load_database({folder.path().string()}, settings, &off_notes);
@@ -300,6 +309,7 @@ TEST(DatabaseLoader, ALibraryTurningOneWayIsMirrored) {
   EXPECT_EQ(off->clips.size(), 3u);
   EXPECT_TRUE(off_notes.mirrored.empty());
   EXPECT_TRUE(off_notes.turning.lopsided());  // said, though not acted on
+  EXPECT_FALSE(off_notes.too_long_to_mirror);
 
   // Walks that turn both ways: not by default, always when asked.
   TempFolder both("mirror-both");

@@ -1,6 +1,7 @@
 #include "motiongraph/motion/mirror.h"
 
 #include <random>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -37,8 +38,9 @@ TEST(Mirror, NamesOfTheOtherSide) {
 }
 
 // A figure whose rest pose is its own mirror image across x = 0: a root that travels, a spine
-// and head, two legs to their end sites and two arms, named as `left` and `right` say.
-Skeleton symmetric_figure(const std::string& left, const std::string& right) {
+// and head, two legs to their end sites and two arms, named as `left` and `right` say; its knees
+// translating (six channels) when asked.
+Skeleton symmetric_figure(const std::string& left, const std::string& right, bool knees_translate = false) {
   std::vector<JointDef> joints;
   auto add = [&](const std::string& name, int parent, Vec3 offset, bool end = false) {
     JointDef j;
@@ -46,7 +48,7 @@ Skeleton symmetric_figure(const std::string& left, const std::string& right) {
     j.parent = parent;
     j.rest_offset_m = offset;
     j.end_site = end;
-    j.animated_translation = parent < 0;
+    j.animated_translation = parent < 0 || (knees_translate && name.ends_with("Leg") && !name.ends_with("UpLeg"));
     joints.push_back(j);
     return static_cast<int>(joints.size()) - 1;
   };
@@ -77,8 +79,9 @@ Motion random_motion(const Skeleton& skeleton, int frames, unsigned seed) {
 
 // Every joint of the mirrored motion stands where its partner's mirror image does.
 TEST(Mirror, EachJointStandsAtItsPartnersMirrorImage) {
-  for (const auto& [left, right] : {std::pair{"Left", "Right"}, std::pair{"l", "r"}, std::pair{"L_", "R_"}}) {
-    const Skeleton skeleton = symmetric_figure(left, right);
+  for (const auto& [left, right, knees] : {std::tuple{"Left", "Right", false}, std::tuple{"l", "r", false},
+                                           std::tuple{"L_", "R_", true}}) {
+    const Skeleton skeleton = symmetric_figure(left, right, knees);
     auto map = mirror_map(skeleton);
     ASSERT_TRUE(map) << map.error().message;
     EXPECT_EQ(map->pairs, 6);  // six joints a side, the foot's end site too
@@ -155,6 +158,44 @@ TEST(Mirror, CapturedClipsMirrorAndAWalkTurningLeftTurnsRight) {
   }
 }
 
+// Where the two sides differ a little, the mirrored motion keeps each joint's own bones: a knee
+// that translates (six channels) by its rest offset alone stays there, mirrored; and the plane is
+// the hips', however the arms are held.
+TEST(Mirror, UnevenSidesKeepTheirOwnBones) {
+  const Skeleton even = symmetric_figure("Left", "Right", true);
+  std::vector<JointDef> joints(even.joints().begin(), even.joints().end());
+  for (JointDef& j : joints) {
+    if (j.name == "LeftLeg") j.rest_offset_m = Vec3(0.025, -0.43, 0.012);  // a thigh 1 cm longer
+    if (j.name == "RightHand") j.rest_offset_m = Vec3(-0.55, 0.03, -0.02);  // a hand 3 cm higher
+  }
+  const Skeleton skeleton(joints);
+  auto map = mirror_map(skeleton);
+  ASSERT_TRUE(map) << map.error().message;
+  EXPECT_NEAR(std::abs(map->normal.x()), 1.0, 1e-12);  // the hips', not tilted by the hand
+  Motion motion = random_motion(skeleton, 5, 7);
+  for (const std::string name : {"LeftLeg", "RightLeg"}) {
+    const int j = *skeleton.find(name);
+    for (int f = 0; f < motion.frame_count; ++f) {
+      motion.translations(f)[static_cast<size_t>(skeleton.translation_slot(j))] = skeleton.joint(j).rest_offset_m;
+    }
+  }
+  const Motion mirrored = mirror_motion(skeleton, *map, motion);
+  for (const std::string name : {"LeftLeg", "RightLeg"}) {
+    const int j = *skeleton.find(name);
+    for (int f = 0; f < motion.frame_count; ++f) {
+      EXPECT_NEAR((mirrored.translations(f)[static_cast<size_t>(skeleton.translation_slot(j))] -
+                   skeleton.joint(j).rest_offset_m)
+                      .norm(),
+                  0.0, 1e-15)
+          << name;
+    }
+  }
+  const Motion twice = mirror_motion(skeleton, *map, mirrored);
+  for (size_t i = 0; i < motion.local_translations_m.size(); ++i) {
+    EXPECT_NEAR((twice.local_translations_m[i] - motion.local_translations_m[i]).norm(), 0.0, 1e-12);
+  }
+}
+
 TEST(Mirror, SkeletonsThatCannotBeMirroredSayWhy) {
   // No joint named for a side.
   const Skeleton plain = symmetric_figure("A", "B");
@@ -169,13 +210,18 @@ TEST(Mirror, SkeletonsThatCannotBeMirroredSayWhy) {
   }
   auto lopsided = mirror_map(Skeleton(joints));
   ASSERT_FALSE(lopsided);
-  EXPECT_NE(lopsided.error().message.find("mirror image"), std::string::npos) << lopsided.error().message;
+  EXPECT_NE(lopsided.error().message.find("not its own mirror image: its LeftHand and RightHand stand 47 cm off "
+                                          "each other's mirror image"),
+            std::string::npos)
+      << lopsided.error().message;
   // Lying on its side: left above right.
   std::vector<JointDef> lying(figure.joints().begin(), figure.joints().end());
   for (JointDef& j : lying) j.rest_offset_m = Vec3(j.rest_offset_m.y(), j.rest_offset_m.x(), j.rest_offset_m.z());
   auto on_side = mirror_map(Skeleton(lying));
   ASSERT_FALSE(on_side);
-  EXPECT_NE(on_side.error().message.find("off the floor"), std::string::npos) << on_side.error().message;
+  EXPECT_NE(on_side.error().message.find("its LeftUpLeg and RightUpLeg lie one 90 degrees above the other"),
+            std::string::npos)
+      << on_side.error().message;
 }
 
 }  // namespace

@@ -379,6 +379,9 @@ Status DatabaseSettings::validate() const {
   if (loop_overlap_frames < 0 || loop_overlap_frames > 10001) {
     return Error{"", 0, fmt::format("loop_overlap_frames must be 0 (automatic) to 10001, not {}", loop_overlap_frames)};
   }
+  if (!(max_lopsided_mirror_s >= 0.0)) {
+    return Error{"", 0, fmt::format("max_lopsided_mirror_s must be >= 0, not {}", max_lopsided_mirror_s)};
+  }
   return Ok{};
 }
 
@@ -1182,11 +1185,14 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
   // 3f. Each clip mirrored, after them all, with its own tags: always, or when the library turns
   // one way.
   const TurningBalance turning = turning_balance(db);
-  const bool lopsided = settings.mirror == DatabaseSettings::Mirroring::kWhenLopsided && turning.lopsided() &&
-                        db.frame_count() < DatabaseSettings::kMaxLopsidedMirrorS * db.fps;
+  const bool auto_lopsided = settings.mirror == DatabaseSettings::Mirroring::kWhenLopsided && turning.lopsided();
+  const bool too_long = db.frame_count() >= settings.max_lopsided_mirror_s * db.fps;
+  const bool lopsided = auto_lopsided && !too_long;
   if (notes != nullptr) {
     notes->turning = turning;
     notes->mirrored_for_turning = lopsided;
+    notes->too_long_to_mirror = auto_lopsided && too_long;
+    notes->max_lopsided_mirror_s = settings.max_lopsided_mirror_s;
   }
   if (settings.mirror == DatabaseSettings::Mirroring::kAlways || lopsided) mirror_clips(db, notes);
 
@@ -1222,10 +1228,22 @@ std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes) {
                                 file, choice.unit.name, choice.figure_size_m, choice.also->name,
                                 choice.also_figure_size_m, choice.also->metres_per_unit));
   }
+  // Once a reason: a rig spread over many files gives each the same.
+  std::vector<std::pair<std::string, std::vector<std::string>>> unmirrored;  // reason, skeletons
+  std::map<std::string, int> unmirrored_clips;
   for (const auto& u : notes.unmirrored) {
-    lines.push_back(fmt::format("{}: its {} not mirrored: {}", u.skeleton,
-                                u.clips == 1 ? std::string("clip is") : fmt::format("{} clips are", u.clips),
-                                u.reason));
+    auto it = std::find_if(unmirrored.begin(), unmirrored.end(), [&](const auto& r) { return r.first == u.reason; });
+    if (it == unmirrored.end()) it = unmirrored.insert(it, {u.reason, {}});
+    it->second.push_back(u.skeleton);
+    unmirrored_clips[u.reason] += u.clips;
+  }
+  for (const auto& [reason, skeletons] : unmirrored) {
+    const int clips = unmirrored_clips.at(reason);
+    lines.push_back(fmt::format("{}: {} not mirrored: {}", listed(skeletons, 2),
+                                clips == 1 ? std::string("its clip is")
+                                           : fmt::format("{} {} clips are", skeletons.size() == 1 ? "its" : "their",
+                                                         clips),
+                                reason));
   }
   for (const auto& d : notes.detected_up_axes) {
     if (!d.library_axis) continue;

@@ -101,12 +101,12 @@ struct DatabaseSettings {
   // Each clip also mirrored left to right (motion/mirror.h), as one more clip after all of them,
   // named NAME_mirrored, with the tags of its own: a library whose walks turn one way turns both.
   // kWhenLopsided mirrors a library whose clips turn one way much more than the other
-  // (database/turning_balance.h) and that holds less than kMaxLopsidedMirrorS of motion (the
+  // (database/turning_balance.h) and that holds less than max_lopsided_mirror_s of motion (the
   // distance stage has four times the pairs). A skeleton that cannot be mirrored keeps its clips
   // as they are (DatabaseLoadNotes::unmirrored says why).
   enum class Mirroring { kOff, kWhenLopsided, kAlways };
-  static constexpr double kMaxLopsidedMirrorS = 1800.0;
   Mirroring mirror = Mirroring::kWhenLopsided;
+  double max_lopsided_mirror_s = 1800.0;
 
   // Clips that loop (motion/loop.h: a game's cycle, its end meeting its start) go on past their
   // end for loop_overlap_frames frames at the database's rate (0: a third of a second and one,
@@ -288,6 +288,8 @@ struct DatabaseLoadNotes {
   // skeletons that could not be, with why.
   TurningBalance turning;
   bool mirrored_for_turning = false;  // by kWhenLopsided
+  bool too_long_to_mirror = false;    // lopsided, but max_lopsided_mirror_s or more of motion
+  double max_lopsided_mirror_s = 0.0;  // DatabaseSettings'
   std::vector<std::string> mirrored;
   struct Unmirrored {
     std::string skeleton;

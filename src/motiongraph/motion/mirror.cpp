@@ -14,6 +14,7 @@ namespace {
 
 constexpr double kMaxTiltDeg = 10.0;      // of the plane's normal off the floor
 constexpr double kMaxAsymmetryShare = 0.05;  // of the rest pose's size
+constexpr double kApartM = 0.01;             // paired joints closer in the rest pose stand on one another
 
 bool is_letter(char c) { return std::isalpha(static_cast<unsigned char>(c)) != 0; }
 bool is_upper(char c) { return std::isupper(static_cast<unsigned char>(c)) != 0; }
@@ -146,43 +147,77 @@ Result<MirrorMap> mirror_map(const Skeleton& skeleton) {
     const Vec3 offset = skeleton.joint(j).rest_offset_m;
     rest[static_cast<size_t>(j)] = j == 0 ? offset : Vec3(rest[static_cast<size_t>(skeleton.parent(j))] + offset);
   }
-  Vec3 across = Vec3::Zero(), first = Vec3::Zero();
+  // Across the body where it first parts into paired joints that stand apart (the hips: the
+  // legs' first joints set off from the root, as facing.h finds them), not across all of them: an
+  // arm held higher than the other would tilt the plane, and the mirrored clips would face a little
+  // off the way they go.
+  std::vector<int> depth(static_cast<size_t>(n), 0);
+  for (int j = 1; j < n; ++j) depth[static_cast<size_t>(j)] = depth[static_cast<size_t>(skeleton.parent(j))] + 1;
+  int level = -1;
   for (int j = 0; j < n; ++j) {
     const int k = map.partner[static_cast<size_t>(j)];
-    if (k <= j) continue;
+    const bool apart = k > j && (rest[static_cast<size_t>(j)] - rest[static_cast<size_t>(k)]).norm() > kApartM;
+    if (apart && (level < 0 || depth[static_cast<size_t>(j)] < level)) level = depth[static_cast<size_t>(j)];
+  }
+  if (level < 0) return Error{"", 0, "its paired joints stand on one another in the rest pose"};
+  Vec3 across = Vec3::Zero(), first = Vec3::Zero();
+  std::vector<std::pair<int, int>> parting;
+  for (int j = 0; j < n; ++j) {
+    const int k = map.partner[static_cast<size_t>(j)];
     const Vec3 d = rest[static_cast<size_t>(j)] - rest[static_cast<size_t>(k)];
+    if (k <= j || depth[static_cast<size_t>(j)] != level || d.norm() <= kApartM) continue;
     if (first.squaredNorm() == 0.0) first = d;
     across += d.dot(first) >= 0.0 ? d : Vec3(-d);
+    parting.emplace_back(j, k);
   }
   if (!(across.norm() > 1e-9)) return Error{"", 0, "its paired joints stand on one another in the rest pose"};
   across.normalize();
   const double tilt_deg = std::asin(std::min(1.0, std::abs(across.y()))) * 180.0 / std::numbers::pi;
   if (tilt_deg > kMaxTiltDeg) {
-    return Error{"", 0, fmt::format("its left and right sides lie {:.0f} degrees off the floor in the rest pose, whose "
-                                    "mirror image would turn it over",
-                                    tilt_deg)};
+    return Error{"", 0,
+                 fmt::format("its {} and {} lie one {:.0f} degrees above the other in the rest pose: on its side, its "
+                             "mirror image would turn it over",
+                             skeleton.joint(parting.front().first).name, skeleton.joint(parting.front().second).name,
+                             tilt_deg)};
   }
   map.normal = Vec3(across.x(), 0.0, across.z()).normalized();
-  // Its own mirror image? The plane through the middle of its joints.
+  // Its own mirror image? The plane through the middle of those joints.
   double middle = 0.0;
+  for (const auto& [j, k] : parting) {
+    middle += 0.5 * map.normal.dot(rest[static_cast<size_t>(j)] + rest[static_cast<size_t>(k)]);
+  }
+  middle /= static_cast<double>(parting.size());
   Vec3 low = rest[0], high = rest[0];
   for (const Vec3& p : rest) {
-    middle += map.normal.dot(p);
     low = low.cwiseMin(p);
     high = high.cwiseMax(p);
   }
-  middle /= n;
   const double size = (high - low).norm();
+  // The joint highest up the hierarchy that is off (where the difference starts: its children
+  // follow it), the furthest off of those.
+  int off = -1;
+  double off_m = 0.0;
   for (int j = 0; j < n; ++j) {
     const Vec3& p = rest[static_cast<size_t>(j)];
     const Vec3 image = p - 2.0 * (map.normal.dot(p) - middle) * map.normal;
-    const Vec3& partner = rest[static_cast<size_t>(map.partner[static_cast<size_t>(j)])];
-    map.asymmetry_m = std::max(map.asymmetry_m, (image - partner).norm());
+    const double d = (image - rest[static_cast<size_t>(map.partner[static_cast<size_t>(j)])]).norm();
+    map.asymmetry_m = std::max(map.asymmetry_m, d);
+    if (d <= kMaxAsymmetryShare * size) continue;
+    const int at = depth[static_cast<size_t>(j)];
+    if (off < 0 || at < depth[static_cast<size_t>(off)] || (at == depth[static_cast<size_t>(off)] && d > off_m)) {
+      off = j;
+      off_m = d;
+    }
   }
-  if (map.asymmetry_m > kMaxAsymmetryShare * size) {
-    return Error{"", 0, fmt::format("its rest pose is not its own mirror image: a joint stands {:.0f} cm from its "
-                                    "partner's mirror image, more than {:.0f} % of its {:.2f} m",
-                                    100.0 * map.asymmetry_m, 100.0 * kMaxAsymmetryShare, size)};
+  if (off >= 0) {
+    const int partner = map.partner[static_cast<size_t>(off)];
+    const std::string which = partner == off ? fmt::format("its {} stands", skeleton.joint(off).name)
+                                             : fmt::format("its {} and {} stand", skeleton.joint(off).name,
+                                                           skeleton.joint(partner).name);
+    return Error{"", 0,
+                 fmt::format("its rest pose is not its own mirror image: {} {:.0f} cm off each other's mirror image "
+                             "(more than {:.0f} % of its {:.2f} m)",
+                             which, 100.0 * off_m, 100.0 * kMaxAsymmetryShare, size)};
   }
   return map;
 }
@@ -202,8 +237,12 @@ Motion mirror_motion(const Skeleton& skeleton, const MirrorMap& map, const Motio
     const auto moved = motion.translations(f);
     const auto moved_to = out.translations(f);
     for (size_t slot = 0; slot < translated.size(); ++slot) {
-      const int partner = map.partner[static_cast<size_t>(translated[slot])];
-      moved_to[static_cast<size_t>(skeleton.translation_slot(partner))] = reflected(moved[slot], n);
+      const int joint = translated[slot], partner = map.partner[static_cast<size_t>(joint)];
+      // Below the root, the partner keeps its own rest offset: what moves is mirrored.
+      const Vec3 own = joint == 0 ? Vec3::Zero()
+                                  : Vec3(skeleton.joint(partner).rest_offset_m -
+                                         reflected(skeleton.joint(joint).rest_offset_m, n));
+      moved_to[static_cast<size_t>(skeleton.translation_slot(partner))] = reflected(moved[slot], n) + own;
     }
   }
   return out;

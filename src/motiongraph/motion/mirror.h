@@ -5,21 +5,26 @@
 // The mirror's plane is the rest pose's: joints pair by their names (lfemur / rfemur,
 // LeftUpLeg / RightUpLeg, mixamorig:LeftArm, L_Hip / R_Hip, Hip_L / Hip_R, hip.L / hip.R,
 // "Bip01 L Thigh"), a joint of the middle (the spine, the head) pairs with itself, and an end
-// site takes its parent's partner's. The plane's normal n is the mean line from each right joint
-// to its left partner in the rest pose (every local rotation the identity: world_j = world_parent
-// * Translate(rest_offset_j)); the reflection is M = I - 2 n n^T.
+// site takes its parent's partner's. The plane's normal n is the line across the body where it
+// first parts into paired joints that stand apart in the rest pose (every local rotation the
+// identity: world_j = world_parent * Translate(rest_offset_j)), the hips, on the floor; the
+// reflection is M = I - 2 n n^T. The hips, not all the pairs: they are what facing.h faces
+// square to, so a mirrored clip faces the way it travels, and an arm held higher than the other
+// in the rest pose does not tilt the plane.
 //
 // With every joint's world rotation G_j (the identity in the rest pose), the mirrored motion's
 // partner j' turns by M G_j M and stands at M p_j: its local rotation is M L_j M (quaternion
-// (w, v) -> (w, -M v)) and a local translation t_j becomes M t_j. So where the rest pose is the
-// mirror image of itself, every joint of the mirrored motion stands at the mirror image of its
-// partner's place; where the two sides differ a little (a captured subject's bones), the mirrored
-// motion keeps the skeleton's own bones.
+// (w, v) -> (w, -M v)), the root's translation t becomes M t, and another joint's animated
+// translation t_j becomes M t_j + (rest_offset_j' - M rest_offset_j), so that where the two sides
+// differ a little (a captured subject's bones) the mirrored motion keeps the skeleton's own bones,
+// whether its joints translate (BVH with six channels on every joint) or not. Where the rest pose
+// is the mirror image of itself, every joint of the mirrored motion stands at the mirror image of
+// its partner's place. Mirrored twice, a motion is itself again.
 //
 // A skeleton cannot be mirrored (mirror_map fails, saying why) when no joint pairs, a pair's
-// parents are not partners, only one of a pair has animated translation, the plane is not upright
-// (n more than 10 degrees off the floor: the rest pose lies on its side), or the rest pose is not
-// its own mirror image within 5 % of its size.
+// parents are not partners, only one of a pair has animated translation, the hips lie one above
+// the other (more than 10 degrees: the rest pose lies on its side), or the rest pose is not its
+// own mirror image within 5 % of its size (naming the joint furthest off).
 #pragma once
 
 #include <string>

@@ -151,7 +151,8 @@ nlohmann::json reading_json(const DatabaseLoadNotes& notes) {
            {{"travel_s", notes.turning.travel_s},
             {"left_deg", notes.turning.left_deg},
             {"right_deg", notes.turning.right_deg},
-            {"lopsided", notes.turning.lopsided()}}},
+            {"lopsided", notes.turning.lopsided()},
+            {"too_long_to_mirror", notes.too_long_to_mirror}}},
           {"mirrored", notes.mirrored},
           {"unmirrored", std::move(unmirrored)}};
 }
