@@ -72,6 +72,21 @@ int run_library_info(const std::vector<std::string>& inputs, const LibraryInfoOp
   fmt::print("  feet:     {}\n", summary.feet ? feet_description(db.skeletons.front(), *summary.feet,
                                                                   db.frame_contacts, summary.feet_source)
                                               : missing_feet_description(summary.feet_missing));
+  // Which way the clips as read turn as they travel, and so whether they were mirrored.
+  const TurningBalance& turning = notes.turning;
+  std::string mirrored;
+  if (!notes.mirrored.empty()) {
+    mirrored = notes.mirrored_for_turning ? "one way, so each is mirrored too (--mirror off reads them as they are)"
+                                          : "each mirrored too (--mirror on)";
+  } else if (notes.too_long_to_mirror) {
+    mirrored = "one way, but a library this long is not mirrored (--mirror on mirrors it)";
+  } else if (turning.lopsided()) {
+    mirrored = "one way, not mirrored (--mirror off)";
+  } else {
+    mirrored = turning.left_deg + turning.right_deg > 0.0 ? "both ways" : "not at all";
+  }
+  fmt::print("  turning:  the clips as read turn {:.0f} degrees left and {:.0f} right over {:.1f} s of travel: {}\n",
+             turning.left_deg, turning.right_deg, turning.travel_s, mirrored);
   size_t width = 4;
   for (const DatabaseClip& clip : db.clips) width = std::max(width, clip.name.size());
   fmt::print("  {:<{}}  {:>7}  {:>7}  {:>8}  {}\n", "clip", width, "frames", "seconds", "travels", "tags");

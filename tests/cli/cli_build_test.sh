@@ -642,6 +642,11 @@ mkdir -p "$work/left-only"
 grep -qE "info: 2 clips mirrored left to right \(Walk_Forward_mirrored and 1 more\), .*they turn [0-9]+ degrees left \
 and 0 right \(--mirror off keeps them as they are\)" "$work/left-only.err" \
   || { echo "FAIL: a library turning left mirrored"; cat "$work/left-only.err"; exit 1; }
+"$bin" info "$work/left-only" 2>/dev/null | grep -qE "^  turning:  the clips as read turn [0-9]+ degrees left and 0 \
+right over [0-9.]+ s of travel: one way, so each is mirrored too" \
+  || { echo "FAIL: info's turning line"; "$bin" info "$work/left-only"; exit 1; }
+"$bin" info "$work/left-only" --mirror off 2>/dev/null | grep -q "^  turning:  .*: one way, not mirrored (--mirror off)" \
+  || { echo "FAIL: info's turning line, --mirror off"; "$bin" info "$work/left-only" --mirror off; exit 1; }
 "$bin" build "$work/left-only" -o "$work/left-only-off.mgraph" --cache-dir "$cache" --mirror off -q
 for g in left-only left-only-off; do
   "$bin" path "$work/$g.mgraph" --shape circle:4 --no-path-edit -o "$work/$g-path.json" \
