@@ -54,8 +54,8 @@ OptionTable build_option_table(BuildCall& call) {
       {"no_loops", set(b.no_loops)},
       {"mirror",
        [&b](py::handle v) {
-         // True and False as "on" and "off"; otherwise "auto", "on" or "off".
-         b.mirror = py::isinstance<py::bool_>(v) ? std::string(v.cast<bool>() ? "on" : "off") : v.cast<std::string>();
+         // "auto", "on" or "off"; anything else as a truth value (True, numpy.bool_): "on" or "off".
+         b.mirror = py::isinstance<py::str>(v) ? v.cast<std::string>() : std::string(v.cast<bool>() ? "on" : "off");
        }},
       {"feet", set(b.feet)},
       {"ignore_tags", set(b.ignore_tags)},

@@ -140,7 +140,7 @@ int convert_library(const ConvertOptions& options, const ClipLoadSettings& load)
   settings.prefer_manifest_fps = options.fps <= 0.0;
   settings.cmu_tags = false;  // no tags go into the file
   settings.loops = false;
-  // The clips as they are, or each followed by its mirror image.
+  // The clips as they are, or their mirror images (after them, the ones written).
   settings.mirror = options.mirror ? DatabaseSettings::Mirroring::kAlways : DatabaseSettings::Mirroring::kOff;
   settings.progress_bar = true;  // a terminal's stderr only
   settings.outputs = options.outputs;
@@ -154,15 +154,21 @@ int convert_library(const ConvertOptions& options, const ClipLoadSettings& load)
   }
   report_units(notes, false);
   for (const std::string& line : load_warnings(notes)) spdlog::warn("{}", line);
-  if (auto s = check_set_outputs(options, db.clips.size(), "the library holds"); !s) return fail(s.error());
+  // The clips written: all of them, or with --mirror their mirror images alone (after them), as a
+  // file is written mirrored.
+  std::vector<int> written;
+  for (size_t c = options.mirror ? db.clips.size() - notes.mirrored.size() : 0; c < db.clips.size(); ++c) {
+    written.push_back(static_cast<int>(c));
+  }
+  if (auto s = check_set_outputs(options, written.size(), "the library holds"); !s) return fail(s.error());
   const int target = options.skeleton >= 0 ? options.skeleton : db.clips.front().skeleton;
   if (target >= static_cast<int>(db.skeletons.size())) {
     return fail(Error{"", 0, fmt::format("--skeleton {}: the library has {} skeleton(s)", target, db.skeletons.size())});
   }
   std::vector<Motion> played;
-  for (size_t c = 0; c < db.clips.size(); ++c) {
-    auto motion = clip_on_skeleton(db, static_cast<int>(c), target);
-    if (!motion) return fail(Error{db.clips[c].source, 0, motion.error().message});
+  for (const int c : written) {
+    auto motion = clip_on_skeleton(db, c, target);
+    if (!motion) return fail(Error{db.clips[static_cast<size_t>(c)].source, 0, motion.error().message});
     played.push_back(std::move(*motion));
   }
   // A library of one clip (a manifest's frame range) goes into BVH and JSON too (a scene file
@@ -173,15 +179,16 @@ int convert_library(const ConvertOptions& options, const ClipLoadSettings& load)
     (is_scene_extension(ext) ? set_outputs : clip_outputs).push_back(output);
   }
   if (!clip_outputs.empty()) {
-    const int written = write_clip(options, clip_outputs, db.clips.front().source, db.skeletons[target],
-                                   played.front(), db.foot_names);
-    if (written != 0) return written;
+    const int status = write_clip(options, clip_outputs, db.clips[static_cast<size_t>(written.front())].source,
+                                  db.skeletons[target], played.front(), db.foot_names);
+    if (status != 0) return status;
   }
   const Vec3 forward_axis =
       options.output.root_motion ? learn_forward_axis(db, target, learn_travel_axes(db)[target]) : Vec3::UnitZ();
   std::vector<NamedMotion> motions;
-  for (size_t c = 0; c < db.clips.size(); ++c) {
-    motions.push_back({db.clips[c].source, db.clips[c].name, &db.skeletons[target], &played[c], forward_axis});
+  for (size_t i = 0; i < written.size(); ++i) {
+    const DatabaseClip& clip = db.clips[static_cast<size_t>(written[i])];
+    motions.push_back({clip.source, clip.name, &db.skeletons[target], &played[i], forward_axis});
   }
   for (const std::string& output : set_outputs) {
     if (auto s = write_animation_set(output, motions, options.output.settings()); !s) return fail(s.error());
@@ -271,10 +278,10 @@ Command add_convert_command(CLI::App& app) {
   sub->add_option("--fps", options->fps, "Resample to this frame rate (slerp rotations, lerp translations)")
       ->check(CLI::Range(0.01, 10000.0));
   sub->add_flag("--mirror", options->mirror,
-                "Mirror left to right: a clip is written as its mirror image (a walk turning left turns right; "
-                "several clips' animations are named NAME_mirrored); a library's clips are followed, after them all, "
-                "by their mirror images (NAME_mirrored). Joints pair by their names (lfemur and rfemur, LeftUpLeg and "
-                "RightUpLeg, Hip_L and Hip_R); a rig that cannot be mirrored stops it");
+                "Write the clips' mirror images, left to right (a walk turning left turns right), in place of the "
+                "clips; several clips' or a library's animations are named NAME_mirrored. Joints pair by their names "
+                "(lfemur and rfemur, LeftUpLeg and RightUpLeg, Hip_L and Hip_R); a rig that cannot be mirrored stops "
+                "it");
   options->output.add_to(*sub);
   options->load.add_to(*sub);
   return {sub, [options] { return run_convert(*options); }};

@@ -80,10 +80,15 @@ int run_library_info(const std::vector<std::string>& inputs, const LibraryInfoOp
                                           : "each mirrored too (--mirror on)";
   } else if (notes.too_long_to_mirror) {
     mirrored = "one way, but a library this long is not mirrored (--mirror on mirrors it)";
-  } else if (turning.lopsided()) {
+  } else if (turning.lopsided() && notes.mirroring == DatabaseSettings::Mirroring::kOff) {
     mirrored = "one way, not mirrored (--mirror off)";
   } else {
-    mirrored = turning.left_deg + turning.right_deg > 0.0 ? "both ways" : "not at all";
+    const char* ways = turning.lopsided() ? "one way"
+                       : turning.left_deg + turning.right_deg > 0.0 ? "both ways"
+                                                                    : "not at all";
+    mirrored = notes.unmirrored.empty()
+                   ? std::string(ways)
+                   : fmt::format("{}, and its rig cannot be mirrored (the warning says why)", ways);
   }
   fmt::print("  turning:  the clips as read turn {:.0f} degrees left and {:.0f} right over {:.1f} s of travel: {}\n",
              turning.left_deg, turning.right_deg, turning.travel_s, mirrored);

@@ -434,12 +434,21 @@ twice = max(abs(x - y) for fa, fb in zip(left["positions"], again["positions"])
 assert twice < 1e-4, twice
 PY
 mkdir "$work/mirror-lib" && cp "$data/bvh/131_01.bvh" "$work/mirror-lib/"
-"$bin" convert "$work/mirror-lib" --mirror -o "$work/mirror-lib.glb" 2>/dev/null
+"$bin" convert "$work/mirror-lib" --mirror -o "$work/mirror-lib.glb" -o "$work/mirror-lib.bvh" 2>/dev/null
+"$bin" convert "$work/mirror-lib.bvh" --mirror -o "$work/mirror-lib-twice.json" 2>/dev/null
+"$bin" convert "$work/mirror-lib" -o "$work/mirror-lib-plain.json" 2>/dev/null
+python3 - "$work/mirror-lib-plain.json" "$work/mirror-lib-twice.json" <<'PY'
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+worst = max(abs(x - y) for fa, fb in zip(a["positions"], b["positions"])
+            for ja, jb in zip(fa, fb) for x, y in zip(ja, jb))
+assert len(a["positions"]) == len(b["positions"]) and worst < 1e-4, worst
+PY
 python3 - "$work/mirror-lib.glb" <<'PY'
 import json, sys
 data = open(sys.argv[1], "rb").read()
 gltf = json.loads(data[20:20 + int.from_bytes(data[12:16], "little")])
-assert [a["name"] for a in gltf["animations"]] == ["131_01", "131_01_mirrored"], gltf["animations"]
+assert [a["name"] for a in gltf["animations"]] == ["131_01_mirrored"], gltf["animations"]
 PY
 # Several clips mirrored into one file: their animations named so. A rig whose rest pose is not its
 # own mirror image (an arm held 30 units higher) stops convert --mirror, a file or a library, and
@@ -471,12 +480,14 @@ RightShoulder stand" "$work/raised.err" && [[ ! -e "$work/raised.glb" ]] \
 done
 "$bin" info --mirror on "$work/lopsided" 2>&1 >/dev/null | grep -q "warning: .*raised.bvh: its clip is not mirrored: \
 its rest pose is not its own mirror image" || { echo "FAIL: info --mirror on of a lopsided rig"; exit 1; }
+"$bin" info --mirror on "$work/lopsided" 2>/dev/null | grep -q "^  turning:  .*, and its rig cannot be mirrored" \
+  || { echo "FAIL: info's turning line, a rig that cannot be mirrored"; exit 1; }
 # The same rig in a second file (another take: its last value changed): one warning for both.
 python3 -c 'import sys; t = open(sys.argv[1]).read().rstrip(); open(sys.argv[2], "w").write(t + "1\n")' \
   "$work/lopsided/raised.bvh" "$work/lopsided/raised2.bvh"
 "$bin" info --mirror on "$work/lopsided" 2>"$work/lopsided.err" >/dev/null
 [[ $(grep -c "not mirrored" "$work/lopsided.err") -eq 1 ]] \
-  && grep -q "raised.bvh, .*raised2.bvh: their 2 clips are not mirrored: its rest pose" "$work/lopsided.err" \
+  && grep -q "raised.bvh, .*raised2.bvh: their 2 clips are not mirrored: of each rig, its rest" "$work/lopsided.err" \
   || { echo "FAIL: one warning for a rig in two files"; cat "$work/lopsided.err"; exit 1; }
 if "$bin" info --mirror sometimes "$data/bvh/131_01.bvh" >/dev/null 2>&1; then
   echo "FAIL: info --mirror sometimes on a file"; exit 1

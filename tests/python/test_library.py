@@ -221,16 +221,17 @@ def test_a_library_turning_one_way_is_mirrored_as_info_reads_it(cli, data, tmp_p
     assert turning["lopsided"] and turning["left_deg"] > 60 and turning["right_deg"] < turning["left_deg"] / 3
     assert library.summary["reading"]["mirrored"] == ["16_15_mirrored", "16_17_mirrored"]
     assert library.clip_tags("16_17_mirrored") == library.clip_tags("16_17")
-    # The mirror image's root goes the clip's way mirrored (across the rest pose's plane, upright):
-    # as high, as far from where it started, turning as far the other way.
+    # The mirror image's root goes the clip's way mirrored (across the hips' plane, upright): as
+    # high, as far from where it started, turning as far the other way (to the few millimetres
+    # CMU's root stands beside the hips' middle).
     a, b = np.asarray(library["16_17"].positions)[:, 0], np.asarray(library["16_17_mirrored"].positions)[:, 0]
-    np.testing.assert_allclose(b[:, 1], a[:, 1], atol=1e-9)
-    np.testing.assert_allclose(np.linalg.norm(b - b[0], axis=1), np.linalg.norm(a - a[0], axis=1), atol=1e-9)
+    np.testing.assert_allclose(b[:, 1], a[:, 1], atol=0.01)
+    np.testing.assert_allclose(np.linalg.norm(b - b[0], axis=1), np.linalg.norm(a - a[0], axis=1), atol=0.01)
 
     def turn(root):  # radians, left positive: the travel's heading over the first second against the last
         u, v = root[30] - root[0], root[-1] - root[-31]
         return np.arctan2(u[2] * v[0] - u[0] * v[2], u[0] * v[0] + u[2] * v[2])
-    assert turn(a) > 1.0 and abs(turn(b) + turn(a)) < 1e-9
+    assert turn(a) > 1.0 and abs(turn(b) + turn(a)) < 1e-3
     for off in (False, "off"):
         assert [c.name for c in mg.load_library(folder, mirror=off)] == ["16_15", "16_17"]
     assert mg.load_library(folder, mirror="off").summary == cli_info(cli, folder, "--mirror", "off")
@@ -239,6 +240,7 @@ def test_a_library_turning_one_way_is_mirrored_as_info_reads_it(cli, data, tmp_p
     for name in ("16.asf", "16_15.amc"):
         (straight / name).write_bytes((data / "cmu/16" / name).read_bytes())
     assert [c.name for c in mg.load_library(straight)] == ["16_15"]
-    assert [c.name for c in mg.load_library(straight, mirror=True)] == ["16_15", "16_15_mirrored"]
+    for on in (True, "on", np.bool_(True)):
+        assert [c.name for c in mg.load_library(straight, mirror=on)] == ["16_15", "16_15_mirrored"]
     with pytest.raises(mg.Error, match="--mirror must be auto, on or off, not sometimes"):
         mg.load_library(folder, mirror="sometimes")

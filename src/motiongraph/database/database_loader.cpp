@@ -640,15 +640,11 @@ std::uint64_t motion_content_hash(const Clip& clip) {
   return std::hash<std::string>{}(bytes);
 }
 
-// Steps 3-5 of load_database: the clips read, back to back, on `joints` when given (else as
-// read), the feet's contacts, the doubts. When the skeletons differ in some joints, every clip
-// is kept on those they share (motion/common_joints.h); a file whose own up axis is not settled
-// and differs from the library's (motion/up_axis.h) is read again in the library's: the
-// database is made once more, with every file.
 // DatabaseSettings::mirror: every clip of a skeleton that can be mirrored, mirrored (motion/mirror.h)
 // after them all, under NAME_mirrored (or NAME_mirrored_2... when taken), with the tag ranges of
-// its own moved along.
-void mirror_clips(MotionDatabase& db, DatabaseLoadNotes* notes) {
+// its own moved along, a tag that names a side naming the other (turn_left -> turn_right: the
+// mirror turns right).
+Status mirror_clips(MotionDatabase& db, DatabaseLoadNotes* notes) {
   std::vector<Result<MirrorMap>> maps;
   for (const Skeleton& skeleton : db.skeletons) maps.push_back(mirror_map(skeleton));
   std::set<std::string> names;
@@ -656,6 +652,16 @@ void mirror_clips(MotionDatabase& db, DatabaseLoadNotes* notes) {
   const size_t read = db.clips.size();
   const size_t ranges = db.tag_ranges.size();
   std::vector<int> unmirrored_clips(db.skeletons.size(), 0);
+  std::vector<int> mirrored_tag(db.tag_names.size());
+  for (size_t t = 0; t < mirrored_tag.size(); ++t) {
+    const std::string other = mirrored_side_words(db.tag_names[t]);
+    mirrored_tag[t] = other == db.tag_names[t] ? static_cast<int>(t) : db.tag_index(other);
+    if (mirrored_tag[t] < 0) {
+      return Error{"", 0, fmt::format("the tag '{}' of mirrored clips would be one tag more than the 64 a library "
+                                      "holds",
+                                      other)};
+    }
+  }
   for (size_t c = 0; c < read; ++c) {
     const int skeleton = db.clips[c].skeleton;
     const Result<MirrorMap>& map = maps[static_cast<size_t>(skeleton)];
@@ -677,7 +683,10 @@ void mirror_clips(MotionDatabase& db, DatabaseLoadNotes* notes) {
     for (size_t r = 0; r < ranges; ++r) {
       const TagRange range = db.tag_ranges[r];
       const int first = std::max(range.first_frame, from), last = std::min(range.first_frame + range.frame_count, to);
-      if (first < last) db.tag_ranges.push_back(TagRange{range.tag, mirrored.first_frame + first - from, last - first});
+      if (first < last) {
+        db.tag_ranges.push_back(TagRange{mirrored_tag[static_cast<size_t>(range.tag)],
+                                         mirrored.first_frame + first - from, last - first});
+      }
     }
     if (notes != nullptr) notes->mirrored.push_back(mirrored.name);
     db.clips.push_back(std::move(mirrored));
@@ -689,8 +698,14 @@ void mirror_clips(MotionDatabase& db, DatabaseLoadNotes* notes) {
       }
     }
   }
+  return Ok{};
 }
 
+// Steps 3-5 of load_database: the clips read, back to back, on `joints` when given (else as
+// read), the feet's contacts, the doubts. When the skeletons differ in some joints, every clip
+// is kept on those they share (motion/common_joints.h); a file whose own up axis is not settled
+// and differs from the library's (motion/up_axis.h) is read again in the library's: the
+// database is made once more, with every file.
 Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSettings& settings,
                                   const ManifestWide& wide, const std::optional<CmuIndex>& cmu,
                                   DatabaseLoadNotes* notes, const std::vector<std::string>& joints) {
@@ -1190,11 +1205,15 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
   const bool lopsided = auto_lopsided && !too_long;
   if (notes != nullptr) {
     notes->turning = turning;
+    notes->mirroring = settings.mirror;
     notes->mirrored_for_turning = lopsided;
     notes->too_long_to_mirror = auto_lopsided && too_long;
     notes->max_lopsided_mirror_s = settings.max_lopsided_mirror_s;
   }
-  if (settings.mirror == DatabaseSettings::Mirroring::kAlways || lopsided) mirror_clips(db, notes);
+  const size_t read_clips = db.clips.size();
+  if (settings.mirror == DatabaseSettings::Mirroring::kAlways || lopsided) {
+    if (auto s = mirror_clips(db, notes); !s) return s.error();
+  }
 
   // 4. The feet's contacts (a rig whose feet are not found keeps the reason instead).
   if (auto s = find_database_contacts(db); !s) {
@@ -1202,9 +1221,12 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
     return Error{wide.feet_source, wide.feet_line, s.error().message};
   }
 
-  // 5. What looks wrong with a clip as read, for the caller to say.
+  // 5. What looks wrong with a clip as read, for the caller to say (a mirrored clip's doubts are
+  // its clip's).
   if (notes != nullptr) {
-    for (DoubtedClip& clip : database_clip_doubts(db)) {
+    std::vector<DoubtedClip> doubted = database_clip_doubts(db);
+    doubted.resize(std::min(doubted.size(), read_clips));
+    for (DoubtedClip& clip : doubted) {
       if (!clip.doubts.empty()) notes->clip_doubts.push_back(std::move(clip));
     }
   }
@@ -1239,11 +1261,11 @@ std::vector<std::string> load_warnings(const DatabaseLoadNotes& notes) {
   }
   for (const auto& [reason, skeletons] : unmirrored) {
     const int clips = unmirrored_clips.at(reason);
-    lines.push_back(fmt::format("{}: {} not mirrored: {}", listed(skeletons, 2),
+    lines.push_back(fmt::format("{}: {} not mirrored: {}{}", listed(skeletons, 2),
                                 clips == 1 ? std::string("its clip is")
                                            : fmt::format("{} {} clips are", skeletons.size() == 1 ? "its" : "their",
                                                          clips),
-                                reason));
+                                skeletons.size() == 1 ? "" : "of each rig, ", reason));
   }
   for (const auto& d : notes.detected_up_axes) {
     if (!d.library_axis) continue;

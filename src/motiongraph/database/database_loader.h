@@ -287,6 +287,7 @@ struct DatabaseLoadNotes {
   // mirrored (their names, NAME_mirrored unless taken, after all the clips read), and the
   // skeletons that could not be, with why.
   TurningBalance turning;
+  DatabaseSettings::Mirroring mirroring = DatabaseSettings::Mirroring::kWhenLopsided;  // as asked
   bool mirrored_for_turning = false;  // by kWhenLopsided
   bool too_long_to_mirror = false;    // lopsided, but max_lopsided_mirror_s or more of motion
   double max_lopsided_mirror_s = 0.0;  // DatabaseSettings'

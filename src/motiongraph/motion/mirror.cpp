@@ -74,6 +74,25 @@ std::vector<std::string> mirrored_names(std::string_view name) {
   return out;
 }
 
+std::string mirrored_side_words(std::string_view text) {
+  const std::string low = lower(text);
+  std::string out;
+  for (size_t i = 0; i < text.size();) {
+    bool swapped = false;
+    for (const auto& [from, to] : {std::pair{"left", "right"}, std::pair{"right", "left"}}) {
+      const std::string_view f(from);
+      if (low.compare(i, f.size(), f) == 0) {
+        out += spelt_as(to, text.substr(i, f.size()));
+        i += f.size();
+        swapped = true;
+        break;
+      }
+    }
+    if (!swapped) out += text[i++];
+  }
+  return out;
+}
+
 Result<MirrorMap> mirror_map(const Skeleton& skeleton) {
   const int n = skeleton.joint_count();
   MirrorMap map;
@@ -187,6 +206,7 @@ Result<MirrorMap> mirror_map(const Skeleton& skeleton) {
     middle += 0.5 * map.normal.dot(rest[static_cast<size_t>(j)] + rest[static_cast<size_t>(k)]);
   }
   middle /= static_cast<double>(parting.size());
+  map.plane_offset_m = middle - map.normal.dot(rest[0]);
   Vec3 low = rest[0], high = rest[0];
   for (const Vec3& p : rest) {
     low = low.cwiseMin(p);
@@ -197,7 +217,7 @@ Result<MirrorMap> mirror_map(const Skeleton& skeleton) {
   // follow it), the furthest off of those.
   int off = -1;
   double off_m = 0.0;
-  for (int j = 0; j < n; ++j) {
+  for (int j = 1; j < n; ++j) {  // the root may stand off the plane (mirror_motion sets it back)
     const Vec3& p = rest[static_cast<size_t>(j)];
     const Vec3 image = p - 2.0 * (map.normal.dot(p) - middle) * map.normal;
     const double d = (image - rest[static_cast<size_t>(map.partner[static_cast<size_t>(j)])]).norm();
@@ -238,8 +258,9 @@ Motion mirror_motion(const Skeleton& skeleton, const MirrorMap& map, const Motio
     const auto moved_to = out.translations(f);
     for (size_t slot = 0; slot < translated.size(); ++slot) {
       const int joint = translated[slot], partner = map.partner[static_cast<size_t>(joint)];
-      // Below the root, the partner keeps its own rest offset: what moves is mirrored.
-      const Vec3 own = joint == 0 ? Vec3::Zero()
+      // Below the root, the partner keeps its own rest offset (what moves is mirrored); the root,
+      // off the plane by d, ends as far off it on the other side.
+      const Vec3 own = joint == 0 ? Vec3(-2.0 * map.plane_offset_m * (to[0] * n))
                                   : Vec3(skeleton.joint(partner).rest_offset_m -
                                          reflected(skeleton.joint(joint).rest_offset_m, n));
       moved_to[static_cast<size_t>(skeleton.translation_slot(partner))] = reflected(moved[slot], n) + own;

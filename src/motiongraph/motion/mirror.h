@@ -14,7 +14,9 @@
 //
 // With every joint's world rotation G_j (the identity in the rest pose), the mirrored motion's
 // partner j' turns by M G_j M and stands at M p_j: its local rotation is M L_j M (quaternion
-// (w, v) -> (w, -M v)), the root's translation t becomes M t, and another joint's animated
+// (w, v) -> (w, -M v)), the root's translation t becomes M t - 2 d G'_root n (d the plane's
+// distance from the root, G'_root the root's mirrored rotation: a root off the plane stands off
+// it on the other side), and another joint's animated
 // translation t_j becomes M t_j + (rest_offset_j' - M rest_offset_j), so that where the two sides
 // differ a little (a captured subject's bones) the mirrored motion keeps the skeleton's own bones,
 // whether its joints translate (BVH with six channels on every joint) or not. Where the rest pose
@@ -41,11 +43,19 @@ struct MirrorMap {
   Vec3 normal = Vec3::UnitX();  // unit, on the floor, across the body (either way)
   int pairs = 0;                // joints paired with another (each pair once)
   double asymmetry_m = 0.0;     // the rest pose's largest distance of a joint from its partner's mirror image
+  // The plane's distance from the root joint along `normal`, in the root's frame: a root beside
+  // the hips' middle (a rig's hips joint a few centimetres off), whose mirrored translation takes
+  // it back so that the body, not the root, is mirrored in place.
+  double plane_offset_m = 0.0;
 };
 
 // The joint names a name's mirror image may have, the left / right words and letters swapped
 // one at a time ("LeftUpLeg" -> "RightUpLeg", "lfemur" -> "rfemur", "Hip_L" -> "Hip_R").
 std::vector<std::string> mirrored_names(std::string_view name);
+
+// `text` with each word left and right swapped ("turn_left" -> "turn_right", "LeftStep" ->
+// "RightStep"): the name of a tag or a clip on the mirror's side.
+std::string mirrored_side_words(std::string_view text);
 
 Result<MirrorMap> mirror_map(const Skeleton& skeleton);
 
