@@ -151,6 +151,14 @@ int run_inspect(const InspectOptions& o) {
   fmt::print("{}: motion graph, format version {}\n", o.graph, kGraphFileVersion);
   fmt::print("database: {} clips, {} frames at {:g} fps ({:.1f} s), {} skeleton(s), tags: {}\n", db.clips.size(),
              db.frame_count(), db.fps, db.frame_count() / db.fps, db.skeletons.size(), fmt::join(db.tag_names, ", "));
+  if (report.is_object() && report.contains("mirroring") && report["mirroring"].value("mirrored", 0) > 0) {
+    const nlohmann::json& m = report["mirroring"];
+    const nlohmann::json& t = m["turning"];
+    fmt::print("mirrored: {} clips (NAME_mirrored, --mirror {}; the clips as read turn {:.0f} degrees left and {:.0f} "
+               "right)\n",
+               m["mirrored"].get<int>(), m.value("mode", std::string("auto")), t.value("left_deg", 0.0),
+               t.value("right_deg", 0.0));
+  }
   print_facings(db);
   const std::string rms = report.is_object() && report.contains("threshold_rms_cm")
                               ? fmt::format("RMS {:.2f} cm, ", report["threshold_rms_cm"].get<double>())

@@ -647,6 +647,15 @@ right over [0-9.]+ s of travel: one way, so each is mirrored too" \
   || { echo "FAIL: info's turning line"; "$bin" info "$work/left-only"; exit 1; }
 "$bin" info "$work/left-only" --mirror off 2>/dev/null | grep -q "^  turning:  .*: one way, not mirrored (--mirror off)" \
   || { echo "FAIL: info's turning line, --mirror off"; "$bin" info "$work/left-only" --mirror off; exit 1; }
+"$bin" inspect "$work/left-only.mgraph" | grep -qE "^mirrored: 2 clips \(NAME_mirrored, --mirror auto; the clips as \
+read turn [0-9]+ degrees left and 0 right\)" || { echo "FAIL: inspect's mirrored line"; exit 1; }
+"$bin" inspect --json "$work/left-only.mgraph" | python3 -c '
+import json, sys
+r = json.load(sys.stdin)
+assert [(c["name"], c["mirror_of"]) for c in r["clips"]] == [("Walk_Forward", None), ("walk_turn_left", None),
+    ("Walk_Forward_mirrored", "Walk_Forward"), ("walk_turn_left_mirrored", "walk_turn_left")], r["clips"]
+m = r["mirroring"]
+assert m["mode"] == "auto" and m["mirrored"] == 2 and m["turning"]["lopsided"] and m["unmirrored"] == [], m'
 "$bin" build "$work/left-only" -o "$work/left-only-off.mgraph" --cache-dir "$cache" --mirror off -q
 for g in left-only left-only-off; do
   "$bin" path "$work/$g.mgraph" --shape circle:4 --no-path-edit -o "$work/$g-path.json" \

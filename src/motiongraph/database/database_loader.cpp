@@ -688,7 +688,10 @@ Status mirror_clips(MotionDatabase& db, DatabaseLoadNotes* notes) {
                                          mirrored.first_frame + first - from, last - first});
       }
     }
-    if (notes != nullptr) notes->mirrored.push_back(mirrored.name);
+    if (notes != nullptr) {
+      notes->mirrored.push_back(mirrored.name);
+      notes->mirror_sources.push_back(db.clips[c].name);
+    }
     db.clips.push_back(std::move(mirrored));
   }
   if (notes != nullptr) {

@@ -292,6 +292,7 @@ struct DatabaseLoadNotes {
   bool too_long_to_mirror = false;    // lopsided, but max_lopsided_mirror_s or more of motion
   double max_lopsided_mirror_s = 0.0;  // DatabaseSettings'
   std::vector<std::string> mirrored;
+  std::vector<std::string> mirror_sources;  // per mirrored clip, the clip it mirrors
   struct Unmirrored {
     std::string skeleton;
     std::string reason;

@@ -446,7 +446,7 @@ struct Prepared {
   MotionDatabase db;
   CloudLayout layout;
   FrameFeatures features;
-  std::vector<DoubtedClip> clip_doubts;  // loading's, for the report
+  DatabaseLoadNotes notes;  // loading's: the doubts and the mirroring, for the report
 };
 
 Result<Prepared> prepare(std::span<const std::string> inputs, const BuildSettings& settings, const BuildLog& log,
@@ -486,7 +486,7 @@ Result<Prepared> prepare(std::span<const std::string> inputs, const BuildSetting
   if (auto s = check_stop(log.stop); !s) return s.error();
   if (features->window < 2) return Error{"", 0, "the window must be at least 2 frames (raise --fps or --window)"};
   timings["clouds"] = watch.lap();
-  return Prepared{std::move(*db), std::move(*layout), std::move(*features), std::move(load_notes.clip_doubts)};
+  return Prepared{std::move(*db), std::move(*layout), std::move(*features), std::move(load_notes)};
 }
 
 // Where the threshold comes from, for a warning that a higher one would keep more.
@@ -703,7 +703,8 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
                                              candidates->share_seconds, candidates->restored_tiles});
   out.report["distance_stage"] = distance_stage_json(candidates->search, candidates->pruned, more ? &*more : nullptr,
                                                     candidates->cache, *features);
-  add_clip_doubts(out.report["clips"], *db, prepared->clip_doubts);
+  add_clip_doubts(out.report["clips"], *db, prepared->notes.clip_doubts);
+  add_mirroring(out.report, *db, prepared->notes);
   out.report["warnings"] = warnings;  // every warning said up to here (none is said after)
   if (auto s = make_exports(settings, *db, *layout, *features, candidates->search, selected->all_transitions, out);
       !s) {

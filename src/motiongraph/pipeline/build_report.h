@@ -15,6 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "motiongraph/database/database_loader.h"
 #include "motiongraph/database/motion_database.h"
 #include "motiongraph/graph/clip_coverage.h"
 #include "motiongraph/graph/graph_from_candidates.h"
@@ -35,6 +36,13 @@ nlohmann::json clips_json(const MotionDatabase& db, std::span<const ClipCoverage
 // that clip as read (loading's notes, motion/clip_doubts.h; matched by name, unique in a
 // database), [] for one that looks right.
 void add_clip_doubts(nlohmann::json& clips, const MotionDatabase& db, std::span<const DoubtedClip> doubts);
+// Each clip's "mirror_of" (database_loader.h DatabaseSettings::mirror): the clip it mirrors, or
+// null; as the build report and info --json give them.
+void add_mirror_of(nlohmann::json& clips, const MotionDatabase& db, const DatabaseLoadNotes& notes);
+// The report's mirroring: add_mirror_of, and "mirroring": {"mode" (auto, on or off), "turning":
+// {"travel_s", "left_deg", "right_deg", "lopsided"}, "mirrored" (clips), "unmirrored":
+// [{"skeleton", "reason", "clips"}]}.
+void add_mirroring(nlohmann::json& report, const MotionDatabase& db, const DatabaseLoadNotes& notes);
 
 // The feet found on each skeleton ({"feet": [{"skeleton", "left_ankle", "left_toe",
 // "right_ankle", "right_toe"}]}) and the share of frames each joint is planted

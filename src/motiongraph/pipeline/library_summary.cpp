@@ -225,6 +225,7 @@ nlohmann::json library_summary_json(std::span<const std::string> inputs, const M
     clips[c]["tag_ranges"] = std::move(ranges);
   }
   add_clip_doubts(clips, db, summary.notes.clip_doubts);  // as info says them of a file
+  add_mirror_of(clips, db, summary.notes);
   return {{"inputs", std::vector<std::string>(inputs.begin(), inputs.end())},
           {"fps", db.fps},
           {"frames", db.frame_count()},
