@@ -308,6 +308,7 @@ class Router {
     const std::vector<TagMask>& tags = service_.context().frame_tags;
     const std::vector<ClipCoverage> coverage = clip_coverage(graph(), db(), {});
     const std::vector<std::vector<std::string>>& doubts = service_.clip_doubts();
+    const std::vector<std::string>& mirror_of = service_.clip_mirror_of();
     for (size_t i = 0; i < db().clips.size(); ++i) {
       const DatabaseClip& c = db().clips[i];
       TagMask mask = 0;
@@ -320,7 +321,8 @@ class Router {
                      {"read_fps", c.read_fps},
                      {"kept_frames", coverage[i].kept_frames},
                      {"tags", db().tag_names_of(mask)},
-                     {"doubts", doubts[i]}});
+                     {"doubts", doubts[i]},
+                     {"mirror_of", mirror_of[i].empty() ? json(nullptr) : json(mirror_of[i])}});
     }
     return json_response(out);
   }

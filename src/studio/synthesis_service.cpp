@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "motiongraph/database/database_doubts.h"
 #include "motiongraph/export/bvh_writer.h"
@@ -323,6 +324,22 @@ const std::vector<std::vector<std::string>>& SynthesisService::clip_doubts() con
     clip_doubts_ = std::move(doubts);
   });
   return clip_doubts_;
+}
+
+const std::vector<std::string>& SynthesisService::clip_mirror_of() const {
+  std::call_once(mirror_of_once_, [this] {
+    std::vector<std::string> of(file().database.clips.size());
+    const nlohmann::json report = nlohmann::json::parse(file().report_json, nullptr, /*allow_exceptions=*/false);
+    if (report.is_object() && report.contains("clips") && report["clips"].is_array()) {
+      const nlohmann::json& clips = report["clips"];
+      for (size_t c = 0; c < of.size() && c < clips.size(); ++c) {
+        const auto it = clips[c].find("mirror_of");
+        if (it != clips[c].end() && it->is_string()) of[c] = it->get<std::string>();
+      }
+    }
+    clip_mirror_of_ = std::move(of);
+  });
+  return clip_mirror_of_;
 }
 
 int SynthesisService::picture_block() const {

@@ -150,6 +150,9 @@ class SynthesisService {
   // What looks wrong with each database clip as read (motion/clip_doubts.h: its size, floor,
   // feet or clock), the phrases info gives; worked out on first use and kept.
   const std::vector<std::vector<std::string>>& clip_doubts() const;
+  // Per database clip, the clip it mirrors (database_loader.h DatabaseSettings::mirror), or "":
+  // from the build report the graph file stores (its clips' mirror_of); read on first use and kept.
+  const std::vector<std::string>& clip_mirror_of() const;
 
  private:
   struct Recorded {
@@ -192,6 +195,8 @@ class SynthesisService {
   mutable std::optional<Result<std::string>> picture_;
   mutable std::once_flag doubts_once_;
   mutable std::vector<std::vector<std::string>> clip_doubts_;
+  mutable std::once_flag mirror_of_once_;
+  mutable std::vector<std::string> clip_mirror_of_;
 };
 
 }  // namespace mg::studio

@@ -13,9 +13,12 @@
 #include <vector>
 
 #include "motiongraph/evaluation/synthesis_run.h"
+#include "motiongraph/pipeline/build_graph.h"
+#include "motiongraph/synthesis/loaded_graph.h"
 #include "motiongraph/skeleton/foot_joints.h"
 #include "pipeline/subject16_build.h"
 #include "studio/studio_test_service.h"
+#include "test_data.h"
 
 namespace mg::test {
 namespace {
@@ -39,6 +42,29 @@ TEST(StudioApi, SummaryDescribesTheGraphAndItsTags) {
   for (const json& t : call.json["statistics"]["tags"]) walk |= t["name"] == "walk" && t["edges"].get<int>() > 0;
   EXPECT_TRUE(walk) << call.json["statistics"];
   EXPECT_GE(call.json["matrix"]["block"].get<int>(), 1);
+}
+
+// A library whose walk turns left, mirrored by the build: the clip list says which clip each
+// mirrored one mirrors (the build report the file stores); the subject-16 graph's say none.
+TEST(StudioApi, TheClipListSaysWhichClipAMirroredOneMirrors) {
+  const std::vector<std::string> inputs = {data_path("cmu/16/16_15.amc"), data_path("cmu/16/16_17.amc")};
+  BuildSettings settings;
+  settings.path_check = false;
+  auto built = build_graph(inputs, settings);
+  ASSERT_TRUE(built) << built.error().to_string();
+  ASSERT_TRUE(built->graph_status) << built->graph_status.error().to_string();
+  auto graph = LoadedGraph::create(std::move(built->file), "mirrored.mgraph");
+  ASSERT_TRUE(graph) << graph.error().to_string();
+  auto service = studio::SynthesisService::create(std::move(*graph), "mirrored.mgraph");
+  const studio::StudioApi api(*service);
+  const studio::ApiResponse response = api.handle({"GET", "/api/clips", {}, ""});
+  ASSERT_EQ(response.status, 200) << response.body;
+  std::vector<std::pair<std::string, json>> clips;
+  for (const json& c : json::parse(response.body)) clips.emplace_back(c["name"], c["mirror_of"]);
+  const std::vector<std::pair<std::string, json>> expected = {
+      {"16_15", nullptr}, {"16_17", nullptr}, {"16_15_mirrored", "16_15"}, {"16_17_mirrored", "16_17"}};
+  EXPECT_EQ(clips, expected);
+  for (const json& c : call_api("GET", "/api/clips").json) EXPECT_TRUE(c["mirror_of"].is_null()) << c["name"];
 }
 
 TEST(StudioApi, ClipFramesAreWorldPositionsOfEveryJoint) {

@@ -620,7 +620,7 @@ async function start() {
     + `${summary.statistics.transitions} transitions`;
   $('clip-select').innerHTML = clips.map((c) => `<option value="${c.index}">${c.doubts.length ? '\u26a0 ' : ''}`
     + `${c.name} (${c.frames} frames, kept ${Math.round((100 * c.kept_frames) / c.frames)} %; `
-    + `${c.tags.join(', ') || 'no tag'})</option>`).join('');
+    + `${c.tags.join(', ') || 'no tag'}${c.mirror_of ? `; mirror image of ${c.mirror_of}` : ''})</option>`).join('');
   // A type the graph plays in no frame (its frames pruned away) says so: a path asking for it
   // cannot follow it.
   const absent = new Set(summary.statistics.tags.filter((t) => t.frames === 0).map((t) => t.name));
