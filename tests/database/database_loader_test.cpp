@@ -341,6 +341,59 @@ TEST(DatabaseLoader, ALibraryTurningOneWayIsMirrored) {
   EXPECT_EQ(all->clips.size(), 6u);
 }
 
+// A take named for both ("walk_to_run"): a walk (16_15) and then a run (16_35), its root carried
+// on from where the walk ends. Walk stays where it walks and run where it runs, by the pace.
+TEST(DatabaseLoader, AClipNamedWalkAndRunWalksWhereItWalksAndRunsWhereItRuns) {
+  const Clip walk = test::load_data_clip("cmu/16/16_15.amc");
+  const Clip run = test::load_data_clip("cmu/16/16_35.amc");
+  const int a = walk.motion.frame_count, b = run.motion.frame_count;
+  Motion glued(walk.skeleton, a + b, walk.motion.fps);
+  const int slot = walk.skeleton.translation_slot(0);
+  Vec3 carry = walk.motion.translations(a - 1)[slot] - run.motion.translations(0)[slot];
+  carry.y() = 0.0;
+  for (int f = 0; f < a + b; ++f) {
+    const Motion& from = f < a ? walk.motion : run.motion;
+    const int g = f < a ? f : f - a;
+    std::copy(from.rotations(g).begin(), from.rotations(g).end(), glued.rotations(f).begin());
+    std::copy(from.translations(g).begin(), from.translations(g).end(), glued.translations(f).begin());
+    if (f >= a) glued.translations(f)[slot] += carry;
+  }
+  TempFolder folder("walk-to-run");
+  folder.write("walk_to_run.bvh", write_bvh(walk.skeleton, glued, BvhWriteSettings{}));
+  DatabaseSettings settings;
+  settings.mirror = DatabaseSettings::Mirroring::kOff;
+  settings.keep_rest_frames = true;  // whole, though the seam jumps as a capture glitch would
+  DatabaseLoadNotes notes;
+  auto db = load_database({folder.path().string()}, settings, &notes);
+  ASSERT_TRUE(db) << db.error().to_string();
+  ASSERT_EQ(db->clips.size(), 1u);
+  const std::vector<TagMask> tags = db->frame_tags();
+  const auto tag_of = [&](const char* name) {
+    return static_cast<int>(std::find(db->tag_names.begin(), db->tag_names.end(), name) - db->tag_names.begin());
+  };
+  const int walk_tag = tag_of("walk"), run_tag = tag_of("run");
+  ASSERT_LT(walk_tag, static_cast<int>(db->tag_names.size()));
+  ASSERT_LT(run_tag, static_cast<int>(db->tag_names.size()));
+  // At the database's 30 fps: the walk's frames, then the run's.
+  const int walked = static_cast<int>(std::lround(a * db->fps / walk.motion.fps));
+  int walk_in_walk = 0, run_in_walk = 0, walk_in_run = 0, run_in_run = 0;
+  for (int f = 0; f < db->frame_count(); ++f) {
+    const bool w = (tags[static_cast<size_t>(f)] >> walk_tag) & 1, r = (tags[static_cast<size_t>(f)] >> run_tag) & 1;
+    EXPECT_FALSE(w && r) << "frame " << f;
+    (f < walked ? walk_in_walk : walk_in_run) += w;
+    (f < walked ? run_in_walk : run_in_run) += r;
+  }
+  const int running = db->frame_count() - walked;
+  EXPECT_GT(walk_in_walk, 0.8 * walked);
+  EXPECT_LT(run_in_walk, 0.2 * walked);
+  EXPECT_GT(run_in_run, 0.8 * running);
+  EXPECT_LT(walk_in_run, 0.2 * running);
+  // The travelling frames are not said to stand.
+  EXPECT_TRUE(notes.standing_tags.empty() ||
+              std::all_of(notes.standing_tags.begin(), notes.standing_tags.end(),
+                          [](const auto& t) { return t.frames - t.tagged_frames < 10; }));
+}
+
 TEST(DatabaseLoader, CmuTagsOffOrFromText) {
   DatabaseSettings off = cmu_settings();
   off.cmu_tags = false;

@@ -246,3 +246,66 @@ TEST(TravelTags, SettingsAreChecked) {
 
 }  // namespace
 }  // namespace mg
+
+namespace mg {
+namespace {
+
+std::vector<int> frames_of(const std::vector<FrameSpan>& spans) {
+  std::vector<int> frames;
+  for (const FrameSpan& s : spans) {
+    for (int f = s.first; f < s.first + s.count; ++f) frames.push_back(f);
+  }
+  return frames;
+}
+
+// A clip called both walk and run: walking where its pace is under the run pace, running where it
+// is over; a blip of pace shorter than min_run_s goes with what it interrupts; standing frames
+// are neither; a clip of one pace is not split. Property: the two cover the travelling spans
+// exactly, without overlap, and each stretch is min_run_s or longer unless its span is shorter.
+TEST(TravelTags, AClipCalledWalkAndRunIsSplitWhereItsPaceChanges) {
+  constexpr double fps = 30.0;
+  EXPECT_NEAR(run_pace_mps(1.0), std::sqrt(0.3 * 9.81), 1e-12);
+  const TravelTagSettings settings;
+  const double run_mps = run_pace_mps(1.0);  // 1.72 m/s
+  // 1 s standing, 3 s walking at 1.2 m/s with a 0.2 s burst at 3 m/s, 3 s running at 3 m/s.
+  const auto roots = roots_at(pieces({{30, 0.0}, {45, 1.2}, {6, 3.0}, {39, 1.2}, {90, 3.0}}), fps);
+  const PaceSpans split = pace_spans(roots, fps, settings, run_mps);
+  ASSERT_EQ(split.walking.size(), 1u);
+  ASSERT_EQ(split.running.size(), 1u);
+  // The pace over a second crosses 1.72 m/s about (1.72 - 1.2) / (3 - 1.2) of a second after the
+  // change, less half a second: frame 120 + 15 * (2 * 0.29 - 1) ~ 114.
+  EXPECT_NEAR(split.running[0].first, 114, 3);
+  EXPECT_EQ(split.running[0].first + split.running[0].count, static_cast<int>(roots.size()));
+  EXPECT_EQ(split.walking[0].first + split.walking[0].count, split.running[0].first);
+  EXPECT_LT(split.walking[0].first, 30);  // the window starts travelling half a second early
+  EXPECT_TRUE(pace_spans(roots_at(pieces({{90, 1.2}}), fps), fps, settings, run_mps).running.empty());
+  EXPECT_TRUE(pace_spans(roots_at(pieces({{90, 3.0}}), fps), fps, settings, run_mps).walking.empty());
+
+  std::mt19937 random(5);
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<double> speeds;
+    for (int p = 0, n = 1 + static_cast<int>(random() % 6); p < n; ++p) {
+      const size_t frames = 5 + random() % 80;
+      const double speed = random() % 3 == 0 ? 0.0 : 0.5 + 0.25 * static_cast<double>(random() % 12);
+      speeds.insert(speeds.end(), frames, speed);
+    }
+    const auto r = roots_at(speeds, fps);
+    const PaceSpans p = pace_spans(r, fps, settings, run_mps);
+    std::vector<int> both = frames_of(p.walking), running = frames_of(p.running);
+    both.insert(both.end(), running.begin(), running.end());
+    std::sort(both.begin(), both.end());
+    const std::vector<FrameSpan> travel = travelling_spans(r, fps, settings);
+    ASSERT_EQ(both, frames_of(travel)) << "trial " << trial;
+    for (const auto* spans : {&p.walking, &p.running}) {
+      for (const FrameSpan& s : *spans) {
+        const bool whole_span = std::any_of(travel.begin(), travel.end(), [&](const FrameSpan& t) {
+          return t.first <= s.first && s.first + s.count <= t.first + t.count && t.count < settings.min_run_s * fps;
+        });
+        EXPECT_TRUE(s.count >= settings.min_run_s * fps || whole_span) << "trial " << trial << " at " << s.first;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace mg

@@ -312,6 +312,10 @@ Status tag_described_clip(MotionDatabase& db, const DescribedClip& d, const Clip
                           const TravelTagSettings& settings, DatabaseLoadNotes* notes) {
   const DatabaseClip& clip = db.clips[d.clip];
   std::optional<std::vector<FrameSpan>> spans;  // the clip's travelling spans, found once
+  std::optional<PaceSpans> paces;               // ... split by pace, for a clip called walk and run
+  const bool both_paces = std::find(d.tags.begin(), d.tags.end(), "walk") != d.tags.end() &&
+                          std::find(d.tags.begin(), d.tags.end(), "run") != d.tags.end() &&
+                          settings.min_speed_mps > 0.0;
   // The root's translation (a root without one stays where it is: it travels nowhere).
   auto roots = [&] {
     const int slot = db.skeletons[static_cast<size_t>(clip.skeleton)].translation_slot(0);
@@ -333,13 +337,20 @@ Status tag_described_clip(MotionDatabase& db, const DescribedClip& d, const Clip
       continue;
     }
     if (!spans) spans = travelling_spans(roots(), db.fps, settings);
-    int tagged = 0;
-    for (const FrameSpan& span : *spans) {
-      if (auto s = add_tag_range(db, tag, clip.first_frame + span.first, span.count, spec); !s) return s;
-      tagged += span.count;
+    // Called both walk and run ("Walk to Run"): each where the pace says, when it changes pace.
+    if (!paces && both_paces) {
+      const double run_mps = run_pace_mps(db.skeletons[static_cast<size_t>(clip.skeleton)].leg_length_m());
+      paces = pace_spans(roots(), db.fps, settings, run_mps);
     }
-    if (tagged < clip.frame_count && notes != nullptr) {
-      notes->standing_tags.push_back({clip.name, tag, tagged, clip.frame_count});
+    const bool split = paces && !paces->walking.empty() && !paces->running.empty();
+    for (const FrameSpan& span : !split ? *spans : tag == "run" ? paces->running : paces->walking) {
+      if (auto s = add_tag_range(db, tag, clip.first_frame + span.first, span.count, spec); !s) return s;
+    }
+    // Left off where the root stands (not where the clip goes at the other pace).
+    int travelling = 0;
+    for (const FrameSpan& span : *spans) travelling += span.count;
+    if (travelling < clip.frame_count && notes != nullptr) {
+      notes->standing_tags.push_back({clip.name, tag, travelling, clip.frame_count});
     }
   }
   return Ok{};

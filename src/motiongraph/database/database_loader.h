@@ -26,7 +26,8 @@
 // stem (a manifest naming it "hero") or, then, of its folder below the folder given
 // ("locomotion/run/r01" -> run); for all its
 // frames, but walk and run only where its root travels and stop where it halts (travel_tags.h;
-// settings.travel_tags).
+// settings.travel_tags), and a clip called both walk and run walk where its pace is a walk's
+// and run where it is a run's (pace_spans).
 //
 // Errors: a missing input or clip file, a clip file that cannot be read (but for a folder's,
 // which is passed over: DatabaseLoadNotes::unreadable, unless the folder holds no other), a clip
@@ -239,7 +240,7 @@ struct DatabaseLoadNotes {
   struct StandingTag {
     std::string clip;
     std::string tag;
-    int tagged_frames = 0;  // the frames that keep it
+    int tagged_frames = 0;  // the frames that travel (a clip called walk and run: at either pace)
     int frames = 0;         // the clip's
   };
   std::vector<StandingTag> standing_tags;

@@ -96,4 +96,50 @@ std::vector<FrameSpan> stopping_spans(std::span<const Vec3> roots, double fps, c
   return spans;
 }
 
+PaceSpans pace_spans(std::span<const Vec3> roots, double fps, const TravelTagSettings& settings, double run_mps) {
+  const int n = static_cast<int>(roots.size());
+  const int half = std::max(1, static_cast<int>(std::lround(0.5 * settings.window_s * fps)));
+  const int min_run = std::max(1, static_cast<int>(std::lround(settings.min_run_s * fps)));
+  PaceSpans out;
+  for (const FrameSpan& span : travelling_spans(roots, fps, settings)) {
+    // Each frame's pace, fast or not; then stretches of one pace.
+    std::vector<FrameSpan> stretches;
+    std::vector<bool> fast;
+    for (int i = span.first; i < span.first + span.count; ++i) {
+      const int lo = std::max(0, i - half), hi = std::min(n - 1, i + half);
+      const Vec3 step = roots[static_cast<size_t>(hi)] - roots[static_cast<size_t>(lo)];
+      const bool is_fast = hi > lo && std::hypot(step.x(), step.z()) >= run_mps * (hi - lo) / fps;
+      if (stretches.empty() || fast.back() != is_fast) {
+        stretches.push_back({i, 0});
+        fast.push_back(is_fast);
+      }
+      ++stretches.back().count;
+    }
+    // Short stretches go with the one before (or after), and neighbours of one pace join.
+    std::vector<FrameSpan> kept;
+    std::vector<bool> kept_fast;
+    for (size_t k = 0; k < stretches.size(); ++k) {
+      const bool is_short = stretches[k].count < min_run && stretches.size() > 1;
+      if (is_short && !kept.empty()) {
+        kept.back().count += stretches[k].count;
+      } else if (is_short && k + 1 < stretches.size()) {  // at the span's start: with the next
+        stretches[k + 1].first = stretches[k].first;
+        stretches[k + 1].count += stretches[k].count;
+      } else if (!kept.empty() && kept_fast.back() == fast[k]) {
+        kept.back().count += stretches[k].count;
+      } else {
+        kept.push_back(stretches[k]);
+        kept_fast.push_back(fast[k]);
+      }
+    }
+    for (size_t k = 0; k < kept.size(); ++k) (kept_fast[k] ? out.running : out.walking).push_back(kept[k]);
+  }
+  return out;
+}
+
+double run_pace_mps(double leg_m) {
+  constexpr double kFroude = 0.3, kGravity = 9.81;
+  return std::sqrt(kFroude * kGravity * std::max(leg_m, 0.0));
+}
+
 }  // namespace mg

@@ -56,4 +56,19 @@ std::vector<FrameSpan> travelling_spans(std::span<const Vec3> roots, double fps,
 // halts or settings.min_speed_mps is 0.
 std::vector<FrameSpan> stopping_spans(std::span<const Vec3> roots, double fps, const TravelTagSettings& settings);
 
+// A clip that its description or name calls both walk and run ("Walk to Run", "walk, run/jog"):
+// its travelling spans split where the root's pace (over settings.window_s, as above) crosses
+// `run_mps`, walking below it and running at or above; a stretch shorter than
+// settings.min_run_s goes with the stretch before it (the one after, at a span's start). One of
+// the two is empty when the clip keeps one pace.
+struct PaceSpans {
+  std::vector<FrameSpan> walking;
+  std::vector<FrameSpan> running;
+};
+PaceSpans pace_spans(std::span<const Vec3> roots, double fps, const TravelTagSettings& settings, double run_mps);
+
+// The pace from which a figure whose legs are `leg_m` long runs rather than walks: Froude number
+// v^2 / (g leg) 0.3, 1.7 m/s for a metre of leg (subject 16 walks 1.2 m/s and runs 2.2).
+double run_pace_mps(double leg_m);
+
 }  // namespace mg
