@@ -222,6 +222,14 @@ TEST(Mirror, SkeletonsThatCannotBeMirroredSayWhy) {
     if (j.name == "LeftHand") j.rest_offset_m = Vec3(0.3, -0.4, 0.0);
   }
   auto lopsided = mirror_map(Skeleton(joints));
+  // A root named for a side, its "partner" a joint below it.
+  std::vector<JointDef> sided(figure.joints().begin(), figure.joints().end());
+  sided[0].name = "LeftRoot";
+  sided[1].name = "RightRoot";
+  auto rooted = mirror_map(Skeleton(sided));
+  ASSERT_FALSE(rooted);
+  EXPECT_NE(rooted.error().message.find("its root LeftRoot pairs with RightRoot"), std::string::npos)
+      << rooted.error().message;
   ASSERT_FALSE(lopsided);
   EXPECT_NE(lopsided.error().message.find("not its own mirror image: its LeftHand and RightHand stand 47 cm off "
                                           "each other's mirror image"),

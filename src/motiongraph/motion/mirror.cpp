@@ -144,6 +144,10 @@ Result<MirrorMap> mirror_map(const Skeleton& skeleton) {
     if (k > j) ++map.pairs;
   }
   if (map.pairs == 0) return Error{"", 0, "no joint of it has a left or right partner by name"};
+  if (map.partner[0] != 0) {
+    return Error{"", 0, fmt::format("its root {} pairs with {} by name; a root is on the middle",
+                                    skeleton.joint(0).name, skeleton.joint(map.partner[0]).name)};
+  }
   for (int j = 1; j < n; ++j) {
     const int k = map.partner[static_cast<size_t>(j)];
     if (k == j) continue;
