@@ -339,6 +339,16 @@ TEST(DatabaseLoader, ALibraryTurningOneWayIsMirrored) {
   auto all = load_database({both.path().string()}, always);
   ASSERT_TRUE(all) << all.error().to_string();
   EXPECT_EQ(all->clips.size(), 6u);
+
+  // A clip that looks wrong (a converter's clock 4x slow) is said to once, not for its mirror too.
+  TempFolder slow("mirror-slow");
+  slow.write("16_01.bvh", test::read_data("bvh/16_01.bvh"));
+  DatabaseLoadNotes slow_notes;
+  auto slowed = load_database({slow.path().string()}, always, &slow_notes);
+  ASSERT_TRUE(slowed) << slowed.error().to_string();
+  ASSERT_EQ(slowed->clips.size(), 2u);
+  ASSERT_EQ(slow_notes.clip_doubts.size(), 1u);
+  EXPECT_EQ(slow_notes.clip_doubts[0].name, "16_01");
 }
 
 // A take named for both ("walk_to_run"): a walk (16_15) and then a run (16_35), its root carried

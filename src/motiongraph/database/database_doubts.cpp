@@ -9,7 +9,7 @@
 
 namespace mg {
 
-std::vector<DoubtedClip> database_clip_doubts(const MotionDatabase& db) {
+std::vector<DoubtedClip> database_clip_doubts(const MotionDatabase& db, size_t clips) {
   // The feet the contacts were found for (their ankles judge a walk's pace).
   std::vector<FootJoints> feet;
   for (const Skeleton& skeleton : db.skeletons) {
@@ -17,7 +17,8 @@ std::vector<DoubtedClip> database_clip_doubts(const MotionDatabase& db) {
     feet.push_back(found ? *found : FootJoints{});
   }
   std::vector<DoubtedClip> out;
-  for (const DatabaseClip& clip : db.clips) {
+  for (size_t c = 0; c < db.clips.size() && c < clips; ++c) {
+    const DatabaseClip& clip = db.clips[c];
     const Skeleton& skeleton = db.skeletons[static_cast<size_t>(clip.skeleton)];
     const std::span<const ContactMask> contacts =
         db.frame_contacts.empty() ? std::span<const ContactMask>()

@@ -4,6 +4,7 @@
 // seconds). What loading warns of, and what the studio lists for a graph file's clips.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "motiongraph/database/motion_database.h"
@@ -11,7 +12,8 @@
 
 namespace mg {
 
-// One per clip, in clip order (empty doubts for a clip that looks right).
-std::vector<DoubtedClip> database_clip_doubts(const MotionDatabase& db);
+// One per clip, in clip order (empty doubts for a clip that looks right); of the first `clips`
+// alone when fewer (loading leaves out the mirrored ones, whose doubts are their clips').
+std::vector<DoubtedClip> database_clip_doubts(const MotionDatabase& db, size_t clips = SIZE_MAX);
 
 }  // namespace mg

@@ -1238,9 +1238,7 @@ Result<MotionDatabase> load_clips(std::vector<ClipSpec> specs, const DatabaseSet
   // 5. What looks wrong with a clip as read, for the caller to say (a mirrored clip's doubts are
   // its clip's).
   if (notes != nullptr) {
-    std::vector<DoubtedClip> doubted = database_clip_doubts(db);
-    doubted.resize(std::min(doubted.size(), read_clips));
-    for (DoubtedClip& clip : doubted) {
+    for (DoubtedClip& clip : database_clip_doubts(db, read_clips)) {
       if (!clip.doubts.empty()) notes->clip_doubts.push_back(std::move(clip));
     }
   }
