@@ -97,8 +97,9 @@ void print_clips(const GraphFile& file, const nlohmann::json& report) {
                   : fmt::format("RMS {:.2f} cm", rms_cm_of_distance(c.best_join, window_weight));
     }
     const std::string read_fps = clip.read_fps > 0.0 ? fmt::format("{:g}", clip.read_fps) : std::string("-");
-    fmt::print("{:<{}} {:>7} {:>8.1f} {:>8} {:>7} {:>5.0f}  {:<24} {}\n", clip.name, width, c.frames,
-               c.frames / db.fps,
+    // Seconds from its first frame to its last, as info says them.
+    fmt::print("{:<{}} {:>7} {:>8.2f} {:>8} {:>7} {:>5.0f}  {:<24} {}\n", clip.name, width, c.frames,
+               std::max(0, c.frames - 1) / db.fps,
                read_fps, c.kept_frames, 100.0 * c.kept_frames / std::max(1, c.frames),
                fmt::format("{}", fmt::join(db.tag_names_of(mask), ",")), joins);
     kept += c.kept_frames;

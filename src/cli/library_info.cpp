@@ -90,8 +90,10 @@ int run_library_info(const std::vector<std::string>& inputs, const LibraryInfoOp
                    ? std::string(ways)
                    : fmt::format("{}, and its rig cannot be mirrored (the warning says why)", ways);
   }
-  fmt::print("  turning:  the clips as read turn {:.0f} degrees left and {:.0f} right over {:.1f} s of travel: {}\n",
-             turning.left_deg, turning.right_deg, turning.travel_s, mirrored);
+  fmt::print("  turning:  the clips as read turn {:.0f} degrees left and {:.0f} right over the {:.1f} s they travel "
+             "({:g} m/s or more; turning {:g} degrees a second or more): {}\n",
+             turning.left_deg, turning.right_deg, turning.travel_s, TurningBalance::kTravelMps,
+             TurningBalance::kTurnDegPerS, mirrored);
   size_t width = 4;
   for (const DatabaseClip& clip : db.clips) width = std::max(width, clip.name.size());
   fmt::print("  {:<{}}  {:>7}  {:>7}  {:>8}  {}\n", "clip", width, "frames", "seconds", "travels", "tags");

@@ -317,7 +317,7 @@ class Router {
                      {"name", c.name},
                      {"first_frame", c.first_frame},
                      {"frames", c.frame_count},
-                     {"duration_s", c.frame_count / db().fps},
+                     {"duration_s", std::max(0, c.frame_count - 1) / db().fps},  // first frame to last, as info
                      {"read_fps", c.read_fps},
                      {"kept_frames", coverage[i].kept_frames},
                      {"tags", db().tag_names_of(mask)},

@@ -643,7 +643,8 @@ grep -qE "info: 2 clips mirrored left to right \(Walk_Forward_mirrored and 1 mor
 and 0 right \(--mirror off keeps them as they are\)" "$work/left-only.err" \
   || { echo "FAIL: a library turning left mirrored"; cat "$work/left-only.err"; exit 1; }
 "$bin" info "$work/left-only" 2>/dev/null | grep -qE "^  turning:  the clips as read turn [0-9]+ degrees left and 0 \
-right over [0-9.]+ s of travel: one way, so each is mirrored too" \
+right over the [0-9.]+ s they travel \\(0.5 m/s or more; turning 20 degrees a second or more\\): one way, so each is \
+mirrored too" \
   || { echo "FAIL: info's turning line"; "$bin" info "$work/left-only"; exit 1; }
 "$bin" info "$work/left-only" --mirror off 2>/dev/null | grep -q "^  turning:  .*: one way, not mirrored (--mirror off)" \
   || { echo "FAIL: info's turning line, --mirror off"; "$bin" info "$work/left-only" --mirror off; exit 1; }

@@ -337,13 +337,13 @@ Status tag_described_clip(MotionDatabase& db, const DescribedClip& d, const Clip
       continue;
     }
     if (!spans) spans = travelling_spans(roots(), db.fps, settings);
-    // Called both walk and run ("Walk to Run"): each where the pace says, when it changes pace.
+    // Called both walk and run ("Walk to Run"): each where the pace says.
     if (!paces && both_paces) {
       const double run_mps = run_pace_mps(db.skeletons[static_cast<size_t>(clip.skeleton)].leg_length_m());
       paces = pace_spans(roots(), db.fps, settings, run_mps);
     }
-    const bool split = paces && !paces->walking.empty() && !paces->running.empty();
-    for (const FrameSpan& span : !split ? *spans : tag == "run" ? paces->running : paces->walking) {
+    // (A part of one pace, cut from such a clip at a glitch, is a walk or a run, not both.)
+    for (const FrameSpan& span : !paces ? *spans : tag == "run" ? paces->running : paces->walking) {
       if (auto s = add_tag_range(db, tag, clip.first_frame + span.first, span.count, spec); !s) return s;
     }
     // Left off where the root stands (not where the clip goes at the other pace).

@@ -27,7 +27,8 @@
 // ("locomotion/run/r01" -> run); for all its
 // frames, but walk and run only where its root travels and stop where it halts (travel_tags.h;
 // settings.travel_tags), and a clip called both walk and run walk where its pace is a walk's
-// and run where it is a run's (pace_spans).
+// and run where it is a run's (pace_spans: a clip, or a part cut at a glitch, of one pace gets
+// that one).
 //
 // Errors: a missing input or clip file, a clip file that cannot be read (but for a folder's,
 // which is passed over: DatabaseLoadNotes::unreadable, unless the folder holds no other), a clip

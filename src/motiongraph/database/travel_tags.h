@@ -60,7 +60,8 @@ std::vector<FrameSpan> stopping_spans(std::span<const Vec3> roots, double fps, c
 // its travelling spans split where the root's pace (over settings.window_s, as above) crosses
 // `run_mps`, walking below it and running at or above; a stretch shorter than
 // settings.min_run_s goes with the stretch before it (the one after, at a span's start). One of
-// the two is empty when the clip keeps one pace.
+// the two is empty when the clip keeps one pace (the walking part of a "walk to run" cut at a
+// capture glitch walks only).
 struct PaceSpans {
   std::vector<FrameSpan> walking;
   std::vector<FrameSpan> running;
