@@ -16,6 +16,7 @@
 #include "motiongraph/core/transition_rate.h"
 #include "motiongraph/evaluation/foot_slide_report.h"
 #include "motiongraph/evaluation/path_shortfalls.h"
+#include "motiongraph/evaluation/played_clips.h"
 #include "motiongraph/evaluation/steering_controls.h"
 #include "motiongraph/evaluation/synthesis_run.h"
 #include "motiongraph/io/file.h"
@@ -277,6 +278,7 @@ int run_steer(const SteerOptions& o) {
                                  {"transitions_per_second", transitions_per_second(transitions, motion.frame_count, fps)},
                                  {"bridges", bridges},
                                  {"edges", played.edges},
+                                 {"played", played_clips_json(*context.db, played_sources, fps, motion.frame_count)},
                                  {"decisions", latencies.size()},
                                  {"decision_ms_p50", 1e3 * percentile(latencies, 0.5)},
                                  {"decision_ms_p99", 1e3 * percentile(latencies, 0.99)},

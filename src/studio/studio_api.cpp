@@ -19,6 +19,7 @@
 #include "motiongraph/core/transition_rate.h"
 #include "motiongraph/database/travel_tags.h"
 #include "motiongraph/evaluation/foot_slide_report.h"
+#include "motiongraph/evaluation/played_clips.h"
 #include "motiongraph/evaluation/path_shortfalls.h"
 #include "motiongraph/evaluation/synthesis_run.h"
 #include "motiongraph/export/positions_json.h"
@@ -436,6 +437,8 @@ class Router {
     out["cleanup"] = result->cleaned;
     out["contacts"] = played_contacts_json(result->contacts, result->motion.frame_count);
     out["foot_slide"] = foot_slide_report(service_.context(), result->walk, result->motion);
+    out["played"] = played_clips_json(db(), service_.context().walk_sources(result->walk), result->motion.fps,
+                                      result->motion.frame_count);
     out["transitions"] = result->transitions;
     out["transitions_per_second"] =
         transitions_per_second(result->transitions, result->motion.frame_count, result->motion.fps);
@@ -488,6 +491,8 @@ class Router {
     out["cleanup"] = synthesized->cleaned;
     out["contacts"] = played_contacts_json(synthesized->contacts, result->motion.frame_count);
     out["foot_slide"] = foot_slide_report(service_.context(), result->walk, result->motion);
+    out["played"] = played_clips_json(db(), service_.context().walk_sources(result->walk), result->motion.fps,
+                                      result->motion.frame_count);
     out["path_length_m"] = result->path_length_m;
     out["arc_covered_m"] = result->arc_covered_m;
     out["end_distance_m"] = result->end_distance_m;

@@ -331,7 +331,14 @@ JSON
 "$bin" steer "$work/g.mgraph" --script "$work/again.json" -o "$work/again.bvh" --report "$work/again-report.json" >/dev/null
 python3 - "$work/again-report.json" <<'PY'
 import json, sys
-c = json.load(open(sys.argv[1]))["controls"]
+report = json.load(open(sys.argv[1]))
+c = report["controls"]
+# What it played (starts from rest and rests included) accounts for every frame, in order.
+at = 0.0
+for p in report["played"]:
+    assert abs(p["at_s"] - at) < 1e-9 and p["seconds"] > 0, (p, at)
+    at += p["seconds"]
+assert abs(at - report["frames"] / report["fps"]) < 1e-9, (at, report["frames"])
 # The first run: within its 0.2 s or not at all (not the run asked again at 6 s); "any" asks for
 # no tag; the run asked again is answered.
 assert c[1]["tag_response_s"] is None or c[1]["tag_response_s"] <= 0.2, c
@@ -348,6 +355,16 @@ r = json.load(open(f"{work}/f8-report.json"))
 m, rs = roots("f8.json")
 assert r["reached_end"] and r["frames"] == len(m["positions"]), (r["frames"], len(m["positions"]))
 assert r["tag_match"] > 0.85 and r["mean_deviation_m"] < 0.5, r
+# What it played, in order: pieces of clips and blends, one after another to the last frame, of the
+# clips the foot slide measures against; the run segment's second half plays running clips.
+played, at = r["played"], 0.0
+for p in played:
+    assert abs(p["at_s"] - at) < 1e-9 and p["seconds"] > 0, (p, at)
+    at += p["seconds"]
+assert abs(at - r["frames"] / r["fps"]) < 1e-9, (at, r["frames"])
+assert {p["clip"] for p in played if "clip" in p} == set(r["foot_slide"]["source"]["clips"]), played
+late = [p["clip"] for p in played if "clip" in p and p["at_s"] > 0.8 * at]
+assert late and all(c in ("16_35", "16_37", "16_39", "16_41", "16_43", "16_57") for c in late), late
 # Each segment's frames and match: together the whole match, and the summary's line says the same.
 segs = r["segments"]
 assert [(s["tag"], s["from_m"], s["to_m"]) for s in segs] == [("walk", 0, 25), ("run", 25, 51)], segs

@@ -11,6 +11,7 @@
 #include "motiongraph/core/transition_rate.h"
 #include "motiongraph/database/travel_tags.h"
 #include "motiongraph/evaluation/foot_slide_report.h"
+#include "motiongraph/evaluation/played_clips.h"
 #include "motiongraph/evaluation/path_shortfalls.h"
 #include "motiongraph/export/motion_file.h"
 #include "motiongraph/synthesis/assembler.h"
@@ -229,6 +230,8 @@ Result<SynthesizedMotion> run_walk_synthesis(const SynthesisContext& context, in
                 {"seconds", seconds_since(settings.begin)},
                 {"cleanup", *cleanup},
                 {"warnings", out.warnings}};
+  out.report["played"] =
+      played_clips_json(*context.db, context.walk_sources(out.walk), out.motion.fps, out.motion.frame_count);
   out.report["foot_slide"] = foot_slide_report(context, out.walk, out.motion);
   return out;
 }
@@ -297,6 +300,8 @@ Result<SynthesizedMotion> run_path_synthesis(const SynthesisContext& context, co
                 {"roots", roots},
                 {"cleanup", *cleanup}};
   out.report["rest"] = rest_report(context, result->rest, result->rest_frame / motion.fps);
+  out.report["played"] =
+      played_clips_json(*context.db, context.walk_sources(out.walk), out.motion.fps, out.motion.frame_count);
   out.report["foot_slide"] = foot_slide_report(context, out.walk, out.motion);
   return out;
 }
