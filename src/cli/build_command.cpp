@@ -154,7 +154,7 @@ Command add_build_command(CLI::App& app) {
                 "default they go on a window further, so that the graph can play them round");
   sub->add_option("--mirror", b.mirror,
                   "auto, on or off: also play every clip mirrored left to right (NAME_mirrored, after the clips read, "
-                  "with its tags), so that walks turning one way turn both; auto mirrors a library under 30 minutes "
+                  "with its tags, turn_left as turn_right), so that walks turning one way turn both; auto mirrors a library under 30 minutes "
                   "whose travel turns 60 degrees or more one way and less than a third of that the other (a studio's "
                   "walk_turn_left without its right turn). Joints pair by their names (lfemur and rfemur, "
                   "LeftUpLeg and RightUpLeg, Hip_L and Hip_R); the distance stage then has four times the pairs")
