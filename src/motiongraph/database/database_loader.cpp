@@ -365,6 +365,15 @@ std::optional<DatabaseSettings::Mirroring> parse_mirroring(std::string_view text
   return std::nullopt;
 }
 
+const char* mirroring_name(DatabaseSettings::Mirroring mirroring) {
+  switch (mirroring) {
+    case DatabaseSettings::Mirroring::kOff: return "off";
+    case DatabaseSettings::Mirroring::kAlways: return "on";
+    case DatabaseSettings::Mirroring::kWhenLopsided: break;
+  }
+  return "auto";
+}
+
 DatabaseSettings database_settings_reading_as(const ClipLoadSettings& load) {
   DatabaseSettings settings;
   settings.asf_path = load.asf_path;

@@ -138,6 +138,8 @@ struct DatabaseSettings {
 
 // "auto", "on" or "off" (--mirror) as DatabaseSettings::Mirroring; nullopt for anything else.
 std::optional<DatabaseSettings::Mirroring> parse_mirroring(std::string_view text);
+// ... and back.
+const char* mirroring_name(DatabaseSettings::Mirroring mirroring);
 
 // Settings that read every clip as `load` does (and find its feet with load.foot_names); the
 // rate and the CMU tags at their defaults. `info` on a library reads it so.

@@ -8,6 +8,8 @@
 
 #include <fmt/format.h>
 
+#include "motiongraph/core/text.h"
+
 namespace mg {
 
 namespace {
@@ -32,12 +34,6 @@ std::string spelt_as(std::string_view word, std::string_view as) {
   return out;
 }
 
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
-
 Vec3 reflected(const Vec3& v, const Vec3& n) { return v - 2.0 * n.dot(v) * n; }
 
 }  // namespace
@@ -50,7 +46,7 @@ std::vector<std::string> mirrored_names(std::string_view name) {
     }
   };
   // The words, anywhere ("mixamorig:LeftArm", "lefthand", "LEFT_FOOT").
-  const std::string low = lower(name);
+  const std::string low = ascii_lower(name);
   for (const auto& [from, to] : {std::pair{"left", "right"}, std::pair{"right", "left"}}) {
     const std::string_view f(from);
     for (size_t at = low.find(f); at != std::string::npos; at = low.find(f, at + 1)) {
@@ -75,7 +71,7 @@ std::vector<std::string> mirrored_names(std::string_view name) {
 }
 
 std::string mirrored_side_words(std::string_view text) {
-  const std::string low = lower(text);
+  const std::string low = ascii_lower(text);
   std::string out;
   for (size_t i = 0; i < text.size();) {
     bool swapped = false;

@@ -55,31 +55,34 @@ void add_clip_doubts(json& clips, const MotionDatabase& db, std::span<const Doub
 }
 
 void add_mirror_of(json& clips, const MotionDatabase& db, const DatabaseLoadNotes& notes) {
+  // The mirrored clips are the last ones, in the order of notes.mirrored (mirror_clips).
+  const size_t first_mirrored = db.clips.size() - std::min(notes.mirrored.size(), db.clips.size());
   for (size_t c = 0; c < db.clips.size() && c < clips.size(); ++c) {
-    const auto it = std::find(notes.mirrored.begin(), notes.mirrored.end(), db.clips[c].name);
-    clips[c]["mirror_of"] = it == notes.mirrored.end()
-                                ? json(nullptr)
-                                : json(notes.mirror_sources[static_cast<size_t>(it - notes.mirrored.begin())]);
+    clips[c]["mirror_of"] = c < first_mirrored ? json(nullptr) : json(notes.mirror_sources[c - first_mirrored]);
   }
 }
 
-void add_mirroring(json& report, const MotionDatabase& db, const DatabaseLoadNotes& notes) {
-  add_mirror_of(report["clips"], db, notes);
+json turning_json(const TurningBalance& turning) {
+  return {{"travel_s", turning.travel_s},
+          {"left_deg", turning.left_deg},
+          {"right_deg", turning.right_deg},
+          {"lopsided", turning.lopsided()}};
+}
+
+json unmirrored_json(const DatabaseLoadNotes& notes) {
   json unmirrored = json::array();
   for (const auto& u : notes.unmirrored) {
     unmirrored.push_back({{"skeleton", u.skeleton}, {"reason", u.reason}, {"clips", u.clips}});
   }
-  const char* mode = notes.mirroring == DatabaseSettings::Mirroring::kOff      ? "off"
-                     : notes.mirroring == DatabaseSettings::Mirroring::kAlways ? "on"
-                                                                               : "auto";
-  report["mirroring"] = {{"mode", mode},
-                         {"turning",
-                          {{"travel_s", notes.turning.travel_s},
-                           {"left_deg", notes.turning.left_deg},
-                           {"right_deg", notes.turning.right_deg},
-                           {"lopsided", notes.turning.lopsided()}}},
+  return unmirrored;
+}
+
+void add_mirroring(json& report, const MotionDatabase& db, const DatabaseLoadNotes& notes) {
+  add_mirror_of(report["clips"], db, notes);
+  report["mirroring"] = {{"mode", mirroring_name(notes.mirroring)},
+                         {"turning", turning_json(notes.turning)},
                          {"mirrored", notes.mirrored.size()},
-                         {"unmirrored", std::move(unmirrored)}};
+                         {"unmirrored", unmirrored_json(notes)}};
 }
 
 json coverage_point_json(const CoveragePoint& p, const MotionDatabase& db, const std::vector<int>& tags) {

@@ -39,6 +39,10 @@ void add_clip_doubts(nlohmann::json& clips, const MotionDatabase& db, std::span<
 // Each clip's "mirror_of" (database_loader.h DatabaseSettings::mirror): the clip it mirrors, or
 // null; as the build report and info --json give them.
 void add_mirror_of(nlohmann::json& clips, const MotionDatabase& db, const DatabaseLoadNotes& notes);
+// Loading's turning, {"travel_s", "left_deg", "right_deg", "lopsided"}, and the rigs it could not
+// mirror, [{"skeleton", "reason", "clips"}]: as the build report and info --json give them.
+nlohmann::json turning_json(const TurningBalance& turning);
+nlohmann::json unmirrored_json(const DatabaseLoadNotes& notes);
 // The report's mirroring: add_mirror_of, and "mirroring": {"mode" (auto, on or off), "turning":
 // {"travel_s", "left_deg", "right_deg", "lopsided"}, "mirrored" (clips), "unmirrored":
 // [{"skeleton", "reason", "clips"}]}.

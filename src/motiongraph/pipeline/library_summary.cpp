@@ -122,10 +122,6 @@ nlohmann::json reading_json(const DatabaseLoadNotes& notes) {
   for (const auto& n : notes.name_tagged) {
     named.push_back({{"clip", n.clip}, {"tags", n.tags}, {"source", n.source}, {"words", n.words}});
   }
-  nlohmann::json unmirrored = nlohmann::json::array();
-  for (const auto& u : notes.unmirrored) {
-    unmirrored.push_back({{"skeleton", u.skeleton}, {"reason", u.reason}, {"clips", u.clips}});
-  }
   nlohmann::json poses = nlohmann::json::array();
   for (const auto& p : notes.poses) poses.push_back({{"file", p.file}, {"frames", p.frames}, {"fps", p.fps}});
   nlohmann::json unreadable = nlohmann::json::array();
@@ -134,6 +130,8 @@ nlohmann::json reading_json(const DatabaseLoadNotes& notes) {
   }
   nlohmann::json other_rigs = nlohmann::json::array();
   for (const auto& o : notes.other_rigs) other_rigs.push_back({{"files", o.files}, {"reason", o.reason}});
+  nlohmann::json turning = turning_json(notes.turning);
+  turning["too_long_to_mirror"] = notes.too_long_to_mirror;
   return {{"units", std::move(units)},
           {"up_axes", std::move(up_axes)},
           {"travel_recovered", std::move(travel)},
@@ -147,14 +145,9 @@ nlohmann::json reading_json(const DatabaseLoadNotes& notes) {
           {"loops", std::move(loops)},
           {"standing_tags", std::move(standing)},
           {"name_tags", std::move(named)},
-          {"turning",
-           {{"travel_s", notes.turning.travel_s},
-            {"left_deg", notes.turning.left_deg},
-            {"right_deg", notes.turning.right_deg},
-            {"lopsided", notes.turning.lopsided()},
-            {"too_long_to_mirror", notes.too_long_to_mirror}}},
+          {"turning", turning},
           {"mirrored", notes.mirrored},
-          {"unmirrored", std::move(unmirrored)}};
+          {"unmirrored", unmirrored_json(notes)}};
 }
 
 }  // namespace
