@@ -116,5 +116,21 @@ TEST(Quoted, AnyBytesGiveAShortPrintableMessage) {
   }
 }
 
+TEST(AsciiLetters, OnlyTheTwentySixLettersEachWay) {
+  int upper = 0, lower = 0;
+  for (int b = 0; b < 256; ++b) {
+    const char c = static_cast<char>(b);
+    upper += is_ascii_upper(c);
+    lower += is_ascii_lower(c);
+    EXPECT_EQ(is_ascii_letter(c), is_ascii_upper(c) || is_ascii_lower(c)) << b;
+    EXPECT_FALSE(is_ascii_upper(c) && is_ascii_lower(c)) << b;
+  }
+  EXPECT_EQ(upper, 26);
+  EXPECT_EQ(lower, 26);
+  EXPECT_TRUE(is_ascii_upper('A') && is_ascii_upper('Z') && is_ascii_lower('a') && is_ascii_lower('z'));
+  EXPECT_FALSE(is_ascii_letter('@') || is_ascii_letter('[') || is_ascii_letter('`') || is_ascii_letter('{'));
+  EXPECT_FALSE(is_ascii_letter(static_cast<char>(0xE9)));  // Latin-1 e acute: a byte of a name, no letter here
+}
+
 }  // namespace
 }  // namespace mg

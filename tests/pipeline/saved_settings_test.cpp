@@ -40,6 +40,35 @@ TEST(SavedSettings, RoundTrip) {
   EXPECT_EQ(back->distance_stage.distance.window_frames, 10);
 }
 
+TEST(SavedSettings, NoCapIsNullAndAnOlderFilesMinusOneReadsAsNone) {
+  SavedSettings s;
+  s.transitions.max_threshold = -1.0;
+  s.bridges.max_distance = -1.0;
+  nlohmann::json json = s.to_json();
+  EXPECT_TRUE(json.at("max_threshold").is_null()) << json.dump();
+  EXPECT_TRUE(json.at("max_bridge_distance").is_null()) << json.dump();
+  auto back = SavedSettings::from_json(json);
+  ASSERT_TRUE(back) << back.error().to_string();
+  EXPECT_EQ(back->transitions.max_threshold, -1.0);
+  EXPECT_EQ(back->bridges.max_distance, -1.0);
+  EXPECT_EQ(back->to_json(), json);
+
+  // What build wrote before: -1 for none.
+  json["max_threshold"] = -1.0;
+  json["max_bridge_distance"] = -1.0;
+  back = SavedSettings::from_json(json);
+  ASSERT_TRUE(back) << back.error().to_string();
+  EXPECT_EQ(back->transitions.max_threshold, -1.0);
+  EXPECT_EQ(back->bridges.max_distance, -1.0);
+
+  // A cap of zero is a cap (nothing passes), not none.
+  json["max_bridge_distance"] = 0.0;
+  back = SavedSettings::from_json(json);
+  ASSERT_TRUE(back) << back.error().to_string();
+  EXPECT_EQ(back->bridges.max_distance, 0.0);
+  EXPECT_EQ(back->to_json().at("max_bridge_distance"), 0.0);
+}
+
 TEST(SavedSettings, OlderFilesTakeBuildsDefaults) {
   // What build wrote before spacing, bridges and connected tags were recorded.
   const auto json = nlohmann::json::parse(R"({"distance": {"cloud": "rings", "ring_spacing_m": 0.25,

@@ -27,6 +27,14 @@ std::string unknown_key(const nlohmann::json& doc, std::initializer_list<std::st
   return "";
 }
 
+nlohmann::json cap_json(double cap) { return cap < 0.0 ? nlohmann::json(nullptr) : nlohmann::json(cap); }
+
+double cap_from_json(const nlohmann::json& object, const char* key) {
+  const auto cap = object.find(key);
+  if (cap == object.end() || cap->is_null()) return -1.0;
+  return std::max(cap->get<double>(), -1.0);
+}
+
 Result<nlohmann::json> parse_json_text(std::string_view text, const std::string& file_name) {
   // A key twice in one object: nlohmann keeps the last, and a script's first "duration_s" or a
   // path's first "points" went unread without a word. Each open object's keys, innermost last.

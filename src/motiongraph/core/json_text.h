@@ -23,6 +23,12 @@ std::string unknown_key(const nlohmann::json& doc, std::initializer_list<std::st
 // The document's text; indent < 0: on one line.
 std::string json_text(const nlohmann::json& doc, int indent = -1);
 
+// A cap whose negative value means none (a maximum threshold, a maximum bridge distance): null
+// when there is none. Reading takes null, a missing key or an older file's negative number as
+// none (-1).
+nlohmann::json cap_json(double cap);
+double cap_from_json(const nlohmann::json& object, const char* key);
+
 // The text as valid UTF-8, as json_text writes it: each byte that is not becomes U+FFFD (for
 // formats whose strings must be UTF-8: glTF's JSON, FBX's names).
 std::string valid_utf8(const std::string& text);

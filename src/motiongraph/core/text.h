@@ -60,6 +60,11 @@ class LineReader {
 // reach the terminal raw.
 std::string quoted(std::string_view token);
 
+// ASCII letters only, whatever the locale (names split at case changes: "LeftUpLeg").
+inline bool is_ascii_upper(char c) { return c >= 'A' && c <= 'Z'; }
+inline bool is_ascii_lower(char c) { return c >= 'a' && c <= 'z'; }
+inline bool is_ascii_letter(char c) { return is_ascii_upper(c) || is_ascii_lower(c); }
+
 // `text` with its ASCII letters in lower case (other bytes as they are): names and keywords
 // compared whatever their case.
 std::string ascii_lower(std::string_view text);

@@ -44,10 +44,6 @@ const std::array<std::string_view, kTagWords.size()> kVocabulary = [] {
   return names;
 }();
 
-bool is_letter(char c) { return std::isalpha(static_cast<unsigned char>(c)) != 0; }
-bool is_upper(char c) { return std::isupper(static_cast<unsigned char>(c)) != 0; }
-bool is_lower(char c) { return std::islower(static_cast<unsigned char>(c)) != 0; }
-
 // Lower-case words: runs of letters, also split where a lower-case letter meets an upper-case
 // one ("RunningWideRight" -> running, wide, right).
 std::vector<std::string> words_of(std::string_view text) {
@@ -59,11 +55,11 @@ std::vector<std::string> words_of(std::string_view text) {
   };
   for (size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
-    if (!is_letter(c)) {
+    if (!is_ascii_letter(c)) {
       flush();
       continue;
     }
-    if (is_upper(c) && i > 0 && is_lower(text[i - 1])) flush();
+    if (is_ascii_upper(c) && i > 0 && is_ascii_lower(text[i - 1])) flush();
     word += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   }
   flush();

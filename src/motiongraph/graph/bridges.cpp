@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "motiongraph/core/json_text.h"
 #include "motiongraph/graph/window_membership.h"
 
 namespace mg {
@@ -295,13 +296,13 @@ BridgeSelection select_bridges(std::span<const Transition> candidates, std::span
 
 void to_json(nlohmann::json& json, const BridgeSettings& bridges) {
   json = {{"bridges_per_tag_pair", bridges.per_tag_pair},
-          {"max_bridge_distance", bridges.max_distance},
+          {"max_bridge_distance", cap_json(bridges.max_distance)},
           {"bridge_blend_factor", bridges.max_blend_factor}};
 }
 
 void from_json(const nlohmann::json& json, BridgeSettings& bridges) {
   bridges.per_tag_pair = json.value("bridges_per_tag_pair", BridgeSettings{}.per_tag_pair);
-  bridges.max_distance = json.value("max_bridge_distance", -1.0);
+  bridges.max_distance = cap_from_json(json, "max_bridge_distance");
   bridges.max_blend_factor = json.value("bridge_blend_factor", 1.0);
 }
 

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "motiongraph/core/json_text.h"
 #include "motiongraph/graph/window_membership.h"
 #include "motiongraph/metric/pair_alignment.h"
 
@@ -161,7 +162,7 @@ Result<TransitionSelection> select_transitions(const FrameFeatures& features, co
 void to_json(nlohmann::json& json, const TransitionSettings& settings) {
   json = {{"threshold", settings.threshold},
           {"threshold_quantile", settings.threshold_quantile},
-          {"max_threshold", settings.max_threshold},
+          {"max_threshold", cap_json(settings.max_threshold)},
           {"locality_radius", settings.locality_radius},
           {"per_tag_thresholds", settings.per_tag_thresholds}};
   if (!settings.tag_thresholds.empty()) {
@@ -177,7 +178,7 @@ void from_json(const nlohmann::json& json, TransitionSettings& settings) {
   settings.threshold_quantile = json.at("threshold_quantile").get<double>();
   settings.locality_radius = json.at("locality_radius").get<int>();
   settings.per_tag_thresholds = json.value("per_tag_thresholds", defaults.per_tag_thresholds);
-  settings.max_threshold = json.value("max_threshold", defaults.max_threshold);
+  settings.max_threshold = cap_from_json(json, "max_threshold");
   settings.tag_thresholds.clear();
   if (json.contains("tag_thresholds")) {
     for (const nlohmann::json& t : json.at("tag_thresholds")) {

@@ -18,16 +18,12 @@ constexpr double kMaxTiltDeg = 10.0;      // of the plane's normal off the floor
 constexpr double kMaxAsymmetryShare = 0.05;  // of the rest pose's size
 constexpr double kApartM = 0.01;             // paired joints closer in the rest pose stand on one another
 
-bool is_letter(char c) { return std::isalpha(static_cast<unsigned char>(c)) != 0; }
-bool is_upper(char c) { return std::isupper(static_cast<unsigned char>(c)) != 0; }
-bool is_lower(char c) { return std::islower(static_cast<unsigned char>(c)) != 0; }
-
 // `word` ("left") spelt as `as` is ("Left", "LEFT", "left").
 std::string spelt_as(std::string_view word, std::string_view as) {
   std::string out(word);
-  const bool all_upper = std::all_of(as.begin(), as.end(), [](char c) { return is_upper(c); });
+  const bool all_upper = std::all_of(as.begin(), as.end(), [](char c) { return is_ascii_upper(c); });
   for (size_t i = 0; i < out.size(); ++i) {
-    if (all_upper || (i == 0 && is_upper(as[0]))) {
+    if (all_upper || (i == 0 && is_ascii_upper(as[0]))) {
       out[i] = static_cast<char>(std::toupper(static_cast<unsigned char>(out[i])));
     }
   }
@@ -61,7 +57,7 @@ std::vector<std::string> mirrored_names(std::string_view name) {
     const char c = name[i];
     const char swapped = c == 'l' ? 'r' : c == 'r' ? 'l' : c == 'L' ? 'R' : c == 'R' ? 'L' : '\0';
     if (swapped == '\0') continue;
-    const bool starts = i == 0 || !is_letter(name[i - 1]) || (is_lower(name[i - 1]) && is_upper(c));
+    const bool starts = i == 0 || !is_ascii_letter(name[i - 1]) || (is_ascii_lower(name[i - 1]) && is_ascii_upper(c));
     if (!starts) continue;
     std::string candidate(name);
     candidate[i] = swapped;

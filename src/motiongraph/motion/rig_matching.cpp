@@ -51,9 +51,7 @@ JointSide joint_side(std::string_view name) {
   const JointSide first = letter_side(folded.front());
   if (first == JointSide::kNone) return JointSide::kNone;
   // LHipJoint, rCollar: the side letter, then a capital starting a word (not ROOT, RIBS).
-  const auto is_upper = [&](size_t i) { return std::isupper(static_cast<unsigned char>(name[i])) != 0; };
-  const auto is_lower = [&](size_t i) { return std::islower(static_cast<unsigned char>(name[i])) != 0; };
-  if (is_upper(1) && is_lower(2)) return first;
+  if (is_ascii_upper(name[1]) && is_ascii_lower(name[2])) return first;
   const std::string_view rest = std::string_view(folded).substr(1);
   for (std::string_view word : kLimbWords) {
     if (rest.starts_with(word)) return first;
