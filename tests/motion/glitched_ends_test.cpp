@@ -10,7 +10,10 @@
 #include <vector>
 
 #include "motion/glitched.h"
+#include "motiongraph/export/bvh_writer.h"
 #include "motiongraph/motion/capture_glitches.h"
+#include "motiongraph/motion/clip_loader.h"
+#include "temp_folder.h"
 #include "test_data.h"
 
 namespace mg {
@@ -143,6 +146,43 @@ TEST(GlitchedEnds, FastSmoothMotionIsNoGlitch) {
   const GlitchedEnds found = find_glitched_ends(clean.skeleton, fast);
   EXPECT_EQ(found.leading + found.trailing, 0);
   EXPECT_TRUE(glitch_free_parts(clean.skeleton, fast).glitches.empty());  // nor within it
+}
+
+TEST(GlitchedEnds, ASecondGlitchTheFirstCutBringsToTheStartIsCutToo) {
+  // The right arm elsewhere for frames 0-19 and the left for 20-39 (120 fps): glitches at steps
+  // 19 and 39. Step 39 lies past the file's first quarter second (30 steps) but 19 steps into
+  // what the first cut leaves. A clip read, written and read again used to lose those 20 frames
+  // then (CMU 03_02: 341 frames read, 315 read back).
+  const Clip clean = test::load_whole_data_clip("cmu/16/16_16.amc");
+  const int n = clean.motion.frame_count;
+  const Clip glitched = with_turn(with_turn(clean, "rhumerus", 0, 19, 1.745), "lhumerus", 20, 39, 1.745);
+  EXPECT_EQ(find_glitched_ends(glitched.skeleton, glitched.motion).leading, 20);  // one look: the first
+  Clip dropped = glitched;
+  const GlitchedEnds found = drop_glitched_ends(dropped);
+  EXPECT_EQ(found.leading, 40);
+  EXPECT_EQ(found.trailing, 0);
+  EXPECT_EQ(found.leading_jump_m, std::max(largest_step(glitched.skeleton, glitched.motion, 19),
+                                           largest_step(glitched.skeleton, glitched.motion, 39)));
+  EXPECT_EQ(dropped.glitched_leading_frames, 40);
+  ASSERT_EQ(dropped.motion.frame_count, n - 40);
+  EXPECT_EQ(dropped.motion.rotations(0)[1].coeffs(), clean.motion.rotations(40)[1].coeffs());
+  const GlitchedEnds again = drop_glitched_ends(dropped);
+  EXPECT_EQ(again.leading + again.trailing, 0);
+  EXPECT_EQ(dropped.motion.frame_count, n - 40);
+
+  // Through the reader: the file, then what the reader made of it written and read again.
+  test::TempFolder folder("glitched-ends");
+  const std::string first = folder.write("glitched.bvh", write_bvh(glitched.skeleton, glitched.motion, {}));
+  ClipLoader loader{ClipLoadSettings{}};
+  auto read = loader.load(first);
+  ASSERT_TRUE(read) << read.error().to_string();
+  EXPECT_EQ(read->clip.motion.frame_count, n - 40);
+  EXPECT_EQ(read->clip.glitched_leading_frames, 40);
+  const std::string second = folder.write("again.bvh", write_bvh(read->clip.skeleton, read->clip.motion, {}));
+  auto back = loader.load(second);
+  ASSERT_TRUE(back) << back.error().to_string();
+  EXPECT_EQ(back->clip.motion.frame_count, n - 40);
+  EXPECT_EQ(back->clip.glitched_leading_frames, 0);
 }
 
 }  // namespace

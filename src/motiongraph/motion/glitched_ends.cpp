@@ -45,12 +45,28 @@ GlitchedEnds find_glitched_ends(const Skeleton& skeleton, const Motion& motion) 
 }
 
 GlitchedEnds drop_glitched_ends(Clip& clip) {
-  const GlitchedEnds found = find_glitched_ends(clip.skeleton, clip.motion);
-  if (found.leading == 0 && found.trailing == 0) return found;
-  clip.motion = clip.motion.slice(found.leading, clip.motion.frame_count - found.leading - found.trailing);
-  clip.glitched_leading_frames += found.leading;
-  clip.glitched_trailing_frames += found.trailing;
-  return found;
+  // Again on what is left until nothing is found: a second glitch that the first one's cut
+  // brings within the new ends' quarter second is cut now, not when the clip is written out and
+  // read again (reading is then the same on its own output).
+  GlitchedEnds all;
+  for (;;) {
+    const GlitchedEnds found = find_glitched_ends(clip.skeleton, clip.motion);
+    if (found.leading == 0 && found.trailing == 0) break;
+    clip.motion = clip.motion.slice(found.leading, clip.motion.frame_count - found.leading - found.trailing);
+    clip.glitched_leading_frames += found.leading;
+    clip.glitched_trailing_frames += found.trailing;
+    all.leading += found.leading;
+    all.trailing += found.trailing;
+    if (found.leading > 0 && found.leading_jump_m > all.leading_jump_m) {
+      all.leading_jump_m = found.leading_jump_m;
+      all.leading_joint = found.leading_joint;
+    }
+    if (found.trailing > 0 && found.trailing_jump_m > all.trailing_jump_m) {
+      all.trailing_jump_m = found.trailing_jump_m;
+      all.trailing_joint = found.trailing_joint;
+    }
+  }
+  return all;
 }
 
 }  // namespace mg

@@ -30,8 +30,11 @@ struct GlitchedEnds {
 // The glitches at `motion`'s ends on `skeleton` (metres; see above).
 GlitchedEnds find_glitched_ends(const Skeleton& skeleton, const Motion& motion);
 
-// The clip without the frames find_glitched_ends() finds; its glitched_* fields say how many
-// (added to any it had). Returns what was found.
+// The clip without the frames find_glitched_ends() finds, found again on what is left until none
+// is (so that a clip read, written and read again loses nothing more); its glitched_* fields say
+// how many (added to any it had). Returns what was found: the frames of every cut, the largest
+// jump at each end. (A capture glitching every quarter second throughout is cut down to its
+// last three frames: there is nothing of it to keep.)
 GlitchedEnds drop_glitched_ends(Clip& clip);
 
 }  // namespace mg
