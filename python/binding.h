@@ -170,9 +170,45 @@ struct PyGraph {
   mutable py::object edges;     // Graph.edges, made on first use
 };
 
+// A number argument of a function bound with pybind11's own arguments, which takes True and False
+// as 1 and 0 (load_clip(fps=True) read a clip at 1 fps): an int or a float only, as the keyword
+// options take them (set()); True or False raises TypeError.
+struct Real {
+  double value = 0.0;
+};
+struct Integer {
+  int value = 0;
+};
+inline void refuse_bool(py::handle value) {
+  if (PyBool_Check(value.ptr())) {
+    throw py::type_error(fmt::format("a number is expected, not {}", py::str(value).cast<std::string>()));
+  }
+}
+
 void bind_motion(py::module_& m);
 void bind_graph(py::module_& m, py::class_<PyGraph>& graph_class);
 void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph_class);
 void bind_library(py::module_& m);
 
 }  // namespace mg::python
+
+namespace pybind11::detail {
+
+template <class Strict>
+struct type_caster<Strict, std::enable_if_t<std::is_same_v<Strict, mg::python::Real> ||
+                                            std::is_same_v<Strict, mg::python::Integer>>> {
+  using Plain = decltype(Strict::value);
+  PYBIND11_TYPE_CASTER(Strict, const_name<std::is_integral_v<Plain>>("int", "float"));
+  bool load(handle src, bool convert) {
+    mg::python::refuse_bool(src);
+    make_caster<Plain> number;
+    if (!number.load(src, convert)) return false;
+    value.value = cast_op<Plain>(number);
+    return true;
+  }
+  static handle cast(Strict number, return_value_policy policy, handle parent) {
+    return make_caster<Plain>::cast(number.value, policy, parent);
+  }
+};
+
+}  // namespace pybind11::detail

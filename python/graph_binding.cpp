@@ -176,7 +176,12 @@ PyGraph build(const std::vector<std::string>& inputs, const py::dict& options, c
   return graph;
 }
 
-PyGraph load_graph(const std::filesystem::path& file, int skeleton) {
+PyGraph load_graph(const std::filesystem::path& file, Integer skeleton_given) {
+  const int skeleton = skeleton_given.value;
+  if (skeleton < -1) {
+    throw py::value_error(
+        fmt::format("load_graph(): skeleton must be -1 (the first clip's) or an index, not {}", skeleton));
+  }
   const std::string path = file.string();
   PyGraph graph;
   graph.name = path;
@@ -237,11 +242,21 @@ void bind_graph(py::module_& m, py::class_<PyGraph>& graph) {
                                int transitions = 0;
                                for (const GraphEdge& e : g.loaded->file().graph.edges) transitions += e.transition;
                                return transitions;
-                             })
-      .def_property_readonly("frame_count", [](const PyGraph& g) { return g.loaded->file().database.frame_count(); })
-      .def_property_readonly("fps", [](const PyGraph& g) { return g.loaded->file().database.fps; })
-      .def_property_readonly("threshold", [](const PyGraph& g) { return g.loaded->file().threshold; })
-      .def_property_readonly("tags", [](const PyGraph& g) { return g.loaded->file().database.tag_names; })
+                             },
+                             "The edges that blend one clip into another: transitions and bridges (edges' kind "
+                             "'transition' or 'bridge'), as build's log counts them.")
+      .def_property_readonly(
+          "frame_count", [](const PyGraph& g) { return g.loaded->file().database.frame_count(); },
+          "The frames of the library it was built from (the nodes' frame numbers run over them), not only those "
+          "the graph plays.")
+      .def_property_readonly("fps", [](const PyGraph& g) { return g.loaded->file().database.fps; },
+                             "The frame rate of its library and of everything synthesized on it.")
+      .def_property_readonly(
+          "threshold", [](const PyGraph& g) { return g.loaded->file().threshold; },
+          "The transition threshold as D, the distance (not cm: report['threshold_rms_cm'] gives it as RMS "
+          "point distance over the window); per motion type, the lowest of theirs (tag_thresholds gives each).")
+      .def_property_readonly("tags", [](const PyGraph& g) { return g.loaded->file().database.tag_names; },
+                             "The motion types (tags) of its library.")
       .def_property_readonly(
           "nodes",
           [](const PyGraph& g) {

@@ -89,21 +89,22 @@ Status save_motion(const PyMotion& m, const std::string& path, MotionFileSetting
 }
 
 PyMotion load_clip(const std::filesystem::path& file, const std::optional<std::filesystem::path>& asf,
-                   std::optional<double> fps,
-                   std::optional<double> scale, const std::optional<std::string>& up_axis, double input_fps,
+                   std::optional<Real> fps_given,
+                   std::optional<Real> scale, const std::optional<std::string>& up_axis, Real input_fps,
                    bool keep_rest_frames, const std::string& travel, const std::optional<std::string>& feet,
                    const std::optional<std::string>& animation) {
   const std::string path = file.string();
   ClipLoadSettings settings;
   if (asf) settings.asf_path = asf->string();
   // The least of the CLI's convert --fps: a rate that would leave a clip a frame or none is no rate.
+  const std::optional<double> fps = fps_given ? std::optional<double>(fps_given->value) : std::nullopt;
   if (fps && !(*fps >= 0.01)) throw py::value_error(fmt::format("fps must be at least 0.01, not {}", *fps));
-  settings.bvh_metres_per_unit = scale;
+  if (scale) settings.bvh_metres_per_unit = scale->value;
   if (up_axis) {
     settings.up_axis = parse_up_axis(*up_axis);
     if (!settings.up_axis) throw py::value_error("up_axis must be 'y' or 'z', not '" + *up_axis + "'");
   }
-  settings.input_fps = input_fps;
+  settings.input_fps = input_fps.value;
   settings.keep_rest_frames = keep_rest_frames;
   const auto source = parse_travel_source(travel);
   if (!source) throw py::value_error("travel must be 'auto', 'root' or 'feet', not '" + travel + "'");
@@ -216,9 +217,12 @@ void bind_motion(py::module_& m) {
   py::class_<PyMotion>(m, "Motion",
                        "Motion on a skeleton: a clip read from a file (load_clip) or motion synthesized on a graph "
                        "(Graph.walk, Graph.path, Controller.step). Arrays are read-only views, not copies.")
-      .def_property_readonly("name", [](const PyMotion& self) { return display_text(self.name); })
-      .def_property_readonly("fps", [](const PyMotion& self) { return self.motion.fps; })
-      .def_property_readonly("frame_count", [](const PyMotion& self) { return self.motion.frame_count; })
+      .def_property_readonly("name", [](const PyMotion& self) { return display_text(self.name); },
+                             "A clip's name (its file's, as the library names it), or what made it: 'walk', "
+                             "'path', 'steer'.")
+      .def_property_readonly("fps", [](const PyMotion& self) { return self.motion.fps; }, "Frames a second.")
+      .def_property_readonly("frame_count", [](const PyMotion& self) { return self.motion.frame_count; },
+                             "Its frames, as len() gives them.")
       .def("__len__", [](const PyMotion& self) { return self.motion.frame_count; })
       .def_property_readonly(
           "positions",
@@ -262,8 +266,9 @@ void bind_motion(py::module_& m) {
           "with_frames",
           [](const PyMotion& self, const py::array_t<double, py::array::c_style | py::array::forcecast>& rotations,
              const std::optional<py::array_t<double, py::array::c_style | py::array::forcecast>>& translations,
-             std::optional<double> fps, const std::optional<std::string>& name) {
-            return motion_with_frames(self, rotations, translations, fps, name);
+             std::optional<Real> fps, const std::optional<std::string>& name) {
+            return motion_with_frames(self, rotations, translations,
+                                      fps ? std::optional<double>(fps->value) : std::nullopt, name);
           },
           py::arg("rotations"), py::arg("translations") = py::none(), py::arg("fps") = py::none(),
           py::arg("name") = py::none(),
@@ -341,7 +346,7 @@ void bind_motion(py::module_& m) {
       .def(
           "save",
           [](const PyMotion& self, const std::filesystem::path& path, bool root_motion,
-             std::optional<double> root_motion_smoothing, std::optional<double> output_scale, bool figure,
+             std::optional<Real> root_motion_smoothing, std::optional<Real> output_scale, bool figure,
              const std::optional<std::string>& name) {
             // What the CLI refuses (--root-motion-smoothing needs --root-motion), and options the
             // format does not take, said rather than dropped.
@@ -352,7 +357,7 @@ void bind_motion(py::module_& m) {
               throw py::value_error("save(): the motion has no frames (a controller before its first step)");
             }
             const std::string ext = lower_extension(path.string());
-            if (output_scale && *output_scale != 1.0 && ext != ".bvh") {
+            if (output_scale && output_scale->value != 1.0 && ext != ".bvh") {
               warn(fmt::format("save(): output_scale is for .bvh; {} is written in {}", ext,
                                ext == ".fbx" ? "centimetres" : "metres"));
             }
@@ -364,7 +369,8 @@ void bind_motion(py::module_& m) {
             }
             if (name && name->empty()) throw py::value_error("save(): name must not be empty");
             MotionFileSettings settings =
-                file_settings(root_motion, root_motion_smoothing.value_or(0.5), output_scale.value_or(1.0), figure);
+                file_settings(root_motion, root_motion_smoothing.value_or(Real{0.5}).value,
+                              output_scale.value_or(Real{1.0}).value, figure);
             settings.animation_name = name.value_or("");
             Status saved = Ok{};
             {
@@ -390,8 +396,11 @@ void bind_motion(py::module_& m) {
   m.def(
       "save_animations",
       [](const std::filesystem::path& path, const std::vector<const PyMotion*>& motions,
-         const std::optional<std::vector<std::string>>& names, bool root_motion, double root_motion_smoothing,
-         bool figure) {
+         const std::optional<std::vector<std::string>>& names, bool root_motion,
+         std::optional<Real> root_motion_smoothing, bool figure) {
+        if (root_motion_smoothing && !root_motion) {  // as save() says it
+          throw py::value_error("save_animations(): root_motion_smoothing needs root_motion=True");
+        }
         if (names && names->size() != motions.size()) {
           throw py::value_error(fmt::format("names: {} given for {} motions", names->size(), motions.size()));
         }
@@ -406,7 +415,8 @@ void bind_motion(py::module_& m) {
           set.push_back({motion.name, names ? (*names)[i] : motion.name, &motion.skeleton, &motion.motion,
                          root_motion ? forward_axis_of(motion) : Vec3::UnitZ()});
         }
-        const MotionFileSettings settings = file_settings(root_motion, root_motion_smoothing, 1.0, figure);
+        const MotionFileSettings settings =
+            file_settings(root_motion, root_motion_smoothing.value_or(Real{0.5}).value, 1.0, figure);
         Status saved = Ok{};
         {
           py::gil_scoped_release release;
@@ -415,11 +425,11 @@ void bind_motion(py::module_& m) {
         check(saved);
       },
       py::arg("path"), py::arg("motions"), py::arg("names") = py::none(), py::arg("root_motion") = false,
-      py::arg("root_motion_smoothing") = 0.5, py::arg("figure") = true,
+      py::arg("root_motion_smoothing") = py::none(), py::arg("figure") = true,
       "Writes several motions of one rig (clips of one skeleton, or results of one graph) into one .glb, .gltf or .fbx, "
       "an animation each, as the CLI's convert does with several clips: names the animations' (default: each "
       "motion's name; a name repeated gets _2, _3...), root_motion, root_motion_smoothing and figure as save() "
-      "takes them.");
+      "takes them (smoothing 0.5 s when not given; given without root_motion, ValueError).");
   m.def("load_clip", &load_clip, py::arg("path"), py::arg("asf") = py::none(), py::arg("fps") = py::none(),
         py::arg("scale") = py::none(), py::arg("up_axis") = py::none(), py::arg("input_fps") = 0.0,
         py::arg("keep_rest_frames") = false, py::arg("travel") = "auto", py::arg("feet") = py::none(),

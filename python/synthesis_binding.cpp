@@ -46,7 +46,8 @@ PyMotion result_motion(const PyGraph& graph, const char* name, SynthesizedMotion
   return motion;
 }
 
-PyMotion walk(const PyGraph& graph, int from, int to, const py::kwargs& options) {
+PyMotion walk(const PyGraph& graph, Integer from_node, Integer to_node, const py::kwargs& options) {
+  const int from = from_node.value, to = to_node.value;
   WalkSearchSettings settings;
   SynthesisRunSettings run = run_settings(graph);
   std::string cost = "quality";
@@ -65,7 +66,7 @@ PyMotion walk(const PyGraph& graph, int from, int to, const py::kwargs& options)
   return result_motion(graph, "walk", take(std::move(made)));
 }
 
-PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<double, 2>>>& points,
+PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<Real, 2>>>& points,
               const std::optional<std::string>& shape, const std::optional<std::vector<std::string>>& segments,
               const std::optional<std::filesystem::path>& file, const py::kwargs& options) {
   PathSynthesisSettings settings;
@@ -103,7 +104,9 @@ PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<d
   }
   FloorPathSource source{file ? file->string() : std::string(), shape.value_or(""), {},
                          segments.value_or(std::vector<std::string>{})};
-  for (const auto& [x, z] : points.value_or(std::vector<std::array<double, 2>>{})) source.points.emplace_back(x, z);
+  for (const auto& [x, z] : points.value_or(std::vector<std::array<Real, 2>>{})) {
+    source.points.emplace_back(x.value, z.value);
+  }
   std::stop_source stop;  // Ctrl-C (run_stoppable)
   settings.stop = stop.get_token();
   // progress: every 2 s, how far along the path the searches have come; it runs with the GIL,
@@ -191,7 +194,9 @@ class PyController {
 
   // Threads may share a controller: its steps take turns (the lock taken without the GIL, which a
   // step gives up while it searches).
-  PyMotion step(double heading_deg, const std::optional<std::string>& tag, bool rest, int min_frames) {
+  PyMotion step(Real heading, const std::optional<std::string>& tag, bool rest, Integer min_frames_given) {
+    const double heading_deg = heading.value;
+    const int min_frames = min_frames_given.value;
     if (min_frames < 1 || min_frames > kMaxStepFrames) {
       throw py::value_error(fmt::format("min_frames must be from 1 to {}, not {}", kMaxStepFrames, min_frames));
     }
@@ -424,8 +429,11 @@ void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
            "along the path it has come; an exception it raises stops the search and is raised).")
       .def(
           "controller",
-          [](const PyGraph& g, double heading_deg, const std::optional<std::string>& tag, std::array<double, 2> at,
-             const py::kwargs& options) { return std::make_unique<PyController>(g, heading_deg, tag, at, options); },
+          [](const PyGraph& g, Real heading_deg, const std::optional<std::string>& tag, std::array<Real, 2> at,
+             const py::kwargs& options) {
+            const std::array<double, 2> start{at[0].value, at[1].value};
+            return std::make_unique<PyController>(g, heading_deg.value, tag, start, options);
+          },
           py::arg("heading_deg") = 0.0, py::arg("tag") = py::none(), py::arg("at") = std::array<double, 2>{0.0, 0.0},
           "A steering controller (the CLI's steer) starting at `at` (x, z) facing heading_deg (degrees clockwise "
           "from north, -z): keywords horizon, commit, tag_penalty, transition_penalty, bridge_penalty, tag_lookahead (0 "

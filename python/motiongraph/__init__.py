@@ -9,11 +9,40 @@
 
 See docs/python.md.
 """
+import functools as _functools
 import io as _io
 import os as _os
+import re as _re
 
 from ._motiongraph import Controller, EmptyGraphError, Error, Graph, Motion, load_clip, load_graph, save_animations
 from ._motiongraph import _build, _load_library
+
+
+def _keywords_named(function):
+    # pybind11 answers a keyword it does not know with every signature of the function; this names
+    # the keyword, as a Python function does, from the parameters its signature (the docstring's
+    # first line) gives.
+    signature = function.__doc__.split("\n", 1)[0]
+    name = signature.split("(", 1)[0]
+    known = frozenset(_re.findall(r"[(,]\s*(\w+):", signature.split(" -> ", 1)[0])) - {"self"}
+
+    @_functools.wraps(function)
+    def checked(*args, **kwargs):
+        for keyword in kwargs:
+            if keyword not in known:
+                raise TypeError(f"{name}() got an unexpected keyword argument '{keyword}'")
+        return function(*args, **kwargs)
+
+    checked._keywords = known
+    return checked
+
+
+load_clip = _keywords_named(load_clip)
+load_graph = _keywords_named(load_graph)
+save_animations = _keywords_named(save_animations)
+Motion.save = _keywords_named(Motion.save)
+Motion.with_frames = _keywords_named(Motion.with_frames)
+Controller.step = _keywords_named(Controller.step)
 
 __all__ = ["Controller", "EmptyGraphError", "Error", "Graph", "Library", "Motion", "build", "load_clip",
            "load_graph", "load_library", "save_animations"]
@@ -75,7 +104,8 @@ class Library:
         return self.summary["warnings"]
 
     def clip_tags(self, clip):
-        """The tags of a clip (index or name) as [(tag, first_frame, frame_count), ...] in its own frames."""
+        """The tags of a clip (index, name or the clip itself) as [(tag, first_frame, frame_count), ...]
+        in its own frames."""
         index = self._index(clip)
         return [(r["tag"], r["first_frame"], r["frames"]) for r in self.summary["clips"][index]["tag_ranges"]]
 
@@ -85,6 +115,14 @@ class Library:
                 if row["name"] == clip:
                     return index
             raise KeyError(clip)
+        if isinstance(clip, Motion):
+            for index, c in enumerate(self.clips):
+                if c is clip:
+                    return index
+            raise KeyError(f"{clip!r} is not a clip of this library")
+        if isinstance(clip, bool) or not isinstance(clip, int):
+            raise TypeError(f"a clip is given by its index, its name or itself (a Motion of the library), "
+                            f"not {type(clip).__name__}")
         count = len(self.clips)
         if not -count <= clip < count:
             raise IndexError(f"clip {clip} out of range: the library has {count} clips")
@@ -117,7 +155,8 @@ def load_library(inputs, **options):
     manifests), each clip resampled to the library's rate, tagged, on the joints all share.
 
     Keywords are build's options for reading: fps, asf, scale, up_axis, travel, input_fps, cmu_index,
-    no_cmu_tags, no_name_tags, whole_clip_tags, feet, no_loops, mirror ("auto", "on" or True, "off" or False).
+    no_cmu_tags, no_name_tags, whole_clip_tags, keep_rest_frames, feet, no_loops, mirror ("auto", "on" or True,
+    "off" or False).
     Loading's doubts (files read in the library's up axis,
     joints dropped, other converters' rigs, clips that look wrong) are given as UserWarning. Returns a Library; raises
     motiongraph.Error with the CLI's message.
@@ -142,5 +181,14 @@ def _clouds(self):
     return _npy(self._clouds_npy(), "clouds")
 
 
+def _tag_thresholds(self):
+    """{motion type: {"threshold": D, "rms_cm": the same as RMS point distance over the window}}: the
+    threshold each motion type's transitions pass (the build report's tag_thresholds; never below
+    Graph.threshold, the lowest); empty for a graph built with one threshold for all."""
+    rows = (self.report or {}).get("tag_thresholds") or []
+    return {row["tag"]: {"threshold": row["threshold"], "rms_cm": row["rms_cm"]} for row in rows}
+
+
+Graph.tag_thresholds = property(_tag_thresholds)
 Graph.distance_matrix = _distance_matrix
 Graph.clouds = _clouds

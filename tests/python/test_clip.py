@@ -384,3 +384,40 @@ def test_a_motion_made_from_arrays(data, tmp_path):
     bad[3, 0, 1] = np.nan
     with pytest.raises(ValueError, match=r"translations\[3, 0\] is not finite"):
         clip.with_frames(clip.rotations, bad)
+
+
+def test_numbers_are_not_true_or_false_and_misspelt_keywords_are_named(data, tmp_path):
+    # pybind11 takes True and False for numbers (load_clip(fps=True) read a clip at 1 fps) and
+    # answered a misspelt keyword with every signature; the keyword options already did neither.
+    amc = str(data / "cmu/16/16_15.amc")
+    clip = mg.load_clip(amc, fps=30)
+    calls = {
+        "load_clip fps": lambda: mg.load_clip(amc, fps=True),
+        "load_clip scale": lambda: mg.load_clip(amc, scale=True),
+        "load_clip input_fps": lambda: mg.load_clip(amc, input_fps=False),
+        "save output_scale": lambda: clip.save(str(tmp_path / "b.bvh"), output_scale=True),
+        "save root_motion_smoothing": lambda: clip.save(str(tmp_path / "b.bvh"), root_motion=True,
+                                                        root_motion_smoothing=True),
+        "with_frames fps": lambda: clip.with_frames(clip.rotations, fps=True),
+    }
+    for what, call in calls.items():
+        with pytest.raises(TypeError, match="a number is expected, not (True|False)"):
+            call()
+        assert not (tmp_path / "b.bvh").exists(), what
+    # The same calls with numbers work.
+    assert abs(len(mg.load_clip(amc, fps=60)) - 2 * len(clip)) <= 1
+    assert clip.with_frames(clip.rotations, fps=15).fps == 15
+    clip.save(str(tmp_path / "b.bvh"), output_scale=100)
+    assert mg.load_clip(str(tmp_path / "b.bvh"), scale=0.01).frame_count == clip.frame_count
+    for call, keyword in [(lambda: mg.load_clip(amc, fsp=30), "fsp"),
+                          (lambda: clip.save(str(tmp_path / "c.bvh"), outputscale=1), "outputscale"),
+                          (lambda: clip.with_frames(clip.rotations, fp=30), "fp"),
+                          (lambda: mg.save_animations(str(tmp_path / "c.glb"), [clip], name=["a"]), "name"),
+                          (lambda: mg.load_graph(str(tmp_path / "none.mgraph"), skeletons=0), "skeletons")]:
+        with pytest.raises(TypeError) as raised:
+            call()
+        assert str(raised.value).endswith(f"() got an unexpected keyword argument '{keyword}'"), raised.value
+    assert not (tmp_path / "c.bvh").exists() and not (tmp_path / "c.glb").exists()
+    # save_animations' smoothing needs root motion, as save()'s does.
+    with pytest.raises(ValueError, match="root_motion_smoothing needs root_motion=True"):
+        mg.save_animations(str(tmp_path / "c.glb"), [clip], root_motion_smoothing=1)

@@ -115,6 +115,16 @@ def test_edges_are_the_graph_as_the_reports_number_it(graph):
     assert sum(edges[e]["kind"] == "bridge" for e in walk) == motion.report["bridges"]
     edges[0]["kind"] = "changed"
     assert graph.edges[0]["kind"] == "clip"
+    # Each motion type's own threshold: the lowest is Graph.threshold, and every transition (not
+    # bridge: those lie above) passes the highest; in cm as the edges give theirs.
+    own = graph.tag_thresholds
+    assert own and set(own) <= set(graph.tags), own
+    assert min(t["threshold"] for t in own.values()) == pytest.approx(graph.threshold)
+    highest = max(t["threshold"] for t in own.values())
+    assert all(e["distance"] <= highest * (1 + 1e-6) for e in edges if e["kind"] == "transition")
+    assert any(e["distance"] > graph.threshold for e in edges if e["kind"] == "transition")
+    for t in own.values():
+        assert t["rms_cm"] == pytest.approx(100 * np.sqrt(t["threshold"] / weight), rel=1e-6)
 
 
 def test_fixture_graph_equals_a_python_build(cli, data, graph_file, graph):

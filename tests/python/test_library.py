@@ -52,7 +52,7 @@ def test_tags_per_clip_add_up_to_the_totals(data):
     frames, clips = {}, {}
     for index, clip in enumerate(library):
         runs = library.clip_tags(index)
-        assert runs == library.clip_tags(clip.name)
+        assert runs == library.clip_tags(clip.name) == library.clip_tags(clip)  # by index, name or itself
         for tag, first, count in runs:
             assert 0 <= first and first + count <= len(clip)
             frames[tag] = frames.get(tag, 0) + count
@@ -61,6 +61,12 @@ def test_tags_per_clip_add_up_to_the_totals(data):
     assert {tag: (total["clips"], total["frames"]) for tag, total in library.tags.items()} == \
         {tag: (clips[tag], frames[tag]) for tag in frames}
     assert library.clip_tags("16_15") == [("walk", 0, len(library["16_15"]))]
+    # A clip of another library, or given as what is no clip at all, is said to be so.
+    with pytest.raises(KeyError, match="not a clip of this library"):
+        library.clip_tags(mg.load_clip(data / "cmu/16/16_15.amc"))
+    for bad in (None, True, 1.0):
+        with pytest.raises(TypeError, match="a clip is given by its index, its name or itself"):
+            library[bad]
     # "walk, stop": its walk stays where the root travels, its stop where it stands and the second
     # before, unless asked to keep them whole.
     stops = dict((tag, (first, count)) for tag, first, count in library.clip_tags("16_33"))

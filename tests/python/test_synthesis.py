@@ -378,6 +378,27 @@ def test_a_step_plays_decisions_until_min_frames(graph):
             many.step(90, "walk", min_frames=bad)
 
 
+def test_numbers_of_walks_paths_and_steps_are_not_true_or_false(graph, graph_file):
+    # pybind11 took True for node 1 and False for 0 (graph.walk(True, 5)), a heading of 1 degree.
+    controller = graph.controller()
+    calls = [lambda: graph.walk(True, 5), lambda: graph.walk(0, False),
+             lambda: graph.path(points=[(True, False), (0, -5)]),
+             lambda: graph.controller(heading_deg=True), lambda: graph.controller(at=(0, True)),
+             lambda: controller.step(True), lambda: controller.step(0, min_frames=True),
+             lambda: mg.load_graph(str(graph_file), skeleton=True)]
+    for call in calls:
+        with pytest.raises(TypeError, match="a number is expected, not (True|False)"):
+            call()
+    assert len(controller.motion) == 0  # no step was taken
+    assert len(graph.walk(1, 5)) > 0
+    assert len(controller.step(0, min_frames=2)) >= 2
+    with pytest.raises(TypeError, match=r"step\(\) got an unexpected keyword argument 'min_frame'"):
+        controller.step(0, min_frame=2)
+    # A skeleton index below -1 (the first clip's) is none.
+    with pytest.raises(ValueError, match="skeleton must be -1"):
+        mg.load_graph(str(graph_file), skeleton=-2)
+
+
 def test_steering_goes_where_it_is_told(graph):
     controller = graph.controller(heading_deg=90, tag="walk")
     while len(controller.motion) < 5 * graph.fps:
