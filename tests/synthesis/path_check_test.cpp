@@ -307,9 +307,24 @@ TEST(PathCheck, EachPointIsTheWorseOfTheProbeAndItsMirror) {
   s.tolerance_m = 1e-6;
   s.lost_m = 1e9;
   s.synthesis.progress_retries = 0;
+  struct Told {
+    double rms_cm;
+    int probe;
+    double arc_m;
+  };
+  std::vector<Told> told;  // while each probe is searched (the build's progress lines), for each threshold
+  s.searching = [&](double rms_cm, int probe, double arc_m) { told.push_back({rms_cm, probe, arc_m}); };
   auto check = check_path_following(x.db, x.features, x.search, x.settings, x.from, x.ceiling, s);
   ASSERT_TRUE(check) << check.error().to_string();
   ASSERT_EQ(check->points.size(), 3u);
+  const double probe_m = path_check_probe().length_m();
+  for (const PathCheckPoint& p : check->points) {
+    for (int probe : {0, 1}) {
+      EXPECT_TRUE(std::any_of(told.begin(), told.end(), [&](const Told& t) {
+        return t.rms_cm == p.rms_cm && t.probe == probe && t.arc_m >= 0.0 && t.arc_m <= probe_m + 1e-9;
+      })) << p.rms_cm << " cm, probe " << probe;
+    }
+  }
   for (const PathCheckPoint& p : check->points) {
     ASSERT_TRUE(p.graph);
     const PathCheckPoint here = probes_here(*graph_at(x, p.threshold), check_search(s), false);

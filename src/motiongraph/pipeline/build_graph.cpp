@@ -324,13 +324,21 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
   if (!settings.path_check) return graph_settings;
   PathCheckSettings check_settings = settings.path_check_settings;
   check_settings.synthesis.stop = stop;
+  ProgressLineClock check_clock;  // one line every 2 s, whether a threshold is done or a probe on its way
   if (say.log.progress) {
-    check_settings.tried = [&say, clock = ProgressLineClock()](const PathCheckPoint& point, int tried) mutable {
-      if (!clock.due()) return;
+    check_settings.tried = [&say, &check_clock](const PathCheckPoint& point, int tried) {
+      if (!check_clock.due()) return;
       say.log.progress(fmt::format("path check: {} tried in {:.1f} s (at RMS {:.2f} cm the probe {})",
-                                   counted(tried, "threshold"), clock.elapsed_s(), point.rms_cm,
+                                   counted(tried, "threshold"), check_clock.elapsed_s(), point.rms_cm,
                                    point.graph ? fmt::format("followed {:.3f} m off", point.mean_deviation_m)
                                                : std::string("has no graph")));
+    };
+    const double probe_m = path_check_probe().length_m();
+    check_settings.searching = [&say, &check_clock, probe_m](double rms_cm, int probe, double arc_m) {
+      if (!check_clock.due()) return;
+      say.log.progress(fmt::format("path check: at RMS {:.2f} cm, {} {:.1f} m of {:.1f} m along in {:.1f} s", rms_cm,
+                                   probe == 0 ? "the test path" : "its mirror", arc_m, probe_m,
+                                   check_clock.elapsed_s()));
     };
   }
   auto check = check_path_following(db, features, candidates, graph_settings, choice->threshold,

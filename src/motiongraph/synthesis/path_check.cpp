@@ -114,6 +114,11 @@ Result<PathCheckPoint> probe_at(const MotionDatabase& db, const FrameFeatures& f
   PathCheckPoint worse = point;
   std::array<double, 2> deviations = point.probe_deviations_m;
   for (size_t i = 0; i < probes.size() && i < deviations.size(); ++i) {
+    if (check.searching) {
+      search.searched = [&check, rms_cm = point.rms_cm, probe = static_cast<int>(i)](double arc_m, int) {
+        check.searching(rms_cm, probe, arc_m);
+      };
+    }
     auto result = synthesize_path(*context, probes[i], search);
     if (!result) return result.error();
     PathCheckPoint one = point;

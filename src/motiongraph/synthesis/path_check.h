@@ -56,6 +56,10 @@ struct PathCheckSettings {
   // Not settings of the check (not in its JSON): told of each threshold's point as it is made
   // (the build's progress lines); the search's `synthesis.stop` stops it.
   std::function<void(const PathCheckPoint& point, int tried)> tried;
+  // ... and, while a probe is searched, after each of its searches (the search's own `searched`):
+  // the threshold's RMS in cm, which probe (0: the probe, 1: its mirror), and the metres of it the
+  // walk has come along.
+  std::function<void(double rms_cm, int probe, double arc_m)> searching;
 
   Status validate() const;
 };
