@@ -228,13 +228,22 @@ Result<Candidates> distance_stage(bool pruned, const FrameFeatures& features, co
   return out;
 }
 
+// A motion type the automatic threshold did not rise for: the ceiling keeps too little of it
+// (kMinServedShare). Warned of once the graph is made, with what the graph keeps of it (the path
+// check may raise the threshold after the choice).
+struct NotChased {
+  int tag = 0;
+  double ceiling_share = 0.0;
+};
+
 // The transition settings with the threshold the settings ask for; for kAuto, chosen from the
-// data and path-checked (their report parts in choice_json and check_json).
+// data and path-checked (their report parts in choice_json and check_json; the motion types it
+// did not rise for in not_chased).
 Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db, const FrameFeatures& features,
                                                        const CandidateSearch& candidates, const BuildSettings& settings,
                                                        OnDemandCandidates* more, const Say& say,
                                                        const std::stop_token& stop, json& choice_json,
-                                                       json& check_json) {
+                                                       json& check_json, std::vector<NotChased>& not_chased) {
   auto connected = settings.connected_tags(db);
   if (!connected) return connected.error();
   GraphFromCandidatesSettings graph_settings;
@@ -290,14 +299,7 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
       } else {
         kept.push_back(fmt::format("{} {:.1f} % (the ceiling keeps {:.1f} %: not chased)", name,
                                    100.0 * chosen.tag_coverage[i], 100.0 * top));
-        if (choice->tags[i] != kUntaggedClass) {
-          // (to a tenth of a per cent: 9.6 % is under 10 %, as "10 %" would not say)
-          say.warning(fmt::format("motion type '{}': even the ceiling (--max-threshold {:g} cm) keeps only {:.1f} % of "
-                                  "its frames, under {:.0f} %, so the threshold does not rise for it; the graph keeps "
-                                  "{:.1f} %",
-                                  name, choice_settings.max_rms_cm, 100.0 * top, 100.0 * kMinServedShare,
-                                  100.0 * chosen.tag_coverage[i]));
-        }
+        if (choice->tags[i] != kUntaggedClass) not_chased.push_back({choice->tags[i], top});
       }
     } else {
       kept.push_back(fmt::format("{} {:.0f} % at {:.2f} cm", motion_class_name(db, choice->tags[i]),
@@ -635,8 +637,9 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
   OnDemandCandidates* on_demand = more ? &*more : nullptr;
   json choice_json = nullptr;
   json check_json = nullptr;
+  std::vector<NotChased> not_chased;
   auto graph_settings = threshold_settings(*db, *features, candidates->search, settings, on_demand, say, log.stop,
-                                           choice_json, check_json);
+                                           choice_json, check_json, not_chased);
   if (!graph_settings) return graph_settings.error();
   if (auto s = check_stop(log.stop); !s) return s.error();
   auto selected = select_transitions_with_bridges(*db, *features, candidates->search, *graph_settings, on_demand);
@@ -655,6 +658,20 @@ Result<GraphBuild> build_graph(std::span<const std::string> inputs, const BuildS
   if (auto s = check_stop(log.stop); !s) return s.error();
   timings["graph"] = watch.lap();
   std::vector<ClipCoverage> coverage;
+  for (const NotChased& n : not_chased) {
+    long long kept = 0, frames = 0;
+    if (built) {
+      for (const TagStatistics& t : built->prune.after.tags) {
+        if (t.tag == n.tag) kept = t.frames, frames = t.database_frames;
+      }
+    }
+    // (to a tenth of a per cent: 9.6 % is under 10 %, as "10 %" would not say)
+    say.warning(fmt::format("motion type '{}': even the ceiling (--max-threshold {:g} cm) keeps only {:.1f} % of its "
+                            "frames, under {:.0f} %, so the threshold does not rise for it; the graph keeps {:.1f} %",
+                            db->tag_names[static_cast<size_t>(n.tag)], settings.choice.max_rms_cm,
+                            100.0 * n.ceiling_share, 100.0 * kMinServedShare,
+                            frames > 0 ? 100.0 * static_cast<double>(kept) / static_cast<double>(frames) : 0.0));
+  }
   if (built) {
     const PruneReport& pruned = built->prune;
     if (!built->bridge_blends_placed) {
