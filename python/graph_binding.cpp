@@ -123,6 +123,9 @@ std::shared_ptr<const LoadedGraph> load_file(GraphFile file, const std::string& 
 }
 
 PyGraph build(const std::vector<std::string>& inputs, const py::dict& options, const py::object& progress) {
+  if (!progress.is_none() && !PyCallable_Check(progress.ptr())) {
+    throw py::type_error("build(): progress must be callable");  // said now, not at its first line
+  }
   BuildCall call;
   apply_options(options, build_option_table(call), "build");
   BuildSettings settings = take(build_settings_from(call.options));

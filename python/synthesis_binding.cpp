@@ -93,7 +93,12 @@ PyMotion path(const PyGraph& graph, const std::optional<std::vector<std::array<R
                  {"edit_max_turn", set(settings.path_edit.max_turn_deg_per_m)},
                  {"edit_round_corners", set(settings.path_edit.round_corners_m)},
                  {"cleanup", set(run.cleanup)},
-                 {"progress", [&progress](py::handle value) { progress = py::reinterpret_borrow<py::object>(value); }}},
+                 {"progress",
+                  [&progress](py::handle value) {
+                    // Said now, not when the search has run 2 s.
+                    if (!PyCallable_Check(value.ptr())) throw py::type_error("path(): progress must be callable");
+                    progress = py::reinterpret_borrow<py::object>(value);
+                  }}},
                 "path");
   check(settings.validate());
   if (points.has_value() + shape.has_value() + file.has_value() != 1) {

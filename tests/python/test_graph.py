@@ -210,6 +210,9 @@ def test_progress_callback(data):
     lines = []
     mg.build(str(data / "cmu/16"), no_cache=True, progress=lines.append)
     assert lines and all(isinstance(line, str) and line for line in lines)
+    # What cannot be called is said before anything is read, not at the first line.
+    with pytest.raises(TypeError, match=r"build\(\): progress must be callable"):
+        mg.build(str(data / "no such folder"), progress=5)
 
 
 def _cached(folder):

@@ -495,6 +495,8 @@ def test_path_progress_every_two_seconds_and_its_exception_stops_the_search(grap
     assert float(got[0][1]) < float(got[1][1]) and 2 <= float(got[0][2]) < float(got[1][2]), lines
     assert graph.path(shape="line:5", progress=lines.append).report["reached_end"]
     assert len(lines) == 2  # done within 2 s: not a word
+    with pytest.raises(TypeError, match=r"path\(\): progress must be callable"):
+        graph.path(shape="line:5", progress=3)  # said though the search would not last 2 s
 
 
 def test_a_path_is_one_of_points_shape_and_file(graph, tmp_path):
