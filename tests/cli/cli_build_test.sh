@@ -566,6 +566,18 @@ said = re.search(r"motion type 'jump': .* the graph keeps ([0-9.]+) %", open(f"{
 jump = [t for t in json.load(open(f"{work}/sliver.json"))["graph_after"]["tags"] if t["name"] == "jump"][0]
 assert said and float(said.group(1)) == round(100 * jump["frames"] / jump["database_frames"], 1), (said, jump)
 PY
+# A transition rate out of reach is said, with what the search aimed for instead (the report's).
+"$bin" build "$data/cmu/16" -o "$work/rate.mgraph" --cache-dir "$cache" --min-transition-rate 100 \
+  --report "$work/rate.json" 2>"$work/rate.err"
+python3 - "$work" <<'PY' || { echo "FAIL: a transition rate out of reach"; cat "$work/rate.err"; exit 1; }
+import json, re, sys
+work = sys.argv[1]
+said = re.search(r"info: even the ceiling's graph \(--max-threshold 10 cm\) offers only ([0-9.]+) transitions a second "
+                 r"of the motion it keeps, under the 100 asked \(--min-transition-rate\): the threshold aims for "
+                 r"([0-9.]+)", open(f"{work}/rate.err").read())
+target = json.load(open(f"{work}/rate.json"))["threshold_choice"]["target_rate"]
+assert said and float(said.group(1)) == float(said.group(2)) == round(target, 2) and target < 100, (said, target)
+PY
 # A short run alone keeps a third of its frames, its ends: the warning says so, without
 # promising that a higher threshold keeps more (the ceiling keeps no more). 131_01 alone makes a
 # loop of one transition: the graph can seldom turn, and the build says so.

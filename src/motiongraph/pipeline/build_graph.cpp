@@ -323,6 +323,15 @@ Result<GraphFromCandidatesSettings> threshold_settings(const MotionDatabase& db,
     say.warning(fmt::format("no threshold up to --max-threshold {:g} cm reaches the coverage wanted{}",
                             choice_settings.max_rms_cm, short_tags_text(*choice, db)));
   }
+  if (choice->target_rate < choice_settings.min_transition_rate) {
+    // The rate asked is out of reach: the search aimed for what the ceiling's graph offers (said;
+    // a graph too poor in transitions is warned of as such once built).
+    say.info(fmt::format("even the ceiling's graph (--max-threshold {:g} cm) offers only {:.2f} transitions a "
+                         "second of the motion it keeps, under the {:g} asked (--min-transition-rate): the "
+                         "threshold aims for {:.2f}",
+                         choice_settings.max_rms_cm, choice->target_rate, choice_settings.min_transition_rate,
+                         choice->target_rate));
+  }
   if (!settings.path_check) return graph_settings;
   PathCheckSettings check_settings = settings.path_check_settings;
   check_settings.synthesis.stop = stop;
