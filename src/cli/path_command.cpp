@@ -98,8 +98,8 @@ Command add_path_command(CLI::App& app) {
   sub->add_option("--shape", o->shape,
                   "A built-in shape: line:20, circle:5, figure8:4, s-curve:100, square:10, zigzag:6");
   sub->add_option("--segment", o->segments,
-                  "TAG:FROM-TO: ask for a motion type along that arc-length range (metres); repeatable, "
-                  "replaces the file's segments");
+                  "TAG:FROM-TO: ask for a motion type along that arc-length range (metres); repeatable (where "
+                  "two overlap, the later one is asked for), replaces the file's segments");
   sub->add_option("--horizon", o->settings.horizon_s, "Seconds of motion each search looks ahead")
       ->capture_default_str();
   sub->add_option("--commit", o->settings.commit_s, "Seconds of each search's walk kept before searching again")
