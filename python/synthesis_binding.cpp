@@ -442,7 +442,8 @@ void bind_synthesis(py::module_& m, py::class_<PyGraph>& graph) {
           py::arg("heading_deg") = 0.0, py::arg("tag") = py::none(), py::arg("at") = std::array<double, 2>{0.0, 0.0},
           "A steering controller (the CLI's steer) starting at `at` (x, z) facing heading_deg (degrees clockwise "
           "from north, -z): keywords horizon, commit, tag_penalty, transition_penalty, bridge_penalty, tag_lookahead (0 "
-          "to 1: the weight of what is still to pay before the tag past the horizon), travel_pace (m/s along the "
+          "to 1: the weight of what is still to pay before the tag past the horizon; with no tag, before a frame "
+          "travelling at travel_pace), travel_pace (m/s along the "
           "heading asked of a walk with no tag; 0: none), travel_penalty, max_expansions, "
           "beam, time_budget, start_node, edit_max_turn (degrees per metre the heading edit may turn the motion "
           "toward the heading; 0: as the graph plays it), edit_turn_distance (m), edit_hold ('facing' or 'travel': "

@@ -373,7 +373,7 @@ Command add_steer_command(CLI::App& app) {
   sub->add_option("--tag-lookahead", o->settings.tag_lookahead,
                   "Weight (0 to 1) of what a walk that reaches the horizon still pays before the tag asked for (its "
                   "frames without it, the transitions and bridges on the way), so that a tag beyond the horizon is "
-                  "headed for (0: the horizon only)")
+                  "headed for; with no tag asked, before a frame that travels at --travel-pace (0: the horizon only)")
       ->capture_default_str();
   sub->add_option("--travel-pace", o->settings.travel_mps,
                   "With no tag asked, metres a second along the heading each decision asks of a walk (0: none; a "

@@ -7,6 +7,7 @@
 #include <random>
 #include <string>
 
+#include "motiongraph/synthesis/travelling_frames.h"
 #include "synthesis/search_test_graphs.h"
 #include "synthesis/subject16_graph.h"
 
@@ -25,7 +26,7 @@ TEST(SteerCost, TheSearchWithTheTagsCostToGoIsExact) {
   std::mt19937 rng(61);
   const char* tags[] = {"walk", "run", "jump", ""};
   test::BoundTally tally, blind_tally;
-  int took_terminal = 0;
+  int took_terminal = 0, took_travel_terminal = 0;
   for (int trial = 0; trial < 24; ++trial) {
     ControlInput input;
     const double bearing = std::uniform_real_distribution<double>(0.0, 360.0)(rng);
@@ -37,6 +38,16 @@ TEST(SteerCost, TheSearchWithTheTagsCostToGoIsExact) {
     settings.heading_edit.hold_travel = trial % 2 == 1;
     SearchState start;
     start.node = std::uniform_int_distribution<int>(0, graph.node_count() - 1)(rng);
+    if (input.tag == 0) {
+      // With no tag, from a node further from frames that travel than the horizon reaches (a jump
+      // on the spot, a stop), where what lies past it matters.
+      const double per_frame = settings.travel_penalty * settings.travel_mps;
+      const TravelCosts to_travel = searched_costs_to_travel(context, settings.travel_mps, per_frame,
+                                                             settings.transition_penalty, settings.bridge_penalty);
+      while ((*to_travel.to_travel)[static_cast<size_t>(start.node)] < 20 * per_frame) {
+        start.node = (start.node + 1) % graph.node_count();
+      }
+    }
     start.placement = context.placement_facing(start.node, Vec2(0.3 * trial, -0.2 * trial),
                                                bearing_direction(std::uniform_real_distribution<double>(0, 360)(rng)));
     const Vec3 root = context.assembler.root_position(graph.nodes[static_cast<size_t>(start.node)].frame,
@@ -50,10 +61,17 @@ TEST(SteerCost, TheSearchWithTheTagsCostToGoIsExact) {
     EXPECT_EQ(cost.uses_heading(), settings.heading_edit.hold_travel);
     const std::string what = "trial " + std::to_string(trial);
     // With no tag, the pace asked along the heading too (a cost of every frame's root).
+    // Past the horizon, what any walk from there still pays before a frame that travels at the
+    // pace (travelling_frames.h).
     if (input.tag == 0) {
       const SteerCost travelling(context, input, settings, &start);
       const double with_travel = test::expect_search_exact(graph, context.tracks, start, travelling, 14, tally, what);
       EXPECT_GE(with_travel, test::expect_search_exact(graph, context.tracks, start, cost, 14, tally, what) - 1e-12);
+      const SteerCost travelling_blind(context, input, blind, &start);
+      const double horizon_travel =
+          test::expect_search_exact(graph, context.tracks, start, travelling_blind, 14, blind_tally, what);
+      EXPECT_GE(with_travel, horizon_travel - 1e-12);
+      if (with_travel > horizon_travel + 1e-9) ++took_travel_terminal;
     }
     const double best = test::expect_search_exact(graph, context.tracks, start, cost, 14, tally, what);
     const double blind_best =
@@ -66,6 +84,7 @@ TEST(SteerCost, TheSearchWithTheTagsCostToGoIsExact) {
   EXPECT_GT(tally.node_bounded, 150) << tally.partial_walks;
   EXPECT_LT(tally.with_bound, tally.without_bound) << tally.with_bound << " " << tally.without_bound;
   EXPECT_GT(took_terminal, 6) << took_terminal;
+  EXPECT_GE(took_travel_terminal, 2) << took_travel_terminal;
 }
 
 // With no motion type asked, a frame also pays travel_penalty per metre its root is behind a

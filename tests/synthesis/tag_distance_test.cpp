@@ -6,6 +6,7 @@
 #include <functional>
 #include <limits>
 #include <random>
+#include <span>
 #include <string>
 
 #include <fmt/format.h>
@@ -64,6 +65,36 @@ TEST(TagDistance, EqualsTheDefinitionOnRandomGraphs) {
       expect_near(cost_to_tag(graph, tracks, tag, 1.0), by_relaxation(graph, tracks, tag, 1.0, {}), what);
       expect_near(cost_to_tag(graph, tracks, tag, 2.0, edge_cost), by_relaxation(graph, tracks, tag, 2.0, edge_cost),
                   what + " with edge costs");
+    }
+  }
+}
+
+// Any marks of the edges' frames (not the tracks' tags): the same definition, the marks as the
+// tags; and what a walk still pays after its horizon, from those marks as from tags.
+TEST(TagDistance, MarksOfTheFramesAreCostedAsTags) {
+  std::mt19937 rng(13);
+  for (int trial = 0; trial < 100; ++trial) {
+    const MotionGraph graph = test::random_search_graph(rng, 3 + trial % 12, trial % 20, 6);
+    EdgeTracks tracks = test::random_tracks(rng, graph);
+    for (TagMask& t : tracks.tags) t = TagMask{rng() % 3 == 0 ? 2u : 1u};  // tags the marks must not read
+    std::vector<TagMask> marks(tracks.tags.size());
+    for (TagMask& m : marks) m = rng() % 7 == 0 ? TagMask{1} : TagMask{0};
+    auto marks_of = [&](int e) {
+      return std::span<const TagMask>(marks).subspan(static_cast<size_t>(tracks.edges[e].first),
+                                                     static_cast<size_t>(tracks.edges[e].count));
+    };
+    EdgeTracks marked = tracks;
+    marked.tags = marks;
+    auto edge_cost = [&](int e) { return graph.edges[e].transition ? 0.5 : 0.0; };
+    const std::vector<double> to_mark = cost_to_mark(graph, marks_of, 1, 1.5, edge_cost);
+    const std::string what = fmt::format("trial {}", trial);
+    expect_near(to_mark, by_relaxation(graph, marked, 1, 1.5, edge_cost), what);
+    for (int e = 0; e < static_cast<int>(graph.edges.size()); ++e) {
+      for (size_t costed = 0; costed <= static_cast<size_t>(tracks.edges[e].count); ++costed) {
+        EXPECT_EQ(cost_to_mark_after(marks_of(e), costed, graph.edges[e].to_node, 1, 1.5, to_mark),
+                  cost_to_tag_after(marked, e, costed, graph.edges[e].to_node, 1, 1.5, to_mark))
+            << what << " edge " << e;
+      }
     }
   }
 }

@@ -17,6 +17,13 @@ SteerCost::SteerCost(const SynthesisContext& context, const ControlInput& input,
     travel_penalty_ = settings.travel_penalty;
     travel_m_per_frame_ = settings.travel_mps / context.db->fps;
     start_root_ = from->last_root;
+    if (lookahead_ > 0.0 && travel_penalty_ > 0.0) {
+      // Past the horizon a frame that does not travel costs what a frame a second behind the
+      // pace costs within it.
+      travel_per_frame_ = travel_penalty_ * settings.travel_mps;
+      to_travel_ = searched_costs_to_travel(context, settings.travel_mps, travel_per_frame_, transition_penalty_,
+                                            bridge_penalty_);
+    }
   }
   if (lookahead_ > 0.0 && input.tag != 0) {
     cost_to_tag_ = searched_costs_to_tag(context, {input.tag, penalty_, transition_penalty_, bridge_penalty_});
@@ -38,11 +45,20 @@ double SteerCost::transition_cost(const GraphEdge& edge, const SearchState&) con
 }
 
 double SteerCost::terminal_cost(int edge, size_t costed, double, const SearchState& end) const {
+  if (to_travel_.to_travel != nullptr) {
+    const EdgeTrack& track = context_.tracks.edges[static_cast<size_t>(edge)];
+    const auto marks = std::span<const TagMask>(*to_travel_.marks)
+                           .subspan(static_cast<size_t>(track.first), static_cast<size_t>(track.count));
+    return lookahead_ *
+           cost_to_mark_after(marks, costed, end.node, kTravellingMark, travel_per_frame_, *to_travel_.to_travel);
+  }
   if (cost_to_tag_ == nullptr) return 0.0;
   return lookahead_ * cost_to_tag_after(context_.tracks, edge, costed, end.node, input_.tag, penalty_, *cost_to_tag_);
 }
 
 double SteerCost::node_bound(const SearchState& state, int) const {
+  // (The way to travelling frames bounds nothing: within the horizon a frame that stands may cost
+  // less than its price past it, while the walk is still ahead of the pace.)
   if (cost_to_tag_ == nullptr) return 0.0;
   const double beyond = (*cost_to_tag_)[static_cast<size_t>(state.node)];
   return beyond < 0.0 ? 0.0 : lookahead_ * beyond;

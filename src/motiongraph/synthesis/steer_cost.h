@@ -5,7 +5,10 @@
 // leading into the tag); a walk that reaches the horizon also costs tag_lookahead times what any
 // walk from where it ends must still pay before the tag (tag_distance.h), and a partial walk is
 // bounded below by that much of its node's cost to the tag, so the branch and bound stays exact
-// (tests/synthesis/steer_cost_test.cpp checks it against every walk).
+// (tests/synthesis/steer_cost_test.cpp checks it against every walk). Asked for no tag, a walk
+// pays travel_penalty per metre its root falls behind the pace asked, and one that reaches the
+// horizon tag_lookahead times what any walk from there pays before a frame that travels at that
+// pace (travelling_frames.h), each frame before it priced as a second behind the pace.
 #pragma once
 
 #include <vector>
@@ -13,6 +16,7 @@
 #include "motiongraph/synthesis/controller.h"
 #include "motiongraph/synthesis/horizon_search.h"
 #include "motiongraph/synthesis/synthesis_context.h"
+#include "motiongraph/synthesis/travelling_frames.h"
 
 namespace mg {
 
@@ -50,6 +54,9 @@ class SteerCost final : public FrameCost {
   double travel_m_per_frame_ = 0.0;
   Vec2 start_root_ = Vec2::Zero();
   const std::vector<double>* cost_to_tag_ = nullptr;  // for input_.tag; null: the horizon only
+  // With no tag and a pace asked: the way to travelling frames past the horizon (travelling_frames.h).
+  TravelCosts to_travel_;
+  double travel_per_frame_ = 0.0;
 };
 
 }  // namespace mg

@@ -21,12 +21,14 @@ namespace mg {
 
 // Each tag's costs as path and steering searches price the way to it (tag_distance.h), computed
 // once per tag and penalties for every search of a context (a studio's sessions and paths,
-// Python's controllers and paths).
+// Python's controllers and paths); and, with no tag, the way to frames that travel at a pace
+// (travelling_frames.h: travel_mps), with those frames' marks.
 class TagCostCache {
  public:
   struct Key {
     TagMask tag = 0;
     double per_frame = 0.0, transition_penalty = 0.0, bridge_penalty = 0.0;
+    double travel_mps = 0.0;  // > 0 with tag 0: the costs to frames travelling at this pace
     bool operator==(const Key&) const = default;
   };
   // The costs of `key`, made by `make` the first time (under the lock: concurrent sessions asking
@@ -40,6 +42,16 @@ class TagCostCache {
     entries_.emplace_back(key, make());
     return entries_.back().second;
   }
+  // The marks of the frames travelling at `travel_mps`, made by `make` the first time.
+  template <class Make>
+  const std::vector<TagMask>& travelling(double travel_mps, Make&& make) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& [pace, marks] : travelling_) {
+      if (pace == travel_mps) return marks;
+    }
+    travelling_.emplace_back(travel_mps, make());
+    return travelling_.back().second;
+  }
   size_t size() {
     std::lock_guard<std::mutex> lock(mutex_);
     return entries_.size();
@@ -48,6 +60,7 @@ class TagCostCache {
  private:
   std::mutex mutex_;
   std::deque<std::pair<Key, std::vector<double>>> entries_;
+  std::deque<std::pair<double, std::vector<TagMask>>> travelling_;
 };
 
 struct SynthesisContext {

@@ -11,6 +11,12 @@ namespace mg {
 
 std::vector<double> cost_to_tag(const MotionGraph& graph, const EdgeTracks& tracks, TagMask tag, double per_frame,
                                 const std::function<double(int edge)>& edge_cost) {
+  return cost_to_mark(graph, [&tracks](int e) { return tracks.tags_of(e); }, tag, per_frame, edge_cost);
+}
+
+std::vector<double> cost_to_mark(const MotionGraph& graph,
+                                 const std::function<std::span<const TagMask>(int edge)>& marks_of, TagMask tag,
+                                 double per_frame, const std::function<double(int edge)>& edge_cost) {
   constexpr double kFar = std::numeric_limits<double>::infinity();
   std::vector<double> at_tag(static_cast<size_t>(graph.node_count()), kFar);
   // An edge whose frames carry the tag makes its node a goal; the others are the ways a cost
@@ -19,7 +25,7 @@ std::vector<double> cost_to_tag(const MotionGraph& graph, const EdgeTracks& trac
   std::vector<double> through(static_cast<size_t>(edges), -1.0);
   for (int e = 0; e < edges; ++e) {
     const GraphEdge& edge = graph.edges[static_cast<size_t>(e)];
-    const auto tags = tracks.tags_of(e);
+    const auto tags = marks_of(e);
     const double taken = edge_cost ? edge_cost(e) : 0.0;
     const auto first = std::find_if(tags.begin(), tags.end(), [&](TagMask m) { return (m & tag) != 0; });
     if (first != tags.end()) {
@@ -34,7 +40,12 @@ std::vector<double> cost_to_tag(const MotionGraph& graph, const EdgeTracks& trac
 
 double cost_to_tag_after(const EdgeTracks& tracks, int edge, size_t costed, int end_node, TagMask tag,
                          double per_frame, const std::vector<double>& to_tag) {
-  const auto rest = tracks.tags_of(edge).subspan(costed);
+  return cost_to_mark_after(tracks.tags_of(edge), costed, end_node, tag, per_frame, to_tag);
+}
+
+double cost_to_mark_after(std::span<const TagMask> marks, size_t costed, int end_node, TagMask tag, double per_frame,
+                          const std::vector<double>& to_tag) {
+  const auto rest = marks.subspan(std::min(costed, marks.size()));
   for (size_t f = 0; f < rest.size(); ++f) {
     if ((rest[f] & tag) != 0) return per_frame * static_cast<double>(f);
   }

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "motiongraph/synthesis/edge_tracks.h"
@@ -26,6 +27,12 @@ namespace mg {
 std::vector<double> cost_to_tag(const MotionGraph& graph, const EdgeTracks& tracks, TagMask tag, double per_frame,
                                 const std::function<double(int edge)>& edge_cost = {});
 
+// The same for any marks of the edges' frames (marks_of(e): one per frame of edge e, as
+// EdgeTracks::tags_of gives the tags): the cost to the first frame whose mark has a bit of `mark`.
+std::vector<double> cost_to_mark(const MotionGraph& graph,
+                                 const std::function<std::span<const TagMask>(int edge)>& marks_of, TagMask mark,
+                                 double per_frame, const std::function<double(int edge)>& edge_cost = {});
+
 // What any walk still pays before `tag` after a walk that reached its horizon in edge `edge`, its
 // first `costed` frames costed, and ends at node `end_node`: per_frame for each later frame of
 // the edge before one carrying the tag, or for all of them and then the node's cost in `to_tag`
@@ -33,6 +40,9 @@ std::vector<double> cost_to_tag(const MotionGraph& graph, const EdgeTracks& trac
 // cost-to-go, before their weight.
 double cost_to_tag_after(const EdgeTracks& tracks, int edge, size_t costed, int end_node, TagMask tag,
                          double per_frame, const std::vector<double>& to_tag);
+// The same for an edge's marks (`marks`, one per frame of the edge) and cost_to_mark's costs.
+double cost_to_mark_after(std::span<const TagMask> marks, size_t costed, int end_node, TagMask mark, double per_frame,
+                          const std::vector<double>& to_mark);
 
 // The costs to `key.tag` of `context`'s graph as path and steering searches price them: per_frame
 // for each frame without it, the transition penalty for each transition and the bridge penalty
