@@ -155,6 +155,36 @@ TEST(PathShortfalls, AMissedTypeIsSaidWithItsShare) {
   EXPECT_TRUE(holds(said, "(the retries look for 50 %)")) << said[0];
 }
 
+// A segment too short for the retries to judge (under kTagMissMinSeconds of motion): none of its
+// type is said (a jump asked for at the end of a run, none played); some of it, a modifier, a
+// type the graph does not play, or one past the end (said as such) is not.
+TEST(PathShortfalls, AShortSegmentGettingNoneOfItsTypeIsSaid) {
+  const auto& context = test::subject16().context();
+  const FloorPath path = line_with({{0.0, 12.0, "walk"}, {12.0, 16.0, "jump"}, {16.0, 18.0, "stop"}});
+  PathSynthesisResult r = kept(path);
+  r.segment_tag_matches[1] = {42, 0};
+  r.segment_tag_matches[2] = {20, 0};  // stop: a modifier, how a motion goes
+  auto said = path_shortfalls(context, path, {}, r);
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_EQ(said[0], "the segment jump 12-16 m gets none of its motion type: none of its 42 frames (1.4 s) carry "
+                     "jump (shorter than the 2 s the retries judge a segment by, it may be too short to change into "
+                     "it)");
+  r.segment_tag_matches[1] = {42, 1};  // one frame: some of it
+  EXPECT_TRUE(path_shortfalls(context, path, {}, r).empty());
+  r.segment_tag_matches[1] = {42, 0};
+  r.missed_segments = {1};  // judged by the retries: said once, as missed
+  said = path_shortfalls(context, path, {}, r);
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_TRUE(holds(said, "misses its motion type")) << said[0];
+  // Past the end: said as such alone.
+  const FloorPath beyond = line_with({{0.0, 20.0, "walk"}, {20.0, 21.0, "jump"}});
+  PathSynthesisResult at_end = kept(beyond);
+  at_end.segment_tag_matches[1] = {1, 0};
+  said = path_shortfalls(context, beyond, {}, at_end);
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_TRUE(holds(said, "lies past the path's end")) << said[0];
+}
+
 TEST(PathShortfalls, ASegmentPastThePathsEndIsSaid) {
   const auto& context = test::subject16().context();
   const FloorPath path = line_with({{0.0, 10.0, "walk"}, {20.0, 30.0, "run"}, {15.0, 25.0, "jump"}});

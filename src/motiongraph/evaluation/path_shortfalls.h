@@ -2,7 +2,8 @@
 // end (asked for, but no frame can carry it), a rest asked for at the end standing more than
 // kEndReachedM from it or facing more than kRestFacingWarnDeg off the path's last direction, the
 // end not reached (and why, as far as can be told), dawdling, following the path further off than
-// the retries look for, a motion type asked for and missed. The CLI's `path` prints them as
+// the retries look for, a motion type asked for and missed (and, in a segment too short for the
+// retries to judge, one asked for and played in none of its frames). The CLI's `path` prints them as
 // warnings, the Python package raises them as UserWarning, the studio shows them; the report
 // carries them ("shortfalls"). Each but the rest's facing is what synthesize_path's retries judged
 // the kept attempt by.
