@@ -260,6 +260,15 @@ try {
   await page.waitForFunction(() => window.studio.state.mode === 'poses', null, { timeout: 10000 });
   const info = await page.textContent('[data-testid=transition-info]');
   check(/transition \d+:/.test(info), `the transition is described: ${info}`);
+  // Its frames are frames of the clips it names, numbered from 1 as the scrubber numbers them.
+  const [t0, clipList] = await page.evaluate(async () => [(await (await fetch('/api/transitions')).json())[0],
+    await (await fetch('/api/clips')).json()]);
+  const clipOf = (name) => clipList.find((c) => c.name === name);
+  const framesSaid = info.match(/: (\S+) frame (\d+) \(orange\) -> (\S+) frame (\d+) \(blue\)/);
+  check(framesSaid && Number(framesSaid[2]) === t0.window_from_frame - clipOf(t0.from_clip).first_frame + 1
+    && Number(framesSaid[4]) === t0.window_to_frame - clipOf(t0.to_clip).first_frame + 1
+    && Number(framesSaid[2]) <= clipOf(t0.from_clip).frames && Number(framesSaid[4]) <= clipOf(t0.to_clip).frames,
+  `the transition's frames are its clips' own: ${info}`);
   await page.waitForFunction(() => document.querySelector('[data-testid=matrix-img]').complete);
   // The per-tag table marks the modifier tags (subject 16 has turn and stop) and says what they are.
   const modifierRows = await page.$$eval('[data-testid=tag-stats] tr.modifier th', (ths) => ths.map((t) => t.textContent));
@@ -272,6 +281,14 @@ try {
   await drawPath(page);
   const pathPoints = await page.evaluate(() => window.studio.state.path.points.length);
   check(pathPoints >= 5, `the path drawn has ${pathPoints} points`);
+  const drawnInfo = await page.textContent('[data-testid=path-info]');
+  check(/^drawn: [\d.]+ m$/.test(drawnInfo), `the path's length is shown as it is drawn: '${drawnInfo}'`);
+  const keyShown = await page.$$eval('[data-testid=path-key] span', (ss) => ss.map((k) => k.textContent));
+  const graphTags = await page.evaluate(() => window.studio.state.tags);
+  check(keyShown.join(',') === ['any', ...graphTags].join(','),
+    `the drawn path's colours are keyed: ${keyShown.join(', ')}`);
+  check(!(await page.evaluate(() => document.querySelector('[data-testid=transition-info]').textContent)),
+    'the transition picked is let go once the view turns to drawing');
   const pathInfo = await synthesizePath(page);
   check(/deviation mean [\d.]+ m/.test(pathInfo), `the path is synthesized: ${pathInfo}`);
   check(/\d+ transitions \([\d.]+\/s(, \d+ bridges?)?\)/.test(pathInfo), `the path's transitions per second are shown: ${pathInfo}`);
@@ -335,11 +352,33 @@ try {
     && restResult && restResult.rest && restResult.end_distance_m < 0.5,
     `the path asked to end at rest stands at its end: ${restPathInfo}`);
   await page.uncheck('[data-testid=rest-at-end]');
+  // At its end, Play plays the result again from its first frame.
+  await page.waitForFunction(() => !window.studio.state.playing, null, { timeout: 120000 });
+  const endFrame = await page.evaluate(() => window.studio.state.frameIndex);
+  await page.click('[data-testid=play]');
+  await page.waitForTimeout(300);
+  const replay = await page.evaluate(() => [window.studio.state.playing, window.studio.state.frameIndex]);
+  check(replay[0] && replay[1] < endFrame, `Play at the end plays it again (frame ${endFrame} -> ${replay[1]})`);
+  // A synthesis the user has moved on from (Clear) is not played when it comes; Synthesize waits
+  // for the one under way.
+  await page.evaluate(() => { window.studio.state.pathResult = null; });
+  await page.click('[data-testid=synthesize]');
+  const disabled = await page.evaluate(() => document.querySelector('[data-testid=synthesize]').disabled);
+  await page.click('[data-testid=clear-path]');
+  await page.waitForFunction(() => !window.studio.state.synthesizing, null, { timeout: 180000 });
+  const stale = await page.evaluate(() => ({ result: window.studio.state.pathResult, mode: window.studio.state.mode,
+    points: window.studio.state.path.points.length }));
+  check(disabled && stale.result === null && stale.points === 0,
+    `a synthesis cleared before it came is dropped (button disabled meanwhile: ${disabled}; mode ${stale.mode})`);
 
   // 5. Steer with the keyboard: east (D) for a few seconds moves the root east (+x).
   await page.click('[data-testid=steer]');
   await page.waitForFunction(() => window.studio.state.steer && window.studio.state.steer.received > 0);
-  await page.locator('[data-testid=canvas]').focus();
+  check(await page.evaluate(() => document.querySelector('[data-testid=play]').disabled),
+    'Play/Pause is disabled while steering (the session plays as it is steered)');
+  // A checkbox clicked while steering keeps the focus; the steering keys still steer.
+  await page.click('[data-testid=mark-feet]');
+  await page.click('[data-testid=mark-feet]');
   // Hold D (east, the camera looking north) until the character has been heading east for
   // 2 s: its root moved at least 0.8 m, mostly along +x. Turning takes a step or two, more
   // on slow (sanitizer) builds, hence the polling.
@@ -408,7 +447,34 @@ try {
   await page.keyboard.up('KeyD');
   check(startInfo !== '' && moved > 1.0,
     `a move key after rest starts the character off ("${startInfo}"; ${moved.toFixed(2)} m from where it stood)`);
+  // A diagonal (W and D: north-east) let go a few tens of milliseconds apart stays the diagonal.
+  await page.keyboard.down('KeyW');
+  await page.keyboard.down('KeyD');
+  await page.waitForFunction(() => window.studio.state.steer.heading === 45, null, { timeout: 10000 });
+  await page.keyboard.up('KeyW');
+  await page.waitForTimeout(40);
+  await page.keyboard.up('KeyD');
+  await page.waitForTimeout(500);
+  const afterDiagonal = await page.evaluate(() => window.studio.state.steer.heading);
+  check(afterDiagonal === 45, `a diagonal let go key by key stays north-east (heading ${afterDiagonal})`);
   check(errors.length === 0, `no errors in the page${errors.length ? `: ${errors.join('; ')}` : ''}`);
+  // Every steering session in use (the server's 16): Start steering says why in the steering line.
+  await page.click('[data-testid=steer]');  // stop
+  const opened = await page.evaluate(async () => {
+    let n = 0;
+    for (let i = 0; i < 20; ++i) {
+      const r = await fetch('/api/steer/sessions', { method: 'POST', headers: { 'Content-Type': 'application/json' },
+        body: JSON.stringify({ heading_deg: 0 }) });
+      if (r.ok) n += 1; else break;
+    }
+    return n;
+  });
+  await page.click('[data-testid=steer]');
+  await page.waitForFunction(() => /^error: /.test(document.querySelector('[data-testid=steer-info]').textContent),
+    null, { timeout: 10000 }).catch(() => {});
+  const refused = await page.textContent('[data-testid=steer-info]');
+  check(/^error: .*at most \d+ sessions/.test(refused) && !(await page.evaluate(() => window.studio.state.steer)),
+    `with all ${opened} sessions in use, Start steering says so: '${refused}'`);
   const tagOptions = await page.$$eval('[data-testid=path-tag] option', (os) => os.map((o) => o.textContent));
   check(tagOptions.length > 1 && !tagOptions.some((t) => /not in the graph/.test(t)),
     `the default graph plays every type its path picker offers: ${tagOptions.join(', ')}`);

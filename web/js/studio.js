@@ -66,6 +66,8 @@ const state = {
   frameIndex: 0, framesShown: 0, root: [0, 0, 0],
   selectedTransition: -1, poses: null,
   path: { points: [], tags: [] }, pathResult: null, drawing: false,
+  ticket: 0,                     // bumped by each thing the user turns to: a result asked before it is dropped
+  synthesizing: false,
   steer: null,                   // {session, buffer, inFlight, heading, tag, received, lastStepMs}
   result: null,
 };
@@ -99,8 +101,19 @@ function setResultLink(id) {
   $('no-figure-label').hidden = false;
 }
 
+// The user turned to something else: a path or walk still being made is not played when it comes.
+function turnedTo() { state.ticket += 1; return state.ticket; }
+// The transition picked on the matrix, and its info, once the view shows something else.
+function dropTransition() {
+  if (state.selectedTransition < 0) return;
+  state.selectedTransition = -1;
+  $('transition-info').textContent = '';
+  drawTransitions();
+}
+
 function play(track, mode) {
   stopSteering();
+  if (mode !== 'poses') dropTransition();
   // The clip's doubts say what is wrong with a clip as read, not with a result.
   if (mode !== 'clip') $('clip-doubts').textContent = '';
   state.track = track;
@@ -137,8 +150,16 @@ async function loadClip(index) {
   state.clipIndex = index;
 }
 
-$('clip-select').addEventListener('change', (e) => loadClip(Number(e.target.value)));
+$('clip-select').addEventListener('change', (e) => {
+  turnedTo();
+  loadClip(Number(e.target.value)).catch((err) => { $('clip-doubts').textContent = `error: ${err.message}`; });
+});
 $('play').addEventListener('click', () => {
+  if (state.mode === 'steer') return;  // (disabled while steering: the session plays as it is steered)
+  // At the end of a motion that does not loop, Play plays it again from its first frame.
+  if (!state.playing && state.track && !state.track.loop && state.time >= state.track.frames.length - 1) {
+    state.time = 0;
+  }
   state.playing = !state.playing;
   $('play').textContent = state.playing ? 'Pause' : 'Play';
 });
@@ -183,8 +204,16 @@ overlay.addEventListener('click', (e) => {
     const d = (tx - x) ** 2 + (ty - y) ** 2;
     if (d < bestD) { bestD = d; best = i; }
   });
-  if (best >= 0) selectTransition(best);
+  if (best >= 0) {
+    turnedTo();
+    selectTransition(best).catch((err) => { $('transition-info').textContent = `error: ${err.message}`; });
+  }
 });
+// A database frame as a frame of the clip named (the clip selector's and scrubber's numbering, from 1).
+function clipFrame(name, frame) {
+  const clip = state.clips.find((c) => c.name === name);
+  return clip ? frame - clip.first_frame + 1 : frame;
+}
 
 async function selectTransition(index) {
   const poses = await get(`/api/transitions/${index}/poses`);
@@ -204,9 +233,12 @@ async function selectTransition(index) {
   second.group.visible = true;
   const t = state.transitions[index];
   const moved = t.window_from_frame !== t.from_frame || t.window_to_frame !== t.to_frame;
-  $('transition-info').textContent = `transition ${index}: ${t.from_clip} frame ${t.window_from_frame} (orange) -> `
-    + `${t.to_clip} frame ${t.window_to_frame} (blue), D = ${t.distance.toFixed(3)}, blended over ${t.blend_frames} frames`
-    + (moved ? ` (from frame ${t.from_frame} to frame ${t.to_frame}, centred on these)` : '')
+  $('transition-info').textContent = `transition ${index}: `
+    + `${t.from_clip} frame ${clipFrame(t.from_clip, t.window_from_frame)} (orange) -> `
+    + `${t.to_clip} frame ${clipFrame(t.to_clip, t.window_to_frame)} (blue), D = ${t.distance.toFixed(3)}, `
+    + `blended over ${t.blend_frames} frames`
+    + (moved ? ` (from frame ${clipFrame(t.from_clip, t.from_frame)} to frame ${clipFrame(t.to_clip, t.to_frame)}, `
+      + 'centred on these)' : '')
     + (t.bridge ? ', a bridge' : '');
   drawTransitions();
 }
@@ -270,12 +302,24 @@ canvas.addEventListener('pointerdown', (e) => {
   if (state.path.points.length === 0) { state.path.points.push([p.x, p.z]); state.path.tags.push(tag); }
   else addPathPoint(p, tag, 0.05);
 });
+const MAX_PATH_M = 200;  // the API's longest path (studio_api.h)
+function pathLength() {
+  const { points } = state.path;
+  let length = 0;
+  for (let i = 1; i < points.length; ++i) {
+    length += Math.hypot(points[i][0] - points[i - 1][0], points[i][1] - points[i - 1][1]);
+  }
+  return length;
+}
 function addPathPoint(p, tag, spacing) {
   const last = state.path.points[state.path.points.length - 1];
   if (Math.hypot(p.x - last[0], p.z - last[1]) < spacing) return;
   state.path.points.push([p.x, p.z]);
   state.path.tags.push(tag);
   drawPath();
+  const length = pathLength();
+  $('path-info').textContent = `drawn: ${length.toFixed(1)} m`
+    + (length > MAX_PATH_M ? ` (over the ${MAX_PATH_M} m a path may be: Clear and draw a shorter one)` : '');
 }
 canvas.addEventListener('pointermove', (e) => {
   if (!state.drawing || !stroking) return;
@@ -289,7 +333,9 @@ function setDrawing(on) {
   $('draw').classList.toggle('active', on);
   $('draw').textContent = on ? 'Drawing (click to stop)' : 'Draw a path';
   if (on) {  // look straight down on the origin so the whole view is ground
+    turnedTo();
     stopSteering();
+    dropTransition();
     state.playing = false;
     camera.position.set(0, 24, 0.01);
     controls.target.set(0, 0, 0);
@@ -298,6 +344,7 @@ function setDrawing(on) {
 }
 $('draw').addEventListener('click', () => setDrawing(!state.drawing));
 $('clear-path').addEventListener('click', () => {
+  turnedTo();
   state.path = { points: [], tags: [] };
   state.pathResult = null;
   drawPath();
@@ -305,14 +352,24 @@ $('clear-path').addEventListener('click', () => {
   $('path-warnings').textContent = '';
 });
 $('synthesize').addEventListener('click', async () => {
+  if (state.synthesizing) return;  // one at a time (the button is disabled meanwhile)
   if (state.path.points.length < 2) { $('path-info').textContent = 'draw a path first'; return; }
   setDrawing(false);
+  const ticket = turnedTo();
+  state.synthesizing = true;
+  $('synthesize').disabled = true;
   $('path-info').textContent = 'synthesizing...';
   $('path-warnings').textContent = '';
   try {
     const result = await post('/api/path',
       { points: state.path.points, segments: pathSegments(), cleanup: $('cleanup').checked,
         edit_path: $('edit-path').checked, rest_at_end: $('rest-at-end').checked });
+    if (ticket !== state.ticket) {  // the user went on to something else meanwhile: not played
+      if (!state.steer && state.path.points.length) {
+        $('path-info').textContent = 'the synthesis came after you moved on: not shown';
+      }
+      return;
+    }
     result.roots = result.positions.map((f) => [f[0], f[2]]);
     state.pathResult = result;
     drawPath();
@@ -338,7 +395,10 @@ $('synthesize').addEventListener('click', async () => {
     // for, a motion type missed).
     $('path-warnings').textContent = result.warnings.map((s) => `\u26a0 ${s}.`).join(' ');
   } catch (err) {
-    $('path-info').textContent = `error: ${err.message}`;
+    if (ticket === state.ticket) $('path-info').textContent = `error: ${err.message}`;
+  } finally {
+    state.synthesizing = false;
+    $('synthesize').disabled = false;
   }
 });
 
@@ -367,8 +427,12 @@ function footSlideText(result) {
 const keys = new Set();
 const STEER_KEYS = ['KeyW', 'KeyA', 'KeyS', 'KeyD', 'ArrowUp', 'ArrowDown', 'ArrowLeft', 'ArrowRight', 'KeyJ', 'KeyX'];
 const MOVE_KEYS = STEER_KEYS.filter((k) => k !== 'KeyX');
+// Fields that take typed keys keep them (a select, the scrubber's arrows); a checkbox or button
+// clicked while steering does not take the steering keys away.
+const TYPED_INPUTS = new Set(['text', 'number', 'range', 'search', 'email', 'url', 'password']);
 window.addEventListener('keydown', (e) => {
-  if (e.target instanceof HTMLSelectElement || e.target instanceof HTMLInputElement) return;
+  if (e.target instanceof HTMLSelectElement || e.target instanceof HTMLTextAreaElement
+    || (e.target instanceof HTMLInputElement && TYPED_INPUTS.has(e.target.type))) return;
   keys.add(e.code);
   if (state.steer && /^Digit[0-9]$/.test(e.code)) {
     const d = Number(e.code.slice(5));
@@ -383,6 +447,7 @@ window.addEventListener('keyup', (e) => keys.delete(e.code));
 window.addEventListener('blur', () => keys.clear());
 
 const has = (tag) => state.tags.includes(tag);
+const DIAGONAL_RELEASE_MS = 150;
 function steerInput() {
   const s = state.steer;
   let dx = (keys.has('KeyD') || keys.has('ArrowRight') ? 1 : 0) - (keys.has('KeyA') || keys.has('ArrowLeft') ? 1 : 0);
@@ -398,7 +463,13 @@ function steerInput() {
     if (pad.buttons[1]?.pressed) s.rest = true;
     s.gamepad = pad.id;
   }
-  if (dx !== 0 || dz !== 0) {  // relative to where the camera looks: W is away from it
+  // A diagonal held (W and D) and let go: hands lift the two keys a few tens of milliseconds apart,
+  // and the one left alone that long must not turn the character onto its axis.
+  const now = performance.now();
+  const diagonal = dx !== 0 && dz !== 0;
+  if (diagonal) s.diagonalAt = now;
+  const leavingDiagonal = !diagonal && s.diagonalAt !== undefined && now - s.diagonalAt < DIAGONAL_RELEASE_MS;
+  if ((dx !== 0 || dz !== 0) && !leavingDiagonal) {  // relative to where the camera looks: W is away from it
     const look = new THREE.Vector3();
     camera.getWorldDirection(look);
     const view = Math.atan2(look.x, -look.z);
@@ -432,7 +503,10 @@ async function startSteering() {
   $('steer-warnings').textContent = '';
   showSteerWarnings(session.warnings);
   chaseCamera([0, 1.6, 5]);  // from the south, looking north
+  dropTransition();
   $('steer').textContent = 'Stop steering';
+  $('play').disabled = true;
+  $('play').textContent = 'Pause';
   canvas.focus();
   requestSteps();
 }
@@ -440,8 +514,16 @@ function stopSteering() {
   if (!state.steer) return;
   state.steer = null;
   $('steer').textContent = 'Start steering';
+  $('play').disabled = false;
+  state.playing = false;
+  $('play').textContent = 'Play';
 }
-$('steer').addEventListener('click', () => (state.steer ? stopSteering() : startSteering()));
+$('steer').addEventListener('click', () => {
+  if (state.steer) { stopSteering(); return; }
+  turnedTo();
+  // The server's reason (all sessions in use, ...) in the steering line, where a step's error goes.
+  startSteering().catch((err) => { $('steer-info').textContent = `error: ${err.message}`; });
+});
 
 // What the session's controls asked that the graph cannot give (a motion type it can hardly
 // play, rest where no clip ends standing still), each said once by the server: kept under the
@@ -487,9 +569,17 @@ async function requestSteps() {
 $('random-walk').addEventListener('click', async () => {
   const nodes = state.summary.statistics.nodes;
   const seed = Math.floor(Math.random() * 1e6);
-  const walk = await post('/api/walk', {
-    from: seed % nodes, to: (seed * 7919) % nodes, min_frames: 300, cost: 'random', seed,
-    cleanup: $('cleanup').checked });
+  const ticket = turnedTo();
+  let walk;
+  try {
+    walk = await post('/api/walk', {
+      from: seed % nodes, to: (seed * 7919) % nodes, min_frames: 300, cost: 'random', seed,
+      cleanup: $('cleanup').checked });
+  } catch (err) {
+    if (ticket === state.ticket) $('walk-info').textContent = `error: ${err.message}`;
+    return;
+  }
+  if (ticket !== state.ticket) return;  // the user went on to something else meanwhile
   $('walk-info').textContent = `${walk.frames} frames, ${walk.transitions} transitions; ${footSlideText(walk)}`;
   ensureFigure(walk.joints);
   setDrawing(false);
@@ -624,6 +714,10 @@ async function start() {
   // A type the graph plays in no frame (its frames pruned away) says so: a path asking for it
   // cannot follow it.
   const absent = new Set(summary.statistics.tags.filter((t) => t.frames === 0).map((t) => t.name));
+  // The colours the drawn path takes for each motion type asked along it.
+  const hex = (colour) => `#${colour.toString(16).padStart(6, '0')}`;
+  $('path-key').innerHTML = ['', ...summary.tags].map((t) => `<span><i style="background:${hex(tagColour(t))}"></i>`
+    + `${t || 'any'}</span>`).join('');
   $('path-tag').innerHTML = ['<option value="">any</option>',
     ...summary.tags.map((t) => `<option value="${t}"${t === 'walk' ? ' selected' : ''}>${t}`
       + `${absent.has(t) ? ' (not in the graph)' : ''}</option>`)].join('');
