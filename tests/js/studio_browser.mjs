@@ -283,6 +283,24 @@ try {
   check(pathPoints >= 5, `the path drawn has ${pathPoints} points`);
   const drawnInfo = await page.textContent('[data-testid=path-info]');
   check(/^drawn: [\d.]+ m$/.test(drawnInfo), `the path's length is shown as it is drawn: '${drawnInfo}'`);
+  // Dragged on off the view onto the panel, the stroke adds nothing out of sight.
+  const drawnPoints = await page.evaluate(() => window.studio.state.path.points.length);
+  const viewBox = await page.locator('[data-testid=canvas]').boundingBox();
+  await page.mouse.move(viewBox.x + viewBox.width - 5, viewBox.y + viewBox.height / 2);
+  await page.mouse.down();
+  for (let i = 1; i <= 8; ++i) {
+    await page.mouse.move(viewBox.x + viewBox.width + i * 30, viewBox.y + viewBox.height / 2);
+  }
+  await page.mouse.up();
+  const offView = await page.evaluate(() => window.studio.state.path.points.length);
+  check(offView <= drawnPoints + 1,
+    `a stroke dragged off the view adds no points there (${drawnPoints} -> ${offView})`);
+  // (The point pressed at the view's edge is taken back: the path synthesized below is the one drawn.)
+  await page.evaluate((n) => {
+    const { path } = window.studio.state;
+    path.points.length = n;
+    path.tags.length = n;
+  }, drawnPoints);
   const keyShown = await page.$$eval('[data-testid=path-key] span', (ss) => ss.map((k) => k.textContent));
   const graphTags = await page.evaluate(() => window.studio.state.tags);
   check(keyShown.join(',') === ['any', ...graphTags].join(','),

@@ -323,6 +323,9 @@ function addPathPoint(p, tag, spacing) {
 }
 canvas.addEventListener('pointermove', (e) => {
   if (!state.drawing || !stroking) return;
+  // Dragged off the view (onto the panel), the stroke adds no points out of sight.
+  const r = canvas.getBoundingClientRect();
+  if (e.clientX < r.left || e.clientX > r.right || e.clientY < r.top || e.clientY > r.bottom) return;
   const p = groundPoint(e);
   if (p) addPathPoint(p, $('path-tag').value, 0.25);
 });
