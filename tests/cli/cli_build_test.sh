@@ -608,6 +608,11 @@ assert rate < 1 and m and float(m[1]) == round(rate, 2) and int(m[2]) == after["
 # The report carries every warning printed, as printed.
 said = [l.split(": warning: ", 1)[1] for l in err.splitlines() if ": warning: " in l]
 assert said and r["warnings"] == said, (said, r["warnings"])
+# Walking, which the ceiling served a sliver of (not chased), is what the graph built plays most
+# of: no warning that the threshold did not rise for it.
+walk = [t for t in after["tags"] if t["name"] == "walk"][0]
+assert re.search(r"walk [0-9.]+ % \(the ceiling keeps [0-9.]+ %: not chased\)", err), err
+assert walk["frames"] >= 0.1 * walk["database_frames"] and "motion type 'walk'" not in err, (walk, err)
 PY
 # And the graph file keeps them: inspect says what the build warned of.
 "$bin" inspect "$work/one131.mgraph" >"$work/one131-inspect.txt"
