@@ -16,7 +16,7 @@ namespace {
 // By hand, from the clips' own root translations: the database frame each edge frame plays
 // (a clip piece's from its node on, a blended frame its weightier side's), and whether its clip's
 // root covers the pace from half a second before it to half a second after (as far as the clip
-// goes).
+// goes), and half the pace from there to it and from it on.
 TEST(TravellingFrames, EachFramePlaysItsDatabaseFramesPace) {
   const SynthesisContext& context = test::subject16().context();
   const MotionDatabase& db = *context.db;
@@ -54,8 +54,10 @@ TEST(TravellingFrames, EachFramePlaysItsDatabaseFramesPace) {
         const int a = std::max(clip->first_frame, frame - half);
         const int b = std::min(clip->first_frame + clip->frame_count - 1, frame + half);
         const DatabaseClip* unused = nullptr;
-        const bool travels =
-            b > a && (root_of(b, unused) - root_of(a, unused)).norm() >= pace * (b - a) / db.fps;
+        auto covers = [&](int from, int to, double share) {
+          return (root_of(to, unused) - root_of(from, unused)).norm() >= share * pace * (to - from) / db.fps;
+        };
+        const bool travels = b > a && covers(a, b, 1.0) && covers(a, frame, 0.5) && covers(frame, b, 0.5);
         EXPECT_EQ(marks[track.first + p], travels ? kTravellingMark : TagMask{0})
             << "edge " << e << " frame " << p << " (database frame " << frame << ")";
         (travels ? travelling : standing) += 1;

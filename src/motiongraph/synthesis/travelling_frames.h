@@ -18,7 +18,7 @@ inline constexpr TagMask kTravellingMark = 1;
 // Per frame of `context.tracks` (as tracks.roots holds them): kTravellingMark where the root of its
 // database frame (a blended frame's weightier side's, as EdgeTracks gives the tags) covers
 // `travel_mps` or more over the second around it in its clip (half a second either side, as far as
-// the clip goes).
+// the clip goes), and half of that pace over each half (a crouch before a leap is no travel).
 std::vector<TagMask> travelling_frames(const SynthesisContext& context, double travel_mps);
 
 struct TravelCosts {
