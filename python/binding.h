@@ -12,6 +12,7 @@
 #include <optional>
 #include <stop_token>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <vector>
 
@@ -71,6 +72,27 @@ py::str display_text(const std::string& text);
 // A JSON value as the Python object json.loads makes of the same text.
 py::object to_python(const nlohmann::json& value);
 
+// A number argument of a function bound with pybind11's own arguments, which takes True and False
+// as 1 and 0 (load_clip(fps=True) read a clip at 1 fps): an int or a float only, as the keyword
+// options take them (set()); True or False raises TypeError.
+struct Real {
+  double value = 0.0;
+};
+struct Integer {
+  int value = 0;
+};
+// True or False, Python's or numpy's (numpy.bool_ is no subclass of bool, and casts to 1 and 0).
+inline bool is_true_or_false(py::handle value) {
+  if (PyBool_Check(value.ptr())) return true;
+  const std::string_view type = Py_TYPE(value.ptr())->tp_name;
+  return type == "numpy.bool_" || type == "numpy.bool";
+}
+inline void refuse_bool(py::handle value) {
+  if (is_true_or_false(value)) {
+    throw py::type_error(fmt::format("a number is expected, not {}", py::str(value).cast<std::string>()));
+  }
+}
+
 // Keyword options: each name sets something from its value; an unknown name raises TypeError
 // as Python does for a function's unexpected keyword; None leaves the keyword's default.
 using OptionTable = std::map<std::string, std::function<void(py::handle)>>;
@@ -94,7 +116,7 @@ std::function<void(py::handle)> set(T& field) {
     } else if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
       // A number, as the CLI's options take one: not True or False (horizon=True was a 1 s
       // horizon), finite, and an integer within its field's range.
-      if (PyBool_Check(value.ptr())) throw py::cast_error();
+      if (is_true_or_false(value)) throw py::cast_error();
       if constexpr (std::is_integral_v<T>) {
         if (PyLong_Check(value.ptr())) {
           bool within = true;
@@ -169,21 +191,6 @@ struct PyGraph {
   mutable py::object nodes;     // Graph.nodes, made on first use
   mutable py::object edges;     // Graph.edges, made on first use
 };
-
-// A number argument of a function bound with pybind11's own arguments, which takes True and False
-// as 1 and 0 (load_clip(fps=True) read a clip at 1 fps): an int or a float only, as the keyword
-// options take them (set()); True or False raises TypeError.
-struct Real {
-  double value = 0.0;
-};
-struct Integer {
-  int value = 0;
-};
-inline void refuse_bool(py::handle value) {
-  if (PyBool_Check(value.ptr())) {
-    throw py::type_error(fmt::format("a number is expected, not {}", py::str(value).cast<std::string>()));
-  }
-}
 
 void bind_motion(py::module_& m);
 void bind_graph(py::module_& m, py::class_<PyGraph>& graph_class);

@@ -11,6 +11,7 @@ See docs/python.md.
 """
 import functools as _functools
 import io as _io
+import operator as _operator
 import os as _os
 import re as _re
 
@@ -120,9 +121,11 @@ class Library:
                 if c is clip:
                     return index
             raise KeyError(f"{clip!r} is not a clip of this library")
-        if isinstance(clip, bool) or not isinstance(clip, int):
+        # An index: an int or anything that is one (numpy's integers), not True or False.
+        if isinstance(clip, bool) or type(clip).__name__ in ("bool_", "bool") or not hasattr(clip, "__index__"):
             raise TypeError(f"a clip is given by its index, its name or itself (a Motion of the library), "
                             f"not {type(clip).__name__}")
+        clip = _operator.index(clip)
         count = len(self.clips)
         if not -count <= clip < count:
             raise IndexError(f"clip {clip} out of range: the library has {count} clips")

@@ -176,6 +176,12 @@ TEST(PathShortfalls, AShortSegmentGettingNoneOfItsTypeIsSaid) {
   said = path_shortfalls(context, path, {}, r);
   ASSERT_EQ(said.size(), 1u);
   EXPECT_TRUE(holds(said, "misses its motion type")) << said[0];
+  // A segment of 2 s or more is the retries' to judge: told not to, nothing is said of it here.
+  r.missed_segments = {};
+  r.segment_tag_matches[1] = {120, 0};
+  PathSynthesisSettings not_judged;
+  not_judged.retry_tag_match = 0.0;
+  EXPECT_TRUE(path_shortfalls(context, path, not_judged, r).empty());
   // Past the end: said as such alone.
   const FloorPath beyond = line_with({{0.0, 20.0, "walk"}, {20.0, 21.0, "jump"}});
   PathSynthesisResult at_end = kept(beyond);

@@ -379,7 +379,13 @@ try {
   check(replay[0] && replay[1] < endFrame, `Play at the end plays it again (frame ${endFrame} -> ${replay[1]})`);
   // A synthesis the user has moved on from (Clear) is not played when it comes; Synthesize waits
   // for the one under way.
-  await page.evaluate(() => { window.studio.state.pathResult = null; });
+  // (A path long enough to take seconds to synthesize, so that the click comes first.)
+  await page.evaluate(() => {
+    window.studio.state.pathResult = null;
+    const points = [];
+    for (let i = 0; i <= 150; ++i) points.push([2 * Math.sin(i / 8), -i]);
+    Object.assign(window.studio.state.path, { points, tags: points.map(() => 'walk') });
+  });
   await page.click('[data-testid=synthesize]');
   const disabled = await page.evaluate(() => document.querySelector('[data-testid=synthesize]').disabled);
   await page.click('[data-testid=clear-path]');
@@ -476,8 +482,34 @@ try {
   const afterDiagonal = await page.evaluate(() => window.studio.state.steer.heading);
   check(afterDiagonal === 45, `a diagonal let go key by key stays north-east (heading ${afterDiagonal})`);
   check(errors.length === 0, `no errors in the page${errors.length ? `: ${errors.join('; ')}` : ''}`);
-  // Every steering session in use (the server's 16): Start steering says why in the steering line.
   await page.click('[data-testid=steer]');  // stop
+  check(!(await page.evaluate(() => window.studio.state.steer)), 'Stop steering stops it');
+  // A synthesis the user moved on from by steering: when it comes, its line no longer says
+  // "synthesizing..." (it is dropped, not played).
+  await page.evaluate(() => {
+    const points = [];
+    for (let i = 0; i <= 150; ++i) points.push([2 * Math.sin(i / 8), -i]);
+    Object.assign(window.studio.state.path, { points, tags: points.map(() => 'walk') });
+  });
+  await page.click('[data-testid=synthesize]');
+  await page.click('[data-testid=steer]');
+  await page.waitForFunction(() => !window.studio.state.synthesizing && window.studio.state.steer, null,
+    { timeout: 180000 }).catch(() => {});
+  const movedOn = await page.textContent('[data-testid=path-info]');
+  const steerMode = await page.evaluate(() => [window.studio.state.mode, Boolean(window.studio.state.steer)]);
+  check(movedOn === 'the synthesis came after you moved on: not shown' && steerMode[1],
+    `a synthesis under way when steering starts is dropped and leaves its line ('${movedOn}') and the steering `
+    + `on (${steerMode})`);
+  await page.click('[data-testid=steer]');  // stop
+  // A transition picked after steering plays its poses under "Pause".
+  await page.locator('[data-testid=matrix-overlay]').scrollIntoViewIfNeeded();
+  const dot = await page.evaluate(() => window.studio.transitionClientPoint(1));
+  await page.mouse.click(dot.x, dot.y);
+  await page.waitForFunction(() => window.studio.state.mode === 'poses', null, { timeout: 10000 });
+  check(await page.textContent('[data-testid=play]') === 'Pause'
+    && await page.evaluate(() => window.studio.state.playing),
+    'a transition picked after steering plays under Pause');
+  // Every steering session in use (the server's 16): Start steering says why in the steering line.
   const opened = await page.evaluate(async () => {
     let n = 0;
     for (let i = 0; i < 20; ++i) {

@@ -399,6 +399,7 @@ def test_numbers_are_not_true_or_false_and_misspelt_keywords_are_named(data, tmp
         "save root_motion_smoothing": lambda: clip.save(str(tmp_path / "b.bvh"), root_motion=True,
                                                         root_motion_smoothing=True),
         "with_frames fps": lambda: clip.with_frames(clip.rotations, fps=True),
+        "load_clip fps numpy": lambda: mg.load_clip(amc, fps=np.True_),  # numpy's bool is no bool subclass
     }
     for what, call in calls.items():
         with pytest.raises(TypeError, match="a number is expected, not (True|False)"):

@@ -64,9 +64,10 @@ def test_tags_per_clip_add_up_to_the_totals(data):
     # A clip of another library, or given as what is no clip at all, is said to be so.
     with pytest.raises(KeyError, match="not a clip of this library"):
         library.clip_tags(mg.load_clip(data / "cmu/16/16_15.amc"))
-    for bad in (None, True, 1.0):
+    for bad in (None, True, 1.0, np.True_):
         with pytest.raises(TypeError, match="a clip is given by its index, its name or itself"):
             library[bad]
+    assert library[np.int64(1)] is library[1] and library.clip_tags(np.int32(1)) == library.clip_tags(1)
     # "walk, stop": its walk stays where the root travels, its stop where it stands and the second
     # before, unless asked to keep them whole.
     stops = dict((tag, (first, count)) for tag, first, count in library.clip_tags("16_33"))

@@ -385,10 +385,12 @@ def test_numbers_of_walks_paths_and_steps_are_not_true_or_false(graph, graph_fil
              lambda: graph.path(points=[(True, False), (0, -5)]),
              lambda: graph.controller(heading_deg=True), lambda: graph.controller(at=(0, True)),
              lambda: controller.step(True), lambda: controller.step(0, min_frames=True),
-             lambda: mg.load_graph(str(graph_file), skeleton=True)]
+             lambda: mg.load_graph(str(graph_file), skeleton=True), lambda: graph.walk(np.True_, 5)]
     for call in calls:
         with pytest.raises(TypeError, match="a number is expected, not (True|False)"):
             call()
+    with pytest.raises(TypeError, match="keyword argument 'horizon' cannot be a bool"):
+        graph.controller(horizon=np.True_)  # a keyword option: named
     assert len(controller.motion) == 0  # no step was taken
     assert len(graph.walk(1, 5)) > 0
     assert len(controller.step(0, min_frames=2)) >= 2

@@ -44,7 +44,8 @@ TEST(SteerCost, TheSearchWithTheTagsCostToGoIsExact) {
       const double per_frame = settings.travel_penalty * settings.travel_mps;
       const TravelCosts to_travel = searched_costs_to_travel(context, settings.travel_mps, per_frame,
                                                              settings.transition_penalty, settings.bridge_penalty);
-      while ((*to_travel.to_travel)[static_cast<size_t>(start.node)] < 20 * per_frame) {
+      for (int tried = 0; (*to_travel.to_travel)[static_cast<size_t>(start.node)] < 20 * per_frame; ++tried) {
+        ASSERT_LT(tried, graph.node_count()) << "no node 20 frames from travelling frames";
         start.node = (start.node + 1) % graph.node_count();
       }
     }
@@ -119,6 +120,49 @@ TEST(SteerCost, WithNoTagAFrameBehindThePaceAskedPaysPerMetreBehind) {
   walk.tag = *context.tag_mask("walk");
   const SteerCost tagged(context, walk, settings, &from);
   EXPECT_EQ(tagged.cost(frame, from.last_root - Vec2(1.0, 0.0), facing, 0.0, walk.tag, nullptr), 0.0);
+}
+
+// Asked for no tag, a walk that reaches the horizon in edge e after `costed` of its frames pays
+// tag_lookahead times, for each later frame of e before one that travels, a second behind the pace
+// (travel_penalty * travel_mps), and, when none of them travels, the cost-to-go of e's end node;
+// counted here from the marks of the edges' own frames.
+TEST(SteerCost, PastTheHorizonAWalkWithNoTagPaysForTheFramesBeforeOneThatTravels) {
+  const SynthesisContext& context = test::subject16().context();
+  const MotionGraph& graph = *context.graph;
+  ControllerSettings settings;
+  settings.tag_lookahead = 0.75;
+  ControlInput input;
+  input.direction = bearing_direction(30.0);
+  SearchState from;
+  from.has_last = true;
+  const SteerCost cost(context, input, settings, &from);
+  const double per_frame = settings.travel_penalty * settings.travel_mps;
+  const TravelCosts travel = searched_costs_to_travel(context, settings.travel_mps, per_frame,
+                                                      settings.transition_penalty, settings.bridge_penalty);
+  int paid_in_edge = 0, paid_beyond = 0;
+  for (int e = 0; e < graph.edge_count(); ++e) {
+    const EdgeTrack& track = context.tracks.edges[static_cast<size_t>(e)];
+    for (int costed = 1; costed <= track.count; costed += std::max(1, track.count / 3)) {
+      double want = 0.0;
+      int f = costed;
+      while (f < track.count && (*travel.marks)[static_cast<size_t>(track.first + f)] != kTravellingMark) ++f;
+      want = per_frame * (f - costed);
+      const int end = graph.edges[static_cast<size_t>(e)].to_node;
+      if (f == track.count) want += std::max(0.0, (*travel.to_travel)[static_cast<size_t>(end)]);
+      SearchState at;
+      at.node = end;
+      EXPECT_NEAR(cost.terminal_cost(e, static_cast<size_t>(costed), 0.0, at), settings.tag_lookahead * want, 1e-9)
+          << "edge " << e << ", " << costed << " frames costed";
+      if (f > costed && f < track.count) ++paid_in_edge;
+      if (f == track.count && want > 0.0) ++paid_beyond;
+    }
+  }
+  EXPECT_GT(paid_in_edge, 0);
+  EXPECT_GT(paid_beyond, 0);
+  // With no start to count the pace from, none of it.
+  SearchState at;
+  at.node = graph.edges[0].to_node;
+  EXPECT_EQ(SteerCost(context, input, settings).terminal_cost(0, 1, 0.0, at), 0.0);
 }
 
 }  // namespace

@@ -67,7 +67,7 @@ const state = {
   selectedTransition: -1, poses: null,
   path: { points: [], tags: [] }, pathResult: null, drawing: false,
   ticket: 0,                     // bumped by each thing the user turns to: a result asked before it is dropped
-  synthesizing: false,
+  synthesizing: 0,               // the ticket of the path synthesis under way (0: none)
   steer: null,                   // {session, buffer, inFlight, heading, tag, received, lastStepMs}
   result: null,
 };
@@ -102,7 +102,11 @@ function setResultLink(id) {
 }
 
 // The user turned to something else: a path or walk still being made is not played when it comes.
-function turnedTo() { state.ticket += 1; return state.ticket; }
+function turnedTo() {
+  state.ticket += 1;
+  $('synthesize').disabled = false;  // a synthesis under way is now dropped when it comes: another may start
+  return state.ticket;
+}
 // The transition picked on the matrix, and its info, once the view shows something else.
 function dropTransition() {
   if (state.selectedTransition < 0) return;
@@ -127,7 +131,9 @@ function play(track, mode) {
 }
 
 // --- clips -------------------------------------------------------------------------------
-async function loadClip(index) {
+// `ticket`: turnedTo()'s when the clip was asked for; a clip whose frames come after the user has
+// turned to something else is not played.
+async function loadClip(index, ticket = state.ticket) {
   const clip = state.clips[index];
   // What looks wrong with the clip as read (its size, floor, feet or clock), as info says it.
   $('clip-doubts').textContent = clip.doubts.length ? `Looks wrong as read: ${clip.doubts.join('; ')}.` : '';
@@ -143,6 +149,7 @@ async function loadClip(index) {
       contacts.planted.push(...part.contacts.planted);
     }
   }
+  if (ticket !== state.ticket) return;
   ensureFigure(joints);
   setDrawing(false);
   play({ fps: state.summary.fps, frames, loop: true, label: `clip ${clip.name}`, contacts }, 'clip');
@@ -151,8 +158,10 @@ async function loadClip(index) {
 }
 
 $('clip-select').addEventListener('change', (e) => {
-  turnedTo();
-  loadClip(Number(e.target.value)).catch((err) => { $('clip-doubts').textContent = `error: ${err.message}`; });
+  const ticket = turnedTo();
+  loadClip(Number(e.target.value), ticket).catch((err) => {
+    if (ticket === state.ticket) $('clip-doubts').textContent = `error: ${err.message}`;
+  });
 });
 $('play').addEventListener('click', () => {
   if (state.mode === 'steer') return;  // (disabled while steering: the session plays as it is steered)
@@ -205,8 +214,10 @@ overlay.addEventListener('click', (e) => {
     if (d < bestD) { bestD = d; best = i; }
   });
   if (best >= 0) {
-    turnedTo();
-    selectTransition(best).catch((err) => { $('transition-info').textContent = `error: ${err.message}`; });
+    const ticket = turnedTo();
+    selectTransition(best, ticket).catch((err) => {
+      if (ticket === state.ticket) $('transition-info').textContent = `error: ${err.message}`;
+    });
   }
 });
 // A database frame as a frame of the clip named (the clip selector's and scrubber's numbering, from 1).
@@ -215,8 +226,9 @@ function clipFrame(name, frame) {
   return clip ? frame - clip.first_frame + 1 : frame;
 }
 
-async function selectTransition(index) {
+async function selectTransition(index, ticket = state.ticket) {
   const poses = await get(`/api/transitions/${index}/poses`);
+  if (ticket !== state.ticket) return;  // the user turned to something else meanwhile
   stopSteering();
   ensureFigure(poses.joints);
   state.selectedTransition = index;
@@ -226,6 +238,7 @@ async function selectTransition(index) {
     contacts: poses.from.contacts };
   state.time = 0;
   state.playing = true;
+  $('play').textContent = 'Pause';
   figure.offset.set(-0.6, 0, 0);
   second.offset.set(0.6, 0, 0);
   setDrawing(false);
@@ -355,11 +368,12 @@ $('clear-path').addEventListener('click', () => {
   $('path-warnings').textContent = '';
 });
 $('synthesize').addEventListener('click', async () => {
-  if (state.synthesizing) return;  // one at a time (the button is disabled meanwhile)
+  // One at a time (the button is disabled meanwhile), unless the user moved on from it.
+  if (state.synthesizing && state.synthesizing === state.ticket) return;
   if (state.path.points.length < 2) { $('path-info').textContent = 'draw a path first'; return; }
   setDrawing(false);
   const ticket = turnedTo();
-  state.synthesizing = true;
+  state.synthesizing = ticket;
   $('synthesize').disabled = true;
   $('path-info').textContent = 'synthesizing...';
   $('path-warnings').textContent = '';
@@ -368,8 +382,8 @@ $('synthesize').addEventListener('click', async () => {
       { points: state.path.points, segments: pathSegments(), cleanup: $('cleanup').checked,
         edit_path: $('edit-path').checked, rest_at_end: $('rest-at-end').checked });
     if (ticket !== state.ticket) {  // the user went on to something else meanwhile: not played
-      if (!state.steer && state.path.points.length) {
-        $('path-info').textContent = 'the synthesis came after you moved on: not shown';
+      if ($('path-info').textContent === 'synthesizing...') {
+        $('path-info').textContent = state.path.points.length ? 'the synthesis came after you moved on: not shown' : '';
       }
       return;
     }
@@ -399,9 +413,12 @@ $('synthesize').addEventListener('click', async () => {
     $('path-warnings').textContent = result.warnings.map((s) => `\u26a0 ${s}.`).join(' ');
   } catch (err) {
     if (ticket === state.ticket) $('path-info').textContent = `error: ${err.message}`;
+    else if ($('path-info').textContent === 'synthesizing...') $('path-info').textContent = '';
   } finally {
-    state.synthesizing = false;
-    $('synthesize').disabled = false;
+    if (state.synthesizing === ticket) {
+      state.synthesizing = 0;
+      $('synthesize').disabled = false;
+    }
   }
 });
 
@@ -486,9 +503,12 @@ function steerInput() {
   return { heading_deg: s.heading, tag, rest: Boolean(s.rest) };
 }
 
-async function startSteering() {
+// `ticket`: turnedTo()'s when it was asked for; a session that comes after the user has turned to
+// something else (drawing, a clip) is not steered (the server lets it go unstepped).
+async function startSteering(ticket = state.ticket) {
   const tag = has('walk') ? 'walk' : '';
   const session = await post('/api/steer/sessions', { heading_deg: 0, tag, cleanup: $('cleanup').checked });
+  if (ticket !== state.ticket) return;
   ensureFigure(session.joints);
   state.track = null;
   state.mode = 'steer';
@@ -516,6 +536,7 @@ async function startSteering() {
 function stopSteering() {
   if (!state.steer) return;
   state.steer = null;
+  if (state.mode === 'steer') state.mode = 'idle';
   $('steer').textContent = 'Start steering';
   $('play').disabled = false;
   state.playing = false;
@@ -523,9 +544,11 @@ function stopSteering() {
 }
 $('steer').addEventListener('click', () => {
   if (state.steer) { stopSteering(); return; }
-  turnedTo();
+  const ticket = turnedTo();
   // The server's reason (all sessions in use, ...) in the steering line, where a step's error goes.
-  startSteering().catch((err) => { $('steer-info').textContent = `error: ${err.message}`; });
+  startSteering(ticket).catch((err) => {
+    if (ticket === state.ticket) $('steer-info').textContent = `error: ${err.message}`;
+  });
 });
 
 // What the session's controls asked that the graph cannot give (a motion type it can hardly

@@ -110,6 +110,8 @@ std::vector<std::string> path_shortfalls(const SynthesisContext& context, const 
   for (size_t at = 0; at < segments.size() && at < result.segment_tag_matches.size(); ++at) {
     const auto& m = result.segment_tag_matches[at];
     if (m.frames <= 0 || m.matched > 0 || is_modifier_tag(segments[at].tag)) continue;
+    // (2 s or more: the retries' to judge, or not when told not to.)
+    if (m.frames >= kTagMissMinSeconds * context.db->fps) continue;
     if (segments[at].from_m >= path.length_m()) continue;  // past the end: said above
     if (std::find(result.missed_segments.begin(), result.missed_segments.end(), static_cast<int>(at)) !=
         result.missed_segments.end()) {
