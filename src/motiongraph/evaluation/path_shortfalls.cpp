@@ -105,8 +105,6 @@ std::vector<std::string> path_shortfalls(const SynthesisContext& context, const 
   // A segment too short for the retries to judge (under kTagMissMinSeconds of motion) that got
   // none of the motion type it asks for, which the graph plays: said too (a jump asked for over
   // the last metres of a run, none played, went unsaid while a miss of 48 % was warned of).
-  TagMask played = 0;
-  for (const TagMask m : context.tracks.tags) played |= m;
   for (size_t at = 0; at < segments.size() && at < result.segment_tag_matches.size(); ++at) {
     const auto& m = result.segment_tag_matches[at];
     if (m.frames <= 0 || m.matched > 0 || is_modifier_tag(segments[at].tag)) continue;
@@ -118,7 +116,7 @@ std::vector<std::string> path_shortfalls(const SynthesisContext& context, const 
       continue;
     }
     const auto mask = context.tag_mask(segments[at].tag);
-    if (!mask || (*mask & played) == 0) continue;  // not in the graph: said where the path is read
+    if (!mask || graph_frames_with(context, *mask) == 0) continue;  // not in the graph: said where the path is read
     said.push_back(fmt::format("{} gets none of its motion type: none of its {} frames ({:.1f} s) carry {} (shorter "
                                "than the {:g} s the retries judge a segment by, it may be too short to change into "
                                "it)",

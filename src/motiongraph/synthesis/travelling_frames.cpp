@@ -42,18 +42,14 @@ std::vector<TagMask> travelling_frames(const SynthesisContext& context, double t
   // Each edge's frames: their database frame's, a blended frame its weightier side's (as
   // EdgeTracks gives the tags).
   std::vector<TagMask> marks(context.tracks.roots.size(), 0);
+  std::vector<FrameSource> sources;
   for (int e = 0; e < graph.edge_count(); ++e) {
-    const GraphEdge& edge = graph.edges[static_cast<size_t>(e)];
     const EdgeTrack& track = context.tracks.edges[static_cast<size_t>(e)];
-    for (int p = 0; p < track.count; ++p) {
-      int frame = graph.nodes[edge.from_node].frame + p;
-      if (edge.transition) {
-        const Transition& t = graph.transitions[edge.transition_index];
-        const int k = blend_frames(edge);
-        frame = blend_weight(p, k) >= 0.5 ? t.from_frame + p : t.to_frame - k + 1 + p;
-      }
-      if (frame >= 0 && static_cast<size_t>(frame) < travels.size() && travels[static_cast<size_t>(frame)] != 0) {
-        marks[static_cast<size_t>(track.first + p)] = kTravellingMark;
+    sources.clear();
+    context.assembler.append_edge_sources(e, sources);
+    for (size_t p = 0; p < sources.size() && p < static_cast<size_t>(track.count); ++p) {
+      if (travels[static_cast<size_t>(sources[p].dominant())] != 0) {
+        marks[static_cast<size_t>(track.first) + p] = kTravellingMark;
       }
     }
   }
