@@ -74,7 +74,7 @@ py::object to_python(const nlohmann::json& value);
 
 // A number argument of a function bound with pybind11's own arguments, which takes True and False
 // as 1 and 0 (load_clip(fps=True) read a clip at 1 fps): an int or a float only, as the keyword
-// options take them (set()); True or False raises TypeError.
+// options take them (set()); True or False raises TypeError, an int past C's int ValueError.
 struct Real {
   double value = 0.0;
 };
@@ -208,6 +208,18 @@ struct type_caster<Strict, std::enable_if_t<std::is_same_v<Strict, mg::python::R
   PYBIND11_TYPE_CASTER(Strict, const_name<std::is_integral_v<Plain>>("int", "float"));
   bool load(handle src, bool convert) {
     mg::python::refuse_bool(src);
+    if constexpr (std::is_integral_v<Plain>) {
+      // An int past C's int is said as such, not answered with every signature of the function.
+      if (PyLong_Check(src.ptr())) {
+        int overflow = 0;
+        const long long n = PyLong_AsLongLongAndOverflow(src.ptr(), &overflow);
+        if (overflow != 0 || n < std::numeric_limits<Plain>::min() || n > std::numeric_limits<Plain>::max()) {
+          throw value_error(fmt::format("an integer from {} to {} is expected, not {}",
+                                        std::numeric_limits<Plain>::min(), std::numeric_limits<Plain>::max(),
+                                        str(src).cast<std::string>()));
+        }
+      }
+    }
     make_caster<Plain> number;
     if (!number.load(src, convert)) return false;
     value.value = cast_op<Plain>(number);

@@ -97,8 +97,10 @@ PyMotion load_clip(const std::filesystem::path& file, const std::optional<std::f
   ClipLoadSettings settings;
   if (asf) settings.asf_path = asf->string();
   // The least of the CLI's convert --fps: a rate that would leave a clip a frame or none is no rate.
-  const std::optional<double> fps = fps_given ? std::optional<double>(fps_given->value) : std::nullopt;
-  if (fps && !(*fps >= 0.01)) throw py::value_error(fmt::format("fps must be at least 0.01, not {}", *fps));
+  // A plain rate and a flag: gcc -O2 took an optional<double> copied into the GIL-free block for unset.
+  const bool resample_to = fps_given.has_value();
+  const double fps = resample_to ? fps_given->value : 0.0;
+  if (resample_to && !(fps >= 0.01)) throw py::value_error(fmt::format("fps must be at least 0.01, not {}", fps));
   if (scale) settings.bvh_metres_per_unit = scale->value;
   if (up_axis) {
     settings.up_axis = parse_up_axis(*up_axis);
@@ -125,8 +127,8 @@ PyMotion load_clip(const std::filesystem::path& file, const std::optional<std::f
     if (loaded && !keep_rest_frames) {
       glitches = in_file_frames(loaded->clip, find_capture_glitches(loaded->clip.skeleton, loaded->clip.motion));
     }
-    if (loaded && fps) {
-      auto resampled = resample(loaded->clip.motion, *fps);
+    if (loaded && resample_to) {
+      auto resampled = resample(loaded->clip.motion, fps);
       if (!resampled) {
         loaded = resampled.error();
       } else {

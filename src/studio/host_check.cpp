@@ -45,9 +45,7 @@ std::string host_of_header(std::string_view header) {
   }
   if (!port.empty()) {
     port.remove_prefix(1);
-    if (port.empty() || port.size() > 5 || !std::all_of(port.begin(), port.end(), [](char c) {
-          return c >= '0' && c <= '9';
-        })) {
+    if (port.size() > 5 || !is_ascii_digits(port)) {
       return "";
     }
   }

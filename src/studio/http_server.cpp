@@ -92,6 +92,24 @@ HttpServer::HttpServer(const StudioApi& api, std::string web_root)
       send_error(res, 400, "the path holds a NUL byte (%00)");
       return httplib::Server::HandlerResponse::Handled;
     }
+    // A Range of several parts is answered with the whole file, as HTTP lets a server do: httplib
+    // sent each part, overlapping or not, so that 300 ranges of a 2 MB script in a 1 KB request
+    // made a 700 MB answer (and as much memory). Browsers ask for one range.
+    if (req.ranges.size() > 1) const_cast<httplib::Request&>(req).ranges.clear();  // (the server's own)
+    // A Content-Length that is not a number httplib read as 0 (a walk ran with its defaults, the
+    // body ignored), and of two that differ it took the first.
+    if (req.has_header("Content-Length")) {
+      const std::string length = req.get_header_value("Content-Length");
+      bool agreed = is_ascii_digits(length);
+      for (size_t i = 1; i < req.get_header_value_count("Content-Length"); ++i) {
+        agreed = agreed && req.get_header_value("Content-Length", i) == length;
+      }
+      if (!agreed) {
+        send_error(res, 400, fmt::format("the Content-Length must be one number of bytes, not {}",
+                                         mg::quoted(length)));
+        return httplib::Server::HandlerResponse::Handled;
+      }
+    }
     // A chunked body has no length to check before it is read (httplib read 800 MB of one whole,
     // past the limit on bodies); a client sends JSON with its length.
     if (req.has_header("Transfer-Encoding")) {
@@ -150,12 +168,20 @@ HttpServer::HttpServer(const StudioApi& api, std::string web_root)
                           "application/json'), up to {} bytes",
                           kMaxBodyBytes)
         : res.status == 413 ? fmt::format("the request body is larger than {} bytes", kMaxBodyBytes)
-                            : fmt::format("{} {}: HTTP {}", req.method, req.path, res.status);
+        // A request line httplib could not read leaves no method or path to name.
+        : res.status == 414 ? std::string("the request line is longer than 8192 bytes: HTTP 414")
+        : req.method.empty() || req.path.empty()
+            ? fmt::format("the request line is not 'METHOD /path HTTP/1.1': HTTP {}", res.status)
+            : fmt::format("{} {}: HTTP {}", req.method, req.path, res.status);
     res.set_content(json_text(nlohmann::json({{"error", message}})), "application/json");
   });
   s.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
     res.status = 500;
     res.set_content(R"({"error": "internal error"})", "application/json");
+  });
+  // A page's file whose Range the pre-routing handler dropped: httplib had set 206 already.
+  s.set_post_routing_handler([](const httplib::Request& req, httplib::Response& res) {
+    if (res.status == 206 && req.ranges.empty()) res.status = 200;
   });
   if (!web_root_.empty()) s.set_mount_point("/", web_root_);
 }

@@ -95,7 +95,7 @@ std::string quoted_names(const Names& known) {
 void check_keys(const json& body, std::initializer_list<std::string_view> known) {
   const std::string key = unknown_key(body, known);
   if (key.empty()) return;
-  throw ApiError{400, fmt::format("unknown key '{}' (this request takes {})", key, quoted_names(known))};
+  throw ApiError{400, fmt::format("unknown key {} (this request takes {})", mg::quoted(key), quoted_names(known))};
 }
 
 double number_field(const json& body, const std::string& name, double fallback, double lo, double hi) {
@@ -585,8 +585,15 @@ class Router {
         id = parse_integer(name.substr(0, name.size() - s.size()), 0, 1LL << 30);
       }
     }
+    const std::string_view number = std::string_view(name).substr(0, name.size() - suffix.size());
+    if (!id && !suffix.empty() && is_ascii_digits(number)) {
+      // The form, but a number no result has had (past 2^30).
+      throw ApiError{404, fmt::format("no result {} (results are kept for the latest {})", mg::quoted(number),
+                                      SynthesisService::kMaxResults)};
+    }
     if (!id) {
-      throw ApiError{404, fmt::format("no result '{}': expected /api/results/ID.bvh, ID.glb, ID.gltf or ID.fbx", name)};
+      throw ApiError{404, fmt::format("no result {}: expected /api/results/ID.bvh, ID.glb, ID.gltf or ID.fbx",
+                                      mg::quoted(name))};
     }
     const bool root_motion = query_integer(request_, "root_motion", 0, 0, 1) == 1;
     const bool figure = query_integer(request_, "figure", 1, 0, 1) == 1;

@@ -29,6 +29,10 @@ std::unique_ptr<SynthesisService> SynthesisService::create(std::unique_ptr<Loade
 
 int SynthesisService::store_recorded(std::shared_ptr<Recorded> recorded) {
   std::lock_guard lock(mutex_);
+  return store_recorded_locked(std::move(recorded));
+}
+
+int SynthesisService::store_recorded_locked(std::shared_ptr<Recorded> recorded) {
   const int id = next_id_++;
   results_[id] = std::move(recorded);
   long long frames = 0;
@@ -187,23 +191,28 @@ SessionLimits SynthesisService::session_limits() const {
   return limits_;
 }
 
+bool SynthesisService::sessions_all_busy() const {
+  if (static_cast<int>(sessions_.size()) < limits_.max_sessions) return false;
+  const auto oldest = least_recently_used(sessions_);
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - oldest->second->stepped_at).count() <
+         limits_.busy_s;
+}
+
+Error SynthesisService::sessions_busy_error() const {
+  return Error{"", 0,
+               fmt::format("the studio steers at most {} sessions at once, and all were created or stepped within "
+                           "the last {:g} s: stop steering in another tab, or try again (serve --max-sessions "
+                           "raises the limit)",
+                           limits_.max_sessions, limits_.busy_s),
+               ErrorKind::kBusy};
+}
+
 Result<SteerSessionStart> SynthesisService::create_session(const SteeringControl& control, bool cleanup) {
   {
-    // At the limit with the least recently stepped in use: refused, before any work.
+    // Refused before any work when all are in use. Nothing is evicted yet: the session may not
+    // be made (a bad control).
     std::lock_guard lock(mutex_);
-    if (static_cast<int>(sessions_.size()) >= limits_.max_sessions) {
-      const auto oldest = least_recently_used(sessions_);
-      const double idle_s =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - oldest->second->stepped_at).count();
-      if (idle_s < limits_.busy_s) {
-        return Error{"", 0,
-                     fmt::format("the studio steers at most {} sessions at once, and all were created or stepped "
-                                 "within the last {:g} s: stop steering in another tab, or try again (serve "
-                                 "--max-sessions raises the limit)",
-                                 limits_.max_sessions, limits_.busy_s),
-                     ErrorKind::kBusy};
-      }
-    }
+    if (sessions_all_busy()) return sessions_busy_error();
   }
   auto session = std::make_shared<Session>(context());
   auto input = session->controls.input(control, "the control");
@@ -221,13 +230,17 @@ Result<SteerSessionStart> SynthesisService::create_session(const SteeringControl
   session->recorded = std::make_shared<Recorded>();
   session->recorded->motion = context().assembler.empty_motion();
   session->recorded->kept_frames = kMaxRecordedFrames;
-  const int id = store_recorded(session->recorded);
   const std::vector<std::string> session_warnings = session->controls.warnings();
+  // Checked again where the session goes in, under the same lock: sessions made at the same time
+  // all passed the check above, and the last of them evicted one made a moment before (a 404 on
+  // its first step). The least recently stepped goes only when it is idle.
   std::lock_guard lock(mutex_);
+  if (sessions_all_busy()) return sessions_busy_error();
+  while (static_cast<int>(sessions_.size()) >= limits_.max_sessions) sessions_.erase(least_recently_used(sessions_));
+  const int id = store_recorded_locked(session->recorded);
   session->last_used = ++clock_;
   session->stepped_at = std::chrono::steady_clock::now();
   sessions_[id] = std::move(session);
-  while (static_cast<int>(sessions_.size()) > limits_.max_sessions) sessions_.erase(least_recently_used(sessions_));
   return SteerSessionStart{id, session_warnings};
 }
 

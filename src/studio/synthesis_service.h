@@ -181,6 +181,11 @@ class SynthesisService {
   // whether it did.
   Result<bool> clean_up(bool asked, std::span<const ContactMask> contacts, Motion& motion) const;
   int store_recorded(std::shared_ptr<Recorded> recorded);
+  int store_recorded_locked(std::shared_ptr<Recorded> recorded);  // with mutex_ held
+  // With mutex_ held: at the limit, and the least recently stepped session was stepped (or
+  // created) within busy_s; the error that refuses a new session then.
+  bool sessions_all_busy() const;
+  Error sessions_busy_error() const;
 
   std::string path_;
   std::unique_ptr<LoadedGraph> graph_;

@@ -132,5 +132,17 @@ TEST(AsciiLetters, OnlyTheTwentySixLettersEachWay) {
   EXPECT_FALSE(is_ascii_letter(static_cast<char>(0xE9)));  // Latin-1 e acute: a byte of a name, no letter here
 }
 
+TEST(AsciiDigits, TenDigitsAndTextOfThemOnly) {
+  int digits = 0;
+  for (int b = 0; b < 256; ++b) digits += is_ascii_digit(static_cast<char>(b));
+  EXPECT_EQ(digits, 10);
+  EXPECT_TRUE(is_ascii_digit('0') && is_ascii_digit('9'));
+  EXPECT_FALSE(is_ascii_digit('/') || is_ascii_digit(':'));
+  EXPECT_TRUE(is_ascii_digits("0") && is_ascii_digits("0123456789"));
+  for (const char* text : {"", "+5", "-1", "0x10", "12 ", " 12", "1.5", "1e3", "12, 13"}) {
+    EXPECT_FALSE(is_ascii_digits(text)) << text;
+  }
+}
+
 }  // namespace
 }  // namespace mg

@@ -1784,6 +1784,10 @@ TEST(DatabaseLoader, BadInputsAndSettings) {
     DatabaseSettings s = settings;
     s.fps = 0;
     v.emplace_back("fps", s);
+    s.fps = 0.5;  // under build --fps's least
+    v.emplace_back("fps", s);
+    s.fps = 1001;
+    v.emplace_back("fps", s);
     s = settings;
     s.bvh_metres_per_unit = -1;
     v.emplace_back("bvh_metres_per_unit", s);

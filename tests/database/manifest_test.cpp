@@ -147,6 +147,8 @@ TEST(Manifest, OneCleanErrorPerRule) {
       {"fps not a number", r("fps = 30", "fps = \"30\""), 2, "'fps' must be a number"},
       {"fps not positive", r("fps = 30", "fps = 0"), 2, "positive"},
       {"fps not finite", r("fps = 30", "fps = inf"), 2, "positive"},
+      {"fps under build's least", r("fps = 30", "fps = 0.5"), 2, "'fps' must be 1 to 1000, not 0.5"},
+      {"fps over build's most", r("fps = 30", "fps = 2000"), 2, "'fps' must be 1 to 1000, not 2000"},
       {"default bvh_scale not positive", r("bvh_scale = 0.056444", "bvh_scale = -1"), 4, "positive"},
       {"keep_rest_frames not a boolean", r("input_fps = 120\n\n[[clip]]\nfile = \"16_15.amc\"",
                                           "keep_rest_frames = 1\n\n[[clip]]\nfile = \"16_15.amc\""), 5,

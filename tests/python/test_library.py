@@ -156,6 +156,10 @@ def test_feet_named_and_options_refused(cli, data, tmp_path):
         mg.load_library(bvh, threshold="4cm")
     with pytest.raises(mg.Error, match="--travel must be auto, root or feet, not walk"):
         mg.load_library(bvh, travel="walk")
+    # build --fps's range (0.5 fps was taken, a window of frames over 20 s).
+    for fps in (0, 0.5, 1001):
+        with pytest.raises(mg.Error, match=rf"fps must be 1 to 1000, not {fps}\b"):
+            mg.load_library(bvh, fps=fps)
 
 
 def test_rest_frames_kept_as_the_cli_and_a_manifest_say(cli, data, tmp_path):

@@ -399,6 +399,11 @@ def test_numbers_of_walks_paths_and_steps_are_not_true_or_false(graph, graph_fil
     # A skeleton index below -1 (the first clip's) is none.
     with pytest.raises(ValueError, match="skeleton must be -1"):
         mg.load_graph(str(graph_file), skeleton=-2)
+    # An int past C's int is said as such (pybind11 answered with every signature of the function).
+    for call in (lambda: graph.walk(2**40, 5), lambda: graph.walk(0, -2**31 - 1),
+                 lambda: controller.step(0, min_frames=2**63), lambda: mg.load_graph(str(graph_file), skeleton=2**31)):
+        with pytest.raises(ValueError, match=r"an integer from -2147483648 to 2147483647 is expected, not -?\d+$"):
+            call()
 
 
 def test_steering_goes_where_it_is_told(graph):

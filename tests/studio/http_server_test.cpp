@@ -242,6 +242,39 @@ TEST_F(StudioServer, AnswersHttpAsClientsUseIt) {
     EXPECT_TRUE(nlohmann::json::accept(ranged->body)) << path << ": " << ranged->body;
   }
 
+  // Several ranges: the whole file, once (each part was sent: 300 of them made 700 MB of a 2 MB
+  // script); on a static file and on a download alike.
+  std::string many = "bytes=0-99";
+  for (int i = 0; i < 300; ++i) many += ",0-99";
+  for (const std::string& path : {download, std::string("/js/studio.js")}) {
+    auto single = c.Get(path);
+    auto multi = c.Get(path, {{"Range", many}});
+    ASSERT_TRUE(single && multi);
+    ASSERT_EQ(single->status, 200) << path;
+    EXPECT_EQ(multi->status, 200) << path;
+    EXPECT_EQ(multi->body, single->body) << path;
+  }
+  auto static_part = c.Get("/js/studio.js", range);
+  ASSERT_TRUE(static_part);
+  EXPECT_EQ(static_part->status, 206);
+  EXPECT_EQ(static_part->body.size(), 50u);
+
+  // A Content-Length that is not one number, or two: 400, not a body read as empty (a walk with
+  // its defaults) or cut to the first length.
+  for (const std::string lengths : {"abc", "0x10", "+5", "12, 13", "2\r\nContent-Length: 19"}) {
+    const std::string answer = raw_request(
+        port_,
+        "POST /api/walk HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\nContent-Length: " +
+            lengths + "\r\nConnection: close\r\n\r\n{\"min_frames\": 5000}",
+        8);
+    EXPECT_EQ(answer.rfind("HTTP/1.1 400", 0), 0u) << lengths << ": " << answer;
+    EXPECT_NE(answer.find("the Content-Length must be one number of bytes"), std::string::npos) << answer;
+  }
+  // A request line with no version names no method or path that was never read.
+  const std::string no_version = raw_request(port_, "GET /api/summary\r\nHost: 127.0.0.1\r\n\r\n", 8);
+  EXPECT_EQ(no_version.rfind("HTTP/1.1 400", 0), 0u) << no_version;
+  EXPECT_NE(no_version.find("the request line is not 'METHOD /path HTTP/1.1'"), std::string::npos) << no_version;
+
   // A chunked body: refused before it is read.
   const std::string chunked = raw_request(
       port_,

@@ -345,6 +345,10 @@ TEST(StudioApi, WalkReturnsMotionAndABvhDownload) {
   expect_error(call_api("GET", "/api/results/" + id + ".glb", "", {{"figure", "2"}}), 400, "figure");
   expect_error(call_api("GET", "/api/results/" + std::to_string(walk.json["result"].get<int>()) + ".dae"), 404,
                "expected /api/results/ID.bvh, ID.glb, ID.gltf or ID.fbx");
+  // A number past any result's is said as a result not kept, not as a name of the wrong form.
+  const ApiCall far = call_api("GET", "/api/results/1073741825.bvh");
+  expect_error(far, 404, "no result '1073741825' (results are kept for the latest");
+  EXPECT_EQ(far.json["error"].get<std::string>().find("expected"), std::string::npos);
   // glTF as JSON: the same scene as the .glb's JSON chunk, its buffer embedded as base64.
   const ApiCall gltf = call_api("GET", "/api/results/" + id + ".gltf");
   ASSERT_EQ(gltf.response.status, 200);
@@ -431,6 +435,14 @@ TEST(StudioApi, BadWalksAre4xx) {
   expect_error(call_api("POST", "/api/walk", R"({"min_frame": 10})"), 400,
                "unknown key 'min_frame' (this request takes 'from', 'to', 'min_frames', 'seed', 'cost', 'cleanup')");
   expect_error(call_api("POST", "/api/walk", R"({"max_expansions": 5000000})"), 400, "unknown key 'max_expansions'");
+  // A long key or cost is shown in part (a body may be a megabyte; the answer echoed it whole).
+  const std::string long_word(100000, 'k');
+  for (const std::string& body : {"{\"" + long_word + "\": 1}", "{\"cost\": \"" + long_word + "\"}"}) {
+    const ApiCall long_key = call_api("POST", "/api/walk", body);
+    EXPECT_EQ(long_key.response.status, 400);
+    EXPECT_LT(long_key.response.body.size(), 400u) << long_key.response.body.substr(0, 200);
+    EXPECT_NE(long_key.response.body.find("'kkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkk"), std::string::npos);
+  }
   // A budget run out says what the studio's request can change.
   const ApiCall long_walk = call_api("POST", "/api/walk", R"({"from": 0, "to": 40, "min_frames": 1800})");
   expect_error(long_walk, 422, "ask for fewer frames (min_frames) or another pair of nodes");

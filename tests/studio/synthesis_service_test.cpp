@@ -145,6 +145,34 @@ TEST(SynthesisService, ANewSessionTakesTheLeastRecentlySteppedOnlyOnceItIsIdle) 
   EXPECT_EQ(service->session_limits().max_sessions, 2);
 }
 
+// Sessions created at the same time with room for one: one is made and the others refused,
+// and the one made is there to step (each passed the check before the work, and the last one in
+// evicted one made a moment before: its first step answered 404).
+TEST(SynthesisService, SessionsCreatedAtOnceNeverEvictOneInUse) {
+  const SteeringControl input;
+  for (int round = 0; round < 8; ++round) {
+    const auto service = fresh_service({3, 60.0});
+    ASSERT_TRUE(service->create_session(input, false));
+    ASSERT_TRUE(service->create_session(input, false));
+    std::vector<Result<studio::SteerSessionStart>> made(4, Error{});
+    std::vector<std::thread> threads;
+    for (size_t i = 0; i < made.size(); ++i) {
+      threads.emplace_back([&, i] { made[i] = service->create_session(input, false); });
+    }
+    for (std::thread& t : threads) t.join();
+    int ok = 0;
+    for (const auto& m : made) {
+      if (!m) {
+        EXPECT_EQ(m.error().kind, ErrorKind::kBusy) << m.error().to_string();
+        continue;
+      }
+      ++ok;
+      EXPECT_TRUE(service->step_session(m->id, input, 1)) << "round " << round;
+    }
+    EXPECT_EQ(ok, 1) << "round " << round;
+  }
+}
+
 // A session records its first kMaxRecordedFrames frames, one after another: a step that does
 // not fit whole gives what fits (it was left out whole, and a later one that fit made a jump).
 TEST(SynthesisService, ASessionRecordsItsFirstFramesWithoutAGap) {

@@ -64,6 +64,15 @@ std::string quoted(std::string_view token);
 inline bool is_ascii_upper(char c) { return c >= 'A' && c <= 'Z'; }
 inline bool is_ascii_lower(char c) { return c >= 'a' && c <= 'z'; }
 inline bool is_ascii_letter(char c) { return is_ascii_upper(c) || is_ascii_lower(c); }
+inline bool is_ascii_digit(char c) { return c >= '0' && c <= '9'; }
+// One or more ASCII digits and nothing else (no sign, space or base prefix).
+inline bool is_ascii_digits(std::string_view text) {
+  if (text.empty()) return false;
+  for (const char c : text) {
+    if (!is_ascii_digit(c)) return false;
+  }
+  return true;
+}
 
 // `text` with its ASCII letters in lower case (other bytes as they are): names and keywords
 // compared whatever their case.

@@ -387,7 +387,8 @@ DatabaseSettings database_settings_reading_as(const ClipLoadSettings& load) {
 }
 
 Status DatabaseSettings::validate() const {
-  if (!(fps > 0.0) || !std::isfinite(fps)) return Error{"", 0, fmt::format("fps must be positive, not {}", fps)};
+  // build --fps's range: under a frame a second no window of frames is motion, over 1000 no capture.
+  if (!(fps >= 1.0 && fps <= 1000.0)) return Error{"", 0, fmt::format("fps must be 1 to 1000, not {}", fps)};
   if (bvh_metres_per_unit && (!(*bvh_metres_per_unit > 0.0) || !std::isfinite(*bvh_metres_per_unit))) {
     return Error{"", 0, fmt::format("bvh_metres_per_unit (--scale) must be positive, not {}", *bvh_metres_per_unit)};
   }

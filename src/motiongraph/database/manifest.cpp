@@ -326,6 +326,9 @@ Result<Manifest> read_manifest(const Reader& in, const toml::table& root, std::s
     manifest.feet_line = line_of(*node);
   }
   if (auto s = in.optional_positive(root.get("fps"), "fps", manifest.fps); !s) return s.error();
+  if (manifest.fps && !(*manifest.fps >= 1.0 && *manifest.fps <= 1000.0)) {  // build --fps's range
+    return in.error(line_of(*root.get("fps")), fmt::format("'fps' must be 1 to 1000, not {:g}", *manifest.fps));
+  }
   if (const toml::node* node = root.get("fps")) manifest.fps_line = line_of(*node);
   if (const toml::node* node = root.get("skeleton")) {
     auto skeleton = in.string(*node, "skeleton");

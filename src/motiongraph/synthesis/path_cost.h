@@ -71,7 +71,7 @@ class PathCost final : public FrameCost {
   struct Region {
     double from_m = 0.0;
     TagMask wanted = 0;
-    const std::vector<double>* to_tag = nullptr;
+    TagCostCache::Costs to_tag;
   };
   std::vector<Region>::const_iterator region_at(double arc_m) const;
 

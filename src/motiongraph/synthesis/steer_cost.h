@@ -53,7 +53,7 @@ class SteerCost final : public FrameCost {
   double travel_penalty_ = 0.0;  // per metre behind, per frame (0: no travel asked)
   double travel_m_per_frame_ = 0.0;
   Vec2 start_root_ = Vec2::Zero();
-  const std::vector<double>* cost_to_tag_ = nullptr;  // for input_.tag; null: the horizon only
+  TagCostCache::Costs cost_to_tag_;  // for input_.tag; null: the horizon only
   // With no tag and a pace asked: the way to travelling frames past the horizon (travelling_frames.h).
   TravelCosts to_travel_;
   double travel_per_frame_ = 0.0;

@@ -3,7 +3,7 @@
 // foot contacts of every database frame (for the foot clean-up, synthesis/foot_cleanup.h).
 #pragma once
 
-#include <deque>
+#include <list>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -22,35 +22,30 @@ namespace mg {
 // Each tag's costs as path and steering searches price the way to it (tag_distance.h), computed
 // once per tag and penalties for every search of a context (a studio's sessions and paths,
 // Python's controllers and paths); and, with no tag, the way to frames that travel at a pace
-// (travelling_frames.h: travel_mps), with those frames' marks.
+// (travelling_frames.h: travel_mps), with those frames' marks. It keeps the kKept costs and
+// marks last asked for (a script sweeping a penalty or a pace would grow it without end); a
+// search holds what it was given for as long as it needs it, evicted or not.
 class TagCostCache {
  public:
+  static constexpr size_t kKept = 16;
   struct Key {
     TagMask tag = 0;
     double per_frame = 0.0, transition_penalty = 0.0, bridge_penalty = 0.0;
     double travel_mps = 0.0;  // > 0 with tag 0: the costs to frames travelling at this pace
     bool operator==(const Key&) const = default;
   };
+  using Costs = std::shared_ptr<const std::vector<double>>;
+  using Marks = std::shared_ptr<const std::vector<TagMask>>;
   // The costs of `key`, made by `make` the first time (under the lock: concurrent sessions asking
-  // for the same tag compute it once). The reference stays valid as long as the cache.
+  // for the same tag compute it once).
   template <class Make>
-  const std::vector<double>& get(const Key& key, Make&& make) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    for (const auto& [k, costs] : entries_) {
-      if (k == key) return costs;
-    }
-    entries_.emplace_back(key, make());
-    return entries_.back().second;
+  Costs get(const Key& key, Make&& make) {
+    return find_or_make(entries_, key, std::forward<Make>(make));
   }
   // The marks of the frames travelling at `travel_mps`, made by `make` the first time.
   template <class Make>
-  const std::vector<TagMask>& travelling(double travel_mps, Make&& make) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    for (const auto& [pace, marks] : travelling_) {
-      if (pace == travel_mps) return marks;
-    }
-    travelling_.emplace_back(travel_mps, make());
-    return travelling_.back().second;
+  Marks travelling(double travel_mps, Make&& make) {
+    return find_or_make(travelling_, travel_mps, std::forward<Make>(make));
   }
   size_t size() {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -58,9 +53,25 @@ class TagCostCache {
   }
 
  private:
+  // The entry of `key` in `list`, moved to its front (the most recently asked); made and put there
+  // when there is none, the least recently asked dropped beyond kKept.
+  template <class K, class T, class Make>
+  std::shared_ptr<const T> find_or_make(std::list<std::pair<K, std::shared_ptr<const T>>>& list, const K& key,
+                                        Make&& make) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (auto it = list.begin(); it != list.end(); ++it) {
+      if (it->first == key) {
+        list.splice(list.begin(), list, it);
+        return list.front().second;
+      }
+    }
+    list.emplace_front(key, std::make_shared<const T>(make()));
+    if (list.size() > kKept) list.pop_back();
+    return list.front().second;
+  }
   std::mutex mutex_;
-  std::deque<std::pair<Key, std::vector<double>>> entries_;
-  std::deque<std::pair<double, std::vector<TagMask>>> travelling_;
+  std::list<std::pair<Key, Costs>> entries_;
+  std::list<std::pair<double, Marks>> travelling_;
 };
 
 struct SynthesisContext {

@@ -53,9 +53,9 @@ double cost_to_mark_after(std::span<const TagMask> marks, size_t costed, int end
   return beyond < 0.0 ? 0.0 : per_frame * static_cast<double>(rest.size()) + beyond;
 }
 
-const std::vector<double>* searched_costs_to_tag(const SynthesisContext& context, const TagCostCache::Key& key) {
+TagCostCache::Costs searched_costs_to_tag(const SynthesisContext& context, const TagCostCache::Key& key) {
   if (!context.tag_costs) return nullptr;
-  return &context.tag_costs->get(key, [&] {
+  return context.tag_costs->get(key, [&] {
     const MotionGraph& graph = *context.graph;
     auto edge_cost = [&](int e) {
       const GraphEdge& edge = graph.edges[static_cast<size_t>(e)];

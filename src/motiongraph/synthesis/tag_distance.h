@@ -48,6 +48,6 @@ double cost_to_mark_after(std::span<const TagMask> marks, size_t costed, int end
 // for each frame without it, the transition penalty for each transition and the bridge penalty
 // more for each bridge that does not lead into it (unasked_bridge). Kept in the context's cache
 // (made the first time any search asks); null when the context has none.
-const std::vector<double>* searched_costs_to_tag(const SynthesisContext& context, const TagCostCache::Key& key);
+TagCostCache::Costs searched_costs_to_tag(const SynthesisContext& context, const TagCostCache::Key& key);
 
 }  // namespace mg

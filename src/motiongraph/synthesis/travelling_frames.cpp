@@ -60,10 +60,10 @@ TravelCosts searched_costs_to_travel(const SynthesisContext& context, double tra
                                      double transition_penalty, double bridge_penalty) {
   if (!context.tag_costs) return {};
   TravelCosts out;
-  out.marks = &context.tag_costs->travelling(travel_mps, [&] { return travelling_frames(context, travel_mps); });
+  out.marks = context.tag_costs->travelling(travel_mps, [&] { return travelling_frames(context, travel_mps); });
   const std::vector<TagMask>& marks = *out.marks;
   const TagCostCache::Key key{0, per_frame, transition_penalty, bridge_penalty, travel_mps};
-  out.to_travel = &context.tag_costs->get(key, [&] {
+  out.to_travel = context.tag_costs->get(key, [&] {
     const MotionGraph& graph = *context.graph;
     auto edge_cost = [&](int e) {
       const GraphEdge& edge = graph.edges[static_cast<size_t>(e)];

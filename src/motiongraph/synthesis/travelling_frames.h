@@ -22,8 +22,8 @@ inline constexpr TagMask kTravellingMark = 1;
 std::vector<TagMask> travelling_frames(const SynthesisContext& context, double travel_mps);
 
 struct TravelCosts {
-  const std::vector<TagMask>* marks = nullptr;   // travelling_frames'
-  const std::vector<double>* to_travel = nullptr;  // per node, cost_to_mark's (-1: none reached)
+  TagCostCache::Marks marks;      // travelling_frames'
+  TagCostCache::Costs to_travel;  // per node, cost_to_mark's (-1: none reached)
 };
 
 // The costs to the frames travelling at `travel_mps` of `context`'s graph, priced `per_frame` for

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "motiongraph/core/stop.h"
+#include "motiongraph/core/text.h"
 
 namespace mg {
 
@@ -15,7 +16,8 @@ Result<WalkCost> parse_walk_cost(std::string_view name) {
   if (name == "quality") return WalkCost::kQuality;
   if (name == "random") return WalkCost::kRandom;
   if (name == "hybrid") return WalkCost::kHybrid;
-  return Error{"", 0, fmt::format("unknown cost '{}': constant, quality, random or hybrid", name)};
+  // (quoted: at most 40 characters, control bytes escaped; a studio request could hold a megabyte)
+  return Error{"", 0, fmt::format("unknown cost {}: constant, quality, random or hybrid", quoted(name))};
 }
 
 const char* walk_cost_name(WalkCost cost) {
