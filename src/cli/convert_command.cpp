@@ -124,10 +124,16 @@ int write_clip(const ConvertOptions& options, const std::vector<std::string>& ou
   MotionFileSettings settings = options.output.settings(
       options.output.root_motion ? learn_clip_forward_axis(skeleton, motion, feet) : Vec3::UnitZ());
   settings.keep_root_order = true;  // a clip written back as it was read, its root's rotation order too
+  // Every output made before any is written: one that cannot be (a root too far for glTF's
+  // floats) leaves no other written.
+  std::vector<std::string> made;
   for (const std::string& output : outputs) {
-    if (auto s = write_motion(output, skeleton, motion, settings, contacts ? &json_contacts : nullptr); !s) {
-      return fail(s.error());
-    }
+    auto bytes = motion_file_bytes(output, skeleton, motion, settings, contacts ? &json_contacts : nullptr);
+    if (!bytes) return fail(bytes.error());
+    made.push_back(std::move(*bytes));
+  }
+  for (size_t i = 0; i < outputs.size(); ++i) {
+    if (auto s = write_file_atomic(outputs[i], made[i]); !s) return fail(s.error());
   }
   return 0;
 }

@@ -492,4 +492,26 @@ python3 -c 'import sys; t = open(sys.argv[1]).read().rstrip(); open(sys.argv[2],
 if "$bin" info --mirror sometimes "$data/bvh/131_01.bvh" >/dev/null 2>&1; then
   echo "FAIL: info --mirror sometimes on a file"; exit 1
 fi
+# Several outputs, one of which cannot be made (a root 1e41 units east all along: past glTF's
+# floats): none is written, not the ones before it.
+python3 - "$data/bvh/131_01.bvh" "$work/far.bvh" <<'PY'
+import sys
+lines = open(sys.argv[1]).read().split("\n")
+for at in range(lines.index("MOTION") + 3, len(lines)):
+    values = lines[at].split()
+    if values:
+        values[0] = "1e41"
+        lines[at] = " ".join(values)
+open(sys.argv[2], "w").write("\n".join(lines))
+PY
+if "$bin" convert "$work/far.bvh" -o "$work/far-out.bvh" -o "$work/far-out.json" \
+    -o "$work/far-out.gltf" 2>"$work/far.err"; then
+  echo "FAIL: convert of a root past glTF's floats succeeded"; exit 1
+fi
+grep -q "far-out.gltf: .*past what glTF's single-precision numbers hold" "$work/far.err" \
+  && [[ ! -e "$work/far-out.bvh" && ! -e "$work/far-out.json" && ! -e "$work/far-out.gltf" ]] \
+  || { echo "FAIL: a failed output left the others written"; cat "$work/far.err"; ls "$work"; exit 1; }
+"$bin" convert "$work/far.bvh" -o "$work/far-out.bvh" -o "$work/far-out.json" 2>/dev/null \
+  && [[ -s "$work/far-out.bvh" && -s "$work/far-out.json" ]] \
+  || { echo "FAIL: convert of a far root to BVH, JSON"; exit 1; }
 echo "cli convert ok"

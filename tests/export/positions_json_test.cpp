@@ -18,12 +18,17 @@ constexpr const char* kLatin1Bvh =
     "    End Site\n    {\n      OFFSET 0 -0.4 0\n    }\n  }\n}\n"
     "MOTION\nFrames: 2\nFrame Time: 0.0333333\n0 1 0 0 0 0 0 0 0\n0.1 1 0.2 0 0 90 30 0 0\n";
 
-TEST(PositionsJson, WritesWorldPositionsAndSurvivesNamesThatAreNotUtf8) {
+// kLatin1Bvh's clip, every frame kept.
+Result<Clip> latin1_clip() {
   auto doc = parse_bvh(kLatin1Bvh, "latin1.bvh");
-  ASSERT_TRUE(doc.ok()) << doc.error().to_string();
+  if (!doc) return doc.error();
   BvhImportSettings settings;
   settings.drop_rest_frames = false;
-  auto clip = clip_from_bvh(*doc, settings);
+  return clip_from_bvh(*doc, settings);
+}
+
+TEST(PositionsJson, WritesWorldPositionsAndSurvivesNamesThatAreNotUtf8) {
+  auto clip = latin1_clip();
   ASSERT_TRUE(clip.ok()) << clip.error().to_string();
   std::string text;
   ASSERT_NO_THROW(text = write_positions_json(clip->skeleton, clip->motion));
@@ -41,6 +46,23 @@ TEST(PositionsJson, WritesWorldPositionsAndSurvivesNamesThatAreNotUtf8) {
     for (size_t j = 0; j < count; ++j) {
       for (int c = 0; c < 3; ++c) EXPECT_NEAR(frames[f][j][c].get<double>(), world[f * count + j][c], 1e-6);
     }
+  }
+}
+
+// A root far out (a file may put it at 1e305 m) is written as a number: its micrometres overflowed
+// a double, and JSON got null.
+TEST(PositionsJson, FarPositionsAreNumbersNotNull) {
+  auto clip = latin1_clip();
+  ASSERT_TRUE(clip.ok()) << clip.error().to_string();
+  for (const double far : {1e14, 1e16, 1e305, -1e305}) {
+    clip->motion.translations(1)[0].x() = far;
+    auto back = parse_json_text(write_positions_json(clip->skeleton, clip->motion), "positions.json");
+    ASSERT_TRUE(back.ok());
+    const auto world = world_positions(clip->skeleton, clip->motion);
+    const auto& root = (*back)["positions"][1][0];
+    ASSERT_TRUE(root[0].is_number()) << far << ": " << root;
+    const Vec3& at = world[static_cast<size_t>(clip->skeleton.joint_count())];  // frame 1, the root
+    EXPECT_NEAR(root[0].get<double>(), at.x(), std::abs(far) * 1e-15 + 1e-6) << far;
   }
 }
 

@@ -2,10 +2,16 @@
 #include "motiongraph/io/file.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
+#include <thread>
+#include <vector>
 
 namespace mg {
 namespace {
@@ -94,6 +100,53 @@ TEST_F(OutputFolder, AFileReadThroughAFolderIsNoOutput) {
       << same.error().message;
   fs::create_symlink(at("sub/walk.bvh"), at("link.bvh"));
   EXPECT_FALSE(check_not_an_output(at("sub/walk.bvh"), {at("link.bvh")}, "a clip"));
+}
+
+std::string contents(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Nothing but the file written is left in its folder.
+std::vector<std::string> names_in(const fs::path& folder) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(folder)) names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// A symbolic link is written through (the file it leads to gets the content, the link stays a
+// link: renaming over it made it a file of its own), and a name of 250 bytes is written though
+// its temporary name would pass NAME_MAX.
+TEST_F(OutputFolder, LinksAreWrittenThroughAndLongNamesWritten) {
+  const fs::path real = root_ / "sub" / "real.bvh";
+  ASSERT_TRUE(write_file_atomic(real.string(), "old"));
+  fs::create_symlink(fs::path("sub") / "real.bvh", root_ / "link.bvh");
+  ASSERT_TRUE(check_outputs({at("link.bvh")}, {}));
+  ASSERT_TRUE(write_file_atomic(at("link.bvh"), "new"));
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(root_ / "link.bvh")));
+  EXPECT_EQ(contents(real), "new");
+  EXPECT_EQ(names_in(root_ / "sub"), std::vector<std::string>{"real.bvh"});
+  const std::string long_name = std::string(246, 'n') + ".bvh";
+  ASSERT_TRUE(check_outputs({at(long_name)}, {})) << check_outputs({at(long_name)}, {}).error().message;
+  ASSERT_TRUE(write_file_atomic(at(long_name), "long"));
+  EXPECT_EQ(contents(root_ / long_name), "long");
+}
+
+// A FIFO (as a device: /dev/null) is written in place: it stays a FIFO, its reader gets the bytes,
+// and no temporary file is left beside it.
+TEST_F(OutputFolder, SpecialFilesAreWrittenInPlace) {
+  const fs::path fifo = root_ / "sub" / "out.json";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  ASSERT_TRUE(check_outputs({fifo.string()}, {}));
+  std::string read;
+  std::thread reader([&] { read = contents(fifo); });
+  const Status written = write_file_atomic(fifo.string(), "through the pipe");
+  reader.join();
+  ASSERT_TRUE(written) << written.error().message;
+  EXPECT_EQ(read, "through the pipe");
+  EXPECT_EQ(fs::status(fifo).type(), fs::file_type::fifo);
+  EXPECT_EQ(names_in(root_ / "sub"), std::vector<std::string>{"out.json"});
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 // be read is one error each. (FBX that Blender writes is read in tests/blender.)
 #include "motiongraph/motion/fbx_import.h"
 
+#include <cstring>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -203,6 +204,52 @@ TEST_F(FbxImport, WhatCannotBeReadIsOneError) {
     }
   }
 }
+
+// Files that crash assimp itself (Debian's 5.2) are one error too, and the program goes on: our
+// own figure's FBX with two bones of one name (a double free as assimp frees the scene) or a
+// skin's vertex index past the mesh (an assertion in its converter). The same file unbroken is
+// read as before.
+TEST_F(FbxImport, AFileThatCrashesTheReaderIsOneError) {
+  auto bytes = write_fbx(walk_->skeleton, walk_->motion, "walk");
+  ASSERT_TRUE(bytes);
+  ASSERT_EQ(read(*bytes).size(), 1u);
+  const std::string model = std::string("\0\1Model", 7);
+  std::string twice = *bytes;
+  const size_t right = twice.find("rfemur" + model);
+  ASSERT_NE(right, std::string::npos);
+  twice.replace(right, 6, "lfemur");
+  std::string far_index = *bytes;
+  const size_t indexes = far_index.find("\x07Indexesi");
+  ASSERT_NE(indexes, std::string::npos);
+  const int32_t past = 8323719;
+  std::memcpy(far_index.data() + indexes + 21, &past, sizeof past);
+  for (const std::string* broken : {&twice, &far_index}) {
+    auto clips = clips_from_fbx(*broken, "broken.fbx", {});
+    ASSERT_FALSE(clips);
+    EXPECT_EQ(clips.error().file, "broken.fbx");
+    EXPECT_NE(clips.error().message.find("cannot read FBX"), std::string::npos) << clips.error().message;
+  }
+  EXPECT_NE(clips_from_fbx(twice, "broken.fbx", {}).error().message.find("the reader (assimp) crashed on it"),
+            std::string::npos);
+  ASSERT_EQ(read(*bytes).size(), 1u);
+}
+
+// A rotation key of a million degrees: assimp splits it into thousands of keys microseconds apart,
+// which were read as 167 597 frames a second (and the feet's contacts took minutes over them).
+// Keys closer than a millisecond are no frames: the file's rate samples the curve.
+TEST_F(FbxImport, KeysAReaderSplitsAreNoFrames) {
+  auto bytes = write_fbx(walk_->skeleton, walk_->motion, "walk");
+  ASSERT_TRUE(bytes);
+  const size_t keys = bytes->find("\rKeyValueFloatf");
+  ASSERT_NE(keys, std::string::npos);
+  const float huge = 1e6f;
+  std::memcpy(bytes->data() + keys + 27 + 4 * 30, &huge, sizeof huge);
+  const std::vector<Clip> clips = read(*bytes);
+  ASSERT_EQ(clips.size(), 1u);
+  EXPECT_EQ(clips[0].motion.fps, 30.0);
+  EXPECT_EQ(clips[0].motion.frame_count, walk_->motion.frame_count);
+}
+
 
 }  // namespace
 }  // namespace mg

@@ -41,9 +41,9 @@ Status MotionFileSettings::validate() const {
   return Ok{};
 }
 
-Status write_motion(const std::string& path, const Skeleton& skeleton, const Motion& motion,
-                    const MotionFileSettings& settings, const PositionsJsonContacts* contacts) {
-  if (auto s = check_motion_output(path); !s) return s;
+Result<std::string> motion_file_bytes(const std::string& path, const Skeleton& skeleton, const Motion& motion,
+                                      const MotionFileSettings& settings, const PositionsJsonContacts* contacts) {
+  if (auto s = check_motion_output(path); !s) return s.error();
   if (auto s = settings.validate(); !s) return Error{path, 0, s.error().message};
   if (const auto& root_motion = settings.root_motion) {
     auto added = add_root_motion(skeleton, motion, root_motion->forward_axis, root_motion->settings);
@@ -59,7 +59,7 @@ Status write_motion(const std::string& path, const Skeleton& skeleton, const Mot
     }
     MotionFileSettings added_settings = settings;
     added_settings.root_motion.reset();
-    return write_motion(path, added->skeleton, added->motion, added_settings, shifted ? &*shifted : nullptr);
+    return motion_file_bytes(path, added->skeleton, added->motion, added_settings, shifted ? &*shifted : nullptr);
   }
   BvhWriteSettings write;
   write.units_per_metre = settings.units_per_metre;
@@ -74,10 +74,16 @@ Status write_motion(const std::string& path, const Skeleton& skeleton, const Mot
     const ExportAnimation animation{name, &motion};
     auto bytes = scene_bytes(ext, skeleton, std::span(&animation, 1), settings.figure);
     if (!bytes) return Error{path, 0, bytes.error().message};
-    return write_file_atomic(path, *bytes);
+    return bytes;
   }
-  return write_file_atomic(path, ext == ".bvh" ? write_bvh(skeleton, motion, write)
-                                               : write_positions_json(skeleton, motion, contacts));
+  return ext == ".bvh" ? write_bvh(skeleton, motion, write) : write_positions_json(skeleton, motion, contacts);
+}
+
+Status write_motion(const std::string& path, const Skeleton& skeleton, const Motion& motion,
+                    const MotionFileSettings& settings, const PositionsJsonContacts* contacts) {
+  auto bytes = motion_file_bytes(path, skeleton, motion, settings, contacts);
+  if (!bytes) return bytes.error();
+  return write_file_atomic(path, *bytes);
 }
 
 Status write_animation_set(const std::string& path, std::span<const NamedMotion> motions,

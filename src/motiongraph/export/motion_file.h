@@ -53,6 +53,10 @@ struct MotionFileSettings {
 // JSON gets the feet's contacts too when `contacts` is given (positions_json.h).
 Status write_motion(const std::string& path, const Skeleton& skeleton, const Motion& motion,
                     const MotionFileSettings& settings = {}, const PositionsJsonContacts* contacts = nullptr);
+// What write_motion writes, not written (several outputs made before any is written).
+Result<std::string> motion_file_bytes(const std::string& path, const Skeleton& skeleton, const Motion& motion,
+                                      const MotionFileSettings& settings,
+                                      const PositionsJsonContacts* contacts = nullptr);
 
 // One motion of an animation set.
 struct NamedMotion {

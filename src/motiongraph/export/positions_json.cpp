@@ -37,7 +37,9 @@ std::string write_positions_json(const Skeleton& skeleton, const Motion& motion,
   }
   doc["joints"] = std::move(joints);
   const std::vector<Vec3> world = world_positions(skeleton, motion);
-  auto round_um = [](double v) { return std::round(v * 1e6) / 1e6 + 0.0; };
+  // To the micrometre; a value whose micrometres overflow a double (past 1.8e302 m: a root at
+  // 1e305, as a file may put it) is written as it is, where it was null.
+  auto round_um = [](double v) { return std::abs(v) < 1e15 ? std::round(v * 1e6) / 1e6 + 0.0 : v; };
   json frames = json::array();
   const size_t count = static_cast<size_t>(skeleton.joint_count());
   for (int f = 0; f < motion.frame_count; ++f) {

@@ -90,12 +90,51 @@ FileBytes::~FileBytes() {
 #endif
 }
 
+namespace {
+
+// The file a name writes: where it is a symbolic link, the file it leads to (a rename would
+// replace the link with a file of its own); else the name itself.
+std::filesystem::path written_path(const std::string& name) {
+  std::error_code error;
+  if (!std::filesystem::is_symlink(std::filesystem::symlink_status(name, error))) return name;
+  std::filesystem::path resolved = std::filesystem::weakly_canonical(name, error);
+  return error ? std::filesystem::path(name) : resolved;
+}
+
+// A device, a FIFO or a socket (/dev/null, /dev/stdout on a terminal): written in place, as
+// there is no file to put another in the place of (renaming over /dev/null made it a file).
+bool is_special_file(const std::filesystem::path& path) {
+  std::error_code error;
+  const std::filesystem::file_status status = std::filesystem::status(path, error);
+  return !error && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status) &&
+         !std::filesystem::is_directory(status);
+}
+
+// A new name beside `target` for the file written before it is renamed into place: hidden, and
+// short enough for the folder (a name of 250 bytes, legal itself, was refused as too long with 14
+// more).
+std::filesystem::path temporary_beside(const std::filesystem::path& target) {
+  std::random_device random;
+  std::string name = target.filename().string();
+  constexpr size_t kMostKept = 200;  // of NAME_MAX's 255, with ".", ".tmp-" and 8 digits
+  if (name.size() > kMostKept) name.resize(kMostKept);
+  return target.parent_path() / fmt::format(".{}.tmp-{:08x}", name, random());
+}
+
+}  // namespace
+
 Status write_file_atomic(const std::string& path, std::string_view content) {
   namespace fs = std::filesystem;
-  const fs::path target(path);
-  std::random_device random;
-  const fs::path temporary =
-      target.parent_path() / fmt::format(".{}.tmp-{:08x}", target.filename().string(), random());
+  const fs::path target = written_path(path);
+  if (is_special_file(target)) {
+    std::ofstream out(target, std::ios::binary);
+    if (!out) return Error{path, 0, fmt::format("cannot write: {}", std::strerror(errno))};
+    out.write(content.data(), static_cast<std::streamsize>(content.size()));
+    out.flush();
+    if (!out) return Error{path, 0, "cannot write"};
+    return Ok{};
+  }
+  const fs::path temporary = temporary_beside(target);
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) return Error{path, 0, fmt::format("cannot write: {}", std::strerror(errno))};
@@ -141,9 +180,11 @@ Status check_outputs(const std::vector<std::string>& outputs, const std::vector<
   for (size_t i = 0; i < outputs.size(); ++i) {
     const std::string& output = outputs[i];
     if (output.empty()) continue;
-    std::filesystem::path folder = std::filesystem::path(output).parent_path();
-    if (folder.empty()) folder = ".";
+    const std::filesystem::path target = written_path(output);
     std::error_code error;
+    if (is_special_file(target)) continue;  // written in place (/dev/null), not beside
+    std::filesystem::path folder = target.parent_path();
+    if (folder.empty()) folder = ".";
     if (!std::filesystem::is_directory(folder, error)) {
       if (std::filesystem::exists(folder, error)) {
         return Error{output, 0, fmt::format("cannot write: '{}' is a file, not a folder", folder.string())};
@@ -154,9 +195,7 @@ Status check_outputs(const std::vector<std::string>& outputs, const std::vector<
     // The folder takes a new file (the temporary one write_file_atomic renames into place): a
     // folder one may not write in fails here, not after the work and the other outputs.
     {
-      std::random_device random;
-      const std::filesystem::path probe =
-          folder / fmt::format(".{}.tmp-{:08x}", std::filesystem::path(output).filename().string(), random());
+      const std::filesystem::path probe = temporary_beside(folder / target.filename());
       const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
       if (fd < 0) {
         return Error{output, 0,

@@ -1,13 +1,23 @@
 #include "motiongraph/motion/fbx_import.h"
 
 #include <algorithm>
+#include <cerrno>
+#include <chrono>
 #include <cmath>
+#include <csignal>
+#include <cstring>
 #include <exception>
 #include <map>
 #include <numbers>
 #include <optional>
 #include <set>
 #include <string_view>
+
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <assimp/Importer.hpp>
 #include <assimp/config.h>
@@ -36,9 +46,7 @@ namespace {
 // it, and its parse, in memory): 2 GB.
 constexpr size_t kMaxBytes = size_t{1} << 31;
 
-Result<const aiScene*> parse(Assimp::Importer& importer, std::string_view bytes, const std::string& file) {
-  if (bytes.empty()) return Error{file, 0, "the FBX file is empty"};
-  if (bytes.size() >= kMaxBytes) return Error{file, 0, "the FBX file is larger than motiongraph reads (2 GB)"};
+Result<const aiScene*> read_scene(Assimp::Importer& importer, std::string_view bytes, const std::string& file) {
   // Pivots kept as helper nodes, composed back into their nodes here (scene_of): assimp's own
   // folding leaves an animated pivot's keys on a helper it does not make.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_PRESERVE_PIVOTS, true);
@@ -59,6 +67,120 @@ Result<const aiScene*> parse(Assimp::Importer& importer, std::string_view bytes,
   }
   if (!scene->mRootNode) return Error{file, 0, "cannot read FBX: the file has no nodes"};
   return scene;
+}
+
+// The memory a trial read may take beyond what the process holds: assimp's parse of a file is a
+// few times its size.
+size_t trial_memory_bytes(size_t file_bytes) { return (size_t{1} << 30) + 32 * file_bytes; }
+
+// A trial read's time: a minute, and a second a megabyte more.
+std::chrono::seconds trial_seconds(size_t file_bytes) {
+  return std::chrono::seconds(60 + static_cast<long long>(file_bytes >> 20));
+}
+
+// In the child: its address space bounded to what it holds now and `more` bytes.
+void bound_memory(size_t more) {
+  long pages = 0;
+  if (FILE* statm = std::fopen("/proc/self/statm", "r")) {
+    if (std::fscanf(statm, "%ld", &pages) != 1) pages = 0;
+    std::fclose(statm);
+  }
+  if (pages <= 0) return;
+  const rlim_t limit = static_cast<rlim_t>(pages) * static_cast<rlim_t>(sysconf(_SC_PAGESIZE)) + more;
+  const rlimit bound{limit, limit};
+  setrlimit(RLIMIT_AS, &bound);
+}
+
+// Debian's assimp (5.2) crashes on some malformed files (a double free as it frees the scene of a
+// skinned file whose two bones share a name, an assertion on a skin's vertex index past its mesh,
+// a stack overflow on a node made its own ancestor) and runs away on others (a rotation key of a
+// million degrees took gigabytes a minute). So a file is read first in a child process, whose
+// memory and time are bounded: what becomes of it there is the error, and the program reads the
+// file itself only when the child read it and freed it. Where no child can be made, it reads the
+// file as before.
+Status trial_read(std::string_view bytes, const std::string& file) {
+  int pipe_fds[2];
+  if (pipe2(pipe_fds, O_CLOEXEC) != 0) return Ok{};
+  const pid_t child = fork();
+  if (child < 0) {
+    close(pipe_fds[0]);
+    close(pipe_fds[1]);
+    return Ok{};
+  }
+  if (child == 0) {
+    close(pipe_fds[0]);
+    // What the C library says of a crash (free(): double free detected) is this function's to say.
+    if (const int null_fd = open("/dev/null", O_WRONLY); null_fd >= 0) dup2(null_fd, STDERR_FILENO);
+#ifndef MOTIONGRAPH_LEAK_SANITIZER
+    bound_memory(trial_memory_bytes(bytes.size()));  // (the sanitizer's shadow memory grows as it goes)
+#endif
+    Assimp::Importer importer;
+    auto scene = read_scene(importer, bytes, file);
+    if (!scene) {
+      const std::string& why = scene.error().message;
+      for (size_t done = 0; done < why.size();) {
+        const ssize_t n = write(pipe_fds[1], why.data() + done, why.size() - done);
+        if (n <= 0) break;
+        done += static_cast<size_t>(n);
+      }
+      _exit(1);
+    }
+    importer.FreeScene();
+    _exit(0);
+  }
+  close(pipe_fds[1]);
+  std::string said;
+  bool timed_out = false;
+  const auto deadline = std::chrono::steady_clock::now() + trial_seconds(bytes.size());
+  for (;;) {
+    using std::chrono::milliseconds;
+    const auto left = std::chrono::duration_cast<milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) {
+      timed_out = true;
+      break;
+    }
+    pollfd wait{pipe_fds[0], POLLIN, 0};
+    const int ready = poll(&wait, 1, static_cast<int>(std::min<long long>(left.count(), 1000)));
+    if (ready < 0 && errno != EINTR) break;
+    if (ready <= 0) continue;
+    char buffer[4096];
+    const ssize_t n = read(pipe_fds[0], buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;  // the child is done (or gone)
+    if (said.size() < 65536) said.append(buffer, static_cast<size_t>(n));
+  }
+  close(pipe_fds[0]);
+  if (timed_out) kill(child, SIGKILL);
+  int status = 0;
+  while (waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (timed_out) {
+    return Error{file, 0,
+                 fmt::format("cannot read FBX: the reader (assimp) was still at it after {} s (a key of an absurd "
+                             "value can make it so)",
+                             trial_seconds(bytes.size()).count())};
+  }
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return Ok{};
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 1 && !said.empty()) {
+    if (said.find("bad_alloc") != std::string::npos) {
+      return Error{file, 0,
+                   fmt::format("cannot read FBX: the reader (assimp) needed more than {} MB for it (a key of an "
+                               "absurd value can make it so)",
+                               trial_memory_bytes(bytes.size()) >> 20)};
+    }
+    return Error{file, 0, said};
+  }
+  const std::string how = WIFSIGNALED(status) ? std::string(strsignal(WTERMSIG(status)))
+                                              : fmt::format("exit status {}", WEXITSTATUS(status));
+  return Error{file, 0,
+               fmt::format("cannot read FBX: the reader (assimp) crashed on it ({}): the file is malformed", how)};
+}
+
+Result<const aiScene*> parse(Assimp::Importer& importer, std::string_view bytes, const std::string& file) {
+  if (bytes.empty()) return Error{file, 0, "the FBX file is empty"};
+  if (bytes.size() >= kMaxBytes) return Error{file, 0, "the FBX file is larger than motiongraph reads (2 GB)"};
+  if (auto tried = trial_read(bytes, file); !tried) return tried.error();
+  return read_scene(importer, bytes, file);
 }
 
 // An integer or a real of the file's metadata (assimp keeps FBX's GlobalSettings there).

@@ -111,6 +111,9 @@ double even_step(const std::vector<double>& times) {
   return step;
 }
 
+// The fastest keys read as frames (build's --fps's most).
+constexpr double kMaxKeyRate = 1000.0;
+
 // The rate the tracks are sampled at, and the time between two samples.
 struct KeyRate {
   double fps = 30.0;
@@ -161,6 +164,13 @@ KeyRate key_rate(const std::vector<const KeyTrack*>& tracks, double declared_fps
   const bool declared = declared_fps >= 5.0 && std::abs(fps - declared_fps) < 1e-3 * declared_fps &&
                         on_grid(1.0 / declared_fps);
   if (fps < 24.0 && !declared) return {};
+  // Keys closer than a millisecond are no capture's frames: a reader's own (assimp splits a
+  // rotation key of a million degrees into thousands, 6 microseconds apart); the file's rate,
+  // else 30 fps, samples the curve.
+  if (fps > kMaxKeyRate) {
+    if (declared_fps >= 5.0 && declared_fps <= kMaxKeyRate) return {declared_fps, 1.0 / declared_fps};
+    return {};
+  }
   if (on_grid(1.0 / fps)) return {fps, 1.0 / fps};
   // The keys' own step, from their whole span (exact where the median of float keys is not).
   const double span = last - first;
