@@ -304,7 +304,8 @@ TEST(GraphFile, RejectsAnythingElse) {
   };
   expect_error("", "not a motiongraph graph");
   expect_error("HIERARCHY\nROOT x", "not a motiongraph graph");
-  expect_error(bytes.substr(0, bytes.size() - 1), "truncated");
+  expect_error(bytes.substr(0, bytes.size() - 1), "truncated: ");
+  expect_error(bytes + "extra", "longer than its header says");
   expect_error(bytes.substr(0, 12), "truncated header");
   std::string flipped = bytes;
   flipped[bytes.size() / 2] ^= 0x40;

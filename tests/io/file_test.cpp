@@ -149,5 +149,31 @@ TEST_F(OutputFolder, SpecialFilesAreWrittenInPlace) {
   EXPECT_EQ(names_in(root_ / "sub"), std::vector<std::string>{"out.json"});
 }
 
+// A FIFO is read to its end (it was 'cannot read': a pipe cannot be measured by seeking), by
+// both readers; an empty name is said as such (the error named no file: "cannot open").
+TEST_F(OutputFolder, PipesAreReadAndEmptyNamesSaid) {
+  const fs::path fifo = root_ / "sub" / "in.bvh";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::string sent = "HIERARCHY\n" + std::string(200000, 'x');  // more than a pipe holds
+  for (int reader = 0; reader < 2; ++reader) {
+    std::thread writer([&] { std::ofstream(fifo, std::ios::binary) << sent; });
+    std::string got;
+    if (reader == 0) {
+      auto text = read_text_file(fifo.string());
+      ASSERT_TRUE(text) << text.error().message;
+      got = *text;
+    } else {
+      auto bytes = FileBytes::open(fifo.string());
+      ASSERT_TRUE(bytes) << bytes.error().message;
+      got = std::string(bytes->bytes());
+    }
+    writer.join();
+    EXPECT_EQ(got, sent) << reader;
+  }
+  EXPECT_EQ(read_text_file("").error().message, kEmptyFileName);
+  EXPECT_EQ(FileBytes::open("").error().message, kEmptyFileName);
+  EXPECT_NE(create_folders("").error().message.find("name is empty"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace mg

@@ -1404,6 +1404,7 @@ Result<MotionDatabase> load_database(const std::vector<std::string>& inputs, con
   ManifestWide wide;
   std::vector<std::string> name_clashes;
   for (const std::string& input : inputs) {
+    if (input.empty()) return Error{"", 0, kEmptyFileName};
     std::error_code ec;
     const fs::file_status status = fs::status(input, ec);
     if (!fs::exists(status)) return Error{input, 0, "no such file or folder"};

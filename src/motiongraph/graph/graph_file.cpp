@@ -105,7 +105,8 @@ Result<std::vector<std::string_view>> unframe(std::string_view bytes, const std:
   std::uint64_t total = 0;
   for (std::uint64_t size : sizes) total = size > UINT64_MAX - total ? UINT64_MAX : total + size;
   if (rest.size() != total) {
-    return Error{file_name, 0, fmt::format("truncated: {} bytes of payload, the header says {}", rest.size(), total)};
+    const char* wrong = rest.size() < total ? "truncated" : "longer than its header says (bytes added at its end?)";
+    return Error{file_name, 0, fmt::format("{}: {} bytes of payload, the header says {}", wrong, rest.size(), total)};
   }
   std::vector<std::string_view> sections;
   for (size_t i = 0; i < count; ++i) {

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <random>
 
 #include <fmt/format.h>
@@ -20,10 +21,18 @@
 namespace mg {
 
 Result<std::string> read_text_file(const std::string& path) {
+  if (path.empty()) return Error{"", 0, kEmptyFileName};
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) return Error{path, 0, "is a folder, not a file"};
   std::ifstream in(path, std::ios::binary);
   if (!in) return Error{path, 0, fmt::format("cannot open: {}", std::strerror(errno))};
+  if (std::filesystem::is_fifo(path, ec)) {
+    // A pipe (a FIFO, /dev/stdin, <(...)): read to its end, as it cannot be measured by seeking.
+    std::ostringstream all;
+    all << in.rdbuf();
+    if (in.bad()) return Error{path, 0, "cannot read"};
+    return std::move(all).str();
+  }
   std::string text;
   in.seekg(0, std::ios::end);
   const auto size = in.tellg();
@@ -37,6 +46,7 @@ Result<std::string> read_text_file(const std::string& path) {
 }
 
 Result<FileBytes> FileBytes::open(const std::string& path) {
+  if (path.empty()) return Error{"", 0, kEmptyFileName};
   FileBytes out;
 #ifdef MG_HAVE_MMAP
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
@@ -56,6 +66,24 @@ Result<FileBytes> FileBytes::open(const std::string& path) {
       out.bytes_ = std::string_view(static_cast<const char*>(map), size);
       return out;
     }
+  }
+  if (S_ISFIFO(status.st_mode)) {
+    // A pipe is read from this opening: one more would find its writer gone.
+    char buffer[65536];
+    for (;;) {
+      const ssize_t n = ::read(fd, buffer, sizeof buffer);
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) {
+        const int error = errno;
+        ::close(fd);
+        return Error{path, 0, fmt::format("cannot read: {}", std::strerror(error))};
+      }
+      if (n == 0) break;
+      out.read_.append(buffer, static_cast<size_t>(n));
+    }
+    ::close(fd);
+    out.bytes_ = out.read_;
+    return out;
   }
   ::close(fd);
 #endif
@@ -226,6 +254,7 @@ Status check_not_an_output(const std::string& read, const std::vector<std::strin
 }
 
 Status create_folders(const std::string& path) {
+  if (path.empty()) return Error{"", 0, "a folder's name is empty ('')"};
   std::error_code ec;
   std::filesystem::create_directories(path, ec);
   if (ec) return Error{path, 0, fmt::format("cannot create the folder: {}", ec.message())};

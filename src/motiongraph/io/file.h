@@ -12,6 +12,10 @@
 
 namespace mg {
 
+// What an empty name given for a file is told (the error names no file then).
+inline constexpr const char* kEmptyFileName = "a file's name is empty ('')";
+
+// A file's whole text; a pipe's (a FIFO) to its end.
 Result<std::string> read_text_file(const std::string& path);
 
 // A whole file's bytes for reading only, mapped into memory where the system can (its pages
