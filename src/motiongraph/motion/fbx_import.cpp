@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstdio>
 #include <cstring>
 #include <exception>
 #include <map>
@@ -78,6 +79,7 @@ std::chrono::seconds trial_seconds(size_t file_bytes) {
   return std::chrono::seconds(60 + static_cast<long long>(file_bytes >> 20));
 }
 
+#ifndef MOTIONGRAPH_LEAK_SANITIZER  // (the sanitizer's shadow memory grows as it goes)
 // In the child: its address space bounded to what it holds now and `more` bytes.
 void bound_memory(size_t more) {
   long pages = 0;
@@ -90,6 +92,7 @@ void bound_memory(size_t more) {
   const rlimit bound{limit, limit};
   setrlimit(RLIMIT_AS, &bound);
 }
+#endif
 
 // Debian's assimp (5.2) crashes on some malformed files (a double free as it frees the scene of a
 // skinned file whose two bones share a name, an assertion on a skin's vertex index past its mesh,
@@ -112,7 +115,7 @@ Status trial_read(std::string_view bytes, const std::string& file) {
     // What the C library says of a crash (free(): double free detected) is this function's to say.
     if (const int null_fd = open("/dev/null", O_WRONLY); null_fd >= 0) dup2(null_fd, STDERR_FILENO);
 #ifndef MOTIONGRAPH_LEAK_SANITIZER
-    bound_memory(trial_memory_bytes(bytes.size()));  // (the sanitizer's shadow memory grows as it goes)
+    bound_memory(trial_memory_bytes(bytes.size()));
 #endif
     Assimp::Importer importer;
     auto scene = read_scene(importer, bytes, file);
